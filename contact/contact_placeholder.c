@@ -1,0 +1,2 @@
+/* placeholder */
+typedef int cs_contact_placeholder_;

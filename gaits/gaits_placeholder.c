@@ -1,0 +1,2 @@
+/* placeholder */
+typedef int cs_gaits_placeholder_;

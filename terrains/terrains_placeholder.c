@@ -1,0 +1,2 @@
+/* placeholder */
+typedef int cs_terrains_placeholder_;

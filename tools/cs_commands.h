@@ -1,0 +1,13 @@
+/* cs_commands.h: the subcommands of the `crawlsim` executable (one file each, cmd_<name>.c).
+ * Each takes the arguments after its name (argv[0] is the subcommand) and returns the process
+ * exit status: 0 on success, 1 on bad input or failure, after printing one line
+ * "crawlsim <cmd>: <file:line:> cause" to stderr. None of them calls exit(). */
+#ifndef CS_TOOLS_COMMANDS_H
+#define CS_TOOLS_COMMANDS_H
+
+int csx_cmdRun(int argc, char** argv);       /* cmd_run.c: crawlsim run ... */
+int csx_cmdBend(int argc, char** argv);      /* cmd_bend.c: crawlsim bend ... */
+int csx_cmdGait(int argc, char** argv);      /* cmd_gait.c: crawlsim gait check|... */
+int csx_cmdCalibrate(int argc, char** argv); /* cmd_calibrate.c: crawlsim calibrate ... */
+
+#endif

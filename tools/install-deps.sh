@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Install crawlsim's build and run dependencies from Debian 12 packages.
+# Idempotent: packages already present are skipped; re-running costs about a second.
+# Why each package is needed is listed in README.md ("Dependencies").
+set -euo pipefail
+
+PKGS=(
+  build-essential cmake pkg-config          # C17 compiler and build
+  libode-dev libccd-dev                     # rigid support, terrain, contacts (ODE uses libccd)
+  libsundials-dev                           # CVODE: chamber-pressure dynamics, later the leg states
+  libhdf5-dev                               # output files (serial HDF5 + HL)
+  gmsh                                      # FE mesher, run as a separate program (GPL stays out of our binaries)
+  python3-matplotlib python3-h5py           # plots, run with Debian's /usr/bin/python3
+)
+
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PKGS[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"
