@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# test_plots.sh: smoke test of tools/plot_track.py and tools/plot_bend.py.
+# Writes small synthetic run/bend files (tests/tools/make_synthetic_h5.py, h5py) in a temp dir,
+# runs both scripts, checks the PNGs exist and are non-empty PNGs, and checks that a missing
+# file or dataset gives exit status 1 with a one-line message.
+# Uses Debian's /usr/bin/python3 (python3-matplotlib, python3-h5py); override with $CS_PYTHON.
+# Prints "N passed, N failed" last; exits non-zero on any failure.
+set -u
+
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(cd "$HERE/../.." && pwd)"
+PY="${CS_PYTHON:-/usr/bin/python3}"
+TRACK="$ROOT/tools/plot_track.py"
+BEND="$ROOT/tools/plot_bend.py"
+GEN="$HERE/make_synthetic_h5.py"
+
+TMP="$(mktemp -d "${TMPDIR:-/tmp}/cs_test_plots.XXXXXX")"
+trap 'rm -rf "$TMP"' EXIT
+export MPLBACKEND=Agg MPLCONFIGDIR="$TMP/mpl"
+
+pass=0
+fail=0
+ok()  { pass=$((pass + 1)); echo "ok   $1"; }
+bad() { fail=$((fail + 1)); echo "FAIL $1"; [ -n "${2:-}" ] && sed 's/^/     | /' "$2"; }
+
+# expect_png NAME PNG CMD...: CMD exits 0 and writes a non-empty PNG
+expect_png() {
+  local name="$1" png="$2"; shift 2
+  rm -f "$png"
+  if ! "$@" >"$TMP/out.txt" 2>&1; then bad "$name (exit $?)" "$TMP/out.txt"; return; fi
+  if [ ! -s "$png" ]; then bad "$name (no PNG or empty: $png)" "$TMP/out.txt"; return; fi
+  if [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" != "89504e470d0a1a0a" ]; then
+    bad "$name (not a PNG: $png)"; return
+  fi
+  ok "$name ($(wc -c <"$png") bytes)"
+}
+
+# expect_fail1 NAME PATTERN CMD...: CMD exits 1, stderr is one line matching PATTERN, no traceback
+expect_fail1() {
+  local name="$1" pat="$2"; shift 2
+  "$@" >"$TMP/out.txt" 2>"$TMP/err.txt"
+  local rc=$?
+  if [ "$rc" -ne 1 ]; then bad "$name (exit $rc, expected 1)" "$TMP/err.txt"; return; fi
+  if [ "$(wc -l <"$TMP/err.txt")" -ne 1 ] || ! grep -q -- "$pat" "$TMP/err.txt"; then
+    bad "$name (expected one line matching '$pat')" "$TMP/err.txt"; return
+  fi
+  ok "$name: $(cat "$TMP/err.txt")"
+}
+
+if ! "$PY" -c 'import matplotlib, h5py, numpy' 2>"$TMP/err.txt"; then
+  bad "$PY has matplotlib and h5py (install python3-matplotlib python3-h5py)" "$TMP/err.txt"
+  echo "$pass passed, $fail failed"
+  exit 1
+fi
+
+gen() { "$PY" "$GEN" "$@" >"$TMP/gen.txt" 2>&1 || { bad "make_synthetic_h5.py $*" "$TMP/gen.txt"; }; }
+gen run  "$TMP/run.h5"
+gen run  "$TMP/run_noorient.h5" --drop /support/orientation
+gen run  "$TMP/run_noleg.h5" --drop /legs/E/centerline
+gen run  "$TMP/run_1.h5" --n 1 --k 2
+gen run  "$TMP/run_short.h5" --short /legs/H/centerline
+gen bend "$TMP/fem.h5" --model fem --until 0.403
+gen bend "$TMP/analytic.h5" --model analytic --m 30 --scale 0.9
+gen bend "$TMP/bend_noangle.h5" --drop /angle_deg
+printf 'not hdf5\n' >"$TMP/junk.h5"
+
+# plot_track.py
+expect_png "plot_track default"            "$TMP/a.png" "$PY" "$TRACK" "$TMP/run.h5" -o "$TMP/a.png"
+expect_png "plot_track --reference none --times" "$TMP/b.png" \
+  "$PY" "$TRACK" "$TMP/run.h5" -o "$TMP/b.png" --reference none --times 0,3,6,9
+expect_png "plot_track default output name" "$TMP/run_track.png" "$PY" "$TRACK" "$TMP/run.h5"
+expect_png "plot_track single sample"       "$TMP/c.png" "$PY" "$TRACK" "$TMP/run_1.h5" -o "$TMP/c.png"
+expect_png "plot_track series one sample short" "$TMP/s.png" "$PY" "$TRACK" "$TMP/run_short.h5" -o "$TMP/s.png"
+grep -q "plotting the first 36 samples" "$TMP/out.txt" && ok "plot_track warns on short series" \
+  || bad "plot_track warns on short series" "$TMP/out.txt"
+expect_fail1 "plot_track missing file"      "no such file" "$PY" "$TRACK" "$TMP/nope.h5" -o "$TMP/x.png"
+expect_fail1 "plot_track missing orientation" "missing dataset /support/orientation" \
+  "$PY" "$TRACK" "$TMP/run_noorient.h5" -o "$TMP/x.png"
+expect_fail1 "plot_track missing leg"       "missing dataset /legs/E/centerline" \
+  "$PY" "$TRACK" "$TMP/run_noleg.h5" -o "$TMP/x.png"
+expect_fail1 "plot_track not HDF5"          "not a readable HDF5 file" "$PY" "$TRACK" "$TMP/junk.h5" -o "$TMP/x.png"
+
+# plot_bend.py
+expect_png "plot_bend one file"   "$TMP/d.png" "$PY" "$BEND" "$TMP/fem.h5" -o "$TMP/d.png"
+expect_png "plot_bend two models" "$TMP/e.png" "$PY" "$BEND" "$TMP/fem.h5" "$TMP/analytic.h5" -o "$TMP/e.png"
+expect_fail1 "plot_bend missing file"    "no such file" "$PY" "$BEND" "$TMP/fem.h5" "$TMP/nope.h5" -o "$TMP/x.png"
+expect_fail1 "plot_bend missing dataset" "missing dataset /angle_deg" \
+  "$PY" "$BEND" "$TMP/fem.h5" "$TMP/bend_noangle.h5" -o "$TMP/x.png"
+[ ! -e "$TMP/x.png" ] && ok "no PNG written on failure" || bad "a failing run wrote $TMP/x.png"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,306 @@
+#!/usr/bin/python3
+"""plot_track.py: plot the support track and the legs' side view of one `crawlsim run` file.
+
+Usage:
+  /usr/bin/python3 tools/plot_track.py RUN.h5 [-o OUT.png] [--times 0,0.5,1,1.5,2]
+                                       [--reference flat-road|none]
+
+Reads the `run` output contract of DESIGN.md ("Output contract (HDF5)"):
+  /time [N] s, /support/position [N,3] mm (x, y, z displacement of the support's centre
+  from t = 0; x crawl direction, y up, z lateral), /support/orientation [N,4] (w, x, y, z),
+  /legs/<A..H>/centerline [N,K,3] mm (world frame), root attributes (scene, leg model,
+  gait file, wall time, ...). /pressure is part of the contract but is not plotted here.
+
+Draws one PNG with four panels:
+  (a) support x vs t, with the paper's Table 2 (REFERENCE.md) and a +-10 % band after 2 s;
+  (b) support height y and lateral z vs t;
+  (c) pitch and roll of the support in degrees;
+  (d) side view (x-y plane) of the legs at the chosen times (nearest samples):
+      legs A-D solid, E-H dashed, one colour per time, ground line at the lowest foot at t = 0.
+
+Runs with Debian's Python (python3-matplotlib, python3-h5py), Agg backend, no display.
+Exit status: 0 on success, 1 on a missing/unreadable file or dataset (one-line message on
+stderr), 2 on bad command-line usage.
+"""
+
+import argparse
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+
+LEGS = "ABCDEFGH"
+
+# Paper Table 2 (REFERENCE.md): flat road, support displacement x (mm) at t = 0..9 s; y = z = 0.
+TABLE2_T = np.arange(10.0)
+TABLE2_X = np.array([0, 0, 39, 78, 117, 156, 195, 234, 273, 312], dtype=float)
+TABLE2_BAND = 0.10  # +-10 % band, drawn from t = 2 s on (before that x is 0 and a relative band is empty)
+TABLE2_BAND_FROM = 2.0
+
+# Root attribute names are not fixed by the contract's wording ("scene, leg model, gait file,
+# wall time"): accept the usual spellings, compared after lower-casing and mapping ' ' and '-' to '_'.
+ATTR_ALIASES = {
+    "scene": ("scene", "scene_name", "road", "terrain"),
+    "leg_model": ("leg_model", "legmodel", "leg", "leg_surrogate", "surrogate", "model"),
+    "gait": ("gait_file", "gait", "gait_path", "gaitfile"),
+    "wall_time": ("wall_time_s", "wall_time", "walltime", "wall_clock_s", "wall_clock"),
+    "status": ("status",),
+}
+
+
+class InputError(Exception):
+    """A missing or malformed input; reported as one line, exit status 1."""
+
+
+def fail(msg):
+    print(f"plot_track: {msg}", file=sys.stderr)
+    sys.exit(1)
+
+
+def attr_text(value):
+    """An HDF5 attribute value as a short string (bytes, numpy scalars and 1-element arrays)."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    if isinstance(value, np.ndarray):
+        if value.size == 1:
+            return attr_text(value.reshape(-1)[0])
+        return " ".join(attr_text(v) for v in value.reshape(-1))
+    if isinstance(value, (np.floating, float)):
+        return f"{float(value):g}"
+    return str(value)
+
+
+def find_attr(attrs, key):
+    norm = {k.lower().replace(" ", "_").replace("-", "_"): k for k in attrs}
+    for alias in ATTR_ALIASES[key]:
+        if alias in norm:
+            return attr_text(attrs[norm[alias]])
+    return None
+
+
+def read_dataset(f, path, path_file, shape_tail):
+    """Read dataset `path` as float64 and check its shape: [any] + shape_tail (None = any size)."""
+    if path not in f:
+        raise InputError(f"{path_file}: missing dataset {path}")
+    obj = f[path]
+    if not hasattr(obj, "shape") or not hasattr(obj, "dtype"):
+        raise InputError(f"{path_file}: {path} is not a dataset")
+    try:
+        a = np.asarray(obj[()], dtype=float)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"{path_file}: {path} is not numeric ({e})") from None
+    want = len(shape_tail) + 1
+    bad = a.ndim != want or any(s is not None and a.shape[1 + i] != s for i, s in enumerate(shape_tail))
+    if bad:
+        dims = ",".join(["N"] + ["K" if s is None else str(s) for s in shape_tail])
+        raise InputError(f"{path_file}: {path} has shape {list(a.shape)}, expected [{dims}]")
+    return a
+
+
+def load_run(path):
+    import h5py  # imported here so that a missing h5py is reported like other input errors
+
+    if not os.path.isfile(path):
+        raise InputError(f"{path}: no such file")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        raise InputError(f"{path}: not a readable HDF5 file ({str(e).splitlines()[0]})") from None
+    with f:
+        series = {
+            "t": read_dataset(f, "/time", path, ()),
+            "pos": read_dataset(f, "/support/position", path, (3,)),
+            "quat": read_dataset(f, "/support/orientation", path, (4,)),
+        }
+        legs = {leg: read_dataset(f, f"/legs/{leg}/centerline", path, (None, 3)) for leg in LEGS}
+        attrs = {k: find_attr(f.attrs, k) for k in ATTR_ALIASES}
+    # The writer appends samples as the run goes, so a run that stopped mid-sample can leave
+    # series one sample apart: plot the common prefix and say so.
+    lengths = [a.shape[0] for a in series.values()] + [a.shape[0] for a in legs.values()]
+    n = min(lengths)
+    if n == 0:
+        raise InputError(f"{path}: no samples (/time or another series is empty)")
+    if max(lengths) != n:
+        print(f"plot_track: warning: {path}: series lengths differ ({min(lengths)}..{max(lengths)}), "
+              f"plotting the first {n} samples", file=sys.stderr)
+    run = {k: a[:n] for k, a in series.items()}
+    run["legs"] = {k: a[:n] for k, a in legs.items()}
+    run["path"] = path
+    run["attrs"] = attrs
+    return run
+
+
+def pitch_roll_deg(q):
+    """Pitch (about lateral z, nose up > 0) and roll (about crawl axis x) in degrees.
+
+    Frames of REFERENCE.md: x crawl direction, y up, z lateral. The attitude is read as
+    R = Ry(yaw) Rz(pitch) Rx(roll); then R[1,0] = sin(pitch) (the body x axis' height) and
+    roll = atan2(-R[1,2], R[1,1]). Quaternions are normalised first (w, x, y, z order).
+    """
+    q = np.array(q, dtype=float)
+    norm = np.linalg.norm(q, axis=1)
+    norm[norm == 0] = np.nan
+    w, x, y, z = (q / norm[:, None]).T
+    r10 = 2.0 * (x * y + w * z)
+    r11 = 1.0 - 2.0 * (x * x + z * z)
+    r12 = 2.0 * (y * z - w * x)
+    pitch = np.degrees(np.arcsin(np.clip(r10, -1.0, 1.0)))
+    roll = np.degrees(np.arctan2(-r12, r11))
+    return pitch, roll
+
+
+def parse_times(text):
+    try:
+        times = [float(s) for s in text.split(",") if s.strip() != ""]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"bad time list '{text}' (expected e.g. 0,0.5,1)") from None
+    if not times:
+        raise argparse.ArgumentTypeError("empty time list")
+    return times
+
+
+def nearest_samples(t, times):
+    """Indices of the samples nearest to each requested time, duplicates removed, in time order."""
+    idx = []
+    dt = float(np.nanmedian(np.diff(t))) if len(t) > 1 else 0.0
+    for tq in times:
+        i = int(np.nanargmin(np.abs(t - tq)))
+        if abs(t[i] - tq) > max(dt, 1e-12):
+            print(f"plot_track: warning: no sample near t = {tq:g} s, using t = {t[i]:.4g} s", file=sys.stderr)
+        if i not in idx:
+            idx.append(i)
+    return sorted(idx, key=lambda i: t[i])
+
+
+def plot_track(run, out, times, reference):
+    t = run["t"]
+    x, y, z = run["pos"].T
+    pitch, roll = pitch_roll_deg(run["quat"])
+    a = run["attrs"]
+
+    fig = plt.figure(figsize=(16, 10.5), constrained_layout=True)
+    gs = fig.add_gridspec(2, 3, height_ratios=[1.0, 1.25])
+    ax_x = fig.add_subplot(gs[0, 0])
+    ax_yz = fig.add_subplot(gs[0, 1], sharex=ax_x)
+    ax_pr = fig.add_subplot(gs[0, 2], sharex=ax_x)
+    ax_side = fig.add_subplot(gs[1, :])
+
+    # (a) support x vs t
+    ax_x.plot(t, x, color="C0", lw=1.8, label="simulation")
+    if reference == "flat-road":
+        tb = np.linspace(TABLE2_BAND_FROM, TABLE2_T[-1], 50)
+        xb = np.interp(tb, TABLE2_T, TABLE2_X)
+        ax_x.fill_between(tb, (1 - TABLE2_BAND) * xb, (1 + TABLE2_BAND) * xb, color="0.6", alpha=0.35,
+                          lw=0, label=f"Table 2 \u00b1{TABLE2_BAND * 100:.0f} % (t \u2265 {TABLE2_BAND_FROM:g} s)")
+        ax_x.plot(TABLE2_T, TABLE2_X, "ks", ms=5, mfc="none", label="paper Table 2 (flat road)")
+    ax_x.set_xlabel("time t (s)")
+    ax_x.set_ylabel("support displacement x (mm)")
+    ax_x.set_title("(a) crawl direction x")
+    ax_x.legend(loc="upper left", fontsize=8)
+
+    # (b) height and lateral
+    ax_yz.plot(t, y, color="C2", lw=1.6, label="height y (up)")
+    ax_yz.plot(t, z, color="C3", lw=1.6, label="lateral z")
+    if reference == "flat-road":
+        ax_yz.axhline(0.0, color="k", lw=0.8, ls=":", label="Table 2: y = z = 0")
+    ax_yz.set_xlabel("time t (s)")
+    ax_yz.set_ylabel("support displacement (mm)")
+    ax_yz.set_title("(b) height y and lateral z")
+    ax_yz.legend(loc="best", fontsize=8)
+
+    # (c) attitude
+    ax_pr.plot(t, pitch, color="C4", lw=1.6, label="pitch (about z, nose up > 0)")
+    ax_pr.plot(t, roll, color="C5", lw=1.6, label="roll (about x)")
+    ax_pr.axhline(0.0, color="k", lw=0.6, ls=":")
+    ax_pr.set_xlabel("time t (s)")
+    ax_pr.set_ylabel("angle (deg)")
+    ax_pr.set_title("(c) support pitch and roll")
+    ax_pr.legend(loc="best", fontsize=8)
+
+    for ax in (ax_x, ax_yz, ax_pr):
+        ax.grid(True, alpha=0.3)
+
+    # (d) side view of the legs
+    idx = nearest_samples(t, times)
+    cmap = plt.get_cmap("viridis")
+    colors = [cmap(0.9 * k / max(len(idx) - 1, 1)) for k in range(len(idx))]
+    handles = []
+    for i, c in zip(idx, colors):
+        for leg in LEGS:
+            cl = run["legs"][leg][i]
+            ls = "-" if leg in "ABCD" else "--"
+            ax_side.plot(cl[:, 0], cl[:, 1], ls=ls, color=c, lw=1.5)
+            ax_side.plot(cl[-1, 0], cl[-1, 1], "o", color=c, ms=3)
+        handles.append(Line2D([], [], color=c, lw=2, label=f"t = {t[i]:.3g} s"))
+    feet0 = np.array([run["legs"][leg][0][-1, 1] for leg in LEGS])
+    ground = np.nanmin(feet0)
+    if np.isfinite(ground):
+        ax_side.axhline(ground, color="saddlebrown", lw=1.2)
+        handles.append(Line2D([], [], color="saddlebrown", lw=1.2,
+                              label=f"ground (lowest foot at t = 0: y = {ground:.1f} mm)"))
+    handles.append(Line2D([], [], color="k", ls="-", label="legs A\u2013D"))
+    handles.append(Line2D([], [], color="k", ls="--", label="legs E\u2013H"))
+    handles.append(Line2D([], [], color="k", ls="none", marker="o", ms=3, label="foot (last centreline point)"))
+    ax_side.set_aspect("equal", adjustable="datalim")
+    ax_side.set_xlabel("x, crawl direction (mm)")
+    ax_side.set_ylabel("y, up (mm)")
+    ax_side.set_title("(d) legs, side view (x\u2013y plane, world frame)")
+    ax_side.grid(True, alpha=0.3)
+    ax_side.legend(handles=handles, loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=9)
+
+    def show(v):
+        return v if v else "?"
+
+    gait = a["gait"]
+    if gait:
+        gait = os.path.basename(gait)
+    title = (f"scene: {show(a['scene'])}   leg model: {show(a['leg_model'])}   gait: {show(gait)}   "
+             f"final x = {x[-1]:.1f} mm at t = {t[-1]:.3g} s")
+    sub = os.path.basename(run["path"])
+    if a["wall_time"]:
+        sub += f"   wall time {a['wall_time']} s"
+    if a["status"] and a["status"] != "ok":
+        sub += f"   status: {a['status']}"
+    fig.suptitle(f"{title}\n{sub}", fontsize=12)
+
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def default_out(path):
+    stem, _ = os.path.splitext(path)
+    return stem + "_track.png"
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Plot the support track and leg side view of a crawlsim run file.")
+    ap.add_argument("run", metavar="RUN.h5", help="output of `crawlsim run`")
+    ap.add_argument("-o", "--output", metavar="OUT.png", help="output PNG (default: RUN_track.png)")
+    ap.add_argument("--times", type=parse_times, default=[0, 0.5, 1, 1.5, 2],
+                    help="comma-separated times (s) for the side view, nearest samples (default 0,0.5,1,1.5,2)")
+    ap.add_argument("--reference", choices=["flat-road", "none"], default="flat-road",
+                    help="reference track in panel (a): paper Table 2 flat road (default) or none")
+    args = ap.parse_args(argv)
+
+    try:
+        run = load_run(args.run)
+    except InputError as e:
+        fail(str(e))
+    except (OSError, KeyError, ImportError) as e:
+        fail(f"{args.run}: {str(e).splitlines()[0] if str(e) else type(e).__name__}")
+    out = args.output or default_out(args.run)
+    try:
+        plot_track(run, out, args.times, args.reference)
+    except OSError as e:
+        fail(f"{out}: cannot write ({e.strerror or e})")
+    print(f"plot_track: wrote {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
