@@ -1,0 +1,266 @@
+/* fem_fibre.c: embedded fibres: locating fibre points in host tetrahedra (csf_modelAddFibre).
+ *
+ * A fibre is a polyline in the reference configuration; each of its points is located in the
+ * tetrahedron that contains it (uniform bucket grid over element bounding boxes, then the
+ * tetrahedron with the largest smallest barycentric coordinate, refined by Newton's method on the
+ * Tet10 isoparametric map). The point then moves with the body: x = sum_a N_a(xi) x_a, which is
+ * the "tie" of the paper's fibre model (ABAQUS embedded/tie constraint) without extra unknowns. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fem_model.h"
+
+/* tolerance on the smallest barycentric coordinate for "inside" (dimensionless): points on a
+ * face shared by two elements are inside both; 1e-6 absorbs round-off of the helix coordinates */
+#define CSF_LOCATE_TOL 1e-6
+
+typedef struct {
+  double lo[3], h;   /* grid origin (mm) and cell size (mm) */
+  int n[3];          /* cells per direction */
+  int* start;        /* (ncell + 1) */
+  int* item;         /* tetrahedra per cell */
+} Grid;
+
+
+static void gridFree(Grid* g) {
+  free(g->start);
+  free(g->item);
+}
+
+
+static int gridCell(const Grid* g, const double x[3], int c[3]) {
+  for (int d = 0; d < 3; d++) {
+    c[d] = (int)floor((x[d] - g->lo[d]) / g->h);
+    if (c[d] < 0 || c[d] >= g->n[d]) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
+static csStatus gridBuild(const csfMesh* me, Grid* g, csError* err) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < me->nnode; i++) {
+    for (int d = 0; d < 3; d++) {
+      lo[d] = fmin(lo[d], me->x[3 * i + d]);
+      hi[d] = fmax(hi[d], me->x[3 * i + d]);
+    }
+  }
+  double vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+  g->h = 2.0 * cbrt(vol / me->ntet) + 1e-12;
+  size_t ncell = 1;
+  for (int d = 0; d < 3; d++) {
+    g->lo[d] = lo[d] - 1e-6 * g->h;
+    g->n[d] = (int)((hi[d] - g->lo[d]) / g->h) + 1;
+    ncell *= (size_t)g->n[d];
+  }
+  g->start = calloc(ncell + 1, sizeof(int));
+  if (!g->start) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_fibre: out of memory (grid)");
+  }
+  for (int pass = 0; pass < 2; pass++) {
+    for (int e = 0; e < me->ntet; e++) {
+      double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+      for (int a = 0; a < 10; a++) {
+        const double* x = me->x + 3 * me->tet[10 * e + a];
+        for (int d = 0; d < 3; d++) {
+          blo[d] = fmin(blo[d], x[d]);
+          bhi[d] = fmax(bhi[d], x[d]);
+        }
+      }
+      int c0[3], c1[3];
+      for (int d = 0; d < 3; d++) {
+        c0[d] = (int)floor((blo[d] - g->lo[d]) / g->h);
+        c1[d] = (int)floor((bhi[d] - g->lo[d]) / g->h);
+        c0[d] = c0[d] < 0 ? 0 : c0[d];
+        c1[d] = c1[d] >= g->n[d] ? g->n[d] - 1 : c1[d];
+      }
+      for (int k = c0[2]; k <= c1[2]; k++) {
+        for (int j = c0[1]; j <= c1[1]; j++) {
+          for (int i = c0[0]; i <= c1[0]; i++) {
+            size_t c = ((size_t)k * g->n[1] + j) * g->n[0] + i;
+            if (pass == 0) {
+              g->start[c + 1]++;
+            } else {
+              g->item[g->start[c]++] = e;
+            }
+          }
+        }
+      }
+    }
+    if (pass == 0) {
+      for (size_t c = 0; c < ncell; c++) {
+        g->start[c + 1] += g->start[c];
+      }
+      g->item = malloc((size_t)(g->start[ncell] > 0 ? g->start[ncell] : 1) * sizeof(int));
+      if (!g->item) {
+        return cs_errorSet(err, CS_ERR_MEMORY, "fem_fibre: out of memory (grid)");
+      }
+    }
+  }
+  /* pass 2 advanced start[c] to the end of cell c: shift back */
+  for (size_t c = ncell; c > 0; c--) {
+    g->start[c] = g->start[c - 1];
+  }
+  g->start[0] = 0;
+  return CS_OK;
+}
+
+
+/* natural coordinates of x in tetrahedron e: linear guess, then Newton on the Tet10 map */
+static double locateIn(const csfMesh* me, int e, const double x[3], double xi[3]) {
+  const int* tv = me->tet + 10 * e;
+  const double* x0 = me->x + 3 * tv[0];
+  double A[9], r[3];
+  for (int d = 0; d < 3; d++) {
+    for (int k = 0; k < 3; k++) {
+      A[3 * d + k] = me->x[3 * tv[k + 1] + d] - x0[d];
+    }
+    r[d] = x[d] - x0[d];
+  }
+  for (int it = 0; it < 4; it++) {
+    double det = A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
+                 A[2] * (A[3] * A[7] - A[4] * A[6]);
+    if (det == 0) {
+      return -INFINITY;
+    }
+    double s[3];
+    /* Cramer's rule: s = A^-1 r */
+    for (int k = 0; k < 3; k++) {
+      double B[9];
+      memcpy(B, A, sizeof B);
+      for (int d = 0; d < 3; d++) {
+        B[3 * d + k] = r[d];
+      }
+      s[k] = (B[0] * (B[4] * B[8] - B[5] * B[7]) - B[1] * (B[3] * B[8] - B[5] * B[6]) +
+              B[2] * (B[3] * B[7] - B[4] * B[6])) /
+             det;
+    }
+    if (it == 0) {
+      memcpy(xi, s, sizeof s);
+    } else {
+      for (int k = 0; k < 3; k++) {
+        xi[k] += s[k];
+      }
+    }
+    /* residual of the quadratic map and its Jacobian at xi */
+    double N[10], dN[30];
+    csf_tet10Shape(xi, N, dN);
+    double xm[3] = {0, 0, 0};
+    memset(A, 0, sizeof A);
+    for (int a = 0; a < 10; a++) {
+      const double* xa = me->x + 3 * tv[a];
+      for (int d = 0; d < 3; d++) {
+        xm[d] += N[a] * xa[d];
+        for (int k = 0; k < 3; k++) {
+          A[3 * d + k] += xa[d] * dN[3 * a + k];
+        }
+      }
+    }
+    for (int d = 0; d < 3; d++) {
+      r[d] = x[d] - xm[d];
+    }
+  }
+  return fmin(fmin(xi[0], xi[1]), fmin(xi[2], 1.0 - xi[0] - xi[1] - xi[2]));
+}
+
+
+/* find host of x: returns tetrahedron or -1; xi filled */
+static int locate(const csfMesh* me, const Grid* g, const double x[3], double xi[3]) {
+  int c[3];
+  if (!gridCell(g, x, c)) {
+    return -1;
+  }
+  size_t cell = ((size_t)c[2] * g->n[1] + c[1]) * g->n[0] + c[0];
+  int best = -1;
+  double bscore = -INFINITY, bxi[3] = {0, 0, 0};
+  for (int q = g->start[cell]; q < g->start[cell + 1]; q++) {
+    double t[3];
+    double s = locateIn(me, g->item[q], x, t);
+    if (s > bscore) {
+      bscore = s, best = g->item[q];
+      memcpy(bxi, t, sizeof bxi);
+    }
+  }
+  if (best < 0 || bscore < -CSF_LOCATE_TOL) {
+    return -1;
+  }
+  memcpy(xi, bxi, sizeof bxi);
+  return best;
+}
+
+
+csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, double radius,
+                           csError* err) {
+  if (m->finalized) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_fibre: add fibres before csf_modelFinalize");
+  }
+  if (npts < 2 || !(E > 0) || !(radius > 0)) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_fibre: need >= 2 points, E > 0, radius > 0");
+  }
+  const csfMesh* me = m->mesh;
+  Grid g = {0};
+  csStatus st = gridBuild(me, &g, err);
+  if (st != CS_OK) {
+    gridFree(&g);
+    return st;
+  }
+  int* host = malloc((size_t)npts * sizeof(int));
+  double* N = malloc((size_t)npts * 10 * sizeof(double));
+  const int nf = m->nfib + npts - 1;
+  int* fnode = realloc(m->fib_node, (size_t)nf * 20 * sizeof(int));
+  if (fnode) {
+    m->fib_node = fnode;
+  }
+  double* fcoef = realloc(m->fib_coef, (size_t)nf * 20 * sizeof(double));
+  if (fcoef) {
+    m->fib_coef = fcoef;
+  }
+  double* fL0 = realloc(m->fib_L0, (size_t)nf * sizeof(double));
+  if (fL0) {
+    m->fib_L0 = fL0;
+  }
+  double* fEA = realloc(m->fib_EA, (size_t)nf * sizeof(double));
+  if (fEA) {
+    m->fib_EA = fEA;
+  }
+  if (!host || !N || !fnode || !fcoef || !fL0 || !fEA) {
+    free(host), free(N), gridFree(&g);
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_fibre: out of memory (%d points)", npts);
+  }
+  for (int p = 0; p < npts; p++) {
+    double xi[3];
+    host[p] = locate(me, &g, pts + 3 * p, xi);
+    if (host[p] < 0) {
+      free(host), free(N), gridFree(&g);
+      return cs_errorSet(err, CS_ERR_RANGE,
+                         "fem_fibre: fibre point %d (%g, %g, %g) mm lies outside the body", p,
+                         pts[3 * p], pts[3 * p + 1], pts[3 * p + 2]);
+    }
+    csf_tet10Shape(xi, N + 10 * p, NULL);
+  }
+  const double area = CS_PI * radius * radius;
+  for (int s = 0; s + 1 < npts; s++) {
+    const int f = m->nfib + s;
+    for (int a = 0; a < 10; a++) {
+      m->fib_node[20 * f + a] = me->tet[10 * host[s] + a];
+      m->fib_coef[20 * f + a] = -N[10 * s + a];
+      m->fib_node[20 * f + 10 + a] = me->tet[10 * host[s + 1] + a];
+      m->fib_coef[20 * f + 10 + a] = N[10 * (s + 1) + a];
+    }
+    const double* p0 = pts + 3 * s;
+    const double* p1 = pts + 3 * (s + 1);
+    m->fib_L0[f] = sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                        (p1[2] - p0[2]) * (p1[2] - p0[2]));
+    m->fib_EA[f] = E * area;
+    if (!(m->fib_L0[f] > 0)) {
+      free(host), free(N), gridFree(&g);
+      return cs_errorSet(err, CS_ERR_ARG, "fem_fibre: zero-length fibre segment %d", s);
+    }
+  }
+  m->nfib = nf;
+  free(host), free(N), gridFree(&g);
+  return CS_OK;
+}

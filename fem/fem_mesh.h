@@ -1,0 +1,80 @@
+/* fem_mesh.h: quadratic tetrahedral meshes for the full FE model (issue 3).
+ *
+ * Owns: csfMesh (Tet10 volume elements, boundary Tri6 faces with physical tags), a structured
+ * mesher for tests (a box, optionally mapped by a callback: tubes, curved blocks), the reader of
+ * gmsh MSH 2.2 ASCII files, and the actuator geometry: csrActuator -> gmsh .geo -> `gmsh` program
+ * -> .msh -> csfMesh. gmsh is GPL: it is run as a separate program and only its output file is
+ * read, so no gmsh code enters our binaries (notes/debian-deps.md, section 5).
+ *
+ * Units: mm. Frame of the actuator mesh: x = e1, y = e2 (cross-section), z = e3 from the clamped
+ * base (z = 0) to the tip (z = L).
+ * Node order (VTK): Tet10 = 4 vertices, then edge nodes (0,1) (1,2) (0,2) (0,3) (1,3) (2,3);
+ * Tri6 = 3 vertices, then edge nodes (0,1) (1,2) (2,0). Boundary faces are oriented so that
+ * (x1 - x0) x (x2 - x0) points out of the body (into a chamber for chamber walls). */
+#ifndef CS_FEM_MESH_H
+#define CS_FEM_MESH_H
+
+#include "core_status.h"
+#include "robot_actuator.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* physical tags of the actuator mesh */
+#define CSF_TAG_BASE 1 /* clamped base face z = 0 */
+#define CSF_TAG_TIP 2  /* free tip face z = L */
+/* chamber j (1..4) of segment s (0..2) */
+#define CSF_TAG_CHAMBER(s, j) (100 + 10 * ((s) + 1) + (j))
+
+typedef struct csfMesh_ {
+  int nnode, ntet, nface;
+  double* x;     /* (nnode x 3) reference coordinates, mm */
+  int* tet;      /* (ntet x 10) node indices, VTK order */
+  int* face;     /* (nface x 6) boundary Tri6 node indices, outward orientation */
+  int* face_tet; /* (nface) tetrahedron that owns the face */
+  int* face_tag; /* (nface) physical tag, 0 = untagged */
+} csfMesh;
+
+/* Map of the unit cube [0,1]^3 to physical space (mm); used by csf_meshCreateBox. */
+typedef void (*csfMapFn)(void* user, const double xi[3], double x[3]);
+
+/* Structured Tet10 mesh of [0,1]^3 with n[0] x n[1] x n[2] cubes, each split into 6 tetrahedra
+ * (Kuhn split, conforming), mapped by `map` (NULL: identity). Every node, edge nodes included, is
+ * placed by the map, so curved maps give curved (isoparametric) elements. Boundary faces are
+ * tagged 1..6 for xi0 = 0, xi0 = 1, xi1 = 0, xi1 = 1, xi2 = 0, xi2 = 1. `jitter` (0..0.2) moves
+ * interior vertex nodes by a deterministic pseudo-random fraction of the cell size (patch tests).
+ * Returns NULL and fills err on failure. */
+csfMesh* csf_meshCreateBox(const int n[3], csfMapFn map, void* user, double jitter,
+                           csError* err);
+
+/* Read a gmsh MSH 2.2 ASCII file with second-order elements (Tet10 type 11, Tri6 type 9). Tri6
+ * elements carry their physical tag; tetrahedra of every physical volume are kept. Edge-node
+ * order is recovered geometrically, so both gmsh's and VTK's conventions read correctly. */
+csfMesh* csf_meshReadMsh(const char* path, csError* err);
+
+/* Write the actuator's gmsh .geo script (OpenCASCADE kernel): five extruded rounded-square blocks
+ * (S1, LS12, S2, LS23, S3) fused conformally, 12 chambers cut (radius r1, length S - 2c),
+ * physical surfaces CSF_TAG_* and one physical volume. `l_soft` is the mesh size (mm). */
+csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* path, csError* err);
+
+/* Mesh the actuator: write `<stem>.geo`, run `gmsh -3 -order 2 -format msh22`, read `<stem>.msh`.
+ * `stem` is a path prefix (its directory must exist). The gmsh program is taken from the
+ * environment variable CS_GMSH if set, else "gmsh" on PATH. */
+csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* stem,
+                          csError* err);
+
+/* Free a mesh; NULL-safe. */
+void csf_meshDestroy(csfMesh* m);
+
+/* Tet10 shape functions N (10) at barycentric-like coordinates xi = (L1, L2, L3), L0 = 1 - sum;
+ * dN (10 x 3) derivatives with respect to xi (either may be NULL). */
+void csf_tet10Shape(const double xi[3], double N[10], double dN[30]);
+
+/* Signed volume of tetrahedron t (mm^3), from its Tet10 geometry (4-point rule). */
+double csf_meshTetVolume(const csfMesh* m, int t);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_FEM_MESH_H */

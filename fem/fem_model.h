@@ -1,0 +1,159 @@
+/* fem_model.h: the full FE model of one actuator: Yeoh Tet10 elements with a mixed P2/P0
+ * (mean-dilatation) incompressibility treatment, follower pressure on tagged faces, embedded
+ * tension-only fibres, Dirichlet data, the sparse pattern and the assembly of residual and
+ * consistent tangent; plus Newton's method with line search on top of a sparse direct solver.
+ *
+ * Model/data split (STYLE.md 4): csfModel holds the mesh, material, loads and the sparse pattern
+ * and is const once csf_modelFinalize returned; csfData holds the displacement state, residual,
+ * tangent values, solver factors, timers. Units: mm, MPa, N, t/mm^3, s.
+ * Sign convention: residual R(u) = f_int(u) - f_ext(u, load); tangent K = dR/du. */
+#ifndef CS_FEM_MODEL_H
+#define CS_FEM_MODEL_H
+
+#include "core_status.h"
+#include "fem_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Incompressibility treatment. */
+typedef enum csfFormulation_ {
+  CSF_FORM_MIXED_P0 = 0,     /* P2 displacement / P0 pressure+dilatation per element, condensed */
+  CSF_FORM_DISPLACEMENT = 1, /* plain P2 displacement with pointwise U(J): locks when kappa >> mu */
+} csfFormulation;
+
+/* Ratio of bulk to initial shear modulus, kappa / mu0 with mu0 = 2 C10 (MPa/MPa). 2000 gives an
+ * initial Poisson ratio 0.49975; results change by < 0.1 % between 1000 and 10000 (see tests). */
+#define CSF_KAPPA_RATIO 2000.0
+
+typedef struct csfMaterial_ {
+  double C10, C20;     /* Yeoh constants of W = C10 (I1b - 3) + C20 (I1b - 3)^2, MPa */
+  double kappa;        /* bulk modulus of U(J) = kappa/2 (J - 1)^2, MPa */
+  double rho;          /* density, t/mm^3 (gravity only) */
+  csfFormulation form; /* incompressibility treatment */
+} csfMaterial;
+
+/* Material with kappa = CSF_KAPPA_RATIO * 2 C10 and the mixed formulation. */
+csfMaterial csf_materialDefault(double C10, double C20, double rho);
+
+/* Deviatoric Yeoh energy of a deformation gradient F (3x3 row-major): W (MPa), first
+ * Piola-Kirchhoff stress P (9, MPa) and tangent A = dP/dF (81, index (3i+J)*9 + 3k+L), either
+ * output may be NULL. Returns J = det F; J <= 0 leaves P and A untouched. */
+double csf_yeohDev(double C10, double C20, const double F[9], double* W, double P[9],
+                   double A[81]);
+
+typedef struct csfModel_ {
+  const csfMesh* mesh; /* not owned; must outlive the model */
+  csfMaterial mat;
+  int ndof;            /* 3 nnode */
+  /* quadrature of every element: 4 points (degree 2) */
+  double* dNdX;        /* (ntet x 4 x 10 x 3) shape gradients in the reference frame, 1/mm */
+  double* wq;          /* (ntet x 4) weight x reference Jacobian, mm^3 */
+  double* vol;         /* (ntet) reference volume, mm^3 */
+  /* loads, scaled by the load factor unless stated */
+  double* face_p;      /* (nface) pressure per unit load factor on each boundary face (MPa) */
+  double gravity[3];   /* body acceleration, mm/s^2, applied at full value at every load */
+  unsigned char* fixed; /* (ndof) 1 = Dirichlet dof */
+  double* u_fix;       /* (ndof) prescribed displacement per unit load factor, mm */
+  /* embedded fibres: 2-node truss elements whose ends live inside host tetrahedra */
+  int nfib;
+  int* fib_node;       /* (nfib x 20) host nodes of end 1 (10) then end 2 (10) */
+  double* fib_coef;    /* (nfib x 20) -N_a(end 1), +N_a(end 2): d = x2 - x1 = sum coef x */
+  double* fib_L0;      /* (nfib) reference length, mm */
+  double* fib_EA;      /* (nfib) axial stiffness E A, N */
+  int fib_tension_only; /* 1: fibres carry no compression (default); 0: linear both ways */
+  /* sparse pattern (3x3 node blocks, scalar CSR), built by csf_modelFinalize */
+  int finalized;
+  int* adj_ptr;        /* (nnode + 1) */
+  int* adj;            /* (nadj) neighbour nodes, sorted per row */
+  int* row_ptr;        /* (ndof + 1) */
+  int* col;            /* (nnz) */
+  int nnz;
+  int* tet_map;        /* (ntet x 100) block slot of node pair (a, b) in row of node a */
+  int* fib_map;        /* (nfib x 400) same for fibre node pairs */
+  int* face_local;     /* (nface x 6) local node index of each face node in its tet */
+} csfModel;
+
+/* Create a model on `mesh` (not copied). No loads, nothing fixed. */
+csfModel* csf_modelCreate(const csfMesh* mesh, const csfMaterial* mat, csError* err);
+
+/* Free; NULL-safe. */
+void csf_modelDestroy(csfModel* m);
+
+/* Apply a pressure of `p_unit` MPa per unit load factor to every face with tag `tag` (adds to
+ * earlier calls). Returns the number of faces, or a negative csStatus. */
+int csf_modelAddPressure(csfModel* m, int tag, double p_unit);
+
+/* Add fibres along polylines given in reference coordinates. `pts` (npts x 3, mm) is one
+ * polyline; each segment becomes a truss element tied to the tetrahedra containing its end
+ * points (located with a tolerance; a point outside the body is an error). E (MPa), radius
+ * (mm). Must be called before csf_modelFinalize. */
+csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, double radius,
+                           csError* err);
+
+/* Build the sparse pattern. Loads and Dirichlet values may still change afterwards. */
+csStatus csf_modelFinalize(csfModel* m, csError* err);
+
+/* Opaque sparse direct solver. */
+typedef struct csfLinSolver_ csfLinSolver;
+
+/* Timers and counters, accumulated over the life of a csfData (s, counts). */
+typedef struct csfStats_ {
+  double t_assemble, t_factor, t_solve; /* wall seconds */
+  long n_assemble, n_factor, n_newton;  /* counts */
+} csfStats;
+
+typedef struct csfData_ {
+  int ndof;
+  double* u;      /* (ndof) displacement, mm */
+  double* r;      /* (ndof) residual f_int - f_ext, N (0 on fixed dofs) */
+  double* du;     /* (ndof) Newton step */
+  double* u_save; /* (ndof) scratch: last accepted state */
+  double* kval;   /* (nnz) tangent values in the model's CSR pattern */
+  double* theta;  /* (ntet) element volume ratio v/V */
+  double* pel;    /* (ntet) element pressure kappa (theta - 1), MPa (mixed form) */
+  double rnorm;   /* ||R|| on free dofs after the last assembly, N */
+  double fnorm;   /* force scale for convergence: ||f_int|| over all dofs + ||f_ext||, N */
+  double jmin;    /* smallest pointwise J at quadrature points after the last assembly */
+  double load;    /* load factor of the last assembly */
+  csfLinSolver* ls;
+  csfStats stats;
+} csfData;
+
+csfData* csf_dataCreate(const csfModel* m, csError* err);
+void csf_dataDestroy(csfData* d);
+
+/* Assemble R (and K when want_k) at the current d->u and load factor. Returns 0, > 0 when the
+ * state is not physical (an inverted element: recoverable, cut the step), < 0 on fatal errors. */
+int csf_assemble(const csfModel* m, csfData* d, double load, int want_k);
+
+/* Newton options (STYLE.md 17). */
+typedef struct csfNewtonOptions_ {
+  int max_iter;   /* Newton iterations per load level */
+  double rtol;    /* ||R|| <= rtol * fnorm (dimensionless) */
+  double atol;    /* ... or ||R|| <= atol, N */
+  int max_ls;     /* line-search halvings */
+  int threads;    /* OpenMP threads for assembly, 0 = library default */
+} csfNewtonOptions;
+
+csfNewtonOptions csf_newtonDefault(void);
+
+/* Solve R(u, load) = 0 by Newton's method with backtracking line search, starting from d->u
+ * (Dirichlet dofs move to load * u_fix within the first Newton step, through the linearised lift). On failure d->u is restored and
+ * CS_ERR_DIVERGED is returned (recoverable: the caller cuts the load step); `iters` (may be
+ * NULL) receives the number of iterations. */
+csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNewtonOptions* opt,
+                         int* iters, csError* err);
+
+/* Cauchy stress averaged over the quadrature points of tetrahedron e (6: xx yy zz xy yz zx, MPa)
+ * at the current d->u (d->pel must be current: call after csf_assemble). */
+void csf_tetCauchy(const csfModel* m, const csfData* d, int e, double sigma[6]);
+
+/* Reaction/internal force sum over dofs with fixed[] set and a given direction (0..2), N. */
+double csf_reactionSum(const csfModel* m, const csfData* d, int dir);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_FEM_MODEL_H */
