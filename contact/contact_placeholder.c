@@ -1,2 +1,0 @@
-/* placeholder */
-typedef int cs_contact_placeholder_;

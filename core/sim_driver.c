@@ -1,0 +1,327 @@
+/* sim_driver.c: model/data life cycle and the step pipeline (see sim_model.h).
+ *
+ * Rationale. ODE owns the rigid support, the leg links and the terrain; the chamber pressures
+ * are the continuous state handed to SUNDIALS. Their dynamics here are the simplest physical
+ * supply model, a first-order lag per chamber (valve + tube filling, time constant tau), which
+ * CVODE integrates across each macro step with a stop time at t + h (it must not step past the
+ * exchange point, debian-deps.md "Co-simulation stepping"); CVODE's diagonal linear solver fits
+ * the decoupled chambers exactly. Later supply models (valves, tubing, gas per chamber) replace
+ * the right-hand side and keep this structure.
+ *
+ * ODE's QuickStep (projected Gauss-Seidel) is used because the robot is one island of ~100
+ * bodies and ~700 constraint rows: the Dantzig solver of dWorldStep is O(rows^3) per step. */
+#include <cvode/cvode.h>
+#include <cvode/cvode_diag.h>
+#include <math.h>
+#include <nvector/nvector_serial.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sundials/sundials_context.h>
+
+#include "core_math.h"
+#include "sim_model.h"
+
+_Static_assert(sizeof(dReal) == sizeof(double), "crawlsim needs ODE built in double precision");
+_Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
+
+struct csData_ {
+  dWorldID world;
+  dSpaceID terrain_space;
+  dSpaceID robot_space;
+  dJointGroupID contacts;
+  csrRobot* robot;
+  double t;
+  long nstep;
+  double p_cmd[CSR_NCHAMBER_TOTAL]; /* scheduled pressures at t (MPa) */
+  double p[CSR_NCHAMBER_TOTAL];     /* chamber pressures at t (MPa) */
+  double x0[3];                     /* support centre at t = 0 (mm) */
+  cscContactStats cstats;
+  /* CVODE */
+  SUNContext sun;
+  void* cvode;
+  N_Vector y;
+  const csModel* m; /* for the right-hand side */
+};
+
+
+csOptions cs_defaultOptions(void) {
+  csOptions o;
+  /* 1 ms: the joint springs are implicit (any h is stable); 1 ms resolves the 0.2-0.3 s
+   * pressure ramps and the contact transitions; halving it changes the 9 s track by < 1 mm
+   * (README, step study) */
+  o.h = 1e-3;
+  o.t_end = 0;
+  o.output_dt = 0.01;
+  /* long enough for the 100 Hz leg modes to die out under 5 ms material damping */
+  o.settle = 0.3;
+  o.gravity = 9810.0;
+  /* PGS iterations: chains of 13 links need more than ODE's default 20 to pass loads from
+   * the feet to the support */
+  o.solver_iterations = 60;
+  /* valve + tube filling of a ~0.5 ml chamber: tens of ms (assumption, documented) */
+  o.pneumatic_tau = 0.02;
+  o.pneumatic_rtol = 1e-6;
+  o.pneumatic_atol = 1e-8;
+  o.centerline_points = 25;
+  /* 10 m/s: nothing in a crawling gait comes near it */
+  o.max_speed = 1e4;
+  o.progress = 0;
+  return o;
+}
+
+
+void cs_modelDestroy(csModel* m) {
+  if (m) {
+    csg_gaitDestroy(m->gait);
+    m->gait = NULL;
+  }
+}
+
+
+/* scheduled pressures at time t (zero before t = 0) */
+static void schedule(const csModel* m, double t, double* p_cmd) {
+  if (t < 0 || !m->gait) {
+    memset(p_cmd, 0, CSR_NCHAMBER_TOTAL * sizeof(double));
+    return;
+  }
+  csg_scheduleEval(m->gait, &m->sched, t, p_cmd);
+}
+
+
+/* CVODE right-hand side: dp/dt = (p_cmd(t) - p) / tau; 0 = ok (SUNDIALS convention) */
+static int pneumaticRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+  csData* d = user;
+  double pc[CSR_NCHAMBER_TOTAL];
+  schedule(d->m, t, pc);
+  const double* p = N_VGetArrayPointer(y);
+  double* dp = N_VGetArrayPointer(ydot);
+  double inv_tau = 1.0 / d->m->opt.pneumatic_tau;
+  for (int i = 0; i < CSR_NCHAMBER_TOTAL; i++) {
+    if (!isfinite(p[i])) {
+      return -1;
+    }
+    dp[i] = (pc[i] - p[i]) * inv_tau;
+  }
+  return 0;
+}
+
+
+static csStatus validateOptions(const csOptions* o, csError* err) {
+  if (!(o->h > 0 && o->h <= 0.01)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "step h = %g s must be in (0, 0.01]", o->h);
+  }
+  if (!(o->output_dt >= o->h) || !isfinite(o->output_dt)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "output interval %g s must be >= the step %g s",
+                       o->output_dt, o->h);
+  }
+  if (!(o->settle >= 0 && o->gravity >= 0 && o->solver_iterations >= 1 &&
+        o->pneumatic_tau >= 0 && o->centerline_points >= 2 && o->max_speed > 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "invalid simulation options");
+  }
+  return CS_OK;
+}
+
+
+csData* cs_dataCreate(const csModel* m, csError* err) {
+  if (validateOptions(&m->opt, err) != CS_OK ||
+      csc_contactParamsValidate(&m->contact, err) != CS_OK) {
+    return NULL;
+  }
+  csData* d = calloc(1, sizeof *d);
+  if (!d) {
+    cs_errorSet(err, CS_ERR_MEMORY, "out of memory");
+    return NULL;
+  }
+  d->m = m;
+  d->world = dWorldCreate();
+  dWorldSetGravity(d->world, 0, -m->opt.gravity, 0);
+  dWorldSetQuickStepNumIterations(d->world, m->opt.solver_iterations);
+  d->terrain_space = dSimpleSpaceCreate(0);
+  d->robot_space = dSimpleSpaceCreate(0);
+  d->contacts = dJointGroupCreate(0);
+  cst_terrainBuildOde(&m->terrain, d->terrain_space);
+
+  /* the support's hip plane sits one leg length above the ground at the start, plus a
+   * 0.5 mm gap so nothing starts in penetration; settling closes it */
+  double ground = cst_terrainHeightAt(&m->terrain, m->terrain.start[0], m->terrain.start[1]);
+  double c[3] = {m->terrain.start[0], ground + csr_actuatorLength(&m->robot.leg) + 0.5,
+                 m->terrain.start[1]};
+  d->robot = csr_robotCreate(&m->robot, d->world, d->robot_space, c, m->opt.h, err);
+  if (!d->robot) {
+    cs_dataDestroy(d);
+    return NULL;
+  }
+  d->t = -m->opt.settle;
+
+  /* pneumatics */
+  if (m->opt.pneumatic_tau > 0) {
+    if (SUNContext_Create(NULL, &d->sun) != 0) {
+      cs_errorSet(err, CS_ERR_SOLVER, "SUNDIALS: cannot create a context");
+      cs_dataDestroy(d);
+      return NULL;
+    }
+    d->y = N_VNew_Serial(CSR_NCHAMBER_TOTAL, d->sun);
+    N_VConst(0.0, d->y);
+    d->cvode = CVodeCreate(CV_BDF, d->sun);
+    if (!d->y || !d->cvode || CVodeInit(d->cvode, pneumaticRhs, d->t, d->y) != CV_SUCCESS ||
+        CVodeSStolerances(d->cvode, m->opt.pneumatic_rtol, m->opt.pneumatic_atol) !=
+            CV_SUCCESS ||
+        CVodeSetUserData(d->cvode, d) != CV_SUCCESS || CVDiag(d->cvode) != CVDIAG_SUCCESS ||
+        CVodeSetMaxNumSteps(d->cvode, 100000) != CV_SUCCESS) {
+      cs_errorSet(err, CS_ERR_SOLVER, "CVODE: cannot set up the pneumatic integrator");
+      cs_dataDestroy(d);
+      return NULL;
+    }
+  }
+  return d;
+}
+
+
+void cs_dataDestroy(csData* d) {
+  if (!d) {
+    return;
+  }
+  if (d->cvode) {
+    CVodeFree(&d->cvode);
+  }
+  if (d->y) {
+    N_VDestroy(d->y);
+  }
+  if (d->sun) {
+    SUNContext_Free(&d->sun);
+  }
+  if (d->robot) {
+    csr_robotDestroy(&d->m->robot, d->robot);
+  }
+  if (d->contacts) {
+    dJointGroupDestroy(d->contacts);
+  }
+  if (d->robot_space) {
+    dSpaceDestroy(d->robot_space);
+  }
+  if (d->terrain_space) {
+    dSpaceDestroy(d->terrain_space);
+  }
+  if (d->world) {
+    dWorldDestroy(d->world);
+  }
+  free(d);
+}
+
+
+/* stage 2: advance the chamber pressures to t_next */
+static csStatus stepPneumatics(const csModel* m, csData* d, double t_next, csError* err) {
+  if (m->opt.pneumatic_tau <= 0) {
+    schedule(m, t_next, d->p);
+    return CS_OK;
+  }
+  sunrealtype tret;
+  CVodeSetStopTime(d->cvode, t_next);
+  int rc = CVode(d->cvode, t_next, d->y, &tret, CV_NORMAL);
+  if (rc < 0) {
+    return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: CVODE failed on the chamber pressures "
+                       "(flag %d)", d->t, rc);
+  }
+  memcpy(d->p, N_VGetArrayPointer(d->y), sizeof d->p);
+  return CS_OK;
+}
+
+
+/* stage 6: a non-finite or runaway support means the run diverged */
+static csStatus checkState(const csModel* m, const csData* d, csError* err) {
+  const dReal* x = dBodyGetPosition(d->robot->support);
+  const dReal* v = dBodyGetLinearVel(d->robot->support);
+  for (int i = 0; i < 3; i++) {
+    if (!isfinite(x[i]) || !isfinite(v[i])) {
+      return cs_errorSet(err, CS_ERR_DIVERGED,
+                         "t = %.4f s: simulation diverged: support state is not finite", d->t);
+    }
+  }
+  double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (speed > m->opt.max_speed) {
+    return cs_errorSet(err, CS_ERR_DIVERGED,
+                       "t = %.4f s: simulation diverged: support speed %.3g mm/s exceeds %.3g "
+                       "(try a smaller step)",
+                       d->t, speed, m->opt.max_speed);
+  }
+  return CS_OK;
+}
+
+
+csStatus cs_step(const csModel* m, csData* d, csError* err) {
+  double t_next = d->t + m->opt.h;
+  /* stage 1 (inside 2's right-hand side) and 2: pressures at the end of the step drive the
+   * leg targets over it (the joints are implicit, so targets are end-of-step values) */
+  schedule(m, t_next, d->p_cmd);
+  csStatus st = stepPneumatics(m, d, t_next, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  /* stage 3: actuation */
+  int rc = csr_robotActuate(&m->robot, d->robot, d->p);
+  if (rc != 0) {
+    return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: leg actuation failed (code %d)", d->t,
+                       rc);
+  }
+  /* stage 4: contacts */
+  csc_collide(&m->contact, d->world, d->terrain_space, d->robot_space, d->contacts, m->opt.h,
+              &d->cstats);
+  /* stage 5: rigid step */
+  dWorldQuickStep(d->world, m->opt.h);
+  dJointGroupEmpty(d->contacts);
+  d->t = t_next;
+  d->nstep++;
+  /* stage 6 */
+  return checkState(m, d, err);
+}
+
+
+csStatus cs_settle(const csModel* m, csData* d, csError* err) {
+  long n = lround(m->opt.settle / m->opt.h);
+  for (long i = 0; i < n; i++) {
+    csStatus st = cs_step(m, d, err);
+    if (st != CS_OK) {
+      return st;
+    }
+  }
+  /* snap time to exactly 0 so output times are multiples of the step */
+  d->t = 0;
+  if (d->cvode) {
+    CVodeReInit(d->cvode, 0.0, d->y);
+  }
+  const dReal* x = dBodyGetPosition(d->robot->support);
+  csu_set3(d->x0, x[0], x[1], x[2]);
+  return CS_OK;
+}
+
+
+double cs_time(const csData* d) { return d->t; }
+
+
+void cs_supportDisplacement(const csData* d, double pos[3]) {
+  const dReal* x = dBodyGetPosition(d->robot->support);
+  csu_set3(pos, x[0] - d->x0[0], x[1] - d->x0[1], x[2] - d->x0[2]);
+}
+
+
+void cs_supportOrientation(const csData* d, double q[4]) {
+  const dReal* Q = dBodyGetQuaternion(d->robot->support);
+  for (int i = 0; i < 4; i++) {
+    q[i] = Q[i];
+  }
+}
+
+
+const double* cs_pressures(const csData* d) { return d->p; }
+
+
+void cs_legCenterline(const csModel* m, const csData* d, int k, int npts, double* out) {
+  m->robot.leg_type->centerline(d->robot->legs[k], npts, out);
+}
+
+
+int cs_contactCount(const csData* d) { return d->cstats.npoints; }
+
+
+double cs_robotMass(const csData* d) { return d->robot->mass_total; }

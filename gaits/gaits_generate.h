@@ -1,0 +1,48 @@
+/* gaits_generate.h: gait generators: gait tables built from a few design numbers.
+ *
+ * Owns: the flat-road gait of the paper (Sec. 5.1): two groups of legs, ACFH and BDEG,
+ * alternate; the swinging group holds the S-shape (II1 Ω3&Ω4 and II2 Ω1&Ω2 at p_stroke, foot
+ * forward and lifted); at every whole second the swinging group lands and vents, its feet
+ * drive the support forward as its legs straighten, and the other group takes the S-shape.
+ *
+ * Why a crouch. With only the S-shape, a leg's foot offset and its shortening both grow with
+ * one pressure, so the group standing is always the one with the smaller bend, and the support
+ * displacement over a cycle is minus the change of that group's foot offset, which starts and
+ * ends at zero: the paper's table as printed moves the support forward and back by the same
+ * amount (README, "Why the shipped gait crouches"). A real stride needs a second degree of
+ * freedom per leg. The generator therefore lets the standing group crouch first (Z-shape:
+ * II1 Ω3&Ω4 and II3 Ω3&Ω4 at p_stroke, II2 Ω1&Ω2 at p_crouch_II2, foot still under the hip,
+ * leg shorter than the S-shape) so that the swinging group's forward feet touch down; then the
+ * swinging group vents and the standing one changes from the crouch to the S-shape in the air.
+ * `crouch = 0` writes the paper's table as printed, for comparison. */
+#ifndef CS_GAITS_GENERATE_H
+#define CS_GAITS_GENERATE_H
+
+#include "core_status.h"
+#include "gaits_csv.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct csgFlatRoadSpec_ {
+  int nstroke;          /* strides (the paper: 8 in 9 s) */
+  double period;        /* s per stride */
+  double t_land;        /* s into a period when the swinging group lands and vents */
+  double t_final_vent;  /* s into the last period when every chamber vents */
+  double p_stroke;      /* MPa: S-shape pressure */
+  double p_crouch_II2;  /* MPa: II2 pressure of the crouch */
+  int crouch;           /* 1: with the crouch; 0: the paper's table as printed */
+} csgFlatRoadSpec;
+
+/* nstroke 8, period 1 s, t_land 0.35 s, t_final_vent 0.8 s, crouch on; pressures 0 (the
+ * caller derives them from the leg model, robot_gaitdesign.h). */
+csgFlatRoadSpec csg_defaultFlatRoadSpec(void);
+
+/* Build the table. Returns NULL with err for an invalid spec. */
+csgGait* csg_generateFlatRoad(const csgFlatRoadSpec* spec, csError* err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

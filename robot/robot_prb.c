@@ -1,0 +1,321 @@
+/* robot_prb.c: the pseudo-rigid-body (prb) leg level: each segment is a chain of rigid links
+ * joined by universal joints whose spring-damper targets come from the calibrated
+ * pressure -> bend map.
+ *
+ * Why this shape. A constant-curvature segment of bend vector β is approximated by n equal
+ * links with a joint at the middle of every n-th part of the segment (s = (k + 1/2) S / n),
+ * each turning by β/n: the polyline is then tangent-polygon of the arc and its end point is
+ * exact to O(β^2/n^2). The solid joints LS12/LS23 are rigid parts of the links that span them.
+ * Each joint's stiffness is the section's bending stiffness over its share of length,
+ * k = E_bend I / (S/n) (N mm/rad); damping is material damping kd = k * damping_time.
+ *
+ * Why ODE joint stops as springs. A joint whose low and high stop are equal becomes a two-sided
+ * soft constraint with the stop's ERP/CFM; with ERP = h k/(h k + kd), CFM = 1/(h k + kd) it is
+ * exactly an implicit spring-damper (ODE manual, "soft constraint"), stable at any step h,
+ * whereas explicit joint torques would need h well below the link's 1/ω ~ 1 ms.
+ *
+ * The base link (hip to the first joint) is clamped to the support with a fixed joint.
+ * Elongation (axial stretch from diagonal chambers) is not represented at this level: the map's
+ * stretch output is ignored and reported by the bend command only; the rod level carries it. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_math.h"
+#include "robot_leg.h"
+
+/* sign between our bend angle and ODE's universal-joint angle (see actuatePrb) */
+#define CSR_PRB_ANGLE_SIGN -1.0
+
+struct csrLeg_ {
+  csrActuator act;
+  csrLegParams par;
+  const csrBendMap* map;
+  int n;            /* links per segment */
+  int nhinge;       /* 3 n */
+  int nbody;        /* 3 n + 1 */
+  double L;         /* leg length, mm */
+  double frame[9];  /* e1, e2, e3 columns */
+  double* s_hinge;  /* (nhinge) arc length of each joint, mm */
+  double* s_body;   /* (nbody + 1) arc-length bounds of the bodies, mm */
+  double* s_mid;    /* (nbody) arc length of each body's centre, mm */
+  double* k_hinge;  /* (nhinge) stiffness, N mm/rad */
+  dBodyID* body;    /* (nbody) */
+  dJointID* hinge;  /* (nhinge) universal joints */
+  dJointID clamp;   /* fixed joint of body 0 to the support */
+  double h;
+  double total_mass; /* t */
+  /* the map is costly (a Newton solve); pressures are constant most of a gait, so each
+   * segment keeps its last input and result and re-evaluates only when the input changes */
+  double last_p[CSR_NSEG][4];
+  double last_bend[CSR_NSEG][2];
+  int have_last[CSR_NSEG];
+};
+
+
+csrLegParams csr_defaultLegParams(const csrActuator* act) {
+  csrLegParams p;
+  /* 4 links per 50 mm segment: 12.5 mm joints; the tip error of the tangent polygon is
+   * ~θ^2/(24 n^2) relative, 0.2 % at θ = 47°, well below the calibration's uncertainty */
+  p.links_per_segment = 4;
+  /* small-strain bending modulus of the Yeoh law with the fibres holding λ2 = 1:
+   * W ≈ 4 C10 ε^2 -> σ = 8 C10 ε (plane-strain-like modulus, 0.88 MPa for Elastosil) */
+  p.E_bend = 8.0 * act->C10;
+  /* material damping as a Kelvin-Voigt time constant. Silicone's loss is nearly rate
+   * independent (loss factor η ~ 0.1-0.2) and the air in chambers and tubes adds more; a
+   * time constant τ gives the loss factor ω τ at frequency ω, so τ is chosen for η ≈ 0.3 at
+   * the hanging leg's first bending mode, ω1 = 3.516 sqrt(EI / (m' L^4)) ≈ 15 rad/s:
+   * τ = 0.3 / 15 = 0.02 s. The 100 Hz link modes are then over-damped, which the implicit
+   * joint springs handle at any step. With 5 ms the leg swung for seconds after each move. */
+  p.damping_time = 0.02;
+  /* the leg's half side: the capsules fill the square section's inscribed circle */
+  p.contact_radius = act->a;
+  return p;
+}
+
+
+/* second moment of area (mm^4) of the chambered section about a principal axis:
+ * square of side 2a, minus four fillet spandrels (area (1-π/4) r2^2, centroid 0.2234 r2 from
+ * the corner), minus four circles of radius r1 at distance b (parallel-axis theorem) */
+static double sectionI(const csrActuator* a) {
+  double side = 2 * a->a;
+  double I = side * side * side * side / 12.0;
+  double Ac = (1 - CS_PI / 4) * a->r2 * a->r2;
+  double dc = a->a - 0.2234 * a->r2;
+  I -= 4 * Ac * dc * dc;
+  double Acirc = CS_PI * a->r1 * a->r1;
+  I -= 4 * (Acirc * a->r1 * a->r1 / 4 + Acirc * a->b * a->b);
+  return I;
+}
+
+
+/* silicone mass (t) between arc lengths s0 < s1: chambers are hollow over S - 2c per segment */
+static double massBetween(const csrActuator* a, double s0, double s1) {
+  double Aout = csr_actuatorOuterArea(a);
+  double Ach = 4 * CS_PI * a->r1 * a->r1;
+  double vol = Aout * (s1 - s0);
+  for (int s = 0; s < CSR_NSEG; s++) {
+    double c0 = csr_actuatorSegmentStart(a, s) + a->c;
+    double c1 = csr_actuatorSegmentStart(a, s) + a->S[s] - a->c;
+    double lo = fmax(s0, c0), hi = fmin(s1, c1);
+    if (hi > lo) {
+      vol -= Ach * (hi - lo);
+    }
+  }
+  return a->rho * vol;
+}
+
+
+static void destroyPrb(csrLeg* leg) {
+  if (!leg) {
+    return;
+  }
+  /* bodies and joints belong to the world and die with it; only our arrays are freed */
+  free(leg->s_hinge);
+  free(leg->s_body);
+  free(leg->s_mid);
+  free(leg->k_hinge);
+  free(leg->body);
+  free(leg->hinge);
+  free(leg);
+}
+
+
+/* set both stops of a universal joint axis to `target` (rad): a two-sided soft constraint */
+static void setTarget(dJointID j, int axis, double target) {
+  if (axis == 0) {
+    dJointSetUniversalParam(j, dParamLoStop, target);
+    dJointSetUniversalParam(j, dParamHiStop, target);
+  } else {
+    dJointSetUniversalParam(j, dParamLoStop2, target);
+    dJointSetUniversalParam(j, dParamHiStop2, target);
+  }
+}
+
+
+static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
+  if (csr_actuatorValidate(spec->act, err) != CS_OK) {
+    return NULL;
+  }
+  const csrLegParams* par = spec->params;
+  if (par->links_per_segment < 1 || par->links_per_segment > 64 || !(par->E_bend > 0) ||
+      !(par->damping_time >= 0) || !(par->contact_radius > 0) || !(spec->h > 0)) {
+    cs_errorSet(err, CS_ERR_RANGE,
+                "prb leg: need 1..64 links per segment, E_bend > 0, damping >= 0, radius > 0");
+    return NULL;
+  }
+  csrLeg* leg = calloc(1, sizeof *leg);
+  if (!leg) {
+    cs_errorSet(err, CS_ERR_MEMORY, "prb leg: out of memory");
+    return NULL;
+  }
+  leg->act = *spec->act;
+  leg->par = *par;
+  leg->map = spec->map;
+  leg->h = spec->h;
+  leg->n = par->links_per_segment;
+  leg->nhinge = CSR_NSEG * leg->n;
+  leg->nbody = leg->nhinge + 1;
+  leg->L = csr_actuatorLength(spec->act);
+  memcpy(leg->frame, spec->frame, sizeof leg->frame);
+  leg->s_hinge = calloc((size_t)leg->nhinge, sizeof(double));
+  leg->s_body = calloc((size_t)leg->nbody + 1, sizeof(double));
+  leg->s_mid = calloc((size_t)leg->nbody, sizeof(double));
+  leg->k_hinge = calloc((size_t)leg->nhinge, sizeof(double));
+  leg->body = calloc((size_t)leg->nbody, sizeof(dBodyID));
+  leg->hinge = calloc((size_t)leg->nhinge, sizeof(dJointID));
+  if (!leg->s_hinge || !leg->s_body || !leg->s_mid || !leg->k_hinge || !leg->body ||
+      !leg->hinge) {
+    destroyPrb(leg);
+    cs_errorSet(err, CS_ERR_MEMORY, "prb leg: out of memory");
+    return NULL;
+  }
+
+  /* joint positions and stiffness */
+  double I = sectionI(spec->act);
+  for (int s = 0; s < CSR_NSEG; s++) {
+    double ds = spec->act->S[s] / leg->n;
+    for (int k = 0; k < leg->n; k++) {
+      int i = s * leg->n + k;
+      leg->s_hinge[i] = csr_actuatorSegmentStart(spec->act, s) + (k + 0.5) * ds;
+      leg->k_hinge[i] = par->E_bend * I / ds;
+    }
+  }
+  leg->s_body[0] = 0;
+  for (int i = 0; i < leg->nhinge; i++) {
+    leg->s_body[i + 1] = leg->s_hinge[i];
+  }
+  leg->s_body[leg->nbody] = leg->L;
+
+  /* bodies: frame (e1, e2, e3) as the body axes, so body-local z runs along the leg */
+  const double* F = spec->frame;
+  dMatrix3 R = {F[0], F[1], F[2], 0, F[3], F[4], F[5], 0, F[6], F[7], F[8], 0};
+  double e3[3] = {F[2], F[5], F[8]};
+  for (int i = 0; i < leg->nbody; i++) {
+    double s0 = leg->s_body[i], s1 = leg->s_body[i + 1];
+    double len = s1 - s0;
+    leg->s_mid[i] = 0.5 * (s0 + s1);
+    double pos[3];
+    csu_addScl3(pos, spec->hip, e3, leg->s_mid[i]);
+    dBodyID b = dBodyCreate(spec->world);
+    dBodySetPosition(b, pos[0], pos[1], pos[2]);
+    dBodySetRotation(b, R);
+    dMass m;
+    double mass = massBetween(spec->act, s0, s1);
+    dMassSetBoxTotal(&m, mass, 2 * spec->act->a, 2 * spec->act->a, len);
+    dBodySetMass(b, &m);
+    leg->total_mass += mass;
+    /* collision shape: capsules whose caps end at the link's ends (a sphere for short links);
+     * the foot link is a box so the foot's flat square end face stands on the ground */
+    dGeomID g;
+    if (i == leg->nbody - 1) {
+      g = dCreateBox(spec->space, 2 * spec->act->a, 2 * spec->act->a, len);
+    } else {
+      double r = par->contact_radius;
+      double cyl = fmax(len - 2 * r, 1e-3);
+      g = dCreateCapsule(spec->space, r, cyl);
+    }
+    dGeomSetBody(g, b);
+    leg->body[i] = b;
+  }
+
+  /* clamp the base link to the support */
+  leg->clamp = dJointCreateFixed(spec->world, 0);
+  dJointAttach(leg->clamp, spec->support, leg->body[0]);
+  dJointSetFixed(leg->clamp);
+
+  /* universal joints: axis1 = e2 carries bending towards e1, axis2 = e1 bending towards e2 */
+  for (int i = 0; i < leg->nhinge; i++) {
+    dJointID j = dJointCreateUniversal(spec->world, 0);
+    dJointAttach(j, leg->body[i], leg->body[i + 1]);
+    double a[3];
+    csu_addScl3(a, spec->hip, e3, leg->s_hinge[i]);
+    dJointSetUniversalAnchor(j, a[0], a[1], a[2]);
+    dJointSetUniversalAxis1(j, F[1], F[4], F[7]);
+    dJointSetUniversalAxis2(j, F[0], F[3], F[6]);
+    double k = leg->k_hinge[i], kd = k * par->damping_time;
+    double erp = spec->h * k / (spec->h * k + kd);
+    double cfm = 1.0 / (spec->h * k + kd);
+    dJointSetUniversalParam(j, dParamStopERP, erp);
+    dJointSetUniversalParam(j, dParamStopCFM, cfm);
+    dJointSetUniversalParam(j, dParamStopERP2, erp);
+    dJointSetUniversalParam(j, dParamStopCFM2, cfm);
+    setTarget(j, 0, 0.0);
+    setTarget(j, 1, 0.0);
+    leg->hinge[i] = j;
+  }
+  return leg;
+}
+
+
+/* pressures equal within CSR_PRB_P_TOL (MPa): 1e-7 MPa moves a bend by < 1e-6 relative at
+ * gait pressures (~0.15 MPa), far below any effect on the track, and lets the cache hit while
+ * a chamber's lagging pressure creeps towards its plateau */
+#define CSR_PRB_P_TOL 1e-7
+static int samePressures(const double a[4], const double b[4]) {
+  for (int j = 0; j < 4; j++) {
+    if (fabs(a[j] - b[j]) > CSR_PRB_P_TOL) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
+static int actuatePrb(csrLeg* leg, const double p[12]) {
+  for (int s = 0; s < CSR_NSEG; s++) {
+    double bend[2] = {0, 0}, stretch = 1;
+    if (leg->have_last[s] && samePressures(leg->last_p[s], p + 4 * s)) {
+      continue; /* same pressures: the joint targets are already set */
+    }
+    int rc = leg->map->eval(leg->map->ctx, s, p + 4 * s, bend, &stretch);
+    if (rc != 0) {
+      return rc;
+    }
+    memcpy(leg->last_p[s], p + 4 * s, sizeof leg->last_p[s]);
+    memcpy(leg->last_bend[s], bend, sizeof bend);
+    leg->have_last[s] = 1;
+    /* rotation vector of a bend towards (β1 e1 + β2 e2) about the axis e3 x β̂:
+     * ω = β1 e2 - β2 e1. ODE's universal angles are measured with the sign convention below,
+     * fixed by the test "prb bend towards +e1 moves the foot to +e1". */
+    double a1 = CSR_PRB_ANGLE_SIGN * bend[0] / leg->n;
+    double a2 = -CSR_PRB_ANGLE_SIGN * bend[1] / leg->n;
+    for (int k = 0; k < leg->n; k++) {
+      dJointID j = leg->hinge[s * leg->n + k];
+      setTarget(j, 0, a1);
+      setTarget(j, 1, a2);
+    }
+  }
+  return 0;
+}
+
+
+static void centerlinePrb(const csrLeg* leg, int k, double* out) {
+  int ib = 0;
+  for (int q = 0; q < k; q++) {
+    double s = (k > 1) ? leg->L * q / (k - 1) : 0;
+    while (ib < leg->nbody - 1 && s > leg->s_body[ib + 1]) {
+      ib++;
+    }
+    const dReal* pos = dBodyGetPosition(leg->body[ib]);
+    const dReal* R = dBodyGetRotation(leg->body[ib]); /* 3x4 row-major */
+    double d = s - leg->s_mid[ib];
+    /* body-local z is the leg axis: world offset = R[:,2] * d */
+    out[3 * q + 0] = pos[0] + R[2] * d;
+    out[3 * q + 1] = pos[1] + R[6] * d;
+    out[3 * q + 2] = pos[2] + R[10] * d;
+  }
+}
+
+
+static double massPrb(const csrLeg* leg) { return leg->total_mass; }
+
+
+const csrLegType csr_leg_prb = {
+    .name = "prb",
+    .create = createPrb,
+    .destroy = destroyPrb,
+    .actuate = actuatePrb,
+    .centerline = centerlinePrb,
+    .mass = massPrb,
+};
