@@ -423,7 +423,7 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
     cs_errorSet(err, CS_ERR_MEMORY, "fem_model: out of memory (%zu dofs)", n);
     return NULL;
   }
-  d->ls = csf_linSolverCreate(m->ndof, m->row_ptr, m->col, err);
+  d->ls = csf_linSolverCreate(m->solver, m->ndof, m->row_ptr, m->col, err);
   if (!d->ls) {
     csf_dataDestroy(d);
     return NULL;

@@ -11,6 +11,7 @@
 #define CS_FEM_MODEL_H
 
 #include "core_status.h"
+#include "fem_linsolve.h"
 #include "fem_mesh.h"
 
 #ifdef __cplusplus
@@ -63,6 +64,7 @@ typedef struct csfModel_ {
   double* fib_L0;      /* (nfib) reference length, mm */
   double* fib_EA;      /* (nfib) axial stiffness E A, N */
   int fib_tension_only; /* 1: fibres carry no compression (default); 0: linear both ways */
+  csfSolverKind solver; /* sparse direct solver used by csf_dataCreate (default MUMPS) */
   /* sparse pattern (3x3 node blocks, scalar CSR), built by csf_modelFinalize */
   int finalized;
   int* adj_ptr;        /* (nnode + 1) */
@@ -94,9 +96,6 @@ csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, d
 
 /* Build the sparse pattern. Loads and Dirichlet values may still change afterwards. */
 csStatus csf_modelFinalize(csfModel* m, csError* err);
-
-/* Opaque sparse direct solver. */
-typedef struct csfLinSolver_ csfLinSolver;
 
 /* Timers and counters, accumulated over the life of a csfData (s, counts). */
 typedef struct csfStats_ {

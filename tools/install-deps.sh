@@ -11,6 +11,8 @@ PKGS=(
   libhdf5-dev                               # output files (serial HDF5 + HL)
   gmsh                                      # FE mesher, run as a separate program (GPL stays out of our binaries)
   python3-matplotlib python3-h5py           # plots, run with Debian's /usr/bin/python3
+  libmumps-seq-dev libopenblas0-openmp      # fem: sequential MUMPS sparse LU + fast BLAS (fem/README.md)
+  libsuitesparse-dev                        # fem: KLU fallback solver (LGPL)
 )
 
 missing=()
