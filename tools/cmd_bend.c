@@ -1,11 +1,447 @@
-/* cmd_bend.c: `crawlsim bend` (placeholder until its issue lands). */
+/* cmd_bend.c: `crawlsim bend`, the pressure -> bending characterisation of one actuator
+ * (DESIGN.md command-line and output contracts; paper Figs. 3, 6-9).
+ *
+ *   crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]
+ *                 [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]
+ *                 [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]
+ *
+ * The listed chambers are inflated at the same pressure in all three segments; the sweep runs
+ * p = 0, p-step, ... up to p-max (p-max itself is always the last row). --until-angle finds
+ * the pressure at which the total angle Θ = Σ θ_i (paper Eq. 11) reaches DEG by bisection on
+ * the model itself (Θ grows monotonically with p): inside the sweep when the sweep reaches DEG,
+ * otherwise up to max(p-max, kUntilCeilingMPa); if Θ stays below DEG there, the result is NaN
+ * and a line says so. Models are dispatched in one place, bendModelEvaluator(); a model level
+ * that lands adds its branch there (and fills mesh size / element counts in BendRun). */
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
 
+#include "core_h5.h"
 #include "cs_commands.h"
+#include "robot_actuator.h"
+#include "robot_analytic.h"
+#include "robot_bend_io.h"
+
+static const double kDefaultPMax = 0.4;     /* MPa, the paper's multi-segment sweep (Sec. 3.3) */
+static const double kDefaultPStep = 0.05;   /* MPa, the paper's increment */
+static const double kUntilCeilingMPa = 2.0; /* search ceiling of --until-angle beyond p-max */
+static const double kBisectTolMPa = 1e-9;   /* bisection stops when the bracket is this small */
+static const double kSweepEps = 1e-9;       /* relative slack when p-max is a multiple of step */
+enum { MAX_SETS = 64 };
+
+static const char kUsage[] =
+    "usage: crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
+    "                     [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
+    "                     [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]\n"
+    "  Inflates the listed chambers (1..4) of all three segments at equal pressure from 0 to\n"
+    "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
+    "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
+    "  r2 C10 C20 rho Ef nuf rhof rf. --until-angle DEG reports the pressure at which the total\n"
+    "  bending angle reaches DEG (searched up to max(p-max, 2 MPa)).\n";
+
+typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_PRB, BEND_ROM, BEND_NMODEL } BendModel;
+static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
+
+/* one bend run: parsed options and what the model reports about itself */
+typedef struct {
+  BendModel model;
+  csrActuator act;
+  int inflated[CSR_NCHAMBER]; /* 1 if chamber j+1 is inflated */
+  char chambers[16];          /* canonical list, e.g. "1,2" */
+  double p_max, p_step;       /* MPa */
+  double until_angle;         /* deg, NAN when not requested */
+  double mesh_size;           /* mm requested (NAN = model default); the model overwrites it
+                                 with what it used (NAN for mesh-free models) */
+  double n_elements_soft, n_elements_fibre; /* filled by mesh-based models */
+  const char* out;
+} BendRun;
+
+/* Evaluate the model at pressure p (MPa): per-segment angles (deg), tip in the base frame (mm). */
+typedef csStatus (*BendPointFn)(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
+                                csError* err);
+
+/* the analytic model (robot_analytic.h): three segment equilibria and the FK */
+static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
+                              csError* err);
+/* the one place that maps a model level to its evaluator; NULL = not available yet */
+static BendPointFn bendModelEvaluator(BendModel m);
+/* parse argv into run; returns 0, 1 on error (message printed), 2 after --help */
+static int parseArgs(int argc, char** argv, BendRun* run);
+/* strict number parser: whole string, finite; prints the error line */
+static int parseNumber(const char* flag, const char* text, double* v);
+/* "1,2" -> inflated[], canonical text; prints the error line */
+static int parseChambers(const char* text, BendRun* run);
+/* Θ(p) for --until-angle */
+static csStatus totalAngle(BendRun* run, BendPointFn eval, double p, double* theta_deg,
+                           csError* err);
+/* pressure at which Θ reaches run->until_angle; NAN when not reached up to the ceiling */
+static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurve* bc,
+                               double* p_out, double* p_searched, csError* err);
+/* seconds on the C11 wall clock */
+static double wallSeconds(void);
+
+
+static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
+                              csError* err) {
+  double P[CSR_NSEG * CSR_NCHAMBER]; /* (segment x chamber), row-major */
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      P[CSR_NCHAMBER * s + j] = run->inflated[j] ? p : 0.0;
+    }
+  }
+  csrSegmentStrain st[CSR_NSEG];
+  csStatus rc = csr_analyticActuator(&run->act, P, st, err);
+  if (rc != CS_OK) {
+    return rc;
+  }
+  for (int s = 0; s < CSR_NSEG; s++) {
+    angle_deg[s] = st[s].theta / CS_DEG;
+  }
+  run->mesh_size = NAN; /* mesh-free */
+  run->n_elements_soft = run->n_elements_fibre = 0;
+  return csr_ccForwardKinematics(&run->act, st, 1, NULL, tip, NULL, err);
+}
+
+
+static BendPointFn bendModelEvaluator(BendModel m) {
+  switch (m) {
+    case BEND_ANALYTIC:
+      return analyticPoint;
+    case BEND_FE:  /* full FE (fem/): wrap csf_... here */
+    case BEND_ROD: /* Cosserat rod */
+    case BEND_PRB: /* pseudo-rigid-body chain */
+    case BEND_ROM: /* reduced FE */
+    case BEND_NMODEL:
+      return NULL;
+  }
+  return NULL;
+}
+
+
+static double wallSeconds(void) {
+  struct timespec ts;
+  timespec_get(&ts, TIME_UTC);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+
+static int parseNumber(const char* flag, const char* text, double* v) {
+  char* end = NULL;
+  double x = strtod(text, &end);
+  if (end == text || *end != '\0' || !isfinite(x)) {
+    fprintf(stderr, "crawlsim bend: %s '%s' is not a finite number\n", flag, text);
+    return 1;
+  }
+  *v = x;
+  return 0;
+}
+
+
+static int parseChambers(const char* text, BendRun* run) {
+  memset(run->inflated, 0, sizeof run->inflated);
+  const char* s = text;
+  while (1) {
+    char* end = NULL;
+    long j = strtol(s, &end, 10);
+    if (end == s || (*end != ',' && *end != '\0')) {
+      fprintf(stderr, "crawlsim bend: --chambers '%s': expected a comma-separated list of 1..4\n",
+              text);
+      return 1;
+    }
+    if (j < 1 || j > CSR_NCHAMBER) {
+      fprintf(stderr, "crawlsim bend: --chambers '%s': chamber %ld is not in 1..4\n", text, j);
+      return 1;
+    }
+    if (run->inflated[j - 1]) {
+      fprintf(stderr, "crawlsim bend: --chambers '%s': chamber %ld is repeated\n", text, j);
+      return 1;
+    }
+    run->inflated[j - 1] = 1;
+    if (*end == '\0') {
+      break;
+    }
+    s = end + 1;
+  }
+  /* canonical text in chamber order */
+  char* w = run->chambers;
+  for (int j = 0; j < CSR_NCHAMBER; j++) {
+    if (run->inflated[j]) {
+      w += sprintf(w, "%s%d", w == run->chambers ? "" : ",", j + 1);
+    }
+  }
+  return 0;
+}
+
+
+static int parseArgs(int argc, char** argv, BendRun* run) {
+  const char* actuator = "baseline";
+  const char* sets[MAX_SETS];
+  int nset = 0;
+  memset(run, 0, sizeof *run);
+  run->model = BEND_ANALYTIC;
+  run->p_max = kDefaultPMax;
+  run->p_step = kDefaultPStep;
+  run->until_angle = NAN;
+  run->mesh_size = NAN;
+  run->out = "bend.h5";
+  run->inflated[0] = run->inflated[1] = 1;
+  snprintf(run->chambers, sizeof run->chambers, "1,2");
+  for (int i = 1; i < argc; i++) {
+    const char* arg = argv[i];
+    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+      fputs(kUsage, stdout);
+      return 2;
+    }
+    if (strncmp(arg, "--", 2) != 0) {
+      fprintf(stderr, "crawlsim bend: unexpected argument '%s' (see crawlsim bend --help)\n", arg);
+      return 1;
+    }
+    /* --name value or --name=value */
+    char name[32];
+    const char* value = NULL;
+    const char* eq = strchr(arg, '=');
+    size_t len = eq ? (size_t)(eq - arg) : strlen(arg);
+    if (len >= sizeof name) {
+      fprintf(stderr, "crawlsim bend: unknown option '%s'\n", arg);
+      return 1;
+    }
+    memcpy(name, arg, len);
+    name[len] = '\0';
+    if (eq) {
+      value = eq + 1;
+    } else if (i + 1 < argc) {
+      value = argv[++i];
+    } else {
+      fprintf(stderr, "crawlsim bend: option %s needs a value\n", name);
+      return 1;
+    }
+    int bad = 0;
+    if (!strcmp(name, "--model")) {
+      int m = 0;
+      while (m < BEND_NMODEL && strcmp(value, kModelNames[m])) {
+        m++;
+      }
+      if (m == BEND_NMODEL) {
+        fprintf(stderr,
+                "crawlsim bend: unknown model '%s' (expected analytic, fe, rod, prb or rom)\n",
+                value);
+        return 1;
+      }
+      run->model = (BendModel)m;
+    } else if (!strcmp(name, "--actuator")) {
+      actuator = value;
+    } else if (!strcmp(name, "--set")) {
+      if (nset == MAX_SETS) {
+        fprintf(stderr, "crawlsim bend: more than %d --set options\n", MAX_SETS);
+        return 1;
+      }
+      sets[nset++] = value;
+    } else if (!strcmp(name, "--chambers")) {
+      bad = parseChambers(value, run);
+    } else if (!strcmp(name, "--p-max")) {
+      bad = parseNumber(name, value, &run->p_max);
+      if (!bad && !(run->p_max > 0)) {
+        fprintf(stderr, "crawlsim bend: --p-max %s must be > 0 MPa\n", value);
+        bad = 1;
+      }
+    } else if (!strcmp(name, "--p-step")) {
+      bad = parseNumber(name, value, &run->p_step);
+      if (!bad && !(run->p_step > 0)) {
+        fprintf(stderr, "crawlsim bend: --p-step %s must be > 0 MPa\n", value);
+        bad = 1;
+      }
+    } else if (!strcmp(name, "--until-angle")) {
+      bad = parseNumber(name, value, &run->until_angle);
+      if (!bad && !(run->until_angle > 0)) {
+        fprintf(stderr, "crawlsim bend: --until-angle %s must be > 0 degrees\n", value);
+        bad = 1;
+      }
+    } else if (!strcmp(name, "--mesh-size")) {
+      bad = parseNumber(name, value, &run->mesh_size);
+      if (!bad && !(run->mesh_size > 0)) {
+        fprintf(stderr, "crawlsim bend: --mesh-size %s must be > 0 mm\n", value);
+        bad = 1;
+      }
+    } else if (!strcmp(name, "--out")) {
+      if (!*value) {
+        fprintf(stderr, "crawlsim bend: --out needs a file name\n");
+        return 1;
+      }
+      run->out = value;
+    } else {
+      fprintf(stderr, "crawlsim bend: unknown option '%s' (see crawlsim bend --help)\n", name);
+      return 1;
+    }
+    if (bad) {
+      return 1;
+    }
+  }
+  /* the actuator: preset, then every --set in order, then a consistency check */
+  csError err;
+  cs_errorClear(&err);
+  if (csr_actuatorPreset(&run->act, actuator, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    return 1;
+  }
+  for (int k = 0; k < nset; k++) {
+    if (csr_actuatorSetString(&run->act, sets[k], &err) != CS_OK) {
+      fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+      return 1;
+    }
+  }
+  if (csr_actuatorValidate(&run->act, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}
+
+
+static csStatus totalAngle(BendRun* run, BendPointFn eval, double p, double* theta_deg,
+                           csError* err) {
+  double ang[CSR_NSEG], tip[3];
+  csStatus st = eval(run, p, ang, tip, err);
+  *theta_deg = ang[0] + ang[1] + ang[2];
+  return st;
+}
+
+
+static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurve* bc,
+                               double* p_out, double* p_searched, csError* err) {
+  double target = run->until_angle;
+  double lo = 0, hi = NAN;
+  *p_out = NAN;
+  *p_searched = bc->pressure[bc->m - 1];
+  /* bracket from the sweep: the first row at or above the target */
+  for (size_t i = 0; i < bc->m; i++) {
+    if (bc->angle_total[i] >= target) {
+      hi = bc->pressure[i];
+      break;
+    }
+    lo = bc->pressure[i];
+  }
+  if (isnan(hi)) {
+    /* beyond the sweep: try the ceiling */
+    double ceiling = fmax(run->p_max, kUntilCeilingMPa), th;
+    *p_searched = ceiling;
+    csStatus st = totalAngle(run, eval, ceiling, &th, err);
+    if (st != CS_OK) {
+      return st;
+    }
+    if (th < target) {
+      return CS_OK; /* not reached */
+    }
+    hi = ceiling;
+  }
+  while (hi - lo > kBisectTolMPa) {
+    double mid = 0.5 * (lo + hi), th;
+    csStatus st = totalAngle(run, eval, mid, &th, err);
+    if (st != CS_OK) {
+      return st;
+    }
+    if (th >= target) {
+      hi = mid;
+    } else {
+      lo = mid;
+    }
+  }
+  *p_out = 0.5 * (lo + hi);
+  return CS_OK;
+}
+
 
 int csx_cmdBend(int argc, char** argv) {
-  (void)argc;
-  (void)argv;
-  fprintf(stderr, "crawlsim bend: not implemented yet\n");
-  return 1;
+  BendRun run;
+  int rc = parseArgs(argc, argv, &run);
+  if (rc != 0) {
+    return rc == 2 ? 0 : 1;
+  }
+  BendPointFn eval = bendModelEvaluator(run.model);
+  if (!eval) {
+    fprintf(stderr, "crawlsim bend: model '%s' is not available yet\n", kModelNames[run.model]);
+    return 1;
+  }
+  if (run.model == BEND_ANALYTIC) {
+    for (int s = 0; s < CSR_NSEG; s++) {
+      if (run.act.n[s] == 0) {
+        fprintf(stderr,
+                "crawlsim bend: note: n%d = 0, but the analytic model assumes fibres that stop "
+                "radial growth (lambda2 = 1)\n",
+                s + 1);
+      }
+    }
+    if (!isnan(run.mesh_size)) {
+      fprintf(stderr, "crawlsim bend: note: --mesh-size is ignored by the analytic model\n");
+    }
+  }
+
+  /* open the output first so that an unwritable path fails before any work */
+  csError err;
+  cs_errorClear(&err);
+  csH5File* f = cs_h5Create(run.out, &err);
+  if (!f) {
+    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    return 1;
+  }
+
+  /* the sweep: 0, step, ..., and p-max as the last row */
+  double t0 = wallSeconds();
+  size_t nstep = (size_t)floor(run.p_max / run.p_step * (1 + kSweepEps));
+  csrBendCurve bc;
+  csStatus st = csr_bendCurveInit(&bc, nstep + 2, &err);
+  for (size_t i = 0; st == CS_OK && i <= nstep + 1; i++) {
+    double p = (i <= nstep) ? (double)i * run.p_step : run.p_max;
+    if (i == nstep + 1 && p - (double)nstep * run.p_step <= kSweepEps * run.p_max) {
+      break; /* p-max was on the grid */
+    }
+    double ang[CSR_NSEG], tip[3];
+    st = eval(&run, p, ang, tip, &err);
+    if (st == CS_OK) {
+      st = csr_bendCurvePush(&bc, p, ang, tip, &err);
+    }
+  }
+  double p_until = NAN, p_searched = NAN;
+  if (st == CS_OK && !isnan(run.until_angle)) {
+    st = findUntilAngle(&run, eval, &bc, &p_until, &p_searched, &err);
+    bc.p_until_angle = p_until;
+  }
+  double wall = wallSeconds() - t0;
+  if (st == CS_OK) {
+    csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
+                        run.n_elements_fibre,   wall,         run.until_angle};
+    st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
+  }
+  cs_h5Close(f);
+  if (st != CS_OK) {
+    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    remove(run.out);
+    csr_bendCurveFree(&bc);
+    return 1;
+  }
+
+  /* the table */
+  printf("crawlsim bend: model %s, actuator %s, chambers %s in II1-II3\n", kModelNames[run.model],
+         run.act.name, run.chambers);
+  printf("%9s %9s %9s %9s %10s %10s %10s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
+         "total(deg)", "tip e1(mm)", "tip e2(mm)", "tip e3(mm)");
+  for (size_t i = 0; i < bc.m; i++) {
+    const double* a = &bc.angle_deg[3 * i];
+    const double* x = &bc.tip[3 * i];
+    printf("%9.4f %9.3f %9.3f %9.3f %10.3f %10.3f %10.3f %10.3f\n", bc.pressure[i], a[0], a[1],
+           a[2], bc.angle_total[i], x[0], x[1], x[2]);
+  }
+  if (!isnan(run.until_angle)) {
+    if (isnan(p_until)) {
+      printf("until-angle: total angle %g deg not reached up to %g MPa\n", run.until_angle,
+             p_searched);
+    } else {
+      printf("until-angle: total angle %g deg at p = %.6f MPa%s\n", run.until_angle, p_until,
+             p_until > run.p_max ? " (above --p-max)" : "");
+    }
+  }
+  printf("wrote %s (%.3f s)\n", run.out, wall);
+  csr_bendCurveFree(&bc);
+  return 0;
 }

@@ -1,0 +1,69 @@
+/* robot_bend_io.c: HDF5 output of a bend characterisation (see robot_bend_io.h). */
+#include "robot_bend_io.h"
+
+#include <math.h>
+
+/* state of the actuator-parameter visitor: the first failure wins */
+typedef struct {
+  csH5File* f;
+  csError* err;
+  csStatus st;
+} ParamWriter;
+
+/* csrParamVisitor writing one parameter as a root attribute */
+static void writeParam(void* user, const char* name, double value);
+
+
+static void writeParam(void* user, const char* name, double value) {
+  ParamWriter* pw = user;
+  if (pw->st == CS_OK) {
+    pw->st = cs_h5AttrDouble(pw->f, "/", name, value, pw->err);
+  }
+}
+
+
+csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBendCurve* bc,
+                              const csrBendMeta* meta, csError* err) {
+  if (!f || !act || !bc || !meta || !meta->model || !meta->chambers) {
+    return cs_errorSet(err, CS_ERR_ARG, "bend output: NULL argument");
+  }
+  /* datasets: (M), (M x 3), (M), (M x 3) */
+  const size_t d1[1] = {bc->m}, d3[2] = {bc->m, 3};
+  csStatus st = cs_h5WriteDoubles(f, "/pressure", 1, d1, bc->pressure, err);
+  if (st == CS_OK) {
+    st = cs_h5WriteDoubles(f, "/angle_deg", 2, d3, bc->angle_deg, err);
+  }
+  if (st == CS_OK) {
+    st = cs_h5WriteDoubles(f, "/angle_total_deg", 1, d1, bc->angle_total, err);
+  }
+  if (st == CS_OK) {
+    st = cs_h5WriteDoubles(f, "/tip_position", 2, d3, bc->tip, err);
+  }
+  /* root attributes */
+  const char* strings[][2] = {{"model", meta->model},
+                              {"actuator", act->name},
+                              {"chambers", meta->chambers},
+                              {"version", CSR_OUTPUT_VERSION},
+                              {"units", "length mm, pressure MPa, angle deg, time s"}};
+  for (size_t i = 0; st == CS_OK && i < sizeof strings / sizeof strings[0]; i++) {
+    st = cs_h5AttrString(f, "/", strings[i][0], strings[i][1], err);
+  }
+  const char* names[] = {"mesh_size_mm", "n_elements_soft", "n_elements_fibre", "wall_time_s"};
+  const double values[] = {meta->mesh_size, meta->n_elements_soft, meta->n_elements_fibre,
+                           meta->wall_time};
+  for (size_t i = 0; st == CS_OK && i < sizeof values / sizeof values[0]; i++) {
+    st = cs_h5AttrDouble(f, "/", names[i], values[i], err);
+  }
+  if (st == CS_OK && !isnan(meta->until_angle_deg)) {
+    st = cs_h5AttrDouble(f, "/", "until_angle_deg", meta->until_angle_deg, err);
+    if (st == CS_OK) {
+      st = cs_h5AttrDouble(f, "/", "p_until_angle_MPa", bc->p_until_angle, err);
+    }
+  }
+  if (st == CS_OK) {
+    ParamWriter pw = {f, err, CS_OK};
+    csr_actuatorVisit(act, writeParam, &pw);
+    st = pw.st;
+  }
+  return st;
+}

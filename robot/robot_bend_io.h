@@ -1,0 +1,43 @@
+/* robot_bend_io.h: the HDF5 file of `crawlsim bend` (DESIGN.md "Output contract", bend).
+ *
+ * Owns: writing a csrBendCurve and its metadata to an open csH5File, for every model level
+ * (analytic, fe, rod, prb, rom), so that all of them produce the same layout:
+ *   /pressure [M] MPa; /angle_deg [M,3] per segment; /angle_total_deg [M]; /tip_position [M,3]
+ *   mm (base frame e1, e2, e3); root attributes: model, actuator, chambers, every actuator
+ *   parameter under its paper name (S1 ... C20, rho, Ef, nuf, rhof, rf), mesh_size_mm,
+ *   n_elements_soft, n_elements_fibre, wall_time_s, until_angle_deg and p_until_angle_MPa
+ *   (only when an --until-angle target was given), version, units. */
+#ifndef CS_ROBOT_BEND_IO_H
+#define CS_ROBOT_BEND_IO_H
+
+#include "core_h5.h"
+#include "core_status.h"
+#include "robot_actuator.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Version string written to output files; keep equal to project(VERSION) in CMakeLists.txt. */
+#define CSR_OUTPUT_VERSION "0.1.0"
+
+/* What the bend file records besides the curve itself. */
+typedef struct csrBendMeta_ {
+  const char* model;      /* "analytic", "fe", ... */
+  const char* chambers;   /* inflated chambers, e.g. "1,2" */
+  double mesh_size;       /* FE mesh boundary size (mm); NAN for mesh-free models */
+  double n_elements_soft; /* element counts (0 for mesh-free models) */
+  double n_elements_fibre;
+  double wall_time;       /* s */
+  double until_angle_deg; /* --until-angle target (deg), NAN when not given; the result is
+                             the curve's p_until_angle (MPa, NAN when not reached) */
+} csrBendMeta;
+
+/* Write the bend datasets and root attributes into `f` (created by cs_h5Create). */
+csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBendCurve* bc,
+                              const csrBendMeta* meta, csError* err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_ROBOT_BEND_IO_H */

@@ -1,0 +1,218 @@
+/* test_bend_cli.c: `crawlsim bend` end to end: runs the real executable (its path is argv[1],
+ * from $<TARGET_FILE:crawlsim>) and checks the HDF5 output contract (DESIGN.md), that
+ * --until-angle is the model's own root of Θ(p) = DEG, and that bad input exits 1 with exactly
+ * one line "crawlsim bend: ..." on stderr, nothing on stdout and no output file.
+ * system() and WEXITSTATUS need POSIX (the project builds with C_EXTENSIONS OFF); the run/
+ * capture helpers follow tests/gaits/test_gaits_cli.c. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "cs_test.h"
+#include "robot_analytic.h"
+
+static const char* exe_path = NULL; /* the crawlsim executable (set once in main) */
+
+/* captured output of one run */
+typedef struct {
+  int status;     /* exit status, -1 if it did not exit normally */
+  char out[8192]; /* stdout */
+  char err[4096]; /* stderr */
+} runResult;
+
+
+static void slurp(const char* path, char* buf, size_t size) {
+  buf[0] = '\0';
+  FILE* f = fopen(path, "rb");
+  if (f) {
+    size_t n = fread(buf, 1, size - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+  }
+}
+
+
+/* run `crawlsim bend <args>` with stdout/stderr captured into files in the working directory */
+static void run(const char* args, runResult* r) {
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "\"%s\" bend %s >bend_stdout.txt 2>bend_stderr.txt", exe_path, args);
+  int st = system(cmd);
+  r->status = st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  slurp("bend_stdout.txt", r->out, sizeof r->out);
+  slurp("bend_stderr.txt", r->err, sizeof r->err);
+}
+
+
+/* exactly one '\n'-terminated line */
+static int oneLine(const char* s) {
+  const char* nl = strchr(s, '\n');
+  return nl && nl[1] == '\0' && nl != s;
+}
+
+
+static int fileExists(const char* path) {
+  FILE* f = fopen(path, "rb");
+  if (f) {
+    fclose(f);
+  }
+  return f != NULL;
+}
+
+
+/* Θ(p) of the analytic model, Ω1&Ω2 in all segments of the baseline actuator (degrees) */
+static double totalAngle(double p) {
+  csrActuator act;
+  csError err;
+  csr_actuatorPreset(&act, "baseline", &err);
+  double P[CSR_NSEG * CSR_NCHAMBER] = {p, p, 0, 0, p, p, 0, 0, p, p, 0, 0};
+  csrSegmentStrain st[CSR_NSEG];
+  CS_EXPECT(csr_analyticActuator(&act, P, st, &err) == CS_OK);
+  return (st[0].theta + st[1].theta + st[2].theta) / CS_DEG;
+}
+
+
+static void test_defaultSweep(void) {
+  remove("bend_ok.h5");
+  runResult r;
+  run("--out bend_ok.h5 --until-angle 30", &r);
+  CS_EXPECT(r.status == 0 && r.err[0] == '\0');
+  CS_EXPECT(strstr(r.out, "until-angle: total angle 30 deg at p = ") != NULL);
+  hid_t f = H5Fopen("bend_ok.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f < 0) {
+    return;
+  }
+  /* the contract's datasets: p = 0, 0.05, ..., 0.4 MPa (the paper's sweep) */
+  hsize_t dims[2] = {0, 0};
+  H5T_class_t cls;
+  size_t tsize;
+  CS_EXPECT(H5LTget_dataset_info(f, "/pressure", dims, &cls, &tsize) >= 0 && dims[0] == 9);
+  CS_EXPECT(H5LTget_dataset_info(f, "/tip_position", dims, &cls, &tsize) >= 0 && dims[0] == 9 &&
+            dims[1] == 3);
+  double p[9], total[9], ang[27];
+  CS_EXPECT(H5LTread_dataset_double(f, "/pressure", p) >= 0);
+  CS_EXPECT(H5LTread_dataset_double(f, "/angle_total_deg", total) >= 0);
+  CS_EXPECT(H5LTread_dataset_double(f, "/angle_deg", ang) >= 0);
+  CS_EXPECT_NEAR(p[8], 0.4, 1e-15, 0); /* 8 * 0.05 in binary floating point */
+  for (int i = 1; i < 9; i++) {
+    CS_EXPECT(total[i] > total[i - 1]);
+    /* the total is the sum of the segment angles (paper Eq. 11), to round-off */
+    CS_EXPECT_NEAR(total[i], ang[3 * i] + ang[3 * i + 1] + ang[3 * i + 2], 1e-12, 0);
+  }
+  /* --until-angle: bisection to 1e-9 MPa on the model itself; dΘ/dp ≈ 280 deg/MPa here, so
+   * Θ at the reported pressure is 30 deg within 3e-7 deg */
+  double pu = 0;
+  CS_EXPECT(H5LTget_attribute_double(f, "/", "p_until_angle_MPa", &pu) >= 0);
+  CS_EXPECT(pu > 0.1 && pu < 0.15);
+  CS_EXPECT_NEAR(totalAngle(pu), 30.0, 1e-6, 0);
+  double v = 0;
+  CS_EXPECT(H5LTget_attribute_double(f, "/", "mesh_size_mm", &v) >= 0 && isnan(v));
+  CS_EXPECT(H5LTget_attribute_double(f, "/", "n_elements_soft", &v) >= 0 && v == 0);
+  CS_EXPECT(H5LTget_attribute_double(f, "/", "r1", &v) >= 0 && v == 2);
+  CS_EXPECT(H5LTget_attribute_double(f, "/", "wall_time_s", &v) >= 0 && v >= 0);
+  char s[64] = "";
+  CS_EXPECT(H5LTget_attribute_string(f, "/", "model", s) >= 0 && !strcmp(s, "analytic"));
+  CS_EXPECT(H5LTget_attribute_string(f, "/", "actuator", s) >= 0 && !strcmp(s, "baseline"));
+  CS_EXPECT(H5LTget_attribute_string(f, "/", "version", s) >= 0 && !strcmp(s, "0.1.0"));
+  H5Fclose(f);
+  remove("bend_ok.h5");
+}
+
+
+static void test_sweepOptions(void) {
+  /* p-max off the step grid is the last row; --set and --chambers reach the model */
+  remove("bend_opt.h5");
+  runResult r;
+  run("--actuator fig1 --set r1=2.5 --set b=3 --chambers 4,1 --p-max 0.12 --p-step 0.05 "
+      "--out=bend_opt.h5",
+      &r);
+  CS_EXPECT(r.status == 0);
+  CS_EXPECT(strstr(r.out, "chambers 1,4") != NULL);
+  hid_t f = H5Fopen("bend_opt.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double p[4] = {0}, tip[12] = {0}, v = 0;
+    CS_EXPECT(H5LTread_dataset_double(f, "/pressure", p) >= 0);
+    CS_EXPECT(p[2] == 0.1 && p[3] == 0.12);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "r1", &v) >= 0 && v == 2.5);
+    /* Ω1&Ω4 sit at +e2: the tip moves to -e2 only */
+    CS_EXPECT(H5LTread_dataset_double(f, "/tip_position", tip) >= 0);
+    CS_EXPECT(tip[3 * 3 + 1] < 0 && fabs(tip[3 * 3]) < 1e-9 * fabs(tip[3 * 3 + 1]));
+    H5Fclose(f);
+  }
+  remove("bend_opt.h5");
+  /* a target above the search ceiling: NaN and a line saying so, still exit 0 */
+  run("--until-angle 5000 --out bend_far.h5", &r);
+  CS_EXPECT(r.status == 0);
+  CS_EXPECT(strstr(r.out, "total angle 5000 deg not reached up to 2 MPa") != NULL);
+  remove("bend_far.h5");
+  run("--help", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.out, "usage: crawlsim bend") == r.out);
+}
+
+
+/* bad input: exit 1, one line on stderr starting with `want`, nothing on stdout, no file */
+static void expectFailure(const char* args, const char* want) {
+  remove("bend_bad.h5");
+  char full[1024];
+  snprintf(full, sizeof full, "%s --out bend_bad.h5", args);
+  runResult r;
+  run(full, &r);
+  CS_EXPECT(r.status == 1);
+  CS_EXPECT(r.out[0] == '\0');
+  CS_EXPECT(oneLine(r.err));
+  CS_EXPECT(strstr(r.err, want) == r.err);
+  CS_EXPECT(!fileExists("bend_bad.h5"));
+  if (r.status != 1 || strstr(r.err, want) != r.err) {
+    fprintf(stderr, "  args '%s': status %d, stderr: %s", args, r.status, r.err);
+  }
+}
+
+
+static void test_badInput(void) {
+  expectFailure("--model fe", "crawlsim bend: model 'fe' is not available yet");
+  expectFailure("--model rod", "crawlsim bend: model 'rod' is not available yet");
+  expectFailure("--model xyz", "crawlsim bend: unknown model 'xyz'");
+  expectFailure("--frobnicate 1", "crawlsim bend: unknown option '--frobnicate'");
+  expectFailure("stray", "crawlsim bend: unexpected argument 'stray'");
+  expectFailure("--p-max abc", "crawlsim bend: --p-max 'abc' is not a finite number");
+  expectFailure("--p-max nan", "crawlsim bend: --p-max 'nan' is not a finite number");
+  expectFailure("--p-step 0", "crawlsim bend: --p-step 0 must be > 0 MPa");
+  expectFailure("--p-step -0.1", "crawlsim bend: --p-step -0.1 must be > 0 MPa");
+  expectFailure("--until-angle 0", "crawlsim bend: --until-angle 0 must be > 0 degrees");
+  expectFailure("--chambers 1,5", "crawlsim bend: --chambers '1,5': chamber 5 is not in 1..4");
+  expectFailure("--chambers 0", "crawlsim bend: --chambers '0': chamber 0 is not in 1..4");
+  expectFailure("--chambers 2,2", "crawlsim bend: --chambers '2,2': chamber 2 is repeated");
+  expectFailure("--chambers 1,", "crawlsim bend: --chambers '1,': expected a comma-separated");
+  expectFailure("--actuator big", "crawlsim bend: unknown actuator 'big'");
+  expectFailure("--set q=1", "crawlsim bend: unknown actuator parameter 'q'");
+  expectFailure("--set r1=x", "crawlsim bend: --set 'r1=x': 'x' is not a number");
+  expectFailure("--set r1=3.6", "crawlsim bend: actuator: chamber breaks the outer wall");
+  expectFailure("--set c=30", "crawlsim bend: actuator: c = 30 mm must be > 0 and < S1/2");
+  /* the output path itself: the file cannot be created */
+  runResult r;
+  run("--out no_such_dir/x.h5", &r);
+  CS_EXPECT(r.status == 1 && oneLine(r.err) && r.out[0] == '\0');
+  CS_EXPECT(strstr(r.err, "crawlsim bend: no_such_dir/x.h5: cannot create HDF5 file") == r.err);
+  run("--chambers", &r); /* a flag without its value */
+  CS_EXPECT(r.status == 1 && strstr(r.err, "crawlsim bend: option --chambers needs a value"));
+}
+
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: test_bend_cli <path of crawlsim> [case filter]\n");
+    return 1;
+  }
+  exe_path = argv[1];
+  cs_testInit(argc - 1, argv + 1); /* argv[2], if any, is the case filter */
+  CS_RUN(test_defaultSweep);
+  CS_RUN(test_sweepOptions);
+  CS_RUN(test_badInput);
+  return cs_testSummary();
+}
