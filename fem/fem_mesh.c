@@ -537,37 +537,27 @@ csfMesh* csf_meshReadMsh(const char* path, csError* err) {
       memcpy(m->x + 3 * (size_t)newid[i], xr + 3 * (size_t)i, 3 * sizeof(double));
     }
   }
-  /* vertices, then each edge node matched to the nearest edge midpoint (order-agnostic) */
   for (int t = 0; t < ntet; t++) {
     const int* src = tets + 10 * (size_t)t;
     int* dst = m->tet + 10 * (size_t)t;
-    for (int v = 0; v < 4; v++) {
-      dst[v] = newid[src[v]];
+    /* gmsh Tet10 edge order (0,1) (1,2) (2,0) (3,0) (3,2) (3,1) -> VTK (0,1) (1,2) (0,2) (0,3)
+     * (1,3) (2,3): slots 8 and 9 swap (verified on gmsh 4.8 output: all straight elements
+     * match exactly, none under the VTK order) */
+    static const int g2v[10] = {0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
+    for (int a = 0; a < 10; a++) {
+      dst[a] = newid[src[g2v[a]]];
     }
-    int taken[6] = {0};
-    for (int a = 0; a < 4; a++) {
-      for (int b = a + 1; b < 4; b++) {
-        double mid[3], best = INFINITY;
-        int bi = -1;
-        for (int d = 0; d < 3; d++) {
-          mid[d] = 0.5 * (m->x[3 * dst[a] + d] + m->x[3 * dst[b] + d]);
-        }
-        for (int c = 0; c < 6; c++) {
-          if (taken[c]) {
-            continue;
-          }
-          const double* xc = m->x + 3 * newid[src[4 + c]];
-          double d2 = (xc[0] - mid[0]) * (xc[0] - mid[0]) + (xc[1] - mid[1]) * (xc[1] - mid[1]) +
-                      (xc[2] - mid[2]) * (xc[2] - mid[2]);
-          if (d2 < best) {
-            best = d2, bi = c;
-          }
-        }
-        taken[bi] = 1;
-        dst[edgeNode(a, b)] = newid[src[4 + bi]];
+    /* orientation from the straight (vertex) tetrahedron: a folded curved element must not flip it */
+    double e3[3][3];
+    for (int k = 0; k < 3; k++) {
+      for (int d = 0; d < 3; d++) {
+        e3[k][d] = m->x[3 * dst[k + 1] + d] - m->x[3 * dst[0] + d];
       }
     }
-    if (csf_meshTetVolume(m, t) < 0) {
+    double det0 = e3[0][0] * (e3[1][1] * e3[2][2] - e3[1][2] * e3[2][1]) -
+                  e3[0][1] * (e3[1][0] * e3[2][2] - e3[1][2] * e3[2][0]) +
+                  e3[0][2] * (e3[1][0] * e3[2][1] - e3[1][1] * e3[2][0]);
+    if (det0 < 0) {
       /* swap vertices 1 and 2 (and the edge nodes that follow them) */
       int* d = dst;
       int tmp = d[1];
@@ -606,6 +596,75 @@ fail:
   free(xr), free(newid), free(tets), free(tags);
   csf_meshDestroy(m);
   return NULL;
+}
+
+
+/* smallest ratio detJ(xi) / detJ_straight over vertices, edge nodes and quadrature points */
+static double tetQuality(const csfMesh* m, int t) {
+  static const double pts[14][3] = {
+      {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {.5, 0, 0}, {.5, .5, 0}, {0, .5, 0},
+      {0, 0, .5}, {.5, 0, .5}, {0, .5, .5}, {0.1381966011250105, 0.1381966011250105,
+      0.1381966011250105}, {0.5854101966249685, 0.1381966011250105, 0.1381966011250105},
+      {0.1381966011250105, 0.5854101966249685, 0.1381966011250105},
+      {0.1381966011250105, 0.1381966011250105, 0.5854101966249685}};
+  const int* tv = m->tet + 10 * t;
+  double e[3][3];
+  for (int k = 0; k < 3; k++) {
+    for (int d = 0; d < 3; d++) {
+      e[k][d] = m->x[3 * tv[k + 1] + d] - m->x[3 * tv[0] + d];
+    }
+  }
+  double det0 = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  double q = INFINITY;
+  for (int p = 0; p < 14; p++) {
+    double dN[30], J[9] = {0};
+    csf_tet10Shape(pts[p], NULL, dN);
+    for (int a = 0; a < 10; a++) {
+      const double* xa = m->x + 3 * tv[a];
+      for (int i = 0; i < 3; i++) {
+        for (int d = 0; d < 3; d++) {
+          J[3 * i + d] += xa[i] * dN[3 * a + d];
+        }
+      }
+    }
+    double det = J[0] * (J[4] * J[8] - J[5] * J[7]) - J[1] * (J[3] * J[8] - J[5] * J[6]) +
+                 J[2] * (J[3] * J[7] - J[4] * J[6]);
+    q = fmin(q, det / det0);
+  }
+  return q;
+}
+
+
+int csf_meshFixInverted(csfMesh* m) {
+  /* 5 % of the straight element's Jacobian: below this the element is nearly folded and its
+   * stiffness is badly conditioned */
+  const double qmin = 0.05;
+  int nfix = 0;
+  for (int pass = 0; pass < 5; pass++) {
+    int changed = 0;
+    for (int t = 0; t < m->ntet; t++) {
+      if (tetQuality(m, t) >= qmin) {
+        continue;
+      }
+      int* tv = m->tet + 10 * t;
+      for (int a = 0; a < 4; a++) {
+        for (int b = a + 1; b < 4; b++) {
+          int en = tv[edgeNode(a, b)];
+          for (int d = 0; d < 3; d++) {
+            m->x[3 * en + d] = 0.5 * (m->x[3 * tv[a] + d] + m->x[3 * tv[b] + d]);
+          }
+        }
+      }
+      changed++;
+    }
+    nfix += changed;
+    if (!changed) {
+      break;
+    }
+  }
+  return nfix;
 }
 
 
@@ -676,6 +735,16 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
       fprintf(f, "Physical Surface(%d) = {sc%d%d()};\n", CSF_TAG_CHAMBER(s, j + 1), s, j);
     }
   }
+  /* chamber walls: at least CSF_CHAMBER_SEGMENTS elements around each r1 circle, so quadratic
+   * elements can follow the wall (coarser meshes fold: measured 324 folded Tet10 at l_soft 4
+   * with 4 segments, 29 with 6) */
+  fprintf(f, "MeshSize{ PointsOf{ Surface{");
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < 4; j++) {
+      fprintf(f, "%ssc%d%d()", (s || j) ? ", " : "", s, j);
+    }
+  }
+  fprintf(f, "}; } } = %.17g;\n", fmin(l_soft, 2.0 * CS_PI * r1 / CSF_CHAMBER_SEGMENTS));
   (void)vol;
   int bad = ferror(f);
   if (fclose(f) != 0 || bad) {
@@ -712,5 +781,9 @@ csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* ste
                 rc, geo, log);
     return NULL;
   }
-  return csf_meshReadMsh(msh, err);
+  csfMesh* m = csf_meshReadMsh(msh, err);
+  if (m) {
+    csf_meshFixInverted(m);
+  }
+  return m;
 }

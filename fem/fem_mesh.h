@@ -49,9 +49,13 @@ csfMesh* csf_meshCreateBox(const int n[3], csfMapFn map, void* user, double jitt
                            csError* err);
 
 /* Read a gmsh MSH 2.2 ASCII file with second-order elements (Tet10 type 11, Tri6 type 9). Tri6
- * elements carry their physical tag; tetrahedra of every physical volume are kept. Edge-node
- * order is recovered geometrically, so both gmsh's and VTK's conventions read correctly. */
+ * elements carry their physical tag; tetrahedra of every physical volume are kept. gmsh's edge-node
+ * order is converted to VTK's. */
 csfMesh* csf_meshReadMsh(const char* path, csError* err);
+
+/* Minimum number of element edges around a chamber circle (mesh size at chamber walls is
+ * min(l_soft, 2 pi r1 / CSF_CHAMBER_SEGMENTS)). */
+#define CSF_CHAMBER_SEGMENTS 6
 
 /* Write the actuator's gmsh .geo script (OpenCASCADE kernel): five extruded rounded-square blocks
  * (S1, LS12, S2, LS23, S3) fused conformally, 12 chambers cut (radius r1, length S - 2c),
@@ -63,6 +67,13 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
  * environment variable CS_GMSH if set, else "gmsh" on PATH. */
 csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* stem,
                           csError* err);
+
+/* Straighten curved Tet10 elements whose isoparametric map is not valid (Jacobian <= 0 or below
+ * 5 % of the straight element's at a vertex, edge node or quadrature point): their edge nodes move
+ * to the chord midpoints. gmsh places edge nodes on the curved geometry, and coarse elements on
+ * small-radius chambers (r1 = 2 mm at l_soft >= 3) then fold. Returns the number of elements
+ * straightened (edge nodes are shared, so neighbours become slightly straighter too). */
+int csf_meshFixInverted(csfMesh* m);
 
 /* Free a mesh; NULL-safe. */
 void csf_meshDestroy(csfMesh* m);

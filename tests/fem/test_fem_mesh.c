@@ -33,10 +33,10 @@ static void test_actuator_mesh(void) {
   for (int s = 0; s < 3; s++) {
     exact -= 4 * CS_PI * act.r1 * act.r1 * (act.S[s] - 2 * act.c);
   }
-  printf("  volume %.3f mm^3 vs exact %.3f\n", vol, exact);
-  /* quadratic elements on curved (fillet, chamber) surfaces: geometric error O(h^3)/R^2;
-   * measured 2e-5 relative at l_soft 5; 1e-3 catches a missing or doubled chamber (2.4 %) */
-  CS_EXPECT_NEAR(vol, exact, 0, 1e-3);
+  printf("  volume %.3f mm^3 vs exact %.3f (rel %.2e)\n", vol, exact, vol / exact - 1);
+  /* coarse elements on r1 = 2 mm chambers: straightened (folded) elements facet the chamber
+   * walls; measured -4.3e-4; 5e-3 still catches a missing or doubled chamber (1.7 %) */
+  CS_EXPECT_NEAR(vol, exact, 0, 5e-3);
   /* every chamber tagged; its wall area ~ 2 pi r1 Lc + 2 pi r1^2 */
   for (int s = 0; s < 3; s++) {
     for (int j = 1; j <= 4; j++) {
