@@ -76,9 +76,11 @@ static double potential(const Problem* pb, const double q[3], double gy[3], doub
 /* minimise Φ over y from y = 0 (damped Newton); q receives the minimiser */
 static csStatus minimise(const Problem* pb, const csrAnalyticOptions* opt, int seg, double q[3],
                          int* iterations, csError* err);
-/* argument checks shared by the entry points; fills Lc and the chamber force vector */
+/* argument checks shared by the segment solvers: resolves the options (NULL = defaults) into
+ * *o, builds the section rule, Lc and the chamber force vector */
 static csStatus setupProblem(const csrActuator* act, int seg, const double p[4],
-                             const csrAnalyticOptions* opt, Problem* pb, csError* err);
+                             const csrAnalyticOptions* opt, const csrSegmentStrain* out,
+                             csrAnalyticOptions* o, Problem* pb, csError* err);
 /* Yeoh energy with λ2 = 1, λ3 = 1/λ (D2): W, dW/dλ, d²W/dλ² */
 static void yeohStretch(double C10, double C20, double lam, double* W, double* dW, double* d2W);
 /* tip direction angle of a curvature vector (centreline turns towards -κ) */
@@ -399,11 +401,13 @@ static csStatus minimise(const Problem* pb, const csrAnalyticOptions* opt, int s
 
 
 static csStatus setupProblem(const csrActuator* act, int seg, const double p[4],
-                             const csrAnalyticOptions* opt, Problem* pb, csError* err) {
-  if (!act || !p || seg < 0 || seg >= CSR_NSEG) {
+                             const csrAnalyticOptions* opt, const csrSegmentStrain* out,
+                             csrAnalyticOptions* o, Problem* pb, csError* err) {
+  *o = opt ? *opt : csr_analyticDefaultOptions();
+  if (!act || !p || !out || seg < 0 || seg >= CSR_NSEG) {
     return cs_errorSet(err, CS_ERR_ARG, "analytic model: bad arguments (segment %d)", seg);
   }
-  if (!(opt->tol_step > 0) || opt->max_iter < 1) {
+  if (!(o->tol_step > 0) || o->max_iter < 1) {
     return cs_errorSet(err, CS_ERR_ARG, "analytic model: need tol_step > 0 and max_iter >= 1");
   }
   for (int j = 0; j < CSR_NCHAMBER; j++) {
@@ -415,7 +419,7 @@ static csStatus setupProblem(const csrActuator* act, int seg, const double p[4],
     }
   }
   memset(pb, 0, sizeof *pb);
-  csStatus st = sectionRuleInit(act, opt, &pb->rule, err);
+  csStatus st = sectionRuleInit(act, o, &pb->rule, err);
   if (st != CS_OK) {
     return st;
   }
@@ -469,12 +473,9 @@ csStatus csr_analyticSectionCompute(const csrActuator* act, const csrAnalyticOpt
 csStatus csr_analyticSegmentWith(const csrActuator* act, int seg, const double p[4],
                                  const csrAnalyticOptions* opt, csrSegmentStrain* out,
                                  csError* err) {
-  csrAnalyticOptions o = opt ? *opt : csr_analyticDefaultOptions();
-  if (!out) {
-    return cs_errorSet(err, CS_ERR_ARG, "analytic model: NULL output");
-  }
+  csrAnalyticOptions o;
   Problem pb;
-  csStatus st = setupProblem(act, seg, p, &o, &pb, err);
+  csStatus st = setupProblem(act, seg, p, opt, out, &o, &pb, err);
   if (st != CS_OK) {
     return st;
   }
@@ -543,12 +544,9 @@ csStatus csr_analyticActuator(const csrActuator* act, const double p[CSR_NSEG * 
 csStatus csr_analyticSegmentPaper(const csrActuator* act, int seg, const double p[4],
                                   const csrAnalyticOptions* opt, csrSegmentStrain* out,
                                   csError* err) {
-  csrAnalyticOptions o = opt ? *opt : csr_analyticDefaultOptions();
-  if (!out) {
-    return cs_errorSet(err, CS_ERR_ARG, "analytic model: NULL output");
-  }
+  csrAnalyticOptions o;
   Problem pb;
-  csStatus st = setupProblem(act, seg, p, &o, &pb, err);
+  csStatus st = setupProblem(act, seg, p, opt, out, &o, &pb, err);
   if (st != CS_OK) {
     return st;
   }

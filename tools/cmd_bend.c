@@ -69,8 +69,8 @@ static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG]
 static BendPointFn bendModelEvaluator(BendModel m);
 /* parse argv into run; returns 0, 1 on error (message printed), 2 after --help */
 static int parseArgs(int argc, char** argv, BendRun* run);
-/* strict number parser: whole string, finite; prints the error line */
-static int parseNumber(const char* flag, const char* text, double* v);
+/* strict number parser: whole string, finite, > 0; prints the error line naming the unit */
+static int parsePositive(const char* flag, const char* text, const char* unit, double* v);
 /* "1,2" -> inflated[], canonical text; prints the error line */
 static int parseChambers(const char* text, BendRun* run);
 /* Θ(p) for --until-angle */
@@ -127,11 +127,15 @@ static double wallSeconds(void) {
 }
 
 
-static int parseNumber(const char* flag, const char* text, double* v) {
+static int parsePositive(const char* flag, const char* text, const char* unit, double* v) {
   char* end = NULL;
   double x = strtod(text, &end);
   if (end == text || *end != '\0' || !isfinite(x)) {
     fprintf(stderr, "crawlsim bend: %s '%s' is not a finite number\n", flag, text);
+    return 1;
+  }
+  if (!(x > 0)) {
+    fprintf(stderr, "crawlsim bend: %s %s must be > 0 %s\n", flag, text, unit);
     return 1;
   }
   *v = x;
@@ -241,29 +245,13 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
     } else if (!strcmp(name, "--chambers")) {
       bad = parseChambers(value, run);
     } else if (!strcmp(name, "--p-max")) {
-      bad = parseNumber(name, value, &run->p_max);
-      if (!bad && !(run->p_max > 0)) {
-        fprintf(stderr, "crawlsim bend: --p-max %s must be > 0 MPa\n", value);
-        bad = 1;
-      }
+      bad = parsePositive(name, value, "MPa", &run->p_max);
     } else if (!strcmp(name, "--p-step")) {
-      bad = parseNumber(name, value, &run->p_step);
-      if (!bad && !(run->p_step > 0)) {
-        fprintf(stderr, "crawlsim bend: --p-step %s must be > 0 MPa\n", value);
-        bad = 1;
-      }
+      bad = parsePositive(name, value, "MPa", &run->p_step);
     } else if (!strcmp(name, "--until-angle")) {
-      bad = parseNumber(name, value, &run->until_angle);
-      if (!bad && !(run->until_angle > 0)) {
-        fprintf(stderr, "crawlsim bend: --until-angle %s must be > 0 degrees\n", value);
-        bad = 1;
-      }
+      bad = parsePositive(name, value, "degrees", &run->until_angle);
     } else if (!strcmp(name, "--mesh-size")) {
-      bad = parseNumber(name, value, &run->mesh_size);
-      if (!bad && !(run->mesh_size > 0)) {
-        fprintf(stderr, "crawlsim bend: --mesh-size %s must be > 0 mm\n", value);
-        bad = 1;
-      }
+      bad = parsePositive(name, value, "mm", &run->mesh_size);
     } else if (!strcmp(name, "--out")) {
       if (!*value) {
         fprintf(stderr, "crawlsim bend: --out needs a file name\n");
