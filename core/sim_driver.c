@@ -71,10 +71,62 @@ csOptions cs_defaultOptions(void) {
 }
 
 
+void cs_modelInit(csModel* m) {
+  memset(m, 0, sizeof *m);
+  m->opt = cs_defaultOptions();
+  m->sched = csg_defaultScheduleOptions();
+  m->contact = csc_defaultContactParams();
+  csr_robotDefaultModel(&m->robot, NULL);
+  snprintf(m->leg_level, sizeof m->leg_level, "%s", m->robot.leg_type->name);
+}
+
+
+csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
+                      const char* gait_path, const char* calibration_path, csError* err) {
+  snprintf(m->scene, sizeof m->scene, "%s", scene);
+  snprintf(m->gait_path, sizeof m->gait_path, "%s", gait_path);
+  csStatus st = cst_terrainLoad(&m->terrain, terrain_path, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  csg_gaitDestroy(m->gait);
+  m->gait = csg_gaitRead(gait_path, NULL, err);
+  if (!m->gait) {
+    return err ? err->status : CS_ERR_PARSE;
+  }
+  csr_provisionalMapDestroy(m->calibration);
+  m->calibration = csr_provisionalMapCreate(calibration_path, &m->robot.leg, err);
+  if (!m->calibration) {
+    return err ? err->status : CS_ERR_PARSE;
+  }
+  m->robot.map = csr_provisionalMapGet(m->calibration);
+  return CS_OK;
+}
+
+
+double cs_modelEndTime(const csModel* m) {
+  if (m->opt.t_end > 0 || !m->gait || m->gait->nrow == 0) {
+    return m->opt.t_end;
+  }
+  return m->gait->time[m->gait->nrow - 1] + m->sched.ramp;
+}
+
+
+void cs_modelStanceCheck(const csModel* m, double mass_total, double* load_per_leg,
+                         double* p_critical) {
+  double EI = m->robot.leg_params.E_bend * csr_legSectionI(&m->robot.leg);
+  double L = csr_actuatorLength(&m->robot.leg);
+  *p_critical = CS_PI * CS_PI * EI / (L * L);
+  *load_per_leg = mass_total * m->opt.gravity / (CSR_NLEG / 2);
+}
+
+
 void cs_modelDestroy(csModel* m) {
   if (m) {
     csg_gaitDestroy(m->gait);
     m->gait = NULL;
+    csr_provisionalMapDestroy(m->calibration);
+    m->calibration = NULL;
   }
 }
 
@@ -237,6 +289,17 @@ static csStatus checkState(const csModel* m, const csData* d, csError* err) {
       return cs_errorSet(err, CS_ERR_DIVERGED,
                          "t = %.4f s: simulation diverged: support state is not finite", d->t);
     }
+  }
+  /* below every terrain box: the robot left the terrain (fell off an edge) */
+  double floor_y = INFINITY;
+  for (int i = 0; i < m->terrain.nbox; i++) {
+    floor_y = fmin(floor_y, m->terrain.box[i].lo[1]);
+  }
+  if (x[1] < floor_y) {
+    return cs_errorSet(err, CS_ERR_DIVERGED,
+                       "t = %.4f s: the support fell off the terrain (y = %.1f mm, below the "
+                       "lowest terrain surface %.1f mm)",
+                       d->t, x[1], floor_y);
   }
   double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   if (speed > m->opt.max_speed) {

@@ -25,6 +25,7 @@
 #include "core_status.h"
 #include "gaits_csv.h"
 #include "gaits_schedule.h"
+#include "robot_calibration.h"
 #include "robot_robot.h"
 #include "terrains_terrain.h"
 
@@ -57,12 +58,32 @@ typedef struct csModel_ {
   csgScheduleOptions sched;   /* ramp length, pressure scale */
   csrRobotModel robot;
   cscContactParams contact;
+  csrProvisionalMap* calibration; /* owned; robot.map points into it */
   char scene[32];
   char gait_path[512];
   char leg_level[16];
 } csModel;
 
-/* Free what the model owns (the gait). NULL-safe. */
+/* Fill a model with the defaults of every part (no files read, no map yet). */
+void cs_modelInit(csModel* m);
+
+/* Load a scene's files into an initialised model: terrain description, gait table, and the
+ * calibration bound to the leg actuator. Options may be changed before and after. On failure
+ * err names the file and line. */
+csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
+                      const char* gait_path, const char* calibration_path, csError* err);
+
+/* End time of a run: opt.t_end if > 0, else the gait's last row plus one ramp (s). */
+double cs_modelEndTime(const csModel* m);
+
+/* Sway-buckling check of the stance (DESIGN "model no more than a scene needs", a designer's
+ * first question): P_cr = π² E I / L² is the critical axial load of one leg clamped at the hip
+ * and at a flat foot with the support free to sway (a sway frame of identical columns); the
+ * load is the robot's weight shared by half the legs, as in an alternating gait. Both in N. */
+void cs_modelStanceCheck(const csModel* m, double mass_total, double* load_per_leg,
+                         double* p_critical);
+
+/* Free what the model owns (gait, calibration). NULL-safe. */
 void cs_modelDestroy(csModel* m);
 
 typedef struct csData_ csData; /* opaque: ODE world, CVODE memory, state */

@@ -75,6 +75,9 @@ typedef struct csrLegType_ {
 /* The pseudo-rigid-body chain level (robot_prb.c). */
 extern const csrLegType csr_leg_prb;
 
+/* Second moment of area of the chambered section about a principal axis (mm^4). */
+double csr_legSectionI(const csrActuator* act);
+
 /* Default leg parameters for an actuator (E_bend from C10, see robot_prb.c). */
 csrLegParams csr_defaultLegParams(const csrActuator* act);
 

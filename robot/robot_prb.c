@@ -77,7 +77,7 @@ csrLegParams csr_defaultLegParams(const csrActuator* act) {
 /* second moment of area (mm^4) of the chambered section about a principal axis:
  * square of side 2a, minus four fillet spandrels (area (1-π/4) r2^2, centroid 0.2234 r2 from
  * the corner), minus four circles of radius r1 at distance b (parallel-axis theorem) */
-static double sectionI(const csrActuator* a) {
+double csr_legSectionI(const csrActuator* a) {
   double side = 2 * a->a;
   double I = side * side * side * side / 12.0;
   double Ac = (1 - CS_PI / 4) * a->r2 * a->r2;
@@ -172,7 +172,7 @@ static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
   }
 
   /* joint positions and stiffness */
-  double I = sectionI(spec->act);
+  double I = csr_legSectionI(spec->act);
   for (int s = 0; s < CSR_NSEG; s++) {
     double ds = spec->act->S[s] / leg->n;
     for (int k = 0; k < leg->n; k++) {

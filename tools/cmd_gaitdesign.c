@@ -20,7 +20,7 @@
 int csx_cmdGaitFlatRoad(int argc, char** argv) {
   const char* out = NULL;
   const char* calib = NULL;
-  double stroke = 39.0, p_max = 0.5, nstroke = 8;
+  double stroke = 39.0, p_max = 0.5, nstroke = 8, t_land = NAN;
   int literal = 0;
   for (int i = 1; i < argc; i++) {
     const char* a = argv[i];
@@ -32,6 +32,8 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
       num = &stroke;
     } else if (!strcmp(a, "--p-max")) {
       num = &p_max;
+    } else if (!strcmp(a, "--t-land")) {
+      num = &t_land;
     } else if (!strcmp(a, "--strokes")) {
       num = &nstroke;
     } else if (!strcmp(a, "--calibration")) {
@@ -83,6 +85,7 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
   if (csr_designFlatRoad(&leg, &map, stroke, p_max, &des, &err) != CS_OK) goto done;
   csgFlatRoadSpec spec = csg_defaultFlatRoadSpec();
   spec.nstroke = (int)nstroke;
+  if (!isnan(t_land)) spec.t_land = t_land;
   spec.p_stroke = des.p_stroke;
   spec.p_crouch_II2 = des.p_crouch_II2;
   spec.crouch = !literal;

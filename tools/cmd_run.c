@@ -17,7 +17,7 @@ static const char kRunUsage[] =
     "usage: crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv] [--legs auto|prb|rod|rom]\n"
     "                    [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]\n"
     "                    [--terrain FILE] [--dt S] [--output-dt S] [--ramp S] [--tau S]\n"
-    "                    [--support-mass KG] [--links N] [--iterations N]\n"
+    "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
     "                    [--calibration FILE] [--quiet]\n";
 
 
@@ -45,7 +45,7 @@ int csx_cmdRun(int argc, char** argv) {
   const char* out = "run.h5";
   const char* calib = NULL;
   double friction = NAN, scale = 1.0, t_end = 0, dt = NAN, out_dt = NAN, ramp = NAN, tau = NAN;
-  double support_kg = NAN, links = NAN, iters = NAN;
+  double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN;
   int quiet = 0;
   for (int i = 1; i < argc; i++) {
     const char* a = argv[i];
@@ -90,6 +90,8 @@ int csx_cmdRun(int argc, char** argv) {
       ok = parseNum(a, v, &support_kg);
     } else if (!strcmp(a, "--links")) {
       ok = parseNum(a, v, &links);
+    } else if (!strcmp(a, "--gravity")) {
+      ok = parseNum(a, v, &gravity);
     } else if (!strcmp(a, "--iterations")) {
       ok = parseNum(a, v, &iters);
     } else {
@@ -130,13 +132,10 @@ int csx_cmdRun(int argc, char** argv) {
   csError err;
   cs_errorClear(&err);
   csModel m;
-  memset(&m, 0, sizeof m);
-  m.opt = cs_defaultOptions();
+  cs_modelInit(&m);
+  int rc = 1;
+  csData* d = NULL;
   m.opt.progress = !quiet;
-  m.sched = csg_defaultScheduleOptions();
-  m.contact = csc_defaultContactParams();
-  snprintf(m.scene, sizeof m.scene, "%s", scene);
-  snprintf(m.gait_path, sizeof m.gait_path, "%s", gait);
   snprintf(m.leg_level, sizeof m.leg_level, "%s", legs);
   if (!isnan(friction)) m.contact.mu = friction;
   m.sched.pressure_scale = scale;
@@ -145,22 +144,12 @@ int csx_cmdRun(int argc, char** argv) {
   if (!isnan(out_dt)) m.opt.output_dt = out_dt;
   if (!isnan(tau)) m.opt.pneumatic_tau = tau;
   if (!isnan(iters)) m.opt.solver_iterations = (int)iters;
-  int rc = 1;
-  csrProvisionalMap* pmap = NULL;
-  csData* d = NULL;
-
-  if (csc_contactParamsValidate(&m.contact, &err) != CS_OK ||
-      csg_scheduleCheckOptions(&m.sched, &err) != CS_OK) {
-    goto done;
-  }
+  if (!isnan(gravity)) m.opt.gravity = gravity * 1e3; /* m/s^2 -> mm/s^2 */
+  m.opt.t_end = t_end;
   if (!(t_end >= 0)) {
     cs_errorSet(&err, CS_ERR_RANGE, "--t-end %g must be >= 0", t_end);
     goto done;
   }
-  if (cst_terrainLoad(&m.terrain, terrain, &err) != CS_OK) goto done;
-  m.gait = csg_gaitRead(gait, NULL, &err);
-  if (!m.gait) goto done;
-  if (csr_robotDefaultModel(&m.robot, &err) != CS_OK) goto done;
   if (!isnan(support_kg)) {
     if (!(support_kg > 0)) {
       cs_errorSet(&err, CS_ERR_RANGE, "--support-mass %g kg must be > 0", support_kg);
@@ -175,10 +164,25 @@ int csx_cmdRun(int argc, char** argv) {
     }
     m.robot.leg_params.links_per_segment = (int)links;
   }
-  pmap = csr_provisionalMapCreate(calib, &m.robot.leg, &err);
-  if (!pmap) goto done;
-  m.robot.map = csr_provisionalMapGet(pmap);
-  m.opt.t_end = t_end > 0 ? t_end : m.gait->time[m.gait->nrow - 1] + m.sched.ramp;
+  if (!isnan(iters) && (iters != floor(iters) || iters < 1 || iters > 10000)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--iterations %g must be an integer in 1..10000", iters);
+    goto done;
+  }
+  if (csc_contactParamsValidate(&m.contact, &err) != CS_OK ||
+      csg_scheduleCheckOptions(&m.sched, &err) != CS_OK) {
+    goto done;
+  }
+  if (cs_modelLoad(&m, scene, terrain, gait, calib, &err) != CS_OK) goto done;
+  if (m.gait) {
+    csgGaitSummary gs;
+    csg_gaitComputeSummary(m.gait, &gs, NULL);
+    if (gs.p_max * scale > csg_defaultReadOptions().max_pressure) {
+      cs_errorSet(&err, CS_ERR_RANGE, "--pressure-scale %g takes %s to %g MPa, above the %g MPa "
+                  "limit of gait pressures", scale, gait, gs.p_max * scale,
+                  csg_defaultReadOptions().max_pressure);
+      goto done;
+    }
+  }
 
   d = cs_dataCreate(&m, &err);
   if (!d) goto done;
@@ -186,6 +190,11 @@ int csx_cmdRun(int argc, char** argv) {
     fprintf(stderr, "crawlsim run: scene %s, gait %s, legs %s, friction %.3g, t_end %.3g s, "
             "robot mass %.1f g\n", scene, gait, legs, m.contact.mu, m.opt.t_end,
             cs_robotMass(d) * 1e6);
+    double load, pcr;
+    cs_modelStanceCheck(&m, cs_robotMass(d), &load, &pcr);
+    fprintf(stderr, "crawlsim run: stance check: %.2f N per leg on half the legs vs sway-buckling "
+            "load %.2f N per leg (%.0f %%)%s\n", load, pcr, 100 * load / pcr,
+            load > 0.5 * pcr ? ": expect the stance legs to sway and fold" : "");
   }
   if (cs_settle(&m, d, &err) != CS_OK) goto done;
   double wall = 0;
@@ -207,7 +216,6 @@ done:
     fprintf(stderr, "crawlsim run: %s\n", err.msg[0] ? err.msg : "failed");
   }
   cs_dataDestroy(d);
-  csr_provisionalMapDestroy(pmap);
   cs_modelDestroy(&m);
   return rc;
 }
