@@ -186,6 +186,11 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
     return NULL;
   }
   d->m = m;
+  /* QuickStep shuffles its constraint rows with ODE's one process-wide generator; reseeding it
+   * per run makes a run's result independent of what ran before in the same process (the
+   * determinism test). Runs in one process are therefore sequential, as ODE requires anyway
+   * for collision (debian-deps.md P3). */
+  dRandSetSeed(0);
   d->world = dWorldCreate();
   dWorldSetGravity(d->world, 0, -m->opt.gravity, 0);
   dWorldSetQuickStepNumIterations(d->world, m->opt.solver_iterations);
@@ -381,6 +386,11 @@ const double* cs_pressures(const csData* d) { return d->p; }
 
 void cs_legCenterline(const csModel* m, const csData* d, int k, int npts, double* out) {
   m->robot.leg_type->centerline(d->robot->legs[k], npts, out);
+}
+
+
+void cs_robotCenterOfMass(const csModel* m, const csData* d, double com[3]) {
+  csr_robotCenterOfMass(&m->robot, d->robot, com);
 }
 
 

@@ -110,6 +110,8 @@ void cs_supportOrientation(const csData* d, double q[4]);
 const double* cs_pressures(const csData* d);
 /* centreline of leg k (0..7) at `npts` points, (npts x 3) world mm */
 void cs_legCenterline(const csModel* m, const csData* d, int k, int npts, double* out);
+/* centre of mass of the robot, world frame, mm */
+void cs_robotCenterOfMass(const csModel* m, const csData* d, double com[3]);
 /* number of contact points in the last step */
 int cs_contactCount(const csData* d);
 /* total mass of the robot (t) */

@@ -70,6 +70,8 @@ typedef struct csrLegType_ {
   void (*centerline)(const csrLeg* leg, int k, double* out);
   /* total mass of the leg (t) */
   double (*mass)(const csrLeg* leg);
+  /* first mass moment: sum of m_i x_i over the leg's bodies (t mm, world) */
+  void (*massMoment)(const csrLeg* leg, double mx[3]);
 } csrLegType;
 
 /* The pseudo-rigid-body chain level (robot_prb.c). */

@@ -311,6 +311,19 @@ static void centerlinePrb(const csrLeg* leg, int k, double* out) {
 static double massPrb(const csrLeg* leg) { return leg->total_mass; }
 
 
+static void massMomentPrb(const csrLeg* leg, double mx[3]) {
+  mx[0] = mx[1] = mx[2] = 0;
+  for (int i = 0; i < leg->nbody; i++) {
+    dMass m;
+    dBodyGetMass(leg->body[i], &m);
+    const dReal* p = dBodyGetPosition(leg->body[i]);
+    for (int k = 0; k < 3; k++) {
+      mx[k] += m.mass * p[k];
+    }
+  }
+}
+
+
 const csrLegType csr_leg_prb = {
     .name = "prb",
     .create = createPrb,
@@ -318,4 +331,5 @@ const csrLegType csr_leg_prb = {
     .actuate = actuatePrb,
     .centerline = centerlinePrb,
     .mass = massPrb,
+    .massMoment = massMomentPrb,
 };

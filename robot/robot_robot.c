@@ -103,6 +103,18 @@ void csr_robotDestroy(const csrRobotModel* m, csrRobot* r) {
 }
 
 
+void csr_robotCenterOfMass(const csrRobotModel* m, const csrRobot* r, double com[3]) {
+  const dReal* p = dBodyGetPosition(r->support);
+  double mx[3] = {m->support_mass * p[0], m->support_mass * p[1], m->support_mass * p[2]};
+  for (int k = 0; k < CSR_NLEG; k++) {
+    double leg_mx[3];
+    m->leg_type->massMoment(r->legs[k], leg_mx);
+    csu_add3(mx, mx, leg_mx);
+  }
+  csu_scale3(com, mx, 1.0 / r->mass_total);
+}
+
+
 int csr_robotActuate(const csrRobotModel* m, csrRobot* r, const double p[CSR_NCHAMBER_TOTAL]) {
   for (int k = 0; k < CSR_NLEG; k++) {
     /* label = 12 k + 4 (s - 1) + j: leg k's 12 chambers are contiguous */

@@ -52,6 +52,9 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, dWorldID world, dSpaceID space
                           const double hip_plane_centre[3], double h, csError* err);
 void csr_robotDestroy(const csrRobotModel* m, csrRobot* r);
 
+/* Centre of mass of the whole robot (world, mm). */
+void csr_robotCenterOfMass(const csrRobotModel* m, const csrRobot* r, double com[3]);
+
 /* Apply the 96 chamber pressures (MPa, label order of REFERENCE.md) for the coming step.
  * 0 ok, > 0 recoverable, < 0 fatal. */
 int csr_robotActuate(const csrRobotModel* m, csrRobot* r, const double p[CSR_NCHAMBER_TOTAL]);
