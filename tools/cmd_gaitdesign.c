@@ -104,6 +104,12 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
                    : "standing legs crouch before the forward feet land (gaits_generate.h)",
            map.name, des.p_stroke, des.stroke, des.theta_stroke_deg, des.lift_stroke,
            des.p_crouch_II2, des.lift_crouch, des.crouch_offset);
+  /* the shipped file must not carry this machine's paths: drop the source-tree prefix */
+  char* src = strstr(comment, CS_SOURCE_DIR "/");
+  if (src) {
+    size_t cut = strlen(CS_SOURCE_DIR "/");
+    memmove(src, src + cut, strlen(src + cut) + 1);
+  }
   if (csg_gaitWrite(g, out, comment, &err) != CS_OK) goto done;
   printf("%s: %d rows; S-shape %.4f MPa (stroke %.2f mm, bend %.2f deg/segment, lift %.2f mm); "
          "crouch II2 %.4f MPa (lift %.2f mm, offset %.2f mm)\n",
