@@ -22,7 +22,7 @@ csgFlatRoadSpec csg_defaultFlatRoadSpec(void) {
   s.t_final_vent = 0.8;
   s.p_stroke = 0;
   s.p_crouch_II2 = 0;
-  s.crouch = 1;
+  s.crouch = 0;
   return s;
 }
 

@@ -5,16 +5,18 @@
  * forward and lifted); at every whole second the swinging group lands and vents, its feet
  * drive the support forward as its legs straighten, and the other group takes the S-shape.
  *
- * Why a crouch. With only the S-shape, a leg's foot offset and its shortening both grow with
- * one pressure, so the group standing is always the one with the smaller bend, and the support
- * displacement over a cycle is minus the change of that group's foot offset, which starts and
- * ends at zero: the paper's table as printed moves the support forward and back by the same
- * amount (README, "Why the shipped gait crouches"). A real stride needs a second degree of
- * freedom per leg. The generator therefore lets the standing group crouch first (Z-shape:
- * II1 Ω3&Ω4 and II3 Ω3&Ω4 at p_stroke, II2 Ω1&Ω2 at p_crouch_II2, foot still under the hip,
- * leg shorter than the S-shape) so that the swinging group's forward feet touch down; then the
- * swinging group vents and the standing one changes from the crouch to the S-shape in the air.
- * `crouch = 0` writes the paper's table as printed, for comparison. */
+ * The paper's table as printed (crouch = 0, the shipped gaits/flat_road.csv) swaps the groups
+ * at every whole second: the venting group lengthens and straightens while the other shortens
+ * and bends, both feet sets on the ground for part of the swap. Kinematically (feet that never
+ * slip) that cycle moves the support forward and back by the same amount, because the standing
+ * group is always the one with the smaller bend; it moves forward in the simulation because
+ * friction is load dependent: the lengthening legs take the weight, their feet stick, and the
+ * shortening legs' unloaded feet slip forward. A gait that relies less on slip lets the
+ * standing group crouch first (crouch = 1, gaits/flat_road_crouch.csv; Z-shape: II1 Ω3&Ω4 and
+ * II3 Ω3&Ω4 at p_stroke, II2 Ω1&Ω2 at p_crouch_II2, foot still under the hip, leg shorter than
+ * the S-shape) so that the forward feet touch down before anything vents; then the swinging
+ * group vents and the standing one changes from the crouch to the S-shape in the air.
+ */
 #ifndef CS_GAITS_GENERATE_H
 #define CS_GAITS_GENERATE_H
 
@@ -35,7 +37,8 @@ typedef struct csgFlatRoadSpec_ {
   int crouch;           /* 1: with the crouch; 0: the paper's table as printed */
 } csgFlatRoadSpec;
 
-/* nstroke 8, period 1 s, t_land 0.35 s, t_final_vent 0.8 s, crouch on; pressures 0 (the
+/* nstroke 8, period 1 s, t_land 0.35 s, t_final_vent 0.8 s, crouch off (the paper's table);
+ * pressures 0 (the
  * caller derives them from the leg model, robot_gaitdesign.h). */
 csgFlatRoadSpec csg_defaultFlatRoadSpec(void);
 

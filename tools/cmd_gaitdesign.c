@@ -1,10 +1,11 @@
 /* cmd_gaitdesign.c: `crawlsim gait flat-road FILE.csv`: derive the flat-road gait's pressures
  * from the calibrated leg model and write the gait table.
- *   crawlsim gait flat-road FILE.csv [--stroke MM] [--strokes N] [--literal]
+ *   crawlsim gait flat-road FILE.csv [--stroke MM] [--strokes N] [--crouch] [--t-land S]
  *                                    [--calibration FILE] [--p-max MPA]
  * --stroke is the foot travel per stride the gait is designed for (the paper's gait: 39 mm);
- * the pressures that give it follow from the calibration (robot_gaitdesign.h). --literal
- * writes the paper's table as printed (no crouch of the standing legs). */
+ * the pressures that give it follow from the calibration (robot_gaitdesign.h). Without
+ * --crouch it writes the paper's table (groups swap at every whole second); --crouch lets the
+ * standing legs crouch before the forward feet land (gaits_generate.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,12 +22,12 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
   const char* out = NULL;
   const char* calib = NULL;
   double stroke = 39.0, p_max = 0.5, nstroke = 8, t_land = NAN;
-  int literal = 0;
+  int crouch = 0;
   for (int i = 1; i < argc; i++) {
     const char* a = argv[i];
     double* num = NULL;
-    if (!strcmp(a, "--literal")) {
-      literal = 1;
+    if (!strcmp(a, "--crouch")) {
+      crouch = 1;
       continue;
     } else if (!strcmp(a, "--stroke")) {
       num = &stroke;
@@ -66,7 +67,7 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
   }
   if (!out) {
     fprintf(stderr, "usage: crawlsim gait flat-road FILE.csv [--stroke MM] [--strokes N] "
-                    "[--literal] [--calibration FILE] [--p-max MPA]\n");
+                    "[--crouch] [--t-land S] [--calibration FILE] [--p-max MPA]\n");
     return 1;
   }
   char buf[512];
@@ -88,7 +89,7 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
   if (!isnan(t_land)) spec.t_land = t_land;
   spec.p_stroke = des.p_stroke;
   spec.p_crouch_II2 = des.p_crouch_II2;
-  spec.crouch = !literal;
+  spec.crouch = crouch;
   g = csg_generateFlatRoad(&spec, &err);
   if (!g) goto done;
   char comment[1024];
@@ -99,9 +100,9 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
            "pressures from the calibration: %s\n"
            "S-shape %.4f MPa: stroke %.2f mm, segment bend %.2f deg, lift %.2f mm; "
            "crouch II2 %.4f MPa: lift %.2f mm, foot offset %.2f mm",
-           stroke, literal ? " --literal" : "",
-           literal ? "the paper's table as printed (no crouch)"
-                   : "standing legs crouch before the forward feet land (gaits_generate.h)",
+           stroke, crouch ? " --crouch" : "",
+           crouch ? "standing legs crouch before the forward feet land (gaits_generate.h)"
+                  : "the paper's table: the groups swap at every whole second",
            map.name, des.p_stroke, des.stroke, des.theta_stroke_deg, des.lift_stroke,
            des.p_crouch_II2, des.lift_crouch, des.crouch_offset);
   /* the shipped file must not carry this machine's paths: drop the source-tree prefix */

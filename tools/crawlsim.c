@@ -15,7 +15,7 @@ static const char kUsage[] =
     "  bend      [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
     "            [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
     "            [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]\n"
-    "  gait      check FILE.csv | flat-road FILE.csv [--stroke MM] [--literal] ...\n"
+    "  gait      check FILE.csv | flat-road FILE.csv [--stroke MM] [--crouch] ...\n"
     "  calibrate [--out FILE.h5]\n"
     "Run 'crawlsim <command> --help' for the options of one command.\n";
 
