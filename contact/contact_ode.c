@@ -49,8 +49,14 @@ static void nearCallback(void* data, dGeomID o1, dGeomID o2) {
   CollideCtx* c = data;
   dContactGeom cg[MAX_POINTS];
   int n = dCollide(o1, o2, c->p->max_points, cg, sizeof(dContactGeom));
-  double erp = c->h * c->p->kp / (c->h * c->p->kp + c->p->kd);
-  double cfm = 1.0 / (c->h * c->p->kp + c->p->kd);
+  if (n == 0) {
+    return;
+  }
+  /* the n points of one geom pair act as parallel springs: each gets kp/n and kd/n so that
+   * the pair's stiffness is kp whatever n the collider returns */
+  double kp = c->p->kp / n, kd = c->p->kd / n;
+  double erp = c->h * kp / (c->h * kp + kd);
+  double cfm = 1.0 / (c->h * kp + kd);
   for (int i = 0; i < n; i++) {
     dContact ct;
     ct.geom = cg[i];
