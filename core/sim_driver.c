@@ -108,7 +108,16 @@ double cs_modelEndTime(const csModel* m) {
   if (m->opt.t_end > 0 || !m->gait || m->gait->nrow == 0) {
     return m->opt.t_end;
   }
-  return m->gait->time[m->gait->nrow - 1] + m->sched.ramp;
+  /* the last row holds for ever: the run ends when its change has finished, or at the last
+   * row's time if that is later than every change (an end-marker row) */
+  int n = m->gait->nrow;
+  double t_last = m->gait->time[n - 1];
+  if (n >= 2 && !memcmp(m->gait->pressure + (size_t)CSG_NLABEL * (n - 1),
+                        m->gait->pressure + (size_t)CSG_NLABEL * (n - 2),
+                        CSG_NLABEL * sizeof(double))) {
+    return t_last;
+  }
+  return t_last + m->sched.ramp;
 }
 
 

@@ -107,6 +107,16 @@ csgGait* csg_generateFlatRoad(const csgFlatRoadSpec* s, csError* err) {
       ok = ok && addRow(g, t, pose[0], pose[1], s, err);
     }
   }
+  /* end marker: the paper's gait spans nstroke + 1 periods (8 strides in 9 s); a last row
+   * equal to the one before it changes nothing and makes the table say how long it lasts */
+  if (ok && g->time[g->nrow - 1] < (s->nstroke + 1) * s->period - 1e-9) {
+    int r = g->nrow;
+    ok = csg_gaitSetRowCount(g, r + 1, err) == CS_OK &&
+         csg_gaitSetTime(g, r, (s->nstroke + 1) * s->period, err) == CS_OK;
+    for (int lab = 1; ok && lab <= CSG_NLABEL; lab++) {
+      csg_gaitSetPressure(g, r, lab, csg_gaitPressure(g, r - 1, lab), NULL);
+    }
+  }
   if (!ok) {
     csg_gaitDestroy(g);
     return NULL;
