@@ -145,6 +145,12 @@ csfNewtonOptions csf_newtonDefault(void);
 csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNewtonOptions* opt,
                          int* iters, csError* err);
 
+/* Adaptive ramp of the load factor from d->load to load_end, starting with nstep equal steps;
+ * a step that fails is halved (down to 1e-4 of the range), easy steps (<= 5 iterations) grow
+ * by 1.5. `iters` (may be NULL) receives the total Newton iterations. */
+csStatus csf_loadRamp(const csfModel* m, csfData* d, double load_end, int nstep,
+                      const csfNewtonOptions* opt, int* iters, csError* err);
+
 /* Cauchy stress averaged over the quadrature points of tetrahedron e (6: xx yy zz xy yz zx, MPa)
  * at the current d->u (d->pel must be current: call after csf_assemble). */
 void csf_tetCauchy(const csfModel* m, const csfData* d, int e, double sigma[6]);

@@ -9,7 +9,7 @@
 #include "fem_model.h"
 
 /* scale map: unit cube -> [0,sx] x [0,sy] x [0,sz] */
-static void ftScaleMap(void* user, const double xi[3], double x[3]) {
+static inline void ftScaleMap(void* user, const double xi[3], double x[3]) {
   const double* s = user;
   x[0] = s[0] * xi[0];
   x[1] = s[1] * xi[1];
@@ -17,7 +17,7 @@ static void ftScaleMap(void* user, const double xi[3], double x[3]) {
 }
 
 /* fix dof `dir` of every node with |x[coord] - val| < tol, prescribing u = value * load */
-static int ftFix(csfModel* m, int coord, double val, int dir, double value) {
+static inline int ftFix(csfModel* m, int coord, double val, int dir, double value) {
   int n = 0;
   for (int i = 0; i < m->mesh->nnode; i++) {
     if (fabs(m->mesh->x[3 * i + coord] - val) < 1e-9) {
@@ -30,7 +30,7 @@ static int ftFix(csfModel* m, int coord, double val, int dir, double value) {
 }
 
 /* ramp the load factor 0 -> 1 in nstep equal steps; returns CS_OK or the failing status */
-static csStatus ftRamp(const csfModel* m, csfData* d, int nstep, csError* err) {
+static inline csStatus ftRamp(const csfModel* m, csfData* d, int nstep, csError* err) {
   csfNewtonOptions o = csf_newtonDefault();
   for (int s = 1; s <= nstep; s++) {
     csStatus st = csf_newtonSolve(m, d, (double)s / nstep, &o, NULL, err);
@@ -43,7 +43,7 @@ static csStatus ftRamp(const csfModel* m, csfData* d, int nstep, csError* err) {
 }
 
 /* volume-weighted mean Cauchy stress component c (0..5) over the mesh */
-static double ftMeanStress(const csfModel* m, const csfData* d, int c) {
+static inline double ftMeanStress(const csfModel* m, const csfData* d, int c) {
   double s = 0, v = 0;
   for (int e = 0; e < m->mesh->ntet; e++) {
     double sig[6];

@@ -1,0 +1,81 @@
+/* bench_fem_bend.c: benchmark command (not a ctest): one FE bend sweep with per-step timing.
+ * Usage: bench_fem_bend [actuator] [l_soft] [p_max] [p_step] [until_angle|nan] [chambers] [--set N=V]...
+ * Default: baseline, l_soft 4 mm, 0 -> 0.4 MPa in 0.05 MPa steps, chambers 1,2 (the issue's
+ * benchmark). Prints time per load step and per Newton iteration, then the summary. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fem_bend.h"
+
+static void progress(void* user, const csfBendStep* s) {
+  (void)user;
+  printf("step p %.5f MPa (dp %.5f)  iters %2d  cutbacks %d  wall %7.2f s  (%.2f s/iter)  "
+         "angles %7.2f %7.2f %7.2f  total %7.2f deg\n",
+         s->p, s->dp, s->newton_iters, s->cutbacks, s->wall,
+         s->newton_iters ? s->wall / s->newton_iters : 0.0, s->angle_deg[0], s->angle_deg[1],
+         s->angle_deg[2], s->angle_total);
+  fflush(stdout);
+}
+
+int main(int argc, char** argv) {
+  csError err = {0};
+  csrActuator act;
+  const char* name = argc > 1 ? argv[1] : "baseline";
+  if (csr_actuatorPreset(&act, name, &err) != CS_OK) {
+    fprintf(stderr, "%s\n", err.msg);
+    return 1;
+  }
+  csfBendOptions o = csf_bendDefault();
+  csfBendInfo info;
+  o.info = &info;
+  o.progress = progress;
+  o.mesh_size = argc > 2 ? atof(argv[2]) : 4.0;
+  o.p_max = argc > 3 ? atof(argv[3]) : 0.4;
+  o.p_step = argc > 4 ? atof(argv[4]) : 0.05;
+  o.until_angle = argc > 5 ? atof(argv[5]) : NAN;
+  if (argc > 6 && csf_bendSetChambers(&o, argv[6], &err) != CS_OK) {
+    fprintf(stderr, "%s\n", err.msg);
+    return 1;
+  }
+  for (int i = 7; i < argc; i++) {
+    if (!strcmp(argv[i], "--set") && i + 1 < argc) {
+      if (csr_actuatorSetString(&act, argv[++i], &err) != CS_OK) {
+        fprintf(stderr, "%s\n", err.msg);
+        return 1;
+      }
+    } else if (!strcmp(argv[i], "--vtu") && i + 1 < argc) {
+      o.vtu_path = argv[++i];
+    } else if (!strcmp(argv[i], "--inp") && i + 1 < argc) {
+      o.inp_path = argv[++i];
+    } else if (!strcmp(argv[i], "--no-fibres")) {
+      o.fibres = 0;
+    } else if (!strcmp(argv[i], "--fibre-compression")) {
+      o.fibre_compression = 1;
+    }
+  }
+  csrBendCurve bc;
+  csr_bendCurveInit(&bc, 16, &err);
+  csStatus st = csf_bend(&act, &o, &bc, &err);
+  if (st != CS_OK) {
+    fprintf(stderr, "csf_bend: %s\n", err.msg);
+  }
+  printf("mesh: %d Tet10, %d nodes, %d dofs, %d fibre elements; l_soft %.2f mm\n", info.ntet,
+         info.nnode, info.ndof, info.nfibre, o.mesh_size);
+  printf("time: total %.2f s = mesh %.2f + setup %.2f + assembly %.2f + factorisation %.2f + "
+         "solves %.2f (+ rest); %d steps, %ld Newton iterations, %d cutbacks; factor nnz %.3g\n",
+         info.t_total, info.t_mesh, info.t_setup, info.t_assemble, info.t_factor, info.t_solve,
+         info.n_steps, info.n_newton, info.n_cutbacks, info.factor_nnz);
+  printf("max |theta - 1| = %.3e; p_limit = %g MPa\n", info.max_j_dev, info.p_limit);
+  for (size_t i = 0; i < bc.m; i++) {
+    printf("p %.5f MPa  angles %8.3f %8.3f %8.3f  total %8.3f deg  tip %8.3f %8.3f %8.3f mm\n",
+           bc.pressure[i], bc.angle_deg[3 * i], bc.angle_deg[3 * i + 1], bc.angle_deg[3 * i + 2],
+           bc.angle_total[i], bc.tip[3 * i], bc.tip[3 * i + 1], bc.tip[3 * i + 2]);
+  }
+  if (isfinite(bc.p_until_angle)) {
+    printf("p_until_angle = %.5f MPa\n", bc.p_until_angle);
+  }
+  csr_bendCurveFree(&bc);
+  return st == CS_OK ? 0 : 1;
+}
