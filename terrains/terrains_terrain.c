@@ -1,4 +1,11 @@
-/* terrains_terrain.c: terrain description files and their ODE geoms (see terrains_terrain.h). */
+/* terrains_terrain.c: terrain description files and their ODE geoms (see terrains_terrain.h).
+ *
+ * The parser reads one line at a time with its own reader (not fgets) so that an overlong line
+ * or a NUL byte is reported at its line instead of being split into two statements or cut
+ * short; each line is split into whitespace-separated words and every statement checks its
+ * word count, so nothing after a statement's values is silently ignored. Numbers are parsed
+ * with strtod and then checked to be finite: strtod itself accepts "nan", "inf" and returns
+ * HUGE_VAL for "1e999", none of which is a usable coordinate. */
 #include "terrains_terrain.h"
 
 #include <ctype.h>
@@ -8,70 +15,177 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAX_LINE = 1024 };
+enum {
+  MAX_LINE = 1024, /* line buffer: at most MAX_LINE - 1 characters per line */
+  MAX_WORDS = 8    /* words kept per line; more are counted, not stored */
+};
+
+/* coordinates beyond 1 km are a typo, and their box sizes could overflow in ODE */
+#define MAX_COORD_MM 1e6
+/* a heading is an angle: more than one turn either way is a typo */
+#define MAX_HEADING_DEG 360.0
+
+/* one input line split into words (pointers into the line buffer) */
+typedef struct {
+  char* word[MAX_WORDS];
+  int nword; /* words on the line, may exceed MAX_WORDS */
+} Words;
+
+/* Read one line into buf (without its '\n'); returns 1 if a line was read, 0 at end of file.
+ * *too_long is set when the line does not fit (the rest of it is not read), *nul when it
+ * holds a NUL byte. */
+static int readLine(FILE* fp, char* buf, int size, int* too_long, int* nul);
+
+/* split `line` in place at whitespace */
+static void splitWords(char* line, Words* w);
+
+/* parse one finite number: 0 = ok, 1 = not a number, 2 = not finite */
+static int parseFinite(const char* s, double* v);
+
+/* parse w->word[1..n] as numbers of statement `key` (checking the count); fills err on failure */
+static csStatus parseValues(const Words* w, double* v, int n, const char* what,
+                            const char* path, int lineno, csError* err);
 
 
-/* parse `n` doubles from `s`; returns how many were read and sets *trailing if junk follows */
-static int parseNumbers(const char* s, double* out, int n, int* trailing) {
-  int k = 0;
-  char* end;
-  *trailing = 0;
-  while (k < n) {
-    while (isspace((unsigned char)*s)) s++;
-    if (!*s) break;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || errno == ERANGE || !isfinite(v)) {
-      *trailing = 1;
-      return k;
+static int readLine(FILE* fp, char* buf, int size, int* too_long, int* nul) {
+  int n = 0, c = EOF;
+  *too_long = 0;
+  *nul = 0;
+  while ((c = getc(fp)) != EOF && c != '\n') {
+    if (n == size - 1) {
+      *too_long = 1;
+      break;
     }
-    out[k++] = v;
-    s = end;
+    if (c == '\0') {
+      *nul = 1;
+      c = ' ';
+    }
+    buf[n++] = (char)c;
   }
-  while (isspace((unsigned char)*s)) s++;
-  if (*s) *trailing = 1;
-  return k;
+  buf[n] = '\0';
+  return n > 0 || c == '\n' || *too_long;
+}
+
+
+static void splitWords(char* line, Words* w) {
+  w->nword = 0;
+  char* s = line;
+  for (;;) {
+    while (isspace((unsigned char)*s)) s++;
+    if (!*s) {
+      break;
+    }
+    if (w->nword < MAX_WORDS) {
+      w->word[w->nword] = s;
+    }
+    w->nword++;
+    while (*s && !isspace((unsigned char)*s)) s++;
+    if (*s) {
+      *s++ = '\0';
+    }
+  }
+}
+
+
+static int parseFinite(const char* s, double* v) {
+  char* end;
+  errno = 0;
+  *v = strtod(s, &end);
+  if (end == s || *end) {
+    return 1;
+  }
+  /* underflow (ERANGE with a tiny result) is harmless; overflow gives HUGE_VAL */
+  return isfinite(*v) ? 0 : 2;
+}
+
+
+static csStatus parseValues(const Words* w, double* v, int n, const char* what,
+                            const char* path, int lineno, csError* err) {
+  const char* key = w->word[0];
+  if (w->nword - 1 != n) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: '%s' needs %d number%s %s, got %d value%s",
+                       path, lineno, key, n, n == 1 ? "" : "s", what, w->nword - 1,
+                       w->nword == 2 ? "" : "s");
+  }
+  for (int i = 0; i < n; i++) {
+    const char* s = w->word[i + 1];
+    int rc = parseFinite(s, &v[i]);
+    if (rc == 1) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: '%s' value %d '%.40s' is not a number", path,
+                         lineno, key, i + 1, s);
+    }
+    if (rc == 2) {
+      return cs_errorSet(err, CS_ERR_RANGE,
+                         "%s:%d: '%s' value %d '%.40s' is not a finite number (nan, inf or "
+                         "beyond the double range)",
+                         path, lineno, key, i + 1, s);
+    }
+  }
+  return CS_OK;
 }
 
 
 csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
   memset(t, 0, sizeof *t);
   snprintf(t->source, sizeof t->source, "%s", path);
+  errno = 0;
   FILE* fp = fopen(path, "r");
   if (!fp) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot open terrain file", path);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot open terrain file: %s", path,
+                       strerror(errno));
   }
   char line[MAX_LINE];
-  int lineno = 0, have_start = 0;
+  int lineno = 0, too_long = 0, nul = 0;
+  int start_line = 0, name_line = 0, heading_line = 0; /* where each was given, 0 = not yet */
   csStatus st = CS_OK;
-  while (fgets(line, sizeof line, fp)) {
+  while (st == CS_OK && readLine(fp, line, sizeof line, &too_long, &nul)) {
     lineno++;
-    if (!strchr(line, '\n') && !feof(fp)) {
+    if (too_long) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: line longer than %d characters", path, lineno,
-                       MAX_LINE - 2);
+                       MAX_LINE - 1);
+      break;
+    }
+    if (nul) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: NUL byte in line (not a text file?)", path,
+                       lineno);
       break;
     }
     char* hash = strchr(line, '#');
     if (hash) *hash = '\0';
-    char key[32];
-    int used = 0;
-    if (sscanf(line, " %31s%n", key, &used) != 1) {
+    Words w;
+    splitWords(line, &w);
+    if (w.nword == 0) {
       continue; /* blank or comment */
     }
-    const char* rest = line + used;
+    const char* key = w.word[0];
     double v[6];
-    int trailing;
     if (!strcmp(key, "name")) {
-      char nm[64];
-      if (sscanf(rest, " %63s", nm) != 1) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'name' needs a word", path, lineno);
+      /* one word that fits the name buffer; never cut short silently */
+      if (w.nword != 2) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'name' needs one word, got %d", path, lineno,
+                         w.nword - 1);
+      } else if (strlen(w.word[1]) >= sizeof t->name) {
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: name longer than %d characters", path, lineno,
+                         (int)sizeof t->name - 1);
+      } else if (name_line) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: second 'name' (the first is on line %d)",
+                         path, lineno, name_line);
+      } else {
+        snprintf(t->name, sizeof t->name, "%s", w.word[1]);
+        name_line = lineno;
+      }
+    } else if (!strcmp(key, "box")) {
+      st = parseValues(&w, v, 6, "x0 y0 z0 x1 y1 z1 (mm)", path, lineno, err);
+      if (st != CS_OK) {
         break;
       }
-      snprintf(t->name, sizeof t->name, "%s", nm);
-    } else if (!strcmp(key, "box")) {
-      if (parseNumbers(rest, v, 6, &trailing) != 6 || trailing) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'box' needs 6 numbers x0 y0 z0 x1 y1 z1 (mm)",
-                         path, lineno);
+      for (int i = 0; i < 6 && st == CS_OK; i++) {
+        if (fabs(v[i]) > MAX_COORD_MM) {
+          st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: box coordinate %g mm is beyond +-%g mm",
+                           path, lineno, v[i], MAX_COORD_MM);
+        }
+      }
+      if (st != CS_OK) {
         break;
       }
       if (t->nbox == CST_MAX_BOXES) {
@@ -90,45 +204,57 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
         b->hi[i] = v[i + 3];
       }
     } else if (!strcmp(key, "start")) {
-      if (parseNumbers(rest, v, 2, &trailing) != 2 || trailing) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'start' needs 2 numbers x z (mm)", path,
-                         lineno);
-        break;
+      st = parseValues(&w, v, 2, "x z (mm)", path, lineno, err);
+      if (st == CS_OK && start_line) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: second 'start' (the first is on line %d)",
+                         path, lineno, start_line);
       }
-      t->start[0] = v[0];
-      t->start[1] = v[1];
-      have_start = 1;
+      if (st == CS_OK) {
+        t->start[0] = v[0];
+        t->start[1] = v[1];
+        start_line = lineno;
+      }
     } else if (!strcmp(key, "heading")) {
-      if (parseNumbers(rest, v, 1, &trailing) != 1 || trailing) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'heading' needs 1 number (degrees)", path,
-                         lineno);
-        break;
+      st = parseValues(&w, v, 1, "(degrees)", path, lineno, err);
+      if (st == CS_OK && fabs(v[0]) > MAX_HEADING_DEG) {
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: heading %g deg is beyond +-%g deg", path,
+                         lineno, v[0], MAX_HEADING_DEG);
       }
-      t->heading_deg = v[0];
+      if (st == CS_OK && heading_line) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: second 'heading' (the first is on line %d)",
+                         path, lineno, heading_line);
+      }
+      if (st == CS_OK) {
+        t->heading_deg = v[0];
+        heading_line = lineno;
+      }
     } else {
       st = cs_errorSet(err, CS_ERR_PARSE,
-                       "%s:%d: unknown statement '%s' (expected name, box, start, heading)", path,
-                       lineno, key);
-      break;
+                       "%s:%d: unknown statement '%.40s' (expected name, box, start, heading)",
+                       path, lineno, key);
     }
   }
   if (st == CS_OK && ferror(fp)) {
-    st = cs_errorSet(err, CS_ERR_IO, "%s: read error", path);
+    st = cs_errorSet(err, CS_ERR_IO, "%s:%d: read error: %s", path, lineno + 1, strerror(errno));
   }
   fclose(fp);
   if (st != CS_OK) {
     return st;
   }
+  /* whole-file checks name the last line (the end of the file; line 1 if it is empty) */
+  int last = lineno > 0 ? lineno : 1;
   if (t->nbox == 0) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: no 'box' statement: a terrain needs ground",
-                       path, lineno);
+    return cs_errorSet(err, CS_ERR_PARSE,
+                       "%s:%d: end of file without a 'box' statement: a terrain needs ground",
+                       path, last);
   }
-  if (!have_start) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: no 'start' statement", path, lineno);
+  if (!start_line) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: end of file without a 'start' statement", path,
+                       last);
   }
   if (!isfinite(cst_terrainHeightAt(t, t->start[0], t->start[1]))) {
-    return cs_errorSet(err, CS_ERR_RANGE, "%s: start (%g, %g) is not above any box", path,
-                       t->start[0], t->start[1]);
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: start (%g, %g) is not above any box", path,
+                       start_line, t->start[0], t->start[1]);
   }
   if (!t->name[0]) {
     snprintf(t->name, sizeof t->name, "unnamed");

@@ -2,7 +2,11 @@
  * Contract (DESIGN.md): crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv]
  *   [--legs auto|prb|rod|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
- *   --links N, --iterations N, --calibration FILE, --quiet. */
+ *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --quiet.
+ * Options take "--name VALUE" or "--name=VALUE". Bad input (flags, files, an unwritable
+ * --out) is found before the robot is built or settled, and every failure prints exactly one
+ * line "crawlsim run: <cause>" on stderr (file:line for file errors) and exits 1. */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,19 +25,60 @@ static const char kRunUsage[] =
     "                    [--calibration FILE] [--quiet]\n";
 
 
-/* parse a finite number or report the flag */
-static int parseNum(const char* flag, const char* s, double* v) {
-  char* end;
-  if (!s) {
-    fprintf(stderr, "crawlsim run: %s needs a value\n", flag);
-    return 0;
+/* the options that take a value (all but --quiet and --help) */
+static const char* const kValueOptions[] = {
+    "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
+    "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
+    "--links", "--gravity", "--iterations"};
+
+/* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
+ * count would overflow the driver's step counter on 32-bit longs */
+#define MAX_STEPS 1e9
+/* the longest step the driver accepts (sim_driver.c validateOptions) */
+#define MAX_DT_S 0.01
+
+
+static int takesValue(const char* name, size_t len) {
+  for (size_t k = 0; k < sizeof kValueOptions / sizeof kValueOptions[0]; k++) {
+    if (strlen(kValueOptions[k]) == len && !strncmp(kValueOptions[k], name, len)) {
+      return 1;
+    }
   }
+  return 0;
+}
+
+
+/* parse a finite number given to `flag`; 0 and err filled if it is not one */
+static int parseNum(const char* flag, const char* s, double* v, csError* err) {
+  char* end;
   *v = strtod(s, &end);
   if (end == s || *end != '\0' || !isfinite(*v)) {
-    fprintf(stderr, "crawlsim run: %s '%s' is not a number\n", flag, s);
+    cs_errorSet(err, CS_ERR_PARSE, "%s '%.60s' is not a finite number", flag, s);
     return 0;
   }
   return 1;
+}
+
+
+/* fail now, not after settling, if the output file cannot be written: open it for appending
+ * (which neither truncates an existing file nor needs HDF5) and remove it again if it is new */
+static csStatus checkWritable(const char* path, csError* err) {
+  FILE* f = fopen(path, "rb");
+  int existed = f != NULL;
+  if (f) {
+    fclose(f);
+  }
+  errno = 0;
+  f = fopen(path, "ab");
+  if (!f) {
+    return cs_errorSet(err, CS_ERR_IO, "--out %s: cannot create output file: %s", path,
+                       strerror(errno));
+  }
+  fclose(f);
+  if (!existed) {
+    remove(path);
+  }
+  return CS_OK;
 }
 
 
@@ -47,127 +92,172 @@ int csx_cmdRun(int argc, char** argv) {
   double friction = NAN, scale = 1.0, t_end = 0, dt = NAN, out_dt = NAN, ramp = NAN, tau = NAN;
   double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN;
   int quiet = 0;
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
-    const char* v = (i + 1 < argc) ? argv[i + 1] : NULL;
-    int ok = 1;
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(kRunUsage, stdout);
-      return 0;
-    } else if (!strcmp(a, "--quiet")) {
-      quiet = 1;
-      continue;
-    } else if (!v) {
-      fprintf(stderr, "crawlsim run: %s needs a value (see crawlsim run --help)\n", a);
-      return 1;
-    } else if (!strcmp(a, "--scene")) {
-      scene = v;
-    } else if (!strcmp(a, "--gait")) {
-      gait = v;
-    } else if (!strcmp(a, "--terrain")) {
-      terrain = v;
-    } else if (!strcmp(a, "--legs")) {
-      legs = v;
-    } else if (!strcmp(a, "--out")) {
-      out = v;
-    } else if (!strcmp(a, "--calibration")) {
-      calib = v;
-    } else if (!strcmp(a, "--friction")) {
-      ok = parseNum(a, v, &friction);
-    } else if (!strcmp(a, "--pressure-scale")) {
-      ok = parseNum(a, v, &scale);
-    } else if (!strcmp(a, "--t-end")) {
-      ok = parseNum(a, v, &t_end);
-    } else if (!strcmp(a, "--dt")) {
-      ok = parseNum(a, v, &dt);
-    } else if (!strcmp(a, "--output-dt")) {
-      ok = parseNum(a, v, &out_dt);
-    } else if (!strcmp(a, "--ramp")) {
-      ok = parseNum(a, v, &ramp);
-    } else if (!strcmp(a, "--tau")) {
-      ok = parseNum(a, v, &tau);
-    } else if (!strcmp(a, "--support-mass")) {
-      ok = parseNum(a, v, &support_kg);
-    } else if (!strcmp(a, "--links")) {
-      ok = parseNum(a, v, &links);
-    } else if (!strcmp(a, "--gravity")) {
-      ok = parseNum(a, v, &gravity);
-    } else if (!strcmp(a, "--iterations")) {
-      ok = parseNum(a, v, &iters);
-    } else {
-      fprintf(stderr, "crawlsim run: unknown option '%s' (see crawlsim run --help)\n", a);
-      return 1;
-    }
-    if (!ok) {
-      return 1;
-    }
-    i++;
-  }
-
-  /* scene -> default terrain and gait */
-  char terrain_buf[512], gait_buf[512], calib_buf[512];
-  if (!strcmp(scene, "flat-road")) {
-    if (!terrain) terrain = csx_dataPath("terrains/flat_road.terrain", terrain_buf, sizeof terrain_buf);
-    if (!gait) gait = csx_dataPath("gaits/flat_road.csv", gait_buf, sizeof gait_buf);
-  } else if (!strcmp(scene, "obstacle")) {
-    fprintf(stderr, "crawlsim run: scene 'obstacle' is not available yet (flat-road only)\n");
-    return 1;
-  } else {
-    fprintf(stderr, "crawlsim run: unknown scene '%s' (expected flat-road or obstacle)\n", scene);
-    return 1;
-  }
-  if (!strcmp(legs, "auto")) {
-    /* only the prb level exists so far: auto has nothing cheaper or dearer to choose from */
-    legs = "prb";
-  } else if (!strcmp(legs, "rod") || !strcmp(legs, "rom")) {
-    fprintf(stderr, "crawlsim run: leg model '%s' is not available yet (prb only)\n", legs);
-    return 1;
-  } else if (strcmp(legs, "prb")) {
-    fprintf(stderr, "crawlsim run: unknown leg model '%s' (expected auto, prb, rod or rom)\n",
-            legs);
-    return 1;
-  }
-  if (!calib) calib = csx_dataPath("robot/calibration_provisional.txt", calib_buf, sizeof calib_buf);
-
   csError err;
   cs_errorClear(&err);
   csModel m;
   cs_modelInit(&m);
   int rc = 1;
   csData* d = NULL;
+  char terrain_buf[512], gait_buf[512], calib_buf[512];
+
+  /* options: --name VALUE or --name=VALUE; every failure is one line at done: */
+  for (int i = 1; i < argc; i++) {
+    const char* a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      fputs(kRunUsage, stdout);
+      rc = 0;
+      goto done;
+    }
+    if (!strcmp(a, "--quiet")) {
+      quiet = 1;
+      continue;
+    }
+    if (strncmp(a, "--", 2) != 0) {
+      cs_errorSet(&err, CS_ERR_ARG, "unexpected argument '%.60s' (see crawlsim run --help)", a);
+      goto done;
+    }
+    const char* eq = strchr(a, '=');
+    size_t len = eq ? (size_t)(eq - a) : strlen(a);
+    if (!takesValue(a, len)) {
+      cs_errorSet(&err, CS_ERR_ARG, "unknown option '%.*s' (see crawlsim run --help)",
+                  (int)(len > 60 ? 60 : len), a);
+      goto done;
+    }
+    char flag[32];
+    snprintf(flag, sizeof flag, "%.*s", (int)len, a);
+    const char* v = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
+    /* a following option is not a value: `--gait --quiet` means the value was forgotten */
+    if (!v || !v[0] || (!eq && !strncmp(v, "--", 2))) {
+      cs_errorSet(&err, CS_ERR_ARG, "option %s needs a value (see crawlsim run --help)", flag);
+      goto done;
+    }
+    int ok = 1;
+    if (!strcmp(flag, "--scene")) {
+      scene = v;
+    } else if (!strcmp(flag, "--gait")) {
+      gait = v;
+    } else if (!strcmp(flag, "--terrain")) {
+      terrain = v;
+    } else if (!strcmp(flag, "--legs")) {
+      legs = v;
+    } else if (!strcmp(flag, "--out")) {
+      out = v;
+    } else if (!strcmp(flag, "--calibration")) {
+      calib = v;
+    } else if (!strcmp(flag, "--friction")) {
+      ok = parseNum(flag, v, &friction, &err);
+    } else if (!strcmp(flag, "--pressure-scale")) {
+      ok = parseNum(flag, v, &scale, &err);
+    } else if (!strcmp(flag, "--t-end")) {
+      ok = parseNum(flag, v, &t_end, &err);
+    } else if (!strcmp(flag, "--dt")) {
+      ok = parseNum(flag, v, &dt, &err);
+    } else if (!strcmp(flag, "--output-dt")) {
+      ok = parseNum(flag, v, &out_dt, &err);
+    } else if (!strcmp(flag, "--ramp")) {
+      ok = parseNum(flag, v, &ramp, &err);
+    } else if (!strcmp(flag, "--tau")) {
+      ok = parseNum(flag, v, &tau, &err);
+    } else if (!strcmp(flag, "--support-mass")) {
+      ok = parseNum(flag, v, &support_kg, &err);
+    } else if (!strcmp(flag, "--links")) {
+      ok = parseNum(flag, v, &links, &err);
+    } else if (!strcmp(flag, "--gravity")) {
+      ok = parseNum(flag, v, &gravity, &err);
+    } else {
+      ok = parseNum(flag, v, &iters, &err); /* --iterations, the last of kValueOptions */
+    }
+    if (!ok) {
+      goto done;
+    }
+  }
+
+  /* scene -> default terrain and gait */
+  if (!strcmp(scene, "flat-road")) {
+    if (!terrain) terrain = csx_dataPath("terrains/flat_road.terrain", terrain_buf, sizeof terrain_buf);
+    if (!gait) gait = csx_dataPath("gaits/flat_road.csv", gait_buf, sizeof gait_buf);
+  } else if (!strcmp(scene, "obstacle")) {
+    cs_errorSet(&err, CS_ERR_ARG, "scene 'obstacle' is not available yet (flat-road only)");
+    goto done;
+  } else {
+    cs_errorSet(&err, CS_ERR_ARG, "unknown scene '%.60s' (expected flat-road or obstacle)", scene);
+    goto done;
+  }
+  if (!strcmp(legs, "auto")) {
+    /* only the prb level exists so far: auto has nothing cheaper or dearer to choose from */
+    legs = "prb";
+  } else if (!strcmp(legs, "rod") || !strcmp(legs, "rom")) {
+    cs_errorSet(&err, CS_ERR_ARG, "leg model '%s' is not available yet (prb only)", legs);
+    goto done;
+  } else if (strcmp(legs, "prb")) {
+    cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod or rom)",
+                legs);
+    goto done;
+  }
+  if (!calib) calib = csx_dataPath("robot/calibration_provisional.txt", calib_buf, sizeof calib_buf);
+
+  /* numbers: check each against its flag's range before anything is loaded or built */
+  if (!isnan(friction) && !(friction >= 0)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--friction %g must be >= 0", friction);
+    goto done;
+  }
+  if (!(scale >= 0)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--pressure-scale %g must be >= 0", scale);
+    goto done;
+  }
+  if (!(t_end >= 0)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--t-end %g s must be >= 0 (0: the gait's length)", t_end);
+    goto done;
+  }
+  if (!isnan(dt) && !(dt > 0 && dt <= MAX_DT_S)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--dt %g s must be > 0 and <= %g s", dt, MAX_DT_S);
+    goto done;
+  }
+  double h = isnan(dt) ? m.opt.h : dt;
+  if (!isnan(out_dt) && !(out_dt >= h)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--output-dt %g s must be >= the step %g s (--dt)", out_dt,
+                h);
+    goto done;
+  }
+  if (!isnan(ramp) && !(ramp >= 0)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--ramp %g s must be >= 0", ramp);
+    goto done;
+  }
+  if (!isnan(tau) && !(tau >= 0)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--tau %g s must be >= 0 (0: no pressure lag)", tau);
+    goto done;
+  }
+  if (!isnan(gravity) && !(gravity >= 0)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--gravity %g m/s^2 must be >= 0", gravity);
+    goto done;
+  }
+  if (!isnan(support_kg) && !(support_kg > 0)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--support-mass %g kg must be > 0", support_kg);
+    goto done;
+  }
+  if (!isnan(links) && (links != floor(links) || links < 1 || links > 64)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--links %g must be an integer in 1..64", links);
+    goto done;
+  }
+  /* checked before the conversion to int, which would be undefined for 1e30 */
+  if (!isnan(iters) && (iters != floor(iters) || iters < 1 || iters > 10000)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--iterations %g must be an integer in 1..10000", iters);
+    goto done;
+  }
+
   m.opt.progress = !quiet;
   snprintf(m.leg_level, sizeof m.leg_level, "%s", legs);
   if (!isnan(friction)) m.contact.mu = friction;
   m.sched.pressure_scale = scale;
   if (!isnan(ramp)) m.sched.ramp = ramp;
-  if (!isnan(dt)) m.opt.h = dt;
+  m.opt.h = h;
   if (!isnan(out_dt)) m.opt.output_dt = out_dt;
   if (!isnan(tau)) m.opt.pneumatic_tau = tau;
   if (!isnan(iters)) m.opt.solver_iterations = (int)iters;
   if (!isnan(gravity)) m.opt.gravity = gravity * 1e3; /* m/s^2 -> mm/s^2 */
+  if (!isnan(support_kg)) m.robot.support_mass = support_kg * 1e-3; /* kg -> t */
+  if (!isnan(links)) m.robot.leg_params.links_per_segment = (int)links;
   m.opt.t_end = t_end;
-  if (!(t_end >= 0)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--t-end %g must be >= 0", t_end);
-    goto done;
-  }
-  if (!isnan(support_kg)) {
-    if (!(support_kg > 0)) {
-      cs_errorSet(&err, CS_ERR_RANGE, "--support-mass %g kg must be > 0", support_kg);
-      goto done;
-    }
-    m.robot.support_mass = support_kg * 1e-3;
-  }
-  if (!isnan(links)) {
-    if (links != floor(links) || links < 1 || links > 64) {
-      cs_errorSet(&err, CS_ERR_RANGE, "--links %g must be an integer in 1..64", links);
-      goto done;
-    }
-    m.robot.leg_params.links_per_segment = (int)links;
-  }
-  if (!isnan(iters) && (iters != floor(iters) || iters < 1 || iters > 10000)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--iterations %g must be an integer in 1..10000", iters);
-    goto done;
-  }
   if (csc_contactParamsValidate(&m.contact, &err) != CS_OK ||
       csg_scheduleCheckOptions(&m.sched, &err) != CS_OK) {
     goto done;
@@ -183,6 +273,12 @@ int csx_cmdRun(int argc, char** argv) {
       goto done;
     }
   }
+  if (cs_modelEndTime(&m) / m.opt.h > MAX_STEPS) {
+    cs_errorSet(&err, CS_ERR_RANGE, "a run to t = %g s at --dt %g s takes more than %g steps",
+                cs_modelEndTime(&m), m.opt.h, MAX_STEPS);
+    goto done;
+  }
+  if (checkWritable(out, &err) != CS_OK) goto done;
 
   d = cs_dataCreate(&m, &err);
   if (!d) goto done;

@@ -1,0 +1,236 @@
+/* test_terrain.c: terrains/terrains_terrain.c: the shipped flat road loads with the geometry
+ * of its file, its ODE geoms match the boxes, and every bad input is refused with the right
+ * status and a one-line message "<file>:<line>: <cause>" (DESIGN.md command-line contract). */
+#include "terrains_terrain.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cs_test.h"
+
+
+static void writeText(const char* path, const char* text) {
+  FILE* f = fopen(path, "wb");
+  CS_EXPECT(f != NULL);
+  if (f) {
+    fputs(text, f);
+    fclose(f);
+  }
+}
+
+
+/* write `text` to `path`, load it and expect status `want` and a message that starts with
+ * "<path>:<line>:" and contains `cause` */
+static void expectBad(const char* path, const char* text, int line, csStatus want,
+                      const char* cause) {
+  writeText(path, text);
+  cstTerrain t;
+  csError err;
+  cs_errorClear(&err);
+  csStatus st = cst_terrainLoad(&t, path, &err);
+  char where[300];
+  snprintf(where, sizeof where, "%s:%d: ", path, line);
+  CS_EXPECT(st == want);
+  CS_EXPECT(err.status == want);
+  CS_EXPECT(strstr(err.msg, where) == err.msg);
+  CS_EXPECT(strstr(err.msg, cause) != NULL);
+  CS_EXPECT(strchr(err.msg, '\n') == NULL);
+  if (st != want || strstr(err.msg, where) != err.msg || !strstr(err.msg, cause)) {
+    fprintf(stderr, "  %s: status %s, message '%s' (wanted '%s...%s')\n", path,
+            cs_statusString(st), err.msg, where, cause);
+  }
+  remove(path);
+}
+
+
+static void test_flatRoad(void) {
+  const char* src = getenv("CS_SOURCE_DIR");
+  CS_EXPECT(src != NULL);
+  char path[512];
+  snprintf(path, sizeof path, "%s/terrains/flat_road.terrain", src ? src : ".");
+  cstTerrain t;
+  csError err;
+  CS_EXPECT(cst_terrainLoad(&t, path, &err) == CS_OK);
+  CS_EXPECT(!strcmp(t.name, "flat-road"));
+  CS_EXPECT(!strcmp(t.source, path));
+  CS_EXPECT(t.nbox == 1);
+  /* the file's numbers are exact in binary floating point: compare exactly */
+  CS_EXPECT(t.box[0].lo[0] == 0 && t.box[0].hi[0] == 600);   /* 600 mm long */
+  CS_EXPECT(t.box[0].lo[2] == 0 && t.box[0].hi[2] == 300);   /* 300 mm wide */
+  CS_EXPECT(t.box[0].hi[1] == 0 && t.box[0].lo[1] < 0);      /* top at y = 0 */
+  CS_EXPECT(t.start[0] == 150 && t.start[1] == 117.5);
+  CS_EXPECT(t.heading_deg == 0);
+  CS_EXPECT(cst_terrainHeightAt(&t, t.start[0], t.start[1]) == 0);
+  CS_EXPECT(cst_terrainHeightAt(&t, -1, 100) == -INFINITY); /* off the road */
+}
+
+
+static void test_goodFile(void) {
+  /* a step road: the higher box wins where they overlap; comments, CRLF, tabs, heading */
+  writeText("terrain_step.terrain",
+            "# step road\r\nname step\t# trailing comment\r\n\r\n"
+            "box 0 -20 0  600 0 300\r\nbox 300 -20 0 600 25 300\r\n"
+            "start 150 117.5\r\nheading -90\r\n");
+  cstTerrain t;
+  csError err;
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_step.terrain", &err) == CS_OK);
+  CS_EXPECT(!strcmp(t.name, "step") && t.nbox == 2 && t.heading_deg == -90);
+  CS_EXPECT(cst_terrainHeightAt(&t, 100, 100) == 0);
+  CS_EXPECT(cst_terrainHeightAt(&t, 400, 100) == 25);
+  /* no name, no trailing newline, a 63-character name is the longest allowed */
+  writeText("terrain_noname.terrain", "box 0 -1 0 10 0 10\nstart 5 5");
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_noname.terrain", &err) == CS_OK);
+  CS_EXPECT(!strcmp(t.name, "unnamed") && t.start[1] == 5);
+  char text[256];
+  snprintf(text, sizeof text, "name %063d\nbox 0 -1 0 10 0 10\nstart 5 5\n", 7);
+  writeText("terrain_name63.terrain", text);
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_name63.terrain", &err) == CS_OK);
+  CS_EXPECT(strlen(t.name) == 63);
+  remove("terrain_step.terrain");
+  remove("terrain_noname.terrain");
+  remove("terrain_name63.terrain");
+}
+
+
+static void test_buildOde(void) {
+  cstTerrain t;
+  csError err;
+  writeText("terrain_ode.terrain",
+            "box 0 -20 0 600 0 300\nbox 300 0 0 600 25 300\nbox -10 -5 -10 0 5 0\nstart 1 1\n");
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_ode.terrain", &err) == CS_OK);
+  remove("terrain_ode.terrain");
+  dInitODE2(0);
+  dSpaceID space = dSimpleSpaceCreate(0);
+  CS_EXPECT(cst_terrainBuildOde(&t, space) == t.nbox);
+  CS_EXPECT(dSpaceGetNumGeoms(space) == 3);
+  /* each geom is a static box with the file's centre and size (sums of small integers and
+   * halves: exact in double) */
+  for (int i = 0; i < dSpaceGetNumGeoms(space) && i < t.nbox; i++) {
+    dGeomID g = dSpaceGetGeom(space, i);
+    CS_EXPECT(dGeomGetClass(g) == dBoxClass);
+    CS_EXPECT(dGeomGetBody(g) == 0);
+    const dReal* c = dGeomGetPosition(g);
+    dVector3 len;
+    dGeomBoxGetLengths(g, len);
+    /* ODE's simple space may list its geoms in any order: find the box with this centre */
+    int found = 0;
+    for (int k = 0; k < t.nbox; k++) {
+      const cstBox* b = &t.box[k];
+      int same = 1;
+      for (int j = 0; j < 3; j++) {
+        same = same && c[j] == 0.5 * (b->lo[j] + b->hi[j]) && len[j] == b->hi[j] - b->lo[j];
+      }
+      found += same;
+    }
+    CS_EXPECT(found == 1);
+  }
+  dSpaceDestroy(space);
+  dCloseODE();
+}
+
+
+static void test_badFiles(void) {
+  /* missing file: no line to name, the cause is the system's */
+  remove("terrain_missing.terrain");
+  cstTerrain t;
+  csError err;
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_missing.terrain", &err) == CS_ERR_IO);
+  CS_EXPECT(strstr(err.msg, "terrain_missing.terrain: cannot open terrain file: ") == err.msg);
+  CS_EXPECT(strstr(err.msg, "No such file") != NULL);
+
+  const char* ok = "box 0 -20 0 600 0 300\n";
+  char text[4096];
+  expectBad("terrain_unknown.terrain", "# x\nbox 0 -20 0 600 0 300\nstaart 150 117.5\n", 3,
+            CS_ERR_PARSE, "unknown statement 'staart'");
+  expectBad("terrain_box5.terrain", "box 0 -20 0 600 0\nstart 1 1\n", 1, CS_ERR_PARSE,
+            "'box' needs 6 numbers x0 y0 z0 x1 y1 z1 (mm), got 5 values");
+  expectBad("terrain_box7.terrain", "box 0 -20 0 600 0 300 7\n", 1, CS_ERR_PARSE,
+            "got 7 values");
+  expectBad("terrain_boxjunk.terrain", "\nbox 0 -20 0 600 0 30x\n", 2, CS_ERR_PARSE,
+            "'box' value 6 '30x' is not a number");
+  expectBad("terrain_boxword.terrain", "box 0 -20 zero 600 0 300\n", 1, CS_ERR_PARSE,
+            "'box' value 3 'zero' is not a number");
+  expectBad("terrain_inverted.terrain", "box 600 -20 0 0 0 300\n", 1, CS_ERR_RANGE,
+            "box corners must satisfy x0<x1, y0<y1, z0<z1");
+  expectBad("terrain_flat.terrain", "box 0 0 0 600 0 300\n", 1, CS_ERR_RANGE,
+            "box corners must satisfy");
+  /* non-finite numbers: strtod accepts these, the parser must not */
+  expectBad("terrain_nan.terrain", "box 0 -20 0 nan 0 300\n", 1, CS_ERR_RANGE,
+            "'box' value 4 'nan' is not a finite number");
+  expectBad("terrain_inf.terrain", "box -inf -20 0 600 0 300\n", 1, CS_ERR_RANGE,
+            "'box' value 1 '-inf' is not a finite number");
+  expectBad("terrain_huge.terrain", "box 0 -20 0 1e999 0 300\n", 1, CS_ERR_RANGE,
+            "'box' value 4 '1e999' is not a finite number");
+  expectBad("terrain_startnan.terrain", "box 0 -20 0 600 0 300\nstart NaN 1\n", 2, CS_ERR_RANGE,
+            "'start' value 1 'NaN' is not a finite number");
+  expectBad("terrain_far.terrain", "box 0 -20 0 1e300 0 300\n", 1, CS_ERR_RANGE,
+            "box coordinate 1e+300 mm is beyond");
+  /* too many boxes: the 33rd */
+  text[0] = '\0';
+  for (int i = 0; i <= CST_MAX_BOXES; i++) {
+    strcat(text, ok);
+  }
+  expectBad("terrain_many.terrain", text, CST_MAX_BOXES + 1, CS_ERR_RANGE, "more than 32 boxes");
+  /* whole-file checks name the last line */
+  expectBad("terrain_nostart.terrain", "name x\nbox 0 -20 0 600 0 300\n# end\n", 3, CS_ERR_PARSE,
+            "without a 'start' statement");
+  expectBad("terrain_nobox.terrain", "name x\nstart 1 1\n", 2, CS_ERR_PARSE,
+            "without a 'box' statement");
+  expectBad("terrain_empty.terrain", "", 1, CS_ERR_PARSE, "without a 'box' statement");
+  expectBad("terrain_outside.terrain", "box 0 -20 0 600 0 300\nstart 700 117.5\n\n", 2,
+            CS_ERR_RANGE, "start (700, 117.5) is not above any box");
+  expectBad("terrain_start3.terrain", "start 1 2 3\n", 1, CS_ERR_PARSE,
+            "'start' needs 2 numbers x z (mm), got 3 values");
+  expectBad("terrain_start2x.terrain", "start 1 2\nstart 3 4\n", 2, CS_ERR_PARSE,
+            "second 'start' (the first is on line 1)");
+  /* overlong line: 1023 characters fit, 1024 do not */
+  memset(text, ' ', 1100);
+  memcpy(text, "box 0 -20 0 600 0 300", 21);
+  text[1023] = '\n';
+  strcpy(text + 1024, "start 1 1\n");
+  writeText("terrain_line1023.terrain", text);
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_line1023.terrain", &err) == CS_OK);
+  remove("terrain_line1023.terrain");
+  memset(text, ' ', 1100);
+  memcpy(text, "# a comment\nbox 0 -20 0 600 0 300", 33);
+  text[12 + 1024] = '\n';
+  strcpy(text + 12 + 1025, "start 1 1\n");
+  expectBad("terrain_long.terrain", text, 2, CS_ERR_PARSE, "line longer than 1023 characters");
+  expectBad("terrain_heading.terrain", "box 0 -20 0 600 0 300\nstart 1 1\nheading\n", 3,
+            CS_ERR_PARSE, "'heading' needs 1 number (degrees), got 0 values");
+  expectBad("terrain_headingx.terrain", "heading north\n", 1, CS_ERR_PARSE,
+            "'heading' value 1 'north' is not a number");
+  expectBad("terrain_headinginf.terrain", "heading inf\n", 1, CS_ERR_RANGE,
+            "'heading' value 1 'inf' is not a finite number");
+  expectBad("terrain_heading1e9.terrain", "heading 1e9\n", 1, CS_ERR_RANGE,
+            "heading 1e+09 deg is beyond");
+  /* names: one word of at most 63 characters, never cut short */
+  snprintf(text, sizeof text, "name %064d\n%sstart 1 1\n", 7, ok);
+  expectBad("terrain_name64.terrain", text, 1, CS_ERR_RANGE, "name longer than 63 characters");
+  expectBad("terrain_name2.terrain", "name flat road\n", 1, CS_ERR_PARSE,
+            "'name' needs one word, got 2");
+  expectBad("terrain_name0.terrain", "\n\nname   # nothing\n", 3, CS_ERR_PARSE,
+            "'name' needs one word, got 0");
+  /* a NUL byte: binary data is not a terrain file */
+  FILE* f = fopen("terrain_nul.terrain", "wb");
+  CS_EXPECT(f != NULL);
+  if (f) {
+    fwrite("box 0 -20 0 600 0 300\nstart 1\0 1\n", 1, 33, f);
+    fclose(f);
+  }
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_nul.terrain", &err) == CS_ERR_PARSE);
+  CS_EXPECT(strstr(err.msg, "terrain_nul.terrain:2: NUL byte") == err.msg);
+  remove("terrain_nul.terrain");
+}
+
+
+int main(int argc, char** argv) {
+  cs_testInit(argc, argv);
+  CS_RUN(test_flatRoad);
+  CS_RUN(test_goodFile);
+  CS_RUN(test_buildOde);
+  CS_RUN(test_badFiles);
+  return cs_testSummary();
+}

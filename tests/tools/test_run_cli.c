@@ -1,0 +1,182 @@
+/* test_run_cli.c: `crawlsim run` with bad input, end to end: runs the real executable (its
+ * path is argv[1], from $<TARGET_FILE:crawlsim>) and checks that every bad flag, terrain,
+ * gait, calibration or output path exits 1 with exactly ONE line "crawlsim run: <cause>" on
+ * stderr, nothing on stdout (--quiet: no progress lines), and no output file, i.e. it failed
+ * before simulating (DESIGN.md command-line contract). One short good run exits 0. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cs_cli.h"
+#include "cs_test.h"
+
+static const char* exe_path = NULL; /* the crawlsim executable (set once in main) */
+
+/* the output file of every bad run: it must never appear */
+#define BAD_OUT "runcli_bad.h5"
+
+
+/* `crawlsim run --quiet --t-end 0.01 --out BAD_OUT <args>`: exit 1, one stderr line starting
+ * with `want`, stdout empty, no output file. --t-end 0.01 keeps a run that wrongly starts
+ * short; the missing output file shows it did not start. */
+static void expectFailure(const char* args, const char* want) {
+  remove(BAD_OUT);
+  char full[2048];
+  snprintf(full, sizeof full, "run --quiet --t-end 0.01 --out " BAD_OUT " %s", args);
+  csCliResult r;
+  cs_cliRun(exe_path, full, "runcli", &r);
+  CS_EXPECT(r.status == 1);
+  CS_EXPECT(r.out[0] == '\0');
+  CS_EXPECT(cs_cliOneLine(r.err));
+  CS_EXPECT(strstr(r.err, want) == r.err);
+  CS_EXPECT(!cs_cliFileExists(BAD_OUT));
+  if (r.status != 1 || strstr(r.err, want) != r.err || !cs_cliOneLine(r.err) || r.out[0]) {
+    fprintf(stderr, "  args '%s': status %d\n  stdout: %s\n  stderr: %s\n  wanted: %s\n", args,
+            r.status, r.out, r.err, want);
+  }
+  remove(BAD_OUT);
+}
+
+
+static void test_badOptions(void) {
+  expectFailure("--frobnicate 1", "crawlsim run: unknown option '--frobnicate'");
+  expectFailure("stray", "crawlsim run: unexpected argument 'stray'");
+  expectFailure("--friction", "crawlsim run: option --friction needs a value");
+  expectFailure("--gait --quiet", "crawlsim run: option --gait needs a value");
+  expectFailure("--friction abc", "crawlsim run: --friction 'abc' is not a finite number");
+  expectFailure("--friction nan", "crawlsim run: --friction 'nan' is not a finite number");
+  expectFailure("--friction -0.5", "crawlsim run: --friction -0.5 must be >= 0");
+  expectFailure("--t-end -1", "crawlsim run: --t-end -1 s must be >= 0");
+  expectFailure("--t-end 1e300", "crawlsim run: a run to t = 1e+300 s at --dt 0.001 s takes");
+  expectFailure("--pressure-scale -1", "crawlsim run: --pressure-scale -1 must be >= 0");
+  /* the shipped gait peaks near 0.3 MPa: x 100 is far above the 1 MPa limit */
+  expectFailure("--pressure-scale 100", "crawlsim run: --pressure-scale 100 takes ");
+  expectFailure("--scene moon", "crawlsim run: unknown scene 'moon'");
+  expectFailure("--scene obstacle", "crawlsim run: scene 'obstacle' is not available yet");
+  expectFailure("--legs rod", "crawlsim run: leg model 'rod' is not available yet");
+  expectFailure("--legs bogus", "crawlsim run: unknown leg model 'bogus'");
+  expectFailure("--support-mass 0", "crawlsim run: --support-mass 0 kg must be > 0");
+  expectFailure("--links 0", "crawlsim run: --links 0 must be an integer in 1..64");
+  expectFailure("--links 2.5", "crawlsim run: --links 2.5 must be an integer in 1..64");
+  expectFailure("--iterations 0", "crawlsim run: --iterations 0 must be an integer in 1..10000");
+  expectFailure("--iterations 1e30", "crawlsim run: --iterations 1e+30 must be an integer");
+  expectFailure("--dt 0", "crawlsim run: --dt 0 s must be > 0 and <= 0.01 s");
+  expectFailure("--dt 0.002 --output-dt 0.001",
+                "crawlsim run: --output-dt 0.001 s must be >= the step 0.002 s (--dt)");
+  expectFailure("--output-dt 0.0001", "crawlsim run: --output-dt 0.0001 s must be >= the step");
+  expectFailure("--gravity -9.81", "crawlsim run: --gravity -9.81 m/s^2 must be >= 0");
+  expectFailure("--tau -1", "crawlsim run: --tau -1 s must be >= 0");
+  expectFailure("--ramp -1", "crawlsim run: --ramp -1 s must be >= 0");
+}
+
+
+static void test_badFiles(void) {
+  remove("runcli_missing.csv");
+  expectFailure("--gait runcli_missing.csv",
+                "crawlsim run: runcli_missing.csv: cannot open: No such file or directory");
+  CS_EXPECT(cs_cliWriteText("runcli_neg.csv", "time,A_II1_O1,A_II1_O2\n0,0,0\n1,0,-0.1\n"));
+  expectFailure("--gait runcli_neg.csv",
+                "crawlsim run: runcli_neg.csv:3: column 3 (A_II1_O2): negative");
+  remove("runcli_neg.csv");
+  remove("runcli_missing.terrain");
+  expectFailure("--terrain runcli_missing.terrain",
+                "crawlsim run: runcli_missing.terrain: cannot open terrain file: No such file");
+  CS_EXPECT(cs_cliWriteText("runcli_bad.terrain", "name bad\nbox 0 -20 0 600 0 nan\n"));
+  expectFailure("--terrain runcli_bad.terrain",
+                "crawlsim run: runcli_bad.terrain:2: 'box' value 6 'nan' is not a finite number");
+  CS_EXPECT(cs_cliWriteText("runcli_off.terrain", "box 0 -20 0 600 0 300\nstart 900 100\n"));
+  expectFailure("--terrain runcli_off.terrain",
+                "crawlsim run: runcli_off.terrain:2: start (900, 100) is not above any box");
+  remove("runcli_bad.terrain");
+  remove("runcli_off.terrain");
+  /* the output file cannot be created: found before settling, not after */
+  remove(BAD_OUT);
+  csCliResult r;
+  cs_cliRun(exe_path, "run --quiet --t-end 0.01 --out /nonexistent/x.h5", "runcli", &r);
+  CS_EXPECT(r.status == 1 && r.out[0] == '\0' && cs_cliOneLine(r.err));
+  CS_EXPECT(strstr(r.err, "crawlsim run: --out /nonexistent/x.h5: cannot create output file") ==
+            r.err);
+}
+
+
+/* a calibration file with `text`, run with it: the message names the file and line */
+static void expectBadCalibration(const char* text, const char* want) {
+  CS_EXPECT(cs_cliWriteText("runcli_calib.txt", text));
+  expectFailure("--calibration runcli_calib.txt", want);
+  remove("runcli_calib.txt");
+}
+
+
+static void test_badCalibration(void) {
+  remove("runcli_nocalib.txt");
+  expectFailure("--calibration runcli_nocalib.txt",
+                "crawlsim run: runcli_nocalib.txt: cannot open calibration file: No such file");
+  const char* ok3 = "chambers 1,2\npressure_MPa 0.403\ntotal_angle_deg 360\n";
+  char text[512];
+  snprintf(text, sizeof text, "# comment\nactuator baseline\nfoo 1\n%s", ok3);
+  expectBadCalibration(text, "crawlsim run: runcli_calib.txt:3: unknown key 'foo'");
+  expectBadCalibration("actuator baseline\nchambers 5\npressure_MPa 0.403\ntotal_angle_deg 360\n",
+                       "crawlsim run: runcli_calib.txt:2: chambers '5': chamber 5 is not in 1..4");
+  expectBadCalibration("actuator baseline\nchambers 1,5\n",
+                       "crawlsim run: runcli_calib.txt:2: chambers '1,5': chamber 5 is not in");
+  expectBadCalibration("actuator baseline\nchambers 1,2\npressure_MPa -1\ntotal_angle_deg 360\n",
+                       "crawlsim run: runcli_calib.txt:3: pressure_MPa '-1' must be a finite "
+                       "number > 0");
+  expectBadCalibration("actuator baseline\nchambers 1,2\npressure_MPa 0.4\ntotal_angle_deg inf\n",
+                       "crawlsim run: runcli_calib.txt:4: total_angle_deg 'inf' must be a finite");
+  expectBadCalibration("actuator baseline\nchambers 1,2\n\n",
+                       "crawlsim run: runcli_calib.txt:3: end of file: missing 'pressure_MPa', "
+                       "'total_angle_deg'");
+  expectBadCalibration("", "crawlsim run: runcli_calib.txt:1: end of file: missing 'actuator'");
+  snprintf(text, sizeof text, "actuator bogus\n%s", ok3);
+  expectBadCalibration(text, "crawlsim run: runcli_calib.txt:1: unknown actuator 'bogus'");
+  snprintf(text, sizeof text, "actuator baseline leg\n%s", ok3);
+  expectBadCalibration(text, "crawlsim run: runcli_calib.txt:1: 'actuator' needs exactly one "
+                             "value, got 2");
+  snprintf(text, sizeof text, "actuator baseline\n%sactuator leg\n", ok3);
+  expectBadCalibration(text, "crawlsim run: runcli_calib.txt:5: second 'actuator' (the first is "
+                             "on line 1)");
+  /* numbers that parse but describe no sensible reference */
+  expectBadCalibration("actuator baseline\nchambers 1,2,3,4\npressure_MPa 0.4\n"
+                       "total_angle_deg 360\n",
+                       "crawlsim run: runcli_calib.txt:2: the reference chambers do not bend");
+  expectBadCalibration("actuator baseline\nchambers 1,2\npressure_MPa 1e-300\n"
+                       "total_angle_deg 360\n",
+                       "crawlsim run: runcli_calib.txt:4: total_angle_deg 360 at 1e-300 MPa "
+                       "needs a factor");
+}
+
+
+static void test_goodRun(void) {
+  remove("runcli_ok.h5");
+  csCliResult r;
+  cs_cliRun(exe_path, "run --t-end 0.05 --quiet --out runcli_ok.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  CS_EXPECT(r.err[0] == '\0'); /* --quiet: no progress lines */
+  CS_EXPECT(strstr(r.out, "final t = 0.050 s") == r.out);
+  CS_EXPECT(cs_cliFileExists("runcli_ok.h5"));
+  if (r.status != 0) {
+    fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", r.status, r.out, r.err);
+  }
+  remove("runcli_ok.h5");
+  /* --help: usage on stdout, exit 0 */
+  cs_cliRun(exe_path, "run --help", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.out, "usage: crawlsim run") == r.out && !r.err[0]);
+}
+
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: test_run_cli <path of crawlsim> [case filter]\n");
+    return 1;
+  }
+  exe_path = argv[1];
+  cs_testInit(argc - 1, argv + 1); /* argv[2], if any, is the case filter */
+  CS_RUN(test_badOptions);
+  CS_RUN(test_badFiles);
+  CS_RUN(test_badCalibration);
+  CS_RUN(test_goodRun);
+  return cs_testSummary();
+}
