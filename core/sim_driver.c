@@ -47,9 +47,9 @@ struct csData_ {
 
 csOptions cs_defaultOptions(void) {
   csOptions o;
-  /* 1 ms: the joint springs are implicit (any h is stable); 1 ms resolves the 0.2-0.3 s
-   * pressure ramps and the contact transitions; halving it changes the 9 s track by < 1 mm
-   * (README, step study) */
+  /* 1 ms: the joint springs are implicit (any h is stable) and 1 ms resolves the 0.2 s
+   * pressure ramps. The track is not converged in h: stick-slip and touch-down events make
+   * it sensitive (README, "Step study": 0.5 ms moves the 9 s end point by ~15 %) */
   o.h = 1e-3;
   o.t_end = 0;
   o.output_dt = 0.01;
