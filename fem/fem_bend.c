@@ -557,7 +557,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     /* volume preservation at the final state */
     csf_assemble(m, d, p, 0);
     for (int e = 0; e < w.mesh->ntet; e++) {
-      info.max_j_dev = fmax(info.max_j_dev, fabs(d->theta[e] - 1.0));
+      info.max_j_dev = fmax(info.max_j_dev, fabs(d->vratio[e] - 1.0));
     }
     if (o->vtu_path) {
       st = csf_writeVtu(m, d, o->vtu_path, err);

@@ -70,6 +70,7 @@ csfMaterial csf_materialDefault(double C10, double C20, double rho) {
   m.C10 = C10;
   m.C20 = C20;
   m.kappa = CSF_KAPPA_RATIO * 2.0 * C10;
+  m.kappa_pt = getenv("CS_FEM_KPT") ? atof(getenv("CS_FEM_KPT")) * 2.0 * C10 : 0.0;
   m.rho = rho;
   m.form = CSF_FORM_MIXED_P0;
   return m;
@@ -428,10 +429,19 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
   d->kval = calloc((size_t)m->nnz, sizeof(double));
   d->theta = calloc(nt, sizeof(double));
   d->pel = calloc(nt, sizeof(double));
-  if (!d->u || !d->r || !d->du || !d->u_save || !d->kval || !d->theta || !d->pel) {
+  d->vratio = calloc(nt, sizeof(double));
+  d->theta_save = calloc(nt, sizeof(double));
+  d->vr0 = calloc(nt, sizeof(double));
+  d->gel = calloc(nt * 30, sizeof(double));
+  d->g0 = calloc(nt * 30, sizeof(double));
+  if (!d->u || !d->r || !d->du || !d->u_save || !d->kval || !d->theta || !d->pel ||
+      !d->vratio || !d->theta_save || !d->vr0 || !d->gel || !d->g0) {
     csf_dataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "fem_model: out of memory (%zu dofs)", n);
     return NULL;
+  }
+  for (size_t e = 0; e < nt; e++) {
+    d->theta[e] = d->vratio[e] = 1.0; /* reference state: p = 0 */
   }
   d->ls = csf_linSolverCreate(m->solver, m->ndof, m->row_ptr, m->col, err);
   if (!d->ls) {
@@ -447,7 +457,7 @@ void csf_dataDestroy(csfData* d) {
     return;
   }
   free(d->u), free(d->r), free(d->du), free(d->u_save), free(d->kval), free(d->theta);
-  free(d->pel);
+  free(d->pel), free(d->vratio), free(d->theta_save), free(d->vr0), free(d->gel), free(d->g0);
   csf_linSolverDestroy(d->ls);
   free(d);
 }
@@ -468,9 +478,11 @@ static void defGrad(const double* dNdX, const double ue[30], double F[9]) {
 }
 
 
-/* element residual re (30) and tangent ke (900) of tetrahedron e; returns 1 if inverted */
-static int tetKernel(const csfModel* m, int e, const double* u, double re[30], double* ke,
-                     double* theta_out, double* p_out, double* jmin_out) {
+/* element residual re (30) and tangent ke (900) of tetrahedron e at displacement u and element
+ * dilatation state theta_e (mixed form); outputs v/V, g = int cof(F):G dV (30) and min J.
+ * Returns 1 if an element is inverted. */
+static int tetKernel(const csfModel* m, int e, const double* u, double theta_e, double re[30],
+                     double* ke, double* vratio_out, double gvec[30], double* jmin_out) {
   const csfMaterial* mat = &m->mat;
   const int* tv = m->mesh->tet + 10 * e;
   double ue[30];
@@ -498,30 +510,37 @@ static int tetKernel(const csfModel* m, int e, const double* u, double re[30], d
     jmin = fmin(jmin, J[g]);
     vcur += we[g] * J[g];
   }
-  const double theta = vcur / m->vol[e];
+  const double vratio = vcur / m->vol[e];
   const int mixed = mat->form == CSF_FORM_MIXED_P0;
-  const double p = mixed ? mat->kappa * (theta - 1.0) : 0.0;
-  double gvec[30] = {0}; /* g = int cof(F) : G dV (mixed form) */
+  /* three-field u-theta-p with theta, p condensed: the residual carries the condensed pressure
+   * p_state + kappa (v/V - theta_e) = kappa (v/V - 1); the geometric stiffness uses the state
+   * pressure p_state = kappa (theta_e - 1), which Newton updates by the linearised constraint
+   * (csf_newtonSolve). At convergence theta_e = v/V and both agree. */
+  const double p_res = mixed ? mat->kappa * (vratio - 1.0) : 0.0;
+  const double p_tan = mixed ? mat->kappa * (theta_e - 1.0) : 0.0;
+  memset(gvec, 0, 30 * sizeof(double));
   for (int g = 0; g < 4; g++) {
     const double* dN = dNe + 30 * g;
     double P[9], A[81];
     csf_yeohDev(mat->C10, mat->C20, F[g], NULL, P, ke ? A : NULL);
     /* volumetric part: mixed p (element constant) or pointwise U'(J), U''(J) */
-    const double pv = mixed ? p : mat->kappa * (J[g] - 1.0);
+    const double ppt = mixed ? mat->kappa_pt * (J[g] - 1.0) : mat->kappa * (J[g] - 1.0);
+    const double pv = p_res + ppt;
+    const double kcc = mixed ? mat->kappa_pt : mat->kappa; /* pointwise bulk stiffness */
     for (int i = 0; i < 3; i++) {
       for (int J2 = 0; J2 < 3; J2++) {
         P[3 * i + J2] += pv * J[g] * Fi[g][3 * J2 + i];
       }
     }
     if (ke) {
-      addD2J(A, Fi[g], J[g], pv);
-      if (!mixed) {
-        /* kappa cof x cof */
+      addD2J(A, Fi[g], J[g], p_tan + ppt);
+      if (kcc != 0.0) {
+        /* pointwise bulk term kcc cof x cof */
         for (int iJ = 0; iJ < 9; iJ++) {
           double ci = J[g] * Fi[g][3 * (iJ % 3) + iJ / 3];
           for (int kL = 0; kL < 9; kL++) {
             double ck = J[g] * Fi[g][3 * (kL % 3) + kL / 3];
-            A[9 * iJ + kL] += mat->kappa * ci * ck;
+            A[9 * iJ + kL] += kcc * ci * ck;
           }
         }
       }
@@ -534,7 +553,7 @@ static int tetKernel(const csfModel* m, int e, const double* u, double re[30], d
           s += P[3 * i + J2] * dN[3 * a + J2];
         }
         re[3 * a + i] += w * s;
-        if (mixed && ke) {
+        if (mixed) {
           double c = 0;
           for (int J2 = 0; J2 < 3; J2++) {
             c += J[g] * Fi[g][3 * J2 + i] * dN[3 * a + J2];
@@ -573,8 +592,7 @@ static int tetKernel(const csfModel* m, int e, const double* u, double re[30], d
       }
     }
   }
-  *theta_out = theta;
-  *p_out = p;
+  *vratio_out = vratio;
   *jmin_out = jmin;
   return 0;
 }
@@ -684,13 +702,13 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : bad) reduction(min : jmin)
 #endif
   for (int e = 0; e < me->ntet; e++) {
-    double re[30], ke[900], th, p, jm;
-    if (tetKernel(m, e, d->u, re, want_k ? ke : NULL, &th, &p, &jm)) {
+    double re[30], ke[900], vr, jm;
+    if (tetKernel(m, e, d->u, d->theta[e], re, want_k ? ke : NULL, &vr, d->gel + 30 * (size_t)e,
+                  &jm)) {
       bad++;
       continue;
     }
-    d->theta[e] = th;
-    d->pel[e] = p;
+    d->vratio[e] = vr;
     jmin = fmin(jmin, jm);
     const int* tv = me->tet + 10 * e;
     if (grav) {
@@ -881,6 +899,36 @@ csfNewtonOptions csf_newtonDefault(void) {
 }
 
 
+/* theta_e = (v_e + alpha g_e . du_e) / V_e: the linearised volume constraint of the three-field
+ * form (element pressure p_e = kappa (theta_e - 1) follows) */
+static void updateTheta(const csfModel* m, csfData* d, double alpha) {
+  if (m->mat.form != CSF_FORM_MIXED_P0) {
+    return;
+  }
+  for (int e = 0; e < m->mesh->ntet; e++) {
+    const int* tv = m->mesh->tet + 10 * e;
+    const double* g = d->g0 + 30 * (size_t)e;
+    double s = 0;
+    for (int a = 0; a < 10; a++) {
+      for (int i = 0; i < 3; i++) {
+        s += g[3 * a + i] * d->du[3 * tv[a] + i];
+      }
+    }
+    d->theta[e] = d->vr0[e] + alpha * s / m->vol[e];
+    d->pel[e] = m->mat.kappa * (d->theta[e] - 1.0);
+  }
+}
+
+
+void csf_dataSyncVolume(const csfModel* m, csfData* d) {
+  csf_assemble(m, d, d->load, 0);
+  for (int e = 0; e < m->mesh->ntet; e++) {
+    d->theta[e] = d->vratio[e];
+    d->pel[e] = m->mat.kappa * (d->theta[e] - 1.0);
+  }
+}
+
+
 csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNewtonOptions* opt,
                          int* iters, csError* err) {
   const size_t n = (size_t)m->ndof;
@@ -890,9 +938,12 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
   }
 #endif
   memcpy(d->u_save, d->u, n * sizeof(double));
+  const size_t nt = (size_t)m->mesh->ntet;
+  memcpy(d->theta_save, d->theta, nt * sizeof(double));
   int it = 0;
   if (csf_assemble(m, d, load, 1) != 0) {
     memcpy(d->u, d->u_save, n * sizeof(double));
+    memcpy(d->theta, d->theta_save, nt * sizeof(double));
     if (iters) {
       *iters = 0;
     }
@@ -917,6 +968,7 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     d->stats.n_factor++;
     if (fst != 0) {
       memcpy(d->u, d->u_save, n * sizeof(double));
+    memcpy(d->theta, d->theta_save, nt * sizeof(double));
       if (iters) {
         *iters = it;
       }
@@ -947,6 +999,9 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     }
     d->stats.t_solve += wallTime() - t0;
     d->stats.n_newton++;
+    /* base of the linearised dilatation update: v/V and g at the current iterate */
+    memcpy(d->vr0, d->vratio, nt * sizeof(double));
+    memcpy(d->g0, d->gel, nt * 30 * sizeof(double));
     /* backtracking line search on ||R|| */
     const double r0 = d->rnorm;
     double alpha = 1.0, moved = 0.0;
@@ -956,6 +1011,7 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
         d->u[i] += (alpha - moved) * d->du[i];
       }
       moved = alpha;
+      updateTheta(m, d, alpha);
       int st = csf_assemble(m, d, load, 1);
       if (getenv("CS_FEM_DEBUG")) {
         double dn = 0;
@@ -973,6 +1029,7 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     }
     if (!ok) {
       memcpy(d->u, d->u_save, n * sizeof(double));
+    memcpy(d->theta, d->theta_save, nt * sizeof(double));
       if (iters) {
         *iters = it;
       }
@@ -985,6 +1042,7 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
   }
   if (d->rnorm > fmax(opt->atol, opt->rtol * d->fnorm)) {
     memcpy(d->u, d->u_save, n * sizeof(double));
+    memcpy(d->theta, d->theta_save, nt * sizeof(double));
     csf_assemble(m, d, d->load, 0);
     return cs_errorSet(err, CS_ERR_DIVERGED,
                        "fem: Newton did not converge at load %g in %d iterations (|R| %.3g N)",
@@ -1011,8 +1069,9 @@ void csf_tetCauchy(const csfModel* m, const csfData* d, int e, double sigma[6]) 
       continue;
     }
     csf_yeohDev(m->mat.C10, m->mat.C20, F, NULL, P, NULL);
-    const double pv =
-        m->mat.form == CSF_FORM_MIXED_P0 ? d->pel[e] : m->mat.kappa * (J - 1.0);
+    const double pv = m->mat.form == CSF_FORM_MIXED_P0
+                          ? m->mat.kappa * (d->vratio[e] - 1.0) + m->mat.kappa_pt * (J - 1.0)
+                          : m->mat.kappa * (J - 1.0);
     /* sigma = P F^T / J + pv I */
     double s[9];
     for (int i = 0; i < 3; i++) {

@@ -31,6 +31,7 @@ typedef enum csfFormulation_ {
 typedef struct csfMaterial_ {
   double C10, C20;     /* Yeoh constants of W = C10 (I1b - 3) + C20 (I1b - 3)^2, MPa */
   double kappa;        /* bulk modulus of U(J) = kappa/2 (J - 1)^2, MPa */
+  double kappa_pt;     /* mixed form only: extra pointwise bulk term kappa_pt/2 (J - 1)^2, MPa */
   double rho;          /* density, t/mm^3 (gravity only) */
   csfFormulation form; /* incompressibility treatment */
 } csfMaterial;
@@ -110,8 +111,13 @@ typedef struct csfData_ {
   double* du;     /* (ndof) Newton step */
   double* u_save; /* (ndof) scratch: last accepted state */
   double* kval;   /* (nnz) tangent values in the model's CSR pattern */
-  double* theta;  /* (ntet) element volume ratio v/V */
-  double* pel;    /* (ntet) element pressure kappa (theta - 1), MPa (mixed form) */
+  double* theta;  /* (ntet) element dilatation state theta_e of the three-field form (mixed) */
+  double* pel;    /* (ntet) element pressure state kappa (theta_e - 1), MPa (mixed form) */
+  double* vratio; /* (ntet) element volume ratio v/V at the last assembly */
+  double* gel;    /* (ntet x 30) g_e = int cof(F) : G dV at the last assembly, mm^2 */
+  double* theta_save; /* (ntet) scratch: theta at Newton entry */
+  double* vr0;    /* (ntet) scratch: v/V at the current Newton iterate */
+  double* g0;     /* (ntet x 30) scratch: g_e at the current Newton iterate */
   double rnorm;   /* ||R|| on free dofs after the last assembly, N */
   double fnorm;   /* force scale for convergence: ||f_int|| over all dofs + ||f_ext||, N */
   double jmin;    /* smallest pointwise J at quadrature points after the last assembly */
@@ -122,6 +128,10 @@ typedef struct csfData_ {
 
 csfData* csf_dataCreate(const csfModel* m, csError* err);
 void csf_dataDestroy(csfData* d);
+
+/* Set the dilatation state to the current displacement (theta_e = v_e/V_e); after this the
+ * assembled K is the exact derivative of R (used by tangent checks). */
+void csf_dataSyncVolume(const csfModel* m, csfData* d);
 
 /* Assemble R (and K when want_k) at the current d->u and load factor. Returns 0, > 0 when the
  * state is not physical (an inverted element: recoverable, cut the step), < 0 on fatal errors. */

@@ -64,7 +64,7 @@ csStatus csf_writeVtu(const csfModel* m, const csfData* d, const char* path, csE
   free(vm);
   fprintf(f, "</DataArray>\n<DataArray type=\"Float64\" Name=\"theta\" format=\"ascii\">\n");
   for (int e = 0; e < me->ntet; e++) {
-    fprintf(f, "%.9g\n", d->theta[e]);
+    fprintf(f, "%.9g\n", d->vratio[e]);
   }
   fprintf(f, "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
   int bad = ferror(f);

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   }
   csfBendOptions o = csf_bendDefault();
   csfBendInfo info;
+  memset(&info, 0, sizeof info);
   o.info = &info;
   o.progress = progress;
   o.mesh_size = argc > 2 ? atof(argv[2]) : 4.0;
@@ -49,6 +50,8 @@ int main(int argc, char** argv) {
       o.vtu_path = argv[++i];
     } else if (!strcmp(argv[i], "--inp") && i + 1 < argc) {
       o.inp_path = argv[++i];
+    } else if (!strcmp(argv[i], "--stem") && i + 1 < argc) {
+      o.work_stem = argv[++i];
     } else if (!strcmp(argv[i], "--no-fibres")) {
       o.fibres = 0;
     } else if (!strcmp(argv[i], "--fibre-compression")) {
