@@ -54,7 +54,7 @@ csfBendOptions csf_bendDefault(void) {
   o.mesh_size = 4.0;
   o.fibre_size = 0.0;
   o.fibres = 1;
-  o.fibre_compression = 0;
+  o.fibre_compression = 1; /* like the paper's tied B32 beams; tension-only chatters in Newton */
   o.work_stem = "crawlsim_fe";
   return o;
 }
@@ -415,6 +415,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   }
   csfNewtonOptions nopt = csf_newtonDefault();
   nopt.threads = o->threads;
+  nopt.max_iter = 40; /* slender body: Newton crosses flat energy valleys (measured up to 12) */
   csError lerr = {0};
   /* gravity alone at p = 0 */
   if (o->gravity[0] != 0 || o->gravity[1] != 0 || o->gravity[2] != 0) {

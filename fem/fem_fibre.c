@@ -250,10 +250,15 @@ csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, d
       m->fib_node[20 * f + 10 + a] = me->tet[10 * host[s + 1] + a];
       m->fib_coef[20 * f + 10 + a] = N[10 * (s + 1) + a];
     }
-    const double* p0 = pts + 3 * s;
-    const double* p1 = pts + 3 * (s + 1);
-    m->fib_L0[f] = sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
-                        (p1[2] - p0[2]) * (p1[2] - p0[2]));
+    /* reference length from the interpolated end points (what the element actually sees), so
+     * the fibre starts stress free even where the host map is only approximately inverted */
+    double dX[3] = {0, 0, 0};
+    for (int a = 0; a < 20; a++) {
+      for (int d = 0; d < 3; d++) {
+        dX[d] += m->fib_coef[20 * f + a] * me->x[3 * m->fib_node[20 * f + a] + d];
+      }
+    }
+    m->fib_L0[f] = sqrt(dX[0] * dX[0] + dX[1] * dX[1] + dX[2] * dX[2]);
     m->fib_EA[f] = E * area;
     if (!(m->fib_L0[f] > 0)) {
       free(host), free(N), gridFree(&g);

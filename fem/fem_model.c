@@ -56,6 +56,9 @@ static const double kTriQ[6][3] = {
  * next iteration removes (measured on the tube: residual x120 after the full step, then quadratic
  * convergence), while an Armijo test cut every step to 1/16 and stalled. */
 #define CSF_LS_GROWTH_FIRST 1e4
+/* Green strain below which a tension-only fibre is slack in the tangent too (dimensionless);
+ * 1e-3 is about 30 times the fibre strain at 0.4 MPa (Kevlar E = 31 GPa) */
+#define CSF_FIBRE_SLACK 1e-3
 #define CSF_LS_GROWTH 2.0
 
 static double wallTime(void) {
@@ -629,16 +632,20 @@ static void fibKernel(const csfModel* m, int f, const double* u, double rf[60], 
   const double E = 0.5 * ((dvec[0] * dvec[0] + dvec[1] * dvec[1] + dvec[2] * dvec[2]) /
                               (L0 * L0) -
                           1.0);
-  *active = !(m->fib_tension_only && E <= 0);
+  /* tension only: no force for E <= 0, but the axial stiffness is kept down to E = -slack so
+   * that a fibre at rest (E = 0, the reference state) resists the first Newton step; without it
+   * the linear step ignores the fibres and overstretches them (measured: residual x2500) */
+  *active = !(m->fib_tension_only && E <= -CSF_FIBRE_SLACK);
   if (!*active) {
     return;
   }
+  const double Ef = (m->fib_tension_only && E < 0) ? 0.0 : E;
   /* dW/dd = EA E d / L0; d2W/dd2 = EA / L0 (E I + d d^T / L0^2) */
   double fd[3], H[9];
   for (int i = 0; i < 3; i++) {
-    fd[i] = EA * E * dvec[i] / L0;
+    fd[i] = EA * Ef * dvec[i] / L0;
     for (int k = 0; k < 3; k++) {
-      H[3 * i + k] = EA / L0 * ((i == k ? E : 0.0) + dvec[i] * dvec[k] / (L0 * L0));
+      H[3 * i + k] = EA / L0 * ((i == k ? Ef : 0.0) + dvec[i] * dvec[k] / (L0 * L0));
     }
   }
   for (int a = 0; a < 20; a++) {
