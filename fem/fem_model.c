@@ -191,7 +191,7 @@ csfModel* csf_modelCreate(const csfMesh* mesh, const csfMaterial* mat, csError* 
   m->mesh = mesh;
   m->mat = *mat;
   m->ndof = 3 * mesh->nnode;
-  m->fib_tension_only = 1;
+  m->fib_tension_only = 0; /* like the paper's tied beams; see csfBendOptions */
   const size_t nt = (size_t)mesh->ntet;
   m->dNdX = malloc(nt * 120 * sizeof(double));
   m->wq = malloc(nt * 4 * sizeof(double));

@@ -64,7 +64,7 @@ typedef struct csfModel_ {
   double* fib_coef;    /* (nfib x 20) -N_a(end 1), +N_a(end 2): d = x2 - x1 = sum coef x */
   double* fib_L0;      /* (nfib) reference length, mm */
   double* fib_EA;      /* (nfib) axial stiffness E A, N */
-  int fib_tension_only; /* 1: fibres carry no compression (default); 0: linear both ways */
+  int fib_tension_only; /* 1: fibres carry no compression; 0 (default): linear both ways */
   csfSolverKind solver; /* sparse direct solver used by csf_dataCreate (default MUMPS) */
   /* sparse pattern (3x3 node blocks, scalar CSR), built by csf_modelFinalize */
   int finalized;
