@@ -1,6 +1,6 @@
 /* cs_cli.h: run the real `crawlsim` executable from a test and capture what it prints
- * (header-only, plain C; follows the helpers of tests/gaits/test_gaits_cli.c, which keeps its
- * own copy). A test passes the executable's path as argv[1] from $<TARGET_FILE:crawlsim>.
+ * (header-only, plain C; shared by the end-to-end tests test_gaits_cli, test_bend_cli and
+ * test_run_cli). A test passes the executable's path as argv[1] from $<TARGET_FILE:crawlsim>.
  * system() and WEXITSTATUS need POSIX: define _POSIX_C_SOURCE 200809L before any include
  * (the project builds with C_EXTENSIONS OFF). Output goes through files named after a
  * per-test prefix in the working directory, so tests running in parallel in one build

@@ -30,6 +30,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # plot_common.py, from any cwd
+from plot_common import InputError, default_out, find_attr, find_attr_text, load_or_fail  # noqa: E402
+from plot_common import open_h5, read_dataset, save_or_fail  # noqa: E402
+
+PROG = "plot_bend"
+
 LINESTYLES = ["-", "--", "-.", ":", (0, (5, 1, 1, 1, 1, 1)), (0, (8, 2)), (0, (1, 3))]
 SEGMENTS = ("II1", "II2", "II3")
 SEGMENT_COLORS = ("C0", "C1", "C2")
@@ -39,64 +45,9 @@ SEGMENT_COLORS = ("C0", "C1", "C2")
 ACTUATOR_KEYS = ("actuator", "actuator_name", "geometry", "actuator_geometry", "name")
 
 
-class InputError(Exception):
-    """A missing or malformed input; reported as one line, exit status 1."""
-
-
-def fail(msg):
-    print(f"plot_bend: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
-def attr_text(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8", "replace")
-    if isinstance(value, np.ndarray):
-        if value.size == 1:
-            return attr_text(value.reshape(-1)[0])
-        return " ".join(attr_text(v) for v in value.reshape(-1))
-    if isinstance(value, (np.floating, float)):
-        return f"{float(value):g}"
-    return str(value)
-
-
-def find_attr(attrs, keys):
-    norm = {k.lower().replace(" ", "_").replace("-", "_"): k for k in attrs}
-    for key in keys:
-        if key in norm:
-            return attrs[norm[key]]
-    return None
-
-
-def read_dataset(f, path, fname, shape_tail, m=None):
-    if path not in f:
-        raise InputError(f"{fname}: missing dataset {path}")
-    obj = f[path]
-    if not hasattr(obj, "shape") or not hasattr(obj, "dtype"):
-        raise InputError(f"{fname}: {path} is not a dataset")
-    try:
-        a = np.asarray(obj[()], dtype=float)
-    except (TypeError, ValueError) as e:
-        raise InputError(f"{fname}: {path} is not numeric ({e})") from None
-    bad = a.ndim != len(shape_tail) + 1 or (m is not None and a.shape[0] != m)
-    bad = bad or any(a.shape[1 + i] != s for i, s in enumerate(shape_tail))
-    if bad:
-        dims = ",".join(["M" if m is None else str(m)] + [str(s) for s in shape_tail])
-        raise InputError(f"{fname}: {path} has shape {list(a.shape)}, expected [{dims}]")
-    return a
-
-
 def load_bend(path):
-    import h5py
-
-    if not os.path.isfile(path):
-        raise InputError(f"{path}: no such file")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise InputError(f"{path}: not a readable HDF5 file ({str(e).splitlines()[0]})") from None
-    with f:
-        p = read_dataset(f, "/pressure", path, ())
+    with open_h5(path) as f:
+        p = read_dataset(f, "/pressure", path, (), rows="M")
         m = p.shape[0]
         if m == 0:
             raise InputError(f"{path}: /pressure is empty")
@@ -107,10 +58,8 @@ def load_bend(path):
             "total": read_dataset(f, "/angle_total_deg", path, (), m),
             "tip": read_dataset(f, "/tip_position", path, (3,), m),
         }
-        model = find_attr(f.attrs, ("model",))
-        d["model"] = attr_text(model) if model is not None else None
-        act = find_attr(f.attrs, ACTUATOR_KEYS)
-        d["actuator"] = attr_text(act) if act is not None else None
+        d["model"] = find_attr_text(f.attrs, ("model",))
+        d["actuator"] = find_attr_text(f.attrs, ACTUATOR_KEYS)
         pu = find_attr(f.attrs, ("p_until_angle_mpa", "p_until_angle"))
         d["p_until"] = None
         if pu is not None:
@@ -185,31 +134,15 @@ def plot_bend(runs, out):
     plt.close(fig)
 
 
-def default_out(path):
-    stem, _ = os.path.splitext(path)
-    return stem + "_bend.png"
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description="Plot bending angle vs pressure of crawlsim bend files.")
     ap.add_argument("files", metavar="BEND.h5", nargs="+", help="outputs of `crawlsim bend`")
     ap.add_argument("-o", "--output", metavar="OUT.png", help="output PNG (default: first file's name + _bend.png)")
     args = ap.parse_args(argv)
 
-    runs = []
-    for path in args.files:
-        try:
-            runs.append(load_bend(path))
-        except InputError as e:
-            fail(str(e))
-        except (OSError, KeyError, ImportError) as e:
-            fail(f"{path}: {str(e).splitlines()[0] if str(e) else type(e).__name__}")
-    out = args.output or default_out(args.files[0])
-    try:
-        plot_bend(runs, out)
-    except OSError as e:
-        fail(f"{out}: cannot write ({e.strerror or e})")
-    print(f"plot_bend: wrote {out}")
+    runs = [load_or_fail(PROG, load_bend, path) for path in args.files]
+    out = args.output or default_out(args.files[0], "_bend.png")
+    save_or_fail(PROG, out, lambda: plot_bend(runs, out))
     return 0
 
 

@@ -34,6 +34,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # plot_common.py, from any cwd
+from plot_common import InputError, default_out, find_attr_text, load_or_fail, open_h5  # noqa: E402
+from plot_common import read_dataset, save_or_fail  # noqa: E402
+
+PROG = "plot_track"
+
 LEGS = "ABCDEFGH"
 
 # Paper Table 2 (REFERENCE.md): flat road, support displacement x (mm) at t = 0..9 s; y = z = 0.
@@ -53,72 +59,15 @@ ATTR_ALIASES = {
 }
 
 
-class InputError(Exception):
-    """A missing or malformed input; reported as one line, exit status 1."""
-
-
-def fail(msg):
-    print(f"plot_track: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
-def attr_text(value):
-    """An HDF5 attribute value as a short string (bytes, numpy scalars and 1-element arrays)."""
-    if isinstance(value, bytes):
-        return value.decode("utf-8", "replace")
-    if isinstance(value, np.ndarray):
-        if value.size == 1:
-            return attr_text(value.reshape(-1)[0])
-        return " ".join(attr_text(v) for v in value.reshape(-1))
-    if isinstance(value, (np.floating, float)):
-        return f"{float(value):g}"
-    return str(value)
-
-
-def find_attr(attrs, key):
-    norm = {k.lower().replace(" ", "_").replace("-", "_"): k for k in attrs}
-    for alias in ATTR_ALIASES[key]:
-        if alias in norm:
-            return attr_text(attrs[norm[alias]])
-    return None
-
-
-def read_dataset(f, path, path_file, shape_tail):
-    """Read dataset `path` as float64 and check its shape: [any] + shape_tail (None = any size)."""
-    if path not in f:
-        raise InputError(f"{path_file}: missing dataset {path}")
-    obj = f[path]
-    if not hasattr(obj, "shape") or not hasattr(obj, "dtype"):
-        raise InputError(f"{path_file}: {path} is not a dataset")
-    try:
-        a = np.asarray(obj[()], dtype=float)
-    except (TypeError, ValueError) as e:
-        raise InputError(f"{path_file}: {path} is not numeric ({e})") from None
-    want = len(shape_tail) + 1
-    bad = a.ndim != want or any(s is not None and a.shape[1 + i] != s for i, s in enumerate(shape_tail))
-    if bad:
-        dims = ",".join(["N"] + ["K" if s is None else str(s) for s in shape_tail])
-        raise InputError(f"{path_file}: {path} has shape {list(a.shape)}, expected [{dims}]")
-    return a
-
-
 def load_run(path):
-    import h5py  # imported here so that a missing h5py is reported like other input errors
-
-    if not os.path.isfile(path):
-        raise InputError(f"{path}: no such file")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise InputError(f"{path}: not a readable HDF5 file ({str(e).splitlines()[0]})") from None
-    with f:
+    with open_h5(path) as f:
         series = {
             "t": read_dataset(f, "/time", path, ()),
             "pos": read_dataset(f, "/support/position", path, (3,)),
             "quat": read_dataset(f, "/support/orientation", path, (4,)),
         }
         legs = {leg: read_dataset(f, f"/legs/{leg}/centerline", path, (None, 3)) for leg in LEGS}
-        attrs = {k: find_attr(f.attrs, k) for k in ATTR_ALIASES}
+        attrs = {k: find_attr_text(f.attrs, aliases) for k, aliases in ATTR_ALIASES.items()}
     # The writer appends samples as the run goes, so a run that stopped mid-sample can leave
     # series one sample apart: plot the common prefix and say so.
     lengths = [a.shape[0] for a in series.values()] + [a.shape[0] for a in legs.values()]
@@ -272,11 +221,6 @@ def plot_track(run, out, times, reference):
     plt.close(fig)
 
 
-def default_out(path):
-    stem, _ = os.path.splitext(path)
-    return stem + "_track.png"
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description="Plot the support track and leg side view of a crawlsim run file.")
     ap.add_argument("run", metavar="RUN.h5", help="output of `crawlsim run`")
@@ -287,18 +231,9 @@ def main(argv=None):
                     help="reference track in panel (a): paper Table 2 flat road (default) or none")
     args = ap.parse_args(argv)
 
-    try:
-        run = load_run(args.run)
-    except InputError as e:
-        fail(str(e))
-    except (OSError, KeyError, ImportError) as e:
-        fail(f"{args.run}: {str(e).splitlines()[0] if str(e) else type(e).__name__}")
-    out = args.output or default_out(args.run)
-    try:
-        plot_track(run, out, args.times, args.reference)
-    except OSError as e:
-        fail(f"{out}: cannot write ({e.strerror or e})")
-    print(f"plot_track: wrote {out}")
+    run = load_or_fail(PROG, load_run, args.run)
+    out = args.output or default_out(args.run, "_track.png")
+    save_or_fail(PROG, out, lambda: plot_track(run, out, args.times, args.reference))
     return 0
 
 

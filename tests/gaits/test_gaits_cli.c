@@ -2,71 +2,32 @@
  * argv[1], from $<TARGET_FILE:crawlsim>) on a good file and on bad ones, and checks the exit
  * status, that a failure prints exactly one line "crawlsim gait check: <file>:<line>: column
  * <c> ..." to stderr and nothing to stdout, and that success prints one summary line.
- * system() and WEXITSTATUS need POSIX (the project builds with C_EXTENSIONS OFF). */
+ * The run/capture helpers are tests/cs_cli.h, which needs POSIX (the project builds with
+ * C_EXTENSIONS OFF). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 
+#include "cs_cli.h"
 #include "cs_test.h"
 
 static const char* exe_path = NULL; /* the crawlsim executable (set once in main) */
 
-/* captured output of one run */
-typedef struct {
-  int status;     /* exit status, -1 if it did not exit normally */
-  char out[4096]; /* stdout */
-  char err[4096]; /* stderr */
-} runResult;
 
-
-static void writeText(const char* path, const char* text) {
-  FILE* f = fopen(path, "wb");
-  CS_EXPECT(f != NULL);
-  if (f) {
-    fputs(text, f);
-    fclose(f);
-  }
-}
-
-
-static void slurp(const char* path, char* buf, size_t size) {
-  buf[0] = '\0';
-  FILE* f = fopen(path, "rb");
-  if (f) {
-    size_t n = fread(buf, 1, size - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-  }
-}
-
-
-/* run `crawlsim <args>` with stdout/stderr captured into files in the working directory */
-static void run(const char* args, runResult* r) {
-  char cmd[2048];
-  snprintf(cmd, sizeof cmd, "\"%s\" %s >cli_stdout.txt 2>cli_stderr.txt", exe_path, args);
-  int st = system(cmd);
-  r->status = st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  slurp("cli_stdout.txt", r->out, sizeof r->out);
-  slurp("cli_stderr.txt", r->err, sizeof r->err);
-}
-
-
-/* exactly one '\n'-terminated line */
-static int oneLine(const char* s) {
-  const char* nl = strchr(s, '\n');
-  return nl && nl[1] == '\0' && nl != s;
+/* run `crawlsim <args>`, stdout/stderr captured via gaitcli_*.txt in the working directory */
+static void run(const char* args, csCliResult* r) {
+  cs_cliRun(exe_path, args, "gaitcli", r);
 }
 
 
 static void test_goodFile(void) {
-  writeText("cli_good.csv", "# two rows\ntime,A_II1_O3,22\n0,0.18,0\n1,0,0.3\n");
-  runResult r;
+  CS_EXPECT(cs_cliWriteText("cli_good.csv", "# two rows\ntime,A_II1_O3,22\n0,0.18,0\n1,0,0.3\n"));
+  csCliResult r;
   run("gait check cli_good.csv", &r);
   CS_EXPECT(r.status == 0);
-  CS_EXPECT(oneLine(r.out) && r.err[0] == '\0');
+  CS_EXPECT(cs_cliOneLine(r.out) && r.err[0] == '\0');
   CS_EXPECT(strstr(r.out, "2 rows") && strstr(r.out, "2 of 96 chambers used") &&
             strstr(r.out, "max pressure 0.3 MPa") && strstr(r.out, "duration 1 s"));
   if (r.status != 0) {
@@ -77,11 +38,11 @@ static void test_goodFile(void) {
 
 /* a bad file: exit 1, one line on stderr naming file, line and column, nothing on stdout */
 static void expectFailure(const char* args, const char* want) {
-  runResult r;
+  csCliResult r;
   run(args, &r);
   CS_EXPECT(r.status == 1);
   CS_EXPECT(r.out[0] == '\0');
-  CS_EXPECT(oneLine(r.err));
+  CS_EXPECT(cs_cliOneLine(r.err));
   CS_EXPECT(strstr(r.err, want) == r.err);
   if (r.status != 1 || strstr(r.err, want) != r.err) {
     fprintf(stderr, "  status %d, stderr: %s", r.status, r.err);
@@ -90,16 +51,16 @@ static void expectFailure(const char* args, const char* want) {
 
 
 static void test_badFiles(void) {
-  writeText("cli_bad_pressure.csv", "time,A_II1_O1,A_II1_O2\n0,0,0\n1,0,-0.1\n");
+  CS_EXPECT(cs_cliWriteText("cli_bad_pressure.csv", "time,A_II1_O1,A_II1_O2\n0,0,0\n1,0,-0.1\n"));
   expectFailure("gait check cli_bad_pressure.csv",
                 "crawlsim gait check: cli_bad_pressure.csv:3: column 3 (A_II1_O2): negative");
-  writeText("cli_bad_time.csv", "time,1\r\n0,0\r\n0,0\r\n");
+  CS_EXPECT(cs_cliWriteText("cli_bad_time.csv", "time,1\r\n0,0\r\n0,0\r\n"));
   expectFailure("gait check cli_bad_time.csv", "crawlsim gait check: cli_bad_time.csv:3: column 1");
-  writeText("cli_bad_column.csv", "time,A_II1_O1,X\n0,0,0\n");
+  CS_EXPECT(cs_cliWriteText("cli_bad_column.csv", "time,A_II1_O1,X\n0,0,0\n"));
   expectFailure("gait check cli_bad_column.csv",
                 "crawlsim gait check: cli_bad_column.csv:1: column 3: unknown column 'X'");
   /* the limit flag moves the pressure check */
-  writeText("cli_high.csv", "time,1\n0,0.5\n");
+  CS_EXPECT(cs_cliWriteText("cli_high.csv", "time,1\n0,0.5\n"));
   expectFailure("gait check cli_high.csv --max-pressure 0.4",
                 "crawlsim gait check: cli_high.csv:2: column 2 (A_II1_O1): pressure above");
   remove("cli_missing.csv");
@@ -115,7 +76,7 @@ static void test_badUsage(void) {
   expectFailure("gait check cli_good.csv --max-rows 1.5", "crawlsim gait check: --max-rows");
   expectFailure("gait", "crawlsim gait: missing subcommand");
   expectFailure("gait frob", "crawlsim gait: unknown subcommand 'frob'");
-  runResult r;
+  csCliResult r;
   run("gait --help", &r);
   CS_EXPECT(r.status == 0 && strstr(r.out, "check FILE.csv"));
 }

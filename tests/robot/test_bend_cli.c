@@ -2,8 +2,8 @@
  * from $<TARGET_FILE:crawlsim>) and checks the HDF5 output contract (DESIGN.md), that
  * --until-angle is the model's own root of Θ(p) = DEG, and that bad input exits 1 with exactly
  * one line "crawlsim bend: ..." on stderr, nothing on stdout and no output file.
- * system() and WEXITSTATUS need POSIX (the project builds with C_EXTENSIONS OFF); the run/
- * capture helpers follow tests/gaits/test_gaits_cli.c. */
+ * The run/capture helpers are tests/cs_cli.h, which needs POSIX (the project builds with
+ * C_EXTENSIONS OFF). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <hdf5.h>
@@ -11,56 +11,19 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 
+#include "cs_cli.h"
 #include "cs_test.h"
 #include "robot_analytic.h"
 
 static const char* exe_path = NULL; /* the crawlsim executable (set once in main) */
 
-/* captured output of one run */
-typedef struct {
-  int status;     /* exit status, -1 if it did not exit normally */
-  char out[8192]; /* stdout */
-  char err[4096]; /* stderr */
-} runResult;
 
-
-static void slurp(const char* path, char* buf, size_t size) {
-  buf[0] = '\0';
-  FILE* f = fopen(path, "rb");
-  if (f) {
-    size_t n = fread(buf, 1, size - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-  }
-}
-
-
-/* run `crawlsim bend <args>` with stdout/stderr captured into files in the working directory */
-static void run(const char* args, runResult* r) {
-  char cmd[2048];
-  snprintf(cmd, sizeof cmd, "\"%s\" bend %s >bend_stdout.txt 2>bend_stderr.txt", exe_path, args);
-  int st = system(cmd);
-  r->status = st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  slurp("bend_stdout.txt", r->out, sizeof r->out);
-  slurp("bend_stderr.txt", r->err, sizeof r->err);
-}
-
-
-/* exactly one '\n'-terminated line */
-static int oneLine(const char* s) {
-  const char* nl = strchr(s, '\n');
-  return nl && nl[1] == '\0' && nl != s;
-}
-
-
-static int fileExists(const char* path) {
-  FILE* f = fopen(path, "rb");
-  if (f) {
-    fclose(f);
-  }
-  return f != NULL;
+/* run `crawlsim bend <args>`, stdout/stderr captured via bend_*.txt in the working directory */
+static void run(const char* args, csCliResult* r) {
+  char full[2048];
+  snprintf(full, sizeof full, "bend %s", args);
+  cs_cliRun(exe_path, full, "bend", r);
 }
 
 
@@ -78,7 +41,7 @@ static double totalAngle(double p) {
 
 static void test_defaultSweep(void) {
   remove("bend_ok.h5");
-  runResult r;
+  csCliResult r;
   run("--out bend_ok.h5 --until-angle 30", &r);
   CS_EXPECT(r.status == 0 && r.err[0] == '\0');
   CS_EXPECT(strstr(r.out, "until-angle: total angle 30 deg at p = ") != NULL);
@@ -127,7 +90,7 @@ static void test_defaultSweep(void) {
 static void test_sweepOptions(void) {
   /* p-max off the step grid is the last row; --set and --chambers reach the model */
   remove("bend_opt.h5");
-  runResult r;
+  csCliResult r;
   run("--actuator fig1 --set r1=2.5 --set b=3 --chambers 4,1 --p-max 0.12 --p-step 0.05 "
       "--out=bend_opt.h5",
       &r);
@@ -161,13 +124,13 @@ static void expectFailure(const char* args, const char* want) {
   remove("bend_bad.h5");
   char full[1024];
   snprintf(full, sizeof full, "%s --out bend_bad.h5", args);
-  runResult r;
+  csCliResult r;
   run(full, &r);
   CS_EXPECT(r.status == 1);
   CS_EXPECT(r.out[0] == '\0');
-  CS_EXPECT(oneLine(r.err));
+  CS_EXPECT(cs_cliOneLine(r.err));
   CS_EXPECT(strstr(r.err, want) == r.err);
-  CS_EXPECT(!fileExists("bend_bad.h5"));
+  CS_EXPECT(!cs_cliFileExists("bend_bad.h5"));
   if (r.status != 1 || strstr(r.err, want) != r.err) {
     fprintf(stderr, "  args '%s': status %d, stderr: %s", args, r.status, r.err);
   }
@@ -195,9 +158,9 @@ static void test_badInput(void) {
   expectFailure("--set r1=3.6", "crawlsim bend: actuator: chamber breaks the outer wall");
   expectFailure("--set c=30", "crawlsim bend: actuator: c = 30 mm must be > 0 and < S1/2");
   /* the output path itself: the file cannot be created */
-  runResult r;
+  csCliResult r;
   run("--out no_such_dir/x.h5", &r);
-  CS_EXPECT(r.status == 1 && oneLine(r.err) && r.out[0] == '\0');
+  CS_EXPECT(r.status == 1 && cs_cliOneLine(r.err) && r.out[0] == '\0');
   CS_EXPECT(strstr(r.err, "crawlsim bend: no_such_dir/x.h5: cannot create HDF5 file") == r.err);
   run("--chambers", &r); /* a flag without its value */
   CS_EXPECT(r.status == 1 && strstr(r.err, "crawlsim bend: option --chambers needs a value"));
