@@ -54,7 +54,7 @@ csfBendOptions csf_bendDefault(void) {
   o.mesh_size = 4.0;
   o.fibre_size = 0.0;
   o.fibres = 1;
-  o.fibre_compression = 1; /* like the paper's tied B32 beams; tension-only chatters in Newton */
+  o.fibre_compression = 0; /* smoothed tension-only fibres (fem_model.c fibKernel) */
   o.work_stem = "crawlsim_fe";
   return o;
 }

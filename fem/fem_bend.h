@@ -51,8 +51,8 @@ typedef struct csfBendOptions_ {
   double mesh_size;    /* l_soft, mm */
   double fibre_size;   /* l_fibre, mm (0: 0.4 l_soft - 0.1, the paper's Table 1 pairing) */
   int fibres;          /* 1 = embed the double-helix fibres (n turns per segment) */
-  int fibre_compression; /* 1 (default) = fibres also carry compression, like the paper's tied
-                          * B32 beams; 0 = tension only (chatters in Newton, see README) */
+  int fibre_compression; /* 0 (default): smoothed tension-only fibres; 1: linear in tension and
+                          * compression (compressed fibres buckle in the matrix: Newton cycles) */
   double gravity[3];   /* mm/s^2 in the base frame, e.g. {0, 0, -9810}; zeros = off */
   const char* work_stem; /* path prefix for the .geo/.msh files (default "crawlsim_fe") */
   const char* vtu_path;  /* deformed mesh at the last state (ParaView .vtu), NULL = none */
@@ -64,7 +64,7 @@ typedef struct csfBendOptions_ {
 } csfBendOptions;
 
 /* Defaults: chambers Omega1 & Omega2 of all segments, p_max 0.4, p_step 0.05, until_angle off,
- * angle_tol 0.1 deg, mesh_size 4, fibres on (tension and compression), gravity off. */
+ * angle_tol 0.1 deg, mesh_size 4, fibres on (smoothed tension only), gravity off. */
 csfBendOptions csf_bendDefault(void);
 
 /* Parse a chamber list "1,2" (applied to every segment) into opts->chambers. */

@@ -640,7 +640,7 @@ static double tetQuality(const csfMesh* m, int t) {
 int csf_meshFixInverted(csfMesh* m) {
   /* 5 % of the straight element's Jacobian: below this the element is nearly folded and its
    * stiffness is badly conditioned */
-  const double qmin = getenv("CS_FEM_QMIN") ? atof(getenv("CS_FEM_QMIN")) : 0.05;
+  const double qmin = 0.05;
   int nfix = 0;
   for (int pass = 0; pass < 5; pass++) {
     int changed = 0;

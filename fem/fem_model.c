@@ -56,10 +56,12 @@ static const double kTriQ[6][3] = {
  * next iteration removes (measured on the tube: residual x120 after the full step, then quadratic
  * convergence), while an Armijo test cut every step to 1/16 and stalled. */
 #define CSF_LS_GROWTH_FIRST 1e4
-/* Green strain below which a tension-only fibre is slack in the tangent too (dimensionless);
- * 1e-3 is about 30 times the fibre strain at 0.4 MPa (Kevlar E = 31 GPa) */
-#define CSF_FIBRE_SLACK 1e-3
+/* half width delta of the smoothed tension-only law of the fibres (Green strain); the force at
+ * E = 0 is EA delta / 4 = 0.1 N for Kevlar, r = 0.0889 mm */
+#define CSF_FIBRE_SLACK 5e-4
 #define CSF_LS_GROWTH 2.0
+
+static void fibreLaw(const csfModel* m, double E, double* S, double* dS);
 
 static double wallTime(void) {
   struct timespec ts;
@@ -73,7 +75,7 @@ csfMaterial csf_materialDefault(double C10, double C20, double rho) {
   m.C10 = C10;
   m.C20 = C20;
   m.kappa = CSF_KAPPA_RATIO * 2.0 * C10;
-  m.kappa_pt = getenv("CS_FEM_KPT") ? atof(getenv("CS_FEM_KPT")) * 2.0 * C10 : 0.0;
+  m.kappa_pt = 0.0;
   m.rho = rho;
   m.form = CSF_FORM_MIXED_P0;
   return m;
@@ -191,7 +193,7 @@ csfModel* csf_modelCreate(const csfMesh* mesh, const csfMaterial* mat, csError* 
   m->mesh = mesh;
   m->mat = *mat;
   m->ndof = 3 * mesh->nnode;
-  m->fib_tension_only = 0; /* like the paper's tied beams; see csfBendOptions */
+  m->fib_tension_only = 1; /* smoothed tension-only law (fibKernel) */
   const size_t nt = (size_t)mesh->ntet;
   m->dNdX = malloc(nt * 120 * sizeof(double));
   m->wq = malloc(nt * 4 * sizeof(double));
@@ -437,14 +439,26 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
   d->vr0 = calloc(nt, sizeof(double));
   d->gel = calloc(nt * 30, sizeof(double));
   d->g0 = calloc(nt * 30, sizeof(double));
+  const size_t nfb = (size_t)(m->nfib > 0 ? m->nfib : 1);
+  d->fib_S = calloc(nfb, sizeof(double));
+  d->fib_E = calloc(nfb, sizeof(double));
+  d->fib_d = calloc(3 * nfb, sizeof(double));
+  d->fib_S_save = calloc(nfb, sizeof(double));
+  d->fib_E0 = calloc(nfb, sizeof(double));
+  d->fib_d0 = calloc(3 * nfb, sizeof(double));
   if (!d->u || !d->r || !d->du || !d->u_save || !d->kval || !d->theta || !d->pel ||
-      !d->vratio || !d->theta_save || !d->vr0 || !d->gel || !d->g0) {
+      !d->vratio || !d->theta_save || !d->vr0 || !d->gel || !d->g0 || !d->fib_S || !d->fib_E ||
+      !d->fib_d || !d->fib_S_save || !d->fib_E0 || !d->fib_d0) {
     csf_dataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "fem_model: out of memory (%zu dofs)", n);
     return NULL;
   }
   for (size_t e = 0; e < nt; e++) {
     d->theta[e] = d->vratio[e] = 1.0; /* reference state: p = 0 */
+  }
+  for (int f = 0; f < m->nfib; f++) {
+    double dS;
+    fibreLaw(m, 0.0, &d->fib_S[f], &dS); /* reference state: E = 0 */
   }
   d->ls = csf_linSolverCreate(m->solver, m->ndof, m->row_ptr, m->col, err);
   if (!d->ls) {
@@ -461,6 +475,8 @@ void csf_dataDestroy(csfData* d) {
   }
   free(d->u), free(d->r), free(d->du), free(d->u_save), free(d->kval), free(d->theta);
   free(d->pel), free(d->vratio), free(d->theta_save), free(d->vr0), free(d->gel), free(d->g0);
+  free(d->fib_S), free(d->fib_E), free(d->fib_d), free(d->fib_S_save), free(d->fib_E0);
+  free(d->fib_d0);
   csf_linSolverDestroy(d->ls);
   free(d);
 }
@@ -617,8 +633,26 @@ static inline int csrIndex(const csfModel* m, int i, int c, int k, int d) {
 
 
 /* fibre element f: residual (60) and tangent (3600); returns 0 */
-static void fibKernel(const csfModel* m, int f, const double* u, double rf[60], double* kf,
-                      int* active) {
+/* smoothed tension-only stress measure S(E) and S'(E) (see fibKernel) */
+static void fibreLaw(const csfModel* m, double E, double* S, double* dS) {
+  *S = E, *dS = 1.0;
+  if (m->fib_tension_only) {
+    const double dl = CSF_FIBRE_SLACK;
+    if (E <= -dl) {
+      *S = 0, *dS = 0;
+    } else if (E < dl) {
+      *S = (E + dl) * (E + dl) / (4.0 * dl);
+      *dS = (E + dl) / (2.0 * dl);
+    }
+  }
+}
+
+
+/* fibre element f: residual (60) with the actual stress S(E(u)); tangent (3600) with the state
+ * stress S_state in the geometric term (mixed treatment of the nearly inextensible fibre, as the
+ * three-field treatment of incompressibility); outputs E (Green strain) and d = x2 - x1 */
+static void fibKernel(const csfModel* m, int f, const double* u, double S_state, double rf[60],
+                      double* kf, int* active, double* E_out, double d_out[3]) {
   const int* fv = m->fib_node + 20 * f;
   const double* c = m->fib_coef + 20 * f;
   double dvec[3] = {0, 0, 0};
@@ -632,20 +666,27 @@ static void fibKernel(const csfModel* m, int f, const double* u, double rf[60], 
   const double E = 0.5 * ((dvec[0] * dvec[0] + dvec[1] * dvec[1] + dvec[2] * dvec[2]) /
                               (L0 * L0) -
                           1.0);
-  /* tension only: no force for E <= 0, but the axial stiffness is kept down to E = -slack so
-   * that a fibre at rest (E = 0, the reference state) resists the first Newton step; without it
-   * the linear step ignores the fibres and overstretches them (measured: residual x2500) */
-  *active = !(m->fib_tension_only && E <= -CSF_FIBRE_SLACK);
+  /* tension only, smoothed: stress measure S(E) = E above +delta, (E + delta)^2 / (4 delta) in
+   * |E| < delta, 0 below -delta (C1: no on/off chatter). The geometric term uses the state
+   * stress S_state updated by the linearised strain (csf_newtonSolve): with the actual S the
+   * first Newton step of a bending increment stretches every rotated fibre at second order
+   * (E ~ phi^2 / 2, force EA E ~ N), the residual explodes and Newton cycles (measured on the
+   * baseline actuator); a compression-carrying truss adds a negative geometric stiffness that
+   * lets the thin embedded fibre buckle element by element. */
+  double S, dS;
+  fibreLaw(m, E, &S, &dS);
+  *E_out = E;
+  d_out[0] = dvec[0], d_out[1] = dvec[1], d_out[2] = dvec[2];
+  *active = S != 0.0 || dS != 0.0 || S_state != 0.0;
   if (!*active) {
     return;
   }
-  const double Ef = (m->fib_tension_only && E < 0) ? 0.0 : E;
-  /* dW/dd = EA E d / L0; d2W/dd2 = EA / L0 (E I + d d^T / L0^2) */
+  /* dW/dd = EA S d / L0; tangent EA / L0 (S_state I + S'(E) d d^T / L0^2) */
   double fd[3], H[9];
   for (int i = 0; i < 3; i++) {
-    fd[i] = EA * Ef * dvec[i] / L0;
+    fd[i] = EA * S * dvec[i] / L0;
     for (int k = 0; k < 3; k++) {
-      H[3 * i + k] = EA / L0 * ((i == k ? Ef : 0.0) + dvec[i] * dvec[k] / (L0 * L0));
+      H[3 * i + k] = EA / L0 * ((i == k ? S_state : 0.0) + dS * dvec[i] * dvec[k] / (L0 * L0));
     }
   }
   for (int a = 0; a < 20; a++) {
@@ -757,7 +798,7 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
     double* kf = want_k ? malloc(3600 * sizeof(double)) : NULL;
     for (int f = 0; f < m->nfib; f++) {
       int active;
-      fibKernel(m, f, d->u, rf, kf, &active);
+      fibKernel(m, f, d->u, d->fib_S[f], rf, kf, &active, &d->fib_E[f], d->fib_d + 3 * (size_t)f);
       if (!active) {
         continue;
       }
@@ -909,6 +950,22 @@ csfNewtonOptions csf_newtonDefault(void) {
 /* theta_e = (v_e + alpha g_e . du_e) / V_e: the linearised volume constraint of the three-field
  * form (element pressure p_e = kappa (theta_e - 1) follows) */
 static void updateTheta(const csfModel* m, csfData* d, double alpha) {
+  /* fibres: E_lin = E0 + d0 . (alpha dd) / L0^2, S_state = S(E_lin) */
+  for (int f = 0; f < m->nfib; f++) {
+    const int* fv = m->fib_node + 20 * (size_t)f;
+    const double* c = m->fib_coef + 20 * (size_t)f;
+    double dd[3] = {0, 0, 0};
+    for (int a = 0; a < 20; a++) {
+      for (int i = 0; i < 3; i++) {
+        dd[i] += c[a] * d->du[3 * fv[a] + i];
+      }
+    }
+    const double* d0 = d->fib_d0 + 3 * (size_t)f;
+    const double L0 = m->fib_L0[f];
+    double El = d->fib_E0[f] + alpha * (d0[0] * dd[0] + d0[1] * dd[1] + d0[2] * dd[2]) / (L0 * L0);
+    double dS;
+    fibreLaw(m, El, &d->fib_S[f], &dS);
+  }
   if (m->mat.form != CSF_FORM_MIXED_P0) {
     return;
   }
@@ -929,6 +986,10 @@ static void updateTheta(const csfModel* m, csfData* d, double alpha) {
 
 void csf_dataSyncVolume(const csfModel* m, csfData* d) {
   csf_assemble(m, d, d->load, 0);
+  for (int f = 0; f < m->nfib; f++) {
+    double dS;
+    fibreLaw(m, d->fib_E[f], &d->fib_S[f], &dS);
+  }
   for (int e = 0; e < m->mesh->ntet; e++) {
     d->theta[e] = d->vratio[e];
     d->pel[e] = m->mat.kappa * (d->theta[e] - 1.0);
@@ -947,10 +1008,13 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
   memcpy(d->u_save, d->u, n * sizeof(double));
   const size_t nt = (size_t)m->mesh->ntet;
   memcpy(d->theta_save, d->theta, nt * sizeof(double));
+  const size_t nfb = (size_t)m->nfib;
+  memcpy(d->fib_S_save, d->fib_S, nfb * sizeof(double));
   int it = 0;
   if (csf_assemble(m, d, load, 1) != 0) {
     memcpy(d->u, d->u_save, n * sizeof(double));
     memcpy(d->theta, d->theta_save, nt * sizeof(double));
+    memcpy(d->fib_S, d->fib_S_save, nfb * sizeof(double));
     if (iters) {
       *iters = 0;
     }
@@ -958,10 +1022,6 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
                        load);
   }
   for (it = 1; it <= opt->max_iter; it++) {
-    if (getenv("CS_FEM_DEBUG")) {
-      fprintf(stderr, "DBG load %g it %d rnorm %.3e fnorm %.3e jmin %.3f\n", load, it, d->rnorm,
-              d->fnorm, d->jmin);
-    }
     if (d->rnorm <= fmax(opt->atol, opt->rtol * d->fnorm)) {
       break;
     }
@@ -976,6 +1036,7 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     if (fst != 0) {
       memcpy(d->u, d->u_save, n * sizeof(double));
     memcpy(d->theta, d->theta_save, nt * sizeof(double));
+    memcpy(d->fib_S, d->fib_S_save, nfb * sizeof(double));
       if (iters) {
         *iters = it;
       }
@@ -983,32 +1044,14 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
                          load, it);
     }
     t0 = wallTime();
-    if (getenv("CS_FEM_DEBUG")) {
-      memcpy(d->u_save + 0, d->u_save, 0);
-    }
-    double* bcopy = getenv("CS_FEM_DEBUG") ? malloc(n * sizeof(double)) : NULL;
-    if (bcopy) {
-      memcpy(bcopy, d->du, n * sizeof(double));
-    }
     csf_linSolverSolve(d->ls, d->du);
-    if (bcopy) {
-      double e2 = 0, b2 = 0;
-      for (int i = 0; i < m->ndof; i++) {
-        double s = 0;
-        for (int q = m->row_ptr[i]; q < m->row_ptr[i + 1]; q++) {
-          s += d->kval[q] * d->du[m->col[q]];
-        }
-        e2 += (s - bcopy[i]) * (s - bcopy[i]);
-        b2 += bcopy[i] * bcopy[i];
-      }
-      fprintf(stderr, "DBG linear residual %.3e / %.3e\n", sqrt(e2), sqrt(b2));
-      free(bcopy);
-    }
     d->stats.t_solve += wallTime() - t0;
     d->stats.n_newton++;
     /* base of the linearised dilatation update: v/V and g at the current iterate */
     memcpy(d->vr0, d->vratio, nt * sizeof(double));
     memcpy(d->g0, d->gel, nt * 30 * sizeof(double));
+    memcpy(d->fib_E0, d->fib_E, nfb * sizeof(double));
+    memcpy(d->fib_d0, d->fib_d, 3 * nfb * sizeof(double));
     /* backtracking line search on ||R|| */
     const double r0 = d->rnorm;
     double alpha = 1.0, moved = 0.0;
@@ -1020,13 +1063,6 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
       moved = alpha;
       updateTheta(m, d, alpha);
       int st = csf_assemble(m, d, load, 1);
-      if (getenv("CS_FEM_DEBUG")) {
-        double dn = 0;
-        for (size_t i = 0; i < n; i++) {
-          dn = fmax(dn, fabs(d->du[i]));
-        }
-        fprintf(stderr, "DBG   ls alpha %g st %d rnorm %.3e |du|max %.3e\n", alpha, st, d->rnorm, dn);
-      }
       if (st == 0 && d->rnorm < (it == 1 ? CSF_LS_GROWTH_FIRST : CSF_LS_GROWTH) * r0) {
         ok = 1;
         break;
@@ -1037,6 +1073,7 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     if (!ok) {
       memcpy(d->u, d->u_save, n * sizeof(double));
     memcpy(d->theta, d->theta_save, nt * sizeof(double));
+    memcpy(d->fib_S, d->fib_S_save, nfb * sizeof(double));
       if (iters) {
         *iters = it;
       }
@@ -1050,6 +1087,7 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
   if (d->rnorm > fmax(opt->atol, opt->rtol * d->fnorm)) {
     memcpy(d->u, d->u_save, n * sizeof(double));
     memcpy(d->theta, d->theta_save, nt * sizeof(double));
+    memcpy(d->fib_S, d->fib_S_save, nfb * sizeof(double));
     csf_assemble(m, d, d->load, 0);
     return cs_errorSet(err, CS_ERR_DIVERGED,
                        "fem: Newton did not converge at load %g in %d iterations (|R| %.3g N)",

@@ -64,7 +64,7 @@ typedef struct csfModel_ {
   double* fib_coef;    /* (nfib x 20) -N_a(end 1), +N_a(end 2): d = x2 - x1 = sum coef x */
   double* fib_L0;      /* (nfib) reference length, mm */
   double* fib_EA;      /* (nfib) axial stiffness E A, N */
-  int fib_tension_only; /* 1: fibres carry no compression; 0 (default): linear both ways */
+  int fib_tension_only; /* 1 (default): smoothed tension-only law; 0: linear both ways */
   csfSolverKind solver; /* sparse direct solver used by csf_dataCreate (default MUMPS) */
   /* sparse pattern (3x3 node blocks, scalar CSR), built by csf_modelFinalize */
   int finalized;
@@ -118,6 +118,10 @@ typedef struct csfData_ {
   double* theta_save; /* (ntet) scratch: theta at Newton entry */
   double* vr0;    /* (ntet) scratch: v/V at the current Newton iterate */
   double* g0;     /* (ntet x 30) scratch: g_e at the current Newton iterate */
+  double* fib_S;  /* (nfib) fibre stress state S (strain units, x EA = force) of the tangent */
+  double* fib_E;  /* (nfib) fibre Green strain at the last assembly */
+  double* fib_d;  /* (nfib x 3) fibre chord x2 - x1 at the last assembly, mm */
+  double* fib_S_save, *fib_E0, *fib_d0; /* scratch (Newton entry / current iterate) */
   double rnorm;   /* ||R|| on free dofs after the last assembly, N */
   double fnorm;   /* force scale for convergence: ||f_int|| over all dofs + ||f_ext||, N */
   double jmin;    /* smallest pointwise J at quadrature points after the last assembly */

@@ -54,8 +54,8 @@ int main(int argc, char** argv) {
       o.work_stem = argv[++i];
     } else if (!strcmp(argv[i], "--no-fibres")) {
       o.fibres = 0;
-    } else if (!strcmp(argv[i], "--tension-only")) {
-      o.fibre_compression = 0;
+    } else if (!strcmp(argv[i], "--fibre-compression")) {
+      o.fibre_compression = 1;
     }
   }
   csrBendCurve bc;
