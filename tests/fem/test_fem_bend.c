@@ -1,0 +1,77 @@
+/* test_fem_bend.c: end-to-end csf_bend on a short coarse actuator variant (S = 15 mm segments,
+ * 9 turns, l_soft = 5 mm): angles grow with pressure, the three equal segments bend alike,
+ * --until-angle is found by equilibrium solves to within the tolerance, and the VTU and
+ * ABAQUS/CalculiX files are written. Slow (~1 min): label slow. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cs_test.h"
+#include "fem_bend.h"
+
+static void test_bend_short(void) {
+  csError err = {0};
+  csrActuator act;
+  csr_actuatorPreset(&act, "baseline", &err);
+  const char* set[] = {"S1=15", "S2=15", "S3=15", "n1=9", "n2=9", "n3=9"};
+  for (int i = 0; i < 6; i++) {
+    CS_EXPECT(csr_actuatorSetString(&act, set[i], &err) == CS_OK);
+  }
+  csfBendOptions o = csf_bendDefault();
+  csfBendInfo info;
+  o.info = &info;
+  o.mesh_size = 5.0;
+  o.p_max = 0.1;
+  o.p_step = 0.05;
+  o.until_angle = 4.0; /* deg, reached near 0.06 MPa */
+  o.work_stem = "bend_short";
+  o.vtu_path = "bend_short.vtu";
+  o.inp_path = "bend_short.inp";
+  csrBendCurve bc;
+  csr_bendCurveInit(&bc, 8, &err);
+  csStatus st = csf_bend(&act, &o, &bc, &err);
+  if (st != CS_OK) {
+    fprintf(stderr, "%s\n", err.msg);
+  }
+  CS_EXPECT(st == CS_OK);
+  printf("  %d Tet10, %d fibre elements, %d steps, %ld Newton iterations, %.1f s (assembly %.1f, "
+         "factorisation %.1f)\n", info.ntet, info.nfibre, info.n_steps, info.n_newton,
+         info.t_total, info.t_assemble, info.t_factor);
+  for (size_t i = 0; i < bc.m; i++) {
+    printf("  p %.5f MPa: segments %.3f %.3f %.3f deg, total %.3f deg\n", bc.pressure[i],
+           bc.angle_deg[3 * i], bc.angle_deg[3 * i + 1], bc.angle_deg[3 * i + 2],
+           bc.angle_total[i]);
+  }
+  CS_EXPECT(bc.m >= 2);
+  if (bc.m >= 2) {
+    size_t k = bc.m - 1;
+    /* equal segments, equal pressure: measured spread 2 %; 10 % catches a wrong chamber tag */
+    CS_EXPECT_NEAR(bc.angle_deg[3 * k], bc.angle_deg[3 * k + 1], 0, 0.1);
+    CS_EXPECT_NEAR(bc.angle_deg[3 * k + 2], bc.angle_deg[3 * k + 1], 0, 0.1);
+    CS_EXPECT(bc.angle_total[k] > bc.angle_total[0]);
+  }
+  /* the until-angle pressure is an equilibrium whose angle is within angle_tol */
+  CS_EXPECT(isfinite(bc.p_until_angle));
+  if (isfinite(bc.p_until_angle)) {
+    CS_EXPECT_NEAR(bc.angle_total[bc.m - 1], o.until_angle, o.angle_tol, 0);
+    printf("  p_until_angle(%.1f deg) = %.5f MPa\n", o.until_angle, bc.p_until_angle);
+  }
+  FILE* f = fopen("bend_short.vtu", "r");
+  CS_EXPECT(f != NULL);
+  if (f) {
+    fclose(f);
+  }
+  f = fopen("bend_short.inp", "r");
+  CS_EXPECT(f != NULL);
+  if (f) {
+    fclose(f);
+  }
+  csr_bendCurveFree(&bc);
+}
+
+int main(int argc, char** argv) {
+  cs_testInit(argc, argv);
+  CS_RUN(test_bend_short);
+  return cs_testSummary();
+}
