@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
       o.vtu_path = argv[++i];
     } else if (!strcmp(argv[i], "--inp") && i + 1 < argc) {
       o.inp_path = argv[++i];
+    } else if (!strcmp(argv[i], "--fibre-size") && i + 1 < argc) {
+      o.fibre_size = atof(argv[++i]);
     } else if (!strcmp(argv[i], "--stem") && i + 1 < argc) {
       o.work_stem = argv[++i];
     } else if (!strcmp(argv[i], "--no-fibres")) {
