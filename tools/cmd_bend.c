@@ -20,6 +20,9 @@
 
 #include "core_h5.h"
 #include "cs_commands.h"
+#ifdef CS_HAVE_FEM
+#include "fem_bend.h"
+#endif
 #include "robot_actuator.h"
 #include "robot_analytic.h"
 #include "robot_bend_io.h"
@@ -81,6 +84,11 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
                                double* p_out, double* p_searched, csError* err);
 /* seconds on the C11 wall clock */
 static double wallSeconds(void);
+#ifdef CS_HAVE_FEM
+/* the full FE model (fem_bend.h): adaptive load stepping over the whole sweep; --until-angle is
+ * found by the load stepping itself */
+static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err);
+#endif
 
 
 static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
@@ -109,7 +117,7 @@ static BendPointFn bendModelEvaluator(BendModel m) {
   switch (m) {
     case BEND_ANALYTIC:
       return analyticPoint;
-    case BEND_FE:  /* full FE (fem/): wrap csf_... here */
+    case BEND_FE:  /* a whole sweep, not point-wise: feSweep() below */
     case BEND_ROD: /* Cosserat rod */
     case BEND_PRB: /* pseudo-rigid-body chain */
     case BEND_ROM: /* reduced FE */
@@ -340,12 +348,116 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
 }
 
 
+#ifdef CS_HAVE_FEM
+static void feProgress(void* user, const csfBendStep* st) {
+  (void)user;
+  fprintf(stderr, "  fe: p = %.4f MPa (dp %.4f), %d Newton iterations, %d cut-backs, %.2f s, "
+          "total %.2f deg\n", st->p, st->dp, st->newton_iters, st->cutbacks, st->wall,
+          st->angle_total);
+}
+
+
+static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
+  csfBendOptions o = csf_bendDefault();
+  csStatus st = csf_bendSetChambers(&o, run->chambers, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  o.p_max = run->p_max;
+  o.p_step = run->p_step;
+  o.until_angle = run->until_angle;
+  if (!isnan(run->mesh_size)) {
+    o.mesh_size = run->mesh_size;
+  }
+  /* deformed mesh and solver deck next to the HDF5 file: FILE.h5 -> FILE.vtu, FILE.inp */
+  char stem[512], vtu[520], inp[520];
+  snprintf(stem, sizeof stem, "%s", run->out);
+  char* dot = strrchr(stem, '.');
+  if (dot && !strchr(dot, '/')) {
+    *dot = '\0';
+  }
+  snprintf(vtu, sizeof vtu, "%s.vtu", stem);
+  snprintf(inp, sizeof inp, "%s.inp", stem);
+  o.work_stem = stem;
+  o.vtu_path = vtu;
+  o.inp_path = inp;
+  o.progress = feProgress;
+  csfBendInfo info;
+  o.info = &info;
+  st = csf_bend(&run->act, &o, bc, err);
+  if (st == CS_OK) {
+    run->mesh_size = o.mesh_size;
+    run->n_elements_soft = info.ntet;
+    run->n_elements_fibre = info.nfibre;
+    fprintf(stderr, "crawlsim bend: fe: %d tets, %d nodes, %d fibre elements, %d steps, %ld Newton "
+            "iterations; assembly %.1f s, factorisation %.1f s, solves %.1f s, total %.1f s; "
+            "deformed mesh %s, deck %s\n", info.ntet, info.nnode, info.nfibre, info.n_steps,
+            info.n_newton, info.t_assemble, info.t_factor, info.t_solve, info.t_total, vtu, inp);
+    if (!isnan(info.p_limit)) {
+      fprintf(stderr, "crawlsim bend: fe: limit point at %.4f MPa: the load stepping could not "
+              "go further\n", info.p_limit);
+    }
+  }
+  return st;
+}
+#endif
+
+
 int csx_cmdBend(int argc, char** argv) {
   BendRun run;
   int rc = parseArgs(argc, argv, &run);
   if (rc != 0) {
     return rc == 2 ? 0 : 1;
   }
+#ifdef CS_HAVE_FEM
+  if (run.model == BEND_FE) {
+    csError ferr;
+    cs_errorClear(&ferr);
+    csH5File* ff = cs_h5Create(run.out, &ferr);
+    csrBendCurve fbc;
+    memset(&fbc, 0, sizeof fbc);
+    double t0 = wallSeconds();
+    csStatus fst = ff ? csr_bendCurveInit(&fbc, 16, &ferr) : ferr.status;
+    if (fst == CS_OK) {
+      fst = feSweep(&run, &fbc, &ferr);
+    }
+    if (fst == CS_OK) {
+      csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,
+                          run.n_elements_soft,    run.n_elements_fibre, wallSeconds() - t0,
+                          run.until_angle};
+      fst = csr_bendCurveWriteH5(ff, &run.act, &fbc, &meta, &ferr);
+    }
+    cs_h5Close(ff);
+    if (fst != CS_OK) {
+      fprintf(stderr, "crawlsim bend: %s\n", ferr.msg);
+      if (ff) {
+        remove(run.out);
+      }
+      csr_bendCurveFree(&fbc);
+      return 1;
+    }
+    printf("crawlsim bend: model fe, actuator %s, chambers %s in II1-II3\n", run.act.name,
+           run.chambers);
+    printf("%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
+           "total(deg)");
+    for (size_t i = 0; i < fbc.m; i++) {
+      const double* a = &fbc.angle_deg[3 * i];
+      printf("%9.4f %9.3f %9.3f %9.3f %10.3f\n", fbc.pressure[i], a[0], a[1], a[2],
+             fbc.angle_total[i]);
+    }
+    if (!isnan(run.until_angle)) {
+      if (isnan(fbc.p_until_angle)) {
+        printf("until-angle: total angle %g deg not reached up to %g MPa\n", run.until_angle,
+               run.p_max);
+      } else {
+        printf("until-angle: total angle %g deg at p = %.6f MPa\n", run.until_angle,
+               fbc.p_until_angle);
+      }
+    }
+    csr_bendCurveFree(&fbc);
+    return 0;
+  }
+#endif
   BendPointFn eval = bendModelEvaluator(run.model);
   if (!eval) {
     fprintf(stderr, "crawlsim bend: model '%s' is not available yet\n", kModelNames[run.model]);
