@@ -502,9 +502,10 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
       double* uhi = w.u_conv;
       double a_found = tot, p_found = p;
       double ang_found[3] = {ang[0], ang[1], ang[2]}, tip_found[3] = {tip[0], tip[1], tip[2]};
+      int fails = 0;
       for (int it = 0; it < 40 && fabs(a_found - o->until_angle) > o->angle_tol; it++) {
         double f = (o->until_angle - alo) / (ahi - alo);
-        f = fmin(fmax(f, 0.1), 0.9);
+        f = fails ? 0.5 / (1 << fails) : fmin(fmax(f, 0.1), 0.9); /* bisect after a failure */
         double pm = lo + f * (hi - lo);
         for (size_t i = 0; i < nd; i++) {
           d->u[i] = ulo[i] + f * (uhi[i] - ulo[i]);
@@ -512,8 +513,12 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
         int itb;
         if (csf_newtonSolve(m, d, pm, &nopt, &itb, &lerr) != CS_OK) {
           info.n_newton += itb;
-          break;
+          if (++fails > 4) {
+            break;
+          }
+          continue;
         }
+        fails = 0;
         info.n_newton += itb;
         double am[3], tm, tpm[3], pr[4] = {ang_prev[0], ang_prev[1], ang_prev[2], alo};
         csf_bendMeasure(act, m, d, axis, pr, am, &tm, tpm);
