@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "core_math.h"
+#include "robot_analytic.h"
 #include "robot_leg.h"
 
 /* sign between our bend angle and ODE's universal-joint angle (see actuatePrb) */
@@ -74,18 +75,14 @@ csrLegParams csr_defaultLegParams(const csrActuator* act) {
 }
 
 
-/* second moment of area (mm^4) of the chambered section about a principal axis:
- * square of side 2a, minus four fillet spandrels (area (1-π/4) r2^2, centroid 0.2234 r2 from
- * the corner), minus four circles of radius r1 at distance b (parallel-axis theorem) */
+/* second moment of area (mm^4) of the chambered section about a principal axis: the analytic
+ * model's exact section quadrature (robot_analytic.h), so both levels share one section */
 double csr_legSectionI(const csrActuator* a) {
-  double side = 2 * a->a;
-  double I = side * side * side * side / 12.0;
-  double Ac = (1 - CS_PI / 4) * a->r2 * a->r2;
-  double dc = a->a - 0.2234 * a->r2;
-  I -= 4 * Ac * dc * dc;
-  double Acirc = CS_PI * a->r1 * a->r1;
-  I -= 4 * (Acirc * a->r1 * a->r1 / 4 + Acirc * a->b * a->b);
-  return I;
+  csrSectionProps sp;
+  if (csr_analyticSectionCompute(a, NULL, &sp, NULL) != CS_OK) {
+    return NAN; /* invalid actuator: createPrb validates it first */
+  }
+  return sp.I_holed;
 }
 
 
