@@ -106,12 +106,13 @@ typedef struct {
 } FaceRec;
 
 
-static int cmpFace(const void* pa, const void* pb) {
-  const FaceRec* a = pa;
-  const FaceRec* b = pb;
+/* order records whose first member is a sorted vertex triple int key[3] (FaceRec, TagRec) */
+static int cmpKey3(const void* pa, const void* pb) {
+  const int* a = pa;
+  const int* b = pb;
   for (int i = 0; i < 3; i++) {
-    if (a->key[i] != b->key[i]) {
-      return a->key[i] < b->key[i] ? -1 : 1;
+    if (a[i] != b[i]) {
+      return a[i] < b[i] ? -1 : 1;
     }
   }
   return 0;
@@ -152,12 +153,12 @@ static csStatus buildBoundaryFaces(csfMesh* m, csError* err) {
       r->lf = f;
     }
   }
-  qsort(rec, nf, sizeof *rec, cmpFace);
+  qsort(rec, nf, sizeof *rec, cmpKey3);
   /* count faces that occur once */
   int nb = 0;
   for (size_t i = 0; i < nf;) {
     size_t j = i + 1;
-    while (j < nf && cmpFace(rec + i, rec + j) == 0) {
+    while (j < nf && cmpKey3(rec + i, rec + j) == 0) {
       j++;
     }
     if (j - i == 1) {
@@ -176,7 +177,7 @@ static csStatus buildBoundaryFaces(csfMesh* m, csError* err) {
   int k = 0;
   for (size_t i = 0; i < nf;) {
     size_t j = i + 1;
-    while (j < nf && cmpFace(rec + i, rec + j) == 0) {
+    while (j < nf && cmpKey3(rec + i, rec + j) == 0) {
       j++;
     }
     if (j - i == 1) {
@@ -369,18 +370,6 @@ typedef struct {
   int key[3];
   int tag;
 } TagRec;
-
-
-static int cmpTag(const void* pa, const void* pb) {
-  const TagRec* a = pa;
-  const TagRec* b = pb;
-  for (int i = 0; i < 3; i++) {
-    if (a->key[i] != b->key[i]) {
-      return a->key[i] < b->key[i] ? -1 : 1;
-    }
-  }
-  return 0;
-}
 
 
 /* skip to a line starting with `tag`; returns 0 if found */
@@ -576,12 +565,12 @@ csfMesh* csf_meshReadMsh(const char* path, csError* err) {
     }
     sort3(tags[i].key);
   }
-  qsort(tags, (size_t)ntag, sizeof *tags, cmpTag);
+  qsort(tags, (size_t)ntag, sizeof *tags, cmpKey3);
   for (int fc = 0; fc < m->nface; fc++) {
     TagRec key;
     memcpy(key.key, m->face + 6 * fc, 3 * sizeof(int));
     sort3(key.key);
-    TagRec* hit = ntag ? bsearch(&key, tags, (size_t)ntag, sizeof *tags, cmpTag) : NULL;
+    TagRec* hit = ntag ? bsearch(&key, tags, (size_t)ntag, sizeof *tags, cmpKey3) : NULL;
     if (hit) {
       m->face_tag[fc] = hit->tag;
     }
