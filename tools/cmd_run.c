@@ -284,7 +284,7 @@ int csx_cmdRun(int argc, char** argv) {
   if (!d) goto done;
   if (!quiet) {
     fprintf(stderr, "crawlsim run: scene %s, gait %s, legs %s, friction %.3g, t_end %.3g s, "
-            "robot mass %.1f g\n", scene, gait, legs, m.contact.mu, m.opt.t_end,
+            "robot mass %.1f g\n", scene, gait, legs, m.contact.mu, cs_modelEndTime(&m),
             cs_robotMass(d) * 1e6);
     double load, pcr;
     cs_modelStanceCheck(&m, cs_robotMass(d), &load, &pcr);
