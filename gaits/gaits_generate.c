@@ -71,8 +71,11 @@ csgGait* csg_generateFlatRoad(const csgFlatRoadSpec* s, csError* err) {
       !(s->t_final_vent < s->period) || !(s->p_stroke > 0) ||
       (s->crouch && !(s->p_crouch_II2 > 0))) {
     cs_errorSet(err, CS_ERR_RANGE,
-                "flat-road gait: need 1..1000 strokes, 0 < t_land < t_final_vent < period, "
-                "p_stroke > 0 (and p_crouch_II2 > 0 with the crouch)");
+                "flat-road gait: need 1..1000 strokes (got %d), 0 < t_land (%g s) < "
+                "t_final_vent (%g s) < period (%g s), p_stroke > 0 (%g MPa) and, with the "
+                "crouch, p_crouch_II2 > 0 (%g MPa)",
+                s->nstroke, s->t_land, s->t_final_vent, s->period, s->p_stroke,
+                s->p_crouch_II2);
     return NULL;
   }
   csgGait* g = csg_gaitCreate(0, err);

@@ -65,6 +65,13 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
       return 1;
     }
   }
+  /* a stride count is a whole number; checked here, before the (int) conversion, which is
+   * undefined for values outside int's range */
+  if (nstroke != floor(nstroke) || nstroke > 1000) {
+    fprintf(stderr, "crawlsim gait flat-road: --strokes %g must be a whole number in 1..1000\n",
+            nstroke);
+    return 1;
+  }
   if (!out) {
     fprintf(stderr, "usage: crawlsim gait flat-road FILE.csv [--stroke MM] [--strokes N] "
                     "[--crouch] [--t-land S] [--calibration FILE] [--p-max MPA]\n");
