@@ -51,8 +51,12 @@ typedef struct csfBendOptions_ {
   double mesh_size;    /* l_soft, mm */
   double fibre_size;   /* l_fibre, mm (0: 0.4 l_soft - 0.1, the paper's Table 1 pairing) */
   int fibres;          /* 1 = embed the double-helix fibres (n turns per segment) */
-  int fibre_compression; /* 0 (default): smoothed tension-only fibres; 1: linear in tension and
-                          * compression (compressed fibres buckle in the matrix: Newton cycles) */
+  int fibre_compression; /* 1 (default): linear in tension and compression (Green strain, St.
+                          * Venant); 0: smoothed tension-only (Newton cycles on the baseline) */
+  int fibre_geo_tension; /* 1 (default): fibre geometric stiffness only in tension in the tangent
+                          * (csfModel.fib_geo_tension; the residual is unchanged) */
+  csfLineSearch line_search; /* Newton line search (default CSF_LS_RESIDUAL) */
+  void (*newton_monitor)(void* user, const csfNewtonIter* it); /* optional, per Newton iteration */
   double gravity[3];   /* mm/s^2 in the base frame, e.g. {0, 0, -9810}; zeros = off */
   const char* work_stem; /* path prefix for the .geo/.msh files (default "crawlsim_fe") */
   const char* vtu_path;  /* deformed mesh at the last state (ParaView .vtu), NULL = none */
@@ -64,7 +68,8 @@ typedef struct csfBendOptions_ {
 } csfBendOptions;
 
 /* Defaults: chambers Omega1 & Omega2 of all segments, p_max 0.4, p_step 0.05, until_angle off,
- * angle_tol 0.1 deg, mesh_size 4, fibres on (smoothed tension only), gravity off. */
+ * angle_tol 0.1 deg, mesh_size 4, fibres on (tension and compression, geometric stiffness
+ * in tension only), gravity off. */
 csfBendOptions csf_bendDefault(void);
 
 /* Parse a chamber list "1,2" (applied to every segment) into opts->chambers. */

@@ -743,19 +743,14 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
 }
 
 
-csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* stem,
-                          csError* err) {
-  char geo[1024], msh[1024], log[1024], cmd[4096];
-  if (strchr(stem, '\'')) {
+csfMesh* csf_meshGmsh(const char* geo, const char* stem, csError* err) {
+  char msh[1024], log[1024], cmd[4096];
+  if (strchr(stem, '\'') || strchr(geo, '\'')) {
     cs_errorSet(err, CS_ERR_ARG, "fem_mesh: mesh path '%s' must not contain quotes", stem);
     return NULL;
   }
-  snprintf(geo, sizeof geo, "%s.geo", stem);
   snprintf(msh, sizeof msh, "%s.msh", stem);
   snprintf(log, sizeof log, "%s.gmsh.log", stem);
-  if (csf_meshWriteGeo(act, l_soft, geo, err) != CS_OK) {
-    return NULL;
-  }
   const char* prog = getenv("CS_GMSH");
   if (!prog || !*prog) {
     prog = "gmsh";
@@ -775,4 +770,19 @@ csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* ste
     csf_meshFixInverted(m);
   }
   return m;
+}
+
+
+csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* stem,
+                          csError* err) {
+  char geo[1024];
+  if (strchr(stem, '\'')) {
+    cs_errorSet(err, CS_ERR_ARG, "fem_mesh: mesh path '%s' must not contain quotes", stem);
+    return NULL;
+  }
+  snprintf(geo, sizeof geo, "%s.geo", stem);
+  if (csf_meshWriteGeo(act, l_soft, geo, err) != CS_OK) {
+    return NULL;
+  }
+  return csf_meshGmsh(geo, stem, err);
 }

@@ -68,6 +68,11 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
 csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* stem,
                           csError* err);
 
+/* Run gmsh (`-3 -order 2 -format msh22`) on the script `geo`, writing `<stem>.msh` and
+ * `<stem>.gmsh.log`, read the mesh and straighten folded elements (csf_meshFixInverted). The
+ * program is taken from CS_GMSH as for csf_meshActuator. Returns NULL and fills err on failure. */
+csfMesh* csf_meshGmsh(const char* geo, const char* stem, csError* err);
+
 /* Straighten curved Tet10 elements whose isoparametric map is not valid (Jacobian <= 0 or below
  * 5 % of the straight element's at a vertex, edge node or quadrature point): their edge nodes move
  * to the chord midpoints. gmsh places edge nodes on the curved geometry, and coarse elements on

@@ -446,7 +446,10 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
   d->fib_S_save = calloc(nfb, sizeof(double));
   d->fib_E0 = calloc(nfb, sizeof(double));
   d->fib_d0 = calloc(3 * nfb, sizeof(double));
-  if (!d->u || !d->r || !d->du || !d->u_save || !d->kval || !d->theta || !d->pel ||
+  d->fib_zone = calloc(nfb, 1);
+  d->fext1 = calloc(n, sizeof(double));
+  d->du2 = calloc(n, sizeof(double));
+  if (!d->fib_zone || !d->fext1 || !d->du2 || !d->u || !d->r || !d->du || !d->u_save || !d->kval || !d->theta || !d->pel ||
       !d->vratio || !d->theta_save || !d->vr0 || !d->gel || !d->g0 || !d->fib_S || !d->fib_E ||
       !d->fib_d || !d->fib_S_save || !d->fib_E0 || !d->fib_d0) {
     csf_dataDestroy(d);
@@ -459,6 +462,7 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
   for (int f = 0; f < m->nfib; f++) {
     double dS;
     fibreLaw(m, 0.0, &d->fib_S[f], &dS); /* reference state: E = 0 */
+    d->fib_zone[f] = 1;
   }
   d->ls = csf_linSolverCreate(m->solver, m->ndof, m->row_ptr, m->col, err);
   if (!d->ls) {
@@ -476,7 +480,7 @@ void csf_dataDestroy(csfData* d) {
   free(d->u), free(d->r), free(d->du), free(d->u_save), free(d->kval), free(d->theta);
   free(d->pel), free(d->vratio), free(d->theta_save), free(d->vr0), free(d->gel), free(d->g0);
   free(d->fib_S), free(d->fib_E), free(d->fib_d), free(d->fib_S_save), free(d->fib_E0);
-  free(d->fib_d0);
+  free(d->fib_d0), free(d->fib_zone), free(d->fext1), free(d->du2);
   csf_linSolverDestroy(d->ls);
   free(d);
 }
@@ -683,10 +687,15 @@ static void fibKernel(const csfModel* m, int f, const double* u, double S_state,
   }
   /* dW/dd = EA S d / L0; tangent EA / L0 (S_state I + S'(E) d d^T / L0^2) */
   double fd[3], H[9];
+  /* optional: the compressive part of the geometric stiffness is left out of the tangent (the
+   * residual keeps it): an embedded truss in compression is held laterally by the matrix, which
+   * the truss element does not know of, so its -EA|S|/L0 lateral stiffness would only make K
+   * indefinite (modified Newton, same solution) */
+  const double Sg = m->fib_geo_tension ? fmax(S_state, 0.0) : S_state;
   for (int i = 0; i < 3; i++) {
     fd[i] = EA * S * dvec[i] / L0;
     for (int k = 0; k < 3; k++) {
-      H[3 * i + k] = EA / L0 * ((i == k ? S_state : 0.0) + dS * dvec[i] * dvec[k] / (L0 * L0));
+      H[3 * i + k] = EA / L0 * ((i == k ? Sg : 0.0) + dS * dvec[i] * dvec[k] / (L0 * L0));
     }
   }
   for (int a = 0; a < 20; a++) {
@@ -828,11 +837,15 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
   for (size_t i = 0; i < n; i++) {
     fint2 += d->r[i] * d->r[i];
   }
-  /* follower pressure on faces: R -= f_ext, f_a = -p int N_a (x_s x x_t) */
-  double fext2 = 0;
+  /* follower pressure on faces: R -= f_ext, f_a = -p int N_a (x_s x x_t); per unit load the
+   * same force is the gradient of the weighted chamber volume Vw = sum p1 1/3 int x . (-n) da
+   * (n = x_s x x_t points out of the body, into the chamber) */
+  double fext2 = 0, volw = 0;
+  memset(d->fext1, 0, n * sizeof(double));
   for (int f = 0; f < me->nface; f++) {
-    const double p = m->face_p[f] * load;
-    if (p == 0.0) {
+    const double p1 = m->face_p[f];
+    const double p = p1 * load;
+    if (p1 == 0.0) {
       continue;
     }
     const int* fn = me->face + 6 * f;
@@ -842,7 +855,7 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
         xf[a][i] = me->x[3 * fn[a] + i] + d->u[3 * fn[a] + i];
       }
     }
-    double fe[18] = {0}, kfe[18 * 18] = {0};
+    double fe[18] = {0}, fe1[18] = {0}, kfe[18 * 18] = {0};
     for (int q = 0; q < 6; q++) {
       double N[6], dN[12], xs[3] = {0, 0, 0}, xt[3] = {0, 0, 0}, nrm[3];
       tri6Shape(kTriQ[q][0], kTriQ[q][1], N, dN);
@@ -854,11 +867,15 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
         }
       }
       cross(xs, xt, nrm);
+      double xq[3] = {0, 0, 0};
       for (int a = 0; a < 6; a++) {
         for (int i = 0; i < 3; i++) {
           fe[3 * a + i] -= p * w * N[a] * nrm[i];
+          fe1[3 * a + i] -= p1 * w * N[a] * nrm[i];
+          xq[i] += N[a] * xf[a][i];
         }
       }
+      volw -= p1 * w * (xq[0] * nrm[0] + xq[1] * nrm[1] + xq[2] * nrm[2]) / 3.0;
       if (want_k) {
         /* d(f_a)/d(x_bk) = -p w N_a (dN_b,s e_k x x_t + dN_b,t x_s x e_k); K = -df/dx */
         for (int b = 0; b < 6; b++) {
@@ -882,6 +899,7 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
     for (int a = 0; a < 6; a++) {
       for (int i = 0; i < 3; i++) {
         d->r[3 * fn[a] + i] -= fe[3 * a + i];
+        d->fext1[3 * fn[a] + i] += fe1[3 * a + i];
         fext2 += fe[3 * a + i] * fe[3 * a + i];
       }
       if (want_k) {
@@ -926,6 +944,12 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
       r2 += d->r[i] * d->r[i];
     }
   }
+  for (size_t i = 0; i < n; i++) {
+    if (m->fixed[i]) {
+      d->fext1[i] = 0.0;
+    }
+  }
+  d->vol_w = volw;
   d->rnorm = sqrt(r2);
   d->fnorm = sqrt(fint2) + sqrt(fext2);
   d->jmin = jmin;
@@ -942,7 +966,11 @@ csfNewtonOptions csf_newtonDefault(void) {
   o.rtol = 1e-8;
   o.atol = 1e-10;
   o.max_ls = 6;
+  o.line_search = CSF_LS_RESIDUAL;
+  o.ls_eta = 0.5;
   o.threads = 0;
+  o.monitor = NULL;
+  o.monitor_user = NULL;
   return o;
 }
 
@@ -994,6 +1022,89 @@ void csf_dataSyncVolume(const csfModel* m, csfData* d) {
     d->theta[e] = d->vratio[e];
     d->pel[e] = m->mat.kappa * (d->theta[e] - 1.0);
   }
+}
+
+
+/* energy slope g = R . du over the free dofs at the last assembly (N mm) */
+static double slope(const csfModel* m, const csfData* d) {
+  double g = 0;
+  for (int i = 0; i < m->ndof; i++) {
+    if (!m->fixed[i]) {
+      g += d->r[i] * d->du[i];
+    }
+  }
+  return g;
+}
+
+
+/* Line search on the energy slope g(s) = R(u + s du) . du (Crisfield 1991, Sec. 9.3; FEBio's
+ * line search): with closed chambers the follower pressure is conservative, so g is the slope of
+ * the total potential along du, and the best step is its root. s = 1 is accepted when
+ * g(1) <= 0 (energy still falls: the step is not too long) or |g(1)| <= eta |g(0)|; otherwise the
+ * root is bracketed in (0, 1) and found by Illinois regula falsi until |g(s)| <= eta |g(0)|
+ * (eta = 0.5: a loose search, the Newton step does the rest). An inverted element halves s.
+ * Trial residuals are assembled without K; the accepted point is assembled with K. On entry d->r
+ * is the residual at u (s = 0) and d->du the Newton step; on success d->u = u + s du. Returns 1
+ * on success, 0 when no acceptable s was found (d->u is then left at some trial point). */
+static int energyLineSearch(const csfModel* m, csfData* d, double load,
+                            const csfNewtonOptions* opt, double* alpha_out, double* g0_out,
+                            double* g1_out, int* neval) {
+  const size_t n = (size_t)m->ndof;
+  const double g0 = slope(m, d);
+  *g0_out = g0;
+  double moved = 0.0, s = 1.0;
+  double sa = 0.0, ga = g0, sb = NAN, gb = NAN; /* bracket: g(sa) < 0 < g(sb) */
+  int side = 0, accepted = 0, last_ok = 0;
+  double g = NAN;
+  for (int k = 0; k <= opt->max_ls + 4; k++) {
+    for (size_t i = 0; i < n; i++) {
+      d->u[i] += (s - moved) * d->du[i];
+    }
+    moved = s;
+    updateTheta(m, d, s);
+    (*neval)++;
+    if (csf_assemble(m, d, load, 0) != 0) {
+      sb = s, gb = NAN; /* inverted: too long */
+      s = 0.5 * (sa + s);
+      last_ok = 0;
+      continue;
+    }
+    g = slope(m, d);
+    last_ok = 1;
+    if (!(g0 < 0.0)) {
+      /* not a descent direction of the potential (modified tangent): keep the Newton step */
+      accepted = 1;
+      break;
+    }
+    if ((s == 1.0 && g <= 0.0) || fabs(g) <= opt->ls_eta * fabs(g0)) {
+      accepted = 1;
+      break;
+    }
+    if (g < 0.0) {
+      sa = s, ga = g;
+      if (side == -1 && isfinite(gb)) {
+        gb *= 0.5; /* Illinois: the same end moved twice */
+      }
+      side = -1;
+    } else {
+      sb = s, gb = g;
+      if (side == 1) {
+        ga *= 0.5;
+      }
+      side = 1;
+    }
+    s = isfinite(gb) ? sa - ga * (sb - sa) / (gb - ga) : 0.5 * (sa + sb);
+    /* keep the trial inside the bracket, away from its ends */
+    const double w = sb - sa;
+    s = fmin(fmax(s, sa + 0.05 * w), sb - 0.05 * w);
+  }
+  if (!accepted && !last_ok) {
+    return 0;
+  }
+  /* budget spent on a valid point: take it, Newton continues from there */
+  *alpha_out = moved;
+  *g1_out = g;
+  return csf_assemble(m, d, load, 1) == 0;
 }
 
 
@@ -1052,33 +1163,59 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     memcpy(d->g0, d->gel, nt * 30 * sizeof(double));
     memcpy(d->fib_E0, d->fib_E, nfb * sizeof(double));
     memcpy(d->fib_d0, d->fib_d, 3 * nfb * sizeof(double));
-    /* backtracking line search on ||R|| */
-    const double r0 = d->rnorm;
-    double alpha = 1.0, moved = 0.0;
-    int ok = 0;
-    for (int ls = 0; ls <= opt->max_ls; ls++) {
-      for (size_t i = 0; i < n; i++) {
-        d->u[i] += (alpha - moved) * d->du[i];
-      }
-      moved = alpha;
-      updateTheta(m, d, alpha);
-      int st = csf_assemble(m, d, load, 1);
-      if (st == 0 && d->rnorm < (it == 1 ? CSF_LS_GROWTH_FIRST : CSF_LS_GROWTH) * r0) {
-        ok = 1;
+    /* line search */
+    double alpha = 1.0, g0 = 0.0, g1 = 0.0;
+    int ok = 0, neval = 0;
+    int moves_fixed = 0;
+    for (size_t i = 0; i < n; i++) {
+      if (m->fixed[i] && d->du[i] != 0.0) {
+        moves_fixed = 1;
         break;
       }
-
-      alpha *= 0.5;
+    }
+    if (opt->line_search == CSF_LS_ENERGY && !moves_fixed) {
+      ok = energyLineSearch(m, d, load, opt, &alpha, &g0, &g1, &neval);
+    } else {
+      /* backtracking on ||R|| */
+      const double r0 = d->rnorm;
+      double moved = 0.0;
+      for (int ls = 0; ls <= opt->max_ls; ls++) {
+        for (size_t i = 0; i < n; i++) {
+          d->u[i] += (alpha - moved) * d->du[i];
+        }
+        moved = alpha;
+        updateTheta(m, d, alpha);
+        int st = csf_assemble(m, d, load, 1);
+        neval++;
+        if (st == 0 && d->rnorm < (it == 1 ? CSF_LS_GROWTH_FIRST : CSF_LS_GROWTH) * r0) {
+          ok = 1;
+          break;
+        }
+        alpha *= 0.5;
+      }
     }
     if (!ok) {
       memcpy(d->u, d->u_save, n * sizeof(double));
-    memcpy(d->theta, d->theta_save, nt * sizeof(double));
-    memcpy(d->fib_S, d->fib_S_save, nfb * sizeof(double));
+      memcpy(d->theta, d->theta_save, nt * sizeof(double));
+      memcpy(d->fib_S, d->fib_S_save, nfb * sizeof(double));
       if (iters) {
         *iters = it;
       }
       return cs_errorSet(err, CS_ERR_DIVERGED, "fem: line search failed at load %g (iter %d)",
                          load, it);
+    }
+    /* fibre law zones: how many fibres changed zone in this step (diagnostics) */
+    csfNewtonIter rep = {load, it, alpha, neval, g0, g1, d->rnorm, d->fnorm, 0, 0, 0};
+    for (int f = 0; f < m->nfib; f++) {
+      const double E = d->fib_E[f];
+      const unsigned char z = E <= -CSF_FIBRE_SLACK ? 0 : (E < CSF_FIBRE_SLACK ? 1 : 2);
+      rep.fib_switch += z != d->fib_zone[f];
+      rep.fib_smooth += z == 1;
+      rep.fib_taut += z == 2;
+      d->fib_zone[f] = z;
+    }
+    if (opt->monitor) {
+      opt->monitor(opt->monitor_user, &rep);
     }
   }
   if (iters) {
@@ -1092,6 +1229,126 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     return cs_errorSet(err, CS_ERR_DIVERGED,
                        "fem: Newton did not converge at load %g in %d iterations (|R| %.3g N)",
                        load, opt->max_iter, d->rnorm);
+  }
+  return CS_OK;
+}
+
+
+/* restore the Newton entry state (u, dilatation and fibre states, load) */
+static void restoreEntry(const csfModel* m, csfData* d, double load0) {
+  memcpy(d->u, d->u_save, (size_t)m->ndof * sizeof(double));
+  memcpy(d->theta, d->theta_save, (size_t)m->mesh->ntet * sizeof(double));
+  memcpy(d->fib_S, d->fib_S_save, (size_t)m->nfib * sizeof(double));
+  csf_assemble(m, d, load0, 0);
+}
+
+
+csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
+                               const csfNewtonOptions* opt, int* iters, csError* err) {
+  const size_t n = (size_t)m->ndof, nt = (size_t)m->mesh->ntet, nfb = (size_t)m->nfib;
+#ifdef _OPENMP
+  if (opt->threads > 0) {
+    omp_set_num_threads(opt->threads);
+  }
+#endif
+  const double load0 = d->load;
+  memcpy(d->u_save, d->u, n * sizeof(double));
+  memcpy(d->theta_save, d->theta, nt * sizeof(double));
+  memcpy(d->fib_S_save, d->fib_S, nfb * sizeof(double));
+  double load = load0;
+  int it = 0;
+  if (iters) {
+    *iters = 0;
+  }
+  if (csf_assemble(m, d, load, 1) != 0) {
+    restoreEntry(m, d, load0);
+    return cs_errorSet(err, CS_ERR_DIVERGED, "fem: inverted element at the start of volume %g",
+                       vol_target);
+  }
+  const double vtol = opt->rtol * fabs(vol_target);
+  for (it = 1; it <= opt->max_iter; it++) {
+    const double c = d->vol_w - vol_target;
+    if (d->rnorm <= fmax(opt->atol, opt->rtol * d->fnorm) && fabs(c) <= vtol) {
+      break;
+    }
+    /* K x1 = -R (fixed dofs moved to their targets), K x2 = b = dVw/du */
+    for (size_t i = 0; i < n; i++) {
+      d->du[i] = m->fixed[i] ? load * m->u_fix[i] - d->u[i] : -d->r[i];
+      d->du2[i] = d->fext1[i];
+    }
+    double t0 = wallTime();
+    int fst = csf_linSolverFactor(d->ls, d->kval);
+    d->stats.t_factor += wallTime() - t0;
+    d->stats.n_factor++;
+    if (fst != 0) {
+      restoreEntry(m, d, load0);
+      if (iters) {
+        *iters = it;
+      }
+      return cs_errorSet(err, CS_ERR_DIVERGED, "fem: singular tangent at volume %g (iter %d)",
+                         vol_target, it);
+    }
+    t0 = wallTime();
+    csf_linSolverSolve(d->ls, d->du);
+    csf_linSolverSolve(d->ls, d->du2);
+    d->stats.t_solve += wallTime() - t0;
+    d->stats.n_newton++;
+    /* constraint b . du = -c with du = x1 + dload x2 */
+    double bx1 = 0, bx2 = 0;
+    for (size_t i = 0; i < n; i++) {
+      bx1 += d->fext1[i] * d->du[i];
+      bx2 += d->fext1[i] * d->du2[i];
+    }
+    if (!(fabs(bx2) > 0)) {
+      restoreEntry(m, d, load0);
+      return cs_errorSet(err, CS_ERR_DIVERGED, "fem: volume control: b.K^-1.b = 0 (iter %d)", it);
+    }
+    const double dload = -(c + bx1) / bx2;
+    for (size_t i = 0; i < n; i++) {
+      d->du[i] += dload * d->du2[i];
+    }
+    memcpy(d->vr0, d->vratio, nt * sizeof(double));
+    memcpy(d->g0, d->gel, nt * 30 * sizeof(double));
+    memcpy(d->fib_E0, d->fib_E, nfb * sizeof(double));
+    memcpy(d->fib_d0, d->fib_d, 3 * nfb * sizeof(double));
+    /* step, halved while an element inverts */
+    double alpha = 1.0, moved = 0.0;
+    int ok = 0;
+    for (int ls = 0; ls <= opt->max_ls; ls++) {
+      for (size_t i = 0; i < n; i++) {
+        d->u[i] += (alpha - moved) * d->du[i];
+      }
+      load += (alpha - moved) * dload;
+      moved = alpha;
+      updateTheta(m, d, alpha);
+      if (csf_assemble(m, d, load, 1) == 0) {
+        ok = 1;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (!ok) {
+      restoreEntry(m, d, load0);
+      if (iters) {
+        *iters = it;
+      }
+      return cs_errorSet(err, CS_ERR_DIVERGED, "fem: inverted elements at volume %g (iter %d)",
+                         vol_target, it);
+    }
+    if (opt->monitor) {
+      csfNewtonIter rep = {load, it, alpha, 1, 0, 0, d->rnorm, d->fnorm, 0, 0, 0};
+      opt->monitor(opt->monitor_user, &rep);
+    }
+  }
+  if (iters) {
+    *iters = it - 1;
+  }
+  if (d->rnorm > fmax(opt->atol, opt->rtol * d->fnorm) ||
+      fabs(d->vol_w - vol_target) > vtol) {
+    restoreEntry(m, d, load0);
+    return cs_errorSet(err, CS_ERR_DIVERGED,
+                       "fem: volume control did not converge at volume %g in %d iterations "
+                       "(|R| %.3g N)", vol_target, opt->max_iter, d->rnorm);
   }
   return CS_OK;
 }

@@ -65,6 +65,8 @@ typedef struct csfModel_ {
   double* fib_L0;      /* (nfib) reference length, mm */
   double* fib_EA;      /* (nfib) axial stiffness E A, N */
   int fib_tension_only; /* 1 (default): smoothed tension-only law; 0: linear both ways */
+  int fib_geo_tension;  /* 1: the tangent keeps the fibre's geometric stiffness only in tension,
+                         * EA/L0 max(S, 0) I (residual unchanged, exact); 0: EA/L0 S I */
   csfSolverKind solver; /* sparse direct solver used by csf_dataCreate (default MUMPS) */
   /* sparse pattern (3x3 node blocks, scalar CSR), built by csf_modelFinalize */
   int finalized;
@@ -122,6 +124,13 @@ typedef struct csfData_ {
   double* fib_E;  /* (nfib) fibre Green strain at the last assembly */
   double* fib_d;  /* (nfib x 3) fibre chord x2 - x1 at the last assembly, mm */
   double* fib_S_save, *fib_E0, *fib_d0; /* scratch (Newton entry / current iterate) */
+  double* fext1;  /* (ndof) pressure load per unit load factor at the last assembly, N: the
+                   * gradient dVw/du of the weighted chamber volume (0 on fixed dofs) */
+  double* du2;    /* (ndof) scratch: second solve of the volume-controlled Newton */
+  double vol_w;   /* weighted chamber volume sum_f face_p[f] V_f at the last assembly, MPa mm^3:
+                   * V_f = 1/3 int x . n_chamber da over the pressurised faces (closed chambers,
+                   * or open ones bounded by symmetry planes through the origin) */
+  unsigned char* fib_zone; /* (nfib) law zone at the last iterate: 0 slack, 1 smoothing, 2 taut */
   double rnorm;   /* ||R|| on free dofs after the last assembly, N */
   double fnorm;   /* force scale for convergence: ||f_int|| over all dofs + ||f_ext||, N */
   double jmin;    /* smallest pointwise J at quadrature points after the last assembly */
@@ -142,12 +151,38 @@ void csf_dataSyncVolume(const csfModel* m, csfData* d);
 int csf_assemble(const csfModel* m, csfData* d, double load, int want_k);
 
 /* Newton options (STYLE.md 17). */
+/* Line search of csf_newtonSolve. */
+typedef enum csfLineSearch_ {
+  CSF_LS_RESIDUAL = 0, /* backtracking on ||R|| (halving while ||R|| grows, see fem_model.c) */
+  CSF_LS_ENERGY = 1,   /* root of the energy slope g(s) = R(u + s du) . du on the free dofs
+                        * (conservative loads: closed chambers), Illinois regula falsi */
+} csfLineSearch;
+
+/* One Newton iteration, reported to csfNewtonOptions.monitor. */
+typedef struct csfNewtonIter_ {
+  double load;      /* load factor */
+  int iter;         /* 1-based iteration */
+  double alpha;     /* accepted step length */
+  int n_eval;       /* residual evaluations in the line search */
+  double g0, g1;    /* energy slope R.du at s = 0 and at the accepted s, N mm */
+  double rnorm;     /* ||R|| after the step, N */
+  double fnorm;     /* force scale, N */
+  int fib_switch;   /* fibres whose law zone (slack / smoothing / taut) changed in this step */
+  int fib_smooth;   /* fibres inside the smoothing zone |E| < delta after the step */
+  int fib_taut;     /* fibres with E >= delta after the step */
+} csfNewtonIter;
+
+/* Newton options (STYLE.md 17). */
 typedef struct csfNewtonOptions_ {
   int max_iter;   /* Newton iterations per load level */
   double rtol;    /* ||R|| <= rtol * fnorm (dimensionless) */
   double atol;    /* ... or ||R|| <= atol, N */
-  int max_ls;     /* line-search halvings */
+  int max_ls;     /* line-search halvings / regula falsi evaluations */
+  csfLineSearch line_search; /* default CSF_LS_RESIDUAL */
+  double ls_eta;  /* energy line search: accept s when |g(s)| <= ls_eta |g(0)| (dimensionless) */
   int threads;    /* OpenMP threads for assembly, 0 = library default */
+  void (*monitor)(void* user, const csfNewtonIter* it); /* optional, per iteration */
+  void* monitor_user;
 } csfNewtonOptions;
 
 csfNewtonOptions csf_newtonDefault(void);
@@ -158,6 +193,15 @@ csfNewtonOptions csf_newtonDefault(void);
  * NULL) receives the number of iterations. */
 csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNewtonOptions* opt,
                          int* iters, csError* err);
+
+/* Volume control (passes pressure limit points): solve R(u, load) = 0 together with
+ * d->vol_w(u) = vol_target, the load factor being an unknown (bordered Newton: two solves with
+ * one factorisation per iteration, Crisfield 1991 Sec. 9.4 with the chamber volume as the
+ * constraint). Starts from d->u and d->load; on success d->load holds the load factor. Converged
+ * when ||R|| <= rtol fnorm (or atol) and |vol_w - vol_target| <= rtol |vol_target|. On failure the
+ * state is restored and CS_ERR_DIVERGED returned. */
+csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
+                               const csfNewtonOptions* opt, int* iters, csError* err);
 
 /* Adaptive ramp of the load factor from d->load to load_end, starting with nstep equal steps;
  * a step that fails is halved (down to 1e-4 of the range), easy steps (<= 5 iterations) grow

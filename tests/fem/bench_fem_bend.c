@@ -1,5 +1,7 @@
 /* bench_fem_bend.c: benchmark command (not a ctest): one FE bend sweep with per-step timing.
  * Usage: bench_fem_bend [actuator] [l_soft] [p_max] [p_step] [until_angle|nan] [chambers] [--set N=V]...
+ *   [--vtu F] [--inp F] [--no-fibres] [--fibre-size MM] [--tension-only] [--full-geo] [--ls-energy]
+ *   [--trace] [--stem S]
  * Default: baseline, l_soft 4 mm, 0 -> 0.4 MPa in 0.05 MPa steps, chambers 1,2 (the issue's
  * benchmark). Prints time per load step and per Newton iteration, then the summary. */
 #include <math.h>
@@ -18,6 +20,16 @@ static void progress(void* user, const csfBendStep* s) {
          s->angle_deg[2], s->angle_total);
   fflush(stdout);
 }
+
+static void newtonMonitor(void* user, const csfNewtonIter* it) {
+  (void)user;
+  printf("  newton load %.5f it %2d  alpha %.3f (%d evals)  g0 %10.3e g1 %10.3e  |R| %9.3e  "
+         "fnorm %9.3e  fibres: %4d switched, %4d smoothing, %4d taut\n",
+         it->load, it->iter, it->alpha, it->n_eval, it->g0, it->g1, it->rnorm, it->fnorm,
+         it->fib_switch, it->fib_smooth, it->fib_taut);
+  fflush(stdout);
+}
+
 
 int main(int argc, char** argv) {
   csError err = {0};
@@ -58,6 +70,14 @@ int main(int argc, char** argv) {
       o.fibres = 0;
     } else if (!strcmp(argv[i], "--fibre-compression")) {
       o.fibre_compression = 1;
+    } else if (!strcmp(argv[i], "--tension-only")) {
+      o.fibre_compression = 0;
+    } else if (!strcmp(argv[i], "--full-geo")) {
+      o.fibre_geo_tension = 0;
+    } else if (!strcmp(argv[i], "--ls-energy")) {
+      o.line_search = CSF_LS_ENERGY;
+    } else if (!strcmp(argv[i], "--trace")) {
+      o.newton_monitor = newtonMonitor;
     }
   }
   csrBendCurve bc;
