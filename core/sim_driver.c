@@ -20,6 +20,7 @@
 #include <sundials/sundials_context.h>
 
 #include "core_math.h"
+#include "gaits_labels.h"
 #include "sim_model.h"
 
 _Static_assert(sizeof(dReal) == sizeof(double), "crawlsim needs ODE built in double precision");
@@ -96,12 +97,12 @@ csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
   if (!m->gait) {
     return err ? err->status : CS_ERR_PARSE;
   }
-  csr_provisionalMapDestroy(m->calibration);
-  m->calibration = csr_provisionalMapCreate(calibration_path, &m->robot.leg, err);
+  csr_calibrationClose(m->calibration);
+  m->calibration = csr_calibrationOpen(calibration_path, &m->robot.leg, err);
   if (!m->calibration) {
     return err ? err->status : CS_ERR_PARSE;
   }
-  m->robot.map = csr_provisionalMapGet(m->calibration);
+  m->robot.map = csr_calibrationMap(m->calibration);
   return CS_OK;
 }
 
@@ -136,7 +137,7 @@ void cs_modelDestroy(csModel* m) {
   if (m) {
     csg_gaitDestroy(m->gait);
     m->gait = NULL;
-    csr_provisionalMapDestroy(m->calibration);
+    csr_calibrationClose(m->calibration);
     m->calibration = NULL;
   }
 }
@@ -339,6 +340,17 @@ csStatus cs_step(const csModel* m, csData* d, csError* err) {
   }
   /* stage 3: actuation */
   int rc = csr_robotActuate(&m->robot, d->robot, d->p);
+  if (rc == CSR_MAP_OUT_OF_RANGE) {
+    int worst = 0;
+    for (int i = 1; i < CSR_NCHAMBER_TOTAL; i++) {
+      worst = d->p[i] > d->p[worst] ? i : worst;
+    }
+    char label[16] = "";
+    csg_labelName(worst + 1, label, sizeof label);
+    return cs_errorSet(err, CS_ERR_RANGE, "t = %.4f s: chamber %s at %.4f MPa is above the "
+                       "calibrated range (up to %g MPa) of %s", d->t, label, d->p[worst],
+                       m->robot.map.p_max, m->robot.map.name);
+  }
   if (rc != 0) {
     return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: leg actuation failed (code %d)", d->t,
                        rc);

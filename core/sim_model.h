@@ -58,7 +58,7 @@ typedef struct csModel_ {
   csgScheduleOptions sched;   /* ramp length, pressure scale */
   csrRobotModel robot;
   cscContactParams contact;
-  csrProvisionalMap* calibration; /* owned; robot.map points into it */
+  csrCalibration* calibration; /* owned; robot.map points into it */
   char scene[32];
   char gait_path[512];
   char leg_level[16];

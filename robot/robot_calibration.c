@@ -8,6 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <hdf5.h>
+#include <hdf5_hl.h>
+
+#include "core_math.h"
 #include "robot_analytic.h"
 
 struct csrProvisionalMap_ {
@@ -263,9 +267,281 @@ void csr_provisionalMapDestroy(csrProvisionalMap* pm) { free(pm); }
 
 
 csrBendMap csr_provisionalMapGet(const csrProvisionalMap* pm) {
-  csrBendMap m = {evalThunk, pm, pm->name};
+  csrBendMap m = {evalThunk, pm, pm->name, INFINITY};
   return m;
 }
 
 
 double csr_provisionalMapScale(const csrProvisionalMap* pm) { return pm->scale; }
+
+
+/* ---- FE calibration table (robot_calibration.h) ------------------------------------------- */
+
+struct csrFeCalibration_ {
+  csrActuator leg;
+  int m;         /* table rows */
+  double* p;     /* [m] MPa, p[0] = 0, increasing */
+  double* ratio; /* [m][3] θ_FE / θ_analytic,pair per segment; row 0 copies row 1 */
+  char name[320];
+};
+
+/* rows of a table: enough for any sweep a user runs (0.001 MPa steps to 1 MPa is 1001) */
+#define FE_TABLE_MAX_ROWS 100000
+/* actuator parameters of the file and of the leg must agree to round-off of their decimal
+ * writing (they are written as doubles: exact), so 1e-9 relative only absorbs a user's
+ * hand-edited value such as 0.11 vs 0.110000000001 */
+#define FE_TABLE_PARAM_RTOL 1e-9
+
+typedef struct {
+  hid_t file;
+  const char* path;
+  csError* err;
+  csStatus st;
+} ParamCheck;
+
+/* csr_actuatorVisit callback: the file's attribute `name` must equal the leg's `value` */
+static void checkParam(void* user, const char* name, double value) {
+  ParamCheck* c = user;
+  if (c->st != CS_OK) {
+    return;
+  }
+  double v = NAN;
+  if (H5Aexists(c->file, name) <= 0 || H5LTget_attribute_double(c->file, "/", name, &v) < 0) {
+    c->st = cs_errorSet(c->err, CS_ERR_PARSE, "%s: calibration table has no attribute '%s' (an "
+                        "actuator parameter)", c->path, name);
+  } else if (!(fabs(v - value) <= FE_TABLE_PARAM_RTOL * fabs(value))) {
+    c->st = cs_errorSet(c->err, CS_ERR_RANGE, "%s: calibrated for another actuator: %s = %g in "
+                        "the table, %g in the leg", c->path, name, v, value);
+  }
+}
+
+/* read a double dataset of rank `rank` with dims[0] rows (and dims[1] = `cols` if rank 2) */
+static double* readTable(hid_t f, const char* path, const char* dset, int rank, hsize_t cols,
+                         hsize_t* rows, csError* err) {
+  int r = -1;
+  hsize_t dims[2] = {0, 0};
+  H5T_class_t cls;
+  size_t size;
+  if (H5LTfind_dataset(f, dset + 1) <= 0 || H5LTget_dataset_ndims(f, dset, &r) < 0 ||
+      r != rank || H5LTget_dataset_info(f, dset, dims, &cls, &size) < 0 ||
+      cls != H5T_FLOAT || (rank == 2 && dims[1] != cols)) {
+    cs_errorSet(err, CS_ERR_PARSE, "%s: calibration table needs dataset %s of shape %s", path,
+                dset, rank == 1 ? "[M]" : "[M,3]");
+    return NULL;
+  }
+  if (dims[0] < 2 || dims[0] > FE_TABLE_MAX_ROWS) {
+    cs_errorSet(err, CS_ERR_RANGE, "%s: %s has %llu rows (need 2..%d)", path, dset,
+                (unsigned long long)dims[0], FE_TABLE_MAX_ROWS);
+    return NULL;
+  }
+  double* a = malloc((size_t)dims[0] * (rank == 2 ? (size_t)cols : 1) * sizeof(double));
+  if (!a || H5LTread_dataset_double(f, dset, a) < 0) {
+    free(a);
+    cs_errorSet(err, CS_ERR_IO, "%s: cannot read %s", path, dset);
+    return NULL;
+  }
+  *rows = dims[0];
+  return a;
+}
+
+
+csrFeCalibration* csr_feCalibrationCreate(const char* path, const csrActuator* leg,
+                                          csError* err) {
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* errors are reported here, not printed by HDF5 */
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) {
+    cs_errorSet(err, CS_ERR_IO, "%s: cannot open as an HDF5 calibration table", path);
+    return NULL;
+  }
+  csrFeCalibration* fc = calloc(1, sizeof *fc);
+  double* ang = NULL;
+  csStatus st = CS_OK;
+  hsize_t m = 0, m2 = 0;
+  char chambers[32] = "", model[32] = "";
+  if (!fc) {
+    st = cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+    goto done;
+  }
+  fc->leg = *leg;
+  /* the pair mode, Ω1&Ω2 in every segment */
+  H5T_class_t cls;
+  size_t size = 0;
+  hsize_t adims[1];
+  if (H5Aexists(f, "chambers") <= 0 ||
+      H5LTget_attribute_info(f, "/", "chambers", adims, &cls, &size) < 0 ||
+      cls != H5T_STRING || size >= sizeof chambers ||
+      H5LTget_attribute_string(f, "/", "chambers", chambers) < 0 ||
+      strcmp(chambers, "1,2") != 0) {
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s: calibration table must be a sweep of chambers "
+                     "1,2 (attribute 'chambers' = '%s')", path, chambers);
+    goto done;
+  }
+  if (H5Aexists(f, "model") > 0 &&
+      H5LTget_attribute_info(f, "/", "model", adims, &cls, &size) >= 0 && cls == H5T_STRING &&
+      size < sizeof model) {
+    H5LTget_attribute_string(f, "/", "model", model);
+  }
+  ParamCheck pc = {f, path, err, CS_OK};
+  csr_actuatorVisit(leg, checkParam, &pc);
+  if ((st = pc.st) != CS_OK) {
+    goto done;
+  }
+  fc->p = readTable(f, path, "/pressure", 1, 0, &m, err);
+  ang = fc->p ? readTable(f, path, "/angle_deg", 2, CSR_NSEG, &m2, err) : NULL;
+  if (!fc->p || !ang) {
+    st = err ? err->status : CS_ERR_PARSE;
+    goto done;
+  }
+  if (m2 != m) {
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s: /pressure has %llu rows, /angle_deg %llu", path,
+                     (unsigned long long)m, (unsigned long long)m2);
+    goto done;
+  }
+  fc->m = (int)m;
+  fc->ratio = malloc(m * CSR_NSEG * sizeof(double));
+  if (!fc->ratio) {
+    st = cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+    goto done;
+  }
+  if (fc->p[0] != 0) {
+    st = cs_errorSet(err, CS_ERR_RANGE, "%s: /pressure row 1 is %g MPa, the table must start "
+                     "at 0", path, fc->p[0]);
+    goto done;
+  }
+  for (int i = 1; i < fc->m && st == CS_OK; i++) {
+    if (!(fc->p[i] > fc->p[i - 1]) || !(fc->p[i] <= MAX_PRESSURE_MPA)) {
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s: /pressure row %d (%g MPa) must be above row %d "
+                       "and at most %g MPa", path, i + 1, fc->p[i], i, MAX_PRESSURE_MPA);
+      break;
+    }
+    double P[4] = {fc->p[i], fc->p[i], 0, 0}, bend[2], stretch;
+    for (int s = 0; s < CSR_NSEG && st == CS_OK; s++) {
+      double th = ang[CSR_NSEG * i + s] * CS_DEG;
+      if (!(th > 0) || !isfinite(th)) {
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s: /angle_deg row %d segment %d is %g deg: a "
+                         "pair-mode sweep bends every segment forward (> 0)", path, i + 1,
+                         s + 1, ang[CSR_NSEG * i + s]);
+      } else if (analyticBend(leg, s, P, bend, &stretch) != 0) {
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s: the analytic model has no solution at %g MPa "
+                         "(row %d)", path, fc->p[i], i + 1);
+      } else {
+        fc->ratio[CSR_NSEG * i + s] = th / hypot(bend[0], bend[1]);
+      }
+    }
+  }
+  if (st != CS_OK) {
+    goto done;
+  }
+  for (int s = 0; s < CSR_NSEG; s++) {
+    fc->ratio[s] = fc->ratio[CSR_NSEG + s];
+  }
+  snprintf(fc->name, sizeof fc->name,
+           "%s calibration table (chambers 1,2, 0..%g MPa, %d rows, analytic x %.3f..%.3f): %s",
+           model[0] ? model : "unknown-model", fc->p[fc->m - 1], fc->m, fc->ratio[0],
+           fc->ratio[CSR_NSEG * (fc->m - 1)], path);
+done:
+  free(ang);
+  H5Fclose(f);
+  if (st != CS_OK) {
+    csr_feCalibrationDestroy(fc);
+    return NULL;
+  }
+  return fc;
+}
+
+
+void csr_feCalibrationDestroy(csrFeCalibration* fc) {
+  if (fc) {
+    free(fc->p);
+    free(fc->ratio);
+    free(fc);
+  }
+}
+
+
+int csr_feCalibrationEval(const csrFeCalibration* fc, int seg, const double p[4],
+                          double bend[2], double* stretch) {
+  double pm = fmax(fmax(p[0], p[1]), fmax(p[2], p[3]));
+  if (pm > fc->p[fc->m - 1]) {
+    return CSR_MAP_OUT_OF_RANGE;
+  }
+  int rc = analyticBend(&fc->leg, seg, p, bend, stretch);
+  /* row interval by bisection: p[lo] <= pm < p[hi] */
+  int lo = 0, hi = fc->m - 1;
+  while (hi - lo > 1) {
+    int mid = (lo + hi) / 2;
+    (fc->p[mid] <= pm ? (lo = mid) : (hi = mid));
+  }
+  double w = (pm - fc->p[lo]) / (fc->p[hi] - fc->p[lo]);
+  double r = (1 - w) * fc->ratio[CSR_NSEG * lo + seg] + w * fc->ratio[CSR_NSEG * hi + seg];
+  bend[0] *= r;
+  bend[1] *= r;
+  return rc;
+}
+
+
+static int feEvalThunk(const void* ctx, int seg, const double p[4], double bend[2],
+                       double* stretch) {
+  return csr_feCalibrationEval(ctx, seg, p, bend, stretch);
+}
+
+
+csrBendMap csr_feCalibrationGet(const csrFeCalibration* fc) {
+  csrBendMap m = {feEvalThunk, fc, fc->name, fc->p[fc->m - 1]};
+  return m;
+}
+
+
+/* ---- either kind ---------------------------------------------------------------------------- */
+
+struct csrCalibration_ {
+  csrProvisionalMap* provisional; /* exactly one of the two is set */
+  csrFeCalibration* fe;
+};
+
+
+/* the 8-byte HDF5 signature at offset 0 (files written by this project have no user block) */
+static int isHdf5(const char* path) {
+  static const unsigned char sig[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  unsigned char head[8];
+  FILE* fp = fopen(path, "rb");
+  if (!fp) {
+    return 0;
+  }
+  size_t n = fread(head, 1, sizeof head, fp);
+  fclose(fp);
+  return n == sizeof head && memcmp(head, sig, sizeof sig) == 0;
+}
+
+
+csrCalibration* csr_calibrationOpen(const char* path, const csrActuator* leg, csError* err) {
+  csrCalibration* c = calloc(1, sizeof *c);
+  if (!c) {
+    cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+    return NULL;
+  }
+  if (isHdf5(path)) {
+    c->fe = csr_feCalibrationCreate(path, leg, err);
+  } else {
+    c->provisional = csr_provisionalMapCreate(path, leg, err);
+  }
+  if (!c->fe && !c->provisional) {
+    free(c);
+    return NULL;
+  }
+  return c;
+}
+
+
+void csr_calibrationClose(csrCalibration* c) {
+  if (c) {
+    csr_feCalibrationDestroy(c->fe);
+    csr_provisionalMapDestroy(c->provisional);
+    free(c);
+  }
+}
+
+
+csrBendMap csr_calibrationMap(const csrCalibration* c) {
+  return c->fe ? csr_feCalibrationGet(c->fe) : csr_provisionalMapGet(c->provisional);
+}

@@ -42,6 +42,36 @@ double csr_provisionalMapScale(const csrProvisionalMap* pm);
 int csr_provisionalMapEval(const csrProvisionalMap* pm, int seg, const double p[4],
                            double bend[2], double* stretch);
 
+/* ---- FE calibration table ------------------------------------------------------------------
+ * An HDF5 file in the `crawlsim bend` layout (robot_bend_io.h), written by `crawlsim calibrate`
+ * (or `crawlsim bend --model fe --actuator leg --chambers 1,2`): the pair mode Ω1&Ω2 of every
+ * segment swept in pressure, /pressure [M] (MPa, 0 first, increasing) and /angle_deg [M,3].
+ * The map keeps the analytic model's dependence on which chambers are inflated (direction and
+ * chamber combinations) and takes the magnitude from the table: for a segment whose largest
+ * chamber pressure is p, bend = analytic bend x r_s(p), r_s(p) = θ_FE,s(p) / θ_analytic,pair(p),
+ * interpolated linearly in p between the table's rows (r_s(p) = r_s(p_1) below the first
+ * non-zero row). The pair mode is exact for the flat-road gait (Ω1&Ω2 and, by symmetry,
+ * Ω3&Ω4); other chamber sets assume the same ratio at the same pressure (not yet calibrated).
+ * Stretch is the analytic model's. The file's actuator parameters must equal the leg's: a table
+ * of another actuator is refused. Pressures above the table's last row are outside the
+ * calibration: csrBendMap.p_max says where it ends and eval returns CSR_MAP_OUT_OF_RANGE. */
+typedef struct csrFeCalibration_ csrFeCalibration;
+
+csrFeCalibration* csr_feCalibrationCreate(const char* path, const csrActuator* leg,
+                                          csError* err);
+void csr_feCalibrationDestroy(csrFeCalibration* fc);
+csrBendMap csr_feCalibrationGet(const csrFeCalibration* fc);
+int csr_feCalibrationEval(const csrFeCalibration* fc, int seg, const double p[4],
+                          double bend[2], double* stretch);
+
+/* ---- either kind, by file type -------------------------------------------------------------
+ * An HDF5 file (by its signature) is an FE table, anything else the provisional text file. */
+typedef struct csrCalibration_ csrCalibration;
+
+csrCalibration* csr_calibrationOpen(const char* path, const csrActuator* leg, csError* err);
+void csr_calibrationClose(csrCalibration* c);
+csrBendMap csr_calibrationMap(const csrCalibration* c);
+
 #ifdef __cplusplus
 }
 #endif

@@ -62,6 +62,9 @@ csStatus csr_designFlatRoad(const csrActuator* act, const csrBendMap* map, doubl
   if (!(stroke > 0) || !(p_max > 0)) {
     return cs_errorSet(err, CS_ERR_RANGE, "stroke and p_max must be > 0");
   }
+  /* search no higher than the calibration reaches: the map refuses to extrapolate */
+  const char* capped = p_max > map->p_max ? " (the calibration's range)" : "";
+  p_max = fmin(p_max, map->p_max);
   double P[CSR_NSEG * CSR_NCHAMBER], foot[3], foot0[3];
   memset(P, 0, sizeof P);
   csStatus st = csr_footFromPressures(act, map, P, foot0, err);
@@ -70,8 +73,8 @@ csStatus csr_designFlatRoad(const csrActuator* act, const csrBendMap* map, doubl
   if ((st = csr_footFromPressures(act, map, P, foot, err)) != CS_OK) return st;
   if (foot[0] - foot0[0] < stroke) {
     return cs_errorSet(err, CS_ERR_RANGE,
-                       "a %.1f mm stroke needs more than %.3g MPa (reaches %.1f mm)", stroke,
-                       p_max, foot[0] - foot0[0]);
+                       "a %.1f mm stroke needs more than %.3g MPa%s (reaches %.1f mm)", stroke,
+                       p_max, capped, foot[0] - foot0[0]);
   }
   /* stroke: bisection on p */
   double lo = 0, hi = p_max;
@@ -92,7 +95,8 @@ csStatus csr_designFlatRoad(const csrActuator* act, const csrBendMap* map, doubl
   double target = 2 * segmentAngle(map, 1, P + 4);
   double Q[CSR_NCHAMBER] = {p_max, p_max, 0, 0};
   if (!(segmentAngle(map, 1, Q) >= target)) {
-    return cs_errorSet(err, CS_ERR_RANGE, "the crouch needs more than %.3g MPa in II2", p_max);
+    return cs_errorSet(err, CS_ERR_RANGE, "the crouch needs more than %.3g MPa%s in II2", p_max,
+                       capped);
   }
   lo = out->p_stroke;
   hi = p_max;

@@ -32,7 +32,11 @@ typedef struct csrBendMap_ {
   csrBendMapFn eval;
   const void* ctx;   /* owned by whoever built the map; must outlive the legs */
   const char* name;  /* e.g. "analytic x scale (provisional)" */
+  double p_max;      /* MPa: highest chamber pressure the map is calibrated for (INFINITY: any) */
 } csrBendMap;
+
+/* eval's return for a pressure above csrBendMap.p_max (fatal: the run must not extrapolate) */
+#define CSR_MAP_OUT_OF_RANGE (-2)
 
 /* Parameters of the dynamic leg levels (model side; defaults in robot_prb.c). */
 typedef struct csrLegParams_ {

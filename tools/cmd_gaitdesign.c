@@ -83,13 +83,13 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
   cs_errorClear(&err);
   int rc = 1;
   csrActuator leg;
-  csrProvisionalMap* pm = NULL;
+  csrCalibration* cal = NULL;
   csgGait* g = NULL;
   csrFlatRoadDesign des;
   if (csr_actuatorPreset(&leg, "leg", &err) != CS_OK) goto done;
-  pm = csr_provisionalMapCreate(calib, &leg, &err);
-  if (!pm) goto done;
-  csrBendMap map = csr_provisionalMapGet(pm);
+  cal = csr_calibrationOpen(calib, &leg, &err);
+  if (!cal) goto done;
+  csrBendMap map = csr_calibrationMap(cal);
   if (csr_designFlatRoad(&leg, &map, stroke, p_max, &des, &err) != CS_OK) goto done;
   csgFlatRoadSpec spec = csg_defaultFlatRoadSpec();
   spec.nstroke = (int)nstroke;
@@ -127,6 +127,6 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
 done:
   if (rc) fprintf(stderr, "crawlsim gait flat-road: %s\n", err.msg);
   csg_gaitDestroy(g);
-  csr_provisionalMapDestroy(pm);
+  csr_calibrationClose(cal);
   return rc;
 }

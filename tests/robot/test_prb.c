@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core_math.h"
 #include "cs_test.h"
 #include "robot_analytic.h"
 #include "robot_calibration.h"
@@ -253,7 +254,7 @@ static double prbFirstFrequencyError(int links_per_segment) {
     prev = x;
   }
   CS_EXPECT(ncross >= 6);
-  double omega = 2 * M_PI / (2 * (last - first) / (ncross - 1)); /* two crossings per period */
+  double omega = 2 * CS_PI / (2 * (last - first) / (ncross - 1)); /* two crossings per period */
   double L = csr_actuatorLength(&r.act);
   double mu = csr_leg_prb.mass(r.leg) / L;
   double EI = par.E_bend * csr_legSectionI(&r.act);
