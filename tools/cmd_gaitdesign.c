@@ -78,7 +78,7 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
     return 1;
   }
   char buf[512];
-  if (!calib) calib = csx_dataPath("robot/calibration_provisional.txt", buf, sizeof buf);
+  if (!calib) calib = csx_dataPath(CSX_DEFAULT_CALIBRATION, buf, sizeof buf);
   csError err;
   cs_errorClear(&err);
   int rc = 1;

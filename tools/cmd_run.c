@@ -194,7 +194,7 @@ int csx_cmdRun(int argc, char** argv) {
                 legs);
     goto done;
   }
-  if (!calib) calib = csx_dataPath("robot/calibration_provisional.txt", calib_buf, sizeof calib_buf);
+  if (!calib) calib = csx_dataPath(CSX_DEFAULT_CALIBRATION, calib_buf, sizeof calib_buf);
 
   /* numbers: check each against its flag's range before anything is loaded or built */
   if (!isnan(friction) && !(friction >= 0)) {

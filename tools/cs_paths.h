@@ -11,6 +11,11 @@
 #define CS_SOURCE_DIR "."
 #endif
 
+/* The legs' default calibration: the FE table of the `leg` actuator (pair mode, 0..0.3 MPa,
+ * l_soft 4 mm), regenerable with `crawlsim calibrate --out robot/calibration_fe_leg.h5`
+ * (README, "Calibration"). The provisional text reference stays available with --calibration. */
+#define CSX_DEFAULT_CALIBRATION "robot/calibration_fe_leg.h5"
+
 static inline const char* csx_dataPath(const char* rel, char* buf, size_t size) {
   const char* dir = getenv("CRAWLSIM_DATA_DIR");
   snprintf(buf, size, "%s/%s", dir && dir[0] ? dir : CS_SOURCE_DIR, rel);
