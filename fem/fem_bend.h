@@ -53,8 +53,8 @@ typedef struct csfBendOptions_ {
   int fibres;          /* 1 = embed the double-helix fibres (n turns per segment) */
   int fibre_compression; /* 1 (default): linear in tension and compression (Green strain, St.
                           * Venant); 0: smoothed tension-only (Newton cycles on the baseline) */
-  int fibre_geo_tension; /* 1 (default): fibre geometric stiffness only in tension in the tangent
-                          * (csfModel.fib_geo_tension; the residual is unchanged) */
+  int fibre_geo_tension; /* 0 (default): consistent fibre tangent; 1: geometric stiffness only
+                          * in tension (csfModel.fib_geo_tension; the residual is unchanged) */
   csfLineSearch line_search; /* Newton line search (default CSF_LS_RESIDUAL) */
   void (*newton_monitor)(void* user, const csfNewtonIter* it); /* optional, per Newton iteration */
   double gravity[3];   /* mm/s^2 in the base frame, e.g. {0, 0, -9810}; zeros = off */
@@ -68,8 +68,8 @@ typedef struct csfBendOptions_ {
 } csfBendOptions;
 
 /* Defaults: chambers Omega1 & Omega2 of all segments, p_max 0.4, p_step 0.05, until_angle off,
- * angle_tol 0.1 deg, mesh_size 4, fibres on (tension and compression, geometric stiffness
- * in tension only), gravity off. */
+ * angle_tol 0.1 deg, mesh_size 4, fibres on (tension and compression, consistent tangent),
+ * gravity off. */
 csfBendOptions csf_bendDefault(void);
 
 /* Parse a chamber list "1,2" (applied to every segment) into opts->chambers. */

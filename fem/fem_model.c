@@ -449,8 +449,8 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
   d->fib_zone = calloc(nfb, 1);
   d->fext1 = calloc(n, sizeof(double));
   d->du2 = calloc(n, sizeof(double));
-  if (!d->fib_zone || !d->fext1 || !d->du2 || !d->u || !d->r || !d->du || !d->u_save || !d->kval || !d->theta || !d->pel ||
-      !d->vratio || !d->theta_save || !d->vr0 || !d->gel || !d->g0 || !d->fib_S || !d->fib_E ||
+  if (!d->fib_zone || !d->fext1 || !d->du2 || !d->u || !d->r || !d->du || !d->u_save ||
+      !d->kval || !d->theta || !d->pel || !d->vratio || !d->theta_save || !d->vr0 || !d->gel || !d->g0 || !d->fib_S || !d->fib_E ||
       !d->fib_d || !d->fib_S_save || !d->fib_E0 || !d->fib_d0) {
     csf_dataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "fem_model: out of memory (%zu dofs)", n);

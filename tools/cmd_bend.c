@@ -446,7 +446,13 @@ int csx_cmdBend(int argc, char** argv) {
              fbc.angle_total[i]);
     }
     if (!isnan(run.until_angle)) {
-      if (isnan(fbc.p_until_angle)) {
+      if (isnan(fbc.p_until_angle) && fbc.m > 0 &&
+          fbc.angle_total[fbc.m - 1] >= run.until_angle) {
+        /* bracketed by converged states, but the refinement did not reach the angle tolerance */
+        printf("until-angle: total angle %g deg passed (%.3f deg at %.6f MPa) but not refined to "
+               "the angle tolerance: no pressure reported\n",
+               run.until_angle, fbc.angle_total[fbc.m - 1], fbc.pressure[fbc.m - 1]);
+      } else if (isnan(fbc.p_until_angle)) {
         printf("until-angle: total angle %g deg not reached up to %g MPa\n", run.until_angle,
                run.p_max);
       } else {

@@ -1,7 +1,7 @@
 /* bench_fem_bend.c: benchmark command (not a ctest): one FE bend sweep with per-step timing.
- * Usage: bench_fem_bend [actuator] [l_soft] [p_max] [p_step] [until_angle|nan] [chambers] [--set N=V]...
- *   [--vtu F] [--inp F] [--no-fibres] [--fibre-size MM] [--tension-only] [--full-geo] [--ls-energy]
- *   [--trace] [--stem S]
+ * Usage: bench_fem_bend [actuator] [l_soft] [p_max] [p_step] [until_angle|nan] [chambers]
+ *   [--set N=V]... [--vtu F] [--inp F] [--no-fibres] [--fibre-size MM] [--tension-only]
+ *   [--geo-tension] [--ls-energy] [--trace] [--stem S]
  * Default: baseline, l_soft 4 mm, 0 -> 0.4 MPa in 0.05 MPa steps, chambers 1,2 (the issue's
  * benchmark). Prints time per load step and per Newton iteration, then the summary. */
 #include <math.h>
@@ -72,8 +72,8 @@ int main(int argc, char** argv) {
       o.fibre_compression = 1;
     } else if (!strcmp(argv[i], "--tension-only")) {
       o.fibre_compression = 0;
-    } else if (!strcmp(argv[i], "--full-geo")) {
-      o.fibre_geo_tension = 0;
+    } else if (!strcmp(argv[i], "--geo-tension")) {
+      o.fibre_geo_tension = 1;
     } else if (!strcmp(argv[i], "--ls-energy")) {
       o.line_search = CSF_LS_ENERGY;
     } else if (!strcmp(argv[i], "--trace")) {

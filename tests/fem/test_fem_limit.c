@@ -172,7 +172,8 @@ static void test_sphere_limit_point(void) {
       return;
     }
     printf("  mesh size %.1f mm (%d Tet10): limit %.6f MPa at bore stretch %.4f (semi-analytic "
-           "%.6f MPa at %.4f: %+.3f %%); pressure control stops at %.3f MPa\n",
+           "%.6f MPa at %.4f: %+.3f %%); pressure control (0.005 MPa steps) stops at %.3f MPa "
+           "(NaN: not run)\n",
            h[k], r[k].ntet, r[k].p_max, r[k].la_max, p_ref, la_ref,
            100.0 * (r[k].p_max / p_ref - 1.0), r[k].p_pc);
   }

@@ -1,0 +1,111 @@
+#!/usr/bin/python3
+"""FE mesh study (paper Table 1): error of the total bending angle against wall time.
+
+Reads the logs of `bench_fem_bend` runs (one per mesh size, same actuator, chambers and pressure
+steps), takes the finest mesh (most Tet10) as the reference, and prints a Markdown table
+(l_soft, Tet10, nodes, fibre elements, wall time, angle and relative error at each study
+pressure) and draws relative error against wall time to a PNG.
+
+Usage:
+  /usr/bin/python3 tools/plot_fem_mesh_study.py LOG... [--pressures 0.05,0.1,0.2]
+      [--out docs/fem_mesh_study.png]
+Run e.g. `bench_fem_bend baseline L 0.2 0.05 nan 1,2 > /tmp/mesh_L.log` for each L first.
+"""
+import argparse
+import re
+import sys
+
+MESH_RE = re.compile(r"mesh: (\d+) Tet10, (\d+) nodes, (\d+) dofs, (\d+) fibre elements; "
+                     r"l_soft ([\d.]+) mm")
+TIME_RE = re.compile(r"time: total ([\d.]+) s = mesh ([\d.]+) \+ setup ([\d.]+)")
+STEP_RE = re.compile(r"step p ([\d.]+) MPa .* wall +([\d.]+) s")
+ROW_RE = re.compile(r"^p ([\d.]+) MPa +angles +(\S+) +(\S+) +(\S+) +total +(\S+) deg")
+
+
+def read_log(path):
+    """One run: mesh statistics, total wall time, output rows p -> total angle, and the wall
+    time at which each output pressure was reached (mesh + setup + steps so far)."""
+    run = {"path": path, "rows": {}, "wall_at": {}}
+    steps = []
+    with open(path) as f:
+        for line in f:
+            m = MESH_RE.search(line)
+            if m:
+                run["ntet"], run["nnode"] = int(m.group(1)), int(m.group(2))
+                run["nfib"], run["l_soft"] = int(m.group(4)), float(m.group(5))
+            m = TIME_RE.search(line)
+            if m:
+                run["wall"] = float(m.group(1))
+                run["pre"] = float(m.group(2)) + float(m.group(3))
+            m = STEP_RE.search(line)
+            if m:
+                steps.append((float(m.group(1)), float(m.group(2))))
+            m = ROW_RE.search(line)
+            if m:
+                run["rows"][round(float(m.group(1)), 6)] = float(m.group(5))
+    if "ntet" not in run or "wall" not in run:
+        sys.exit(f"{path}: not a complete bench_fem_bend log (no mesh/time summary)")
+    t = run["pre"]
+    for p, w in steps:
+        t += w
+        run["wall_at"][round(p, 6)] = t
+    return run
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("logs", nargs="+")
+    ap.add_argument("--pressures", default="0.05,0.1,0.2")
+    ap.add_argument("--out", default="docs/fem_mesh_study.png")
+    a = ap.parse_args()
+    ps = [round(float(x), 6) for x in a.pressures.split(",")]
+    runs = sorted((read_log(p) for p in a.logs), key=lambda r: r["ntet"])
+    ref = runs[-1]
+    ps = [p for p in ps if p in ref["rows"]]
+    if not ps:
+        sys.exit("the reference run has none of the study pressures")
+    head = "| l_soft (mm) | Tet10 | nodes | fibre el. | wall to %.2f MPa (s) |" % max(ps)
+    head += "".join(" angle %.2f (deg) | err %.2f |" % (p, p) for p in ps)
+    print(head)
+    print("|" + "---|" * (5 + 2 * len(ps)))
+    series = {p: ([], []) for p in ps}
+    for r in runs:
+        wall = r["wall_at"].get(max(ps), float("nan"))
+        line = "| %g | %d | %d | %d | %.0f |" % (r["l_soft"], r["ntet"], r["nnode"], r["nfib"],
+                                                  wall)
+        for p in ps:
+            if p in r["rows"]:
+                err = abs(r["rows"][p] / ref["rows"][p] - 1.0)
+                line += " %.2f | %s |" % (r["rows"][p], "ref" if r is ref else "%.2f %%" %
+                                          (100 * err))
+                if r is not ref:
+                    series[p][0].append(r["wall_at"].get(p, float("nan")))
+                    series[p][1].append(100 * err)
+            else:
+                line += " - | - |"
+        print(line)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for p in ps:
+        ax.plot(series[p][0], series[p][1], "o-", label="%.2f MPa" % p)
+    for r in runs[:-1]:
+        t = r["wall_at"].get(ps[0])
+        if t is not None and ps[0] in r["rows"]:
+            ax.annotate("%g mm" % r["l_soft"], (t, 100 * abs(r["rows"][ps[0]] /
+                                                            ref["rows"][ps[0]] - 1.0)),
+                        textcoords="offset points", xytext=(4, 4), fontsize=8)
+    ax.set_xlabel("wall time to reach the pressure (s)")
+    ax.set_ylabel("total-angle error vs l_soft = %g mm (%%)" % ref["l_soft"])
+    ax.set_yscale("log")
+    ax.set_title("FE mesh study: baseline, fibres, chambers 1,2")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(a.out, dpi=120)
+    print("wrote", a.out)
+
+
+if __name__ == "__main__":
+    main()
