@@ -286,6 +286,7 @@ int csx_cmdRun(int argc, char** argv) {
     fprintf(stderr, "crawlsim run: scene %s, gait %s, legs %s, friction %.3g, t_end %.3g s, "
             "robot mass %.1f g\n", scene, gait, legs, m.contact.mu, cs_modelEndTime(&m),
             cs_robotMass(d) * 1e6);
+    fprintf(stderr, "crawlsim run: calibration: %s\n", m.robot.map.name);
     double load, pcr;
     cs_modelStanceCheck(&m, cs_robotMass(d), &load, &pcr);
     fprintf(stderr, "crawlsim run: stance check: %.2f N per leg on half the legs vs sway-buckling "
