@@ -1,7 +1,9 @@
 /* robot_calibration.h: the pressure -> segment-bend maps (calibrations) the dynamic legs use.
  *
- * Owns: the PROVISIONAL calibration used until the FE calibration of issue 3 exists: the
- * analytic model (robot_analytic.h) with its bend angles multiplied by one factor chosen so
+ * Owns: two kinds of calibration behind one csrBendMap, opened by csr_calibrationOpen:
+ *  - the FE calibration table (default, robot/calibration_fe_leg.h5; section below), and
+ *  - the PROVISIONAL calibration used before the FE table existed: the analytic model
+ * (robot_analytic.h) with its bend angles multiplied by one factor chosen so
  * that a reference actuator reaches a reference total angle at a reference pressure. The
  * reference comes from a small data file (robot/calibration_provisional.txt), not from code:
  *   # comment
