@@ -15,6 +15,7 @@
 #include "core_h5.h"
 #include "core_math.h"
 #include "cs_test.h"
+#include "gaits_csv.h"
 #include "robot_analytic.h"
 #include "robot_bend_io.h"
 #include "robot_calibration.h"
@@ -250,7 +251,19 @@ static void test_open_dispatches_on_signature(void) {
   CS_EXPECT(c != NULL);
   if (c) {
     csrBendMap map = csr_calibrationMap(c);
-    CS_EXPECT(map.p_max >= 0.28);
+    const char* gaits[2] = {"gaits/flat_road.csv", "gaits/flat_road_crouch.csv"};
+    for (int k = 0; k < 2; k++) {
+      char gp[1024];
+      snprintf(gp, sizeof gp, "%s/%s", getenv("CS_SOURCE_DIR"), gaits[k]);
+      csgGait* g = csg_gaitRead(gp, NULL, &err);
+      CS_EXPECT(g != NULL);
+      double pmax = 0;
+      for (int i = 0; g && i < g->nrow * CSG_NLABEL; i++) {
+        pmax = fmax(pmax, g->pressure[i]);
+      }
+      CS_EXPECT(pmax > 0 && pmax <= map.p_max);
+      csg_gaitDestroy(g);
+    }
     CS_EXPECT(strstr(map.name, "fe calibration table") != NULL);
   }
   csr_calibrationClose(c);
