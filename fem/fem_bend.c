@@ -5,16 +5,20 @@
  * u_n-1)), which follows the large rotations of a 360 deg bend with few Newton iterations; the
  * step halves on divergence and grows by 1.5 after easy steps (<= 5 iterations), capped at
  * p_step so that every output pressure is hit exactly. A step that collapses below
- * CSF_BEND_DP_MIN is taken as a limit point of the pressure-controlled path: the sweep stops and
- * the last converged pressure is reported as p_limit (arc-length / volume control past the limit
- * is not implemented yet; see fem/README.md).
+ * CSF_BEND_DP_MIN is taken as a limit point of the pressure-controlled path: the path is then
+ * followed by chamber-volume control (csf_passLimit, fem_path.h) through the pressure maximum,
+ * which is reported as p_limit; where the pressure rises above it again the sweep resumes under
+ * pressure control (a pressure-controlled actuator snaps across), else it ends there.
+ * States: predictors and restarts copy the whole Newton state (csf_stateGet: u, element
+ * dilatations, fibre stresses), not u alone.
  * --until-angle: once a step crosses the target angle, the crossing is bracketed by two
  * converged states and refined by safeguarded regula falsi, each trial an equilibrium solve, to
  * |angle - target| <= angle_tol: the reported pressure is an equilibrium, not an extrapolation.
  * Angles: each end face of a segment is a plane of mesh nodes (the geometry is split there);
  * a rigid frame is fitted to each face (least squares on the in-plane directions, polar
  * orthonormalisation), and a segment's angle is the rotation between its two face frames,
- * signed about the bending axis and unwrapped, so angles past 180 deg are followed. The total
+ * taken about the bending axis (swing-twist: smooth through full turns) and unwrapped, so
+ * angles past 180 and 360 deg are followed. The total
  * angle is measured the same way between the base and the tip faces (it includes the small
  * rotation of the solid joints; the sum of segment angles is the paper's Theta = sum theta_i).
  * Fibres: two counter-wound helices per segment (n turns each over S) on the rounded-square
@@ -26,9 +30,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "fem_output.h"
+#include "fem_path.h"
 
 #define CSF_BEND_DP_MIN_REL 1e-3 /* smallest step, relative to p_step, before "limit point" */
 /* a step that would end within this fraction of itself below an output pressure is stretched to
@@ -36,13 +40,6 @@
 #define CSF_BEND_SNAP 0.25
 #define CSF_FIBRE_INSET 0.2      /* mm below the outer surface (fibre radius 0.089 mm) */
 #define CSF_PLANE_TOL 1e-6       /* mm: nodes on a face plane */
-
-static double now(void) {
-  struct timespec ts;
-  timespec_get(&ts, TIME_UTC);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 
 csfBendOptions csf_bendDefault(void) {
   csfBendOptions o;
@@ -64,6 +61,7 @@ csfBendOptions csf_bendDefault(void) {
    * only linearly (20-27 iterations per step) (fem/README.md, "Fibre law") */
   o.fibre_compression = 1;
   o.fibre_geo_tension = 0;
+  o.continuation = 1;
   o.work_stem = "crawlsim_fe";
   return o;
 }
@@ -184,38 +182,44 @@ static int planeFrame(const csfModel* m, const csfData* d, double zp, double R[9
 }
 
 
-/* signed rotation angle (rad) of Ra^T Rb about `axis`, unwrapped near `prev` (rad) */
-static double relAngle(const double Ra[9], const double Rb[9], const double axis[3], double prev) {
-  double Rr[9];
+/* Rotation angle (rad) of Ra^T Rb about `axis`, unwrapped near `prev` (rad): the twist part of
+ * the swing-twist decomposition of the relative rotation, 2 atan2(q_v . axis, q_w) of its unit
+ * quaternion (Shepperd's extraction). For a rotation about `axis` alone it is the rotation angle;
+ * unlike (rotation angle) x sign(rotation axis . axis), it stays smooth where the bend passes a
+ * full turn: there the relative rotation is a small out-of-plane tilt whose axis is arbitrary,
+ * and the signed full angle jumped from 360 - eps to 360 + eps (eps = the tilt, ~0.2 deg on the
+ * baseline), so a 360 deg target within 0.1 deg could not be bracketed (fem/README.md).
+ * axis NULL: the full rotation angle (>= 0). */
+double csf_bendAxisAngle(const double Ra[9], const double Rb[9], const double axis[3],
+                         double prev) {
+  double R[9];
   for (int i = 0; i < 3; i++) {
     for (int j = 0; j < 3; j++) {
-      Rr[3 * i + j] = Ra[i] * Rb[j] + Ra[3 + i] * Rb[3 + j] + Ra[6 + i] * Rb[6 + j];
+      R[3 * i + j] = Ra[i] * Rb[j] + Ra[3 + i] * Rb[3 + j] + Ra[6 + i] * Rb[6 + j];
     }
   }
-  double c = 0.5 * (Rr[0] + Rr[4] + Rr[8] - 1.0);
-  c = c > 1 ? 1 : (c < -1 ? -1 : c);
-  double phi = acos(c);
-  double w[3] = {Rr[7] - Rr[5], Rr[2] - Rr[6], Rr[3] - Rr[1]}; /* 2 sin(phi) n */
-  double nax[3];
-  if (phi < 3.0) {
-    csu_copy3(nax, w);
+  double q[4]; /* w, x, y, z */
+  const double tr = R[0] + R[4] + R[8];
+  if (tr > 0) {
+    const double S = 2.0 * sqrt(tr + 1.0);
+    q[0] = 0.25 * S, q[1] = (R[7] - R[5]) / S, q[2] = (R[2] - R[6]) / S, q[3] = (R[3] - R[1]) / S;
+  } else if (R[0] > R[4] && R[0] > R[8]) {
+    const double S = 2.0 * sqrt(1.0 + R[0] - R[4] - R[8]);
+    q[0] = (R[7] - R[5]) / S, q[1] = 0.25 * S, q[2] = (R[1] + R[3]) / S, q[3] = (R[2] + R[6]) / S;
+  } else if (R[4] > R[8]) {
+    const double S = 2.0 * sqrt(1.0 + R[4] - R[0] - R[8]);
+    q[0] = (R[2] - R[6]) / S, q[1] = (R[1] + R[3]) / S, q[2] = 0.25 * S, q[3] = (R[5] + R[7]) / S;
   } else {
-    /* near pi: n n^T = (sym(R) - cos phi I) / (1 - cos phi); largest diagonal column */
-    int k = 0;
-    for (int i = 1; i < 3; i++) {
-      if (Rr[4 * i] > Rr[4 * k]) {
-        k = i;
-      }
-    }
-    for (int i = 0; i < 3; i++) {
-      nax[i] = 0.5 * (Rr[3 * i + k] + Rr[3 * k + i]) - (i == k ? c : 0.0);
-    }
-    if (csu_dot3(nax, w) < 0) {
-      csu_scale3(nax, nax, -1.0);
-    }
+    const double S = 2.0 * sqrt(1.0 + R[8] - R[0] - R[4]);
+    q[0] = (R[3] - R[1]) / S, q[1] = (R[2] + R[6]) / S, q[2] = (R[5] + R[7]) / S, q[3] = 0.25 * S;
   }
-  double s = axis ? csu_dot3(nax, axis) : 1.0;
-  double a = s < 0 ? -phi : phi;
+  double a;
+  if (axis) {
+    a = 2.0 * atan2(q[1] * axis[0] + q[2] * axis[1] + q[3] * axis[2], q[0]);
+  } else {
+    a = 2.0 * atan2(sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]), fabs(q[0]));
+  }
+  /* q and -q are the same rotation: the twist is defined modulo 2 pi, hence the unwrap */
   while (a - prev > CS_PI) {
     a -= 2 * CS_PI;
   }
@@ -234,13 +238,13 @@ void csf_bendMeasure(const csrActuator* act, const csfModel* m, const csfData* d
     double z0 = csr_actuatorSegmentStart(act, s);
     angle_deg[s] = NAN;
     if (planeFrame(m, d, z0, Ra, c) == 0 && planeFrame(m, d, z0 + act->S[s], Rb, c) == 0) {
-      angle_deg[s] = relAngle(Ra, Rb, axis, prev ? prev[s] * CS_DEG : 0.0) / CS_DEG;
+      angle_deg[s] = csf_bendAxisAngle(Ra, Rb, axis, prev ? prev[s] * CS_DEG : 0.0) / CS_DEG;
     }
   }
   *total_deg = NAN;
   tip[0] = tip[1] = tip[2] = NAN;
   if (planeFrame(m, d, 0.0, Ra, c) == 0 && planeFrame(m, d, csr_actuatorLength(act), Rb, tip) == 0) {
-    *total_deg = relAngle(Ra, Rb, axis, prev ? prev[3] * CS_DEG : 0.0) / CS_DEG;
+    *total_deg = csf_bendAxisAngle(Ra, Rb, axis, prev ? prev[3] * CS_DEG : 0.0) / CS_DEG;
   }
 }
 
@@ -319,9 +323,9 @@ typedef struct {
   csfMesh* mesh;
   csfModel* model;
   csfData* data;
-  double* u_conv;
-  double* u_prev;
-  double* u_tmp;
+  double* s_conv; /* (csf_stateSize) last converged state */
+  double* s_prev; /* (csf_stateSize) the converged state before it */
+  double* s_tmp;  /* (csf_stateSize) scratch */
 } Sweep;
 
 
@@ -329,15 +333,75 @@ static void sweepFree(Sweep* w) {
   csf_dataDestroy(w->data);
   csf_modelDestroy(w->model);
   csf_meshDestroy(w->mesh);
-  free(w->u_conv);
-  free(w->u_prev);
-  free(w->u_tmp);
+  free(w->s_conv);
+  free(w->s_prev);
+  free(w->s_tmp);
+}
+
+
+/* From the state in d (at pressure p_from) to equilibrium at p_to by Newton solves, halving the
+ * increment after a failure (each failed solve restores its entry state) down to dp_min. */
+static csStatus rampTo(const csfModel* m, csfData* d, double p_from, double p_to, double dp_min,
+                       const csfNewtonOptions* nopt, long* iters, csError* lerr) {
+  double p = p_from, dp = p_to - p_from;
+  while (p != p_to) {
+    const double target = fabs(p_to - p) <= 1.0001 * fabs(dp) ? p_to : p + dp;
+    int it = 0;
+    const csStatus st = csf_newtonSolve(m, d, target, nopt, &it, lerr);
+    *iters += it;
+    if (st == CS_OK) {
+      p = target;
+    } else if (st != CS_ERR_DIVERGED || fabs(dp *= 0.5) < dp_min) {
+      return st;
+    }
+  }
+  return CS_OK;
+}
+
+
+/* Per-state watcher of the volume-controlled path past a limit point (csf_passLimit callback):
+ * tracks the angles (for unwrapping), the angles at the pressure maximum, reports progress, and
+ * stops the path when the --until-angle target is reached. */
+typedef struct {
+  const csrActuator* act;
+  const csfBendOptions* o;
+  const double* axis;
+  double* ang_conv;                   /* [4] last angles: 3 segments, total (deg) */
+  double a_limit, ang_limit[3], tip_limit[3]; /* at the pressure maximum */
+  int until_hit; /* 1: target reached before the limit (stable state), 2: after it (in the snap) */
+  double p_hit, a_hit, ang_hit[3], tip_hit[3];
+} LimitWatch;
+
+static int limitWatch(void* user, const csfModel* m, const csfData* d, const csfPathPoint* pt) {
+  LimitWatch* lw = user;
+  double ang[3], tot, tip[3];
+  csf_bendMeasure(lw->act, m, d, lw->axis, lw->ang_conv, ang, &tot, tip);
+  lw->ang_conv[0] = ang[0], lw->ang_conv[1] = ang[1], lw->ang_conv[2] = ang[2];
+  lw->ang_conv[3] = tot;
+  if (pt->is_max) {
+    lw->a_limit = tot;
+    memcpy(lw->ang_limit, ang, sizeof ang);
+    memcpy(lw->tip_limit, tip, sizeof tip);
+  }
+  if (lw->o->progress) {
+    csfBendStep rep = {pt->p, pt->dp, pt->newton_iters, 0, pt->wall, tot, {ang[0], ang[1], ang[2]},
+                       1, pt->volume};
+    lw->o->progress(lw->o->progress_user, &rep);
+  }
+  if (isfinite(lw->o->until_angle) && tot >= lw->o->until_angle) {
+    lw->until_hit = pt->past_limit ? 2 : 1;
+    lw->p_hit = pt->p, lw->a_hit = tot;
+    memcpy(lw->ang_hit, ang, sizeof ang);
+    memcpy(lw->tip_hit, tip, sizeof tip);
+    return 1;
+  }
+  return 0;
 }
 
 
 csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve* out,
                   csError* err) {
-  const double t_start = now();
+  const double t_start = csf_wallTime();
   csStatus st = csr_actuatorValidate(act, err);
   if (st != CS_OK) {
     return st;
@@ -347,7 +411,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   }
   csfBendInfo info;
   memset(&info, 0, sizeof info);
-  info.p_limit = NAN;
+  info.p_limit = info.p_resume = info.angle_limit = info.angle_resume = NAN;
   out->p_until_angle = NAN;
   Sweep w;
   memset(&w, 0, sizeof w);
@@ -356,7 +420,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   if (!w.mesh) {
     return err ? err->status : CS_ERR_EXTERNAL;
   }
-  info.t_mesh = now() - t_start;
+  info.t_mesh = csf_wallTime() - t_start;
   /* model: clamped base, chambers, fibres */
   csfMaterial mat = csf_materialDefault(act->C10, act->C20, act->rho);
   w.model = csf_modelCreate(w.mesh, &mat, err);
@@ -404,18 +468,18 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     return st;
   }
   w.data = csf_dataCreate(m, err);
-  const size_t nd = (size_t)m->ndof;
-  w.u_conv = calloc(nd, sizeof(double));
-  w.u_prev = calloc(nd, sizeof(double));
-  w.u_tmp = calloc(nd, sizeof(double));
-  if (!w.data || !w.u_conv || !w.u_prev || !w.u_tmp) {
+  const size_t ns = csf_stateSize(m);
+  w.s_conv = calloc(ns, sizeof(double));
+  w.s_prev = calloc(ns, sizeof(double));
+  w.s_tmp = calloc(ns, sizeof(double));
+  if (!w.data || !w.s_conv || !w.s_prev || !w.s_tmp) {
     sweepFree(&w);
     return err && err->status ? err->status : CS_ERR_MEMORY;
   }
   csfData* d = w.data;
   info.ntet = w.mesh->ntet, info.nnode = w.mesh->nnode, info.nfibre = m->nfib;
   info.ndof = m->ndof;
-  info.t_setup = now() - t_start - info.t_mesh;
+  info.t_setup = csf_wallTime() - t_start - info.t_mesh;
   /* bending axis: e3 x (direction away from the pressurised chambers) */
   double axis[3] = {0, 1, 0};
   if (ncc && (cc[0] != 0 || cc[1] != 0)) {
@@ -440,10 +504,12 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     }
     info.n_newton += it;
   }
-  memcpy(w.u_conv, d->u, nd * sizeof(double));
-  memcpy(w.u_prev, d->u, nd * sizeof(double));
+  csf_stateGet(m, d, w.s_conv);
+  memcpy(w.s_prev, w.s_conv, ns * sizeof(double));
   double ang_conv[4] = {0, 0, 0, 0}, ang_prev[4] = {0, 0, 0, 0};
   double p = 0.0, p_prev = 0.0, dp = o->p_step;
+  csf_assemble(m, d, 0.0, 0); /* the initial chamber volume */
+  double V_conv = d->vol_w, V_prev = d->vol_w; /* weighted chamber volumes of those states */
   const double dp_min = CSF_BEND_DP_MIN_REL * o->p_step;
   const double eps = 1e-9 * o->p_step;
   int k_out = 1;
@@ -461,7 +527,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     out->angle_total[out->m - 1] = tot;
   }
   while (!done && p < o->p_max - eps) {
-    const double t_step = now();
+    const double t_step = csf_wallTime();
     int cut = 0, iters = 0;
     double target;
     /* one converged step, cutting back on failure */
@@ -471,13 +537,15 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
       if (next_out - target < CSF_BEND_SNAP * dp) {
         target = next_out; /* no sliver step just before an output pressure */
       }
+      /* secant predictor on the whole state (u, element dilatations, fibre stresses) */
       if (have_prev && p > p_prev) {
         double f = (target - p) / (p - p_prev);
-        for (size_t i = 0; i < nd; i++) {
-          d->u[i] = w.u_conv[i] + f * (w.u_conv[i] - w.u_prev[i]);
+        for (size_t i = 0; i < ns; i++) {
+          w.s_tmp[i] = w.s_conv[i] + f * (w.s_conv[i] - w.s_prev[i]);
         }
+        csf_stateSet(m, d, w.s_tmp);
       } else {
-        memcpy(d->u, w.u_conv, nd * sizeof(double));
+        csf_stateSet(m, d, w.s_conv);
       }
       if (csf_newtonSolve(m, d, target, &nopt, &iters, &lerr) == CS_OK) {
         break;
@@ -490,19 +558,81 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
         break;
       }
     }
-    if (dp < dp_min) {
+    if (dp < dp_min && !o->continuation) {
       info.p_limit = p;
-      memcpy(d->u, w.u_conv, nd * sizeof(double));
+      csf_stateSet(m, d, w.s_conv);
       break;
     }
+    if (dp < dp_min) {
+      /* the pressure-controlled step collapsed: a limit point; follow the path by volume */
+      LimitWatch lw;
+      memset(&lw, 0, sizeof lw);
+      lw.act = act, lw.o = o, lw.axis = axis, lw.ang_conv = ang_conv;
+      csf_stateSet(m, d, w.s_conv);
+      csf_bendMeasure(act, m, d, axis, ang_conv, lw.ang_limit, &lw.a_limit, lw.tip_limit);
+      csfLimitOptions lopt = csf_limitDefault();
+      lopt.callback = limitWatch;
+      lopt.user = &lw;
+      csfLimitResult lr;
+      csStatus lst = csf_passLimit(m, d, w.s_prev, w.s_conv, w.s_tmp, V_prev, V_conv, p, &nopt,
+                                   &lopt, &lr, &lerr);
+      info.n_newton += lr.n_newton;
+      info.n_volume_steps += lr.n_steps;
+      if (!lr.no_limit) {
+        info.p_limit = lr.p_limit;
+        info.angle_limit = lw.a_limit;
+      }
+      p = d->load;
+      if (lst == CS_OK && lr.stopped) {
+        /* the target angle: before the limit the state at p_hit is an equilibrium, not refined;
+         * after it a pressure-controlled load reaches the angle by snapping at p_limit */
+        const int snap = lw.until_hit == 2;
+        if (snap || fabs(lw.a_hit - o->until_angle) <= o->angle_tol) {
+          out->p_until_angle = snap ? lr.p_limit : lw.p_hit;
+        }
+        snprintf(info.until_note, sizeof info.until_note,
+                 snap ? "reached in the snap-through at the limit pressure %.6g MPa (%.2f deg "
+                        "at the limit, %.2f deg on the volume-controlled path)"
+                      : "passed under volume control below the limit (%.6g MPa so far; %.2f "
+                        "deg there, %.2f deg): not refined",
+                 lr.p_limit, lw.a_limit, lw.a_hit);
+        st = csr_bendCurvePush(out, snap ? lr.p_limit : lw.p_hit, snap ? lw.ang_limit : lw.ang_hit,
+                               snap ? lw.tip_limit : lw.tip_hit, err);
+        if (st == CS_OK) {
+          out->angle_total[out->m - 1] = snap ? lw.a_limit : lw.a_hit;
+        }
+        break;
+      }
+      if (lst != CS_OK) {
+        snprintf(info.limit_note, sizeof info.limit_note, "%.190s", lerr.msg);
+        break; /* no stable branch found: the sweep ends at the last volume-controlled state */
+      }
+      /* stable again above the limit: resume pressure control from the volume path's last two
+       * states; output pressures passed in the snap are skipped (no stable state there) */
+      info.p_resume = lr.p_resume;
+      info.angle_resume = ang_conv[3];
+      csf_assemble(m, d, p, 0);
+      V_prev = V_conv = d->vol_w;
+      p_prev = lr.p_before;
+      have_prev = p > p_prev;
+      memcpy(ang_prev, ang_conv, sizeof ang_prev);
+      while (k_out * o->p_step <= p + eps) {
+        k_out++;
+      }
+      dp = 0.25 * o->p_step;
+      continue;
+    }
+    V_prev = V_conv;
+    V_conv = d->vol_w; /* the converged state's weighted chamber volume (last assembly) */
     info.n_newton += iters;
     info.n_steps++;
     double ang[3], tot, tip[3];
     csf_bendMeasure(act, m, d, axis, ang_conv, ang, &tot, tip);
-    csfBendStep rep = {target, target - p, iters, cut, now() - t_step, tot, {ang[0], ang[1], ang[2]}};
+    csfBendStep rep = {target, target - p, iters, cut, csf_wallTime() - t_step, tot,
+                       {ang[0], ang[1], ang[2]}, 0, d->vol_w};
     /* accept */
-    memcpy(w.u_prev, w.u_conv, nd * sizeof(double));
-    memcpy(w.u_conv, d->u, nd * sizeof(double));
+    memcpy(w.s_prev, w.s_conv, ns * sizeof(double));
+    csf_stateGet(m, d, w.s_conv);
     memcpy(ang_prev, ang_conv, sizeof ang_prev);
     ang_conv[0] = ang[0], ang_conv[1] = ang[1], ang_conv[2] = ang[2], ang_conv[3] = tot;
     p_prev = p;
@@ -514,24 +644,27 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     if (want_until && tot >= o->until_angle) {
       /* bracket [p_prev, p] by converged states; regula falsi with 10 % safeguard */
       double lo = p_prev, hi = p, alo = ang_prev[3], ahi = tot;
-      double* ulo = w.u_prev;
-      double* uhi = w.u_conv;
+      double* slo = w.s_prev;
+      double* shi = w.s_conv;
       double a_found = tot, p_found = p;
       double ang_found[3] = {ang[0], ang[1], ang[2]}, tip_found[3] = {tip[0], tip[1], tip[2]};
       int fails = 0;
       for (int it = 0; it < 40 && fabs(a_found - o->until_angle) > o->angle_tol; it++) {
         double f = (o->until_angle - alo) / (ahi - alo);
-        f = fails ? 0.5 / (1 << fails) : fmin(fmax(f, 0.1), 0.9); /* bisect after a failure */
+        f = fails ? 0.5 : fmin(fmax(f, 0.1), 0.9); /* bisect after a failure */
         double pm = lo + f * (hi - lo);
-        /* start from the nearer converged state, not from the interpolated displacement: between
-         * two states bent by ~10 deg the interpolated field shortens the rotated fibres (chord
-         * of an arc), which start compressed; the refinement of the fibred baseline's 360 deg
-         * bracket (0.383-0.387 MPa, l_soft 4) gave up after repeated Newton failures. From the
-         * nearer state the 60 deg refinement took one solve of 7 iterations (fem/README.md) */
-        memcpy(d->u, f <= 0.5 ? ulo : uhi, nd * sizeof(double));
-        int itb;
-        if (csf_newtonSolve(m, d, pm, &nopt, &itb, &lerr) != CS_OK) {
+        /* each trial starts from the nearer bracketing state, restored whole (u, element
+         * dilatations, fibre stresses: csf_stateSet), and reaches pm by load stepping with
+         * cut-backs; an interpolated start shortens the rotated fibres (chord of an arc) */
+        const int from_lo = f <= 0.5;
+        csf_stateSet(m, d, from_lo ? slo : shi);
+        long itb = 0;
+        info.n_until_trials++;
+        if (rampTo(m, d, from_lo ? lo : hi, pm, dp_min, &nopt, &itb, &lerr) != CS_OK) {
           info.n_newton += itb;
+          info.n_until_failed++;
+          snprintf(info.until_note, sizeof info.until_note, "trial %.6g MPa from %.6g MPa: %.150s",
+                   pm, from_lo ? lo : hi, lerr.msg);
           if (++fails > 4) {
             break;
           }
@@ -546,11 +679,10 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
         memcpy(tip_found, tpm, sizeof tpm);
         if (tm < o->until_angle) {
           lo = pm, alo = tm;
-          memcpy(w.u_tmp, d->u, nd * sizeof(double));
-          memcpy(ulo, w.u_tmp, nd * sizeof(double));
+          csf_stateGet(m, d, slo);
         } else {
           hi = pm, ahi = tm;
-          memcpy(uhi, d->u, nd * sizeof(double));
+          csf_stateGet(m, d, shi);
         }
       }
       if (fabs(a_found - o->until_angle) <= o->angle_tol) {
@@ -595,7 +727,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   info.t_factor = d->stats.t_factor;
   info.t_solve = d->stats.t_solve;
   info.factor_nnz = csf_linSolverFactorNnz(d->ls);
-  info.t_total = now() - t_start;
+  info.t_total = csf_wallTime() - t_start;
   if (o->info) {
     *o->info = info;
   }

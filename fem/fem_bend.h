@@ -25,6 +25,9 @@ typedef struct csfBendStep_ {
   double wall;         /* wall time of the step including failed attempts, s */
   double angle_total;  /* total bending angle, deg */
   double angle_deg[3]; /* per segment, deg */
+  int volume_control;  /* 1: a step of the volume-controlled path past a limit point (dp may be
+                        * negative there), 0: a pressure-controlled step */
+  double volume;       /* weighted chamber volume sum_f p_unit V_f of the state, mm^3 */
 } csfBendStep;
 
 typedef void (*csfBendProgress)(void* user, const csfBendStep* step);
@@ -37,9 +40,17 @@ typedef struct csfBendInfo_ {
   double t_mesh, t_setup, t_total;         /* wall s: gmsh + reading, model + fibres, all */
   double t_assemble, t_factor, t_solve;    /* wall s, accumulated */
   double factor_nnz;                       /* entries of the sparse factors */
-  double p_limit;  /* MPa: last converged pressure when the step size collapsed (limit point),
-                    * NAN when the sweep reached p_max or the target angle */
+  double p_limit;  /* MPa: pressure limit point of the path (the largest pressure reached
+                    * under volume control after the pressure-controlled step collapsed; with
+                    * continuation off, the last converged pressure), NAN when none was met */
+  double p_resume; /* MPa: where the path was stable again above p_limit and the sweep resumed
+                    * (NAN: not resumed); a pressure-controlled load snaps across */
+  double angle_limit, angle_resume; /* total angle at p_limit and at p_resume, deg */
+  int n_volume_steps; /* converged steps under chamber-volume control */
+  char limit_note[200]; /* why the path past the limit ended without resuming ("" = n/a) */
   double max_j_dev; /* max |theta - 1| over elements at the last state (volume preservation) */
+  int n_until_trials, n_until_failed; /* --until-angle refinement: equilibrium trials, failures */
+  char until_note[200]; /* the last failed trial's pressure and Newton message ("" = none) */
 } csfBendInfo;
 
 typedef struct csfBendOptions_ {
@@ -56,6 +67,9 @@ typedef struct csfBendOptions_ {
   int fibre_geo_tension; /* 0 (default): consistent fibre tangent; 1: geometric stiffness only
                           * in tension (csfModel.fib_geo_tension; the residual is unchanged) */
   csfLineSearch line_search; /* Newton line search (default CSF_LS_RESIDUAL) */
+  int continuation;    /* 1 (default): past a limit point, follow the path by chamber-volume
+                        * control and resume pressure control where it is stable again; 0: stop
+                        * at the limit (p_limit = last converged pressure) */
   void (*newton_monitor)(void* user, const csfNewtonIter* it); /* optional, per Newton iteration */
   double gravity[3];   /* mm/s^2 in the base frame, e.g. {0, 0, -9810}; zeros = off */
   const char* work_stem; /* path prefix for the .geo/.msh files (default "crawlsim_fe") */
@@ -76,19 +90,29 @@ csfBendOptions csf_bendDefault(void);
 csStatus csf_bendSetChambers(csfBendOptions* opts, const char* list, csError* err);
 
 /* Run the sweep. `out` must be initialised (csr_bendCurveInit); rows are appended at each
- * multiple of p_step up to p_max, and at p_until_angle when it is found. Returns CS_OK also when
- * a limit point stops the sweep early (info->p_limit and out->p_until_angle = NAN tell). */
+ * multiple of p_step up to p_max, and at p_until_angle when it is found. At a pressure limit
+ * point the path is followed by chamber-volume control (info->p_limit); where it is stable again
+ * above the limit the sweep resumes (info->p_resume; the rows skip the snap-through), else it
+ * ends there. Returns CS_OK also when a limit point stops the sweep early (info->p_resume and
+ * out->p_until_angle = NAN tell). */
 csStatus csf_bend(const csrActuator* act, const csfBendOptions* opts, csrBendCurve* out,
                   csError* err);
 
 /* Angles of the actuator at the current state d->u: per segment and total (deg), and the tip
  * centroid (mm). Planes are the segments' end faces z = start(s), start(s) + S_s and the base/tip
- * faces. Each angle is the rotation between two fitted face frames, signed about the reference
- * bending axis `axis` (unit, base frame) and unwrapped against `prev` (previous values: 3
- * segments then total; may be NULL), so bends beyond 180 deg are followed continuously. */
+ * faces. Each angle is the rotation between two fitted face frames about the reference bending
+ * axis `axis` (unit, base frame; csf_bendAxisAngle) and unwrapped against `prev` (previous
+ * values: 3 segments then total; may be NULL), so bends beyond 180 and 360 deg are followed
+ * continuously. */
 void csf_bendMeasure(const csrActuator* act, const csfModel* m, const csfData* d,
                      const double axis[3], const double prev[4], double angle_deg[3],
                      double* total_deg, double tip[3]);
+
+/* Angle (rad) of the relative rotation Ra^T Rb (row-major frames) about the unit `axis`: the
+ * twist of its swing-twist decomposition, smooth through full turns, unwrapped to within pi of
+ * `prev` (rad). axis NULL: the full rotation angle. */
+double csf_bendAxisAngle(const double Ra[9], const double Rb[9], const double axis[3],
+                         double prev);
 
 /* Rigid rotation R (row-major 3x3) best fitting the deformed positions of the nodes of a plane
  * z = const (reference X, deformed x, n nodes): least-squares fit of the in-plane directions,

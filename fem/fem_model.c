@@ -63,7 +63,7 @@ static const double kTriQ[6][3] = {
 
 static void fibreLaw(const csfModel* m, double E, double* S, double* dS);
 
-static double wallTime(void) {
+double csf_wallTime(void) {
   struct timespec ts;
   timespec_get(&ts, TIME_UTC);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
@@ -740,7 +740,7 @@ static void cross(const double a[3], const double b[3], double r[3]) {
 
 
 int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
-  const double t0 = wallTime();
+  const double t0 = csf_wallTime();
   const csfMesh* me = m->mesh;
   const size_t n = (size_t)m->ndof;
   memset(d->r, 0, n * sizeof(double));
@@ -798,7 +798,7 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
     }
   }
   if (bad) {
-    d->stats.t_assemble += wallTime() - t0;
+    d->stats.t_assemble += csf_wallTime() - t0;
     return 1;
   }
   /* fibres (serial: a few thousand small elements) */
@@ -955,7 +955,7 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
   d->jmin = jmin;
   d->load = load;
   d->stats.n_assemble++;
-  d->stats.t_assemble += wallTime() - t0;
+  d->stats.t_assemble += csf_wallTime() - t0;
   return isfinite(d->rnorm) ? 0 : 1;
 }
 
@@ -1009,6 +1009,31 @@ static void updateTheta(const csfModel* m, csfData* d, double alpha) {
     d->theta[e] = d->vr0[e] + alpha * s / m->vol[e];
     d->pel[e] = m->mat.kappa * (d->theta[e] - 1.0);
   }
+}
+
+
+size_t csf_stateSize(const csfModel* m) {
+  return (size_t)m->ndof + 2 * (size_t)m->mesh->ntet + (size_t)m->nfib + 1;
+}
+
+
+void csf_stateGet(const csfModel* m, const csfData* d, double* state) {
+  const size_t n = (size_t)m->ndof, nt = (size_t)m->mesh->ntet, nf = (size_t)m->nfib;
+  memcpy(state, d->u, n * sizeof(double));
+  memcpy(state + n, d->theta, nt * sizeof(double));
+  memcpy(state + n + nt, d->pel, nt * sizeof(double));
+  memcpy(state + n + 2 * nt, d->fib_S, nf * sizeof(double));
+  state[n + 2 * nt + nf] = d->load;
+}
+
+
+void csf_stateSet(const csfModel* m, csfData* d, const double* state) {
+  const size_t n = (size_t)m->ndof, nt = (size_t)m->mesh->ntet, nf = (size_t)m->nfib;
+  memcpy(d->u, state, n * sizeof(double));
+  memcpy(d->theta, state + n, nt * sizeof(double));
+  memcpy(d->pel, state + n + nt, nt * sizeof(double));
+  memcpy(d->fib_S, state + n + 2 * nt, nf * sizeof(double));
+  d->load = state[n + 2 * nt + nf];
 }
 
 
@@ -1140,9 +1165,9 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     for (size_t i = 0; i < n; i++) {
       d->du[i] = m->fixed[i] ? load * m->u_fix[i] - d->u[i] : -d->r[i];
     }
-    double t0 = wallTime();
+    double t0 = csf_wallTime();
     int fst = csf_linSolverFactor(d->ls, d->kval);
-    d->stats.t_factor += wallTime() - t0;
+    d->stats.t_factor += csf_wallTime() - t0;
     d->stats.n_factor++;
     if (fst != 0) {
       memcpy(d->u, d->u_save, n * sizeof(double));
@@ -1154,9 +1179,9 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
       return cs_errorSet(err, CS_ERR_DIVERGED, "fem: singular tangent at load %g (iter %d)",
                          load, it);
     }
-    t0 = wallTime();
+    t0 = csf_wallTime();
     csf_linSolverSolve(d->ls, d->du);
-    d->stats.t_solve += wallTime() - t0;
+    d->stats.t_solve += csf_wallTime() - t0;
     d->stats.n_newton++;
     /* base of the linearised dilatation update: v/V and g at the current iterate */
     memcpy(d->vr0, d->vratio, nt * sizeof(double));
@@ -1276,9 +1301,9 @@ csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
       d->du[i] = m->fixed[i] ? load * m->u_fix[i] - d->u[i] : -d->r[i];
       d->du2[i] = d->fext1[i];
     }
-    double t0 = wallTime();
+    double t0 = csf_wallTime();
     int fst = csf_linSolverFactor(d->ls, d->kval);
-    d->stats.t_factor += wallTime() - t0;
+    d->stats.t_factor += csf_wallTime() - t0;
     d->stats.n_factor++;
     if (fst != 0) {
       restoreEntry(m, d, load0);
@@ -1288,10 +1313,10 @@ csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
       return cs_errorSet(err, CS_ERR_DIVERGED, "fem: singular tangent at volume %g (iter %d)",
                          vol_target, it);
     }
-    t0 = wallTime();
+    t0 = csf_wallTime();
     csf_linSolverSolve(d->ls, d->du);
     csf_linSolverSolve(d->ls, d->du2);
-    d->stats.t_solve += wallTime() - t0;
+    d->stats.t_solve += csf_wallTime() - t0;
     d->stats.n_newton++;
     /* constraint b . du = -c with du = x1 + dload x2 */
     double bx1 = 0, bx2 = 0;

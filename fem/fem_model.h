@@ -142,6 +142,17 @@ typedef struct csfData_ {
 csfData* csf_dataCreate(const csfModel* m, csError* err);
 void csf_dataDestroy(csfData* d);
 
+/* Wall-clock seconds (for the timers of csfStats and the sweeps). */
+double csf_wallTime(void);
+
+/* The state a Newton solve starts from, as one vector (like MuJoCo's mj_getState): u (ndof),
+ * theta (ntet), pel (ntet), fib_S (nfib), load (1). Copying u alone is not enough: the
+ * three-field element dilatation and the fibre stress state enter the first residual and
+ * tangent. csf_stateSize gives the length in doubles; the caller owns the buffer. */
+size_t csf_stateSize(const csfModel* m);
+void csf_stateGet(const csfModel* m, const csfData* d, double* state);
+void csf_stateSet(const csfModel* m, csfData* d, const double* state);
+
 /* Set the dilatation state to the current displacement (theta_e = v_e/V_e); after this the
  * assembled K is the exact derivative of R (used by tangent checks). */
 void csf_dataSyncVolume(const csfModel* m, csfData* d);

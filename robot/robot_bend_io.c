@@ -60,6 +60,13 @@ csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBend
       st = cs_h5AttrDouble(f, "/", "p_until_angle_MPa", bc->p_until_angle, err);
     }
   }
+  /* attributes p_limit_MPa / p_resume_MPa only when the sweep met a limit point */
+  if (st == CS_OK && meta->p_limit > 0) {
+    st = cs_h5AttrDouble(f, "/", "p_limit_MPa", meta->p_limit, err);
+  }
+  if (st == CS_OK && meta->p_resume > 0) {
+    st = cs_h5AttrDouble(f, "/", "p_resume_MPa", meta->p_resume, err);
+  }
   if (st == CS_OK) {
     ParamWriter pw = {f, err, CS_OK};
     csr_actuatorVisit(act, writeParam, &pw);

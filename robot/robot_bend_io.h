@@ -31,6 +31,8 @@ typedef struct csrBendMeta_ {
   double wall_time;       /* s */
   double until_angle_deg; /* --until-angle target (deg), NAN when not given; the result is
                              the curve's p_until_angle (MPa, NAN when not reached) */
+  double p_limit;         /* pressure limit point met by the sweep (MPa); 0 or NAN = none */
+  double p_resume;        /* pressure where the path was stable again (MPa); 0 or NAN = none */
 } csrBendMeta;
 
 /* Write the bend datasets and root attributes into `f` (created by cs_h5Create). */

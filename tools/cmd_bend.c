@@ -58,6 +58,7 @@ typedef struct {
   double mesh_size;           /* mm requested (NAN = model default); the model overwrites it
                                  with what it used (NAN for mesh-free models) */
   double n_elements_soft, n_elements_fibre; /* filled by mesh-based models */
+  double p_limit, p_resume;   /* MPa, pressure limit point met and resume pressure (NAN: none) */
   const char* out;
 } BendRun;
 
@@ -196,6 +197,7 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->p_max = kDefaultPMax;
   run->p_step = kDefaultPStep;
   run->until_angle = NAN;
+  run->p_limit = run->p_resume = NAN;
   run->mesh_size = NAN;
   run->out = "bend.h5";
   run->inflated[0] = run->inflated[1] = 1;
@@ -351,6 +353,12 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
 #ifdef CS_HAVE_FEM
 static void feProgress(void* user, const csfBendStep* st) {
   (void)user;
+  if (st->volume_control) {
+    fprintf(stderr, "  fe: volume control past a limit point: V %.1f mm^3, p = %.5f MPa (dp "
+            "%+.5f), %d Newton iterations, %.2f s, total %.2f deg\n", st->volume, st->p, st->dp,
+            st->newton_iters, st->wall, st->angle_total);
+    return;
+  }
   fprintf(stderr, "  fe: p = %.4f MPa (dp %.4f), %d Newton iterations, %d cut-backs, %.2f s, "
           "total %.2f deg\n", st->p, st->dp, st->newton_iters, st->cutbacks, st->wall,
           st->angle_total);
@@ -389,13 +397,27 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
     run->mesh_size = o.mesh_size;
     run->n_elements_soft = info.ntet;
     run->n_elements_fibre = info.nfibre;
+    run->p_limit = info.p_limit;
+    run->p_resume = info.p_resume;
     fprintf(stderr, "crawlsim bend: fe: %d tets, %d nodes, %d fibre elements, %d steps, %ld Newton "
             "iterations; assembly %.1f s, factorisation %.1f s, solves %.1f s, total %.1f s; "
             "deformed mesh %s, deck %s\n", info.ntet, info.nnode, info.nfibre, info.n_steps,
             info.n_newton, info.t_assemble, info.t_factor, info.t_solve, info.t_total, vtu, inp);
-    if (!isnan(info.p_limit)) {
-      fprintf(stderr, "crawlsim bend: fe: limit point at %.4f MPa: the load stepping could not "
-              "go further\n", info.p_limit);
+    if (info.n_until_trials > 0) {
+      fprintf(stderr, "crawlsim bend: fe: until-angle refinement: %d equilibrium trials, %d "
+              "failed%s%s\n", info.n_until_trials, info.n_until_failed,
+              info.until_note[0] ? "; last failure: " : "", info.until_note);
+    }
+    if (!isnan(info.p_limit) && !isnan(info.p_resume)) {
+      fprintf(stderr, "crawlsim bend: fe: pressure limit point at %.5f MPa (%.2f deg): passed "
+              "by chamber-volume control (%d steps); stable again at %.5f MPa (%.2f deg), where "
+              "the sweep resumed: under pressure control the actuator snaps across, the curve "
+              "has no rows in between\n", info.p_limit, info.angle_limit, info.n_volume_steps,
+              info.p_resume, info.angle_resume);
+    } else if (!isnan(info.p_limit)) {
+      fprintf(stderr, "crawlsim bend: fe: pressure limit point at %.5f MPa (%.2f deg)%s%s: the "
+              "sweep ends there\n", info.p_limit, info.angle_limit,
+              info.limit_note[0] ? "; past it: " : "", info.limit_note);
     }
   }
   return st;
@@ -424,7 +446,7 @@ int csx_cmdBend(int argc, char** argv) {
     if (fst == CS_OK) {
       csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,
                           run.n_elements_soft,    run.n_elements_fibre, wallSeconds() - t0,
-                          run.until_angle};
+                          run.until_angle,        run.p_limit,          run.p_resume};
       fst = csr_bendCurveWriteH5(ff, &run.act, &fbc, &meta, &ferr);
     }
     cs_h5Close(ff);
@@ -516,7 +538,8 @@ int csx_cmdBend(int argc, char** argv) {
   double wall = wallSeconds() - t0;
   if (st == CS_OK) {
     csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
-                        run.n_elements_fibre,   wall,         run.until_angle};
+                        run.n_elements_fibre,   wall,         run.until_angle,
+                        run.p_limit,            run.p_resume};
     st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
   }
   cs_h5Close(f);

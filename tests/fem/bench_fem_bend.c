@@ -13,6 +13,14 @@
 
 static void progress(void* user, const csfBendStep* s) {
   (void)user;
+  if (s->volume_control) {
+    printf("volume-control step: V %.6g mm^3  p %.6f MPa (dp %+.6f)  iters %2d  wall %7.2f s  "
+           "angles %7.2f %7.2f %7.2f  total %7.2f deg\n", s->volume, s->p, s->dp,
+           s->newton_iters, s->wall, s->angle_deg[0], s->angle_deg[1], s->angle_deg[2],
+           s->angle_total);
+    fflush(stdout);
+    return;
+  }
   printf("step p %.5f MPa (dp %.5f)  iters %2d  cutbacks %d  wall %7.2f s  (%.2f s/iter)  "
          "angles %7.2f %7.2f %7.2f  total %7.2f deg\n",
          s->p, s->dp, s->newton_iters, s->cutbacks, s->wall,
@@ -93,6 +101,19 @@ int main(int argc, char** argv) {
          info.t_total, info.t_mesh, info.t_setup, info.t_assemble, info.t_factor, info.t_solve,
          info.n_steps, info.n_newton, info.n_cutbacks, info.factor_nnz);
   printf("max |theta - 1| = %.3e; p_limit = %g MPa\n", info.max_j_dev, info.p_limit);
+  if (info.n_volume_steps > 0) {
+    printf("limit point: p_limit %.6g MPa at %.3f deg; %d volume-controlled steps; %s\n",
+           info.p_limit, info.angle_limit, info.n_volume_steps, isnan(info.p_resume)
+           ? "no stable branch above the limit found: sweep ended" : "resumed");
+    if (!isnan(info.p_resume)) {
+      printf("limit point: resumed at %.6g MPa, %.3f deg (snap %.3f -> %.3f deg)\n",
+             info.p_resume, info.angle_resume, info.angle_limit, info.angle_resume);
+    }
+  }
+  if (info.n_until_trials > 0) {
+    printf("until-angle refinement: %d trials, %d failed%s%s\n", info.n_until_trials,
+           info.n_until_failed, info.until_note[0] ? "; last failure: " : "", info.until_note);
+  }
   for (size_t i = 0; i < bc.m; i++) {
     printf("p %.5f MPa  angles %8.3f %8.3f %8.3f  total %8.3f deg  tip %8.3f %8.3f %8.3f mm\n",
            bc.pressure[i], bc.angle_deg[3 * i], bc.angle_deg[3 * i + 1], bc.angle_deg[3 * i + 2],

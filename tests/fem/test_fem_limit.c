@@ -9,13 +9,17 @@
  *   p(la) = int_{lb}^{la} W'(l) / (l^3 - 1) dl,  lb^3 = 1 + (la^3 - 1) (A/B)^3,
  *   W(l) = C10 (2 l^2 + l^-4 - 3),
  * with la = a/A the bore stretch. Also: pressure control on the same model stops at the limit
- * point (its last converged pressure lies below the maximum and the next increment fails). */
+ * point (its last converged pressure lies below the maximum and the next increment fails).
+ * test_sphere_snap_through: csf_passLimit, the continuation csf_bend uses, through a maximum AND
+ * a minimum of a Yeoh sphere (small C20) and back onto the stable branch. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cs_test.h"
 #include "fem_mesh.h"
+#include "fem_path.h"
 #include "fem_test_util.h"
 
 #define SPH_A 10.0 /* inner radius, mm */
@@ -23,23 +27,48 @@
 #define SPH_C10 0.11 /* MPa; C20 = 0: neo-Hookean, which has a limit point (Yeoh's C20 > 0 */
                      /* stiffens the paper's silicone enough to remove it for a sphere) */
 
-/* dW/dl of the sphere's strain energy per reference volume, MPa */
-static double dWsphere(double l) {
-  return SPH_C10 * (4.0 * l - 4.0 * pow(l, -5.0));
+/* dW/dl of the sphere's strain energy per reference volume, MPa: Yeoh with I1 = 2 l^2 + l^-4,
+ * W = C10 (I1 - 3) + C20 (I1 - 3)^2, dI1/dl = 4 l - 4 l^-5 */
+static double dWsphereYeoh(double l, double C20) {
+  const double I1 = 2.0 * l * l + pow(l, -4.0);
+  return (SPH_C10 + 2.0 * C20 * (I1 - 3.0)) * (4.0 * l - 4.0 * pow(l, -5.0));
 }
 
-/* semi-analytic pressure at bore stretch la (composite Simpson, 400 panels: error < 1e-9 MPa) */
-static double pSphere(double la) {
+
+/* semi-analytic pressure at bore stretch la, Yeoh (composite Simpson, 400 panels: error < 1e-9
+ * MPa at la < 2, < 1e-7 MPa at la = 3) */
+static double pSphereYeoh(double la, double C20) {
   const double lb = cbrt(1.0 + (la * la * la - 1.0) * pow(SPH_A / SPH_B, 3.0));
   const int nseg = 400;
   const double h = (la - lb) / nseg;
   double s = 0;
   for (int k = 0; k <= nseg; k++) {
     const double l = lb + k * h;
-    const double f = dWsphere(l) / (l * l * l - 1.0);
+    const double f = dWsphereYeoh(l, C20) / (l * l * l - 1.0);
     s += f * ((k == 0 || k == nseg) ? 1.0 : (k % 2 ? 4.0 : 2.0));
   }
   return s * h / 3.0;
+}
+
+/* stretch of the extremum of pSphereYeoh(., C20) in [lo, hi] (golden section, 80 steps: the
+ * bracket shrinks by 0.618^80 ~ 2e-17); sign +1 for a maximum, -1 for a minimum */
+static double sphereExtremum(double C20, double lo, double hi, double sign) {
+  const double gr = 0.5 * (sqrt(5.0) - 1.0);
+  for (int k = 0; k < 80; k++) {
+    const double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+    if (sign * pSphereYeoh(x1, C20) > sign * pSphereYeoh(x2, C20)) {
+      hi = x2;
+    } else {
+      lo = x1;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
+
+
+/* neo-Hookean (C20 = 0) semi-analytic pressure at bore stretch la, MPa */
+static double pSphere(double la) {
+  return pSphereYeoh(la, 0.0);
 }
 
 /* gmsh octant of the hollow sphere, inner surface tagged 1 */
@@ -153,18 +182,8 @@ static int limitSweep(double h, int with_pc, LimitResult* res) {
 
 
 static void test_sphere_limit_point(void) {
-  /* semi-analytic maximum: golden-section search on la in [1.1, 2.0] */
-  double lo = 1.1, hi = 2.0;
-  const double gr = 0.5 * (sqrt(5.0) - 1.0);
-  for (int k = 0; k < 80; k++) {
-    const double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-    if (pSphere(x1) > pSphere(x2)) {
-      hi = x2;
-    } else {
-      lo = x1;
-    }
-  }
-  const double la_ref = 0.5 * (lo + hi), p_ref = pSphere(la_ref);
+  /* semi-analytic maximum on la in [1.1, 2.0] */
+  const double la_ref = sphereExtremum(0.0, 1.1, 2.0, 1.0), p_ref = pSphere(la_ref);
   LimitResult r[2];
   const double h[2] = {2.0, 1.0};
   for (int k = 0; k < 2; k++) {
@@ -190,8 +209,142 @@ static void test_sphere_limit_point(void) {
 }
 
 
+/* Snap-through: with a small C20 the Yeoh sphere's pressure has a maximum AND a minimum (C20 =
+ * 0.004 MPa: semi-analytic max 0.05488 MPa at la = 1.70, min 0.05386 at la = 2.42; the pressure
+ * passes the maximum again near la = 3.0). Pressure control steps until it fails at the limit;
+ * csf_passLimit (the continuation csf_bend uses) follows the path by volume through the maximum
+ * and the minimum and returns at the first state above the maximum, where a pressure-controlled
+ * load lands after the snap. Checks: the limit pressure, and the resumed state's bore stretch
+ * against the stable upper branch of the semi-analytic curve at the resumed pressure, and that a
+ * further pressure-controlled step from there converges. */
+#define SNAP_C20 0.004
+#define SNAP_H 2.0 /* mesh size, mm (400 Tet10); env CS_SNAP_H overrides (refinement check) */
+#define SNAP_TOL_P 2e-2 /* see the check */
+
+typedef struct {
+  int n;
+  double p[400], la[400];
+} SnapTrace;
+
+static int snapRecord(void* user, const csfModel* m, const csfData* d, const csfPathPoint* pt) {
+  (void)m;
+  SnapTrace* tr = user;
+  if (tr->n < 400) {
+    tr->p[tr->n] = pt->p;
+    tr->la[tr->n] = boreStretch(d->vol_w);
+    tr->n++;
+  }
+  return 0;
+}
+
+static void test_sphere_snap_through(void) {
+  /* semi-analytic maximum (on [1.3, 2.0]) and minimum (on [2.0, 3.0]); the upper-branch
+   * stretch at a pressure is found below by bisection on [la_min, 5], where p rises */
+  const double p_max_ref = pSphereYeoh(sphereExtremum(SNAP_C20, 1.3, 2.0, 1.0), SNAP_C20);
+  const double la_min = sphereExtremum(SNAP_C20, 2.0, 3.0, -1.0);
+  const double p_min_ref = pSphereYeoh(la_min, SNAP_C20);
+  csError err = {0};
+  const char* h_env = getenv("CS_SNAP_H");
+  csfMesh* me = sphereMesh(h_env ? atof(h_env) : SNAP_H, "fem_snap");
+  CS_EXPECT(me != NULL);
+  if (!me) {
+    return;
+  }
+  csfMaterial mat = csf_materialDefault(SPH_C10, SNAP_C20, 1130e-12);
+  csfModel* m = csf_modelCreate(me, &mat, &err);
+  for (int c = 0; c < 3; c++) {
+    ftFix(m, c, 0.0, c, 0.0);
+  }
+  CS_EXPECT(csf_modelAddPressure(m, 1, 1.0) > 0);
+  csf_modelFinalize(m, &err);
+  csfData* d = csf_dataCreate(m, &err);
+  csfNewtonOptions o = csf_newtonDefault();
+  o.max_iter = 15;
+  const size_t ns = csf_stateSize(m);
+  double* s_prev = calloc(ns, sizeof(double));
+  double* s_conv = calloc(ns, sizeof(double));
+  double* s_tmp = calloc(ns, sizeof(double));
+  /* pressure control, 0.005 MPa steps halved on failure down to 1e-5 MPa, as csf_bend does */
+  csf_assemble(m, d, 0.0, 0);
+  double V_prev = d->vol_w, V_conv = d->vol_w, p = 0.0, dp = 0.005;
+  csf_stateGet(m, d, s_conv);
+  memcpy(s_prev, s_conv, ns * sizeof(double));
+  while (dp >= 1e-5) {
+    int it = 0;
+    csf_stateSet(m, d, s_conv);
+    if (csf_newtonSolve(m, d, p + dp, &o, &it, &err) != CS_OK) {
+      dp *= 0.5;
+      continue;
+    }
+    p += dp;
+    memcpy(s_prev, s_conv, ns * sizeof(double));
+    csf_stateGet(m, d, s_conv);
+    V_prev = V_conv, V_conv = d->vol_w;
+  }
+  const double p_pc = p;
+  SnapTrace tr = {0};
+  csfLimitOptions lopt = csf_limitDefault();
+  lopt.callback = snapRecord;
+  lopt.user = &tr;
+  csfLimitResult lr;
+  csStatus st = csf_passLimit(m, d, s_prev, s_conv, s_tmp, V_prev, V_conv, p_pc, &o, &lopt, &lr,
+                              &err);
+  if (st != CS_OK) {
+    fprintf(stderr, "%s\n", err.msg);
+  }
+  CS_EXPECT(st == CS_OK && !lr.stopped && !lr.no_limit);
+  double p_low = INFINITY, la_res = NAN;
+  for (int k = 0; k < tr.n; k++) {
+    p_low = fmin(p_low, tr.p[k]);
+  }
+  if (tr.n > 0) {
+    la_res = tr.la[tr.n - 1];
+  }
+  /* the semi-analytic upper branch at the resumed pressure */
+  double a = la_min, b = 5.0;
+  for (int k = 0; k < 80 && isfinite(lr.p_resume); k++) {
+    const double c = 0.5 * (a + b);
+    if (pSphereYeoh(c, SNAP_C20) < lr.p_resume) {
+      a = c;
+    } else {
+      b = c;
+    }
+  }
+  const double la_ref = 0.5 * (a + b);
+  printf("  %d Tet10: pressure control stops at %.5f MPa; volume control: %d steps, %ld Newton "
+         "iterations; limit %.6f MPa (semi-analytic %.6f: %+.3f %%), lowest %.6f (minimum "
+         "%.6f: %+.3f %%), resumed at %.6f MPa with bore stretch %.4f (upper branch %.4f: "
+         "%+.3f %%); semi-analytic pressure at that stretch %.6f MPa (%+.3f %%)\n", me->ntet,
+         p_pc, lr.n_steps, lr.n_newton, lr.p_limit, p_max_ref,
+         100.0 * (lr.p_limit / p_max_ref - 1.0), p_low, p_min_ref,
+         100.0 * (p_low / p_min_ref - 1.0), lr.p_resume, la_res, la_ref,
+         100.0 * (la_res / la_ref - 1.0), pSphereYeoh(la_res, SNAP_C20),
+         100.0 * (lr.p_resume / pSphereYeoh(la_res, SNAP_C20) - 1.0));
+  /* measured (400 / 2410 Tet10, mesh 2 / 1 mm): limit -0.309 / -0.145 %, minimum -0.616 /
+   * -0.329 %, pressure at the resumed stretch -0.978 / -0.641 %: discretisation error, halving
+   * with the mesh size (the thin wall at la = 3 is 0.2 mm thick). Tolerances: twice the coarse
+   * mesh's error; a wrong volume gradient or a wrong resume criterion misses by far more */
+  CS_EXPECT(p_pc <= lr.p_limit);
+  CS_EXPECT_NEAR(lr.p_limit, p_max_ref, 0, 6e-3);
+  CS_EXPECT(p_low < p_min_ref * 1.01); /* the path really went down through the minimum */
+  CS_EXPECT(lr.p_resume > lr.p_limit);
+  /* the upper branch is flat where it crosses the maximum's pressure (dp/dla ~ 0.003 MPa per
+   * unit stretch), so a pressure error of 0.3 % moves the stretch by ~5 %: compare the pressure
+   * at the resumed state's stretch instead */
+  CS_EXPECT_NEAR(lr.p_resume, pSphereYeoh(la_res, SNAP_C20), 0, SNAP_TOL_P);
+  /* stable again: a pressure-controlled step from the resumed state converges */
+  int it = 0;
+  CS_EXPECT(csf_newtonSolve(m, d, lr.p_resume + 0.001, &o, &it, &err) == CS_OK);
+  free(s_prev), free(s_conv), free(s_tmp);
+  csf_dataDestroy(d);
+  csf_modelDestroy(m);
+  csf_meshDestroy(me);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_sphere_limit_point);
+  CS_RUN(test_sphere_snap_through);
   return cs_testSummary();
 }
