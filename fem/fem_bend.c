@@ -423,6 +423,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   info.t_mesh = csf_wallTime() - t_start;
   /* model: clamped base, chambers, fibres */
   csfMaterial mat = csf_materialDefault(act->C10, act->C20, act->rho);
+  mat.form = o->form;
   w.model = csf_modelCreate(w.mesh, &mat, err);
   if (!w.model) {
     sweepFree(&w);
@@ -494,15 +495,31 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   nopt.monitor_user = o->progress_user;
   nopt.max_iter = 40; /* slender body: Newton crosses flat energy valleys (measured up to 12) */
   csError lerr = {0};
-  /* gravity alone at p = 0 */
+  /* gravity alone at p = 0, ramped in factor gamma (m->gravity = gamma g) with the load
+   * stepping's rules: a soft leg under its full weight in one step does not converge (the leg
+   * at 9.81 m/s^2, fem/README.md) */
   if (o->gravity[0] != 0 || o->gravity[1] != 0 || o->gravity[2] != 0) {
-    int it;
-    if (csf_newtonSolve(m, d, 0.0, &nopt, &it, &lerr) != CS_OK) {
-      sweepFree(&w);
-      return cs_errorSet(err, CS_ERR_DIVERGED, "fem_bend: no equilibrium under gravity: %s",
-                         lerr.msg);
+    double gam = 0.0, dgam = 1.0;
+    while (gam < 1.0) {
+      const double next = fmin(gam + dgam, 1.0);
+      for (int i = 0; i < 3; i++) {
+        m->gravity[i] = next * o->gravity[i];
+      }
+      int it = 0;
+      const csStatus gst = csf_newtonSolve(m, d, 0.0, &nopt, &it, &lerr);
+      info.n_newton += it;
+      if (gst == CS_OK) {
+        gam = next;
+        info.n_gravity_steps++;
+        if (it <= 5) {
+          dgam *= 1.5;
+        }
+      } else if ((dgam *= 0.5) < 1e-3) {
+        sweepFree(&w);
+        return cs_errorSet(err, CS_ERR_DIVERGED, "fem_bend: no equilibrium under gravity beyond "
+                           "%.4g of its value: %s", gam, lerr.msg);
+      }
     }
-    info.n_newton += it;
   }
   csf_stateGet(m, d, w.s_conv);
   memcpy(w.s_prev, w.s_conv, ns * sizeof(double));

@@ -36,6 +36,7 @@ typedef void (*csfBendProgress)(void* user, const csfBendStep* step);
 typedef struct csfBendInfo_ {
   int ntet, nnode, nfibre, ndof;
   int n_steps, n_cutbacks;
+  int n_gravity_steps; /* converged steps of the gravity ramp before the pressure sweep */
   long n_newton;
   double t_mesh, t_setup, t_total;         /* wall s: gmsh + reading, model + fibres, all */
   double t_assemble, t_factor, t_solve;    /* wall s, accumulated */
@@ -66,6 +67,8 @@ typedef struct csfBendOptions_ {
                           * Venant); 0: smoothed tension-only (Newton cycles on the baseline) */
   int fibre_geo_tension; /* 0 (default): consistent fibre tangent; 1: geometric stiffness only
                           * in tension (csfModel.fib_geo_tension; the residual is unchanged) */
+  csfFormulation form; /* element formulation (default CSF_FORM_MIXED_P0; CSF_FORM_DISPLACEMENT
+                        * is plain P2 = CalculiX's C3D10, for cross-checks) */
   csfLineSearch line_search; /* Newton line search (default CSF_LS_RESIDUAL) */
   int continuation;    /* 1 (default): past a limit point, follow the path by chamber-volume
                         * control and resume pressure control where it is stable again; 0: stop

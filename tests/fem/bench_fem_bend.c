@@ -1,6 +1,6 @@
 /* bench_fem_bend.c: benchmark command (not a ctest): one FE bend sweep with per-step timing.
  * Usage: bench_fem_bend [actuator] [l_soft] [p_max] [p_step] [until_angle|nan] [chambers]
- *   [--set N=V]... [--vtu F] [--inp F] [--no-fibres] [--fibre-size MM] [--tension-only]
+ *   [--set N=V]... [--vtu F] [--inp F] [--p2] [--no-fibres] [--fibre-size MM] [--tension-only]
  *   [--geo-tension] [--ls-energy] [--trace] [--stem S]
  * Default: baseline, l_soft 4 mm, 0 -> 0.4 MPa in 0.05 MPa steps, chambers 1,2 (the issue's
  * benchmark). Prints time per load step and per Newton iteration, then the summary. */
@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
       o.fibre_size = atof(argv[++i]);
     } else if (!strcmp(argv[i], "--stem") && i + 1 < argc) {
       o.work_stem = argv[++i];
+    } else if (!strcmp(argv[i], "--p2")) {
+      o.form = CSF_FORM_DISPLACEMENT; /* plain P2, as CalculiX's C3D10 */
     } else if (!strcmp(argv[i], "--no-fibres")) {
       o.fibres = 0;
     } else if (!strcmp(argv[i], "--fibre-compression")) {
