@@ -1,15 +1,18 @@
 #!/usr/bin/python3
 """FE mesh study (paper Table 1): error of the total bending angle against wall time.
 
-Reads the logs of `bench_fem_bend` runs (one per mesh size, same actuator, chambers and pressure
-steps), takes the finest mesh (most Tet10) as the reference, and prints a Markdown table
+Reads the logs of `bench_fem_bend` runs (or the stderr of `crawlsim bend --model fe`; one per mesh
+size, same actuator and chambers), takes at each pressure the finest mesh (most Tet10) that
+reached it as the reference, and prints a Markdown table
 (l_soft, Tet10, nodes, fibre elements, wall time, angle and relative error at each study
 pressure) and draws relative error against wall time to a PNG.
 
 Usage:
   /usr/bin/python3 tools/plot_fem_mesh_study.py LOG... [--pressures 0.05,0.1,0.2]
       [--out docs/fem_mesh_study.png]
-Run e.g. `bench_fem_bend baseline L 0.2 0.05 nan 1,2 > /tmp/mesh_L.log` for each L first.
+Run e.g. `bench_fem_bend baseline L 0.2 0.05 nan 1,2 > /tmp/mesh_L.log` for each L first. A log
+without the closing summary (a run stopped early, or a crawlsim log) needs LOG.meta holding the
+`mesh: ...` line of a bench_fem_bend run of the same mesh; its setup time counts as 0.
 """
 import argparse
 import re
@@ -19,6 +22,9 @@ MESH_RE = re.compile(r"mesh: (\d+) Tet10, (\d+) nodes, (\d+) dofs, (\d+) fibre e
                      r"l_soft ([\d.]+) mm")
 TIME_RE = re.compile(r"time: total ([\d.]+) s = mesh ([\d.]+) \+ setup ([\d.]+)")
 STEP_RE = re.compile(r"^step p ([\d.]+) MPa .* wall +([\d.]+) s.* total +(\S+) deg")
+# `crawlsim bend --model fe` progress lines (stderr), the same data in the CLI's words
+CLI_STEP_RE = re.compile(r"fe: p = ([\d.]+) MPa \(dp [\d.]+\), \d+ Newton iterations, \d+ "
+                         r"cut-backs, ([\d.]+) s, total (\S+) deg")
 ROW_RE = re.compile(r"^p ([\d.]+) MPa +angles +(\S+) +(\S+) +(\S+) +total +(\S+) deg")
 
 
@@ -37,7 +43,7 @@ def read_log(path):
             if m:
                 run["wall"] = float(m.group(1))
                 run["pre"] = float(m.group(2)) + float(m.group(3))
-            m = STEP_RE.search(line)
+            m = STEP_RE.search(line) or CLI_STEP_RE.search(line)
             if m:
                 steps.append((float(m.group(1)), float(m.group(2))))
                 # converged steps land exactly on the output pressures: a run stopped before its
@@ -112,13 +118,11 @@ def main():
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6, 4))
     for p in ps:
-        ax.plot(series[p][0], series[p][1], "o-",
+        ax.plot(series[p][0], series[p][1], "o:",
                 label="%.2f MPa (vs l_soft %g)" % (p, refs[p]["l_soft"]))
-        if p == ps[0]:
-            for t, e, l in zip(*series[p]):
-                ax.annotate("%g mm" % l, (t, e), textcoords="offset points", xytext=(4, 4),
-                            fontsize=8)
-    ax.set_xlabel("wall time to reach the pressure (s)")
+        for t, e, l in zip(*series[p]):
+            ax.annotate("%g" % l, (t, e), textcoords="offset points", xytext=(4, 3), fontsize=7)
+    ax.set_xlabel("wall time to reach the pressure (s); labels: l_soft (mm)")
     ax.set_ylabel("total-angle error vs the finest mesh (%)")
     ax.set_yscale("log")
     ax.set_title("FE mesh study: baseline, fibres, chambers 1,2")
