@@ -339,26 +339,6 @@ static void sweepFree(Sweep* w) {
 }
 
 
-/* From the state in d (at pressure p_from) to equilibrium at p_to by Newton solves, halving the
- * increment after a failure (each failed solve restores its entry state) down to dp_min. */
-static csStatus rampTo(const csfModel* m, csfData* d, double p_from, double p_to, double dp_min,
-                       const csfNewtonOptions* nopt, long* iters, csError* lerr) {
-  double p = p_from, dp = p_to - p_from;
-  while (p != p_to) {
-    const double target = fabs(p_to - p) <= 1.0001 * fabs(dp) ? p_to : p + dp;
-    int it = 0;
-    const csStatus st = csf_newtonSolve(m, d, target, nopt, &it, lerr);
-    *iters += it;
-    if (st == CS_OK) {
-      p = target;
-    } else if (st != CS_ERR_DIVERGED || fabs(dp *= 0.5) < dp_min) {
-      return st;
-    }
-  }
-  return CS_OK;
-}
-
-
 /* Per-state watcher of the volume-controlled path past a limit point (csf_passLimit callback):
  * tracks the angles (for unwrapping), the angles at the pressure maximum, reports progress, and
  * stops the path when the --until-angle target is reached. */
@@ -628,8 +608,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
        * states; output pressures passed in the snap are skipped (no stable state there) */
       info.p_resume = lr.p_resume;
       info.angle_resume = ang_conv[3];
-      csf_assemble(m, d, p, 0);
-      V_prev = V_conv = d->vol_w;
+      V_prev = V_conv = d->vol_w; /* d is the last converged volume-controlled state */
       p_prev = lr.p_before;
       have_prev = p > p_prev;
       memcpy(ang_prev, ang_conv, sizeof ang_prev);
@@ -675,9 +654,10 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
          * cut-backs; an interpolated start shortens the rotated fibres (chord of an arc) */
         const int from_lo = f <= 0.5;
         csf_stateSet(m, d, from_lo ? slo : shi);
-        long itb = 0;
+        int itb = 0;
         info.n_until_trials++;
-        if (rampTo(m, d, from_lo ? lo : hi, pm, dp_min, &nopt, &itb, &lerr) != CS_OK) {
+        /* load stepping from the restored state's pressure (d->load) to pm */
+        if (csf_loadRamp(m, d, pm, 1, &nopt, &itb, &lerr) != CS_OK) {
           info.n_newton += itb;
           info.n_until_failed++;
           snprintf(info.until_note, sizeof info.until_note, "trial %.6g MPa from %.6g MPa: %.150s",

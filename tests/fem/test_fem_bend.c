@@ -10,18 +10,31 @@
 #include "cs_test.h"
 #include "fem_bend.h"
 
+/* the short coarse variant: baseline with 15 mm segments, `turns` fibre turns per segment,
+ * meshed at l_soft 5; returns the options of a sweep on it */
+static csfBendOptions shortActuator(csrActuator* act, int turns, csfBendInfo* info) {
+  csError err = {0};
+  csr_actuatorPreset(act, "baseline", &err);
+  char n[3][16];
+  for (int s = 0; s < 3; s++) {
+    snprintf(n[s], sizeof n[s], "n%d=%d", s + 1, turns);
+  }
+  const char* set[] = {"S1=15", "S2=15", "S3=15", n[0], n[1], n[2]};
+  for (int i = 0; i < 6; i++) {
+    CS_EXPECT(csr_actuatorSetString(act, set[i], &err) == CS_OK);
+  }
+  csfBendOptions o = csf_bendDefault();
+  o.info = info;
+  o.mesh_size = 5.0;
+  o.fibres = turns > 0;
+  return o;
+}
+
 static void test_bend_short(void) {
   csError err = {0};
   csrActuator act;
-  csr_actuatorPreset(&act, "baseline", &err);
-  const char* set[] = {"S1=15", "S2=15", "S3=15", "n1=9", "n2=9", "n3=9"};
-  for (int i = 0; i < 6; i++) {
-    CS_EXPECT(csr_actuatorSetString(&act, set[i], &err) == CS_OK);
-  }
-  csfBendOptions o = csf_bendDefault();
   csfBendInfo info;
-  o.info = &info;
-  o.mesh_size = 5.0;
+  csfBendOptions o = shortActuator(&act, 9, &info);
   o.p_max = 0.1;
   o.p_step = 0.05;
   o.until_angle = 4.0; /* deg, reached near 0.06 MPa */
@@ -83,18 +96,10 @@ static void test_bend_short(void) {
 static void test_gravity_ramp(void) {
   csError err = {0};
   csrActuator act;
-  csr_actuatorPreset(&act, "baseline", &err);
-  const char* set[] = {"S1=15", "S2=15", "S3=15", "n1=0", "n2=0", "n3=0"};
-  for (int i = 0; i < 6; i++) {
-    CS_EXPECT(csr_actuatorSetString(&act, set[i], &err) == CS_OK);
-  }
-  csfBendOptions o = csf_bendDefault();
   csfBendInfo info;
-  o.info = &info;
-  o.mesh_size = 5.0;
+  csfBendOptions o = shortActuator(&act, 0, &info);
   o.p_max = 0.002; /* a token pressure step after gravity */
   o.p_step = 0.002;
-  o.fibres = 0;
   o.gravity[0] = -G_FACTOR * 9810.0; /* mm/s^2 */
   o.work_stem = "bend_gravity";
   csrBendCurve bc;
