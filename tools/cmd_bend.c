@@ -16,9 +16,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
+#include "core_clock.h"
 #include "core_h5.h"
+#include "core_text.h"
 #include "cs_commands.h"
 #ifdef CS_HAVE_FEM
 #include "fem_bend.h"
@@ -75,7 +75,7 @@ static BendPointFn bendModelEvaluator(BendModel m);
 static int parseArgs(int argc, char** argv, BendRun* run);
 /* strict number parser: whole string, finite, > 0; prints the error line naming the unit */
 static int parsePositive(const char* flag, const char* text, const char* unit, double* v);
-/* "1,2" -> inflated[], canonical text; prints the error line */
+/* "1,2" -> inflated[], canonical text (core_text.h's parser); prints the error line */
 static int parseChambers(const char* text, BendRun* run);
 /* Θ(p) for --until-angle */
 static csStatus totalAngle(BendRun* run, BendPointFn eval, double p, double* theta_deg,
@@ -83,8 +83,6 @@ static csStatus totalAngle(BendRun* run, BendPointFn eval, double p, double* the
 /* pressure at which Θ reaches run->until_angle; NAN when not reached up to the ceiling */
 static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurve* bc,
                                double* p_out, double* p_searched, csError* err);
-/* seconds on the C11 wall clock */
-static double wallSeconds(void);
 #ifdef CS_HAVE_FEM
 /* the full FE model (fem_bend.h): adaptive load stepping over the whole sweep; --until-angle is
  * found by the load stepping itself */
@@ -129,13 +127,6 @@ static BendPointFn bendModelEvaluator(BendModel m) {
 }
 
 
-static double wallSeconds(void) {
-  struct timespec ts;
-  timespec_get(&ts, TIME_UTC);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-
 static int parsePositive(const char* flag, const char* text, const char* unit, double* v) {
   char* end = NULL;
   double x = strtod(text, &end);
@@ -153,37 +144,16 @@ static int parsePositive(const char* flag, const char* text, const char* unit, d
 
 
 static int parseChambers(const char* text, BendRun* run) {
-  memset(run->inflated, 0, sizeof run->inflated);
-  const char* s = text;
-  while (1) {
-    char* end = NULL;
-    long j = strtol(s, &end, 10);
-    if (end == s || (*end != ',' && *end != '\0')) {
-      fprintf(stderr, "crawlsim bend: --chambers '%s': expected a comma-separated list of 1..4\n",
-              text);
-      return 1;
-    }
-    if (j < 1 || j > CSR_NCHAMBER) {
-      fprintf(stderr, "crawlsim bend: --chambers '%s': chamber %ld is not in 1..4\n", text, j);
-      return 1;
-    }
-    if (run->inflated[j - 1]) {
-      fprintf(stderr, "crawlsim bend: --chambers '%s': chamber %ld is repeated\n", text, j);
-      return 1;
-    }
-    run->inflated[j - 1] = 1;
-    if (*end == '\0') {
-      break;
-    }
-    s = end + 1;
+  unsigned mask = 0;
+  csError err;
+  if (csu_chamberListParse(text, CSR_NCHAMBER, "--chambers", &mask, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    return 1;
   }
-  /* canonical text in chamber order */
-  char* w = run->chambers;
   for (int j = 0; j < CSR_NCHAMBER; j++) {
-    if (run->inflated[j]) {
-      w += sprintf(w, "%s%d", w == run->chambers ? "" : ",", j + 1);
-    }
+    run->inflated[j] = (mask >> j) & 1u;
   }
+  csu_chamberListFormat(mask, run->chambers, sizeof run->chambers);
   return 0;
 }
 
@@ -438,14 +408,14 @@ int csx_cmdBend(int argc, char** argv) {
     csH5File* ff = cs_h5Create(run.out, &ferr);
     csrBendCurve fbc;
     memset(&fbc, 0, sizeof fbc);
-    double t0 = wallSeconds();
+    double t0 = csu_wallSeconds();
     csStatus fst = ff ? csr_bendCurveInit(&fbc, 16, &ferr) : ferr.status;
     if (fst == CS_OK) {
       fst = feSweep(&run, &fbc, &ferr);
     }
     if (fst == CS_OK) {
       csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,
-                          run.n_elements_soft,    run.n_elements_fibre, wallSeconds() - t0,
+                          run.n_elements_soft,    run.n_elements_fibre, csu_wallSeconds() - t0,
                           run.until_angle,        run.p_limit,          run.p_resume};
       fst = csr_bendCurveWriteH5(ff, &run.act, &fbc, &meta, &ferr);
     }
@@ -515,7 +485,7 @@ int csx_cmdBend(int argc, char** argv) {
   }
 
   /* the sweep: 0, step, ..., and p-max as the last row */
-  double t0 = wallSeconds();
+  double t0 = csu_wallSeconds();
   size_t nstep = (size_t)floor(run.p_max / run.p_step * (1 + kSweepEps));
   csrBendCurve bc;
   csStatus st = csr_bendCurveInit(&bc, nstep + 2, &err);
@@ -535,7 +505,7 @@ int csx_cmdBend(int argc, char** argv) {
     st = findUntilAngle(&run, eval, &bc, &p_until, &p_searched, &err);
     bc.p_until_angle = p_until;
   }
-  double wall = wallSeconds() - t0;
+  double wall = csu_wallSeconds() - t0;
   if (st == CS_OK) {
     csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
                         run.n_elements_fibre,   wall,         run.until_angle,

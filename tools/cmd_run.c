@@ -183,16 +183,25 @@ int csx_cmdRun(int argc, char** argv) {
     cs_errorSet(&err, CS_ERR_ARG, "unknown scene '%.60s' (expected flat-road or obstacle)", scene);
     goto done;
   }
+  /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */
+  const csrLegType* leg_type = NULL;
   if (!strcmp(legs, "auto")) {
-    /* only the prb level exists so far: auto has nothing cheaper or dearer to choose from */
-    legs = "prb";
-  } else if (!strcmp(legs, "rod") || !strcmp(legs, "rom")) {
-    cs_errorSet(&err, CS_ERR_ARG, "leg model '%s' is not available yet (prb only)", legs);
-    goto done;
-  } else if (strcmp(legs, "prb")) {
-    cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod or rom)",
-                legs);
-    goto done;
+    /* the scene's choice by error against cost is issue 11; until then auto is the cheapest
+     * registered dynamic level, the table's first */
+    leg_type = csr_legTypeFind("prb", NULL);
+  } else {
+    int planned = 0;
+    leg_type = csr_legTypeFind(legs, &planned);
+    if (!leg_type && planned) {
+      cs_errorSet(&err, CS_ERR_ARG, "leg model '%s' is not available yet (available: %s)", legs,
+                  csr_legTypeNames());
+      goto done;
+    }
+    if (!leg_type) {
+      cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod or rom)",
+                  legs);
+      goto done;
+    }
   }
   if (!calib) calib = csx_dataPath(CSX_DEFAULT_CALIBRATION, calib_buf, sizeof calib_buf);
 
@@ -246,7 +255,7 @@ int csx_cmdRun(int argc, char** argv) {
   }
 
   m.opt.progress = !quiet;
-  snprintf(m.leg_level, sizeof m.leg_level, "%s", legs);
+  m.robot.leg_type = leg_type; /* the one place the level is stored */
   if (!isnan(friction)) m.contact.mu = friction;
   m.sched.pressure_scale = scale;
   if (!isnan(ramp)) m.sched.ramp = ramp;
@@ -284,8 +293,8 @@ int csx_cmdRun(int argc, char** argv) {
   if (!d) goto done;
   if (!quiet) {
     fprintf(stderr, "crawlsim run: scene %s, gait %s, legs %s, friction %.3g, t_end %.3g s, "
-            "robot mass %.1f g\n", scene, gait, legs, m.contact.mu, cs_modelEndTime(&m),
-            cs_robotMass(d) * 1e6);
+            "robot mass %.1f g\n", scene, gait, cs_modelLegLevel(&m), m.contact.mu,
+            cs_modelEndTime(&m), cs_robotMass(d) * 1e6);
     fprintf(stderr, "crawlsim run: calibration: %s\n", m.robot.map.name);
     double load, pcr;
     cs_modelStanceCheck(&m, cs_robotMass(d), &load, &pcr);
@@ -305,6 +314,12 @@ int csx_cmdRun(int argc, char** argv) {
          "tilt %.2f deg\n", cs_time(d), x[0], x[1], x[2], tilt);
   printf("wall time %.2f s, real-time factor %.2f (simulated s per wall s), output %s\n", wall,
          wall > 0 ? cs_time(d) / wall : 0, out);
+  /* where the time went: one entry per stage timer (sim_model.h), as in the HDF5 attributes */
+  const csuTimer* tm = cs_timers(d);
+  printf("time split (s):");
+  for (int k = 0; k < CS_NTIMER; k++) {
+    printf(" %s %.3f%s", cs_timerName((csTimerId)k), tm[k].wall, k + 1 < CS_NTIMER ? "," : "\n");
+  }
   if (st != CS_OK) goto done;
   rc = 0;
 

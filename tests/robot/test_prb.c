@@ -86,7 +86,7 @@ static void rigFree(Rig* r) {
 /* hold pressures for `seconds` and return the foot in the leg frame (e1, e2, e3) */
 static void settle(Rig* r, const double p[12], double seconds, double foot[3]) {
   for (int i = 0; i < (int)(seconds / kH); i++) {
-    CS_EXPECT(csr_leg_prb.actuate(r->leg, p) == 0);
+    CS_EXPECT(csr_leg_prb.actuate(r->leg, 0, p, 0, p) == 0);
     dWorldStep(r->world, kH);
   }
   double cl[2 * 3];
@@ -237,7 +237,7 @@ static double prbFirstFrequencyError(int links_per_segment) {
   double prev = foot[0], t = 0, first = NAN, last = NAN;
   int ncross = 0;
   for (int i = 0; i < (int)(3.0 / kH); i++) {
-    CS_EXPECT(csr_leg_prb.actuate(r.leg, p) == 0);
+    CS_EXPECT(csr_leg_prb.actuate(r.leg, 0, p, 0, p) == 0);
     dWorldStep(r.world, kH);
     t += kH;
     double cl[6];

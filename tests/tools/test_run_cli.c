@@ -75,7 +75,7 @@ static void test_badOptions(void) {
 static void test_badFiles(void) {
   remove("runcli_missing.csv");
   expectFailure("--gait runcli_missing.csv",
-                "crawlsim run: runcli_missing.csv: cannot open: No such file or directory");
+                "crawlsim run: runcli_missing.csv: cannot open gait CSV: No such file or directory");
   CS_EXPECT(cs_cliWriteText("runcli_neg.csv", "time,A_II1_O1,A_II1_O2\n0,0,0\n1,0,-0.1\n"));
   expectFailure("--gait runcli_neg.csv",
                 "crawlsim run: runcli_neg.csv:3: column 3 (A_II1_O2): negative");
