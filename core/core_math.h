@@ -129,28 +129,33 @@ static inline void csu_transpose3(csReal R[9], const csReal A[9]) {
   }
 }
 /* rotation vector φ (rad, axis times angle) of a rotation matrix R, angle in [0, π]: the
- * inverse of csu_axisAngleToMat3. Accurate to round-off for small angles (where the skew part
- * carries it) and near π (where the symmetric part does). */
+ * inverse of csu_rotVecToMat3. Below π/2 the axis comes from the skew part (well conditioned
+ * there, exact as the angle -> 0), above it from the symmetric part (R + R^T)/2 - cos θ I =
+ * (1 - cos θ) u u^T, whose conditioning does not degrade towards π; the angle is
+ * atan2(|skew|, cos θ) in both. */
 static inline void csu_mat3ToRotVec(csReal phi[3], const csReal R[9]) {
   csReal s[3] = {0.5 * (R[7] - R[5]), 0.5 * (R[2] - R[6]), 0.5 * (R[3] - R[1])};
   csReal sn = csu_norm3(s), c = 0.5 * (R[0] + R[4] + R[8] - 1);
   csReal th = atan2(sn, c);
-  if (sn > 1e-6 || c > 0) {
-    /* sin(th)/th is well conditioned here: th/sn -> 1 as th -> 0 */
+  if (c > 0) {
+    /* th/sin(th) in [1, π/2): well conditioned, -> 1 as th -> 0 */
     csReal f = sn > 0 ? th / sn : 1.0;
     csu_scale3(phi, s, f);
     return;
   }
-  /* near π: the axis from the largest diagonal of (R + I)/2 = u u^T */
   int k = (R[0] >= R[4] && R[0] >= R[8]) ? 0 : (R[4] >= R[8] ? 1 : 2);
+  csReal oc = 1 - c; /* >= 1 here */
   csReal u[3];
-  u[k] = sqrt(fmax(0.0, 0.5 * (R[4 * k] + 1)));
+  u[k] = sqrt(fmax(0.0, (R[4 * k] - c) / oc));
   for (int i = 0; i < 3; i++) {
     if (i != k) {
-      u[i] = 0.25 * (R[3 * i + k] + R[3 * k + i]) / u[k];
+      u[i] = 0.5 * (R[3 * i + k] + R[3 * k + i]) / (oc * u[k]);
     }
   }
   csu_normalize3(u);
+  if (csu_dot3(u, s) < 0) {
+    csu_scale3(u, u, -1.0);
+  }
   csu_scale3(phi, u, th);
 }
 

@@ -205,11 +205,11 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
     return NULL;
   }
   d->m = m;
-  /* QuickStep shuffles its constraint rows with ODE's one process-wide generator; reseeding it
-   * per run makes a run's result independent of what ran before in the same process (the
-   * determinism test). Runs in one process are therefore sequential, as ODE requires anyway
-   * for collision (debian-deps.md P3). */
-  dRandSetSeed(0);
+  /* QuickStep shuffles its constraint rows with ODE's one process-wide generator; each data
+   * keeps its own seed, starting at 0, and puts it in for its steps only (cs_step), so a run's
+   * result is independent of what else ran in the same process (the determinism test).
+   * Stepping stays on one thread at a time, as ODE requires for collision (debian-deps.md P3). */
+  d->rng_seed = 0;
   d->world = dWorldCreate();
   dWorldSetGravity(d->world, 0, -m->opt.gravity, 0);
   dWorldSetQuickStepNumIterations(d->world, m->opt.solver_iterations);

@@ -45,6 +45,10 @@ struct csData_ {
   dJointGroupID contacts;
   csrRobot* robot;
   double t;                         /* s */
+  unsigned long rng_seed;           /* this data's ODE random seed (QuickStep's row order): set
+                                       into ODE's one process-wide generator for each step and
+                                       read back after it, so interleaved datas stay
+                                       independent and each is deterministic */
   long nstep;                       /* successful macro steps */
   long nreject;                     /* failed (and restored) macro steps */
   double p_cmd[CSR_NCHAMBER_TOTAL]; /* scheduled pressures at t (MPa) */

@@ -1,6 +1,6 @@
 /* sim_state.c: the whole simulation state as a flat array (see sim_model.h, STYLE.md 5).
  *
- * Layout: [0] t (s); [1] ODE's random seed; [2 .. 97] the 96 chamber pressures (MPa); then the
+ * Layout: [0] t (s); [1] the data's ODE random seed (sim_internal.h); [2 .. 97] the 96 chamber pressures (MPa); then the
  * robot (csr_robotStateGet: support body, then legs A..H). Restoring is bit-exact for every
  * part: the bodies through robot_odebody.h, the seed as the integer it is (ODE keeps it below
  * 2^32, exact in a double), the pressures by copy, and CVODE restarted from them. */
@@ -26,7 +26,7 @@ int cs_stateSize(const csModel* m, const csData* d) {
 void cs_stateGet(const csModel* m, const csData* d, double* x) {
   (void)m;
   x[0] = d->t;
-  x[1] = (double)dRandGetSeed();
+  x[1] = (double)d->rng_seed;
   memcpy(x + 2, d->p, sizeof d->p);
   csr_robotStateGet(d->robot, x + HEAD);
 }
@@ -48,7 +48,7 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
                        "robot (non-finite value or non-unit quaternion)");
   }
   d->t = x[0];
-  dRandSetSeed((unsigned long)x[1]);
+  d->rng_seed = (unsigned long)x[1];
   memcpy(d->p, x + 2, sizeof d->p);
   cs_schedule(m, d->t, d->p_cmd);
   /* the pneumatic integrator restarts from the restored pressures (its step-size history is

@@ -151,6 +151,8 @@ csStatus cs_step(const csModel* m, csData* d, csError* err) {
   double t1 = d->t + cs_modelMacroStep(m);
   cs_stateGet(m, d, d->save);
   w = csu_timerAdd(&d->timer[CS_TIMER_SAVE], w);
+  /* this data's place in ODE's random sequence (sim_internal.h rng_seed) */
+  dRandSetSeed(d->rng_seed);
   /* the stages in order; each is timed whether it succeeds or not */
   csStatus st = stageSchedule(m, d, t1, err);
   w = csu_timerAdd(&d->timer[CS_TIMER_SCHEDULE], w);
@@ -173,6 +175,7 @@ csStatus cs_step(const csModel* m, csData* d, csError* err) {
   if (st == CS_OK) {
     d->t = t1;
     d->nstep++;
+    d->rng_seed = dRandGetSeed();
   } else {
     /* a failed step changes nothing: everything back as it was before the stages ran; the
      * saved state was written by this data, so restoring it cannot be refused */
