@@ -30,6 +30,7 @@ typedef struct csCosim_ {
   dJointID lmotor, amotor;          /* 3 linear + 3 angular velocity rows on the support */
   double t0;                        /* s: start of the macro step */
   double P0[3], R0[9], v0[3], w0[3];/* support centre, rotation, twist at t0 */
+  double Pm[3], Rm[9];              /* predicted mean pose: W0's linearisation point */
   double Kc[36];                    /* summed stiffness at the centre (6 x 6, [f; m] x [u; φ]) */
   double A[36];                     /* h Kc + Cc: the implicit part (6 x 6) */
   double axis[2][9];                /* eigenvectors (columns) of A's linear / angular blocks */

@@ -79,7 +79,7 @@ static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err) 
   if (!d->cosim.active) {
     return CS_OK;
   }
-  rc = cs_couplingAdvance(m, d, t1 - d->t, err);
+  rc = cs_couplingAdvance(m, d, cs_modelMacroStep(m), err);
   if (rc > 0) {
     return cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: a %s leg asks for a smaller step "
                        "(code %d)", d->t, cs_modelLegLevel(m), rc);
