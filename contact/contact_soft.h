@@ -44,10 +44,11 @@
  *     saturates smoothly at mu N (continuous and C1), the update keeps it continuous. A slot
  *     that touches down mid-step has no friction until the next update.
  *   Measured on a 40 g foot block under 0.8 N in CVODE BDF (tests/contact/test_contact_soft.c,
- *   its prints): both hold at 0.9 mu N (creep <= 1.2e-5 um/s) and slide at 1.1 and 2 mu N with
- *   mu N to 0.3 %; integrated mode takes 390-680 steps for a 2.1 s run, step mode 2600-6300
- *   (10 ms / 1 ms macro steps: every update restarts BDF at order 1 with tiny steps). Hence the
- *   default: integrated, with the patch foot (4 history doubles per foot).
+ *   table in its header): both hold at 0.9 mu N (creep <= 1.2e-5 um/s) and slide at 1.1 and
+ *   2 mu N at mu N to 1e-5 (ODE's contacts: 0.483 mu N at 2 mu N); integrated needs 770-1800
+ *   right-hand sides for a 2.1 s run, step mode 5k-110k (10 ms / 1 ms macro steps: every update
+ *   restarts BDF at order 1 with a new Jacobian). Hence the default: integrated, with the patch
+ *   foot (4 history doubles per foot).
  *   Out of contact (and for the stretch of depth 0 ... -d_onset) z relaxes to 0 with time
  *   constant tau_reset, so a foot touches down with a fresh bristle.
  *
