@@ -487,3 +487,24 @@ int csc_softUpdate(const cscSoftModel* m, const cscShapeState* s, double* z) {
   }
   return worst;
 }
+
+
+void csc_softLoadAsPointForce(const cscSoftModel* m, int i, const cscShapeState* s,
+                              const cscShapeLoad* load, double f[3], double P[3], double M[3]) {
+  csu_add3(f, load->f0, load->f1);
+  csu_copy3(M, load->m);
+  if (m->shape[i].kind != CSC_SHAPE_CAPSULE) {
+    csu_copy3(P, s->x0);
+    return;
+  }
+  double ff = csu_dot3(f, f), xi = ff > 0 ? csu_dot3(load->f1, f) / ff : 0.5, v[3], r[3], t[3];
+  xi = fmin(fmax(xi, 0.0), 1.0);
+  csc_softAxisPoint(s, xi, P, v);
+  /* M = m + (x0 - P) x f0 + (x1 - P) x f1: the moment the single force at P leaves out */
+  csu_sub3(r, s->x0, P);
+  csu_cross3(t, r, load->f0);
+  csu_add3(M, M, t);
+  csu_sub3(r, s->x1, P);
+  csu_cross3(t, r, load->f1);
+  csu_add3(M, M, t);
+}

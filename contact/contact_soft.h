@@ -214,6 +214,14 @@ int csc_softComputeShape(const cscSoftModel* m, int i, const cscShapeState* s, c
                          cscSoftReport* rep);
 int csc_softUpdateShape(const cscSoftModel* m, int i, const cscShapeState* s, double* z);
 
+/* The load of shape i (pose s) as one force f (N) at a point P (mm) plus a couple M (N mm),
+ * statically equivalent (same resultant, same moment about any point), for a per-element hook
+ * that takes that form: a capsule's P is on its axis at the parameter that carries f0 and f1
+ * best by the lever rule (xi = f1 . f / f . f, clamped to [0, 1]; exact when f0 and f1 are
+ * parallel), M the remainder; a foot's P is the sole's centre x0. */
+void csc_softLoadAsPointForce(const cscSoftModel* m, int i, const cscShapeState* s,
+                              const cscShapeLoad* load, double f[3], double P[3], double M[3]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -539,6 +539,29 @@ static void test_soft_leg_per_shape_equals_whole_and_cost(void) {
     same = same && memcmp(&ld2, &ld[i], sizeof ld2) == 0;
   }
   CS_EXPECT(same && memcmp(zd, zd2, sizeof zd) == 0);
+  /* the one-force-at-a-point form is statically equivalent: resultant and moment about the
+   * origin (round-off of ~100 mm lever arms on ~1 N: 1e-13 N mm) */
+  double worst_f = 0, worst_m = 0;
+  for (int i = 0; i < NC + 1; i++) {
+    double f[3], P[3], M[3], mo[3], mp[3], t[3];
+    csc_softLoadAsPointForce(m, i, &st[i], &ld[i], f, P, M);
+    csu_cross3(mo, st[i].x0, ld[i].f0);
+    csu_add3(mo, mo, ld[i].m);
+    if (i < NC) {
+      csu_cross3(t, st[i].x1, ld[i].f1);
+      csu_add3(mo, mo, t);
+    }
+    csu_cross3(mp, P, f);
+    csu_add3(mp, mp, M);
+    double fr[3];
+    csu_add3(fr, ld[i].f0, ld[i].f1);
+    csu_sub3(fr, fr, f);
+    csu_sub3(mp, mp, mo);
+    worst_f = fmax(worst_f, csu_norm3(fr));
+    worst_m = fmax(worst_m, csu_norm3(mp));
+  }
+  CS_EXPECT_NEAR(worst_f, 0, 1e-15, 0);
+  CS_EXPECT_NEAR(worst_m, 0, 1e-12, 0);
   CS_EXPECT(rep.ncontact == rep2.ncontact && rep.ncontact >= 10);
   printf("  leg: %d of %d slots touching, max depth %.4f mm\n", rep.ncontact, NC + 1,
          rep.max_depth);
