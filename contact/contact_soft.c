@@ -43,7 +43,7 @@ cscSoftParams csc_softDefaultParams(void) {
   /* silicone on a dry road, as contact_ode.c (REFERENCE.md assumptions) */
   p.mu = 0.8;
   /* 1 N/mm^3: a 15 x 15 mm sole under a stance leg's 0.8 N sinks 3.6 um (stiffness 225 N/mm),
-   * a capsule lying along 10 mm of its length under 0.8 N 0.03 mm, the worst case (a capsule
+   * a capsule lying along 10 mm of its length under 0.8 N 0.06 mm, the worst case (a capsule
    * crossing an edge, point-like) 0.18 mm: all far below 1 mm, while the contact frequency of
    * a 40 g foot (380 Hz) stays easy for an implicit integrator */
   p.k_area = 1.0;
