@@ -64,6 +64,8 @@ typedef struct csrRodParams_ {
   double atol_omega;        /* absolute tolerance of angular velocities (rad/s) */
   double atol_hist;         /* absolute tolerance of contact history variables (their unit) */
   long max_steps;           /* CVODE internal steps allowed per advance (-) */
+  int max_order;            /* highest BDF order (1..5); 2 makes BDF A-stable, for undamped
+                               rods whose stiff modes sit on the imaginary axis */
   double contact_radius;    /* radius of the leg's contact capsules (mm) */
   double static_tol;        /* static Newton: scaled residual norm at convergence (-) */
   int static_max_iter;      /* static Newton iterations per load step (-) */

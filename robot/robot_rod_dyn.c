@@ -31,9 +31,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <sunlinsol/sunlinsol_band.h>
-#include <sunmatrix/sunmatrix_band.h>
-
 #include "robot_rod_internal.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
@@ -54,8 +51,6 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUN
 #define CSR_ROD_GAIN_DV 1e-4
 #define CSR_ROD_GAIN_DW 1e-5
 
-/* CVODE's right-hand side over [impulse(6), state] */
-static int rodRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
 /* base position, quaternion, velocity, acceleration and body angular velocity at time t */
 static void baseAt(const csrRodBaseMotion* bm, double t, double x[3], double q[4], double v[3],
                    double a[3], double wb[3]);
@@ -103,12 +98,10 @@ void csr_rodDataDestroy(csrRodData* d) {
   CVodeFree(&d->cvode);
   SUNLinSolFree(d->LS);
   SUNMatDestroy(d->A);
-  SUNLinSolFree(d->LSs);
-  SUNMatDestroy(d->As);
+  csr_rodLinsolFree_(d);
+  csr_rodBtFree_(&d->bt_static);
   N_VDestroy(d->yv);
   N_VDestroy(d->atol);
-  N_VDestroy(d->xs);
-  N_VDestroy(d->bs);
   if (d->sun) {
     SUNContext_Free(&d->sun);
   }
@@ -173,23 +166,13 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
 #if SUNDIALS_VERSION_MAJOR >= 7
   SUNContext_ClearErrHandlers(d->sun);
 #endif
-  /* the dynamic system: band of half width 2 × stride - 1 (element blocks couple to their
-   * neighbours only) */
-  const sunindextype bw = 2 * (sunindextype)m->stride - 1;
   d->yv = N_VNew_Serial(ny, d->sun);
   d->atol = N_VNew_Serial(ny, d->sun);
-  d->A = SUNBandMatrix(ny, bw, bw, d->sun);
-  /* the static system: 6 unknowns per element, half width 11 */
-  d->As = SUNBandMatrix(ns, 11, 11, d->sun);
-  d->xs = N_VNew_Serial(ns, d->sun);
-  d->bs = N_VNew_Serial(ns, d->sun);
-  if (!d->yv || !d->atol || !d->A || !d->As || !d->xs || !d->bs) {
+  if (!d->yv || !d->atol || !csr_rodBtAlloc_(&d->bt_static, m->N)) {
     csr_rodDataDestroy(d);
-    cs_errorSet(err, CS_ERR_MEMORY, "rod: cannot allocate SUNDIALS vectors and matrices");
+    cs_errorSet(err, CS_ERR_MEMORY, "rod: cannot allocate SUNDIALS vectors");
     return NULL;
   }
-  d->LS = SUNLinSol_Band(d->yv, d->A, d->sun);
-  d->LSs = SUNLinSol_Band(d->xs, d->As, d->sun);
   d->y = N_VGetArrayPointer(d->yv);
   /* per-component absolute tolerances */
   double* at = N_VGetArrayPointer(d->atol);
@@ -209,13 +192,13 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
   }
   csr_rodReset(m, d);
   d->cvode = CVodeCreate(CV_BDF, d->sun);
-  if (!d->LS || !d->LSs || !d->cvode || CVodeInit(d->cvode, rodRhs, 0.0, d->yv) != CV_SUCCESS ||
+  if (!d->cvode || CVodeInit(d->cvode, csr_rodRhs_, 0.0, d->yv) != CV_SUCCESS ||
       CVodeSVtolerances(d->cvode, p->rtol, d->atol) != CV_SUCCESS ||
-      CVodeSetUserData(d->cvode, d) != CV_SUCCESS ||
-      CVodeSetLinearSolver(d->cvode, d->LS, d->A) != CV_SUCCESS ||
-      CVodeSetMaxNumSteps(d->cvode, p->max_steps) != CV_SUCCESS) {
+      CVodeSetUserData(d->cvode, d) != CV_SUCCESS || csr_rodLinsolAttach_(d) != 0 ||
+      CVodeSetMaxNumSteps(d->cvode, p->max_steps) != CV_SUCCESS ||
+      CVodeSetMaxOrd(d->cvode, p->max_order) != CV_SUCCESS) {
     csr_rodDataDestroy(d);
-    cs_errorSet(err, CS_ERR_SOLVER, "rod: cannot set up CVODE (BDF, band linear solver)");
+    cs_errorSet(err, CS_ERR_SOLVER, "rod: cannot set up CVODE (BDF, reduced linear solver)");
     return NULL;
   }
 #if SUNDIALS_VERSION_MAJOR < 7
@@ -437,7 +420,7 @@ static void wrenchOf(const csrRodModel* m, const csrRodData* d, const double a0[
 }
 
 
-static int rodRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+int csr_rodRhs_(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   csrRodData* d = user;
   const csrRodModel* m = d->m;
   const double* Y = N_VGetArrayPointer(y);

@@ -79,6 +79,16 @@ typedef struct csrRodWork_ {
   double elastic;     /* elastic energy (N mm), when requested */
 } csrRodWork;
 
+/* a block-tridiagonal matrix of n rows of 6 x 6 blocks (row-major blocks): B_i below, D_i on,
+ * C_i above the diagonal; csr_rodBtFactor_ overwrites D with its LU and C with D⁻¹C */
+typedef struct csrRodBt_ {
+  int n;
+  double* B; /* (n x 36), B_0 unused */
+  double* D; /* (n x 36) */
+  double* C; /* (n x 36), C_{n-1} unused */
+  int* piv;  /* (n x 6) */
+} csrRodBt;
+
 /* actuation of a macro step: strains at both ends, linear in time in between */
 typedef struct csrRodActState_ {
   double ta, tb;
@@ -120,12 +130,21 @@ struct csrRodData_ {
   SUNContext sun;
   void* cvode;
   N_Vector yv, atol;
-  SUNMatrix A;
-  SUNLinearSolver LS;
-  /* static solver: band system of 6N unknowns */
-  SUNMatrix As;
-  SUNLinearSolver LSs;
-  N_Vector xs, bs;
+  SUNMatrix A;        /* a shell: the system lives in the fields below (robot_rod_linsol.c) */
+  SUNLinearSolver LS; /* the reduced block-tridiagonal solver */
+  double* jac;        /* (N x 3) Jacobian blocks of (u̇, ḣ) by (x, ψ, v, ω, h) */
+  double* ls_q;       /* (N x 4) normalised quaternions at the last linear-system state */
+  double* ls_qn;      /* (N) their norms */
+  double* ls_bpsi;    /* (N x 3) scratch */
+  double* ls_r;       /* (N x 6) scratch: reduced right-hand side and solution */
+  double* ls_hb;      /* (N x nhist) scratch */
+  double* ls_Mhinv;   /* (N x nhist²) (I - γ ∂ḣ/∂h)⁻¹ */
+  double ls_gamma;
+  int ls_have_jac;
+  long ls_last;
+  csrRodBt bt_dyn;    /* the reduced Newton matrix of the implicit step */
+  /* static solver: block-tridiagonal system of 6N unknowns */
+  csrRodBt bt_static;
   double* sres;   /* (6N) residual */
   double* sres2;  /* (6N) perturbed residual */
   double* sdel;   /* (6N) Newton update */
@@ -302,6 +321,21 @@ int csr_rodForces_(const csrRodModel* m, csrRodWork* wk, const csrRodLoads* ld, 
  * kernel's wk->m_node from the last call. */
 void csr_rodNodeFrame_(const csrRodModel* m, const csrRodWork* wk, const csrRodLoads* ld, int i,
                        double q[4]);
+
+/* CVODE's right-hand side (robot_rod_dyn.c) over [impulse, state]; user = the csrRodData. */
+int csr_rodRhs_(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
+
+/* The block-tridiagonal solver (robot_rod_linsol.c): 1 on success for Alloc, 0 on success for
+ * Factor (1: a singular diagonal block); Solve overwrites x (6n) with the solution. */
+int csr_rodBtAlloc_(csrRodBt* bt, int n);
+void csr_rodBtFree_(csrRodBt* bt);
+void csr_rodBtZero_(csrRodBt* bt);
+int csr_rodBtFactor_(csrRodBt* bt);
+void csr_rodBtSolve_(const csrRodBt* bt, double* x);
+
+/* Attach the reduced linear solver to d->cvode (0 ok); free its arrays. */
+int csr_rodLinsolAttach_(csrRodData* d);
+void csr_rodLinsolFree_(csrRodData* d);
 
 /* Rest state vector (straight along the frame's e3 from the hip, at rest). */
 void csr_rodRestState_(const csrRodModel* m, double* state);

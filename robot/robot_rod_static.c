@@ -7,10 +7,10 @@
  * frame: Q_e <- Q_e exp([δψ_e])), 6N in all; the residual is the kernel's node forces and frame
  * torques at zero velocity (the same force laws the dynamics integrates), scaled by a
  * characteristic force F_c = max(EI/L², |tip force|, weight, |tip moment|/L) and F_c L, so one
- * tolerance serves every rod. The Jacobian is banded like the dynamic one (element blocks
- * couple to their neighbours: half width 11) and built by forward differences in three column
- * groups of blocks (18 residual evaluations, exact sparsity, relative error ~1e-8 with the
- * steps below), factored by SUNLinSol_Band. Newton takes the full step when the residual norm
+ * tolerance serves every rod. The Jacobian is block tridiagonal (element blocks couple to their
+ * neighbours; 6 x 6 blocks) and built by forward differences in three column groups of blocks
+ * (18 residual evaluations, exact sparsity, relative error ~1e-8 with the steps below),
+ * factored by the block LU of robot_rod_linsol.c. Newton takes the full step when the residual norm
  * drops by the Armijo factor, otherwise halves it (down to 1/64). Load stepping: the
  * intrinsic strains, tip load and gravity move linearly from the last solved load to the new
  * one; the increment doubles after a success and halves after a failure (down to 1/4096 of
@@ -22,8 +22,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <sunmatrix/sunmatrix_band.h>
 
 #include "robot_rod_internal.h"
 
@@ -140,12 +138,14 @@ static void applyStep(const csrRodModel* m, const double* y, const double* del, 
 }
 
 
-/* the band Jacobian of the scaled residual at y (r = residual at y) into d->As */
+/* the block-tridiagonal Jacobian of the scaled residual at y (r = residual at y) into
+ * d->bt_static */
 static int jacobian(const csrRodModel* m, csrRodData* d, const double* y, const csrRodLoads* ld,
                     double Fc, const double* r) {
   const int N = m->N, n = 6 * N;
   const double hx = CSR_ROD_FD_X_REL * m->L;
-  SUNMatZero(d->As);
+  csrRodBt* bt = &d->bt_static;
+  csr_rodBtZero_(bt);
   double* del = d->sdel;
   for (int g = 0; g < 3; g++) {
     for (int c = 0; c < 6; c++) {
@@ -158,13 +158,17 @@ static int jacobian(const csrRodModel* m, csrRodData* d, const double* y, const 
       if (residual(m, d, d->sy, ld, Fc, d->sres2) != 0) {
         return 1;
       }
+      /* column c of block column j = e - 1 (0-based) in block rows j-1, j, j+1 */
       for (int e = 1 + g; e <= N; e += 3) {
-        const sunindextype j = 6 * (e - 1) + c;
-        sunrealtype* col = SUNBandMatrix_Column(d->As, j);
-        int i0 = 6 * (e - 2 < 0 ? 0 : e - 2);
-        int i1 = 6 * (e + 1 > N ? N : e + 1);
-        for (int i = i0; i < i1; i++) {
-          SM_COLUMN_ELEMENT_B(col, i, j) = (d->sres2[i] - r[i]) / h;
+        const int j = e - 1;
+        for (int i = j - 1; i <= j + 1; i++) {
+          if (i < 0 || i >= N) {
+            continue;
+          }
+          double* blk = i == j ? bt->D + 36 * i : (i > j ? bt->B + 36 * i : bt->C + 36 * i);
+          for (int rr = 0; rr < 6; rr++) {
+            blk[6 * rr + c] = (d->sres2[6 * i + rr] - r[6 * i + rr]) / h;
+          }
         }
       }
     }
@@ -178,8 +182,6 @@ static int newton(const csrRodModel* m, csrRodData* d, const csrRodLoads* ld, do
   const int n = 6 * m->N;
   double* y = d->y + CSR_ROD_NIMP;
   double* r = d->sres;
-  double* xs = N_VGetArrayPointer(d->xs);
-  double* bs = N_VGetArrayPointer(d->bs);
   if (residual(m, d, y, ld, Fc, r) != 0) {
     return 1;
   }
@@ -190,16 +192,13 @@ static int newton(const csrRodModel* m, csrRodData* d, const csrRodLoads* ld, do
       return 0;
     }
     info->newton_iters++;
-    if (jacobian(m, d, y, ld, Fc, r) != 0 || SUNLinSolSetup(d->LSs, d->As) != 0) {
+    if (jacobian(m, d, y, ld, Fc, r) != 0 || csr_rodBtFactor_(&d->bt_static) != 0) {
       return 1;
     }
     for (int i = 0; i < n; i++) {
-      bs[i] = -r[i];
+      d->sdel[i] = -r[i];
     }
-    if (SUNLinSolSolve(d->LSs, d->As, d->xs, d->bs, 0.0) != 0) {
-      return 1;
-    }
-    memcpy(d->sdel, xs, (size_t)n * sizeof(double));
+    csr_rodBtSolve_(&d->bt_static, d->sdel);
     /* backtracking on the residual's 2-norm */
     double r2 = 0;
     for (int i = 0; i < n; i++) {

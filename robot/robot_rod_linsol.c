@@ -1,0 +1,699 @@
+/* robot_rod_linsol.c: the rod's Newton linear algebra: a block-tridiagonal solver with 6 x 6
+ * blocks (shared by the static solver and the implicit step), and CVODE's linear system for the
+ * BDF step, reduced to the velocity unknowns.
+ *
+ * ---- Why not CVODE's band solver (measured) -------------------------------------------------
+ * With SUNBandMatrix + SUNLinSol_Band over the whole state (13 per element, half bandwidth 25)
+ * the band LU and its solves took 82 % of a leg's run time (bench_rod gait, 4 elements per
+ * segment: 80 ms per simulated second, SUNDlsMat_bandGBTRF 52 %, GBTRS 20 %, the force kernel
+ * 2 %); CVODE refactors at every larger change of γ (170 times per simulated second against 12
+ * Jacobians). This file keeps CVODE's Newton iteration, error control and Jacobian-reuse logic
+ * (a user linear-system function, CVodeSetLinSysFn) and solves its systems (I - γJ) δ = b by
+ * eliminating the position-level unknowns, which the implicit step ties to the velocities:
+ *   δx_j = b_x + γ δv_j,   δψ_j = Π_j b_q + γ δω_j   (ψ: body rotation increment; the exact
+ *   quaternion row (I - γΩ_j) δq = b_q + γ G_j δω is taken with Ω_j ≈ 0, an O(γ|ω|) ≲ 1e-2
+ *   error that modified Newton absorbs),
+ *   δh_m = (I - γ ∂ḣ_m/∂h_m)⁻¹ (b_h + γ (∂ḣ_m/∂x δx + ∂ḣ_m/∂ψ δψ + ∂ḣ_m/∂u δu))  (contact
+ *   history, exact),
+ * leaving the Schur complement on u = (v, ω): block tridiagonal with 6 x 6 blocks (element i
+ * couples to i±1), S = I - γ ∂u̇/∂u - γ² ∂u̇/∂(x, ψ) - γ ∂u̇/∂h Z. It is factored by block LU
+ * (Thomas algorithm, partial pivoting inside each diagonal block; S ≈ M⁻¹(M + γC + γ²K) is
+ * block-diagonally dominated like a mass-damping-stiffness matrix, which block LU factors
+ * stably). The base impulse rows take δI = b_I (they feed nothing back; their error weight is
+ * zero). The Jacobian blocks ∂(u̇, ḣ)/∂(x, ψ, v, ω, h) come from column-grouped forward
+ * differences of the right-hand side (3 groups x (12 + nhist) evaluations) and are kept until
+ * CVODE asks for a new Jacobian; each new γ only re-assembles and re-factors S (O(N), ~10 µs
+ * for the 14-element leg). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "robot_rod_internal.h"
+
+/* relative forward-difference step (≈ √eps) and the per-kind scales it multiplies:
+ * positions by max(|x|, L), rotations by 1 rad, velocities by max(|v|, L / 0.02 s), angular
+ * velocities by max(|ω|, 1 / 0.02 s), history by max(|h|, 1e4 atol_hist) */
+#define CSR_ROD_JAC_REL 1.5e-8
+#define CSR_ROD_JAC_TIME 0.02
+
+/* ---- 6 x 6 dense LU and the block-tridiagonal solver ------------------------------------------ */
+
+/* in-place LU with partial pivoting of a row-major 6 x 6 matrix; 1 if singular or not finite */
+static int lu6(double A[36], int piv[6]) {
+  for (int k = 0; k < 6; k++) {
+    int p = k;
+    double big = fabs(A[6 * k + k]);
+    for (int i = k + 1; i < 6; i++) {
+      double v = fabs(A[6 * i + k]);
+      if (v > big) {
+        big = v;
+        p = i;
+      }
+    }
+    if (!(big > 0) || !isfinite(big)) {
+      return 1;
+    }
+    piv[k] = p;
+    if (p != k) {
+      for (int j = 0; j < 6; j++) {
+        double t = A[6 * k + j];
+        A[6 * k + j] = A[6 * p + j];
+        A[6 * p + j] = t;
+      }
+    }
+    double inv = 1.0 / A[6 * k + k];
+    for (int i = k + 1; i < 6; i++) {
+      double l = A[6 * i + k] * inv;
+      A[6 * i + k] = l;
+      for (int j = k + 1; j < 6; j++) {
+        A[6 * i + j] -= l * A[6 * k + j];
+      }
+    }
+  }
+  return 0;
+}
+
+
+/* solve LU x = b in place (b of 6) */
+static void lu6Solve(const double LU[36], const int piv[6], double b[6]) {
+  for (int k = 0; k < 6; k++) {
+    int p = piv[k];
+    if (p != k) {
+      double t = b[k];
+      b[k] = b[p];
+      b[p] = t;
+    }
+    for (int i = k + 1; i < 6; i++) {
+      b[i] -= LU[6 * i + k] * b[k];
+    }
+  }
+  for (int k = 5; k >= 0; k--) {
+    for (int j = k + 1; j < 6; j++) {
+      b[k] -= LU[6 * k + j] * b[j];
+    }
+    b[k] /= LU[6 * k + k];
+  }
+}
+
+
+int csr_rodBtAlloc_(csrRodBt* bt, int n) {
+  memset(bt, 0, sizeof *bt);
+  bt->n = n;
+  bt->B = calloc(36 * (size_t)n, sizeof(double));
+  bt->D = calloc(36 * (size_t)n, sizeof(double));
+  bt->C = calloc(36 * (size_t)n, sizeof(double));
+  bt->piv = calloc(6 * (size_t)n, sizeof(int));
+  return bt->B && bt->D && bt->C && bt->piv;
+}
+
+
+void csr_rodBtFree_(csrRodBt* bt) {
+  free(bt->B);
+  free(bt->D);
+  free(bt->C);
+  free(bt->piv);
+  memset(bt, 0, sizeof *bt);
+}
+
+
+void csr_rodBtZero_(csrRodBt* bt) {
+  memset(bt->B, 0, 36 * (size_t)bt->n * sizeof(double));
+  memset(bt->D, 0, 36 * (size_t)bt->n * sizeof(double));
+  memset(bt->C, 0, 36 * (size_t)bt->n * sizeof(double));
+}
+
+
+int csr_rodBtFactor_(csrRodBt* bt) {
+  for (int i = 0; i < bt->n; i++) {
+    double* D = bt->D + 36 * i;
+    if (i > 0) {
+      /* D_i -= B_i U_{i-1} */
+      const double* B = bt->B + 36 * i;
+      const double* U = bt->C + 36 * (i - 1);
+      for (int r = 0; r < 6; r++) {
+        for (int k = 0; k < 6; k++) {
+          double b = B[6 * r + k];
+          if (b != 0) {
+            for (int c = 0; c < 6; c++) {
+              D[6 * r + c] -= b * U[6 * k + c];
+            }
+          }
+        }
+      }
+    }
+    if (lu6(D, bt->piv + 6 * i) != 0) {
+      return 1;
+    }
+    if (i < bt->n - 1) {
+      /* U_i = D_i⁻¹ C_i, column by column */
+      double* C = bt->C + 36 * i;
+      for (int c = 0; c < 6; c++) {
+        double col[6];
+        for (int r = 0; r < 6; r++) {
+          col[r] = C[6 * r + c];
+        }
+        lu6Solve(D, bt->piv + 6 * i, col);
+        for (int r = 0; r < 6; r++) {
+          C[6 * r + c] = col[r];
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+
+void csr_rodBtSolve_(const csrRodBt* bt, double* x) {
+  for (int i = 0; i < bt->n; i++) {
+    double* xi = x + 6 * i;
+    if (i > 0) {
+      const double* B = bt->B + 36 * i;
+      const double* xp = x + 6 * (i - 1);
+      for (int r = 0; r < 6; r++) {
+        double s = 0;
+        for (int k = 0; k < 6; k++) {
+          s += B[6 * r + k] * xp[k];
+        }
+        xi[r] -= s;
+      }
+    }
+    lu6Solve(bt->D + 36 * i, bt->piv + 6 * i, xi);
+  }
+  for (int i = bt->n - 2; i >= 0; i--) {
+    const double* U = bt->C + 36 * i;
+    const double* xn = x + 6 * (i + 1);
+    double* xi = x + 6 * i;
+    for (int r = 0; r < 6; r++) {
+      double s = 0;
+      for (int k = 0; k < 6; k++) {
+        s += U[6 * r + k] * xn[k];
+      }
+      xi[r] -= s;
+    }
+  }
+}
+
+
+/* ---- the CVODE linear system ------------------------------------------------------------------ */
+
+/* Jacobian block of row element i (1..N), column element i - 1 + k (k = 0..2): (6 + nh) rows
+ * (v̇ 3, ω̇ 3, ḣ nh) x (12 + nh) columns (x 3, ψ 3, v 3, ω 3, h nh), row-major */
+static double* jblock(const csrRodModel* m, const csrRodData* d, int i, int k) {
+  const int nr = 6 + m->contact.nhist, nc = 12 + m->contact.nhist;
+  return d->jac + ((size_t)(i - 1) * 3 + (size_t)k) * (size_t)(nr * nc);
+}
+
+
+/* perturb column c (0..11 + nh) of element block b by h */
+static void perturb(double* b, int c, double h) {
+  if (c < 3) {
+    b[CSR_ROD_BX + c] += h;
+  } else if (c < 6) {
+    double phi[3] = {0, 0, 0}, dq[4], q[4];
+    phi[c - 3] = h;
+    csr_rodQexp(dq, phi);
+    csr_rodQmul(q, b + CSR_ROD_BQ, dq);
+    memcpy(b + CSR_ROD_BQ, q, sizeof q);
+  } else if (c < 12) {
+    b[CSR_ROD_BV + c - 6] += h;
+  } else {
+    b[CSR_ROD_BH + c - 12] += h;
+  }
+}
+
+
+/* the difference step of column c of element block b */
+static double stepOf(const csrRodModel* m, const double* b, int c) {
+  double v, scale;
+  if (c < 3) {
+    v = b[CSR_ROD_BX + c];
+    scale = m->L;
+  } else if (c < 6) {
+    v = 0;
+    scale = 1;
+  } else if (c < 9) {
+    v = b[CSR_ROD_BV + c - 6];
+    scale = m->L / CSR_ROD_JAC_TIME;
+  } else if (c < 12) {
+    v = b[CSR_ROD_BW + c - 9];
+    scale = 1 / CSR_ROD_JAC_TIME;
+  } else {
+    v = b[CSR_ROD_BH + c - 12];
+    scale = 1e4 * m->par.atol_hist;
+  }
+  return CSR_ROD_JAC_REL * fmax(fabs(v), scale);
+}
+
+
+/* accelerations (v̇, ω̇, ḣ) of element i from a right-hand-side vector */
+static const double* accelOf(const csrRodModel* m, const double* f, int i) {
+  return f + CSR_ROD_NIMP + (size_t)(i - 1) * m->stride + CSR_ROD_BV;
+}
+
+
+/* finite-difference Jacobian blocks at (t, y) with f = rhs(t, y); 0 ok, else the RHS's code */
+static int computeJacobian(const csrRodModel* m, csrRodData* d, double t, N_Vector y,
+                           N_Vector fy, N_Vector ytmp, N_Vector ftmp) {
+  const int N = m->N, nh = m->contact.nhist, nr = 6 + nh, nc = 12 + nh;
+  const double* Y = N_VGetArrayPointer(y);
+  const double* F0 = N_VGetArrayPointer(fy);
+  double* Yp = N_VGetArrayPointer(ytmp);
+  const double* F1 = N_VGetArrayPointer(ftmp);
+  const size_t ny = CSR_ROD_NIMP + (size_t)m->nstate;
+  for (int g = 0; g < 3; g++) {
+    for (int c = 0; c < nc; c++) {
+      memcpy(Yp, Y, ny * sizeof(double));
+      for (int j = 1 + g; j <= N; j += 3) {
+        double* b = Yp + CSR_ROD_NIMP + (size_t)(j - 1) * m->stride;
+        perturb(b, c, stepOf(m, b, c));
+      }
+      int rc = csr_rodRhs_(t, ytmp, ftmp, d);
+      if (rc != 0) {
+        return rc;
+      }
+      for (int j = 1 + g; j <= N; j += 3) {
+        const size_t o = CSR_ROD_NIMP + (size_t)(j - 1) * m->stride;
+        /* the step actually taken: the round-off of y + h for the additive columns; the
+         * rotation columns are exact (multiplicative) */
+        const int slot = c < 3 ? CSR_ROD_BX + c : (c < 12 ? CSR_ROD_BV + c - 6 : CSR_ROD_BH + c - 12);
+        double h = (c >= 3 && c < 6) ? stepOf(m, Y + o, c) : Yp[o + slot] - Y[o + slot];
+        for (int i = j - 1; i <= j + 1; i++) {
+          if (i < 1 || i > N) {
+            continue;
+          }
+          double* J = jblock(m, d, i, j - i + 1);
+          const double* a0 = accelOf(m, F0, i);
+          const double* a1 = accelOf(m, F1, i);
+          for (int r = 0; r < nr; r++) {
+            J[nc * r + c] = (a1[r] - a0[r]) / h;
+          }
+        }
+      }
+    }
+  }
+  d->stats.rhs_evals += 3 * nc;
+  return 0;
+}
+
+
+/* CVODE's linear system function: store γ and the quaternions at y, new Jacobian blocks when
+ * CVODE asks for them (jok false) */
+static int rodLinSys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunbooleantype jok,
+                     sunbooleantype* jcur, sunrealtype gamma, void* user, N_Vector tmp1,
+                     N_Vector tmp2, N_Vector tmp3) {
+  (void)A;
+  (void)tmp3;
+  csrRodData* d = user;
+  const csrRodModel* m = d->m;
+  d->ls_gamma = gamma;
+  const double* Y = N_VGetArrayPointer(y);
+  for (int e = 1; e <= m->N; e++) {
+    const double* q = Y + CSR_ROD_NIMP + (size_t)(e - 1) * m->stride + CSR_ROD_BQ;
+    double* qh = d->ls_q + 4 * (e - 1);
+    memcpy(qh, q, 4 * sizeof(double));
+    d->ls_qn[e - 1] = csr_rodQnormalize(qh);
+    if (!(d->ls_qn[e - 1] > 0)) {
+      return 1;
+    }
+  }
+  if (!jok || !d->ls_have_jac) {
+    int rc = computeJacobian(m, d, t, y, fy, tmp1, tmp2);
+    if (rc != 0) {
+      return rc;
+    }
+    d->ls_have_jac = 1;
+    *jcur = SUNTRUE;
+  } else {
+    *jcur = SUNFALSE;
+  }
+  return 0;
+}
+
+
+/* Z_m (nh x 6) for history element m and column element j: Mh_m⁻¹ (γ ∂ḣ/∂u + γ² ∂ḣ/∂x P_v +
+ * γ² ∂ḣ/∂ψ P_ω); Mhinv (nh x nh) given */
+static void historyCoupling(const csrRodModel* m, const csrRodData* d, int mm, int j,
+                            const double* Mhinv, double* Z) {
+  const int nh = m->contact.nhist, nc = 12 + nh;
+  const double g = d->ls_gamma;
+  const double* J = jblock(m, d, mm, j - mm + 1);
+  double T[CSR_ROD_MAX_HIST * 6];
+  for (int r = 0; r < nh; r++) {
+    const double* row = J + nc * (6 + r);
+    /* column c < 3: x pairs with v; c >= 3: ψ pairs with ω (the same column order) */
+    for (int c = 0; c < 6; c++) {
+      T[6 * r + c] = g * row[6 + c] + g * g * row[c];
+    }
+  }
+  for (int r = 0; r < nh; r++) {
+    for (int c = 0; c < 6; c++) {
+      double s = 0;
+      for (int k = 0; k < nh; k++) {
+        s += Mhinv[nh * r + k] * T[6 * k + c];
+      }
+      Z[6 * r + c] = s;
+    }
+  }
+}
+
+
+/* invert a small matrix (n <= CSR_ROD_MAX_HIST) by Gauss-Jordan with partial pivoting */
+static int invertSmall(int n, const double* A, double* Ainv) {
+  double W[CSR_ROD_MAX_HIST * 2 * CSR_ROD_MAX_HIST];
+  const int w = 2 * n;
+  for (int r = 0; r < n; r++) {
+    for (int c = 0; c < n; c++) {
+      W[w * r + c] = A[n * r + c];
+      W[w * r + n + c] = (r == c) ? 1 : 0;
+    }
+  }
+  for (int k = 0; k < n; k++) {
+    int p = k;
+    for (int r = k + 1; r < n; r++) {
+      if (fabs(W[w * r + k]) > fabs(W[w * p + k])) {
+        p = r;
+      }
+    }
+    if (!(fabs(W[w * p + k]) > 0)) {
+      return 1;
+    }
+    for (int c = 0; c < w; c++) {
+      double t = W[w * k + c];
+      W[w * k + c] = W[w * p + c];
+      W[w * p + c] = t;
+    }
+    double inv = 1.0 / W[w * k + k];
+    for (int c = 0; c < w; c++) {
+      W[w * k + c] *= inv;
+    }
+    for (int r = 0; r < n; r++) {
+      if (r != k && W[w * r + k] != 0) {
+        double f = W[w * r + k];
+        for (int c = 0; c < w; c++) {
+          W[w * r + c] -= f * W[w * k + c];
+        }
+      }
+    }
+  }
+  for (int r = 0; r < n; r++) {
+    for (int c = 0; c < n; c++) {
+      Ainv[n * r + c] = W[w * r + n + c];
+    }
+  }
+  return 0;
+}
+
+
+/* SUNLinSolSetup: assemble and factor S for the stored γ and Jacobian blocks */
+static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
+  (void)A;
+  csrRodData* d = LS->content;
+  const csrRodModel* m = d->m;
+  const int N = m->N, nh = m->contact.nhist, nc = 12 + nh;
+  const double g = d->ls_gamma;
+  csrRodBt* bt = &d->bt_dyn;
+  csr_rodBtZero_(bt);
+  /* history: Mh_m⁻¹ = (I - γ ∂ḣ_m/∂h_m)⁻¹ per element */
+  for (int e = 1; e <= N && nh > 0; e++) {
+    double Mh[CSR_ROD_MAX_HIST * CSR_ROD_MAX_HIST];
+    const double* J = jblock(m, d, e, 1);
+    for (int r = 0; r < nh; r++) {
+      for (int c = 0; c < nh; c++) {
+        Mh[nh * r + c] = (r == c ? 1.0 : 0.0) - g * J[nc * (6 + r) + 12 + c];
+      }
+    }
+    if (invertSmall(nh, Mh, d->ls_Mhinv + (size_t)(e - 1) * nh * nh) != 0) {
+      d->ls_last = SUNLS_LUFACT_FAIL;
+      return SUNLS_LUFACT_FAIL;
+    }
+  }
+  for (int i = 1; i <= N; i++) {
+    for (int k = 0; k < 3; k++) {
+      int j = i - 1 + k;
+      if (j < 1 || j > N) {
+        continue;
+      }
+      double* S = k == 0 ? bt->B + 36 * (i - 1) : (k == 1 ? bt->D + 36 * (i - 1) : bt->C + 36 * (i - 1));
+      const double* J = jblock(m, d, i, k);
+      for (int r = 0; r < 6; r++) {
+        const double* row = J + nc * r;
+        for (int c = 0; c < 6; c++) {
+          /* ∂u̇/∂u, and the position coupling: x with v (c < 3), ψ with ω (c >= 3) */
+          S[6 * r + c] = (k == 1 && r == c ? 1.0 : 0.0) - g * row[6 + c] - g * g * row[c];
+        }
+      }
+      /* history of elements mm coupling row i and column j: - γ ∂u̇_i/∂h_mm Z_mm,j */
+      for (int mm = j - 1; mm <= j + 1 && nh > 0; mm++) {
+        if (mm < 1 || mm > N || mm < i - 1 || mm > i + 1) {
+          continue;
+        }
+        double Z[CSR_ROD_MAX_HIST * 6];
+        historyCoupling(m, d, mm, j, d->ls_Mhinv + (size_t)(mm - 1) * nh * nh, Z);
+        const double* Ji = jblock(m, d, i, mm - i + 1);
+        for (int r = 0; r < 6; r++) {
+          for (int c = 0; c < 6; c++) {
+            double s = 0;
+            for (int q = 0; q < nh; q++) {
+              s += Ji[nc * r + 12 + q] * Z[6 * q + c];
+            }
+            S[6 * r + c] -= g * s;
+          }
+        }
+      }
+    }
+  }
+  int rc = csr_rodBtFactor_(bt);
+  d->ls_last = rc ? SUNLS_LUFACT_FAIL : SUNLS_SUCCESS;
+  return rc ? SUNLS_LUFACT_FAIL : SUNLS_SUCCESS;
+}
+
+
+/* SUNLinSolSolve: x = (I - γJ)⁻¹ b through the reduced system */
+static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunrealtype tol) {
+  (void)A;
+  (void)tol;
+  csrRodData* d = LS->content;
+  const csrRodModel* m = d->m;
+  const int N = m->N, nh = m->contact.nhist, nc = 12 + nh;
+  const double g = d->ls_gamma;
+  const double* B = N_VGetArrayPointer(b);
+  double* X = N_VGetArrayPointer(x);
+  double* bpsi = d->ls_bpsi; /* (N x 3) Π b_q */
+  double* r = d->ls_r;       /* (N x 6) reduced right-hand side, then δu */
+  double* hb = d->ls_hb;     /* (N x nh) Mh⁻¹ (b_h + γ ∂ḣ/∂x b_x + γ ∂ḣ/∂ψ bψ) */
+  /* Π_j b_q = 2 vec(conj(q̂) ⊗ b_q) / |q| */
+  for (int j = 1; j <= N; j++) {
+    const double* bq = B + CSR_ROD_NIMP + (size_t)(j - 1) * m->stride + CSR_ROD_BQ;
+    double t[4];
+    csr_rodQmulConj(t, d->ls_q + 4 * (j - 1), bq);
+    double s = 2.0 / d->ls_qn[j - 1];
+    for (int k = 0; k < 3; k++) {
+      bpsi[3 * (j - 1) + k] = s * t[1 + k];
+    }
+  }
+  /* position-level part of the right-hand side of element j: (b_x, bψ) */
+#define BX(j) (B + CSR_ROD_NIMP + (size_t)((j) - 1) * m->stride + CSR_ROD_BX)
+#define BPSI(j) (bpsi + 3 * ((j) - 1))
+  for (int mm = 1; mm <= N && nh > 0; mm++) {
+    double t[CSR_ROD_MAX_HIST];
+    const double* bh = B + CSR_ROD_NIMP + (size_t)(mm - 1) * m->stride + CSR_ROD_BH;
+    for (int q = 0; q < nh; q++) {
+      t[q] = bh[q];
+    }
+    for (int k = 0; k < 3; k++) {
+      int j = mm - 1 + k;
+      if (j < 1 || j > N) {
+        continue;
+      }
+      const double* J = jblock(m, d, mm, k);
+      for (int q = 0; q < nh; q++) {
+        const double* row = J + nc * (6 + q);
+        for (int c = 0; c < 3; c++) {
+          t[q] += g * (row[c] * BX(j)[c] + row[3 + c] * BPSI(j)[c]);
+        }
+      }
+    }
+    const double* Mi = d->ls_Mhinv + (size_t)(mm - 1) * nh * nh;
+    for (int q = 0; q < nh; q++) {
+      double s = 0;
+      for (int k = 0; k < nh; k++) {
+        s += Mi[nh * q + k] * t[k];
+      }
+      hb[(size_t)(mm - 1) * nh + q] = s;
+    }
+  }
+  for (int i = 1; i <= N; i++) {
+    const double* bu = B + CSR_ROD_NIMP + (size_t)(i - 1) * m->stride + CSR_ROD_BV;
+    double* ri = r + 6 * (i - 1);
+    for (int k = 0; k < 6; k++) {
+      ri[k] = bu[k];
+    }
+    for (int k = 0; k < 3; k++) {
+      int j = i - 1 + k;
+      if (j < 1 || j > N) {
+        continue;
+      }
+      const double* J = jblock(m, d, i, k);
+      for (int rr = 0; rr < 6; rr++) {
+        const double* row = J + nc * rr;
+        double s = 0;
+        for (int c = 0; c < 3; c++) {
+          s += row[c] * BX(j)[c] + row[3 + c] * BPSI(j)[c];
+        }
+        for (int q = 0; q < nh; q++) {
+          s += row[12 + q] * hb[(size_t)(j - 1) * nh + q];
+        }
+        ri[rr] += g * s;
+      }
+    }
+  }
+  csr_rodBtSolve_(&d->bt_dyn, r);
+  /* back-substitution: positions, quaternions, history; impulse rows unchanged */
+  memcpy(X, B, CSR_ROD_NIMP * sizeof(double));
+  for (int j = 1; j <= N; j++) {
+    const double* bj = B + CSR_ROD_NIMP + (size_t)(j - 1) * m->stride;
+    double* xj = X + CSR_ROD_NIMP + (size_t)(j - 1) * m->stride;
+    const double* du = r + 6 * (j - 1);
+    for (int k = 0; k < 3; k++) {
+      xj[CSR_ROD_BX + k] = bj[CSR_ROD_BX + k] + g * du[k];
+      xj[CSR_ROD_BV + k] = du[k];
+      xj[CSR_ROD_BW + k] = du[3 + k];
+    }
+    /* δq = b_q + γ G δω, G δω = ½ q ⊗ (0, δω) (with the state's quaternion, unnormalised) */
+    const double* q = d->ls_q + 4 * (j - 1);
+    const double wq[4] = {0, du[3], du[4], du[5]};
+    double gq[4];
+    csr_rodQmul(gq, q, wq);
+    for (int k = 0; k < 4; k++) {
+      xj[CSR_ROD_BQ + k] = bj[CSR_ROD_BQ + k] + 0.5 * g * d->ls_qn[j - 1] * gq[k];
+    }
+  }
+  for (int mm = 1; mm <= N && nh > 0; mm++) {
+    double t[CSR_ROD_MAX_HIST];
+    for (int q = 0; q < nh; q++) {
+      t[q] = 0;
+    }
+    for (int k = 0; k < 3; k++) {
+      int j = mm - 1 + k;
+      if (j < 1 || j > N) {
+        continue;
+      }
+      const double* J = jblock(m, d, mm, k);
+      const double* du = r + 6 * (j - 1);
+      for (int q = 0; q < nh; q++) {
+        const double* row = J + nc * (6 + q);
+        for (int c = 0; c < 3; c++) {
+          /* the u-dependent part of δx, δψ (γ δv, γ δω) and of u itself */
+          t[q] += g * (row[c] * g * du[c] + row[3 + c] * g * du[3 + c]);
+        }
+        for (int c = 0; c < 6; c++) {
+          t[q] += g * row[6 + c] * du[c];
+        }
+      }
+    }
+    const double* Mi = d->ls_Mhinv + (size_t)(mm - 1) * nh * nh;
+    double* xh = X + CSR_ROD_NIMP + (size_t)(mm - 1) * m->stride + CSR_ROD_BH;
+    for (int q = 0; q < nh; q++) {
+      double s = 0;
+      for (int k = 0; k < nh; k++) {
+        s += Mi[nh * q + k] * t[k];
+      }
+      xh[q] = hb[(size_t)(mm - 1) * nh + q] + s;
+    }
+  }
+#undef BX
+#undef BPSI
+  d->ls_last = SUNLS_SUCCESS;
+  return SUNLS_SUCCESS;
+}
+
+
+static SUNLinearSolver_Type lsGetType(SUNLinearSolver LS) {
+  (void)LS;
+  return SUNLINEARSOLVER_DIRECT;
+}
+
+
+static SUNLinearSolver_ID lsGetId(SUNLinearSolver LS) {
+  (void)LS;
+  return SUNLINEARSOLVER_CUSTOM;
+}
+
+
+static sunindextype lsLastFlag(SUNLinearSolver LS) {
+  const csrRodData* d = LS->content;
+  return d->ls_last;
+}
+
+
+static int lsFree(SUNLinearSolver LS) {
+  if (LS) {
+    LS->content = NULL;
+    SUNLinSolFreeEmpty(LS);
+  }
+  return 0;
+}
+
+
+static SUNMatrix_ID matGetId(SUNMatrix A) {
+  (void)A;
+  return SUNMATRIX_CUSTOM;
+}
+
+
+static void matDestroy(SUNMatrix A) {
+  if (A) {
+    A->content = NULL;
+    SUNMatFreeEmpty(A);
+  }
+}
+
+
+int csr_rodLinsolAttach_(csrRodData* d) {
+  const csrRodModel* m = d->m;
+  const int N = m->N, nh = m->contact.nhist;
+  const size_t nblk = (size_t)(6 + nh) * (size_t)(12 + nh);
+  d->jac = calloc(3 * (size_t)N * nblk, sizeof(double));
+  d->ls_q = calloc(4 * (size_t)N, sizeof(double));
+  d->ls_qn = calloc((size_t)N, sizeof(double));
+  d->ls_bpsi = calloc(3 * (size_t)N, sizeof(double));
+  d->ls_r = calloc(6 * (size_t)N, sizeof(double));
+  d->ls_hb = calloc((size_t)N * (size_t)(nh > 0 ? nh : 1), sizeof(double));
+  d->ls_Mhinv = calloc((size_t)N * (size_t)(nh > 0 ? nh * nh : 1), sizeof(double));
+  if (!d->jac || !d->ls_q || !d->ls_qn || !d->ls_bpsi || !d->ls_r || !d->ls_hb ||
+      !d->ls_Mhinv || !csr_rodBtAlloc_(&d->bt_dyn, N)) {
+    return 1;
+  }
+  d->LS = SUNLinSolNewEmpty(d->sun);
+  d->A = SUNMatNewEmpty(d->sun);
+  if (!d->LS || !d->A) {
+    return 1;
+  }
+  d->LS->content = d;
+  d->LS->ops->gettype = lsGetType;
+  d->LS->ops->getid = lsGetId;
+  d->LS->ops->setup = lsSetup;
+  d->LS->ops->solve = lsSolve;
+  d->LS->ops->lastflag = lsLastFlag;
+  d->LS->ops->free = lsFree;
+  d->A->content = d;
+  d->A->ops->getid = matGetId;
+  d->A->ops->destroy = matDestroy;
+  if (CVodeSetLinearSolver(d->cvode, d->LS, d->A) != CV_SUCCESS ||
+      CVodeSetLinSysFn(d->cvode, rodLinSys) != CV_SUCCESS) {
+    return 1;
+  }
+  return 0;
+}
+
+
+void csr_rodLinsolFree_(csrRodData* d) {
+  free(d->jac);
+  free(d->ls_q);
+  free(d->ls_qn);
+  free(d->ls_bpsi);
+  free(d->ls_r);
+  free(d->ls_hb);
+  free(d->ls_Mhinv);
+  csr_rodBtFree_(&d->bt_dyn);
+}
