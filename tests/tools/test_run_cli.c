@@ -5,6 +5,8 @@
  * before simulating (DESIGN.md command-line contract). One short good run exits 0. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <hdf5.h>
+#include <hdf5_hl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -156,11 +158,41 @@ static void test_goodRun(void) {
   CS_EXPECT(r.status == 0);
   CS_EXPECT(r.err[0] == '\0'); /* --quiet: no progress lines */
   CS_EXPECT(strstr(r.out, "final t = 0.050 s") == r.out);
+  /* the summary's time split names every stage */
+  CS_EXPECT(strstr(r.out, "time split (s): schedule ") != NULL);
+  CS_EXPECT(strstr(r.out, " legs ") && strstr(r.out, " support ") && strstr(r.out, " check "));
   CS_EXPECT(cs_cliFileExists("runcli_ok.h5"));
   if (r.status != 0) {
     fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", r.status, r.out, r.err);
   }
+  /* the file names the level that ran (the one place it is stored: the robot's leg type) and
+   * keeps the stage timers: 50 steps of 1 ms */
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen("runcli_ok.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char level[32] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "leg_model", level) >= 0);
+    CS_EXPECT(!strcmp(level, "prb"));
+    double calls = 0, wall = -1, steps = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_legs_calls", &calls) >= 0);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_support_s", &wall) >= 0);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "steps", &steps) >= 0);
+    CS_EXPECT(calls == 50 && wall >= 0 && steps >= 50);
+    H5Fclose(f);
+  }
   remove("runcli_ok.h5");
+  /* --legs auto runs the cheapest registered level and records it by its name */
+  cs_cliRun(exe_path, "run --t-end 0.01 --quiet --legs auto --out runcli_auto.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  f = H5Fopen("runcli_auto.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char level[32] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "leg_model", level) >= 0 && !strcmp(level, "prb"));
+    H5Fclose(f);
+  }
+  remove("runcli_auto.h5");
   /* --help: usage on stdout, exit 0 */
   cs_cliRun(exe_path, "run --help", "runcli", &r);
   CS_EXPECT(r.status == 0 && strstr(r.out, "usage: crawlsim run") == r.out && !r.err[0]);
