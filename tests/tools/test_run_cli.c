@@ -60,6 +60,11 @@ static void test_badOptions(void) {
   expectFailure("--legs rod", "crawlsim run: leg model 'rod' is not available yet");
   expectFailure("--legs bogus", "crawlsim run: unknown leg model 'bogus'");
   expectFailure("--support-mass 0", "crawlsim run: --support-mass 0 kg must be > 0");
+  expectFailure("--macro-steps 0", "crawlsim run: --macro-steps 0 must be an integer in 1..");
+  expectFailure("--macro-steps 2.5", "crawlsim run: --macro-steps 2.5 must be an integer in");
+  expectFailure("--macro-steps 20 --output-dt 0.01",
+                "crawlsim run: --output-dt 0.01 s must be >= the macro step 0.02 s");
+  expectFailure("--coupling tight", "crawlsim run: unknown coupling 'tight'");
   expectFailure("--links 0", "crawlsim run: --links 0 must be an integer in 1..64");
   expectFailure("--links 2.5", "crawlsim run: --links 2.5 must be an integer in 1..64");
   expectFailure("--iterations 0", "crawlsim run: --iterations 0 must be an integer in 1..10000");
@@ -182,6 +187,21 @@ static void test_goodRun(void) {
     H5Fclose(f);
   }
   remove("runcli_ok.h5");
+  /* a macro step of 20 ODE steps: the output interval follows it (0.02 s > 0.01 s) */
+  cs_cliRun(exe_path, "run --t-end 0.04 --quiet --macro-steps 20 --coupling stabilised "
+            "--out runcli_macro.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.out, "final t = 0.040 s") == r.out);
+  f = H5Fopen("runcli_macro.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double H = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "macro_step_s", &H) >= 0);
+    CS_EXPECT_NEAR(H, 0.02, 1e-15, 0);
+    hsize_t dims[1] = {0};
+    CS_EXPECT(H5LTget_dataset_info(f, "/time", dims, NULL, NULL) >= 0 && dims[0] == 3);
+    H5Fclose(f);
+  }
+  remove("runcli_macro.h5");
   /* --legs auto runs the cheapest registered level and records it by its name */
   cs_cliRun(exe_path, "run --t-end 0.01 --quiet --legs auto --out runcli_auto.h5", "runcli", &r);
   CS_EXPECT(r.status == 0);
