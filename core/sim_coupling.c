@@ -171,6 +171,7 @@ int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err) {
   csCosim* c = &d->cosim;
   const csrLegType* type = m->robot.leg_type;
   double P1[3], R1[9], dR[9], phi[3];
+  cs_errorClear(err); /* whatever err holds after this came from these legs */
   csr_robotSupportPose(d->robot, c->P0, c->R0, c->v0, c->w0);
   c->t0 = d->t;
   /* the predictor: the support's twist held over the step (end pose, and the mean pose below) */
@@ -195,8 +196,21 @@ int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err) {
     if (rc != 0) {
       return rc;
     }
+    int finite = 1;
+    for (int i = 0; i < 3; i++) {
+      finite &= isfinite(c->w[k].f[i]) && isfinite(c->w[k].m[i]);
+    }
     if (m->opt.coupling == CS_COUPLING_STABILISED) {
       type->interfaceGains(d->robot->legs[k], c->K[k], c->C[k]);
+      for (int i = 0; i < 36; i++) {
+        finite &= isfinite(c->K[k][i]) && isfinite(c->C[k][i]);
+      }
+    }
+    if (!finite) {
+      /* a leg that hands back NaN has left its valid range: a smaller step may keep it in */
+      cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: leg %c returned a non-finite wrench or "
+                  "interface gain", d->t, 'A' + k);
+      return 1;
     }
   }
   if (m->opt.coupling == CS_COUPLING_STABILISED) {

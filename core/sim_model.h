@@ -140,8 +140,9 @@ csStatus cs_settle(const csModel* m, csData* d, csError* err);
 csStatus cs_step(const csModel* m, csData* d, csError* err);
 
 /* ---- the whole simulation state (STYLE.md 5) -----------------------------------------------
- * A flat array of doubles: time t (s); ODE's random seed (QuickStep reorders its rows with ODE's
- * one process-wide generator, so the seed is part of what the next step does); the 96 chamber
+ * A flat array of doubles: time t (s); the data's random seed (QuickStep reorders its rows with
+ * ODE's one process-wide generator; each data keeps its own place in it, so the seed is part of
+ * what its next step does); the 96 chamber
  * pressures p (MPa, the CVODE state); then the robot (csr_robotStateGet: the support body and
  * every leg's own state, co-simulated legs' contact/friction history included). ODE's contact
  * joints are rebuilt every step and carry no history. Not in it: the reference position x0 of

@@ -80,18 +80,20 @@ static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err) 
     return CS_OK;
   }
   rc = cs_couplingAdvance(m, d, cs_modelMacroStep(m), err);
-  if (rc > 0) {
-    return cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: a %s leg asks for a smaller step "
-                       "(code %d)", d->t, cs_modelLegLevel(m), rc);
+  if (rc == 0) {
+    return CS_OK;
   }
-  if (rc < 0) {
-    /* the leg named the cause in err; keep its status unless it gave none */
-    return err && err->status != CS_OK ? err->status
-                                       : cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: a %s leg "
-                                                     "failed (code %d)", d->t,
-                                                     cs_modelLegLevel(m), rc);
+  /* a leg that named the cause in err keeps its words (cs_couplingAdvance cleared err first)
+   * and, when fatal, its status; a recoverable one is always CS_ERR_REJECTED */
+  csStatus st = rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER;
+  if (err && err->status != CS_OK) {
+    if (rc > 0) {
+      err->status = st;
+    }
+    return err->status;
   }
-  return CS_OK;
+  return cs_errorSet(err, st, "t = %.4f s: a %s leg %s (code %d)", d->t, cs_modelLegLevel(m),
+                     rc > 0 ? "asks for a smaller step" : "failed", rc);
 }
 
 

@@ -194,8 +194,9 @@ extern const csrLegType csr_leg_rod;
 /* The registered level called `name` ("prb", ...), or NULL. Levels the design names but that
  * are not registered yet ("rod", "rom") give NULL with *planned = 1 (planned may be NULL). */
 const csrLegType* csr_legTypeFind(const char* name, int* planned);
-/* The registered levels' names, comma-separated ("prb"), for messages (static string). */
-const char* csr_legTypeNames(void);
+/* The registered levels, cheapest first: how many, and the i-th (NULL outside 0..count-1). */
+int csr_legTypeCount(void);
+const csrLegType* csr_legTypeAt(int i);
 
 /* Second moment of area of the chambered section about a principal axis (mm^4). */
 double csr_legSectionI(const csrActuator* act);

@@ -40,18 +40,10 @@ const csrLegType* csr_legTypeFind(const char* name, int* planned) {
 }
 
 
-const char* csr_legTypeNames(void) {
-  /* built once from the table; the table is constant, so the text is too (no mutable state
-   * after the first call: every call writes the same bytes) */
-  static char names[128];
-  size_t n = 0;
-  names[0] = '\0';
-  for (int i = 0; i < NLEVEL && n < sizeof names; i++) {
-    int w = snprintf(names + n, sizeof names - n, "%s%s", i ? ", " : "", kLegLevels[i]->name);
-    n += w > 0 ? (size_t)w : 0;
-  }
-  return names;
-}
+int csr_legTypeCount(void) { return NLEVEL; }
+
+
+const csrLegType* csr_legTypeAt(int i) { return i >= 0 && i < NLEVEL ? kLegLevels[i] : NULL; }
 
 
 csStatus csr_robotDefaultModel(csrRobotModel* m, csError* err) {

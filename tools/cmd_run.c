@@ -202,8 +202,14 @@ int csx_cmdRun(int argc, char** argv) {
     int planned = 0;
     leg_type = csr_legTypeFind(legs, &planned);
     if (!leg_type && planned) {
+      char names[128] = "";
+      for (int i = 0, n = 0; i < csr_legTypeCount() && n < (int)sizeof names; i++) {
+        int w = snprintf(names + n, sizeof names - n, "%s%s", i ? ", " : "",
+                         csr_legTypeAt(i)->name);
+        n += w > 0 ? w : 0;
+      }
       cs_errorSet(&err, CS_ERR_ARG, "leg model '%s' is not available yet (available: %s)", legs,
-                  csr_legTypeNames());
+                  names);
       goto done;
     }
     if (!leg_type) {

@@ -43,6 +43,9 @@ struct csrLeg_ {
  * is held where it was created (a stance foot that sticks) */
 static double g_leg_m = 5e-6, g_leg_k = 0.011, g_leg_c = 0;
 static int g_leg_pinned = 0;
+/* the next advance of leg A fails with this code (0: none) after integrating, as a leg whose
+ * integrator gives up does: its state is left changed, the driver must restore it */
+static int g_fail_code = 0;
 static const double kLegLength = 100.0; /* mm: the foot hangs this far below the hip */
 
 
@@ -148,8 +151,6 @@ static void rhs(const csrLeg* leg, const csrBaseState* b0, const csrBaseState* b
 
 static int advanceSpring(csrLeg* leg, double t, double H, const csrBaseState* b0,
                          const csrBaseState* b1, csrWrench* w, csError* err) {
-  (void)t;
-  (void)err;
   double y[12] = {0}, k1[12], k2[12], k3[12], k4[12], yt[12];
   memcpy(y, leg->x, 3 * sizeof(double));
   memcpy(y + 3, leg->v, 3 * sizeof(double));
@@ -175,6 +176,15 @@ static int advanceSpring(csrLeg* leg, double t, double H, const csrBaseState* b0
   }
   memcpy(leg->x, y, 3 * sizeof(double));
   memcpy(leg->v, y + 3, 3 * sizeof(double));
+  if (g_fail_code && b0->x[2] < 0 && b0->x[0] > 0 && b0->x[0] > 70) {
+    /* leg A (front, -z row): fail after the state moved */
+    int code = g_fail_code;
+    g_fail_code = 0;
+    if (code < 0) {
+      cs_errorSet(err, CS_ERR_DIVERGED, "t = %.4f s: test leg: made to fail", t);
+    }
+    return code;
+  }
   for (int i = 0; i < 3; i++) {
     w->f[i] = y[6 + i] / H;
     w->m[i] = y[9 + i] / H;
@@ -527,6 +537,48 @@ static void test_cosim_state_round_trip(void) {
 }
 
 
+/* a co-simulated leg that fails (recoverably or fatally) after it has integrated: the step
+ * is refused with the right status and every byte of the state is as before */
+static void test_cosim_failed_leg_changes_nothing(void) {
+  setLegs(50, 0.05, 0);
+  csModel m;
+  makeModel(&m, 1e-4, 8, CS_COUPLING_STABILISED);
+  csError err;
+  csData* d = cs_dataCreate(&m, &err);
+  CS_EXPECT(d != NULL);
+  if (!d) {
+    return;
+  }
+  CS_EXPECT(cs_settle(&m, d, &err) == CS_OK);
+  int n = cs_stateSize(&m, d);
+  double* s0 = malloc(n * sizeof(double));
+  double* s1 = malloc(n * sizeof(double));
+  cs_stateGet(&m, d, s0);
+  s0[2 + 96 + 8] = kV0;
+  CS_EXPECT(cs_stateSet(&m, d, s0, &err) == CS_OK);
+  for (int i = 0; i < 10; i++) {
+    CS_EXPECT(cs_step(&m, d, &err) == CS_OK);
+  }
+  int codes[2] = {1, -1};
+  csStatus want[2] = {CS_ERR_REJECTED, CS_ERR_DIVERGED};
+  for (int k = 0; k < 2; k++) {
+    cs_stateGet(&m, d, s0);
+    g_fail_code = codes[k];
+    CS_EXPECT(cs_step(&m, d, &err) == want[k]);
+    CS_EXPECT(g_fail_code == 0); /* it did fail */
+    cs_stateGet(&m, d, s1);
+    CS_EXPECT(memcmp(s0, s1, n * sizeof(double)) == 0);
+    printf("  leg fails with %d: %s (%s)\n", codes[k], cs_statusString(err.status), err.msg);
+  }
+  CS_EXPECT(cs_rejectCount(d) == 2);
+  CS_EXPECT(cs_step(&m, d, &err) == CS_OK);
+  free(s0);
+  free(s1);
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   dInitODE2(0);
@@ -534,6 +586,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_staggered_coupling_error_first_order);
   CS_RUN(test_stabilised_scheme_stays_stable);
   CS_RUN(test_cosim_state_round_trip);
+  CS_RUN(test_cosim_failed_leg_changes_nothing);
   dCloseODE();
   return cs_testSummary();
 }
