@@ -153,14 +153,16 @@ static void prepareImplicit(const csModel* m, csData* d) {
       c->implicit[b][i] = a > MIN_EIG_RATIO * amax && a > 0;
       dJointID j = b == 0 ? c->lmotor : c->amotor;
       int grp = dParamGroup * i;
+      /* FMax 0 switches a row off; an implicit row is unbounded with CFM = 1/a */
+      double fmax = c->implicit[b][i] ? dInfinity : 0, cfm = c->implicit[b][i] ? 1.0 / a : 0;
       if (b == 0) {
         dJointSetLMotorAxis(j, i, 0, V[i], V[3 + i], V[6 + i]);
-        dJointSetLMotorParam(j, dParamFMax + grp, c->implicit[b][i] ? dInfinity : 0);
-        if (c->implicit[b][i]) dJointSetLMotorParam(j, dParamCFM + grp, 1.0 / a);
+        dJointSetLMotorParam(j, dParamFMax + grp, fmax);
+        dJointSetLMotorParam(j, dParamCFM + grp, cfm);
       } else {
         dJointSetAMotorAxis(j, i, 0, V[i], V[3 + i], V[6 + i]);
-        dJointSetAMotorParam(j, dParamFMax + grp, c->implicit[b][i] ? dInfinity : 0);
-        if (c->implicit[b][i]) dJointSetAMotorParam(j, dParamCFM + grp, 1.0 / a);
+        dJointSetAMotorParam(j, dParamFMax + grp, fmax);
+        dJointSetAMotorParam(j, dParamCFM + grp, cfm);
       }
     }
   }

@@ -159,11 +159,17 @@ static int advanceSpring(csrLeg* leg, double t, double H, const csrBaseState* b0
   for (int j = 0; j < n; j++) {
     double s = j * ds;
     rhs(leg, b0, b1, H, s, y, k1);
-    for (int i = 0; i < 12; i++) yt[i] = y[i] + 0.5 * dt * k1[i];
+    for (int i = 0; i < 12; i++) {
+      yt[i] = y[i] + 0.5 * dt * k1[i];
+    }
     rhs(leg, b0, b1, H, s + 0.5 * ds, yt, k2);
-    for (int i = 0; i < 12; i++) yt[i] = y[i] + 0.5 * dt * k2[i];
+    for (int i = 0; i < 12; i++) {
+      yt[i] = y[i] + 0.5 * dt * k2[i];
+    }
     rhs(leg, b0, b1, H, s + 0.5 * ds, yt, k3);
-    for (int i = 0; i < 12; i++) yt[i] = y[i] + dt * k3[i];
+    for (int i = 0; i < 12; i++) {
+      yt[i] = y[i] + dt * k3[i];
+    }
     rhs(leg, b0, b1, H, s + ds, yt, k4);
     for (int i = 0; i < 12; i++) {
       y[i] += dt / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
