@@ -33,9 +33,9 @@
  * with κ2 > 0 turning d3 towards +d1. A csrBendMap's bend[2] (rad over the segment, towards
  * bend[0] e1 + bend[1] e2) gives u0 = (-bend[1], bend[0], 0) / S and σ0 = (0, 0, stretch - 1).
  *
- * State (csr_rodStateSize doubles): per element e = 1..N one block
+ * State (csr_rodStateSize doubles): per element e = 1..N one block, at csr_rodStateOffset(e),
  *   [x_e (3, node e, mm), q_e (4, (w,x,y,z)), v_e (3, mm/s), ω_e (3, body frame, rad/s),
- *    h_e (nhist, the contact law's history variables of shape e)]
+ *    h_e (csrRodContact.nhist, or nhist_foot for e = N: the contact law's history of shape e)]
  * so the whole leg, contact history included, saves and restores as one vector. */
 #ifndef CS_ROBOT_ROD_H
 #define CS_ROBOT_ROD_H
@@ -141,23 +141,27 @@ typedef struct csrRodShape_ {
   double half[3];     /* box half extents along d1, d2, d3 (mm); capsule: 0, 0, |p1 - p0| / 2 */
 } csrRodShape;
 
-/* The terrain's action on one shape: a force `force` (N, world) applied at the world point
- * `point` (mm) plus a couple `moment` (N mm, world) for what a single point cannot carry (a
- * sole's pressure distribution, torsional friction). hist (nhist, read) is this shape's history
- * (e.g. the elastic tangential displacement of a Cundall-Strack spring); dhist (nhist, write)
- * its time derivative, which CVODE integrates with the rod. Outputs are zeroed before the call.
- * 0 ok, > 0 recoverable (CVODE cuts the step: deep penetration, NaN), < 0 fatal. */
+/* The terrain's action on element e's shape, as the forces on its two nodes, f0 on node e-1
+ * (p0) and f1 on node e (p1) (N, world), and a couple `moment` on its frame (N mm, world):
+ * contact_soft.h's cscShapeLoad form, which carries any distribution of contact forces along
+ * the element exactly in the rod's nodal forces (a force at axis parameter s splits (1 - s),
+ * s; what is off the axis goes into the couple). hist (read) is this element's history (e.g.
+ * the elastic tangential displacement of a friction bristle), dhist (write) its time
+ * derivative, which CVODE integrates with the rod; csr_rodStateHist(m, e) doubles each.
+ * Outputs are zeroed before the call; hist is a zero vector and dhist scratch where the rod
+ * evaluates forces outside its integrator (energy, wrench queries). 0 ok, > 0 recoverable
+ * (CVODE cuts the step: deep penetration, NaN), < 0 fatal. */
 typedef int (*csrRodContactFn)(void* ctx, const csrRodShape* shape, const double* hist,
-                               double* dhist, double force[3], double point[3],
-                               double moment[3]);
+                               double* dhist, double f0[3], double f1[3], double moment[3]);
 
 typedef struct csrRodContact_ {
   csrRodContactFn eval; /* NULL: no contact */
   void* ctx;
-  int nhist;            /* history variables per shape (0..CSR_ROD_MAX_HIST) */
+  int nhist;            /* history variables of each element 1..N-1 (0..CSR_ROD_MAX_HIST) */
+  int nhist_foot;       /* of the foot element N (its side and sole: may need more) */
 } csrRodContact;
 
-#define CSR_ROD_MAX_HIST 8
+#define CSR_ROD_MAX_HIST 12
 
 /* ---- model ---------------------------------------------------------------------------------- */
 
@@ -169,8 +173,9 @@ typedef struct csrRodSpec_ {
   double hip[3];                   /* hip (node 0) at rest, world mm */
   double frame[9];                 /* base frame at rest, columns e1 e2 e3, row-major */
   double gravity[3];               /* gravitational acceleration, world (mm/s^2) */
-  int gravity_on_legs;             /* 0: the legs keep mass and inertia but feel no gravity
-                                      (REFERENCE.md conditions `paper`), 1: `earth` */
+  int weightless;                  /* 1: the leg keeps its mass and inertia but feels no gravity
+                                      (REFERENCE.md conditions `paper`); 0: `earth` (as
+                                      csrLegSpec.weightless) */
   csrRodContact contact;           /* leg-terrain contact hook */
 } csrRodSpec;
 
@@ -191,6 +196,8 @@ int csr_rodStateSize(const csrRodModel* m);          /* doubles in the state vec
 double csr_rodMass(const csrRodModel* m);            /* total mass incl. the hip node (t) */
 double csr_rodLength(const csrRodModel* m);          /* rest length (mm) */
 const double* csr_rodNodeArc(const csrRodModel* m);  /* (N + 1) rest arc lengths (mm) */
+int csr_rodStateOffset(const csrRodModel* m, int e); /* element e's block in the state */
+int csr_rodStateHist(const csrRodModel* m, int e);   /* its history variables */
 
 /* ---- data ----------------------------------------------------------------------------------- */
 
@@ -204,16 +211,10 @@ void csr_rodGetState(const csrRodModel* m, const csrRodData* d, double* y);
 /* Any state (it is checked when used); the integrator restarts from it. */
 void csr_rodSetState(const csrRodModel* m, csrRodData* d, const double* y);
 
-/* Motion of the base (hip) at one instant, world frame. */
-typedef struct csrRodBase_ {
-  double pos[3];   /* hip position (mm) */
-  double R[9];     /* base frame, columns e1 e2 e3, row-major */
-  double vel[3];   /* hip velocity (mm/s) */
-  double omega[3]; /* angular velocity (rad/s) */
-} csrRodBase;
+/* The base (hip) motion is robot_leg.h's csrBaseState (x, R, v, w; world frame). */
 
 /* The base at rest at the spec's hip and frame. */
-csrRodBase csr_rodRestBase(const csrRodModel* m);
+csrBaseState csr_rodRestBase(const csrRodModel* m);
 
 /* The 12 chamber pressures (MPa, segment-major [3][4]) at t0 and t1 of the coming macro step;
  * the intrinsic strains (and stiffness) are evaluated at both ends and interpolated linearly in
@@ -225,12 +226,8 @@ int csr_rodActuate(const csrRodModel* m, csrRodData* d, double t0, const double 
 /* A constant tip force (N) and moment (N mm), world frame, on the foot (dynamics and statics). */
 void csr_rodSetTipLoad(csrRodData* d, const double force[3], const double moment[3]);
 
-/* Wrench the leg exerts on the support at the hip (world): force (N) and moment about the hip
- * point (N mm). */
-typedef struct csrRodWrench_ {
-  double force[3];
-  double moment[3];
-} csrRodWrench;
+/* The base wrench is robot_leg.h's csrWrench: force f (N) and moment m about the hip point
+ * (N mm) that the leg exerts on the support, world frame. */
 
 /* Advance from t to t + H with the base at b0 (t) and b1 (t + H), interpolated by cubic
  * Hermite (position and rotation, with the given velocities: C1 across consecutive steps).
@@ -240,11 +237,11 @@ typedef struct csrRodWrench_ {
  * last step ended. Returns 0, > 0 recoverable (CVODE could not complete the step: convergence,
  * error test, recoverable callback failures; the driver may retry with a smaller H), < 0 fatal
  * (bad arguments, fatal callback); on any failure the state is unchanged and err says why. */
-int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, const csrRodBase* b0,
-                   const csrRodBase* b1, csrRodWrench* w, csError* err);
+int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, const csrBaseState* b0,
+                   const csrBaseState* b1, csrWrench* w, csError* err);
 
 /* Base wrench at the current state and base (instantaneous). */
-void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrRodWrench* w);
+void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrWrench* w);
 
 /* Interface gains at the current state: K = -∂W/∂(hip displacement, rotation) and
  * C = -∂W/∂(hip velocity, angular velocity), W = (force, moment about the hip) on the support,

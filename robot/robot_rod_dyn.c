@@ -8,10 +8,11 @@
  * -ω²τ_d ~ -1e6 s⁻¹. An explicit integrator would need steps below 1 µs; CVODE's BDF (orders
  * 1-5, error control) with a modified Newton iteration takes steps set by the slow dynamics.
  * The Newton matrix I - γ J is banded: element e's block (x, q, v, ω, history) couples only to
- * blocks e-1 and e+1, so with the base impulse (6 entries) in front the half bandwidths are
- * 2 × stride - 1; CVODE builds the band Jacobian by column-grouped difference quotients
- * (2 × stride + ... groups, i.e. ~51 right-hand sides per Jacobian, no allocation) and
- * factors it with SUNLinSol_Band (O(n × bandwidth²)). Jacobians are reused across steps
+ * blocks e-1 and e+1; robot_rod_linsol.c eliminates the positions and solves the remaining
+ * block-tridiagonal system on the velocities (6 x 6 blocks), with Jacobian blocks from
+ * column-grouped difference quotients (3 x 12 right-hand sides without contact history, no
+ * allocation); it replaced SUNBandMatrix/SUNLinSol_Band after measurement (see there).
+ * Jacobians are reused across steps
  * (CVODE re-evaluates them when Newton converges slowly or γ changes), and the integrator
  * carries its history across macro steps: the base moves by cubic Hermite interpolation of
  * the support's pose and twist at both ends of each macro step, so consecutive steps join
@@ -55,15 +56,15 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUN
 static void baseAt(const csrRodBaseMotion* bm, double t, double x[3], double q[4], double v[3],
                    double a[3], double wb[3]);
 /* the base motion of a macro step from the support's states at both ends */
-static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrRodBase* b0,
-                          const csrRodBase* b1);
+static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrBaseState* b0,
+                          const csrBaseState* b1);
 /* the loads at time t: actuation interpolated, gravity, tip load, damping, contact */
 static void loadsAt(const csrRodModel* m, const csrRodData* d, double t, csrRodLoads* ld);
 /* unpack the current state at the current base and time and run the kernel */
 static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy);
 /* the wrench of the unpacked configuration in d->wk after the kernel (a0: hip acceleration) */
 static void wrenchOf(const csrRodModel* m, const csrRodData* d, const double a0[3],
-                     csrRodWrench* w);
+                     csrWrench* w);
 /* add CVODE's counters to the accumulated statistics (before a restart) */
 static void accumulateStats(csrRodData* d);
 /* SUNContext across SUNDIALS 6.4 / 7.x (debian-deps.md P4) */
@@ -181,8 +182,8 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
   }
   const csrRodParams* p = &m->par;
   for (int e = 0; e < m->N; e++) {
-    double* b = at + CSR_ROD_NIMP + (size_t)e * m->stride;
-    for (int k = 0; k < m->stride; k++) {
+    double* b = at + CSR_ROD_NIMP + m->boff[e + 1];
+    for (int k = 0; k < CSR_ROD_BH + m->nh[e + 1]; k++) {
       b[k] = k < CSR_ROD_BQ   ? p->atol_pos
              : k < CSR_ROD_BV ? p->atol_rot
              : k < CSR_ROD_BW ? p->atol_vel
@@ -210,10 +211,10 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
 }
 
 
-csrRodBase csr_rodRestBase(const csrRodModel* m) {
-  csrRodBase b;
+csrBaseState csr_rodRestBase(const csrRodModel* m) {
+  csrBaseState b;
   memset(&b, 0, sizeof b);
-  memcpy(b.pos, m->hip, sizeof b.pos);
+  memcpy(b.x, m->hip, sizeof b.x);
   memcpy(b.R, m->frame, sizeof b.R);
   return b;
 }
@@ -314,8 +315,8 @@ int csr_rodActuate(const csrRodModel* m, csrRodData* d, double t0, const double 
 }
 
 
-static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrRodBase* b0,
-                          const csrRodBase* b1) {
+static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrBaseState* b0,
+                          const csrBaseState* b1) {
   memset(bm, 0, sizeof *bm);
   bm->ta = ta;
   bm->H = H;
@@ -330,8 +331,8 @@ static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrRo
   csr_rodMatToQuat(qb, b1->R);
   csr_rodQmulConj(qab, bm->qa, qb);
   csr_rodQlog(bm->Phi, qab);
-  csr_rodMulMatTVec(wa, b0->R, b0->omega);
-  csr_rodMulMatTVec(wb, b1->R, b1->omega);
+  csr_rodMulMatTVec(wa, b0->R, b0->w);
+  csr_rodMulMatTVec(wb, b1->R, b1->w);
   csu_scale3(bm->dphi0, wa, H);
   /* φ̇ = J_r(φ)⁻¹ ω_body at the end, where φ = Φ */
   csr_rodJrInv(t, bm->Phi, wb, +1);
@@ -342,7 +343,7 @@ static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrRo
 static void baseAt(const csrRodBaseMotion* bm, double t, double x[3], double q[4], double v[3],
                    double a[3], double wb[3]) {
   if (!bm->moving) {
-    memcpy(x, bm->a.pos, 3 * sizeof(double));
+    memcpy(x, bm->a.x, 3 * sizeof(double));
     memcpy(q, bm->qa, 4 * sizeof(double));
     memset(v, 0, 3 * sizeof(double));
     memset(a, 0, 3 * sizeof(double));
@@ -356,8 +357,8 @@ static void baseAt(const csrRodBaseMotion* bm, double t, double x[3], double q[4
   const double d00 = 6 * u2 - 6 * u, d10 = 3 * u2 - 4 * u + 1, d01 = -d00, d11 = 3 * u2 - 2 * u;
   const double s00 = 12 * u - 6, s10 = 6 * u - 4, s01 = -s00, s11 = 6 * u - 2;
   for (int k = 0; k < 3; k++) {
-    const double p0 = bm->a.pos[k], p1 = bm->b.pos[k];
-    const double m0 = H * bm->a.vel[k], m1 = H * bm->b.vel[k];
+    const double p0 = bm->a.x[k], p1 = bm->b.x[k];
+    const double m0 = H * bm->a.v[k], m1 = H * bm->b.v[k];
     x[k] = h00 * p0 + h10 * m0 + h01 * p1 + h11 * m1;
     v[k] = (d00 * p0 + d10 * m0 + d01 * p1 + d11 * m1) / H;
     a[k] = (s00 * p0 + s10 * m0 + s01 * p1 + s11 * m1) / (H * H);
@@ -412,11 +413,11 @@ static void loadsAt(const csrRodModel* m, const csrRodData* d, double t, csrRodL
 
 
 static void wrenchOf(const csrRodModel* m, const csrRodData* d, const double a0[3],
-                     csrRodWrench* w) {
+                     csrWrench* w) {
   for (int k = 0; k < 3; k++) {
-    w->force[k] = d->wk.F[k] - m->mnode[0] * a0[k];
+    w->f[k] = d->wk.F[k] - m->mnode[0] * a0[k];
   }
-  csu_mulMatVec3(w->moment, d->wk.R, d->wk.T);
+  csu_mulMatVec3(w->m, d->wk.R, d->wk.T);
 }
 
 
@@ -443,8 +444,8 @@ int csr_rodRhs_(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   const csrRodWork* wk = &d->wk;
   double check = 0;
   for (int e = 1; e <= m->N; e++) {
-    const double* b = Y + CSR_ROD_NIMP + (size_t)(e - 1) * m->stride;
-    double* o = Yd + CSR_ROD_NIMP + (size_t)(e - 1) * m->stride;
+    const double* b = Y + CSR_ROD_NIMP + m->boff[e];
+    double* o = Yd + CSR_ROD_NIMP + m->boff[e];
     const double* q = b + CSR_ROD_BQ;
     const double* w = b + CSR_ROD_BW;
     const double* J = m->Jel + 3 * e;
@@ -465,11 +466,11 @@ int csr_rodRhs_(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
       check += o[CSR_ROD_BV + k] + o[CSR_ROD_BW + k];
     }
   }
-  csrRodWrench wr;
+  csrWrench wr;
   wrenchOf(m, d, a0, &wr);
-  memcpy(Yd, wr.force, 3 * sizeof(double));
-  memcpy(Yd + 3, wr.moment, 3 * sizeof(double));
-  if (!isfinite(check + wr.force[0] + wr.moment[0])) {
+  memcpy(Yd, wr.f, 3 * sizeof(double));
+  memcpy(Yd + 3, wr.m, 3 * sizeof(double));
+  if (!isfinite(check + wr.f[0] + wr.m[0])) {
     return 1;
   }
   return 0;
@@ -510,11 +511,11 @@ void csr_rodGetStats(const csrRodData* d, csrRodStats* s) {
 
 
 /* a base state equal to the one the last step ended with (within CSR_ROD_BASE_TOL) */
-static int sameBase(const csrRodBase* a, const csrRodBase* b) {
+static int sameBase(const csrBaseState* a, const csrBaseState* b) {
   for (int k = 0; k < 3; k++) {
-    if (fabs(a->pos[k] - b->pos[k]) > CSR_ROD_BASE_TOL * (1 + fabs(b->pos[k])) ||
-        fabs(a->vel[k] - b->vel[k]) > CSR_ROD_BASE_TOL * (1 + fabs(b->vel[k])) ||
-        fabs(a->omega[k] - b->omega[k]) > CSR_ROD_BASE_TOL * (1 + fabs(b->omega[k]))) {
+    if (fabs(a->x[k] - b->x[k]) > CSR_ROD_BASE_TOL * (1 + fabs(b->x[k])) ||
+        fabs(a->v[k] - b->v[k]) > CSR_ROD_BASE_TOL * (1 + fabs(b->v[k])) ||
+        fabs(a->w[k] - b->w[k]) > CSR_ROD_BASE_TOL * (1 + fabs(b->w[k]))) {
       return 0;
     }
   }
@@ -528,10 +529,10 @@ static int sameBase(const csrRodBase* a, const csrRodBase* b) {
 
 
 /* finite base state */
-static int finiteBase(const csrRodBase* b) {
+static int finiteBase(const csrBaseState* b) {
   double s = 0;
   for (int k = 0; k < 3; k++) {
-    s += b->pos[k] + b->vel[k] + b->omega[k];
+    s += b->x[k] + b->v[k] + b->w[k];
   }
   for (int k = 0; k < 9; k++) {
     s += b->R[k];
@@ -540,8 +541,8 @@ static int finiteBase(const csrRodBase* b) {
 }
 
 
-int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, const csrRodBase* b0,
-                   const csrRodBase* b1, csrRodWrench* w, csError* err) {
+int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, const csrBaseState* b0,
+                   const csrBaseState* b1, csrWrench* w, csError* err) {
   if (!m || !d || !b0 || !b1) {
     cs_errorSet(err, CS_ERR_ARG, "rod advance: NULL argument");
     return -1;
@@ -596,8 +597,8 @@ int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, cons
   }
   if (w) {
     for (int k = 0; k < 3; k++) {
-      w->force[k] = (d->y[k] - I0[k]) / H;
-      w->moment[k] = (d->y[3 + k] - I0[3 + k]) / H;
+      w->f[k] = (d->y[k] - I0[k]) / H;
+      w->m[k] = (d->y[3 + k] - I0[3 + k]) / H;
     }
   }
   d->t = t + H;
@@ -610,9 +611,9 @@ int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, cons
 static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy) {
   double x0[3], q0[4], wb[3];
   csr_rodMatToQuat(q0, d->cur_base.R);
-  memcpy(x0, d->cur_base.pos, sizeof x0);
-  csr_rodMulMatTVec(wb, d->cur_base.R, d->cur_base.omega);
-  if (csr_rodUnpack_(m, &d->wk, d->y + CSR_ROD_NIMP, x0, q0, d->cur_base.vel, wb) != 0) {
+  memcpy(x0, d->cur_base.x, sizeof x0);
+  csr_rodMulMatTVec(wb, d->cur_base.R, d->cur_base.w);
+  if (csr_rodUnpack_(m, &d->wk, d->y + CSR_ROD_NIMP, x0, q0, d->cur_base.v, wb) != 0) {
     return 1;
   }
   loadsAt(m, d, d->t, ld);
@@ -622,7 +623,7 @@ static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int wan
 }
 
 
-void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrRodWrench* w) {
+void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrWrench* w) {
   csrRodLoads ld;
   const double a0[3] = {0, 0, 0};
   memset(w, 0, sizeof *w);
@@ -633,7 +634,7 @@ void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrRodWrench* w) {
 
 
 void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], double C[36]) {
-  const csrRodBase keep = d->cur_base;
+  const csrBaseState keep = d->cur_base;
   const double h[4] = {CSR_ROD_GAIN_DX, CSR_ROD_GAIN_DPHI, CSR_ROD_GAIN_DV, CSR_ROD_GAIN_DW};
   memset(K, 0, 36 * sizeof(double));
   memset(C, 0, 36 * sizeof(double));
@@ -643,24 +644,24 @@ void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], do
       double W[2][6];
       for (int side = 0; side < 2; side++) {
         double sg = side ? -1.0 : 1.0;
-        csrRodBase b = keep;
+        csrBaseState b = keep;
         if (kind == 0) {
-          b.pos[j] += sg * h[0];
+          b.x[j] += sg * h[0];
         } else if (kind == 1) {
           double ax[3] = {0, 0, 0}, dR[9];
           ax[j] = 1;
           csu_axisAngleToMat3(dR, ax, sg * h[1]);
           csu_mulMat3(b.R, dR, keep.R);
         } else if (kind == 2) {
-          b.vel[j] += sg * h[2];
+          b.v[j] += sg * h[2];
         } else {
-          b.omega[j] += sg * h[3];
+          b.w[j] += sg * h[3];
         }
         d->cur_base = b;
-        csrRodWrench w;
+        csrWrench w;
         csr_rodBaseWrench(m, d, &w);
-        memcpy(W[side], w.force, 3 * sizeof(double));
-        memcpy(W[side] + 3, w.moment, 3 * sizeof(double));
+        memcpy(W[side], w.f, 3 * sizeof(double));
+        memcpy(W[side] + 3, w.m, 3 * sizeof(double));
       }
       double* M = kind < 2 ? K : C;
       int col = 3 * (kind % 2) + j;

@@ -37,8 +37,10 @@ struct csrRodModel_ {
   int npiece;
   csrRodPiece piece[CSR_ROD_MAX_PIECES];
   int N;          /* elements */
-  int stride;     /* doubles per element block: 13 + nhist */
-  int nstate;     /* N * stride */
+  int* boff;      /* (N + 2) offset of element e's block in the state; boff[N + 1] = nstate */
+  int* nh;        /* (N + 1) history variables of element e (index 0 unused) */
+  int nhmax;      /* the largest of them */
+  int nstate;     /* doubles in the state */
   double L;       /* rest length (mm) */
   double seg_len[CSR_NSEG]; /* rest length of the pieces of each actuated segment (mm) */
   double* s;      /* (N + 1) rest arc length of the nodes (mm) */
@@ -74,7 +76,7 @@ typedef struct csrRodWork_ {
   double* T;  /* (N + 1) x 3 frame torques (N mm, body frames); row 0 = on the base frame */
   double* m_node; /* (N + 1) x 3: elastic moment at node i (N mm, frame i's material axes);
                      row N: the tip moment in frame N */
-  const double* hist; /* N x stride-based history (points into a state, may be NULL) */
+  const double* hist; /* a state vector whose blocks hold the history (may be NULL) */
   double* dhist;      /* where the history rates go (may be NULL) */
   double elastic;     /* elastic energy (N mm), when requested */
 } csrRodWork;
@@ -100,7 +102,7 @@ typedef struct csrRodActState_ {
 /* base motion over a macro step: cubic Hermite in position and in the rotation vector */
 typedef struct csrRodBaseMotion_ {
   double ta, H;
-  csrRodBase a, b;
+  csrBaseState a, b;
   double qa[4];      /* base quaternion at ta */
   double Phi[3];     /* rotation vector from frame a to frame b, in frame a */
   double dphi0[3];   /* H × body angular velocity at ta (frame a) */
@@ -116,7 +118,7 @@ struct csrRodData_ {
   csrRodWork wk;
   csrRodActState act;
   csrRodBaseMotion base;
-  csrRodBase cur_base; /* the base at time t */
+  csrBaseState cur_base; /* the base at time t */
   double tip_force[3], tip_moment[3];
   int need_reinit;   /* 1: the next advance restarts CVODE */
   int started;       /* CVODE initialised at least once */

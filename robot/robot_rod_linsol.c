@@ -196,10 +196,11 @@ void csr_rodBtSolve_(const csrRodBt* bt, double* x) {
 
 /* ---- the CVODE linear system ------------------------------------------------------------------ */
 
-/* Jacobian block of row element i (1..N), column element i - 1 + k (k = 0..2): (6 + nh) rows
- * (v̇ 3, ω̇ 3, ḣ nh) x (12 + nh) columns (x 3, ψ 3, v 3, ω 3, h nh), row-major */
+/* Jacobian block of row element i (1..N), column element i - 1 + k (k = 0..2): (6 + nhmax)
+ * rows (v̇ 3, ω̇ 3, ḣ nh_i) x (12 + nhmax) columns (x 3, ψ 3, v 3, ω 3, h nh_j), row-major;
+ * rows and columns past an element's own history count stay zero */
 static double* jblock(const csrRodModel* m, const csrRodData* d, int i, int k) {
-  const int nr = 6 + m->contact.nhist, nc = 12 + m->contact.nhist;
+  const int nr = 6 + m->nhmax, nc = 12 + m->nhmax;
   return d->jac + ((size_t)(i - 1) * 3 + (size_t)k) * (size_t)(nr * nc);
 }
 
@@ -247,14 +248,14 @@ static double stepOf(const csrRodModel* m, const double* b, int c) {
 
 /* accelerations (v̇, ω̇, ḣ) of element i from a right-hand-side vector */
 static const double* accelOf(const csrRodModel* m, const double* f, int i) {
-  return f + CSR_ROD_NIMP + (size_t)(i - 1) * m->stride + CSR_ROD_BV;
+  return f + CSR_ROD_NIMP + m->boff[i] + CSR_ROD_BV;
 }
 
 
 /* finite-difference Jacobian blocks at (t, y) with f = rhs(t, y); 0 ok, else the RHS's code */
 static int computeJacobian(const csrRodModel* m, csrRodData* d, double t, N_Vector y,
                            N_Vector fy, N_Vector ytmp, N_Vector ftmp) {
-  const int N = m->N, nh = m->contact.nhist, nr = 6 + nh, nc = 12 + nh;
+  const int N = m->N, nc = 12 + m->nhmax;
   const double* Y = N_VGetArrayPointer(y);
   const double* F0 = N_VGetArrayPointer(fy);
   double* Yp = N_VGetArrayPointer(ytmp);
@@ -263,16 +264,27 @@ static int computeJacobian(const csrRodModel* m, csrRodData* d, double t, N_Vect
   for (int g = 0; g < 3; g++) {
     for (int c = 0; c < nc; c++) {
       memcpy(Yp, Y, ny * sizeof(double));
+      int any = 0;
       for (int j = 1 + g; j <= N; j += 3) {
-        double* b = Yp + CSR_ROD_NIMP + (size_t)(j - 1) * m->stride;
-        perturb(b, c, stepOf(m, b, c));
+        if (c < 12 + m->nh[j]) {
+          double* b = Yp + CSR_ROD_NIMP + m->boff[j];
+          perturb(b, c, stepOf(m, b, c));
+          any = 1;
+        }
+      }
+      if (!any) {
+        continue; /* no element of this group has history column c */
       }
       int rc = csr_rodRhs_(t, ytmp, ftmp, d);
       if (rc != 0) {
         return rc;
       }
+      d->stats.rhs_evals++;
       for (int j = 1 + g; j <= N; j += 3) {
-        const size_t o = CSR_ROD_NIMP + (size_t)(j - 1) * m->stride;
+        if (c >= 12 + m->nh[j]) {
+          continue;
+        }
+        const size_t o = CSR_ROD_NIMP + (size_t)m->boff[j];
         /* the step actually taken: the round-off of y + h for the additive columns; the
          * rotation columns are exact (multiplicative) */
         const int slot = c < 3 ? CSR_ROD_BX + c : (c < 12 ? CSR_ROD_BV + c - 6 : CSR_ROD_BH + c - 12);
@@ -284,14 +296,13 @@ static int computeJacobian(const csrRodModel* m, csrRodData* d, double t, N_Vect
           double* J = jblock(m, d, i, j - i + 1);
           const double* a0 = accelOf(m, F0, i);
           const double* a1 = accelOf(m, F1, i);
-          for (int r = 0; r < nr; r++) {
+          for (int r = 0; r < 6 + m->nh[i]; r++) {
             J[nc * r + c] = (a1[r] - a0[r]) / h;
           }
         }
       }
     }
   }
-  d->stats.rhs_evals += 3 * nc;
   return 0;
 }
 
@@ -308,7 +319,7 @@ static int rodLinSys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunboo
   d->ls_gamma = gamma;
   const double* Y = N_VGetArrayPointer(y);
   for (int e = 1; e <= m->N; e++) {
-    const double* q = Y + CSR_ROD_NIMP + (size_t)(e - 1) * m->stride + CSR_ROD_BQ;
+    const double* q = Y + CSR_ROD_NIMP + m->boff[e] + CSR_ROD_BQ;
     double* qh = d->ls_q + 4 * (e - 1);
     memcpy(qh, q, 4 * sizeof(double));
     d->ls_qn[e - 1] = csr_rodQnormalize(qh);
@@ -334,7 +345,7 @@ static int rodLinSys(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunboo
  * γ² ∂ḣ/∂ψ P_ω); Mhinv (nh x nh) given */
 static void historyCoupling(const csrRodModel* m, const csrRodData* d, int mm, int j,
                             const double* Mhinv, double* Z) {
-  const int nh = m->contact.nhist, nc = 12 + nh;
+  const int nh = m->nh[mm], nc = 12 + m->nhmax;
   const double g = d->ls_gamma;
   const double* J = jblock(m, d, mm, j - mm + 1);
   double T[CSR_ROD_MAX_HIST * 6];
@@ -409,12 +420,16 @@ static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
   (void)A;
   csrRodData* d = LS->content;
   const csrRodModel* m = d->m;
-  const int N = m->N, nh = m->contact.nhist, nc = 12 + nh;
+  const int N = m->N, nhm = m->nhmax, nc = 12 + nhm;
   const double g = d->ls_gamma;
   csrRodBt* bt = &d->bt_dyn;
   csr_rodBtZero_(bt);
-  /* history: Mh_m⁻¹ = (I - γ ∂ḣ_m/∂h_m)⁻¹ per element */
-  for (int e = 1; e <= N && nh > 0; e++) {
+  /* history: Mh_m⁻¹ = (I - γ ∂ḣ_m/∂h_m)⁻¹ per element (nh_m x nh_m, stored at stride nhmax²) */
+  for (int e = 1; e <= N; e++) {
+    const int nh = m->nh[e];
+    if (nh == 0) {
+      continue;
+    }
     double Mh[CSR_ROD_MAX_HIST * CSR_ROD_MAX_HIST];
     const double* J = jblock(m, d, e, 1);
     for (int r = 0; r < nh; r++) {
@@ -422,7 +437,7 @@ static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
         Mh[nh * r + c] = (r == c ? 1.0 : 0.0) - g * J[nc * (6 + r) + 12 + c];
       }
     }
-    if (invertSmall(nh, Mh, d->ls_Mhinv + (size_t)(e - 1) * nh * nh) != 0) {
+    if (invertSmall(nh, Mh, d->ls_Mhinv + (size_t)(e - 1) * nhm * nhm) != 0) {
       d->ls_last = SUNLS_LUFACT_FAIL;
       return SUNLS_LUFACT_FAIL;
     }
@@ -443,12 +458,13 @@ static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
         }
       }
       /* history of elements mm coupling row i and column j: - γ ∂u̇_i/∂h_mm Z_mm,j */
-      for (int mm = j - 1; mm <= j + 1 && nh > 0; mm++) {
-        if (mm < 1 || mm > N || mm < i - 1 || mm > i + 1) {
+      for (int mm = j - 1; mm <= j + 1 && nhm > 0; mm++) {
+        if (mm < 1 || mm > N || mm < i - 1 || mm > i + 1 || m->nh[mm] == 0) {
           continue;
         }
+        const int nh = m->nh[mm];
         double Z[CSR_ROD_MAX_HIST * 6];
-        historyCoupling(m, d, mm, j, d->ls_Mhinv + (size_t)(mm - 1) * nh * nh, Z);
+        historyCoupling(m, d, mm, j, d->ls_Mhinv + (size_t)(mm - 1) * nhm * nhm, Z);
         const double* Ji = jblock(m, d, i, mm - i + 1);
         for (int r = 0; r < 6; r++) {
           for (int c = 0; c < 6; c++) {
@@ -474,16 +490,16 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
   (void)tol;
   csrRodData* d = LS->content;
   const csrRodModel* m = d->m;
-  const int N = m->N, nh = m->contact.nhist, nc = 12 + nh;
+  const int N = m->N, nhm = m->nhmax, nc = 12 + nhm;
   const double g = d->ls_gamma;
   const double* B = N_VGetArrayPointer(b);
   double* X = N_VGetArrayPointer(x);
   double* bpsi = d->ls_bpsi; /* (N x 3) Π b_q */
   double* r = d->ls_r;       /* (N x 6) reduced right-hand side, then δu */
-  double* hb = d->ls_hb;     /* (N x nh) Mh⁻¹ (b_h + γ ∂ḣ/∂x b_x + γ ∂ḣ/∂ψ bψ) */
+  double* hb = d->ls_hb;     /* (N x nhmax) Mh⁻¹ (b_h + γ ∂ḣ/∂x b_x + γ ∂ḣ/∂ψ bψ) */
   /* Π_j b_q = 2 vec(conj(q̂) ⊗ b_q) / |q| */
   for (int j = 1; j <= N; j++) {
-    const double* bq = B + CSR_ROD_NIMP + (size_t)(j - 1) * m->stride + CSR_ROD_BQ;
+    const double* bq = B + CSR_ROD_NIMP + m->boff[j] + CSR_ROD_BQ;
     double t[4];
     csr_rodQmulConj(t, d->ls_q + 4 * (j - 1), bq);
     double s = 2.0 / d->ls_qn[j - 1];
@@ -492,11 +508,15 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
     }
   }
   /* position-level part of the right-hand side of element j: (b_x, bψ) */
-#define BX(j) (B + CSR_ROD_NIMP + (size_t)((j) - 1) * m->stride + CSR_ROD_BX)
+#define BX(j) (B + CSR_ROD_NIMP + m->boff[j] + CSR_ROD_BX)
 #define BPSI(j) (bpsi + 3 * ((j) - 1))
-  for (int mm = 1; mm <= N && nh > 0; mm++) {
+  for (int mm = 1; mm <= N; mm++) {
+    const int nh = m->nh[mm];
+    if (nh == 0) {
+      continue;
+    }
     double t[CSR_ROD_MAX_HIST];
-    const double* bh = B + CSR_ROD_NIMP + (size_t)(mm - 1) * m->stride + CSR_ROD_BH;
+    const double* bh = B + CSR_ROD_NIMP + m->boff[mm] + CSR_ROD_BH;
     for (int q = 0; q < nh; q++) {
       t[q] = bh[q];
     }
@@ -513,17 +533,17 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
         }
       }
     }
-    const double* Mi = d->ls_Mhinv + (size_t)(mm - 1) * nh * nh;
+    const double* Mi = d->ls_Mhinv + (size_t)(mm - 1) * nhm * nhm;
     for (int q = 0; q < nh; q++) {
       double s = 0;
       for (int k = 0; k < nh; k++) {
         s += Mi[nh * q + k] * t[k];
       }
-      hb[(size_t)(mm - 1) * nh + q] = s;
+      hb[(size_t)(mm - 1) * nhm + q] = s;
     }
   }
   for (int i = 1; i <= N; i++) {
-    const double* bu = B + CSR_ROD_NIMP + (size_t)(i - 1) * m->stride + CSR_ROD_BV;
+    const double* bu = B + CSR_ROD_NIMP + m->boff[i] + CSR_ROD_BV;
     double* ri = r + 6 * (i - 1);
     for (int k = 0; k < 6; k++) {
       ri[k] = bu[k];
@@ -540,8 +560,8 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
         for (int c = 0; c < 3; c++) {
           s += row[c] * BX(j)[c] + row[3 + c] * BPSI(j)[c];
         }
-        for (int q = 0; q < nh; q++) {
-          s += row[12 + q] * hb[(size_t)(j - 1) * nh + q];
+        for (int q = 0; q < m->nh[j]; q++) {
+          s += row[12 + q] * hb[(size_t)(j - 1) * nhm + q];
         }
         ri[rr] += g * s;
       }
@@ -551,8 +571,8 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
   /* back-substitution: positions, quaternions, history; impulse rows unchanged */
   memcpy(X, B, CSR_ROD_NIMP * sizeof(double));
   for (int j = 1; j <= N; j++) {
-    const double* bj = B + CSR_ROD_NIMP + (size_t)(j - 1) * m->stride;
-    double* xj = X + CSR_ROD_NIMP + (size_t)(j - 1) * m->stride;
+    const double* bj = B + CSR_ROD_NIMP + m->boff[j];
+    double* xj = X + CSR_ROD_NIMP + m->boff[j];
     const double* du = r + 6 * (j - 1);
     for (int k = 0; k < 3; k++) {
       xj[CSR_ROD_BX + k] = bj[CSR_ROD_BX + k] + g * du[k];
@@ -568,7 +588,11 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
       xj[CSR_ROD_BQ + k] = bj[CSR_ROD_BQ + k] + 0.5 * g * d->ls_qn[j - 1] * gq[k];
     }
   }
-  for (int mm = 1; mm <= N && nh > 0; mm++) {
+  for (int mm = 1; mm <= N; mm++) {
+    const int nh = m->nh[mm];
+    if (nh == 0) {
+      continue;
+    }
     double t[CSR_ROD_MAX_HIST];
     for (int q = 0; q < nh; q++) {
       t[q] = 0;
@@ -591,14 +615,14 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
         }
       }
     }
-    const double* Mi = d->ls_Mhinv + (size_t)(mm - 1) * nh * nh;
-    double* xh = X + CSR_ROD_NIMP + (size_t)(mm - 1) * m->stride + CSR_ROD_BH;
+    const double* Mi = d->ls_Mhinv + (size_t)(mm - 1) * nhm * nhm;
+    double* xh = X + CSR_ROD_NIMP + m->boff[mm] + CSR_ROD_BH;
     for (int q = 0; q < nh; q++) {
       double s = 0;
       for (int k = 0; k < nh; k++) {
         s += Mi[nh * q + k] * t[k];
       }
-      xh[q] = hb[(size_t)(mm - 1) * nh + q] + s;
+      xh[q] = hb[(size_t)(mm - 1) * nhm + q] + s;
     }
   }
 #undef BX
@@ -651,7 +675,7 @@ static void matDestroy(SUNMatrix A) {
 
 int csr_rodLinsolAttach_(csrRodData* d) {
   const csrRodModel* m = d->m;
-  const int N = m->N, nh = m->contact.nhist;
+  const int N = m->N, nh = m->nhmax;
   const size_t nblk = (size_t)(6 + nh) * (size_t)(12 + nh);
   d->jac = calloc(3 * (size_t)N * nblk, sizeof(double));
   d->ls_q = calloc(4 * (size_t)N, sizeof(double));

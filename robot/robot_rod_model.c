@@ -160,6 +160,8 @@ void csr_rodModelDestroy(csrRodModel* m) {
   free(m->ep);
   free(m->mnode);
   free(m->Jel);
+  free(m->boff);
+  free(m->nh);
   free(m);
 }
 
@@ -204,9 +206,12 @@ static csStatus checkSpec(const csrRodPiece* pieces, int npiece, const csrRodSpe
                        "rod: parameters: need damping_time >= 0, tolerances > 0, max_steps >= "
                        "1, max_order 1..5, contact_radius > 0, static_max_iter >= 1");
   }
-  if (spec->contact.eval && (spec->contact.nhist < 0 || spec->contact.nhist > CSR_ROD_MAX_HIST)) {
-    return cs_errorSet(err, CS_ERR_RANGE, "rod: contact history of %d variables per shape "
-                       "(0..%d)", spec->contact.nhist, CSR_ROD_MAX_HIST);
+  if (spec->contact.eval && (spec->contact.nhist < 0 || spec->contact.nhist > CSR_ROD_MAX_HIST ||
+                             spec->contact.nhist_foot < 0 ||
+                             spec->contact.nhist_foot > CSR_ROD_MAX_HIST)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "rod: contact history of %d / %d (foot) variables per "
+                       "element (0..%d)", spec->contact.nhist, spec->contact.nhist_foot,
+                       CSR_ROD_MAX_HIST);
   }
   const double* F = spec->frame;
   double e1[3] = {F[0], F[3], F[6]}, e2[3] = {F[1], F[4], F[7]}, e3[3] = {F[2], F[5], F[8]};
@@ -249,13 +254,13 @@ csrRodModel* csr_rodModelCreatePieces(const csrRodPiece* pieces, int npiece,
   m->calib = spec->calib;
   m->contact = spec->contact;
   if (!m->contact.eval) {
-    m->contact.nhist = 0;
+    m->contact.nhist = m->contact.nhist_foot = 0;
   }
   m->npiece = npiece;
   memcpy(m->piece, pieces, (size_t)npiece * sizeof *pieces);
   memcpy(m->hip, spec->hip, sizeof m->hip);
   memcpy(m->frame, spec->frame, sizeof m->frame);
-  if (spec->gravity_on_legs) {
+  if (!spec->weightless) {
     memcpy(m->gravity, spec->gravity, sizeof m->gravity);
   }
   int N = 0;
@@ -266,18 +271,25 @@ csrRodModel* csr_rodModelCreatePieces(const csrRodPiece* pieces, int npiece,
     }
   }
   m->N = N;
-  m->stride = CSR_ROD_BH + m->contact.nhist;
-  m->nstate = N * m->stride;
   m->s = calloc((size_t)N + 1, sizeof(double));
+  m->boff = calloc((size_t)N + 2, sizeof(int));
+  m->nh = calloc((size_t)N + 1, sizeof(int));
   m->l = calloc((size_t)N + 1, sizeof(double));
   m->ep = calloc((size_t)N + 1, sizeof(int));
   m->mnode = calloc((size_t)N + 1, sizeof(double));
   m->Jel = calloc(3 * ((size_t)N + 1), sizeof(double));
-  if (!m->s || !m->l || !m->ep || !m->mnode || !m->Jel) {
+  if (!m->s || !m->l || !m->ep || !m->mnode || !m->Jel || !m->boff || !m->nh) {
     csr_rodModelDestroy(m);
     cs_errorSet(err, CS_ERR_MEMORY, "rod: out of memory");
     return NULL;
   }
+  /* the state's blocks: 13 + the element's contact history */
+  for (int e = 1; e <= N; e++) {
+    m->nh[e] = e < N ? m->contact.nhist : m->contact.nhist_foot;
+    m->nhmax = m->nh[e] > m->nhmax ? m->nh[e] : m->nhmax;
+    m->boff[e + 1] = m->boff[e] + CSR_ROD_BH + m->nh[e];
+  }
+  m->nstate = m->boff[N + 1];
   /* elements of equal length within each piece; lumped masses and rotary inertia */
   int e = 0;
   double s = 0;
@@ -335,6 +347,8 @@ csrRodModel* csr_rodModelCreate(const csrRodSpec* spec, csError* err) {
 
 
 int csr_rodElements(const csrRodModel* m) { return m->N; }
+int csr_rodStateOffset(const csrRodModel* m, int e) { return m->boff[e]; }
+int csr_rodStateHist(const csrRodModel* m, int e) { return m->nh[e]; }
 int csr_rodStateSize(const csrRodModel* m) { return m->nstate; }
 double csr_rodMass(const csrRodModel* m) { return m->mass; }
 double csr_rodLength(const csrRodModel* m) { return m->L; }
@@ -417,7 +431,7 @@ void csr_rodRestState_(const csrRodModel* m, double* state) {
   const double e3[3] = {m->frame[2], m->frame[5], m->frame[8]};
   memset(state, 0, (size_t)m->nstate * sizeof(double));
   for (int e = 1; e <= m->N; e++) {
-    double* b = state + (size_t)(e - 1) * m->stride;
+    double* b = state + m->boff[e];
     csu_addScl3(b + CSR_ROD_BX, m->hip, e3, m->s[e]);
     memcpy(b + CSR_ROD_BQ, q, sizeof q);
   }
@@ -432,7 +446,7 @@ int csr_rodUnpack_(const csrRodModel* m, csrRodWork* wk, const double* state, co
   memcpy(wk->w, w0, 3 * sizeof(double));
   csu_quatToMat3(wk->R, wk->q);
   for (int e = 1; e <= m->N; e++) {
-    const double* b = state + (size_t)(e - 1) * m->stride;
+    const double* b = state + m->boff[e];
     double* q = wk->q + 4 * e;
     double sum = 0;
     for (int k = 0; k < CSR_ROD_BH; k++) {
@@ -505,10 +519,10 @@ static void fillShape(const csrRodModel* m, int e, const double x0[3], const dou
 }
 
 
-/* the contact hook on every shape: forces to the element's two nodes by the lever rule along
- * the chord, the force's offset from the chord and the couple to the element's frame */
+/* the contact hook on every shape: its node forces to the element's two nodes, its couple to
+ * the element's frame */
 static int applyContact(const csrRodModel* m, csrRodWork* wk, char* msg, size_t msg_size) {
-  const int nh = m->contact.nhist;
+  static const double kZeroHist[CSR_ROD_MAX_HIST] = {0};
   double dh_local[CSR_ROD_MAX_HIST];
   for (int e = 1; e <= m->N; e++) {
     const double* x0 = wk->x + 3 * (e - 1);
@@ -516,38 +530,24 @@ static int applyContact(const csrRodModel* m, csrRodWork* wk, char* msg, size_t 
     csrRodShape sh;
     fillShape(m, e, x0, wk->x + 3 * e, wk->v + 3 * (e - 1), wk->v + 3 * e, Re, wk->w + 3 * e,
               &sh);
-    size_t off = (size_t)(e - 1) * m->stride + CSR_ROD_BH;
+    size_t off = (size_t)m->boff[e] + CSR_ROD_BH;
     const double* hist = wk->hist ? wk->hist + off : NULL;
     double* dhist = wk->dhist ? wk->dhist + off : dh_local;
-    for (int k = 0; k < nh; k++) {
+    for (int k = 0; k < m->nh[e]; k++) {
       dhist[k] = 0;
     }
-    double f[3] = {0, 0, 0}, P[3], mc[3] = {0, 0, 0};
-    memcpy(P, sh.centre, sizeof P);
-    int rc = m->contact.eval(m->contact.ctx, &sh, hist, dhist, f, P, mc);
+    double f0[3] = {0, 0, 0}, f1[3] = {0, 0, 0}, mc[3] = {0, 0, 0};
+    int rc = m->contact.eval(m->contact.ctx, &sh, hist ? hist : kZeroHist, dhist, f0, f1, mc);
     if (rc != 0) {
       if (msg) {
         snprintf(msg, msg_size, "contact hook returned %d on element %d", rc, e);
       }
       return rc;
     }
-    if (f[0] == 0 && f[1] == 0 && f[2] == 0 && mc[0] == 0 && mc[1] == 0 && mc[2] == 0) {
-      continue;
-    }
-    double dx[3], rel[3];
-    csu_sub3(dx, sh.p1, x0);
-    csu_sub3(rel, P, x0);
-    double len2 = csu_dot3(dx, dx);
-    double xi = len2 > 0 ? csu_dot3(rel, dx) / len2 : 0.5;
-    xi = xi < 0 ? 0 : (xi > 1 ? 1 : xi);
-    csu_addScl3(wk->F + 3 * (e - 1), wk->F + 3 * (e - 1), f, 1 - xi);
-    csu_addScl3(wk->F + 3 * e, wk->F + 3 * e, f, xi);
-    double A[3], arm[3], tw[3], tb[3];
-    csu_addScl3(A, x0, dx, xi);
-    csu_sub3(arm, P, A);
-    csu_cross3(tw, arm, f);
-    csu_add3(tw, tw, mc);
-    csr_rodMulMatTVec(tb, Re, tw);
+    double tb[3];
+    csu_add3(wk->F + 3 * (e - 1), wk->F + 3 * (e - 1), f0);
+    csu_add3(wk->F + 3 * e, wk->F + 3 * e, f1);
+    csr_rodMulMatTVec(tb, Re, mc);
     csu_add3(wk->T + 3 * e, wk->T + 3 * e, tb);
   }
   return 0;
@@ -680,12 +680,12 @@ void csr_rodNodeFrame_(const csrRodModel* m, const csrRodWork* wk, const csrRodL
 
 /* the state's block of element e (1..N) */
 static const double* blockOf(const csrRodModel* m, const csrRodData* d, int e) {
-  return d->y + CSR_ROD_NIMP + (size_t)(e - 1) * m->stride;
+  return d->y + CSR_ROD_NIMP + m->boff[e];
 }
 
 
 void csr_rodNodes(const csrRodModel* m, const csrRodData* d, double* x) {
-  memcpy(x, d->cur_base.pos, 3 * sizeof(double));
+  memcpy(x, d->cur_base.x, 3 * sizeof(double));
   for (int e = 1; e <= m->N; e++) {
     memcpy(x + 3 * e, blockOf(m, d, e) + CSR_ROD_BX, 3 * sizeof(double));
   }
@@ -699,7 +699,7 @@ void csr_rodCenterline(const csrRodModel* m, const csrRodData* d, int k, double*
     while (e < m->N && s > m->s[e]) {
       e++;
     }
-    const double* x0 = (e == 1) ? d->cur_base.pos : blockOf(m, d, e - 1) + CSR_ROD_BX;
+    const double* x0 = (e == 1) ? d->cur_base.x : blockOf(m, d, e - 1) + CSR_ROD_BX;
     const double* x1 = blockOf(m, d, e) + CSR_ROD_BX;
     double u = (s - m->s[e - 1]) / m->l[e];
     u = u < 0 ? 0 : (u > 1 ? 1 : u);
@@ -711,7 +711,7 @@ void csr_rodCenterline(const csrRodModel* m, const csrRodData* d, int k, double*
 
 
 void csr_rodMassMoment(const csrRodModel* m, const csrRodData* d, double mx[3]) {
-  csu_scale3(mx, d->cur_base.pos, m->mnode[0]);
+  csu_scale3(mx, d->cur_base.x, m->mnode[0]);
   for (int e = 1; e <= m->N; e++) {
     csu_addScl3(mx, mx, blockOf(m, d, e) + CSR_ROD_BX, m->mnode[e]);
   }
@@ -723,8 +723,8 @@ int csr_rodContactShapes(const csrRodModel* m, const csrRodData* d, csrRodShape*
   int n = 0;
   for (int e = 1; e <= m->N && n < max; e++, n++) {
     const double* b = blockOf(m, d, e);
-    const double* x0 = (e == 1) ? d->cur_base.pos : blockOf(m, d, e - 1) + CSR_ROD_BX;
-    const double* v0 = (e == 1) ? d->cur_base.vel : blockOf(m, d, e - 1) + CSR_ROD_BV;
+    const double* x0 = (e == 1) ? d->cur_base.x : blockOf(m, d, e - 1) + CSR_ROD_BX;
+    const double* v0 = (e == 1) ? d->cur_base.v : blockOf(m, d, e - 1) + CSR_ROD_BV;
     double q[4], R[9];
     memcpy(q, b + CSR_ROD_BQ, sizeof q);
     csr_rodQnormalize(q);

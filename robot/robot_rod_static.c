@@ -100,7 +100,7 @@ static int residual(const csrRodModel* m, csrRodData* d, const double* y, const 
   double q0[4];
   const double zero[3] = {0, 0, 0};
   csr_rodMatToQuat(q0, d->cur_base.R);
-  if (csr_rodUnpack_(m, &d->wk, y, d->cur_base.pos, q0, zero, zero) != 0) {
+  if (csr_rodUnpack_(m, &d->wk, y, d->cur_base.x, q0, zero, zero) != 0) {
     return 1;
   }
   d->wk.hist = NULL;
@@ -124,7 +124,7 @@ static void applyStep(const csrRodModel* m, const double* y, const double* del, 
     memcpy(out, y, (size_t)m->nstate * sizeof(double));
   }
   for (int e = 1; e <= m->N; e++) {
-    double* b = out + (size_t)(e - 1) * m->stride;
+    double* b = out + m->boff[e];
     const double* de = del + 6 * (e - 1);
     for (int k = 0; k < 3; k++) {
       b[CSR_ROD_BX + k] += alpha * de[k];
@@ -294,7 +294,7 @@ csStatus csr_rodStatic(const csrRodModel* m, csrRodData* d, const csrRodStaticLo
   memcpy(d->backup, d->y, ny * sizeof(double));
   /* at rest: velocities zero */
   for (int e = 0; e < m->N; e++) {
-    double* b = y + (size_t)e * m->stride;
+    double* b = y + m->boff[e + 1];
     memset(b + CSR_ROD_BV, 0, 6 * sizeof(double));
   }
   double lam = 0, dlam = 1;

@@ -41,12 +41,12 @@ static void gaitPressure(double t, double p_on, double p[12]) {
 
 
 /* hip of the swing scenario at time t */
-static void swingBase(const csrRodBase* rest, double t, int swing, csrRodBase* b) {
+static void swingBase(const csrBaseState* rest, double t, int swing, csrBaseState* b) {
   *b = *rest;
   if (swing) {
     const double A = 10, w = 2 * 3.14159265358979 * 2;
-    b->pos[0] += A * sin(w * t);
-    b->vel[0] = A * w * cos(w * t);
+    b->x[0] += A * sin(w * t);
+    b->v[0] = A * w * cos(w * t);
   }
 }
 
@@ -86,7 +86,6 @@ static Result run(const char* scen, int nps, double H, double t_end, double rtol
   const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0}; /* hanging: e3 = -y */
   memcpy(sp.frame, F, sizeof F);
   sp.gravity[1] = -9810;
-  sp.gravity_on_legs = 1;
   csrRodModel* m = csr_rodModelCreate(&sp, &err);
   csrRodData* d = m ? csr_rodDataCreate(m, &err) : NULL;
   if (!d) {
@@ -95,7 +94,7 @@ static Result run(const char* scen, int nps, double H, double t_end, double rtol
     return res;
   }
   const int gait = !strcmp(scen, "gait"), swing = !strcmp(scen, "swing");
-  csrRodBase rest = csr_rodRestBase(m), b0, b1;
+  csrBaseState rest = csr_rodRestBase(m), b0, b1;
   double p0[12], p1[12];
   double t = 0, t0 = cpu();
   res.ok = 1;
@@ -106,7 +105,7 @@ static Result run(const char* scen, int nps, double H, double t_end, double rtol
     int rc = csr_rodActuate(m, d, t, p0, t + h, p1);
     swingBase(&rest, t, swing, &b0);
     swingBase(&rest, t + h, swing, &b1);
-    csrRodWrench w;
+    csrWrench w;
     if (rc == 0) {
       rc = csr_rodAdvance(m, d, t, h, &b0, &b1, &w, &err);
     }
