@@ -123,7 +123,7 @@ struct csrRodData_ {
   int need_reinit;   /* 1: the next advance restarts CVODE */
   int started;       /* CVODE initialised at least once */
   int cb_status;     /* last non-zero return of a callback inside the RHS */
-  char cb_msg[160];  /* and what it was */
+  char cb_msg[400];  /* and what it was */
   /* statics: the load the current state is in equilibrium with */
   int static_valid;
   csrRodStaticLoad static_load;
