@@ -137,6 +137,7 @@ struct csrRodData_ {
   double* jac;        /* (N x 3) Jacobian blocks of (u̇, ḣ) by (x, ψ, v, ω, h) */
   double* ls_q;       /* (N x 4) normalised quaternions at the last linear-system state */
   double* ls_qn;      /* (N) their norms */
+  double* ls_w;       /* (N x 3) body angular velocities there */
   double* ls_bpsi;    /* (N x 3) scratch */
   double* ls_r;       /* (N x 6) scratch: reduced right-hand side and solution */
   double* ls_hb;      /* (N x nhist) scratch */
@@ -334,6 +335,13 @@ void csr_rodBtFree_(csrRodBt* bt);
 void csr_rodBtZero_(csrRodBt* bt);
 int csr_rodBtFactor_(csrRodBt* bt);
 void csr_rodBtSolve_(const csrRodBt* bt, double* x);
+
+/* CVODE's linear system function (CVLsLinSysFn, robot_rod_linsol.c): stores γ and the
+ * quaternions at y, new Jacobian blocks when CVODE asks for them (jok false); user = the data.
+ * d->LS's setup then factors the reduced matrix, its solve applies (I - γJ)⁻¹. */
+int csr_rodLinSys_(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunbooleantype jok,
+                   sunbooleantype* jcur, sunrealtype gamma, void* user, N_Vector tmp1,
+                   N_Vector tmp2, N_Vector tmp3);
 
 /* Attach the reduced linear solver to d->cvode (0 ok); free its arrays. */
 int csr_rodLinsolAttach_(csrRodData* d);

@@ -2,7 +2,11 @@
  *
  *   bench_rod [scenario] [elements_per_segment] [H_ms] [t_end_s] [rtol] [calibration.h5]
  *
- * scenario: hang  (earth gravity, released straight: settles under its weight),
+ * scenario: road  (eight legs of csr_leg_rod on the flat road with the soft contact, hips held
+ *                  at the robot's layout 0.5 mm below touching, the flat-road gait: ACFH and
+ *                  BDEG alternate every second; `paper` conditions, 9 s by default; prints the
+ *                  real-time factor of the eight legs with contact on one core),
+ *           hang  (earth gravity, released straight: settles under its weight),
  *           gait  (gravity on, II1 Ω3&Ω4 and II2 Ω1&Ω2 of the flat-road gait ramped to
  *                  0.1744 MPa over 0.2 s at every whole second, vented the next second),
  *           swing (the hip oscillating ±10 mm at 2 Hz along x, gravity on),
@@ -17,6 +21,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "contact_ode.h"
 #include "robot_calibration.h"
 #include "robot_rod.h"
 
@@ -152,6 +157,94 @@ static void print(const char* scen, int nps, double H, double t_end, double rtol
 }
 
 
+/* eight rod legs on the flat road (scenario road): CPU seconds for t_end, feet's mean |x| travel */
+static double runRoad(int nps, double H, double t_end, const csrBendMap* map, int gravity_on) {
+  csrActuator act;
+  csError err;
+  cs_errorClear(&err);
+  csr_actuatorPreset(&act, "leg", &err);
+  csrLegParams lp = csr_defaultLegParams(&act);
+  lp.links_per_segment = nps;
+  cstTerrain tr;
+  memset(&tr, 0, sizeof tr);
+  tr.nbox = 1;
+  const double lo[3] = {-400, -50, -200}, hi[3] = {400, 0, 200};
+  memcpy(tr.box[0].lo, lo, sizeof lo);
+  memcpy(tr.box[0].hi, hi, sizeof hi);
+  cscContactParams cp = csc_defaultContactParams();
+  const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
+  const double L = csr_actuatorLength(&act);
+  const csrLegType* T = &csr_leg_rod;
+  csrLeg* legs[8];
+  csrBaseState base[8];
+  /* A..D at -z front to back, E..H at +z (REFERENCE.md); ACFH = k 0, 2, 5, 7 */
+  const double xs[4] = {75, 25, -25, -75};
+  for (int k = 0; k < 8; k++) {
+    csrLegSpec sp;
+    memset(&sp, 0, sizeof sp);
+    sp.act = &act;
+    sp.params = &lp;
+    sp.map = map;
+    memcpy(sp.frame, F, sizeof F);
+    sp.hip[0] = xs[k % 4];
+    sp.hip[1] = L - 0.5;
+    sp.hip[2] = k < 4 ? -65 : 65;
+    sp.gravity[1] = -9810;
+    sp.weightless = !gravity_on;
+    sp.h = 1e-3;
+    sp.terrain = &tr;
+    sp.contact = &cp;
+    legs[k] = T->create(&sp, &err);
+    if (!legs[k]) {
+      fprintf(stderr, "bench_rod: %s\n", err.msg);
+      return NAN;
+    }
+    memset(&base[k], 0, sizeof base[k]);
+    memcpy(base[k].x, sp.hip, sizeof base[k].x);
+    memcpy(base[k].R, F, sizeof F);
+  }
+  double t = 0, c0 = cpu();
+  long failures = 0;
+  while (t < t_end - 1e-12) {
+    double h = fmin(H, t_end - t);
+    for (int k = 0; k < 8; k++) {
+      int group = (k == 0 || k == 2 || k == 5 || k == 7) ? 0 : 1;
+      double p0[12], p1[12];
+      gaitPressure(t - group, 0.1744, p0);
+      gaitPressure(t + h - group, 0.1744, p1);
+      if (t - group < 0) {
+        memset(p0, 0, sizeof p0);
+      }
+      if (t + h - group < 0) {
+        memset(p1, 0, sizeof p1);
+      }
+      csrWrench w;
+      if (T->actuate(legs[k], t, p0, t + h, p1) != 0 ||
+          T->advance(legs[k], t, h, &base[k], &base[k], &w, &err) != 0) {
+        failures++;
+        if (failures < 4) {
+          fprintf(stderr, "bench_rod: road leg %d at t = %g: %s\n", k, t, err.msg);
+        }
+      }
+    }
+    t += h;
+  }
+  double c = cpu() - c0;
+  csrContactShape sh[256];
+  double foot = 0;
+  for (int k = 0; k < 8; k++) {
+    int n = T->contactShapes(legs[k], sh, 256);
+    foot += fabs(sh[n - 1].a[0] - base[k].x[0]) / 8;
+    T->destroy(legs[k]);
+  }
+  printf("road  8 legs x %.1f s, %d el/seg, H %.1f ms, gravity %s: %.3f s CPU -> real-time "
+         "factor %.1f on one core (%.2f ms per leg-second); mean |foot - hip| along x %.2f mm, "
+         "%ld failed advances\n", t_end, nps, H * 1e3, gravity_on ? "on" : "off (paper)", c,
+         t_end / c, c / (8 * t_end) * 1e3, foot, failures);
+  return c;
+}
+
+
 /* largest distance between two foot traces (mm) */
 static double traceError(const Result* a, const Result* b) {
   double e = 0;
@@ -191,7 +284,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   csrBendMap map = csr_calibrationMap(cal);
-  if (!strcmp(scen, "all")) {
+  if (!strcmp(scen, "road")) {
+    runRoad(nps, H, argc > 4 ? t_end : 9.0, &map, getenv("BENCH_GRAVITY") != NULL);
+  } else if (!strcmp(scen, "all")) {
     const char* sc[3] = {"hang", "gait", "swing"};
     const int ns[3] = {2, 4, 8};
     for (int i = 0; i < 3; i++) {
