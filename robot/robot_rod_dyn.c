@@ -55,6 +55,12 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUN
 /* base position, quaternion, velocity, acceleration and body angular velocity at time t */
 static void baseAt(const csrRodBaseMotion* bm, double t, double x[3], double q[4], double v[3],
                    double a[3], double wb[3]);
+
+
+void csr_rodBaseAt_(const csrRodData* d, double t, double x[3], double v[3]) {
+  double q[4], a[3], wb[3];
+  baseAt(&d->base, t, x, q, v, a, wb);
+}
 /* the base motion of a macro step from the support's states at both ends */
 static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrBaseState* b0,
                           const csrBaseState* b1);
@@ -272,6 +278,28 @@ static int samePressures(const double* a, const double* b) {
 }
 
 
+/* segment s's actuation at pressures p: a remembered evaluation within CSR_ROD_P_TOL, else the
+ * calibration's (then remembered) */
+static int actuationAt(const csrRodModel* m, csrRodData* d, int s, const double p[4],
+                       csrRodSegmentActuation* out) {
+  csrRodActMemo* mm = &d->memo[s];
+  for (int k = 0; k < mm->n; k++) {
+    if (samePressures(p, mm->p[k])) {
+      *out = mm->a[k];
+      return 0;
+    }
+  }
+  int rc = csr_rodActuationEval_(m, s, p, out, d->cb_msg, sizeof d->cb_msg);
+  if (rc == 0) {
+    memcpy(mm->p[mm->next], p, sizeof mm->p[0]);
+    mm->a[mm->next] = *out;
+    mm->next = (mm->next + 1) % CSR_ROD_MEMO;
+    mm->n = mm->n < CSR_ROD_MEMO ? mm->n + 1 : mm->n;
+  }
+  return rc;
+}
+
+
 int csr_rodActuate(const csrRodModel* m, csrRodData* d, double t0, const double p0[12],
                    double t1, const double p1[12]) {
   csrRodActState n;
@@ -289,13 +317,13 @@ int csr_rodActuate(const csrRodModel* m, csrRodData* d, double t0, const double 
     } else if (d->act.set && samePressures(p0 + o, d->act.pa + o)) {
       n.a[s] = d->act.a[s];
     } else {
-      rc = csr_rodActuationEval_(m, s, p0 + o, &n.a[s], d->cb_msg, sizeof d->cb_msg);
+      rc = actuationAt(m, d, s, p0 + o, &n.a[s]);
     }
     if (rc == 0) {
       if (samePressures(p1 + o, p0 + o)) {
         n.b[s] = n.a[s];
       } else {
-        rc = csr_rodActuationEval_(m, s, p1 + o, &n.b[s], d->cb_msg, sizeof d->cb_msg);
+        rc = actuationAt(m, d, s, p1 + o, &n.b[s]);
       }
     }
     if (rc != 0) {
@@ -408,7 +436,7 @@ static void loadsAt(const csrRodModel* m, const csrRodData* d, double t, csrRodL
   memcpy(ld->tip_force, d->tip_force, sizeof ld->tip_force);
   memcpy(ld->tip_moment, d->tip_moment, sizeof ld->tip_moment);
   ld->damping = m->par.damping_time;
-  ld->contact = 1;
+  ld->contact = !d->no_contact;
 }
 
 
@@ -439,6 +467,12 @@ int csr_rodRhs_(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   if (rc != 0) {
     d->cb_status = rc;
     return rc;
+  }
+  if (!ld.contact) {
+    /* without the hook nothing writes the history rates */
+    for (int e = 1; e <= m->N; e++) {
+      memset(Yd + CSR_ROD_NIMP + m->boff[e] + CSR_ROD_BH, 0, (size_t)m->nh[e] * sizeof(double));
+    }
   }
   /* the blocks: ẋ = v, q̇ = ½ q ⊗ (0, ω), m v̇ = F, J ω̇ = T - ω × J ω */
   const csrRodWork* wk = &d->wk;
@@ -569,6 +603,7 @@ int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, cons
       return -1;
     }
     d->need_reinit = 0;
+    d->jac_int_step = -1; /* the state may have jumped: the whole Jacobian anew */
   }
   double I0[CSR_ROD_NIMP];
   memcpy(I0, d->y, sizeof I0);

@@ -82,13 +82,14 @@ typedef struct csrRodWork_ {
 } csrRodWork;
 
 /* a block-tridiagonal matrix of n rows of 6 x 6 blocks (row-major blocks): B_i below, D_i on,
- * C_i above the diagonal; csr_rodBtFactor_ overwrites D with its LU and C with D⁻¹C */
+ * C_i above the diagonal; csr_rodBtFactor_ overwrites D with the inverses of the eliminated
+ * diagonal blocks and C with D⁻¹C */
 typedef struct csrRodBt_ {
   int n;
   double* B; /* (n x 36), B_0 unused */
   double* D; /* (n x 36) */
   double* C; /* (n x 36), C_{n-1} unused */
-  int* piv;  /* (n x 6) */
+  int* piv;  /* (n x 6), unused (kept for a pivoted LU variant) */
 } csrRodBt;
 
 /* actuation of a macro step: strains at both ends, linear in time in between */
@@ -98,6 +99,15 @@ typedef struct csrRodActState_ {
   double pa[12], pb[12];
   int set;
 } csrRodActState;
+
+/* remembered evaluations of one segment's actuation (a ring): a gait repeats its pressure
+ * samples from cycle to cycle, and a calibration evaluation costs a Newton solve (~30 µs) */
+#define CSR_ROD_MEMO 64
+typedef struct csrRodActMemo_ {
+  double p[CSR_ROD_MEMO][CSR_NCHAMBER];
+  csrRodSegmentActuation a[CSR_ROD_MEMO];
+  int n, next;
+} csrRodActMemo;
 
 /* base motion over a macro step: cubic Hermite in position and in the rotation vector */
 typedef struct csrRodBaseMotion_ {
@@ -117,10 +127,13 @@ struct csrRodData_ {
   double* backup;    /* (NIMP + nstate) copy taken before each advance */
   csrRodWork wk;
   csrRodActState act;
+  csrRodActMemo memo[CSR_NSEG];
   csrRodBaseMotion base;
   csrBaseState cur_base; /* the base at time t */
   double tip_force[3], tip_moment[3];
   int need_reinit;   /* 1: the next advance restarts CVODE */
+  int no_contact;    /* 1: the right-hand side leaves the contact hook out (Jacobian's
+                        internal part) */
   int started;       /* CVODE initialised at least once */
   int cb_status;     /* last non-zero return of a callback inside the RHS */
   char cb_msg[400];  /* and what it was */
@@ -134,10 +147,16 @@ struct csrRodData_ {
   N_Vector yv, atol;
   SUNMatrix A;        /* a shell: the system lives in the fields below (robot_rod_linsol.c) */
   SUNLinearSolver LS; /* the reduced block-tridiagonal solver */
-  double* jac;        /* (N x 3) Jacobian blocks of (u̇, ḣ) by (x, ψ, v, ω, h) */
+  double* jac;        /* (N x 3) Jacobian blocks of (u̇, ḣ) by (x, ψ, v, ω, h): int + con */
+  double* jac_int;    /* the same without the contact hook (internal forces, gravity) */
+  double* jac_con;    /* the contact hook's part */
+  double* con_y;      /* (NIMP + nstate) scratch state for the hook's differences */
+  long jac_int_step;  /* CVODE step of the last internal Jacobian (-1: none) */
+  long jac_last_step; /* CVODE step of the last Jacobian request */
   double* ls_q;       /* (N x 4) normalised quaternions at the last linear-system state */
   double* ls_qn;      /* (N) their norms */
   double* ls_w;       /* (N x 3) body angular velocities there */
+  int* ls_hact;       /* (N) 1: element's history couples to the motion (in contact) */
   double* ls_bpsi;    /* (N x 3) scratch */
   double* ls_r;       /* (N x 6) scratch: reduced right-hand side and solution */
   double* ls_hb;      /* (N x nhist) scratch */
@@ -324,6 +343,16 @@ int csr_rodForces_(const csrRodModel* m, csrRodWork* wk, const csrRodLoads* ld, 
  * kernel's wk->m_node from the last call. */
 void csr_rodNodeFrame_(const csrRodModel* m, const csrRodWork* wk, const csrRodLoads* ld, int i,
                        double q[4]);
+
+/* The base position and velocity at time t of the current macro step (robot_rod_dyn.c). */
+void csr_rodBaseAt_(const csrRodData* d, double t, double x[3], double v[3]);
+
+/* Contact accelerations of element e's shape at a state vector (robot_rod_model.c): out =
+ * [Δv̇ of node e-1 (3; 0 for e = 1), Δv̇ of node e (3), Δω̇ of frame e (3), ḣ_e (nh_e)];
+ * x0, v0: the hip node for e = 1. Returns the hook's code. *active: the hook gave a force or
+ * couple. */
+int csr_rodContactAccel_(const csrRodModel* m, const double* state, int e, const double x0[3],
+                         const double v0[3], double* out, int* active);
 
 /* CVODE's right-hand side (robot_rod_dyn.c) over [impulse, state]; user = the csrRodData. */
 int csr_rodRhs_(sunrealtype t, N_Vector y, N_Vector ydot, void* user);

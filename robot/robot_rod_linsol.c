@@ -19,7 +19,7 @@
  *   history, exact),
  * leaving the Schur complement on u = (v, ω): block tridiagonal with 6 x 6 blocks (element i
  * couples to i±1), S = I - γ ∂u̇/∂u - γ² ∂u̇/∂(x, ψ) - γ ∂u̇/∂h Z. It is factored by block LU
- * (Thomas algorithm, partial pivoting inside each diagonal block; S ≈ M⁻¹(M + γC + γ²K) is
+ * (Thomas algorithm, pivoted inverses of the diagonal blocks; S ≈ M⁻¹(M + γC + γ²K) is
  * block-diagonally dominated like a mass-damping-stiffness matrix, which block LU factors
  * stably). The base impulse rows take δI = b_I (they feed nothing back; their error weight is
  * zero). The Jacobian blocks ∂(u̇, ḣ)/∂(x, ψ, v, ω, h) come from column-grouped forward
@@ -37,63 +37,69 @@
  * velocities by max(|ω|, 1 / 0.02 s), history by max(|h|, 1e4 atol_hist) */
 #define CSR_ROD_JAC_REL 1.5e-8
 #define CSR_ROD_JAC_TIME 0.02
+/* steps between refreshes of the Jacobian's internal part (CVODE's own Jacobian age limit) */
+#define CSR_ROD_JAC_INT_STEPS 5
 
 /* ---- 6 x 6 dense LU and the block-tridiagonal solver ------------------------------------------ */
 
-/* in-place LU with partial pivoting of a row-major 6 x 6 matrix; 1 if singular or not finite */
-static int lu6(double A[36], int piv[6]) {
+/* in-place inverse of a row-major 6 x 6 matrix by Gauss-Jordan with partial pivoting; 1 if
+ * singular or not finite. An explicit inverse makes every later use a fixed-size
+ * matrix-vector product (the solves run once per Newton iteration, the factorisation once per
+ * γ): measured faster than LU solves with row swaps for these 6 x 6 blocks. */
+static int inv6(double A[36]) {
+  double W[6][12];
+  for (int r = 0; r < 6; r++) {
+    for (int c = 0; c < 6; c++) {
+      W[r][c] = A[6 * r + c];
+      W[r][6 + c] = (r == c) ? 1.0 : 0.0;
+    }
+  }
   for (int k = 0; k < 6; k++) {
     int p = k;
-    double big = fabs(A[6 * k + k]);
+    double big = fabs(W[k][k]);
     for (int i = k + 1; i < 6; i++) {
-      double v = fabs(A[6 * i + k]);
-      if (v > big) {
-        big = v;
+      if (fabs(W[i][k]) > big) {
+        big = fabs(W[i][k]);
         p = i;
       }
     }
     if (!(big > 0) || !isfinite(big)) {
       return 1;
     }
-    piv[k] = p;
     if (p != k) {
-      for (int j = 0; j < 6; j++) {
-        double t = A[6 * k + j];
-        A[6 * k + j] = A[6 * p + j];
-        A[6 * p + j] = t;
+      for (int c = 0; c < 12; c++) {
+        double t = W[k][c];
+        W[k][c] = W[p][c];
+        W[p][c] = t;
       }
     }
-    double inv = 1.0 / A[6 * k + k];
-    for (int i = k + 1; i < 6; i++) {
-      double l = A[6 * i + k] * inv;
-      A[6 * i + k] = l;
-      for (int j = k + 1; j < 6; j++) {
-        A[6 * i + j] -= l * A[6 * k + j];
+    double inv = 1.0 / W[k][k];
+    for (int c = 0; c < 12; c++) {
+      W[k][c] *= inv;
+    }
+    for (int i = 0; i < 6; i++) {
+      if (i != k) {
+        double f = W[i][k];
+        for (int c = 0; c < 12; c++) {
+          W[i][c] -= f * W[k][c];
+        }
       }
+    }
+  }
+  for (int r = 0; r < 6; r++) {
+    for (int c = 0; c < 6; c++) {
+      A[6 * r + c] = W[r][6 + c];
     }
   }
   return 0;
 }
 
 
-/* solve LU x = b in place (b of 6) */
-static void lu6Solve(const double LU[36], const int piv[6], double b[6]) {
-  for (int k = 0; k < 6; k++) {
-    int p = piv[k];
-    if (p != k) {
-      double t = b[k];
-      b[k] = b[p];
-      b[p] = t;
-    }
-    for (int i = k + 1; i < 6; i++) {
-      b[i] -= LU[6 * i + k] * b[k];
-    }
-  }
-  for (int k = 5; k >= 0; k--) {
-    for (int j = k + 1; j < 6; j++) {
-      b[k] -= LU[6 * k + j] * b[j];
-    }
-    b[k] /= LU[6 * k + k];
+/* y = A x for 6 x 6 A (y must not alias x) */
+static void mv6(const double A[36], const double x[6], double y[6]) {
+  for (int r = 0; r < 6; r++) {
+    const double* a = A + 6 * r;
+    y[r] = a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + a[3] * x[3] + a[4] * x[4] + a[5] * x[5];
   }
 }
 
@@ -135,28 +141,28 @@ int csr_rodBtFactor_(csrRodBt* bt) {
       for (int r = 0; r < 6; r++) {
         for (int k = 0; k < 6; k++) {
           double b = B[6 * r + k];
-          if (b != 0) {
-            for (int c = 0; c < 6; c++) {
-              D[6 * r + c] -= b * U[6 * k + c];
-            }
+          for (int c = 0; c < 6; c++) {
+            D[6 * r + c] -= b * U[6 * k + c];
           }
         }
       }
     }
-    if (lu6(D, bt->piv + 6 * i) != 0) {
+    /* D holds D_i'⁻¹ from here on */
+    if (inv6(D) != 0) {
       return 1;
     }
     if (i < bt->n - 1) {
-      /* U_i = D_i⁻¹ C_i, column by column */
+      /* U_i = D_i'⁻¹ C_i */
       double* C = bt->C + 36 * i;
-      for (int c = 0; c < 6; c++) {
-        double col[6];
-        for (int r = 0; r < 6; r++) {
-          col[r] = C[6 * r + c];
-        }
-        lu6Solve(D, bt->piv + 6 * i, col);
-        for (int r = 0; r < 6; r++) {
-          C[6 * r + c] = col[r];
+      double T[36];
+      memcpy(T, C, sizeof T);
+      for (int r = 0; r < 6; r++) {
+        for (int c = 0; c < 6; c++) {
+          double sum = 0;
+          for (int k = 0; k < 6; k++) {
+            sum += D[6 * r + k] * T[6 * k + c];
+          }
+          C[6 * r + c] = sum;
         }
       }
     }
@@ -166,31 +172,22 @@ int csr_rodBtFactor_(csrRodBt* bt) {
 
 
 void csr_rodBtSolve_(const csrRodBt* bt, double* x) {
+  double t[6];
   for (int i = 0; i < bt->n; i++) {
     double* xi = x + 6 * i;
     if (i > 0) {
-      const double* B = bt->B + 36 * i;
-      const double* xp = x + 6 * (i - 1);
+      mv6(bt->B + 36 * i, x + 6 * (i - 1), t);
       for (int r = 0; r < 6; r++) {
-        double s = 0;
-        for (int k = 0; k < 6; k++) {
-          s += B[6 * r + k] * xp[k];
-        }
-        xi[r] -= s;
+        xi[r] -= t[r];
       }
     }
-    lu6Solve(bt->D + 36 * i, bt->piv + 6 * i, xi);
+    mv6(bt->D + 36 * i, xi, t);
+    memcpy(xi, t, sizeof t);
   }
   for (int i = bt->n - 2; i >= 0; i--) {
-    const double* U = bt->C + 36 * i;
-    const double* xn = x + 6 * (i + 1);
-    double* xi = x + 6 * i;
+    mv6(bt->C + 36 * i, x + 6 * (i + 1), t);
     for (int r = 0; r < 6; r++) {
-      double s = 0;
-      for (int k = 0; k < 6; k++) {
-        s += U[6 * r + k] * xn[k];
-      }
-      xi[r] -= s;
+      x[6 * i + r] -= t[r];
     }
   }
 }
@@ -201,9 +198,20 @@ void csr_rodBtSolve_(const csrRodBt* bt, double* x) {
 /* Jacobian block of row element i (1..N), column element i - 1 + k (k = 0..2): (6 + nhmax)
  * rows (v̇ 3, ω̇ 3, ḣ nh_i) x (12 + nhmax) columns (x 3, ψ 3, v 3, ω 3, h nh_j), row-major;
  * rows and columns past an element's own history count stay zero */
-static double* jblock(const csrRodModel* m, const csrRodData* d, int i, int k) {
+static double* jblockIn(const csrRodModel* m, double* base, int i, int k) {
   const int nr = 6 + m->nhmax, nc = 12 + m->nhmax;
-  return d->jac + ((size_t)(i - 1) * 3 + (size_t)k) * (size_t)(nr * nc);
+  return base + ((size_t)(i - 1) * 3 + (size_t)k) * (size_t)(nr * nc);
+}
+
+
+static double* jblock(const csrRodModel* m, const csrRodData* d, int i, int k) {
+  return jblockIn(m, d->jac, i, k);
+}
+
+
+/* doubles in one set of Jacobian blocks */
+static size_t jacSize(const csrRodModel* m) {
+  return 3 * (size_t)m->N * (size_t)(6 + m->nhmax) * (size_t)(12 + m->nhmax);
 }
 
 
@@ -254,53 +262,118 @@ static const double* accelOf(const csrRodModel* m, const double* f, int i) {
 }
 
 
-/* finite-difference Jacobian blocks at (t, y) with f = rhs(t, y); 0 ok, else the RHS's code */
-static int computeJacobian(const csrRodModel* m, csrRodData* d, double t, N_Vector y,
-                           N_Vector fy, N_Vector ytmp, N_Vector ftmp) {
+/* The internal part of the Jacobian blocks at (t, y): column-grouped forward differences of the
+ * right-hand side without the contact hook (3 x 12 evaluations; internal forces do not depend
+ * on the contact history, and without the hook nothing moves it) into d->jac_int. ftmp0 and
+ * ftmp are scratch. 0 ok, else the right-hand side's code. */
+static int internalJacobian(const csrRodModel* m, csrRodData* d, double t, N_Vector y,
+                            N_Vector ytmp, N_Vector ftmp0, N_Vector ftmp) {
   const int N = m->N, nc = 12 + m->nhmax;
   const double* Y = N_VGetArrayPointer(y);
-  const double* F0 = N_VGetArrayPointer(fy);
+  const double* F0 = N_VGetArrayPointer(ftmp0);
   double* Yp = N_VGetArrayPointer(ytmp);
   const double* F1 = N_VGetArrayPointer(ftmp);
   const size_t ny = CSR_ROD_NIMP + (size_t)m->nstate;
-  for (int g = 0; g < 3; g++) {
-    for (int c = 0; c < nc; c++) {
+  memset(d->jac_int, 0, jacSize(m) * sizeof(double));
+  d->no_contact = 1;
+  int rc = csr_rodRhs_(t, y, ftmp0, d);
+  d->stats.rhs_evals++;
+  for (int g = 0; g < 3 && rc == 0; g++) {
+    for (int c = 0; c < 12 && rc == 0; c++) {
       memcpy(Yp, Y, ny * sizeof(double));
-      int any = 0;
       for (int j = 1 + g; j <= N; j += 3) {
-        if (c < 12 + m->nh[j]) {
-          double* b = Yp + CSR_ROD_NIMP + m->boff[j];
-          perturb(b, c, stepOf(m, b, c));
-          any = 1;
-        }
+        double* b = Yp + CSR_ROD_NIMP + m->boff[j];
+        perturb(b, c, stepOf(m, b, c));
       }
-      if (!any) {
-        continue; /* no element of this group has history column c */
-      }
-      int rc = csr_rodRhs_(t, ytmp, ftmp, d);
-      if (rc != 0) {
-        return rc;
-      }
+      rc = csr_rodRhs_(t, ytmp, ftmp, d);
       d->stats.rhs_evals++;
-      for (int j = 1 + g; j <= N; j += 3) {
-        if (c >= 12 + m->nh[j]) {
-          continue;
-        }
+      for (int j = 1 + g; j <= N && rc == 0; j += 3) {
         const size_t o = CSR_ROD_NIMP + (size_t)m->boff[j];
         /* the step actually taken: the round-off of y + h for the additive columns; the
          * rotation columns are exact (multiplicative) */
-        const int slot = c < 3 ? CSR_ROD_BX + c : (c < 12 ? CSR_ROD_BV + c - 6 : CSR_ROD_BH + c - 12);
+        const int slot = c < 3 ? CSR_ROD_BX + c : CSR_ROD_BV + c - 6;
         double h = (c >= 3 && c < 6) ? stepOf(m, Y + o, c) : Yp[o + slot] - Y[o + slot];
         for (int i = j - 1; i <= j + 1; i++) {
           if (i < 1 || i > N) {
             continue;
           }
-          double* J = jblock(m, d, i, j - i + 1);
+          double* J = jblockIn(m, d->jac_int, i, j - i + 1);
           const double* a0 = accelOf(m, F0, i);
           const double* a1 = accelOf(m, F1, i);
-          for (int r = 0; r < 6 + m->nh[i]; r++) {
+          for (int r = 0; r < 6; r++) {
             J[nc * r + c] = (a1[r] - a0[r]) / h;
           }
+        }
+      }
+    }
+  }
+  d->no_contact = 0;
+  return rc;
+}
+
+
+/* The contact part at (t, y): each element's hook differenced in the columns it depends on (node
+ * e-1's position and velocity, element e's whole block) when it touches, in its history
+ * columns only when it does not (the history still relaxes there), into d->jac_con. A few
+ * hook calls per element instead of whole right-hand sides. */
+static int contactJacobian(const csrRodModel* m, csrRodData* d, double t, N_Vector y) {
+  const int N = m->N, nc = 12 + m->nhmax;
+  memset(d->jac_con, 0, jacSize(m) * sizeof(double));
+  if (!m->contact.eval) {
+    return 0;
+  }
+  const double* Ys = N_VGetArrayPointer(y) + CSR_ROD_NIMP;
+  double* Yc = d->con_y;
+  memcpy(Yc, Ys, (size_t)m->nstate * sizeof(double));
+  double x0[3], v0[3];
+  csr_rodBaseAt_(d, t, x0, v0);
+  double a0[9 + CSR_ROD_MAX_HIST], a1[9 + CSR_ROD_MAX_HIST];
+  for (int e = 1; e <= N; e++) {
+    int active = 0, dummy = 0;
+    int rc = csr_rodContactAccel_(m, Ys, e, x0, v0, a0, &active);
+    if (rc != 0) {
+      return rc;
+    }
+    const int nh = m->nh[e], nout = 9 + nh;
+    for (int side = 0; side < 2; side++) {
+      const int j = e - 1 + side; /* column element: e-1 (its node), then e */
+      if (j < 1 || (!active && side == 0)) {
+        continue;
+      }
+      for (int c = 0; c < 12 + m->nh[j]; c++) {
+        /* node e-1 enters through its position and velocity only; inactive: history only */
+        if (side == 0 && !((c < 3) || (c >= 6 && c < 9))) {
+          continue;
+        }
+        if (side == 1 && !active && c < 12) {
+          continue;
+        }
+        if (side == 0 && c >= 12) {
+          continue;
+        }
+        double* b = Yc + m->boff[j];
+        const double* b0 = Ys + m->boff[j];
+        double h = stepOf(m, b0, c);
+        perturb(b, c, h);
+        if (c < 3 || c >= 6) {
+          const int slot = c < 3 ? CSR_ROD_BX + c : (c < 12 ? CSR_ROD_BV + c - 6 : CSR_ROD_BH + c - 12);
+          h = b[slot] - b0[slot];
+        }
+        rc = csr_rodContactAccel_(m, Yc, e, x0, v0, a1, &dummy);
+        memcpy(b, b0, (size_t)(CSR_ROD_BH + m->nh[j]) * sizeof(double));
+        if (rc != 0) {
+          return rc;
+        }
+        /* rows: node e-1's v̇ (element e-1's block), node e's v̇, frame e's ω̇, ḣ_e */
+        if (e > 1) {
+          double* Jp = jblockIn(m, d->jac_con, e - 1, j - (e - 1) + 1);
+          for (int r = 0; r < 3; r++) {
+            Jp[nc * r + c] += (a1[r] - a0[r]) / h;
+          }
+        }
+        double* Je = jblockIn(m, d->jac_con, e, j - e + 1);
+        for (int r = 0; r < nout - 3; r++) {
+          Je[nc * r + c] += (a1[3 + r] - a0[3 + r]) / h;
         }
       }
     }
@@ -313,7 +386,7 @@ int csr_rodLinSys_(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunboole
                    sunbooleantype* jcur, sunrealtype gamma, void* user, N_Vector tmp1,
                    N_Vector tmp2, N_Vector tmp3) {
   (void)A;
-  (void)tmp3;
+  (void)fy;
   csrRodData* d = user;
   const csrRodModel* m = d->m;
   d->ls_gamma = gamma;
@@ -329,9 +402,59 @@ int csr_rodLinSys_(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunboole
     }
   }
   if (!jok || !d->ls_have_jac) {
-    int rc = computeJacobian(m, d, t, y, fy, tmp1, tmp2);
+    /* the internal part changes with the configuration, slowly; the contact part changes
+     * abruptly when a shape touches, lifts or slips, which is what makes CVODE ask for most
+     * new Jacobians: refresh the internal part only on the first request, every
+     * CSR_ROD_JAC_INT_STEPS steps, or when a contact-only refresh did not let the same step
+     * converge */
+    long nst = 0;
+    CVodeGetNumSteps(d->cvode, &nst);
+    nst += d->stats.steps;
+    int full = !d->ls_have_jac || d->jac_int_step < 0 || nst - d->jac_int_step >=
+               CSR_ROD_JAC_INT_STEPS || nst == d->jac_last_step || !m->contact.eval;
+    d->jac_last_step = nst;
+    int rc = 0;
+    if (full) {
+      rc = internalJacobian(m, d, t, y, tmp1, tmp3, tmp2);
+      d->jac_int_step = nst;
+    }
+    if (rc == 0) {
+      rc = contactJacobian(m, d, t, y);
+    }
     if (rc != 0) {
       return rc;
+    }
+    const size_t n = jacSize(m);
+    for (size_t k = 0; k < n; k++) {
+      d->jac[k] = d->jac_int[k] + d->jac_con[k];
+    }
+    /* an element's history couples to the motion only in contact (∂u̇/∂h or ∂ḣ/∂(x, ψ, u)
+     * non-zero); out of it the history just relaxes on its own, which the solver then treats
+     * alone (most elements most of the time) */
+    const int nc = 12 + m->nhmax;
+    for (int e = 1; e <= m->N; e++) {
+      int act = 0;
+      for (int k = 0; k < 3 && !act; k++) {
+        const int i = e + 1 - k; /* rows of elements e-1, e, e+1 in column e's history */
+        if (i >= 1 && i <= m->N) {
+          const double* J = jblock(m, d, i, k);
+          for (int r = 0; r < 6 && !act; r++) {
+            for (int c = 0; c < m->nh[e]; c++) {
+              act |= J[nc * r + 12 + c] != 0;
+            }
+          }
+        }
+        const int j = e - 1 + k; /* ḣ_e by the motion of elements e-1, e, e+1 */
+        if (j >= 1 && j <= m->N) {
+          const double* J = jblock(m, d, e, k);
+          for (int r = 6; r < 6 + m->nh[e] && !act; r++) {
+            for (int c = 0; c < 12; c++) {
+              act |= J[nc * r + c] != 0;
+            }
+          }
+        }
+      }
+      d->ls_hact[e - 1] = act;
     }
     d->ls_have_jac = 1;
     *jcur = SUNTRUE;
@@ -505,7 +628,8 @@ static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
       }
       /* history of elements mm coupling row i and column j: - γ ∂u̇_i/∂h_mm Z_mm,j */
       for (int mm = j - 1; mm <= j + 1 && nhm > 0; mm++) {
-        if (mm < 1 || mm > N || mm < i - 1 || mm > i + 1 || m->nh[mm] == 0) {
+        if (mm < 1 || mm > N || mm < i - 1 || mm > i + 1 || m->nh[mm] == 0 ||
+            !d->ls_hact[mm - 1]) {
           continue;
         }
         const int nh = m->nh[mm];
@@ -607,7 +731,7 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
         for (int c = 0; c < 3; c++) {
           s += row[c] * BX(j)[c] + row[3 + c] * BPSI(j)[c];
         }
-        for (int q = 0; q < m->nh[j]; q++) {
+        for (int q = 0; d->ls_hact[j - 1] && q < m->nh[j]; q++) {
           s += row[12 + q] * hb[(size_t)(j - 1) * nhm + q];
         }
         ri[rr] += g * s;
@@ -727,14 +851,21 @@ int csr_rodLinsolAttach_(csrRodData* d) {
   const int N = m->N, nh = m->nhmax;
   const size_t nblk = (size_t)(6 + nh) * (size_t)(12 + nh);
   d->jac = calloc(3 * (size_t)N * nblk, sizeof(double));
+  d->jac_int = calloc(3 * (size_t)N * nblk, sizeof(double));
+  d->jac_con = calloc(3 * (size_t)N * nblk, sizeof(double));
+  d->con_y = calloc((size_t)m->nstate, sizeof(double));
+  d->jac_int_step = -1;
+  d->jac_last_step = -1;
   d->ls_q = calloc(4 * (size_t)N, sizeof(double));
   d->ls_qn = calloc((size_t)N, sizeof(double));
   d->ls_w = calloc(3 * (size_t)N, sizeof(double));
+  d->ls_hact = calloc((size_t)N, sizeof(int));
   d->ls_bpsi = calloc(3 * (size_t)N, sizeof(double));
   d->ls_r = calloc(6 * (size_t)N, sizeof(double));
   d->ls_hb = calloc((size_t)N * (size_t)(nh > 0 ? nh : 1), sizeof(double));
   d->ls_Mhinv = calloc((size_t)N * (size_t)(nh > 0 ? nh * nh : 1), sizeof(double));
-  if (!d->jac || !d->ls_q || !d->ls_qn || !d->ls_w || !d->ls_bpsi || !d->ls_r || !d->ls_hb ||
+  if (!d->jac || !d->jac_int || !d->jac_con || !d->con_y || !d->ls_q || !d->ls_qn || !d->ls_w ||
+      !d->ls_hact || !d->ls_bpsi || !d->ls_r || !d->ls_hb ||
       !d->ls_Mhinv || !csr_rodBtAlloc_(&d->bt_dyn, N)) {
     return 1;
   }
@@ -763,9 +894,13 @@ int csr_rodLinsolAttach_(csrRodData* d) {
 
 void csr_rodLinsolFree_(csrRodData* d) {
   free(d->jac);
+  free(d->jac_int);
+  free(d->jac_con);
+  free(d->con_y);
   free(d->ls_q);
   free(d->ls_qn);
   free(d->ls_w);
+  free(d->ls_hact);
   free(d->ls_bpsi);
   free(d->ls_r);
   free(d->ls_hb);

@@ -554,6 +554,44 @@ static int applyContact(const csrRodModel* m, csrRodWork* wk, char* msg, size_t 
 }
 
 
+int csr_rodContactAccel_(const csrRodModel* m, const double* state, int e, const double x0[3],
+                         const double v0[3], double* out, int* active) {
+  static const double kZeroHist[CSR_ROD_MAX_HIST] = {0};
+  const double* b = state + m->boff[e];
+  const double* bp = e > 1 ? state + m->boff[e - 1] : NULL;
+  double q[4], R[9];
+  memcpy(q, b + CSR_ROD_BQ, sizeof q);
+  if (!(csr_rodQnormalize(q) > 0)) {
+    return 1;
+  }
+  csu_quatToMat3(R, q);
+  csrRodShape sh;
+  fillShape(m, e, bp ? bp + CSR_ROD_BX : x0, b + CSR_ROD_BX, bp ? bp + CSR_ROD_BV : v0,
+            b + CSR_ROD_BV, R, b + CSR_ROD_BW, &sh);
+  double f0[3] = {0, 0, 0}, f1[3] = {0, 0, 0}, mc[3] = {0, 0, 0};
+  double* dh = out + 9;
+  for (int k = 0; k < m->nh[e]; k++) {
+    dh[k] = 0;
+  }
+  int rc = m->contact.eval(m->contact.ctx, &sh, m->nh[e] ? b + CSR_ROD_BH : kZeroHist, dh, f0,
+                           f1, mc);
+  if (rc != 0) {
+    return rc;
+  }
+  double tb[3];
+  csr_rodMulMatTVec(tb, R, mc);
+  const double* J = m->Jel + 3 * e;
+  for (int k = 0; k < 3; k++) {
+    out[k] = e > 1 ? f0[k] / m->mnode[e - 1] : 0;
+    out[3 + k] = f1[k] / m->mnode[e];
+    out[6 + k] = tb[k] / J[k];
+  }
+  *active = f0[0] != 0 || f0[1] != 0 || f0[2] != 0 || f1[0] != 0 || f1[1] != 0 || f1[2] != 0 ||
+            mc[0] != 0 || mc[1] != 0 || mc[2] != 0;
+  return 0;
+}
+
+
 int csr_rodForces_(const csrRodModel* m, csrRodWork* wk, const csrRodLoads* ld, int want_energy,
                    char* msg, size_t msg_size) {
   const int N = m->N;
