@@ -691,7 +691,7 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
     for (int q = 0; q < nh; q++) {
       t[q] = bh[q];
     }
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 3 && d->ls_hact[mm - 1]; k++) {
       int j = mm - 1 + k;
       if (j < 1 || j > N) {
         continue;
@@ -770,7 +770,7 @@ static int lsSolve(SUNLinearSolver LS, SUNMatrix A, N_Vector x, N_Vector b, sunr
     for (int q = 0; q < nh; q++) {
       t[q] = 0;
     }
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 3 && d->ls_hact[mm - 1]; k++) {
       int j = mm - 1 + k;
       if (j < 1 || j > N) {
         continue;
