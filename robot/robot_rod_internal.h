@@ -313,7 +313,7 @@ static inline void csr_rodJr(double r[3], const double th[3], const double a[3])
   }
 }
 
-/* ---- shared between the layers ---------------------------------------------------------------- */
+/* ---- shared between the layers ------------------------------------------------------------- */
 
 /* Actuation of segment seg at pressures p through the model's calibration (or map); zero
  * strains when the model has none. */

@@ -5,19 +5,25 @@
  * ---- Discretisation (rationale) -------------------------------------------------------------
  * Nodal (PyElastica, DisMech): node positions x_0..x_N and one material frame per element,
  * rather than strain-parameterised (SoRoSim PCS/variable strain), for three measured reasons
- * (tests/robot/bench_rod.c prints the numbers, README "Rod level" has the table):
- *  - accuracy per unknown is alike: both are second order in the element/piece length for a
- *    tip-loaded cantilever (nodal 4 elements per segment: see test_rod_static; PCS with n pieces
- *    has the relative tip error 1/(4 n²) of the L2 projection of the linear moment), and the
- *    pure-curvature actuation that favours PCS is reproduced exactly by the nodal rod too
- *    (unloaded, every node's relative rotation equals the intrinsic one);
- *  - cost: the nodal rod's Newton matrix is banded (block tridiagonal, 13 x 13 blocks) and the
- *    right-hand side is O(N) with no mass matrix to assemble or factor; PCS couples all strain
- *    modes through a dense configuration-dependent mass matrix (O(n²) assembly with quadrature
- *    and an O(n³) solve in every right-hand side) and a dense Jacobian;
+ * (tests/robot/bench_rod pcs prints them):
+ *  - accuracy per unknown: both are second order; on a uniform Timoshenko cantilever under a
+ *    tip force PCS has half the nodal rod's tip error at equal unknowns (48 unknowns: 3.9e-3
+ *    against 7.7e-3; 96: 9.7e-4 against 1.9e-3), i.e. the nodal rod needs √2 times the
+ *    unknowns for the same error. The pure-curvature actuation that favours PCS is exact in the
+ *    nodal rod too: its elements rest as chords of the calibrated arcs, so the unloaded
+ *    actuated nodes lie on them at any N (test_rod_static);
+ *  - cost: the nodal right-hand side is O(N) with a diagonal mass matrix (the leg's 14
+ *    elements, 84 unknowns: 1.6 µs) and its Newton matrix is block tridiagonal; PCS couples all
+ *    strain modes through a dense configuration-dependent mass matrix: its assembly with two
+ *    Gauss points per piece and Cholesky solve alone take 12 µs (5 pieces, 30 unknowns) and
+ *    79 µs (10 pieces, 60 unknowns, the nodal leg's accuracy), 50 times the nodal cost at equal
+ *    accuracy, and its Jacobian is dense (6n right-hand sides per difference Jacobian against
+ *    3 x 12 here);
  *  - contact: a capsule touching a step edge anywhere along the leg is a force on two nodes
- *    here; in PCS it needs the geometric Jacobian at the contact point and the strain basis
+ *    here; in PCS it needs the geometric Jacobian at the contact point, and the strain basis
  *    must be refined where contacts move.
+ * Elements: 4 per segment and 1 per joint by default (bench_rod: the foot path of the
+ * flat-road gait is within 0.36 mm of 16 elements per segment, 0.66 mm at 3, 1.5 mm at 2).
  *
  * ---- Energy and forces ----------------------------------------------------------------------
  *   E = Σ_e ½ l_e (σ_e - σ0)ᵀ S (σ_e - σ0) + Σ_i ½ (θ_i - θ0_i)ᵀ C_i⁻¹ (θ_i - θ0_i),
@@ -63,9 +69,10 @@
 
 csrRodParams csr_rodDefaultParams(const csrActuator* act) {
   csrRodParams p;
-  /* 4 elements per 50 mm segment and 1 per 8 mm joint (14 elements, 182 states): the
-   * convergence study (test_rod_static, bench_rod) puts the tip of a loaded leg within 0.3 %
-   * of the leg length of the converged value there, well inside the 2 % target against FE */
+  /* 4 elements per 50 mm segment and 1 per 8 mm joint (14 elements, 182 states): a tip load's
+   * deflection is within 0.27 % of the piecewise Timoshenko cantilever (test_rod_bend_cli), the
+   * gait's foot path within 0.36 mm (0.2 % of the leg) of 16 elements per segment (bench_rod),
+   * well inside the 2 %-of-leg target against FE; 3 per segment are 25 % cheaper (0.66 mm) */
   p.elements_per_segment = 4;
   p.elements_per_joint = 1;
   double C10 = act ? act->C10 : 0.11;

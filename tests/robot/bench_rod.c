@@ -10,9 +10,15 @@
  *           gait  (gravity on, II1 Ω3&Ω4 and II2 Ω1&Ω2 of the flat-road gait ramped to
  *                  0.1744 MPa over 0.2 s at every whole second, vented the next second),
  *           swing (the hip oscillating ±10 mm at 2 Hz along x, gravity on),
- *           all   (the three, each 2 s, at 2, 4 and 8 elements per segment).
- * Prints per run: CPU time per simulated second (one core), CVODE steps, right-hand sides, Jacobians,
- * restarts and the foot position at t_end; the real-time factor of one leg and of eight.
+ *           all   (the three, each 2 s, at 2, 4 and 8 elements per segment),
+ *           pcs   (the discretisation choice: static tip error per unknown of the nodal rod and
+ *                  of a piecewise-constant-strain rod (SoRoSim's PCS) on a uniform Timoshenko
+ *                  cantilever, and the CPU cost of one right-hand side of each: the nodal rod's
+ *                  O(N) kernel against a PCS mass-matrix assembly and dense solve).
+ * Prints per run: CPU time per simulated second (one core), CVODE steps, right-hand sides,
+ * Jacobians, restarts and the foot position at t_end; the real-time factor of one leg and of
+ * eight; single runs also the foot path's error against the same run at rtol 1e-8
+ * (BENCH_REF_N=n: against n elements per segment; BENCH_NOREF: none).
  * The calibration defaults to the shipped FE table (robot/calibration_fe_leg.h5 under
  * $CS_SOURCE_DIR or the working directory's ../../..). */
 #include <math.h>
@@ -24,6 +30,7 @@
 #include "contact_ode.h"
 #include "robot_calibration.h"
 #include "robot_rod.h"
+#include "robot_rod_internal.h"
 
 /* process CPU time (s): the cost on one core, insensitive to other jobs sharing the machine */
 static double cpu(void) { return (double)clock() / CLOCKS_PER_SEC; }
@@ -153,7 +160,8 @@ static void print(const char* scen, int nps, double H, double t_end, double rtol
          scen, nps, H * 1e3, rtol, r->wall_per_s * 1e3, 1.0 / r->wall_per_s,
          1.0 / (8 * r->wall_per_s), r->st.steps * s, r->st.newton_iters * s, r->st.rhs_evals * s,
          r->st.jac_evals * s, r->st.lin_setups * s, r->st.reinits * s,
-         (r->st.err_fails + r->st.conv_fails) * s, r->foot[0], r->foot[1], r->foot[2], r->ok ? "" : " FAILED");
+         (r->st.err_fails + r->st.conv_fails) * s, r->foot[0], r->foot[1], r->foot[2],
+         r->ok ? "" : " FAILED");
 }
 
 
@@ -245,6 +253,188 @@ static double runRoad(int nps, double H, double t_end, const csrBendMap* map, in
 }
 
 
+/* ---- pcs: the discretisation choice ------------------------------------------------------ */
+
+/* relative tip error of a piecewise-constant-strain (PCS) cantilever of n equal pieces under a
+ * tip force: strain j = the piece's mean of M/EI (Galerkin with a constant basis), shear exact,
+ * δ = Σ κ_j l (L - s_mid,j) + P L / kGA, against δ = P L³/(3EI) + P L/kGA (small deflection) */
+static double pcsTipError(int n, double L, double EI, double kGA) {
+  const double P = 1.0, l = L / n;
+  double d = P * L / kGA;
+  for (int j = 0; j < n; j++) {
+    double smid = (j + 0.5) * l;
+    d += P * (L - smid) / EI * l * (L - smid);
+  }
+  double exact = P * L * L * L / (3 * EI) + P * L / kGA;
+  return (d - exact) / exact;
+}
+
+
+/* CPU seconds per call of a PCS right-hand side's core for n pieces of 6 strains, 2 Gauss
+ * points each: forward kinematics (SE(3) products), the 6 x 6n geometric Jacobian at each
+ * point, M = Σ Jᵀ Λ J (6n x 6n) and its Cholesky solve (the Coriolis and force terms would add
+ * about as much again: this is a lower bound) */
+static double pcsRhsCost(int n, int reps) {
+  const int nq = 6 * n;
+  double* J = calloc((size_t)6 * nq, sizeof(double));
+  double* M = calloc((size_t)nq * nq, sizeof(double));
+  double* b = calloc((size_t)nq, sizeof(double));
+  double sink = 0, t0 = cpu();
+  for (int rep = 0; rep < reps; rep++) {
+    memset(M, 0, (size_t)nq * nq * sizeof(double));
+    memset(J, 0, (size_t)6 * nq * sizeof(double));
+    double g[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    for (int j = 0; j < n; j++) {
+      for (int q = 0; q < 2; q++) {
+        /* pose: g <- g exp(ξ l/2) (a rotation and translation per half piece) */
+        double c = cos(1e-3 * (j + q + rep % 7)), sn = sin(1e-3 * (j + q)), e[16] = {
+            c, -sn, 0, 0, sn, c, 0, 0, 0, 0, 1, 5, 0, 0, 0, 1};
+        double h[16];
+        for (int r = 0; r < 4; r++) {
+          for (int k = 0; k < 4; k++) {
+            h[4 * r + k] = g[4 * r] * e[k] + g[4 * r + 1] * e[4 + k] + g[4 * r + 2] * e[8 + k] +
+                           g[4 * r + 3] * e[12 + k];
+          }
+        }
+        memcpy(g, h, sizeof g);
+        /* the Jacobian's columns of pieces 0..j: Ad(g_i⁻¹ g) of each basis twist (a 6 x 6
+         * adjoint product per earlier piece) */
+        for (int i = 0; i <= j; i++) {
+          for (int r = 0; r < 6; r++) {
+            for (int k = 0; k < 6; k++) {
+              double a = 0;
+              for (int z = 0; z < 3; z++) {
+                a += g[4 * (r % 3) + z] * g[4 * z + (k % 3)];
+              }
+              J[(size_t)nq * r + 6 * i + k] = a * (1 + 1e-3 * i);
+            }
+          }
+        }
+        /* M += Jᵀ Λ J over the columns reached (Λ diagonal mass/inertia) */
+        const int nc = 6 * (j + 1);
+        for (int r = 0; r < nc; r++) {
+          for (int k = 0; k <= r; k++) {
+            double a = 0;
+            for (int z = 0; z < 6; z++) {
+              a += J[(size_t)nq * z + r] * J[(size_t)nq * z + k] * (z < 3 ? 1e-6 : 1e-5);
+            }
+            M[(size_t)nq * r + k] += a;
+          }
+        }
+      }
+    }
+    /* Cholesky of M (lower) and one solve */
+    for (int k = 0; k < nq; k++) {
+      M[(size_t)nq * k + k] += 1e-3;
+      b[k] = 1;
+    }
+    for (int k = 0; k < nq; k++) {
+      double dkk = M[(size_t)nq * k + k];
+      for (int z = 0; z < k; z++) {
+        dkk -= M[(size_t)nq * k + z] * M[(size_t)nq * k + z];
+      }
+      dkk = sqrt(fabs(dkk) + 1e-30);
+      M[(size_t)nq * k + k] = dkk;
+      for (int r = k + 1; r < nq; r++) {
+        double a = M[(size_t)nq * r + k];
+        for (int z = 0; z < k; z++) {
+          a -= M[(size_t)nq * r + z] * M[(size_t)nq * k + z];
+        }
+        M[(size_t)nq * r + k] = a / dkk;
+      }
+    }
+    for (int k = 0; k < nq; k++) {
+      double a = b[k];
+      for (int z = 0; z < k; z++) {
+        a -= M[(size_t)nq * k + z] * b[z];
+      }
+      b[k] = a / M[(size_t)nq * k + k];
+    }
+    sink += b[nq - 1];
+  }
+  double c = (cpu() - t0) / reps;
+  free(J);
+  free(M);
+  free(b);
+  return sink == 12345.678 ? 0 : c; /* keep the work observable */
+}
+
+
+/* the nodal rod: static tip error of the same cantilever, and one right-hand side's cost */
+static void runPcs(void) {
+  const double L = 100, E = 1.0, A = 100, I = 1e4 / 12, G = E / 3, k = 10.0 * 1.5 / 17.5;
+  const double EI = E * I, kGA = k * G * A;
+  printf("pcs: uniform Timoshenko cantilever under a tip force, relative tip error per unknown\n");
+  printf("  %8s %14s %14s\n", "unknowns", "nodal rod", "PCS");
+  for (int n = 2; n <= 32; n *= 2) {
+    csrRodParams par = csr_rodDefaultParams(NULL);
+    csrRodPiece p;
+    memset(&p, 0, sizeof p);
+    p.length = L;
+    p.nelem = n;
+    p.segment = -1;
+    p.section.EA = E * A;
+    p.section.GA[0] = p.section.GA[1] = kGA;
+    p.section.EI[0] = p.section.EI[1] = EI;
+    p.section.GJ = G * 0.1406 * 1e4;
+    p.rhoA = 1e-7;
+    p.rhoI[0] = p.rhoI[1] = 1e-9 * I;
+    p.rhoI[2] = 2e-9 * I;
+    csrRodSpec sp;
+    memset(&sp, 0, sizeof sp);
+    sp.params = &par;
+    csu_eye3(sp.frame);
+    csError err;
+    csrRodModel* m = csr_rodModelCreatePieces(&p, 1, &sp, &err);
+    csrRodData* d = m ? csr_rodDataCreate(m, &err) : NULL;
+    double en = NAN;
+    if (d) {
+      csrRodStaticLoad ld;
+      memset(&ld, 0, sizeof ld);
+      ld.tip_force[0] = 1e-4;
+      if (csr_rodStatic(m, d, &ld, NULL, &err) == CS_OK) {
+        double x[3 * 40];
+        csr_rodNodes(m, d, x);
+        double exact = 1e-4 * (L * L * L / (3 * EI) + L / kGA);
+        en = (x[3 * n] - exact) / exact;
+      }
+    }
+    csr_rodDataDestroy(d);
+    csr_rodModelDestroy(m);
+    printf("  %8d %+14.3e %+14.3e\n", 6 * n, en, pcsTipError(n, L, EI, kGA));
+  }
+  /* cost of one right-hand side: the leg (14 elements, 84 unknowns) against PCS */
+  csrActuator act;
+  csError err;
+  cs_errorClear(&err);
+  csr_actuatorPreset(&act, "leg", &err);
+  csrRodSpec sp;
+  memset(&sp, 0, sizeof sp);
+  sp.act = &act;
+  const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
+  memcpy(sp.frame, F, sizeof F);
+  sp.gravity[1] = -9810;
+  csrRodModel* m = csr_rodModelCreate(&sp, &err);
+  csrRodData* d = m ? csr_rodDataCreate(m, &err) : NULL;
+  if (d) {
+    N_Vector f = N_VClone(d->yv);
+    const int reps = 20000;
+    double t0 = cpu();
+    for (int r = 0; r < reps; r++) {
+      csr_rodRhs_(0.0, d->yv, f, d);
+    }
+    double cn = (cpu() - t0) / reps;
+    N_VDestroy(f);
+    printf("  one right-hand side: nodal leg (14 elements, 84 unknowns, 182 states) %.2f us; "
+           "PCS core (mass matrix + Cholesky, a lower bound) 5 pieces (30 unknowns) %.2f us, "
+           "10 pieces %.2f us, 14 pieces %.2f us\n", cn * 1e6, pcsRhsCost(5, 4000) * 1e6,
+           pcsRhsCost(10, 1000) * 1e6, pcsRhsCost(14, 500) * 1e6);
+  }
+  csr_rodDataDestroy(d);
+  csr_rodModelDestroy(m);
+}
+
+
 /* largest distance between two foot traces (mm) */
 static double traceError(const Result* a, const Result* b) {
   double e = 0;
@@ -267,6 +457,10 @@ int main(int argc, char** argv) {
   double t_end = argc > 4 ? atof(argv[4]) : 2.0;
   double rtol = argc > 5 ? atof(argv[5]) : 1e-4;
   double atol_scale = argc > 6 ? atof(argv[6]) : 1.0;
+  if (!strcmp(scen, "pcs")) {
+    runPcs();
+    return 0;
+  }
   char path[1024];
   if (argc > 7) {
     snprintf(path, sizeof path, "%s", argv[7]);

@@ -219,7 +219,8 @@ static void bad_rod_input(void) {
                 "crawlsim bend: --p-max 0.4 MPa puts a chamber at 0.4 MPa, above the "
                 "calibration's range (0.3 MPa");
   expectFailure("--model rod --actuator baseline", "crawlsim bend: ");
-  expectFailure("--model analytic --tip-load 1,0,0", "crawlsim bend: --tip-load is for --model rod");
+  expectFailure("--model analytic --tip-load 1,0,0",
+                "crawlsim bend: --tip-load is for --model rod");
   expectFailure("--model analytic --calibration analytic",
                 "crawlsim bend: --calibration is for --model rod");
   expectFailure("--model rod --tip-load 1,0", "crawlsim bend: --tip-load '1,0': expected 3");
