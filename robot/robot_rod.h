@@ -230,10 +230,12 @@ void csr_rodSetTipLoad(csrRodData* d, const double force[3], const double moment
  * (N mm) that the leg exerts on the support, world frame. */
 
 /* Advance from t to t + H with the base at b0 (t) and b1 (t + H), interpolated by cubic
- * Hermite (position and rotation, with the given velocities: C1 across consecutive steps).
+ * Hermite (position and rotation, with the given velocities: C1 across consecutive steps when
+ * b0 is where the last step ended; the small jumps of a coupling's predictor are integrated
+ * across, a jump beyond 0.1 mm or 1e-3 rad restarts the integrator).
  * w (may be NULL): the base wrench averaged over the step (impulse / H, integrated with the
  * state: exact momentum exchange for a staggered scheme). The integrator restarts (CVodeReInit)
- * when the state was set, the base or the pressures jump between steps, or t is not where the
+ * when the state was set, the pressures or the base jump between steps, or t is not where the
  * last step ended. Returns 0, > 0 recoverable (CVODE could not complete the step: convergence,
  * error test, recoverable callback failures; the driver may retry with a smaller H), < 0 fatal
  * (bad arguments, fatal callback); on any failure the state is unchanged and err says why. */

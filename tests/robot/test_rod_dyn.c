@@ -20,7 +20,9 @@
  *  - contact_hook_carries_weight: a floor under the foot (a penalty spring through the hook)
  *    takes the weight off the hip; the hook's history (contact time) is integrated.
  *  - failed_advance_changes_nothing: a hook that fails (NaN force) makes advance return > 0
- *    with the state bit-identical; the next advance succeeds; get/set state round-trips. */
+ *    with the state bit-identical; the next advance succeeds; get/set state round-trips.
+ *  - base_jumps_and_restarts: the hip starting a step 1 µm from where the last one ended (a
+ *    coupling predictor's correction) is integrated across; 1 mm restarts CVODE. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -592,8 +594,40 @@ static void failed_advance_changes_nothing(void) {
 }
 
 
+static void base_jumps_and_restarts(void) {
+  csrActuator act;
+  csrRodModel* m;
+  csrRodData* d;
+  if (!hangingLeg(&act, NULL, NULL, -9810, NULL, &m, &d)) {
+    return;
+  }
+  double t = 0;
+  CS_EXPECT(runSteps(m, d, &t, 5e-3, 10, NULL, NULL) == 0);
+  csrRodStats s0, s1, s2;
+  csr_rodGetStats(d, &s0);
+  csrBaseState b = csr_rodRestBase(m), b1 = b;
+  csError err;
+  /* a predictor's correction: 1 µm */
+  b.x[0] += 1e-3;
+  b1.x[0] += 1e-3;
+  CS_EXPECT(csr_rodAdvance(m, d, t, 5e-3, &b, &b1, NULL, &err) == 0);
+  t += 5e-3;
+  csr_rodGetStats(d, &s1);
+  CS_EXPECT(s1.reinits == s0.reinits);
+  /* a teleport: 1 mm */
+  b.x[0] += 1.0;
+  b1.x[0] += 1.0;
+  CS_EXPECT(csr_rodAdvance(m, d, t, 5e-3, &b, &b1, NULL, &err) == 0);
+  csr_rodGetStats(d, &s2);
+  CS_EXPECT(s2.reinits == s1.reinits + 1);
+  csr_rodDataDestroy(d);
+  csr_rodModelDestroy(m);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
+  CS_RUN(base_jumps_and_restarts);
   CS_RUN(first_bending_frequency);
   CS_RUN(energy_does_not_grow);
   CS_RUN(pressure_step_steady_curvature);
