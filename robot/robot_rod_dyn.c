@@ -71,8 +71,10 @@ static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrBa
                           const csrBaseState* b1);
 /* the loads at time t: actuation interpolated, gravity, tip load, damping, contact */
 static void loadsAt(const csrRodModel* m, const csrRodData* d, double t, csrRodLoads* ld);
-/* unpack the current state at the current base and time and run the kernel */
-static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy);
+/* unpack the current state at the current base and time and run the kernel (elements
+ * 1..last: N for the whole rod, 1 for the wrench alone) */
+static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy,
+                   int last);
 /* the wrench of the unpacked configuration in d->wk after the kernel (a0: hip acceleration) */
 static void wrenchOf(const csrRodModel* m, const csrRodData* d, const double a0[3],
                      csrWrench* w);
@@ -642,12 +644,14 @@ int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, cons
 }
 
 
-static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy) {
+static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy,
+                   int last) {
   double x0[3], q0[4], wb[3];
   csr_rodMatToQuat(q0, d->cur_base.R);
   memcpy(x0, d->cur_base.x, sizeof x0);
   csr_rodMulMatTVec(wb, d->cur_base.R, d->cur_base.w);
-  if (csr_rodUnpack_(m, &d->wk, d->y + CSR_ROD_NIMP, x0, q0, d->cur_base.v, wb) != 0) {
+  if (csr_rodUnpackPart_(m, &d->wk, d->y + CSR_ROD_NIMP, last, x0, q0, d->cur_base.v, wb) !=
+      0) {
     return 1;
   }
   loadsAt(m, d, d->t, ld);
@@ -661,7 +665,7 @@ void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrWrench* w) {
   csrRodLoads ld;
   const double a0[3] = {0, 0, 0};
   memset(w, 0, sizeof *w);
-  if (refresh(m, d, &ld, 0) == 0) {
+  if (refresh(m, d, &ld, 0, 1) == 0) {
     wrenchOf(m, d, a0, w);
   }
 }
@@ -711,7 +715,7 @@ void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], do
 void csr_rodEnergy(const csrRodModel* m, csrRodData* d, csrRodEnergy* e) {
   csrRodLoads ld;
   memset(e, 0, sizeof *e);
-  if (refresh(m, d, &ld, 1) != 0) {
+  if (refresh(m, d, &ld, 1, m->N) != 0) {
     e->kinetic = e->elastic = e->gravity = NAN;
     return;
   }
@@ -736,7 +740,7 @@ void csr_rodSegmentAngles(const csrRodModel* m, csrRodData* d, double angle[CSR_
   for (int s = 0; s < CSR_NSEG; s++) {
     angle[s] = NAN;
   }
-  if (refresh(m, d, &ld, 0) != 0) {
+  if (refresh(m, d, &ld, 0, m->N) != 0) {
     tip_base[0] = tip_base[1] = tip_base[2] = NAN;
     return;
   }

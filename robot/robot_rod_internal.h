@@ -79,6 +79,7 @@ typedef struct csrRodWork_ {
   const double* hist; /* a state vector whose blocks hold the history (may be NULL) */
   double* dhist;      /* where the history rates go (may be NULL) */
   double elastic;     /* elastic energy (N mm), when requested */
+  int last;           /* elements 1..last are unpacked and evaluated (N: the whole rod) */
 } csrRodWork;
 
 /* a block-tridiagonal matrix of n rows of 6 x 6 blocks (row-major blocks): B_i below, D_i on,
@@ -329,6 +330,11 @@ void csr_rodLoadsFromActuation_(const csrRodModel* m, const csrRodSegmentActuati
  * is degenerate (recoverable: CVODE cuts the step). */
 int csr_rodUnpack_(const csrRodModel* m, csrRodWork* wk, const double* state, const double x0[3],
                    const double q0[4], const double v0[3], const double w0[3]);
+/* The same for elements 1..last only; the kernel then evaluates only the terms they carry:
+ * with last = 1 the forces on the hip node and base frame (the wrench) are exact. */
+int csr_rodUnpackPart_(const csrRodModel* m, csrRodWork* wk, const double* state, int last,
+                       const double x0[3], const double q0[4], const double v0[3],
+                       const double w0[3]);
 
 /* The force kernel: node forces wk->F and frame torques wk->T (body) of the unpacked
  * configuration under ld: internal elastic + Kelvin-Voigt forces, gravity on every node

@@ -447,12 +447,20 @@ void csr_rodRestState_(const csrRodModel* m, double* state) {
 
 int csr_rodUnpack_(const csrRodModel* m, csrRodWork* wk, const double* state, const double x0[3],
                    const double q0[4], const double v0[3], const double w0[3]) {
+  return csr_rodUnpackPart_(m, wk, state, m->N, x0, q0, v0, w0);
+}
+
+
+int csr_rodUnpackPart_(const csrRodModel* m, csrRodWork* wk, const double* state, int last,
+                       const double x0[3], const double q0[4], const double v0[3],
+                       const double w0[3]) {
+  wk->last = last < 1 ? 1 : (last > m->N ? m->N : last);
   memcpy(wk->x, x0, 3 * sizeof(double));
   memcpy(wk->q, q0, 4 * sizeof(double));
   memcpy(wk->v, v0, 3 * sizeof(double));
   memcpy(wk->w, w0, 3 * sizeof(double));
   csu_quatToMat3(wk->R, wk->q);
-  for (int e = 1; e <= m->N; e++) {
+  for (int e = 1; e <= wk->last; e++) {
     const double* b = state + m->boff[e];
     double* q = wk->q + 4 * e;
     double sum = 0;
@@ -528,10 +536,11 @@ static void fillShape(const csrRodModel* m, int e, const double x0[3], const dou
 
 /* the contact hook on every shape: its node forces to the element's two nodes, its couple to
  * the element's frame */
-static int applyContact(const csrRodModel* m, csrRodWork* wk, char* msg, size_t msg_size) {
+static int applyContact(const csrRodModel* m, csrRodWork* wk, int last, char* msg,
+                        size_t msg_size) {
   static const double kZeroHist[CSR_ROD_MAX_HIST] = {0};
   double dh_local[CSR_ROD_MAX_HIST];
-  for (int e = 1; e <= m->N; e++) {
+  for (int e = 1; e <= last; e++) {
     const double* x0 = wk->x + 3 * (e - 1);
     const double* Re = wk->R + 9 * e;
     csrRodShape sh;
@@ -601,7 +610,9 @@ int csr_rodContactAccel_(const csrRodModel* m, const double* state, int e, const
 
 int csr_rodForces_(const csrRodModel* m, csrRodWork* wk, const csrRodLoads* ld, int want_energy,
                    char* msg, size_t msg_size) {
-  const int N = m->N;
+  /* the elements unpacked: the whole rod, or its first `last` (then nodes 0..last-1's forces
+   * and frames 0..last-1's torques are complete) */
+  const int N = wk->last > 0 && wk->last < m->N ? wk->last : m->N;
   const double tau = ld->damping;
   double* F = wk->F;
   double* T = wk->T;
@@ -687,7 +698,7 @@ int csr_rodForces_(const csrRodModel* m, csrRodWork* wk, const csrRodLoads* ld, 
   }
 
   /* tip load on the foot node and the last frame */
-  {
+  if (N == m->N) {
     double tb[3];
     csr_rodMulMatTVec(tb, wk->R + 9 * N, ld->tip_moment);
     csu_add3(F + 3 * N, F + 3 * N, ld->tip_force);
@@ -699,7 +710,7 @@ int csr_rodForces_(const csrRodModel* m, csrRodWork* wk, const csrRodLoads* ld, 
     wk->elastic = U;
   }
   if (ld->contact && m->contact.eval) {
-    return applyContact(m, wk, msg, msg_size);
+    return applyContact(m, wk, N, msg, msg_size);
   }
   return 0;
 }
