@@ -10,7 +10,10 @@
  *    motions of base and rod together), and the energy is invariant under such a motion.
  *  - rest_state_is_stress_free: the reset state has zero forces and zero elastic energy.
  *  - leg_pieces_and_mass: the leg's five pieces have the actuator's lengths, the total mass is
- *    the silicone density times the solid volume (chambers hollow over S - 2c). */
+ *    the silicone density times the solid volume (chambers hollow over S - 2c).
+ *  - hip_terms_from_first_element: the kernel over element 1 alone gives the hip node's force
+ *    and the base frame's torque bit for bit as over the whole rod (the wrench and gains use
+ *    it). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -279,8 +282,49 @@ static void leg_pieces_and_mass(void) {
 }
 
 
+static void hip_terms_from_first_element(void) {
+  csrActuator act;
+  csrRodModel* m;
+  csrRodData* d;
+  if (!makeLeg(&act, 4, &m, &d)) {
+    return;
+  }
+  csrRodLoads ld;
+  strainedLoads(m, &ld);
+  ld.gravity[1] = -9810;
+  ld.damping = 0.02;
+  double* y = calloc((size_t)m->nstate, sizeof(double));
+  randomState(m, y, 5u);
+  for (int e = 1; e <= m->N; e++) {
+    double* b = y + m->boff[e];
+    for (int k = 0; k < 3; k++) {
+      b[CSR_ROD_BV + k] = 10.0 * (k + 1) * e;
+      b[CSR_ROD_BW + k] = 0.3 * k - 0.1 * e;
+    }
+  }
+  const double x0[3] = {1, 2, 3}, v0[3] = {5, -3, 1}, w0[3] = {0.2, -0.1, 0.4};
+  double q0[4], ph[3] = {0.1, 0.2, -0.3};
+  csr_rodQexp(q0, ph);
+  double F0[3], T0[3];
+  CS_EXPECT(csr_rodUnpack_(m, &d->wk, y, x0, q0, v0, w0) == 0);
+  d->wk.hist = d->wk.dhist = NULL;
+  csr_rodForces_(m, &d->wk, &ld, 0, NULL, 0);
+  memcpy(F0, d->wk.F, sizeof F0);
+  memcpy(T0, d->wk.T, sizeof T0);
+  CS_EXPECT(csr_rodUnpackPart_(m, &d->wk, y, 1, x0, q0, v0, w0) == 0);
+  csr_rodForces_(m, &d->wk, &ld, 0, NULL, 0);
+  CS_EXPECT(memcmp(F0, d->wk.F, sizeof F0) == 0);
+  CS_EXPECT(memcmp(T0, d->wk.T, sizeof T0) == 0);
+  CS_EXPECT(csu_norm3(F0) > 1e-3 && csu_norm3(T0) > 1e-3); /* non-trivial terms */
+  free(y);
+  csr_rodDataDestroy(d);
+  csr_rodModelDestroy(m);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
+  CS_RUN(hip_terms_from_first_element);
   CS_RUN(forces_are_energy_gradient);
   CS_RUN(internal_forces_balance);
   CS_RUN(rest_state_is_stress_free);
