@@ -68,9 +68,16 @@ csOptions cs_defaultOptions(void) {
 void cs_modelInit(csModel* m) {
   memset(m, 0, sizeof *m);
   m->opt = cs_defaultOptions();
+  m->conditions = CS_CONDITIONS_EARTH; /* as opt.legs_weightless = 0 */
   m->sched = csg_defaultScheduleOptions();
   m->contact = csc_defaultContactParams();
   csr_robotDefaultModel(&m->robot, NULL);
+}
+
+
+void cs_modelSetConditions(csModel* m, csConditions c) {
+  m->conditions = c;
+  m->opt.legs_weightless = c == CS_CONDITIONS_PAPER;
 }
 
 
@@ -127,7 +134,9 @@ void cs_modelStanceCheck(const csModel* m, double mass_total, double* load_per_l
   double EI = m->robot.leg_params.E_bend * csr_legSectionI(&m->robot.leg);
   double L = csr_actuatorLength(&m->robot.leg);
   *p_critical = CS_PI * CS_PI * EI / (L * L);
-  *load_per_leg = mass_total * m->opt.gravity / (CSR_NLEG / 2);
+  /* under `paper` the legs feel no gravity: the stance legs carry the support's weight only */
+  double weight_mass = m->opt.legs_weightless ? m->robot.support_mass : mass_total;
+  *load_per_leg = weight_mass * m->opt.gravity / (CSR_NLEG / 2);
 }
 
 
@@ -239,7 +248,8 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
   /* the state buffer of step rollback: allocated once (no allocation in the step loop) */
   d->nstate = cs_stateSize(m, d);
   d->save = malloc((size_t)d->nstate * sizeof(double));
-  if (!d->save) {
+  d->fb = calloc(CS_MAX_FEEDBACK, sizeof *d->fb);
+  if (!d->save || !d->fb) {
     cs_errorSet(err, CS_ERR_MEMORY, "out of memory");
     cs_dataDestroy(d);
     return NULL;
@@ -286,6 +296,7 @@ void cs_dataDestroy(csData* d) {
     csr_robotDestroy(d->robot);
   }
   free(d->save);
+  free(d->fb);
   if (d->contacts) {
     dJointGroupDestroy(d->contacts);
   }
@@ -366,6 +377,28 @@ const char* cs_timerName(csTimerId id) {
 
 
 int cs_contactCount(const csData* d) { return d->cstats.npoints; }
+
+
+void cs_contactForce(const csData* d, double f[3]) { csu_copy3(f, d->contact_force); }
+
+
+double cs_contactDepth(const csData* d) { return d->cstats.max_depth; }
+
+
+void cs_supportCorners(const csModel* m, const csData* d, double corners[24]) {
+  const dReal* P = dBodyGetPosition(d->robot->support);
+  const dReal* R = dBodyGetRotation(d->robot->support); /* 3x4 row-major */
+  const double* L = m->robot.support_size;
+  /* VTK hexahedron order: (-,-,-) (+,-,-) (+,-,+) (-,-,+) then the same at +y */
+  static const double kSign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1},
+                                     {-1, 1, -1},  {1, 1, -1},  {1, 1, 1},  {-1, 1, 1}};
+  for (int c = 0; c < 8; c++) {
+    double l[3] = {0.5 * L[0] * kSign[c][0], 0.5 * L[1] * kSign[c][1], 0.5 * L[2] * kSign[c][2]};
+    for (int i = 0; i < 3; i++) {
+      corners[3 * c + i] = P[i] + R[4 * i] * l[0] + R[4 * i + 1] * l[1] + R[4 * i + 2] * l[2];
+    }
+  }
+}
 
 
 double cs_robotMass(const csData* d) { return d->robot->mass_total; }

@@ -57,6 +57,11 @@ struct csData_ {
   double p0[CSR_NCHAMBER_TOTAL];    /* chamber pressures at the current step's start (MPa) */
   double x0[3];                     /* support centre at t = 0 (mm) */
   cscContactStats cstats;
+  /* contact joint feedback of the last ODE step (sim_step.c): preallocated, at most
+   * CS_MAX_FEEDBACK joints are measured (nfb_over counts the rest) */
+  dJointFeedback* fb;               /* (CS_MAX_FEEDBACK) */
+  int nfb, nfb_over;
+  double contact_force[3];          /* N, world: terrain on robot, last ODE step */
   csuTimer timer[CS_NTIMER];
   int nstate;                       /* cs_stateSize */
   double* save;                     /* (nstate) the state before the current step */
@@ -66,6 +71,9 @@ struct csData_ {
   void* cvode;
   N_Vector y;
 };
+
+/* contact joints whose force is measured per ODE step (each ~100 bytes) */
+#define CS_MAX_FEEDBACK 4096
 
 /* scheduled pressures at time t (zero before t = 0), 96 MPa (sim_driver.c) */
 void cs_schedule(const csModel* m, double t, double* p_cmd);

@@ -42,6 +42,7 @@
 #include "gaits_schedule.h"
 #include "robot_calibration.h"
 #include "robot_robot.h"
+#include "sim_scene.h"
 #include "terrains_terrain.h"
 
 #ifdef __cplusplus
@@ -94,6 +95,8 @@ typedef struct csModel_ {
   csrCalibration* calibration; /* owned; robot.map points into it */
   char scene[32];
   char gait_path[512];
+  csConditions conditions;    /* earth | paper (sim_scene.h); set with cs_modelSetConditions so
+                                 that opt.legs_weightless agrees */
 } csModel;
 
 /* Fill a model with the defaults of every part (no files read, no map yet; prb legs). */
@@ -104,6 +107,10 @@ void cs_modelInit(csModel* m);
  * err names the file and line. */
 csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
                       const char* gait_path, const char* calibration_path, csError* err);
+
+/* Set the conditions (sim_scene.h) and what they decide in the options: `paper` makes the
+ * legs weightless (opt.legs_weightless = 1), `earth` does not. */
+void cs_modelSetConditions(csModel* m, csConditions c);
 
 /* Name of the leg level that runs (m->robot.leg_type->name): what the output records. */
 const char* cs_modelLegLevel(const csModel* m);
@@ -117,7 +124,8 @@ double cs_modelMacroStep(const csModel* m);
 /* Sway-buckling check of the stance (DESIGN "model no more than a scene needs", a designer's
  * first question): P_cr = π² E I / L² is the critical axial load of one leg clamped at the hip
  * and at a flat foot with the support free to sway (a sway frame of identical columns); the
- * load is the robot's weight shared by half the legs, as in an alternating gait. Both in N. */
+ * load is the weight gravity puts on the legs (the whole robot's under `earth`, the support's
+ * under `paper`) shared by half the legs, as in an alternating gait. Both in N. */
 void cs_modelStanceCheck(const csModel* m, double mass_total, double* load_per_leg,
                          double* p_critical);
 
@@ -201,6 +209,14 @@ void cs_legWrench(const csData* d, int k, csrWrench* w);
 void cs_robotCenterOfMass(const csModel* m, const csData* d, double com[3]);
 /* number of contact points in the last ODE step */
 int cs_contactCount(const csData* d);
+/* total force (N, world) the terrain exerted on the robot in the last ODE step, summed over
+ * every contact joint's feedback: its y component is the load on the ground */
+void cs_contactForce(const csData* d, double f[3]);
+/* deepest contact penetration of the last ODE step (mm) */
+double cs_contactDepth(const csData* d);
+/* the support box's 8 corners now, world mm, (8 x 3) in VTK hexahedron order (bottom face
+ * -y then top face, each counter-clockwise seen from +y) */
+void cs_supportCorners(const csModel* m, const csData* d, double corners[24]);
 /* total mass of the robot (t) */
 double cs_robotMass(const csData* d);
 

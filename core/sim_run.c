@@ -1,8 +1,11 @@
 /* sim_run.c: a whole run with HDF5 output per DESIGN.md's output contract (see sim_model.h).
  *
  * Layout: /time [N] s; /support/position [N,3] mm; /support/orientation [N,4] (w,x,y,z);
- * /pressure [N,96] MPa; /legs/<A..H>/centerline [N,K,3] mm; root attributes scene, leg_model,
- * gait_file, units, version, terrain, friction, pressure_scale, step_s, macro_step_s,
+ * /pressure [N,96] MPa; /legs/<A..H>/centerline [N,K,3] mm; and for seeing and checking a run
+ * /support/corners [N,8,3] mm (world), /contact/force [N,3] N (terrain on robot, world),
+ * /contact/max_depth [N] mm, /terrain/corners [nbox,8,3] mm; root attributes scene,
+ * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
+ * macro_step_s,
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
  * rejected_steps and per timer (sim_model.h CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
@@ -19,6 +22,7 @@ enum { MAX_CENTERLINE = 201 };
 
 typedef struct {
   int time, pos, quat, pres, legs[CSR_NLEG];
+  int corners, cforce, cdepth; /* support box corners; contact force and depth */
 } Series;
 
 
@@ -31,6 +35,12 @@ static csStatus writeSample(const csModel* m, const csData* d, csH5File* f, cons
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->pos, x, err);
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->quat, q, err);
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->pres, cs_pressures(d), err);
+  double corners[24], cf[3], depth = cs_contactDepth(d);
+  cs_supportCorners(m, d, corners);
+  cs_contactForce(d, cf);
+  if (st == CS_OK) st = cs_h5SeriesAppend(f, s->corners, corners, err);
+  if (st == CS_OK) st = cs_h5SeriesAppend(f, s->cforce, cf, err);
+  if (st == CS_OK) st = cs_h5SeriesAppend(f, s->cdepth, &depth, err);
   for (int k = 0; k < CSR_NLEG && st == CS_OK; k++) {
     cs_legCenterline(m, d, k, m->opt.centerline_points, buf);
     st = cs_h5SeriesAppend(f, s->legs[k], buf, err);
@@ -41,8 +51,11 @@ static csStatus writeSample(const csModel* m, const csData* d, csH5File* f, cons
 
 static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* err) {
   size_t three = 3, four = 4, n96 = CSR_NCHAMBER_TOTAL;
-  size_t cl[2] = {(size_t)m->opt.centerline_points, 3};
+  size_t cl[2] = {(size_t)m->opt.centerline_points, 3}, box[2] = {8, 3};
   if ((s->time = cs_h5SeriesCreate(f, "/time", 0, NULL, err)) < 0 ||
+      (s->corners = cs_h5SeriesCreate(f, "/support/corners", 2, box, err)) < 0 ||
+      (s->cforce = cs_h5SeriesCreate(f, "/contact/force", 1, &three, err)) < 0 ||
+      (s->cdepth = cs_h5SeriesCreate(f, "/contact/max_depth", 0, NULL, err)) < 0 ||
       (s->pos = cs_h5SeriesCreate(f, "/support/position", 1, &three, err)) < 0 ||
       (s->quat = cs_h5SeriesCreate(f, "/support/orientation", 1, &four, err)) < 0 ||
       (s->pres = cs_h5SeriesCreate(f, "/pressure", 1, &n96, err)) < 0) {
@@ -55,8 +68,25 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
       return err ? err->status : CS_ERR_IO;
     }
   }
-  csStatus st = CS_OK;
+  /* the terrain's boxes as hexahedra (nbox x 8 x 3, world mm, the corner order of
+   * cs_supportCorners) for the XDMF view */
+  double tc[CST_MAX_BOXES * 24];
+  for (int b = 0; b < m->terrain.nbox; b++) {
+    const cstBox* bx = &m->terrain.box[b];
+    static const int kHex[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1},
+                                   {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}};
+    for (int c = 0; c < 8; c++) {
+      for (int i = 0; i < 3; i++) {
+        tc[24 * b + 3 * c + i] = kHex[c][i] ? bx->hi[i] : bx->lo[i];
+      }
+    }
+  }
+  size_t tdims[3] = {(size_t)m->terrain.nbox, 8, 3};
+  csStatus st = m->terrain.nbox > 0 ? cs_h5WriteDoubles(f, "/terrain/corners", 3, tdims, tc, err)
+                                    : CS_OK;
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "scene", m->scene, err);
+  if (st == CS_OK) st = cs_h5AttrString(f, "/", "conditions", cs_conditionsName(m->conditions),
+                                        err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "leg_model", cs_modelLegLevel(m), err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "gait_file", m->gait_path, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "terrain_file", m->terrain.source, err);

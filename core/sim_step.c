@@ -97,6 +97,49 @@ static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err) 
 }
 
 
+/* ask ODE for the force of every contact joint on a robot body (the joints of this step are
+ * the only contact joints: the group is emptied after every step). Each body is visited once,
+ * through its first geom; a contact joint joins a robot body and the static terrain. */
+static void contactFeedbackAttach(csData* d) {
+  d->nfb = 0;
+  d->nfb_over = 0;
+  int ng = dSpaceGetNumGeoms(d->robot_space);
+  for (int i = 0; i < ng; i++) {
+    dGeomID g = dSpaceGetGeom(d->robot_space, i);
+    dBodyID b = dGeomGetBody(g);
+    if (!b || dBodyGetFirstGeom(b) != g) {
+      continue;
+    }
+    int nj = dBodyGetNumJoints(b);
+    for (int k = 0; k < nj; k++) {
+      dJointID j = dBodyGetJoint(b, k);
+      if (dJointGetType(j) != dJointTypeContact) {
+        continue;
+      }
+      if (d->nfb < CS_MAX_FEEDBACK) {
+        memset(&d->fb[d->nfb], 0, sizeof d->fb[d->nfb]);
+        dJointSetFeedback(j, &d->fb[d->nfb++]);
+      } else {
+        d->nfb_over++;
+      }
+    }
+  }
+}
+
+
+/* sum the measured contact forces on the robot. csc_collide attaches (terrain, robot body);
+ * ODE stores a joint whose first body is 0 reversed and reports the force on its one body in
+ * f1; f2 stays as cleared (zero), since no contact joint has a second moving body */
+static void contactFeedbackSum(csData* d) {
+  csu_set3(d->contact_force, 0, 0, 0);
+  for (int i = 0; i < d->nfb; i++) {
+    for (int k = 0; k < 3; k++) {
+      d->contact_force[k] += d->fb[i].f1[k] + d->fb[i].f2[k];
+    }
+  }
+}
+
+
 /* macro_steps ODE steps: the legs' wrenches and rows, contacts, QuickStep */
 static csStatus stageSupport(const csModel* m, csData* d, csError* err) {
   (void)err;
@@ -107,8 +150,10 @@ static csStatus stageSupport(const csModel* m, csData* d, csError* err) {
     double tc = csu_wallSeconds();
     csc_collide(&m->contact, d->world, d->terrain_space, d->robot_space, d->contacts, m->opt.h,
                 &d->cstats);
+    contactFeedbackAttach(d);
     csu_timerAdd(&d->timer[CS_TIMER_CONTACT], tc);
     dWorldQuickStep(d->world, m->opt.h);
+    contactFeedbackSum(d);
     dJointGroupEmpty(d->contacts);
   }
   return CS_OK;

@@ -16,6 +16,8 @@
 #define CS_ROBOT_GAITDESIGN_H
 
 #include "core_status.h"
+#include "gaits_csv.h"
+#include "gaits_design.h"
 #include "robot_actuator.h"
 #include "robot_leg.h"
 
@@ -42,6 +44,53 @@ csStatus csr_footFromPressures(const csrActuator* act, const csrBendMap* map,
  * (0, p_max]. CS_ERR_RANGE if the stroke is not reachable below p_max. */
 csStatus csr_designFlatRoad(const csrActuator* act, const csrBendMap* map, double stroke,
                             double p_max, csrFlatRoadDesign* out, csError* err);
+
+/* ---- gait design descriptions (gaits_design.h) -> gait tables ------------------------------
+ * Each pose's chamber sets are solved in file order: a set's common pressure is found by
+ * bisection on [0, p_max] so that its target (stroke, side, lift, rise, bend) holds on the
+ * calibrated map's constant-curvature forward kinematics, given the pose's earlier sets; the
+ * targets are monotone in the pressure of the set that drives them (checked: the target must
+ * lie between its values at 0 and p_max, else CS_ERR_RANGE names the line).
+ * A move from pose P to Q takes each segment's bend linearly from P's to Q's (pressures from
+ * the inverse map of the segment's chamber set, robot_gaitdesign.c movePath), so a foot that
+ * is vertical at both ends stays vertical; the path parameter is timed so that the foot (leg
+ * frame) moves along its path with the smoothstep profile in arc length: s(u) = 3u^2 - 2u^3, u = (t - T0)/DURATION. Why: the swinging legs' mass and the
+ * support's shift must be accelerated by the stance feet's friction alone (under `paper`
+ * conditions the four stance feet hold mu x the support's weight, 0.39 N at mu 0.8, while the
+ * four swinging legs weigh 139 g), so a move's peak acceleration 6 D / T^2 is what the design
+ * controls, not the pressure's ramp. The table holds rows every `sample` s inside a move; row
+ * k of a move carries the value at u = (k + 1)/n, so with the run's ramp >= sample each row's
+ * change fills the interval to the next row and the move ends at T0 + DURATION. */
+typedef struct csrGaitDesignOptions_ {
+  double p_max;   /* MPa: highest pressure a solve may use (capped by the map's range) */
+  int stretch;    /* 1: the forward kinematics include the map's axial stretch (a leg level
+                     that stretches); 0: bends only, as the prb chain (rise targets refused) */
+} csrGaitDesignOptions;
+
+/* p_max 0.3 MPa, no stretch. */
+csrGaitDesignOptions csr_defaultGaitDesignOptions(void);
+
+/* The solved poses of a description. */
+typedef struct csrDesignedPoses_ {
+  int npose;
+  double p[CSG_DESIGN_MAX_POSES][CSR_NSEG * CSR_NCHAMBER];   /* MPa, segment-major */
+  double set_p[CSG_DESIGN_MAX_POSES][CSG_DESIGN_MAX_SETS];   /* MPa of each set */
+  double foot[CSG_DESIGN_MAX_POSES][3];                      /* mm, leg frame, from straight */
+} csrDesignedPoses;
+
+/* Solve every pose of d. Errors name the description's file and line. */
+csStatus csr_designPoses(const csrActuator* act, const csrBendMap* map, const csgDesign* d,
+                         const csrGaitDesignOptions* opt, csrDesignedPoses* out, csError* err);
+
+/* Build the gait table of d from its solved poses (caller destroys it). */
+csgGait* csr_designGait(const csrActuator* act, const csrBendMap* map, const csgDesign* d,
+                        const csrGaitDesignOptions* opt, const csrDesignedPoses* poses,
+                        csError* err);
+
+/* One line per pose for a gait file's header: name, each set's chambers and pressure, foot
+ * offset (stroke, side, lift) (mm). Writes at most size bytes. */
+void csr_designPosesFormat(const csgDesign* d, const csrDesignedPoses* poses, char* buf,
+                           size_t size);
 
 #ifdef __cplusplus
 }

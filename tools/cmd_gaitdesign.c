@@ -16,6 +16,7 @@
 #include "gaits_generate.h"
 #include "robot_calibration.h"
 #include "robot_gaitdesign.h"
+#include "sim_model.h"
 
 
 int csx_cmdGaitFlatRoad(int argc, char** argv) {
@@ -128,5 +129,204 @@ done:
   if (rc) fprintf(stderr, "crawlsim gait flat-road: %s\n", err.msg);
   csg_gaitDestroy(g);
   csr_calibrationClose(cal);
+  return rc;
+}
+
+
+/* ---- crawlsim gait design ------------------------------------------------------------------ */
+
+static const char kDesignUsage[] =
+    "usage: crawlsim gait design FILE.gait [--out FILE.csv] [--calibration FILE] [--p-max MPA]\n"
+    "                            [--stretch] [--check] [--check-scene NAME] [--check-t S]\n"
+    "  Build a gait table from a design description (gaits/gaits_design.h: poses as chamber\n"
+    "  sets with a target stroke/side/lift/rise/bend/pressure, moves with durations, strides\n"
+    "  with phases); pressures from the calibrated leg model (robot_gaitdesign.h).\n"
+    "  --out: the table (default: FILE with .csv); --p-max: highest pressure a solve may use\n"
+    "  (0.3 MPa, capped by the calibration); --stretch: forward kinematics with the map's axial\n"
+    "  stretch (leg levels that stretch; needed by rise targets); --check: short runs of the\n"
+    "  table (scene flat-road under its default conditions, ramps 0.1, 0.2, 0.5 s, to --check-t,\n"
+    "  default the first stride's start + 3 periods) and the stride per cycle of each.\n";
+
+
+/* the stride per cycle of a short run of `gait_csv` with schedule ramp `ramp`; prints a line */
+static int checkRun(const char* gait_csv, const char* scene_name, double ramp, double t_end,
+                    const csgDesign* des, const char* calib) {
+  const csScene* sc = cs_sceneFind(scene_name);
+  if (!sc) {
+    fprintf(stderr, "crawlsim gait design: unknown --check-scene '%s'\n", scene_name);
+    return 1;
+  }
+  char terr[512];
+  csx_dataPath(sc->terrain, terr, sizeof terr);
+  csModel m;
+  cs_modelInit(&m);
+  cs_modelSetConditions(&m, sc->conditions);
+  m.sched.ramp = ramp;
+  m.opt.t_end = t_end;
+  m.opt.output_dt = 0.05;
+  csError err;
+  cs_errorClear(&err);
+  csData* d = NULL;
+  int rc = 1;
+  if (cs_modelLoad(&m, sc->name, terr, gait_csv, calib, &err) != CS_OK) goto done;
+  d = cs_dataCreate(&m, &err);
+  if (!d || cs_settle(&m, d, &err) != CS_OK) goto done;
+  double period = des->nstride ? des->stride_period : 1.0;
+  double t_mark = des->nstride ? des->stride_t0 : 0.0;
+  double x_prev = 0, x[3];
+  printf("  check %s (%s), ramp %.2f s: x at stride starts (mm):", sc->name,
+         cs_conditionsName(m.conditions), ramp);
+  int nstr = 0;
+  double sum = 0;
+  while (cs_time(d) < t_end - 1e-9) {
+    csStatus st = cs_step(&m, d, &err);
+    if (st != CS_OK) {
+      printf("\n");
+      goto done;
+    }
+    if (cs_time(d) >= t_mark - 1e-9) {
+      cs_supportDisplacement(d, x);
+      printf(" %.1f", x[0]);
+      if (t_mark > (des->nstride ? des->stride_t0 : 0) + 1e-9) {
+        sum += x[0] - x_prev;
+        nstr++;
+      }
+      x_prev = x[0];
+      t_mark += period;
+    }
+  }
+  cs_supportDisplacement(d, x);
+  printf("; stride per cycle %.1f mm over %d strides; z %.1f mm\n", nstr ? sum / nstr : 0.0, nstr,
+         x[2]);
+  rc = 0;
+done:
+  if (rc) fprintf(stderr, "crawlsim gait design: check run: %s\n", err.msg);
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+  return rc;
+}
+
+
+int csx_cmdGaitDesign(int argc, char** argv) {
+  const char* in = NULL;
+  const char* out = NULL;
+  const char* calib = NULL;
+  const char* check_scene = "flat-road";
+  double p_max = NAN, check_t = NAN;
+  int stretch = 0, check = 0;
+  for (int i = 1; i < argc; i++) {
+    const char* a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      fputs(kDesignUsage, stdout);
+      return 0;
+    } else if (!strcmp(a, "--stretch")) {
+      stretch = 1;
+    } else if (!strcmp(a, "--check")) {
+      check = 1;
+    } else if (!strcmp(a, "--out") || !strcmp(a, "--calibration") || !strcmp(a, "--p-max") ||
+               !strcmp(a, "--check-scene") || !strcmp(a, "--check-t")) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "crawlsim gait design: %s needs a value\n", a);
+        return 1;
+      }
+      const char* v = argv[++i];
+      if (!strcmp(a, "--out")) {
+        out = v;
+      } else if (!strcmp(a, "--calibration")) {
+        calib = v;
+      } else if (!strcmp(a, "--check-scene")) {
+        check_scene = v;
+      } else {
+        char* end;
+        double x = strtod(v, &end);
+        if (*end || end == v || !isfinite(x) || !(x > 0)) {
+          fprintf(stderr, "crawlsim gait design: %s '%s' must be a number > 0\n", a, v);
+          return 1;
+        }
+        if (!strcmp(a, "--p-max")) p_max = x; else check_t = x;
+      }
+    } else if (a[0] == '-') {
+      fprintf(stderr, "crawlsim gait design: unknown option '%s' (see --help)\n", a);
+      return 1;
+    } else if (!in) {
+      in = a;
+    } else {
+      fprintf(stderr, "crawlsim gait design: unexpected argument '%s'\n", a);
+      return 1;
+    }
+  }
+  if (!in) {
+    fprintf(stderr, "crawlsim gait design: missing FILE.gait (see --help)\n");
+    return 1;
+  }
+  char outbuf[1024], calbuf[512];
+  if (!out) {
+    snprintf(outbuf, sizeof outbuf, "%s", in);
+    char* dot = strrchr(outbuf, '.');
+    char* slash = strrchr(outbuf, '/');
+    if (dot && (!slash || dot > slash)) *dot = '\0';
+    strncat(outbuf, ".csv", sizeof outbuf - strlen(outbuf) - 1);
+    out = outbuf;
+  }
+  if (!calib) calib = csx_dataPath(CSX_DEFAULT_CALIBRATION, calbuf, sizeof calbuf);
+  csError err;
+  cs_errorClear(&err);
+  int rc = 1;
+  csgDesign* des = malloc(sizeof *des);
+  csrDesignedPoses* poses = malloc(sizeof *poses);
+  char* comment = malloc(8192);
+  csrCalibration* cal = NULL;
+  csgGait* g = NULL;
+  csrActuator leg;
+  if (!des || !poses || !comment) {
+    cs_errorSet(&err, CS_ERR_MEMORY, "out of memory");
+    goto done;
+  }
+  if (csg_designRead(des, in, &err) != CS_OK) goto done;
+  if (csr_actuatorPreset(&leg, "leg", &err) != CS_OK) goto done;
+  cal = csr_calibrationOpen(calib, &leg, &err);
+  if (!cal) goto done;
+  csrBendMap map = csr_calibrationMap(cal);
+  csrGaitDesignOptions opt = csr_defaultGaitDesignOptions();
+  if (!isnan(p_max)) opt.p_max = p_max;
+  opt.stretch = stretch;
+  if (csr_designPoses(&leg, &map, des, &opt, poses, &err) != CS_OK) goto done;
+  g = csr_designGait(&leg, &map, des, &opt, poses, &err);
+  if (!g) goto done;
+  /* the header says where the table came from; no machine paths (the source-tree prefix and
+   * the data directory are dropped, so regenerating on another machine gives the same bytes) */
+  char posetext[4096];
+  csr_designPosesFormat(des, poses, posetext, sizeof posetext);
+  const char* base = strrchr(in, '/');
+  base = base ? base + 1 : in;
+  snprintf(comment, 8192,
+           "crawlsim gait %s, generated by: crawlsim gait design %s%s\n"
+           "rows every %g s inside a move, timed so each foot follows a smoothstep along its path "
+           "(robot_gaitdesign.h)\n"
+           "pressures from the calibration: %s\n%s",
+           des->name, base, stretch ? " --stretch" : "", des->sample, map.name, posetext);
+  for (char* src; (src = strstr(comment, CS_SOURCE_DIR "/")) != NULL;) {
+    size_t cut = strlen(CS_SOURCE_DIR "/");
+    memmove(src, src + cut, strlen(src + cut) + 1);
+  }
+  if (csg_gaitWrite(g, out, comment, &err) != CS_OK) goto done;
+  printf("%s: %d rows, t = 0 .. %g s, from %s\n%s\n", out, g->nrow, g->time[g->nrow - 1], in,
+         posetext);
+  rc = 0;
+  if (check) {
+    double t_end = isnan(check_t) ? (des->nstride ? des->stride_t0 + 3 * des->stride_period : 4.0)
+                                  : check_t;
+    const double ramps[3] = {0.1, 0.2, 0.5};
+    for (int i = 0; i < 3 && rc == 0; i++) {
+      rc = checkRun(out, check_scene, ramps[i], t_end, des, calib);
+    }
+  }
+done:
+  if (rc && err.msg[0]) fprintf(stderr, "crawlsim gait design: %s\n", err.msg);
+  csg_gaitDestroy(g);
+  csr_calibrationClose(cal);
+  free(des);
+  free(poses);
+  free(comment);
   return rc;
 }

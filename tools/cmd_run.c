@@ -24,7 +24,10 @@ static const char kRunUsage[] =
     "                    [--terrain FILE] [--dt S] [--output-dt S] [--ramp S] [--tau S]\n"
     "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
     "                    [--calibration FILE] [--macro-steps N] [--coupling staggered|stabilised]\n"
-    "                    [--quiet]\n"
+    "                    [--conditions earth|paper] [--quiet]\n"
+    "  --conditions: earth = gravity on every body; paper = the legs keep mass and inertia but\n"
+    "    feel no gravity (the paper's assumption). Default: the scene's (paper for flat-road\n"
+    "    and obstacle) with its own terrain and gait, earth when --terrain or --gait is given;\n"
     "  --macro-steps N: ODE steps per exchange with co-simulated legs (macro step H = N dt);\n"
     "  --coupling: how co-simulated legs hand their wrench to the support (ignored by prb).\n";
 
@@ -33,7 +36,7 @@ static const char kRunUsage[] =
 static const char* const kValueOptions[] = {
     "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
-    "--links", "--gravity", "--macro-steps", "--coupling", "--iterations"};
+    "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--iterations"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -96,6 +99,7 @@ int csx_cmdRun(int argc, char** argv) {
   double friction = NAN, scale = 1.0, t_end = 0, dt = NAN, out_dt = NAN, ramp = NAN, tau = NAN;
   double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN, macro = NAN;
   const char* coupling = NULL;
+  const char* conditions = NULL;
   int quiet = 0;
   csError err;
   cs_errorClear(&err);
@@ -173,6 +177,8 @@ int csx_cmdRun(int argc, char** argv) {
       ok = parseNum(flag, v, &macro, &err);
     } else if (!strcmp(flag, "--coupling")) {
       coupling = v;
+    } else if (!strcmp(flag, "--conditions")) {
+      conditions = v;
     } else {
       ok = parseNum(flag, v, &iters, &err); /* --iterations, the last of kValueOptions */
     }
@@ -181,17 +187,23 @@ int csx_cmdRun(int argc, char** argv) {
     }
   }
 
-  /* scene -> default terrain and gait */
-  if (!strcmp(scene, "flat-road")) {
-    if (!terrain) terrain = csx_dataPath("terrains/flat_road.terrain", terrain_buf, sizeof terrain_buf);
-    if (!gait) gait = csx_dataPath("gaits/flat_road.csv", gait_buf, sizeof gait_buf);
-  } else if (!strcmp(scene, "obstacle")) {
-    cs_errorSet(&err, CS_ERR_ARG, "scene 'obstacle' is not available yet (flat-road only)");
-    goto done;
-  } else {
+  /* scene -> default terrain, gait and conditions (sim_scene.h) */
+  const csScene* sc = cs_sceneFind(scene);
+  if (!sc) {
     cs_errorSet(&err, CS_ERR_ARG, "unknown scene '%.60s' (expected flat-road or obstacle)", scene);
     goto done;
   }
+  int user_files = terrain != NULL || gait != NULL;
+  if (!terrain) terrain = csx_dataPath(sc->terrain, terrain_buf, sizeof terrain_buf);
+  if (!gait) gait = csx_dataPath(sc->gait, gait_buf, sizeof gait_buf);
+  int requested = -1;
+  if (conditions) {
+    csConditions c;
+    if (cs_conditionsParse(conditions, &c, &err) != CS_OK) goto done;
+    requested = (int)c;
+  }
+  csConditionsSource cond_src;
+  cs_modelSetConditions(&m, cs_sceneConditions(sc, requested, user_files, &cond_src));
   /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */
   const csrLegType* leg_type = NULL;
   if (!strcmp(legs, "auto")) {
@@ -333,6 +345,8 @@ int csx_cmdRun(int argc, char** argv) {
     fprintf(stderr, "crawlsim run: scene %s, gait %s, legs %s, friction %.3g, t_end %.3g s, "
             "robot mass %.1f g\n", scene, gait, cs_modelLegLevel(&m), m.contact.mu,
             cs_modelEndTime(&m), cs_robotMass(d) * 1e6);
+    fprintf(stderr, "crawlsim run: conditions %s (%s): %s\n", cs_conditionsName(m.conditions),
+            cs_conditionsSourceName(cond_src), cs_conditionsWhat(m.conditions));
     fprintf(stderr, "crawlsim run: calibration: %s\n", m.robot.map.name);
     double load, pcr;
     cs_modelStanceCheck(&m, cs_robotMass(d), &load, &pcr);

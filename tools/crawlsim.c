@@ -15,7 +15,8 @@ static const char kUsage[] =
     "  bend      [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
     "            [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
     "            [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]\n"
-    "  gait      check FILE.csv | flat-road FILE.csv [--stroke MM] [--crouch] ...\n"
+    "  gait      check FILE.csv | design FILE.gait [--out FILE.csv] [--check] ...\n"
+    "            | flat-road FILE.csv [--stroke MM] [--crouch] ...\n"
     "  calibrate [--out FILE.h5]\n"
     "Run 'crawlsim <command> --help' for the options of one command.\n";
 
@@ -60,6 +61,9 @@ static int dispatch(int argc, char** argv) {
   }
   if (!strcmp(cmd, "gait") && argc > 2 && !strcmp(argv[2], "flat-road")) {
     return csx_cmdGaitFlatRoad(argc - 2, argv + 2);
+  }
+  if (!strcmp(cmd, "gait") && argc > 2 && !strcmp(argv[2], "design")) {
+    return csx_cmdGaitDesign(argc - 2, argv + 2);
   }
   if (!strcmp(cmd, "gait")) {
     return csx_cmdGait(argc - 1, argv + 1);

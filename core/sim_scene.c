@@ -1,0 +1,89 @@
+/* sim_scene.c: conditions and the built-in scenes (see sim_scene.h). */
+#include "sim_scene.h"
+
+#include <string.h>
+
+/* The paper's two scenes (Sec. 5.1 and 5.2): their tables were computed without self-weight,
+ * so they default to `paper` (REFERENCE.md "Scene conditions"). */
+static const csScene kScenes[] = {
+    {"flat-road", "terrains/flat_road.terrain", "gaits/flat_road.csv", CS_CONDITIONS_PAPER,
+     "paper Sec. 5.1: 600 x 300 mm flat road, 8 strides of 39 mm in 9 s (Table 2)"},
+    {"obstacle", "terrains/obstacle.terrain", "gaits/obstacle.csv", CS_CONDITIONS_PAPER,
+     "paper Sec. 5.2: L-shaped road with a 40 mm step up and down, then a turn (Table 3)"},
+};
+enum { NSCENE = sizeof kScenes / sizeof kScenes[0] };
+
+
+const char* cs_conditionsName(csConditions c) {
+  return c == CS_CONDITIONS_PAPER ? "paper" : "earth";
+}
+
+
+const char* cs_conditionsWhat(csConditions c) {
+  return c == CS_CONDITIONS_PAPER
+             ? "the paper's assumption: legs keep mass and inertia, gravity on the support only"
+             : "gravity on every body";
+}
+
+
+csStatus cs_conditionsParse(const char* s, csConditions* c, csError* err) {
+  if (s && !strcmp(s, "earth")) {
+    *c = CS_CONDITIONS_EARTH;
+    return CS_OK;
+  }
+  if (s && !strcmp(s, "paper")) {
+    *c = CS_CONDITIONS_PAPER;
+    return CS_OK;
+  }
+  return cs_errorSet(err, CS_ERR_ARG, "unknown conditions '%.60s' (expected earth or paper)",
+                     s ? s : "");
+}
+
+
+const csScene* cs_sceneFind(const char* name) {
+  for (int i = 0; name && i < NSCENE; i++) {
+    if (!strcmp(kScenes[i].name, name)) {
+      return &kScenes[i];
+    }
+  }
+  return NULL;
+}
+
+
+int cs_sceneCount(void) { return NSCENE; }
+
+
+const csScene* cs_sceneAt(int i) { return i >= 0 && i < NSCENE ? &kScenes[i] : NULL; }
+
+
+csConditions cs_sceneConditions(const csScene* s, int requested, int user_files,
+                                csConditionsSource* source) {
+  csConditionsSource src = CS_CONDITIONS_FROM_OPTION;
+  csConditions c = CS_CONDITIONS_EARTH;
+  if (requested >= 0) {
+    c = requested == CS_CONDITIONS_PAPER ? CS_CONDITIONS_PAPER : CS_CONDITIONS_EARTH;
+  } else if (s && !user_files) {
+    c = s->conditions;
+    src = CS_CONDITIONS_FROM_SCENE;
+  } else {
+    /* a user's terrain or gait: nothing says its author neglected self-weight */
+    src = CS_CONDITIONS_FROM_USER;
+  }
+  if (source) {
+    *source = src;
+  }
+  return c;
+}
+
+
+const char* cs_conditionsSourceName(csConditionsSource src) {
+  switch (src) {
+    case CS_CONDITIONS_FROM_SCENE:
+      return "scene default";
+    case CS_CONDITIONS_FROM_USER:
+      return "default for user files";
+    case CS_CONDITIONS_FROM_OPTION:
+      return "--conditions";
+  }
+  return "unknown";
+}
