@@ -187,8 +187,7 @@ typedef struct csrLegType_ {
 
 /* The pseudo-rigid-body chain level (robot_prb.c). */
 extern const csrLegType csr_leg_prb;
-/* The Cosserat rod level (robot_rod*.c, issue 9 item 2): declared here so that registering it
- * is one line in robot_robot.c's table of levels; not defined until that file lands. */
+/* The Cosserat rod level (robot_rod*.c, robot_rod.h), registered in robot_robot.c. */
 extern const csrLegType csr_leg_rod;
 
 /* The registered level called `name` ("prb", ...), or NULL. Levels the design names but that

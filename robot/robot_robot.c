@@ -9,9 +9,10 @@
 #include "core_math.h"
 
 /* The registered leg levels, cheapest first. Registering a level is one line here (its
- * csrLegType is declared in robot_leg.h): e.g. `&csr_leg_rod,` once robot_rod.c lands. */
+ * csrLegType is declared in robot_leg.h). */
 static const csrLegType* const kLegLevels[] = {
     &csr_leg_prb,
+    &csr_leg_rod,
 };
 /* Levels DESIGN.md names ("Model levels"): known to the CLI, "not available yet" until they are
  * in kLegLevels. */

@@ -57,7 +57,7 @@ static void test_badOptions(void) {
   expectFailure("--pressure-scale 100", "crawlsim run: --pressure-scale 100 takes ");
   expectFailure("--scene moon", "crawlsim run: unknown scene 'moon'");
   expectFailure("--scene obstacle", "crawlsim run: scene 'obstacle' is not available yet");
-  expectFailure("--legs rod", "crawlsim run: leg model 'rod' is not available yet");
+  expectFailure("--legs rom", "crawlsim run: leg model 'rom' is not available yet");
   expectFailure("--legs bogus", "crawlsim run: unknown leg model 'bogus'");
   expectFailure("--support-mass 0", "crawlsim run: --support-mass 0 kg must be > 0");
   expectFailure("--macro-steps 0", "crawlsim run: --macro-steps 0 must be an integer in 1..");
