@@ -41,6 +41,8 @@ static csStatus parseSet(const char* s, unsigned char ch[12], const char* path, 
                          csError* err);
 static csStatus addMove(csgDesign* d, double t0, double dur, unsigned legs, int pose, int line,
                         const char* path, csError* err);
+/* a trailing `linear` word: removed from the count, 1 if it was there */
+static int takeLinear(char** w, int* nw);
 
 
 static int parseNumber(const char* s, double* v) {
@@ -129,7 +131,17 @@ static csStatus addMove(csgDesign* d, double t0, double dur, unsigned legs, int 
   m->legs = legs;
   m->pose = pose;
   m->line = line;
+  m->linear = 0;
   return CS_OK;
+}
+
+
+static int takeLinear(char** w, int* nw) {
+  if (*nw > 1 && !strcmp(w[*nw - 1], "linear")) {
+    (*nw)--;
+    return 1;
+  }
+  return 0;
 }
 
 
@@ -157,6 +169,11 @@ void csg_designLegsFormat(unsigned legs, char* buf) {
 /* the statements; each returns CS_OK or fills err */
 static csStatus statementPose(csgDesign* d, char** w, int nw, const char* path, int line,
                               csError* err) {
+  int foot = nw >= 3 && !strcmp(w[2], "foot");
+  if (foot && nw != 5) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'pose NAME foot X LIFT' needs two numbers (mm)",
+                       path, line);
+  }
   if (nw < 5) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'pose' needs NAME, chamber sets, a target and "
                        "its value (e.g. pose S II1:3,4 II2:1,2 stroke 39)", path, line);
@@ -181,6 +198,35 @@ static csStatus statementPose(csgDesign* d, char** w, int nw, const char* path, 
     d->pose[p].line = line;
   }
   csgDesignPose* po = &d->pose[p];
+  if (foot) {
+    csgDesignSet s;
+    memset(&s, 0, sizeof s);
+    s.line = line;
+    s.ref = -1;
+    s.kind = CSG_TARGET_FOOT;
+    if (po->nset) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: pose %s: a foot pose is one line (the pose "
+                         "already has a chamber set on line %d)", path, line, name,
+                         po->set[0].line);
+    }
+    if (!parseNumber(w[3], &s.value) || !parseNumber(w[4], &s.value2)) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: foot X LIFT: '%.20s %.20s' are not two finite "
+                         "numbers", path, line, w[3], w[4]);
+    }
+    if (fabs(s.value) > MAX_TARGET_MM || !(s.value2 >= 0 && s.value2 <= MAX_TARGET_MM)) {
+      return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: foot %g %g mm: X within +-%g, LIFT in 0..%g",
+                         path, line, s.value, s.value2, MAX_TARGET_MM, MAX_TARGET_MM);
+    }
+    for (int j = 0; j < 12; j++) {
+      s.chambers[j] = 1; /* the pose may use any sagittal pair of every segment */
+    }
+    po->set[po->nset++] = s;
+    return CS_OK;
+  }
+  if (po->nset && po->set[0].kind == CSG_TARGET_FOOT) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: pose %s is a foot pose (line %d): it takes no "
+                       "chamber sets", path, line, name, po->set[0].line);
+  }
   if (po->nset == CSG_DESIGN_MAX_SETS) {
     return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: pose %s has more than %d chamber sets", path,
                        line, name, CSG_DESIGN_MAX_SETS);
@@ -222,9 +268,9 @@ static csStatus statementPose(csgDesign* d, char** w, int nw, const char* path, 
   };
   if (!strcmp(key, "pressure-of")) {
     int r = csg_designPoseFind(d, val);
-    if (r <= 0 || d->pose[r].nset == 0 || r == p) {
-      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: pressure-of '%.30s': no earlier pose with a "
-                         "chamber set of that name", path, line, val);
+    if (r <= 0 || d->pose[r].nset == 0 || r == p || d->pose[r].set[0].kind == CSG_TARGET_FOOT) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: pressure-of '%.30s': no earlier pose with "
+                         "chamber sets of that name (foot poses have none)", path, line, val);
     }
     s.kind = CSG_TARGET_PRESSURE_OF;
     s.ref = r;
@@ -333,11 +379,12 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
     } else if (!strcmp(key, "pose")) {
       st = statementPose(d, w, nw, path, line, err);
     } else if (!strcmp(key, "move")) {
+      int linear = takeLinear(w, &nw);
       unsigned legs = 0;
       int p = nw == 5 ? posePeek(d, w[4]) : -1;
       if (nw != 5) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'move' needs T0 DURATION LEGS POSE, got %d "
-                         "values", path, line, nw - 1);
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'move' needs T0 DURATION LEGS POSE "
+                         "[linear], got %d values", path, line, nw - 1);
       } else if ((st = needNumbers(w, nw, 1, 2, v, path, line, err)) != CS_OK) {
       } else if (!(v[1] >= 0 && v[1] <= MAX_DURATION_S)) {
         st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: duration %g s is outside 0..%g s", path, line,
@@ -346,8 +393,8 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
       } else if (p < 0) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown pose '%.30s' (define it with 'pose' "
                          "first)", path, line, w[4]);
-      } else {
-        st = addMove(d, v[0], v[1], legs, p, line, path, err);
+      } else if ((st = addMove(d, v[0], v[1], legs, p, line, path, err)) == CS_OK) {
+        d->move[d->nmove - 1].linear = linear;
       }
     } else if (!strcmp(key, "stride")) {
       memset(&sd, 0, sizeof sd);
@@ -377,17 +424,21 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
         }
       }
     } else if (!strcmp(key, "phase")) {
+      int linear = takeLinear(w, &nw);
       int role = -1, p = -1, plast = -1;
       if (!sd.active) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'phase' outside a stride (a 'stride' line "
                          "and its phases must follow each other)", path, line);
       } else if (nw != 5 && !(nw == 7 && !strcmp(w[5], "last"))) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'phase' needs START DURATION ROLE POSE "
-                         "[last POSE2]", path, line);
+                         "[last POSE2] [linear]", path, line);
       } else if ((st = needNumbers(w, nw, 1, 2, v, path, line, err)) != CS_OK) {
-      } else if (!(v[0] >= 0 && v[1] >= 0 && v[0] + v[1] <= sd.period + 1e-9)) {
-        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: phase %g s + %g s does not fit the stride's "
-                         "period %g s", path, line, v[0], v[1], sd.period);
+      } else if (!(v[0] >= 0 && v[0] < sd.period && v[1] >= 0 && v[1] <= MAX_DURATION_S)) {
+        /* a phase may outlast its stride (a stance push that overlaps the next one); the
+         * overlap check keeps each leg's moves apart */
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: phase start %g s must lie in the stride's "
+                         "period [0, %g) s and its duration %g s in 0..%g s", path, line, v[0],
+                         sd.period, v[1], MAX_DURATION_S);
       } else if ((role = !strcmp(w[3], "swing") ? 0 : !strcmp(w[3], "stand") ? 1 : -1) < 0) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: role '%.20s' is not swing or stand", path,
                          line, w[3]);
@@ -400,7 +451,17 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
           unsigned legs = sd.legs[(k + role) % 2];
           int pose = (k == sd.n - 1 && plast >= 0) ? plast : p;
           st = addMove(d, sd.t0 + k * sd.period + v[0], v[1], legs, pose, line, path, err);
+          if (st == CS_OK) {
+            d->move[d->nmove - 1].linear = linear;
+          }
         }
+      }
+    } else if (!strcmp(key, "mirror")) {
+      if (nw != 2 || d->mirror) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'mirror' needs one leg set (e.g. CDEF), once",
+                         path, line);
+      } else {
+        st = parseLegs(w[1], &d->mirror, path, line, err);
       }
     } else if (!strcmp(key, "end")) {
       if (nw != 2 || end_line) {
@@ -415,7 +476,7 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
       }
     } else {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.30s' (expected name, "
-                       "sample, pose, move, stride, phase, end)", path, line, key);
+                       "sample, pose, move, stride, phase, mirror, end)", path, line, key);
     }
   }
   if (st == CS_OK && got < 0) {

@@ -22,18 +22,30 @@
  *                                                    elongation mode)
  *                                        bend DEG    bend of the set's first segment
  *                                        pressure P  this pressure (MPa)
- *                                        pressure-of POSE  the pressure of POSE's first set
- *   move T0 DURATION LEGS POSE         legs LEGS (letters A..H, e.g. ACFH) go from the pose
+ *                                        pressure-of POSE  the pressure POSE gives these
+ *                                                    chambers (its set sharing one of them,
+ *                                                    else its first set)
+ *   pose NAME foot X LIFT              a whole pose in the leg's sagittal plane: the foot at X
+ *                                      mm along e1 and LIFT mm above the straight leg's foot,
+ *                                      its sole level (the bends of II1, II2, II3 sum to zero);
+ *                                      each segment bends with Ω3&Ω4 (towards +e1) or Ω1&Ω2
+ *   move T0 DURATION LEGS POSE [linear]
+ *                                      legs LEGS (letters A..H, e.g. ACFH) go from the pose
  *                                      they hold to POSE, starting at T0, taking DURATION s
- *                                      (0: one row at T0, the run's ramp makes the change)
+ *                                      (0: one row at T0, the run's ramp makes the change);
+ *                                      `linear`: at constant speed instead of the smoothstep
  *   stride N PERIOD T0 LEGS1 LEGS2     N strides of PERIOD s from T0. In stride k (0-based) the
  *                                      `swing` legs are LEGS1 for even k, LEGS2 for odd k (the
  *                                      legs whose feet are forward when the stride starts), the
  *                                      `stand` legs the other set. Its phases follow:
- *   phase START DURATION ROLE POSE [last POSE2]
+ *   phase START DURATION ROLE POSE [last POSE2] [linear]
  *                                      in every stride, the ROLE (swing | stand) legs move to
  *                                      POSE at START s into the stride (POSE2 in the last one)
  *   end T                              the table ends with a row at T (s) repeating the last
+ *   mirror LEGS                        legs LEGS take every pose reflected across their own
+ *                                      sagittal plane (e2 -> -e2: chambers Ω1<->Ω2, Ω3<->Ω4):
+ *                                      a sideways bend then points the other way, so a group's
+ *                                      lateral reactions can cancel in force and in yaw moment
  * A leg's moves may not overlap in time. Inside a move the legs follow the pressure path from
  * the old pose's pressures to the new pose's, timed so that the foot moves along its path with
  * the smoothstep profile 3u^2 - 2u^3 of u = (t - T0)/DURATION (robot_gaitdesign.h). */
@@ -60,7 +72,9 @@ typedef enum csgTargetKind_ {
   CSG_TARGET_SIDE = 3,        /* value = mm along e2 */
   CSG_TARGET_LIFT = 4,        /* value = mm towards the hip */
   CSG_TARGET_RISE = 5,        /* value = mm away from the hip */
-  CSG_TARGET_BEND = 6         /* value = deg of the set's first segment */
+  CSG_TARGET_BEND = 6,        /* value = deg of the set's first segment */
+  CSG_TARGET_FOOT = 7         /* value = foot offset along e1 (mm), value2 = lift (mm): the
+                                 whole leg in its sagittal plane (see `pose NAME foot`) */
 } csgTargetKind;
 
 /* One chamber set of a pose: a common pressure on chambers[] and what it must achieve. */
@@ -68,6 +82,7 @@ typedef struct csgDesignSet_ {
   unsigned char chambers[12]; /* 1: chamber 4 s + j (segment s 0..2, chamber j 0..3) is in */
   csgTargetKind kind;
   double value;
+  double value2;              /* CSG_TARGET_FOOT: lift (mm) */
   int ref;                    /* pose index for CSG_TARGET_PRESSURE_OF */
   int line;                   /* where it was given */
 } csgDesignSet;
@@ -83,6 +98,9 @@ typedef struct csgDesignMove_ {
   double t0, duration;        /* s */
   unsigned legs;              /* bit k: leg k (0..7 = A..H) */
   int pose;                   /* target pose index */
+  int linear;                 /* 1: the foot moves at constant speed along its path (a
+                                 conveyor: successive moves of the stance legs join without a
+                                 stop); 0: smoothstep (starts and ends at rest) */
   int line;                   /* the move or phase line it came from */
 } csgDesignMove;
 
@@ -91,6 +109,7 @@ typedef struct csgDesign_ {
   char source[256];
   double sample;              /* s */
   double end;                 /* s; 0: no end row */
+  unsigned mirror;            /* legs (bit k = leg k) that use the poses reflected (e2 -> -e2) */
   int npose;                  /* pose[0] is `straight` */
   csgDesignPose pose[CSG_DESIGN_MAX_POSES];
   int nstride;                /* stride statements read */

@@ -134,21 +134,44 @@ csrGaitDesignOptions csr_defaultGaitDesignOptions(void) {
 }
 
 
-/* foot (leg frame, mm) for pressures P[12], with or without the map's axial stretch */
-static csStatus footAt(const csrActuator* act, const csrBendMap* map, const double P[12],
-                       int stretch, double foot[3], csError* err) {
-  csrSegmentStrain st[CSR_NSEG];
-  memset(st, 0, sizeof st);
+/* the segments' constant-curvature strains for pressures P[12], with or without the map's
+ * axial stretch */
+static csStatus strainsOf(const csrActuator* act, const csrBendMap* map, const double P[12],
+                          int stretch, csrSegmentStrain st[CSR_NSEG], csError* err) {
+  memset(st, 0, CSR_NSEG * sizeof *st);
   for (int s = 0; s < CSR_NSEG; s++) {
     double bend[2], lam = 1;
     if (map->eval(map->ctx, s, P + 4 * s, bend, &lam) != 0) {
       return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
     }
     st[s].lambda0 = stretch ? lam : 1.0;
-    st[s].kappa[0] = -bend[0] / act->S[s];
+    st[s].kappa[0] = -bend[0] / act->S[s]; /* bend = -kappa S (robot_analytic.h) */
     st[s].kappa[1] = -bend[1] / act->S[s];
   }
-  return csr_ccForwardKinematics(act, st, 1, NULL, foot, NULL, err);
+  return CS_OK;
+}
+
+
+/* foot (leg frame, mm) for pressures P[12] */
+static csStatus footAt(const csrActuator* act, const csrBendMap* map, const double P[12],
+                       int stretch, double foot[3], csError* err) {
+  csrSegmentStrain st[CSR_NSEG];
+  csStatus rc = strainsOf(act, map, P, stretch, st, err);
+  return rc != CS_OK ? rc : csr_ccForwardKinematics(act, st, 1, NULL, foot, NULL, err);
+}
+
+
+/* samples per segment of the centreline that times a move (robot_gaitdesign.h) */
+enum { SHAPE_SAMPLES = 4, SHAPE_ROWS = CSR_NSEG * (SHAPE_SAMPLES + 1) };
+
+
+/* the leg's centreline (SHAPE_ROWS x 3, leg frame, mm) for pressures P */
+static csStatus shapeAt(const csrActuator* act, const csrBendMap* map, const double P[12],
+                        int stretch, double* cl, csError* err) {
+  csrSegmentStrain st[CSR_NSEG];
+  double tip[3];
+  csStatus rc = strainsOf(act, map, P, stretch, st, err);
+  return rc != CS_OK ? rc : csr_ccForwardKinematics(act, st, SHAPE_SAMPLES, cl, tip, NULL, err);
 }
 
 
@@ -179,6 +202,105 @@ static csStatus measure(const csrActuator* act, const csrBendMap* map, const csg
     case CSG_TARGET_SIDE: *v = f[1] - foot0[1]; break;
     case CSG_TARGET_LIFT: *v = foot0[2] - f[2]; break;
     default: *v = f[2] - foot0[2]; break; /* rise */
+  }
+  return CS_OK;
+}
+
+
+static int bendOf(const csrBendMap* map, int s, unsigned set, double p, double* b);
+
+
+/* foot (leg frame, mm) for signed sagittal bends th[3] (rad, > 0 towards +e1) */
+static csStatus footOfBends(const csrActuator* act, const double th[3], double foot[3],
+                            csError* err) {
+  csrSegmentStrain st[CSR_NSEG];
+  memset(st, 0, sizeof st);
+  for (int s = 0; s < CSR_NSEG; s++) {
+    st[s].lambda0 = 1.0;
+    st[s].kappa[0] = -th[s] / act->S[s]; /* bend = -kappa S (robot_analytic.h) */
+  }
+  return csr_ccForwardKinematics(act, st, 1, NULL, foot, NULL, err);
+}
+
+
+/* Newton iterations and tolerance of a foot pose: the residual is a smooth function of two
+ * bends; 1e-9 mm is far below any effect, 40 damped steps are plenty from the start guesses */
+enum { FOOT_NEWTON = 40 };
+#define FOOT_TOL_MM 1e-9
+
+
+/* a foot pose: bends (a, b, -(a + b)) of II1, II2, II3 with the foot at (X, lift), then each
+ * segment's pressure on its sagittal pair from the inverse map */
+static csStatus solveFootPose(const csrActuator* act, const csrBendMap* map,
+                              const csgDesignSet* set, double pmax, const double foot0[3],
+                              double P[12], const char* src, const char* name, csError* err) {
+  const double X = set->value, H = set->value2;
+  /* start guesses: an S-shape for the stroke plus a crouch for the lift, and its mirror */
+  const double starts[4][2] = {{X / 141.0, -X / 141.0}, {X / 141.0 + 0.3, -X / 141.0 - 0.6},
+                               {X / 141.0 + 0.6, -X / 141.0 - 1.2}, {-0.3, 0.6}};
+  double th[3] = {0, 0, 0}, best = INFINITY;
+  for (int g = 0; g < 4 && best > FOOT_TOL_MM; g++) {
+    double a = starts[g][0], b = starts[g][1];
+    for (int it = 0; it < FOOT_NEWTON; it++) {
+      double r[2], J[2][2], f[3];
+      double t0[3] = {a, b, -(a + b)};
+      csStatus st = footOfBends(act, t0, f, err);
+      if (st != CS_OK) return st;
+      r[0] = f[0] - foot0[0] - X;
+      r[1] = (foot0[2] - f[2]) - H;
+      double nr = hypot(r[0], r[1]);
+      if (nr < best) {
+        best = nr;
+        memcpy(th, t0, sizeof th);
+      }
+      if (nr < FOOT_TOL_MM) break;
+      for (int c = 0; c < 2; c++) {
+        double e = 1e-7, t1[3] = {a + (c == 0) * e, b + (c == 1) * e, 0}, f1[3];
+        t1[2] = -(t1[0] + t1[1]);
+        if ((st = footOfBends(act, t1, f1, err)) != CS_OK) return st;
+        J[0][c] = (f1[0] - f[0]) / e;
+        J[1][c] = (f[2] - f1[2]) / e;
+      }
+      double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+      if (!(fabs(det) > 1e-12)) break;
+      double da = (J[1][1] * r[0] - J[0][1] * r[1]) / det;
+      double db = (-J[1][0] * r[0] + J[0][0] * r[1]) / det;
+      /* damped: no step larger than 0.2 rad per bend */
+      double sc = fmin(1.0, 0.2 / fmax(1e-30, fmax(fabs(da), fabs(db))));
+      a -= sc * da;
+      b -= sc * db;
+    }
+  }
+  if (!(best <= 1e-6)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: pose %s: no leg shape with a level sole puts "
+                       "the foot at %g mm with lift %g mm (closest %.3g mm off)", src, set->line,
+                       name, X, H, best);
+  }
+  memset(P, 0, 12 * sizeof(double));
+  for (int s = 0; s < CSR_NSEG; s++) {
+    unsigned pair = th[s] > 0 ? 0xCu : 0x3u; /* Ω3&Ω4 bend towards +e1, Ω1&Ω2 towards -e1 */
+    double want = fabs(th[s]), bmax;
+    if (want < 1e-12) continue;
+    if (bendOf(map, s, pair, pmax, &bmax)) {
+      return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
+    }
+    if (bmax < want) {
+      return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: pose %s: II%d must bend %.1f deg, more than "
+                         "%g MPa gives (%.1f deg)", src, set->line, name, s + 1,
+                         want * 180 / 3.14159265358979323846, pmax,
+                         bmax * 180 / 3.14159265358979323846);
+    }
+    double lo = 0, hi = pmax;
+    for (int it = 0; it < SET_BISECTIONS; it++) {
+      double mid = 0.5 * (lo + hi), bb;
+      if (bendOf(map, s, pair, mid, &bb)) {
+        return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
+      }
+      if (bb < want) lo = mid; else hi = mid;
+    }
+    for (int j = 0; j < 4; j++) {
+      P[4 * s + j] = (pair & (1u << j)) ? 0.5 * (lo + hi) : 0;
+    }
   }
   return CS_OK;
 }
@@ -215,13 +337,30 @@ csStatus csr_designPoses(const csrActuator* act, const csrBendMap* map, const cs
   for (int q = 1; q < d->npose && st == CS_OK; q++) {
     const csgDesignPose* po = &d->pose[q];
     double* P = out->p[q];
-    for (int i = 0; i < po->nset && st == CS_OK; i++) {
+    if (po->nset == 1 && po->set[0].kind == CSG_TARGET_FOOT) {
+      st = solveFootPose(act, map, &po->set[0], pmax, foot0, P, d->source, po->name, err);
+    }
+    for (int i = 0; i < po->nset && st == CS_OK && po->set[0].kind != CSG_TARGET_FOOT; i++) {
       const csgDesignSet* set = &po->set[i];
       double p = 0;
       if (set->kind == CSG_TARGET_PRESSURE) {
         p = set->value;
       } else if (set->kind == CSG_TARGET_PRESSURE_OF) {
-        p = out->set_p[set->ref][0];
+        /* the pressure the referenced pose gives these chambers: its set that shares a
+         * chamber with this one, else its first set */
+        const csgDesignPose* rp = &d->pose[set->ref];
+        int k = 0;
+        for (int q2 = 0; q2 < rp->nset; q2++) {
+          int shared = 0;
+          for (int j = 0; j < 12; j++) {
+            shared |= rp->set[q2].chambers[j] && set->chambers[j];
+          }
+          if (shared) {
+            k = q2;
+            break;
+          }
+        }
+        p = out->set_p[set->ref][k];
       } else if (set->kind == CSG_TARGET_RISE && !opt->stretch) {
         return cs_errorSet(err, CS_ERR_ARG, "%s:%d: pose %s: 'rise' needs a leg level that "
                            "stretches (the prb chain bends only)", d->source, set->line, po->name);
@@ -273,8 +412,9 @@ csStatus csr_designPoses(const csrActuator* act, const csrBendMap* map, const cs
  * bend, not in pressure, so a foot that is vertical at both ends stays vertical on the way (the
  * S-shape's θ, -θ, 0 or the crouch's θ, -2θ, θ), which a straight pressure path does not do
  * (the map is far from linear: the FE ratio grows from 1.4 to 3.2 over 0..0.3 MPa). A segment
- * whose chambers change from one set to another, or whose set holds unequal pressures, goes
- * linearly in pressure instead. */
+ * that changes to the opposite set (bending the other way) passes through straight; one whose
+ * chambers change to an unrelated set, or whose set holds unequal pressures, goes linearly in
+ * pressure instead. */
 typedef struct {
   double p[PATH_SAMPLES + 1][12];
   double len[PATH_SAMPLES + 1];
@@ -325,18 +465,29 @@ static csStatus movePath(const csrActuator* act, const csrBendMap* map, const do
   for (int s = 0; s < CSR_NSEG; s++) {
     unsigned sa, sb;
     double pa = segmentSet(P, s, &sa), pb = segmentSet(Q, s, &sb);
-    if (pa < 0 || pb < 0 || (sa && sb && sa != sb) || (!sa && !sb) || pa == pb) {
+    /* opposite sets (Ω3&Ω4 vs Ω1&Ω2, Ω1&Ω4 vs Ω2&Ω3, one chamber vs its diagonal one): the
+     * bend changes sign; the signed magnitude goes linearly through zero, set A before it,
+     * set B after it */
+    unsigned rot = ((sa << 2) | (sa >> 2)) & 15u; /* the point reflection of set A */
+    int opposite = sa && sb && sb == rot;
+    if (pa < 0 || pb < 0 || (sa && sb && sa != sb && !opposite) || (!sa && !sb) ||
+        (pa == pb && sa == sb)) {
       continue; /* linear in pressure (or nothing changes) */
     }
-    unsigned set = sa ? sa : sb;
-    double ba = 0, bb = 0, pmax = fmax(pa, pb);
-    if ((sa && bendOf(map, s, set, pa, &ba)) || (sb && bendOf(map, s, set, pb, &bb))) {
+    double ba = 0, bb = 0;
+    if ((sa && bendOf(map, s, sa, pa, &ba)) || (sb && bendOf(map, s, sb, pb, &bb))) {
       return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
+    }
+    if (opposite) {
+      ba = -ba; /* signed along B's direction */
     }
     for (int i = 1; i < PATH_SAMPLES; i++) {
       double lam = (double)i / PATH_SAMPLES;
       double want = ba + lam * (bb - ba);
-      /* the set's bend grows with its pressure: bisection on [0, max of both ends] */
+      unsigned set = want < 0 ? sa : (sb ? sb : sa);
+      double pmax = want < 0 ? pa : (sb ? pb : pa);
+      want = fabs(want);
+      /* the set's bend grows with its pressure: bisection on [0, its end pressure] */
       double lo = 0, hi = pmax;
       for (int it = 0; it < SET_BISECTIONS; it++) {
         double mid = 0.5 * (lo + hi), b;
@@ -350,27 +501,31 @@ static csStatus movePath(const csrActuator* act, const csrBendMap* map, const do
       }
     }
   }
-  double prev[3];
+  /* the path's length in shape space: the RMS displacement of the centreline's points, so
+   * that the leg's mass moves at the profile's pace (a foot-only measure let an S-shape's
+   * middle swing out while its foot had hardly moved: measured 6 mm of stance slip) */
+  double prev[SHAPE_ROWS * 3], cl[SHAPE_ROWS * 3];
   path->len[0] = 0;
   for (int i = 0; i <= PATH_SAMPLES; i++) {
-    double f[3];
-    csStatus st = footAt(act, map, path->p[i], stretch, f, err);
+    csStatus st = shapeAt(act, map, path->p[i], stretch, cl, err);
     if (st != CS_OK) {
       return st;
     }
     if (i > 0) {
-      path->len[i] = path->len[i - 1] + sqrt((f[0] - prev[0]) * (f[0] - prev[0]) +
-                                             (f[1] - prev[1]) * (f[1] - prev[1]) +
-                                             (f[2] - prev[2]) * (f[2] - prev[2]));
+      double sum = 0;
+      for (int k = 0; k < SHAPE_ROWS * 3; k++) {
+        sum += (cl[k] - prev[k]) * (cl[k] - prev[k]);
+      }
+      path->len[i] = path->len[i - 1] + sqrt(sum / SHAPE_ROWS);
     }
-    memcpy(prev, f, sizeof prev);
+    memcpy(prev, cl, sizeof prev);
   }
   return CS_OK;
 }
 
 
-/* pressures at the fraction s of the foot's path: λ from the arc length (linear between
- * samples; a path on which the foot does not move, < 1 um, is timed by λ = s), pressures
+/* pressures at the fraction s of the path: λ from its shape-space length (linear between
+ * samples; a path on which the leg does not move, < 1 um, is timed by λ = s), pressures
  * linear between the path's samples */
 static void pathAt(const MovePath* path, double s, double P[12]) {
   const double* len = path->len;
@@ -398,13 +553,28 @@ static void pathAt(const MovePath* path, double s, double P[12]) {
 }
 
 
-/* rows of a move: n >= 1 */
-static int moveRows(const csgDesign* d, const csgDesignMove* m) {
-  if (!(m->duration > 0)) {
-    return 1;
+/* the pressures (12) of leg k for the row at t_row whose values are reached at t_next: its
+ * latest move started by then (a timed move by t_next, a step move by t_row, which so lands
+ * on its own row and keeps the run's ramp), at the fraction of that move's path its profile
+ * has reached (before any move: vented) */
+static void legAt(const csgDesign* d, const MovePath* paths, const int* from, int k, double t_row,
+                  double t_next, double P[12]) {
+  int im = -1;
+  for (int i = 0; i < d->nmove; i++) {
+    const csgDesignMove* m = &d->move[i];
+    double t = m->duration > 0 ? t_next : t_row;
+    if ((m->legs & (1u << k)) && m->t0 <= t + 1e-9) {
+      im = i;
+    }
   }
-  int n = (int)ceil(m->duration / d->sample - 1e-9);
-  return n < 1 ? 1 : n;
+  memset(P, 0, 12 * sizeof(double));
+  if (im < 0) {
+    return;
+  }
+  const csgDesignMove* m = &d->move[im];
+  double u = m->duration > 0 ? (t_next - m->t0) / m->duration : 1.0;
+  u = fmin(1.0, fmax(0.0, u));
+  pathAt(&paths[from[8 * im + k] * d->npose + m->pose], m->linear ? u : u * u * (3 - 2 * u), P);
 }
 
 
@@ -417,44 +587,66 @@ static int cmpDouble(const void* a, const void* b) {
 csgGait* csr_designGait(const csrActuator* act, const csrBendMap* map, const csgDesign* d,
                         const csrGaitDesignOptions* opt, const csrDesignedPoses* poses,
                         csError* err) {
-  /* row times: every move's rows, the end row; sorted, equal times merged */
-  int ntime = 1;
+  /* row times on one grid for every leg: the points k * sample (rounded to 1 ns, so they
+   * print as the decimals they are) from one sample before each timed move to its end, each
+   * step move's own time, and the end row. Between moves there are no rows: the table holds,
+   * and a step move keeps the run's ramp. A row carries the pressures of the next row's
+   * time: with the run's ramp >= sample each row's change fills the interval to the next row,
+   * so the table follows the designed motion (the run's ramp only shapes each sample). */
+  long ncand = 2;
   for (int i = 0; i < d->nmove; i++) {
-    ntime += moveRows(d, &d->move[i]);
+    ncand += 3 + (long)ceil(d->move[i].duration / d->sample);
   }
-  double* times = malloc((size_t)ntime * sizeof(double));
-  /* per move: the from-pose of each leg is its previous move's pose (0 = straight at first);
-   * the path tables are per move (legs of one move share from and to poses when they moved
-   * together before; otherwise the move is split per leg below) */
-  int* from = malloc((size_t)d->nmove * 8 * sizeof(int));
-  /* one path per (from, to) pair of poses */
-  int npair = d->npose * d->npose;
-  MovePath* paths = calloc((size_t)npair, sizeof *paths);
-  unsigned char* have = calloc((size_t)npair, 1);
-  csgGait* g = NULL;
-  if (!times || !from || !paths || !have) {
+  if (ncand > 200000) {
+    cs_errorSet(err, CS_ERR_RANGE, "%s: more than 100000 rows at %g s a row", d->source,
+                d->sample);
+    return NULL;
+  }
+  double* times = malloc((size_t)ncand * sizeof(double));
+  if (!times) {
     cs_errorSet(err, CS_ERR_MEMORY, "gait design: out of memory");
-    goto fail;
+    return NULL;
   }
-  int nt = 0;
+  long nt = 0;
   for (int i = 0; i < d->nmove; i++) {
     const csgDesignMove* m = &d->move[i];
-    int n = moveRows(d, m);
-    for (int k = 0; k < n; k++) {
-      times[nt++] = m->t0 + (n > 1 ? m->duration * k / n : 0);
+    if (!(m->duration > 0)) {
+      times[nt++] = m->t0;
+      continue;
+    }
+    long k0 = (long)floor(m->t0 / d->sample + 1e-9) - 1, k1 = (long)ceil((m->t0 + m->duration) /
+                                                                            d->sample - 1e-9);
+    for (long k = k0 < 0 ? 0 : k0; k <= k1; k++) {
+      times[nt++] = round((double)k * d->sample * 1e9) / 1e9;
     }
   }
   if (d->end > 0) {
     times[nt++] = d->end;
   }
   qsort(times, (size_t)nt, sizeof(double), cmpDouble);
-  int nu = 0;
-  for (int i = 0; i < nt; i++) {
-    if (nu == 0 || times[i] > times[nu - 1] + 1e-9) {
-      times[nu++] = times[i];
+  long nrow = 0;
+  for (long i = 0; i < nt; i++) {
+    if (nrow == 0 || times[i] > times[nrow - 1] + 1e-9) {
+      times[nrow++] = times[i];
     }
   }
-  /* from-poses and foot path tables per (move, leg) */
+  if (nrow > 100000) {
+    free(times);
+    cs_errorSet(err, CS_ERR_RANGE, "%s: %ld rows is more than a gait table holds (100000)",
+                d->source, nrow);
+    return NULL;
+  }
+  int* from = malloc((size_t)d->nmove * 8 * sizeof(int));
+  /* one path per (from, to) pair of poses */
+  int npair = d->npose * d->npose;
+  MovePath* paths = calloc((size_t)npair, sizeof *paths);
+  unsigned char* have = calloc((size_t)npair, 1);
+  csgGait* g = NULL;
+  if (!from || !paths || !have) {
+    cs_errorSet(err, CS_ERR_MEMORY, "gait design: out of memory");
+    goto fail;
+  }
+  /* from-poses (each leg's previous move's pose, straight at first) and the paths */
   int pose_of[8] = {0};
   for (int i = 0; i < d->nmove; i++) {
     const csgDesignMove* m = &d->move[i];
@@ -474,36 +666,23 @@ csgGait* csr_designGait(const csrActuator* act, const csrBendMap* map, const csg
       pose_of[k] = m->pose;
     }
   }
-  g = csg_gaitCreate(nu, err);
+  g = csg_gaitCreate((int)nrow, err);
   if (!g) {
     goto fail;
   }
-  for (int r = 0; r < nu; r++) {
+  for (long r = 0; r < nrow; r++) {
     double t = times[r];
-    csg_gaitSetTime(g, r, t, NULL);
+    double t_next = r + 1 < nrow ? times[r + 1] : t;
+    csg_gaitSetTime(g, (int)r, t, NULL);
     for (int k = 0; k < 8; k++) {
-      /* the leg's latest move that has started by t */
-      int im = -1;
-      for (int i = 0; i < d->nmove; i++) {
-        if ((d->move[i].legs & (1u << k)) && d->move[i].t0 <= t + 1e-9) {
-          im = i;
-        }
-      }
-      double P[12] = {0};
-      if (im >= 0) {
-        const csgDesignMove* m = &d->move[im];
-        const MovePath* path = &paths[from[8 * im + k] * d->npose + m->pose];
-        int n = moveRows(d, m);
-        double u = 1;
-        if (n > 1) {
-          int kk = (int)floor((t - m->t0) * n / m->duration + 1e-9);
-          u = fmin(1.0, (double)(kk + 1) / n);
-        }
-        pathAt(path, u * u * (3 - 2 * u), P);
-      }
+      double P[12];
+      legAt(d, paths, from, k, t, t_next, P);
       for (int j = 0; j < 12; j++) {
+        /* a mirrored leg's pose reflected across its sagittal plane: Ω1 <-> Ω2, Ω3 <-> Ω4 */
+        int jj = (d->mirror & (1u << k)) ? (j ^ 1) : j;
         /* label = 12 k + 4 (s - 1) + j + 1: leg k's twelve chambers are contiguous */
-        csg_gaitSetPressure(g, r, 12 * k + j + 1, P[j], NULL);
+        /* round-off of a vented chamber (1e-16 MPa) is written as the 0 it is */
+        csg_gaitSetPressure(g, (int)r, 12 * k + jj + 1, P[j] > 1e-9 ? P[j] : 0.0, NULL);
       }
     }
   }
@@ -527,25 +706,25 @@ void csr_designPosesFormat(const csgDesign* d, const csrDesignedPoses* poses, ch
   size_t n = 0;
   buf[0] = '\0';
   for (int q = 1; q < d->npose && n < size; q++) {
-    const csgDesignPose* po = &d->pose[q];
-    int w = snprintf(buf + n, size - n, "%spose %s:", n ? "\n" : "", po->name);
+    int w = snprintf(buf + n, size - n, "%spose %s:", n ? "\n" : "", d->pose[q].name);
     n += w > 0 ? (size_t)w : 0;
-    for (int i = 0; i < po->nset && n < size; i++) {
-      for (int s = 0; s < CSR_NSEG && n < size; s++) {
+    /* per segment: its inflated chambers and their pressure(s) */
+    for (int s = 0; s < CSR_NSEG && n < size; s++) {
+      const double* P = poses->p[q] + 4 * s;
+      for (int j = 0; j < 4 && n < size; j++) {
+        if (P[j] <= 0) continue;
         unsigned mask = 0;
-        for (int j = 0; j < 4; j++) {
-          mask |= po->set[i].chambers[4 * s + j] ? 1u << j : 0;
+        for (int k = j; k < 4; k++) {
+          mask |= (P[k] == P[j]) ? 1u << k : 0;
         }
-        if (mask) {
-          char l[16];
-          csu_chamberListFormat(mask, l, sizeof l);
-          w = snprintf(buf + n, size - n, " II%d:%s", s + 1, l);
-          n += w > 0 ? (size_t)w : 0;
+        int first = 1;
+        for (int k = 0; k < j; k++) {
+          first &= P[k] != P[j];
         }
-      }
-      if (n < size) {
-        w = snprintf(buf + n, size - n, " %.4f MPa%s", poses->set_p[q][i],
-                     i + 1 < po->nset ? ";" : "");
+        if (!first) continue;
+        char l[16];
+        csu_chamberListFormat(mask, l, sizeof l);
+        w = snprintf(buf + n, size - n, " II%d:%s %.4f MPa", s + 1, l, P[j]);
         n += w > 0 ? (size_t)w : 0;
       }
     }

@@ -53,14 +53,16 @@ csStatus csr_designFlatRoad(const csrActuator* act, const csrBendMap* map, doubl
  * lie between its values at 0 and p_max, else CS_ERR_RANGE names the line).
  * A move from pose P to Q takes each segment's bend linearly from P's to Q's (pressures from
  * the inverse map of the segment's chamber set, robot_gaitdesign.c movePath), so a foot that
- * is vertical at both ends stays vertical; the path parameter is timed so that the foot (leg
- * frame) moves along its path with the smoothstep profile in arc length: s(u) = 3u^2 - 2u^3, u = (t - T0)/DURATION. Why: the swinging legs' mass and the
+ * is vertical at both ends stays vertical; the path parameter is timed so that the leg's shape
+ * (the RMS displacement of its centreline points, leg frame) moves along its path with the
+ * smoothstep profile (or at constant speed, `linear`): s(u) = 3u^2 - 2u^3, u = (t - T0)/DURATION. Why: the swinging legs' mass and the
  * support's shift must be accelerated by the stance feet's friction alone (under `paper`
  * conditions the four stance feet hold mu x the support's weight, 0.39 N at mu 0.8, while the
  * four swinging legs weigh 139 g), so a move's peak acceleration 6 D / T^2 is what the design
- * controls, not the pressure's ramp. The table holds rows every `sample` s inside a move; row
- * k of a move carries the value at u = (k + 1)/n, so with the run's ramp >= sample each row's
- * change fills the interval to the next row and the move ends at T0 + DURATION. */
+ * controls, not the pressure's ramp. The table holds a row every `sample` s (one grid for all
+ * legs); row k carries the pressures of time (k + 1) sample, so with the run's ramp >= sample
+ * each row's change fills the interval to the next row and the table follows the designed
+ * motion one sample behind (the run's ramp then only shapes each sample's change). */
 typedef struct csrGaitDesignOptions_ {
   double p_max;   /* MPa: highest pressure a solve may use (capped by the map's range) */
   int stretch;    /* 1: the forward kinematics include the map's axial stretch (a leg level

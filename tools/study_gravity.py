@@ -74,7 +74,7 @@ def main():
                     help="reuse runs already in --outdir (their .h5 and .log) instead of rerunning")
     ap.add_argument("extra", nargs="*")
     a = ap.parse_args()
-    gaits = a.gait or [os.path.join(ROOT, "gaits", "flat_road.csv"),
+    gaits = a.gait or [os.path.join(ROOT, "gaits", "flat_road_paper.csv"),
                        os.path.join(ROOT, "gaits", "flat_road_crouch.csv")]
     try:
         gs = [float(v) for v in a.g.split(",")]

@@ -26,7 +26,7 @@ static void path(char* buf, size_t n, const char* rel) { snprintf(buf, n, "%s/%s
 static int loadModel(csModel* m, double g) {
   char terr[600], gait[600], cal[600];
   path(terr, sizeof terr, "terrains/flat_road.terrain");
-  path(gait, sizeof gait, "gaits/flat_road.csv");
+  path(gait, sizeof gait, "gaits/flat_road_paper.csv");
   path(cal, sizeof cal, "robot/calibration_fe_leg.h5"); /* the default calibration */
   cs_modelInit(m);
   m->opt.gravity = g * 1e3;

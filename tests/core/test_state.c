@@ -42,7 +42,7 @@ static int failEval(const void* ctx, int seg, const double p[4], double bend[2],
 static int loadModel(csModel* m, FailMap* fm, double tau) {
   char terr[600], gait[600], cal[600];
   snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", g_src);
-  snprintf(gait, sizeof gait, "%s/gaits/flat_road.csv", g_src);
+  snprintf(gait, sizeof gait, "%s/gaits/flat_road_paper.csv", g_src);
   snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg.h5", g_src);
   cs_modelInit(m);
   m->opt.gravity = 1e3;

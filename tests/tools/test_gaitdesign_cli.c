@@ -1,10 +1,13 @@
-/* test_gaitdesign_cli.c: `crawlsim gait flat-road` end to end (argv[1] is the executable).
+/* test_gaitdesign_cli.c: `crawlsim gait design` and `crawlsim gait flat-road` end to end
+ * (argv[1] is the executable).
  *
- * Proves: (1) the shipped gaits/flat_road.csv and gaits/flat_road_crouch.csv are what the
- * command regenerates from the shipped calibration today (so a calibration change that is not
- * carried to the shipped gaits fails here), (2) a generated table passes `crawlsim gait check`,
- * (3) every bad option or input exits 1 with one line "crawlsim gait flat-road: ..." on stderr
- * naming the cause, and writes no file. Needs POSIX for tests/cs_cli.h. */
+ * Proves: (1) the shipped gaits are what the commands regenerate from their descriptions and
+ * the shipped calibration today, byte for byte (gaits/flat_road.csv from flat_road.gait,
+ * gaits/flat_road_paper.csv from flat_road_paper.gait, gaits/flat_road_crouch.csv from
+ * `gait flat-road --crouch`; a calibration or design change that is not carried to the
+ * shipped gaits fails here), (2) a generated table passes `crawlsim gait check`, (3) every bad
+ * option, description or input exits 1 with one line "crawlsim gait <sub>: ..." on stderr
+ * naming the file, line and cause, and writes no file. Needs POSIX for tests/cs_cli.h. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <stdio.h>
@@ -45,7 +48,7 @@ static char* slurp(const char* path) {
 
 /* regenerate a shipped gait and compare byte for byte (the comment header included: it records
  * the command and the derived pressures) */
-static void expectRegenerates(const char* shipped, const char* flags) {
+static void expectRegenerates(const char* shipped, const char* flags, const char* design) {
   char path[1024], args[1200];
   const char* src = getenv("CS_SOURCE_DIR"); /* set by cs_add_test */
   CS_EXPECT(src != NULL);
@@ -55,17 +58,27 @@ static void expectRegenerates(const char* shipped, const char* flags) {
   snprintf(path, sizeof path, "%s/gaits/%s", src, shipped);
   remove("gaitdesign_regen.csv");
   csCliResult r;
-  snprintf(args, sizeof args, "flat-road gaitdesign_regen.csv %s", flags);
+  if (design) {
+    /* from the gaits/ directory, as the shipped files were made (their headers name the
+     * description by its base name) */
+    snprintf(args, sizeof args, "design %s/gaits/%s --out gaitdesign_regen.csv %s", src, design,
+             flags);
+  } else {
+    snprintf(args, sizeof args, "flat-road gaitdesign_regen.csv %s", flags);
+  }
   run(args, &r);
   CS_EXPECT(r.status == 0 && r.err[0] == '\0');
+  if (r.status != 0) {
+    fprintf(stderr, "  %s: %s\n", args, r.err);
+  }
   char* want = slurp(path);
   char* got = slurp("gaitdesign_regen.csv");
   CS_EXPECT(want != NULL && got != NULL);
   if (want && got) {
     CS_EXPECT(strcmp(want, got) == 0);
     if (strcmp(want, got) != 0) {
-      fprintf(stderr, "  %s differs from what `crawlsim gait flat-road %s` writes today\n",
-              shipped, flags);
+      fprintf(stderr, "  %s differs from what `crawlsim gait %s` writes today\n", shipped,
+              args);
     }
   }
   free(want);
@@ -77,9 +90,65 @@ static void expectRegenerates(const char* shipped, const char* flags) {
 }
 
 
+/* a bad invocation (below): exit 1, one line on stderr containing `want`, no file */
+static void expectFailure(const char* args, const char* want);
+
+
 static void test_shippedGaitsAreRegenerable(void) {
-  expectRegenerates("flat_road.csv", "");
-  expectRegenerates("flat_road_crouch.csv", "--crouch");
+  expectRegenerates("flat_road.csv", "", "flat_road.gait");
+  expectRegenerates("flat_road_paper.csv", "", "flat_road_paper.gait");
+  expectRegenerates("flat_road_crouch.csv", "--crouch", NULL);
+}
+
+
+/* a bad description: exit 1, one line "crawlsim gait design: <file>:<line>: <cause>" */
+static void expectBadDesign(const char* text, int line, const char* cause) {
+  cs_cliWriteText("gaitdesign_bad.gait", text);
+  char want[512];
+  snprintf(want, sizeof want, "gaitdesign_bad.gait:%d: %s", line, cause);
+  expectFailure("design gaitdesign_bad.gait --out gaitdesign_bad.csv", want);
+  remove("gaitdesign_bad.gait");
+}
+
+
+static void test_badDesigns(void) {
+  const char* pose = "pose S II1:3,4 II2:1,2 stroke 39\n";
+  char t[2048];
+  expectBadDesign("nmae x\n", 1, "unknown statement 'nmae'");
+  expectBadDesign("pose S II4:1 stroke 3\n", 1, "chamber set 'II4:1' is not II<1..3>");
+  expectBadDesign("pose S II1:1,5 stroke 3\n", 1, "chamber set 'II1:1,5'");
+  expectBadDesign("pose S II1:1 II1:1 stroke 3\n", 1, "chamber II1:1 is in the set twice");
+  expectBadDesign("pose S II1:3,4 height 3\n", 1, "unknown target 'height'");
+  expectBadDesign("pose S II1:3,4 stroke x\n", 1, "stroke value 'x' is not a finite number");
+  expectBadDesign("pose S II1:3,4 pressure 2\n", 1, "pressure 2 MPa is outside");
+  expectBadDesign("pose S II1:3,4 pressure-of T\n", 1, "pressure-of 'T': no earlier pose");
+  expectBadDesign("pose straight II1:3,4 stroke 3\n", 1, "'straight' is the built-in");
+  expectBadDesign("pose F foot 1\n", 1, "'pose NAME foot X LIFT' needs two numbers");
+  snprintf(t, sizeof t, "%smove 0 1 ACFX S\n", pose);
+  expectBadDesign(t, 2, "leg set 'ACFX': 'X' is not a leg A..H");
+  snprintf(t, sizeof t, "%smove 0 1 AA S\n", pose);
+  expectBadDesign(t, 2, "leg set 'AA' names leg A twice");
+  snprintf(t, sizeof t, "%smove 0 1 A T\n", pose);
+  expectBadDesign(t, 2, "unknown pose 'T'");
+  snprintf(t, sizeof t, "%smove 0 1 A S\nmove 0.5 1 AB straight\n", pose);
+  expectBadDesign(t, 3, "legs A move at 0.5..1.5 s, overlapping their move of line 2");
+  snprintf(t, sizeof t, "%sphase 0 1 swing S\n", pose);
+  expectBadDesign(t, 2, "'phase' outside a stride");
+  snprintf(t, sizeof t, "%sstride 2 1 0 ACFH BDEG\nphase 0 1 walk S\n", pose);
+  expectBadDesign(t, 3, "role 'walk' is not swing or stand");
+  snprintf(t, sizeof t, "%sstride 2 1 0 ACFH ABDE\n", pose);
+  expectBadDesign(t, 2, "the two leg sets of a stride share legs");
+  snprintf(t, sizeof t, "%smove 0 1 A S\nend 0.5\n", pose);
+  expectBadDesign(t, 3, "end 0.5 s is before the last move ends (1 s)");
+  expectBadDesign(pose, 1, "end of file without a 'move'");
+  /* a target the actuator cannot reach names its line and what it reaches */
+  expectBadDesign("pose S II1:3,4 II2:1,2 stroke 500\nmove 0 1 A S\n", 1,
+                  "pose S: stroke 500 is not reachable with this chamber set in 0..0.3 MPa");
+  expectBadDesign("pose F foot 0 150\nmove 0 1 A F\n", 1, "pose F:");
+  expectFailure("design gaitdesign_missing.gait", "gaitdesign_missing.gait: cannot open");
+  expectFailure("design", "missing FILE.gait");
+  expectFailure("design x.gait --p-max -1", "--p-max '-1' must be a number > 0");
+  expectFailure("design x.gait --bogus", "unknown option '--bogus'");
 }
 
 
@@ -145,5 +214,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_shippedGaitsAreRegenerable);
   CS_RUN(test_badOptions);
   CS_RUN(test_badInputs);
+  CS_RUN(test_badDesigns);
   return cs_testSummary();
 }

@@ -1,0 +1,168 @@
+/* core_xdmf.c: the XDMF companion of a run file (see core_xdmf.h).
+ *
+ * XDMF 3 (xdmf.org, "XDMF Model and Format"): Light data in XML, heavy data in HDF5 referenced
+ * as "file.h5:/path"; a HyperSlab DataItem selects one sample of a series by its start, stride
+ * and count rows; Hexahedron corners in VTK order, Polyline with NodesPerElement. Written by
+ * hand with fprintf: the structure is fixed and small. */
+#include "core_xdmf.h"
+
+#include <hdf5.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* the series a run file has (sim_run.c) */
+static const char kLegs[] = "ABCDEFGH";
+
+
+long cs_xdmfStride(long n, long max_frames) {
+  if (n <= 0 || max_frames <= 0) {
+    return 1;
+  }
+  long s = (n + max_frames - 1) / max_frames;
+  return s < 1 ? 1 : s;
+}
+
+
+/* dims of a dataset (rank <= 3), 0 if absent */
+static int datasetDims(hid_t f, const char* path, hsize_t dims[3]) {
+  dims[0] = dims[1] = dims[2] = 0;
+  if (H5Lexists(f, path, H5P_DEFAULT) <= 0) {
+    return 0;
+  }
+  hid_t ds = H5Dopen2(f, path, H5P_DEFAULT);
+  if (ds < 0) {
+    return 0;
+  }
+  hid_t sp = H5Dget_space(ds);
+  int rank = H5Sget_simple_extent_ndims(sp);
+  if (rank >= 1 && rank <= 3) {
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+  } else {
+    rank = 0;
+  }
+  H5Sclose(sp);
+  H5Dclose(ds);
+  return rank;
+}
+
+
+/* the values of /time (n doubles) into t */
+static int readTime(hid_t f, double* t, hsize_t n) {
+  hid_t ds = H5Dopen2(f, "/time", H5P_DEFAULT);
+  if (ds < 0) {
+    return -1;
+  }
+  (void)n;
+  herr_t rc = H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t);
+  H5Dclose(ds);
+  return rc < 0 ? -1 : 0;
+}
+
+
+/* a hyperslab of sample i of an [N, a, 3] series as an (a x 3) geometry */
+static void slab(FILE* x, const char* h5, const char* path, long i, hsize_t N, hsize_t a) {
+  fprintf(x, "<Geometry GeometryType=\"XYZ\"><DataItem ItemType=\"HyperSlab\" "
+             "Dimensions=\"%llu 3\" Type=\"HyperSlab\">"
+             "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld 0 0 1 1 1 1 %llu 3</DataItem>"
+             "<DataItem Dimensions=\"%llu %llu 3\" NumberType=\"Float\" Precision=\"8\" "
+             "Format=\"HDF\">%s:%s</DataItem></DataItem></Geometry>\n",
+          (unsigned long long)a, i, (unsigned long long)a, (unsigned long long)N,
+          (unsigned long long)a, h5, path);
+}
+
+
+csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride, csError* err) {
+  if (stride < 1) {
+    stride = 1;
+  }
+  const char* base = strrchr(h5_path, '/');
+  base = base ? base + 1 : h5_path;
+  hid_t f = H5Fopen(h5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) {
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot open the run file for its XDMF", h5_path);
+  }
+  hsize_t dt[3], dc[3], dl[3], dterr[3];
+  int ok = datasetDims(f, "/time", dt) == 1 && datasetDims(f, "/support/corners", dc) == 3 &&
+           datasetDims(f, "/legs/A/centerline", dl) == 3;
+  int have_terrain = datasetDims(f, "/terrain/corners", dterr) == 3;
+  hsize_t N = dt[0], nleg[8];
+  /* a run that stopped between appends may have series one sample apart: frames go to the
+   * shortest; each hyperslab names its own dataset's full shape */
+  if (ok) {
+    N = dc[0] < N ? dc[0] : N;
+    for (int k = 0; k < 8; k++) {
+      char p[64];
+      hsize_t d[3];
+      snprintf(p, sizeof p, "/legs/%c/centerline", kLegs[k]);
+      ok = ok && datasetDims(f, p, d) == 3 && d[1] == dl[1] && d[2] == 3;
+      nleg[k] = d[0];
+      N = (ok && d[0] < N) ? d[0] : N;
+    }
+  }
+  if (!ok) {
+    H5Fclose(f);
+    return cs_errorSet(err, CS_ERR_IO, "%s: not a crawlsim run file (no /time, /support/corners "
+                       "or /legs/*/centerline)", h5_path);
+  }
+  double* t = N > 0 ? malloc((size_t)dt[0] * sizeof(double)) : NULL;
+  if (N > 0 && (!t || readTime(f, t, dt[0]) != 0)) {
+    free(t);
+    H5Fclose(f);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot read /time", h5_path);
+  }
+  H5Fclose(f);
+  FILE* x = fopen(xdmf_path, "w");
+  if (!x) {
+    free(t);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot create the XDMF file", xdmf_path);
+  }
+  hsize_t K = dl[1];
+  fprintf(x, "<?xml version=\"1.0\" ?>\n<!-- crawlsim run: %s (support, legs A..H over time; "
+             "mm, s) -->\n<Xdmf Version=\"3.0\">\n<Domain>\n", base);
+  if (have_terrain && dterr[0] > 0) {
+    hsize_t nb = dterr[0];
+    fprintf(x, "<Grid Name=\"terrain\" GridType=\"Uniform\">\n"
+               "<Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%llu\">"
+               "<DataItem Dimensions=\"%llu 8\" NumberType=\"Int\" Format=\"XML\">",
+            (unsigned long long)nb, (unsigned long long)nb);
+    for (hsize_t i = 0; i < nb * 8; i++) {
+      fprintf(x, "%s%llu", i ? " " : "", (unsigned long long)i);
+    }
+    fprintf(x, "</DataItem></Topology>\n<Geometry GeometryType=\"XYZ\"><DataItem "
+               "Dimensions=\"%llu 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:"
+               "/terrain/corners</DataItem></Geometry>\n</Grid>\n",
+            (unsigned long long)(nb * 8), base);
+  }
+  fprintf(x, "<Grid Name=\"robot\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  for (hsize_t i = 0; i < N; i += (hsize_t)stride) {
+    fprintf(x, "<Grid Name=\"frame %llu\" GridType=\"Collection\" CollectionType=\"Spatial\">"
+               "<Time Value=\"%.9g\"/>\n", (unsigned long long)i, t[i]);
+    fprintf(x, "<Grid Name=\"support\" GridType=\"Uniform\"><Topology TopologyType=\"Hexahedron\" "
+               "NumberOfElements=\"1\"><DataItem Dimensions=\"1 8\" NumberType=\"Int\" "
+               "Format=\"XML\">0 1 2 3 4 5 6 7</DataItem></Topology>\n");
+    slab(x, base, "/support/corners", (long)i, dc[0], 8);
+    fprintf(x, "</Grid>\n");
+    for (int k = 0; k < 8; k++) {
+      char p[64];
+      snprintf(p, sizeof p, "/legs/%c/centerline", kLegs[k]);
+      fprintf(x, "<Grid Name=\"leg_%c\" GridType=\"Uniform\"><Topology TopologyType=\"Polyline\" "
+                 "NumberOfElements=\"1\" NodesPerElement=\"%llu\"><DataItem Dimensions=\"1 %llu\" "
+                 "NumberType=\"Int\" Format=\"XML\">",
+              kLegs[k], (unsigned long long)K, (unsigned long long)K);
+      for (hsize_t j = 0; j < K; j++) {
+        fprintf(x, "%s%llu", j ? " " : "", (unsigned long long)j);
+      }
+      fprintf(x, "</DataItem></Topology>\n");
+      slab(x, base, p, (long)i, nleg[k], K);
+      fprintf(x, "</Grid>\n");
+    }
+    fprintf(x, "</Grid>\n");
+  }
+  fprintf(x, "</Grid>\n</Domain>\n</Xdmf>\n");
+  free(t);
+  if (fclose(x) != 0) {
+    return cs_errorSet(err, CS_ERR_IO, "%s: write error", xdmf_path);
+  }
+  return CS_OK;
+}
