@@ -85,7 +85,7 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
   hsize_t dt[3], dc[3], dl[3], dterr[3];
   int ok = datasetDims(f, "/time", dt) == 1 && datasetDims(f, "/support/corners", dc) == 3 &&
            datasetDims(f, "/legs/A/centerline", dl) == 3;
-  int have_terrain = datasetDims(f, "/terrain/corners", dterr) == 3;
+  int have_terrain = datasetDims(f, "/terrain/corners", dterr) == 2 && dterr[0] % 8 == 0;
   hsize_t N = dt[0], nleg[8];
   /* a run that stopped between appends may have series one sample apart: frames go to the
    * shortest; each hyperslab names its own dataset's full shape */
@@ -121,7 +121,7 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
   fprintf(x, "<?xml version=\"1.0\" ?>\n<!-- crawlsim run: %s (support, legs A..H over time; "
              "mm, s) -->\n<Xdmf Version=\"3.0\">\n<Domain>\n", base);
   if (have_terrain && dterr[0] > 0) {
-    hsize_t nb = dterr[0];
+    hsize_t nb = dterr[0] / 8;
     fprintf(x, "<Grid Name=\"terrain\" GridType=\"Uniform\">\n"
                "<Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%llu\">"
                "<DataItem Dimensions=\"%llu 8\" NumberType=\"Int\" Format=\"XML\">",

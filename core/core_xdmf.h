@@ -3,7 +3,7 @@
  *
  * Owns: cs_xdmfWriteRun, which reads the shapes of a run file's datasets (sim_run.c's layout:
  * /time [N], /support/corners [N,8,3], /legs/<A..H>/centerline [N,K,3], /terrain/corners
- * [nbox,8,3]) and writes an XDMF 3 file that references them, never copies them:
+ * [nbox*8,3]) and writes an XDMF 3 file that references them, never copies them:
  *   - grid "terrain": one hexahedron per terrain box (static, shown at every time);
  *   - a temporal collection of frames, each a spatial collection of grid "support" (one
  *     hexahedron: the support box) and grids "leg_A" .. "leg_H" (one polyline of K points);

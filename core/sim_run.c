@@ -3,7 +3,7 @@
  * Layout: /time [N] s; /support/position [N,3] mm; /support/orientation [N,4] (w,x,y,z);
  * /pressure [N,96] MPa; /legs/<A..H>/centerline [N,K,3] mm; and for seeing and checking a run
  * /support/corners [N,8,3] mm (world), /contact/force [N,3] N (terrain on robot, world),
- * /contact/max_depth [N] mm, /terrain/corners [nbox,8,3] mm; root attributes scene,
+ * /contact/max_depth [N] mm, /terrain/corners [nbox*8,3] mm; root attributes scene,
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
  * macro_step_s,
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
@@ -69,8 +69,8 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
       return err ? err->status : CS_ERR_IO;
     }
   }
-  /* the terrain's boxes as hexahedra (nbox x 8 x 3, world mm, the corner order of
-   * cs_supportCorners) for the XDMF view */
+  /* the terrain's boxes as hexahedra ((nbox * 8) x 3, world mm, 8 corners per box in the
+   * order of cs_supportCorners) for the XDMF view */
   double tc[CST_MAX_BOXES * 24];
   for (int b = 0; b < m->terrain.nbox; b++) {
     const cstBox* bx = &m->terrain.box[b];
@@ -82,8 +82,8 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
       }
     }
   }
-  size_t tdims[3] = {(size_t)m->terrain.nbox, 8, 3};
-  csStatus st = m->terrain.nbox > 0 ? cs_h5WriteDoubles(f, "/terrain/corners", 3, tdims, tc, err)
+  size_t tdims[2] = {(size_t)m->terrain.nbox * 8, 3};
+  csStatus st = m->terrain.nbox > 0 ? cs_h5WriteDoubles(f, "/terrain/corners", 2, tdims, tc, err)
                                     : CS_OK;
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "scene", m->scene, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "conditions", cs_conditionsName(m->conditions),

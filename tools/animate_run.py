@@ -6,7 +6,7 @@ the terrain, the support and the eight legs' centrelines, with the paper's table
                                          [--reference flat-road|obstacle|none]
 
 Reads the run file's /time, /support/corners (N x 8 x 3), /legs/<A..H>/centerline (N x K x 3),
-/support/position (displacement of the support's centre) and /terrain/corners (nbox x 8 x 3).
+/support/position (displacement of the support's centre) and /terrain/corners (8 nbox x 3).
 The paper's nodes (Table 2 for flat-road, Table 3 for obstacle, chosen by the file's `scene`
 attribute unless --reference says otherwise) are drawn where the support's centre would be
 at each listed time (its start plus the table's displacement; Table 3's y is the paper's
@@ -50,8 +50,8 @@ def load(path):
         pos = np.asarray(f["/support/position"][:n], dtype=float)
         legs = [np.asarray(f[f"/legs/{k}/centerline"][:n], dtype=float) for k in "ABCDEFGH"]
         n = min([n, len(corners), len(pos)] + [len(l) for l in legs])
-        terrain = np.asarray(f["/terrain/corners"][:], dtype=float) if "/terrain/corners" in f \
-            else np.zeros((0, 8, 3))
+        terrain = np.asarray(f["/terrain/corners"][:], dtype=float).reshape(-1, 8, 3) \
+            if "/terrain/corners" in f else np.zeros((0, 8, 3))
         scene = find_attr_text(f.attrs, ["scene"]) or ""
         cond = find_attr_text(f.attrs, ["conditions"]) or ""
         legm = find_attr_text(f.attrs, ["leg_model"]) or ""

@@ -12,6 +12,7 @@ ROOT="$(cd "$HERE/../.." && pwd)"
 PY="${CS_PYTHON:-/usr/bin/python3}"
 TRACK="$ROOT/tools/plot_track.py"
 BEND="$ROOT/tools/plot_bend.py"
+GAITMAP="$ROOT/tools/plot_gait.py"
 GEN="$HERE/make_synthetic_h5.py"
 
 TMP="$(mktemp -d "${TMPDIR:-/tmp}/cs_test_plots.XXXXXX")"
@@ -87,6 +88,21 @@ expect_fail1 "plot_bend missing file"    "no such file" "$PY" "$BEND" "$TMP/fem.
 expect_fail1 "plot_bend missing dataset" "missing dataset /angle_deg" \
   "$PY" "$BEND" "$TMP/fem.h5" "$TMP/bend_noangle.h5" -o "$TMP/x.png"
 [ ! -e "$TMP/x.png" ] && ok "no PNG written on failure" || bad "a failing run wrote $TMP/x.png"
+
+# plot_gait.py: the heat map of a shipped gait, of a two-row table by label, and a bad table
+expect_png "plot_gait shipped flat_road.csv" "$TMP/g.png" "$PY" "$GAITMAP" "$ROOT/gaits/flat_road.csv" -o "$TMP/g.png"
+grep -q "heat map of 181 rows, 0..9 s" "$TMP/out.txt" && ok "plot_gait reads every row" \
+  || bad "plot_gait reads every row" "$TMP/out.txt"
+printf '# two rows\ntime,22,A_II1_O3\n0,0.1,0\n1.5,0,0.25\n' >"$TMP/small.csv"
+expect_png "plot_gait by label"   "$TMP/h.png" "$PY" "$GAITMAP" "$TMP/small.csv" -o "$TMP/h.png" --t-end 3
+printf 'time,A_II1_O3\n0,0.1\n0,0.2\n' >"$TMP/badtime.csv"
+expect_fail1 "plot_gait times must increase" "badtime.csv:3: time 0.0 s is not after 0.0 s" \
+  "$PY" "$GAITMAP" "$TMP/badtime.csv" -o "$TMP/x.png"
+printf 'time,Z_II1_O3\n0,0.1\n' >"$TMP/badcol.csv"
+expect_fail1 "plot_gait unknown column" "badcol.csv:1: column 'Z_II1_O3' is not a chamber" \
+  "$PY" "$GAITMAP" "$TMP/badcol.csv" -o "$TMP/x.png"
+expect_fail1 "plot_gait missing file" "cannot open gait table" "$PY" "$GAITMAP" "$TMP/nope.csv" -o "$TMP/x.png"
+[ ! -e "$TMP/x.png" ] && ok "no heat map written on failure" || bad "a failing heat map wrote $TMP/x.png"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
