@@ -62,6 +62,8 @@ csfBendOptions csf_bendDefault(void) {
   o.fibre_compression = 1;
   o.fibre_geo_tension = 0;
   o.continuation = 1;
+  o.krylov = 0;
+  o.fibre_split = 1;
   o.work_stem = "crawlsim_fe";
   return o;
 }
@@ -435,6 +437,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   }
   if (o->fibres) {
     double lf = o->fibre_size > 0 ? o->fibre_size : fmax(0.4 * o->mesh_size - 0.1, 0.2);
+    m->fib_split = o->fibre_split;
     st = addFibres(act, m, lf, CSF_FIBRE_INSET, err);
     if (st != CS_OK) {
       sweepFree(&w);
@@ -470,6 +473,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   }
   csfNewtonOptions nopt = csf_newtonDefault();
   nopt.threads = o->threads;
+  nopt.krylov = o->krylov;
   nopt.line_search = o->line_search;
   nopt.monitor = o->newton_monitor;
   nopt.monitor_user = o->progress_user;
@@ -724,6 +728,10 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   info.t_factor = d->stats.t_factor;
   info.t_solve = d->stats.t_solve;
   info.factor_nnz = csf_linSolverFactorNnz(d->ls);
+  info.n_factor = d->stats.n_factor;
+  info.n_krylov = d->stats.n_krylov;
+  info.n_krylov_iter = d->stats.n_krylov_iter;
+  snprintf(info.solver, sizeof info.solver, "%s", csf_linSolverName(d->ls));
   info.t_total = csf_wallTime() - t_start;
   if (o->info) {
     *o->info = info;

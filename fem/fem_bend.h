@@ -9,7 +9,7 @@
 #define CS_FEM_BEND_H
 
 #include "core_status.h"
-#include "fem_model.h"
+#include "fem_newton.h"
 #include "robot_actuator.h"
 
 #ifdef __cplusplus
@@ -41,6 +41,9 @@ typedef struct csfBendInfo_ {
   double t_mesh, t_setup, t_total;         /* wall s: gmsh + reading, model + fibres, all */
   double t_assemble, t_factor, t_solve;    /* wall s, accumulated */
   double factor_nnz;                       /* entries of the sparse factors */
+  long n_factor;       /* numeric factorisations of the tangent */
+  long n_krylov, n_krylov_iter; /* linear solves by GMRES on an older factorisation, iterations */
+  char solver[32];     /* sparse solver and mode used ("mumps-ldlt", ...) */
   double p_limit;  /* MPa: pressure limit point of the path (the largest pressure reached
                     * under volume control after the pressure-controlled step collapsed; with
                     * continuation off, the last converged pressure), NAN when none was met */
@@ -79,6 +82,9 @@ typedef struct csfBendOptions_ {
   const char* vtu_path;  /* deformed mesh at the last state (ParaView .vtu), NULL = none */
   const char* inp_path;  /* same model as a CalculiX/ABAQUS .inp deck, NULL = none */
   int threads;           /* OpenMP threads for assembly (0 = default) */
+  int krylov;            /* 1: Newton reuses the last factorisation as a GMRES preconditioner
+                          * (csfNewtonOptions.krylov); 0 (default): factor every iteration */
+  int fibre_split;       /* 1 (default): fibre elements split at element faces (csfModel.fib_split) */
   csfBendProgress progress; /* called after each converged step (NULL = none) */
   void* progress_user;
   csfBendInfo* info;     /* optional summary output */

@@ -86,6 +86,10 @@ int main(int argc, char** argv) {
       o.fibre_geo_tension = 1;
     } else if (!strcmp(argv[i], "--ls-energy")) {
       o.line_search = CSF_LS_ENERGY;
+    } else if (!strcmp(argv[i], "--krylov")) {
+      o.krylov = 1;
+    } else if (!strcmp(argv[i], "--no-split")) {
+      o.fibre_split = 0;
     } else if (!strcmp(argv[i], "--trace")) {
       o.newton_monitor = newtonMonitor;
     }
@@ -102,6 +106,9 @@ int main(int argc, char** argv) {
          "solves %.2f (+ rest); %d steps, %ld Newton iterations, %d cutbacks; factor nnz %.3g\n",
          info.t_total, info.t_mesh, info.t_setup, info.t_assemble, info.t_factor, info.t_solve,
          info.n_steps, info.n_newton, info.n_cutbacks, info.factor_nnz);
+  printf("linear solves: %s, %ld factorisations, %ld GMRES solves (%ld iterations, %.1f per "
+         "solve)\n", info.solver, info.n_factor, info.n_krylov, info.n_krylov_iter,
+         info.n_krylov ? (double)info.n_krylov_iter / (double)info.n_krylov : 0.0);
   printf("max |theta - 1| = %.3e; p_limit = %g MPa\n", info.max_j_dev, info.p_limit);
   if (info.n_volume_steps > 0) {
     printf("limit point: p_limit %.6g MPa at %.3f deg; %d volume-controlled steps; %s\n",
