@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include "core_math.h"
+
 enum { MAX_POINTS = 16 };
 
 typedef struct {
@@ -54,9 +56,8 @@ static void nearCallback(void* data, dGeomID o1, dGeomID o2) {
   }
   /* the n points of one geom pair act as parallel springs: each gets kp/n and kd/n so that
    * the pair's stiffness is kp whatever n the collider returns */
-  double kp = c->p->kp / n, kd = c->p->kd / n;
-  double erp = c->h * kp / (c->h * kp + kd);
-  double cfm = 1.0 / (c->h * kp + kd);
+  double kp = c->p->kp / n, kd = c->p->kd / n, erp = 1, cfm = 0;
+  csu_springErpCfm(c->h, kp, kd, &erp, &cfm); /* kp > 0, kd >= 0: csc_contactParamsValidate */
   for (int i = 0; i < n; i++) {
     dContact ct;
     ct.geom = cg[i];

@@ -2,7 +2,8 @@
  *
  * Owns: csReal (the one scalar type, equal to ODE's dReal and SUNDIALS' sunrealtype, asserted
  * where those headers are included), vec3 as csReal[3], quaternions as csReal[4] = (w, x, y, z),
- * row-major mat3 as csReal[9]. Functions allow aliasing of output and input unless noted. */
+ * row-major mat3 as csReal[9], rotation vectors, and the spring-damper -> ODE ERP/CFM mapping
+ * (csu_springErpCfm, pure math). Functions allow aliasing of output and input unless noted. */
 #ifndef CS_CORE_MATH_H
 #define CS_CORE_MATH_H
 
@@ -111,6 +112,136 @@ static inline void csu_quatToMat3(csReal R[9], const csReal q[4]) {
   R[6] = 2 * (x * z - w * y);
   R[7] = 2 * (y * z + w * x);
   R[8] = 1 - 2 * (x * x + y * y);
+}
+
+/* r = M^T a for row-major 3x3 M (r must not alias a) */
+static inline void csu_mulMatTVec3(csReal r[3], const csReal M[9], const csReal a[3]) {
+  r[0] = M[0] * a[0] + M[3] * a[1] + M[6] * a[2];
+  r[1] = M[1] * a[0] + M[4] * a[1] + M[7] * a[2];
+  r[2] = M[2] * a[0] + M[5] * a[1] + M[8] * a[2];
+}
+/* R = A^T (R must not alias A) */
+static inline void csu_transpose3(csReal R[9], const csReal A[9]) {
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      R[3 * i + j] = A[3 * j + i];
+    }
+  }
+}
+/* rotation vector φ (rad, axis times angle) of a rotation matrix R, angle in [0, π]: the
+ * inverse of csu_rotVecToMat3. Below π/2 the axis comes from the skew part (well conditioned
+ * there, exact as the angle -> 0), above it from the symmetric part (R + R^T)/2 - cos θ I =
+ * (1 - cos θ) u u^T, whose conditioning does not degrade towards π; the angle is
+ * atan2(|skew|, cos θ) in both. */
+static inline void csu_mat3ToRotVec(csReal phi[3], const csReal R[9]) {
+  csReal s[3] = {0.5 * (R[7] - R[5]), 0.5 * (R[2] - R[6]), 0.5 * (R[3] - R[1])};
+  csReal sn = csu_norm3(s), c = 0.5 * (R[0] + R[4] + R[8] - 1);
+  csReal th = atan2(sn, c);
+  if (c > 0) {
+    /* th/sin(th) in [1, π/2): well conditioned, -> 1 as th -> 0 */
+    csReal f = sn > 0 ? th / sn : 1.0;
+    csu_scale3(phi, s, f);
+    return;
+  }
+  int k = (R[0] >= R[4] && R[0] >= R[8]) ? 0 : (R[4] >= R[8] ? 1 : 2);
+  csReal oc = 1 - c; /* >= 1 here */
+  csReal u[3];
+  u[k] = sqrt(fmax(0.0, (R[4 * k] - c) / oc));
+  for (int i = 0; i < 3; i++) {
+    if (i != k) {
+      u[i] = 0.5 * (R[3 * i + k] + R[3 * k + i]) / (oc * u[k]);
+    }
+  }
+  csu_normalize3(u);
+  if (csu_dot3(u, s) < 0) {
+    csu_scale3(u, u, -1.0);
+  }
+  csu_scale3(phi, u, th);
+}
+
+/* rotation matrix exp([φ]x) of a rotation vector φ (rad); the identity for φ = 0 */
+static inline void csu_rotVecToMat3(csReal R[9], const csReal phi[3]) {
+  csReal th = csu_norm3(phi);
+  if (!(th > 0)) {
+    csu_eye3(R);
+    return;
+  }
+  csReal u[3];
+  csu_scale3(u, phi, 1.0 / th);
+  csu_axisAngleToMat3(R, u, th);
+}
+
+/* Eigen decomposition of a symmetric 3x3 matrix A (row-major; only its symmetric part is
+ * used): A = V diag(w) V^T with the eigenvectors as the columns of V (orthonormal), by cyclic
+ * Jacobi rotations (Golub & Van Loan 8.5), converged to round-off in <= 10 sweeps for any 3x3.
+ * Eigenvalues are not sorted. */
+static inline void csu_symEigen3(const csReal A[9], csReal w[3], csReal V[9]) {
+  csReal a[9];
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      a[3 * i + j] = 0.5 * (A[3 * i + j] + A[3 * j + i]);
+    }
+  }
+  csu_eye3(V);
+  for (int sweep = 0; sweep < 50; sweep++) {
+    csReal off = a[1] * a[1] + a[2] * a[2] + a[5] * a[5];
+    csReal diag = a[0] * a[0] + a[4] * a[4] + a[8] * a[8];
+    if (!(off > 1e-36 * diag)) {
+      break; /* off-diagonal below round-off of the diagonal (or exactly zero) */
+    }
+    for (int p = 0; p < 2; p++) {
+      for (int q = p + 1; q < 3; q++) {
+        csReal apq = a[3 * p + q];
+        if (apq == 0) {
+          continue;
+        }
+        /* the rotation that zeroes a_pq: tan(2θ) = 2 a_pq / (a_qq - a_pp), smaller root */
+        csReal tau = (a[3 * q + q] - a[3 * p + p]) / (2 * apq);
+        csReal t = (tau >= 0 ? 1.0 : -1.0) / (fabs(tau) + sqrt(1 + tau * tau));
+        csReal c = 1 / sqrt(1 + t * t), sn = t * c;
+        for (int k = 0; k < 3; k++) {
+          /* a <- J^T a J with J the (p, q) rotation, columns then rows */
+          csReal akp = a[3 * k + p], akq = a[3 * k + q];
+          a[3 * k + p] = c * akp - sn * akq;
+          a[3 * k + q] = sn * akp + c * akq;
+        }
+        for (int k = 0; k < 3; k++) {
+          csReal apk = a[3 * p + k], aqk = a[3 * q + k];
+          a[3 * p + k] = c * apk - sn * aqk;
+          a[3 * q + k] = sn * apk + c * aqk;
+        }
+        for (int k = 0; k < 3; k++) {
+          csReal vkp = V[3 * k + p], vkq = V[3 * k + q];
+          V[3 * k + p] = c * vkp - sn * vkq;
+          V[3 * k + q] = sn * vkp + c * vkq;
+        }
+      }
+    }
+  }
+  w[0] = a[0];
+  w[1] = a[4];
+  w[2] = a[8];
+}
+
+/* The implicit spring-damper of ODE's soft constraints (ODE manual, "Soft constraint and
+ * constraint force mixing"): a row with error-reduction ERP and constraint-force mixing CFM at
+ * step h acts as a spring kp with damper kd integrated implicitly when
+ *   ERP = h kp / (h kp + kd),  CFM = 1 / (h kp + kd).
+ * Units: h s, kp N/mm (or N mm/rad), kd N s/mm (N mm s/rad); CFM in ODE's (mm/s)/N. kd = 0 is
+ * a pure spring (ERP = 1), kp = 0 a pure damper (ERP = 0). Returns 0, or -1 (outputs untouched)
+ * unless h > 0, kp >= 0, kd >= 0, h kp + kd > 0 and all are finite. Pure math, no ODE: the one
+ * place contact_ode.c, robot_prb.c and the coupling hooks get the mapping from. */
+static inline int csu_springErpCfm(csReal h, csReal kp, csReal kd, csReal* erp, csReal* cfm) {
+  if (!(h > 0 && kp >= 0 && kd >= 0 && isfinite(h) && isfinite(kp) && isfinite(kd))) {
+    return -1;
+  }
+  csReal hk = h * kp;
+  if (!(hk + kd > 0)) {
+    return -1;
+  }
+  *erp = hk / (hk + kd);
+  *cfm = 1.0 / (hk + kd);
+  return 0;
 }
 
 #ifdef __cplusplus

@@ -22,7 +22,8 @@ extern "C" {
   X(CS_ERR_MEMORY, -5, "out of memory")                     \
   X(CS_ERR_DIVERGED, -6, "simulation diverged")             \
   X(CS_ERR_SOLVER, -7, "solver failure")                    \
-  X(CS_ERR_EXTERNAL, -8, "external program or library failed")
+  X(CS_ERR_EXTERNAL, -8, "external program or library failed")           \
+  X(CS_ERR_REJECTED, -9, "step rejected (recoverable: a smaller step may pass)")
 
 typedef enum csStatus_ {
 #define CS_STATUS_ENUM(name, value, msg) name = value,

@@ -1,4 +1,5 @@
-/* sim_driver.c: model/data life cycle and the step pipeline (see sim_model.h).
+/* sim_driver.c: model/data life cycle and read-outs (see sim_model.h); the stages are in
+ * sim_step.c, the state in sim_state.c, the co-simulation interface in sim_coupling.c.
  *
  * Rationale. ODE owns the rigid support, the leg links and the terrain; the chamber pressures
  * are the continuous state handed to SUNDIALS. Their dynamics here are the simplest physical
@@ -13,38 +14,23 @@
 #include <cvode/cvode.h>
 #include <cvode/cvode_diag.h>
 #include <math.h>
-#include <nvector/nvector_serial.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sundials/sundials_context.h>
 
 #include "core_math.h"
-#include "gaits_labels.h"
-#include "sim_model.h"
+#include "sim_internal.h"
+
+/* SUNDIALS 7 takes a SUNComm (SUN_COMM_NULL) where 6.x takes a void* communicator
+ * (debian-deps.md P4): the one place that differs */
+#if SUNDIALS_VERSION_MAJOR >= 7
+#define CS_SUN_COMM_NULL SUN_COMM_NULL
+#else
+#define CS_SUN_COMM_NULL NULL
+#endif
 
 _Static_assert(sizeof(dReal) == sizeof(double), "crawlsim needs ODE built in double precision");
 _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
-
-struct csData_ {
-  dWorldID world;
-  dSpaceID terrain_space;
-  dSpaceID robot_space;
-  dJointGroupID contacts;
-  csrRobot* robot;
-  double t;
-  long nstep;
-  double p_cmd[CSR_NCHAMBER_TOTAL]; /* scheduled pressures at t (MPa) */
-  double p[CSR_NCHAMBER_TOTAL];     /* chamber pressures at t (MPa) */
-  double x0[3];                     /* support centre at t = 0 (mm) */
-  cscContactStats cstats;
-  /* CVODE */
-  SUNContext sun;
-  void* cvode;
-  N_Vector y;
-  const csModel* m; /* for the right-hand side */
-};
-
 
 csOptions cs_defaultOptions(void) {
   csOptions o;
@@ -52,11 +38,16 @@ csOptions cs_defaultOptions(void) {
    * pressure ramps. The track is not converged in h: stick-slip and touch-down events make
    * it sensitive (README, "Step study": 0.5 ms moves the 9 s end point by ~15 %) */
   o.h = 1e-3;
+  /* one ODE step per exchange: in-world legs (prb) need no other; a co-simulated level picks
+   * its macro step from the coupling study (issue 9) */
+  o.macro_steps = 1;
+  o.coupling = CS_COUPLING_STAGGERED;
   o.t_end = 0;
   o.output_dt = 0.01;
   /* long enough for the 100 Hz leg modes to die out under 5 ms material damping */
   o.settle = 0.3;
   o.gravity = 9810.0;
+  o.legs_weightless = 0; /* conditions `earth` (REFERENCE.md "Scene conditions") */
   /* PGS iterations: loads pass from the feet to the support through chains of 13 links,
    * which a Gauss-Seidel sweep propagates one link per iteration. Measured on the crouch gait
    * at 1 m/s^2 (9 s end point): 60 -> 286 mm, 120 -> 334, 240 -> 301, 500 -> 304 mm; 240 is
@@ -80,8 +71,15 @@ void cs_modelInit(csModel* m) {
   m->sched = csg_defaultScheduleOptions();
   m->contact = csc_defaultContactParams();
   csr_robotDefaultModel(&m->robot, NULL);
-  snprintf(m->leg_level, sizeof m->leg_level, "%s", m->robot.leg_type->name);
 }
+
+
+const char* cs_modelLegLevel(const csModel* m) {
+  return m->robot.leg_type ? m->robot.leg_type->name : "none";
+}
+
+
+double cs_modelMacroStep(const csModel* m) { return m->opt.macro_steps * m->opt.h; }
 
 
 csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
@@ -143,8 +141,7 @@ void cs_modelDestroy(csModel* m) {
 }
 
 
-/* scheduled pressures at time t (zero before t = 0) */
-static void schedule(const csModel* m, double t, double* p_cmd) {
+void cs_schedule(const csModel* m, double t, double* p_cmd) {
   if (t < 0 || !m->gait) {
     memset(p_cmd, 0, CSR_NCHAMBER_TOTAL * sizeof(double));
     return;
@@ -157,7 +154,7 @@ static void schedule(const csModel* m, double t, double* p_cmd) {
 static int pneumaticRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   csData* d = user;
   double pc[CSR_NCHAMBER_TOTAL];
-  schedule(d->m, t, pc);
+  cs_schedule(d->m, t, pc);
   const double* p = N_VGetArrayPointer(y);
   double* dp = N_VGetArrayPointer(ydot);
   double inv_tau = 1.0 / d->m->opt.pneumatic_tau;
@@ -175,11 +172,21 @@ static csStatus validateOptions(const csOptions* o, csError* err) {
   if (!(o->h > 0 && o->h <= 0.01)) {
     return cs_errorSet(err, CS_ERR_RANGE, "step h = %g s must be in (0, 0.01]", o->h);
   }
-  if (!(o->output_dt >= o->h) || !isfinite(o->output_dt)) {
-    return cs_errorSet(err, CS_ERR_RANGE, "output interval %g s must be >= the step %g s",
-                       o->output_dt, o->h);
+  if (o->macro_steps < 1 || o->macro_steps > 100000) {
+    return cs_errorSet(err, CS_ERR_RANGE, "macro step of %d ODE steps must be 1..100000",
+                       o->macro_steps);
   }
-  if (!(o->settle >= 0 && o->gravity >= 0 && o->solver_iterations >= 1 &&
+  if (o->coupling != CS_COUPLING_STAGGERED && o->coupling != CS_COUPLING_STABILISED) {
+    return cs_errorSet(err, CS_ERR_RANGE, "unknown coupling scheme %d", (int)o->coupling);
+  }
+  double H = o->macro_steps * o->h;
+  if (!(o->output_dt >= H) || !isfinite(o->output_dt)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "output interval %g s must be >= the macro step %g s",
+                       o->output_dt, H);
+  }
+  if (!(o->settle >= 0 && o->gravity >= 0 && (o->legs_weightless == 0 ||
+                                               o->legs_weightless == 1) &&
+        o->solver_iterations >= 1 &&
         o->pneumatic_tau >= 0 && o->centerline_points >= 2 && o->max_speed > 0)) {
     return cs_errorSet(err, CS_ERR_RANGE, "invalid simulation options");
   }
@@ -198,11 +205,11 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
     return NULL;
   }
   d->m = m;
-  /* QuickStep shuffles its constraint rows with ODE's one process-wide generator; reseeding it
-   * per run makes a run's result independent of what ran before in the same process (the
-   * determinism test). Runs in one process are therefore sequential, as ODE requires anyway
-   * for collision (debian-deps.md P3). */
-  dRandSetSeed(0);
+  /* QuickStep shuffles its constraint rows with ODE's one process-wide generator; each data
+   * keeps its own seed, starting at 0, and puts it in for its steps only (cs_step), so a run's
+   * result is independent of what else ran in the same process (the determinism test).
+   * Stepping stays on one thread at a time, as ODE requires for collision (debian-deps.md P3). */
+  d->rng_seed = 0;
   d->world = dWorldCreate();
   dWorldSetGravity(d->world, 0, -m->opt.gravity, 0);
   dWorldSetQuickStepNumIterations(d->world, m->opt.solver_iterations);
@@ -216,16 +223,31 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
   double ground = cst_terrainHeightAt(&m->terrain, m->terrain.start[0], m->terrain.start[1]);
   double c[3] = {m->terrain.start[0], ground + csr_actuatorLength(&m->robot.leg) + 0.5,
                  m->terrain.start[1]};
-  d->robot = csr_robotCreate(&m->robot, d->world, d->robot_space, c, m->opt.h, err);
+  csrRobotEnv env = {d->world, d->robot_space, m->opt.h, {0, -m->opt.gravity, 0},
+                     m->opt.legs_weightless, &m->terrain, &m->contact};
+  d->robot = csr_robotCreate(&m->robot, &env, c, err);
   if (!d->robot) {
     cs_dataDestroy(d);
     return NULL;
   }
   d->t = -m->opt.settle;
+  d->cosim.active = !m->robot.leg_type->in_world;
+  if (cs_couplingCreate(m, d, err) != CS_OK) {
+    cs_dataDestroy(d);
+    return NULL;
+  }
+  /* the state buffer of step rollback: allocated once (no allocation in the step loop) */
+  d->nstate = cs_stateSize(m, d);
+  d->save = malloc((size_t)d->nstate * sizeof(double));
+  if (!d->save) {
+    cs_errorSet(err, CS_ERR_MEMORY, "out of memory");
+    cs_dataDestroy(d);
+    return NULL;
+  }
 
   /* pneumatics */
   if (m->opt.pneumatic_tau > 0) {
-    if (SUNContext_Create(NULL, &d->sun) != 0) {
+    if (SUNContext_Create(CS_SUN_COMM_NULL, &d->sun) != 0) {
       cs_errorSet(err, CS_ERR_SOLVER, "SUNDIALS: cannot create a context");
       cs_dataDestroy(d);
       return NULL;
@@ -261,8 +283,9 @@ void cs_dataDestroy(csData* d) {
     SUNContext_Free(&d->sun);
   }
   if (d->robot) {
-    csr_robotDestroy(&d->m->robot, d->robot);
+    csr_robotDestroy(d->robot);
   }
+  free(d->save);
   if (d->contacts) {
     dJointGroupDestroy(d->contacts);
   }
@@ -276,114 +299,6 @@ void cs_dataDestroy(csData* d) {
     dWorldDestroy(d->world);
   }
   free(d);
-}
-
-
-/* stage 2: advance the chamber pressures to t_next */
-static csStatus stepPneumatics(const csModel* m, csData* d, double t_next, csError* err) {
-  if (m->opt.pneumatic_tau <= 0) {
-    schedule(m, t_next, d->p);
-    return CS_OK;
-  }
-  sunrealtype tret;
-  CVodeSetStopTime(d->cvode, t_next);
-  int rc = CVode(d->cvode, t_next, d->y, &tret, CV_NORMAL);
-  if (rc < 0) {
-    return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: CVODE failed on the chamber pressures "
-                       "(flag %d)", d->t, rc);
-  }
-  memcpy(d->p, N_VGetArrayPointer(d->y), sizeof d->p);
-  return CS_OK;
-}
-
-
-/* stage 6: a non-finite or runaway support means the run diverged */
-static csStatus checkState(const csModel* m, const csData* d, csError* err) {
-  const dReal* x = dBodyGetPosition(d->robot->support);
-  const dReal* v = dBodyGetLinearVel(d->robot->support);
-  for (int i = 0; i < 3; i++) {
-    if (!isfinite(x[i]) || !isfinite(v[i])) {
-      return cs_errorSet(err, CS_ERR_DIVERGED,
-                         "t = %.4f s: simulation diverged: support state is not finite", d->t);
-    }
-  }
-  /* below every terrain box: the robot left the terrain (fell off an edge) */
-  double floor_y = INFINITY;
-  for (int i = 0; i < m->terrain.nbox; i++) {
-    floor_y = fmin(floor_y, m->terrain.box[i].lo[1]);
-  }
-  if (x[1] < floor_y) {
-    return cs_errorSet(err, CS_ERR_DIVERGED,
-                       "t = %.4f s: the support fell off the terrain (y = %.1f mm, below the "
-                       "lowest terrain surface %.1f mm)",
-                       d->t, x[1], floor_y);
-  }
-  double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (speed > m->opt.max_speed) {
-    return cs_errorSet(err, CS_ERR_DIVERGED,
-                       "t = %.4f s: simulation diverged: support speed %.3g mm/s exceeds %.3g "
-                       "(try a smaller step)",
-                       d->t, speed, m->opt.max_speed);
-  }
-  return CS_OK;
-}
-
-
-csStatus cs_step(const csModel* m, csData* d, csError* err) {
-  double t_next = d->t + m->opt.h;
-  /* stage 1 (inside 2's right-hand side) and 2: pressures at the end of the step drive the
-   * leg targets over it (the joints are implicit, so targets are end-of-step values) */
-  schedule(m, t_next, d->p_cmd);
-  csStatus st = stepPneumatics(m, d, t_next, err);
-  if (st != CS_OK) {
-    return st;
-  }
-  /* stage 3: actuation */
-  int rc = csr_robotActuate(&m->robot, d->robot, d->p);
-  if (rc == CSR_MAP_OUT_OF_RANGE) {
-    int worst = 0;
-    for (int i = 1; i < CSR_NCHAMBER_TOTAL; i++) {
-      worst = d->p[i] > d->p[worst] ? i : worst;
-    }
-    char label[16] = "";
-    csg_labelName(worst + 1, label, sizeof label);
-    return cs_errorSet(err, CS_ERR_RANGE, "t = %.4f s: chamber %s at %.4f MPa is above the "
-                       "calibrated range (up to %g MPa) of %s", d->t, label, d->p[worst],
-                       m->robot.map.p_max, m->robot.map.name);
-  }
-  if (rc != 0) {
-    return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: leg actuation failed (code %d)", d->t,
-                       rc);
-  }
-  /* stage 4: contacts */
-  csc_collide(&m->contact, d->world, d->terrain_space, d->robot_space, d->contacts, m->opt.h,
-              &d->cstats);
-  /* stage 5: rigid step */
-  dWorldQuickStep(d->world, m->opt.h);
-  dJointGroupEmpty(d->contacts);
-  d->t = t_next;
-  d->nstep++;
-  /* stage 6 */
-  return checkState(m, d, err);
-}
-
-
-csStatus cs_settle(const csModel* m, csData* d, csError* err) {
-  long n = lround(m->opt.settle / m->opt.h);
-  for (long i = 0; i < n; i++) {
-    csStatus st = cs_step(m, d, err);
-    if (st != CS_OK) {
-      return st;
-    }
-  }
-  /* snap time to exactly 0 so output times are multiples of the step */
-  d->t = 0;
-  if (d->cvode) {
-    CVodeReInit(d->cvode, 0.0, d->y);
-  }
-  const dReal* x = dBodyGetPosition(d->robot->support);
-  csu_set3(d->x0, x[0], x[1], x[2]);
-  return CS_OK;
 }
 
 
@@ -407,13 +322,46 @@ void cs_supportOrientation(const csData* d, double q[4]) {
 const double* cs_pressures(const csData* d) { return d->p; }
 
 
+void cs_supportVelocity(const csData* d, double v[3]) {
+  const dReal* V = dBodyGetLinearVel(d->robot->support);
+  csu_set3(v, V[0], V[1], V[2]);
+}
+
+
 void cs_legCenterline(const csModel* m, const csData* d, int k, int npts, double* out) {
   m->robot.leg_type->centerline(d->robot->legs[k], npts, out);
 }
 
 
+void cs_legWrench(const csData* d, int k, csrWrench* w) { *w = d->cosim.w[k]; }
+
+
 void cs_robotCenterOfMass(const csModel* m, const csData* d, double com[3]) {
-  csr_robotCenterOfMass(&m->robot, d->robot, com);
+  (void)m;
+  csr_robotCenterOfMass(d->robot, com);
+}
+
+
+long cs_stepCount(const csData* d) { return d->nstep; }
+
+
+long cs_rejectCount(const csData* d) { return d->nreject; }
+
+
+const csuTimer* cs_timers(const csData* d) { return d->timer; }
+
+
+const char* cs_timerName(csTimerId id) {
+  switch (id) {
+#define CS_TIMER_CASE(tid, name, what) \
+  case tid:                            \
+    return name;
+    CS_TIMER_LIST(CS_TIMER_CASE)
+#undef CS_TIMER_CASE
+    case CS_NTIMER:
+      break;
+  }
+  return "unknown";
 }
 
 

@@ -1,27 +1,42 @@
 /* sim_model.h: the co-simulation driver: model (constant during a run) and data (everything a
- * run changes), and the step loop that advances data with a model (MuJoCo's mjModel/mjData).
+ * run changes), the staged step that advances data with a model (MuJoCo's mjModel/mjData),
+ * the whole simulation state as a flat array, and the run with HDF5 output.
  *
- * Owns: csOptions (step, end time, output rate, gravity, solver and pneumatic settings, with
- * units and defaults), csModel (options + terrain + gait + robot model + contact law), csData
- * (the ODE world with the support and legs, chamber pressures and their CVODE integrator, time,
- * statistics), and the pipeline:
- *   stage 1 schedule   p_cmd(t) from the gait (gaits_schedule.h), times --pressure-scale
- *   stage 2 pneumatics chamber pressures p follow p_cmd through a first-order lag
- *                      dp/dt = (p_cmd - p)/tau, integrated by CVODE (BDF, diagonal solver)
- *   stage 3 actuation  p -> calibrated segment bends -> leg joint targets (robot_leg.h)
- *   stage 4 contact    robot-terrain contacts, Coulomb friction (contact_ode.h)
- *   stage 5 rigid      ODE steps support and legs by h
- *   stage 6 check      non-finite or runaway state -> CS_ERR_DIVERGED naming the time
+ * Owns: csOptions (steps, end time, output rate, gravity, solver, pneumatic and coupling
+ * settings, with units and defaults), csModel (options + terrain + gait + robot model + contact
+ * law), csData (opaque: the ODE world with the support and any in-world legs, the chamber
+ * pressures and their CVODE integrator, time, stage timers, statistics), and the pipeline.
+ *
+ * One step (cs_step) is a macro step H = macro_steps * h, a fixed sequence of named stages,
+ * each timed into the data's timers (Box2D's solver stages, MuJoCo's mjData timers):
+ *   schedule   p_cmd(t + H) from the gait (gaits_schedule.h), times --pressure-scale
+ *   pneumatics chamber pressures p follow p_cmd through a first-order lag
+ *              dp/dt = (p_cmd - p)/tau, integrated by CVODE (BDF, diagonal solver) to t + H
+ *   legs       every leg's actuate(t, p(t), t + H, p(t + H)) (robot_leg.h); co-simulated legs
+ *              then advance across [t, t + H] given the hip's motion and hand back their base
+ *              wrench (and, for the stabilised scheme, their interface gains); in-world legs
+ *              (prb) do nothing more here
+ *   support    macro_steps ODE steps of h: the legs' wrenches applied to the support body (with
+ *              the stabilised scheme also their gains as an implicit spring-damper), contacts of
+ *              the support and the in-world legs with the terrain (contact_ode.h), QuickStep
+ *   check      non-finite or runaway state, or the support below the terrain -> CS_ERR_DIVERGED
  * The support is never driven: it moves only through the legs' contact forces.
  *
- * Ownership: csModel owns its gait (csg_gaitDestroy at cs_modelDestroy); csData owns the ODE
- * world and CVODE memory. cs_dataCreate allocates everything; cs_step allocates nothing. */
+ * A failed step changes nothing: the whole state (cs_stateGet) is saved before the stages run
+ * and restored when one fails, as MuJoCo's mj_RungeKutta saves and restores; cs_step then
+ * returns the stage's status (CS_ERR_REJECTED when the failure was recoverable, e.g. a leg
+ * integrator's > 0 return: a caller may retry with a smaller step).
+ *
+ * Ownership: csModel owns its gait and calibration (freed by cs_modelDestroy); csData owns the
+ * ODE world, the robot and the CVODE memory. cs_dataCreate allocates everything; cs_step and
+ * the state functions allocate nothing. */
 #ifndef CS_CORE_SIM_MODEL_H
 #define CS_CORE_SIM_MODEL_H
 
 #include <ode/ode.h>
 
 #include "contact_ode.h"
+#include "core_clock.h"
 #include "core_status.h"
 #include "gaits_csv.h"
 #include "gaits_schedule.h"
@@ -33,12 +48,30 @@
 extern "C" {
 #endif
 
+/* How co-simulated legs (csrLegType.in_world = 0) are coupled to the support. In-world legs
+ * are coupled inside ODE and ignore this. */
+typedef enum csCoupling_ {
+  /* staggered (Jacobi): the legs advance across the macro step with the hip motion predicted
+   * from the support's twist at its start; their averaged wrench is applied to the support,
+   * constant over the step */
+  CS_COUPLING_STAGGERED = 0,
+  /* stabilised: as staggered, plus each leg's interface stiffness/damping (interfaceGains) as
+   * an implicit spring-damper on the support about the predicted motion: ODE sees how the
+   * wrench would change if the support left the prediction (sim_coupling.c) */
+  CS_COUPLING_STABILISED = 1
+} csCoupling;
+
 typedef struct csOptions_ {
-  double h;               /* fixed macro step (s) */
+  double h;               /* ODE's fixed step (s) */
+  int macro_steps;        /* ODE steps per macro step (>= 1): cs_step advances H = macro_steps h,
+                             co-simulated legs exchange with the support once per macro step */
+  csCoupling coupling;    /* co-simulated legs only (see csCoupling) */
   double t_end;           /* end time (s); <= 0: the gait's last row time + ramp */
-  double output_dt;       /* output sampling interval (s), a multiple of h after rounding */
+  double output_dt;       /* output sampling interval (s), a multiple of H after rounding */
   double settle;          /* s of unactuated settling under gravity before t = 0 */
-  double gravity;         /* mm/s^2 (9.81 m/s^2) */
+  double gravity;         /* mm/s^2 (9.81 m/s^2), along -y */
+  int legs_weightless;    /* 0: gravity acts on the legs (`earth`); 1: only on the support
+                             (`paper`: the legs keep mass and inertia) */
   int solver_iterations;  /* ODE QuickStep iterations per step */
   double pneumatic_tau;   /* s: chamber pressure lag; 0 = pressures follow p_cmd exactly */
   double pneumatic_rtol;  /* CVODE relative tolerance */
@@ -56,15 +89,14 @@ typedef struct csModel_ {
   cstTerrain terrain;
   csgGait* gait;              /* owned */
   csgScheduleOptions sched;   /* ramp length, pressure scale */
-  csrRobotModel robot;
+  csrRobotModel robot;        /* robot.leg_type is the leg level: the one place it is stored */
   cscContactParams contact;
   csrCalibration* calibration; /* owned; robot.map points into it */
   char scene[32];
   char gait_path[512];
-  char leg_level[16];
 } csModel;
 
-/* Fill a model with the defaults of every part (no files read, no map yet). */
+/* Fill a model with the defaults of every part (no files read, no map yet; prb legs). */
 void cs_modelInit(csModel* m);
 
 /* Load a scene's files into an initialised model: terrain description, gait table, and the
@@ -73,8 +105,14 @@ void cs_modelInit(csModel* m);
 csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
                       const char* gait_path, const char* calibration_path, csError* err);
 
+/* Name of the leg level that runs (m->robot.leg_type->name): what the output records. */
+const char* cs_modelLegLevel(const csModel* m);
+
 /* End time of a run: opt.t_end if > 0, else the gait's last row plus one ramp (s). */
 double cs_modelEndTime(const csModel* m);
+
+/* Macro step H = macro_steps * h (s). */
+double cs_modelMacroStep(const csModel* m);
 
 /* Sway-buckling check of the stance (DESIGN "model no more than a scene needs", a designer's
  * first question): P_cr = π² E I / L² is the critical axial load of one leg clamped at the hip
@@ -86,40 +124,90 @@ void cs_modelStanceCheck(const csModel* m, double mass_total, double* load_per_l
 /* Free what the model owns (gait, calibration). NULL-safe. */
 void cs_modelDestroy(csModel* m);
 
-typedef struct csData_ csData; /* opaque: ODE world, CVODE memory, state */
+typedef struct csData_ csData; /* opaque: ODE world, robot, CVODE memory, state, timers */
 
 /* Build the world for a model: terrain geoms, the robot standing on the terrain at the
- * terrain's start, the pneumatic integrator. Returns NULL with err on failure. */
+ * terrain's start, the pneumatic integrator, the coupling rows. Returns NULL with err. */
 csData* cs_dataCreate(const csModel* m, csError* err);
 void cs_dataDestroy(csData* d);
 
 /* Settle the robot under gravity with all chambers vented for opt.settle seconds (time runs
- * from -settle to 0), then record the support's reference position. */
+ * from -settle to 0), then record the support's reference position and zero the timers. */
 csStatus cs_settle(const csModel* m, csData* d, csError* err);
 
-/* Advance by one macro step h. On failure returns the status with err naming the time. */
+/* Advance by one macro step H (the stages above). On failure returns the status with err
+ * naming the time and the cause, and the state is as before the call. */
 csStatus cs_step(const csModel* m, csData* d, csError* err);
 
-/* Read-outs (valid until the next cs_step). */
+/* ---- the whole simulation state (STYLE.md 5) -----------------------------------------------
+ * A flat array of doubles: time t (s); the data's random seed (QuickStep reorders its rows with
+ * ODE's one process-wide generator; each data keeps its own place in it, so the seed is part of
+ * what its next step does); the 96 chamber
+ * pressures p (MPa, the CVODE state); then the robot (csr_robotStateGet: the support body and
+ * every leg's own state, co-simulated legs' contact/friction history included). ODE's contact
+ * joints are rebuilt every step and carry no history. Not in it: the reference position x0 of
+ * cs_supportDisplacement (set once by cs_settle) and the timers and statistics.
+ * cs_stateSet restarts the pneumatic integrator from the restored pressures (CVodeReInit): a
+ * step after cs_stateSet is bit-identical to any other step after cs_stateSet of the same state;
+ * CVODE's step-size history is not state, so it may differ at the level of CVODE's tolerance
+ * from a step that continued without the restore. */
+int cs_stateSize(const csModel* m, const csData* d);
+void cs_stateGet(const csModel* m, const csData* d, double* x);
+/* Returns CS_OK, or CS_ERR_ARG (state unchanged) if x is not a state of this data. */
+csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err);
+
+/* ---- timers: one per stage plus the parts worth seeing (wall seconds and call counts) ------ */
+#define CS_TIMER_LIST(X)                                                            \
+  X(CS_TIMER_SCHEDULE, "schedule", "stage: scheduled pressures p_cmd(t + H)")       \
+  X(CS_TIMER_PNEUMATICS, "pneumatics", "stage: chamber pressures by CVODE")         \
+  X(CS_TIMER_LEGS, "legs", "stage: actuation and co-simulated legs' advance")       \
+  X(CS_TIMER_SUPPORT, "support", "stage: ODE steps of the support (contact incl.)") \
+  X(CS_TIMER_CONTACT, "contact", "part of support: collision and contact joints")   \
+  X(CS_TIMER_CHECK, "check", "stage: divergence and fall checks")                   \
+  X(CS_TIMER_SAVE, "save", "the state saved before each step (and restores)")       \
+  X(CS_TIMER_OUTPUT, "output", "cs_run: samples written to the output file")        \
+  X(CS_TIMER_STEP, "step", "whole cs_step calls")
+
+typedef enum csTimerId_ {
+#define CS_TIMER_ENUM(id, name, what) id,
+  CS_TIMER_LIST(CS_TIMER_ENUM)
+#undef CS_TIMER_ENUM
+  CS_NTIMER
+} csTimerId;
+
+/* Name of a timer ("legs"), static string. */
+const char* cs_timerName(csTimerId id);
+/* The data's timers (CS_NTIMER entries), accumulated since cs_settle finished. */
+const csuTimer* cs_timers(const csData* d);
+
+/* ---- read-outs (valid until the next cs_step) ---------------------------------------------- */
 double cs_time(const csData* d);
+/* steps taken and steps rejected (failed and restored) since cs_dataCreate */
+long cs_stepCount(const csData* d);
+long cs_rejectCount(const csData* d);
 /* support centre displacement from its position at t = 0, world frame, mm */
 void cs_supportDisplacement(const csData* d, double pos[3]);
 /* support orientation quaternion (w, x, y, z) */
 void cs_supportOrientation(const csData* d, double q[4]);
+/* support centre velocity, world, mm/s */
+void cs_supportVelocity(const csData* d, double v[3]);
 /* actual chamber pressures (96, MPa) */
 const double* cs_pressures(const csData* d);
 /* centreline of leg k (0..7) at `npts` points, (npts x 3) world mm */
 void cs_legCenterline(const csModel* m, const csData* d, int k, int npts, double* out);
+/* the last macro step's base wrench of co-simulated leg k (zero for in-world legs) */
+void cs_legWrench(const csData* d, int k, csrWrench* w);
 /* centre of mass of the robot, world frame, mm */
 void cs_robotCenterOfMass(const csModel* m, const csData* d, double com[3]);
-/* number of contact points in the last step */
+/* number of contact points in the last ODE step */
 int cs_contactCount(const csData* d);
 /* total mass of the robot (t) */
 double cs_robotMass(const csData* d);
 
 /* Run from t = 0 to opt.t_end, sampling into an HDF5 file per DESIGN.md's output contract.
  * Writes as it goes and flushes every simulated second, so a run that stops on an error
- * leaves a readable file with the samples so far. `wall_s` gets the wall time of the loop. */
+ * leaves a readable file with the samples so far; the timers go in as attributes at the end.
+ * `wall_s` gets the wall time of the loop. */
 csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_s,
                 csError* err);
 

@@ -2,30 +2,24 @@
  *
  * Layout: /time [N] s; /support/position [N,3] mm; /support/orientation [N,4] (w,x,y,z);
  * /pressure [N,96] MPa; /legs/<A..H>/centerline [N,K,3] mm; root attributes scene, leg_model,
- * gait_file, units, version, terrain, friction, pressure_scale, step_s, support_mass_kg, and at
- * the end wall_time_s, real_time_factor, status. Samples are appended as the run goes and the
- * file is flushed every simulated second. */
-#define _POSIX_C_SOURCE 200809L /* clock_gettime under -std=c17 */
+ * gait_file, units, version, terrain, friction, pressure_scale, step_s, macro_step_s,
+ * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
+ * rejected_steps and per timer (sim_model.h CS_TIMER_LIST) timer_<name>_s and
+ * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
+ * simulated second. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
+#include "core_clock.h"
 #include "core_h5.h"
-#include "sim_model.h"
+#include "sim_internal.h"
 
 enum { MAX_CENTERLINE = 201 };
 
 typedef struct {
   int time, pos, quat, pres, legs[CSR_NLEG];
 } Series;
-
-
-static double wallNow(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 
 static csStatus writeSample(const csModel* m, const csData* d, csH5File* f, const Series* s,
@@ -63,7 +57,7 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   }
   csStatus st = CS_OK;
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "scene", m->scene, err);
-  if (st == CS_OK) st = cs_h5AttrString(f, "/", "leg_model", m->leg_level, err);
+  if (st == CS_OK) st = cs_h5AttrString(f, "/", "leg_model", cs_modelLegLevel(m), err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "gait_file", m->gait_path, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "terrain_file", m->terrain.source, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "calibration", m->robot.map.name, err);
@@ -78,6 +72,15 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "pressure_scale", m->sched.pressure_scale, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "ramp_s", m->sched.ramp, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "step_s", m->opt.h, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "macro_step_s", cs_modelMacroStep(m), err);
+  if (st == CS_OK) {
+    st = cs_h5AttrString(f, "/", "coupling",
+                         m->robot.leg_type->in_world ? "in-world (ODE joints)"
+                         : m->opt.coupling == CS_COUPLING_STABILISED ? "stabilised"
+                                                                     : "staggered",
+                         err);
+  }
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "legs_weightless", m->opt.legs_weightless, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "pneumatic_tau_s", m->opt.pneumatic_tau, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "support_mass_kg", m->robot.support_mass * 1e3,
                                         err);
@@ -98,33 +101,43 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
   Series s;
   double buf[3 * MAX_CENTERLINE];
   csStatus st = writeHeader(m, f, &s, err);
-  long out_every = lround(m->opt.output_dt / m->opt.h);
+  double H = cs_modelMacroStep(m);
+  long out_every = lround(m->opt.output_dt / H);
   if (out_every < 1) {
     out_every = 1;
   }
-  long nsteps = lround(t_end / m->opt.h);
-  long per_second = lround(1.0 / m->opt.h);
-  double w0 = wallNow();
+  long nsteps = lround(t_end / H);
+  long per_second = lround(1.0 / H);
+  if (per_second < 1) {
+    per_second = 1;
+  }
+  double w0 = csu_wallSeconds();
   if (st == CS_OK) {
+    double wo = csu_wallSeconds();
     st = writeSample(m, d, f, &s, buf, err);
+    csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
   }
   for (long i = 1; i <= nsteps && st == CS_OK; i++) {
     st = cs_step(m, d, err);
     if (st == CS_OK && i % out_every == 0) {
+      double wo = csu_wallSeconds();
       st = writeSample(m, d, f, &s, buf, err);
+      csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
     }
     if (i % per_second == 0) {
+      double wo = csu_wallSeconds();
       cs_h5Flush(f);
+      csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
       if (m->opt.progress) {
         double x[3];
         cs_supportDisplacement(d, x);
-        double w = wallNow() - w0;
+        double w = csu_wallSeconds() - w0;
         fprintf(stderr, "  t = %5.2f s  x = %7.2f  y = %6.2f  z = %6.2f mm  (%.1f s wall)\n",
                 cs_time(d), x[0], x[1], x[2], w);
       }
     }
   }
-  double wall = wallNow() - w0;
+  double wall = csu_wallSeconds() - w0;
   if (wall_s) {
     *wall_s = wall;
   }
@@ -132,6 +145,15 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
   cs_h5AttrDouble(f, "/", "wall_time_s", wall, NULL);
   cs_h5AttrDouble(f, "/", "real_time_factor", wall > 0 ? cs_time(d) / wall : 0, NULL);
   cs_h5AttrString(f, "/", "status", st == CS_OK ? "ok" : (err ? err->msg : "failed"), NULL);
+  cs_h5AttrDouble(f, "/", "steps", (double)cs_stepCount(d), NULL);
+  cs_h5AttrDouble(f, "/", "rejected_steps", (double)cs_rejectCount(d), NULL);
+  for (int k = 0; k < CS_NTIMER; k++) {
+    char name[64];
+    snprintf(name, sizeof name, "timer_%s_s", cs_timerName((csTimerId)k));
+    cs_h5AttrDouble(f, "/", name, d->timer[k].wall, NULL);
+    snprintf(name, sizeof name, "timer_%s_calls", cs_timerName((csTimerId)k));
+    cs_h5AttrDouble(f, "/", name, (double)d->timer[k].count, NULL);
+  }
   cs_h5Close(f);
   return st;
 }

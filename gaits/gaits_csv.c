@@ -1,11 +1,13 @@
 /* gaits_csv.c: gait table, CSV reader/writer, validation (see gaits_csv.h).
  *
- * The reader pulls the file through a fixed chunk buffer into one line buffer of
- * max_line_bytes + 2, so a huge line or a binary file is refused before anything grows; rows
- * grow by doubling up to max_rows. Lines are split in place at ',' and parsed left to right,
- * so the first error in reading order is the one reported. fgets was rejected because it
- * cannot tell an embedded NUL byte from the end of a line. */
+ * Lines come from the shared line reader (core_text.h: one buffer of max_line_bytes + 2, so a
+ * huge line or a binary file is refused before anything grows; LF/CRLF, a byte-order mark,
+ * NUL bytes and stray CRs handled there); rows grow by doubling up to max_rows. Lines are split
+ * in place at ',' and parsed left to right, so the first error in reading order is the one
+ * reported. */
 #include "gaits_csv.h"
+
+#include "core_text.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -17,8 +19,6 @@
 
 /* rows allocated by the first growth step of a table being read (then doubled) */
 #define INITIAL_ROW_CAP 16
-/* bytes pulled from the file per fread */
-#define CHUNK_BYTES 8192
 /* smallest line limit accepted in csgReadOptions (the header of one named column is 14 B) */
 #define MIN_LINE_BYTES 64
 /* longest field or column text quoted in a message (bytes) */
@@ -29,21 +29,6 @@
 #define WRITE_DIGITS 6
 #define ROUNDTRIP_DIGITS 17
 
-/* buffered line reader over one open file */
-typedef struct {
-  FILE* f;
-  const char* path;
-  char chunk[CHUNK_BYTES];
-  size_t pos, len; /* unread bytes are chunk[pos..len) */
-  char* line;      /* (max_line + 2) current line, NUL-terminated, line ending removed */
-  size_t max_line; /* bytes */
-  size_t nline;    /* length of the current line (bytes) */
-  long lineno;     /* 1-based number of the current line */
-} lineReader;
-
-/* read the next line into r->line; 1 = got one, 0 = end of file, or a failure csStatus (< 0,
- * err filled) */
-static int readLine(lineReader* r, csError* err);
 /* strip leading and trailing spaces/tabs in place; returns the start */
 static char* trim(char* s);
 /* true if the line holds only spaces/tabs or starts (after them) with '#' */
@@ -286,63 +271,6 @@ csStatus csg_gaitValidate(const csgGait* g, const csgReadOptions* opt, csError* 
 
 /* ---- reading ---- */
 
-static int readLine(lineReader* r, csError* err) {
-  size_t n = 0;
-  int got = 0; /* any byte of this line, newline included */
-  r->lineno++;
-  for (;;) {
-    if (r->pos == r->len) {
-      r->len = fread(r->chunk, 1, sizeof r->chunk, r->f);
-      r->pos = 0;
-      if (r->len == 0) {
-        if (ferror(r->f)) {
-          return cs_errorSet(err, CS_ERR_IO, "%s:%ld: read error: %s", r->path, r->lineno,
-                             strerror(errno));
-        }
-        break; /* end of file: the last line may lack a newline */
-      }
-    }
-    char c = r->chunk[r->pos++];
-    got = 1;
-    if (c == '\n') {
-      break;
-    }
-    if (c == '\0') {
-      return cs_errorSet(
-          err, CS_ERR_PARSE,
-          "%s:%ld: byte %zu: NUL byte (binary file, or UTF-16 text? gaits are UTF-8/ASCII CSV)",
-          r->path, r->lineno, n + 1);
-    }
-    /* the limit excludes the line ending, so one CR may sit past it (buffer max_line + 2) */
-    if (n >= r->max_line && !(n == r->max_line && c == '\r')) {
-      return cs_errorSet(err, CS_ERR_RANGE,
-                         "%s:%ld: line longer than %zu bytes (the reader's max_line_bytes limit): "
-                         "not a gait CSV, or a runaway line",
-                         r->path, r->lineno, r->max_line);
-    }
-    r->line[n++] = c;
-  }
-  if (!got) {
-    return 0;
-  }
-  /* CRLF: drop the CR that ends the line; a CR inside it means classic-Mac line endings, which
-   * would otherwise make the whole file one line and put raw CRs into messages */
-  if (n > 0 && r->line[n - 1] == '\r') {
-    n--;
-  }
-  r->line[n] = '\0';
-  const char* cr = memchr(r->line, '\r', n);
-  if (cr) {
-    return cs_errorSet(
-        err, CS_ERR_PARSE,
-        "%s:%ld: byte %zu: carriage return inside a line (use LF or CRLF line endings)", r->path,
-        r->lineno, (size_t)(cr - r->line) + 1);
-  }
-  r->nline = n;
-  return 1;
-}
-
-
 static char* trim(char* s) {
   while (*s == ' ' || *s == '\t') {
     s++;
@@ -401,7 +329,7 @@ typedef struct {
 } headerInfo;
 
 /* parse the header line into h; CS_OK or a parse error naming line and column */
-static csStatus parseHeader(lineReader* r, headerInfo* h, csError* err) {
+static csStatus parseHeader(csuLineReader* r, headerInfo* h, csError* err) {
   memset(h, 0, sizeof *h);
   char* cursor = r->line;
   char* f;
@@ -464,7 +392,7 @@ static int parseNumber(char* field, double* out) {
 
 
 /* parse one data row into row `i` of g; CS_OK or an error naming line and column */
-static csStatus parseRow(lineReader* r, const headerInfo* h, csgGait* g, int i,
+static csStatus parseRow(csuLineReader* r, const headerInfo* h, csgGait* g, int i,
                          const csgReadOptions* opt, long prev_lineno, csError* err) {
   double* prow = &g->pressure[(size_t)CSG_NLABEL * i];
   memset(prow, 0, CSG_NLABEL * sizeof *prow);
@@ -527,20 +455,12 @@ static csStatus parseRow(lineReader* r, const headerInfo* h, csgGait* g, int i,
 
 
 /* the reading proper, on an open reader; fills g */
-static csStatus readTable(lineReader* r, csgGait* g, const csgReadOptions* opt, csError* err) {
+static csStatus readTable(csuLineReader* r, csgGait* g, const csgReadOptions* opt, csError* err) {
   /* header: the first line that is neither blank nor a comment */
   int got;
   int first = 1;
-  while ((got = readLine(r, err)) > 0) {
-    if (first) {
-      /* a UTF-8 byte-order mark (spreadsheet exports) is not part of the text */
-      static const char kBom[] = "\xEF\xBB\xBF";
-      if (!strncmp(r->line, kBom, 3)) {
-        memmove(r->line, r->line + 3, r->nline - 3 + 1);
-        r->nline -= 3;
-      }
-      first = 0;
-    }
+  while ((got = csu_lineNext(r, err)) > 0) {
+    first = 0;
     if (!isSkippable(r->line)) {
       break;
     }
@@ -550,7 +470,7 @@ static csStatus readTable(lineReader* r, csgGait* g, const csgReadOptions* opt, 
   }
   if (got == 0) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: %s: expected a header line 'time,<chamber>,...'",
-                       r->path, r->lineno,
+                       r->path, r->lineno > 0 ? r->lineno : 1,
                        first ? "empty file" : "no header (only blank or comment lines)");
   }
   headerInfo h;
@@ -562,7 +482,7 @@ static csStatus readTable(lineReader* r, csgGait* g, const csgReadOptions* opt, 
 
   /* data rows */
   long prev_lineno = 0;
-  while ((got = readLine(r, err)) > 0) {
+  while ((got = csu_lineNext(r, err)) > 0) {
     if (isSkippable(r->line)) {
       continue;
     }
@@ -603,28 +523,19 @@ csgGait* csg_gaitRead(const char* path, const csgReadOptions* opt, csError* err)
     return NULL;
   }
 
-  lineReader* r = calloc(1, sizeof *r);
   csgGait* g = calloc(1, sizeof *g);
-  char* line = malloc(o.max_line_bytes + 2); /* the line, a CR of a CRLF ending, the NUL */
-  if (!r || !g || !line) {
-    free(r);
-    free(g);
-    free(line);
+  if (!g) {
     cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
     return NULL;
   }
-  r->path = path;
-  r->line = line;
-  r->max_line = o.max_line_bytes;
-  r->f = fopen(path, "rb");
-  csStatus st;
-  if (!r->f) {
-    st = cs_errorSet(err, CS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-  } else {
+  /* the reader holds one line buffer of max_line_bytes + 2 and an 8 KiB chunk: on the heap */
+  csuLineReader* r = malloc(sizeof *r);
+  csStatus st = r ? csu_lineOpen(r, path, o.max_line_bytes, "gait CSV", err)
+                  : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+  if (st == CS_OK) {
     st = readTable(r, g, &o, err);
-    fclose(r->f);
   }
-  free(line);
+  csu_lineClose(r);
   free(r);
   if (st != CS_OK) {
     csg_gaitDestroy(g);

@@ -1,8 +1,6 @@
 /* robot_calibration.c: the provisional pressure -> bend map (see robot_calibration.h). */
 #include "robot_calibration.h"
 
-#include <ctype.h>
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +10,7 @@
 #include <hdf5_hl.h>
 
 #include "core_math.h"
+#include "core_text.h"
 #include "robot_analytic.h"
 
 struct csrProvisionalMap_ {
@@ -60,7 +59,7 @@ static int evalThunk(const void* ctx, int seg, const double p[4], double bend[2]
 enum { KEY_ACTUATOR, KEY_CHAMBERS, KEY_PRESSURE, KEY_ANGLE, NKEY };
 static const char* const kKeys[NKEY] = {"actuator", "chambers", "pressure_MPa",
                                         "total_angle_deg"};
-enum { MAX_LINE = 512 }; /* line buffer: at most MAX_LINE - 2 characters and the '\n' */
+enum { MAX_LINE = 1023 }; /* bytes per line, line ending excluded (as terrain files) */
 /* the reference pressure is a gait pressure: the same 1 MPa ceiling as gaits_csv's reader */
 #define MAX_PRESSURE_MPA 1.0
 /* the analytic model under-predicts the FE bend by a modest factor (3.08 for the shipped
@@ -70,78 +69,24 @@ enum { MAX_LINE = 512 }; /* line buffer: at most MAX_LINE - 2 characters and the
 #define MAX_SCALE 100.0
 
 
-/* parse a chamber list "1,2" (1..4, comma-separated, no repeats) into chambers[4] flags;
- * 0 = ok, else fills `why` */
-static int parseChambers(const char* s, int chambers[4], char* why, size_t why_size) {
-  const char* p = s;
-  memset(chambers, 0, 4 * sizeof *chambers);
-  for (;;) {
-    char* end;
-    long j = strtol(p, &end, 10);
-    if (end == p || !isdigit((unsigned char)*p) || (*end != ',' && *end != '\0')) {
-      snprintf(why, why_size, "chambers '%.40s': expected chamber numbers 1..4 separated by "
-               "commas", s);
-      return 1;
-    }
-    if (j < 1 || j > 4) {
-      snprintf(why, why_size, "chambers '%.40s': chamber %.*s is not in 1..4", s,
-               (int)(end - p > 12 ? 12 : end - p), p);
-      return 1;
-    }
-    if (chambers[j - 1]) {
-      snprintf(why, why_size, "chambers '%.40s': chamber %ld is repeated", s, j);
-      return 1;
-    }
-    chambers[j - 1] = 1;
-    if (!*end) {
-      return 0;
-    }
-    p = end + 1; /* past the comma */
-  }
-}
-
-
 csrProvisionalMap* csr_provisionalMapCreate(const char* path, const csrActuator* leg,
                                             csError* err) {
-  errno = 0;
-  FILE* fp = fopen(path, "r");
-  if (!fp) {
-    cs_errorSet(err, CS_ERR_IO, "%s: cannot open calibration file: %s", path, strerror(errno));
-    return NULL;
-  }
-  char line[MAX_LINE], actname[32] = "";
-  int lineno = 0, chambers[4] = {0, 0, 0, 0};
+  csuLineReader* r = malloc(sizeof *r); /* an 8 KiB chunk: not on the stack */
+  csStatus st = r ? csu_lineOpen(r, path, MAX_LINE, "calibration file", err)
+                  : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+  char actname[32] = "";
+  int lineno = 0, got = 0;
+  unsigned chambers = 0;
   int key_line[NKEY] = {0, 0, 0, 0}; /* line of each key, 0 = not given yet */
   double p_ref = NAN, angle_ref = NAN;
-  csStatus st = CS_OK;
-  while (st == CS_OK && fgets(line, sizeof line, fp)) {
-    lineno++;
-    size_t len = strlen(line);
-    if (len == sizeof line - 1 && line[len - 1] != '\n' && !feof(fp)) {
-      /* a line that does not fit: reading on would parse its tail as another line */
-      int c = getc(fp);
-      if (c != EOF) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: line longer than %d characters", path,
-                         lineno, MAX_LINE - 2);
-        break;
-      }
-    }
+  while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
+    lineno = (int)r->lineno;
+    char* line = r->line;
     char* hash = strchr(line, '#');
     if (hash) *hash = '\0';
     /* split into words: key, value, and anything after (an error) */
     char* word[3] = {NULL, NULL, NULL};
-    int nword = 0;
-    for (char* c = line; *c;) {
-      while (isspace((unsigned char)*c)) *c++ = '\0';
-      if (!*c) {
-        break;
-      }
-      if (nword < 3) {
-        word[nword] = c;
-      }
-      nword++;
-      while (*c && !isspace((unsigned char)*c)) c++;
-    }
+    int nword = csu_splitWords(line, word, 3);
     if (nword == 0) {
       continue; /* blank or comment */
     }
@@ -174,9 +119,9 @@ csrProvisionalMap* csr_provisionalMapCreate(const char* path, const csrActuator*
         snprintf(actname, sizeof actname, "%s", val);
       }
     } else if (key == KEY_CHAMBERS) {
-      char why[160];
-      if (parseChambers(val, chambers, why, sizeof why)) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: %s", path, lineno, why);
+      csError cerr;
+      if (csu_chamberListParse(val, CSR_NCHAMBER, "chambers", &chambers, &cerr) != CS_OK) {
+        st = cs_errorSet(err, cerr.status, "%s:%d: %s", path, lineno, cerr.msg);
       }
     } else {
       char* end;
@@ -194,10 +139,13 @@ csrProvisionalMap* csr_provisionalMapCreate(const char* path, const csrActuator*
       }
     }
   }
-  if (st == CS_OK && ferror(fp)) {
-    st = cs_errorSet(err, CS_ERR_IO, "%s:%d: read error: %s", path, lineno + 1, strerror(errno));
+  if (st == CS_OK && got < 0) {
+    st = (csStatus)got;
   }
-  fclose(fp);
+  if (r) {
+    csu_lineClose(r);
+    free(r);
+  }
   if (st != CS_OK) {
     return NULL;
   }
@@ -225,7 +173,7 @@ csrProvisionalMap* csr_provisionalMapCreate(const char* path, const csrActuator*
   }
   double p[4];
   for (int j = 0; j < 4; j++) {
-    p[j] = chambers[j] ? p_ref : 0;
+    p[j] = (chambers & (1u << j)) ? p_ref : 0;
   }
   double total = 0;
   for (int s = 0; s < CSR_NSEG; s++) {

@@ -1,21 +1,40 @@
-/* robot_leg.h: the one leg interface every dynamic leg level implements (prb now; rod and rom
- * later), and the pressure -> segment-bend map (the calibration) the levels share.
+/* robot_leg.h: the one leg interface every dynamic leg level implements (prb, rod, rom), and
+ * the pressure -> segment-bend map (the calibration) the levels share.
  *
  * Owns: csrBendMap (pressures of one segment's four chambers -> bend vector of that segment),
- * csrLegSpec (everything a leg needs to build itself in the ODE world), and csrLegType, a const
- * table of operations (STYLE.md 11; SUNDIALS/MuJoCo-plugin style). A leg's state lives in ODE
- * bodies (prb) or in its own arrays; the driver only calls the table.
+ * csrLegSpec (everything a leg needs to build itself), the exchange records of the support
+ * interface (csrBaseState in, csrWrench out), csrContactShape, and csrLegType: a const table of
+ * operations over a leg's own flat state (STYLE.md 11; SUNDIALS' SUNStepper, MuJoCo plugins).
+ * The driver (core/) only ever calls the table; a level is registered in one line of
+ * robot_robot.c (csr_legTypeFind).
  *
- * Frames: a leg's frame (e1, e2, e3) is given in world coordinates; e3 runs from the hip
- * (base of II1) to the foot along the undeformed leg; e1, e2 span the cross-section with the
- * chamber layout of REFERENCE.md (Ω1 = (+b,+b), Ω2 = (+b,-b), Ω3 = (-b,-b), Ω4 = (-b,+b)). */
+ * Two kinds of level (csrLegType.in_world):
+ *  - in_world = 1 (prb): the leg's bodies live in the ODE world, jointed to the support body;
+ *    ODE steps them together with the support and resolves their contacts. advance() is a
+ *    no-op returning a zero wrench; the leg's state is its ODE bodies' states.
+ *  - in_world = 0 (rod, rom): the leg is co-simulated with its own integrator. Each macro step
+ *    [t, t + H] the driver hands it the hip's motion at both ends (b0, b1), the leg integrates
+ *    itself across the step (its own contact with the terrain included) and returns the base
+ *    wrench it exerts on the support; ODE then steps the support with that wrench applied.
+ *
+ * Frames and units: world frame of REFERENCE.md (x crawl direction, y up, z lateral); mm, s,
+ * MPa, N, N mm, t. A leg's frame (e1, e2, e3): e3 runs from the hip (base of II1) to the foot
+ * along the undeformed leg; e1, e2 span the cross-section with the chamber layout of
+ * REFERENCE.md (Ω1 = (+b,+b), Ω2 = (+b,-b), Ω3 = (-b,-b), Ω4 = (-b,+b)). Matrices are row-major
+ * 3x3 (9 doubles); a frame matrix holds e1, e2, e3 as its columns, in world coordinates.
+ *
+ * Ownership: the creator destroys (destroy is NULL-safe); a leg keeps pointers to spec->act's
+ * copy, spec->map, spec->terrain and spec->contact, which must outlive it. No operation
+ * except create allocates; none prints or exits. */
 #ifndef CS_ROBOT_LEG_H
 #define CS_ROBOT_LEG_H
 
 #include <ode/ode.h>
 
+#include "contact_ode.h"
 #include "core_status.h"
 #include "robot_actuator.h"
+#include "terrains_terrain.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -38,7 +57,8 @@ typedef struct csrBendMap_ {
 /* eval's return for a pressure above csrBendMap.p_max (fatal: the run must not extrapolate) */
 #define CSR_MAP_OUT_OF_RANGE (-2)
 
-/* Parameters of the dynamic leg levels (model side; defaults in robot_prb.c). */
+/* Parameters of the dynamic leg levels (model side; defaults in robot_prb.c). A level ignores
+ * the fields it has no use for. */
 typedef struct csrLegParams_ {
   int links_per_segment;  /* prb: rigid links per segment (joint length S/n) */
   double E_bend;          /* effective bending modulus of the silicone section (MPa) */
@@ -46,40 +66,137 @@ typedef struct csrLegParams_ {
   double contact_radius;  /* radius of the leg's collision capsules (mm) */
 } csrLegParams;
 
-/* Everything a leg needs to build itself. */
+/* Everything a leg needs to build itself. Pointers are borrowed (see Ownership above). */
 typedef struct csrLegSpec_ {
-  const csrActuator* act;
-  const csrLegParams* params;
-  const csrBendMap* map;
+  const csrActuator* act;        /* copied by the leg */
+  const csrLegParams* params;    /* copied by the leg */
+  const csrBendMap* map;         /* kept: pressures -> segment bends */
+  double hip[3];                 /* hip position at creation, world mm */
+  double frame[9];               /* leg frame at creation (columns e1, e2, e3), world */
+  double h;                      /* ODE's fixed step (s): in-world springs map to ERP/CFM with it;
+                                    a co-simulated leg's macro step H is a multiple of it */
+  double gravity[3];             /* the scene's gravitational acceleration, world mm/s^2 */
+  int weightless;                /* 0: gravity acts on the leg's mass (conditions `earth`, and
+                                    what a zeroed spec means); 1: it does not (`paper`: the
+                                    leg keeps its mass and inertia) */
+  /* in-world levels only (in_world = 1): the ODE objects the leg is built in */
   dWorldID world;
-  dSpaceID space;       /* robot space: the leg's collision geoms go here */
-  dBodyID support;      /* body the leg's base (hip) is clamped to */
-  double hip[3];        /* hip position, world, mm */
-  double frame[9];      /* columns e1, e2, e3 in world coordinates (row-major 3x3) */
-  double h;             /* fixed step (s): the joint springs are mapped to ERP/CFM with it */
-  double gravity;       /* mm/s^2, used only to report static sag */
+  dSpaceID space;                /* robot space: the leg's collision geoms go here */
+  dBodyID support;               /* body the leg's base (hip) is clamped to */
+  /* co-simulated levels only (in_world = 0): what their own contact needs */
+  const cstTerrain* terrain;     /* kept: the shapes a leg touches */
+  const cscContactParams* contact; /* kept: friction coefficient (and, later, the soft law) */
 } csrLegSpec;
+
+/* The hip's motion handed to a co-simulated leg at one end of a macro step (world frame). The
+ * hip is the base point of II1 on the support; it moves rigidly with the support. */
+typedef struct csrBaseState_ {
+  double x[3];  /* hip position, mm */
+  double R[9];  /* leg frame at the hip: columns e1, e2, e3 in world coordinates (row-major) */
+  double v[3];  /* velocity of the hip point, mm/s */
+  double w[3];  /* angular velocity of the support (= of the leg's base frame), rad/s */
+} csrBaseState;
+
+/* The base wrench a leg exerts on the support (world frame): force f at the hip point and the
+ * moment m about the hip point. advance() returns it AVERAGED over the macro step (the impulse
+ * the leg gives the support in [t, t + H] divided by H), so the support receives exactly the
+ * momentum the leg's base reaction carried: the interface conserves momentum for any H. */
+typedef struct csrWrench_ {
+  double f[3];  /* N */
+  double m[3];  /* N mm, about the hip point */
+} csrWrench;
+
+/* A convex collision shape of a leg in world coordinates, for co-simulated contact (libccd
+ * support functions are built from these in contact/). */
+typedef enum csrShapeKind_ { CSR_SHAPE_CAPSULE = 1, CSR_SHAPE_BOX = 2 } csrShapeKind;
+typedef struct csrContactShape_ {
+  csrShapeKind kind;
+  double a[3];      /* capsule: first end point of its axis; box: centre (mm) */
+  double b[3];      /* capsule: second end point of its axis (mm); box: unused */
+  double radius;    /* capsule radius (mm); box: 0 */
+  double R[9];      /* box: its axes as columns, world (row-major); capsule: unused */
+  double half[3];   /* box: half extents along its axes (mm); capsule: unused */
+  double s;         /* arc length of the shape's centre along the leg from the hip (mm) */
+} csrContactShape;
 
 typedef struct csrLeg_ csrLeg; /* opaque, per level */
 
+/* One leg level: a const table of operations over a leg's own flat state. Every pointer is
+ * non-NULL (a level with nothing to do implements the no-op). Return codes of the int
+ * operations: 0 ok, > 0 recoverable (the driver rejects the step: it restores the state saved
+ * before it and may retry with a smaller step), < 0 fatal (the run stops). */
 typedef struct csrLegType_ {
-  const char* name;
-  /* build the leg in spec->world; returns NULL and fills err on failure */
+  const char* name;  /* the level's name as the CLI and the output's leg_model attribute spell it */
+  int in_world;      /* 1: bodies in the ODE world (see top); 0: co-simulated, own integrator */
+
+  /* Build the leg hanging straight from spec->hip along spec->frame's e3, at rest, vented.
+   * Returns NULL and fills err on failure. */
   csrLeg* (*create)(const csrLegSpec* spec, csError* err);
+  /* Free the leg (NULL-safe). An in-world leg's ODE bodies and joints belong to the world and
+   * are destroyed with it; destroy frees only the leg's own memory. */
   void (*destroy)(csrLeg* leg);
-  /* set the actuation for the coming step from the 12 chamber pressures p[3][4] (MPa);
-   * 0 ok, > 0 recoverable, < 0 fatal */
-  int (*actuate)(csrLeg* leg, const double p[12]);
-  /* sample the centreline from hip to foot at k points (world, mm), out is (k x 3) */
+
+  /* Size (doubles) of the leg's whole state: everything a step changes, so that
+   * setState(getState()) followed by a step gives bit-identical results. For prb: its bodies'
+   * positions, quaternions, linear and angular velocities (13 each) and the joint targets it
+   * last set; for rod: its integrator's state vector plus contact/friction history (stick
+   * points). Constant for a leg's lifetime. */
+  int (*stateSize)(const csrLeg* leg);
+  /* Copy the state into x[stateSize] (no side effects). */
+  void (*getState)(const csrLeg* leg, double* x);
+  /* Restore a state written by getState of this leg (bit-exact: getState afterwards returns
+   * the same bytes). Returns 0, or < 0 (leg unchanged) if x is not a valid state (non-finite
+   * values). An integrator's step-size history is not state: the leg restarts its integrator
+   * from x (CVodeReInit) and documents what that costs. */
+  int (*setState)(csrLeg* leg, const double* x);
+  /* Back to the state right after create (straight, at rest, vented). */
+  void (*reset)(csrLeg* leg);
+
+  /* Set the actuation for the coming macro step from the 12 chamber pressures (MPa,
+   * segment-major: p[4 s + j] is segment II(s+1) chamber Ω(j+1)) at its start (t0, p0) and end
+   * (t1, p1); pressures are linear in between. prb sets its joint targets from p1 (implicit
+   * springs take end-of-step targets). May return CSR_MAP_OUT_OF_RANGE (fatal) when a pressure
+   * is above the calibrated range. Called once per macro step, before advance. */
+  int (*actuate)(csrLeg* leg, double t0, const double p0[12], double t1, const double p1[12]);
+  /* Advance the leg from t to t + H with the hip moving from b0 (at t) to b1 (at t + H); fill
+   * *w with the base wrench averaged over the step (csrWrench). Co-simulated levels only: an
+   * in-world level returns 0 and a zero wrench (ODE steps it). err may be NULL; on < 0 it names
+   * the time and cause. On > 0 or < 0 the leg's state is undefined: the driver restores it. */
+  int (*advance)(csrLeg* leg, double t, double H, const csrBaseState* b0,
+                 const csrBaseState* b1, csrWrench* w, csError* err);
+  /* Linearised response of the base wrench about the end of the last advance (world frame, at
+   * the hip): W ≈ W0 - K [u; φ] - C [u'; φ'], where u (mm) is a displacement of the hip point
+   * and φ (rad) a small rotation vector of the base frame, away from the motion b0 -> b1 the leg
+   * was given. K (6 x 6: N/mm, N/rad, N mm/mm, N mm/rad blocks) and C (the same over velocity,
+   * N s/mm ...) row-major, [f; m] rows by [u; φ] columns. The driver hands them to ODE as an
+   * implicit spring-damper on the support (the stabilised coupling scheme). In-world levels
+   * return zeros. */
+  void (*interfaceGains)(const csrLeg* leg, double K[36], double C[36]);
+
+  /* The leg's convex collision shapes now (world frame): writes at most `max` of them and
+   * returns how many the leg has (call with max = 0 to size the array). */
+  int (*contactShapes)(const csrLeg* leg, csrContactShape* shapes, int max);
+  /* Sample the centreline from hip to foot at k >= 2 points equally spaced in arc length
+   * (world, mm): out is (k x 3). */
   void (*centerline)(const csrLeg* leg, int k, double* out);
-  /* total mass of the leg (t) */
+  /* Total mass of the leg (t). */
   double (*mass)(const csrLeg* leg);
-  /* first mass moment: sum of m_i x_i over the leg's bodies (t mm, world) */
+  /* First mass moment: sum of m_i x_i over the leg's mass (t mm, world). */
   void (*massMoment)(const csrLeg* leg, double mx[3]);
 } csrLegType;
 
 /* The pseudo-rigid-body chain level (robot_prb.c). */
 extern const csrLegType csr_leg_prb;
+/* The Cosserat rod level (robot_rod*.c, issue 9 item 2): declared here so that registering it
+ * is one line in robot_robot.c's table of levels; not defined until that file lands. */
+extern const csrLegType csr_leg_rod;
+
+/* The registered level called `name` ("prb", ...), or NULL. Levels the design names but that
+ * are not registered yet ("rod", "rom") give NULL with *planned = 1 (planned may be NULL). */
+const csrLegType* csr_legTypeFind(const char* name, int* planned);
+/* The registered levels, cheapest first: how many, and the i-th (NULL outside 0..count-1). */
+int csr_legTypeCount(void);
+const csrLegType* csr_legTypeAt(int i);
 
 /* Second moment of area of the chambered section about a principal axis (mm^4). */
 double csr_legSectionI(const csrActuator* act);

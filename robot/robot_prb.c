@@ -16,7 +16,12 @@
  *
  * The base link (hip to the first joint) is clamped to the support with a fixed joint.
  * Elongation (axial stretch from diagonal chambers) is not represented at this level: the map's
- * stretch output is ignored and reported by the bend command only; the rod level carries it. */
+ * stretch output is ignored and reported by the bend command only; the rod level carries it.
+ *
+ * Behind robot_leg.h the chain is an in-world level: ODE steps its bodies with the support, so
+ * advance() is a no-op and its interface gains are zero. Its state is its bodies' states
+ * (robot_odebody.h, bit-exact) plus the joint targets it last set, which are kept as the
+ * pressures and bends of the map cache below: restoring them re-applies the same targets. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +29,7 @@
 #include "core_math.h"
 #include "robot_analytic.h"
 #include "robot_leg.h"
+#include "robot_odebody.h"
 
 /* sign between our bend angle and ODE's universal-joint angle (see actuatePrb) */
 #define CSR_PRB_ANGLE_SIGN -1.0
@@ -41,6 +47,8 @@ struct csrLeg_ {
   double* s_body;   /* (nbody + 1) arc-length bounds of the bodies, mm */
   double* s_mid;    /* (nbody) arc length of each body's centre, mm */
   double* k_hinge;  /* (nhinge) stiffness, N mm/rad */
+  double* len_body; /* (nbody) length of each body along the leg, mm */
+  double* state0;   /* (nbody x CSR_BODY_STATE) the bodies' states right after create */
   dBodyID* body;    /* (nbody) */
   dJointID* hinge;  /* (nhinge) universal joints */
   dJointID clamp;   /* fixed joint of body 0 to the support */
@@ -112,6 +120,8 @@ static void destroyPrb(csrLeg* leg) {
   free(leg->s_body);
   free(leg->s_mid);
   free(leg->k_hinge);
+  free(leg->len_body);
+  free(leg->state0);
   free(leg->body);
   free(leg->hinge);
   free(leg);
@@ -159,10 +169,12 @@ static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
   leg->s_body = calloc((size_t)leg->nbody + 1, sizeof(double));
   leg->s_mid = calloc((size_t)leg->nbody, sizeof(double));
   leg->k_hinge = calloc((size_t)leg->nhinge, sizeof(double));
+  leg->len_body = calloc((size_t)leg->nbody, sizeof(double));
+  leg->state0 = calloc((size_t)leg->nbody * CSR_BODY_STATE, sizeof(double));
   leg->body = calloc((size_t)leg->nbody, sizeof(dBodyID));
   leg->hinge = calloc((size_t)leg->nhinge, sizeof(dJointID));
-  if (!leg->s_hinge || !leg->s_body || !leg->s_mid || !leg->k_hinge || !leg->body ||
-      !leg->hinge) {
+  if (!leg->s_hinge || !leg->s_body || !leg->s_mid || !leg->k_hinge || !leg->len_body ||
+      !leg->state0 || !leg->body || !leg->hinge) {
     destroyPrb(leg);
     cs_errorSet(err, CS_ERR_MEMORY, "prb leg: out of memory");
     return NULL;
@@ -201,7 +213,13 @@ static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
     double mass = massBetween(spec->act, s0, s1);
     dMassSetBoxTotal(&m, mass, 2 * spec->act->a, 2 * spec->act->a, len);
     dBodySetMass(b, &m);
+    /* conditions `paper` (REFERENCE.md): the leg keeps its mass and inertia, gravity does not
+     * act on it */
+    if (spec->weightless) {
+      dBodySetGravityMode(b, 0);
+    }
     leg->total_mass += mass;
+    leg->len_body[i] = len;
     /* collision shape: capsules whose caps end at the link's ends (a sphere for short links);
      * the foot link is a box so the foot's flat square end face stands on the ground */
     dGeomID g;
@@ -214,6 +232,7 @@ static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
     }
     dGeomSetBody(g, b);
     leg->body[i] = b;
+    csr_bodyStateGet(b, leg->state0 + (size_t)CSR_BODY_STATE * i);
   }
 
   /* clamp the base link to the support */
@@ -230,9 +249,8 @@ static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
     dJointSetUniversalAnchor(j, a[0], a[1], a[2]);
     dJointSetUniversalAxis1(j, F[1], F[4], F[7]);
     dJointSetUniversalAxis2(j, F[0], F[3], F[6]);
-    double k = leg->k_hinge[i], kd = k * par->damping_time;
-    double erp = spec->h * k / (spec->h * k + kd);
-    double cfm = 1.0 / (spec->h * k + kd);
+    double k = leg->k_hinge[i], kd = k * par->damping_time, erp = 0, cfm = 0;
+    csu_springErpCfm(spec->h, k, kd, &erp, &cfm); /* k > 0, kd >= 0, h > 0: checked above */
     dJointSetUniversalParam(j, dParamStopERP, erp);
     dJointSetUniversalParam(j, dParamStopCFM, cfm);
     dJointSetUniversalParam(j, dParamStopERP2, erp);
@@ -259,31 +277,170 @@ static int samePressures(const double a[4], const double b[4]) {
 }
 
 
-static int actuatePrb(csrLeg* leg, const double p[12]) {
+/* set segment s's joint targets for the bend vector bend[2] (rad) */
+static void setSegmentTargets(csrLeg* leg, int s, const double bend[2]) {
+  /* rotation vector of a bend towards (β1 e1 + β2 e2) about the axis e3 x β̂:
+   * ω = β1 e2 - β2 e1. ODE's universal angles are measured with the sign convention below,
+   * fixed by the test "prb bend towards +e1 moves the foot to +e1". */
+  double a1 = CSR_PRB_ANGLE_SIGN * bend[0] / leg->n;
+  double a2 = -CSR_PRB_ANGLE_SIGN * bend[1] / leg->n;
+  for (int k = 0; k < leg->n; k++) {
+    dJointID j = leg->hinge[s * leg->n + k];
+    setTarget(j, 0, a1);
+    setTarget(j, 1, a2);
+  }
+}
+
+
+/* implicit joint springs take end-of-step targets: only p1 is used (robot_leg.h) */
+static int actuatePrb(csrLeg* leg, double t0, const double p0[12], double t1,
+                      const double p1[12]) {
+  (void)t0;
+  (void)p0;
+  (void)t1;
   for (int s = 0; s < CSR_NSEG; s++) {
     double bend[2] = {0, 0}, stretch = 1;
-    if (leg->have_last[s] && samePressures(leg->last_p[s], p + 4 * s)) {
+    if (leg->have_last[s] && samePressures(leg->last_p[s], p1 + 4 * s)) {
       continue; /* same pressures: the joint targets are already set */
     }
-    int rc = leg->map->eval(leg->map->ctx, s, p + 4 * s, bend, &stretch);
+    int rc = leg->map->eval(leg->map->ctx, s, p1 + 4 * s, bend, &stretch);
     if (rc != 0) {
       return rc;
     }
-    memcpy(leg->last_p[s], p + 4 * s, sizeof leg->last_p[s]);
+    memcpy(leg->last_p[s], p1 + 4 * s, sizeof leg->last_p[s]);
     memcpy(leg->last_bend[s], bend, sizeof bend);
     leg->have_last[s] = 1;
-    /* rotation vector of a bend towards (β1 e1 + β2 e2) about the axis e3 x β̂:
-     * ω = β1 e2 - β2 e1. ODE's universal angles are measured with the sign convention below,
-     * fixed by the test "prb bend towards +e1 moves the foot to +e1". */
-    double a1 = CSR_PRB_ANGLE_SIGN * bend[0] / leg->n;
-    double a2 = -CSR_PRB_ANGLE_SIGN * bend[1] / leg->n;
-    for (int k = 0; k < leg->n; k++) {
-      dJointID j = leg->hinge[s * leg->n + k];
-      setTarget(j, 0, a1);
-      setTarget(j, 1, a2);
-    }
+    setSegmentTargets(leg, s, bend);
   }
   return 0;
+}
+
+
+/* state layout: the bodies (nbody x CSR_BODY_STATE), then per segment the map cache that
+ * holds the joint targets: last_p[4], last_bend[2], have_last (0/1) */
+enum { SEG_STATE = 7 };
+
+
+static int stateSizePrb(const csrLeg* leg) {
+  return leg->nbody * CSR_BODY_STATE + CSR_NSEG * SEG_STATE;
+}
+
+
+static void getStatePrb(const csrLeg* leg, double* x) {
+  for (int i = 0; i < leg->nbody; i++) {
+    csr_bodyStateGet(leg->body[i], x + (size_t)CSR_BODY_STATE * i);
+  }
+  double* c = x + (size_t)CSR_BODY_STATE * leg->nbody;
+  for (int s = 0; s < CSR_NSEG; s++, c += SEG_STATE) {
+    memcpy(c, leg->last_p[s], 4 * sizeof(double));
+    memcpy(c + 4, leg->last_bend[s], 2 * sizeof(double));
+    c[6] = leg->have_last[s];
+  }
+}
+
+
+static int setStatePrb(csrLeg* leg, const double* x) {
+  /* validate everything first, so an invalid state leaves the leg unchanged */
+  int n = stateSizePrb(leg);
+  for (int i = 0; i < n; i++) {
+    if (!isfinite(x[i])) {
+      return -1;
+    }
+  }
+  const double* c = x + (size_t)CSR_BODY_STATE * leg->nbody;
+  for (int s = 0; s < CSR_NSEG; s++) {
+    if (c[SEG_STATE * s + 6] != 0 && c[SEG_STATE * s + 6] != 1) {
+      return -1;
+    }
+  }
+  for (int i = 0; i < leg->nbody; i++) {
+    const double* q = x + (size_t)CSR_BODY_STATE * i + 3;
+    if (!(fabs(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] - 1) <= 1e-6)) {
+      return -1; /* not a unit quaternion (csr_bodyStateSet's own test, done up front) */
+    }
+  }
+  for (int i = 0; i < leg->nbody; i++) {
+    csr_bodyStateSet(leg->body[i], x + (size_t)CSR_BODY_STATE * i);
+  }
+  for (int s = 0; s < CSR_NSEG; s++, c += SEG_STATE) {
+    memcpy(leg->last_p[s], c, 4 * sizeof(double));
+    memcpy(leg->last_bend[s], c + 4, 2 * sizeof(double));
+    leg->have_last[s] = c[6] != 0;
+    /* the targets the cache stands for (0 before the first actuation, as at create) */
+    double zero[2] = {0, 0};
+    setSegmentTargets(leg, s, leg->have_last[s] ? leg->last_bend[s] : zero);
+  }
+  return 0;
+}
+
+
+static void resetPrb(csrLeg* leg) {
+  for (int i = 0; i < leg->nbody; i++) {
+    csr_bodyStateSet(leg->body[i], leg->state0 + (size_t)CSR_BODY_STATE * i);
+  }
+  double zero[2] = {0, 0};
+  for (int s = 0; s < CSR_NSEG; s++) {
+    memset(leg->last_p[s], 0, sizeof leg->last_p[s]);
+    memset(leg->last_bend[s], 0, sizeof leg->last_bend[s]);
+    leg->have_last[s] = 0;
+    setSegmentTargets(leg, s, zero);
+  }
+}
+
+
+/* in-world: ODE steps the chain with the support; nothing to advance, no wrench to hand back */
+static int advancePrb(csrLeg* leg, double t, double H, const csrBaseState* b0,
+                      const csrBaseState* b1, csrWrench* w, csError* err) {
+  (void)leg;
+  (void)t;
+  (void)H;
+  (void)b0;
+  (void)b1;
+  (void)err;
+  memset(w, 0, sizeof *w);
+  return 0;
+}
+
+
+/* in-world: the chain's joints couple it to the support inside ODE; no interface gains */
+static void interfaceGainsPrb(const csrLeg* leg, double K[36], double C[36]) {
+  (void)leg;
+  memset(K, 0, 36 * sizeof(double));
+  memset(C, 0, 36 * sizeof(double));
+}
+
+
+/* the ODE geoms as world shapes: capsules along each link, the foot link a box */
+static int contactShapesPrb(const csrLeg* leg, csrContactShape* shapes, int max) {
+  for (int i = 0; i < leg->nbody && i < max; i++) {
+    csrContactShape* sh = &shapes[i];
+    memset(sh, 0, sizeof *sh);
+    const dReal* pos = dBodyGetPosition(leg->body[i]);
+    const dReal* R = dBodyGetRotation(leg->body[i]); /* 3x4 row-major */
+    double len = leg->len_body[i];
+    sh->s = leg->s_mid[i];
+    if (i == leg->nbody - 1) {
+      sh->kind = CSR_SHAPE_BOX;
+      csu_set3(sh->a, pos[0], pos[1], pos[2]);
+      for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++) {
+          sh->R[3 * r + c] = R[4 * r + c];
+        }
+      }
+      csu_set3(sh->half, leg->act.a, leg->act.a, 0.5 * len);
+    } else {
+      /* as in createPrb: the capsule's caps end at the link's ends */
+      double r = leg->par.contact_radius;
+      double half = 0.5 * fmax(len - 2 * r, 1e-3);
+      double ax[3] = {R[2], R[6], R[10]};
+      sh->kind = CSR_SHAPE_CAPSULE;
+      sh->radius = r;
+      double p[3] = {pos[0], pos[1], pos[2]};
+      csu_addScl3(sh->a, p, ax, -half);
+      csu_addScl3(sh->b, p, ax, half);
+    }
+  }
+  return leg->nbody;
 }
 
 
@@ -323,9 +480,17 @@ static void massMomentPrb(const csrLeg* leg, double mx[3]) {
 
 const csrLegType csr_leg_prb = {
     .name = "prb",
+    .in_world = 1,
     .create = createPrb,
     .destroy = destroyPrb,
+    .stateSize = stateSizePrb,
+    .getState = getStatePrb,
+    .setState = setStatePrb,
+    .reset = resetPrb,
     .actuate = actuatePrb,
+    .advance = advancePrb,
+    .interfaceGains = interfaceGainsPrb,
+    .contactShapes = contactShapesPrb,
     .centerline = centerlinePrb,
     .mass = massPrb,
     .massMoment = massMomentPrb,

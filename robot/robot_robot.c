@@ -1,4 +1,5 @@
-/* robot_robot.c: robot assembly (see robot_robot.h). */
+/* robot_robot.c: robot assembly, the robot's state, the support interface and the table of
+ * leg levels (see robot_robot.h). */
 #include "robot_robot.h"
 
 #include <math.h>
@@ -6,6 +7,43 @@
 #include <string.h>
 
 #include "core_math.h"
+
+/* The registered leg levels, cheapest first. Registering a level is one line here (its
+ * csrLegType is declared in robot_leg.h): e.g. `&csr_leg_rod,` once robot_rod.c lands. */
+static const csrLegType* const kLegLevels[] = {
+    &csr_leg_prb,
+};
+/* Levels DESIGN.md names ("Model levels"): known to the CLI, "not available yet" until they are
+ * in kLegLevels. */
+static const char* const kPlannedLevels[] = {"prb", "rod", "rom"};
+enum { NLEVEL = sizeof kLegLevels / sizeof kLegLevels[0] };
+
+
+const csrLegType* csr_legTypeFind(const char* name, int* planned) {
+  if (planned) {
+    *planned = 0;
+  }
+  if (!name) {
+    return NULL;
+  }
+  for (int i = 0; i < NLEVEL; i++) {
+    if (!strcmp(kLegLevels[i]->name, name)) {
+      return kLegLevels[i];
+    }
+  }
+  for (size_t i = 0; i < sizeof kPlannedLevels / sizeof kPlannedLevels[0]; i++) {
+    if (planned && !strcmp(kPlannedLevels[i], name)) {
+      *planned = 1;
+    }
+  }
+  return NULL;
+}
+
+
+int csr_legTypeCount(void) { return NLEVEL; }
+
+
+const csrLegType* csr_legTypeAt(int i) { return i >= 0 && i < NLEVEL ? kLegLevels[i] : NULL; }
 
 
 csStatus csr_robotDefaultModel(csrRobotModel* m, csError* err) {
@@ -37,8 +75,8 @@ void csr_robotHipOffset(const csrRobotModel* m, int k, double off[3]) {
 }
 
 
-csrRobot* csr_robotCreate(const csrRobotModel* m, dWorldID world, dSpaceID space,
-                          const double c[3], double h, csError* err) {
+csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env, const double c[3],
+                          csError* err) {
   if (!m->map.eval || !m->leg_type) {
     cs_errorSet(err, CS_ERR_ARG, "robot: no calibration map or leg level");
     return NULL;
@@ -53,75 +91,188 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, dWorldID world, dSpaceID space
     cs_errorSet(err, CS_ERR_MEMORY, "robot: out of memory");
     return NULL;
   }
-  r->support = dBodyCreate(world);
+  r->type = m->leg_type;
+  r->support = dBodyCreate(env->world);
   dBodySetPosition(r->support, c[0], c[1] + 0.5 * m->support_size[1], c[2]);
   dMass ms;
   dMassSetBoxTotal(&ms, m->support_mass, m->support_size[0], m->support_size[1],
                    m->support_size[2]);
   dBodySetMass(r->support, &ms);
-  r->support_geom = dCreateBox(space, m->support_size[0], m->support_size[1], m->support_size[2]);
+  r->support_geom = dCreateBox(env->space, m->support_size[0], m->support_size[1],
+                               m->support_size[2]);
   dGeomSetBody(r->support_geom, r->support);
   r->mass_total = m->support_mass;
 
-  /* leg frame: e1 = +x, e2 = +z, e3 = -y (hanging), right-handed: e1 x e2 = e3 */
+  /* leg frame: e1 = +x, e2 = +z, e3 = -y (hanging), right-handed: e1 x e2 = e3; the support
+   * starts unrotated, so support-frame and world coordinates agree at creation */
   csrLegSpec spec;
   memset(&spec, 0, sizeof spec);
   spec.act = &m->leg;
   spec.params = &m->leg_params;
   spec.map = &m->map;
-  spec.world = world;
-  spec.space = space;
+  spec.world = env->world;
+  spec.space = env->space;
   spec.support = r->support;
-  spec.h = h;
+  spec.h = env->h;
+  csu_copy3(spec.gravity, env->gravity);
+  spec.weightless = env->weightless_legs;
+  spec.terrain = env->terrain;
+  spec.contact = env->contact;
   const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
   memcpy(spec.frame, F, sizeof F);
+  memcpy(r->frame_local, F, sizeof F);
+  const dReal* P = dBodyGetPosition(r->support);
+  r->nstate = CSR_BODY_STATE;
   for (int k = 0; k < CSR_NLEG; k++) {
     double off[3];
     csr_robotHipOffset(m, k, off);
     csu_add3(spec.hip, c, off);
+    csu_set3(r->hip_local[k], spec.hip[0] - P[0], spec.hip[1] - P[1], spec.hip[2] - P[2]);
     r->legs[k] = m->leg_type->create(&spec, err);
     if (!r->legs[k]) {
-      csr_robotDestroy(m, r);
+      csr_robotDestroy(r);
       return NULL;
     }
     r->mass_total += m->leg_type->mass(r->legs[k]);
+    r->nstate += m->leg_type->stateSize(r->legs[k]);
+  }
+  r->scratch = malloc((size_t)r->nstate * sizeof(double));
+  if (!r->scratch) {
+    cs_errorSet(err, CS_ERR_MEMORY, "robot: out of memory");
+    csr_robotDestroy(r);
+    return NULL;
   }
   return r;
 }
 
 
-void csr_robotDestroy(const csrRobotModel* m, csrRobot* r) {
+void csr_robotDestroy(csrRobot* r) {
   if (!r) {
     return;
   }
   for (int k = 0; k < CSR_NLEG; k++) {
     if (r->legs[k]) {
-      m->leg_type->destroy(r->legs[k]);
+      r->type->destroy(r->legs[k]);
     }
   }
+  free(r->scratch);
   free(r);
 }
 
 
-void csr_robotCenterOfMass(const csrRobotModel* m, const csrRobot* r, double com[3]) {
+void csr_robotCenterOfMass(const csrRobot* r, double com[3]) {
+  dMass ms;
+  dBodyGetMass(r->support, &ms);
   const dReal* p = dBodyGetPosition(r->support);
-  double mx[3] = {m->support_mass * p[0], m->support_mass * p[1], m->support_mass * p[2]};
+  double mx[3] = {ms.mass * p[0], ms.mass * p[1], ms.mass * p[2]};
   for (int k = 0; k < CSR_NLEG; k++) {
     double leg_mx[3];
-    m->leg_type->massMoment(r->legs[k], leg_mx);
+    r->type->massMoment(r->legs[k], leg_mx);
     csu_add3(mx, mx, leg_mx);
   }
   csu_scale3(com, mx, 1.0 / r->mass_total);
 }
 
 
-int csr_robotActuate(const csrRobotModel* m, csrRobot* r, const double p[CSR_NCHAMBER_TOTAL]) {
+int csr_robotActuate(csrRobot* r, double t0, const double p0[CSR_NCHAMBER_TOTAL], double t1,
+                     const double p1[CSR_NCHAMBER_TOTAL]) {
   for (int k = 0; k < CSR_NLEG; k++) {
     /* label = 12 k + 4 (s - 1) + j: leg k's 12 chambers are contiguous */
-    int rc = m->leg_type->actuate(r->legs[k], p + 12 * k);
+    int rc = r->type->actuate(r->legs[k], t0, p0 + 12 * k, t1, p1 + 12 * k);
     if (rc != 0) {
       return rc;
     }
   }
   return 0;
+}
+
+
+int csr_robotStateSize(const csrRobot* r) { return r->nstate; }
+
+
+void csr_robotStateGet(const csrRobot* r, double* x) {
+  csr_bodyStateGet(r->support, x);
+  x += CSR_BODY_STATE;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    r->type->getState(r->legs[k], x);
+    x += r->type->stateSize(r->legs[k]);
+  }
+}
+
+
+/* set every part from x; returns 0 or the first part's refusal (parts before it are set) */
+static int setParts(csrRobot* r, const double* x) {
+  if (csr_bodyStateSet(r->support, x) != 0) {
+    return -1;
+  }
+  x += CSR_BODY_STATE;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    if (r->type->setState(r->legs[k], x) != 0) {
+      return -1;
+    }
+    x += r->type->stateSize(r->legs[k]);
+  }
+  return 0;
+}
+
+
+int csr_robotStateSet(csrRobot* r, const double* x) {
+  /* a part may refuse its slice (non-finite, a non-unit quaternion) after earlier parts took
+   * theirs: then the state before the call, saved in the preallocated scratch, goes back, which
+   * every part accepts since it wrote it */
+  csr_robotStateGet(r, r->scratch);
+  if (setParts(r, x) != 0) {
+    setParts(r, r->scratch);
+    return -1;
+  }
+  return 0;
+}
+
+
+void csr_robotBaseStateAt(const csrRobot* r, int k, const double P[3], const double R[9],
+                          const double v[3], const double w[3], csrBaseState* b) {
+  double off[3], wxr[3];
+  csu_mulMatVec3(off, R, r->hip_local[k]);
+  csu_add3(b->x, P, off);
+  csu_mulMat3(b->R, R, r->frame_local);
+  csu_cross3(wxr, w, off);
+  csu_add3(b->v, v, wxr);
+  csu_copy3(b->w, w);
+}
+
+
+void csr_robotSupportPose(const csrRobot* r, double P[3], double R[9], double v[3],
+                          double w[3]) {
+  const dReal* p = dBodyGetPosition(r->support);
+  const dReal* R4 = dBodyGetRotation(r->support); /* 3x4 row-major */
+  const dReal* V = dBodyGetLinearVel(r->support);
+  const dReal* W = dBodyGetAngularVel(r->support);
+  for (int i = 0; i < 3; i++) {
+    P[i] = p[i];
+    v[i] = V[i];
+    w[i] = W[i];
+    for (int j = 0; j < 3; j++) {
+      R[3 * i + j] = R4[4 * i + j];
+    }
+  }
+}
+
+
+void csr_robotBaseState(const csrRobot* r, int k, csrBaseState* b) {
+  double P[3], R[9], v[3], w[3];
+  csr_robotSupportPose(r, P, R, v, w);
+  csr_robotBaseStateAt(r, k, P, R, v, w, b);
+}
+
+
+void csr_robotApplyWrench(csrRobot* r, int k, const csrWrench* w) {
+  const dReal* P = dBodyGetPosition(r->support);
+  const dReal* R4 = dBodyGetRotation(r->support);
+  double hip[3];
+  for (int i = 0; i < 3; i++) {
+    hip[i] = P[i] + R4[4 * i] * r->hip_local[k][0] + R4[4 * i + 1] * r->hip_local[k][1] +
+             R4[4 * i + 2] * r->hip_local[k][2];
+  }
+  dBodyAddForceAtPos(r->support, w->f[0], w->f[1], w->f[2], hip[0], hip[1], hip[2]);
+  dBodyAddTorque(r->support, w->m[0], w->m[1], w->m[2]);
 }

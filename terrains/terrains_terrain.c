@@ -1,12 +1,14 @@
 /* terrains_terrain.c: terrain description files and their ODE geoms (see terrains_terrain.h).
  *
- * The parser reads one line at a time with its own reader (not fgets) so that an overlong line
- * or a NUL byte is reported at its line instead of being split into two statements or cut
- * short; each line is split into whitespace-separated words and every statement checks its
- * word count, so nothing after a statement's values is silently ignored. Numbers are parsed
+ * The parser reads one line at a time with the shared line reader (core_text.h, not fgets) so
+ * that an overlong line or a NUL byte is reported at its line instead of being split into two
+ * statements or cut short; each line is split into whitespace-separated words and every
+ * statement checks its word count, so nothing after a statement's values is silently ignored. Numbers are parsed
  * with strtod and then checked to be finite: strtod itself accepts "nan", "inf" and returns
  * HUGE_VAL for "1e999", none of which is a usable coordinate. */
 #include "terrains_terrain.h"
+
+#include "core_text.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -16,7 +18,7 @@
 #include <string.h>
 
 enum {
-  MAX_LINE = 1024, /* line buffer: at most MAX_LINE - 1 characters per line */
+  MAX_LINE = 1023, /* bytes per line, line ending excluded */
   MAX_WORDS = 8    /* words kept per line; more are counted, not stored */
 };
 
@@ -31,60 +33,12 @@ typedef struct {
   int nword; /* words on the line, may exceed MAX_WORDS */
 } Words;
 
-/* Read one line into buf (without its '\n'); returns 1 if a line was read, 0 at end of file.
- * *too_long is set when the line does not fit (the rest of it is not read), *nul when it
- * holds a NUL byte. */
-static int readLine(FILE* fp, char* buf, int size, int* too_long, int* nul);
-
-/* split `line` in place at whitespace */
-static void splitWords(char* line, Words* w);
-
 /* parse one finite number: 0 = ok, 1 = not a number, 2 = not finite */
 static int parseFinite(const char* s, double* v);
 
 /* parse w->word[1..n] as numbers of statement `key` (checking the count); fills err on failure */
 static csStatus parseValues(const Words* w, double* v, int n, const char* what,
                             const char* path, int lineno, csError* err);
-
-
-static int readLine(FILE* fp, char* buf, int size, int* too_long, int* nul) {
-  int n = 0, c = EOF;
-  *too_long = 0;
-  *nul = 0;
-  while ((c = getc(fp)) != EOF && c != '\n') {
-    if (n == size - 1) {
-      *too_long = 1;
-      break;
-    }
-    if (c == '\0') {
-      *nul = 1;
-      c = ' ';
-    }
-    buf[n++] = (char)c;
-  }
-  buf[n] = '\0';
-  return n > 0 || c == '\n' || *too_long;
-}
-
-
-static void splitWords(char* line, Words* w) {
-  w->nword = 0;
-  char* s = line;
-  for (;;) {
-    while (isspace((unsigned char)*s)) s++;
-    if (!*s) {
-      break;
-    }
-    if (w->nword < MAX_WORDS) {
-      w->word[w->nword] = s;
-    }
-    w->nword++;
-    while (*s && !isspace((unsigned char)*s)) s++;
-    if (*s) {
-      *s++ = '\0';
-    }
-  }
-}
 
 
 static int parseFinite(const char* s, double* v) {
@@ -128,32 +82,18 @@ static csStatus parseValues(const Words* w, double* v, int n, const char* what,
 csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
   memset(t, 0, sizeof *t);
   snprintf(t->source, sizeof t->source, "%s", path);
-  errno = 0;
-  FILE* fp = fopen(path, "r");
-  if (!fp) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot open terrain file: %s", path,
-                       strerror(errno));
-  }
-  char line[MAX_LINE];
-  int lineno = 0, too_long = 0, nul = 0;
+  csuLineReader* r = malloc(sizeof *r); /* an 8 KiB chunk: not on the stack */
+  csStatus st = r ? csu_lineOpen(r, path, MAX_LINE, "terrain file", err)
+                  : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+  int lineno = 0, got = 0;
   int start_line = 0, name_line = 0, heading_line = 0; /* where each was given, 0 = not yet */
-  csStatus st = CS_OK;
-  while (st == CS_OK && readLine(fp, line, sizeof line, &too_long, &nul)) {
-    lineno++;
-    if (too_long) {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: line longer than %d characters", path, lineno,
-                       MAX_LINE - 1);
-      break;
-    }
-    if (nul) {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: NUL byte in line (not a text file?)", path,
-                       lineno);
-      break;
-    }
+  while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
+    lineno = (int)r->lineno;
+    char* line = r->line;
     char* hash = strchr(line, '#');
     if (hash) *hash = '\0';
     Words w;
-    splitWords(line, &w);
+    w.nword = csu_splitWords(line, w.word, MAX_WORDS);
     if (w.nword == 0) {
       continue; /* blank or comment */
     }
@@ -234,10 +174,13 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
                        path, lineno, key);
     }
   }
-  if (st == CS_OK && ferror(fp)) {
-    st = cs_errorSet(err, CS_ERR_IO, "%s:%d: read error: %s", path, lineno + 1, strerror(errno));
+  if (st == CS_OK && got < 0) {
+    st = (csStatus)got;
   }
-  fclose(fp);
+  if (r) {
+    csu_lineClose(r);
+    free(r);
+  }
   if (st != CS_OK) {
     return st;
   }

@@ -38,11 +38,13 @@ typedef struct cstTerrain_ {
 
 /* Parse a terrain file. A file must have at least one box and a start inside a box; each of
  * name, start and heading may appear once; a name has at most 63 characters, a line at most
- * 1023; numbers must be finite, coordinates within +-1e6 mm and the heading within +-360 deg.
+ * 1023 bytes (LF or CRLF; lines come from core_text.h's reader); numbers must be finite,
+ * coordinates within +-1e6 mm and the heading within +-360 deg.
  * Errors: "<file>: cannot open terrain file: <reason>" (CS_ERR_IO), otherwise
- * "<file>:<line>: <cause>" with CS_ERR_PARSE (malformed) or CS_ERR_RANGE (a value out of range,
- * non-finite, too many boxes, start off every box); whole-file checks (no box, no start) name
- * the last line. On failure *t is left zeroed apart from what was read. */
+ * "<file>:<line>: <cause>" with CS_ERR_PARSE (malformed, NUL bytes) or CS_ERR_RANGE (a value
+ * out of range, non-finite, too many boxes, start off every box, a line too long); whole-file
+ * checks (no box, no start) name the last line. On failure *t is left zeroed apart from what
+ * was read. */
 csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err);
 
 /* Height (y, mm) of the highest box top containing the ground point (x, z); -INFINITY if none. */

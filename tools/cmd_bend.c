@@ -4,6 +4,15 @@
  *   crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]
  *                 [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]
  *                 [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]
+ *                 [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ] [--calibration FILE|analytic]
+ *
+ * --pressures gives unequal chamber pressures: chamber j of every segment is at R_j p (the
+ * ratios replace --chambers; analytic and rod). --tip-load is a dead force (N) on the tip face
+ * in the base frame e1, e2, e3 (rod). The rod (robot_rod.h) is solved statically at every row,
+ * continued from the previous one, gravity off like the other models; its actuation comes from
+ * --calibration: an FE table (default: the shipped robot/calibration_fe_leg.h5, refused for
+ * another actuator) or `analytic` (the analytic model's own bends, so that the unloaded rod
+ * reproduces it); --mesh-size is its element length in the segments (default 4 per segment).
  *
  * The listed chambers are inflated at the same pressure in all three segments; the sweep runs
  * p = 0, p-step, ... up to p-max (p-max itself is always the last row). --until-angle finds
@@ -16,16 +25,19 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
+#include "core_clock.h"
 #include "core_h5.h"
+#include "core_text.h"
 #include "cs_commands.h"
 #ifdef CS_HAVE_FEM
 #include "fem_bend.h"
 #endif
+#include "cs_paths.h"
 #include "robot_actuator.h"
 #include "robot_analytic.h"
 #include "robot_bend_io.h"
+#include "robot_calibration.h"
+#include "robot_rod.h"
 
 static const double kDefaultPMax = 0.4;     /* MPa, the paper's multi-segment sweep (Sec. 3.3) */
 static const double kDefaultPStep = 0.05;   /* MPa, the paper's increment */
@@ -42,7 +54,10 @@ static const char kUsage[] =
     "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
     "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
     "  r2 C10 C20 rho Ef nuf rhof rf. --until-angle DEG reports the pressure at which the total\n"
-    "  bending angle reaches DEG (searched up to max(p-max, 2 MPa)).\n";
+    "  bending angle reaches DEG (searched up to max(p-max, 2 MPa)).\n"
+    "  --pressures R1,R2,R3,R4: chamber j at R_j x p (unequal pressures; analytic, rod).\n"
+    "  --tip-load FX,FY,FZ: a tip force in N, base frame (rod). --calibration FILE|analytic:\n"
+    "  the rod's pressure -> bend map (default: the shipped FE table of the leg actuator).\n";
 
 typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_PRB, BEND_ROM, BEND_NMODEL } BendModel;
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
@@ -52,7 +67,7 @@ typedef struct {
   BendModel model;
   csrActuator act;
   int inflated[CSR_NCHAMBER]; /* 1 if chamber j+1 is inflated */
-  char chambers[16];          /* canonical list, e.g. "1,2" */
+  char chambers[64];          /* canonical list, e.g. "1,2", or "1:1,2:0.5" with --pressures */
   double p_max, p_step;       /* MPa */
   double until_angle;         /* deg, NAN when not requested */
   double mesh_size;           /* mm requested (NAN = model default); the model overwrites it
@@ -60,6 +75,12 @@ typedef struct {
   double n_elements_soft, n_elements_fibre; /* filled by mesh-based models */
   double p_limit, p_resume;   /* MPa, pressure limit point met and resume pressure (NAN: none) */
   const char* out;
+  double ratio[CSR_NCHAMBER]; /* chamber j at ratio[j] x p (1/0 from --chambers) */
+  int unequal;                /* --pressures gave ratios other than 0/1 */
+  double tip_load[3];         /* N, base frame (--tip-load) */
+  const char* calibration;    /* --calibration (rod), NULL = default */
+  struct RodBend_* rod;       /* the rod's model, data and calibration during a rod sweep */
+  double p_ceiling;           /* MPa: --until-angle searches up to max(p-max, this); NAN: 2 MPa */
 } BendRun;
 
 /* Evaluate the model at pressure p (MPa): per-segment angles (deg), tip in the base frame (mm). */
@@ -69,13 +90,21 @@ typedef csStatus (*BendPointFn)(BendRun* run, double p, double angle_deg[CSR_NSE
 /* the analytic model (robot_analytic.h): three segment equilibria and the FK */
 static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
                               csError* err);
+/* the Cosserat rod (robot_rod.h): a static equilibrium continued from the last one */
+static csStatus rodPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
+                         csError* err);
+/* build / free the rod of a sweep (run->rod) */
+static int rodSetup(BendRun* run);
+static void rodTeardown(BendRun* run);
+/* "a,b,c,d" -> n finite numbers; prints the error line naming the flag */
+static int parseNumbers(const char* flag, const char* text, int n, double* v);
 /* the one place that maps a model level to its evaluator; NULL = not available yet */
 static BendPointFn bendModelEvaluator(BendModel m);
 /* parse argv into run; returns 0, 1 on error (message printed), 2 after --help */
 static int parseArgs(int argc, char** argv, BendRun* run);
 /* strict number parser: whole string, finite, > 0; prints the error line naming the unit */
 static int parsePositive(const char* flag, const char* text, const char* unit, double* v);
-/* "1,2" -> inflated[], canonical text; prints the error line */
+/* "1,2" -> inflated[], canonical text (core_text.h's parser); prints the error line */
 static int parseChambers(const char* text, BendRun* run);
 /* Θ(p) for --until-angle */
 static csStatus totalAngle(BendRun* run, BendPointFn eval, double p, double* theta_deg,
@@ -83,8 +112,6 @@ static csStatus totalAngle(BendRun* run, BendPointFn eval, double p, double* the
 /* pressure at which Θ reaches run->until_angle; NAN when not reached up to the ceiling */
 static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurve* bc,
                                double* p_out, double* p_searched, csError* err);
-/* seconds on the C11 wall clock */
-static double wallSeconds(void);
 #ifdef CS_HAVE_FEM
 /* the full FE model (fem_bend.h): adaptive load stepping over the whole sweep; --until-angle is
  * found by the load stepping itself */
@@ -97,7 +124,7 @@ static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG]
   double P[CSR_NSEG * CSR_NCHAMBER]; /* (segment x chamber), row-major */
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
-      P[CSR_NCHAMBER * s + j] = run->inflated[j] ? p : 0.0;
+      P[CSR_NCHAMBER * s + j] = run->ratio[j] * p;
     }
   }
   csrSegmentStrain st[CSR_NSEG];
@@ -114,25 +141,145 @@ static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG]
 }
 
 
+/* the rod of a bend sweep: its calibration, model and data */
+typedef struct RodBend_ {
+  csrCalibration* cal; /* an FE table, or NULL with the analytic map */
+  csrBendMap map;
+  csrActuator act;     /* the analytic map's actuator */
+  csrRodModel* m;
+  csrRodData* d;
+} RodBend;
+
+
+/* the analytic model as the rod's calibration: bend θ towards φ, stretch λ0 */
+static int analyticBendMap(const void* ctx, int seg, const double p[4], double bend[2],
+                           double* stretch) {
+  const RodBend* rb = ctx;
+  csrSegmentStrain st;
+  if (csr_analyticSegment(&rb->act, seg, p, &st, NULL) != CS_OK) {
+    return -1;
+  }
+  bend[0] = st.theta * cos(st.phi);
+  bend[1] = st.theta * sin(st.phi);
+  *stretch = st.lambda0;
+  return 0;
+}
+
+
+static int rodSetup(BendRun* run) {
+  RodBend* rb = calloc(1, sizeof *rb);
+  if (!rb) {
+    fprintf(stderr, "crawlsim bend: out of memory\n");
+    return 1;
+  }
+  run->rod = rb;
+  rb->act = run->act;
+  csError err;
+  cs_errorClear(&err);
+  if (run->calibration && !strcmp(run->calibration, "analytic")) {
+    rb->map.eval = analyticBendMap;
+    rb->map.ctx = rb;
+    rb->map.name = "analytic";
+    rb->map.p_max = INFINITY;
+  } else {
+    char buf[1024];
+    const char* path =
+        run->calibration ? run->calibration
+                         : csx_dataPath(CSX_DEFAULT_CALIBRATION, buf, sizeof buf);
+    rb->cal = csr_calibrationOpen(path, &run->act, &err);
+    if (!rb->cal) {
+      fprintf(stderr, "crawlsim bend: %s%s\n", err.msg,
+              run->calibration ? "" : " (--calibration analytic works for any actuator)");
+      return 1;
+    }
+    rb->map = csr_calibrationMap(rb->cal);
+  }
+  /* the sweep must stay inside the calibrated pressures (they are not extrapolated) */
+  double rmax = 0;
+  for (int j = 0; j < CSR_NCHAMBER; j++) {
+    rmax = fmax(rmax, run->ratio[j]);
+  }
+  if (isfinite(rb->map.p_max)) {
+    if (run->p_max * rmax > rb->map.p_max * (1 + 1e-12)) {
+      fprintf(stderr, "crawlsim bend: --p-max %g MPa puts a chamber at %g MPa, above the "
+              "calibration's range (%g MPa, %s): lower --p-max or use --calibration analytic\n",
+              run->p_max, run->p_max * rmax, rb->map.p_max, rb->map.name);
+      return 1;
+    }
+    run->p_ceiling = rb->map.p_max / rmax;
+  }
+  /* elements: --mesh-size is the element length in the segments (and joints) */
+  csrRodParams par = csr_rodDefaultParams(&run->act);
+  if (!isnan(run->mesh_size)) {
+    double smax = fmax(run->act.S[0], fmax(run->act.S[1], run->act.S[2]));
+    double lmax = fmax(run->act.LS[0], run->act.LS[1]);
+    par.elements_per_segment = (int)ceil(smax / run->mesh_size - 1e-9);
+    par.elements_per_joint = (int)ceil(lmax / run->mesh_size - 1e-9);
+    if (par.elements_per_segment > 1000) {
+      fprintf(stderr, "crawlsim bend: --mesh-size %g mm gives more than 1000 rod elements per "
+              "segment\n", run->mesh_size);
+      return 1;
+    }
+  }
+  csrRodSpec sp;
+  memset(&sp, 0, sizeof sp);
+  sp.act = &run->act;
+  sp.params = &par;
+  sp.map = &rb->map;
+  csu_eye3(sp.frame); /* the base frame: the output's tip is in it */
+  sp.weightless = 1;  /* gravity off, as for the other models */
+  rb->m = csr_rodModelCreate(&sp, &err);
+  rb->d = rb->m ? csr_rodDataCreate(rb->m, &err) : NULL;
+  if (!rb->d) {
+    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    return 1;
+  }
+  run->mesh_size = fmax(run->act.S[0], fmax(run->act.S[1], run->act.S[2])) /
+                   par.elements_per_segment;
+  run->n_elements_soft = csr_rodElements(rb->m);
+  run->n_elements_fibre = 0;
+  return 0;
+}
+
+
+static void rodTeardown(BendRun* run) {
+  RodBend* rb = run->rod;
+  if (!rb) {
+    return;
+  }
+  csr_rodDataDestroy(rb->d);
+  csr_rodModelDestroy(rb->m);
+  csr_calibrationClose(rb->cal);
+  free(rb);
+  run->rod = NULL;
+}
+
+
+static csStatus rodPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
+                         csError* err) {
+  double P[CSR_NSEG * CSR_NCHAMBER];
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      P[CSR_NCHAMBER * s + j] = run->ratio[j] * p;
+    }
+  }
+  return csr_rodBendPoint(run->rod->m, run->rod->d, P, run->tip_load, angle_deg, tip, err);
+}
+
+
 static BendPointFn bendModelEvaluator(BendModel m) {
   switch (m) {
     case BEND_ANALYTIC:
       return analyticPoint;
+    case BEND_ROD:
+      return rodPoint;
     case BEND_FE:  /* a whole sweep, not point-wise: feSweep() below */
-    case BEND_ROD: /* Cosserat rod */
     case BEND_PRB: /* pseudo-rigid-body chain */
     case BEND_ROM: /* reduced FE */
     case BEND_NMODEL:
       return NULL;
   }
   return NULL;
-}
-
-
-static double wallSeconds(void) {
-  struct timespec ts;
-  timespec_get(&ts, TIME_UTC);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 
@@ -153,35 +300,69 @@ static int parsePositive(const char* flag, const char* text, const char* unit, d
 
 
 static int parseChambers(const char* text, BendRun* run) {
-  memset(run->inflated, 0, sizeof run->inflated);
+  unsigned mask = 0;
+  csError err;
+  if (csu_chamberListParse(text, CSR_NCHAMBER, "--chambers", &mask, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    return 1;
+  }
+  for (int j = 0; j < CSR_NCHAMBER; j++) {
+    run->inflated[j] = (mask >> j) & 1u;
+    run->ratio[j] = run->inflated[j] ? 1.0 : 0.0;
+  }
+  csu_chamberListFormat(mask, run->chambers, sizeof run->chambers);
+  run->unequal = 0;
+  return 0;
+}
+
+
+static int parseNumbers(const char* flag, const char* text, int n, double* v) {
   const char* s = text;
-  while (1) {
+  for (int k = 0; k < n; k++) {
     char* end = NULL;
-    long j = strtol(s, &end, 10);
-    if (end == s || (*end != ',' && *end != '\0')) {
-      fprintf(stderr, "crawlsim bend: --chambers '%s': expected a comma-separated list of 1..4\n",
-              text);
+    v[k] = strtod(s, &end);
+    if (end == s || !isfinite(v[k]) || (k < n - 1 ? *end != ',' : *end != '\0')) {
+      fprintf(stderr, "crawlsim bend: %s '%s': expected %d comma-separated finite numbers\n",
+              flag, text, n);
       return 1;
-    }
-    if (j < 1 || j > CSR_NCHAMBER) {
-      fprintf(stderr, "crawlsim bend: --chambers '%s': chamber %ld is not in 1..4\n", text, j);
-      return 1;
-    }
-    if (run->inflated[j - 1]) {
-      fprintf(stderr, "crawlsim bend: --chambers '%s': chamber %ld is repeated\n", text, j);
-      return 1;
-    }
-    run->inflated[j - 1] = 1;
-    if (*end == '\0') {
-      break;
     }
     s = end + 1;
   }
-  /* canonical text in chamber order */
-  char* w = run->chambers;
+  return 0;
+}
+
+
+/* --pressures R1,R2,R3,R4: ratios >= 0, one at least > 0; the chambers text lists j:R_j */
+static int parsePressures(const char* text, BendRun* run) {
+  double r[CSR_NCHAMBER];
+  if (parseNumbers("--pressures", text, CSR_NCHAMBER, r)) {
+    return 1;
+  }
+  double top = 0;
   for (int j = 0; j < CSR_NCHAMBER; j++) {
-    if (run->inflated[j]) {
-      w += sprintf(w, "%s%d", w == run->chambers ? "" : ",", j + 1);
+    if (r[j] < 0) {
+      fprintf(stderr, "crawlsim bend: --pressures '%s': ratio %g of chamber %d is negative\n",
+              text, r[j], j + 1);
+      return 1;
+    }
+    top = fmax(top, r[j]);
+  }
+  if (!(top > 0)) {
+    fprintf(stderr, "crawlsim bend: --pressures '%s': every ratio is 0\n", text);
+    return 1;
+  }
+  char* w = run->chambers;
+  size_t room = sizeof run->chambers;
+  run->unequal = 0;
+  for (int j = 0; j < CSR_NCHAMBER; j++) {
+    run->ratio[j] = r[j];
+    run->inflated[j] = r[j] > 0;
+    run->unequal |= r[j] != 0 && r[j] != 1;
+    if (r[j] > 0 && room > 1) {
+      int k = snprintf(w, room, "%s%d:%g", w == run->chambers ? "" : ",", j + 1, r[j]);
+      k = k < 0 ? 0 : ((size_t)k >= room ? (int)room - 1 : k);
+      w += k;
+      room -= (size_t)k;
     }
   }
   return 0;
@@ -197,10 +378,12 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->p_max = kDefaultPMax;
   run->p_step = kDefaultPStep;
   run->until_angle = NAN;
+  run->p_ceiling = NAN;
   run->p_limit = run->p_resume = NAN;
   run->mesh_size = NAN;
   run->out = "bend.h5";
   run->inflated[0] = run->inflated[1] = 1;
+  run->ratio[0] = run->ratio[1] = 1.0;
   snprintf(run->chambers, sizeof run->chambers, "1,2");
   for (int i = 1; i < argc; i++) {
     const char* arg = argv[i];
@@ -262,6 +445,16 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
       bad = parsePositive(name, value, "degrees", &run->until_angle);
     } else if (!strcmp(name, "--mesh-size")) {
       bad = parsePositive(name, value, "mm", &run->mesh_size);
+    } else if (!strcmp(name, "--pressures")) {
+      bad = parsePressures(value, run);
+    } else if (!strcmp(name, "--tip-load")) {
+      bad = parseNumbers(name, value, 3, run->tip_load);
+    } else if (!strcmp(name, "--calibration")) {
+      if (!*value) {
+        fprintf(stderr, "crawlsim bend: --calibration needs a file name or 'analytic'\n");
+        return 1;
+      }
+      run->calibration = value;
     } else if (!strcmp(name, "--out")) {
       if (!*value) {
         fprintf(stderr, "crawlsim bend: --out needs a file name\n");
@@ -322,7 +515,8 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
   }
   if (isnan(hi)) {
     /* beyond the sweep: try the ceiling */
-    double ceiling = fmax(run->p_max, kUntilCeilingMPa), th;
+    double ceiling = fmax(run->p_max, isnan(run->p_ceiling) ? kUntilCeilingMPa : run->p_ceiling);
+    double th;
     *p_searched = ceiling;
     csStatus st = totalAngle(run, eval, ceiling, &th, err);
     if (st != CS_OK) {
@@ -431,6 +625,19 @@ int csx_cmdBend(int argc, char** argv) {
   if (rc != 0) {
     return rc == 2 ? 0 : 1;
   }
+  /* options only some models take */
+  int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
+  if (run.model != BEND_ROD && (tip || run.calibration)) {
+    fprintf(stderr, "crawlsim bend: %s is for --model rod (the %s model has no %s)\n",
+            tip ? "--tip-load" : "--calibration", kModelNames[run.model],
+            tip ? "tip load" : "calibration");
+    return 1;
+  }
+  if (run.model == BEND_FE && run.unequal) {
+    fprintf(stderr, "crawlsim bend: --pressures with unequal ratios is not available for the fe "
+            "model yet (its sweep inflates a chamber set at one pressure)\n");
+    return 1;
+  }
 #ifdef CS_HAVE_FEM
   if (run.model == BEND_FE) {
     csError ferr;
@@ -438,14 +645,14 @@ int csx_cmdBend(int argc, char** argv) {
     csH5File* ff = cs_h5Create(run.out, &ferr);
     csrBendCurve fbc;
     memset(&fbc, 0, sizeof fbc);
-    double t0 = wallSeconds();
+    double t0 = csu_wallSeconds();
     csStatus fst = ff ? csr_bendCurveInit(&fbc, 16, &ferr) : ferr.status;
     if (fst == CS_OK) {
       fst = feSweep(&run, &fbc, &ferr);
     }
     if (fst == CS_OK) {
       csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,
-                          run.n_elements_soft,    run.n_elements_fibre, wallSeconds() - t0,
+                          run.n_elements_soft,    run.n_elements_fibre, csu_wallSeconds() - t0,
                           run.until_angle,        run.p_limit,          run.p_resume};
       fst = csr_bendCurveWriteH5(ff, &run.act, &fbc, &meta, &ferr);
     }
@@ -491,6 +698,10 @@ int csx_cmdBend(int argc, char** argv) {
     fprintf(stderr, "crawlsim bend: model '%s' is not available yet\n", kModelNames[run.model]);
     return 1;
   }
+  if (run.model == BEND_ROD && rodSetup(&run) != 0) {
+    rodTeardown(&run);
+    return 1;
+  }
   if (run.model == BEND_ANALYTIC) {
     for (int s = 0; s < CSR_NSEG; s++) {
       if (run.act.n[s] == 0) {
@@ -511,16 +722,19 @@ int csx_cmdBend(int argc, char** argv) {
   csH5File* f = cs_h5Create(run.out, &err);
   if (!f) {
     fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    rodTeardown(&run);
     return 1;
   }
 
   /* the sweep: 0, step, ..., and p-max as the last row */
-  double t0 = wallSeconds();
+  double t0 = csu_wallSeconds();
   size_t nstep = (size_t)floor(run.p_max / run.p_step * (1 + kSweepEps));
   csrBendCurve bc;
   csStatus st = csr_bendCurveInit(&bc, nstep + 2, &err);
   for (size_t i = 0; st == CS_OK && i <= nstep + 1; i++) {
-    double p = (i <= nstep) ? (double)i * run.p_step : run.p_max;
+    /* i x step may round above p-max (6 x 0.05 > 0.3): never beyond it (a calibrated range
+     * ends there) */
+    double p = (i <= nstep) ? fmin((double)i * run.p_step, run.p_max) : run.p_max;
     if (i == nstep + 1 && p - (double)nstep * run.p_step <= kSweepEps * run.p_max) {
       break; /* p-max was on the grid */
     }
@@ -535,7 +749,7 @@ int csx_cmdBend(int argc, char** argv) {
     st = findUntilAngle(&run, eval, &bc, &p_until, &p_searched, &err);
     bc.p_until_angle = p_until;
   }
-  double wall = wallSeconds() - t0;
+  double wall = csu_wallSeconds() - t0;
   if (st == CS_OK) {
     csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
                         run.n_elements_fibre,   wall,         run.until_angle,
@@ -547,12 +761,19 @@ int csx_cmdBend(int argc, char** argv) {
     fprintf(stderr, "crawlsim bend: %s\n", err.msg);
     remove(run.out);
     csr_bendCurveFree(&bc);
+    rodTeardown(&run);
     return 1;
   }
 
   /* the table */
   printf("crawlsim bend: model %s, actuator %s, chambers %s in II1-II3\n", kModelNames[run.model],
          run.act.name, run.chambers);
+  if (run.model == BEND_ROD) {
+    printf("rod: %d elements (%.4g mm in the segments), calibration %s, tip load (%g, %g, %g) N "
+           "in the base frame, gravity off\n", (int)run.n_elements_soft, run.mesh_size,
+           run.rod->map.name ? run.rod->map.name : "?", run.tip_load[0], run.tip_load[1],
+           run.tip_load[2]);
+  }
   printf("%9s %9s %9s %9s %10s %10s %10s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
          "total(deg)", "tip e1(mm)", "tip e2(mm)", "tip e3(mm)");
   for (size_t i = 0; i < bc.m; i++) {
@@ -572,5 +793,6 @@ int csx_cmdBend(int argc, char** argv) {
   }
   printf("wrote %s (%.3f s)\n", run.out, wall);
   csr_bendCurveFree(&bc);
+  rodTeardown(&run);
   return 0;
 }

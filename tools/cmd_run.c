@@ -2,7 +2,8 @@
  * Contract (DESIGN.md): crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv]
  *   [--legs auto|prb|rod|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
- *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --quiet.
+ *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
+ *   --coupling staggered|stabilised, --quiet.
  * Options take "--name VALUE" or "--name=VALUE". Bad input (flags, files, an unwritable
  * --out) is found before the robot is built or settled, and every failure prints exactly one
  * line "crawlsim run: <cause>" on stderr (file:line for file errors) and exits 1. */
@@ -22,14 +23,17 @@ static const char kRunUsage[] =
     "                    [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]\n"
     "                    [--terrain FILE] [--dt S] [--output-dt S] [--ramp S] [--tau S]\n"
     "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
-    "                    [--calibration FILE] [--quiet]\n";
+    "                    [--calibration FILE] [--macro-steps N] [--coupling staggered|stabilised]\n"
+    "                    [--quiet]\n"
+    "  --macro-steps N: ODE steps per exchange with co-simulated legs (macro step H = N dt);\n"
+    "  --coupling: how co-simulated legs hand their wrench to the support (ignored by prb).\n";
 
 
 /* the options that take a value (all but --quiet and --help) */
 static const char* const kValueOptions[] = {
     "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
-    "--links", "--gravity", "--iterations"};
+    "--links", "--gravity", "--macro-steps", "--coupling", "--iterations"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -90,7 +94,8 @@ int csx_cmdRun(int argc, char** argv) {
   const char* out = "run.h5";
   const char* calib = NULL;
   double friction = NAN, scale = 1.0, t_end = 0, dt = NAN, out_dt = NAN, ramp = NAN, tau = NAN;
-  double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN;
+  double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN, macro = NAN;
+  const char* coupling = NULL;
   int quiet = 0;
   csError err;
   cs_errorClear(&err);
@@ -164,6 +169,10 @@ int csx_cmdRun(int argc, char** argv) {
       ok = parseNum(flag, v, &links, &err);
     } else if (!strcmp(flag, "--gravity")) {
       ok = parseNum(flag, v, &gravity, &err);
+    } else if (!strcmp(flag, "--macro-steps")) {
+      ok = parseNum(flag, v, &macro, &err);
+    } else if (!strcmp(flag, "--coupling")) {
+      coupling = v;
     } else {
       ok = parseNum(flag, v, &iters, &err); /* --iterations, the last of kValueOptions */
     }
@@ -183,16 +192,31 @@ int csx_cmdRun(int argc, char** argv) {
     cs_errorSet(&err, CS_ERR_ARG, "unknown scene '%.60s' (expected flat-road or obstacle)", scene);
     goto done;
   }
+  /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */
+  const csrLegType* leg_type = NULL;
   if (!strcmp(legs, "auto")) {
-    /* only the prb level exists so far: auto has nothing cheaper or dearer to choose from */
-    legs = "prb";
-  } else if (!strcmp(legs, "rod") || !strcmp(legs, "rom")) {
-    cs_errorSet(&err, CS_ERR_ARG, "leg model '%s' is not available yet (prb only)", legs);
-    goto done;
-  } else if (strcmp(legs, "prb")) {
-    cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod or rom)",
-                legs);
-    goto done;
+    /* the scene's choice by error against cost is issue 11; until then auto is the cheapest
+     * registered dynamic level, the table's first */
+    leg_type = csr_legTypeFind("prb", NULL);
+  } else {
+    int planned = 0;
+    leg_type = csr_legTypeFind(legs, &planned);
+    if (!leg_type && planned) {
+      char names[128] = "";
+      for (int i = 0, n = 0; i < csr_legTypeCount() && n < (int)sizeof names; i++) {
+        int w = snprintf(names + n, sizeof names - n, "%s%s", i ? ", " : "",
+                         csr_legTypeAt(i)->name);
+        n += w > 0 ? w : 0;
+      }
+      cs_errorSet(&err, CS_ERR_ARG, "leg model '%s' is not available yet (available: %s)", legs,
+                  names);
+      goto done;
+    }
+    if (!leg_type) {
+      cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod or rom)",
+                  legs);
+      goto done;
+    }
   }
   if (!calib) calib = csx_dataPath(CSX_DEFAULT_CALIBRATION, calib_buf, sizeof calib_buf);
 
@@ -244,9 +268,23 @@ int csx_cmdRun(int argc, char** argv) {
     cs_errorSet(&err, CS_ERR_RANGE, "--iterations %g must be an integer in 1..10000", iters);
     goto done;
   }
+  if (!isnan(macro) && (macro != floor(macro) || macro < 1 || macro > 100000)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--macro-steps %g must be an integer in 1..100000", macro);
+    goto done;
+  }
+  if (!isnan(macro) && !isnan(out_dt) && !(out_dt >= macro * h)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--output-dt %g s must be >= the macro step %g s "
+                "(--macro-steps x --dt)", out_dt, macro * h);
+    goto done;
+  }
+  if (coupling && strcmp(coupling, "staggered") && strcmp(coupling, "stabilised")) {
+    cs_errorSet(&err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered or stabilised)",
+                coupling);
+    goto done;
+  }
 
   m.opt.progress = !quiet;
-  snprintf(m.leg_level, sizeof m.leg_level, "%s", legs);
+  m.robot.leg_type = leg_type; /* the one place the level is stored */
   if (!isnan(friction)) m.contact.mu = friction;
   m.sched.pressure_scale = scale;
   if (!isnan(ramp)) m.sched.ramp = ramp;
@@ -254,6 +292,15 @@ int csx_cmdRun(int argc, char** argv) {
   if (!isnan(out_dt)) m.opt.output_dt = out_dt;
   if (!isnan(tau)) m.opt.pneumatic_tau = tau;
   if (!isnan(iters)) m.opt.solver_iterations = (int)iters;
+  if (!isnan(macro)) m.opt.macro_steps = (int)macro;
+  if (coupling) {
+    m.opt.coupling = strcmp(coupling, "stabilised") ? CS_COUPLING_STAGGERED
+                                                    : CS_COUPLING_STABILISED;
+  }
+  /* the default output interval must hold a whole macro step */
+  if (isnan(out_dt) && m.opt.output_dt < cs_modelMacroStep(&m)) {
+    m.opt.output_dt = cs_modelMacroStep(&m);
+  }
   if (!isnan(gravity)) m.opt.gravity = gravity * 1e3; /* m/s^2 -> mm/s^2 */
   if (!isnan(support_kg)) m.robot.support_mass = support_kg * 1e-3; /* kg -> t */
   if (!isnan(links)) m.robot.leg_params.links_per_segment = (int)links;
@@ -284,8 +331,8 @@ int csx_cmdRun(int argc, char** argv) {
   if (!d) goto done;
   if (!quiet) {
     fprintf(stderr, "crawlsim run: scene %s, gait %s, legs %s, friction %.3g, t_end %.3g s, "
-            "robot mass %.1f g\n", scene, gait, legs, m.contact.mu, cs_modelEndTime(&m),
-            cs_robotMass(d) * 1e6);
+            "robot mass %.1f g\n", scene, gait, cs_modelLegLevel(&m), m.contact.mu,
+            cs_modelEndTime(&m), cs_robotMass(d) * 1e6);
     fprintf(stderr, "crawlsim run: calibration: %s\n", m.robot.map.name);
     double load, pcr;
     cs_modelStanceCheck(&m, cs_robotMass(d), &load, &pcr);
@@ -305,6 +352,12 @@ int csx_cmdRun(int argc, char** argv) {
          "tilt %.2f deg\n", cs_time(d), x[0], x[1], x[2], tilt);
   printf("wall time %.2f s, real-time factor %.2f (simulated s per wall s), output %s\n", wall,
          wall > 0 ? cs_time(d) / wall : 0, out);
+  /* where the time went: one entry per stage timer (sim_model.h), as in the HDF5 attributes */
+  const csuTimer* tm = cs_timers(d);
+  printf("time split (s):");
+  for (int k = 0; k < CS_NTIMER; k++) {
+    printf(" %s %.3f%s", cs_timerName((csTimerId)k), tm[k].wall, k + 1 < CS_NTIMER ? "," : "\n");
+  }
   if (st != CS_OK) goto done;
   rc = 0;
 

@@ -139,7 +139,7 @@ static void expectFailure(const char* args, const char* want) {
 
 static void test_badInput(void) {
   expectFailure("--model prb", "crawlsim bend: model 'prb' is not available yet");
-  expectFailure("--model rod", "crawlsim bend: model 'rod' is not available yet");
+  expectFailure("--model rom", "crawlsim bend: model 'rom' is not available yet");
   expectFailure("--model xyz", "crawlsim bend: unknown model 'xyz'");
   expectFailure("--frobnicate 1", "crawlsim bend: unknown option '--frobnicate'");
   expectFailure("stray", "crawlsim bend: unexpected argument 'stray'");

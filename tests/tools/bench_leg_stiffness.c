@@ -62,7 +62,7 @@ static double prbSag(const csrActuator* act, const char* calib, double g_mm) {
   if (leg) {
     const double p[12] = {0};
     for (int i = 0; i < 5000; i++) {
-      csr_leg_prb.actuate(leg, p);
+      csr_leg_prb.actuate(leg, 0, p, 0, p);
       dWorldQuickStep(world, spec.h);
     }
     double cl[6];

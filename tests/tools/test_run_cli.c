@@ -5,6 +5,8 @@
  * before simulating (DESIGN.md command-line contract). One short good run exits 0. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <hdf5.h>
+#include <hdf5_hl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -58,6 +60,11 @@ static void test_badOptions(void) {
   expectFailure("--legs rod", "crawlsim run: leg model 'rod' is not available yet");
   expectFailure("--legs bogus", "crawlsim run: unknown leg model 'bogus'");
   expectFailure("--support-mass 0", "crawlsim run: --support-mass 0 kg must be > 0");
+  expectFailure("--macro-steps 0", "crawlsim run: --macro-steps 0 must be an integer in 1..");
+  expectFailure("--macro-steps 2.5", "crawlsim run: --macro-steps 2.5 must be an integer in");
+  expectFailure("--macro-steps 20 --output-dt 0.01",
+                "crawlsim run: --output-dt 0.01 s must be >= the macro step 0.02 s");
+  expectFailure("--coupling tight", "crawlsim run: unknown coupling 'tight'");
   expectFailure("--links 0", "crawlsim run: --links 0 must be an integer in 1..64");
   expectFailure("--links 2.5", "crawlsim run: --links 2.5 must be an integer in 1..64");
   expectFailure("--iterations 0", "crawlsim run: --iterations 0 must be an integer in 1..10000");
@@ -75,7 +82,7 @@ static void test_badOptions(void) {
 static void test_badFiles(void) {
   remove("runcli_missing.csv");
   expectFailure("--gait runcli_missing.csv",
-                "crawlsim run: runcli_missing.csv: cannot open: No such file or directory");
+                "crawlsim run: runcli_missing.csv: cannot open gait CSV: No such file or directory");
   CS_EXPECT(cs_cliWriteText("runcli_neg.csv", "time,A_II1_O1,A_II1_O2\n0,0,0\n1,0,-0.1\n"));
   expectFailure("--gait runcli_neg.csv",
                 "crawlsim run: runcli_neg.csv:3: column 3 (A_II1_O2): negative");
@@ -156,11 +163,56 @@ static void test_goodRun(void) {
   CS_EXPECT(r.status == 0);
   CS_EXPECT(r.err[0] == '\0'); /* --quiet: no progress lines */
   CS_EXPECT(strstr(r.out, "final t = 0.050 s") == r.out);
+  /* the summary's time split names every stage */
+  CS_EXPECT(strstr(r.out, "time split (s): schedule ") != NULL);
+  CS_EXPECT(strstr(r.out, " legs ") && strstr(r.out, " support ") && strstr(r.out, " check "));
   CS_EXPECT(cs_cliFileExists("runcli_ok.h5"));
   if (r.status != 0) {
     fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", r.status, r.out, r.err);
   }
+  /* the file names the level that ran (the one place it is stored: the robot's leg type) and
+   * keeps the stage timers: 50 steps of 1 ms */
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen("runcli_ok.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char level[32] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "leg_model", level) >= 0);
+    CS_EXPECT(!strcmp(level, "prb"));
+    double calls = 0, wall = -1, steps = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_legs_calls", &calls) >= 0);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_support_s", &wall) >= 0);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "steps", &steps) >= 0);
+    CS_EXPECT(calls == 50 && wall >= 0 && steps >= 50);
+    H5Fclose(f);
+  }
   remove("runcli_ok.h5");
+  /* a macro step of 20 ODE steps: the output interval follows it (0.02 s > 0.01 s) */
+  cs_cliRun(exe_path, "run --t-end 0.04 --quiet --macro-steps 20 --coupling stabilised "
+            "--out runcli_macro.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.out, "final t = 0.040 s") == r.out);
+  f = H5Fopen("runcli_macro.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double H = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "macro_step_s", &H) >= 0);
+    CS_EXPECT_NEAR(H, 0.02, 1e-15, 0);
+    hsize_t dims[1] = {0};
+    CS_EXPECT(H5LTget_dataset_info(f, "/time", dims, NULL, NULL) >= 0 && dims[0] == 3);
+    H5Fclose(f);
+  }
+  remove("runcli_macro.h5");
+  /* --legs auto runs the cheapest registered level and records it by its name */
+  cs_cliRun(exe_path, "run --t-end 0.01 --quiet --legs auto --out runcli_auto.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  f = H5Fopen("runcli_auto.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char level[32] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "leg_model", level) >= 0 && !strcmp(level, "prb"));
+    H5Fclose(f);
+  }
+  remove("runcli_auto.h5");
   /* --help: usage on stdout, exit 0 */
   cs_cliRun(exe_path, "run --help", "runcli", &r);
   CS_EXPECT(r.status == 0 && strstr(r.out, "usage: crawlsim run") == r.out && !r.err[0]);

@@ -1,0 +1,86 @@
+/* sim_internal.h: INTERNAL to core/sim_*.c: the layout of csData and the functions the driver's
+ * files share. Nothing outside core/sim_*.c includes it; the public API is sim_model.h.
+ *
+ * Who writes what in csData during a step (STYLE.md 7):
+ *   schedule   p_cmd
+ *   pneumatics p (and the CVODE memory), p0 keeps the pressures at the step's start
+ *   legs       the legs' actuation; cosim.b0, b1, w, K, C (co-simulated legs' exchange)
+ *   support    the ODE bodies, cstats, cosim's implicit-spring rows
+ *   check      nothing (reads the support)
+ *   cs_step    t, nstep, nreject, save (the state before the step), timer[] */
+#ifndef CS_CORE_SIM_INTERNAL_H
+#define CS_CORE_SIM_INTERNAL_H
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+
+#include "sim_model.h"
+
+/* the exchange with co-simulated legs and the stabilised scheme's implicit spring (all world
+ * frame; sim_coupling.c) */
+typedef struct csCosim_ {
+  int active;                       /* the leg level is co-simulated (in_world = 0) */
+  csrBaseState b0[CSR_NLEG];        /* hip motion at the macro step's start */
+  csrBaseState b1[CSR_NLEG];        /* predicted hip motion at its end */
+  csrWrench w[CSR_NLEG];            /* base wrenches of the last advance (step average) */
+  double K[CSR_NLEG][36];           /* interface stiffness of each leg at its hip */
+  double C[CSR_NLEG][36];           /* interface damping of each leg at its hip */
+  /* stabilised scheme: the legs' gains summed at the support's centre of mass, the motion the
+   * legs were given (constant twist from the step's start) and the ODE rows */
+  dJointID lmotor, amotor;          /* 3 linear + 3 angular velocity rows on the support */
+  double t0;                        /* s: start of the macro step */
+  double P0[3], R0[9], v0[3], w0[3];/* support centre, rotation, twist at t0 */
+  double Pm[3], Rm[9];              /* predicted mean pose: W0's linearisation point */
+  double Kc[36];                    /* summed stiffness at the centre (6 x 6, [f; m] x [u; φ]) */
+  double A[36];                     /* h Kc + Cc: the implicit part (6 x 6) */
+  double axis[2][9];                /* eigenvectors (columns) of A's linear / angular blocks */
+  double eig[2][3];                 /* their eigenvalues (N s/mm, N mm s/rad) */
+  int implicit[2][3];               /* 1: the row goes to ODE (eigenvalue > 0), 0: explicit */
+} csCosim;
+
+struct csData_ {
+  const csModel* m;                 /* for the pneumatic right-hand side */
+  dWorldID world;
+  dSpaceID terrain_space;
+  dSpaceID robot_space;
+  dJointGroupID contacts;
+  csrRobot* robot;
+  double t;                         /* s */
+  unsigned long rng_seed;           /* this data's ODE random seed (QuickStep's row order): set
+                                       into ODE's one process-wide generator for each step and
+                                       read back after it, so interleaved datas stay
+                                       independent and each is deterministic */
+  long nstep;                       /* successful macro steps */
+  long nreject;                     /* failed (and restored) macro steps */
+  double p_cmd[CSR_NCHAMBER_TOTAL]; /* scheduled pressures at t (MPa) */
+  double p[CSR_NCHAMBER_TOTAL];     /* chamber pressures at t (MPa) */
+  double p0[CSR_NCHAMBER_TOTAL];    /* chamber pressures at the current step's start (MPa) */
+  double x0[3];                     /* support centre at t = 0 (mm) */
+  cscContactStats cstats;
+  csuTimer timer[CS_NTIMER];
+  int nstate;                       /* cs_stateSize */
+  double* save;                     /* (nstate) the state before the current step */
+  csCosim cosim;
+  /* CVODE */
+  SUNContext sun;
+  void* cvode;
+  N_Vector y;
+};
+
+/* scheduled pressures at time t (zero before t = 0), 96 MPa (sim_driver.c) */
+void cs_schedule(const csModel* m, double t, double* p_cmd);
+
+/* ---- sim_coupling.c: the support interface of co-simulated legs ---- */
+
+/* Create the ODE rows of the stabilised scheme when the legs are co-simulated. */
+csStatus cs_couplingCreate(const csModel* m, csData* d, csError* err);
+
+/* The legs stage's co-simulation part: hip motion b0 now and b1 predicted at t + H, every
+ * leg's advance, its wrench and (stabilised) gains. 0, > 0 recoverable, < 0 fatal (err). */
+int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err);
+
+/* Before ODE sub-step j (0..macro_steps-1) of the support stage: apply the legs' wrenches to
+ * the support and, for the stabilised scheme, set the implicit rows' targets. */
+void cs_couplingApply(const csModel* m, csData* d, int j);
+
+#endif /* CS_CORE_SIM_INTERNAL_H */

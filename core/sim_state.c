@@ -1,0 +1,61 @@
+/* sim_state.c: the whole simulation state as a flat array (see sim_model.h, STYLE.md 5).
+ *
+ * Layout: [0] t (s); [1] the data's ODE random seed (sim_internal.h); [2 .. 97] the 96 chamber pressures (MPa); then the
+ * robot (csr_robotStateGet: support body, then legs A..H). Restoring is bit-exact for every
+ * part: the bodies through robot_odebody.h, the seed as the integer it is (ODE keeps it below
+ * 2^32, exact in a double), the pressures by copy, and CVODE restarted from them. */
+#include <cvode/cvode.h>
+#include <math.h>
+#include <string.h>
+
+#include "sim_internal.h"
+
+enum { HEAD = 2 + CSR_NCHAMBER_TOTAL }; /* t, seed, pressures */
+
+/* ODE's generator keeps its seed in 32 bits (dRand: seed = (1664525 seed + 1013904223) &
+ * 0xffffffff); a stored seed outside that range did not come from ODE */
+#define SEED_LIMIT 4294967296.0
+
+
+int cs_stateSize(const csModel* m, const csData* d) {
+  (void)m;
+  return HEAD + csr_robotStateSize(d->robot);
+}
+
+
+void cs_stateGet(const csModel* m, const csData* d, double* x) {
+  (void)m;
+  x[0] = d->t;
+  x[1] = (double)d->rng_seed;
+  memcpy(x + 2, d->p, sizeof d->p);
+  csr_robotStateGet(d->robot, x + HEAD);
+}
+
+
+csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err) {
+  /* everything is checked before anything changes */
+  if (!isfinite(x[0]) || !(x[1] >= 0 && x[1] < SEED_LIMIT && x[1] == floor(x[1]))) {
+    return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: time %g or seed %g is not a state", x[0],
+                       x[1]);
+  }
+  for (int i = 0; i < CSR_NCHAMBER_TOTAL; i++) {
+    if (!isfinite(x[2 + i])) {
+      return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: pressure %d is not finite", i + 1);
+    }
+  }
+  if (csr_robotStateSet(d->robot, x + HEAD) != 0) {
+    return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the robot's part is not a state of this "
+                       "robot (non-finite value or non-unit quaternion)");
+  }
+  d->t = x[0];
+  d->rng_seed = (unsigned long)x[1];
+  memcpy(d->p, x + 2, sizeof d->p);
+  cs_schedule(m, d->t, d->p_cmd);
+  /* the pneumatic integrator restarts from the restored pressures (its step-size history is
+   * not state, sim_model.h) */
+  if (d->cvode) {
+    memcpy(N_VGetArrayPointer(d->y), d->p, sizeof d->p);
+    CVodeReInit(d->cvode, d->t, d->y);
+  }
+  return CS_OK;
+}

@@ -1,0 +1,212 @@
+/* sim_step.c: the staged macro step with rollback, and settling (see sim_model.h).
+ *
+ * Rationale. The step is a fixed list of stage functions (schedule, pneumatics, legs, support,
+ * check), each timed into d->timer[] (Box2D's b2SolverStage and world profile, MuJoCo's
+ * mjData.timer). Before the stages run, the whole state is copied into a buffer allocated with
+ * the data (cs_stateGet); when a stage fails it is copied back (cs_stateSet), so a failed step
+ * changes nothing, as MuJoCo's mj_RungeKutta saves and restores around its stages. The copy is
+ * ~1.4 k doubles for the prb robot (105 bodies): measured ~2 % of a step (timer "save").
+ *
+ * Order of the arithmetic. With in-world legs and one ODE step per macro step the stages do
+ * exactly what the pre-stage driver did, in the same order (pressures at t + h, joint targets
+ * from them, contacts, QuickStep), so a run's track is bit-identical to it (test_state). */
+#include <cvode/cvode.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core_math.h"
+#include "gaits_labels.h"
+#include "sim_internal.h"
+
+/* stage functions: each returns CS_OK or a failure status with err filled */
+static csStatus stageSchedule(const csModel* m, csData* d, double t1, csError* err);
+static csStatus stagePneumatics(const csModel* m, csData* d, double t1, csError* err);
+static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err);
+static csStatus stageSupport(const csModel* m, csData* d, csError* err);
+static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError* err);
+
+
+static csStatus stageSchedule(const csModel* m, csData* d, double t1, csError* err) {
+  (void)err;
+  cs_schedule(m, t1, d->p_cmd);
+  return CS_OK;
+}
+
+
+/* advance the chamber pressures to t1 (CVODE with a stop time: it must not step past the
+ * exchange point, debian-deps.md "Co-simulation stepping") */
+static csStatus stagePneumatics(const csModel* m, csData* d, double t1, csError* err) {
+  memcpy(d->p0, d->p, sizeof d->p0);
+  if (m->opt.pneumatic_tau <= 0) {
+    cs_schedule(m, t1, d->p);
+    return CS_OK;
+  }
+  sunrealtype tret;
+  CVodeSetStopTime(d->cvode, t1);
+  int rc = CVode(d->cvode, t1, d->y, &tret, CV_NORMAL);
+  if (rc < 0) {
+    return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: CVODE failed on the chamber pressures "
+                       "(flag %d)", d->t, rc);
+  }
+  memcpy(d->p, N_VGetArrayPointer(d->y), sizeof d->p);
+  return CS_OK;
+}
+
+
+/* every leg's actuation for [t, t1]; co-simulated legs then advance across it */
+static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err) {
+  int rc = csr_robotActuate(d->robot, d->t, d->p0, t1, d->p);
+  if (rc == CSR_MAP_OUT_OF_RANGE) {
+    int worst = 0;
+    for (int i = 1; i < CSR_NCHAMBER_TOTAL; i++) {
+      worst = d->p[i] > d->p[worst] ? i : worst;
+    }
+    char label[16] = "";
+    csg_labelName(worst + 1, label, sizeof label);
+    return cs_errorSet(err, CS_ERR_RANGE, "t = %.4f s: chamber %s at %.4f MPa is above the "
+                       "calibrated range (up to %g MPa) of %s", d->t, label, d->p[worst],
+                       m->robot.map.p_max, m->robot.map.name);
+  }
+  if (rc > 0) {
+    return cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: leg actuation asks for a smaller "
+                       "step (code %d)", d->t, rc);
+  }
+  if (rc < 0) {
+    return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: leg actuation failed (code %d)", d->t,
+                       rc);
+  }
+  if (!d->cosim.active) {
+    return CS_OK;
+  }
+  rc = cs_couplingAdvance(m, d, cs_modelMacroStep(m), err);
+  if (rc == 0) {
+    return CS_OK;
+  }
+  /* a leg that named the cause in err keeps its words (cs_couplingAdvance cleared err first)
+   * and, when fatal, its status; a recoverable one is always CS_ERR_REJECTED */
+  csStatus st = rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER;
+  if (err && err->status != CS_OK) {
+    if (rc > 0) {
+      err->status = st;
+    }
+    return err->status;
+  }
+  return cs_errorSet(err, st, "t = %.4f s: a %s leg %s (code %d)", d->t, cs_modelLegLevel(m),
+                     rc > 0 ? "asks for a smaller step" : "failed", rc);
+}
+
+
+/* macro_steps ODE steps: the legs' wrenches and rows, contacts, QuickStep */
+static csStatus stageSupport(const csModel* m, csData* d, csError* err) {
+  (void)err;
+  for (int j = 0; j < m->opt.macro_steps; j++) {
+    if (d->cosim.active) {
+      cs_couplingApply(m, d, j);
+    }
+    double tc = csu_wallSeconds();
+    csc_collide(&m->contact, d->world, d->terrain_space, d->robot_space, d->contacts, m->opt.h,
+                &d->cstats);
+    csu_timerAdd(&d->timer[CS_TIMER_CONTACT], tc);
+    dWorldQuickStep(d->world, m->opt.h);
+    dJointGroupEmpty(d->contacts);
+  }
+  return CS_OK;
+}
+
+
+/* a non-finite or runaway support, or one below the terrain, means the run diverged; t1 is
+ * the time the state belongs to */
+static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError* err) {
+  const dReal* x = dBodyGetPosition(d->robot->support);
+  const dReal* v = dBodyGetLinearVel(d->robot->support);
+  for (int i = 0; i < 3; i++) {
+    if (!isfinite(x[i]) || !isfinite(v[i])) {
+      return cs_errorSet(err, CS_ERR_DIVERGED,
+                         "t = %.4f s: simulation diverged: support state is not finite", t1);
+    }
+  }
+  /* below every terrain box: the robot left the terrain (fell off an edge) */
+  double floor_y = INFINITY;
+  for (int i = 0; i < m->terrain.nbox; i++) {
+    floor_y = fmin(floor_y, m->terrain.box[i].lo[1]);
+  }
+  if (x[1] < floor_y) {
+    return cs_errorSet(err, CS_ERR_DIVERGED,
+                       "t = %.4f s: the support fell off the terrain (y = %.1f mm, below the "
+                       "lowest terrain surface %.1f mm)",
+                       t1, x[1], floor_y);
+  }
+  double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (speed > m->opt.max_speed) {
+    return cs_errorSet(err, CS_ERR_DIVERGED,
+                       "t = %.4f s: simulation diverged: support speed %.3g mm/s exceeds %.3g "
+                       "(try a smaller step)",
+                       t1, speed, m->opt.max_speed);
+  }
+  return CS_OK;
+}
+
+
+csStatus cs_step(const csModel* m, csData* d, csError* err) {
+  double w0 = csu_wallSeconds(), w = w0;
+  double t1 = d->t + cs_modelMacroStep(m);
+  cs_stateGet(m, d, d->save);
+  w = csu_timerAdd(&d->timer[CS_TIMER_SAVE], w);
+  /* this data's place in ODE's random sequence (sim_internal.h rng_seed) */
+  dRandSetSeed(d->rng_seed);
+  /* the stages in order; each is timed whether it succeeds or not */
+  csStatus st = stageSchedule(m, d, t1, err);
+  w = csu_timerAdd(&d->timer[CS_TIMER_SCHEDULE], w);
+  if (st == CS_OK) {
+    st = stagePneumatics(m, d, t1, err);
+    w = csu_timerAdd(&d->timer[CS_TIMER_PNEUMATICS], w);
+  }
+  if (st == CS_OK) {
+    st = stageLegs(m, d, t1, err);
+    w = csu_timerAdd(&d->timer[CS_TIMER_LEGS], w);
+  }
+  if (st == CS_OK) {
+    st = stageSupport(m, d, err);
+    w = csu_timerAdd(&d->timer[CS_TIMER_SUPPORT], w);
+  }
+  if (st == CS_OK) {
+    st = stageCheck(m, d, t1, err);
+    w = csu_timerAdd(&d->timer[CS_TIMER_CHECK], w);
+  }
+  if (st == CS_OK) {
+    d->t = t1;
+    d->nstep++;
+    d->rng_seed = dRandGetSeed();
+  } else {
+    /* a failed step changes nothing: everything back as it was before the stages ran; the
+     * saved state was written by this data, so restoring it cannot be refused */
+    dJointGroupEmpty(d->contacts);
+    cs_stateSet(m, d, d->save, NULL);
+    d->nreject++;
+    csu_timerAdd(&d->timer[CS_TIMER_SAVE], w);
+  }
+  csu_timerAdd(&d->timer[CS_TIMER_STEP], w0);
+  return st;
+}
+
+
+csStatus cs_settle(const csModel* m, csData* d, csError* err) {
+  long n = lround(m->opt.settle / cs_modelMacroStep(m));
+  for (long i = 0; i < n; i++) {
+    csStatus st = cs_step(m, d, err);
+    if (st != CS_OK) {
+      return st;
+    }
+  }
+  /* snap time to exactly 0 so output times are multiples of the step */
+  d->t = 0;
+  if (d->cvode) {
+    CVodeReInit(d->cvode, 0.0, d->y);
+  }
+  const dReal* x = dBodyGetPosition(d->robot->support);
+  csu_set3(d->x0, x[0], x[1], x[2]);
+  /* the timers measure the run, not the settling */
+  memset(d->timer, 0, sizeof d->timer);
+  return CS_OK;
+}

@@ -1,0 +1,786 @@
+/* robot_rod_dyn.c: the Cosserat-rod leg's dynamics layer: the data (state, CVODE, scratch), the
+ * right-hand side, the base motion over a macro step, advance, the base wrench and interface
+ * gains, energy and bend angles at the current state.
+ *
+ * ---- Integration (rationale) ----------------------------------------------------------------
+ * The rod is stiff: its axial and shear modes sit at 1e4 rad/s against the 15 rad/s of the
+ * first bending mode, and Kelvin-Voigt damping turns them into real eigenvalues near
+ * -ω²τ_d ~ -1e6 s⁻¹. An explicit integrator would need steps below 1 µs; CVODE's BDF (orders
+ * 1-5, error control) with a modified Newton iteration takes steps set by the slow dynamics.
+ * The Newton matrix I - γ J is banded: element e's block (x, q, v, ω, history) couples only to
+ * blocks e-1 and e+1; robot_rod_linsol.c eliminates the positions and solves the remaining
+ * block-tridiagonal system on the velocities (6 x 6 blocks), with Jacobian blocks from
+ * column-grouped difference quotients (3 x 12 right-hand sides without contact history, no
+ * allocation); it replaced SUNBandMatrix/SUNLinSol_Band after measurement (see there).
+ * Jacobians are reused across steps
+ * (CVODE re-evaluates them when Newton converges slowly or γ changes), and the integrator
+ * carries its history across macro steps: the base moves by cubic Hermite interpolation of
+ * the support's pose and twist at both ends of each macro step, so consecutive steps join
+ * with continuous position and velocity and no restart is needed; CVodeReInit happens only
+ * after a discontinuity (state set, base or pressure jump, a failed step).
+ *
+ * Orientation: each element's quaternion is integrated (q̇ = ½ q ⊗ (0, ω), ω in the body
+ * frame) and normalised where it is used; the continuous flow keeps |q| = 1 and BDF's drift
+ * stays far below the 0.5..2 band the right-hand side accepts.
+ *
+ * Base wrench: the force and moment the rod's hip element and hip-node spring exert on the
+ * clamp, plus the hip node's own weight and inertia (m_0 (g - a_0): the hip node's lumped half
+ * element rides on the support). Its time integral (the impulse) is integrated as 6 extra
+ * components of the CVODE vector with a huge absolute tolerance (they never limit the step),
+ * so the average over a macro step is exact to the integrator's accuracy. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "robot_rod_internal.h"
+
+_Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
+
+/* absolute tolerance of the impulse components: ~1e12 times any impulse of a run (N s), so
+ * their error weight is ~0 and they never limit a step */
+#define CSR_ROD_ATOL_IMPULSE 1e10
+/* pressures equal within this (MPa) reuse the cached actuation (as robot_prb.c: 1e-7 MPa moves
+ * a bend by < 1e-6 relative at gait pressures) */
+#define CSR_ROD_P_TOL 1e-7
+/* a hip that starts a macro step more than this away from where the last one ended (mm, rad)
+ * has jumped (a teleport, a different driver): the integrator restarts. Smaller jumps are the
+ * coupling's normal business: the support's actual motion corrects the predicted end pose of
+ * the last step by O(a H²) in position and O(a H) in velocity; CVODE carries on across them
+ * (its error control absorbs them), where restarting at every macro step took 4x the steps and
+ * 7x the right-hand sides (flat road, stabilised coupling, 5 ms macro steps) */
+#define CSR_ROD_BASE_JUMP_X 0.1
+#define CSR_ROD_BASE_JUMP_PHI 1e-3
+/* finite-difference steps of the interface gains: mm, rad, mm/s, rad/s (central differences,
+ * error ~h² × third derivative: < 1e-8 relative for the hip element's smooth laws) */
+#define CSR_ROD_GAIN_DX 1e-6
+#define CSR_ROD_GAIN_DPHI 1e-7
+#define CSR_ROD_GAIN_DV 1e-4
+#define CSR_ROD_GAIN_DW 1e-5
+
+/* base position, quaternion, velocity, acceleration and body angular velocity at time t */
+static void baseAt(const csrRodBaseMotion* bm, double t, double x[3], double q[4], double v[3],
+                   double a[3], double wb[3]);
+
+
+void csr_rodBaseAt_(const csrRodData* d, double t, double x[3], double v[3]) {
+  double q[4], a[3], wb[3];
+  baseAt(&d->base, t, x, q, v, a, wb);
+}
+/* the base motion of a macro step from the support's states at both ends */
+static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrBaseState* b0,
+                          const csrBaseState* b1);
+/* the loads at time t: actuation interpolated, gravity, tip load, damping, contact */
+static void loadsAt(const csrRodModel* m, const csrRodData* d, double t, csrRodLoads* ld);
+/* unpack the current state at the current base and time and run the kernel (elements
+ * 1..last: N for the whole rod, 1 for the wrench alone) */
+static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy,
+                   int last);
+/* the wrench of the unpacked configuration in d->wk after the kernel (a0: hip acceleration) */
+static void wrenchOf(const csrRodModel* m, const csrRodData* d, const double a0[3],
+                     csrWrench* w);
+/* add CVODE's counters to the accumulated statistics (before a restart) */
+static void accumulateStats(csrRodData* d);
+/* SUNContext across SUNDIALS 6.4 / 7.x (debian-deps.md P4) */
+static int contextCreate(SUNContext* ctx);
+
+
+static int contextCreate(SUNContext* ctx) {
+#if SUNDIALS_VERSION_MAJOR >= 7
+  return SUNContext_Create(SUN_COMM_NULL, ctx);
+#else
+  return SUNContext_Create(NULL, ctx);
+#endif
+}
+
+
+#if SUNDIALS_VERSION_MAJOR < 7
+/* the library never prints: CVODE's messages end up in the csError of the call */
+static void silentHandler(int code, const char* module, const char* fn, char* msg, void* user) {
+  (void)code;
+  (void)module;
+  (void)fn;
+  (void)msg;
+  (void)user;
+}
+#endif
+
+
+void csr_rodDataDestroy(csrRodData* d) {
+  if (!d) {
+    return;
+  }
+  CVodeFree(&d->cvode);
+  SUNLinSolFree(d->LS);
+  SUNMatDestroy(d->A);
+  csr_rodLinsolFree_(d);
+  csr_rodBtFree_(&d->bt_static);
+  N_VDestroy(d->yv);
+  N_VDestroy(d->atol);
+  if (d->sun) {
+    SUNContext_Free(&d->sun);
+  }
+  free(d->backup);
+  free(d->wk.x);
+  free(d->wk.q);
+  free(d->wk.R);
+  free(d->wk.v);
+  free(d->wk.w);
+  free(d->wk.F);
+  free(d->wk.T);
+  free(d->wk.m_node);
+  free(d->sres);
+  free(d->sres2);
+  free(d->sdel);
+  free(d->sy);
+  free(d->sy0);
+  free(d);
+}
+
+
+csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
+  if (!m) {
+    cs_errorSet(err, CS_ERR_ARG, "rod: NULL model");
+    return NULL;
+  }
+  csrRodData* d = calloc(1, sizeof *d);
+  if (!d) {
+    cs_errorSet(err, CS_ERR_MEMORY, "rod: out of memory");
+    return NULL;
+  }
+  d->m = m;
+  const size_t N1 = (size_t)m->N + 1;
+  const sunindextype ny = CSR_ROD_NIMP + m->nstate;
+  const sunindextype ns = 6 * (sunindextype)m->N;
+  d->wk.x = calloc(3 * N1, sizeof(double));
+  d->wk.q = calloc(4 * N1, sizeof(double));
+  d->wk.R = calloc(9 * N1, sizeof(double));
+  d->wk.v = calloc(3 * N1, sizeof(double));
+  d->wk.w = calloc(3 * N1, sizeof(double));
+  d->wk.F = calloc(3 * N1, sizeof(double));
+  d->wk.T = calloc(3 * N1, sizeof(double));
+  d->wk.m_node = calloc(3 * N1, sizeof(double));
+  d->backup = calloc((size_t)ny, sizeof(double));
+  d->sres = calloc((size_t)ns, sizeof(double));
+  d->sres2 = calloc((size_t)ns, sizeof(double));
+  d->sdel = calloc((size_t)ns, sizeof(double));
+  d->sy = calloc((size_t)m->nstate, sizeof(double));
+  d->sy0 = calloc((size_t)m->nstate, sizeof(double));
+  if (!d->wk.x || !d->wk.q || !d->wk.R || !d->wk.v || !d->wk.w || !d->wk.F || !d->wk.T ||
+      !d->wk.m_node || !d->backup || !d->sres || !d->sres2 || !d->sdel || !d->sy || !d->sy0) {
+    csr_rodDataDestroy(d);
+    cs_errorSet(err, CS_ERR_MEMORY, "rod: out of memory");
+    return NULL;
+  }
+  if (contextCreate(&d->sun) != 0) {
+    d->sun = NULL;
+    csr_rodDataDestroy(d);
+    cs_errorSet(err, CS_ERR_SOLVER, "rod: cannot create a SUNDIALS context");
+    return NULL;
+  }
+#if SUNDIALS_VERSION_MAJOR >= 7
+  SUNContext_ClearErrHandlers(d->sun);
+#endif
+  d->yv = N_VNew_Serial(ny, d->sun);
+  d->atol = N_VNew_Serial(ny, d->sun);
+  if (!d->yv || !d->atol || !csr_rodBtAlloc_(&d->bt_static, m->N)) {
+    csr_rodDataDestroy(d);
+    cs_errorSet(err, CS_ERR_MEMORY, "rod: cannot allocate SUNDIALS vectors");
+    return NULL;
+  }
+  d->y = N_VGetArrayPointer(d->yv);
+  /* per-component absolute tolerances */
+  double* at = N_VGetArrayPointer(d->atol);
+  for (int k = 0; k < CSR_ROD_NIMP; k++) {
+    at[k] = CSR_ROD_ATOL_IMPULSE;
+  }
+  const csrRodParams* p = &m->par;
+  for (int e = 0; e < m->N; e++) {
+    double* b = at + CSR_ROD_NIMP + m->boff[e + 1];
+    for (int k = 0; k < CSR_ROD_BH + m->nh[e + 1]; k++) {
+      b[k] = k < CSR_ROD_BQ   ? p->atol_pos
+             : k < CSR_ROD_BV ? p->atol_rot
+             : k < CSR_ROD_BW ? p->atol_vel
+             : k < CSR_ROD_BH ? p->atol_omega
+                              : p->atol_hist;
+    }
+  }
+  csr_rodReset(m, d);
+  d->cvode = CVodeCreate(CV_BDF, d->sun);
+  if (!d->cvode || CVodeInit(d->cvode, csr_rodRhs_, 0.0, d->yv) != CV_SUCCESS ||
+      CVodeSVtolerances(d->cvode, p->rtol, d->atol) != CV_SUCCESS ||
+      CVodeSetUserData(d->cvode, d) != CV_SUCCESS || csr_rodLinsolAttach_(d) != 0 ||
+      CVodeSetMaxNumSteps(d->cvode, p->max_steps) != CV_SUCCESS ||
+      CVodeSetMaxOrd(d->cvode, p->max_order) != CV_SUCCESS) {
+    csr_rodDataDestroy(d);
+    cs_errorSet(err, CS_ERR_SOLVER, "rod: cannot set up CVODE (BDF, reduced linear solver)");
+    return NULL;
+  }
+#if SUNDIALS_VERSION_MAJOR < 7
+  CVodeSetErrHandlerFn(d->cvode, silentHandler, NULL);
+#endif
+  d->started = 1;
+  d->need_reinit = 1;
+  return d;
+}
+
+
+csrBaseState csr_rodRestBase(const csrRodModel* m) {
+  csrBaseState b;
+  memset(&b, 0, sizeof b);
+  memcpy(b.x, m->hip, sizeof b.x);
+  memcpy(b.R, m->frame, sizeof b.R);
+  return b;
+}
+
+
+void csr_rodReset(const csrRodModel* m, csrRodData* d) {
+  memset(d->y, 0, CSR_ROD_NIMP * sizeof(double));
+  csr_rodRestState_(m, d->y + CSR_ROD_NIMP);
+  d->t = 0;
+  d->cur_base = csr_rodRestBase(m);
+  setBaseMotion(&d->base, 0, 0, &d->cur_base, &d->cur_base);
+  memset(&d->act, 0, sizeof d->act);
+  memset(d->tip_force, 0, sizeof d->tip_force);
+  memset(d->tip_moment, 0, sizeof d->tip_moment);
+  /* the rest state is the equilibrium of the unloaded rod (no pressure, load or gravity) */
+  d->static_valid = 1;
+  memset(&d->static_load, 0, sizeof d->static_load);
+  memset(d->static_act, 0, sizeof d->static_act);
+  d->need_reinit = 1;
+  d->cb_status = 0;
+}
+
+
+void csr_rodGetState(const csrRodModel* m, const csrRodData* d, double* y) {
+  memcpy(y, d->y + CSR_ROD_NIMP, (size_t)m->nstate * sizeof(double));
+}
+
+
+void csr_rodSetState(const csrRodModel* m, csrRodData* d, const double* y) {
+  memcpy(d->y + CSR_ROD_NIMP, y, (size_t)m->nstate * sizeof(double));
+  d->need_reinit = 1;
+  d->static_valid = 0;
+}
+
+
+void csr_rodSetTipLoad(csrRodData* d, const double force[3], const double moment[3]) {
+  for (int k = 0; k < 3; k++) {
+    if (d->tip_force[k] != force[k] || d->tip_moment[k] != moment[k]) {
+      d->need_reinit = 1; /* a load step is a discontinuity */
+    }
+  }
+  memcpy(d->tip_force, force, sizeof d->tip_force);
+  memcpy(d->tip_moment, moment, sizeof d->tip_moment);
+}
+
+
+/* pressures of one segment equal within CSR_ROD_P_TOL */
+static int samePressures(const double* a, const double* b) {
+  for (int j = 0; j < CSR_NCHAMBER; j++) {
+    if (fabs(a[j] - b[j]) > CSR_ROD_P_TOL) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
+/* segment s's actuation at pressures p: a remembered evaluation within CSR_ROD_P_TOL, else the
+ * calibration's (then remembered) */
+static int actuationAt(const csrRodModel* m, csrRodData* d, int s, const double p[4],
+                       csrRodSegmentActuation* out) {
+  csrRodActMemo* mm = &d->memo[s];
+  for (int k = 0; k < mm->n; k++) {
+    if (samePressures(p, mm->p[k])) {
+      *out = mm->a[k];
+      return 0;
+    }
+  }
+  int rc = csr_rodActuationEval_(m, s, p, out, d->cb_msg, sizeof d->cb_msg);
+  if (rc == 0) {
+    memcpy(mm->p[mm->next], p, sizeof mm->p[0]);
+    mm->a[mm->next] = *out;
+    mm->next = (mm->next + 1) % CSR_ROD_MEMO;
+    mm->n = mm->n < CSR_ROD_MEMO ? mm->n + 1 : mm->n;
+  }
+  return rc;
+}
+
+
+int csr_rodActuate(const csrRodModel* m, csrRodData* d, double t0, const double p0[12],
+                   double t1, const double p1[12]) {
+  csrRodActState n;
+  memset(&n, 0, sizeof n);
+  n.ta = t0;
+  n.tb = t1;
+  memcpy(n.pa, p0, sizeof n.pa);
+  memcpy(n.pb, p1, sizeof n.pb);
+  for (int s = 0; s < CSR_NSEG; s++) {
+    const int o = CSR_NCHAMBER * s;
+    int rc = 0;
+    /* the start of this step is usually the end of the last: reuse its evaluation */
+    if (d->act.set && samePressures(p0 + o, d->act.pb + o)) {
+      n.a[s] = d->act.b[s];
+    } else if (d->act.set && samePressures(p0 + o, d->act.pa + o)) {
+      n.a[s] = d->act.a[s];
+    } else {
+      rc = actuationAt(m, d, s, p0 + o, &n.a[s]);
+    }
+    if (rc == 0) {
+      if (samePressures(p1 + o, p0 + o)) {
+        n.b[s] = n.a[s];
+      } else {
+        rc = actuationAt(m, d, s, p1 + o, &n.b[s]);
+      }
+    }
+    if (rc != 0) {
+      return rc; /* the previous actuation stays */
+    }
+    /* a pressure jump against where the last step ended is a discontinuity */
+    if (d->act.set && !samePressures(p0 + o, d->act.pb + o)) {
+      d->need_reinit = 1;
+    }
+  }
+  if (!d->act.set) {
+    d->need_reinit = 1;
+  }
+  n.set = 1;
+  d->act = n;
+  return 0;
+}
+
+
+static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrBaseState* b0,
+                          const csrBaseState* b1) {
+  memset(bm, 0, sizeof *bm);
+  bm->ta = ta;
+  bm->H = H;
+  bm->a = *b0;
+  bm->b = *b1;
+  csr_rodMatToQuat(bm->qa, b0->R);
+  if (!(H > 0)) {
+    return; /* at rest at b0 */
+  }
+  bm->moving = 1;
+  double qb[4], qab[4], wa[3], wb[3], t[3];
+  csr_rodMatToQuat(qb, b1->R);
+  csr_rodQmulConj(qab, bm->qa, qb);
+  csr_rodQlog(bm->Phi, qab);
+  csr_rodMulMatTVec(wa, b0->R, b0->w);
+  csr_rodMulMatTVec(wb, b1->R, b1->w);
+  csu_scale3(bm->dphi0, wa, H);
+  /* φ̇ = J_r(φ)⁻¹ ω_body at the end, where φ = Φ */
+  csr_rodJrInv(t, bm->Phi, wb, +1);
+  csu_scale3(bm->dphi1, t, H);
+}
+
+
+static void baseAt(const csrRodBaseMotion* bm, double t, double x[3], double q[4], double v[3],
+                   double a[3], double wb[3]) {
+  if (!bm->moving) {
+    memcpy(x, bm->a.x, 3 * sizeof(double));
+    memcpy(q, bm->qa, 4 * sizeof(double));
+    memset(v, 0, 3 * sizeof(double));
+    memset(a, 0, 3 * sizeof(double));
+    memset(wb, 0, 3 * sizeof(double));
+    return;
+  }
+  const double H = bm->H, u = (t - bm->ta) / H, u2 = u * u, u3 = u2 * u;
+  /* cubic Hermite basis, its first and second derivatives in u */
+  const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2,
+               h11 = u3 - u2;
+  const double d00 = 6 * u2 - 6 * u, d10 = 3 * u2 - 4 * u + 1, d01 = -d00, d11 = 3 * u2 - 2 * u;
+  const double s00 = 12 * u - 6, s10 = 6 * u - 4, s01 = -s00, s11 = 6 * u - 2;
+  for (int k = 0; k < 3; k++) {
+    const double p0 = bm->a.x[k], p1 = bm->b.x[k];
+    const double m0 = H * bm->a.v[k], m1 = H * bm->b.v[k];
+    x[k] = h00 * p0 + h10 * m0 + h01 * p1 + h11 * m1;
+    v[k] = (d00 * p0 + d10 * m0 + d01 * p1 + d11 * m1) / H;
+    a[k] = (s00 * p0 + s10 * m0 + s01 * p1 + s11 * m1) / (H * H);
+  }
+  /* rotation vector relative to frame a: φ(0) = 0, φ(1) = Φ */
+  double phi[3], dphi[3], dq[4];
+  for (int k = 0; k < 3; k++) {
+    phi[k] = h10 * bm->dphi0[k] + h01 * bm->Phi[k] + h11 * bm->dphi1[k];
+    dphi[k] = (d10 * bm->dphi0[k] + d01 * bm->Phi[k] + d11 * bm->dphi1[k]) / H;
+  }
+  csr_rodQexp(dq, phi);
+  csr_rodQmul(q, bm->qa, dq);
+  csr_rodJr(wb, phi, dphi);
+}
+
+
+static void loadsAt(const csrRodModel* m, const csrRodData* d, double t, csrRodLoads* ld) {
+  csrRodSegmentActuation act[CSR_NSEG];
+  const csrRodActState* as = &d->act;
+  if (as->set) {
+    double al = (as->tb > as->ta) ? (t - as->ta) / (as->tb - as->ta) : 1.0;
+    al = al < 0 ? 0 : (al > 1 ? 1 : al);
+    for (int s = 0; s < CSR_NSEG; s++) {
+      const csrRodSegmentActuation *a = &as->a[s], *b = &as->b[s];
+      csrRodSegmentActuation* o = &act[s];
+      for (int k = 0; k < 3; k++) {
+        o->u0[k] = a->u0[k] + al * (b->u0[k] - a->u0[k]);
+        o->sigma0[k] = a->sigma0[k] + al * (b->sigma0[k] - a->sigma0[k]);
+      }
+      o->has_section = a->has_section && b->has_section;
+      if (o->has_section) {
+        const csrRodSection *sa = &a->section, *sb = &b->section;
+        csrRodSection* so = &o->section;
+        so->EA = sa->EA + al * (sb->EA - sa->EA);
+        so->GJ = sa->GJ + al * (sb->GJ - sa->GJ);
+        for (int k = 0; k < 2; k++) {
+          so->GA[k] = sa->GA[k] + al * (sb->GA[k] - sa->GA[k]);
+          so->EI[k] = sa->EI[k] + al * (sb->EI[k] - sa->EI[k]);
+        }
+      }
+    }
+    csr_rodLoadsFromActuation_(m, act, ld);
+  } else {
+    csr_rodLoadsFromActuation_(m, NULL, ld);
+  }
+  memcpy(ld->gravity, m->gravity, sizeof ld->gravity);
+  memcpy(ld->tip_force, d->tip_force, sizeof ld->tip_force);
+  memcpy(ld->tip_moment, d->tip_moment, sizeof ld->tip_moment);
+  ld->damping = m->par.damping_time;
+  ld->contact = !d->no_contact;
+}
+
+
+static void wrenchOf(const csrRodModel* m, const csrRodData* d, const double a0[3],
+                     csrWrench* w) {
+  for (int k = 0; k < 3; k++) {
+    w->f[k] = d->wk.F[k] - m->mnode[0] * a0[k];
+  }
+  csu_mulMatVec3(w->m, d->wk.R, d->wk.T);
+}
+
+
+int csr_rodRhs_(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+  csrRodData* d = user;
+  const csrRodModel* m = d->m;
+  const double* Y = N_VGetArrayPointer(y);
+  double* Yd = N_VGetArrayPointer(ydot);
+  double x0[3], q0[4], v0[3], a0[3], w0[3];
+  baseAt(&d->base, t, x0, q0, v0, a0, w0);
+  if (csr_rodUnpack_(m, &d->wk, Y + CSR_ROD_NIMP, x0, q0, v0, w0) != 0) {
+    return 1; /* not a rod configuration: CVODE cuts the step */
+  }
+  csrRodLoads ld;
+  loadsAt(m, d, t, &ld);
+  d->wk.hist = Y + CSR_ROD_NIMP;
+  d->wk.dhist = Yd + CSR_ROD_NIMP;
+  int rc = csr_rodForces_(m, &d->wk, &ld, 0, d->cb_msg, sizeof d->cb_msg);
+  if (rc != 0) {
+    d->cb_status = rc;
+    return rc;
+  }
+  if (!ld.contact) {
+    /* without the hook nothing writes the history rates */
+    for (int e = 1; e <= m->N; e++) {
+      memset(Yd + CSR_ROD_NIMP + m->boff[e] + CSR_ROD_BH, 0, (size_t)m->nh[e] * sizeof(double));
+    }
+  }
+  /* the blocks: ẋ = v, q̇ = ½ q ⊗ (0, ω), m v̇ = F, J ω̇ = T - ω × J ω */
+  const csrRodWork* wk = &d->wk;
+  double check = 0;
+  for (int e = 1; e <= m->N; e++) {
+    const double* b = Y + CSR_ROD_NIMP + m->boff[e];
+    double* o = Yd + CSR_ROD_NIMP + m->boff[e];
+    const double* q = b + CSR_ROD_BQ;
+    const double* w = b + CSR_ROD_BW;
+    const double* J = m->Jel + 3 * e;
+    const double wq[4] = {0, w[0], w[1], w[2]};
+    double qd[4], Jw[3], gyro[3];
+    memcpy(o + CSR_ROD_BX, b + CSR_ROD_BV, 3 * sizeof(double));
+    csr_rodQmul(qd, q, wq);
+    for (int k = 0; k < 4; k++) {
+      o[CSR_ROD_BQ + k] = 0.5 * qd[k];
+    }
+    for (int k = 0; k < 3; k++) {
+      o[CSR_ROD_BV + k] = wk->F[3 * e + k] / m->mnode[e];
+      Jw[k] = J[k] * w[k];
+    }
+    csu_cross3(gyro, w, Jw);
+    for (int k = 0; k < 3; k++) {
+      o[CSR_ROD_BW + k] = (wk->T[3 * e + k] - gyro[k]) / J[k];
+      check += o[CSR_ROD_BV + k] + o[CSR_ROD_BW + k];
+    }
+  }
+  csrWrench wr;
+  wrenchOf(m, d, a0, &wr);
+  memcpy(Yd, wr.f, 3 * sizeof(double));
+  memcpy(Yd + 3, wr.m, 3 * sizeof(double));
+  if (!isfinite(check + wr.f[0] + wr.m[0])) {
+    return 1;
+  }
+  return 0;
+}
+
+
+/* add CVODE's counters since its last (re)initialisation to s */
+static void addCvodeCounters(void* cv, csrRodStats* s) {
+  long v = 0, lrhs = 0;
+  CVodeGetNumSteps(cv, &v);
+  s->steps += v;
+  CVodeGetNumRhsEvals(cv, &v);
+  /* the Jacobian's difference quotients are right-hand sides too */
+  CVodeGetNumLinRhsEvals(cv, &lrhs);
+  s->rhs_evals += v + lrhs;
+  CVodeGetNumJacEvals(cv, &v);
+  s->jac_evals += v;
+  CVodeGetNumLinSolvSetups(cv, &v);
+  s->lin_setups += v;
+  CVodeGetNumNonlinSolvIters(cv, &v);
+  s->newton_iters += v;
+  CVodeGetNumErrTestFails(cv, &v);
+  s->err_fails += v;
+  CVodeGetNumNonlinSolvConvFails(cv, &v);
+  s->conv_fails += v;
+}
+
+
+static void accumulateStats(csrRodData* d) { addCvodeCounters(d->cvode, &d->stats); }
+
+
+void csr_rodGetStats(const csrRodData* d, csrRodStats* s) {
+  *s = d->stats;
+  if (d->cvode) {
+    addCvodeCounters(d->cvode, s);
+  }
+}
+
+
+/* the hip at a within the jump thresholds of b (position and rotation) */
+static int nearBase(const csrBaseState* a, const csrBaseState* b) {
+  double dx[3], qa[4], qb[4], qr[4], phi[3];
+  csu_sub3(dx, a->x, b->x);
+  csr_rodMatToQuat(qa, a->R);
+  csr_rodMatToQuat(qb, b->R);
+  csr_rodQmulConj(qr, qb, qa);
+  csr_rodQlog(phi, qr);
+  return csu_norm3(dx) <= CSR_ROD_BASE_JUMP_X && csu_norm3(phi) <= CSR_ROD_BASE_JUMP_PHI;
+}
+
+
+/* finite base state */
+static int finiteBase(const csrBaseState* b) {
+  double s = 0;
+  for (int k = 0; k < 3; k++) {
+    s += b->x[k] + b->v[k] + b->w[k];
+  }
+  for (int k = 0; k < 9; k++) {
+    s += b->R[k];
+  }
+  return isfinite(s);
+}
+
+
+int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, const csrBaseState* b0,
+                   const csrBaseState* b1, csrWrench* w, csError* err) {
+  if (!m || !d || !b0 || !b1) {
+    cs_errorSet(err, CS_ERR_ARG, "rod advance: NULL argument");
+    return -1;
+  }
+  if (!(H > 0) || !isfinite(H) || !isfinite(t) || !finiteBase(b0) || !finiteBase(b1)) {
+    cs_errorSet(err, CS_ERR_ARG, "rod advance: need a finite t, H > 0 and finite base states "
+                "(t = %g s, H = %g s)", t, H);
+    return -1;
+  }
+  d->stats.advances++;
+  const size_t ny = CSR_ROD_NIMP + (size_t)m->nstate;
+  int restart = d->need_reinit || fabs(t - d->t) > 1e-12 * (1 + fabs(t)) ||
+                !nearBase(b0, &d->cur_base);
+  csrRodBaseMotion keep = d->base;
+  setBaseMotion(&d->base, t, H, b0, b1);
+  memcpy(d->backup, d->y, ny * sizeof(double));
+  if (restart) {
+    accumulateStats(d);
+    d->stats.reinits++;
+    if (CVodeReInit(d->cvode, t, d->yv) != CV_SUCCESS) {
+      d->base = keep;
+      d->stats.failed_advances++;
+      cs_errorSet(err, CS_ERR_SOLVER, "rod advance: CVodeReInit failed at t = %g s", t);
+      return -1;
+    }
+    d->need_reinit = 0;
+    d->jac_int_step = -1; /* the state may have jumped: the whole Jacobian anew */
+  }
+  double I0[CSR_ROD_NIMP];
+  memcpy(I0, d->y, sizeof I0);
+  d->cb_status = 0;
+  d->cb_msg[0] = '\0';
+  CVodeSetStopTime(d->cvode, t + H);
+  sunrealtype tret = t;
+  int flag = CVode(d->cvode, t + H, d->yv, &tret, CV_NORMAL);
+  if (flag < 0) {
+    /* a failed step changes nothing: state, time and base as before; restart next time */
+    memcpy(d->y, d->backup, ny * sizeof(double));
+    d->base = keep;
+    d->need_reinit = 1;
+    d->stats.failed_advances++;
+    char* name = CVodeGetReturnFlagName(flag);
+    int fatal = d->cb_status < 0 || flag == CV_RHSFUNC_FAIL || flag == CV_ILL_INPUT ||
+                flag == CV_MEM_FAIL || flag == CV_MEM_NULL;
+    cs_errorSet(err, fatal ? CS_ERR_SOLVER : CS_ERR_DIVERGED,
+                "rod advance from t = %.6g s by H = %.3g s failed at t = %.6g s: CVODE %s%s%s",
+                t, H, (double)tret, name ? name : "?", d->cb_msg[0] ? "; " : "", d->cb_msg);
+    free(name);
+    if (fatal) {
+      return d->cb_status < 0 ? d->cb_status : -1;
+    }
+    return 1;
+  }
+  if (w) {
+    for (int k = 0; k < 3; k++) {
+      w->f[k] = (d->y[k] - I0[k]) / H;
+      w->m[k] = (d->y[3 + k] - I0[3 + k]) / H;
+    }
+  }
+  d->t = t + H;
+  d->cur_base = *b1;
+  d->static_valid = 0;
+  return 0;
+}
+
+
+static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy,
+                   int last) {
+  double x0[3], q0[4], wb[3];
+  csr_rodMatToQuat(q0, d->cur_base.R);
+  memcpy(x0, d->cur_base.x, sizeof x0);
+  csr_rodMulMatTVec(wb, d->cur_base.R, d->cur_base.w);
+  if (csr_rodUnpackPart_(m, &d->wk, d->y + CSR_ROD_NIMP, last, x0, q0, d->cur_base.v, wb) !=
+      0) {
+    return 1;
+  }
+  loadsAt(m, d, d->t, ld);
+  d->wk.hist = d->y + CSR_ROD_NIMP;
+  d->wk.dhist = NULL;
+  return csr_rodForces_(m, &d->wk, ld, want_energy, d->cb_msg, sizeof d->cb_msg);
+}
+
+
+void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrWrench* w) {
+  csrRodLoads ld;
+  const double a0[3] = {0, 0, 0};
+  memset(w, 0, sizeof *w);
+  if (refresh(m, d, &ld, 0, 1) == 0) {
+    wrenchOf(m, d, a0, w);
+  }
+}
+
+
+void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], double C[36]) {
+  const csrBaseState keep = d->cur_base;
+  const double h[4] = {CSR_ROD_GAIN_DX, CSR_ROD_GAIN_DPHI, CSR_ROD_GAIN_DV, CSR_ROD_GAIN_DW};
+  memset(K, 0, 36 * sizeof(double));
+  memset(C, 0, 36 * sizeof(double));
+  /* central differences of the instantaneous wrench in each of the 12 base coordinates */
+  for (int kind = 0; kind < 4; kind++) {
+    for (int j = 0; j < 3; j++) {
+      double W[2][6];
+      for (int side = 0; side < 2; side++) {
+        double sg = side ? -1.0 : 1.0;
+        csrBaseState b = keep;
+        if (kind == 0) {
+          b.x[j] += sg * h[0];
+        } else if (kind == 1) {
+          double ax[3] = {0, 0, 0}, dR[9];
+          ax[j] = 1;
+          csu_axisAngleToMat3(dR, ax, sg * h[1]);
+          csu_mulMat3(b.R, dR, keep.R);
+        } else if (kind == 2) {
+          b.v[j] += sg * h[2];
+        } else {
+          b.w[j] += sg * h[3];
+        }
+        d->cur_base = b;
+        csrWrench w;
+        csr_rodBaseWrench(m, d, &w);
+        memcpy(W[side], w.f, 3 * sizeof(double));
+        memcpy(W[side] + 3, w.m, 3 * sizeof(double));
+      }
+      double* M = kind < 2 ? K : C;
+      int col = 3 * (kind % 2) + j;
+      for (int i = 0; i < 6; i++) {
+        M[6 * i + col] = -(W[0][i] - W[1][i]) / (2 * h[kind]);
+      }
+    }
+  }
+  d->cur_base = keep;
+}
+
+
+void csr_rodEnergy(const csrRodModel* m, csrRodData* d, csrRodEnergy* e) {
+  csrRodLoads ld;
+  memset(e, 0, sizeof *e);
+  if (refresh(m, d, &ld, 1, m->N) != 0) {
+    e->kinetic = e->elastic = e->gravity = NAN;
+    return;
+  }
+  const csrRodWork* wk = &d->wk;
+  e->elastic = wk->elastic;
+  for (int i = 0; i <= m->N; i++) {
+    const double* v = wk->v + 3 * i;
+    e->kinetic += 0.5 * m->mnode[i] * csu_dot3(v, v);
+    e->gravity -= m->mnode[i] * csu_dot3(ld.gravity, wk->x + 3 * i);
+    if (i > 0) {
+      const double* w = wk->w + 3 * i;
+      const double* J = m->Jel + 3 * i;
+      e->kinetic += 0.5 * (J[0] * w[0] * w[0] + J[1] * w[1] * w[1] + J[2] * w[2] * w[2]);
+    }
+  }
+}
+
+
+void csr_rodSegmentAngles(const csrRodModel* m, csrRodData* d, double angle[CSR_NSEG],
+                          double tip_base[3]) {
+  csrRodLoads ld;
+  for (int s = 0; s < CSR_NSEG; s++) {
+    angle[s] = NAN;
+  }
+  if (refresh(m, d, &ld, 0, m->N) != 0) {
+    tip_base[0] = tip_base[1] = tip_base[2] = NAN;
+    return;
+  }
+  const csrRodWork* wk = &d->wk;
+  /* per node: the whole relative rotation θ_i and its part in the left element */
+  double tot[CSR_NSEG][3];
+  memset(tot, 0, sizeof tot);
+  for (int i = 0; i <= m->N; i++) {
+    double th[3] = {0, 0, 0}, left[3] = {0, 0, 0};
+    if (i < m->N) {
+      double qrel[4];
+      csr_rodQmulConj(qrel, wk->q + 4 * i, wk->q + 4 * (i + 1));
+      csr_rodQlog(th, qrel);
+    }
+    if (i > 0) {
+      int pa = m->ep[i];
+      for (int k = 0; k < 3; k++) {
+        left[k] = 0.5 * m->l[i] * (ld.u0[pa][k] + wk->m_node[3 * i + k] / ld.B[pa][k]);
+      }
+      int sa = m->piece[pa].segment;
+      if (sa >= 0) {
+        csu_add3(tot[sa], tot[sa], left);
+      }
+    }
+    if (i < m->N) {
+      int sb = m->piece[m->ep[i + 1]].segment;
+      if (sb >= 0) {
+        double right[3];
+        csu_sub3(right, th, left);
+        if (i == 0) {
+          csu_copy3(right, th);
+        }
+        csu_add3(tot[sb], tot[sb], right);
+      }
+    }
+  }
+  for (int s = 0; s < CSR_NSEG; s++) {
+    angle[s] = csu_norm3(tot[s]);
+  }
+  double dx[3];
+  csu_sub3(dx, wk->x + 3 * m->N, wk->x);
+  csr_rodMulMatTVec(tip_base, wk->R, dx);
+}

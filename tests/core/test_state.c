@@ -1,0 +1,282 @@
+/* test_state.c: the whole simulation state (cs_stateGet/Set) and step rollback on the shipped
+ * flat-road scene with prb legs:
+ *  - a step that fails in any stage (a calibration map failing after N calls, fatally, as out
+ *    of range or recoverably; the check stage) leaves every byte of the state as it was, and a
+ *    run continued after the failures is bit-identical to one that never failed;
+ *  - get, set, step twice from the same state gives bit-identical states;
+ *  - states that are not states (NaN, a seed out of range, a non-unit quaternion) are refused
+ *    and change nothing.
+ * Runs of 0.1-0.3 s at 1 m/s^2 gravity during the first pressure ramp (the map is evaluated
+ * every step then): ~1 s, so it also runs under the sanitizers. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cs_test.h"
+#include "sim_model.h"
+
+static char g_src[512];
+
+/* a calibration map that passes through to the real one and fails after `fail_after` calls */
+typedef struct {
+  csrBendMap inner;
+  long calls;
+  long fail_after; /* < 0: never */
+  int code;        /* what a failing call returns */
+} FailMap;
+
+
+static int failEval(const void* ctx, int seg, const double p[4], double bend[2],
+                    double* stretch) {
+  FailMap* f = (FailMap*)ctx; /* the test owns it: counting calls is its purpose */
+  f->calls++;
+  if (f->fail_after >= 0 && f->calls > f->fail_after) {
+    return f->code;
+  }
+  return f->inner.eval(f->inner.ctx, seg, p, bend, stretch);
+}
+
+
+/* the flat-road model at 1 m/s^2 with the failing map in front of the shipped calibration */
+static int loadModel(csModel* m, FailMap* fm, double tau) {
+  char terr[600], gait[600], cal[600];
+  snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", g_src);
+  snprintf(gait, sizeof gait, "%s/gaits/flat_road.csv", g_src);
+  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg.h5", g_src);
+  cs_modelInit(m);
+  m->opt.gravity = 1e3;
+  m->opt.settle = 0.02;
+  m->opt.pneumatic_tau = tau;
+  csError err;
+  cs_errorClear(&err);
+  if (cs_modelLoad(m, "flat-road", terr, gait, cal, &err) != CS_OK) {
+    fprintf(stderr, "load: %s\n", err.msg);
+    return 0;
+  }
+  fm->inner = m->robot.map;
+  fm->calls = 0;
+  fm->fail_after = -1;
+  fm->code = -1;
+  m->robot.map.eval = failEval;
+  m->robot.map.ctx = fm;
+  return 1;
+}
+
+
+static csData* makeData(const csModel* m) {
+  csError err;
+  cs_errorClear(&err);
+  csData* d = cs_dataCreate(m, &err);
+  CS_EXPECT(d != NULL);
+  if (d) {
+    CS_EXPECT(cs_settle(m, d, &err) == CS_OK);
+  }
+  return d;
+}
+
+
+static int stepN(const csModel* m, csData* d, int n) {
+  csError err;
+  for (int i = 0; i < n; i++) {
+    if (cs_step(m, d, &err) != CS_OK) {
+      fprintf(stderr, "step: %s\n", err.msg);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
+/* one failing step: status `want`, every byte of the state as before, the reject counted */
+static void expectFailedStepChangesNothing(const csModel* m, csData* d, csStatus want,
+                                           const char* what) {
+  int n = cs_stateSize(m, d);
+  double* before = malloc(n * sizeof(double));
+  double* after = malloc(n * sizeof(double));
+  cs_stateGet(m, d, before);
+  long steps = cs_stepCount(d), rejects = cs_rejectCount(d);
+  csError err;
+  cs_errorClear(&err);
+  csStatus st = cs_step(m, d, &err);
+  CS_EXPECT(st == want);
+  CS_EXPECT(strstr(err.msg, "t = ") == err.msg); /* the message names the time */
+  cs_stateGet(m, d, after);
+  CS_EXPECT(memcmp(before, after, n * sizeof(double)) == 0);
+  CS_EXPECT(cs_stepCount(d) == steps && cs_rejectCount(d) == rejects + 1);
+  printf("  %s: %s -> state unchanged: %s\n", what, cs_statusString(st),
+         memcmp(before, after, n * sizeof(double)) ? "NO" : "yes");
+  free(before);
+  free(after);
+}
+
+
+/* failures in the legs stage (after the pneumatics advanced CVODE) and in the check stage */
+static void test_failed_step_changes_nothing(void) {
+  csModel m;
+  FailMap fm;
+  CS_EXPECT(loadModel(&m, &fm, 0.02));
+  csData* d = makeData(&m);
+  /* into the first ramp, where every step re-evaluates the map */
+  CS_EXPECT(d && stepN(&m, d, 100));
+  /* the next step's second map call fails: the first segment's joint targets were already
+   * set when it fails, so the leg's cached targets must come back too */
+  fm.fail_after = fm.calls + 1;
+  fm.code = -1;
+  expectFailedStepChangesNothing(&m, d, CS_ERR_SOLVER, "map fails (fatal)");
+  fm.fail_after = fm.calls + 2;
+  fm.code = 1;
+  expectFailedStepChangesNothing(&m, d, CS_ERR_REJECTED, "map fails (recoverable)");
+  fm.fail_after = fm.calls;
+  fm.code = CSR_MAP_OUT_OF_RANGE;
+  expectFailedStepChangesNothing(&m, d, CS_ERR_RANGE, "map out of range");
+  /* the last stage: a speed limit no state meets */
+  fm.fail_after = -1;
+  double vmax = m.opt.max_speed;
+  m.opt.max_speed = 1e-12;
+  expectFailedStepChangesNothing(&m, d, CS_ERR_DIVERGED, "check stage");
+  m.opt.max_speed = vmax;
+  /* and the run goes on */
+  CS_EXPECT(stepN(&m, d, 10));
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+}
+
+
+/* with the pressures following the schedule exactly (tau = 0, no CVODE), a run continued after
+ * failed steps is bit-identical to one that never failed: the restore is exact for the ODE
+ * bodies, the data's random seed and the legs' joint targets. The two datas step interleaved
+ * in one process: each keeps its own place in ODE's process-wide random sequence. */
+static void test_run_after_failures_is_bit_identical(void) {
+  csModel m;
+  FailMap fm;
+  CS_EXPECT(loadModel(&m, &fm, 0.0));
+  csData* ref = makeData(&m);
+  csData* d = makeData(&m);
+  CS_EXPECT(ref && d && stepN(&m, ref, 150));
+  CS_EXPECT(d && stepN(&m, d, 50));
+  for (int k = 0; k < 5; k++) {
+    fm.fail_after = fm.calls + k; /* fail at different points of the stage */
+    fm.code = k % 2 ? 1 : -1;
+    csError err;
+    CS_EXPECT(cs_step(&m, d, &err) != CS_OK);
+    fm.fail_after = -1;
+    CS_EXPECT(stepN(&m, d, 20));
+  }
+  int n = cs_stateSize(&m, d);
+  double* a = malloc(n * sizeof(double));
+  double* b = malloc(n * sizeof(double));
+  cs_stateGet(&m, ref, a);
+  cs_stateGet(&m, d, b);
+  CS_EXPECT(cs_time(d) == cs_time(ref) && cs_rejectCount(d) == 5);
+  CS_EXPECT(memcmp(a, b, n * sizeof(double)) == 0);
+  double worst = 0;
+  for (int i = 0; i < n; i++) {
+    worst = fmax(worst, fabs(a[i] - b[i]));
+  }
+  printf("  after 5 failed steps: largest state difference %g (t = %.3f s)\n", worst,
+         cs_time(d));
+  free(a);
+  free(b);
+  cs_dataDestroy(ref);
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+}
+
+
+/* get/set/step twice from the same state: bit-identical states (pneumatic CVODE included: both
+ * runs restart it from the same pressures) */
+static void test_set_step_twice_is_bit_identical(void) {
+  csModel m;
+  FailMap fm;
+  CS_EXPECT(loadModel(&m, &fm, 0.02));
+  csData* d = makeData(&m);
+  CS_EXPECT(d && stepN(&m, d, 120));
+  int n = cs_stateSize(&m, d);
+  double* s0 = malloc(n * sizeof(double));
+  double* r1 = malloc(n * sizeof(double));
+  double* r2 = malloc(n * sizeof(double));
+  cs_stateGet(&m, d, s0);
+  csError err;
+  CS_EXPECT(cs_stateSet(&m, d, s0, &err) == CS_OK);
+  CS_EXPECT(stepN(&m, d, 60));
+  cs_stateGet(&m, d, r1);
+  CS_EXPECT(cs_stateSet(&m, d, s0, &err) == CS_OK);
+  /* set, then get: the same bytes (bit-exact restore) */
+  cs_stateGet(&m, d, r2);
+  CS_EXPECT(memcmp(s0, r2, n * sizeof(double)) == 0);
+  CS_EXPECT(stepN(&m, d, 60));
+  cs_stateGet(&m, d, r2);
+  CS_EXPECT(memcmp(r1, r2, n * sizeof(double)) == 0);
+  CS_EXPECT(r1[0] > s0[0]); /* time moved on: the steps did something */
+  CS_EXPECT(memcmp(r1 + 2, s0 + 2, (n - 2) * sizeof(double)) != 0);
+  free(s0);
+  free(r1);
+  free(r2);
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+}
+
+
+/* what is not a state is refused and changes nothing */
+static void test_bad_states_are_refused(void) {
+  csModel m;
+  FailMap fm;
+  CS_EXPECT(loadModel(&m, &fm, 0.02));
+  csData* d = makeData(&m);
+  CS_EXPECT(d && stepN(&m, d, 20));
+  int n = cs_stateSize(&m, d);
+  /* layout: t, seed, 96 pressures, the support body (13), legs A..H */
+  CS_EXPECT(n == 2 + 96 + 13 + 8 * (13 * 13 + 3 * 7));
+  double* s = malloc(n * sizeof(double));
+  double* x = malloc(n * sizeof(double));
+  double* after = malloc(n * sizeof(double));
+  cs_stateGet(&m, d, s);
+  CS_EXPECT(s[0] == cs_time(d));
+  struct {
+    int index;
+    double value;
+    const char* what;
+  } bad[5] = {{0, NAN, "time NaN"},
+              {1, 4294967296.0, "seed beyond 32 bits"},
+              {1, 0.5, "fractional seed"},
+              {2 + 96 + 3, 2.0, "support quaternion not unit"},
+              {n - 30, INFINITY, "leg H value infinite"}};
+  for (int k = 0; k < 5; k++) {
+    memcpy(x, s, n * sizeof(double));
+    x[bad[k].index] = bad[k].value;
+    csError err;
+    cs_errorClear(&err);
+    CS_EXPECT(cs_stateSet(&m, d, x, &err) == CS_ERR_ARG);
+    cs_stateGet(&m, d, after);
+    CS_EXPECT(memcmp(s, after, n * sizeof(double)) == 0);
+    printf("  %s: %s\n", bad[k].what, err.msg);
+  }
+  /* a leg body's quaternion off unit length, after the support's slice was accepted: the
+   * support must come back too */
+  memcpy(x, s, n * sizeof(double));
+  x[2 + 96 + 13 + 13 * 5 + 4] *= 3;
+  csError err;
+  CS_EXPECT(cs_stateSet(&m, d, x, &err) == CS_ERR_ARG);
+  cs_stateGet(&m, d, after);
+  CS_EXPECT(memcmp(s, after, n * sizeof(double)) == 0);
+  free(s);
+  free(x);
+  free(after);
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+}
+
+
+int main(int argc, char** argv) {
+  cs_testInit(argc, argv);
+  const char* src = getenv("CS_SOURCE_DIR");
+  snprintf(g_src, sizeof g_src, "%s", src ? src : ".");
+  dInitODE2(0);
+  CS_RUN(test_failed_step_changes_nothing);
+  CS_RUN(test_run_after_failures_is_bit_identical);
+  CS_RUN(test_set_step_twice_is_bit_identical);
+  CS_RUN(test_bad_states_are_refused);
+  dCloseODE();
+  return cs_testSummary();
+}
