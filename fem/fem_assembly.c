@@ -246,14 +246,18 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
     d->stats.t_assemble += csf_wallTime() - t0;
     return 1;
   }
-  /* fibres (serial: a few thousand small elements); d->kf is the element-matrix scratch. A
-   * fibre inside one host (csfModel.fib_split) couples its 10 nodes: its two coefficient halves
-   * are summed into one 10-node chord (4x fewer matrix entries than the 20-node form) */
+  /* fibres: in parallel like the tetrahedra (tens of thousands of elements once split at
+   * faces); each thread's element matrix lives on its stack. A fibre inside one host
+   * (csfModel.fib_split) couples its 10 nodes: its two coefficient halves are summed into one
+   * 10-node chord (4x fewer matrix entries than the 20-node form) */
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 256)
+#endif
   for (int f = 0; f < m->nfib; f++) {
     const int* fv = m->fib_node + 20 * f;
     const double* cf = m->fib_coef + 20 * (size_t)f;
     const int nn = m->fib_single[f] ? 10 : 20;
-    double x[60], rf[60], c10[10];
+    double x[60], rf[60], c10[10], kf[3600];
     for (int a = 0; a < nn; a++) {
       for (int i = 0; i < 3; i++) {
         x[3 * a + i] = me->x[3 * fv[a] + i] + d->u[3 * fv[a] + i];
@@ -266,13 +270,13 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
       cf = c10;
     }
     if (!csf_fibreKernel(nn, cf, x, m->fib_L0[f], m->fib_EA[f], d->fib_S[f],
-                         m->fib_tension_only, m->fib_geo_tension, rf, want_k ? d->kf : NULL,
+                         m->fib_tension_only, m->fib_geo_tension, rf, want_k ? kf : NULL,
                          &d->fib_E[f], d->fib_d + 3 * (size_t)f)) {
       continue;
     }
     for (int a = 0; a < nn; a++) {
       for (int i = 0; i < 3; i++) {
-        d->r[3 * fv[a] + i] += rf[3 * a + i];
+        atomicAdd(&d->r[3 * fv[a] + i], rf[3 * a + i]);
       }
     }
     if (want_k) {
@@ -283,8 +287,8 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
         for (int b = 0; b < nn; b++) {
           for (int i = 0; i < 3; i++) {
             for (int c = 0; c < 3; c++) {
-              d->kval[csrIndex(m, fv[a], i, map[20 * a + b], c)] +=
-                  d->kf[ld * (3 * a + i) + 3 * b + c];
+              atomicAdd(&d->kval[csrIndex(m, fv[a], i, map[20 * a + b], c)],
+                        kf[ld * (3 * a + i) + 3 * b + c]);
             }
           }
         }

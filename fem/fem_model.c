@@ -200,12 +200,11 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
   d->fib_E0 = calloc(nfb, sizeof(double));
   d->fib_d0 = calloc(3 * nfb, sizeof(double));
   d->fib_zone = calloc(nfb, 1);
-  d->kf = malloc(3600 * sizeof(double));
   d->kry_b = malloc(n * sizeof(double));
   d->kry_work = malloc(csf_gmresWorkSize(m->ndof, CSF_KRYLOV_RESTART) * sizeof(double));
   d->fext1 = calloc(n, sizeof(double));
   d->du2 = calloc(n, sizeof(double));
-  if (!d->kf || !d->kry_b || !d->kry_work || !d->fib_zone || !d->fext1 || !d->du2 || !d->u || !d->r || !d->du || !d->u_save ||
+  if (!d->kry_b || !d->kry_work || !d->fib_zone || !d->fext1 || !d->du2 || !d->u || !d->r || !d->du || !d->u_save ||
       !d->kval || !d->theta || !d->pel || !d->vratio || !d->theta_save || !d->vr0 || !d->gel || !d->g0 || !d->fib_S || !d->fib_E ||
       !d->fib_d || !d->fib_S_save || !d->fib_E0 || !d->fib_d0) {
     csf_dataDestroy(d);
@@ -238,7 +237,7 @@ void csf_dataDestroy(csfData* d) {
   free(d->u), free(d->r), free(d->du), free(d->u_save), free(d->kval), free(d->theta);
   free(d->pel), free(d->vratio), free(d->theta_save), free(d->vr0), free(d->gel), free(d->g0);
   free(d->fib_S), free(d->fib_E), free(d->fib_d), free(d->fib_S_save), free(d->fib_E0);
-  free(d->fib_d0), free(d->fib_zone), free(d->kf), free(d->kry_b), free(d->kry_work), free(d->fext1), free(d->du2);
+  free(d->fib_d0), free(d->fib_zone), free(d->kry_b), free(d->kry_work), free(d->fext1), free(d->du2);
   csf_linSolverDestroy(d->ls);
   free(d);
 }

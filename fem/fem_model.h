@@ -128,7 +128,6 @@ typedef struct csfData_ {
                    * V_f = 1/3 int x . n_chamber da over the pressurised faces (closed chambers,
                    * or open ones bounded by symmetry planes through the origin) */
   unsigned char* fib_zone; /* (nfib) law zone at the last iterate: 0 slack, 1 smoothing, 2 taut */
-  double* kf;     /* (60 x 60) scratch: one fibre element matrix (assembly) */
   double* kry_b;  /* (ndof) scratch: right-hand side of a GMRES solve */
   double* kry_work; /* (csf_gmresWorkSize(ndof, CSF_KRYLOV_RESTART)) GMRES workspace */
   int have_factor;   /* 1: d->ls holds a factorisation of some earlier tangent (a preconditioner) */
