@@ -1,15 +1,20 @@
 /* fem_bend.h: `crawlsim bend --model fe`: pressure sweep of the full FE actuator model.
  *
- * Owns: csfBendOptions (chambers, pressure range, --until-angle, mesh size, fibres, gravity,
- * output paths), csf_bend (mesh -> model -> adaptive load stepping -> per-segment bending angles
- * from the deformed end-face frames -> csrBendCurve), and the measurement of those angles.
+ * Owns: csfBendOptions (the actuator's discretisation and loads as a csfActuatorSpec, the
+ * pressure range, --until-angle, continuation, stiffness probes, outputs), csfBendRecord (the
+ * full per-segment kinematics of every output row, for the calibration), and csf_bend: the
+ * sweep as named stages (set-up, gravity ramp, pressure steps with cut-backs and a secant
+ * predictor, limit points by volume control, refinement of --until-angle, output rows with
+ * optional stiffness probes, finish).
  * Units: MPa, mm, degrees, seconds. Frame: the actuator's base frame (e1, e2, e3), z = e3 along
  * the undeformed axis from the clamped base (z = 0). */
 #ifndef CS_FEM_BEND_H
 #define CS_FEM_BEND_H
 
 #include "core_status.h"
-#include "fem_model.h"
+#include "fem_actuator.h"
+#include "fem_measure.h"
+#include "fem_newton.h"
 #include "robot_actuator.h"
 
 #ifdef __cplusplus
@@ -41,6 +46,9 @@ typedef struct csfBendInfo_ {
   double t_mesh, t_setup, t_total;         /* wall s: gmsh + reading, model + fibres, all */
   double t_assemble, t_factor, t_solve;    /* wall s, accumulated */
   double factor_nnz;                       /* entries of the sparse factors */
+  long n_factor;       /* numeric factorisations of the tangent */
+  long n_krylov, n_krylov_iter; /* linear solves by GMRES on an older factorisation, iterations */
+  char solver[32];     /* sparse solver and mode used ("mumps-ldlt", ...) */
   double p_limit;  /* MPa: pressure limit point of the path (the largest pressure reached
                     * under volume control after the pressure-controlled step collapsed; with
                     * continuation off, the last converged pressure), NAN when none was met */
@@ -51,45 +59,65 @@ typedef struct csfBendInfo_ {
   char limit_note[200]; /* why the path past the limit ended without resuming ("" = n/a) */
   double max_j_dev; /* max |theta - 1| over elements at the last state (volume preservation) */
   int n_until_trials, n_until_failed; /* --until-angle refinement: equilibrium trials, failures */
+  long n_probe_newton; /* Newton iterations spent in stiffness probes (included in n_newton) */
   char until_note[200]; /* the last failed trial's pressure and Newton message ("" = none) */
 } csfBendInfo;
 
+/* One output row of a sweep with everything the calibration needs (csfBendOptions.record). */
+typedef struct csfBendRow_ {
+  double p;                     /* load factor (MPa: the pressure of a ratio-1 chamber) */
+  csfSegmentState seg[CSR_NSEG];
+  double tip[3], Rtip[9];       /* tip-face centroid (mm) and frame, base frame */
+  double angle_total;           /* base-to-tip angle about the reference axis, deg */
+  int nprobe;                   /* stiffness probes at this row (0 or 3) */
+  int probe_ok[3];              /* 1: the probed state converged */
+  double probe_force[3][3];     /* tip force of each probe, N (base frame), on top of tip_force */
+  csfSegmentState probe_seg[3][CSR_NSEG]; /* kinematics under each probe */
+  double probe_tip[3][3];       /* tip centroid under each probe, mm */
+} csfBendRow;
+
+/* Caller-owned list of rows (capacity cap; csf_bend stops recording when full). */
+typedef struct csfBendRecord_ {
+  size_t m, cap;
+  csfBendRow* row;
+} csfBendRecord;
+
 typedef struct csfBendOptions_ {
-  unsigned chambers[CSR_NSEG]; /* per segment, bit j-1 set = chamber Omega_j pressurised */
-  double p_max;        /* MPa, end of the sweep */
+  csfActuatorSpec spec; /* discretisation, chamber pressure ratios, gravity, tip force */
+  double p_max;        /* MPa, end of the sweep (load factor) */
   double p_step;       /* MPa, output spacing and largest load step */
+  double p_first;      /* MPa, first load step from the unloaded state (0: p_step / 4; the
+                        * linearised step from u = 0 overshoots: measured on the baseline, 0.05
+                        * and 0.025 MPa failed after 3 iterations each, 0.0125 converged) */
   double until_angle;  /* deg, stop when the total angle reaches it (NAN = off) */
   double angle_tol;    /* deg, accuracy of p_until_angle's angle */
-  double mesh_size;    /* l_soft, mm */
-  double fibre_size;   /* l_fibre, mm (0: 0.4 l_soft - 0.1, the paper's Table 1 pairing) */
-  int fibres;          /* 1 = embed the double-helix fibres (n turns per segment) */
-  int fibre_compression; /* 1 (default): linear in tension and compression (Green strain, St.
-                          * Venant); 0: smoothed tension-only (Newton cycles on the baseline) */
-  int fibre_geo_tension; /* 0 (default): consistent fibre tangent; 1: geometric stiffness only
-                          * in tension (csfModel.fib_geo_tension; the residual is unchanged) */
-  csfFormulation form; /* element formulation (default CSF_FORM_MIXED_P0; CSF_FORM_DISPLACEMENT
-                        * is plain P2 = CalculiX's C3D10, for cross-checks) */
   csfLineSearch line_search; /* Newton line search (default CSF_LS_RESIDUAL) */
   int continuation;    /* 1 (default): past a limit point, follow the path by chamber-volume
                         * control and resume pressure control where it is stable again; 0: stop
                         * at the limit (p_limit = last converged pressure) */
   void (*newton_monitor)(void* user, const csfNewtonIter* it); /* optional, per Newton iteration */
-  double gravity[3];   /* mm/s^2 in the base frame, e.g. {0, 0, -9810}; zeros = off */
-  const char* work_stem; /* path prefix for the .geo/.msh files (default "crawlsim_fe") */
   const char* vtu_path;  /* deformed mesh at the last state (ParaView .vtu), NULL = none */
   const char* inp_path;  /* same model as a CalculiX/ABAQUS .inp deck, NULL = none */
   int threads;           /* OpenMP threads for assembly (0 = default) */
+  int krylov;            /* 1: Newton reuses the last factorisation as a GMRES preconditioner
+                          * (csfNewtonOptions.krylov); 0 (default): factor every iteration */
+  /* stiffness probes: at output rows whose pressure is within 1e-9 p_step of one of
+   * probe_p[0..nprobe_p), three extra equilibria with a tip force probe_force[k] e_k added
+   * (k = 0, 1, 2: e1, e2, e3 of the base frame), each from the row's converged state */
+  int nprobe_p;
+  double probe_p[16];    /* MPa */
+  double probe_force[3]; /* N per direction (0: that probe is skipped) */
+  csfBendRecord* record; /* optional: the full kinematics of every output row */
   csfBendProgress progress; /* called after each converged step (NULL = none) */
   void* progress_user;
   csfBendInfo* info;     /* optional summary output */
 } csfBendOptions;
 
-/* Defaults: chambers Omega1 & Omega2 of all segments, p_max 0.4, p_step 0.05, until_angle off,
- * angle_tol 0.1 deg, mesh_size 4, fibres on (tension and compression, consistent tangent),
- * gravity off. */
+/* Defaults: csf_actuatorSpecDefault (Omega1 & Omega2 of all segments, l_soft 4, fibres), p_max
+ * 0.4, p_step 0.05, until_angle off, angle_tol 0.1 deg, no probes, no record. */
 csfBendOptions csf_bendDefault(void);
 
-/* Parse a chamber list "1,2" (applied to every segment) into opts->chambers. */
+/* Parse a chamber list "1,2" (applied to every segment at ratio 1) into opts->spec.ratio. */
 csStatus csf_bendSetChambers(csfBendOptions* opts, const char* list, csError* err);
 
 /* Run the sweep. `out` must be initialised (csr_bendCurveInit); rows are appended at each
@@ -100,27 +128,6 @@ csStatus csf_bendSetChambers(csfBendOptions* opts, const char* list, csError* er
  * out->p_until_angle = NAN tell). */
 csStatus csf_bend(const csrActuator* act, const csfBendOptions* opts, csrBendCurve* out,
                   csError* err);
-
-/* Angles of the actuator at the current state d->u: per segment and total (deg), and the tip
- * centroid (mm). Planes are the segments' end faces z = start(s), start(s) + S_s and the base/tip
- * faces. Each angle is the rotation between two fitted face frames about the reference bending
- * axis `axis` (unit, base frame; csf_bendAxisAngle) and unwrapped against `prev` (previous
- * values: 3 segments then total; may be NULL), so bends beyond 180 and 360 deg are followed
- * continuously. */
-void csf_bendMeasure(const csrActuator* act, const csfModel* m, const csfData* d,
-                     const double axis[3], const double prev[4], double angle_deg[3],
-                     double* total_deg, double tip[3]);
-
-/* Angle (rad) of the relative rotation Ra^T Rb (row-major frames) about the unit `axis`: the
- * twist of its swing-twist decomposition, smooth through full turns, unwrapped to within pi of
- * `prev` (rad). axis NULL: the full rotation angle. */
-double csf_bendAxisAngle(const double Ra[9], const double Rb[9], const double axis[3],
-                         double prev);
-
-/* Rigid rotation R (row-major 3x3) best fitting the deformed positions of the nodes of a plane
- * z = const (reference X, deformed x, n nodes): least-squares fit of the in-plane directions,
- * polar-orthonormalised; R e3 is the deformed face normal. Returns 0, or -1 if degenerate. */
-int csf_fitPlaneFrame(int n, const double* X, const double* x, double R[9], double centroid[3]);
 
 #ifdef __cplusplus
 }

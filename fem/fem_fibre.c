@@ -6,6 +6,7 @@
  * Tet10 isoparametric map). The point then moves with the body: x = sum_a N_a(xi) x_a, which is
  * the "tie" of the paper's fibre model (ABAQUS embedded/tie constraint) without extra unknowns. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -192,6 +193,118 @@ static int locate(const csfMesh* me, const Grid* g, const double x[3], double xi
 }
 
 
+/* host of x, tetrahedron `prefer` when x lies in it (points on a shared face belong to both:
+ * staying in the current host keeps the split points on its boundary); -1 outside the body */
+static int locateInOrNear(const csfMesh* me, const Grid* g, int prefer, const double x[3],
+                          double xi[3]) {
+  if (locateIn(me, prefer, x, xi) >= -CSF_LOCATE_TOL) {
+    return prefer;
+  }
+  return locate(me, g, x, xi);
+}
+
+
+/* Fibre elements of the polyline segment P0 -> P1 (hosts h0, h1 with natural coordinates xi0,
+ * xi1), appended to m's arrays at index *nf (capacity cap): one element per host tetrahedron the
+ * chord crosses, its end points on the faces where the host changes (found by bisection along
+ * the chord), so that each element couples the 10 nodes of a single tetrahedron and adds no fill
+ * to the tangent's pattern. Where an intermediate chord point lies in no element (the chord
+ * leaves the faceted body between two interior points), the segment is kept as one element tied
+ * to both hosts. Returns the number of elements written, or -1 when cap is exceeded. */
+#define CSF_FIBRE_MAX_PIECES 64
+#define CSF_FIBRE_BISECT 40      /* bisection steps: 2^-40 of the chord, far below round-off */
+/* mm: pieces shorter than this are dropped (a chord clipping a corner, or ending a hair past a
+ * face): their strain is a difference of interpolated positions, so its round-off is
+ * ~1e-14 mm / L0 (measured: pieces of 1e-15 mm had strains of order 1 and stalled Newton);
+ * at 1e-5 mm it is 1e-9, and the dropped fibre length is below 1e-5 mm per face crossing */
+#define CSF_FIBRE_MIN_PIECE 1e-5
+
+static int addPiece(csfModel* m, int f, int ha, const double xa[3], int hb, const double xb[3],
+                    double EA) {
+  const csfMesh* me = m->mesh;
+  double xi[3], Na[10], Nb[10];
+  locateIn(me, ha, xa, xi);
+  csf_tet10Shape(xi, Na, NULL);
+  locateIn(me, hb, xb, xi);
+  csf_tet10Shape(xi, Nb, NULL);
+  for (int a = 0; a < 10; a++) {
+    m->fib_node[20 * f + a] = me->tet[10 * ha + a];
+    m->fib_coef[20 * f + a] = -Na[a];
+    m->fib_node[20 * f + 10 + a] = me->tet[10 * hb + a];
+    m->fib_coef[20 * f + 10 + a] = Nb[a];
+  }
+  /* reference length from the interpolated end points (what the element actually sees), so the
+   * fibre starts stress free even where the host map is only approximately inverted */
+  double dX[3] = {0, 0, 0};
+  for (int a = 0; a < 20; a++) {
+    for (int d = 0; d < 3; d++) {
+      dX[d] += m->fib_coef[20 * f + a] * me->x[3 * m->fib_node[20 * f + a] + d];
+    }
+  }
+  m->fib_L0[f] = sqrt(dX[0] * dX[0] + dX[1] * dX[1] + dX[2] * dX[2]);
+  m->fib_EA[f] = EA;
+  return m->fib_L0[f] > CSF_FIBRE_MIN_PIECE ? 0 : -1;
+}
+
+
+static int splitSegment(csfModel* m, const Grid* g, const double* P0, int h0, const double* P1,
+                        int h1, double EA, int split, int* nf, int cap) {
+  const csfMesh* me = m->mesh;
+  int written = 0;
+  double a[3] = {P0[0], P0[1], P0[2]};
+  int ha = h0;
+  for (int piece = 0; piece < CSF_FIBRE_MAX_PIECES; piece++) {
+    if (*nf >= cap) {
+      return -1;
+    }
+    if (ha == h1 || !split) {
+      if (addPiece(m, *nf, ha, a, h1, P1, EA) == 0) {
+        (*nf)++, written++;
+      }
+      return written;
+    }
+    /* bisection on the chord a -> P1 for the point where the host stops being ha */
+    double lo = 0, hi = 1, xi[3];
+    int h_hi = h1;
+    for (int it = 0; it < CSF_FIBRE_BISECT; it++) {
+      const double t = 0.5 * (lo + hi);
+      double x[3];
+      for (int d = 0; d < 3; d++) {
+        x[d] = a[d] + t * (P1[d] - a[d]);
+      }
+      const int h = locateInOrNear(me, g, ha, x, xi);
+      if (h < 0) {
+        /* the chord leaves the body: one element tied to both hosts (the old rule) */
+        if (addPiece(m, *nf, ha, a, h1, P1, EA) == 0) {
+          (*nf)++, written++;
+        }
+        return written;
+      }
+      if (h == ha) {
+        lo = t;
+      } else {
+        hi = t, h_hi = h;
+      }
+    }
+    double c[3];
+    for (int d = 0; d < 3; d++) {
+      c[d] = a[d] + hi * (P1[d] - a[d]);
+    }
+    /* the piece a -> c lies in ha; c is on ha's face (natural coordinates within round-off) */
+    if (addPiece(m, *nf, ha, a, ha, c, EA) == 0) {
+      (*nf)++, written++;
+    }
+    memcpy(a, c, sizeof a);
+    ha = h_hi;
+  }
+  /* too many pieces (a degenerate chord along faces): close with one two-host element */
+  if (*nf < cap && addPiece(m, *nf, ha, a, h1, P1, EA) == 0) {
+    (*nf)++, written++;
+  }
+  return written;
+}
+
+
 csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, double radius,
                            csError* err) {
   if (m->finalized) {
@@ -209,7 +322,8 @@ csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, d
   }
   int* host = malloc((size_t)npts * sizeof(int));
   double* N = malloc((size_t)npts * 10 * sizeof(double));
-  const int nf = m->nfib + npts - 1;
+  /* capacity: every segment may be split at each face its chord crosses */
+  const int nf = m->nfib + (npts - 1) * (m->fib_split ? CSF_FIBRE_MAX_PIECES + 1 : 1);
   int* fnode = realloc(m->fib_node, (size_t)nf * 20 * sizeof(int));
   if (fnode) {
     m->fib_node = fnode;
@@ -242,30 +356,37 @@ csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, d
     csf_tet10Shape(xi, N + 10 * p, NULL);
   }
   const double area = CS_PI * radius * radius;
+  int nf_done = m->nfib;
   for (int s = 0; s + 1 < npts; s++) {
-    const int f = m->nfib + s;
-    for (int a = 0; a < 10; a++) {
-      m->fib_node[20 * f + a] = me->tet[10 * host[s] + a];
-      m->fib_coef[20 * f + a] = -N[10 * s + a];
-      m->fib_node[20 * f + 10 + a] = me->tet[10 * host[s + 1] + a];
-      m->fib_coef[20 * f + 10 + a] = N[10 * (s + 1) + a];
-    }
-    /* reference length from the interpolated end points (what the element actually sees), so
-     * the fibre starts stress free even where the host map is only approximately inverted */
-    double dX[3] = {0, 0, 0};
-    for (int a = 0; a < 20; a++) {
-      for (int d = 0; d < 3; d++) {
-        dX[d] += m->fib_coef[20 * f + a] * me->x[3 * m->fib_node[20 * f + a] + d];
-      }
-    }
-    m->fib_L0[f] = sqrt(dX[0] * dX[0] + dX[1] * dX[1] + dX[2] * dX[2]);
-    m->fib_EA[f] = E * area;
-    if (!(m->fib_L0[f] > 0)) {
+    if (splitSegment(m, &g, pts + 3 * s, host[s], pts + 3 * (s + 1), host[s + 1], E * area,
+                     m->fib_split, &nf_done, nf) < 0) {
       free(host), free(N), gridFree(&g);
-      return cs_errorSet(err, CS_ERR_ARG, "fem_fibre: zero-length fibre segment %d", s);
+      return cs_errorSet(err, CS_ERR_MEMORY, "fem_fibre: fibre segment %d crosses too many "
+                         "elements", s);
     }
   }
-  m->nfib = nf;
+  if (getenv("CSF_FIBDBG")) {
+    int tiny = 0, two = 0;
+    double lmin = 1e30, lmax = 0;
+    for (int f = m->nfib; f < nf_done; f++) {
+      lmin = fmin(lmin, m->fib_L0[f]);
+      lmax = fmax(lmax, m->fib_L0[f]);
+      tiny += m->fib_L0[f] < 1e-3;
+      two += m->fib_node[20 * f] != m->fib_node[20 * f + 10];
+    }
+    fprintf(stderr, "fibre: %d points -> %d elements, L0 %.3g..%.3g, %d below 1e-3 mm, %d two-host\n", npts, nf_done - m->nfib, lmin, lmax, tiny, two);
+  }
+  m->nfib = nf_done;
+  /* give back the split capacity that was not used */
+  const size_t keep = (size_t)(nf_done > 0 ? nf_done : 1);
+  int* fn2 = realloc(m->fib_node, keep * 20 * sizeof(int));
+  double* fc2 = realloc(m->fib_coef, keep * 20 * sizeof(double));
+  double* fl2 = realloc(m->fib_L0, keep * sizeof(double));
+  double* fe2 = realloc(m->fib_EA, keep * sizeof(double));
+  m->fib_node = fn2 ? fn2 : m->fib_node;
+  m->fib_coef = fc2 ? fc2 : m->fib_coef;
+  m->fib_L0 = fl2 ? fl2 : m->fib_L0;
+  m->fib_EA = fe2 ? fe2 : m->fib_EA;
   free(host), free(N), gridFree(&g);
   return CS_OK;
 }

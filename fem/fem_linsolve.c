@@ -3,10 +3,16 @@
  * KLU factors a matrix given in compressed-column form. Our tangent is stored in CSR, which is
  * the CSC form of K^T; we factor K^T and solve with klu_tsolve, i.e. (K^T)^T x = K x = b, so no
  * transposed copy is needed.
- * MUMPS takes coordinate triplets (1-based): they are built once from the CSR pattern; values
- * are passed by pointer at every factorisation. The sequential library (no MPI) is used, so no
- * process-wide MPI initialisation is needed. Unsymmetric mode (SYM = 0): the follower-pressure
- * stiffness is not symmetric face by face. Output of MUMPS is silenced (ICNTL 1-4). */
+ * MUMPS takes coordinate triplets (1-based): they are built once from the CSR pattern. In
+ * unsymmetric mode (SYM = 0) the values are passed by pointer at every factorisation; in
+ * symmetric mode (SYM = 2, general symmetric: LDL^T with 1x1 and 2x2 pivots, for tangents that
+ * turn indefinite past limit points) only the upper triangle is given (MUMPS sums entries given
+ * twice), so its values are gathered into a buffer (`sel` maps them) before each factorisation.
+ * The sequential library (no MPI) is used, so no process-wide MPI initialisation is needed.
+ * Output of MUMPS is silenced (ICNTL 1-4).
+ * Threads: Debian's sequential MUMPS is built with OpenMP and calls OpenBLAS (OpenMP build); both
+ * take their thread count from omp_set_num_threads, which is set for the duration of each MUMPS
+ * call and restored afterwards (the assembly loop has its own count). */
 #include "fem_linsolve.h"
 
 #include <dmumps_c.h>
@@ -17,22 +23,28 @@
 #include <omp.h>
 #endif
 
-/* Run MUMPS single-threaded. Measured (bench_fem_solver, 51207 dofs): factor 3.1 s with one
- * thread, 20 s with two OpenMP threads under libgomp's default active waiting (spinning threads
- * of our assembly loop and MUMPS' own OpenMP regions compete), 3.2 s with two threads and
- * OMP_WAIT_POLICY=passive. Threads are used for assembly instead. */
-static int enterSerial(void) {
+/* Factorisations below this many flops (MUMPS' estimate from the analysis) run on one thread.
+ * Measured on this 2-core machine: the baseline actuator at l_soft 4 (2.2e10 flops, LDL^T) factors
+ * 1.3x faster on two threads, while the small meshes of the tests (test_fem_locking, < 1e9 flops)
+ * ran 1.3x slower on two threads (thread start-up and spin-waiting dominate small fronts). */
+#define CSF_MT_MIN_FLOPS 5e9
+
+/* Set the OpenMP thread count for a MUMPS call; returns the previous one. */
+static int enterThreads(int threads) {
 #ifdef _OPENMP
   int prev = omp_get_max_threads();
-  omp_set_num_threads(1);
+  if (threads > 0) {
+    omp_set_num_threads(threads);
+  }
   return prev;
 #else
+  (void)threads;
   return 1;
 #endif
 }
 
 
-static void leaveSerial(int prev) {
+static void leaveThreads(int prev) {
 #ifdef _OPENMP
   omp_set_num_threads(prev);
 #else
@@ -47,8 +59,11 @@ static void leaveSerial(int prev) {
  * -9 "workspace too small" error measured on indefinite tangents near limit points */
 #define MUMPS_MEM_RELAX 60
 
+/* largest LWK_USER MUMPS' 32-bit integer interface takes */
+#define MUMPS_LWK_MAX 2147483647.0
+
 struct csfLinSolver_ {
-  csfSolverKind kind;
+  csfLinSolverOptions opt;
   int n;
   /* KLU */
   int* ap;
@@ -60,19 +75,74 @@ struct csfLinSolver_ {
   DMUMPS_STRUC_C id;
   int* irn;
   int* jcn;
+  int* sel;     /* symmetric mode: (nz) CSR index of each upper-triangle entry given to MUMPS */
+  double* aval; /* symmetric mode: (nz) gathered values */
+  double* wk;   /* MUMPS main workspace S, owned here (WK_USER, LWK_USER entries) */
+  int nthreads; /* threads of factorisations and solves (opt.threads, or chosen by size) */
+  long lwk;
   int mumps_on;
   int factored;
 };
 
 
-csfLinSolver* csf_linSolverCreate(csfSolverKind kind, int n, const int* row_ptr, const int* col,
-                                  csError* err) {
+/* Main workspace S for the numeric factorisation, from the analysis: INFO(8) entries (negative:
+ * millions) plus the ICNTL(14) relaxation for delayed pivots. MUMPS allocates S itself at every
+ * factorisation otherwise; measured (bench_fem_linsolve, baseline l_soft 4): the ~0.9 GB were
+ * mapped and zeroed anew each time, 0.2 M page faults and 10-25 % of the factorisation time. A
+ * workspace owned here (WK_USER) is touched once. */
+static double workspaceEstimate(const csfLinSolver* s) {
+  const double info8 = (double)s->id.info[7];
+  const double need = info8 < 0 ? -1e6 * info8 : info8;
+  return need * (1.0 + 0.01 * s->id.icntl[13]);
+}
+
+
+/* (re)allocate WK_USER to at least `entries` doubles; 0 on success */
+static int growWorkspace(csfLinSolver* s, double entries) {
+  if (!(entries > 0)) {
+    return 0;
+  }
+  if (entries > MUMPS_LWK_MAX) {
+    entries = MUMPS_LWK_MAX;
+  }
+  if ((double)s->lwk >= entries) {
+    return 0;
+  }
+  double* wk = malloc((size_t)entries * sizeof(double));
+  if (!wk) {
+    return 1;
+  }
+  free(s->wk);
+  s->wk = wk;
+  s->lwk = (long)entries;
+  s->id.wk_user = wk;
+  s->id.lwk_user = (int)s->lwk;
+  return 0;
+}
+
+
+csfLinSolverOptions csf_linSolverDefault(void) {
+  csfLinSolverOptions o;
+  o.kind = CSF_SOLVER_MUMPS;
+  o.symmetric = 0;
+  o.ordering = 7;
+  o.threads = 0;
+  return o;
+}
+
+
+csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const int* row_ptr,
+                                  const int* col, csError* err) {
   csfLinSolver* s = calloc(1, sizeof *s);
   if (!s) {
     cs_errorSet(err, CS_ERR_MEMORY, "fem_linsolve: out of memory");
     return NULL;
   }
-  s->kind = kind;
+  s->opt = opt ? *opt : csf_linSolverDefault();
+  const csfSolverKind kind = s->opt.kind;
+  if (kind == CSF_SOLVER_KLU) {
+    s->opt.symmetric = 0;
+  }
   s->n = n;
   s->ap = (int*)row_ptr;
   s->ai = (int*)col;
@@ -87,27 +157,48 @@ csfLinSolver* csf_linSolverCreate(csfSolverKind kind, int n, const int* row_ptr,
     }
     return s;
   }
-  const int nnz = row_ptr[n];
+  int nnz = row_ptr[n];
+  if (s->opt.symmetric) {
+    int nz = 0;
+    for (int i = 0; i < n; i++) {
+      for (int q = row_ptr[i]; q < row_ptr[i + 1]; q++) {
+        nz += col[q] >= i;
+      }
+    }
+    nnz = nz;
+  }
   s->irn = malloc((size_t)nnz * sizeof(int));
   s->jcn = malloc((size_t)nnz * sizeof(int));
-  if (!s->irn || !s->jcn) {
+  if (s->opt.symmetric) {
+    s->sel = malloc((size_t)nnz * sizeof(int));
+    s->aval = malloc((size_t)nnz * sizeof(double));
+  }
+  if (!s->irn || !s->jcn || (s->opt.symmetric && (!s->sel || !s->aval))) {
     csf_linSolverDestroy(s);
     cs_errorSet(err, CS_ERR_MEMORY, "fem_linsolve: out of memory (%d nonzeros)", nnz);
     return NULL;
   }
+  int k = 0;
   for (int i = 0; i < n; i++) {
     for (int q = row_ptr[i]; q < row_ptr[i + 1]; q++) {
-      s->irn[q] = i + 1;
-      s->jcn[q] = col[q] + 1;
+      if (s->opt.symmetric && col[q] < i) {
+        continue;
+      }
+      s->irn[k] = i + 1;
+      s->jcn[k] = col[q] + 1;
+      if (s->sel) {
+        s->sel[k] = q;
+      }
+      k++;
     }
   }
   s->id.job = MUMPS_JOB_INIT;
   s->id.par = 1;
-  s->id.sym = 0;
+  s->id.sym = s->opt.symmetric ? 2 : 0;
   s->id.comm_fortran = MUMPS_USE_COMM_WORLD;
-  int prev0 = enterSerial();
+  int prev0 = enterThreads(s->nthreads);
   dmumps_c(&s->id);
-  leaveSerial(prev0);
+  leaveThreads(prev0);
   s->mumps_on = 1;
   if (s->id.infog[0] < 0) {
     cs_errorSet(err, CS_ERR_SOLVER, "fem_linsolve: MUMPS init failed (INFOG(1) %d)",
@@ -119,19 +210,33 @@ csfLinSolver* csf_linSolverCreate(csfSolverKind kind, int n, const int* row_ptr,
   s->id.icntl[1] = -1;
   s->id.icntl[2] = -1;
   s->id.icntl[3] = 0;
-  s->id.icntl[6] = 7; /* ordering: automatic choice (METIS when available) */
+  s->id.icntl[6] = s->opt.ordering; /* ICNTL(7): ordering (7 = automatic choice) */
   s->id.icntl[13] = MUMPS_MEM_RELAX;
   s->id.n = n;
   s->id.nnz = nnz;
   s->id.irn = s->irn;
   s->id.jcn = s->jcn;
   s->id.job = 1; /* analysis */
-  int prev = enterSerial();
+  int prev = enterThreads(s->nthreads);
   dmumps_c(&s->id);
-  leaveSerial(prev);
+  leaveThreads(prev);
   if (s->id.infog[0] < 0) {
     cs_errorSet(err, CS_ERR_SOLVER, "fem_linsolve: MUMPS analysis failed (INFOG(1) %d, (2) %d)",
                 s->id.infog[0], s->id.infog[1]);
+    csf_linSolverDestroy(s);
+    return NULL;
+  }
+  s->nthreads = s->opt.threads;
+  if (s->nthreads <= 0) {
+#ifdef _OPENMP
+    s->nthreads = s->id.rinfog[0] < CSF_MT_MIN_FLOPS ? 1 : omp_get_max_threads();
+#else
+    s->nthreads = 1;
+#endif
+  }
+  if (growWorkspace(s, workspaceEstimate(s)) != 0) {
+    cs_errorSet(err, CS_ERR_MEMORY, "fem_linsolve: out of memory for the MUMPS workspace "
+                "(%.3g entries)", workspaceEstimate(s));
     csf_linSolverDestroy(s);
     return NULL;
   }
@@ -140,45 +245,56 @@ csfLinSolver* csf_linSolverCreate(csfSolverKind kind, int n, const int* row_ptr,
 
 
 int csf_linSolverFactor(csfLinSolver* s, const double* val) {
-  if (s->kind == CSF_SOLVER_KLU) {
+  if (s->opt.kind == CSF_SOLVER_KLU) {
     if (s->num) {
       klu_free_numeric(&s->num, &s->common);
     }
     s->num = klu_factor(s->ap, s->ai, (double*)val, s->sym, &s->common);
     return s->num ? 0 : 1;
   }
-  s->id.a = (double*)val;
+  if (s->opt.symmetric) {
+    const int nz = s->id.nnz;
+    for (int k = 0; k < nz; k++) {
+      s->aval[k] = val[s->sel[k]];
+    }
+    s->id.a = s->aval;
+  } else {
+    s->id.a = (double*)val;
+  }
   s->id.job = 2;
-  int prev = enterSerial();
+  int prev = enterThreads(s->nthreads);
   dmumps_c(&s->id);
-  if (s->id.infog[0] == -9 || s->id.infog[0] == -8) {
-    /* workspace too small (delayed pivots): double the relaxation and retry once */
+  for (int retry = 0; retry < 2 && (s->id.infog[0] == -9 || s->id.infog[0] == -8); retry++) {
+    /* workspace too small (delayed pivots of an indefinite tangent): double it and retry */
     s->id.icntl[13] *= 2;
+    if (growWorkspace(s, 2.0 * (double)s->lwk) != 0) {
+      break;
+    }
     dmumps_c(&s->id);
   }
-  leaveSerial(prev);
+  leaveThreads(prev);
   s->factored = s->id.infog[0] >= 0;
   return s->factored ? 0 : 1;
 }
 
 
 int csf_linSolverSolve(csfLinSolver* s, double* b) {
-  if (s->kind == CSF_SOLVER_KLU) {
+  if (s->opt.kind == CSF_SOLVER_KLU) {
     return klu_tsolve(s->sym, s->num, s->n, 1, b, &s->common) ? 0 : 1;
   }
   s->id.rhs = b;
   s->id.nrhs = 1;
   s->id.lrhs = s->n;
   s->id.job = 3;
-  int prev = enterSerial();
+  int prev = enterThreads(s->nthreads);
   dmumps_c(&s->id);
-  leaveSerial(prev);
+  leaveThreads(prev);
   return s->id.infog[0] >= 0 ? 0 : 1;
 }
 
 
 double csf_linSolverFactorNnz(const csfLinSolver* s) {
-  if (s->kind == CSF_SOLVER_KLU) {
+  if (s->opt.kind == CSF_SOLVER_KLU) {
     return s->num ? (double)s->num->lnz + (double)s->num->unz : 0.0;
   }
   /* INFOG(29): effective number of entries in the factors (negative: millions) */
@@ -187,8 +303,21 @@ double csf_linSolverFactorNnz(const csfLinSolver* s) {
 }
 
 
+double csf_linSolverFlops(const csfLinSolver* s) {
+  return s->opt.kind == CSF_SOLVER_KLU ? 0.0 : s->id.rinfog[0];
+}
+
+
 const char* csf_linSolverName(const csfLinSolver* s) {
-  return s->kind == CSF_SOLVER_KLU ? "klu" : "mumps";
+  if (s->opt.kind == CSF_SOLVER_KLU) {
+    return "klu";
+  }
+  return s->opt.symmetric ? "mumps-ldlt" : "mumps-lu";
+}
+
+
+int csf_linSolverOrdering(const csfLinSolver* s) {
+  return s->opt.kind == CSF_SOLVER_KLU ? -1 : s->id.infog[6];
 }
 
 
@@ -208,5 +337,8 @@ void csf_linSolverDestroy(csfLinSolver* s) {
   }
   free(s->irn);
   free(s->jcn);
+  free(s->sel);
+  free(s->aval);
+  free(s->wk);
   free(s);
 }

@@ -1,13 +1,17 @@
 /* fem_linsolve.h: sparse direct solvers behind the FE Newton iteration (internal to fem/).
  *
  * Owns: csfLinSolver, a factorisation of the tangent K given in scalar CSR (row_ptr, col, val),
- * with the symbolic analysis (fill-reducing ordering) done once per pattern and a numeric
- * factorisation per Newton iteration. K may be non-symmetric (follower pressure) and indefinite.
+ * with the symbolic analysis (fill-reducing ordering, elimination tree) done once per pattern at
+ * creation and only a numeric factorisation per Newton iteration. K may be indefinite (past
+ * limit points, under volume control); it is symmetric where the model's loads are conservative
+ * (csfModel.symmetric, fem_assembly.h) and non-symmetric otherwise (follower pressure on open
+ * surfaces).
  * Backends (chosen by measurement, fem/README.md "Sparse solver"):
- *   MUMPS, sequential build (libmumps-seq, CeCILL-C), multifrontal with METIS/AMD ordering and
- *     BLAS-3 fronts (OpenBLAS, both cores): the default;
+ *   MUMPS, sequential build (libmumps-seq, CeCILL-C), multifrontal with BLAS-3 fronts
+ *     (OpenBLAS), unsymmetric LU (SYM = 0) or symmetric indefinite LDL^T with 2x2 pivots
+ *     (SYM = 2: half the entries, half the flops): the default;
  *   KLU (SuiteSparse, LGPL-2.1+): left-looking, no supernodes; 30-100x slower on 3D Tet10
- *     meshes, kept as a fallback and for the measurement. */
+ *     meshes, kept as a fallback and for the measurement (always unsymmetric). */
 #ifndef CS_FEM_LINSOLVE_H
 #define CS_FEM_LINSOLVE_H
 
@@ -22,24 +26,48 @@ typedef enum csfSolverKind_ {
   CSF_SOLVER_KLU = 1,
 } csfSolverKind;
 
+/* Options of a solver (STYLE.md 17). */
+typedef struct csfLinSolverOptions_ {
+  csfSolverKind kind;
+  int symmetric; /* 1: K is symmetric, factor LDL^T from its upper triangle (MUMPS only) */
+  int ordering;  /* MUMPS ICNTL(7): 7 automatic (default), 5 METIS, 3 SCOTCH, 4 PORD, 2 AMF,
+                  * 6 QAMD, 0 AMD; orderings the library was built without fall back to auto */
+  int threads;   /* threads of the factorisation and solves (MUMPS OpenMP and threaded BLAS);
+                  * 0 = by size: one below CSF_MT_MIN_FLOPS (fem_linsolve.c), else the OpenMP
+                  * default (all cores) */
+} csfLinSolverOptions;
+
+/* MUMPS, unsymmetric, automatic ordering, threads by size. */
+csfLinSolverOptions csf_linSolverDefault(void);
+
 typedef struct csfLinSolver_ csfLinSolver;
 
 /* Analyse the pattern (n x n, CSR; arrays are referenced, not copied, and must outlive the
- * solver). Returns NULL and fills err on failure. */
-csfLinSolver* csf_linSolverCreate(csfSolverKind kind, int n, const int* row_ptr, const int* col,
-                                  csError* err);
+ * solver): ordering and symbolic factorisation, once. With opt->symmetric the pattern must be
+ * structurally symmetric (it is for FE patterns). Returns NULL and fills err on failure. */
+csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const int* row_ptr,
+                                  const int* col, csError* err);
 
-/* Numeric factorisation of the CSR values `val` (nnz). Returns 0, or non-zero if singular. */
+/* Numeric factorisation of the CSR values `val` (nnz; with a symmetric solver only the upper
+ * triangle is read). Returns 0, or non-zero if singular or out of workspace. */
 int csf_linSolverFactor(csfLinSolver* s, const double* val);
 
 /* Solve K x = b in place (b on entry, x on exit), with the last factorisation. */
 int csf_linSolverSolve(csfLinSolver* s, double* b);
 
-/* Number of nonzeros in the factors of the last factorisation (fill measure). */
+/* Number of nonzeros in the factors of the last factorisation (fill measure; for LDL^T the
+ * entries of L and D). */
 double csf_linSolverFactorNnz(const csfLinSolver* s);
 
-/* Backend name ("mumps", "klu"). */
+/* Floating-point operations of one factorisation estimated by the analysis (MUMPS RINFOG(1);
+ * 0 for KLU). */
+double csf_linSolverFlops(const csfLinSolver* s);
+
+/* Backend and mode ("mumps-ldlt", "mumps-lu", "klu"). */
 const char* csf_linSolverName(const csfLinSolver* s);
+
+/* Ordering actually used (MUMPS INFOG(7); -1 for KLU). */
+int csf_linSolverOrdering(const csfLinSolver* s);
 
 void csf_linSolverDestroy(csfLinSolver* s);
 

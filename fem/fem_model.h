@@ -1,49 +1,27 @@
-/* fem_model.h: the full FE model of one actuator: Yeoh Tet10 elements with a mixed P2/P0
- * (mean-dilatation) incompressibility treatment, follower pressure on tagged faces, embedded
- * tension-only fibres, Dirichlet data, the sparse pattern and the assembly of residual and
- * consistent tangent; plus Newton's method with line search on top of a sparse direct solver.
+/* fem_model.h: the full FE model of one actuator: model and data (MuJoCo's mjModel/mjData).
  *
- * Model/data split (STYLE.md 4): csfModel holds the mesh, material, loads and the sparse pattern
- * and is const once csf_modelFinalize returned; csfData holds the displacement state, residual,
- * tangent values, solver factors, timers. Units: mm, MPa, N, t/mm^3, s.
+ * Owns: csfModel (mesh, material, loads, Dirichlet data, embedded fibres, the sparse pattern and
+ * the solver options; constant once csf_modelFinalize returned, except load values) and csfData
+ * (the Newton state: displacement, element dilatations, fibre stresses, residual, tangent
+ * values, solver factors, scratch and timers), their create/destroy pairs, the loads, and the
+ * state vector get/set. The layers on top: element kernels (fem_element.h, on fem_material.h),
+ * assembly of residual and tangent (fem_assembly.h), Newton, load stepping and volume control
+ * (fem_newton.h), continuation past limit points (fem_path.h), the actuator's pressure sweep
+ * (fem_bend.h). Units: mm, MPa, N, t/mm^3, s.
  * Sign convention: residual R(u) = f_int(u) - f_ext(u, load); tangent K = dR/du. */
 #ifndef CS_FEM_MODEL_H
 #define CS_FEM_MODEL_H
 
+#include <stddef.h>
+
 #include "core_status.h"
 #include "fem_linsolve.h"
+#include "fem_material.h"
 #include "fem_mesh.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* Incompressibility treatment. */
-typedef enum csfFormulation_ {
-  CSF_FORM_MIXED_P0 = 0,     /* P2 displacement / P0 pressure+dilatation per element, condensed */
-  CSF_FORM_DISPLACEMENT = 1, /* plain P2 displacement with pointwise U(J): locks when kappa >> mu */
-} csfFormulation;
-
-/* Ratio of bulk to initial shear modulus, kappa / mu0 with mu0 = 2 C10 (MPa/MPa). 2000 gives an
- * initial Poisson ratio 0.49975; results change by < 0.1 % between 1000 and 10000 (see tests). */
-#define CSF_KAPPA_RATIO 2000.0
-
-typedef struct csfMaterial_ {
-  double C10, C20;     /* Yeoh constants of W = C10 (I1b - 3) + C20 (I1b - 3)^2, MPa */
-  double kappa;        /* bulk modulus of U(J) = kappa/2 (J - 1)^2, MPa */
-  double kappa_pt;     /* mixed form only: extra pointwise bulk term kappa_pt/2 (J - 1)^2, MPa */
-  double rho;          /* density, t/mm^3 (gravity only) */
-  csfFormulation form; /* incompressibility treatment */
-} csfMaterial;
-
-/* Material with kappa = CSF_KAPPA_RATIO * 2 C10 and the mixed formulation. */
-csfMaterial csf_materialDefault(double C10, double C20, double rho);
-
-/* Deviatoric Yeoh energy of a deformation gradient F (3x3 row-major): W (MPa), first
- * Piola-Kirchhoff stress P (9, MPa) and tangent A = dP/dF (81, index (3i+J)*9 + 3k+L), either
- * output may be NULL. Returns J = det F; J <= 0 leaves P and A untouched. */
-double csf_yeohDev(double C10, double C20, const double F[9], double* W, double P[9],
-                   double A[81]);
 
 typedef struct csfModel_ {
   const csfMesh* mesh; /* not owned; must outlive the model */
@@ -56,6 +34,8 @@ typedef struct csfModel_ {
   /* loads, scaled by the load factor unless stated */
   double* face_p;      /* (nface) pressure per unit load factor on each boundary face (MPa) */
   double gravity[3];   /* body acceleration, mm/s^2, applied at full value at every load */
+  double* f_dead;      /* (ndof) dead nodal loads (e.g. a tip force), N, applied at full value at
+                        * every load, not scaled by the load factor (0 = none) */
   unsigned char* fixed; /* (ndof) 1 = Dirichlet dof */
   double* u_fix;       /* (ndof) prescribed displacement per unit load factor, mm */
   /* embedded fibres: 2-node truss elements whose ends live inside host tetrahedra */
@@ -65,10 +45,17 @@ typedef struct csfModel_ {
   double* fib_L0;      /* (nfib) reference length, mm */
   double* fib_EA;      /* (nfib) axial stiffness E A, N */
   int fib_tension_only; /* 1 (default): smoothed tension-only law; 0: linear both ways */
+  int fib_split;        /* 1 (default): a fibre segment whose chord crosses element faces is
+                         * split there (csf_modelAddFibre), so every fibre element lies in one
+                         * tetrahedron and adds no fill to the factorisation; 0: one element per
+                         * segment tied to both end hosts (couples 20 nodes) */
   int fib_geo_tension;  /* 1: the tangent keeps the fibre's geometric stiffness only in tension,
                          * EA/L0 max(S, 0) I (residual unchanged, exact); 0: EA/L0 S I */
-  csfSolverKind solver; /* sparse direct solver used by csf_dataCreate (default MUMPS) */
-  /* sparse pattern (3x3 node blocks, scalar CSR), built by csf_modelFinalize */
+  csfLinSolverOptions solver; /* sparse direct solver used by csf_dataCreate (default MUMPS);
+                               * solver.symmetric: -1 (default) = LDL^T exactly when
+                               * csf_modelSymmetric holds at csf_dataCreate, 0 = always LU,
+                               * 1 = always LDL^T */
+  /* sparse pattern (3x3 node blocks, scalar CSR), built by csf_modelFinalize (fem_assembly.h) */
   int finalized;
   int* adj_ptr;        /* (nnode + 1) */
   int* adj;            /* (nadj) neighbour nodes, sorted per row */
@@ -77,10 +64,12 @@ typedef struct csfModel_ {
   int nnz;
   int* tet_map;        /* (ntet x 100) block slot of node pair (a, b) in row of node a */
   int* fib_map;        /* (nfib x 400) same for fibre node pairs */
+  unsigned char* fib_single; /* (nfib) 1: both ends in one host (10-node chord) */
   int* face_local;     /* (nface x 6) local node index of each face node in its tet */
 } csfModel;
 
-/* Create a model on `mesh` (not copied). No loads, nothing fixed. */
+/* Create a model on `mesh` (not copied): reference geometry of every element; no loads,
+ * nothing fixed. NULL and err on failure (an inverted element names its index). */
 csfModel* csf_modelCreate(const csfMesh* mesh, const csfMaterial* mat, csError* err);
 
 /* Free; NULL-safe. */
@@ -90,20 +79,28 @@ void csf_modelDestroy(csfModel* m);
  * earlier calls). Returns the number of faces, or a negative csStatus. */
 int csf_modelAddPressure(csfModel* m, int tag, double p_unit);
 
-/* Add fibres along polylines given in reference coordinates. `pts` (npts x 3, mm) is one
- * polyline; each segment becomes a truss element tied to the tetrahedra containing its end
- * points (located with a tolerance; a point outside the body is an error). E (MPa), radius
+/* Add fibres along polylines given in reference coordinates (fem_fibre.c). `pts` (npts x 3, mm)
+ * is one polyline; each segment becomes a truss element tied to the tetrahedra containing its
+ * end points (located with a tolerance; a point outside the body is an error). E (MPa), radius
  * (mm). Must be called before csf_modelFinalize. */
 csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, double radius,
                            csError* err);
 
-/* Build the sparse pattern. Loads and Dirichlet values may still change afterwards. */
-csStatus csf_modelFinalize(csfModel* m, csError* err);
+/* 1 when the consistent tangent is symmetric: every pressurised face set is a closed surface
+ * (each face edge shared by exactly two faces of the same pressure). The follower pressure on a
+ * closed chamber is conservative (the gradient of p V) and its load stiffness, non-symmetric
+ * face by face, is symmetric in sum; the Yeoh law, the condensed mixed fields, the fibres,
+ * gravity and dead loads are conservative too. 0 for open pressurised surfaces (a pressurised
+ * patch, a tube bore cut by symmetry planes): their boundary terms make the load stiffness
+ * non-symmetric, and the LU path is used. */
+int csf_modelSymmetric(const csfModel* m);
 
 /* Timers and counters, accumulated over the life of a csfData (s, counts). */
 typedef struct csfStats_ {
-  double t_assemble, t_factor, t_solve; /* wall seconds */
+  double t_assemble, t_factor, t_solve; /* wall seconds (t_solve includes GMRES) */
   long n_assemble, n_factor, n_newton;  /* counts */
+  long n_krylov;      /* linear solves done by GMRES on an older factorisation (fem_newton.h) */
+  long n_krylov_iter; /* GMRES iterations in those solves */
 } csfStats;
 
 typedef struct csfData_ {
@@ -131,6 +128,10 @@ typedef struct csfData_ {
                    * V_f = 1/3 int x . n_chamber da over the pressurised faces (closed chambers,
                    * or open ones bounded by symmetry planes through the origin) */
   unsigned char* fib_zone; /* (nfib) law zone at the last iterate: 0 slack, 1 smoothing, 2 taut */
+  double* kry_b;  /* (ndof) scratch: right-hand side of a GMRES solve */
+  double* kry_work; /* (csf_gmresWorkSize(ndof, CSF_KRYLOV_RESTART)) GMRES workspace */
+  int have_factor;   /* 1: d->ls holds a factorisation of some earlier tangent (a preconditioner) */
+  int refactor_next; /* 1: the last GMRES solve was slow: factor the next tangent afresh */
   double rnorm;   /* ||R|| on free dofs after the last assembly, N */
   double fnorm;   /* force scale for convergence: ||f_int|| over all dofs + ||f_ext||, N */
   double jmin;    /* smallest pointwise J at quadrature points after the last assembly */
@@ -139,6 +140,12 @@ typedef struct csfData_ {
   csfStats stats;
 } csfData;
 
+/* GMRES restart length of the Newton solves (fem_newton.c) */
+#define CSF_KRYLOV_RESTART 40
+
+/* Allocate the data of a finalised model, all in one place (nothing is allocated by the
+ * assembly or Newton afterwards), and analyse the pattern with the sparse solver: LDL^T when
+ * the tangent is symmetric (csf_modelSymmetric, unless solver.symmetric forces a mode). */
 csfData* csf_dataCreate(const csfModel* m, csError* err);
 void csf_dataDestroy(csfData* d);
 
@@ -152,80 +159,6 @@ double csf_wallTime(void);
 size_t csf_stateSize(const csfModel* m);
 void csf_stateGet(const csfModel* m, const csfData* d, double* state);
 void csf_stateSet(const csfModel* m, csfData* d, const double* state);
-
-/* Set the dilatation state to the current displacement (theta_e = v_e/V_e); after this the
- * assembled K is the exact derivative of R (used by tangent checks). */
-void csf_dataSyncVolume(const csfModel* m, csfData* d);
-
-/* Assemble R (and K when want_k) at the current d->u and load factor. Returns 0, > 0 when the
- * state is not physical (an inverted element: recoverable, cut the step), < 0 on fatal errors. */
-int csf_assemble(const csfModel* m, csfData* d, double load, int want_k);
-
-/* Newton options (STYLE.md 17). */
-/* Line search of csf_newtonSolve. */
-typedef enum csfLineSearch_ {
-  CSF_LS_RESIDUAL = 0, /* backtracking on ||R|| (halving while ||R|| grows, see fem_model.c) */
-  CSF_LS_ENERGY = 1,   /* root of the energy slope g(s) = R(u + s du) . du on the free dofs
-                        * (conservative loads: closed chambers), Illinois regula falsi */
-} csfLineSearch;
-
-/* One Newton iteration, reported to csfNewtonOptions.monitor. */
-typedef struct csfNewtonIter_ {
-  double load;      /* load factor */
-  int iter;         /* 1-based iteration */
-  double alpha;     /* accepted step length */
-  int n_eval;       /* residual evaluations in the line search */
-  double g0, g1;    /* energy slope R.du at s = 0 and at the accepted s, N mm */
-  double rnorm;     /* ||R|| after the step, N */
-  double fnorm;     /* force scale, N */
-  int fib_switch;   /* fibres whose law zone (slack / smoothing / taut) changed in this step */
-  int fib_smooth;   /* fibres inside the smoothing zone |E| < delta after the step */
-  int fib_taut;     /* fibres with E >= delta after the step */
-} csfNewtonIter;
-
-/* Newton options (STYLE.md 17). */
-typedef struct csfNewtonOptions_ {
-  int max_iter;   /* Newton iterations per load level */
-  double rtol;    /* ||R|| <= rtol * fnorm (dimensionless) */
-  double atol;    /* ... or ||R|| <= atol, N */
-  int max_ls;     /* line-search halvings / regula falsi evaluations */
-  csfLineSearch line_search; /* default CSF_LS_RESIDUAL */
-  double ls_eta;  /* energy line search: accept s when |g(s)| <= ls_eta |g(0)| (dimensionless) */
-  int threads;    /* OpenMP threads for assembly, 0 = library default */
-  void (*monitor)(void* user, const csfNewtonIter* it); /* optional, per iteration */
-  void* monitor_user;
-} csfNewtonOptions;
-
-csfNewtonOptions csf_newtonDefault(void);
-
-/* Solve R(u, load) = 0 by Newton's method with backtracking line search, starting from d->u
- * (Dirichlet dofs move to load * u_fix within the first Newton step, through the linearised lift). On failure d->u is restored and
- * CS_ERR_DIVERGED is returned (recoverable: the caller cuts the load step); `iters` (may be
- * NULL) receives the number of iterations. */
-csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNewtonOptions* opt,
-                         int* iters, csError* err);
-
-/* Volume control (passes pressure limit points): solve R(u, load) = 0 together with
- * d->vol_w(u) = vol_target, the load factor being an unknown (bordered Newton: two solves with
- * one factorisation per iteration, Crisfield 1991 Sec. 9.4 with the chamber volume as the
- * constraint). Starts from d->u and d->load; on success d->load holds the load factor. Converged
- * when ||R|| <= rtol fnorm (or atol) and |vol_w - vol_target| <= rtol |vol_target|. On failure the
- * state is restored and CS_ERR_DIVERGED returned. */
-csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
-                               const csfNewtonOptions* opt, int* iters, csError* err);
-
-/* Adaptive ramp of the load factor from d->load to load_end, starting with nstep equal steps;
- * a step that fails is halved (down to 1e-4 of the range), easy steps (<= 5 iterations) grow
- * by 1.5. `iters` (may be NULL) receives the total Newton iterations. */
-csStatus csf_loadRamp(const csfModel* m, csfData* d, double load_end, int nstep,
-                      const csfNewtonOptions* opt, int* iters, csError* err);
-
-/* Cauchy stress averaged over the quadrature points of tetrahedron e (6: xx yy zz xy yz zx, MPa)
- * at the current d->u (d->pel must be current: call after csf_assemble). */
-void csf_tetCauchy(const csfModel* m, const csfData* d, int e, double sigma[6]);
-
-/* Reaction/internal force sum over dofs with fixed[] set and a given direction (0..2), N. */
-double csf_reactionSum(const csfModel* m, const csfData* d, int dir);
 
 #ifdef __cplusplus
 }

@@ -49,7 +49,7 @@ csStatus csf_writeVtu(const csfModel* m, const csfData* d, const char* path, csE
   double* vm = malloc((size_t)me->ntet * sizeof(double));
   for (int e = 0; e < me->ntet; e++) {
     double s[6];
-    csf_tetCauchy(m, d, e, s);
+    csf_tetCauchyAt(m, d, e, s);
     fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g\n", s[0], s[1], s[2], s[3], s[4], s[5]);
     if (vm) {
       vm[e] = sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - s[2]) * (s[1] - s[2]) +

@@ -5,7 +5,7 @@
 #define CS_FEM_OUTPUT_H
 
 #include "core_status.h"
-#include "fem_model.h"
+#include "fem_assembly.h"
 #include "robot_actuator.h"
 
 #ifdef __cplusplus

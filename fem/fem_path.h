@@ -8,7 +8,7 @@
 #define CS_FEM_PATH_H
 
 #include "core_status.h"
-#include "fem_model.h"
+#include "fem_newton.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -7,8 +7,8 @@
  *                 [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ] [--calibration FILE|analytic]
  *
  * --pressures gives unequal chamber pressures: chamber j of every segment is at R_j p (the
- * ratios replace --chambers; analytic and rod). --tip-load is a dead force (N) on the tip face
- * in the base frame e1, e2, e3 (rod). The rod (robot_rod.h) is solved statically at every row,
+ * ratios replace --chambers; analytic, rod and fe). --tip-load is a dead force (N) on the tip
+ * face in the base frame e1, e2, e3 (rod; fe: a uniform traction on the tip face). The rod (robot_rod.h) is solved statically at every row,
  * continued from the previous one, gravity off like the other models; its actuation comes from
  * --calibration: an FE table (default: the shipped robot/calibration_fe_leg.h5, refused for
  * another actuator) or `analytic` (the analytic model's own bends, so that the unloaded rod
@@ -55,8 +55,8 @@ static const char kUsage[] =
     "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
     "  r2 C10 C20 rho Ef nuf rhof rf. --until-angle DEG reports the pressure at which the total\n"
     "  bending angle reaches DEG (searched up to max(p-max, 2 MPa)).\n"
-    "  --pressures R1,R2,R3,R4: chamber j at R_j x p (unequal pressures; analytic, rod).\n"
-    "  --tip-load FX,FY,FZ: a tip force in N, base frame (rod). --calibration FILE|analytic:\n"
+    "  --pressures R1,R2,R3,R4: chamber j at R_j x p (unequal pressures; analytic, rod, fe).\n"
+    "  --tip-load FX,FY,FZ: a tip force in N, base frame (rod, fe). --calibration FILE|analytic:\n"
     "  the rod's pressure -> bend map (default: the shipped FE table of the leg actuator).\n";
 
 typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_PRB, BEND_ROM, BEND_NMODEL } BendModel;
@@ -561,15 +561,21 @@ static void feProgress(void* user, const csfBendStep* st) {
 
 static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   csfBendOptions o = csf_bendDefault();
-  csStatus st = csf_bendSetChambers(&o, run->chambers, err);
-  if (st != CS_OK) {
-    return st;
+  /* chamber j of every segment at ratio[j] x p (--chambers: 1 or 0; --pressures: R_j) */
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      o.spec.ratio[s][j] = run->ratio[j];
+    }
   }
+  for (int i = 0; i < 3; i++) {
+    o.spec.tip_force[i] = run->tip_load[i];
+  }
+  csStatus st = CS_OK;
   o.p_max = run->p_max;
   o.p_step = run->p_step;
   o.until_angle = run->until_angle;
   if (!isnan(run->mesh_size)) {
-    o.mesh_size = run->mesh_size;
+    o.spec.mesh_size = run->mesh_size;
   }
   /* deformed mesh and solver deck next to the HDF5 file: FILE.h5 -> FILE.vtu, FILE.inp */
   char stem[512], vtu[520], inp[520];
@@ -580,7 +586,7 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   }
   snprintf(vtu, sizeof vtu, "%s.vtu", stem);
   snprintf(inp, sizeof inp, "%s.inp", stem);
-  o.work_stem = stem;
+  o.spec.work_stem = stem;
   o.vtu_path = vtu;
   o.inp_path = inp;
   o.progress = feProgress;
@@ -588,7 +594,7 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   o.info = &info;
   st = csf_bend(&run->act, &o, bc, err);
   if (st == CS_OK) {
-    run->mesh_size = o.mesh_size;
+    run->mesh_size = o.spec.mesh_size;
     run->n_elements_soft = info.ntet;
     run->n_elements_fibre = info.nfibre;
     run->p_limit = info.p_limit;
@@ -627,15 +633,11 @@ int csx_cmdBend(int argc, char** argv) {
   }
   /* options only some models take */
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
-  if (run.model != BEND_ROD && (tip || run.calibration)) {
-    fprintf(stderr, "crawlsim bend: %s is for --model rod (the %s model has no %s)\n",
-            tip ? "--tip-load" : "--calibration", kModelNames[run.model],
-            tip ? "tip load" : "calibration");
-    return 1;
-  }
-  if (run.model == BEND_FE && run.unequal) {
-    fprintf(stderr, "crawlsim bend: --pressures with unequal ratios is not available for the fe "
-            "model yet (its sweep inflates a chamber set at one pressure)\n");
+  if ((tip && run.model != BEND_ROD && run.model != BEND_FE) ||
+      (run.calibration && run.model != BEND_ROD)) {
+    fprintf(stderr, "crawlsim bend: %s is for --model %s (the %s model has no %s)\n",
+            tip ? "--tip-load" : "--calibration", tip ? "rod or fe" : "rod",
+            kModelNames[run.model], tip ? "tip load" : "calibration");
     return 1;
   }
 #ifdef CS_HAVE_FEM

@@ -1,41 +1,91 @@
-/* cmd_calibrate.c: `crawlsim calibrate`: the FE calibration table of the legs.
- *   crawlsim calibrate [--out FILE.h5] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...
- *                      [--mesh-size MM] [--p-max MPA] [--p-step MPA]
- * Runs the full FE model (`crawlsim bend --model fe`, fem/) on the pair mode Ω1&Ω2 of every
- * segment from 0 to p-max, writes the sweep in the bend layout (robot_bend_io.h), and opens
- * the result as a calibration (robot_calibration.h: csr_feCalibrationCreate) to check it and
- * print the FE / analytic bend ratios (range) and the segment bends the legs will use. `crawlsim run --calibration FILE.h5` and
- * `crawlsim gait flat-road --calibration FILE.h5` then use it. The pressure range must cover
- * the gaits that will use the table: the runs refuse pressures above its last row. */
+/* cmd_calibrate.c: `crawlsim calibrate`: the FE calibration of the legs' chamber modes and
+ * stiffness (fem/fem_calibration.h), resumable case by case.
+ *
+ *   crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list] [--merge-only]
+ *                      [--actuator leg|baseline|fig1] [--set NAME=VALUE]... [--mesh-size MM]
+ *                      [--fibre-size MM] [--p-step MPA]
+ *
+ * Every case (all of them, or the --case ones) is an FE pressure sweep written to DIR/NAME.h5;
+ * a case whose file is already finished for the same actuator and FE settings is skipped, so a
+ * calibration stopped after some cases continues where it stopped. A case file is written under
+ * a temporary name and renamed when complete, so a killed run never leaves a file that looks
+ * finished. Then every finished case file in DIR is merged into FILE.h5 and the table is read
+ * back as the legs will read it (robot_calibration.h) to check it. */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
+#include "core_clock.h"
 #include "core_math.h"
 #include "cs_commands.h"
+#include "fem_calibration.h"
 #include "robot_actuator.h"
 #include "robot_calibration.h"
 
 static const char kUsage[] =
-    "usage: crawlsim calibrate [--out FILE.h5] [--actuator leg|baseline|fig1] "
-    "[--set NAME=VALUE]... [--mesh-size MM] [--p-max MPA] [--p-step MPA]\n";
+    "usage: crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list]\n"
+    "                          [--merge-only] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
+    "                          [--mesh-size MM] [--fibre-size MM] [--p-step MPA] [--p-max MPA]\n"
+    "  Runs the full FE model on every calibration case (chamber modes, unequal pressures,\n"
+    "  held-out combinations, stiffness probes, the leg under its weight), one file per case in\n"
+    "  DIR (default calibration_cases/; finished cases are skipped: the run resumes), merges\n"
+    "  them into FILE.h5 (default calibration_fe.h5) and reads the table back as the legs will.\n"
+    "  --list prints the cases. Defaults: actuator leg, l_soft 4 mm, rows every 0.025 MPa;\n"
+    "  --p-max caps every case's end pressure (small tables for tests).\n";
 
-enum { MAX_SETS = 32 };
+enum { MAX_SETS = 32, MAX_PICK = CSF_CAL_MAX_CASES };
+
+
+static void progress(void* user, const csfBendStep* s) {
+  const char* name = user;
+  if (s->volume_control) {
+    fprintf(stderr, "  %s: volume control past a limit point: p = %.5f MPa (dp %+.5f), %d "
+            "Newton iterations, %.1f s\n", name, s->p, s->dp, s->newton_iters, s->wall);
+    return;
+  }
+  fprintf(stderr, "  %s: p = %.4f MPa, %d Newton iterations, %d cut-backs, %.1f s, total %.1f "
+          "deg\n", name, s->p, s->newton_iters, s->cutbacks, s->wall, s->angle_total);
+}
+
+
+static int parseNumber(const char* flag, const char* v, double lo, double hi, double* out) {
+  char* end;
+  errno = 0;
+  double x = strtod(v, &end);
+  if (end == v || *end || errno || !isfinite(x) || x < lo || x > hi) {
+    fprintf(stderr, "crawlsim calibrate: %s '%s' must be a number in [%g, %g]\n", flag, v, lo,
+            hi);
+    return 1;
+  }
+  *out = x;
+  return 0;
+}
 
 
 int csx_cmdCalibrate(int argc, char** argv) {
   const char* out = "calibration_fe.h5";
+  const char* dir = "calibration_cases";
   const char* actname = "leg";
   const char* sets[MAX_SETS];
-  int nset = 0;
-  const char* num_flag[3] = {"--mesh-size", "--p-max", "--p-step"};
-  const char* num_text[3] = {"4", "0.3", "0.025"};
+  const char* pick[MAX_PICK];
+  int nset = 0, npick = 0, list = 0, merge_only = 0;
+  csfCalSettings cs = csf_calibrationDefault();
   for (int i = 1; i < argc; i++) {
     const char* a = argv[i];
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       fputs(kUsage, stdout);
       return 0;
+    }
+    if (!strcmp(a, "--list")) {
+      list = 1;
+      continue;
+    }
+    if (!strcmp(a, "--merge-only")) {
+      merge_only = 1;
+      continue;
     }
     if (i + 1 >= argc || a[0] != '-') {
       fprintf(stderr, a[0] == '-' ? "crawlsim calibrate: %s needs a value\n"
@@ -43,21 +93,31 @@ int csx_cmdCalibrate(int argc, char** argv) {
       return 1;
     }
     const char* v = argv[++i];
-    int k = 0;
-    while (k < 3 && strcmp(a, num_flag[k])) k++;
-    if (k < 3) {
-      char* end;
-      double x = strtod(v, &end);
-      if (end == v || *end || !isfinite(x) || x <= 0 || (k > 0 && x > 1.0)) {
-        fprintf(stderr, "crawlsim calibrate: %s '%s' must be a number > 0%s\n", a, v,
-                k > 0 ? " and at most 1 MPa" : "");
-        return 1;
-      }
-      num_text[k] = v;
+    int bad = 0;
+    if (!strcmp(a, "--mesh-size")) {
+      bad = parseNumber(a, v, 0.5, 20, &cs.mesh_size);
+    } else if (!strcmp(a, "--fibre-size")) {
+      bad = parseNumber(a, v, 0.05, 20, &cs.fibre_size);
+    } else if (!strcmp(a, "--p-step")) {
+      bad = parseNumber(a, v, 1e-4, 0.5, &cs.p_step);
+    } else if (!strcmp(a, "--p-max")) {
+      bad = parseNumber(a, v, 1e-4, 1.0, &cs.p_cap);
     } else if (!strcmp(a, "--out")) {
       out = v;
+    } else if (!strcmp(a, "--dir")) {
+      dir = v;
     } else if (!strcmp(a, "--actuator")) {
       actname = v;
+    } else if (!strcmp(a, "--case")) {
+      if (!csf_calibrationCaseFind(v)) {
+        fprintf(stderr, "crawlsim calibrate: --case '%s': no such case (see --list)\n", v);
+        return 1;
+      }
+      if (npick == MAX_PICK) {
+        fprintf(stderr, "crawlsim calibrate: more than %d --case options\n", MAX_PICK);
+        return 1;
+      }
+      pick[npick++] = v;
     } else if (!strcmp(a, "--set")) {
       if (nset == MAX_SETS) {
         fprintf(stderr, "crawlsim calibrate: more than %d --set options\n", MAX_SETS);
@@ -68,8 +128,25 @@ int csx_cmdCalibrate(int argc, char** argv) {
       fprintf(stderr, "crawlsim calibrate: unknown option '%s'\n", a);
       return 1;
     }
+    if (bad) {
+      return 1;
+    }
   }
-  /* check the actuator here, so that a bad --set is reported by this command */
+  int ncase = 0;
+  const csfCalCase* cases = csf_calibrationCases(&ncase);
+  if (list) {
+    for (int k = 0; k < ncase; k++) {
+      printf("%-10s %-8s p <= %.3g MPa  ratio %g:%g:%g:%g%s  %s\n", cases[k].name,
+             cases[k].kind == CSF_CAL_MODE      ? "mode"
+             : cases[k].kind == CSF_CAL_HOLDOUT ? "held-out"
+             : cases[k].kind == CSF_CAL_GRAVITY ? "gravity"
+                                                : "symmetry",
+             cases[k].p_max, cases[k].ratio[0], cases[k].ratio[1], cases[k].ratio[2],
+             cases[k].ratio[3], cases[k].probes ? ", probes" : "", cases[k].about);
+    }
+    return 0;
+  }
+  /* the actuator: preset, then every --set, then a consistency check */
   csError err;
   cs_errorClear(&err);
   csrActuator act;
@@ -87,41 +164,73 @@ int csx_cmdCalibrate(int argc, char** argv) {
     fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
     return 1;
   }
-  if (strtod(num_text[2], NULL) > strtod(num_text[1], NULL)) {
-    fprintf(stderr, "crawlsim calibrate: --p-step %s is larger than --p-max %s\n", num_text[2],
-            num_text[1]);
+  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+    fprintf(stderr, "crawlsim calibrate: %s: cannot create the case directory: %s\n", dir,
+            strerror(errno));
     return 1;
   }
-
-  /* the FE sweep: `crawlsim bend --model fe --chambers 1,2 ...` */
-  char* bargv[16 + 2 * MAX_SETS];
-  int bargc = 0;
-  bargv[bargc++] = "bend";
-  bargv[bargc++] = "--model";
-  bargv[bargc++] = "fe";
-  bargv[bargc++] = "--actuator";
-  bargv[bargc++] = (char*)actname;
-  bargv[bargc++] = "--chambers";
-  bargv[bargc++] = "1,2";
-  for (int k = 0; k < 3; k++) {
-    bargv[bargc++] = (char*)num_flag[k];
-    bargv[bargc++] = (char*)num_text[k];
+  /* run what is not done yet */
+  char stem[600];
+  snprintf(stem, sizeof stem, "%s/mesh", dir);
+  cs.work_stem = stem;
+  const double t_all = csu_wallSeconds();
+  int ran = 0, skipped = 0;
+  for (int k = 0; k < ncase && !merge_only; k++) {
+    int chosen = npick == 0;
+    for (int q = 0; q < npick; q++) {
+      chosen |= !strcmp(pick[q], cases[k].name);
+    }
+    if (!chosen) {
+      continue;
+    }
+    char path[600], part[620];
+    snprintf(path, sizeof path, "%s/%s.h5", dir, cases[k].name);
+    snprintf(part, sizeof part, "%s.part", path);
+    if (csf_calibrationCaseDone(path, &act, cases + k, &cs)) {
+      skipped++;
+      continue;
+    }
+    fprintf(stderr, "crawlsim calibrate: case %s (%s): 0..%g MPa\n", cases[k].name,
+            cases[k].about, cases[k].p_max);
+    cs.progress = progress;
+    cs.progress_user = (void*)cases[k].name;
+    const double t0 = csu_wallSeconds();
+    if (csf_calibrationRunCase(&act, cases + k, &cs, part, &err) != CS_OK) {
+      fprintf(stderr, "crawlsim calibrate: case %s: %s\n", cases[k].name, err.msg);
+      remove(part);
+      return 1;
+    }
+    if (rename(part, path) != 0) {
+      fprintf(stderr, "crawlsim calibrate: %s: cannot rename to %s: %s\n", part, path,
+              strerror(errno));
+      return 1;
+    }
+    fprintf(stderr, "crawlsim calibrate: case %s done in %.0f s -> %s\n", cases[k].name,
+            csu_wallSeconds() - t0, path);
+    ran++;
   }
-  for (int k = 0; k < nset; k++) {
-    bargv[bargc++] = "--set";
-    bargv[bargc++] = (char*)sets[k];
+  /* merge every finished case file of this actuator and these settings */
+  const char* paths[CSF_CAL_MAX_CASES];
+  char store[CSF_CAL_MAX_CASES][600];
+  int np = 0;
+  for (int k = 0; k < ncase; k++) {
+    snprintf(store[np], sizeof store[np], "%s/%s.h5", dir, cases[k].name);
+    if (csf_calibrationCaseDone(store[np], &act, cases + k, &cs)) {
+      paths[np] = store[np];
+      np++;
+    }
   }
-  bargv[bargc++] = "--out";
-  bargv[bargc++] = (char*)out;
-  bargv[bargc] = NULL;
-  printf("crawlsim calibrate: FE sweep of the %s actuator, chambers 1,2, 0..%s MPa, l_soft %s "
-         "mm -> %s\n", actname, num_text[1], num_text[0], out);
-  fflush(stdout);
-  int rc = csx_cmdBend(bargc, bargv);
-  if (rc != 0) {
-    fprintf(stderr, "crawlsim calibrate: the FE sweep failed (above); no table written\n");
-    return rc;
+  printf("crawlsim calibrate: %d cases run, %d already done, %d of %d finished (%.0f s)\n", ran,
+         skipped, np, ncase, csu_wallSeconds() - t_all);
+  if (np == 0) {
+    fprintf(stderr, "crawlsim calibrate: %s: no finished case to merge\n", dir);
+    return 1;
   }
+  if (csf_calibrationMerge(paths, np, out, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+    return 1;
+  }
+  printf("crawlsim calibrate: table %s (%d cases)\n", out, np);
   /* read it back as the legs will */
   csrCalibration* cal = csr_calibrationOpen(out, &act, &err);
   if (!cal) {
@@ -129,27 +238,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
     return 1;
   }
   csrBendMap map = csr_calibrationMap(cal);
-  printf("crawlsim calibrate: %s\n", map.name);
-  /* the legs' segment bends read back through the map at the sweep's pressures (they equal
-   * the FE angles there: the ratio is interpolated between rows, exact on them) */
-  printf("  p (MPa)   segment bend II1, II2, II3 (deg) as the legs will use it\n");
-  double step = strtod(num_text[2], NULL);
-  for (int i = 1; i * step <= map.p_max * (1 + 1e-12); i++) {
-    double p = fmin(i * step, map.p_max);
-    printf("  %7.4f", p);
-    for (int s = 0; s < 3; s++) {
-      double P[4] = {p, p, 0, 0}, b[2], stretch;
-      if (map.eval(map.ctx, s, P, b, &stretch) != 0) {
-        fprintf(stderr, "crawlsim calibrate: %s: the map fails at %g MPa\n", out, p);
-        csr_calibrationClose(cal);
-        return 1;
-      }
-      printf("  %8.3f", hypot(b[0], b[1]) / CS_DEG);
-    }
-    printf("\n");
-  }
-  printf("crawlsim calibrate: use it with `crawlsim run --calibration %s` and `crawlsim gait "
-         "flat-road FILE.csv --calibration %s`\n", out, out);
+  printf("crawlsim calibrate: %s (pressures up to %g MPa)\n", map.name, map.p_max);
   csr_calibrationClose(cal);
   return 0;
 }

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   memset(&info, 0, sizeof info);
   o.info = &info;
   o.progress = progress;
-  o.mesh_size = argc > 2 ? atof(argv[2]) : 4.0;
+  o.spec.mesh_size = argc > 2 ? atof(argv[2]) : 4.0;
   o.p_max = argc > 3 ? atof(argv[3]) : 0.4;
   o.p_step = argc > 4 ? atof(argv[4]) : 0.05;
   o.until_angle = argc > 5 ? atof(argv[5]) : NAN;
@@ -71,21 +71,25 @@ int main(int argc, char** argv) {
     } else if (!strcmp(argv[i], "--inp") && i + 1 < argc) {
       o.inp_path = argv[++i];
     } else if (!strcmp(argv[i], "--fibre-size") && i + 1 < argc) {
-      o.fibre_size = atof(argv[++i]);
+      o.spec.fibre_size = atof(argv[++i]);
     } else if (!strcmp(argv[i], "--stem") && i + 1 < argc) {
-      o.work_stem = argv[++i];
+      o.spec.work_stem = argv[++i];
     } else if (!strcmp(argv[i], "--p2")) {
-      o.form = CSF_FORM_DISPLACEMENT; /* plain P2, as CalculiX's C3D10 */
+      o.spec.form = CSF_FORM_DISPLACEMENT; /* plain P2, as CalculiX's C3D10 */
     } else if (!strcmp(argv[i], "--no-fibres")) {
-      o.fibres = 0;
+      o.spec.fibres = 0;
     } else if (!strcmp(argv[i], "--fibre-compression")) {
-      o.fibre_compression = 1;
+      o.spec.fibre_compression = 1;
     } else if (!strcmp(argv[i], "--tension-only")) {
-      o.fibre_compression = 0;
+      o.spec.fibre_compression = 0;
     } else if (!strcmp(argv[i], "--geo-tension")) {
-      o.fibre_geo_tension = 1;
+      o.spec.fibre_geo_tension = 1;
     } else if (!strcmp(argv[i], "--ls-energy")) {
       o.line_search = CSF_LS_ENERGY;
+    } else if (!strcmp(argv[i], "--krylov")) {
+      o.krylov = 1;
+    } else if (!strcmp(argv[i], "--no-split")) {
+      o.spec.fibre_split = 0;
     } else if (!strcmp(argv[i], "--trace")) {
       o.newton_monitor = newtonMonitor;
     }
@@ -97,11 +101,14 @@ int main(int argc, char** argv) {
     fprintf(stderr, "csf_bend: %s\n", err.msg);
   }
   printf("mesh: %d Tet10, %d nodes, %d dofs, %d fibre elements; l_soft %.2f mm\n", info.ntet,
-         info.nnode, info.ndof, info.nfibre, o.mesh_size);
+         info.nnode, info.ndof, info.nfibre, o.spec.mesh_size);
   printf("time: total %.2f s = mesh %.2f + setup %.2f + assembly %.2f + factorisation %.2f + "
          "solves %.2f (+ rest); %d steps, %ld Newton iterations, %d cutbacks; factor nnz %.3g\n",
          info.t_total, info.t_mesh, info.t_setup, info.t_assemble, info.t_factor, info.t_solve,
          info.n_steps, info.n_newton, info.n_cutbacks, info.factor_nnz);
+  printf("linear solves: %s, %ld factorisations, %ld GMRES solves (%ld iterations, %.1f per "
+         "solve)\n", info.solver, info.n_factor, info.n_krylov, info.n_krylov_iter,
+         info.n_krylov ? (double)info.n_krylov_iter / (double)info.n_krylov : 0.0);
   printf("max |theta - 1| = %.3e; p_limit = %g MPa\n", info.max_j_dev, info.p_limit);
   if (info.n_volume_steps > 0) {
     printf("limit point: p_limit %.6g MPa at %.3f deg; %d volume-controlled steps; %s\n",

@@ -7,7 +7,7 @@
 #include <time.h>
 
 #include "fem_linsolve.h"
-#include "fem_model.h"
+#include "fem_assembly.h"
 
 static double now(void) {
   struct timespec ts;
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
       }
     }
     csf_modelAddPressure(m, 2, 1.0);
-    m->solver = kind;
+    m->solver.kind = kind;
     csf_modelFinalize(m, &err);
     double t0 = now();
     csfData* d = csf_dataCreate(m, &err);

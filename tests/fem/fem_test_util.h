@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "fem_model.h"
+#include "fem_newton.h"
 
 /* scale map: unit cube -> [0,sx] x [0,sy] x [0,sz] */
 static inline void ftScaleMap(void* user, const double xi[3], double x[3]) {
@@ -47,7 +47,7 @@ static inline double ftMeanStress(const csfModel* m, const csfData* d, int c) {
   double s = 0, v = 0;
   for (int e = 0; e < m->mesh->ntet; e++) {
     double sig[6];
-    csf_tetCauchy(m, d, e, sig);
+    csf_tetCauchyAt(m, d, e, sig);
     s += sig[c] * m->vol[e];
     v += m->vol[e];
   }

@@ -25,8 +25,8 @@ static csfBendOptions shortActuator(csrActuator* act, int turns, csfBendInfo* in
   }
   csfBendOptions o = csf_bendDefault();
   o.info = info;
-  o.mesh_size = 5.0;
-  o.fibres = turns > 0;
+  o.spec.mesh_size = 5.0;
+  o.spec.fibres = turns > 0;
   return o;
 }
 
@@ -38,7 +38,7 @@ static void test_bend_short(void) {
   o.p_max = 0.1;
   o.p_step = 0.05;
   o.until_angle = 4.0; /* deg, reached near 0.06 MPa */
-  o.work_stem = "bend_short";
+  o.spec.work_stem = "bend_short";
   o.vtu_path = "bend_short.vtu";
   o.inp_path = "bend_short.inp";
   csrBendCurve bc;
@@ -100,8 +100,8 @@ static void test_gravity_ramp(void) {
   csfBendOptions o = shortActuator(&act, 0, &info);
   o.p_max = 0.002; /* a token pressure step after gravity */
   o.p_step = 0.002;
-  o.gravity[0] = -G_FACTOR * 9810.0; /* mm/s^2 */
-  o.work_stem = "bend_gravity";
+  o.spec.gravity[0] = -G_FACTOR * 9810.0; /* mm/s^2 */
+  o.spec.work_stem = "bend_gravity";
   csrBendCurve bc;
   csr_bendCurveInit(&bc, 4, &err);
   csStatus st = csf_bend(&act, &o, &bc, &err);

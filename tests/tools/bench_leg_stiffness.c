@@ -125,10 +125,10 @@ int main(int argc, char** argv) {
   csfBendOptions o = csf_bendDefault();
   o.p_max = 1e-4;
   o.p_step = 1e-4;
-  o.mesh_size = lsoft;
-  o.fibres = fibres;
-  o.gravity[0] = -g_mm;
-  o.work_stem = "bench_leg_stiffness";
+  o.spec.mesh_size = lsoft;
+  o.spec.fibres = fibres;
+  o.spec.gravity[0] = -g_mm;
+  o.spec.work_stem = "bench_leg_stiffness";
   csfBendInfo info;
   memset(&info, 0, sizeof info);
   o.info = &info;

@@ -1,9 +1,10 @@
 /* test_calibrate_cli.c: `crawlsim calibrate` end to end on a small actuator (argv[1] is the
- * executable): the FE sweep runs, the table it writes opens as the legs' calibration and its
- * readback equals the FE angles on the rows; `crawlsim run` with that table refuses a gait whose
- * pressures lie above the table (naming time, chamber and range) instead of extrapolating; bad
- * options exit 1 with one line. The actuator is the `leg` shortened to 15 mm segments (9 fibre
- * turns, c = 3 mm) at l_soft 5 mm, two load steps: ~20 s. Needs POSIX for tests/cs_cli.h. */
+ * executable): two calibration cases run into their own files, a second call skips them
+ * (resume), the merged table carries the format, the actuator and the cases, and it opens as the
+ * legs' calibration; `crawlsim run` with a table that does not cover the gait's pressures stops
+ * naming time, chamber and range instead of extrapolating; bad options exit 1 with one line. The
+ * actuator is the `leg` shortened to 15 mm segments (9 fibre turns, c = 3 mm) at l_soft 5 mm,
+ * cases O12 and G capped at 0.05 MPa in one row: ~30 s. Needs POSIX for tests/cs_cli.h. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <hdf5.h>
@@ -20,17 +21,55 @@
 static const char* exe_path = NULL;
 
 #define SMALL_SETS                                                                           \
-  "--set S1=15 --set S2=15 --set S3=15 --set n1=9 --set n2=9 --set n3=9 --set c=3 "          \
-  "--mesh-size 5 --p-max 0.1 --p-step 0.05"
+  "--set S1=15 --set S2=15 --set S3=15 --set n1=9 --set n2=9 --set n3=9 --set c=3 "           \
+  "--mesh-size 5 --p-max 0.05 --p-step 0.05 --dir calib_cases --case O12 --case G"
 
 
-static void test_calibrate_writes_a_usable_table(void) {
+static int fileExists(const char* path) {
+  FILE* f = fopen(path, "rb");
+  if (f) {
+    fclose(f);
+  }
+  return f != NULL;
+}
+
+
+static void test_calibrate_runs_resumes_and_merges(void) {
+  remove("calib_cases/O12.h5");
+  remove("calib_cases/G.h5");
   remove("calib_small.h5");
   csCliResult r;
   cs_cliRun(exe_path, "calibrate --out calib_small.h5 " SMALL_SETS, "calibrate", &r);
   CS_EXPECT(r.status == 0);
-  CS_EXPECT(strstr(r.out, "fe calibration table (chambers 1,2, 0..0.1 MPa, 3 rows") != NULL);
-  /* the table opens for the same actuator, and the map reproduces the FE rows */
+  CS_EXPECT(strstr(r.out, "2 cases run, 0 already done") != NULL);
+  CS_EXPECT(fileExists("calib_cases/O12.h5") && fileExists("calib_cases/G.h5"));
+  CS_EXPECT(!fileExists("calib_cases/O12.h5.part"));
+  /* a second call finds both cases finished and only merges */
+  cs_cliRun(exe_path, "calibrate --out calib_small.h5 " SMALL_SETS, "calibrate", &r);
+  CS_EXPECT(r.status == 0);
+  CS_EXPECT(strstr(r.out, "0 cases run, 2 already done") != NULL);
+  /* the merged table: format, the actuator, both cases with their rows */
+  hid_t f = H5Fopen("calib_small.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char fmt[64] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "format", fmt) >= 0 &&
+              !strcmp(fmt, "crawlsim-fe-calibration 1"));
+    double S1 = 0, p[2] = {NAN, NAN};
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "S1", &S1) >= 0 && S1 == 15);
+    CS_EXPECT(H5LTread_dataset_double(f, "/cases/O12/pressure", p) >= 0);
+    CS_EXPECT(p[0] == 0 && fabs(p[1] - 0.05) < 1e-12);
+    double bend[12];
+    CS_EXPECT(H5LTread_dataset_double(f, "/cases/O12/bend", bend) >= 0);
+    /* Omega1&Omega2 bend each segment towards -e1 (REFERENCE.md: towards Omega3&Omega4) */
+    for (int s = 0; s < 3; s++) {
+      CS_EXPECT(bend[6 + 2 * s] < 0);
+      /* ... with a side component of mesh asymmetry only (measured < 2 % of the bend) */
+      CS_EXPECT(fabs(bend[6 + 2 * s + 1]) < 0.05 * fabs(bend[6 + 2 * s]));
+    }
+    H5Fclose(f);
+  }
+  /* it opens as a calibration for the same actuator */
   csrActuator act;
   csError err;
   CS_EXPECT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
@@ -40,36 +79,20 @@ static void test_calibrate_writes_a_usable_table(void) {
   }
   csrCalibration* cal = csr_calibrationOpen("calib_small.h5", &act, &err);
   CS_EXPECT(cal != NULL);
-  hid_t f = H5Fopen("calib_small.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
-  CS_EXPECT(f >= 0);
-  if (cal && f >= 0) {
-    double p[3], ang[9];
-    CS_EXPECT(H5LTread_dataset_double(f, "/pressure", p) >= 0);
-    CS_EXPECT(H5LTread_dataset_double(f, "/angle_deg", ang) >= 0);
-    csrBendMap map = csr_calibrationMap(cal);
-    for (int i = 1; i < 3; i++) {
-      for (int s = 0; s < 3; s++) {
-        double P[4] = {p[i], p[i], 0, 0}, b[2], stretch;
-        CS_EXPECT(map.eval(map.ctx, s, P, b, &stretch) == 0);
-        /* on a row the interpolation weight is 0 or 1: round-off only */
-        CS_EXPECT_NEAR(hypot(b[0], b[1]) * 180 / 3.14159265358979323846, ang[3 * i + s], 1e-9,
-                       1e-12);
-        /* a pair-mode sweep bends forward, and the FE bends more than 0 */
-        CS_EXPECT(ang[3 * i + s] > 0);
-      }
-    }
+  if (!cal) {
+    fprintf(stderr, "  csr_calibrationOpen: %s\n", err.msg);
   }
-  if (f >= 0) H5Fclose(f);
+  csr_calibrationClose(cal);
   /* the wrong actuator (the unmodified leg) is refused */
   csrActuator leg;
   CS_EXPECT(csr_actuatorPreset(&leg, "leg", &err) == CS_OK);
   csrCalibration* wrong = csr_calibrationOpen("calib_small.h5", &leg, &err);
-  CS_EXPECT(wrong == NULL && strstr(err.msg, "calibrated for another actuator") != NULL);
-  csr_calibrationClose(cal);
+  CS_EXPECT(wrong == NULL && strstr(err.msg, "another actuator") != NULL);
+  csr_calibrationClose(wrong);
 
-  /* the leg's table must cover the gait: an analytic sweep of the leg to 0.1 MPa is a valid
-   * table (same layout), and the shipped gait ramps to 0.149 MPa in its first 0.2 s, so the
-   * run stops there with time, chamber and range, and keeps what it wrote */
+  /* a table must cover the gait: an analytic sweep of the leg to 0.1 MPa is a valid table, and
+   * the shipped gait's pressures are above it, so the run stops naming time, chamber and range,
+   * and keeps what it wrote */
   cs_cliRun(exe_path, "bend --model analytic --actuator leg --chambers 1,2 --p-max 0.1 "
             "--p-step 0.05 --out calib_leg.h5", "calibrate", &r);
   CS_EXPECT(r.status == 0);
@@ -80,15 +103,23 @@ static void test_calibrate_writes_a_usable_table(void) {
   hid_t g = H5Fopen("calib_run.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
   CS_EXPECT(g >= 0);
   if (g >= 0) H5Fclose(g);
-  /* the table for another actuator is refused by the run too */
-  cs_cliRun(exe_path, "run --t-end 0.1 --calibration calib_small.h5 --out calib_run.h5 --quiet",
-            "calibrate", &r);
-  CS_EXPECT(r.status == 1 && strstr(r.err, "calibrated for another actuator") != NULL);
   remove("calib_leg.h5");
   remove("calib_run.h5");
   remove("calib_small.h5");
-  remove("calib_small.vtu");
-  remove("calib_small.inp");
+}
+
+
+static void test_list_names_every_case(void) {
+  csCliResult r;
+  cs_cliRun(exe_path, "calibrate --list", "calibrate", &r);
+  CS_EXPECT(r.status == 0);
+  const char* names[] = {"O12", "O1", "O124", "O1234", "O13", "O12r05", "O12O34r3", "O2", "H1",
+                         "H2", "H3", "G"};
+  for (int k = 0; k < 12; k++) {
+    char want[32];
+    snprintf(want, sizeof want, "%s ", names[k]);
+    CS_EXPECT(strstr(r.out, want) != NULL);
+  }
 }
 
 
@@ -111,10 +142,10 @@ static void test_bad_options(void) {
   expectFailure("--bogus 1", "crawlsim calibrate: unknown option '--bogus'");
   expectFailure("--out", "crawlsim calibrate: --out needs a value");
   expectFailure("stray", "crawlsim calibrate: unexpected argument 'stray'");
-  expectFailure("--p-max 2", "--p-max '2' must be a number > 0 and at most 1 MPa");
-  expectFailure("--p-step x", "--p-step 'x' must be a number > 0");
-  expectFailure("--mesh-size -1", "--mesh-size '-1' must be a number > 0");
-  expectFailure("--p-max 0.1 --p-step 0.2", "--p-step 0.2 is larger than --p-max 0.1");
+  expectFailure("--p-max 2", "--p-max '2' must be a number in [0.0001, 1]");
+  expectFailure("--p-step x", "--p-step 'x' must be a number in");
+  expectFailure("--mesh-size -1", "--mesh-size '-1' must be a number in [0.5, 20]");
+  expectFailure("--case Q7", "--case 'Q7': no such case (see --list)");
   expectFailure("--set S1=-3", "S1 = -3 must be > 0 mm");
   expectFailure("--set Q=3", "unknown actuator parameter 'Q'");
   expectFailure("--actuator moon", "moon");
@@ -129,6 +160,7 @@ int main(int argc, char** argv) {
   exe_path = argv[1];
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   CS_RUN(test_bad_options);
-  CS_RUN(test_calibrate_writes_a_usable_table);
+  CS_RUN(test_list_names_every_case);
+  CS_RUN(test_calibrate_runs_resumes_and_merges);
   return cs_testSummary();
 }

@@ -1,0 +1,253 @@
+/* fem_actuator.c: the actuator's FE model: mesh, clamp, chambers, fibres, loads
+ * (fem_actuator.h).
+ *
+ * Fibres: two counter-wound helices per segment (n turns each over S) on the rounded-square
+ * perimeter, inset CSF_FIBRE_INSET below the outer surface so the tie points lie inside the
+ * host elements. */
+#include "fem_actuator.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_math.h"
+#include "fem_assembly.h"
+#include "fem_element.h"
+
+#define CSF_FIBRE_INSET 0.2 /* mm below the outer surface (fibre radius 0.089 mm) */
+#define CSF_PLANE_TOL 1e-6  /* mm: nodes on the clamped face */
+
+
+csfActuatorSpec csf_actuatorSpecDefault(void) {
+  csfActuatorSpec s;
+  memset(&s, 0, sizeof s);
+  for (int k = 0; k < CSR_NSEG; k++) {
+    s.ratio[k][0] = s.ratio[k][1] = 1.0; /* Omega1 & Omega2 */
+  }
+  s.mesh_size = 4.0;
+  s.fibre_size = 0.0;
+  s.fibres = 1;
+  s.fibre_compression = 1;
+  s.fibre_geo_tension = 0;
+  s.fibre_split = 1;
+  s.form = CSF_FORM_MIXED_P0;
+  s.work_stem = "crawlsim_fe";
+  return s;
+}
+
+
+/* point at arc length s on the rounded square of half side h, corner radius r (CCW from (h,0)) */
+static void roundedSquarePoint(double h, double r, double s, double p[2]) {
+  const double ls = 2.0 * (h - r), la = 0.5 * CS_PI * r, P = 4 * ls + 4 * la;
+  s = fmod(s, P);
+  if (s < 0) {
+    s += P;
+  }
+  /* start in the middle of the +x side: shift so that piece 0 starts at the corner (h, -(h-r)) */
+  s += 0.5 * ls;
+  if (s >= P) {
+    s -= P;
+  }
+  for (int side = 0; side < 4; side++) {
+    /* side k: straight piece then corner; rotate the +x side by k * 90 deg */
+    double q[2];
+    if (s <= ls) {
+      q[0] = h, q[1] = -(h - r) + s;
+    } else if (s <= ls + la) {
+      double t = (s - ls) / (r > 0 ? r : 1.0);
+      q[0] = (h - r) + r * cos(t), q[1] = (h - r) + r * sin(t);
+    } else {
+      s -= ls + la;
+      continue;
+    }
+    double c = cos(side * 0.5 * CS_PI), sn = sin(side * 0.5 * CS_PI);
+    p[0] = c * q[0] - sn * q[1];
+    p[1] = sn * q[0] + c * q[1];
+    return;
+  }
+  p[0] = h, p[1] = -(h - r);
+}
+
+
+/* embed the two counter-wound helices of every segment with n > 0 */
+static csStatus addFibres(const csrActuator* act, csfModel* m, double lf, double inset,
+                          csError* err) {
+  const double h = act->a - inset, r = fmax(act->r2 - inset, 0.0);
+  const double P = 8.0 * (h - r) + 2.0 * CS_PI * r;
+  for (int s = 0; s < CSR_NSEG; s++) {
+    if (!(act->n[s] > 0)) {
+      continue;
+    }
+    const double z0 = csr_actuatorSegmentStart(act, s), S = act->S[s];
+    const double len = sqrt(pow(act->n[s] * P, 2) + S * S);
+    const int np = (int)ceil(len / lf) + 1;
+    double* pts = malloc((size_t)np * 3 * sizeof(double));
+    if (!pts) {
+      return cs_errorSet(err, CS_ERR_MEMORY, "fem_actuator: out of memory (fibre)");
+    }
+    for (int hand = -1; hand <= 1; hand += 2) {
+      for (int k = 0; k < np; k++) {
+        double t = (double)k / (np - 1), p2[2];
+        roundedSquarePoint(h, r, hand * act->n[s] * P * t, p2);
+        pts[3 * k] = p2[0];
+        pts[3 * k + 1] = p2[1];
+        pts[3 * k + 2] = z0 + t * S;
+      }
+      csStatus st = csf_modelAddFibre(m, np, pts, act->Ef, act->rf, err);
+      if (st != CS_OK) {
+        free(pts);
+        return st;
+      }
+    }
+    free(pts);
+  }
+  return CS_OK;
+}
+
+
+void csf_actuatorFEDestroy(csfActuatorFE* fe) {
+  if (!fe) {
+    return;
+  }
+  csf_gaugesDestroy(fe->gauges);
+  csf_modelDestroy(fe->model);
+  csf_meshDestroy(fe->mesh);
+  free(fe->tip_unit);
+  memset(fe, 0, sizeof *fe);
+}
+
+
+void csf_actuatorSetTipForce(csfActuatorFE* fe, const double F[3]) {
+  csfModel* m = fe->model;
+  for (int i = 0; i < m->ndof; i++) {
+    m->f_dead[i] = fe->tip_unit[i] * F[i % 3];
+  }
+}
+
+
+/* nodal weights of a unit uniform traction on the (flat) tip face: w_a = int N_a dA over the
+ * reference faces, from the face kernel with p = 1 (its force is -p int N_a n dA, n = +e3) */
+static csStatus tipWeights(csfActuatorFE* fe, csError* err) {
+  const csfMesh* me = fe->mesh;
+  fe->tip_unit = calloc((size_t)fe->model->ndof, sizeof(double));
+  if (!fe->tip_unit) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_actuator: out of memory");
+  }
+  double area = 0;
+  for (int f = 0; f < me->nface; f++) {
+    if (me->face_tag[f] != CSF_TAG_TIP) {
+      continue;
+    }
+    double xf[18], fe1[18], v;
+    for (int a = 0; a < 6; a++) {
+      memcpy(xf + 3 * a, me->x + 3 * me->face[6 * f + a], 3 * sizeof(double));
+    }
+    csf_faceKernel(xf, 1.0, fe1, NULL, &v);
+    for (int a = 0; a < 6; a++) {
+      const double w = -fe1[3 * a + 2];
+      area += w;
+      for (int i = 0; i < 3; i++) {
+        fe->tip_unit[3 * me->face[6 * f + a] + i] += w;
+      }
+    }
+  }
+  if (!(area > 0)) {
+    return cs_errorSet(err, CS_ERR_EXTERNAL, "fem_actuator: the mesh has no tip face");
+  }
+  for (int i = 0; i < fe->model->ndof; i++) {
+    fe->tip_unit[i] /= area;
+  }
+  fe->tip_area = area;
+  return CS_OK;
+}
+
+
+csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
+                              csfActuatorFE* fe, csError* err) {
+  memset(fe, 0, sizeof *fe);
+  csStatus st = csr_actuatorValidate(act, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  if (!(sp->mesh_size > 0)) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_actuator: mesh size must be > 0");
+  }
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      if (!(isfinite(sp->ratio[s][j]) && sp->ratio[s][j] >= 0)) {
+        return cs_errorSet(err, CS_ERR_ARG, "fem_actuator: chamber pressure ratio of II%d-O%d "
+                           "must be finite and >= 0 (got %g)", s + 1, j + 1, sp->ratio[s][j]);
+      }
+    }
+  }
+  fe->mesh = csf_meshActuator(act, sp->mesh_size, sp->work_stem ? sp->work_stem : "crawlsim_fe",
+                              err);
+  if (!fe->mesh) {
+    return err ? err->status : CS_ERR_EXTERNAL;
+  }
+  csfMaterial mat = csf_materialDefault(act->C10, act->C20, act->rho);
+  mat.form = sp->form;
+  fe->model = csf_modelCreate(fe->mesh, &mat, err);
+  if (!fe->model) {
+    csf_actuatorFEDestroy(fe);
+    return err ? err->status : CS_ERR_ARG;
+  }
+  csfModel* m = fe->model;
+  for (int i = 0; i < fe->mesh->nnode; i++) {
+    if (fabs(fe->mesh->x[3 * i + 2]) < CSF_PLANE_TOL) {
+      m->fixed[3 * i] = m->fixed[3 * i + 1] = m->fixed[3 * i + 2] = 1;
+    }
+  }
+  /* chambers; the pressure moment sum_j r_j (x_j, y_j) fixes the reference bending axis */
+  static const double sx[4] = {1, 1, -1, -1}, sy[4] = {1, -1, -1, 1};
+  double cc[2] = {0, 0};
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      const double r = sp->ratio[s][j];
+      if (r == 0.0) {
+        continue;
+      }
+      if (csf_modelAddPressure(m, CSF_TAG_CHAMBER(s, j + 1), r) <= 0) {
+        csf_actuatorFEDestroy(fe);
+        return cs_errorSet(err, CS_ERR_EXTERNAL, "fem_actuator: chamber %d of segment %d has no "
+                           "tagged faces in the mesh", j + 1, s + 1);
+      }
+      cc[0] += r * sx[j], cc[1] += r * sy[j];
+      fe->ncham++;
+    }
+  }
+  csu_set3(fe->axis, 0, 1, 0);
+  if (hypot(cc[0], cc[1]) > 1e-12) {
+    double dir[3] = {-cc[0], -cc[1], 0}, e3[3] = {0, 0, 1};
+    csu_normalize3(dir);
+    csu_cross3(fe->axis, e3, dir);
+  }
+  for (int i = 0; i < 3; i++) {
+    m->gravity[i] = sp->gravity[i];
+  }
+  if (sp->fibres) {
+    const double lf = sp->fibre_size > 0 ? sp->fibre_size : fmax(0.4 * sp->mesh_size - 0.1, 0.2);
+    m->fib_split = sp->fibre_split;
+    st = addFibres(act, m, lf, CSF_FIBRE_INSET, err);
+    if (st != CS_OK) {
+      csf_actuatorFEDestroy(fe);
+      return st;
+    }
+    m->fib_tension_only = !sp->fibre_compression;
+    m->fib_geo_tension = sp->fibre_geo_tension;
+  }
+  st = csf_modelFinalize(m, err);
+  if (st == CS_OK) {
+    st = tipWeights(fe, err);
+  }
+  if (st == CS_OK) {
+    fe->gauges = csf_gaugesCreate(act, fe->mesh, err);
+    st = fe->gauges ? CS_OK : (err ? err->status : CS_ERR_MEMORY);
+  }
+  if (st != CS_OK) {
+    csf_actuatorFEDestroy(fe);
+    return st;
+  }
+  csf_actuatorSetTipForce(fe, sp->tip_force);
+  return CS_OK;
+}

@@ -1,0 +1,67 @@
+/* fem_actuator.h: the FE model of one 3D-FRSPA actuator (set-up layer between meshing and the
+ * solvers).
+ *
+ * Owns: csfActuatorFE, what every actuator computation starts from: the Tet10 mesh of the
+ * parametric geometry (fem_mesh.h, through gmsh), the model with its clamped base, the chamber
+ * pressures per unit load factor (any pressure ratio per chamber and segment), the embedded
+ * double-helix fibres, gravity and a dead tip force, and the measurement gauges
+ * (fem_measure.h). The pressure sweeps (fem_bend.h) and the calibration (fem_calibration.h)
+ * build one and then only change its load. Units: mm, MPa, N, s. */
+#ifndef CS_FEM_ACTUATOR_H
+#define CS_FEM_ACTUATOR_H
+
+#include "core_status.h"
+#include "fem_measure.h"
+#include "fem_model.h"
+#include "robot_actuator.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* How to discretise and load the actuator. */
+typedef struct csfActuatorSpec_ {
+  double ratio[CSR_NSEG][CSR_NCHAMBER]; /* pressure of chamber Omega_j of segment s per unit
+                                         * load factor (MPa/MPa); 0 = vented */
+  double mesh_size;    /* l_soft, mm */
+  double fibre_size;   /* l_fibre, mm (0: 0.4 l_soft - 0.1, the paper's Table 1 pairing) */
+  int fibres;          /* 1 = embed the double-helix fibres (n turns per segment) */
+  int fibre_compression; /* 1: linear in tension and compression; 0: smoothed tension-only */
+  int fibre_geo_tension; /* 1: fibre geometric stiffness only in tension (modified tangent) */
+  int fibre_split;     /* 1: fibre elements split at element faces (csfModel.fib_split) */
+  csfFormulation form; /* element formulation */
+  double gravity[3];   /* mm/s^2 in the base frame (zeros = off) */
+  double tip_force[3]; /* N, dead load on the tip face (uniform traction), base frame */
+  const char* work_stem; /* path prefix for the .geo/.msh/.log files */
+} csfActuatorSpec;
+
+/* Chambers Omega1 & Omega2 of every segment at ratio 1, l_soft 4, fibres (linear, consistent
+ * tangent, split), mixed formulation, no gravity, no tip force, stem "crawlsim_fe". */
+csfActuatorSpec csf_actuatorSpecDefault(void);
+
+typedef struct csfActuatorFE_ {
+  csfMesh* mesh;
+  csfModel* model;
+  csfGauges* gauges;
+  double tip_area;     /* reference area of the tip face, mm^2 */
+  double* tip_unit;    /* (ndof) nodal weights w_a / A of a unit uniform traction on the tip face
+                        * (times a force vector: the dead load's nodal forces) */
+  double axis[3];      /* reference bending axis: e3 x (away from the pressure centroid), or e2
+                        * when the chambers are balanced (elongation) */
+  int ncham;           /* pressurised chambers */
+} csfActuatorFE;
+
+/* Mesh the actuator and build its model (not finalised data: csf_dataCreate is the caller's).
+ * Returns CS_OK or an error naming the cause (invalid parameters, gmsh failure, a chamber
+ * without faces, a fibre point outside the body). */
+csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* spec,
+                              csfActuatorFE* fe, csError* err);
+void csf_actuatorFEDestroy(csfActuatorFE* fe);
+
+/* Set the dead tip force (N, base frame) on the model's f_dead (replaces the previous one). */
+void csf_actuatorSetTipForce(csfActuatorFE* fe, const double F[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_FEM_ACTUATOR_H */
