@@ -8,7 +8,9 @@
  *   name  <word>                           terrain name, e.g. flat-road
  *   box   x0 y0 z0  x1 y1 z1               a solid box with opposite corners (x0<x1, ...)
  *   start x z                              start of the support's centre in the ground plane
- *   heading <deg>                          optional: crawl direction, degrees about +y (0 = +x)
+ *   heading <deg>                          optional: crawl direction, degrees about +y (0 = +x,
+ *                                          right-handed: 90 faces -z); the robot is built
+ *                                          turned by it (core/sim_driver.c)
  * Ground height under the start is the top of the highest box containing (x, z). */
 #ifndef CS_TERRAINS_TERRAIN_H
 #define CS_TERRAINS_TERRAIN_H

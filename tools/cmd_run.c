@@ -29,7 +29,8 @@ static const char kRunUsage[] =
     "    feel no gravity (the paper's assumption). Default: the scene's (paper for flat-road\n"
     "    and obstacle) with its own terrain and gait, earth when --terrain or --gait is given;\n"
     "  --macro-steps N: ODE steps per exchange with co-simulated legs (macro step H = N dt);\n"
-    "  --coupling: how co-simulated legs hand their wrench to the support (ignored by prb).\n";
+    "  --coupling: how co-simulated legs (rod) hand their wrench to the support (default\n"
+    "    stabilised; ignored by prb).\n";
 
 
 /* the options that take a value (all but --quiet and --help) */
@@ -296,7 +297,7 @@ int csx_cmdRun(int argc, char** argv) {
   }
 
   m.opt.progress = !quiet;
-  m.robot.leg_type = leg_type; /* the one place the level is stored */
+  cs_modelSetLegLevel(&m, leg_type); /* the one place the level is stored (and its coupling) */
   if (!isnan(friction)) m.contact.mu = friction;
   m.sched.pressure_scale = scale;
   if (!isnan(ramp)) m.sched.ramp = ramp;
@@ -371,6 +372,17 @@ int csx_cmdRun(int argc, char** argv) {
   printf("time split (s):");
   for (int k = 0; k < CS_NTIMER; k++) {
     printf(" %s %.3f%s", cs_timerName((csTimerId)k), tm[k].wall, k + 1 < CS_NTIMER ? "," : "\n");
+  }
+  /* the verdict (issue 10): falls, tips, crawls or stands, with when and how far */
+  const char* how = st != CS_OK ? "falls" : tilt > 30 ? "tips over" :
+                    fabs(x[0]) >= 20 || fabs(x[2]) >= 20 ? "crawls" : "stands";
+  if (st != CS_OK) {
+    printf("verdict (%s, %s legs): %s: %s\n", cs_conditionsName(m.conditions),
+           cs_modelLegLevel(&m), how, err.msg);
+  } else {
+    printf("verdict (%s, %s legs): %s: x = %.1f mm, z = %.1f mm in %.2f s, tilt %.1f deg\n",
+           cs_conditionsName(m.conditions), cs_modelLegLevel(&m), how, x[0], x[2], cs_time(d),
+           tilt);
   }
   if (st != CS_OK) goto done;
   rc = 0;

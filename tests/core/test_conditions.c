@@ -5,13 +5,14 @@
  * support's under `paper`, so the two loads differ by the legs' weight (the contact normal
  * force summed over every contact joint, averaged over 0.1 s of rest); (2) the scene table:
  * the paper's scenes default to `paper`, a user's terrain or gait to `earth`, --conditions
- * wins, and a bad name is refused naming it. */
+ * wins, and a bad name is refused naming it; (3) a terrain's heading turns the robot. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core_math.h"
 #include "cs_test.h"
 #include "sim_model.h"
 
@@ -116,6 +117,57 @@ static void test_sceneDefaultsAndOverrides(void) {
 }
 
 
+/* the terrain's heading turns the robot: the support's +x axis and every hip turn about +y
+ * (right-handed, 90 deg: +x -> -z), the chain's joints stay intact (it settles standing) */
+static void test_headingTurnsTheRobot(void) {
+  const char* text = "name turned\nbox -300 -20 -300 300 0 300\nstart 0 0\nheading 90\n";
+  FILE* f = fopen("cond_heading.terrain", "wb");
+  CS_EXPECT(f != NULL);
+  if (!f) return;
+  fputs(text, f);
+  fclose(f);
+  char gait[600], cal[600];
+  snprintf(gait, sizeof gait, "%s/gaits/flat_road_paper.csv", g_src);
+  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg.h5", g_src);
+  csModel m;
+  cs_modelInit(&m);
+  cs_modelSetConditions(&m, CS_CONDITIONS_PAPER);
+  csError err;
+  cs_errorClear(&err);
+  CS_EXPECT(cs_modelLoad(&m, "user", "cond_heading.terrain", gait, cal, &err) == CS_OK);
+  csData* d = cs_dataCreate(&m, &err);
+  CS_EXPECT(d != NULL);
+  if (d) {
+    double q[4], R[9], x = 0;
+    cs_supportOrientation(d, q);
+    csu_quatToMat3(R, q);
+    /* the support's x axis (first column) points along -z; exact to round-off (1e-12) */
+    CS_EXPECT_NEAR(R[0], 0, 1e-12, 0);
+    CS_EXPECT_NEAR(R[6], -1, 1e-12, 0);
+    double cl[2 * 3];
+    cs_legCenterline(&m, d, 0, 2, cl); /* leg A: hip at (+75, -65) of the centre, turned */
+    double c[3];
+    double corners[24];
+    cs_supportCorners(&m, d, corners);
+    for (int k = 0; k < 3; k++) {
+      c[k] = 0;
+      for (int j = 0; j < 8; j++) c[k] += corners[3 * j + k] / 8;
+    }
+    CS_EXPECT_NEAR(cl[0] - c[0], -65, 1e-9, 0);
+    CS_EXPECT_NEAR(cl[2] - c[2], -75, 1e-9, 0);
+    /* the turned chain settles as the straight one does: standing, level (0.3 s) */
+    CS_EXPECT(cs_settle(&m, d, &err) == CS_OK);
+    cs_supportOrientation(d, q);
+    csu_quatToMat3(R, q);
+    x = R[4]; /* the support's up axis stays up: cos(tilt) */
+    CS_EXPECT(x > 0.9999);
+  }
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+  remove("cond_heading.terrain");
+}
+
+
 /* ODE's informational messages (universal joints attached before their axes) are not errors */
 static void quiet(int num, const char* msg, va_list ap) {
   (void)num;
@@ -131,6 +183,7 @@ int main(int argc, char** argv) {
   const char* src = getenv("CS_SOURCE_DIR");
   snprintf(g_src, sizeof g_src, "%s", src ? src : ".");
   CS_RUN(test_sceneDefaultsAndOverrides);
+  CS_RUN(test_headingTurnsTheRobot);
   CS_RUN(test_legWeightChangesTheSupportLoadByTheLegsWeight);
   dCloseODE();
   return cs_testSummary();
