@@ -3,7 +3,8 @@
  *
  * Proves: (1) the shipped gaits are what the commands regenerate from their descriptions and
  * the shipped calibration today, byte for byte (gaits/flat_road.csv from flat_road.gait,
- * gaits/flat_road_paper.csv from flat_road_paper.gait, gaits/flat_road_crouch.csv from
+ * gaits/flat_road_paper.csv from flat_road_paper.gait, gaits/obstacle.csv from obstacle.gait
+ * (with --stretch), gaits/flat_road_crouch.csv from
  * `gait flat-road --crouch`; a calibration or design change that is not carried to the
  * shipped gaits fails here), (2) a generated table passes `crawlsim gait check`, (3) every bad
  * option, description or input exits 1 with one line "crawlsim gait <sub>: ..." on stderr
@@ -97,6 +98,7 @@ static void expectFailure(const char* args, const char* want);
 static void test_shippedGaitsAreRegenerable(void) {
   expectRegenerates("flat_road.csv", "", "flat_road.gait");
   expectRegenerates("flat_road_paper.csv", "", "flat_road_paper.gait");
+  expectRegenerates("obstacle.csv", "--stretch", "obstacle.gait");
   expectRegenerates("flat_road_crouch.csv", "--crouch", NULL);
 }
 

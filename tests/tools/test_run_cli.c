@@ -56,7 +56,8 @@ static void test_badOptions(void) {
   /* the shipped gait peaks near 0.3 MPa: x 100 is far above the 1 MPa limit */
   expectFailure("--pressure-scale 100", "crawlsim run: --pressure-scale 100 takes ");
   expectFailure("--scene moon", "crawlsim run: unknown scene 'moon'");
-  expectFailure("--scene obstacle", "crawlsim run: scene 'obstacle' is not available yet");
+  expectFailure("--conditions mars", "crawlsim run: unknown conditions 'mars' (expected earth or");
+  expectFailure("--conditions", "crawlsim run: option --conditions needs a value");
   expectFailure("--legs rom", "crawlsim run: leg model 'rom' is not available yet");
   expectFailure("--legs bogus", "crawlsim run: unknown leg model 'bogus'");
   expectFailure("--support-mass 0", "crawlsim run: --support-mass 0 kg must be > 0");
@@ -184,9 +185,29 @@ static void test_goodRun(void) {
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_support_s", &wall) >= 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "steps", &steps) >= 0);
     CS_EXPECT(calls == 50 && wall >= 0 && steps >= 50);
+    /* the paper's scene under its own default conditions, recorded */
+    char cond[32] = "";
+    double weightless = -1;
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "conditions", cond) >= 0 && !strcmp(cond, "paper"));
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "legs_weightless", &weightless) >= 0 &&
+              weightless == 1);
     H5Fclose(f);
   }
+  CS_EXPECT(strstr(r.out, "verdict (paper, prb legs): stands") != NULL);
+  CS_EXPECT(cs_cliFileExists("runcli_ok.xdmf"));
   remove("runcli_ok.h5");
+  remove("runcli_ok.xdmf");
+  /* a user's gait defaults to earth; --conditions overrides (the banner says which) */
+  char gargs[1024];
+  snprintf(gargs, sizeof gargs, "run --t-end 0.02 --out runcli_earth.h5 --gait %s/gaits/"
+           "flat_road_paper.csv", getenv("CS_SOURCE_DIR") ? getenv("CS_SOURCE_DIR") : ".");
+  cs_cliRun(exe_path, gargs, "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "conditions earth (default for user files)") != NULL);
+  strncat(gargs, " --conditions paper", sizeof gargs - strlen(gargs) - 1);
+  cs_cliRun(exe_path, gargs, "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "conditions paper (--conditions)") != NULL);
+  remove("runcli_earth.h5");
+  remove("runcli_earth.xdmf");
   /* a macro step of 20 ODE steps: the output interval follows it (0.02 s > 0.01 s) */
   cs_cliRun(exe_path, "run --t-end 0.04 --quiet --macro-steps 20 --coupling stabilised "
             "--out runcli_macro.h5", "runcli", &r);
@@ -202,6 +223,7 @@ static void test_goodRun(void) {
     H5Fclose(f);
   }
   remove("runcli_macro.h5");
+  remove("runcli_macro.xdmf");
   /* --legs auto runs the cheapest registered level and records it by its name */
   cs_cliRun(exe_path, "run --t-end 0.01 --quiet --legs auto --out runcli_auto.h5", "runcli", &r);
   CS_EXPECT(r.status == 0);
