@@ -253,6 +253,18 @@ void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrWrench* w);
  * damping of the hip's first element, which an implicit spring in ODE can take over. */
 void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], double C[36]);
 
+/* Interface gains over one implicit (backward Euler) step of g seconds (g > 0; g = 0: the
+ * instantaneous gains above): how the base wrench at the step's end changes with a base
+ * displacement δX and velocity δV there, W ≈ W0 - K δX - C δV, the rest of the rod responding
+ * through its own implicit step (inertia, damping, stiffness, contact): the Schur complement of
+ * the rod's step matrix onto the hip, from the last Jacobian CVODE asked for (the instantaneous
+ * gains when there is none yet). This is what an implicit spring on the support can stand in
+ * for: the hip element alone is stiff and heavily damped (13 N/mm, 0.26 N s/mm axially) but
+ * moves a node of ~1 g, which follows the hip within ~5 µs, so over a 1 ms step the support
+ * feels the whole leg's response, measured ~25 times weaker in damping (robot_rod_leg.c). */
+void csr_rodInterfaceGainsStep(const csrRodModel* m, csrRodData* d, double g, double K[36],
+                               double C[36]);
+
 /* ---- queries -------------------------------------------------------------------------------- */
 
 /* Contact shapes at the current state (max >= N fills all); returns the number written. */

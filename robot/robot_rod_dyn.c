@@ -36,9 +36,13 @@
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
 
-/* absolute tolerance of the impulse components: ~1e12 times any impulse of a run (N s), so
- * their error weight is ~0 and they never limit a step */
-#define CSR_ROD_ATOL_IMPULSE 1e10
+/* absolute tolerance of the base wrench averaged over an advance (N): the impulse is under
+ * CVODE's error control with atol = this x H, measured from the advance's start. (Uncontrolled,
+ * as the impulse first was, the step-averaged wrench of a stance leg under the driver scattered
+ * by +-0.3 N around its 0.12 N mean from step to step: the hip element's stiff damper, 0.26
+ * N s/mm, turns any velocity error of node 1 into force, and nothing bounded that error in the
+ * impulse; the noise shook the light support and let stance feet slip.) */
+#define CSR_ROD_WRENCH_TOL 1e-3
 /* pressures equal within this (MPa) reuse the cached actuation (as robot_prb.c: 1e-7 MPa moves
  * a bend by < 1e-6 relative at gait pressures) */
 #define CSR_ROD_P_TOL 1e-7
@@ -137,6 +141,35 @@ void csr_rodDataDestroy(csrRodData* d) {
 }
 
 
+/* CVODE's error weights (CVEwtFn): 1 / (rtol |y_i| + atol_i) for the leg's state, as
+ * CVodeSVtolerances would give; for the base impulse 1 / (rtol |I - I0| + atol_I), relative to
+ * its value I0 at the start of the current advance, with atol_I = CSR_ROD_WRENCH_TOL H (set in
+ * csr_rodAdvance) */
+static int errorWeights(N_Vector y, N_Vector ewt, void* user) {
+  const csrRodData* d = user;
+  const double* Y = N_VGetArrayPointer(y);
+  const double* at = N_VGetArrayPointer(d->atol);
+  double* w = N_VGetArrayPointer(ewt);
+  const double rtol = d->m->par.rtol;
+  const sunindextype n = N_VGetLength(y);
+  for (int k = 0; k < CSR_ROD_NIMP; k++) {
+    double tol = rtol * fabs(Y[k] - d->imp0[k]) + d->imp_atol;
+    if (!(tol > 0)) {
+      return -1;
+    }
+    w[k] = 1.0 / tol;
+  }
+  for (sunindextype k = CSR_ROD_NIMP; k < n; k++) {
+    double tol = rtol * fabs(Y[k]) + at[k];
+    if (!(tol > 0)) {
+      return -1;
+    }
+    w[k] = 1.0 / tol;
+  }
+  return 0;
+}
+
+
 csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
   if (!m) {
     cs_errorSet(err, CS_ERR_ARG, "rod: NULL model");
@@ -148,6 +181,7 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
     return NULL;
   }
   d->m = m;
+  d->imp_atol = CSR_ROD_WRENCH_TOL * 1e-3; /* until the first advance sets it */
   const size_t N1 = (size_t)m->N + 1;
   const sunindextype ny = CSR_ROD_NIMP + m->nstate;
   const sunindextype ns = 6 * (sunindextype)m->N;
@@ -191,7 +225,7 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
   /* per-component absolute tolerances */
   double* at = N_VGetArrayPointer(d->atol);
   for (int k = 0; k < CSR_ROD_NIMP; k++) {
-    at[k] = CSR_ROD_ATOL_IMPULSE;
+    at[k] = 0; /* set per advance (impulseWeights) */
   }
   const csrRodParams* p = &m->par;
   for (int e = 0; e < m->N; e++) {
@@ -207,7 +241,7 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
   csr_rodReset(m, d);
   d->cvode = CVodeCreate(CV_BDF, d->sun);
   if (!d->cvode || CVodeInit(d->cvode, csr_rodRhs_, 0.0, d->yv) != CV_SUCCESS ||
-      CVodeSVtolerances(d->cvode, p->rtol, d->atol) != CV_SUCCESS ||
+      CVodeWFtolerances(d->cvode, errorWeights) != CV_SUCCESS ||
       CVodeSetUserData(d->cvode, d) != CV_SUCCESS || csr_rodLinsolAttach_(d) != 0 ||
       CVodeSetMaxNumSteps(d->cvode, p->max_steps) != CV_SUCCESS ||
       CVodeSetMaxOrd(d->cvode, p->max_order) != CV_SUCCESS) {
@@ -247,6 +281,7 @@ void csr_rodReset(const csrRodModel* m, csrRodData* d) {
   memset(&d->static_load, 0, sizeof d->static_load);
   memset(d->static_act, 0, sizeof d->static_act);
   d->need_reinit = 1;
+  d->ls_have_jac = 0;
   d->cb_status = 0;
 }
 
@@ -260,6 +295,9 @@ void csr_rodSetState(const csrRodModel* m, csrRodData* d, const double* y) {
   memcpy(d->y + CSR_ROD_NIMP, y, (size_t)m->nstate * sizeof(double));
   d->need_reinit = 1;
   d->static_valid = 0;
+  /* the stored Jacobian belongs to another state: the condensed gains wait for a new one
+   * (until then the instantaneous gains), so a step after a set depends on the state alone */
+  d->ls_have_jac = 0;
 }
 
 
@@ -608,6 +646,10 @@ int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, cons
   }
   double I0[CSR_ROD_NIMP];
   memcpy(I0, d->y, sizeof I0);
+  /* the impulse's error is measured from here: the wrench averaged over this step to
+   * CSR_ROD_WRENCH_TOL */
+  memcpy(d->imp0, I0, sizeof I0);
+  d->imp_atol = CSR_ROD_WRENCH_TOL * H;
   d->cb_status = 0;
   d->cb_msg[0] = '\0';
   CVodeSetStopTime(d->cvode, t + H);
@@ -671,7 +713,23 @@ void csr_rodBaseWrench(const csrRodModel* m, csrRodData* d, csrWrench* w) {
 }
 
 
-void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], double C[36]) {
+/* element 1's accelerations (v̇ 3, ω̇ 3 body) from the hip element's kernel in d->wk (its
+ * forces on node 1 and frame 1; the parts of elements 2.. do not depend on the base and cancel
+ * in differences) */
+static void hipAccel(const csrRodModel* m, const csrRodData* d, double a[6]) {
+  const double* J = m->Jel + 3;
+  for (int k = 0; k < 3; k++) {
+    a[k] = d->wk.F[3 + k] / m->mnode[1];
+    a[3 + k] = d->wk.T[3 + k] / J[k];
+  }
+}
+
+
+/* the instantaneous gains K, C and, when P is not NULL, P (6 x 12, row-major): element 1's
+ * accelerations by the base's (x, φ, v, ω) (world), all by central differences of the hip
+ * element's kernel */
+static void baseDifferences(const csrRodModel* m, csrRodData* d, double K[36], double C[36],
+                            double* P) {
   const csrBaseState keep = d->cur_base;
   const double h[4] = {CSR_ROD_GAIN_DX, CSR_ROD_GAIN_DPHI, CSR_ROD_GAIN_DV, CSR_ROD_GAIN_DW};
   memset(K, 0, 36 * sizeof(double));
@@ -679,7 +737,7 @@ void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], do
   /* central differences of the instantaneous wrench in each of the 12 base coordinates */
   for (int kind = 0; kind < 4; kind++) {
     for (int j = 0; j < 3; j++) {
-      double W[2][6];
+      double W[2][6], acc[2][6];
       for (int side = 0; side < 2; side++) {
         double sg = side ? -1.0 : 1.0;
         csrBaseState b = keep;
@@ -700,15 +758,114 @@ void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], do
         csr_rodBaseWrench(m, d, &w);
         memcpy(W[side], w.f, 3 * sizeof(double));
         memcpy(W[side] + 3, w.m, 3 * sizeof(double));
+        hipAccel(m, d, acc[side]);
       }
       double* M = kind < 2 ? K : C;
       int col = 3 * (kind % 2) + j;
       for (int i = 0; i < 6; i++) {
         M[6 * i + col] = -(W[0][i] - W[1][i]) / (2 * h[kind]);
+        if (P) {
+          P[12 * i + 3 * kind + j] = (acc[0][i] - acc[1][i]) / (2 * h[kind]);
+        }
       }
     }
   }
   d->cur_base = keep;
+}
+
+
+void csr_rodInterfaceGains(const csrRodModel* m, csrRodData* d, double K[36], double C[36]) {
+  baseDifferences(m, d, K, C, NULL);
+}
+
+
+/* G (6 x 12, row-major): the base wrench by element 1's (x, ψ body, v, ω body), central
+ * differences of the hip element's kernel with the state's block 1 perturbed and restored */
+static void stateDifferences(const csrRodModel* m, csrRodData* d, double* G) {
+  double* b = d->y + CSR_ROD_NIMP + m->boff[1];
+  double keep[CSR_ROD_BH];
+  memcpy(keep, b, sizeof keep);
+  const double h[4] = {CSR_ROD_GAIN_DX, CSR_ROD_GAIN_DPHI, CSR_ROD_GAIN_DV, CSR_ROD_GAIN_DW};
+  for (int kind = 0; kind < 4; kind++) {
+    for (int j = 0; j < 3; j++) {
+      double W[2][6];
+      for (int side = 0; side < 2; side++) {
+        double sg = side ? -1.0 : 1.0;
+        memcpy(b, keep, sizeof keep);
+        if (kind == 0) {
+          b[CSR_ROD_BX + j] += sg * h[0];
+        } else if (kind == 1) {
+          /* a body-frame increment, as the Jacobian's ψ columns (q ⊗ exp(ψ)) */
+          double phi[3] = {0, 0, 0}, dq[4], q[4];
+          phi[j] = sg * h[1];
+          csr_rodQexp(dq, phi);
+          csr_rodQmul(q, keep + CSR_ROD_BQ, dq);
+          memcpy(b + CSR_ROD_BQ, q, sizeof q);
+        } else if (kind == 2) {
+          b[CSR_ROD_BV + j] += sg * h[2];
+        } else {
+          b[CSR_ROD_BW + j] += sg * h[3];
+        }
+        csrWrench w;
+        csr_rodBaseWrench(m, d, &w);
+        memcpy(W[side], w.f, 3 * sizeof(double));
+        memcpy(W[side] + 3, w.m, 3 * sizeof(double));
+      }
+      for (int i = 0; i < 6; i++) {
+        G[12 * i + 3 * kind + j] = (W[0][i] - W[1][i]) / (2 * h[kind]);
+      }
+    }
+  }
+  memcpy(b, keep, sizeof keep);
+}
+
+
+void csr_rodInterfaceGainsStep(const csrRodModel* m, csrRodData* d, double g, double K[36],
+                               double C[36]) {
+  double P[72], G[72];
+  baseDifferences(m, d, K, C, g > 0 ? P : NULL);
+  if (!(g > 0) || !d->ls_have_jac) {
+    return; /* no step, or no Jacobian yet: the instantaneous gains */
+  }
+  stateDifferences(m, d, G);
+  /* right-hand sides of element 1 for a unit base displacement (columns 0..5) and velocity
+   * (6..11) at the step's end: g P (the implicit step's load on element 1) */
+  double rhs[6 * CSR_ROD_GAIN_COLS], du[6 * CSR_ROD_GAIN_COLS];
+  for (int c = 0; c < 12; c++) {
+    for (int r = 0; r < 6; r++) {
+      rhs[6 * c + r] = g * P[12 * r + c];
+    }
+  }
+  if (csr_rodCondensedHip_(d, g, rhs, 12, du) != 0) {
+    return;
+  }
+  /* the wrench's change through element 1's motion (δx = g δv, δψ = g W δω):
+   * D = [G_v + g G_x, G_ω + g G_ψ W] (6 x 6 on (δv, δω)) */
+  double Wk[9], D[36];
+  csr_rodKinW_(d, g, 1, Wk);
+  for (int i = 0; i < 6; i++) {
+    const double* Gi = G + 12 * i;
+    for (int c = 0; c < 3; c++) {
+      D[6 * i + c] = Gi[6 + c] + g * Gi[c];
+      double s = 0;
+      for (int k = 0; k < 3; k++) {
+        s += Gi[3 + k] * Wk[3 * k + c];
+      }
+      D[6 * i + 3 + c] = Gi[9 + c] + g * s;
+    }
+  }
+  /* K_eff = K - D δu(δX), C_eff = C - D δu(δV) */
+  for (int i = 0; i < 6; i++) {
+    for (int c = 0; c < 6; c++) {
+      double sx = 0, sv = 0;
+      for (int k = 0; k < 6; k++) {
+        sx += D[6 * i + k] * du[6 * c + k];
+        sv += D[6 * i + k] * du[6 * (6 + c) + k];
+      }
+      K[6 * i + c] -= sx;
+      C[6 * i + c] -= sv;
+    }
+  }
 }
 
 

@@ -132,6 +132,8 @@ struct csrRodData_ {
   csrRodBaseMotion base;
   csrBaseState cur_base; /* the base at time t */
   double tip_force[3], tip_moment[3];
+  double imp0[CSR_ROD_NIMP]; /* the impulse at the current advance's start (error weights) */
+  double imp_atol;           /* its absolute tolerance in this advance (N s) */
   int need_reinit;   /* 1: the next advance restarts CVODE */
   int no_contact;    /* 1: the right-hand side leaves the contact hook out (Jacobian's
                         internal part) */
@@ -166,6 +168,9 @@ struct csrRodData_ {
   int ls_have_jac;
   long ls_last;
   csrRodBt bt_dyn;    /* the reduced Newton matrix of the implicit step */
+  csrRodBt bt_gain;   /* the same at the condensed gains' step (csr_rodCondensedHip_) */
+  double* gain_Mhinv; /* (N x nhist²) its history blocks */
+  double* gain_r;     /* (N x 6) scratch of its solves */
   /* static solver: block-tridiagonal system of 6N unknowns */
   csrRodBt bt_static;
   double* sres;   /* (6N) residual */
@@ -377,6 +382,18 @@ void csr_rodBtSolve_(const csrRodBt* bt, double* x);
 int csr_rodLinSys_(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunbooleantype jok,
                    sunbooleantype* jcur, sunrealtype gamma, void* user, N_Vector tmp1,
                    N_Vector tmp2, N_Vector tmp3);
+
+/* The condensed response of element 1 to a load on it alone, over one implicit (backward
+ * Euler) step of g: the reduced matrix S(g) = I - g ∂u̇/∂u - g² ∂u̇/∂(x, ψ) (- history) of the
+ * stored Jacobian blocks is assembled and factored in the gains' storage and solved for ncol
+ * right-hand sides rhs (ncol x 6, column-major: the 6 velocity-level rows of element 1, zero
+ * elsewhere); out (ncol x 6) gets element 1's (δv, δω) of each. The rest of the rod (its
+ * inertia, damping, stiffness, contact) is eliminated exactly by the block LU. 0 ok; 1 when no
+ * Jacobian is stored yet or a block is singular (out untouched). */
+#define CSR_ROD_GAIN_COLS 12
+int csr_rodCondensedHip_(csrRodData* d, double g, const double* rhs, int ncol, double* out);
+/* The position map of element j's rotation at step g: δψ = g W δω (robot_rod_linsol.c). */
+void csr_rodKinW_(const csrRodData* d, double g, int j, double W[9]);
 
 /* Attach the reduced linear solver to d->cvode (0 ok); free its arrays. */
 int csr_rodLinsolAttach_(csrRodData* d);

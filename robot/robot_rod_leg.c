@@ -42,6 +42,7 @@ struct csrLeg_ {
   int N;              /* elements; soft shapes 0..N-1 are their capsules, shape N the sole */
   int hc, hf;         /* history doubles of a capsule and of the sole */
   double radius;      /* capsule radius (mm) */
+  double gain_step;   /* s: the step of the interface gains' condensation (spec->h) */
   double* scratch;    /* (state size) */
   csrRodShape* shapes; /* (N) scratch of contactShapes */
 };
@@ -203,6 +204,7 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
     return NULL;
   }
   leg->act = *spec->act;
+  leg->gain_step = spec->h;
   csrRodParams par = csr_rodDefaultParams(&leg->act);
   par.elements_per_segment = lp->links_per_segment;
   par.E = lp->E_bend;
@@ -309,8 +311,9 @@ static int advanceRod(csrLeg* leg, double t, double H, const csrBaseState* b0,
 
 
 static void interfaceGainsRod(const csrLeg* leg, double K[36], double C[36]) {
-  /* the gains evaluate the rod's force kernel in its scratch (the state is untouched) */
-  csr_rodInterfaceGains(leg->m, leg->d, K, C);
+  /* the gains evaluate the rod's force kernel in its scratch (the state is untouched), over
+   * one ODE step: the stabilised coupling solves them implicitly with the support over it */
+  csr_rodInterfaceGainsStep(leg->m, leg->d, leg->gain_step, K, C);
 }
 
 

@@ -477,10 +477,16 @@ int csr_rodLinSys_(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunboole
 }
 
 
-/* W = (I - γ/2 [ω]×) / (1 + γ²|ω|²/4) of element j (row-major 3 x 3): δψ per γ δω */
-static void kinW(const csrRodData* d, int j, double W[9]) {
+/* kinW at an explicit step size g (the condensed interface gains use ODE's step, not CVODE's) */
+static void kinWAt(const csrRodData* d, double g, int j, double W[9]);
+/* W = (I - γ/2 [ω]×) / (1 + γ²|ω|²/4) of element j (row-major 3 x 3): δψ per γ δω, at the
+ * step size γ of CVODE's current system */
+static void kinW(const csrRodData* d, int j, double W[9]) { kinWAt(d, d->ls_gamma, j, W); }
+
+
+static void kinWAt(const csrRodData* d, double g, int j, double W[9]) {
   const double* w = d->ls_w + 3 * (j - 1);
-  const double g = d->ls_gamma, h = 0.5 * g;
+  const double h = 0.5 * g;
   const double den = 1.0 / (1.0 + h * h * csu_dot3(w, w));
   W[0] = den;
   W[1] = h * w[2] * den;
@@ -520,13 +526,12 @@ static void positionRow(const double* row, const double W[9], double out[6]) {
 
 /* Z_m (nh x 6) for history element m and column element j: Mh_m⁻¹ (γ ∂ḣ/∂u + γ² ∂ḣ/∂x P_v +
  * γ² ∂ḣ/∂ψ W_j P_ω); Mhinv (nh x nh) given */
-static void historyCoupling(const csrRodModel* m, const csrRodData* d, int mm, int j,
+static void historyCoupling(const csrRodModel* m, const csrRodData* d, double g, int mm, int j,
                             const double* Mhinv, double* Z) {
   const int nh = m->nh[mm], nc = 12 + m->nhmax;
-  const double g = d->ls_gamma;
   const double* J = jblock(m, d, mm, j - mm + 1);
   double T[CSR_ROD_MAX_HIST * 6], W[9], pr[6];
-  kinW(d, j, W);
+  kinWAt(d, g, j, W);
   for (int r = 0; r < nh; r++) {
     const double* row = J + nc * (6 + r);
     positionRow(row, W, pr);
@@ -593,14 +598,12 @@ static int invertSmall(int n, const double* A, double* Ainv) {
 }
 
 
-/* SUNLinSolSetup: assemble and factor S for the stored γ and Jacobian blocks */
-static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
-  (void)A;
-  csrRodData* d = LS->content;
+/* assemble the reduced matrix S of the implicit step g from the stored Jacobian blocks into bt
+ * (the history's (I - g ∂ḣ/∂h)⁻¹ into Mhinv, N blocks at stride nhmax²) and factor it;
+ * 0, or 1 when a block is singular */
+static int assembleReduced(csrRodData* d, double g, csrRodBt* bt, double* Mhinv) {
   const csrRodModel* m = d->m;
   const int N = m->N, nhm = m->nhmax, nc = 12 + nhm;
-  const double g = d->ls_gamma;
-  csrRodBt* bt = &d->bt_dyn;
   csr_rodBtZero_(bt);
   /* history: Mh_m⁻¹ = (I - γ ∂ḣ_m/∂h_m)⁻¹ per element (nh_m x nh_m, stored at stride nhmax²) */
   for (int e = 1; e <= N; e++) {
@@ -615,9 +618,8 @@ static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
         Mh[nh * r + c] = (r == c ? 1.0 : 0.0) - g * J[nc * (6 + r) + 12 + c];
       }
     }
-    if (invertSmall(nh, Mh, d->ls_Mhinv + (size_t)(e - 1) * nhm * nhm) != 0) {
-      d->ls_last = SUNLS_LUFACT_FAIL;
-      return SUNLS_LUFACT_FAIL;
+    if (invertSmall(nh, Mh, Mhinv + (size_t)(e - 1) * nhm * nhm) != 0) {
+      return 1;
     }
   }
   for (int i = 1; i <= N; i++) {
@@ -629,7 +631,7 @@ static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
       double* S = (k == 0 ? bt->B : (k == 1 ? bt->D : bt->C)) + 36 * (i - 1);
       const double* J = jblock(m, d, i, k);
       double W[9], pr[6];
-      kinW(d, j, W);
+      kinWAt(d, g, j, W);
       for (int r = 0; r < 6; r++) {
         const double* row = J + nc * r;
         positionRow(row, W, pr);
@@ -646,7 +648,7 @@ static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
         }
         const int nh = m->nh[mm];
         double Z[CSR_ROD_MAX_HIST * 6];
-        historyCoupling(m, d, mm, j, d->ls_Mhinv + (size_t)(mm - 1) * nhm * nhm, Z);
+        historyCoupling(m, d, g, mm, j, Mhinv + (size_t)(mm - 1) * nhm * nhm, Z);
         const double* Ji = jblock(m, d, i, mm - i + 1);
         for (int r = 0; r < 6; r++) {
           for (int c = 0; c < 6; c++) {
@@ -660,10 +662,44 @@ static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
       }
     }
   }
-  int rc = csr_rodBtFactor_(bt);
+  return csr_rodBtFactor_(bt);
+}
+
+
+/* SUNLinSolSetup: assemble and factor S for the stored γ and Jacobian blocks */
+static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
+  (void)A;
+  csrRodData* d = LS->content;
+  int rc = assembleReduced(d, d->ls_gamma, &d->bt_dyn, d->ls_Mhinv);
   d->ls_last = rc ? SUNLS_LUFACT_FAIL : SUNLS_SUCCESS;
   return rc ? SUNLS_LUFACT_FAIL : SUNLS_SUCCESS;
 }
+
+
+int csr_rodCondensedHip_(csrRodData* d, double g, const double* rhs, int ncol, double* out) {
+  const csrRodModel* m = d->m;
+  if (!d->ls_have_jac || !(g > 0) || ncol < 1 || ncol > CSR_ROD_GAIN_COLS) {
+    return 1;
+  }
+  /* the step's own matrix in the gains' storage: CVODE's factorisation (bt_dyn, at its γ) stays
+   * as it is for the next Newton iteration */
+  if (assembleReduced(d, g, &d->bt_gain, d->gain_Mhinv) != 0) {
+    return 1;
+  }
+  double* r = d->gain_r;
+  for (int c = 0; c < ncol; c++) {
+    memset(r, 0, 6 * (size_t)m->N * sizeof(double));
+    for (int k = 0; k < 6; k++) {
+      r[k] = rhs[6 * c + k];
+    }
+    csr_rodBtSolve_(&d->bt_gain, r);
+    memcpy(out + 6 * c, r, 6 * sizeof(double));
+  }
+  return 0;
+}
+
+
+void csr_rodKinW_(const csrRodData* d, double g, int j, double W[9]) { kinWAt(d, g, j, W); }
 
 
 /* SUNLinSolSolve: x = (I - γJ)⁻¹ b through the reduced system */
@@ -878,7 +914,12 @@ int csr_rodLinsolAttach_(csrRodData* d) {
   d->ls_Mhinv = calloc((size_t)N * (size_t)(nh > 0 ? nh * nh : 1), sizeof(double));
   if (!d->jac || !d->jac_int || !d->jac_con || !d->con_y || !d->ls_q || !d->ls_qn || !d->ls_w ||
       !d->ls_hact || !d->ls_bpsi || !d->ls_r || !d->ls_hb ||
-      !d->ls_Mhinv || !csr_rodBtAlloc_(&d->bt_dyn, N)) {
+      !d->ls_Mhinv || !csr_rodBtAlloc_(&d->bt_dyn, N) || !csr_rodBtAlloc_(&d->bt_gain, N)) {
+    return 1;
+  }
+  d->gain_Mhinv = calloc((size_t)N * (size_t)(nh > 0 ? nh * nh : 1), sizeof(double));
+  d->gain_r = calloc(6 * (size_t)N, sizeof(double));
+  if (!d->gain_Mhinv || !d->gain_r) {
     return 1;
   }
   d->LS = SUNLinSolNewEmpty(d->sun);
@@ -917,5 +958,8 @@ void csr_rodLinsolFree_(csrRodData* d) {
   free(d->ls_r);
   free(d->ls_hb);
   free(d->ls_Mhinv);
+  free(d->gain_Mhinv);
+  free(d->gain_r);
   csr_rodBtFree_(&d->bt_dyn);
+  csr_rodBtFree_(&d->bt_gain);
 }

@@ -244,10 +244,12 @@ static void foot_pressed_on_road(void) {
   standing(0.5, 0, 0.8, &fy, &drift, &lat, &k);
   printf("  hip lowered 0.5 mm: the leg pushes the support up with %.6f N (series springs "
          "%.6f N), foot %.2g mm off the axis\n", fy, 0.5 * k, lat);
-  /* pressed straight down, the symmetric leg stays on its axis: measured 2e-5 mm (noise of the
-   * integrator in an unloaded direction); a leg that leans (as one started inside the road
-   * does after its dynamic buckling) is ~1 mm off */
-  CS_EXPECT(lat < 1e-3);
+  /* pressed straight down, the symmetric leg stays on its axis: measured 2.2e-3 mm (2e-5 mm
+   * before the base impulse came under error control, which changes CVODE's step sequence):
+   * noise of the integrator in an unloaded direction, below its position tolerance atol_pos =
+   * 0.01 mm; a leg that leans (as one started inside the road does after its dynamic buckling)
+   * is ~1 mm off */
+  CS_EXPECT(lat < 1e-2);
   /* a steady state of the integrator is an equilibrium: measured 1e-7 relative (the sole's C1
    * onset is passed: 2.1 µm of sink-in against 1 µm); tolerance 1e-3 (a force on the wrong
    * node, as a lever-rule split of the sole's force once did, makes it +7 %; a leaning leg
