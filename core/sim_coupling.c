@@ -7,13 +7,17 @@
  * wrench is applied constant at the hip's current position. The impulse the support receives
  * is then exactly the one the leg's base reaction carried (momentum is conserved across the
  * interface for any H); what the scheme gets wrong is that the legs saw the predicted, not the
- * actual, motion: explicit in the interface, so it can go unstable for a light support on
- * stiff legs as H grows.
+ * actual, motion: explicit in the interface, so it goes unstable for a light support on stiff
+ * legs as H grows. With rod legs the limit is the hip element's Kelvin-Voigt damper (0.26 N s/mm
+ * axially per leg): an explicit damper c on the 50 g support needs 8 c H / M < 2, H < 48 µs
+ * (measured: the flat road diverges while settling at H = 50 µs, runs at 25 µs).
  *
- * Stabilised scheme. Each leg also hands back K, C (interfaceGains): how its wrench would
- * change if its hip left the motion it was given. Moved to the support's centre of mass
- * (hip twist = T [v; w], T = [[I, -[r]x], [0, I]], r = hip - centre, so a hip wrench W acts as
- * T^T W) and summed, they give Kc, Cc; the force on the support over ODE step j -> j + 1 is
+ * Stabilised scheme (linearly implicit in the interface). Each leg also hands back K, C
+ * (interfaceGains): how its wrench would change if its hip left the motion it was given, over
+ * one implicit step of ODE's h (robot_leg.h; for the rod the Schur complement of its own step
+ * onto the hip, robot_rod.h). Moved to the support's centre of mass (hip twist = T [v; w],
+ * T = [[I, -[r]x], [0, I]], r = hip - centre, so a hip wrench W acts as T^T W) and summed,
+ * they give Kc, Cc; the legs' force on the support over ODE step j -> j + 1 is
  *   F = W0 - Kc dq_j - A (q'_{j+1} - q'_pred),  A = h Kc + Cc,
  * with q' = [v; w] and dq the deviation of the support's pose from the predicted motion's mean
  * pose: W0 is the wrench averaged over the predicted motion, which for a leg linear in its
@@ -22,29 +26,27 @@
  * instead shifts the force by K v0 (H/2 - t) and, at w H = 4, threw the stance oscillator
  * 2.7e3 mm off). The mean is taken over the poses the ODE steps start from (prepared in
  * cs_couplingAdvance). For linear stance legs this is the backward-Euler spring-damper at any
- * H, up to a pose offset of h v0 / 2 (ODE's own first order). ODE has no joint
- * that holds a general 6x6 A, so the part of A within the linear and within the angular block
- * goes to ODE as rows: an LMotor (3 linear rows on the centre's velocity) and an AMotor (3
- * angular rows, user mode), along the eigenvectors u of each symmetric block with eigenvalue
- * a > 0: a motor row with target velocity c and constraint-force mixing CFM ends the step with
- * u.v' = c - CFM lambda (ODE's row equation), so CFM = 1/a and c = (u.g)/a give exactly the
- * force lambda = u.g - a u.v' (the ERP/CFM spring of csu_springErpCfm written in velocity
- * form). The linear-angular coupling block of A, and directions with a <= 0, are applied
- * explicitly with the current velocity. The rows converge with QuickStep's iterations like any
- * constraint.
+ * H, up to a pose offset of h v0 / 2 (ODE's own first order).
+ * The implicit part is solved here, for the whole 6 x 6 A: the support's backward-Euler step
+ *   (M + h A) q'_{j+1} = M q'_j + h (m g + W0 - Kc dq_j + A q'_pred)
+ * (M = diag(m I, I_world), gyroscopic and terrain-contact forces left to ODE) gives q'_{j+1},
+ * and the force F above, evaluated with it, is added to the support as an ordinary force: ODE's
+ * step then lands on q'_{j+1} (to its gyroscopic term, and exactly unless the support itself
+ * touches the terrain, which ODE resolves with F held). An earlier version handed only A's
+ * symmetric 3 x 3 diagonal blocks to ODE as motor rows (LMotor/AMotor with CFM = 1/eigenvalue)
+ * and the rest explicitly: with the rod's condensed gains, which are not symmetric and couple
+ * the centre's translation and rotation through the hips' lever arms (8 legs at 65-75 mm), it
+ * diverged at h = 2 ms on the flat road, where the full solve runs.
  *
  * Rejected: sub-iterating the legs to convergence every step (the tightly coupled reference:
- * the driver's state save/restore makes it possible, at several advances per step); handing
- * the legs' gains to ODE through fixed joints (one scalar ERP/CFM per joint: isotropic only). */
+ * the driver's state save/restore makes it possible, at several advances per step; a tiny macro
+ * step is the reference used, README "Coupling"); handing the legs' gains to ODE through fixed
+ * joints (one scalar ERP/CFM per joint: isotropic only). */
 #include <math.h>
 #include <string.h>
 
 #include "core_math.h"
 #include "sim_internal.h"
-
-/* an eigenvalue below this fraction of the block's largest is treated as zero (explicit):
- * CFM = 1/a would be ~1e12 times the others' and the row carries no stiffness worth solving */
-#define MIN_EIG_RATIO 1e-12
 
 /* 6x6 row-major helpers */
 static void mat6Zero(double M[36]) { memset(M, 0, 36 * sizeof(double)); }
@@ -99,79 +101,87 @@ static void mat6Vec(double y[6], const double M[36], const double x[6]) {
 }
 
 
+void cs_modelSetLegLevel(csModel* m, const csrLegType* type) {
+  m->robot.leg_type = type;
+  m->opt.coupling = type && !type->in_world ? CS_COUPLING_STABILISED : CS_COUPLING_STAGGERED;
+}
+
+
 csStatus cs_couplingCreate(const csModel* m, csData* d, csError* err) {
+  /* the stabilised scheme solves its implicit part itself (cs_couplingApply): no ODE rows */
+  (void)m;
+  (void)d;
   (void)err;
-  if (!d->cosim.active || m->opt.coupling != CS_COUPLING_STABILISED) {
-    return CS_OK;
-  }
-  csCosim* c = &d->cosim;
-  c->lmotor = dJointCreateLMotor(d->world, 0);
-  dJointAttach(c->lmotor, d->robot->support, 0);
-  dJointSetLMotorNumAxes(c->lmotor, 3);
-  c->amotor = dJointCreateAMotor(d->world, 0);
-  dJointAttach(c->amotor, d->robot->support, 0);
-  dJointSetAMotorMode(c->amotor, dAMotorUser);
-  dJointSetAMotorNumAxes(c->amotor, 3);
-  /* rows off until the first macro step sets them (FMax 0 disables a motor row) */
-  for (int i = 0; i < 3; i++) {
-    dJointSetLMotorAxis(c->lmotor, i, 0, i == 0, i == 1, i == 2);
-    dJointSetAMotorAxis(c->amotor, i, 0, i == 0, i == 1, i == 2);
-    dJointSetLMotorParam(c->lmotor, dParamFMax + dParamGroup * i, 0);
-    dJointSetAMotorParam(c->amotor, dParamFMax + dParamGroup * i, 0);
-  }
   return CS_OK;
 }
 
 
-/* stabilised scheme: sum the legs' gains at the centre and set up the ODE rows */
-static void prepareImplicit(const csModel* m, csData* d) {
-  csCosim* c = &d->cosim;
-  double Cc[36];
-  mat6Zero(c->Kc);
-  mat6Zero(Cc);
-  for (int k = 0; k < CSR_NLEG; k++) {
-    double r[3];
-    csu_sub3(r, c->b0[k].x, c->P0);
-    addAtCentre(c->Kc, c->K[k], r);
-    addAtCentre(Cc, c->C[k], r);
-  }
-  for (int i = 0; i < 36; i++) {
-    c->A[i] = m->opt.h * c->Kc[i] + Cc[i];
-  }
-  for (int b = 0; b < 2; b++) {
-    double blk[9];
-    for (int i = 0; i < 3; i++) {
-      for (int j = 0; j < 3; j++) {
-        blk[3 * i + j] = c->A[6 * (3 * b + i) + 3 * b + j];
+/* solve A x = b for 6 x 6 A (row-major, destroyed) by Gaussian elimination with partial
+ * pivoting; 1 if singular */
+static int solve6(double A[36], double b[6]) {
+  for (int k = 0; k < 6; k++) {
+    int p = k;
+    for (int i = k + 1; i < 6; i++) {
+      if (fabs(A[6 * i + k]) > fabs(A[6 * p + k])) {
+        p = i;
       }
     }
-    csu_symEigen3(blk, c->eig[b], c->axis[b]);
-    double amax = fmax(fabs(c->eig[b][0]), fmax(fabs(c->eig[b][1]), fabs(c->eig[b][2])));
-    for (int i = 0; i < 3; i++) {
-      double a = c->eig[b][i];
-      const double* V = c->axis[b];
-      c->implicit[b][i] = a > MIN_EIG_RATIO * amax && a > 0;
-      dJointID j = b == 0 ? c->lmotor : c->amotor;
-      int grp = dParamGroup * i;
-      /* FMax 0 switches a row off; an implicit row is unbounded with CFM = 1/a */
-      double fmax = c->implicit[b][i] ? dInfinity : 0, cfm = c->implicit[b][i] ? 1.0 / a : 0;
-      if (b == 0) {
-        dJointSetLMotorAxis(j, i, 0, V[i], V[3 + i], V[6 + i]);
-        dJointSetLMotorParam(j, dParamFMax + grp, fmax);
-        dJointSetLMotorParam(j, dParamCFM + grp, cfm);
-      } else {
-        dJointSetAMotorAxis(j, i, 0, V[i], V[3 + i], V[6 + i]);
-        dJointSetAMotorParam(j, dParamFMax + grp, fmax);
-        dJointSetAMotorParam(j, dParamCFM + grp, cfm);
+    if (!(fabs(A[6 * p + k]) > 0)) {
+      return 1;
+    }
+    if (p != k) {
+      for (int j = 0; j < 6; j++) {
+        double t = A[6 * k + j];
+        A[6 * k + j] = A[6 * p + j];
+        A[6 * p + j] = t;
       }
+      double t = b[k];
+      b[k] = b[p];
+      b[p] = t;
+    }
+    for (int i = k + 1; i < 6; i++) {
+      double f = A[6 * i + k] / A[6 * k + k];
+      for (int j = k; j < 6; j++) {
+        A[6 * i + j] -= f * A[6 * k + j];
+      }
+      b[i] -= f * b[k];
     }
   }
+  for (int k = 5; k >= 0; k--) {
+    double s = b[k];
+    for (int j = k + 1; j < 6; j++) {
+      s -= A[6 * k + j] * b[j];
+    }
+    b[k] = s / A[6 * k + k];
+  }
+  return 0;
+}
+
+
+/* a leg's wrench (and gains) finite, else the step is rejected naming the leg (1) */
+static int checkFinite(const csData* d, int k, const csrWrench* w, const double* K,
+                       const double* C, csError* err) {
+  int finite = 1;
+  for (int i = 0; i < 3; i++) {
+    finite &= isfinite(w->f[i]) && isfinite(w->m[i]);
+  }
+  for (int i = 0; K && i < 36; i++) {
+    finite &= isfinite(K[i]) && isfinite(C[i]);
+  }
+  if (finite) {
+    return 0;
+  }
+  /* a leg that hands back NaN has left its valid range: a smaller step may keep it in */
+  cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: leg %c returned a non-finite wrench or "
+              "interface gain", d->t, 'A' + k);
+  return 1;
 }
 
 
 int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err) {
   csCosim* c = &d->cosim;
   const csrLegType* type = m->robot.leg_type;
+  const int stab = m->opt.coupling == CS_COUPLING_STABILISED;
   double P1[3], R1[9], dR[9], phi[3];
   cs_errorClear(err); /* whatever err holds after this came from these legs */
   csr_robotSupportPose(d->robot, c->P0, c->R0, c->v0, c->w0);
@@ -191,32 +201,33 @@ int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err) {
   csu_scale3(phi, c->w0, tm);
   csu_rotVecToMat3(dR, phi);
   csu_mulMat3(c->Rm, dR, c->R0);
+  double Cc[36];
+  mat6Zero(c->Kc);
+  mat6Zero(Cc);
   for (int k = 0; k < CSR_NLEG; k++) {
+    csrLeg* leg = d->robot->legs[k];
     csr_robotBaseStateAt(d->robot, k, c->P0, c->R0, c->v0, c->w0, &c->b0[k]);
     csr_robotBaseStateAt(d->robot, k, P1, R1, c->v0, c->w0, &c->b1[k]);
-    int rc = type->advance(d->robot->legs[k], d->t, H, &c->b0[k], &c->b1[k], &c->w[k], err);
+    int rc = type->advance(leg, d->t, H, &c->b0[k], &c->b1[k], &c->w[k], err);
     if (rc != 0) {
       return rc;
     }
-    int finite = 1;
-    for (int i = 0; i < 3; i++) {
-      finite &= isfinite(c->w[k].f[i]) && isfinite(c->w[k].m[i]);
+    if (stab) {
+      /* the gains at the end of the advance, over one ODE step (robot_leg.h) */
+      type->interfaceGains(leg, c->K[k], c->C[k]);
     }
-    if (m->opt.coupling == CS_COUPLING_STABILISED) {
-      type->interfaceGains(d->robot->legs[k], c->K[k], c->C[k]);
-      for (int i = 0; i < 36; i++) {
-        finite &= isfinite(c->K[k][i]) && isfinite(c->C[k][i]);
-      }
-    }
-    if (!finite) {
-      /* a leg that hands back NaN has left its valid range: a smaller step may keep it in */
-      cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: leg %c returned a non-finite wrench or "
-                  "interface gain", d->t, 'A' + k);
+    if (checkFinite(d, k, &c->w[k], stab ? c->K[k] : NULL, c->C[k], err) != 0) {
       return 1;
     }
+    if (stab) {
+      double r[3];
+      csu_sub3(r, c->b0[k].x, c->P0);
+      addAtCentre(c->Kc, c->K[k], r);
+      addAtCentre(Cc, c->C[k], r);
+    }
   }
-  if (m->opt.coupling == CS_COUPLING_STABILISED) {
-    prepareImplicit(m, d);
+  for (int i = 0; i < 36; i++) {
+    c->A[i] = m->opt.h * c->Kc[i] + Cc[i];
   }
   return 0;
 }
@@ -224,16 +235,42 @@ int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err) {
 
 void cs_couplingApply(const csModel* m, csData* d, int j) {
   csCosim* c = &d->cosim;
-  for (int k = 0; k < CSR_NLEG; k++) {
-    csr_robotApplyWrench(d->robot, k, &c->w[k]);
-  }
+  (void)j;
   if (m->opt.coupling != CS_COUPLING_STABILISED) {
+    for (int k = 0; k < CSR_NLEG; k++) {
+      csr_robotApplyWrench(d->robot, k, &c->w[k]);
+    }
     return;
   }
-  /* deviation of the support at the start of ODE step j from the predicted mean pose */
-  (void)j;
+  /* the support now: pose, twist, mass and world inertia */
   double P[3], R[9], v[3], w[3], dR[9], RmT[9];
   csr_robotSupportPose(d->robot, P, R, v, w);
+  dMass ms;
+  dBodyGetMass(d->robot->support, &ms);
+  double Ib[9], RI[9], Iw[9], RT[9];
+  for (int a = 0; a < 3; a++) {
+    for (int b = 0; b < 3; b++) {
+      Ib[3 * a + b] = ms.I[4 * a + b]; /* dMatrix3 rows are 4 wide */
+    }
+  }
+  csu_mulMat3(RI, R, Ib);
+  csu_transpose3(RT, R);
+  csu_mulMat3(Iw, RI, RT);
+  /* W0: the legs' step-averaged wrenches at the centre (moments about it, hips where they are
+   * now, as csr_robotApplyWrench applies them) */
+  double W0[6] = {0, 0, 0, 0, 0, 0};
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csrBaseState b;
+    double r[3], rxf[3];
+    csr_robotBaseStateAt(d->robot, k, P, R, v, w, &b);
+    csu_sub3(r, b.x, P);
+    csu_cross3(rxf, r, c->w[k].f);
+    for (int i = 0; i < 3; i++) {
+      W0[i] += c->w[k].f[i];
+      W0[3 + i] += c->w[k].m[i] + rxf[i];
+    }
+  }
+  /* deviation of the support at the start of ODE step j from the predicted mean pose */
   csu_transpose3(RmT, c->Rm);
   csu_mulMat3(dR, R, RmT);
   double dq[6], qd[6], qd_pred[6];
@@ -245,43 +282,50 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
     qd_pred[3 + i] = c->w0[i];
   }
   csu_mat3ToRotVec(dq + 3, dR);
-  /* g = -Kc dq + A q'_pred - A_offdiag q' : all but the block-diagonal implicit part */
-  double g[6], Kdq[6], Aq[6], Aoff[36];
+  /* the support's backward-Euler step with the legs' linearised wrench (header):
+   *   (M + h A) q'_{j+1} = M q'_j + h (m g + W0 - Kc dq_j + A q'_pred) */
+  const double h = m->opt.h;
+  dVector3 grav;
+  dWorldGetGravity(d->world, grav);
+  const int gmode = dBodyGetGravityMode(d->robot->support);
+  double Kdq[6], Aqp[6], rhs[6], S[36];
   mat6Vec(Kdq, c->Kc, dq);
-  mat6Vec(Aq, c->A, qd_pred);
-  memcpy(Aoff, c->A, sizeof Aoff);
-  for (int b = 0; b < 2; b++) {
-    for (int i = 0; i < 3; i++) {
-      for (int k = 0; k < 3; k++) {
-        Aoff[6 * (3 * b + i) + 3 * b + k] = 0;
-      }
-    }
-  }
-  double Aoq[6];
-  mat6Vec(Aoq, Aoff, qd);
+  mat6Vec(Aqp, c->A, qd_pred);
   for (int i = 0; i < 6; i++) {
-    g[i] = -Kdq[i] + Aq[i] - Aoq[i];
-  }
-  /* per block and eigen-direction: an ODE row (implicit) or an explicit force */
-  double fex[6] = {0, 0, 0, 0, 0, 0};
-  for (int b = 0; b < 2; b++) {
-    const double* V = c->axis[b];
-    for (int i = 0; i < 3; i++) {
-      double u[3] = {V[i], V[3 + i], V[6 + i]};
-      double ug = csu_dot3(u, g + 3 * b), a = c->eig[b][i];
-      if (c->implicit[b][i]) {
-        int grp = dParamGroup * i;
-        if (b == 0) {
-          dJointSetLMotorParam(c->lmotor, dParamVel + grp, ug / a);
-        } else {
-          dJointSetAMotorParam(c->amotor, dParamVel + grp, ug / a);
-        }
-      } else {
-        double f = ug - a * csu_dot3(u, qd + 3 * b);
-        csu_addScl3(fex + 3 * b, fex + 3 * b, u, f);
+    double Mq;
+    if (i < 3) {
+      Mq = ms.mass * qd[i];
+    } else {
+      const double* I = Iw + 3 * (i - 3);
+      Mq = I[0] * qd[3] + I[1] * qd[4] + I[2] * qd[5];
+    }
+    double fg = (i < 3 && gmode) ? ms.mass * grav[i] : 0;
+    rhs[i] = Mq + h * (fg + W0[i] - Kdq[i] + Aqp[i]);
+    for (int k = 0; k < 6; k++) {
+      double Mik = 0;
+      if (i < 3 && k < 3) {
+        Mik = i == k ? ms.mass : 0;
+      } else if (i >= 3 && k >= 3) {
+        Mik = Iw[3 * (i - 3) + (k - 3)];
       }
+      S[6 * i + k] = Mik + h * c->A[6 * i + k];
     }
   }
-  dBodyAddForce(d->robot->support, fex[0], fex[1], fex[2]);
-  dBodyAddTorque(d->robot->support, fex[3], fex[4], fex[5]);
+  double F[6];
+  if (solve6(S, rhs) != 0) {
+    /* singular (cannot happen with a positive mass): the legs' wrench as staggered */
+    memcpy(F, W0, sizeof F);
+  } else {
+    /* F = W0 - Kc dq - A (q'_{j+1} - q'_pred) at the solved q'_{j+1} */
+    double dqd[6], Ad[6];
+    for (int i = 0; i < 6; i++) {
+      dqd[i] = rhs[i] - qd_pred[i];
+    }
+    mat6Vec(Ad, c->A, dqd);
+    for (int i = 0; i < 6; i++) {
+      F[i] = W0[i] - Kdq[i] - Ad[i];
+    }
+  }
+  dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
+  dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
 }

@@ -5,7 +5,7 @@
  *   schedule   p_cmd
  *   pneumatics p (and the CVODE memory), p0 keeps the pressures at the step's start
  *   legs       the legs' actuation; cosim.b0, b1, w, K, C (co-simulated legs' exchange)
- *   support    the ODE bodies, cstats, cosim's implicit-spring rows
+ *   support    the ODE bodies, cstats (the stabilised scheme's implicit force per ODE step)
  *   check      nothing (reads the support)
  *   cs_step    t, nstep, nreject, save (the state before the step), timer[] */
 #ifndef CS_CORE_SIM_INTERNAL_H
@@ -25,17 +25,13 @@ typedef struct csCosim_ {
   csrWrench w[CSR_NLEG];            /* base wrenches of the last advance (step average) */
   double K[CSR_NLEG][36];           /* interface stiffness of each leg at its hip */
   double C[CSR_NLEG][36];           /* interface damping of each leg at its hip */
-  /* stabilised scheme: the legs' gains summed at the support's centre of mass, the motion the
-   * legs were given (constant twist from the step's start) and the ODE rows */
-  dJointID lmotor, amotor;          /* 3 linear + 3 angular velocity rows on the support */
+  /* stabilised scheme: the legs' gains summed at the support's centre of mass and the motion
+   * the legs were given (constant twist from the step's start) */
   double t0;                        /* s: start of the macro step */
   double P0[3], R0[9], v0[3], w0[3];/* support centre, rotation, twist at t0 */
   double Pm[3], Rm[9];              /* predicted mean pose: W0's linearisation point */
   double Kc[36];                    /* summed stiffness at the centre (6 x 6, [f; m] x [u; φ]) */
   double A[36];                     /* h Kc + Cc: the implicit part (6 x 6) */
-  double axis[2][9];                /* eigenvectors (columns) of A's linear / angular blocks */
-  double eig[2][3];                 /* their eigenvalues (N s/mm, N mm s/rad) */
-  int implicit[2][3];               /* 1: the row goes to ODE (eigenvalue > 0), 0: explicit */
 } csCosim;
 
 struct csData_ {
@@ -80,15 +76,18 @@ void cs_schedule(const csModel* m, double t, double* p_cmd);
 
 /* ---- sim_coupling.c: the support interface of co-simulated legs ---- */
 
-/* Create the ODE rows of the stabilised scheme when the legs are co-simulated. */
+/* Set up the coupling of co-simulated legs (nothing to create today: the stabilised scheme
+ * solves its implicit part in cs_couplingApply). */
 csStatus cs_couplingCreate(const csModel* m, csData* d, csError* err);
 
 /* The legs stage's co-simulation part: hip motion b0 now and b1 predicted at t + H, every
  * leg's advance, its wrench and (stabilised) gains. 0, > 0 recoverable, < 0 fatal (err). */
 int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err);
 
-/* Before ODE sub-step j (0..macro_steps-1) of the support stage: apply the legs' wrenches to
- * the support and, for the stabilised scheme, set the implicit rows' targets. */
+/* Before ODE sub-step j (0..macro_steps-1) of the support stage: the legs' force on the
+ * support: staggered, their averaged wrenches; stabilised, those corrected by their gains for
+ * the support's deviation from the predicted motion, solved implicitly with the support's step
+ * (sim_coupling.c). */
 void cs_couplingApply(const csModel* m, csData* d, int j);
 
 #endif /* CS_CORE_SIM_INTERNAL_H */

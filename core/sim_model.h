@@ -112,6 +112,11 @@ csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
  * legs weightless (opt.legs_weightless = 1), `earth` does not. */
 void cs_modelSetConditions(csModel* m, csConditions c);
 
+/* Set the leg level (m->robot.leg_type) and its default coupling: a co-simulated level
+ * (in_world = 0) is coupled stabilised, which is stable where staggered coupling of the rod legs
+ * needs H < 40 µs (sim_coupling.c); options set afterwards override it. */
+void cs_modelSetLegLevel(csModel* m, const csrLegType* type);
+
 /* Name of the leg level that runs (m->robot.leg_type->name): what the output records. */
 const char* cs_modelLegLevel(const csModel* m);
 

@@ -164,13 +164,15 @@ typedef struct csrLegType_ {
    * the time and cause. On > 0 or < 0 the leg's state is undefined: the driver restores it. */
   int (*advance)(csrLeg* leg, double t, double H, const csrBaseState* b0,
                  const csrBaseState* b1, csrWrench* w, csError* err);
-  /* Linearised response of the base wrench about the end of the last advance (world frame, at
-   * the hip): W ≈ W0 - K [u; φ] - C [u'; φ'], where u (mm) is a displacement of the hip point
-   * and φ (rad) a small rotation vector of the base frame, away from the motion b0 -> b1 the leg
-   * was given. K (6 x 6: N/mm, N/rad, N mm/mm, N mm/rad blocks) and C (the same over velocity,
-   * N s/mm ...) row-major, [f; m] rows by [u; φ] columns. The driver hands them to ODE as an
-   * implicit spring-damper on the support (the stabilised coupling scheme). In-world levels
-   * return zeros. */
+  /* Linearised response of the base wrench at the current state (world frame, at the hip):
+   * W ≈ W0 - K [u; φ] - C [u'; φ'], where u (mm) is a displacement of the hip point and φ (rad)
+   * a small rotation vector of the base frame, away from where the hip is, over one implicit
+   * step of spec->h: the leg's own degrees of freedom respond within that step (inertia,
+   * damping, contact), so for a leg with internal dynamics these are its condensed (Schur
+   * complement) gains, not those of its stiffest part alone. K (6 x 6: N/mm, N/rad, N mm/mm,
+   * N mm/rad blocks) and C (the same over velocity, N s/mm ...) row-major, [f; m] rows by
+   * [u; φ] columns. The driver solves them implicitly with the support (the stabilised
+   * coupling scheme, core/sim_coupling.c). In-world levels return zeros. */
   void (*interfaceGains)(const csrLeg* leg, double K[36], double C[36]);
 
   /* The leg's convex collision shapes now (world frame): writes at most `max` of them and

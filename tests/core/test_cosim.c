@@ -63,6 +63,7 @@ static csrLeg* createSpring(const csrLegSpec* spec, csError* err) {
   csu_mulMatVec3(d, spec->frame, leg->d0);
   csu_add3(leg->x, spec->hip, d);
   csu_copy3(leg->x_init, leg->x);
+  csu_copy3(leg->d_world, d);
   if (!spec->weightless) {
     csu_copy3(leg->g, spec->gravity);
   }
