@@ -373,8 +373,10 @@ int csx_cmdRun(int argc, char** argv) {
   for (int k = 0; k < CS_NTIMER; k++) {
     printf(" %s %.3f%s", cs_timerName((csTimerId)k), tm[k].wall, k + 1 < CS_NTIMER ? "," : "\n");
   }
-  /* the verdict (issue 10): falls, tips, crawls or stands, with when and how far */
-  const char* how = st != CS_OK ? "falls" : tilt > 30 ? "tips over" :
+  /* the verdict (issue 10): falls (off the terrain), stops (any other failure: the message
+   * says which), tips over, crawls or stands, with when and how far */
+  const char* how = st != CS_OK ? (strstr(err.msg, "fell off") ? "falls" : "stops") :
+                    tilt > 30 ? "tips over" :
                     fabs(x[0]) >= 20 || fabs(x[2]) >= 20 ? "crawls" : "stands";
   if (st != CS_OK) {
     printf("verdict (%s, %s legs): %s: %s\n", cs_conditionsName(m.conditions),
