@@ -1,4 +1,6 @@
-/* robot_calibration.c: the provisional pressure -> bend map (see robot_calibration.h). */
+/* robot_calibration.c: the calibrations behind csrBendMap (robot_calibration.h): the provisional
+ * map, the pair-mode FE table, and the FE mode table's model (robot_calibration_model.h) with its
+ * adapters for the bend map and the rod level. */
 #include "robot_calibration.h"
 
 #include <math.h>
@@ -235,34 +237,6 @@ struct csrFeCalibration_ {
 
 /* rows of a table: enough for any sweep a user runs (0.001 MPa steps to 1 MPa is 1001) */
 #define FE_TABLE_MAX_ROWS 100000
-/* actuator parameters of the file and of the leg must agree to round-off of their decimal
- * writing (they are written as doubles: exact), so 1e-9 relative only absorbs a user's
- * hand-edited value such as 0.11 vs 0.110000000001 */
-#define FE_TABLE_PARAM_RTOL 1e-9
-
-typedef struct {
-  hid_t file;
-  const char* path;
-  csError* err;
-  csStatus st;
-} ParamCheck;
-
-/* csr_actuatorVisit callback: the file's attribute `name` must equal the leg's `value` */
-static void checkParam(void* user, const char* name, double value) {
-  ParamCheck* c = user;
-  if (c->st != CS_OK) {
-    return;
-  }
-  double v = NAN;
-  if (H5Aexists(c->file, name) <= 0 || H5LTget_attribute_double(c->file, "/", name, &v) < 0) {
-    c->st = cs_errorSet(c->err, CS_ERR_PARSE, "%s: calibration table has no attribute '%s' (an "
-                        "actuator parameter)", c->path, name);
-  } else if (!(fabs(v - value) <= FE_TABLE_PARAM_RTOL * fabs(value))) {
-    c->st = cs_errorSet(c->err, CS_ERR_RANGE, "%s: calibrated for another actuator: %s = %g in "
-                        "the table, %g in the leg", c->path, name, v, value);
-  }
-}
-
 /* read a double dataset of rank `rank` with dims[0] rows (and dims[1] = `cols` if rank 2) */
 static double* readTable(hid_t f, const char* path, const char* dset, int rank, hsize_t cols,
                          hsize_t* rows, csError* err) {
@@ -329,9 +303,7 @@ csrFeCalibration* csr_feCalibrationCreate(const char* path, const csrActuator* l
       size < sizeof model) {
     H5LTget_attribute_string(f, "/", "model", model);
   }
-  ParamCheck pc = {f, path, err, CS_OK};
-  csr_actuatorVisit(leg, checkParam, &pc);
-  if ((st = pc.st) != CS_OK) {
+  if ((st = csr_calCheckActuator(path, leg, err)) != CS_OK) {
     goto done;
   }
   fc->p = readTable(f, path, "/pressure", 1, 0, &m, err);
@@ -440,26 +412,99 @@ csrBendMap csr_feCalibrationGet(const csrFeCalibration* fc) {
 }
 
 
-/* ---- either kind ---------------------------------------------------------------------------- */
+/* ---- FE mode table: the model behind the bend map and the rod's actuation --------------- */
+
+/* what the bend map and the rod adapter of a mode table point to */
+typedef struct {
+  csrCalTable table;
+  csrCalModel* model;
+  csrRodSection section[CSR_NSEG]; /* the rod's default sections of II1..II3 (GA, GJ kept) */
+} ModeCalibration;
+
+
+static int modeEvalThunk(const void* ctx, int seg, const double p[4], double bend[2],
+                         double* stretch) {
+  const ModeCalibration* mc = ctx;
+  csrCalSegment q;
+  int rc = csr_calModelEval(mc->model, seg, p, &q);
+  if (rc == 0) {
+    bend[0] = q.bend[0], bend[1] = q.bend[1];
+    *stretch = q.stretch;
+  }
+  return rc;
+}
+
+
+/* the rod's actuation: u0 = (-bend[1], bend[0], 0) / S and σ0 = (0, 0, stretch - 1), as the
+ * rod's own adapter of a csrBendMap (robot_rod_model.c), plus the probed section */
+static int modeRodThunk(const void* ctx, int seg, const double p[4],
+                        csrRodSegmentActuation* out) {
+  const ModeCalibration* mc = ctx;
+  csrCalSegment q;
+  int rc = csr_calModelEval(mc->model, seg, p, &q);
+  if (rc != 0) {
+    return rc;
+  }
+  const double S = mc->model ? csr_calModelLeg(mc->model)->S[seg] : 1.0;
+  out->u0[0] = -q.bend[1] / S;
+  out->u0[1] = q.bend[0] / S;
+  out->u0[2] = 0;
+  out->sigma0[2] = q.stretch - 1;
+  double EI, EA;
+  rc = csr_calModelStiffness(mc->model, seg, p, &EI, &EA);
+  if (rc == 2) {
+    return 0; /* no probes in the table: the rod keeps its sections */
+  }
+  if (rc != 0) {
+    return rc;
+  }
+  out->has_section = 1;
+  out->section = mc->section[seg];
+  out->section.EA = EA;
+  out->section.EI[0] = out->section.EI[1] = EI;
+  return 0;
+}
+
+
+static void modeFree(ModeCalibration* mc) {
+  if (mc) {
+    csr_calModelDestroy(mc->model);
+    csr_calTableFree(&mc->table);
+    free(mc);
+  }
+}
+
+
+static ModeCalibration* modeOpen(const char* path, const csrActuator* leg, csError* err) {
+  ModeCalibration* mc = calloc(1, sizeof *mc);
+  if (!mc) {
+    cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+    return NULL;
+  }
+  if (csr_calTableRead(path, leg, &mc->table, err) != CS_OK ||
+      !(mc->model = csr_calModelCreate(&mc->table, leg, NULL, err))) {
+    modeFree(mc);
+    return NULL;
+  }
+  csrRodParams par = csr_rodDefaultParams(leg);
+  csrRodPiece pieces[CSR_ROD_MAX_PIECES];
+  const int n = csr_rodLegPieces(leg, &par, pieces);
+  for (int k = 0; k < n; k++) {
+    if (pieces[k].segment >= 0 && pieces[k].segment < CSR_NSEG) {
+      mc->section[pieces[k].segment] = pieces[k].section;
+    }
+  }
+  return mc;
+}
+
+
+/* ---- any kind ------------------------------------------------------------------------------ */
 
 struct csrCalibration_ {
-  csrProvisionalMap* provisional; /* exactly one of the two is set */
+  csrProvisionalMap* provisional; /* exactly one of the three is set */
   csrFeCalibration* fe;
+  ModeCalibration* mode;
 };
-
-
-/* the 8-byte HDF5 signature at offset 0 (files written by this project have no user block) */
-static int isHdf5(const char* path) {
-  static const unsigned char sig[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
-  unsigned char head[8];
-  FILE* fp = fopen(path, "rb");
-  if (!fp) {
-    return 0;
-  }
-  size_t n = fread(head, 1, sizeof head, fp);
-  fclose(fp);
-  return n == sizeof head && memcmp(head, sig, sizeof sig) == 0;
-}
 
 
 csrCalibration* csr_calibrationOpen(const char* path, const csrActuator* leg, csError* err) {
@@ -468,12 +513,14 @@ csrCalibration* csr_calibrationOpen(const char* path, const csrActuator* leg, cs
     cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
     return NULL;
   }
-  if (isHdf5(path)) {
+  if (csr_calTableIsModeTable(path)) {
+    c->mode = modeOpen(path, leg, err);
+  } else if (csr_calIsHdf5(path)) {
     c->fe = csr_feCalibrationCreate(path, leg, err);
   } else {
     c->provisional = csr_provisionalMapCreate(path, leg, err);
   }
-  if (!c->fe && !c->provisional) {
+  if (!c->fe && !c->provisional && !c->mode) {
     free(c);
     return NULL;
   }
@@ -485,11 +532,45 @@ void csr_calibrationClose(csrCalibration* c) {
   if (c) {
     csr_feCalibrationDestroy(c->fe);
     csr_provisionalMapDestroy(c->provisional);
+    modeFree(c->mode);
     free(c);
   }
 }
 
 
 csrBendMap csr_calibrationMap(const csrCalibration* c) {
+  if (c->mode) {
+    csrBendMap m = {modeEvalThunk, c->mode, csr_calModelName(c->mode->model),
+                    csr_calModelPMax(c->mode->model)};
+    return m;
+  }
   return c->fe ? csr_feCalibrationGet(c->fe) : csr_provisionalMapGet(c->provisional);
+}
+
+
+const csrCalModel* csr_calibrationModel(const csrCalibration* c) {
+  return c && c->mode ? c->mode->model : NULL;
+}
+
+
+const csrCalTable* csr_calibrationTable(const csrCalibration* c) {
+  return c && c->mode ? &c->mode->table : NULL;
+}
+
+
+static int rodFromMode(const ModeCalibration* mc, csrRodCalibration* out) {
+  out->eval = modeRodThunk;
+  out->ctx = mc;
+  out->name = csr_calModelName(mc->model);
+  return 1;
+}
+
+
+int csr_calibrationRod(const csrCalibration* c, csrRodCalibration* out) {
+  return c && c->mode ? rodFromMode(c->mode, out) : 0;
+}
+
+
+int csr_calibrationRodFromMap(const csrBendMap* map, csrRodCalibration* out) {
+  return map && map->eval == modeEvalThunk && map->ctx ? rodFromMode(map->ctx, out) : 0;
 }

@@ -1,7 +1,14 @@
 /* robot_calibration.h: the pressure -> segment-bend maps (calibrations) the dynamic legs use.
  *
- * Owns: two kinds of calibration behind one csrBendMap, opened by csr_calibrationOpen:
- *  - the FE calibration table (default, robot/calibration_fe_leg.h5; section below), and
+ * Owns: three kinds of calibration behind one csrBendMap, opened by csr_calibrationOpen, which
+ * tells them apart by the file's signature:
+ *  - the FE MODE TABLE (`crawlsim calibrate`, format "crawlsim-fe-calibration 1"): every chamber
+ *    mode, held-out combinations and stiffness probes of the full FE model, read by
+ *    robot_calibration_table.h and turned into the calibration model of
+ *    robot_calibration_model.h (bend, stretch, radial growth and stiffness from all four
+ *    chamber pressures); it also gives the rod level its richer csrRodCalibration;
+ *  - the FE PAIR-MODE table (the bend layout of `crawlsim bend`; section below), kept readable
+ *    for the tables written before the mode tables, and
  *  - the PROVISIONAL calibration used before the FE table existed: the analytic model
  * (robot_analytic.h) with its bend angles multiplied by one factor chosen so
  * that a reference actuator reaches a reference total angle at a reference pressure. The
@@ -20,7 +27,10 @@
 
 #include "core_status.h"
 #include "robot_actuator.h"
+#include "robot_calibration_model.h"
+#include "robot_calibration_table.h"
 #include "robot_leg.h"
+#include "robot_rod.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -66,13 +76,31 @@ csrBendMap csr_feCalibrationGet(const csrFeCalibration* fc);
 int csr_feCalibrationEval(const csrFeCalibration* fc, int seg, const double p[4],
                           double bend[2], double* stretch);
 
-/* ---- either kind, by file type -------------------------------------------------------------
- * An HDF5 file (by its signature) is an FE table, anything else the provisional text file. */
+/* ---- any kind, by file type ----------------------------------------------------------------
+ * An HDF5 file whose root attribute "format" starts with "crawlsim-fe-calibration " is a mode
+ * table (refused unless its version is the one this build reads), another HDF5 file a pair-mode
+ * table, anything else the provisional text file. */
 typedef struct csrCalibration_ csrCalibration;
 
 csrCalibration* csr_calibrationOpen(const char* path, const csrActuator* leg, csError* err);
 void csr_calibrationClose(csrCalibration* c);
 csrBendMap csr_calibrationMap(const csrCalibration* c);
+
+/* The mode table's model and the table itself (valid while c lives); NULL for the other kinds. */
+const csrCalModel* csr_calibrationModel(const csrCalibration* c);
+const csrCalTable* csr_calibrationTable(const csrCalibration* c);
+
+/* The rod level's actuation from a mode table: intrinsic curvature and stretch from the bend
+ * map's model and, where the table has stiffness probes, the segment's section with EI (both
+ * axes) and EA from the probes (GA and GJ stay the rod's defaults, csr_rodLegPieces: the FE
+ * did not probe shear or torsion). Fills *out and returns 1 for a mode table; returns 0 (out
+ * untouched) for the other kinds, whose csrBendMap the rod adapts itself (robot_rod.h).
+ * Valid while c lives. */
+int csr_calibrationRod(const csrCalibration* c, csrRodCalibration* out);
+
+/* The same from a csrBendMap that csr_calibrationMap made of a mode table (a leg level gets
+ * only the map through csrLegSpec): 1 and *out filled, or 0 for any other map. */
+int csr_calibrationRodFromMap(const csrBendMap* map, csrRodCalibration* out);
 
 #ifdef __cplusplus
 }

@@ -19,6 +19,7 @@
 #include "robot_analytic.h"
 #include "robot_bend_io.h"
 #include "robot_calibration.h"
+#include "test_calibration_synth.h"
 
 /* analytic bend vector of one segment with the options the calibrations use (nquad 6) */
 static void analytic(const csrActuator* act, int seg, const double p[4], double bend[2]) {
@@ -136,21 +137,6 @@ static void test_table_interpolates_linearly_in_pressure(void) {
   CS_EXPECT(map.eval(map.ctx, 0, P, bend, &stretch) == CSR_MAP_OUT_OF_RANGE);
   csr_calibrationClose(c);
   remove("calib_lin.h5");
-}
-
-
-/* opening `path` for the leg fails with a message containing the file name and `want` */
-static void expectRefused(const char* path, const csrActuator* leg, const char* want) {
-  csError err;
-  cs_errorClear(&err);
-  csrCalibration* c = csr_calibrationOpen(path, leg, &err);
-  int ok = c == NULL && strstr(err.msg, path) != NULL && strstr(err.msg, want) != NULL &&
-           strchr(err.msg, '\n') == NULL;
-  CS_EXPECT(ok);
-  if (!ok) {
-    fprintf(stderr, "  %s: got '%s', want '%s'\n", path, err.msg, want);
-  }
-  csr_calibrationClose(c);
 }
 
 

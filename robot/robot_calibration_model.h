@@ -1,0 +1,171 @@
+/* robot_calibration_model.h: the calibration model the leg levels read: per segment, the bend
+ * vector (intrinsic curvature x S), the centreline stretch, the radial growth (contact radius)
+ * and the stiffness EI, EA as functions of the segment's FOUR chamber pressures, built from an FE
+ * mode table (robot_calibration_table.h).
+ *
+ * Owns: csrCalModel (built once from a table, constant afterwards, no allocation when
+ * evaluated), its evaluation, the stiffness rule, and the comparison of the model with any case
+ * of a table (fitted, held out, symmetry) for reports and tests.
+ *
+ * ---- The rule (rationale; the measured errors are in README "Calibration") ----------------
+ * Symmetry. The section (square, four chambers at (±b, ±b), a symmetric pair of helices) is
+ * invariant under quarter turns and the four mirror lines. A pattern of pressures is brought to
+ * the canonical form p1 >= p2, p3, p4 and p2 >= p4 by a turn (the highest chamber to Ω1) and the
+ * mirror Ω2 <-> Ω4; the result is turned and mirrored back. So every chamber set not run is the
+ * image of a run one, Ω2 alone is Ω1 alone turned by -90 deg (the table's O2 case checks it),
+ * and a pattern invariant under a mirror bends along that mirror's line: the FE's bend component
+ * across it is mesh asymmetry and is removed; a pattern with zero pressure moment m = (p1 + p2 -
+ * p3 - p4, p1 - p2 - p3 + p4) (Ω1&Ω3, all four) bends by exactly zero.
+ * Shape and scale. Canonical pressures are P (the highest, the load factor of every case, which
+ * also bounds the table's range) times the shape x = (x2, x3, x4) = (p2, p3, p4) / P, 0 <= x4
+ * <= x2 <= 1, 0 <= x3 <= 1: a triangular prism whose six corners are all fitted modes: Ω1
+ * (0,0,0), Ω1&Ω3 (0,1,0), Ω1&Ω2 (1,0,0), Ω1&Ω2&Ω4 (1,0,1), its mirror Ω1&Ω2&Ω3 (1,1,0), all four
+ * (1,1,1). Two more modes refine it: Ω1&Ω2 at 1 : 0.5 on the edge Ω1 -> Ω1&Ω2 (x2 = 0.5) and the
+ * paper's case 4 (1, 1, 1/3, 1/3) inside the face x2 = 1.
+ * Field. Each fitted mode k gives, per segment and row, the bend as a component a along -m̂
+ * (towards the vented side, the direction the section's symmetry gives) and b across it, and
+ * the changes of stretch, radial growth and largest radial growth from the rest row. These are
+ * interpolated over the prism at the point's P (each mode's rows by a monotone cubic in p,
+ * Fritsch-Carlson, exact at the rows): trilinear in (x2, x4/x2, x3) between the six corners,
+ * plus hierarchical bumps of the two refining modes (a hat in x2 on the edge; a tensor hat in
+ * (x4, x3) on the face x2 = 1), each zero at every other mode and on every face where the
+ * canonical form is ambiguous, so the field is continuous across them and equivariant.
+ * Base. CSR_CAL_RULE_SUPERPOSITION interpolates the difference from the superposition of the
+ * single-chamber response (Ω1 alone, turned to each chamber: bend -Σ_j θ1(p_j) ĉ_j, stretch
+ * 1 + Σ_j δλ1(p_j), ...); CSR_CAL_RULE_INTERPOLATION interpolates the modes' values directly.
+ * Both return every fitted row (to round-off) and zero bend at m = 0; they differ between the
+ * modes, where the table's held-out cases decide (robot_calibration.h names the default).
+ * Stiffness. EI (the mean of the e1 and e2 probes: the section's second moment is isotropic)
+ * and EA per segment as piecewise-linear functions of the mean chamber pressure p̄ = Σ p_j / 4
+ * through the probes of every probed mode (probes at equal p̄ averaged); NaN probes skipped.
+ * Range. Pressures up to the smallest end among the modes used (a mode that met a pressure limit
+ * point ends there: past it a pressure-controlled actuator snaps); above it eval returns
+ * CSR_MAP_OUT_OF_RANGE, never an extrapolation. Stiffness: p̄ up to the highest probe's.
+ * Cost: a few comparisons, one Hermite cubic per mode in range, no allocation (~1 µs).
+ *
+ * Units: mm, MPa, N, rad. Segments 0..2 (II1..II3), chambers 0..3 (Ω1..Ω4). */
+#ifndef CS_ROBOT_CALIBRATION_MODEL_H
+#define CS_ROBOT_CALIBRATION_MODEL_H
+
+#include "core_status.h"
+#include "robot_actuator.h"
+#include "robot_calibration_table.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum csrCalRule_ {
+  CSR_CAL_RULE_SUPERPOSITION = 0, /* single-chamber superposition + interpolated interactions */
+  CSR_CAL_RULE_INTERPOLATION = 1, /* the modes' values interpolated over the shape prism */
+  CSR_CAL_RULE_MEAN = 2,          /* scalars only: the all-four response at the mean pressure
+                                     + interpolated differences */
+  CSR_CAL_RULE_SCALED = 3,        /* bend only: the superposition scaled by a mean-pressure
+                                     factor fitted to the bending modes + interpolated
+                                     interactions */
+} csrCalRule;
+
+/* The fitted modes by role (csr_calModelModePattern gives their chamber ratios). */
+typedef enum csrCalRole_ {
+  CSR_CAL_O1 = 0,    /* Ω1 alone (corner, and the superposition's single-chamber response) */
+  CSR_CAL_O13,       /* Ω1&Ω3 (corner, elongation) */
+  CSR_CAL_O12,       /* Ω1&Ω2 (corner) */
+  CSR_CAL_O124,      /* Ω1&Ω2&Ω4 (corner; its mirror image Ω1&Ω2&Ω3 is another corner) */
+  CSR_CAL_O1234,     /* all four (corner, elongation) */
+  CSR_CAL_O12R05,    /* Ω1&Ω2 at 1 : 0.5 (refines the edge Ω1 -> Ω1&Ω2) */
+  CSR_CAL_O12O34R3,  /* Ω1&Ω2 at p, Ω3&Ω4 at p/3 (refines the face x2 = 1) */
+  CSR_CAL_NROLE
+} csrCalRole;
+
+typedef struct csrCalOptions_ {
+  csrCalRule rule;        /* bend: SUPERPOSITION or INTERPOLATION */
+  csrCalRule scalar_rule; /* stretch and radial growth: any of the three */
+  unsigned exclude; /* bit (1 << role) leaves a refining mode out (cross-validation); corners
+                       cannot be left out */
+} csrCalOptions;
+
+/* rule CSR_CAL_RULE_SUPERPOSITION, nothing excluded */
+csrCalOptions csr_calModelDefaultOptions(void);
+
+/* Chamber ratios of a role's mode (the fem case list's patterns) and its case name there. */
+void csr_calModelModePattern(csrCalRole role, double ratio[CSR_NCHAMBER], const char** name);
+
+typedef struct csrCalModel_ csrCalModel;
+
+/* Build the model from a checked table for the leg `leg` (its a is the rest contact radius).
+ * The table may be freed afterwards. NULL and err ("<file>: cause") when a corner mode is
+ * missing, or the modes cover no pressure range. opt NULL = defaults. */
+csrCalModel* csr_calModelCreate(const csrCalTable* t, const csrActuator* leg,
+                                const csrCalOptions* opt, csError* err);
+void csr_calModelDestroy(csrCalModel* m);
+
+/* The state of one segment under its chamber pressures. */
+typedef struct csrCalSegment_ {
+  double bend[2];  /* rad: the end tangent turns by |bend| towards bend[0] e1 + bend[1] e2 */
+  double stretch;  /* centreline arc length / S (-) */
+  double radial;   /* mean relative growth of the outer surface's distance from the axis (-) */
+  double radius;   /* contact radius: a + growth of the largest radial distance (mm) */
+} csrCalSegment;
+
+/* Segment seg (0..2) at chamber pressures p[4] (MPa). 0 ok; CSR_MAP_OUT_OF_RANGE (fatal) when
+ * a pressure is above csr_calModelPMax; 1 (recoverable) for a pressure below -1e-9 MPa or not
+ * finite (a non-physical state; tinier negatives are the pneumatics' round-off, taken as 0);
+ * < 0 for seg outside 0..2. */
+int csr_calModelEval(const csrCalModel* m, int seg, const double p[CSR_NCHAMBER],
+                     csrCalSegment* out);
+
+/* Bending (N mm^2) and axial (N) stiffness of segment seg at p[4]. 0 ok; CSR_MAP_OUT_OF_RANGE
+ * when the mean pressure is above the probes' or a pressure above the bend range; 2 when the
+ * table has no usable probes (no stiffness). */
+int csr_calModelStiffness(const csrCalModel* m, int seg, const double p[CSR_NCHAMBER],
+                          double* EI, double* EA);
+
+/* Range (MPa): highest chamber pressure of the bend model; and the name of the mode ending it. */
+double csr_calModelPMax(const csrCalModel* m);
+const char* csr_calModelLimitCase(const csrCalModel* m);
+/* Highest mean pressure of the stiffness (MPa), NAN without stiffness. */
+double csr_calModelStiffnessPMax(const csrCalModel* m);
+/* 1 when the role's mode is used (corners always; a refining mode when present, in range and
+ * not excluded). */
+int csr_calModelUses(const csrCalModel* m, csrCalRole role);
+/* The leg actuator the model was built for. */
+const csrActuator* csr_calModelLeg(const csrCalModel* m);
+/* The mean-pressure factor of CSR_CAL_RULE_SCALED for segment seg: K(p̄) = exp(k[0] p̄ + k[1]
+ * p̄^2) (k = 0 for the other rules or when the fit fell back), and the fit's rms of log
+ * magnitude over the bending modes' rows (NAN if not fitted). */
+void csr_calModelMeanFactor(const csrCalModel* m, int seg, double k[2], double* rms);
+/* One-line description (rule, modes, range, FE settings, file). */
+const char* csr_calModelName(const csrCalModel* m);
+
+/* The stiffness points of segment seg (the merged probes), which = 0: EI (N mm^2), 1: EA (N):
+ * *n, and pointers into the model (valid while it lives) to pbar[n] (mean pressure, MPa) and
+ * value[n]; *n = 0 without stiffness. */
+void csr_calModelStiffnessPoints(const csrCalModel* m, int seg, int which, int* n,
+                                 const double** pbar, const double** value);
+
+/* The model against one case of a table, over the case's rows within the model's range. */
+typedef struct csrCalCompare_ {
+  int rows;            /* rows compared (p <= csr_calModelPMax) */
+  double p_last;       /* MPa: highest row compared */
+  double bend_deg;     /* max over rows and segments of |bend_model - bend_FE| (deg) */
+  double bend_at_p;    /* MPa and segment (0..2) where it is */
+  int bend_at_seg;
+  double bend_fe_deg;  /* |bend_FE| there (deg) */
+  double bend_score;   /* max of |Δbend| / max(5 % |bend_FE|, 1 deg): <= 1 meets the target */
+  double stretch;      /* max |stretch_model - stretch_FE| (-) */
+  double tip_mm;       /* max |tip_model - tip_FE| (mm): constant-curvature kinematics of the
+                          model's segments and the solid joints against the FE tip */
+  double tip_cc_mm;    /* the same kinematics with the FE's own segment bends and stretches:
+                          what the constant-curvature description alone misses (mm) */
+  double tip_score;    /* max of |Δtip| / (2 % of the leg length): <= 1 meets the target */
+} csrCalCompare;
+
+/* Compare the model with case c (its ratios at every row's p). CS_ERR_RANGE if no row is in
+ * range; CS_ERR_SOLVER if the model or the kinematics fail. */
+csStatus csr_calModelCompare(const csrCalModel* m, const csrCalCase* c, csrCalCompare* out,
+                             csError* err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_ROBOT_CALIBRATION_MODEL_H */
