@@ -1,0 +1,93 @@
+/* robot_calibration_internal.h: what the calibration model's files share (internal, not a
+ * public header): the model's data, the monotone cubic curves of the modes' rows, and the
+ * evaluation pieces the builder reuses to form residuals and surpluses.
+ *
+ * Files (robot_calibration_model.h has the rule): robot_calibration_model.c evaluates (canonical
+ * form, prism weights, bases, stiffness, queries); robot_calibration_build.c builds the model
+ * from a table (symmetric parts, residuals, surpluses, the mean-pressure factor fit, the
+ * stiffness points); robot_calibration_report.c compares it with a table's cases and writes
+ * reports. */
+#ifndef CS_ROBOT_CALIBRATION_INTERNAL_H
+#define CS_ROBOT_CALIBRATION_INTERNAL_H
+
+#include "core_math.h"
+#include "robot_calibration_model.h"
+
+/* pressures down to -1e-9 MPa are the pneumatics integrator's round-off around a vented
+ * chamber (its lag decays towards 0 from above), so they count as 0; below that the state is
+ * non-physical */
+#define P_NEG_TOL 1e-9
+/* a pressure may exceed the range by round-off of the caller's ratio x p products */
+#define P_RANGE_TOL 1e-12
+/* probes at equal mean pressure (both probed modes at p = 0) are merged */
+#define PBAR_TOL 1e-12
+
+/* components of a mode's field per segment and row */
+enum { F_A = 0, F_B, F_STRETCH, F_RADIAL, F_RADMAX, NF };
+/* components of the single-chamber base per segment and row */
+enum { B_THETA = 0, B_STRETCH, B_RADIAL, B_RADMAX, NB };
+
+/* the vertices of the interpolation: the six corners of the prism and the two refining modes */
+enum { V_O1 = 0, V_O13, V_O12, V_O124, V_O124M, V_O1234, V_R05, V_R3, NV };
+
+/* rows of one mode: p (m), y and slopes (m x 3 x nc) */
+typedef struct {
+  int m, nc;
+  double* p;
+  double* y;
+  double* d;
+} csrCalCurve;
+
+struct csrCalModel_ {
+  csrActuator leg;
+  csrCalOptions opt;
+  double p_max;            /* MPa: bend model range */
+  char limit_case[64];     /* the mode that ends it */
+  int use[NV];             /* vertex in use */
+  double coord[NV][3];     /* (x2, w = x4/x2, x3) of each vertex */
+  csrCalCurve base;              /* Ω1 alone: θ1 along -ĉ1, δstretch, δradial, δradial_max */
+  csrCalCurve mean;              /* all four: the scalar changes at p = the mean pressure (F_ layout) */
+  double kfac[CSR_NSEG][2]; /* mean-pressure factor of the scaled superposition (0: none) */
+  double kfit_rms[CSR_NSEG]; /* rms of log(a_model / a_FE) of that fit over the bending modes */
+  csrCalCurve field[NV];         /* a, b, δstretch, δradial, δradial_max (residual or value) */
+  int nk[2][CSR_NSEG];     /* stiffness points of EI (0) and EA (1) per segment */
+  double* kp[2][CSR_NSEG]; /* (nk) mean pressure, MPa */
+  double* kv[2][CSR_NSEG]; /* (nk) EI (N mm^2) or EA (N) */
+  double k_pmax;           /* MPa: highest mean pressure of the stiffness (NAN: none) */
+  char name[1280];
+};
+
+/* unit diagonal directions of the chambers: ĉ1 = d1, ĉ2 = d2, ĉ3 = -d1, ĉ4 = -d2 */
+#define RSQ2 0.70710678118654752440
+
+
+/* ---- curves (robot_calibration_build.c builds, robot_calibration_model.c evaluates) ---- */
+
+/* allocate a curve of m rows and nc components per segment; 0 when out of memory */
+int csr_calCurveAlloc_(csrCalCurve* c, int m, int nc);
+void csr_calCurveFree_(csrCalCurve* c);
+/* the Fritsch-Carlson slopes of every component series, from p and y */
+void csr_calCurveSlopes_(csrCalCurve* c);
+/* the nc components of segment s at pressure p (clamped to the rows), exact at a row */
+void csr_calCurveEval_(const csrCalCurve* c, double p, int s, double* out);
+
+/* ---- evaluation pieces (robot_calibration_model.c) ------------------------------------- */
+
+/* pressure moment (p1 + p2 - p3 - p4, p1 - p2 - p3 + p4) of a pattern */
+void csr_calMoment_(const double p[4], double mvec[2]);
+/* 1 when a mirror of the section maps the pattern onto itself */
+int csr_calMirrorSymmetric_(const double r[4]);
+/* weights of the vertices at prism point (x2, w = x4/x2, x3) */
+void csr_calWeights_(const csrCalModel* m, double x2, double w, double x3, double W[NV]);
+/* the bend and scalar bases at canonical pressures pc (canonical frame) */
+void csr_calBaseBend_(const csrCalModel* m, int s, const double pc[4], double bend[2]);
+void csr_calBaseScalars_(const csrCalModel* m, int s, const double pc[4], double sc[3]);
+/* the superposition of the single-chamber curve `base` with mean-pressure factor k */
+void csr_calSuperposeBend_(const csrCalCurve* base, const double k[2], int s, const double pc[4],
+                           double bend[2]);
+/* K(x) = exp(k1 x + k2 x^2) */
+static inline double csr_calMeanFactor_(const double k[2], double x) {
+  return exp(x * (k[0] + k[1] * x));
+}
+
+#endif /* CS_ROBOT_CALIBRATION_INTERNAL_H */
