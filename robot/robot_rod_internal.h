@@ -110,6 +110,21 @@ typedef struct csrRodActMemo_ {
   int n, next;
 } csrRodActMemo;
 
+/* a segment's actuation along one chamber pattern (the chambers inflated together at equal
+ * pressure, as every shipped gait does): the calibration evaluated lazily at levels k dP and
+ * interpolated linearly (robot_rod_dyn.c actuationAt). Under the pneumatic lag the pressures
+ * change at every macro step, so the ring memo above misses and each step costs the
+ * calibration's Newton solve per segment and end: 19 % of the flat-road run. */
+#define CSR_ROD_TAB_DP 5e-3  /* MPa between table levels */
+#define CSR_ROD_TAB_N 201    /* levels 0 .. 1 MPa (gait CSVs stop at 1 MPa) */
+#define CSR_ROD_TAB_SLOTS 4  /* patterns kept per segment (round robin) */
+typedef struct csrRodActTable_ {
+  int mask[CSR_ROD_TAB_SLOTS];             /* chambers of the pattern (bit j: Ω(j+1)); 0 free */
+  int next;
+  unsigned char known[CSR_ROD_TAB_SLOTS][CSR_ROD_TAB_N];
+  csrRodSegmentActuation a[CSR_ROD_TAB_SLOTS][CSR_ROD_TAB_N];
+} csrRodActTable;
+
 /* base motion over a macro step: cubic Hermite in position and in the rotation vector */
 typedef struct csrRodBaseMotion_ {
   double ta, H;
@@ -129,6 +144,7 @@ struct csrRodData_ {
   csrRodWork wk;
   csrRodActState act;
   csrRodActMemo memo[CSR_NSEG];
+  csrRodActTable* table;  /* (CSR_NSEG) pattern tables, allocated with the data */
   csrRodBaseMotion base;
   csrBaseState cur_base; /* the base at time t */
   double tip_force[3], tip_moment[3];
@@ -171,6 +187,11 @@ struct csrRodData_ {
   csrRodBt bt_gain;   /* the same at the condensed gains' step (csr_rodCondensedHip_) */
   double* gain_Mhinv; /* (N x nhist²) its history blocks */
   double* gain_r;     /* (N x 6) scratch of its solves */
+  long jac_version;   /* counts the Jacobians CVODE had computed */
+  double gain_K[36], gain_C[36]; /* the last condensed gains, */
+  long gain_version;  /* ... of that Jacobian */
+  double gain_g;      /* ... and step */
+  int gain_valid;
   /* static solver: block-tridiagonal system of 6N unknowns */
   csrRodBt bt_static;
   double* sres;   /* (6N) residual */

@@ -342,6 +342,11 @@ static int contactShapesRod(const csrLeg* leg, csrContactShape* shapes, int max)
 }
 
 
+void csr_rodLegSetTipLoad(csrLeg* leg, const double force[3], const double moment[3]) {
+  csr_rodSetTipLoad(leg->d, force, moment);
+}
+
+
 static void centerlineRod(const csrLeg* leg, int k, double* out) {
   csr_rodCenterline(leg->m, leg->d, k, out);
 }

@@ -469,6 +469,7 @@ int csr_rodLinSys_(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, sunboole
       d->ls_hact[e - 1] = act;
     }
     d->ls_have_jac = 1;
+    d->jac_version++;
     *jcur = SUNTRUE;
   } else {
     *jcur = SUNFALSE;

@@ -18,6 +18,7 @@
 #include "contact_soft.h"
 #include "cs_test.h"
 #include "robot_rod.h"
+#include "rod_test_road.h"
 
 enum { MAXN = 64, NCL = 25 };
 
@@ -135,18 +136,6 @@ static void table_conformance(void) {
 }
 
 
-/* the flat road of terrains/flat_road.terrain: top at y = 0 */
-static cstTerrain flatRoad(void) {
-  cstTerrain tr;
-  memset(&tr, 0, sizeof tr);
-  tr.nbox = 1;
-  const double lo[3] = {-300, -50, -150}, hi[3] = {300, 0, 150};
-  memcpy(tr.box[0].lo, lo, sizeof lo);
-  memcpy(tr.box[0].hi, hi, sizeof hi);
-  return tr;
-}
-
-
 /* move the hip by (dx, dy) mm from b (updated) with a smoothstep over ramp s, then hold, n
  * macro steps of 5 ms in all; the wrench of the last step in *w */
 static int moveHip(const csrLegType* T, csrLeg* leg, double* t, csrBaseState* b, double dx,
@@ -197,7 +186,7 @@ static void standing(double delta, double side, double mu, double* fy, double* d
   hip[1] = csr_actuatorLength(&act);
   memcpy(sp.hip, hip, sizeof hip);
   sp.weightless = 1;
-  cstTerrain tr = flatRoad();
+  cstTerrain tr = csTestFlatRoad();
   cscContactParams cp = csc_defaultContactParams();
   cp.mu = mu;
   sp.terrain = &tr;
