@@ -2,10 +2,11 @@
 """Where the flat-road walk fails: the track against gravity (a stability study, not a test).
 
 usage: /usr/bin/python3 tools/study_gravity.py [--crawlsim BIN] [--gait CSV]... [--g G,G,...]
-                                             [--outdir DIR] [--png FILE] [--reuse]
-                                             [-- EXTRA RUN ARGS]
+                                             [--legs prb,rod] [--outdir DIR] [--png FILE]
+                                             [--reuse] [-- EXTRA RUN ARGS]
 
-Runs `crawlsim run --scene flat-road --gravity G` for every gait and every G (m/s^2), reads each
+Runs `crawlsim run --scene flat-road --legs L --gravity G` for every leg level L (default prb;
+`--legs prb,rod` puts the two models side by side), every gait and every G (m/s^2), reads each
 run's HDF5 file and its stance check (load per standing leg over the legs' sway-buckling load,
 printed by `crawlsim run`), and prints one markdown row per run: stance ratio, x (mm) at whole
 seconds, the worst error against the paper's Table 2 for t >= 2 s, and how the run ended.
@@ -26,9 +27,9 @@ TABLE2 = [0, 0, 39, 78, 117, 156, 195, 234, 273, 312]  # paper Table 2, x (mm) a
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def run_one(binary, gait, g, out, extra, reuse):
-    cmd = [binary, "run", "--scene", "flat-road", "--gait", gait, "--gravity", "%g" % g,
-           "--out", out] + extra
+def run_one(binary, gait, g, out, extra, reuse, legs="prb"):
+    cmd = [binary, "run", "--scene", "flat-road", "--legs", legs, "--gait", gait,
+           "--gravity", "%g" % g, "--out", out] + extra
     log = os.path.splitext(out)[0] + ".log"
     if reuse and os.path.exists(out) and os.path.exists(log):
         rc, text = 0, open(log).read()
@@ -68,6 +69,7 @@ def main():
     ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
     ap.add_argument("--gait", action="append")
     ap.add_argument("--g", default="1,2,3,4,5,6,8,9.81")
+    ap.add_argument("--legs", default="prb", help="leg levels, comma separated (prb,rod)")
     ap.add_argument("--outdir", default=os.path.join(ROOT, "out", "gravity"))
     ap.add_argument("--png", default=None)
     ap.add_argument("--reuse", action="store_true",
@@ -84,28 +86,31 @@ def main():
         return 1
     os.makedirs(a.outdir, exist_ok=True)
     runs = []
-    print("| gait | g (m/s²) | stance load / buckling | " +
+    levels = [v for v in a.legs.split(",") if v]
+    print("| legs | gait | g (m/s²) | stance load / buckling | " +
           " | ".join("x(%d)" % s for s in range(1, 10)) + " | max err t≥2 | outcome |")
-    print("|---|---|---|" + "---|" * 9 + "---|---|")
-    for gait in gaits:
+    print("|---|---|---|---|" + "---|" * 9 + "---|---|")
+    cases = [(legs, gait, g) for legs in levels for gait in gaits for g in gs]
+    for legs, gait, g in cases:
         name = os.path.splitext(os.path.basename(gait))[0]
-        for g in gs:
-            out = os.path.join(a.outdir, "%s_g%g.h5" % (name, g))
-            r = run_one(a.crawlsim, gait, g, out, a.extra, a.reuse)
-            r["gait"], r["g"] = name, g
-            runs.append(r)
-            xs = at_seconds(r)
-            errs = [abs(xs[s] - TABLE2[s]) / TABLE2[s] for s in range(2, 10) if xs[s] is not None]
-            complete = r["stop"] is None and xs[9] is not None
-            err = "%.0f %%" % (100 * max(errs)) if complete and errs else "-"
-            if r["stop"]:
-                outcome = "stopped at %.2f s: %s" % r["stop"]
-            else:
-                outcome = "completed, max tilt %.1f°" % r["max_tilt"]
-            print("| %s | %g | %.0f %% | %s | %s | %s |" % (
-                name, g, 100 * r["ratio"],
-                " | ".join("%.0f" % v if v is not None else "-" for v in xs[1:]), err, outcome),
-                flush=True)
+        # prb keeps the file names of the one-level study
+        tag = name if legs == "prb" else "%s_%s" % (legs, name)
+        out = os.path.join(a.outdir, "%s_g%g.h5" % (tag, g))
+        r = run_one(a.crawlsim, gait, g, out, a.extra, a.reuse, legs)
+        r["gait"], r["g"] = (name if len(levels) == 1 else "%s %s" % (legs, name)), g
+        runs.append(r)
+        xs = at_seconds(r)
+        errs = [abs(xs[s] - TABLE2[s]) / TABLE2[s] for s in range(2, 10) if xs[s] is not None]
+        complete = r["stop"] is None and xs[9] is not None
+        err = "%.0f %%" % (100 * max(errs)) if complete and errs else "-"
+        if r["stop"]:
+            outcome = "stopped at %.2f s: %s" % r["stop"]
+        else:
+            outcome = "completed, max tilt %.1f°" % r["max_tilt"]
+        print("| %s | %s | %g | %.0f %% | %s | %s | %s |" % (
+            legs, name, g, 100 * r["ratio"],
+            " | ".join("%.0f" % v if v is not None else "-" for v in xs[1:]), err, outcome),
+            flush=True)
     if a.png:
         import matplotlib
         matplotlib.use("Agg")
@@ -113,7 +118,8 @@ def main():
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.5))
         ax1.plot(range(10), TABLE2, "ks", label="paper Table 2", zorder=5)
         cmap = plt.get_cmap("viridis")
-        styles = {n: ls for n, ls in zip(sorted({r["gait"] for r in runs}), ["-", "--", ":"])}
+        styles = {n: ls for n, ls in zip(sorted({r["gait"] for r in runs}),
+                                         ["-", "--", ":", "-."])}
         for r in runs:
             c = cmap(min(r["ratio"], 1.0))
             ax1.plot(r["t"], r["x"], styles[r["gait"]], color=c, lw=1.2,

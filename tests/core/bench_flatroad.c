@@ -1,0 +1,115 @@
+/* bench_flatroad.c: cost of the flat-road scene through the driver (not a test: prints numbers).
+ *
+ *   bench_flatroad [level|sweep] [links] [dt_s] [t_end_s] [gait.csv]
+ *
+ * level: rod (default) or prb: one run of the scene (default gait, `paper` conditions, the
+ * level's default coupling: stabilised for rod, one ODE step per macro step) to t_end (9 s),
+ * written to a scratch HDF5 file through cs_run, as `crawlsim run` does. Prints the real-time
+ * factor on one core from the process CPU time (insensitive to other jobs sharing the machine)
+ * and from wall time, the stage split (legs, support, contact, output, ...), the legs' cost per
+ * leg and per macro step, and the support displacement at the end.
+ * sweep: rod at 2, 3, 4, 6 elements per segment and prb at 4 links, each to t_end: how the cost
+ * grows with the rod's elements; the legs stage is the sum of eight independent leg advances,
+ * so its cost is linear in the number of legs (printed per leg).
+ * The data files come from $CS_SOURCE_DIR (default ../../..). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sim_model.h"
+
+static double cpu(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
+
+static int bench(const char* src, const char* level, int links, double dt, double t_end,
+                 const char* gait_arg) {
+  char terr[600], gait[600], cal[600];
+  snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", src);
+  snprintf(gait, sizeof gait, "%s", gait_arg ? gait_arg : "");
+  if (!gait_arg) {
+    snprintf(gait, sizeof gait, "%s/gaits/flat_road.csv", src);
+  }
+  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg.h5", src);
+  csModel m;
+  cs_modelInit(&m);
+  csError err;
+  cs_errorClear(&err);
+  if (cs_modelLoad(&m, "flat-road", terr, gait, cal, &err) != CS_OK) {
+    fprintf(stderr, "bench_flatroad: %s\n", err.msg);
+    cs_modelDestroy(&m);
+    return 1;
+  }
+  const csrLegType* type = csr_legTypeFind(level, NULL);
+  if (!type) {
+    fprintf(stderr, "bench_flatroad: unknown level '%s'\n", level);
+    cs_modelDestroy(&m);
+    return 1;
+  }
+  cs_modelSetConditions(&m, CS_CONDITIONS_PAPER);
+  cs_modelSetLegLevel(&m, type);
+  m.robot.leg_params.links_per_segment = links;
+  m.opt.h = dt;
+  m.opt.t_end = t_end;
+  csData* d = cs_dataCreate(&m, &err);
+  if (!d || cs_settle(&m, d, &err) != CS_OK) {
+    fprintf(stderr, "bench_flatroad: %s\n", err.msg);
+    cs_dataDestroy(d);
+    cs_modelDestroy(&m);
+    return 1;
+  }
+  char out[256];
+  snprintf(out, sizeof out, "bench_flatroad_%s.h5", level);
+  double c0 = cpu(), wall = 0;
+  csStatus st = cs_run(&m, d, out, &wall, &err);
+  double c = cpu() - c0;
+  double x[3];
+  cs_supportDisplacement(d, x);
+  const csuTimer* tm = cs_timers(d);
+  double steps = t_end / cs_modelMacroStep(&m);
+  printf("%s, %d per segment, h = H = %g ms, %g s%s: CPU %.2f s -> real-time factor %.3f "
+         "(wall %.2f s: %.3f); x(end) = %.1f mm\n", level, links, dt * 1e3, t_end,
+         st == CS_OK ? "" : " (stopped)", c, t_end / c, wall, t_end / wall, x[0]);
+  printf("  split (wall s):");
+  for (int i = 0; i < CS_NTIMER; i++) {
+    printf(" %s %.3f", cs_timerName((csTimerId)i), tm[i].wall);
+  }
+  printf("\n  legs per leg and macro step: %.1f us (%d legs, %.0f macro steps)\n",
+         1e6 * tm[CS_TIMER_LEGS].wall / (CSR_NLEG * steps), CSR_NLEG, steps);
+  if (st != CS_OK) {
+    printf("  stopped: %s\n", err.msg);
+  }
+  remove(out);
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+  return 0;
+}
+
+
+int main(int argc, char** argv) {
+  const char* src = getenv("CS_SOURCE_DIR");
+  if (!src) {
+    src = "../../..";
+  }
+  const char* what = argc > 1 ? argv[1] : "rod";
+  int links = argc > 2 ? atoi(argv[2]) : 4;
+  double dt = argc > 3 ? atof(argv[3]) : 1e-3;
+  double t_end = argc > 4 ? atof(argv[4]) : 9.0;
+  const char* gait = argc > 5 ? argv[5] : NULL;
+  dInitODE2(0);
+  int rc = 0;
+  if (!strcmp(what, "sweep")) {
+    const int n[] = {2, 3, 4, 6};
+    for (int i = 0; i < 4 && rc == 0; i++) {
+      rc = bench(src, "rod", n[i], dt, t_end, gait);
+    }
+    if (rc == 0) {
+      rc = bench(src, "prb", 4, dt, t_end, gait);
+    }
+  } else {
+    rc = bench(src, what, links, dt, t_end, gait);
+  }
+  dCloseODE();
+  return rc;
+}
