@@ -47,6 +47,8 @@
 #ifndef CS_ROBOT_CALIBRATION_MODEL_H
 #define CS_ROBOT_CALIBRATION_MODEL_H
 
+#include <stdio.h>
+
 #include "core_status.h"
 #include "robot_actuator.h"
 #include "robot_calibration_table.h"
@@ -164,6 +166,20 @@ typedef struct csrCalCompare_ {
  * range; CS_ERR_SOLVER if the model or the kinematics fail. */
 csStatus csr_calModelCompare(const csrCalModel* m, const csrCalCase* c, csrCalCompare* out,
                              csError* err);
+
+/* Print the model's report on table t (the table it was built from) to `out`: per fitted mode
+ * the model's difference from the FE rows, the refining modes left out one at a time, per
+ * held-out and symmetry case the bend and tip errors against the target, every rule's worst
+ * errors side by side, and the probed stiffness against 8 C10 I and 8 C10 A. */
+csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* out, csError* err);
+
+/* Write the model's predictions for every case of t (rows within the range) to the HDF5 file
+ * `path` (truncated): /cases/<name>/pressure [M] (MPa), bend [M,3,2] (rad), stretch [M,3],
+ * radius [M,3] (mm, contact radius), tip [M,3] (mm, constant-curvature kinematics, base frame),
+ * attribute kind; /stiffness/II<s>/EI, EI_pbar, EA, EA_pbar (the merged probe points); root
+ * attributes model, table, p_max_MPa, units. For tools/plot_calibration.py. */
+csStatus csr_calReportWrite(const csrCalModel* m, const csrCalTable* t, const char* path,
+                            csError* err);
 
 #ifdef __cplusplus
 }

@@ -3,8 +3,10 @@
  * reports of them (robot_calibration_model.h). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "core_h5.h"
 #include "robot_analytic.h"
 #include "robot_calibration_internal.h"
 
@@ -68,4 +70,272 @@ csStatus csr_calModelCompare(const csrCalModel* m, const csrCalCase* c, csrCalCo
     return cs_errorSet(err, CS_ERR_RANGE, "case %s: no row within the model's range", c->name);
   }
   return CS_OK;
+}
+
+
+/* ---- the rules compared ------------------------------------------------------------------- */
+
+/* worst scores of a model over the cases of one kind (held-out) and over the refining modes
+ * left out one at a time (cross-validation on fitted data) */
+typedef struct {
+  double held_bend, held_tip;   /* max score over held-out cases (<= 1 meets the target) */
+  double held_bend_deg, held_tip_mm;
+  double loo_bend_deg, loo_tip_mm; /* max over the refining modes predicted without them */
+  int nheld, nloo;
+} RuleScore;
+
+
+static void scoreRule(const csrCalTable* t, const csrActuator* leg, const csrCalOptions* o,
+                      RuleScore* r) {
+  memset(r, 0, sizeof *r);
+  csError err;
+  csrCalModel* m = csr_calModelCreate(t, leg, o, &err);
+  if (!m) {
+    r->held_bend = r->held_tip = NAN;
+    return;
+  }
+  for (int i = 0; i < t->ncase; i++) {
+    csrCalCompare e;
+    if (t->cases[i].kind == CSR_CAL_HOLDOUT && csr_calModelCompare(m, t->cases + i, &e, &err) == 0) {
+      r->held_bend = fmax(r->held_bend, e.bend_score);
+      r->held_tip = fmax(r->held_tip, e.tip_score);
+      r->held_bend_deg = fmax(r->held_bend_deg, e.bend_deg);
+      r->held_tip_mm = fmax(r->held_tip_mm, e.tip_mm);
+      r->nheld++;
+    }
+  }
+  csr_calModelDestroy(m);
+  for (int role = CSR_CAL_O12R05; role <= CSR_CAL_O12O34R3; role++) {
+    double ratio[CSR_NCHAMBER];
+    csr_calModelModePattern((csrCalRole)role, ratio, NULL);
+    const csrCalCase* c = csr_calTableFind(t, CSR_CAL_MODE, ratio);
+    csrCalOptions ol = *o;
+    ol.exclude |= 1u << role;
+    csrCalModel* ml = c ? csr_calModelCreate(t, leg, &ol, &err) : NULL;
+    csrCalCompare e;
+    if (ml && csr_calModelCompare(ml, c, &e, &err) == CS_OK) {
+      r->loo_bend_deg = fmax(r->loo_bend_deg, e.bend_deg);
+      r->loo_tip_mm = fmax(r->loo_tip_mm, e.tip_mm);
+      r->nloo++;
+    }
+    csr_calModelDestroy(ml);
+  }
+}
+
+
+static const char* ruleName(csrCalRule r) {
+  switch (r) {
+    case CSR_CAL_RULE_SUPERPOSITION: return "superposition";
+    case CSR_CAL_RULE_INTERPOLATION: return "interpolation";
+    case CSR_CAL_RULE_MEAN: return "mean-pressure";
+    case CSR_CAL_RULE_SCALED: return "scaled superposition";
+  }
+  return "?";
+}
+
+
+/* ---- the summary -------------------------------------------------------------------------- */
+
+csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* out,
+                            csError* err) {
+  const csrActuator* leg = &m->leg;
+  const double L = csr_actuatorLength(leg);
+  fprintf(out, "calibration model: %s\n", m->name);
+  /* fitted modes: what the model returns against the FE rows (the FE's asymmetry, removed by
+   * the symmetric projection; the rest is round-off) */
+  fprintf(out, "  fitted modes (model - FE over the rows up to %g MPa; the bend difference is the "
+          "FE's mesh asymmetry the section's symmetry removes):\n", m->p_max);
+  for (int i = 0; i < t->ncase; i++) {
+    const csrCalCase* c = t->cases + i;
+    csrCalCompare e;
+    if (c->kind != CSR_CAL_MODE || csr_calModelCompare(m, c, &e, err) != CS_OK) {
+      continue;
+    }
+    fprintf(out, "    %-9s %2d rows  bend %7.4f deg (of %6.2f at %.3g MPa, II%d)  stretch %.1e  "
+            "tip %6.3f mm\n", c->name, e.rows, e.bend_deg, e.bend_fe_deg, e.bend_at_p,
+            e.bend_at_seg + 1, e.stretch, e.tip_mm);
+  }
+  /* the refining modes predicted without themselves */
+  fprintf(out, "  left out of the fit one at a time (cross-validation of the interpolation):\n");
+  for (int role = CSR_CAL_O12R05; role <= CSR_CAL_O12O34R3; role++) {
+    double ratio[CSR_NCHAMBER];
+    const char* name;
+    csr_calModelModePattern((csrCalRole)role, ratio, &name);
+    const csrCalCase* c = csr_calTableFind(t, CSR_CAL_MODE, ratio);
+    csrCalOptions o = m->opt;
+    o.exclude |= 1u << role;
+    csError lerr;
+    csrCalModel* ml = c ? csr_calModelCreate(t, leg, &o, &lerr) : NULL;
+    csrCalCompare e;
+    if (ml && csr_calModelCompare(ml, c, &e, &lerr) == CS_OK) {
+      fprintf(out, "    %-9s bend %6.3f deg (of %6.2f at %.3g MPa, II%d)  stretch %.1e  tip %6.3f "
+              "mm\n", name, e.bend_deg, e.bend_fe_deg, e.bend_at_p, e.bend_at_seg + 1, e.stretch,
+              e.tip_mm);
+    } else {
+      fprintf(out, "    %-9s not in the table\n", name);
+    }
+    csr_calModelDestroy(ml);
+  }
+  /* held out and symmetry: the target */
+  fprintf(out, "  held out (never fitted; target: bend within 5 %% or 1 deg, tip within 2 %% of "
+          "%.0f mm = %.2f mm):\n", L, TARGET_TIP_REL * L);
+  int nheld = 0;
+  for (int i = 0; i < t->ncase; i++) {
+    const csrCalCase* c = t->cases + i;
+    csrCalCompare e;
+    if ((c->kind != CSR_CAL_HOLDOUT && c->kind != CSR_CAL_SYMMETRY) ||
+        csr_calModelCompare(m, c, &e, err) != CS_OK) {
+      continue;
+    }
+    nheld += c->kind == CSR_CAL_HOLDOUT;
+    fprintf(out, "    %-9s %-8s to %.3g MPa: bend %6.3f deg (of %6.2f at %.3g MPa, II%d; %.2f of "
+            "the target)  tip %6.3f mm (%.2f of the target; constant curvature of the FE's own "
+            "segments: %.3f mm)  %s\n", c->name, csr_calKindName(c->kind), e.p_last, e.bend_deg,
+            e.bend_fe_deg, e.bend_at_p, e.bend_at_seg + 1, e.bend_score, e.tip_mm, e.tip_score,
+            e.tip_cc_mm, e.bend_score <= 1 && e.tip_score <= 1 ? "meets it" : "MISSES it");
+  }
+  if (nheld == 0) {
+    fprintf(out, "    (no held-out case in the table)\n");
+  }
+  /* the rules side by side on the same table */
+  fprintf(out, "  rules compared (worst over the held-out cases: bend deg / tip mm, target score; "
+          "worst left-out refining mode: bend deg / tip mm):\n");
+  const csrCalRule bend_rules[3] = {CSR_CAL_RULE_SUPERPOSITION, CSR_CAL_RULE_SCALED,
+                                    CSR_CAL_RULE_INTERPOLATION};
+  const csrCalRule scalar_rules[3] = {CSR_CAL_RULE_SUPERPOSITION, CSR_CAL_RULE_MEAN,
+                                      CSR_CAL_RULE_INTERPOLATION};
+  for (int b = 0; b < 3; b++) {
+    for (int q = 0; q < 3; q++) {
+      csrCalOptions o = csr_calModelDefaultOptions();
+      o.rule = bend_rules[b], o.scalar_rule = scalar_rules[q];
+      RuleScore r;
+      scoreRule(t, leg, &o, &r);
+      const int mine = o.rule == m->opt.rule && o.scalar_rule == m->opt.scalar_rule;
+      fprintf(out, "    %c bend %-20s stretch %-13s held out %6.3f deg / %6.3f mm (%.2f, %.2f)  "
+              "left out %6.3f deg / %6.3f mm\n", mine ? '*' : ' ', ruleName(o.rule),
+              ruleName(o.scalar_rule), r.held_bend_deg, r.held_tip_mm, r.held_bend, r.held_tip,
+              r.loo_bend_deg, r.loo_tip_mm);
+    }
+  }
+  if (m->opt.rule == CSR_CAL_RULE_SCALED) {
+    for (int s = 0; s < CSR_NSEG; s++) {
+      fprintf(out, "  mean-pressure factor II%d: K(p) = exp(%.4g p %+.4g p^2), K(0.25) = %.4f, "
+              "fit rms %.3g (log magnitude)\n", s + 1, m->kfac[s][0], m->kfac[s][1],
+              csr_calMeanFactor_(m->kfac[s], 0.25), m->kfit_rms[s]);
+    }
+  }
+  /* stiffness against the small-strain section (E' = 8 C10) */
+  csrSectionProps sp;
+  if (csr_analyticSectionCompute(leg, NULL, &sp, err) != CS_OK) {
+    return err ? err->status : CS_ERR_RANGE;
+  }
+  const double E = 8 * leg->C10;
+  fprintf(out, "  stiffness (probes; against 8 C10 I = %.0f N mm^2 and 8 C10 A = %.1f N of the "
+          "chambered section):\n", E * sp.I_holed, E * sp.area_holed);
+  for (int i = 0; i < t->ncase; i++) {
+    const csrCalCase* c = t->cases + i;
+    for (int k = 0; k < c->k; k++) {
+      fprintf(out, "    %-6s p = %.3g MPa (mean %.3g):", c->name, c->probe_pressure[k],
+              0.25 * (c->ratio[0] + c->ratio[1] + c->ratio[2] + c->ratio[3]) *
+                  c->probe_pressure[k]);
+      for (int s = 0; s < CSR_NSEG; s++) {
+        const double ei = 0.5 * (c->EI[6 * k + 2 * s] + c->EI[6 * k + 2 * s + 1]);
+        fprintf(out, "  II%d EI %.0f (%.2f x) EA %.1f (%.2f x)", s + 1, ei, ei / (E * sp.I_holed),
+                c->EA[3 * k + s], c->EA[3 * k + s] / (E * sp.area_holed));
+      }
+      fprintf(out, "\n");
+    }
+  }
+  return CS_OK;
+}
+
+
+/* ---- predictions file ---------------------------------------------------------------------- */
+
+csStatus csr_calReportWrite(const csrCalModel* m, const csrCalTable* t, const char* path,
+                            csError* err) {
+  csH5File* f = cs_h5Create(path, err);
+  if (!f) {
+    return err ? err->status : CS_ERR_IO;
+  }
+  csStatus st = cs_h5AttrString(f, "/", "model", m->name, err);
+  if (st == CS_OK) st = cs_h5AttrString(f, "/", "table", t->path, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "p_max_MPa", m->p_max, err);
+  if (st == CS_OK) {
+    st = cs_h5AttrString(f, "/", "units", "pressure MPa; bend rad; tip, radius mm; EI N mm^2; "
+                         "EA N", err);
+  }
+  /* the small-strain references of the chambered section, E' = 8 C10 (for the plots) */
+  csrSectionProps sp;
+  if (st == CS_OK) st = csr_analyticSectionCompute(&m->leg, NULL, &sp, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "EI_8C10I_Nmm2", 8 * m->leg.C10 * sp.I_holed, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "EA_8C10A_N", 8 * m->leg.C10 * sp.area_holed, err);
+  for (int i = 0; i < t->ncase && st == CS_OK; i++) {
+    const csrCalCase* c = t->cases + i;
+    if (c->kind == CSR_CAL_GRAVITY) {
+      continue;
+    }
+    int n = 0;
+    while (n < c->m && c->pressure[n] <= m->p_max + P_RANGE_TOL) n++;
+    if (n == 0) {
+      continue;
+    }
+    double* buf = malloc((size_t)n * 16 * sizeof(double));
+    if (!buf) {
+      st = cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+      break;
+    }
+    double *p = buf, *bend = p + n, *st3 = bend + 6 * n, *rad = st3 + 3 * n, *tip = rad + 3 * n;
+    for (int r = 0; r < n && st == CS_OK; r++) {
+      p[r] = c->pressure[r];
+      csrSegmentStrain ss[CSR_NSEG];
+      memset(ss, 0, sizeof ss);
+      for (int s = 0; s < CSR_NSEG; s++) {
+        const double P[4] = {c->ratio[0] * p[r], c->ratio[1] * p[r], c->ratio[2] * p[r],
+                             c->ratio[3] * p[r]};
+        csrCalSegment q;
+        if (csr_calModelEval(m, s, P, &q) != 0) {
+          st = cs_errorSet(err, CS_ERR_SOLVER, "case %s: the model fails at %g MPa", c->name,
+                           p[r]);
+          break;
+        }
+        bend[6 * r + 2 * s] = q.bend[0], bend[6 * r + 2 * s + 1] = q.bend[1];
+        st3[3 * r + s] = q.stretch, rad[3 * r + s] = q.radius;
+        ss[s].lambda0 = q.stretch;
+        ss[s].kappa[0] = -q.bend[0] / m->leg.S[s], ss[s].kappa[1] = -q.bend[1] / m->leg.S[s];
+      }
+      if (st == CS_OK) {
+        st = csr_ccForwardKinematics(&m->leg, ss, 1, NULL, tip + 3 * r, NULL, err);
+      }
+    }
+    char g[96], d[160];
+    snprintf(g, sizeof g, "/cases/%s", c->name);
+    const size_t d1[1] = {(size_t)n}, d2[2] = {(size_t)n, 3}, d3[3] = {(size_t)n, 3, 2};
+    const struct {
+      const char* name;
+      int rank;
+      const size_t* dims;
+      const double* a;
+    } ds[5] = {{"pressure", 1, d1, p}, {"bend", 3, d3, bend}, {"stretch", 2, d2, st3},
+               {"radius", 2, d2, rad}, {"tip", 2, d2, tip}};
+    for (int q = 0; q < 5 && st == CS_OK; q++) {
+      snprintf(d, sizeof d, "%s/%s", g, ds[q].name);
+      st = cs_h5WriteDoubles(f, d, ds[q].rank, ds[q].dims, ds[q].a, err);
+    }
+    if (st == CS_OK) st = cs_h5AttrString(f, g, "kind", csr_calKindName(c->kind), err);
+    free(buf);
+  }
+  /* the stiffness curves: the merged probe points per segment */
+  for (int q = 0; q < 2 && st == CS_OK && !isnan(m->k_pmax); q++) {
+    for (int s = 0; s < CSR_NSEG && st == CS_OK; s++) {
+      char d[96];
+      const size_t dn[1] = {(size_t)m->nk[q][s]};
+      snprintf(d, sizeof d, "/stiffness/II%d/%s_pbar", s + 1, q ? "EA" : "EI");
+      st = cs_h5WriteDoubles(f, d, 1, dn, m->kp[q][s], err);
+      snprintf(d, sizeof d, "/stiffness/II%d/%s", s + 1, q ? "EA" : "EI");
+      if (st == CS_OK) st = cs_h5WriteDoubles(f, d, 1, dn, m->kv[q][s], err);
+    }
+  }
+  cs_h5Close(f);
+  return st;
 }

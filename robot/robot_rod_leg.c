@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "contact_soft.h"
+#include "robot_calibration.h"
 #include "robot_rod.h"
 
 struct csrLeg_ {
@@ -45,6 +46,7 @@ struct csrLeg_ {
   double gain_step;   /* s: the step of the interface gains' condensation (spec->h) */
   double* scratch;    /* (state size) */
   csrRodShape* shapes; /* (N) scratch of contactShapes */
+  csrRodCalibration rodcal; /* a mode table's actuation with its probed stiffness (else unused) */
 };
 
 /* the hook: capsule of element e (and for e = N the sole) through the soft contact law */
@@ -218,6 +220,10 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
   rs.act = &leg->act;
   rs.params = &par;
   rs.map = spec->map;
+  /* a map made of an FE mode table also gives the probed section stiffness (robot_calibration.h) */
+  if (csr_calibrationRodFromMap(spec->map, &leg->rodcal)) {
+    rs.calib = &leg->rodcal;
+  }
   memcpy(rs.hip, spec->hip, sizeof rs.hip);
   memcpy(rs.frame, spec->frame, sizeof rs.frame);
   memcpy(rs.gravity, spec->gravity, sizeof rs.gravity);
