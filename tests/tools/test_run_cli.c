@@ -235,6 +235,7 @@ static void test_goodRun(void) {
     H5Fclose(f);
   }
   remove("runcli_auto.h5");
+  remove("runcli_auto.xdmf");
   /* --help: usage on stdout, exit 0 */
   cs_cliRun(exe_path, "run --help", "runcli", &r);
   CS_EXPECT(r.status == 0 && strstr(r.out, "usage: crawlsim run") == r.out && !r.err[0]);
