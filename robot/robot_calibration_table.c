@@ -11,6 +11,8 @@
 #include <hdf5.h>
 #include <hdf5_hl.h>
 
+#include "core_math.h"
+
 /* actuator parameters are written as doubles, so file and leg agree exactly; 1e-9 relative
  * only absorbs a hand-edited decimal (as the pair-mode reader, robot_calibration.c) */
 #define PARAM_RTOL 1e-9
@@ -264,6 +266,32 @@ static csStatus readProbes(hid_t f, const char* path, csrCalCase* c, csError* er
 }
 
 
+/* The FE measures a segment's bend as the rotation vector of its end face relative to its base
+ * face (fem_measure.c), whose angle is at most pi: a segment bent by theta > pi towards n is
+ * written as the same rotation by 2 pi - theta towards -n. Along a sweep the bend grows
+ * continuously, so each row takes, of the equivalent vectors v (1 + 2 pi k / |v|), the one
+ * nearest the previous row's (k = 0 while the bend stays below pi: the others are 2 pi away). */
+static void unwrapBends(csrCalCase* c) {
+  for (int s = 0; s < CSR_NSEG; s++) {
+    double prev[2] = {c->bend[2 * s], c->bend[2 * s + 1]};
+    for (int i = 1; i < c->m; i++) {
+      double* v = c->bend + 6 * i + 2 * s;
+      const double r = hypot(v[0], v[1]);
+      double best[2] = {v[0], v[1]}, dbest = hypot(v[0] - prev[0], v[1] - prev[1]);
+      for (int k = -2; k <= 2 && r > 0; k++) {
+        const double f = 1 + 2 * CS_PI * k / r;
+        const double d = hypot(f * v[0] - prev[0], f * v[1] - prev[1]);
+        if (d < dbest) {
+          dbest = d, best[0] = f * v[0], best[1] = f * v[1];
+        }
+      }
+      v[0] = best[0], v[1] = best[1];
+      prev[0] = v[0], prev[1] = v[1];
+    }
+  }
+}
+
+
 /* attributes, datasets and their consistency for one case */
 static csStatus readCase(hid_t f, const char* path, csrCalCase* c, csError* err) {
   char obj[128], kind[32] = "";
@@ -388,6 +416,9 @@ static csStatus readCase(hid_t f, const char* path, csrCalCase* c, csError* err)
         break;
       }
     }
+  }
+  if (st == CS_OK) {
+    unwrapBends(c);
   }
   return st == CS_OK ? readProbes(f, path, c, err) : st;
 }

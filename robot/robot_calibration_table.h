@@ -27,6 +27,9 @@
  * last row, every kinematic value finite. Probe stiffnesses may be NaN (the writer marks a probe
  * whose equilibrium failed that way; the model skips it) but not infinite or <= 0.
  *
+ * Bends past 180 deg: the FE writes a segment's bend as a rotation vector (angle <= pi); the
+ * reader continues each segment's bend along the sweep (csrCalCase.bend holds angles beyond pi).
+ *
  * Units: mm, MPa, N, rad. Arrays are row-major with the shapes above. */
 #ifndef CS_ROBOT_CALIBRATION_TABLE_H
 #define CS_ROBOT_CALIBRATION_TABLE_H
@@ -61,7 +64,8 @@ typedef struct csrCalCase_ {
   double p_limit;    /* MPa: pressure limit point of the sweep, NAN if none */
   int m;             /* rows */
   double* pressure;  /* (m) MPa */
-  double* bend;      /* (m x 3 x 2) rad, each segment's bend vector in its base-face frame */
+  double* bend;      /* (m x 3 x 2) rad, each segment's bend vector in its base-face frame,
+                        continued past pi along the sweep */
   double* twist;     /* (m x 3) rad */
   double* stretch;   /* (m x 3) centreline arc length / S */
   double* radial;    /* (m x 3) mean relative growth of the outer surface's distance */

@@ -4,6 +4,8 @@
  *  - superposition_truth_reproduced_everywhere: a truth that IS the superposition of a
  *    single-chamber response linear in p is returned to round-off at any pressures, any
  *    rotation or mirror of the chamber pattern (checks the canonical form and its inverse);
+ *  - bends_past_half_turn: bends beyond 180 deg, which the FE writes as the rotation the other
+ *    way, are continued by the reader and returned (up to 6.8 rad per segment);
  *  - fitted_rows_returned: both rules return every fitted mode's rows (nonlinear truth with
  *    interactions) to round-off; with a spurious FE bend the mirror-symmetric modes return
  *    their symmetric part (the component across the symmetry line removed, exactly);
@@ -60,6 +62,15 @@ static void truthLinear(const void* ctx, int seg, const double p[4], double bend
   *stretch = 1 + 0.02 * sum;
   *radial = 0.004 * sum;
   *radmax = 0.3 * sum;
+}
+
+
+/* truthLinear at 8x the bend: Ω1 alone reaches 4.8 rad at 0.5 MPa, Ω1&Ω2 6.8 rad (past a full
+ * turn) */
+static void truthBig(const void* ctx, int seg, const double p[4], double bend[2],
+                     double* stretch, double* radial, double* radmax) {
+  truthLinear(ctx, seg, p, bend, stretch, radial, radmax);
+  bend[0] *= 8, bend[1] *= 8;
 }
 
 
@@ -128,7 +139,7 @@ typedef struct {
 
 static int build(Built* b, const char* path, const csrActuator* leg, SynthStateFn fn,
                  const void* ctx, double asym, csrCalRule rule) {
-  SynthSpec sp = {fn, stiffLinear, ctx, 0.025, 0, asym};
+  SynthSpec sp = {fn, stiffLinear, ctx, 0.025, 0, asym, 0};
   synthWrite(path, leg, &sp);
   csError err;
   memset(b, 0, sizeof *b);
@@ -183,6 +194,43 @@ static void test_superposition_truth_reproduced_everywhere(void) {
     CS_EXPECT_NEAR(q.radius, leg.a + x, 1e-13, 0);
   }
   unbuild(&b);
+}
+
+
+/* the FE writes bends past 180 deg as the equivalent rotation the other way; the reader
+ * continues them, so a truth bending up to 6.8 rad per segment is returned (superposition rule:
+ * exactly, at any pattern) */
+static void test_bends_past_half_turn(void) {
+  csrActuator leg;
+  legActuator(&leg);
+  SynthSpec sp = {truthBig, stiffLinear, NULL, 0.025, 0, 0, 1};
+  synthWrite("calmod_big.h5", &leg, &sp);
+  csError err;
+  csrCalTable t;
+  CS_EXPECT(csr_calTableRead("calmod_big.h5", &leg, &t, &err) == CS_OK);
+  /* the table holds wrapped vectors: O12's last row is 6.79 rad written as 0.51 rad the other
+   * way; the reader has continued it */
+  const double o12[4] = {1, 1, 0, 0};
+  const csrCalCase* c = csr_calTableFind(&t, CSR_CAL_MODE, o12);
+  CS_EXPECT(c != NULL && c->m == 21);
+  if (c) {
+    CS_EXPECT_NEAR(c->bend[6 * 20], -8 * 1.2 * 0.5 * 2 / sqrt(2.0), 1e-12, 0);
+  }
+  csrCalModel* m = csr_calModelCreate(&t, &leg, NULL, &err);
+  CS_EXPECT(m != NULL);
+  unsigned seed = 13;
+  for (int k = 0; m && k < 200; k++) {
+    double p[4], bend[2], l, r, x;
+    for (int j = 0; j < 4; j++) p[j] = rnd(&seed) < 0.3 ? 0 : 0.5 * rnd(&seed);
+    csrCalSegment q;
+    CS_EXPECT(csr_calModelEval(m, k % 3, p, &q) == 0);
+    truthBig(NULL, k % 3, p, bend, &l, &r, &x);
+    CS_EXPECT_NEAR(q.bend[0], bend[0], 1e-13, 0);
+    CS_EXPECT_NEAR(q.bend[1], bend[1], 1e-13, 0);
+  }
+  csr_calModelDestroy(m);
+  csr_calTableFree(&t);
+  remove("calmod_big.h5");
 }
 
 
@@ -481,7 +529,7 @@ static void test_stiffness_mean_pressure_rule(void) {
   unbuild(&b);
 
   /* a failed probe (NaN) is skipped: O1234's EA at 0.3 MPa lost, EA ends at p̄ = 0.2 */
-  SynthSpec sp = {truthInteract, stiffLinear, NULL, 0.025, 0, 0};
+  SynthSpec sp = {truthInteract, stiffLinear, NULL, 0.025, 0, 0, 0};
   synthWrite("calmod_k2.h5", &leg, &sp);
   for (int s = 0; s < 3; s++) synthPoke("calmod_k2.h5", "/cases/O1234/EA", 3 * 3 + s, NAN);
   csError err;
@@ -515,7 +563,7 @@ static void test_stiffness_mean_pressure_rule(void) {
 static void test_rod_adapter(void) {
   csrActuator leg;
   legActuator(&leg);
-  SynthSpec sp = {truthInteract, stiffLinear, NULL, 0.025, 0, 0};
+  SynthSpec sp = {truthInteract, stiffLinear, NULL, 0.025, 0, 0, 0};
   synthWrite("calmod_rod.h5", &leg, &sp);
   csError err;
   csrCalibration* c = csr_calibrationOpen("calmod_rod.h5", &leg, &err);
@@ -607,6 +655,7 @@ static void test_shipped_table_holdout(void) {
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_superposition_truth_reproduced_everywhere);
+  CS_RUN(test_bends_past_half_turn);
   CS_RUN(test_fitted_rows_returned);
   CS_RUN(test_elongation_gives_no_bend);
   CS_RUN(test_symmetry_equivariance);

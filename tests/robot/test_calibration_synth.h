@@ -40,6 +40,8 @@ typedef struct {
   double dp;          /* MPa between rows */
   double p_cap;       /* MPa: every case ends at min(its end, p_cap); 0 = no cap */
   double asym;        /* rad/MPa: spurious bend (0.8 e1 + 0.6 e2) x p added to every row */
+  int wrap;           /* 1: bends written as the FE measures them, rotation vectors of angle <=
+                         pi (a bend theta > pi towards n as 2 pi - theta towards -n) */
 } SynthSpec;
 
 typedef struct {
@@ -107,6 +109,11 @@ static inline void synthCase(csH5File* h, const csrActuator* act, const SynthSpe
       b[0] += 0.8 * sp->asym * p[i];
       b[1] += 0.6 * sp->asym * p[i];
       bend[6 * i + 2 * s] = b[0], bend[6 * i + 2 * s + 1] = b[1];
+      const double th = hypot(b[0], b[1]);
+      if (sp->wrap && th > CS_PI) {
+        bend[6 * i + 2 * s] *= 1 - 2 * CS_PI / th;
+        bend[6 * i + 2 * s + 1] *= 1 - 2 * CS_PI / th;
+      }
       st[3 * i + s] = l, ra[3 * i + s] = r, rm[3 * i + s] = x;
       ss[s].lambda0 = l;
       ss[s].kappa[0] = -b[0] / act->S[s], ss[s].kappa[1] = -b[1] / act->S[s];

@@ -45,7 +45,7 @@ static void legActuator(csrActuator* act) {
 
 /* write the good table to `path` */
 static void writeGood(const char* path, const csrActuator* leg) {
-  SynthSpec sp = {truthLinear, stiffLinear, NULL, 0.05, 0, 0};
+  SynthSpec sp = {truthLinear, stiffLinear, NULL, 0.05, 0, 0, 0};
   synthWrite(path, leg, &sp);
 }
 
