@@ -18,6 +18,7 @@ static const char kUsage[] =
     "  gait      check FILE.csv | design FILE.gait [--out FILE.csv] [--check] ...\n"
     "            | flat-road FILE.csv [--stroke MM] [--crouch] ...\n"
     "  calibrate [--out FILE.h5]\n"
+    "  study     FILE [--out FILE.h5] [--resume] ...  (under mpirun: one case per rank)\n"
     "Run 'crawlsim <command> --help' for the options of one command.\n";
 
 
@@ -71,6 +72,10 @@ static int dispatch(int argc, char** argv) {
   if (!strcmp(cmd, "calibrate")) {
     return csx_cmdCalibrate(argc - 1, argv + 1);
   }
-  fprintf(stderr, "crawlsim: unknown command '%s' (expected run, bend, gait or calibrate)\n", cmd);
+  if (!strcmp(cmd, "study")) {
+    return csx_cmdStudy(argc - 1, argv + 1);
+  }
+  fprintf(stderr,
+          "crawlsim: unknown command '%s' (expected run, bend, gait, calibrate or study)\n", cmd);
   return 1;
 }

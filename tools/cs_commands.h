@@ -11,5 +11,6 @@ int csx_cmdGait(int argc, char** argv);      /* cmd_gait.c: crawlsim gait check|
 int csx_cmdCalibrate(int argc, char** argv); /* cmd_calibrate.c: crawlsim calibrate ... */
 int csx_cmdGaitFlatRoad(int argc, char** argv); /* cmd_gaitdesign.c: crawlsim gait flat-road */
 int csx_cmdGaitDesign(int argc, char** argv);   /* cmd_gaitdesign.c: crawlsim gait design */
+int csx_cmdStudy(int argc, char** argv);        /* cmd_study.c: crawlsim study FILE ... */
 
 #endif

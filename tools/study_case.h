@@ -1,0 +1,101 @@
+/* study_case.h: running one case of a study in this process, its result file, and the merge of
+ * all case files into the study's one HDF5 file.
+ *
+ * Owns: the case directory layout, the step runner (a crawlsim command's entry point called
+ * in-process with its stdout and stderr captured in a log), the case file (written as
+ * NAME.h5.part and renamed when complete, so a killed process never leaves a file that looks
+ * finished), the finished-case test of a resumed study, and the merge. Library part of the
+ * study layer (cs_study); the commands themselves are injected (csxStudyCommands), so the
+ * library does not depend on the executable's cmd_*.c files.
+ *
+ * Layout under the case directory DIR:
+ *   DIR/NAME.h5     the case file (below), present only once the case has finished
+ *   DIR/NAME/       the case's work directory (@case/): the steps' outputs bend.h5, run.h5 and
+ *                   run.xdmf, calibration.h5 and calibration/, gait.csv, and <command>.log with
+ *                   everything the step printed
+ * Case file (HDF5), root attributes: format "crawlsim-study-case 1", study, case, signature
+ * (the steps as written, study_file.h), status ("complete": every step exited 0; "stopped":
+ * the last step was a run that ended early with its output written, e.g. the robot fell: a
+ * result, not an error; "failed": a step failed, its message says why), message (the failing
+ * step's last line), summary (one line of key results), wall_time_s, rank, host, finished
+ * (UTC), version; key results where the steps give them: p_until_angle_MPa, angle_total_deg
+ * and p_end_MPa (the bend's last row), x_final_mm [3] and t_final_s (the run's last sample),
+ * verdict (the run's verdict line). Groups: /<command> (bend, run, calibrate) a copy of that
+ * step's whole output file; /log/<command> the step's log text; /gait_design/csv the table.
+ * Study file (the merge, HDF5): root attributes format "crawlsim-study 1", study, study_file,
+ * ncase, ncomplete, nstopped, nfailed, nmissing (+ what csxStudyRunInfo gives); /cases/NAME a
+ * copy of each finished case file; /summary/{case, status, summary} strings [ncase],
+ * /summary/{wall_time_s, p_until_angle_MPa, angle_total_deg, p_end_MPa, t_final_s, rank}
+ * [ncase] and /summary/x_final_mm [ncase,3], NaN where a case has no such result. */
+#ifndef CS_TOOLS_STUDY_CASE_H
+#define CS_TOOLS_STUDY_CASE_H
+
+#include "core_status.h"
+#include "study_file.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define CSX_STUDY_CASE_FORMAT "crawlsim-study-case 1"
+#define CSX_STUDY_FORMAT "crawlsim-study 1"
+#define CSX_STUDY_SUMMARY_SIZE 256
+
+/* A crawlsim command's entry point: argv[0] is its name, returns the exit status. */
+typedef int (*csxCommandFn)(int argc, char** argv);
+
+/* The commands a step can run, indexed by csxStudyCmd (NULL: not available in this build). */
+typedef struct csxStudyCommands_ {
+  csxCommandFn fn[CSX_STUDY_NCMD];
+} csxStudyCommands;
+
+/* What a case file says about a case. */
+typedef enum csxCaseState_ {
+  CSX_CASE_PENDING = 0,  /* no case file: not run yet, or killed while it ran */
+  CSX_CASE_COMPLETE = 1,
+  CSX_CASE_STOPPED = 2,
+  CSX_CASE_FAILED = 3,
+  CSX_CASE_STALE = 4     /* a case file for another signature (the case was edited) */
+} csxCaseState;
+
+const char* csx_caseStateName(csxCaseState s);
+
+/* The outcome of a case, as a progress line needs it. */
+typedef struct csxCaseResult_ {
+  csxCaseState state;
+  double wall_s;
+  int rank;
+  char summary[CSX_STUDY_SUMMARY_SIZE];
+} csxCaseResult;
+
+/* The state of case i from its case file in dir; *res (may be NULL) gets its recorded result. */
+csxCaseState csx_studyCaseState(const csxStudy* s, int i, const char* dir, csxCaseResult* res);
+
+/* Run case i: every step in order in this process, outputs in dir/NAME/, then its case file.
+ * A step that fails ends the case (state FAILED in *res, the step's message in the summary);
+ * that is a result of the case, not an error of this call, which returns CS_OK. Errors (the
+ * work directory or case file cannot be written) return a status with err filled. `rank` is
+ * recorded. Writes to stdout/stderr only through the steps, which go to their logs. */
+csStatus csx_studyRunCase(const csxStudy* s, int i, const char* dir, const csxStudyCommands* cmd,
+                          int rank, csxCaseResult* res, csError* err);
+
+/* What the merged file records about the run of the study. */
+typedef struct csxStudyRunInfo_ {
+  int ranks;            /* processes that ran cases */
+  const char* schedule; /* "sequential", "dynamic" or "static" */
+  double wall_s;        /* wall time of this invocation (s) */
+} csxStudyRunInfo;
+
+/* Merge the finished case files of s in dir into `out` (written as out.part, renamed): cases
+ * without a finished case file are listed as "missing" in /summary. *counts (may be NULL) gets
+ * ncomplete, nstopped, nfailed, nmissing. */
+csStatus csx_studyMerge(const csxStudy* s, const char* dir, const char* out,
+                        const csxStudyRunInfo* info, int counts[4], csError* err);
+
+/* Create a directory if it does not exist (one level). */
+csStatus csx_studyMakeDir(const char* path, csError* err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_TOOLS_STUDY_CASE_H */
