@@ -454,6 +454,10 @@ static int bendOf(const csrBendMap* map, int s, unsigned set, double p, double* 
 }
 
 
+static csStatus shapeLength(const csrActuator* act, const csrBendMap* map, int stretch,
+                            MovePath* path, csError* err);
+
+
 static csStatus movePath(const csrActuator* act, const csrBendMap* map, const double P[12],
                          const double Q[12], int stretch, MovePath* path, csError* err) {
   for (int i = 0; i <= PATH_SAMPLES; i++) {
@@ -501,9 +505,15 @@ static csStatus movePath(const csrActuator* act, const csrBendMap* map, const do
       }
     }
   }
-  /* the path's length in shape space: the RMS displacement of the centreline's points, so
-   * that the leg's mass moves at the profile's pace (a foot-only measure let an S-shape's
-   * middle swing out while its foot had hardly moved: measured 6 mm of stance slip) */
+  return shapeLength(act, map, stretch, path, err);
+}
+
+
+/* the path's length in shape space: the RMS displacement of the centreline's points, so that
+ * the leg's mass moves at the profile's pace (a foot-only measure let an S-shape's middle swing
+ * out while its foot had hardly moved: measured 6 mm of stance slip) */
+static csStatus shapeLength(const csrActuator* act, const csrBendMap* map, int stretch,
+                            MovePath* path, csError* err) {
   double prev[SHAPE_ROWS * 3], cl[SHAPE_ROWS * 3];
   path->len[0] = 0;
   for (int i = 0; i <= PATH_SAMPLES; i++) {
@@ -521,6 +531,53 @@ static csStatus movePath(const csrActuator* act, const csrBendMap* map, const do
     memcpy(prev, cl, sizeof prev);
   }
   return CS_OK;
+}
+
+
+/* the (stroke, lift) of pose q if it is a foot pose or `straight` (0, 0); 0 otherwise */
+static int footTarget(const csgDesign* d, int q, double* X, double* H) {
+  if (q == CSG_POSE_STRAIGHT) {
+    *X = *H = 0;
+    return 1;
+  }
+  const csgDesignPose* po = &d->pose[q];
+  if (po->nset == 1 && po->set[0].kind == CSG_TARGET_FOOT) {
+    *X = po->set[0].value;
+    *H = po->set[0].value2;
+    return 1;
+  }
+  return 0;
+}
+
+
+/* A move between two foot poses: the foot goes along the straight line from (Xa, Ha) to
+ * (Xb, Hb) in (stroke, lift) with a level sole, every sample a foot pose of its own. Why: a
+ * segment-wise bend path between poses whose segments all change sides (a swing from behind
+ * the hip to in front of it) passes through a nearly straight leg half way, lift ~0: measured,
+ * the swinging feet of the flat-road gait brushed the road mid-swing (height 0.1 mm) and held
+ * the support back. On the line the lift never drops below the smaller end's. */
+static csStatus footPath(const csrActuator* act, const csrBendMap* map, const csgDesign* d,
+                         int qa, int qb, double Xa, double Ha, double Xb, double Hb, double pmax,
+                         int stretch, const double foot0[3], MovePath* path, csError* err) {
+  csgDesignSet set;
+  memset(&set, 0, sizeof set);
+  set.kind = CSG_TARGET_FOOT;
+  set.line = d->pose[qb].line ? d->pose[qb].line : d->pose[qa].line;
+  for (int i = 0; i <= PATH_SAMPLES; i++) {
+    double lam = (double)i / PATH_SAMPLES;
+    set.value = Xa + lam * (Xb - Xa);
+    set.value2 = Ha + lam * (Hb - Ha);
+    if (set.value2 < 1e-9 && fabs(set.value) < 1e-9) {
+      memset(path->p[i], 0, sizeof path->p[i]); /* straight: vented */
+      continue;
+    }
+    csStatus st = solveFootPose(act, map, &set, pmax, foot0, path->p[i], d->source,
+                                d->pose[qb].name, err);
+    if (st != CS_OK) {
+      return st;
+    }
+  }
+  return shapeLength(act, map, stretch, path, err);
 }
 
 
@@ -636,6 +693,12 @@ csgGait* csr_designGait(const csrActuator* act, const csrBendMap* map, const csg
                 d->source, nrow);
     return NULL;
   }
+  /* the foot poses' solver works from the straight leg's foot and the calibrated range */
+  double pmax = fmin(opt->p_max, map->p_max), zero[12] = {0}, foot0[3];
+  if (footAt(act, map, zero, opt->stretch, foot0, err) != CS_OK) {
+    free(times);
+    return NULL;
+  }
   int* from = malloc((size_t)d->nmove * 8 * sizeof(int));
   /* one path per (from, to) pair of poses */
   int npair = d->npose * d->npose;
@@ -657,8 +720,17 @@ csgGait* csr_designGait(const csrActuator* act, const csrBendMap* map, const csg
       }
       int pair = pose_of[k] * d->npose + m->pose;
       if (!have[pair]) {
-        if (movePath(act, map, poses->p[pose_of[k]], poses->p[m->pose], opt->stretch,
-                     &paths[pair], err) != CS_OK) {
+        double Xa, Ha, Xb, Hb;
+        csStatus st;
+        if (footTarget(d, pose_of[k], &Xa, &Ha) && footTarget(d, m->pose, &Xb, &Hb) &&
+            pose_of[k] != m->pose) {
+          st = footPath(act, map, d, pose_of[k], m->pose, Xa, Ha, Xb, Hb, pmax, opt->stretch,
+                        foot0, &paths[pair], err);
+        } else {
+          st = movePath(act, map, poses->p[pose_of[k]], poses->p[m->pose], opt->stretch,
+                        &paths[pair], err);
+        }
+        if (st != CS_OK) {
           goto fail;
         }
         have[pair] = 1;

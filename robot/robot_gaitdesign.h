@@ -51,7 +51,10 @@ csStatus csr_designFlatRoad(const csrActuator* act, const csrBendMap* map, doubl
  * calibrated map's constant-curvature forward kinematics, given the pose's earlier sets; the
  * targets are monotone in the pressure of the set that drives them (checked: the target must
  * lie between its values at 0 and p_max, else CS_ERR_RANGE names the line).
- * A move from pose P to Q takes each segment's bend linearly from P's to Q's (pressures from
+ * A move between two foot poses (or `straight`) takes the foot along the straight line between
+ * their (stroke, lift) with a level sole, each sample a foot pose of its own (a swing from
+ * behind the hip to in front of it stays lifted). Any other move from pose P to Q takes each
+ * segment's bend linearly from P's to Q's (pressures from
  * the inverse map of the segment's chamber set, robot_gaitdesign.c movePath), so a foot that
  * is vertical at both ends stays vertical; the path parameter is timed so that the leg's shape
  * (the RMS displacement of its centreline points, leg frame) moves along its path with the
