@@ -232,8 +232,10 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
   const double E = 8 * leg->C10;
   fprintf(out, "  stiffness (probes; against 8 C10 I = %.0f N mm^2 and 8 C10 A = %.1f N of the "
           "chambered section):\n", E * sp.I_holed, E * sp.area_holed);
+  int nprobe = 0;
   for (int i = 0; i < t->ncase; i++) {
     const csrCalCase* c = t->cases + i;
+    nprobe += c->k;
     for (int k = 0; k < c->k; k++) {
       fprintf(out, "    %-6s p = %.3g MPa (mean %.3g):", c->name, c->probe_pressure[k],
               0.25 * (c->ratio[0] + c->ratio[1] + c->ratio[2] + c->ratio[3]) *
@@ -245,6 +247,9 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
       }
       fprintf(out, "\n");
     }
+  }
+  if (nprobe == 0) {
+    fprintf(out, "    (no stiffness probes in the table: the legs keep E' = 8 C10)\n");
   }
   return CS_OK;
 }

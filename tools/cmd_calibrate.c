@@ -29,12 +29,16 @@ static const char kUsage[] =
     "usage: crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list]\n"
     "                          [--merge-only] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
     "                          [--mesh-size MM] [--fibre-size MM] [--p-step MPA] [--p-max MPA]\n"
+    "                          [--model-out PRED.h5]\n"
     "  Runs the full FE model on every calibration case (chamber modes, unequal pressures,\n"
     "  held-out combinations, stiffness probes, the leg under its weight), one file per case in\n"
     "  DIR (default calibration_cases/; finished cases are skipped: the run resumes), merges\n"
     "  them into FILE.h5 (default calibration_fe.h5) and reads the table back as the legs will.\n"
     "  --list prints the cases. Defaults: actuator leg, l_soft 4 mm, rows every 0.025 MPa;\n"
-    "  --p-max caps every case's end pressure (small tables for tests).\n";
+    "  --p-max caps every case's end pressure (small tables for tests). With every mode\n"
+    "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
+    "  rules compared, stiffness); --model-out writes the model's predictions for\n"
+    "  tools/plot_calibration.py.\n";
 
 enum { MAX_SETS = 32, MAX_PICK = CSF_CAL_MAX_CASES };
 
@@ -69,6 +73,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
   const char* out = "calibration_fe.h5";
   const char* dir = "calibration_cases";
   const char* actname = "leg";
+  const char* model_out = NULL;
   const char* sets[MAX_SETS];
   const char* pick[MAX_PICK];
   int nset = 0, npick = 0, list = 0, merge_only = 0;
@@ -106,6 +111,8 @@ int csx_cmdCalibrate(int argc, char** argv) {
       out = v;
     } else if (!strcmp(a, "--dir")) {
       dir = v;
+    } else if (!strcmp(a, "--model-out")) {
+      model_out = v;
     } else if (!strcmp(a, "--actuator")) {
       actname = v;
     } else if (!strcmp(a, "--case")) {
@@ -233,12 +240,29 @@ int csx_cmdCalibrate(int argc, char** argv) {
   printf("crawlsim calibrate: table %s (%d cases)\n", out, np);
   /* read it back as the legs will */
   csrCalibration* cal = csr_calibrationOpen(out, &act, &err);
+  if (!cal && np < ncase) {
+    /* cases still to run (the calibration goes case by case): not an error yet */
+    printf("crawlsim calibrate: not usable by the legs until every mode is finished: %s\n",
+           err.msg);
+    return 0;
+  }
   if (!cal) {
     fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
     return 1;
   }
   csrBendMap map = csr_calibrationMap(cal);
   printf("crawlsim calibrate: %s (pressures up to %g MPa)\n", map.name, map.p_max);
+  /* the model's errors against the table (robot_calibration_model.h) */
+  const csrCalModel* model = csr_calibrationModel(cal);
+  int rc = 0;
+  if (model && (csr_calReportPrint(model, csr_calibrationTable(cal), stdout, &err) != CS_OK ||
+                (model_out &&
+                 csr_calReportWrite(model, csr_calibrationTable(cal), model_out, &err) != CS_OK))) {
+    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+    rc = 1;
+  } else if (model && model_out) {
+    printf("crawlsim calibrate: model predictions %s\n", model_out);
+  }
   csr_calibrationClose(cal);
-  return 0;
+  return rc;
 }

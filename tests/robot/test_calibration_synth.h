@@ -176,8 +176,10 @@ static inline void synthCase(csH5File* h, const csrActuator* act, const SynthSpe
 }
 
 
-/* write the whole table at `path` for the actuator `act` */
-static inline void synthWrite(const char* path, const csrActuator* act, const SynthSpec* sp) {
+/* write the table at `path` for the actuator `act`: every case, or only the case `only` (a
+ * case file of a resumable calibration, which `crawlsim calibrate` merges) */
+static inline void synthWriteCases(const char* path, const csrActuator* act, const SynthSpec* sp,
+                                   const char* only) {
   csError err;
   csH5File* h = cs_h5Create(path, &err);
   CS_EXPECT(h != NULL);
@@ -196,9 +198,17 @@ static inline void synthWrite(const char* path, const csrActuator* act, const Sy
   CS_EXPECT(cs_h5AttrString(h, "/", "fe_solver", "synthetic", &err) == CS_OK);
   CS_EXPECT(cs_h5AttrString(h, "/", "version", "test", &err) == CS_OK);
   for (int k = 0; k < SYNTH_NCASE; k++) {
-    synthCase(h, act, sp, kSynthCases + k);
+    if (!only || !strcmp(only, kSynthCases[k].name)) {
+      synthCase(h, act, sp, kSynthCases + k);
+    }
   }
   cs_h5Close(h);
+}
+
+
+/* the whole table */
+static inline void synthWrite(const char* path, const csrActuator* act, const SynthSpec* sp) {
+  synthWriteCases(path, act, sp, NULL);
 }
 
 

@@ -1,10 +1,16 @@
 /* test_calibrate_cli.c: `crawlsim calibrate` end to end on a small actuator (argv[1] is the
  * executable): two calibration cases run into their own files, a second call skips them
- * (resume), the merged table carries the format, the actuator and the cases, and it opens as the
- * legs' calibration; `crawlsim run` with a table that does not cover the gait's pressures stops
- * naming time, chamber and range instead of extrapolating; bad options exit 1 with one line. The
- * actuator is the `leg` shortened to 15 mm segments (9 fibre turns, c = 3 mm) at l_soft 5 mm,
- * cases O12 and G capped at 0.05 MPa in one row: ~30 s. Needs POSIX for tests/cs_cli.h. */
+ * (resume), the merged table carries the format, the actuator and the cases; with modes still
+ * to run the table is not yet usable by the legs, which the command says (exit 0) and the
+ * reader refuses naming the missing mode; `crawlsim run` with a table that does not cover the
+ * gait's pressures stops naming time, chamber and range instead of extrapolating; bad options
+ * exit 1 with one line. The actuator is the `leg` shortened to 15 mm segments (9 fibre turns,
+ * c = 3 mm) at l_soft 5 mm, cases O12 and G capped at 0.05 MPa in one row: ~30 s.
+ * merge_reports_the_model: synthetic case files of every case (tests/robot/
+ * test_calibration_synth.h: an exact single-chamber superposition, which the default rule
+ * returns everywhere) merged with --merge-only: the command prints the model's report (fitted
+ * modes, held-out cases meeting the target, the rules compared, stiffness) and --model-out
+ * writes the predictions. Needs POSIX for tests/cs_cli.h and mkdir. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <hdf5.h>
@@ -14,8 +20,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sys/stat.h>
+
 #include "cs_cli.h"
 #include "cs_test.h"
+#include "robot/test_calibration_synth.h"
 #include "robot_calibration.h"
 
 static const char* exe_path = NULL;
@@ -42,6 +51,9 @@ static void test_calibrate_runs_resumes_and_merges(void) {
   cs_cliRun(exe_path, "calibrate --out calib_small.h5 " SMALL_SETS, "calibrate", &r);
   CS_EXPECT(r.status == 0);
   CS_EXPECT(strstr(r.out, "2 cases run, 0 already done") != NULL);
+  /* two of twelve cases: the modes the model needs are still to run */
+  CS_EXPECT(strstr(r.out, "not usable by the legs until every mode is finished") != NULL);
+  CS_EXPECT(strstr(r.out, "has no finished mode case O1 ") != NULL);
   CS_EXPECT(fileExists("calib_cases/O12.h5") && fileExists("calib_cases/G.h5"));
   CS_EXPECT(!fileExists("calib_cases/O12.h5.part"));
   /* a second call finds both cases finished and only merges */
@@ -69,7 +81,7 @@ static void test_calibrate_runs_resumes_and_merges(void) {
     }
     H5Fclose(f);
   }
-  /* it opens as a calibration for the same actuator */
+  /* for the same actuator the reader refuses it only for the modes it lacks */
   csrActuator act;
   csError err;
   CS_EXPECT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
@@ -78,10 +90,8 @@ static void test_calibrate_runs_resumes_and_merges(void) {
     CS_EXPECT(csr_actuatorSetString(&act, sets[k], &err) == CS_OK);
   }
   csrCalibration* cal = csr_calibrationOpen("calib_small.h5", &act, &err);
-  CS_EXPECT(cal != NULL);
-  if (!cal) {
-    fprintf(stderr, "  csr_calibrationOpen: %s\n", err.msg);
-  }
+  CS_EXPECT(cal == NULL && strstr(err.msg, "calib_small.h5: the table has no finished mode case "
+                                  "O1 (chambers at 1:0:0:0)") != NULL);
   csr_calibrationClose(cal);
   /* the wrong actuator (the unmodified leg) is refused */
   csrActuator leg;
@@ -106,6 +116,84 @@ static void test_calibrate_runs_resumes_and_merges(void) {
   remove("calib_leg.h5");
   remove("calib_run.h5");
   remove("calib_small.h5");
+}
+
+
+/* a linear single-chamber response superposed: the default rule returns it everywhere */
+static void truthLinear(const void* ctx, int seg, const double p[4], double bend[2],
+                        double* stretch, double* radial, double* radmax) {
+  (void)ctx;
+  const double g1 = (1.2 + 0.1 * seg) * (p[0] - p[2]), g2 = (1.2 + 0.1 * seg) * (p[1] - p[3]);
+  bend[0] = -(g1 + g2) / sqrt(2.0);
+  bend[1] = -(g1 - g2) / sqrt(2.0);
+  *stretch = 1 + 0.02 * (p[0] + p[1] + p[2] + p[3]);
+  *radial = 0.004 * (p[0] + p[1] + p[2] + p[3]);
+  *radmax = 0.3 * (p[0] + p[1] + p[2] + p[3]);
+}
+
+static void stiffLinear(const void* ctx, int seg, double pbar, double* EI, double* EA) {
+  (void)ctx;
+  *EI = (3000 + 100 * seg) * (1 + pbar);
+  *EA = 200 * (1 + 2 * pbar);
+}
+
+
+static void test_merge_reports_the_model(void) {
+  csrActuator leg;
+  csError err;
+  CS_EXPECT(csr_actuatorPreset(&leg, "leg", &err) == CS_OK);
+  /* one file per case with the command's default FE settings (l_soft 4, rows 0.025 MPa) */
+  mkdir("calib_synth_cases", 0777);
+  SynthSpec sp = {truthLinear, stiffLinear, NULL, 0.025, 0, 0, 0};
+  for (int k = 0; k < SYNTH_NCASE; k++) {
+    char path[128];
+    snprintf(path, sizeof path, "calib_synth_cases/%s.h5", kSynthCases[k].name);
+    synthWriteCases(path, &leg, &sp, kSynthCases[k].name);
+  }
+  csCliResult r;
+  cs_cliRun(exe_path, "calibrate --merge-only --dir calib_synth_cases --out calib_synth.h5 "
+            "--model-out calib_synth_pred.h5", "calibrate", &r);
+  CS_EXPECT(r.status == 0);
+  const char* want[] = {"0 cases run, 0 already done, 12 of 12 finished",
+                        "FE mode table (superposition + interpolated interactions; 7 modes; "
+                        "0..0.5 MPa",
+                        "left out of the fit one at a time", "rules compared",
+                        "held out (never fitted", "stiffness (probes",
+                        "model predictions calib_synth_pred.h5"};
+  for (size_t k = 0; k < sizeof want / sizeof want[0]; k++) {
+    CS_EXPECT(strstr(r.out, want[k]) != NULL);
+    if (!strstr(r.out, want[k])) {
+      fprintf(stderr, "  missing '%s' in:\n%s\n", want[k], r.out);
+    }
+  }
+  /* each held-out case meets the target (the truth is the rule's own form) */
+  const char* held[3] = {"    H1        holdout ", "    H2        holdout ",
+                         "    H3        holdout "};
+  for (int k = 0; k < 3; k++) {
+    const char* line = strstr(r.out, held[k]);
+    const char* eol = line ? strchr(line, '\n') : NULL;
+    const char* meets = line ? strstr(line, "meets it") : NULL;
+    CS_EXPECT(line && eol && meets && meets < eol);
+  }
+  /* the predictions: every case but the gravity one, H1's 13 rows */
+  hid_t f = H5Fopen("calib_synth_pred.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double tip[13 * 3];
+    CS_EXPECT(H5LTread_dataset_double(f, "/cases/H1/tip", tip) >= 0);
+    CS_EXPECT(H5Lexists(f, "/cases/G", H5P_DEFAULT) <= 0);
+    double a = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "EI_8C10I_Nmm2", &a) >= 0 && a > 0);
+    H5Fclose(f);
+  }
+  for (int k = 0; k < SYNTH_NCASE; k++) {
+    char path[128];
+    snprintf(path, sizeof path, "calib_synth_cases/%s.h5", kSynthCases[k].name);
+    remove(path);
+  }
+  remove("calib_synth_cases");
+  remove("calib_synth.h5");
+  remove("calib_synth_pred.h5");
 }
 
 
@@ -161,6 +249,7 @@ int main(int argc, char** argv) {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   CS_RUN(test_bad_options);
   CS_RUN(test_list_names_every_case);
+  CS_RUN(test_merge_reports_the_model);
   CS_RUN(test_calibrate_runs_resumes_and_merges);
   return cs_testSummary();
 }
