@@ -4,6 +4,8 @@ for testing tools/plot_track.py and tools/plot_bend.py. Not physics: shapes and 
 
   make_synthetic_h5.py run  OUT.h5 [--n N] [--k K] [--drop /dataset] [--short /dataset]
   make_synthetic_h5.py bend OUT.h5 [--model NAME] [--m M] [--until P] [--scale S] [--drop /dataset]
+  make_synthetic_h5.py caltable OUT.h5 [--drop /dataset]   (an FE mode calibration table)
+  make_synthetic_h5.py calpred OUT.h5                      (its model's predictions file)
 """
 
 import argparse
@@ -87,9 +89,77 @@ def write_bend(path, model, m, until, drop, scale):
             del f[d]
 
 
+# the calibration's cases (fem/fem_calibration.c): name, kind, chamber ratios, end pressure, probes
+CAL_CASES = [
+    ("O12", "mode", (1, 1, 0, 0), 0.5, True), ("O1", "mode", (1, 0, 0, 0), 0.5, False),
+    ("O124", "mode", (1, 1, 0, 1), 0.5, False), ("O1234", "mode", (1, 1, 1, 1), 0.5, True),
+    ("O13", "mode", (1, 0, 1, 0), 0.5, False), ("O12r05", "mode", (1, 0.5, 0, 0), 0.5, False),
+    ("O12O34r3", "mode", (1, 1, 1 / 3, 1 / 3), 0.5, False), ("O2", "symmetry", (0, 1, 0, 0), 0.5, False),
+    ("H1", "holdout", (1, 1 / 3, 0, 0), 0.3, False), ("H2", "holdout", (1, 1, 0.5, 0), 0.2, False),
+    ("H3", "holdout", (1, 5 / 7, 5 / 7, 5 / 7), 0.35, False), ("G", "gravity", (0, 0, 0, 0), 0.025, False),
+]
+
+
+def cal_rows(ratio, pmax, scale):
+    """Rows of a superposed single-chamber response: bend [M,3,2] rad, stretch [M,3], tip [M,3]."""
+    p = np.arange(0.0, pmax + 1e-9, 0.025)
+    r = np.asarray(ratio, dtype=float)
+    g1, g2 = 1.2 * scale * (r[0] - r[2]) * p, 1.2 * scale * (r[1] - r[3]) * p
+    b = np.stack([-(g1 + g2), -(g1 - g2)], axis=1) / np.sqrt(2.0)
+    bend = np.repeat(b[:, None, :], 3, axis=1)
+    stretch = 1 + 0.02 * r.sum() * np.repeat(p[:, None], 3, axis=1)
+    th = np.hypot(b[:, 0], b[:, 1]) * 3
+    tip = np.stack([-60 * np.sin(th), 0 * p, 166 * np.cos(th / 2)], axis=1)
+    return p, bend, stretch, tip
+
+
+def write_caltable(path, drop):
+    with h5py.File(path, "w") as f:
+        f.attrs["format"] = "crawlsim-fe-calibration 1"
+        f.attrs["actuator"] = "leg"
+        f.attrs["a"] = 7.5
+        for name, kind, ratio, pmax, probes in CAL_CASES:
+            p, bend, stretch, tip = cal_rows(ratio, pmax, 1.0)
+            g = f.create_group(f"/cases/{name}")
+            g.attrs["kind"] = kind
+            for j in range(4):
+                g.attrs[f"ratio{j + 1}"] = float(ratio[j])
+            g["pressure"], g["bend"], g["stretch"], g["tip"] = p, bend, stretch, tip
+            g["radial_max"] = 0.3 * (stretch - 1)
+            if probes:
+                pp = np.array([0.0, 0.1, 0.2, 0.3])
+                pbar = pp * np.mean(ratio)
+                g["probe_pressure"] = pp
+                g["EI"] = np.repeat((3000 * (1 + pbar))[:, None, None], 3, 1).repeat(2, 2)
+                g["EA"] = np.repeat((200 * (1 + 2 * pbar))[:, None], 3, 1)
+        for d in drop:
+            del f[d]
+
+
+def write_calpred(path):
+    with h5py.File(path, "w") as f:
+        f.attrs["model"] = "FE mode table (synthetic)"
+        f.attrs["EI_8C10I_Nmm2"] = 2810.0
+        f.attrs["EA_8C10A_N"] = 150.7
+        for name, kind, ratio, pmax, _ in CAL_CASES:
+            if kind == "gravity":
+                continue
+            p, bend, stretch, tip = cal_rows(ratio, pmax, 1.02)
+            g = f.create_group(f"/cases/{name}")
+            g.attrs["kind"] = kind
+            g["pressure"], g["bend"], g["stretch"], g["tip"] = p, bend, stretch, tip
+            g["radius"] = 7.5 + 0.3 * (stretch - 1)
+        for s in range(3):
+            x = np.array([0.0, 0.05, 0.1, 0.15, 0.2, 0.3])
+            f[f"/stiffness/II{s + 1}/EI_pbar"] = x
+            f[f"/stiffness/II{s + 1}/EI"] = 3000 * (1 + x)
+            f[f"/stiffness/II{s + 1}/EA_pbar"] = x
+            f[f"/stiffness/II{s + 1}/EA"] = 200 * (1 + 2 * x)
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("kind", choices=["run", "bend"])
+    ap.add_argument("kind", choices=["run", "bend", "caltable", "calpred"])
     ap.add_argument("out")
     ap.add_argument("--n", type=int, default=37)
     ap.add_argument("--k", type=int, default=7)
@@ -102,6 +172,10 @@ def main():
     a = ap.parse_args()
     if a.kind == "run":
         write_run(a.out, a.n, a.k, a.drop, a.short)
+    elif a.kind == "caltable":
+        write_caltable(a.out, a.drop)
+    elif a.kind == "calpred":
+        write_calpred(a.out)
     else:
         write_bend(a.out, a.model, a.m, a.until, a.drop, a.scale)
     return 0

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# test_plots.sh: smoke test of tools/plot_track.py and tools/plot_bend.py.
+# test_plots.sh: smoke test of tools/plot_track.py, tools/plot_bend.py, tools/plot_gait.py and
+# tools/plot_calibration.py.
 # Writes small synthetic run/bend files (tests/tools/make_synthetic_h5.py, h5py) in a temp dir,
 # runs both scripts, checks the PNGs exist and are non-empty PNGs, and checks that a missing
 # file or dataset gives exit status 1 with a one-line message.
@@ -13,6 +14,7 @@ PY="${CS_PYTHON:-/usr/bin/python3}"
 TRACK="$ROOT/tools/plot_track.py"
 BEND="$ROOT/tools/plot_bend.py"
 GAITMAP="$ROOT/tools/plot_gait.py"
+CALIB="$ROOT/tools/plot_calibration.py"
 GEN="$HERE/make_synthetic_h5.py"
 
 TMP="$(mktemp -d "${TMPDIR:-/tmp}/cs_test_plots.XXXXXX")"
@@ -106,6 +108,27 @@ expect_fail1 "plot_gait unknown column" "badcol.csv:1: column 'Z_II1_O3' is not 
   "$PY" "$GAITMAP" "$TMP/badcol.csv" -o "$TMP/x.png"
 expect_fail1 "plot_gait missing file" "cannot open gait table" "$PY" "$GAITMAP" "$TMP/nope.csv" -o "$TMP/x.png"
 [ ! -e "$TMP/x.png" ] && ok "no heat map written on failure" || bad "a failing heat map wrote $TMP/x.png"
+
+# plot_calibration.py: a mode table with and without the model's predictions, and bad inputs
+gen caltable "$TMP/cal.h5"
+gen calpred "$TMP/calpred.h5"
+gen caltable "$TMP/cal_nobend.h5" --drop /cases/O13/bend
+expect_png "plot_calibration with the model" "$TMP/cal/calibration_bend.png" \
+  "$PY" "$CALIB" "$TMP/cal.h5" --model "$TMP/calpred.h5" -o "$TMP/cal"
+for png in stretch holdout stiffness; do
+  [ -s "$TMP/cal/calibration_$png.png" ] && ok "plot_calibration wrote calibration_$png.png" \
+    || bad "plot_calibration wrote no calibration_$png.png" "$TMP/out.txt"
+done
+expect_png "plot_calibration without a model" "$TMP/cal2/calibration_holdout.png" \
+  "$PY" "$CALIB" "$TMP/cal.h5" -o "$TMP/cal2"
+expect_fail1 "plot_calibration not a mode table" "not an FE calibration table of modes" \
+  "$PY" "$CALIB" "$TMP/fem.h5" -o "$TMP/cal3"
+expect_fail1 "plot_calibration missing dataset" "missing dataset /cases/O13/bend" \
+  "$PY" "$CALIB" "$TMP/cal_nobend.h5" -o "$TMP/cal3"
+expect_fail1 "plot_calibration missing model file" "no such file" \
+  "$PY" "$CALIB" "$TMP/cal.h5" --model "$TMP/nope.h5" -o "$TMP/cal3"
+[ ! -e "$TMP/cal3/calibration_bend.png" ] && ok "no calibration PNG written on failure" \
+  || bad "a failing plot_calibration wrote a PNG"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
