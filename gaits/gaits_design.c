@@ -272,6 +272,13 @@ static csStatus statementPose(csgDesign* d, char** w, int nw, const char* path, 
       return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: pressure-of '%.30s': no earlier pose with "
                          "chamber sets of that name (foot poses have none)", path, line, val);
     }
+    if (r > p) {
+      /* poses are solved in the order they first appear (robot_gaitdesign.c): a later pose
+       * has no pressure yet when this one is solved, and 0 MPa would be taken silently */
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: pressure-of '%.30s': pose %s (line %d) is "
+                         "defined after pose %s (line %d); refer to poses defined before it",
+                         path, line, val, d->pose[r].name, d->pose[r].line, name, po->line);
+    }
     s.kind = CSG_TARGET_PRESSURE_OF;
     s.ref = r;
   } else {

@@ -530,8 +530,9 @@ csxStudy* csx_studyRead(const char* path, csError* err) {
     st = statement(&r, w, n, err);
   }
   if (st == CS_OK && s->ncase == 0) {
+    /* the last line read names the end of the file; an empty file has no line 0: line 1 */
     st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: no case (add 'case NAME COMMAND ...' lines)",
-                     path, r.line);
+                     path, r.line > 0 ? r.line : 1);
   }
   csu_lineClose(&lr);
   for (int c = 0; c < CSX_STUDY_NCMD; c++) {

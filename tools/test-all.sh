@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # Run the whole crawlsim test suite: installs what is missing, then
 #   1. a RelWithDebInfo build with warnings as errors, every ctest test;
-#   2. an ASan+UBSan build, every test not labelled `slow`.
-# Exit status 0 only if both pass. Used by .ci/run. Build trees: build-test/, build-asan/.
+#   2. an ASan+UBSan build, every test not labelled `slow`;
+#   3. a bounded fuzz run (tools/fuzz-long.sh --ci: each libFuzzer harness of tests/fuzz for
+#      FUZZ_SECONDS, default 12 s, about 1.5 min in all), only when the fuzzers build (clang-14).
+# Exit status 0 only if all pass. Used by .ci/run. Build trees: build-test/, build-asan/,
+# build-fuzz/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
@@ -19,3 +22,12 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCS_ENABLE_SANITIZER
 cmake --build build-asan -j"$JOBS"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -LE slow -j"$JOBS"
+
+echo "== bounded fuzz run (libFuzzer + ASan + UBSan, tests/fuzz) =="
+fuzz_rc=0
+JOBS=$JOBS bash tools/fuzz-long.sh --ci "${FUZZ_SECONDS:-12}" || fuzz_rc=$?
+if [ "$fuzz_rc" -eq 3 ]; then
+  echo "== fuzz run SKIPPED: the fuzzers do not build here (see above) =="
+elif [ "$fuzz_rc" -ne 0 ]; then
+  exit "$fuzz_rc"
+fi
