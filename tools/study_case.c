@@ -743,12 +743,16 @@ csStatus csx_studyMerge(const csxStudy* s, const char* dir, const char* out,
     H5Gclose(sg);
   }
   double v[6] = {n, cnt[0], cnt[1], cnt[2], cnt[3], info ? info->ranks : 1};
-  double w = info ? info->wall_s : NAN;
+  double w = info ? info->wall_s : NAN, wsum = 0;
+  for (int i = 0; i < n; i++) {
+    wsum += isnan(wall[i]) ? 0 : wall[i];
+  }
   ok = ok && attrString(f, "format", CSX_STUDY_FORMAT) && attrString(f, "study", s->name) &&
        attrString(f, "study_file", s->path) && attrDoubles(f, "ncase", &v[0], 1) &&
        attrDoubles(f, "ncomplete", &v[1], 1) && attrDoubles(f, "nstopped", &v[2], 1) &&
        attrDoubles(f, "nfailed", &v[3], 1) && attrDoubles(f, "nmissing", &v[4], 1) &&
        attrDoubles(f, "ranks", &v[5], 1) && attrDoubles(f, "wall_time_s", &w, 1) &&
+       attrDoubles(f, "case_wall_time_s", &wsum, 1) &&
        attrString(f, "schedule", info && info->schedule ? info->schedule : "sequential") &&
        attrString(f, "version", VERSION);
   free(names);

@@ -23,7 +23,8 @@
  * verdict (the run's verdict line). Groups: /<command> (bend, run, calibrate) a copy of that
  * step's whole output file; /log/<command> the step's log text; /gait_design/csv the table.
  * Study file (the merge, HDF5): root attributes format "crawlsim-study 1", study, study_file,
- * ncase, ncomplete, nstopped, nfailed, nmissing (+ what csxStudyRunInfo gives); /cases/NAME a
+ * ncase, ncomplete, nstopped, nfailed, nmissing, case_wall_time_s (the cases' wall times summed),
+ * ranks, schedule, wall_time_s (of the invocation that merged: csxStudyRunInfo); /cases/NAME a
  * copy of each finished case file; /summary/{case, status, summary} strings [ncase],
  * /summary/{wall_time_s, p_until_angle_MPa, angle_total_deg, p_end_MPa, t_final_s, rank}
  * [ncase] and /summary/x_final_mm [ncase,3], NaN where a case has no such result. */

@@ -63,7 +63,7 @@ static void runOne(const csxStudy* s, int index, const char* dir, const csxStudy
 
 #ifdef CS_HAVE_MPI
 
-enum { TAG_REQUEST = 11, TAG_JOB = 12, TAG_FINAL = 13 };
+enum { TAG_REQUEST = 11, TAG_JOB = 12, TAG_FINAL = 13, TAG_SHARE_DONE = 14 };
 
 /* a rank's report of its finished case (index -1: its first request) */
 typedef struct {
@@ -239,6 +239,20 @@ csStatus csx_studyRunPending(const csxStudy* s, const int* pending, int npending
         progress(user, ++done, mine, pending[k], &res);
       }
     }
+#ifdef CS_HAVE_MPI
+    /* rank 0 merges only when every rank's share is done: each tells it, sleeping meanwhile */
+    if (mpi->size > 1) {
+      int token = *nfailed;
+      if (mpi->rank == 0) {
+        for (int k = 1; k < mpi->size; k++) {
+          lazyRecv(&token, (int)sizeof token, MPI_ANY_SOURCE, TAG_SHARE_DONE, NULL);
+          *nfailed += token;
+        }
+      } else {
+        MPI_Send(&token, 1, MPI_INT, 0, TAG_SHARE_DONE, MPI_COMM_WORLD);
+      }
+    }
+#endif
     return first;
   }
 #ifdef CS_HAVE_MPI
