@@ -13,6 +13,7 @@ PKGS=(
   python3-matplotlib python3-h5py           # plots, run with Debian's /usr/bin/python3
   libmumps-seq-dev libopenblas0-openmp      # fem: sequential MUMPS sparse LU + fast BLAS (fem/README.md)
   libsuitesparse-dev                        # fem: KLU fallback solver (LGPL)
+  libopenmpi-dev openmpi-bin                # crawlsim study under mpirun (CS_WITH_MPI; already pulled in by libsundials-dev)
   clang-14 libclang-rt-14-dev               # fuzzing: libFuzzer + ASan/UBSan runtimes (tests/fuzz)
   llvm-14                                   # fuzzing: llvm-cov/llvm-profdata, the long run's coverage
 )
