@@ -16,7 +16,7 @@
 #       found a crash, a leak, a sanitizer report, a broken contract or a hang; 3 if the
 #       fuzzers do not build (no clang-14, or a compile error).
 #
-# Build: build-fuzz/ (clang-14, CS_BUILD_FUZZERS=ON, ASan + UBSan; libFuzzer's LeakSanitizer on),
+# Build: build-fuzz/ or $FUZZ_BUILD (clang-14, CS_BUILD_FUZZERS=ON, ASan + UBSan; libFuzzer's LeakSanitizer on),
 # -j1. Each crash artifact is printed with how to make it a regression test: copy it to
 # tests/fuzz/regressions/<harness>/<name> with a <name>.expect (tests/fuzz/fuzz_replay.c), and
 # ctest replays it in every build.
@@ -46,19 +46,21 @@ while [ $# -gt 0 ]; do
 done
 
 CC_FUZZ=${CC_FUZZ:-clang-14}
-BUILD=build-fuzz
+BUILD=${FUZZ_BUILD:-build-fuzz} # another tree keeps a long campaign's programs apart
 FUZZ=$BUILD/tests/fuzz
 T=tests/fuzz
 
 # harness | shipped seed files (globs) | dictionary | -max_len | -timeout (s) | long-run executions
+# | more libFuzzer options. calib_h5's inputs are edit scripts (4-6 bytes an edit): all lengths
+# up to 96 bytes from the start (-len_control=0), not grown from the 1-byte seeds.
 HARNESSES=(
-  "gait_csv|gaits/*.csv|gait_csv|8192|30|$RUNS"
-  "gait_design|gaits/*.gait|gait_design|4096|30|$RUNS"
-  "gait_design_build|gaits/flat_road_paper.gait|gait_design|2048|120|100000"
-  "terrain|terrains/*.terrain|terrain|4096|30|$RUNS"
-  "calib_text|robot/calibration_provisional.txt|calib_text|2048|30|$RUNS"
-  "calib_h5||-|512|60|$RUNS"
-  "study||study|8192|30|$RUNS"
+  "gait_csv|gaits/*.csv|gait_csv|8192|30|$RUNS|"
+  "gait_design|gaits/*.gait|gait_design|4096|30|$RUNS|"
+  "gait_design_build|gaits/flat_road_paper.gait|gait_design|2048|120|100000|"
+  "terrain|terrains/*.terrain|terrain|4096|30|$RUNS|"
+  "calib_text|robot/calibration_provisional.txt|calib_text|2048|30|$RUNS|"
+  "calib_h5||-|96|60|$RUNS|-len_control=0"
+  "study||study|8192|30|$RUNS|"
 )
 
 # exit 3 when the fuzzers do not build (tools/test-all.sh then skips the fuzz run, loudly)
@@ -74,7 +76,7 @@ build() {
 
 # run one harness; sets LAST_RUNS, LAST_COV, LAST_FT, LAST_SECONDS, LAST_CRASHES
 run_one() {
-  local name=$1 seeds=$2 dict=$3 maxlen=$4 timeout=$5 runs=$6 seconds=$7 work=$8
+  local name=$1 seeds=$2 dict=$3 maxlen=$4 timeout=$5 runs=$6 seconds=$7 work=$8 extra=$9
   mkdir -p "$work/corpus" "$work/artifacts"
   local dirs=("$work/corpus")
   [ -d "$T/corpus/$name" ] && dirs+=("$T/corpus/$name")
@@ -89,6 +91,7 @@ run_one() {
   local opts=(-max_len="$maxlen" -timeout="$timeout" -rss_limit_mb=2560 -malloc_limit_mb=2048
               -artifact_prefix="$work/artifacts/" -print_final_stats=1 -detect_leaks=1)
   [ "$dict" != "-" ] && opts+=(-dict="$T/dict/$dict.dict")
+  [ -n "$extra" ] && opts+=($extra)
   if [ "$MODE" = ci ]; then
     opts+=(-max_total_time="$seconds")
   else
@@ -138,12 +141,12 @@ found=0
   echo "|---|---|---|---|---|---|---|"
 } >"$OUT/summary.md"
 for h in "${HARNESSES[@]}"; do
-  IFS='|' read -r name seeds dict maxlen timeout runs <<<"$h"
+  IFS='|' read -r name seeds dict maxlen timeout runs extra <<<"$h"
   selected "$name" || continue
   seconds=$CI_SECONDS
   [ "$MODE" = long ] && seconds=$(awk -v h="$HOURS" 'BEGIN{printf "%d", h*3600}')
   echo "== fuzz $name ($MODE: $([ "$MODE" = ci ] && echo "${seconds} s" || echo "$runs runs or ${seconds} s")) =="
-  run_one "$name" "$seeds" "$dict" "$maxlen" "$timeout" "$runs" "$seconds" "$OUT/$name"
+  run_one "$name" "$seeds" "$dict" "$maxlen" "$timeout" "$runs" "$seconds" "$OUT/$name" "$extra"
   rate=$(awk -v r="${LAST_RUNS:-0}" -v s="$LAST_SECONDS" 'BEGIN{printf "%d", (s > 0 ? r / s : r)}')
   echo "| $name | ${LAST_RUNS:-0} | $LAST_SECONDS | $rate | ${LAST_COV:-?} | ${LAST_FT:-?} | $LAST_CRASHES |" \
     >>"$OUT/summary.md"
@@ -153,10 +156,10 @@ for h in "${HARNESSES[@]}"; do
     # the grown corpus, minimised (libFuzzer -merge keeps one input per new feature)
     new=$OUT/$name/minimised
     mkdir -p "$new"
-    extra=()
-    [ -d "$T/corpus/$name" ] && extra+=("$T/corpus/$name")
+    prev=()
+    [ -d "$T/corpus/$name" ] && prev+=("$T/corpus/$name")
     nice -n 15 "$FUZZ/fuzz_$name" -merge=1 -max_len="$maxlen" -timeout="$timeout" \
-      -rss_limit_mb=2560 "$new" "${extra[@]}" "$OUT/$name/corpus" >"$OUT/$name/merge.log" 2>&1
+      -rss_limit_mb=2560 "$new" "${prev[@]}" "$OUT/$name/corpus" >"$OUT/$name/merge.log" 2>&1
     rm -rf "$T/corpus/$name"
     mkdir -p "$T/corpus/$name"
     cp "$new"/* "$T/corpus/$name/" 2>/dev/null || true
@@ -180,7 +183,7 @@ if [ "$MODE" = long ] && [ "$COVERAGE" = 1 ]; then
     mkdir -p "$COV/profiles"
     objects=()
     for h in "${HARNESSES[@]}"; do
-      IFS='|' read -r name seeds dict maxlen timeout runs <<<"$h"
+      IFS='|' read -r name seeds dict maxlen timeout runs extra <<<"$h"
       selected "$name" || continue
       [ "$name" = gait_design_build ] && continue # same reader as gait_design
       nice -n 10 cmake --build "$COV" --target "fuzz_${name}_replay" -j1 >/dev/null
