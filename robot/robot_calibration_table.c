@@ -37,17 +37,48 @@ const char* csr_calKindName(csrCalKind kind) {
 }
 
 
-/* a string attribute of `obj` into buf; 0 if absent, not a string or too long */
+/* a string attribute of `obj` into buf; 0 if absent, not a string or too long. Fixed-length
+ * (this project's writer) and variable-length strings (h5py's default) are both read. */
 static int attrString(hid_t f, const char* obj, const char* name, char* buf, size_t size) {
-  hsize_t dims[1];
-  H5T_class_t cls;
-  size_t sz = 0;
-  if (H5Aexists_by_name(f, obj, name, H5P_DEFAULT) <= 0 ||
-      H5LTget_attribute_info(f, obj, name, dims, &cls, &sz) < 0 || cls != H5T_STRING ||
-      sz >= size) {
+  if (H5Aexists_by_name(f, obj, name, H5P_DEFAULT) <= 0) {
     return 0;
   }
-  return H5LTget_attribute_string(f, obj, name, buf) >= 0;
+  hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+  if (a < 0) {
+    return 0;
+  }
+  hid_t t = H5Aget_type(a), sp = H5Aget_space(a);
+  int ok = t >= 0 && sp >= 0 && H5Tget_class(t) == H5T_STRING &&
+           H5Sget_simple_extent_npoints(sp) == 1;
+  if (ok && H5Tis_variable_str(t) > 0) {
+    char* v = NULL;
+    hid_t mt = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mt, H5T_VARIABLE);
+    H5Tset_cset(mt, H5Tget_cset(t)); /* ASCII or UTF-8: no conversion between them */
+    ok = H5Aread(a, mt, &v) >= 0 && v && strlen(v) < size;
+    if (ok) {
+      snprintf(buf, size, "%s", v);
+    }
+    if (v) {
+      H5free_memory(v);
+    }
+    H5Tclose(mt);
+  } else if (ok) {
+    const size_t n = H5Tget_size(t);
+    ok = n > 0 && n < size;
+    if (ok) {
+      hid_t mt = H5Tcopy(H5T_C_S1);
+      H5Tset_size(mt, n + 1);
+      H5Tset_cset(mt, H5Tget_cset(t));
+      ok = H5Aread(a, mt, buf) >= 0;
+      buf[n] = '\0';
+      H5Tclose(mt);
+    }
+  }
+  if (t >= 0) H5Tclose(t);
+  if (sp >= 0) H5Sclose(sp);
+  H5Aclose(a);
+  return ok;
 }
 
 

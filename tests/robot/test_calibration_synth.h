@@ -247,6 +247,23 @@ static inline void synthSetString(const char* path, const char* obj, const char*
 }
 
 
+/* a variable-length UTF-8 string attribute, as h5py writes a Python str */
+static inline void synthSetVlenString(const char* path, const char* obj, const char* name,
+                                      const char* value) {
+  hid_t f = synthOpenRW(path);
+  if (H5Aexists_by_name(f, obj, name, H5P_DEFAULT) > 0) {
+    H5Adelete_by_name(f, obj, name, H5P_DEFAULT);
+  }
+  hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR);
+  H5Tset_size(t, H5T_VARIABLE);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  hid_t a = H5Acreate_by_name(f, obj, name, t, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  CS_EXPECT(a >= 0 && H5Awrite(a, t, &value) >= 0);
+  H5Aclose(a), H5Sclose(sp), H5Tclose(t);
+  H5Fclose(f);
+}
+
+
 static inline void synthSetDouble(const char* path, const char* obj, const char* name,
                                   double value) {
   hid_t f = synthOpenRW(path);

@@ -4,8 +4,8 @@
  * NaN, a decreasing or non-zero-first pressure, an unfinished case (no status, or a status that
  * is not "complete"/"ended at ..."), p_end not the last row, another format version, missing FE
  * settings, an unknown kind, ratios out of range, a missing dataset, a negative stiffness and a
- * probe off the sweep's rows. Each defect is made by changing one thing in a good synthetic
- * table (test_calibration_synth.h). */
+ * probe off the sweep's rows; variable-length (h5py) strings are read as fixed ones. Each
+ * defect is made by changing one thing in a good synthetic table (test_calibration_synth.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -165,6 +165,14 @@ static void test_every_bad_table_is_refused(void) {
     double bend[2], stretch;
     CS_EXPECT(map.eval(map.ctx, 0, p, bend, &stretch) == CSR_MAP_OUT_OF_RANGE);
   }
+  csr_calibrationClose(c);
+  /* strings as h5py writes them (variable length, UTF-8) read like the writer's fixed ones */
+  copyGood();
+  synthSetVlenString(kBad, "/", "format", "crawlsim-fe-calibration 1");
+  synthSetVlenString(kBad, "/cases/O1", "kind", "mode");
+  synthSetVlenString(kBad, "/cases/O1", "status", "complete");
+  c = csr_calibrationOpen(kBad, &leg, &err);
+  CS_EXPECT(c != NULL);
   csr_calibrationClose(c);
   remove(kBad);
   remove(kGood);
