@@ -365,6 +365,9 @@ static csStatus readCase(hid_t f, const char* path, csrCalCase* c, csError* err)
     return cs_errorSet(err, CS_ERR_RANGE, "%s: case %s: the largest chamber ratio is %g (the "
                        "load factor p is the highest chamber's pressure: 1)", path, c->name, rmax);
   }
+  if (!attrDouble(f, obj, "wall_time_s", &c->wall_time)) {
+    c->wall_time = NAN; /* informative only */
+  }
   if (!attrDouble(f, obj, "p_end", &c->p_end) || !attrDouble(f, obj, "p_limit", &c->p_limit)) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s: case %s needs attributes p_end and p_limit", path,
                        c->name);

@@ -62,6 +62,7 @@ typedef struct csrCalCase_ {
   int complete;      /* 1: status "complete"; 0: "ended at ..." (ended before p_max) */
   double p_end;      /* MPa: last row */
   double p_limit;    /* MPa: pressure limit point of the sweep, NAN if none */
+  double wall_time;  /* s: the FE run's wall time (attribute wall_time_s; NAN if absent) */
   int m;             /* rows */
   double* pressure;  /* (m) MPa */
   double* bend;      /* (m x 3 x 2) rad, each segment's bend vector in its base-face frame,
