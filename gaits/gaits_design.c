@@ -41,7 +41,7 @@ static csStatus parseSet(const char* s, unsigned char ch[12], const char* path, 
                          csError* err);
 static csStatus addMove(csgDesign* d, double t0, double dur, unsigned legs, int pose, int line,
                         const char* path, csError* err);
-/* a trailing `linear` word: removed from the count, 1 if it was there */
+/* a trailing profile word (linear, ease-in, ease-out): removed from the count; the profile */
 static int takeLinear(char** w, int* nw);
 
 
@@ -137,11 +137,15 @@ static csStatus addMove(csgDesign* d, double t0, double dur, unsigned legs, int 
 
 
 static int takeLinear(char** w, int* nw) {
-  if (*nw > 1 && !strcmp(w[*nw - 1], "linear")) {
-    (*nw)--;
-    return 1;
+  static const char* const kNames[] = {"linear", "ease-in", "ease-out"};
+  static const int kProfiles[] = {CSG_PROFILE_LINEAR, CSG_PROFILE_EASE_IN, CSG_PROFILE_EASE_OUT};
+  for (int i = 0; i < 3 && *nw > 1; i++) {
+    if (!strcmp(w[*nw - 1], kNames[i])) {
+      (*nw)--;
+      return kProfiles[i];
+    }
   }
-  return 0;
+  return CSG_PROFILE_SMOOTH;
 }
 
 
@@ -391,7 +395,7 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
       int p = nw == 5 ? posePeek(d, w[4]) : -1;
       if (nw != 5) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'move' needs T0 DURATION LEGS POSE "
-                         "[linear], got %d values", path, line, nw - 1);
+                         "[linear|ease-in|ease-out], got %d values", path, line, nw - 1);
       } else if ((st = needNumbers(w, nw, 1, 2, v, path, line, err)) != CS_OK) {
       } else if (!(v[1] >= 0 && v[1] <= MAX_DURATION_S)) {
         st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: duration %g s is outside 0..%g s", path, line,
@@ -438,7 +442,7 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
                          "and its phases must follow each other)", path, line);
       } else if (nw != 5 && !(nw == 7 && !strcmp(w[5], "last"))) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'phase' needs START DURATION ROLE POSE "
-                         "[last POSE2] [linear]", path, line);
+                         "[last POSE2] [linear|ease-in|ease-out]", path, line);
       } else if ((st = needNumbers(w, nw, 1, 2, v, path, line, err)) != CS_OK) {
       } else if (!(v[0] >= 0 && v[0] < sd.period && v[1] >= 0 && v[1] <= MAX_DURATION_S)) {
         /* a phase may outlast its stride (a stance push that overlaps the next one); the

@@ -29,16 +29,18 @@
  *                                      mm along e1 and LIFT mm above the straight leg's foot,
  *                                      its sole level (the bends of II1, II2, II3 sum to zero);
  *                                      each segment bends with Ω3&Ω4 (towards +e1) or Ω1&Ω2
- *   move T0 DURATION LEGS POSE [linear]
+ *   move T0 DURATION LEGS POSE [linear|ease-in|ease-out]
  *                                      legs LEGS (letters A..H, e.g. ACFH) go from the pose
  *                                      they hold to POSE, starting at T0, taking DURATION s
  *                                      (0: one row at T0, the run's ramp makes the change);
- *                                      `linear`: at constant speed instead of the smoothstep
+ *                                      `linear`: at constant speed instead of the smoothstep;
+ *                                      `ease-in`: from rest, speeding up evenly (s = u^2),
+ *                                      `ease-out`: the reverse (to rest)
  *   stride N PERIOD T0 LEGS1 LEGS2     N strides of PERIOD s from T0. In stride k (0-based) the
  *                                      `swing` legs are LEGS1 for even k, LEGS2 for odd k (the
  *                                      legs whose feet are forward when the stride starts), the
  *                                      `stand` legs the other set. Its phases follow:
- *   phase START DURATION ROLE POSE [last POSE2] [linear]
+ *   phase START DURATION ROLE POSE [last POSE2] [linear|ease-in|ease-out]
  *                                      in every stride, the ROLE (swing | stand) legs move to
  *                                      POSE at START s into the stride (POSE2 in the last one)
  *   end T                              the table ends with a row at T (s) repeating the last
@@ -94,13 +96,19 @@ typedef struct csgDesignPose_ {
   int line;                   /* first line of the pose */
 } csgDesignPose;
 
+enum { CSG_PROFILE_SMOOTH = 0, CSG_PROFILE_LINEAR = 1, CSG_PROFILE_EASE_IN = 2,
+       CSG_PROFILE_EASE_OUT = 3 };
+
 typedef struct csgDesignMove_ {
   double t0, duration;        /* s */
   unsigned legs;              /* bit k: leg k (0..7 = A..H) */
   int pose;                   /* target pose index */
-  int linear;                 /* 1: the foot moves at constant speed along its path (a
-                                 conveyor: successive moves of the stance legs join without a
-                                 stop); 0: smoothstep (starts and ends at rest) */
+  int linear;                 /* the time profile s(u) along the path, u = (t - t0)/duration:
+                                 CSG_PROFILE_SMOOTH 3u^2 - 2u^3 (starts and ends at rest),
+                                 CSG_PROFILE_LINEAR u (constant speed: a conveyor whose
+                                 successive moves join without a stop), CSG_PROFILE_EASE_IN u^2
+                                 (from rest to the linear speed x 2 at the end),
+                                 CSG_PROFILE_EASE_OUT 2u - u^2 (the reverse) */
   int line;                   /* the move or phase line it came from */
 } csgDesignMove;
 

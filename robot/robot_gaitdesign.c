@@ -631,7 +631,11 @@ static void legAt(const csgDesign* d, const MovePath* paths, const int* from, in
   const csgDesignMove* m = &d->move[im];
   double u = m->duration > 0 ? (t_next - m->t0) / m->duration : 1.0;
   u = fmin(1.0, fmax(0.0, u));
-  pathAt(&paths[from[8 * im + k] * d->npose + m->pose], m->linear ? u : u * u * (3 - 2 * u), P);
+  double sp = m->linear == CSG_PROFILE_LINEAR    ? u
+              : m->linear == CSG_PROFILE_EASE_IN   ? u * u
+              : m->linear == CSG_PROFILE_EASE_OUT  ? u * (2 - u)
+                                                   : u * u * (3 - 2 * u);
+  pathAt(&paths[from[8 * im + k] * d->npose + m->pose], sp, P);
 }
 
 
