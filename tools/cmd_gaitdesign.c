@@ -138,6 +138,7 @@ done:
 static const char kDesignUsage[] =
     "usage: crawlsim gait design FILE.gait [--out FILE.csv] [--calibration FILE] [--p-max MPA]\n"
     "                            [--stretch] [--check] [--check-scene NAME] [--check-t S]\n"
+    "                            [--set NAME=VALUE]...\n"
     "  Build a gait table from a design description (gaits/gaits_design.h: poses as chamber\n"
     "  sets with a target stroke/side/lift/rise/bend/pressure, moves with durations, strides\n"
     "  with phases); pressures from the calibrated leg model (robot_gaitdesign.h).\n"
@@ -145,7 +146,10 @@ static const char kDesignUsage[] =
     "  (0.3 MPa, capped by the calibration); --stretch: forward kinematics with the map's axial\n"
     "  stretch (leg levels that stretch; needed by rise targets); --check: short runs of the\n"
     "  table (scene flat-road under its default conditions, ramps 0.1, 0.2, 0.5 s, to --check-t,\n"
-    "  default the first stride's start + 3 periods) and the stride per cycle of each.\n";
+    "  default the first stride's start + 3 periods) and the stride per cycle of each.\n"
+    "  --set NAME=VALUE: a leg actuator parameter (as crawlsim bend; design studies): the poses\n"
+    "  are solved for that leg (its calibration must be of that actuator, e.g. the provisional\n"
+    "  text map); not with --check.\n";
 
 
 /* the stride per cycle of a short run of `gait_csv` with schedule ramp `ramp`; prints a line */
@@ -213,12 +217,20 @@ int csx_cmdGaitDesign(int argc, char** argv) {
   const char* calib = NULL;
   const char* check_scene = "flat-road";
   double p_max = NAN, check_t = NAN;
-  int stretch = 0, check = 0;
+  int stretch = 0, check = 0, nset = 0;
+  const char* sets[32];
   for (int i = 1; i < argc; i++) {
     const char* a = argv[i];
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       fputs(kDesignUsage, stdout);
       return 0;
+    } else if (!strcmp(a, "--set")) {
+      if (i + 1 >= argc || nset == 32) {
+        fprintf(stderr, "crawlsim gait design: %s\n",
+                nset == 32 ? "more than 32 --set options" : "--set needs NAME=VALUE");
+        return 1;
+      }
+      sets[nset++] = argv[++i];
     } else if (!strcmp(a, "--stretch")) {
       stretch = 1;
     } else if (!strcmp(a, "--check")) {
@@ -284,6 +296,16 @@ int csx_cmdGaitDesign(int argc, char** argv) {
   }
   if (csg_designRead(des, in, &err) != CS_OK) goto done;
   if (csr_actuatorPreset(&leg, "leg", &err) != CS_OK) goto done;
+  /* --set: the design study's leg (the check runs would build the shipped one) */
+  if (nset > 0 && check) {
+    cs_errorSet(&err, CS_ERR_ARG, "--check runs the shipped leg: with --set, run the table with "
+                "crawlsim run --set ... instead");
+    goto done;
+  }
+  for (int k = 0; k < nset; k++) {
+    if (csr_actuatorSetString(&leg, sets[k], &err) != CS_OK) goto done;
+  }
+  if (csr_actuatorValidate(&leg, &err) != CS_OK) goto done;
   cal = csr_calibrationOpen(calib, &leg, &err);
   if (!cal) goto done;
   csrBendMap map = csr_calibrationMap(cal);

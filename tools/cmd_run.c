@@ -3,7 +3,7 @@
  *   [--legs auto|prb|rod|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
- *   --coupling staggered|stabilised, --quiet.
+ *   --coupling staggered|stabilised, --set NAME=VALUE (the legs' actuator, repeatable), --quiet.
  * Options take "--name VALUE" or "--name=VALUE". Bad input (flags, files, an unwritable
  * --out) is found before the robot is built or settled, and every failure prints exactly one
  * line "crawlsim run: <cause>" on stderr (file:line for file errors) and exits 1. */
@@ -24,20 +24,23 @@ static const char kRunUsage[] =
     "                    [--terrain FILE] [--dt S] [--output-dt S] [--ramp S] [--tau S]\n"
     "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
     "                    [--calibration FILE] [--macro-steps N] [--coupling staggered|stabilised]\n"
-    "                    [--conditions earth|paper] [--quiet]\n"
+    "                    [--conditions earth|paper] [--set NAME=VALUE]... [--quiet]\n"
     "  --conditions: earth = gravity on every body; paper = the legs keep mass and inertia but\n"
     "    feel no gravity (the paper's assumption). Default: the scene's (paper for flat-road\n"
     "    and obstacle) with its own terrain and gait, earth when --terrain or --gait is given;\n"
     "  --macro-steps N: ODE steps per exchange with co-simulated legs (macro step H = N dt);\n"
     "  --coupling: how co-simulated legs (rod) hand their wrench to the support (default\n"
-    "    stabilised; ignored by prb).\n";
+    "    stabilised; ignored by prb);\n"
+    "  --set NAME=VALUE: a parameter of the legs' actuator (as crawlsim bend: S1 a C10 ...; the\n"
+    "    legs' stiffness and mass follow; the calibration must be of that actuator).\n";
 
 
 /* the options that take a value (all but --quiet and --help) */
 static const char* const kValueOptions[] = {
     "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
-    "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--iterations"};
+    "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--set",
+    "--iterations"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -101,7 +104,8 @@ int csx_cmdRun(int argc, char** argv) {
   double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN, macro = NAN;
   const char* coupling = NULL;
   const char* conditions = NULL;
-  int quiet = 0;
+  const char* sets[32];
+  int quiet = 0, nset = 0;
   csError err;
   cs_errorClear(&err);
   csModel m;
@@ -180,6 +184,12 @@ int csx_cmdRun(int argc, char** argv) {
       coupling = v;
     } else if (!strcmp(flag, "--conditions")) {
       conditions = v;
+    } else if (!strcmp(flag, "--set")) {
+      if (nset == 32) {
+        cs_errorSet(&err, CS_ERR_ARG, "more than 32 --set options");
+        goto done;
+      }
+      sets[nset++] = v;
     } else {
       ok = parseNum(flag, v, &iters, &err); /* --iterations, the last of kValueOptions */
     }
@@ -297,6 +307,14 @@ int csx_cmdRun(int argc, char** argv) {
   }
 
   m.opt.progress = !quiet;
+  /* --set: the legs' actuator of a design study; their stiffness and mass follow from it */
+  for (int k = 0; k < nset; k++) {
+    if (csr_actuatorSetString(&m.robot.leg, sets[k], &err) != CS_OK) goto done;
+  }
+  if (nset > 0) {
+    if (csr_actuatorValidate(&m.robot.leg, &err) != CS_OK) goto done;
+    m.robot.leg_params = csr_defaultLegParams(&m.robot.leg);
+  }
   cs_modelSetLegLevel(&m, leg_type); /* the one place the level is stored (and its coupling) */
   if (!isnan(friction)) m.contact.mu = friction;
   m.sched.pressure_scale = scale;
