@@ -31,6 +31,13 @@ csStatus cs_errorSet(csError* err, csStatus status, const char* fmt, ...) {
     va_start(ap, fmt);
     vsnprintf(err->msg, sizeof err->msg, fmt, ap);
     va_end(ap);
+    /* one line, whatever a file put into the quoted text (a newline in an HDF5 string
+     * attribute, a terminal escape in a word): control characters become '?' */
+    for (char* c = err->msg; *c; c++) {
+      if ((unsigned char)*c < 0x20 || *c == 0x7f) {
+        *c = '?';
+      }
+    }
     err->status = status;
   }
   return status;

@@ -47,7 +47,8 @@ const char* cs_statusString(csStatus s);
 void cs_errorClear(csError* err);
 
 /* Fill err (if not NULL) with status and a printf-style message; returns status so callers can
- * write `return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: ...", ...)`. */
+ * write `return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: ...", ...)`. Control characters in the
+ * result (newlines, tabs, escapes quoted from a file) become '?': the message stays one line. */
 csStatus cs_errorSet(csError* err, csStatus status, const char* fmt, ...)
     __attribute__((format(printf, 3, 4)));
 

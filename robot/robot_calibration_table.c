@@ -37,19 +37,40 @@ const char* csr_calKindName(csrCalKind kind) {
 }
 
 
-/* a string attribute of `obj` into buf; 0 if absent, not a string or too long. Fixed-length
- * (this project's writer) and variable-length strings (h5py's default) are both read. */
-static int attrString(hid_t f, const char* obj, const char* name, char* buf, size_t size) {
+/* the attribute `name` of `obj` when it holds exactly one element: its id and its type in *type
+ * (the caller closes both), or -1. One element only: H5LT's attribute calls write every element
+ * and every extent of an attribute into the caller's buffers (an array attribute overflowed
+ * them: tests/fuzz, fuzz_calib_h5) */
+static hid_t attrOpenOne(hid_t f, const char* obj, const char* name, hid_t* type) {
   if (H5Aexists_by_name(f, obj, name, H5P_DEFAULT) <= 0) {
-    return 0;
+    return -1;
   }
   hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
   if (a < 0) {
-    return 0;
+    return -1;
   }
   hid_t t = H5Aget_type(a), sp = H5Aget_space(a);
-  int ok = t >= 0 && sp >= 0 && H5Tget_class(t) == H5T_STRING &&
-           H5Sget_simple_extent_npoints(sp) == 1;
+  int one = t >= 0 && sp >= 0 && H5Sget_simple_extent_npoints(sp) == 1;
+  if (sp >= 0) H5Sclose(sp);
+  if (!one) {
+    if (t >= 0) H5Tclose(t);
+    H5Aclose(a);
+    return -1;
+  }
+  *type = t;
+  return a;
+}
+
+
+/* a string attribute of `obj` into buf; 0 if absent, not a string or too long. Fixed-length
+ * (this project's writer) and variable-length strings (h5py's default) are both read. */
+static int attrString(hid_t f, const char* obj, const char* name, char* buf, size_t size) {
+  hid_t t = -1;
+  hid_t a = attrOpenOne(f, obj, name, &t);
+  if (a < 0) {
+    return 0;
+  }
+  int ok = H5Tget_class(t) == H5T_STRING;
   if (ok && H5Tis_variable_str(t) > 0) {
     char* v = NULL;
     hid_t mt = H5Tcopy(H5T_C_S1);
@@ -75,22 +96,29 @@ static int attrString(hid_t f, const char* obj, const char* name, char* buf, siz
       H5Tclose(mt);
     }
   }
-  if (t >= 0) H5Tclose(t);
-  if (sp >= 0) H5Sclose(sp);
+  H5Tclose(t);
   H5Aclose(a);
   return ok;
 }
 
 
-/* a scalar double attribute of `obj`; 0 if absent or not a number */
+/* a scalar double attribute of `obj`; 0 if absent or not one number */
 static int attrDouble(hid_t f, const char* obj, const char* name, double* v) {
-  hsize_t dims[1] = {0};
-  H5T_class_t cls;
-  size_t sz = 0;
-  return H5Aexists_by_name(f, obj, name, H5P_DEFAULT) > 0 &&
-         H5LTget_attribute_info(f, obj, name, dims, &cls, &sz) >= 0 &&
-         (cls == H5T_FLOAT || cls == H5T_INTEGER) &&
-         H5LTget_attribute_double(f, obj, name, v) >= 0;
+  hid_t t = -1;
+  hid_t a = attrOpenOne(f, obj, name, &t);
+  if (a < 0) {
+    return 0;
+  }
+  const H5T_class_t cls = H5Tget_class(t);
+  int ok = (cls == H5T_FLOAT || cls == H5T_INTEGER) && H5Aread(a, H5T_NATIVE_DOUBLE, v) >= 0;
+  H5Tclose(t);
+  H5Aclose(a);
+  return ok;
+}
+
+
+int csr_calAttrString(hid_t f, const char* obj, const char* name, char* buf, size_t size) {
+  return attrString(f, obj, name, buf, size);
 }
 
 
@@ -139,8 +167,8 @@ static void checkParam(void* user, const char* name, double value) {
     return;
   }
   if (!attrDouble(c->f, "/", name, &v)) {
-    c->st = cs_errorSet(c->err, CS_ERR_PARSE, "%s: calibration table has no attribute '%s' (an "
-                        "actuator parameter)", c->path, name);
+    c->st = cs_errorSet(c->err, CS_ERR_PARSE, "%s: calibration table has no attribute '%s' of "
+                        "one number (an actuator parameter)", c->path, name);
   } else if (!(fabs(v - value) <= PARAM_RTOL * fabs(value))) {
     c->st = cs_errorSet(c->err, CS_ERR_RANGE, "%s: calibrated for another actuator: %s = %g in "
                         "the table, %g in the leg", c->path, name, v, value);
@@ -352,8 +380,8 @@ static csStatus readCase(hid_t f, const char* path, csrCalCase* c, csError* err)
     char nm[16];
     snprintf(nm, sizeof nm, "ratio%d", j + 1);
     if (!attrDouble(f, obj, nm, &c->ratio[j])) {
-      return cs_errorSet(err, CS_ERR_PARSE, "%s: case %s has no attribute '%s'", path, c->name,
-                         nm);
+      return cs_errorSet(err, CS_ERR_PARSE, "%s: case %s has no attribute '%s' of one number",
+                         path, c->name, nm);
     }
     if (!(c->ratio[j] >= 0 && c->ratio[j] <= 1)) {
       return cs_errorSet(err, CS_ERR_RANGE, "%s: case %s: %s is %g (chamber ratios are in [0, "

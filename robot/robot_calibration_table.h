@@ -34,6 +34,8 @@
 #ifndef CS_ROBOT_CALIBRATION_TABLE_H
 #define CS_ROBOT_CALIBRATION_TABLE_H
 
+#include <hdf5.h>
+
 #include "core_status.h"
 #include "robot_actuator.h"
 
@@ -120,6 +122,11 @@ csStatus csr_calCheckActuator(const char* path, const csrActuator* leg, csError*
 /* 1 when `path` is HDF5 with a root attribute "format" that starts with CSR_CAL_FORMAT_PREFIX
  * (a mode table, of any version); 0 otherwise. */
 int csr_calTableIsModeTable(const char* path);
+
+/* A string attribute `name` of object `obj` (e.g. "/") of the open HDF5 file f into buf (size
+ * bytes, NUL-terminated): 1, or 0 when absent, not one string (fixed or variable length), or
+ * not shorter than size. Shared by the mode and pair-mode readers. */
+int csr_calAttrString(hid_t f, const char* obj, const char* name, char* buf, size_t size);
 
 #ifdef __cplusplus
 }

@@ -827,7 +827,9 @@ static void writeDataset(hid_t f, hid_t lcpl, const Node* nd) {
     H5Pset_layout(dcpl, H5D_COMPACT);
   } else if (chunked) {
     hsize_t chunk[MAX_RANK];
-    for (int i = 0; i < nd->rank; i++) chunk[i] = nd->dims[i] ? (nd->dims[i] < 64 ? nd->dims[i] : 64) : 1;
+    for (int i = 0; i < nd->rank; i++) {
+      chunk[i] = nd->dims[i] == 0 ? 1 : nd->dims[i] < 64 ? nd->dims[i] : 64;
+    }
     H5Pset_chunk(dcpl, nd->rank, chunk);
     if (nd->layout == L_SHUFFLE_DEFLATE) H5Pset_shuffle(dcpl);
     if (nd->layout == L_DEFLATE || nd->layout == L_SHUFFLE_DEFLATE) H5Pset_deflate(dcpl, 1);

@@ -8,9 +8,9 @@
  * inputs: each needs a file <input>.expect beside it,
  *   status CS_ERR_PARSE            the status the reader must return (CS_OK: it accepts it)
  *   contains <text>                a text its message must contain (any number of lines)
- * ('#' lines are comments). -v prints each input's status and message. Exit 0 when every input passed the harness's checks (a broken
- * contract aborts) and met its .expect, 1 otherwise, also when a PATH holds no input: a replay
- * of nothing must not pass. */
+ * ('#' lines are comments). -v prints each input's status and message. Exit 0 when every input
+ * passed the harness's checks (a broken contract aborts) and met its .expect, 1 otherwise, also
+ * when a PATH holds no input: a replay of nothing must not pass. */
 #define _POSIX_C_SOURCE 200809L /* opendir, stat */
 
 #include <dirent.h>

@@ -58,7 +58,8 @@ static void checkStudy(const csxStudy* s) {
           char out[CSX_STUDY_PATH_SIZE], small[8];
           int rc = csx_studyResolvePath(s, "/tmp/case", st->word[w], out, sizeof out);
           int rs = csx_studyResolvePath(s, "/tmp/case", st->word[w], small, sizeof small);
-          if ((rc != 0 && rc != -1) || (rs != 0 && rs != -1) || !memchr(small, '\0', sizeof small)) {
+          if ((rc != 0 && rc != -1) || (rs != 0 && rs != -1) ||
+              !memchr(small, '\0', sizeof small)) {
             csz_fail("csx_studyResolvePath returned %d / %d", rc, rs);
           }
         }
