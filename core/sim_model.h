@@ -17,8 +17,9 @@
  *              wrench (and, for the stabilised scheme, their interface gains); in-world legs
  *              (prb) do nothing more here
  *   support    macro_steps ODE steps of h: the legs' wrenches applied to the support body (with
- *              the stabilised scheme also their gains as an implicit spring-damper), contacts of
- *              the support and the in-world legs with the terrain (contact_ode.h), QuickStep
+ *              the stabilised scheme corrected by their gains, solved implicitly with the
+ *              support's step), contacts of the support and the in-world legs with the terrain
+ *              (contact_ode.h), QuickStep
  *   check      non-finite or runaway state, or the support below the terrain -> CS_ERR_DIVERGED
  * The support is never driven: it moves only through the legs' contact forces.
  *
@@ -56,9 +57,10 @@ typedef enum csCoupling_ {
    * from the support's twist at its start; their averaged wrench is applied to the support,
    * constant over the step */
   CS_COUPLING_STAGGERED = 0,
-  /* stabilised: as staggered, plus each leg's interface stiffness/damping (interfaceGains) as
-   * an implicit spring-damper on the support about the predicted motion: ODE sees how the
-   * wrench would change if the support left the prediction (sim_coupling.c) */
+  /* stabilised: as staggered, plus each leg's interface stiffness/damping (interfaceGains,
+   * over one ODE step) correcting its wrench for the support's deviation from the prediction,
+   * solved implicitly with the support's backward-Euler step (sim_coupling.c); the default for
+   * co-simulated levels (cs_modelSetLegLevel) */
   CS_COUPLING_STABILISED = 1
 } csCoupling;
 
