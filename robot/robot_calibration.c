@@ -237,6 +237,9 @@ struct csrFeCalibration_ {
 
 /* rows of a table: enough for any sweep a user runs (0.001 MPa steps to 1 MPa is 1001) */
 #define FE_TABLE_MAX_ROWS 100000
+/* a segment's bend (deg): ten turns is beyond any sweep; a finite 1e308 passed as a factor of
+ * 1e306 on the analytic bend (tests/fuzz, fuzz_calib_h5) */
+#define FE_TABLE_MAX_ANGLE_DEG 3600.0
 /* read a double dataset of rank `rank` with dims[0] rows (and dims[1] = `cols` if rank 2) */
 static double* readTable(hid_t f, const char* path, const char* dset, int rank, hsize_t cols,
                          hsize_t* rows, csError* err) {
@@ -330,10 +333,10 @@ csrFeCalibration* csr_feCalibrationCreate(const char* path, const csrActuator* l
     double P[4] = {fc->p[i], fc->p[i], 0, 0}, bend[2], stretch;
     for (int s = 0; s < CSR_NSEG && st == CS_OK; s++) {
       double th = ang[CSR_NSEG * i + s] * CS_DEG;
-      if (!(th > 0) || !isfinite(th)) {
+      if (!(th > 0) || !(ang[CSR_NSEG * i + s] <= FE_TABLE_MAX_ANGLE_DEG)) {
         st = cs_errorSet(err, CS_ERR_RANGE, "%s: /angle_deg row %d segment %d is %g deg: a "
-                         "pair-mode sweep bends every segment forward (> 0)", path, i + 1,
-                         s + 1, ang[CSR_NSEG * i + s]);
+                         "pair-mode sweep bends every segment forward (> 0, at most %g)", path,
+                         i + 1, s + 1, ang[CSR_NSEG * i + s], FE_TABLE_MAX_ANGLE_DEG);
       } else if (analyticBend(leg, s, P, bend, &stretch) != 0) {
         st = cs_errorSet(err, CS_ERR_RANGE, "%s: the analytic model has no solution at %g MPa "
                          "(row %d)", path, fc->p[i], i + 1);

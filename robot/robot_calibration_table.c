@@ -24,6 +24,13 @@
 #define P_END_TOL 1e-12
 /* a sweep's pressures are the writer's load factors (MPa); 1 MPa is the gaits' ceiling */
 #define MAX_PRESSURE 1.0
+/* kinematic values (rad, mm, -, deg) of any FE result are far below this; a larger finite one
+ * (up to 1.8e308) overflows the model's interpolation into NaN (tests/fuzz, fuzz_calib_h5) */
+#define MAX_VALUE 1e6
+/* MPa: rows closer than this make the interpolation's slopes (value / row spacing) overflow */
+#define MIN_ROW_DP 1e-9
+/* stiffness probes (N mm^2, N): far above any leg's, far below overflow when averaged */
+#define MAX_STIFFNESS 1e12
 
 static const char* const kKindNames[] = {"mode", "holdout", "symmetry", "gravity"};
 
@@ -246,10 +253,11 @@ static csStatus checkFinite(const char* path, const char* cname, const char* nam
                             csError* err) {
   for (int i = 0; i < m; i++) {
     for (int q = 0; q < per; q++) {
-      if (!isfinite(a[(size_t)i * per + q])) {
-        return cs_errorSet(err, CS_ERR_RANGE, "%s: case %s: %s row %d %s %d is %g (not finite)",
-                           path, cname, name, i + 1, part, q / (per / nseg) + 1,
-                           a[(size_t)i * per + q]);
+      const double v = a[(size_t)i * per + q];
+      if (!isfinite(v) || fabs(v) > MAX_VALUE) {
+        return cs_errorSet(err, CS_ERR_RANGE, "%s: case %s: %s row %d %s %d is %g (%s)", path,
+                           cname, name, i + 1, part, q / (per / nseg) + 1, v,
+                           isfinite(v) ? "beyond +-1e6: not an FE result" : "not finite");
       }
     }
   }
@@ -307,15 +315,15 @@ static csStatus readProbes(hid_t f, const char* path, csrCalCase* c, csError* er
                        "sweep", path, c->name, k + 1, c->probe_pressure[k]);
     }
   }
-  /* a stiffness is NAN (failed probe) or finite and > 0 */
+  /* a stiffness is NAN (failed probe) or in (0, MAX_STIFFNESS] */
   for (int k = 0; k < c->k && st == CS_OK; k++) {
     for (int s = 0; s < CSR_NSEG && st == CS_OK; s++) {
       const double v[3] = {c->EI[6 * k + 2 * s], c->EI[6 * k + 2 * s + 1], c->EA[3 * k + s]};
       for (int q = 0; q < 3; q++) {
-        if (!isnan(v[q]) && !(isfinite(v[q]) && v[q] > 0)) {
+        if (!isnan(v[q]) && !(v[q] > 0 && v[q] <= MAX_STIFFNESS)) {
           st = cs_errorSet(err, CS_ERR_RANGE, "%s: case %s: %s probe %d segment %d is %g (a "
-                           "stiffness must be > 0, or NaN for a failed probe)", path, c->name,
-                           q < 2 ? "EI" : "EA", k + 1, s + 1, v[q]);
+                           "stiffness must be > 0 and at most 1e12, or NaN for a failed probe)",
+                           path, c->name, q < 2 ? "EI" : "EA", k + 1, s + 1, v[q]);
           break;
         }
       }
@@ -439,10 +447,11 @@ static csStatus readCase(hid_t f, const char* path, csrCalCase* c, csError* err)
                        "at 0)", path, c->name, c->pressure[0]);
   }
   for (int i = 1; i < c->m; i++) {
-    if (!(c->pressure[i] > c->pressure[i - 1]) || !(c->pressure[i] <= MAX_PRESSURE)) {
+    if (!(c->pressure[i] >= c->pressure[i - 1] + MIN_ROW_DP) ||
+        !(c->pressure[i] <= MAX_PRESSURE)) {
       return cs_errorSet(err, CS_ERR_RANGE, "%s: case %s: pressure row %d (%g MPa) must be above "
-                         "row %d (%g MPa) and at most %g MPa", path, c->name, i + 1,
-                         c->pressure[i], i, c->pressure[i - 1], MAX_PRESSURE);
+                         "row %d (%g MPa) by %g MPa at least and at most %g MPa", path, c->name,
+                         i + 1, c->pressure[i], i, c->pressure[i - 1], MIN_ROW_DP, MAX_PRESSURE);
     }
   }
   if (!(fabs(c->p_end - c->pressure[c->m - 1]) <= P_END_TOL)) {

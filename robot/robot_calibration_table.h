@@ -23,9 +23,10 @@
  * CS_ERR_RANGE for values outside their domain): the format; the actuator's parameters; the FE
  * settings present; every case with a known kind, ratios in [0, 1] (max 1, except the gravity
  * case), a status that says the case finished, every dataset present with M rows (a shorter one
- * is a truncated table), pressures starting at 0 and strictly increasing, p_end equal to the
- * last row, every kinematic value finite. Probe stiffnesses may be NaN (the writer marks a probe
- * whose equilibrium failed that way; the model skips it) but not infinite or <= 0.
+ * is a truncated table), pressures starting at 0 and increasing by 1e-9 MPa at least, p_end
+ * equal to the last row, every kinematic value finite and within +-1e6 (beyond, the model's
+ * interpolation overflows). Probe stiffnesses may be NaN (the writer marks a probe whose
+ * equilibrium failed that way; the model skips it) but not <= 0 or above 1e12.
  *
  * Bends past 180 deg: the FE writes a segment's bend as a rotation vector (angle <= pi); the
  * reader continues each segment's bend along the sweep (csrCalCase.bend holds angles beyond pi).

@@ -18,7 +18,8 @@
  *
  * Per input: the error contract (fuzz_common.h, "<file>: cause"); no HDF5 object left open by
  * the reader (H5Fget_obj_count, after a failure too); an accepted table gives a bend map that
- * evaluates in range and refuses above it (fuzz_calib_map.h). */
+ * evaluates in range and refuses above it, and a mode table a rod actuation that evaluates
+ * (fuzz_calib_map.h). */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -946,6 +947,11 @@ csStatus csz_harnessRun(const uint8_t* data, size_t size, csError* err) {
   if (c) {
     csrBendMap map = csr_calibrationMap(c);
     csz_checkBendMap(&map, 5);
+    csrRodCalibration rod;
+    if (csr_calibrationRod(c, &rod)) {
+      csz_checkRodCalibration(&rod, map.p_max,
+                              csr_calModelStiffnessPMax(csr_calibrationModel(c)), 5);
+    }
     csr_calibrationClose(c);
   }
   return st;

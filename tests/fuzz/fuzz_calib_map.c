@@ -63,3 +63,41 @@ void csz_checkBendMap(const csrBendMap* map, int points) {
     }
   }
 }
+
+
+void csz_checkRodCalibration(const csrRodCalibration* rod, double p_max, double k_pmax,
+                             int points) {
+  if (!rod->eval || !rod->name) {
+    csz_fail("rod calibration without eval or name");
+  }
+  const double top = isfinite(p_max) ? p_max : OPEN_P_MAX;
+  for (int k = 0; k < points; k++) {
+    const double p = points > 1 ? top * k / (points - 1) : top;
+    for (int q = 0; q < NPATTERN; q++) {
+      double P[4];
+      for (int j = 0; j < 4; j++) P[j] = kPattern[q][j] * p;
+      for (int seg = 0; seg < 3; seg++) {
+        csrRodSegmentActuation out;
+        memset(&out, 0, sizeof out);
+        int rc = rod->eval(rod->ctx, seg, P, &out);
+        const double pbar = 0.25 * (P[0] + P[1] + P[2] + P[3]);
+        if (rc == CSR_MAP_OUT_OF_RANGE && pbar > k_pmax) {
+          continue; /* above the stiffness probes: refused, as documented */
+        }
+        if (rc < 0) {
+          csz_fail("rod calibration '%s' failed (%d) at %g MPa (pattern %d), segment %d, within "
+                   "%g MPa", rod->name, rc, p, q, seg, p_max);
+        }
+        const csrRodSection* sc = &out.section;
+        if (rc == 0 && (!csz_allFinite(out.u0, 3) || !csz_allFinite(out.sigma0, 3) ||
+                        (out.has_section && !(sc->EA > 0 && sc->EI[0] > 0 && sc->EI[1] > 0 &&
+                                              isfinite(sc->EA) && isfinite(sc->EI[0]) &&
+                                              isfinite(sc->EI[1]))))) {
+          csz_fail("rod calibration '%s' at %g MPa (pattern %d), segment %d: u0 (%g, %g, %g), "
+                   "stretch %g, EA %g, EI %g", rod->name, p, q, seg, out.u0[0], out.u0[1],
+                   out.u0[2], out.sigma0[2], sc->EA, sc->EI[0]);
+        }
+      }
+    }
+  }
+}

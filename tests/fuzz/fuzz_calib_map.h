@@ -4,6 +4,7 @@
 #define CS_FUZZ_CALIB_MAP_H
 
 #include "robot_leg.h"
+#include "robot_rod.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -16,6 +17,13 @@ extern "C" {
  * segment and pattern: the provisional map runs the analytic model's Newton solve, ~0.1 ms).
  * Aborts with csz_fail otherwise. */
 void csz_checkBendMap(const csrBendMap* map, int points);
+
+/* The rod level's actuation of an accepted mode table (csr_calibrationRod) at the same points:
+ * 0 with finite strains and, when it gives a section, finite stiffnesses > 0, or > 0; never < 0
+ * below p_max, except CSR_MAP_OUT_OF_RANGE where the mean chamber pressure is above k_pmax (the
+ * stiffness probes' range, csr_calModelStiffnessPMax; NAN: no stiffness). */
+void csz_checkRodCalibration(const csrRodCalibration* rod, double p_max, double k_pmax,
+                             int points);
 
 #ifdef __cplusplus
 }
