@@ -233,6 +233,21 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
               csr_calMeanFactor_(m->kfac[s], 0.25), m->kfit_rms[s]);
     }
   }
+  /* the contact radius the rod's capsules would need: a + the largest radial growth */
+  double rmax = m->leg.a, at = 0;
+  for (int i = 0; i < t->ncase; i++) {
+    const csrCalCase* c = t->cases + i;
+    for (int r = 0; r < c->m && c->kind == CSR_CAL_MODE && c->pressure[r] <= m->p_max; r++) {
+      for (int s = 0; s < CSR_NSEG; s++) {
+        const double v = m->leg.a + c->radial_max[3 * r + s] - c->radial_max[s];
+        if (v > rmax) {
+          rmax = v, at = c->pressure[r];
+        }
+      }
+    }
+  }
+  fprintf(out, "  contact radius a + largest radial growth: %.3g mm at rest, up to %.3g mm (at %.3g "
+          "MPa)\n", m->leg.a, rmax, at);
   /* stiffness against the small-strain section (E' = 8 C10) */
   csrSectionProps sp;
   if (csr_analyticSectionCompute(leg, NULL, &sp, err) != CS_OK) {
