@@ -10,8 +10,9 @@ Reads the merged study file of tools/studies/earth.study: per case the design (i
 the highest pressure of the gait re-derived for the design, the track (/cases/<case>/run:
 support x at 9 s against the paper's Table 2, 312 mm), tilt and verdict. A design "walks" when
 the run crawls forward to the gait's end, upright (tilt < 10 deg), with x(9 s) within 25 % of
-Table 2's 312 mm. Prints a Markdown table sorted by stance ratio and draws (a) the tracks
-against Table 2, (b) x(9 s) against the stance ratio.
+Table 2's 312 mm; the table also gives when the support first tilts past 30 deg (a robot that
+tips over early keeps moving as it rolls: its x is no stride). Prints a Markdown table sorted
+by stance ratio and draws (a) the tracks against Table 2, (b) x(9 s) against the stance ratio.
 
 Runs with Debian's Python (python3-matplotlib, python3-h5py). Exit status 0, 1 on a missing or
 malformed file (one line on stderr), 2 on bad usage.
@@ -88,7 +89,7 @@ def read_case(f, name):
            "message": attr_text(g.attrs.get("message", b"")),
            "load": math.nan, "pcr": math.nan, "ratio": math.nan, "mass": math.nan,
            "pmax": math.nan, "x9": math.nan, "t_end": math.nan, "tilt": math.nan,
-           "t": None, "x": None}
+           "t": None, "x": None, "t_tip": math.nan}
     if "log/run" in g:
         log = text_of(g["log/run"])
         m = STANCE_RE.search(log)
@@ -105,6 +106,11 @@ def read_case(f, name):
         t = g["run/time"][()]
         x = g["run/support/position"][()][:, 0]
         rec["t"], rec["x"] = t, x
+        if "run/support/orientation" in g:
+            q = g["run/support/orientation"][()]
+            tilt = np.degrees(np.arccos(np.clip(1 - 2 * (q[:, 1] ** 2 + q[:, 3] ** 2), -1, 1)))
+            over = np.nonzero(tilt > 30)[0]
+            rec["t_tip"] = float(t[over[0]]) if len(over) else math.nan
         rec["t_end"] = float(t[-1]) if len(t) else math.nan
         if len(t) and t[-1] >= 9 - 1e-6:
             rec["x9"] = float(np.interp(9.0, t, x))
@@ -129,8 +135,8 @@ def main():
         fail(PROG, f"{args.study}: no case")
     recs.sort(key=lambda r: (r["ratio"] if math.isfinite(r["ratio"]) else 9, r["name"]))
     lines = ["| case | design | robot mass (g) | stance load (N/leg) | sway-buckling load (N/leg) "
-             "| ratio | gait p max (MPa) | x(9 s) (mm) | vs 312 mm | outcome |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "| ratio | gait p max (MPa) | x(9 s) (mm) | vs 312 mm | tilt > 30 deg at (s) | outcome |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in recs:
         dx = (r["x9"] / 312 - 1) * 100 if math.isfinite(r["x9"]) else math.nan
         outcome = ("**walks**: " if r["walks"] else "") + (
@@ -141,7 +147,7 @@ def main():
                      f"{fmt(r['ratio'] * 100, '.0f')}{' %' if math.isfinite(r['ratio']) else ''} | "
                      f"{fmt(r['pmax'], '.3f')} | {fmt(r['x9'], '.1f')} | "
                      f"{fmt(dx, '+.0f')}{' %' if math.isfinite(dx) else ''} | "
-                     f"{outcome.replace('|', '/')} |")
+                     f"{fmt(r['t_tip'], '.2f')} | {outcome.replace('|', '/')} |")
     walk = [r["name"] for r in recs if r["walks"]]
     lines += ["", f"Walks (crawls upright to the gait's end, x(9 s) within "
               f"{WALK_TOL * 100:.0f} % of Table 2's 312 mm): " + (", ".join(walk) or "none")]
