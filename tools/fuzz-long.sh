@@ -2,22 +2,24 @@
 # Fuzz the readers of user files with libFuzzer (README "Fuzzing", tests/fuzz/).
 #
 #   bash tools/fuzz-long.sh [--runs N] [--hours H] [--only NAME[,NAME...]] [--update-corpus]
-#                           [--coverage]
+#                           [--coverage | --coverage-only]
 #       the long campaign: each harness in turn (one at a time, nice -n 15) until N executions
 #       (default 10^7; gait_design_build, the whole `crawlsim gait design`, 10^5) or H hours
 #       (default 4) per harness. Work files in build-fuzz/fuzz-long/<harness>/ (corpus,
 #       crashes, log); a summary table in build-fuzz/fuzz-long/summary.md. --update-corpus
 #       minimises each grown corpus into tests/fuzz/corpus/<harness>/ (to commit); --coverage
 #       builds build-fuzz-cov/ (clang source coverage) and reports the readers' line and
-#       branch coverage of the final corpus (needs llvm-14).
+#       branch coverage of the final corpus (needs llvm-14); --coverage-only does only that, on
+#       the corpora an earlier campaign left. Each harness's row of the summary is replaced when
+#       it runs again (--only), the others stay.
 #   bash tools/fuzz-long.sh --ci [SECONDS]
 #       the bounded run of tools/test-all.sh: every harness SECONDS (default 12) from the seeds
 #       and the committed corpus, nothing written into the source tree. Exit 1 if a harness
 #       found a crash, a leak, a sanitizer report, a broken contract or a hang; 3 if the
 #       fuzzers do not build (no clang-14, or a compile error).
 #
-# Build: build-fuzz/ or $FUZZ_BUILD (clang-14, CS_BUILD_FUZZERS=ON, ASan + UBSan; libFuzzer's LeakSanitizer on),
-# -j1. Each crash artifact is printed with how to make it a regression test: copy it to
+# Build: build-fuzz/ or $FUZZ_BUILD (clang-14, CS_BUILD_FUZZERS=ON, ASan + UBSan, LeakSanitizer
+# on), -j1 ($JOBS). Each crash artifact is printed with how to make it a regression test: copy it to
 # tests/fuzz/regressions/<harness>/<name> with a <name>.expect (tests/fuzz/fuzz_replay.c), and
 # ctest replays it in every build.
 set -euo pipefail
@@ -39,7 +41,8 @@ while [ $# -gt 0 ]; do
     --only) ONLY=$2; shift ;;
     --update-corpus) UPDATE=1 ;;
     --coverage) COVERAGE=1 ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    --coverage-only) COVERAGE=2 ;;
+    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
     *) echo "fuzz-long: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -129,27 +132,24 @@ if ! command -v "$CC_FUZZ" >/dev/null; then
   echo "fuzz-long: $CC_FUZZ not found (tools/install-deps.sh installs clang-14)" >&2
   exit 3
 fi
-build
+[ "$COVERAGE" = 2 ] || build
 
 OUT=$BUILD/fuzz-long
 [ "$MODE" = ci ] && OUT=$BUILD/fuzz-ci
-rm -rf "$OUT"
 mkdir -p "$OUT"
 found=0
-{
-  echo "| harness | executions | time (s) | exec/s | edges (cov) | features (ft) | problems |"
-  echo "|---|---|---|---|---|---|---|"
-} >"$OUT/summary.md"
 for h in "${HARNESSES[@]}"; do
   IFS='|' read -r name seeds dict maxlen timeout runs extra <<<"$h"
   selected "$name" || continue
+  [ "$COVERAGE" = 2 ] && continue
   seconds=$CI_SECONDS
   [ "$MODE" = long ] && seconds=$(awk -v h="$HOURS" 'BEGIN{printf "%d", h*3600}')
   echo "== fuzz $name ($MODE: $([ "$MODE" = ci ] && echo "${seconds} s" || echo "$runs runs or ${seconds} s")) =="
+  rm -rf "${OUT:?}/$name"
   run_one "$name" "$seeds" "$dict" "$maxlen" "$timeout" "$runs" "$seconds" "$OUT/$name" "$extra"
   rate=$(awk -v r="${LAST_RUNS:-0}" -v s="$LAST_SECONDS" 'BEGIN{printf "%d", (s > 0 ? r / s : r)}')
-  echo "| $name | ${LAST_RUNS:-0} | $LAST_SECONDS | $rate | ${LAST_COV:-?} | ${LAST_FT:-?} | $LAST_CRASHES |" \
-    >>"$OUT/summary.md"
+  echo "| $name | ${LAST_RUNS:-0} | $LAST_SECONDS | $rate | ${LAST_COV:-?} | ${LAST_FT:-?} | $LAST_CRASHES | $(date -u +%Y-%m-%d) |" \
+    >"$OUT/$name/summary.line"
   echo "fuzz $name: ${LAST_RUNS:-0} executions in ${LAST_SECONDS} s, cov ${LAST_COV:-?}, ft ${LAST_FT:-?}, problems $LAST_CRASHES"
   [ "$LAST_CRASHES" -ne 0 ] && found=1
   if [ "$MODE" = long ] && [ "$UPDATE" = 1 ] && [ "$LAST_CRASHES" -eq 0 ]; then
@@ -166,11 +166,19 @@ for h in "${HARNESSES[@]}"; do
     echo "fuzz $name: corpus minimised into $T/corpus/$name ($(ls "$T/corpus/$name" | wc -l) files)"
   fi
 done
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg)" \
-  >>"$OUT/summary.md"
+# the table of every harness run so far into this tree (each run replaces its own row)
+{
+  echo "| harness | executions | time (s) | exec/s | edges (cov) | features (ft) | problems | date |"
+  echo "|---|---|---|---|---|---|---|---|"
+  for h in "${HARNESSES[@]}"; do
+    IFS='|' read -r name _ <<<"$h"
+    [ -f "$OUT/$name/summary.line" ] && cat "$OUT/$name/summary.line"
+  done
+  echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg) at the end"
+} >"$OUT/summary.md"
 cat "$OUT/summary.md"
 
-if [ "$MODE" = long ] && [ "$COVERAGE" = 1 ]; then
+if [ "$MODE" = long ] && [ "$COVERAGE" != 0 ]; then
   if ! command -v llvm-profdata-14 >/dev/null; then
     echo "fuzz-long: --coverage needs llvm-profdata-14 and llvm-cov-14 (package llvm-14)" >&2
   else
@@ -187,16 +195,23 @@ if [ "$MODE" = long ] && [ "$COVERAGE" = 1 ]; then
       selected "$name" || continue
       [ "$name" = gait_design_build ] && continue # same reader as gait_design
       nice -n 10 cmake --build "$COV" --target "fuzz_${name}_replay" -j1 >/dev/null
-      inputs=("$OUT/$name/corpus")
-      [ -d "$T/corpus/$name" ] && inputs+=("$T/corpus/$name")
+      inputs=()
+      for d in "$OUT/$name/corpus" "$T/corpus/$name" "$T/seeds/$name" "$OUT/$name/shipped"; do
+        [ -d "$d" ] && inputs+=("$d")
+      done
       LLVM_PROFILE_FILE="$COV/profiles/$name.profraw" nice -n 15 \
         "$COV/tests/fuzz/fuzz_${name}_replay" "${inputs[@]}" >/dev/null 2>&1 || true
       objects+=(-object "$COV/tests/fuzz/fuzz_${name}_replay")
     done
     llvm-profdata-14 merge -o "$COV/profiles/all.profdata" "$COV"/profiles/*.profraw
+    readers=()
+    for f in gaits/gaits_csv.c gaits/gaits_design.c terrains/terrains_terrain.c core/core_text.c \
+             robot/robot_calibration.c robot/robot_calibration_table.c \
+             robot/robot_calibration_build.c tools/study_file.c; do
+      [ -f "$f" ] && readers+=("$ROOT/$f")
+    done
     llvm-cov-14 report -instr-profile="$COV/profiles/all.profdata" "${objects[@]:1}" \
-      gaits/gaits_csv.c gaits/gaits_design.c terrains/terrains_terrain.c core/core_text.c \
-      robot/robot_calibration.c robot/robot_calibration_table.c robot/robot_calibration_build.c \
+      "${readers[@]}" \
       2>/dev/null | tee "$OUT/coverage.txt" || true
   fi
 fi
