@@ -16,6 +16,13 @@
 
 #define CSF_FIBRE_INSET 0.2 /* mm below the outer surface (fibre radius 0.089 mm) */
 #define CSF_PLANE_TOL 1e-6  /* mm: nodes on the clamped face */
+/* default fibre point spacing l_fibre = l_soft / 8 (0.5 mm at l_soft 4). Measured on the leg at
+ * l_soft 4, total bend at 0.1 MPa (fem/README.md "Fibre discretisation"): split fibres at
+ * l_fibre 1.5 / 0.75 / 0.5 / 0.3 mm give 49.94 / 50.23 / 50.43 / 50.55 deg (from below, towards
+ * ~50.7), the 20-node ties of the paper's pairing l_fibre = 0.4 l_soft - 0.1 = 1.5 mm gave
+ * 51.52 (0.75 mm: 51.05, from above): 0.5 mm is within ~0.5 % of the fibre-converged value at
+ * no extra fill (the split keeps each fibre element in one tetrahedron) */
+#define CSF_FIBRE_SIZE_REL 0.125
 
 
 csfActuatorSpec csf_actuatorSpecDefault(void) {
@@ -226,7 +233,7 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
     m->gravity[i] = sp->gravity[i];
   }
   if (sp->fibres) {
-    const double lf = sp->fibre_size > 0 ? sp->fibre_size : fmax(0.4 * sp->mesh_size - 0.1, 0.2);
+    const double lf = sp->fibre_size > 0 ? sp->fibre_size : CSF_FIBRE_SIZE_REL * sp->mesh_size;
     m->fib_split = sp->fibre_split;
     st = addFibres(act, m, lf, CSF_FIBRE_INSET, err);
     if (st != CS_OK) {

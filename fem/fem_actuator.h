@@ -24,7 +24,7 @@ typedef struct csfActuatorSpec_ {
   double ratio[CSR_NSEG][CSR_NCHAMBER]; /* pressure of chamber Omega_j of segment s per unit
                                          * load factor (MPa/MPa); 0 = vented */
   double mesh_size;    /* l_soft, mm */
-  double fibre_size;   /* l_fibre, mm (0: 0.4 l_soft - 0.1, the paper's Table 1 pairing) */
+  double fibre_size;   /* l_fibre, mm (0: l_soft / 8, fem_actuator.c) */
   int fibres;          /* 1 = embed the double-helix fibres (n turns per segment) */
   int fibre_compression; /* 1: linear in tension and compression; 0: smoothed tension-only */
   int fibre_geo_tension; /* 1: fibre geometric stiffness only in tension (modified tangent) */
