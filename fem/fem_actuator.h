@@ -51,6 +51,19 @@ typedef struct csfActuatorFE_ {
   int ncham;           /* pressurised chambers */
 } csfActuatorFE;
 
+/* The thinnest walls of the section (mm): between a chamber and the outer surface (straight side
+ * or fillet corner), between two adjacent chambers, and the solid caps c at the chamber ends. */
+typedef struct csfWalls_ {
+  double outer, between, cap;
+  double mesh;   /* element size the mesher uses at the chamber walls, mm */
+} csfWalls;
+
+void csf_actuatorWalls(const csrActuator* act, double l_soft, csfWalls* w);
+
+/* Walls thinner than this fraction of the chamber-wall element size cannot be resolved by the
+ * mesh (fewer than 1/10 of an element across): refused at set-up with the parameters named. */
+#define CSF_WALL_MIN_REL 0.1
+
 /* Mesh the actuator and build its model (not finalised data: csf_dataCreate is the caller's).
  * Returns CS_OK or an error naming the cause (invalid parameters, gmsh failure, a chamber
  * without faces, a fibre point outside the body). */

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fem_material.h"
 #include "fem_model.h"
 
 /* tolerance on the smallest barycentric coordinate for "inside" (dimensionless): points on a
@@ -218,10 +219,83 @@ static double tetSize(const csfMesh* me, int e) {
 }
 
 
-/* Project x onto the nearest element of the cells around it: natural coordinates clamped to the
- * element (negative barycentric coordinates set to 0, renormalised), the projected point p.
- * Returns the element, or -1 if none lies within CSF_FIBRE_PROJECT_REL of its size; *dist gets
- * the distance to the nearest candidate (mm). */
+/* Closest point of tetrahedron e's straight-sided hull (its 4 corners) to x, as natural
+ * coordinates xi (3) and the point p: x itself when inside; else its orthogonal projection onto
+ * the plane of the face it lies beyond (then clamped into the face). The element's curvature is
+ * left out: the points handled here lie a fraction of an element off the surface. */
+static void closestInTet(const csfMesh* me, int e, const double x[3], double xi[3], double p[3]) {
+  const int* tv = me->tet + 10 * e;
+  const double* V[4] = {me->x + 3 * tv[0], me->x + 3 * tv[1], me->x + 3 * tv[2], me->x + 3 * tv[3]};
+  double y[3] = {x[0], x[1], x[2]};
+  for (int pass = 0; pass < 2; pass++) {
+    /* barycentric coordinates of y in the straight tetrahedron: solve [V1-V0 V2-V0 V3-V0] t = y - V0 */
+    double A[9], r[3], t[4];
+    for (int d = 0; d < 3; d++) {
+      for (int k = 0; k < 3; k++) {
+        A[3 * d + k] = V[k + 1][d] - V[0][d];
+      }
+      r[d] = y[d] - V[0][d];
+    }
+    double Ai[9];
+    const double det = csf_inv3(A, Ai);
+    if (det == 0) {
+      break;
+    }
+    for (int k = 0; k < 3; k++) {
+      t[k + 1] = Ai[3 * k] * r[0] + Ai[3 * k + 1] * r[1] + Ai[3 * k + 2] * r[2];
+    }
+    t[0] = 1.0 - t[1] - t[2] - t[3];
+    int v = 0;
+    for (int a = 1; a < 4; a++) {
+      v = t[a] < t[v] ? a : v;
+    }
+    if (t[v] >= 0 || pass == 1) {
+      /* inside, or already on the face plane: clamp the round-off and finish */
+      double sum = 0;
+      for (int a = 0; a < 4; a++) {
+        t[a] = fmax(t[a], 0.0);
+        sum += t[a];
+      }
+      for (int a = 0; a < 3; a++) {
+        xi[a] = t[a + 1] / sum;
+      }
+      break;
+    }
+    /* beyond the face opposite corner v: project onto that face's plane */
+    const double* F0 = V[(v + 1) % 4];
+    const double* F1 = V[(v + 2) % 4];
+    const double* F2 = V[(v + 3) % 4];
+    double a1[3], a2[3], nrm[3];
+    for (int d = 0; d < 3; d++) {
+      a1[d] = F1[d] - F0[d];
+      a2[d] = F2[d] - F0[d];
+    }
+    nrm[0] = a1[1] * a2[2] - a1[2] * a2[1];
+    nrm[1] = a1[2] * a2[0] - a1[0] * a2[2];
+    nrm[2] = a1[0] * a2[1] - a1[1] * a2[0];
+    const double nn = nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2];
+    if (!(nn > 0)) {
+      break;
+    }
+    const double h = ((y[0] - F0[0]) * nrm[0] + (y[1] - F0[1]) * nrm[1] + (y[2] - F0[2]) * nrm[2]) / nn;
+    for (int d = 0; d < 3; d++) {
+      y[d] -= h * nrm[d];
+    }
+  }
+  double N[10];
+  csf_tet10Shape(xi, N, NULL);
+  p[0] = p[1] = p[2] = 0;
+  for (int a = 0; a < 10; a++) {
+    for (int d = 0; d < 3; d++) {
+      p[d] += N[a] * me->x[3 * tv[a] + d];
+    }
+  }
+}
+
+
+/* Project x onto the nearest element of the grid cells around it (closestInTet). Returns the
+ * element, or -1 if none lies within CSF_FIBRE_PROJECT_REL of its size; *dist gets the distance
+ * to the nearest candidate (mm). */
 static int projectOntoBody(const csfMesh* me, const Grid* g, const double x[3], double xi[3],
                            double p[3], double* dist) {
   int c[3];
@@ -241,27 +315,8 @@ static int projectOntoBody(const csfMesh* me, const Grid* g, const double x[3], 
         const size_t cell = ((size_t)k * g->n[1] + j) * g->n[0] + i;
         for (int q = g->start[cell]; q < g->start[cell + 1]; q++) {
           const int e = g->item[q];
-          double t[4];
-          locateIn(me, e, x, t);
-          t[3] = 1.0 - t[0] - t[1] - t[2];
-          double sum = 0;
-          for (int a = 0; a < 4; a++) {
-            t[a] = fmax(t[a], 0.0);
-            sum += t[a];
-          }
-          if (!(sum > 0)) {
-            continue;
-          }
-          for (int a = 0; a < 3; a++) {
-            t[a] /= sum;
-          }
-          double N[10], y[3] = {0, 0, 0};
-          csf_tet10Shape(t, N, NULL);
-          for (int a = 0; a < 10; a++) {
-            for (int d = 0; d < 3; d++) {
-              y[d] += N[a] * me->x[3 * me->tet[10 * e + a] + d];
-            }
-          }
+          double t[3], y[3];
+          closestInTet(me, e, x, t, y);
           const double dd = sqrt((y[0] - x[0]) * (y[0] - x[0]) + (y[1] - x[1]) * (y[1] - x[1]) +
                                  (y[2] - x[2]) * (y[2] - x[2]));
           if (dd < *dist) {
