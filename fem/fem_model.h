@@ -119,6 +119,8 @@ typedef struct csfData_ {
   double* vratio; /* (ntet) element volume ratio v/V at the last assembly */
   double* gel;    /* (ntet x 30) g_e = int cof(F) : G dV at the last assembly, mm^2 */
   double* theta_save; /* (ntet) scratch: theta at Newton entry */
+  double* u_best, *theta_best, *fib_S_best; /* (ndof, ntet, nfib) scratch: the best Newton
+                                             * iterate so far (the line search's watchdog) */
   double* vr0;    /* (ntet) scratch: v/V at the current Newton iterate */
   double* g0;     /* (ntet x 30) scratch: g_e at the current Newton iterate */
   double* fib_S;  /* (nfib) fibre stress state S (strain units, x EA = force) of the tangent */
