@@ -16,6 +16,13 @@
 
 #define CSF_FIBRE_INSET 0.2 /* mm below the outer surface (fibre radius 0.089 mm) */
 #define CSF_PLANE_TOL 1e-6  /* mm: nodes on the clamped face */
+/* default fibre point spacing l_fibre = l_soft / 8 (0.5 mm at l_soft 4). Measured on the leg at
+ * l_soft 4, total bend at 0.1 MPa (fem/README.md "Fibre discretisation"): split fibres at
+ * l_fibre 1.5 / 0.75 / 0.5 / 0.3 mm give 49.94 / 50.23 / 50.43 / 50.55 deg (from below, towards
+ * ~50.7), the 20-node ties of the paper's pairing l_fibre = 0.4 l_soft - 0.1 = 1.5 mm gave
+ * 51.52 (0.75 mm: 51.05, from above): 0.5 mm is within ~0.5 % of the fibre-converged value at
+ * no extra fill (the split keeps each fibre element in one tetrahedron) */
+#define CSF_FIBRE_SIZE_REL 0.125
 
 
 csfActuatorSpec csf_actuatorSpecDefault(void) {
@@ -162,6 +169,21 @@ static csStatus tipWeights(csfActuatorFE* fe, csError* err) {
 }
 
 
+void csf_actuatorWalls(const csrActuator* act, double l_soft, csfWalls* w) {
+  const double a = act->a, b = act->b, r1 = act->r1, r2 = act->r2;
+  /* chamber centre (b, b) to the outer boundary: the straight side at a - b, or the fillet arc
+   * (centre (a - r2, a - r2), radius r2) when the chamber sits beyond the fillet's centre */
+  double d = a - b;
+  if (b > a - r2) {
+    d = fmin(d, r2 - sqrt(2.0) * (b - (a - r2)));
+  }
+  w->outer = d - r1;
+  w->between = 2.0 * (b - r1);
+  w->cap = act->c;
+  w->mesh = fmin(l_soft, 2.0 * CS_PI * r1 / CSF_CHAMBER_SEGMENTS);
+}
+
+
 csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
                               csfActuatorFE* fe, csError* err) {
   memset(fe, 0, sizeof *fe);
@@ -171,6 +193,22 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
   }
   if (!(sp->mesh_size > 0)) {
     return cs_errorSet(err, CS_ERR_ARG, "fem_actuator: mesh size must be > 0");
+  }
+  /* walls the mesh cannot resolve: refused before gmsh runs, naming the parameters */
+  csfWalls w;
+  csf_actuatorWalls(act, sp->mesh_size, &w);
+  const double tmin = CSF_WALL_MIN_REL * w.mesh;
+  if (w.outer < tmin) {
+    return cs_errorSet(err, CS_ERR_RANGE, "fem_actuator: the wall between a chamber and the "
+                       "outer surface is %.3g mm thick (a = %g, b = %g, r1 = %g, r2 = %g mm): "
+                       "below %g of the %.3g mm chamber-wall elements, the mesh cannot resolve it",
+                       w.outer, act->a, act->b, act->r1, act->r2, CSF_WALL_MIN_REL, w.mesh);
+  }
+  if (w.between < tmin) {
+    return cs_errorSet(err, CS_ERR_RANGE, "fem_actuator: the wall between adjacent chambers is "
+                       "%.3g mm thick (2 (b - r1), b = %g, r1 = %g mm): below %g of the %.3g mm "
+                       "chamber-wall elements, the mesh cannot resolve it",
+                       w.between, act->b, act->r1, CSF_WALL_MIN_REL, w.mesh);
   }
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
@@ -226,7 +264,7 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
     m->gravity[i] = sp->gravity[i];
   }
   if (sp->fibres) {
-    const double lf = sp->fibre_size > 0 ? sp->fibre_size : fmax(0.4 * sp->mesh_size - 0.1, 0.2);
+    const double lf = sp->fibre_size > 0 ? sp->fibre_size : CSF_FIBRE_SIZE_REL * sp->mesh_size;
     m->fib_split = sp->fibre_split;
     st = addFibres(act, m, lf, CSF_FIBRE_INSET, err);
     if (st != CS_OK) {

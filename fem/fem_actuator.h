@@ -24,7 +24,7 @@ typedef struct csfActuatorSpec_ {
   double ratio[CSR_NSEG][CSR_NCHAMBER]; /* pressure of chamber Omega_j of segment s per unit
                                          * load factor (MPa/MPa); 0 = vented */
   double mesh_size;    /* l_soft, mm */
-  double fibre_size;   /* l_fibre, mm (0: 0.4 l_soft - 0.1, the paper's Table 1 pairing) */
+  double fibre_size;   /* l_fibre, mm (0: l_soft / 8, fem_actuator.c) */
   int fibres;          /* 1 = embed the double-helix fibres (n turns per segment) */
   int fibre_compression; /* 1: linear in tension and compression; 0: smoothed tension-only */
   int fibre_geo_tension; /* 1: fibre geometric stiffness only in tension (modified tangent) */
@@ -50,6 +50,19 @@ typedef struct csfActuatorFE_ {
                         * when the chambers are balanced (elongation) */
   int ncham;           /* pressurised chambers */
 } csfActuatorFE;
+
+/* The thinnest walls of the section (mm): between a chamber and the outer surface (straight side
+ * or fillet corner), between two adjacent chambers, and the solid caps c at the chamber ends. */
+typedef struct csfWalls_ {
+  double outer, between, cap;
+  double mesh;   /* element size the mesher uses at the chamber walls, mm */
+} csfWalls;
+
+void csf_actuatorWalls(const csrActuator* act, double l_soft, csfWalls* w);
+
+/* Walls thinner than this fraction of the chamber-wall element size cannot be resolved by the
+ * mesh (fewer than 1/10 of an element across): refused at set-up with the parameters named. */
+#define CSF_WALL_MIN_REL 0.1
 
 /* Mesh the actuator and build its model (not finalised data: csf_dataCreate is the caller's).
  * Returns CS_OK or an error naming the cause (invalid parameters, gmsh failure, a chamber

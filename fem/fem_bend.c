@@ -141,6 +141,7 @@ static csStatus stageSetup(Run* r, csError* err) {
   }
   r->info.ntet = r->w.fe.mesh->ntet, r->info.nnode = r->w.fe.mesh->nnode;
   r->info.nfibre = m->nfib, r->info.ndof = m->ndof;
+  r->info.nfibre_projected = m->fib_projected;
   r->info.t_setup = csf_wallTime() - t0 - r->info.t_mesh;
   r->nopt = csf_newtonDefault();
   r->nopt.threads = o->threads;
@@ -212,25 +213,29 @@ static void runProbes(Run* r, csfBendRow* row) {
   row->nprobe = 3;
   for (int k = 0; k < 3; k++) {
     row->probe_ok[k] = 0;
-    double F[3] = {F0[0], F0[1], F0[2]};
     memset(row->probe_force[k], 0, sizeof row->probe_force[k]);
     if (!(r->o->probe_force[k] > 0)) {
       continue;
     }
-    row->probe_force[k][k] = r->o->probe_force[k];
-    F[k] += r->o->probe_force[k];
-    csf_actuatorSetTipForce(fe, F);
-    int it = 0;
-    csError lerr = {0};
-    if (csf_newtonSolve(m, d, row->p, &r->nopt, &it, &lerr) == CS_OK) {
-      double R[9];
-      row->probe_ok[k] =
-          csf_segmentMeasure(r->act, fe->gauges, m, d, row->probe_seg[k], row->probe_tip[k], R) ==
-          0;
+    /* the probe force, or a quarter of it when Newton fails from the row's state (the
+     * compliance is linear in these forces; the force actually used is recorded) */
+    for (int attempt = 0; attempt < 2 && !row->probe_ok[k]; attempt++) {
+      const double Fk = r->o->probe_force[k] * (attempt ? 0.25 : 1.0);
+      double F[3] = {F0[0], F0[1], F0[2]};
+      F[k] += Fk;
+      csf_actuatorSetTipForce(fe, F);
+      int it = 0;
+      csError lerr = {0};
+      if (csf_newtonSolve(m, d, row->p, &r->nopt, &it, &lerr) == CS_OK) {
+        double R[9];
+        row->probe_ok[k] = csf_segmentMeasure(r->act, fe->gauges, m, d, row->probe_seg[k],
+                                              row->probe_tip[k], R) == 0;
+        row->probe_force[k][k] = Fk;
+      }
+      r->info.n_newton += it;
+      r->info.n_probe_newton += it;
+      csf_stateSet(m, d, r->w.s_row);
     }
-    r->info.n_newton += it;
-    r->info.n_probe_newton += it;
-    csf_stateSet(m, d, r->w.s_row);
   }
   csf_actuatorSetTipForce(fe, F0);
 }

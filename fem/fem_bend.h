@@ -40,6 +40,7 @@ typedef void (*csfBendProgress)(void* user, const csfBendStep* step);
 /* Summary of a run (filled when csfBendOptions.info is not NULL). */
 typedef struct csfBendInfo_ {
   int ntet, nnode, nfibre, ndof;
+  int nfibre_projected; /* fibre points projected onto the faceted surface (csf_modelAddFibre) */
   int n_steps, n_cutbacks;
   int n_gravity_steps; /* converged steps of the gravity ramp before the pressure sweep */
   long n_newton;

@@ -89,7 +89,7 @@ csfCalSettings csf_calibrationDefault(void) {
   csfCalSettings s;
   memset(&s, 0, sizeof s);
   s.mesh_size = 4.0;
-  s.fibre_size = 0.0;
+  s.fibre_size = 0.5; /* l_soft / 8 at l_soft 4: within ~0.5 % of fibre convergence (fem_actuator.c) */
   s.fibre_split = 1;
   s.p_step = 0.025;
   /* tip probes: a few mm of deflection (E'I ~ 2.8e3 N mm^2, L = 166 mm: 5 mN gives 2.7 mm as a
@@ -251,13 +251,17 @@ static csStatus writeCase(csH5File* f, const csrActuator* act, const csfCalCase*
   size_t K = 0;
   for (size_t i = 0; i < M; i++) K += rec->row[i].nprobe > 0;
   if (K > 0) {
-    size_t k1[1] = {K}, kf[1] = {3}, k2[2] = {K, 3}, k3[3] = {K, 3, 3}, k4[4] = {K, 3, 3, 2},
+    size_t k1[1] = {K}, k2[2] = {K, 3}, k3[3] = {K, 3, 3}, k4[4] = {K, 3, 3, 2},
            kei[3] = {K, 3, 2};
     size_t q = 0;
     for (size_t i = 0; i < M; i++) if (rec->row[i].nprobe) buf[q++] = rec->row[i].p;
     WRITE("probe_pressure", 1, k1);
-    for (int k = 0; k < 3; k++) buf[k] = s->probe_force[k];
-    WRITE("probe_force", 1, kf);
+    q = 0; /* the force each probe used (a quarter of the asked one where Newton needed it) */
+    for (size_t i = 0; i < M; i++) {
+      if (!rec->row[i].nprobe) continue;
+      for (int k = 0; k < 3; k++) buf[q++] = rec->row[i].probe_force[k][k];
+    }
+    WRITE("probe_force", 2, k2);
     q = 0;
     for (size_t i = 0; i < M; i++) {
       const csfBendRow* r = rec->row + i;
@@ -362,6 +366,7 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
   o.spec.fibre_size = s->fibre_size;
   o.spec.fibre_split = s->fibre_split;
   o.spec.work_stem = s->work_stem;
+  o.vtu_path = s->vtu_path;
   const double p_max = caseMax(c, s);
   o.p_max = p_max;
   o.p_step = fmin(s->p_step, p_max);

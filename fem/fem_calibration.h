@@ -20,7 +20,8 @@
  *     bend [M,3,2] (rad, each segment's bend vector in its base-face frame, csrBendMap's
  *     convention), twist [M,3] (rad), stretch [M,3] (-), radial [M,3] (-), radial_max [M,3]
  *     (mm), tip [M,3] (mm, base frame), angle_total_deg [M];
- *   with stiffness probes: probe_pressure [K] (MPa), probe_force [3] (N along e1, e2, e3),
+ *   with stiffness probes: probe_pressure [K] (MPa), probe_force [K,3] (N along e1, e2, e3:
+ *     the force each probe used, 0 where it failed),
  *     probe_bend [K,3,3,2] (probe k, segment, component: the bend vector under the probe),
  *     probe_stretch [K,3,3], probe_tip [K,3,3] (mm), and the reduced stiffness EI [K,3,2]
  *     (N mm^2: bending stiffness of each segment from the e1 and e2 probes, about the axis of the
@@ -67,13 +68,14 @@ const csfCalCase* csf_calibrationCaseFind(const char* name);
 /* FE settings of a calibration run (shared by every case: the table records them). */
 typedef struct csfCalSettings_ {
   double mesh_size;    /* l_soft, mm (4: the paper's choice, within 2.3 % of l_soft 1.5) */
-  double fibre_size;   /* l_fibre, mm (0: the actuator spec's default pairing) */
+  double fibre_size;   /* l_fibre, mm (default 0.5; 0: the actuator spec's default l_soft / 8) */
   int fibre_split;     /* fibre elements split at element faces */
   double p_step;       /* MPa, output rows */
   double p_cap;        /* MPa: every case ends at min(its p_max, p_cap) (0 = no cap; small
                         * tables for tests) */
   double probe_force[3]; /* N per probe direction */
   const char* work_stem; /* scratch path prefix for gmsh files */
+  const char* vtu_path;  /* the deformed leg at the case's last state (ParaView), NULL = none */
   csfBendProgress progress; /* per converged step (NULL = none) */
   void* progress_user;
 } csfCalSettings;

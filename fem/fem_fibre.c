@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fem_material.h"
 #include "fem_model.h"
 
 /* tolerance on the smallest barycentric coordinate for "inside" (dimensionless): points on a
@@ -193,6 +194,149 @@ static int locate(const csfMesh* me, const Grid* g, const double x[3], double xi
 }
 
 
+/* Points within this fraction of the local element size outside the meshed body are projected
+ * onto it: the mesh's faceted surface lies inside the true one by the sagitta of its chords, h^2 /
+ * (8 r) on a fillet of radius r (0.15 mm for 1.6 mm chords on r2 = 2 mm), more where folded
+ * elements were straightened (csf_meshFixInverted), while the helices run CSF_FIBRE_INSET =
+ * 0.2 mm below the true surface: a point up to ~0.2 of an element outside belongs on the surface
+ * (issue 13: b = 3, r1 = 1.5 failed with a point 0.05 mm outside). Beyond it the fibre is truly
+ * outside and refused. */
+#define CSF_FIBRE_PROJECT_REL 0.2
+
+/* longest edge of tetrahedron e (its corner nodes), mm */
+static double tetSize(const csfMesh* me, int e) {
+  const int* tv = me->tet + 10 * e;
+  double hmax = 0;
+  for (int a = 0; a < 4; a++) {
+    for (int b = a + 1; b < 4; b++) {
+      const double* x = me->x + 3 * tv[a];
+      const double* y = me->x + 3 * tv[b];
+      hmax = fmax(hmax, sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+                             (x[2] - y[2]) * (x[2] - y[2])));
+    }
+  }
+  return hmax;
+}
+
+
+/* Closest point of tetrahedron e's straight-sided hull (its 4 corners) to x, as natural
+ * coordinates xi (3) and the point p: x itself when inside; else its orthogonal projection onto
+ * the plane of the face it lies beyond (then clamped into the face). The element's curvature is
+ * left out: the points handled here lie a fraction of an element off the surface. */
+static void closestInTet(const csfMesh* me, int e, const double x[3], double xi[3], double p[3]) {
+  const int* tv = me->tet + 10 * e;
+  const double* V[4] = {me->x + 3 * tv[0], me->x + 3 * tv[1], me->x + 3 * tv[2], me->x + 3 * tv[3]};
+  double y[3] = {x[0], x[1], x[2]};
+  for (int pass = 0; pass < 2; pass++) {
+    /* barycentric coordinates of y in the straight tetrahedron: solve [V1-V0 V2-V0 V3-V0] t = y - V0 */
+    double A[9], r[3], t[4];
+    for (int d = 0; d < 3; d++) {
+      for (int k = 0; k < 3; k++) {
+        A[3 * d + k] = V[k + 1][d] - V[0][d];
+      }
+      r[d] = y[d] - V[0][d];
+    }
+    double Ai[9];
+    const double det = csf_inv3(A, Ai);
+    if (det == 0) {
+      break;
+    }
+    for (int k = 0; k < 3; k++) {
+      t[k + 1] = Ai[3 * k] * r[0] + Ai[3 * k + 1] * r[1] + Ai[3 * k + 2] * r[2];
+    }
+    t[0] = 1.0 - t[1] - t[2] - t[3];
+    int v = 0;
+    for (int a = 1; a < 4; a++) {
+      v = t[a] < t[v] ? a : v;
+    }
+    if (t[v] >= 0 || pass == 1) {
+      /* inside, or already on the face plane: clamp the round-off and finish */
+      double sum = 0;
+      for (int a = 0; a < 4; a++) {
+        t[a] = fmax(t[a], 0.0);
+        sum += t[a];
+      }
+      for (int a = 0; a < 3; a++) {
+        xi[a] = t[a + 1] / sum;
+      }
+      break;
+    }
+    /* beyond the face opposite corner v: project onto that face's plane */
+    const double* F0 = V[(v + 1) % 4];
+    const double* F1 = V[(v + 2) % 4];
+    const double* F2 = V[(v + 3) % 4];
+    double a1[3], a2[3], nrm[3];
+    for (int d = 0; d < 3; d++) {
+      a1[d] = F1[d] - F0[d];
+      a2[d] = F2[d] - F0[d];
+    }
+    nrm[0] = a1[1] * a2[2] - a1[2] * a2[1];
+    nrm[1] = a1[2] * a2[0] - a1[0] * a2[2];
+    nrm[2] = a1[0] * a2[1] - a1[1] * a2[0];
+    const double nn = nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2];
+    if (!(nn > 0)) {
+      break;
+    }
+    const double h = ((y[0] - F0[0]) * nrm[0] + (y[1] - F0[1]) * nrm[1] + (y[2] - F0[2]) * nrm[2]) / nn;
+    for (int d = 0; d < 3; d++) {
+      y[d] -= h * nrm[d];
+    }
+  }
+  double N[10];
+  csf_tet10Shape(xi, N, NULL);
+  p[0] = p[1] = p[2] = 0;
+  for (int a = 0; a < 10; a++) {
+    for (int d = 0; d < 3; d++) {
+      p[d] += N[a] * me->x[3 * tv[a] + d];
+    }
+  }
+}
+
+
+/* Project x onto the nearest element of the grid cells around it (closestInTet). Returns the
+ * element, or -1 if none lies within CSF_FIBRE_PROJECT_REL of its size; *dist gets the distance
+ * to the nearest candidate (mm). */
+static int projectOntoBody(const csfMesh* me, const Grid* g, const double x[3], double xi[3],
+                           double p[3], double* dist) {
+  int c[3];
+  *dist = INFINITY;
+  for (int d = 0; d < 3; d++) {
+    c[d] = (int)floor((x[d] - g->lo[d]) / g->h);
+  }
+  int best = -1;
+  double bxi[3] = {0, 0, 0}, bp[3] = {0, 0, 0}, bsize = 0;
+  for (int dk = -1; dk <= 1; dk++) {
+    for (int dj = -1; dj <= 1; dj++) {
+      for (int di = -1; di <= 1; di++) {
+        const int i = c[0] + di, j = c[1] + dj, k = c[2] + dk;
+        if (i < 0 || j < 0 || k < 0 || i >= g->n[0] || j >= g->n[1] || k >= g->n[2]) {
+          continue;
+        }
+        const size_t cell = ((size_t)k * g->n[1] + j) * g->n[0] + i;
+        for (int q = g->start[cell]; q < g->start[cell + 1]; q++) {
+          const int e = g->item[q];
+          double t[3], y[3];
+          closestInTet(me, e, x, t, y);
+          const double dd = sqrt((y[0] - x[0]) * (y[0] - x[0]) + (y[1] - x[1]) * (y[1] - x[1]) +
+                                 (y[2] - x[2]) * (y[2] - x[2]));
+          if (dd < *dist) {
+            *dist = dd, best = e, bsize = tetSize(me, e);
+            memcpy(bxi, t, sizeof bxi);
+            memcpy(bp, y, sizeof bp);
+          }
+        }
+      }
+    }
+  }
+  if (best < 0 || *dist > CSF_FIBRE_PROJECT_REL * bsize) {
+    return -1;
+  }
+  memcpy(xi, bxi, sizeof bxi);
+  memcpy(p, bp, sizeof bp);
+  return best;
+}
+
+
 /* host of x, tetrahedron `prefer` when x lies in it (points on a shared face belong to both:
  * staying in the current host keeps the split points on its boundary); -1 outside the body */
 static int locateInOrNear(const csfMesh* me, const Grid* g, int prefer, const double x[3],
@@ -344,37 +488,40 @@ csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, d
     free(host), free(N), gridFree(&g);
     return cs_errorSet(err, CS_ERR_MEMORY, "fem_fibre: out of memory (%d points)", npts);
   }
+  double* at = malloc((size_t)npts * 3 * sizeof(double)); /* the points, projected if need be */
+  if (!at) {
+    free(host), free(N), gridFree(&g);
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_fibre: out of memory (%d points)", npts);
+  }
+  memcpy(at, pts, (size_t)npts * 3 * sizeof(double));
   for (int p = 0; p < npts; p++) {
     double xi[3];
-    host[p] = locate(me, &g, pts + 3 * p, xi);
+    host[p] = locate(me, &g, at + 3 * p, xi);
     if (host[p] < 0) {
-      free(host), free(N), gridFree(&g);
-      return cs_errorSet(err, CS_ERR_RANGE,
-                         "fem_fibre: fibre point %d (%g, %g, %g) mm lies outside the body", p,
-                         pts[3 * p], pts[3 * p + 1], pts[3 * p + 2]);
+      double proj[3], dist;
+      host[p] = projectOntoBody(me, &g, at + 3 * p, xi, proj, &dist);
+      if (host[p] < 0) {
+        free(host), free(N), free(at), gridFree(&g);
+        return cs_errorSet(err, CS_ERR_RANGE,
+                           "fem_fibre: fibre point %d (%g, %g, %g) mm lies %.3g mm outside the "
+                           "meshed body (more than %g of the nearest element's size)", p,
+                           pts[3 * p], pts[3 * p + 1], pts[3 * p + 2], dist,
+                           CSF_FIBRE_PROJECT_REL);
+      }
+      memcpy(at + 3 * p, proj, sizeof proj);
+      m->fib_projected++;
     }
     csf_tet10Shape(xi, N + 10 * p, NULL);
   }
   const double area = CS_PI * radius * radius;
   int nf_done = m->nfib;
   for (int s = 0; s + 1 < npts; s++) {
-    if (splitSegment(m, &g, pts + 3 * s, host[s], pts + 3 * (s + 1), host[s + 1], E * area,
+    if (splitSegment(m, &g, at + 3 * s, host[s], at + 3 * (s + 1), host[s + 1], E * area,
                      m->fib_split, &nf_done, nf) < 0) {
-      free(host), free(N), gridFree(&g);
+      free(host), free(N), free(at), gridFree(&g);
       return cs_errorSet(err, CS_ERR_MEMORY, "fem_fibre: fibre segment %d crosses too many "
                          "elements", s);
     }
-  }
-  if (getenv("CSF_FIBDBG")) {
-    int tiny = 0, two = 0;
-    double lmin = 1e30, lmax = 0;
-    for (int f = m->nfib; f < nf_done; f++) {
-      lmin = fmin(lmin, m->fib_L0[f]);
-      lmax = fmax(lmax, m->fib_L0[f]);
-      tiny += m->fib_L0[f] < 1e-3;
-      two += m->fib_node[20 * f] != m->fib_node[20 * f + 10];
-    }
-    fprintf(stderr, "fibre: %d points -> %d elements, L0 %.3g..%.3g, %d below 1e-3 mm, %d two-host\n", npts, nf_done - m->nfib, lmin, lmax, tiny, two);
   }
   m->nfib = nf_done;
   /* give back the split capacity that was not used */
@@ -387,6 +534,6 @@ csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, d
   m->fib_coef = fc2 ? fc2 : m->fib_coef;
   m->fib_L0 = fl2 ? fl2 : m->fib_L0;
   m->fib_EA = fe2 ? fe2 : m->fib_EA;
-  free(host), free(N), gridFree(&g);
+  free(host), free(N), free(at), gridFree(&g);
   return CS_OK;
 }

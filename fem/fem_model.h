@@ -45,6 +45,8 @@ typedef struct csfModel_ {
   double* fib_L0;      /* (nfib) reference length, mm */
   double* fib_EA;      /* (nfib) axial stiffness E A, N */
   int fib_tension_only; /* 1 (default): smoothed tension-only law; 0: linear both ways */
+  int fib_projected;    /* fibre points that lay just outside the faceted mesh surface and were
+                         * projected onto it (csf_modelAddFibre) */
   int fib_split;        /* 1 (default): a fibre segment whose chord crosses element faces is
                          * split there (csf_modelAddFibre), so every fibre element lies in one
                          * tetrahedron and adds no fill to the factorisation; 0: one element per
@@ -80,9 +82,11 @@ void csf_modelDestroy(csfModel* m);
 int csf_modelAddPressure(csfModel* m, int tag, double p_unit);
 
 /* Add fibres along polylines given in reference coordinates (fem_fibre.c). `pts` (npts x 3, mm)
- * is one polyline; each segment becomes a truss element tied to the tetrahedra containing its
- * end points (located with a tolerance; a point outside the body is an error). E (MPa), radius
- * (mm). Must be called before csf_modelFinalize. */
+ * is one polyline; each segment becomes truss elements tied to the tetrahedra containing its
+ * end points (split at element faces with fib_split). A point just outside the faceted mesh
+ * surface (within 0.2 of the nearest element's size) is projected onto it (counted in
+ * fib_projected); a point farther out is an error naming it and its distance. E (MPa),
+ * radius (mm). Must be called before csf_modelFinalize. */
 csStatus csf_modelAddFibre(csfModel* m, int npts, const double* pts, double E, double radius,
                            csError* err);
 
@@ -115,6 +119,8 @@ typedef struct csfData_ {
   double* vratio; /* (ntet) element volume ratio v/V at the last assembly */
   double* gel;    /* (ntet x 30) g_e = int cof(F) : G dV at the last assembly, mm^2 */
   double* theta_save; /* (ntet) scratch: theta at Newton entry */
+  double* u_best, *theta_best, *fib_S_best; /* (ndof, ntet, nfib) scratch: the best Newton
+                                             * iterate so far (the line search's watchdog) */
   double* vr0;    /* (ntet) scratch: v/V at the current Newton iterate */
   double* g0;     /* (ntet x 30) scratch: g_e at the current Newton iterate */
   double* fib_S;  /* (nfib) fibre stress state S (strain units, x EA = force) of the tangent */

@@ -545,8 +545,34 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
 
 
 #ifdef CS_HAVE_FEM
+/* the FE sweep's report lines: one per converged step, and a heartbeat at least every
+ * kHeartbeatS seconds while Newton works inside a step (cut-backs, continuation), so that a long
+ * step never leaves the user without a line for more than a minute */
+typedef struct {
+  double t_last; /* wall time of the last line printed, s */
+  long iters;    /* Newton iterations since then */
+} FeReport;
+
+static const double kHeartbeatS = 50.0;
+
+static void feHeartbeat(void* user, const csfNewtonIter* it) {
+  FeReport* rep = user;
+  rep->iters++;
+  const double now = csu_wallSeconds();
+  if (now - rep->t_last >= kHeartbeatS) {
+    fprintf(stderr, "  fe: working at load %.5f MPa: Newton iteration %d, |R| %.3g N (of %.3g), "
+            "%ld iterations in the last %.0f s\n", it->load, it->iter, it->rnorm, it->fnorm,
+            rep->iters, now - rep->t_last);
+    rep->t_last = now;
+    rep->iters = 0;
+  }
+}
+
+
 static void feProgress(void* user, const csfBendStep* st) {
-  (void)user;
+  FeReport* rep = user;
+  rep->t_last = csu_wallSeconds();
+  rep->iters = 0;
   if (st->volume_control) {
     fprintf(stderr, "  fe: volume control past a limit point: V %.1f mm^3, p = %.5f MPa (dp "
             "%+.5f), %d Newton iterations, %.2f s, total %.2f deg\n", st->volume, st->p, st->dp,
@@ -589,7 +615,10 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   o.spec.work_stem = stem;
   o.vtu_path = vtu;
   o.inp_path = inp;
+  FeReport report = {csu_wallSeconds(), 0};
   o.progress = feProgress;
+  o.progress_user = &report;
+  o.newton_monitor = feHeartbeat;
   csfBendInfo info;
   o.info = &info;
   st = csf_bend(&run->act, &o, bc, err);

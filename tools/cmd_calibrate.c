@@ -5,7 +5,8 @@
  *                      [--actuator leg|baseline|fig1] [--set NAME=VALUE]... [--mesh-size MM]
  *                      [--fibre-size MM] [--p-step MPA]
  *
- * Every case (all of them, or the --case ones) is an FE pressure sweep written to DIR/NAME.h5;
+ * Every case (all of them, or the --case ones) is an FE pressure sweep written to DIR/NAME.h5
+ * (and its deformed leg at the last state to DIR/NAME.vtu for ParaView);
  * a case whose file is already finished for the same actuator and FE settings is skipped, so a
  * calibration stopped after some cases continues where it stopped. A case file is written under
  * a temporary name and renamed when complete, so a killed run never leaves a file that looks
@@ -178,8 +179,6 @@ int csx_cmdCalibrate(int argc, char** argv) {
   }
   /* run what is not done yet */
   char stem[600];
-  snprintf(stem, sizeof stem, "%s/mesh", dir);
-  cs.work_stem = stem;
   const double t_all = csu_wallSeconds();
   int ran = 0, skipped = 0;
   for (int k = 0; k < ncase && !merge_only; k++) {
@@ -199,6 +198,12 @@ int csx_cmdCalibrate(int argc, char** argv) {
     }
     fprintf(stderr, "crawlsim calibrate: case %s (%s): 0..%g MPa\n", cases[k].name,
             cases[k].about, cases[k].p_max);
+    snprintf(stem, sizeof stem, "%s/%s.mesh", dir, cases[k].name); /* per case: runs of
+                                                                    * other cases may share dir */
+    cs.work_stem = stem;
+    char vtu[620];
+    snprintf(vtu, sizeof vtu, "%s/%s.vtu", dir, cases[k].name); /* the deformed leg (ParaView) */
+    cs.vtu_path = vtu;
     cs.progress = progress;
     cs.progress_user = (void*)cases[k].name;
     const double t0 = csu_wallSeconds();

@@ -100,8 +100,9 @@ int main(int argc, char** argv) {
   if (st != CS_OK) {
     fprintf(stderr, "csf_bend: %s\n", err.msg);
   }
-  printf("mesh: %d Tet10, %d nodes, %d dofs, %d fibre elements; l_soft %.2f mm\n", info.ntet,
-         info.nnode, info.ndof, info.nfibre, o.spec.mesh_size);
+  printf("mesh: %d Tet10, %d nodes, %d dofs, %d fibre elements (%d fibre points projected onto "
+         "the meshed surface); l_soft %.2f mm\n", info.ntet, info.nnode, info.ndof, info.nfibre,
+         info.nfibre_projected, o.spec.mesh_size);
   printf("time: total %.2f s = mesh %.2f + setup %.2f + assembly %.2f + factorisation %.2f + "
          "solves %.2f (+ rest); %d steps, %ld Newton iterations, %d cutbacks; factor nnz %.3g\n",
          info.t_total, info.t_mesh, info.t_setup, info.t_assemble, info.t_factor, info.t_solve,

@@ -123,9 +123,53 @@ static void test_fibre_strain_patch(void) {
 }
 
 
+/* a fibre on the faceted boundary: a straight fibre along the block's face x = 15 displaced
+ * outwards by 0.05 mm (a fraction of the 5 mm elements, like a helix point that the coarse mesh's
+ * chords leave outside the faceted fillet) embeds on the surface; the same fibre 3 mm outside is
+ * refused with its distance */
+static void test_fibre_on_the_faceted_boundary_embeds(void) {
+  csError err = {0};
+  int n[3] = {3, 3, 8};
+  double sc[3] = {15, 15, 50};
+  for (int far = 0; far <= 1; far++) {
+    csfMesh* me = csf_meshCreateBox(n, ftScaleMap, sc, 0.0, &err);
+    csfMaterial mat = csf_materialDefault(0.11, 0.02, 1130e-12);
+    csfModel* m = csf_modelCreate(me, &mat, &err);
+    const double off = far ? 3.0 : 0.05;
+    double p[3 * 11];
+    for (int k = 0; k < 11; k++) {
+      p[3 * k] = 15.0 + off, p[3 * k + 1] = 7.3, p[3 * k + 2] = 2.0 + 4.6 * k;
+    }
+    cs_errorClear(&err);
+    const csStatus st = csf_modelAddFibre(m, 11, p, 31067, 0.0889, &err);
+    if (!far) {
+      CS_EXPECT(st == CS_OK);
+      CS_EXPECT(m->fib_projected == 11);
+      /* projected onto the face: the fibre's length is the polyline's (a translation), less the
+       * pieces below CSF_FIBRE_MIN_PIECE = 1e-5 mm dropped where the chord clips element corners
+       * on the face (measured: 6e-6 mm in all) */
+      double L = 0;
+      for (int f = 0; f < m->nfib; f++) {
+        L += m->fib_L0[f];
+      }
+      CS_EXPECT_NEAR(L, 46.0, 1e-4, 0);
+      printf("  0.05 mm outside: %d points projected, %d elements, length %.12f mm\n",
+             m->fib_projected, m->nfib, L);
+    } else {
+      CS_EXPECT(st == CS_ERR_RANGE);
+      CS_EXPECT(strstr(err.msg, "lies 3 mm outside the meshed body") != NULL);
+      printf("  3 mm outside: %s\n", err.msg);
+    }
+    csf_modelDestroy(m);
+    csf_meshDestroy(me);
+  }
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_split_elements_lie_in_one_host);
   CS_RUN(test_fibre_strain_patch);
+  CS_RUN(test_fibre_on_the_faceted_boundary_embeds);
   return cs_testSummary();
 }
