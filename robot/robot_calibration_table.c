@@ -284,17 +284,20 @@ static csStatus readProbes(hid_t f, const char* path, csrCalCase* c, csError* er
   }
   const hsize_t K = dims[0];
   c->k = (int)K;
-  const hsize_t dk[1] = {K}, d3[1] = {3}, dei[3] = {K, 3, 2}, dea[2] = {K, 3};
-  double* force = NULL;
+  const hsize_t dk[1] = {K}, dei[3] = {K, 3, 2}, dea[2] = {K, 3};
   csStatus st = readDataset(f, path, c->name, "probe_pressure", 1, dk, "K", &c->probe_pressure,
                             err);
-  if (st == CS_OK) st = readDataset(f, path, c->name, "probe_force", 1, d3, "3", &force, err);
+  if (st == CS_OK) st = readDataset(f, path, c->name, "probe_force", 2, dea, "K", &c->probe_force,
+                                    err);
   if (st == CS_OK) st = readDataset(f, path, c->name, "EI", 3, dei, "K", &c->EI, err);
   if (st == CS_OK) st = readDataset(f, path, c->name, "EA", 2, dea, "K", &c->EA, err);
-  if (st == CS_OK) {
-    memcpy(c->probe_force, force, sizeof c->probe_force);
+  /* a probe force is >= 0 (0: that probe was not asked for) and of a plausible size */
+  for (hsize_t q = 0; q < 3 * K && st == CS_OK; q++) {
+    if (!(c->probe_force[q] >= 0 && c->probe_force[q] <= MAX_STIFFNESS)) {
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s: case %s: probe_force row %d is %g N (must be in "
+                       "0..1e12)", path, c->name, (int)(q / 3) + 1, c->probe_force[q]);
+    }
   }
-  free(force);
   /* the raw probe datasets must be there with the same K (the reduced EI, EA come from them) */
   const hsize_t dpb[4] = {K, 3, 3, 2}, dps[3] = {K, 3, 3};
   const char* raw[3] = {"probe_bend", "probe_stretch", "probe_tip"};
@@ -577,7 +580,8 @@ void csr_calTableFree(csrCalTable* t) {
   for (int i = 0; i < t->ncase; i++) {
     csrCalCase* c = t->cases + i;
     double* arrays[] = {c->pressure, c->bend, c->twist,          c->stretch, c->radial,
-                        c->radial_max, c->tip, c->angle_total, c->probe_pressure, c->EI, c->EA};
+                        c->radial_max, c->tip, c->angle_total, c->probe_pressure, c->probe_force,
+                        c->EI, c->EA};
     for (size_t q = 0; q < sizeof arrays / sizeof arrays[0]; q++) {
       free(arrays[q]);
     }

@@ -16,7 +16,8 @@
  *     none); datasets pressure [M] (MPa, 0 first, increasing), bend [M,3,2] (rad), twist [M,3]
  *     (rad), stretch [M,3] (-), radial [M,3] (-), radial_max [M,3] (mm), tip [M,3] (mm, base
  *     frame), angle_total_deg [M]; optionally the stiffness probes probe_pressure [K] (MPa),
- *     probe_force [3] (N), probe_bend [K,3,3,2], probe_stretch [K,3,3], probe_tip [K,3,3], EI
+ *     probe_force [K,3] (N: the force each probe used along e1, e2, e3, a quarter of the
+ *     asked one where the FE's Newton needed it), probe_bend [K,3,3,2], probe_stretch [K,3,3], probe_tip [K,3,3], EI
  *     [K,3,2] (N mm^2) and EA [K,3] (N).
  *
  * Checks (each failure is one line "<file>: <cause>", status CS_ERR_PARSE for a malformed file,
@@ -78,7 +79,7 @@ typedef struct csrCalCase_ {
   double* angle_total; /* (m) deg */
   int k;             /* stiffness probe rows (0: none) */
   double* probe_pressure; /* (k) MPa */
-  double probe_force[3];  /* N along e1, e2, e3 */
+  double* probe_force;    /* (k x 3) N along e1, e2, e3, per probe row */
   double* EI;        /* (k x 3 x 2) N mm^2: each segment from the e1 and e2 probes; NAN = failed */
   double* EA;        /* (k x 3) N; NAN = failed probe */
 } csrCalCase;

@@ -335,10 +335,11 @@ static void addCase(Tree* t, const CaseSpec* cs) {
   const int K = TPL_PROBES;
   double pp[TPL_PROBES], ei[TPL_PROBES * 6], ea[TPL_PROBES * 3], pb[TPL_PROBES * 18],
       ps[TPL_PROBES * 9], pt[TPL_PROBES * 9];
-  const double force[3] = {0.005, 0.005, 0.05};
+  double force[TPL_PROBES * 3];
   const double rbar = 0.25 * (cs->ratio[0] + cs->ratio[1] + cs->ratio[2] + cs->ratio[3]);
   for (int k = 0; k < K; k++) {
     pp[k] = k * TPL_DP;
+    force[3 * k] = force[3 * k + 1] = 0.005, force[3 * k + 2] = 0.05;
     for (int s = 0; s < 3; s++) {
       ei[6 * k + 2 * s] = ei[6 * k + 2 * s + 1] = 2800 * (1 + rbar * pp[k]);
       ea[3 * k + s] = 30 * (1 + rbar * pp[k]);
@@ -346,7 +347,7 @@ static void addCase(Tree* t, const CaseSpec* cs) {
     for (int q = 0; q < 18; q++) pb[18 * k + q] = 1e-3 * (q % 5);
     for (int q = 0; q < 9; q++) ps[9 * k + q] = 1 + 1e-4 * q, pt[9 * k + q] = 0.1 * q;
   }
-  const hsize_t k1[1] = {(hsize_t)K}, k3[1] = {3}, k2[2] = {(hsize_t)K, 3},
+  const hsize_t k1[1] = {(hsize_t)K}, k2[2] = {(hsize_t)K, 3},
                 kk3[3] = {(hsize_t)K, 3, 3}, kk4[4] = {(hsize_t)K, 3, 3, 2},
                 kei[3] = {(hsize_t)K, 3, 2};
   const struct {
@@ -354,7 +355,7 @@ static void addCase(Tree* t, const CaseSpec* cs) {
     int rank;
     const hsize_t* dims;
     const double* v;
-  } pr[] = {{"probe_pressure", 1, k1, pp}, {"probe_force", 1, k3, force},
+  } pr[] = {{"probe_pressure", 1, k1, pp}, {"probe_force", 2, k2, force},
             {"probe_bend", 4, kk4, pb},    {"probe_stretch", 3, kk3, ps},
             {"probe_tip", 3, kk3, pt},     {"EI", 3, kei, ei},
             {"EA", 2, k2, ea}};

@@ -138,11 +138,12 @@ static inline void synthCase(csH5File* h, const csrActuator* act, const SynthSpe
   if (sc->probes && sp->stiff) {
     int K = 0;
     for (int k = 0; k < 4; k++) K += kSynthProbeP[k] <= pmax + 1e-12;
-    double pp[4], ei[24], ea[12], f3[3] = {0.005, 0.005, 0.05};
+    double pp[4], ei[24], ea[12], f3[12];
     double* pb = calloc((size_t)K * 18, sizeof(double));
     double* ps = calloc((size_t)K * 9, sizeof(double));
     for (int k = 0; k < K; k++) {
       pp[k] = kSynthProbeP[k];
+      f3[3 * k] = f3[3 * k + 1] = 0.005, f3[3 * k + 2] = 0.05; /* the FE's default probes */
       const double rbar = 0.25 * (sc->ratio[0] + sc->ratio[1] + sc->ratio[2] + sc->ratio[3]);
       for (int s = 0; s < 3; s++) {
         double EI, EA;
@@ -150,10 +151,10 @@ static inline void synthCase(csH5File* h, const csrActuator* act, const SynthSpe
         ei[6 * k + 2 * s] = ei[6 * k + 2 * s + 1] = EI, ea[3 * k + s] = EA;
       }
     }
-    size_t k1[1] = {(size_t)K}, k3[1] = {3}, k2[2] = {(size_t)K, 3}, kk3[3] = {(size_t)K, 3, 3},
+    size_t k1[1] = {(size_t)K}, k2[2] = {(size_t)K, 3}, kk3[3] = {(size_t)K, 3, 3},
            kk4[4] = {(size_t)K, 3, 3, 2}, kei[3] = {(size_t)K, 3, 2};
     SYNTH_W("probe_pressure", 1, k1, pp);
-    SYNTH_W("probe_force", 1, k3, f3);
+    SYNTH_W("probe_force", 2, k2, f3);
     SYNTH_W("probe_bend", 4, kk4, pb);
     SYNTH_W("probe_stretch", 3, kk3, ps);
     SYNTH_W("probe_tip", 3, kk3, ps);
@@ -191,7 +192,7 @@ static inline void synthWriteCases(const char* path, const csrActuator* act, con
   csr_actuatorVisit(act, synthParam, &w);
   CS_EXPECT(cs_h5AttrString(h, "/", "actuator", act->name, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_mesh_size_mm", 4.0, &err) == CS_OK);
-  CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_fibre_size_mm", 0.0, &err) == CS_OK);
+  CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_fibre_size_mm", 0.5, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_fibre_split", 1.0, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_p_step_MPa", sp->dp, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_p_cap_MPa", sp->p_cap, &err) == CS_OK);
