@@ -33,6 +33,14 @@
 #include "fem_path.h"
 
 #define CSF_BEND_DP_MIN_REL 1e-3 /* smallest step, relative to p_step, before "limit point" */
+/* a hard stretch of the pressure path: CSF_BEND_HARD_STEPS accepted steps in a row that each
+ * needed cut-backs, with the step down to CSF_BEND_HARD_DP_REL p_step, is handed to the
+ * volume-controlled path (which resumes pressure control where the path is easy again). Measured
+ * on the leg, Omega1&Omega2 at 0.19 MPa (135 deg): Newton stagnates at |R| ~ 0.05 N of 36 N for
+ * steps above ~1e-3 MPa while steps of 2-6e-4 MPa converge in 2-3 iterations, so halving down
+ * to CSF_BEND_DP_MIN_REL crept 1e-4 MPa per 3-6 minutes (40-iteration failed attempts). */
+#define CSF_BEND_HARD_STEPS 2
+#define CSF_BEND_HARD_DP_REL 0.25
 /* a step that would end within this fraction of itself below an output pressure is stretched to
  * it (measured: a 0.0002 MPa sliver step after a 0.0166 step cost 3 Newton iterations, 22 s) */
 #define CSF_BEND_SNAP 0.25
@@ -49,6 +57,7 @@ csfBendOptions csf_bendDefault(void) {
   o.angle_tol = 0.1;
   o.continuation = 1;
   o.krylov = 0;
+  o.symmetric = -1;
   return o;
 }
 
@@ -107,6 +116,7 @@ typedef struct {
   int k_out;                    /* next output row index: pressure k_out p_step */
   int have_prev;                /* s_prev is a converged state below s_conv */
   int have_pp;                  /* s_pp is a converged state below s_prev (same branch) */
+  int n_hard;                   /* accepted steps in a row that needed cut-backs */
   double t_start;
 } Run;
 
@@ -128,6 +138,7 @@ static csStatus stageSetup(Run* r, csError* err) {
       F[2] == 0) {
     return cs_errorSet(err, CS_ERR_ARG, "fem_bend: no chamber is pressurised and no load given");
   }
+  r->w.fe.model->solver.symmetric = o->symmetric;
   const csfModel* m = r->w.fe.model;
   r->w.data = csf_dataCreate(m, err);
   r->ns = csf_stateSize(m);
@@ -281,6 +292,12 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
   const double dp_min = CSF_BEND_DP_MIN_REL * o->p_step;
   csError lerr = {0};
   *cut = 0;
+  if (r->n_hard >= CSF_BEND_HARD_STEPS && r->dp < CSF_BEND_HARD_DP_REL * o->p_step) {
+    r->n_hard = 0;
+    return 0; /* a hard stretch of the path: follow it by volume (CSF_BEND_HARD_STEPS) */
+  }
+  int plain = 0; /* 1: this attempt starts from s_conv (the first Newton step is the tangent
+                  * predictor) */
   for (;;) {
     const double next_out = fmin(r->k_out * o->p_step, o->p_max);
     double target = fmin(r->p + r->dp, next_out);
@@ -288,8 +305,13 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
       target = next_out; /* no sliver step just before an output pressure */
     }
     /* predictor on the whole state (u, element dilatations, fibre stresses): quadratic
-     * (Lagrange) through the last three converged states, or secant through two */
-    if (r->have_pp && r->p > r->p_prev && r->p_prev > r->p_pp) {
+     * (Lagrange) through the last three converged states, or secant through two; after a
+     * failed extrapolated attempt the same step is tried once from s_conv, whose first Newton
+     * step is the tangent predictor: near a bifurcation of the symmetric path a soft mode grows
+     * fast with p, which the tangent sees and an extrapolation of past states does not */
+    if (plain) {
+      csf_stateSet(m, d, r->w.s_conv);
+    } else if (r->have_pp && r->p > r->p_prev && r->p_prev > r->p_pp) {
       const double x0 = r->p_pp, x1 = r->p_prev, x2 = r->p, x = target;
       const double l0 = (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2));
       const double l1 = (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2));
@@ -314,6 +336,12 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
     r->info.n_newton += *iters;
     (*cut)++;
     r->info.n_cutbacks++;
+    if (!plain && r->have_prev && r->p > r->p_prev) {
+      plain = 1; /* the same step once more from s_conv */
+      r->dp = target - r->p;
+      continue;
+    }
+    plain = 0;
     r->dp = 0.5 * (target - r->p);
     if (r->dp < dp_min) {
       return 0;
@@ -381,6 +409,9 @@ static int stageLimit(Run* r, csStatus* st, csError* err) {
   csf_bendMeasure(r->act, r->w.fe.gauges, m, d, r->w.fe.axis, r->ang_conv, lw.ang_limit,
                   &lw.a_limit, lw.tip_limit);
   csfLimitOptions lopt = csf_limitDefault();
+  /* the sweep ends after four halvings of a failing volume step (each failure is a stagnated
+   * Newton solve, 13-20 iterations on the leg: a 1e-4 collapse took 13 halvings) */
+  lopt.min_dv_rel = 1.0 / 16.0;
   lopt.callback = limitWatch;
   lopt.user = &lw;
   csfLimitResult lr;
@@ -615,8 +646,11 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
       st = stageRow(&r, r.p, ang, tot, tip, err);
       r.k_out++;
     }
-    /* step control */
-    if (iters <= 5) {
+    /* step control: no growth right after a step that needed cut-backs */
+    r.n_hard = cut > 0 ? r.n_hard + 1 : 0;
+    if (cut > 0) {
+      /* keep dp */
+    } else if (iters <= 5) {
       r.dp = fmin(1.5 * r.dp, o->p_step);
     } else if (iters > 10) {
       r.dp *= 0.7;

@@ -102,6 +102,8 @@ typedef struct csfBendOptions_ {
   int threads;           /* OpenMP threads for assembly (0 = default) */
   int krylov;            /* 1: Newton reuses the last factorisation as a GMRES preconditioner
                           * (csfNewtonOptions.krylov); 0 (default): factor every iteration */
+  int symmetric;         /* -1 (default): LDL^T exactly where the tangent is symmetric; 0: LU;
+                          * 1: LDL^T (csfModel.solver.symmetric) */
   /* stiffness probes: at output rows whose pressure is within 1e-9 p_step of one of
    * probe_p[0..nprobe_p), three extra equilibria with a tip force probe_force[k] e_k added
    * (k = 0, 1, 2: e1, e2, e3 of the base frame), each from the row's converged state */

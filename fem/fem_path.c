@@ -23,6 +23,7 @@ csfLimitOptions csf_limitDefault(void) {
   memset(&o, 0, sizeof o);
   o.max_steps = 200;
   o.max_vol_ratio = 20.0;
+  o.min_dv_rel = 1e-4;
   return o;
 }
 
@@ -62,7 +63,7 @@ csStatus csf_passLimit(const csfModel* m, csfData* d, double* s_prev, double* s_
     res->n_newton += it;
     if (st != CS_OK) {
       dV *= 0.5;
-      if (dV < 1e-4 * dV0) {
+      if (dV < opt->min_dv_rel * dV0) {
         csf_stateSet(m, d, s_conv);
         return cs_errorSet(err, CS_ERR_DIVERGED, "fem: volume step collapsed at %.6g MPa past "
                            "the limit %.6g MPa: %.200s", p_last, res->p_limit, lerr.msg);

@@ -32,6 +32,7 @@ typedef int (*csfPathCallback)(void* user, const csfModel* m, const csfData* d,
 typedef struct csfLimitOptions_ {
   int max_steps;        /* converged volume steps before giving up (default 200) */
   double max_vol_ratio; /* give up when the volume exceeds this multiple of the start (20) */
+  double min_dv_rel;    /* the step has collapsed below this fraction of the first (1e-4) */
   csfPathCallback callback; /* optional */
   void* user;
 } csfLimitOptions;

@@ -197,7 +197,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
       continue;
     }
     fprintf(stderr, "crawlsim calibrate: case %s (%s): 0..%g MPa\n", cases[k].name,
-            cases[k].about, cases[k].p_max);
+            cases[k].about, cs.p_cap > 0 ? fmin(cases[k].p_max, cs.p_cap) : cases[k].p_max);
     snprintf(stem, sizeof stem, "%s/%s.mesh", dir, cases[k].name); /* per case: runs of
                                                                     * other cases may share dir */
     cs.work_stem = stem;

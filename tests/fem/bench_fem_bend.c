@@ -1,7 +1,7 @@
 /* bench_fem_bend.c: benchmark command (not a ctest): one FE bend sweep with per-step timing.
  * Usage: bench_fem_bend [actuator] [l_soft] [p_max] [p_step] [until_angle|nan] [chambers]
  *   [--set N=V]... [--vtu F] [--inp F] [--p2] [--no-fibres] [--fibre-size MM] [--tension-only]
- *   [--geo-tension] [--ls-energy] [--trace] [--stem S]
+ *   [--geo-tension] [--ls-energy] [--trace] [--lu] [--stem S]
  * Default: baseline, l_soft 4 mm, 0 -> 0.4 MPa in 0.05 MPa steps, chambers 1,2 (the issue's
  * benchmark). Prints time per load step and per Newton iteration, then the summary. */
 #include <math.h>
@@ -88,6 +88,8 @@ int main(int argc, char** argv) {
       o.line_search = CSF_LS_ENERGY;
     } else if (!strcmp(argv[i], "--krylov")) {
       o.krylov = 1;
+    } else if (!strcmp(argv[i], "--lu")) {
+      o.symmetric = 0; /* unsymmetric LU even where the tangent is symmetric */
     } else if (!strcmp(argv[i], "--no-split")) {
       o.spec.fibre_split = 0;
     } else if (!strcmp(argv[i], "--trace")) {
