@@ -31,6 +31,31 @@
 #define CSF_NEWTON_STALL_WINDOW 6  /* iterations that must halve the best |R| before them */
 #define CSF_NEWTON_STALL_MIN 12    /* no stagnation test before this iteration */
 
+/* Stagnation test (csf_newtonSolve, csf_newtonSolveVolume): records |R| before iteration `it`
+ * in hist (CSF_NEWTON_HIST entries); from iteration CSF_NEWTON_STALL_MIN on, 1 when the last
+ * CSF_NEWTON_STALL_WINDOW iterations have not halved the best |R| before them (*recent, *before:
+ * those two minima). Measured on the leg at 0.2 MPa: |R| bounced between 0.05 and 0.2 N of 36 N
+ * from iteration 7 to 40, and each failed attempt cost 40 iterations, 2-5 minutes. */
+static int newtonStalled(double* hist, int it, double rnorm, double* recent, double* before) {
+  *recent = *before = INFINITY;
+  if (it > CSF_NEWTON_HIST) {
+    return 0;
+  }
+  hist[it - 1] = rnorm;
+  if (it <= CSF_NEWTON_STALL_MIN) {
+    return 0;
+  }
+  for (int k = 0; k < it; k++) {
+    if (k < it - CSF_NEWTON_STALL_WINDOW) {
+      *before = fmin(*before, hist[k]);
+    } else {
+      *recent = fmin(*recent, hist[k]);
+    }
+  }
+  return *recent > 0.5 * *before;
+}
+
+
 csfNewtonOptions csf_newtonDefault(void) {
   csfNewtonOptions o;
   o.max_iter = 25;
@@ -254,38 +279,22 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     return cs_errorSet(err, CS_ERR_DIVERGED, "fem: inverted element at the start of load %g",
                        load);
   }
-  /* stagnation: |R| after each iteration; CSF_NEWTON_STALL_WINDOW iterations that do not halve
-   * the best residual before them end the solve early (measured on the leg at 0.2 MPa: |R|
-   * bounced between 0.05 and 0.2 N of 36 N from iteration 7 to 40; a failed attempt cost 40
-   * iterations, 2-5 minutes) */
-  double hist[CSF_NEWTON_HIST];
+  double hist[CSF_NEWTON_HIST]; /* |R| per iteration (newtonStalled) */
   for (it = 1; it <= opt->max_iter; it++) {
     if (d->rnorm <= fmax(opt->atol, opt->rtol * d->fnorm)) {
       break;
     }
-    if (it <= CSF_NEWTON_HIST) {
-      hist[it - 1] = d->rnorm; /* |R| before iteration it */
-    }
-    if (it > CSF_NEWTON_STALL_MIN && it <= CSF_NEWTON_HIST) {
-      double before = INFINITY, recent = INFINITY;
-      for (int k = 0; k < it; k++) {
-        if (k < it - CSF_NEWTON_STALL_WINDOW) {
-          before = fmin(before, hist[k]);
-        } else {
-          recent = fmin(recent, hist[k]);
-        }
+    double recent, before;
+    if (newtonStalled(hist, it, d->rnorm, &recent, &before)) {
+      memcpy(d->u, d->u_save, n * sizeof(double));
+      memcpy(d->theta, d->theta_save, nt * sizeof(double));
+      memcpy(d->fib_S, d->fib_S_save, nfb * sizeof(double));
+      if (iters) {
+        *iters = it;
       }
-      if (recent > 0.5 * before) {
-        memcpy(d->u, d->u_save, n * sizeof(double));
-        memcpy(d->theta, d->theta_save, nt * sizeof(double));
-        memcpy(d->fib_S, d->fib_S_save, nfb * sizeof(double));
-        if (iters) {
-          *iters = it;
-        }
-        return cs_errorSet(err, CS_ERR_DIVERGED, "fem: Newton stagnated at load %g (|R| %.3g "
-                           "after %d iterations, best %.3g before the last %d)", load,
-                           recent, it - 1, before, CSF_NEWTON_STALL_WINDOW);
-      }
+      return cs_errorSet(err, CS_ERR_DIVERGED, "fem: Newton stagnated at load %g (|R| %.3g "
+                         "after %d iterations, best %.3g before the last %d)", load, recent,
+                         it - 1, before, CSF_NEWTON_STALL_WINDOW);
     }
     /* solve K du = -R; the forcing term (Eisenstat and Walker 1996, choice 2, capped at
      * krylov_eta) is loose while Newton is far from the solution and tight near it, but never
@@ -438,10 +447,21 @@ csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
                        vol_target);
   }
   const double vtol = opt->rtol * fabs(vol_target);
+  double hist[CSF_NEWTON_HIST]; /* |R| per iteration (newtonStalled) */
   for (it = 1; it <= opt->max_iter; it++) {
     const double c = d->vol_w - vol_target;
     if (d->rnorm <= fmax(opt->atol, opt->rtol * d->fnorm) && fabs(c) <= vtol) {
       break;
+    }
+    double recent, before;
+    if (newtonStalled(hist, it, d->rnorm, &recent, &before)) {
+      restoreEntry(m, d, load0);
+      if (iters) {
+        *iters = it;
+      }
+      return cs_errorSet(err, CS_ERR_DIVERGED, "fem: volume control stagnated at volume %g "
+                         "(|R| %.3g N after %d iterations, best %.3g before the last %d)",
+                         vol_target, recent, it - 1, before, CSF_NEWTON_STALL_WINDOW);
     }
     /* K x1 = -R (fixed dofs moved to their targets), K x2 = b = dVw/du */
     for (size_t i = 0; i < n; i++) {
