@@ -28,7 +28,9 @@ static const char kRunUsage[] =
     "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
     "                    [--calibration FILE] [--macro-steps N] [--coupling staggered|stabilised]\n"
     "                    [--conditions earth|paper] [--set NAME=VALUE]... [--quiet]\n"
-    "                    [--tol MM] [--levels FILE]\n"
+    "                    [--tol MM] [--levels FILE] [--contact-scale K]\n"
+    "  --contact-scale K: multiplies the normal stiffness of every contact law (ODE's\n"
+    "    100 N/mm of prb legs and the support, the rod legs' soft foundation modulus); 1;\n"
     "  --legs auto --tol MM: the cheapest configuration (level, --links, --macro-steps, --dt)\n"
     "    measured for the scene whose track error against the rod reference is within MM,\n"
     "    from FILE (default robot/levels.csv, written by tools/bench_levels.py); the banner\n"
@@ -48,7 +50,7 @@ static const char* const kValueOptions[] = {
     "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
     "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--set",
-    "--tol", "--levels", "--iterations"};
+    "--tol", "--levels", "--contact-scale", "--iterations"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -113,7 +115,7 @@ int csx_cmdRun(int argc, char** argv) {
   const char* coupling = NULL;
   const char* conditions = NULL;
   const char* levels = NULL;
-  double tol = NAN;
+  double tol = NAN, kscale = NAN;
   const char* sets[32];
   int quiet = 0, nset = 0;
   csError err;
@@ -197,6 +199,8 @@ int csx_cmdRun(int argc, char** argv) {
       conditions = v;
     } else if (!strcmp(flag, "--tol")) {
       ok = parseNum(flag, v, &tol, &err);
+    } else if (!strcmp(flag, "--contact-scale")) {
+      ok = parseNum(flag, v, &kscale, &err);
     } else if (!strcmp(flag, "--levels")) {
       levels = v;
     } else if (!strcmp(flag, "--set")) {
@@ -351,6 +355,11 @@ int csx_cmdRun(int argc, char** argv) {
                 "(--macro-steps x --dt)", out_dt, macro * h);
     goto done;
   }
+  /* 1e6: a contact a million times stiffer than the default is a typo, not a study */
+  if (!isnan(kscale) && !(kscale > 0 && kscale <= 1e6)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--contact-scale %g must be > 0 and <= 1e6", kscale);
+    goto done;
+  }
   if (coupling && strcmp(coupling, "staggered") && strcmp(coupling, "stabilised")) {
     cs_errorSet(&err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered or stabilised)",
                 coupling);
@@ -368,6 +377,10 @@ int csx_cmdRun(int argc, char** argv) {
   }
   cs_modelSetLegLevel(&m, leg_type); /* the one place the level is stored (and its coupling) */
   if (!isnan(friction)) m.contact.mu = friction;
+  if (!isnan(kscale)) {
+    m.contact.kp *= kscale;
+    m.contact.stiffness_scale = kscale;
+  }
   m.sched.pressure_scale = scale;
   if (!isnan(ramp)) m.sched.ramp = ramp;
   m.opt.h = h;
