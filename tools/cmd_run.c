@@ -254,6 +254,13 @@ int csx_cmdRun(int argc, char** argv) {
     if (k < 0) goto done;
     const csrLevelRow* row = &table.row[k];
     const csrLevelRow* fin = &table.row[csr_levelTableFinest(&table, scene)];
+    /* the scene's costliest row: what always running the finest configuration would cost */
+    const csrLevelRow* top = row;
+    for (int i = 0; i < table.nrow; i++) {
+      if (!strcmp(table.row[i].scene, scene) && table.row[i].cpu_s_per_s > top->cpu_s_per_s) {
+        top = &table.row[i];
+      }
+    }
     leg_type = csr_legTypeFind(row->level, NULL);
     links = row->links;
     macro = row->macro_steps;
@@ -263,12 +270,14 @@ int csx_cmdRun(int argc, char** argv) {
              "%s, links %d, macro steps %d, dt %g s: the cheapest of %d configurations measured "
              "on %.31s within --tol %g mm (error %.3g mm against the reference, %.3g CPU s per "
              "simulated s); the most accurate (%s, links %d, macro steps %d, dt %g s: %.3g mm) "
-             "costs %.3g CPU s per simulated s, %.2fx; %.200s line %d, measured on %.63s%s",
+             "costs %.3g, the costliest (%s, links %d, macro steps %d, dt %g s: %.3g mm) %.3g "
+             "CPU s per simulated s, %.2fx; %.200s line %d, measured on %.63s%s",
              row->level, row->links, row->macro_steps, row->dt_s,
              csr_levelTableCount(&table, scene), scene, tol, row->error_mm, row->cpu_s_per_s,
              fin->level, fin->links, fin->macro_steps, fin->dt_s, fin->error_mm,
-             fin->cpu_s_per_s, fin->cpu_s_per_s / row->cpu_s_per_s, levels, row->line,
-             row->machine,
+             fin->cpu_s_per_s, top->level, top->links, top->macro_steps, top->dt_s,
+             top->error_mm, top->cpu_s_per_s, top->cpu_s_per_s / row->cpu_s_per_s, levels,
+             row->line, row->machine,
              user_files || conditions
                  ? " (measured with the scene's own terrain, gait and conditions, not this run's)"
                  : "");
