@@ -6,7 +6,8 @@
  *  - the configuration recorded in the output (leg_model, links_per_segment, step_s,
  *    macro_step_s) is the one the banner and legs_auto_choice name, and the one the table
  *    says is cheapest within the tolerance (computed here, independently of the picker);
- *  - a tolerance below the best error is one error line naming the best achievable error.
+ *  - a tolerance below the best error is one error line naming the best achievable error;
+ *  - the table holds at least two configurations of every registered level per scene.
  * And a bad or missing table, a missing --tol and a stray --tol are one-line errors before
  * anything runs. argv[1] is the crawlsim executable. */
 #define _POSIX_C_SOURCE 200809L
@@ -20,6 +21,7 @@
 
 #include "cs_cli.h"
 #include "cs_test.h"
+#include "robot_leg.h"
 #include "robot_levels.h"
 
 static const char* exe_path = NULL;
@@ -131,6 +133,18 @@ static void test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes(vo
     CS_EXPECT(isfinite(lo)); /* the table measures the scene */
     if (!isfinite(lo)) {
       continue;
+    }
+    /* the benchmark measured every registered level on the scene */
+    for (int k = 0; k < csr_legTypeCount(); k++) {
+      int n = 0;
+      for (int i = 0; i < g_t.nrow; i++) {
+        n += !strcmp(g_t.row[i].scene, scenes[s]) && !strcmp(g_t.row[i].level,
+                                                             csr_legTypeAt(k)->name);
+      }
+      CS_EXPECT(n >= 2); /* at least two resolutions of each */
+      if (n < 2) {
+        printf("  %s: %d rows of level %s\n", scenes[s], n, csr_legTypeAt(k)->name);
+      }
     }
     int loose = cheapestWithin(scenes[s], hi), tight = cheapestWithin(scenes[s], lo);
     CS_EXPECT(g_t.row[loose].cpu_s_per_s < g_t.row[tight].cpu_s_per_s);
