@@ -188,7 +188,10 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
   if (rc < 0) {
     st = (csStatus)rc;
   }
-  if (st == CS_OK && !have_header) {
+  if (st == CS_OK && !have_header && r.lineno == 0) {
+    /* an empty file has no line to name (found by fuzz_levels) */
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s: empty file: no header line '%s'", path, kHeader);
+  } else if (st == CS_OK && !have_header) {
     st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: no header line '%s'", path, r.lineno, kHeader);
   } else if (st == CS_OK && t->nrow == 0) {
     st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: no rows after the header", path, r.lineno);

@@ -127,6 +127,10 @@ static void test_levels_bad_lines_refused(void) {
   expectRefused(HEADER "flat road,prb,2,1,0.001,5,1,2.0,m\n", 2, "must be one word");
   expectRefused(HEADER "flat-road,prb,2,1,0.001,5,1,2.0,m\n"
                 "flat-road,prb,2,1,0.001,6,2,3.0,m\n", 3, "repeats the configuration of line 2");
+  /* an empty file: one line naming it, no line 0 (found by fuzz_levels) */
+  csError e0;
+  CS_EXPECT(readText("", &e0) == CS_ERR_PARSE);
+  CS_EXPECT(strstr(e0.msg, PATH ": empty file") == e0.msg && !strstr(e0.msg, ":0:"));
   /* a missing file: one line naming it */
   csError err;
   cs_errorClear(&err);
