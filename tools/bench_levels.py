@@ -367,6 +367,20 @@ def pareto_png(path, rows, machine):
     fig.savefig(path, dpi=110)
 
 
+def machine_name():
+    """'<n>-core <CPU model>' from /proc/cpuinfo (Linux), else the platform's name"""
+    model = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return f"{os.cpu_count()}-core {model}"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
@@ -399,7 +413,8 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench_levels"))
     ap.add_argument("--out-dir", default=os.path.join(ROOT, "docs"))
     ap.add_argument("--table", default=os.path.join(ROOT, "robot", "levels.csv"))
-    ap.add_argument("--machine", default="2-core Xeon VM (kind c) shared with 2 FE jobs")
+    ap.add_argument("--machine", default=machine_name(),
+                    help="where it ran (default: the CPU count and model; say if it was shared)")
     ap.add_argument("--fresh", action="store_true")
     a = ap.parse_args()
     a.machine = a.machine.replace(",", ";")  # the table has no quoting
