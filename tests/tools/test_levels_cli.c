@@ -7,7 +7,8 @@
  *    macro_step_s) is the one the banner and legs_auto_choice name, and the one the table
  *    says is cheapest within the tolerance (computed here, independently of the picker);
  *  - a tolerance below the best error is one error line naming the best achievable error;
- *  - the table holds at least two configurations of every registered level per scene.
+ *  - the table holds at least two configurations of every registered level per scene, and the
+ *    benchmark's full table docs/levels_bench.csv has rows of every task and level.
  * And a bad or missing table, a missing --tol and a stray --tol are one-line errors before
  * anything runs. argv[1] is the crawlsim executable. */
 #define _POSIX_C_SOURCE 200809L
@@ -159,6 +160,26 @@ static void test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes(vo
 }
 
 
+/* the benchmark's full table (docs/levels_bench.csv) has every task and every level in it */
+static void test_levels_benchmark_has_every_task_and_level(void) {
+  char path[1100];
+  const char* src = getenv("CS_SOURCE_DIR");
+  snprintf(path, sizeof path, "%s/docs/levels_bench.csv", src ? src : ".");
+  static char text[1 << 16];
+  cs_cliSlurp(path, text, sizeof text);
+  CS_EXPECT(text[0] != '\0');
+  static const char* const kWant[] = {
+      "\nflat-road,prb,", "\nflat-road,rod,", "\nobstacle,prb,", "\nobstacle,rod,",
+      "\"(1) bend O12 ", "\"(2) bend O12 + tip load", ",analytic,", ",rod,", ",fe,"};
+  for (size_t i = 0; i < sizeof kWant / sizeof kWant[0]; i++) {
+    CS_EXPECT(strstr(text, kWant[i]) != NULL);
+    if (!strstr(text, kWant[i])) {
+      printf("  %s has no '%s'\n", path, kWant[i]);
+    }
+  }
+}
+
+
 static void test_levels_bad_table_and_options_refused(void) {
   CS_EXPECT(cs_cliWriteText("levelscli_table.csv",
                             "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,"
@@ -186,6 +207,7 @@ int main(int argc, char** argv) {
   snprintf(g_table, sizeof g_table, "%s/robot/levels.csv", src ? src : ".");
   cs_testInit(argc - 1, argv + 1);
   CS_RUN(test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes);
+  CS_RUN(test_levels_benchmark_has_every_task_and_level);
   CS_RUN(test_levels_bad_table_and_options_refused);
   return cs_testSummary();
 }
