@@ -27,6 +27,8 @@ cscContactParams csc_defaultContactParams(void) {
   p.kd = 0.1;
   /* four points let a capsule lying on a box rest without rocking; a standing capsule gives 1 */
   p.max_points = 4;
+  /* the soft law's own modulus as tuned (contact_soft.c) */
+  p.stiffness_scale = 1.0;
   return p;
 }
 
@@ -38,6 +40,10 @@ csStatus csc_contactParamsValidate(const cscContactParams* p, csError* err) {
   }
   if (!(isfinite(p->kp) && p->kp > 0 && isfinite(p->kd) && p->kd >= 0)) {
     return cs_errorSet(err, CS_ERR_RANGE, "contact stiffness/damping must be > 0 / >= 0");
+  }
+  if (!(isfinite(p->stiffness_scale) && p->stiffness_scale > 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "contact stiffness scale %g must be finite and > 0",
+                       p->stiffness_scale);
   }
   if (p->max_points < 1 || p->max_points > MAX_POINTS) {
     return cs_errorSet(err, CS_ERR_RANGE, "contact points per pair must be in 1..%d", MAX_POINTS);

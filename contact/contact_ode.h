@@ -29,12 +29,14 @@ typedef struct cscContactParams_ {
   double kp;           /* contact normal stiffness (N/mm) */
   double kd;           /* contact normal damping (N s/mm) */
   int max_points;      /* contact points per geom pair */
+  double stiffness_scale; /* -: multiplies the soft law's foundation modulus (k_area) of
+                             co-simulated legs (rod); 1 (`crawlsim run --contact-scale`) */
 } cscContactParams;
 
 /* Defaults with their reasons (see contact_ode.c). */
 cscContactParams csc_defaultContactParams(void);
 
-/* Validate (mu >= 0 finite, kp > 0, kd >= 0, 1 <= max_points <= 16). */
+/* Validate (mu >= 0 finite, kp > 0, kd >= 0, 1 <= max_points <= 16, stiffness_scale > 0). */
 csStatus csc_contactParamsValidate(const cscContactParams* p, csError* err);
 
 /* Per-step contact result, filled by csc_collide. */

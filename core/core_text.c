@@ -208,3 +208,15 @@ void csu_chamberListFormat(unsigned mask, char* buf, size_t size) {
     }
   }
 }
+
+
+char* csu_trimBlanks(char* s) {
+  while (*s == ' ' || *s == '\t') {
+    s++;
+  }
+  size_t n = strlen(s);
+  while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t')) {
+    s[--n] = '\0';
+  }
+  return s;
+}

@@ -62,6 +62,9 @@ void csu_lineClose(csuLineReader* r);
  * are counted, not stored: a caller checks the count against what its statement takes). */
 int csu_splitWords(char* line, char** word, int max);
 
+/* Trim spaces and tabs at both ends of s in place; returns the first kept byte (inside s). */
+char* csu_trimBlanks(char* s);
+
 /* Parse a chamber list: chamber numbers 1..nmax separated by commas, each once, in any order
  * ("1,2", "4,1"). Sets bit j-1 of *mask for chamber j. Refused, with err = "<label> '<text>':
  * <cause>" (CS_ERR_PARSE): an empty list or item ("", "1,,2", "1,"), anything but digits in an

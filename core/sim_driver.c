@@ -72,6 +72,7 @@ void cs_modelInit(csModel* m) {
   m->sched = csg_defaultScheduleOptions();
   m->contact = csc_defaultContactParams();
   csr_robotDefaultModel(&m->robot, NULL);
+  m->legs_auto_tol_mm = NAN;
 }
 
 

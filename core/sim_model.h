@@ -99,6 +99,9 @@ typedef struct csModel_ {
   char gait_path[512];
   csConditions conditions;    /* earth | paper (sim_scene.h); set with cs_modelSetConditions so
                                  that opt.legs_weightless agrees */
+  char legs_auto_choice[1024]; /* `--legs auto`: what was picked and why (the output's
+                                 legs_auto_choice attribute); "" when the level was named */
+  double legs_auto_tol_mm;    /* `--legs auto`: the tolerance asked for (mm); NaN otherwise */
 } csModel;
 
 /* Fill a model with the defaults of every part (no files read, no map yet; prb legs). */

@@ -5,7 +5,7 @@
  * /support/corners [N,8,3] mm (world), /contact/force [N,3] N (terrain on robot, world),
  * /contact/max_depth [N] mm, /terrain/corners [nbox*8,3] mm; root attributes scene,
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
- * macro_step_s,
+ * macro_step_s, contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
  * rejected_steps and per timer (sim_model.h CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
@@ -101,6 +101,10 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "version", "0.1.0", err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "friction", m->contact.mu, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "pressure_scale", m->sched.pressure_scale, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "contact_kp_N_per_mm", m->contact.kp, err);
+  if (st == CS_OK) {
+    st = cs_h5AttrDouble(f, "/", "contact_stiffness_scale", m->contact.stiffness_scale, err);
+  }
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "ramp_s", m->sched.ramp, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "step_s", m->opt.h, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "macro_step_s", cs_modelMacroStep(m), err);
@@ -110,6 +114,13 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
                          : m->opt.coupling == CS_COUPLING_STABILISED ? "stabilised"
                                                                      : "staggered",
                          err);
+  }
+  if (st == CS_OK) {
+    st = cs_h5AttrDouble(f, "/", "links_per_segment", m->robot.leg_params.links_per_segment, err);
+  }
+  if (st == CS_OK && m->legs_auto_choice[0]) {
+    st = cs_h5AttrString(f, "/", "legs_auto_choice", m->legs_auto_choice, err);
+    if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "legs_auto_tol_mm", m->legs_auto_tol_mm, err);
   }
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "legs_weightless", m->opt.legs_weightless, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "pneumatic_tau_s", m->opt.pneumatic_tau, err);

@@ -29,8 +29,6 @@
 #define WRITE_DIGITS 6
 #define ROUNDTRIP_DIGITS 17
 
-/* strip leading and trailing spaces/tabs in place; returns the start */
-static char* trim(char* s);
 /* true if the line holds only spaces/tabs or starts (after them) with '#' */
 static int isSkippable(const char* line);
 /* grow g's arrays to hold at least `need` rows (capacity doubling, limit `max_rows`) */
@@ -271,18 +269,6 @@ csStatus csg_gaitValidate(const csgGait* g, const csgReadOptions* opt, csError* 
 
 /* ---- reading ---- */
 
-static char* trim(char* s) {
-  while (*s == ' ' || *s == '\t') {
-    s++;
-  }
-  size_t n = strlen(s);
-  while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t')) {
-    s[--n] = '\0';
-  }
-  return s;
-}
-
-
 static int isSkippable(const char* line) {
   while (*line == ' ' || *line == '\t') {
     line++;
@@ -336,7 +322,7 @@ static csStatus parseHeader(csuLineReader* r, headerInfo* h, csError* err) {
   int col = 0;
   while ((f = nextField(&cursor)) != NULL) {
     col++;
-    char* name = trim(f);
+    char* name = csu_trimBlanks(f);
     if (col == 1) {
       if (strcmp(name, "time") != 0) {
         return cs_errorSet(err, CS_ERR_PARSE,
@@ -376,7 +362,7 @@ static csStatus parseHeader(csuLineReader* r, headerInfo* h, csError* err) {
 
 /* parse a number field (already NUL-terminated); 1 = ok, 0 = not a (whole) number */
 static int parseNumber(char* field, double* out) {
-  char* s = trim(field);
+  char* s = csu_trimBlanks(field);
   if (!s[0]) {
     return 0;
   }
@@ -410,7 +396,7 @@ static csStatus parseRow(csuLineReader* r, const headerInfo* h, csgGait* g, int 
     }
     double v;
     if (!parseNumber(f, &v)) {
-      const char* s = trim(f);
+      const char* s = csu_trimBlanks(f);
       if (!s[0]) {
         return cs_errorSet(err, CS_ERR_PARSE,
                            "%s:%ld: column %d (%s): empty field (expected a number)", r->path,
@@ -421,7 +407,7 @@ static csStatus parseRow(csuLineReader* r, const headerInfo* h, csgGait* g, int 
     }
     if (!isfinite(v)) {
       return cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: column %d (%s): value '%.*s' is not finite",
-                         r->path, r->lineno, col, cname, QUOTE_MAX, trim(f));
+                         r->path, r->lineno, col, cname, QUOTE_MAX, csu_trimBlanks(f));
     }
     if (col == 1) {
       if (v < 0.0) {

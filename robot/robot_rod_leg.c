@@ -232,6 +232,7 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
     cscSoftParams sp = csc_softDefaultParams();
     if (spec->contact) {
       sp.mu = spec->contact->mu;
+      sp.k_area *= spec->contact->stiffness_scale;
     }
     if (sp.history != CSC_HISTORY_INTEGRATED) {
       destroyRod(leg);

@@ -3,7 +3,9 @@
  *   [--legs auto|prb|rod|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
- *   --coupling staggered|stabilised, --set NAME=VALUE (the legs' actuator, repeatable), --quiet.
+ *   --coupling staggered|stabilised, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
+ *   --tol MM and --levels FILE (with --legs auto: the cheapest measured configuration of the
+ *   scene whose track error is within MM, from the table robot/levels.csv, robot_levels.h).
  * Options take "--name VALUE" or "--name=VALUE". Bad input (flags, files, an unwritable
  * --out) is found before the robot is built or settled, and every failure prints exactly one
  * line "crawlsim run: <cause>" on stderr (file:line for file errors) and exits 1. */
@@ -16,6 +18,7 @@
 #include "cs_commands.h"
 #include "cs_paths.h"
 #include "robot_calibration.h"
+#include "robot_levels.h"
 #include "sim_model.h"
 
 static const char kRunUsage[] =
@@ -25,6 +28,13 @@ static const char kRunUsage[] =
     "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
     "                    [--calibration FILE] [--macro-steps N] [--coupling staggered|stabilised]\n"
     "                    [--conditions earth|paper] [--set NAME=VALUE]... [--quiet]\n"
+    "                    [--tol MM] [--levels FILE] [--contact-scale K]\n"
+    "  --contact-scale K: multiplies the normal stiffness of every contact law (ODE's\n"
+    "    100 N/mm of prb legs and the support, the rod legs' soft foundation modulus); 1;\n"
+    "  --legs auto --tol MM: the cheapest configuration (level, --links, --macro-steps, --dt)\n"
+    "    measured for the scene whose track error against the rod reference is within MM,\n"
+    "    from FILE (default robot/levels.csv, written by tools/bench_levels.py); the banner\n"
+    "    and the output's legs_auto_choice attribute say what was picked and why;\n"
     "  --conditions: earth = gravity on every body; paper = the legs keep mass and inertia but\n"
     "    feel no gravity (the paper's assumption). Default: the scene's (paper for flat-road\n"
     "    and obstacle) with its own terrain and gait, earth when --terrain or --gait is given;\n"
@@ -40,7 +50,7 @@ static const char* const kValueOptions[] = {
     "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
     "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--set",
-    "--iterations"};
+    "--tol", "--levels", "--contact-scale", "--iterations"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -104,6 +114,8 @@ int csx_cmdRun(int argc, char** argv) {
   double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN, macro = NAN;
   const char* coupling = NULL;
   const char* conditions = NULL;
+  const char* levels = NULL;
+  double tol = NAN, kscale = NAN;
   const char* sets[32];
   int quiet = 0, nset = 0;
   csError err;
@@ -112,7 +124,8 @@ int csx_cmdRun(int argc, char** argv) {
   cs_modelInit(&m);
   int rc = 1;
   csData* d = NULL;
-  char terrain_buf[512], gait_buf[512], calib_buf[512];
+  char terrain_buf[512], gait_buf[512], calib_buf[512], levels_buf[512];
+  static csrLevelTable table; /* ~40 KB: not on the stack */
 
   /* options: --name VALUE or --name=VALUE; every failure is one line at done: */
   for (int i = 1; i < argc; i++) {
@@ -184,6 +197,12 @@ int csx_cmdRun(int argc, char** argv) {
       coupling = v;
     } else if (!strcmp(flag, "--conditions")) {
       conditions = v;
+    } else if (!strcmp(flag, "--tol")) {
+      ok = parseNum(flag, v, &tol, &err);
+    } else if (!strcmp(flag, "--contact-scale")) {
+      ok = parseNum(flag, v, &kscale, &err);
+    } else if (!strcmp(flag, "--levels")) {
+      levels = v;
     } else if (!strcmp(flag, "--set")) {
       if (nset == 32) {
         cs_errorSet(&err, CS_ERR_ARG, "more than 32 --set options");
@@ -218,9 +237,50 @@ int csx_cmdRun(int argc, char** argv) {
   /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */
   const csrLegType* leg_type = NULL;
   if (!strcmp(legs, "auto")) {
-    /* the scene's choice by error against cost is issue 11; until then auto is the cheapest
-     * registered dynamic level, the table's first */
-    leg_type = csr_legTypeFind("prb", NULL);
+    /* the scene's cheapest measured configuration within the tolerance (issue 11) */
+    if (isnan(tol)) {
+      cs_errorSet(&err, CS_ERR_ARG, "--legs auto needs --tol MM (the track error allowed "
+                  "against the reference, see robot/levels.csv)");
+      goto done;
+    }
+    if (!isnan(links) || !isnan(macro) || !isnan(dt)) {
+      cs_errorSet(&err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps and --dt from its "
+                  "table: give them with --legs prb or --legs rod instead");
+      goto done;
+    }
+    if (!levels) levels = csx_dataPath("robot/levels.csv", levels_buf, sizeof levels_buf);
+    if (csr_levelTableRead(levels, &table, &err) != CS_OK) goto done;
+    int k = csr_levelTablePick(&table, scene, tol, &err);
+    if (k < 0) goto done;
+    const csrLevelRow* row = &table.row[k];
+    const csrLevelRow* fin = &table.row[csr_levelTableFinest(&table, scene)];
+    /* the scene's costliest row: what always running the finest configuration would cost */
+    const csrLevelRow* top = row;
+    for (int i = 0; i < table.nrow; i++) {
+      if (!strcmp(table.row[i].scene, scene) && table.row[i].cpu_s_per_s > top->cpu_s_per_s) {
+        top = &table.row[i];
+      }
+    }
+    leg_type = csr_legTypeFind(row->level, NULL);
+    links = row->links;
+    macro = row->macro_steps;
+    dt = row->dt_s;
+    m.legs_auto_tol_mm = tol;
+    snprintf(m.legs_auto_choice, sizeof m.legs_auto_choice,
+             "%s, links %d, macro steps %d, dt %g s: the cheapest of %d configurations measured "
+             "on %.31s within --tol %g mm (error %.3g mm against the reference, %.3g CPU s per "
+             "simulated s); the most accurate (%s, links %d, macro steps %d, dt %g s: %.3g mm) "
+             "costs %.3g, the costliest (%s, links %d, macro steps %d, dt %g s: %.3g mm) %.3g "
+             "CPU s per simulated s, %.2fx; %.200s line %d, measured on %.63s%s",
+             row->level, row->links, row->macro_steps, row->dt_s,
+             csr_levelTableCount(&table, scene), scene, tol, row->error_mm, row->cpu_s_per_s,
+             fin->level, fin->links, fin->macro_steps, fin->dt_s, fin->error_mm,
+             fin->cpu_s_per_s, top->level, top->links, top->macro_steps, top->dt_s,
+             top->error_mm, top->cpu_s_per_s, top->cpu_s_per_s / row->cpu_s_per_s, levels,
+             row->line, row->machine,
+             user_files || conditions
+                 ? " (measured with the scene's own terrain, gait and conditions, not this run's)"
+                 : "");
   } else {
     int planned = 0;
     leg_type = csr_legTypeFind(legs, &planned);
@@ -240,6 +300,10 @@ int csx_cmdRun(int argc, char** argv) {
                   legs);
       goto done;
     }
+  }
+  if (leg_type && !m.legs_auto_choice[0] && (!isnan(tol) || levels)) {
+    cs_errorSet(&err, CS_ERR_ARG, "--tol and --levels go with --legs auto");
+    goto done;
   }
   if (!calib) calib = csx_dataPath(CSX_DEFAULT_CALIBRATION, calib_buf, sizeof calib_buf);
 
@@ -300,6 +364,11 @@ int csx_cmdRun(int argc, char** argv) {
                 "(--macro-steps x --dt)", out_dt, macro * h);
     goto done;
   }
+  /* 1e6: a contact a million times stiffer than the default is a typo, not a study */
+  if (!isnan(kscale) && !(kscale > 0 && kscale <= 1e6)) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--contact-scale %g must be > 0 and <= 1e6", kscale);
+    goto done;
+  }
   if (coupling && strcmp(coupling, "staggered") && strcmp(coupling, "stabilised")) {
     cs_errorSet(&err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered or stabilised)",
                 coupling);
@@ -317,6 +386,10 @@ int csx_cmdRun(int argc, char** argv) {
   }
   cs_modelSetLegLevel(&m, leg_type); /* the one place the level is stored (and its coupling) */
   if (!isnan(friction)) m.contact.mu = friction;
+  if (!isnan(kscale)) {
+    m.contact.kp *= kscale;
+    m.contact.stiffness_scale = kscale;
+  }
   m.sched.pressure_scale = scale;
   if (!isnan(ramp)) m.sched.ramp = ramp;
   m.opt.h = h;
@@ -367,6 +440,9 @@ int csx_cmdRun(int argc, char** argv) {
     fprintf(stderr, "crawlsim run: conditions %s (%s): %s\n", cs_conditionsName(m.conditions),
             cs_conditionsSourceName(cond_src), cs_conditionsWhat(m.conditions));
     fprintf(stderr, "crawlsim run: calibration: %s\n", m.robot.map.name);
+    if (m.legs_auto_choice[0]) {
+      fprintf(stderr, "crawlsim run: --legs auto picked %s\n", m.legs_auto_choice);
+    }
     double load, pcr;
     cs_modelStanceCheck(&m, cs_robotMass(d), &load, &pcr);
     fprintf(stderr, "crawlsim run: stance check: %.2f N per leg on half the legs vs sway-buckling "

@@ -64,6 +64,7 @@ HARNESSES=(
   "calib_text|robot/calibration_provisional.txt|calib_text|2048|30|$RUNS|"
   "calib_h5||-|96|60|$RUNS|-len_control=0"
   "study||study|8192|30|$RUNS|"
+  "levels|robot/levels.csv|-|2048|30|$RUNS|"
 )
 
 # exit 3 when the fuzzers do not build (tools/test-all.sh then skips the fuzz run, loudly)
@@ -207,7 +208,7 @@ if [ "$MODE" = long ] && [ "$COVERAGE" != 0 ]; then
     readers=()
     for f in gaits/gaits_csv.c gaits/gaits_design.c terrains/terrains_terrain.c core/core_text.c \
              robot/robot_calibration.c robot/robot_calibration_table.c \
-             robot/robot_calibration_build.c tools/study_file.c; do
+             robot/robot_calibration_build.c tools/study_file.c robot/robot_levels.c; do
       [ -f "$f" ] && readers+=("$ROOT/$f")
     done
     llvm-cov-14 report -instr-profile="$COV/profiles/all.profdata" "${objects[@]:1}" \

@@ -1,0 +1,262 @@
+/* robot_levels.c: the measured leg-level table and the `--legs auto` pick (robot_levels.h).
+ *
+ * The table is a plain CSV without quoting (the benchmark writes no commas inside a field), read
+ * line by line through the shared reader (core_text.h) so an overlong line or a NUL byte is
+ * refused at its line. Fields are split at every comma, so a row with a missing or an extra
+ * field is counted and refused, never shifted into the next column. Numbers go through strtod
+ * and are checked finite and in range: strtod alone accepts "nan", "inf" and "1e999". */
+#include "robot_levels.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_text.h"
+#include "robot_leg.h"
+
+enum {
+  MAX_LINE = 1023, /* bytes per line, line ending excluded */
+  NCOL = 9         /* columns of the format */
+};
+
+static const char kHeader[] =
+    "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine";
+static const char* const kColumn[NCOL] = {"scene", "level", "links", "macro_steps", "dt_s",
+                                          "error_mm", "cpu_s_per_s", "wall_s_per_s",
+                                          "machine"};
+/* the ranges of the flags the row's settings stand for (tools/cmd_run.c) */
+#define MAX_LINKS 64
+#define MAX_MACRO 100000
+#define MAX_DT_S 0.01
+/* an error of a km or a day of CPU per simulated second is a typo */
+#define MAX_VALUE 1e6
+
+/* split `line` in place at commas into at most NCOL fields; returns the field count (which
+ * may exceed NCOL: the extra ones are counted, not stored) */
+static int splitFields(char* line, char** field);
+
+/* parse field `col` of a row as a finite number within [lo, hi] (lo_open: > lo), an integer if
+ * `integer`; fills err naming file, line and column on failure */
+static csStatus parseField(const char* s, int col, double lo, int lo_open, double hi,
+                           int integer, const char* path, long line, double* v, csError* err);
+
+/* parse one data row into *r */
+static csStatus parseRow(char** field, const char* path, long line, csrLevelRow* r,
+                         csError* err);
+
+
+static int splitFields(char* line, char** field) {
+  int n = 0;
+  char* s = line;
+  for (;;) {
+    char* comma = strchr(s, ',');
+    if (comma) {
+      *comma = '\0';
+    }
+    if (n < NCOL) {
+      field[n] = csu_trimBlanks(s);
+    }
+    n++;
+    if (!comma) {
+      return n;
+    }
+    s = comma + 1;
+  }
+}
+
+
+static csStatus parseField(const char* s, int col, double lo, int lo_open, double hi,
+                           int integer, const char* path, long line, double* v, csError* err) {
+  char* end;
+  *v = strtod(s, &end);
+  if (!s[0] || end == s || *end) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: %s '%.40s' is not a number", path, line,
+                       kColumn[col], s);
+  }
+  if (!isfinite(*v)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: %s '%.40s' is not a finite number", path,
+                       line, kColumn[col], s);
+  }
+  if (integer && *v != floor(*v)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: %s %g is not an integer", path, line,
+                       kColumn[col], *v);
+  }
+  if ((lo_open ? !(*v > lo) : !(*v >= lo)) || !(*v <= hi)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: %s %g is outside %s%g, %g]", path, line,
+                       kColumn[col], *v, lo_open ? "(" : "[", lo, hi);
+  }
+  return CS_OK;
+}
+
+
+static csStatus parseRow(char** field, const char* path, long line, csrLevelRow* r,
+                         csError* err) {
+  memset(r, 0, sizeof *r);
+  r->line = (int)line;
+  /* scene: one non-empty word that fits */
+  if (!field[0][0] || strlen(field[0]) >= sizeof r->scene || strpbrk(field[0], " \t")) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: scene '%.40s' must be one word of 1..%d "
+                       "bytes", path, line, field[0], (int)sizeof r->scene - 1);
+  }
+  strcpy(r->scene, field[0]);
+  /* level: a registered leg level */
+  int planned = 0;
+  if (strlen(field[1]) >= sizeof r->level || !csr_legTypeFind(field[1], &planned)) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: level '%.40s' is %s", path, line, field[1],
+                       planned ? "not available yet" : "not a leg level (prb, rod)");
+  }
+  strcpy(r->level, field[1]);
+  /* links, macro_steps, dt_s, error_mm, cpu_s_per_s, wall_s_per_s: ranges (lo open?) */
+  double v[6];
+  static const double kLo[6] = {1, 1, 0, 0, 0, 0};
+  static const int kOpen[6] = {0, 0, 1, 0, 1, 1};
+  static const double kHi[6] = {MAX_LINKS, MAX_MACRO, MAX_DT_S, MAX_VALUE, MAX_VALUE, MAX_VALUE};
+  for (int c = 2; c < 8; c++) {
+    csStatus st = parseField(field[c], c, kLo[c - 2], kOpen[c - 2], kHi[c - 2], c < 4, path,
+                             line, &v[c - 2], err);
+    if (st != CS_OK) {
+      return st;
+    }
+  }
+  r->links = (int)v[0];
+  r->macro_steps = (int)v[1];
+  r->dt_s = v[2];
+  r->error_mm = v[3];
+  r->cpu_s_per_s = v[4];
+  r->wall_s_per_s = v[5];
+  snprintf(r->machine, sizeof r->machine, "%s", field[8]);
+  return CS_OK;
+}
+
+
+csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
+  t->nrow = 0;
+  snprintf(t->path, sizeof t->path, "%s", path);
+  csuLineReader r;
+  csStatus st = csu_lineOpen(&r, path, MAX_LINE, "leg-level table", err);
+  if (st != CS_OK) {
+    return st;
+  }
+  int have_header = 0, rc;
+  while ((rc = csu_lineNext(&r, err)) == 1) {
+    char* line = csu_trimBlanks(r.line);
+    if (!line[0] || line[0] == '#') {
+      continue;
+    }
+    if (!have_header) {
+      if (strcmp(line, kHeader) != 0) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: the header must be '%s' (got '%.60s')",
+                         path, r.lineno, kHeader, line);
+        break;
+      }
+      have_header = 1;
+      continue;
+    }
+    char* field[NCOL];
+    int n = splitFields(line, field);
+    if (n != NCOL) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: %d field%s, expected %d (%s)", path,
+                       r.lineno, n, n == 1 ? "" : "s", NCOL, kHeader);
+      break;
+    }
+    if (t->nrow == CSR_LEVELS_MAX_ROWS) {
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: more than %d rows", path, r.lineno,
+                       CSR_LEVELS_MAX_ROWS);
+      break;
+    }
+    csrLevelRow* row = &t->row[t->nrow];
+    st = parseRow(field, path, r.lineno, row, err);
+    if (st != CS_OK) {
+      break;
+    }
+    /* one measurement per configuration: two would leave the pick to the row order */
+    for (int i = 0; i < t->nrow; i++) {
+      const csrLevelRow* o = &t->row[i];
+      if (!strcmp(o->scene, row->scene) && !strcmp(o->level, row->level) &&
+          o->links == row->links && o->macro_steps == row->macro_steps && o->dt_s == row->dt_s) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: repeats the configuration of line %d "
+                         "(%s, %s, links %d, macro steps %d, dt %g s)", path, r.lineno, o->line,
+                         row->scene, row->level, row->links, row->macro_steps, row->dt_s);
+        break;
+      }
+    }
+    if (st != CS_OK) {
+      break;
+    }
+    t->nrow++;
+  }
+  if (rc < 0) {
+    st = (csStatus)rc;
+  }
+  if (st == CS_OK && !have_header && r.lineno == 0) {
+    /* an empty file has no line to name (found by fuzz_levels) */
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s: empty file: no header line '%s'", path, kHeader);
+  } else if (st == CS_OK && !have_header) {
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: no header line '%s'", path, r.lineno, kHeader);
+  } else if (st == CS_OK && t->nrow == 0) {
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: no rows after the header", path, r.lineno);
+  }
+  csu_lineClose(&r);
+  if (st != CS_OK) {
+    t->nrow = 0;
+  }
+  return st;
+}
+
+
+int csr_levelTableCount(const csrLevelTable* t, const char* scene) {
+  int n = 0;
+  for (int i = 0; i < t->nrow; i++) {
+    n += !strcmp(t->row[i].scene, scene);
+  }
+  return n;
+}
+
+
+int csr_levelTableFinest(const csrLevelTable* t, const char* scene) {
+  int best = -1;
+  for (int i = 0; i < t->nrow; i++) {
+    const csrLevelRow* r = &t->row[i];
+    if (strcmp(r->scene, scene)) {
+      continue;
+    }
+    if (best < 0 || r->error_mm < t->row[best].error_mm ||
+        (r->error_mm == t->row[best].error_mm && r->cpu_s_per_s < t->row[best].cpu_s_per_s)) {
+      best = i;
+    }
+  }
+  return best;
+}
+
+
+int csr_levelTablePick(const csrLevelTable* t, const char* scene, double tol_mm, csError* err) {
+  if (!(tol_mm >= 0) || !isfinite(tol_mm)) {
+    cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be finite and >= 0", tol_mm);
+    return -1;
+  }
+  int best = -1;
+  for (int i = 0; i < t->nrow; i++) {
+    const csrLevelRow* r = &t->row[i];
+    if (strcmp(r->scene, scene) || !(r->error_mm <= tol_mm)) {
+      continue;
+    }
+    if (best < 0 || r->cpu_s_per_s < t->row[best].cpu_s_per_s ||
+        (r->cpu_s_per_s == t->row[best].cpu_s_per_s && r->error_mm < t->row[best].error_mm)) {
+      best = i;
+    }
+  }
+  if (best >= 0) {
+    return best;
+  }
+  int fin = csr_levelTableFinest(t, scene);
+  if (fin < 0) {
+    cs_errorSet(err, CS_ERR_ARG, "%s: no row for scene '%.31s' (the table measures another "
+                "scene; rerun tools/bench_levels.py with --scenes)", t->path, scene);
+  } else {
+    const csrLevelRow* r = &t->row[fin];
+    cs_errorSet(err, CS_ERR_RANGE, "%s: no level meets --tol %g mm on %s: the best achievable "
+                "is %.3g mm (%s, links %d, macro steps %d, dt %g s, line %d)", t->path, tol_mm,
+                scene, r->error_mm, r->level, r->links, r->macro_steps, r->dt_s, r->line);
+  }
+  return -1;
+}

@@ -1,0 +1,75 @@
+/* robot_levels.h: the measured leg-level table behind `crawlsim run --legs auto --tol MM`.
+ *
+ * Owns: reading the table (robot/levels.csv, written by tools/bench_levels.py) and picking,
+ * for one scene, the cheapest configuration whose measured error stays within a tolerance.
+ *
+ * File format (text, LF or CRLF, '#' comment lines and blank lines skipped): one header line,
+ * exactly
+ *   scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine
+ * then one row per measured configuration:
+ *   scene        a scene name (a word, at most 31 bytes: flat-road, obstacle, ...)
+ *   level        a registered leg level (csr_legTypeFind: prb, rod)
+ *   links        links (prb) or elements (rod) per segment, integer 1..64 (`--links`)
+ *   macro_steps  ODE steps per exchange, integer 1..100000 (`--macro-steps`; prb: 1)
+ *   dt_s         ODE step (s), 0 < dt <= 0.01 (`--dt`)
+ *   error_mm     the scene's track error against the benchmark's reference (mm), finite, >= 0
+ *   cpu_s_per_s  CPU seconds of the whole process per simulated second, finite, > 0
+ *   wall_s_per_s wall seconds per simulated second on the benchmark's machine, finite, > 0
+ *   machine      free text without commas (where it was measured)
+ * A repeated (scene, level, links, macro_steps, dt_s) is refused. Every refusal is one line
+ * "<file>:<line>: <cause>" in err (CS_ERR_PARSE or CS_ERR_RANGE; CS_ERR_IO when unreadable).
+ *
+ * The pick: among the scene's rows with error_mm <= tol, the smallest cpu_s_per_s (a tie: the
+ * smaller error, then the earlier row). Cost is CPU time, less sensitive than wall time to the
+ * load of a shared machine. */
+#ifndef CS_ROBOT_LEVELS_H
+#define CS_ROBOT_LEVELS_H
+
+#include "core_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* rows a table may hold: a benchmark writes a handful per scene */
+#define CSR_LEVELS_MAX_ROWS 256
+
+/* one measured configuration */
+typedef struct csrLevelRow_ {
+  char scene[32];
+  char level[16];       /* a registered leg level's name */
+  int links;            /* links / elements per segment */
+  int macro_steps;      /* ODE steps per exchange */
+  double dt_s;          /* s: ODE step */
+  double error_mm;      /* mm: track error against the reference */
+  double cpu_s_per_s;   /* CPU s per simulated s */
+  double wall_s_per_s;  /* wall s per simulated s */
+  char machine[64];
+  int line;             /* line of the file it came from */
+} csrLevelRow;
+
+/* a table as read */
+typedef struct csrLevelTable_ {
+  int nrow;
+  csrLevelRow row[CSR_LEVELS_MAX_ROWS];
+  char path[512];       /* the file it came from, for messages */
+} csrLevelTable;
+
+/* Read `path` into *t. On failure t->nrow is 0 and err says file, line and cause. */
+csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err);
+
+/* The row index to run for `scene` within `tol_mm` (finite, >= 0), or -1 with err: the table
+ * has no row for the scene (CS_ERR_ARG), or no row meets the tolerance (CS_ERR_RANGE, naming
+ * the best achievable error and its configuration). */
+int csr_levelTablePick(const csrLevelTable* t, const char* scene, double tol_mm, csError* err);
+
+/* The scene's most accurate row (smallest error; a tie: the cheaper), or -1 if it has none. */
+int csr_levelTableFinest(const csrLevelTable* t, const char* scene);
+
+/* Rows of `scene` in the table. */
+int csr_levelTableCount(const csrLevelTable* t, const char* scene);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_ROBOT_LEVELS_H */

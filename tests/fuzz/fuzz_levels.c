@@ -1,0 +1,101 @@
+/* fuzz_levels.c: fuzz harness of the leg-level table of `--legs auto` (robot_levels.h,
+ * csr_levelTableRead and the pick).
+ *
+ * Per input: read it and check the error contract (fuzz_common.h); a table the reader accepts
+ * must hold what the header promises (1..CSR_LEVELS_MAX_ROWS rows; each a non-empty scene word
+ * and a registered level, NUL-terminated; links 1..64, macro steps 1..100000, 0 < dt <= 0.01,
+ * finite error >= 0, finite costs > 0, a line number within the input; no configuration
+ * twice), and the pick must keep its promise for the first row's scene at three tolerances
+ * (below, at and above the row's error): a picked row is of that scene, within the tolerance,
+ * and no row of the scene within it is cheaper; a refusal names the file. */
+#include <math.h>
+#include <string.h>
+
+#include "fuzz_common.h"
+#include "robot_leg.h"
+#include "robot_levels.h"
+
+static csrLevelTable g_t; /* large: not on the stack */
+
+
+int csz_harnessInit(void) {
+  return csz_tempPath(0, ".csv") ? 0 : 1;
+}
+
+
+static void checkRow(const csrLevelRow* r, size_t size) {
+  if (!memchr(r->scene, '\0', sizeof r->scene) || !r->scene[0] ||
+      !memchr(r->level, '\0', sizeof r->level) || !csr_legTypeFind(r->level, NULL)) {
+    csz_fail("accepted row: scene or level not a terminated name of a registered level");
+  }
+  if (r->links < 1 || r->links > 64 || r->macro_steps < 1 || r->macro_steps > 100000 ||
+      !(r->dt_s > 0 && r->dt_s <= 0.01) || !(r->error_mm >= 0) || !isfinite(r->error_mm) ||
+      !(r->cpu_s_per_s > 0) || !isfinite(r->cpu_s_per_s) || !(r->wall_s_per_s > 0) ||
+      !isfinite(r->wall_s_per_s)) {
+    csz_fail("accepted row of line %d: a value out of range", r->line);
+  }
+  if (r->line < 1 || (size_t)r->line > size + 1) {
+    csz_fail("accepted row: line %d outside the input", r->line);
+  }
+}
+
+
+static void checkPick(const char* path, double tol) {
+  const char* scene = g_t.row[0].scene;
+  csError err;
+  cs_errorClear(&err);
+  int k = csr_levelTablePick(&g_t, scene, tol, &err);
+  if (k < 0) {
+    if (!err.msg[0] || strstr(err.msg, path) != err.msg) {
+      csz_fail("pick refused without naming the file: '%s'", err.msg);
+    }
+    for (int i = 0; i < g_t.nrow; i++) {
+      if (!strcmp(g_t.row[i].scene, scene) && g_t.row[i].error_mm <= tol) {
+        csz_fail("pick refused --tol %g though line %d meets it", tol, g_t.row[i].line);
+      }
+    }
+    return;
+  }
+  const csrLevelRow* p = &g_t.row[k];
+  if (strcmp(p->scene, scene) || !(p->error_mm <= tol)) {
+    csz_fail("picked line %d is of another scene or beyond --tol %g", p->line, tol);
+  }
+  for (int i = 0; i < g_t.nrow; i++) {
+    const csrLevelRow* r = &g_t.row[i];
+    if (!strcmp(r->scene, scene) && r->error_mm <= tol && r->cpu_s_per_s < p->cpu_s_per_s) {
+      csz_fail("picked line %d but line %d is cheaper within --tol %g", p->line, r->line, tol);
+    }
+  }
+}
+
+
+csStatus csz_harnessRun(const uint8_t* data, size_t size, csError* err) {
+  const char* path = csz_tempPath(0, ".csv");
+  if (csz_writeFile(path, data, size) != 0) {
+    csz_fail("cannot write %s", path);
+  }
+  csStatus st = csr_levelTableRead(path, &g_t, err);
+  csz_checkError(st, st == CS_OK && g_t.nrow > 0, err, path, data, size, CSZ_TEXT);
+  if (st != CS_OK) {
+    return st;
+  }
+  if (g_t.nrow < 1 || g_t.nrow > CSR_LEVELS_MAX_ROWS) {
+    csz_fail("accepted table has %d rows", g_t.nrow);
+  }
+  for (int i = 0; i < g_t.nrow; i++) {
+    checkRow(&g_t.row[i], size);
+    for (int j = 0; j < i; j++) {
+      const csrLevelRow* a = &g_t.row[i];
+      const csrLevelRow* b = &g_t.row[j];
+      if (!strcmp(a->scene, b->scene) && !strcmp(a->level, b->level) && a->links == b->links &&
+          a->macro_steps == b->macro_steps && a->dt_s == b->dt_s) {
+        csz_fail("accepted table repeats a configuration (lines %d, %d)", b->line, a->line);
+      }
+    }
+  }
+  double e = g_t.row[0].error_mm;
+  checkPick(path, 0.5 * e);
+  checkPick(path, e);
+  checkPick(path, 2 * e + 1);
+  return st;
+}

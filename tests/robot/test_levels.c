@@ -1,0 +1,150 @@
+/* test_levels.c: the leg-level table of `--legs auto` (robot_levels.h): a good table reads;
+ * every bad line is refused with one message naming the file, the line and the cause; the pick
+ * takes the cheapest row within the tolerance (a loose tolerance a cheaper row than a tight
+ * one), and a tolerance no row meets names the best achievable error. Synthetic tables: the
+ * numbers are test inputs, not measurements. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cs_test.h"
+#include "robot_levels.h"
+
+#define HEADER "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
+#define PATH "test_levels.csv"
+
+static csrLevelTable g_t; /* large: not on the stack */
+
+
+/* write text to PATH and read it; returns the status, err filled */
+static csStatus readText(const char* text, csError* err) {
+  FILE* f = fopen(PATH, "wb");
+  if (!f) {
+    return CS_ERR_IO;
+  }
+  fputs(text, f);
+  fclose(f);
+  cs_errorClear(err);
+  return csr_levelTableRead(PATH, &g_t, err);
+}
+
+
+/* the table is refused with a message that starts "<PATH>:<line>:" and contains `cause` */
+static void expectRefused(const char* text, int line, const char* cause) {
+  csError err;
+  csStatus st = readText(text, &err);
+  char where[64];
+  snprintf(where, sizeof where, PATH ":%d: ", line);
+  CS_EXPECT(st != CS_OK);
+  CS_EXPECT(g_t.nrow == 0);
+  CS_EXPECT(strstr(err.msg, where) == err.msg);
+  CS_EXPECT(strstr(err.msg, cause) != NULL);
+  CS_EXPECT(strchr(err.msg, '\n') == NULL);
+  if (st == CS_OK || strstr(err.msg, where) != err.msg || !strstr(err.msg, cause)) {
+    printf("  got: %s (wanted line %d, '%s')\n", err.msg, line, cause);
+  }
+}
+
+
+static const char kGood[] =
+    "# comment\n"
+    "\n" HEADER
+    "flat-road,prb,2,1,0.001,50,1.0,2.0,test machine\n"
+    "flat-road,rod,4,1,0.001,5,3.0,6.0,test machine\r\n"
+    "flat-road,rod,6,1,0.001,1,5.0,9.0,test machine\n"
+    "obstacle,rod,2,2,0.001,30,0.5,1.0,test machine\n"
+    "obstacle,prb,4,1,0.001,8,2.5,5.0,test machine\n";
+
+
+static void test_levels_good_table_reads(void) {
+  csError err;
+  CS_EXPECT(readText(kGood, &err) == CS_OK);
+  CS_EXPECT(g_t.nrow == 5);
+  CS_EXPECT(!strcmp(g_t.row[1].level, "rod") && g_t.row[1].links == 4 && g_t.row[1].line == 5);
+  CS_EXPECT(!strcmp(g_t.row[1].machine, "test machine")); /* the CR of CRLF is not kept */
+  CS_EXPECT(g_t.row[3].macro_steps == 2 && g_t.row[3].dt_s == 0.001);
+  CS_EXPECT(csr_levelTableCount(&g_t, "flat-road") == 3);
+  CS_EXPECT(csr_levelTableCount(&g_t, "obstacle") == 2);
+  CS_EXPECT(csr_levelTableFinest(&g_t, "flat-road") == 2);
+}
+
+
+static void test_levels_loose_tolerance_picks_cheaper_than_tight(void) {
+  csError err;
+  CS_EXPECT(readText(kGood, &err) == CS_OK);
+  const char* scenes[2] = {"flat-road", "obstacle"};
+  for (int s = 0; s < 2; s++) {
+    int loose = csr_levelTablePick(&g_t, scenes[s], 100, &err);
+    int tight = csr_levelTablePick(&g_t, scenes[s], 8, &err);
+    CS_EXPECT(loose >= 0 && tight >= 0);
+    if (loose >= 0 && tight >= 0) {
+      CS_EXPECT(g_t.row[loose].cpu_s_per_s < g_t.row[tight].cpu_s_per_s);
+      CS_EXPECT(g_t.row[tight].error_mm <= 8 && g_t.row[loose].error_mm <= 100);
+    }
+  }
+  /* the cheapest within: 5 mm takes rod 4 (3 CPU s/s), not rod 6 (5), not prb (50 mm) */
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 5, &err) == 1);
+  /* a tolerance on a row's error admits it (<=) */
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 1, &err) == 2);
+}
+
+
+static void test_levels_unmet_tolerance_names_best_error(void) {
+  csError err;
+  CS_EXPECT(readText(kGood, &err) == CS_OK);
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 0.5, &err) == -1);
+  CS_EXPECT(strstr(err.msg, "no level meets --tol 0.5 mm on flat-road") != NULL);
+  CS_EXPECT(strstr(err.msg, "best achievable is 1 mm (rod, links 6") != NULL);
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTablePick(&g_t, "stairs", 100, &err) == -1);
+  CS_EXPECT(strstr(err.msg, "no row for scene 'stairs'") != NULL);
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", NAN, &err) == -1);
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", -1, &err) == -1);
+}
+
+
+static void test_levels_bad_lines_refused(void) {
+  expectRefused("scene,level,links\n", 1, "the header must be");
+  expectRefused("# only a comment\n", 1, "no header line");
+  expectRefused(HEADER, 1, "no rows after the header");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,50,1.0,2.0\n", 2, "8 fields, expected 9");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,50,1.0,2.0,m,extra\n", 2, "10 fields");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,50,1.0,2.0,m\n"
+                "obstacle,prb,2,1,0.001,fifty,1.0,2.0,m\n", 3, "error_mm 'fifty' is not a number");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,nan,1.0,2.0,m\n", 2, "error_mm 'nan' is not a "
+                "finite number");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,1e999,1.0,2.0,m\n", 2, "not a finite number");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,-1,1.0,2.0,m\n", 2, "error_mm -1 is outside");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,5,0,2.0,m\n", 2, "cpu_s_per_s 0 is outside");
+  expectRefused(HEADER "flat-road,prb,0,1,0.001,5,1,2.0,m\n", 2, "links 0 is outside");
+  expectRefused(HEADER "flat-road,prb,2.5,1,0.001,5,1,2.0,m\n", 2, "links 2.5 is not an integer");
+  expectRefused(HEADER "flat-road,prb,2,1,0.02,5,1,2.0,m\n", 2, "dt_s 0.02 is outside");
+  expectRefused(HEADER "flat-road,prb,2,1,,5,1,2.0,m\n", 2, "dt_s '' is not a number");
+  expectRefused(HEADER "flat-road,fem,2,1,0.001,5,1,2.0,m\n", 2, "level 'fem' is not a leg level");
+  expectRefused(HEADER "flat-road,rom,2,1,0.001,5,1,2.0,m\n", 2, "level 'rom' is not available");
+  expectRefused(HEADER ",prb,2,1,0.001,5,1,2.0,m\n", 2, "scene '' must be one word");
+  expectRefused(HEADER "flat road,prb,2,1,0.001,5,1,2.0,m\n", 2, "must be one word");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,5,1,2.0,m\n"
+                "flat-road,prb,2,1,0.001,6,2,3.0,m\n", 3, "repeats the configuration of line 2");
+  /* an empty file: one line naming it, no line 0 (found by fuzz_levels) */
+  csError e0;
+  CS_EXPECT(readText("", &e0) == CS_ERR_PARSE);
+  CS_EXPECT(strstr(e0.msg, PATH ": empty file") == e0.msg && !strstr(e0.msg, ":0:"));
+  /* a missing file: one line naming it */
+  csError err;
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTableRead("no_such_levels.csv", &g_t, &err) == CS_ERR_IO);
+  CS_EXPECT(strstr(err.msg, "no_such_levels.csv") != NULL && !strchr(err.msg, '\n'));
+}
+
+
+int main(int argc, char** argv) {
+  cs_testInit(argc, argv);
+  CS_RUN(test_levels_good_table_reads);
+  CS_RUN(test_levels_loose_tolerance_picks_cheaper_than_tight);
+  CS_RUN(test_levels_unmet_tolerance_names_best_error);
+  CS_RUN(test_levels_bad_lines_refused);
+  remove(PATH);
+  return cs_testSummary();
+}

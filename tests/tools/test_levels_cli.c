@@ -1,0 +1,213 @@
+/* test_levels_cli.c: `crawlsim run --legs auto --tol MM` end to end, on the shipped table
+ * robot/levels.csv (tools/bench_levels.py's measurements). For both paper scenes:
+ *  - a loose tolerance (the scene's largest measured error) picks a cheaper configuration than
+ *    a tight one (its smallest): a property of the measured data, so this fails if the table
+ *    stops showing a trade-off;
+ *  - the configuration recorded in the output (leg_model, links_per_segment, step_s,
+ *    macro_step_s) is the one the banner and legs_auto_choice name, and the one the table
+ *    says is cheapest within the tolerance (computed here, independently of the picker);
+ *  - a tolerance below the best error is one error line naming the best achievable error;
+ *  - the table holds at least two configurations of every registered level per scene, and the
+ *    benchmark's full table docs/levels_bench.csv has rows of every task and level.
+ * And a bad or missing table, a missing --tol and a stray --tol are one-line errors before
+ * anything runs. argv[1] is the crawlsim executable. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cs_cli.h"
+#include "cs_test.h"
+#include "robot_leg.h"
+#include "robot_levels.h"
+
+static const char* exe_path = NULL;
+static char g_table[1024];
+static csrLevelTable g_t;
+
+
+/* the scene's cheapest row within tol (ties: smaller error), computed from the rows */
+static int cheapestWithin(const char* scene, double tol) {
+  int best = -1;
+  for (int i = 0; i < g_t.nrow; i++) {
+    const csrLevelRow* r = &g_t.row[i];
+    if (strcmp(r->scene, scene) || r->error_mm > tol) {
+      continue;
+    }
+    if (best < 0 || r->cpu_s_per_s < g_t.row[best].cpu_s_per_s ||
+        (r->cpu_s_per_s == g_t.row[best].cpu_s_per_s && r->error_mm < g_t.row[best].error_mm)) {
+      best = i;
+    }
+  }
+  return best;
+}
+
+
+/* run the scene with --legs auto --tol tol; check that row k ran and was recorded */
+static void expectRuns(const char* scene, double tol, int k) {
+  const csrLevelRow* r = &g_t.row[k];
+  char args[2048], out[64];
+  snprintf(out, sizeof out, "levelscli_%s.h5", scene);
+  snprintf(args, sizeof args, "run --scene %s --legs auto --tol %.17g --t-end 0.02 --out %s",
+           scene, tol, out);
+  csCliResult res;
+  cs_cliRun(exe_path, args, "levelscli", &res);
+  CS_EXPECT(res.status == 0);
+  char want[256];
+  snprintf(want, sizeof want, "--legs auto picked %s, links %d, macro steps %d, dt %g s:",
+           r->level, r->links, r->macro_steps, r->dt_s);
+  CS_EXPECT(strstr(res.err, want) != NULL);
+  snprintf(want, sizeof want, "legs %s,", r->level); /* the first banner line */
+  CS_EXPECT(strstr(res.err, want) != NULL);
+  printf("  %s, --tol %g mm: %s links %d macro %d (%.3g mm, %.3g CPU s/s)\n", scene, tol,
+         r->level, r->links, r->macro_steps, r->error_mm, r->cpu_s_per_s);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(out, H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char level[32] = "", choice[1100] = "";
+    double links = 0, h = 0, H = 0, t = 0;
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "leg_model", level) >= 0);
+    CS_EXPECT(!strcmp(level, r->level));
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0);
+    CS_EXPECT(links == r->links);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "step_s", &h) >= 0 && h == r->dt_s);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "macro_step_s", &H) >= 0);
+    /* prb is an in-world level: one ODE step per exchange whatever the row says */
+    CS_EXPECT_NEAR(H, r->dt_s * (strcmp(r->level, "prb") ? r->macro_steps : 1), 1e-15, 1e-12);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "legs_auto_tol_mm", &t) >= 0 && t == tol);
+    hsize_t dims[1] = {0};
+    H5T_class_t cls;
+    size_t sz = 0;
+    CS_EXPECT(H5LTget_attribute_info(f, "/", "legs_auto_choice", dims, &cls, &sz) >= 0 &&
+              sz < sizeof choice);
+    if (sz < sizeof choice) {
+      CS_EXPECT(H5LTget_attribute_string(f, "/", "legs_auto_choice", choice) >= 0);
+    }
+    CS_EXPECT(strstr(res.err, choice) != NULL && choice[0]); /* the banner says the same */
+    H5Fclose(f);
+  }
+  remove(out);
+  snprintf(out, sizeof out, "levelscli_%s.xdmf", scene);
+  remove(out);
+}
+
+
+/* exit 1, exactly one stderr line containing want, no output file */
+static void expectError(const char* args, const char* want) {
+  remove("levelscli_bad.h5");
+  char full[2048];
+  snprintf(full, sizeof full, "run --quiet --t-end 0.01 --out levelscli_bad.h5 %s", args);
+  csCliResult res;
+  cs_cliRun(exe_path, full, "levelscli", &res);
+  CS_EXPECT(res.status == 1);
+  CS_EXPECT(cs_cliOneLine(res.err));
+  CS_EXPECT(strstr(res.err, want) != NULL);
+  CS_EXPECT(!cs_cliFileExists("levelscli_bad.h5"));
+  if (res.status != 1 || !strstr(res.err, want)) {
+    printf("  %s -> %d: %s", args, res.status, res.err);
+  }
+}
+
+
+static void test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes(void) {
+  csError err;
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTableRead(g_table, &g_t, &err) == CS_OK);
+  if (g_t.nrow == 0) {
+    printf("  %s\n", err.msg);
+    return;
+  }
+  const char* scenes[2] = {"flat-road", "obstacle"};
+  for (int s = 0; s < 2; s++) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < g_t.nrow; i++) {
+      if (!strcmp(g_t.row[i].scene, scenes[s])) {
+        lo = fmin(lo, g_t.row[i].error_mm);
+        hi = fmax(hi, g_t.row[i].error_mm);
+      }
+    }
+    CS_EXPECT(isfinite(lo)); /* the table measures the scene */
+    if (!isfinite(lo)) {
+      continue;
+    }
+    /* the benchmark measured every registered level on the scene */
+    for (int k = 0; k < csr_legTypeCount(); k++) {
+      int n = 0;
+      for (int i = 0; i < g_t.nrow; i++) {
+        n += !strcmp(g_t.row[i].scene, scenes[s]) && !strcmp(g_t.row[i].level,
+                                                             csr_legTypeAt(k)->name);
+      }
+      CS_EXPECT(n >= 2); /* at least two resolutions of each */
+      if (n < 2) {
+        printf("  %s: %d rows of level %s\n", scenes[s], n, csr_legTypeAt(k)->name);
+      }
+    }
+    int loose = cheapestWithin(scenes[s], hi), tight = cheapestWithin(scenes[s], lo);
+    CS_EXPECT(g_t.row[loose].cpu_s_per_s < g_t.row[tight].cpu_s_per_s);
+    expectRuns(scenes[s], hi, loose);
+    expectRuns(scenes[s], lo, tight);
+    /* below the best: one error naming the best achievable error */
+    char args[256], want[128];
+    snprintf(args, sizeof args, "--scene %s --legs auto --tol %.17g", scenes[s], 0.5 * lo);
+    snprintf(want, sizeof want, "the best achievable is %.3g mm", lo);
+    expectError(args, want);
+  }
+}
+
+
+/* the benchmark's full table (docs/levels_bench.csv) has every task and every level in it */
+static void test_levels_benchmark_has_every_task_and_level(void) {
+  char path[1100];
+  const char* src = getenv("CS_SOURCE_DIR");
+  snprintf(path, sizeof path, "%s/docs/levels_bench.csv", src ? src : ".");
+  static char text[1 << 16];
+  cs_cliSlurp(path, text, sizeof text);
+  CS_EXPECT(text[0] != '\0');
+  static const char* const kWant[] = {
+      "\nflat-road,prb,", "\nflat-road,rod,", "\nobstacle,prb,", "\nobstacle,rod,",
+      "\"(1) bend O12 ", "\"(2) bend O12 + tip load", ",analytic,", ",rod,", ",fe,"};
+  for (size_t i = 0; i < sizeof kWant / sizeof kWant[0]; i++) {
+    CS_EXPECT(strstr(text, kWant[i]) != NULL);
+    if (!strstr(text, kWant[i])) {
+      printf("  %s has no '%s'\n", path, kWant[i]);
+    }
+  }
+}
+
+
+static void test_levels_bad_table_and_options_refused(void) {
+  CS_EXPECT(cs_cliWriteText("levelscli_table.csv",
+                            "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,"
+                            "wall_s_per_s,machine\n"
+                            "flat-road,prb,2,1,0.001,50,1.0,2.0,m\n"
+                            "flat-road,rod,4,1,0.001,5,-3.0,6.0,m\n"));
+  expectError("--legs auto --tol 10 --levels levelscli_table.csv",
+              "crawlsim run: levelscli_table.csv:3: cpu_s_per_s -3 is outside");
+  expectError("--legs auto --tol 10 --levels levelscli_missing.csv", "levelscli_missing.csv");
+  expectError("--legs auto", "--legs auto needs --tol MM");
+  expectError("--legs prb --tol 5", "--tol and --levels go with --legs auto");
+  expectError("--legs auto --tol 5 --links 4", "--legs auto sets --links");
+  expectError("--legs auto --tol nan", "--tol 'nan' is not a finite number");
+  remove("levelscli_table.csv");
+}
+
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: test_levels_cli <path of crawlsim> [case filter]\n");
+    return 1;
+  }
+  exe_path = argv[1];
+  const char* src = getenv("CS_SOURCE_DIR");
+  snprintf(g_table, sizeof g_table, "%s/robot/levels.csv", src ? src : ".");
+  cs_testInit(argc - 1, argv + 1);
+  CS_RUN(test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes);
+  CS_RUN(test_levels_benchmark_has_every_task_and_level);
+  CS_RUN(test_levels_bad_table_and_options_refused);
+  return cs_testSummary();
+}

@@ -1,0 +1,456 @@
+#!/usr/bin/python3
+"""bench_levels.py: speed against accuracy of the leg levels (issue 11), in one run.
+
+Tasks (each point = one `crawlsim` process, timed as a whole: wall clock and CPU seconds of
+the child from getrusage, with the load average beside them because the machine is shared):
+  track  (3) flat-road and (4) obstacle track: `crawlsim run --scene S` for prb at several
+         links per segment and rod at several elements per segment (`--links`), macro steps
+         (`--macro-steps`) and ODE steps (`--dt`); error = max over whole seconds of |(dx, dz)|
+         of the support against a rod reference at a fine discretisation and a small step
+         (--ref-*: 6 elements per segment, h = H = 0.25 ms); the same rod at 0.5 ms is one of
+         the configurations, so the table shows how far the reference itself is from converged.
+  bend   (1) one actuator's bend curve (`crawlsim bend --actuator leg`) for the chamber sets
+         that have an FE reference at l_soft 4 mm: Omega1&Omega2 from the shipped pair table
+         robot/calibration_fe_leg.h5 (an FE sweep), others from FE calibration case files
+         (--fe-cases DIR, format "crawlsim-fe-calibration 1", equal-pressure modes only);
+         analytic and rod models, and the FE itself at coarser meshes (--fe-meshes 6,5: ~4 min
+         each); error = max over the reference's pressures of |tip difference| in mm;
+         (2) the same actuator under a dead tip load, against the FE at the finest of
+         --tip-meshes (5,6).
+
+Writes (--out-dir, default docs/): levels_bench.csv (every point), levels_pareto.png (log-log
+error against CPU time per task), and the `--legs auto` table (--table, default
+robot/levels.csv: one row per scene and track configuration that finished). Finished points
+are cached in --work (JSON beside each output file), so an interrupted run resumes; --fresh
+discards the cache.
+
+Usage: /usr/bin/python3 tools/bench_levels.py [--crawlsim build/tools/crawlsim]
+         [--tasks track,bend] [--scenes flat-road,obstacle] [--obstacle-t-end 4]
+         [--prb-links 2,4,8] [--rod-configs 2x1,4x1,...,6x1@5e-4] [--ref-links 6]
+         [--ref-dt 2.5e-4] [--fe-meshes 6,5] [--tip-meshes 5,6]
+         [--work DIR] [--out-dir docs] [--table robot/levels.csv]
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import platform
+import resource
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+PROG = "bench_levels.py"
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+# the `--legs auto` table's header (robot/robot_levels.h reads exactly these columns)
+TABLE_COLUMNS = ["scene", "level", "links", "macro_steps", "dt_s", "error_mm", "cpu_s_per_s",
+                 "wall_s_per_s", "machine"]
+
+
+def fail(msg):
+    print(f"{PROG}: {msg}", file=sys.stderr)
+    sys.exit(1)
+
+
+def run_timed(cmd, timeout):
+    """Run cmd; return (returncode, wall s, child CPU s (user + sys), last stderr line)."""
+    env = dict(os.environ, OMP_WAIT_POLICY="PASSIVE", OMP_NUM_THREADS="1")
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.monotonic()
+    try:
+        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
+                           timeout=timeout, text=True)
+        rc, err = p.returncode, p.stderr
+    except subprocess.TimeoutExpired as e:
+        rc, err = -999, f"timeout after {timeout} s " + (e.stderr or b"").decode()[-200:]
+    wall = time.monotonic() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    lines = [ln for ln in err.strip().splitlines() if ln.strip()]
+    return rc, wall, cpu, (lines[-1] if lines else "")
+
+
+def cached(work, key, compute):
+    """The point's result from work/key.json, or compute() stored there."""
+    path = os.path.join(work, key + ".json")
+    if os.path.exists(path):
+        with open(path) as f:
+            return json.load(f)
+    res = compute()
+    with open(path, "w") as f:
+        json.dump(res, f, indent=1)
+    return res
+
+
+# ---------------------------------------------------------------------------------- tracks
+def track_config_name(level, links, macro, dt):
+    return f"{level}-l{links}-m{macro}-dt{dt:g}"
+
+
+def run_track(a, scene, level, links, macro, dt):
+    key = f"track-{scene}-" + track_config_name(level, links, macro, dt) + \
+        (f"-t{a.obstacle_t_end:g}" if scene == "obstacle" else "")
+    out = os.path.join(a.work, key + ".h5")
+
+    def compute():
+        cmd = [a.crawlsim, "run", "--scene", scene, "--legs", level, "--links", str(links),
+               "--quiet", "--out", out]
+        if level != "prb":
+            cmd += ["--macro-steps", str(macro)]
+        if dt != 1e-3:
+            cmd += ["--dt", f"{dt:g}"]
+        if scene == "obstacle":
+            cmd += ["--t-end", f"{a.obstacle_t_end:g}"]
+        load = os.getloadavg()[0]
+        rc, wall, cpu, last = run_timed(cmd, a.timeout)
+        return {"task": scene, "scene": scene, "level": level, "links": links, "macro": macro,
+                "dt": dt, "cmd": " ".join(cmd[1:]), "rc": rc, "wall_s": wall, "cpu_s": cpu,
+                "load": load, "last": last, "h5": out}
+
+    return cached(a.work, key, compute)
+
+
+def read_track(path):
+    import h5py
+    with h5py.File(path, "r") as f:
+        t = f["/time"][:]
+        p = f["/support/position"][:]
+        status = f.attrs.get("status", b"?")
+    if isinstance(status, bytes):
+        status = status.decode()
+    return t, p, status
+
+
+def track_error(res, ref):
+    """max over whole seconds (both runs reached) of |(dx, dz)| in mm; NaN if none."""
+    t, p, _ = read_track(res["h5"])
+    tr, pr, _ = read_track(ref["h5"])
+    worst = float("nan")
+    for s in range(1, int(math.floor(min(t[-1], tr[-1]) + 1e-9)) + 1):
+        i, j = int(np.argmin(abs(t - s))), int(np.argmin(abs(tr - s)))
+        d = math.hypot(p[i, 0] - pr[j, 0], p[i, 2] - pr[j, 2])
+        worst = d if math.isnan(worst) else max(worst, d)
+    return worst
+
+
+def sim_seconds(res):
+    t, _, _ = read_track(res["h5"])
+    return float(t[-1])
+
+
+def tracks(a, rows, table):
+    # "NxM" or "NxM@DT": N elements per segment, M macro steps, ODE step DT (default 1 ms)
+    rod_configs = []
+    for c in (c for c in a.rod_configs.split(",") if c):
+        nm, _, dt = c.partition("@")
+        n, m = (int(v) for v in nm.split("x"))
+        rod_configs.append((n, m, float(dt) if dt else 1e-3))
+    for scene in a.scenes.split(","):
+        ref = run_track(a, scene, "rod", a.ref_links, 1, a.ref_dt)
+        if ref["rc"] != 0:
+            fail(f"the {scene} reference run failed: {ref['last']}")
+        t_ref = sim_seconds(ref)
+        configs = [("prb", n, 1, 1e-3) for n in (int(v) for v in a.prb_links.split(",") if v)]
+        configs += [("rod", n, m, dt) for n, m, dt in rod_configs]
+        points = [(ref, "rod", a.ref_links, 1, a.ref_dt, True)]
+        for level, links, macro, dt in configs:
+            res = run_track(a, scene, level, links, macro, dt)
+            points.append((res, level, links, macro, dt, False))
+            print(f"  {scene} {level} links {links} macro {macro}: rc {res['rc']}, "
+                  f"{res['cpu_s']:.1f} s CPU, {res['wall_s']:.1f} s wall", file=sys.stderr)
+        # the reference's own error: the same rod at half its step (not a choice for auto)
+        check = None
+        if a.ref_check_dt:
+            check = run_track(a, scene, "rod", a.ref_links, 1, a.ref_check_dt)
+        for res, level, links, macro, dt, is_ref in points + \
+                ([(check, "rod", a.ref_links, 1, a.ref_check_dt, False)] if check else []):
+            ok = res["rc"] == 0
+            is_check = check is not None and res is check
+            t_sim = sim_seconds(res) if os.path.exists(res["h5"]) else float("nan")
+            err = 0.0 if is_ref else (track_error(res, ref) if ok else float("nan"))
+            setting = f"links {links}" + (f", macro {macro} x {dt * 1e3:g} ms" if level != "prb"
+                                         else f", dt {dt * 1e3:g} ms")
+            rows.append({"task": scene, "model": level, "setting": setting,
+                         "error_mm": err, "wall_s": res["wall_s"], "cpu_s": res["cpu_s"],
+                         "sim_s": t_sim, "load": res["load"], "status": "ok" if ok else
+                         res["last"], "reference": "yes" if is_ref else
+                         ("check of the reference" if is_check else ""),
+                         "command": res["cmd"]})
+            if ok and not is_ref and not is_check:
+                table.append({"scene": scene, "level": level, "links": links,
+                              "macro_steps": macro, "dt_s": f"{dt:g}",
+                              "error_mm": f"{err:.2f}",
+                              "cpu_s_per_s": f"{res['cpu_s'] / t_ref:.3f}",
+                              "wall_s_per_s": f"{res['wall_s'] / t_ref:.3f}",
+                              "machine": a.machine})
+        print(f"  {scene}: reference {t_ref:g} s simulated", file=sys.stderr)
+
+
+# ---------------------------------------------------------------------------------- bends
+def fe_references(a):
+    """[(name, ratios R1..R4, pressure [M], tip [M,3], wall s)] of the FE at l_soft 4 mm."""
+    import h5py
+    refs = []
+    with h5py.File(os.path.join(ROOT, "robot", "calibration_fe_leg.h5"), "r") as f:
+        refs.append(("O12", (1.0, 1.0, 0.0, 0.0), f["/pressure"][:], f["/tip_position"][:],
+                     float(f.attrs.get("wall_time_s", float("nan")))))
+    # the calibration's modes and held-out cases (O1, O12r05, O12O34r3, H1 ...), as they exist
+    if a.fe_cases and os.path.isdir(a.fe_cases):
+        for fn in sorted(os.listdir(a.fe_cases)):
+            if not fn.endswith(".h5"):
+                continue
+            try:
+                with h5py.File(os.path.join(a.fe_cases, fn), "r") as f:
+                    if f.attrs.get("format", b"") != b"crawlsim-fe-calibration 1":
+                        continue
+                    for name, g in f["cases"].items():
+                        r = tuple(float(g.attrs[f"ratio{k}"]) for k in range(1, 5))
+                        if g.attrs.get("status", b"") != b"complete" or name == "O12" or \
+                                g.attrs.get("kind", b"") == b"gravity" or max(r) <= 0:
+                            continue
+                        refs.append((name, r, g["pressure"][:], g["tip"][:],
+                                     float(g.attrs.get("wall_time_s", float("nan")))))
+            except (OSError, KeyError):
+                continue
+    return refs
+
+
+def run_bend(a, name, ratios, model, p_max, p_step, mesh=None, tip=None, calib=None):
+    key = f"bend-{name}-{model}" + (f"-h{mesh:g}" if mesh else "") + \
+        (f"-tip{tip}" if tip else "") + (f"-cal{calib}" if calib else "")
+    out = os.path.join(a.work, key + ".h5")
+
+    def compute():
+        cmd = [a.crawlsim, "bend", "--model", model, "--actuator", "leg", "--pressures",
+               ",".join(f"{v:.6g}" for v in ratios), "--p-max", f"{p_max:g}", "--p-step",
+               f"{p_step:g}", "--out", out]
+        if mesh:
+            cmd += ["--mesh-size", f"{mesh:g}"]
+        if tip:
+            cmd += ["--tip-load", tip]
+        if calib:
+            cmd += ["--calibration", calib]
+        load = os.getloadavg()[0]
+        rc, wall, cpu, last = run_timed(cmd, a.fe_timeout if model == "fe" else a.timeout)
+        return {"rc": rc, "wall_s": wall, "cpu_s": cpu, "load": load, "last": last, "h5": out,
+                "cmd": " ".join(cmd[1:])}
+
+    return cached(a.work, key, compute)
+
+
+def bend_error(res, p_ref, tip_ref):
+    """max over the reference's pressures of |tip difference| (mm); NaN if the run failed."""
+    import h5py
+    if res["rc"] != 0:
+        return float("nan")
+    with h5py.File(res["h5"], "r") as f:
+        p, tip = f["/pressure"][:], f["/tip_position"][:]
+    worst = 0.0
+    for i, pv in enumerate(p):
+        j = int(np.argmin(abs(p_ref - pv)))
+        if abs(p_ref[j] - pv) < 1e-9:
+            worst = max(worst, float(np.linalg.norm(tip[i] - tip_ref[j])))
+    return worst
+
+
+def bend_row(task, model, setting, res, err):
+    return {"task": task, "model": model, "setting": setting, "error_mm": err,
+            "wall_s": res["wall_s"], "cpu_s": res["cpu_s"], "sim_s": "", "load": res["load"],
+            "status": "ok" if res["rc"] == 0 else res["last"], "reference": "",
+            "command": res["cmd"]}
+
+
+def bends(a, rows):
+    """(1) bend curves against the FE at l_soft 4 mm; (2) under a tip load against the FE at
+    the finest mesh run here (--tip-meshes, the first is the reference)."""
+    import h5py
+    for name, ratios, p_ref, tip_ref, fe_wall in fe_references(a):
+        # the calibrated levels hold only up to the pair table's end (0.3 MPa): compare there
+        p_max = min(float(p_ref[-1]), a.bend_p_max)
+        step = float(p_ref[1] - p_ref[0])
+        rs = ",".join(f"{v:g}" for v in ratios)
+        task = f"(1) bend {name} (p x {rs}), 0-{p_max:g} MPa"
+        # the reference itself, at the wall time its file records (not re-run; shared machine)
+        rows.append({"task": task, "model": "fe", "setting": "l_soft 4 mm (reference, wall "
+                     "time from the file)", "error_mm": 0.0, "wall_s": fe_wall, "cpu_s": float("nan"),
+                     "sim_s": "", "load": "", "status": "ok", "reference": "yes",
+                     "command": "crawlsim calibrate (FE case file)"})
+        # rod: --mesh-size is its element length (12.5 mm = 4 per segment, the default)
+        models = [("analytic", None, None), ("rod", 25.0, None), ("rod", 12.5, None),
+                  ("rod", 6.25, None), ("rod", 12.5, "analytic")]
+        models += [("fe", h, None) for h in a.fe_meshes] if name == "O12" else []
+        for model, mesh, calib in models:
+            res = run_bend(a, name, ratios, model, p_max, step, mesh, calib=calib)
+            err = bend_error(res, p_ref, tip_ref)
+            setting = (f"{'elements' if model == 'rod' else 'mesh'} {mesh:g} mm" if mesh
+                       else "") + (", calibration analytic" if calib else "")
+            rows.append(bend_row(task, model, setting, res, err))
+            print(f"  bend {name} {model} {setting}: error {err:.3g} mm, "
+                  f"{res['cpu_s']:.2f} s CPU", file=sys.stderr)
+    # (2) the same actuator (Omega1&Omega2) under a dead tip load. Reference: the FE at the
+    # finest --tip-meshes when given (no l_soft 4 mm FE run under a tip load exists), else the
+    # rod at 3.125 mm elements (then the error is the rod's discretisation error only)
+    meshes = sorted(a.tip_meshes)
+    p_max, step = a.tip_p_max, 0.025
+    if meshes:
+        task = f"(2) bend O12 + tip load {a.tip_load} N vs FE {meshes[0]:g} mm"
+        ref = run_bend(a, "O12", (1, 1, 0, 0), "fe", p_max, step, meshes[0], tip=a.tip_load)
+        ref_label = ("fe", f"mesh {meshes[0]:g} mm")
+    else:
+        task = f"(2) bend O12 + tip load {a.tip_load} N vs rod 3.125 mm"
+        ref = run_bend(a, "O12", (1, 1, 0, 0), "rod", p_max, step, 3.125, tip=a.tip_load)
+        ref_label = ("rod", "elements 3.125 mm")
+    if ref["rc"] != 0:
+        print(f"  tip-load reference failed: {ref['last']}", file=sys.stderr)
+        return
+    with h5py.File(ref["h5"], "r") as f:
+        p_ref, tip_ref = f["/pressure"][:], f["/tip_position"][:]
+    rows.append(dict(bend_row(task, ref_label[0], ref_label[1], ref, 0.0), reference="yes"))
+    for model, mesh, calib in [("rod", 50.0, None), ("rod", 25.0, None), ("rod", 12.5, None),
+                               ("rod", 6.25, None)] + [("fe", h, None) for h in meshes[1:]]:
+        res = run_bend(a, "O12", (1, 1, 0, 0), model, p_max, step, mesh, tip=a.tip_load,
+                       calib=calib)
+        err = bend_error(res, p_ref, tip_ref)
+        setting = (f"{'elements' if model == 'rod' else 'mesh'} {mesh:g} mm" if mesh else "") \
+            + (", calibration analytic" if calib else "")
+        rows.append(bend_row(task, model, setting, res, err))
+        print(f"  tip load {model} {setting}: error {err:.3g} mm", file=sys.stderr)
+
+
+# ---------------------------------------------------------------------------------- output
+def write_csv(path, rows, columns):
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns, lineterminator="\n")
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items()
+                        if k in columns})
+
+
+def pareto_png(path, rows, machine):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    tasks = list(dict.fromkeys(r["task"] for r in rows))
+    ncol = min(3, len(tasks))
+    nrow = (len(tasks) + ncol - 1) // ncol
+    fig, axes = plt.subplots(nrow, ncol, figsize=(5.6 * ncol, 4.4 * nrow), squeeze=False)
+    for ax in axes.flat[len(tasks):]:
+        ax.axis("off")
+    colours = {"prb": "tab:blue", "rod": "tab:orange", "analytic": "tab:green", "fe": "tab:red"}
+    for ax, task in zip(axes.flat, tasks):
+        for r in (r for r in rows if r["task"] == task and r["status"] == "ok"):
+            e = max(r["error_mm"], 1e-3)
+            # the l_soft 4 mm FE references record their wall time only (shared machine)
+            x = r["cpu_s"] if math.isfinite(r["cpu_s"]) else r["wall_s"]
+            mk = "*" if r["reference"] == "yes" else ("s" if r["reference"] else "o")
+            ax.loglog(x, e, mk, color=colours.get(r["model"], "k"), ms=9 if mk == "*"
+                      else 6)
+            label = f"{r['model']} {r['setting']}".replace("links ", "n").replace(
+                "elements ", "").replace("calibration analytic", "analytic map").replace(
+                " (reference, wall time from the file)", " ref").strip()
+            ax.annotate(label,
+                        (x, e), fontsize=6.5, xytext=(3, 3),
+                        textcoords="offset points")
+        ax.set_title(task, fontsize=9)
+        ax.set_xlabel("CPU s (whole process; FE reference: its recorded wall s)" if "bend" in
+                      task else "CPU s (whole process)")
+        ax.set_ylabel("error (mm)" + ("; reference at 1e-3" if "bend" not in task else ""))
+        ax.grid(True, which="both", alpha=0.3)
+    fig.suptitle(f"speed against accuracy of the leg levels ({machine})", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def machine_name():
+    """'<n>-core <CPU model>' from /proc/cpuinfo (Linux), else the platform's name"""
+    model = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return f"{os.cpu_count()}-core {model}"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
+    ap.add_argument("--tasks", default="track,bend")
+    ap.add_argument("--scenes", default="flat-road,obstacle")
+    # 4 s: the rod reference heads off the road backwards from 3 s and falls at 4.37 s
+    ap.add_argument("--obstacle-t-end", type=float, default=4.0)
+    ap.add_argument("--prb-links", default="2,4,8")
+    ap.add_argument("--rod-configs",
+                    default="2x1,4x1,6x1,2x2,4x2,2x1@5e-4,4x1@5e-4,6x1@5e-4",
+                    help="rod elements per segment x macro steps [@ ODE step s], comma "
+                    "separated")
+    ap.add_argument("--ref-links", type=int, default=6)
+    # the reference: the finest rod run here; the same rod at twice its step (6x1@5e-4 in
+    # --rod-configs) measures how far the reference itself may be from converged
+    ap.add_argument("--ref-dt", type=float, default=2.5e-4)
+    ap.add_argument("--ref-check-dt", type=float, default=0,
+                    help="also run the reference at this step, not as a choice (0: skip)")
+    ap.add_argument("--fe-meshes", default="6,5",
+                    help="FE mesh sizes (mm) of task (1), against the l_soft 4 mm FE ('': none)")
+    ap.add_argument("--fe-cases", default="/work/lead/cal")
+    ap.add_argument("--tip-meshes", default="5,6", help="FE mesh sizes (mm) of task (2), the "
+                    "finest the reference ('': the rod at 3.125 mm elements instead)")
+    ap.add_argument("--tip-load", default="0.05,0,0", help="task (2)'s tip force (N), base frame")
+    ap.add_argument("--tip-p-max", type=float, default=0.3)
+    # the FE-calibrated levels end at the shipped table's 0.3 MPa (they refuse to extrapolate)
+    ap.add_argument("--bend-p-max", type=float, default=0.3)
+    ap.add_argument("--timeout", type=float, default=1800)
+    ap.add_argument("--fe-timeout", type=float, default=3600)
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench_levels"))
+    ap.add_argument("--out-dir", default=os.path.join(ROOT, "docs"))
+    ap.add_argument("--table", default=os.path.join(ROOT, "robot", "levels.csv"))
+    ap.add_argument("--machine", default=machine_name(),
+                    help="where it ran (default: the CPU count and model; say if it was shared)")
+    ap.add_argument("--fresh", action="store_true")
+    a = ap.parse_args()
+    a.machine = a.machine.replace(",", ";")  # the table has no quoting
+    a.fe_meshes = [float(v) for v in a.fe_meshes.split(",") if v]
+    a.tip_meshes = [float(v) for v in a.tip_meshes.split(",") if v]
+    if not os.access(a.crawlsim, os.X_OK):
+        fail(f"{a.crawlsim}: not an executable (build first, or give --crawlsim)")
+    os.makedirs(a.work, exist_ok=True)
+    if a.fresh:
+        for fn in os.listdir(a.work):
+            if fn.endswith(".json"):
+                os.remove(os.path.join(a.work, fn))
+    rows, table = [], []
+    tasks = a.tasks.split(",")
+    if "track" in tasks:
+        tracks(a, rows, table)
+    if "bend" in tasks:
+        bends(a, rows)
+    os.makedirs(a.out_dir, exist_ok=True)
+    cols = ["task", "model", "setting", "error_mm", "cpu_s", "wall_s", "sim_s", "load",
+            "status", "reference", "command"]
+    write_csv(os.path.join(a.out_dir, "levels_bench.csv"), rows, cols)
+    pareto_png(os.path.join(a.out_dir, "levels_pareto.png"), rows, a.machine)
+    if table:
+        with open(a.table, "w", newline="") as f:
+            f.write("# crawlsim leg levels 1: written by tools/bench_levels.py; error_mm = max "
+                    "over whole seconds of |support (dx, dz)| against a rod reference "
+                    f"(links {a.ref_links}, dt {a.ref_dt:g} s); cpu_s_per_s = CPU seconds of "
+                    "the whole process per simulated second\n")
+            w = csv.DictWriter(f, fieldnames=TABLE_COLUMNS, lineterminator="\n")
+            w.writeheader()
+            for r in table:
+                w.writerow(r)
+    print(f"{PROG}: {len(rows)} points; wrote {a.out_dir}/levels_bench.csv, levels_pareto.png"
+          + (f", {a.table}" if table else "") + f" ({platform.node()})", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
