@@ -93,6 +93,7 @@ def main():
     if not os.path.isfile(a.deck):
         sys.exit(f"{a.deck}: no such file")
     work = a.work or os.path.dirname(os.path.abspath(a.deck))
+    os.makedirs(work, exist_ok=True)
     stem = os.path.join(work, os.path.splitext(os.path.basename(a.deck))[0] + "_ccx")
     tip = adapt(a.deck, stem + ".inp", a.length)
     r = subprocess.run(["ccx", "-i", os.path.basename(stem)], cwd=work, capture_output=True,
