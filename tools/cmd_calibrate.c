@@ -29,13 +29,14 @@
 static const char kUsage[] =
     "usage: crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list]\n"
     "                          [--merge-only] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
-    "                          [--mesh-size MM] [--fibre-size MM] [--p-step MPA] [--p-max MPA]\n"
-    "                          [--model-out PRED.h5]\n"
+    "                          [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]\n"
+    "                          [--p-step MPA] [--p-max MPA] [--model-out PRED.h5]\n"
     "  Runs the full FE model on every calibration case (chamber modes, unequal pressures,\n"
     "  held-out combinations, stiffness probes, the leg under its weight), one file per case in\n"
     "  DIR (default calibration_cases/; finished cases are skipped: the run resumes), merges\n"
     "  them into FILE.h5 (default calibration_fe.h5) and reads the table back as the legs will.\n"
-    "  --list prints the cases. Defaults: actuator leg, l_soft 4 mm, rows every 0.025 MPa;\n"
+    "  --list prints the cases. Defaults: actuator leg, l_soft 4 mm, fibres split at element\n"
+    "  faces with l_fibre 0.5 mm (--fibre-split 0: 20-node ties), rows every 0.025 MPa;\n"
     "  --p-max caps every case's end pressure (small tables for tests). With every mode\n"
     "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
     "  rules compared, stiffness); --model-out writes the model's predictions for\n"
@@ -104,6 +105,12 @@ int csx_cmdCalibrate(int argc, char** argv) {
       bad = parseNumber(a, v, 0.5, 20, &cs.mesh_size);
     } else if (!strcmp(a, "--fibre-size")) {
       bad = parseNumber(a, v, 0.05, 20, &cs.fibre_size);
+    } else if (!strcmp(a, "--fibre-split")) {
+      bad = strcmp(v, "0") != 0 && strcmp(v, "1") != 0;
+      if (bad) {
+        fprintf(stderr, "crawlsim calibrate: --fibre-split '%s' must be 0 or 1\n", v);
+      }
+      cs.fibre_split = !strcmp(v, "1");
     } else if (!strcmp(a, "--p-step")) {
       bad = parseNumber(a, v, 1e-4, 0.5, &cs.p_step);
     } else if (!strcmp(a, "--p-max")) {

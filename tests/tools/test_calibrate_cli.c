@@ -233,6 +233,7 @@ static void test_bad_options(void) {
   expectFailure("--p-max 2", "--p-max '2' must be a number in [0.0001, 1]");
   expectFailure("--p-step x", "--p-step 'x' must be a number in");
   expectFailure("--mesh-size -1", "--mesh-size '-1' must be a number in [0.5, 20]");
+  expectFailure("--fibre-split 2", "crawlsim calibrate: --fibre-split '2' must be 0 or 1");
   expectFailure("--case Q7", "--case 'Q7': no such case (see --list)");
   expectFailure("--set S1=-3", "S1 = -3 must be > 0 mm");
   expectFailure("--set Q=3", "unknown actuator parameter 'Q'");
