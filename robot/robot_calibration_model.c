@@ -259,6 +259,11 @@ int csr_calModelEval(const csrCalModel* m, int seg, const double p[CSR_NCHAMBER]
   out->stretch = 1 + sc[0];
   out->radial = sc[1];
   out->radius = m->leg.a + sc[2];
+  if (!(out->stretch > 0)) {
+    /* the superposed changes of a table's modes can sum past -1 (a table of shrinking modes:
+     * found by fuzz_calib_h5) although every row the reader accepted is > 0: non-physical */
+    return 1;
+  }
   return 0;
 }
 

@@ -111,7 +111,8 @@ typedef struct csrCalSegment_ {
 
 /* Segment seg (0..2) at chamber pressures p[4] (MPa). 0 ok; CSR_MAP_OUT_OF_RANGE (fatal) when
  * a pressure is above csr_calModelPMax; 1 (recoverable) for a pressure below -1e-9 MPa or not
- * finite (a non-physical state; tinier negatives are the pneumatics' round-off, taken as 0);
+ * finite (a non-physical state; tinier negatives are the pneumatics' round-off, taken as 0), or
+ * where the table's superposed modes give a stretch <= 0;
  * < 0 for seg outside 0..2. */
 int csr_calModelEval(const csrCalModel* m, int seg, const double p[CSR_NCHAMBER],
                      csrCalSegment* out);
