@@ -114,6 +114,32 @@ static inline void csu_quatToMat3(csReal R[9], const csReal q[4]) {
   R[8] = 1 - 2 * (x * x + y * y);
 }
 
+/* unit quaternion q = (w, x, y, z) of a rotation matrix (row-major), Shepperd's method: the
+ * largest of 4 w^2, 4 x^2, 4 y^2, 4 z^2 is taken first (stable for every R), then normalised
+ * (inverse of csu_quatToMat3 up to the sign of q) */
+static inline void csu_mat3ToQuat(csReal q[4], const csReal R[9]) {
+  const csReal tr = R[0] + R[4] + R[8];
+  if (tr > R[0] && tr > R[4] && tr > R[8]) {
+    const csReal s = 2 * sqrt(1 + tr);
+    q[0] = 0.25 * s, q[1] = (R[7] - R[5]) / s, q[2] = (R[2] - R[6]) / s, q[3] = (R[3] - R[1]) / s;
+  } else if (R[0] >= R[4] && R[0] >= R[8]) {
+    const csReal s = 2 * sqrt(1 + R[0] - R[4] - R[8]);
+    q[0] = (R[7] - R[5]) / s, q[1] = 0.25 * s, q[2] = (R[1] + R[3]) / s, q[3] = (R[2] + R[6]) / s;
+  } else if (R[4] >= R[8]) {
+    const csReal s = 2 * sqrt(1 + R[4] - R[0] - R[8]);
+    q[0] = (R[2] - R[6]) / s, q[1] = (R[1] + R[3]) / s, q[2] = 0.25 * s, q[3] = (R[5] + R[7]) / s;
+  } else {
+    const csReal s = 2 * sqrt(1 + R[8] - R[0] - R[4]);
+    q[0] = (R[3] - R[1]) / s, q[1] = (R[2] + R[6]) / s, q[2] = (R[5] + R[7]) / s, q[3] = 0.25 * s;
+  }
+  const csReal n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (n > 0) {
+    for (int k = 0; k < 4; k++) {
+      q[k] /= n;
+    }
+  }
+}
+
 /* r = M^T a for row-major 3x3 M (r must not alias a) */
 static inline void csu_mulMatTVec3(csReal r[3], const csReal M[9], const csReal a[3]) {
   r[0] = M[0] * a[0] + M[3] * a[1] + M[6] * a[2];

@@ -253,20 +253,7 @@ double csf_bendAxisAngle(const double Ra[9], const double Rb[9], const double ax
     }
   }
   double q[4]; /* w, x, y, z */
-  const double tr = R[0] + R[4] + R[8];
-  if (tr > 0) {
-    const double S = 2.0 * sqrt(tr + 1.0);
-    q[0] = 0.25 * S, q[1] = (R[7] - R[5]) / S, q[2] = (R[2] - R[6]) / S, q[3] = (R[3] - R[1]) / S;
-  } else if (R[0] > R[4] && R[0] > R[8]) {
-    const double S = 2.0 * sqrt(1.0 + R[0] - R[4] - R[8]);
-    q[0] = (R[7] - R[5]) / S, q[1] = 0.25 * S, q[2] = (R[1] + R[3]) / S, q[3] = (R[2] + R[6]) / S;
-  } else if (R[4] > R[8]) {
-    const double S = 2.0 * sqrt(1.0 + R[4] - R[0] - R[8]);
-    q[0] = (R[2] - R[6]) / S, q[1] = (R[1] + R[3]) / S, q[2] = 0.25 * S, q[3] = (R[5] + R[7]) / S;
-  } else {
-    const double S = 2.0 * sqrt(1.0 + R[8] - R[0] - R[4]);
-    q[0] = (R[3] - R[1]) / S, q[1] = (R[2] + R[6]) / S, q[2] = (R[5] + R[7]) / S, q[3] = 0.25 * S;
-  }
+  csu_mat3ToQuat(q, R);
   double a;
   if (axis) {
     a = 2.0 * atan2(q[1] * axis[0] + q[2] * axis[1] + q[3] * axis[2], q[0]);
@@ -287,20 +274,7 @@ double csf_bendAxisAngle(const double Ra[9], const double Rb[9], const double ax
 void csf_rotationVector(const double R[9], double w[3]) {
   /* unit quaternion (Shepperd), then w = 2 atan2(|v|, q_w) v / |v| with q_w >= 0 */
   double q[4];
-  const double tr = R[0] + R[4] + R[8];
-  if (tr > 0) {
-    const double S = 2.0 * sqrt(tr + 1.0);
-    q[0] = 0.25 * S, q[1] = (R[7] - R[5]) / S, q[2] = (R[2] - R[6]) / S, q[3] = (R[3] - R[1]) / S;
-  } else if (R[0] > R[4] && R[0] > R[8]) {
-    const double S = 2.0 * sqrt(1.0 + R[0] - R[4] - R[8]);
-    q[0] = (R[7] - R[5]) / S, q[1] = 0.25 * S, q[2] = (R[1] + R[3]) / S, q[3] = (R[2] + R[6]) / S;
-  } else if (R[4] > R[8]) {
-    const double S = 2.0 * sqrt(1.0 + R[4] - R[0] - R[8]);
-    q[0] = (R[2] - R[6]) / S, q[1] = (R[1] + R[3]) / S, q[2] = 0.25 * S, q[3] = (R[5] + R[7]) / S;
-  } else {
-    const double S = 2.0 * sqrt(1.0 + R[8] - R[0] - R[4]);
-    q[0] = (R[3] - R[1]) / S, q[1] = (R[2] + R[6]) / S, q[2] = (R[5] + R[7]) / S, q[3] = 0.25 * S;
-  }
+  csu_mat3ToQuat(q, R);
   if (q[0] < 0) {
     for (int i = 0; i < 4; i++) {
       q[i] = -q[i];
@@ -309,14 +283,6 @@ void csf_rotationVector(const double R[9], double w[3]) {
   const double v = sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
   const double f = v > 1e-300 ? 2.0 * atan2(v, q[0]) / v : 2.0;
   w[0] = f * q[1], w[1] = f * q[2], w[2] = f * q[3];
-}
-
-
-/* A^T b for row-major 3x3 A */
-static void mulTransVec(const double A[9], const double b[3], double r[3]) {
-  for (int i = 0; i < 3; i++) {
-    r[i] = A[i] * b[0] + A[3 + i] * b[1] + A[6 + i] * b[2];
-  }
 }
 
 
@@ -349,7 +315,7 @@ int csf_segmentMeasure(const csrActuator* act, const csfGauges* g, const csfMode
     const double S = act->S[s];
     double dc[3], cl[3];
     csu_sub3(dc, st->cb, st->ca);
-    mulTransVec(st->Ra, dc, cl);
+    csu_mulMatTVec3(cl, st->Ra, dc);
     const double chord = csu_norm3(cl);
     const double th = hypot(st->bend[0], st->bend[1]);
     const double arc = th > 1e-8 ? chord * th / (2.0 * sin(0.5 * th)) : chord;
@@ -379,7 +345,7 @@ int csf_segmentMeasure(const csrActuator* act, const csfGauges* g, const csfMode
       for (int q = 0; q < 3; q++) {
         x[q] = X[q] + d->u[3 * i + q] - st->ca[q];
       }
-      mulTransVec(st->Ra, x, r);
+      csu_mulMatTVec3(r, st->Ra, x);
       csu_sub3(r, r, p);
       const double along = csu_dot3(r, t);
       const double rad = sqrt(fmax(csu_dot3(r, r) - along * along, 0.0));

@@ -486,13 +486,13 @@ static void setBaseMotion(csrRodBaseMotion* bm, double ta, double H, const csrBa
   bm->H = H;
   bm->a = *b0;
   bm->b = *b1;
-  csr_rodMatToQuat(bm->qa, b0->R);
+  csu_mat3ToQuat(bm->qa, b0->R);
   if (!(H > 0)) {
     return; /* at rest at b0 */
   }
   bm->moving = 1;
   double qb[4], qab[4], wa[3], wb[3], t[3];
-  csr_rodMatToQuat(qb, b1->R);
+  csu_mat3ToQuat(qb, b1->R);
   csr_rodQmulConj(qab, bm->qa, qb);
   csr_rodQlog(bm->Phi, qab);
   csr_rodMulMatTVec(wa, b0->R, b0->w);
@@ -668,8 +668,8 @@ void csr_rodGetStats(const csrRodData* d, csrRodStats* s) {
 static int nearBase(const csrBaseState* a, const csrBaseState* b) {
   double dx[3], qa[4], qb[4], qr[4], phi[3];
   csu_sub3(dx, a->x, b->x);
-  csr_rodMatToQuat(qa, a->R);
-  csr_rodMatToQuat(qb, b->R);
+  csu_mat3ToQuat(qa, a->R);
+  csu_mat3ToQuat(qb, b->R);
   csr_rodQmulConj(qr, qb, qa);
   csr_rodQlog(phi, qr);
   return csu_norm3(dx) <= CSR_ROD_BASE_JUMP_X && csu_norm3(phi) <= CSR_ROD_BASE_JUMP_PHI;
@@ -764,7 +764,7 @@ int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, cons
 static int refresh(const csrRodModel* m, csrRodData* d, csrRodLoads* ld, int want_energy,
                    int last) {
   double x0[3], q0[4], wb[3];
-  csr_rodMatToQuat(q0, d->cur_base.R);
+  csu_mat3ToQuat(q0, d->cur_base.R);
   memcpy(x0, d->cur_base.x, sizeof x0);
   csr_rodMulMatTVec(wb, d->cur_base.R, d->cur_base.w);
   if (csr_rodUnpackPart_(m, &d->wk, d->y + CSR_ROD_NIMP, last, x0, q0, d->cur_base.v, wb) !=

@@ -262,37 +262,6 @@ static inline double csr_rodQnormalize(double q[4]) {
   return n;
 }
 
-/* unit quaternion of a rotation matrix (row-major), Shepperd's method (stable for all R) */
-static inline void csr_rodMatToQuat(double q[4], const double R[9]) {
-  double tr = R[0] + R[4] + R[8];
-  if (tr > R[0] && tr > R[4] && tr > R[8]) {
-    double s = 2 * sqrt(1 + tr);
-    q[0] = 0.25 * s;
-    q[1] = (R[7] - R[5]) / s;
-    q[2] = (R[2] - R[6]) / s;
-    q[3] = (R[3] - R[1]) / s;
-  } else if (R[0] >= R[4] && R[0] >= R[8]) {
-    double s = 2 * sqrt(1 + R[0] - R[4] - R[8]);
-    q[0] = (R[7] - R[5]) / s;
-    q[1] = 0.25 * s;
-    q[2] = (R[1] + R[3]) / s;
-    q[3] = (R[2] + R[6]) / s;
-  } else if (R[4] >= R[8]) {
-    double s = 2 * sqrt(1 + R[4] - R[0] - R[8]);
-    q[0] = (R[2] - R[6]) / s;
-    q[1] = (R[1] + R[3]) / s;
-    q[2] = 0.25 * s;
-    q[3] = (R[5] + R[7]) / s;
-  } else {
-    double s = 2 * sqrt(1 + R[8] - R[0] - R[4]);
-    q[0] = (R[3] - R[1]) / s;
-    q[1] = (R[2] + R[6]) / s;
-    q[2] = (R[5] + R[7]) / s;
-    q[3] = 0.25 * s;
-  }
-  csr_rodQnormalize(q);
-}
-
 /* r = Rᵀ a for row-major R (r must not alias a) */
 static inline void csr_rodMulMatTVec(double r[3], const double R[9], const double a[3]) {
   r[0] = R[0] * a[0] + R[3] * a[1] + R[6] * a[2];

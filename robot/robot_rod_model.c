@@ -434,7 +434,7 @@ void csr_rodLoadsFromActuation_(const csrRodModel* m, const csrRodSegmentActuati
 
 void csr_rodRestState_(const csrRodModel* m, double* state) {
   double q[4];
-  csr_rodMatToQuat(q, m->frame);
+  csu_mat3ToQuat(q, m->frame);
   const double e3[3] = {m->frame[2], m->frame[5], m->frame[8]};
   memset(state, 0, (size_t)m->nstate * sizeof(double));
   for (int e = 1; e <= m->N; e++) {

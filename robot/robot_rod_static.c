@@ -99,7 +99,7 @@ static int residual(const csrRodModel* m, csrRodData* d, const double* y, const 
                     double Fc, double* r) {
   double q0[4];
   const double zero[3] = {0, 0, 0};
-  csr_rodMatToQuat(q0, d->cur_base.R);
+  csu_mat3ToQuat(q0, d->cur_base.R);
   if (csr_rodUnpack_(m, &d->wk, y, d->cur_base.x, q0, zero, zero) != 0) {
     return 1;
   }

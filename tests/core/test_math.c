@@ -66,6 +66,29 @@ static void test_rotation_vector_round_trip(void) {
 }
 
 
+/* csu_mat3ToQuat inverts csu_quatToMat3 (up to the sign of q) in every branch of Shepperd's
+ * method: small angles (trace largest), half turns about each axis (one diagonal entry largest) */
+static void test_quat_of_matrix_round_trip(void) {
+  const double axes[5][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 2, 3}, {-2, 0.5, 1}};
+  const double angles[4] = {1e-9, 0.7, 3.0, 3.14159265358979};
+  for (int a = 0; a < 5; a++) {
+    for (int k = 0; k < 4; k++) {
+      double u[3] = {axes[a][0], axes[a][1], axes[a][2]};
+      csu_normalize3(u);
+      const double h = 0.5 * angles[k];
+      const double q[4] = {cos(h), sin(h) * u[0], sin(h) * u[1], sin(h) * u[2]};
+      double R[9], p[4];
+      csu_quatToMat3(R, q);
+      csu_mat3ToQuat(p, R);
+      const double sgn = p[0] * q[0] + p[1] * q[1] + p[2] * q[2] + p[3] * q[3] < 0 ? -1 : 1;
+      for (int j = 0; j < 4; j++) {
+        CS_EXPECT_NEAR(sgn * p[j], q[j], 1e-14, 0);
+      }
+    }
+  }
+}
+
+
 static void test_sym_eigen3(void) {
   /* A = V diag(w) V^T for a random-looking symmetric matrix and for repeated eigenvalues */
   double mats[3][9] = {{4, 1, -2, 1, 3, 0.5, -2, 0.5, 1},
@@ -103,6 +126,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_erp_cfm_is_the_implicit_spring);
   CS_RUN(test_rotation_vector_round_trip);
+  CS_RUN(test_quat_of_matrix_round_trip);
   CS_RUN(test_sym_eigen3);
   return cs_testSummary();
 }
