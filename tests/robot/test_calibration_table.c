@@ -114,6 +114,7 @@ static void negEI(const char* p) { synthPoke(p, "/cases/O1234/EI", 6 * 1 + 2 * 2
 static void offRow(const char* p) { synthPoke(p, "/cases/O12/probe_pressure", 1, 0.125); }
 static void nanTip(const char* p) { synthPoke(p, "/cases/H3/tip", 3 * 2 + 0, INFINITY); }
 static void shortEA(const char* p) { synthTruncate(p, "/cases/O12/EA"); }
+static void negForce(const char* p) { synthPoke(p, "/cases/O12/probe_force", 3 * 1 + 2, -0.05); }
 
 
 static void test_every_bad_table_is_refused(void) {
@@ -140,6 +141,7 @@ static void test_every_bad_table_is_refused(void) {
       {badRatio, "case O1: ratio2 is 1.5 (chamber ratios are in [0, 1])"},
       {noRadial, "case O12O34r3 has no dataset 'radial'"},
       {negEI, "case O1234: EI probe 2 segment 3 is -5 (a stiffness must be > 0"},
+      {negForce, "case O12: probe_force row 2 is -0.05 N (must be in 0..1e12)"},
       {offRow, "case O12: probe 2 at 0.125 MPa is not a row of the sweep"},
       {nanTip, "case H3: tip row 3 component 1 is inf (not finite)"},
       {shortEA, "case O12: dataset 'EA' has shape [3,3], expected [4,3] (K = 4 rows)"},
