@@ -64,6 +64,10 @@ static const char* const kKeys[NKEY] = {"actuator", "chambers", "pressure_MPa",
 enum { MAX_LINE = 1023 }; /* bytes per line, line ending excluded (as terrain files) */
 /* the reference pressure is a gait pressure: the same 1 MPa ceiling as gaits_csv's reader */
 #define MAX_PRESSURE_MPA 1.0
+/* rows of a pair table at least this far apart (MPa), as the mode table's (robot_calibration_table.c):
+ * rows 1e-317 MPa apart made the analytic reference bend 0 and the FE/analytic ratio infinite
+ * (found by fuzz_calib_h5) */
+#define MIN_ROW_DP_MPA 1e-9
 /* the analytic model under-predicts the FE bend by a modest factor (3.08 for the shipped
  * reference); a factor outside 1/100..100 means the reference numbers are wrong, and using it
  * would make the legs fold instantly or not at all */
@@ -325,9 +329,10 @@ csrFeCalibration* csr_feCalibrationCreate(const char* path, const csrActuator* l
     goto done;
   }
   for (int i = 1; i < fc->m && st == CS_OK; i++) {
-    if (!(fc->p[i] > fc->p[i - 1]) || !(fc->p[i] <= MAX_PRESSURE_MPA)) {
+    if (!(fc->p[i] >= fc->p[i - 1] + MIN_ROW_DP_MPA) || !(fc->p[i] <= MAX_PRESSURE_MPA)) {
       st = cs_errorSet(err, CS_ERR_RANGE, "%s: /pressure row %d (%g MPa) must be above row %d "
-                       "and at most %g MPa", path, i + 1, fc->p[i], i, MAX_PRESSURE_MPA);
+                       "by at least %g MPa and at most %g MPa", path, i + 1, fc->p[i], i,
+                       MIN_ROW_DP_MPA, MAX_PRESSURE_MPA);
       break;
     }
     double P[4] = {fc->p[i], fc->p[i], 0, 0}, bend[2], stretch;
