@@ -42,6 +42,10 @@ csfActuatorSpec csf_actuatorSpecDefault(void) {
   return s;
 }
 
+double csf_actuatorFibreSize(const csfActuatorSpec* sp) {
+  return sp->fibre_size > 0 ? sp->fibre_size : CSF_FIBRE_SIZE_REL * sp->mesh_size;
+}
+
 
 /* point at arc length s on the rounded square of half side h, corner radius r (CCW from (h,0)) */
 static void roundedSquarePoint(double h, double r, double s, double p[2]) {
@@ -264,7 +268,7 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
     m->gravity[i] = sp->gravity[i];
   }
   if (sp->fibres) {
-    const double lf = sp->fibre_size > 0 ? sp->fibre_size : CSF_FIBRE_SIZE_REL * sp->mesh_size;
+    const double lf = csf_actuatorFibreSize(sp);
     m->fib_split = sp->fibre_split;
     st = addFibres(act, m, lf, CSF_FIBRE_INSET, err);
     if (st != CS_OK) {

@@ -39,6 +39,9 @@ typedef struct csfActuatorSpec_ {
  * tangent, split), mixed formulation, no gravity, no tip force, stem "crawlsim_fe". */
 csfActuatorSpec csf_actuatorSpecDefault(void);
 
+/* l_fibre the spec resolves to, mm: fibre_size, or l_soft / 8 when fibre_size is 0. */
+double csf_actuatorFibreSize(const csfActuatorSpec* sp);
+
 typedef struct csfActuatorFE_ {
   csfMesh* mesh;
   csfModel* model;

@@ -379,7 +379,7 @@ static int limitWatch(void* user, const csfModel* m, const csfData* d, const csf
   }
   if (lw->o->progress) {
     csfBendStep rep = {pt->p, pt->dp, pt->newton_iters, 0, pt->wall, tot, {ang[0], ang[1], ang[2]},
-                       1, pt->volume};
+                       1, pt->volume, csf_linSolverNegativePivots(d->ls)};
     lw->o->progress(lw->o->progress_user, &rep);
   }
   if (isfinite(lw->o->until_angle) && tot >= lw->o->until_angle) {
@@ -390,6 +390,45 @@ static int limitWatch(void* user, const csfModel* m, const csfData* d, const csf
     return 1;
   }
   return 0;
+}
+
+
+/* Rows at the output pressures a rising volume-controlled stretch passed (stageLimit): the
+ * path's last two states s_prev (pressure p_before) and s_conv (r->p, also in d) bracket the
+ * last of them; earlier ones (several passed in one stretch) have no bracketing states and are
+ * counted in n_rows_skipped. d is left at s_conv. */
+static csStatus rowsOnRisingPath(Run* r, double p_before, csError* err) {
+  const csfBendOptions* o = r->o;
+  csfModel* m = r->w.fe.model;
+  csfData* d = r->w.data;
+  const double eps = 1e-9 * o->p_step;
+  csStatus st = CS_OK;
+  while (st == CS_OK && fmin(r->k_out * o->p_step, o->p_max) <= r->p + eps) {
+    const double pg = fmin(r->k_out * o->p_step, o->p_max);
+    if (pg < p_before - eps || !(r->p > p_before)) {
+      r->info.n_rows_skipped++;
+      r->k_out++;
+      continue;
+    }
+    const double f = (pg - p_before) / (r->p - p_before);
+    for (size_t i = 0; i < r->ns; i++) {
+      r->w.s_tmp[i] = r->w.s_prev[i] + f * (r->w.s_conv[i] - r->w.s_prev[i]);
+    }
+    csf_stateSet(m, d, r->w.s_tmp);
+    int it = 0;
+    csError lerr = {0};
+    if (csf_newtonSolve(m, d, pg, &r->nopt, &it, &lerr) == CS_OK) {
+      double ang[3], tot, tip[3];
+      csf_bendMeasure(r->act, r->w.fe.gauges, m, d, r->w.fe.axis, r->ang_conv, ang, &tot, tip);
+      st = stageRow(r, pg, ang, tot, tip, err);
+    } else {
+      r->info.n_rows_skipped++;
+    }
+    r->info.n_newton += it;
+    r->k_out++;
+  }
+  csf_stateSet(m, d, r->w.s_conv);
+  return st;
 }
 
 
@@ -420,10 +459,14 @@ static int stageLimit(Run* r, csStatus* st, csError* err) {
   r->info.n_newton += lr.n_newton;
   r->info.n_volume_steps += lr.n_steps;
   if (!lr.no_limit) {
+    /* this episode is the sweep's latest limit: an earlier resume no longer describes it */
     r->info.p_limit = lr.p_limit;
     r->info.angle_limit = lw.a_limit;
+    r->info.p_resume = r->info.angle_resume = NAN;
+    r->info.limit_shown = lr.fell;
   }
   r->p = d->load;
+  const double V_end = d->vol_w; /* the last converged state's volume (d is reused below) */
   if (lst == CS_OK && lr.stopped) {
     /* the target angle: before the limit the state at p_hit is an equilibrium, not refined;
      * after it a pressure-controlled load reaches the angle by snapping at p_limit */
@@ -445,17 +488,31 @@ static int stageLimit(Run* r, csStatus* st, csError* err) {
     snprintf(r->info.limit_note, sizeof r->info.limit_note, "%.190s", lerr.msg);
     return 1; /* no stable branch found: the sweep ends at the last volume-controlled state */
   }
-  /* stable again above the limit: resume pressure control from the volume path's last two
-   * states; output pressures passed in the snap are skipped (no stable state there) */
-  r->info.p_resume = lr.p_resume;
-  r->info.angle_resume = r->ang_conv[3];
-  r->V_prev = r->V_conv = d->vol_w; /* d is the last converged volume-controlled state */
+  if (lr.no_limit) {
+    /* a hard stretch, not a limit point: every state of the volume path is stable under
+     * pressure control, so output pressures it passed get their rows; the last one lies
+     * between the path's last two states (s_prev at p_before, s_conv at p) and is solved there
+     * under pressure control from the state interpolated linearly in p */
+    r->info.n_hard_passed++;
+    *st = rowsOnRisingPath(r, lr.p_before, err);
+    if (*st != CS_OK) {
+      return 1;
+    }
+  } else {
+    /* stable again above the limit: output pressures passed in the snap are skipped (no
+     * stable state there) */
+    r->info.p_resume = lr.p_resume;
+    r->info.angle_resume = r->ang_conv[3];
+  }
+  /* resume pressure control from the volume path's last two states */
+  r->V_prev = r->V_conv = V_end;
   r->p_prev = lr.p_before;
   r->have_prev = r->p > r->p_prev;
   r->have_pp = 0; /* the volume path's states are not on the pressure-controlled branch */
   memcpy(r->ang_prev, r->ang_conv, sizeof r->ang_prev);
   while (r->k_out * o->p_step <= r->p + 1e-9 * o->p_step) {
     r->k_out++;
+    r->info.n_rows_skipped += !lr.no_limit;
   }
   r->dp = 0.25 * o->p_step;
   return 0;
@@ -568,6 +625,8 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   r.t_start = csf_wallTime();
   r.act = act, r.o = o, r.out = out;
   r.info.p_limit = r.info.p_resume = r.info.angle_limit = r.info.angle_resume = NAN;
+  r.info.p_definite = r.info.p_indefinite = NAN;
+  r.info.neg_pivots_max = -1;
   out->p_until_angle = NAN;
   if (o->record) {
     o->record->m = 0;
@@ -606,6 +665,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     if (!stageStep(&r, &target, &iters, &cut)) {
       if (!o->continuation) {
         r.info.p_limit = r.p;
+        r.info.limit_shown = 0;
         csf_stateSet(m, d, r.w.s_conv);
         break;
       }
@@ -620,8 +680,15 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     r.info.n_steps++;
     double ang[3], tot, tip[3];
     csf_bendMeasure(act, r.w.fe.gauges, m, d, r.w.fe.axis, r.ang_conv, ang, &tot, tip);
+    const int neg = csf_linSolverNegativePivots(d->ls);
     csfBendStep rep = {target, target - r.p, iters, cut, csf_wallTime() - t_step, tot,
-                       {ang[0], ang[1], ang[2]}, 0, d->vol_w};
+                       {ang[0], ang[1], ang[2]}, 0, d->vol_w, neg};
+    /* stability of the pressure-controlled path: the inertia of its tangent */
+    r.info.neg_pivots_max = neg > r.info.neg_pivots_max ? neg : r.info.neg_pivots_max;
+    if (neg > 0 && isnan(r.info.p_indefinite)) {
+      r.info.p_indefinite = target;
+      r.info.p_definite = r.p;
+    }
     /* accept: the buffers shift (s_pp <- s_prev <- s_conv <- d) */
     double* recycled = r.w.s_pp;
     r.w.s_pp = r.w.s_prev;

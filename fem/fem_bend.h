@@ -33,6 +33,9 @@ typedef struct csfBendStep_ {
   int volume_control;  /* 1: a step of the volume-controlled path past a limit point (dp may be
                         * negative there), 0: a pressure-controlled step */
   double volume;       /* weighted chamber volume sum_f p_unit V_f of the state, mm^3 */
+  int neg_pivots;      /* negative pivots of the step's last tangent factorisation (LDL^T:
+                        * negative eigenvalues of K, csf_linSolverNegativePivots; 0 = stable
+                        * under pressure control); -1 with LU (no inertia) */
 } csfBendStep;
 
 typedef void (*csfBendProgress)(void* user, const csfBendStep* step);
@@ -57,6 +60,17 @@ typedef struct csfBendInfo_ {
                     * (NAN: not resumed); a pressure-controlled load snaps across */
   double angle_limit, angle_resume; /* total angle at p_limit and at p_resume, deg */
   int n_volume_steps; /* converged steps under chamber-volume control */
+  int limit_shown;    /* 1: the pressure fell past p_limit under volume control (a limit point);
+                       * 0: the path ended at p_limit before it fell (both controls failed
+                       * there, limit_note says how) or continuation is off */
+  int n_hard_passed;  /* hard stretches of the path (pressure control failed, the pressure kept
+                       * rising under volume control: no limit point) followed by volume */
+  int n_rows_skipped; /* output pressures passed on a volume-controlled stretch without a row */
+  double p_definite;   /* MPa: last pressure-controlled state before the first one whose tangent
+                        * had negative pivots (NAN: every tangent positive definite, or LU) */
+  double p_indefinite; /* MPa: that first state with negative pivots (NAN: none): between the
+                        * two the path crossed a critical point (limit or bifurcation) */
+  int neg_pivots_max;  /* most negative pivots met on the path (-1: LU, no inertia) */
   char limit_note[200]; /* why the path past the limit ended without resuming ("" = n/a) */
   double max_j_dev; /* max |theta - 1| over elements at the last state (volume preservation) */
   int n_until_trials, n_until_failed; /* --until-angle refinement: equilibrium trials, failures */

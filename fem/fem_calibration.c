@@ -340,8 +340,9 @@ static csStatus writeCase(csH5File* f, const csrActuator* act, const csfCalCase*
     if (p_end >= caseMax(c, s) - 1e-9) {
       snprintf(status, sizeof status, "complete");
     } else if (isfinite(info->p_limit)) {
-      snprintf(status, sizeof status, "ended at %.5g MPa: pressure limit point at %.5g MPa%s%.150s",
-               p_end, info->p_limit, info->limit_note[0] ? "; " : "", info->limit_note);
+      snprintf(status, sizeof status, "ended at %.5g MPa: %s %.5g MPa%s%.150s", p_end,
+               info->limit_shown ? "pressure limit point at" : "both controls failed at",
+               info->p_limit, info->limit_note[0] ? "; " : "", info->limit_note);
     } else {
       snprintf(status, sizeof status, "ended at %.5g MPa", p_end);
     }

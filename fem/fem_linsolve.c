@@ -316,6 +316,14 @@ const char* csf_linSolverName(const csfLinSolver* s) {
 }
 
 
+int csf_linSolverNegativePivots(const csfLinSolver* s) {
+  if (s->opt.kind == CSF_SOLVER_KLU || !s->opt.symmetric || !s->factored) {
+    return -1;
+  }
+  return s->id.infog[11];
+}
+
+
 int csf_linSolverOrdering(const csfLinSolver* s) {
   return s->opt.kind == CSF_SOLVER_KLU ? -1 : s->id.infog[6];
 }

@@ -66,6 +66,12 @@ double csf_linSolverFlops(const csfLinSolver* s);
 /* Backend and mode ("mumps-ldlt", "mumps-lu", "klu"). */
 const char* csf_linSolverName(const csfLinSolver* s);
 
+/* Negative pivots of the last LDL^T factorisation (MUMPS INFOG(12) with SYM = 2): by
+ * Sylvester's law of inertia the number of negative eigenvalues of K. A stable equilibrium has
+ * a positive definite tangent (0); a count that grows along a path marks a critical point
+ * (limit or bifurcation) crossed. -1 for LU and KLU (no inertia). */
+int csf_linSolverNegativePivots(const csfLinSolver* s);
+
 /* Ordering actually used (MUMPS INFOG(7); -1 for KLU). */
 int csf_linSolverOrdering(const csfLinSolver* s);
 

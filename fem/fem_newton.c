@@ -386,7 +386,8 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
                          load, it);
     }
     /* fibre law zones: how many fibres changed zone in this step (diagnostics) */
-    csfNewtonIter rep = {load, it, alpha, neval, g0, g1, d->rnorm, d->fnorm, 0, 0, 0};
+    csfNewtonIter rep = {load, it, alpha, neval, g0, g1, d->rnorm, d->fnorm, 0, 0, 0,
+                         csf_linSolverNegativePivots(d->ls)};
     for (int f = 0; f < m->nfib; f++) {
       const double E = d->fib_E[f];
       const unsigned char z = E <= -CSF_FIBRE_SLACK ? 0 : (E < CSF_FIBRE_SLACK ? 1 : 2);
@@ -530,7 +531,8 @@ csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
                          vol_target, it);
     }
     if (opt->monitor) {
-      csfNewtonIter rep = {load, it, alpha, 1, 0, 0, d->rnorm, d->fnorm, 0, 0, 0};
+      csfNewtonIter rep = {load, it, alpha, 1, 0, 0, d->rnorm, d->fnorm, 0, 0, 0,
+                           csf_linSolverNegativePivots(d->ls)};
       opt->monitor(opt->monitor_user, &rep);
     }
   }

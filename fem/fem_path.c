@@ -83,6 +83,7 @@ csStatus csf_passLimit(const csfModel* m, csfData* d, double* s_prev, double* s_
       fell = 1;
     }
     pt.past_limit = fell;
+    res->fell = fell;
     res->p_before = p_last;
     p_last = pl;
     if (opt->callback && opt->callback(opt->user, m, d, &pt)) {

@@ -50,6 +50,8 @@ typedef struct csfLimitResult_ {
   int stopped;      /* 1: the callback stopped the path */
   int no_limit;     /* 1: the pressure kept rising under volume control (the pressure-controlled
                      * step had failed for another reason); p_resume set, p_limit meaningless */
+  int fell;         /* 1: the pressure fell below p_limit on the path: a limit point shown
+                     * (0 with an error: the path ended before the pressure fell) */
 } csfLimitResult;
 
 /* Follow the path past a limit point of pressure control by prescribing the weighted chamber

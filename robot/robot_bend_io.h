@@ -33,6 +33,9 @@ typedef struct csrBendMeta_ {
                              the curve's p_until_angle (MPa, NAN when not reached) */
   double p_limit;         /* pressure limit point met by the sweep (MPa); 0 or NAN = none */
   double p_resume;        /* pressure where the path was stable again (MPa); 0 or NAN = none */
+  double fibre_size;      /* FE fibre element length l_fibre (mm); 0 = not written (no FE) */
+  int fibre_split;        /* FE fibres split at element faces (1) or 20-node ties (0); written
+                             with fibre_size */
 } csrBendMeta;
 
 /* Write the bend datasets and root attributes into `f` (created by cs_h5Create). */

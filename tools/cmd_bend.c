@@ -3,7 +3,8 @@
  *
  *   crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]
  *                 [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]
- *                 [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]
+ *                 [--until-angle DEG] [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]
+ *                 [--out FILE.h5]
  *                 [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ] [--calibration FILE|analytic]
  *
  * --pressures gives unequal chamber pressures: chamber j of every segment is at R_j p (the
@@ -49,7 +50,8 @@ enum { MAX_SETS = 64 };
 static const char kUsage[] =
     "usage: crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
     "                     [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
-    "                     [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]\n"
+    "                     [--until-angle DEG] [--mesh-size MM] [--fibre-size MM]\n"
+    "                     [--fibre-split 0|1] [--out FILE.h5]\n"
     "  Inflates the listed chambers (1..4) of all three segments at equal pressure from 0 to\n"
     "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
     "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
@@ -57,7 +59,11 @@ static const char kUsage[] =
     "  bending angle reaches DEG (searched up to max(p-max, 2 MPa)).\n"
     "  --pressures R1,R2,R3,R4: chamber j at R_j x p (unequal pressures; analytic, rod, fe).\n"
     "  --tip-load FX,FY,FZ: a tip force in N, base frame (rod, fe). --calibration FILE|analytic:\n"
-    "  the rod's pressure -> bend map (default: the shipped FE table of the leg actuator).\n";
+    "  the rod's pressure -> bend map (default: the shipped FE table of the leg actuator).\n"
+    "  fe only: --fibre-size MM, the fibre element length (default l_soft / 8); --fibre-split 0\n"
+    "  ties each fibre element to the tets holding its two ends (20 nodes) instead of splitting\n"
+    "  it at the tets' faces (1, default). The 360 deg runs use 0 with 1.5 mm (fem/README.md:\n"
+    "  with split fibres Omega1 & Omega2 stall near 0.19 MPa).\n";
 
 typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_PRB, BEND_ROM, BEND_NMODEL } BendModel;
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
@@ -81,6 +87,9 @@ typedef struct {
   const char* calibration;    /* --calibration (rod), NULL = default */
   struct RodBend_* rod;       /* the rod's model, data and calibration during a rod sweep */
   double p_ceiling;           /* MPa: --until-angle searches up to max(p-max, this); NAN: 2 MPa */
+  double fibre_size;          /* fe: l_fibre, mm (NAN: the model's default, l_soft / 8) */
+  int fibre_split;            /* fe: 1 fibre elements split at element faces, 0 20-node ties,
+                                 -1 the model's default */
 } BendRun;
 
 /* Evaluate the model at pressure p (MPa): per-segment angles (deg), tip in the base frame (mm). */
@@ -381,6 +390,8 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->p_ceiling = NAN;
   run->p_limit = run->p_resume = NAN;
   run->mesh_size = NAN;
+  run->fibre_size = NAN;
+  run->fibre_split = -1;
   run->out = "bend.h5";
   run->inflated[0] = run->inflated[1] = 1;
   run->ratio[0] = run->ratio[1] = 1.0;
@@ -445,6 +456,14 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
       bad = parsePositive(name, value, "degrees", &run->until_angle);
     } else if (!strcmp(name, "--mesh-size")) {
       bad = parsePositive(name, value, "mm", &run->mesh_size);
+    } else if (!strcmp(name, "--fibre-size")) {
+      bad = parsePositive(name, value, "mm", &run->fibre_size);
+    } else if (!strcmp(name, "--fibre-split")) {
+      if (strcmp(value, "0") && strcmp(value, "1")) {
+        fprintf(stderr, "crawlsim bend: --fibre-split '%s' must be 0 or 1\n", value);
+        return 1;
+      }
+      run->fibre_split = value[0] == '1';
     } else if (!strcmp(name, "--pressures")) {
       bad = parsePressures(value, run);
     } else if (!strcmp(name, "--tip-load")) {
@@ -573,15 +592,20 @@ static void feProgress(void* user, const csfBendStep* st) {
   FeReport* rep = user;
   rep->t_last = csu_wallSeconds();
   rep->iters = 0;
+  char inertia[64] = "";
+  if (st->neg_pivots > 0) {
+    snprintf(inertia, sizeof inertia, ", tangent indefinite (%d negative pivot%s)",
+             st->neg_pivots, st->neg_pivots > 1 ? "s" : "");
+  }
   if (st->volume_control) {
-    fprintf(stderr, "  fe: volume control past a limit point: V %.1f mm^3, p = %.5f MPa (dp "
-            "%+.5f), %d Newton iterations, %.2f s, total %.2f deg\n", st->volume, st->p, st->dp,
-            st->newton_iters, st->wall, st->angle_total);
+    fprintf(stderr, "  fe: volume control: V %.1f mm^3, p = %.5f MPa (dp %+.5f), %d Newton "
+            "iterations, %.2f s, total %.2f deg%s\n", st->volume, st->p, st->dp,
+            st->newton_iters, st->wall, st->angle_total, inertia);
     return;
   }
   fprintf(stderr, "  fe: p = %.4f MPa (dp %.4f), %d Newton iterations, %d cut-backs, %.2f s, "
-          "total %.2f deg\n", st->p, st->dp, st->newton_iters, st->cutbacks, st->wall,
-          st->angle_total);
+          "total %.2f deg%s\n", st->p, st->dp, st->newton_iters, st->cutbacks, st->wall,
+          st->angle_total, inertia);
 }
 
 
@@ -602,6 +626,12 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   o.until_angle = run->until_angle;
   if (!isnan(run->mesh_size)) {
     o.spec.mesh_size = run->mesh_size;
+  }
+  if (!isnan(run->fibre_size)) {
+    o.spec.fibre_size = run->fibre_size;
+  }
+  if (run->fibre_split >= 0) {
+    o.spec.fibre_split = run->fibre_split;
   }
   /* deformed mesh and solver deck next to the HDF5 file: FILE.h5 -> FILE.vtu, FILE.inp */
   char stem[512], vtu[520], inp[520];
@@ -624,6 +654,8 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   st = csf_bend(&run->act, &o, bc, err);
   if (st == CS_OK) {
     run->mesh_size = o.spec.mesh_size;
+    run->fibre_size = o.spec.fibres ? csf_actuatorFibreSize(&o.spec) : NAN;
+    run->fibre_split = o.spec.fibre_split;
     run->n_elements_soft = info.ntet;
     run->n_elements_fibre = info.nfibre;
     run->p_limit = info.p_limit;
@@ -637,16 +669,38 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
               "failed%s%s\n", info.n_until_trials, info.n_until_failed,
               info.until_note[0] ? "; last failure: " : "", info.until_note);
     }
+    if (!isnan(info.p_indefinite)) {
+      fprintf(stderr, "crawlsim bend: fe: the tangent stiffness lost positive definiteness "
+              "between %.5f and %.5f MPa (up to %d negative pivots of LDL^T): the pressure-"
+              "controlled path crossed a critical point there (a limit point if the pressure "
+              "falls under volume control, otherwise a bifurcation: a lower-energy branch "
+              "exists)\n", info.p_definite, info.p_indefinite, info.neg_pivots_max);
+    } else if (info.neg_pivots_max == 0) {
+      fprintf(stderr, "crawlsim bend: fe: every converged pressure-controlled state had a "
+              "positive definite tangent (stable)\n");
+    }
+    if (info.n_hard_passed > 0) {
+      fprintf(stderr, "crawlsim bend: fe: %d hard stretch%s of the path (pressure control failed, "
+              "the pressure kept rising under chamber-volume control: no limit point) followed "
+              "by volume%s\n", info.n_hard_passed, info.n_hard_passed > 1 ? "es" : "",
+              info.n_rows_skipped > 0 && isnan(info.p_resume) ? "; some output pressures have "
+              "no row" : "");
+    }
     if (!isnan(info.p_limit) && !isnan(info.p_resume)) {
       fprintf(stderr, "crawlsim bend: fe: pressure limit point at %.5f MPa (%.2f deg): passed "
               "by chamber-volume control (%d steps); stable again at %.5f MPa (%.2f deg), where "
               "the sweep resumed: under pressure control the actuator snaps across, the curve "
               "has no rows in between\n", info.p_limit, info.angle_limit, info.n_volume_steps,
               info.p_resume, info.angle_resume);
-    } else if (!isnan(info.p_limit)) {
+    } else if (!isnan(info.p_limit) && info.limit_shown) {
       fprintf(stderr, "crawlsim bend: fe: pressure limit point at %.5f MPa (%.2f deg)%s%s: the "
               "sweep ends there\n", info.p_limit, info.angle_limit,
               info.limit_note[0] ? "; past it: " : "", info.limit_note);
+    } else if (!isnan(info.p_limit)) {
+      fprintf(stderr, "crawlsim bend: fe: the sweep ends at %.5f MPa (%.2f deg): pressure control "
+              "failed there and the pressure did not fall under volume control (no limit point "
+              "shown)%s%s\n", info.p_limit, info.angle_limit,
+              info.limit_note[0] ? "; " : "", info.limit_note);
     }
   }
   return st;
@@ -661,6 +715,11 @@ int csx_cmdBend(int argc, char** argv) {
     return rc == 2 ? 0 : 1;
   }
   /* options only some models take */
+  if ((!isnan(run.fibre_size) || run.fibre_split >= 0) && run.model != BEND_FE) {
+    fprintf(stderr, "crawlsim bend: %s is for --model fe (the %s model has no fibre elements)\n",
+            !isnan(run.fibre_size) ? "--fibre-size" : "--fibre-split", kModelNames[run.model]);
+    return 1;
+  }
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
   if ((tip && run.model != BEND_ROD && run.model != BEND_FE) ||
       (run.calibration && run.model != BEND_ROD)) {
@@ -684,7 +743,8 @@ int csx_cmdBend(int argc, char** argv) {
     if (fst == CS_OK) {
       csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,
                           run.n_elements_soft,    run.n_elements_fibre, csu_wallSeconds() - t0,
-                          run.until_angle,        run.p_limit,          run.p_resume};
+                          run.until_angle,        run.p_limit,          run.p_resume,
+                          run.n_elements_fibre > 0 ? run.fibre_size : 0, run.fibre_split};
       fst = csr_bendCurveWriteH5(ff, &run.act, &fbc, &meta, &ferr);
     }
     cs_h5Close(ff);
@@ -784,7 +844,7 @@ int csx_cmdBend(int argc, char** argv) {
   if (st == CS_OK) {
     csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
                         run.n_elements_fibre,   wall,         run.until_angle,
-                        run.p_limit,            run.p_resume};
+                        run.p_limit,            run.p_resume, 0, 0};
     st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
   }
   cs_h5Close(f);

@@ -47,13 +47,14 @@ enum { MAX_SETS = 32, MAX_PICK = CSF_CAL_MAX_CASES };
 
 static void progress(void* user, const csfBendStep* s) {
   const char* name = user;
+  const char* indef = s->neg_pivots > 0 ? ", tangent indefinite" : "";
   if (s->volume_control) {
-    fprintf(stderr, "  %s: volume control past a limit point: p = %.5f MPa (dp %+.5f), %d "
-            "Newton iterations, %.1f s\n", name, s->p, s->dp, s->newton_iters, s->wall);
+    fprintf(stderr, "  %s: volume control: p = %.5f MPa (dp %+.5f), %d Newton iterations, "
+            "%.1f s%s\n", name, s->p, s->dp, s->newton_iters, s->wall, indef);
     return;
   }
   fprintf(stderr, "  %s: p = %.4f MPa, %d Newton iterations, %d cut-backs, %.1f s, total %.1f "
-          "deg\n", name, s->p, s->newton_iters, s->cutbacks, s->wall, s->angle_total);
+          "deg%s\n", name, s->p, s->newton_iters, s->cutbacks, s->wall, s->angle_total, indef);
 }
 
 

@@ -42,6 +42,7 @@ static const OptSpec kBendOpts[] = {
     {"--model", OPT_WORD},     {"--actuator", OPT_ACT},    {"--set", OPT_SET},
     {"--chambers", OPT_WORD},  {"--p-max", OPT_NUM},       {"--p-step", OPT_NUM},
     {"--until-angle", OPT_NUM}, {"--mesh-size", OPT_NUM},  {"--pressures", OPT_WORD},
+    {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD},
     {"--tip-load", OPT_WORD},  {"--calibration", OPT_CALIB}, {"--out", OPT_OWNED},
     {"--help", OPT_OWNED},     {NULL, OPT_FLAG}};
 
@@ -57,7 +58,8 @@ static const OptSpec kRunOpts[] = {
 
 static const OptSpec kCalibrateOpts[] = {
     {"--case", OPT_WORD},       {"--actuator", OPT_ACT}, {"--set", OPT_SET},
-    {"--mesh-size", OPT_NUM},   {"--fibre-size", OPT_NUM}, {"--p-step", OPT_NUM},
+    {"--mesh-size", OPT_NUM},   {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD},
+    {"--p-step", OPT_NUM},
     {"--p-max", OPT_NUM},       {"--out", OPT_OWNED},    {"--dir", OPT_OWNED},
     {"--list", OPT_OWNED},      {"--merge-only", OPT_OWNED}, {"--help", OPT_OWNED},
     {NULL, OPT_FLAG}};

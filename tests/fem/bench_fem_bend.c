@@ -15,26 +15,26 @@ static void progress(void* user, const csfBendStep* s) {
   (void)user;
   if (s->volume_control) {
     printf("volume-control step: V %.6g mm^3  p %.6f MPa (dp %+.6f)  iters %2d  wall %7.2f s  "
-           "angles %7.2f %7.2f %7.2f  total %7.2f deg\n", s->volume, s->p, s->dp,
+           "angles %7.2f %7.2f %7.2f  total %7.2f deg  neg. pivots %d\n", s->volume, s->p, s->dp,
            s->newton_iters, s->wall, s->angle_deg[0], s->angle_deg[1], s->angle_deg[2],
-           s->angle_total);
+           s->angle_total, s->neg_pivots);
     fflush(stdout);
     return;
   }
   printf("step p %.5f MPa (dp %.5f)  iters %2d  cutbacks %d  wall %7.2f s  (%.2f s/iter)  "
-         "angles %7.2f %7.2f %7.2f  total %7.2f deg\n",
+         "angles %7.2f %7.2f %7.2f  total %7.2f deg  neg. pivots %d\n",
          s->p, s->dp, s->newton_iters, s->cutbacks, s->wall,
          s->newton_iters ? s->wall / s->newton_iters : 0.0, s->angle_deg[0], s->angle_deg[1],
-         s->angle_deg[2], s->angle_total);
+         s->angle_deg[2], s->angle_total, s->neg_pivots);
   fflush(stdout);
 }
 
 static void newtonMonitor(void* user, const csfNewtonIter* it) {
   (void)user;
   printf("  newton load %.5f it %2d  alpha %.3f (%d evals)  g0 %10.3e g1 %10.3e  |R| %9.3e  "
-         "fnorm %9.3e  fibres: %4d switched, %4d smoothing, %4d taut\n",
+         "fnorm %9.3e  neg. pivots %d  fibres: %4d switched, %4d smoothing, %4d taut\n",
          it->load, it->iter, it->alpha, it->n_eval, it->g0, it->g1, it->rnorm, it->fnorm,
-         it->fib_switch, it->fib_smooth, it->fib_taut);
+         it->neg_pivots, it->fib_switch, it->fib_smooth, it->fib_taut);
   fflush(stdout);
 }
 

@@ -11,13 +11,20 @@
  * with la = a/A the bore stretch. Also: pressure control on the same model stops at the limit
  * point (its last converged pressure lies below the maximum and the next increment fails).
  * test_sphere_snap_through: csf_passLimit, the continuation csf_bend uses, through a maximum AND
- * a minimum of a Yeoh sphere (small C20) and back onto the stable branch. */
+ * a minimum of a Yeoh sphere (small C20) and back onto the stable branch.
+ * test_thin_walled_actuator_passes_its_limit_point: csf_bend on a short actuator with the
+ * paper's thinnest Sec. 4 walls (b = 3, r1 = 2.5: 1 mm between neighbouring chambers), no
+ * fibres, neo-Hookean (C20 = 0): the chambers balloon through a pressure maximum. The sweep
+ * passes it under volume control, and the inertia of the tangent (LDL^T negative pivots) shows
+ * it is a critical point of the path: positive definite on every pressure-controlled state and
+ * on the volume path up to the maximum, indefinite wherever the pressure has fallen past it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cs_test.h"
+#include "fem_bend.h"
 #include "fem_mesh.h"
 #include "fem_path.h"
 #include "fem_test_util.h"
@@ -342,9 +349,83 @@ static void test_sphere_snap_through(void) {
 }
 
 
+
+/* per-state record of the volume path for test_thin_walled_actuator_passes_its_limit_point */
+typedef struct {
+  int n_pc, neg_pc;        /* pressure-controlled states, those with negative pivots */
+  int n_vc;                /* volume-controlled states */
+  double p_max_vc;         /* largest pressure on the volume path */
+  int bad_before, bad_after; /* states before / past the maximum whose inertia contradicts it */
+  int n_after;
+} ThinTrace;
+
+static void thinRecord(void* user, const csfBendStep* st) {
+  ThinTrace* t = user;
+  if (!st->volume_control) {
+    t->n_pc++;
+    t->neg_pc += st->neg_pivots != 0;
+    return;
+  }
+  t->n_vc++;
+  if (st->p >= t->p_max_vc) {
+    t->p_max_vc = st->p;
+    t->bad_before += st->neg_pivots != 0; /* still rising: stable, positive definite */
+  } else {
+    t->n_after++;
+    t->bad_after += st->neg_pivots < 1; /* fallen past the maximum: unstable under pressure */
+  }
+}
+
+static void test_thin_walled_actuator_passes_its_limit_point(void) {
+  csError err = {0};
+  csrActuator act;
+  CS_EXPECT(csr_actuatorPreset(&act, "baseline", &err) == CS_OK);
+  const char* set[] = {"S1=12", "S2=12", "S3=12", "c=3",  "LS12=4", "LS23=4", "n1=0",
+                       "n2=0",  "n3=0",  "b=3",   "r1=2.5", "C20=0"};
+  for (size_t i = 0; i < sizeof set / sizeof set[0]; i++) {
+    CS_EXPECT(csr_actuatorSetString(&act, set[i], &err) == CS_OK);
+  }
+  csfBendInfo info;
+  ThinTrace tr = {0};
+  csfBendOptions o = csf_bendDefault();
+  o.info = &info;
+  o.spec.mesh_size = 5.0;
+  o.spec.fibres = 0;
+  o.spec.work_stem = "thin_limit";
+  o.p_max = 0.3;
+  o.p_step = 0.05;
+  /* measured: the maximum at 0.151 MPa and 24.6 deg, the path past it at 25.5, 26.6, ... deg;
+   * the sweep stops on the volume path at 28 deg (a few states past the maximum) */
+  o.until_angle = 28.0;
+  o.progress = thinRecord;
+  o.progress_user = &tr;
+  csrBendCurve bc;
+  csr_bendCurveInit(&bc, 8, &err);
+  const csStatus st = csf_bend(&act, &o, &bc, &err);
+  if (st != CS_OK) {
+    fprintf(stderr, "%s\n", err.msg);
+  }
+  CS_EXPECT(st == CS_OK);
+  printf("  %d Tet10, walls %s; %d pressure-controlled states (%d indefinite), %d volume-"
+         "controlled (%d past the maximum); limit %.5f MPa at %.2f deg (shown %d), until-angle "
+         "%.5f MPa; inertia contradictions before / after the maximum: %d / %d; %.1f s\n",
+         info.ntet, "1 mm", tr.n_pc, tr.neg_pc, tr.n_vc, tr.n_after, info.p_limit,
+         info.angle_limit, info.limit_shown, bc.p_until_angle, tr.bad_before, tr.bad_after,
+         info.t_total);
+  CS_EXPECT(isfinite(info.p_limit) && info.limit_shown == 1);
+  CS_EXPECT(tr.n_pc > 0 && tr.neg_pc == 0);
+  CS_EXPECT(tr.n_after >= 2); /* the path went on past the maximum */
+  CS_EXPECT(tr.bad_before == 0 && tr.bad_after == 0);
+  CS_EXPECT(info.p_limit <= tr.p_max_vc + 1e-12 && info.p_limit >= tr.p_max_vc - 1e-12);
+  /* the target angle lies past the maximum: reached by the snap at the limit pressure */
+  CS_EXPECT(bc.p_until_angle == info.p_limit);
+  csr_bendCurveFree(&bc);
+}
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_sphere_limit_point);
   CS_RUN(test_sphere_snap_through);
+  CS_RUN(test_thin_walled_actuator_passes_its_limit_point);
   return cs_testSummary();
 }

@@ -4,6 +4,8 @@
  *   deformed state (symmetric to round-off / visibly not).
  * - The same nonlinear problem solved with MUMPS LU, MUMPS LDL^T, LDL^T with GMRES on an older
  *   factorisation, and KLU ends at the same displacement to Newton's tolerance.
+ * - The inertia of LDL^T (csf_linSolverNegativePivots) counts the negative eigenvalues of a
+ *   shifted second-difference matrix, known in closed form; LU reports none (-1).
  * Small structured meshes: well under a second each. */
 #include <math.h>
 #include <stdio.h>
@@ -143,9 +145,66 @@ static void test_solver_paths_agree(void) {
 }
 
 
+/* K = tridiag(-1, 2 - sigma, -1), n x n: eigenvalues 2 - sigma - 2 cos(k pi / (n + 1)),
+ * k = 1..n (the second-difference matrix). The shifts lie midway between neighbouring
+ * eigenvalues, so round-off cannot move one across zero. */
+static void test_inertia_counts_negative_eigenvalues(void) {
+  enum { N = 40 };
+  int row_ptr[N + 1], col[3 * N];
+  double val[3 * N];
+  int q = 0;
+  for (int i = 0; i < N; i++) {
+    row_ptr[i] = q;
+    for (int j = i - 1; j <= i + 1; j++) {
+      if (j >= 0 && j < N) {
+        col[q++] = j;
+      }
+    }
+  }
+  row_ptr[N] = q;
+  double lam[N]; /* eigenvalues of the unshifted matrix, ascending */
+  for (int k = 1; k <= N; k++) {
+    lam[k - 1] = 2.0 - 2.0 * cos(k * CS_PI / (N + 1));
+  }
+  const int wanted[] = {0, 1, 7, 20, 39, 40};
+  csError err = {0};
+  csfLinSolverOptions o = csf_linSolverDefault();
+  o.symmetric = 1;
+  csfLinSolver* s = csf_linSolverCreate(&o, N, row_ptr, col, &err);
+  CS_EXPECT(s != NULL);
+  if (!s) {
+    return;
+  }
+  for (size_t w = 0; w < sizeof wanted / sizeof wanted[0]; w++) {
+    const int nneg = wanted[w];
+    const double sigma = nneg == 0 ? lam[0] - 0.5
+                         : nneg == N ? lam[N - 1] + 0.5
+                                     : 0.5 * (lam[nneg - 1] + lam[nneg]);
+    for (int i = 0; i < N; i++) {
+      for (int t = row_ptr[i]; t < row_ptr[i + 1]; t++) {
+        val[t] = col[t] == i ? 2.0 - sigma : -1.0;
+      }
+    }
+    CS_EXPECT(csf_linSolverFactor(s, val) == 0);
+    CS_EXPECT(csf_linSolverNegativePivots(s) == nneg);
+  }
+  csf_linSolverDestroy(s);
+  o.symmetric = 0;
+  s = csf_linSolverCreate(&o, N, row_ptr, col, &err);
+  CS_EXPECT(s != NULL);
+  if (!s) {
+    return;
+  }
+  CS_EXPECT(csf_linSolverFactor(s, val) == 0);
+  CS_EXPECT(csf_linSolverNegativePivots(s) == -1);
+  csf_linSolverDestroy(s);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_symmetry_follows_the_surface);
   CS_RUN(test_solver_paths_agree);
+  CS_RUN(test_inertia_counts_negative_eigenvalues);
   return cs_testSummary();
 }

@@ -157,6 +157,10 @@ static void test_badInput(void) {
   expectFailure("--set r1=x", "crawlsim bend: --set 'r1=x': 'x' is not a number");
   expectFailure("--set r1=3.6", "crawlsim bend: actuator: chamber breaks the outer wall");
   expectFailure("--set c=30", "crawlsim bend: actuator: c = 30 mm must be > 0 and < S1/2");
+  expectFailure("--fibre-split 0", "crawlsim bend: --fibre-split is for --model fe");
+  expectFailure("--fibre-size 1.5", "crawlsim bend: --fibre-size is for --model fe");
+  expectFailure("--model fe --fibre-split 2", "crawlsim bend: --fibre-split '2' must be 0 or 1");
+  expectFailure("--model fe --fibre-size 0", "crawlsim bend: --fibre-size 0 must be > 0 mm");
   /* the output path itself: the file cannot be created */
   csCliResult r;
   run("--out no_such_dir/x.h5", &r);
