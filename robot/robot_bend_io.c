@@ -60,6 +60,12 @@ csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBend
       st = cs_h5AttrDouble(f, "/", "fe_fibre_split", meta->fibre_split, err);
     }
   }
+  if (st == CS_OK && meta->neg_pivots_max >= 0) {
+    st = cs_h5AttrDouble(f, "/", "fe_p_indefinite_MPa", meta->p_indefinite, err);
+    if (st == CS_OK) {
+      st = cs_h5AttrDouble(f, "/", "fe_neg_pivots_max", meta->neg_pivots_max, err);
+    }
+  }
   if (st == CS_OK && !isnan(meta->until_angle_deg)) {
     st = cs_h5AttrDouble(f, "/", "until_angle_deg", meta->until_angle_deg, err);
     if (st == CS_OK) {

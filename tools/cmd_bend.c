@@ -90,6 +90,8 @@ typedef struct {
   double fibre_size;          /* fe: l_fibre, mm (NAN: the model's default, l_soft / 8) */
   int fibre_split;            /* fe: 1 fibre elements split at element faces, 0 20-node ties,
                                  -1 the model's default */
+  double p_indefinite;        /* fe: first converged pressure with an indefinite tangent (NAN) */
+  int neg_pivots_max;         /* fe: most negative pivots on the path (-1: LU) */
 } BendRun;
 
 /* Evaluate the model at pressure p (MPa): per-segment angles (deg), tip in the base frame (mm). */
@@ -656,6 +658,8 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
     run->mesh_size = o.spec.mesh_size;
     run->fibre_size = o.spec.fibres ? csf_actuatorFibreSize(&o.spec) : NAN;
     run->fibre_split = o.spec.fibre_split;
+    run->p_indefinite = info.p_indefinite;
+    run->neg_pivots_max = info.neg_pivots_max;
     run->n_elements_soft = info.ntet;
     run->n_elements_fibre = info.nfibre;
     run->p_limit = info.p_limit;
@@ -744,7 +748,8 @@ int csx_cmdBend(int argc, char** argv) {
       csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,
                           run.n_elements_soft,    run.n_elements_fibre, csu_wallSeconds() - t0,
                           run.until_angle,        run.p_limit,          run.p_resume,
-                          run.n_elements_fibre > 0 ? run.fibre_size : 0, run.fibre_split};
+                          run.n_elements_fibre > 0 ? run.fibre_size : 0, run.fibre_split,
+                          run.p_indefinite, run.neg_pivots_max};
       fst = csr_bendCurveWriteH5(ff, &run.act, &fbc, &meta, &ferr);
     }
     cs_h5Close(ff);
@@ -844,7 +849,7 @@ int csx_cmdBend(int argc, char** argv) {
   if (st == CS_OK) {
     csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
                         run.n_elements_fibre,   wall,         run.until_angle,
-                        run.p_limit,            run.p_resume, 0, 0};
+                        run.p_limit,            run.p_resume, 0, 0, NAN, -1};
     st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
   }
   cs_h5Close(f);

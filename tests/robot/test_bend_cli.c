@@ -87,6 +87,51 @@ static void test_defaultSweep(void) {
 }
 
 
+/* --fibre-size / --fibre-split reach the FE and are stored, with the tangent's inertia: a 12 mm
+ * segment variant with two fibre turns, one 0.02 MPa step on a 5 mm mesh (about 2 s each) */
+static void test_feFibreOptions(void) {
+  const char* tiny = "--model fe --set S1=12 --set S2=12 --set S3=12 --set c=3 --set LS12=4 "
+                     "--set LS23=4 --set n1=2 --set n2=2 --set n3=2 --mesh-size 5 --p-max 0.02 "
+                     "--p-step 0.02";
+  double nfib[2] = {0, 0};
+  for (int split = 0; split <= 1; split++) {
+    remove("bend_fib.h5");
+    char args[512];
+    snprintf(args, sizeof args, "%s --fibre-split %d --fibre-size 0.75 --out bend_fib.h5", tiny,
+             split);
+    csCliResult r;
+    run(args, &r);
+    CS_EXPECT(r.status == 0);
+    hid_t f = H5Fopen("bend_fib.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    CS_EXPECT(f >= 0);
+    if (f < 0) {
+      continue;
+    }
+    double v = -1;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "fe_fibre_size_mm", &v) >= 0 && v == 0.75);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "fe_fibre_split", &v) >= 0 && v == split);
+    /* one small step from rest: a stable state, positive definite tangent */
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "fe_neg_pivots_max", &v) >= 0 && v == 0);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "fe_p_indefinite_MPa", &v) >= 0 && isnan(v));
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "n_elements_fibre", &nfib[split]) >= 0);
+    H5Fclose(f);
+  }
+  /* split at the tets' faces: more, shorter pieces than one element per 0.75 mm */
+  CS_EXPECT(nfib[1] > nfib[0] && nfib[0] > 0);
+  remove("bend_fib.h5");
+  /* a mesh-free model writes none of them */
+  csCliResult r;
+  run("--out bend_fib.h5", &r);
+  hid_t f = H5Fopen("bend_fib.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    CS_EXPECT(H5Aexists(f, "fe_fibre_split") == 0 && H5Aexists(f, "fe_neg_pivots_max") == 0);
+    H5Fclose(f);
+  }
+  remove("bend_fib.h5");
+}
+
+
 static void test_sweepOptions(void) {
   /* p-max off the step grid is the last row; --set and --chambers reach the model */
   remove("bend_opt.h5");
@@ -180,6 +225,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc - 1, argv + 1); /* argv[2], if any, is the case filter */
   CS_RUN(test_defaultSweep);
   CS_RUN(test_sweepOptions);
+  CS_RUN(test_feFibreOptions);
   CS_RUN(test_badInput);
   return cs_testSummary();
 }
