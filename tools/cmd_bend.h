@@ -1,0 +1,43 @@
+/* cmd_bend.h: the parsed options of `crawlsim bend` and what a model reports about itself,
+ * shared by the command (cmd_bend.c: parsing, the mesh-free models, the sweep) and its full-FE
+ * branch (cmd_bend_fe.c). Private to tools/: nothing below includes it. Units: mm, MPa, deg, N. */
+#ifndef CS_TOOLS_CMD_BEND_H
+#define CS_TOOLS_CMD_BEND_H
+
+#include "robot_actuator.h"
+
+typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_PRB, BEND_ROM, BEND_NMODEL } BendModel;
+
+/* one bend run: parsed options and what the model reports about itself */
+typedef struct {
+  BendModel model;
+  csrActuator act;
+  int inflated[CSR_NCHAMBER]; /* 1 if chamber j+1 is inflated */
+  char chambers[64];          /* canonical list, e.g. "1,2", or "1:1,2:0.5" with --pressures */
+  double p_max, p_step;       /* MPa */
+  double until_angle;         /* deg, NAN when not requested */
+  double mesh_size;           /* mm requested (NAN = model default); the model overwrites it
+                                 with what it used (NAN for mesh-free models) */
+  double n_elements_soft, n_elements_fibre; /* filled by mesh-based models */
+  double p_limit, p_resume;   /* MPa, pressure limit point met and resume pressure (NAN: none) */
+  const char* out;
+  double ratio[CSR_NCHAMBER]; /* chamber j at ratio[j] x p (1/0 from --chambers) */
+  int unequal;                /* --pressures gave ratios other than 0/1 */
+  double tip_load[3];         /* N, base frame (--tip-load) */
+  const char* calibration;    /* --calibration (rod), NULL = default */
+  struct RodBend_* rod;       /* the rod's model, data and calibration during a rod sweep */
+  double p_ceiling;           /* MPa: --until-angle searches up to max(p-max, this); NAN: 2 MPa */
+  double fibre_size;          /* fe: l_fibre, mm (NAN: the model's default, l_soft / 8) */
+  int fibre_split;            /* fe: 1 fibre elements split at element faces, 0 20-node ties,
+                                 -1 the model's default */
+  double p_indefinite;        /* fe: first converged pressure with an indefinite tangent (NAN) */
+  int neg_pivots_max;         /* fe: most negative pivots on the path (-1: LU) */
+} BendRun;
+
+/* The full FE model's sweep of `run` (fem_bend.h: adaptive load stepping over the whole sweep,
+ * --until-angle found by the load stepping itself): writes run->out and prints the table and
+ * the FE's report lines. Returns the command's exit status (0, or 1 after one error line). Only
+ * in builds with the FE (CS_HAVE_FEM). */
+int csx_bendFe(BendRun* run);
+
+#endif /* CS_TOOLS_CMD_BEND_H */
