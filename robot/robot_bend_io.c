@@ -59,6 +59,10 @@ csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBend
     if (st == CS_OK) {
       st = cs_h5AttrDouble(f, "/", "fe_fibre_split", meta->fibre_split, err);
     }
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, "/", "fe_fibre_law",
+                           meta->fibre_tension_only ? "tension-only" : "linear", err);
+    }
   }
   if (st == CS_OK && meta->neg_pivots_max >= 0) {
     st = cs_h5AttrDouble(f, "/", "fe_p_indefinite_MPa", meta->p_indefinite, err);

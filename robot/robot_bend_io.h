@@ -36,6 +36,7 @@ typedef struct csrBendMeta_ {
   double fibre_size;      /* FE fibre element length l_fibre (mm); 0 = not written (no FE) */
   int fibre_split;        /* FE fibres split at element faces (1) or 20-node ties (0); written
                              with fibre_size */
+  int fibre_tension_only; /* FE fibre law: 1 tension-only, 0 linear; written with fibre_size */
   double p_indefinite;    /* FE: first converged pressure whose tangent had negative pivots
                              (MPa), NAN = none; written when neg_pivots_max >= 0 */
   int neg_pivots_max;     /* FE: most negative pivots on the path (-1: not written: no inertia

@@ -4,7 +4,7 @@
  *   crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]
  *                 [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]
  *                 [--until-angle DEG] [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]
- *                 [--out FILE.h5]
+ *                 [--fibre-law linear|tension-only] [--out FILE.h5]
  *                 [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ] [--calibration FILE|analytic]
  *
  * --pressures gives unequal chamber pressures: chamber j of every segment is at R_j p (the
@@ -49,7 +49,7 @@ static const char kUsage[] =
     "usage: crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
     "                     [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
     "                     [--until-angle DEG] [--mesh-size MM] [--fibre-size MM]\n"
-    "                     [--fibre-split 0|1] [--out FILE.h5]\n"
+    "                     [--fibre-split 0|1] [--fibre-law linear|tension-only] [--out FILE.h5]\n"
     "  Inflates the listed chambers (1..4) of all three segments at equal pressure from 0 to\n"
     "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
     "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
@@ -61,7 +61,8 @@ static const char kUsage[] =
     "  fe only: --fibre-size MM, the fibre element length (default l_soft / 8); --fibre-split 0\n"
     "  ties each fibre element to the tets holding its two ends (20 nodes) instead of splitting\n"
     "  it at the tets' faces (1, default). The 360 deg runs use 0 with 1.5 mm (fem/README.md:\n"
-    "  with split fibres Omega1 & Omega2 stall near 0.19 MPa).\n";
+    "  with split fibres Omega1 & Omega2 stall near 0.19 MPa). --fibre-law tension-only: fibres\n"
+    "  carry no compression (thread buckles; default linear, compression at full stiffness).\n";
 
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
 
@@ -360,6 +361,7 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->mesh_size = NAN;
   run->fibre_size = NAN;
   run->fibre_split = -1;
+  run->fibre_tension_only = -1;
   run->out = "bend.h5";
   run->inflated[0] = run->inflated[1] = 1;
   run->ratio[0] = run->ratio[1] = 1.0;
@@ -432,6 +434,12 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
         return 1;
       }
       run->fibre_split = value[0] == '1';
+    } else if (!strcmp(name, "--fibre-law")) {
+      if (strcmp(value, "linear") && strcmp(value, "tension-only")) {
+        fprintf(stderr, "crawlsim bend: --fibre-law '%s' must be linear or tension-only\n", value);
+        return 1;
+      }
+      run->fibre_tension_only = value[0] == 't';
     } else if (!strcmp(name, "--pressures")) {
       bad = parsePressures(value, run);
     } else if (!strcmp(name, "--tip-load")) {
@@ -540,9 +548,13 @@ int csx_cmdBend(int argc, char** argv) {
     return rc == 2 ? 0 : 1;
   }
   /* options only some models take */
-  if ((!isnan(run.fibre_size) || run.fibre_split >= 0) && run.model != BEND_FE) {
+  if ((!isnan(run.fibre_size) || run.fibre_split >= 0 || run.fibre_tension_only >= 0) &&
+      run.model != BEND_FE) {
     fprintf(stderr, "crawlsim bend: %s is for --model fe (the %s model has no fibre elements)\n",
-            !isnan(run.fibre_size) ? "--fibre-size" : "--fibre-split", kModelNames[run.model]);
+            !isnan(run.fibre_size)   ? "--fibre-size"
+            : run.fibre_split >= 0 ? "--fibre-split"
+                                   : "--fibre-law",
+            kModelNames[run.model]);
     return 1;
   }
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
@@ -618,7 +630,7 @@ int csx_cmdBend(int argc, char** argv) {
   if (st == CS_OK) {
     csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
                         run.n_elements_fibre,   wall,         run.until_angle,
-                        run.p_limit,            run.p_resume, 0, 0, NAN, -1};
+                        run.p_limit,            run.p_resume, 0, 0, 0, NAN, -1};
     st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
   }
   cs_h5Close(f);

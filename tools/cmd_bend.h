@@ -30,6 +30,8 @@ typedef struct {
   double fibre_size;          /* fe: l_fibre, mm (NAN: the model's default, l_soft / 8) */
   int fibre_split;            /* fe: 1 fibre elements split at element faces, 0 20-node ties,
                                  -1 the model's default */
+  int fibre_tension_only;     /* fe: 1 tension-only fibre law, 0 linear (tension and
+                                 compression), -1 the model's default (linear) */
   double p_indefinite;        /* fe: first converged pressure with an indefinite tangent (NAN) */
   int neg_pivots_max;         /* fe: most negative pivots on the path (-1: LU) */
 } BendRun;

@@ -86,6 +86,9 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   if (run->fibre_split >= 0) {
     o.spec.fibre_split = run->fibre_split;
   }
+  if (run->fibre_tension_only >= 0) {
+    o.spec.fibre_compression = !run->fibre_tension_only;
+  }
   /* deformed mesh and solver deck next to the HDF5 file: FILE.h5 -> FILE.vtu, FILE.inp */
   char stem[512], vtu[520], inp[520];
   snprintf(stem, sizeof stem, "%s", run->out);
@@ -109,6 +112,7 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
     run->mesh_size = o.spec.mesh_size;
     run->fibre_size = o.spec.fibres ? csf_actuatorFibreSize(&o.spec) : NAN;
     run->fibre_split = o.spec.fibre_split;
+    run->fibre_tension_only = !o.spec.fibre_compression;
     run->p_indefinite = info.p_indefinite;
     run->neg_pivots_max = info.neg_pivots_max;
     run->n_elements_soft = info.ntet;
@@ -184,6 +188,7 @@ int csx_bendFe(BendRun* run) {
                         run->p_resume,
                         run->n_elements_fibre > 0 ? run->fibre_size : 0,
                         run->fibre_split,
+                        run->fibre_tension_only,
                         run->p_indefinite,
                         run->neg_pivots_max};
     fst = csr_bendCurveWriteH5(ff, &run->act, &fbc, &meta, &ferr);

@@ -42,7 +42,7 @@ static const OptSpec kBendOpts[] = {
     {"--model", OPT_WORD},     {"--actuator", OPT_ACT},    {"--set", OPT_SET},
     {"--chambers", OPT_WORD},  {"--p-max", OPT_NUM},       {"--p-step", OPT_NUM},
     {"--until-angle", OPT_NUM}, {"--mesh-size", OPT_NUM},  {"--pressures", OPT_WORD},
-    {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD},
+    {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD}, {"--fibre-law", OPT_WORD},
     {"--tip-load", OPT_WORD},  {"--calibration", OPT_CALIB}, {"--out", OPT_OWNED},
     {"--help", OPT_OWNED},     {NULL, OPT_FLAG}};
 

@@ -87,8 +87,9 @@ static void test_defaultSweep(void) {
 }
 
 
-/* --fibre-size / --fibre-split reach the FE and are stored, with the tangent's inertia: a 12 mm
- * segment variant with two fibre turns, one 0.02 MPa step on a 5 mm mesh (about 2 s each) */
+/* --fibre-size / --fibre-split / --fibre-law reach the FE and are stored, with the tangent's
+ * inertia: a 12 mm segment variant with two fibre turns, one 0.02 MPa step on a 5 mm mesh
+ * (about 2 s each) */
 static void test_feFibreOptions(void) {
   const char* tiny = "--model fe --set S1=12 --set S2=12 --set S3=12 --set c=3 --set LS12=4 "
                      "--set LS23=4 --set n1=2 --set n2=2 --set n3=2 --mesh-size 5 --p-max 0.02 "
@@ -97,8 +98,8 @@ static void test_feFibreOptions(void) {
   for (int split = 0; split <= 1; split++) {
     remove("bend_fib.h5");
     char args[512];
-    snprintf(args, sizeof args, "%s --fibre-split %d --fibre-size 0.75 --out bend_fib.h5", tiny,
-             split);
+    snprintf(args, sizeof args, "%s --fibre-split %d --fibre-size 0.75 --fibre-law %s --out "
+             "bend_fib.h5", tiny, split, split ? "tension-only" : "linear");
     csCliResult r;
     run(args, &r);
     CS_EXPECT(r.status == 0);
@@ -110,6 +111,9 @@ static void test_feFibreOptions(void) {
     double v = -1;
     CS_EXPECT(H5LTget_attribute_double(f, "/", "fe_fibre_size_mm", &v) >= 0 && v == 0.75);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "fe_fibre_split", &v) >= 0 && v == split);
+    char law[32] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "fe_fibre_law", law) >= 0 &&
+              !strcmp(law, split ? "tension-only" : "linear"));
     /* one small step from rest: a stable state, positive definite tangent */
     CS_EXPECT(H5LTget_attribute_double(f, "/", "fe_neg_pivots_max", &v) >= 0 && v == 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "fe_p_indefinite_MPa", &v) >= 0 && isnan(v));
@@ -206,6 +210,9 @@ static void test_badInput(void) {
   expectFailure("--fibre-size 1.5", "crawlsim bend: --fibre-size is for --model fe");
   expectFailure("--model fe --fibre-split 2", "crawlsim bend: --fibre-split '2' must be 0 or 1");
   expectFailure("--model fe --fibre-size 0", "crawlsim bend: --fibre-size 0 must be > 0 mm");
+  expectFailure("--fibre-law linear", "crawlsim bend: --fibre-law is for --model fe");
+  expectFailure("--model fe --fibre-law elastic",
+                "crawlsim bend: --fibre-law 'elastic' must be linear or tension-only");
   /* the output path itself: the file cannot be created */
   csCliResult r;
   run("--out no_such_dir/x.h5", &r);
