@@ -364,6 +364,8 @@ typedef struct {
   double a_limit, ang_limit[3], tip_limit[3]; /* at the pressure maximum */
   int until_hit; /* 1: target reached before the limit (stable state), 2: after it (in the snap) */
   double p_hit, a_hit, ang_hit[3], tip_hit[3];
+  csfBendInfo* info;     /* the run's summary: the path's inertia (p_definite, p_indefinite) */
+  double p_definite;     /* last state of the path so far with a positive definite tangent */
 } LimitWatch;
 
 static int limitWatch(void* user, const csfModel* m, const csfData* d, const csfPathPoint* pt) {
@@ -372,6 +374,16 @@ static int limitWatch(void* user, const csfModel* m, const csfData* d, const csf
   csf_bendMeasure(lw->act, lw->gauges, m, d, lw->axis, lw->ang_conv, ang, &tot, tip);
   lw->ang_conv[0] = ang[0], lw->ang_conv[1] = ang[1], lw->ang_conv[2] = ang[2];
   lw->ang_conv[3] = tot;
+  /* the inertia along the volume path too: a negative pivot while the pressure still rises is a
+   * bifurcation of the path (pressure control would leave it), past a maximum a limit point */
+  const int neg = csf_linSolverNegativePivots(d->ls);
+  lw->info->neg_pivots_max = neg > lw->info->neg_pivots_max ? neg : lw->info->neg_pivots_max;
+  if (neg > 0 && isnan(lw->info->p_indefinite)) {
+    lw->info->p_indefinite = pt->p;
+    lw->info->p_definite = lw->p_definite;
+  } else if (neg == 0) {
+    lw->p_definite = pt->p;
+  }
   if (pt->is_max) {
     lw->a_limit = tot;
     memcpy(lw->ang_limit, ang, sizeof ang);
@@ -379,7 +391,7 @@ static int limitWatch(void* user, const csfModel* m, const csfData* d, const csf
   }
   if (lw->o->progress) {
     csfBendStep rep = {pt->p, pt->dp, pt->newton_iters, 0, pt->wall, tot, {ang[0], ang[1], ang[2]},
-                       1, pt->volume, csf_linSolverNegativePivots(d->ls)};
+                       1, pt->volume, neg};
     lw->o->progress(lw->o->progress_user, &rep);
   }
   if (isfinite(lw->o->until_angle) && tot >= lw->o->until_angle) {
@@ -444,6 +456,8 @@ static int stageLimit(Run* r, csStatus* st, csError* err) {
   memset(&lw, 0, sizeof lw);
   lw.act = r->act, lw.o = o, lw.gauges = r->w.fe.gauges, lw.axis = r->w.fe.axis;
   lw.ang_conv = r->ang_conv;
+  lw.info = &r->info;
+  lw.p_definite = r->p;
   csf_stateSet(m, d, r->w.s_conv);
   csf_bendMeasure(r->act, r->w.fe.gauges, m, d, r->w.fe.axis, r->ang_conv, lw.ang_limit,
                   &lw.a_limit, lw.tip_limit);

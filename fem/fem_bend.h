@@ -66,8 +66,9 @@ typedef struct csfBendInfo_ {
   int n_hard_passed;  /* hard stretches of the path (pressure control failed, the pressure kept
                        * rising under volume control: no limit point) followed by volume */
   int n_rows_skipped; /* output pressures passed on a volume-controlled stretch without a row */
-  double p_definite;   /* MPa: last pressure-controlled state before the first one whose tangent
-                        * had negative pivots (NAN: every tangent positive definite, or LU) */
+  double p_definite;   /* MPa: last converged state (pressure- or volume-controlled) before the
+                        * first one whose tangent had negative pivots (NAN: every tangent
+                        * positive definite, or LU) */
   double p_indefinite; /* MPa: that first state with negative pivots (NAN: none): between the
                         * two the path crossed a critical point (limit or bifurcation) */
   int neg_pivots_max;  /* most negative pivots met on the path (-1: LU, no inertia) */

@@ -135,8 +135,8 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
               "falls under volume control, otherwise a bifurcation: a lower-energy branch "
               "exists)\n", info.p_definite, info.p_indefinite, info.neg_pivots_max);
     } else if (info.neg_pivots_max == 0) {
-      fprintf(stderr, "crawlsim bend: fe: every converged pressure-controlled state had a "
-              "positive definite tangent (stable)\n");
+      fprintf(stderr, "crawlsim bend: fe: every converged state had a positive definite "
+              "tangent (stable under pressure control)\n");
     }
     if (info.n_hard_passed > 0) {
       fprintf(stderr, "crawlsim bend: fe: %d hard stretch%s of the path (pressure control failed, "

@@ -416,6 +416,10 @@ static void test_thin_walled_actuator_passes_its_limit_point(void) {
   CS_EXPECT(tr.n_pc > 0 && tr.neg_pc == 0);
   CS_EXPECT(tr.n_after >= 2); /* the path went on past the maximum */
   CS_EXPECT(tr.bad_before == 0 && tr.bad_after == 0);
+  /* the run's summary: the first indefinite state lies past the maximum, the last definite one
+   * at or before it */
+  CS_EXPECT(isfinite(info.p_indefinite) && info.p_indefinite < info.p_limit);
+  CS_EXPECT(info.p_definite <= info.p_limit && info.neg_pivots_max >= 1);
   CS_EXPECT(info.p_limit <= tr.p_max_vc + 1e-12 && info.p_limit >= tr.p_max_vc - 1e-12);
   /* the target angle lies past the maximum: reached by the snap at the limit pressure */
   CS_EXPECT(bc.p_until_angle == info.p_limit);
