@@ -24,6 +24,7 @@ malformed file (one line on stderr), 2 on bad usage.
 """
 
 import math
+import re
 import os
 import sys
 
@@ -74,6 +75,31 @@ CLAIMS = [
 ]
 
 
+def end_reason(log):
+    """Why an FE sweep ended below its target, from the report lines of `crawlsim bend` (its
+    log in the case file): the critical point the tangent's inertia shows, and how the path
+    ended. "" when the log has none of them."""
+    why = []
+    for line in log.splitlines():
+        if "tangent indefinite" in line and not any(w.startswith("tangent") for w in why):
+            m = re.search(r"p = ([0-9.]+) MPa", line)
+            why.append(f"tangent indefinite from {float(m.group(1)):.4f} MPa" if m
+                       else "tangent indefinite")
+        m = re.search(r"the sweep ends at ([0-9.]+) MPa \(([0-9.]+) deg\): pressure control "
+                      r"failed there and the pressure did not fall", line)
+        if m:
+            tail = line.rsplit("fem: ", 1)[-1]
+            cause = ("inverted elements" if "inverted" in tail else
+                     "Newton stagnated" if "stagnated" in tail else tail[:60])
+            why.append(f"ended at {float(m.group(1)):.4f} MPa ({float(m.group(2)):.1f} deg): "
+                       f"no limit point (the pressure still rose), {cause}")
+        m = re.search(r"pressure limit point at ([0-9.]+) MPa \(([0-9.]+) deg\).*sweep ends", line)
+        if m:
+            why.append(f"limit point at {float(m.group(1)):.4f} MPa ({float(m.group(2)):.1f} "
+                       f"deg), no stable branch past it")
+    return "; ".join(why)
+
+
 def read_case(f, name):
     """dict of what the study recorded for case `name` (None if the case is not in the file)."""
     path = f"cases/{name}"
@@ -85,8 +111,10 @@ def read_case(f, name):
         "message": attr_text(g.attrs.get("message", b"")),
         "wall_s": float(g.attrs.get("wall_time_s", math.nan)),
         "p": math.nan, "target": math.nan, "angle_end": math.nan, "p_end": math.nan,
-        "p_limit": math.nan, "n_tet": math.nan, "mesh": math.nan,
+        "p_limit": math.nan, "n_tet": math.nan, "mesh": math.nan, "why": "",
     }
+    if "log/bend" in g:
+        rec["why"] = end_reason(attr_text(g["log/bend"][()]))
     if "bend" in g:
         b = g["bend"]
         rec["p"] = float(b.attrs.get("p_until_angle_MPa", math.nan))
@@ -141,8 +169,10 @@ def main():
         if r and r["status"] == "complete" and not math.isfinite(p_fe):
             status = (f"not reached: {r['angle_end']:.1f} deg at {r['p_end']:.4f} MPa"
                       if math.isfinite(r["angle_end"]) else "no angle")
-            if math.isfinite(r["p_limit"]):
-                status += f"; limit point at {r['p_limit']:.4f} MPa"
+            if r["why"]:
+                status += "; " + r["why"]
+            elif math.isfinite(r["p_limit"]):
+                status += f"; sweep ended at {r['p_limit']:.4f} MPa"
         elif r and r["status"] == "failed":
             status = "failed: " + r["message"][:90].replace("|", "/")
         rows.append((c, group, change, p_fe, ratio(fe, c), p_an, ratio(an, c), p_pa,
