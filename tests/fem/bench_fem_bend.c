@@ -114,9 +114,15 @@ int main(int argc, char** argv) {
          info.n_krylov ? (double)info.n_krylov_iter / (double)info.n_krylov : 0.0);
   printf("max |theta - 1| = %.3e; p_limit = %g MPa\n", info.max_j_dev, info.p_limit);
   if (info.n_volume_steps > 0) {
-    printf("limit point: p_limit %.6g MPa at %.3f deg; %d volume-controlled steps; %s\n",
-           info.p_limit, info.angle_limit, info.n_volume_steps, isnan(info.p_resume)
-           ? "no stable branch above the limit found: sweep ended" : "resumed");
+    printf("%s: p_limit %.6g MPa at %.3f deg; %d volume-controlled steps; %d hard "
+           "stretches (pressure rising); %s\n",
+           info.limit_shown ? "limit point" : "no limit point shown", info.p_limit,
+           info.angle_limit, info.n_volume_steps, info.n_hard_passed, isnan(info.p_resume)
+           ? "no stable branch above it found: sweep ended" : "resumed");
+    if (isfinite(info.p_indefinite)) {
+      printf("inertia: tangent indefinite from %.6g MPa (last positive definite %.6g MPa), up to "
+             "%d negative pivots\n", info.p_indefinite, info.p_definite, info.neg_pivots_max);
+    }
     if (!isnan(info.p_resume)) {
       printf("limit point: resumed at %.6g MPa, %.3f deg (snap %.3f -> %.3f deg)\n",
              info.p_resume, info.angle_resume, info.angle_limit, info.angle_resume);
