@@ -352,6 +352,17 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
 
 /* ---- stage: the path past a limit point ------------------------------------------------- */
 
+/* The path's inertia in the run's summary: the most negative pivots, and the first converged
+ * state (pressure p) whose tangent had any, with the last definite state before it. */
+static void noteInertia(csfBendInfo* info, int neg, double p, double p_last_definite) {
+  info->neg_pivots_max = neg > info->neg_pivots_max ? neg : info->neg_pivots_max;
+  if (neg > 0 && isnan(info->p_indefinite)) {
+    info->p_indefinite = p;
+    info->p_definite = p_last_definite;
+  }
+}
+
+
 /* Per-state watcher of the volume-controlled path past a limit point (csf_passLimit callback):
  * tracks the angles (for unwrapping), the angles at the pressure maximum, reports progress, and
  * stops the path when the --until-angle target is reached. */
@@ -377,11 +388,8 @@ static int limitWatch(void* user, const csfModel* m, const csfData* d, const csf
   /* the inertia along the volume path too: a negative pivot while the pressure still rises is a
    * bifurcation of the path (pressure control would leave it), past a maximum a limit point */
   const int neg = csf_linSolverNegativePivots(d->ls);
-  lw->info->neg_pivots_max = neg > lw->info->neg_pivots_max ? neg : lw->info->neg_pivots_max;
-  if (neg > 0 && isnan(lw->info->p_indefinite)) {
-    lw->info->p_indefinite = pt->p;
-    lw->info->p_definite = lw->p_definite;
-  } else if (neg == 0) {
+  noteInertia(lw->info, neg, pt->p, lw->p_definite);
+  if (neg == 0) {
     lw->p_definite = pt->p;
   }
   if (pt->is_max) {
@@ -697,12 +705,9 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     const int neg = csf_linSolverNegativePivots(d->ls);
     csfBendStep rep = {target, target - r.p, iters, cut, csf_wallTime() - t_step, tot,
                        {ang[0], ang[1], ang[2]}, 0, d->vol_w, neg};
-    /* stability of the pressure-controlled path: the inertia of its tangent */
-    r.info.neg_pivots_max = neg > r.info.neg_pivots_max ? neg : r.info.neg_pivots_max;
-    if (neg > 0 && isnan(r.info.p_indefinite)) {
-      r.info.p_indefinite = target;
-      r.info.p_definite = r.p;
-    }
+    /* stability of the pressure-controlled path: the inertia of its tangent (the state before
+     * is definite while p_indefinite is unset) */
+    noteInertia(&r.info, neg, target, r.p);
     /* accept: the buffers shift (s_pp <- s_prev <- s_conv <- d) */
     double* recycled = r.w.s_pp;
     r.w.s_pp = r.w.s_prev;

@@ -39,7 +39,8 @@ typedef struct csfNewtonIter_ {
   int fib_switch;   /* fibres whose law zone (slack / smoothing / taut) changed in this step */
   int fib_smooth;   /* fibres inside the smoothing zone |E| < delta after the step */
   int fib_taut;     /* fibres with E >= delta after the step */
-  int neg_pivots;   /* negative pivots of this iteration's tangent (LDL^T; -1: LU or reused) */
+  int neg_pivots;   /* negative pivots of the last factorisation (LDL^T; with krylov it may be
+                     * an earlier iterate's tangent); -1 with LU */
 } csfNewtonIter;
 
 /* Newton options (STYLE.md 17). */

@@ -83,6 +83,9 @@ csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBend
   if (st == CS_OK && meta->p_resume > 0) {
     st = cs_h5AttrDouble(f, "/", "p_resume_MPa", meta->p_resume, err);
   }
+  if (st == CS_OK && meta->p_stalled > 0) {
+    st = cs_h5AttrDouble(f, "/", "fe_p_stalled_MPa", meta->p_stalled, err);
+  }
   if (st == CS_OK) {
     ParamWriter pw = {f, err, CS_OK};
     csr_actuatorVisit(act, writeParam, &pw);

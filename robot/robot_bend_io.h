@@ -41,6 +41,9 @@ typedef struct csrBendMeta_ {
                              (MPa), NAN = none; written when neg_pivots_max >= 0 */
   int neg_pivots_max;     /* FE: most negative pivots on the path (-1: not written: no inertia
                              (LU) or not an FE run) */
+  double p_stalled;       /* FE: the sweep ended here with pressure and volume control both
+                             failing while the pressure had not fallen: no limit point (MPa);
+                             0 or NAN = none */
 } csrBendMeta;
 
 /* Write the bend datasets and root attributes into `f` (created by cs_h5Create). */

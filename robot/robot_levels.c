@@ -229,6 +229,18 @@ int csr_levelTableFinest(const csrLevelTable* t, const char* scene) {
 }
 
 
+int csr_levelTableCostliest(const csrLevelTable* t, const char* scene) {
+  int top = -1;
+  for (int i = 0; i < t->nrow; i++) {
+    if (!strcmp(t->row[i].scene, scene) &&
+        (top < 0 || t->row[i].cpu_s_per_s > t->row[top].cpu_s_per_s)) {
+      top = i;
+    }
+  }
+  return top;
+}
+
+
 int csr_levelTablePick(const csrLevelTable* t, const char* scene, double tol_mm, csError* err) {
   if (!(tol_mm >= 0) || !isfinite(tol_mm)) {
     cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be finite and >= 0", tol_mm);

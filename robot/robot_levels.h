@@ -66,6 +66,9 @@ int csr_levelTablePick(const csrLevelTable* t, const char* scene, double tol_mm,
 /* The scene's most accurate row (smallest error; a tie: the cheaper), or -1 if it has none. */
 int csr_levelTableFinest(const csrLevelTable* t, const char* scene);
 
+/* The scene's costliest row (most CPU s per simulated s), or -1 if it has none. */
+int csr_levelTableCostliest(const csrLevelTable* t, const char* scene);
+
 /* Rows of `scene` in the table. */
 int csr_levelTableCount(const csrLevelTable* t, const char* scene);
 

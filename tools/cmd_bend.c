@@ -630,7 +630,7 @@ int csx_cmdBend(int argc, char** argv) {
   if (st == CS_OK) {
     csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
                         run.n_elements_fibre,   wall,         run.until_angle,
-                        run.p_limit,            run.p_resume, 0, 0, 0, NAN, -1};
+                        run.p_limit,            run.p_resume, 0, 0, 0, NAN, -1, NAN};
     st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
   }
   cs_h5Close(f);

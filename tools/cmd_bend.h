@@ -19,7 +19,10 @@ typedef struct {
   double mesh_size;           /* mm requested (NAN = model default); the model overwrites it
                                  with what it used (NAN for mesh-free models) */
   double n_elements_soft, n_elements_fibre; /* filled by mesh-based models */
-  double p_limit, p_resume;   /* MPa, pressure limit point met and resume pressure (NAN: none) */
+  double p_limit, p_resume;   /* MPa, pressure limit point met and resume pressure (NAN: none);
+                                 with limit_shown 0, p_limit is where the sweep ended because
+                                 pressure and volume control both failed (no limit point) */
+  int limit_shown;            /* fe: 1 the pressure fell past p_limit (csfBendInfo.limit_shown) */
   const char* out;
   double ratio[CSR_NCHAMBER]; /* chamber j at ratio[j] x p (1/0 from --chambers) */
   int unequal;                /* --pressures gave ratios other than 0/1 */

@@ -118,6 +118,7 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
     run->n_elements_soft = info.ntet;
     run->n_elements_fibre = info.nfibre;
     run->p_limit = info.p_limit;
+    run->limit_shown = info.limit_shown;
     run->p_resume = info.p_resume;
     fprintf(stderr, "crawlsim bend: fe: %d tets, %d nodes, %d fibre elements, %d steps, %ld Newton "
             "iterations; assembly %.1f s, factorisation %.1f s, solves %.1f s, total %.1f s; "
@@ -184,13 +185,14 @@ int csx_bendFe(BendRun* run) {
                         run->n_elements_fibre,
                         csu_wallSeconds() - t0,
                         run->until_angle,
-                        run->p_limit,
+                        run->limit_shown ? run->p_limit : NAN,
                         run->p_resume,
                         run->n_elements_fibre > 0 ? run->fibre_size : 0,
                         run->fibre_split,
                         run->fibre_tension_only,
                         run->p_indefinite,
-                        run->neg_pivots_max};
+                        run->neg_pivots_max,
+                        run->limit_shown ? NAN : run->p_limit};
     fst = csr_bendCurveWriteH5(ff, &run->act, &fbc, &meta, &ferr);
   }
   cs_h5Close(ff);

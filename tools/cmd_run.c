@@ -254,13 +254,8 @@ int csx_cmdRun(int argc, char** argv) {
     if (k < 0) goto done;
     const csrLevelRow* row = &table.row[k];
     const csrLevelRow* fin = &table.row[csr_levelTableFinest(&table, scene)];
-    /* the scene's costliest row: what always running the finest configuration would cost */
-    const csrLevelRow* top = row;
-    for (int i = 0; i < table.nrow; i++) {
-      if (!strcmp(table.row[i].scene, scene) && table.row[i].cpu_s_per_s > top->cpu_s_per_s) {
-        top = &table.row[i];
-      }
-    }
+    /* the scene's costliest row: what always running the dearest configuration would cost */
+    const csrLevelRow* top = &table.row[csr_levelTableCostliest(&table, scene)];
     leg_type = csr_legTypeFind(row->level, NULL);
     links = row->links;
     macro = row->macro_steps;

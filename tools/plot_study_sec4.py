@@ -111,7 +111,7 @@ def read_case(f, name):
         "message": attr_text(g.attrs.get("message", b"")),
         "wall_s": float(g.attrs.get("wall_time_s", math.nan)),
         "p": math.nan, "target": math.nan, "angle_end": math.nan, "p_end": math.nan,
-        "p_limit": math.nan, "n_tet": math.nan, "mesh": math.nan, "why": "",
+        "p_limit": math.nan, "p_stalled": math.nan, "n_tet": math.nan, "mesh": math.nan, "why": "",
     }
     if "log/bend" in g:
         rec["why"] = end_reason(attr_text(g["log/bend"][()]))
@@ -120,6 +120,7 @@ def read_case(f, name):
         rec["p"] = float(b.attrs.get("p_until_angle_MPa", math.nan))
         rec["target"] = float(b.attrs.get("until_angle_deg", math.nan))
         rec["p_limit"] = float(b.attrs.get("p_limit_MPa", math.nan))
+        rec["p_stalled"] = float(b.attrs.get("fe_p_stalled_MPa", math.nan))
         rec["n_tet"] = float(b.attrs.get("n_elements_soft", math.nan))
         rec["mesh"] = float(b.attrs.get("mesh_size_mm", math.nan))
         if "angle_total_deg" in b and b["angle_total_deg"].shape[0] > 0:
@@ -172,7 +173,9 @@ def main():
             if r["why"]:
                 status += "; " + r["why"]
             elif math.isfinite(r["p_limit"]):
-                status += f"; sweep ended at {r['p_limit']:.4f} MPa"
+                status += f"; limit point at {r['p_limit']:.4f} MPa"
+            elif math.isfinite(r["p_stalled"]):
+                status += f"; ended at {r['p_stalled']:.4f} MPa: both controls failed"
         elif r and r["status"] == "failed":
             status = "failed: " + r["message"][:90].replace("|", "/")
         rows.append((c, group, change, p_fe, ratio(fe, c), p_an, ratio(an, c), p_pa,

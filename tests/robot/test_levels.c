@@ -66,6 +66,9 @@ static void test_levels_good_table_reads(void) {
   CS_EXPECT(csr_levelTableCount(&g_t, "flat-road") == 3);
   CS_EXPECT(csr_levelTableCount(&g_t, "obstacle") == 2);
   CS_EXPECT(csr_levelTableFinest(&g_t, "flat-road") == 2);
+  CS_EXPECT(csr_levelTableCostliest(&g_t, "flat-road") == 2);
+  CS_EXPECT(csr_levelTableCostliest(&g_t, "obstacle") == 4);
+  CS_EXPECT(csr_levelTableCostliest(&g_t, "moon") == -1);
 }
 
 
