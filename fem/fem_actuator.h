@@ -35,8 +35,8 @@ typedef struct csfActuatorSpec_ {
   const char* work_stem; /* path prefix for the .geo/.msh/.log files */
 } csfActuatorSpec;
 
-/* Chambers Omega1 & Omega2 of every segment at ratio 1, l_soft 4, fibres (linear, consistent
- * tangent, split), mixed formulation, no gravity, no tip force, stem "crawlsim_fe". */
+/* Chambers Omega1 & Omega2 of every segment at ratio 1, l_soft 4, fibres (tension-only,
+ * consistent tangent, split), mixed formulation, no gravity, no tip force, stem "crawlsim_fe". */
 csfActuatorSpec csf_actuatorSpecDefault(void);
 
 /* l_fibre the spec resolves to, mm: fibre_size, or l_soft / 8 when fibre_size is 0. */

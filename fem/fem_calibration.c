@@ -91,6 +91,8 @@ csfCalSettings csf_calibrationDefault(void) {
   s.mesh_size = 4.0;
   s.fibre_size = 0.5; /* l_soft / 8 at l_soft 4: within ~0.5 % of fibre convergence (fem_actuator.c) */
   s.fibre_split = 1;
+  s.fibre_tension_only = 1; /* the FE default (csf_actuatorSpecDefault): linear split fibres
+                             * stall O12 at 0.19 MPa */
   s.p_step = 0.025;
   /* tip probes: a few mm of deflection (E'I ~ 2.8e3 N mm^2, L = 166 mm: 5 mN gives 2.7 mm as a
    * cantilever), 0.1 mm of stretch (EA ~ 130 N: 50 mN) - linear, yet far above Newton's 1e-8 */
@@ -98,6 +100,12 @@ csfCalSettings csf_calibrationDefault(void) {
   s.probe_force[2] = 0.05;
   s.work_stem = "crawlsim_cal";
   return s;
+}
+
+
+/* the fibre law's name in the root attribute fe_fibre_law */
+static const char* fibreLawName(const csfCalSettings* s) {
+  return s->fibre_tension_only ? "tension-only" : "linear";
 }
 
 
@@ -134,6 +142,7 @@ static csStatus writeRoot(csH5File* f, const csrActuator* act, const csfCalSetti
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_mesh_size_mm", s->mesh_size, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_fibre_size_mm", s->fibre_size, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_fibre_split", s->fibre_split, err);
+  if (st == CS_OK) st = cs_h5AttrString(f, "/", "fe_fibre_law", fibreLawName(s), err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_p_step_MPa", s->p_step, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_p_cap_MPa", s->p_cap, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "fe_formulation", "mixed P2/P0 Tet10, Yeoh", err);
@@ -366,6 +375,7 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
   o.spec.mesh_size = s->mesh_size;
   o.spec.fibre_size = s->fibre_size;
   o.spec.fibre_split = s->fibre_split;
+  o.spec.fibre_compression = !s->fibre_tension_only;
   o.spec.work_stem = s->work_stem;
   o.vtu_path = s->vtu_path;
   const double p_max = caseMax(c, s);
@@ -432,6 +442,16 @@ static int attrString(hid_t loc, const char* obj, const char* name, char* buf, s
 }
 
 
+/* a case file's fibre law: its fe_fibre_law, "linear" when absent (files written before the
+ * setting existed), "" when unreadable */
+static const char* fileFibreLaw(hid_t f, char* buf, size_t size) {
+  if (H5Aexists_by_name(f, "/", "fe_fibre_law", H5P_DEFAULT) <= 0) {
+    return "linear";
+  }
+  return attrString(f, "/", "fe_fibre_law", buf, size) ? buf : "";
+}
+
+
 typedef struct {
   hid_t f;
   int same;
@@ -458,7 +478,7 @@ int csf_calibrationCaseDone(const char* path, const csrActuator* act, const csfC
   if (f < 0) {
     return 0;
   }
-  char fmt[64] = "", g[96], status[256] = "";
+  char fmt[64] = "", g[96], status[256] = "", law[32];
   double v = 0;
   int ok = attrString(f, "/", "format", fmt, sizeof fmt) && !strcmp(fmt, CSF_CAL_FORMAT);
   SameParams sp = {f, 1};
@@ -467,6 +487,7 @@ int csf_calibrationCaseDone(const char* path, const csrActuator* act, const csfC
   ok = ok && attrDouble(f, "/", "fe_mesh_size_mm", &v) && v == s->mesh_size;
   ok = ok && attrDouble(f, "/", "fe_fibre_size_mm", &v) && v == s->fibre_size;
   ok = ok && attrDouble(f, "/", "fe_fibre_split", &v) && v == s->fibre_split;
+  ok = ok && !strcmp(fileFibreLaw(f, law, sizeof law), fibreLawName(s));
   ok = ok && attrDouble(f, "/", "fe_p_step_MPa", &v) && v == s->p_step;
   ok = ok && attrDouble(f, "/", "fe_p_cap_MPa", &v) && v == s->p_cap;
   snprintf(g, sizeof g, "/cases/%s", c->name);
@@ -552,6 +573,12 @@ csStatus csf_calibrationMerge(const char* const* paths, int n, const char* out, 
         st = cs_errorSet(err, CS_ERR_PARSE, "%s: %s differs from %s's", paths[k], kSameRoot[a],
                          paths[0]);
       }
+    }
+    char law0[32], law1[32];
+    if (k > 0 && st == CS_OK &&
+        strcmp(fileFibreLaw(src[0], law0, sizeof law0), fileFibreLaw(src[k], law1, sizeof law1))) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_law differs from %s's", paths[k],
+                       paths[0]);
     }
     for (int i = 0; k > 0 && st == CS_OK && csr_actuator_param_names[i]; i++) {
       double v0, v1;

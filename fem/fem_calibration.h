@@ -10,7 +10,7 @@
  *
  * Table layout (HDF5; every case file has the same layout with one case):
  *   root attributes: format "crawlsim-fe-calibration 1", every actuator parameter under its
- *     paper name, fe_mesh_size_mm, fe_fibre_size_mm, fe_fibre_split, fe_formulation,
+ *     paper name, fe_mesh_size_mm, fe_fibre_size_mm, fe_fibre_split, fe_fibre_law, fe_formulation,
  *     fe_kappa_ratio, fe_solver, version;
  *   /cases/<name>/ attributes kind ("mode", "holdout", "symmetry", "gravity"), ratio (4: the
  *     chamber pressures of every segment per unit pressure p, MPa/MPa), p_step, p_max (asked),
@@ -70,6 +70,10 @@ typedef struct csfCalSettings_ {
   double mesh_size;    /* l_soft, mm (4: the paper's choice, within 2.3 % of l_soft 1.5) */
   double fibre_size;   /* l_fibre, mm (default 0.5; 0: the actuator spec's default l_soft / 8) */
   int fibre_split;     /* fibre elements split at element faces */
+  int fibre_tension_only; /* 1: the fibres' smoothed tension-only law (a thread buckles instead
+                           * of carrying compression); 0: linear both ways. Root attribute
+                           * fe_fibre_law "tension-only" / "linear" (absent = linear: tables
+                           * written before the setting existed) */
   double p_step;       /* MPa, output rows */
   double p_cap;        /* MPa: every case ends at min(its p_max, p_cap) (0 = no cap; small
                         * tables for tests) */

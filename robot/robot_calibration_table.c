@@ -535,6 +535,14 @@ csStatus csr_calTableRead(const char* path, const csrActuator* leg, csrCalTable*
   }
   t->fe_mesh_size = set[0], t->fe_fibre_size = set[1], t->fe_p_step = set[3];
   t->fe_p_cap = set[4];
+  snprintf(t->fe_fibre_law, sizeof t->fe_fibre_law, "linear");
+  if (H5Aexists_by_name(f, "/", "fe_fibre_law", H5P_DEFAULT) > 0 &&
+      (!attrString(f, "/", "fe_fibre_law", t->fe_fibre_law, sizeof t->fe_fibre_law) ||
+       (strcmp(t->fe_fibre_law, "linear") && strcmp(t->fe_fibre_law, "tension-only")))) {
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_law must be \"linear\" or "
+                     "\"tension-only\"", path);
+    goto done;
+  }
   if (!attrString(f, "/", "fe_solver", t->fe_solver, sizeof t->fe_solver)) {
     snprintf(t->fe_solver, sizeof t->fe_solver, "?");
   }

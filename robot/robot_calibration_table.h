@@ -9,7 +9,8 @@
  * Layout read (fem_calibration.h is the authority; written by the lead's calibration writer):
  *   root attributes: format "crawlsim-fe-calibration 1", every actuator parameter under its paper
  *     name (must equal the leg's), the FE settings fe_mesh_size_mm, fe_fibre_size_mm,
- *     fe_fibre_split, fe_p_step_MPa, fe_p_cap_MPa, fe_solver, and version;
+ *     fe_fibre_split, fe_p_step_MPa, fe_p_cap_MPa, fe_solver, and version; optionally
+ *     fe_fibre_law ("linear", the default, or "tension-only");
  *   /cases/<name>/ attributes kind ("mode", "holdout", "symmetry", "gravity"), ratio1..ratio4
  *     (chamber j of every segment at ratio_j p), status ("complete", or "ended at ..." when the
  *     sweep stopped early, e.g. at a limit point), p_end (MPa, last row), p_limit (MPa, NAN if
@@ -91,6 +92,7 @@ typedef struct csrCalTable_ {
   char version[32];
   double fe_mesh_size;  /* mm (l_soft) */
   double fe_fibre_size; /* mm (0: the actuator spec's default pairing) */
+  char fe_fibre_law[16]; /* "linear" or "tension-only" (fe_fibre_law; absent = "linear") */
   double fe_p_step;     /* MPa, output rows */
   double fe_p_cap;      /* MPa (0: none) */
   int ncase;

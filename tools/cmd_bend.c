@@ -60,9 +60,9 @@ static const char kUsage[] =
     "  the rod's pressure -> bend map (default: the shipped FE table of the leg actuator).\n"
     "  fe only: --fibre-size MM, the fibre element length (default l_soft / 8); --fibre-split 0\n"
     "  ties each fibre element to the tets holding its two ends (20 nodes) instead of splitting\n"
-    "  it at the tets' faces (1, default). The 360 deg runs use 0 with 1.5 mm (fem/README.md:\n"
-    "  with split fibres Omega1 & Omega2 stall near 0.19 MPa). --fibre-law tension-only: fibres\n"
-    "  carry no compression (thread buckles; default linear, compression at full stiffness).\n";
+    "  it at the tets' faces (1, default). --fibre-law: tension-only (default; thread buckles and\n"
+    "  carries no compression) or linear (compression at full stiffness: with split fibres\n"
+    "  Omega1 & Omega2 then stall near 0.19 MPa, fem/README.md).\n";
 
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
 

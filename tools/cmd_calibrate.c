@@ -3,7 +3,7 @@
  *
  *   crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list] [--merge-only]
  *                      [--actuator leg|baseline|fig1] [--set NAME=VALUE]... [--mesh-size MM]
- *                      [--fibre-size MM] [--p-step MPA]
+ *                      [--fibre-size MM] [--fibre-split 0|1] [--fibre-law LAW] [--p-step MPA]
  *
  * Every case (all of them, or the --case ones) is an FE pressure sweep written to DIR/NAME.h5
  * (and its deformed leg at the last state to DIR/NAME.vtu for ParaView);
@@ -30,13 +30,15 @@ static const char kUsage[] =
     "usage: crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list]\n"
     "                          [--merge-only] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
     "                          [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]\n"
+    "                          [--fibre-law linear|tension-only]\n"
     "                          [--p-step MPA] [--p-max MPA] [--model-out PRED.h5]\n"
     "  Runs the full FE model on every calibration case (chamber modes, unequal pressures,\n"
     "  held-out combinations, stiffness probes, the leg under its weight), one file per case in\n"
     "  DIR (default calibration_cases/; finished cases are skipped: the run resumes), merges\n"
     "  them into FILE.h5 (default calibration_fe.h5) and reads the table back as the legs will.\n"
     "  --list prints the cases. Defaults: actuator leg, l_soft 4 mm, fibres split at element\n"
-    "  faces with l_fibre 0.5 mm (--fibre-split 0: 20-node ties), rows every 0.025 MPa;\n"
+    "  faces with l_fibre 0.5 mm (--fibre-split 0: 20-node ties), tension-only (--fibre-law\n"
+    "  linear: compression too), rows every 0.025 MPa;\n"
     "  --p-max caps every case's end pressure (small tables for tests). With every mode\n"
     "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
     "  rules compared, stiffness); --model-out writes the model's predictions for\n"
@@ -112,6 +114,13 @@ int csx_cmdCalibrate(int argc, char** argv) {
         fprintf(stderr, "crawlsim calibrate: --fibre-split '%s' must be 0 or 1\n", v);
       }
       cs.fibre_split = !strcmp(v, "1");
+    } else if (!strcmp(a, "--fibre-law")) {
+      bad = strcmp(v, "linear") != 0 && strcmp(v, "tension-only") != 0;
+      if (bad) {
+        fprintf(stderr, "crawlsim calibrate: --fibre-law '%s' must be linear or tension-only\n",
+                v);
+      }
+      cs.fibre_tension_only = !strcmp(v, "tension-only");
     } else if (!strcmp(a, "--p-step")) {
       bad = parseNumber(a, v, 1e-4, 0.5, &cs.p_step);
     } else if (!strcmp(a, "--p-max")) {

@@ -59,7 +59,7 @@ static const OptSpec kRunOpts[] = {
 static const OptSpec kCalibrateOpts[] = {
     {"--case", OPT_WORD},       {"--actuator", OPT_ACT}, {"--set", OPT_SET},
     {"--mesh-size", OPT_NUM},   {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD},
-    {"--p-step", OPT_NUM},
+    {"--fibre-law", OPT_WORD},  {"--p-step", OPT_NUM},
     {"--p-max", OPT_NUM},       {"--out", OPT_OWNED},    {"--dir", OPT_OWNED},
     {"--list", OPT_OWNED},      {"--merge-only", OPT_OWNED}, {"--help", OPT_OWNED},
     {NULL, OPT_FLAG}};

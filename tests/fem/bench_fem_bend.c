@@ -1,6 +1,7 @@
 /* bench_fem_bend.c: benchmark command (not a ctest): one FE bend sweep with per-step timing.
  * Usage: bench_fem_bend [actuator] [l_soft] [p_max] [p_step] [until_angle|nan] [chambers]
  *   [--set N=V]... [--vtu F] [--inp F] [--p2] [--no-fibres] [--fibre-size MM] [--tension-only]
+ *   [--fibre-compression]
  *   [--geo-tension] [--ls-energy] [--trace] [--lu] [--stem S]
  * Default: baseline, l_soft 4 mm, 0 -> 0.4 MPa in 0.05 MPa steps, chambers 1,2 (the issue's
  * benchmark). Prints time per load step and per Newton iteration, then the summary. */

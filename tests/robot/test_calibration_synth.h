@@ -194,6 +194,7 @@ static inline void synthWriteCases(const char* path, const csrActuator* act, con
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_mesh_size_mm", 4.0, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_fibre_size_mm", 0.5, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_fibre_split", 1.0, &err) == CS_OK);
+  CS_EXPECT(cs_h5AttrString(h, "/", "fe_fibre_law", "tension-only", &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_p_step_MPa", sp->dp, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_p_cap_MPa", sp->p_cap, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrString(h, "/", "fe_solver", "synthetic", &err) == CS_OK);

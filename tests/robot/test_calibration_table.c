@@ -68,6 +68,7 @@ static void test_good_table_opens_as_mode_table(void) {
   CS_EXPECT_NEAR(map.p_max, 0.5, 1e-15, 0);
   const csrCalTable* t = csr_calibrationTable(c);
   CS_EXPECT(t != NULL && t->ncase == SYNTH_NCASE);
+  CS_EXPECT(t && !strcmp(t->fe_fibre_law, "tension-only"));
   CS_EXPECT(csr_calibrationModel(c) != NULL);
   /* the table's cases are found by chamber pattern and kind */
   const double h1[4] = {1, 1.0 / 3.0, 0, 0};
@@ -107,6 +108,7 @@ static void format2(const char* p) {
   synthSetString(p, "/", "format", "crawlsim-fe-calibration 2");
 }
 static void noMesh(const char* p) { synthDeleteAttr(p, "/", "fe_mesh_size_mm"); }
+static void badLaw(const char* p) { synthSetString(p, "/", "fe_fibre_law", "elastic"); }
 static void badKind(const char* p) { synthSetString(p, "/cases/O2", "kind", "fitted"); }
 static void badRatio(const char* p) { synthSetDouble(p, "/cases/O1", "ratio2", 1.5); }
 static void noRadial(const char* p) { synthDelete(p, "/cases/O12O34r3/radial"); }
@@ -137,6 +139,7 @@ static void test_every_bad_table_is_refused(void) {
       {pEnd, "case O1234: p_end is 0.45 MPa but the last row is at 0.5 MPa"},
       {format2, "format 'crawlsim-fe-calibration 2' is not supported"},
       {noMesh, "no FE setting 'fe_mesh_size_mm'"},
+      {badLaw, "fe_fibre_law must be \"linear\" or \"tension-only\""},
       {badKind, "case O2: unknown kind 'fitted'"},
       {badRatio, "case O1: ratio2 is 1.5 (chamber ratios are in [0, 1])"},
       {noRadial, "case O12O34r3 has no dataset 'radial'"},
@@ -167,6 +170,12 @@ static void test_every_bad_table_is_refused(void) {
     double bend[2], stretch;
     CS_EXPECT(map.eval(map.ctx, 0, p, bend, &stretch) == CSR_MAP_OUT_OF_RANGE);
   }
+  csr_calibrationClose(c);
+  /* a table written before the fibre law was recorded is of the linear law */
+  copyGood();
+  synthDeleteAttr(kBad, "/", "fe_fibre_law");
+  c = csr_calibrationOpen(kBad, &leg, &err);
+  CS_EXPECT(c != NULL && !strcmp(csr_calibrationTable(c)->fe_fibre_law, "linear"));
   csr_calibrationClose(c);
   /* strings as h5py writes them (variable length, UTF-8) read like the writer's fixed ones */
   copyGood();

@@ -29,9 +29,10 @@
 
 static const char* exe_path = NULL;
 
-#define SMALL_SETS                                                                           \
+#define SMALL_BASE                                                                           \
   "--set S1=15 --set S2=15 --set S3=15 --set n1=9 --set n2=9 --set n3=9 --set c=3 "           \
-  "--mesh-size 5 --p-max 0.05 --p-step 0.05 --dir calib_cases --case O12 --case G"
+  "--mesh-size 5 --p-max 0.05 --p-step 0.05 --dir calib_cases"
+#define SMALL_SETS SMALL_BASE " --case O12 --case G"
 
 
 static int fileExists(const char* path) {
@@ -69,6 +70,9 @@ static void test_calibrate_runs_resumes_and_merges(void) {
               !strcmp(fmt, "crawlsim-fe-calibration 1"));
     double S1 = 0, p[2] = {NAN, NAN};
     CS_EXPECT(H5LTget_attribute_double(f, "/", "S1", &S1) >= 0 && S1 == 15);
+    char law[32] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "fe_fibre_law", law) >= 0 &&
+              !strcmp(law, "tension-only")); /* the default */
     CS_EXPECT(H5LTread_dataset_double(f, "/cases/O12/pressure", p) >= 0);
     CS_EXPECT(p[0] == 0 && fabs(p[1] - 0.05) < 1e-12);
     double bend[12];
@@ -99,6 +103,21 @@ static void test_calibrate_runs_resumes_and_merges(void) {
   csrCalibration* wrong = csr_calibrationOpen("calib_small.h5", &leg, &err);
   CS_EXPECT(wrong == NULL && strstr(err.msg, "another actuator") != NULL);
   csr_calibrationClose(wrong);
+  /* another fibre law: the finished G (tension-only) is not reused but runs again, and the
+   * table holds only the case files of that law (O12 is left out) */
+  cs_cliRun(exe_path, "calibrate --out calib_small.h5 --fibre-law linear --case G " SMALL_BASE,
+            "calibrate", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.out, "1 cases run, 0 already done, 1 of 12") != NULL);
+  f = H5Fopen("calib_small.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char law[32] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "fe_fibre_law", law) >= 0 &&
+              !strcmp(law, "linear"));
+    CS_EXPECT(H5Lexists(f, "/cases/G", H5P_DEFAULT) > 0 &&
+              H5Lexists(f, "/cases/O12", H5P_DEFAULT) <= 0);
+    H5Fclose(f);
+  }
 
   /* a table must cover the gait: an analytic sweep of the leg to 0.1 MPa is a valid table, and
    * the shipped gait's pressures are above it, so the run stops naming time, chamber and range,
@@ -234,6 +253,8 @@ static void test_bad_options(void) {
   expectFailure("--p-step x", "--p-step 'x' must be a number in");
   expectFailure("--mesh-size -1", "--mesh-size '-1' must be a number in [0.5, 20]");
   expectFailure("--fibre-split 2", "crawlsim calibrate: --fibre-split '2' must be 0 or 1");
+  expectFailure("--fibre-law elastic",
+                "crawlsim calibrate: --fibre-law 'elastic' must be linear or tension-only");
   expectFailure("--case Q7", "--case 'Q7': no such case (see --list)");
   expectFailure("--set S1=-3", "S1 = -3 must be > 0 mm");
   expectFailure("--set Q=3", "unknown actuator parameter 'Q'");
