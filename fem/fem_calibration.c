@@ -19,7 +19,12 @@
  * its deformed length; the axial stiffness EA = N / (dlambda / lambda) with N the probe force
  * along the segment's centre tangent. Exact for a straight prismatic segment; for a bent one the
  * moment's variation along the segment is neglected (a linear variation averages to the centre
- * value). */
+ * value). A probe that loads a segment mostly in another mode says nothing about this one: a
+ * segment's EI is kept only where the probe's moment at its centre is at least half bending and
+ * at least |F| S'/4 (the change of moment across a quarter of the segment), its EA only where
+ * the probe force has at least half its size along the segment's tangent; otherwise NaN (the
+ * model skips it). Without this the curled leg of Omega1&Omega2 at 0.2-0.3 MPa (148-265 deg)
+ * gave EI 856-6180 N mm^2 and EA -1731 N, where the straight leg gives 2900-3700 and 150-180. */
 #include "fem_calibration.h"
 
 #include <math.h>
@@ -35,6 +40,8 @@
 #include "robot_bend_io.h"
 
 #define G_EARTH 9810.0 /* mm/s^2 */
+/* the share of a probe's load that must be in the mode it measures (csf_calibrationReduceProbes) */
+#define PROBE_SHARE 0.5
 
 static const csfCalCase kCases[] = {
     {"O12", CSF_CAL_MODE, {1, 1, 0, 0}, 0.5, 1, {0, 0, 0},
@@ -181,9 +188,8 @@ static void segmentCentre(const csfSegmentState* st, double S, double x[3], doub
 }
 
 
-/* stiffness of every segment from a row's probes: EI [3][2] (e1, e2 probes), EA [3] */
-static void reduceProbes(const csrActuator* act, const csfBendRow* row, double EI[3][2],
-                         double EA[3]) {
+void csf_calibrationReduceProbes(const csrActuator* act, const csfBendRow* row, double EI[3][2],
+                                 double EA[3]) {
   for (int s = 0; s < CSR_NSEG; s++) {
     const csfSegmentState* st = row->seg + s;
     double xc[3], tc[3];
@@ -205,13 +211,19 @@ static void reduceProbes(const csrActuator* act, const csfBendRow* row, double E
       const double db[2] = {row->probe_seg[k][s].bend[0] - st->bend[0],
                             row->probe_seg[k][s].bend[1] - st->bend[1]};
       const double den = mb[0] * db[0] + mb[1] * db[1];
+      const double Fn = csu_norm3(row->probe_force[k]), Mb = hypot(mb[0], mb[1]);
+      if (!(Mb >= PROBE_SHARE * csu_norm3(M) && Mb >= 0.25 * Fn * Sd)) {
+        continue; /* mostly torsion, or a short arm: another mode's response */
+      }
       EI[s][k] = den != 0 ? Sd * (mb[0] * mb[0] + mb[1] * mb[1]) / den : NAN;
     }
     EA[s] = NAN;
     if (row->probe_ok[2]) {
       const double N = csu_dot3(row->probe_force[2], tc);
       const double dl = row->probe_seg[2][s].stretch - st->stretch;
-      EA[s] = dl != 0 ? N * st->stretch / dl : NAN;
+      if (fabs(N) >= PROBE_SHARE * csu_norm3(row->probe_force[2])) {
+        EA[s] = dl != 0 ? N * st->stretch / dl : NAN;
+      }
     }
   }
 }
@@ -307,7 +319,7 @@ static csStatus writeCase(csH5File* f, const csrActuator* act, const csfCalCase*
       const csfBendRow* r = rec->row + i;
       if (!r->nprobe) continue;
       double EI[3][2], EA[3];
-      reduceProbes(act, r, EI, EA);
+      csf_calibrationReduceProbes(act, r, EI, EA);
       for (int sg = 0; sg < 3; sg++) {
         buf[6 * q + 2 * sg] = EI[sg][0];
         buf[6 * q + 2 * sg + 1] = EI[sg][1];

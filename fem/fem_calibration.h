@@ -86,6 +86,12 @@ typedef struct csfCalSettings_ {
 
 csfCalSettings csf_calibrationDefault(void);
 
+/* The stiffness of every segment from a row's probes (the reduction in fem_calibration.c's
+ * header): EI[s][k] (N mm^2) from the probe along e1 (k = 0) and e2 (k = 1), EA[s] (N) from the
+ * probe along e3; NaN where the probe failed or loads the segment mostly in another mode. */
+void csf_calibrationReduceProbes(const csrActuator* act, const csfBendRow* row, double EI[3][2],
+                                 double EA[3]);
+
 /* Run one case on the actuator `act` and write its file `path` (truncated first). The file is
  * complete only when this returns CS_OK (its status attribute says "complete" or names the
  * limit point where the sweep ended). */
