@@ -345,6 +345,26 @@ static int mergePoints(const double* x, const double* y, int n, double* X, doubl
 }
 
 
+/* The probes' reduction to EI and EA (fem_calibration.c) is exact for a straight segment; a bent
+ * one mixes modes: the tip force also bends it, which moves its chord-and-angle stretch, and the
+ * moment varies along the arc. Measured on Omega1&Omega2 of the leg (tension-only fibres): at
+ * 0.1 MPa (segments bent 0.30 rad) EI is within 5 % of the straight all-four leg's but EA is 6-57 %
+ * above it; at 0.2-0.3 MPa (0.9-1.6 rad) EI scatters 552-8614 N mm^2 and EA 48-96 N. So a probe
+ * counts for a segment only where that segment's bend at the probe's row is at most: */
+#define PROBE_BEND_EI 0.5 /* rad, for EI */
+#define PROBE_BEND_EA 0.1 /* rad, for EA */
+
+/* the bend angle (rad) of segment s at the row of probe k (the reader checked it is a row) */
+static double probeBend(const csrCalCase* c, int k, int s) {
+  for (int i = 0; i < c->m; i++) {
+    if (fabs(c->pressure[i] - c->probe_pressure[k]) <= PBAR_TOL) {
+      return hypot(c->bend[6 * i + 2 * s], c->bend[6 * i + 2 * s + 1]);
+    }
+  }
+  return INFINITY;
+}
+
+
 /* mean-pressure stiffness points of every segment from the probes of every mode */
 static int buildStiffness(csrCalModel* m, const csrCalTable* t) {
   int cap = 0;
@@ -371,9 +391,10 @@ static int buildStiffness(csrCalModel* m, const csrCalTable* t) {
       for (int k = 0; k < c->k; k++) {
         const double e1 = c->EI[6 * k + 2 * s], e2 = c->EI[6 * k + 2 * s + 1];
         /* isotropic section: the mean of the two probes (one if the other failed) */
+        const double beta = probeBend(c, k, s);
         x[n] = rbar * c->probe_pressure[k];
-        ei[n] = isnan(e1) ? e2 : isnan(e2) ? e1 : 0.5 * (e1 + e2);
-        ea[n] = c->EA[3 * k + s];
+        ei[n] = beta > PROBE_BEND_EI ? NAN : isnan(e1) ? e2 : isnan(e2) ? e1 : 0.5 * (e1 + e2);
+        ea[n] = beta > PROBE_BEND_EA ? NAN : c->EA[3 * k + s];
         n++;
       }
     }

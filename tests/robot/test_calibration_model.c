@@ -531,8 +531,21 @@ static void test_stiffness_mean_pressure_rule(void) {
   int n;
   const double *pb, *v;
   csr_calModelStiffnessPoints(b.model, 0, 0, &n, &pb, &v);
-  /* p̄ = 0 (both modes), 0.05, 0.1 (both), 0.15, 0.2, 0.3 */
-  CS_EXPECT(n == 6 && pb[0] == 0 && fabs(pb[5] - 0.3) < 1e-15);
+  /* EI: p̄ = 0 (both modes), 0.05, 0.1 (both), 0.2, 0.3; O12's probe at 0.3 MPa (p̄ 0.15) is
+   * left out: segment II1 is bent there by more than the 0.5 rad a probe may have */
+  const csrCalCase* o12 = NULL;
+  const double r12[4] = {1, 1, 0, 0};
+  o12 = csr_calTableFind(&b.table, CSR_CAL_MODE, r12);
+  CS_EXPECT(o12 != NULL && o12->m == 21); /* 0..0.5 MPa by 0.025 */
+  if (o12) {
+    /* row 12 (0.3 MPa) and row 4 (0.1 MPa) of II1 */
+    CS_EXPECT(hypot(o12->bend[6 * 12], o12->bend[6 * 12 + 1]) > 0.5);
+    CS_EXPECT(hypot(o12->bend[6 * 4], o12->bend[6 * 4 + 1]) <= 0.5);
+  }
+  CS_EXPECT(n == 5 && pb[0] == 0 && fabs(pb[1] - 0.05) < 1e-15 && fabs(pb[4] - 0.3) < 1e-15);
+  /* EA: only probes of segments bent by 0.1 rad at most: O1234's (straight) and O12's at rest */
+  csr_calModelStiffnessPoints(b.model, 0, 1, &n, &pb, &v);
+  CS_EXPECT(n == 4 && pb[0] == 0 && fabs(pb[1] - 0.1) < 1e-15 && fabs(pb[3] - 0.3) < 1e-15);
   unbuild(&b);
 
   /* a failed probe (NaN) is skipped: O1234's EA at 0.3 MPa lost, EA ends at p̄ = 0.2 */
