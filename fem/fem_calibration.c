@@ -110,12 +110,6 @@ csfCalSettings csf_calibrationDefault(void) {
 }
 
 
-/* the fibre law's name in the root attribute fe_fibre_law */
-static const char* fibreLawName(const csfCalSettings* s) {
-  return s->fibre_tension_only ? "tension-only" : "linear";
-}
-
-
 /* the end pressure of a case under the settings' cap */
 static double caseMax(const csfCalCase* c, const csfCalSettings* s) {
   return s->p_cap > 0 ? fmin(c->p_max, s->p_cap) : c->p_max;
@@ -149,7 +143,9 @@ static csStatus writeRoot(csH5File* f, const csrActuator* act, const csfCalSetti
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_mesh_size_mm", s->mesh_size, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_fibre_size_mm", s->fibre_size, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_fibre_split", s->fibre_split, err);
-  if (st == CS_OK) st = cs_h5AttrString(f, "/", "fe_fibre_law", fibreLawName(s), err);
+  if (st == CS_OK) {
+    st = cs_h5AttrString(f, "/", "fe_fibre_law", csr_fibreLawName(s->fibre_tension_only), err);
+  }
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_p_step_MPa", s->p_step, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_p_cap_MPa", s->p_cap, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "fe_formulation", "mixed P2/P0 Tet10, Yeoh", err);
@@ -215,7 +211,7 @@ void csf_calibrationReduceProbes(const csrActuator* act, const csfBendRow* row, 
       if (!(Mb >= PROBE_SHARE * csu_norm3(M) && Mb >= 0.25 * Fn * Sd)) {
         continue; /* mostly torsion, or a short arm: another mode's response */
       }
-      EI[s][k] = den != 0 ? Sd * (mb[0] * mb[0] + mb[1] * mb[1]) / den : NAN;
+      EI[s][k] = den != 0 ? Sd * Mb * Mb / den : NAN;
     }
     EA[s] = NAN;
     if (row->probe_ok[2]) {
@@ -454,13 +450,14 @@ static int attrString(hid_t loc, const char* obj, const char* name, char* buf, s
 }
 
 
-/* a case file's fibre law: its fe_fibre_law, "linear" when absent (files written before the
- * setting existed), "" when unreadable */
-static const char* fileFibreLaw(hid_t f, char* buf, size_t size) {
+/* a case file's fibre law (csr_fibreLawParse): its fe_fibre_law, linear (0) when absent (files
+ * written before the setting existed), -1 when unreadable or unknown */
+static int fileFibreLaw(hid_t f) {
+  char buf[32];
   if (H5Aexists_by_name(f, "/", "fe_fibre_law", H5P_DEFAULT) <= 0) {
-    return "linear";
+    return 0;
   }
-  return attrString(f, "/", "fe_fibre_law", buf, size) ? buf : "";
+  return attrString(f, "/", "fe_fibre_law", buf, sizeof buf) ? csr_fibreLawParse(buf) : -1;
 }
 
 
@@ -490,7 +487,7 @@ int csf_calibrationCaseDone(const char* path, const csrActuator* act, const csfC
   if (f < 0) {
     return 0;
   }
-  char fmt[64] = "", g[96], status[256] = "", law[32];
+  char fmt[64] = "", g[96], status[256] = "";
   double v = 0;
   int ok = attrString(f, "/", "format", fmt, sizeof fmt) && !strcmp(fmt, CSF_CAL_FORMAT);
   SameParams sp = {f, 1};
@@ -499,7 +496,7 @@ int csf_calibrationCaseDone(const char* path, const csrActuator* act, const csfC
   ok = ok && attrDouble(f, "/", "fe_mesh_size_mm", &v) && v == s->mesh_size;
   ok = ok && attrDouble(f, "/", "fe_fibre_size_mm", &v) && v == s->fibre_size;
   ok = ok && attrDouble(f, "/", "fe_fibre_split", &v) && v == s->fibre_split;
-  ok = ok && !strcmp(fileFibreLaw(f, law, sizeof law), fibreLawName(s));
+  ok = ok && fileFibreLaw(f) == s->fibre_tension_only;
   ok = ok && attrDouble(f, "/", "fe_p_step_MPa", &v) && v == s->p_step;
   ok = ok && attrDouble(f, "/", "fe_p_cap_MPa", &v) && v == s->p_cap;
   snprintf(g, sizeof g, "/cases/%s", c->name);
@@ -586,9 +583,7 @@ csStatus csf_calibrationMerge(const char* const* paths, int n, const char* out, 
                          paths[0]);
       }
     }
-    char law0[32], law1[32];
-    if (k > 0 && st == CS_OK &&
-        strcmp(fileFibreLaw(src[0], law0, sizeof law0), fileFibreLaw(src[k], law1, sizeof law1))) {
+    if (k > 0 && st == CS_OK && fileFibreLaw(src[0]) != fileFibreLaw(src[k])) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_law differs from %s's", paths[k],
                        paths[0]);
     }

@@ -88,7 +88,9 @@ csfCalSettings csf_calibrationDefault(void);
 
 /* The stiffness of every segment from a row's probes (the reduction in fem_calibration.c's
  * header): EI[s][k] (N mm^2) from the probe along e1 (k = 0) and e2 (k = 1), EA[s] (N) from the
- * probe along e3; NaN where the probe failed or loads the segment mostly in another mode. */
+ * probe along e3; NaN where the probe failed or loads the segment mostly in another mode. The
+ * calibration model further uses a probe only where its segment is nearly straight
+ * (robot_calibration_build.c): the tables store EI and EA, not the frames this needs. */
 void csf_calibrationReduceProbes(const csrActuator* act, const csfBendRow* row, double EI[3][2],
                                  double EA[3]);
 

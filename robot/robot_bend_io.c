@@ -2,6 +2,7 @@
 #include "robot_bend_io.h"
 
 #include <math.h>
+#include <string.h>
 
 /* state of the actuator-parameter visitor: the first failure wins */
 typedef struct {
@@ -19,6 +20,16 @@ static void writeParam(void* user, const char* name, double value) {
   if (pw->st == CS_OK) {
     pw->st = cs_h5AttrDouble(pw->f, "/", name, value, pw->err);
   }
+}
+
+
+const char* csr_fibreLawName(int tension_only) {
+  return tension_only ? "tension-only" : "linear";
+}
+
+
+int csr_fibreLawParse(const char* name) {
+  return !strcmp(name, "tension-only") ? 1 : !strcmp(name, "linear") ? 0 : -1;
 }
 
 
@@ -60,8 +71,8 @@ csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBend
       st = cs_h5AttrDouble(f, "/", "fe_fibre_split", meta->fibre_split, err);
     }
     if (st == CS_OK) {
-      st = cs_h5AttrString(f, "/", "fe_fibre_law",
-                           meta->fibre_tension_only ? "tension-only" : "linear", err);
+      st = cs_h5AttrString(f, "/", "fe_fibre_law", csr_fibreLawName(meta->fibre_tension_only),
+                           err);
     }
   }
   if (st == CS_OK && meta->neg_pivots_max >= 0) {

@@ -21,6 +21,14 @@ extern "C" {
 /* Version string written to output files; keep equal to project(VERSION) in CMakeLists.txt. */
 #define CSR_OUTPUT_VERSION "0.1.0"
 
+/* The FE fibre law's name in the root attribute fe_fibre_law of bend files and calibration
+ * tables: "tension-only" (tension_only 1) or "linear" (0, also what a file without the attribute
+ * was written with). */
+const char* csr_fibreLawName(int tension_only);
+
+/* The inverse: 1 for "tension-only", 0 for "linear", -1 for anything else. */
+int csr_fibreLawParse(const char* name);
+
 /* What the bend file records besides the curve itself. */
 typedef struct csrBendMeta_ {
   const char* model;      /* "analytic", "fe", ... */

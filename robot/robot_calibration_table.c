@@ -12,6 +12,7 @@
 #include <hdf5_hl.h>
 
 #include "core_math.h"
+#include "robot_bend_io.h"
 
 /* actuator parameters are written as doubles, so file and leg agree exactly; 1e-9 relative
  * only absorbs a hand-edited decimal (as the pair-mode reader, robot_calibration.c) */
@@ -538,7 +539,7 @@ csStatus csr_calTableRead(const char* path, const csrActuator* leg, csrCalTable*
   snprintf(t->fe_fibre_law, sizeof t->fe_fibre_law, "linear");
   if (H5Aexists_by_name(f, "/", "fe_fibre_law", H5P_DEFAULT) > 0 &&
       (!attrString(f, "/", "fe_fibre_law", t->fe_fibre_law, sizeof t->fe_fibre_law) ||
-       (strcmp(t->fe_fibre_law, "linear") && strcmp(t->fe_fibre_law, "tension-only")))) {
+       csr_fibreLawParse(t->fe_fibre_law) < 0)) {
     st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_law must be \"linear\" or "
                      "\"tension-only\"", path);
     goto done;

@@ -435,11 +435,11 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
       }
       run->fibre_split = value[0] == '1';
     } else if (!strcmp(name, "--fibre-law")) {
-      if (strcmp(value, "linear") && strcmp(value, "tension-only")) {
+      run->fibre_tension_only = csr_fibreLawParse(value);
+      if (run->fibre_tension_only < 0) {
         fprintf(stderr, "crawlsim bend: --fibre-law '%s' must be linear or tension-only\n", value);
         return 1;
       }
-      run->fibre_tension_only = value[0] == 't';
     } else if (!strcmp(name, "--pressures")) {
       bad = parsePressures(value, run);
     } else if (!strcmp(name, "--tip-load")) {

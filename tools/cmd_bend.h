@@ -34,7 +34,7 @@ typedef struct {
   int fibre_split;            /* fe: 1 fibre elements split at element faces, 0 20-node ties,
                                  -1 the model's default */
   int fibre_tension_only;     /* fe: 1 tension-only fibre law, 0 linear (tension and
-                                 compression), -1 the model's default (linear) */
+                                 compression), -1 the model's default (tension-only) */
   double p_indefinite;        /* fe: first converged pressure with an indefinite tangent (NAN) */
   int neg_pivots_max;         /* fe: most negative pivots on the path (-1: LU) */
 } BendRun;

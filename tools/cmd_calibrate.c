@@ -24,6 +24,7 @@
 #include "cs_commands.h"
 #include "fem_calibration.h"
 #include "robot_actuator.h"
+#include "robot_bend_io.h"
 #include "robot_calibration.h"
 
 static const char kUsage[] =
@@ -115,12 +116,12 @@ int csx_cmdCalibrate(int argc, char** argv) {
       }
       cs.fibre_split = !strcmp(v, "1");
     } else if (!strcmp(a, "--fibre-law")) {
-      bad = strcmp(v, "linear") != 0 && strcmp(v, "tension-only") != 0;
+      cs.fibre_tension_only = csr_fibreLawParse(v);
+      bad = cs.fibre_tension_only < 0;
       if (bad) {
         fprintf(stderr, "crawlsim calibrate: --fibre-law '%s' must be linear or tension-only\n",
                 v);
       }
-      cs.fibre_tension_only = !strcmp(v, "tension-only");
     } else if (!strcmp(a, "--p-step")) {
       bad = parseNumber(a, v, 1e-4, 0.5, &cs.p_step);
     } else if (!strcmp(a, "--p-max")) {
