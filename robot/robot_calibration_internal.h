@@ -27,8 +27,10 @@ enum { F_A = 0, F_B, F_STRETCH, F_RADIAL, F_RADMAX, NF };
 /* components of the single-chamber base per segment and row */
 enum { B_THETA = 0, B_STRETCH, B_RADIAL, B_RADMAX, NB };
 
-/* the vertices of the interpolation: the six corners of the prism and the two refining modes */
-enum { V_O1 = 0, V_O13, V_O12, V_O124, V_O124M, V_O1234, V_R05, V_R3, NV };
+/* the vertices of the interpolation: the six corners of the prism and the four refining modes
+ * (each a bump that vanishes on every face of the prism but its own, so the refining modes do
+ * not weigh at each other's vertices) */
+enum { V_O1 = 0, V_O13, V_O12, V_O124, V_O124M, V_O1234, V_R05, V_R3, V_F05, V_F075, NV };
 
 /* rows of one mode: p (m), y and slopes (m x 3 x nc) */
 typedef struct {

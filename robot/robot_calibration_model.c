@@ -15,7 +15,8 @@ static const struct {
 } kRoles[CSR_CAL_NROLE] = {
     {"O1", {1, 0, 0, 0}},         {"O13", {1, 0, 1, 0}},  {"O12", {1, 1, 0, 0}},
     {"O124", {1, 1, 0, 1}},       {"O1234", {1, 1, 1, 1}}, {"O12r05", {1, 0.5, 0, 0}},
-    {"O12O34r3", {1, 1, 1.0 / 3.0, 1.0 / 3.0}},
+    {"O12O34r3", {1, 1, 1.0 / 3.0, 1.0 / 3.0}}, 
+    {"O1O234r05", {1, 0.5, 0.5, 0.5}},          {"O1O234r075", {1, 0.75, 0.75, 0.75}},
 };
 
 csrCalOptions csr_calModelDefaultOptions(void) {
@@ -119,6 +120,12 @@ static double hat(double x, double c) {
 }
 
 
+/* hat function on [lo, 1] peaking at c (lo < c < 1), 0 outside */
+static double hatOn(double x, double lo, double c) {
+  return x <= lo ? 0 : x <= c ? (x - lo) / (c - lo) : (1 - x) / (1 - c);
+}
+
+
 /* weights of the vertices at prism point (x2, w, x3): trilinear between the corners, the
  * refining modes as bumps (their surpluses carry the rest) */
 void csr_calWeights_(const csrCalModel* m, double x2, double w, double x3, double W[NV]) {
@@ -130,6 +137,11 @@ void csr_calWeights_(const csrCalModel* m, double x2, double w, double x3, doubl
   W[V_O1234] = x2 * w * x3;
   W[V_R05] = m->use[V_R05] ? hat(x2, m->coord[V_R05][0]) * (1 - w) * (1 - x3) : 0;
   W[V_R3] = m->use[V_R3] ? x2 * hat(w, m->coord[V_R3][1]) * hat(x3, m->coord[V_R3][2]) : 0;
+  W[V_F05] = m->use[V_F05] ? hat(x2, m->coord[V_F05][0]) * w * hat(x3, m->coord[V_F05][2]) : 0;
+  const double lo = m->use[V_F05] ? m->coord[V_F05][0] : 0; /* the coarser level's node */
+  W[V_F075] = m->use[V_F075]
+                  ? hatOn(x2, lo, m->coord[V_F075][0]) * w * hatOn(x3, lo, m->coord[V_F075][2])
+                  : 0;
 }
 
 
@@ -323,7 +335,8 @@ void csr_calModelMeanFactor(const csrCalModel* m, int seg, double k[2], double* 
 
 
 int csr_calModelUses(const csrCalModel* m, csrCalRole role) {
-  static const int kFirst[CSR_CAL_NROLE] = {V_O1, V_O13, V_O12, V_O124, V_O1234, V_R05, V_R3};
+  static const int kFirst[CSR_CAL_NROLE] = {V_O1,  V_O13, V_O12,   V_O124,
+                                              V_O1234, V_R05, V_R3, V_F05, V_F075};
   return role >= 0 && role < CSR_CAL_NROLE && m->use[kFirst[role]];
 }
 

@@ -210,13 +210,14 @@ static csStatus measure(const csrActuator* act, const csrBendMap* map, const csg
 static int bendOf(const csrBendMap* map, int s, unsigned set, double p, double* b);
 
 
-/* foot (leg frame, mm) for signed sagittal bends th[3] (rad, > 0 towards +e1) */
-static csStatus footOfBends(const csrActuator* act, const double th[3], double foot[3],
-                            csError* err) {
+/* foot (leg frame, mm) for signed sagittal bends th[3] (rad, > 0 towards +e1) and centreline
+ * stretches lam[3] */
+static csStatus footOfBends(const csrActuator* act, const double th[3], const double lam[3],
+                            double foot[3], csError* err) {
   csrSegmentStrain st[CSR_NSEG];
   memset(st, 0, sizeof st);
   for (int s = 0; s < CSR_NSEG; s++) {
-    st[s].lambda0 = 1.0;
+    st[s].lambda0 = lam[s];
     st[s].kappa[0] = -th[s] / act->S[s]; /* bend = -kappa S (robot_analytic.h) */
   }
   return csr_ccForwardKinematics(act, st, 1, NULL, foot, NULL, err);
@@ -227,37 +228,39 @@ static csStatus footOfBends(const csrActuator* act, const double th[3], double f
  * bends; 1e-9 mm is far below any effect, 40 damped steps are plenty from the start guesses */
 enum { FOOT_NEWTON = 40 };
 #define FOOT_TOL_MM 1e-9
+/* fixed-point passes between the bends and the stretches they come with (--stretch): the
+ * stretch changes by a few % over the whole range; a pass gains one digit or more */
+enum { FOOT_STRETCH_PASSES = 60 };
+#define FOOT_STRETCH_TOL 1e-9 /* 1.7e-7 mm over the leg */
 
 
-/* a foot pose: bends (a, b, -(a + b)) of II1, II2, II3 with the foot at (X, lift), then each
- * segment's pressure on its sagittal pair from the inverse map */
-static csStatus solveFootPose(const csrActuator* act, const csrBendMap* map,
-                              const csgDesignSet* set, double pmax, const double foot0[3],
-                              double P[12], const char* src, const char* name, csError* err) {
-  const double X = set->value, H = set->value2;
+/* the bends (a, b, -(a + b)) of II1, II2, II3 that put the foot at (X, lift H) with segment
+ * stretches lam; *best: the closest residual reached (mm) */
+static csStatus footBends(const csrActuator* act, double X, double H, const double lam[3],
+                          const double foot0[3], double th[3], double* best, csError* err) {
   /* start guesses: an S-shape for the stroke plus a crouch for the lift, and its mirror */
   const double starts[4][2] = {{X / 141.0, -X / 141.0}, {X / 141.0 + 0.3, -X / 141.0 - 0.6},
                                {X / 141.0 + 0.6, -X / 141.0 - 1.2}, {-0.3, 0.6}};
-  double th[3] = {0, 0, 0}, best = INFINITY;
-  for (int g = 0; g < 4 && best > FOOT_TOL_MM; g++) {
+  *best = INFINITY;
+  for (int g = 0; g < 4 && *best > FOOT_TOL_MM; g++) {
     double a = starts[g][0], b = starts[g][1];
     for (int it = 0; it < FOOT_NEWTON; it++) {
       double r[2], J[2][2], f[3];
       double t0[3] = {a, b, -(a + b)};
-      csStatus st = footOfBends(act, t0, f, err);
+      csStatus st = footOfBends(act, t0, lam, f, err);
       if (st != CS_OK) return st;
       r[0] = f[0] - foot0[0] - X;
       r[1] = (foot0[2] - f[2]) - H;
       double nr = hypot(r[0], r[1]);
-      if (nr < best) {
-        best = nr;
-        memcpy(th, t0, sizeof th);
+      if (nr < *best) {
+        *best = nr;
+        memcpy(th, t0, 3 * sizeof(double));
       }
       if (nr < FOOT_TOL_MM) break;
       for (int c = 0; c < 2; c++) {
         double e = 1e-7, t1[3] = {a + (c == 0) * e, b + (c == 1) * e, 0}, f1[3];
         t1[2] = -(t1[0] + t1[1]);
-        if ((st = footOfBends(act, t1, f1, err)) != CS_OK) return st;
+        if ((st = footOfBends(act, t1, lam, f1, err)) != CS_OK) return st;
         J[0][c] = (f1[0] - f[0]) / e;
         J[1][c] = (f[2] - f1[2]) / e;
       }
@@ -271,36 +274,68 @@ static csStatus solveFootPose(const csrActuator* act, const csrBendMap* map,
       b -= sc * db;
     }
   }
-  if (!(best <= 1e-6)) {
-    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: pose %s: no leg shape with a level sole puts "
-                       "the foot at %g mm with lift %g mm (closest %.3g mm off)", src, set->line,
-                       name, X, H, best);
-  }
-  memset(P, 0, 12 * sizeof(double));
-  for (int s = 0; s < CSR_NSEG; s++) {
-    unsigned pair = th[s] > 0 ? 0xCu : 0x3u; /* Ω3&Ω4 bend towards +e1, Ω1&Ω2 towards -e1 */
-    double want = fabs(th[s]), bmax;
-    if (want < 1e-12) continue;
-    if (bendOf(map, s, pair, pmax, &bmax)) {
-      return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
+  return CS_OK;
+}
+
+
+/* a foot pose: the bends that put the foot at (X, lift), then each segment's pressure on its
+ * sagittal pair from the inverse map; with `stretch` the bends are solved again with the
+ * stretches those pressures give until both agree (fixed point), so the pose holds on a leg
+ * level that stretches (an FE table's Ω pair lengthens a segment by up to ~10 %) */
+static csStatus solveFootPose(const csrActuator* act, const csrBendMap* map,
+                              const csgDesignSet* set, double pmax, int stretch,
+                              const double foot0[3], double P[12], const char* src,
+                              const char* name, csError* err) {
+  const double X = set->value, H = set->value2;
+  double th[3] = {0, 0, 0}, lam[3] = {1, 1, 1}, best = INFINITY, dlam = INFINITY;
+  for (int pass = 0; pass < FOOT_STRETCH_PASSES && dlam > FOOT_STRETCH_TOL; pass++) {
+    csStatus st = footBends(act, X, H, lam, foot0, th, &best, err);
+    if (st != CS_OK) return st;
+    if (!(best <= 1e-6)) {
+      return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: pose %s: no leg shape with a level sole "
+                         "puts the foot at %g mm with lift %g mm (closest %.3g mm off)", src,
+                         set->line, name, X, H, best);
     }
-    if (bmax < want) {
-      return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: pose %s: II%d must bend %.1f deg, more than "
-                         "%g MPa gives (%.1f deg)", src, set->line, name, s + 1,
-                         want * 180 / 3.14159265358979323846, pmax,
-                         bmax * 180 / 3.14159265358979323846);
-    }
-    double lo = 0, hi = pmax;
-    for (int it = 0; it < SET_BISECTIONS; it++) {
-      double mid = 0.5 * (lo + hi), bb;
-      if (bendOf(map, s, pair, mid, &bb)) {
+    memset(P, 0, 12 * sizeof(double));
+    for (int s = 0; s < CSR_NSEG; s++) {
+      unsigned pair = th[s] > 0 ? 0xCu : 0x3u; /* Ω3&Ω4 bend towards +e1, Ω1&Ω2 towards -e1 */
+      double want = fabs(th[s]), bmax;
+      if (want < 1e-12) continue;
+      if (bendOf(map, s, pair, pmax, &bmax)) {
         return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
       }
-      if (bb < want) lo = mid; else hi = mid;
+      if (bmax < want) {
+        return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: pose %s: II%d must bend %.1f deg, more "
+                           "than %g MPa gives (%.1f deg)", src, set->line, name, s + 1,
+                           want * 180 / 3.14159265358979323846, pmax,
+                           bmax * 180 / 3.14159265358979323846);
+      }
+      double lo = 0, hi = pmax;
+      for (int it = 0; it < SET_BISECTIONS; it++) {
+        double mid = 0.5 * (lo + hi), bb;
+        if (bendOf(map, s, pair, mid, &bb)) {
+          return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
+        }
+        if (bb < want) lo = mid; else hi = mid;
+      }
+      for (int j = 0; j < 4; j++) {
+        P[4 * s + j] = (pair & (1u << j)) ? 0.5 * (lo + hi) : 0;
+      }
     }
-    for (int j = 0; j < 4; j++) {
-      P[4 * s + j] = (pair & (1u << j)) ? 0.5 * (lo + hi) : 0;
+    dlam = 0;
+    for (int s = 0; s < CSR_NSEG && stretch; s++) {
+      double bend[2], l = 1;
+      if (map->eval(map->ctx, s, P + 4 * s, bend, &l) != 0) {
+        return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
+      }
+      dlam = fmax(dlam, fabs(l - lam[s]));
+      lam[s] = l;
     }
+  }
+  if (dlam > FOOT_STRETCH_TOL) {
+    return cs_errorSet(err, CS_ERR_SOLVER, "%s:%d: pose %s: the bends and the stretches they "
+                       "come with do not settle in %d passes (last change %.3g)", src,
+                       set->line, name, FOOT_STRETCH_PASSES, dlam);
   }
   return CS_OK;
 }
@@ -338,7 +373,8 @@ csStatus csr_designPoses(const csrActuator* act, const csrBendMap* map, const cs
     const csgDesignPose* po = &d->pose[q];
     double* P = out->p[q];
     if (po->nset == 1 && po->set[0].kind == CSG_TARGET_FOOT) {
-      st = solveFootPose(act, map, &po->set[0], pmax, foot0, P, d->source, po->name, err);
+      st = solveFootPose(act, map, &po->set[0], pmax, opt->stretch, foot0, P, d->source,
+                         po->name, err);
     }
     for (int i = 0; i < po->nset && st == CS_OK && po->set[0].kind != CSG_TARGET_FOOT; i++) {
       const csgDesignSet* set = &po->set[i];
@@ -571,7 +607,7 @@ static csStatus footPath(const csrActuator* act, const csrBendMap* map, const cs
       memset(path->p[i], 0, sizeof path->p[i]); /* straight: vented */
       continue;
     }
-    csStatus st = solveFootPose(act, map, &set, pmax, foot0, path->p[i], d->source,
+    csStatus st = solveFootPose(act, map, &set, pmax, stretch, foot0, path->p[i], d->source,
                                 d->pose[qb].name, err);
     if (st != CS_OK) {
       return st;

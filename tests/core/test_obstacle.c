@@ -5,7 +5,8 @@
  * (2) the scene's first phase under `paper` with rod legs (they stretch): BCFG elongate and
  * the support rises by what the calibrated model predicts for that pose (the design's forward
  * kinematics with stretch, robot_gaitdesign.h), through contact and friction alone, without
- * moving forward or sideways, no ODE contact deeper than 1 mm. */
+ * moving forward or sideways, no ODE contact deeper than 1 mm; (3) the reach pose designed with
+ * the legs' stretch puts the foot where it asks. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -17,6 +18,15 @@
 #include "sim_model.h"
 
 static char g_src[512];
+
+
+/* the scene's shipped files (each buffer 600 bytes): terrain, gait, calibration, description */
+static void scenePaths(char* terr, char* gait, char* cal, char* des) {
+  snprintf(terr, 600, "%s/terrains/obstacle.terrain", g_src);
+  snprintf(gait, 600, "%s/gaits/obstacle.csv", g_src);
+  snprintf(cal, 600, "%s/robot/calibration_fe_leg.h5", g_src);
+  snprintf(des, 600, "%s/gaits/obstacle.gait", g_src);
+}
 
 
 static void test_obstacleTerrainIsTheLShapedStepRoad(void) {
@@ -44,10 +54,7 @@ static void test_obstacleRiseMatchesTheCalibratedElongation(void) {
     return;
   }
   char terr[600], gait[600], cal[600], des[600];
-  snprintf(terr, sizeof terr, "%s/terrains/obstacle.terrain", g_src);
-  snprintf(gait, sizeof gait, "%s/gaits/obstacle.csv", g_src);
-  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg.h5", g_src);
-  snprintf(des, sizeof des, "%s/gaits/obstacle.gait", g_src);
+  scenePaths(terr, gait, cal, des);
   csModel m;
   cs_modelInit(&m);
   cs_modelSetConditions(&m, CS_CONDITIONS_PAPER);
@@ -105,6 +112,44 @@ static void quiet(int num, const char* msg, va_list ap) {
 }
 
 
+/* the reach pose F (`foot 30 16`) designed with the legs' stretch: its pressures put the foot
+ * at the target on the stretched kinematics (an independent forward pass of the design); a
+ * design that solved the bends of an inextensible leg missed by 1.1 mm in stroke */
+static void test_obstacleReachPoseHitsItsFootTarget(void) {
+  char terr[600], gait[600], cal[600], des[600];
+  scenePaths(terr, gait, cal, des);
+  csModel m;
+  cs_modelInit(&m);
+  csError err;
+  cs_errorClear(&err);
+  CS_EXPECT(cs_modelLoad(&m, "obstacle", terr, gait, cal, &err) == CS_OK);
+  csgDesign* d = malloc(sizeof *d);
+  csrDesignedPoses* poses = malloc(sizeof *poses);
+  csrGaitDesignOptions o = csr_defaultGaitDesignOptions();
+  o.stretch = 1;
+  int ok = d && poses && csg_designRead(d, des, &err) == CS_OK &&
+           csr_designPoses(&m.robot.leg, &m.robot.map, d, &o, poses, &err) == CS_OK;
+  CS_EXPECT(ok);
+  const int f = ok ? csg_designPoseFind(d, "F") : -1;
+  CS_EXPECT(f > 0);
+  if (f > 0) {
+    const csgDesignSet* set = &d->pose[f].set[0];
+    /* the foot target and the forward kinematics agree to the solves' tolerances (Newton
+     * 1e-9 mm, stretch fixed point 1e-9, bisection of the pressures 2^-50 of 0.3 MPa) */
+    CS_EXPECT_NEAR(poses->foot[f][0], set->value, 1e-6, 0);
+    CS_EXPECT_NEAR(-poses->foot[f][2], set->value2, 1e-6, 0);
+    printf("  pose F: stroke %.9f lift %.9f mm (target %g / %g)\n", poses->foot[f][0],
+           -poses->foot[f][2], set->value, set->value2);
+  }
+  if (err.msg[0]) {
+    fprintf(stderr, "  %s\n", err.msg);
+  }
+  free(d);
+  free(poses);
+  cs_modelDestroy(&m);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   dInitODE2(0);
@@ -113,6 +158,7 @@ int main(int argc, char** argv) {
   snprintf(g_src, sizeof g_src, "%s", src ? src : ".");
   CS_RUN(test_obstacleTerrainIsTheLShapedStepRoad);
   CS_RUN(test_obstacleRiseMatchesTheCalibratedElongation);
+  CS_RUN(test_obstacleReachPoseHitsItsFootTarget);
   dCloseODE();
   return cs_testSummary();
 }
