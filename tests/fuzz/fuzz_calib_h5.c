@@ -265,6 +265,7 @@ static const CaseSpec kCases[] = {
     {"O124", "mode", {1, 1, 0, 1}, 0},     {"O1234", "mode", {1, 1, 1, 1}, 1},
     {"O13", "mode", {1, 0, 1, 0}, 0},      {"O12r05", "mode", {1, 0.5, 0, 0}, 0},
     {"O12O34r3", "mode", {1, 1, 1.0 / 3.0, 1.0 / 3.0}, 0},
+    {"O1O234r05", "mode", {1, 0.5, 0.5, 0.5}, 0}, {"O1O234r075", "mode", {1, 0.75, 0.75, 0.75}, 0},
     {"O2", "symmetry", {0, 1, 0, 0}, 0},   {"H1", "holdout", {1, 1.0 / 3.0, 0, 0}, 0},
     {"G", "gravity", {0, 0, 0, 0}, 0},
 };
@@ -426,7 +427,7 @@ static const char* const kWords[] = {
     CSR_CAL_FORMAT, "crawlsim-fe-calibration 2", "crawlsim-fe-calibration ", "format", "mode",
     "holdout", "symmetry", "gravity", "complete", "ended at 0.25 MPa (limit point)", "ended",
     "1,2", "1,2,3", "2,1", "1,,2", "O12", "O1", "O124", "O1234", "O13", "O12r05", "O12O34r3",
-    "O2", "H1", "G", "pressure", "bend", "twist", "stretch", "radial", "radial_max", "tip",
+    "O1O234r05", "O1O234r075", "O2", "H1", "H4", "H5", "G", "pressure", "bend", "twist", "stretch", "radial", "radial_max", "tip",
     "angle_total_deg", "probe_pressure", "probe_force", "probe_bend", "probe_stretch",
     "probe_tip", "EI", "EA", "kind", "status", "ratio1", "ratio4", "p_end", "p_limit",
     "chambers", "S1", "C10", "rf", "fe_mesh_size_mm", "fe_solver", "version", "angle_deg",
