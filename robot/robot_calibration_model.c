@@ -15,8 +15,8 @@ static const struct {
 } kRoles[CSR_CAL_NROLE] = {
     {"O1", {1, 0, 0, 0}},         {"O13", {1, 0, 1, 0}},  {"O12", {1, 1, 0, 0}},
     {"O124", {1, 1, 0, 1}},       {"O1234", {1, 1, 1, 1}}, {"O12r05", {1, 0.5, 0, 0}},
-    {"O12O34r3", {1, 1, 1.0 / 3.0, 1.0 / 3.0}}, 
-    {"O1O234r05", {1, 0.5, 0.5, 0.5}},          {"O1O234r075", {1, 0.75, 0.75, 0.75}},
+    {"O12O34r3", {1, 1, 1.0 / 3.0, 1.0 / 3.0}}, {"O1O234r05", {1, 0.5, 0.5, 0.5}},
+    {"O1O234r075", {1, 0.75, 0.75, 0.75}},
 };
 
 csrCalOptions csr_calModelDefaultOptions(void) {
@@ -335,8 +335,8 @@ void csr_calModelMeanFactor(const csrCalModel* m, int seg, double k[2], double* 
 
 
 int csr_calModelUses(const csrCalModel* m, csrCalRole role) {
-  static const int kFirst[CSR_CAL_NROLE] = {V_O1,  V_O13, V_O12,   V_O124,
-                                              V_O1234, V_R05, V_R3, V_F05, V_F075};
+  static const int kFirst[CSR_CAL_NROLE] = {V_O1,  V_O13, V_O12, V_O124, V_O1234,
+                                            V_R05, V_R3,  V_F05, V_F075};
   return role >= 0 && role < CSR_CAL_NROLE && m->use[kFirst[role]];
 }
 

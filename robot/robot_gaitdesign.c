@@ -210,6 +210,23 @@ static csStatus measure(const csrActuator* act, const csrBendMap* map, const csg
 static int bendOf(const csrBendMap* map, int s, unsigned set, double p, double* b);
 
 
+/* the pressure in [0, pmax] at which chamber set `set` of segment s bends by `want` (rad): the
+ * set's bend grows with its pressure, so bisection; 0 or -1 when the map fails */
+static int pressureOfBend(const csrBendMap* map, int s, unsigned set, double pmax, double want,
+                          double* p) {
+  double lo = 0, hi = pmax;
+  for (int it = 0; it < SET_BISECTIONS; it++) {
+    double mid = 0.5 * (lo + hi), b;
+    if (bendOf(map, s, set, mid, &b)) {
+      return -1;
+    }
+    if (b < want) lo = mid; else hi = mid;
+  }
+  *p = 0.5 * (lo + hi);
+  return 0;
+}
+
+
 /* foot (leg frame, mm) for signed sagittal bends th[3] (rad, > 0 towards +e1) and centreline
  * stretches lam[3] */
 static csStatus footOfBends(const csrActuator* act, const double th[3], const double lam[3],
@@ -310,16 +327,12 @@ static csStatus solveFootPose(const csrActuator* act, const csrBendMap* map,
                            want * 180 / 3.14159265358979323846, pmax,
                            bmax * 180 / 3.14159265358979323846);
       }
-      double lo = 0, hi = pmax;
-      for (int it = 0; it < SET_BISECTIONS; it++) {
-        double mid = 0.5 * (lo + hi), bb;
-        if (bendOf(map, s, pair, mid, &bb)) {
-          return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
-        }
-        if (bb < want) lo = mid; else hi = mid;
+      double ps;
+      if (pressureOfBend(map, s, pair, pmax, want, &ps)) {
+        return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
       }
       for (int j = 0; j < 4; j++) {
-        P[4 * s + j] = (pair & (1u << j)) ? 0.5 * (lo + hi) : 0;
+        P[4 * s + j] = (pair & (1u << j)) ? ps : 0;
       }
     }
     dlam = 0;
@@ -527,17 +540,12 @@ static csStatus movePath(const csrActuator* act, const csrBendMap* map, const do
       unsigned set = want < 0 ? sa : (sb ? sb : sa);
       double pmax = want < 0 ? pa : (sb ? pb : pa);
       want = fabs(want);
-      /* the set's bend grows with its pressure: bisection on [0, its end pressure] */
-      double lo = 0, hi = pmax;
-      for (int it = 0; it < SET_BISECTIONS; it++) {
-        double mid = 0.5 * (lo + hi), b;
-        if (bendOf(map, s, set, mid, &b)) {
-          return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
-        }
-        if (b < want) lo = mid; else hi = mid;
+      double ps; /* on [0, the set's end pressure] */
+      if (pressureOfBend(map, s, set, pmax, want, &ps)) {
+        return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
       }
       for (int j = 0; j < 4; j++) {
-        path->p[i][4 * s + j] = (set & (1u << j)) ? 0.5 * (lo + hi) : 0;
+        path->p[i][4 * s + j] = (set & (1u << j)) ? ps : 0;
       }
     }
   }
