@@ -147,6 +147,12 @@ static void test_badDesigns(void) {
   expectBadDesign("pose S II1:3,4 II2:1,2 stroke 500\nmove 0 1 A S\n", 1,
                   "pose S: stroke 500 is not reachable with this chamber set in 0..0.3 MPa");
   expectBadDesign("pose F foot 0 150\nmove 0 1 A F\n", 1, "pose F:");
+  /* with the legs' stretch a 30 / 20 mm reach needs II2 past what 0.3 MPa gives (the bends and
+   * stretches solved together; an inextensible leg reached it) */
+  cs_cliWriteText("gaitdesign_bad.gait", "pose F foot 30 20\nmove 0 1 A F\n");
+  expectFailure("design gaitdesign_bad.gait --stretch --out gaitdesign_bad.csv",
+                "gaitdesign_bad.gait:1: pose F: II2 must bend");
+  remove("gaitdesign_bad.gait");
   expectFailure("design gaitdesign_missing.gait", "gaitdesign_missing.gait: cannot open");
   expectFailure("design", "missing FILE.gait");
   expectFailure("design x.gait --p-max -1", "--p-max '-1' must be a number > 0");
