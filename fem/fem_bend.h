@@ -108,6 +108,8 @@ typedef struct csfBendOptions_ {
   double until_angle;  /* deg, stop when the total angle reaches it (NAN = off) */
   double angle_tol;    /* deg, accuracy of p_until_angle's angle */
   csfLineSearch line_search; /* Newton line search (default CSF_LS_RESIDUAL) */
+  double newton_rtol;        /* Newton's |R| <= rtol (|f_int| + |f_ext|) (default
+                              * CSF_BEND_NEWTON_RTOL, fem_bend.c says why) */
   int continuation;    /* 1 (default): past a limit point, follow the path by chamber-volume
                         * control and resume pressure control where it is stable again; 0: stop
                         * at the limit (p_limit = last converged pressure) */

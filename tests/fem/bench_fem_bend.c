@@ -2,7 +2,7 @@
  * Usage: bench_fem_bend [actuator] [l_soft] [p_max] [p_step] [until_angle|nan] [chambers]
  *   [--set N=V]... [--vtu F] [--inp F] [--p2] [--no-fibres] [--fibre-size MM] [--tension-only]
  *   [--fibre-compression]
- *   [--geo-tension] [--ls-energy] [--trace] [--lu] [--stem S]
+ *   [--geo-tension] [--ls-energy] [--trace] [--lu] [--stem S] [--rtol R]
  * Default: baseline, l_soft 4 mm, 0 -> 0.4 MPa in 0.05 MPa steps, chambers 1,2 (the issue's
  * benchmark). Prints time per load step and per Newton iteration, then the summary. */
 #include <math.h>
@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
       o.inp_path = argv[++i];
     } else if (!strcmp(argv[i], "--fibre-size") && i + 1 < argc) {
       o.spec.fibre_size = atof(argv[++i]);
+    } else if (!strcmp(argv[i], "--rtol") && i + 1 < argc) {
+      o.newton_rtol = atof(argv[++i]);
     } else if (!strcmp(argv[i], "--stem") && i + 1 < argc) {
       o.spec.work_stem = argv[++i];
     } else if (!strcmp(argv[i], "--p2")) {

@@ -130,9 +130,51 @@ static void test_gravity_ramp(void) {
   csr_bendCurveFree(&bc);
 }
 
+/* The sweep's Newton tolerance (CSF_BEND_NEWTON_RTOL, 1e-6 of the force scale) against the
+ * element tests' 1e-8: the same sweep to 0.05 MPa on the short variant must give the same bend
+ * and tip, in fewer Newton iterations (the iteration counts are deterministic). Bound: at |R| =
+ * 1e-6 (|f_int| + |f_ext|) ~ 1e-6 N the displacement left is |K^-1 R| ~ 1e-5 mm against a tip
+ * that moves ~1 mm, so 1e-4 of the angle (measured: equal to every printed digit, 1e-3 deg)
+ * leaves two decades of margin and still catches a tolerance loose enough to matter (1e-3
+ * stops after the first iteration of some steps, 1e-2 of the angle off). */
+static void test_sweep_tolerance_keeps_the_answer(void) {
+  csError err = {0};
+  csrActuator act;
+  csfBendInfo info[2];
+  csrBendCurve bc[2];
+  const double rtol[2] = {0.0, 1e-8}; /* 0: the sweep's default */
+  for (int k = 0; k < 2; k++) {
+    csfBendOptions o = shortActuator(&act, 9, &info[k]);
+    o.p_max = 0.05;
+    o.p_step = 0.05;
+    if (rtol[k] > 0) {
+      o.newton_rtol = rtol[k];
+    }
+    o.spec.work_stem = "bend_tol";
+    csr_bendCurveInit(&bc[k], 4, &err);
+    const csStatus st = csf_bend(&act, &o, &bc[k], &err);
+    if (st != CS_OK) {
+      fprintf(stderr, "%s\n", err.msg);
+    }
+    CS_EXPECT(st == CS_OK && bc[k].m == 2);
+  }
+  if (bc[0].m == 2 && bc[1].m == 2) {
+    printf("  0.05 MPa: total %.6f deg in %ld iterations (default) vs %.6f deg in %ld (1e-8)\n",
+           bc[0].angle_total[1], info[0].n_newton, bc[1].angle_total[1], info[1].n_newton);
+    CS_EXPECT_NEAR(bc[0].angle_total[1], bc[1].angle_total[1], 0, 1e-4);
+    for (int i = 0; i < 3; i++) {
+      CS_EXPECT_NEAR(bc[0].tip[3 + i], bc[1].tip[3 + i], 1e-4, 0);
+    }
+    CS_EXPECT(info[0].n_newton < info[1].n_newton);
+  }
+  csr_bendCurveFree(&bc[0]);
+  csr_bendCurveFree(&bc[1]);
+}
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_bend_short);
   CS_RUN(test_gravity_ramp);
+  CS_RUN(test_sweep_tolerance_keeps_the_answer);
   return cs_testSummary();
 }
