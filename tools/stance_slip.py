@@ -2,7 +2,7 @@
 """Per-foot stance and swing analysis of `crawlsim run` files (README, flat road, finding 5).
 
 usage: /usr/bin/python3 tools/stance_slip.py RUN.h5 [RUN2.h5 ...] [--first 2.5] [--strides 6]
-                                             [--period 1] [--window 0.45,0.65]
+                                             [--period 1] [--window 0.45,0.65] [--per-foot]
 
 The stance windows are those of gaits/flat_road.gait: the two groups ACFH and BDEG alternate,
 each stance lasting one period; BDEG's stances start at --first + 2k periods, ACFH's at
@@ -60,6 +60,7 @@ def analyse(path, first, strides, period, w0, w1):
         model = f.attrs.get("leg_model", b"?")
         model = model.decode() if isinstance(model, bytes) else str(model)
     rows = {}
+    feet = []  # per foot and stride: (leg, stance start, role, values)
     windows = []
     for k in range(strides):
         a = first + k * period
@@ -82,14 +83,20 @@ def analyse(path, first, strides, period, w0, w1):
                 c = clearance(cl[L][m0:m1 + 1])
                 acc["clear"].append(c.max())
                 acc["off"].append(np.count_nonzero(c > UNLOADED) / len(c) * (w1 - w0))
+                feet.append((L, a, {k: v[-1] for k, v in acc.items()}))
         rows[name] = {k: float(np.mean(v)) for k, v in acc.items()}
+    for a, stand, swing in windows:
+        m0, m1 = at(t, a + w0), at(t, a + w1)
+        for L in swing:
+            feet.append((L, a, {"swing": float(clearance(cl[L][m0:m1 + 1]).min())}))
+    feet.sort(key=lambda e: (e[0], e[1]))
     swing_min, sup_top, sup_mid = [], [], []
     for a, stand, swing in windows:
         m0, m1 = at(t, a + w0), at(t, a + w1)
         swing_min.append(min(clearance(cl[L][m0:m1 + 1]).min() for L in swing))
         sup_top.append(sup[m0:m1 + 1, 1].max())
         sup_mid.append(sup[at(t, a + 0.25 * period), 1])
-    return model, rows, {
+    return model, rows, feet, {
         "swing": float(np.mean(swing_min)),
         "sup_top": float(np.mean(sup_top)),
         "sup_mid": float(np.mean(sup_mid)),
@@ -104,6 +111,9 @@ def main(argv):
     ap.add_argument("--strides", type=int, default=6)
     ap.add_argument("--period", type=float, default=1.0)
     ap.add_argument("--window", default="0.45,0.65")
+    ap.add_argument("--per-foot", action="store_true",
+                    help="also one line per foot and stride (stance: its values; swing: its "
+                    "sole's smallest clearance in the window)")
     args = ap.parse_args(argv)
     w0, w1 = (float(v) for v in args.window.split(","))
     print("%-22s %-5s %-10s %6s %8s %6s %5s %5s %5s %6s %7s %6s" %
@@ -111,7 +121,7 @@ def main(argv):
            "sup top", "sup"))
     for p in args.runs:
         try:
-            model, rows, w = analyse(p, args.first, args.strides, args.period, w0, w1)
+            model, rows, feet, w = analyse(p, args.first, args.strides, args.period, w0, w1)
         except (OSError, KeyError) as e:
             print("stance_slip: %s: %s" % (p, e), file=sys.stderr)
             return 1
@@ -121,6 +131,14 @@ def main(argv):
                    r["hip"], r["clear"], r["off"], w["swing"], w["sup_top"], w["sup_mid"]))
         print("%-22s support advance over the %d strides: %.1f mm (%.1f mm per stride)" %
               ("", args.strides, w["x_end"], w["x_end"] / args.strides))
+        for L, a, v in feet if args.per_foot else ():
+            if "slip" in v:
+                print("%-22s %-5s %s %4.1f-%4.1f s %6.1f %8.1f %6.1f %5.1f %5.2f %5.2f" %
+                      ("", "", L, a, a + args.period, v["slip"], v["mid"], v["stroke"], v["hip"],
+                       v["clear"], v["off"]))
+            else:
+                print("%-22s %-5s %s %4.1f-%4.1f s %s swing %6.2f" %
+                      ("", "", L, a, a + args.period, " " * 44, v["swing"]))
     return 0
 
 
