@@ -315,26 +315,6 @@ static csStatus stageRow(Run* r, double p, const double ang[3], double tot, cons
 
 /* ---- stage: one pressure step ------------------------------------------------------------ */
 
-/* Predictor guard: 1 when the extrapolated state s_pred (set in d) has a smaller residual at
- * the target load than the last converged state s_conv; else d is left at s_conv. Near 360 deg
- * a quadratic extrapolation over a 0.02 MPa step turns the rotated fibres along chords and
- * stretches them at second order: measured on the baseline leg at 0.37 and 0.39 MPa, |R| 1.4e4
- * and 3.5e4 N from the predictor against 355 and 271 N from s_conv (force scale 1e2 N), and
- * Newton failed from the predictor (15 and 2 iterations lost, then the step was redone from
- * s_conv). Two residual assemblies (no tangent) cost less than one Newton iteration. */
-static int predictorPays(const csfModel* m, csfData* d, const double* s_conv,
-                         const double* s_pred, double load) {
-  const double r_pred = csf_assemble(m, d, load, 0) == 0 ? d->rnorm : INFINITY;
-  csf_stateSet(m, d, s_conv);
-  const double r_conv = csf_assemble(m, d, load, 0) == 0 ? d->rnorm : INFINITY;
-  if (r_pred <= r_conv) {
-    csf_stateSet(m, d, s_pred);
-    return 1;
-  }
-  return 0;
-}
-
-
 /* One converged step from r->p towards the next output pressure, cutting back on failure.
  * Returns 1 when converged (d at *target), 0 when the step collapsed below the minimum (a limit
  * point; d restored to s_conv only by the caller's choice). */
@@ -361,8 +341,14 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
      * (Lagrange) through the last three converged states, or secant through two; after a
      * failed extrapolated attempt the same step is tried once from s_conv, whose first Newton
      * step is the tangent predictor: near a bifurcation of the symmetric path a soft mode grows
-     * fast with p, which the tangent sees and an extrapolation of past states does not */
-    int extrapolated = 0;
+     * fast with p, which the tangent sees and an extrapolation of past states does not.
+     * Measured and not kept: a guard that starts from s_conv when its residual at the target
+     * is smaller than the predictor's (or 10x smaller). Near 360 deg the quadratic predictor
+     * did fail twice (|R| 1.4e4 and 3.5e4 N against 355 and 271 N from s_conv; 17 iterations
+     * lost in the run), but |R| misjudges the start: its excess sits in the stiff fibre
+     * directions, the shortfall of s_conv in the soft bending mode (at 0.031 MPa the secant's
+     * 770 N converged in 13 iterations, s_conv's 200 N in 21), and the guard doubled the
+     * iterations at 0.03-0.05 MPa */
     if (plain) {
       csf_stateSet(m, d, r->w.s_conv);
     } else if (r->have_pp && r->p > r->p_prev && r->p_prev > r->p_pp) {
@@ -374,19 +360,14 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
         r->w.s_tmp[i] = l0 * r->w.s_pp[i] + l1 * r->w.s_prev[i] + l2 * r->w.s_conv[i];
       }
       csf_stateSet(m, d, r->w.s_tmp);
-      extrapolated = 1;
     } else if (r->have_prev && r->p > r->p_prev) {
       const double f = (target - r->p) / (r->p - r->p_prev);
       for (size_t i = 0; i < r->ns; i++) {
         r->w.s_tmp[i] = r->w.s_conv[i] + f * (r->w.s_conv[i] - r->w.s_prev[i]);
       }
       csf_stateSet(m, d, r->w.s_tmp);
-      extrapolated = 1;
     } else {
       csf_stateSet(m, d, r->w.s_conv);
-    }
-    if (extrapolated && !predictorPays(m, d, r->w.s_conv, r->w.s_tmp, target)) {
-      plain = 1; /* d holds s_conv: a failure halves the step (no second try from s_conv) */
     }
     if (csf_newtonSolve(m, d, target, &r->nopt, iters, &lerr) == CS_OK) {
       *target_out = target;
