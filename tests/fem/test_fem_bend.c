@@ -1,7 +1,8 @@
 /* test_fem_bend.c: end-to-end csf_bend on a short coarse actuator variant (S = 15 mm segments,
  * 9 turns, l_soft = 5 mm): angles grow with pressure, the three equal segments bend alike,
  * --until-angle is found by equilibrium solves to within the tolerance, and the VTU and
- * ABAQUS/CalculiX files are written. Slow (~1 min): label slow. */
+ * ABAQUS/CalculiX files are written; the sweep tolerance keeps the answer. Slow (~2 min):
+ * label slow. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
