@@ -14,6 +14,7 @@ PY="${CS_PYTHON:-/usr/bin/python3}"
 TRACK="$ROOT/tools/plot_track.py"
 BEND="$ROOT/tools/plot_bend.py"
 GAITMAP="$ROOT/tools/plot_gait.py"
+SLIP="$ROOT/tools/stance_slip.py"
 CALIB="$ROOT/tools/plot_calibration.py"
 GEN="$HERE/make_synthetic_h5.py"
 
@@ -129,6 +130,18 @@ expect_fail1 "plot_calibration missing model file" "no such file" \
   "$PY" "$CALIB" "$TMP/cal.h5" --model "$TMP/nope.h5" -o "$TMP/cal3"
 [ ! -e "$TMP/cal3/calibration_bend.png" ] && ok "no calibration PNG written on failure" \
   || bad "a failing plot_calibration wrote a PNG"
+
+# stance_slip.py: the per-foot analysis of a run file (the synthetic run's feet advance 39 mm
+# per stride), and bad inputs
+if "$PY" "$SLIP" "$TMP/run.h5" >"$TMP/out.txt" 2>&1 && grep -q "per stride" "$TMP/out.txt"; then
+  ok "stance_slip reads a run file"
+else
+  bad "stance_slip reads a run file" "$TMP/out.txt"
+fi
+expect_fail1 "stance_slip not HDF5" "stance_slip: .*junk.h5" "$PY" "$SLIP" "$TMP/junk.h5"
+expect_fail1 "stance_slip missing centreline" "stance_slip: .*run_noleg.h5" \
+  "$PY" "$SLIP" "$TMP/run_noleg.h5"
+expect_fail1 "stance_slip missing file" "stance_slip: .*nope.h5" "$PY" "$SLIP" "$TMP/nope.h5"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
