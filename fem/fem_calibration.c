@@ -66,6 +66,13 @@ static const csfCalCase kCases[] = {
     {"O1O234r075", CSF_CAL_MODE, {1, 0.75, 0.75, 0.75}, 0.5, 0, {0, 0, 0},
      "Omega1 at p above the other three at 0.75 p (refines the face x4 = x2 next to the all-four "
      "corner)"},
+    {"O124O3r05", CSF_CAL_MODE, {1, 1, 0.5, 1}, 0.5, 0, {0, 0, 0},
+     "Omega1&Omega2&Omega4 at p, Omega3 at p/2 (refines the edge Omega1&Omega2&Omega4 -> all "
+     "four)"},
+    {"O1O23r05O4r025", CSF_CAL_MODE, {1, 0.5, 0.5, 0.25}, 0.5, 0, {0, 0, 0},
+     "Omega1 at p, Omega2&Omega3 at p/2, Omega4 at p/4 (the centre of the prism)"},
+    {"O1O3r05", CSF_CAL_MODE, {1, 0, 0.5, 0}, 0.5, 0, {0, 0, 0},
+     "Omega1 at p, Omega3 at p/2 (refines the edge Omega1 -> Omega1&Omega3)"},
     {"O2", CSF_CAL_SYMMETRY, {0, 1, 0, 0}, 0.5, 0, {0, 0, 0},
      "Omega2 alone: Omega1 alone turned by -90 deg (symmetry check)"},
     {"H1", CSF_CAL_HOLDOUT, {1, 1.0 / 3.0, 0, 0}, 0.3, 0, {0, 0, 0},
@@ -78,6 +85,10 @@ static const csfCalCase kCases[] = {
      "held out: Omega1 0.4 + Omega2, Omega4 0.3 + Omega3 0.15 MPa at p = 0.4"},
     {"H5", CSF_CAL_HOLDOUT, {1, 0.6, 0.3, 0.3}, 0.4, 0, {0, 0, 0},
      "held out: Omega1 0.4 + Omega2 0.24 + Omega3, Omega4 0.12 MPa at p = 0.4"},
+    {"H6", CSF_CAL_HOLDOUT, {1, 0.8, 0.6, 0.4}, 0.4, 0, {0, 0, 0},
+     "held out: Omega1 0.4 + Omega2 0.32 + Omega3 0.24 + Omega4 0.16 MPa at p = 0.4"},
+    {"H7", CSF_CAL_HOLDOUT, {1, 0.3, 0.7, 0.2}, 0.4, 0, {0, 0, 0},
+     "held out: Omega1 0.4 + Omega2 0.12 + Omega3 0.28 + Omega4 0.08 MPa at p = 0.4"},
     {"G", CSF_CAL_GRAVITY, {0, 0, 0, 0}, 0.025, 0, {-G_EARTH, 0, 0},
      "the horizontal leg under its own weight at 9.81 m/s^2 (gravity along -e1), vented"},
 };
@@ -115,6 +126,7 @@ csfCalSettings csf_calibrationDefault(void) {
   s.fibre_tension_only = 1; /* the FE default (csf_actuatorSpecDefault): linear split fibres
                              * stall O12 at 0.19 MPa */
   s.p_step = 0.025;
+  s.newton_rtol = 1e-6; /* fem_bend.c's sweep default: the same angle to 1e-4 as 1e-8 */
   /* tip probes: a few mm of deflection (E'I ~ 2.8e3 N mm^2, L = 166 mm: 5 mN gives 2.7 mm as a
    * cantilever), 0.1 mm of stretch (EA ~ 130 N: 50 mN) - linear, yet far above Newton's 1e-8 */
   s.probe_force[0] = s.probe_force[1] = 0.005;
@@ -162,6 +174,7 @@ static csStatus writeRoot(csH5File* f, const csrActuator* act, const csfCalSetti
   }
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_p_step_MPa", s->p_step, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_p_cap_MPa", s->p_cap, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_newton_rtol", s->newton_rtol, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "fe_formulation", "mixed P2/P0 Tet10, Yeoh", err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_kappa_ratio", CSF_KAPPA_RATIO, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "fe_solver", info->solver, err);
@@ -403,6 +416,7 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
   const double p_max = caseMax(c, s);
   o.p_max = p_max;
   o.p_step = fmin(s->p_step, p_max);
+  o.newton_rtol = s->newton_rtol;
   o.progress = s->progress;
   o.progress_user = s->progress_user;
   if (c->probes) {
@@ -475,6 +489,17 @@ static int fileFibreLaw(hid_t f) {
 }
 
 
+/* a case file's sweep Newton tolerance: its fe_newton_rtol, 1e-8 when absent (files written
+ * before the setting existed ran at 1e-8), NaN when unreadable */
+static double fileNewtonRtol(hid_t f) {
+  double v;
+  if (H5Aexists_by_name(f, "/", "fe_newton_rtol", H5P_DEFAULT) <= 0) {
+    return 1e-8;
+  }
+  return attrDouble(f, "/", "fe_newton_rtol", &v) ? v : NAN;
+}
+
+
 typedef struct {
   hid_t f;
   int same;
@@ -511,6 +536,7 @@ int csf_calibrationCaseDone(const char* path, const csrActuator* act, const csfC
   ok = ok && attrDouble(f, "/", "fe_fibre_size_mm", &v) && v == s->fibre_size;
   ok = ok && attrDouble(f, "/", "fe_fibre_split", &v) && v == s->fibre_split;
   ok = ok && fileFibreLaw(f) == s->fibre_tension_only;
+  ok = ok && fileNewtonRtol(f) == s->newton_rtol;
   ok = ok && attrDouble(f, "/", "fe_p_step_MPa", &v) && v == s->p_step;
   ok = ok && attrDouble(f, "/", "fe_p_cap_MPa", &v) && v == s->p_cap;
   snprintf(g, sizeof g, "/cases/%s", c->name);
@@ -596,6 +622,10 @@ csStatus csf_calibrationMerge(const char* const* paths, int n, const char* out, 
         st = cs_errorSet(err, CS_ERR_PARSE, "%s: %s differs from %s's", paths[k], kSameRoot[a],
                          paths[0]);
       }
+    }
+    if (k > 0 && st == CS_OK && !(fileNewtonRtol(src[0]) == fileNewtonRtol(src[k]))) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_newton_rtol differs from %s's (%g against %g)",
+                       paths[k], paths[0], fileNewtonRtol(src[k]), fileNewtonRtol(src[0]));
     }
     if (k > 0 && st == CS_OK && fileFibreLaw(src[0]) != fileFibreLaw(src[k])) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_law differs from %s's", paths[k],

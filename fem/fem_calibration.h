@@ -75,6 +75,10 @@ typedef struct csfCalSettings_ {
                            * fe_fibre_law "tension-only" / "linear" (absent = linear: tables
                            * written before the setting existed) */
   double p_step;       /* MPa, output rows */
+  double newton_rtol;  /* the sweep's Newton test |R| <= rtol (|f_int| + |f_ext|) (default the FE's
+                        * sweep default, 1e-6; root attribute fe_newton_rtol, absent = 1e-8: tables
+                        * written before the setting existed ran at 1e-8). Cases of one table share
+                        * it: the merge refuses a mix */
   double p_cap;        /* MPa: every case ends at min(its p_max, p_cap) (0 = no cap; small
                         * tables for tests) */
   double probe_force[3]; /* N per probe direction */

@@ -145,9 +145,10 @@ static void fitResiduals(const csrCalCurve* base, int s, const FitRow* rows, int
 #define FIT_K_MIN 0.2
 #define FIT_K_MAX 5.0
 static int fitMeanFactor(csrCalModel* m, const csrCalCase* const* mode, int s) {
-  enum { NFIT = 6 };
-  static const int kRolesFit[NFIT] = {CSR_CAL_O12,      CSR_CAL_O124,      CSR_CAL_O12R05,
-                                      CSR_CAL_O12O34R3, CSR_CAL_O1O234R05, CSR_CAL_O1O234R075};
+  enum { NFIT = 9 };
+  static const int kRolesFit[NFIT] = {CSR_CAL_O12,       CSR_CAL_O124,       CSR_CAL_O12R05,
+                                      CSR_CAL_O12O34R3,  CSR_CAL_O1O234R05,  CSR_CAL_O1O234R075,
+                                      CSR_CAL_O124O3R05, CSR_CAL_O1O23R05O4R025, CSR_CAL_O1O3R05};
   int cap = 0;
   for (int q = 0; q < NFIT; q++) cap += mode[kRolesFit[q]] ? mode[kRolesFit[q]]->m : 0;
   FitRow* rows = malloc((size_t)(cap > 0 ? cap : 1) * sizeof *rows);
@@ -471,8 +472,10 @@ csrCalModel* csr_calModelCreate(const csrCalTable* t, const csrActuator* leg,
   static const struct {
     int role, mirror;
   } kV[NV] = {{CSR_CAL_O1, 0},   {CSR_CAL_O13, 0},   {CSR_CAL_O12, 0},    {CSR_CAL_O124, 0},
-              {CSR_CAL_O124, 1}, {CSR_CAL_O1234, 0}, {CSR_CAL_O12R05, 0}, {CSR_CAL_O12O34R3, 0},
-              {CSR_CAL_O1O234R05, 0}, {CSR_CAL_O1O234R075, 0}};
+              {CSR_CAL_O124, 1}, {CSR_CAL_O1234, 0}, {CSR_CAL_O12R05, 0},
+              {CSR_CAL_O1O3R05, 0}, {CSR_CAL_O124O3R05, 0}, {CSR_CAL_O124O3R05, 1},
+              {CSR_CAL_O12O34R3, 0}, {CSR_CAL_O1O234R05, 0}, {CSR_CAL_O1O234R075, 0},
+              {CSR_CAL_O1O23R05O4R025, 0}};
   int ok = buildBase(m, mode[CSR_CAL_O1]) && buildMean(m, mode[CSR_CAL_O1234]);
   for (int s = 0; s < CSR_NSEG && ok && m->opt.rule == CSR_CAL_RULE_SCALED; s++) {
     ok = fitMeanFactor(m, mode, s);

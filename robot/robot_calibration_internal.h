@@ -27,10 +27,18 @@ enum { F_A = 0, F_B, F_STRETCH, F_RADIAL, F_RADMAX, NF };
 /* components of the single-chamber base per segment and row */
 enum { B_THETA = 0, B_STRETCH, B_RADIAL, B_RADMAX, NB };
 
-/* the vertices of the interpolation: the six corners of the prism and the four refining modes
- * (each a bump that vanishes on every face of the prism but its own, so the refining modes do
- * not weigh at each other's vertices) */
-enum { V_O1 = 0, V_O13, V_O12, V_O124, V_O124M, V_O1234, V_R05, V_R3, V_F05, V_F075, NV };
+/* the vertices of the interpolation, coarse to fine: the six corners of the prism, the edge
+ * midpoints (O12r05; O1O3r05; O124O3r05 and its mirror image), the face nodes (O12O34r3 on
+ * x2 = 1, O1O234r05 and O1O234r075 on w = 1) and the centre O1O23r05O4r025. Each refining mode
+ * is a bump that vanishes on every face of the prism but its own and at every vertex before it
+ * (csr_calWeights_) */
+enum {
+  V_O1 = 0, V_O13, V_O12, V_O124, V_O124M, V_O1234,
+  V_R05, V_E13, V_E124, V_E124M,
+  V_R3, V_F05, V_F075,
+  V_C,
+  NV
+};
 
 /* rows of one mode: p (m), y and slopes (m x 3 x nc) */
 typedef struct {

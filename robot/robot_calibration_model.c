@@ -16,7 +16,8 @@ static const struct {
     {"O1", {1, 0, 0, 0}},         {"O13", {1, 0, 1, 0}},  {"O12", {1, 1, 0, 0}},
     {"O124", {1, 1, 0, 1}},       {"O1234", {1, 1, 1, 1}}, {"O12r05", {1, 0.5, 0, 0}},
     {"O12O34r3", {1, 1, 1.0 / 3.0, 1.0 / 3.0}}, {"O1O234r05", {1, 0.5, 0.5, 0.5}},
-    {"O1O234r075", {1, 0.75, 0.75, 0.75}},
+    {"O1O234r075", {1, 0.75, 0.75, 0.75}}, {"O124O3r05", {1, 1, 0.5, 1}},
+    {"O1O23r05O4r025", {1, 0.5, 0.5, 0.25}}, {"O1O3r05", {1, 0, 0.5, 0}},
 };
 
 csrCalOptions csr_calModelDefaultOptions(void) {
@@ -127,7 +128,12 @@ static double hatOn(double x, double lo, double c) {
 
 
 /* weights of the vertices at prism point (x2, w, x3): trilinear between the corners, the
- * refining modes as bumps (their surpluses carry the rest) */
+ * refining modes as bumps (their surpluses carry the rest). Hierarchical order (the enum's):
+ * every bump vanishes at every vertex before it, so each vertex's surplus is its FE value
+ * minus the interpolation of the vertices before it and the model returns every vertex. The
+ * edge midpoints' bumps are the corner weights of their edge's ends with a hat along it; the
+ * pair V_E124 / V_E124M is one case and its mirror image, so the weights stay symmetric under
+ * w <-> x3 on the face x2 = 1, where the canonical form is ambiguous (p1 = p2). */
 void csr_calWeights_(const csrCalModel* m, double x2, double w, double x3, double W[NV]) {
   W[V_O1] = (1 - x2) * (1 - x3);
   W[V_O13] = (1 - x2) * x3;
@@ -136,12 +142,18 @@ void csr_calWeights_(const csrCalModel* m, double x2, double w, double x3, doubl
   W[V_O124M] = x2 * (1 - w) * x3;
   W[V_O1234] = x2 * w * x3;
   W[V_R05] = m->use[V_R05] ? hat(x2, m->coord[V_R05][0]) * (1 - w) * (1 - x3) : 0;
+  W[V_E13] = m->use[V_E13] ? (1 - x2) * hat(x3, m->coord[V_E13][2]) : 0;
+  W[V_E124] = m->use[V_E124] ? x2 * w * hat(x3, m->coord[V_E124][2]) : 0;
+  W[V_E124M] = m->use[V_E124M] ? x2 * hat(w, m->coord[V_E124M][1]) * x3 : 0;
   W[V_R3] = m->use[V_R3] ? x2 * hat(w, m->coord[V_R3][1]) * hat(x3, m->coord[V_R3][2]) : 0;
   W[V_F05] = m->use[V_F05] ? hat(x2, m->coord[V_F05][0]) * w * hat(x3, m->coord[V_F05][2]) : 0;
   const double lo = m->use[V_F05] ? m->coord[V_F05][0] : 0; /* the coarser level's node */
   W[V_F075] = m->use[V_F075]
                   ? hatOn(x2, lo, m->coord[V_F075][0]) * w * hatOn(x3, lo, m->coord[V_F075][2])
                   : 0;
+  W[V_C] = m->use[V_C] ? hat(x2, m->coord[V_C][0]) * hat(w, m->coord[V_C][1]) *
+                             hat(x3, m->coord[V_C][2])
+                       : 0;
 }
 
 
@@ -335,8 +347,8 @@ void csr_calModelMeanFactor(const csrCalModel* m, int seg, double k[2], double* 
 
 
 int csr_calModelUses(const csrCalModel* m, csrCalRole role) {
-  static const int kFirst[CSR_CAL_NROLE] = {V_O1,  V_O13, V_O12, V_O124, V_O1234,
-                                            V_R05, V_R3,  V_F05, V_F075};
+  static const int kFirst[CSR_CAL_NROLE] = {V_O1,  V_O13, V_O12,   V_O124, V_O1234, V_R05,
+                                            V_R3,  V_F05, V_F075, V_E124, V_C,     V_E13};
   return role >= 0 && role < CSR_CAL_NROLE && m->use[kFirst[role]];
 }
 

@@ -85,6 +85,10 @@ typedef enum csrCalRole_ {
   CSR_CAL_O1O234R05,  /* Ω1 at p, the other three at p/2 (refines the face x4 = x2) */
   CSR_CAL_O1O234R075, /* Ω1 at p, the other three at 0.75 p (refines that face next to the
                        * all-four corner) */
+  CSR_CAL_O124O3R05,  /* Ω1&Ω2&Ω4 at p, Ω3 at p/2 (the midpoint of the edge Ω1&Ω2&Ω4 -> all
+                       * four; its mirror image the midpoint of Ω1&Ω2&Ω3 -> all four) */
+  CSR_CAL_O1O23R05O4R025, /* Ω1 at p, Ω2&Ω3 at p/2, Ω4 at p/4 (the centre of the prism) */
+  CSR_CAL_O1O3R05,    /* Ω1 at p, Ω3 at p/2 (the midpoint of the edge Ω1 -> Ω1&Ω3) */
   CSR_CAL_NROLE
 } csrCalRole;
 

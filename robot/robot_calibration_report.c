@@ -136,7 +136,7 @@ static void scoreRule(const csrCalTable* t, const csrActuator* leg, const csrCal
     }
   }
   csr_calModelDestroy(m);
-  for (int role = CSR_CAL_O12R05; role <= CSR_CAL_O1O234R075; role++) {
+  for (int role = CSR_CAL_O12R05; role < CSR_CAL_NROLE; role++) {
     double ratio[CSR_NCHAMBER];
     csr_calModelModePattern((csrCalRole)role, ratio, NULL);
     const csrCalCase* c = csr_calTableFind(t, CSR_CAL_MODE, ratio);
@@ -197,7 +197,7 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
   }
   /* the refining modes predicted without themselves */
   fprintf(out, "  left out of the fit one at a time (cross-validation of the interpolation):\n");
-  for (int role = CSR_CAL_O12R05; role <= CSR_CAL_O1O234R075; role++) {
+  for (int role = CSR_CAL_O12R05; role < CSR_CAL_NROLE; role++) {
     double ratio[CSR_NCHAMBER];
     const char* name;
     csr_calModelModePattern((csrCalRole)role, ratio, &name);

@@ -32,14 +32,17 @@ static const char kUsage[] =
     "                          [--merge-only] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
     "                          [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]\n"
     "                          [--fibre-law linear|tension-only]\n"
-    "                          [--p-step MPA] [--p-max MPA] [--model-out PRED.h5]\n"
+    "                          [--p-step MPA] [--p-max MPA] [--newton-rtol R]\n"
+    "                          [--model-out PRED.h5]\n"
     "  Runs the full FE model on every calibration case (chamber modes, unequal pressures,\n"
     "  held-out combinations, stiffness probes, the leg under its weight), one file per case in\n"
     "  DIR (default calibration_cases/; finished cases are skipped: the run resumes), merges\n"
     "  them into FILE.h5 (default calibration_fe.h5) and reads the table back as the legs will.\n"
     "  --list prints the cases. Defaults: actuator leg, l_soft 4 mm, fibres split at element\n"
     "  faces with l_fibre 0.5 mm (--fibre-split 0: 20-node ties), tension-only (--fibre-law\n"
-    "  linear: compression too), rows every 0.025 MPa;\n"
+    "  linear: compression too), rows every 0.025 MPa, Newton's test |R| <= 1e-6 of the force\n"
+    "  scale (--newton-rtol; recorded: the cases of one table must share it, and the shipped\n"
+    "  table's cases ran at 1e-8);\n"
     "  --p-max caps every case's end pressure (small tables for tests). With every mode\n"
     "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
     "  rules compared, stiffness); --model-out writes the model's predictions for\n"
@@ -124,6 +127,8 @@ int csx_cmdCalibrate(int argc, char** argv) {
       }
     } else if (!strcmp(a, "--p-step")) {
       bad = parseNumber(a, v, 1e-4, 0.5, &cs.p_step);
+    } else if (!strcmp(a, "--newton-rtol")) {
+      bad = parseNumber(a, v, 1e-12, 1e-3, &cs.newton_rtol);
     } else if (!strcmp(a, "--p-max")) {
       bad = parseNumber(a, v, 1e-4, 1.0, &cs.p_cap);
     } else if (!strcmp(a, "--out")) {

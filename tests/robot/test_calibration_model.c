@@ -448,27 +448,27 @@ static void holdoutErrors(const Built* b, int rule, double* bend_deg, double* ti
            e.bend_deg, e.bend_at_p, e.bend_at_seg + 1, e.bend_fe_deg, e.tip_mm);
     n++;
   }
-  CS_EXPECT(n == 5);
+  CS_EXPECT(n == 7);
 }
 
 
 static void test_holdout_on_nonlinear_truths(void) {
   csrActuator leg;
   legActuator(&leg);
-  /* bounds: the worst errors measured on 2026-12-01 (deg, mm) per truth and rule, +30 %, with
-   * the refining modes O1O234r05 and O1O234r075 on the face x4 = x2 and the held-out H4 (Ω1 0.4,
-   * Ω2 and Ω4 0.3, Ω3 0.15 MPa) and H5 (0.4, 0.24, 0.12, 0.12):
-   * closed-form interactions: superposition 3.23 deg / 12.4 mm (H4; H3 0.59 deg, was 3.74 deg
-   * without the face's modes), interpolation 2.20 deg / 7.9 mm (H5, H2);
-   * analytic x2.5: superposition 1.10 deg / 4.1 mm (H5), interpolation 2.71 deg / 11.2 mm (H2).
+  /* bounds: the worst errors measured on 2026-12-02 (deg, mm) per truth and rule, +30 %, with
+   * the refining modes of 2026-12-02 (the edge midpoints O1O3r05 and O124O3r05, the prism's
+   * centre O1O23r05O4r025) and the held-out H1-H7:
+   * closed-form interactions: superposition 1.54 deg / 5.88 mm (H6; H4 0.86 deg / 3.28 mm, was
+   * 3.23 deg / 12.4 mm before those modes), interpolation 5.03 deg / 19.5 mm (H6);
+   * analytic x2.5: superposition 0.97 deg / 4.14 mm (H4), interpolation 4.69 deg / 20.7 mm (H6).
    * Not the issue's target: these truths only check that the interpolation between the modes
    * behaves as measured (a broken weight or surplus moves them by degrees) */
   const struct {
     SynthStateFn fn;
     const void* ctx;
     double bound_deg[2], bound_mm[2];
-  } kTruth[2] = {{truthInteract, NULL, {4.20, 2.86}, {16.2, 10.3}},
-                 {truthAnalytic, &leg, {1.43, 3.52}, {5.4, 14.6}}};
+  } kTruth[2] = {{truthInteract, NULL, {2.00, 6.54}, {7.64, 25.3}},
+                 {truthAnalytic, &leg, {1.27, 6.10}, {5.38, 27.0}}};
   for (int t = 0; t < 2; t++) {
     for (int rule = 0; rule < 2; rule++) {
       Built b;

@@ -63,12 +63,17 @@ static const SynthCase kSynthCases[] = {
     {"O12O34r3", "mode", {1, 1, 1.0 / 3.0, 1.0 / 3.0}, 0.5, 0},
     {"O1O234r05", "mode", {1, 0.5, 0.5, 0.5}, 0.5, 0},
     {"O1O234r075", "mode", {1, 0.75, 0.75, 0.75}, 0.5, 0},
+    {"O124O3r05", "mode", {1, 1, 0.5, 1}, 0.5, 0},
+    {"O1O23r05O4r025", "mode", {1, 0.5, 0.5, 0.25}, 0.5, 0},
+    {"O1O3r05", "mode", {1, 0, 0.5, 0}, 0.5, 0},
     {"O2", "symmetry", {0, 1, 0, 0}, 0.5, 0},
     {"H1", "holdout", {1, 1.0 / 3.0, 0, 0}, 0.3, 0},
     {"H2", "holdout", {1, 1, 0.5, 0}, 0.2, 0},
     {"H3", "holdout", {1, 5.0 / 7.0, 5.0 / 7.0, 5.0 / 7.0}, 0.35, 0},
     {"H4", "holdout", {1, 0.75, 0.375, 0.75}, 0.4, 0},
     {"H5", "holdout", {1, 0.6, 0.3, 0.3}, 0.4, 0},
+    {"H6", "holdout", {1, 0.8, 0.6, 0.4}, 0.4, 0},
+    {"H7", "holdout", {1, 0.3, 0.7, 0.2}, 0.4, 0},
     {"G", "gravity", {0, 0, 0, 0}, 0.025, 0},
 };
 #define SYNTH_NCASE ((int)(sizeof kSynthCases / sizeof kSynthCases[0]))
@@ -201,6 +206,8 @@ static inline void synthWriteCases(const char* path, const csrActuator* act, con
   CS_EXPECT(cs_h5AttrString(h, "/", "fe_fibre_law", "tension-only", &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_p_step_MPa", sp->dp, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_p_cap_MPa", sp->p_cap, &err) == CS_OK);
+  /* the command's default Newton tolerance (csf_calibrationDefault), so the files count as done */
+  CS_EXPECT(cs_h5AttrDouble(h, "/", "fe_newton_rtol", 1e-6, &err) == CS_OK);
   CS_EXPECT(cs_h5AttrString(h, "/", "fe_solver", "synthetic", &err) == CS_OK);
   CS_EXPECT(cs_h5AttrString(h, "/", "version", "test", &err) == CS_OK);
   for (int k = 0; k < SYNTH_NCASE; k++) {
