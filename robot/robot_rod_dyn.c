@@ -224,6 +224,9 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
     cs_errorSet(err, CS_ERR_MEMORY, "rod: cannot allocate SUNDIALS vectors");
     return NULL;
   }
+  /* CVODE clones its work vectors from yv: they all get the optimised kernels */
+  csr_rodVectorOps_(d->yv);
+  csr_rodVectorOps_(d->atol);
   d->y = N_VGetArrayPointer(d->yv);
   /* per-component absolute tolerances */
   double* at = N_VGetArrayPointer(d->atol);

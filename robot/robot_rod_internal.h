@@ -389,6 +389,10 @@ void csr_rodKinW_(const csrRodData* d, double g, int j, double W[9]);
 int csr_rodLinsolAttach_(csrRodData* d);
 void csr_rodLinsolFree_(csrRodData* d);
 
+/* Replace the serial vector v's kernels by the project-compiled ones of robot_rod_nvector.c
+ * (same arithmetic; its clones inherit them). */
+void csr_rodVectorOps_(N_Vector v);
+
 /* Rest state vector (straight along the frame's e3 from the hip, at rest). */
 void csr_rodRestState_(const csrRodModel* m, double* state);
 
