@@ -125,6 +125,19 @@ typedef struct csrRodActTable_ {
   csrRodSegmentActuation a[CSR_ROD_TAB_SLOTS][CSR_ROD_TAB_N];
 } csrRodActTable;
 
+/* a segment's actuation with two chamber groups at two levels (x, y), the pressures of every
+ * pattern change under the pneumatic lag (one group venting while the other fills: 103 000 of
+ * the 9 s flat road's 216 000 segment evaluations were of this kind, each the calibration's
+ * Newton solve, 20 % of the run): the calibration at grid nodes (i dP, j dP), evaluated lazily,
+ * interpolated linearly on the two triangles of each cell split along x = y (robot_rod_dyn.c
+ * actuationAt2). The nodes live in a hash of fixed capacity (cleared when full). */
+#define CSR_ROD_TAB2_CAP 2048 /* nodes per segment (a power of two); the flat road visits ~250 */
+typedef struct csrRodActTable2_ {
+  unsigned long long key[CSR_ROD_TAB2_CAP]; /* (maskA, maskB, i, j) + 1; 0 = empty */
+  int n;                                    /* nodes stored */
+  csrRodSegmentActuation a[CSR_ROD_TAB2_CAP];
+} csrRodActTable2;
+
 /* base motion over a macro step: cubic Hermite in position and in the rotation vector */
 typedef struct csrRodBaseMotion_ {
   double ta, H;
@@ -145,6 +158,7 @@ struct csrRodData_ {
   csrRodActState act;
   csrRodActMemo memo[CSR_NSEG];
   csrRodActTable* table;  /* (CSR_NSEG) pattern tables, allocated with the data */
+  csrRodActTable2* table2; /* (CSR_NSEG) two-level tables, allocated with the data */
   csrRodBaseMotion base;
   csrBaseState cur_base; /* the base at time t */
   double tip_force[3], tip_moment[3];
