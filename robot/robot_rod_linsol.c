@@ -84,14 +84,16 @@ static int inv6(double A[36]) {
         W[p][c] = t;
       }
     }
+    /* columns < k of the left half are never read again (pivots and multipliers come from
+     * columns >= k, and the result is the right half): they are left as they are */
     double inv = 1.0 / W[k][k];
-    for (int c = 0; c < 12; c++) {
+    for (int c = k; c < 12; c++) {
       W[k][c] *= inv;
     }
     for (int i = 0; i < 6; i++) {
       if (i != k) {
         double f = W[i][k];
-        for (int c = 0; c < 12; c++) {
+        for (int c = k; c < 12; c++) {
           W[i][c] -= f * W[k][c];
         }
       }
@@ -605,7 +607,8 @@ static int invertSmall(int n, const double* A, double* Ainv) {
 static int assembleReduced(csrRodData* d, double g, csrRodBt* bt, double* Mhinv) {
   const csrRodModel* m = d->m;
   const int N = m->N, nhm = m->nhmax, nc = 12 + nhm;
-  csr_rodBtZero_(bt);
+  /* every block the factorisation reads is written below (B_0 and C_{N-1} are never read): no
+   * zeroing first */
   /* history: Mh_m⁻¹ = (I - γ ∂ḣ_m/∂h_m)⁻¹ per element (nh_m x nh_m, stored at stride nhmax²) */
   for (int e = 1; e <= N; e++) {
     const int nh = m->nh[e];
