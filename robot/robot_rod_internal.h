@@ -294,6 +294,17 @@ static inline double csr_rodJrInvCoeff(double th) {
   return 1.0 / (th * th) - (1 + cos(th)) / (2 * th * sin(th));
 }
 
+/* the same with c = csr_rodJrInvCoeff(|θ|) given (one node applies both J_r^-1 and J_r^-T) */
+static inline void csr_rodJrInvWith(double r[3], double c, const double th[3], const double a[3],
+                                    double sgn) {
+  double ta[3], tta[3];
+  csu_cross3(ta, th, a);
+  csu_cross3(tta, th, ta);
+  for (int k = 0; k < 3; k++) {
+    r[k] = a[k] + sgn * 0.5 * ta[k] + c * tta[k];
+  }
+}
+
 /* r = J_r^-1(θ) a (sgn = +1) or J_r^-T(θ) a (sgn = -1); r must not alias a */
 static inline void csr_rodJrInv(double r[3], const double th[3], const double a[3], double sgn) {
   double c = csr_rodJrInvCoeff(csu_norm3(th));
