@@ -188,6 +188,7 @@ struct csrRodData_ {
   long jac_last_step; /* CVODE step of the last Jacobian request */
   double* ls_q;       /* (N x 4) normalised quaternions at the last linear-system state */
   double* ls_qn;      /* (N) their norms */
+  double* ls_den;     /* (N) 1 / (1 + γ²|ω|²/4) at the last setup's γ */
   double* ls_w;       /* (N x 3) body angular velocities there */
   int* ls_hact;       /* (N) 1: element's history couples to the motion (in contact) */
   double* ls_bpsi;    /* (N x 3) scratch */
