@@ -408,6 +408,9 @@ long cs_stepCount(const csData* d) { return d->nstep; }
 long cs_rejectCount(const csData* d) { return d->nreject; }
 
 
+const csrLeg* cs_leg(const csData* d, int k) { return d->robot->legs[k]; }
+
+
 const csuTimer* cs_timers(const csData* d) { return d->timer; }
 
 

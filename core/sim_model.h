@@ -213,6 +213,8 @@ void cs_supportVelocity(const csData* d, double v[3]);
 const double* cs_pressures(const csData* d);
 /* centreline of leg k (0..7) at `npts` points, (npts x 3) world mm */
 void cs_legCenterline(const csModel* m, const csData* d, int k, int npts, double* out);
+/* leg k (0..7) itself, for the level's own read-outs (csr_rodLegStats) */
+const csrLeg* cs_leg(const csData* d, int k);
 /* the last macro step's base wrench of co-simulated leg k (zero for in-world legs) */
 void cs_legWrench(const csData* d, int k, csrWrench* w);
 /* centre of mass of the robot, world frame, mm */

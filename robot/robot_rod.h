@@ -327,6 +327,8 @@ csStatus csr_rodStatic(const csrRodModel* m, csrRodData* d, const csrRodStaticLo
  * rod's tip load, csr_rodSetTipLoad; a change restarts the integrator): a foot pushed along the
  * road (tests/robot/test_rod_friction.c). */
 void csr_rodLegSetTipLoad(csrLeg* leg, const double force[3], const double moment[3]);
+/* The integrator counters of a csr_leg_rod leg's rod (csr_rodGetStats; the benchmarks). */
+void csr_rodLegStats(const csrLeg* leg, csrRodStats* s);
 
 /* Solve the rod statically for one bend-curve point: all 12 pressures p (MPa), tip force
  * (N, base frame); angles (deg) per segment and tip position (mm, base frame e1 e2 e3). The

@@ -125,6 +125,19 @@ typedef struct csrRodActTable_ {
   csrRodSegmentActuation a[CSR_ROD_TAB_SLOTS][CSR_ROD_TAB_N];
 } csrRodActTable;
 
+/* a segment's actuation with two chamber groups at two levels (x, y), the pressures of every
+ * pattern change under the pneumatic lag (one group venting while the other fills: 103 000 of
+ * the 9 s flat road's 216 000 segment evaluations were of this kind, each the calibration's
+ * Newton solve, 20 % of the run): the calibration at grid nodes (i dP, j dP), evaluated lazily,
+ * interpolated linearly on the two triangles of each cell split along x = y (robot_rod_dyn.c
+ * actuationAt2). The nodes live in a hash of fixed capacity (cleared when full). */
+#define CSR_ROD_TAB2_CAP 2048 /* nodes per segment (a power of two); the flat road visits ~250 */
+typedef struct csrRodActTable2_ {
+  unsigned long long key[CSR_ROD_TAB2_CAP]; /* (maskA, maskB, i, j) + 1; 0 = empty */
+  int n;                                    /* nodes stored */
+  csrRodSegmentActuation a[CSR_ROD_TAB2_CAP];
+} csrRodActTable2;
+
 /* base motion over a macro step: cubic Hermite in position and in the rotation vector */
 typedef struct csrRodBaseMotion_ {
   double ta, H;
@@ -145,6 +158,7 @@ struct csrRodData_ {
   csrRodActState act;
   csrRodActMemo memo[CSR_NSEG];
   csrRodActTable* table;  /* (CSR_NSEG) pattern tables, allocated with the data */
+  csrRodActTable2* table2; /* (CSR_NSEG) two-level tables, allocated with the data */
   csrRodBaseMotion base;
   csrBaseState cur_base; /* the base at time t */
   double tip_force[3], tip_moment[3];
@@ -174,6 +188,7 @@ struct csrRodData_ {
   long jac_last_step; /* CVODE step of the last Jacobian request */
   double* ls_q;       /* (N x 4) normalised quaternions at the last linear-system state */
   double* ls_qn;      /* (N) their norms */
+  double* ls_den;     /* (N) 1 / (1 + γ²|ω|²/4) at the last setup's γ */
   double* ls_w;       /* (N x 3) body angular velocities there */
   int* ls_hact;       /* (N) 1: element's history couples to the motion (in contact) */
   double* ls_bpsi;    /* (N x 3) scratch */
@@ -278,6 +293,17 @@ static inline double csr_rodJrInvCoeff(double th) {
     return 1.0 / 12 + t2 / 720 + t2 * t2 / 30240;
   }
   return 1.0 / (th * th) - (1 + cos(th)) / (2 * th * sin(th));
+}
+
+/* the same with c = csr_rodJrInvCoeff(|θ|) given (one node applies both J_r^-1 and J_r^-T) */
+static inline void csr_rodJrInvWith(double r[3], double c, const double th[3], const double a[3],
+                                    double sgn) {
+  double ta[3], tta[3];
+  csu_cross3(ta, th, a);
+  csu_cross3(tta, th, ta);
+  for (int k = 0; k < 3; k++) {
+    r[k] = a[k] + sgn * 0.5 * ta[k] + c * tta[k];
+  }
 }
 
 /* r = J_r^-1(θ) a (sgn = +1) or J_r^-T(θ) a (sgn = -1); r must not alias a */
@@ -388,6 +414,10 @@ void csr_rodKinW_(const csrRodData* d, double g, int j, double W[9]);
 /* Attach the reduced linear solver to d->cvode (0 ok); free its arrays. */
 int csr_rodLinsolAttach_(csrRodData* d);
 void csr_rodLinsolFree_(csrRodData* d);
+
+/* Replace the serial vector v's kernels by the project-compiled ones of robot_rod_nvector.c
+ * (same arithmetic; its clones inherit them). */
+void csr_rodVectorOps_(N_Vector v);
 
 /* Rest state vector (straight along the frame's e3 from the hip, at rest). */
 void csr_rodRestState_(const csrRodModel* m, double* state);

@@ -354,6 +354,9 @@ void csr_rodLegSetTipLoad(csrLeg* leg, const double force[3], const double momen
 }
 
 
+void csr_rodLegStats(const csrLeg* leg, csrRodStats* s) { csr_rodGetStats(leg->d, s); }
+
+
 static void centerlineRod(const csrLeg* leg, int k, double* out) {
   csr_rodCenterline(leg->m, leg->d, k, out);
 }

@@ -84,14 +84,16 @@ static int inv6(double A[36]) {
         W[p][c] = t;
       }
     }
+    /* columns < k of the left half are never read again (pivots and multipliers come from
+     * columns >= k, and the result is the right half): they are left as they are */
     double inv = 1.0 / W[k][k];
-    for (int c = 0; c < 12; c++) {
+    for (int c = k; c < 12; c++) {
       W[k][c] *= inv;
     }
     for (int i = 0; i < 6; i++) {
       if (i != k) {
         double f = W[i][k];
-        for (int c = 0; c < 12; c++) {
+        for (int c = k; c < 12; c++) {
           W[i][c] -= f * W[k][c];
         }
       }
@@ -501,14 +503,26 @@ static void kinWAt(const csrRodData* d, double g, int j, double W[9]) {
 }
 
 
-/* v <- (I - γΩ_j)⁻¹ v for a quaternion-space vector v of element j */
+/* 1 / (1 + γ²|ω_j|²/4) of every element at CVODE's current γ (lsSetup: the solves that follow
+ * use it twice per element) */
+static void storeMqDen(csrRodData* d) {
+  const double h = 0.5 * d->ls_gamma;
+  for (int j = 1; j <= d->m->N; j++) {
+    const double* w = d->ls_w + 3 * (j - 1);
+    d->ls_den[j - 1] = 1.0 / (1.0 + h * h * csu_dot3(w, w));
+  }
+}
+
+
+/* v <- (I - γΩ_j)⁻¹ v for a quaternion-space vector v of element j (at the γ of the last
+ * setup, storeMqDen) */
 static void applyMqInv(const csrRodData* d, int j, double v[4]) {
   const double* w = d->ls_w + 3 * (j - 1);
   const double h = 0.5 * d->ls_gamma;
   const double wq[4] = {0, w[0], w[1], w[2]};
   double t[4];
   csr_rodQmul(t, v, wq); /* 2 Ω v */
-  const double den = 1.0 / (1.0 + h * h * csu_dot3(w, w));
+  const double den = d->ls_den[j - 1];
   for (int k = 0; k < 4; k++) {
     v[k] = (v[k] + h * t[k]) * den;
   }
@@ -605,7 +619,8 @@ static int invertSmall(int n, const double* A, double* Ainv) {
 static int assembleReduced(csrRodData* d, double g, csrRodBt* bt, double* Mhinv) {
   const csrRodModel* m = d->m;
   const int N = m->N, nhm = m->nhmax, nc = 12 + nhm;
-  csr_rodBtZero_(bt);
+  /* every block the factorisation reads is written below (B_0 and C_{N-1} are never read): no
+   * zeroing first */
   /* history: Mh_m⁻¹ = (I - γ ∂ḣ_m/∂h_m)⁻¹ per element (nh_m x nh_m, stored at stride nhmax²) */
   for (int e = 1; e <= N; e++) {
     const int nh = m->nh[e];
@@ -671,6 +686,7 @@ static int assembleReduced(csrRodData* d, double g, csrRodBt* bt, double* Mhinv)
 static int lsSetup(SUNLinearSolver LS, SUNMatrix A) {
   (void)A;
   csrRodData* d = LS->content;
+  storeMqDen(d);
   int rc = assembleReduced(d, d->ls_gamma, &d->bt_dyn, d->ls_Mhinv);
   d->ls_last = rc ? SUNLS_LUFACT_FAIL : SUNLS_SUCCESS;
   return rc ? SUNLS_LUFACT_FAIL : SUNLS_SUCCESS;
@@ -907,6 +923,7 @@ int csr_rodLinsolAttach_(csrRodData* d) {
   d->jac_last_step = -1;
   d->ls_q = calloc(4 * (size_t)N, sizeof(double));
   d->ls_qn = calloc((size_t)N, sizeof(double));
+  d->ls_den = calloc((size_t)N, sizeof(double));
   d->ls_w = calloc(3 * (size_t)N, sizeof(double));
   d->ls_hact = calloc((size_t)N, sizeof(int));
   d->ls_bpsi = calloc(3 * (size_t)N, sizeof(double));
@@ -914,7 +931,7 @@ int csr_rodLinsolAttach_(csrRodData* d) {
   d->ls_hb = calloc((size_t)N * (size_t)(nh > 0 ? nh : 1), sizeof(double));
   d->ls_Mhinv = calloc((size_t)N * (size_t)(nh > 0 ? nh * nh : 1), sizeof(double));
   if (!d->jac || !d->jac_int || !d->jac_con || !d->con_y || !d->ls_q || !d->ls_qn || !d->ls_w ||
-      !d->ls_hact || !d->ls_bpsi || !d->ls_r || !d->ls_hb ||
+      !d->ls_den || !d->ls_hact || !d->ls_bpsi || !d->ls_r || !d->ls_hb ||
       !d->ls_Mhinv || !csr_rodBtAlloc_(&d->bt_dyn, N) || !csr_rodBtAlloc_(&d->bt_gain, N)) {
     return 1;
   }
@@ -953,6 +970,7 @@ void csr_rodLinsolFree_(csrRodData* d) {
   free(d->con_y);
   free(d->ls_q);
   free(d->ls_qn);
+  free(d->ls_den);
   free(d->ls_w);
   free(d->ls_hact);
   free(d->ls_bpsi);

@@ -678,11 +678,13 @@ int csr_rodForces_(const csrRodModel* m, csrRodWork* wk, const csrRodLoads* ld, 
         U += 0.5 * dth[k] * dth[k] / C[k];
       }
     }
+    /* J_r^-1's coefficient, shared by the rate below and the torque map (a cos and a sin) */
+    const double jc = csr_rodJrInvCoeff(csu_norm3(th));
     if (tau > 0) {
       double wi[3], rel[3], thdot[3];
       csr_rodMulMatTVec(wi, Rrel, wk->w + 3 * i);
       csu_sub3(rel, wk->w + 3 * (i + 1), wi);
-      csr_rodJrInv(thdot, th, rel, +1);
+      csr_rodJrInvWith(thdot, jc, th, rel, +1);
       for (int k = 0; k < 3; k++) {
         dth[k] += tau * thdot[k];
       }
@@ -691,7 +693,7 @@ int csr_rodForces_(const csrRodModel* m, csrRodWork* wk, const csrRodLoads* ld, 
       mm[k] = dth[k] / C[k];
     }
     double ra[3];
-    csr_rodJrInv(a, th, mm, -1);
+    csr_rodJrInvWith(a, jc, th, mm, -1);
     csu_sub3(T + 3 * (i + 1), T + 3 * (i + 1), a);
     csu_mulMatVec3(ra, Rrel, a);
     csu_add3(T + 3 * i, T + 3 * i, ra);

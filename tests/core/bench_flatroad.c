@@ -19,6 +19,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "robot_rod.h"
 #include "sim_model.h"
 
 static double cpu(void) { return (double)clock() / CLOCKS_PER_SEC; }
@@ -90,6 +91,29 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
   printf("\n  legs %.0f %% of the step: %.1f us of CPU per leg and macro step (%d legs, %.0f "
          "macro steps)\n", 100 * legs_share, 1e6 * c * legs_share / (CSR_NLEG * steps),
          CSR_NLEG, steps);
+  if (type == &csr_leg_rod) {
+    /* CVODE's work per leg and macro step, summed over the legs */
+    csrRodStats sum, s;
+    memset(&sum, 0, sizeof sum);
+    for (int k = 0; k < CSR_NLEG; k++) {
+      csr_rodLegStats(cs_leg(d, k), &s);
+      sum.steps += s.steps;
+      sum.rhs_evals += s.rhs_evals;
+      sum.jac_evals += s.jac_evals;
+      sum.lin_setups += s.lin_setups;
+      sum.newton_iters += s.newton_iters;
+      sum.err_fails += s.err_fails;
+      sum.conv_fails += s.conv_fails;
+      sum.reinits += s.reinits;
+      sum.advances += s.advances;
+    }
+    double a = sum.advances > 0 ? (double)sum.advances : 1;
+    printf("  per leg advance: %.2f CVODE steps, %.2f right-hand sides (Jacobians' included), "
+           "%.3f Jacobians, %.2f setups, %.2f Newton iterations, %.3f error / %.3f convergence "
+           "failures, %.4f restarts\n", sum.steps / a, sum.rhs_evals / a, sum.jac_evals / a,
+           sum.lin_setups / a, sum.newton_iters / a, sum.err_fails / a, sum.conv_fails / a,
+           sum.reinits / a);
+  }
   if (st != CS_OK) {
     printf("  stopped: %s\n", err.msg);
   }
