@@ -191,8 +191,8 @@ static void test_obstacleFirstCycleStepsOntoTheStep(void) {
   CS_EXPECT_NEAR(x1[1], rise, 0, 0.05);
   CS_EXPECT(fabs(x1[0]) < 1.0 && fabs(x1[2]) < 1.0);
   /* after the shift: A and E stand on the step's top (y = 40, past its edge at x = 240), the
-   * other six on the road; the support moved forward, level, 40 mm up (measured: x 37, tilt
-   * under 1.5 deg) */
+   * other six on the road; the support moved forward, level, 40 mm up (measured at 5.85 s: x 41.3,
+   * h 40.7, z 0.14 mm, tilt at most 1.66 deg) */
   int on_step = 0, on_road = 0;
   for (int k = 0; dt && k < 8; k++) {
     double fx, fy = footY(&m, dt, k, &fx);
