@@ -42,6 +42,7 @@ typedef struct csScene_ {
   const char* terrain;     /* terrain description file (start pose, heading) */
   const char* gait;        /* default gait table */
   csConditions conditions; /* default conditions of the scene's own terrain and gait */
+  const char* calibration; /* default calibration (the one the scene's gait was designed on) */
   const char* what;        /* one line: what the scene is */
 } csScene;
 

@@ -174,9 +174,9 @@ void csg_designLegsFormat(unsigned legs, char* buf) {
 static csStatus statementPose(csgDesign* d, char** w, int nw, const char* path, int line,
                               csError* err) {
   int foot = nw >= 3 && !strcmp(w[2], "foot");
-  if (foot && nw != 5) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'pose NAME foot X LIFT' needs two numbers (mm)",
-                       path, line);
+  if (foot && nw != 5 && nw != 6) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'pose NAME foot X LIFT [plus|minus]' needs two "
+                       "numbers (mm)", path, line);
   }
   if (nw < 5) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'pose' needs NAME, chamber sets, a target and "
@@ -216,6 +216,15 @@ static csStatus statementPose(csgDesign* d, char** w, int nw, const char* path, 
     if (!parseNumber(w[3], &s.value) || !parseNumber(w[4], &s.value2)) {
       return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: foot X LIFT: '%.20s %.20s' are not two finite "
                          "numbers", path, line, w[3], w[4]);
+    }
+    if (nw == 6) {
+      /* the branch: II1 bending towards +e1 on Ω3&Ω4 (plus) or back on Ω1&Ω2 (minus) */
+      if (!strcmp(w[5], "plus") || !strcmp(w[5], "minus")) {
+        s.branch = !strcmp(w[5], "plus") ? 1 : -1;
+      } else {
+        return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: foot X LIFT: '%.20s' is not plus or minus",
+                           path, line, w[5]);
+      }
     }
     if (fabs(s.value) > MAX_TARGET_MM || !(s.value2 >= 0 && s.value2 <= MAX_TARGET_MM)) {
       return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: foot %g %g mm: X within +-%g, LIFT in 0..%g",

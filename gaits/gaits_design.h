@@ -25,10 +25,15 @@
  *                                        pressure-of POSE  the pressure POSE gives these
  *                                                    chambers (its set sharing one of them,
  *                                                    else its first set)
- *   pose NAME foot X LIFT              a whole pose in the leg's sagittal plane: the foot at X
+ *   pose NAME foot X LIFT [plus|minus] a whole pose in the leg's sagittal plane: the foot at X
  *                                      mm along e1 and LIFT mm above the straight leg's foot,
  *                                      its sole level (the bends of II1, II2, II3 sum to zero);
- *                                      each segment bends with Ω3&Ω4 (towards +e1) or Ω1&Ω2
+ *                                      each segment bends with Ω3&Ω4 (towards +e1) or Ω1&Ω2.
+ *                                      Two level-sole shapes reach most (X, LIFT): without a
+ *                                      word the solver takes II1 on Ω3&Ω4 for X > 0 and on
+ *                                      Ω1&Ω2 for X < 0; `plus` / `minus` name II1's pair. A
+ *                                      move between two foot poses of the same named branch
+ *                                      stays on it (no pass through a straight leg at X = 0)
  *   move T0 DURATION LEGS POSE [linear|ease-in|ease-out]
  *                                      legs LEGS (letters A..H, e.g. ACFH) go from the pose
  *                                      they hold to POSE, starting at T0, taking DURATION s
@@ -60,7 +65,7 @@
 extern "C" {
 #endif
 
-#define CSG_DESIGN_MAX_POSES 32
+#define CSG_DESIGN_MAX_POSES 64
 #define CSG_DESIGN_MAX_SETS 6
 #define CSG_DESIGN_MAX_MOVES 1024
 #define CSG_DESIGN_NAME 32
@@ -85,6 +90,9 @@ typedef struct csgDesignSet_ {
   csgTargetKind kind;
   double value;
   double value2;              /* CSG_TARGET_FOOT: lift (mm) */
+  int branch;                 /* CSG_TARGET_FOOT: 0 the solver's choice (Ω3&Ω4 on II1 for X > 0,
+                                 Ω1&Ω2 for X < 0); +1 `plus`: II1 bends towards +e1 (Ω3&Ω4),
+                                 -1 `minus`: towards -e1 (Ω1&Ω2), whatever the sign of X */
   int ref;                    /* pose index for CSG_TARGET_PRESSURE_OF */
   int line;                   /* where it was given */
 } csgDesignSet;

@@ -253,14 +253,25 @@ enum { FOOT_STRETCH_PASSES = 60 };
 
 /* the bends (a, b, -(a + b)) of II1, II2, II3 that put the foot at (X, lift H) with segment
  * stretches lam; *best: the closest residual reached (mm) */
-static csStatus footBends(const csrActuator* act, double X, double H, const double lam[3],
-                          const double foot0[3], double th[3], double* best, csError* err) {
-  /* start guesses: an S-shape for the stroke plus a crouch for the lift, and its mirror */
+static csStatus footBends(const csrActuator* act, double X, double H, int branch,
+                          const double lam[3], const double foot0[3], double th[3], double* best,
+                          csError* err) {
+  /* start guesses: an S-shape for the stroke plus a crouch for the lift, and its mirror; a
+   * named branch (II1 towards +e1: plus, -e1: minus) starts from crouches on it and keeps
+   * only shapes on it */
   const double starts[4][2] = {{X / 141.0, -X / 141.0}, {X / 141.0 + 0.3, -X / 141.0 - 0.6},
                                {X / 141.0 + 0.6, -X / 141.0 - 1.2}, {-0.3, 0.6}};
+  const double on_branch[5][2] = {{X / 141.0, -X / 141.0}, {0.2, -0.5}, {0.1, -0.3},
+                                  {0.4, -1.0}, {0.6, -1.4}};
   *best = INFINITY;
-  for (int g = 0; g < 4 && *best > FOOT_TOL_MM; g++) {
-    double a = starts[g][0], b = starts[g][1];
+  for (int g = 0; g < (branch ? 5 : 4) && *best > FOOT_TOL_MM; g++) {
+    double a = branch ? on_branch[g][0] : starts[g][0], b = branch ? on_branch[g][1] : starts[g][1];
+    if (branch && g > 0) {
+      a *= branch;
+      b *= branch;
+    } else if (branch && branch * a <= 0) {
+      continue; /* the S-shape guess lies on the other branch */
+    }
     for (int it = 0; it < FOOT_NEWTON; it++) {
       double r[2], J[2][2], f[3];
       double t0[3] = {a, b, -(a + b)};
@@ -269,7 +280,7 @@ static csStatus footBends(const csrActuator* act, double X, double H, const doub
       r[0] = f[0] - foot0[0] - X;
       r[1] = (foot0[2] - f[2]) - H;
       double nr = hypot(r[0], r[1]);
-      if (nr < *best) {
+      if (nr < *best && (!branch || branch * a > 0)) {
         *best = nr;
         memcpy(th, t0, 3 * sizeof(double));
       }
@@ -306,7 +317,7 @@ static csStatus solveFootPose(const csrActuator* act, const csrBendMap* map,
   const double X = set->value, H = set->value2;
   double th[3] = {0, 0, 0}, lam[3] = {1, 1, 1}, best = INFINITY, dlam = INFINITY;
   for (int pass = 0; pass < FOOT_STRETCH_PASSES && dlam > FOOT_STRETCH_TOL; pass++) {
-    csStatus st = footBends(act, X, H, lam, foot0, th, &best, err);
+    csStatus st = footBends(act, X, H, set->branch, lam, foot0, th, &best, err);
     if (st != CS_OK) return st;
     if (!(best <= 1e-6)) {
       return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: pose %s: no leg shape with a level sole "
@@ -594,6 +605,18 @@ static int footTarget(const csgDesign* d, int q, double* X, double* H) {
 }
 
 
+/* the branch a foot path between poses qa and qb keeps: the one both name (or the named one
+ * when the other end is `straight`, which lies on both); 0 (the solver's choice per sample)
+ * otherwise */
+static int footPathBranch(const csgDesign* d, int qa, int qb) {
+  int ba = qa == CSG_POSE_STRAIGHT ? 0 : d->pose[qa].set[0].branch;
+  int bb = qb == CSG_POSE_STRAIGHT ? 0 : d->pose[qb].set[0].branch;
+  if (qa == CSG_POSE_STRAIGHT) return bb;
+  if (qb == CSG_POSE_STRAIGHT) return ba;
+  return ba == bb ? ba : 0;
+}
+
+
 /* A move between two foot poses: the foot goes along the straight line from (Xa, Ha) to
  * (Xb, Hb) in (stroke, lift) with a level sole, every sample a foot pose of its own. Why: a
  * segment-wise bend path between poses whose segments all change sides (a swing from behind
@@ -606,6 +629,7 @@ static csStatus footPath(const csrActuator* act, const csrBendMap* map, const cs
   csgDesignSet set;
   memset(&set, 0, sizeof set);
   set.kind = CSG_TARGET_FOOT;
+  set.branch = footPathBranch(d, qa, qb);
   set.line = d->pose[qb].line ? d->pose[qb].line : d->pose[qa].line;
   for (int i = 0; i <= PATH_SAMPLES; i++) {
     double lam = (double)i / PATH_SAMPLES;

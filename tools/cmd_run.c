@@ -300,7 +300,8 @@ int csx_cmdRun(int argc, char** argv) {
     cs_errorSet(&err, CS_ERR_ARG, "--tol and --levels go with --legs auto");
     goto done;
   }
-  if (!calib) calib = csx_dataPath(CSX_DEFAULT_CALIBRATION, calib_buf, sizeof calib_buf);
+  /* the scene's calibration (its gait was designed on it), overridable with --calibration */
+  if (!calib) calib = csx_dataPath(sc->calibration, calib_buf, sizeof calib_buf);
 
   /* numbers: check each against its flag's range before anything is loaded or built */
   if (!isnan(friction) && !(friction >= 0)) {

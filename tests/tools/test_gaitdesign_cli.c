@@ -98,7 +98,13 @@ static void expectFailure(const char* args, const char* want);
 static void test_shippedGaitsAreRegenerable(void) {
   expectRegenerates("flat_road.csv", "", "flat_road.gait");
   expectRegenerates("flat_road_paper.csv", "", "flat_road_paper.gait");
-  expectRegenerates("obstacle.csv", "--stretch", "obstacle.gait");
+  /* the obstacle gait stands on stretched legs: designed on the FE mode table (its all-four
+   * mode) to 0.4 MPa, the table's range */
+  char flags[700];
+  const char* src = getenv("CS_SOURCE_DIR");
+  snprintf(flags, sizeof flags, "--stretch --calibration %s/robot/calibration_fe_leg_modes.h5 "
+           "--p-max 0.4", src ? src : ".");
+  expectRegenerates("obstacle.csv", flags, "obstacle.gait");
   expectRegenerates("flat_road_crouch.csv", "--crouch", NULL);
 }
 
@@ -125,7 +131,9 @@ static void test_badDesigns(void) {
   expectBadDesign("pose S II1:3,4 pressure 2\n", 1, "pressure 2 MPa is outside");
   expectBadDesign("pose S II1:3,4 pressure-of T\n", 1, "pressure-of 'T': no earlier pose");
   expectBadDesign("pose straight II1:3,4 stroke 3\n", 1, "'straight' is the built-in");
-  expectBadDesign("pose F foot 1\n", 1, "'pose NAME foot X LIFT' needs two numbers");
+  expectBadDesign("pose F foot 1\n", 1, "'pose NAME foot X LIFT [plus|minus]' needs two numbers");
+  expectBadDesign("pose F foot 1 2 sideways\n", 1, "foot X LIFT: 'sideways' is not plus or minus");
+  expectBadDesign("pose F foot 1 2 plus 3\n", 1, "'pose NAME foot X LIFT [plus|minus]' needs");
   snprintf(t, sizeof t, "%smove 0 1 ACFX S\n", pose);
   expectBadDesign(t, 2, "leg set 'ACFX': 'X' is not a leg A..H");
   snprintf(t, sizeof t, "%smove 0 1 AA S\n", pose);
@@ -213,6 +221,66 @@ static void test_badInputs(void) {
 }
 
 
+/* the foot pose's branch (the obstacle gait's swing): `plus` keeps II1 on Ω3&Ω4 behind the
+ * hip, where the solver's own choice is Ω1&Ω2, `minus` the mirror in front of it; both reach
+ * their target. A move between two `plus` poses on opposite sides of the hip stays on the
+ * branch: no row of its table passes a straight leg (every row bends II1 on Ω3&Ω4 and II2 on
+ * Ω1&Ω2), where the solver's own choice changes pairs at the hip. Read from the header, which
+ * prints each pose's pressures, and from the table. */
+static void test_footPoseBranch(void) {
+  const char* src = getenv("CS_SOURCE_DIR");
+  char args[1200];
+  cs_cliWriteText("gaitdesign_branch.gait",
+                  "name branch\n"
+                  "sample 0.05\n"
+                  "pose AUTO foot -25 12\n"
+                  "pose PLUS foot -25 12 plus\n"
+                  "pose MINUS foot 25 12 minus\n"
+                  "pose FRONT foot 25 12 plus\n"
+                  "move 0 0.5 A PLUS\n"
+                  "move 0.5 1 A FRONT\n"
+                  "move 0 0.5 B AUTO\n"
+                  "move 0.5 1 B MINUS\n");
+  snprintf(args, sizeof args, "design gaitdesign_branch.gait --stretch --out gaitdesign_branch.csv "
+           "--calibration %s/robot/calibration_fe_leg_modes.h5 --p-max 0.4", src ? src : ".");
+  csCliResult r;
+  run(args, &r);
+  CS_EXPECT(r.status == 0);
+  CS_EXPECT(strstr(r.out, "pose AUTO: II1:1,2 ") != NULL);
+  const char* plus = strstr(r.out, "pose PLUS: II1:3,4 ");
+  const char* minus = strstr(r.out, "pose MINUS: II1:1,2 ");
+  CS_EXPECT(plus && strstr(plus, "foot stroke -25.00, side 0.00, lift 12.00 mm"));
+  CS_EXPECT(minus && strstr(minus, "foot stroke 25.00, side 0.00, lift 12.00 mm"));
+  if (r.status != 0 || !plus || !minus) {
+    fprintf(stderr, "  %s\n  out: %s\n  err: %s\n", args, r.out, r.err);
+  }
+  /* leg A's swing PLUS -> FRONT: every row of 0.5..1.5 s has II1 on Ω3&Ω4 only and II2 on
+   * Ω1&Ω2 only, both inflated (columns 1..4 A_II1_O1..O4, 5..8 A_II2_O1..O4) */
+  FILE* f = fopen("gaitdesign_branch.csv", "r");
+  CS_EXPECT(f != NULL);
+  int rows = 0, on_branch = 0;
+  char line[8192];
+  while (f && fgets(line, sizeof line, f)) {
+    if (line[0] == '#' || line[0] == 't') continue;
+    double v[9];
+    if (sscanf(line, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4],
+               &v[5], &v[6], &v[7], &v[8]) != 9 || v[0] < 0.5 - 1e-9 || v[0] > 1.5 + 1e-9) {
+      continue;
+    }
+    rows++;
+    on_branch += v[1] == 0 && v[2] == 0 && v[3] > 0.05 && v[4] > 0.05 && v[5] > 0.05 &&
+                 v[6] > 0.05 && v[7] == 0 && v[8] == 0;
+  }
+  if (f) fclose(f);
+  CS_EXPECT(rows == 21 && on_branch == rows);
+  if (on_branch != rows) {
+    fprintf(stderr, "  %d of %d rows of the plus swing on the branch\n", on_branch, rows);
+  }
+  remove("gaitdesign_branch.gait");
+  remove("gaitdesign_branch.csv");
+}
+
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_gaitdesign_cli PATH_TO_CRAWLSIM\n");
@@ -223,5 +291,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_badOptions);
   CS_RUN(test_badInputs);
   CS_RUN(test_badDesigns);
+  CS_RUN(test_footPoseBranch);
   return cs_testSummary();
 }
