@@ -187,14 +187,18 @@ static csStatus stageSetup(Run* r, csError* err) {
 }
 
 
-/* ---- stage: gravity ramp --------------------------------------------------------------- */
+/* ---- stage: dead-load ramp ------------------------------------------------------------- */
 
-/* gravity alone at p = 0, ramped in factor gamma (m->gravity = gamma g) with the load stepping's
- * rules: a soft leg under its full weight in one step does not converge (the leg at 9.81 m/s^2,
- * fem/README.md) */
+/* the dead loads (gravity, a tip force) alone at p = 0, ramped in factor gamma (m->gravity =
+ * gamma g, the tip force gamma F) with the load stepping's rules, so that the p = 0 row is the
+ * equilibrium under them: a soft leg under its full weight in one step does not converge (the
+ * leg at 9.81 m/s^2, fem/README.md), and without the ramp a tip force entered only with the
+ * first pressure step, the p = 0 row being the unloaded reference state (measured on the leg,
+ * 0.05 N along e1: its tip undeflected at p = 0, where the load bends it 25 mm) */
 static csStatus stageGravity(Run* r, csError* err) {
   const double* g = r->o->spec.gravity;
-  if (g[0] == 0 && g[1] == 0 && g[2] == 0) {
+  const double* F = r->o->spec.tip_force;
+  if (g[0] == 0 && g[1] == 0 && g[2] == 0 && F[0] == 0 && F[1] == 0 && F[2] == 0) {
     return CS_OK;
   }
   csfModel* m = r->w.fe.model;
@@ -203,9 +207,11 @@ static csStatus stageGravity(Run* r, csError* err) {
   double gam = 0.0, dgam = 1.0;
   while (gam < 1.0) {
     const double next = fmin(gam + dgam, 1.0);
+    const double Fn[3] = {next * F[0], next * F[1], next * F[2]};
     for (int i = 0; i < 3; i++) {
       m->gravity[i] = next * g[i];
     }
+    csf_actuatorSetTipForce(&r->w.fe, Fn);
     int it = 0;
     const csStatus gst = csf_newtonSolve(m, d, 0.0, &r->nopt, &it, &lerr);
     r->info.n_newton += it;
@@ -216,8 +222,9 @@ static csStatus stageGravity(Run* r, csError* err) {
         dgam *= 1.5;
       }
     } else if ((dgam *= 0.5) < 1e-3) {
-      return cs_errorSet(err, CS_ERR_DIVERGED, "fem_bend: no equilibrium under gravity beyond "
-                         "%.4g of its value: %s", gam, lerr.msg);
+      csf_actuatorSetTipForce(&r->w.fe, F);
+      return cs_errorSet(err, CS_ERR_DIVERGED, "fem_bend: no equilibrium under the dead loads "
+                         "(gravity, tip force) beyond %.4g of their value: %s", gam, lerr.msg);
     }
   }
   return CS_OK;

@@ -45,7 +45,8 @@ typedef struct csfBendInfo_ {
   int ntet, nnode, nfibre, ndof;
   int nfibre_projected; /* fibre points projected onto the faceted surface (csf_modelAddFibre) */
   int n_steps, n_cutbacks;
-  int n_gravity_steps; /* converged steps of the gravity ramp before the pressure sweep */
+  int n_gravity_steps; /* converged steps of the dead-load ramp (gravity, tip force) before the
+                        * pressure sweep */
   long n_newton;
   double t_mesh, t_setup, t_total;         /* wall s: gmsh + reading, model + fibres, all */
   double t_assemble, t_factor, t_solve;    /* wall s, accumulated */

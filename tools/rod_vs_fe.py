@@ -3,7 +3,7 @@
 
 usage: /usr/bin/python3 tools/rod_vs_fe.py TABLE.h5 [--cases H1,H4,O2] [--loaded FE.h5]
            [--tip-load FX,FY,FZ] [--chambers 1,2] [--crawlsim build/tools/crawlsim]
-           [--limit-pct 2] [--png rod_vs_fe.png]
+           [--limit-pct 2] [--from-p 0] [--png rod_vs_fe.png]
 
 TABLE.h5 is an FE mode table (`crawlsim calibrate`, format "crawlsim-fe-calibration 1"). For
 every case of kind holdout or symmetry in it (or the --cases named), the rod's static bend curve
@@ -12,7 +12,10 @@ is computed with that table as its calibration (`crawlsim bend --model rod --cal
 every FE row: max |tip_rod - tip_FE| in mm and in % of the unloaded leg's length (the FE's tip
 distance at p = 0). --loaded FE.h5 adds a case under a dead tip load: an FE bend file (`crawlsim
 bend --model fe --chambers C --tip-load F`), compared with the rod under the same --chambers
-and --tip-load (the FE file does not record them: give the ones it was run with).
+and --tip-load (the FE file does not record them: give the ones it was run with); --from-p P
+compares its rows from P on (FE bend files written before 2026-12-02 record the unloaded
+reference state as the p = 0 row of a loaded run: the dead load was first applied with the
+first pressure step).
 Prints a Markdown table (one row per case) and, with --png, draws the tip error against
 pressure for every case with the --limit-pct line. A bad file, a missing dataset or a failing
 rod run is a one-line error and exit status 1.
@@ -88,6 +91,8 @@ def main():
     ap.add_argument("--chambers", default="1,2")
     ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
     ap.add_argument("--limit-pct", type=float, default=2.0)
+    ap.add_argument("--from-p", type=float, default=0.0,
+                    help="--loaded: compare the FE rows from this pressure on (MPa)")
     ap.add_argument("--png", default=None)
     a = ap.parse_args()
     if not os.access(a.crawlsim, os.X_OK):
@@ -130,17 +135,23 @@ def main():
             with open_h5(a.loaded) as g:
                 p = read(g, "/pressure", a.loaded)
                 tip = read(g, "/tip_position", a.loaded)
-            if len(p) < 2:
-                fail(f"{a.loaded}: fewer than two rows")
+            keep = p >= a.from_p - 1e-12
+            p0, tip0 = p[0], tip[0]
+            p, tip = p[keep], tip[keep]
+            if len(p) < 1:
+                fail(f"{a.loaded}: no row at or above --from-p {a.from_p:g} MPa")
             ch = [int(c) for c in a.chambers.split(",")]
             ratio = [1.0 if j in ch else 0.0 for j in range(1, 5)]
-            leg = float(np.linalg.norm(tip[0]))
-            step = float(p[1] - p[0])
+            leg = float(np.linalg.norm(tip0)) if p0 == 0 else 166.0
+            step = 0.025 if len(p) < 2 else float(min(np.diff(p)))
             pr, tr = rod_curve(a.crawlsim, a.table, ratio, float(p[-1]), step,
                                ["--tip-load", a.tip_load], work)
             d, pct = compare(p, tip, pr, tr, leg)
             name = f"chambers {a.chambers} + tip load {a.tip_load} N"
             rows.append(("loaded", name, float(p[-1]), d, pct, p))
+            if a.from_p > 0:
+                name += f" (FE rows from {a.from_p:g} MPa)"
+                rows[-1] = ("loaded", name, float(p[-1]), d, pct, p)
             curves.append(("loaded", p, pct))
     print(f"rod (calibration {os.path.basename(a.table)}) against the FE, tip position, "
           f"target {a.limit_pct:g} % of the leg:")
@@ -152,7 +163,7 @@ def main():
         ok = "meets" if pct[i] <= a.limit_pct else "misses"
         bad = np.nonzero(pct > a.limit_pct)[0]
         upto = p[-1] if len(bad) == 0 else (p[bad[0] - 1] if bad[0] > 0 else 0.0)
-        print(f"| {n} | {what} | 0-{pend:g} | {d[i]:.2f} | {p[i]:g} | {pct[i]:.2f} | {ok} | "
+        print(f"| {n} | {what} | {p[0]:g}-{pend:g} | {d[i]:.2f} | {p[i]:g} | {pct[i]:.2f} | {ok} | "
               f"{upto:g} |")
     if a.png:
         import matplotlib

@@ -131,6 +131,54 @@ static void test_gravity_ramp(void) {
   csr_bendCurveFree(&bc);
 }
 
+/* A dead tip force is ramped with gravity before the sweep, so the p = 0 row is the
+ * equilibrium under it (before 2026-12-02 the row was the unloaded reference state and the
+ * force entered with the first pressure step). Checks: the row's tip moves along the force,
+ * by the linear cantilever deflection F L^3 / (3 E I) of the chambered section (E = 6 C10)
+ * within the same band as the gravity test (the short, coarse, fibre-free variant: shear,
+ * the solid joints and l_soft 5 make it stiffer or softer by tens of %), and twice the force
+ * gives twice the deflection (small load: linear within 3 %). */
+static void test_tip_force_row_zero_is_loaded(void) {
+  csError err = {0};
+  csrActuator act;
+  /* 0 N: the reference state's tip (the measure has a mesh offset of a few um); 0.02 and
+   * 0.04 N along e1: ~0.5 and ~1 mm, far above that offset, still linear */
+  const double F[3] = {0.0, 0.02, 0.04};
+  double x[3] = {NAN, NAN, NAN};
+  int nsteps = 0;
+  for (int k = 0; k < 3; k++) {
+    csfBendInfo info;
+    csfBendOptions o = shortActuator(&act, 0, &info);
+    o.p_max = 0.002; /* a token pressure step after the ramp */
+    o.p_step = 0.002;
+    o.spec.tip_force[0] = F[k];
+    o.spec.work_stem = "bend_tip";
+    csrBendCurve bc;
+    csr_bendCurveInit(&bc, 4, &err);
+    const csStatus st = csf_bend(&act, &o, &bc, &err);
+    if (st != CS_OK) {
+      fprintf(stderr, "%s\n", err.msg);
+    }
+    CS_EXPECT(st == CS_OK && bc.m >= 1);
+    if (st == CS_OK && bc.m >= 1) {
+      x[k] = bc.tip[0]; /* tip x at p = 0 (row 0) */
+      nsteps = k > 0 ? info.n_gravity_steps : nsteps;
+    }
+    csr_bendCurveFree(&bc);
+  }
+  const double L = csr_actuatorLength(&act), a2 = 2.0 * act.a;
+  const double Ah = CS_PI * act.r1 * act.r1;
+  const double I = a2 * a2 * a2 * a2 / 12.0 - 4.0 * (Ah * act.r1 * act.r1 / 4.0 + Ah * act.b * act.b);
+  const double w_lin = F[1] * L * L * L / (3.0 * 6.0 * act.C10 * I);
+  const double d1 = x[1] - x[0], d2 = x[2] - x[0];
+  printf("  p = 0 row tip x: %.4f mm unloaded, %+.4f mm at %.2f N (linear cantilever %.4f mm), "
+         "%+.4f mm at %.2f N (ratio %.4f); %d ramp steps\n", x[0], d1, F[1], w_lin, d2, F[2],
+         d2 / d1, nsteps);
+  CS_EXPECT(nsteps >= 1);
+  CS_EXPECT(d1 > 0.25 * w_lin && d1 < 1.3 * w_lin);
+  CS_EXPECT_NEAR(d2 / d1, 2.0, 0, 0.03);
+}
+
 /* The sweep's Newton tolerance (CSF_BEND_NEWTON_RTOL, 1e-6 of the force scale) against the
  * element tests' 1e-8: the same sweep to 0.05 MPa on the short variant must give the same bend
  * and tip, in fewer Newton iterations (the iteration counts are deterministic). Bound: at |R| =
@@ -177,5 +225,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_bend_short);
   CS_RUN(test_gravity_ramp);
   CS_RUN(test_sweep_tolerance_keeps_the_answer);
+  CS_RUN(test_tip_force_row_zero_is_loaded);
   return cs_testSummary();
 }
