@@ -1,7 +1,8 @@
 /* fem_bend.c: pressure sweep of the FE actuator as named stages (see fem_bend.h).
  *
  * Rationale.
- * Stages: set-up (the actuator's FE model, fem_actuator.h; data; state buffers), gravity ramp,
+ * Stages: set-up (the actuator's FE model, fem_actuator.h; data; state buffers), dead-load ramp
+ * (gravity, tip force),
  * then per step: a pressure step with cut-backs, the limit-point path when a step collapses,
  * the refinement of --until-angle, an output row (with optional stiffness probes), step control;
  * finally the outputs (VTU, deck) and the summary.
@@ -195,7 +196,7 @@ static csStatus stageSetup(Run* r, csError* err) {
  * leg at 9.81 m/s^2, fem/README.md), and without the ramp a tip force entered only with the
  * first pressure step, the p = 0 row being the unloaded reference state (measured on the leg,
  * 0.05 N along e1: its tip undeflected at p = 0, where the load bends it 25 mm) */
-static csStatus stageGravity(Run* r, csError* err) {
+static csStatus stageDeadLoads(Run* r, csError* err) {
   const double* g = r->o->spec.gravity;
   const double* F = r->o->spec.tip_force;
   if (g[0] == 0 && g[1] == 0 && g[2] == 0 && F[0] == 0 && F[1] == 0 && F[2] == 0) {
@@ -706,7 +707,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   }
   csStatus st = stageSetup(&r, err);
   if (st == CS_OK) {
-    st = stageGravity(&r, err);
+    st = stageDeadLoads(&r, err);
   }
   if (st != CS_OK) {
     sweepFree(&r.w);

@@ -3,7 +3,7 @@
  * Owns: csfBendOptions (the actuator's discretisation and loads as a csfActuatorSpec, the
  * pressure range, --until-angle, continuation, stiffness probes, outputs), csfBendRecord (the
  * full per-segment kinematics of every output row, for the calibration), and csf_bend: the
- * sweep as named stages (set-up, gravity ramp, pressure steps with cut-backs and a secant
+ * sweep as named stages (set-up, dead-load ramp, pressure steps with cut-backs and a secant
  * predictor, limit points by volume control, refinement of --until-angle, output rows with
  * optional stiffness probes, finish).
  * Units: MPa, mm, degrees, seconds. Frame: the actuator's base frame (e1, e2, e3), z = e3 along

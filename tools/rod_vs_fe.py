@@ -9,8 +9,8 @@ TABLE.h5 is an FE mode table (`crawlsim calibrate`, format "crawlsim-fe-calibrat
 every case of kind holdout or symmetry in it (or the --cases named), the rod's static bend curve
 is computed with that table as its calibration (`crawlsim bend --model rod --calibration TABLE
 --pressures r1,r2,r3,r4` at the case's rows), and its tip is compared with the FE's tip at
-every FE row: max |tip_rod - tip_FE| in mm and in % of the unloaded leg's length (the FE's tip
-distance at p = 0). --loaded FE.h5 adds a case under a dead tip load: an FE bend file (`crawlsim
+every FE row: max |tip_rod - tip_FE| in mm and in % of the unloaded leg's length (the tip
+distance at p = 0 of the table's first case that is not loaded by gravity). --loaded FE.h5 adds a case under a dead tip load: an FE bend file (`crawlsim
 bend --model fe --chambers C --tip-load F`), compared with the rod under the same --chambers
 and --tip-load (the FE file does not record them: give the ones it was run with); --from-p P
 compares its rows from P on (FE bend files written before 2026-12-02 record the unloaded
@@ -110,6 +110,14 @@ def main():
                                                                       "holdout", "symmetry")]
         if not names:
             fail(f"{a.table}: no holdout or symmetry case")
+        leg = None  # mm: the unloaded leg (row 0 of a case without gravity)
+        for n in f["cases"]:
+            kind = f["cases"][n].attrs.get("kind", b"")
+            if kind not in (b"gravity", "gravity") and "tip" in f["cases"][n]:
+                leg = float(np.linalg.norm(f["cases"][n]["tip"][0]))
+                break
+        if not leg:
+            fail(f"{a.table}: no case without gravity to measure the leg's length")
         for n in names:
             g = "/cases/" + n
             if g not in f:
@@ -124,46 +132,41 @@ def main():
             if len(p) < 2 or tip.shape != (len(p), 3):
                 fail(f"{a.table}: case {n}: pressure and tip do not match ({len(p)} rows, tip "
                      f"{tip.shape})")
-            leg = float(np.linalg.norm(tip[0]))
             step = float(p[1] - p[0])
             pr, tr = rod_curve(a.crawlsim, a.table, ratio, float(p[-1]), step, [], work)
             d, pct = compare(p, tip, pr, tr, leg)
             label = ":".join(f"{r:g}" for r in ratio)
-            rows.append((n, f"chambers at {label} x p", float(p[-1]), d, pct, p))
+            rows.append((n, f"chambers at {label} x p", d, pct, p))
             curves.append((n, p, pct))
         if a.loaded:
             with open_h5(a.loaded) as g:
                 p = read(g, "/pressure", a.loaded)
                 tip = read(g, "/tip_position", a.loaded)
             keep = p >= a.from_p - 1e-12
-            p0, tip0 = p[0], tip[0]
             p, tip = p[keep], tip[keep]
             if len(p) < 1:
                 fail(f"{a.loaded}: no row at or above --from-p {a.from_p:g} MPa")
             ch = [int(c) for c in a.chambers.split(",")]
             ratio = [1.0 if j in ch else 0.0 for j in range(1, 5)]
-            leg = float(np.linalg.norm(tip0)) if p0 == 0 else 166.0
             step = 0.025 if len(p) < 2 else float(min(np.diff(p)))
             pr, tr = rod_curve(a.crawlsim, a.table, ratio, float(p[-1]), step,
                                ["--tip-load", a.tip_load], work)
             d, pct = compare(p, tip, pr, tr, leg)
-            name = f"chambers {a.chambers} + tip load {a.tip_load} N"
-            rows.append(("loaded", name, float(p[-1]), d, pct, p))
-            if a.from_p > 0:
-                name += f" (FE rows from {a.from_p:g} MPa)"
-                rows[-1] = ("loaded", name, float(p[-1]), d, pct, p)
+            name = f"chambers {a.chambers} + tip load {a.tip_load} N" + (
+                f" (FE rows from {a.from_p:g} MPa)" if a.from_p > 0 else "")
+            rows.append(("loaded", name, d, pct, p))
             curves.append(("loaded", p, pct))
     print(f"rod (calibration {os.path.basename(a.table)}) against the FE, tip position, "
           f"target {a.limit_pct:g} % of the leg:")
     print("| case | pattern | p range (MPa) | max tip error (mm) | at p (MPa) | % of the leg | "
           "verdict | within the target up to (MPa) |")
     print("|---|---|---|---|---|---|---|---|")
-    for n, what, pend, d, pct, p in rows:
+    for n, what, d, pct, p in rows:
         i = int(np.argmax(d))
         ok = "meets" if pct[i] <= a.limit_pct else "misses"
         bad = np.nonzero(pct > a.limit_pct)[0]
         upto = p[-1] if len(bad) == 0 else (p[bad[0] - 1] if bad[0] > 0 else 0.0)
-        print(f"| {n} | {what} | {p[0]:g}-{pend:g} | {d[i]:.2f} | {p[i]:g} | {pct[i]:.2f} | {ok} | "
+        print(f"| {n} | {what} | {p[0]:g}-{p[-1]:g} | {d[i]:.2f} | {p[i]:g} | {pct[i]:.2f} | {ok} | "
               f"{upto:g} |")
     if a.png:
         import matplotlib
