@@ -683,6 +683,8 @@ static void fillStats(Run* r) {
   r->info.n_factor = d->stats.n_factor;
   r->info.n_krylov = d->stats.n_krylov;
   r->info.n_krylov_iter = d->stats.n_krylov_iter;
+  r->info.n_restore = d->stats.n_restore;
+  r->info.n_repeat = d->stats.n_repeat;
   snprintf(r->info.solver, sizeof r->info.solver, "%s", csf_linSolverName(d->ls));
 }
 

@@ -53,6 +53,7 @@ typedef struct csfBendInfo_ {
   double factor_nnz;                       /* entries of the sparse factors */
   long n_factor;       /* numeric factorisations of the tangent */
   long n_krylov, n_krylov_iter; /* linear solves by GMRES on an older factorisation, iterations */
+  long n_restore, n_repeat;     /* Newton's watchdog returns and repeated iterates (csfStats) */
   char solver[32];     /* sparse solver and mode used ("mumps-ldlt", ...) */
   double p_limit;  /* MPa: pressure limit point of the path (the largest pressure reached
                     * under volume control after the pressure-controlled step collapsed; with

@@ -14,7 +14,9 @@
  * and became a mode: the held-out H4 and H5 were added in its place). Five combinations are
  * held out of any fit: Omega1 0.3 + Omega2 0.1; Omega1 0.2 + Omega2 0.2 + Omega3 0.1; all four
  * at 0.25 with Omega1 at 0.35; Omega1 0.4 + Omega2, Omega4 0.3 + Omega3 0.15; Omega1 0.4 +
- * Omega2 0.24 + Omega3, Omega4 0.12 (inside the prism). Every case inflates
+ * Omega2 0.24 + Omega3, Omega4 0.12 (inside the prism); later H6, H7 (inside the prism) and H8
+ * (H1's pattern Omega1 : Omega2 = 3 : 1 carried to 0.4 MPa, the rod's unequal-pressure check
+ * over the whole range, issue 9). Every case inflates
  * the same chambers of all three segments, so one sweep gives II1, II2 and II3 (which differ by
  * their boundary conditions: II1 next to the clamp, II3 free).
  * Stiffness. Small dead tip forces along e1, e2 (bending) and e3 (axial) at 0, 0.1, 0.2 and
@@ -89,6 +91,8 @@ static const csfCalCase kCases[] = {
      "held out: Omega1 0.4 + Omega2 0.32 + Omega3 0.24 + Omega4 0.16 MPa at p = 0.4"},
     {"H7", CSF_CAL_HOLDOUT, {1, 0.3, 0.7, 0.2}, 0.4, 0, {0, 0, 0},
      "held out: Omega1 0.4 + Omega2 0.12 + Omega3 0.28 + Omega4 0.08 MPa at p = 0.4"},
+    {"H8", CSF_CAL_HOLDOUT, {1, 1.0 / 3.0, 0, 0}, 0.4, 0, {0, 0, 0},
+     "held out: H1's pattern over the whole range, Omega1 0.4 + Omega2 0.133 MPa at p = 0.4"},
     {"G", CSF_CAL_GRAVITY, {0, 0, 0, 0}, 0.025, 0, {-G_EARTH, 0, 0},
      "the horizontal leg under its own weight at 9.81 m/s^2 (gravity along -e1), vented"},
 };

@@ -105,6 +105,9 @@ typedef struct csfStats_ {
   long n_assemble, n_factor, n_newton;  /* counts */
   long n_krylov;      /* linear solves done by GMRES on an older factorisation (fem_newton.h) */
   long n_krylov_iter; /* GMRES iterations in those solves */
+  long n_restore;     /* returns of the line search's watchdog to the best iterate */
+  long n_repeat;      /* Newton iterates whose |R| repeated an earlier one of the same solve to
+                       * 1e-12 (a cycle of the iteration; fem_newton.c) */
 } csfStats;
 
 typedef struct csfData_ {

@@ -41,6 +41,10 @@ typedef struct csfNewtonIter_ {
   int fib_taut;     /* fibres with E >= delta after the step */
   int neg_pivots;   /* negative pivots of the last factorisation (LDL^T; with krylov it may be
                      * an earlier iterate's tangent); -1 with LU */
+  double jmin;      /* smallest pointwise J = det F at the quadrature points after the step */
+  double rmax;      /* largest nodal residual |R_a| (3-vector) on a free node after the step, N */
+  int rmax_node;    /* that node (0-based) */
+  double rmax_X[3]; /* its reference position, mm (where a stall sits in the actuator) */
 } csfNewtonIter;
 
 /* Newton options (STYLE.md 17). */

@@ -34,6 +34,7 @@ static const char kUsage[] =
     "                          [--fibre-law linear|tension-only]\n"
     "                          [--p-step MPA] [--p-max MPA] [--newton-rtol R]\n"
     "                          [--model-out PRED.h5]\n"
+    "       crawlsim calibrate --report TABLE.h5 [--actuator ...] [--set ...] [--model-out PRED.h5]\n"
     "  Runs the full FE model on every calibration case (chamber modes, unequal pressures,\n"
     "  held-out combinations, stiffness probes, the leg under its weight), one file per case in\n"
     "  DIR (default calibration_cases/; finished cases are skipped: the run resumes), merges\n"
@@ -46,7 +47,8 @@ static const char kUsage[] =
     "  --p-max caps every case's end pressure (small tables for tests). With every mode\n"
     "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
     "  rules compared, stiffness); --model-out writes the model's predictions for\n"
-    "  tools/plot_calibration.py.\n";
+    "  tools/plot_calibration.py. --report reads a merged table (e.g. the shipped\n"
+    "  robot/calibration_fe_leg_modes.h5) and prints the same report without its case files.\n";
 
 enum { MAX_SETS = 32, MAX_PICK = CSF_CAL_MAX_CASES };
 
@@ -78,11 +80,42 @@ static int parseNumber(const char* flag, const char* v, double lo, double hi, do
 }
 
 
+/* Print the table's map and its calibration model's report (and write the predictions to
+ * model_out); closes cal. A pair-mode table has no model: an error only when `need_model`. */
+static int reportModel(csrCalibration* cal, const char* path, const char* model_out,
+                       int need_model) {
+  csError err;
+  cs_errorClear(&err);
+  csrBendMap map = csr_calibrationMap(cal);
+  printf("crawlsim calibrate: %s (pressures up to %g MPa)\n", map.name, map.p_max);
+  /* the model's errors against the table (robot_calibration_model.h) */
+  const csrCalModel* model = csr_calibrationModel(cal);
+  int rc = 0;
+  if (!model) {
+    if (need_model) {
+      fprintf(stderr, "crawlsim calibrate: %s: a pair-mode table, no mode model to report\n",
+              path);
+      rc = 1;
+    }
+  } else if (csr_calReportPrint(model, csr_calibrationTable(cal), stdout, &err) != CS_OK ||
+             (model_out &&
+              csr_calReportWrite(model, csr_calibrationTable(cal), model_out, &err) != CS_OK)) {
+    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+    rc = 1;
+  } else if (model_out) {
+    printf("crawlsim calibrate: model predictions %s\n", model_out);
+  }
+  csr_calibrationClose(cal);
+  return rc;
+}
+
+
 int csx_cmdCalibrate(int argc, char** argv) {
   const char* out = "calibration_fe.h5";
   const char* dir = "calibration_cases";
   const char* actname = "leg";
   const char* model_out = NULL;
+  const char* report = NULL;
   const char* sets[MAX_SETS];
   const char* pick[MAX_PICK];
   int nset = 0, npick = 0, list = 0, merge_only = 0;
@@ -137,6 +170,8 @@ int csx_cmdCalibrate(int argc, char** argv) {
       dir = v;
     } else if (!strcmp(a, "--model-out")) {
       model_out = v;
+    } else if (!strcmp(a, "--report")) {
+      report = v;
     } else if (!strcmp(a, "--actuator")) {
       actname = v;
     } else if (!strcmp(a, "--case")) {
@@ -194,6 +229,15 @@ int csx_cmdCalibrate(int argc, char** argv) {
   if (csr_actuatorValidate(&act, &err) != CS_OK) {
     fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
     return 1;
+  }
+  if (report) {
+    /* the report of a merged table alone (no case files needed) */
+    csrCalibration* cal = csr_calibrationOpen(report, &act, &err);
+    if (!cal) {
+      fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+      return 1;
+    }
+    return reportModel(cal, report, model_out, 1);
   }
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "crawlsim calibrate: %s: cannot create the case directory: %s\n", dir,
@@ -278,19 +322,5 @@ int csx_cmdCalibrate(int argc, char** argv) {
     fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
     return 1;
   }
-  csrBendMap map = csr_calibrationMap(cal);
-  printf("crawlsim calibrate: %s (pressures up to %g MPa)\n", map.name, map.p_max);
-  /* the model's errors against the table (robot_calibration_model.h) */
-  const csrCalModel* model = csr_calibrationModel(cal);
-  int rc = 0;
-  if (model && (csr_calReportPrint(model, csr_calibrationTable(cal), stdout, &err) != CS_OK ||
-                (model_out &&
-                 csr_calReportWrite(model, csr_calibrationTable(cal), model_out, &err) != CS_OK))) {
-    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
-    rc = 1;
-  } else if (model && model_out) {
-    printf("crawlsim calibrate: model predictions %s\n", model_out);
-  }
-  csr_calibrationClose(cal);
-  return rc;
+  return reportModel(cal, out, model_out, 0);
 }

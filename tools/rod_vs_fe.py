@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """The rod level against the FE on cases the calibration never fitted (issue 9).
 
-usage: /usr/bin/python3 tools/rod_vs_fe.py TABLE.h5 [--cases H1,H4,O2] [--loaded FE.h5]
-           [--tip-load FX,FY,FZ] [--chambers 1,2] [--crawlsim build/tools/crawlsim]
+usage: /usr/bin/python3 tools/rod_vs_fe.py TABLE.h5 [--cases H1,H4,O2] [--extra CASE.h5]...
+           [--loaded FE.h5] [--tip-load FX,FY,FZ] [--chambers 1,2] [--crawlsim build/tools/crawlsim]
            [--limit-pct 2] [--from-p 0] [--png rod_vs_fe.png]
 
 TABLE.h5 is an FE mode table (`crawlsim calibrate`, format "crawlsim-fe-calibration 1"). For
 every case of kind holdout or symmetry in it (or the --cases named), the rod's static bend curve
-is computed with that table as its calibration (`crawlsim bend --model rod --calibration TABLE
+is computed with that table as its calibration (--extra CASE.h5: the held-out cases of a case
+file of `crawlsim calibrate` that is not merged into the table, e.g. one run later) (`crawlsim bend --model rod --calibration TABLE
 --pressures r1,r2,r3,r4` at the case's rows), and its tip is compared with the FE's tip at
 every FE row: max |tip_rod - tip_FE| in mm and in % of the unloaded leg's length (the tip
 distance at p = 0 of the table's first case that is not loaded by gravity). --loaded FE.h5 adds a case under a dead tip load: an FE bend file (`crawlsim
@@ -72,6 +73,28 @@ def rod_curve(exe, table, pressures, p_max, p_step, extra, work):
         return read(f, "/pressure", out), read(f, "/tip_position", out)
 
 
+def case_rows(f, fname, n, exe, table, work, leg):
+    """The rod against the FE case /cases/n of the open file f: (row, curve)."""
+    g = "/cases/" + n
+    if g not in f:
+        fail(f"{fname}: no case {n}")
+    attrs = f[g].attrs
+    try:
+        ratio = [float(attrs[f"ratio{j}"]) for j in range(1, 5)]
+    except KeyError:
+        fail(f"{fname}: case {n} has no ratio1..ratio4")
+    p = read(f, g + "/pressure", fname)
+    tip = read(f, g + "/tip", fname)
+    if len(p) < 2 or tip.shape != (len(p), 3):
+        fail(f"{fname}: case {n}: pressure and tip do not match ({len(p)} rows, tip "
+             f"{tip.shape})")
+    step = float(p[1] - p[0])
+    pr, tr = rod_curve(exe, table, ratio, float(p[-1]), step, [], work)
+    d, pct = compare(p, tip, pr, tr, leg)
+    label = ":".join(f"{r:g}" for r in ratio)
+    return (n, f"chambers at {label} x p", d, pct, p), (n, p, pct)
+
+
 def compare(p_fe, tip_fe, p_rod, tip_rod, leg_mm):
     """|tip difference| at every FE row (the rod's tip linear between its rows)."""
     d = np.empty(len(p_fe))
@@ -86,6 +109,8 @@ def main():
     ap.add_argument("table")
     ap.add_argument("--cases", default="", help="comma-separated case names (default: every "
                     "holdout and symmetry case)")
+    ap.add_argument("--extra", action="append", default=[],
+                    help="a case file of held-out cases not merged into the table")
     ap.add_argument("--loaded", default=None, help="FE bend file under a dead tip load")
     ap.add_argument("--tip-load", default="0.05,0,0")
     ap.add_argument("--chambers", default="1,2")
@@ -119,25 +144,19 @@ def main():
         if not leg:
             fail(f"{a.table}: no case without gravity to measure the leg's length")
         for n in names:
-            g = "/cases/" + n
-            if g not in f:
-                fail(f"{a.table}: no case {n}")
-            attrs = f[g].attrs
-            try:
-                ratio = [float(attrs[f"ratio{j}"]) for j in range(1, 5)]
-            except KeyError:
-                fail(f"{a.table}: case {n} has no ratio1..ratio4")
-            p = read(f, g + "/pressure", a.table)
-            tip = read(f, g + "/tip", a.table)
-            if len(p) < 2 or tip.shape != (len(p), 3):
-                fail(f"{a.table}: case {n}: pressure and tip do not match ({len(p)} rows, tip "
-                     f"{tip.shape})")
-            step = float(p[1] - p[0])
-            pr, tr = rod_curve(a.crawlsim, a.table, ratio, float(p[-1]), step, [], work)
-            d, pct = compare(p, tip, pr, tr, leg)
-            label = ":".join(f"{r:g}" for r in ratio)
-            rows.append((n, f"chambers at {label} x p", d, pct, p))
-            curves.append((n, p, pct))
+            row, curve = case_rows(f, a.table, n, a.crawlsim, a.table, work, leg)
+            rows.append(row)
+            curves.append(curve)
+        for extra in a.extra:
+            with open_h5(extra) as e:
+                if "cases" not in e:
+                    fail(f"{extra}: missing group /cases")
+                for n in e["cases"]:
+                    if e["cases"][n].attrs.get("kind", b"") not in (b"holdout", "holdout"):
+                        continue
+                    row, curve = case_rows(e, extra, n, a.crawlsim, a.table, work, leg)
+                    rows.append(row)
+                    curves.append(curve)
         if a.loaded:
             with open_h5(a.loaded) as g:
                 p = read(g, "/pressure", a.loaded)

@@ -33,9 +33,11 @@ static void progress(void* user, const csfBendStep* s) {
 static void newtonMonitor(void* user, const csfNewtonIter* it) {
   (void)user;
   printf("  newton load %.5f it %2d  alpha %.3f (%d evals)  g0 %10.3e g1 %10.3e  |R| %9.3e  "
-         "fnorm %9.3e  neg. pivots %d  fibres: %4d switched, %4d smoothing, %4d taut\n",
+         "fnorm %9.3e  neg. pivots %d  fibres: %4d switched, %4d smoothing, %4d taut  "
+         "J_min %.4f  largest |R_a| %.3e N at node %d (%.2f, %.2f, %.2f) mm\n",
          it->load, it->iter, it->alpha, it->n_eval, it->g0, it->g1, it->rnorm, it->fnorm,
-         it->neg_pivots, it->fib_switch, it->fib_smooth, it->fib_taut);
+         it->neg_pivots, it->fib_switch, it->fib_smooth, it->fib_taut, it->jmin, it->rmax,
+         it->rmax_node, it->rmax_X[0], it->rmax_X[1], it->rmax_X[2]);
   fflush(stdout);
 }
 
@@ -115,6 +117,8 @@ int main(int argc, char** argv) {
   printf("linear solves: %s, %ld factorisations, %ld GMRES solves (%ld iterations, %.1f per "
          "solve)\n", info.solver, info.n_factor, info.n_krylov, info.n_krylov_iter,
          info.n_krylov ? (double)info.n_krylov_iter / (double)info.n_krylov : 0.0);
+  printf("newton: %ld watchdog returns to the best iterate, %ld repeated iterates (cycles)\n",
+         info.n_restore, info.n_repeat);
   printf("max |theta - 1| = %.3e; p_limit = %g MPa\n", info.max_j_dev, info.p_limit);
   if (info.n_volume_steps > 0) {
     printf("%s: p_limit %.6g MPa at %.3f deg; %d volume-controlled steps; %d hard "

@@ -62,8 +62,19 @@ int main(int argc, char** argv) {
     int sym, ord, thr;
   } cfg[] = {{0, 7, 1}, {2, 7, 1}, {0, 7, 2}, {2, 7, 2}, {2, 3, 1}, {2, 4, 1}, {2, 2, 1},
              {2, 6, 1}, {2, 0, 1}, {2, 3, 2}, {2, 4, 2}};
+  const char* only = getenv("BENCH_LINSOLVE_CONFIGS"); /* e.g. "1,3,11": a subset */
   const int ncfg = (int)(sizeof cfg / sizeof cfg[0]);
+  int have_ref = 0;
   for (int c = 0; c < ncfg; c++) {
+    if (only) {
+      char key[16];
+      snprintf(key, sizeof key, ",%d,", c);
+      char list[256];
+      snprintf(list, sizeof list, ",%s,", only);
+      if (!strstr(list, key)) {
+        continue;
+      }
+    }
     csfLinSolverOptions o = csf_linSolverDefault();
     o.symmetric = cfg[c].sym != 0;
     o.ordering = cfg[c].ord;
@@ -88,8 +99,9 @@ int main(int argc, char** argv) {
     bad |= csf_linSolverSolve(s, x);
     ts = csf_wallTime() - t0;
     double num = 0, den = 0;
-    if (c == 0) {
+    if (!have_ref) {
       memcpy(xref, x, (size_t)m->ndof * sizeof(double));
+      have_ref = 1;
     }
     for (int i = 0; i < m->ndof; i++) {
       num += (x[i] - xref[i]) * (x[i] - xref[i]);

@@ -58,6 +58,10 @@ static void test_bend_short(void) {
            bc.angle_total[i]);
   }
   CS_EXPECT(bc.m >= 2);
+  /* Newton never repeats an iterate: its watchdog's return to the best iterate must not retake
+   * the step that led away from it (fem_newton.c, CSF_LS_GROWTH) */
+  printf("  watchdog returns %ld, repeated iterates %ld\n", info.n_restore, info.n_repeat);
+  CS_EXPECT(info.n_repeat == 0);
   if (bc.m >= 2) {
     size_t k = bc.m - 1;
     /* equal segments, equal pressure: measured spread 2 %; 10 % catches a wrong chamber tag */
@@ -215,6 +219,7 @@ static void test_sweep_tolerance_keeps_the_answer(void) {
       CS_EXPECT_NEAR(bc[0].tip[3 + i], bc[1].tip[3 + i], 1e-4, 0);
     }
     CS_EXPECT(info[0].n_newton < info[1].n_newton);
+    CS_EXPECT(info[0].n_repeat == 0 && info[1].n_repeat == 0);
   }
   csr_bendCurveFree(&bc[0]);
   csr_bendCurveFree(&bc[1]);

@@ -74,6 +74,7 @@ static const SynthCase kSynthCases[] = {
     {"H5", "holdout", {1, 0.6, 0.3, 0.3}, 0.4, 0},
     {"H6", "holdout", {1, 0.8, 0.6, 0.4}, 0.4, 0},
     {"H7", "holdout", {1, 0.3, 0.7, 0.2}, 0.4, 0},
+    {"H8", "holdout", {1, 1.0 / 3.0, 0, 0}, 0.4, 0},
     {"G", "gravity", {0, 0, 0, 0}, 0.025, 0},
 };
 #define SYNTH_NCASE ((int)(sizeof kSynthCases / sizeof kSynthCases[0]))

@@ -102,7 +102,7 @@ CAL_CASES = [
     ("H1", "holdout", (1, 1 / 3, 0, 0), 0.3, False), ("H2", "holdout", (1, 1, 0.5, 0), 0.2, False),
     ("H3", "holdout", (1, 5 / 7, 5 / 7, 5 / 7), 0.35, False), ("H4", "holdout", (1, 0.75, 0.375, 0.75), 0.4, False),
     ("H5", "holdout", (1, 0.6, 0.3, 0.3), 0.4, False), ("H6", "holdout", (1, 0.8, 0.6, 0.4), 0.4, False),
-    ("H7", "holdout", (1, 0.3, 0.7, 0.2), 0.4, False),
+    ("H7", "holdout", (1, 0.3, 0.7, 0.2), 0.4, False), ("H8", "holdout", (1, 1 / 3, 0, 0), 0.4, False),
     ("G", "gravity", (0, 0, 0, 0), 0.025, False),
 ]
 

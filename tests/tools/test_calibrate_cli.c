@@ -107,7 +107,7 @@ static void test_calibrate_runs_resumes_and_merges(void) {
    * table holds only the case files of that law (O12 is left out) */
   cs_cliRun(exe_path, "calibrate --out calib_small.h5 --fibre-law linear --case G " SMALL_BASE,
             "calibrate", &r);
-  CS_EXPECT(r.status == 0 && strstr(r.out, "1 cases run, 0 already done, 1 of 21") != NULL);
+  CS_EXPECT(r.status == 0 && strstr(r.out, "1 cases run, 0 already done, 1 of 22") != NULL);
   f = H5Fopen("calib_small.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
   CS_EXPECT(f >= 0);
   if (f >= 0) {
@@ -173,7 +173,7 @@ static void test_merge_reports_the_model(void) {
   cs_cliRun(exe_path, "calibrate --merge-only --dir calib_synth_cases --out calib_synth.h5 "
             "--model-out calib_synth_pred.h5", "calibrate", &r);
   CS_EXPECT(r.status == 0);
-  const char* want[] = {"0 cases run, 0 already done, 21 of 21 finished",
+  const char* want[] = {"0 cases run, 0 already done, 22 of 22 finished",
                         "FE mode table (superposition + interpolated interactions; 12 modes; "
                         "0..0.5 MPa",
                         "left out of the fit one at a time", "rules compared",
@@ -186,11 +186,11 @@ static void test_merge_reports_the_model(void) {
     }
   }
   /* each held-out case meets the target (the truth is the rule's own form) */
-  const char* held[7] = {"    H1        holdout ", "    H2        holdout ",
+  const char* held[8] = {"    H1        holdout ", "    H2        holdout ",
                          "    H3        holdout ", "    H4        holdout ",
                          "    H5        holdout ", "    H6        holdout ",
-                         "    H7        holdout "};
-  for (int k = 0; k < 7; k++) {
+                         "    H7        holdout ", "    H8        holdout "};
+  for (int k = 0; k < 8; k++) {
     const char* line = strstr(r.out, held[k]);
     const char* eol = line ? strchr(line, '\n') : NULL;
     const char* meets = line ? strstr(line, "meets it") : NULL;
@@ -207,6 +207,20 @@ static void test_merge_reports_the_model(void) {
     CS_EXPECT(H5LTget_attribute_double(f, "/", "EI_8C10I_Nmm2", &a) >= 0 && a > 0);
     H5Fclose(f);
   }
+  /* --report reads the merged table alone and prints the same report (no case files needed) */
+  csCliResult rr;
+  cs_cliRun(exe_path, "calibrate --report calib_synth.h5", "calibrate", &rr);
+  CS_EXPECT(rr.status == 0 && strstr(rr.out, "held out (never fitted") != NULL &&
+            strstr(rr.out, "    H8        holdout ") != NULL);
+  {
+    const char* a = strstr(r.out, "calibration model:");
+    const char* b = strstr(rr.out, "calibration model:");
+    const size_t n = a && b ? (strlen(a) < strlen(b) ? strlen(a) : strlen(b)) : 0;
+    CS_EXPECT(n > 1000 && !strncmp(a, b, n)); /* the same report text (to the buffer's cut) */
+  }
+  cs_cliRun(exe_path, "calibrate --report no_such_table.h5", "calibrate", &rr);
+  CS_EXPECT(rr.status == 1 && strstr(rr.err, "no_such_table.h5") != NULL &&
+            strchr(rr.err, '\n') == rr.err + strlen(rr.err) - 1);
   /* the cases ran at the default Newton tolerance (1e-6, recorded as fe_newton_rtol): under
    * another one none of them counts as done, so nothing is merged */
   cs_cliRun(exe_path, "calibrate --merge-only --newton-rtol 1e-8 --dir calib_synth_cases "
@@ -229,7 +243,7 @@ static void test_list_names_every_case(void) {
   CS_EXPECT(r.status == 0);
   const char* names[] = {"O12", "O1", "O124", "O1234", "O13", "O12r05", "O12O34r3",
                          "O1O234r05", "O1O234r075", "O124O3r05", "O1O23r05O4r025",
-                         "O1O3r05", "O2", "H1", "H2", "H3", "H4", "H5", "H6", "H7", "G"};
+                         "O1O3r05", "O2", "H1", "H2", "H3", "H4", "H5", "H6", "H7", "H8", "G"};
   for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
     char want[32];
     snprintf(want, sizeof want, "%s ", names[k]);

@@ -157,6 +157,24 @@ if "$PY" "$RODFE" "$MODES" --crawlsim "$EXE" --cases H1,H2,O2 --png "$TMP/rodfe.
 else
   bad "rod_vs_fe: the rod meets 2 % of the leg on H1, H2, O2" "$TMP/out.txt"
 fi
+# --extra: held-out cases of a case file that is not merged into the table (here H2, copied out
+# of the table into a file of its own) are compared like the table's own
+"$PY" - "$MODES" "$TMP/extra_H2.h5" <<'PYEOF'
+import sys, h5py
+with h5py.File(sys.argv[1], "r") as src, h5py.File(sys.argv[2], "w") as dst:
+    for k, v in src.attrs.items():
+        dst.attrs[k] = v
+    src.copy("/cases/H2", dst, name="/cases/H2")
+PYEOF
+if "$PY" "$RODFE" "$MODES" --crawlsim "$EXE" --cases O2 --extra "$TMP/extra_H2.h5" \
+    >"$TMP/out.txt" 2>&1 && [ "$(grep -c '| meets |' "$TMP/out.txt")" -eq 2 ] \
+    && grep -q '^| H2 |' "$TMP/out.txt"; then
+  ok "rod_vs_fe --extra: a case file's held-out case is compared"
+else
+  bad "rod_vs_fe --extra: a case file's held-out case is compared" "$TMP/out.txt"
+fi
+expect_fail1 "rod_vs_fe extra file without cases" "fem.h5: missing group /cases" \
+  "$PY" "$RODFE" "$MODES" --crawlsim "$EXE" --cases O2 --extra "$TMP/fem.h5"
 expect_fail1 "rod_vs_fe no such case" "rod_vs_fe.py: .*no case H99" \
   "$PY" "$RODFE" "$MODES" --crawlsim "$EXE" --cases H99
 expect_fail1 "rod_vs_fe not a mode table" "not an FE calibration table of modes" \
