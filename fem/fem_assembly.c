@@ -211,6 +211,7 @@ int csf_assemble(const csfModel* m, csfData* d, double load, int want_k) {
       continue;
     }
     d->vratio[e] = vr;
+    d->jel[e] = jm;
     jmin = fmin(jmin, jm);
     const int* tv = me->tet + 10 * e;
     if (grav) {
@@ -430,4 +431,21 @@ double csf_reactionSum(const csfModel* m, const csfData* d, int dir) {
     }
   }
   return s;
+}
+
+
+double csf_worstElement(const csfModel* m, const csfData* d, double X[3]) {
+  const csfMesh* me = m->mesh;
+  int emin = 0;
+  for (int e = 1; e < me->ntet; e++) {
+    emin = d->jel[e] < d->jel[emin] ? e : emin;
+  }
+  for (int i = 0; i < 3; i++) {
+    double c = 0;
+    for (int a = 0; a < 4; a++) {
+      c += 0.25 * me->x[3 * me->tet[10 * emin + a] + i];
+    }
+    X[i] = c;
+  }
+  return d->jel[emin];
 }

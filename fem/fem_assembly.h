@@ -40,6 +40,12 @@ void csf_tetCauchyAt(const csfModel* m, const csfData* d, int e, double sigma[6]
 /* Reaction/internal force sum over dofs with fixed[] set and a given direction (0..2), N. */
 double csf_reactionSum(const csfModel* m, const csfData* d, int dir);
 
+/* The element with the smallest pointwise J (det F at its quadrature points) of the last
+ * assembly: returns that J and writes the element's reference centroid (mm, the mean of its
+ * four corners) to X. Element distortion shows here long before the element's mean volume
+ * (theta) moves: the mixed form keeps theta near 1 while a coarse quadratic element folds. */
+double csf_worstElement(const csfModel* m, const csfData* d, double X[3]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -661,6 +661,7 @@ static csStatus stageFinish(Run* r, csError* err) {
   for (int e = 0; e < r->w.fe.mesh->ntet; e++) {
     r->info.max_j_dev = fmax(r->info.max_j_dev, fabs(d->vratio[e] - 1.0));
   }
+  r->info.j_min = csf_worstElement(m, d, r->info.j_min_X);
   if (o->vtu_path) {
     st = csf_writeVtu(m, d, o->vtu_path, err);
   }

@@ -76,6 +76,9 @@ typedef struct csfBendInfo_ {
   int neg_pivots_max;  /* most negative pivots met on the path (-1: LU, no inertia) */
   char limit_note[200]; /* why the path past the limit ended without resuming ("" = n/a) */
   double max_j_dev; /* max |theta - 1| over elements at the last state (volume preservation) */
+  double j_min;     /* smallest pointwise J (det F at quadrature points) at the last state: the
+                     * most distorted element (csf_worstElement) */
+  double j_min_X[3]; /* its reference centroid, mm */
   int n_until_trials, n_until_failed; /* --until-angle refinement: equilibrium trials, failures */
   long n_probe_newton; /* Newton iterations spent in stiffness probes (included in n_newton) */
   char until_note[200]; /* the last failed trial's pressure and Newton message ("" = none) */

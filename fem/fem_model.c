@@ -188,6 +188,7 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
   d->theta = calloc(nt, sizeof(double));
   d->pel = calloc(nt, sizeof(double));
   d->vratio = calloc(nt, sizeof(double));
+  d->jel = calloc(nt, sizeof(double));
   d->theta_save = calloc(nt, sizeof(double));
   d->u_best = calloc(n, sizeof(double));
   d->theta_best = calloc(nt, sizeof(double));
@@ -208,14 +209,14 @@ csfData* csf_dataCreate(const csfModel* m, csError* err) {
   d->fext1 = calloc(n, sizeof(double));
   d->du2 = calloc(n, sizeof(double));
   if (!d->u_best || !d->theta_best || !d->fib_S_best || !d->kry_b || !d->kry_work || !d->fib_zone || !d->fext1 || !d->du2 || !d->u || !d->r || !d->du || !d->u_save ||
-      !d->kval || !d->theta || !d->pel || !d->vratio || !d->theta_save || !d->vr0 || !d->gel || !d->g0 || !d->fib_S || !d->fib_E ||
+      !d->kval || !d->theta || !d->pel || !d->vratio || !d->jel || !d->theta_save || !d->vr0 || !d->gel || !d->g0 || !d->fib_S || !d->fib_E ||
       !d->fib_d || !d->fib_S_save || !d->fib_E0 || !d->fib_d0) {
     csf_dataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "fem_model: out of memory (%zu dofs)", n);
     return NULL;
   }
   for (size_t e = 0; e < nt; e++) {
-    d->theta[e] = d->vratio[e] = 1.0; /* reference state: p = 0 */
+    d->theta[e] = d->vratio[e] = d->jel[e] = 1.0; /* reference state: p = 0 */
   }
   for (int f = 0; f < m->nfib; f++) {
     double dS;
@@ -238,7 +239,7 @@ void csf_dataDestroy(csfData* d) {
     return;
   }
   free(d->u), free(d->r), free(d->du), free(d->u_save), free(d->kval), free(d->theta);
-  free(d->pel), free(d->vratio), free(d->theta_save), free(d->vr0), free(d->gel), free(d->g0);
+  free(d->pel), free(d->vratio), free(d->jel), free(d->theta_save), free(d->vr0), free(d->gel), free(d->g0);
   free(d->fib_S), free(d->fib_E), free(d->fib_d), free(d->fib_S_save), free(d->fib_E0);
   free(d->fib_d0), free(d->fib_zone), free(d->kry_b), free(d->u_best), free(d->theta_best), free(d->fib_S_best), free(d->kry_work), free(d->fext1), free(d->du2);
   csf_linSolverDestroy(d->ls);

@@ -63,8 +63,9 @@ static int newtonStalled(double* hist, int it, double rnorm, double* recent, dou
 }
 
 
-/* the free node with the largest nodal residual |R_a| (the monitor's diagnostics) */
-static void largestNodalResidual(const csfModel* m, const csfData* d, csfNewtonIter* rep) {
+/* where the monitor looks: the free node with the largest nodal residual |R_a| and the element
+ * with the smallest pointwise J (diagnostics of a stall) */
+static void monitorLocate(const csfModel* m, const csfData* d, csfNewtonIter* rep) {
   const int nn = m->ndof / 3;
   for (int a = 0; a < nn; a++) {
     double s = 0.0;
@@ -82,6 +83,7 @@ static void largestNodalResidual(const csfModel* m, const csfData* d, csfNewtonI
       rep->rmax_X[i] = m->mesh->x[3 * rep->rmax_node + i];
     }
   }
+  csf_worstElement(m, d, rep->jmin_X);
 }
 
 
@@ -427,9 +429,9 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
     }
     /* fibre law zones: how many fibres changed zone in this step (diagnostics) */
     csfNewtonIter rep = {load, it, alpha, neval, g0, g1, d->rnorm, d->fnorm, 0, 0, 0,
-                         csf_linSolverNegativePivots(d->ls), d->jmin, 0, -1, {0, 0, 0}};
+                         csf_linSolverNegativePivots(d->ls), d->jmin, 0, -1, {0, 0, 0}, {0, 0, 0}};
     if (opt->monitor) {
-      largestNodalResidual(m, d, &rep);
+      monitorLocate(m, d, &rep);
     }
     for (int f = 0; f < m->nfib; f++) {
       const double E = d->fib_E[f];
@@ -575,8 +577,8 @@ csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
     }
     if (opt->monitor) {
       csfNewtonIter rep = {load, it, alpha, 1, 0, 0, d->rnorm, d->fnorm, 0, 0, 0,
-                           csf_linSolverNegativePivots(d->ls), d->jmin, 0, -1, {0, 0, 0}};
-      largestNodalResidual(m, d, &rep);
+                           csf_linSolverNegativePivots(d->ls), d->jmin, 0, -1, {0, 0, 0}, {0, 0, 0}};
+      monitorLocate(m, d, &rep);
       opt->monitor(opt->monitor_user, &rep);
     }
   }

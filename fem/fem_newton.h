@@ -45,6 +45,7 @@ typedef struct csfNewtonIter_ {
   double rmax;      /* largest nodal residual |R_a| (3-vector) on a free node after the step, N */
   int rmax_node;    /* that node (0-based) */
   double rmax_X[3]; /* its reference position, mm (where a stall sits in the actuator) */
+  double jmin_X[3]; /* reference centroid of the element with the smallest J, mm */
 } csfNewtonIter;
 
 /* Newton options (STYLE.md 17). */

@@ -159,8 +159,10 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
     } else if (!isnan(info.p_limit)) {
       fprintf(stderr, "crawlsim bend: fe: the sweep ends at %.5f MPa (%.2f deg): pressure control "
               "failed there and the pressure did not fall under volume control (no limit point "
-              "shown)%s%s\n", info.p_limit, info.angle_limit,
-              info.limit_note[0] ? "; " : "", info.limit_note);
+              "shown)%s%s; the most distorted element (reference centroid %.2f, %.2f, %.2f mm) "
+              "has a pointwise J of %.3f (a stall with J far below 1 is the mesh's: refine it)\n",
+              info.p_limit, info.angle_limit, info.limit_note[0] ? "; " : "", info.limit_note,
+              info.j_min_X[0], info.j_min_X[1], info.j_min_X[2], info.j_min);
     }
   }
   return st;

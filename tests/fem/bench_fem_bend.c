@@ -34,9 +34,9 @@ static void newtonMonitor(void* user, const csfNewtonIter* it) {
   (void)user;
   printf("  newton load %.5f it %2d  alpha %.3f (%d evals)  g0 %10.3e g1 %10.3e  |R| %9.3e  "
          "fnorm %9.3e  neg. pivots %d  fibres: %4d switched, %4d smoothing, %4d taut  "
-         "J_min %.4f  largest |R_a| %.3e N at node %d (%.2f, %.2f, %.2f) mm\n",
+         "J_min %.4f at (%.2f, %.2f, %.2f) mm  largest |R_a| %.3e N at node %d (%.2f, %.2f, %.2f) mm\n",
          it->load, it->iter, it->alpha, it->n_eval, it->g0, it->g1, it->rnorm, it->fnorm,
-         it->neg_pivots, it->fib_switch, it->fib_smooth, it->fib_taut, it->jmin, it->rmax,
+         it->neg_pivots, it->fib_switch, it->fib_smooth, it->fib_taut, it->jmin, it->jmin_X[0], it->jmin_X[1], it->jmin_X[2], it->rmax,
          it->rmax_node, it->rmax_X[0], it->rmax_X[1], it->rmax_X[2]);
   fflush(stdout);
 }
@@ -119,7 +119,9 @@ int main(int argc, char** argv) {
          info.n_krylov ? (double)info.n_krylov_iter / (double)info.n_krylov : 0.0);
   printf("newton: %ld watchdog returns to the best iterate, %ld repeated iterates (cycles)\n",
          info.n_restore, info.n_repeat);
-  printf("max |theta - 1| = %.3e; p_limit = %g MPa\n", info.max_j_dev, info.p_limit);
+  printf("max |theta - 1| = %.3e; smallest pointwise J %.4f (element at %.2f, %.2f, %.2f mm); "
+         "p_limit = %g MPa\n", info.max_j_dev, info.j_min, info.j_min_X[0], info.j_min_X[1],
+         info.j_min_X[2], info.p_limit);
   if (info.n_volume_steps > 0) {
     printf("%s: p_limit %.6g MPa at %.3f deg; %d volume-controlled steps; %d hard "
            "stretches (pressure rising); %s\n",
