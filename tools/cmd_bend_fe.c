@@ -17,6 +17,11 @@
 #include "fem_bend.h"
 #include "robot_bend_io.h"
 
+/* a pointwise J below this at a stall: the r1 2 / b 3 and r1 1.5 / b 3 sweeps stalled with
+ * their worst element at 0.41 and 0.28, and refining (l_soft 4 -> 3) moved the first stall from
+ * 0.459 to 0.468 MPa, where J had again fallen to 0.43 (README, "Design studies") */
+#define CSX_J_DISTORTED 0.5
+
 /* the FE sweep's report lines: one per converged step, and a heartbeat at least every
  * kHeartbeatS seconds while Newton works inside a step (cut-backs, continuation), so that a long
  * step never leaves the user without a line for more than a minute */
@@ -160,9 +165,11 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
       fprintf(stderr, "crawlsim bend: fe: the sweep ends at %.5f MPa (%.2f deg): pressure control "
               "failed there and the pressure did not fall under volume control (no limit point "
               "shown)%s%s; the most distorted element (reference centroid %.2f, %.2f, %.2f mm) "
-              "has a pointwise J of %.3f (a stall with J far below 1 is the mesh's: refine it)\n",
+              "has a pointwise J of %.3f%s\n",
               info.p_limit, info.angle_limit, info.limit_note[0] ? "; " : "", info.limit_note,
-              info.j_min_X[0], info.j_min_X[1], info.j_min_X[2], info.j_min);
+              info.j_min_X[0], info.j_min_X[1], info.j_min_X[2], info.j_min,
+              info.j_min < CSX_J_DISTORTED ? " (its elements fold: a finer mesh moves such a "
+                                             "stall, README \"Design studies\")" : "");
     }
   }
   return st;
