@@ -185,6 +185,42 @@ static void test_equibiaxial(void) {
 }
 
 
+/* csf_worstElement: under u = (0, 0, -a z^2) on the unit cube (exact in Tet10) the pointwise J is
+ * 1 - 2 a z, so the smallest J sits in the top layer (z in [0.5, 1]) and lies between 1 - 2a
+ * (the top face) and 1 - a (the layer's bottom); a homogeneous J = 0.5 is returned exactly */
+static void test_worst_element(void) {
+  csError err = {0};
+  int n[3] = {2, 2, 2};
+  csfMesh* me = csf_meshCreateBox(n, NULL, NULL, 0.0, &err);
+  csfMaterial mat = csf_materialDefault(0.11, 0.02, 1130e-12);
+  csfModel* m = csf_modelCreate(me, &mat, &err);
+  CS_EXPECT(csf_modelFinalize(m, &err) == CS_OK);
+  csfData* d = csf_dataCreate(m, &err);
+  const double a = 0.2;
+  for (int i = 0; i < me->nnode; i++) {
+    const double z = me->x[3 * i + 2];
+    d->u[3 * i] = d->u[3 * i + 1] = 0.0;
+    d->u[3 * i + 2] = -a * z * z;
+  }
+  csf_assemble(m, d, 0.0, 0);
+  double X[3];
+  double j = csf_worstElement(m, d, X);
+  printf("  u = -a z^2: smallest J %.6f at (%.3f, %.3f, %.3f); bounds [%.3f, %.3f]\n", j, X[0],
+         X[1], X[2], 1 - 2 * a, 1 - a);
+  CS_EXPECT(j >= 1 - 2 * a - 1e-12 && j <= 1 - a + 1e-12);
+  CS_EXPECT(X[2] > 0.5 && X[2] < 1.0);
+  CS_EXPECT_NEAR(j, d->jmin, 0, 0); /* the element holding the assembly's minimum */
+  for (int i = 0; i < me->nnode; i++) {
+    d->u[3 * i + 2] = -0.5 * me->x[3 * i + 2];
+  }
+  csf_assemble(m, d, 0.0, 0);
+  CS_EXPECT_NEAR(csf_worstElement(m, d, X), 0.5, 1e-12, 0);
+  csf_dataDestroy(d);
+  csf_modelDestroy(m);
+  csf_meshDestroy(me);
+}
+
+
 /* nonlinear patch test: affine boundary displacement on a distorted mesh -> affine field */
 static void test_patch(void) {
   csError err = {0};
@@ -234,5 +270,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_uniaxial);
   CS_RUN(test_equibiaxial);
   CS_RUN(test_patch);
+  CS_RUN(test_worst_element);
   return cs_testSummary();
 }
