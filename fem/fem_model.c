@@ -239,7 +239,8 @@ void csf_dataDestroy(csfData* d) {
     return;
   }
   free(d->u), free(d->r), free(d->du), free(d->u_save), free(d->kval), free(d->theta);
-  free(d->pel), free(d->vratio), free(d->jel), free(d->theta_save), free(d->vr0), free(d->gel), free(d->g0);
+  free(d->pel), free(d->vratio), free(d->jel), free(d->theta_save), free(d->vr0), free(d->gel);
+  free(d->g0);
   free(d->fib_S), free(d->fib_E), free(d->fib_d), free(d->fib_S_save), free(d->fib_E0);
   free(d->fib_d0), free(d->fib_zone), free(d->kry_b), free(d->u_best), free(d->theta_best), free(d->fib_S_best), free(d->kry_work), free(d->fext1), free(d->du2);
   csf_linSolverDestroy(d->ls);

@@ -120,7 +120,8 @@ typedef struct csfData_ {
   double* theta;  /* (ntet) element dilatation state theta_e of the three-field form (mixed) */
   double* pel;    /* (ntet) element pressure state kappa (theta_e - 1), MPa (mixed form) */
   double* vratio; /* (ntet) element volume ratio v/V at the last assembly */
-  double* jel;    /* (ntet) element's smallest pointwise J at its quadrature points, last assembly */
+  double* jel;    /* (ntet) element's smallest pointwise J at its quadrature points (last
+                   * assembly) */
   double* gel;    /* (ntet x 30) g_e = int cof(F) : G dV at the last assembly, mm^2 */
   double* theta_save; /* (ntet) scratch: theta at Newton entry */
   double* u_best, *theta_best, *fib_S_best; /* (ndof, ntet, nfib) scratch: the best Newton

@@ -17,8 +17,8 @@
  * Newton step is accepted unless an element inverts or the residual grows by more than
  * CSF_LS_GROWTH_FIRST; only when CSF_LS_WATCH accepted steps in a row have not improved on the
  * best residual so far does Newton return to the best iterate and backtrack from it, halving
- * while the residual would grow by more than CSF_LS_GROWTH (i.e. not decrease). A decrease test on every step is
- * wrong here: with kappa = 2000 mu a full Newton step leaves a volumetric residual
+ * while the residual would grow by more than CSF_LS_GROWTH (i.e. not decrease). A decrease test
+ * on every step is wrong here: with kappa = 2000 mu a full Newton step leaves a volumetric residual
  * O(kappa eps^2) that the next iteration removes (measured on the tube: residual x120 after the
  * full step, then quadratic convergence; an Armijo test cut every step to 1/16 and stalled), and
  * that happens near the solution too: on the baseline at 0.2334 MPa |R| reached 1.3e-2 N in 4
@@ -67,6 +67,8 @@ static int newtonStalled(double* hist, int it, double rnorm, double* recent, dou
  * with the smallest pointwise J (diagnostics of a stall) */
 static void monitorLocate(const csfModel* m, const csfData* d, csfNewtonIter* rep) {
   const int nn = m->ndof / 3;
+  rep->rmax = 0.0;
+  rep->rmax_node = -1;
   for (int a = 0; a < nn; a++) {
     double s = 0.0;
     for (int i = 0; i < 3; i++) {
@@ -83,7 +85,7 @@ static void monitorLocate(const csfModel* m, const csfData* d, csfNewtonIter* re
       rep->rmax_X[i] = m->mesh->x[3 * rep->rmax_node + i];
     }
   }
-  csf_worstElement(m, d, rep->jmin_X);
+  rep->jmin = csf_worstElement(m, d, rep->jmin_X);
 }
 
 
@@ -428,8 +430,9 @@ csStatus csf_newtonSolve(const csfModel* m, csfData* d, double load, const csfNe
                          load, it);
     }
     /* fibre law zones: how many fibres changed zone in this step (diagnostics) */
+    /* where the trouble sits (rmax..., jmin_X): monitorLocate */
     csfNewtonIter rep = {load, it, alpha, neval, g0, g1, d->rnorm, d->fnorm, 0, 0, 0,
-                         csf_linSolverNegativePivots(d->ls), d->jmin, 0, -1, {0, 0, 0}, {0, 0, 0}};
+                         csf_linSolverNegativePivots(d->ls), .jmin = d->jmin};
     if (opt->monitor) {
       monitorLocate(m, d, &rep);
     }
@@ -577,7 +580,7 @@ csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
     }
     if (opt->monitor) {
       csfNewtonIter rep = {load, it, alpha, 1, 0, 0, d->rnorm, d->fnorm, 0, 0, 0,
-                           csf_linSolverNegativePivots(d->ls), d->jmin, 0, -1, {0, 0, 0}, {0, 0, 0}};
+                           csf_linSolverNegativePivots(d->ls), .jmin = d->jmin};
       monitorLocate(m, d, &rep);
       opt->monitor(opt->monitor_user, &rep);
     }

@@ -34,10 +34,12 @@ static void newtonMonitor(void* user, const csfNewtonIter* it) {
   (void)user;
   printf("  newton load %.5f it %2d  alpha %.3f (%d evals)  g0 %10.3e g1 %10.3e  |R| %9.3e  "
          "fnorm %9.3e  neg. pivots %d  fibres: %4d switched, %4d smoothing, %4d taut  "
-         "J_min %.4f at (%.2f, %.2f, %.2f) mm  largest |R_a| %.3e N at node %d (%.2f, %.2f, %.2f) mm\n",
+         "J_min %.4f at (%.2f, %.2f, %.2f) mm  largest |R_a| %.3e N at node %d "
+         "(%.2f, %.2f, %.2f) mm\n",
          it->load, it->iter, it->alpha, it->n_eval, it->g0, it->g1, it->rnorm, it->fnorm,
-         it->neg_pivots, it->fib_switch, it->fib_smooth, it->fib_taut, it->jmin, it->jmin_X[0], it->jmin_X[1], it->jmin_X[2], it->rmax,
-         it->rmax_node, it->rmax_X[0], it->rmax_X[1], it->rmax_X[2]);
+         it->neg_pivots, it->fib_switch, it->fib_smooth, it->fib_taut, it->jmin, it->jmin_X[0],
+         it->jmin_X[1], it->jmin_X[2], it->rmax, it->rmax_node, it->rmax_X[0], it->rmax_X[1],
+         it->rmax_X[2]);
   fflush(stdout);
 }
 
