@@ -357,7 +357,11 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
      * lost in the run), but |R| misjudges the start: its excess sits in the stiff fibre
      * directions, the shortfall of s_conv in the soft bending mode (at 0.031 MPa the secant's
      * 770 N converged in 13 iterations, s_conv's 200 N in 21), and the guard doubled the
-     * iterations at 0.03-0.05 MPa */
+     * iterations at 0.03-0.05 MPa. Residuals at the target itself, before any Newton step
+     * (2026-12-02, baseline 360 deg run): the predictors that converge have 600-3900 times
+     * the converged state's (717 against 1.1 N at 0.031 MPa, 9731 against 2.5 N at 0.178),
+     * so no threshold on that ratio separates the failures either; a guard at 20x sent the
+     * step at 0.031 MPa to s_conv and took two cut-backs there */
     if (plain) {
       csf_stateSet(m, d, r->w.s_conv);
     } else if (r->have_pp && r->p > r->p_prev && r->p_prev > r->p_pp) {
@@ -682,6 +686,7 @@ static void fillStats(Run* r) {
   r->info.t_solve = d->stats.t_solve;
   r->info.factor_nnz = csf_linSolverFactorNnz(d->ls);
   r->info.n_factor = d->stats.n_factor;
+  r->info.n_repivot = csf_linSolverRepivots(d->ls);
   r->info.n_krylov = d->stats.n_krylov;
   r->info.n_krylov_iter = d->stats.n_krylov_iter;
   r->info.n_restore = d->stats.n_restore;

@@ -52,6 +52,7 @@ typedef struct csfBendInfo_ {
   double t_assemble, t_factor, t_solve;    /* wall s, accumulated */
   double factor_nnz;                       /* entries of the sparse factors */
   long n_factor;       /* numeric factorisations of the tangent */
+  int n_repivot;       /* of them, unpivoted LDL^T redone with pivoting (fem_linsolve.h) */
   long n_krylov, n_krylov_iter; /* linear solves by GMRES on an older factorisation, iterations */
   long n_restore, n_repeat;     /* Newton's watchdog returns and repeated iterates (csfStats) */
   char solver[32];     /* sparse solver and mode used ("mumps-ldlt", ...) */

@@ -35,6 +35,12 @@ typedef struct csfLinSolverOptions_ {
   int threads;   /* threads of the factorisation and solves (MUMPS OpenMP and threaded BLAS);
                   * 0 = by size: one below CSF_MT_MIN_FLOPS (fem_linsolve.c), else the OpenMP
                   * default (all cores) */
+  double pivot_threshold; /* MUMPS CNTL(1), the relative threshold of partial pivoting. For
+                           * LDL^T, < 0 (default) = checked: no pivoting (0); a factorisation
+                           * that meets a zero pivot, or an indefinite one whose solve misses a
+                           * relative residual of 1e-8, is redone with MUMPS's 0.01, and so is
+                           * the next one (fem_linsolve.c). >= 0: fixed. LU: < 0 keeps MUMPS's
+                           * default, >= 0 sets it. */
 } csfLinSolverOptions;
 
 /* MUMPS, unsymmetric, automatic ordering, threads by size. */
@@ -71,6 +77,11 @@ const char* csf_linSolverName(const csfLinSolver* s);
  * a positive definite tangent (0); a count that grows along a path marks a critical point
  * (limit or bifurcation) crossed. -1 for LU and KLU (no inertia). */
 int csf_linSolverNegativePivots(const csfLinSolver* s);
+
+/* How many unpivoted LDL^T factorisations (pivot_threshold < 0) were redone with threshold
+ * pivoting: a zero pivot, or an indefinite matrix whose solve missed its residual check. 0 for
+ * LU and KLU. */
+int csf_linSolverRepivots(const csfLinSolver* s);
 
 /* Ordering actually used (MUMPS INFOG(7); -1 for KLU). */
 int csf_linSolverOrdering(const csfLinSolver* s);

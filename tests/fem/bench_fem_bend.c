@@ -116,8 +116,9 @@ int main(int argc, char** argv) {
          "solves %.2f (+ rest); %d steps, %ld Newton iterations, %d cutbacks; factor nnz %.3g\n",
          info.t_total, info.t_mesh, info.t_setup, info.t_assemble, info.t_factor, info.t_solve,
          info.n_steps, info.n_newton, info.n_cutbacks, info.factor_nnz);
-  printf("linear solves: %s, %ld factorisations, %ld GMRES solves (%ld iterations, %.1f per "
-         "solve)\n", info.solver, info.n_factor, info.n_krylov, info.n_krylov_iter,
+  printf("linear solves: %s, %ld factorisations (%d redone with pivoting), %ld GMRES solves "
+         "(%ld iterations, %.1f per solve)\n", info.solver, info.n_factor, info.n_repivot,
+         info.n_krylov, info.n_krylov_iter,
          info.n_krylov ? (double)info.n_krylov_iter / (double)info.n_krylov : 0.0);
   printf("newton: %ld watchdog returns to the best iterate, %ld repeated iterates (cycles)\n",
          info.n_restore, info.n_repeat);

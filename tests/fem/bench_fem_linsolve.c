@@ -2,9 +2,11 @@
  * actuator mesh: analysis, numeric factorisation and solve times for each solver mode,
  * ordering and thread count, on the tangent of the pressurised actuator at u = 0.
  * Usage: bench_fem_linsolve MESH.msh [pressure MPa] [repeats]
- * Prints one line per configuration: mode, ordering used, threads, analysis s, factor s
+ * Prints one line per configuration: mode, ordering used, threads, pivot threshold (CNTL(1);
+ * -1: the library's default, for LDL^T unpivoted with a checked solve), analysis s, factor s
  * (median of the repeats), solve s, factor entries, flops, and the relative difference of the
- * solution from the first configuration's. */
+ * solution from the first configuration's. BENCH_LINSOLVE_CONFIGS=1,12 runs a subset (here:
+ * LDL^T on one thread, unpivoted and with MUMPS's threshold 0.01). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -60,8 +62,10 @@ int main(int argc, char** argv) {
   }
   struct {
     int sym, ord, thr;
-  } cfg[] = {{0, 7, 1}, {2, 7, 1}, {0, 7, 2}, {2, 7, 2}, {2, 3, 1}, {2, 4, 1}, {2, 2, 1},
-             {2, 6, 1}, {2, 0, 1}, {2, 3, 2}, {2, 4, 2}};
+    double piv; /* CNTL(1); < 0: the library's default (LDL^T: checked unpivoted, LU: MUMPS's) */
+  } cfg[] = {{0, 7, 1, -1}, {2, 7, 1, -1},  {0, 7, 2, -1},  {2, 7, 2, -1},  {2, 3, 1, -1},
+             {2, 4, 1, -1}, {2, 2, 1, -1},  {2, 6, 1, -1},  {2, 0, 1, -1},  {2, 3, 2, -1},
+             {2, 4, 2, -1}, {2, 7, 2, .01}, {2, 7, 1, .01}, {2, 4, 2, .01}, {2, 4, 1, .01}};
   const char* only = getenv("BENCH_LINSOLVE_CONFIGS"); /* e.g. "1,3,11": a subset */
   const int ncfg = (int)(sizeof cfg / sizeof cfg[0]);
   int have_ref = 0;
@@ -79,6 +83,7 @@ int main(int argc, char** argv) {
     o.symmetric = cfg[c].sym != 0;
     o.ordering = cfg[c].ord;
     o.threads = cfg[c].thr;
+    o.pivot_threshold = cfg[c].piv;
     double t0 = csf_wallTime();
     csfLinSolver* s = csf_linSolverCreate(&o, m->ndof, m->row_ptr, m->col, &err);
     double ta = csf_wallTime() - t0;
@@ -107,9 +112,9 @@ int main(int argc, char** argv) {
       num += (x[i] - xref[i]) * (x[i] - xref[i]);
       den += xref[i] * xref[i];
     }
-    printf("%-10s ordering %d (asked %d) threads %d | analysis %6.2f s  factor %6.2f s  solve "
+    printf("%-10s ordering %d (asked %d) threads %d pivot %5.2f | analysis %6.2f s  factor %6.2f s  solve "
            "%5.3f s | factors %.3g entries, %.3g flops | rel diff %.2e%s\n",
-           csf_linSolverName(s), csf_linSolverOrdering(s), cfg[c].ord, cfg[c].thr, ta,
+           csf_linSolverName(s), csf_linSolverOrdering(s), cfg[c].ord, cfg[c].thr, cfg[c].piv, ta,
            tf[(rep < 16 ? rep : 16) / 2], ts, csf_linSolverFactorNnz(s), csf_linSolverFlops(s),
            sqrt(num / (den > 0 ? den : 1)), bad ? "  FAILED" : "");
     fflush(stdout);

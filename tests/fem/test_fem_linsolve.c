@@ -201,10 +201,66 @@ static void test_inertia_counts_negative_eigenvalues(void) {
 }
 
 
+/* Checked unpivoted LDL^T (fem_linsolve.h): a definite matrix is factored without pivoting; a
+ * symmetric matrix that is regular but has zero diagonal entries ([[d, 1], [1, d]] blocks with
+ * d = 0: eigenvalues +-1, no 1x1 pivot exists) must be redone with threshold pivoting and still
+ * solve to round-off; the next factorisation pivots too, the one after does not. The solutions
+ * are checked against the known inverse. */
+static void test_unpivoted_ldlt_falls_back_to_pivoting(void) {
+  enum { NB = 20, N = 2 * NB };
+  int row_ptr[N + 1], col[2 * N];
+  double val[2 * N];
+  int q = 0;
+  for (int i = 0; i < N; i++) {
+    row_ptr[i] = q;
+    const int i0 = i - i % 2;
+    col[q++] = i0;
+    col[q++] = i0 + 1;
+  }
+  row_ptr[N] = q;
+  csError err = {0};
+  csfLinSolverOptions o = csf_linSolverDefault();
+  o.symmetric = 1;
+  csfLinSolver* s = csf_linSolverCreate(&o, N, row_ptr, col, &err);
+  CS_EXPECT(s != NULL);
+  if (!s) {
+    return;
+  }
+  const double dsets[] = {3.0, 0.0, 3.0, 3.0}; /* definite, indefinite, definite, definite */
+  const int repiv[] = {0, 1, 1, 1};             /* cumulative redone factorisations */
+  for (int k = 0; k < 4; k++) {
+    const double dd = dsets[k];
+    for (int i = 0; i < N; i++) {
+      for (int t = row_ptr[i]; t < row_ptr[i + 1]; t++) {
+        val[t] = col[t] == i ? dd : 1.0;
+      }
+    }
+    CS_EXPECT(csf_linSolverFactor(s, val) == 0);
+    /* b = (1, 2, 1, 2, ...): each block's solution is [[d, 1], [1, d]]^-1 (1, 2) */
+    double x[N];
+    for (int i = 0; i < N; i++) {
+      x[i] = 1.0 + i % 2;
+    }
+    CS_EXPECT(csf_linSolverSolve(s, x) == 0);
+    CS_EXPECT(csf_linSolverNegativePivots(s) == (dd == 0.0 ? NB : 0));
+    CS_EXPECT(csf_linSolverRepivots(s) == repiv[k]);
+    const double det = dd * dd - 1.0;
+    const double x0 = (dd * 1.0 - 2.0) / det, x1 = (dd * 2.0 - 1.0) / det;
+    double e = 0;
+    for (int i = 0; i < N; i++) {
+      e = fmax(e, fabs(x[i] - (i % 2 ? x1 : x0)));
+    }
+    CS_EXPECT(e < 1e-13);
+  }
+  csf_linSolverDestroy(s);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_symmetry_follows_the_surface);
   CS_RUN(test_solver_paths_agree);
   CS_RUN(test_inertia_counts_negative_eigenvalues);
+  CS_RUN(test_unpivoted_ldlt_falls_back_to_pivoting);
   return cs_testSummary();
 }
