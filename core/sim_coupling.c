@@ -38,6 +38,41 @@
  * the centre's translation and rotation through the hips' lever arms (8 legs at 65-75 mm), it
  * diverged at h = 2 ms on the flat road, where the full solve runs.
  *
+ * Gauss-Seidel scheme (`--coupling gs`). The support steps FIRST, then every leg advances along
+ * the support's ACTUAL motion over [t, t + H] (cubic Hermite between the support's states at
+ * both ends, the same states the next step starts from: a hip's path is C1 across exchanges,
+ * where the Jacobi schemes restart each advance from the actual hip and jump off the predicted
+ * end by the predictor's error). The support cannot know the legs' wrench of the step yet; it
+ * takes the last step's, W0 = W_{n-1}, linearised with the last advance's gains Kc, A in the
+ * same implicit solve as above about the motion that gave it: the mean start pose of the last
+ * step's ODE steps and a twist that continues the last step's at its acceleration,
+ * q'_ref = q'_{n} + (q'_{n} - q'_{n-1}) (mean end twists). That extrapolation is what the
+ * legs' inertia needs: their condensed gains over 1 ms are mostly the inertia that follows the
+ * hip (C h ~ 22 g of a 35 g leg, axially), whose reaction -m a_{n-1} is in W_{n-1} and holds at
+ * the last acceleration, not the last velocity. For a massless damper the same extrapolation
+ * is wrong by c h a: on such legs the scheme is first order in H (test_cosim). The legs'
+ * actual wrench then differs from what the support was given; that impulse is carried into
+ * the next step's force (carry, csOptions.coupling_carry), so the interface conserves momentum
+ * to one step's difference. Measured on the flat road (shipped gait, `paper`, h = H = 1 ms):
+ * unextrapolated without the carry it diverged at t = 4.6 s, with the carry while settling
+ * (the carried inertial reaction comes a step late: the legs' ~173 g of condensed inertia on
+ * the 50 g support amplified it 1.8x a step), half extrapolated with the carry while settling;
+ * extrapolated without the carry it ran but walked 176 mm instead of the reference's 298.
+ * The first macro step (nothing carried yet, gs_primed = 0) runs stabilised and leaves what it
+ * carries (cs_couplingPrime). Everything carried is in the state (cs_couplingStateGet), so a
+ * failed step restores it. Measured on the flat road, shipped gait, `paper`, H = h = 1 ms:
+ * x at whole seconds within 1.0 mm of the staggered 25 µs reference over 9 s (the stabilised
+ * scheme: 27 mm short at 9 s); the paper's table: within 5.7 mm (stabilised: 10.7). The
+ * support's velocity still jitters (second differences per step 0.46 mm/s median against the
+ * reference's 0.02; stabilised 0.25), so the legs' CVODE cost stays that of the stabilised
+ * scheme (5.6 steps per advance against 4.3, fewer failures). H = 2 ms with 1 ms ODE steps
+ * runs, 5 mm off and 1.8x faster, but frictionless it tips over (40° by 9 s); h = H = 2 ms
+ * diverges while settling. Frictionless at 1 ms the centre of mass moves 24 mm in 9 s and the
+ * support 23 mm (stabilised 3.1 and -0.3), though the interface's impulse balance holds to
+ * the carry (1e-7 N s): it is the legs' integration error, which this scheme hands on in
+ * full; with every rod tolerance 10x tighter it is 4.5 and -1.1 mm (stabilised: 10.7 and
+ * -11.6, so its small default drift is not converged either). Hence not the default.
+ *
  * Rejected: sub-iterating the legs to convergence every step (the tightly coupled reference:
  * the driver's state save/restore makes it possible, at several advances per step; a tiny macro
  * step is the reference used, README "Coupling"); handing the legs' gains to ODE through fixed
@@ -108,11 +143,72 @@ void cs_modelSetLegLevel(csModel* m, const csrLegType* type) {
 
 
 csStatus cs_couplingCreate(const csModel* m, csData* d, csError* err) {
-  /* the stabilised scheme solves its implicit part itself (cs_couplingApply): no ODE rows */
+  /* the stabilised scheme solves its implicit part itself (cs_couplingApply): no ODE rows.
+   * Gauss-Seidel's first macro step has no legs' wrench yet (zero wrench and gains, the data is
+   * zeroed): its linearisation point only needs to be a rotation */
   (void)m;
-  (void)d;
   (void)err;
+  csu_eye3(d->cosim.gs_R);
   return CS_OK;
+}
+
+
+void cs_couplingStateGet(const csData* d, double* x) {
+  const csCosim* c = &d->cosim;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    memcpy(x, c->w[k].f, 3 * sizeof(double));
+    memcpy(x + 3, c->w[k].m, 3 * sizeof(double));
+    x += 6;
+  }
+  memcpy(x, c->Kc, sizeof c->Kc);
+  x += 36;
+  memcpy(x, c->A, sizeof c->A);
+  x += 36;
+  memcpy(x, c->gs_P, sizeof c->gs_P);
+  x += 3;
+  memcpy(x, c->gs_R, sizeof c->gs_R);
+  x += 9;
+  memcpy(x, c->gs_qd, sizeof c->gs_qd);
+  x += 6;
+  memcpy(x, c->carry, sizeof c->carry);
+  x += 6;
+  memcpy(x, c->gs_qd_prev, sizeof c->gs_qd_prev);
+  x[6] = c->gs_primed;
+}
+
+
+int cs_couplingStateCheck(const double* x) {
+  for (int i = 0; i < CS_COSIM_STATE; i++) {
+    if (!isfinite(x[i])) {
+      return 1;
+    }
+  }
+  const double primed = x[CS_COSIM_STATE - 1];
+  return primed == 0 || primed == 1 ? 0 : 1;
+}
+
+
+void cs_couplingStateSet(csData* d, const double* x) {
+  csCosim* c = &d->cosim;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    memcpy(c->w[k].f, x, 3 * sizeof(double));
+    memcpy(c->w[k].m, x + 3, 3 * sizeof(double));
+    x += 6;
+  }
+  memcpy(c->Kc, x, sizeof c->Kc);
+  x += 36;
+  memcpy(c->A, x, sizeof c->A);
+  x += 36;
+  memcpy(c->gs_P, x, sizeof c->gs_P);
+  x += 3;
+  memcpy(c->gs_R, x, sizeof c->gs_R);
+  x += 9;
+  memcpy(c->gs_qd, x, sizeof c->gs_qd);
+  x += 6;
+  memcpy(c->carry, x, sizeof c->carry);
+  x += 6;
+  memcpy(c->gs_qd_prev, x, sizeof c->gs_qd_prev);
+  c->gs_primed = x[6];
 }
 
 
@@ -181,7 +277,8 @@ static int checkFinite(const csData* d, int k, const csrWrench* w, const double*
 int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err) {
   csCosim* c = &d->cosim;
   const csrLegType* type = m->robot.leg_type;
-  const int stab = m->opt.coupling == CS_COUPLING_STABILISED;
+  const int stab = m->opt.coupling == CS_COUPLING_STABILISED ||
+                   (m->opt.coupling == CS_COUPLING_GAUSS_SEIDEL && !cs_couplingGS(m, d));
   double P1[3], R1[9], dR[9], phi[3];
   cs_errorClear(err); /* whatever err holds after this came from these legs */
   csr_robotSupportPose(d->robot, c->P0, c->R0, c->v0, c->w0);
@@ -233,10 +330,100 @@ int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err) {
 }
 
 
+int cs_couplingGS(const csModel* m, const csData* d) {
+  return m->opt.coupling == CS_COUPLING_GAUSS_SEIDEL && d->cosim.gs_primed == 1;
+}
+
+
+void cs_couplingPrime(const csModel* m, csData* d) {
+  csCosim* c = &d->cosim;
+  (void)m;
+  memcpy(c->gs_P, c->Pm, sizeof c->gs_P);
+  memcpy(c->gs_R, c->Rm, sizeof c->gs_R);
+  memcpy(c->gs_qd, c->v0, sizeof c->v0);
+  memcpy(c->gs_qd + 3, c->w0, sizeof c->w0);
+  memcpy(c->gs_qd_prev, c->gs_qd, sizeof c->gs_qd);
+  memset(c->carry, 0, sizeof c->carry);
+  c->gs_primed = 1;
+}
+
+
+void cs_couplingBegin(const csModel* m, csData* d) {
+  csCosim* c = &d->cosim;
+  (void)m;
+  csr_robotSupportPose(d->robot, c->P0, c->R0, c->v0, c->w0);
+  c->t0 = d->t;
+  memset(c->sum_P, 0, sizeof c->sum_P);
+  memset(c->sum_phi, 0, sizeof c->sum_phi);
+  memset(c->sum_qd, 0, sizeof c->sum_qd);
+  memset(c->sum_F, 0, sizeof c->sum_F);
+}
+
+
+int cs_couplingAdvanceGS(const csModel* m, csData* d, double H, csError* err) {
+  csCosim* c = &d->cosim;
+  const csrLegType* type = m->robot.leg_type;
+  const int n = m->opt.macro_steps;
+  double P1[3], R1[9], v1[3], w1[3];
+  cs_errorClear(err);
+  /* the support where its step ended: the legs' b1, and the next step's b0 bit for bit */
+  csr_robotSupportPose(d->robot, P1, R1, v1, w1);
+  double Cc[36], Wc[6] = {0, 0, 0, 0, 0, 0};
+  mat6Zero(c->Kc);
+  mat6Zero(Cc);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csrLeg* leg = d->robot->legs[k];
+    csr_robotBaseStateAt(d->robot, k, c->P0, c->R0, c->v0, c->w0, &c->b0[k]);
+    csr_robotBaseStateAt(d->robot, k, P1, R1, v1, w1, &c->b1[k]);
+    int rc = type->advance(leg, c->t0, H, &c->b0[k], &c->b1[k], &c->w[k], err);
+    if (rc != 0) {
+      return rc;
+    }
+    type->interfaceGains(leg, c->K[k], c->C[k]);
+    if (checkFinite(d, k, &c->w[k], c->K[k], c->C[k], err) != 0) {
+      return 1;
+    }
+    /* at the centre where the next step starts (its ODE steps move the hips from here) */
+    double r[3], rxf[3];
+    csu_sub3(r, c->b1[k].x, P1);
+    addAtCentre(c->Kc, c->K[k], r);
+    addAtCentre(Cc, c->C[k], r);
+    csu_cross3(rxf, r, c->w[k].f);
+    for (int i = 0; i < 3; i++) {
+      Wc[i] += c->w[k].f[i];
+      Wc[3 + i] += c->w[k].m[i] + rxf[i];
+    }
+  }
+  for (int i = 0; i < 36; i++) {
+    c->A[i] = m->opt.h * c->Kc[i] + Cc[i];
+  }
+  /* where these wrenches hold: the mean start pose of this step's ODE steps and their mean end
+   * twist (the ODE step j's force is taken at its end pose q_j + h q'_{j+1}, so the mean end
+   * pose of the step is gs_P + h gs_qd; cs_couplingApply) */
+  double phi[3], dR[9];
+  memcpy(c->gs_qd_prev, c->gs_qd, sizeof c->gs_qd);
+  for (int i = 0; i < 3; i++) {
+    c->gs_P[i] = c->sum_P[i] / n;
+    phi[i] = c->sum_phi[i] / n;
+    c->gs_qd[i] = (c->sum_qd[i] + v1[i]) / n;
+    c->gs_qd[3 + i] = (c->sum_qd[3 + i] + w1[i]) / n;
+  }
+  csu_rotVecToMat3(dR, phi);
+  csu_mulMat3(c->gs_R, dR, c->R0);
+  /* the legs' impulse (over H) the support has not been given yet: the last carry, paid into
+   * this step's force, plus the legs' actual wrench less the force applied. The support's
+   * impulse up to step k is then the legs' less H carry_k: a bounded, not a growing, error */
+  for (int i = 0; i < 6; i++) {
+    c->carry[i] = m->opt.coupling_carry ? c->carry[i] + Wc[i] - c->sum_F[i] / n : 0;
+  }
+  return 0;
+}
+
+
 void cs_couplingApply(const csModel* m, csData* d, int j) {
   csCosim* c = &d->cosim;
-  (void)j;
-  if (m->opt.coupling != CS_COUPLING_STABILISED) {
+  const int gs = cs_couplingGS(m, d);
+  if (m->opt.coupling == CS_COUPLING_STAGGERED) {
     for (int k = 0; k < CSR_NLEG; k++) {
       csr_robotApplyWrench(d->robot, k, &c->w[k]);
     }
@@ -270,18 +457,46 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
       W0[3 + i] += c->w[k].m[i] + rxf[i];
     }
   }
-  /* deviation of the support at the start of ODE step j from the predicted mean pose */
-  csu_transpose3(RmT, c->Rm);
+  /* deviation of the support at the start of ODE step j from the point where W0 holds:
+   * stabilised, the predicted mean pose and twist; Gauss-Seidel, the mean start pose and end
+   * twist of the last macro step's ODE steps, the motion that gave W0 (and the impulse the
+   * support was not given in it joins W0) */
+  const double* Pref = gs ? c->gs_P : c->Pm;
+  const double* Rref = gs ? c->gs_R : c->Rm;
+  csu_transpose3(RmT, Rref);
   csu_mulMat3(dR, R, RmT);
   double dq[6], qd[6], qd_pred[6];
   for (int i = 0; i < 3; i++) {
-    dq[i] = P[i] - c->Pm[i];
+    dq[i] = P[i] - Pref[i];
     qd[i] = v[i];
     qd[3 + i] = w[i];
-    qd_pred[i] = c->v0[i];
-    qd_pred[3 + i] = c->w0[i];
+    qd_pred[i] = gs ? c->gs_qd[i] : c->v0[i];
+    qd_pred[3 + i] = gs ? c->gs_qd[3 + i] : c->w0[i];
+  }
+  if (gs) {
+    /* the twist W0 holds at is the last step's continued at its acceleration (see top) */
+    for (int i = 0; i < 6; i++) {
+      qd_pred[i] += c->gs_qd[i] - c->gs_qd_prev[i];
+    }
   }
   csu_mat3ToRotVec(dq + 3, dR);
+  if (gs) {
+    for (int i = 0; i < 6; i++) {
+      W0[i] += c->carry[i];
+    }
+    /* this step's sums for the next linearisation point (cs_couplingAdvanceGS) */
+    double R0T[9], dR0[9], phi[3];
+    csu_transpose3(R0T, c->R0);
+    csu_mulMat3(dR0, R, R0T);
+    csu_mat3ToRotVec(phi, dR0);
+    for (int i = 0; i < 3; i++) {
+      c->sum_P[i] += P[i];
+      c->sum_phi[i] += phi[i];
+    }
+    for (int i = 0; j > 0 && i < 6; i++) {
+      c->sum_qd[i] += qd[i];
+    }
+  }
   /* the support's backward-Euler step with the legs' linearised wrench (header):
    *   (M + h A) q'_{j+1} = M q'_j + h (m g + W0 - Kc dq_j + A q'_pred) */
   const double h = m->opt.h;
@@ -324,6 +539,11 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
     mat6Vec(Ad, c->A, dqd);
     for (int i = 0; i < 6; i++) {
       F[i] = W0[i] - Kdq[i] - Ad[i];
+    }
+  }
+  if (gs) {
+    for (int i = 0; i < 6; i++) {
+      c->sum_F[i] += F[i];
     }
   }
   dBodyAddForce(d->robot->support, F[0], F[1], F[2]);

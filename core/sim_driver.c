@@ -42,6 +42,9 @@ csOptions cs_defaultOptions(void) {
    * its macro step from the coupling study (issue 9) */
   o.macro_steps = 1;
   o.coupling = CS_COUPLING_STAGGERED;
+  /* Gauss-Seidel's momentum carry on: without it the scheme loses the impulse its
+   * prediction misses (sim_coupling.c) */
+  o.coupling_carry = 1;
   o.t_end = 0;
   o.output_dt = 0.01;
   /* long enough for the 100 Hz leg modes to die out under 5 ms material damping */
@@ -186,8 +189,12 @@ static csStatus validateOptions(const csOptions* o, csError* err) {
     return cs_errorSet(err, CS_ERR_RANGE, "macro step of %d ODE steps must be 1..100000",
                        o->macro_steps);
   }
-  if (o->coupling != CS_COUPLING_STAGGERED && o->coupling != CS_COUPLING_STABILISED) {
+  if (o->coupling != CS_COUPLING_STAGGERED && o->coupling != CS_COUPLING_STABILISED &&
+      o->coupling != CS_COUPLING_GAUSS_SEIDEL) {
     return cs_errorSet(err, CS_ERR_RANGE, "unknown coupling scheme %d", (int)o->coupling);
+  }
+  if (o->coupling_carry != 0 && o->coupling_carry != 1) {
+    return cs_errorSet(err, CS_ERR_RANGE, "coupling_carry %d must be 0 or 1", o->coupling_carry);
   }
   double H = o->macro_steps * o->h;
   if (!(o->output_dt >= H) || !isfinite(o->output_dt)) {

@@ -32,7 +32,24 @@ typedef struct csCosim_ {
   double Pm[3], Rm[9];              /* predicted mean pose: W0's linearisation point */
   double Kc[36];                    /* summed stiffness at the centre (6 x 6, [f; m] x [u; φ]) */
   double A[36];                     /* h Kc + Cc: the implicit part (6 x 6) */
+  /* Gauss-Seidel scheme. Carried from one macro step to the next (with w, Kc and A: the state
+   * block of cs_couplingStateGet): the linearisation point of w, i.e. the mean start pose of
+   * the last macro step's ODE steps and their mean end twist, and the impulse carry */
+  double gs_P[3], gs_R[9];          /* mean start pose of the last macro step's ODE steps */
+  double gs_qd[6];                  /* their mean end twist [v; w] */
+  double gs_qd_prev[6];             /* the same a macro step earlier */
+  double carry[6];                  /* legs' actual minus applied wrench, last step (centre) */
+  double gs_primed;                 /* 1 once a macro step has left the above (0 before: that
+                                       step runs stabilised, cs_couplingPrime) */
+  /* within a macro step (reset at its start, cs_couplingBegin): sums over the ODE steps */
+  double sum_P[3], sum_phi[3];      /* start poses (rotation relative to R0) */
+  double sum_qd[6];                 /* twists at the starts of steps 1..n-1 */
+  double sum_F[6];                  /* the force applied at the centre */
 } csCosim;
+
+/* doubles in the coupling's state block (cs_couplingStateGet): w, Kc, A, gs_P, gs_R, gs_qd,
+ * carry, gs_primed */
+#define CS_COSIM_STATE (6 * CSR_NLEG + 36 + 36 + 3 + 9 + 6 + 6 + 6 + 1)
 
 struct csData_ {
   const csModel* m;                 /* for the pneumatic right-hand side */
@@ -86,8 +103,32 @@ int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err);
 
 /* Before ODE sub-step j (0..macro_steps-1) of the support stage: the legs' force on the
  * support: staggered, their averaged wrenches; stabilised, those corrected by their gains for
- * the support's deviation from the predicted motion, solved implicitly with the support's step
- * (sim_coupling.c). */
+ * the support's deviation from the predicted motion, solved implicitly with the support's step;
+ * Gauss-Seidel, the last step's wrenches corrected by their gains for the support's motion
+ * since, solved the same way (sim_coupling.c). */
 void cs_couplingApply(const csModel* m, csData* d, int j);
+
+/* 1 when this macro step runs Gauss-Seidel: the coupling asks for it and a step has left the
+ * legs' wrench and gains (the first one runs stabilised and primes it, cs_couplingPrime). */
+int cs_couplingGS(const csModel* m, const csData* d);
+
+/* Gauss-Seidel's first macro step, after its support stage: what it carries from the
+ * stabilised step just run (the wrench along the prediction holds at the predicted motion). */
+void cs_couplingPrime(const csModel* m, csData* d);
+
+/* Gauss-Seidel: before the support stage, record the support's state at the macro step's
+ * start (the legs' b0) and clear the step's sums. */
+void cs_couplingBegin(const csModel* m, csData* d);
+
+/* Gauss-Seidel: after the support stage, every leg advances across [t, t + H] along the
+ * support's actual motion; their wrenches, gains, the linearisation point and the impulse
+ * carry for the next macro step. 0, > 0 recoverable, < 0 fatal (err). */
+int cs_couplingAdvanceGS(const csModel* m, csData* d, double H, csError* err);
+
+/* The coupling's part of the state (CS_COSIM_STATE doubles, co-simulated legs only): what the
+ * Gauss-Seidel scheme carries across macro steps. Check returns 0 when x is a valid block. */
+void cs_couplingStateGet(const csData* d, double* x);
+int cs_couplingStateCheck(const double* x);
+void cs_couplingStateSet(csData* d, const double* x);
 
 #endif /* CS_CORE_SIM_INTERNAL_H */

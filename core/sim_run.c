@@ -111,8 +111,9 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   if (st == CS_OK) {
     st = cs_h5AttrString(f, "/", "coupling",
                          m->robot.leg_type->in_world ? "in-world (ODE joints)"
-                         : m->opt.coupling == CS_COUPLING_STABILISED ? "stabilised"
-                                                                     : "staggered",
+                         : m->opt.coupling == CS_COUPLING_STABILISED   ? "stabilised"
+                         : m->opt.coupling == CS_COUPLING_GAUSS_SEIDEL ? "gauss-seidel"
+                                                                       : "staggered",
                          err);
   }
   if (st == CS_OK) {

@@ -1,7 +1,9 @@
 /* sim_state.c: the whole simulation state as a flat array (see sim_model.h, STYLE.md 5).
  *
  * Layout: [0] t (s); [1] the data's ODE random seed (sim_internal.h); [2 .. 97] the 96 chamber pressures (MPa); then the
- * robot (csr_robotStateGet: support body, then legs A..H). Restoring is bit-exact for every
+ * robot (csr_robotStateGet: support body, then legs A..H); with co-simulated legs, then the
+ * coupling's block (CS_COSIM_STATE: what the Gauss-Seidel scheme carries from one macro step
+ * to the next, sim_coupling.c). Restoring is bit-exact for every
  * part: the bodies through robot_odebody.h, the seed as the integer it is (ODE keeps it below
  * 2^32, exact in a double), the pressures by copy, and CVODE restarted from them. */
 #include <cvode/cvode.h>
@@ -19,7 +21,7 @@ enum { HEAD = 2 + CSR_NCHAMBER_TOTAL }; /* t, seed, pressures */
 
 int cs_stateSize(const csModel* m, const csData* d) {
   (void)m;
-  return HEAD + csr_robotStateSize(d->robot);
+  return HEAD + csr_robotStateSize(d->robot) + (d->cosim.active ? CS_COSIM_STATE : 0);
 }
 
 
@@ -29,6 +31,9 @@ void cs_stateGet(const csModel* m, const csData* d, double* x) {
   x[1] = (double)d->rng_seed;
   memcpy(x + 2, d->p, sizeof d->p);
   csr_robotStateGet(d->robot, x + HEAD);
+  if (d->cosim.active) {
+    cs_couplingStateGet(d, x + HEAD + csr_robotStateSize(d->robot));
+  }
 }
 
 
@@ -43,9 +48,16 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
       return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: pressure %d is not finite", i + 1);
     }
   }
+  const double* xc = x + HEAD + csr_robotStateSize(d->robot);
+  if (d->cosim.active && cs_couplingStateCheck(xc) != 0) {
+    return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the coupling's part is not finite");
+  }
   if (csr_robotStateSet(d->robot, x + HEAD) != 0) {
     return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the robot's part is not a state of this "
                        "robot (non-finite value or non-unit quaternion)");
+  }
+  if (d->cosim.active) {
+    cs_couplingStateSet(d, xc);
   }
   d->t = x[0];
   d->rng_seed = (unsigned long)x[1];

@@ -23,6 +23,7 @@
 static csStatus stageSchedule(const csModel* m, csData* d, double t1, csError* err);
 static csStatus stagePneumatics(const csModel* m, csData* d, double t1, csError* err);
 static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err);
+static csStatus stageLegsAfter(const csModel* m, csData* d, csError* err);
 static csStatus stageSupport(const csModel* m, csData* d, csError* err);
 static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError* err);
 
@@ -54,7 +55,12 @@ static csStatus stagePneumatics(const csModel* m, csData* d, double t1, csError*
 }
 
 
-/* every leg's actuation for [t, t1]; co-simulated legs then advance across it */
+/* the status of a co-simulated legs' advance that returned rc (0, > 0 recoverable, < 0) */
+static csStatus advanceStatus(const csModel* m, const csData* d, int rc, csError* err);
+
+
+/* every leg's actuation for [t, t1]; co-simulated legs then advance across it (Gauss-Seidel:
+ * after the support stage, stageLegsAfter) */
 static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err) {
   int rc = csr_robotActuate(d->robot, d->t, d->p0, t1, d->p);
   if (rc == CSR_MAP_OUT_OF_RANGE) {
@@ -76,10 +82,20 @@ static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err) 
     return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: leg actuation failed (code %d)", d->t,
                        rc);
   }
-  if (!d->cosim.active) {
+  if (!d->cosim.active || cs_couplingGS(m, d)) {
     return CS_OK;
   }
-  rc = cs_couplingAdvance(m, d, cs_modelMacroStep(m), err);
+  return advanceStatus(m, d, cs_couplingAdvance(m, d, cs_modelMacroStep(m), err), err);
+}
+
+
+/* Gauss-Seidel: the co-simulated legs advance along the support's motion of this step */
+static csStatus stageLegsAfter(const csModel* m, csData* d, csError* err) {
+  return advanceStatus(m, d, cs_couplingAdvanceGS(m, d, cs_modelMacroStep(m), err), err);
+}
+
+
+static csStatus advanceStatus(const csModel* m, const csData* d, int rc, csError* err) {
   if (rc == 0) {
     return CS_OK;
   }
@@ -143,6 +159,9 @@ static void contactFeedbackSum(csData* d) {
 /* macro_steps ODE steps: the legs' wrenches and rows, contacts, QuickStep */
 static csStatus stageSupport(const csModel* m, csData* d, csError* err) {
   (void)err;
+  if (d->cosim.active && cs_couplingGS(m, d)) {
+    cs_couplingBegin(m, d);
+  }
   for (int j = 0; j < m->opt.macro_steps; j++) {
     if (d->cosim.active) {
       cs_couplingApply(m, d, j);
@@ -214,6 +233,12 @@ csStatus cs_step(const csModel* m, csData* d, csError* err) {
   if (st == CS_OK) {
     st = stageSupport(m, d, err);
     w = csu_timerAdd(&d->timer[CS_TIMER_SUPPORT], w);
+  }
+  if (st == CS_OK && d->cosim.active && cs_couplingGS(m, d)) {
+    st = stageLegsAfter(m, d, err);
+    w = csu_timerAdd(&d->timer[CS_TIMER_LEGS], w);
+  } else if (st == CS_OK && d->cosim.active && m->opt.coupling == CS_COUPLING_GAUSS_SEIDEL) {
+    cs_couplingPrime(m, d); /* this first step ran stabilised */
   }
   if (st == CS_OK) {
     st = stageCheck(m, d, t1, err);

@@ -1,6 +1,7 @@
 /* bench_flatroad.c: cost of the flat-road scene through the driver (not a test: prints numbers).
  *
- *   bench_flatroad [level|sweep] [links] [dt_s] [t_end_s] [gait.csv]
+ *   bench_flatroad [level|sweep] [links] [dt_s] [t_end_s] [gait.csv|-] [coupling] [macro_steps]
+ *                  [carry]
  *
  * level: rod (default) or prb: one run of the scene (default gait, `paper` conditions, the
  * level's default coupling: stabilised for rod, one ODE step per macro step) to t_end (9 s),
@@ -11,6 +12,9 @@
  * sweep: rod at 2, 3, 4, 6 elements per segment and prb at 4 links, each to t_end: how the cost
  * grows with the rod's elements; the legs stage is the sum of eight independent leg advances,
  * so its cost is linear in the number of legs (printed per leg).
+ * coupling: staggered, stabilised or gs (default: the level's), macro_steps ODE steps per
+ * exchange (1), carry 0/1 (Gauss-Seidel's impulse carry, csOptions.coupling_carry). The run's
+ * file is written to, and kept at, $CS_BENCH_KEEP when it is set (for the track).
  * The data files come from $CS_SOURCE_DIR (default ../../..). */
 #include <math.h>
 #include <stdarg.h>
@@ -33,8 +37,16 @@ static void quiet(int num, const char* msg, va_list ap) {
 }
 
 
+/* the bench's coupling settings (arguments 6-8) */
+typedef struct BenchCoupling_ {
+  const char* name; /* NULL: the level's default */
+  int macro_steps;
+  int carry;
+} BenchCoupling;
+
+
 static int bench(const char* src, const char* level, int links, double dt, double t_end,
-                 const char* gait_arg) {
+                 const char* gait_arg, const BenchCoupling* bc) {
   char terr[600], gait[600], cal[600];
   snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", src);
   snprintf(gait, sizeof gait, "%s", gait_arg ? gait_arg : "");
@@ -62,6 +74,14 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
   m.robot.leg_params.links_per_segment = links;
   m.opt.h = dt;
   m.opt.t_end = t_end;
+  if (bc->name) {
+    m.opt.coupling = !strcmp(bc->name, "gs")           ? CS_COUPLING_GAUSS_SEIDEL
+                     : !strcmp(bc->name, "stabilised") ? CS_COUPLING_STABILISED
+                                                       : CS_COUPLING_STAGGERED;
+  }
+  m.opt.macro_steps = bc->macro_steps;
+  m.opt.coupling_carry = bc->carry;
+  m.opt.output_dt = fmax(m.opt.output_dt, cs_modelMacroStep(&m));
   csData* d = cs_dataCreate(&m, &err);
   if (!d || cs_settle(&m, d, &err) != CS_OK) {
     fprintf(stderr, "bench_flatroad: %s\n", err.msg);
@@ -70,7 +90,11 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
     return 1;
   }
   char out[256];
-  snprintf(out, sizeof out, "bench_flatroad_%s.h5", level);
+  const char* keep = getenv("CS_BENCH_KEEP");
+  snprintf(out, sizeof out, "%s", keep ? keep : "");
+  if (!keep) {
+    snprintf(out, sizeof out, "bench_flatroad_%s.h5", level);
+  }
   double c0 = cpu(), wall = 0;
   csStatus st = cs_run(&m, d, out, &wall, &err);
   double c = cpu() - c0;
@@ -78,8 +102,9 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
   cs_supportDisplacement(d, x);
   const csuTimer* tm = cs_timers(d);
   double steps = t_end / cs_modelMacroStep(&m);
-  printf("%s, %d per segment, h = H = %g ms, %g s%s: CPU %.2f s -> real-time factor %.3f "
-         "(wall %.2f s: %.3f); x(end) = %.1f mm\n", level, links, dt * 1e3, t_end,
+  printf("%s, %d per segment, h = %g ms, H = %g ms, coupling %d (carry %d), %g s%s: CPU %.2f s "
+         "-> real-time factor %.3f (wall %.2f s: %.3f); x(end) = %.2f mm\n", level, links,
+         dt * 1e3, cs_modelMacroStep(&m) * 1e3, (int)m.opt.coupling, m.opt.coupling_carry, t_end,
          st == CS_OK ? "" : " (stopped)", c, t_end / c, wall, t_end / wall, x[0]);
   printf("  split (wall s):");
   for (int i = 0; i < CS_NTIMER; i++) {
@@ -117,7 +142,9 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
   if (st != CS_OK) {
     printf("  stopped: %s\n", err.msg);
   }
-  remove(out);
+  if (!keep) {
+    remove(out);
+  }
   cs_dataDestroy(d);
   cs_modelDestroy(&m);
   return 0;
@@ -133,20 +160,22 @@ int main(int argc, char** argv) {
   int links = argc > 2 ? atoi(argv[2]) : 4;
   double dt = argc > 3 ? atof(argv[3]) : 1e-3;
   double t_end = argc > 4 ? atof(argv[4]) : 9.0;
-  const char* gait = argc > 5 ? argv[5] : NULL;
+  const char* gait = argc > 5 && strcmp(argv[5], "-") ? argv[5] : NULL;
+  BenchCoupling bc = {argc > 6 ? argv[6] : NULL, argc > 7 ? atoi(argv[7]) : 1,
+                      argc > 8 ? atoi(argv[8]) : 1};
   dInitODE2(0);
   dSetMessageHandler(quiet);
   int rc = 0;
   if (!strcmp(what, "sweep")) {
     const int n[] = {2, 3, 4, 6};
     for (int i = 0; i < 4 && rc == 0; i++) {
-      rc = bench(src, "rod", n[i], dt, t_end, gait);
+      rc = bench(src, "rod", n[i], dt, t_end, gait, &bc);
     }
     if (rc == 0) {
-      rc = bench(src, "prb", 4, dt, t_end, gait);
+      rc = bench(src, "prb", 4, dt, t_end, gait, &bc);
     }
   } else {
-    rc = bench(src, what, links, dt, t_end, gait);
+    rc = bench(src, what, links, dt, t_end, gait, &bc);
   }
   dCloseODE();
   return rc;
