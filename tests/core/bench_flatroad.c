@@ -183,6 +183,8 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
     printf("  stopped: %s\n", err.msg);
   }
   printTrack(out);
+  /* every digit, for checking that a change keeps the same bits */
+  printf("  x(end) = %.17g mm\n", x[0]);
   if (!keep) {
     remove(out);
   }
