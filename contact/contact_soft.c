@@ -344,6 +344,28 @@ static void slotReport(int shape, const cscSoftAcc* acc, const cscSoftGeom* g, i
 }
 
 
+/* broad phase of a foot: 0 when no terrain box comes within d_onset of the box bounding all
+ * its sole spheres (centres x0 + ξ e1 + η e2 - ρ e3, |ξ|, |η| <= a, radius ρ; 1 µm of slack
+ * for the rounding of the centres), so that no sphere's own query (csc_softSolePointNormal)
+ * would find one: skipping them then gives the same bits. A foot in the air (swing) saves
+ * nine sphere queries per right-hand side: measured -0.76 % of the instructions of the flat
+ * road's first 0.8 s on rod legs (callgrind, gs coupling at 1 ms, 7.716e9 -> 7.657e9), the
+ * support's x at 3 s the same to every digit. (The capsules need none: their own box query
+ * is the broad phase.) */
+static int footNearTerrain(const cscSoftModel* m, const cscShape* sh, const cscShapeState* st) {
+  const double a = sh->half_side, rho = sh->radius;
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; k++) {
+    const double* R = st->R + 3 * k;
+    double c = st->x0[k] - rho * R[2], ext = a * (fabs(R[0]) + fabs(R[1])) + rho + 1e-3;
+    lo[k] = c - ext;
+    hi[k] = c + ext;
+  }
+  int idx[CST_MAX_BOXES];
+  return cst_terrainBoxesNear(&m->terrain, lo, hi, m->p.d_onset, idx, CST_MAX_BOXES) > 0;
+}
+
+
 static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
                          const double* z, double* zw, cscShapeLoad* ld, double* zdot,
                          cscSlotInfo* info, cscSoftReport* rep) {
@@ -370,17 +392,22 @@ static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
   if (m->patch[i]) {
     /* the foot as one patch: all sole points into one slot, translation and torsion */
     cscSoftAcc acc = {.dmax = -INFINITY};
-    for (int k = 0; k < sh->nside * sh->nside; k++) {
-      double c[3], A;
-      csc_softSolePoint(sh, st, k / sh->nside, k % sh->nside, c, &A);
-      csc_softSolePointNormal(m, sh->radius, A, c, st, &acc, ld);
+    cscSoleLoads sl; /* not zeroed: npt, then only what the points wrote is read */
+    sl.npt = 0;
+    if (footNearTerrain(m, sh, st)) {
+      sl.npt = sh->nside * sh->nside;
+      for (int k = 0; k < sl.npt; k++) {
+        double A;
+        csc_softSolePoint(sh, st, k / sh->nside, k % sh->nside, sl.c[k], &A);
+        sl.nel[k] = csc_softSolePointNormal(m, sh->radius, A, sl.c[k], st, &acc, ld, sl.el[k]);
+      }
     }
     cscSoftGeom g;
     int touching = csc_softSlotFinish(&acc, &g);
     double xs[3] = {0, 0, 0}, vs[3] = {0, 0, 0}, zd[4], Jel = 0, R1el = 0;
     if (touching) {
       slotPoint(sh, st, &g, 0, xs, vs);
-      csc_softFootTorsionMoments(m, sh, st, g.xc, g.n, &Jel, &R1el);
+      csc_softFootTorsionMoments(&sl, sh->radius, g.xc, g.n, &Jel, &R1el);
     }
     cscSoftFriction f;
     csc_softFrictionIntegrated(p, &acc, &g, touching, vs, z, zd, &f);
@@ -405,7 +432,7 @@ static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
       csc_softCapsuleNormal(m, sh, st, &acc, ld);
     } else {
       csc_softSolePoint(sh, st, k / nside, k % nside, c, &A);
-      csc_softSolePointNormal(m, sh->radius, A, c, st, &acc, ld);
+      csc_softSolePointNormal(m, sh->radius, A, c, st, &acc, ld, NULL);
     }
     ndeep += acc.deep;
     cscSoftGeom g;

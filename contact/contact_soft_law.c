@@ -255,8 +255,9 @@ static double solePointElastic(const cscSoftParams* p, double rho, double A, con
 }
 
 
-void csc_softSolePointNormal(const cscSoftModel* m, double rho, double A, const double c[3],
-                             const cscShapeState* st, cscSoftAcc* acc, cscShapeLoad* load) {
+int csc_softSolePointNormal(const cscSoftModel* m, double rho, double A, const double c[3],
+                            const cscShapeState* st, cscSoftAcc* acc, cscShapeLoad* load,
+                            double* elout) {
   const cscSoftParams* p = &m->p;
   double lo[3], hi[3], v[3];
   for (int k = 0; k < 3; k++) {
@@ -266,9 +267,13 @@ void csc_softSolePointNormal(const cscSoftModel* m, double rho, double A, const 
   csc_softFootVelocity(st, c, v);
   int idx[CST_MAX_BOXES];
   int nb = cst_terrainBoxesNear(&m->terrain, lo, hi, p->d_onset, idx, CST_MAX_BOXES);
+  nb = nb < CST_MAX_BOXES ? nb : CST_MAX_BOXES;
   for (int ib = 0; ib < nb; ib++) {
     double n[3], sd;
     double el = solePointElastic(p, rho, A, c, &m->terrain.box[idx[ib]], n, &sd);
+    if (elout) {
+      elout[ib] = el;
+    }
     if (sd <= 0) {
       acc->deep++; /* the sphere's centre is in the box: rho deep */
     }
@@ -288,31 +293,21 @@ void csc_softSolePointNormal(const cscSoftModel* m, double rho, double A, const 
     acc->W += el;
     csu_addScl3(acc->xw, acc->xw, c, el);
   }
+  return nb;
 }
 
 
-void csc_softFootTorsionMoments(const cscSoftModel* m, const cscShape* sh,
-                                const cscShapeState* st, const double xc[3], const double n[3],
-                                double* Jel, double* R1el) {
-  double rho = sh->radius;
+void csc_softFootTorsionMoments(const cscSoleLoads* sl, double rho, const double xc[3],
+                                const double n[3], double* Jel, double* R1el) {
   *Jel = 0;
   *R1el = 0;
-  for (int k = 0; k < sh->nside * sh->nside; k++) {
-    double c[3], A, lo[3], hi[3];
-    csc_softSolePoint(sh, st, k / sh->nside, k % sh->nside, c, &A);
-    for (int j = 0; j < 3; j++) {
-      lo[j] = c[j] - rho;
-      hi[j] = c[j] + rho;
-    }
-    int idx[CST_MAX_BOXES];
-    int nb = cst_terrainBoxesNear(&m->terrain, lo, hi, m->p.d_onset, idx, CST_MAX_BOXES);
+  for (int k = 0; k < sl->npt; k++) {
     double r[3];
-    csu_sub3(r, c, xc);
+    csu_sub3(r, sl->c[k], xc);
     csu_addScl3(r, r, n, -csu_dot3(r, n));
     double r2 = csu_dot3(r, r);
-    for (int ib = 0; ib < nb; ib++) {
-      double nb_n[3], sd;
-      double el = solePointElastic(&m->p, rho, A, c, &m->terrain.box[idx[ib]], nb_n, &sd);
+    for (int ib = 0; ib < sl->nel[k]; ib++) {
+      double el = sl->el[k][ib];
       *Jel += el * r2;
       *R1el += el * sqrt(r2 + rho * rho);
     }

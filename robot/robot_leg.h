@@ -64,6 +64,8 @@ typedef struct csrLegParams_ {
   double E_bend;          /* effective bending modulus of the silicone section (MPa) */
   double damping_time;    /* material damping as a time constant: kd = k * damping_time (s) */
   double contact_radius;  /* radius of the leg's collision capsules (mm) */
+  double rod_tol_scale;   /* rod: every CVODE tolerance (rtol and the atols) times this; 0 or 1:
+                             the shipped ones (a convergence knob: bench_flatroad argument 9) */
 } csrLegParams;
 
 /* Everything a leg needs to build itself. Pointers are borrowed (see Ownership above). */

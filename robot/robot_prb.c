@@ -67,6 +67,7 @@ csrLegParams csr_defaultLegParams(const csrActuator* act) {
   /* 4 links per 50 mm segment: 12.5 mm joints; the tip error of the tangent polygon is
    * ~θ^2/(24 n^2) relative, 0.2 % at θ = 47°, well below the calibration's uncertainty */
   p.links_per_segment = 4;
+  p.rod_tol_scale = 1;
   /* small-strain bending modulus of the Yeoh law with the fibres holding λ2 = 1:
    * W ≈ 4 C10 ε^2 -> σ = 8 C10 ε (plane-strain-like modulus, 0.88 MPa for Elastosil) */
   p.E_bend = 8.0 * act->C10;

@@ -63,6 +63,8 @@ typedef struct csrRodParams_ {
   double atol_vel;          /* absolute tolerance of velocities (mm/s) */
   double atol_omega;        /* absolute tolerance of angular velocities (rad/s) */
   double atol_hist;         /* absolute tolerance of contact history variables (their unit) */
+  double atol_wrench;       /* absolute tolerance of the base wrench averaged over an advance
+                               (N; robot_rod_dyn.c) */
   long max_steps;           /* CVODE internal steps allowed per advance (-) */
   int max_order;            /* highest BDF order (1..5); 2 makes BDF A-stable, for undamped
                                rods whose stiff modes sit on the imaginary axis */

@@ -36,13 +36,13 @@
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
 
-/* absolute tolerance of the base wrench averaged over an advance (N): the impulse is under
+/* csrRodParams.atol_wrench, absolute tolerance of the base wrench averaged over an advance
+ * (N, 1e-3): the impulse is under
  * CVODE's error control with atol = this x H, measured from the advance's start. (Uncontrolled,
  * as the impulse first was, the step-averaged wrench of a stance leg under the driver scattered
  * by +-0.3 N around its 0.12 N mean from step to step: the hip element's stiff damper, 0.26
  * N s/mm, turns any velocity error of node 1 into force, and nothing bounded that error in the
  * impulse; the noise shook the light support and let stance feet slip.) */
-#define CSR_ROD_WRENCH_TOL 1e-3
 /* pressures equal within this (MPa) reuse the cached actuation (as robot_prb.c: 1e-7 MPa moves
  * a bend by < 1e-6 relative at gait pressures) */
 #define CSR_ROD_P_TOL 1e-7
@@ -145,7 +145,7 @@ void csr_rodDataDestroy(csrRodData* d) {
 
 /* CVODE's error weights (CVEwtFn): 1 / (rtol |y_i| + atol_i) for the leg's state, as
  * CVodeSVtolerances would give; for the base impulse 1 / (rtol |I - I0| + atol_I), relative to
- * its value I0 at the start of the current advance, with atol_I = CSR_ROD_WRENCH_TOL H (set in
+ * its value I0 at the start of the current advance, with atol_I = atol_wrench H (set in
  * csr_rodAdvance) */
 static int errorWeights(N_Vector y, N_Vector ewt, void* user) {
   const csrRodData* d = user;
@@ -183,7 +183,7 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
     return NULL;
   }
   d->m = m;
-  d->imp_atol = CSR_ROD_WRENCH_TOL * 1e-3; /* until the first advance sets it */
+  d->imp_atol = m->par.atol_wrench * 1e-3; /* until the first advance sets it */
   const size_t N1 = (size_t)m->N + 1;
   const sunindextype ny = CSR_ROD_NIMP + m->nstate;
   const sunindextype ns = 6 * (sunindextype)m->N;
@@ -872,9 +872,9 @@ int csr_rodAdvance(const csrRodModel* m, csrRodData* d, double t, double H, cons
   double I0[CSR_ROD_NIMP];
   memcpy(I0, d->y, sizeof I0);
   /* the impulse's error is measured from here: the wrench averaged over this step to
-   * CSR_ROD_WRENCH_TOL */
+   * atol_wrench */
   memcpy(d->imp0, I0, sizeof I0);
-  d->imp_atol = CSR_ROD_WRENCH_TOL * H;
+  d->imp_atol = d->m->par.atol_wrench * H;
   d->cb_status = 0;
   d->cb_msg[0] = '\0';
   CVodeSetStopTime(d->cvode, t + H);

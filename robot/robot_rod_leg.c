@@ -214,6 +214,16 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
   par.contact_radius = lp->contact_radius;
   /* the bristles deflect by at most mu delta_t (8 µm by default): their error to 1e-5 mm */
   par.atol_hist = 1e-5;
+  if (lp->rod_tol_scale > 0 && lp->rod_tol_scale != 1) {
+    double f = lp->rod_tol_scale;
+    par.rtol *= f;
+    par.atol_pos *= f;
+    par.atol_rot *= f;
+    par.atol_vel *= f;
+    par.atol_omega *= f;
+    par.atol_hist *= f;
+    par.atol_wrench *= f;
+  }
   leg->N = CSR_NSEG * par.elements_per_segment + (CSR_NSEG - 1) * par.elements_per_joint;
   csrRodSpec rs;
   memset(&rs, 0, sizeof rs);

@@ -93,6 +93,7 @@ csrRodParams csr_rodDefaultParams(const csrActuator* act) {
   p.atol_vel = 0.5;
   p.atol_omega = 5e-3;
   p.atol_hist = 1e-3;
+  p.atol_wrench = 1e-3;
   p.max_steps = 20000;
   /* all five orders: with Kelvin-Voigt damping the stiff modes are overdamped (real
    * eigenvalues), where BDF 3-5 are stable; undamped runs should use 2 (A-stable) */
@@ -206,7 +207,7 @@ static csStatus checkSpec(const csrRodPiece* pieces, int npiece, const csrRodSpe
   (void)need_act; /* pieces with a segment but no calibration stay at their rest strains */
   if (!(par->damping_time >= 0) || !(par->rtol > 0) || !(par->atol_pos > 0) ||
       !(par->atol_rot > 0) || !(par->atol_vel > 0) || !(par->atol_omega > 0) ||
-      !(par->atol_hist > 0) || par->max_steps < 1 || par->max_order < 1 ||
+      !(par->atol_hist > 0) || !(par->atol_wrench > 0) || par->max_steps < 1 || par->max_order < 1 ||
       par->max_order > 5 || !(par->contact_radius > 0) ||
       !(par->static_tol > 0) || par->static_max_iter < 1) {
     return cs_errorSet(err, CS_ERR_RANGE,

@@ -33,6 +33,7 @@
 #include <time.h>
 
 #include "contact_soft.h"
+#include "contact_soft_internal.h"
 #include "core_math.h"
 #include "cs_test.h"
 
@@ -386,6 +387,76 @@ static void test_soft_foot_patch_translation_and_torsion(void) {
   printf("  torsional Coulomb couple %.5f N mm, uniform square %.5f N mm (%.3f)\n", ld.m[1],
          exact, ld.m[1] / exact);
   CS_EXPECT(ld.m[1] > 0.8 * exact && ld.m[1] < 1.05 * exact);
+  csc_softDestroy(m);
+}
+
+
+/* the foot's broad phase (contact_soft.c footNearTerrain) skips the sole points only when none
+ * of them would see a box: for tilted feet whose lowest sole sphere is from 2 um inside to 3
+ * d_onset above the ground, every foot out of touch gets the same bits (no load, the history's
+ * leak rates) as the sole points evaluated one by one. A broad phase that culls a foot in the
+ * onset band (where the leak is partial) fails this. */
+static void test_soft_foot_broad_phase_is_exact(void) {
+  cscSoftParams p = csc_softDefaultParams();
+  cstTerrain t = groundTerrain();
+  cscShape sh = csc_softFoot(kHalf);
+  csError err;
+  cscSoftModel* m = csc_softCreate(&p, &t, 1, &sh, &err);
+  CS_EXPECT(m != NULL);
+  if (!m) {
+    return;
+  }
+  unsigned seed = 12345;
+  int n_out = 0, n_partial = 0, bad = 0;
+  for (int trial = 0; trial < 4000; trial++) {
+    /* a random rotation (unit quaternion from four uniform numbers) */
+    double q[4], nq = 0;
+    for (int k = 0; k < 4; k++) {
+      seed = seed * 1103515245u + 12345u;
+      q[k] = (double)(seed >> 8) / (double)(1u << 24) - 0.5;
+      nq += q[k] * q[k];
+    }
+    nq = sqrt(nq);
+    for (int k = 0; k < 4; k++) q[k] /= nq;
+    cscShapeState st;
+    memset(&st, 0, sizeof st);
+    csu_quatToMat3(st.R, q);
+    /* the lowest sole sphere's gap: -2 um .. 3 d_onset */
+    double cmin = INFINITY, c[3], A;
+    for (int k = 0; k < sh.nside * sh.nside; k++) {
+      csc_softSolePoint(&sh, &st, k / sh.nside, k % sh.nside, c, &A);
+      cmin = fmin(cmin, c[1]);
+    }
+    double gap = -2e-3 + (3 * p.d_onset + 2e-3) * (trial % 400) / 399.0;
+    st.x0[1] = gap + sh.radius - cmin;
+    st.v0[0] = 1;
+    /* the points one by one, as before the broad phase */
+    cscSoftAcc acc = {.dmax = -INFINITY};
+    cscShapeLoad ref;
+    memset(&ref, 0, sizeof ref);
+    for (int k = 0; k < sh.nside * sh.nside; k++) {
+      csc_softSolePoint(&sh, &st, k / sh.nside, k % sh.nside, c, &A);
+      csc_softSolePointNormal(m, sh.radius, A, c, &st, &acc, &ref, NULL);
+    }
+    cscSoftGeom g;
+    if (csc_softSlotFinish(&acc, &g)) {
+      continue; /* touching: no broad phase question */
+    }
+    const double z[4] = {1e-3, -2e-3, 3e-3, 1e-2}, vs[3] = {0, 0, 0};
+    double zr[4];
+    cscSoftFriction f;
+    csc_softFrictionIntegrated(&p, &acc, &g, 0, vs, z, zr, &f);
+    csc_softFrictionTorsion(&p, &acc, &g, 0, 0, 0, 0, z[3], &zr[3], &f);
+    cscShapeLoad ld;
+    double zd[4];
+    CS_EXPECT(csc_softCompute(m, &st, z, &ld, zd, NULL, NULL) == 0);
+    n_out++;
+    n_partial += acc.dmax > -INFINITY;
+    bad += memcmp(zd, zr, sizeof zd) != 0 || memcmp(&ld, &ref, sizeof ld) != 0;
+  }
+  printf("  %d feet out of touch (%d of them within reach of the ground): %d differ\n", n_out,
+         n_partial, bad);
+  CS_EXPECT(bad == 0 && n_partial > 100 && n_out > n_partial + 100);
   csc_softDestroy(m);
 }
 
@@ -929,6 +1000,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_soft_normal_never_pulls_and_is_continuous);
   CS_RUN(test_soft_friction_law_states);
   CS_RUN(test_soft_foot_patch_translation_and_torsion);
+  CS_RUN(test_soft_foot_broad_phase_is_exact);
   CS_RUN(test_soft_capsule_friction_slides_rolls_and_splits);
   CS_RUN(test_soft_step_update_keeps_force_continuous);
   CS_RUN(test_soft_leg_per_shape_equals_whole_and_cost);

@@ -1,7 +1,7 @@
 /* bench_flatroad.c: cost of the flat-road scene through the driver (not a test: prints numbers).
  *
  *   bench_flatroad [level|sweep] [links] [dt_s] [t_end_s] [gait.csv|-] [coupling] [macro_steps]
- *                  [carry]
+ *                  [carry] [tol_scale] [mu]
  *
  * level: rod (default) or prb: one run of the scene (default gait, `paper` conditions, the
  * level's default coupling: stabilised for rod, one ODE step per macro step) to t_end (9 s),
@@ -16,6 +16,7 @@
  * exchange (1), carry 0/1 (Gauss-Seidel's impulse carry, csOptions.coupling_carry). The run's
  * file is written to, and kept at, $CS_BENCH_KEEP when it is set (for the track).
  * The data files come from $CS_SOURCE_DIR (default ../../..). */
+#include <hdf5.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -42,7 +43,42 @@ typedef struct BenchCoupling_ {
   const char* name; /* NULL: the level's default */
   int macro_steps;
   int carry;
+  double tol_scale; /* rod tolerances x this */
+  double mu;        /* friction coefficient; NAN: the conditions' */
 } BenchCoupling;
+
+
+/* the support's x (mm) at every whole second (from 1 s) of the run's file: one line */
+static void printTrack(const char* file) {
+  hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) {
+    return;
+  }
+  hid_t dt = H5Dopen2(f, "/time", H5P_DEFAULT), dp = H5Dopen2(f, "/support/position", H5P_DEFAULT);
+  if (dt >= 0 && dp >= 0) {
+    hid_t sp = H5Dget_space(dt);
+    size_t n = (size_t)H5Sget_simple_extent_npoints(sp);
+    H5Sclose(sp);
+    double* t = malloc(n * sizeof *t);
+    double* p = malloc(3 * n * sizeof *p);
+    if (t && p && H5Dread(dt, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t) >= 0 &&
+        H5Dread(dp, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, p) >= 0) {
+      printf("  x at whole seconds (mm):");
+      for (size_t i = 0; i < n; i++) {
+        double r = t[i] - round(t[i]);
+        if (t[i] > 0.5 && fabs(r) < 1e-9) {
+          printf(" %.2f", p[3 * i] - p[0]);
+        }
+      }
+      printf("\n");
+    }
+    free(t);
+    free(p);
+  }
+  if (dt >= 0) H5Dclose(dt);
+  if (dp >= 0) H5Dclose(dp);
+  H5Fclose(f);
+}
 
 
 static int bench(const char* src, const char* level, int links, double dt, double t_end,
@@ -72,6 +108,10 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
   cs_modelSetConditions(&m, CS_CONDITIONS_PAPER);
   cs_modelSetLegLevel(&m, type);
   m.robot.leg_params.links_per_segment = links;
+  m.robot.leg_params.rod_tol_scale = bc->tol_scale;
+  if (!isnan(bc->mu)) {
+    m.contact.mu = bc->mu;
+  }
   m.opt.h = dt;
   m.opt.t_end = t_end;
   if (bc->name) {
@@ -142,6 +182,9 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
   if (st != CS_OK) {
     printf("  stopped: %s\n", err.msg);
   }
+  printTrack(out);
+  /* every digit, for checking that a change keeps the same bits */
+  printf("  x(end) = %.17g mm\n", x[0]);
   if (!keep) {
     remove(out);
   }
@@ -161,8 +204,9 @@ int main(int argc, char** argv) {
   double dt = argc > 3 ? atof(argv[3]) : 1e-3;
   double t_end = argc > 4 ? atof(argv[4]) : 9.0;
   const char* gait = argc > 5 && strcmp(argv[5], "-") ? argv[5] : NULL;
-  BenchCoupling bc = {argc > 6 ? argv[6] : NULL, argc > 7 ? atoi(argv[7]) : 1,
-                      argc > 8 ? atoi(argv[8]) : 1};
+  BenchCoupling bc = {argc > 6 && strcmp(argv[6], "-") ? argv[6] : NULL,
+                      argc > 7 ? atoi(argv[7]) : 1, argc > 8 ? atoi(argv[8]) : 1,
+                      argc > 9 ? atof(argv[9]) : 1, argc > 10 ? atof(argv[10]) : NAN};
   dInitODE2(0);
   dSetMessageHandler(quiet);
   int rc = 0;

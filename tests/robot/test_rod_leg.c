@@ -11,7 +11,10 @@
  *    foundation (k_area 4a²), and it pushes the support up with δ / (Σ l/EA + 1/(k_area 4a²)).
  *  - stance_foot_holds: the same leg, the hip then moved 0.2 mm sideways (a tangential load far
  *    below μN): the foot does not slide (its bristle deflects elastically); frictionless, it
- *    follows the hip. */
+ *    follows the hip.
+ *  - tolerance_scale: csrLegParams.rod_tol_scale 0 and 1 are the shipped tolerances (the same
+ *    bits), 0.1 takes more CVODE steps for the same hanging leg released under gravity and
+ *    lands within the shipped tolerances' error of it. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -264,10 +267,61 @@ static void stance_foot_holds(void) {
 }
 
 
+/* the hanging leg of table_conformance released under gravity for 0.1 s (5 ms advances) with
+ * tolerance scale f: its state in x (13 N doubles) and CVODE's steps */
+static long hangScaled(double f, double* x) {
+  const csrLegType* T = &csr_leg_rod;
+  csrActuator act;
+  csrLegParams lp;
+  csrLegSpec sp;
+  const double hip[3] = {10, 200, -65};
+  legSpec(&sp, &act, &lp, hip);
+  lp.rod_tol_scale = f;
+  sp.gravity[1] = -9810;
+  csError err;
+  cs_errorClear(&err);
+  csrLeg* leg = T->create(&sp, &err);
+  CS_EXPECT(leg != NULL);
+  if (!leg) {
+    return -1;
+  }
+  csrBaseState b = restBase(hip, sp.frame);
+  double t = 0;
+  csrWrench w;
+  CS_EXPECT(hold(T, leg, &t, 5e-3, 20, &b, &w) == 0);
+  T->getState(leg, x);
+  csrRodStats st;
+  csr_rodLegStats(leg, &st);
+  T->destroy(leg);
+  return st.steps;
+}
+
+
+static void tolerance_scale(void) {
+  /* 4 elements per segment (the default), 13 doubles each (x first), no terrain */
+  double x1[13 * 14], x0[13 * 14], xt[13 * 14];
+  long s1 = hangScaled(1, x1), s0 = hangScaled(0, x0), st = hangScaled(0.1, xt);
+  printf("  CVODE steps over 0.1 s: %ld at the shipped tolerances, %ld at 0.1 x\n", s1, st);
+  CS_EXPECT(s0 == s1 && memcmp(x0, x1, sizeof x1) == 0);
+  CS_EXPECT(st > s1);
+  /* the node positions of both runs: apart (measured 3.6e-5 mm), but by far less than the
+   * shipped position tolerance atol_pos = 0.01 mm allows */
+  double dmax = 0;
+  for (int e = 0; e < 14; e++) {
+    for (int k = 0; k < 3; k++) {
+      dmax = fmax(dmax, fabs(x1[13 * e + k] - xt[13 * e + k]));
+    }
+  }
+  printf("  largest node position difference: %.3g mm\n", dmax);
+  CS_EXPECT(dmax > 0 && dmax < 0.01);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(table_conformance);
   CS_RUN(foot_pressed_on_road);
   CS_RUN(stance_foot_holds);
+  CS_RUN(tolerance_scale);
   return cs_testSummary();
 }
