@@ -153,27 +153,45 @@ csStatus cs_couplingCreate(const csModel* m, csData* d, csError* err) {
 }
 
 
-void cs_couplingStateGet(const csData* d, double* x) {
-  const csCosim* c = &d->cosim;
+/* The carried coupling data as (field, length) in the order of the state vector
+ * (CS_COSIM_STATE doubles, sim_internal.h): one list for get and set, so the two cannot
+ * disagree on the layout. Returns the number of fields. */
+typedef struct {
+  double* p;
+  int n;
+} CosimField;
+enum { COSIM_NFIELD = 2 * CSR_NLEG + 8 };
+#define COSIM_LEN(f) (sizeof(((csCosim*)0)->f) / sizeof(double))
+_Static_assert(CS_COSIM_STATE == CSR_NLEG * (COSIM_LEN(w[0].f) + COSIM_LEN(w[0].m)) +
+                                     COSIM_LEN(Kc) + COSIM_LEN(A) + COSIM_LEN(gs_P) +
+                                     COSIM_LEN(gs_R) + COSIM_LEN(gs_qd) + COSIM_LEN(carry) +
+                                     COSIM_LEN(gs_qd_prev) + 1,
+               "CS_COSIM_STATE must be the length of cosimFields' list");
+static int cosimFields(csCosim* c, CosimField f[COSIM_NFIELD]) {
+  int q = 0;
   for (int k = 0; k < CSR_NLEG; k++) {
-    memcpy(x, c->w[k].f, 3 * sizeof(double));
-    memcpy(x + 3, c->w[k].m, 3 * sizeof(double));
-    x += 6;
+    f[q++] = (CosimField){c->w[k].f, (int)COSIM_LEN(w[0].f)};
+    f[q++] = (CosimField){c->w[k].m, (int)COSIM_LEN(w[0].m)};
   }
-  memcpy(x, c->Kc, sizeof c->Kc);
-  x += 36;
-  memcpy(x, c->A, sizeof c->A);
-  x += 36;
-  memcpy(x, c->gs_P, sizeof c->gs_P);
-  x += 3;
-  memcpy(x, c->gs_R, sizeof c->gs_R);
-  x += 9;
-  memcpy(x, c->gs_qd, sizeof c->gs_qd);
-  x += 6;
-  memcpy(x, c->carry, sizeof c->carry);
-  x += 6;
-  memcpy(x, c->gs_qd_prev, sizeof c->gs_qd_prev);
-  x[6] = c->gs_primed;
+  f[q++] = (CosimField){c->Kc, (int)COSIM_LEN(Kc)};
+  f[q++] = (CosimField){c->A, (int)COSIM_LEN(A)};
+  f[q++] = (CosimField){c->gs_P, (int)COSIM_LEN(gs_P)};
+  f[q++] = (CosimField){c->gs_R, (int)COSIM_LEN(gs_R)};
+  f[q++] = (CosimField){c->gs_qd, (int)COSIM_LEN(gs_qd)};
+  f[q++] = (CosimField){c->carry, (int)COSIM_LEN(carry)};
+  f[q++] = (CosimField){c->gs_qd_prev, (int)COSIM_LEN(gs_qd_prev)};
+  f[q++] = (CosimField){&c->gs_primed, 1};
+  return q;
+}
+
+
+void cs_couplingStateGet(const csData* d, double* x) {
+  CosimField f[COSIM_NFIELD];
+  const int nf = cosimFields((csCosim*)&d->cosim, f); /* read only here */
+  for (int i = 0; i < nf; i++) {
+    memcpy(x, f[i].p, (size_t)f[i].n * sizeof(double));
+    x += f[i].n;
+  }
 }
 
 
@@ -189,26 +207,12 @@ int cs_couplingStateCheck(const double* x) {
 
 
 void cs_couplingStateSet(csData* d, const double* x) {
-  csCosim* c = &d->cosim;
-  for (int k = 0; k < CSR_NLEG; k++) {
-    memcpy(c->w[k].f, x, 3 * sizeof(double));
-    memcpy(c->w[k].m, x + 3, 3 * sizeof(double));
-    x += 6;
+  CosimField f[COSIM_NFIELD];
+  const int nf = cosimFields(&d->cosim, f);
+  for (int i = 0; i < nf; i++) {
+    memcpy(f[i].p, x, (size_t)f[i].n * sizeof(double));
+    x += f[i].n;
   }
-  memcpy(c->Kc, x, sizeof c->Kc);
-  x += 36;
-  memcpy(c->A, x, sizeof c->A);
-  x += 36;
-  memcpy(c->gs_P, x, sizeof c->gs_P);
-  x += 3;
-  memcpy(c->gs_R, x, sizeof c->gs_R);
-  x += 9;
-  memcpy(c->gs_qd, x, sizeof c->gs_qd);
-  x += 6;
-  memcpy(c->carry, x, sizeof c->carry);
-  x += 6;
-  memcpy(c->gs_qd_prev, x, sizeof c->gs_qd_prev);
-  c->gs_primed = x[6];
 }
 
 
