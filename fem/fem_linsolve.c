@@ -265,6 +265,32 @@ csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const i
 }
 
 
+/* MUMPS's numeric factorisation of s->id.a (threads set by the caller), retrying with a doubled
+ * workspace when delayed pivots of an indefinite tangent overflow it (INFOG(1) -8, -9). */
+static void mumpsFactor(csfLinSolver* s) {
+  s->id.job = 2;
+  dmumps_c(&s->id);
+  for (int retry = 0; retry < 2 && (s->id.infog[0] == -9 || s->id.infog[0] == -8); retry++) {
+    s->id.icntl[13] *= 2;
+    if (growWorkspace(s, 2.0 * (double)s->lwk) != 0) {
+      break;
+    }
+    dmumps_c(&s->id);
+  }
+}
+
+
+/* An unpivoted LDL^T that failed (a zero pivot) or missed its solve's residual check, factored
+ * again with MUMPS's threshold pivoting, whose 2x2 pivots keep it stable; the next
+ * factorisation pivots too. */
+static void repivot(csfLinSolver* s) {
+  s->id.cntl[0] = s->piv_default;
+  s->n_repivot++;
+  s->pivot_next = 1;
+  mumpsFactor(s);
+}
+
+
 int csf_linSolverFactor(csfLinSolver* s, const double* val) {
   if (s->opt.kind == CSF_SOLVER_KLU) {
     if (s->num) {
@@ -282,42 +308,28 @@ int csf_linSolverFactor(csfLinSolver* s, const double* val) {
   } else {
     s->id.a = (double*)val;
   }
-  /* pivoting by inertia (fem_linsolve.h): a definite tangent factors stably on its diagonal
-   * pivots, and MUMPS's threshold test then only costs time (measured on the baseline leg at
-   * l_soft 4, one thread: 2.08 s against 2.78 s per LDL^T factorisation, the same fill, solution
-   * 1e-8 relative apart: fem/README.md "Speed"). An indefinite matrix factored without pivoting
-   * is checked by the residual of its solve (csf_linSolverSolve) and redone with pivoting only
-   * if that fails: the extrapolated predictor's state has 1-3 negative pivots at nearly every
-   * load step of the baseline's 360 deg run, and its next iterate none */
-  const int by_inertia = s->opt.symmetric && s->opt.pivot_threshold < 0;
-  if (by_inertia) {
+  /* checked unpivoted LDL^T (fem_linsolve.h): a definite tangent factors stably on its
+   * diagonal pivots, and MUMPS's threshold test then only costs time (baseline leg, l_soft 4:
+   * 1.93-2.02 s against 2.52-2.64 s per factorisation, the same fill, solutions 5e-9 apart:
+   * fem/README.md "Speed"). An indefinite matrix factored without pivoting is checked by the
+   * residual of its solves (csf_linSolverSolve) and redone with pivoting only if that fails:
+   * the extrapolated predictor's state has 1-3 negative pivots at nearly every load step of
+   * the baseline's 360 deg run, and its next iterate none */
+  const int checked = s->opt.symmetric && s->opt.pivot_threshold < 0;
+  if (checked) {
     s->id.cntl[0] = s->pivot_next ? s->piv_default : 0.0;
     s->pivot_next = 0;
   }
-  s->id.job = 2;
   int prev = enterThreads(s->nthreads);
-  dmumps_c(&s->id);
-  if (by_inertia && s->id.cntl[0] == 0.0 && s->id.infog[0] < 0 && s->id.infog[0] != -9 &&
-      s->id.infog[0] != -8) {
-    /* singular on the diagonal (a zero pivot without pivoting): redo it with threshold
-     * pivoting, whose 2x2 pivots keep LDL^T stable there */
-    s->id.cntl[0] = s->piv_default;
-    s->n_repivot++;
-    s->pivot_next = 1;
-    dmumps_c(&s->id);
-  }
-  for (int retry = 0; retry < 2 && (s->id.infog[0] == -9 || s->id.infog[0] == -8); retry++) {
-    /* workspace too small (delayed pivots of an indefinite tangent): double it and retry */
-    s->id.icntl[13] *= 2;
-    if (growWorkspace(s, 2.0 * (double)s->lwk) != 0) {
-      break;
-    }
-    dmumps_c(&s->id);
+  mumpsFactor(s);
+  if (checked && s->id.cntl[0] == 0.0 && s->id.infog[0] < 0) {
+    /* singular on the diagonal (a zero pivot without pivoting) */
+    repivot(s);
   }
   leaveThreads(prev);
   s->factored = s->id.infog[0] >= 0;
   /* an unpivoted factorisation of an indefinite matrix is checked at its solves */
-  s->check_solve = s->factored && by_inertia && s->id.cntl[0] == 0.0 && s->id.infog[11] > 0;
+  s->check_solve = s->factored && checked && s->id.cntl[0] == 0.0 && s->id.infog[11] > 0;
   return s->factored ? 0 : 1;
 }
 
@@ -360,12 +372,8 @@ int csf_linSolverSolve(csfLinSolver* s, double* b) {
   dmumps_c(&s->id);
   if (s->check_solve && s->id.infog[0] >= 0 && !solveAccurate(s, b)) {
     /* the unpivoted LDL^T of an indefinite matrix lost accuracy (a small pivot): factor again
-     * with threshold pivoting and solve once more; the next factorisation pivots too */
-    s->id.cntl[0] = s->piv_default;
-    s->id.job = 2;
-    dmumps_c(&s->id);
-    s->n_repivot++;
-    s->pivot_next = 1;
+     * with threshold pivoting and solve once more */
+    repivot(s);
     s->check_solve = 0;
     s->factored = s->id.infog[0] >= 0;
     if (s->factored) {
