@@ -195,9 +195,9 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
   }
   const csrLegParams* lp = spec->params;
   if (lp->links_per_segment < 1 || lp->links_per_segment > 64 || !(lp->E_bend > 0) ||
-      !(lp->damping_time >= 0) || !(lp->contact_radius > 0)) {
+      !(lp->damping_time >= 0) || !(lp->contact_radius > 0) || !(lp->rod_tol_scale >= 0)) {
     cs_errorSet(err, CS_ERR_RANGE, "rod leg: need 1..64 elements per segment (--links), E_bend "
-                "> 0, damping >= 0, contact radius > 0");
+                "> 0, damping >= 0, contact radius > 0, tolerance scale >= 0");
     return NULL;
   }
   csrLeg* leg = calloc(1, sizeof *leg);
@@ -214,16 +214,15 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
   par.contact_radius = lp->contact_radius;
   /* the bristles deflect by at most mu delta_t (8 µm by default): their error to 1e-5 mm */
   par.atol_hist = 1e-5;
-  if (lp->rod_tol_scale > 0 && lp->rod_tol_scale != 1) {
-    double f = lp->rod_tol_scale;
-    par.rtol *= f;
-    par.atol_pos *= f;
-    par.atol_rot *= f;
-    par.atol_vel *= f;
-    par.atol_omega *= f;
-    par.atol_hist *= f;
-    par.atol_wrench *= f;
-  }
+  /* 0: the shipped tolerances (x 1 keeps their bits) */
+  const double f = lp->rod_tol_scale > 0 ? lp->rod_tol_scale : 1.0;
+  par.rtol *= f;
+  par.atol_pos *= f;
+  par.atol_rot *= f;
+  par.atol_vel *= f;
+  par.atol_omega *= f;
+  par.atol_hist *= f;
+  par.atol_wrench *= f;
   leg->N = CSR_NSEG * par.elements_per_segment + (CSR_NSEG - 1) * par.elements_per_joint;
   csrRodSpec rs;
   memset(&rs, 0, sizeof rs);

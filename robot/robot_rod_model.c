@@ -207,8 +207,8 @@ static csStatus checkSpec(const csrRodPiece* pieces, int npiece, const csrRodSpe
   (void)need_act; /* pieces with a segment but no calibration stay at their rest strains */
   if (!(par->damping_time >= 0) || !(par->rtol > 0) || !(par->atol_pos > 0) ||
       !(par->atol_rot > 0) || !(par->atol_vel > 0) || !(par->atol_omega > 0) ||
-      !(par->atol_hist > 0) || !(par->atol_wrench > 0) || par->max_steps < 1 || par->max_order < 1 ||
-      par->max_order > 5 || !(par->contact_radius > 0) ||
+      !(par->atol_hist > 0) || !(par->atol_wrench > 0) || par->max_steps < 1 ||
+      par->max_order < 1 || par->max_order > 5 || !(par->contact_radius > 0) ||
       !(par->static_tol > 0) || par->static_max_iter < 1) {
     return cs_errorSet(err, CS_ERR_RANGE,
                        "rod: parameters: need damping_time >= 0, tolerances > 0, max_steps >= "

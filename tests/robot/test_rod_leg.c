@@ -314,6 +314,23 @@ static void tolerance_scale(void) {
   }
   printf("  largest node position difference: %.3g mm\n", dmax);
   CS_EXPECT(dmax > 0 && dmax < 0.01);
+  /* a negative or NaN scale is refused with the reason, not taken as the default */
+  const double bad[2] = {-0.5, NAN};
+  for (int i = 0; i < 2; i++) {
+    csrActuator act;
+    csrLegParams lp;
+    csrLegSpec sp;
+    const double hip[3] = {10, 200, -65};
+    legSpec(&sp, &act, &lp, hip);
+    lp.rod_tol_scale = bad[i];
+    csError err;
+    cs_errorClear(&err);
+    csrLeg* leg = csr_leg_rod.create(&sp, &err);
+    CS_EXPECT(leg == NULL && strstr(err.msg, "tolerance scale") != NULL);
+    if (leg) {
+      csr_leg_rod.destroy(leg);
+    }
+  }
 }
 
 
