@@ -112,9 +112,16 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
     st = cs_h5AttrString(f, "/", "coupling",
                          m->robot.leg_type->in_world ? "in-world (ODE joints)"
                          : m->opt.coupling == CS_COUPLING_STABILISED   ? "stabilised"
-                         : m->opt.coupling == CS_COUPLING_GAUSS_SEIDEL ? "gauss-seidel"
-                                                                       : "staggered",
+                         : m->opt.coupling == CS_COUPLING_GAUSS_SEIDEL
+                             ? (m->opt.coupling_carry ? "gauss-seidel"
+                                                      : "gauss-seidel (no momentum carry)")
+                             : "staggered",
                          err);
+  }
+  if (st == CS_OK && m->robot.leg_type == &csr_leg_rod) {
+    /* the rod's CVODE tolerances relative to the shipped ones (csrLegParams.rod_tol_scale) */
+    const double tol = m->robot.leg_params.rod_tol_scale;
+    st = cs_h5AttrDouble(f, "/", "rod_tolerance_scale", tol > 0 ? tol : 1.0, err);
   }
   if (st == CS_OK) {
     st = cs_h5AttrDouble(f, "/", "links_per_segment", m->robot.leg_params.links_per_segment, err);

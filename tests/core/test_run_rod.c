@@ -92,6 +92,19 @@ static void rootAttr(const char* file, const char* name, char* buf, size_t n) {
 }
 
 
+/* a double attribute of the file's root (NAN if missing) */
+static double rootAttrDouble(const char* file, const char* name) {
+  double v = NAN;
+  hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return v;
+  if (H5LTget_attribute_double(f, "/", name, &v) < 0) {
+    v = NAN;
+  }
+  H5Fclose(f);
+  return v;
+}
+
+
 static void rod_run_is_deterministic_and_recorded(void) {
   double xa[3], xb[3];
   CS_EXPECT(runRod(0.8, "rod_a.h5", xa) == CS_OK);
@@ -113,6 +126,7 @@ static void rod_run_is_deterministic_and_recorded(void) {
          level, coupling, xa[0], g_com_walk);
   CS_EXPECT(!strcmp(level, "rod"));
   CS_EXPECT(!strcmp(coupling, "stabilised"));
+  CS_EXPECT(rootAttrDouble("rod_a.h5", "rod_tolerance_scale") == 1.0);
   /* the first stride walks: measured 35 mm (the 25 us reference: 32.5) */
   CS_EXPECT(xa[0] > 20);
 }
