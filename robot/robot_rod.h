@@ -278,6 +278,9 @@ void csr_rodCenterline(const csrRodModel* m, const csrRodData* d, int k, double*
 void csr_rodNodes(const csrRodModel* m, const csrRodData* d, double* x);
 /* Σ m_i x_i over the nodes (t mm, world). */
 void csr_rodMassMoment(const csrRodModel* m, const csrRodData* d, double mx[3]);
+/* The leg's linear momentum P[3] (t mm/s, world): every node's, the hip node's moving with the
+ * base (the base wrench's force is the impulse of the external forces less the change of P) */
+void csr_rodMomentum(const csrRodModel* m, const csrRodData* d, double P[3]);
 
 /* Kinetic, elastic and gravitational (relative to the origin) energy (N mm) at the current
  * state, base and actuation. */

@@ -9,8 +9,9 @@
  *    more stiffness than the hip element's).
  *  - averaged_wrench_is_smooth: a stance leg pressed on the road with its hip moving up and
  *    down 0.1 mm at 5 Hz; the averaged wrench of consecutive 1 ms advances follows the motion
- *    smoothly: its second difference stays at the motion's own (~1e-4 N). Before the base
- *    impulse came under CVODE's error control it scattered by +-0.3 N from step to step. */
+ *    smoothly: its second difference stays within what CVODE's Newton tolerance lets the leg's
+ *    momentum scatter (the base force is the leg's momentum balance, robot_rod_dyn.c), far
+ *    below the +-0.3 N the clamp force's uncontrolled impulse once scattered by. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -134,9 +135,18 @@ static void averaged_wrench_is_smooth(void) {
   }
   printf("  mean load %.4f N, largest second difference of the averaged wrench %.3g N\n",
          fmean / n, worst);
-  /* the motion's own second difference is k A (om H)^2 ~ 1 N/mm x 0.1 mm x 1e-3 = 1e-4 N;
-   * measured 1.25e-4 N; the uncontrolled impulse gave 0.3 N */
-  CS_EXPECT(worst < 2e-3);
+  /* the motion's own second difference is k A (om H)^2 ~ 1 N/mm x 0.1 mm x 1e-3 = 1e-4 N. The
+   * averaged force is ∫F_ext - ΔP over H, and CVODE stops Newton once the correction is below
+   * 0.1 of the error weights (its default coefficient), so each node's velocity may sit up to
+   * ~0.1 atol_vel from the converged BDF value: the leg's momentum within 0.1 M atol_vel, the
+   * average within that over H, and a second difference sums four such errors. Measured
+   * 2.57e-3 N against that bound's 6.9e-3 N (with the coefficient at 0.01: 1.17e-4 N, the
+   * motion's own, at twice the flat road's cost and its track within 0.2 mm); integrating
+   * the clamp force instead gave 1.25e-4 N, and without error control 0.3 N. */
+  csrRodParams par = csr_rodDefaultParams(&act);
+  const double bound = 4 * 0.1 * T->mass(leg) * par.atol_vel / H;
+  printf("  Newton bound %.3g N\n", bound);
+  CS_EXPECT(worst < bound);
   T->destroy(leg);
 }
 
