@@ -60,18 +60,18 @@
  * extrapolated without the carry it ran but walked 176 mm instead of the reference's 298.
  * The first macro step (nothing carried yet, gs_primed = 0) runs stabilised and leaves what it
  * carries (cs_couplingPrime). Everything carried is in the state (cs_couplingStateGet), so a
- * failed step restores it. Measured on the flat road, shipped gait, `paper`, H = h = 1 ms:
- * x at whole seconds within 1.0 mm of the staggered 25 µs reference over 9 s (the stabilised
- * scheme: 27 mm short at 9 s); the paper's table: within 5.7 mm (stabilised: 10.7). The
- * support's velocity still jitters (second differences per step 0.46 mm/s median against the
- * reference's 0.02; stabilised 0.25), so the legs' CVODE cost stays that of the stabilised
- * scheme (5.6 steps per advance against 4.3, fewer failures). H = 2 ms with 1 ms ODE steps
- * runs, 5 mm off and 1.8x faster, but frictionless it tips over (40° by 9 s); h = H = 2 ms
- * diverges while settling. Frictionless at 1 ms the centre of mass moves 24 mm in 9 s and the
- * support 23 mm (stabilised 3.1 and -0.3), though the interface's impulse balance holds to
- * the carry (1e-7 N s): it is the legs' integration error, which this scheme hands on in
- * full; with every rod tolerance 10x tighter it is 4.5 and -1.1 mm (stabilised: 10.7 and
- * -11.6, so its small default drift is not converged either). Hence not the default.
+ * failed step restores it. Measured on the flat road, shipped gait, `paper`, H = h = 1 ms,
+ * since the rods' base force is their momentum balance (robot_rod_dyn.c; 2026-12-02): x at
+ * whole seconds within 2.1 mm of the staggered 25 µs reference over 9 s (the reference is
+ * converged: 10, 20 and 25 µs within 0.03 mm at 2 s), the paper's table within 2.2 mm; the
+ * stabilised scheme 22.6 mm short at 9 s. Both implicit schemes approach the reference only
+ * slowly as H shrinks (x(2 s): gs 40.64 / 40.85 mm at 1 ms / 25 µs, stabilised 35.90 / 40.93 /
+ * 41.26 at 1 ms / 25 / 10 µs, the reference 41.91; not explained yet: the difference grows
+ * during the first push, 1.3-1.8 s, at every H). Frictionless the
+ * centre of mass stays to round-off and the carry (0.066 mm in 2 s; the support 0.6 mm in 9
+ * s), where the stabilised scheme's momentum error moves it 1.8 mm in 2 s. Hence the default
+ * for co-simulated legs. H = 2 ms with 1 ms ODE steps runs 1.8x faster but 5 mm off (measured
+ * before the momentum balance); h = H = 2 ms diverges while settling.
  *
  * Rejected: sub-iterating the legs to convergence every step (the tightly coupled reference:
  * the driver's state save/restore makes it possible, at several advances per step; a tiny macro
@@ -138,7 +138,9 @@ static void mat6Vec(double y[6], const double M[36], const double x[6]) {
 
 void cs_modelSetLegLevel(csModel* m, const csrLegType* type) {
   m->robot.leg_type = type;
-  m->opt.coupling = type && !type->in_world ? CS_COUPLING_STABILISED : CS_COUPLING_STAGGERED;
+  /* co-simulated legs default to Gauss-Seidel: momentum exact, and 2 mm from the converged
+   * staggered reference over the 9 s flat road where the stabilised scheme is 23 mm off (top) */
+  m->opt.coupling = type && !type->in_world ? CS_COUPLING_GAUSS_SEIDEL : CS_COUPLING_STAGGERED;
 }
 
 

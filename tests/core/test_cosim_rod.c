@@ -15,8 +15,8 @@
  * Scene of the first case: the paper's table (gaits/flat_road_paper.csv) under `paper`
  * conditions, 0.3 s of settling and the first 0.5 s of the gait (ACFH lift and swing, BDEG
  * stand: the support is pulled back); compared: the support's displacement at t = 0.5 s
- * (reference: x = -7.77, y = 0.12, z = 0.62 mm). The second: the shipped gait
- * (gaits/flat_road.csv), 2 s, the displacement then (reference x = 42.05 mm). Labelled slow
+ * (reference: x = -7.82, y = 0.12, z = 0.61 mm). The second: the shipped gait
+ * (gaits/flat_road.csv), 2 s, the displacement then (reference x = 41.91 mm). Labelled slow
  * (the references take 32 k and 92 k steps: ~20 s and ~40 s; 93 s for the first under the
  * sanitizers). */
 #include <math.h>
@@ -98,8 +98,8 @@ static void staggered_fails_where_stabilised_holds_the_reference(void) {
   /* the explicit limit: 50 us diverges while settling (40 us runs) */
   CS_EXPECT(runRod(50e-6, CS_COUPLING_STAGGERED, x) == CS_ERR_DIVERGED);
   /* stabilised at 10 x 25 us and at 2 ms: stable, and at 10x within 1 mm (the issue's bound;
-   * measured 0.68 mm at 250 us, 0.92 mm at 2 ms: the error is first order in H and grows with
-   * the gait, README "Coupling") */
+   * measured 0.46 mm at 250 us, 0.48 mm at 2 ms; before the legs' base force was their
+   * momentum balance 0.68 and 0.92 mm: the error grows with the gait, README "Rod legs") */
   CS_EXPECT(runRod(250e-6, CS_COUPLING_STABILISED, x) == CS_OK);
   double e = sqrt((x[0] - ref[0]) * (x[0] - ref[0]) + (x[1] - ref[1]) * (x[1] - ref[1]) +
                   (x[2] - ref[2]) * (x[2] - ref[2]));
@@ -108,7 +108,7 @@ static void staggered_fails_where_stabilised_holds_the_reference(void) {
   CS_EXPECT(e < 1.0);
   CS_EXPECT(runRod(2e-3, CS_COUPLING_STABILISED, x) == CS_OK);
   printf("  stabilised, 2 ms: x = %.3f y = %.3f z = %.3f mm\n", x[0], x[1], x[2]);
-  /* stable and on the reference's track (measured 0.5 mm in x) */
+  /* stable and on the reference's track (measured 0.1 mm in x; 0.5 mm before) */
   CS_EXPECT(isfinite(x[0]) && fabs(x[0] - ref[0]) < 5);
 }
 
@@ -125,10 +125,12 @@ static void gauss_seidel_holds_the_reference_at_1ms(void) {
   printf("  shipped gait, t = %g s: reference (staggered, 25 us) x = %.3f y = %.3f z = %.3f; "
          "Gauss-Seidel 1 ms x = %.3f (%.3f mm off); stabilised 1 ms x = %.3f (%.3f mm off)\n",
          kTEndShipped, ref[0], ref[1], ref[2], gs[0], egs, st[0], est);
-  /* measured 1.02 mm (Gauss-Seidel) and 6.37 mm (stabilised); the reference's own spread is
-   * 0.29 mm at 2 s (staggered 20 against 25 us), and a change of round-off alone moved the
-   * Gauss-Seidel run by 0.12 mm here (the same scheme, its carry summed in another order):
-   * 1.5 mm, and the stabilised scheme at least 3x further */
+  /* measured 1.27 mm (Gauss-Seidel) and 6.02 mm (stabilised); the reference is converged to
+   * 0.03 mm at 2 s (staggered 10, 20, 25 us), and a change of round-off alone moved the
+   * Gauss-Seidel run by 0.12 mm here (the same scheme, its carry summed in another order);
+   * at 25 us Gauss-Seidel itself is 1.06 mm off (README "Rod legs": the implicit schemes
+   * approach the staggered limit slowly): 1.5 mm, and the stabilised scheme at least 3x
+   * further */
   CS_EXPECT(egs < 1.5);
   CS_EXPECT(est > 3 * egs);
 }
