@@ -61,17 +61,14 @@
  * The first macro step (nothing carried yet, gs_primed = 0) runs stabilised and leaves what it
  * carries (cs_couplingPrime). Everything carried is in the state (cs_couplingStateGet), so a
  * failed step restores it. Measured on the flat road, shipped gait, `paper`, H = h = 1 ms,
- * since the rods' base force is their momentum balance (robot_rod_dyn.c; 2026-12-02): x at
- * whole seconds within 2.1 mm of the staggered 25 µs reference over 9 s (the reference is
- * converged: 10, 20 and 25 µs within 0.03 mm at 2 s), the paper's table within 2.2 mm; the
- * stabilised scheme 22.6 mm short at 9 s. Both implicit schemes approach the reference only
- * slowly as H shrinks (x(2 s): gs 40.64 / 40.85 mm at 1 ms / 25 µs, stabilised 35.90 / 40.93 /
- * 41.26 at 1 ms / 25 / 10 µs, the reference 41.91; not explained yet: the difference grows
- * during the first push, 1.3-1.8 s, at every H). Frictionless the
- * centre of mass stays to round-off and the carry (0.066 mm in 2 s; the support 0.6 mm in 9
- * s), where the stabilised scheme's momentum error moves it 1.8 mm in 2 s. Hence the default
- * for co-simulated legs. H = 2 ms with 1 ms ODE steps runs 1.8x faster but 5 mm off (measured
- * before the momentum balance); h = H = 2 ms diverges while settling.
+ * since the rods' base force is their momentum balance and their hip node massless
+ * (robot_rod_dyn.c, robot_rod_model.c; 2026-12-02): x at whole seconds within 0.62 mm of the
+ * staggered 25 µs reference over 9 s (the reference converged: 20 µs within 0.01 mm, and gs at
+ * 25 µs lands on it), the paper's table within 1.8 mm; the stabilised scheme 22 mm short at
+ * 9 s. Frictionless the centre of mass stays to round-off and the carry (0.066 mm in 2 s; the
+ * support -0.6 mm in 9 s), where the stabilised scheme's momentum error moves it 1.8 mm in 2 s.
+ * Hence the default for co-simulated legs. H = 2 ms with 1 ms ODE steps: 1.2 mm off;
+ * h = H = 2 ms diverges while settling (measured before the two fixes).
  *
  * Rejected: sub-iterating the legs to convergence every step (the tightly coupled reference:
  * the driver's state save/restore makes it possible, at several advances per step; a tiny macro
@@ -138,8 +135,8 @@ static void mat6Vec(double y[6], const double M[36], const double x[6]) {
 
 void cs_modelSetLegLevel(csModel* m, const csrLegType* type) {
   m->robot.leg_type = type;
-  /* co-simulated legs default to Gauss-Seidel: momentum exact, and 2 mm from the converged
-   * staggered reference over the 9 s flat road where the stabilised scheme is 23 mm off (top) */
+  /* co-simulated legs default to Gauss-Seidel: momentum exact, and 0.6 mm from the converged
+   * staggered reference over the 9 s flat road where the stabilised scheme is 22 mm off (top) */
   m->opt.coupling = type && !type->in_world ? CS_COUPLING_GAUSS_SEIDEL : CS_COUPLING_STAGGERED;
 }
 

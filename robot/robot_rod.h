@@ -195,7 +195,7 @@ void csr_rodModelDestroy(csrRodModel* m);
 /* Sizes and constants. */
 int csr_rodElements(const csrRodModel* m);           /* N */
 int csr_rodStateSize(const csrRodModel* m);          /* doubles in the state vector */
-double csr_rodMass(const csrRodModel* m);            /* total mass incl. the hip node (t) */
+double csr_rodMass(const csrRodModel* m);            /* total mass (t); the hip node has none */
 double csr_rodLength(const csrRodModel* m);          /* rest length (mm) */
 const double* csr_rodNodeArc(const csrRodModel* m);  /* (N + 1) rest arc lengths (mm) */
 int csr_rodStateOffset(const csrRodModel* m, int e); /* element e's block in the state */

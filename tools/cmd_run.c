@@ -42,9 +42,9 @@ static const char kRunUsage[] =
     "  --macro-steps N: ODE steps per exchange with co-simulated legs (macro step H = N dt);\n"
     "  --coupling: how co-simulated legs (rod) hand their wrench to the support (default gs:\n"
     "    Gauss-Seidel, the support steps first and the legs follow its actual motion; momentum\n"
-    "    exact, 2.1 mm from the converged staggered reference over the 9 s flat road at 1 ms;\n"
-    "    stabilised: the legs first along a predicted motion, cheaper, 23 mm off; staggered:\n"
-    "    explicit, stable below 50 us; README \"Rod legs\"); ignored by prb;\n"
+    "    exact, 0.6 mm from the converged staggered reference over the 9 s flat road at 1 ms;\n"
+    "    stabilised: the legs first along a predicted motion, cheaper, 22 mm off; staggered:\n"
+    "    explicit, stable below 40 us; README \"Rod legs\"); ignored by prb;\n"
     "  --set NAME=VALUE: a parameter of the legs' actuator (as crawlsim bend: S1 a C10 ...; the\n"
     "    legs' stiffness and mass follow; the calibration must be of that actuator).\n";
 

@@ -46,8 +46,10 @@ def run_one(a, coupling, h):
         text = p.stdout + p.stderr
         with open(log, "w") as f:
             f.write(text)
-    stop = re.search(r"crawlsim run: t = ([-0-9.]+) s: (.*)", text)
-    r = {"coupling": coupling, "h": h, "stop": (float(stop.group(1)), stop.group(2)) if stop
+    # a divergence ("crawlsim run: t = T s: ...") or a leg's failed advance ("crawlsim run: rod
+    # advance from t = T s by ...")
+    stop = re.search(r"crawlsim run: (.*?\bt = ([-0-9.]+) s.*)", text)
+    r = {"coupling": coupling, "h": h, "stop": (float(stop.group(2)), stop.group(1)) if stop
          else None, "t": np.zeros(0), "p": np.zeros((0, 3))}
     if os.path.exists(out):
         with h5py.File(out, "r") as f:
