@@ -26,8 +26,9 @@
  * Base wrench: the force and moment the rod's hip element and hip-node spring exert on the
  * clamp, plus the hip node's own weight and inertia (m_0 (g - a_0); m_0 = 0 since the hip
  * node's half element was lumped on node 1, robot_rod_model.c says why). Over a macro step
- * the support receives its time integral. The moment's integral is 3 extra components of the CVODE vector under error control. The
- * force's impulse comes from the leg's momentum balance instead: with P = Σ m_i v_i over
+ * the support receives its time integral. The moment's integral is 3 extra components of the
+ * CVODE vector under error control. The force's impulse comes from the leg's momentum balance
+ * instead: with P = Σ m_i v_i over
  * every node (the hip node moving with the base) and F_ext = Σ_i F_i the external forces
  * (the internal ones cancel in pairs: contact and weight remain), the clamp gives the support
  * ∫ F_ext dt - (P(t + H) - P(t)); 3 extra CVODE components integrate F_ext. Why: the support
