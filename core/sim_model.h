@@ -251,6 +251,13 @@ double cs_robotMass(const csData* d);
 csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_s,
                 csError* err);
 
+/* A run that failed before t = 0 (while settling, `cause`) still leaves its output file: the
+ * header (every attribute cs_run writes first), the contract's series with no samples, the
+ * `status` attribute saying what stderr says and `failed_at_s`, the time of the failure
+ * (negative: settling runs from -opt.settle to 0). No XDMF (there is nothing to show). */
+csStatus cs_runRecordFailure(const csModel* m, const csData* d, const char* out_path,
+                             const csError* cause, csError* err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -226,3 +226,25 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
   }
   return st;
 }
+
+
+csStatus cs_runRecordFailure(const csModel* m, const csData* d, const char* out_path,
+                             const csError* cause, csError* err) {
+  csH5File* f = cs_h5Create(out_path, err);
+  if (!f) {
+    return err ? err->status : CS_ERR_IO;
+  }
+  Series s;
+  csStatus st = writeHeader(m, f, &s, err);
+  if (st == CS_OK) {
+    st = cs_h5AttrString(f, "/", "status", cause && cause->msg[0] ? cause->msg : "failed", err);
+  }
+  if (st == CS_OK) {
+    st = cs_h5AttrDouble(f, "/", "failed_at_s", cs_time(d), err);
+  }
+  if (st == CS_OK) {
+    st = cs_h5AttrDouble(f, "/", "steps", (double)cs_stepCount(d), err);
+  }
+  cs_h5Close(f);
+  return st;
+}

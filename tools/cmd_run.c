@@ -451,7 +451,17 @@ int csx_cmdRun(int argc, char** argv) {
             "load %.2f N per leg (%.0f %%)%s\n", load, pcr, 100 * load / pcr,
             load > 0.5 * pcr ? ": expect the stance legs to sway and fold" : "");
   }
-  if (cs_settle(&m, d, &err) != CS_OK) goto done;
+  if (cs_settle(&m, d, &err) != CS_OK) {
+    /* the output file says so too (the contract: what was written stays readable) */
+    csError ferr;
+    cs_errorClear(&ferr);
+    if (cs_runRecordFailure(&m, d, out, &err, &ferr) != CS_OK) {
+      char cause[sizeof err.msg];
+      memcpy(cause, err.msg, sizeof cause);
+      cs_errorSet(&err, err.status, "%.300s (output file not written: %.150s)", cause, ferr.msg);
+    }
+    goto done;
+  }
   double wall = 0;
   csStatus st = cs_run(&m, d, out, &wall, &err);
   double x[3], q[4];

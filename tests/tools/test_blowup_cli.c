@@ -6,8 +6,10 @@
  * same message. The limits themselves are not asserted (where a run fails is the map's
  * measurement); only that a failure, when it comes, is reported this way.
  *  - rod legs at h = H = 10 ms with the stabilised coupling (its limit is 2 ms): the support
- *    runs away after the settling ("simulation diverged: support speed ..."; the default
- *    Gauss-Seidel coupling diverges already while settling, before the output opens);
+ *    runs away after the settling ("simulation diverged: support speed ...");
+ *  - rod legs with the staggered coupling at 1 ms (its limit is 35 µs), which diverges already
+ *    while settling, before the first sample: the file holds the header, empty series, the
+ *    status and failed_at_s (< 0);
  *  - rod legs on a contact 1000x softer than default: the feet sink until the soft contact's
  *    hook refuses the state and CVODE gives up ("CVODE ... contact hook").
  * argv[1] is the crawlsim executable. */
@@ -93,6 +95,53 @@ static void test_blowup_large_step_diverges_with_time_and_cause(void) {
 }
 
 
+/* the staggered coupling at h = H = 1 ms (stable to 35 µs) diverges while the robot settles
+ * (t < 0, measured -0.294 s), before any sample:
+ * the file still exists with the header, empty series, the status and the time it failed */
+static void test_blowup_while_settling_leaves_a_file_saying_so(void) {
+  const char* out = "blowup_settle.h5";
+  remove(out);
+  char args[2048];
+  snprintf(args, sizeof args, "run --quiet --gait %s --conditions paper --t-end %g --out %s "
+           "--legs rod --coupling staggered", g_gait, T_END, out);
+  csCliResult r;
+  cs_cliRun(exe_path, args, "blowup_settle", &r);
+  printf("  -> %d: %s", r.status, r.err);
+  CS_EXPECT(r.status == 1);
+  CS_EXPECT(cs_cliOneLine(r.err));
+  const char* at = strstr(r.err, "t = ");
+  CS_EXPECT(at != NULL && atof(at + 4) < 0); /* while settling */
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen(out, H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f < 0) {
+    return;
+  }
+  hsize_t dims[2] = {1, 1};
+  CS_EXPECT(H5LTget_dataset_info(f, "/time", dims, NULL, NULL) >= 0 && dims[0] == 0);
+  CS_EXPECT(H5LTget_dataset_info(f, "/support/position", dims, NULL, NULL) >= 0 &&
+            dims[0] == 0);
+  char status[1024] = "", model[64] = "";
+  H5T_class_t cls;
+  size_t sz = 0;
+  hsize_t ad[1] = {0};
+  CS_EXPECT(H5LTget_attribute_info(f, "/", "status", ad, &cls, &sz) >= 0 && sz < sizeof status);
+  if (sz < sizeof status) {
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "status", status) >= 0);
+    CS_EXPECT(status[0] && strstr(r.err, status) != NULL);
+  }
+  CS_EXPECT(H5LTget_attribute_string(f, "/", "leg_model", model) >= 0 && !strcmp(model, "rod"));
+  double failed = NAN;
+  CS_EXPECT(H5LTget_attribute_double(f, "/", "failed_at_s", &failed) >= 0);
+  /* the state (and its time) is the failed step's start: a failed step changes nothing; the
+   * message names where the divergence was found, at most one 1 ms step later */
+  printf("  failed_at_s = %.4f s\n", failed);
+  CS_EXPECT(failed < 0 && fabs(failed - atof(at ? at + 4 : "nan")) <= 1e-3 + 1e-9);
+  H5Fclose(f);
+  remove(out);
+}
+
+
 static void test_blowup_soft_contact_fails_with_time_and_cause(void) {
   expectCleanFailure("--legs rod --contact-scale 1e-3", "contact");
 }
@@ -109,5 +158,6 @@ int main(int argc, char** argv) {
   cs_testInit(argc - 1, argv + 1);
   CS_RUN(test_blowup_large_step_diverges_with_time_and_cause);
   CS_RUN(test_blowup_soft_contact_fails_with_time_and_cause);
+  CS_RUN(test_blowup_while_settling_leaves_a_file_saying_so);
   return cs_testSummary();
 }
