@@ -77,6 +77,8 @@ static void test_badOptions(void) {
   expectFailure("--gravity -9.81", "crawlsim run: --gravity -9.81 m/s^2 must be >= 0");
   expectFailure("--tau -1", "crawlsim run: --tau -1 s must be >= 0");
   expectFailure("--ramp -1", "crawlsim run: --ramp -1 s must be >= 0");
+  expectFailure("--rod-tol 0", "crawlsim run: --rod-tol 0 must be > 0 and <= 1000");
+  expectFailure("--rod-tol 1e4", "crawlsim run: --rod-tol 10000 must be > 0 and <= 1000");
 }
 
 
@@ -224,6 +226,19 @@ static void test_goodRun(void) {
   }
   remove("runcli_macro.h5");
   remove("runcli_macro.xdmf");
+  /* --rod-tol: the rod legs' CVODE tolerances x K, recorded in the output */
+  cs_cliRun(exe_path, "run --t-end 0.01 --quiet --legs rod --rod-tol 10 --out runcli_rodtol.h5",
+            "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  f = H5Fopen("runcli_rodtol.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double k = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "rod_tolerance_scale", &k) >= 0 && k == 10);
+    H5Fclose(f);
+  }
+  remove("runcli_rodtol.h5");
+  remove("runcli_rodtol.xdmf");
   /* --legs auto picks from the measured table and needs a tolerance (tests/tools/
    * test_levels_cli.c checks the pick); without --tol it is one error line */
   cs_cliRun(exe_path, "run --t-end 0.01 --quiet --legs auto --out runcli_auto.h5", "runcli", &r);
