@@ -497,6 +497,16 @@ csrCalModel* csr_calModelCreate(const csrCalTable* t, const csrActuator* leg,
     m->coord[v][2] = r[2];
     ok = buildField(m, v, c, kV[v].mirror, r);
   }
+  int rbf_ok = 1;
+  if (ok && m->opt.rule == CSR_CAL_RULE_RBF) {
+    rbf_ok = csr_calRbfBuild_(m, mode);
+    ok = rbf_ok == 1;
+  }
+  if (rbf_ok < 0) {
+    cs_errorSet(err, CS_ERR_SOLVER, "%s: the RBF rule's kernel matrix is singular", t->path);
+    csr_calModelDestroy(m);
+    return NULL;
+  }
   ok = ok && buildStiffness(m, t);
   if (!ok) {
     cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", t->path);
@@ -514,7 +524,8 @@ csrCalModel* csr_calModelCreate(const csrCalTable* t, const csrActuator* leg,
   snprintf(m->name, sizeof m->name, "FE mode table (%s; %d modes; 0..%g MPa, range ended by %s; "
            "%s; l_soft %g mm, %.64s, version %.32s): %.512s",
            m->opt.rule == CSR_CAL_RULE_SUPERPOSITION ? "superposition + interpolated interactions"
-                                                     : "interpolation between modes",
+           : m->opt.rule == CSR_CAL_RULE_RBF ? "superposition + RBF-interpolated interactions"
+                                             : "interpolation between modes",
            nmode, m->p_max, m->limit_case, stiff, t->fe_mesh_size, t->fe_solver, t->version,
            t->path);
   return m;
@@ -530,6 +541,10 @@ void csr_calModelDestroy(csrCalModel* m) {
   for (int v = 0; v < NV; v++) {
     csr_calCurveFree_(&m->field[v]);
   }
+  for (int r = 0; r < CSR_CAL_NROLE; r++) {
+    csr_calCurveFree_(&m->rbf_res[r]);
+  }
+  free(m->rbf_inv);
   for (int q = 0; q < 2; q++) {
     for (int s = 0; s < CSR_NSEG; s++) {
       free(m->kp[q][s]), free(m->kv[q][s]);

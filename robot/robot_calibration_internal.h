@@ -40,6 +40,9 @@ enum {
   NV
 };
 
+/* images of the modes' shapes under the eight symmetries (CSR_CAL_RULE_RBF) */
+#define RBF_MAXN (8 * CSR_CAL_NROLE)
+
 /* rows of one mode: p (m), y and slopes (m x 3 x nc) */
 typedef struct {
   int m, nc;
@@ -60,6 +63,15 @@ struct csrCalModel_ {
   double kfac[CSR_NSEG][2]; /* mean-pressure factor of the scaled superposition (0: none) */
   double kfit_rms[CSR_NSEG]; /* rms of log(a_model / a_FE) of that fit over the bending modes */
   csrCalCurve field[NV];         /* a, b, δstretch, δradial, δradial_max (residual or value) */
+  /* CSR_CAL_RULE_RBF (robot_calibration_rbf.c): per role its residual over the bases (F_A, F_B
+   * the bend vector in the mode's frame, rad; m = 0 when unused), the distinct images of the
+   * modes' shapes x = ratio (rbf_n x 4) with their role, turns and mirror, and the inverse of
+   * the Gaussian kernel matrix (rbf_n x rbf_n) */
+  csrCalCurve rbf_res[CSR_CAL_NROLE];
+  int rbf_n;
+  double rbf_x[RBF_MAXN][4];
+  int rbf_role[RBF_MAXN], rbf_k[RBF_MAXN], rbf_mir[RBF_MAXN];
+  double* rbf_inv;
   int nk[2][CSR_NSEG];     /* stiffness points of EI (0) and EA (1) per segment */
   double* kp[2][CSR_NSEG]; /* (nk) mean pressure, MPa */
   double* kv[2][CSR_NSEG]; /* (nk) EI (N mm^2) or EA (N) */
@@ -95,6 +107,19 @@ void csr_calBaseScalars_(const csrCalModel* m, int s, const double pc[4], double
 /* the superposition of the single-chamber curve `base` with mean-pressure factor k */
 void csr_calSuperposeBend_(const csrCalCurve* base, const double k[2], int s, const double pc[4],
                            double bend[2]);
+/* bend vector of a canonical pattern back in the pattern's frame (k turns, mirror) */
+void csr_calFromCanonical_(const double bc[2], int k, int mir, double b[2]);
+
+/* ---- the RBF rule (robot_calibration_rbf.c) --------------------------------------------- */
+
+/* residual curves and images of the modes used (mode[r] NULL: unused; the bases must be set
+ * up); 1 ok, 0 out of memory, -1 a singular kernel matrix (coincident images) */
+int csr_calRbfBuild_(csrCalModel* m, const csrCalCase* const mode[CSR_CAL_NROLE]);
+/* the interpolated residual at canonical pc (pc[0] = P > 0): bend (canonical frame, rad) and
+ * the changes of stretch, radial and largest radial growth; no allocation */
+void csr_calRbfField_(const csrCalModel* m, int s, const double pc[4], double bend[2],
+                      double sc[3]);
+
 /* K(x) = exp(k1 x + k2 x^2) */
 static inline double csr_calMeanFactor_(const double k[2], double x) {
   return exp(x * (k[0] + k[1] * x));

@@ -105,7 +105,7 @@ static void canonical(const double p[4], double pc[4], int* k, int* mir) {
 
 /* bend vector of the canonical pattern back in the segment's frame: bend(p) = Rot(-90 k) D^mir
  * bend(pc), Rot(90) (x, y) = (-y, x), D (x, y) = (y, x) */
-static void fromCanonical(const double bc[2], int k, int mir, double b[2]) {
+void csr_calFromCanonical_(const double bc[2], int k, int mir, double b[2]) {
   double x = mir ? bc[1] : bc[0], y = mir ? bc[0] : bc[1];
   for (int i = 0; i < k; i++) {
     double t = x; /* Rot(-90): (x, y) -> (y, -x) */
@@ -178,11 +178,12 @@ void csr_calSuperposeBend_(const csrCalCurve* base, const double k[2], int s, co
 
 
 /* the bend base at canonical pressures pc (P = pc[0] <= range), canonical frame: the
- * superposition of the single-chamber response (scaled by the fitted mean-pressure factor for
- * CSR_CAL_RULE_SCALED), or 0 */
+ * superposition of the single-chamber response (also under CSR_CAL_RULE_RBF; scaled by the
+ * fitted mean-pressure factor for CSR_CAL_RULE_SCALED), or 0 */
 void csr_calBaseBend_(const csrCalModel* m, int s, const double pc[4], double bend[2]) {
   bend[0] = bend[1] = 0;
-  if (m->opt.rule == CSR_CAL_RULE_SUPERPOSITION || m->opt.rule == CSR_CAL_RULE_SCALED) {
+  if (m->opt.rule == CSR_CAL_RULE_SUPERPOSITION || m->opt.rule == CSR_CAL_RULE_SCALED ||
+      m->opt.rule == CSR_CAL_RULE_RBF) {
     csr_calSuperposeBend_(&m->base, m->kfac[s], s, pc, bend);
   }
 }
@@ -215,6 +216,20 @@ void csr_calBaseScalars_(const csrCalModel* m, int s, const double pc[4], double
 /* the model in the canonical frame: bend and scalars of segment s at canonical pc */
 static void evalCanonical(const csrCalModel* m, int s, const double pc[4], double bend[2],
                           double sc[3]) {
+  if (m->opt.rule == CSR_CAL_RULE_RBF) {
+    /* bases + the residual interpolated over the modes' symmetric images */
+    double rb[2], rs[3], bs[3], mv[2];
+    csr_calRbfField_(m, s, pc, rb, rs);
+    csr_calMoment_(pc, mv);
+    if (mv[0] == 0 && mv[1] == 0) {
+      rb[0] = rb[1] = 0; /* the interpolant gives 0 to round-off (equivariance); exactly 0 */
+    }
+    csr_calBaseBend_(m, s, pc, bend);
+    csr_calBaseScalars_(m, s, pc, bs);
+    bend[0] += rb[0], bend[1] += rb[1];
+    for (int c = 0; c < 3; c++) sc[c] = bs[c] + rs[c];
+    return;
+  }
   const double P = pc[0];
   const double x2 = pc[1] / P, x3 = pc[2] / P, x4 = pc[3] / P;
   const double w = x2 > 0 ? x4 / x2 : 0;
@@ -279,7 +294,7 @@ int csr_calModelEval(const csrCalModel* m, int seg, const double p[CSR_NCHAMBER]
     pc[0] = m->p_max; /* round-off above the last row */
   }
   evalCanonical(m, seg, pc, bc, sc);
-  fromCanonical(bc, k, mir, out->bend);
+  csr_calFromCanonical_(bc, k, mir, out->bend);
   out->stretch = 1 + sc[0];
   out->radial = sc[1];
   out->radius = m->leg.a + sc[2];

@@ -41,6 +41,9 @@
  * 1 + Σ_j δλ1(p_j), ...); CSR_CAL_RULE_INTERPOLATION interpolates the modes' values directly.
  * Both return every fitted row (to round-off) and zero bend at m = 0; they differ between the
  * modes, where the table's held-out cases decide (robot_calibration.h names the default).
+ * CSR_CAL_RULE_RBF (opt-in) keeps the superposition but interpolates the residuals by a
+ * Gaussian RBF over the modes' symmetric images instead of the prism's hats
+ * (robot_calibration_rbf.c has its rationale and measured errors).
  * Stiffness. EI (the mean of the e1 and e2 probes: the section's second moment is isotropic)
  * and EA per segment as piecewise-linear functions of the mean chamber pressure p̄ = Σ p_j / 4
  * through the probes of every probed mode (probes at equal p̄ averaged); NaN probes skipped.
@@ -71,6 +74,10 @@ typedef enum csrCalRule_ {
   CSR_CAL_RULE_SCALED = 3,        /* bend only: the superposition scaled by a mean-pressure
                                      factor fitted to the bending modes + interpolated
                                      interactions */
+  CSR_CAL_RULE_RBF = 4,           /* bend and scalars: the superposition (the scalar rule's base
+                                     for the scalars) + the modes' differences from it
+                                     interpolated by a Gaussian RBF over the symmetric images
+                                     of their shapes (robot_calibration_rbf.c); opt-in */
 } csrCalRule;
 
 /* The fitted modes by role (csr_calModelModePattern gives their chamber ratios). */
@@ -93,7 +100,8 @@ typedef enum csrCalRole_ {
 } csrCalRole;
 
 typedef struct csrCalOptions_ {
-  csrCalRule rule;        /* bend: SUPERPOSITION or INTERPOLATION */
+  csrCalRule rule;        /* bend: SUPERPOSITION, INTERPOLATION, SCALED or RBF (RBF also
+                             interpolates the scalars' residuals) */
   csrCalRule scalar_rule; /* stretch and radial growth: any of the three */
   unsigned exclude; /* bit (1 << role) leaves a refining mode out (cross-validation); corners
                        cannot be left out */
