@@ -22,7 +22,7 @@ ap.add_argument('--D', type=float, default=43.0,
 ap.add_argument('--xmean', type=float, default=38.3,
                 help='mean support advance per x cycle over the whole walk, mm (measured): the '
                 'number of x cycles is xturn / xmean')
-ap.add_argument('--Dz', type=float, default=44.0,
+ap.add_argument('--Dz', type=float, default=55.6,
                 help='mean support advance per lateral cycle, mm (measured, the release included):'
                 ' the number of lateral cycles is zend / Dz')
 ap.add_argument('--over', type=float, default=10.0,
@@ -100,6 +100,12 @@ HEADER = """\
 #     yaw; with the pairs abreast (DH, CG, BF, AE) the support turned 10 deg per lateral cycle
 #     (56 deg at the end, measured) and crabbed 90 mm along +x, off the road's end. Before the
 #     release every pair steps back under its hips (see there).
+# 10. The lateral cycles use the slow timing (0.9 s a pair, a 1 s shift): with the flat road's
+#     0.7 s pairs the support slid back 20-40 mm along z while a pair swung (the swinging legs'
+#     inertia against the stance feet's friction, which only the 50 g support's weight loads
+#     under `paper`) and turned to 13.5 deg of yaw: 34.7 mm per cycle; slow, 55.6 mm per cycle,
+#     yaw back within 2 deg after the turn and 3 mm of drift along x per cycle (rod legs,
+#     2026-12-03; README "Obstacle road").
 """.format(D=a.D, xmean=a.xmean, Dz=a.Dz, over=a.over, SH=SH, SHZ=SHZ)
 
 out = [HEADER]
@@ -215,7 +221,7 @@ for pair in ZPAIRS:
 w('# all legs down to the 15 mm stretch\n')
 emit(t, 1.0, {l: 'L15P%d' % RZ for l in OFF})
 t += 1.2
-tl, ts, th, td, tsh, tset = FAST
+tl, ts, th, td, tsh, tset = SLOW
 for kz in range(NZ):
     w('# lateral cycle %d from %.2f s\n' % (kz, t))
     if kz > 0:
