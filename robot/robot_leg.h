@@ -88,6 +88,8 @@ typedef struct csrLegSpec_ {
   /* co-simulated levels only (in_world = 0): what their own contact needs */
   const cstTerrain* terrain;     /* kept: the shapes a leg touches */
   const cscContactParams* contact; /* kept: friction coefficient (and, later, the soft law) */
+  /* what the level shares across one robot's legs (csrLegType.sharedCreate), or NULL; kept */
+  void* shared;
 } csrLegSpec;
 
 /* The hip's motion handed to a co-simulated leg at one end of a macro step (world frame). The
@@ -137,6 +139,12 @@ typedef struct csrLegType_ {
   /* Free the leg (NULL-safe). An in-world leg's ODE bodies and joints belong to the world and
    * are destroyed with it; destroy frees only the leg's own memory. */
   void (*destroy)(csrLeg* leg);
+  /* What the legs of one robot (one actuator, one calibration) may share, created before them
+   * and handed to each in csrLegSpec.shared: a cache of pure functions (not state), e.g. the
+   * rod's calibration tables. *shared = NULL when the level shares nothing. 0 ok, else err
+   * says why. sharedDestroy frees it after the legs (NULL-safe). */
+  int (*sharedCreate)(const csrLegSpec* spec, void** shared, csError* err);
+  void (*sharedDestroy)(void* shared);
 
   /* Size (doubles) of the leg's whole state: everything a step changes, so that
    * setState(getState()) followed by a step gives bit-identical results. For prb: its bodies'

@@ -479,11 +479,25 @@ static void massMomentPrb(const csrLeg* leg, double mx[3]) {
 }
 
 
+/* a prb leg shares nothing with its siblings */
+static int sharedCreatePrb(const csrLegSpec* spec, void** shared, csError* err) {
+  (void)spec;
+  (void)err;
+  *shared = NULL;
+  return 0;
+}
+
+
+static void sharedDestroyPrb(void* shared) { (void)shared; }
+
+
 const csrLegType csr_leg_prb = {
     .name = "prb",
     .in_world = 1,
     .create = createPrb,
     .destroy = destroyPrb,
+    .sharedCreate = sharedCreatePrb,
+    .sharedDestroy = sharedDestroyPrb,
     .stateSize = stateSizePrb,
     .getState = getStatePrb,
     .setState = setStatePrb,

@@ -124,6 +124,11 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env, const 
   memcpy(r->frame_local, F, sizeof F);
   const dReal* P = dBodyGetPosition(r->support);
   r->nstate = CSR_BODY_STATE;
+  if (m->leg_type->sharedCreate(&spec, &r->leg_shared, err) != 0) {
+    csr_robotDestroy(r);
+    return NULL;
+  }
+  spec.shared = r->leg_shared;
   for (int k = 0; k < CSR_NLEG; k++) {
     double off[3];
     csr_robotHipOffset(m, k, off);
@@ -155,6 +160,9 @@ void csr_robotDestroy(csrRobot* r) {
     if (r->legs[k]) {
       r->type->destroy(r->legs[k]);
     }
+  }
+  if (r->type) {
+    r->type->sharedDestroy(r->leg_shared);
   }
   free(r->scratch);
   free(r);

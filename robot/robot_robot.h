@@ -50,6 +50,7 @@ typedef struct csrRobot_ {
   dGeomID support_geom;
   const csrLegType* type;        /* = the model's leg_type (kept for destroy) */
   csrLeg* legs[CSR_NLEG];
+  void* leg_shared;              /* what the legs share (csrLegType.sharedCreate), or NULL */
   double mass_total;             /* t */
   double hip_local[CSR_NLEG][3]; /* hip of leg k from the support's centre, support frame, mm */
   double frame_local[9];         /* the legs' frame (e1, e2, e3 columns) in the support frame */

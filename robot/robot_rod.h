@@ -203,6 +203,20 @@ int csr_rodStateHist(const csrRodModel* m, int e);   /* its history variables */
 
 /* ---- data ----------------------------------------------------------------------------------- */
 
+/* The calibration's lazily filled tables (a segment's actuation along a chamber pattern, and
+ * at two chamber groups' levels, robot_rod_dyn.c): a memo of a pure function of the actuator,
+ * its calibration, the segment and the pressures, so the legs of one robot (one actuator, one
+ * map) may share one and evaluate each node once instead of eight times (measured: the
+ * calibration's Newton solves were 17 % of a 9 s flat-road run at --rod-tol 20, each leg
+ * filling its own tables). Not state: what a leg computes does not depend on who filled a
+ * node. The creator destroys it after the legs that use it. */
+typedef struct csrRodActCache_ csrRodActCache;
+csrRodActCache* csr_rodActCacheCreate(csError* err);
+void csr_rodActCacheDestroy(csrRodActCache* c);
+/* d's tables from now on: c (which must outlive d and belong to legs of d's actuator and
+ * calibration), or NULL for d's own. */
+void csr_rodDataUseCache(csrRodData* d, csrRodActCache* c);
+
 /* Allocates everything the step needs (CVODE, band matrices, scratch); the state is reset. */
 csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err);
 void csr_rodDataDestroy(csrRodData* d);

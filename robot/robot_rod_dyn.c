@@ -146,8 +146,7 @@ void csr_rodDataDestroy(csrRodData* d) {
   free(d->sdel);
   free(d->sy);
   free(d->sy0);
-  free(d->table);
-  free(d->table2);
+  free(d->own_cache);
   free(d);
 }
 
@@ -210,11 +209,11 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
   d->sdel = calloc((size_t)ns, sizeof(double));
   d->sy = calloc((size_t)m->nstate, sizeof(double));
   d->sy0 = calloc((size_t)m->nstate, sizeof(double));
-  d->table = calloc(CSR_NSEG, sizeof *d->table);
-  d->table2 = calloc(CSR_NSEG, sizeof *d->table2);
+  d->own_cache = calloc(1, sizeof *d->own_cache);
+  d->cache = d->own_cache;
   if (!d->wk.x || !d->wk.q || !d->wk.R || !d->wk.v || !d->wk.w || !d->wk.F || !d->wk.T ||
       !d->wk.m_node || !d->backup || !d->sres || !d->sres2 || !d->sdel || !d->sy || !d->sy0 ||
-      !d->table || !d->table2) {
+      !d->own_cache) {
     csr_rodDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "rod: out of memory");
     return NULL;
@@ -273,6 +272,21 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
   d->need_reinit = 1;
   return d;
 }
+
+
+csrRodActCache* csr_rodActCacheCreate(csError* err) {
+  csrRodActCache* c = calloc(1, sizeof *c);
+  if (!c) {
+    cs_errorSet(err, CS_ERR_MEMORY, "rod: out of memory (calibration tables)");
+  }
+  return c;
+}
+
+
+void csr_rodActCacheDestroy(csrRodActCache* c) { free(c); }
+
+
+void csr_rodDataUseCache(csrRodData* d, csrRodActCache* c) { d->cache = c ? c : d->own_cache; }
 
 
 csrBaseState csr_rodRestBase(const csrRodModel* m) {
@@ -364,7 +378,7 @@ static int patternOf(const double p[4], double* level) {
 /* the table's actuation at level k of pattern slot q (evaluated once); 0 or the map's code */
 static int tableNode(const csrRodModel* m, csrRodData* d, int s, int q, int k,
                      const csrRodSegmentActuation** a) {
-  csrRodActTable* tb = &d->table[s];
+  csrRodActTable* tb = &d->cache->table[s];
   if (!tb->known[q][k]) {
     double pk[4];
     for (int j = 0; j < CSR_NCHAMBER; j++) {
@@ -444,15 +458,15 @@ static int twoLevelsOf(const double p[4], int* mask_a, double* xa, int* mask_b, 
 /* the two-level table's node (i, j) of masks (ma, mb) in segment s (evaluated once); 0 or the
  * map's code */
 static int table2Node(const csrRodModel* m, csrRodData* d, int s, int ma, int mb, int i, int j,
-                      const csrRodSegmentActuation** a) {
-  csrRodActTable2* tb = &d->table2[s];
+                      csrRodSegmentActuation* a) {
+  csrRodActTable2* tb = &d->cache->table2[s];
   const unsigned long long key =
       ((((unsigned long long)ma << 4 | (unsigned long long)mb) << 16 | (unsigned)i) << 16 |
        (unsigned)j) + 1;
   unsigned h = (unsigned)((key * 0x9E3779B97F4A7C15ull) >> 40) & (CSR_ROD_TAB2_CAP - 1);
   while (tb->key[h] != 0) {
     if (tb->key[h] == key) {
-      *a = &tb->a[h];
+      *a = tb->a[h];
       return 0;
     }
     h = (h + 1) & (CSR_ROD_TAB2_CAP - 1);
@@ -473,7 +487,7 @@ static int table2Node(const csrRodModel* m, csrRodData* d, int s, int ma, int mb
   }
   tb->key[h] = key;
   tb->n++;
-  *a = &tb->a[h];
+  *a = tb->a[h];
   return 0;
 }
 
@@ -521,14 +535,16 @@ static int actuationAt2(const csrRodModel* m, csrRodData* d, int s, const double
     return 1;
   }
   const double u = x - i, v = y - j;
-  const csrRodSegmentActuation *a = NULL, *b = NULL, *c = NULL;
-  int rc = table2Node(m, d, s, ma, mb, i, j, &a);
+  /* copies: a later node may clear the hash and take an earlier node's slot */
+  csrRodSegmentActuation na, nb, nc;
+  const csrRodSegmentActuation *a = &na, *b = &nb, *c = &nc;
+  int rc = table2Node(m, d, s, ma, mb, i, j, &na);
   if (rc == 0) {
-    rc = u >= v ? table2Node(m, d, s, ma, mb, i + 1, j, &b)
-                : table2Node(m, d, s, ma, mb, i, j + 1, &b);
+    rc = u >= v ? table2Node(m, d, s, ma, mb, i + 1, j, &nb)
+                : table2Node(m, d, s, ma, mb, i, j + 1, &nb);
   }
   if (rc == 0) {
-    rc = table2Node(m, d, s, ma, mb, i + 1, j + 1, &c);
+    rc = table2Node(m, d, s, ma, mb, i + 1, j + 1, &nc);
   }
   if (rc != 0) {
     return rc;
@@ -557,7 +573,7 @@ static int actuationAt(const csrRodModel* m, csrRodData* d, int s, const double 
   int mask = patternOf(p, &level);
   int k = (int)floor(level / CSR_ROD_TAB_DP);
   if (mask && k + 1 < CSR_ROD_TAB_N) {
-    csrRodActTable* tb = &d->table[s];
+    csrRodActTable* tb = &d->cache->table[s];
     int q = -1;
     for (int i = 0; i < CSR_ROD_TAB_SLOTS; i++) {
       q = tb->mask[i] == mask ? i : q;

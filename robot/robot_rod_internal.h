@@ -138,6 +138,14 @@ typedef struct csrRodActTable2_ {
   csrRodSegmentActuation a[CSR_ROD_TAB2_CAP];
 } csrRodActTable2;
 
+/* the lazily filled tables of one leg actuator's calibration, per segment: a memo of a pure
+ * function of (actuator, calibration, segment, pressures), so legs of one actuator and
+ * calibration may share one (robot_rod.h csr_rodActCacheCreate) */
+struct csrRodActCache_ {
+  csrRodActTable table[CSR_NSEG];
+  csrRodActTable2 table2[CSR_NSEG];
+};
+
 /* base motion over a macro step: cubic Hermite in position and in the rotation vector */
 typedef struct csrRodBaseMotion_ {
   double ta, H;
@@ -157,8 +165,9 @@ struct csrRodData_ {
   csrRodWork wk;
   csrRodActState act;
   csrRodActMemo memo[CSR_NSEG];
-  csrRodActTable* table;  /* (CSR_NSEG) pattern tables, allocated with the data */
-  csrRodActTable2* table2; /* (CSR_NSEG) two-level tables, allocated with the data */
+  csrRodActCache* cache;  /* the calibration's tables: own_cache, or one shared by the legs of
+                             a robot (csr_rodDataUseCache) */
+  csrRodActCache* own_cache;
   csrRodBaseMotion base;
   csrBaseState cur_base; /* the base at time t */
   double tip_force[3], tip_moment[3];

@@ -291,9 +291,23 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
     destroyRod(leg);
     return NULL;
   }
+  if (spec->shared) {
+    csr_rodDataUseCache(leg->d, spec->shared);
+  }
   resetRod(leg);
   return leg;
 }
+
+
+/* the legs of a robot share the calibration's tables (robot_rod.h csrRodActCache) */
+static int sharedCreateRod(const csrLegSpec* spec, void** shared, csError* err) {
+  (void)spec;
+  *shared = csr_rodActCacheCreate(err);
+  return *shared ? 0 : -1;
+}
+
+
+static void sharedDestroyRod(void* shared) { csr_rodActCacheDestroy(shared); }
 
 
 static int stateSizeRod(const csrLeg* leg) { return csr_rodStateSize(leg->m); }
@@ -384,6 +398,8 @@ const csrLegType csr_leg_rod = {
     .in_world = 0,
     .create = createRod,
     .destroy = destroyRod,
+    .sharedCreate = sharedCreateRod,
+    .sharedDestroy = sharedDestroyRod,
     .stateSize = stateSizeRod,
     .getState = getStateRod,
     .setState = setStateRod,

@@ -235,6 +235,13 @@ static void centerlineSpring(const csrLeg* leg, int k, double* out) {
   }
 }
 static double massSpring(const csrLeg* leg) { return leg->m; }
+static int sharedCreateSpring(const csrLegSpec* spec, void** shared, csError* err) {
+  (void)spec;
+  (void)err;
+  *shared = NULL;
+  return 0;
+}
+static void sharedDestroySpring(void* shared) { (void)shared; }
 static void massMomentSpring(const csrLeg* leg, double mx[3]) { csu_scale3(mx, leg->x, leg->m); }
 
 
@@ -243,6 +250,8 @@ static const csrLegType kSpringLeg = {
     .in_world = 0,
     .create = createSpring,
     .destroy = destroySpring,
+    .sharedCreate = sharedCreateSpring,
+    .sharedDestroy = sharedDestroySpring,
     .stateSize = stateSizeSpring,
     .getState = getStateSpring,
     .setState = setStateSpring,
