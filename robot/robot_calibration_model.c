@@ -356,6 +356,9 @@ const char* csr_calModelName(const csrCalModel* m) { return m->name; }
 const csrActuator* csr_calModelLeg(const csrCalModel* m) { return &m->leg; }
 
 
+const csrCalOptions* csr_calModelOptions(const csrCalModel* m) { return &m->opt; }
+
+
 void csr_calModelMeanFactor(const csrCalModel* m, int seg, double k[2], double* rms) {
   const int ok = seg >= 0 && seg < CSR_NSEG;
   k[0] = ok ? m->kfac[seg][0] : 0;

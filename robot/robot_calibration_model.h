@@ -158,6 +158,8 @@ double csr_calModelStiffnessPMax(const csrCalModel* m);
 /* 1 when the role's mode is used (corners always; a refining mode when present, in range and
  * not excluded). */
 int csr_calModelUses(const csrCalModel* m, csrCalRole role);
+/* The options the model was built with. */
+const csrCalOptions* csr_calModelOptions(const csrCalModel* m);
 /* The leg actuator the model was built for. */
 const csrActuator* csr_calModelLeg(const csrCalModel* m);
 /* The mean-pressure factor of CSR_CAL_RULE_SCALED for segment seg: K(p̄) = exp(k[0] p̄ + k[1]
