@@ -76,6 +76,7 @@ void cs_modelInit(csModel* m) {
   m->contact = csc_defaultContactParams();
   csr_robotDefaultModel(&m->robot, NULL);
   m->legs_auto_tol_mm = NAN;
+  m->cal_rule = -1;
 }
 
 
@@ -107,7 +108,11 @@ csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
     return err ? err->status : CS_ERR_PARSE;
   }
   csr_calibrationClose(m->calibration);
-  m->calibration = csr_calibrationOpen(calibration_path, &m->robot.leg, err);
+  /* a rule given (--cal-rule) applies to an FE mode table only: other kinds are refused */
+  csrCalOptions cal_opt = csr_calModelDefaultOptions();
+  cal_opt.rule = (csrCalRule)m->cal_rule;
+  m->calibration = csr_calibrationOpenWith(calibration_path, &m->robot.leg,
+                                           m->cal_rule >= 0 ? &cal_opt : NULL, err);
   if (!m->calibration) {
     return err ? err->status : CS_ERR_PARSE;
   }

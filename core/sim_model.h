@@ -107,6 +107,8 @@ typedef struct csModel_ {
   csrRobotModel robot;        /* robot.leg_type is the leg level: the one place it is stored */
   cscContactParams contact;
   csrCalibration* calibration; /* owned; robot.map points into it */
+  int cal_rule;               /* the FE mode table's rule (csrCalRule, `--cal-rule`), or -1: not
+                                 given (the table's default; any calibration kind) */
   char scene[32];
   char gait_path[512];
   csConditions conditions;    /* earth | paper (sim_scene.h); set with cs_modelSetConditions so

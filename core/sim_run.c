@@ -93,6 +93,11 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "terrain_file", m->terrain.source, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "calibration", m->robot.map.name, err);
   if (st == CS_OK) {
+    /* the FE mode table's rule (prism, rbf, rbf-pair), "none" for the other calibrations */
+    st = cs_h5AttrString(f, "/", "calibration_rule", csr_calibrationRuleName(m->calibration),
+                         err);
+  }
+  if (st == CS_OK) {
     st = cs_h5AttrString(f, "/", "units",
                          "time s; length mm; pressure MPa; mass t (1e3 kg); force N; "
                          "world frame x crawl direction, y up, z lateral",

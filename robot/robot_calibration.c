@@ -476,14 +476,15 @@ static void modeFree(ModeCalibration* mc) {
 }
 
 
-static ModeCalibration* modeOpen(const char* path, const csrActuator* leg, csError* err) {
+static ModeCalibration* modeOpen(const char* path, const csrActuator* leg,
+                                 const csrCalOptions* opt, csError* err) {
   ModeCalibration* mc = calloc(1, sizeof *mc);
   if (!mc) {
     cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
     return NULL;
   }
   if (csr_calTableRead(path, leg, &mc->table, err) != CS_OK ||
-      !(mc->model = csr_calModelCreate(&mc->table, leg, NULL, err))) {
+      !(mc->model = csr_calModelCreate(&mc->table, leg, opt, err))) {
     modeFree(mc);
     return NULL;
   }
@@ -509,13 +510,26 @@ struct csrCalibration_ {
 
 
 csrCalibration* csr_calibrationOpen(const char* path, const csrActuator* leg, csError* err) {
+  return csr_calibrationOpenWith(path, leg, NULL, err);
+}
+
+
+csrCalibration* csr_calibrationOpenWith(const char* path, const csrActuator* leg,
+                                        const csrCalOptions* opt, csError* err) {
+  const int is_mode = csr_calTableIsModeTable(path);
+  if (opt && !is_mode) {
+    cs_errorSet(err, CS_ERR_ARG, "%s: a calibration rule applies only to an FE mode table (this "
+                "is %s)", path, csr_calIsHdf5(path) ? "a pair-mode table" :
+                "the provisional calibration");
+    return NULL;
+  }
   csrCalibration* c = calloc(1, sizeof *c);
   if (!c) {
     cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
     return NULL;
   }
-  if (csr_calTableIsModeTable(path)) {
-    c->mode = modeOpen(path, leg, err);
+  if (is_mode) {
+    c->mode = modeOpen(path, leg, opt, err);
   } else if (csr_calIsHdf5(path)) {
     c->fe = csr_feCalibrationCreate(path, leg, err);
   } else {
@@ -526,6 +540,42 @@ csrCalibration* csr_calibrationOpen(const char* path, const csrActuator* leg, cs
     return NULL;
   }
   return c;
+}
+
+
+/* the user-facing rule names (csr_calRuleParse) */
+static const struct {
+  const char* name;
+  csrCalRule rule;
+} kRuleNames[] = {{"prism", CSR_CAL_RULE_SUPERPOSITION},
+                  {"rbf", CSR_CAL_RULE_RBF},
+                  {"rbf-pair", CSR_CAL_RULE_RBF_PAIR}};
+
+
+int csr_calRuleParse(const char* name, csrCalRule* rule) {
+  for (size_t k = 0; name && k < sizeof kRuleNames / sizeof kRuleNames[0]; k++) {
+    if (!strcmp(name, kRuleNames[k].name)) {
+      *rule = kRuleNames[k].rule;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+
+const char* csr_calRuleName(csrCalRule rule) {
+  for (size_t k = 0; k < sizeof kRuleNames / sizeof kRuleNames[0]; k++) {
+    if (kRuleNames[k].rule == rule) {
+      return kRuleNames[k].name;
+    }
+  }
+  return "?";
+}
+
+
+const char* csr_calibrationRuleName(const csrCalibration* c) {
+  const csrCalModel* m = csr_calibrationModel(c);
+  return m ? csr_calRuleName(csr_calModelOptions(m)->rule) : "none";
 }
 
 

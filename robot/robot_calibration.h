@@ -83,6 +83,19 @@ int csr_feCalibrationEval(const csrFeCalibration* fc, int seg, const double p[4]
 typedef struct csrCalibration_ csrCalibration;
 
 csrCalibration* csr_calibrationOpen(const char* path, const csrActuator* leg, csError* err);
+/* The same with the mode table's model options (rule; robot_calibration_model.h). opt NULL =
+ * csr_calibrationOpen (the defaults, any kind). opt given: the file must be an FE mode table,
+ * else NULL and err "<file>: a calibration rule applies only to an FE mode table (this is a
+ * pair-mode table | the provisional calibration)". */
+csrCalibration* csr_calibrationOpenWith(const char* path, const csrActuator* leg,
+                                        const csrCalOptions* opt, csError* err);
+/* The user-facing names of the mode table's rules: "prism" (CSR_CAL_RULE_SUPERPOSITION, the
+ * default), "rbf" (CSR_CAL_RULE_RBF), "rbf-pair" (CSR_CAL_RULE_RBF_PAIR). Parse: 1 and *rule
+ * set, or 0 for another name. */
+int csr_calRuleParse(const char* name, csrCalRule* rule);
+const char* csr_calRuleName(csrCalRule rule); /* "?" for a rule without a user-facing name */
+/* The rule of an open calibration: its name for an FE mode table, "none" for the other kinds. */
+const char* csr_calibrationRuleName(const csrCalibration* c);
 void csr_calibrationClose(csrCalibration* c);
 csrBendMap csr_calibrationMap(const csrCalibration* c);
 

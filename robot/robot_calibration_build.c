@@ -480,6 +480,9 @@ csrCalModel* csr_calModelCreate(const csrCalTable* t, const csrActuator* leg,
   for (int s = 0; s < CSR_NSEG && ok && m->opt.rule == CSR_CAL_RULE_SCALED; s++) {
     ok = fitMeanFactor(m, mode, s);
   }
+  for (int s = 0; s < CSR_NSEG && ok && m->opt.rule == CSR_CAL_RULE_RBF_PAIR; s++) {
+    ok = csr_calPairFit_(m, mode, s);
+  }
   for (int v = 0; v < NV && ok; v++) {
     const csrCalCase* c = mode[kV[v].role];
     m->use[v] = c != NULL;
@@ -498,7 +501,7 @@ csrCalModel* csr_calModelCreate(const csrCalTable* t, const csrActuator* leg,
     ok = buildField(m, v, c, kV[v].mirror, r);
   }
   int rbf_ok = 1;
-  if (ok && m->opt.rule == CSR_CAL_RULE_RBF) {
+  if (ok && (m->opt.rule == CSR_CAL_RULE_RBF || m->opt.rule == CSR_CAL_RULE_RBF_PAIR)) {
     rbf_ok = csr_calRbfBuild_(m, mode);
     ok = rbf_ok == 1;
   }
@@ -525,6 +528,8 @@ csrCalModel* csr_calModelCreate(const csrCalTable* t, const csrActuator* leg,
            "%s; l_soft %g mm, %.64s, version %.32s): %.512s",
            m->opt.rule == CSR_CAL_RULE_SUPERPOSITION ? "superposition + interpolated interactions"
            : m->opt.rule == CSR_CAL_RULE_RBF ? "superposition + RBF-interpolated interactions"
+           : m->opt.rule == CSR_CAL_RULE_RBF_PAIR
+               ? "pair-factor superposition + RBF-interpolated interactions"
                                              : "interpolation between modes",
            nmode, m->p_max, m->limit_case, stiff, t->fe_mesh_size, t->fe_solver, t->version,
            t->path);

@@ -40,6 +40,9 @@ enum {
   NV
 };
 
+/* coefficients of the pair factor exp(k0 n + k1 l + k2 n^2 + k3 l^2) (CSR_CAL_RULE_RBF_PAIR) */
+#define CSR_CAL_NPAIR 4
+
 /* images of the modes' shapes under the eight symmetries (CSR_CAL_RULE_RBF) */
 #define RBF_MAXN (8 * CSR_CAL_NROLE)
 
@@ -62,6 +65,7 @@ struct csrCalModel_ {
   csrCalCurve mean;              /* all four: the scalar changes at p = the mean pressure (F_ layout) */
   double kfac[CSR_NSEG][2]; /* mean-pressure factor of the scaled superposition (0: none) */
   double kfit_rms[CSR_NSEG]; /* rms of log(a_model / a_FE) of that fit over the bending modes */
+  double kpair[CSR_NSEG][CSR_CAL_NPAIR]; /* pair factor of CSR_CAL_RULE_RBF_PAIR (0: none) */
   csrCalCurve field[NV];         /* a, b, δstretch, δradial, δradial_max (residual or value) */
   /* CSR_CAL_RULE_RBF (robot_calibration_rbf.c): per role its residual over the bases (F_A, F_B
    * the bend vector in the mode's frame, rad; m = 0 when unused), the distinct images of the
@@ -119,6 +123,14 @@ int csr_calRbfBuild_(csrCalModel* m, const csrCalCase* const mode[CSR_CAL_NROLE]
  * the changes of stretch, radial and largest radial growth; no allocation */
 void csr_calRbfField_(const csrCalModel* m, int s, const double pc[4], double bend[2],
                       double sc[3]);
+
+/* ---- the pair factor of CSR_CAL_RULE_RBF_PAIR (robot_calibration_pair.c) --------------- */
+
+/* fit segment s's pair factor to the bending modes used (mode[r] NULL: unused; the base must
+ * be built); falls back to K = 1 when the fit is ill-posed; 0 when out of memory */
+int csr_calPairFit_(csrCalModel* m, const csrCalCase* const mode[CSR_CAL_NROLE], int s);
+/* the superposition with the pair factor at canonical pc (canonical frame, rad) */
+void csr_calPairBend_(const csrCalModel* m, int s, const double pc[4], double bend[2]);
 
 /* K(x) = exp(k1 x + k2 x^2) */
 static inline double csr_calMeanFactor_(const double k[2], double x) {

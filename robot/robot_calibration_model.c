@@ -179,12 +179,15 @@ void csr_calSuperposeBend_(const csrCalCurve* base, const double k[2], int s, co
 
 /* the bend base at canonical pressures pc (P = pc[0] <= range), canonical frame: the
  * superposition of the single-chamber response (also under CSR_CAL_RULE_RBF; scaled by the
- * fitted mean-pressure factor for CSR_CAL_RULE_SCALED), or 0 */
+ * fitted mean-pressure factor for CSR_CAL_RULE_SCALED, by the pair factor for
+ * CSR_CAL_RULE_RBF_PAIR), or 0 */
 void csr_calBaseBend_(const csrCalModel* m, int s, const double pc[4], double bend[2]) {
   bend[0] = bend[1] = 0;
   if (m->opt.rule == CSR_CAL_RULE_SUPERPOSITION || m->opt.rule == CSR_CAL_RULE_SCALED ||
       m->opt.rule == CSR_CAL_RULE_RBF) {
     csr_calSuperposeBend_(&m->base, m->kfac[s], s, pc, bend);
+  } else if (m->opt.rule == CSR_CAL_RULE_RBF_PAIR) {
+    csr_calPairBend_(m, s, pc, bend);
   }
 }
 
@@ -216,7 +219,7 @@ void csr_calBaseScalars_(const csrCalModel* m, int s, const double pc[4], double
 /* the model in the canonical frame: bend and scalars of segment s at canonical pc */
 static void evalCanonical(const csrCalModel* m, int s, const double pc[4], double bend[2],
                           double sc[3]) {
-  if (m->opt.rule == CSR_CAL_RULE_RBF) {
+  if (m->opt.rule == CSR_CAL_RULE_RBF || m->opt.rule == CSR_CAL_RULE_RBF_PAIR) {
     /* bases + the residual interpolated over the modes' symmetric images */
     double rb[2], rs[3], bs[3], mv[2];
     csr_calRbfField_(m, s, pc, rb, rs);
@@ -351,6 +354,9 @@ const char* csr_calModelLimitCase(const csrCalModel* m) { return m->limit_case; 
 double csr_calModelStiffnessPMax(const csrCalModel* m) { return m->k_pmax; }
 const char* csr_calModelName(const csrCalModel* m) { return m->name; }
 const csrActuator* csr_calModelLeg(const csrCalModel* m) { return &m->leg; }
+
+
+const csrCalOptions* csr_calModelOptions(const csrCalModel* m) { return &m->opt; }
 
 
 void csr_calModelMeanFactor(const csrCalModel* m, int seg, double k[2], double* rms) {

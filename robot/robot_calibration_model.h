@@ -43,7 +43,9 @@
  * modes, where the table's held-out cases decide (robot_calibration.h names the default).
  * CSR_CAL_RULE_RBF (opt-in) keeps the superposition but interpolates the residuals by a
  * Gaussian RBF over the modes' symmetric images instead of the prism's hats
- * (robot_calibration_rbf.c has its rationale and measured errors).
+ * (robot_calibration_rbf.c has its rationale and measured errors); CSR_CAL_RULE_RBF_PAIR (opt-in)
+ * does the same over a superposition with a fitted factor per opposite chamber pair
+ * (robot_calibration_pair.c).
  * Stiffness. EI (the mean of the e1 and e2 probes: the section's second moment is isotropic)
  * and EA per segment as piecewise-linear functions of the mean chamber pressure p̄ = Σ p_j / 4
  * through the probes of every probed mode (probes at equal p̄ averaged); NaN probes skipped.
@@ -78,6 +80,10 @@ typedef enum csrCalRule_ {
                                      for the scalars) + the modes' differences from it
                                      interpolated by a Gaussian RBF over the symmetric images
                                      of their shapes (robot_calibration_rbf.c); opt-in */
+  CSR_CAL_RULE_RBF_PAIR = 5,      /* as RBF, the bend's superposition with a factor per
+                                     opposite chamber pair fitted to the bending modes (the
+                                     other pair's pressure stiffens, the pair's lower pressure
+                                     stretches: robot_calibration_pair.c); opt-in */
 } csrCalRule;
 
 /* The fitted modes by role (csr_calModelModePattern gives their chamber ratios). */
@@ -100,8 +106,8 @@ typedef enum csrCalRole_ {
 } csrCalRole;
 
 typedef struct csrCalOptions_ {
-  csrCalRule rule;        /* bend: SUPERPOSITION, INTERPOLATION, SCALED or RBF (RBF also
-                             interpolates the scalars' residuals) */
+  csrCalRule rule;        /* bend: SUPERPOSITION, INTERPOLATION, SCALED, RBF or RBF_PAIR (the
+                             RBF rules also interpolate the scalars' residuals) */
   csrCalRule scalar_rule; /* stretch and radial growth: any of the three */
   unsigned exclude; /* bit (1 << role) leaves a refining mode out (cross-validation); corners
                        cannot be left out */
@@ -152,6 +158,8 @@ double csr_calModelStiffnessPMax(const csrCalModel* m);
 /* 1 when the role's mode is used (corners always; a refining mode when present, in range and
  * not excluded). */
 int csr_calModelUses(const csrCalModel* m, csrCalRole role);
+/* The options the model was built with. */
+const csrCalOptions* csr_calModelOptions(const csrCalModel* m);
 /* The leg actuator the model was built for. */
 const csrActuator* csr_calModelLeg(const csrCalModel* m);
 /* The mean-pressure factor of CSR_CAL_RULE_SCALED for segment seg: K(p̄) = exp(k[0] p̄ + k[1]

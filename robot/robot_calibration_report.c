@@ -167,6 +167,7 @@ static const char* ruleName(csrCalRule r) {
     case CSR_CAL_RULE_MEAN: return "mean-pressure";
     case CSR_CAL_RULE_SCALED: return "scaled superposition";
     case CSR_CAL_RULE_RBF: return "superposition + RBF";
+    case CSR_CAL_RULE_RBF_PAIR: return "pair factor + RBF";
   }
   return "?";
 }
@@ -269,11 +270,12 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
   /* the rules side by side on the same table */
   fprintf(out, "  rules compared (worst over the held-out cases: bend deg / tip mm, target score; "
           "worst left-out refining mode: bend deg / tip mm; held out meet the target to MPa):\n");
-  const csrCalRule bend_rules[4] = {CSR_CAL_RULE_SUPERPOSITION, CSR_CAL_RULE_SCALED,
-                                    CSR_CAL_RULE_INTERPOLATION, CSR_CAL_RULE_RBF};
+  const csrCalRule bend_rules[5] = {CSR_CAL_RULE_SUPERPOSITION, CSR_CAL_RULE_SCALED,
+                                    CSR_CAL_RULE_INTERPOLATION, CSR_CAL_RULE_RBF,
+                                    CSR_CAL_RULE_RBF_PAIR};
   const csrCalRule scalar_rules[3] = {CSR_CAL_RULE_SUPERPOSITION, CSR_CAL_RULE_MEAN,
                                       CSR_CAL_RULE_INTERPOLATION};
-  for (int b = 0; b < 4; b++) {
+  for (int b = 0; b < 5; b++) {
     for (int q = 0; q < 3; q++) {
       csrCalOptions o = csr_calModelDefaultOptions();
       o.rule = bend_rules[b], o.scalar_rule = scalar_rules[q];

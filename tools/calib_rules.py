@@ -24,6 +24,9 @@ along p by each mode's monotone cubic, so every rule returns every fitted row):
   rbf-r3      the same with the cubic kernel r^3 and a linear polynomial part
   rbf-interp  the Gaussian RBF without a base
   rbf-moment  the Gaussian RBF over the pressure-moment base
+  rbf-pair    the Gaussian RBF over the superposition with a factor per opposite chamber pair,
+              exp(k0 n + k1 l + k2 n^2 + k3 l^2) (n the other pair's pressure sum, l the pair's
+              lower pressure) fitted to the bending modes (CSR_CAL_RULE_RBF_PAIR)
 (the superposition scaled by a mean-pressure factor is CSR_CAL_RULE_SCALED: its numbers are in
 `crawlsim calibrate --report`'s "rules compared")
 --extra adds case files to the table: by default H8; add
@@ -525,6 +528,36 @@ class BaseMoment:
         return self._at(self.fs[s], (math.hypot(*moment(pc)), np.mean(pc)))
 
 
+class BasePair(BaseSup):
+    """the superposition with a factor per opposite chamber pair (robot_calibration_pair.c):
+    along each diagonal (θ1(p_hi) - θ1(p_lo)) exp(k0 n + k1 l + k2 n² + k3 l²), n the other
+    pair's pressure sum, l this pair's lower pressure; k per segment, the least-squares fit of
+    the bend vectors of every row of the bending modes used (all but O1, O13, O1234)"""
+
+    def __init__(self, modes, leg):
+        from scipy.optimize import least_squares
+        super().__init__(modes, leg)
+        self.k = np.zeros((3, 4))
+        bending = [c for r, c in modes.items() if r not in ("O1", "O13", "O1234")]
+        for s in range(3):
+            rows = [(c.ratio * c.p[i], c.bend[i, s] - c.bend[0, s])
+                    for c in bending for i in range(1, len(c.p))]
+
+            def res(k):
+                return np.concatenate([self._bend(s, pc, k) - bf for pc, bf in rows])
+            self.k[s] = least_squares(res, np.zeros(4)).x
+
+    def _bend(self, s, pc, k):
+        t = [self.one(q, s)[0] for q in pc]
+        K = [math.exp(k[0] * n + k[1] * l + k[2] * n * n + k[3] * l * l)
+             for n, l in ((pc[1] + pc[3], min(pc[0], pc[2])), (pc[0] + pc[2], min(pc[1], pc[3])))]
+        g1, g2 = (t[0] - t[2]) * K[0], (t[1] - t[3]) * K[1]
+        return np.array([-RSQ2 * (g1 + g2), -RSQ2 * (g1 - g2)])
+
+    def bend(self, s, pc):
+        return self._bend(s, pc, self.k[s])
+
+
 # ---- driver --------------------------------------------------------------------------------------
 
 HELD = ["H1", "H2", "H3", "H4", "H5", "H6", "H7", "H8"]
@@ -566,8 +599,9 @@ def score(cases, leg, base, verbose=True, label=""):
 
 
 RULES = {"sup": BaseSup, "interp": BaseZero, "rbf": BaseSup, "rbf-interp": BaseZero,
-         "rbf-r3": BaseSup, "moment": BaseMoment, "rbf-moment": BaseMoment}
-MODELS = {"rbf": RBFModel, "rbf-interp": RBFModel, "rbf-r3": RBFCubic, "rbf-moment": RBFModel}
+         "rbf-r3": BaseSup, "moment": BaseMoment, "rbf-moment": BaseMoment, "rbf-pair": BasePair}
+MODELS = {"rbf": RBFModel, "rbf-interp": RBFModel, "rbf-r3": RBFCubic, "rbf-moment": RBFModel,
+          "rbf-pair": RBFModel}
 
 
 def main():

@@ -58,6 +58,7 @@ static const char kUsage[] =
     "  --pressures R1,R2,R3,R4: chamber j at R_j x p (unequal pressures; analytic, rod, fe).\n"
     "  --tip-load FX,FY,FZ: a tip force in N, base frame (rod, fe). --calibration FILE|analytic:\n"
     "  the rod's pressure -> bend map (default: the shipped FE table of the leg actuator).\n"
+    "  --cal-rule prism|rbf|rbf-pair: that FE mode table's model rule (rod; default prism).\n"
     "  fe only: --fibre-size MM, the fibre element length (default l_soft / 8); --fibre-split 0\n"
     "  ties each fibre element to the tets holding its two ends (20 nodes) instead of splitting\n"
     "  it at the tets' faces (1, default). --fibre-law: tension-only (default; thread buckles and\n"
@@ -164,7 +165,9 @@ static int rodSetup(BendRun* run) {
     const char* path =
         run->calibration ? run->calibration
                          : csx_dataPath(CSX_DEFAULT_CALIBRATION, buf, sizeof buf);
-    rb->cal = csr_calibrationOpen(path, &run->act, &err);
+    csrCalOptions cal_opt = csr_calModelDefaultOptions();
+    cal_opt.rule = (csrCalRule)run->cal_rule;
+    rb->cal = csr_calibrationOpenWith(path, &run->act, run->cal_rule >= 0 ? &cal_opt : NULL, &err);
     if (!rb->cal) {
       fprintf(stderr, "crawlsim bend: %s%s\n", err.msg,
               run->calibration ? "" : " (--calibration analytic works for any actuator)");
@@ -361,6 +364,7 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->mesh_size = NAN;
   run->fibre_size = NAN;
   run->fibre_split = -1;
+  run->cal_rule = -1;
   run->fibre_tension_only = -1;
   run->out = "bend.h5";
   run->inflated[0] = run->inflated[1] = 1;
@@ -444,6 +448,14 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
       bad = parsePressures(value, run);
     } else if (!strcmp(name, "--tip-load")) {
       bad = parseNumbers(name, value, 3, run->tip_load);
+    } else if (!strcmp(name, "--cal-rule")) {
+      csrCalRule rule;
+      if (!csr_calRuleParse(value, &rule)) {
+        fprintf(stderr, "crawlsim bend: unknown --cal-rule '%.60s' (expected prism, rbf or "
+                "rbf-pair)\n", value);
+        return 1;
+      }
+      run->cal_rule = (int)rule;
     } else if (!strcmp(name, "--calibration")) {
       if (!*value) {
         fprintf(stderr, "crawlsim bend: --calibration needs a file name or 'analytic'\n");
@@ -559,9 +571,10 @@ int csx_cmdBend(int argc, char** argv) {
   }
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
   if ((tip && run.model != BEND_ROD && run.model != BEND_FE) ||
-      (run.calibration && run.model != BEND_ROD)) {
+      ((run.calibration || run.cal_rule >= 0) && run.model != BEND_ROD)) {
     fprintf(stderr, "crawlsim bend: %s is for --model %s (the %s model has no %s)\n",
-            tip ? "--tip-load" : "--calibration", tip ? "rod or fe" : "rod",
+            tip ? "--tip-load" : run.calibration ? "--calibration" : "--cal-rule",
+            tip ? "rod or fe" : "rod",
             kModelNames[run.model], tip ? "tip load" : "calibration");
     return 1;
   }

@@ -28,6 +28,7 @@ typedef struct {
   int unequal;                /* --pressures gave ratios other than 0/1 */
   double tip_load[3];         /* N, base frame (--tip-load) */
   const char* calibration;    /* --calibration (rod), NULL = default */
+  int cal_rule;               /* --cal-rule (rod): csrCalRule of an FE mode table, -1 = default */
   struct RodBend_* rod;       /* the rod's model, data and calibration during a rod sweep */
   double p_ceiling;           /* MPa: --until-angle searches up to max(p-max, this); NAN: 2 MPa */
   double fibre_size;          /* fe: l_fibre, mm (NAN: the model's default, l_soft / 8) */

@@ -4,7 +4,8 @@
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
  *   --coupling staggered|stabilised|gs, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
- *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K),
+ *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K), --cal-rule prism|rbf|rbf-pair
+ *   (the FE mode table's rule),
  *   --tol MM and --levels FILE (with --legs auto: the cheapest measured configuration of the
  *   scene whose track error is within MM, from the table robot/levels.csv, robot_levels.h).
  * Options take "--name VALUE" or "--name=VALUE". Bad input (flags, files, an unwritable
@@ -31,6 +32,7 @@ static const char kRunUsage[] =
     "                    [--coupling staggered|stabilised|gs]\n"
     "                    [--conditions earth|paper] [--set NAME=VALUE]... [--quiet]\n"
     "                    [--tol MM] [--levels FILE] [--contact-scale K] [--rod-tol K]\n"
+    "                    [--cal-rule prism|rbf|rbf-pair]\n"
     "  --contact-scale K: multiplies the normal stiffness of every contact law (ODE's\n"
     "    100 N/mm of prb legs and the support, the rod legs' soft foundation modulus); 1;\n"
     "  --legs auto --tol MM: the cheapest configuration (level, --links, --macro-steps, --dt)\n"
@@ -49,6 +51,10 @@ static const char kRunUsage[] =
     "  --rod-tol K: every CVODE tolerance of rod legs times K (default 1; measured on the 9 s\n"
     "    flat road: K 5-20 runs 3.5-4.7x faster than K 1 and lands 3-7 mm from the converged\n"
     "    reference, K 1 0.6 mm; README \"Rod legs\", speed); recorded as rod_tolerance_scale;\n"
+    "  --cal-rule: the FE mode table's model rule (default prism: superposition + prism hats, the\n"
+    "    one the shipped gaits were designed on; rbf: + RBF interactions; rbf-pair: the pair\n"
+    "    factor + RBF, the smallest held-out errors; README \"Calibration\"); refused for other\n"
+    "    calibrations; recorded as calibration_rule and in the banner;\n"
     "  --set NAME=VALUE: a parameter of the legs' actuator (as crawlsim bend: S1 a C10 ...; the\n"
     "    legs' stiffness and mass follow; the calibration must be of that actuator).\n";
 
@@ -58,7 +64,7 @@ static const char* const kValueOptions[] = {
     "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
     "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--set",
-    "--tol", "--levels", "--contact-scale", "--rod-tol", "--iterations"};
+    "--tol", "--levels", "--contact-scale", "--rod-tol", "--cal-rule", "--iterations"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -213,6 +219,14 @@ int csx_cmdRun(int argc, char** argv) {
       ok = parseNum(flag, v, &rodtol, &err);
     } else if (!strcmp(flag, "--levels")) {
       levels = v;
+    } else if (!strcmp(flag, "--cal-rule")) {
+      csrCalRule rule;
+      if (!csr_calRuleParse(v, &rule)) {
+        cs_errorSet(&err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf or "
+                    "rbf-pair)", v);
+        goto done;
+      }
+      m.cal_rule = (int)rule;
     } else if (!strcmp(flag, "--set")) {
       if (nset == 32) {
         cs_errorSet(&err, CS_ERR_ARG, "more than 32 --set options");
@@ -454,7 +468,8 @@ int csx_cmdRun(int argc, char** argv) {
             cs_modelEndTime(&m), cs_robotMass(d) * 1e6);
     fprintf(stderr, "crawlsim run: conditions %s (%s): %s\n", cs_conditionsName(m.conditions),
             cs_conditionsSourceName(cond_src), cs_conditionsWhat(m.conditions));
-    fprintf(stderr, "crawlsim run: calibration: %s\n", m.robot.map.name);
+    fprintf(stderr, "crawlsim run: calibration (rule %s): %s\n",
+            csr_calibrationRuleName(m.calibration), m.robot.map.name);
     if (m.legs_auto_choice[0]) {
       fprintf(stderr, "crawlsim run: --legs auto picked %s\n", m.legs_auto_choice);
     }

@@ -44,7 +44,7 @@ static const OptSpec kBendOpts[] = {
     {"--until-angle", OPT_NUM}, {"--mesh-size", OPT_NUM},  {"--pressures", OPT_WORD},
     {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD}, {"--fibre-law", OPT_WORD},
     {"--tip-load", OPT_WORD},  {"--calibration", OPT_CALIB}, {"--out", OPT_OWNED},
-    {"--help", OPT_OWNED},     {NULL, OPT_FLAG}};
+    {"--cal-rule", OPT_WORD},  {"--help", OPT_OWNED},     {NULL, OPT_FLAG}};
 
 static const OptSpec kRunOpts[] = {
     {"--scene", OPT_WORD},        {"--gait", OPT_PATH},          {"--terrain", OPT_PATH},
@@ -54,7 +54,8 @@ static const OptSpec kRunOpts[] = {
     {"--support-mass", OPT_NUM},  {"--links", OPT_NUM},          {"--gravity", OPT_NUM},
     {"--macro-steps", OPT_NUM},   {"--coupling", OPT_WORD},      {"--conditions", OPT_WORD},
     {"--iterations", OPT_NUM},    {"--quiet", OPT_FLAG},         {"--set", OPT_SET},
-    {"--out", OPT_OWNED},         {"--help", OPT_OWNED},         {NULL, OPT_FLAG}};
+    {"--cal-rule", OPT_WORD},     {"--out", OPT_OWNED},          {"--help", OPT_OWNED},
+    {NULL, OPT_FLAG}};
 
 static const OptSpec kCalibrateOpts[] = {
     {"--case", OPT_WORD},       {"--actuator", OPT_ACT}, {"--set", OPT_SET},
@@ -68,7 +69,7 @@ static const OptSpec kGaitDesignOpts[] = {
     {"--calibration", OPT_PATH}, {"--p-max", OPT_NUM},  {"--stretch", OPT_FLAG},
     {"--check", OPT_FLAG},       {"--check-scene", OPT_WORD}, {"--check-t", OPT_NUM},
     {"--set", OPT_SET},          {"--out", OPT_OWNED},  {"--help", OPT_OWNED},
-    {NULL, OPT_FLAG}};
+    {"--cal-rule", OPT_WORD},    {NULL, OPT_FLAG}};
 
 static const CmdSpec kCmds[CSX_STUDY_NCMD] = {
     {"bend", "baseline", 0, kBendOpts},

@@ -1,7 +1,9 @@
-/* test_calibration_rbf.c: the opt-in rule CSR_CAL_RULE_RBF (superposition + the modes'
+/* test_calibration_rbf.c: the opt-in rules CSR_CAL_RULE_RBF (superposition + the modes'
  * differences interpolated by a Gaussian RBF over their symmetric images,
- * robot_calibration_rbf.c) on the shipped FE mode table (robot/calibration_fe_leg_modes.h5;
- * the synthetic tables' checks of every rule are in test_calibration_model.c):
+ * robot_calibration_rbf.c) and CSR_CAL_RULE_RBF_PAIR (the same over the superposition with a
+ * fitted factor per opposite chamber pair, robot_calibration_pair.c) on the shipped FE mode
+ * table (robot/calibration_fe_leg_modes.h5; the synthetic tables' checks of every rule are in
+ * test_calibration_model.c), each test for both rules:
  *  - rbf_returns_fitted_rows: every fitted row (its symmetric part) to round-off;
  *  - rbf_symmetry: zero-moment patterns bend by exactly 0, turned or mirrored patterns turn or
  *    mirror the bend (random patterns);
@@ -24,7 +26,7 @@ typedef struct {
   csrActuator leg;
 } Shipped;
 
-static int openShipped(Shipped* s, unsigned exclude) {
+static int openShipped(Shipped* s, csrCalRule rule, unsigned exclude) {
   char path[1024];
   csError err;
   memset(s, 0, sizeof *s);
@@ -36,7 +38,7 @@ static int openShipped(Shipped* s, unsigned exclude) {
   CS_EXPECT(csr_actuatorPreset(&s->leg, "leg", &err) == CS_OK);
   CS_EXPECT(csr_calTableRead(path, &s->leg, &s->table, &err) == CS_OK);
   csrCalOptions o = csr_calModelDefaultOptions();
-  o.rule = CSR_CAL_RULE_RBF;
+  o.rule = rule;
   o.exclude = exclude;
   s->model = csr_calModelCreate(&s->table, &s->leg, &o, &err);
   CS_EXPECT(s->model != NULL);
@@ -53,9 +55,9 @@ static void closeShipped(Shipped* s) {
 }
 
 
-static void test_rbf_returns_fitted_rows(void) {
+static void returnsFittedRows(csrCalRule rule) {
   Shipped sh;
-  if (!openShipped(&sh, 0)) {
+  if (!openShipped(&sh, rule, 0)) {
     return;
   }
   int nmode = 0;
@@ -96,9 +98,9 @@ static void test_rbf_returns_fitted_rows(void) {
 }
 
 
-static void test_rbf_symmetry(void) {
+static void symmetry(csrCalRule rule) {
   Shipped sh;
-  if (!openShipped(&sh, 0)) {
+  if (!openShipped(&sh, rule, 0)) {
     return;
   }
   unsigned seed = 7;
@@ -133,18 +135,26 @@ static void test_rbf_symmetry(void) {
 
 /* measured on the shipped table (18 cases) on 2026-12-03, `crawlsim calibrate --report` and
  * tools/calib_rules.py (the default rule: held out 7.87 deg / 35.3 mm, H4-H6 meet to 0.25 MPa;
- * left out 7.63 deg / 27.5 mm): */
-#define RBF_HELD_TIP_MM 22.78  /* worst held-out tip error (H7 at 0.4 MPa) */
-#define RBF_H7_MEETS 0.225     /* MPa: H7 meets the target up to here; H1-H6 throughout */
-#define RBF_LOO_TIP_MM 11.67   /* worst left-out refining mode (O1O234r05) */
-#define RBF_LOO_BEND_DEG 4.04  /* worst left-out bend (O12r05) */
+ * left out 7.63 deg / 27.5 mm) */
+typedef struct {
+  double held_tip_mm;  /* worst held-out tip error */
+  double meets[8];     /* MPa: H1..H8 meet the target up to here (their last row: throughout) */
+  double loo_tip_mm;   /* worst left-out refining mode's tip error */
+  double loo_bend_deg; /* and bend error */
+} Measured;
+/* RBF: H7 at 0.4 MPa 22.78 mm, meets to 0.225 MPa, H1-H6 throughout; left out O1O234r05
+ * 11.67 mm, O12r05 4.03 deg */
+static const Measured kRbf = {22.78, {0.3, 0.2, 0.35, 0.4, 0.4, 0.4, 0.225, 0.4}, 11.67, 4.04};
+/* RBF_PAIR: H6 at 0.4 MPa 4.86 mm (H7 4.36, H4 4.54); H4 meets to 0.3, H6 to 0.375, H7 to
+ * 0.25 MPa, the others throughout; left out O12r05 6.57 mm, 3.27 deg */
+static const Measured kPair = {4.862, {0.3, 0.2, 0.35, 0.3, 0.4, 0.375, 0.25, 0.4}, 6.566, 3.273};
 /* the bounds: the measured values + 0.5 % (the model is deterministic; the margin takes
- * libm's last bits) */
+ * libm's last bits and the pair factor's fit, converged to 1e-14 of its cost) */
 #define RBF_MARGIN 1.005
 
-static void test_rbf_holdout_and_left_out(void) {
+static void holdoutAndLeftOut(csrCalRule rule, const Measured* want) {
   Shipped sh;
-  if (!openShipped(&sh, 0)) {
+  if (!openShipped(&sh, rule, 0)) {
     return;
   }
   csError err;
@@ -160,20 +170,19 @@ static void test_rbf_holdout_and_left_out(void) {
            "MPa\n", c->name, e.bend_deg, e.bend_score, e.tip_mm, e.tip_score, e.p_meets,
            e.p_last);
     worst_tip = fmax(worst_tip, e.tip_mm);
-    if (strcmp(c->name, "H7") == 0) {
-      CS_EXPECT(e.p_meets >= RBF_H7_MEETS - 1e-12);
-    } else {
-      CS_EXPECT(e.p_meets >= e.p_last - 1e-12); /* H1-H6 over their whole sweeps */
+    const int h = c->name[0] == 'H' ? atoi(c->name + 1) : 0;
+    if (h >= 1 && h <= 8) {
+      CS_EXPECT(e.p_meets >= want->meets[h - 1] - 1e-12);
     }
   }
-  CS_EXPECT(worst_tip <= RBF_HELD_TIP_MM * RBF_MARGIN);
+  CS_EXPECT(worst_tip <= want->held_tip_mm * RBF_MARGIN);
   closeShipped(&sh);
   /* the refining modes, each predicted by the model built without it */
   const csrCalRole kLoo[4] = {CSR_CAL_O12R05, CSR_CAL_O12O34R3, CSR_CAL_O1O234R05,
                               CSR_CAL_O1O234R075};
   for (int k = 0; k < 4; k++) {
     Shipped lo;
-    if (!openShipped(&lo, 1u << kLoo[k])) {
+    if (!openShipped(&lo, rule, 1u << kLoo[k])) {
       return;
     }
     double ratio[4];
@@ -184,11 +193,21 @@ static void test_rbf_holdout_and_left_out(void) {
     CS_EXPECT(c != NULL && !csr_calModelUses(lo.model, kLoo[k]));
     if (c && csr_calModelCompare(lo.model, c, &e, &err) == CS_OK) {
       printf("  left out %s: bend %.3f deg, tip %.3f mm\n", name, e.bend_deg, e.tip_mm);
-      CS_EXPECT(e.bend_deg <= RBF_LOO_BEND_DEG * RBF_MARGIN);
-      CS_EXPECT(e.tip_mm <= RBF_LOO_TIP_MM * RBF_MARGIN);
+      CS_EXPECT(e.bend_deg <= want->loo_bend_deg * RBF_MARGIN);
+      CS_EXPECT(e.tip_mm <= want->loo_tip_mm * RBF_MARGIN);
     }
     closeShipped(&lo);
   }
+}
+
+
+static void test_rbf_returns_fitted_rows(void) { returnsFittedRows(CSR_CAL_RULE_RBF); }
+static void test_rbf_symmetry(void) { symmetry(CSR_CAL_RULE_RBF); }
+static void test_rbf_holdout_and_left_out(void) { holdoutAndLeftOut(CSR_CAL_RULE_RBF, &kRbf); }
+static void test_pair_returns_fitted_rows(void) { returnsFittedRows(CSR_CAL_RULE_RBF_PAIR); }
+static void test_pair_symmetry(void) { symmetry(CSR_CAL_RULE_RBF_PAIR); }
+static void test_pair_holdout_and_left_out(void) {
+  holdoutAndLeftOut(CSR_CAL_RULE_RBF_PAIR, &kPair);
 }
 
 
@@ -197,5 +216,8 @@ int main(int argc, char** argv) {
   CS_RUN(test_rbf_returns_fitted_rows);
   CS_RUN(test_rbf_symmetry);
   CS_RUN(test_rbf_holdout_and_left_out);
+  CS_RUN(test_pair_returns_fitted_rows);
+  CS_RUN(test_pair_symmetry);
+  CS_RUN(test_pair_holdout_and_left_out);
   return cs_testSummary();
 }

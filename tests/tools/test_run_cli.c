@@ -79,6 +79,18 @@ static void test_badOptions(void) {
   expectFailure("--ramp -1", "crawlsim run: --ramp -1 s must be >= 0");
   expectFailure("--rod-tol 0", "crawlsim run: --rod-tol 0 must be > 0 and <= 1000");
   expectFailure("--rod-tol 1e4", "crawlsim run: --rod-tol 10000 must be > 0 and <= 1000");
+  expectFailure("--cal-rule hats",
+                "crawlsim run: unknown --cal-rule 'hats' (expected prism, rbf or rbf-pair)");
+  /* the flat road's calibration is a pair-mode table: a rule applies to mode tables only */
+  {
+    csCliResult r;
+    remove(BAD_OUT);
+    cs_cliRun(exe_path, "run --quiet --t-end 0.01 --cal-rule rbf --out " BAD_OUT, "runcli", &r);
+    CS_EXPECT(r.status == 1 && cs_cliOneLine(r.err) && strstr(r.err, "crawlsim run: ") == r.err);
+    CS_EXPECT(strstr(r.err, "robot/calibration_fe_leg.h5: a calibration rule applies only to an "
+                     "FE mode table (this is a pair-mode table)") != NULL);
+    CS_EXPECT(!cs_cliFileExists(BAD_OUT));
+  }
 }
 
 
@@ -239,6 +251,22 @@ static void test_goodRun(void) {
   }
   remove("runcli_rodtol.h5");
   remove("runcli_rodtol.xdmf");
+  /* --cal-rule: the obstacle scene's FE mode table with another rule, recorded in the output
+   * and the banner */
+  cs_cliRun(exe_path, "run --scene obstacle --t-end 0.01 --cal-rule rbf-pair "
+            "--out runcli_calrule.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "calibration (rule rbf-pair): FE mode table (pair-"
+                                    "factor superposition") != NULL);
+  f = H5Fopen("runcli_calrule.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char rule[32] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "calibration_rule", rule) >= 0 &&
+              !strcmp(rule, "rbf-pair"));
+    H5Fclose(f);
+  }
+  remove("runcli_calrule.h5");
+  remove("runcli_calrule.xdmf");
   /* --legs auto picks from the measured table and needs a tolerance (tests/tools/
    * test_levels_cli.c checks the pick); without --tol it is one error line */
   cs_cliRun(exe_path, "run --t-end 0.01 --quiet --legs auto --out runcli_auto.h5", "runcli", &r);
