@@ -73,7 +73,7 @@ def rod_curve(exe, table, pressures, p_max, p_step, extra, work):
         return read(f, "/pressure", out), read(f, "/tip_position", out)
 
 
-def case_rows(f, fname, n, exe, table, work, leg):
+def case_rows(f, fname, n, exe, table, work, leg, rule_args):
     """The rod against the FE case /cases/n of the open file f: (row, curve)."""
     g = "/cases/" + n
     if g not in f:
@@ -89,7 +89,7 @@ def case_rows(f, fname, n, exe, table, work, leg):
         fail(f"{fname}: case {n}: pressure and tip do not match ({len(p)} rows, tip "
              f"{tip.shape})")
     step = float(p[1] - p[0])
-    pr, tr = rod_curve(exe, table, ratio, float(p[-1]), step, [], work)
+    pr, tr = rod_curve(exe, table, ratio, float(p[-1]), step, rule_args, work)
     d, pct = compare(p, tip, pr, tr, leg)
     label = ":".join(f"{r:g}" for r in ratio)
     return (n, f"chambers at {label} x p", d, pct, p), (n, p, pct)
@@ -119,7 +119,10 @@ def main():
     ap.add_argument("--from-p", type=float, default=0.0,
                     help="--loaded: compare the FE rows from this pressure on (MPa)")
     ap.add_argument("--png", default=None)
+    ap.add_argument("--cal-rule", default=None,
+                    help="the mode table's model rule (crawlsim --cal-rule: prism, rbf, rbf-pair)")
     a = ap.parse_args()
+    rule_args = ["--cal-rule", a.cal_rule] if a.cal_rule else []
     if not os.access(a.crawlsim, os.X_OK):
         fail(f"{a.crawlsim}: not an executable (build first, or give --crawlsim)")
     rows, curves = [], []
@@ -144,7 +147,7 @@ def main():
         if not leg:
             fail(f"{a.table}: no case without gravity to measure the leg's length")
         for n in names:
-            row, curve = case_rows(f, a.table, n, a.crawlsim, a.table, work, leg)
+            row, curve = case_rows(f, a.table, n, a.crawlsim, a.table, work, leg, rule_args)
             rows.append(row)
             curves.append(curve)
         for extra in a.extra:
@@ -154,7 +157,8 @@ def main():
                 for n in e["cases"]:
                     if e["cases"][n].attrs.get("kind", b"") not in (b"holdout", "holdout"):
                         continue
-                    row, curve = case_rows(e, extra, n, a.crawlsim, a.table, work, leg)
+                    row, curve = case_rows(e, extra, n, a.crawlsim, a.table, work, leg,
+                                           rule_args)
                     rows.append(row)
                     curves.append(curve)
         if a.loaded:
@@ -169,13 +173,14 @@ def main():
             ratio = [1.0 if j in ch else 0.0 for j in range(1, 5)]
             step = 0.025 if len(p) < 2 else float(min(np.diff(p)))
             pr, tr = rod_curve(a.crawlsim, a.table, ratio, float(p[-1]), step,
-                               ["--tip-load", a.tip_load], work)
+                               ["--tip-load", a.tip_load] + rule_args, work)
             d, pct = compare(p, tip, pr, tr, leg)
             name = f"chambers {a.chambers} + tip load {a.tip_load} N" + (
                 f" (FE rows from {a.from_p:g} MPa)" if a.from_p > 0 else "")
             rows.append(("loaded", name, d, pct, p))
             curves.append(("loaded", p, pct))
-    print(f"rod (calibration {os.path.basename(a.table)}) against the FE, tip position, "
+    print(f"rod (calibration {os.path.basename(a.table)}"
+          + (f", rule {a.cal_rule}" if a.cal_rule else "") + ") against the FE, tip position, "
           f"target {a.limit_pct:g} % of the leg:")
     print("| case | pattern | p range (MPa) | max tip error (mm) | at p (MPa) | % of the leg | "
           "verdict | within the target up to (MPa) |")
