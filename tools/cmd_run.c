@@ -49,7 +49,7 @@ static const char kRunUsage[] =
     "    stabilised: the legs first along a predicted motion, cheaper, 22 mm off; staggered:\n"
     "    explicit, stable below 40 us; README \"Rod legs\"); ignored by prb;\n"
     "  --rod-tol K: every CVODE tolerance of rod legs times K (default 1; measured on the 9 s\n"
-    "    flat road: K 5-20 runs 3.5-4.7x faster than K 1 and lands 3-7 mm from the converged\n"
+    "    flat road: K 5-20 runs 3.7-5.6x faster than K 1 and lands 3-7 mm from the converged\n"
     "    reference, K 1 0.6 mm; README \"Rod legs\", speed); recorded as rod_tolerance_scale;\n"
     "  --cal-rule: the FE mode table's model rule (default prism: superposition + prism hats, the\n"
     "    one the shipped gaits were designed on; rbf: + RBF interactions; rbf-pair: the pair\n"
