@@ -16,20 +16,26 @@
 
 enum {
   MAX_LINE = 1023, /* bytes per line, line ending excluded */
-  NCOL = 9         /* columns of the format */
+  NCOL = 10,       /* columns of the format (2) */
+  NCOL1 = 9        /* of format 1 (no rod_tol) */
 };
 
 static const char kHeader[] =
+    "scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine";
+/* format 1 (tables written before 2026-12-03): every row at rod_tol 1 */
+static const char kHeader1[] =
     "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine";
 static const char* const kColumn[NCOL] = {"scene", "level", "links", "macro_steps", "dt_s",
-                                          "error_mm", "cpu_s_per_s", "wall_s_per_s",
-                                          "machine"};
+                                          "rod_tol", "error_mm", "cpu_s_per_s",
+                                          "wall_s_per_s", "machine"};
 /* the ranges of the flags the row's settings stand for (tools/cmd_run.c) */
 #define MAX_LINKS 64
 #define MAX_MACRO 100000
 #define MAX_DT_S 0.01
 /* an error of a km or a day of CPU per simulated second is a typo */
 #define MAX_VALUE 1e6
+/* `crawlsim run --rod-tol`'s range */
+#define MAX_ROD_TOL 1000
 
 /* split `line` in place at commas into at most NCOL fields; returns the field count (which
  * may exceed NCOL: the extra ones are counted, not stored) */
@@ -106,12 +112,14 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
                        planned ? "not available yet" : "not a leg level (prb, rod)");
   }
   strcpy(r->level, field[1]);
-  /* links, macro_steps, dt_s, error_mm, cpu_s_per_s, wall_s_per_s: ranges (lo open?) */
-  double v[6];
-  static const double kLo[6] = {1, 1, 0, 0, 0, 0};
-  static const int kOpen[6] = {0, 0, 1, 0, 1, 1};
-  static const double kHi[6] = {MAX_LINKS, MAX_MACRO, MAX_DT_S, MAX_VALUE, MAX_VALUE, MAX_VALUE};
-  for (int c = 2; c < 8; c++) {
+  /* links, macro_steps, dt_s, rod_tol, error_mm, cpu_s_per_s, wall_s_per_s: ranges (lo
+   * open?) */
+  double v[7];
+  static const double kLo[7] = {1, 1, 0, 0, 0, 0, 0};
+  static const int kOpen[7] = {0, 0, 1, 1, 0, 1, 1};
+  static const double kHi[7] = {MAX_LINKS, MAX_MACRO, MAX_DT_S, MAX_ROD_TOL,
+                                MAX_VALUE, MAX_VALUE, MAX_VALUE};
+  for (int c = 2; c < 9; c++) {
     csStatus st = parseField(field[c], c, kLo[c - 2], kOpen[c - 2], kHi[c - 2], c < 4, path,
                              line, &v[c - 2], err);
     if (st != CS_OK) {
@@ -121,10 +129,11 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
   r->links = (int)v[0];
   r->macro_steps = (int)v[1];
   r->dt_s = v[2];
-  r->error_mm = v[3];
-  r->cpu_s_per_s = v[4];
-  r->wall_s_per_s = v[5];
-  snprintf(r->machine, sizeof r->machine, "%s", field[8]);
+  r->rod_tol = v[3];
+  r->error_mm = v[4];
+  r->cpu_s_per_s = v[5];
+  r->wall_s_per_s = v[6];
+  snprintf(r->machine, sizeof r->machine, "%s", field[9]);
   return CS_OK;
 }
 
@@ -137,27 +146,34 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
   if (st != CS_OK) {
     return st;
   }
-  int have_header = 0, rc;
+  int have_header = 0, ncol = NCOL, rc;
   while ((rc = csu_lineNext(&r, err)) == 1) {
     char* line = csu_trimBlanks(r.line);
     if (!line[0] || line[0] == '#') {
       continue;
     }
     if (!have_header) {
-      if (strcmp(line, kHeader) != 0) {
+      if (strcmp(line, kHeader) != 0 && strcmp(line, kHeader1) != 0) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: the header must be '%s' (got '%.60s')",
                          path, r.lineno, kHeader, line);
         break;
       }
+      ncol = strcmp(line, kHeader) ? NCOL1 : NCOL;
       have_header = 1;
       continue;
     }
-    char* field[NCOL];
-    int n = splitFields(line, field);
-    if (n != NCOL) {
+    char* raw[NCOL];
+    int n = splitFields(line, raw);
+    if (n != ncol) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: %d field%s, expected %d (%s)", path,
-                       r.lineno, n, n == 1 ? "" : "s", NCOL, kHeader);
+                       r.lineno, n, n == 1 ? "" : "s", ncol, ncol == NCOL ? kHeader : kHeader1);
       break;
+    }
+    /* format 1: rod_tol 1 in its place */
+    static char kOne[] = "1";
+    char* field[NCOL];
+    for (int c = 0; c < NCOL; c++) {
+      field[c] = ncol == NCOL ? raw[c] : (c < 5 ? raw[c] : (c == 5 ? kOne : raw[c - 1]));
     }
     if (t->nrow == CSR_LEVELS_MAX_ROWS) {
       st = cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: more than %d rows", path, r.lineno,
@@ -173,10 +189,12 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
     for (int i = 0; i < t->nrow; i++) {
       const csrLevelRow* o = &t->row[i];
       if (!strcmp(o->scene, row->scene) && !strcmp(o->level, row->level) &&
-          o->links == row->links && o->macro_steps == row->macro_steps && o->dt_s == row->dt_s) {
+          o->links == row->links && o->macro_steps == row->macro_steps && o->dt_s == row->dt_s &&
+          o->rod_tol == row->rod_tol) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: repeats the configuration of line %d "
-                         "(%s, %s, links %d, macro steps %d, dt %g s)", path, r.lineno, o->line,
-                         row->scene, row->level, row->links, row->macro_steps, row->dt_s);
+                         "(%s, %s, links %d, macro steps %d, dt %g s, rod tol %g)", path,
+                         r.lineno, o->line, row->scene, row->level, row->links,
+                         row->macro_steps, row->dt_s, row->rod_tol);
         break;
       }
     }

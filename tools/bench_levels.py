@@ -26,7 +26,7 @@ discards the cache.
 
 Usage: /usr/bin/python3 tools/bench_levels.py [--crawlsim build/tools/crawlsim]
          [--tasks track,bend] [--scenes flat-road,obstacle] [--obstacle-t-end 4]
-         [--prb-links 2,4,8] [--rod-configs 2x1,4x1,...,6x1@5e-4] [--ref-links 6]
+         [--prb-links 2,4,8] [--rod-configs 2x1,4x1,...,6x1@5e-4,4x1t5,...] [--ref-links 6]
          [--ref-dt 2.5e-4] [--fe-meshes 6,5] [--tip-meshes 5,6]
          [--work DIR] [--out-dir docs] [--table robot/levels.csv]
 """
@@ -48,7 +48,8 @@ PROG = "bench_levels.py"
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 # the `--legs auto` table's header (robot/robot_levels.h reads exactly these columns)
-TABLE_COLUMNS = ["scene", "level", "links", "macro_steps", "dt_s", "error_mm", "cpu_s_per_s",
+TABLE_COLUMNS = ["scene", "level", "links", "macro_steps", "dt_s", "rod_tol", "error_mm",
+                 "cpu_s_per_s",
                  "wall_s_per_s", "machine"]
 
 
@@ -88,12 +89,12 @@ def cached(work, key, compute):
 
 
 # ---------------------------------------------------------------------------------- tracks
-def track_config_name(level, links, macro, dt):
-    return f"{level}-l{links}-m{macro}-dt{dt:g}"
+def track_config_name(level, links, macro, dt, k=1.0):
+    return f"{level}-l{links}-m{macro}-dt{dt:g}" + (f"-k{k:g}" if k != 1 else "")
 
 
-def run_track(a, scene, level, links, macro, dt):
-    key = f"track-{scene}-" + track_config_name(level, links, macro, dt) + \
+def run_track(a, scene, level, links, macro, dt, k=1.0):
+    key = f"track-{scene}-" + track_config_name(level, links, macro, dt, k) + \
         (f"-t{a.obstacle_t_end:g}" if scene == "obstacle" else "")
     out = os.path.join(a.work, key + ".h5")
 
@@ -104,6 +105,8 @@ def run_track(a, scene, level, links, macro, dt):
             cmd += ["--macro-steps", str(macro)]
         if dt != 1e-3:
             cmd += ["--dt", f"{dt:g}"]
+        if k != 1:
+            cmd += ["--rod-tol", f"{k:g}"]
         if scene == "obstacle":
             cmd += ["--t-end", f"{a.obstacle_t_end:g}"]
         load = os.getloadavg()[0]
@@ -144,37 +147,41 @@ def sim_seconds(res):
 
 
 def tracks(a, rows, table):
-    # "NxM" or "NxM@DT": N elements per segment, M macro steps, ODE step DT (default 1 ms)
+    # "NxM", "NxM@DT", "NxMtK", "NxM@DTtK": N elements per segment, M macro steps, ODE step DT
+    # (default 1 ms), the rod's CVODE tolerances x K (--rod-tol, default 1)
     rod_configs = []
     for c in (c for c in a.rod_configs.split(",") if c):
+        c, _, k = c.partition("t")
         nm, _, dt = c.partition("@")
         n, m = (int(v) for v in nm.split("x"))
-        rod_configs.append((n, m, float(dt) if dt else 1e-3))
+        rod_configs.append((n, m, float(dt) if dt else 1e-3, float(k) if k else 1.0))
     for scene in a.scenes.split(","):
         ref = run_track(a, scene, "rod", a.ref_links, 1, a.ref_dt)
         if ref["rc"] != 0:
             fail(f"the {scene} reference run failed: {ref['last']}")
         t_ref = sim_seconds(ref)
-        configs = [("prb", n, 1, 1e-3) for n in (int(v) for v in a.prb_links.split(",") if v)]
-        configs += [("rod", n, m, dt) for n, m, dt in rod_configs]
-        points = [(ref, "rod", a.ref_links, 1, a.ref_dt, True)]
-        for level, links, macro, dt in configs:
-            res = run_track(a, scene, level, links, macro, dt)
-            points.append((res, level, links, macro, dt, False))
-            print(f"  {scene} {level} links {links} macro {macro}: rc {res['rc']}, "
+        configs = [("prb", n, 1, 1e-3, 1.0)
+                   for n in (int(v) for v in a.prb_links.split(",") if v)]
+        configs += [("rod", n, m, dt, k) for n, m, dt, k in rod_configs]
+        points = [(ref, "rod", a.ref_links, 1, a.ref_dt, 1.0, True)]
+        for level, links, macro, dt, k in configs:
+            res = run_track(a, scene, level, links, macro, dt, k)
+            points.append((res, level, links, macro, dt, k, False))
+            print(f"  {scene} {level} links {links} macro {macro} rod tol {k:g}: rc {res['rc']}, "
                   f"{res['cpu_s']:.1f} s CPU, {res['wall_s']:.1f} s wall", file=sys.stderr)
         # the reference's own error: the same rod at half its step (not a choice for auto)
         check = None
         if a.ref_check_dt:
             check = run_track(a, scene, "rod", a.ref_links, 1, a.ref_check_dt)
-        for res, level, links, macro, dt, is_ref in points + \
-                ([(check, "rod", a.ref_links, 1, a.ref_check_dt, False)] if check else []):
+        for res, level, links, macro, dt, k, is_ref in points + \
+                ([(check, "rod", a.ref_links, 1, a.ref_check_dt, 1.0, False)] if check else []):
             ok = res["rc"] == 0
             is_check = check is not None and res is check
             t_sim = sim_seconds(res) if os.path.exists(res["h5"]) else float("nan")
             err = 0.0 if is_ref else (track_error(res, ref) if ok else float("nan"))
             setting = f"links {links}" + (f", macro {macro} x {dt * 1e3:g} ms" if level != "prb"
-                                         else f", dt {dt * 1e3:g} ms")
+                                         else f", dt {dt * 1e3:g} ms") + \
+                (f", rod tol {k:g}" if k != 1 else "")
             rows.append({"task": scene, "model": level, "setting": setting,
                          "error_mm": err, "wall_s": res["wall_s"], "cpu_s": res["cpu_s"],
                          "sim_s": t_sim, "load": res["load"], "status": "ok" if ok else
@@ -183,7 +190,7 @@ def tracks(a, rows, table):
                          "command": res["cmd"]})
             if ok and not is_ref and not is_check:
                 table.append({"scene": scene, "level": level, "links": links,
-                              "macro_steps": macro, "dt_s": f"{dt:g}",
+                              "macro_steps": macro, "dt_s": f"{dt:g}", "rod_tol": f"{k:g}",
                               "error_mm": f"{err:.2f}",
                               "cpu_s_per_s": f"{res['cpu_s'] / t_ref:.3f}",
                               "wall_s_per_s": f"{res['wall_s'] / t_ref:.3f}",
@@ -386,12 +393,14 @@ def main():
     ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
     ap.add_argument("--tasks", default="track,bend")
     ap.add_argument("--scenes", default="flat-road,obstacle")
-    # 4 s: the rod reference heads off the road backwards from 3 s and falls at 4.37 s
+    # 4 s: the raise and the first pair steps (the gait before 2026-12-03 headed off the road
+    # backwards from 3 s; the whole run is the README's "Obstacle road")
     ap.add_argument("--obstacle-t-end", type=float, default=4.0)
     ap.add_argument("--prb-links", default="2,4,8")
     ap.add_argument("--rod-configs",
-                    default="2x1,4x1,6x1,2x2,4x2,2x1@5e-4,4x1@5e-4,6x1@5e-4",
-                    help="rod elements per segment x macro steps [@ ODE step s], comma "
+                    default="2x1,4x1,6x1,2x2,4x2,2x1@5e-4,4x1@5e-4,6x1@5e-4,"
+                    "4x1t5,4x1t20,2x1t10,2x1t20,2x2t10,4x2t10",
+                    help="rod elements per segment x macro steps [@ ODE step s] [t --rod-tol K], comma "
                     "separated")
     ap.add_argument("--ref-links", type=int, default=6)
     # the reference: the finest rod run here; the same rod at twice its step (6x1@5e-4 in
@@ -440,7 +449,7 @@ def main():
     pareto_png(os.path.join(a.out_dir, "levels_pareto.png"), rows, a.machine)
     if table:
         with open(a.table, "w", newline="") as f:
-            f.write("# crawlsim leg levels 1: written by tools/bench_levels.py; error_mm = max "
+            f.write("# crawlsim leg levels 2: written by tools/bench_levels.py; error_mm = max "
                     "over whole seconds of |support (dx, dz)| against a rod reference "
                     f"(links {a.ref_links}, dt {a.ref_dt:g} s); cpu_s_per_s = CPU seconds of "
                     "the whole process per simulated second\n")

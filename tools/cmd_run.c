@@ -267,9 +267,9 @@ int csx_cmdRun(int argc, char** argv) {
                   "against the reference, see robot/levels.csv)");
       goto done;
     }
-    if (!isnan(links) || !isnan(macro) || !isnan(dt)) {
-      cs_errorSet(&err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps and --dt from its "
-                  "table: give them with --legs prb or --legs rod instead");
+    if (!isnan(links) || !isnan(macro) || !isnan(dt) || !isnan(rodtol)) {
+      cs_errorSet(&err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt and --rod-tol "
+                  "from its table: give them with --legs prb or --legs rod instead");
       goto done;
     }
     if (!levels) levels = csx_dataPath("robot/levels.csv", levels_buf, sizeof levels_buf);
@@ -284,14 +284,21 @@ int csx_cmdRun(int argc, char** argv) {
     links = row->links;
     macro = row->macro_steps;
     dt = row->dt_s;
+    if (row->rod_tol != 1) {
+      rodtol = row->rod_tol;
+    }
     m.legs_auto_tol_mm = tol;
+    char tolnote[32] = "";
+    if (row->rod_tol != 1) {
+      snprintf(tolnote, sizeof tolnote, ", rod tol %g", row->rod_tol);
+    }
     snprintf(m.legs_auto_choice, sizeof m.legs_auto_choice,
-             "%s, links %d, macro steps %d, dt %g s: the cheapest of %d configurations measured "
+             "%s, links %d, macro steps %d, dt %g s%s: the cheapest of %d configurations measured "
              "on %.31s within --tol %g mm (error %.3g mm against the reference, %.3g CPU s per "
              "simulated s); the most accurate (%s, links %d, macro steps %d, dt %g s: %.3g mm) "
              "costs %.3g, the costliest (%s, links %d, macro steps %d, dt %g s: %.3g mm) %.3g "
              "CPU s per simulated s, %.2fx; %.200s line %d, measured on %.63s%s",
-             row->level, row->links, row->macro_steps, row->dt_s,
+             row->level, row->links, row->macro_steps, row->dt_s, tolnote,
              csr_levelTableCount(&table, scene), scene, tol, row->error_mm, row->cpu_s_per_s,
              fin->level, fin->links, fin->macro_steps, fin->dt_s, fin->error_mm,
              fin->cpu_s_per_s, top->level, top->links, top->macro_steps, top->dt_s,

@@ -10,7 +10,10 @@
 #include "cs_test.h"
 #include "robot_levels.h"
 
+/* format 1 (no rod_tol column: every row at 1) and format 2 */
 #define HEADER "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
+#define HEADER2 \
+  "scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
 #define PATH "test_levels.csv"
 
 static csrLevelTable g_t; /* large: not on the stack */
@@ -142,6 +145,31 @@ static void test_levels_bad_lines_refused(void) {
 }
 
 
+/* format 2: the rod_tol column is read and range-checked, is part of a configuration (two
+ * rows differing only in it are two configurations), and format 1 rows read as rod_tol 1 */
+static void test_levels_format2_rod_tol(void) {
+  csError err;
+  CS_EXPECT(readText(kGood, &err) == CS_OK && g_t.nrow == 5 && g_t.row[0].rod_tol == 1);
+  static const char kGood2[] =
+      HEADER2
+      "flat-road,rod,4,1,0.001,1,5,3.0,6.0,m\n"
+      "flat-road,rod,4,1,0.001,10,8,1.0,2.0,m\n"
+      "flat-road,prb,4,1,0.001,1,30,4.0,4.0,m\n";
+  CS_EXPECT(readText(kGood2, &err) == CS_OK);
+  CS_EXPECT(g_t.nrow == 3 && g_t.row[1].rod_tol == 10 && g_t.row[1].error_mm == 8 &&
+            g_t.row[1].cpu_s_per_s == 1.0 && !strcmp(g_t.row[1].machine, "m"));
+  /* the looser row is the cheaper one within 8 mm, the tight one within 5 */
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 8, &err) == 1);
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 5, &err) == 0);
+  expectRefused(HEADER2 "flat-road,rod,4,1,0.001,0,5,3.0,6.0,m\n", 2, "rod_tol 0 is outside (0");
+  expectRefused(HEADER2 "flat-road,rod,4,1,0.001,2000,5,3.0,6.0,m\n", 2, "rod_tol 2000 is");
+  expectRefused(HEADER2 "flat-road,rod,4,1,0.001,x,5,3.0,6.0,m\n", 2, "rod_tol 'x' is not a");
+  expectRefused(HEADER2 "flat-road,rod,4,1,0.001,5,3.0,6.0,m\n", 2, "9 fields, expected 10");
+  expectRefused(HEADER2 "flat-road,rod,4,1,0.001,2,5,3.0,6.0,m\n"
+                        "flat-road,rod,4,1,0.001,2,6,3.0,6.0,m\n", 3, "rod tol 2");
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_levels_good_table_reads);
@@ -149,5 +177,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_levels_unmet_tolerance_names_best_error);
   CS_RUN(test_levels_bad_lines_refused);
   remove(PATH);
+  CS_RUN(test_levels_format2_rod_tol);
   return cs_testSummary();
 }

@@ -4,7 +4,7 @@
  *    a tight one (its smallest): a property of the measured data, so this fails if the table
  *    stops showing a trade-off;
  *  - the configuration recorded in the output (leg_model, links_per_segment, step_s,
- *    macro_step_s) is the one the banner and legs_auto_choice name, and the one the table
+ *    macro_step_s, rod_tolerance_scale) is the one the banner and legs_auto_choice name, and the one the table
  *    says is cheapest within the tolerance (computed here, independently of the picker);
  *  - a tolerance below the best error is one error line naming the best achievable error;
  *  - the table holds at least two configurations of every registered level per scene, and the
@@ -58,8 +58,12 @@ static void expectRuns(const char* scene, double tol, int k) {
   cs_cliRun(exe_path, args, "levelscli", &res);
   CS_EXPECT(res.status == 0);
   char want[256];
-  snprintf(want, sizeof want, "--legs auto picked %s, links %d, macro steps %d, dt %g s:",
-           r->level, r->links, r->macro_steps, r->dt_s);
+  char tolnote[32] = "";
+  if (r->rod_tol != 1) {
+    snprintf(tolnote, sizeof tolnote, ", rod tol %g", r->rod_tol);
+  }
+  snprintf(want, sizeof want, "--legs auto picked %s, links %d, macro steps %d, dt %g s%s:",
+           r->level, r->links, r->macro_steps, r->dt_s, tolnote);
   CS_EXPECT(strstr(res.err, want) != NULL);
   snprintf(want, sizeof want, "legs %s,", r->level); /* the first banner line */
   CS_EXPECT(strstr(res.err, want) != NULL);
@@ -76,6 +80,12 @@ static void expectRuns(const char* scene, double tol, int k) {
     CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0);
     CS_EXPECT(links == r->links);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "step_s", &h) >= 0 && h == r->dt_s);
+    if (!strcmp(r->level, "rod")) {
+      /* the row's --rod-tol is the run's */
+      double k = 0;
+      CS_EXPECT(H5LTget_attribute_double(f, "/", "rod_tolerance_scale", &k) >= 0 &&
+                k == r->rod_tol);
+    }
     CS_EXPECT(H5LTget_attribute_double(f, "/", "macro_step_s", &H) >= 0);
     /* prb is an in-world level: one ODE step per exchange whatever the row says */
     CS_EXPECT_NEAR(H, r->dt_s * (strcmp(r->level, "prb") ? r->macro_steps : 1), 1e-15, 1e-12);
