@@ -43,8 +43,8 @@ static const OptSpec kBendOpts[] = {
     {"--chambers", OPT_WORD},  {"--p-max", OPT_NUM},       {"--p-step", OPT_NUM},
     {"--until-angle", OPT_NUM}, {"--mesh-size", OPT_NUM},  {"--pressures", OPT_WORD},
     {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD}, {"--fibre-law", OPT_WORD},
-    {"--tip-load", OPT_WORD},  {"--calibration", OPT_CALIB}, {"--out", OPT_OWNED},
-    {"--help", OPT_OWNED},     {NULL, OPT_FLAG}};
+    {"--tip-load", OPT_WORD},  {"--calibration", OPT_CALIB}, {"--branch-switch", OPT_WORD},
+    {"--out", OPT_OWNED},      {"--help", OPT_OWNED},      {NULL, OPT_FLAG}};
 
 static const OptSpec kRunOpts[] = {
     {"--scene", OPT_WORD},        {"--gait", OPT_PATH},          {"--terrain", OPT_PATH},
