@@ -3,7 +3,8 @@
  * Rationale.
  * Stages: set-up (the actuator's FE model, fem_actuator.h; data; state buffers), dead-load ramp
  * (gravity, tip force),
- * then per step: a pressure step with cut-backs, the limit-point path when a step collapses,
+ * then per step: a pressure step with cut-backs, the limit-point path when a step collapses or
+ * a bifurcation shows (fem_bend_limit.c, with the branch switch),
  * the refinement of --until-angle, an output row (with optional stiffness probes), step control;
  * finally the outputs (VTU, deck) and the summary.
  * Load stepping: pressure control with a secant predictor (s_pred = s_n + dp/dp_prev (s_n -
@@ -30,6 +31,8 @@
 #include <string.h>
 
 #include "core_text.h"
+#include "fem_bend_branch.h"
+#include "fem_bend_run.h"
 #include "fem_output.h"
 #include "fem_path.h"
 
@@ -75,6 +78,7 @@ csfBendOptions csf_bendDefault(void) {
   o.until_angle = NAN;
   o.angle_tol = 0.1;
   o.continuation = 1;
+  o.branch_switch = 0;
   o.krylov = 0;
   o.symmetric = -1;
   o.newton_rtol = CSF_BEND_NEWTON_RTOL;
@@ -97,18 +101,6 @@ csStatus csf_bendSetChambers(csfBendOptions* opts, const char* list, csError* er
 }
 
 
-/* everything a sweep owns, freed in one place */
-typedef struct {
-  csfActuatorFE fe;
-  csfData* data;
-  double* s_conv; /* (csf_stateSize) last converged state */
-  double* s_prev; /* (csf_stateSize) the converged state before it */
-  double* s_pp;   /* (csf_stateSize) the converged state before s_prev (quadratic predictor) */
-  double* s_tmp;  /* (csf_stateSize) scratch */
-  double* s_row;  /* (csf_stateSize) scratch: a row's state while its probes run */
-} Sweep;
-
-
 static void sweepFree(Sweep* w) {
   csf_dataDestroy(w->data);
   csf_actuatorFEDestroy(&w->fe);
@@ -120,26 +112,6 @@ static void sweepFree(Sweep* w) {
 }
 
 
-/* the running state of one sweep, passed to every stage */
-typedef struct {
-  const csrActuator* act;
-  const csfBendOptions* o;
-  csrBendCurve* out;
-  csfBendInfo info;
-  Sweep w;
-  csfNewtonOptions nopt;
-  size_t ns;                    /* state length (csf_stateSize) */
-  double p, p_prev, dp;         /* converged pressure, the one before, next step (MPa) */
-  double p_pp;                  /* pressure of s_pp */
-  double a_pp;                  /* total angle of s_pp (deg) */
-  double V_conv, V_prev;        /* weighted chamber volumes of s_conv and s_prev */
-  double ang_conv[4], ang_prev[4]; /* angles (3 segments, total; deg) of s_conv, s_prev */
-  int k_out;                    /* next output row index: pressure k_out p_step */
-  int have_prev;                /* s_prev is a converged state below s_conv */
-  int have_pp;                  /* s_pp is a converged state below s_prev (same branch) */
-  int n_hard;                   /* accepted steps in a row that needed cut-backs */
-  double t_start;
-} Run;
 
 
 /* ---- stage: set-up --------------------------------------------------------------------- */
@@ -296,8 +268,8 @@ static void runProbes(Run* r, csfBendRow* row) {
 
 
 /* append a row to the curve (and to the record, with probes where asked) */
-static csStatus stageRow(Run* r, double p, const double ang[3], double tot, const double tip[3],
-                         csError* err) {
+csStatus csf_bendStageRow(Run* r, double p, const double ang[3], double tot,
+                          const double tip[3], csError* err) {
   csStatus st = csr_bendCurvePush(r->out, p, ang, tip, err);
   if (st != CS_OK) {
     return st;
@@ -439,197 +411,6 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
 }
 
 
-/* ---- stage: the path past a limit point ------------------------------------------------- */
-
-/* The path's inertia in the run's summary: the most negative pivots, and the first converged
- * state (pressure p) whose tangent had any, with the last definite state before it. */
-static void noteInertia(csfBendInfo* info, int neg, double p, double p_last_definite) {
-  info->neg_pivots_max = neg > info->neg_pivots_max ? neg : info->neg_pivots_max;
-  if (neg > 0 && isnan(info->p_indefinite)) {
-    info->p_indefinite = p;
-    info->p_definite = p_last_definite;
-  }
-}
-
-
-/* Per-state watcher of the volume-controlled path past a limit point (csf_passLimit callback):
- * tracks the angles (for unwrapping), the angles at the pressure maximum, reports progress, and
- * stops the path when the --until-angle target is reached. */
-typedef struct {
-  const csrActuator* act;
-  const csfBendOptions* o;
-  const csfGauges* gauges;
-  const double* axis;
-  double* ang_conv;                   /* [4] last angles: 3 segments, total (deg) */
-  double a_limit, ang_limit[3], tip_limit[3]; /* at the pressure maximum */
-  int until_hit; /* 1: target reached before the limit (stable state), 2: after it (in the snap) */
-  double p_hit, a_hit, ang_hit[3], tip_hit[3];
-  csfBendInfo* info;     /* the run's summary: the path's inertia (p_definite, p_indefinite) */
-  double p_definite;     /* last state of the path so far with a positive definite tangent */
-} LimitWatch;
-
-static int limitWatch(void* user, const csfModel* m, const csfData* d, const csfPathPoint* pt) {
-  LimitWatch* lw = user;
-  double ang[3], tot, tip[3];
-  csf_bendMeasure(lw->act, lw->gauges, m, d, lw->axis, lw->ang_conv, ang, &tot, tip);
-  lw->ang_conv[0] = ang[0], lw->ang_conv[1] = ang[1], lw->ang_conv[2] = ang[2];
-  lw->ang_conv[3] = tot;
-  /* the inertia along the volume path too: a negative pivot while the pressure still rises is a
-   * bifurcation of the path (pressure control would leave it), past a maximum a limit point */
-  const int neg = csf_linSolverNegativePivots(d->ls);
-  noteInertia(lw->info, neg, pt->p, lw->p_definite);
-  if (neg == 0) {
-    lw->p_definite = pt->p;
-  }
-  if (pt->is_max) {
-    lw->a_limit = tot;
-    memcpy(lw->ang_limit, ang, sizeof ang);
-    memcpy(lw->tip_limit, tip, sizeof tip);
-  }
-  if (lw->o->progress) {
-    csfBendStep rep = {pt->p, pt->dp, pt->newton_iters, 0, pt->wall, tot, {ang[0], ang[1], ang[2]},
-                       1, pt->volume, neg};
-    lw->o->progress(lw->o->progress_user, &rep);
-  }
-  if (isfinite(lw->o->until_angle) && tot >= lw->o->until_angle) {
-    lw->until_hit = pt->past_limit ? 2 : 1;
-    lw->p_hit = pt->p, lw->a_hit = tot;
-    memcpy(lw->ang_hit, ang, sizeof ang);
-    memcpy(lw->tip_hit, tip, sizeof tip);
-    return 1;
-  }
-  return 0;
-}
-
-
-/* Rows at the output pressures a rising volume-controlled stretch passed (stageLimit): the
- * path's last two states s_prev (pressure p_before) and s_conv (r->p, also in d) bracket the
- * last of them; earlier ones (several passed in one stretch) have no bracketing states and are
- * counted in n_rows_skipped. d is left at s_conv. */
-static csStatus rowsOnRisingPath(Run* r, double p_before, csError* err) {
-  const csfBendOptions* o = r->o;
-  csfModel* m = r->w.fe.model;
-  csfData* d = r->w.data;
-  const double eps = 1e-9 * o->p_step;
-  csStatus st = CS_OK;
-  while (st == CS_OK && fmin(r->k_out * o->p_step, o->p_max) <= r->p + eps) {
-    const double pg = fmin(r->k_out * o->p_step, o->p_max);
-    if (pg < p_before - eps || !(r->p > p_before)) {
-      r->info.n_rows_skipped++;
-      r->k_out++;
-      continue;
-    }
-    const double f = (pg - p_before) / (r->p - p_before);
-    for (size_t i = 0; i < r->ns; i++) {
-      r->w.s_tmp[i] = r->w.s_prev[i] + f * (r->w.s_conv[i] - r->w.s_prev[i]);
-    }
-    csf_stateSet(m, d, r->w.s_tmp);
-    int it = 0;
-    csError lerr = {0};
-    if (csf_newtonSolve(m, d, pg, &r->nopt, &it, &lerr) == CS_OK) {
-      double ang[3], tot, tip[3];
-      csf_bendMeasure(r->act, r->w.fe.gauges, m, d, r->w.fe.axis, r->ang_conv, ang, &tot, tip);
-      st = stageRow(r, pg, ang, tot, tip, err);
-    } else {
-      r->info.n_rows_skipped++;
-    }
-    r->info.n_newton += it;
-    r->k_out++;
-  }
-  csf_stateSet(m, d, r->w.s_conv);
-  return st;
-}
-
-
-/* Follow the path by chamber volume from the collapsed step. Returns 1 when the sweep ends
- * there (no stable branch, or the until-angle was met on the path; *st carries a row error),
- * 0 when it resumes under pressure control (r's state updated to the path's last two states). */
-static int stageLimit(Run* r, csStatus* st, csError* err) {
-  const csfBendOptions* o = r->o;
-  csfModel* m = r->w.fe.model;
-  csfData* d = r->w.data;
-  csError lerr = {0};
-  LimitWatch lw;
-  memset(&lw, 0, sizeof lw);
-  lw.act = r->act, lw.o = o, lw.gauges = r->w.fe.gauges, lw.axis = r->w.fe.axis;
-  lw.ang_conv = r->ang_conv;
-  lw.info = &r->info;
-  lw.p_definite = r->p;
-  csf_stateSet(m, d, r->w.s_conv);
-  csf_bendMeasure(r->act, r->w.fe.gauges, m, d, r->w.fe.axis, r->ang_conv, lw.ang_limit,
-                  &lw.a_limit, lw.tip_limit);
-  csfLimitOptions lopt = csf_limitDefault();
-  /* the sweep ends after four halvings of a failing volume step (each failure is a stagnated
-   * Newton solve, 13-20 iterations on the leg: a 1e-4 collapse took 13 halvings) */
-  lopt.min_dv_rel = 1.0 / 16.0;
-  lopt.callback = limitWatch;
-  lopt.user = &lw;
-  csfLimitResult lr;
-  const csStatus lst = csf_passLimit(m, d, r->w.s_prev, r->w.s_conv, r->w.s_tmp, r->V_prev,
-                                     r->V_conv, r->p, &r->nopt, &lopt, &lr, &lerr);
-  r->info.n_newton += lr.n_newton;
-  r->info.n_volume_steps += lr.n_steps;
-  if (!lr.no_limit) {
-    /* this episode is the sweep's latest limit: an earlier resume no longer describes it */
-    r->info.p_limit = lr.p_limit;
-    r->info.angle_limit = lw.a_limit;
-    r->info.p_resume = r->info.angle_resume = NAN;
-    r->info.limit_shown = lr.fell;
-  }
-  r->p = d->load;
-  const double V_end = d->vol_w; /* the last converged state's volume (d is reused below) */
-  if (lst == CS_OK && lr.stopped) {
-    /* the target angle: before the limit the state at p_hit is an equilibrium, not refined;
-     * after it a pressure-controlled load reaches the angle by snapping at p_limit */
-    const int snap = lw.until_hit == 2;
-    if (snap || fabs(lw.a_hit - o->until_angle) <= o->angle_tol) {
-      r->out->p_until_angle = snap ? lr.p_limit : lw.p_hit;
-    }
-    snprintf(r->info.until_note, sizeof r->info.until_note,
-             snap ? "reached in the snap-through at the limit pressure %.6g MPa (%.2f deg "
-                    "at the limit, %.2f deg on the volume-controlled path)"
-                  : "passed under volume control below the limit (%.6g MPa so far; %.2f "
-                    "deg there, %.2f deg): not refined",
-             lr.p_limit, lw.a_limit, lw.a_hit);
-    *st = stageRow(r, snap ? lr.p_limit : lw.p_hit, snap ? lw.ang_limit : lw.ang_hit,
-                   snap ? lw.a_limit : lw.a_hit, snap ? lw.tip_limit : lw.tip_hit, err);
-    return 1;
-  }
-  if (lst != CS_OK) {
-    snprintf(r->info.limit_note, sizeof r->info.limit_note, "%.190s", lerr.msg);
-    return 1; /* no stable branch found: the sweep ends at the last volume-controlled state */
-  }
-  if (lr.no_limit) {
-    /* a hard stretch, not a limit point: every state of the volume path is stable under
-     * pressure control, so output pressures it passed get their rows; the last one lies
-     * between the path's last two states (s_prev at p_before, s_conv at p) and is solved there
-     * under pressure control from the state interpolated linearly in p */
-    r->info.n_hard_passed++;
-    *st = rowsOnRisingPath(r, lr.p_before, err);
-    if (*st != CS_OK) {
-      return 1;
-    }
-  } else {
-    /* stable again above the limit: output pressures passed in the snap are skipped (no
-     * stable state there) */
-    r->info.p_resume = lr.p_resume;
-    r->info.angle_resume = r->ang_conv[3];
-  }
-  /* resume pressure control from the volume path's last two states */
-  r->V_prev = r->V_conv = V_end;
-  r->p_prev = lr.p_before;
-  r->have_prev = r->p > r->p_prev;
-  r->have_pp = 0; /* the volume path's states are not on the pressure-controlled branch */
-  memcpy(r->ang_prev, r->ang_conv, sizeof r->ang_prev);
-  while (r->k_out * o->p_step <= r->p + 1e-9 * o->p_step) {
-    r->k_out++;
-    r->info.n_rows_skipped += !lr.no_limit;
-  }
-  r->dp = 0.25 * o->p_step;
-  return 0;
-}
-
-
 /* ---- stage: refine --until-angle --------------------------------------------------------- */
 
 /* bracket [p_prev, p] by converged states (s_prev, s_conv); regula falsi with 10 % safeguard;
@@ -685,7 +466,7 @@ static csStatus stageRefine(Run* r, const double ang[3], double tot, const doubl
   if (fabs(a_found - o->until_angle) <= o->angle_tol) {
     r->out->p_until_angle = p_found;
   }
-  return stageRow(r, p_found, ang_found, a_found, tip_found, err);
+  return csf_bendStageRow(r, p_found, ang_found, a_found, tip_found, err);
 }
 
 
@@ -742,6 +523,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   r.info.p_limit = r.info.p_resume = r.info.angle_limit = r.info.angle_resume = NAN;
   r.info.p_definite = r.info.p_indefinite = NAN;
   r.info.neg_pivots_max = -1;
+  r.info.p_bifurcation = r.info.angle_bifurcation = NAN;
   out->p_until_angle = NAN;
   if (o->record) {
     o->record->m = 0;
@@ -771,7 +553,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     /* row at p = 0 */
     double ang[3], tot, tip[3];
     csf_bendMeasure(act, r.w.fe.gauges, m, d, r.w.fe.axis, r.ang_conv, ang, &tot, tip);
-    st = stageRow(&r, 0.0, ang, tot, tip, err);
+    st = csf_bendStageRow(&r, 0.0, ang, tot, tip, err);
   }
   while (st == CS_OK && r.p < o->p_max - eps) {
     const double t_step = csf_wallTime();
@@ -784,7 +566,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
         csf_stateSet(m, d, r.w.s_conv);
         break;
       }
-      if (stageLimit(&r, &st, err)) {
+      if (csf_bendStageLimit(&r, &st, err)) {
         break;
       }
       continue;
@@ -796,11 +578,19 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     double ang[3], tot, tip[3];
     csf_bendMeasure(act, r.w.fe.gauges, m, d, r.w.fe.axis, r.ang_conv, ang, &tot, tip);
     const int neg = csf_linSolverNegativePivots(d->ls);
+    double asym[CSR_NSEG];
     csfBendStep rep = {target, target - r.p, iters, cut, csf_wallTime() - t_step, tot,
-                       {ang[0], ang[1], ang[2]}, 0, d->vol_w, neg};
+                       {ang[0], ang[1], ang[2]}, 0, d->vol_w, neg, r.on_branch,
+                       csf_bendChamberAsymmetry(m, d, (const double(*)[CSR_NCHAMBER])o->spec.ratio,
+                                                asym), NULL};
+    /* a bifurcation under pressure control: a negative pivot more than the state before */
+    const int bif = o->branch_switch && o->continuation && !r.on_branch && r.neg_conv >= 0 &&
+                    neg > r.neg_conv; /* (without the switch: reported on the volume path) */
+    r.neg_prev = r.neg_conv;
+    r.neg_conv = neg;
     /* stability of the pressure-controlled path: the inertia of its tangent (the state before
      * is definite while p_indefinite is unset) */
-    noteInertia(&r.info, neg, target, r.p);
+    csf_bendNoteInertia(&r.info, neg, target, r.p);
     /* accept: the buffers shift (s_pp <- s_prev <- s_conv <- d) */
     double* recycled = r.w.s_pp;
     r.w.s_pp = r.w.s_prev;
@@ -824,8 +614,15 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
       break;
     }
     if (fabs(r.p - fmin(r.k_out * o->p_step, o->p_max)) <= eps) {
-      st = stageRow(&r, r.p, ang, tot, tip, err);
+      st = csf_bendStageRow(&r, r.p, ang, tot, tip, err);
       r.k_out++;
+    }
+    if (bif && st == CS_OK) {
+      /* leave the path here (the volume-controlled path switches at its entry state) */
+      if (csf_bendStageLimit(&r, &st, err)) {
+        break;
+      }
+      continue;
     }
     /* step control: no growth right after a step that needed cut-backs */
     r.n_hard = cut > 0 ? r.n_hard + 1 : 0;

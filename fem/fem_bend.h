@@ -36,6 +36,13 @@ typedef struct csfBendStep_ {
   int neg_pivots;      /* negative pivots of the step's last tangent factorisation (LDL^T:
                         * negative eigenvalues of K, csf_linSolverNegativePivots; 0 = stable
                         * under pressure control); -1 with LU (no inertia) */
+  int branch;          /* 0: the path as it came; 1: on a branch switched to at a bifurcation;
+                        * 2: the first state of that branch (note says what broke) */
+  double asym;         /* largest twin-chamber asymmetry |V_j - V_k| / (V_j + V_k) of the
+                        * state on a volume-controlled stretch (csf_bendChamberAsymmetry), NAN
+                        * when not measured */
+  const char* note;    /* with branch 2: the bifurcation's report line (csfBendInfo's
+                        * bifurcation_note); else NULL */
 } csfBendStep;
 
 typedef void (*csfBendProgress)(void* user, const csfBendStep* step);
@@ -76,6 +83,10 @@ typedef struct csfBendInfo_ {
                         * two the path crossed a critical point (limit or bifurcation) */
   int neg_pivots_max;  /* most negative pivots met on the path (-1: LU, no inertia) */
   char limit_note[200]; /* why the path past the limit ended without resuming ("" = n/a) */
+  int n_bifurcation;    /* bifurcations met (a negative pivot more while the pressure rose) */
+  int branch_switched;  /* 1: the sweep left the path there along the critical mode */
+  double p_bifurcation, angle_bifurcation; /* MPa, deg: the first state past the first one */
+  char bifurcation_note[1024]; /* its report (csf_bendBifurcationNote; "" = none) */
   double max_j_dev; /* max |theta - 1| over elements at the last state (volume preservation) */
   double j_min;     /* smallest pointwise J (det F at quadrature points) at the last state: the
                      * most distorted element (csf_worstElement) */
@@ -119,6 +130,15 @@ typedef struct csfBendOptions_ {
   int continuation;    /* 1 (default): past a limit point, follow the path by chamber-volume
                         * control and resume pressure control where it is stable again; 0: stop
                         * at the limit (p_limit = last converged pressure) */
+  int branch_switch;   /* 1: at a bifurcation (a converged state with more negative pivots than
+                        * the one before while the pressure rises) try to leave the path along
+                        * the critical mode (csfLimitOptions.branch_switch); 0 (default): stay.
+                        * Either way the first bifurcation on a volume-controlled stretch is
+                        * reported with its critical mode (bifurcation_note). Off by default:
+                        * on the thin-walled actuator it found no branch and cost ~4 min
+                        * (fem/README.md "Branch switching") */
+  double branch_amp;   /* mm, the perturbation's largest nodal displacement (0: fem_path.c's
+                        * default, 0.05 mm) */
   void (*newton_monitor)(void* user, const csfNewtonIter* it); /* optional, per Newton iteration */
   const char* vtu_path;  /* deformed mesh at the last state (ParaView .vtu), NULL = none */
   const char* inp_path;  /* same model as a CalculiX/ABAQUS .inp deck, NULL = none */

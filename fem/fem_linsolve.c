@@ -449,3 +449,73 @@ void csf_linSolverDestroy(csfLinSolver* s) {
   free(s->wk);
   free(s);
 }
+
+
+/* unit 2-norm over the kept entries (skipped ones set to 0); returns the norm before scaling */
+static double normalise(int n, const unsigned char* skip, double* v) {
+  double s2 = 0;
+  for (int i = 0; i < n; i++) {
+    if (skip && skip[i]) {
+      v[i] = 0.0;
+    }
+    s2 += v[i] * v[i];
+  }
+  const double nv = sqrt(s2);
+  if (nv > 0) {
+    for (int i = 0; i < n; i++) {
+      v[i] /= nv;
+    }
+  }
+  return nv;
+}
+
+
+int csf_linSolverInverseIteration(csfLinSolver* s, const unsigned char* skip, int maxit,
+                                  double tol, double* x, double* work, csfEigResult* res) {
+  const int n = s->n;
+  memset(res, 0, sizeof *res);
+  res->lambda = res->residual = res->change = NAN;
+  if (!(normalise(n, skip, x) > 0)) {
+    return 1;
+  }
+  for (int k = 0; k < maxit; k++) {
+    /* y = K^-1 v_k; v_k+1 = y / |y|; K v_k+1 = v_k / |y| */
+    memcpy(work, x, (size_t)n * sizeof(double));
+    if (csf_linSolverSolve(s, work) != 0) {
+      return 1;
+    }
+    res->iters++;
+    const double ny = normalise(n, skip, work);
+    if (!(ny > 0) || !isfinite(ny)) {
+      return 1;
+    }
+    double c = 0;
+    for (int i = 0; i < n; i++) {
+      c += work[i] * x[i];
+    }
+    /* Rayleigh quotient and residual |v_k / |y| - lambda v_k+1| (|v_k+1| = 1) */
+    res->lambda = c / ny;
+    double r2 = 0;
+    for (int i = 0; i < n; i++) {
+      const double r = x[i] / ny - res->lambda * work[i];
+      r2 += r * r;
+    }
+    res->residual = sqrt(r2);
+    res->change = 1.0 - fabs(c);
+    memcpy(x, work, (size_t)n * sizeof(double));
+    if (res->change <= tol) {
+      break;
+    }
+  }
+  /* deterministic sign: the largest entry positive */
+  int imax = 0;
+  for (int i = 1; i < n; i++) {
+    imax = fabs(x[i]) > fabs(x[imax]) ? i : imax;
+  }
+  if (x[imax] < 0) {
+    for (int i = 0; i < n; i++) {
+      x[i] = -x[i];
+    }
+  }
+  return 0;
+}

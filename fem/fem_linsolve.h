@@ -83,6 +83,27 @@ int csf_linSolverNegativePivots(const csfLinSolver* s);
  * LU and KLU. */
 int csf_linSolverRepivots(const csfLinSolver* s);
 
+/* Result of csf_linSolverInverseIteration. */
+typedef struct csfEigResult_ {
+  double lambda;   /* Rayleigh quotient v . K v of the last iterate (|v| = 1), units of K */
+  double residual; /* |K v - lambda v| of the last iterate, units of K (0 for an eigenpair) */
+  double change;   /* 1 - |v_k . v_k-1| of the last step (0 when the direction stopped moving) */
+  int iters;       /* solves done */
+} csfEigResult;
+
+/* Inverse iteration with the last factorisation: the eigenvector of K whose eigenvalue has the
+ * smallest modulus (near a critical point of a path, the mode that turns K singular). Iterates
+ * v_k+1 = K^-1 v_k / |K^-1 v_k| until 1 - |v_k+1 . v_k| <= tol or maxit solves; converges at
+ * the rate |lambda_1 / lambda_2| per solve. No product with K is needed: K v_k+1 = v_k / |y|
+ * (y = K^-1 v_k), so lambda = v_k+1 . v_k / |y| and the residual follow from the last two
+ * iterates. skip (n, may be NULL): entries held at 0, for Dirichlet dofs whose identity rows
+ * and columns decouple them from the rest (their eigenvalue 1 is excluded). x (n): the start
+ * vector on entry (not zero on the kept entries), the unit eigenvector on exit, signed so that
+ * its largest entry is positive; work (n) scratch. Returns 0, or non-zero when a solve fails
+ * or an iterate vanishes. */
+int csf_linSolverInverseIteration(csfLinSolver* s, const unsigned char* skip, int maxit,
+                                  double tol, double* x, double* work, csfEigResult* res);
+
 /* Ordering actually used (MUMPS INFOG(7); -1 for KLU). */
 int csf_linSolverOrdering(const csfLinSolver* s);
 

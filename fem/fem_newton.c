@@ -103,6 +103,7 @@ csfNewtonOptions csf_newtonDefault(void) {
   o.krylov_eta = 1e-6;
   o.monitor = NULL;
   o.monitor_user = NULL;
+  o.shift = 0.0;
   return o;
 }
 
@@ -517,11 +518,20 @@ csStatus csf_newtonSolveVolume(const csfModel* m, csfData* d, double vol_target,
       d->du[i] = m->fixed[i] ? load * m->u_fix[i] - d->u[i] : -d->r[i];
       d->du2[i] = d->fext1[i];
     }
+    if (opt->shift != 0.0) {
+      /* the iteration matrix K - shift I (csfNewtonOptions.shift); kval is reassembled at the
+       * next iterate, so the shift is applied in place */
+      for (int i = 0; i < m->ndof; i++) {
+        for (int q = m->row_ptr[i]; q < m->row_ptr[i + 1] && !m->fixed[i]; q++) {
+          d->kval[q] -= m->col[q] == i ? opt->shift : 0.0;
+        }
+      }
+    }
     double t0 = csf_wallTime();
     int fst = csf_linSolverFactor(d->ls, d->kval);
     d->stats.t_factor += csf_wallTime() - t0;
     d->stats.n_factor++;
-    d->have_factor = fst == 0;
+    d->have_factor = fst == 0 && opt->shift == 0.0;
     d->refactor_next = 0;
     if (fst != 0) {
       restoreEntry(m, d, load0);

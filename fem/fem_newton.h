@@ -66,6 +66,13 @@ typedef struct csfNewtonOptions_ {
   double krylov_eta;  /* largest forcing term: ||K du + R|| <= eta ||R|| (dimensionless) */
   void (*monitor)(void* user, const csfNewtonIter* it); /* optional, per iteration */
   void* monitor_user;
+  double shift;   /* N/mm, csf_newtonSolveVolume only: iterate with K - shift I (free dofs) in
+                   * place of K; the residual, hence the converged state, is unchanged. 0
+                   * (default): Newton. Below the most negative eigenvalue of an indefinite K
+                   * the iteration matrix is definite, and the iteration descends the energy
+                   * (under the volume constraint) to a stable state instead of converging to the
+                   * nearest, unstable one; convergence is then linear (fem_path.c uses it to
+                   * leave a bifurcation) */
 } csfNewtonOptions;
 
 csfNewtonOptions csf_newtonDefault(void);

@@ -49,7 +49,10 @@ static const char kUsage[] =
     "usage: crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
     "                     [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
     "                     [--until-angle DEG] [--mesh-size MM] [--fibre-size MM]\n"
-    "                     [--fibre-split 0|1] [--fibre-law linear|tension-only] [--out FILE.h5]\n"
+    "                     [--fibre-split 0|1] [--fibre-law linear|tension-only]\n"
+    "                     [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ]\n"
+    "                     [--calibration FILE|analytic] [--cal-rule prism|rbf|rbf-pair]\n"
+    "                     [--branch-switch 0|1] [--out FILE.h5]\n"
     "  Inflates the listed chambers (1..4) of all three segments at equal pressure from 0 to\n"
     "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
     "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
@@ -63,7 +66,9 @@ static const char kUsage[] =
     "  ties each fibre element to the tets holding its two ends (20 nodes) instead of splitting\n"
     "  it at the tets' faces (1, default). --fibre-law: tension-only (default; thread buckles and\n"
     "  carries no compression) or linear (compression at full stiffness: with split fibres\n"
-    "  Omega1 & Omega2 then stall near 0.19 MPa, fem/README.md).\n";
+    "  Omega1 & Omega2 then stall near 0.19 MPa, fem/README.md). --branch-switch 1: at a\n"
+    "  bifurcation (the tangent gains a negative pivot while the pressure rises) try to leave\n"
+    "  the path along the critical mode (default 0: the mode is reported, the path kept).\n";
 
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
 
@@ -365,6 +370,7 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->fibre_size = NAN;
   run->fibre_split = -1;
   run->cal_rule = -1;
+  run->branch_switch = -1;
   run->fibre_tension_only = -1;
   run->out = "bend.h5";
   run->inflated[0] = run->inflated[1] = 1;
@@ -438,6 +444,12 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
         return 1;
       }
       run->fibre_split = value[0] == '1';
+    } else if (!strcmp(name, "--branch-switch")) {
+      if (strcmp(value, "0") && strcmp(value, "1")) {
+        fprintf(stderr, "crawlsim bend: --branch-switch '%s' must be 0 or 1\n", value);
+        return 1;
+      }
+      run->branch_switch = value[0] == '1';
     } else if (!strcmp(name, "--fibre-law")) {
       run->fibre_tension_only = csr_fibreLawParse(value);
       if (run->fibre_tension_only < 0) {
@@ -567,6 +579,11 @@ int csx_cmdBend(int argc, char** argv) {
             : run.fibre_split >= 0 ? "--fibre-split"
                                    : "--fibre-law",
             kModelNames[run.model]);
+    return 1;
+  }
+  if (run.branch_switch >= 0 && run.model != BEND_FE) {
+    fprintf(stderr, "crawlsim bend: --branch-switch is for --model fe (the %s model has no "
+            "tangent to switch branches on)\n", kModelNames[run.model]);
     return 1;
   }
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;

@@ -36,6 +36,8 @@ typedef struct {
                                  -1 the model's default */
   int fibre_tension_only;     /* fe: 1 tension-only fibre law, 0 linear (tension and
                                  compression), -1 the model's default (tension-only) */
+  int branch_switch;          /* fe: 1 try to leave the path at a bifurcation along the critical
+                                 mode, 0 stay on it, -1 the model's default (0) */
   double p_indefinite;        /* fe: first converged pressure with an indefinite tangent (NAN) */
   int neg_pivots_max;         /* fe: most negative pivots on the path (-1: LU) */
 } BendRun;

@@ -50,10 +50,19 @@ static void feProgress(void* user, const csfBendStep* st) {
   FeReport* rep = user;
   rep->t_last = csu_wallSeconds();
   rep->iters = 0;
-  char inertia[64] = "";
+  if (st->note) {
+    fprintf(stderr, "  fe: %s\n", st->note); /* a bifurcation and the branch switched to */
+  }
+  char inertia[128] = "";
   if (st->neg_pivots > 0) {
     snprintf(inertia, sizeof inertia, ", tangent indefinite (%d negative pivot%s)",
              st->neg_pivots, st->neg_pivots > 1 ? "s" : "");
+  }
+  if (st->branch) {
+    /* on the switched branch: how far it is from the mirror-symmetric path */
+    const size_t k = strlen(inertia);
+    snprintf(inertia + k, sizeof inertia - k, ", switched branch (twin chambers differ by %.2e)",
+             st->asym);
   }
   if (st->volume_control) {
     fprintf(stderr, "  fe: volume control: V %.1f mm^3, p = %.5f MPa (dp %+.5f), %d Newton "
@@ -94,6 +103,9 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   if (run->fibre_tension_only >= 0) {
     o.spec.fibre_compression = !run->fibre_tension_only;
   }
+  if (run->branch_switch >= 0) {
+    o.branch_switch = run->branch_switch;
+  }
   /* deformed mesh and solver deck next to the HDF5 file: FILE.h5 -> FILE.vtu, FILE.inp */
   char stem[512], vtu[520], inp[520];
   snprintf(stem, sizeof stem, "%s", run->out);
@@ -133,6 +145,9 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
       fprintf(stderr, "crawlsim bend: fe: until-angle refinement: %d equilibrium trials, %d "
               "failed%s%s\n", info.n_until_trials, info.n_until_failed,
               info.until_note[0] ? "; last failure: " : "", info.until_note);
+    }
+    if (info.bifurcation_note[0]) {
+      fprintf(stderr, "crawlsim bend: fe: %s\n", info.bifurcation_note);
     }
     if (!isnan(info.p_indefinite)) {
       fprintf(stderr, "crawlsim bend: fe: the tangent stiffness lost positive definiteness "

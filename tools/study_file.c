@@ -43,8 +43,9 @@ static const OptSpec kBendOpts[] = {
     {"--chambers", OPT_WORD},  {"--p-max", OPT_NUM},       {"--p-step", OPT_NUM},
     {"--until-angle", OPT_NUM}, {"--mesh-size", OPT_NUM},  {"--pressures", OPT_WORD},
     {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD}, {"--fibre-law", OPT_WORD},
-    {"--tip-load", OPT_WORD},  {"--calibration", OPT_CALIB}, {"--out", OPT_OWNED},
-    {"--cal-rule", OPT_WORD},  {"--help", OPT_OWNED},     {NULL, OPT_FLAG}};
+    {"--tip-load", OPT_WORD},  {"--calibration", OPT_CALIB}, {"--branch-switch", OPT_WORD},
+    {"--cal-rule", OPT_WORD},  {"--out", OPT_OWNED},       {"--help", OPT_OWNED},
+    {NULL, OPT_FLAG}};
 
 static const OptSpec kRunOpts[] = {
     {"--scene", OPT_WORD},        {"--gait", OPT_PATH},          {"--terrain", OPT_PATH},
@@ -54,8 +55,8 @@ static const OptSpec kRunOpts[] = {
     {"--support-mass", OPT_NUM},  {"--links", OPT_NUM},          {"--gravity", OPT_NUM},
     {"--macro-steps", OPT_NUM},   {"--coupling", OPT_WORD},      {"--conditions", OPT_WORD},
     {"--iterations", OPT_NUM},    {"--quiet", OPT_FLAG},         {"--set", OPT_SET},
-    {"--cal-rule", OPT_WORD},     {"--out", OPT_OWNED},          {"--help", OPT_OWNED},
-    {NULL, OPT_FLAG}};
+    {"--cal-rule", OPT_WORD},     {"--rod-tol", OPT_NUM},        {"--out", OPT_OWNED},
+    {"--help", OPT_OWNED},        {NULL, OPT_FLAG}};
 
 static const OptSpec kCalibrateOpts[] = {
     {"--case", OPT_WORD},       {"--actuator", OPT_ACT}, {"--set", OPT_SET},
