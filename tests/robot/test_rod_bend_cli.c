@@ -18,6 +18,7 @@
 
 #include <hdf5.h>
 #include <hdf5_hl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -199,6 +200,41 @@ static void default_fe_calibration(void) {
 }
 
 
+/* --cal-rule picks the FE mode table's model rule: on an H7-like pattern (Omega3 at 0.7 p,
+ * where the rules differ most, README "Calibration") the rbf-pair tip differs from the default
+ * prism rule's by millimetres; a pair-mode table refuses any rule (tested below) */
+static void cal_rule_changes_the_mode_table_model(void) {
+  const char* src = getenv("CS_SOURCE_DIR");
+  char args[2048], tbl[1024];
+  snprintf(tbl, sizeof tbl, "%s/robot/calibration_fe_leg_modes.h5", src ? src : "../../..");
+  double tip[2][3 * MAXROW], p[MAXROW], ang[3 * MAXROW];
+  int m[2] = {0, 0};
+  const char* rule[2] = {"prism", "rbf-pair"};
+  for (int k = 0; k < 2; k++) {
+    remove("rodbend_rule.h5");
+    snprintf(args, sizeof args, "--model rod --actuator leg --calibration %s --cal-rule %s "
+             "--pressures 1,0.3,0.7,0.2 --p-max 0.3 --p-step 0.1 --out rodbend_rule.h5", tbl,
+             rule[k]);
+    csCliResult r;
+    run(args, &r);
+    CS_EXPECT(r.status == 0);
+    m[k] = readBend("rodbend_rule.h5", p, ang, tip[k]);
+  }
+  CS_EXPECT(m[0] == 4 && m[1] == 4);
+  if (m[0] == 4 && m[1] == 4) {
+    double d = 0;
+    for (int c = 0; c < 3; c++) {
+      d += (tip[0][9 + c] - tip[1][9 + c]) * (tip[0][9 + c] - tip[1][9 + c]);
+    }
+    d = sqrt(d);
+    printf("  tip at 0.3 MPa, prism against rbf-pair: %.3f mm apart\n", d);
+    /* measured 14.5 mm; 0.5 mm is far above the static solve's 1e-6 mm and far below that */
+    CS_EXPECT(d > 0.5);
+  }
+  remove("rodbend_rule.h5");
+}
+
+
 static void expectFailure(const char* args, const char* want) {
   remove("rodbend_bad.h5");
   char full[1024];
@@ -228,6 +264,10 @@ static void bad_rod_input(void) {
                 "crawlsim bend: --pressures '1,-1,0,0': ratio -1 of chamber 2 is negative");
   expectFailure("--model rod --pressures 0,0,0,0", "crawlsim bend: --pressures '0,0,0,0': every");
   expectFailure("--model rod --calibration no_such.h5", "crawlsim bend: no_such.h5: ");
+  expectFailure("--model rod --cal-rule bogus", "crawlsim bend: unknown --cal-rule 'bogus'");
+  expectFailure("--model analytic --cal-rule rbf", "crawlsim bend: --cal-rule is for --model rod");
+  /* the default rod calibration is the pair-mode table: no rule applies to it */
+  expectFailure("--model rod --actuator leg --cal-rule rbf", "crawlsim bend: ");
 }
 
 
@@ -238,6 +278,7 @@ int main(int argc, char** argv) {
   }
   exe_path = argv[1];
   cs_testInit(argc - 1, argv + 1);
+  CS_RUN(cal_rule_changes_the_mode_table_model);
   CS_RUN(rod_reproduces_analytic_unloaded);
   CS_RUN(tip_load_cantilever);
   CS_RUN(default_fe_calibration);

@@ -165,6 +165,7 @@ static void test_badDesigns(void) {
   expectFailure("design", "missing FILE.gait");
   expectFailure("design x.gait --p-max -1", "--p-max '-1' must be a number > 0");
   expectFailure("design x.gait --bogus", "unknown option '--bogus'");
+  expectFailure("design x.gait --cal-rule bogus", "unknown --cal-rule 'bogus' (expected prism");
 }
 
 
