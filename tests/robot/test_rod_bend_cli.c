@@ -12,8 +12,10 @@
  *    with the O(h²) discretisation error measured at two element lengths.
  *  - default_fe_calibration: without --calibration the leg uses the shipped FE table: each
  *    segment's angle is the table's bend.
- *  - bad_rod_input: above the calibrated range, options of other models, bad lists: exit 1,
- *    one line, no file. */
+ *  - cal_rule_changes_the_mode_table_model: `--cal-rule rbf-pair` on the FE mode table moves an
+ *    H7-like pattern's tip away from the default prism rule's (the switch takes effect).
+ *  - bad_rod_input: above the calibrated range, options of other models, bad lists, a bad or
+ *    inapplicable --cal-rule: exit 1, one line, no file. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <hdf5.h>
