@@ -313,6 +313,34 @@ static int switchBranch(const csfModel* m, csfData* d, const double* s_c, double
 }
 
 
+/* the state switchBranch left in s_tmp (and d) becomes the path's converged state: the step
+ * is counted and reported (kind 2) to the callback, the limit raised if it is higher; p_last
+ * and neg_last follow it. Returns 1 when the callback stopped the sweep (res->stopped). */
+static int acceptBranch(const csfModel* m, csfData* d, double* s_prev, double* s_conv,
+                        const double* s_tmp, size_t ns, double Vb, double t0,
+                        const csfLimitOptions* opt, csfLimitResult* res, double* p_last,
+                        int* neg_last) {
+  res->switched = 1;
+  memcpy(s_prev, s_conv, ns * sizeof(double));
+  memcpy(s_conv, s_tmp, ns * sizeof(double));
+  res->n_steps++;
+  const double pb = d->load;
+  *neg_last = csf_linSolverNegativePivots(d->ls);
+  csfPathPoint pt = {pb, pb - *p_last, Vb, 0, csf_wallTime() - t0, 0, 0, *neg_last, 2, res};
+  if (pb >= res->p_limit) {
+    res->p_limit = pb, res->V_limit = Vb;
+    pt.is_max = 1;
+  }
+  res->p_before = *p_last;
+  *p_last = pb;
+  if (opt->callback && opt->callback(opt->user, m, d, &pt)) {
+    res->stopped = 1;
+    return 1;
+  }
+  return 0;
+}
+
+
 csStatus csf_passLimit(const csfModel* m, csfData* d, double* s_prev, double* s_conv,
                        double* s_tmp, double V_prev, double V_conv, double p_conv,
                        const csfNewtonOptions* nopt, const csfLimitOptions* opt,
@@ -339,22 +367,9 @@ csStatus csf_passLimit(const csfModel* m, csfData* d, double* s_prev, double* s_
     res->p_bif = p_conv, res->V_bif = V_conv;
     csf_stateSet(m, d, s_conv);
     if (switchBranch(m, d, s_conv, s_tmp, V, dV, opt->neg_conv, nopt, opt, res, &Vb)) {
-      res->switched = on_branch = 1;
-      memcpy(s_prev, s_conv, ns * sizeof(double));
-      memcpy(s_conv, s_tmp, ns * sizeof(double));
+      on_branch = 1;
       Vp = V = Vb; /* no secant across the switch: the next step starts from the branch state */
-      res->n_steps++;
-      const double pl = d->load;
-      neg_last = csf_linSolverNegativePivots(d->ls);
-      csfPathPoint pt = {pl, pl - p_last, Vb, 0, csf_wallTime() - t0, 0, 0, neg_last, 2, res};
-      if (pl >= res->p_limit) {
-        res->p_limit = pl, res->V_limit = Vb;
-        pt.is_max = 1;
-      }
-      res->p_before = p_last;
-      p_last = pl;
-      if (opt->callback && opt->callback(opt->user, m, d, &pt)) {
-        res->stopped = 1;
+      if (acceptBranch(m, d, s_prev, s_conv, s_tmp, ns, Vb, t0, opt, res, &p_last, &neg_last)) {
         return CS_OK;
       }
     }
@@ -415,24 +430,11 @@ csStatus csf_passLimit(const csfModel* m, csfData* d, double* s_prev, double* s_
       res->n_bifurcation++;
       res->p_bif = pl, res->V_bif = V;
       if (switchBranch(m, d, s_conv, s_tmp, V, dV, neg, nopt, opt, res, &Vb)) {
-        res->switched = on_branch = 1;
-        memcpy(s_prev, s_conv, ns * sizeof(double));
-        memcpy(s_conv, s_tmp, ns * sizeof(double));
+        on_branch = 1;
         Vp = V = Vb; /* no secant across the switch */
-        res->n_steps++;
-        const double pb = d->load;
-        const int negb = csf_linSolverNegativePivots(d->ls);
-        csfPathPoint pb_pt = {pb, pb - p_last, Vb, 0, csf_wallTime() - t1, 0, 0, negb, 2, res};
-        if (pb >= res->p_limit) {
-          res->p_limit = pb, res->V_limit = Vb;
-          pb_pt.is_max = 1;
-        }
-        res->p_before = p_last;
-        p_last = pb;
-        neg_last = negb;
         rising = 0;
-        if (opt->callback && opt->callback(opt->user, m, d, &pb_pt)) {
-          res->stopped = 1;
+        if (acceptBranch(m, d, s_prev, s_conv, s_tmp, ns, Vb, t1, opt, res, &p_last,
+                         &neg_last)) {
           return CS_OK;
         }
         continue;

@@ -85,7 +85,7 @@ static int usableRows(const csrCalCase* c) {
 
 
 /* the number of rows of c needed to reach P: up to the first row >= P */
-static int rowsTo(const csrCalCase* c, double P) {
+int csr_calRowsTo_(const csrCalCase* c, double P) {
   int n = 1;
   while (n < c->m && c->pressure[n - 1] < P - P_RANGE_TOL) n++;
   return n;
@@ -94,7 +94,7 @@ static int rowsTo(const csrCalCase* c, double P) {
 
 /* the base: Ω1 alone, its symmetric part (along the diagonal d1), rest row subtracted */
 static int buildBase(csrCalModel* m, const csrCalCase* c) {
-  const int n = rowsTo(c, m->p_max);
+  const int n = csr_calRowsTo_(c, m->p_max);
   if (!csr_calCurveAlloc_(&m->base, n, NB)) {
     return 0;
   }
@@ -228,7 +228,7 @@ static int fitMeanFactor(csrCalModel* m, const csrCalCase* const* mode, int s) {
 
 /* the all-four mode's scalar changes from rest, for the mean-pressure scalar base */
 static int buildMean(csrCalModel* m, const csrCalCase* c) {
-  const int n = rowsTo(c, m->p_max);
+  const int n = csr_calRowsTo_(c, m->p_max);
   if (!csr_calCurveAlloc_(&m->mean, n, NF)) {
     return 0;
   }
@@ -252,7 +252,7 @@ static int buildMean(csrCalModel* m, const csrCalCase* c) {
  * rule, minus the lower vertices' interpolation for the refining modes (surplus) */
 static int buildField(csrCalModel* m, int v, const csrCalCase* c, int mirror,
                       const double r[4]) {
-  const int n = rowsTo(c, m->p_max);
+  const int n = csr_calRowsTo_(c, m->p_max);
   csrCalCurve* f = &m->field[v];
   if (!csr_calCurveAlloc_(f, n, NF)) {
     return 0;

@@ -91,6 +91,9 @@ struct csrCalModel_ {
 
 /* allocate a curve of m rows and nc components per segment; 0 when out of memory */
 int csr_calCurveAlloc_(csrCalCurve* c, int m, int nc);
+/* the number of rows of case c needed to reach pressure P (MPa): up to its first row >= P
+ * (robot_calibration_build.c) */
+int csr_calRowsTo_(const csrCalCase* c, double P);
 void csr_calCurveFree_(csrCalCurve* c);
 /* the Fritsch-Carlson slopes of every component series, from p and y */
 void csr_calCurveSlopes_(csrCalCurve* c);

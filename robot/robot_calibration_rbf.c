@@ -54,8 +54,7 @@ static void imagePattern(const double r[4], int k, int mir, double p[4]) {
 /* one mode's residual curves in its own frame (F_A, F_B hold the bend vector's two components
  * here): the FE's symmetric part minus the superposition, the scalars minus their base */
 static int buildResidual(csrCalModel* m, const csrCalCase* c, csrCalCurve* f) {
-  int n = 1;
-  while (n < c->m && c->pressure[n - 1] < m->p_max - P_RANGE_TOL) n++;
+  const int n = csr_calRowsTo_(c, m->p_max);
   if (!csr_calCurveAlloc_(f, n, NF)) {
     return 0;
   }

@@ -214,8 +214,9 @@ typedef struct csrRodActCache_ csrRodActCache;
 csrRodActCache* csr_rodActCacheCreate(csError* err);
 void csr_rodActCacheDestroy(csrRodActCache* c);
 /* d's tables from now on: c (which must outlive d and belong to legs of d's actuator and
- * calibration), or NULL for d's own. */
-void csr_rodDataUseCache(csrRodData* d, csrRodActCache* c);
+ * calibration; d's own tables are freed), or NULL for tables of its own (allocated again if
+ * needed). 0 ok, -1 out of memory (d then has no tables: do not advance it). */
+int csr_rodDataUseCache(csrRodData* d, csrRodActCache* c);
 
 /* Allocates everything the step needs (CVODE, band matrices, scratch); the state is reset. */
 csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err);

@@ -286,7 +286,20 @@ csrRodActCache* csr_rodActCacheCreate(csError* err) {
 void csr_rodActCacheDestroy(csrRodActCache* c) { free(c); }
 
 
-void csr_rodDataUseCache(csrRodData* d, csrRodActCache* c) { d->cache = c ? c : d->own_cache; }
+int csr_rodDataUseCache(csrRodData* d, csrRodActCache* c) {
+  if (c) {
+    /* its own tables would only take memory (~1 MB a leg) */
+    free(d->own_cache);
+    d->own_cache = NULL;
+    d->cache = c;
+    return 0;
+  }
+  if (!d->own_cache) {
+    d->own_cache = calloc(1, sizeof *d->own_cache);
+  }
+  d->cache = d->own_cache;
+  return d->own_cache ? 0 : -1;
+}
 
 
 csrBaseState csr_rodRestBase(const csrRodModel* m) {

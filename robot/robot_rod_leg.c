@@ -291,8 +291,10 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
     destroyRod(leg);
     return NULL;
   }
-  if (spec->shared) {
-    csr_rodDataUseCache(leg->d, spec->shared);
+  if (spec->shared && csr_rodDataUseCache(leg->d, spec->shared) != 0) {
+    destroyRod(leg);
+    cs_errorSet(err, CS_ERR_MEMORY, "rod leg: out of memory");
+    return NULL;
   }
   resetRod(leg);
   return leg;

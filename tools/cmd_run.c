@@ -284,9 +284,7 @@ int csx_cmdRun(int argc, char** argv) {
     links = row->links;
     macro = row->macro_steps;
     dt = row->dt_s;
-    if (row->rod_tol != 1) {
-      rodtol = row->rod_tol;
-    }
+    rodtol = row->rod_tol;
     m.legs_auto_tol_mm = tol;
     char tolnote[32] = "";
     if (row->rod_tol != 1) {
