@@ -428,6 +428,10 @@ void csr_rodLinsolFree_(csrRodData* d);
  * (same arithmetic; its clones inherit them). */
 void csr_rodVectorOps_(N_Vector v);
 
+/* The actuation interpolated between two (robot_rod_act.c): out = (1 - u) a + u b, u in [0, 1]. */
+void csr_rodActuationLerp_(const csrRodSegmentActuation* a, const csrRodSegmentActuation* b,
+                           double u, csrRodSegmentActuation* out);
+
 /* Rest state vector (straight along the frame's e3 from the hip, at rest). */
 void csr_rodRestState_(const csrRodModel* m, double* state);
 
