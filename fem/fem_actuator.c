@@ -4,11 +4,13 @@
  * Fibres: two counter-wound helices per segment (n turns each over S) on the rounded-square
  * perimeter, inset CSF_FIBRE_INSET below the outer surface so the tie points lie inside the
  * host elements. */
+#define _POSIX_C_SOURCE 200809L /* sysconf */
 #include "fem_actuator.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core_math.h"
 #include "fem_assembly.h"
@@ -193,6 +195,32 @@ void csf_actuatorWalls(const csrActuator* act, double l_soft, csfWalls* w) {
 }
 
 
+/* a factorisation may take this share of the machine's memory (the rest: the mesh, the model,
+ * the fibres, the operating system and another job) */
+#define CSF_MEM_FRACTION 0.75
+
+
+/* physical memory of this machine, B (0 when unknown: no refusal) */
+static double physicalMemory(void) {
+  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+  return pages > 0 && size > 0 ? (double)pages * (double)size : 0.0;
+}
+
+
+void csf_actuatorEstimate(const csrActuator* act, double l_soft, csfMeshEstimate* e) {
+  double V = csr_actuatorOuterArea(act) * csr_actuatorLength(act);
+  for (int s = 0; s < CSR_NSEG; s++) {
+    V -= CSR_NCHAMBER * CS_PI * act->r1 * act->r1 * (act->S[s] - 2 * act->c);
+  }
+  e->volume = V;
+  e->tet10 = V / (0.2 * l_soft * l_soft * l_soft);
+  e->nodes = 1.6 * e->tet10;
+  e->dofs = 3.0 * e->nodes;
+  e->entries = 3.4e7 * pow(e->dofs / 75801.0, 4.0 / 3.0);
+  e->bytes = 20.0 * e->entries;
+}
+
+
 csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
                               csfActuatorFE* fe, csError* err) {
   memset(fe, 0, sizeof *fe);
@@ -226,6 +254,19 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
                            "must be finite and >= 0 (got %g)", s + 1, j + 1, sp->ratio[s][j]);
       }
     }
+  }
+  /* a mesh far too fine for this machine: refused with the estimate before gmsh runs (gmsh
+   * itself would take minutes to hours to make it, and the factorisation cannot fit) */
+  csfMeshEstimate est;
+  csf_actuatorEstimate(act, sp->mesh_size, &est);
+  const double mem = physicalMemory();
+  if (mem > 0 && est.bytes > CSF_MEM_FRACTION * mem) {
+    /* bytes ~ l^-4 (dofs ~ l^-3, entries ~ dofs^(4/3)): the finest l_soft that fits */
+    const double lmin = sp->mesh_size * pow(est.bytes / (CSF_MEM_FRACTION * mem), 0.25);
+    return cs_errorSet(err, CS_ERR_RANGE, "fem_actuator: l_soft %g mm gives at least %.2g Tet10 "
+                       "(%.2g dofs), whose factorisation needs about %.3g GB against %.3g GB of "
+                       "memory on this machine: refused (l_soft >= %.2g mm may fit)",
+                       sp->mesh_size, est.tet10, est.dofs, est.bytes / 1e9, mem / 1e9, lmin);
   }
   fe->mesh = csf_meshActuator(act, sp->mesh_size, sp->work_stem ? sp->work_stem : "crawlsim_fe",
                               err);

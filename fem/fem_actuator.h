@@ -67,9 +67,30 @@ void csf_actuatorWalls(const csrActuator* act, double l_soft, csfWalls* w);
  * mesh (fewer than 1/10 of an element across): refused at set-up with the parameters named. */
 #define CSF_WALL_MIN_REL 0.1
 
+/* What a mesh of size l_soft costs, estimated before gmsh runs (set-up refuses a mesh whose
+ * factorisation would not fit in memory). Tet10 count V / (0.2 l³) (V the solid volume): a
+ * lower bound, since gmsh's mean element volume was measured at 0.16-0.19 l³ (the short
+ * actuator at 1.5 mm, the baseline at 1.5 and 1.2 mm: test_fem_actuator) and the chamber walls'
+ * finer elements (csfWalls.mesh) add more, dominating at l_soft >= 2 mm; 1.6 nodes per Tet10
+ * (1.59-1.67 measured there); the LDLᵀ factor's entries grow as dofs^(4/3) (3D nested
+ * dissection), scaled from the baseline at l_soft 4 (3.4e7 entries for 75 801 dofs); memory
+ * 20 bytes per entry (MUMPS's factor and workspace: ~0.68 GB there, 0.6 GB measured peak RSS
+ * of its 360 deg run). */
+typedef struct csfMeshEstimate_ {
+  double volume;   /* solid volume, mm³ */
+  double tet10;    /* elements, at least */
+  double nodes;    /* about */
+  double dofs;
+  double entries;  /* factor entries */
+  double bytes;    /* memory of one factorisation, B */
+} csfMeshEstimate;
+
+void csf_actuatorEstimate(const csrActuator* act, double l_soft, csfMeshEstimate* e);
+
 /* Mesh the actuator and build its model (not finalised data: csf_dataCreate is the caller's).
- * Returns CS_OK or an error naming the cause (invalid parameters, gmsh failure, a chamber
- * without faces, a fibre point outside the body). */
+ * Returns CS_OK or an error naming the cause (invalid parameters, a mesh whose factorisation
+ * would not fit in this machine's memory (csf_actuatorEstimate, refused before gmsh runs), gmsh
+ * failure, a chamber without faces, a fibre point outside the body). */
 csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* spec,
                               csfActuatorFE* fe, csError* err);
 void csf_actuatorFEDestroy(csfActuatorFE* fe);

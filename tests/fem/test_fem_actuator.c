@@ -1,11 +1,13 @@
 /* test_fem_actuator.c: the actuator set-up refuses geometries the mesh cannot resolve, naming
- * the wall and the parameters, before gmsh runs; the wall thicknesses against closed forms. */
+ * the wall and the parameters, before gmsh runs; the wall thicknesses against closed forms; the
+ * mesh-cost estimate against gmsh's own count, and a mesh far too fine refused with it. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cs_test.h"
 #include "fem_actuator.h"
+#include "fem_mesh.h"
 
 static void test_wall_thicknesses(void) {
   csrActuator act;
@@ -54,9 +56,74 @@ static void test_unresolvable_walls_are_refused(void) {
 }
 
 
+/* The estimate's Tet10 count is a lower bound that tightens as l_soft falls below the walls'
+ * element size (the bulk dominates): checked against gmsh's mesh of a short actuator (three
+ * 15 mm segments) at l_soft 1.5 mm, where the chamber walls (2.09 mm elements) no longer set
+ * the count. Bounds: at least the estimate (its element volume 0.2 l³ is above the 0.16-0.19 l³
+ * measured), at most 1.5x it (the walls' share at 1.5 mm); nodes within 10 % of 1.6 per Tet10. */
+static void test_mesh_estimate_bounds_the_count(void) {
+  csrActuator act;
+  csError err;
+  CS_EXPECT(csr_actuatorPreset(&act, "baseline", &err) == CS_OK);
+  const char* names[] = {"S1", "S2", "S3", "n1", "n2", "n3"};
+  const double vals[] = {15, 15, 15, 9, 9, 9};
+  for (int k = 0; k < 6; k++) {
+    CS_EXPECT(csr_actuatorSet(&act, names[k], vals[k], &err) == CS_OK);
+  }
+  csfMeshEstimate e;
+  csf_actuatorEstimate(&act, 1.5, &e);
+  csfMesh* m = csf_meshActuator(&act, 1.5, "actuator_estimate", &err);
+  CS_EXPECT(m != NULL);
+  if (!m) {
+    fprintf(stderr, "%s\n", err.msg);
+    return;
+  }
+  double vol = 0;
+  for (int t = 0; t < m->ntet; t++) {
+    vol += csf_meshTetVolume(m, t);
+  }
+  printf("  l_soft 1.5, short actuator: %d Tet10, %d nodes (estimate at least %.0f Tet10, "
+         "%.0f dofs; ratio %.2f); volume %.1f mm^3 (estimate %.1f)\n", m->ntet, m->nnode,
+         e.tet10, e.dofs, m->ntet / e.tet10, vol, e.volume);
+  CS_EXPECT_NEAR(vol, e.volume, 0, 5e-3);
+  CS_EXPECT(e.tet10 <= m->ntet && m->ntet <= 1.5 * e.tet10);
+  CS_EXPECT_NEAR(m->nnode / (double)m->ntet, 1.6, 0, 0.1);
+  /* the cost falls with coarser meshes as the model says: bytes ~ l^-4 */
+  csfMeshEstimate e2;
+  csf_actuatorEstimate(&act, 3.0, &e2);
+  CS_EXPECT_NEAR(e.bytes / e2.bytes, 16.0, 0, 1e-12);
+  csf_meshDestroy(m);
+}
+
+
+/* A mesh far too fine for any machine (l_soft 0.02 mm: ~1e12 Tet10) is refused before gmsh
+ * runs, with the estimate and the finest l_soft that fits */
+static void test_far_too_fine_mesh_is_refused(void) {
+  csrActuator act;
+  csError err;
+  CS_EXPECT(csr_actuatorPreset(&act, "baseline", &err) == CS_OK);
+  csfActuatorSpec spec = csf_actuatorSpecDefault();
+  spec.mesh_size = 0.02;
+  spec.work_stem = "actuator_too_fine"; /* never written: refused before meshing */
+  csfActuatorFE fe;
+  CS_EXPECT(csf_actuatorFECreate(&act, &spec, &fe, &err) == CS_ERR_RANGE);
+  CS_EXPECT(strstr(err.msg, "l_soft 0.02 mm gives at least") != NULL);
+  CS_EXPECT(strstr(err.msg, "GB of memory on this machine: refused (l_soft >=") != NULL);
+  CS_EXPECT(strstr(err.msg, "mm may fit)") != NULL);
+  printf("  %s\n", err.msg);
+  FILE* f = fopen("actuator_too_fine.geo", "r");
+  CS_EXPECT(f == NULL);
+  if (f) {
+    fclose(f);
+  }
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_wall_thicknesses);
   CS_RUN(test_unresolvable_walls_are_refused);
+  CS_RUN(test_mesh_estimate_bounds_the_count);
+  CS_RUN(test_far_too_fine_mesh_is_refused);
   return cs_testSummary();
 }
