@@ -36,7 +36,7 @@ csOptions cs_defaultOptions(void) {
   csOptions o;
   /* 1 ms: the joint springs are implicit (any h is stable) and 1 ms resolves the 0.2 s
    * pressure ramps. The track is not converged in h: stick-slip and touch-down events make
-   * it sensitive (README, "Step study": 0.5 ms moves the 9 s end point by ~15 %) */
+   * it sensitive (README "Earlier findings", item 3: 0.5 ms moves the 9 s end point by ~15 %) */
   o.h = 1e-3;
   /* one ODE step per exchange: in-world legs (prb) need no other; a co-simulated level picks
    * its macro step from the coupling study (issue 9) */
@@ -54,7 +54,7 @@ csOptions cs_defaultOptions(void) {
   /* PGS iterations: loads pass from the feet to the support through chains of 13 links,
    * which a Gauss-Seidel sweep propagates one link per iteration. Measured on the crouch gait
    * at 1 m/s^2 (9 s end point): 60 -> 286 mm, 120 -> 334, 240 -> 301, 500 -> 304 mm; 240 is
-   * converged to 1 % (README, "Solver study") */
+   * converged to 1 % (README "Earlier findings", item 3) */
   o.solver_iterations = 240;
   /* valve + tube filling of a ~0.5 ml chamber: tens of ms (assumption, documented) */
   o.pneumatic_tau = 0.02;
