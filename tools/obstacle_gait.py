@@ -19,9 +19,12 @@ ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
 ap.add_argument('-o', '--out', default='-', help='output file (default stdout)')
 ap.add_argument('--D', type=float, default=43.0,
                 help='hip advance per x cycle near the edges, mm (measured)')
-ap.add_argument('--xmean', type=float, default=38.3,
-                help='mean support advance per x cycle over the whole walk, mm (measured): the '
-                'number of x cycles is xturn / xmean')
+ap.add_argument('--xmean', type=float, default=40.2,
+                help='mean support advance per x cycle over the whole walk, mm (measured): with '
+                '--xdrift it sets the number of x cycles (rule 7)')
+ap.add_argument('--xdrift', type=float, default=19.7,
+                help='how far the lateral crawl carries the support back along x, mm (measured): '
+                'the walk turns this far past xturn (rule 7)')
 ap.add_argument('--Dz', type=float, default=55.6,
                 help='mean support advance per lateral cycle, mm (measured, the release included):'
                 ' the number of lateral cycles is zend / Dz')
@@ -51,8 +54,8 @@ RZ = SHZ // 2
 
 HEADER = """\
 # gaits/obstacle.gait: the obstacle road's gait (paper Sec. 5.2, Fig. 13/14, Table 3), written
-# by tools/obstacle_gait.py (D {D:g}, xmean {xmean:g}, Dz {Dz:g}, over {over:g} mm; run it again
-# rather than edit this file) and turned into gaits/obstacle.csv by
+# by tools/obstacle_gait.py (D {D:g}, xmean {xmean:g}, xdrift {xdrift:g}, Dz {Dz:g}, over {over:g}
+# mm; run it again rather than edit this file) and turned into gaits/obstacle.csv by
 #   crawlsim gait design obstacle.gait --stretch --calibration robot/calibration_fe_leg_modes.h5
 #            --p-max 0.4
 # (--stretch: the legs' elongation counts; the FE mode table: its all-four mode stretches a leg
@@ -89,8 +92,12 @@ HEADER = """\
 #     landing within 20 mm of an edge, on either side, takes the step's leg length: if the
 #     foot is over the road it hangs 40 mm up, carrying nothing until its next step; a leg of
 #     the road's length landing on the step lifts the support 40 mm (measured: it tipped).
-#  7. The walk has round(646 / xmean) cycles, xmean the mean advance measured over the whole
-#     walk (Table 3's turn at x = 646 mm), the lateral crawl round(270 / Dz).
+#  7. The walk has round((646 + xdrift) / xmean) cycles, xmean the mean advance measured over
+#     the whole walk (683.5 mm at the turn after 17 cycles), xdrift how far the lateral crawl
+#     then carries the support back along x (17.5 and 21.9 mm in two runs with rule 11), so that
+#     the crawl ends at Table 3's x = 646 mm; the lateral crawl has round(270 / Dz) cycles. A
+#     cycle's ~40 mm quantise where the walk turns: 16 cycles ended 27.8 mm from Table 3's end
+#     point, 17 cycles 17.0 mm (2026-12-03).
 #  8. The cycles near an edge are slow (0.9 s a pair, a 1 s shift, 0.3 s to settle); on the
 #     flat road 0.7 s, 0.8 s and 0.2 s.
 #  9. The turn: each pair steps to the lateral stance (L40, still 40 mm up), all legs come
@@ -106,7 +113,12 @@ HEADER = """\
 #     under `paper`) and turned to 13.5 deg of yaw: 34.7 mm per cycle; slow, 55.6 mm per cycle,
 #     yaw back within 2 deg after the turn and 3 mm of drift along x per cycle (rod legs,
 #     2026-12-03; README "Obstacle road").
-""".format(D=a.D, xmean=a.xmean, Dz=a.Dz, over=a.over, SH=SH, SHZ=SHZ)
+# 11. The lateral pairs step in alternating order, AH DE BG CF in one cycle and CF BG DE AH in
+#     the next, so that no pair always steps first: with the same order every cycle the crawl's
+#     drift back along x depended on where the walk turned (12.2 mm from a turn at x = 679, 29.2
+#     mm from one at 642: the same gait with 17 and 16 x cycles), alternating it 17.5 and 21.9
+#     mm (rod legs, 2026-12-03; docs/bench/obstacle_stroke_2026-12-03/lateral_order.txt).
+""".format(D=a.D, xmean=a.xmean, xdrift=a.xdrift, Dz=a.Dz, over=a.over, SH=SH, SHZ=SHZ)
 
 out = [HEADER]
 w = out.append
@@ -166,7 +178,7 @@ w('# 0..1 s: raise: every leg stretches 40 mm (the paper: BCFG raise the support
 w('move 0 1 ABCDEFGH R\n')
 state = {k: ('G', 0) for k in OFF}
 t, x = 1.0, 0.0
-NX = int(round(a.xturn / a.xmean))
+NX = int(round((a.xturn + a.xdrift) / a.xmean))
 NZ = int(round(a.zend / a.Dz))
 for k in range(NX):
     near = any(abs(START + OFF[l] + x + dx - e) < NEAR for l in OFF for e in EDGES
@@ -225,7 +237,7 @@ tl, ts, th, td, tsh, tset = SLOW
 for kz in range(NZ):
     w('# lateral cycle %d from %.2f s\n' % (kz, t))
     if kz > 0:
-        for pair in ZPAIRS:
+        for pair in (ZPAIRS if kz % 2 == 0 else ZPAIRS[::-1]):  # rule 11
             emit(t, tl, {l: 'VLM%d' % abs(RZ - SHZ) for l in pair})
             emit(t + tl, ts, {l: 'VLP%d' % RZ for l in pair})
             emit(t + tl + ts + th, td, {l: 'L15P%d' % RZ for l in pair})

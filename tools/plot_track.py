@@ -3,7 +3,7 @@
 
 Usage:
   /usr/bin/python3 tools/plot_track.py RUN.h5 [-o OUT.png] [--times 0,0.5,1,1.5,2]
-                                       [--reference flat-road|none]
+                                       [--reference flat-road|obstacle|none]
 
 Reads the `run` output contract of DESIGN.md ("Output contract (HDF5)"):
   /time [N] s, /support/position [N,3] mm (x, y, z displacement of the support's centre
@@ -12,8 +12,9 @@ Reads the `run` output contract of DESIGN.md ("Output contract (HDF5)"):
   gait file, wall time, ...). /pressure is part of the contract but is not plotted here.
 
 Draws one PNG with four panels:
-  (a) support x vs t, with the paper's Table 2 (REFERENCE.md) and a +-10 % band after 2 s;
-  (b) support height y and lateral z vs t;
+  (a) support x vs t, with the paper's Table 2 (REFERENCE.md) and a +-10 % band after 2 s
+      (--reference flat-road), or Table 3's x nodes with a +-20 mm band (--reference obstacle);
+  (b) support height y and lateral z vs t (with Table 3's height = -y_paper and z nodes);
   (c) pitch and roll of the support in degrees;
   (d) side view (x-y plane) of the legs at the chosen times (nearest samples):
       legs A-D solid, E-H dashed, one colour per time, ground line at the lowest foot at t = 0.
@@ -47,6 +48,13 @@ TABLE2_T = np.arange(10.0)
 TABLE2_X = np.array([0, 0, 39, 78, 117, 156, 195, 234, 273, 312], dtype=float)
 TABLE2_BAND = 0.10  # +-10 % band, drawn from t = 2 s on (before that x is 0 and a relative band is empty)
 TABLE2_BAND_FROM = 2.0
+# Paper Table 3 (REFERENCE.md): obstacle road, support displacement at its listed times (s):
+# x, height (= -y of the paper's table: up positive) and z (mm); the issue's tolerance 20 mm
+TABLE3_T = np.array([0, 1, 2, 3, 4, 5, 7, 11, 12, 14, 24, 29, 32], dtype=float)
+TABLE3_X = np.array([0, 0, 0, 0, 26, 26, 52, 130, 170, 230, 492, 646, 646], dtype=float)
+TABLE3_H = np.array([0, 50, 50, 13, 22, 48, 20, 50, 40, 40, 13, 0, 0], dtype=float)
+TABLE3_Z = np.array([0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 90, 270], dtype=float)
+TABLE3_TOL = 20.0
 
 # Root attribute names are not fixed by the contract's wording ("scene, leg model, gait file,
 # wall time"): accept the usual spellings, compared after lower-casing and mapping ' ' and '-' to '_'.
@@ -147,6 +155,10 @@ def plot_track(run, out, times, reference):
         ax_x.fill_between(tb, (1 - TABLE2_BAND) * xb, (1 + TABLE2_BAND) * xb, color="0.6", alpha=0.35,
                           lw=0, label=f"Table 2 \u00b1{TABLE2_BAND * 100:.0f} % (t \u2265 {TABLE2_BAND_FROM:g} s)")
         ax_x.plot(TABLE2_T, TABLE2_X, "ks", ms=5, mfc="none", label="paper Table 2 (flat road)")
+    elif reference == "obstacle":
+        ax_x.errorbar(TABLE3_T, TABLE3_X, yerr=TABLE3_TOL, fmt="ks", ms=5, mfc="none", capsize=3,
+                      lw=0.8, label=f"paper Table 3 (obstacle), ±{TABLE3_TOL:g} mm")
+        ax_x.axhline(TABLE3_X[-1], color="k", lw=0.6, ls=":", label="Table 3's end x")
     ax_x.set_xlabel("time t (s)")
     ax_x.set_ylabel("support displacement x (mm)")
     ax_x.set_title("(a) crawl direction x")
@@ -157,6 +169,11 @@ def plot_track(run, out, times, reference):
     ax_yz.plot(t, z, color="C3", lw=1.6, label="lateral z")
     if reference == "flat-road":
         ax_yz.axhline(0.0, color="k", lw=0.8, ls=":", label="Table 2: y = z = 0")
+    elif reference == "obstacle":
+        ax_yz.plot(TABLE3_T, TABLE3_H, "s", color="C2", ms=5, mfc="none",
+                   label="Table 3: height (-y_paper)")
+        ax_yz.plot(TABLE3_T, TABLE3_Z, "o", color="C3", ms=5, mfc="none", label="Table 3: z")
+        ax_yz.axhline(TABLE3_Z[-1], color="C3", lw=0.6, ls=":", label="Table 3's end z")
     ax_yz.set_xlabel("time t (s)")
     ax_yz.set_ylabel("support displacement (mm)")
     ax_yz.set_title("(b) height y and lateral z")
@@ -227,8 +244,9 @@ def main(argv=None):
     ap.add_argument("-o", "--output", metavar="OUT.png", help="output PNG (default: RUN_track.png)")
     ap.add_argument("--times", type=parse_times, default=[0, 0.5, 1, 1.5, 2],
                     help="comma-separated times (s) for the side view, nearest samples (default 0,0.5,1,1.5,2)")
-    ap.add_argument("--reference", choices=["flat-road", "none"], default="flat-road",
-                    help="reference track in panel (a): paper Table 2 flat road (default) or none")
+    ap.add_argument("--reference", choices=["flat-road", "obstacle", "none"], default="flat-road",
+                    help="reference track: paper Table 2 flat road (default), Table 3 obstacle "
+                    "road, or none")
     args = ap.parse_args(argv)
 
     run = load_or_fail(PROG, load_run, args.run)

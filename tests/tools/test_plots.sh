@@ -75,6 +75,8 @@ printf 'not hdf5\n' >"$TMP/junk.h5"
 expect_png "plot_track default"            "$TMP/a.png" "$PY" "$TRACK" "$TMP/run.h5" -o "$TMP/a.png"
 expect_png "plot_track --reference none --times" "$TMP/b.png" \
   "$PY" "$TRACK" "$TMP/run.h5" -o "$TMP/b.png" --reference none --times 0,3,6,9
+expect_png "plot_track --reference obstacle" "$TMP/o.png" \
+  "$PY" "$TRACK" "$TMP/run.h5" -o "$TMP/o.png" --reference obstacle
 expect_png "plot_track default output name" "$TMP/run_track.png" "$PY" "$TRACK" "$TMP/run.h5"
 expect_png "plot_track single sample"       "$TMP/c.png" "$PY" "$TRACK" "$TMP/run_1.h5" -o "$TMP/c.png"
 expect_png "plot_track series one sample short" "$TMP/s.png" "$PY" "$TRACK" "$TMP/run_short.h5" -o "$TMP/s.png"
