@@ -449,6 +449,16 @@ void cs_contactForce(const csData* d, double f[3]) { csu_copy3(f, d->contact_for
 double cs_contactDepth(const csData* d) { return d->cstats.max_depth; }
 
 
+double cs_legContactDepth(const csModel* m, const csData* d) {
+  const csrLegType* lt = m->robot.leg_type;
+  double depth = 0.0;
+  for (int k = 0; lt->contactDepth && k < CSR_NLEG; k++) {
+    depth = fmax(depth, lt->contactDepth(d->robot->legs[k]));
+  }
+  return depth;
+}
+
+
 void cs_supportCorners(const csModel* m, const csData* d, double corners[24]) {
   const dReal* P = dBodyGetPosition(d->robot->support);
   const dReal* R = dBodyGetRotation(d->robot->support); /* 3x4 row-major */

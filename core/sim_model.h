@@ -240,6 +240,10 @@ int cs_contactCount(const csData* d);
 void cs_contactForce(const csData* d, double f[3]);
 /* deepest contact penetration of the last ODE step (mm) */
 double cs_contactDepth(const csData* d);
+/* Deepest penetration of the co-simulated legs' own (soft) terrain contact at the current
+ * state, over the eight legs (mm; 0 out of contact, and for legs whose contacts ODE handles:
+ * those are in cs_contactDepth). */
+double cs_legContactDepth(const csModel* m, const csData* d);
 /* the support box's 8 corners now, world mm, (8 x 3) in VTK hexahedron order (bottom face
  * -y then top face, each counter-clockwise seen from +y) */
 void cs_supportCorners(const csModel* m, const csData* d, double corners[24]);

@@ -3,7 +3,8 @@
  * Layout: /time [N] s; /support/position [N,3] mm; /support/orientation [N,4] (w,x,y,z);
  * /pressure [N,96] MPa; /legs/<A..H>/centerline [N,K,3] mm; and for seeing and checking a run
  * /support/corners [N,8,3] mm (world), /contact/force [N,3] N (terrain on robot, world),
- * /contact/max_depth [N] mm, /terrain/corners [nbox*8,3] mm; root attributes scene,
+ * /contact/max_depth [N] mm (ODE), /contact/leg_max_depth [N] mm (the co-simulated legs' own soft
+ * contact, cs_legContactDepth; 0 for legs in ODE), /terrain/corners [nbox*8,3] mm; root attributes scene,
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
  * macro_step_s, contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
@@ -23,7 +24,8 @@ enum { MAX_CENTERLINE = 201 };
 
 typedef struct {
   int time, pos, quat, pres, legs[CSR_NLEG];
-  int corners, cforce, cdepth; /* support box corners; contact force and depth */
+  int corners, cforce, cdepth, ldepth; /* support box corners; contact force and depth; the
+                                        * co-simulated legs' own contact depth */
 } Series;
 
 
@@ -42,6 +44,8 @@ static csStatus writeSample(const csModel* m, const csData* d, csH5File* f, cons
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->corners, corners, err);
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->cforce, cf, err);
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->cdepth, &depth, err);
+  double ldepth = cs_legContactDepth(m, d);
+  if (st == CS_OK) st = cs_h5SeriesAppend(f, s->ldepth, &ldepth, err);
   for (int k = 0; k < CSR_NLEG && st == CS_OK; k++) {
     cs_legCenterline(m, d, k, m->opt.centerline_points, buf);
     st = cs_h5SeriesAppend(f, s->legs[k], buf, err);
@@ -57,6 +61,7 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
       (s->corners = cs_h5SeriesCreate(f, "/support/corners", 2, box, err)) < 0 ||
       (s->cforce = cs_h5SeriesCreate(f, "/contact/force", 1, &three, err)) < 0 ||
       (s->cdepth = cs_h5SeriesCreate(f, "/contact/max_depth", 0, NULL, err)) < 0 ||
+      (s->ldepth = cs_h5SeriesCreate(f, "/contact/leg_max_depth", 0, NULL, err)) < 0 ||
       (s->pos = cs_h5SeriesCreate(f, "/support/position", 1, &three, err)) < 0 ||
       (s->quat = cs_h5SeriesCreate(f, "/support/orientation", 1, &four, err)) < 0 ||
       (s->pres = cs_h5SeriesCreate(f, "/pressure", 1, &n96, err)) < 0) {

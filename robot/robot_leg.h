@@ -195,6 +195,10 @@ typedef struct csrLegType_ {
   double (*mass)(const csrLeg* leg);
   /* First mass moment: sum of m_i x_i over the leg's mass (t mm, world). */
   void (*massMoment)(const csrLeg* leg, double mx[3]);
+  /* Deepest penetration of the leg's own contact with the terrain at the current state (mm; 0
+   * out of contact). NULL for a level whose contacts ODE handles (in_world: their depth is in
+   * ODE's contact report). */
+  double (*contactDepth)(const csrLeg* leg);
 } csrLegType;
 
 /* The pseudo-rigid-body chain level (robot_prb.c). */

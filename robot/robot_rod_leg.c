@@ -52,6 +52,11 @@ struct csrLeg_ {
 /* the hook: capsule of element e (and for e = N the sole) through the soft contact law */
 static int legContact(void* ctx, const csrRodShape* sh, const double* hist, double* dhist,
                       double f0[3], double f1[3], double moment[3]);
+/* the same for one shape, and its deepest penetration (mm) into *depth when not NULL (the
+ * larger of it and the value there) */
+static int shapeContact(const csrLeg* leg, const csrRodShape* sh, const double* hist,
+                        double* dhist, double f0[3], double f1[3], double moment[3],
+                        double* depth);
 /* add a force f at point P (mm) to the chord p0 -> p1: lever rule on the nodes, the offset
  * from the chord to the couple */
 static void addPointForce(const double p0[3], const double p1[3], const double f[3],
@@ -77,7 +82,13 @@ static void addPointForce(const double p0[3], const double p1[3], const double f
 
 static int legContact(void* ctx, const csrRodShape* sh, const double* hist, double* dhist,
                       double f0[3], double f1[3], double moment[3]) {
-  const csrLeg* leg = ctx;
+  return shapeContact(ctx, sh, hist, dhist, f0, f1, moment, NULL);
+}
+
+
+static int shapeContact(const csrLeg* leg, const csrRodShape* sh, const double* hist,
+                        double* dhist, double f0[3], double f1[3], double moment[3],
+                        double* depth) {
   const int e = sh->element;
   cscShapeState cs;
   memset(&cs, 0, sizeof cs);
@@ -105,9 +116,14 @@ static int legContact(void* ctx, const csrRodShape* sh, const double* hist, doub
   }
   if (capsule) {
     cscShapeLoad ld;
-    int rc = csc_softComputeShape(leg->soft, e - 1, &cs, hist, &ld, dhist, NULL, NULL);
+    cscSoftReport rep;
+    int rc = csc_softComputeShape(leg->soft, e - 1, &cs, hist, &ld, dhist, NULL,
+                                  depth ? &rep : NULL);
     if (rc != 0) {
       return rc > 0 ? rc : -1;
+    }
+    if (depth) {
+      *depth = fmax(*depth, rep.max_depth);
     }
     if (e < leg->N) {
       /* the capsule's axis is the element's chord: its node forces are the rod's */
@@ -135,10 +151,14 @@ static int legContact(void* ctx, const csrRodShape* sh, const double* hist, doub
     memcpy(fs.R, sh->R, sizeof fs.R);
     memcpy(fs.w, sh->omega, sizeof fs.w);
     cscShapeLoad lf;
+    cscSoftReport rep;
     int rc = csc_softComputeShape(leg->soft, leg->N, &fs, hist + leg->hc, &lf,
-                                  dhist ? dhist + leg->hc : NULL, NULL, NULL);
+                                  dhist ? dhist + leg->hc : NULL, NULL, depth ? &rep : NULL);
     if (rc != 0) {
       return rc > 0 ? rc : -1;
+    }
+    if (depth) {
+      *depth = fmax(*depth, rep.max_depth);
     }
     csu_add3(f1, f1, lf.f0);
     csu_add3(moment, moment, lf.m);
@@ -390,6 +410,22 @@ static void centerlineRod(const csrLeg* leg, int k, double* out) {
 static double massRod(const csrLeg* leg) { return csr_rodMass(leg->m); }
 
 
+/* the shapes at the current state through the contact law with a zero friction history (the
+ * depth does not depend on it) */
+static double contactDepthRod(const csrLeg* leg) {
+  if (!leg->soft) {
+    return 0.0;
+  }
+  const int n = csr_rodContactShapes(leg->m, leg->d, leg->shapes, leg->N);
+  double zero[CSR_ROD_MAX_HIST] = {0}, f0[3], f1[3], mo[3], depth = 0.0;
+  for (int i = 0; i < n; i++) {
+    memset(f0, 0, sizeof f0), memset(f1, 0, sizeof f1), memset(mo, 0, sizeof mo);
+    (void)shapeContact(leg, &leg->shapes[i], zero, NULL, f0, f1, mo, &depth);
+  }
+  return depth;
+}
+
+
 static void massMomentRod(const csrLeg* leg, double mx[3]) {
   csr_rodMassMoment(leg->m, leg->d, mx);
 }
@@ -413,4 +449,5 @@ const csrLegType csr_leg_rod = {
     .centerline = centerlineRod,
     .mass = massRod,
     .massMoment = massMomentRod,
+    .contactDepth = contactDepthRod,
 };
