@@ -117,6 +117,7 @@ static int shapeContact(const csrLeg* leg, const csrRodShape* sh, const double* 
   if (capsule) {
     cscShapeLoad ld;
     cscSoftReport rep;
+    memset(&rep, 0, sizeof rep); /* csc_softComputeShape adds to it */
     int rc = csc_softComputeShape(leg->soft, e - 1, &cs, hist, &ld, dhist, NULL,
                                   depth ? &rep : NULL);
     if (rc != 0) {
@@ -152,6 +153,7 @@ static int shapeContact(const csrLeg* leg, const csrRodShape* sh, const double* 
     memcpy(fs.w, sh->omega, sizeof fs.w);
     cscShapeLoad lf;
     cscSoftReport rep;
+    memset(&rep, 0, sizeof rep); /* csc_softComputeShape adds to it */
     int rc = csc_softComputeShape(leg->soft, leg->N, &fs, hist + leg->hc, &lf,
                                   dhist ? dhist + leg->hc : NULL, NULL, depth ? &rep : NULL);
     if (rc != 0) {
