@@ -4,7 +4,8 @@
  * vented chamber's wall on the compressed side folding (J_min ~ 0.4); the question was whether
  * that is the mesh's limit or the physical one of a model without self-contact (a crease of the
  * compressed free surface, or the chamber's opposite walls meeting). Both are cheap to measure
- * on the converged state (about 0.1 s for six chambers against 10 s and more per load step), so
+ * on the converged state (well under a second for six chambers, an estimate from the operation
+ * count, against 10 s and more per load step), so
  * every step reports them, and the summary keeps the first pressure past the crease onset. */
 #include "fem_bend_wall.h"
 

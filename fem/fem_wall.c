@@ -10,8 +10,8 @@
  * (its pointwise J is ~0.4 where elements fold while the element dilatation stays within 0.5 %
  * of 1): the normal stretch is taken from incompressibility instead (fem_wall.h).
  * The gap is a node-to-triangle distance over the straight sub-triangles of each Tri6, brute
- * force per cavity (a 2 mm chamber has ~10^2-10^3 face nodes: 10^6 distance evaluations, ~0.05 s,
- * negligible against a load step of 10 s or more). */
+ * force per cavity (a 2 mm chamber has ~10^2-10^3 face nodes: ~10^6 distance evaluations, an
+ * estimate of well under a second, against a load step of 10 s or more; not timed separately). */
 #include "fem_wall.h"
 
 #include <math.h>
