@@ -33,6 +33,7 @@
 #include "core_text.h"
 #include "fem_bend_branch.h"
 #include "fem_bend_run.h"
+#include "fem_bend_wall.h"
 #include "fem_output.h"
 #include "fem_path.h"
 
@@ -483,6 +484,20 @@ static csStatus stageFinish(Run* r, csError* err) {
     r->info.max_j_dev = fmax(r->info.max_j_dev, fabs(d->vratio[e] - 1.0));
   }
   r->info.j_min = csf_worstElement(m, d, r->info.j_min_X);
+  /* the free surfaces there: crease onset and closing chambers (fem_bend_wall.h) */
+  st = csf_bendWallMeasure(m, d, (const double(*)[CSR_NCHAMBER])o->spec.ratio, 1, &r->info.wall,
+                           err);
+  if (st != CS_OK) {
+    return st;
+  }
+  if (r->info.wall.vented.npoint > 0) {
+    double dd = 0;
+    for (int i = 0; i < 3; i++) {
+      const double di = r->info.j_min_X[i] - r->info.wall.vented.X[i];
+      dd += di * di;
+    }
+    r->info.j_min_wall_dist = sqrt(dd);
+  }
   if (o->vtu_path) {
     st = csf_writeVtu(m, d, o->vtu_path, err);
   }
@@ -524,6 +539,8 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
   r.info.p_definite = r.info.p_indefinite = NAN;
   r.info.neg_pivots_max = -1;
   r.info.p_bifurcation = r.info.angle_bifurcation = NAN;
+  r.info.p_crease = r.info.angle_crease = r.info.p_crease_skin = NAN;
+  r.info.j_min_wall_dist = NAN;
   out->p_until_angle = NAN;
   if (o->record) {
     o->record->m = 0;
@@ -582,7 +599,9 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     csfBendStep rep = {target, target - r.p, iters, cut, csf_wallTime() - t_step, tot,
                        {ang[0], ang[1], ang[2]}, 0, d->vol_w, neg, r.on_branch,
                        csf_bendChamberAsymmetry(m, d, (const double(*)[CSR_NCHAMBER])o->spec.ratio,
-                                                asym), NULL};
+                                                asym), NULL, NAN, NAN, NAN, NAN};
+    csf_bendNoteWall(m, d, (const double(*)[CSR_NCHAMBER])o->spec.ratio, target, tot, &r.info,
+                     &rep);
     /* a bifurcation under pressure control: a negative pivot more than the state before */
     const int bif = o->branch_switch && o->continuation && !r.on_branch && r.neg_conv >= 0 &&
                     neg > r.neg_conv; /* (without the switch: reported on the volume path) */

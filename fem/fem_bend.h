@@ -15,11 +15,24 @@
 #include "fem_actuator.h"
 #include "fem_measure.h"
 #include "fem_newton.h"
+#include "fem_wall.h"
 #include "robot_actuator.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* The free surfaces of the actuator at a converged state (fem_wall.h: crease onset and the
+ * closing of chambers, which a model without self-contact cannot pass). */
+typedef struct csfBendWall_ {
+  csfWallStretch vented; /* the inner surfaces of the vented chambers (ratio 0): npoint 0 when
+                          * every chamber is pressurised */
+  csfWallStretch skin;   /* the outer lateral surface (the untagged boundary faces) */
+  csfWallGap gap;        /* the smallest gap between opposite walls (CSF_WALL_COS_OPPOSITE) of
+                          * any vented chamber */
+  int gap_tag;           /* that chamber's face tag (CSF_TAG_CHAMBER; -1: none) */
+  double gap0;           /* the same node's smallest such gap in the reference state, mm */
+} csfBendWall;
 
 /* Per-step report for progress output and benchmarks (the library itself never prints). */
 typedef struct csfBendStep_ {
@@ -43,6 +56,11 @@ typedef struct csfBendStep_ {
                         * when not measured */
   const char* note;    /* with branch 2: the bifurcation's report line (csfBendInfo's
                         * bifurcation_note); else NULL */
+  double lam_vented;   /* smallest plane-strain-equivalent stretch of the vented chambers' walls
+                        * (csfWallStretch.lam_eq; INFINITY: none vented) */
+  double lam_skin;     /* the same on the outer surface */
+  double gap;          /* smallest gap between opposite walls of a vented chamber, mm */
+  double jmin;         /* smallest pointwise J of the state (csf_worstElement) */
 } csfBendStep;
 
 typedef void (*csfBendProgress)(void* user, const csfBendStep* step);
@@ -91,6 +109,13 @@ typedef struct csfBendInfo_ {
   double j_min;     /* smallest pointwise J (det F at quadrature points) at the last state: the
                      * most distorted element (csf_worstElement) */
   double j_min_X[3]; /* its reference centroid, mm */
+  csfBendWall wall;  /* the free surfaces at the last state */
+  double j_min_wall_dist; /* reference distance from that element's centroid to the point of
+                           * wall.vented.lam_eq, mm (NAN: no vented chamber) */
+  double p_crease, angle_crease; /* MPa, deg: the first converged state whose vented chambers'
+                                  * walls were compressed past the crease onset (lam_eq <
+                                  * CSF_CREASE_STRETCH), NAN: none */
+  double p_crease_skin;          /* MPa: the same for the outer surface, NAN: none */
   int n_until_trials, n_until_failed; /* --until-angle refinement: equilibrium trials, failures */
   long n_probe_newton; /* Newton iterations spent in stiffness probes (included in n_newton) */
   char until_note[200]; /* the last failed trial's pressure and Newton message ("" = none) */

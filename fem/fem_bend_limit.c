@@ -13,6 +13,7 @@
 
 #include "fem_bend_branch.h"
 #include "fem_bend_run.h"
+#include "fem_bend_wall.h"
 #include "fem_path.h"
 
 /* ---- stage: the path past a limit point ------------------------------------------------- */
@@ -82,7 +83,9 @@ static int limitWatch(void* user, const csfModel* m, const csfData* d, const csf
   double asym[CSR_NSEG];
   csfBendStep rep = {pt->p, pt->dp, pt->newton_iters, 0, pt->wall, tot, {ang[0], ang[1], ang[2]},
                      1, pt->volume, neg, pt->branch ? pt->branch : lw->on_branch,
-                     csf_bendChamberAsymmetry(m, d, lw->ratio, asym), NULL};
+                     csf_bendChamberAsymmetry(m, d, lw->ratio, asym), NULL, NAN, NAN, NAN,
+                     NAN};
+  csf_bendNoteWall(m, d, lw->ratio, pt->p, tot, lw->info, &rep);
   if (pt->branch == 2 && pt->result) {
     /* the branch switch: what broke, and where the path went */
     csfBendInfo* info = lw->info;

@@ -252,21 +252,6 @@ void csf_tetCauchy(const csfMaterial* mat, const double dNdX[120], const double 
 
 
 
-/* Tri6 shape functions and derivatives at (s, t) */
-static void tri6Shape(double s, double t, double N[6], double dN[12]) {
-  const double L0 = 1 - s - t, L1 = s, L2 = t;
-  N[0] = L0 * (2 * L0 - 1), N[1] = L1 * (2 * L1 - 1), N[2] = L2 * (2 * L2 - 1);
-  N[3] = 4 * L0 * L1, N[4] = 4 * L1 * L2, N[5] = 4 * L2 * L0;
-  /* d/ds, d/dt */
-  dN[0] = -(4 * L0 - 1), dN[1] = -(4 * L0 - 1);
-  dN[2] = 4 * L1 - 1, dN[3] = 0;
-  dN[4] = 0, dN[5] = 4 * L2 - 1;
-  dN[6] = 4 * (L0 - L1), dN[7] = -4 * L1;
-  dN[8] = 4 * L2, dN[9] = 4 * L1;
-  dN[10] = -4 * L2, dN[11] = 4 * (L0 - L2);
-}
-
-
 static void cross(const double a[3], const double b[3], double r[3]) {
   r[0] = a[1] * b[2] - a[2] * b[1];
   r[1] = a[2] * b[0] - a[0] * b[2];
@@ -283,7 +268,7 @@ void csf_faceKernel(const double xf_flat[18], double p, double fe[18], double* k
   double v = 0;
   for (int q = 0; q < CSF_TRI_NQ; q++) {
     double N[6], dN[12], xs[3] = {0, 0, 0}, xt[3] = {0, 0, 0}, nrm[3];
-    tri6Shape(kTriQ[q][0], kTriQ[q][1], N, dN);
+    csf_tri6Shape(kTriQ[q][0], kTriQ[q][1], N, dN);
     const double w = kTriQ[q][2];
     for (int a = 0; a < 6; a++) {
       for (int i = 0; i < 3; i++) {

@@ -62,6 +62,24 @@ void csf_tet10Shape(const double xi[3], double N[10], double dN[30]) {
 }
 
 
+void csf_tri6Shape(double s, double t, double N[6], double dN[12]) {
+  const double L0 = 1 - s - t, L1 = s, L2 = t;
+  if (N) {
+    N[0] = L0 * (2 * L0 - 1), N[1] = L1 * (2 * L1 - 1), N[2] = L2 * (2 * L2 - 1);
+    N[3] = 4 * L0 * L1, N[4] = 4 * L1 * L2, N[5] = 4 * L2 * L0;
+  }
+  if (dN) {
+    /* d/ds, d/dt */
+    dN[0] = -(4 * L0 - 1), dN[1] = -(4 * L0 - 1);
+    dN[2] = 4 * L1 - 1, dN[3] = 0;
+    dN[4] = 0, dN[5] = 4 * L2 - 1;
+    dN[6] = 4 * (L0 - L1), dN[7] = -4 * L1;
+    dN[8] = 4 * L2, dN[9] = 4 * L1;
+    dN[10] = -4 * L2, dN[11] = 4 * (L0 - L2);
+  }
+}
+
+
 double csf_meshTetVolume(const csfMesh* m, int t) {
   /* 4-point rule (degree 2) on the reference tetrahedron of volume 1/6 */
   const double a = 0.5854101966249685, b = 0.1381966011250105;

@@ -87,6 +87,10 @@ void csf_meshDestroy(csfMesh* m);
  * dN (10 x 3) derivatives with respect to xi (either may be NULL). */
 void csf_tet10Shape(const double xi[3], double N[10], double dN[30]);
 
+/* Tri6 shape functions N (6) at (s, t) (L0 = 1 - s - t, L1 = s, L2 = t; VTK node order) and
+ * their derivatives dN (6 x 2) with respect to (s, t) (either may be NULL). */
+void csf_tri6Shape(double s, double t, double N[6], double dN[12]);
+
 /* Signed volume of tetrahedron t (mm^3), from its Tet10 geometry (4-point rule). */
 double csf_meshTetVolume(const csfMesh* m, int t);
 

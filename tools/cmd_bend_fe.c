@@ -15,11 +15,12 @@
 #include "core_h5.h"
 #include "fem_actuator.h"
 #include "fem_bend.h"
+#include "fem_bend_branch.h"
 #include "robot_bend_io.h"
 
 /* a pointwise J below this at a stall: the r1 2 / b 3 and r1 1.5 / b 3 sweeps stalled with
- * their worst element at 0.41 and 0.28, and refining (l_soft 4 -> 3) moved the first stall from
- * 0.459 to 0.468 MPa, where J had again fallen to 0.43 (README, "Design studies") */
+ * their worst element at 0.41 and 0.28 (README, "Design studies"); their vented chambers'
+ * walls were then far past the crease onset and nearly closed (feWallReport) */
 #define CSX_J_DISTORTED 0.5
 
 /* the FE sweep's report lines: one per converged step, and a heartbeat at least every
@@ -31,6 +32,12 @@ typedef struct {
 } FeReport;
 
 static const double kHeartbeatS = 50.0;
+
+/* a vented chamber whose smallest opposite-wall gap fell below this fraction of its undeformed
+ * gap is reported closed (its walls met): 2.5 x the gap measure's resolution, the straight
+ * sub-triangles' sagitta of ~2 % of a 2 mm chamber's 3.1 mm gap (fem_wall.h); r1 2 / b 3 ends at
+ * 0.1 % of it, r1 1.5 / b 3 at 19 % (fem/README.md "Creases and closing chambers") */
+static const double kGapClosed = 0.05;
 
 static void feHeartbeat(void* user, const csfNewtonIter* it) {
   FeReport* rep = user;
@@ -44,6 +51,9 @@ static void feHeartbeat(void* user, const csfNewtonIter* it) {
     rep->iters = 0;
   }
 }
+
+
+static void feWalls(const csfBendStep* st, char* out, size_t sz);
 
 
 static void feProgress(void* user, const csfBendStep* st) {
@@ -64,19 +74,113 @@ static void feProgress(void* user, const csfBendStep* st) {
     snprintf(inertia + k, sizeof inertia - k, ", switched branch (twin chambers differ by %.2e)",
              st->asym);
   }
+  /* the free surfaces (fem_wall.h): crease and contact measures, and the worst element */
+  char walls[160];
+  feWalls(st, walls, sizeof walls);
   if (st->volume_control) {
     fprintf(stderr, "  fe: volume control: V %.1f mm^3, p = %.5f MPa (dp %+.5f), %d Newton "
-            "iterations, %.2f s, total %.2f deg%s\n", st->volume, st->p, st->dp,
-            st->newton_iters, st->wall, st->angle_total, inertia);
+            "iterations, %.2f s, total %.2f deg%s%s\n", st->volume, st->p, st->dp,
+            st->newton_iters, st->wall, st->angle_total, inertia, walls);
     return;
   }
   fprintf(stderr, "  fe: p = %.4f MPa (dp %.4f), %d Newton iterations, %d cut-backs, %.2f s, "
-          "total %.2f deg%s\n", st->p, st->dp, st->newton_iters, st->cutbacks, st->wall,
-          st->angle_total, inertia);
+          "total %.2f deg%s%s\n", st->p, st->dp, st->newton_iters, st->cutbacks, st->wall,
+          st->angle_total, inertia, walls);
 }
 
 
-static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
+static void feWalls(const csfBendStep* st, char* out, size_t sz) {
+  size_t k = (size_t)snprintf(out, sz, "; J_min %.3f", st->jmin);
+  if (isfinite(st->lam_vented) && k < sz) {
+    k += (size_t)snprintf(out + k, sz - k, ", vented walls lam_eq %.3f, gap %.3f mm",
+                          st->lam_vented, st->gap);
+  }
+  if (isfinite(st->lam_skin) && k < sz) {
+    snprintf(out + k, sz - k, ", skin lam_eq %.3f", st->lam_skin);
+  }
+}
+
+
+/* the summary of the free surfaces at the sweep's end (fem_wall.h) */
+static void feWallReport(const csrActuator* act, const csfBendInfo* info, int stalled) {
+  const csfBendWall* w = &info->wall;
+  if (w->vented.npoint > 0) {
+    char where[160];
+    csf_bendDescribePoint(act, w->vented.X, where, sizeof where);
+    const int past = w->vented.lam_eq < CSF_CREASE_STRETCH;
+    fprintf(stderr, "crawlsim bend: fe: vented chambers' walls at the end: compressed to a "
+            "plane-strain-equivalent stretch lam_c sqrt(lam_t) = %.3f (lam_c %.3f along (%.2f, "
+            "%.2f, %.2f), lam_t %.3f), %s: %s the crease onset %.2f (Hong, Zhao & Suo 2009)",
+            w->vented.lam_eq, w->vented.lam_c, w->vented.dir[0], w->vented.dir[1],
+            w->vented.dir[2], w->vented.lam_t, where, past ? "past" : "short of",
+            CSF_CREASE_STRETCH);
+    if (!isnan(info->p_crease)) {
+      fprintf(stderr, ", passed at %.5f MPa (%.2f deg)", info->p_crease, info->angle_crease);
+    }
+    fprintf(stderr, "; the most distorted element (J %.3f) is %.2f mm from that point\n",
+            info->j_min, info->j_min_wall_dist);
+    if (isfinite(w->gap.gap)) {
+      csf_bendDescribePoint(act, w->gap.X, where, sizeof where);
+      fprintf(stderr, "crawlsim bend: fe: smallest gap between opposite walls of a vented "
+              "chamber: %.3f mm (%.3f mm undeformed), %s\n", w->gap.gap, w->gap0, where);
+    }
+    const int closed = isfinite(w->gap.gap) && w->gap.gap < kGapClosed * w->gap0;
+    if (past && stalled) {
+      fprintf(stderr, "crawlsim bend: fe: the sweep ended with the vented chambers' walls past "
+              "the crease onset%s: a real wall folds into a self-contacting crease there%s, "
+              "which this model (no self-contact) cannot follow; a limit of the model, not of "
+              "its mesh (fem/README.md \"Creases and closing chambers\")\n",
+              closed ? " and a chamber closed" : "",
+              closed ? " and the chamber's opposite walls have met" : "");
+    } else if (past) {
+      fprintf(stderr, "crawlsim bend: fe: past %.5f MPa the states are the smooth, creaseless "
+              "solution, which a real wall leaves by creasing (this model has no self-contact)"
+              "\n", info->p_crease);
+    }
+  }
+  if (w->skin.npoint > 0) {
+    fprintf(stderr, "crawlsim bend: fe: the skin at the end: plane-strain-equivalent stretch "
+            "%.3f (lam_c %.3f, lam_t %.3f) at (%.2f, %.2f, %.2f) mm%s", w->skin.lam_eq,
+            w->skin.lam_c, w->skin.lam_t, w->skin.X[0], w->skin.X[1], w->skin.X[2],
+            w->skin.lam_eq < CSF_CREASE_STRETCH ? ", past the crease onset" : "");
+    if (!isnan(info->p_crease_skin)) {
+      fprintf(stderr, " (from %.5f MPa)", info->p_crease_skin);
+    }
+    fprintf(stderr, "\n");
+  }
+}
+
+
+/* the free surfaces' figures as root attributes of the bend file */
+static csStatus feWallAttrs(csH5File* f, const csfBendInfo* info, csError* err) {
+  const csfBendWall* w = &info->wall;
+  const struct {
+    const char* name;
+    double v;
+  } a[] = {
+      {"fe_crease_stretch", CSF_CREASE_STRETCH},
+      {"fe_vented_lam_eq", w->vented.npoint > 0 ? w->vented.lam_eq : NAN},
+      {"fe_vented_lam_c", w->vented.npoint > 0 ? w->vented.lam_c : NAN},
+      {"fe_vented_lam_t", w->vented.npoint > 0 ? w->vented.lam_t : NAN},
+      {"fe_p_crease_MPa", info->p_crease},
+      {"fe_skin_lam_eq", w->skin.npoint > 0 ? w->skin.lam_eq : NAN},
+      {"fe_p_crease_skin_MPa", info->p_crease_skin},
+      {"fe_vented_gap_mm", isfinite(w->gap.gap) ? w->gap.gap : NAN},
+      {"fe_vented_gap0_mm", w->gap0},
+      {"fe_j_min", info->j_min},
+      {"fe_j_min_wall_dist_mm", info->j_min_wall_dist},
+  };
+  for (size_t k = 0; k < sizeof a / sizeof a[0]; k++) {
+    csStatus st = cs_h5AttrDouble(f, "/", a[k].name, a[k].v, err);
+    if (st != CS_OK) {
+      return st;
+    }
+  }
+  return CS_OK;
+}
+
+
+static csStatus feSweep(BendRun* run, csrBendCurve* bc, csfBendInfo* infop, csError* err) {
   csfBendOptions o = csf_bendDefault();
   /* chamber j of every segment at ratio[j] x p (--chambers: 1 or 0; --pressures: R_j) */
   for (int s = 0; s < CSR_NSEG; s++) {
@@ -123,6 +227,7 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
   o.progress_user = &report;
   o.newton_monitor = feHeartbeat;
   csfBendInfo info;
+  memset(&info, 0, sizeof info);
   o.info = &info;
   st = csf_bend(&run->act, &o, bc, err);
   if (st == CS_OK) {
@@ -183,10 +288,13 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csError* err) {
               "has a pointwise J of %.3f%s\n",
               info.p_limit, info.angle_limit, info.limit_note[0] ? "; " : "", info.limit_note,
               info.j_min_X[0], info.j_min_X[1], info.j_min_X[2], info.j_min,
-              info.j_min < CSX_J_DISTORTED ? " (its elements fold: a finer mesh moves such a "
-                                             "stall, README \"Design studies\")" : "");
+              info.j_min < CSX_J_DISTORTED ? " (its elements fold)" : "");
     }
+    /* stalled (both controls failed, no limit point): the walls say why */
+    const int stalled = !isnan(info.p_limit) && !info.limit_shown && isnan(info.p_resume);
+    feWallReport(&run->act, &info, stalled);
   }
+  *infop = info;
   return st;
 }
 
@@ -198,8 +306,10 @@ int csx_bendFe(BendRun* run) {
   memset(&fbc, 0, sizeof fbc);
   double t0 = csu_wallSeconds();
   csStatus fst = ff ? csr_bendCurveInit(&fbc, 16, &ferr) : ferr.status;
+  csfBendInfo info;
+  memset(&info, 0, sizeof info);
   if (fst == CS_OK) {
-    fst = feSweep(run, &fbc, &ferr);
+    fst = feSweep(run, &fbc, &info, &ferr);
   }
   if (fst == CS_OK) {
     csrBendMeta meta = {"fe",
@@ -218,6 +328,9 @@ int csx_bendFe(BendRun* run) {
                         run->neg_pivots_max,
                         run->limit_shown ? NAN : run->p_limit};
     fst = csr_bendCurveWriteH5(ff, &run->act, &fbc, &meta, &ferr);
+    if (fst == CS_OK) {
+      fst = feWallAttrs(ff, &info, &ferr);
+    }
   }
   cs_h5Close(ff);
   if (fst != CS_OK) {
