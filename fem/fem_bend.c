@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core_math.h"
 #include "core_text.h"
 #include "fem_bend_branch.h"
 #include "fem_bend_run.h"
@@ -491,12 +492,9 @@ static csStatus stageFinish(Run* r, csError* err) {
     return st;
   }
   if (r->info.wall.vented.npoint > 0) {
-    double dd = 0;
-    for (int i = 0; i < 3; i++) {
-      const double di = r->info.j_min_X[i] - r->info.wall.vented.X[i];
-      dd += di * di;
-    }
-    r->info.j_min_wall_dist = sqrt(dd);
+    double dx[3];
+    csu_sub3(dx, r->info.j_min_X, r->info.wall.vented.X);
+    r->info.j_min_wall_dist = csu_norm3(dx);
   }
   if (o->vtu_path) {
     st = csf_writeVtu(m, d, o->vtu_path, err);

@@ -18,6 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core_math.h"
+
 /* the six points of the degree-4 triangle rule (Dunavant 1985), (s, t): interior points cover
  * the face's stretch field well enough to find its extremes (the weights are not needed) */
 static const double kTriA = 0.445948490915965, kTriB = 0.091576213509771;
@@ -126,20 +128,15 @@ void csf_wallStretch(const csfMesh* me, const double* u, int ntag, const int* ta
 static double pointTriangleDist2(const double p[3], const double a[3], const double b[3],
                                  const double c[3]) {
   double ab[3], ac[3], ap[3], q[3];
-  for (int i = 0; i < 3; i++) {
-    ab[i] = b[i] - a[i], ac[i] = c[i] - a[i], ap[i] = p[i] - a[i];
-  }
-#define DOT3(x, y) ((x)[0] * (y)[0] + (x)[1] * (y)[1] + (x)[2] * (y)[2])
-  const double d1 = DOT3(ab, ap), d2 = DOT3(ac, ap);
+  csu_sub3(ab, b, a), csu_sub3(ac, c, a), csu_sub3(ap, p, a);
+  const double d1 = csu_dot3(ab, ap), d2 = csu_dot3(ac, ap);
   if (d1 <= 0 && d2 <= 0) {
     memcpy(q, a, sizeof q); /* vertex region a */
   } else {
     double bp[3], cp[3];
-    for (int i = 0; i < 3; i++) {
-      bp[i] = p[i] - b[i], cp[i] = p[i] - c[i];
-    }
-    const double d3 = DOT3(ab, bp), d4 = DOT3(ac, bp);
-    const double d5 = DOT3(ab, cp), d6 = DOT3(ac, cp);
+    csu_sub3(bp, p, b), csu_sub3(cp, p, c);
+    const double d3 = csu_dot3(ab, bp), d4 = csu_dot3(ac, bp);
+    const double d5 = csu_dot3(ab, cp), d6 = csu_dot3(ac, cp);
     const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
     if (d3 >= 0 && d4 <= d3) {
       memcpy(q, b, sizeof q); /* vertex region b */
@@ -168,12 +165,9 @@ static double pointTriangleDist2(const double p[3], const double a[3], const dou
       }
     }
   }
-#undef DOT3
-  double d2s = 0;
-  for (int i = 0; i < 3; i++) {
-    d2s += (p[i] - q[i]) * (p[i] - q[i]);
-  }
-  return d2s;
+  double pq[3];
+  csu_sub3(pq, p, q);
+  return csu_dot3(pq, pq);
 }
 
 
@@ -225,13 +219,9 @@ csStatus csf_wallGap(const csfMesh* me, const double* u, int ntag, const int* ta
       }
       const double* T = Xs + 9 * k4;
       double e1[3], e2[3], nv[3];
-      for (int i = 0; i < 3; i++) {
-        e1[i] = T[3 + i] - T[i], e2[i] = T[6 + i] - T[i];
-      }
-      nv[0] = e1[1] * e2[2] - e1[2] * e2[1];
-      nv[1] = e1[2] * e2[0] - e1[0] * e2[2];
-      nv[2] = e1[0] * e2[1] - e1[1] * e2[0];
-      const double an = sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+      csu_sub3(e1, T + 3, T), csu_sub3(e2, T + 6, T);
+      csu_cross3(nv, e1, e2);
+      const double an = csu_norm3(nv);
       for (int c = 0; c < 3; c++) {
         for (int i = 0; i < 3; i++) {
           nn_[3 * loc[fn[kSub[k][c]]] + i] += nv[i]; /* area-weighted */
@@ -243,11 +233,7 @@ csStatus csf_wallGap(const csfMesh* me, const double* u, int ntag, const int* ta
     }
   }
   for (int a = 0; a < nn; a++) {
-    double* v = nn_ + 3 * a;
-    const double nv = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int i = 0; i < 3; i++) {
-      v[i] = nv > 0 ? v[i] / nv : 0;
-    }
+    csu_normalize3(nn_ + 3 * a);
   }
   /* every node against every sub-triangle that faces it in the reference state */
   for (int a = 0; a < nn; a++) {
@@ -260,7 +246,7 @@ csStatus csf_wallGap(const csfMesh* me, const double* u, int ntag, const int* ta
     }
     for (int s = 0; s < k4; s++) {
       const double* nt = ns + 3 * s;
-      if (na[0] * nt[0] + na[1] * nt[1] + na[2] * nt[2] > cos_opp) {
+      if (csu_dot3(na, nt) > cos_opp) {
         continue; /* not opposite: the same side of the wall, or a neighbour */
       }
       const double* t = xs + 9 * s;
