@@ -35,8 +35,10 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUN
 csOptions cs_defaultOptions(void) {
   csOptions o;
   /* 1 ms: the joint springs are implicit (any h is stable) and 1 ms resolves the 0.2 s
-   * pressure ramps. The track is not converged in h: stick-slip and touch-down events make
-   * it sensitive (README "Earlier findings", item 3: 0.5 ms moves the 9 s end point by ~15 %) */
+   * pressure ramps. At 240 QuickStep iterations the prb track is converged in h (README
+   * "Earlier findings", item 3: 0.5 ms moves the 9 s end point by 0.5 %; an early note here
+   * said ~15 %, measured before the iterations were converged); it is not converged in the
+   * links per segment, where stick-slip and touch-down events decide each stride */
   o.h = 1e-3;
   /* one ODE step per exchange: in-world legs (prb) need no other; a co-simulated level picks
    * its macro step from the coupling study (issue 9) */

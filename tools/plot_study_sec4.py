@@ -3,6 +3,7 @@
 
 Usage:
   /usr/bin/python3 tools/plot_study_sec4.py STUDY.h5 [-o OUT.png] [--md OUT.md] [--csv OUT.csv]
+  /usr/bin/python3 tools/plot_study_sec4.py TABLE.md [-o OUT.png]   (redraw from its own table)
 
 Reads the merged study file of tools/studies/sec4.study (or sec4_tiny.study): for every FE case
 and its analytic twin (`an_<case>`) the pressure at which the total bending angle reaches the
@@ -130,9 +131,50 @@ def read_case(f, name):
 
 
 
+def num(cell):
+    """a table cell as a float (nan when empty)"""
+    cell = cell.strip().rstrip("%").strip()
+    try:
+        return float(cell) if cell else math.nan
+    except ValueError:
+        return math.nan
+
+
+def rows_from_md(path):
+    """The rows of a Markdown table this script wrote (--md), for redrawing the chart when the
+    study file is gone: (target angle text, rows as main() builds them)."""
+    try:
+        with open(path) as fh:
+            text = fh.read()
+    except OSError as e:
+        fail(PROG, f"{path}: {e.strerror}")
+    m = re.search(r"bend the actuator to (.+)$", text, re.M)
+    tname = m.group(1).strip() if m else "the target angle"
+    groups = {c: (g, ch) for c, g, ch in CASES}
+    rows = {}
+    for n, line in enumerate(text.splitlines(), 1):
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 11 or cells[0] not in groups:
+            continue
+        if cells[0] in rows:
+            fail(PROG, f"{path}:{n}: case {cells[0]} twice")
+        rows[cells[0]] = (cells[0], groups[cells[0]][0], cells[1], num(cells[2]), num(cells[3]),
+                          num(cells[4]), num(cells[5]), num(cells[6]), num(cells[7]),
+                          num(cells[8]), num(cells[9]), cells[10])
+    if not rows:
+        fail(PROG, f"{path}: no row of the Sec. 4 table (case | change | FE p | ... | FE status)")
+    return tname, [rows.get(c, (c, g, ch) + (math.nan,) * 8 + ("not in the table",))
+                   for c, g, ch in CASES]
+
+
 def main():
     args = parse_args(PROG, __doc__,
                       lambda ap: ap.add_argument("--csv", help="also write the numbers as CSV"))
+    if args.study.endswith(".md"):
+        # redraw from the table (the study's HDF5 is not kept in the repository)
+        tname, rows = rows_from_md(args.study)
+        chart(rows, tname, "?", args.out or os.path.splitext(args.study)[0] + ".png")
+        return 0
     with open_study(args.study, PROG) as f:
         study = attr_text(f.attrs.get("study", b"?"))
         fe = {c: read_case(f, c) for c, _, _ in CASES}
@@ -218,15 +260,21 @@ def main():
                 fh.write(",".join(f'"{v}"' if isinstance(v, str) else fmt(v, ".6g")
                                   for v in row) + "\n")
 
-    # the chart
+    meshes = sorted({r["mesh"] for r in fe.values() if r and math.isfinite(r["mesh"])})
+    mesh = ", ".join(f"{m:g}" for m in meshes) if meshes else "?"
+    chart(rows, tname, mesh, args.out or os.path.splitext(args.study)[0] + ".png")
+    return 0
+
+
+def chart(rows, tname, mesh, out):
+    """the PNG: (a) pressure for the target angle per case, (b) ratios to the baseline"""
     names = [c for c, _, _ in CASES]
     x = np.arange(len(names))
     fig, ax = plt.subplots(2, 1, figsize=(11, 7.5), sharex=True)
     p_fe = np.array([row[3] for row in rows])
     p_pa = np.array([row[7] for row in rows])
-    meshes = sorted({r["mesh"] for r in fe.values() if r and math.isfinite(r["mesh"])})
-    mesh = ", ".join(f"{m:g}" for m in meshes) if meshes else "?"
-    ax[0].bar(x - 0.2, p_fe, 0.4, label=f"FE (crawlsim, l_soft {mesh} mm)", color="tab:blue")
+    label = "FE (crawlsim)" if mesh == "?" else f"FE (crawlsim, l_soft {mesh} mm)"
+    ax[0].bar(x - 0.2, p_fe, 0.4, label=label, color="tab:blue")
     ax[0].scatter(x[np.isfinite(p_pa)], p_pa[np.isfinite(p_pa)], marker="D", s=60,
                   color="tab:red", zorder=3, label="paper (printed values)")
     for k, row in enumerate(rows):
@@ -251,9 +299,7 @@ def main():
     ax[1].set_xticklabels([f"{c}\n{ch}" for c, _, ch in CASES], fontsize=7, rotation=30,
                           ha="right")
     fig.tight_layout()
-    out = args.out or os.path.splitext(args.study)[0] + ".png"
     save_or_fail(PROG, out, lambda: fig.savefig(out, dpi=120))
-    return 0
 
 
 if __name__ == "__main__":

@@ -48,6 +48,16 @@ check "paper value and difference" \
 check "no paper value for Lc35" grep -q "^| Lc35 | [^|]* | [0-9.]* | [0-9.]* | [0-9.]* | [0-9.]* |  |" <<<"$out"
 check "sec4 trend line (chamber length)" grep -q "chamber length: .* holds" <<<"$out"
 check "sec4 trend line (segment length: S45 missing)" grep -q "segment length: .*not all" <<<"$out"
+# the chart redrawn from the table the script wrote (the study file is not kept): the same rows
+"$py" "$src/tools/plot_study_sec4.py" "$work/sec4.h5" -o "$work/sec4.png" --md "$work/sec4.md" \
+  >/dev/null 2>&1
+check "sec4 redraw from its table" "$py" "$src/tools/plot_study_sec4.py" "$work/sec4.md" \
+  -o "$work/sec4_md.png"
+check "sec4 redrawn PNG written" test -s "$work/sec4_md.png"
+printf '| S45 | x |\n' > "$work/bad.md"
+"$py" "$src/tools/plot_study_sec4.py" "$work/bad.md" -o "$work/bad.png" >/dev/null 2>"$work/err.txt"
+check "sec4 redraw refuses a table without its rows" test $? -eq 1
+check "sec4 redraw error names the file" grep -q "bad.md: no row" "$work/err.txt"
 
 # the Earth table: two designs, gait re-derived for each, 0.6 s of crawl under earth
 cat > "$work/earth.study" <<EOF
