@@ -114,8 +114,13 @@ void csr_calBaseScalars_(const csrCalModel* m, int s, const double pc[4], double
 /* the superposition of the single-chamber curve `base` with mean-pressure factor k */
 void csr_calSuperposeBend_(const csrCalCurve* base, const double k[2], int s, const double pc[4],
                            double bend[2]);
+/* canonical form pc = D^mir R^k p of a pattern: the highest chamber first (the first of equal
+ * ones), pc[1] >= pc[3] (R turns the pattern by +90 deg, D swaps Ω2 and Ω4) */
+void csr_calCanonical_(const double p[4], double pc[4], int* k, int* mir);
 /* bend vector of a canonical pattern back in the pattern's frame (k turns, mirror) */
 void csr_calFromCanonical_(const double bc[2], int k, int mir, double b[2]);
+/* and its inverse: a vector of the section plane into the canonical frame */
+void csr_calToCanonical_(const double b[2], int k, int mir, double bc[2]);
 
 /* ---- the RBF rule (robot_calibration_rbf.c) --------------------------------------------- */
 

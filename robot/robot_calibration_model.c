@@ -84,7 +84,7 @@ int csr_calMirrorSymmetric_(const double r[4]) {
 
 /* canonical form: pc = D^mir R^k p with (R p)_i = p_(i+1) (the pattern turned by +90 deg) and
  * D swapping Ω2, Ω4; the highest chamber first (the first of equal ones), pc[1] >= pc[3] */
-static void canonical(const double p[4], double pc[4], int* k, int* mir) {
+void csr_calCanonical_(const double p[4], double pc[4], int* k, int* mir) {
   int j = 0;
   for (int i = 1; i < 4; i++) {
     if (p[i] > p[j]) {
@@ -112,6 +112,18 @@ void csr_calFromCanonical_(const double bc[2], int k, int mir, double b[2]) {
     x = y, y = -t;
   }
   b[0] = x, b[1] = y;
+}
+
+
+/* the inverse: a bend vector in the pattern's frame into the canonical frame,
+ * bc = D^mir Rot(+90 k) b */
+void csr_calToCanonical_(const double b[2], int k, int mir, double bc[2]) {
+  double x = b[0], y = b[1];
+  for (int i = 0; i < k; i++) {
+    double t = x; /* Rot(+90): (x, y) -> (-y, x) */
+    x = -y, y = t;
+  }
+  bc[0] = mir ? y : x, bc[1] = mir ? x : y;
 }
 
 
@@ -292,7 +304,7 @@ int csr_calModelEval(const csrCalModel* m, int seg, const double p[CSR_NCHAMBER]
   }
   double pc[4], bc[2], sc[3];
   int k, mir;
-  canonical(q, pc, &k, &mir);
+  csr_calCanonical_(q, pc, &k, &mir);
   if (pc[0] > m->p_max) {
     pc[0] = m->p_max; /* round-off above the last row */
   }

@@ -207,6 +207,36 @@ typedef struct csrCalCompare_ {
 csStatus csr_calModelCompare(const csrCalModel* m, const csrCalCase* c, csrCalCompare* out,
                              csError* err);
 
+/* The FE against itself under the section's symmetry: case c and the other case of its table
+ * whose pattern is an image of c's under the square section's eight symmetries (turns by 90 deg
+ * and mirrors), the partner's bends and tip carried into c's frame. A symmetric mesh would
+ * give 0; what it gives is the FE reference's own resolution on that pattern (the unstructured
+ * mesh is not symmetric), the floor under any model error measured against the FE. */
+typedef struct csrCalSymPair_ {
+  const csrCalCase* partner; /* the image case (a mode or held-out case first), NULL if none */
+  int rows;                  /* rows at pressures both cases have (to 1e-9 MPa) */
+  double p_last;             /* MPa: highest of them */
+  double bend_deg;           /* max over rows and segments of |bend_c - T bend_partner| (deg) */
+  double bend_at_p;          /* MPa and segment (0..2) where it is */
+  int bend_at_seg;
+  double bend_fe_deg;        /* |bend_c| there (deg) */
+  double tip_mm;             /* max |tip_c - T tip_partner| (mm), T on the section plane */
+  double tip_at_p;           /* MPa where it is */
+} csrCalSymPair;
+
+/* Find c's image case in t and compare them (out->partner NULL, CS_OK, when there is none; a
+ * gravity case has none). CS_ERR_RANGE when they share no row. */
+csStatus csr_calSymmetryPair(const csrCalTable* t, const csrCalCase* c, csrCalSymPair* out,
+                             csError* err);
+
+/* The FE of held-out case c made symmetric with its image (csr_calSymmetryPair): bends and tip
+ * averaged with the partner's carried into c's frame, at the rows both have; the model compared
+ * against that mean as csr_calModelCompare compares it against c (mirror parts included). The
+ * mean halves the part of the mesh asymmetry that differs between the two images. */
+csStatus csr_calModelCompareSymmetrised(const csrCalModel* m, const csrCalCase* c,
+                                        const csrCalSymPair* pair, csrCalCompare* out,
+                                        csError* err);
+
 /* Print the model's report on table t (the table it was built from) to `out`: per fitted mode
  * the model's difference from the FE rows, the refining modes left out one at a time, per
  * held-out and symmetry case the bend and tip errors against the target, every rule's worst

@@ -104,6 +104,144 @@ csStatus csr_calModelCompare(const csrCalModel* m, const csrCalCase* c, csrCalCo
 }
 
 
+/* ---- the FE against its own symmetric image ------------------------------------------------ */
+
+/* the row of c at pressure p (to 1e-9 MPa), -1 if none */
+static int rowAt(const csrCalCase* c, double p) {
+  for (int i = 0; i < c->m; i++) {
+    if (fabs(c->pressure[i] - p) <= 1e-9) {
+      return i;
+    }
+  }
+  return -1;
+}
+
+
+/* v (section plane) of the partner's frame into c's: T = From(kc, mc) To(kd, md) */
+static void carry(const int kd, const int md, const int kc, const int mc, const double v[2],
+                  double out[2]) {
+  double vc[2];
+  csr_calToCanonical_(v, kd, md, vc);
+  csr_calFromCanonical_(vc, kc, mc, out);
+}
+
+
+csStatus csr_calSymmetryPair(const csrCalTable* t, const csrCalCase* c, csrCalSymPair* out,
+                             csError* err) {
+  memset(out, 0, sizeof *out);
+  if (c->kind == CSR_CAL_GRAVITY) {
+    return CS_OK;
+  }
+  double pc[4], pd[4];
+  int kc, mc, kd = 0, md = 0;
+  csr_calCanonical_(c->ratio, pc, &kc, &mc);
+  for (int pass = 0; pass < 2 && !out->partner; pass++) {
+    for (int i = 0; i < t->ncase && !out->partner; i++) {
+      const csrCalCase* d = t->cases + i;
+      /* first pass: fitted and held-out cases; second: another symmetry case */
+      if (d == c || d->kind == CSR_CAL_GRAVITY || (d->kind == CSR_CAL_SYMMETRY) != (pass == 1)) {
+        continue;
+      }
+      csr_calCanonical_(d->ratio, pd, &kd, &md);
+      int same = 1;
+      for (int j = 0; j < 4; j++) {
+        same = same && fabs(pd[j] - pc[j]) <= 1e-12;
+      }
+      if (same) {
+        out->partner = d;
+      }
+    }
+  }
+  if (!out->partner) {
+    return CS_OK;
+  }
+  const csrCalCase* d = out->partner;
+  out->bend_deg = -1;
+  for (int i = 0; i < c->m; i++) {
+    const int r = rowAt(d, c->pressure[i]);
+    if (r < 0) {
+      continue;
+    }
+    for (int s = 0; s < CSR_NSEG; s++) {
+      double b[2];
+      carry(kd, md, kc, mc, d->bend + 6 * r + 2 * s, b);
+      const double* bc = c->bend + 6 * i + 2 * s;
+      const double e = hypot(bc[0] - b[0], bc[1] - b[1]) / CS_DEG;
+      if (e > out->bend_deg) {
+        out->bend_deg = e, out->bend_at_p = c->pressure[i], out->bend_at_seg = s;
+        out->bend_fe_deg = hypot(bc[0], bc[1]) / CS_DEG;
+      }
+    }
+    double tp[2];
+    carry(kd, md, kc, mc, d->tip + 3 * r, tp);
+    const double* tc = c->tip + 3 * i;
+    const double dt[3] = {tc[0] - tp[0], tc[1] - tp[1], tc[2] - d->tip[3 * r + 2]};
+    if (csu_norm3(dt) > out->tip_mm) {
+      out->tip_mm = csu_norm3(dt), out->tip_at_p = c->pressure[i];
+    }
+    out->rows++;
+    out->p_last = c->pressure[i];
+  }
+  if (out->rows == 0) {
+    out->bend_deg = 0;
+    return cs_errorSet(err, CS_ERR_RANGE, "cases %s and %s share no pressure row", c->name,
+                       d->name);
+  }
+  return CS_OK;
+}
+
+
+csStatus csr_calModelCompareSymmetrised(const csrCalModel* m, const csrCalCase* c,
+                                        const csrCalSymPair* pair, csrCalCompare* out,
+                                        csError* err) {
+  memset(out, 0, sizeof *out);
+  if (!pair || !pair->partner || pair->rows == 0) {
+    return cs_errorSet(err, CS_ERR_ARG, "case %s: no symmetric image to average with",
+                       c ? c->name : "?");
+  }
+  const csrCalCase* d = pair->partner;
+  double pc[4], pd[4];
+  int kc, mc, kd, md;
+  csr_calCanonical_(c->ratio, pc, &kc, &mc);
+  csr_calCanonical_(d->ratio, pd, &kd, &md);
+  /* a case of the common rows, each quantity the mean of c's and the partner's carried over */
+  csrCalCase a;
+  memset(&a, 0, sizeof a);
+  snprintf(a.name, sizeof a.name, "%s", c->name);
+  a.kind = c->kind;
+  memcpy(a.ratio, c->ratio, sizeof a.ratio);
+  const int n = c->m;
+  double* buf = malloc((size_t)n * (1 + 6 + 3 + 3) * sizeof(double));
+  if (!buf) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "case %s: out of memory", c->name);
+  }
+  a.pressure = buf, a.bend = buf + n, a.stretch = buf + 7 * n, a.tip = buf + 10 * n;
+  for (int i = 0; i < n; i++) {
+    const int r = rowAt(d, c->pressure[i]);
+    if (r < 0) {
+      continue;
+    }
+    const int j = a.m++;
+    a.pressure[j] = c->pressure[i];
+    for (int s = 0; s < CSR_NSEG; s++) {
+      double b[2];
+      carry(kd, md, kc, mc, d->bend + 6 * r + 2 * s, b);
+      a.bend[6 * j + 2 * s] = 0.5 * (c->bend[6 * i + 2 * s] + b[0]);
+      a.bend[6 * j + 2 * s + 1] = 0.5 * (c->bend[6 * i + 2 * s + 1] + b[1]);
+      a.stretch[3 * j + s] = 0.5 * (c->stretch[3 * i + s] + d->stretch[3 * r + s]);
+    }
+    double tp[2];
+    carry(kd, md, kc, mc, d->tip + 3 * r, tp);
+    a.tip[3 * j] = 0.5 * (c->tip[3 * i] + tp[0]);
+    a.tip[3 * j + 1] = 0.5 * (c->tip[3 * i + 1] + tp[1]);
+    a.tip[3 * j + 2] = 0.5 * (c->tip[3 * i + 2] + d->tip[3 * r + 2]);
+  }
+  csStatus st = csr_calModelCompare(m, &a, out, err);
+  free(buf);
+  return st;
+}
+
+
 /* ---- the rules compared ------------------------------------------------------------------- */
 
 /* worst scores of a model over the cases of one kind (held-out) and over the refining modes
@@ -114,6 +252,9 @@ typedef struct {
   double loo_bend_deg, loo_tip_mm; /* max over the refining modes predicted without them */
   double p_valid; /* MPa: every held-out case meets the target up to here (INFINITY: all do
                      throughout) */
+  double held_tip_sym_mm; /* the same worst tip, and the pressure all meet to, with each case */
+  double p_valid_sym;     /* that has an image in the table against the symmetrised FE */
+  int nsym;               /* held-out cases taken against the symmetrised FE */
   int nheld, nloo;
 } RuleScore;
 
@@ -121,7 +262,7 @@ typedef struct {
 static void scoreRule(const csrCalTable* t, const csrActuator* leg, const csrCalOptions* o,
                       RuleScore* r) {
   memset(r, 0, sizeof *r);
-  r->p_valid = INFINITY;
+  r->p_valid = r->p_valid_sym = INFINITY;
   csError err;
   csrCalModel* m = csr_calModelCreate(t, leg, o, &err);
   if (!m) {
@@ -139,6 +280,16 @@ static void scoreRule(const csrCalTable* t, const csrActuator* leg, const csrCal
         r->p_valid = fmin(r->p_valid, e.p_meets);
       }
       r->nheld++;
+      csrCalSymPair pair;
+      if (csr_calSymmetryPair(t, t->cases + i, &pair, &err) == CS_OK && pair.partner &&
+          csr_calModelCompareSymmetrised(m, t->cases + i, &pair, &e, &err) != CS_OK) {
+        continue; /* counted raw only */
+      }
+      r->nsym += pair.partner != NULL;
+      r->held_tip_sym_mm = fmax(r->held_tip_sym_mm, e.tip_mm);
+      if (e.p_meets < e.p_last) {
+        r->p_valid_sym = fmin(r->p_valid_sym, e.p_meets);
+      }
     }
   }
   csr_calModelDestroy(m);
@@ -227,8 +378,8 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
   /* held out and symmetry: the target */
   fprintf(out, "  held out (never fitted; target: bend within 5 %% or 1 deg, tip within 2 %% of "
           "%.0f mm = %.2f mm):\n", L, TARGET_TIP_REL * L);
-  int nheld = 0;
-  double p_valid = INFINITY;
+  int nheld = 0, nsym = 0;
+  double p_valid = INFINITY, p_valid_sym = INFINITY;
   for (int i = 0; i < t->ncase; i++) {
     const csrCalCase* c = t->cases + i;
     csrCalCompare e;
@@ -258,6 +409,32 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
     if (c->kind == CSR_CAL_HOLDOUT && e.p_meets < e.p_last) {
       p_valid = fmin(p_valid, e.p_meets); /* a case that meets it throughout does not limit */
     }
+    /* the FE against its own image: the reference's resolution on this pattern */
+    csrCalSymPair pair;
+    csError perr;
+    if (csr_calSymmetryPair(t, c, &pair, &perr) != CS_OK || !pair.partner) {
+      if (c->kind == CSR_CAL_HOLDOUT && e.p_meets < e.p_last) {
+        p_valid_sym = fmin(p_valid_sym, e.p_meets);
+      }
+      continue;
+    }
+    fprintf(out, "      the FE against its image %s carried over by the section's symmetry, "
+            "%d rows: bend %.3f deg (of %.2f at %.3g MPa, II%d), tip %.3f mm (at %.3g MPa)\n",
+            pair.partner->name, pair.rows, pair.bend_deg, pair.bend_fe_deg, pair.bend_at_p,
+            pair.bend_at_seg + 1, pair.tip_mm, pair.tip_at_p);
+    csrCalCompare es;
+    if (c->kind == CSR_CAL_HOLDOUT &&
+        csr_calModelCompareSymmetrised(m, c, &pair, &es, &perr) == CS_OK) {
+      nsym++;
+      char up[64] = "";
+      if (es.p_meets < es.p_last) {
+        snprintf(up, sizeof up, " up to %.3g MPa", es.p_meets);
+        p_valid_sym = fmin(p_valid_sym, es.p_meets);
+      }
+      fprintf(out, "      the model against the mean of the two: bend %.3f deg (%.2f of the target)"
+              "  tip %.3f mm (%.2f)  meets it%s\n", es.bend_deg, es.bend_score, es.tip_mm,
+              es.tip_score, up);
+    }
   }
   if (nheld == 0) {
     fprintf(out, "    (no held-out case in the table)\n");
@@ -266,6 +443,15 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
             "to there)\n", p_valid);
   } else {
     fprintf(out, "    every held-out case meets the target over its whole sweep\n");
+  }
+  if (nsym > 0) {
+    if (isfinite(p_valid_sym)) {
+      fprintf(out, "    with the %d case(s) that have an image taken against the symmetrised FE: "
+              "every held-out case meets the target up to %.3g MPa\n", nsym, p_valid_sym);
+    } else {
+      fprintf(out, "    with the %d case(s) that have an image taken against the symmetrised FE: "
+              "every held-out case meets the target over its whole sweep\n", nsym);
+    }
   }
   /* the rules side by side on the same table */
   fprintf(out, "  rules compared (worst over the held-out cases: bend deg / tip mm, target score; "
@@ -286,10 +472,18 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
         snprintf(upto, sizeof upto, "%.3g MPa", r.p_valid);
       }
       const int mine = o.rule == m->opt.rule && o.scalar_rule == m->opt.scalar_rule;
+      char sym[96] = "";
+      if (r.nsym > 0) {
+        snprintf(sym, sizeof sym, "; symmetrised FE: %.3f mm, meet to %s", r.held_tip_sym_mm,
+                 isfinite(r.p_valid_sym) ? "" : "the end");
+        if (isfinite(r.p_valid_sym)) {
+          snprintf(sym + strlen(sym), sizeof sym - strlen(sym), "%.3g MPa", r.p_valid_sym);
+        }
+      }
       fprintf(out, "    %c bend %-20s stretch %-13s held out %6.3f deg / %6.3f mm (%.2f, %.2f)  "
-              "left out %6.3f deg / %6.3f mm  meet to %s\n", mine ? '*' : ' ', ruleName(o.rule),
+              "left out %6.3f deg / %6.3f mm  meet to %s%s\n", mine ? '*' : ' ', ruleName(o.rule),
               ruleName(o.scalar_rule), r.held_bend_deg, r.held_tip_mm, r.held_bend, r.held_tip,
-              r.loo_bend_deg, r.loo_tip_mm, upto);
+              r.loo_bend_deg, r.loo_tip_mm, upto, sym);
     }
   }
   if (m->opt.rule == CSR_CAL_RULE_SCALED) {

@@ -33,7 +33,12 @@
  *    symmetry case is predicted by the turned Ω1 mode.
  *  - compare_symmetric_part: the FE's bend across a pattern's mirror line (mesh asymmetry) is
  *    removed exactly from the symmetric-part tip; the range a case validates ends at its first
- *    row that misses. */
+ *    row that misses.
+ *  - symmetry_pair_carries_the_image: each symmetry case finds its image (O2 -> O1, H4t -> H4,
+ *    H6t -> H6, H7t -> H7) and on an equivariant truth matches it to round-off (the turn and
+ *    mirror carry bends and tip right); a spurious bend of fixed direction a p (not
+ *    equivariant) shows as |a - R a| p = sqrt 2 |a| p between 90-deg images; a tip offset on
+ *    one image is halved against the symmetrised FE. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -714,6 +719,90 @@ static void test_compare_symmetric_part(void) {
 }
 
 
+/* csr_calSymmetryPair and csr_calModelCompareSymmetrised on synthetic tables */
+static void test_symmetry_pair_carries_the_image(void) {
+  csrActuator leg;
+  legActuator(&leg);
+  const char* pairs[4][2] = {{"O2", "O1"}, {"H4t", "H4"}, {"H6t", "H6"}, {"H7t", "H7"}};
+  for (int asym = 0; asym < 2; asym++) {
+    Built b;
+    const double a = asym ? 0.02 : 0; /* rad/MPa: 0.46 deg at 0.4 MPa */
+    if (!build(&b, "calmod_pair.h5", &leg, truthInteract, NULL, a, CSR_CAL_RULE_SUPERPOSITION)) {
+      return;
+    }
+    for (int k = 0; k < 4; k++) {
+      const csrCalCase* c = NULL;
+      for (int i = 0; i < b.table.ncase; i++) {
+        if (!strcmp(b.table.cases[i].name, pairs[k][0])) {
+          c = b.table.cases + i;
+        }
+      }
+      CS_EXPECT(c != NULL);
+      if (!c) {
+        continue;
+      }
+      csrCalSymPair pr;
+      csError err;
+      CS_EXPECT(csr_calSymmetryPair(&b.table, c, &pr, &err) == CS_OK);
+      CS_EXPECT(pr.partner != NULL && !strcmp(pr.partner->name, pairs[k][1]));
+      CS_EXPECT(pr.rows == c->m);
+      if (!asym) {
+        CS_EXPECT(pr.bend_deg < 1e-10 && pr.tip_mm < 1e-9);
+      } else {
+        /* the spurious a p (0.8, 0.6) against its image turned by 90 deg */
+        CS_EXPECT_NEAR(pr.bend_deg, sqrt(2.0) * a * pr.p_last / CS_DEG, 1e-9, 0);
+        CS_EXPECT(pr.tip_mm > 0.1);
+      }
+      printf("  %s against %s (asym %g rad/MPa): bend %.3g deg, tip %.3g mm\n", c->name,
+             pr.partner->name, a, pr.bend_deg, pr.tip_mm);
+    }
+    unbuild(&b);
+  }
+  /* on the rule's own form (the model exact to round-off), H4's FE tip 2 mm off along e1 from
+   * 0.2 MPa: the model sees all of it raw, half of it against the mean with H4t */
+  {
+    Built b;
+    if (build(&b, "calmod_pair.h5", &leg, truthLinear, NULL, 0, CSR_CAL_RULE_SUPERPOSITION)) {
+      csrCalCase* h4 = NULL;
+      for (int i = 0; i < b.table.ncase; i++) {
+        if (!strcmp(b.table.cases[i].name, "H4")) {
+          h4 = b.table.cases + i;
+        }
+      }
+      csrCalSymPair pr;
+      csrCalCompare e0, e1, es;
+      csError err;
+      CS_EXPECT(h4 != NULL && csr_calSymmetryPair(&b.table, h4, &pr, &err) == CS_OK);
+      CS_EXPECT(pr.partner != NULL && !strcmp(pr.partner->name, "H4t"));
+      CS_EXPECT(csr_calModelCompare(b.model, h4, &e0, &err) == CS_OK);
+      for (int i = 0; i < h4->m; i++) {
+        h4->tip[3 * i] += h4->pressure[i] > 0.19 ? 2.0 : 0.0;
+      }
+      CS_EXPECT(csr_calModelCompare(b.model, h4, &e1, &err) == CS_OK);
+      CS_EXPECT(csr_calModelCompareSymmetrised(b.model, h4, &pr, &es, &err) == CS_OK);
+      printf("  H4 with its tip 2 mm off: model %.4f -> %.4f mm raw, %.4f mm symmetrised\n",
+             e0.tip_mm, e1.tip_mm, es.tip_mm);
+      CS_EXPECT(e0.tip_mm < 1e-9);
+      CS_EXPECT_NEAR(e1.tip_mm, 2.0, 1e-9, 0);
+      CS_EXPECT_NEAR(es.tip_mm, 1.0, 1e-9, 0);
+      CS_EXPECT(es.rows == e1.rows);
+      unbuild(&b);
+    }
+  }
+  /* a gravity case has no image; no argument, no comparison */
+  csrCalSymPair none;
+  csrCalCompare e;
+  csError err;
+  csrCalCase g;
+  memset(&g, 0, sizeof g);
+  g.kind = CSR_CAL_GRAVITY;
+  csrCalTable t;
+  memset(&t, 0, sizeof t);
+  CS_EXPECT(csr_calSymmetryPair(&t, &g, &none, &err) == CS_OK && none.partner == NULL);
+  CS_EXPECT(csr_calModelCompareSymmetrised(NULL, &g, &none, &e, &err) == CS_ERR_ARG);
+}
+
+
 /* MPa: the pressure up to which every held-out case of the shipped mode table meets the target
  * (5 % of the bend or 1 deg; tip 2 % of the leg) */
 #define P_VALIDATED 0.225
@@ -804,6 +893,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_stiffness_mean_pressure_rule);
   CS_RUN(test_rod_adapter);
   CS_RUN(test_compare_symmetric_part);
+  CS_RUN(test_symmetry_pair_carries_the_image);
   CS_RUN(test_shipped_table_holdout);
   return cs_testSummary();
 }
