@@ -449,6 +449,12 @@ csrCalModel* csr_calModelCreate(const csrCalTable* t, const csrActuator* leg,
     if (r > CSR_CAL_O1234 && (m->opt.exclude & (1u << r))) {
       mode[r] = NULL;
     }
+    /* the modes past the prism's hierarchy are nodes of the RBF rules only */
+    if (r > CSR_CAL_O1O3R05 && m->opt.rule != CSR_CAL_RULE_RBF &&
+        m->opt.rule != CSR_CAL_RULE_RBF_PAIR) {
+      mode[r] = NULL;
+    }
+    m->role_use[r] = mode[r] != NULL;
   }
   /* the range: the smallest end of the modes used */
   m->p_max = INFINITY;

@@ -60,6 +60,7 @@ struct csrCalModel_ {
   double p_max;            /* MPa: bend model range */
   char limit_case[64];     /* the mode that ends it */
   int use[NV];             /* vertex in use */
+  int role_use[CSR_CAL_NROLE]; /* mode of each role in use (any vertex or RBF node) */
   double coord[NV][3];     /* (x2, w = x4/x2, x3) of each vertex */
   csrCalCurve base;              /* Ω1 alone: θ1 along -ĉ1, δstretch, δradial, δradial_max */
   csrCalCurve mean;              /* all four: the scalar changes at p = the mean pressure (F_ layout) */

@@ -18,6 +18,10 @@ static const struct {
     {"O12O34r3", {1, 1, 1.0 / 3.0, 1.0 / 3.0}}, {"O1O234r05", {1, 0.5, 0.5, 0.5}},
     {"O1O234r075", {1, 0.75, 0.75, 0.75}}, {"O124O3r05", {1, 1, 0.5, 1}},
     {"O1O23r05O4r025", {1, 0.5, 0.5, 0.25}}, {"O1O3r05", {1, 0, 0.5, 0}},
+    {"O12O4r05", {1, 1, 0, 0.5}}, {"O1O24r05", {1, 0.5, 0, 0.5}}, {"O13O2r05", {1, 0.5, 1, 0}},
+    {"O1O2r067O4r033", {1, 2.0 / 3.0, 0, 1.0 / 3.0}},
+    {"O13O2r067O4r033", {1, 2.0 / 3.0, 1, 1.0 / 3.0}}, {"O1O23r05", {1, 0.5, 0.5, 0}},
+    {"O12O34r05", {1, 1, 0.5, 0.5}},
 };
 
 csrCalOptions csr_calModelDefaultOptions(void) {
@@ -380,9 +384,7 @@ void csr_calModelMeanFactor(const csrCalModel* m, int seg, double k[2], double* 
 
 
 int csr_calModelUses(const csrCalModel* m, csrCalRole role) {
-  static const int kFirst[CSR_CAL_NROLE] = {V_O1,  V_O13, V_O12,   V_O124, V_O1234, V_R05,
-                                            V_R3,  V_F05, V_F075, V_E124, V_C,     V_E13};
-  return role >= 0 && role < CSR_CAL_NROLE && m->use[kFirst[role]];
+  return role >= 0 && role < CSR_CAL_NROLE && m->role_use[role];
 }
 
 

@@ -102,6 +102,16 @@ typedef enum csrCalRole_ {
                        * four; its mirror image the midpoint of Ω1&Ω2&Ω3 -> all four) */
   CSR_CAL_O1O23R05O4R025, /* Ω1 at p, Ω2&Ω3 at p/2, Ω4 at p/4 (the centre of the prism) */
   CSR_CAL_O1O3R05,    /* Ω1 at p, Ω3 at p/2 (the midpoint of the edge Ω1 -> Ω1&Ω3) */
+  /* the prism's remaining edge midpoints (2026-12-03): nodes of the RBF rules only, the prism
+   * rule's hierarchy ends with the centre */
+  CSR_CAL_O12O4R05,   /* Ω1&Ω2 at p, Ω4 at p/2 (edge Ω1&Ω2 -> Ω1&Ω2&Ω4) */
+  CSR_CAL_O1O24R05,   /* Ω1 at p, Ω2&Ω4 at p/2 (edge Ω1 -> Ω1&Ω2&Ω4) */
+  CSR_CAL_O13O2R05,   /* Ω1&Ω3 at p, Ω2 at p/2 (edge Ω1&Ω3 -> Ω1&Ω2&Ω3) */
+  /* and its face centres (2026-12-03; O1O234r05 is the centre of the face Ω2 = Ω4) */
+  CSR_CAL_F3ZERO,     /* Ω1 at p, Ω2 at 2p/3, Ω4 at p/3 (face Ω3 = 0) */
+  CSR_CAL_F3FULL,     /* Ω1&Ω3 at p, Ω2 at 2p/3, Ω4 at p/3 (face Ω3 = p) */
+  CSR_CAL_F4ZERO,     /* Ω1 at p, Ω2&Ω3 at p/2 (face Ω4 = 0) */
+  CSR_CAL_F2FULL,     /* Ω1&Ω2 at p, Ω3&Ω4 at p/2 (face Ω2 = p) */
   CSR_CAL_NROLE
 } csrCalRole;
 
