@@ -33,9 +33,9 @@ static const char kUsage[] =
     "                          [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]\n"
     "                          [--fibre-law linear|tension-only]\n"
     "                          [--p-step MPA] [--p-max MPA] [--newton-rtol R]\n"
-    "                          [--model-out PRED.h5]\n"
+    "                          [--model-out PRED.h5] [--cal-rule prism|rbf|rbf-pair]\n"
     "       crawlsim calibrate --report TABLE.h5 [--actuator ...] [--set ...]\n"
-    "                          [--model-out PRED.h5]\n"
+    "                          [--model-out PRED.h5] [--cal-rule prism|rbf|rbf-pair]\n"
     "  Runs the full FE model on every calibration case (chamber modes, unequal pressures,\n"
     "  held-out combinations, stiffness probes, the leg under its weight), one file per case in\n"
     "  DIR (default calibration_cases/; finished cases are skipped: the run resumes), merges\n"
@@ -49,7 +49,9 @@ static const char kUsage[] =
     "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
     "  rules compared, stiffness); --model-out writes the model's predictions for\n"
     "  tools/plot_calibration.py. --report reads a merged table (e.g. the shipped\n"
-    "  robot/calibration_fe_leg_modes.h5) and prints the same report without its case files.\n";
+    "  robot/calibration_fe_leg_modes.h5) and prints the same report without its case files.\n"
+    "  --cal-rule: the model the report and the predictions are of (default prism; the rules\n"
+    "  compared are printed whatever it is).\n";
 
 enum { MAX_SETS = 32, MAX_PICK = CSF_CAL_MAX_CASES };
 
@@ -117,6 +119,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
   const char* actname = "leg";
   const char* model_out = NULL;
   const char* report = NULL;
+  csrCalOptions copt = csr_calModelDefaultOptions();
   const char* sets[MAX_SETS];
   const char* pick[MAX_PICK];
   int nset = 0, npick = 0, list = 0, merge_only = 0;
@@ -173,6 +176,12 @@ int csx_cmdCalibrate(int argc, char** argv) {
       model_out = v;
     } else if (!strcmp(a, "--report")) {
       report = v;
+    } else if (!strcmp(a, "--cal-rule")) {
+      if (!csr_calRuleParse(v, &copt.rule)) {
+        fprintf(stderr, "crawlsim calibrate: unknown --cal-rule '%.60s' (expected prism, rbf or "
+                "rbf-pair)\n", v);
+        return 1;
+      }
     } else if (!strcmp(a, "--actuator")) {
       actname = v;
     } else if (!strcmp(a, "--case")) {
@@ -233,7 +242,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
   }
   if (report) {
     /* the report of a merged table alone (no case files needed) */
-    csrCalibration* cal = csr_calibrationOpen(report, &act, &err);
+    csrCalibration* cal = csr_calibrationOpenWith(report, &act, &copt, &err);
     if (!cal) {
       fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
       return 1;
@@ -312,7 +321,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
   }
   printf("crawlsim calibrate: table %s (%d cases)\n", out, np);
   /* read it back as the legs will */
-  csrCalibration* cal = csr_calibrationOpen(out, &act, &err);
+  csrCalibration* cal = csr_calibrationOpenWith(out, &act, &copt, &err);
   if (!cal && np < ncase) {
     /* cases still to run (the calibration goes case by case): not an error yet */
     printf("crawlsim calibrate: not usable by the legs until every mode is finished: %s\n",

@@ -218,6 +218,13 @@ static void test_merge_reports_the_model(void) {
     const size_t n = a && b ? (strlen(a) < strlen(b) ? strlen(a) : strlen(b)) : 0;
     CS_EXPECT(n > 1000 && !strncmp(a, b, n)); /* the same report text (to the buffer's cut) */
   }
+  /* --cal-rule: the report is of that rule's model */
+  cs_cliRun(exe_path, "calibrate --report calib_synth.h5 --cal-rule rbf-pair", "calibrate", &rr);
+  CS_EXPECT(rr.status == 0 && strstr(rr.out, "calibration model: FE mode table (pair-factor "
+                                             "superposition + RBF-interpolated") != NULL);
+  cs_cliRun(exe_path, "calibrate --report calib_synth.h5 --cal-rule spline", "calibrate", &rr);
+  CS_EXPECT(rr.status == 1 && strstr(rr.err, "unknown --cal-rule 'spline'") != NULL &&
+            strchr(rr.err, '\n') == rr.err + strlen(rr.err) - 1);
   cs_cliRun(exe_path, "calibrate --report no_such_table.h5", "calibrate", &rr);
   CS_EXPECT(rr.status == 1 && strstr(rr.err, "no_such_table.h5") != NULL &&
             strchr(rr.err, '\n') == rr.err + strlen(rr.err) - 1);
