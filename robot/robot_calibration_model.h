@@ -219,7 +219,8 @@ csStatus csr_calModelCompare(const csrCalModel* m, const csrCalCase* c, csrCalCo
 
 /* The FE against itself under the section's symmetry: case c and the other case of its table
  * whose pattern is an image of c's under the square section's eight symmetries (turns by 90 deg
- * and mirrors), the partner's bends and tip carried into c's frame. A symmetric mesh would
+ * and mirrors; the same pattern again is not an image), the partner's bends and tip carried into
+ * c's frame. A symmetric mesh would
  * give 0; what it gives is the FE reference's own resolution on that pattern (the unstructured
  * mesh is not symmetric), the floor under any model error measured against the FE. */
 typedef struct csrCalSymPair_ {

@@ -143,11 +143,13 @@ csStatus csr_calSymmetryPair(const csrCalTable* t, const csrCalCase* c, csrCalSy
         continue;
       }
       csr_calCanonical_(d->ratio, pd, &kd, &md);
-      int same = 1;
+      /* an image, not the same pattern again (H8 repeats H1's over a longer sweep) */
+      int same = 1, repeat = 1;
       for (int j = 0; j < 4; j++) {
         same = same && fabs(pd[j] - pc[j]) <= 1e-12;
+        repeat = repeat && d->ratio[j] == c->ratio[j];
       }
-      if (same) {
+      if (same && !repeat) {
         out->partner = d;
       }
     }
