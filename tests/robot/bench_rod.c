@@ -2,7 +2,8 @@
  *
  *   bench_rod [scenario] [elements_per_segment] [H_ms] [t_end_s] [rtol] [calibration.h5]
  *
- * scenario: road  (eight legs of csr_leg_rod on the flat road with the soft contact, hips held
+ * scenario: road  (eight legs (BENCH_LEGS=n: the first n) of csr_leg_rod on the flat road with
+ *                  the soft contact, hips held
  *                  at the robot's layout 0.5 mm below touching, the flat-road gait: ACFH and
  *                  BDEG alternate every second; `paper` conditions, 9 s by default; prints the
  *                  real-time factor of the eight legs with contact on one core),
@@ -165,8 +166,11 @@ static void print(const char* scen, int nps, double H, double t_end, double rtol
 }
 
 
-/* eight rod legs on the flat road (scenario road): CPU seconds for t_end, feet's mean |x| travel */
+/* eight rod legs on the flat road (scenario road; BENCH_LEGS=n: the first n of them, for the
+ * cost against the number of legs): CPU seconds for t_end, feet's mean |x| travel */
 static double runRoad(int nps, double H, double t_end, const csrBendMap* map, int gravity_on) {
+  const char* nl = getenv("BENCH_LEGS");
+  const int nleg = nl && atoi(nl) >= 1 && atoi(nl) <= 8 ? atoi(nl) : 8;
   csrActuator act;
   csError err;
   cs_errorClear(&err);
@@ -187,7 +191,7 @@ static double runRoad(int nps, double H, double t_end, const csrBendMap* map, in
   csrBaseState base[8];
   /* A..D at -z front to back, E..H at +z (REFERENCE.md); ACFH = k 0, 2, 5, 7 */
   const double xs[4] = {75, 25, -25, -75};
-  for (int k = 0; k < 8; k++) {
+  for (int k = 0; k < nleg; k++) {
     csrLegSpec sp;
     memset(&sp, 0, sizeof sp);
     sp.act = &act;
@@ -215,7 +219,7 @@ static double runRoad(int nps, double H, double t_end, const csrBendMap* map, in
   long failures = 0;
   while (t < t_end - 1e-12) {
     double h = fmin(H, t_end - t);
-    for (int k = 0; k < 8; k++) {
+    for (int k = 0; k < nleg; k++) {
       int group = (k == 0 || k == 2 || k == 5 || k == 7) ? 0 : 1;
       double p0[12], p1[12];
       gaitPressure(t - group, 0.1744, p0);
@@ -240,15 +244,15 @@ static double runRoad(int nps, double H, double t_end, const csrBendMap* map, in
   double c = cpu() - c0;
   csrContactShape sh[256];
   double foot = 0;
-  for (int k = 0; k < 8; k++) {
+  for (int k = 0; k < nleg; k++) {
     int n = T->contactShapes(legs[k], sh, 256);
-    foot += fabs(sh[n - 1].a[0] - base[k].x[0]) / 8;
+    foot += fabs(sh[n - 1].a[0] - base[k].x[0]) / nleg;
     T->destroy(legs[k]);
   }
-  printf("road  8 legs x %.1f s, %d el/seg, H %.1f ms, gravity %s: %.3f s CPU -> real-time "
+  printf("road  %d legs x %.1f s, %d el/seg, H %.1f ms, gravity %s: %.3f s CPU -> real-time "
          "factor %.1f on one core (%.2f ms per leg-second); mean |foot - hip| along x %.2f mm, "
-         "%ld failed advances\n", t_end, nps, H * 1e3, gravity_on ? "on" : "off (paper)", c,
-         t_end / c, c / (8 * t_end) * 1e3, foot, failures);
+         "%ld failed advances\n", nleg, t_end, nps, H * 1e3, gravity_on ? "on" : "off (paper)",
+         c, t_end / c, c / (nleg * t_end) * 1e3, foot, failures);
   return c;
 }
 
