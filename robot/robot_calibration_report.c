@@ -117,12 +117,30 @@ static int rowAt(const csrCalCase* c, double p) {
 }
 
 
-/* v (section plane) of the partner's frame into c's: T = From(kc, mc) To(kd, md) */
-static void carry(const int kd, const int md, const int kc, const int mc, const double v[2],
-                  double out[2]) {
+/* the map of the section plane from partner d's frame into c's: T = From(kc, mc) To(kd, md) */
+typedef struct {
+  int kc, mc, kd, md;
+} Carry;
+
+static Carry carryOf(const csrCalCase* c, const csrCalCase* d) {
+  Carry T;
+  double pc[4], pd[4];
+  csr_calCanonical_(c->ratio, pc, &T.kc, &T.mc);
+  csr_calCanonical_(d->ratio, pd, &T.kd, &T.md);
+  return T;
+}
+
+/* row r of d in c's frame: its segments' bend vectors (3 x 2, rad) and its tip (mm) */
+static void carryRow(const Carry* T, const csrCalCase* d, int r, double bend[6], double tip[3]) {
+  for (int s = 0; s < CSR_NSEG; s++) {
+    double vc[2];
+    csr_calToCanonical_(d->bend + 6 * r + 2 * s, T->kd, T->md, vc);
+    csr_calFromCanonical_(vc, T->kc, T->mc, bend + 2 * s);
+  }
   double vc[2];
-  csr_calToCanonical_(v, kd, md, vc);
-  csr_calFromCanonical_(vc, kc, mc, out);
+  csr_calToCanonical_(d->tip + 3 * r, T->kd, T->md, vc);
+  csr_calFromCanonical_(vc, T->kc, T->mc, tip);
+  tip[2] = d->tip[3 * r + 2]; /* along the leg's axis: unchanged */
 }
 
 
@@ -133,7 +151,7 @@ csStatus csr_calSymmetryPair(const csrCalTable* t, const csrCalCase* c, csrCalSy
     return CS_OK;
   }
   double pc[4], pd[4];
-  int kc, mc, kd = 0, md = 0;
+  int kc, mc, kd, md;
   csr_calCanonical_(c->ratio, pc, &kc, &mc);
   for (int pass = 0; pass < 2 && !out->partner; pass++) {
     for (int i = 0; i < t->ncase && !out->partner; i++) {
@@ -158,26 +176,25 @@ csStatus csr_calSymmetryPair(const csrCalTable* t, const csrCalCase* c, csrCalSy
     return CS_OK;
   }
   const csrCalCase* d = out->partner;
+  const Carry T = carryOf(c, d);
   out->bend_deg = -1;
   for (int i = 0; i < c->m; i++) {
     const int r = rowAt(d, c->pressure[i]);
     if (r < 0) {
       continue;
     }
+    double b[6], tp[3];
+    carryRow(&T, d, r, b, tp);
     for (int s = 0; s < CSR_NSEG; s++) {
-      double b[2];
-      carry(kd, md, kc, mc, d->bend + 6 * r + 2 * s, b);
       const double* bc = c->bend + 6 * i + 2 * s;
-      const double e = hypot(bc[0] - b[0], bc[1] - b[1]) / CS_DEG;
+      const double e = hypot(bc[0] - b[2 * s], bc[1] - b[2 * s + 1]) / CS_DEG;
       if (e > out->bend_deg) {
         out->bend_deg = e, out->bend_at_p = c->pressure[i], out->bend_at_seg = s;
         out->bend_fe_deg = hypot(bc[0], bc[1]) / CS_DEG;
       }
     }
-    double tp[2];
-    carry(kd, md, kc, mc, d->tip + 3 * r, tp);
     const double* tc = c->tip + 3 * i;
-    const double dt[3] = {tc[0] - tp[0], tc[1] - tp[1], tc[2] - d->tip[3 * r + 2]};
+    const double dt[3] = {tc[0] - tp[0], tc[1] - tp[1], tc[2] - tp[2]};
     if (csu_norm3(dt) > out->tip_mm) {
       out->tip_mm = csu_norm3(dt), out->tip_at_p = c->pressure[i];
     }
@@ -202,10 +219,7 @@ csStatus csr_calModelCompareSymmetrised(const csrCalModel* m, const csrCalCase* 
                        c ? c->name : "?");
   }
   const csrCalCase* d = pair->partner;
-  double pc[4], pd[4];
-  int kc, mc, kd, md;
-  csr_calCanonical_(c->ratio, pc, &kc, &mc);
-  csr_calCanonical_(d->ratio, pd, &kd, &md);
+  const Carry T = carryOf(c, d);
   /* a case of the common rows, each quantity the mean of c's and the partner's carried over */
   csrCalCase a;
   memset(&a, 0, sizeof a);
@@ -225,18 +239,15 @@ csStatus csr_calModelCompareSymmetrised(const csrCalModel* m, const csrCalCase* 
     }
     const int j = a.m++;
     a.pressure[j] = c->pressure[i];
-    for (int s = 0; s < CSR_NSEG; s++) {
-      double b[2];
-      carry(kd, md, kc, mc, d->bend + 6 * r + 2 * s, b);
-      a.bend[6 * j + 2 * s] = 0.5 * (c->bend[6 * i + 2 * s] + b[0]);
-      a.bend[6 * j + 2 * s + 1] = 0.5 * (c->bend[6 * i + 2 * s + 1] + b[1]);
-      a.stretch[3 * j + s] = 0.5 * (c->stretch[3 * i + s] + d->stretch[3 * r + s]);
+    double b[6], tp[3];
+    carryRow(&T, d, r, b, tp);
+    for (int k = 0; k < 6; k++) {
+      a.bend[6 * j + k] = 0.5 * (c->bend[6 * i + k] + b[k]);
     }
-    double tp[2];
-    carry(kd, md, kc, mc, d->tip + 3 * r, tp);
-    a.tip[3 * j] = 0.5 * (c->tip[3 * i] + tp[0]);
-    a.tip[3 * j + 1] = 0.5 * (c->tip[3 * i + 1] + tp[1]);
-    a.tip[3 * j + 2] = 0.5 * (c->tip[3 * i + 2] + d->tip[3 * r + 2]);
+    for (int k = 0; k < 3; k++) {
+      a.stretch[3 * j + k] = 0.5 * (c->stretch[3 * i + k] + d->stretch[3 * r + k]);
+      a.tip[3 * j + k] = 0.5 * (c->tip[3 * i + k] + tp[k]);
+    }
   }
   csStatus st = csr_calModelCompare(m, &a, out, err);
   free(buf);
@@ -282,23 +293,27 @@ static void scoreRule(const csrCalTable* t, const csrActuator* leg, const csrCal
         r->p_valid = fmin(r->p_valid, e.p_meets);
       }
       r->nheld++;
+      /* against the symmetrised FE where the case has an image, else as it is */
       csrCalSymPair pair;
+      csrCalCompare es;
       if (csr_calSymmetryPair(t, t->cases + i, &pair, &err) == CS_OK && pair.partner &&
-          csr_calModelCompareSymmetrised(m, t->cases + i, &pair, &e, &err) != CS_OK) {
-        continue; /* counted raw only */
+          csr_calModelCompareSymmetrised(m, t->cases + i, &pair, &es, &err) == CS_OK) {
+        e = es;
+        r->nsym++;
       }
-      r->nsym += pair.partner != NULL;
       r->held_tip_sym_mm = fmax(r->held_tip_sym_mm, e.tip_mm);
       if (e.p_meets < e.p_last) {
         r->p_valid_sym = fmin(r->p_valid_sym, e.p_meets);
       }
     }
   }
-  csr_calModelDestroy(m);
   for (int role = CSR_CAL_O12R05; role < CSR_CAL_NROLE; role++) {
     double ratio[CSR_NCHAMBER];
     csr_calModelModePattern((csrCalRole)role, ratio, NULL);
-    const csrCalCase* c = csr_calTableFind(t, CSR_CAL_MODE, ratio);
+    /* only the modes this rule fits can be left out of its fit */
+    const csrCalCase* c = csr_calModelUses(m, (csrCalRole)role)
+                              ? csr_calTableFind(t, CSR_CAL_MODE, ratio)
+                              : NULL;
     csrCalOptions ol = *o;
     ol.exclude |= 1u << role;
     csrCalModel* ml = c ? csr_calModelCreate(t, leg, &ol, &err) : NULL;
@@ -310,6 +325,7 @@ static void scoreRule(const csrCalTable* t, const csrActuator* leg, const csrCal
     }
     csr_calModelDestroy(ml);
   }
+  csr_calModelDestroy(m);
 }
 
 
@@ -363,6 +379,11 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
     const char* name;
     csr_calModelModePattern((csrCalRole)role, ratio, &name);
     const csrCalCase* c = csr_calTableFind(t, CSR_CAL_MODE, ratio);
+    if (c && !csr_calModelUses(m, (csrCalRole)role)) {
+      /* a mode this rule does not take (the RBF rules' extra nodes under the prism rule) */
+      fprintf(out, "    %-9s not a node of this rule\n", name);
+      continue;
+    }
     csrCalOptions o = m->opt;
     o.exclude |= 1u << role;
     csError lerr;
@@ -425,8 +446,12 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
             pair.partner->name, pair.rows, pair.bend_deg, pair.bend_fe_deg, pair.bend_at_p,
             pair.bend_at_seg + 1, pair.tip_mm, pair.tip_at_p);
     csrCalCompare es;
-    if (c->kind == CSR_CAL_HOLDOUT &&
-        csr_calModelCompareSymmetrised(m, c, &pair, &es, &perr) == CS_OK) {
+    if (c->kind != CSR_CAL_HOLDOUT) {
+      continue;
+    }
+    if (csr_calModelCompareSymmetrised(m, c, &pair, &es, &perr) != CS_OK) {
+      p_valid_sym = e.p_meets < e.p_last ? fmin(p_valid_sym, e.p_meets) : p_valid_sym;
+    } else {
       nsym++;
       char up[64] = "";
       if (es.p_meets < es.p_last) {

@@ -8,17 +8,9 @@ set -u
 exe=$1
 src=$2
 py=/usr/bin/python3
-work=$(mktemp -d calib_split.XXXXXX)
-trap 'rm -rf "$work"' EXIT
-fail=0
-check() { # check DESCRIPTION COMMAND...
-  local what=$1
-  shift
-  if ! "$@"; then
-    echo "FAILED: $what"
-    fail=1
-  fi
-}
+# shellcheck source=check_lib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/check_lib.sh"
+cs_checkInit calib_split
 table=$src/robot/calibration_fe_leg_modes.h5
 out=$("$py" "$src/tools/calib_split.py" "$table" "$work/cases" 2>&1)
 check "split exits 0" test $? -eq 0

@@ -222,6 +222,11 @@ static void test_merge_reports_the_model(void) {
   cs_cliRun(exe_path, "calibrate --report calib_synth.h5 --cal-rule rbf-pair", "calibrate", &rr);
   CS_EXPECT(rr.status == 0 && strstr(rr.out, "calibration model: FE mode table (pair-factor "
                                              "superposition + RBF-interpolated") != NULL);
+  /* a mode past the prism's hierarchy is an RBF node, left out in the cross-validation, but
+   * no part of the prism rule's fit (so not "left out" of it) */
+  CS_EXPECT(strstr(rr.out, "    O12O4r05  bend ") != NULL);
+  cs_cliRun(exe_path, "calibrate --report calib_synth.h5", "calibrate", &rr);
+  CS_EXPECT(rr.status == 0 && strstr(rr.out, "    O12O4r05  not a node of this rule") != NULL);
   cs_cliRun(exe_path, "calibrate --report calib_synth.h5 --cal-rule spline", "calibrate", &rr);
   CS_EXPECT(rr.status == 1 && strstr(rr.err, "unknown --cal-rule 'spline'") != NULL &&
             strchr(rr.err, '\n') == rr.err + strlen(rr.err) - 1);

@@ -11,17 +11,9 @@ set -u
 exe=$1
 src=$2
 py=/usr/bin/python3
-work=$(mktemp -d study_plots.XXXXXX)
-trap 'rm -rf "$work"' EXIT
-fail=0
-check() { # check DESCRIPTION COMMAND...
-  local what=$1
-  shift
-  if ! "$@"; then
-    echo "FAILED: $what"
-    fail=1
-  fi
-}
+# shellcheck source=check_lib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/check_lib.sh"
+cs_checkInit study_plots
 
 # the Sec. 4 table: its case names, the analytic model in both roles (microseconds per case)
 {
