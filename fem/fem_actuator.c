@@ -89,7 +89,9 @@ static void roundedSquarePoint(double h, double r, double s, double p[2]) {
 
 /* embed the two counter-wound helices of every segment with n > 0 */
 static csStatus addFibres(const csrActuator* act, csfModel* m, double lf, double inset,
-                          csError* err) {
+                          int turn, csError* err) {
+  /* the rounded square is invariant under quarter turns: turning the start turns each helix */
+  const double ct = cos(turn * 0.5 * CS_PI), stn = sin(turn * 0.5 * CS_PI);
   const double h = act->a - inset, r = fmax(act->r2 - inset, 0.0);
   const double P = 8.0 * (h - r) + 2.0 * CS_PI * r;
   for (int s = 0; s < CSR_NSEG; s++) {
@@ -107,8 +109,8 @@ static csStatus addFibres(const csrActuator* act, csfModel* m, double lf, double
       for (int k = 0; k < np; k++) {
         double t = (double)k / (np - 1), p2[2];
         roundedSquarePoint(h, r, hand * act->n[s] * P * t, p2);
-        pts[3 * k] = p2[0];
-        pts[3 * k + 1] = p2[1];
+        pts[3 * k] = ct * p2[0] - stn * p2[1];
+        pts[3 * k + 1] = stn * p2[0] + ct * p2[1];
         pts[3 * k + 2] = z0 + t * S;
       }
       csStatus st = csf_modelAddFibre(m, np, pts, act->Ef, act->rf, err);
@@ -231,6 +233,10 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
   if (!(sp->mesh_size > 0)) {
     return cs_errorSet(err, CS_ERR_ARG, "fem_actuator: mesh size must be > 0");
   }
+  if (sp->fibre_turn < -3 || sp->fibre_turn > 3) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_actuator: fibre turn %d quarter turns is outside "
+                       "-3..3", sp->fibre_turn);
+  }
   /* walls the mesh cannot resolve: refused before gmsh runs, naming the parameters */
   csfWalls w;
   csf_actuatorWalls(act, sp->mesh_size, &w);
@@ -268,8 +274,9 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
                        "memory on this machine: refused (l_soft >= %.2g mm may fit)",
                        sp->mesh_size, est.tet10, est.dofs, est.bytes / 1e9, mem / 1e9, lmin);
   }
-  fe->mesh = csf_meshActuator(act, sp->mesh_size, sp->work_stem ? sp->work_stem : "crawlsim_fe",
-                              err);
+  const char* stem = sp->work_stem ? sp->work_stem : "crawlsim_fe";
+  fe->mesh = sp->mesh_symmetric ? csf_meshActuatorSymmetric(act, sp->mesh_size, stem, err)
+                                : csf_meshActuator(act, sp->mesh_size, stem, err);
   if (!fe->mesh) {
     return err ? err->status : CS_ERR_EXTERNAL;
   }
@@ -316,7 +323,7 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
   if (sp->fibres) {
     const double lf = csf_actuatorFibreSize(sp);
     m->fib_split = sp->fibre_split;
-    st = addFibres(act, m, lf, CSF_FIBRE_INSET, err);
+    st = addFibres(act, m, lf, CSF_FIBRE_INSET, sp->fibre_turn, err);
     if (st != CS_OK) {
       csf_actuatorFEDestroy(fe);
       return st;

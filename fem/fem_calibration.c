@@ -195,6 +195,8 @@ static csStatus writeRoot(csH5File* f, const csrActuator* act, const csfCalSetti
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_mesh_size_mm", s->mesh_size, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_fibre_size_mm", s->fibre_size, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_fibre_split", s->fibre_split, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_fibre_turn_deg", 90.0 * s->fibre_turn, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_mesh_symmetric", s->mesh_symmetric, err);
   if (st == CS_OK) {
     st = cs_h5AttrString(f, "/", "fe_fibre_law", csr_fibreLawName(s->fibre_tension_only), err);
   }
@@ -436,6 +438,8 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
   o.spec.mesh_size = s->mesh_size;
   o.spec.fibre_size = s->fibre_size;
   o.spec.fibre_split = s->fibre_split;
+  o.spec.fibre_turn = s->fibre_turn;
+  o.spec.mesh_symmetric = s->mesh_symmetric;
   o.spec.fibre_compression = !s->fibre_tension_only;
   o.spec.work_stem = s->work_stem;
   o.vtu_path = s->vtu_path;
@@ -517,6 +521,20 @@ static int fileFibreLaw(hid_t f) {
 
 /* a case file's sweep Newton tolerance: its fe_newton_rtol, 1e-8 when absent (files written
  * before the setting existed ran at 1e-8), NaN when unreadable */
+/* a root setting of a file that older files lack (absent: 0, their value) */
+static double fileSetting0(hid_t f, const char* name) {
+  double v;
+  if (H5Aexists_by_name(f, "/", name, H5P_DEFAULT) <= 0) {
+    return 0;
+  }
+  return attrDouble(f, "/", name, &v) ? v : NAN;
+}
+
+/* the helices' turn of a file (degrees) and whether its mesh is the symmetric one */
+static double fileFibreTurn(hid_t f) { return fileSetting0(f, "fe_fibre_turn_deg"); }
+static double fileMeshSymmetric(hid_t f) { return fileSetting0(f, "fe_mesh_symmetric"); }
+
+
 static double fileNewtonRtol(hid_t f) {
   double v;
   if (H5Aexists_by_name(f, "/", "fe_newton_rtol", H5P_DEFAULT) <= 0) {
@@ -563,6 +581,8 @@ int csf_calibrationCaseDone(const char* path, const csrActuator* act, const csfC
   ok = ok && attrDouble(f, "/", "fe_fibre_split", &v) && v == s->fibre_split;
   ok = ok && fileFibreLaw(f) == s->fibre_tension_only;
   ok = ok && fileNewtonRtol(f) == s->newton_rtol;
+  ok = ok && fileFibreTurn(f) == 90.0 * s->fibre_turn;
+  ok = ok && fileMeshSymmetric(f) == s->mesh_symmetric;
   ok = ok && attrDouble(f, "/", "fe_p_step_MPa", &v) && v == s->p_step;
   ok = ok && attrDouble(f, "/", "fe_p_cap_MPa", &v) && v == s->p_cap;
   snprintf(g, sizeof g, "/cases/%s", c->name);
@@ -652,6 +672,15 @@ csStatus csf_calibrationMerge(const char* const* paths, int n, const char* out, 
     if (k > 0 && st == CS_OK && !(fileNewtonRtol(src[0]) == fileNewtonRtol(src[k]))) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_newton_rtol differs from %s's (%g against %g)",
                        paths[k], paths[0], fileNewtonRtol(src[k]), fileNewtonRtol(src[0]));
+    }
+    if (k > 0 && st == CS_OK && !(fileFibreTurn(src[0]) == fileFibreTurn(src[k]))) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_turn_deg differs from %s's (%g against "
+                       "%g)", paths[k], paths[0], fileFibreTurn(src[k]), fileFibreTurn(src[0]));
+    }
+    if (k > 0 && st == CS_OK && !(fileMeshSymmetric(src[0]) == fileMeshSymmetric(src[k]))) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_mesh_symmetric differs from %s's (%g against "
+                       "%g)", paths[k], paths[0], fileMeshSymmetric(src[k]),
+                       fileMeshSymmetric(src[0]));
     }
     if (k > 0 && st == CS_OK && fileFibreLaw(src[0]) != fileFibreLaw(src[k])) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_law differs from %s's", paths[k],

@@ -4,6 +4,7 @@
  *   crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list] [--merge-only]
  *                      [--actuator leg|baseline|fig1] [--set NAME=VALUE]... [--mesh-size MM]
  *                      [--fibre-size MM] [--fibre-split 0|1] [--fibre-law LAW] [--p-step MPA]
+ *                      [--fibre-turn DEG] [--mesh-symmetric 0|1]
  *
  * Every case (all of them, or the --case ones) is an FE pressure sweep written to DIR/NAME.h5
  * (and its deformed leg at the last state to DIR/NAME.vtu for ParaView);
@@ -31,7 +32,8 @@ static const char kUsage[] =
     "usage: crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list]\n"
     "                          [--merge-only] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
     "                          [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]\n"
-    "                          [--fibre-law linear|tension-only]\n"
+    "                          [--fibre-law linear|tension-only] [--fibre-turn DEG]\n"
+    "                          [--mesh-symmetric 0|1]\n"
     "                          [--p-step MPA] [--p-max MPA] [--newton-rtol R]\n"
     "                          [--model-out PRED.h5] [--cal-rule prism|rbf|rbf-pair]\n"
     "       crawlsim calibrate --report TABLE.h5 [--actuator ...] [--set ...]\n"
@@ -45,6 +47,11 @@ static const char kUsage[] =
     "  linear: compression too), rows every 0.025 MPa, Newton's test |R| <= 1e-6 of the force\n"
     "  scale (--newton-rtol; recorded: the cases of one table must share it, and the shipped\n"
     "  table's cases ran at 1e-8);\n"
+    "  --mesh-symmetric 1 meshes a quarter of the leg and turns it four times, so the mesh has\n"
+    "  the section's fourfold symmetry (recorded; a table's cases must share it).\n"
+    "  --fibre-turn DEG (a multiple of 90) turns the helices' start about the leg axis, so that\n"
+    "  a turned chamber pattern is the exact image of the unturned one but for the mesh (a check\n"
+    "  of the FE's symmetry; recorded, and a table's cases must share it).\n"
     "  --p-max caps every case's end pressure (small tables for tests). With every mode\n"
     "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
     "  rules compared, stiffness); --model-out writes the model's predictions for\n"
@@ -155,6 +162,20 @@ int csx_cmdCalibrate(int argc, char** argv) {
         fprintf(stderr, "crawlsim calibrate: --fibre-split '%s' must be 0 or 1\n", v);
       }
       cs.fibre_split = !strcmp(v, "1");
+    } else if (!strcmp(a, "--mesh-symmetric")) {
+      bad = strcmp(v, "0") != 0 && strcmp(v, "1") != 0;
+      if (bad) {
+        fprintf(stderr, "crawlsim calibrate: --mesh-symmetric '%s' must be 0 or 1\n", v);
+      }
+      cs.mesh_symmetric = !strcmp(v, "1");
+    } else if (!strcmp(a, "--fibre-turn")) {
+      double deg = 0;
+      bad = parseNumber(a, v, -270, 270, &deg);
+      if (!bad && fmod(deg, 90.0) != 0) {
+        fprintf(stderr, "crawlsim calibrate: --fibre-turn '%s' must be a multiple of 90\n", v);
+        bad = 1;
+      }
+      cs.fibre_turn = (int)(deg / 90.0);
     } else if (!strcmp(a, "--fibre-law")) {
       cs.fibre_tension_only = csr_fibreLawParse(v);
       bad = cs.fibre_tension_only < 0;

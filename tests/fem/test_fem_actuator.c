@@ -1,13 +1,16 @@
 /* test_fem_actuator.c: the actuator set-up refuses geometries the mesh cannot resolve, naming
  * the wall and the parameters, before gmsh runs; the wall thicknesses against closed forms; the
- * mesh-cost estimate against gmsh's own count, and a mesh far too fine refused with it. */
+ * mesh-cost estimate against gmsh's own count, and a mesh far too fine refused with it; the
+ * helices' turn (the FE's symmetry check) turns the fibres and nothing else. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cs_test.h"
 #include "fem_actuator.h"
 #include "fem_mesh.h"
+#include "fem_model.h"
 
 static void test_wall_thicknesses(void) {
   csrActuator act;
@@ -119,11 +122,82 @@ static void test_far_too_fine_mesh_is_refused(void) {
 }
 
 
+/* the start of the helices turned by a quarter turn (csfActuatorSpec.fibre_turn, the FE's
+ * symmetry check) turns every fibre point by 90 deg about the leg axis and changes nothing else:
+ * each fibre element's first end, rebuilt from its host nodes (x = -sum coef_a x_a, 20-node ties
+ * so that the elements match one to one), against the unturned one turned, to the point
+ * location's round-off (Newton on the Tet10 map to 1e-12) */
+static void fibrePoints(const csfActuatorFE* fe, double* out) {
+  const csfModel* m = fe->model;
+  for (int f = 0; f < m->nfib; f++) {
+    for (int d = 0; d < 3; d++) {
+      double x = 0;
+      for (int a = 0; a < 10; a++) {
+        x -= m->fib_coef[20 * f + a] * fe->mesh->x[3 * m->fib_node[20 * f + a] + d];
+      }
+      out[3 * f + d] = x;
+    }
+  }
+}
+
+
+static void test_turned_fibres_are_the_fibres_turned(void) {
+  csrActuator act;
+  csError err;
+  CS_EXPECT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
+  const char* sets[] = {"S1=15", "S2=15", "S3=15", "n1=3", "n2=3", "n3=3"};
+  for (int k = 0; k < 6; k++) {
+    CS_EXPECT(csr_actuatorSetString(&act, sets[k], &err) == CS_OK);
+  }
+  csfActuatorSpec spec = csf_actuatorSpecDefault();
+  spec.mesh_size = 4.0;
+  spec.fibre_size = 1.0;
+  spec.fibre_split = 0;
+  spec.work_stem = "actuator_turn";
+  csfActuatorFE fe0, fe1;
+  CS_EXPECT(csf_actuatorFECreate(&act, &spec, &fe0, &err) == CS_OK);
+  spec.fibre_turn = 1;
+  CS_EXPECT(csf_actuatorFECreate(&act, &spec, &fe1, &err) == CS_OK);
+  CS_EXPECT(fe0.model && fe1.model && fe0.model->nfib > 0 &&
+            fe0.model->nfib == fe1.model->nfib);
+  if (fe0.model && fe1.model && fe0.model->nfib == fe1.model->nfib) {
+    const int n = fe0.model->nfib;
+    double* p0 = malloc(3 * (size_t)n * sizeof(double));
+    double* p1 = malloc(3 * (size_t)n * sizeof(double));
+    fibrePoints(&fe0, p0);
+    fibrePoints(&fe1, p1);
+    double worst = 0, moved = 0;
+    for (int f = 0; f < n; f++) {
+      /* +90 deg about e3: (x, y, z) -> (-y, x, z) */
+      const double r[3] = {-p0[3 * f + 1], p0[3 * f], p0[3 * f + 2]};
+      for (int d = 0; d < 3; d++) {
+        worst = fmax(worst, fabs(p1[3 * f + d] - r[d]));
+        moved = fmax(moved, fabs(p1[3 * f + d] - p0[3 * f + d]));
+      }
+      CS_EXPECT_NEAR(fe1.model->fib_L0[f], fe0.model->fib_L0[f], 1e-9, 0);
+    }
+    printf("  %d fibre elements: turned against the unturned turned %.2e mm (moved up to %.2f "
+           "mm)\n", n, worst, moved);
+    CS_EXPECT(worst < 1e-9);
+    CS_EXPECT(moved > 1.0); /* the turn did move them */
+    free(p0);
+    free(p1);
+  }
+  csf_actuatorFEDestroy(&fe0);
+  csf_actuatorFEDestroy(&fe1);
+  /* only quarter turns up to three are accepted */
+  spec.fibre_turn = 4;
+  CS_EXPECT(csf_actuatorFECreate(&act, &spec, &fe1, &err) == CS_ERR_ARG);
+  CS_EXPECT(strstr(err.msg, "fibre turn 4 quarter turns is outside -3..3") != NULL);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_wall_thicknesses);
   CS_RUN(test_unresolvable_walls_are_refused);
   CS_RUN(test_mesh_estimate_bounds_the_count);
   CS_RUN(test_far_too_fine_mesh_is_refused);
+  CS_RUN(test_turned_fibres_are_the_fibres_turned);
   return cs_testSummary();
 }

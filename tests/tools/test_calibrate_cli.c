@@ -24,6 +24,7 @@
 
 #include "cs_cli.h"
 #include "cs_test.h"
+#include "fem_calibration.h"
 #include "robot/test_calibration_synth.h"
 #include "robot_calibration.h"
 
@@ -238,6 +239,35 @@ static void test_merge_reports_the_model(void) {
   cs_cliRun(exe_path, "calibrate --merge-only --newton-rtol 1e-8 --dir calib_synth_cases "
             "--out calib_synth.h5", "calibrate", &r);
   CS_EXPECT(r.status == 1 && strstr(r.err, "no finished case to merge") != NULL);
+  /* nor under turned fibres (the symmetry check's setting; the synthetic files have no
+   * fe_fibre_turn_deg, which reads as 0), and a merge of two turns is refused, as is one of two
+   * meshes */
+  cs_cliRun(exe_path, "calibrate --merge-only --fibre-turn 90 --dir calib_synth_cases "
+            "--out calib_synth.h5", "calibrate", &r);
+  CS_EXPECT(r.status == 1 && strstr(r.err, "no finished case to merge") != NULL);
+  /* nor on the symmetric mesh (fe_mesh_symmetric, absent = 0) */
+  cs_cliRun(exe_path, "calibrate --merge-only --mesh-symmetric 1 --dir calib_synth_cases "
+            "--out calib_synth.h5", "calibrate", &r);
+  CS_EXPECT(r.status == 1 && strstr(r.err, "no finished case to merge") != NULL);
+  {
+    hid_t t = H5Fopen("calib_synth_cases/O1.h5", H5F_ACC_RDWR, H5P_DEFAULT);
+    const double deg = 90;
+    CS_EXPECT(t >= 0 && H5LTset_attribute_double(t, "/", "fe_fibre_turn_deg", &deg, 1) >= 0);
+    if (t >= 0) H5Fclose(t);
+    const char* two[] = {"calib_synth_cases/O12.h5", "calib_synth_cases/O1.h5"};
+    CS_EXPECT(csf_calibrationMerge(two, 2, "calib_synth_mixed.h5", &err) == CS_ERR_PARSE);
+    CS_EXPECT(strstr(err.msg, "calib_synth_cases/O1.h5: fe_fibre_turn_deg differs from "
+                              "calib_synth_cases/O12.h5's (90 against 0)") != NULL);
+    const double one = 1, zero = 0;
+    t = H5Fopen("calib_synth_cases/O1.h5", H5F_ACC_RDWR, H5P_DEFAULT);
+    CS_EXPECT(t >= 0 && H5LTset_attribute_double(t, "/", "fe_fibre_turn_deg", &zero, 1) >= 0 &&
+              H5LTset_attribute_double(t, "/", "fe_mesh_symmetric", &one, 1) >= 0);
+    if (t >= 0) H5Fclose(t);
+    CS_EXPECT(csf_calibrationMerge(two, 2, "calib_synth_mixed.h5", &err) == CS_ERR_PARSE);
+    CS_EXPECT(strstr(err.msg, "calib_synth_cases/O1.h5: fe_mesh_symmetric differs from "
+                              "calib_synth_cases/O12.h5's (1 against 0)") != NULL);
+    remove("calib_synth_mixed.h5");
+  }
   for (int k = 0; k < SYNTH_NCASE; k++) {
     char path[128];
     snprintf(path, sizeof path, "calib_synth_cases/%s.h5", kSynthCases[k].name);
@@ -288,6 +318,9 @@ static void test_bad_options(void) {
   expectFailure("--p-step x", "--p-step 'x' must be a number in");
   expectFailure("--mesh-size -1", "--mesh-size '-1' must be a number in [0.5, 20]");
   expectFailure("--fibre-split 2", "crawlsim calibrate: --fibre-split '2' must be 0 or 1");
+  expectFailure("--fibre-turn 45", "calibrate: --fibre-turn '45' must be a multiple of 90");
+  expectFailure("--mesh-symmetric 2", "calibrate: --mesh-symmetric '2' must be 0 or 1");
+  expectFailure("--fibre-turn 360", "--fibre-turn '360' must be a number in [-270, 270]");
   expectFailure("--fibre-law elastic",
                 "crawlsim calibrate: --fibre-law 'elastic' must be linear or tension-only");
   expectFailure("--case Q7", "--case 'Q7': no such case (see --list)");
