@@ -29,8 +29,9 @@ typedef struct csfActuatorSpec_ {
   int fibre_compression; /* 1: linear in tension and compression; 0: smoothed tension-only */
   int fibre_geo_tension; /* 1: fibre geometric stiffness only in tension (modified tangent) */
   int fibre_split;     /* 1: fibre elements split at element faces (csfModel.fib_split) */
-  int mesh_symmetric;  /* 1: the mesh has the section's fourfold symmetry (a quarter meshed and
-                        * turned, csf_meshActuatorSymmetric); 0: gmsh's mesh of the whole body */
+  int mesh_symmetric;  /* 1: the mesh has the square section's eight symmetries (an eighth
+                        * meshed, mirrored and turned, csf_meshActuatorSymmetric); 0: gmsh's mesh
+                        * of the whole body */
   int fibre_turn;      /* the helices' common start turned about the leg axis by this many
                         * quarter turns (-3..3; 0: both start on +e1, the model's layout). A
                         * check of the FE's symmetry: with it a turned chamber pattern is the

@@ -70,7 +70,7 @@ typedef struct csfCalSettings_ {
   double mesh_size;    /* l_soft, mm (4: the paper's choice, within 2.3 % of l_soft 1.5) */
   double fibre_size;   /* l_fibre, mm (default 0.5; 0: the actuator spec's default l_soft / 8) */
   int fibre_split;     /* fibre elements split at element faces */
-  int mesh_symmetric;  /* 1: the mesh with the section's fourfold symmetry
+  int mesh_symmetric;  /* 1: the mesh with the section's symmetry
                         * (csfActuatorSpec.mesh_symmetric). Root attribute fe_mesh_symmetric
                         * (absent = 0: tables written before the setting existed); resume and
                         * merge require the same */

@@ -3,8 +3,8 @@
  * Owns: csfMesh (Tet10 volume elements, boundary Tri6 faces with physical tags), a structured
  * mesher for tests (a box, optionally mapped by a callback: tubes, curved blocks), the reader of
  * gmsh MSH 2.2 ASCII files (fem_mesh.c), and the actuator geometry (fem_mesh_actuator.c):
- * csrActuator -> gmsh .geo -> `gmsh` program -> .msh -> csfMesh, whole or as a quarter turned
- * into a mesh with the section's fourfold symmetry. gmsh is GPL: it is run as a separate program and only its output file is
+ * csrActuator -> gmsh .geo -> `gmsh` program -> .msh -> csfMesh, whole or as an eighth mirrored
+ * and turned into a mesh with the section's symmetry. gmsh is GPL: it is run as a separate program and only its output file is
  * read, so no gmsh code enters our binaries (notes/debian-deps.md, section 5).
  *
  * Units: mm. Frame of the actuator mesh: x = e1, y = e2 (cross-section), z = e3 from the clamped
@@ -63,25 +63,30 @@ csfMesh* csf_meshReadMsh(const char* path, csError* err);
  * physical surfaces CSF_TAG_* and one physical volume. `l_soft` is the mesh size (mm). */
 csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* path, csError* err);
 
-/* The quarter x >= 0, y >= 0 of the same body (chamber Omega1 of each segment), its cut faces
- * meshed periodically: the x = 0 face is the y = 0 face turned by +90 deg about e3, edge nodes
- * included (gmsh's Periodic Surface). Physical tags as above (Omega1's only). */
-csStatus csf_meshWriteGeoQuarter(const csrActuator* act, double l_soft, const char* path,
-                                 csError* err);
+/* The eighth 0 <= y <= x of the same body (half of chamber Omega1 of each segment). Physical
+ * tags as above (Omega1's only). */
+csStatus csf_meshWriteGeoEighth(const csrActuator* act, double l_soft, const char* path,
+                                csError* err);
+
+/* The mesh made of e and its mirror image in the plane x = y (nodes on the plane shared, the
+ * image's elements reoriented, tagged faces mirrored with their tags). For the eighth
+ * 0 <= y <= x it is the quarter x, y >= 0 whose cut faces csf_meshTurnCopies needs. */
+csfMesh* csf_meshMirrorDiagonal(const csfMesh* e, csError* err);
 
 /* The physical tag a face of the quarter carries in its copy turned by k (0..3) quarter turns. */
 typedef int (*csfTagTurnFn)(void* user, int tag, int k);
 
-/* The mesh made of a quarter mesh q (x >= 0, y >= 0, its cut faces periodic as
- * csf_meshWriteGeoQuarter makes them) and its copies turned by 90, 180 and 270 deg about e3,
+/* The mesh made of a quarter mesh q (x >= 0, y >= 0, its x = 0 face the y = 0 face turned by
+ * 90 deg, node for node, as csf_meshMirrorDiagonal makes it) and its copies turned by 90, 180 and 270 deg about e3,
  * nodes on the cut faces and the axis merged; every quarter turn maps it onto itself. Boundary
  * faces are recomputed, each tagged face of q gives four tagged faces (tags through `turn`;
  * NULL keeps them). Returns NULL and fills err when q's cut faces do not match node for node. */
 csfMesh* csf_meshTurnCopies(const csfMesh* q, csfTagTurnFn turn, void* user, csError* err);
 
-/* Mesh the actuator with the section's fourfold symmetry: the quarter (`<stem>.geo`, gmsh) turned
- * into four copies (csf_meshTurnCopies; chamber tags turned: a quarter turn takes Omega_j's
- * place to Omega_(j-1)'s). */
+/* Mesh the actuator with the symmetry of its square section (the eight rotations and mirrors
+ * that map the section onto itself): the eighth (`<stem>.geo`, gmsh), mirrored into the quarter
+ * (csf_meshMirrorDiagonal), turned into four copies (csf_meshTurnCopies; chamber tags turned: a
+ * quarter turn takes Omega_j's place to Omega_(j-1)'s). */
 csfMesh* csf_meshActuatorSymmetric(const csrActuator* act, double l_soft, const char* stem,
                                    csError* err);
 

@@ -1,16 +1,18 @@
-/* fem_mesh_actuator.c: the actuator's mesh: gmsh .geo writer (the whole body, or the quarter
- * x >= 0, y >= 0 with periodic cut faces), the gmsh run, and the quarter's four turned copies
- * merged into a mesh with the section's fourfold symmetry (see fem_mesh.h).
+/* fem_mesh_actuator.c: the actuator's mesh: gmsh .geo writer (the whole body, or the eighth
+ * 0 <= y <= x), the gmsh run, and the eighth mirrored into a quarter and the quarter turned into
+ * four copies: a mesh with the section's symmetry (see fem_mesh.h).
  *
  * Rationale (the symmetric mesh). gmsh meshes the whole section without regard to its symmetry,
  * so a chamber pattern and the same pattern turned by 90 deg see different meshes: at l_soft 4
  * the tips of H4 and of H4 turned (docs/notes/fe_design_space.md, issue 8) differ by 2.2 mm at
  * 0.3-0.4 MPa, 1.9 mm for H6, of which the fibres' common start contributes at most 0.25 mm
- * (measured with --fibre-turn, 2026-12-03): the rest is the mesh. A quarter meshed with its two
- * cut faces periodic under the quarter turn (gmsh's Periodic Surface, edge nodes included: the
- * rotated y = 0 nodes land on the x = 0 nodes to 2e-15 mm) and turned four times gives a mesh
- * that every quarter turn maps onto itself, so turned patterns are exact images of each other
- * up to the fibres and round-off. */
+ * (measured with --fibre-turn, 2026-12-03): the rest is the mesh. gmsh meshes the eighth
+ * 0 <= y <= x; its mirror image in the plane x = y completes the quarter x, y >= 0, whose x = 0
+ * face is then its y = 0 face turned by 90 deg (on y = 0 the mirror and the quarter turn agree);
+ * four turned copies give a mesh that the eight symmetries of the square section (the dihedral
+ * group the calibration's rules use) map onto itself, so turned and mirrored patterns are exact
+ * images of each other up to the fibres and round-off. (A quarter meshed with periodic cut
+ * faces, gmsh's Periodic Surface, gave the quarter turns only.) */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -124,26 +126,32 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
 }
 
 
-csStatus csf_meshWriteGeoQuarter(const csrActuator* act, double l_soft, const char* path,
-                                 csError* err) {
+csStatus csf_meshWriteGeoEighth(const csrActuator* act, double l_soft, const char* path,
+                                csError* err) {
   FILE* f = NULL;
-  csStatus st = geoOpen(act, l_soft, path, ", the quarter x >= 0, y >= 0", &f, err);
+  csStatus st = geoOpen(act, l_soft, path, ", the eighth 0 <= y <= x", &f, err);
   if (st != CS_OK) {
     return st;
   }
   const double a = act->a, b = act->b, c = act->c, r1 = act->r1, r2 = act->r2;
-  const double eps = 1e-3 * fmin(r1, c), L = csr_actuatorLength(act);
-  /* each block cut to the quarter by a box (tags from news/newv: the box's own faces take the
-   * low numbers), then chamber Omega1 (centre (+b, +b): the only one in the quarter) */
+  const double eps = 1e-3 * fmin(r1, c), L = csr_actuatorLength(act), A = a + 1;
+  /* each block cut to the wedge 0 <= y <= x by a triangular prism (tags from news/newv/newp:
+   * the prism's own entities take numbers too), then the half of chamber Omega1 (centre
+   * (+b, +b), on the wedge's diagonal face) that lies in it */
   double z = 0.0;
   for (int k = 0; k < 5; k++) {
     double h = (k % 2 == 0) ? act->S[k / 2] : act->LS[k / 2];
     fprintf(f, "r%d = news; Rectangle(r%d) = {%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", k, k,
             -a, -a, z, 2 * a, 2 * a, r2);
     fprintf(f, "e%d() = Extrude{0, 0, %.17g}{ Surface{r%d}; };\n", k, h, k);
-    fprintf(f, "bx%d = newv; Box(bx%d) = {0, 0, %.17g, %.17g, %.17g, %.17g};\n", k, k, z - 1,
-            a + 1, a + 1, h + 2);
-    fprintf(f, "q%d() = BooleanIntersection{ Volume{e%d(1)}; Delete; }{ Volume{bx%d}; Delete; };\n",
+    fprintf(f, "p%d = newp; Point(p%d) = {0, 0, %.17g}; Point(p%d + 1) = {%.17g, 0, %.17g}; "
+            "Point(p%d + 2) = {%.17g, %.17g, %.17g};\n", k, k, z - 1, k, A, z - 1, k, A, A, z - 1);
+    fprintf(f, "l%d = newl; Line(l%d) = {p%d, p%d + 1}; Line(l%d + 1) = {p%d + 1, p%d + 2}; "
+            "Line(l%d + 2) = {p%d + 2, p%d};\n", k, k, k, k, k, k, k, k, k, k);
+    fprintf(f, "cl%d = newll; Curve Loop(cl%d) = {l%d, l%d + 1, l%d + 2};\n", k, k, k, k, k);
+    fprintf(f, "t%d = news; Plane Surface(t%d) = {cl%d};\n", k, k, k);
+    fprintf(f, "w%d() = Extrude{0, 0, %.17g}{ Surface{t%d}; };\n", k, h + 2, k);
+    fprintf(f, "q%d() = BooleanIntersection{ Volume{e%d(1)}; Delete; }{ Volume{w%d(1)}; Delete; };\n",
             k, k, k);
     if (k % 2 == 0) {
       fprintf(f, "cy%d = newv; Cylinder(cy%d) = {%.17g, %.17g, %.17g, 0, 0, %.17g, %.17g};\n", k,
@@ -154,17 +162,6 @@ csStatus csf_meshWriteGeoQuarter(const csrActuator* act, double l_soft, const ch
     z += h;
   }
   fprintf(f, "BooleanFragments{ Volume{:}; Delete; }{}\n");
-  /* the cut faces: x = 0 is the y = 0 face turned by +90 deg about e3, block by block */
-  z = 0.0;
-  for (int k = 0; k < 5; k++) {
-    double h = (k % 2 == 0) ? act->S[k / 2] : act->LS[k / 2];
-    fprintf(f, "py%d() = Surface In BoundingBox{%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", k,
-            -eps, -eps, z - eps, a + eps, eps, z + h + eps);
-    fprintf(f, "px%d() = Surface In BoundingBox{%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", k,
-            -eps, -eps, z - eps, eps, a + eps, z + h + eps);
-    fprintf(f, "Periodic Surface{px%d()} = {py%d()} Rotate{{0, 0, 1}, {0, 0, 0}, Pi/2};\n", k, k);
-    z += h;
-  }
   fprintf(f, "Physical Volume(1) = {Volume{:}};\n");
   fprintf(f, "sb() = Surface In BoundingBox{%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", -eps,
           -eps, -eps, a + eps, a + eps, eps);
@@ -179,6 +176,7 @@ csStatus csf_meshWriteGeoQuarter(const csrActuator* act, double l_soft, const ch
             z0 + act->S[s] - c + eps);
     fprintf(f, "Physical Surface(%d) = {sc%d()};\n", CSF_TAG_CHAMBER(s, 1), s);
   }
+  /* half a chamber circle: the same element size as on the whole one */
   fprintf(f, "MeshSize{ PointsOf{ Surface{sc0(), sc1(), sc2()}; } } = %.17g;\n",
           fmin(l_soft, 2.0 * CS_PI * r1 / CSF_CHAMBER_SEGMENTS));
   return geoClose(f, path, err);
@@ -238,6 +236,48 @@ csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* ste
 
 /* ---- the quarter's four turned copies ----------------------------------------------------- */
 
+/* the tolerance (mm) of "on a cut plane": far above round-off, far below any element */
+static double planeTol(const csfMesh* m) {
+  double ext = 0;
+  for (int i = 0; i < 3 * m->nnode; i++) {
+    ext = fmax(ext, fabs(m->x[i]));
+  }
+  return 1e-9 * (1 + ext);
+}
+
+
+/* m's boundary faces anew, each tagged face of src giving one tagged face in each of its ncopy
+ * copies (copy k's node ids id[k * src->nnode + i]; tags through turn, NULL keeps them) */
+static csStatus tagCopies(csfMesh* m, const csfMesh* src, int ncopy, const int* id,
+                          csfTagTurnFn turn, void* user, csError* err) {
+  int ntag = 0;
+  for (int f = 0; f < src->nface; f++) {
+    ntag += src->face_tag[f] != 0;
+  }
+  const size_t cap = (size_t)(ncopy * ntag > 0 ? ncopy * ntag : 1);
+  int* tri = malloc(cap * 3 * sizeof(int));
+  int* tag = malloc(cap * sizeof(int));
+  if (!tri || !tag) {
+    free(tri), free(tag);
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_mesh: out of memory for %zu face tags", cap);
+  }
+  int nt = 0;
+  for (int k = 0; k < ncopy; k++) {
+    for (int f = 0; f < src->nface; f++) {
+      if (src->face_tag[f] != 0) {
+        for (int v = 0; v < 3; v++) {
+          tri[3 * nt + v] = id[(size_t)k * src->nnode + src->face[6 * f + v]];
+        }
+        tag[nt++] = turn ? turn(user, src->face_tag[f], k) : src->face_tag[f];
+      }
+    }
+  }
+  csStatus st = csf_meshFacesTagged(m, nt, tri, tag, err);
+  free(tri), free(tag);
+  return st;
+}
+
+
 /* x turned by k quarter turns about e3 (exact: sign changes and swaps only) */
 static void turnPoint(const double* x, int k, double* y) {
   switch (k & 3) {
@@ -273,17 +313,11 @@ static int cmpPlaneKey(const void* pa, const void* pb) {
 
 csfMesh* csf_meshTurnCopies(const csfMesh* q, csfTagTurnFn turn, void* user, csError* err) {
   const int n = q->nnode;
-  double ext = 0;
-  for (int i = 0; i < 3 * n; i++) {
-    ext = fmax(ext, fabs(q->x[i]));
-  }
-  const double tol = 1e-9 * (1 + ext), grid = 1e-6 * (1 + ext);
+  const double tol = planeTol(q), grid = 1e3 * tol;
   int *id = malloc(4 * (size_t)n * sizeof(int)), nx = 0, ny = 0, naxis = 0;
   PlaneKey* kx = malloc((size_t)(n > 0 ? n : 1) * sizeof *kx);
   PlaneKey* ky = malloc((size_t)(n > 0 ? n : 1) * sizeof *ky);
   csfMesh* m = calloc(1, sizeof *m);
-  int* tri = NULL;
-  int* tag = NULL;
   if (!id || !kx || !ky || !m) {
     goto oom;
   }
@@ -355,36 +389,67 @@ csfMesh* csf_meshTurnCopies(const csfMesh* q, csfTagTurnFn turn, void* user, csE
     }
   }
   /* boundary faces anew (the cut faces are inside now), the quarter's tags turned */
-  int ntag = 0;
-  for (int f = 0; f < q->nface; f++) {
-    ntag += q->face_tag[f] != 0;
-  }
-  tri = malloc((size_t)(4 * ntag > 0 ? 4 * ntag : 1) * 3 * sizeof(int));
-  tag = malloc((size_t)(4 * ntag > 0 ? 4 * ntag : 1) * sizeof(int));
-  if (!tri || !tag) {
-    goto oom;
-  }
-  int nt = 0;
-  for (int k = 0; k < 4; k++) {
-    for (int f = 0; f < q->nface; f++) {
-      if (q->face_tag[f] == 0) {
-        continue;
-      }
-      for (int v = 0; v < 3; v++) {
-        tri[3 * nt + v] = id[k * n + q->face[6 * f + v]];
-      }
-      tag[nt++] = turn ? turn(user, q->face_tag[f], k) : q->face_tag[f];
-    }
-  }
-  if (csf_meshFacesTagged(m, nt, tri, tag, err) != CS_OK) {
+  if (tagCopies(m, q, 4, id, turn, user, err) != CS_OK) {
     goto fail;
   }
-  free(id), free(kx), free(ky), free(tri), free(tag);
+  free(id), free(kx), free(ky);
   return m;
 oom:
   cs_errorSet(err, CS_ERR_MEMORY, "fem_mesh: out of memory turning a %d-node quarter mesh", n);
 fail:
-  free(id), free(kx), free(ky), free(tri), free(tag);
+  free(id), free(kx), free(ky);
+  csf_meshDestroy(m);
+  return NULL;
+}
+
+
+csfMesh* csf_meshMirrorDiagonal(const csfMesh* e, csError* err) {
+  const int n = e->nnode;
+  const double tol = planeTol(e);
+  int* id = malloc(2 * (size_t)(n > 0 ? n : 1) * sizeof(int));
+  csfMesh* m = calloc(1, sizeof *m);
+  if (!id || !m) {
+    goto oom;
+  }
+  /* the mirror image of a node on the plane x = y is the node itself */
+  int next = n;
+  for (int i = 0; i < n; i++) {
+    id[i] = i;
+    id[n + i] = fabs(e->x[3 * i] - e->x[3 * i + 1]) < tol ? i : next++;
+  }
+  m->nnode = next;
+  m->ntet = 2 * e->ntet;
+  m->x = malloc(3 * (size_t)next * sizeof(double));
+  m->tet = malloc(10 * (size_t)m->ntet * sizeof(int));
+  if (!m->x || !m->tet) {
+    goto oom;
+  }
+  for (int i = 0; i < n; i++) {
+    const double* x = e->x + 3 * i;
+    memcpy(m->x + 3 * i, x, 3 * sizeof(double));
+    if (id[n + i] != i) {
+      double* y = m->x + 3 * (size_t)id[n + i];
+      y[0] = x[1], y[1] = x[0], y[2] = x[2];
+    }
+  }
+  /* the mirror reverses orientation: vertices 1 and 2 swap, and the edge nodes with them
+   * ((0,1) <-> (0,2), (1,3) <-> (2,3); VTK order) */
+  static const int kSwap[10] = {0, 2, 1, 3, 6, 5, 4, 7, 9, 8};
+  for (int t = 0; t < e->ntet; t++) {
+    for (int a = 0; a < 10; a++) {
+      m->tet[10 * (size_t)t + a] = e->tet[10 * t + a];
+      m->tet[10 * ((size_t)e->ntet + t) + a] = id[n + e->tet[10 * t + kSwap[a]]];
+    }
+  }
+  if (tagCopies(m, e, 2, id, NULL, NULL, err) != CS_OK) {
+    goto fail;
+  }
+  free(id);
+  return m;
+oom:
+  cs_errorSet(err, CS_ERR_MEMORY, "fem_mesh: out of memory mirroring a %d-node mesh", n);
+fail:
+  free(id);
   csf_meshDestroy(m);
   return NULL;
 }
@@ -408,14 +473,16 @@ static int actuatorTagTurn(void* user, int tag, int k) {
 csfMesh* csf_meshActuatorSymmetric(const csrActuator* act, double l_soft, const char* stem,
                                    csError* err) {
   char geo[1024];
-  if (geoPath(stem, geo, err) != 0 || csf_meshWriteGeoQuarter(act, l_soft, geo, err) != CS_OK) {
+  if (geoPath(stem, geo, err) != 0 || csf_meshWriteGeoEighth(act, l_soft, geo, err) != CS_OK) {
     return NULL;
   }
-  csfMesh* q = csf_meshGmsh(geo, stem, err);
-  if (!q) {
+  csfMesh* e = csf_meshGmsh(geo, stem, err);
+  if (!e) {
     return NULL;
   }
-  csfMesh* m = csf_meshTurnCopies(q, actuatorTagTurn, NULL, err);
+  csfMesh* q = csf_meshMirrorDiagonal(e, err);
+  csf_meshDestroy(e);
+  csfMesh* m = q ? csf_meshTurnCopies(q, actuatorTagTurn, NULL, err) : NULL;
   csf_meshDestroy(q);
   return m;
 }

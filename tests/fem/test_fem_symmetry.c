@@ -1,9 +1,12 @@
-/* test_fem_symmetry.c: the FE model on the mesh with the section's fourfold symmetry
+/* test_fem_symmetry.c: the FE model on the mesh with the square section's symmetries
  * (csfActuatorSpec.mesh_symmetric) answers a chamber pattern turned by a quarter turn, its
  * fibres turned with it (fibre_turn), with its answer turned: Omega2 alone against Omega1
- * alone turned by -90 deg, tip and segment bends, to the Newton tolerance. On gmsh's mesh of the
- * whole body the same pair differs by the mesh (printed beside it: the scatter the symmetric
- * mesh removes). Short leg (15 mm segments, 3 fibre turns), l_soft 5, 0.05 MPa: ~1 min, slow. */
+ * alone turned by -90 deg, tip and segment bends, to the Newton tolerance; and a pattern
+ * mirrored in the plane y = 0 (the fibres' own mirror: the two helices start on +e1 and wind
+ * both ways) with its answer mirrored: Omega1 at 1, Omega2 at 0.5 against Omega2 at 1, Omega1 at
+ * 0.5. On gmsh's mesh of the whole body the turned pair differs by the mesh (printed beside it:
+ * the scatter the symmetric mesh removes). Short leg (15 mm segments, 3 fibre turns), l_soft 5,
+ * 0.05 MPa: ~1.5 min, slow. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -11,8 +14,9 @@
 #include "cs_test.h"
 #include "fem_bend.h"
 
-/* tip (mm) of the short leg under one chamber j (1..4) of every segment at p_max */
-static int tipOf(int symmetric, int chamber, int fibre_turn, double tip[3], double bend[3][2]) {
+/* tip (mm) and bends of the short leg under the chamber ratios r (every segment) at p_max */
+static int tipOf(int symmetric, const double r[4], int fibre_turn, double tip[3],
+                 double bend[3][2]) {
   csError err = {0};
   csrActuator act;
   csr_actuatorPreset(&act, "leg", &err);
@@ -28,7 +32,7 @@ static int tipOf(int symmetric, int chamber, int fibre_turn, double tip[3], doub
   o.spec.work_stem = symmetric ? "sym_mesh" : "whole_mesh";
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
-      o.spec.ratio[s][j] = j + 1 == chamber ? 1.0 : 0.0;
+      o.spec.ratio[s][j] = r[j];
     }
   }
   o.p_max = 0.05;
@@ -63,9 +67,12 @@ static double turnedDistance(const double a[3], const double b[3]) {
 }
 
 
+static const double kO1[4] = {1, 0, 0, 0}, kO2[4] = {0, 1, 0, 0};
+
+
 static void test_turned_pattern_gives_the_turned_answer(void) {
   double t1[3], t2[3], b1[3][2], b2[3][2], w1[3], w2[3], c1[3][2], c2[3][2];
-  if (!tipOf(1, 1, 0, t1, b1) || !tipOf(1, 2, -1, t2, b2)) {
+  if (!tipOf(1, kO1, 0, t1, b1) || !tipOf(1, kO2, -1, t2, b2)) {
     return;
   }
   const double d = turnedDistance(t1, t2);
@@ -80,14 +87,36 @@ static void test_turned_pattern_gives_the_turned_answer(void) {
   CS_EXPECT(d < 1e-6);
   CS_EXPECT(db < 1e-6);
   CS_EXPECT(hypot(t1[0], t1[1]) > 0.1); /* it did bend */
-  if (tipOf(0, 1, 0, w1, c1) && tipOf(0, 2, -1, w2, c2)) {
+  if (tipOf(0, kO1, 0, w1, c1) && tipOf(0, kO2, -1, w2, c2)) {
     printf("  whole-body mesh: the same pair %.2e mm apart\n", turnedDistance(w1, w2));
   }
+}
+
+
+static void test_mirrored_pattern_gives_the_mirrored_answer(void) {
+  const double r1[4] = {1, 0.5, 0, 0}, r2[4] = {0.5, 1, 0, 0};
+  double t1[3], t2[3], b1[3][2], b2[3][2];
+  if (!tipOf(1, r1, 0, t1, b1) || !tipOf(1, r2, 0, t2, b2)) {
+    return;
+  }
+  /* the mirror y -> -y takes Omega1 to Omega2 (centres (+b, +b), (+b, -b)) and a bend vector
+   * (b0, b1) to (b0, -b1) */
+  const double d = sqrt(pow(t1[0] - t2[0], 2) + pow(t1[1] + t2[1], 2) + pow(t1[2] - t2[2], 2));
+  double db = 0;
+  for (int s = 0; s < CSR_NSEG; s++) {
+    db = fmax(db, fabs(b1[s][0] - b2[s][0]) + fabs(b1[s][1] + b2[s][1]));
+  }
+  printf("  symmetric mesh: 1 : 0.5 tip (%.4f, %.4f, %.4f) mm, 0.5 : 1 against it mirrored "
+         "%.2e mm, bends %.2e\n", t1[0], t1[1], t1[2], d, db);
+  CS_EXPECT(d < 1e-6);
+  CS_EXPECT(db < 1e-6);
+  CS_EXPECT(fabs(t1[1]) > 0.01); /* it bends off the mirror plane */
 }
 
 
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_turned_pattern_gives_the_turned_answer);
+  CS_RUN(test_mirrored_pattern_gives_the_mirrored_answer);
   return cs_testSummary();
 }
