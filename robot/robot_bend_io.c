@@ -65,6 +65,9 @@ csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBend
   for (size_t i = 0; st == CS_OK && i < sizeof values / sizeof values[0]; i++) {
     st = cs_h5AttrDouble(f, "/", names[i], values[i], err);
   }
+  if (st == CS_OK && meta->model && !strcmp(meta->model, "fe")) {
+    st = cs_h5AttrDouble(f, "/", "fe_mesh_symmetric", meta->mesh_symmetric, err);
+  }
   if (st == CS_OK && meta->fibre_size > 0) {
     st = cs_h5AttrDouble(f, "/", "fe_fibre_size_mm", meta->fibre_size, err);
     if (st == CS_OK) {

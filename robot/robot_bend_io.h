@@ -52,6 +52,8 @@ typedef struct csrBendMeta_ {
   double p_stalled;       /* FE: the sweep ended here with pressure and volume control both
                              failing while the pressure had not fallen: no limit point (MPa);
                              0 or NAN = none */
+  int mesh_symmetric;     /* FE: 1 the mesh with the section's symmetry, 0 the whole-body mesh;
+                             written as fe_mesh_symmetric for model "fe" */
 } csrBendMeta;
 
 /* Write the bend datasets and root attributes into `f` (created by cs_h5Create). */

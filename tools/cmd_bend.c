@@ -50,6 +50,7 @@ static const char kUsage[] =
     "                     [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
     "                     [--until-angle DEG] [--mesh-size MM] [--fibre-size MM]\n"
     "                     [--fibre-split 0|1] [--fibre-law linear|tension-only]\n"
+    "                     [--mesh-symmetric 0|1]\n"
     "                     [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ]\n"
     "                     [--calibration FILE|analytic] [--cal-rule prism|rbf|rbf-pair]\n"
     "                     [--branch-switch 0|1] [--out FILE.h5]\n"
@@ -68,7 +69,9 @@ static const char kUsage[] =
     "  carries no compression) or linear (compression at full stiffness: with split fibres\n"
     "  Omega1 & Omega2 then stall near 0.19 MPa, fem/README.md). --branch-switch 1: at a\n"
     "  bifurcation (the tangent gains a negative pivot while the pressure rises) try to leave\n"
-    "  the path along the critical mode (default 0: the mode is reported, the path kept).\n";
+    "  the path along the critical mode (default 0: the mode is reported, the path kept).\n"
+    "  --mesh-symmetric 1: mesh an eighth of the leg, mirrored and turned, so the mesh has the\n"
+    "  square section's eight symmetries (default 0: gmsh's mesh of the whole body).\n";
 
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
 
@@ -369,6 +372,7 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->mesh_size = NAN;
   run->fibre_size = NAN;
   run->fibre_split = -1;
+  run->mesh_symmetric = -1;
   run->cal_rule = -1;
   run->branch_switch = -1;
   run->fibre_tension_only = -1;
@@ -444,6 +448,12 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
         return 1;
       }
       run->fibre_split = value[0] == '1';
+    } else if (!strcmp(name, "--mesh-symmetric")) {
+      if (strcmp(value, "0") && strcmp(value, "1")) {
+        fprintf(stderr, "crawlsim bend: --mesh-symmetric '%s' must be 0 or 1\n", value);
+        return 1;
+      }
+      run->mesh_symmetric = value[0] == '1';
     } else if (!strcmp(name, "--branch-switch")) {
       if (strcmp(value, "0") && strcmp(value, "1")) {
         fprintf(stderr, "crawlsim bend: --branch-switch '%s' must be 0 or 1\n", value);
@@ -581,6 +591,11 @@ int csx_cmdBend(int argc, char** argv) {
             kModelNames[run.model]);
     return 1;
   }
+  if (run.mesh_symmetric >= 0 && run.model != BEND_FE) {
+    fprintf(stderr, "crawlsim bend: --mesh-symmetric is for --model fe (the %s model has no "
+            "mesh)\n", kModelNames[run.model]);
+    return 1;
+  }
   if (run.branch_switch >= 0 && run.model != BEND_FE) {
     fprintf(stderr, "crawlsim bend: --branch-switch is for --model fe (the %s model has no "
             "tangent to switch branches on)\n", kModelNames[run.model]);
@@ -660,7 +675,7 @@ int csx_cmdBend(int argc, char** argv) {
   if (st == CS_OK) {
     csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
                         run.n_elements_fibre,   wall,         run.until_angle,
-                        run.p_limit,            run.p_resume, 0, 0, 0, NAN, -1, NAN};
+                        run.p_limit,            run.p_resume, 0, 0, 0, NAN, -1, NAN, 0};
     st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
   }
   cs_h5Close(f);

@@ -210,6 +210,9 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csfBendInfo* infop, csEr
   if (run->branch_switch >= 0) {
     o.branch_switch = run->branch_switch;
   }
+  if (run->mesh_symmetric >= 0) {
+    o.spec.mesh_symmetric = run->mesh_symmetric;
+  }
   /* deformed mesh and solver deck next to the HDF5 file: FILE.h5 -> FILE.vtu, FILE.inp */
   char stem[512], vtu[520], inp[520];
   snprintf(stem, sizeof stem, "%s", run->out);
@@ -234,6 +237,7 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csfBendInfo* infop, csEr
     run->mesh_size = o.spec.mesh_size;
     run->fibre_size = o.spec.fibres ? csf_actuatorFibreSize(&o.spec) : NAN;
     run->fibre_split = o.spec.fibre_split;
+    run->mesh_symmetric = o.spec.mesh_symmetric;
     run->fibre_tension_only = !o.spec.fibre_compression;
     run->p_indefinite = info.p_indefinite;
     run->neg_pivots_max = info.neg_pivots_max;
@@ -326,7 +330,8 @@ int csx_bendFe(BendRun* run) {
                         run->fibre_tension_only,
                         run->p_indefinite,
                         run->neg_pivots_max,
-                        run->limit_shown ? NAN : run->p_limit};
+                        run->limit_shown ? NAN : run->p_limit,
+                        run->mesh_symmetric};
     fst = csr_bendCurveWriteH5(ff, &run->act, &fbc, &meta, &ferr);
     if (fst == CS_OK) {
       fst = feWallAttrs(ff, &info, &ferr);

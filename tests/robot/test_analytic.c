@@ -392,7 +392,7 @@ static void test_bendFileRoundTrip(void) {
     CS_EXPECT(csr_bendCurvePush(&bc, 0.1 * i, ang, tip, &err) == CS_OK);
   }
   bc.p_until_angle = 0.25;
-  csrBendMeta meta = {"analytic", "1,2", NAN, 0, 0, 0.5, 360, NAN, NAN, 0, 0, 0, NAN, -1, NAN};
+  csrBendMeta meta = {"analytic", "1,2", NAN, 0, 0, 0.5, 360, NAN, NAN, 0, 0, 0, NAN, -1, NAN, 0};
   const char* path = "test_analytic_bend.h5";
   csH5File* f = cs_h5Create(path, &err);
   CS_EXPECT(f != NULL);

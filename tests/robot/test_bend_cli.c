@@ -207,6 +207,9 @@ static void test_badInput(void) {
   expectFailure("--branch-switch 2", "crawlsim bend: --branch-switch '2' must be 0 or 1");
   expectFailure("--model analytic --branch-switch 1",
                 "crawlsim bend: --branch-switch is for --model fe");
+  expectFailure("--mesh-symmetric 2", "crawlsim bend: --mesh-symmetric '2' must be 0 or 1");
+  expectFailure("--model rod --mesh-symmetric 1",
+                "crawlsim bend: --mesh-symmetric is for --model fe");
   expectFailure("--p-max abc", "crawlsim bend: --p-max 'abc' is not a finite number");
   expectFailure("--p-max nan", "crawlsim bend: --p-max 'nan' is not a finite number");
   expectFailure("--p-step 0", "crawlsim bend: --p-step 0 must be > 0 MPa");

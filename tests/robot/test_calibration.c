@@ -56,7 +56,7 @@ static void writeTable(const char* path, const csrActuator* act, int m, double d
   }
   csH5File* h = cs_h5Create(path, &err);
   CS_EXPECT(h != NULL);
-  csrBendMeta meta = {"fe", chambers, 4.0, 100, 10, 1.0, NAN, NAN, NAN, 0, 0, 0, NAN, -1, NAN};
+  csrBendMeta meta = {"fe", chambers, 4.0, 100, 10, 1.0, NAN, NAN, NAN, 0, 0, 0, NAN, -1, NAN, 0};
   CS_EXPECT(csr_bendCurveWriteH5(h, act, &bc, &meta, &err) == CS_OK);
   cs_h5Close(h);
   csr_bendCurveFree(&bc);
@@ -166,7 +166,7 @@ static void test_bad_tables_are_refused(void) {
       CS_EXPECT(csr_bendCurvePush(&bc, p, ang, tip, &err) == CS_OK);
     }
     csH5File* h = cs_h5Create(names[k], &err);
-    csrBendMeta meta = {"fe", "1,2", 4.0, 100, 10, 1.0, NAN, NAN, NAN, 0, 0, 0, NAN, -1, NAN};
+    csrBendMeta meta = {"fe", "1,2", 4.0, 100, 10, 1.0, NAN, NAN, NAN, 0, 0, 0, NAN, -1, NAN, 0};
     if (k == 3) {
       /* /angle_deg with 2 columns instead of 3 */
       size_t d1[1] = {4}, d2[2] = {4, 2};
