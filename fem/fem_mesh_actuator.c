@@ -314,7 +314,8 @@ static int cmpPlaneKey(const void* pa, const void* pb) {
 csfMesh* csf_meshTurnCopies(const csfMesh* q, csfTagTurnFn turn, void* user, csError* err) {
   const int n = q->nnode;
   const double tol = planeTol(q), grid = 1e3 * tol;
-  int *id = malloc(4 * (size_t)n * sizeof(int)), nx = 0, ny = 0, naxis = 0;
+  int nx = 0, ny = 0;
+  int* id = malloc(4 * (size_t)(n > 0 ? n : 1) * sizeof(int));
   PlaneKey* kx = malloc((size_t)(n > 0 ? n : 1) * sizeof *kx);
   PlaneKey* ky = malloc((size_t)(n > 0 ? n : 1) * sizeof *ky);
   csfMesh* m = calloc(1, sizeof *m);
@@ -325,7 +326,6 @@ csfMesh* csf_meshTurnCopies(const csfMesh* q, csfTagTurnFn turn, void* user, csE
   for (int i = 0; i < n; i++) {
     const double* x = q->x + 3 * i;
     const int onx = fabs(x[0]) < tol, ony = fabs(x[1]) < tol;
-    naxis += onx && ony;
     if (onx && !ony) {
       kx[nx++] = (PlaneKey){llround(x[2] / grid), llround(x[1] / grid), i};
     } else if (ony && !onx) {
