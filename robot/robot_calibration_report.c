@@ -356,8 +356,9 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
       wall += t->cases[i].wall_time, nwall++;
     }
   }
-  fprintf(out, "  table: %d cases, FE wall time %.2f h over %d of them (l_soft %g mm, %s fibres, "
-          "%s)\n", t->ncase, wall / 3600, nwall, t->fe_mesh_size, t->fe_fibre_law, t->fe_solver);
+  fprintf(out, "  table: %d cases, FE wall time %.2f h over %d of them (l_soft %g mm%s, %s "
+          "fibres, %s)\n", t->ncase, wall / 3600, nwall, t->fe_mesh_size,
+          t->fe_mesh_symmetric ? " symmetric mesh" : "", t->fe_fibre_law, t->fe_solver);
   /* fitted modes: what the model returns against the FE rows (the FE's asymmetry, removed by
    * the symmetric projection; the rest is round-off) */
   fprintf(out, "  fitted modes (model - FE over the rows up to %g MPa; the bend difference is the "

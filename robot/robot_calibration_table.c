@@ -536,6 +536,13 @@ csStatus csr_calTableRead(const char* path, const csrActuator* leg, csrCalTable*
   }
   t->fe_mesh_size = set[0], t->fe_fibre_size = set[1], t->fe_p_step = set[3];
   t->fe_p_cap = set[4];
+  double sym = 0;
+  if (H5Aexists_by_name(f, "/", "fe_mesh_symmetric", H5P_DEFAULT) > 0 &&
+      (!attrDouble(f, "/", "fe_mesh_symmetric", &sym) || (sym != 0 && sym != 1))) {
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_mesh_symmetric must be 0 or 1", path);
+    goto done;
+  }
+  t->fe_mesh_symmetric = (int)sym;
   snprintf(t->fe_fibre_law, sizeof t->fe_fibre_law, "linear");
   if (H5Aexists_by_name(f, "/", "fe_fibre_law", H5P_DEFAULT) > 0 &&
       (!attrString(f, "/", "fe_fibre_law", t->fe_fibre_law, sizeof t->fe_fibre_law) ||

@@ -10,7 +10,8 @@
  *   root attributes: format "crawlsim-fe-calibration 1", every actuator parameter under its paper
  *     name (must equal the leg's), the FE settings fe_mesh_size_mm, fe_fibre_size_mm,
  *     fe_fibre_split, fe_p_step_MPa, fe_p_cap_MPa, fe_solver, and version; optionally
- *     fe_fibre_law ("linear", the default, or "tension-only");
+ *     fe_fibre_law ("linear", the default, or "tension-only") and fe_mesh_symmetric (0 or 1,
+ *     default 0);
  *   /cases/<name>/ attributes kind ("mode", "holdout", "symmetry", "gravity"), ratio1..ratio4
  *     (chamber j of every segment at ratio_j p), status ("complete", or "ended at ..." when the
  *     sweep stopped early, e.g. at a limit point), p_end (MPa, last row), p_limit (MPa, NAN if
@@ -95,6 +96,8 @@ typedef struct csrCalTable_ {
   char fe_fibre_law[16]; /* "linear" or "tension-only" (fe_fibre_law; absent = "linear") */
   double fe_p_step;     /* MPa, output rows */
   double fe_p_cap;      /* MPa (0: none) */
+  int fe_mesh_symmetric; /* 1: the mesh with the section's symmetries (fe_mesh_symmetric;
+                          * absent = 0, the whole-body mesh) */
   int ncase;
   csrCalCase* cases;    /* (ncase), owned */
 } csrCalTable;

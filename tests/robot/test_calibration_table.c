@@ -109,6 +109,7 @@ static void format2(const char* p) {
 }
 static void noMesh(const char* p) { synthDeleteAttr(p, "/", "fe_mesh_size_mm"); }
 static void badLaw(const char* p) { synthSetString(p, "/", "fe_fibre_law", "elastic"); }
+static void badMesh(const char* p) { synthSetDouble(p, "/", "fe_mesh_symmetric", 0.5); }
 static void badKind(const char* p) { synthSetString(p, "/cases/O2", "kind", "fitted"); }
 static void badRatio(const char* p) { synthSetDouble(p, "/cases/O1", "ratio2", 1.5); }
 static void noRadial(const char* p) { synthDelete(p, "/cases/O12O34r3/radial"); }
@@ -140,6 +141,7 @@ static void test_every_bad_table_is_refused(void) {
       {format2, "format 'crawlsim-fe-calibration 2' is not supported"},
       {noMesh, "no FE setting 'fe_mesh_size_mm'"},
       {badLaw, "fe_fibre_law must be \"linear\" or \"tension-only\""},
+      {badMesh, "fe_mesh_symmetric must be 0 or 1"},
       {badKind, "case O2: unknown kind 'fitted'"},
       {badRatio, "case O1: ratio2 is 1.5 (chamber ratios are in [0, 1])"},
       {noRadial, "case O12O34r3 has no dataset 'radial'"},
