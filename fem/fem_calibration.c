@@ -519,8 +519,6 @@ static int fileFibreLaw(hid_t f) {
 }
 
 
-/* a case file's sweep Newton tolerance: its fe_newton_rtol, 1e-8 when absent (files written
- * before the setting existed ran at 1e-8), NaN when unreadable */
 /* a root setting of a file that older files lack (absent: 0, their value) */
 static double fileSetting0(hid_t f, const char* name) {
   double v;
@@ -535,6 +533,8 @@ static double fileFibreTurn(hid_t f) { return fileSetting0(f, "fe_fibre_turn_deg
 static double fileMeshSymmetric(hid_t f) { return fileSetting0(f, "fe_mesh_symmetric"); }
 
 
+/* a case file's sweep Newton tolerance: its fe_newton_rtol, 1e-8 when absent (files written
+ * before the setting existed ran at 1e-8), NaN when unreadable */
 static double fileNewtonRtol(hid_t f) {
   double v;
   if (H5Aexists_by_name(f, "/", "fe_newton_rtol", H5P_DEFAULT) <= 0) {
@@ -639,6 +639,8 @@ static int copyRootAttrs(hid_t src, hid_t dst) {
 /* the root attributes two case files must share to be merged */
 static const char* const kSameRoot[] = {"fe_mesh_size_mm", "fe_fibre_size_mm", "fe_fibre_split",
                                         "fe_p_step_MPa", "fe_p_cap_MPa"};
+/* and those older files lack (absent = 0, fileSetting0) */
+static const char* const kSameRoot0[] = {"fe_fibre_turn_deg", "fe_mesh_symmetric"};
 
 
 csStatus csf_calibrationMerge(const char* const* paths, int n, const char* out, csError* err) {
@@ -673,14 +675,14 @@ csStatus csf_calibrationMerge(const char* const* paths, int n, const char* out, 
       st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_newton_rtol differs from %s's (%g against %g)",
                        paths[k], paths[0], fileNewtonRtol(src[k]), fileNewtonRtol(src[0]));
     }
-    if (k > 0 && st == CS_OK && !(fileFibreTurn(src[0]) == fileFibreTurn(src[k]))) {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_turn_deg differs from %s's (%g against "
-                       "%g)", paths[k], paths[0], fileFibreTurn(src[k]), fileFibreTurn(src[0]));
-    }
-    if (k > 0 && st == CS_OK && !(fileMeshSymmetric(src[0]) == fileMeshSymmetric(src[k]))) {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_mesh_symmetric differs from %s's (%g against "
-                       "%g)", paths[k], paths[0], fileMeshSymmetric(src[k]),
-                       fileMeshSymmetric(src[0]));
+    for (size_t a = 0; k > 0 && st == CS_OK && a < sizeof kSameRoot0 / sizeof kSameRoot0[0];
+         a++) {
+      const double v0 = fileSetting0(src[0], kSameRoot0[a]);
+      const double v1 = fileSetting0(src[k], kSameRoot0[a]);
+      if (!(v0 == v1)) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s: %s differs from %s's (%g against %g)", paths[k],
+                         kSameRoot0[a], paths[0], v1, v0);
+      }
     }
     if (k > 0 && st == CS_OK && fileFibreLaw(src[0]) != fileFibreLaw(src[k])) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s: fe_fibre_law differs from %s's", paths[k],

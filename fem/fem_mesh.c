@@ -432,7 +432,6 @@ csfMesh* csf_meshCreateBox(const int n[3], csfMapFn map, void* user, double jitt
 
 /* ---- gmsh MSH 2.2 reader ---- */
 
-/* gmsh-tagged triangle, matched to boundary faces by sorted vertex ids */
 /* skip to a line starting with `tag`; returns 0 if found */
 static int seekSection(FILE* f, const char* tag) {
   char line[256];

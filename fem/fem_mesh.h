@@ -4,8 +4,9 @@
  * mesher for tests (a box, optionally mapped by a callback: tubes, curved blocks), the reader of
  * gmsh MSH 2.2 ASCII files (fem_mesh.c), and the actuator geometry (fem_mesh_actuator.c):
  * csrActuator -> gmsh .geo -> `gmsh` program -> .msh -> csfMesh, whole or as an eighth mirrored
- * and turned into a mesh with the section's symmetry. gmsh is GPL: it is run as a separate program and only its output file is
- * read, so no gmsh code enters our binaries (notes/debian-deps.md, section 5).
+ * and turned into a mesh with the section's symmetry. gmsh is GPL: it is run as a separate
+ * program and only its output file is read, so no gmsh code enters our binaries
+ * (notes/debian-deps.md, section 5).
  *
  * Units: mm. Frame of the actuator mesh: x = e1, y = e2 (cross-section), z = e3 from the clamped
  * base (z = 0) to the tip (z = L).
@@ -77,10 +78,11 @@ csfMesh* csf_meshMirrorDiagonal(const csfMesh* e, csError* err);
 typedef int (*csfTagTurnFn)(void* user, int tag, int k);
 
 /* The mesh made of a quarter mesh q (x >= 0, y >= 0, its x = 0 face the y = 0 face turned by
- * 90 deg, node for node, as csf_meshMirrorDiagonal makes it) and its copies turned by 90, 180 and 270 deg about e3,
- * nodes on the cut faces and the axis merged; every quarter turn maps it onto itself. Boundary
- * faces are recomputed, each tagged face of q gives four tagged faces (tags through `turn`;
- * NULL keeps them). Returns NULL and fills err when q's cut faces do not match node for node. */
+ * 90 deg, node for node, as csf_meshMirrorDiagonal makes it) and its copies turned by 90, 180
+ * and 270 deg about e3, nodes on the cut faces and the axis merged; every quarter turn maps it
+ * onto itself. Boundary faces are recomputed, each tagged face of q gives four tagged faces
+ * (tags through `turn`; NULL keeps them). Returns NULL and fills err when q's cut faces do not
+ * match node for node. */
 csfMesh* csf_meshTurnCopies(const csfMesh* q, csfTagTurnFn turn, void* user, csError* err);
 
 /* Mesh the actuator with the symmetry of its square section (the eight rotations and mirrors

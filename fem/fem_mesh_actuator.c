@@ -151,12 +151,14 @@ csStatus csf_meshWriteGeoEighth(const csrActuator* act, double l_soft, const cha
     fprintf(f, "cl%d = newll; Curve Loop(cl%d) = {l%d, l%d + 1, l%d + 2};\n", k, k, k, k, k);
     fprintf(f, "t%d = news; Plane Surface(t%d) = {cl%d};\n", k, k, k);
     fprintf(f, "w%d() = Extrude{0, 0, %.17g}{ Surface{t%d}; };\n", k, h + 2, k);
-    fprintf(f, "q%d() = BooleanIntersection{ Volume{e%d(1)}; Delete; }{ Volume{w%d(1)}; Delete; };\n",
+    fprintf(f,
+            "q%d() = BooleanIntersection{ Volume{e%d(1)}; Delete; }{ Volume{w%d(1)}; Delete; };\n",
             k, k, k);
     if (k % 2 == 0) {
       fprintf(f, "cy%d = newv; Cylinder(cy%d) = {%.17g, %.17g, %.17g, 0, 0, %.17g, %.17g};\n", k,
               k, b, b, z + c, h - 2 * c, r1);
-      fprintf(f, "cut%d() = BooleanDifference{ Volume{q%d()}; Delete; }{ Volume{cy%d}; Delete; };\n",
+      fprintf(f,
+              "cut%d() = BooleanDifference{ Volume{q%d()}; Delete; }{ Volume{cy%d}; Delete; };\n",
               k, k, k);
     }
     z += h;
@@ -213,13 +215,13 @@ csfMesh* csf_meshGmsh(const char* geo, const char* stem, csError* err) {
 }
 
 
-/* the script's path <stem>.geo into geo[1024]; 1 (err filled) for a stem the shell would split */
-static int geoPath(const char* stem, char* geo, csError* err) {
+/* the script's path <stem>.geo into geo[size]; 1 (err filled) for a stem the shell would split */
+static int geoPath(const char* stem, char* geo, size_t size, csError* err) {
   if (strchr(stem, '\'')) {
     cs_errorSet(err, CS_ERR_ARG, "fem_mesh: mesh path '%s' must not contain quotes", stem);
     return 1;
   }
-  snprintf(geo, 1024, "%s.geo", stem);
+  snprintf(geo, size, "%s.geo", stem);
   return 0;
 }
 
@@ -227,7 +229,8 @@ static int geoPath(const char* stem, char* geo, csError* err) {
 csfMesh* csf_meshActuator(const csrActuator* act, double l_soft, const char* stem,
                           csError* err) {
   char geo[1024];
-  if (geoPath(stem, geo, err) != 0 || csf_meshWriteGeo(act, l_soft, geo, err) != CS_OK) {
+  if (geoPath(stem, geo, sizeof geo, err) != 0 ||
+      csf_meshWriteGeo(act, l_soft, geo, err) != CS_OK) {
     return NULL;
   }
   return csf_meshGmsh(geo, stem, err);
@@ -473,7 +476,8 @@ static int actuatorTagTurn(void* user, int tag, int k) {
 csfMesh* csf_meshActuatorSymmetric(const csrActuator* act, double l_soft, const char* stem,
                                    csError* err) {
   char geo[1024];
-  if (geoPath(stem, geo, err) != 0 || csf_meshWriteGeoEighth(act, l_soft, geo, err) != CS_OK) {
+  if (geoPath(stem, geo, sizeof geo, err) != 0 ||
+      csf_meshWriteGeoEighth(act, l_soft, geo, err) != CS_OK) {
     return NULL;
   }
   csfMesh* e = csf_meshGmsh(geo, stem, err);

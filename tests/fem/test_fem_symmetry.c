@@ -6,8 +6,8 @@
  * both ways) with its answer mirrored: Omega1 at 1, Omega2 at 0.5 against Omega2 at 1, Omega1 at
  * 0.5. On gmsh's mesh of the whole body the turned pair differs by the mesh (its own case:
  * the scatter the symmetric mesh removes). Without fibres the elongation modes (all four, the
- * diagonal pair) do not bend, to the Newton tolerance. Short leg (15 mm segments, 3 fibre turns), l_soft 5,
- * 0.05 MPa: two sweeps per case, ~30-40 s each; slow. */
+ * diagonal pair) do not bend, to the Newton tolerance. Short leg (15 mm segments, 3 fibre
+ * turns), l_soft 5, 0.05 MPa: two sweeps per case, ~30-40 s each; slow. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -17,17 +17,6 @@
 
 /* tip (mm) and bends of the short leg under the chamber ratios r (every segment) at p_max,
  * with its fibres or without */
-static int tipOfFibres(int symmetric, int fibres, const double r[4], int fibre_turn,
-                       const char* stem, double tip[3], double bend[3][2]);
-
-
-/* the same with the fibres */
-static int tipOf(int symmetric, const double r[4], int fibre_turn, const char* stem,
-                 double tip[3], double bend[3][2]) {
-  return tipOfFibres(symmetric, 1, r, fibre_turn, stem, tip, bend);
-}
-
-
 static int tipOfFibres(int symmetric, int fibres, const double r[4], int fibre_turn,
                        const char* stem, double tip[3], double bend[3][2]) {
   csError err = {0};
@@ -72,6 +61,13 @@ static int tipOfFibres(int symmetric, int fibres, const double r[4], int fibre_t
   }
   csr_bendCurveFree(&bc);
   return ok;
+}
+
+
+/* the same with the fibres */
+static int tipOf(int symmetric, const double r[4], int fibre_turn, const char* stem,
+                 double tip[3], double bend[3][2]) {
+  return tipOfFibres(symmetric, 1, r, fibre_turn, stem, tip, bend);
 }
 
 
