@@ -543,7 +543,9 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
   }
   const double E = 8 * leg->C10;
   fprintf(out, "  stiffness (probes; against 8 C10 I = %.0f N mm^2 and 8 C10 A = %.1f N of the "
-          "chambered section):\n", E * sp.I_holed, E * sp.area_holed);
+          "chambered section; -: no reading, the probe failed or its force mostly twisted or "
+          "pulled that segment, csf_calibrationReduceProbes):\n", E * sp.I_holed,
+          E * sp.area_holed);
   int nprobe = 0;
   for (int i = 0; i < t->ncase; i++) {
     const csrCalCase* c = t->cases + i;
@@ -553,9 +555,19 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
               0.25 * (c->ratio[0] + c->ratio[1] + c->ratio[2] + c->ratio[3]) *
                   c->probe_pressure[k]);
       for (int s = 0; s < CSR_NSEG; s++) {
-        const double ei = 0.5 * (c->EI[6 * k + 2 * s] + c->EI[6 * k + 2 * s + 1]);
-        fprintf(out, "  II%d EI %.0f (%.2f x) EA %.1f (%.2f x)", s + 1, ei, ei / (E * sp.I_holed),
-                c->EA[3 * k + s], c->EA[3 * k + s] / (E * sp.area_holed));
+        /* the two bend directions' probes, either where the other has no reading (as the
+         * model takes them, robot_calibration_build.c) */
+        const double e1 = c->EI[6 * k + 2 * s], e2 = c->EI[6 * k + 2 * s + 1];
+        const double ei = isnan(e1) ? e2 : isnan(e2) ? e1 : 0.5 * (e1 + e2);
+        char eis[32] = "-", eas[32] = "-";
+        if (isfinite(ei)) {
+          snprintf(eis, sizeof eis, "%.0f (%.2f x)", ei, ei / (E * sp.I_holed));
+        }
+        if (isfinite(c->EA[3 * k + s])) {
+          snprintf(eas, sizeof eas, "%.1f (%.2f x)", c->EA[3 * k + s],
+                   c->EA[3 * k + s] / (E * sp.area_holed));
+        }
+        fprintf(out, "  II%d EI %s EA %s", s + 1, eis, eas);
       }
       fprintf(out, "\n");
     }

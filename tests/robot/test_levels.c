@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_levels_loose_tolerance_picks_cheaper_than_tight);
   CS_RUN(test_levels_unmet_tolerance_names_best_error);
   CS_RUN(test_levels_bad_lines_refused);
-  remove(PATH);
   CS_RUN(test_levels_format2_rod_tol);
+  remove(PATH);
   return cs_testSummary();
 }
