@@ -347,6 +347,11 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
     r->n_hard = 0;
     return 0; /* a hard stretch of the path: follow it by volume (CSF_BEND_HARD_STEPS) */
   }
+  if (o->volume_from > 0 && o->continuation && r->volume_forced == 0 && r->have_prev &&
+      r->p >= o->volume_from - 1e-9 * o->p_step) {
+    r->volume_forced = 1;
+    return 0; /* a volume-controlled stretch asked for (csfBendOptions.volume_from) */
+  }
   int plain = 0; /* 1: this attempt starts from s_conv (the first Newton step is the tangent
                   * predictor) */
   for (;;) {

@@ -164,6 +164,12 @@ typedef struct csfBendOptions_ {
                         * (fem/README.md "Branch switching") */
   double branch_amp;   /* mm, the perturbation's largest nodal displacement (0: fem_path.c's
                         * default, 0.05 mm) */
+  double volume_from;  /* MPa: from the first converged pressure at or above it, follow the path
+                        * by chamber volume, as past a limit point, until the pressure has risen
+                        * steadily (csf_passLimit), then resume pressure control; every output
+                        * pressure passed gets its row. 0 (default): volume control only where
+                        * pressure control fails. Needs continuation; checks the volume path
+                        * against pressure control (test_fem_bend) */
   void (*newton_monitor)(void* user, const csfNewtonIter* it); /* optional, per Newton iteration */
   const char* vtu_path;  /* deformed mesh at the last state (ParaView .vtu), NULL = none */
   const char* inp_path;  /* same model as a CalculiX/ABAQUS .inp deck, NULL = none */

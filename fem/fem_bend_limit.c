@@ -9,6 +9,7 @@
  * (850 lines) when branch switching was added. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fem_bend_branch.h"
@@ -28,6 +29,12 @@ void csf_bendNoteInertia(csfBendInfo* info, int neg, double p, double p_last_def
   }
 }
 
+
+/* output rows one volume-controlled stretch can land; more are skipped (a stretch ends after
+ * CSF_PATH_RISING rising states or past a limit; its volume steps grow to 8x the first: the
+ * fibre-free short actuator of test_fem_bend at p_step 0.005 passed 8 output pressures; the leg
+ * at 0.025, one). Scratch: (2 + this) states, ~1.3 MB each on the leg at l_soft 4 */
+#define CSF_BEND_PASSED_ROWS 16
 
 /* Per-state watcher of the volume-controlled path past a limit point (csf_passLimit callback):
  * tracks the angles (for unwrapping), the angles at the pressure maximum, reports progress, and
@@ -49,6 +56,16 @@ typedef struct {
   int neg_last;          /* negative pivots of the last state reported */
   double hist_p[8], hist_a[8]; /* the last states' pressures and total angles (ring) */
   int nhist;
+  /* output pressures the path passes while rising (rowsOnRisingPath): each one's state
+   * interpolated linearly in p between the two path states that bracket it */
+  size_t ns;             /* state length */
+  double* s_last;        /* (ns) the path's previous state, at pressure p_last */
+  double* s_cur;         /* (ns) scratch: the state just reported */
+  double p_last;
+  int k_next;            /* next output row index (Run.k_out's numbering) */
+  int nrow;
+  double p_row[CSF_BEND_PASSED_ROWS];
+  double* s_row[CSF_BEND_PASSED_ROWS]; /* (ns each) */
 } LimitWatch;
 
 /* total angle of the recent path state at pressure p (the bifurcating state), NAN if not kept */
@@ -62,8 +79,47 @@ static double watchAngleAt(const LimitWatch* lw, double p) {
 }
 
 
+/* output pressure k of the sweep (Run.k_out's numbering: k p_step, the last one p_max) */
+static double outputPressure(const csfBendOptions* o, int k) {
+  return fmin(k * o->p_step, o->p_max);
+}
+
+
+/* output row k exists: the one before it lies below p_max */
+static int outputExists(const csfBendOptions* o, int k) {
+  return (k - 1) * o->p_step < o->p_max - 1e-9 * o->p_step;
+}
+
+
+/* the output pressures between the path's previous state and the one in d (pressure p): their
+ * interpolated states are kept while the path rises; a branch switch (no path in between)
+ * passes them */
+static void capturePassedRows(LimitWatch* lw, const csfModel* m, const csfData* d, double p,
+                              int branch_state) {
+  const csfBendOptions* o = lw->o;
+  const double eps = 1e-9 * o->p_step;
+  csf_stateGet(m, d, lw->s_cur);
+  while (outputExists(o, lw->k_next) && outputPressure(o, lw->k_next) <= p + eps) {
+    const double pg = outputPressure(o, lw->k_next);
+    if (!branch_state && p > lw->p_last && pg >= lw->p_last - eps &&
+        lw->nrow < CSF_BEND_PASSED_ROWS) {
+      const double f = (pg - lw->p_last) / (p - lw->p_last);
+      double* s = lw->s_row[lw->nrow];
+      for (size_t i = 0; i < lw->ns; i++) {
+        s[i] = lw->s_last[i] + f * (lw->s_cur[i] - lw->s_last[i]);
+      }
+      lw->p_row[lw->nrow++] = pg;
+    }
+    lw->k_next++;
+  }
+  memcpy(lw->s_last, lw->s_cur, lw->ns * sizeof(double));
+  lw->p_last = p;
+}
+
+
 static int limitWatch(void* user, const csfModel* m, const csfData* d, const csfPathPoint* pt) {
   LimitWatch* lw = user;
+  capturePassedRows(lw, m, d, pt->p, pt->branch == 2);
   double ang[3], tot, tip[3];
   csf_bendMeasure(lw->act, lw->gauges, m, d, lw->axis, lw->ang_conv, ang, &tot, tip);
   lw->ang_conv[0] = ang[0], lw->ang_conv[1] = ang[1], lw->ang_conv[2] = ang[2];
@@ -114,34 +170,39 @@ static int limitWatch(void* user, const csfModel* m, const csfData* d, const csf
 }
 
 
-/* Rows at the output pressures a rising volume-controlled stretch passed (stageLimit): the
- * path's last two states s_prev (pressure p_before) and s_conv (r->p, also in d) bracket the
- * last of them; earlier ones (several passed in one stretch) have no bracketing states and are
- * counted in n_rows_skipped. d is left at s_conv. */
-static csStatus rowsOnRisingPath(Run* r, double p_before, csError* err) {
+/* Rows at the output pressures a rising volume-controlled stretch passed (stageLimit), up to
+ * r->p: each is solved under pressure control from its state interpolated along the path
+ * (capturePassedRows); one with no such state (past CSF_BEND_PASSED_ROWS, or across a branch
+ * switch) or whose solve fails is counted in n_rows_skipped. d is left at s_conv. */
+static csStatus rowsOnRisingPath(Run* r, const LimitWatch* lw, csError* err) {
   const csfBendOptions* o = r->o;
   csfModel* m = r->w.fe.model;
   csfData* d = r->w.data;
   const double eps = 1e-9 * o->p_step;
   csStatus st = CS_OK;
-  while (st == CS_OK && fmin(r->k_out * o->p_step, o->p_max) <= r->p + eps) {
-    const double pg = fmin(r->k_out * o->p_step, o->p_max);
-    if (pg < p_before - eps || !(r->p > p_before)) {
-      r->info.n_rows_skipped++;
-      r->k_out++;
-      continue;
+  while (st == CS_OK && outputExists(o, r->k_out) && outputPressure(o, r->k_out) <= r->p + eps) {
+    const double pg = outputPressure(o, r->k_out);
+    int k = 0;
+    while (k < lw->nrow && fabs(lw->p_row[k] - pg) > eps) {
+      k++;
     }
-    const double f = (pg - p_before) / (r->p - p_before);
-    for (size_t i = 0; i < r->ns; i++) {
-      r->w.s_tmp[i] = r->w.s_prev[i] + f * (r->w.s_conv[i] - r->w.s_prev[i]);
-    }
-    csf_stateSet(m, d, r->w.s_tmp);
     int it = 0;
     csError lerr = {0};
-    if (csf_newtonSolve(m, d, pg, &r->nopt, &it, &lerr) == CS_OK) {
+    if (k < lw->nrow) {
+      csf_stateSet(m, d, lw->s_row[k]);
+    }
+    if (k < lw->nrow && csf_newtonSolve(m, d, pg, &r->nopt, &it, &lerr) == CS_OK) {
       double ang[3], tot, tip[3];
       csf_bendMeasure(r->act, r->w.fe.gauges, m, d, r->w.fe.axis, r->ang_conv, ang, &tot, tip);
       st = csf_bendStageRow(r, pg, ang, tot, tip, err);
+      if (st == CS_OK && pg >= o->p_max - eps && r->p > o->p_max + eps) {
+        /* the path ran past the sweep's end: the sweep ends on its last row (the final state
+         * the VTU and the summary describe), not beyond p_max */
+        csf_stateGet(m, d, r->w.s_conv);
+        r->p = pg;
+        r->ang_conv[0] = ang[0], r->ang_conv[1] = ang[1], r->ang_conv[2] = ang[2];
+        r->ang_conv[3] = tot;
+      }
     } else {
       r->info.n_rows_skipped++;
     }
@@ -153,10 +214,9 @@ static csStatus rowsOnRisingPath(Run* r, double p_before, csError* err) {
 }
 
 
-/* Follow the path by chamber volume from the collapsed step. Returns 1 when the sweep ends
- * there (no stable branch, or the until-angle was met on the path; *st carries a row error),
- * 0 when it resumes under pressure control (r's state updated to the path's last two states). */
-int csf_bendStageLimit(Run* r, csStatus* st, csError* err) {
+/* csf_bendStageLimit with `keep`, (2 + CSF_BEND_PASSED_ROWS) x ns doubles of scratch for the
+ * rows the path passes (LimitWatch) */
+static int followByVolume(Run* r, double* keep, csStatus* st, csError* err) {
   const csfBendOptions* o = r->o;
   csfModel* m = r->w.fe.model;
   csfData* d = r->w.data;
@@ -171,6 +231,19 @@ int csf_bendStageLimit(Run* r, csStatus* st, csError* err) {
   lw.on_branch = r->on_branch;
   lw.neg_last = r->neg_conv;
   lw.hist_p[0] = r->p, lw.hist_a[0] = r->ang_conv[3], lw.nhist = 1; /* the entry state */
+  /* the rows the path may pass: the entry state first (its own row, if any, is written) */
+  lw.ns = r->ns;
+  lw.p_last = r->p;
+  lw.k_next = r->k_out;
+  lw.s_last = keep, lw.s_cur = keep + r->ns;
+  for (int k = 0; k < CSF_BEND_PASSED_ROWS; k++) {
+    lw.s_row[k] = keep + (2 + k) * r->ns;
+  }
+  memcpy(lw.s_last, r->w.s_conv, r->ns * sizeof(double));
+  const int forced = r->volume_forced == 1;
+  if (forced) {
+    r->volume_forced = 2;
+  }
   csf_stateSet(m, d, r->w.s_conv);
   csf_bendMeasure(r->act, r->w.fe.gauges, m, d, r->w.fe.axis, r->ang_conv, lw.ang_limit,
                   &lw.a_limit, lw.tip_limit);
@@ -233,12 +306,12 @@ int csf_bendStageLimit(Run* r, csStatus* st, csError* err) {
     return 1; /* no stable branch found: the sweep ends at the last volume-controlled state */
   }
   if (lr.no_limit) {
-    /* a hard stretch, not a limit point: every state of the volume path is stable under
-     * pressure control, so output pressures it passed get their rows; the last one lies
-     * between the path's last two states (s_prev at p_before, s_conv at p) and is solved there
-     * under pressure control from the state interpolated linearly in p */
-    r->info.n_hard_passed++;
-    *st = rowsOnRisingPath(r, lr.p_before, err);
+    /* a hard stretch, not a limit point (or one asked for, csfBendOptions.volume_from): every
+     * state of the volume path is stable under pressure control, so each output pressure it
+     * passed gets its row, solved under pressure control from the state interpolated along
+     * the path (rowsOnRisingPath) */
+    r->info.n_hard_passed += !forced;
+    *st = rowsOnRisingPath(r, &lw, err);
     if (*st != CS_OK) {
       return 1;
     }
@@ -260,4 +333,19 @@ int csf_bendStageLimit(Run* r, csStatus* st, csError* err) {
   }
   r->dp = 0.25 * o->p_step;
   return 0;
+}
+
+
+/* Follow the path by chamber volume from the collapsed step. Returns 1 when the sweep ends
+ * there (no stable branch, or the until-angle was met on the path; *st carries a row error),
+ * 0 when it resumes under pressure control (r's state updated to the path's last two states). */
+int csf_bendStageLimit(Run* r, csStatus* st, csError* err) {
+  double* keep = malloc((2 + CSF_BEND_PASSED_ROWS) * r->ns * sizeof(double));
+  if (!keep) {
+    *st = cs_errorSet(err, CS_ERR_MEMORY, "fem: out of memory for the volume-controlled path");
+    return 1;
+  }
+  const int end = followByVolume(r, keep, st, err);
+  free(keep);
+  return end;
 }

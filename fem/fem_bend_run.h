@@ -43,6 +43,8 @@ typedef struct {
   int n_hard;                   /* accepted steps in a row that needed cut-backs */
   int neg_conv, neg_prev;       /* negative pivots of s_conv and s_prev (-1: unknown) */
   int on_branch;                /* 1: past a branch switch (csfBendStep.branch) */
+  int volume_forced;            /* csfBendOptions.volume_from: 0 not yet, 1 the stretch asked
+                                 * (stageStep), 2 done */
   double t_start;
 } Run;
 

@@ -1,8 +1,8 @@
 /* test_fem_bend.c: end-to-end csf_bend on a short coarse actuator variant (S = 15 mm segments,
  * 9 turns, l_soft = 5 mm): angles grow with pressure, the three equal segments bend alike,
  * --until-angle is found by equilibrium solves to within the tolerance, and the VTU and
- * ABAQUS/CalculiX files are written; the sweep tolerance keeps the answer. Slow (~2 min):
- * label slow. */
+ * ABAQUS/CalculiX files are written; the sweep tolerance keeps the answer; a volume-controlled
+ * stretch lands every output row it passes. Slow (~3 min): label slow. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -230,11 +230,83 @@ static void test_sweep_tolerance_keeps_the_answer(void) {
   csr_bendCurveFree(&bc[1]);
 }
 
+/* A volume-controlled stretch lands a row at every output pressure it passes: the fibre-free
+ * short actuator's sweep asked to follow the path by chamber volume from 0.02 MPa
+ * (csfBendOptions.volume_from; it ran to 0.072 MPa, passing the eight output pressures up to
+ * p_max) has the rows
+ * of the pressure-controlled sweep and the same equilibria to Newton's tolerance (both are
+ * solved under pressure control at the output pressures; measured 4e-9 mm, 6e-9 deg; bound
+ * 1e-4, the tolerance test's), none skipped. Before, only the last output
+ * pressure of a stretch got its row (the symmetric-mesh O13 lost its 0.35 MPa row that way). */
+typedef struct {
+  double p_vmax; /* highest pressure of a volume-controlled state */
+  int nvol;
+} VolumeWatch;
+
+
+static void watchVolume(void* user, const csfBendStep* step) {
+  VolumeWatch* w = user;
+  if (step->volume_control) {
+    w->nvol++;
+    w->p_vmax = fmax(w->p_vmax, step->p);
+  }
+}
+
+
+static void test_volume_stretch_lands_every_row(void) {
+  csError err = {0};
+  csrActuator act;
+  csfBendInfo info[2];
+  csrBendCurve bc[2];
+  VolumeWatch vw = {0, 0};
+  for (int k = 0; k < 2; k++) {
+    csfBendOptions o = shortActuator(&act, 0, &info[k]);
+    o.p_max = 0.06;
+    o.p_step = 0.005;
+    if (k == 1) {
+      o.volume_from = 0.02;
+      o.progress = watchVolume;
+      o.progress_user = &vw;
+    }
+    o.spec.work_stem = "bend_volume";
+    csr_bendCurveInit(&bc[k], 16, &err);
+    const csStatus st = csf_bend(&act, &o, &bc[k], &err);
+    if (st != CS_OK) {
+      fprintf(stderr, "%s\n", err.msg);
+    }
+    CS_EXPECT(st == CS_OK);
+  }
+  /* output pressures strictly inside the stretch (0.02, p_vmax): the old sweep skipped them */
+  const int inside = (int)floor(fmin(vw.p_vmax, 0.06) / 0.005 + 1e-9) - 4;
+  printf("  volume-controlled states %d up to %.5f MPa (%d output pressures inside), rows %zu "
+         "and %zu, skipped %d\n", vw.nvol, vw.p_vmax, inside, bc[0].m, bc[1].m,
+         info[1].n_rows_skipped);
+  CS_EXPECT(vw.nvol > 0 && inside >= 2);
+  CS_EXPECT(info[1].n_rows_skipped == 0);
+  CS_EXPECT(bc[0].m == 13 && bc[1].m == bc[0].m);
+  double dtip = 0, dang = 0;
+  for (size_t i = 0; i < bc[0].m && i < bc[1].m; i++) {
+    CS_EXPECT_NEAR(bc[1].pressure[i], bc[0].pressure[i], 0, 1e-12);
+    for (int c = 0; c < 3; c++) {
+      dtip = fmax(dtip, fabs(bc[1].tip[3 * i + c] - bc[0].tip[3 * i + c]));
+    }
+    dang = fmax(dang, fabs(bc[1].angle_total[i] - bc[0].angle_total[i]));
+  }
+  printf("  %d + %d steps, %ld + %ld Newton iterations, %.1f + %.1f s\n", info[0].n_steps,
+         info[1].n_steps, info[0].n_newton, info[1].n_newton, info[0].t_total, info[1].t_total);
+  printf("  largest difference to the pressure-controlled sweep: tip %.2e mm, angle %.2e deg\n",
+         dtip, dang);
+  CS_EXPECT(dtip < 1e-4 && dang < 1e-4);
+  csr_bendCurveFree(&bc[0]);
+  csr_bendCurveFree(&bc[1]);
+}
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_bend_short);
   CS_RUN(test_gravity_ramp);
   CS_RUN(test_sweep_tolerance_keeps_the_answer);
   CS_RUN(test_tip_force_row_zero_is_loaded);
+  CS_RUN(test_volume_stretch_lands_every_row);
   return cs_testSummary();
 }
