@@ -3,8 +3,11 @@
  * Why chunked extendible datasets for series: a run writes samples as it goes and flushes, so
  * a run that diverges or is interrupted still leaves a valid file with the samples so far. The
  * chunk holds 64 rows: small enough for short runs, large enough that a 9 s run at 100 Hz is a
- * handful of chunks. HDF5's own error stack printing is switched off; failures come back as
- * csStatus with the path named. */
+ * handful of chunks. Rows are gathered in memory and written a chunk at a time (and at every
+ * cs_h5Flush and at close): one extent change and one write per 64 rows instead of per row
+ * (measured on the 9 s rod flat road: a row-by-row append of the 16 series cost ~0.2 ms per
+ * sample, 7 % of the run). HDF5's own error stack printing is switched off; failures come back
+ * as csStatus with the path named. */
 #include "core_h5.h"
 
 #include <hdf5.h>
@@ -16,7 +19,10 @@ enum { SERIES_CHUNK_ROWS = 64 };
 typedef struct {
   hid_t dset;
   int rank;        /* full rank = tail rank + 1 */
-  hsize_t dims[4]; /* current dims */
+  hsize_t dims[4]; /* dims written to the file */
+  size_t row_len;  /* doubles per row */
+  int npend;       /* rows gathered in pend, not yet written */
+  double* pend;    /* (SERIES_CHUNK_ROWS x row_len) */
 } Series;
 
 struct csH5File_ {
@@ -48,16 +54,56 @@ csH5File* cs_h5Create(const char* path, csError* err) {
 }
 
 
-void cs_h5Close(csH5File* f) {
-  if (!f) {
-    return;
+/* write the rows gathered in series s to the file */
+static csStatus writePending(csH5File* f, Series* s, csError* err) {
+  if (s->npend == 0) {
+    return CS_OK;
   }
+  hsize_t start[4] = {0}, count[4];
+  start[0] = s->dims[0];
+  count[0] = (hsize_t)s->npend;
+  for (int i = 1; i < s->rank; i++) {
+    count[i] = s->dims[i];
+  }
+  hsize_t dims[4];
+  memcpy(dims, s->dims, sizeof dims);
+  dims[0] += (hsize_t)s->npend;
+  if (H5Dset_extent(s->dset, dims) < 0) {
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot extend a series", f->path);
+  }
+  hid_t fspace = H5Dget_space(s->dset);
+  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL);
+  hid_t mspace = H5Screate_simple(s->rank, count, NULL);
+  herr_t rc = H5Dwrite(s->dset, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, s->pend);
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  if (rc < 0) {
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write series rows", f->path);
+  }
+  s->dims[0] = dims[0];
+  s->npend = 0;
+  return CS_OK;
+}
+
+
+csStatus cs_h5Close(csH5File* f) {
+  if (!f) {
+    return CS_OK;
+  }
+  csStatus st = CS_OK;
   for (int i = 0; i < f->nseries; i++) {
+    if (writePending(f, &f->series[i], NULL) != CS_OK) {
+      st = CS_ERR_IO;
+    }
     H5Dclose(f->series[i].dset);
+    free(f->series[i].pend);
   }
   H5Pclose(f->lcpl);
-  H5Fclose(f->file);
+  if (H5Fclose(f->file) < 0) {
+    st = CS_ERR_IO;
+  }
   free(f);
+  return st;
 }
 
 
@@ -146,7 +192,17 @@ int cs_h5SeriesCreate(csH5File* f, const char* path, int tail_rank, const size_t
     return -1;
   }
   Series* s = &f->series[f->nseries];
+  memset(s, 0, sizeof *s);
   s->rank = tail_rank + 1;
+  s->row_len = 1;
+  for (int i = 0; i < tail_rank; i++) {
+    s->row_len *= tail_dims[i];
+  }
+  s->pend = malloc(SERIES_CHUNK_ROWS * s->row_len * sizeof(double));
+  if (!s->pend) {
+    cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory for series %s", f->path, path);
+    return -1;
+  }
   hsize_t maxdims[4], chunk[4];
   s->dims[0] = 0;
   maxdims[0] = H5S_UNLIMITED;
@@ -163,6 +219,8 @@ int cs_h5SeriesCreate(csH5File* f, const char* path, int tail_rank, const size_t
   H5Pclose(dcpl);
   H5Sclose(space);
   if (s->dset < 0) {
+    free(s->pend);
+    s->pend = NULL;
     cs_errorSet(err, CS_ERR_IO, "%s: cannot create dataset %s", f->path, path);
     return -1;
   }
@@ -175,31 +233,24 @@ csStatus cs_h5SeriesAppend(csH5File* f, int si, const double* row, csError* err)
     return cs_errorSet(err, CS_ERR_ARG, "h5: bad series index %d", si);
   }
   Series* s = &f->series[si];
-  hsize_t start[4] = {0}, count[4];
-  start[0] = s->dims[0];
-  count[0] = 1;
-  for (int i = 1; i < s->rank; i++) {
-    count[i] = s->dims[i];
-  }
-  s->dims[0] += 1;
-  if (H5Dset_extent(s->dset, s->dims) < 0) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot extend a series", f->path);
-  }
-  hid_t fspace = H5Dget_space(s->dset);
-  H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL);
-  hid_t mspace = H5Screate_simple(s->rank, count, NULL);
-  herr_t rc = H5Dwrite(s->dset, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, row);
-  H5Sclose(mspace);
-  H5Sclose(fspace);
-  if (rc < 0) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write a series row", f->path);
-  }
-  return CS_OK;
+  memcpy(s->pend + (size_t)s->npend * s->row_len, row, s->row_len * sizeof(double));
+  s->npend++;
+  return s->npend == SERIES_CHUNK_ROWS ? writePending(f, s, err) : CS_OK;
 }
 
 
-void cs_h5Flush(csH5File* f) {
-  if (f) {
-    H5Fflush(f->file, H5F_SCOPE_GLOBAL);
+csStatus cs_h5Flush(csH5File* f, csError* err) {
+  if (!f) {
+    return CS_OK;
   }
+  for (int i = 0; i < f->nseries; i++) {
+    csStatus st = writePending(f, &f->series[i], err);
+    if (st != CS_OK) {
+      return st;
+    }
+  }
+  if (H5Fflush(f->file, H5F_SCOPE_GLOBAL) < 0) {
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot flush", f->path);
+  }
+  return CS_OK;
 }

@@ -20,8 +20,9 @@ typedef struct csH5File_ csH5File;
 /* Create (truncate) an HDF5 file. Returns NULL and fills err on failure. */
 csH5File* cs_h5Create(const char* path, csError* err);
 
-/* Flush and close; NULL-safe. */
-void cs_h5Close(csH5File* f);
+/* Write the series' gathered rows, flush and close; NULL-safe. CS_ERR_IO when any of it failed
+ * (the file may then lack the last rows). */
+csStatus cs_h5Close(csH5File* f);
 
 /* Write a whole dataset of doubles: rank 1..4, dims[rank], data row-major (C order). */
 csStatus cs_h5WriteDoubles(csH5File* f, const char* path, int rank, const size_t* dims,
@@ -40,11 +41,13 @@ csStatus cs_h5AttrDouble(csH5File* f, const char* objpath, const char* name, dou
 int cs_h5SeriesCreate(csH5File* f, const char* path, int tail_rank, const size_t* tail_dims,
                       csError* err);
 
-/* Append one row (prod(tail_dims) doubles) to series `s`. */
+/* Append one row (prod(tail_dims) doubles) to series `s`. Rows are gathered in memory and
+ * written 64 at a time; cs_h5Flush and cs_h5Close write the rest. */
 csStatus cs_h5SeriesAppend(csH5File* f, int s, const double* row, csError* err);
 
-/* Flush all buffers to disk (the file stays readable if the process stops afterwards). */
-void cs_h5Flush(csH5File* f);
+/* Write every series' gathered rows and flush all buffers to disk (the file stays readable
+ * with every row appended so far if the process stops afterwards). */
+csStatus cs_h5Flush(csH5File* f, csError* err);
 
 #ifdef __cplusplus
 }

@@ -186,7 +186,9 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
     }
     if (i % per_second == 0) {
       double wo = csu_wallSeconds();
-      cs_h5Flush(f);
+      if (st == CS_OK) {
+        st = cs_h5Flush(f, err);
+      }
       csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
       if (m->opt.progress) {
         double x[3];
@@ -214,7 +216,9 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
     snprintf(name, sizeof name, "timer_%s_calls", cs_timerName((csTimerId)k));
     cs_h5AttrDouble(f, "/", name, (double)d->timer[k].count, NULL);
   }
-  cs_h5Close(f);
+  if (cs_h5Close(f) != CS_OK && st == CS_OK) {
+    st = cs_errorSet(err, CS_ERR_IO, "%s: cannot write the last rows or close", out_path);
+  }
   /* the XDMF beside it (run.h5 -> run.xdmf), even for a run cut short: ParaView opens what
    * there is; at most ~600 frames keep its XML small (a 9 s run at 0.01 s: every 2nd sample) */
   char xdmf[1024];

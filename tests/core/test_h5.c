@@ -1,5 +1,6 @@
 /* test_h5.c: the HDF5 writer: whole datasets, growing series, attributes, read back exactly;
- * bad paths fail with a message instead of crashing. */
+ * a series' rows gathered in memory are in the file after a flush and at close; bad paths fail
+ * with a message instead of crashing. */
 #include <hdf5.h>
 #include <stdio.h>
 #include <string.h>
@@ -51,6 +52,63 @@ static void test_h5_series_and_datasets_round_trip(void) {
 }
 
 
+/* rows of series "/s" in the file at path (-1 when it cannot be read); row r's first value
+ * into *last when r = rows - 1 */
+static long seriesRows(const char* path, double* last) {
+  hid_t h = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (h < 0) {
+    return -1;
+  }
+  hid_t d = H5Dopen2(h, "/s", H5P_DEFAULT);
+  hid_t sp = H5Dget_space(d);
+  hsize_t got[2] = {0, 0};
+  H5Sget_simple_extent_dims(sp, got, NULL);
+  static double all[2 * 200];
+  if (got[0] > 0 && got[0] <= 200) {
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, all);
+    *last = all[2 * (got[0] - 1)];
+  }
+  H5Sclose(sp);
+  H5Dclose(d);
+  H5Fclose(h);
+  return (long)got[0];
+}
+
+
+/* the writer gathers 64 rows before writing: a flush writes what is gathered (a run's output
+ * stays readable with every sample so far, sim_run.c flushes every simulated second), and so
+ * does the close */
+static void test_h5_flush_writes_gathered_rows(void) {
+  csError err;
+  csH5File* f = cs_h5Create("t_flush.h5", &err);
+  CS_EXPECT(f != NULL);
+  if (!f) {
+    return;
+  }
+  size_t two = 2;
+  int s = cs_h5SeriesCreate(f, "/s", 1, &two, &err);
+  CS_EXPECT(s >= 0);
+  double row[2];
+  for (int r = 0; r < 70; r++) {
+    row[0] = r, row[1] = -r;
+    CS_EXPECT(cs_h5SeriesAppend(f, s, row, &err) == CS_OK);
+  }
+  double last = -1;
+  CS_EXPECT(cs_h5Flush(f, &err) == CS_OK);
+  long n = seriesRows("t_flush.h5", &last);
+  printf("  after 70 rows and a flush: %ld rows in the file, the last %g\n", n, last);
+  CS_EXPECT(n == 70 && last == 69);
+  for (int r = 70; r < 73; r++) {
+    row[0] = r, row[1] = -r;
+    CS_EXPECT(cs_h5SeriesAppend(f, s, row, &err) == CS_OK);
+  }
+  CS_EXPECT(cs_h5Close(f) == CS_OK);
+  n = seriesRows("t_flush.h5", &last);
+  CS_EXPECT(n == 73 && last == 72);
+  remove("t_flush.h5");
+}
+
+
 static void test_h5_bad_path_fails_cleanly(void) {
   csError err;
   cs_errorClear(&err);
@@ -63,6 +121,7 @@ static void test_h5_bad_path_fails_cleanly(void) {
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_h5_series_and_datasets_round_trip);
+  CS_RUN(test_h5_flush_writes_gathered_rows);
   CS_RUN(test_h5_bad_path_fails_cleanly);
   return cs_testSummary();
 }
