@@ -60,7 +60,7 @@ typedef struct {
    * interpolated linearly in p between the two path states that bracket it */
   size_t ns;             /* state length */
   double* s_last;        /* (ns) the path's previous state, at pressure p_last */
-  double* s_cur;         /* (ns) scratch: the state just reported */
+  double* s_cur;         /* (ns) the state just reported (swapped with s_last) */
   double p_last;
   int k_next;            /* next output row index (Run.k_out's numbering) */
   int nrow;
@@ -112,7 +112,9 @@ static void capturePassedRows(LimitWatch* lw, const csfModel* m, const csfData* 
     }
     lw->k_next++;
   }
-  memcpy(lw->s_last, lw->s_cur, lw->ns * sizeof(double));
+  double* t = lw->s_last; /* the state just reported is the next one's previous */
+  lw->s_last = lw->s_cur;
+  lw->s_cur = t;
   lw->p_last = p;
 }
 

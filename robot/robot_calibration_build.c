@@ -348,6 +348,12 @@ static int mergePoints(const double* x, const double* y, int n, double* X, doubl
 }
 
 
+double csr_calProbeEI_(const csrCalCase* c, int k, int s) {
+  const double e1 = c->EI[6 * k + 2 * s], e2 = c->EI[6 * k + 2 * s + 1];
+  return isnan(e1) ? e2 : isnan(e2) ? e1 : 0.5 * (e1 + e2);
+}
+
+
 /* The probes' reduction to EI and EA (fem_calibration.c) is exact for a straight segment; a bent
  * one mixes modes: the tip force also bends it, which moves its chord-and-angle stretch, and the
  * moment varies along the arc. Measured on Omega1&Omega2 of the leg (tension-only fibres): at
@@ -392,11 +398,9 @@ static int buildStiffness(csrCalModel* m, const csrCalTable* t) {
       }
       const double rbar = 0.25 * (c->ratio[0] + c->ratio[1] + c->ratio[2] + c->ratio[3]);
       for (int k = 0; k < c->k; k++) {
-        const double e1 = c->EI[6 * k + 2 * s], e2 = c->EI[6 * k + 2 * s + 1];
-        /* isotropic section: the mean of the two probes (one if the other failed) */
         const double beta = probeBend(c, k, s);
         x[n] = rbar * c->probe_pressure[k];
-        ei[n] = beta > PROBE_BEND_EI ? NAN : isnan(e1) ? e2 : isnan(e2) ? e1 : 0.5 * (e1 + e2);
+        ei[n] = beta > PROBE_BEND_EI ? NAN : csr_calProbeEI_(c, k, s);
         ea[n] = beta > PROBE_BEND_EA ? NAN : c->EA[3 * k + s];
         n++;
       }

@@ -100,6 +100,10 @@ void csr_calCurveFree_(csrCalCurve* c);
 void csr_calCurveSlopes_(csrCalCurve* c);
 /* the nc components of segment s at pressure p (clamped to the rows), exact at a row */
 void csr_calCurveEval_(const csrCalCurve* c, double p, int s, double* out);
+/* segment s's EI from stiffness probe k of case c (N mm^2): the isotropic section's mean of the
+ * two bend directions' probes, either one where the other has no reading, NAN when neither has
+ * (robot_calibration_build.c) */
+double csr_calProbeEI_(const csrCalCase* c, int k, int s);
 
 /* ---- evaluation pieces (robot_calibration_model.c) ------------------------------------- */
 

@@ -555,10 +555,7 @@ csStatus csr_calReportPrint(const csrCalModel* m, const csrCalTable* t, FILE* ou
               0.25 * (c->ratio[0] + c->ratio[1] + c->ratio[2] + c->ratio[3]) *
                   c->probe_pressure[k]);
       for (int s = 0; s < CSR_NSEG; s++) {
-        /* the two bend directions' probes, either where the other has no reading (as the
-         * model takes them, robot_calibration_build.c) */
-        const double e1 = c->EI[6 * k + 2 * s], e2 = c->EI[6 * k + 2 * s + 1];
-        const double ei = isnan(e1) ? e2 : isnan(e2) ? e1 : 0.5 * (e1 + e2);
+        const double ei = csr_calProbeEI_(c, k, s); /* as the model takes the probes */
         char eis[32] = "-", eas[32] = "-";
         if (isfinite(ei)) {
           snprintf(eis, sizeof eis, "%.0f (%.2f x)", ei, ei / (E * sp.I_holed));
