@@ -91,6 +91,20 @@ static const csfCalCase kCases[] = {
      "Omega1 at p, Omega2&Omega3 at p/2 (the centre of the face Omega4 = 0)"},
     {"O12O34r05", CSF_CAL_MODE, {1, 1, 0.5, 0.5}, 0.5, 0, {0, 0, 0},
      "Omega1&Omega2 at p, Omega3&Omega4 at p/2 (the centre of the face Omega2 = p)"},
+    /* the cells of the face Omega2 = Omega4 (x2, x3 on a 0.5 grid), refined where the modes
+     * left out one at a time were worst (Omega3 high: O1O3r05, O13O2r05, the face Omega3 = p)
+     * (2026-12-03) */
+    {"O1O24r075O3r025", CSF_CAL_MODE, {1, 0.75, 0.25, 0.75}, 0.5, 0, {0, 0, 0},
+     "Omega1 at p, Omega2&Omega4 at 0.75 p, Omega3 at p/4 (a cell centre of the face "
+     "Omega2 = Omega4)"},
+    {"O1O234r025", CSF_CAL_MODE, {1, 0.25, 0.25, 0.25}, 0.5, 0, {0, 0, 0},
+     "Omega1 at p, the other three at p/4 (a cell centre of the face Omega2 = Omega4)"},
+    {"O1O24r025O3r075", CSF_CAL_MODE, {1, 0.25, 0.75, 0.25}, 0.5, 0, {0, 0, 0},
+     "Omega1 at p, Omega2&Omega4 at p/4, Omega3 at 0.75 p (a cell centre of the face "
+     "Omega2 = Omega4)"},
+    {"O13O24r05", CSF_CAL_MODE, {1, 0.5, 1, 0.5}, 0.5, 0, {0, 0, 0},
+     "Omega1&Omega3 at p, Omega2&Omega4 at p/2 (the midpoint of the edge Omega1&Omega3 -> all "
+     "four)"},
     {"O2", CSF_CAL_SYMMETRY, {0, 1, 0, 0}, 0.5, 0, {0, 0, 0},
      "Omega2 alone: Omega1 alone turned by -90 deg (symmetry check)"},
     {"H4t", CSF_CAL_SYMMETRY, {0.75, 1, 0.75, 0.375}, 0.4, 0, {0, 0, 0},
@@ -115,10 +129,15 @@ static const csfCalCase kCases[] = {
      "held out: Omega1 0.4 + Omega2 0.12 + Omega3 0.28 + Omega4 0.08 MPa at p = 0.4"},
     {"H8", CSF_CAL_HOLDOUT, {1, 1.0 / 3.0, 0, 0}, 0.4, 0, {0, 0, 0},
      "held out: H1's pattern over the whole range, Omega1 0.4 + Omega2 0.133 MPa at p = 0.4"},
+    {"H9", CSF_CAL_HOLDOUT, {1, 0.4, 0.8, 0.3}, 0.4, 0, {0, 0, 0},
+     "held out: Omega1 0.4 + Omega2 0.16 + Omega3 0.32 + Omega4 0.12 MPa at p = 0.4"},
+    {"H10", CSF_CAL_HOLDOUT, {1, 0.625, 0.125, 0.625}, 0.4, 0, {0, 0, 0},
+     "held out: Omega1 0.4 + Omega2, Omega4 0.25 + Omega3 0.05 MPa at p = 0.4"},
     {"G", CSF_CAL_GRAVITY, {0, 0, 0, 0}, 0.025, 0, {-G_EARTH, 0, 0},
      "the horizontal leg under its own weight at 9.81 m/s^2 (gravity along -e1), vented"},
 };
 #define NCASE ((int)(sizeof kCases / sizeof kCases[0]))
+_Static_assert(NCASE <= CSF_CAL_MAX_CASES, "CSF_CAL_MAX_CASES holds every case of the list");
 
 /* pressures of the stiffness probes (MPa) */
 static const double kProbeP[] = {0.0, 0.1, 0.2, 0.3};

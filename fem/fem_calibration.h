@@ -39,7 +39,7 @@ extern "C" {
 #endif
 
 #define CSF_CAL_FORMAT "crawlsim-fe-calibration 1"
-#define CSF_CAL_MAX_CASES 32
+#define CSF_CAL_MAX_CASES 64 /* the case list and the files a merge takes (cmd_calibrate.c) */
 
 typedef enum csfCalKind_ {
   CSF_CAL_MODE = 0,     /* fitted: the model must return these points */

@@ -16,7 +16,7 @@
 /* captured output of one run */
 typedef struct {
   int status;     /* exit status, -1 if it did not exit normally (a crash) */
-  char out[16384]; /* stdout, cut at the buffer size (a calibration report is ~9 KB) */
+  char out[65536]; /* stdout, cut at the buffer size (a calibration report is ~20 KB) */
   char err[8192]; /* stderr, cut at the buffer size */
 } csCliResult;
 

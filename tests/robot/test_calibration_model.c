@@ -468,15 +468,19 @@ static void holdoutErrors(const Built* b, int rule, double* bend_deg, double* ti
     csError err;
     CS_EXPECT(csr_calModelCompare(b->model, c, &e, &err) == CS_OK);
     CS_EXPECT(e.rows == c->m);
-    *bend_deg = fmax(*bend_deg, e.bend_deg);
-    *tip_mm = fmax(*tip_mm, e.tip_mm);
-    *score = fmax(*score, fmax(e.bend_score, e.tip_score));
+    /* the bounds were measured over H1-H8; H9 and H10 (2026-12-03) are printed only */
+    const int bounded = atoi(c->name + 1) <= 8;
+    if (bounded) {
+      *bend_deg = fmax(*bend_deg, e.bend_deg);
+      *tip_mm = fmax(*tip_mm, e.tip_mm);
+      *score = fmax(*score, fmax(e.bend_score, e.tip_score));
+      n++;
+    }
     printf("  %-6s %-13s bend %.4f deg (at %.3g MPa, II%d, of %.2f deg), tip %.4f mm\n", c->name,
            rule == CSR_CAL_RULE_SUPERPOSITION ? "superposition"
            : rule == CSR_CAL_RULE_RBF         ? "RBF"
                                               : "interpolation",
            e.bend_deg, e.bend_at_p, e.bend_at_seg + 1, e.bend_fe_deg, e.tip_mm);
-    n++;
   }
   CS_EXPECT(n == 8); /* H1-H8 */
 }
