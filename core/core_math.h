@@ -197,56 +197,69 @@ static inline void csu_rotVecToMat3(csReal R[9], const csReal phi[3]) {
   csu_axisAngleToMat3(R, u, th);
 }
 
-/* Eigen decomposition of a symmetric 3x3 matrix A (row-major; only its symmetric part is
- * used): A = V diag(w) V^T with the eigenvectors as the columns of V (orthonormal), by cyclic
- * Jacobi rotations (Golub & Van Loan 8.5), converged to round-off in <= 10 sweeps for any 3x3.
- * Eigenvalues are not sorted. */
-static inline void csu_symEigen3(const csReal A[9], csReal w[3], csReal V[9]) {
-  csReal a[9];
-  for (int i = 0; i < 3; i++) {
-    for (int j = 0; j < 3; j++) {
-      a[3 * i + j] = 0.5 * (A[3 * i + j] + A[3 * j + i]);
+/* Eigen decomposition of a symmetric n x n matrix A, n <= 6 (row-major; only its symmetric
+ * part is used): A = V diag(w) V^T with the eigenvectors as the columns of V (orthonormal, n x n
+ * row-major), by cyclic Jacobi rotations (Golub & Van Loan 8.5), converged to round-off in a few
+ * sweeps for these sizes (capped at 50). Eigenvalues are not sorted. */
+#define CSU_SYMEIGEN_MAXN 6
+static inline void csu_symEigenN(int n, const csReal* A, csReal* w, csReal* V) {
+  csReal a[CSU_SYMEIGEN_MAXN * CSU_SYMEIGEN_MAXN];
+  for (int i = 0; i < n; i++) {
+    for (int j = 0; j < n; j++) {
+      a[n * i + j] = 0.5 * (A[n * i + j] + A[n * j + i]);
+      V[n * i + j] = i == j ? 1.0 : 0.0;
     }
   }
-  csu_eye3(V);
   for (int sweep = 0; sweep < 50; sweep++) {
-    csReal off = a[1] * a[1] + a[2] * a[2] + a[5] * a[5];
-    csReal diag = a[0] * a[0] + a[4] * a[4] + a[8] * a[8];
+    csReal off = 0, diag = 0;
+    for (int p = 0; p < n; p++) {
+      for (int q = p + 1; q < n; q++) {
+        off += a[n * p + q] * a[n * p + q];
+      }
+    }
+    for (int p = 0; p < n; p++) {
+      diag += a[n * p + p] * a[n * p + p];
+    }
     if (!(off > 1e-36 * diag)) {
       break; /* off-diagonal below round-off of the diagonal (or exactly zero) */
     }
-    for (int p = 0; p < 2; p++) {
-      for (int q = p + 1; q < 3; q++) {
-        csReal apq = a[3 * p + q];
+    for (int p = 0; p < n - 1; p++) {
+      for (int q = p + 1; q < n; q++) {
+        csReal apq = a[n * p + q];
         if (apq == 0) {
           continue;
         }
         /* the rotation that zeroes a_pq: tan(2θ) = 2 a_pq / (a_qq - a_pp), smaller root */
-        csReal tau = (a[3 * q + q] - a[3 * p + p]) / (2 * apq);
+        csReal tau = (a[n * q + q] - a[n * p + p]) / (2 * apq);
         csReal t = (tau >= 0 ? 1.0 : -1.0) / (fabs(tau) + sqrt(1 + tau * tau));
         csReal c = 1 / sqrt(1 + t * t), sn = t * c;
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < n; k++) {
           /* a <- J^T a J with J the (p, q) rotation, columns then rows */
-          csReal akp = a[3 * k + p], akq = a[3 * k + q];
-          a[3 * k + p] = c * akp - sn * akq;
-          a[3 * k + q] = sn * akp + c * akq;
+          csReal akp = a[n * k + p], akq = a[n * k + q];
+          a[n * k + p] = c * akp - sn * akq;
+          a[n * k + q] = sn * akp + c * akq;
         }
-        for (int k = 0; k < 3; k++) {
-          csReal apk = a[3 * p + k], aqk = a[3 * q + k];
-          a[3 * p + k] = c * apk - sn * aqk;
-          a[3 * q + k] = sn * apk + c * aqk;
+        for (int k = 0; k < n; k++) {
+          csReal apk = a[n * p + k], aqk = a[n * q + k];
+          a[n * p + k] = c * apk - sn * aqk;
+          a[n * q + k] = sn * apk + c * aqk;
         }
-        for (int k = 0; k < 3; k++) {
-          csReal vkp = V[3 * k + p], vkq = V[3 * k + q];
-          V[3 * k + p] = c * vkp - sn * vkq;
-          V[3 * k + q] = sn * vkp + c * vkq;
+        for (int k = 0; k < n; k++) {
+          csReal vkp = V[n * k + p], vkq = V[n * k + q];
+          V[n * k + p] = c * vkp - sn * vkq;
+          V[n * k + q] = sn * vkp + c * vkq;
         }
       }
     }
   }
-  w[0] = a[0];
-  w[1] = a[4];
-  w[2] = a[8];
+  for (int i = 0; i < n; i++) {
+    w[i] = a[n * i + i];
+  }
+}
+
+/* the 3 x 3 case (csu_symEigenN) */
+static inline void csu_symEigen3(const csReal A[9], csReal w[3], csReal V[9]) {
+  csu_symEigenN(3, A, w, V);
 }
 
 /* The implicit spring-damper of ODE's soft constraints (ODE manual, "Soft constraint and

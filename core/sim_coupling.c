@@ -122,6 +122,20 @@ static void addAtCentre(double M[36], const double G[36], const double r[3]) {
 
 
 /* y = M x for 6x6 M */
+/* C = A B (C may not alias A or B) */
+static void mat6Mul(double C[36], const double A[36], const double B[36]) {
+  for (int i = 0; i < 6; i++) {
+    for (int k = 0; k < 6; k++) {
+      double s = 0;
+      for (int e = 0; e < 6; e++) {
+        s += A[6 * i + e] * B[6 * e + k];
+      }
+      C[6 * i + k] = s;
+    }
+  }
+}
+
+
 static void mat6Vec(double y[6], const double M[36], const double x[6]) {
   for (int i = 0; i < 6; i++) {
     double s = 0;
@@ -212,6 +226,107 @@ void cs_couplingStateSet(csData* d, const double* x) {
     memcpy(f[i].p, x, (size_t)f[i].n * sizeof(double));
     x += f[i].n;
   }
+}
+
+
+/* the support's mass and its inertia about its centre in the world frame at rotation R (ODE's
+ * units: the model's kg and mm) */
+static void supportInertia(const csData* d, const double R[9], double* mass, double Iw[9]) {
+  dMass ms;
+  dBodyGetMass(d->robot->support, &ms);
+  double Ib[9], RI[9], RT[9];
+  for (int a = 0; a < 3; a++) {
+    for (int b = 0; b < 3; b++) {
+      Ib[3 * a + b] = ms.I[4 * a + b]; /* dMatrix3 rows are 4 wide */
+    }
+  }
+  csu_mulMat3(RI, R, Ib);
+  csu_transpose3(RT, R);
+  csu_mulMat3(Iw, RI, RT);
+  *mass = ms.mass;
+}
+
+
+/* The implicit part of the support's step, A = h Kc + Cc, kept passive. The step solves
+ * (M + h A) q' = ... (cs_couplingApply), which has one bounded solution for any twist when the
+ * symmetric part of A is positive semi-definite (then x^T (M + h A) x >= x^T M x > 0). A leg's
+ * condensed gains are not always so: they come from its Newton matrix, and a loaded leg near
+ * its sway-buckling load, or a foot between stick and slip, can give a direction of negative
+ * stiffness and damping. The obstacle gait on the full table (rbf-pair) met one at
+ * t = 59.54 s: leg D's gains had eigenvalues -6.3 N/mm and -0.13 N s/mm against +0.1..+1.1 and
+ * +0.002..+0.02 for every other leg, M + h A became singular (condition 1.4e7) and the
+ * support's step returned 9.5 N m of torque from 0.55 N of legs' wrench. So the symmetric part
+ * is projected onto the positive semi-definite matrices in the support's inertia metric
+ * (B = M^-1/2 sym(A) M^-1/2 with its negative eigenvalues set to 0; the antisymmetric part,
+ * which does no work, is kept): in that direction the legs' wrench acts explicitly (W0 and
+ * Kc dq are applied as they are), and where A is passive the step is unchanged to the bit.
+ * Measured (2026-12-03): every projection on the obstacle scene had h min eig(B) between -3.7
+ * and -68, i.e. M + h A itself indefinite; none on the 9 s flat road. Returns 1 when it
+ * projected. */
+static int implicitPart(const csData* d, const double R[9], double h, const double Kc[36],
+                        const double Cc[36], double A[36]) {
+  for (int i = 0; i < 36; i++) {
+    A[i] = h * Kc[i] + Cc[i];
+  }
+  double mass, Iw[9], lam[3], U[9];
+  supportInertia(d, R, &mass, Iw);
+  csu_symEigen3(Iw, lam, U);
+  if (!(mass > 0) || !(lam[0] > 0) || !(lam[1] > 0) || !(lam[2] > 0)) {
+    return 0; /* no inertia metric (cannot happen: ODE refuses such masses) */
+  }
+  /* T = M^-1/2 and Ti = M^1/2, block diagonal (translation, rotation) */
+  double T[36], Ti[36];
+  mat6Zero(T);
+  mat6Zero(Ti);
+  for (int a = 0; a < 3; a++) {
+    T[7 * a] = 1 / sqrt(mass);
+    Ti[7 * a] = sqrt(mass);
+    for (int b = 0; b < 3; b++) {
+      double s = 0, si = 0;
+      for (int k = 0; k < 3; k++) {
+        s += U[3 * a + k] * U[3 * b + k] / sqrt(lam[k]);
+        si += U[3 * a + k] * U[3 * b + k] * sqrt(lam[k]);
+      }
+      T[6 * (3 + a) + 3 + b] = s;
+      Ti[6 * (3 + a) + 3 + b] = si;
+    }
+  }
+  double Sy[36], B[36], tmp[36], w[6], V[36];
+  for (int i = 0; i < 6; i++) {
+    for (int k = 0; k < 6; k++) {
+      Sy[6 * i + k] = 0.5 * (A[6 * i + k] + A[6 * k + i]);
+    }
+  }
+  mat6Mul(tmp, T, Sy);
+  mat6Mul(B, tmp, T);
+  csu_symEigenN(6, B, w, V);
+  int negative = 0;
+  for (int i = 0; i < 6; i++) {
+    negative |= w[i] < 0;
+  }
+  if (!negative) {
+    return 0;
+  }
+  /* B+ = V diag(max(w, 0)) V^T, sym(A) = M^1/2 B+ M^1/2, plus the antisymmetric part */
+  for (int i = 0; i < 6; i++) {
+    for (int k = 0; k < 6; k++) {
+      double s = 0;
+      for (int e = 0; e < 6; e++) {
+        s += V[6 * i + e] * fmax(w[e], 0) * V[6 * k + e];
+      }
+      B[6 * i + k] = s;
+    }
+  }
+  mat6Mul(tmp, Ti, B);
+  mat6Mul(Sy, tmp, Ti);
+  for (int i = 0; i < 6; i++) {
+    for (int k = 0; k < 6; k++) {
+      const double skew = 0.5 * (A[6 * i + k] - A[6 * k + i]);
+      tmp[6 * i + k] = Sy[6 * i + k] + skew;
+    }
+  }
+  memcpy(A, tmp, sizeof tmp);
+  return 1;
 }
 
 
@@ -326,9 +441,7 @@ int cs_couplingAdvance(const csModel* m, csData* d, double H, csError* err) {
       addAtCentre(Cc, c->C[k], r);
     }
   }
-  for (int i = 0; i < 36; i++) {
-    c->A[i] = m->opt.h * c->Kc[i] + Cc[i];
-  }
+  d->ngain_proj += implicitPart(d, c->R0, m->opt.h, c->Kc, Cc, c->A);
   return 0;
 }
 
@@ -397,9 +510,7 @@ int cs_couplingAdvanceGS(const csModel* m, csData* d, double H, csError* err) {
       Wc[3 + i] += c->w[k].m[i] + rxf[i];
     }
   }
-  for (int i = 0; i < 36; i++) {
-    c->A[i] = m->opt.h * c->Kc[i] + Cc[i];
-  }
+  d->ngain_proj += implicitPart(d, R1, m->opt.h, c->Kc, Cc, c->A);
   /* where these wrenches hold: the mean start pose of this step's ODE steps and their mean end
    * twist (the ODE step j's force is taken at its end pose q_j + h q'_{j+1}, so the mean end
    * pose of the step is gs_P + h gs_qd; cs_couplingApply) */
@@ -435,17 +546,8 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
   /* the support now: pose, twist, mass and world inertia */
   double P[3], R[9], v[3], w[3], dR[9], RmT[9];
   csr_robotSupportPose(d->robot, P, R, v, w);
-  dMass ms;
-  dBodyGetMass(d->robot->support, &ms);
-  double Ib[9], RI[9], Iw[9], RT[9];
-  for (int a = 0; a < 3; a++) {
-    for (int b = 0; b < 3; b++) {
-      Ib[3 * a + b] = ms.I[4 * a + b]; /* dMatrix3 rows are 4 wide */
-    }
-  }
-  csu_mulMat3(RI, R, Ib);
-  csu_transpose3(RT, R);
-  csu_mulMat3(Iw, RI, RT);
+  double mass, Iw[9];
+  supportInertia(d, R, &mass, Iw);
   /* W0: the legs' step-averaged wrenches at the centre (moments about it, hips where they are
    * now, as csr_robotApplyWrench applies them) */
   double W0[6] = {0, 0, 0, 0, 0, 0};
@@ -512,17 +614,17 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
   for (int i = 0; i < 6; i++) {
     double Mq;
     if (i < 3) {
-      Mq = ms.mass * qd[i];
+      Mq = mass * qd[i];
     } else {
       const double* I = Iw + 3 * (i - 3);
       Mq = I[0] * qd[3] + I[1] * qd[4] + I[2] * qd[5];
     }
-    double fg = (i < 3 && gmode) ? ms.mass * grav[i] : 0;
+    double fg = (i < 3 && gmode) ? mass * grav[i] : 0;
     rhs[i] = Mq + h * (fg + W0[i] - Kdq[i] + Aqp[i]);
     for (int k = 0; k < 6; k++) {
       double Mik = 0;
       if (i < 3 && k < 3) {
-        Mik = i == k ? ms.mass : 0;
+        Mik = i == k ? mass : 0;
       } else if (i >= 3 && k >= 3) {
         Mik = Iw[3 * (i - 3) + (k - 3)];
       }

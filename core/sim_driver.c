@@ -420,6 +420,7 @@ long cs_stepCount(const csData* d) { return d->nstep; }
 
 
 long cs_rejectCount(const csData* d) { return d->nreject; }
+long cs_gainProjectionCount(const csData* d) { return d->ngain_proj; }
 
 
 const csrLeg* cs_leg(const csData* d, int k) { return d->robot->legs[k]; }

@@ -65,6 +65,8 @@ struct csData_ {
                                        independent and each is deterministic */
   long nstep;                       /* successful macro steps */
   long nreject;                     /* failed (and restored) macro steps */
+  long ngain_proj;                  /* macro steps whose legs' implicit part was projected
+                                       onto passive gains (sim_coupling.c implicitPart) */
   double p_cmd[CSR_NCHAMBER_TOTAL]; /* scheduled pressures at t (MPa) */
   double p[CSR_NCHAMBER_TOTAL];     /* chamber pressures at t (MPa) */
   double p0[CSR_NCHAMBER_TOTAL];    /* chamber pressures at the current step's start (MPa) */

@@ -217,6 +217,9 @@ double cs_time(const csData* d);
 /* steps taken and steps rejected (failed and restored) since cs_dataCreate */
 long cs_stepCount(const csData* d);
 long cs_rejectCount(const csData* d);
+/* macro steps in which the co-simulated legs' interface gains were not passive and their
+ * implicit part was projected (sim_coupling.c; 0 for legs in ODE) */
+long cs_gainProjectionCount(const csData* d);
 /* support centre displacement from its position at t = 0, world frame, mm */
 void cs_supportDisplacement(const csData* d, double pos[3]);
 /* support orientation quaternion (w, x, y, z) */

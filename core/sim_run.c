@@ -8,7 +8,8 @@
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
  * macro_step_s, contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
- * rejected_steps and per timer (sim_model.h CS_TIMER_LIST) timer_<name>_s and
+ * rejected_steps, gain_projections (sim_coupling.c implicitPart) and per timer (sim_model.h
+ * CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
  * simulated second. */
 #include <math.h>
@@ -209,6 +210,7 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
   cs_h5AttrString(f, "/", "status", st == CS_OK ? "ok" : (err ? err->msg : "failed"), NULL);
   cs_h5AttrDouble(f, "/", "steps", (double)cs_stepCount(d), NULL);
   cs_h5AttrDouble(f, "/", "rejected_steps", (double)cs_rejectCount(d), NULL);
+  cs_h5AttrDouble(f, "/", "gain_projections", (double)cs_gainProjectionCount(d), NULL);
   for (int k = 0; k < CS_NTIMER; k++) {
     char name[64];
     snprintf(name, sizeof name, "timer_%s_s", cs_timerName((csTimerId)k));

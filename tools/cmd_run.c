@@ -512,6 +512,11 @@ int csx_cmdRun(int argc, char** argv) {
   for (int k = 0; k < CS_NTIMER; k++) {
     printf(" %s %.3f%s", cs_timerName((csTimerId)k), tm[k].wall, k + 1 < CS_NTIMER ? "," : "\n");
   }
+  if (cs_gainProjectionCount(d) > 0) {
+    printf("coupling: the legs' interface gains were not passive in %ld macro step(s); their "
+           "implicit part was projected onto passive gains there (README \"Rod legs\")\n",
+           cs_gainProjectionCount(d));
+  }
   /* the verdict (issue 10): falls (off the terrain), stops (any other failure: the message
    * says which), tips over, crawls or stands, with when and how far */
   const char* how = st != CS_OK ? (strstr(err.msg, "fell off") ? "falls" : "stops") :

@@ -333,7 +333,38 @@ static double closedForm(double t) {
 }
 
 
+/* the closed form's velocity along y at t (pinned legs: the derivative of r(t) above) */
+static double closedFormVelocity(double t) {
+  double mu = oscMass(), w0 = oscOmega(), zeta = CSR_NLEG * g_leg_c / (2 * mu * w0);
+  double wd = w0 * sqrt(1 - zeta * zeta), e = exp(-zeta * w0 * t);
+  return kV0 * e * (cos(wd * t) - zeta * w0 / wd * sin(wd * t));
+}
+
+
 enum { MAX_SAMPLES = 2000 };
+
+/* the model and data of the kicked oscillator, settled, the support kicked upwards through the
+ * state; *x (the state's size, the caller frees it) holds that state. NULL if it cannot be
+ * created (the test fails) */
+static csData* kickedData(csModel* m, double h, int macro, csCoupling coupling, double** x) {
+  makeModel(m, h, macro, coupling);
+  csError err;
+  cs_errorClear(&err);
+  csData* d = cs_dataCreate(m, &err);
+  CS_EXPECT(d != NULL);
+  if (!d) {
+    fprintf(stderr, "create: %s\n", err.msg);
+    cs_modelDestroy(m);
+    return NULL;
+  }
+  CS_EXPECT(cs_settle(m, d, &err) == CS_OK);
+  *x = malloc(cs_stateSize(m, d) * sizeof(double));
+  cs_stateGet(m, d, *x);
+  (*x)[2 + 96 + 8] = kV0; /* support linear velocity, y (layout in sim_model.h) */
+  CS_EXPECT(cs_stateSet(m, d, *x, &err) == CS_OK);
+  return d;
+}
+
 
 /* kick the support upwards through the state and run to t_end, sampling y every sample_dt (a
  * multiple of H) into y[] (n); returns
@@ -342,21 +373,13 @@ enum { MAX_SAMPLES = 2000 };
 static double runKicked(double h, int macro, csCoupling coupling, double t_end,
                         double sample_dt, double* drift, double* y, int* ny) {
   csModel m;
-  makeModel(&m, h, macro, coupling);
-  csError err;
-  cs_errorClear(&err);
-  csData* d = cs_dataCreate(&m, &err);
-  CS_EXPECT(d != NULL);
+  double* x = NULL;
+  csData* d = kickedData(&m, h, macro, coupling, &x);
   if (!d) {
-    fprintf(stderr, "create: %s\n", err.msg);
     return NAN;
   }
-  CS_EXPECT(cs_settle(&m, d, &err) == CS_OK);
-  int n = cs_stateSize(&m, d);
-  double* x = malloc(n * sizeof(double));
-  cs_stateGet(&m, d, x);
-  x[2 + 96 + 8] = kV0; /* support linear velocity, y (layout in sim_model.h) */
-  CS_EXPECT(cs_stateSet(&m, d, x, &err) == CS_OK);
+  csError err;
+  cs_errorClear(&err);
   double p0 = kM * kV0, worst = 0;
   *drift = 0;
   *ny = 0;
@@ -643,6 +666,61 @@ static void test_cosim_failed_leg_changes_nothing(void) {
 }
 
 
+/* kick the support and take n macro steps: its velocity along y after them (mm/s) and the
+ * macro steps whose implicit part was projected (cs_gainProjectionCount) */
+static double kickedVelocity(double h, int macro, csCoupling coupling, int n, long* nproj) {
+  csModel m;
+  double* x = NULL;
+  csData* d = kickedData(&m, h, macro, coupling, &x);
+  if (!d) {
+    return NAN;
+  }
+  csError err;
+  cs_errorClear(&err);
+  for (int i = 0; i < n; i++) {
+    CS_EXPECT(cs_step(&m, d, &err) == CS_OK);
+  }
+  double v[3];
+  cs_supportVelocity(d, v);
+  *nproj = cs_gainProjectionCount(d);
+  free(x);
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+  return v[1];
+}
+
+
+/* Legs whose interface gains are not passive (a loaded rod near buckling, a foot between stick
+ * and slip: sim_coupling.c, implicitPart) must not make the support's implicit step singular.
+ * Stance legs with negative damping: M y'' + n c y' + n k y = 0 with damping ratio -0.995 and
+ * w h = 1 put M + h (h n k + n c) at 0.01 M, so an implicit step with these gains multiplies
+ * the kick by ~100 or more in one step (measured with the projection switched off: 150x). The true
+ * velocity grows 5.38x over the step (the closed form). With the implicit part projected onto
+ * passive gains the damping and the spring act explicitly in that direction: 2.49x (measured;
+ * a first-order step of a mode growing at w h = 1). Passive legs (ratio +0.05) are never
+ * projected. */
+static void test_indefinite_gains_keep_the_step_bounded(void) {
+  const double h = 1e-3;
+  const double f = 1 / (2 * CS_PI * h); /* w h = 1 */
+  setLegs(f, -0.995, 1);
+  const double exact = closedFormVelocity(h);
+  for (int c = 0; c < 2; c++) {
+    long nproj = -1;
+    const double v = kickedVelocity(h, 1, c ? CS_COUPLING_GAUSS_SEIDEL : CS_COUPLING_STABILISED,
+                                    1, &nproj);
+    printf("  anti-damped stance legs, %s: v(h) / v0 = %.3f (closed form %.3f), %ld "
+           "projection(s)\n", c ? "Gauss-Seidel" : "stabilised", v / kV0, exact / kV0, nproj);
+    CS_EXPECT(nproj == 1);
+    /* it grows, as the truth does, and stays within 2x of it (unprojected: 150 / 5.38) */
+    CS_EXPECT(v > kV0 && v < 2 * exact);
+  }
+  setLegs(50, 0.05, 1);
+  long nproj = -1;
+  (void)kickedVelocity(1e-4, 1, CS_COUPLING_STABILISED, 100, &nproj);
+  CS_EXPECT(nproj == 0);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   dInitODE2(0);
@@ -651,6 +729,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_stabilised_scheme_stays_stable);
   CS_RUN(test_cosim_state_round_trip);
   CS_RUN(test_cosim_failed_leg_changes_nothing);
+  CS_RUN(test_indefinite_gains_keep_the_step_bounded);
   dCloseODE();
   return cs_testSummary();
 }
