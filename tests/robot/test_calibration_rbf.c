@@ -15,7 +15,10 @@
  *  - full_pair_holdout_and_left_out: every held-out case meets the target up to the pressures
  *    measured on 2026-12-03 (H4 to 0.35 MPa, the others throughout; README "Calibration");
  *  - full_images_found: each symmetry case (O2, H4t, H6t, H7t) finds the case it is the image
- *    of and prints the FE's difference from it. */
+ *    of and prints the FE's difference from it;
+ * and on the symmetric-mesh table (robot/calibration_fe_leg_modes_sym.h5, 23 modes) under
+ * RBF_PAIR the same three, and every held-out case (H1-H10) within the issue's target over
+ * 0-0.4 MPa. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,6 +39,8 @@ typedef struct {
  * levels, 19) */
 static const char* const kShipped = "calibration_fe_leg_modes.h5";
 static const char* const kFull = "calibration_fe_leg_modes_full.h5";
+/* the table on the mesh with the section's eight symmetries, 23 modes (2026-12-03) */
+static const char* const kSym = "calibration_fe_leg_modes_sym.h5";
 
 static int openTable(Shipped* s, const char* file, csrCalRule rule, unsigned exclude) {
   char path[1024];
@@ -166,6 +171,11 @@ static const Measured kPair = {4.862, {0.3, 0.2, 0.35, 0.3, 0.4, 0.375, 0.25, 0.
  * O13O2r067O4r033 8.11 mm, O124O3r05 1.84 deg */
 static const Measured kPairFull = {3.632, {0.3, 0.2, 0.35, 0.35, 0.4, 0.4, 0.4, 0.4}, 8.106,
                                    1.835, 14};
+/* RBF_PAIR on the symmetric-mesh table (robot/calibration_fe_leg_modes_sym.h5, 23 modes,
+ * 2026-12-03): every held-out case throughout (worst H6 1.556 mm); left out O13O2r067O4r033
+ * 7.370 mm, O1O3r05 1.770 deg */
+static const Measured kPairSym = {1.556, {0.3, 0.2, 0.35, 0.4, 0.4, 0.4, 0.4, 0.4}, 7.370,
+                                  1.770, 18};
 /* the bounds: the measured values + 0.5 % (the model is deterministic; the margin takes
  * libm's last bits and the pair factor's fit, converged to 1e-14 of its cost) */
 #define RBF_MARGIN 1.005
@@ -244,6 +254,38 @@ static void test_full_pair_holdout_and_left_out(void) {
   holdoutAndLeftOut(kFull, CSR_CAL_RULE_RBF_PAIR, &kPairFull);
 }
 
+/* the symmetric-mesh table: every mode returned, equivariant, and every held-out case (H1-H10)
+ * within the issue's target over its whole sweep (README "Calibration") */
+static void test_sym_pair_returns_fitted_rows(void) {
+  returnsFittedRows(kSym, CSR_CAL_RULE_RBF_PAIR);
+}
+static void test_sym_pair_symmetry(void) { symmetry(kSym, CSR_CAL_RULE_RBF_PAIR); }
+static void test_sym_pair_holdout_and_left_out(void) {
+  holdoutAndLeftOut(kSym, CSR_CAL_RULE_RBF_PAIR, &kPairSym);
+}
+static void test_sym_pair_every_holdout_meets_the_target(void) {
+  Shipped sh;
+  if (!openTable(&sh, kSym, CSR_CAL_RULE_RBF_PAIR, 0)) {
+    return;
+  }
+  int n = 0;
+  for (int i = 0; i < sh.table.ncase; i++) {
+    const csrCalCase* c = sh.table.cases + i;
+    csrCalCompare e;
+    csError err;
+    if (c->kind != CSR_CAL_HOLDOUT) {
+      continue;
+    }
+    CS_EXPECT(csr_calModelCompare(sh.model, c, &e, &err) == CS_OK);
+    /* bend within 5 % or 1 deg and tip within 2 % of the leg at every row to the last */
+    CS_EXPECT(e.bend_score <= 1 && e.tip_score <= 1 && e.p_meets >= e.p_last);
+    n++;
+  }
+  CS_EXPECT(n == 10); /* H1-H10 */
+  closeShipped(&sh);
+}
+
+
 /* every symmetry case of the full table finds the case it is the image of, and the FE's
  * difference from it (its mesh asymmetry) is printed: the resolution of the reference */
 static void test_full_images_found(void) {
@@ -287,5 +329,9 @@ int main(int argc, char** argv) {
   CS_RUN(test_full_pair_symmetry);
   CS_RUN(test_full_pair_holdout_and_left_out);
   CS_RUN(test_full_images_found);
+  CS_RUN(test_sym_pair_returns_fitted_rows);
+  CS_RUN(test_sym_pair_symmetry);
+  CS_RUN(test_sym_pair_holdout_and_left_out);
+  CS_RUN(test_sym_pair_every_holdout_meets_the_target);
   return cs_testSummary();
 }
