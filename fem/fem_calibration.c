@@ -133,6 +133,12 @@ static const csfCalCase kCases[] = {
      "held out: Omega1 0.4 + Omega2 0.16 + Omega3 0.32 + Omega4 0.12 MPa at p = 0.4"},
     {"H10", CSF_CAL_HOLDOUT, {1, 0.625, 0.125, 0.625}, 0.4, 0, {0, 0, 0},
      "held out: Omega1 0.4 + Omega2, Omega4 0.25 + Omega3 0.05 MPa at p = 0.4"},
+    /* two patterns drawn at random (Python's random, seed 20261203, three uniform ratios
+     * rounded to 0.01), not chosen: blind tests of the whole pattern space */
+    {"H11", CSF_CAL_HOLDOUT, {1, 0.88, 0.04, 0.17}, 0.4, 0, {0, 0, 0},
+     "held out (random): Omega1 0.4 + Omega2 0.352 + Omega3 0.016 + Omega4 0.068 MPa at p = 0.4"},
+    {"H12", CSF_CAL_HOLDOUT, {1, 0.27, 0.09, 0.9}, 0.4, 0, {0, 0, 0},
+     "held out (random): Omega1 0.4 + Omega2 0.108 + Omega3 0.036 + Omega4 0.36 MPa at p = 0.4"},
     {"G", CSF_CAL_GRAVITY, {0, 0, 0, 0}, 0.025, 0, {-G_EARTH, 0, 0},
      "the horizontal leg under its own weight at 9.81 m/s^2 (gravity along -e1), vented"},
 };

@@ -91,6 +91,8 @@ static const SynthCase kSynthCases[] = {
     {"H8", "holdout", {1, 1.0 / 3.0, 0, 0}, 0.4, 0},
     {"H9", "holdout", {1, 0.4, 0.8, 0.3}, 0.4, 0},
     {"H10", "holdout", {1, 0.625, 0.125, 0.625}, 0.4, 0},
+    {"H11", "holdout", {1, 0.88, 0.04, 0.17}, 0.4, 0},
+    {"H12", "holdout", {1, 0.27, 0.09, 0.9}, 0.4, 0},
     {"G", "gravity", {0, 0, 0, 0}, 0.025, 0},
 };
 #define SYNTH_NCASE ((int)(sizeof kSynthCases / sizeof kSynthCases[0]))
