@@ -138,6 +138,8 @@ def end_state(path):
             t = f["/time"][:]
             p = f["/support/position"][:]
             d = f["/contact/max_depth"][:]
+        if len(t) == 0:
+            return None  # stopped before its first sample (while settling)
         return float(t[-1]), float(p[-1, 0]), float(p[-1, 2]), float(max(d.max(), 0))
     except (OSError, KeyError, ValueError):
         return None

@@ -17,7 +17,7 @@
  *  - full_images_found: each symmetry case (O2, H4t, H6t, H7t) finds the case it is the image
  *    of and prints the FE's difference from it;
  * and on the symmetric-mesh table (robot/calibration_fe_leg_modes_sym.h5, 23 modes) under
- * RBF_PAIR the same three, and every held-out case (H1-H10) within the issue's target over
+ * RBF_PAIR the same three, and every held-out case (H1-H12) within the issue's target over
  * 0-0.4 MPa. */
 #include <math.h>
 #include <stdio.h>
@@ -172,9 +172,9 @@ static const Measured kPair = {4.862, {0.3, 0.2, 0.35, 0.3, 0.4, 0.375, 0.25, 0.
 static const Measured kPairFull = {3.632, {0.3, 0.2, 0.35, 0.35, 0.4, 0.4, 0.4, 0.4}, 8.106,
                                    1.835, 14};
 /* RBF_PAIR on the symmetric-mesh table (robot/calibration_fe_leg_modes_sym.h5, 23 modes,
- * 2026-12-03): every held-out case throughout (worst H6 1.556 mm); left out O13O2r067O4r033
+ * 2026-12-03): every held-out case throughout (worst H11 2.126 mm); left out O13O2r067O4r033
  * 7.370 mm, O1O3r05 1.770 deg */
-static const Measured kPairSym = {1.556, {0.3, 0.2, 0.35, 0.4, 0.4, 0.4, 0.4, 0.4}, 7.370,
+static const Measured kPairSym = {2.126, {0.3, 0.2, 0.35, 0.4, 0.4, 0.4, 0.4, 0.4}, 7.370,
                                   1.770, 18};
 /* the bounds: the measured values + 0.5 % (the model is deterministic; the margin takes
  * libm's last bits and the pair factor's fit, converged to 1e-14 of its cost) */
@@ -254,7 +254,7 @@ static void test_full_pair_holdout_and_left_out(void) {
   holdoutAndLeftOut(kFull, CSR_CAL_RULE_RBF_PAIR, &kPairFull);
 }
 
-/* the symmetric-mesh table: every mode returned, equivariant, and every held-out case (H1-H10)
+/* the symmetric-mesh table: every mode returned, equivariant, and every held-out case (H1-H12)
  * within the issue's target over its whole sweep (README "Calibration") */
 static void test_sym_pair_returns_fitted_rows(void) {
   returnsFittedRows(kSym, CSR_CAL_RULE_RBF_PAIR);
@@ -281,7 +281,7 @@ static void test_sym_pair_every_holdout_meets_the_target(void) {
     CS_EXPECT(e.bend_score <= 1 && e.tip_score <= 1 && e.p_meets >= e.p_last);
     n++;
   }
-  CS_EXPECT(n == 10); /* H1-H10 */
+  CS_EXPECT(n == 12); /* H1-H12 */
   closeShipped(&sh);
 }
 
