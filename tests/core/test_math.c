@@ -122,11 +122,67 @@ static void test_sym_eigen3(void) {
 }
 
 
+/* the n x n case at n = 6 (the coupling's passive projection): A = V diag(w) V^T and V
+ * orthonormal for a matrix with mixed scales (translation ~1e-4, rotation ~1, as the support's
+ * inertia metric mixes them), one negative eigenvalue, and the known spectrum of a matrix built
+ * from a chosen one: Q diag(d) Q^T with Q a product of plane rotations */
+static void test_sym_eigen6(void) {
+  const double d[6] = {-0.42, 3.7e-2, 4.1e-2, 75.0, 323.0, 742.0};
+  double Q[36], A[36];
+  for (int i = 0; i < 36; i++) {
+    Q[i] = i % 7 == 0 ? 1.0 : 0.0;
+  }
+  /* Q = product of rotations in planes (p, q) by angles 0.3 (p + 1) + 0.1 q */
+  for (int p = 0; p < 5; p++) {
+    for (int q = p + 1; q < 6; q++) {
+      const double th = 0.3 * (p + 1) + 0.1 * q, c = cos(th), sn = sin(th);
+      for (int k = 0; k < 6; k++) {
+        const double a = Q[6 * k + p], b = Q[6 * k + q];
+        Q[6 * k + p] = c * a - sn * b;
+        Q[6 * k + q] = sn * a + c * b;
+      }
+    }
+  }
+  for (int i = 0; i < 6; i++) {
+    for (int j = 0; j < 6; j++) {
+      double s = 0;
+      for (int k = 0; k < 6; k++) {
+        s += Q[6 * i + k] * d[k] * Q[6 * j + k];
+      }
+      A[6 * i + j] = s;
+    }
+  }
+  double w[6], V[36];
+  csu_symEigenN(6, A, w, V);
+  for (int i = 0; i < 6; i++) {
+    for (int j = 0; j < 6; j++) {
+      double a = 0, vv = 0;
+      for (int k = 0; k < 6; k++) {
+        a += V[6 * i + k] * w[k] * V[6 * j + k];
+        vv += V[6 * k + i] * V[6 * k + j];
+      }
+      /* round-off of a few sweeps of 15 rotations: 1e-13 of the largest eigenvalue */
+      CS_EXPECT_NEAR(a, A[6 * i + j], 1e-13 * 742.0, 0);
+      CS_EXPECT_NEAR(vv, i == j ? 1.0 : 0.0, 1e-13, 0);
+    }
+  }
+  /* the spectrum: each chosen eigenvalue found (unsorted) to 1e-12 of the largest */
+  for (int k = 0; k < 6; k++) {
+    double best = INFINITY;
+    for (int i = 0; i < 6; i++) {
+      best = fmin(best, fabs(w[i] - d[k]));
+    }
+    CS_EXPECT(best < 1e-12 * 742.0);
+  }
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_erp_cfm_is_the_implicit_spring);
   CS_RUN(test_rotation_vector_round_trip);
   CS_RUN(test_quat_of_matrix_round_trip);
   CS_RUN(test_sym_eigen3);
+  CS_RUN(test_sym_eigen6);
   return cs_testSummary();
 }
