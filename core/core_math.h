@@ -204,6 +204,9 @@ static inline void csu_rotVecToMat3(csReal R[9], const csReal phi[3]) {
 #define CSU_SYMEIGEN_MAXN 6
 static inline void csu_symEigenN(int n, const csReal* A, csReal* w, csReal* V) {
   csReal a[CSU_SYMEIGEN_MAXN * CSU_SYMEIGEN_MAXN];
+  if (n < 1 || n > CSU_SYMEIGEN_MAXN) {
+    return; /* outside the work array: a caller's error, outputs untouched */
+  }
   for (int i = 0; i < n; i++) {
     for (int j = 0; j < n; j++) {
       a[n * i + j] = 0.5 * (A[n * i + j] + A[n * j + i]);

@@ -121,7 +121,6 @@ static void addAtCentre(double M[36], const double G[36], const double r[3]) {
 }
 
 
-/* y = M x for 6x6 M */
 /* C = A B (C may not alias A or B) */
 static void mat6Mul(double C[36], const double A[36], const double B[36]) {
   for (int i = 0; i < 6; i++) {
@@ -136,6 +135,7 @@ static void mat6Mul(double C[36], const double A[36], const double B[36]) {
 }
 
 
+/* y = M x for 6x6 M */
 static void mat6Vec(double y[6], const double M[36], const double x[6]) {
   for (int i = 0; i < 6; i++) {
     double s = 0;
@@ -261,12 +261,42 @@ static void supportInertia(const csData* d, const double R[9], double* mass, dou
  * which does no work, is kept): in that direction the legs' wrench acts explicitly (W0 and
  * Kc dq are applied as they are), and where A is passive the step is unchanged to the bit.
  * Measured (2026-12-03): every projection on the obstacle scene had h min eig(B) between -3.7
- * and -68, i.e. M + h A itself indefinite; none on the 9 s flat road. Returns 1 when it
+ * and -68, i.e. M + h A itself indefinite; none on the 9 s flat road at the default
+ * tolerances (a few at --rod-tol 5-50). Returns 1 when it
  * projected. */
+/* the symmetric part of a 6 x 6 matrix is positive definite: its Cholesky factorisation has
+ * positive pivots throughout (whether a matrix is definite does not depend on the metric) */
+static int symPositiveDefinite6(const double A[36]) {
+  double L[36];
+  for (int i = 0; i < 6; i++) {
+    for (int k = 0; k <= i; k++) {
+      double s = 0.5 * (A[6 * i + k] + A[6 * k + i]);
+      for (int e = 0; e < k; e++) {
+        s -= L[6 * i + e] * L[6 * k + e];
+      }
+      if (k == i) {
+        if (!(s > 0)) {
+          return 0;
+        }
+        L[6 * i + i] = sqrt(s);
+      } else {
+        L[6 * i + k] = s / L[6 * k + k];
+      }
+    }
+  }
+  return 1;
+}
+
+
 static int implicitPart(const csData* d, const double R[9], double h, const double Kc[36],
                         const double Cc[36], double A[36]) {
   for (int i = 0; i < 36; i++) {
     A[i] = h * Kc[i] + Cc[i];
+  }
+  /* the usual case, decided by one Cholesky instead of the two eigen decompositions below
+   * (those were 1.9 % of the 9 s flat road at --rod-tol 20) */
+  if (symPositiveDefinite6(A)) {
+    return 0;
   }
   double mass, Iw[9], lam[3], U[9];
   supportInertia(d, R, &mass, Iw);

@@ -91,9 +91,9 @@ static const csfCalCase kCases[] = {
      "Omega1 at p, Omega2&Omega3 at p/2 (the centre of the face Omega4 = 0)"},
     {"O12O34r05", CSF_CAL_MODE, {1, 1, 0.5, 0.5}, 0.5, 0, {0, 0, 0},
      "Omega1&Omega2 at p, Omega3&Omega4 at p/2 (the centre of the face Omega2 = p)"},
-    /* the cells of the face Omega2 = Omega4 (x2, x3 on a 0.5 grid), refined where the modes
-     * left out one at a time were worst (Omega3 high: O1O3r05, O13O2r05, the face Omega3 = p)
-     * (2026-12-03) */
+    /* the face Omega2 = Omega4's 0.5 grid in (x2, x3) completed (2026-12-03): the face the
+     * held-out H4 missed on (so H4 is no longer blind; H9-H12 are), whose cell centres were
+     * empty; the modes left out one at a time were worst beside it */
     {"O1O24r075O3r025", CSF_CAL_MODE, {1, 0.75, 0.25, 0.75}, 0.5, 0, {0, 0, 0},
      "Omega1 at p, Omega2&Omega4 at 0.75 p, Omega3 at p/4 (a cell centre of the face "
      "Omega2 = Omega4)"},

@@ -112,8 +112,8 @@ typedef enum csrCalRole_ {
   CSR_CAL_F3FULL,     /* Ω1&Ω3 at p, Ω2 at 2p/3, Ω4 at p/3 (face Ω3 = p) */
   CSR_CAL_F4ZERO,     /* Ω1 at p, Ω2&Ω3 at p/2 (face Ω4 = 0) */
   CSR_CAL_F2FULL,     /* Ω1&Ω2 at p, Ω3&Ω4 at p/2 (face Ω2 = p) */
-  /* the cells of the face Ω2 = Ω4 on a 0.5 grid in (x2, x3), refined where the left-out modes
-   * were worst (Ω3 high) (2026-12-03) */
+  /* the face Ω2 = Ω4's 0.5 grid in (x2, x3) completed (2026-12-03): the face the held-out H4
+   * missed on, whose cell centres were empty; the left-out modes were worst beside it */
   CSR_CAL_W1C1,       /* Ω1 at p, Ω2&Ω4 at 0.75 p, Ω3 at p/4 */
   CSR_CAL_W1C0,       /* Ω1 at p, the other three at p/4 */
   CSR_CAL_W1C2,       /* Ω1 at p, Ω2&Ω4 at p/4, Ω3 at 0.75 p */

@@ -468,7 +468,7 @@ static void holdoutErrors(const Built* b, int rule, double* bend_deg, double* ti
     csError err;
     CS_EXPECT(csr_calModelCompare(b->model, c, &e, &err) == CS_OK);
     CS_EXPECT(e.rows == c->m);
-    /* the bounds were measured over H1-H8; H9 and H10 (2026-12-03) are printed only */
+    /* the bounds were measured over H1-H8; H9-H12 (2026-12-03) are printed only */
     const int bounded = atoi(c->name + 1) <= 8;
     if (bounded) {
       *bend_deg = fmax(*bend_deg, e.bend_deg);
