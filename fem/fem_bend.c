@@ -355,7 +355,7 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
   int plain = 0; /* 1: this attempt starts from s_conv (the first Newton step is the tangent
                   * predictor) */
   for (;;) {
-    const double next_out = fmin(r->k_out * o->p_step, o->p_max);
+    const double next_out = csf_bendOutputPressure(o, r->k_out);
     double target = fmin(r->p + r->dp, next_out);
     if (next_out - target < CSF_BEND_SNAP * r->dp) {
       target = next_out; /* no sliver step just before an output pressure */
@@ -635,7 +635,7 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
       st = stageRefine(&r, ang, tot, tip, err);
       break;
     }
-    if (fabs(r.p - fmin(r.k_out * o->p_step, o->p_max)) <= eps) {
+    if (fabs(r.p - csf_bendOutputPressure(o, r.k_out)) <= eps) {
       st = csf_bendStageRow(&r, r.p, ang, tot, tip, err);
       r.k_out++;
     }

@@ -79,12 +79,6 @@ static double watchAngleAt(const LimitWatch* lw, double p) {
 }
 
 
-/* output pressure k of the sweep (Run.k_out's numbering: k p_step, the last one p_max) */
-static double outputPressure(const csfBendOptions* o, int k) {
-  return fmin(k * o->p_step, o->p_max);
-}
-
-
 /* output row k exists: the one before it lies below p_max */
 static int outputExists(const csfBendOptions* o, int k) {
   return (k - 1) * o->p_step < o->p_max - 1e-9 * o->p_step;
@@ -99,8 +93,8 @@ static void capturePassedRows(LimitWatch* lw, const csfModel* m, const csfData* 
   const csfBendOptions* o = lw->o;
   const double eps = 1e-9 * o->p_step;
   csf_stateGet(m, d, lw->s_cur);
-  while (outputExists(o, lw->k_next) && outputPressure(o, lw->k_next) <= p + eps) {
-    const double pg = outputPressure(o, lw->k_next);
+  while (outputExists(o, lw->k_next) && csf_bendOutputPressure(o, lw->k_next) <= p + eps) {
+    const double pg = csf_bendOutputPressure(o, lw->k_next);
     if (!branch_state && p > lw->p_last && pg >= lw->p_last - eps &&
         lw->nrow < CSF_BEND_PASSED_ROWS) {
       const double f = (pg - lw->p_last) / (p - lw->p_last);
@@ -182,8 +176,9 @@ static csStatus rowsOnRisingPath(Run* r, const LimitWatch* lw, csError* err) {
   csfData* d = r->w.data;
   const double eps = 1e-9 * o->p_step;
   csStatus st = CS_OK;
-  while (st == CS_OK && outputExists(o, r->k_out) && outputPressure(o, r->k_out) <= r->p + eps) {
-    const double pg = outputPressure(o, r->k_out);
+  while (st == CS_OK && outputExists(o, r->k_out) &&
+         csf_bendOutputPressure(o, r->k_out) <= r->p + eps) {
+    const double pg = csf_bendOutputPressure(o, r->k_out);
     int k = 0;
     while (k < lw->nrow && fabs(lw->p_row[k] - pg) > eps) {
       k++;

@@ -4,6 +4,7 @@
 #ifndef CS_FEM_BEND_RUN_H
 #define CS_FEM_BEND_RUN_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "fem_bend.h"
@@ -47,6 +48,12 @@ typedef struct {
                                  * (stageStep), 2 done */
   double t_start;
 } Run;
+
+/* Output pressure k of a sweep (Run.k_out's numbering: k p_step, the last one p_max), MPa: the
+ * one rule the stepping (fem_bend.c) and the volume path (fem_bend_limit.c) land rows on. */
+static inline double csf_bendOutputPressure(const csfBendOptions* o, int k) {
+  return fmin(k * o->p_step, o->p_max);
+}
 
 /* Append a row to the curve (and to the record, with probes where asked) at the converged
  * state in r's data (fem_bend.c). */

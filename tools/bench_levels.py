@@ -29,6 +29,7 @@ Usage: /usr/bin/python3 tools/bench_levels.py [--crawlsim build/tools/crawlsim]
          [--prb-links 2,4,8] [--rod-configs 2x1,4x1,...,6x1@5e-4,4x1t5,...] [--ref-links 6]
          [--ref-dt 2.5e-4] [--fe-meshes 6,5] [--tip-meshes 5,6]
          [--work DIR] [--out-dir docs] [--table robot/levels.csv]
+       /usr/bin/python3 tools/bench_levels.py --plot-only   (redraw the chart from the CSV)
 """
 
 import argparse
@@ -374,6 +375,38 @@ def pareto_png(path, rows, machine):
     fig.savefig(path, dpi=110)
 
 
+def replot(a):
+    """levels_pareto.png again from the points of levels_bench.csv (a corrected or re-measured
+    row), without running anything; the machine is the table's (robot/levels.csv) if it names
+    one"""
+    path = os.path.join(a.out_dir, "levels_bench.csv")
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        fail(f"{path}: cannot read ({e.strerror})")
+    need = ("task", "model", "setting", "error_mm", "cpu_s", "wall_s", "status", "reference")
+    for n, r in enumerate(rows, start=2):
+        if any(r.get(k) is None for k in need):
+            fail(f"{path}:{n}: not a levels_bench.csv row (needs {', '.join(need)})")
+        try:
+            for k in ("error_mm", "cpu_s", "wall_s"):
+                r[k] = float(r[k]) if r[k] not in ("", None) else float("nan")
+        except ValueError:
+            fail(f"{path}:{n}: error_mm, cpu_s or wall_s is not a number")
+    machine = a.machine
+    try:
+        with open(a.table, newline="") as f:
+            for r in csv.DictReader(line for line in f if not line.startswith("#")):
+                machine = r.get("machine") or machine
+                break
+    except OSError:
+        pass
+    pareto_png(os.path.join(a.out_dir, "levels_pareto.png"), rows, machine)
+    print(f"{PROG}: redrew {a.out_dir}/levels_pareto.png from {len(rows)} points",
+          file=sys.stderr)
+
+
 def machine_name():
     """'<n>-core <CPU model>' from /proc/cpuinfo (Linux), else the platform's name"""
     model = platform.processor() or platform.machine()
@@ -425,7 +458,12 @@ def main():
     ap.add_argument("--machine", default=machine_name(),
                     help="where it ran (default: the CPU count and model; say if it was shared)")
     ap.add_argument("--fresh", action="store_true")
+    ap.add_argument("--plot-only", action="store_true",
+                    help="redraw levels_pareto.png from --out-dir's levels_bench.csv (no runs)")
     a = ap.parse_args()
+    if a.plot_only:
+        replot(a)
+        return
     a.machine = a.machine.replace(",", ";")  # the table has no quoting
     a.fe_meshes = [float(v) for v in a.fe_meshes.split(",") if v]
     a.tip_meshes = [float(v) for v in a.tip_meshes.split(",") if v]

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # test_plots.sh: smoke test of tools/plot_track.py, tools/plot_bend.py, tools/plot_gait.py and
 # tools/plot_calibration.py, tools/stance_slip.py and tools/rod_vs_fe.py (argument 1: the
-# crawlsim binary, which rod_vs_fe.py runs).
+# crawlsim binary, which rod_vs_fe.py runs), and tools/bench_levels.py --plot-only.
 # Writes small synthetic run/bend files (tests/tools/make_synthetic_h5.py, h5py) in a temp dir,
 # runs both scripts, checks the PNGs exist and are non-empty PNGs, and checks that a missing
 # file or dataset gives exit status 1 with a one-line message.
@@ -185,6 +185,29 @@ expect_fail1 "rod_vs_fe missing file" "rod_vs_fe.py: .*nope.h5: no such file" \
   "$PY" "$RODFE" "$TMP/nope.h5" --crawlsim "$EXE"
 expect_fail1 "rod_vs_fe loaded file not a bend file" "cal.h5: missing dataset /pressure" \
   "$PY" "$RODFE" "$MODES" --crawlsim "$EXE" --cases H2 --loaded "$TMP/cal.h5"
+
+# bench_levels.py --plot-only: the chart again from a levels_bench.csv, no runs
+LEVELS="$ROOT/tools/bench_levels.py"
+mkdir -p "$TMP/lv" "$TMP/lvbad"
+cat >"$TMP/lv/levels_bench.csv" <<'CSV'
+task,model,setting,error_mm,cpu_s,wall_s,sim_s,load,status,reference,command
+flat-road,rod,"links 6, macro 1 x 0.25 ms",0,12.4,12.46,9.5,1.5,ok,yes,run
+flat-road,rod,"links 4, macro 1 x 1 ms",6.77,10.7,10.8,9.5,1.5,ok,,run
+flat-road,prb,"links 4, dt 1 ms",29.1,30.2,30.3,9.5,1.5,ok,,run
+(1) bend O12,fe,mesh 6 mm,20.2,127,127,,1.0,ok,,bend
+CSV
+expect_png "bench_levels --plot-only" "$TMP/lv/levels_pareto.png" \
+  "$PY" "$LEVELS" --plot-only --out-dir "$TMP/lv" --table "$TMP/lv/none.csv"
+printf 'task,model,setting,error_mm,cpu_s,wall_s\nflat-road,rod,x,1,1,1\n' >"$TMP/lvbad/levels_bench.csv"
+expect_fail1 "bench_levels --plot-only short row" "levels_bench.csv:2: not a levels_bench.csv row" \
+  "$PY" "$LEVELS" --plot-only --out-dir "$TMP/lvbad" --table "$TMP/lv/none.csv"
+mkdir -p "$TMP/lvnan"
+printf 'task,model,setting,error_mm,cpu_s,wall_s,status,reference\nflat-road,rod,x,abc,1,1,ok,\n' \
+  >"$TMP/lvnan/levels_bench.csv"
+expect_fail1 "bench_levels --plot-only not a number" "levels_bench.csv:2: error_mm, cpu_s or wall_s" \
+  "$PY" "$LEVELS" --plot-only --out-dir "$TMP/lvnan" --table "$TMP/lv/none.csv"
+expect_fail1 "bench_levels --plot-only no CSV" "levels_bench.csv: cannot read" \
+  "$PY" "$LEVELS" --plot-only --out-dir "$TMP/nope" --table "$TMP/lv/none.csv"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
