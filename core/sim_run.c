@@ -133,6 +133,9 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
     /* the rod's CVODE tolerances relative to the shipped ones (csrLegParams.rod_tol_scale) */
     const double tol = m->robot.leg_params.rod_tol_scale;
     st = cs_h5AttrDouble(f, "/", "rod_tolerance_scale", tol > 0 ? tol : 1.0, err);
+    char drop[32];
+    csr_calDropFormat(m->robot.leg_params.cal_drop, drop, sizeof drop);
+    if (st == CS_OK) st = cs_h5AttrString(f, "/", "calibration_dropped", drop, err);
   }
   if (st == CS_OK) {
     st = cs_h5AttrDouble(f, "/", "links_per_segment", m->robot.leg_params.links_per_segment, err);

@@ -563,6 +563,44 @@ int csr_calRuleParse(const char* name, csrCalRule* rule) {
 }
 
 
+int csr_calDropParse(const char* text, unsigned* drop) {
+  if (!text || !*text) {
+    return 0;
+  }
+  if (!strcmp(text, "none")) {
+    *drop = 0;
+    return 1;
+  }
+  unsigned d = 0;
+  const char* s = text;
+  for (;;) {
+    size_t n = strcspn(s, ",");
+    unsigned bit = n == 7 && !strncmp(s, "stretch", 7)     ? CSR_CAL_DROP_STRETCH
+                   : n == 9 && !strncmp(s, "stiffness", 9) ? CSR_CAL_DROP_STIFFNESS
+                                                           : 0;
+    if (!bit || (d & bit)) {
+      return 0; /* an unknown or repeated word */
+    }
+    d |= bit;
+    if (!s[n]) {
+      break;
+    }
+    s += n + 1;
+  }
+  *drop = d;
+  return 1;
+}
+
+
+void csr_calDropFormat(unsigned drop, char* buf, size_t size) {
+  const int st = (drop & CSR_CAL_DROP_STRETCH) != 0, sf = (drop & CSR_CAL_DROP_STIFFNESS) != 0;
+  snprintf(buf, size, "%s%s%s", st ? "stretch" : "", st && sf ? "," : "", sf ? "stiffness" : "");
+  if (!st && !sf) {
+    snprintf(buf, size, "none");
+  }
+}
+
+
 const char* csr_calRuleName(csrCalRule rule) {
   for (size_t k = 0; k < sizeof kRuleNames / sizeof kRuleNames[0]; k++) {
     if (kRuleNames[k].rule == rule) {

@@ -66,7 +66,15 @@ typedef struct csrLegParams_ {
   double contact_radius;  /* radius of the leg's collision capsules (mm) */
   double rod_tol_scale;   /* rod: every CVODE tolerance (rtol and the atols) times this; 0 or 1:
                              the shipped ones (a convergence knob: bench_flatroad argument 9) */
+  unsigned cal_drop;      /* rod: parts of the calibration left out, CSR_CAL_DROP_* (0: none;
+                             `crawlsim run --cal-drop`) */
 } csrLegParams;
+
+/* Parts of a calibration a rod leg can leave out (csrLegParams.cal_drop), to measure what each
+ * does: the segments' axial stretch (the rod's intrinsic stretch strain stays 0) and a mode
+ * table's probed section stiffness EI, EA (the rod keeps its default section). */
+#define CSR_CAL_DROP_STRETCH 1u
+#define CSR_CAL_DROP_STIFFNESS 2u
 
 /* Everything a leg needs to build itself. Pointers are borrowed (see Ownership above). */
 typedef struct csrLegSpec_ {

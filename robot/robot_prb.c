@@ -68,6 +68,7 @@ csrLegParams csr_defaultLegParams(const csrActuator* act) {
    * ~θ^2/(24 n^2) relative, 0.2 % at θ = 47°, well below the calibration's uncertainty */
   p.links_per_segment = 4;
   p.rod_tol_scale = 1;
+  p.cal_drop = 0;
   /* small-strain bending modulus of the Yeoh law with the fibres holding λ2 = 1:
    * W ≈ 4 C10 ε^2 -> σ = 8 C10 ε (plane-strain-like modulus, 0.88 MPa for Elastosil) */
   p.E_bend = 8.0 * act->C10;

@@ -71,6 +71,8 @@ typedef struct csrRodParams_ {
   double contact_radius;    /* radius of the leg's contact capsules (mm) */
   double static_tol;        /* static Newton: scaled residual norm at convergence (-) */
   int static_max_iter;      /* static Newton iterations per load step (-) */
+  unsigned cal_drop;        /* parts of the calibration left out (CSR_CAL_DROP_*; 0: none): a
+                               study knob for what each part does to a run */
 } csrRodParams;
 
 /* Defaults for an actuator (reasons in robot_rod_model.c). */

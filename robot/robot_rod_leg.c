@@ -234,6 +234,7 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
   par.E = lp->E_bend;
   par.damping_time = lp->damping_time;
   par.contact_radius = lp->contact_radius;
+  par.cal_drop = lp->cal_drop;
   /* the bristles deflect by at most mu delta_t (8 µm by default): their error to 1e-5 mm */
   par.atol_hist = 1e-5;
   /* 0: the shipped tolerances (x 1 keeps their bits) */

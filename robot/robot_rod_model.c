@@ -103,6 +103,7 @@ csrRodParams csr_rodDefaultParams(const csrActuator* act) {
    * convergence: 1e-10 is ~1e4 above round-off for N ~ 14..100 elements */
   p.static_tol = 1e-10;
   p.static_max_iter = 40;
+  p.cal_drop = 0;
   return p;
 }
 
@@ -209,10 +210,12 @@ static csStatus checkSpec(const csrRodPiece* pieces, int npiece, const csrRodSpe
       !(par->atol_rot > 0) || !(par->atol_vel > 0) || !(par->atol_omega > 0) ||
       !(par->atol_hist > 0) || !(par->atol_wrench > 0) || par->max_steps < 1 ||
       par->max_order < 1 || par->max_order > 5 || !(par->contact_radius > 0) ||
-      !(par->static_tol > 0) || par->static_max_iter < 1) {
+      !(par->static_tol > 0) || par->static_max_iter < 1 ||
+      (par->cal_drop & ~(CSR_CAL_DROP_STRETCH | CSR_CAL_DROP_STIFFNESS))) {
     return cs_errorSet(err, CS_ERR_RANGE,
                        "rod: parameters: need damping_time >= 0, tolerances > 0, max_steps >= "
-                       "1, max_order 1..5, contact_radius > 0, static_max_iter >= 1");
+                       "1, max_order 1..5, contact_radius > 0, static_max_iter >= 1, cal_drop "
+                       "of CSR_CAL_DROP_* only");
   }
   if (spec->contact.eval && (spec->contact.nhist < 0 || spec->contact.nhist > CSR_ROD_MAX_HIST ||
                              spec->contact.nhist_foot < 0 ||
@@ -374,8 +377,27 @@ double csr_rodLength(const csrRodModel* m) { return m->L; }
 const double* csr_rodNodeArc(const csrRodModel* m) { return m->s; }
 
 
+static int actuationEval(const csrRodModel* m, int seg, const double p[4],
+                         csrRodSegmentActuation* out, char* msg, size_t msg_size);
+
+
 int csr_rodActuationEval_(const csrRodModel* m, int seg, const double p[4],
                           csrRodSegmentActuation* out, char* msg, size_t msg_size) {
+  int rc = actuationEval(m, seg, p, out, msg, msg_size);
+  /* the parts a study leaves out (csrRodParams.cal_drop): after the evaluation, so the
+   * calibration's range checks still apply */
+  if (rc == 0 && (m->par.cal_drop & CSR_CAL_DROP_STRETCH)) {
+    out->sigma0[2] = 0;
+  }
+  if (rc == 0 && (m->par.cal_drop & CSR_CAL_DROP_STIFFNESS)) {
+    out->has_section = 0;
+  }
+  return rc;
+}
+
+
+static int actuationEval(const csrRodModel* m, int seg, const double p[4],
+                         csrRodSegmentActuation* out, char* msg, size_t msg_size) {
   memset(out, 0, sizeof *out);
   if (m->calib && m->calib->eval) {
     int rc = m->calib->eval(m->calib->ctx, seg, p, out);

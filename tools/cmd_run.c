@@ -32,7 +32,7 @@ static const char kRunUsage[] =
     "                    [--coupling staggered|stabilised|gs]\n"
     "                    [--conditions earth|paper] [--set NAME=VALUE]... [--quiet]\n"
     "                    [--tol MM] [--levels FILE] [--contact-scale K] [--rod-tol K]\n"
-    "                    [--cal-rule prism|rbf|rbf-pair]\n"
+    "                    [--cal-rule prism|rbf|rbf-pair] [--cal-drop stretch|stiffness|...]\n"
     "  --contact-scale K: multiplies the normal stiffness of every contact law (ODE's\n"
     "    100 N/mm of prb legs and the support, the rod legs' soft foundation modulus); 1;\n"
     "  --legs auto --tol MM: the cheapest configuration (level, --links, --macro-steps, --dt)\n"
@@ -55,6 +55,9 @@ static const char kRunUsage[] =
     "    one the shipped gaits were designed on; rbf: + RBF interactions; rbf-pair: the pair\n"
     "    factor + RBF, the smallest held-out errors; README \"Calibration\"); refused for other\n"
     "    calibrations; recorded as calibration_rule and in the banner;\n"
+    "  --cal-drop stretch[,stiffness]: rod legs leave that part of the calibration out (the\n"
+    "    segments' axial stretch; a mode table's probed EI, EA), to measure what it does to a\n"
+    "    run (README \"Rod against prb\"); rod only; recorded as calibration_dropped;\n"
     "  --set NAME=VALUE: a parameter of the legs' actuator (as crawlsim bend: S1 a C10 ...; the\n"
     "    legs' stiffness and mass follow; the calibration must be of that actuator).\n";
 
@@ -64,7 +67,8 @@ static const char* const kValueOptions[] = {
     "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
     "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--set",
-    "--tol", "--levels", "--contact-scale", "--rod-tol", "--cal-rule", "--iterations"};
+    "--tol", "--levels", "--contact-scale", "--rod-tol", "--cal-rule", "--iterations",
+    "--cal-drop"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -130,6 +134,8 @@ int csx_cmdRun(int argc, char** argv) {
   const char* conditions = NULL;
   const char* levels = NULL;
   double tol = NAN, kscale = NAN, rodtol = NAN;
+  unsigned cal_drop = 0;
+  int have_cal_drop = 0;
   const char* sets[32];
   int quiet = 0, nset = 0;
   csError err;
@@ -227,6 +233,13 @@ int csx_cmdRun(int argc, char** argv) {
         goto done;
       }
       m.cal_rule = (int)rule;
+    } else if (!strcmp(flag, "--cal-drop")) {
+      if (!csr_calDropParse(v, &cal_drop)) {
+        cs_errorSet(&err, CS_ERR_ARG, "bad --cal-drop '%.60s' (expected stretch, stiffness, "
+                    "stretch,stiffness or none)", v);
+        goto done;
+      }
+      have_cal_drop = 1;
     } else if (!strcmp(flag, "--set")) {
       if (nset == 32) {
         cs_errorSet(&err, CS_ERR_ARG, "more than 32 --set options");
@@ -417,6 +430,12 @@ int csx_cmdRun(int argc, char** argv) {
     m.robot.leg_params = csr_defaultLegParams(&m.robot.leg);
   }
   cs_modelSetLegLevel(&m, leg_type); /* the one place the level is stored (and its coupling) */
+  if (have_cal_drop && cal_drop && m.robot.leg_type != &csr_leg_rod) {
+    cs_errorSet(&err, CS_ERR_ARG, "--cal-drop: only rod legs take the calibration's stretch and "
+                "stiffness (legs %s)", cs_modelLegLevel(&m));
+    goto done;
+  }
+  m.robot.leg_params.cal_drop = cal_drop;
   if (!isnan(friction)) m.contact.mu = friction;
   if (!isnan(kscale)) {
     m.contact.kp *= kscale;
@@ -475,6 +494,11 @@ int csx_cmdRun(int argc, char** argv) {
             cs_conditionsSourceName(cond_src), cs_conditionsWhat(m.conditions));
     fprintf(stderr, "crawlsim run: calibration (rule %s): %s\n",
             csr_calibrationRuleName(m.calibration), m.robot.map.name);
+    if (m.robot.leg_params.cal_drop) {
+      char what[32];
+      csr_calDropFormat(m.robot.leg_params.cal_drop, what, sizeof what);
+      fprintf(stderr, "crawlsim run: calibration parts left out (--cal-drop): %s\n", what);
+    }
     if (m.legs_auto_choice[0]) {
       fprintf(stderr, "crawlsim run: --legs auto picked %s\n", m.legs_auto_choice);
     }

@@ -23,6 +23,18 @@ static const char* exe_path = NULL; /* the crawlsim executable (set once in main
 /* `crawlsim run --quiet --t-end 0.01 --out BAD_OUT <args>`: exit 1, one stderr line starting
  * with `want`, stdout empty, no output file. --t-end 0.01 keeps a run that wrongly starts
  * short; the missing output file shows it did not start. */
+/* the run file `path` has the root string attribute `name` equal to `want` */
+static void expectAttrString(const char* path, const char* name, const char* want) {
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    char v[64] = "";
+    CS_EXPECT(H5LTget_attribute_string(f, "/", name, v) >= 0 && !strcmp(v, want));
+    H5Fclose(f);
+  }
+}
+
+
 static void expectFailure(const char* args, const char* want) {
   remove(BAD_OUT);
   char full[2048];
@@ -81,6 +93,12 @@ static void test_badOptions(void) {
   expectFailure("--rod-tol 1e4", "crawlsim run: --rod-tol 10000 must be > 0 and <= 1000");
   expectFailure("--cal-rule hats",
                 "crawlsim run: unknown --cal-rule 'hats' (expected prism, rbf or rbf-pair)");
+  expectFailure("--legs rod --cal-drop stretch,ei",
+                "crawlsim run: bad --cal-drop 'stretch,ei' (expected stretch, stiffness, "
+                "stretch,stiffness or none)");
+  expectFailure("--legs prb --cal-drop stretch",
+                "crawlsim run: --cal-drop: only rod legs take the calibration's stretch and "
+                "stiffness (legs prb)");
   /* the flat road's calibration is a pair-mode table: a rule applies to mode tables only */
   {
     csCliResult r;
@@ -257,16 +275,16 @@ static void test_goodRun(void) {
             "--out runcli_calrule.h5", "runcli", &r);
   CS_EXPECT(r.status == 0 && strstr(r.err, "calibration (rule rbf-pair): FE mode table (pair-"
                                     "factor superposition") != NULL);
-  f = H5Fopen("runcli_calrule.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
-  CS_EXPECT(f >= 0);
-  if (f >= 0) {
-    char rule[32] = "";
-    CS_EXPECT(H5LTget_attribute_string(f, "/", "calibration_rule", rule) >= 0 &&
-              !strcmp(rule, "rbf-pair"));
-    H5Fclose(f);
-  }
+  expectAttrString("runcli_calrule.h5", "calibration_rule", "rbf-pair");
   remove("runcli_calrule.h5");
   remove("runcli_calrule.xdmf");
+  /* --cal-drop: the rod legs leave the stretch out; the banner and the output say so */
+  cs_cliRun(exe_path, "run --legs rod --t-end 0.01 --cal-drop stretch --out runcli_caldrop.h5",
+            "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "calibration parts left out (--cal-drop): stretch\n"));
+  expectAttrString("runcli_caldrop.h5", "calibration_dropped", "stretch");
+  remove("runcli_caldrop.h5");
+  remove("runcli_caldrop.xdmf");
   /* --legs auto picks from the measured table and needs a tolerance (tests/tools/
    * test_levels_cli.c checks the pick); without --tol it is one error line */
   cs_cliRun(exe_path, "run --t-end 0.01 --quiet --legs auto --out runcli_auto.h5", "runcli", &r);
