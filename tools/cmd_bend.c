@@ -53,6 +53,7 @@ static const char kUsage[] =
     "                     [--mesh-symmetric 0|1]\n"
     "                     [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ]\n"
     "                     [--calibration FILE|analytic] [--cal-rule prism|rbf|rbf-pair]\n"
+    "                     [--cal-drop stretch|stiffness|stretch,stiffness]\n"
     "                     [--branch-switch 0|1] [--out FILE.h5]\n"
     "  Inflates the listed chambers (1..4) of all three segments at equal pressure from 0 to\n"
     "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
@@ -63,6 +64,8 @@ static const char kUsage[] =
     "  --tip-load FX,FY,FZ: a tip force in N, base frame (rod, fe). --calibration FILE|analytic:\n"
     "  the rod's pressure -> bend map (default: the shipped FE table of the leg actuator).\n"
     "  --cal-rule prism|rbf|rbf-pair: that FE mode table's model rule (rod; default prism).\n"
+    "  --cal-drop: the rod leaves that part of the calibration out (the segments' axial stretch,\n"
+    "  a mode table's probed EI, EA; as crawlsim run; recorded as calibration_dropped).\n"
     "  fe only: --fibre-size MM, the fibre element length (default l_soft / 8); --fibre-split 0\n"
     "  ties each fibre element to the tets holding its two ends (20 nodes) instead of splitting\n"
     "  it at the tets' faces (1, default). --fibre-law: tension-only (default; thread buckles and\n"
@@ -199,6 +202,7 @@ static int rodSetup(BendRun* run) {
   }
   /* elements: --mesh-size is the element length in the segments (and joints) */
   csrRodParams par = csr_rodDefaultParams(&run->act);
+  par.cal_drop = run->cal_drop;
   if (!isnan(run->mesh_size)) {
     double smax = fmax(run->act.S[0], fmax(run->act.S[1], run->act.S[2]));
     double lmax = fmax(run->act.LS[0], run->act.LS[1]);
@@ -478,6 +482,13 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
         return 1;
       }
       run->cal_rule = (int)rule;
+    } else if (!strcmp(name, "--cal-drop")) {
+      if (!csr_calDropParse(value, &run->cal_drop)) {
+        fprintf(stderr, "crawlsim bend: bad --cal-drop '%.60s' (expected stretch, stiffness, "
+                "stretch,stiffness or none)\n", value);
+        return 1;
+      }
+      run->have_cal_drop = 1;
     } else if (!strcmp(name, "--calibration")) {
       if (!*value) {
         fprintf(stderr, "crawlsim bend: --calibration needs a file name or 'analytic'\n");
@@ -603,9 +614,12 @@ int csx_cmdBend(int argc, char** argv) {
   }
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
   if ((tip && run.model != BEND_ROD && run.model != BEND_FE) ||
-      ((run.calibration || run.cal_rule >= 0) && run.model != BEND_ROD)) {
+      ((run.calibration || run.cal_rule >= 0 || run.have_cal_drop) && run.model != BEND_ROD)) {
     fprintf(stderr, "crawlsim bend: %s is for --model %s (the %s model has no %s)\n",
-            tip ? "--tip-load" : run.calibration ? "--calibration" : "--cal-rule",
+            tip                ? "--tip-load"
+            : run.calibration  ? "--calibration"
+            : run.cal_rule >= 0 ? "--cal-rule"
+                               : "--cal-drop",
             tip ? "rod or fe" : "rod",
             kModelNames[run.model], tip ? "tip load" : "calibration");
     return 1;
@@ -677,6 +691,11 @@ int csx_cmdBend(int argc, char** argv) {
                         run.n_elements_fibre,   wall,         run.until_angle,
                         run.p_limit,            run.p_resume, 0, 0, 0, NAN, -1, NAN, 0};
     st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
+  }
+  if (st == CS_OK && run.model == BEND_ROD) {
+    char drop[32];
+    csr_calDropFormat(run.cal_drop, drop, sizeof drop);
+    st = cs_h5AttrString(f, "/", "calibration_dropped", drop, &err);
   }
   cs_h5Close(f);
   if (st != CS_OK) {
