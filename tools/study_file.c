@@ -45,7 +45,7 @@ static const OptSpec kBendOpts[] = {
     {"--fibre-size", OPT_NUM}, {"--fibre-split", OPT_WORD}, {"--fibre-law", OPT_WORD},
     {"--tip-load", OPT_WORD},  {"--calibration", OPT_CALIB}, {"--branch-switch", OPT_WORD},
     {"--cal-rule", OPT_WORD},  {"--out", OPT_OWNED},       {"--help", OPT_OWNED},
-    {NULL, OPT_FLAG}};
+    {"--cal-drop", OPT_WORD},  {NULL, OPT_FLAG}};
 
 static const OptSpec kRunOpts[] = {
     {"--scene", OPT_WORD},        {"--gait", OPT_PATH},          {"--terrain", OPT_PATH},
