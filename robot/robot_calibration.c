@@ -594,10 +594,8 @@ int csr_calDropParse(const char* text, unsigned* drop) {
 
 void csr_calDropFormat(unsigned drop, char* buf, size_t size) {
   const int st = (drop & CSR_CAL_DROP_STRETCH) != 0, sf = (drop & CSR_CAL_DROP_STIFFNESS) != 0;
-  snprintf(buf, size, "%s%s%s", st ? "stretch" : "", st && sf ? "," : "", sf ? "stiffness" : "");
-  if (!st && !sf) {
-    snprintf(buf, size, "none");
-  }
+  snprintf(buf, size, "%s%s%s", st ? "stretch" : sf ? "" : "none", st && sf ? "," : "",
+           sf ? "stiffness" : "");
 }
 
 

@@ -377,25 +377,8 @@ double csr_rodLength(const csrRodModel* m) { return m->L; }
 const double* csr_rodNodeArc(const csrRodModel* m) { return m->s; }
 
 
-static int actuationEval(const csrRodModel* m, int seg, const double p[4],
-                         csrRodSegmentActuation* out, char* msg, size_t msg_size);
-
-
-int csr_rodActuationEval_(const csrRodModel* m, int seg, const double p[4],
-                          csrRodSegmentActuation* out, char* msg, size_t msg_size) {
-  int rc = actuationEval(m, seg, p, out, msg, msg_size);
-  /* the parts a study leaves out (csrRodParams.cal_drop): after the evaluation, so the
-   * calibration's range checks still apply */
-  if (rc == 0 && (m->par.cal_drop & CSR_CAL_DROP_STRETCH)) {
-    out->sigma0[2] = 0;
-  }
-  if (rc == 0 && (m->par.cal_drop & CSR_CAL_DROP_STIFFNESS)) {
-    out->has_section = 0;
-  }
-  return rc;
-}
-
-
+/* segment seg's actuation at p as the calibration gives it: a mode table's own adapter, else
+ * the bend map's bend and stretch turned into intrinsic strains */
 static int actuationEval(const csrRodModel* m, int seg, const double p[4],
                          csrRodSegmentActuation* out, char* msg, size_t msg_size) {
   memset(out, 0, sizeof *out);
@@ -429,6 +412,21 @@ static int actuationEval(const csrRodModel* m, int seg, const double p[4],
   out->u0[2] = 0;
   out->sigma0[2] = stretch - 1;
   return 0;
+}
+
+
+int csr_rodActuationEval_(const csrRodModel* m, int seg, const double p[4],
+                          csrRodSegmentActuation* out, char* msg, size_t msg_size) {
+  int rc = actuationEval(m, seg, p, out, msg, msg_size);
+  /* the parts a study leaves out (csrRodParams.cal_drop): after the evaluation, so the
+   * calibration's range checks still apply */
+  if (rc == 0 && (m->par.cal_drop & CSR_CAL_DROP_STRETCH)) {
+    out->sigma0[2] = 0;
+  }
+  if (rc == 0 && (m->par.cal_drop & CSR_CAL_DROP_STIFFNESS)) {
+    out->has_section = 0;
+  }
+  return rc;
 }
 
 

@@ -488,7 +488,6 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
                 "stretch,stiffness or none)\n", value);
         return 1;
       }
-      run->have_cal_drop = 1;
     } else if (!strcmp(name, "--calibration")) {
       if (!*value) {
         fprintf(stderr, "crawlsim bend: --calibration needs a file name or 'analytic'\n");
@@ -614,7 +613,7 @@ int csx_cmdBend(int argc, char** argv) {
   }
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
   if ((tip && run.model != BEND_ROD && run.model != BEND_FE) ||
-      ((run.calibration || run.cal_rule >= 0 || run.have_cal_drop) && run.model != BEND_ROD)) {
+      ((run.calibration || run.cal_rule >= 0 || run.cal_drop) && run.model != BEND_ROD)) {
     fprintf(stderr, "crawlsim bend: %s is for --model %s (the %s model has no %s)\n",
             tip                ? "--tip-load"
             : run.calibration  ? "--calibration"

@@ -30,7 +30,6 @@ typedef struct {
   const char* calibration;    /* --calibration (rod), NULL = default */
   int cal_rule;               /* --cal-rule (rod): csrCalRule of an FE mode table, -1 = default */
   unsigned cal_drop;          /* --cal-drop (rod): CSR_CAL_DROP_* parts left out, 0 = none */
-  int have_cal_drop;          /* --cal-drop was given */
   struct RodBend_* rod;       /* the rod's model, data and calibration during a rod sweep */
   double p_ceiling;           /* MPa: --until-angle searches up to max(p-max, this); NAN: 2 MPa */
   double fibre_size;          /* fe: l_fibre, mm (NAN: the model's default, l_soft / 8) */

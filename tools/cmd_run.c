@@ -135,7 +135,6 @@ int csx_cmdRun(int argc, char** argv) {
   const char* levels = NULL;
   double tol = NAN, kscale = NAN, rodtol = NAN;
   unsigned cal_drop = 0;
-  int have_cal_drop = 0;
   const char* sets[32];
   int quiet = 0, nset = 0;
   csError err;
@@ -239,7 +238,6 @@ int csx_cmdRun(int argc, char** argv) {
                     "stretch,stiffness or none)", v);
         goto done;
       }
-      have_cal_drop = 1;
     } else if (!strcmp(flag, "--set")) {
       if (nset == 32) {
         cs_errorSet(&err, CS_ERR_ARG, "more than 32 --set options");
@@ -430,7 +428,7 @@ int csx_cmdRun(int argc, char** argv) {
     m.robot.leg_params = csr_defaultLegParams(&m.robot.leg);
   }
   cs_modelSetLegLevel(&m, leg_type); /* the one place the level is stored (and its coupling) */
-  if (have_cal_drop && cal_drop && m.robot.leg_type != &csr_leg_rod) {
+  if (cal_drop && m.robot.leg_type != &csr_leg_rod) {
     cs_errorSet(&err, CS_ERR_ARG, "--cal-drop: only rod legs take the calibration's stretch and "
                 "stiffness (legs %s)", cs_modelLegLevel(&m));
     goto done;
