@@ -50,7 +50,8 @@ def arrow(ax, x, y, dx, dy, text, fontsize=11):
     ax.annotate("", xy=(x + dx, y + dy), xytext=(x, y),
                 arrowprops=dict(arrowstyle="-|>", lw=1.6, color="k"))
     ha = "left" if dx > 0 else "center"
-    va = "center" if dx > 0 else ("bottom" if (dy > 0) == (ax.yaxis_inverted()) else "top")
+    # below the head when the arrow points down the page, above it when it points up
+    va = "center" if dx > 0 else ("top" if (dy > 0) == ax.yaxis_inverted() else "bottom")
     if dx > 0:
         pos = (x + dx * 1.08, y)
     else:
