@@ -43,6 +43,12 @@ typedef struct csScene_ {
   const char* gait;        /* default gait table */
   csConditions conditions; /* default conditions of the scene's own terrain and gait */
   const char* calibration; /* default calibration (the one the scene's gait was designed on) */
+  const char* cal_rule;    /* the default calibration's rule (`--cal-rule` word), used when
+                              neither --calibration nor --cal-rule is given */
+  const char* legs;        /* default leg level (`--legs` word) */
+  int rod_links;           /* rod legs' elements per segment when --links is not given: the
+                              count converged on the default calibration (docs/notes/
+                              rod_legs.md, "Elements on the mission's table") */
   const char* what;        /* one line: what the scene is */
 } csScene;
 

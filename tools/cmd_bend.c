@@ -11,9 +11,12 @@
  * ratios replace --chambers; analytic, rod and fe). --tip-load is a dead force (N) on the tip
  * face in the base frame e1, e2, e3 (rod; fe: a uniform traction on the tip face). The rod (robot_rod.h) is solved statically at every row,
  * continued from the previous one, gravity off like the other models; its actuation comes from
- * --calibration: an FE table (default: the shipped robot/calibration_fe_leg.h5, refused for
- * another actuator) or `analytic` (the analytic model's own bends, so that the unloaded rod
- * reproduces it); --mesh-size is its element length in the segments (default 4 per segment).
+ * --calibration: an FE table (default: the mission's table, tools/cs_paths.h, under its rule,
+ * refused for another actuator) or `analytic` (the analytic model's own bends, so that the
+ * unloaded rod reproduces it); a mode table gives the rod its probed section stiffness too,
+ * exactly as the rod legs of `crawlsim run` take it (robot_rod_leg.c). --mesh-size is its
+ * element length in the segments (default 4 per segment). The rod's default actuator is the
+ * default table's (`leg`); the other models' is `baseline` (the paper's Sec. 4).
  *
  * The listed chambers are inflated at the same pressure in all three segments; the sweep runs
  * p = 0, p-step, ... up to p-max (p-max itself is always the last row). --until-angle finds
@@ -62,8 +65,11 @@ static const char kUsage[] =
     "  bending angle reaches DEG (searched up to max(p-max, 2 MPa)).\n"
     "  --pressures R1,R2,R3,R4: chamber j at R_j x p (unequal pressures; analytic, rod, fe).\n"
     "  --tip-load FX,FY,FZ: a tip force in N, base frame (rod, fe). --calibration FILE|analytic:\n"
-    "  the rod's pressure -> bend map (default: the shipped FE table of the leg actuator).\n"
-    "  --cal-rule prism|rbf|rbf-pair: that FE mode table's model rule (rod; default prism).\n"
+    "  the rod's pressure -> bend map and, from an FE mode table, its probed EI, EA (default:\n"
+    "  robot/calibration_fe_leg_modes_sym.h5 under rbf-pair, as crawlsim run's rod legs; the\n"
+    "  rod's default actuator is that table's, leg; the other models' is baseline).\n"
+    "  --cal-rule prism|rbf|rbf-pair: that FE mode table's model rule (rod; default rbf-pair on\n"
+    "  the default table, the table's own default, prism, on a table given by --calibration).\n"
     "  --cal-drop: the rod leaves that part of the calibration out (the segments' axial stretch,\n"
     "  a mode table's probed EI, EA; as crawlsim run; recorded as calibration_dropped).\n"
     "  fe only: --fibre-size MM, the fibre element length (default l_soft / 8); --fibre-split 0\n"
@@ -135,6 +141,8 @@ static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG]
 typedef struct RodBend_ {
   csrCalibration* cal; /* an FE table, or NULL with the analytic map */
   csrBendMap map;
+  csrRodCalibration rodcal; /* a mode table's strains and section stiffness (has_rodcal) */
+  int has_rodcal;
   csrActuator act;     /* the analytic map's actuator */
   csrRodModel* m;
   csrRodData* d;
@@ -175,7 +183,17 @@ static int rodSetup(BendRun* run) {
     char buf[1024];
     const char* path =
         run->calibration ? run->calibration
-                         : csx_dataPath(CSX_DEFAULT_CALIBRATION, buf, sizeof buf);
+                         : csx_dataPath(CSX_MISSION_CALIBRATION, buf, sizeof buf);
+    /* the mission's table under the mission's rule unless told otherwise; a table given by
+     * --calibration alone keeps its own default rule (as crawlsim run) */
+    if (!run->calibration && run->cal_rule < 0) {
+      csrCalRule rule;
+      if (!csr_calRuleParse(CSX_MISSION_CAL_RULE, &rule)) {
+        fprintf(stderr, "crawlsim bend: unknown default rule '%s'\n", CSX_MISSION_CAL_RULE);
+        return 1;
+      }
+      run->cal_rule = (int)rule;
+    }
     csrCalOptions cal_opt = csr_calModelDefaultOptions();
     cal_opt.rule = (csrCalRule)run->cal_rule;
     rb->cal = csr_calibrationOpenWith(path, &run->act, run->cal_rule >= 0 ? &cal_opt : NULL, &err);
@@ -185,6 +203,10 @@ static int rodSetup(BendRun* run) {
       return 1;
     }
     rb->map = csr_calibrationMap(rb->cal);
+    /* a mode table's probed EI, EA as well as its strains: the rod legs of crawlsim run take
+     * both through csr_calibrationRodFromMap; without this the bend rod kept its default
+     * section and --cal-drop stiffness had nothing to drop */
+    rb->has_rodcal = csr_calibrationRod(rb->cal, &rb->rodcal);
   }
   /* the sweep must stay inside the calibrated pressures (they are not extrapolated) */
   double rmax = 0;
@@ -219,6 +241,7 @@ static int rodSetup(BendRun* run) {
   sp.act = &run->act;
   sp.params = &par;
   sp.map = &rb->map;
+  sp.calib = rb->has_rodcal ? &rb->rodcal : NULL;
   csu_eye3(sp.frame); /* the base frame: the output's tip is in it */
   sp.weightless = 1;  /* gravity off, as for the other models */
   rb->m = csr_rodModelCreate(&sp, &err);
@@ -363,7 +386,7 @@ static int parsePressures(const char* text, BendRun* run) {
 
 
 static int parseArgs(int argc, char** argv, BendRun* run) {
-  const char* actuator = "baseline";
+  const char* actuator = NULL; /* default below, by model */
   const char* sets[MAX_SETS];
   int nset = 0;
   memset(run, 0, sizeof *run);
@@ -508,7 +531,11 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
       return 1;
     }
   }
-  /* the actuator: preset, then every --set in order, then a consistency check */
+  /* the actuator: preset, then every --set in order, then a consistency check; the rod's
+   * default is its default calibration's actuator, so that `bend --model rod` runs as is */
+  if (!actuator) {
+    actuator = run->model == BEND_ROD ? CSX_MISSION_ACTUATOR : "baseline";
+  }
   csError err;
   cs_errorClear(&err);
   if (csr_actuatorPreset(&run->act, actuator, &err) != CS_OK) {
@@ -695,6 +722,21 @@ int csx_cmdBend(int argc, char** argv) {
     char drop[32];
     csr_calDropFormat(run.cal_drop, drop, sizeof drop);
     st = cs_h5AttrString(f, "/", "calibration_dropped", drop, &err);
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, "/", "calibration", run.rod->map.name ? run.rod->map.name : "?",
+                           &err);
+    }
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, "/", "calibration_rule",
+                           run.rod->cal ? csr_calibrationRuleName(run.rod->cal) : "none", &err);
+    }
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, "/", "calibration_stiffness",
+                           run.rod->has_rodcal && !(run.cal_drop & CSR_CAL_DROP_STIFFNESS)
+                               ? "probed"
+                               : "default",
+                           &err);
+    }
   }
   cs_h5Close(f);
   if (st != CS_OK) {
@@ -709,10 +751,14 @@ int csx_cmdBend(int argc, char** argv) {
   printf("crawlsim bend: model %s, actuator %s, chambers %s in II1-II3\n", kModelNames[run.model],
          run.act.name, run.chambers);
   if (run.model == BEND_ROD) {
-    printf("rod: %d elements (%.4g mm in the segments), calibration %s, tip load (%g, %g, %g) N "
-           "in the base frame, gravity off\n", (int)run.n_elements_soft, run.mesh_size,
-           run.rod->map.name ? run.rod->map.name : "?", run.tip_load[0], run.tip_load[1],
-           run.tip_load[2]);
+    printf("rod: %d elements (%.4g mm in the segments), calibration %s, rule %s, section "
+           "stiffness %s, tip load (%g, %g, %g) N in the base frame, gravity off\n",
+           (int)run.n_elements_soft, run.mesh_size,
+           run.rod->map.name ? run.rod->map.name : "?",
+           run.rod->cal ? csr_calibrationRuleName(run.rod->cal) : "none",
+           run.rod->has_rodcal && !(run.cal_drop & CSR_CAL_DROP_STIFFNESS) ? "probed (FE)"
+                                                                           : "default (8 C10 I)",
+           run.tip_load[0], run.tip_load[1], run.tip_load[2]);
   }
   printf("%9s %9s %9s %9s %10s %10s %10s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
          "total(deg)", "tip e1(mm)", "tip e2(mm)", "tip e3(mm)");

@@ -51,8 +51,11 @@ static const char kRunUsage[] =
     "  --rod-tol K: every CVODE tolerance of rod legs times K (default 1; measured on the 9 s\n"
     "    flat road: K 5-20 runs 3.7-5.6x faster than K 1 and lands 3-7 mm from the converged\n"
     "    reference, K 1 0.6 mm; README \"Rod legs\", speed); recorded as rod_tolerance_scale;\n"
-    "  --cal-rule: the FE mode table's model rule (default prism: superposition + prism hats, the\n"
-    "    one the shipped gaits were designed on; rbf: + RBF interactions; rbf-pair: the pair\n"
+    "  --legs: default rod (the mission's surrogate) with the scene's converged elements per\n"
+    "    segment (--links), on the scene's calibration, robot/calibration_fe_leg_modes_sym.h5;\n"
+    "  --cal-rule: the FE mode table's model rule (default: rbf-pair on the scene's own\n"
+    "    calibration, the table's own default, prism, on a table given by --calibration;\n"
+    "    prism: superposition + prism hats; rbf: + RBF interactions; rbf-pair: the pair\n"
     "    factor + RBF, the smallest held-out errors; README \"Calibration\"); refused for other\n"
     "    calibrations; recorded as calibration_rule and in the banner;\n"
     "  --cal-drop stretch[,stiffness]: rod legs leave that part of the calibration out (the\n"
@@ -125,7 +128,7 @@ int csx_cmdRun(int argc, char** argv) {
   const char* scene = "flat-road";
   const char* gait = NULL;
   const char* terrain = NULL;
-  const char* legs = "prb";
+  const char* legs = NULL; /* the scene's (sim_scene.c) */
   const char* out = "run.h5";
   const char* calib = NULL;
   double friction = NAN, scale = 1.0, t_end = 0, dt = NAN, out_dt = NAN, ramp = NAN, tau = NAN;
@@ -259,6 +262,7 @@ int csx_cmdRun(int argc, char** argv) {
     goto done;
   }
   int user_files = terrain != NULL || gait != NULL;
+  if (!legs) legs = sc->legs;
   if (!terrain) terrain = csx_dataPath(sc->terrain, terrain_buf, sizeof terrain_buf);
   if (!gait) gait = csx_dataPath(sc->gait, gait_buf, sizeof gait_buf);
   int requested = -1;
@@ -340,8 +344,15 @@ int csx_cmdRun(int argc, char** argv) {
     cs_errorSet(&err, CS_ERR_ARG, "--tol and --levels go with --legs auto");
     goto done;
   }
-  /* the scene's calibration (its gait was designed on it), overridable with --calibration */
-  if (!calib) calib = csx_dataPath(sc->calibration, calib_buf, sizeof calib_buf);
+  /* the scene's calibration (its gait was designed on it) under the scene's rule, overridable
+   * with --calibration (which then keeps that table's own default rule) and --cal-rule */
+  if (!calib) {
+    calib = csx_dataPath(sc->calibration, calib_buf, sizeof calib_buf);
+    csrCalRule rule;
+    if (m.cal_rule < 0 && sc->cal_rule && csr_calRuleParse(sc->cal_rule, &rule)) {
+      m.cal_rule = (int)rule;
+    }
+  }
 
   /* numbers: check each against its flag's range before anything is loaded or built */
   if (!isnan(friction) && !(friction >= 0)) {
@@ -457,7 +468,11 @@ int csx_cmdRun(int argc, char** argv) {
   }
   if (!isnan(gravity)) m.opt.gravity = gravity * 1e3; /* m/s^2 -> mm/s^2 */
   if (!isnan(support_kg)) m.robot.support_mass = support_kg * 1e-3; /* kg -> t */
-  if (!isnan(links)) m.robot.leg_params.links_per_segment = (int)links;
+  if (!isnan(links)) {
+    m.robot.leg_params.links_per_segment = (int)links;
+  } else if (m.robot.leg_type == &csr_leg_rod && sc->rod_links > 0) {
+    m.robot.leg_params.links_per_segment = sc->rod_links; /* converged on the scene's table */
+  }
   if (!isnan(rodtol)) m.robot.leg_params.rod_tol_scale = rodtol;
   m.opt.t_end = t_end;
   if (csc_contactParamsValidate(&m.contact, &err) != CS_OK ||
@@ -492,6 +507,9 @@ int csx_cmdRun(int argc, char** argv) {
             cs_conditionsSourceName(cond_src), cs_conditionsWhat(m.conditions));
     fprintf(stderr, "crawlsim run: calibration (rule %s): %s\n",
             csr_calibrationRuleName(m.calibration), m.robot.map.name);
+    fprintf(stderr, "crawlsim run: legs %s, %d %s per segment\n", cs_modelLegLevel(&m),
+            m.robot.leg_params.links_per_segment,
+            m.robot.leg_type == &csr_leg_rod ? "elements" : "links");
     if (m.robot.leg_params.cal_drop) {
       char what[32];
       csr_calDropFormat(m.robot.leg_params.cal_drop, what, sizeof what);

@@ -11,10 +11,20 @@
 #define CS_SOURCE_DIR "."
 #endif
 
-/* The legs' default calibration: the FE table of the `leg` actuator (pair mode, 0..0.3 MPa,
- * l_soft 4 mm), regenerable with `crawlsim calibrate --out robot/calibration_fe_leg.h5`
- * (README, "Calibration"). The provisional text reference stays available with --calibration. */
+/* The pair-mode FE table of the `leg` actuator (one chamber mode, 0..0.3 MPa, l_soft 4 mm),
+ * regenerable with `crawlsim calibrate --out robot/calibration_fe_leg.h5` (README,
+ * "Calibration"): the default of `crawlsim gait design` and `gait flat-road`, whose shipped
+ * tables were designed on it. The provisional text reference stays available with
+ * --calibration. */
 #define CSX_DEFAULT_CALIBRATION "robot/calibration_fe_leg.h5"
+
+/* The mission's calibration, the default of the rod legs of both scenes (core/sim_scene.c) and
+ * of `crawlsim bend --model rod`: the 23-mode FE table on the symmetric mesh under the
+ * `rbf-pair` rule, the table and rule that meet every held-out FE case (docs/notes/
+ * calibration.md). Its actuator is `leg` and it holds 0..0.4 MPa. */
+#define CSX_MISSION_CALIBRATION "robot/calibration_fe_leg_modes_sym.h5"
+#define CSX_MISSION_CAL_RULE "rbf-pair"
+#define CSX_MISSION_ACTUATOR "leg"
 
 static inline const char* csx_dataPath(const char* rel, char* buf, size_t size) {
   const char* dir = getenv("CRAWLSIM_DATA_DIR");

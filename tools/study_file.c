@@ -201,7 +201,7 @@ int csx_studyWordIsPath(const csxStudyStep* st, int i) {
 static csStatus checkStep(Reader* r, csxStudyCmd c, char** w, int n, csError* err) {
   const CmdSpec* cs = &kCmds[c];
   const char* preset = cs->actuator;
-  int npos = 0;
+  int npos = 0, act_given = 0, model_rod = 0;
   /* pass 1: options and values */
   for (int i = 0; i < n; i++) {
     const char* a = w[i];
@@ -247,6 +247,9 @@ static csStatus checkStep(Reader* r, csxStudyCmd c, char** w, int n, csError* er
                          r->line, cs->name, a);
     }
     const char* v = w[++i];
+    if (!strcmp(a, "--model") && !strcmp(v, "rod")) {
+      model_rod = 1;
+    }
     if (o->kind == OPT_NUM) {
       char* end = NULL;
       double x = strtod(v, &end);
@@ -256,6 +259,7 @@ static csStatus checkStep(Reader* r, csxStudyCmd c, char** w, int n, csError* er
       }
     } else if (o->kind == OPT_ACT) {
       preset = v;
+      act_given = 1;
     } else if ((o->kind == OPT_PATH || (o->kind == OPT_CALIB && strcmp(v, "analytic"))) &&
                strncmp(v, "@case/", 6)) {
       char p[CSX_STUDY_PATH_SIZE];
@@ -273,6 +277,10 @@ static csStatus checkStep(Reader* r, csxStudyCmd c, char** w, int n, csError* er
   if (npos < cs->positional) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: %s: missing FILE.gait", r->path, r->line,
                        cs->name);
+  }
+  /* `bend --model rod` defaults to its default calibration's actuator (tools/cmd_bend.c) */
+  if (!act_given && model_rod && !strcmp(cs->name, "bend")) {
+    preset = CSX_MISSION_ACTUATOR;
   }
   /* pass 2: the actuator the --set words describe must be a valid one */
   csrActuator act;

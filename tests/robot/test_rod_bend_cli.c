@@ -10,8 +10,11 @@
  *  - tip_load_cantilever: a small tip force on the unpressurised leg deflects it as the
  *    piecewise-uniform Timoshenko cantilever of the rod's sections, P ∫(L-s)²/EI + P ∫1/kGA,
  *    with the O(h²) discretisation error measured at two element lengths.
- *  - default_fe_calibration: without --calibration the leg uses the shipped FE table: each
- *    segment's angle is the table's bend.
+ *  - tip_load_feels_the_probed_stiffness: on the default table a small tip force deflects the
+ *    leg as the piecewise Timoshenko cantilever of the table's probed EI; with --cal-drop
+ *    stiffness as that of the rod's default sections (the stiffness acts, the drop drops it).
+ *  - default_fe_calibration: `bend --model rod` with no other flag runs; without --calibration
+ *    the leg uses the mission's FE table under rbf-pair: each segment's angle is its bend.
  *  - cal_rule_changes_the_mode_table_model: `--cal-rule rbf-pair` on the FE mode table moves an
  *    H7-like pattern's tip away from the default prism rule's (the switch takes effect).
  *  - cal_drop_stretch_keeps_the_bend: `--cal-drop stretch` on the FE mode table gives the same
@@ -120,8 +123,10 @@ static void rod_reproduces_analytic_unloaded(void) {
 }
 
 
-/* the leg's piecewise-uniform Timoshenko cantilever under a tip force P along e1 (mm) */
-static double cantileverTip(double P) {
+/* the leg's piecewise-uniform Timoshenko cantilever under a tip force P along e1 (mm); with
+ * seg_section (3 sections or NULL) the actuated pieces take those sections instead of the rod's
+ * defaults (a calibration's probed stiffness) */
+static double cantileverTipWith(double P, const csrRodSection* seg_section) {
   csrActuator act;
   csError err;
   cs_errorClear(&err);
@@ -132,11 +137,20 @@ static double cantileverTip(double P) {
   double L = csr_actuatorLength(&act), a = 0, bend = 0, shear = 0;
   for (int k = 0; k < n; k++) {
     double b = a + pc[k].length;
-    bend += (pow(L - a, 3) - pow(L - b, 3)) / 3 / pc[k].section.EI[1];
-    shear += pc[k].length / pc[k].section.GA[0];
+    csrRodSection sec = pc[k].section;
+    if (seg_section && pc[k].segment >= 0) {
+      sec = seg_section[pc[k].segment];
+    }
+    bend += (pow(L - a, 3) - pow(L - b, 3)) / 3 / sec.EI[1];
+    shear += pc[k].length / sec.GA[0];
     a = b;
   }
   return P * (bend + shear);
+}
+
+
+static double cantileverTip(double P) {
+  return cantileverTipWith(P, NULL);
 }
 
 
@@ -170,22 +184,119 @@ static void tip_load_cantilever(void) {
 }
 
 
+/* The default calibration's probed section stiffness acts, and --cal-drop stiffness takes it
+ * out: a small tip force on the unpressurised leg deflects it as the piecewise Timoshenko
+ * cantilever whose segments carry the table's probed EI (from the calibration itself, at
+ * p = 0) and, with the stiffness dropped, as the one with the rod's default sections (8 C10 I).
+ * Before the bend command set the rod's calibration, both runs gave the default's deflection. */
+static void tip_load_feels_the_probed_stiffness(void) {
+  const double P = 1e-4; /* N: δ/L ~ 4e-4, geometric nonlinearity ~1e-7 (as above) */
+  const char* src = getenv("CS_SOURCE_DIR");
+  char path[1024];
+  snprintf(path, sizeof path, "%s/robot/calibration_fe_leg_modes_sym.h5", src ? src : "../../..");
+  csrActuator act;
+  csError err;
+  cs_errorClear(&err);
+  csr_actuatorPreset(&act, "leg", &err);
+  csrCalOptions opt = csr_calModelDefaultOptions();
+  CS_EXPECT(csr_calRuleParse("rbf-pair", &opt.rule));
+  csrCalibration* cal = csr_calibrationOpenWith(path, &act, &opt, &err);
+  CS_EXPECT(cal != NULL);
+  if (!cal) {
+    fprintf(stderr, "  %s\n", err.msg);
+    return;
+  }
+  csrRodCalibration rc;
+  csrRodSection sec[3];
+  int ok = csr_calibrationRod(cal, &rc);
+  CS_EXPECT(ok == 1);
+  for (int s = 0; ok && s < 3; s++) {
+    const double p0[4] = {0, 0, 0, 0};
+    csrRodSegmentActuation a;
+    memset(&a, 0, sizeof a);
+    CS_EXPECT(rc.eval(rc.ctx, s, p0, &a) == 0 && a.has_section);
+    sec[s] = a.section;
+  }
+  csr_calibrationClose(cal);
+  if (!ok) {
+    return;
+  }
+  const double want[2] = {cantileverTipWith(P, sec), cantileverTip(P)};
+  const char* drop[2] = {"none", "stiffness"};
+  double got[2] = {NAN, NAN};
+  for (int k = 0; k < 2; k++) {
+    remove("rodbend_k.h5");
+    char args[512];
+    /* the default calibration (no --calibration, no --actuator): the mission's table */
+    snprintf(args, sizeof args, "--model rod --p-max 0.05 --p-step 0.05 --tip-load 1e-4,0,0 "
+             "--mesh-size 6.25 --cal-drop %s --out rodbend_k.h5", drop[k]);
+    csCliResult r;
+    run(args, &r);
+    CS_EXPECT(r.status == 0);
+    double p[MAXROW], ang[3 * MAXROW], tip[3 * MAXROW];
+    int m = readBend("rodbend_k.h5", p, ang, tip);
+    CS_EXPECT(m == 2 && p[0] == 0);
+    if (m == 2) {
+      got[k] = tip[0];
+      printf("  --cal-drop %-9s tip e1 %.8g mm, piecewise Timoshenko %.8g mm (%+.3e)\n", drop[k],
+             got[k], want[k], (got[k] - want[k]) / want[k]);
+    }
+    hid_t f = H5Fopen("rodbend_k.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    CS_EXPECT(f >= 0);
+    if (f >= 0) {
+      char v[64] = "";
+      CS_EXPECT(H5LTget_attribute_string(f, "/", "calibration_stiffness", v) >= 0 &&
+                !strcmp(v, k == 0 ? "probed" : "default"));
+      CS_EXPECT(H5LTget_attribute_string(f, "/", "calibration_rule", v) >= 0 &&
+                !strcmp(v, "rbf-pair"));
+      H5Fclose(f);
+    }
+  }
+  /* each within the element length's O(h²) error at 6.25 mm, +6.67e-4 (tip_load_cantilever) */
+  CS_EXPECT_NEAR(got[0], want[0], 0, 1.5e-3);
+  CS_EXPECT_NEAR(got[1], want[1], 0, 1.5e-3);
+  /* at p = 0 the probed EI is within a few tenths of a percent of 8 C10 I, less than that
+   * error; the ratio of the two runs cancels it (same mesh, same pieces): measured 0.997029
+   * against the closed forms' 0.997035 (the two discretisation errors differ by 9.5e-6), so
+   * 5e-5 is five times that, and the ratio's distance from 1 (3.0e-3) is sixty times it */
+  const double rgot = got[0] / got[1], rwant = want[0] / want[1];
+  printf("  ratio probed / default: %.7f, closed forms %.7f\n", rgot, rwant);
+  CS_EXPECT_NEAR(rgot, rwant, 5e-5, 0);
+  CS_EXPECT(fabs(rwant - 1) > 20 * 5e-5);
+  remove("rodbend_k.h5");
+}
+
+
+/* `crawlsim bend --model rod` with no other flag runs (the default actuator is the default
+ * table's, the default p-max inside its range) on the mission's table under rbf-pair: each
+ * segment's angle is that calibration's bend */
 static void default_fe_calibration(void) {
-  remove("rodbend_fe.h5");
+  remove("bend.h5");
   csCliResult r;
+  run("--model rod", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.out, "rule rbf-pair") != NULL &&
+            strstr(r.out, "calibration_fe_leg_modes_sym.h5") != NULL);
+  if (r.status != 0) {
+    fprintf(stderr, "  %s", r.err);
+  }
+  CS_EXPECT(cs_cliFileExists("bend.h5"));
+  remove("bend.h5");
+  remove("rodbend_fe.h5");
   run("--model rod --actuator leg --p-max 0.3 --p-step 0.1 --out rodbend_fe.h5", &r);
-  CS_EXPECT(r.status == 0 && strstr(r.out, "calibration fe calibration table") != NULL);
+  CS_EXPECT(r.status == 0);
   double p[MAXROW], ang[3 * MAXROW], tip[3 * MAXROW];
   int m = readBend("rodbend_fe.h5", p, ang, tip);
   CS_EXPECT(m == 4);
   const char* src = getenv("CS_SOURCE_DIR");
   char path[1024];
-  snprintf(path, sizeof path, "%s/robot/calibration_fe_leg.h5", src ? src : "../../..");
+  snprintf(path, sizeof path, "%s/robot/calibration_fe_leg_modes_sym.h5", src ? src : "../../..");
   csrActuator act;
   csError err;
   cs_errorClear(&err);
   csr_actuatorPreset(&act, "leg", &err);
-  csrCalibration* cal = csr_calibrationOpen(path, &act, &err);
+  csrCalOptions opt = csr_calModelDefaultOptions();
+  CS_EXPECT(csr_calRuleParse("rbf-pair", &opt.rule));
+  csrCalibration* cal = csr_calibrationOpenWith(path, &act, &opt, &err);
   CS_EXPECT(cal != NULL);
   if (cal) {
     csrBendMap map = csr_calibrationMap(cal);
@@ -302,9 +413,15 @@ static void expectFailure(const char* args, const char* want) {
 
 
 static void bad_rod_input(void) {
-  expectFailure("--model rod --actuator leg --p-max 0.4",
-                "crawlsim bend: --p-max 0.4 MPa puts a chamber at 0.4 MPa, above the "
+  char pair[1024], args[1200];
+  const char* src = getenv("CS_SOURCE_DIR");
+  snprintf(pair, sizeof pair, "%s/robot/calibration_fe_leg.h5", src ? src : "../../..");
+  snprintf(args, sizeof args, "--model rod --calibration %s --p-max 0.4", pair);
+  expectFailure(args, "crawlsim bend: --p-max 0.4 MPa puts a chamber at 0.4 MPa, above the "
                 "calibration's range (0.3 MPa");
+  expectFailure("--model rod --p-max 0.5",
+                "crawlsim bend: --p-max 0.5 MPa puts a chamber at 0.5 MPa, above the "
+                "calibration's range (0.4 MPa");
   expectFailure("--model rod --actuator baseline", "crawlsim bend: ");
   expectFailure("--model analytic --tip-load 1,0,0",
                 "crawlsim bend: --tip-load is for --model rod");
@@ -320,8 +437,9 @@ static void bad_rod_input(void) {
   expectFailure("--model rod --cal-drop ei", "crawlsim bend: bad --cal-drop 'ei'");
   expectFailure("--model analytic --cal-drop stretch",
                 "crawlsim bend: --cal-drop is for --model rod");
-  /* the default rod calibration is the pair-mode table: no rule applies to it */
-  expectFailure("--model rod --actuator leg --cal-rule rbf", "crawlsim bend: ");
+  /* the pair-mode table: no rule applies to it */
+  snprintf(args, sizeof args, "--model rod --calibration %s --cal-rule rbf", pair);
+  expectFailure(args, "crawlsim bend: ");
 }
 
 
@@ -336,6 +454,7 @@ int main(int argc, char** argv) {
   CS_RUN(cal_drop_stretch_keeps_the_bend);
   CS_RUN(rod_reproduces_analytic_unloaded);
   CS_RUN(tip_load_cantilever);
+  CS_RUN(tip_load_feels_the_probed_stiffness);
   CS_RUN(default_fe_calibration);
   CS_RUN(bad_rod_input);
   return cs_testSummary();

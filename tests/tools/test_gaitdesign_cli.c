@@ -4,7 +4,8 @@
  * Proves: (1) the shipped gaits are what the commands regenerate from their descriptions and
  * the shipped calibration today, byte for byte (gaits/flat_road.csv from flat_road.gait,
  * gaits/flat_road_paper.csv from flat_road_paper.gait, gaits/obstacle.csv from obstacle.gait
- * (with --stretch), gaits/flat_road_crouch.csv from
+ * (with --stretch), gaits/flat_road_rod.csv from flat_road_rod.gait (with --stretch on the
+ * mission's table under rbf-pair), gaits/flat_road_crouch.csv from
  * `gait flat-road --crouch`; a calibration or design change that is not carried to the
  * shipped gaits fails here), (2) a generated table passes `crawlsim gait check`, (3) every bad
  * option, description or input exits 1 with one line "crawlsim gait <sub>: ..." on stderr
@@ -105,6 +106,11 @@ static void test_shippedGaitsAreRegenerable(void) {
   snprintf(flags, sizeof flags, "--stretch --calibration %s/robot/calibration_fe_leg_modes.h5 "
            "--p-max 0.4", src ? src : ".");
   expectRegenerates("obstacle.csv", flags, "obstacle.gait");
+  /* the flat road's default gait: the searched design, solved on the mission's map (the
+   * 23-mode symmetric-mesh table under rbf-pair) with its stretch */
+  snprintf(flags, sizeof flags, "--stretch --calibration %s/robot/calibration_fe_leg_modes_sym.h5 "
+           "--cal-rule rbf-pair --p-max 0.4", src ? src : ".");
+  expectRegenerates("flat_road_rod.csv", flags, "flat_road_rod.gait");
   expectRegenerates("flat_road_crouch.csv", "--crouch", NULL);
 }
 

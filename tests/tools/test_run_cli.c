@@ -99,11 +99,16 @@ static void test_badOptions(void) {
   expectFailure("--legs prb --cal-drop stretch",
                 "crawlsim run: --cal-drop: only rod legs take the calibration's stretch and "
                 "stiffness (legs prb)");
-  /* the flat road's calibration is a pair-mode table: a rule applies to mode tables only */
+  /* the pair-mode table (named: the scenes default to a mode table): a rule applies to mode
+   * tables only */
   {
     csCliResult r;
     remove(BAD_OUT);
-    cs_cliRun(exe_path, "run --quiet --t-end 0.01 --cal-rule rbf --out " BAD_OUT, "runcli", &r);
+    char args[1024];
+    snprintf(args, sizeof args, "run --quiet --t-end 0.01 --cal-rule rbf --calibration "
+             "%s/robot/calibration_fe_leg.h5 --out " BAD_OUT,
+             getenv("CS_SOURCE_DIR") ? getenv("CS_SOURCE_DIR") : ".");
+    cs_cliRun(exe_path, args, "runcli", &r);
     CS_EXPECT(r.status == 1 && cs_cliOneLine(r.err) && strstr(r.err, "crawlsim run: ") == r.err);
     CS_EXPECT(strstr(r.err, "robot/calibration_fe_leg.h5: a calibration rule applies only to an "
                      "FE mode table (this is a pair-mode table)") != NULL);
@@ -203,20 +208,29 @@ static void test_goodRun(void) {
   if (r.status != 0) {
     fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", r.status, r.out, r.err);
   }
-  /* the file names the level that ran (the one place it is stored: the robot's leg type) and
-   * keeps the stage timers: 50 steps of 1 ms */
+  /* the file names the level that ran (the one place it is stored: the robot's leg type),
+   * the default model (rod legs at the scene's 8 elements per segment on the 23-mode
+   * symmetric-mesh table under rbf-pair) and keeps the stage timers: 50 steps of 1 ms (the
+   * Gauss-Seidel rod legs are called twice a step: prediction and advance) */
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   hid_t f = H5Fopen("runcli_ok.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
   CS_EXPECT(f >= 0);
   if (f >= 0) {
     char level[32] = "";
     CS_EXPECT(H5LTget_attribute_string(f, "/", "leg_model", level) >= 0);
-    CS_EXPECT(!strcmp(level, "prb"));
+    CS_EXPECT(!strcmp(level, "rod"));
+    char cal[1024] = "", rule[32] = "";
+    double links = 0;
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "calibration", cal) >= 0 &&
+              strstr(cal, "robot/calibration_fe_leg_modes_sym.h5") != NULL);
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "calibration_rule", rule) >= 0 &&
+              !strcmp(rule, "rbf-pair"));
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 8);
     double calls = 0, wall = -1, steps = 0;
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_legs_calls", &calls) >= 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_support_s", &wall) >= 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "steps", &steps) >= 0);
-    CS_EXPECT(calls == 50 && wall >= 0 && steps >= 50);
+    CS_EXPECT(calls >= 50 && wall >= 0 && steps >= 50);
     /* the paper's scene under its own default conditions, recorded */
     char cond[32] = "";
     double weightless = -1;
@@ -225,7 +239,7 @@ static void test_goodRun(void) {
               weightless == 1);
     H5Fclose(f);
   }
-  CS_EXPECT(strstr(r.out, "verdict (paper, prb legs): stands") != NULL);
+  CS_EXPECT(strstr(r.out, "verdict (paper, rod legs): stands") != NULL);
   CS_EXPECT(cs_cliFileExists("runcli_ok.xdmf"));
   remove("runcli_ok.h5");
   remove("runcli_ok.xdmf");
