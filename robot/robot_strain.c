@@ -254,6 +254,7 @@ void csr_strainDataDestroy(csrStrainData* d) {
     return;
   }
   free(d->q);
+  free(d->eta);
   free(d->Kd);
   free(d->b);
   free(d->R);
@@ -271,6 +272,14 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->K0);
   free(d->b0);
   free(d->piv);
+  free(d->Wll);
+  free(d->X);
+  free(d->Wlb);
+  free(d->y);
+  free(d->rl);
+  free(d->Vp);
+  free(d->Vs);
+  free(d->Ab);
   free(d);
 }
 
@@ -331,6 +340,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   }
   size_t n = (size_t)m->n + 1, np = (size_t)m->np;
   d->q = calloc(n, sizeof(double));
+  d->eta = calloc(n, sizeof(double));
   d->Kd = calloc(n, sizeof(double));
   d->b = calloc(n, sizeof(double));
   d->R = calloc(np * 9, sizeof(double));
@@ -348,8 +358,17 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->K0 = calloc(n, sizeof(double));
   d->b0 = calloc(n, sizeof(double));
   d->piv = calloc(n, sizeof(int));
-  if (!d->q || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
-      !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv) {
+  d->Wll = calloc(n * n, sizeof(double));
+  d->X = calloc(n * 6, sizeof(double));
+  d->Wlb = calloc(n * 6, sizeof(double));
+  d->y = calloc(n, sizeof(double));
+  d->rl = calloc(n, sizeof(double));
+  d->Vp = calloc(np * 6, sizeof(double));
+  d->Vs = calloc(np * 6, sizeof(double));
+  d->Ab = calloc(np * 6, sizeof(double));
+  if (!d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
+      !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
+      !d->Wll || !d->X || !d->Wlb || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab) {
     csr_strainDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;
@@ -359,8 +378,24 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
 }
 
 
+void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double xr[3],
+                      double R[9], double x[3]) {
+  double t[3];
+  csu_mulMat3(R, d->Rb, Rr);
+  csu_mulMatVec3(t, d->Rb, xr);
+  csu_add3(x, d->xb, t);
+}
+
+
 void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
   memset(d->q, 0, (size_t)m->n * sizeof(double));
+  memset(d->eta, 0, (size_t)m->n * sizeof(double));
+  memcpy(d->Rb, m->frame, sizeof d->Rb);
+  memcpy(d->xb, m->hip, sizeof d->xb);
+  memset(d->Vb, 0, sizeof d->Vb);
+  memset(d->tipd_f, 0, sizeof d->tipd_f);
+  memset(d->tipd_m, 0, sizeof d->tipd_m);
+  d->h = 0;
   memset(d->p, 0, sizeof d->p);
   memset(d->tip_f, 0, sizeof d->tip_f);
   memset(d->tip_m, 0, sizeof d->tip_m);
@@ -442,9 +477,11 @@ void csr_strainPose(const csrStrainModel* m, csrStrainData* d, double X, double 
   int p = m->pt0[k] + 2 * i;
   double Re[9], pe[3], t[3];
   csr_strainExp_(Om, Re, pe);
-  csu_mulMat3(R, d->R + 9 * p, Re);
+  double Rr[9], xr[3];
+  csu_mulMat3(Rr, d->R + 9 * p, Re);
   csu_mulMatVec3(t, d->R + 9 * p, pe);
-  csu_add3(x, d->x + 3 * p, t);
+  csu_add3(xr, d->x + 3 * p, t);
+  csr_strainWorld_(d, Rr, xr, R, x);
 }
 
 
@@ -477,9 +514,10 @@ static void forceWith(const csrStrainModel* m, csrStrainData* d, const double f[
   }
   /* the tip wrench in the tip's body frame, (m; f) */
   const int tp = m->np - 1;
-  double F[6];
-  csu_mulMatTVec3(F, d->R + 9 * tp, mo);
-  csu_mulMatTVec3(F + 3, d->R + 9 * tp, f);
+  double F[6], Rw[9], xw[3];
+  csr_strainWorld_(d, d->R + 9 * tp, d->x + 3 * tp, Rw, xw);
+  csu_mulMatTVec3(F, Rw, mo);
+  csu_mulMatTVec3(F + 3, Rw, f);
   const double* Jt = d->J + (size_t)tp * 6 * n;
   for (int r = 0; r < 6; r++) {
     if (F[r] != 0) {
@@ -492,9 +530,11 @@ static void forceWith(const csrStrainModel* m, csrStrainData* d, const double f[
     return;
   }
   /* weights ρA g at the Simpson points, in each point's body frame */
+  double gh[3];
+  csu_mulMatTVec3(gh, d->Rb, m->gravity); /* in the hip frame */
   for (int p = 0; p < m->np; p++) {
     double gb[3];
-    csu_mulMatTVec3(gb, d->R + 9 * p, m->gravity);
+    csu_mulMatTVec3(gb, d->R + 9 * p, gh);
     const double* Jp = d->J + (size_t)p * 6 * n;
     for (int r = 0; r < 3; r++) {
       double w = gfac * m->Ms[6 * p + 3 + r] * gb[r];

@@ -139,6 +139,40 @@ void csr_strainMassMatrix(const csrStrainModel* m, csrStrainData* d, double* M);
 csStatus csr_strainStatic(const csrStrainModel* m, csrStrainData* d, const csrRodStaticLoad* load,
                           csrRodStaticInfo* info, csError* err);
 
+/* ---- dynamics: one linearly implicit step, condensed onto the base ------------------------
+ * The leg's state is (q, η = q̇); the base (hip) moves with the support. One step of h on
+ * velocities, backward Euler linearised at the step's start (robot_strain_dyn.c):
+ *   [W_bb W_bl; W_lb W_ll] [ΔV; Δη] = h [r_b; r_l],  W = M + h D + h² K (D, K on the strains),
+ * with ΔV the change of the base's body twist over the step. csr_strainPrepare condenses the
+ * leg onto ΔV: Z = W_bb - W_bl W_ll⁻¹ W_lb and ρ = h r_b - W_bl W_ll⁻¹ h r_l, so the base solves
+ * (its own W + Σ Z) ΔV = its own h r + Σ ρ; csr_strainFinish back-substitutes
+ * Δη = W_ll⁻¹ (h r_l - W_lb ΔV) and moves q by h η. Z and ρ are in the hip's body coordinates
+ * (angular first): Z (6 x 6: t mm², t mm, t) and ρ (N mm s, N s). */
+
+/* Doubles in the state [q, η] (2n). */
+int csr_strainStateSize(const csrStrainModel* m);
+void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double* y);
+/* 0, or -1 (nothing changed) for non-finite values. */
+int csr_strainSetState(const csrStrainModel* m, csrStrainData* d, const double* y);
+/* The base (hip) pose and velocity now (world; robot_leg.h csrBaseState). */
+void csr_strainSetBase(const csrStrainModel* m, csrStrainData* d, const csrBaseState* b);
+/* A constant tip force (N) and moment (N mm), world, for the dynamics. */
+void csr_strainSetTipLoad(csrStrainData* d, const double force[3], const double moment[3]);
+/* Condense the step of h (s) at the current state, base and actuation: Z (36) and ρ (6) as
+ * above. 0 ok, > 0 recoverable (W_ll not positive definite, non-finite forces: a smaller step
+ * may pass), < 0 bad arguments; the state is not changed. */
+int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+                      double rho[6]);
+/* Finish the prepared step with the base's twist change dV (6, hip body coordinates): η and q
+ * move; the caller then sets the base's new pose and velocity (csr_strainSetBase). */
+void csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6]);
+/* Kinetic energy (leg and base motion) and elastic energy relative to the rest strains (N mm). */
+void csr_strainEnergy(const csrStrainModel* m, csrStrainData* d, double* kinetic,
+                      double* elastic);
+/* Σ m x (t mm) and the linear momentum Σ m v (t mm/s) of the leg's mass, world. */
+void csr_strainMassMoment(const csrStrainModel* m, csrStrainData* d, double mx[3]);
+void csr_strainMomentum(const csrStrainModel* m, csrStrainData* d, double P[3]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -55,7 +55,10 @@ struct csrStrainData_ {
   double p[CSR_NSEG * CSR_NCHAMBER]; /* pressures of the current actuation (MPa) */
   double tip_f[3], tip_m[3];         /* the last static load's tip force and moment */
   int grav;                          /* and whether its weight acted */
-  /* kinematics at the quadrature points, valid while kin_valid */
+  double* eta;    /* (n) generalised velocities q̇ */
+  double Rb[9], xb[3]; /* the base (hip) frame and position, world */
+  double Vb[6];   /* the base's body twist (ω; v) in the hip frame (rad/s, mm/s) */
+  /* kinematics at the quadrature points relative to the base, valid while kin_valid */
   double* R;      /* (np x 9) */
   double* x;      /* (np x 3) */
   double* J;      /* (np x 6 x n) body Jacobians */
@@ -63,6 +66,17 @@ struct csrStrainData_ {
   /* scratch of the static solver */
   double *Q, *Qp, *Qm, *A, *dq, *q_save, *q_start, *K1, *b1, *K0, *b0;
   int* piv;
+  /* the prepared step (robot_strain_dyn.c) */
+  double tipd_f[3], tipd_m[3]; /* the dynamics' tip load (world) */
+  double* Wll;    /* (n x n) Cholesky factor of W_ll (lower) */
+  double* Wlb;    /* (n x 6) W_lb = W_blᵀ */
+  double* X;      /* (n x 6) W_ll⁻¹ W_lb */
+  double* y;      /* (n) W_ll⁻¹ h r_l */
+  double* rl;     /* (n) */
+  double* Vp;     /* (np x 6) point twists */
+  double* Vs;     /* (np x 6) scratch: twists at q ± εη */
+  double* Ab;     /* (np x 6) Ȧu at the points (the velocity-product accelerations) */
+  double h;       /* the prepared step (s); 0: none prepared */
 };
 
 /* ---- SE(3) helpers (robot_strain_lie.c) ---------------------------------------------------- */
@@ -82,7 +96,11 @@ void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s
                        double Om[6], double* dOm);
 /* strain ξ (6) of piece k at local arc length s */
 void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]);
-/* the kinematics at every quadrature point (poses and, with want_J, Jacobians) */
+/* pose relative to the base (Rr, xr) -> world (R, x) */
+void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double xr[3],
+                      double R[9], double x[3]);
+/* the kinematics at every quadrature point relative to the base (poses and, with want_J,
+ * Jacobians) */
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J);
 
 #endif /* CS_ROBOT_STRAIN_INTERNAL_H */

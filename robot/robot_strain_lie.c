@@ -254,9 +254,9 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
 
 
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J) {
-  /* the clamp */
-  memcpy(d->R, m->frame, 9 * sizeof(double));
-  memcpy(d->x, m->hip, 3 * sizeof(double));
+  /* the clamp: poses are relative to the base (hip) frame */
+  csu_eye3(d->R);
+  memset(d->x, 0, 3 * sizeof(double));
   if (want_J) {
     memset(d->J, 0, (size_t)6 * m->n * sizeof(double));
   }
