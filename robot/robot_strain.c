@@ -72,6 +72,9 @@ void csr_strainModelDestroy(csrStrainModel* m) {
     return;
   }
   csr_rodModelDestroy(m->rod);
+  csc_softDestroy(m->soft);
+  free(m->shape_a);
+  free(m->shape_b);
   free(m->dcomp);
   free(m->dorder);
   free(m->dpiece);
@@ -203,6 +206,10 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       }
     }
   }
+  if (spec->terrain && csr_strainContactCreate_(m, spec, err) != 0) {
+    csr_strainModelDestroy(m);
+    return NULL;
+  }
   return m;
 }
 
@@ -275,6 +282,10 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->Wll);
   free(d->X);
   free(d->Wlb);
+  free(d->Wbl);
+  free(d->z);
+  free(d->sst);
+  free(d->Gs);
   free(d->y);
   free(d->rl);
   free(d->Vp);
@@ -361,6 +372,10 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->Wll = calloc(n * n, sizeof(double));
   d->X = calloc(n * 6, sizeof(double));
   d->Wlb = calloc(n * 6, sizeof(double));
+  d->Wbl = calloc(n * 6, sizeof(double));
+  d->z = calloc((size_t)m->nhist + 1, sizeof(double));
+  d->sst = calloc((size_t)m->nshape + 1, sizeof(cscShapeState));
+  d->Gs = calloc(22 * (n + 6), sizeof(double));
   d->y = calloc(n, sizeof(double));
   d->rl = calloc(n, sizeof(double));
   d->Vp = calloc(np * 6, sizeof(double));
@@ -368,7 +383,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->Ab = calloc(np * 6, sizeof(double));
   if (!d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
-      !d->Wll || !d->X || !d->Wlb || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab) {
+      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab) {
     csr_strainDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;
@@ -393,7 +408,11 @@ void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
   memcpy(d->Rb, m->frame, sizeof d->Rb);
   memcpy(d->xb, m->hip, sizeof d->xb);
   memset(d->Vb, 0, sizeof d->Vb);
+  memset(&d->wbase, 0, sizeof d->wbase);
   memset(d->tipd_f, 0, sizeof d->tipd_f);
+  if (m->soft) {
+    csc_softStateInit(m->soft, d->z);
+  }
   memset(d->tipd_m, 0, sizeof d->tipd_m);
   d->h = 0;
   memset(d->p, 0, sizeof d->p);
@@ -578,7 +597,7 @@ void csr_strainMassMatrix(const csrStrainModel* m, csrStrainData* d, double* M) 
 /* ---- statics -------------------------------------------------------------------------------- */
 
 /* LU with partial pivoting of A (n x n) in place; 0 ok, 1 singular */
-static int luFactor(double* A, int n, int* piv) {
+int csr_strainLuFactor_(double* A, int n, int* piv) {
   for (int k = 0; k < n; k++) {
     int p = k;
     for (int i = k + 1; i < n; i++) {
@@ -608,13 +627,16 @@ static int luFactor(double* A, int n, int* piv) {
 }
 
 
-static void luSolve(const double* A, int n, const int* piv, double* x) {
+void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x) {
+  /* the factor swapped whole rows (its multipliers too): P first, then L and U */
   for (int k = 0; k < n; k++) {
     if (piv[k] != k) {
       double t = x[k];
       x[k] = x[piv[k]];
       x[piv[k]] = t;
     }
+  }
+  for (int k = 0; k < n; k++) {
     for (int i = k + 1; i < n; i++) {
       x[i] -= A[i * n + k] * x[k];
     }
@@ -650,11 +672,11 @@ static int newton(const csrStrainModel* m, csrStrainData* d, const double f[3],
       }
     }
     d->kin_valid = 0;
-    if (luFactor(d->A, n, d->piv)) {
+    if (csr_strainLuFactor_(d->A, n, d->piv)) {
       return 1;
     }
     memcpy(d->dq, d->Q, (size_t)n * sizeof(double));
-    luSolve(d->A, n, d->piv, d->dq);
+    csr_strainLuSolve_(d->A, n, d->piv, d->dq);
     double upd = 0;
     for (int j = 0; j < n; j++) {
       double u = fabs(d->dq[j]) * m->dscale[j];

@@ -35,6 +35,7 @@
 #ifndef CS_ROBOT_STRAIN_H
 #define CS_ROBOT_STRAIN_H
 
+#include "contact_soft.h"
 #include "core_status.h"
 #include "robot_actuator.h"
 #include "robot_leg.h"
@@ -76,6 +77,12 @@ typedef struct csrStrainSpec_ {
   double frame[9];                /* clamp frame (columns e1 e2 e3), world, row-major */
   double gravity[3];              /* world mm/s^2 */
   int weightless;                 /* 1: mass and inertia but no weight (conditions `paper`) */
+  /* leg-terrain contact (NULL terrain: none): contact_soft.h's law on the leg's shapes, a
+   * capsule of radius rod_params->contact_radius on every Magnus sub-interval's chord but the
+   * last, and the flat foot (the sole, side 2a) at the tip; its friction in step mode (stick
+   * anchors fixed within a step and return-mapped after it), whatever soft->history says */
+  const cstTerrain* terrain;      /* copied by the contact model */
+  const cscSoftParams* soft;      /* NULL: csc_softDefaultParams() */
 } csrStrainSpec;
 
 typedef struct csrStrainModel_ csrStrainModel;
@@ -149,7 +156,7 @@ csStatus csr_strainStatic(const csrStrainModel* m, csrStrainData* d, const csrRo
  * Δη = W_ll⁻¹ (h r_l - W_lb ΔV) and moves q by h η. Z and ρ are in the hip's body coordinates
  * (angular first): Z (6 x 6: t mm², t mm, t) and ρ (N mm s, N s). */
 
-/* Doubles in the state [q, η] (2n). */
+/* Doubles in the state [q, η, contact anchors] (2n + the soft model's history). */
 int csr_strainStateSize(const csrStrainModel* m);
 void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double* y);
 /* 0, or -1 (nothing changed) for non-finite values. */
@@ -163,9 +170,21 @@ void csr_strainSetTipLoad(csrStrainData* d, const double force[3], const double 
  * may pass), < 0 bad arguments; the state is not changed. */
 int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
                       double rho[6]);
-/* Finish the prepared step with the base's twist change dV (6, hip body coordinates): η and q
- * move; the caller then sets the base's new pose and velocity (csr_strainSetBase). */
-void csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6]);
+/* Finish the prepared step with the base's twist change dV (6, hip body coordinates) and the
+ * base's new pose and velocity b1 (NULL: the base did not move): η and q move, then the
+ * friction anchors are return-mapped at the new poses (csc_softUpdateShape). 0, or > 0 when
+ * the new pose is not finite or sinks past a shape's radius (the caller restores the state
+ * saved before the step and retries smaller). */
+int csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6],
+                     const csrBaseState* b1);
+/* The wrench the leg exerted on the support over the last finished step, averaged (its impulse
+ * / h: -(Z ΔV - ρ) / h, the discrete step's own), world, force at and moment about the hip
+ * (robot_leg.h csrWrench); zero before the first step. */
+void csr_strainBaseWrench(const csrStrainModel* m, const csrStrainData* d, csrWrench* w);
+/* The terrain's force (N) and moment about the hip (N mm) on the leg at the current state
+ * (world), and the contact report (deepest penetration, sliding slots). 0 or the law's code. */
+int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[3], double mo[3],
+                            cscSoftReport* rep);
 /* Kinetic energy (leg and base motion) and elastic energy relative to the rest strains (N mm). */
 void csr_strainEnergy(const csrStrainModel* m, csrStrainData* d, double* kinetic,
                       double* elastic);

@@ -23,7 +23,8 @@
  *   W = M(q0) + (h τ_d + h²) [0 0; 0 K],   r = the right-hand side above at (q0, u0) - h K η0.
  * Positions follow with the new velocities: q1 = q0 + h η1 (the base: the caller, e.g.
  * g_b exp(h V_b1), or ODE's x1 = x0 + h v1). The leg block W_ll is symmetric positive definite
- * (mass plus stiffness); it is factored by Cholesky and the leg condensed onto the base. */
+ * (mass plus stiffness) without contact; the contact's friction makes it unsymmetric, so it is
+ * factored by LU (partial pivoting) and the leg condensed onto the base. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,23 +36,25 @@
 #define CSR_STRAIN_BIAS_STEP 1e-6
 
 
-int csr_strainStateSize(const csrStrainModel* m) { return 2 * m->n; }
+int csr_strainStateSize(const csrStrainModel* m) { return 2 * m->n + m->nhist; }
 
 
 void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double* y) {
   memcpy(y, d->q, (size_t)m->n * sizeof(double));
   memcpy(y + m->n, d->eta, (size_t)m->n * sizeof(double));
+  memcpy(y + 2 * m->n, d->z, (size_t)m->nhist * sizeof(double));
 }
 
 
 int csr_strainSetState(const csrStrainModel* m, csrStrainData* d, const double* y) {
-  for (int j = 0; j < 2 * m->n; j++) {
+  for (int j = 0; j < 2 * m->n + m->nhist; j++) {
     if (!isfinite(y[j])) {
       return -1;
     }
   }
   memcpy(d->q, y, (size_t)m->n * sizeof(double));
   memcpy(d->eta, y + m->n, (size_t)m->n * sizeof(double));
+  memcpy(d->z, y + 2 * m->n, (size_t)m->nhist * sizeof(double));
   d->kin_valid = 0;
   d->h = 0;
   return 0;
@@ -130,48 +133,6 @@ static void adInv(const csrStrainData* d, int p, double A[36]) {
       A[6 * (r + 3) + c + 3] = col[r];
       A[6 * (r + 3) + c] = rc[r];
     }
-  }
-}
-
-
-/* in-place Cholesky of the SPD matrix A (n x n, lower factor); 0 ok, 1 not positive definite */
-static int cholesky(double* A, int n) {
-  for (int j = 0; j < n; j++) {
-    double s = A[j * n + j];
-    for (int k = 0; k < j; k++) {
-      s -= A[j * n + k] * A[j * n + k];
-    }
-    if (!(s > 0)) {
-      return 1;
-    }
-    double l = sqrt(s);
-    A[j * n + j] = l;
-    for (int i = j + 1; i < n; i++) {
-      double t = A[i * n + j];
-      for (int k = 0; k < j; k++) {
-        t -= A[i * n + k] * A[j * n + k];
-      }
-      A[i * n + j] = t / l;
-    }
-  }
-  return 0;
-}
-
-
-static void cholSolve(const double* L, int n, double* x) {
-  for (int i = 0; i < n; i++) {
-    double s = x[i];
-    for (int k = 0; k < i; k++) {
-      s -= L[i * n + k] * x[k];
-    }
-    x[i] = s / L[i * n + i];
-  }
-  for (int i = n - 1; i >= 0; i--) {
-    double s = x[i];
-    for (int k = i + 1; k < n; k++) {
-      s -= L[k * n + i] * x[k];
-    }
-    x[i] = s / L[i * n + i];
   }
 }
 
@@ -274,6 +235,25 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
       }
     }
   }
+  /* W_ll in full, W_bl = W_lbᵀ, then the contact (which need not be symmetric) */
+  for (int j = 0; j < n; j++) {
+    for (int k = 0; k < j; k++) {
+      d->Wll[k * n + j] = d->Wll[j * n + k];
+    }
+    for (int c = 0; c < 6; c++) {
+      d->Wbl[n * c + j] = d->Wlb[6 * j + c];
+    }
+  }
+  if (m->soft) {
+    /* u0 = (V_b, η) in the scratch after the linearisation's rows */
+    double* uu = d->Gs + 21 * (6 + n);
+    memcpy(uu, d->Vb, 6 * sizeof(double));
+    memcpy(uu + 6, d->eta, (size_t)n * sizeof(double));
+    int rc = csr_strainContactAssemble_(m, d, h, uu, Wbb, rb, d->Gs);
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+  }
   /* the strains' elastic and damping forces, linearised at the step's end */
   const double tau = m->rpar.damping_time;
   for (int j = 0; j < n; j++) {
@@ -285,7 +265,7 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
       return 1;
     }
   }
-  if (cholesky(d->Wll, n)) {
+  if (csr_strainLuFactor_(d->Wll, n, d->piv)) {
     return 1;
   }
   /* X = W_ll⁻¹ W_lb column by column, y = W_ll⁻¹ h r_l */
@@ -294,7 +274,7 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     for (int j = 0; j < n; j++) {
       col[j] = d->Wlb[6 * j + c];
     }
-    cholSolve(d->Wll, n, col);
+    csr_strainLuSolve_(d->Wll, n, d->piv, col);
     for (int j = 0; j < n; j++) {
       d->X[6 * j + c] = col[j];
     }
@@ -302,33 +282,49 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   for (int j = 0; j < n; j++) {
     d->y[j] = h * d->rl[j];
   }
-  cholSolve(d->Wll, n, d->y);
-  /* Z = W_bb - W_lbᵀ X, ρ = h r_b - W_lbᵀ y */
+  csr_strainLuSolve_(d->Wll, n, d->piv, d->y);
+  /* Z = W_bb - W_bl X, ρ = h r_b - W_bl y */
   double WbX[36];
   for (int a = 0; a < 6; a++) {
     for (int c = 0; c < 6; c++) {
       double t = 0;
       for (int j = 0; j < n; j++) {
-        t += d->Wlb[6 * j + a] * d->X[6 * j + c];
+        t += d->Wbl[n * a + j] * d->X[6 * j + c];
       }
       WbX[6 * a + c] = t;
     }
     double t = 0;
     for (int j = 0; j < n; j++) {
-      t += d->Wlb[6 * j + a] * d->y[j];
+      t += d->Wbl[n * a + j] * d->y[j];
     }
     rho[a] = h * rb[a] - t;
   }
   for (int i = 0; i < 36; i++) {
     Z[i] = Wbb[i] - WbX[i];
   }
+  memcpy(d->Zp, Z, sizeof d->Zp);
+  memcpy(d->rhop, rho, sizeof d->rhop);
+  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
   d->h = h;
   return 0;
 }
 
 
-void csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6]) {
+int csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6],
+                     const csrBaseState* b1) {
   const int n = m->n;
+  /* the base's impulse on the leg is Z ΔV - ρ (hip body coordinates, (moment; force)): the leg
+   * exerts its opposite, averaged over the step */
+  double Jb[6];
+  for (int a = 0; a < 6; a++) {
+    double s = -d->rhop[a];
+    for (int c = 0; c < 6; c++) {
+      s += d->Zp[6 * a + c] * dV[c];
+    }
+    Jb[a] = -s / d->h;
+  }
+  csu_mulMatVec3(d->wbase.m, d->Rbp, Jb);
+  csu_mulMatVec3(d->wbase.f, d->Rbp, Jb + 3);
   for (int j = 0; j < n; j++) {
     double s = d->y[j];
     for (int c = 0; c < 6; c++) {
@@ -339,6 +335,33 @@ void csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV
   }
   d->kin_valid = 0;
   d->h = 0;
+  if (b1) {
+    csr_strainSetBase(m, d, b1);
+  } else {
+    for (int c = 0; c < 6; c++) {
+      d->Vb[c] += dV[c];
+    }
+  }
+  if (!m->soft) {
+    return 0;
+  }
+  /* return-map the friction anchors at the step's end */
+  csr_strainKinematics_(m, d, 1);
+  csr_strainPointTwists_(m, d);
+  return csr_strainContactUpdate_(m, d);
+}
+
+
+void csr_strainBaseWrench(const csrStrainModel* m, const csrStrainData* d, csrWrench* w) {
+  (void)m;
+  *w = d->wbase;
+}
+
+
+void csr_strainPointTwists_(const csrStrainModel* m, csrStrainData* d) {
+  for (int p = 0; p < m->np; p++) {
+    pointTwist(m, d, p, d->Vb, d->eta, d->Vp + 6 * p);
+  }
 }
 
 

@@ -11,6 +11,8 @@
 #include "robot_strain.h"
 
 /* strain components of ξ - ξ*: bending about d1, d2, twist, shear along d1, d2, stretch */
+/* the most history doubles of one contact shape (a 5 x 5 point foot in step mode: 100) */
+#define CSR_STRAIN_MAX_SHAPE_HIST 100
 /* the most unknowns of one piece: 6 components of MAX_ORDER + 1 modes */
 #define CSR_STRAIN_MAX_PIECE_DOF (6 * (CSR_STRAIN_MAX_ORDER + 1))
 
@@ -41,6 +43,12 @@ struct csrStrainModel_ {
   double* Ms;                        /* (np x 6) Simpson weight x section mass per length
                                         (ρI1, ρI2, ρI3, ρA, ρA, ρA) summed at each point (t mm²,
                                         t) */
+  cscSoftModel* soft;                /* leg-terrain contact (NULL: none), step-mode history */
+  int nshape;                        /* its shapes: capsules, then the foot */
+  int* shape_a;                      /* (nshape) quadrature point of a capsule's first end
+                                        (the foot: the tip) */
+  int* shape_b;                      /* (nshape) of its second end (the foot: the tip) */
+  int nhist;                         /* the contact history's doubles */
   csrRodModel* rod;                  /* a one-element-per-piece nodal rod of the same pieces:
                                         the calibration path (csr_rodActuationEval_) */
   double hip[3], frame[9];
@@ -77,6 +85,12 @@ struct csrStrainData_ {
   double* Vs;     /* (np x 6) scratch: twists at q ± εη */
   double* Ab;     /* (np x 6) Ȧu at the points (the velocity-product accelerations) */
   double h;       /* the prepared step (s); 0: none prepared */
+  double* Wbl;    /* (6 x n) W_bl (= W_lbᵀ without contact) */
+  double Zp[36], rhop[6], Rbp[9]; /* the prepared Z, ρ and the base frame they are in */
+  csrWrench wbase; /* the last finished step's base wrench (csr_strainBaseWrench) */
+  double* z;      /* (nhist) contact anchors (state) */
+  cscShapeState* sst; /* (nshape) scratch */
+  double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
 };
 
 /* ---- SE(3) helpers (robot_strain_lie.c) ---------------------------------------------------- */
@@ -96,6 +110,23 @@ void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s
                        double Om[6], double* dOm);
 /* strain ξ (6) of piece k at local arc length s */
 void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]);
+/* LU with partial pivoting in place (n x n); 0 ok, 1 singular; and its solve */
+int csr_strainLuFactor_(double* A, int n, int* piv);
+void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x);
+/* G_p = [Ad(g_p⁻¹), J_p] of point p (6 x (6 + n), row-major) at the current kinematics */
+void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
+
+/* ---- contact (robot_strain_contact.c) ---- */
+int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err);
+/* the contact's force, its linearisation over a step of h added to W (the four blocks, W_ll
+ * full) and h r (r_b, r_l: forces, added), at the current kinematics (with J) and point
+ * twists d->Vp; 0 or > 0 (a pose sinks past a shape's radius or is not finite) */
+int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
+                               const double* u0, double* Wbb, double* rb, double* G);
+/* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
+int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
+/* the point twists d->Vp at the current kinematics */
+void csr_strainPointTwists_(const csrStrainModel* m, csrStrainData* d);
 /* pose relative to the base (Rr, xr) -> world (R, x) */
 void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double xr[3],
                       double R[9], double x[3]);

@@ -29,7 +29,7 @@ static int stepHeld(const csrStrainModel* m, csrStrainData* d, double h) {
   const double zero[6] = {0, 0, 0, 0, 0, 0};
   int rc = csr_strainPrepare(m, d, h, Z, rho);
   if (rc == 0) {
-    csr_strainFinish(m, d, zero);
+    rc = csr_strainFinish(m, d, zero, NULL);
   }
   return rc;
 }
@@ -314,7 +314,6 @@ static int coupledStep(const csrStrainModel* m, csrStrainData* d, FreeBase* B, d
     r[a] = h * r[a] + rho[a];
   }
   solve6(W, r, dV);
-  csr_strainFinish(m, d, dV);
   for (int a = 0; a < 6; a++) {
     B->V[a] += dV[a];
   }
@@ -330,8 +329,7 @@ static int coupledStep(const csrStrainModel* m, csrStrainData* d, FreeBase* B, d
   memcpy(B->R, Rn, sizeof Rn);
   csrBaseState b;
   baseState(B, &b);
-  csr_strainSetBase(m, d, &b);
-  return 0;
+  return csr_strainFinish(m, d, dV, &b);
 }
 
 
