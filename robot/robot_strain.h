@@ -1,13 +1,16 @@
-/* robot_strain.h: the strain-coordinate Cosserat leg (`strain`, issue 32, stage 1: model and
- * statics; not yet a registered leg level): one leg as a geometrically exact Cosserat rod whose
- * unknowns are the strains of its actuated segments (SoRoSim's geometric variable strain), the
- * solid joints LS12, LS23 rigid pieces with their mass.
+/* robot_strain.h: the strain-coordinate Cosserat leg (issue 32; stages 1-2: model, statics and
+ * the linearly implicit step condensed onto the base; not yet a registered leg level, see
+ * docs/notes/strain_leg.md): one leg as a geometrically exact Cosserat rod whose unknowns are
+ * the strains of its pieces (SoRoSim's geometric variable strain), the solid joints LS12, LS23
+ * at a constant curvature (or rigid).
  *
  * Owns: csrStrainParams (basis, quadrature, static solver; defaults with reasons in
  * robot_strain.c), csrStrainSpec, csrStrainModel (constant during a run) and csrStrainData
- * (generalised coordinates, the rest strains of the current actuation, kinematics scratch), the
- * kinematics (pose and geometric Jacobian along the rod), the generalised elastic, tip and
- * gravity forces, the generalised mass matrix and the static solver.
+ * (generalised coordinates and velocities, the rest strains of the current actuation, the
+ * base, the contact anchors, scratch), the kinematics (pose and geometric Jacobian along the
+ * rod, robot_strain_lie.c), the generalised elastic, tip and gravity forces, the generalised
+ * mass matrix and the static solver (robot_strain.c), the step condensed onto the base
+ * (robot_strain_dyn.c) and the leg-terrain contact inside it (robot_strain_contact.c).
  *
  * Strain field (body frame of the cross-section, angular part first, SE(3) twist per unit rest
  * arc length X): ξ = (u; ν) with u = (κ1, κ2, τ) the Darboux vector and ν = e3 + σ the
