@@ -76,7 +76,7 @@ struct csrStrainData_ {
   int* piv;
   /* the prepared step (robot_strain_dyn.c) */
   double tipd_f[3], tipd_m[3]; /* the dynamics' tip load (world) */
-  double* Wll;    /* (n x n) Cholesky factor of W_ll (lower) */
+  double* Wll;    /* (n x n) LU factor of W_ll (with piv) */
   double* Wlb;    /* (n x 6) W_lb = W_blᵀ */
   double* X;      /* (n x 6) W_ll⁻¹ W_lb */
   double* y;      /* (n) W_ll⁻¹ h r_l */

@@ -11,7 +11,7 @@
  * T(Ω) = dexp(-Ω) in closed form is Selig's degree-4 polynomial in ad(Ω) (the minimal
  * polynomial of ad on se(3) is x (x² + θ²)²); near θ = |ω| = 0 its coefficients cancel
  * (relative error ~ ε/θ⁴), so below θ = 0.05 the series is summed instead (its terms fall as
- * θ^(j-1)/(j+1)!, 10 terms reach round-off). test_strain_model checks both against a 40-term
+ * θ^(j-1)/(j+1)!, 10 terms reach round-off). test_strain_model checks both against a 60-term
  * series. */
 #include <math.h>
 #include <string.h>
