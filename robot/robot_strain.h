@@ -34,7 +34,8 @@
  * with ξ0 the calibration's intrinsic strains (u0, e3 + σ0) of the current pressures.
  * Loads: a wrench F (body) at X enters as J(X)ᵀ F.
  *
- * Units: mm, s, N, N mm, t, MPa; world frame of REFERENCE.md; matrices row-major. */
+ * Units: mm, s, N, N mm, t, MPa; the world frame of robot_leg.h (x crawl direction, y up, z
+ * lateral); matrices row-major. */
 #ifndef CS_ROBOT_STRAIN_H
 #define CS_ROBOT_STRAIN_H
 
