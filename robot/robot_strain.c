@@ -1,0 +1,775 @@
+/* robot_strain.c: the strain leg's model, data, actuation, generalised forces and mass, and
+ * the static solver (robot_strain.h; kinematics in robot_strain_lie.c).
+ *
+ * ---- Calibration path ---------------------------------------------------------------------
+ * The rest strains and calibrated sections come from csr_rodActuationEval_ of a nodal rod built
+ * from the same pieces (one element each; it is never stepped): the bend map's bend and stretch
+ * turned into (u0, σ0) over the segment's length, a mode table's probed EI and EA, and
+ * csrRodParams.cal_drop, exactly as the nodal rod level gets them. The nodal rod's chord
+ * correction of its elements' rest length (csr_rodLoadsFromActuation_) belongs to its
+ * discretisation and is not applied here: a constant strain is integrated exactly.
+ *
+ * ---- Quadrature ---------------------------------------------------------------------------
+ * Mass matrix and weight: Simpson's rule on every Magnus sub-interval (its ends and midpoint,
+ * whose poses and Jacobians the kinematics computes), 4th order like the Magnus step and exact
+ * for a rigid piece (where J is linear in X and Jᵀ M_s J quadratic). K and b are exact
+ * (orthogonal Legendre modes, constant section per piece).
+ *
+ * ---- Static solver ------------------------------------------------------------------------
+ * Newton on R(q) = b - K q + Q_ext(q) = 0 with the Jacobian -∂R/∂q = K - ∂Q_ext/∂q by central
+ * differences of R (2n kinematic passes; n = 30 for the default leg; the statics are not on the
+ * step path) and a dense LU. Load stepping as the nodal rod does (robot_rod_static.c): rest
+ * strains, K, tip load and weight move linearly from the last solved load, the increment
+ * doubles after a success and halves after a failure down to 1/4096. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_math.h"
+#include "robot_rod_internal.h"
+#include "robot_strain_internal.h"
+
+/* central-difference step of mode j: this fraction of its scale (rad or strain): truncation
+ * ~δ² ≈ 1e-14, round-off ~ε/δ ≈ 1e-10 relative */
+#define CSR_STRAIN_FD_REL 1e-6
+/* a Newton update larger than this (rad or strain over a piece) is divergence: the increment
+ * is halved */
+#define CSR_STRAIN_MAX_UPDATE 2.0
+/* smallest load increment before giving up */
+#define CSR_STRAIN_MIN_DLAM (1.0 / 4096)
+
+
+csrStrainParams csr_strainDefaultParams(void) {
+  csrStrainParams p;
+  /* bending linear along each segment plus a quadratic mode: test_strain_static measures the
+   * leg's tip under a 0.05 N tip load against the nodal rod converged at 16 elements per
+   * segment (the printed table chooses the order) */
+  p.bend_order = 2;
+  /* twist, shear and stretch constant along each piece: under the leg's loads their variation
+   * is second order (test_strain_static tip_load_large_vs_nodal measures what a linear mode
+   * adds on a 50° cantilever) */
+  p.axial_order = 0;
+  /* the joints bend at a constant curvature: rigid joints remove 1.7 mm of the leg's 0.05 N tip
+   * deflection (test_strain_static leg_tip_load_vs_nodal), constant bending over 8 mm is within
+   * the moment's variation over the joint */
+  p.joint_order = 0;
+  /* the leg's shear compliance is ~1 % of its bending compliance under a tip load: kept */
+  p.shear = 1;
+  /* 4 sub-intervals per segment: Magnus 4th order on a linear-quadratic strain field */
+  p.nsub = 4;
+  /* Newton stops when no mode moves by more than 1e-11 rad (or strain) over its piece */
+  p.static_tol = 1e-11;
+  p.static_max_iter = 40;
+  return p;
+}
+
+
+/* ---- model ---------------------------------------------------------------------------------- */
+
+void csr_strainModelDestroy(csrStrainModel* m) {
+  if (!m) {
+    return;
+  }
+  csr_rodModelDestroy(m->rod);
+  csc_softDestroy(m->soft);
+  free(m->shape_a);
+  free(m->shape_b);
+  free(m->dcomp);
+  free(m->dorder);
+  free(m->dpiece);
+  free(m->dscale);
+  free(m->Ms);
+  free(m);
+}
+
+
+csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int* order,
+                                            int npiece, const csrStrainSpec* spec, csError* err) {
+  if (!pieces || !spec || (!spec->act && !spec->rod_params)) {
+    cs_errorSet(err, CS_ERR_ARG, "strain: NULL pieces or spec (or neither actuator nor rod "
+                "parameters)");
+    return NULL;
+  }
+  if (npiece < 1 || npiece > CSR_ROD_MAX_PIECES) {
+    cs_errorSet(err, CS_ERR_ARG, "strain: %d pieces (need 1..%d)", npiece, CSR_ROD_MAX_PIECES);
+    return NULL;
+  }
+  csrStrainParams par = spec->params ? *spec->params : csr_strainDefaultParams();
+  int bad_order = 0;
+  for (int k = 0; order && k < npiece; k++) {
+    bad_order |= order[k] < -1 || order[k] > CSR_STRAIN_MAX_ORDER;
+  }
+  if (bad_order || par.bend_order < 0 || par.bend_order > CSR_STRAIN_MAX_ORDER ||
+      par.axial_order < 0 || par.axial_order > CSR_STRAIN_MAX_ORDER || par.joint_order < -1 ||
+      par.joint_order > CSR_STRAIN_MAX_ORDER || par.nsub < 1 || par.nsub > CSR_STRAIN_MAX_SUB ||
+      (par.shear != 0 && par.shear != 1) || !(par.static_tol > 0) || par.static_max_iter < 1) {
+    cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
+                "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
+                "static_max_iter >= 1", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
+                CSR_STRAIN_MAX_SUB);
+    return NULL;
+  }
+  csrStrainModel* m = calloc(1, sizeof *m);
+  if (!m) {
+    cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
+    return NULL;
+  }
+  m->par = par;
+  m->rpar = spec->rod_params ? *spec->rod_params : csr_rodDefaultParams(spec->act);
+  m->npiece = npiece;
+  /* the calibration path and the pieces' checks: a nodal rod of the same pieces */
+  csrRodPiece one[CSR_ROD_MAX_PIECES];
+  for (int k = 0; k < npiece; k++) {
+    one[k] = pieces[k];
+    one[k].nelem = 1;
+  }
+  csrRodSpec rs;
+  memset(&rs, 0, sizeof rs);
+  rs.act = spec->act;
+  rs.params = &m->rpar;
+  rs.map = spec->map;
+  rs.calib = spec->calib;
+  memcpy(rs.hip, spec->hip, sizeof rs.hip);
+  memcpy(rs.frame, spec->frame, sizeof rs.frame);
+  memcpy(rs.gravity, spec->gravity, sizeof rs.gravity);
+  rs.weightless = spec->weightless;
+  m->rod = csr_rodModelCreatePieces(one, npiece, &rs, err);
+  if (!m->rod) {
+    csr_strainModelDestroy(m);
+    return NULL;
+  }
+  memcpy(m->piece, one, (size_t)npiece * sizeof *one);
+  memcpy(m->hip, spec->hip, sizeof m->hip);
+  memcpy(m->frame, spec->frame, sizeof m->frame);
+  if (!spec->weightless) {
+    memcpy(m->gravity, spec->gravity, sizeof m->gravity);
+  }
+  /* unknowns and quadrature points per piece */
+  const int nax = par.axial_order + 1;
+  int n = 0, np = 1;
+  m->pmax = par.axial_order;
+  for (int k = 0; k < npiece; k++) {
+    m->bord[k] = order ? order[k] : par.bend_order;
+    m->rigid[k] = m->bord[k] < 0;
+    m->pmax = m->bord[k] > m->pmax ? m->bord[k] : m->pmax;
+    m->X0[k + 1] = m->X0[k] + pieces[k].length;
+    m->dof0[k] = n;
+    m->ndof[k] = m->rigid[k] ? 0 : 2 * (m->bord[k] + 1) + (2 + 2 * par.shear) * nax;
+    m->nsub[k] = m->rigid[k] || (m->bord[k] == 0 && nax == 1) ? 1 : par.nsub;
+    m->pt0[k] = np - 1;
+    n += m->ndof[k];
+    np += 2 * m->nsub[k];
+    m->mass += pieces[k].rhoA * pieces[k].length;
+  }
+  m->pt0[npiece] = np - 1;
+  m->n = n;
+  m->np = np;
+  m->L = m->X0[npiece];
+  m->dcomp = calloc((size_t)n + 1, sizeof(int));
+  m->dorder = calloc((size_t)n + 1, sizeof(int));
+  m->dpiece = calloc((size_t)n + 1, sizeof(int));
+  m->dscale = calloc((size_t)n + 1, sizeof(double));
+  m->Ms = calloc((size_t)np * 6, sizeof(double));
+  if (!m->dcomp || !m->dorder || !m->dpiece || !m->dscale || !m->Ms) {
+    csr_strainModelDestroy(m);
+    cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
+    return NULL;
+  }
+  for (int k = 0; k < npiece; k++) {
+    const csrRodPiece* pc = &pieces[k];
+    int j = m->dof0[k];
+    for (int c = 0; c < 6 && !m->rigid[k]; c++) {
+      if (!par.shear && (c == CSR_STRAIN_S1 || c == CSR_STRAIN_S2)) {
+        continue;
+      }
+      int nm = c <= CSR_STRAIN_K2 ? m->bord[k] + 1 : nax;
+      for (int o = 0; o < nm; o++, j++) {
+        m->dcomp[j] = c;
+        m->dorder[j] = o;
+      }
+    }
+    for (int jj = m->dof0[k]; jj < m->dof0[k] + m->ndof[k]; jj++) {
+      m->dpiece[jj] = k;
+      m->dscale[jj] = m->dcomp[jj] <= CSR_STRAIN_TW ? pc->length : 1.0;
+    }
+    /* Simpson weights x section mass per length at each sub-interval's ends and midpoint */
+    const double ms[6] = {pc->rhoI[0], pc->rhoI[1], pc->rhoI[2], pc->rhoA, pc->rhoA, pc->rhoA};
+    double h = pc->length / m->nsub[k];
+    for (int i = 0; i < m->nsub[k]; i++) {
+      int p = m->pt0[k] + 2 * i;
+      const double w[3] = {h / 6, 4 * h / 6, h / 6};
+      for (int t = 0; t < 3; t++) {
+        for (int c = 0; c < 6; c++) {
+          m->Ms[6 * (p + t) + c] += w[t] * ms[c];
+        }
+      }
+    }
+  }
+  if (spec->terrain && csr_strainContactCreate_(m, spec, err) != 0) {
+    csr_strainModelDestroy(m);
+    return NULL;
+  }
+  return m;
+}
+
+
+csrStrainModel* csr_strainModelCreate(const csrStrainSpec* spec, csError* err) {
+  if (!spec || !spec->act) {
+    cs_errorSet(err, CS_ERR_ARG, "strain: NULL spec or actuator");
+    return NULL;
+  }
+  if (csr_actuatorValidate(spec->act, err) != CS_OK) {
+    return NULL;
+  }
+  csrRodParams rp = spec->rod_params ? *spec->rod_params : csr_rodDefaultParams(spec->act);
+  csrRodPiece pieces[CSR_ROD_MAX_PIECES];
+  int n = csr_rodLegPieces(spec->act, &rp, pieces);
+  if (n == 0) {
+    cs_errorSet(err, CS_ERR_RANGE, "strain: the actuator's section cannot be integrated");
+    return NULL;
+  }
+  csrStrainParams par = spec->params ? *spec->params : csr_strainDefaultParams();
+  int order[CSR_ROD_MAX_PIECES];
+  for (int k = 0; k < n; k++) {
+    /* the solid joints LS12, LS23 are the passive pieces */
+    order[k] = pieces[k].segment < 0 ? par.joint_order : par.bend_order;
+  }
+  csrStrainSpec sp = *spec;
+  sp.rod_params = &rp;
+  sp.params = &par;
+  return csr_strainModelCreatePieces(pieces, order, n, &sp, err);
+}
+
+
+int csr_strainDofs(const csrStrainModel* m) { return m->n; }
+double csr_strainLength(const csrStrainModel* m) { return m->L; }
+double csr_strainMass(const csrStrainModel* m) { return m->mass; }
+
+
+void csr_strainPieceDofs(const csrStrainModel* m, int k, int* first, int* count) {
+  int ok = k >= 0 && k < m->npiece;
+  *first = ok ? m->dof0[k] : 0;
+  *count = ok ? m->ndof[k] : 0;
+}
+
+
+/* ---- data ----------------------------------------------------------------------------------- */
+
+void csr_strainDataDestroy(csrStrainData* d) {
+  if (!d) {
+    return;
+  }
+  free(d->q);
+  free(d->eta);
+  free(d->Kd);
+  free(d->b);
+  free(d->R);
+  free(d->x);
+  free(d->J);
+  free(d->Q);
+  free(d->Qp);
+  free(d->Qm);
+  free(d->A);
+  free(d->dq);
+  free(d->q_save);
+  free(d->q_start);
+  free(d->K1);
+  free(d->b1);
+  free(d->K0);
+  free(d->b0);
+  free(d->piv);
+  free(d->Wll);
+  free(d->X);
+  free(d->Wlb);
+  free(d->Wbl);
+  free(d->z);
+  free(d->sst);
+  free(d->Gs);
+  free(d->y);
+  free(d->rl);
+  free(d->Vp);
+  free(d->Vs);
+  free(d->Ab);
+  free(d);
+}
+
+
+/* rest strains (b) and stiffness (Kd) of every piece at pressures p; 0 or the calibration's
+ * code with msg filled */
+static int actuationInto(const csrStrainModel* m, const double p[12], double* Kd, double* b,
+                         char* msg, size_t msg_size);
+
+
+static int actuationInto(const csrStrainModel* m, const double p[12], double* Kd, double* b,
+                         char* msg, size_t msg_size) {
+  csrRodSegmentActuation act[CSR_NSEG];
+  int have[CSR_NSEG] = {0, 0, 0};
+  for (int k = 0; k < m->npiece; k++) {
+    int s = m->piece[k].segment;
+    if (s >= 0 && !have[s]) {
+      int rc = csr_rodActuationEval_(m->rod, s, p + 4 * s, &act[s], msg, msg_size);
+      if (rc != 0) {
+        return rc;
+      }
+      have[s] = 1;
+    }
+  }
+  for (int k = 0; k < m->npiece; k++) {
+    const csrRodPiece* pc = &m->piece[k];
+    const csrRodSection* S = &pc->section;
+    double dxi[6] = {0, 0, 0, 0, 0, 0};
+    if (pc->segment >= 0) {
+      const csrRodSegmentActuation* a = &act[pc->segment];
+      memcpy(dxi, a->u0, sizeof a->u0);
+      memcpy(dxi + 3, a->sigma0, sizeof a->sigma0);
+      if (a->has_section) {
+        S = &a->section;
+      }
+    }
+    const double C[6] = {S->EI[0], S->EI[1], S->GJ, S->GA[0], S->GA[1], S->EA};
+    for (int j = m->dof0[k]; j < m->dof0[k] + m->ndof[k]; j++) {
+      int c = m->dcomp[j], o = m->dorder[j];
+      /* ∫_0^S P_o² dX = S / (2o + 1); ∫ P_o dX = S δ_o0 */
+      Kd[j] = C[c] * pc->length / (2 * o + 1);
+      b[j] = o == 0 ? C[c] * pc->length * dxi[c] : 0.0;
+    }
+  }
+  return 0;
+}
+
+
+csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
+  if (!m) {
+    cs_errorSet(err, CS_ERR_ARG, "strain: NULL model");
+    return NULL;
+  }
+  csrStrainData* d = calloc(1, sizeof *d);
+  if (!d) {
+    cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
+    return NULL;
+  }
+  size_t n = (size_t)m->n + 1, np = (size_t)m->np;
+  d->q = calloc(n, sizeof(double));
+  d->eta = calloc(n, sizeof(double));
+  d->Kd = calloc(n, sizeof(double));
+  d->b = calloc(n, sizeof(double));
+  d->R = calloc(np * 9, sizeof(double));
+  d->x = calloc(np * 3, sizeof(double));
+  d->J = calloc(np * 6 * n, sizeof(double));
+  d->Q = calloc(n, sizeof(double));
+  d->Qp = calloc(n, sizeof(double));
+  d->Qm = calloc(n, sizeof(double));
+  d->A = calloc(n * n, sizeof(double));
+  d->dq = calloc(n, sizeof(double));
+  d->q_save = calloc(n, sizeof(double));
+  d->q_start = calloc(n, sizeof(double));
+  d->K1 = calloc(n, sizeof(double));
+  d->b1 = calloc(n, sizeof(double));
+  d->K0 = calloc(n, sizeof(double));
+  d->b0 = calloc(n, sizeof(double));
+  d->piv = calloc(n, sizeof(int));
+  d->Wll = calloc(n * n, sizeof(double));
+  d->X = calloc(n * 6, sizeof(double));
+  d->Wlb = calloc(n * 6, sizeof(double));
+  d->Wbl = calloc(n * 6, sizeof(double));
+  d->z = calloc((size_t)m->nhist + 1, sizeof(double));
+  d->sst = calloc((size_t)m->nshape + 1, sizeof(cscShapeState));
+  d->Gs = calloc(22 * (n + 6), sizeof(double));
+  d->y = calloc(n, sizeof(double));
+  d->rl = calloc(n, sizeof(double));
+  d->Vp = calloc(np * 6, sizeof(double));
+  d->Vs = calloc(np * 6, sizeof(double));
+  d->Ab = calloc(np * 6, sizeof(double));
+  if (!d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
+      !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
+      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab) {
+    csr_strainDataDestroy(d);
+    cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
+    return NULL;
+  }
+  csr_strainReset(m, d);
+  return d;
+}
+
+
+void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double xr[3],
+                      double R[9], double x[3]) {
+  double t[3];
+  csu_mulMat3(R, d->Rb, Rr);
+  csu_mulMatVec3(t, d->Rb, xr);
+  csu_add3(x, d->xb, t);
+}
+
+
+void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
+  memset(d->q, 0, (size_t)m->n * sizeof(double));
+  memset(d->eta, 0, (size_t)m->n * sizeof(double));
+  memcpy(d->Rb, m->frame, sizeof d->Rb);
+  memcpy(d->xb, m->hip, sizeof d->xb);
+  memset(d->Vb, 0, sizeof d->Vb);
+  memset(&d->wbase, 0, sizeof d->wbase);
+  memset(d->tipd_f, 0, sizeof d->tipd_f);
+  if (m->soft) {
+    csc_softStateInit(m->soft, d->z);
+  }
+  memset(d->tipd_m, 0, sizeof d->tipd_m);
+  d->h = 0;
+  memset(d->p, 0, sizeof d->p);
+  memset(d->tip_f, 0, sizeof d->tip_f);
+  memset(d->tip_m, 0, sizeof d->tip_m);
+  d->grav = 0;
+  /* the vented pressures' rest strains: a calibration may give a vented segment a stretch */
+  char msg[8];
+  if (actuationInto(m, d->p, d->Kd, d->b, msg, sizeof msg) != 0) {
+    /* a calibration that refuses zero pressures leaves the section's stiffness, no strain */
+    for (int k = 0; k < m->npiece; k++) {
+      const csrRodSection* S = &m->piece[k].section;
+      const double C[6] = {S->EI[0], S->EI[1], S->GJ, S->GA[0], S->GA[1], S->EA};
+      for (int j = m->dof0[k]; j < m->dof0[k] + m->ndof[k]; j++) {
+        d->Kd[j] = C[m->dcomp[j]] * m->piece[k].length / (2 * m->dorder[j] + 1);
+        d->b[j] = 0;
+      }
+    }
+  }
+  d->kin_valid = 0;
+}
+
+
+void csr_strainGetQ(const csrStrainModel* m, const csrStrainData* d, double* q) {
+  memcpy(q, d->q, (size_t)m->n * sizeof(double));
+}
+
+
+int csr_strainSetQ(const csrStrainModel* m, csrStrainData* d, const double* q) {
+  for (int j = 0; j < m->n; j++) {
+    if (!isfinite(q[j])) {
+      return -1;
+    }
+  }
+  memcpy(d->q, q, (size_t)m->n * sizeof(double));
+  d->kin_valid = 0;
+  return 0;
+}
+
+
+int csr_strainActuate(const csrStrainModel* m, csrStrainData* d, const double p[12],
+                      csError* err) {
+  char msg[256] = "";
+  int rc = actuationInto(m, p, d->K1, d->b1, msg, sizeof msg);
+  if (rc != 0) {
+    cs_errorSet(err, rc == CSR_MAP_OUT_OF_RANGE ? CS_ERR_RANGE : CS_ERR_SOLVER, "strain: %s",
+                msg);
+    return rc;
+  }
+  memcpy(d->Kd, d->K1, (size_t)m->n * sizeof(double));
+  memcpy(d->b, d->b1, (size_t)m->n * sizeof(double));
+  memcpy(d->p, p, sizeof d->p);
+  return 0;
+}
+
+
+/* ---- queries -------------------------------------------------------------------------------- */
+
+static void ensureKinematics(const csrStrainModel* m, csrStrainData* d, int want_J) {
+  if (d->kin_valid < (want_J ? 2 : 1)) {
+    csr_strainKinematics_(m, d, want_J);
+  }
+}
+
+
+void csr_strainPose(const csrStrainModel* m, csrStrainData* d, double X, double x[3],
+                    double R[9]) {
+  ensureKinematics(m, d, 0);
+  X = X < 0 ? 0 : (X > m->L ? m->L : X);
+  int k = 0;
+  while (k < m->npiece - 1 && X > m->X0[k + 1]) {
+    k++;
+  }
+  double s = X - m->X0[k], h = m->piece[k].length / m->nsub[k];
+  int i = (int)(s / h);
+  i = i < 0 ? 0 : (i >= m->nsub[k] ? m->nsub[k] - 1 : i);
+  double ds = s - i * h, Om[6] = {0, 0, 0, 0, 0, ds};
+  if (!m->rigid[k]) {
+    csr_strainMagnus_(m, d->q, k, i * h, ds, Om, NULL);
+  }
+  int p = m->pt0[k] + 2 * i;
+  double Re[9], pe[3], t[3];
+  csr_strainExp_(Om, Re, pe);
+  double Rr[9], xr[3];
+  csu_mulMat3(Rr, d->R + 9 * p, Re);
+  csu_mulMatVec3(t, d->R + 9 * p, pe);
+  csu_add3(xr, d->x + 3 * p, t);
+  csr_strainWorld_(d, Rr, xr, R, x);
+}
+
+
+void csr_strainCenterline(const csrStrainModel* m, csrStrainData* d, int k, double* out) {
+  double R[9];
+  for (int i = 0; i < k; i++) {
+    csr_strainPose(m, d, m->L * i / (k - 1), out + 3 * i, R);
+  }
+}
+
+
+void csr_strainTipJacobian(const csrStrainModel* m, csrStrainData* d, double* J) {
+  ensureKinematics(m, d, 1);
+  memcpy(J, d->J + (size_t)(m->np - 1) * 6 * m->n, (size_t)6 * m->n * sizeof(double));
+}
+
+
+void csr_strainStiffness(const csrStrainModel* m, const csrStrainData* d, double* Kdiag) {
+  memcpy(Kdiag, d->Kd, (size_t)m->n * sizeof(double));
+}
+
+
+/* Q = b - K q + J_tipᵀ F_tip + gfac Σ weights (d's K, b; tip load f, mo world) */
+static void forceWith(const csrStrainModel* m, csrStrainData* d, const double f[3],
+                      const double mo[3], double gfac, double* Q) {
+  ensureKinematics(m, d, 1);
+  const int n = m->n;
+  for (int j = 0; j < n; j++) {
+    Q[j] = d->b[j] - d->Kd[j] * d->q[j];
+  }
+  /* the tip wrench in the tip's body frame, (m; f) */
+  const int tp = m->np - 1;
+  double F[6], Rw[9], xw[3];
+  csr_strainWorld_(d, d->R + 9 * tp, d->x + 3 * tp, Rw, xw);
+  csu_mulMatTVec3(F, Rw, mo);
+  csu_mulMatTVec3(F + 3, Rw, f);
+  const double* Jt = d->J + (size_t)tp * 6 * n;
+  for (int r = 0; r < 6; r++) {
+    if (F[r] != 0) {
+      for (int j = 0; j < n; j++) {
+        Q[j] += Jt[r * n + j] * F[r];
+      }
+    }
+  }
+  if (gfac == 0 || csu_dot3(m->gravity, m->gravity) == 0) {
+    return;
+  }
+  /* weights ρA g at the Simpson points, in each point's body frame */
+  double gh[3];
+  csu_mulMatTVec3(gh, d->Rb, m->gravity); /* in the hip frame */
+  for (int p = 0; p < m->np; p++) {
+    double gb[3];
+    csu_mulMatTVec3(gb, d->R + 9 * p, gh);
+    const double* Jp = d->J + (size_t)p * 6 * n;
+    for (int r = 0; r < 3; r++) {
+      double w = gfac * m->Ms[6 * p + 3 + r] * gb[r];
+      for (int j = 0; j < n; j++) {
+        Q[j] += Jp[(r + 3) * n + j] * w;
+      }
+    }
+  }
+}
+
+
+void csr_strainForce(const csrStrainModel* m, csrStrainData* d, const double tip_force[3],
+                     const double tip_moment[3], int gravity, double* Q) {
+  forceWith(m, d, tip_force, tip_moment, gravity ? 1.0 : 0.0, Q);
+}
+
+
+void csr_strainMassMatrix(const csrStrainModel* m, csrStrainData* d, double* M) {
+  ensureKinematics(m, d, 1);
+  const int n = m->n;
+  memset(M, 0, (size_t)n * n * sizeof(double));
+  for (int p = 0; p < m->np; p++) {
+    const double* Jp = d->J + (size_t)p * 6 * n;
+    for (int r = 0; r < 6; r++) {
+      double w = m->Ms[6 * p + r];
+      const double* row = Jp + r * n;
+      for (int i = 0; i < n; i++) {
+        double wi = w * row[i];
+        if (wi == 0) {
+          continue;
+        }
+        for (int j = 0; j < n; j++) {
+          M[i * n + j] += wi * row[j];
+        }
+      }
+    }
+  }
+}
+
+
+/* ---- statics -------------------------------------------------------------------------------- */
+
+/* LU with partial pivoting of A (n x n) in place; 0 ok, 1 singular */
+int csr_strainLuFactor_(double* A, int n, int* piv) {
+  for (int k = 0; k < n; k++) {
+    int p = k;
+    for (int i = k + 1; i < n; i++) {
+      if (fabs(A[i * n + k]) > fabs(A[p * n + k])) {
+        p = i;
+      }
+    }
+    piv[k] = p;
+    if (!(fabs(A[p * n + k]) > 0)) {
+      return 1;
+    }
+    if (p != k) {
+      for (int j = 0; j < n; j++) {
+        double t = A[k * n + j];
+        A[k * n + j] = A[p * n + j];
+        A[p * n + j] = t;
+      }
+    }
+    for (int i = k + 1; i < n; i++) {
+      double l = A[i * n + k] /= A[k * n + k];
+      for (int j = k + 1; j < n; j++) {
+        A[i * n + j] -= l * A[k * n + j];
+      }
+    }
+  }
+  return 0;
+}
+
+
+void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x) {
+  /* the factor swapped whole rows (its multipliers too): P first, then L and U */
+  for (int k = 0; k < n; k++) {
+    if (piv[k] != k) {
+      double t = x[k];
+      x[k] = x[piv[k]];
+      x[piv[k]] = t;
+    }
+  }
+  for (int k = 0; k < n; k++) {
+    for (int i = k + 1; i < n; i++) {
+      x[i] -= A[i * n + k] * x[k];
+    }
+  }
+  for (int k = n - 1; k >= 0; k--) {
+    for (int j = k + 1; j < n; j++) {
+      x[k] -= A[k * n + j] * x[j];
+    }
+    x[k] /= A[k * n + k];
+  }
+}
+
+
+/* Newton at fixed loads (d's K, b; tip f, mo; weight factor g) from d->q: 0 converged (q
+ * updated), 1 not (q undefined) */
+static int newton(const csrStrainModel* m, csrStrainData* d, const double f[3],
+                  const double mo[3], double g, csrRodStaticInfo* info) {
+  const int n = m->n;
+  for (int it = 0; it < m->par.static_max_iter; it++) {
+    forceWith(m, d, f, mo, g, d->Q);
+    /* A = -∂Q/∂q by central differences */
+    for (int j = 0; j < n; j++) {
+      double qj = d->q[j], del = CSR_STRAIN_FD_REL / m->dscale[j];
+      d->q[j] = qj + del;
+      d->kin_valid = 0;
+      forceWith(m, d, f, mo, g, d->Qp);
+      d->q[j] = qj - del;
+      d->kin_valid = 0;
+      forceWith(m, d, f, mo, g, d->Qm);
+      d->q[j] = qj;
+      for (int i = 0; i < n; i++) {
+        d->A[i * n + j] = -(d->Qp[i] - d->Qm[i]) / (2 * del);
+      }
+    }
+    d->kin_valid = 0;
+    if (csr_strainLuFactor_(d->A, n, d->piv)) {
+      return 1;
+    }
+    memcpy(d->dq, d->Q, (size_t)n * sizeof(double));
+    csr_strainLuSolve_(d->A, n, d->piv, d->dq);
+    double upd = 0;
+    for (int j = 0; j < n; j++) {
+      double u = fabs(d->dq[j]) * m->dscale[j];
+      upd = isfinite(u) ? fmax(upd, u) : INFINITY;
+      d->q[j] += d->dq[j];
+    }
+    d->kin_valid = 0;
+    if (info) {
+      info->newton_iters++;
+      info->residual = upd;
+    }
+    if (!(upd <= CSR_STRAIN_MAX_UPDATE)) {
+      return 1;
+    }
+    if (upd <= m->par.static_tol) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
+csStatus csr_strainStatic(const csrStrainModel* m, csrStrainData* d, const csrRodStaticLoad* load,
+                          csrRodStaticInfo* info, csError* err) {
+  if (!m || !d || !load) {
+    return cs_errorSet(err, CS_ERR_ARG, "strain static: NULL argument");
+  }
+  for (int k = 0; k < 12; k++) {
+    if (!isfinite(load->p[k])) {
+      return cs_errorSet(err, CS_ERR_ARG, "strain static: pressures must be finite");
+    }
+  }
+  for (int k = 0; k < 3; k++) {
+    if (!isfinite(load->tip_force[k]) || !isfinite(load->tip_moment[k])) {
+      return cs_errorSet(err, CS_ERR_ARG, "strain static: the tip load must be finite");
+    }
+  }
+  csrRodStaticInfo local;
+  memset(&local, 0, sizeof local);
+  const int n = m->n;
+  /* the target's rest strains and stiffness (K1, b1); the start's (K0, b0) */
+  char msg[256] = "";
+  int rc = actuationInto(m, load->p, d->K1, d->b1, msg, sizeof msg);
+  if (rc != 0) {
+    return cs_errorSet(err, rc == CSR_MAP_OUT_OF_RANGE ? CS_ERR_RANGE : CS_ERR_SOLVER,
+                       "strain static: %s", msg);
+  }
+  memcpy(d->K0, d->Kd, (size_t)n * sizeof(double));
+  memcpy(d->b0, d->b, (size_t)n * sizeof(double));
+  double* q_start = d->q_start;
+  memcpy(q_start, d->q, (size_t)n * sizeof(double));
+  const double g0 = d->grav ? 1.0 : 0.0, g1 = load->gravity ? 1.0 : 0.0;
+  double lam = 0, dl = 1;
+  while (lam < 1) {
+    double l1 = fmin(1.0, lam + dl), f[3], mo[3];
+    for (int j = 0; j < n; j++) {
+      d->Kd[j] = d->K0[j] + l1 * (d->K1[j] - d->K0[j]);
+      d->b[j] = d->b0[j] + l1 * (d->b1[j] - d->b0[j]);
+    }
+    for (int k = 0; k < 3; k++) {
+      f[k] = d->tip_f[k] + l1 * (load->tip_force[k] - d->tip_f[k]);
+      mo[k] = d->tip_m[k] + l1 * (load->tip_moment[k] - d->tip_m[k]);
+    }
+    memcpy(d->q_save, d->q, (size_t)n * sizeof(double));
+    if (newton(m, d, f, mo, g0 + l1 * (g1 - g0), &local) == 0) {
+      lam = l1;
+      local.load_steps++;
+      dl = fmin(1.0, 2 * dl);
+      continue;
+    }
+    memcpy(d->q, d->q_save, (size_t)n * sizeof(double));
+    d->kin_valid = 0;
+    dl *= 0.5;
+    local.cutbacks++;
+    if (dl < CSR_STRAIN_MIN_DLAM) {
+      /* nothing changes: the start's state and actuation */
+      memcpy(d->q, q_start, (size_t)n * sizeof(double));
+      memcpy(d->Kd, d->K0, (size_t)n * sizeof(double));
+      memcpy(d->b, d->b0, (size_t)n * sizeof(double));
+      d->kin_valid = 0;
+      if (info) {
+        *info = local;
+      }
+      return cs_errorSet(err, CS_ERR_SOLVER, "strain static: Newton failed at load fraction "
+                         "%.4g of the new load", lam);
+    }
+  }
+  memcpy(d->p, load->p, sizeof d->p);
+  memcpy(d->tip_f, load->tip_force, sizeof d->tip_f);
+  memcpy(d->tip_m, load->tip_moment, sizeof d->tip_m);
+  d->grav = load->gravity ? 1 : 0;
+  if (info) {
+    *info = local;
+  }
+  return CS_OK;
+}

@@ -1,0 +1,202 @@
+/* robot_strain.h: the strain-coordinate Cosserat leg (issue 32; stages 1-2: model, statics and
+ * the linearly implicit step condensed onto the base; not yet a registered leg level, see
+ * docs/notes/strain_leg.md): one leg as a geometrically exact Cosserat rod whose unknowns are
+ * the strains of its pieces (SoRoSim's geometric variable strain), the solid joints LS12, LS23
+ * at a constant curvature (or rigid).
+ *
+ * Owns: csrStrainParams (basis, quadrature, static solver; defaults with reasons in
+ * robot_strain.c), csrStrainSpec, csrStrainModel (constant during a run) and csrStrainData
+ * (generalised coordinates and velocities, the rest strains of the current actuation, the
+ * base, the contact anchors, scratch), the kinematics (pose and geometric Jacobian along the
+ * rod, robot_strain_lie.c), the generalised elastic, tip and gravity forces, the generalised
+ * mass matrix and the static solver (robot_strain.c), the step condensed onto the base
+ * (robot_strain_dyn.c) and the leg-terrain contact inside it (robot_strain_contact.c).
+ *
+ * Strain field (body frame of the cross-section, angular part first, SE(3) twist per unit rest
+ * arc length X): ξ = (u; ν) with u = (κ1, κ2, τ) the Darboux vector and ν = e3 + σ the
+ * shear-stretch vector, exactly the nodal rod's (robot_rod.h) strains u and e3 + σ. In a
+ * flexible piece of length S,
+ *   ξ(X) = ξ* + Φ(X) q,   ξ* = (0, 0, 0, 0, 0, 1) (straight, unstretched),
+ * where κ1 and κ2 each have Legendre modes P_0..P_n of the local coordinate 2X/S - 1
+ * (n = csrStrainParams.bend_order in the segments, joint_order in the joints), twist τ and
+ * stretch σ3 modes P_0..P_a (a = axial_order), and the shears σ1, σ2 as many when
+ * csrStrainParams.shear is set (else they are 0: Kirchhoff). The unknowns of piece k are, in
+ * this order, [κ1 modes, κ2 modes, τ modes, (σ1 modes, σ2 modes), σ3 modes]. A rigid piece
+ * (joint_order -1) has no unknowns: ξ = ξ*.
+ *
+ * Kinematics: g(X) = (R, x) in SE(3), g' = g ξ^ from the clamp g(0) = (frame, hip), integrated
+ * by the 4th-order Magnus expansion with two Gauss points per sub-interval (Zanna):
+ *   Ω = h/2 (ξ_a + ξ_b) + √3 h²/12 ad(ξ_a) ξ_b,   g_{k+1} = g_k exp(Ω^),
+ * and the body geometric Jacobian J(X) (6 x n, body twist = J q̇) by the same recursion:
+ *   J_{k+1} = Ad(exp(-Ω)) J_k + T(Ω) ∂Ω/∂q,  T(Ω) = Σ_j (-ad Ω)^j / (j + 1)! = dexp(-Ω).
+ * Elastic force: ∂/∂q ½∫(ξ - ξ0)ᵀ C (ξ - ξ0) dX = K q - b, K = ∫ΦᵀCΦ (diagonal: the Legendre
+ * modes are orthogonal and C = diag(EI1, EI2, GJ, GA1, GA2, EA) is diagonal), b = ∫ΦᵀC(ξ0 - ξ*)
+ * with ξ0 the calibration's intrinsic strains (u0, e3 + σ0) of the current pressures.
+ * Loads: a wrench F (body) at X enters as J(X)ᵀ F.
+ *
+ * Units: mm, s, N, N mm, t, MPa; the world frame of robot_leg.h (x crawl direction, y up, z
+ * lateral); matrices row-major. */
+#ifndef CS_ROBOT_STRAIN_H
+#define CS_ROBOT_STRAIN_H
+
+#include "contact_soft.h"
+#include "core_status.h"
+#include "robot_actuator.h"
+#include "robot_leg.h"
+#include "robot_rod.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* highest Legendre order of a strain component's modes */
+#define CSR_STRAIN_MAX_ORDER 6
+/* highest number of Magnus sub-intervals per flexible piece */
+#define CSR_STRAIN_MAX_SUB 64
+
+typedef struct csrStrainParams_ {
+  int bend_order;      /* Legendre order of κ1, κ2 in each actuated segment (0..MAX_ORDER) */
+  int axial_order;     /* Legendre order of τ, σ1, σ2, σ3 in every flexible piece (0..MAX_ORDER) */
+  int joint_order;     /* Legendre order of κ1, κ2 in the solid joints LS12, LS23 (-1: rigid
+                          joints, no unknowns; 0..MAX_ORDER) */
+  int shear;           /* 1: the shears σ1, σ2 are unknowns; 0: they are zero (Kirchhoff) */
+  int nsub;            /* Magnus sub-intervals per flexible piece (1..MAX_SUB); a piece whose
+                          strains are all constant takes one (its exponential is exact) */
+  double static_tol;   /* static Newton: largest update of a mode at convergence, as rotation
+                          (rad) or strain (-) over its piece */
+  int static_max_iter; /* static Newton iterations per load increment */
+} csrStrainParams;
+
+/* Defaults (reasons in robot_strain.c). */
+csrStrainParams csr_strainDefaultParams(void);
+
+typedef struct csrStrainSpec_ {
+  const csrActuator* act;         /* the leg (NULL only with csr_strainModelCreatePieces) */
+  const csrRodParams* rod_params; /* material (E, G, shear coefficient) and cal_drop, as for the
+                                     nodal rod (NULL: csr_rodDefaultParams(act)) */
+  const csrStrainParams* params;  /* NULL: csr_strainDefaultParams() */
+  const csrBendMap* map;          /* pressure -> bend calibration (NULL: no actuation) */
+  const csrRodCalibration* calib; /* richer calibration, used instead of map when not NULL */
+  double hip[3];                  /* clamp position, world mm */
+  double frame[9];                /* clamp frame (columns e1 e2 e3), world, row-major */
+  double gravity[3];              /* world mm/s^2 */
+  int weightless;                 /* 1: mass and inertia but no weight (conditions `paper`) */
+  /* leg-terrain contact (NULL terrain: none): contact_soft.h's law on the leg's shapes, a
+   * capsule of radius rod_params->contact_radius on every Magnus sub-interval's chord but the
+   * last, and the flat foot (the sole, side 2a) at the tip; its friction in step mode (stick
+   * anchors fixed within a step and return-mapped after it), whatever soft->history says */
+  const cstTerrain* terrain;      /* copied by the contact model */
+  const cscSoftParams* soft;      /* NULL: csc_softDefaultParams() */
+} csrStrainSpec;
+
+typedef struct csrStrainModel_ csrStrainModel;
+typedef struct csrStrainData_ csrStrainData;
+
+/* The leg of spec->act: the nodal rod's five pieces (csr_rodLegPieces), the segments at
+ * bend_order, the joints at joint_order. NULL and err on invalid input. */
+csrStrainModel* csr_strainModelCreate(const csrStrainSpec* spec, csError* err);
+/* A rod of arbitrary pieces (tests): order[k] is piece k's bending order (-1: rigid; order NULL:
+ * bend_order for every piece); nelem is ignored; pieces with segment >= 0 are actuated through
+ * the spec's calibration. */
+csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int* order,
+                                            int npiece, const csrStrainSpec* spec, csError* err);
+void csr_strainModelDestroy(csrStrainModel* m);
+
+int csr_strainDofs(const csrStrainModel* m);     /* n: generalised coordinates */
+double csr_strainLength(const csrStrainModel* m); /* rest length (mm) */
+double csr_strainMass(const csrStrainModel* m);   /* total mass (t) */
+/* the first unknown of piece k and how many it has (0 for a rigid piece) */
+void csr_strainPieceDofs(const csrStrainModel* m, int k, int* first, int* count);
+
+csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err);
+void csr_strainDataDestroy(csrStrainData* d);
+/* Straight and unstrained (q = 0), actuation off, no tip load. */
+void csr_strainReset(const csrStrainModel* m, csrStrainData* d);
+/* The generalised coordinates q (n). */
+void csr_strainGetQ(const csrStrainModel* m, const csrStrainData* d, double* q);
+/* Set q (n finite values); -1 (nothing changed) otherwise. */
+int csr_strainSetQ(const csrStrainModel* m, csrStrainData* d, const double* q);
+
+/* The 12 chamber pressures (MPa, segment-major): the rest strains ξ0 and, where the calibration
+ * gives it, the section stiffness of each actuated piece, through the nodal rod's own
+ * calibration path (the same strains and stiffness). 0 ok, else the calibration's code (err
+ * says which segment and pressures); on failure the actuation is unchanged. */
+int csr_strainActuate(const csrStrainModel* m, csrStrainData* d, const double p[12],
+                      csError* err);
+
+/* Pose at rest arc length X (0..L): position x (mm) and frame R (columns d1 d2 d3), world. */
+void csr_strainPose(const csrStrainModel* m, csrStrainData* d, double X, double x[3],
+                    double R[9]);
+/* k >= 2 points equally spaced in rest arc length from hip to tip, (k x 3) world mm. */
+void csr_strainCenterline(const csrStrainModel* m, csrStrainData* d, int k, double* out);
+/* The body Jacobian at the tip (6 x n, row-major; rows ω (body), v (body)). */
+void csr_strainTipJacobian(const csrStrainModel* m, csrStrainData* d, double* J);
+
+/* Generalised force of the current state under a world tip force (N) and moment (N mm) and,
+ * if gravity is set and the spec is not weightless, the weight: Q = -(K q - b) + Σ Jᵀ F (n). */
+void csr_strainForce(const csrStrainModel* m, csrStrainData* d, const double tip_force[3],
+                     const double tip_moment[3], int gravity, double* Q);
+/* The diagonal of K (n). */
+void csr_strainStiffness(const csrStrainModel* m, const csrStrainData* d, double* Kdiag);
+/* Generalised mass matrix M(q) = ∫ Jᵀ M_s J dX (n x n, row-major) with M_s the section's
+ * mass and rotary inertia per length, plus the rigid pieces' mass and inertia. */
+void csr_strainMassMatrix(const csrStrainModel* m, csrStrainData* d, double* M);
+
+/* Equilibrium with the base at rest under `load` (the nodal rod's csrRodStaticLoad: pressures,
+ * tip force and moment, gravity), continued from the current state and actuation by load
+ * stepping (rest strains, stiffness, tip load and weight move linearly from the last load, the
+ * increment halves when Newton fails). On failure the state and actuation are unchanged and
+ * err names the load fraction reached (CS_ERR_SOLVER) or the calibration's failure. */
+csStatus csr_strainStatic(const csrStrainModel* m, csrStrainData* d, const csrRodStaticLoad* load,
+                          csrRodStaticInfo* info, csError* err);
+
+/* ---- dynamics: one linearly implicit step, condensed onto the base ------------------------
+ * The leg's state is (q, η = q̇); the base (hip) moves with the support. One step of h on
+ * velocities, backward Euler linearised at the step's start (robot_strain_dyn.c):
+ *   [W_bb W_bl; W_lb W_ll] [ΔV; Δη] = h [r_b; r_l],  W = M + h D + h² K (D, K on the strains),
+ * with ΔV the change of the base's body twist over the step. csr_strainPrepare condenses the
+ * leg onto ΔV: Z = W_bb - W_bl W_ll⁻¹ W_lb and ρ = h r_b - W_bl W_ll⁻¹ h r_l, so the base solves
+ * (its own W + Σ Z) ΔV = its own h r + Σ ρ; csr_strainFinish back-substitutes
+ * Δη = W_ll⁻¹ (h r_l - W_lb ΔV) and moves q by h η. Z and ρ are in the hip's body coordinates
+ * (angular first): Z (6 x 6: t mm², t mm, t) and ρ (N mm s, N s). */
+
+/* Doubles in the state [q, η, contact anchors] (2n + the soft model's history). */
+int csr_strainStateSize(const csrStrainModel* m);
+void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double* y);
+/* 0, or -1 (nothing changed) for non-finite values. */
+int csr_strainSetState(const csrStrainModel* m, csrStrainData* d, const double* y);
+/* The base (hip) pose and velocity now (world; robot_leg.h csrBaseState). */
+void csr_strainSetBase(const csrStrainModel* m, csrStrainData* d, const csrBaseState* b);
+/* A constant tip force (N) and moment (N mm), world, for the dynamics. */
+void csr_strainSetTipLoad(csrStrainData* d, const double force[3], const double moment[3]);
+/* Condense the step of h (s) at the current state, base and actuation: Z (36) and ρ (6) as
+ * above. 0 ok, > 0 recoverable (W_ll not positive definite, non-finite forces: a smaller step
+ * may pass), < 0 bad arguments; the state is not changed. */
+int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+                      double rho[6]);
+/* Finish the prepared step with the base's twist change dV (6, hip body coordinates) and the
+ * base's new pose and velocity b1 (NULL: the base did not move): η and q move, then the
+ * friction anchors are return-mapped at the new poses (csc_softUpdateShape). 0, or > 0 when
+ * the new pose is not finite or sinks past a shape's radius (the caller restores the state
+ * saved before the step and retries smaller). */
+int csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6],
+                     const csrBaseState* b1);
+/* The wrench the leg exerted on the support over the last finished step, averaged (its impulse
+ * / h: -(Z ΔV - ρ) / h, the discrete step's own), world, force at and moment about the hip
+ * (robot_leg.h csrWrench); zero before the first step. */
+void csr_strainBaseWrench(const csrStrainModel* m, const csrStrainData* d, csrWrench* w);
+/* The terrain's force (N) and moment about the hip (N mm) on the leg at the current state
+ * (world), and the contact report (deepest penetration, sliding slots). 0 or the law's code. */
+int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[3], double mo[3],
+                            cscSoftReport* rep);
+/* Kinetic energy (leg and base motion) and elastic energy relative to the rest strains (N mm). */
+void csr_strainEnergy(const csrStrainModel* m, csrStrainData* d, double* kinetic,
+                      double* elastic);
+/* Σ m x (t mm) and the linear momentum Σ m v (t mm/s) of the leg's mass, world. */
+void csr_strainMassMoment(const csrStrainModel* m, csrStrainData* d, double mx[3]);
+void csr_strainMomentum(const csrStrainModel* m, csrStrainData* d, double P[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_ROBOT_STRAIN_H */

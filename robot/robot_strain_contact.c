@@ -1,0 +1,412 @@
+/* robot_strain_contact.c: the strain leg's contact with the terrain inside its linearly
+ * implicit step (robot_strain.h): contact_soft.h's law on the leg's shapes, its force and its
+ * linearisation.
+ *
+ * Shapes: a capsule on the chord of every Magnus sub-interval (its two end points) but the
+ * last one of the leg, which is the foot's: the sole, a square of half side a at the tip in the
+ * tip's frame (its d3 the sole's outward normal), as the nodal rod has capsules on its elements
+ * and the foot box on the last (its default 4 elements per segment and this leg's 4
+ * sub-intervals give the same 12.5 mm foot element).
+ *
+ * Friction: the law's step mode: a stick anchor per slot fixed within a step, so that within
+ * the step the contact force is a smooth function of the shapes' poses and velocities (it
+ * saturates smoothly at mu N), return-mapped after the step (csc_softUpdateShape): a stance
+ * foot holds elastically with no creep, a pushed foot slides at the Coulomb force.
+ *
+ * Linearisation: per shape in contact, the load L (foot: force at the sole centre and couple;
+ * capsule: the forces on its two ends) against the shape's world coordinates y (foot: sole
+ * centre and a small rotation; capsule: its two ends) and their rates, by central differences
+ * (K_y = ∂L/∂y, C_y = ∂L/∂ẏ, 12 evaluations of one shape); y moves with u through
+ * S = ∂ẏ/∂u (the points' G). In the step, y1 = y0 + h S u1 and ẏ1 = S u1. The load is
+ * linearised about the predicted end y_p = y0 + h S u0 (the shape moved on at its start
+ * velocity), not about y0: a sliding foot moves millimetres in a step against a stick range
+ * of microns, and only at y_p is the bristle where the step will take it (saturated, its
+ * stiffness along the slip gone); about y0 the stick stiffness N/delta_t times the step's
+ * slip overshoots (measured: a foot pushed at 2 mu N went backwards). So
+ *   L1 ≈ L(y_p) + K_y (y0 + h S u0 - y_p) + (h K_y + C_y) S Δu, so
+ *   h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)),   W -= h Sᵀ (h K_y + C_y) S.
+ * The prediction is tangential only (the slip along the surface and the turn about its normal):
+ * predicting the normal motion too overshoots the stiff normal law (measured: a foot pressed
+ * 0.5 mm bounced to 15 N); the normal part stays linearised at y0 as it was. So
+ * the contact's stiffness and damping implicit in the step, the couple of a capsule's friction
+ * offsets explicit. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_math.h"
+#include "robot_strain_internal.h"
+
+/* central-difference steps of the linearisation: positions (mm) well inside the law's 1 µm
+ * onset, rotations (rad) likewise at the sole's 7.5 mm lever, velocities (mm/s) */
+#define CSR_STRAIN_CFD_X 1e-7
+#define CSR_STRAIN_CFD_PHI 1e-8
+#define CSR_STRAIN_CFD_V 1e-6
+
+
+int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err) {
+  cscSoftParams sp = spec->soft ? *spec->soft : csc_softDefaultParams();
+  sp.history = CSC_HISTORY_STEP;
+  int ncap = 0;
+  for (int k = 0; k < m->npiece; k++) {
+    ncap += m->nsub[k];
+  }
+  ncap -= 1; /* the last sub-interval is the foot's */
+  m->nshape = ncap + 1;
+  m->shape_a = calloc((size_t)m->nshape, sizeof(int));
+  m->shape_b = calloc((size_t)m->nshape, sizeof(int));
+  cscShape* shapes = calloc((size_t)m->nshape, sizeof(cscShape));
+  if (!m->shape_a || !m->shape_b || !shapes) {
+    free(shapes);
+    return cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
+  }
+  int s = 0;
+  for (int k = 0; k < m->npiece; k++) {
+    for (int i = 0; i < m->nsub[k] && s < ncap; i++, s++) {
+      m->shape_a[s] = m->pt0[k] + 2 * i;
+      m->shape_b[s] = m->pt0[k] + 2 * i + 2;
+      shapes[s] = csc_softCapsule(m->rpar.contact_radius);
+    }
+  }
+  m->shape_a[ncap] = m->shape_b[ncap] = m->np - 1;
+  /* the sole: the actuator's square section, or (pieces without an actuator) the capsules'
+   * radius as half side */
+  shapes[ncap] = csc_softFoot(spec->act ? spec->act->a : m->rpar.contact_radius);
+  m->soft = csc_softCreate(&sp, spec->terrain, m->nshape, shapes, err);
+  free(shapes);
+  if (!m->soft) {
+    return CS_ERR_RANGE;
+  }
+  m->nhist = csc_softNState(m->soft);
+  for (int i = 0; i < m->nshape; i++) {
+    int off, cnt;
+    csc_softShapeState(m->soft, i, &off, &cnt);
+    if (cnt > CSR_STRAIN_MAX_SHAPE_HIST) {
+      return cs_errorSet(err, CS_ERR_RANGE, "strain: contact shape %d keeps %d history doubles "
+                         "(at most %d)", i, cnt, CSR_STRAIN_MAX_SHAPE_HIST);
+    }
+  }
+  return 0;
+}
+
+
+/* shape s's pose and velocity in the world from the current kinematics and point twists */
+static void shapeState(const csrStrainModel* m, const csrStrainData* d, int s,
+                       cscShapeState* st) {
+  int a = m->shape_a[s], b = m->shape_b[s];
+  double Ra[9], Rb[9], xb[3];
+  memset(st, 0, sizeof *st);
+  csr_strainWorld_(d, d->R + 9 * a, d->x + 3 * a, Ra, st->x0);
+  csr_strainWorld_(d, d->R + 9 * b, d->x + 3 * b, Rb, xb);
+  memcpy(st->x1, xb, sizeof xb);
+  memcpy(st->R, Ra, sizeof Ra);
+  csu_mulMatVec3(st->v0, Ra, d->Vp + 6 * a + 3);
+  csu_mulMatVec3(st->v1, Rb, d->Vp + 6 * b + 3);
+  csu_mulMatVec3(st->w, Ra, d->Vp + 6 * a);
+}
+
+
+/* the load vector L (6) of shape s: foot (force, couple), capsule (f0, f1); couple out */
+static int loadOf(const csrStrainModel* m, const csrStrainData* d, int s,
+                  const cscShapeState* st, double L[6], double couple[3], cscSlotInfo* slot) {
+  int off, cnt;
+  csc_softShapeState(m->soft, s, &off, &cnt);
+  cscShapeLoad ld;
+  double zdot[CSR_STRAIN_MAX_SHAPE_HIST];
+  (void)cnt;
+  int rc = csc_softComputeShape(m->soft, s, st, d->z + off, &ld, zdot, slot, NULL);
+  int foot = s == m->nshape - 1;
+  memcpy(L, ld.f0, 3 * sizeof(double));
+  memcpy(L + 3, foot ? ld.m : ld.f1, 3 * sizeof(double));
+  if (couple) {
+    if (foot) {
+      memset(couple, 0, 3 * sizeof(double));
+    } else {
+      memcpy(couple, ld.m, 3 * sizeof(double));
+    }
+  }
+  return rc;
+}
+
+
+/* y ± δ along coordinate c (0..5 pose, 6..11 rate) of shape s's state */
+static void perturb(const csrStrainModel* m, int s, cscShapeState* st, int c, double del) {
+  int foot = s == m->nshape - 1;
+  if (c < 3) {
+    st->x0[c] += del;
+  } else if (c < 6) {
+    if (foot) {
+      double phi[3] = {0, 0, 0}, dR[9], Rn[9];
+      phi[c - 3] = del;
+      csu_rotVecToMat3(dR, phi);
+      csu_mulMat3(Rn, dR, st->R);
+      memcpy(st->R, Rn, sizeof Rn);
+    } else {
+      st->x1[c - 3] += del;
+    }
+  } else if (c < 9) {
+    st->v0[c - 6] += del;
+  } else if (foot) {
+    st->w[c - 9] += del;
+  } else {
+    st->v1[c - 9] += del;
+  }
+}
+
+
+void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G) {
+  const int n = m->n, nu = 6 + n;
+  const double* R = d->R + 9 * p;
+  const double* x = d->x + 3 * p;
+  const double* J = d->J + (size_t)p * 6 * n;
+  for (int c = 0; c < 3; c++) {
+    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
+    e[c] = 1;
+    csu_mulMatTVec3(col, R, e);
+    csu_cross3(ex, e, x);
+    csu_mulMatTVec3(rc, R, ex);
+    for (int r = 0; r < 3; r++) {
+      G[r * nu + c] = col[r];
+      G[(r + 3) * nu + c + 3] = col[r];
+      G[(r + 3) * nu + c] = rc[r];
+      G[r * nu + c + 3] = 0;
+    }
+  }
+  for (int r = 0; r < 6; r++) {
+    memcpy(G + r * nu + 6, J + r * n, (size_t)n * sizeof(double));
+  }
+}
+
+
+/* rows of S: world velocity (rows 0..2) of point p's translation (rot = 0) or rotation (1) */
+static void worldRows(const csrStrainModel* m, const csrStrainData* d, int p, int rot,
+                      const double* G, double* S3) {
+  const int nu = 6 + m->n;
+  double Rw[9], xw[3];
+  csr_strainWorld_(d, d->R + 9 * p, d->x + 3 * p, Rw, xw);
+  for (int r = 0; r < 3; r++) {
+    for (int k = 0; k < nu; k++) {
+      double s = 0;
+      for (int i = 0; i < 3; i++) {
+        s += Rw[3 * r + i] * G[(i + 3 * (1 - rot)) * nu + k];
+      }
+      S3[r * nu + k] = s;
+    }
+  }
+}
+
+
+int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
+                               const double* u0, double* Wbb, double* rb, double* G) {
+  if (!m->soft) {
+    return 0;
+  }
+  const int n = m->n, nu = 6 + n;
+  /* G (21 x nu scratch) holds 2 points' G (12 x nu), S (6 x nu), a couple's rows (3 x nu) */
+  double* Ga = G;
+  double* Gb = G + 6 * nu;
+  double* S = G + 12 * nu;
+  for (int s = 0; s < m->nshape; s++) {
+    cscShapeState st;
+    shapeState(m, d, s, &st);
+    /* the contact normal (mean over the shape's touching slots) */
+    int first, nslot;
+    csc_softShapeSlots(m->soft, s, &first, &nslot);
+    cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
+    double L0[6], couple[3], nrm[3] = {0, 0, 0};
+    int rc = loadOf(m, d, s, &st, L0, couple, nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL);
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+    for (int i = 0; i < nslot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST; i++) {
+      if (slot[i].depth > 0) {
+        csu_add3(nrm, nrm, slot[i].normal);
+      }
+    }
+    /* the rest of the step's motion the linearisation carries: y0 + h S u0 - y_p */
+    int foot = s == m->nshape - 1;
+    double rest[6];
+    for (int c = 0; c < 3; c++) {
+      rest[c] = h * st.v0[c];
+      rest[3 + c] = h * (foot ? st.w[c] : st.v1[c]);
+    }
+    if (csu_normalize3(nrm) > 0) {
+      /* the predicted end of the step: the shape slid on along the surface at its start
+       * velocity (and turned about the normal); its normal motion is left to the step, whose
+       * contact stiffness at y0 is what holds it (predicting it too overshoots the stiff
+       * normal law: measured, a pressed foot bounced to 15 N) */
+      double vt[3];
+      csu_addScl3(vt, st.v0, nrm, -csu_dot3(st.v0, nrm));
+      csu_addScl3(st.x0, st.x0, vt, h);
+      csu_addScl3(rest, rest, vt, -h);
+      csu_addScl3(vt, st.v1, nrm, -csu_dot3(st.v1, nrm));
+      csu_addScl3(st.x1, st.x1, vt, h);
+      if (!foot) {
+        csu_addScl3(rest + 3, rest + 3, vt, -h);
+      }
+      if (foot) {
+        double phi[3], dR[9], Rn[9];
+        csu_scale3(phi, nrm, h * csu_dot3(st.w, nrm));
+        csu_addScl3(rest + 3, rest + 3, phi, -1.0);
+        csu_rotVecToMat3(dR, phi);
+        csu_mulMat3(Rn, dR, st.R);
+        memcpy(st.R, Rn, sizeof Rn);
+      }
+      rc = loadOf(m, d, s, &st, L0, couple, NULL);
+    }
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+    int touching = 0;
+    for (int i = 0; i < 6; i++) {
+      touching |= L0[i] != 0;
+    }
+    touching |= couple[0] != 0 || couple[1] != 0 || couple[2] != 0;
+    if (!touching) {
+      continue;
+    }
+    int a = m->shape_a[s], b = m->shape_b[s];
+    csr_strainPointG_(m, d, a, Ga);
+    csr_strainPointG_(m, d, b, Gb);
+    worldRows(m, d, a, 0, Ga, S);
+    worldRows(m, d, foot ? a : b, foot ? 1 : 0, foot ? Ga : Gb, S + 3 * nu);
+    /* K_y, C_y by central differences */
+    double Ky[36], Cy[36];
+    for (int c = 0; c < 12; c++) {
+      double del = c < 3 ? CSR_STRAIN_CFD_X
+                         : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
+                                  : CSR_STRAIN_CFD_V);
+      cscShapeState sp = st, sm = st;
+      perturb(m, s, &sp, c, del);
+      perturb(m, s, &sm, c, -del);
+      double Lp[6], Lm[6];
+      loadOf(m, d, s, &sp, Lp, NULL, NULL);
+      loadOf(m, d, s, &sm, Lm, NULL, NULL);
+      double* D = c < 6 ? Ky : Cy;
+      int col = c % 6;
+      for (int r = 0; r < 6; r++) {
+        D[6 * r + col] = (Lp[r] - Lm[r]) / (2 * del);
+      }
+    }
+    /* h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)) */
+    double Lr[6];
+    (void)u0;
+    for (int r = 0; r < 6; r++) {
+      double t = L0[r];
+      for (int c = 0; c < 6; c++) {
+        t += Ky[6 * r + c] * rest[c];
+      }
+      Lr[r] = t;
+    }
+    /* the capsule's couple acts on its first end's rotation */
+    double* Sc = G + 18 * nu;
+    int use_couple = !foot && (couple[0] != 0 || couple[1] != 0 || couple[2] != 0);
+    if (use_couple) {
+      worldRows(m, d, a, 1, Ga, Sc);
+    }
+    for (int k = 0; k < nu; k++) {
+      double t = 0;
+      for (int r = 0; r < 6; r++) {
+        t += S[r * nu + k] * Lr[r];
+      }
+      if (use_couple) {
+        for (int r = 0; r < 3; r++) {
+          t += Sc[r * nu + k] * couple[r];
+        }
+      }
+      if (k < 6) {
+        rb[k] += t;
+      } else {
+        d->rl[k - 6] += t;
+      }
+    }
+    /* W -= h Sᵀ (h K_y + C_y) S: A = (h K_y + C_y) S (6 x nu), then Sᵀ A */
+    for (int k = 0; k < nu; k++) {
+      double col[6];
+      for (int r = 0; r < 6; r++) {
+        double t = 0;
+        for (int c = 0; c < 6; c++) {
+          t += (h * Ky[6 * r + c] + Cy[6 * r + c]) * S[c * nu + k];
+        }
+        col[r] = t;
+      }
+      /* column k of Sᵀ (…) S: Σ_r S[r][i] col[r] for every row i */
+      for (int i = 0; i < nu; i++) {
+        double t = 0;
+        for (int r = 0; r < 6; r++) {
+          t += S[r * nu + i] * col[r];
+        }
+        if (t == 0) {
+          continue;
+        }
+        t *= -h;
+        if (i < 6 && k < 6) {
+          Wbb[6 * i + k] += t;
+        } else if (i < 6) {
+          d->Wbl[n * i + (k - 6)] += t;
+        } else if (k < 6) {
+          d->Wlb[6 * (i - 6) + k] += t;
+        } else {
+          d->Wll[(i - 6) * n + (k - 6)] += t;
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+
+int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d) {
+  if (!m->soft) {
+    return 0;
+  }
+  for (int s = 0; s < m->nshape; s++) {
+    cscShapeState st;
+    shapeState(m, d, s, &st);
+    int off, cnt;
+    csc_softShapeState(m->soft, s, &off, &cnt);
+    int rc = csc_softUpdateShape(m->soft, s, &st, d->z + off);
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+  }
+  return 0;
+}
+
+
+int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[3], double mo[3],
+                            cscSoftReport* rep) {
+  memset(f, 0, 3 * sizeof(double));
+  memset(mo, 0, 3 * sizeof(double));
+  if (rep) {
+    memset(rep, 0, sizeof *rep);
+  }
+  if (!m->soft) {
+    return 0;
+  }
+  csr_strainKinematics_(m, d, 1);
+  csr_strainPointTwists_(m, d);
+  int rc = 0;
+  for (int s = 0; s < m->nshape; s++) {
+    cscShapeState st;
+    shapeState(m, d, s, &st);
+    int off, cnt;
+    csc_softShapeState(m->soft, s, &off, &cnt);
+    cscShapeLoad ld;
+    double zdot[CSR_STRAIN_MAX_SHAPE_HIST];
+    int r = csc_softComputeShape(m->soft, s, &st, d->z + off, &ld, zdot, NULL, rep);
+    rc = rc ? rc : r;
+    /* forces at x0 and x1 and the couple, moments about the hip */
+    double arm[3], t[3];
+    csu_add3(f, f, ld.f0);
+    csu_add3(f, f, ld.f1);
+    csu_sub3(arm, st.x0, d->xb);
+    csu_cross3(t, arm, ld.f0);
+    csu_add3(mo, mo, t);
+    csu_sub3(arm, st.x1, d->xb);
+    csu_cross3(t, arm, ld.f1);
+    csu_add3(mo, mo, t);
+    csu_add3(mo, mo, ld.m);
+  }
+  return rc;
+}

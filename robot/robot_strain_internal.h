@@ -1,0 +1,137 @@
+/* robot_strain_internal.h: INTERNAL to robot_strain*.c and their tests (not a public header).
+ * The model and data layouts of the strain-coordinate leg (robot_strain.h) and the SE(3)
+ * helpers of robot_strain_lie.c.
+ *
+ * Twists and wrenches are 6-vectors with the angular part first, (ω; v) and (m; f); a pose is
+ * (R (3 x 3 row-major), x (3)). ad(ξ) = [ω^ 0; v^ ω^] (6 x 6 row-major). */
+#ifndef CS_ROBOT_STRAIN_INTERNAL_H
+#define CS_ROBOT_STRAIN_INTERNAL_H
+
+#include "robot_rod.h"
+#include "robot_strain.h"
+
+/* strain components of ξ - ξ*: bending about d1, d2, twist, shear along d1, d2, stretch */
+/* the most history doubles of one contact shape (a 5 x 5 point foot in step mode: 100) */
+#define CSR_STRAIN_MAX_SHAPE_HIST 100
+/* the most unknowns of one piece: 6 components of MAX_ORDER + 1 modes */
+#define CSR_STRAIN_MAX_PIECE_DOF (6 * (CSR_STRAIN_MAX_ORDER + 1))
+
+enum { CSR_STRAIN_K1 = 0, CSR_STRAIN_K2, CSR_STRAIN_TW, CSR_STRAIN_S1, CSR_STRAIN_S2,
+       CSR_STRAIN_S3 };
+
+struct csrStrainModel_ {
+  csrStrainParams par;
+  csrRodParams rpar;
+  int npiece;
+  csrRodPiece piece[CSR_ROD_MAX_PIECES];
+  int rigid[CSR_ROD_MAX_PIECES];
+  int bord[CSR_ROD_MAX_PIECES];      /* bending order of piece k (-1: rigid) */
+  int pmax;                          /* the highest Legendre order of any unknown */
+  double X0[CSR_ROD_MAX_PIECES + 1]; /* rest arc length where piece k starts; X0[npiece] = L */
+  int dof0[CSR_ROD_MAX_PIECES];      /* first unknown of piece k */
+  int ndof[CSR_ROD_MAX_PIECES];      /* its unknowns (0: rigid) */
+  int nsub[CSR_ROD_MAX_PIECES];      /* its Magnus sub-intervals (1 for a rigid piece) */
+  int pt0[CSR_ROD_MAX_PIECES + 1];   /* its first quadrature point; pt0[npiece] = np - 1 */
+  int n;                             /* unknowns */
+  int np;                            /* quadrature points: the ends and midpoints of every
+                                        sub-interval (Simpson), shared at piece ends */
+  int* dcomp;                        /* (n) strain component of unknown j (CSR_STRAIN_*) */
+  int* dorder;                       /* (n) its Legendre order */
+  int* dpiece;                       /* (n) its piece */
+  double* dscale;                    /* (n) its size as a rotation or strain over its piece:
+                                        the piece length for κ, τ modes, 1 for σ modes */
+  double* Ms;                        /* (np x 6) Simpson weight x section mass per length
+                                        (ρI1, ρI2, ρI3, ρA, ρA, ρA) summed at each point (t mm²,
+                                        t) */
+  cscSoftModel* soft;                /* leg-terrain contact (NULL: none), step-mode history */
+  int nshape;                        /* its shapes: capsules, then the foot */
+  int* shape_a;                      /* (nshape) quadrature point of a capsule's first end
+                                        (the foot: the tip) */
+  int* shape_b;                      /* (nshape) of its second end (the foot: the tip) */
+  int nhist;                         /* the contact history's doubles */
+  csrRodModel* rod;                  /* a one-element-per-piece nodal rod of the same pieces:
+                                        the calibration path (csr_rodActuationEval_) */
+  double hip[3], frame[9];
+  double gravity[3];                 /* acting on the leg (zero when weightless) */
+  double L, mass;
+};
+
+struct csrStrainData_ {
+  double* q;      /* (n) generalised coordinates */
+  double* Kd;     /* (n) diagonal of K at the current actuation */
+  double* b;      /* (n) ∫ΦᵀC(ξ0 - ξ*) at the current actuation */
+  double p[CSR_NSEG * CSR_NCHAMBER]; /* pressures of the current actuation (MPa) */
+  double tip_f[3], tip_m[3];         /* the last static load's tip force and moment */
+  int grav;                          /* and whether its weight acted */
+  double* eta;    /* (n) generalised velocities q̇ */
+  double Rb[9], xb[3]; /* the base (hip) frame and position, world */
+  double Vb[6];   /* the base's body twist (ω; v) in the hip frame (rad/s, mm/s) */
+  /* kinematics at the quadrature points relative to the base, valid while kin_valid */
+  double* R;      /* (np x 9) */
+  double* x;      /* (np x 3) */
+  double* J;      /* (np x 6 x n) body Jacobians */
+  int kin_valid;
+  /* scratch of the static solver */
+  double *Q, *Qp, *Qm, *A, *dq, *q_save, *q_start, *K1, *b1, *K0, *b0;
+  int* piv;
+  /* the prepared step (robot_strain_dyn.c) */
+  double tipd_f[3], tipd_m[3]; /* the dynamics' tip load (world) */
+  double* Wll;    /* (n x n) LU factor of W_ll (with piv) */
+  double* Wlb;    /* (n x 6) W_lb = W_blᵀ */
+  double* X;      /* (n x 6) W_ll⁻¹ W_lb */
+  double* y;      /* (n) W_ll⁻¹ h r_l */
+  double* rl;     /* (n) */
+  double* Vp;     /* (np x 6) point twists */
+  double* Vs;     /* (np x 6) scratch: twists at q ± εη */
+  double* Ab;     /* (np x 6) Ȧu at the points (the velocity-product accelerations) */
+  double h;       /* the prepared step (s); 0: none prepared */
+  double* Wbl;    /* (6 x n) W_bl (= W_lbᵀ without contact) */
+  double Zp[36], rhop[6], Rbp[9]; /* the prepared Z, ρ and the base frame they are in */
+  csrWrench wbase; /* the last finished step's base wrench (csr_strainBaseWrench) */
+  double* z;      /* (nhist) contact anchors (state) */
+  cscShapeState* sst; /* (nshape) scratch */
+  double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
+};
+
+/* ---- SE(3) helpers (robot_strain_lie.c) ---------------------------------------------------- */
+
+/* ad(ξ) (6 x 6) */
+void csr_strainAd_(const double xi[6], double ad[36]);
+/* exp(Ω^) = (R, x) */
+void csr_strainExp_(const double Om[6], double R[9], double x[3]);
+/* T(Ω) = dexp(-Ω) = Σ_j (-ad Ω)^j / (j + 1)! (6 x 6), closed form (Selig's polynomial in ad of
+ * degree 4) or, for |ω| small, the series */
+void csr_strainTangent_(const double Om[6], double T[36]);
+/* Legendre P_0..P_n at s in [-1, 1] */
+void csr_strainLegendre_(int n, double s, double* P);
+/* one Zanna step of length h from local arc length s (of flexible piece k, at q): Ω (6) and,
+ * if dOm is not NULL, ∂Ω/∂q over the piece's unknowns (6 x ndof[k], row-major) */
+void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s, double h,
+                       double Om[6], double* dOm);
+/* strain ξ (6) of piece k at local arc length s */
+void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]);
+/* LU with partial pivoting in place (n x n); 0 ok, 1 singular; and its solve */
+int csr_strainLuFactor_(double* A, int n, int* piv);
+void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x);
+/* G_p = [Ad(g_p⁻¹), J_p] of point p (6 x (6 + n), row-major) at the current kinematics */
+void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
+
+/* ---- contact (robot_strain_contact.c) ---- */
+int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err);
+/* the contact's force, its linearisation over a step of h added to W (the four blocks, W_ll
+ * full) and h r (r_b, r_l: forces, added), at the current kinematics (with J) and point
+ * twists d->Vp; 0 or > 0 (a pose sinks past a shape's radius or is not finite) */
+int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
+                               const double* u0, double* Wbb, double* rb, double* G);
+/* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
+int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
+/* the point twists d->Vp at the current kinematics */
+void csr_strainPointTwists_(const csrStrainModel* m, csrStrainData* d);
+/* pose relative to the base (Rr, xr) -> world (R, x) */
+void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double xr[3],
+                      double R[9], double x[3]);
+/* the kinematics at every quadrature point relative to the base (poses and, with want_J,
+ * Jacobians) */
+void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J);
+
+#endif /* CS_ROBOT_STRAIN_INTERNAL_H */

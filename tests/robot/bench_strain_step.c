@@ -1,0 +1,64 @@
+/* bench_strain_step.c: the wall time of one strain-leg step (csr_strainPrepare +
+ * csr_strainFinish, base held), the leg hanging with its foot pressed 0.3 mm into the flat road
+ * or without terrain (issue 32; built, not registered).
+ *
+ * Usage: bench_strain_step [BEND_ORDER] [CONTACT 0|1] [STEPS]   (defaults 2, 1, 2000) */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_clock.h"
+#include "robot_strain.h"
+#include "rod_test_road.h"
+
+int main(int argc, char** argv) {
+  int order = argc > 1 ? atoi(argv[1]) : 2, contact = argc > 2 ? atoi(argv[2]) : 1;
+  int nstep = argc > 3 ? atoi(argv[3]) : 2000;
+  csError err;
+  cs_errorClear(&err);
+  csrActuator act;
+  if (csr_actuatorPreset(&act, "leg", &err) != CS_OK) {
+    fprintf(stderr, "bench_strain_step: %s\n", err.msg);
+    return 1;
+  }
+  cstTerrain tr = csTestFlatRoad();
+  cscSoftParams soft = csc_softDefaultParams();
+  csrStrainParams par = csr_strainDefaultParams();
+  par.bend_order = order;
+  csrStrainSpec sp;
+  memset(&sp, 0, sizeof sp);
+  sp.act = &act;
+  sp.params = &par;
+  const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
+  memcpy(sp.frame, F, sizeof F);
+  sp.hip[1] = csr_actuatorLength(&act) - 0.3;
+  sp.weightless = 1;
+  if (contact) {
+    sp.terrain = &tr;
+    sp.soft = &soft;
+  }
+  csrStrainModel* m = csr_strainModelCreate(&sp, &err);
+  csrStrainData* d = m ? csr_strainDataCreate(m, &err) : NULL;
+  if (!d) {
+    fprintf(stderr, "bench_strain_step: %s\n", err.msg);
+    csr_strainModelDestroy(m);
+    return 1;
+  }
+  double Z[36], rho[6];
+  const double dV[6] = {0, 0, 0, 0, 0, 0};
+  int status = 0;
+  double t0 = csu_wallSeconds();
+  for (int i = 0; i < nstep; i++) {
+    if (csr_strainPrepare(m, d, 5e-3, Z, rho) != 0 || csr_strainFinish(m, d, dV, NULL) != 0) {
+      printf("step %d failed\n", i);
+      status = 1;
+      break;
+    }
+  }
+  double t1 = csu_wallSeconds();
+  printf("bend order %d, contact %d: %d unknowns, %.1f us per leg step (%d steps of 5 ms)\n",
+         order, contact, csr_strainDofs(m), 1e6 * (t1 - t0) / nstep, nstep);
+  csr_strainDataDestroy(d);
+  csr_strainModelDestroy(m);
+  return status;
+}

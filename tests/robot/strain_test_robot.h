@@ -1,0 +1,305 @@
+/* strain_test_robot.h: a robot of eight strain legs on a free rigid support, stepped as one
+ * tree without ODE (tests and benchmarks only; issue 32's stage 3 puts the same solve into the
+ * driver's support step).
+ *
+ * The support is the robot's (robot_robot.c): a 210 x 10 x 145 mm box of 50 g, its body frame
+ * at its centre, world-aligned at the start, the hips on its bottom face at
+ * csr_robotHipOffset, the legs' frame (e1 = +x, e2 = +z, e3 = -y) fixed in it. One step of h:
+ *  1. every leg condenses its step onto its hip (csr_strainPrepare: Z_i, ρ_i in hip body
+ *     coordinates);
+ *  2. the support solves (M_s + Σ A_iᵀ Z_i A_i) ΔV = h (F_s + ad(V)ᵀ M_s V) + Σ A_iᵀ ρ_i in its
+ *     body coordinates (A_i = Ad(T_i⁻¹), T_i the hip's fixed pose in the support; F_s its
+ *     weight), V += ΔV, g_s <- g_s exp(h V);
+ *  3. every leg back-substitutes its hip's ΔV_i = A_i ΔV and takes its hip's new state
+ *     (csr_strainFinish).
+ * The support does not touch the terrain (only the legs do, through their own contact). */
+#ifndef CS_TESTS_STRAIN_TEST_ROBOT_H
+#define CS_TESTS_STRAIN_TEST_ROBOT_H
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_clock.h"
+#include "core_math.h"
+#include "gaits_csv.h"
+#include "gaits_schedule.h"
+#include "robot_calibration.h"
+#include "robot_robot.h"
+#include "robot_strain_internal.h"
+#include "rod_test_road.h"
+
+typedef struct {
+  csrActuator act;
+  csrCalibration* cal;
+  csrBendMap map;
+  csrRodCalibration rodcal;
+  cstTerrain tr;
+  cscSoftParams soft;
+  csrStrainParams sp;
+  csrStrainModel* m[CSR_NLEG];
+  csrStrainData* d[CSR_NLEG];
+  double A[CSR_NLEG][36];  /* Ad(T_i⁻¹): support body twist -> hip body twist */
+  double hip[CSR_NLEG][3]; /* hip in the support frame (mm) */
+  double F[9];             /* the legs' frame in the support frame */
+  double ms, Is[3];        /* support mass (t) and principal inertia at its centre (t mm²) */
+  double R[9], x[3], V[6]; /* support pose (centre) and body twist */
+  double g[3];             /* gravity on the support (mm/s²) */
+  double t;
+} StrainRobot;
+
+
+/* A = [Rᵀ 0; -Rᵀ p^ Rᵀ] for T = (R, p) */
+static inline void strainRobotAdInv(const double R[9], const double p[3], double A[36]) {
+  memset(A, 0, 36 * sizeof(double));
+  for (int c = 0; c < 3; c++) {
+    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
+    e[c] = 1;
+    csu_mulMatTVec3(col, R, e);
+    csu_cross3(ex, e, p);
+    csu_mulMatTVec3(rc, R, ex);
+    for (int r = 0; r < 3; r++) {
+      A[6 * r + c] = col[r];
+      A[6 * (r + 3) + c + 3] = col[r];
+      A[6 * (r + 3) + c] = rc[r];
+    }
+  }
+}
+
+
+static inline void strainRobotHip(const StrainRobot* r, int k, csrBaseState* b) {
+  double t[3], Vh[6];
+  csu_mulMat3(b->R, r->R, r->F);
+  csu_mulMatVec3(t, r->R, r->hip[k]);
+  csu_add3(b->x, r->x, t);
+  for (int i = 0; i < 6; i++) {
+    Vh[i] = 0;
+    for (int j = 0; j < 6; j++) {
+      Vh[i] += r->A[k][6 * i + j] * r->V[j];
+    }
+  }
+  csu_mulMatVec3(b->w, b->R, Vh);
+  csu_mulMatVec3(b->v, b->R, Vh + 3);
+}
+
+
+/* the robot standing with its feet on the flat road (hips at the leg's length), friction mu,
+ * bending order `order`; 0 ok */
+static inline int strainRobotCreate(StrainRobot* r, double mu, int order, csError* err) {
+  memset(r, 0, sizeof *r);
+  if (csr_actuatorPreset(&r->act, "leg", err) != CS_OK) {
+    return 1;
+  }
+  char path[1024];
+  snprintf(path, sizeof path, "%s/robot/calibration_fe_leg.h5",
+           getenv("CS_SOURCE_DIR") ? getenv("CS_SOURCE_DIR") : ".");
+  r->cal = csr_calibrationOpen(path, &r->act, err);
+  if (!r->cal) {
+    return 1;
+  }
+  r->map = csr_calibrationMap(r->cal);
+  int has_rodcal = csr_calibrationRod(r->cal, &r->rodcal);
+  r->tr = csTestFlatRoad();
+  r->soft = csc_softDefaultParams();
+  r->soft.mu = mu;
+  r->sp = csr_strainDefaultParams();
+  r->sp.bend_order = order;
+  csrRobotModel rm;
+  if (csr_robotDefaultModel(&rm, err) != CS_OK) {
+    return 1;
+  }
+  r->ms = rm.support_mass;
+  const double* S = rm.support_size;
+  r->Is[0] = r->ms * (S[1] * S[1] + S[2] * S[2]) / 12;
+  r->Is[1] = r->ms * (S[0] * S[0] + S[2] * S[2]) / 12;
+  r->Is[2] = r->ms * (S[0] * S[0] + S[1] * S[1]) / 12;
+  const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
+  memcpy(r->F, F, sizeof F);
+  csu_eye3(r->R);
+  const double L = csr_actuatorLength(&r->act);
+  csu_set3(r->x, 0, L + 0.5 * S[1], 0);
+  csu_set3(r->g, 0, -9810, 0);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    double off[3];
+    csr_robotHipOffset(&rm, k, off);
+    csu_set3(r->hip[k], off[0], -0.5 * S[1], off[2]);
+    strainRobotAdInv(r->F, r->hip[k], r->A[k]);
+    csrStrainSpec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.act = &r->act;
+    spec.params = &r->sp;
+    spec.map = &r->map;
+    spec.calib = has_rodcal ? &r->rodcal : NULL;
+    csrBaseState b;
+    strainRobotHip(r, k, &b);
+    memcpy(spec.frame, b.R, sizeof spec.frame);
+    memcpy(spec.hip, b.x, sizeof spec.hip);
+    spec.weightless = 1; /* conditions `paper` */
+    spec.terrain = &r->tr;
+    spec.soft = &r->soft;
+    r->m[k] = csr_strainModelCreate(&spec, err);
+    r->d[k] = r->m[k] ? csr_strainDataCreate(r->m[k], err) : NULL;
+    if (!r->d[k]) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+
+static inline void strainRobotDestroy(StrainRobot* r) {
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csr_strainDataDestroy(r->d[k]);
+    csr_strainModelDestroy(r->m[k]);
+  }
+  csr_calibrationClose(r->cal);
+}
+
+
+/* solve the 6 x 6 A x = b (A, b destroyed) */
+static inline void strainRobotSolve6(double A[36], double b[6], double x[6]) {
+  for (int k = 0; k < 6; k++) {
+    int p = k;
+    for (int i = k + 1; i < 6; i++) {
+      if (fabs(A[6 * i + k]) > fabs(A[6 * p + k])) {
+        p = i;
+      }
+    }
+    for (int j = 0; j < 6; j++) {
+      double t = A[6 * k + j];
+      A[6 * k + j] = A[6 * p + j];
+      A[6 * p + j] = t;
+    }
+    double t = b[k];
+    b[k] = b[p];
+    b[p] = t;
+    for (int i = k + 1; i < 6; i++) {
+      double l = A[6 * i + k] / A[6 * k + k];
+      for (int j = k; j < 6; j++) {
+        A[6 * i + j] -= l * A[6 * k + j];
+      }
+      b[i] -= l * b[k];
+    }
+  }
+  for (int i = 5; i >= 0; i--) {
+    double s = b[i];
+    for (int j = i + 1; j < 6; j++) {
+      s -= A[6 * i + j] * x[j];
+    }
+    x[i] = s / A[6 * i + i];
+  }
+}
+
+
+/* one step of h with the legs' 96 pressures p96 at its end; 0 ok. leg_s and tree_s, if not
+ * NULL, accumulate the wall time of the legs' and the support's parts */
+static inline int strainRobotStep(StrainRobot* r, double h, const double p96[96],
+                                  double* leg_s, double* tree_s) {
+  double W[36], rhs[6], Zs[CSR_NLEG][36], rhos[CSR_NLEG][6];
+  double t0 = csu_wallSeconds();
+  for (int k = 0; k < CSR_NLEG; k++) {
+    if (csr_strainActuate(r->m[k], r->d[k], p96 + 12 * k, NULL) != 0 ||
+        csr_strainPrepare(r->m[k], r->d[k], h, Zs[k], rhos[k]) != 0) {
+      return 1;
+    }
+  }
+  double t1 = csu_wallSeconds();
+  /* the support's own: M_s and h (F + ad(V)ᵀ M V) */
+  const double Ms[6] = {r->Is[0], r->Is[1], r->Is[2], r->ms, r->ms, r->ms};
+  double mu[3] = {Ms[0] * r->V[0], Ms[1] * r->V[1], Ms[2] * r->V[2]};
+  double pi[3] = {Ms[3] * r->V[3], Ms[4] * r->V[4], Ms[5] * r->V[5]};
+  double a1[3], a2[3], gb[3];
+  csu_cross3(a1, r->V, mu);
+  csu_cross3(a2, r->V + 3, pi);
+  csu_mulMatTVec3(gb, r->R, r->g);
+  memset(W, 0, sizeof W);
+  for (int i = 0; i < 3; i++) {
+    rhs[i] = h * (-a1[i] - a2[i]);
+    W[7 * i] = Ms[i];
+    W[7 * (i + 3)] = Ms[3 + i];
+  }
+  csu_cross3(a1, r->V, pi);
+  for (int i = 0; i < 3; i++) {
+    rhs[3 + i] = h * (-a1[i] + r->ms * gb[i]);
+  }
+  /* + Σ Aᵀ Z A, Σ Aᵀ ρ */
+  for (int k = 0; k < CSR_NLEG; k++) {
+    const double* A = r->A[k];
+    double ZA[36];
+    for (int i = 0; i < 6; i++) {
+      for (int j = 0; j < 6; j++) {
+        double s = 0;
+        for (int e = 0; e < 6; e++) {
+          s += Zs[k][6 * i + e] * A[6 * e + j];
+        }
+        ZA[6 * i + j] = s;
+      }
+    }
+    for (int i = 0; i < 6; i++) {
+      for (int j = 0; j < 6; j++) {
+        double s = 0;
+        for (int e = 0; e < 6; e++) {
+          s += A[6 * e + i] * ZA[6 * e + j];
+        }
+        W[6 * i + j] += s;
+      }
+      double s = 0;
+      for (int e = 0; e < 6; e++) {
+        s += A[6 * e + i] * rhos[k][e];
+      }
+      rhs[i] += s;
+    }
+  }
+  double dV[6];
+  strainRobotSolve6(W, rhs, dV);
+  for (int i = 0; i < 6; i++) {
+    r->V[i] += dV[i];
+  }
+  double Om[6], Re[9], pe[3], Rn[9], t[3];
+  for (int i = 0; i < 6; i++) {
+    Om[i] = h * r->V[i];
+  }
+  csr_strainExp_(Om, Re, pe);
+  csu_mulMat3(Rn, r->R, Re);
+  csu_mulMatVec3(t, r->R, pe);
+  csu_add3(r->x, r->x, t);
+  memcpy(r->R, Rn, sizeof Rn);
+  double t2 = csu_wallSeconds();
+  for (int k = 0; k < CSR_NLEG; k++) {
+    double dVk[6];
+    for (int i = 0; i < 6; i++) {
+      dVk[i] = 0;
+      for (int j = 0; j < 6; j++) {
+        dVk[i] += r->A[k][6 * i + j] * dV[j];
+      }
+    }
+    csrBaseState b;
+    strainRobotHip(r, k, &b);
+    if (csr_strainFinish(r->m[k], r->d[k], dVk, &b) != 0) {
+      return 1;
+    }
+  }
+  double t3 = csu_wallSeconds();
+  if (leg_s) {
+    *leg_s += (t1 - t0) + (t3 - t2);
+  }
+  if (tree_s) {
+    *tree_s += t2 - t1;
+  }
+  r->t += h;
+  return 0;
+}
+
+
+/* centre of mass of support and legs (world mm) */
+static inline void strainRobotCom(StrainRobot* r, double com[3]) {
+  double M = r->ms, mx[3];
+  csu_scale3(com, r->x, r->ms);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csr_strainMassMoment(r->m[k], r->d[k], mx);
+    csu_add3(com, com, mx);
+    M += csr_strainMass(r->m[k]);
+  }
+  csu_scale3(com, com, 1 / M);
+}
+
+#endif /* CS_TESTS_STRAIN_TEST_ROBOT_H */
