@@ -443,7 +443,8 @@ def main():
                     help="also run the reference at this step, not as a choice (0: skip)")
     ap.add_argument("--fe-meshes", default="6,5",
                     help="FE mesh sizes (mm) of task (1), against the l_soft 4 mm FE ('': none)")
-    ap.add_argument("--fe-cases", default="/work/lead/cal")
+    ap.add_argument("--fe-cases", default="docs/bench/calibration_cases_2026-12-03",
+                    help="folder of FE case files (crawlsim calibrate --dir); a missing folder skips task (1)'s FE rows")
     ap.add_argument("--tip-meshes", default="5,6", help="FE mesh sizes (mm) of task (2), the "
                     "finest the reference ('': the rod at 3.125 mm elements instead)")
     ap.add_argument("--tip-load", default="0.05,0,0", help="task (2)'s tip force (N), base frame")

@@ -14,8 +14,8 @@ one, and the FE's difference from it; then the paper's qualitative claims checke
 FE's trend. Draws a PNG: (a) pressure for the target angle per case (FE, paper), (b) ratio to
 the baseline (FE, analytic, paper).
 
-The paper's numbers come from the text in /work/shared/paper (Sec. 4): it prints 0.403 MPa for
-the baseline (Sec. 4.2: Lc = 40 mm; Sec. 4.3: r1 = 2 mm, there with b = 3 mm) and withholds the
+The paper's numbers come from its text (Sec. 4; the values used are in docs/reference.md): it
+prints 0.403 MPa for the baseline (Sec. 4.2: Lc = 40 mm; Sec. 4.3: r1 = 2 mm, there with b = 3 mm) and withholds the
 other pressures ("[withheld]" in the extract): those cells stay empty and are never filled in
 from elsewhere. Issue 13 quotes 0.301 MPa for r1 = 2.5 mm; that number is not in the text and
 is not used.
