@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# The main job: install what is missing, build crawlsim, then the paper's flat road
-#  1. under `paper` conditions (the paper's assumption: the legs' self-weight ignored) with the
-#     designed gait gaits/flat_road.csv, plotted against Table 2: out/flat_road_paper.{h5,png}
+# The main job: install what is missing, build crawlsim, then the paper's flat road on the
+# scene's defaults (rod legs on the FE calibration, the gait designed on that model,
+# gaits/flat_road_rod.csv; the banner of each run says what ran)
+#  1. under `paper` conditions (the paper's assumption: the legs' self-weight ignored), plotted
+#     against Table 2: out/flat_road_paper.{h5,png}
 #  2. under `earth` conditions (gravity on every body): the verdict, out/flat_road_earth.*
 # and a heat map of the gait (out/flat_road_gait.png). Each run also writes an .xdmf beside
-# its .h5 (ParaView: File > Open > out/flat_road_paper.xdmf). README, "Results".
+# its .h5 (ParaView: File > Open > out/flat_road_paper.xdmf). README, "Headline results".
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
@@ -23,6 +25,6 @@ run() { # run the flat road; a run that stops (collapse, fall) still leaves a re
 }
 run flat_road_paper --conditions paper
 run flat_road_earth --conditions earth
-/usr/bin/python3 tools/plot_gait.py gaits/flat_road.csv -o out/flat_road_gait.png
+/usr/bin/python3 tools/plot_gait.py gaits/flat_road_rod.csv -o out/flat_road_gait.png
 echo "quickstart: results in out/ (HDF5, XDMF, PNG); an animation:"
 echo "  /usr/bin/python3 tools/animate_run.py out/flat_road_paper.h5 -o out/flat_road_paper.gif"
