@@ -35,6 +35,7 @@
 #define CS_CORE_SIM_MODEL_H
 
 #include <ode/ode.h>
+#include <signal.h>
 
 #include "contact_ode.h"
 #include "core_clock.h"
@@ -94,6 +95,9 @@ typedef struct csOptions_ {
   int centerline_points;  /* samples per leg centreline in the output */
   double max_speed;       /* mm/s: a body faster than this means the run diverged */
   int progress;           /* print a progress line to stderr every simulated second */
+  const volatile sig_atomic_t* cancel; /* NULL, or a flag the caller sets (e.g. from its signal
+                             handler): cs_run then ends after the step in progress, writes the
+                             status "interrupted at t = ..." and returns CS_ERR_INTERRUPTED */
 } csOptions;
 
 /* Defaults with reasons (sim_driver.c). */

@@ -576,6 +576,12 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     st = csf_bendStageRow(&r, 0.0, ang, tot, tip, err);
   }
   while (st == CS_OK && r.p < o->p_max - eps) {
+    if (o->cancel && *o->cancel) {
+      /* between load steps: the rows so far are converged states */
+      st = cs_errorSet(err, CS_ERR_INTERRUPTED, "fem_bend: interrupted at p = %.6g MPa after %d "
+                       "load steps (%zu rows kept)", r.p, r.info.n_steps, out->m);
+      break;
+    }
     const double t_step = csf_wallTime();
     double target = r.p;
     int iters = 0, cut = 0;
