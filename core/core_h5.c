@@ -152,6 +152,11 @@ csStatus cs_h5CloseChecked(csH5File* f, csError* err) {
   if (!f) {
     return CS_OK;
   }
+  csError local;
+  cs_errorClear(&local);
+  if (!err) {
+    err = &local;
+  }
   csStatus st = CS_OK;
   for (int i = 0; i < f->nseries; i++) {
     if (st == CS_OK) {
@@ -165,8 +170,15 @@ csStatus cs_h5CloseChecked(csH5File* f, csError* err) {
                      "flush", f->path);
   }
   if (st != CS_OK && f->last) {
-    /* the file on disk holds the last image: say so in its status (what the caller set last) */
-    patchStatus(f, f->status);
+    /* the file on disk holds the last image: its status says what the caller set last and
+     * why the file ends early ("ok" alone would be false: the last rows are missing) */
+    char text[CS_H5_STATUS_SIZE];
+    if (!f->status[0] || !strcmp(f->status, "ok") || !strcmp(f->status, "running")) {
+      snprintf(text, sizeof text, "%s", err->msg);
+    } else {
+      snprintf(text, sizeof text, "%.200s; %.300s", f->status, err->msg);
+    }
+    patchStatus(f, text);
   }
   /* every id is closed whatever happened: the memory file cannot fail to close for lack of
    * disk, and nothing is left for HDF5's exit handler */

@@ -107,7 +107,12 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
                        "or /legs/*/centerline)", h5_path);
   }
   double* t = N > 0 ? malloc((size_t)dt[0] * sizeof(double)) : NULL;
-  if (N > 0 && (!t || readTime(f, t, dt[0]) != 0)) {
+  if (N > 0 && !t) {
+    H5Fclose(f);
+    return cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory for the times of %s", xdmf_path,
+                       h5_path);
+  }
+  if (N > 0 && readTime(f, t, dt[0]) != 0) {
     free(t);
     H5Fclose(f);
     return cs_errorSet(err, CS_ERR_IO, "%s: cannot read /time", h5_path);

@@ -15,9 +15,11 @@
  * faces, gmsh's Periodic Surface, gave the quarter turns only.) */
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
 #include "core_text.h"
 #include "fem_mesh.h"
@@ -235,6 +237,12 @@ csfMesh* csf_meshGmsh(const char* geo, const char* stem, csError* err) {
   snprintf(cmd, sizeof cmd, "'%s' '%s' -3 -order 2 -format msh22 -nt 1 -o '%s' > '%s' 2>&1", prog,
            geo, msh, log);
   int rc = system(cmd);
+  if (rc != -1 && WIFSIGNALED(rc) && (WTERMSIG(rc) == SIGINT || WTERMSIG(rc) == SIGTERM)) {
+    /* Ctrl-C reaches gmsh too (the process group); system() ignored it here meanwhile */
+    cs_errorSet(err, CS_ERR_INTERRUPTED, "fem_mesh: gmsh was interrupted (signal %d) meshing %s",
+                WTERMSIG(rc), geo);
+    return NULL;
+  }
   if (rc != 0) {
     cs_errorSet(err, CS_ERR_EXTERNAL,
                 "fem_mesh: gmsh failed (status %d) meshing %s; see %s (is gmsh installed? "

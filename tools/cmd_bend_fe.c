@@ -375,7 +375,8 @@ int csx_bendFe(BendRun* run) {
   if (fst != CS_OK) {
     fprintf(stderr, "crawlsim bend: %s\n", ferr.msg);
     csr_bendCurveFree(&fbc);
-    return fst == CS_ERR_INTERRUPTED && csx_signalExitCode() ? csx_signalExitCode() : 1;
+    /* interrupted: 128 + the signal (130 when only gmsh saw it, system() ignoring SIGINT) */
+    return fst != CS_ERR_INTERRUPTED ? 1 : csx_signalExitCode() ? csx_signalExitCode() : 130;
   }
   printf("crawlsim bend: model fe, actuator %s, chambers %s in II1-II3\n", run->act.name,
          run->chambers);

@@ -504,6 +504,9 @@ csStatus csx_studyRunCase(const csxStudy* s, int i, const char* dir, const csxSt
   if (st != CS_OK) {
     return st;
   }
+  if (cmd->cancel && *cmd->cancel) {
+    return cs_errorSet(err, CS_ERR_INTERRUPTED, "case %s: not started (interrupted)", c->name);
+  }
   const double t0 = csu_wallSeconds();
   char message[CS_ERROR_MSG_SIZE] = "";
   res->state = CSX_CASE_COMPLETE;
@@ -557,6 +560,11 @@ csStatus csx_studyRunCase(const csxStudy* s, int i, const char* dir, const csxSt
     free(store);
     if (rc < 0) {
       return err->status != CS_OK ? err->status : CS_ERR_IO;
+    }
+    if (cmd->cancel && *cmd->cancel) {
+      /* a signal ended the step: its result is no result; no case file, the case stays pending */
+      return cs_errorSet(err, CS_ERR_INTERRUPTED, "case %s: interrupted in %s (exit %d); it "
+                         "runs again with --resume", c->name, csx_studyCmdName(sp->cmd), rc);
     }
     nran++;
     if (rc == 0) {
