@@ -474,6 +474,7 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
   o.newton_rtol = s->newton_rtol;
   o.progress = s->progress;
   o.progress_user = s->progress_user;
+  o.cancel = s->cancel;
   if (c->probes) {
     for (int k = 0; k < NPROBE_P; k++) {
       if (kProbeP[k] <= p_max + 1e-12) {
@@ -504,7 +505,14 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
     if (st == CS_OK) {
       st = writeCase(f, act, c, s, &rec, &info, csf_wallTime() - t0, err);
     }
-    cs_h5Close(f);
+    csError cerr;
+    csStatus cst = cs_h5CloseChecked(f, &cerr);
+    if (st == CS_OK && cst != CS_OK) {
+      st = cst;
+      if (err) {
+        *err = cerr;
+      }
+    }
   }
   csr_bendCurveFree(&bc);
   free(rec.row);

@@ -587,6 +587,9 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
 
 
 int csx_cmdBend(int argc, char** argv) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
   BendRun run;
   int rc = parseArgs(argc, argv, &run);
   if (rc != 0) {

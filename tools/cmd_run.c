@@ -123,6 +123,9 @@ static csStatus checkWritable(const char* path, csError* err) {
 
 
 int csx_cmdRun(int argc, char** argv) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
   const char* scene = "flat-road";
   const char* gait = NULL;
   const char* terrain = NULL;

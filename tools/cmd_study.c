@@ -56,6 +56,9 @@ static void progressLine(void* user, int done, int total, int index, const csxCa
 
 
 int csx_cmdStudy(int argc, char** argv) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
   const char* file = NULL;
   const char* out = NULL;
   const char* dir = NULL;

@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "cs_commands.h"
-#include "cs_signal.h"
 
 static const char kUsage[] =
     "usage: crawlsim <command> [options]\n"
@@ -43,8 +42,6 @@ int main(int argc, char** argv) {
   /* the one process-wide ODE initialisation site (debian-deps.md P1) */
   dInitODE2(0);
   dSetMessageHandler(odeMessage);
-  /* SIGINT/SIGTERM end the work in progress cleanly (cs_signal.h) */
-  csx_signalInstall();
   int rc = dispatch(argc, argv);
   dCloseODE();
   return rc;

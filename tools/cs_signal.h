@@ -10,7 +10,9 @@
 
 #include <signal.h>
 
-/* Install the handlers (once, before any work). */
+/* Install the handlers: only commands whose work loops poll the flag call it (run, bend,
+ * calibrate, study); the others keep the default actions, so Ctrl-C still ends them at once.
+ * Calling it again changes nothing. */
 void csx_signalInstall(void);
 
 /* The flag to hand to the library (csOptions.cancel, csfBendOptions.cancel): nonzero once a
