@@ -244,10 +244,14 @@ csfMesh* csf_meshGmsh(const char* geo, const char* stem, csError* err) {
     return NULL;
   }
   if (rc != 0) {
+    /* gmsh (or the shell) cannot write its log or mesh on a full disk either: the free space */
+    char space[96];
+    csu_freeSpace(msh, space, sizeof space);
     cs_errorSet(err, CS_ERR_EXTERNAL,
-                "fem_mesh: gmsh failed (status %d) meshing %s; see %s (is gmsh installed? "
-                "tools/install-deps.sh)",
-                rc, geo, log);
+                "fem_mesh: gmsh failed (%s %d) meshing %s; see %s (is gmsh installed? "
+                "tools/install-deps.sh; %s)",
+                rc != -1 && WIFEXITED(rc) ? "exit status" : "status",
+                rc != -1 && WIFEXITED(rc) ? WEXITSTATUS(rc) : rc, geo, log, space);
     return NULL;
   }
   /* gmsh exits 0 even when it could not write its output (a full disk): a file that does not
