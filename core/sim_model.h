@@ -258,9 +258,12 @@ void cs_supportCorners(const csModel* m, const csData* d, double corners[24]);
 double cs_robotMass(const csData* d);
 
 /* Run from t = 0 to opt.t_end, sampling into an HDF5 file per DESIGN.md's output contract.
- * Writes as it goes and flushes every simulated second, so a run that stops on an error
- * leaves a readable file with the samples so far; the timers go in as attributes at the end.
- * `wall_s` gets the wall time of the loop. */
+ * Writes as it goes and flushes every simulated second (core_h5.h: the file on disk is always
+ * complete as of its last flush, even after kill -9), so a run that stops on an error leaves a
+ * readable file with the samples so far; the root attributes status ("running", "ok",
+ * "interrupted at t = ... s" or the error), samples and flushed_t_s say how far it reaches; the
+ * timers go in as attributes at the end. opt.cancel set: ends after the step in progress with
+ * CS_ERR_INTERRUPTED. `wall_s` gets the wall time of the loop. */
 csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_s,
                 csError* err);
 
