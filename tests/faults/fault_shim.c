@@ -12,6 +12,8 @@
  *   CS_FAULT_MALLOC_AT=N  the N-th malloc/calloc/realloc called from the main program's own
  *                         code (our static libraries, not HDF5/ODE/libc) returns NULL (once).
  *                         Only in a process whose executable is named crawlsim.
+ *   CS_FAULT_TRACE=1      print a backtrace to stderr when the fault fires (to find the caller
+ *                         of a failure a trial reported badly).
  *   CS_FAULT_LOG=FILE     at exit, append "<exe> writes <n> mallocs <n> fired <0|1>" to FILE
  *                         (the suite's counting pass).
  * ENOSPC is a full disk, not a broken one: a write that stays inside a file's present size
@@ -23,6 +25,7 @@
  * point of a preload shim. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
+#include <execinfo.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <link.h>
@@ -382,6 +385,11 @@ static int failAlloc(const void* caller) {
   }
   if (++g_mallocs == g_malloc_at) {
     g_malloc_fired = 1;
+    if (getenv("CS_FAULT_TRACE")) {
+      void* frames[24];
+      int n = backtrace(frames, 24);
+      backtrace_symbols_fd(frames, n, 2);
+    }
     errno = ENOMEM;
     return 1;
   }
