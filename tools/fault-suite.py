@@ -21,7 +21,9 @@ seeded random times over the baseline's wall time.
 Usage:
   tools/fault-suite.py --crawlsim BUILD/tools/crawlsim --shim BUILD/tests/faults/libcs_fault_shim.so
       --check BUILD/tests/faults/h5_check [--short] [--points N] [--targets run,fe]
-      [--scenarios enospc,erofs,enomem,sigint,sigterm,sigkill] [--work DIR] [--seed S] [--jobs J]
+      [--scenarios enospc,erofs,enomem,sigint,sigterm,sigkill,tmpfs] [--work DIR] [--seed S]
+      [--jobs J]
+  --shim none: against a sanitizer build, the signal (and, as root, tmpfs) scenarios only.
 Results go to WORK/results.jsonl, one line per trial; a second call with the same WORK resumes
 (trials already there are not run again). Exit status 0 only when every trial passed.
 """
@@ -46,11 +48,12 @@ FE_ARGS = ["bend", "--model", "fe", "--set", "S1=12", "--set", "S2=12", "--set",
            "--set", "c=3", "--set", "LS12=4", "--set", "LS23=4", "--set", "n1=0", "--set",
            "n2=0", "--set", "n3=0", "--mesh-size", "5", "--p-max", "0.02", "--p-step", "0.02"]
 
-CAUSE = {"enospc": "No space left on device", "erofs": "Read-only file system",
+CAUSE = {"enospc": "No space left on device", "tmpfs": "No space left on device",
+         "erofs": "Read-only file system",
          "enomem": "out of memory", "sigint": "interrupted", "sigterm": "interrupted",
          "sigkill": None}
 SIGNALS = {"sigint": signal.SIGINT, "sigterm": signal.SIGTERM, "sigkill": signal.SIGKILL}
-ALL_SCENARIOS = ["enospc", "erofs", "enomem", "sigint", "sigterm", "sigkill"]
+ALL_SCENARIOS = ["enospc", "erofs", "enomem", "sigint", "sigterm", "sigkill", "tmpfs"]
 
 
 def target_cmd(target, out, t_end):
@@ -131,14 +134,16 @@ def baseline(a, target, work):
     log = os.path.join(d, "shim.log")
     if os.path.exists(log):
         os.remove(log)
-    r = run_once(a, target, out, {"LD_PRELOAD": a.shim, "CS_FAULT_LOG": log})
-    c = parse_log(log)
+    r = run_once(a, target, out, {"LD_PRELOAD": a.shim, "CS_FAULT_LOG": log} if a.shim else {})
+    c = parse_log(log) if a.shim else {"writes": 0, "mallocs": 0, "fired": 0}
     if r["rc"] != 0 or c is None:
         sys.exit(f"fault-suite: the baseline {target} failed (exit {r['rc']}): "
                  f"{r['stderr'].strip().splitlines()[-1:]}")
     chk = h5_check(a, out)
+    nbytes = sum(os.path.getsize(os.path.join(d, f)) for f in os.listdir(d)
+                 if f.startswith("out"))
     return {"wall": r["wall"], "writes": c["writes"], "mallocs": c["mallocs"],
-            "rows": int(chk.get("rows", -1))}
+            "rows": int(chk.get("rows", -1)), "bytes": nbytes}
 
 
 def points(a, scen, base, n, rng):
@@ -155,6 +160,11 @@ def points(a, scen, base, n, rng):
                 pts.add(rng.randint(1, total))
             k += 1
         return sorted(pts)[:n]
+    if scen == "tmpfs":
+        # KiB: log-spaced from 8 KiB to twice the baseline's outputs (a flush needs room for the
+        # new image beside the old one)
+        top = max(16, 2 * base["bytes"] // 1024)
+        return sorted(set(int(round(8 * (top / 8) ** (i / (n - 1)))) for i in range(n)))
     if scen == "enomem":
         total = base["mallocs"]
         if total <= n:
@@ -166,9 +176,24 @@ def points(a, scen, base, n, rng):
 
 def trial(a, target, scen, pt, work, base):
     d = os.path.join(work, f"{target}-{scen}-{pt}")
+    if scen == "tmpfs":
+        # a real full disk: a tmpfs of pt KiB holds the outputs (root only)
+        os.makedirs(d, exist_ok=True)
+        subprocess.run(["umount", d], stderr=subprocess.DEVNULL)
+        if subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={pt}k", "tmpfs", d]).returncode:
+            return {"target": target, "scenario": scen, "point": pt, "rc": None, "wall": 0,
+                    "problems": ["cannot mount a tmpfs"], "message": ""}
+        try:
+            return trial_in(a, target, scen, pt, d, base)
+        finally:
+            subprocess.run(["umount", "-l", d])
     os.makedirs(d, exist_ok=True)
     for f in os.listdir(d):
         os.remove(os.path.join(d, f))
+    return trial_in(a, target, scen, pt, d, base)
+
+
+def trial_in(a, target, scen, pt, d, base):
     out = os.path.join(d, "out.h5")
     log = os.path.join(d, "shim.log")
     env, sig, at_s = {}, None, None
@@ -177,7 +202,7 @@ def trial(a, target, scen, pt, work, base):
                "CS_FAULT_ERRNO": scen.upper()}
     elif scen == "enomem":
         env = {"LD_PRELOAD": a.shim, "CS_FAULT_MALLOC_AT": str(pt), "CS_FAULT_LOG": log}
-    else:
+    elif scen != "tmpfs":
         sig, at_s = SIGNALS[scen], pt
     r = run_once(a, target, out, env, sig, at_s)
     res = {"target": target, "scenario": scen, "point": pt, "rc": r["rc"],
@@ -187,7 +212,9 @@ def trial(a, target, scen, pt, work, base):
     last = err_lines[-1] if err_lines else ""
     res["message"] = last[:300]
     fired = True
-    if env:
+    if scen == "tmpfs":
+        fired = r["rc"] != 0  # a tmpfs as large as all outputs is no fault
+    elif env:
         c = parse_log(log)
         fired = bool(c and c["fired"])
     elif sig is not None:
@@ -295,10 +322,25 @@ def main():
     a = ap.parse_args()
     if a.short:
         a.points, a.targets, a.t_end = 4, "run", 1.0
-    for p in (a.crawlsim, a.shim, a.check):
+    scen_list = a.scenarios.split(",")
+    if "tmpfs" in scen_list and (os.geteuid() != 0 or a.short):
+        # mounting needs root; the short (CI) version keeps to the shim, which needs nothing
+        scen_list.remove("tmpfs")
+        if not a.short:
+            print("fault-suite: not root: the tmpfs scenario (a real full disk) is left out",
+                  flush=True)
+    a.scenarios = ",".join(scen_list)
+    if a.shim == "none":
+        # a sanitizer build (ASan must be first in the preload list and owns malloc): the
+        # signal and tmpfs scenarios need no shim
+        a.shim = ""
+        if any(s in ("enospc", "erofs", "enomem") for s in a.scenarios.split(",")):
+            sys.exit("fault-suite: --shim none runs only sigint,sigterm,sigkill,tmpfs")
+    for p in (a.crawlsim, a.shim or a.crawlsim, a.check):
         if not os.path.exists(p):
             sys.exit(f"fault-suite: {p}: not found (build the project first)")
-    a.crawlsim, a.shim, a.check = map(os.path.abspath, (a.crawlsim, a.shim, a.check))
+    a.crawlsim, a.check = map(os.path.abspath, (a.crawlsim, a.check))
+    a.shim = os.path.abspath(a.shim) if a.shim else ""
     work = os.path.abspath(a.work)
     os.makedirs(work, exist_ok=True)
     results_path = os.path.join(work, "results.jsonl")
