@@ -26,8 +26,16 @@ void csx_signalInstall(void) {
   sa.sa_handler = onSignal;
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = SA_RESTART; /* slow calls (writes) resume; the work loops poll the flag */
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
+  static const int kSignals[2] = {SIGINT, SIGTERM};
+  for (int i = 0; i < 2; i++) {
+    /* a signal ignored by whoever started us stays ignored (a shell's background job ignores
+     * SIGINT: Ctrl-C in the terminal is not meant for it) */
+    struct sigaction old;
+    if (sigaction(kSignals[i], NULL, &old) == 0 && old.sa_handler == SIG_IGN) {
+      continue;
+    }
+    sigaction(kSignals[i], &sa, NULL);
+  }
 }
 
 

@@ -4,7 +4,10 @@
  * Owns: the one process-wide flag the handler sets. The first SIGINT or SIGTERM sets it (the
  * step in progress finishes, the output is closed with its status saying "interrupted at ...",
  * and the command exits 128 + signal number); a second one of either ends the process at once
- * with the default action (the output file on disk is then complete as of its last flush). */
+ * with the default action (the output file on disk is then complete as of its last flush). A
+ * signal the parent set to be ignored (a shell's background job ignores SIGINT) stays ignored.
+ * A signal that comes after the last step lets the command finish normally (exit 0, status
+ * "ok"): the work it would have cut short is done. */
 #ifndef CS_TOOLS_SIGNAL_H
 #define CS_TOOLS_SIGNAL_H
 

@@ -70,8 +70,12 @@ def run_once(a, target, out, env_extra, sig=None, at_s=None):
     env.setdefault("OMP_NUM_THREADS", "1")
     cmd = [a.crawlsim] + target_cmd(target, out, a.t_end)
     t0 = time.monotonic()
+    # SIGINT/SIGTERM at their default as in a terminal (a background job of a non-interactive
+    # shell, such as this suite under nohup, inherits SIGINT ignored: crawlsim keeps that)
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
-                         cwd=os.path.dirname(out), start_new_session=True)
+                         cwd=os.path.dirname(out), start_new_session=True,
+                         preexec_fn=lambda: [signal.signal(s, signal.SIG_DFL)
+                                             for s in (signal.SIGINT, signal.SIGTERM)])
     sent = False
     if sig is not None:
         try:

@@ -319,6 +319,10 @@ static int runAndSignal(int sig, double delay_s) {
   pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
+    /* as from a terminal: ctest itself may run with SIGINT ignored (a background job), which
+     * crawlsim would keep */
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
     if (!freopen("kill.out", "w", stdout) || !freopen("kill.err", "w", stderr)) {
       _exit(127);
     }
