@@ -23,7 +23,8 @@ extern "C" {
   X(CS_ERR_DIVERGED, -6, "simulation diverged")             \
   X(CS_ERR_SOLVER, -7, "solver failure")                    \
   X(CS_ERR_EXTERNAL, -8, "external program or library failed")           \
-  X(CS_ERR_REJECTED, -9, "step rejected (recoverable: a smaller step may pass)")
+  X(CS_ERR_REJECTED, -9, "step rejected (recoverable: a smaller step may pass)")  \
+  X(CS_ERR_INTERRUPTED, -10, "interrupted (the caller's cancel flag was set)")
 
 typedef enum csStatus_ {
 #define CS_STATUS_ENUM(name, value, msg) name = value,

@@ -1,10 +1,12 @@
 /* core_text.c: line reader, word splitting, chamber lists (see core_text.h). */
+#define _POSIX_C_SOURCE 200809L /* statvfs */
 #include "core_text.h"
 
 #include <ctype.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/statvfs.h>
 
 /* longest chamber-list text quoted in a message (bytes) */
 #define QUOTE_MAX 40
@@ -219,4 +221,45 @@ char* csu_trimBlanks(char* s) {
     s[--n] = '\0';
   }
   return s;
+}
+
+
+csStatus csu_writeClose(FILE* f, const char* path, const char* what, csError* err) {
+  if (!f) {
+    return cs_errorSet(err, CS_ERR_ARG, "%s: no stream to close", path);
+  }
+  /* errno still holds the cause of the first failed write (later successful calls keep it) */
+  int e = errno;
+  int bad = ferror(f);
+  if (!bad && fflush(f) != 0) {
+    bad = 1, e = errno;
+  }
+  if (fclose(f) != 0 && !bad) {
+    bad = 1, e = errno;
+  }
+  if (bad) {
+    remove(path);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write %s: %s", path, what,
+                       strerror(e ? e : EIO));
+  }
+  return CS_OK;
+}
+
+
+void csu_freeSpace(const char* path, char* buf, size_t size) {
+  char dir[1024];
+  snprintf(dir, sizeof dir, "%s", path);
+  char* slash = strrchr(dir, '/');
+  if (slash) {
+    slash[slash == dir] = '\0'; /* "/x" -> "/", "a/b" -> "a" */
+  } else {
+    snprintf(dir, sizeof dir, ".");
+  }
+  struct statvfs v;
+  if (statvfs(dir, &v) == 0) {
+    snprintf(buf, size, "%llu bytes free on the file system of %s",
+             (unsigned long long)v.f_bavail * (unsigned long long)v.f_frsize, dir);
+  } else {
+    snprintf(buf, size, "free space unknown");
+  }
 }

@@ -5,6 +5,7 @@
  * stray carriage returns refused at their line and byte), csu_splitWords (whitespace words in
  * place), and the chamber-list parser ("1,2" -> bit mask) of `--chambers` and calibration
  * files. Used by gaits_csv.c, terrains_terrain.c, robot_calibration.c and tools/cmd_bend.c.
+ * Also the one closing check of every text file written with stdio (csu_writeClose).
  *
  * Why not fgets: it cannot tell an embedded NUL from the end of a line, and an overlong line
  * comes back in pieces that parse as separate lines. The reader pulls the file through a fixed
@@ -64,6 +65,16 @@ int csu_splitWords(char* line, char** word, int max);
 
 /* Trim spaces and tabs at both ends of s in place; returns the first kept byte (inside s). */
 char* csu_trimBlanks(char* s);
+
+/* "<N> bytes free on the file system of <path>'s directory" (statvfs, for messages about a
+ * write that fell short), or "free space unknown" into buf[size]. */
+void csu_freeSpace(const char* path, char* buf, size_t size);
+
+/* Close a text file written with stdio and check it: a write error anywhere (the stream's
+ * error flag), a failed flush or close gives CS_ERR_IO "<path>: cannot write <what>: <reason>"
+ * with strerror (no space left on device, read-only file system, ...), and the incomplete
+ * file is removed. The stream is closed in every case. */
+csStatus csu_writeClose(FILE* f, const char* path, const char* what, csError* err);
 
 /* Parse a chamber list: chamber numbers 1..nmax separated by commas, each once, in any order
  * ("1,2", "4,1"). Sets bit j-1 of *mask for chamber j. Refused, with err = "<label> '<text>':

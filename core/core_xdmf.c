@@ -6,6 +6,7 @@
  * hand with fprintf: the structure is fixed and small. */
 #include "core_xdmf.h"
 
+#include <errno.h>
 #include <hdf5.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -106,16 +107,27 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
                        "or /legs/*/centerline)", h5_path);
   }
   double* t = N > 0 ? malloc((size_t)dt[0] * sizeof(double)) : NULL;
-  if (N > 0 && (!t || readTime(f, t, dt[0]) != 0)) {
+  if (N > 0 && !t) {
+    H5Fclose(f);
+    return cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory for the times of %s", xdmf_path,
+                       h5_path);
+  }
+  if (N > 0 && readTime(f, t, dt[0]) != 0) {
     free(t);
     H5Fclose(f);
     return cs_errorSet(err, CS_ERR_IO, "%s: cannot read /time", h5_path);
   }
   H5Fclose(f);
-  FILE* x = fopen(xdmf_path, "w");
+  /* written beside as "<xdmf>.part" and renamed into place: never a half file under its name */
+  char part[1100];
+  if (snprintf(part, sizeof part, "%s.part", xdmf_path) >= (int)sizeof part) {
+    free(t);
+    return cs_errorSet(err, CS_ERR_ARG, "%s: path too long", xdmf_path);
+  }
+  FILE* x = fopen(part, "w");
   if (!x) {
     free(t);
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot create the XDMF file", xdmf_path);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot create (%s)", xdmf_path, strerror(errno));
   }
   hsize_t K = dl[1];
   fprintf(x, "<?xml version=\"1.0\" ?>\n<!-- crawlsim run: %s (support, legs A..H over time; "
@@ -161,8 +173,17 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
   }
   fprintf(x, "</Grid>\n</Domain>\n</Xdmf>\n");
   free(t);
-  if (fclose(x) != 0) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: write error", xdmf_path);
+  int bad = ferror(x) || fflush(x) != 0;
+  int e = errno;
+  if (fclose(x) != 0 && !bad) {
+    bad = 1, e = errno;
+  }
+  if (!bad && rename(part, xdmf_path) != 0) {
+    bad = 1, e = errno;
+  }
+  if (bad) {
+    remove(part);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write (%s)", xdmf_path, strerror(e));
   }
   return CS_OK;
 }

@@ -66,6 +66,7 @@ csOptions cs_defaultOptions(void) {
   /* 10 m/s: nothing in a crawling gait comes near it */
   o.max_speed = 1e4;
   o.progress = 0;
+  o.cancel = NULL;
   return o;
 }
 

@@ -35,6 +35,7 @@
 #define CS_CORE_SIM_MODEL_H
 
 #include <ode/ode.h>
+#include <signal.h>
 
 #include "contact_ode.h"
 #include "core_clock.h"
@@ -94,6 +95,9 @@ typedef struct csOptions_ {
   int centerline_points;  /* samples per leg centreline in the output */
   double max_speed;       /* mm/s: a body faster than this means the run diverged */
   int progress;           /* print a progress line to stderr every simulated second */
+  const volatile sig_atomic_t* cancel; /* NULL, or a flag the caller sets (e.g. from its signal
+                             handler): cs_run then ends after the step in progress, writes the
+                             status "interrupted at t = ..." and returns CS_ERR_INTERRUPTED */
 } csOptions;
 
 /* Defaults with reasons (sim_driver.c). */
@@ -254,9 +258,12 @@ void cs_supportCorners(const csModel* m, const csData* d, double corners[24]);
 double cs_robotMass(const csData* d);
 
 /* Run from t = 0 to opt.t_end, sampling into an HDF5 file per DESIGN.md's output contract.
- * Writes as it goes and flushes every simulated second, so a run that stops on an error
- * leaves a readable file with the samples so far; the timers go in as attributes at the end.
- * `wall_s` gets the wall time of the loop. */
+ * Writes as it goes and flushes every simulated second (core_h5.h: the file on disk is always
+ * complete as of its last flush, even after kill -9), so a run that stops on an error leaves a
+ * readable file with the samples so far; the root attributes status ("running", "ok",
+ * "interrupted at t = ... s" or the error), samples and flushed_t_s say how far it reaches; the
+ * timers go in as attributes at the end. opt.cancel set: ends after the step in progress with
+ * CS_ERR_INTERRUPTED. `wall_s` gets the wall time of the loop. */
 csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_s,
                 csError* err);
 

@@ -11,7 +11,13 @@
  * rejected_steps, gain_projections (sim_coupling.c implicitPart) and per timer (sim_model.h
  * CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
- * simulated second. */
+ * simulated second (core_h5.c: each flush writes the whole file image and renames it into
+ * place, so the file on disk is complete as of its last flush even after kill -9). While the
+ * run goes, status is "running" and samples / flushed_t_s say how far the file on disk
+ * reaches; at the end status is "ok", "interrupted at t = ... s" (opt.cancel) or the error.
+ * A flush is skipped (the next one catches up) while image writing has cost more than
+ * FLUSH_WALL_SHARE of the wall time so far: the image grows with the run, so flushing every
+ * second of a long run would cost a time quadratic in its length. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -22,6 +28,9 @@
 #include "sim_internal.h"
 
 enum { MAX_CENTERLINE = 201 };
+
+/* at most this share of the wall time goes to writing file images at flushes */
+static const double FLUSH_WALL_SHARE = 0.05;
 
 typedef struct {
   int time, pos, quat, pres, legs[CSR_NLEG];
@@ -176,22 +185,38 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
     per_second = 1;
   }
   double w0 = csu_wallSeconds();
+  long nsample = 0;        /* samples appended */
+  double flush_wall = 0;   /* wall time spent in flushes (s) */
   if (st == CS_OK) {
     double wo = csu_wallSeconds();
     st = writeSample(m, d, f, &s, buf, err);
+    nsample += st == CS_OK;
     csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
   }
+  int cancelled = 0;
   for (long i = 1; i <= nsteps && st == CS_OK; i++) {
+    if (m->opt.cancel && *m->opt.cancel) {
+      /* the caller asked to stop (a signal): between steps, so the state is a whole step */
+      cancelled = 1;
+      st = cs_errorSet(err, CS_ERR_INTERRUPTED, "%s: interrupted at t = %.6g s", out_path,
+                       cs_time(d));
+      break;
+    }
     st = cs_step(m, d, err);
     if (st == CS_OK && i % out_every == 0) {
       double wo = csu_wallSeconds();
       st = writeSample(m, d, f, &s, buf, err);
+      nsample += st == CS_OK;
       csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
     }
     if (i % per_second == 0) {
       double wo = csu_wallSeconds();
-      if (st == CS_OK) {
-        st = cs_h5Flush(f, err);
+      if (st == CS_OK && flush_wall <= FLUSH_WALL_SHARE * (wo - w0)) {
+        /* how far the file on disk reaches once this flush is through */
+        st = cs_h5AttrDouble(f, "/", "samples", (double)nsample, err);
+        if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "flushed_t_s", cs_time(d), err);
+        if (st == CS_OK) st = cs_h5Flush(f, err);
+        flush_wall += csu_wallSeconds() - wo;
       }
       csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
       if (m->opt.progress) {
@@ -210,7 +235,15 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
   /* the file stays readable whatever happened: record how the run ended */
   cs_h5AttrDouble(f, "/", "wall_time_s", wall, NULL);
   cs_h5AttrDouble(f, "/", "real_time_factor", wall > 0 ? cs_time(d) / wall : 0, NULL);
-  cs_h5AttrString(f, "/", "status", st == CS_OK ? "ok" : (err ? err->msg : "failed"), NULL);
+  char status[CS_H5_STATUS_SIZE];
+  if (cancelled) {
+    snprintf(status, sizeof status, "interrupted at t = %.6g s", cs_time(d));
+  } else {
+    snprintf(status, sizeof status, "%s", st == CS_OK ? "ok" : (err ? err->msg : "failed"));
+  }
+  cs_h5AttrString(f, "/", "status", status, NULL);
+  cs_h5AttrDouble(f, "/", "samples", (double)nsample, NULL);
+  cs_h5AttrDouble(f, "/", "flushed_t_s", cs_time(d), NULL);
   cs_h5AttrDouble(f, "/", "steps", (double)cs_stepCount(d), NULL);
   cs_h5AttrDouble(f, "/", "rejected_steps", (double)cs_rejectCount(d), NULL);
   cs_h5AttrDouble(f, "/", "gain_projections", (double)cs_gainProjectionCount(d), NULL);
@@ -221,8 +254,17 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
     snprintf(name, sizeof name, "timer_%s_calls", cs_timerName((csTimerId)k));
     cs_h5AttrDouble(f, "/", name, (double)d->timer[k].count, NULL);
   }
-  if (cs_h5Close(f) != CS_OK && st == CS_OK) {
-    st = cs_errorSet(err, CS_ERR_IO, "%s: cannot write the last rows or close", out_path);
+  /* on a write failure the file keeps its last flushed image, its status patched to say why */
+  csError cerr;
+  csStatus cst = cs_h5CloseChecked(f, &cerr);
+  if (cst != CS_OK && st == CS_OK) {
+    st = cst;
+    if (err) {
+      *err = cerr;
+    }
+  }
+  if (st == CS_ERR_IO || st == CS_ERR_MEMORY) {
+    return st; /* the disk refused the run file: no XDMF beside it */
   }
   /* the XDMF beside it (run.h5 -> run.xdmf), even for a run cut short: ParaView opens what
    * there is; at most ~600 frames keep its XML small (a 9 s run at 0.01 s: every 2nd sample) */
@@ -234,9 +276,8 @@ csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_
     *dot = '\0';
   }
   strncat(xdmf, ".xdmf", sizeof xdmf - strlen(xdmf) - 1);
-  long nsample = nsteps / out_every + 1;
   csError xe;
-  csStatus xs = cs_xdmfWriteRun(out_path, xdmf, cs_xdmfStride(nsample, 600), &xe);
+  csStatus xs = cs_xdmfWriteRun(out_path, xdmf, cs_xdmfStride(nsteps / out_every + 1, 600), &xe);
   if (st == CS_OK && xs != CS_OK) {
     if (err) {
       *err = xe;
@@ -264,6 +305,13 @@ csStatus cs_runRecordFailure(const csModel* m, const csData* d, const char* out_
   if (st == CS_OK) {
     st = cs_h5AttrDouble(f, "/", "steps", (double)cs_stepCount(d), err);
   }
-  cs_h5Close(f);
+  csError cerr;
+  csStatus cst = cs_h5CloseChecked(f, &cerr);
+  if (st == CS_OK && cst != CS_OK) {
+    st = cst;
+    if (err) {
+      *err = cerr;
+    }
+  }
   return st;
 }

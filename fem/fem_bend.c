@@ -142,8 +142,13 @@ static csStatus stageSetup(Run* r, csError* err) {
   r->w.s_pp = calloc(r->ns, sizeof(double));
   r->w.s_tmp = calloc(r->ns, sizeof(double));
   r->w.s_row = calloc(r->ns, sizeof(double));
-  if (!r->w.data || !r->w.s_conv || !r->w.s_prev || !r->w.s_pp || !r->w.s_tmp || !r->w.s_row) {
+  if (!r->w.data) {
     return err && err->status ? err->status : CS_ERR_MEMORY;
+  }
+  if (!r->w.s_conv || !r->w.s_prev || !r->w.s_pp || !r->w.s_tmp || !r->w.s_row) {
+    /* found by the fault suite: this failure came back with an empty message */
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_bend: out of memory for the state copies (5 x %zu "
+                       "values)", (size_t)r->ns);
   }
   r->info.ntet = r->w.fe.mesh->ntet, r->info.nnode = r->w.fe.mesh->nnode;
   r->info.nfibre = m->nfib, r->info.ndof = m->ndof;
@@ -576,6 +581,12 @@ csStatus csf_bend(const csrActuator* act, const csfBendOptions* o, csrBendCurve*
     st = csf_bendStageRow(&r, 0.0, ang, tot, tip, err);
   }
   while (st == CS_OK && r.p < o->p_max - eps) {
+    if (o->cancel && *o->cancel) {
+      /* between load steps: the rows so far are converged states */
+      st = cs_errorSet(err, CS_ERR_INTERRUPTED, "fem_bend: interrupted at p = %.6g MPa after %d "
+                       "load steps (%zu rows kept)", r.p, r.info.n_steps, out->m);
+      break;
+    }
     const double t_step = csf_wallTime();
     double target = r.p;
     int iters = 0, cut = 0;

@@ -11,6 +11,8 @@
 #ifndef CS_FEM_BEND_H
 #define CS_FEM_BEND_H
 
+#include <signal.h>
+
 #include "core_status.h"
 #include "fem_actuator.h"
 #include "fem_measure.h"
@@ -188,6 +190,9 @@ typedef struct csfBendOptions_ {
   csfBendProgress progress; /* called after each converged step (NULL = none) */
   void* progress_user;
   csfBendInfo* info;     /* optional summary output */
+  const volatile sig_atomic_t* cancel; /* NULL, or a flag the caller sets (a signal handler):
+                          * the sweep then ends after the load step in progress and returns
+                          * CS_ERR_INTERRUPTED naming the pressure; `out` keeps its rows */
 } csfBendOptions;
 
 /* Defaults: csf_actuatorSpecDefault (Omega1 & Omega2 of all segments, l_soft 4, fibres), p_max

@@ -34,6 +34,7 @@
  * gave EI 856-6180 N mm^2 and EA -1731 N, where the straight leg gives 2900-3700 and 150-180. */
 #include "fem_calibration.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -474,6 +475,7 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
   o.newton_rtol = s->newton_rtol;
   o.progress = s->progress;
   o.progress_user = s->progress_user;
+  o.cancel = s->cancel;
   if (c->probes) {
     for (int k = 0; k < NPROBE_P; k++) {
       if (kProbeP[k] <= p_max + 1e-12) {
@@ -504,7 +506,14 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
     if (st == CS_OK) {
       st = writeCase(f, act, c, s, &rec, &info, csf_wallTime() - t0, err);
     }
-    cs_h5Close(f);
+    csError cerr;
+    csStatus cst = cs_h5CloseChecked(f, &cerr);
+    if (st == CS_OK && cst != CS_OK) {
+      st = cst;
+      if (err) {
+        *err = cerr;
+      }
+    }
   }
   csr_bendCurveFree(&bc);
   free(rec.row);
@@ -722,9 +731,11 @@ csStatus csf_calibrationMerge(const char* const* paths, int n, const char* out, 
       }
     }
   }
+  errno = 0;
   hid_t dst = st == CS_OK ? H5Fcreate(out, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT) : -1;
   if (st == CS_OK && dst < 0) {
-    st = cs_errorSet(err, CS_ERR_IO, "%s: cannot create the calibration table", out);
+    st = cs_errorSet(err, CS_ERR_IO, "%s: cannot create the calibration table: %s", out,
+                     errno ? strerror(errno) : "HDF5 refused");
   }
   if (st == CS_OK && copyRootAttrs(src[0], dst) != 0) {
     st = cs_errorSet(err, CS_ERR_IO, "%s: cannot copy the root attributes", out);

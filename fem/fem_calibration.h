@@ -93,6 +93,9 @@ typedef struct csfCalSettings_ {
   const char* vtu_path;  /* the deformed leg at the case's last state (ParaView), NULL = none */
   csfBendProgress progress; /* per converged step (NULL = none) */
   void* progress_user;
+  const volatile sig_atomic_t* cancel; /* NULL, or a signal flag: the case's sweep ends after
+                                          the load step in progress (csfBendOptions.cancel) and
+                                          no case file is written */
 } csfCalSettings;
 
 csfCalSettings csf_calibrationDefault(void);

@@ -13,11 +13,15 @@
  * group the calibration's rules use) map onto itself, so turned and mirrored patterns are exact
  * images of each other up to the fibres and round-off. (A quarter meshed with periodic cut
  * faces, gmsh's Periodic Surface, gave the quarter turns only.) */
+#include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 
+#include "core_text.h"
 #include "fem_mesh.h"
 
 /* the script's common head: kernel, tolerance, sizes, element order */
@@ -44,7 +48,8 @@ static csStatus geoOpen(const csrActuator* act, double l_soft, const char* path,
   }
   *f = fopen(path, "w");
   if (!*f) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write gmsh script", path);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write the gmsh script: %s", path,
+                       strerror(errno));
   }
   geoHead(*f, act, l_soft, what);
   return CS_OK;
@@ -52,11 +57,7 @@ static csStatus geoOpen(const csrActuator* act, double l_soft, const char* path,
 
 
 static csStatus geoClose(FILE* f, const char* path, csError* err) {
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: write failed", path);
-  }
-  return CS_OK;
+  return csu_writeClose(f, path, "the gmsh script", err);
 }
 
 
@@ -185,6 +186,42 @@ csStatus csf_meshWriteGeoEighth(const csrActuator* act, double l_soft, const cha
 }
 
 
+/* 1 (err filled) when gmsh's output `msh` is missing or does not end with an "$End..." line */
+static int mshIncomplete(const char* msh, csError* err) {
+  FILE* f = fopen(msh, "rb");
+  if (!f) {
+    cs_errorSet(err, CS_ERR_IO, "fem_mesh: gmsh wrote no mesh file %s: %s", msh, strerror(errno));
+    return 1;
+  }
+  char tail[64] = "";
+  long size = -1;
+  if (fseek(f, 0, SEEK_END) == 0) {
+    size = ftell(f);
+    long back = size < (long)sizeof tail - 1 ? size : (long)sizeof tail - 1;
+    if (size > 0 && fseek(f, -back, SEEK_END) == 0) {
+      size_t n = fread(tail, 1, (size_t)back, f);
+      tail[n] = '\0';
+    }
+  }
+  fclose(f);
+  /* the last line (trailing line breaks dropped) */
+  size_t n = strlen(tail);
+  while (n > 0 && (tail[n - 1] == '\n' || tail[n - 1] == '\r')) {
+    tail[--n] = '\0';
+  }
+  const char* last = strrchr(tail, '\n');
+  last = last ? last + 1 : tail;
+  if (!strncmp(last, "$End", 4)) {
+    return 0;
+  }
+  char space[96];
+  csu_freeSpace(msh, space, sizeof space);
+  cs_errorSet(err, CS_ERR_IO, "fem_mesh: gmsh's mesh file %s is incomplete (%ld bytes, it ends "
+              "inside a section): gmsh could not write it (%s)", msh, size, space);
+  return 1;
+}
+
+
 csfMesh* csf_meshGmsh(const char* geo, const char* stem, csError* err) {
   char msh[1024], log[1024], cmd[4096];
   if (strchr(stem, '\'') || strchr(geo, '\'')) {
@@ -200,11 +237,26 @@ csfMesh* csf_meshGmsh(const char* geo, const char* stem, csError* err) {
   snprintf(cmd, sizeof cmd, "'%s' '%s' -3 -order 2 -format msh22 -nt 1 -o '%s' > '%s' 2>&1", prog,
            geo, msh, log);
   int rc = system(cmd);
+  if (rc != -1 && WIFSIGNALED(rc) && (WTERMSIG(rc) == SIGINT || WTERMSIG(rc) == SIGTERM)) {
+    /* Ctrl-C reaches gmsh too (the process group); system() ignored it here meanwhile */
+    cs_errorSet(err, CS_ERR_INTERRUPTED, "fem_mesh: gmsh was interrupted (signal %d) meshing %s",
+                WTERMSIG(rc), geo);
+    return NULL;
+  }
   if (rc != 0) {
+    /* gmsh (or the shell) cannot write its log or mesh on a full disk either: the free space */
+    char space[96];
+    csu_freeSpace(msh, space, sizeof space);
     cs_errorSet(err, CS_ERR_EXTERNAL,
-                "fem_mesh: gmsh failed (status %d) meshing %s; see %s (is gmsh installed? "
-                "tools/install-deps.sh)",
-                rc, geo, log);
+                "fem_mesh: gmsh failed (%s %d) meshing %s; see %s (is gmsh installed? "
+                "tools/install-deps.sh; %s)",
+                rc != -1 && WIFEXITED(rc) ? "exit status" : "status",
+                rc != -1 && WIFEXITED(rc) ? WEXITSTATUS(rc) : rc, geo, log, space);
+    return NULL;
+  }
+  /* gmsh exits 0 even when it could not write its output (a full disk): a file that does not
+   * end with a section's $End line is gmsh's write failing, not a bad mesh */
+  if (mshIncomplete(msh, err)) {
     return NULL;
   }
   csfMesh* m = csf_meshReadMsh(msh, err);

@@ -1,9 +1,14 @@
 /* fem_output.c: VTU writer and ABAQUS/CalculiX deck export (see fem_output.h). */
 #include "fem_output.h"
 
+#include <errno.h>
+#include <string.h>
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+#include "core_text.h"
 
 #define VTK_QUADRATIC_TETRA 24
 
@@ -11,7 +16,7 @@
 csStatus csf_writeVtu(const csfModel* m, const csfData* d, const char* path, csError* err) {
   FILE* f = fopen(path, "w");
   if (!f) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write VTU file", path);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write VTU file: %s", path, strerror(errno));
   }
   const csfMesh* me = m->mesh;
   fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
@@ -67,11 +72,7 @@ csStatus csf_writeVtu(const csfModel* m, const csfData* d, const char* path, csE
     fprintf(f, "%.9g\n", d->vratio[e]);
   }
   fprintf(f, "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: write failed", path);
-  }
-  return CS_OK;
+  return csu_writeClose(f, path, "the deformed mesh (VTU)", err);
 }
 
 
@@ -100,7 +101,7 @@ csStatus csf_writeInp(const csfModel* m, const csrActuator* act, double pressure
                       const char* path, csError* err) {
   FILE* f = fopen(path, "w");
   if (!f) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write input deck", path);
+    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write input deck: %s", path, strerror(errno));
   }
   const csfMesh* me = m->mesh;
   fprintf(f, "*HEADING\ncrawlsim 3D-FRSPA actuator '%s' (units mm, N, MPa, t/mm^3, s)\n",
@@ -188,9 +189,5 @@ csStatus csf_writeInp(const csfModel* m, const csrActuator* act, double pressure
     }
   }
   fprintf(f, "*NODE FILE\nU\n*EL FILE\nS\n*END STEP\n");
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: write failed", path);
-  }
-  return CS_OK;
+  return csu_writeClose(f, path, "the solver deck (.inp)", err);
 }

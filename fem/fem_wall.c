@@ -192,7 +192,7 @@ csStatus csf_wallGap(const csfMesh* me, const double* u, int ntag, const int* ta
   double* ns = malloc((size_t)nf * 12 * sizeof *ns);    /* reference unit normals */
   if (!loc || !nl || !nn_ || !xs || !Xs || !ns) {
     free(loc), free(nl), free(nn_), free(xs), free(Xs), free(ns);
-    return cs_errorSet(err, CS_ERR_MEMORY, "csf_wallGap: %d faces", nf);
+    return cs_errorSet(err, CS_ERR_MEMORY, "csf_wallGap: out of memory for %d faces", nf);
   }
   for (int i = 0; i < me->nnode; i++) {
     loc[i] = -1;

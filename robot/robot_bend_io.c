@@ -33,12 +33,8 @@ int csr_fibreLawParse(const char* name) {
 }
 
 
-csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBendCurve* bc,
-                              const csrBendMeta* meta, csError* err) {
-  if (!f || !act || !bc || !meta || !meta->model || !meta->chambers) {
-    return cs_errorSet(err, CS_ERR_ARG, "bend output: NULL argument");
-  }
-  /* datasets: (M), (M x 3), (M), (M x 3) */
+/* the curve's datasets (M), (M x 3), (M), (M x 3), replacing earlier ones, and `samples` */
+static csStatus writeRows(csH5File* f, const csrBendCurve* bc, csError* err) {
   const size_t d1[1] = {bc->m}, d3[2] = {bc->m, 3};
   csStatus st = cs_h5WriteDoubles(f, "/pressure", 1, d1, bc->pressure, err);
   if (st == CS_OK) {
@@ -50,6 +46,28 @@ csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBend
   if (st == CS_OK) {
     st = cs_h5WriteDoubles(f, "/tip_position", 2, d3, bc->tip, err);
   }
+  if (st == CS_OK) {
+    st = cs_h5AttrDouble(f, "/", "samples", (double)bc->m, err);
+  }
+  return st;
+}
+
+
+csStatus csr_bendCurveFlushH5(csH5File* f, const csrBendCurve* bc, csError* err) {
+  if (!f || !bc) {
+    return cs_errorSet(err, CS_ERR_ARG, "bend output: NULL argument");
+  }
+  csStatus st = writeRows(f, bc, err);
+  return st == CS_OK ? cs_h5Flush(f, err) : st;
+}
+
+
+csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBendCurve* bc,
+                              const csrBendMeta* meta, csError* err) {
+  if (!f || !act || !bc || !meta || !meta->model || !meta->chambers) {
+    return cs_errorSet(err, CS_ERR_ARG, "bend output: NULL argument");
+  }
+  csStatus st = writeRows(f, bc, err);
   /* root attributes */
   const char* strings[][2] = {{"model", meta->model},
                               {"actuator", act->name},

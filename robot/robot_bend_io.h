@@ -56,6 +56,11 @@ typedef struct csrBendMeta_ {
                              written as fe_mesh_symmetric for model "fe" */
 } csrBendMeta;
 
+/* Write the rows so far (the four datasets, replacing earlier ones, and the root attribute
+ * `samples` = m) and flush the file to disk: a sweep that calls this after each converged step
+ * leaves, whatever stops it, a file holding every row up to the last call. */
+csStatus csr_bendCurveFlushH5(csH5File* f, const csrBendCurve* bc, csError* err);
+
 /* Write the bend datasets and root attributes into `f` (created by cs_h5Create). */
 csStatus csr_bendCurveWriteH5(csH5File* f, const csrActuator* act, const csrBendCurve* bc,
                               const csrBendMeta* meta, csError* err);

@@ -662,6 +662,13 @@ csStatus csr_calReportWrite(const csrCalModel* m, const csrCalTable* t, const ch
       if (st == CS_OK) st = cs_h5WriteDoubles(f, d, 1, dn, m->kv[q][s], err);
     }
   }
-  cs_h5Close(f);
+  csError cerr;
+  csStatus cst = cs_h5CloseChecked(f, &cerr);
+  if (st == CS_OK && cst != CS_OK) {
+    st = cst;
+    if (err) {
+      *err = cerr;
+    }
+  }
   return st;
 }

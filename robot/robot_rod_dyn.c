@@ -256,7 +256,8 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
       CVodeSetMaxNumSteps(d->cvode, p->max_steps) != CV_SUCCESS ||
       CVodeSetMaxOrd(d->cvode, p->max_order) != CV_SUCCESS) {
     csr_rodDataDestroy(d);
-    cs_errorSet(err, CS_ERR_SOLVER, "rod: cannot set up CVODE (BDF, reduced linear solver)");
+    cs_errorSet(err, CS_ERR_SOLVER, "rod: cannot set up CVODE (BDF, reduced linear solver): "
+                "out of memory, or a setting CVODE refused");
     return NULL;
   }
 #if SUNDIALS_VERSION_MAJOR < 7

@@ -35,6 +35,7 @@
 #include "cs_commands.h"
 #include "cmd_bend.h"
 #include "cs_paths.h"
+#include "cs_signal.h"
 #include "robot_actuator.h"
 #include "robot_analytic.h"
 #include "robot_bend_io.h"
@@ -613,6 +614,9 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
 
 
 int csx_cmdBend(int argc, char** argv) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
   BendRun run;
   int rc = parseArgs(argc, argv, &run);
   if (rc != 0) {
@@ -700,10 +704,28 @@ int csx_cmdBend(int argc, char** argv) {
     if (i == nstep + 1 && p - (double)nstep * run.p_step <= kSweepEps * run.p_max) {
       break; /* p-max was on the grid */
     }
+    if (*csx_signalFlag()) {
+      st = cs_errorSet(&err, CS_ERR_INTERRUPTED, "interrupted at p = %.6g MPa (%zu rows kept)",
+                       bc.m > 0 ? bc.pressure[bc.m - 1] : 0.0, bc.m);
+      break;
+    }
     double ang[CSR_NSEG], tip[3];
     st = eval(&run, p, ang, tip, &err);
+    if (st != CS_OK) {
+      /* where: the pressure, the sweep's step and the discretisation; the rows so far stay */
+      char cause[sizeof err.msg];
+      memcpy(cause, err.msg, sizeof cause);
+      cs_errorSet(&err, st, "%s model failed at p = %.6g MPa (sweep step %zu of %zu, from %.6g "
+                  "MPa; %d elements; the %zu rows before it are kept): %.300s",
+                  kModelNames[run.model], p, i, nstep, bc.m > 0 ? bc.pressure[bc.m - 1] : 0.0,
+                  (int)run.n_elements_soft, bc.m, cause);
+    }
     if (st == CS_OK) {
       st = csr_bendCurvePush(&bc, p, ang, tip, &err);
+    }
+    if (st == CS_OK) {
+      /* the file on disk holds every row so far, whatever stops the sweep */
+      st = csr_bendCurveFlushH5(f, &bc, &err);
     }
   }
   double p_until = NAN, p_searched = NAN;
@@ -738,13 +760,23 @@ int csx_cmdBend(int argc, char** argv) {
                            &err);
     }
   }
-  cs_h5Close(f);
+  /* whatever happened, the file keeps the rows so far and its status says how it ended */
+  if (st != CS_OK) {
+    cs_h5AttrString(f, "/", "model", kModelNames[run.model], NULL);
+    csr_bendCurveFlushH5(f, &bc, NULL); /* fails at once if the disk refused already */
+  }
+  cs_h5AttrString(f, "/", "status", st == CS_OK ? "ok" : err.msg, NULL);
+  csError cerr;
+  csStatus cst = cs_h5CloseChecked(f, &cerr);
+  if (st == CS_OK && cst != CS_OK) {
+    st = cst;
+    err = cerr;
+  }
   if (st != CS_OK) {
     fprintf(stderr, "crawlsim bend: %s\n", err.msg);
-    remove(run.out);
     csr_bendCurveFree(&bc);
     rodTeardown(&run);
-    return 1;
+    return st != CS_ERR_INTERRUPTED ? 1 : csx_signalExitCode() ? csx_signalExitCode() : 130;
   }
 
   /* the table */

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cmd_bend.h"
+#include "cs_signal.h"
 #include "core_clock.h"
 #include "core_h5.h"
 #include "fem_actuator.h"
@@ -29,6 +30,9 @@
 typedef struct {
   double t_last; /* wall time of the last line printed, s */
   long iters;    /* Newton iterations since then */
+  csH5File* f;   /* the output: the rows so far are flushed after every converged step */
+  const csrBendCurve* bc;
+  csError flush_err; /* the first flush that failed (then no more are tried) */
 } FeReport;
 
 static const double kHeartbeatS = 50.0;
@@ -60,6 +64,10 @@ static void feProgress(void* user, const csfBendStep* st) {
   FeReport* rep = user;
   rep->t_last = csu_wallSeconds();
   rep->iters = 0;
+  if (rep->f && rep->bc && rep->flush_err.status == CS_OK) {
+    /* the file on disk holds every row so far, whatever stops the sweep (core_h5.h) */
+    csr_bendCurveFlushH5(rep->f, rep->bc, &rep->flush_err);
+  }
   if (st->note) {
     fprintf(stderr, "  fe: %s\n", st->note); /* a bifurcation and the branch switched to */
   }
@@ -180,7 +188,8 @@ static csStatus feWallAttrs(csH5File* f, const csfBendInfo* info, csError* err) 
 }
 
 
-static csStatus feSweep(BendRun* run, csrBendCurve* bc, csfBendInfo* infop, csError* err) {
+static csStatus feSweep(BendRun* run, csrBendCurve* bc, csH5File* f, csfBendInfo* infop,
+                        csError* err) {
   csfBendOptions o = csf_bendDefault();
   /* chamber j of every segment at ratio[j] x p (--chambers: 1 or 0; --pressures: R_j) */
   for (int s = 0; s < CSR_NSEG; s++) {
@@ -225,14 +234,24 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csfBendInfo* infop, csEr
   o.spec.work_stem = stem;
   o.vtu_path = vtu;
   o.inp_path = inp;
-  FeReport report = {csu_wallSeconds(), 0};
+  FeReport report = {csu_wallSeconds(), 0, f, bc, {CS_OK, ""}};
+  o.cancel = csx_signalFlag();
   o.progress = feProgress;
   o.progress_user = &report;
   o.newton_monitor = feHeartbeat;
   csfBendInfo info;
   memset(&info, 0, sizeof info);
   o.info = &info;
+  if (isfinite(o.until_angle)) {
+    /* the sweep's own bound: an angle the actuator never reaches ends at p-max, not never */
+    fprintf(stderr, "crawlsim bend: fe: --until-angle %g deg: the sweep stops at --p-max %g MPa "
+            "(its limit) if the angle is not reached first\n", o.until_angle, o.p_max);
+  }
   st = csf_bend(&run->act, &o, bc, err);
+  if (st == CS_OK && report.flush_err.status != CS_OK) {
+    *err = report.flush_err; /* the disk refused a row: say so, not the solver's outcome */
+    st = err->status;
+  }
   if (st == CS_OK) {
     run->mesh_size = o.spec.mesh_size;
     run->fibre_size = o.spec.fibres ? csf_actuatorFibreSize(&o.spec) : NAN;
@@ -313,7 +332,7 @@ int csx_bendFe(BendRun* run) {
   csfBendInfo info;
   memset(&info, 0, sizeof info);
   if (fst == CS_OK) {
-    fst = feSweep(run, &fbc, &info, &ferr);
+    fst = feSweep(run, &fbc, ff, &info, &ferr);
   }
   if (fst == CS_OK) {
     csrBendMeta meta = {"fe",
@@ -337,14 +356,27 @@ int csx_bendFe(BendRun* run) {
       fst = feWallAttrs(ff, &info, &ferr);
     }
   }
-  cs_h5Close(ff);
+  if (ff) {
+    /* whatever happened, the file keeps the rows so far and its status says how it ended */
+    char status[CS_H5_STATUS_SIZE];
+    snprintf(status, sizeof status, "%s", fst == CS_OK ? "ok" : ferr.msg);
+    if (fst != CS_OK) {
+      cs_h5AttrString(ff, "/", "model", "fe", NULL);
+      csr_bendCurveFlushH5(ff, &fbc, NULL); /* fails at once if the disk refused already */
+    }
+    cs_h5AttrString(ff, "/", "status", status, NULL);
+    csError cerr;
+    csStatus cst = cs_h5CloseChecked(ff, &cerr);
+    if (fst == CS_OK && cst != CS_OK) {
+      fst = cst;
+      ferr = cerr;
+    }
+  }
   if (fst != CS_OK) {
     fprintf(stderr, "crawlsim bend: %s\n", ferr.msg);
-    if (ff) {
-      remove(run->out);
-    }
     csr_bendCurveFree(&fbc);
-    return 1;
+    /* interrupted: 128 + the signal (130 when only gmsh saw it, system() ignoring SIGINT) */
+    return fst != CS_ERR_INTERRUPTED ? 1 : csx_signalExitCode() ? csx_signalExitCode() : 130;
   }
   printf("crawlsim bend: model fe, actuator %s, chambers %s in II1-II3\n", run->act.name,
          run->chambers);

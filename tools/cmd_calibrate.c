@@ -23,6 +23,7 @@
 #include "core_clock.h"
 #include "core_math.h"
 #include "cs_commands.h"
+#include "cs_signal.h"
 #include "fem_calibration.h"
 #include "robot_actuator.h"
 #include "robot_bend_io.h"
@@ -121,6 +122,9 @@ static int reportModel(csrCalibration* cal, const char* path, const char* model_
 
 
 int csx_cmdCalibrate(int argc, char** argv) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
   const char* out = "calibration_fe.h5";
   const char* dir = "calibration_cases";
   const char* actname = "leg";
@@ -304,11 +308,15 @@ int csx_cmdCalibrate(int argc, char** argv) {
     cs.vtu_path = vtu;
     cs.progress = progress;
     cs.progress_user = (void*)cases[k].name;
+    cs.cancel = csx_signalFlag(); /* SIGINT/SIGTERM: this case ends, no case file; resumable */
     const double t0 = csu_wallSeconds();
     if (csf_calibrationRunCase(&act, cases + k, &cs, part, &err) != CS_OK) {
-      fprintf(stderr, "crawlsim calibrate: case %s: %s\n", cases[k].name, err.msg);
+      fprintf(stderr, "crawlsim calibrate: case %s: %s%s\n", cases[k].name, err.msg,
+              err.status == CS_ERR_INTERRUPTED ? " (run again to continue: finished cases are "
+              "kept)" : "");
       remove(part);
-      return 1;
+      return err.status != CS_ERR_INTERRUPTED ? 1
+             : csx_signalExitCode() ? csx_signalExitCode() : 130;
     }
     if (rename(part, path) != 0) {
       fprintf(stderr, "crawlsim calibrate: %s: cannot rename to %s: %s\n", part, path,

@@ -19,6 +19,7 @@
 
 #include "cs_commands.h"
 #include "cs_paths.h"
+#include "cs_signal.h"
 #include "robot_calibration.h"
 #include "robot_levels.h"
 #include "sim_model.h"
@@ -125,6 +126,9 @@ static csStatus checkWritable(const char* path, csError* err) {
 
 
 int csx_cmdRun(int argc, char** argv) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
   const char* scene = "flat-road";
   const char* gait = NULL;
   const char* terrain = NULL;
@@ -430,6 +434,7 @@ int csx_cmdRun(int argc, char** argv) {
   }
 
   m.opt.progress = !quiet;
+  m.opt.cancel = csx_signalFlag(); /* SIGINT/SIGTERM: status "interrupted at t", exit 128+sig */
   /* --set: the legs' actuator of a design study; their stiffness and mass follow from it */
   for (int k = 0; k < nset; k++) {
     if (csr_actuatorSetString(&m.robot.leg, sets[k], &err) != CS_OK) goto done;
@@ -569,6 +574,10 @@ int csx_cmdRun(int argc, char** argv) {
     printf("verdict (%s, %s legs): %s: x = %.1f mm, z = %.1f mm in %.2f s, tilt %.1f deg\n",
            cs_conditionsName(m.conditions), cs_modelLegLevel(&m), how, x[0], x[2], cs_time(d),
            tilt);
+  }
+  if (st == CS_ERR_INTERRUPTED) {
+    rc = csx_signalExitCode() ? csx_signalExitCode() : 1;
+    goto done;
   }
   if (st != CS_OK) goto done;
   rc = 0;

@@ -18,6 +18,7 @@
 
 #include "core_clock.h"
 #include "cs_commands.h"
+#include "cs_signal.h"
 #include "study_case.h"
 #include "study_file.h"
 #include "study_sched.h"
@@ -55,6 +56,9 @@ static void progressLine(void* user, int done, int total, int index, const csxCa
 
 
 int csx_cmdStudy(int argc, char** argv) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
   const char* file = NULL;
   const char* out = NULL;
   const char* dir = NULL;
@@ -247,8 +251,8 @@ int csx_cmdStudy(int argc, char** argv) {
   Progress prog = {pout ? pout : stderr, s};
   int nfailed = 0;
   csStatus st = csx_studyRunPending(s, pending + 2, head[1], dir, &(csxStudyCommands){{
-      csx_cmdBend, csx_cmdRun, csx_cmdCalibrate, csx_cmdGaitDesign}}, kind, &mpi, progressLine,
-      &prog, &nfailed, &err);
+      csx_cmdBend, csx_cmdRun, csx_cmdCalibrate, csx_cmdGaitDesign}, csx_signalFlag()}, kind,
+      &mpi, progressLine, &prog, &nfailed, &err);
   if (st != CS_OK) {
     fprintf(stderr, "crawlsim study: rank %d: %s\n", mpi.rank, err.msg);
   }
@@ -279,6 +283,9 @@ int csx_cmdStudy(int argc, char** argv) {
               "see crawlsim study %s --list\n", bad, bad > 1 ? "s" : "", file);
     }
     rc = bad || st != CS_OK ? 1 : 0;
+    if (csx_signalExitCode()) {
+      rc = csx_signalExitCode(); /* interrupted: 128 + the signal */
+    }
   } else {
     rc = st != CS_OK ? 1 : 0;
   }

@@ -67,7 +67,7 @@ HARNESSES=(
   "levels|robot/levels.csv|-|2048|30|$RUNS|"
 )
 
-# exit 3 when the fuzzers do not build (tools/test-all.sh then skips the fuzz run, loudly)
+# exit 3 when the fuzzers do not build (tools/test-all.sh then fails)
 build() {
   echo "== fuzz build ($BUILD: $CC_FUZZ, libFuzzer + ASan + UBSan) =="
   if ! CC=$CC_FUZZ cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCS_BUILD_TESTS=OFF \

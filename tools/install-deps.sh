@@ -15,6 +15,7 @@ PKGS=(
   libsuitesparse-dev                        # fem: KLU fallback solver (LGPL)
   libopenmpi-dev openmpi-bin                # crawlsim study under mpirun (CS_WITH_MPI; already pulled in by libsundials-dev)
   clang-14 libclang-rt-14-dev               # fuzzing: libFuzzer + ASan/UBSan runtimes (tests/fuzz)
+  libomp-14-dev                             # fuzzing: clang-14's OpenMP, which SUNDIALS' CMake config asks for (OpenMP_C)
   llvm-14                                   # fuzzing: llvm-cov/llvm-profdata, the long run's coverage
 )
 

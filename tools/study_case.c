@@ -23,12 +23,25 @@
 #include <unistd.h>
 
 #include "core_clock.h"
+#include "core_text.h"
 #include "study_case.h"
 
 #define LOG_KEEP_BYTES (1 << 20) /* a step's log kept in the case file: its last 1 MiB */
 #define STRING_SIZE_NAME CSX_STUDY_NAME_SIZE
 #define STRING_SIZE_STATUS 16
 #define VERSION "0.1.0" /* = CSR_OUTPUT_VERSION (robot_bend_io.h) and project(VERSION) */
+
+/* a case or study file (`part`) that HDF5 could not create or write: removed, and the cause
+ * named (errno from the write HDF5 made, and the free space: HDF5 hides the first behind its
+ * own error stack) */
+static csStatus writeFailed(const char* part, const char* what, csError* err) {
+  int e = errno;
+  char space[96];
+  csu_freeSpace(part, space, sizeof space);
+  remove(part);
+  return cs_errorSet(err, CS_ERR_IO, "%s: cannot %s: %s (%s)", part, what,
+                     e ? strerror(e) : "HDF5 write failed", space);
+}
 
 /* a step's output file in the work directory, and what the runner adds to its words */
 static const char* const kOutName[CSX_STUDY_NCMD] = {"bend.h5", "run.h5", "calibration.h5",
@@ -420,9 +433,10 @@ static csStatus writeCaseFile(const csxStudy* s, int i, const char* dir, const c
     return cs_errorSet(err, CS_ERR_RANGE, "%s: case file path too long", dir);
   }
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  errno = 0;
   hid_t f = H5Fcreate(part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (f < 0) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot create the case file", part);
+    return writeFailed(part, "create the case file", err);
   }
   /* the steps' outputs and logs */
   int ok = 1;
@@ -479,9 +493,9 @@ static csStatus writeCaseFile(const csxStudy* s, int i, const char* dir, const c
   if (ok && !isnan(r->t_final)) ok = attrDoubles(f, "t_final_s", &r->t_final, 1);
   if (ok && !isnan(r->x_final[0])) ok = attrDoubles(f, "x_final_mm", r->x_final, 3);
   if (ok && r->verdict[0]) ok = attrString(f, "verdict", r->verdict);
+  errno = ok ? 0 : errno;
   if (H5Fclose(f) < 0 || !ok) {
-    remove(part);
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write the case file", part);
+    return writeFailed(part, "write the case file", err);
   }
   if (rename(part, path) != 0) {
     return cs_errorSet(err, CS_ERR_IO, "%s: cannot rename to %s: %s", part, path,
@@ -503,6 +517,9 @@ csStatus csx_studyRunCase(const csxStudy* s, int i, const char* dir, const csxSt
   csStatus st = csx_studyMakeDir(work, err);
   if (st != CS_OK) {
     return st;
+  }
+  if (cmd->cancel && *cmd->cancel) {
+    return cs_errorSet(err, CS_ERR_INTERRUPTED, "case %s: not started (interrupted)", c->name);
   }
   const double t0 = csu_wallSeconds();
   char message[CS_ERROR_MSG_SIZE] = "";
@@ -557,6 +574,11 @@ csStatus csx_studyRunCase(const csxStudy* s, int i, const char* dir, const csxSt
     free(store);
     if (rc < 0) {
       return err->status != CS_OK ? err->status : CS_ERR_IO;
+    }
+    if (cmd->cancel && *cmd->cancel) {
+      /* a signal ended the step: its result is no result; no case file, the case stays pending */
+      return cs_errorSet(err, CS_ERR_INTERRUPTED, "case %s: interrupted in %s (exit %d); it "
+                         "runs again with --resume", c->name, csx_studyCmdName(sp->cmd), rc);
     }
     nran++;
     if (rc == 0) {
@@ -678,13 +700,14 @@ csStatus csx_studyMerge(const csxStudy* s, const char* dir, const char* out,
   double *wall = col, *pu = col + n, *ang = col + 2 * n, *pend = col + 3 * n;
   double *tfin = col + 4 * n, *rank = col + 5 * n, *xf = col + 6 * n; /* xf: n x 3 */
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  errno = 0;
   hid_t f = H5Fcreate(part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (f < 0) {
     free(names);
     free(status);
     free(sums);
     free(col);
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot create the study file", part);
+    return writeFailed(part, "create the study file", err);
   }
   hid_t cases = H5Gcreate2(f, "cases", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   hid_t ocpy = H5Pcreate(H5P_OBJECT_COPY);
@@ -760,8 +783,7 @@ csStatus csx_studyMerge(const csxStudy* s, const char* dir, const char* out,
   free(sums);
   free(col);
   if (H5Fclose(f) < 0 || !ok) {
-    remove(part);
-    return cs_errorSet(err, CS_ERR_IO, "%s: cannot write the study file", part);
+    return writeFailed(part, "write the study file", err);
   }
   if (rename(part, out) != 0) {
     return cs_errorSet(err, CS_ERR_IO, "%s: cannot rename to %s: %s", part, out,

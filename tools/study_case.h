@@ -31,6 +31,7 @@
 #ifndef CS_TOOLS_STUDY_CASE_H
 #define CS_TOOLS_STUDY_CASE_H
 
+#include <signal.h>
 #include "core_status.h"
 #include "study_file.h"
 
@@ -48,6 +49,10 @@ typedef int (*csxCommandFn)(int argc, char** argv);
 /* The commands a step can run, indexed by csxStudyCmd (NULL: not available in this build). */
 typedef struct csxStudyCommands_ {
   csxCommandFn fn[CSX_STUDY_NCMD];
+  const volatile sig_atomic_t* cancel; /* NULL, or the application's signal flag: once set, a
+                                          case whose command was interrupted writes no case file
+                                          (it stays pending, so --resume runs it again) and no
+                                          further case starts (CS_ERR_INTERRUPTED) */
 } csxStudyCommands;
 
 /* What a case file says about a case. */

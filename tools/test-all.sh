@@ -3,7 +3,9 @@
 #   1. a RelWithDebInfo build with warnings as errors, every ctest test;
 #   2. an ASan+UBSan build, every test not labelled `slow`;
 #   3. a bounded fuzz run (tools/fuzz-long.sh --ci: each libFuzzer harness of tests/fuzz for
-#      FUZZ_SECONDS, default 12 s, about 1.5 min in all), only when the fuzzers build (clang-14).
+#      FUZZ_SECONDS, default 12 s, about 1.5 min in all). Fuzzers that do not build are a
+#      failure, not a skip: install-deps.sh installs all they need (clang-14, its sanitizer
+#      runtimes, libomp-14-dev), so a machine where they do not build is a broken check.
 # Exit status 0 only if all pass. Used by .ci/run. Build trees: build-test/, build-asan/,
 # build-fuzz/.
 set -euo pipefail
@@ -27,7 +29,10 @@ echo "== bounded fuzz run (libFuzzer + ASan + UBSan, tests/fuzz) =="
 fuzz_rc=0
 JOBS=$JOBS bash tools/fuzz-long.sh --ci "${FUZZ_SECONDS:-12}" || fuzz_rc=$?
 if [ "$fuzz_rc" -eq 3 ]; then
-  echo "== fuzz run SKIPPED: the fuzzers do not build here (see above) =="
+  echo "== FAILED: the fuzzers do not build here (see above); tools/install-deps.sh should have" \
+       "installed everything they need: a check that cannot run is a failed check ==" >&2
+  exit 3
 elif [ "$fuzz_rc" -ne 0 ]; then
   exit "$fuzz_rc"
 fi
+echo "== all checks passed (release, sanitizers, fuzz) =="

@@ -7,6 +7,9 @@
  *    crawl run) runs sequentially into one HDF5 file with one progress line per case;
  *  - a second run without --resume is refused; with --resume it computes nothing; a missing or
  *    stale case file (killed case, edited case) is computed again, and only that one;
+ *  - a study stopped by SIGINT (to its process group, as Ctrl-C), SIGTERM or kill -9 in the
+ *    middle and then resumed gives the same results as the uninterrupted run (an interrupted
+ *    case writes no case file, so it runs again; SIGINT/SIGTERM exit 128 + signal);
  *  - under `mpirun -n 2` the same study gives the same results, with the cases spread over
  *    ranks 0 and 1 (the MUMPS stub library also defines MPI_Comm_rank: both ranks would say 0
  *    if it were the one linked), for the dynamic and the static schedule.
@@ -15,8 +18,12 @@
  * runs do the same arithmetic (no parallel reductions; see sameFe for what is left). */
 #define _POSIX_C_SOURCE 200809L
 #include <hdf5.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "cs_cli.h"
 #include "cs_test.h"
@@ -304,6 +311,73 @@ static void runs_sequentially_then_resumes(void) {
 }
 
 
+/* start `crawlsim study small.study --out kill.h5` in its own process group, send `sig` after
+ * `delay_s` (to the group for SIGINT, as a terminal's Ctrl-C does), wait; returns the exit
+ * status as a shell reports it (128 + signal for a death by signal), or -1 if the study had
+ * finished before the signal */
+static int runAndSignal(int sig, double delay_s) {
+  pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);
+    /* as from a terminal: ctest itself may run with SIGINT ignored (a background job), which
+     * crawlsim would keep */
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    if (!freopen("kill.out", "w", stdout) || !freopen("kill.err", "w", stderr)) {
+      _exit(127);
+    }
+    execl(g_exe, g_exe, "study", "small.study", "--out", "kill.h5", (char*)NULL);
+    _exit(127);
+  }
+  if (pid < 0) {
+    return -2;
+  }
+  setpgid(pid, pid);
+  struct timespec ts = {(time_t)delay_s, (long)((delay_s - (time_t)delay_s) * 1e9)};
+  nanosleep(&ts, NULL);
+  int status = 0;
+  if (waitpid(pid, &status, WNOHANG) == pid) {
+    return -1;
+  }
+  if (sig == SIGINT) {
+    kill(-pid, sig);
+  } else {
+    kill(pid, sig);
+  }
+  waitpid(pid, &status, 0);
+  if (sig == SIGKILL) {
+    kill(-pid, SIGKILL); /* gmsh may outlive its parent */
+  }
+  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
+}
+
+
+static void interrupted_or_killed_then_resumed_gives_the_same_results(void) {
+  /* the study runs ~25 s (the FE case is most of it): the signals land in the analytic bends
+   * and the crawl run, in the FE bend, and in the FE calibration step */
+  static const int kSig[3] = {SIGINT, SIGTERM, SIGKILL};
+  static const double kDelay[3] = {1.0, 6.0, 14.0};
+  for (int k = 0; k < 3; k++) {
+    system("rm -rf kill_cases kill.h5");
+    int rc = runAndSignal(kSig[k], kDelay[k]);
+    if (rc == -1) {
+      fprintf(stderr, "test_study_cli: the study finished within %.0f s: signal %d not tested\n",
+              kDelay[k], kSig[k]);
+    } else {
+      CS_EXPECT(rc == 128 + kSig[k]);
+    }
+    csCliResult r;
+    cs_cliRun(g_exe, "study small.study --out kill.h5 --resume", "kill", &r);
+    CS_EXPECT(r.status == 1); /* the failing case, as in the uninterrupted run */
+    CS_EXPECT(strstr(r.out, "4 complete, 0 stopped, 1 failed, 0 missing") != NULL);
+    Results m;
+    CS_EXPECT(readResults("kill.h5", &m));
+    expectSameResults(&g_seq, &m);
+  }
+  system("rm -rf kill_cases kill.h5 kill.out kill.err");
+}
+
+
 static void mpirun_two_ranks_gives_the_same_results(void) {
   if (!strcmp(g_mpiexec, "none")) {
     fprintf(stderr, "test_study_cli: no MPI in this build: the mpirun case is skipped\n");
@@ -354,6 +428,7 @@ int main(int argc, char** argv) {
   setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
   CS_RUN(refuses_bad_study_files);
   CS_RUN(runs_sequentially_then_resumes);
+  CS_RUN(interrupted_or_killed_then_resumed_gives_the_same_results);
   CS_RUN(mpirun_two_ranks_gives_the_same_results);
   system("rm -rf seq_cases seq.h5 mpi_cases mpi.h5 small.study");
   return cs_testSummary();
