@@ -240,7 +240,11 @@ static csStatus readDataset(hid_t f, const char* path, const char* cname, const 
     n *= (size_t)want[i];
   }
   *out = malloc((n > 0 ? n : 1) * sizeof(double));
-  if (!*out || H5LTread_dataset_double(f, obj, *out) < 0) {
+  if (!*out) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "%s: case %s: out of memory for '%s' (%zu values)",
+                       path, cname, name, n);
+  }
+  if (H5LTread_dataset_double(f, obj, *out) < 0) {
     return cs_errorSet(err, CS_ERR_IO, "%s: case %s: cannot read '%s'", path, cname, name);
   }
   return CS_OK;
