@@ -24,12 +24,6 @@
 #include <omp.h>
 #endif
 
-/* Factorisations below this many flops (MUMPS' estimate from the analysis) run on one thread.
- * Measured on this 2-core machine: the baseline actuator at l_soft 4 (2.2e10 flops, LDL^T) factors
- * 1.3x faster on two threads, while the small meshes of the tests (test_fem_locking, < 1e9 flops)
- * ran 1.3x slower on two threads (thread start-up and spin-waiting dominate small fronts). */
-#define CSF_MT_MIN_FLOPS 5e9
-
 /* Relative residual an unpivoted LDL^T of an indefinite matrix must meet at a solve before it
  * is redone with pivoting: MUMPS's pivoted LDL^T reaches 1e-14..1e-10 on the FE tangents
  * (κ up to ~1e9), and a Newton direction 1e-8 off costs nothing; an unstable unpivoted
@@ -140,6 +134,7 @@ csfLinSolverOptions csf_linSolverDefault(void) {
   o.symmetric = 0;
   o.ordering = 7;
   o.threads = 0;
+  o.max_threads = 0;
   o.pivot_threshold = -1;
   return o;
 }
@@ -209,6 +204,8 @@ csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const i
       k++;
     }
   }
+  /* the initialisation and analysis run on the cap too (0: OpenMP's current count) */
+  s->nthreads = s->opt.threads > 0 ? s->opt.threads : s->opt.max_threads;
   s->id.job = MUMPS_JOB_INIT;
   s->id.par = 1;
   s->id.sym = s->opt.symmetric ? 2 : 0;
@@ -250,7 +247,8 @@ csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const i
   s->nthreads = s->opt.threads;
   if (s->nthreads <= 0) {
 #ifdef _OPENMP
-    s->nthreads = s->id.rinfog[0] < CSF_MT_MIN_FLOPS ? 1 : omp_get_max_threads();
+    const int most = s->opt.max_threads > 0 ? s->opt.max_threads : omp_get_max_threads();
+    s->nthreads = s->id.rinfog[0] < CSF_MT_MIN_FLOPS ? 1 : most;
 #else
     s->nthreads = 1;
 #endif
@@ -407,6 +405,11 @@ const char* csf_linSolverName(const csfLinSolver* s) {
     return "klu";
   }
   return s->opt.symmetric ? "mumps-ldlt" : "mumps-lu";
+}
+
+
+int csf_linSolverThreads(const csfLinSolver* s) {
+  return s->opt.kind == CSF_SOLVER_KLU ? 1 : s->nthreads;
 }
 
 

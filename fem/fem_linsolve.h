@@ -33,8 +33,9 @@ typedef struct csfLinSolverOptions_ {
   int ordering;  /* MUMPS ICNTL(7): 7 automatic (default), 5 METIS, 3 SCOTCH, 4 PORD, 2 AMF,
                   * 6 QAMD, 0 AMD; orderings the library was built without fall back to auto */
   int threads;   /* threads of the factorisation and solves (MUMPS OpenMP and threaded BLAS);
-                  * 0 = by size: one below CSF_MT_MIN_FLOPS (fem_linsolve.c), else the OpenMP
-                  * default (all cores) */
+                  * 0 = by size: one below CSF_MT_MIN_FLOPS, else max_threads */
+  int max_threads; /* the size rule's count above CSF_MT_MIN_FLOPS (0 = the OpenMP default:
+                    * every core of the affinity mask); the thread plan (fem_threads.h) */
   double pivot_threshold; /* MUMPS CNTL(1), the relative threshold of partial pivoting. For
                            * LDL^T, < 0 (default) = checked: no pivoting (0); a factorisation
                            * that meets a zero pivot, or an indefinite one whose solve misses a
@@ -42,6 +43,13 @@ typedef struct csfLinSolverOptions_ {
                            * the next one (fem_linsolve.c). >= 0: fixed. LU: < 0 keeps MUMPS's
                            * default, >= 0 sets it. */
 } csfLinSolverOptions;
+
+/* Factorisations below this many flops (MUMPS' estimate from the analysis) run on one thread
+ * by default. Measured on the 2-core machine: the baseline actuator at l_soft 4 (2.2e10 flops,
+ * LDL^T) factors 1.3x faster on two threads, while the small meshes of the tests
+ * (test_fem_locking, < 1e9 flops) ran 1.3x slower on two threads (thread start-up and waiting
+ * dominate small fronts). */
+#define CSF_MT_MIN_FLOPS 5e9
 
 /* MUMPS, unsymmetric, automatic ordering, threads by size. */
 csfLinSolverOptions csf_linSolverDefault(void);
@@ -68,6 +76,9 @@ double csf_linSolverFactorNnz(const csfLinSolver* s);
 /* Floating-point operations of one factorisation estimated by the analysis (MUMPS RINFOG(1);
  * 0 for KLU). */
 double csf_linSolverFlops(const csfLinSolver* s);
+
+/* Threads of the factorisations and solves (opt.threads, or chosen by size at the analysis). */
+int csf_linSolverThreads(const csfLinSolver* s);
 
 /* Backend and mode ("mumps-ldlt", "mumps-lu", "klu"). */
 const char* csf_linSolverName(const csfLinSolver* s);

@@ -1,10 +1,12 @@
 /* crawlsim.c: entry point of the `crawlsim` command; dispatches to the subcommands
  * (cs_commands.h). The command-line contract is DESIGN.md's. */
+#define _POSIX_C_SOURCE 200809L /* setenv, unsetenv, execv */
 #include <ode/ode.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cs_commands.h"
 
@@ -38,7 +40,28 @@ static void odeMessage(int num, const char* msg, va_list ap) {
 static int dispatch(int argc, char** argv);
 
 
+/* OpenMP threads that sleep when they wait (issue 38). libgomp reads OMP_WAIT_POLICY once, when
+ * it is loaded, before main(); its default spins up to 300 000 rounds at every barrier of
+ * MUMPS's and OpenBLAS's small parallel regions, taking cores that other processes hold
+ * (measured 3.3x slower with one other busy process, fem/README.md). So, unless the user chose a
+ * policy, set PASSIVE and start this program again, which libgomp then reads. OpenMPI's idle
+ * waits yield too (read at MPI_Init). If the restart fails the policy is unset again, so that
+ * what the output records (fe_omp_wait_policy) is what ran. */
+static void passiveWaits(char** argv) {
+  if (!getenv("OMPI_MCA_mpi_yield_when_idle")) {
+    setenv("OMPI_MCA_mpi_yield_when_idle", "1", 1);
+  }
+  if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) {
+    return;
+  }
+  setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+  execv("/proc/self/exe", argv);
+  unsetenv("OMP_WAIT_POLICY");
+}
+
+
 int main(int argc, char** argv) {
+  passiveWaits(argv);
   /* the one process-wide ODE initialisation site (debian-deps.md P1) */
   dInitODE2(0);
   dSetMessageHandler(odeMessage);
