@@ -135,6 +135,7 @@ static csStatus stageSetup(Run* r, csError* err) {
   }
   r->w.fe.model->solver.symmetric = o->symmetric;
   r->w.fe.model->solver.max_threads = o->threads;
+  r->w.fe.model->solver.ranks = o->spec.mpi_ranks > 1 ? o->spec.mpi_ranks : 1;
   const csfModel* m = r->w.fe.model;
   r->w.data = csf_dataCreate(m, err);
   r->ns = csf_stateSize(m);
@@ -530,6 +531,8 @@ static void fillStats(Run* r) {
   snprintf(r->info.solver, sizeof r->info.solver, "%s", csf_linSolverName(d->ls));
   r->info.factor_threads = csf_linSolverThreads(d->ls);
   r->info.factor_flops = csf_linSolverFlops(d->ls);
+  r->info.mpi_ranks = csf_linSolverRanks(d->ls);
+  csf_linSolverMemory(d->ls, &r->info.factor_mem_rank_mb, &r->info.factor_mem_total_mb);
 }
 
 

@@ -83,6 +83,11 @@ typedef struct csfBendInfo_ {
   char solver[32];     /* sparse solver and mode used ("mumps-ldlt", ...) */
   int factor_threads;  /* threads of the factorisations and solves (csf_linSolverThreads) */
   double factor_flops; /* flops of one factorisation, the analysis' estimate (0: KLU) */
+  int mpi_ranks;       /* MPI ranks of the factorisations (csfActuatorSpec.mpi_ranks; 1: this
+                        * process alone) */
+  double factor_mem_rank_mb, factor_mem_total_mb; /* memory of the last factorisation, MB: the
+                                                   * most on one rank, the sum (MUMPS INFOG(21),
+                                                   * (22)) */
   double p_limit;  /* MPa: pressure limit point of the path (the largest pressure reached
                     * under volume control after the pressure-controlled step collapsed; with
                     * continuation off, the last converged pressure), NAN when none was met */

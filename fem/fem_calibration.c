@@ -478,6 +478,8 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
   o.p_step = fmin(s->p_step, p_max);
   o.newton_rtol = s->newton_rtol;
   o.threads = s->threads;
+  o.spec.mpi_ranks = s->mpi_ranks;
+  o.spec.mpi_ranks_local = s->mpi_ranks_local;
   o.progress = s->progress;
   o.progress_user = s->progress_user;
   if (c->probes) {

@@ -92,6 +92,8 @@ typedef struct csfCalSettings_ {
   int threads;           /* the FE's threads (csfBendOptions.threads; 0 = OpenMP's default);
                           * root attribute fe_threads, with fe_factor_threads (what the
                           * factorisation used) */
+  int mpi_ranks, mpi_ranks_local; /* the factorisation over MPI ranks (csfActuatorSpec; 0 or 1:
+                                   * this process alone) */
   const char* threads_why; /* how they were chosen (csfThreadPlan.why): attribute
                             * fe_threads_why; NULL = none */
   const char* work_stem; /* scratch path prefix for gmsh files */

@@ -36,6 +36,10 @@ typedef struct csfLinSolverOptions_ {
                   * 0 = by size: one below CSF_MT_MIN_FLOPS, else max_threads */
   int max_threads; /* the size rule's count above CSF_MT_MIN_FLOPS (0 = the OpenMP default:
                     * every core of the affinity mask); the thread plan (fem_threads.h) */
+  int ranks;     /* MPI ranks of the factorisation (MPI build only, csf_linSolverHaveMpi): 1
+                  * (default) = this process alone (MPI_COMM_SELF); N > 1 = every rank of
+                  * MPI_COMM_WORLD (N its size), this process being rank 0, the host, and the
+                  * others serving (csf_linSolverServe) */
   double pivot_threshold; /* MUMPS CNTL(1), the relative threshold of partial pivoting. For
                            * LDL^T, < 0 (default) = checked: no pivoting (0); a factorisation
                            * that meets a zero pivot, or an indefinite one whose solve misses a
@@ -119,6 +123,27 @@ int csf_linSolverInverseIteration(csfLinSolver* s, const unsigned char* skip, in
 int csf_linSolverOrdering(const csfLinSolver* s);
 
 void csf_linSolverDestroy(csfLinSolver* s);
+
+/* MPI ranks taking part in the factorisations (1: this process alone). */
+int csf_linSolverRanks(const csfLinSolver* s);
+
+/* Memory the last factorisation used, MB (MUMPS INFOG(21), INFOG(22)): the most on one rank and
+ * the sum over the ranks; 0 for KLU or before a factorisation. */
+void csf_linSolverMemory(const csfLinSolver* s, double* max_rank_mb, double* total_mb);
+
+/* 1 in the MPI build (cs_fem_mpi: MUMPS on OpenMPI), 0 in the sequential one. */
+int csf_linSolverHaveMpi(void);
+
+/* The other ranks' side of a distributed FE (MPI build): called on every rank but 0 of
+ * MPI_COMM_WORLD, it makes the MUMPS calls rank 0's solvers order (creation, analysis,
+ * factorisations, solves, destruction; the host's matrix and right-hand side stay on the host)
+ * until rank 0 calls csf_linSolverServeStop. Waits between calls sleep (no spinning core).
+ * Returns CS_OK, or an error for an order it cannot match (or the sequential build). */
+csStatus csf_linSolverServe(csError* err);
+
+/* Rank 0: end every other rank's csf_linSolverServe (MPI build; nothing otherwise). Call it
+ * once, after the last solver of rank 0 was destroyed. */
+void csf_linSolverServeStop(void);
 
 #ifdef __cplusplus
 }

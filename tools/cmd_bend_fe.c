@@ -185,6 +185,7 @@ static csStatus feSweep(BendRun* run, const csfThreadPlan* plan, csrBendCurve* b
                         csfBendInfo* infop, csError* err) {
   csfBendOptions o = csf_bendDefault();
   o.threads = plan->threads;
+  o.spec.mpi_ranks = csx_feRanks(&o.spec.mpi_ranks_local); /* crawlsim-mpi under mpirun */
   /* chamber j of every segment at ratio[j] x p (--chambers: 1 or 0; --pressures: R_j) */
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {

@@ -286,6 +286,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
     csx_fePlanThreads("calibrate", threads, &plan);
     cs.threads = plan.threads;
     cs.threads_why = plan.why;
+    cs.mpi_ranks = csx_feRanks(&cs.mpi_ranks_local); /* crawlsim-mpi under mpirun */
   }
   char stem[600];
   const double t_all = csu_wallSeconds();

@@ -8,6 +8,19 @@
 /* --threads VALUE: an integer in 1..1024 into *out; 0, or 1 after one error line naming cmd */
 int csx_feParseThreads(const char* cmd, const char* value, int* out);
 
+/* 1 if argv (argv[1] the subcommand) is a command that runs the full FE: `bend --model fe`,
+ * `calibrate` */
+int csx_feCommand(int argc, char** argv);
+
+/* The environment variable by which crawlsim-mpi's main tells the FE command of rank 0 that
+ * the other ranks serve its factorisations (csf_linSolverServe): their count. Set only there,
+ * so that a study's FE cases (one per rank) stay on their own rank. */
+#define CSX_FE_RANKS_ENV "CRAWLSIM_FE_RANKS"
+
+/* MPI ranks of this FE command's factorisation (CSX_FE_RANKS_ENV, 1 when unset) and how many
+ * of them run on this machine (*local: the launcher's local size, at most the ranks) */
+int csx_feRanks(int* local);
+
 #ifdef CS_HAVE_FEM
 #include "core_h5.h"
 #include "fem_bend.h"
@@ -22,7 +35,8 @@ void csx_fePlanThreads(const char* cmd, int requested, csfThreadPlan* plan);
 void csx_feReportThreads(const char* cmd, const csfThreadPlan* plan, const csfBendInfo* info);
 
 /* Root attributes: fe_threads (the plan), fe_threads_why, fe_factor_threads, fe_factor_flops,
- * fe_omp_wait_policy, fe_affinity_cores, fe_mpi_ranks_local. */
+ * fe_omp_wait_policy, fe_affinity_cores, fe_mpi_ranks (of the factorisation),
+ * fe_mpi_ranks_local (launched on this machine), fe_factor_mem_rank_MB, fe_factor_mem_total_MB. */
 csStatus csx_feThreadAttrs(csH5File* f, const csfThreadPlan* plan, const csfBendInfo* info,
                            csError* err);
 #endif /* CS_HAVE_FEM */
