@@ -9,7 +9,9 @@
  * Backends (chosen by measurement, fem/README.md "Sparse solver"):
  *   MUMPS, sequential build (libmumps-seq, CeCILL-C), multifrontal with BLAS-3 fronts
  *     (OpenBLAS), unsymmetric LU (SYM = 0) or symmetric indefinite LDL^T with 2x2 pivots
- *     (SYM = 2: half the entries, half the flops): the default;
+ *     (SYM = 2: half the entries, half the flops): the default; in the cs_fem_mpi build
+ *     (CS_FEM_MPI) the MPI one (libmumps on OpenMPI), on this process or over every rank
+ *     (opt.ranks; the other ranks in csf_linSolverServe);
  *   KLU (SuiteSparse, LGPL-2.1+): left-looking, no supernodes; 30-100x slower on 3D Tet10
  *     meshes, kept as a fallback and for the measurement (always unsymmetric). */
 #ifndef CS_FEM_LINSOLVE_H
