@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 /* the launchers' count of this job's processes on this node */
 static const char* const kLocalSizeVars[] = {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"};
@@ -52,6 +53,8 @@ void csf_threadProbe(int sample_load, csfThreadEnv* env) {
   if (env->cores < 1) {
     env->cores = 1;
   }
+  const long online = sysconf(_SC_NPROCESSORS_ONLN);
+  env->online = online > 0 && online < 1 << 20 ? (int)online : 0;
   env->ranks_local = 1;
   for (size_t k = 0; k < sizeof kLocalSizeVars / sizeof kLocalSizeVars[0]; k++) {
     const int v = envInt(kLocalSizeVars[k]);
@@ -94,9 +97,15 @@ void csf_threadPlanCompute(int requested, const csfThreadEnv* env, csfThreadPlan
   plan->requested = requested > 0 ? requested : 0;
   const int cores = env->cores > 0 ? env->cores : 1;
   const int ranks = env->ranks_local > 0 ? env->ranks_local : 1;
-  plan->share = cores / ranks > 0 ? cores / ranks : 1;
+  /* a mask smaller than the machine is this rank's own share already (mpirun --bind-to core) */
+  const int bound = env->online > 0 && cores < env->online;
+  const int split = bound ? 1 : ranks;
+  plan->share = cores / split > 0 ? cores / split : 1;
   char from[96];
-  if (ranks > 1) {
+  if (ranks > 1 && bound) {
+    snprintf(from, sizeof from, "%d core%s of this rank's affinity mask, %d MPI ranks on this "
+             "node", cores, cores > 1 ? "s" : "", ranks);
+  } else if (ranks > 1) {
     snprintf(from, sizeof from, "%d core%s of the affinity mask shared by %d MPI ranks on this "
              "node", cores, cores > 1 ? "s" : "", ranks);
   } else {
@@ -124,7 +133,7 @@ void csf_threadPlanCompute(int requested, const csfThreadEnv* env, csfThreadPlan
   double others = env->busy - (ranks - 1);
   others = others > 0 ? floor(others + 0.5) : 0;
   const int free_cores = cores - (int)others;
-  int t = free_cores / ranks;
+  int t = free_cores / split;
   t = t < 1 ? 1 : t > plan->share ? plan->share : t;
   plan->threads = t;
   if (t < plan->share) {

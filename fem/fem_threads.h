@@ -30,6 +30,9 @@ extern "C" {
 /* What the machine and the launcher give this process (csf_threadProbe). */
 typedef struct csfThreadEnv_ {
   int cores;       /* CPUs in this process's affinity mask (>= 1) */
+  int online;      /* CPUs online on this machine (0: unknown); a mask smaller than that is
+                    * already this process's share (taskset, mpirun's binding): not divided
+                    * again among the ranks */
   int ranks_local; /* processes of this MPI job on this node (1 without a launcher) */
   int omp_env;     /* OMP_NUM_THREADS as set by the user (its first entry; 0: unset) */
   double busy;     /* runnable tasks of other processes, mean of the samples (>= 0; NAN: not
@@ -57,7 +60,8 @@ void csf_threadProbe(int sample_load, csfThreadEnv* env);
 
 /* The thread count from env and an explicit request (0: none, the default rule):
  *   requested > 0: min(requested, cores); else OMP_NUM_THREADS set: min(it, cores);
- *   otherwise: share = max(1, cores / ranks_local), minus the cores held by other processes
+ *   otherwise: share = max(1, cores / ranks_local) (cores alone when the mask is smaller than
+ *   the machine: the launcher bound this rank to its share already), minus the cores held by other processes
  *   (busy, less this job's other ranks, rounded to the nearest core), at least 1. */
 void csf_threadPlanCompute(int requested, const csfThreadEnv* env, csfThreadPlan* plan);
 

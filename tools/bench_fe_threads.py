@@ -6,6 +6,7 @@ optionally a study of two FE cases under `mpirun -n 2` against the same study ru
 Usage: /usr/bin/python3 tools/bench_fe_threads.py --crawlsim build/tools/crawlsim
            [--repeat 3] [--configs default,pinned] [--mesh-size 4] [--p-max 0.1]
            [--busy 1] [--study] [--mpirun mpirun] [--out DIR] [--csv OUT.csv]
+(--repeat 0 --study: the study comparison alone)
 
 Configurations (each a separate process, in this order within a repetition, so that a slow spell
 of the shared machine hits all of them):
@@ -44,7 +45,7 @@ def fe_args(a, out):
 
 
 def clean_env():
-    env = dict(os.environ)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     for k in ("OMP_NUM_THREADS", "OMP_WAIT_POLICY", "GOMP_SPINCOUNT"):
         env.pop(k, None)
     return env

@@ -15,7 +15,7 @@
 static csfThreadEnv env(int cores, int ranks, double busy) {
   csfThreadEnv e;
   memset(&e, 0, sizeof e);
-  e.cores = cores, e.ranks_local = ranks, e.busy = busy;
+  e.cores = cores, e.online = cores, e.ranks_local = ranks, e.busy = busy;
   return e;
 }
 
@@ -49,6 +49,12 @@ static void test_ranks_on_a_node_share_its_cores(void) {
   CS_EXPECT(plan(0, env(8, 2, 1.0)) == 4);
   /* a foreign process on top of them takes a core: 7 free cores for 2 ranks */
   CS_EXPECT(plan(0, env(8, 2, 2.0)) == 3);
+  /* mpirun bound each rank to its cores: the mask is the share, not divided again */
+  csfThreadEnv b = env(2, 2, NAN);
+  b.online = 4;
+  CS_EXPECT(plan(0, b) == 2);
+  b.cores = 1, b.online = 2; /* mpirun -n 2 on two cores, bound: one each */
+  CS_EXPECT(plan(0, b) == 1);
 }
 
 
@@ -70,6 +76,7 @@ static void test_probe_reads_affinity_and_launcher(void) {
   csfThreadEnv e;
   csf_threadProbe(1, &e);
   CS_EXPECT(e.cores == CPU_COUNT(&set));
+  CS_EXPECT(e.online >= e.cores);
   CS_EXPECT(e.ranks_local == 3);
   CS_EXPECT(e.omp_env == 0);
   /* runnable tasks of others: a mean of counts, not negative (NAN only without /proc/stat) */
