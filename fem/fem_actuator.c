@@ -8,6 +8,7 @@
 #include "fem_actuator.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -266,13 +267,22 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
   csfMeshEstimate est;
   csf_actuatorEstimate(act, sp->mesh_size, &est);
   const double mem = physicalMemory();
-  if (mem > 0 && est.bytes > CSF_MEM_FRACTION * mem) {
+  /* distributed factors: this machine holds its ranks' share of them */
+  const int ranks = sp->mpi_ranks > 1 ? sp->mpi_ranks : 1;
+  const int local = sp->mpi_ranks_local >= 1 && sp->mpi_ranks_local <= ranks ? sp->mpi_ranks_local
+                                                                            : ranks;
+  const double here = est.bytes * (double)local / (double)ranks;
+  if (mem > 0 && here > CSF_MEM_FRACTION * mem) {
     /* bytes ~ l^-4 (dofs ~ l^-3, entries ~ dofs^(4/3)): the finest l_soft that fits */
-    const double lmin = sp->mesh_size * pow(est.bytes / (CSF_MEM_FRACTION * mem), 0.25);
+    const double lmin = sp->mesh_size * pow(here / (CSF_MEM_FRACTION * mem), 0.25);
+    char share[96] = "";
+    if (ranks > 1) {
+      snprintf(share, sizeof share, " (%d of its %d MPI ranks on this machine)", local, ranks);
+    }
     return cs_errorSet(err, CS_ERR_RANGE, "fem_actuator: l_soft %g mm gives at least %.2g Tet10 "
-                       "(%.2g dofs), whose factorisation needs about %.3g GB against %.3g GB of "
+                       "(%.2g dofs), whose factorisation needs about %.3g GB%s against %.3g GB of "
                        "memory on this machine: refused (l_soft >= %.2g mm may fit)",
-                       sp->mesh_size, est.tet10, est.dofs, est.bytes / 1e9, mem / 1e9, lmin);
+                       sp->mesh_size, est.tet10, est.dofs, here / 1e9, share, mem / 1e9, lmin);
   }
   const char* stem = sp->work_stem ? sp->work_stem : "crawlsim_fe";
   fe->mesh = sp->mesh_symmetric ? csf_meshActuatorSymmetric(act, sp->mesh_size, stem, err)

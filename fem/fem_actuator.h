@@ -40,6 +40,10 @@ typedef struct csfActuatorSpec_ {
   double gravity[3];   /* mm/s^2 in the base frame (zeros = off) */
   double tip_force[3]; /* N, dead load on the tip face (uniform traction), base frame */
   const char* work_stem; /* path prefix for the .geo/.msh/.log files */
+  int mpi_ranks;       /* MPI ranks the factorisation is spread over (0 or 1: this process) and */
+  int mpi_ranks_local; /* how many of them run on this machine: the memory estimate that refuses
+                        * a too-fine mesh compares this machine's share of the factors,
+                        * bytes x local / ranks, with its memory */
 } csfActuatorSpec;
 
 /* Chambers Omega1 & Omega2 of every segment at ratio 1, l_soft 4, fibres (tension-only,

@@ -134,6 +134,8 @@ static csStatus stageSetup(Run* r, csError* err) {
     return cs_errorSet(err, CS_ERR_ARG, "fem_bend: no chamber is pressurised and no load given");
   }
   r->w.fe.model->solver.symmetric = o->symmetric;
+  r->w.fe.model->solver.max_threads = o->threads;
+  r->w.fe.model->solver.ranks = o->spec.mpi_ranks > 1 ? o->spec.mpi_ranks : 1;
   const csfModel* m = r->w.fe.model;
   r->w.data = csf_dataCreate(m, err);
   r->ns = csf_stateSize(m);
@@ -532,6 +534,10 @@ static void fillStats(Run* r) {
   r->info.n_restore = d->stats.n_restore;
   r->info.n_repeat = d->stats.n_repeat;
   snprintf(r->info.solver, sizeof r->info.solver, "%s", csf_linSolverName(d->ls));
+  r->info.factor_threads = csf_linSolverThreads(d->ls);
+  r->info.factor_flops = csf_linSolverFlops(d->ls);
+  r->info.mpi_ranks = csf_linSolverRanks(d->ls);
+  csf_linSolverMemory(d->ls, &r->info.factor_mem_rank_mb, &r->info.factor_mem_total_mb);
 }
 
 

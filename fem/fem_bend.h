@@ -83,6 +83,13 @@ typedef struct csfBendInfo_ {
   long n_krylov, n_krylov_iter; /* linear solves by GMRES on an older factorisation, iterations */
   long n_restore, n_repeat;     /* Newton's watchdog returns and repeated iterates (csfStats) */
   char solver[32];     /* sparse solver and mode used ("mumps-ldlt", ...) */
+  int factor_threads;  /* threads of the factorisations and solves (csf_linSolverThreads) */
+  double factor_flops; /* flops of one factorisation, the analysis' estimate (0: KLU) */
+  int mpi_ranks;       /* MPI ranks of the factorisations (csfActuatorSpec.mpi_ranks; 1: this
+                        * process alone) */
+  double factor_mem_rank_mb, factor_mem_total_mb; /* memory of the last factorisation, MB: the
+                                                   * most on one rank, the sum (MUMPS INFOG(21),
+                                                   * (22)) */
   double p_limit;  /* MPa: pressure limit point of the path (the largest pressure reached
                     * under volume control after the pressure-controlled step collapsed; with
                     * continuation off, the last converged pressure), NAN when none was met */
@@ -175,7 +182,9 @@ typedef struct csfBendOptions_ {
   void (*newton_monitor)(void* user, const csfNewtonIter* it); /* optional, per Newton iteration */
   const char* vtu_path;  /* deformed mesh at the last state (ParaView .vtu), NULL = none */
   const char* inp_path;  /* same model as a CalculiX/ABAQUS .inp deck, NULL = none */
-  int threads;           /* OpenMP threads for assembly (0 = default) */
+  int threads;           /* OpenMP threads of the assembly, and the factorisation's count above
+                          * CSF_MT_MIN_FLOPS (fem_linsolve.h); 0 = OpenMP's default. The
+                          * commands pass the thread plan's count (fem_threads.h) */
   int krylov;            /* 1: Newton reuses the last factorisation as a GMRES preconditioner
                           * (csfNewtonOptions.krylov); 0 (default): factor every iteration */
   int symmetric;         /* -1 (default): LDL^T exactly where the tangent is symmetric; 0: LU;

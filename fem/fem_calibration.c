@@ -232,6 +232,11 @@ static csStatus writeRoot(csH5File* f, const csrActuator* act, const csfCalSetti
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "fe_formulation", "mixed P2/P0 Tet10, Yeoh", err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_kappa_ratio", CSF_KAPPA_RATIO, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "fe_solver", info->solver, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_threads", s->threads, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_factor_threads", info->factor_threads, err);
+  if (st == CS_OK && s->threads_why) {
+    st = cs_h5AttrString(f, "/", "fe_threads_why", s->threads_why, err);
+  }
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_n_tet10", info->ntet, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_n_fibre_elements", info->nfibre, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "version", CSR_OUTPUT_VERSION, err);
@@ -473,6 +478,9 @@ csStatus csf_calibrationRunCase(const csrActuator* act, const csfCalCase* c,
   o.p_max = p_max;
   o.p_step = fmin(s->p_step, p_max);
   o.newton_rtol = s->newton_rtol;
+  o.threads = s->threads;
+  o.spec.mpi_ranks = s->mpi_ranks;
+  o.spec.mpi_ranks_local = s->mpi_ranks_local;
   o.progress = s->progress;
   o.progress_user = s->progress_user;
   o.cancel = s->cancel;

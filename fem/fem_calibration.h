@@ -89,6 +89,13 @@ typedef struct csfCalSettings_ {
   double p_cap;        /* MPa: every case ends at min(its p_max, p_cap) (0 = no cap; small
                         * tables for tests) */
   double probe_force[3]; /* N per probe direction */
+  int threads;           /* the FE's threads (csfBendOptions.threads; 0 = OpenMP's default);
+                          * root attribute fe_threads, with fe_factor_threads (what the
+                          * factorisation used) */
+  int mpi_ranks, mpi_ranks_local; /* the factorisation over MPI ranks (csfActuatorSpec; 0 or 1:
+                                   * this process alone) */
+  const char* threads_why; /* how they were chosen (csfThreadPlan.why): attribute
+                            * fe_threads_why; NULL = none */
   const char* work_stem; /* scratch path prefix for gmsh files */
   const char* vtu_path;  /* the deformed leg at the case's last state (ParaView), NULL = none */
   csfBendProgress progress; /* per converged step (NULL = none) */

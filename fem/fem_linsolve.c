@@ -8,27 +8,37 @@
  * symmetric mode (SYM = 2, general symmetric: LDL^T with 1x1 and 2x2 pivots, for tangents that
  * turn indefinite past limit points) only the upper triangle is given (MUMPS sums entries given
  * twice), so its values are gathered into a buffer (`sel` maps them) before each factorisation.
- * The sequential library (no MPI) is used, so no process-wide MPI initialisation is needed.
+ * The sequential library (no MPI) is used by default, so no process-wide MPI initialisation is
+ * needed. The MPI build (CS_FEM_MPI: Debian's libmumps on OpenMPI, the cs_fem_mpi library of
+ * crawlsim-mpi; the two MUMPS builds define the same symbols, so a program links one of them)
+ * runs MUMPS on MPI_COMM_SELF, or, with opt.ranks > 1, on every rank of MPI_COMM_WORLD: this
+ * process is MUMPS's host (PAR = 1: it works too) and holds the matrix and the right-hand side
+ * (centralised input, ICNTL(18) = ICNTL(20) = 0); before each MUMPS call it sends the call's
+ * job to the other ranks, which sit in csf_linSolverServe and make the same call on their own
+ * instance (mumpsCall). Only the host runs the FE; the others take part in the factorisations
+ * and solves and nothing else.
  * Output of MUMPS is silenced (ICNTL 1-4).
  * Threads: Debian's sequential MUMPS is built with OpenMP and calls OpenBLAS (OpenMP build); both
  * take their thread count from omp_set_num_threads, which is set for the duration of each MUMPS
  * call and restored afterwards (the assembly loop has its own count). */
 #include "fem_linsolve.h"
 
+#ifdef CS_FEM_MPI
+#define _POSIX_C_SOURCE 200809L /* nanosleep */
+#endif
 #include <dmumps_c.h>
 #include <math.h>
 #include <klu.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-/* Factorisations below this many flops (MUMPS' estimate from the analysis) run on one thread.
- * Measured on this 2-core machine: the baseline actuator at l_soft 4 (2.2e10 flops, LDL^T) factors
- * 1.3x faster on two threads, while the small meshes of the tests (test_fem_locking, < 1e9 flops)
- * ran 1.3x slower on two threads (thread start-up and spin-waiting dominate small fronts). */
-#define CSF_MT_MIN_FLOPS 5e9
+#ifdef CS_FEM_MPI
+#include <mpi.h>
+#include <time.h>
+#endif
 
 /* Relative residual an unpivoted LDL^T of an indefinite matrix must meet at a solve before it
  * is redone with pivoting: MUMPS's pivoted LDL^T reaches 1e-14..1e-10 on the FE tangents
@@ -95,7 +105,44 @@ struct csfLinSolver_ {
   int n_repivot;      /* no-pivoting factorisations redone with threshold pivoting */
   double* bcopy;      /* (n) symmetric mode: the right-hand side of a checked solve */
   double* rcheck;     /* (n) symmetric mode: its residual */
+  int nranks;         /* MPI ranks taking part in the factorisations (1: this process alone) */
 };
+
+
+/* ---- the host's orders to the other ranks (MPI build, opt.ranks > 1) ---------------------- */
+
+/* one MUMPS call as the other ranks must repeat it */
+typedef struct {
+  long long key; /* the host's solver (its address): the other ranks' instance of it */
+  int job;       /* MUMPS JOB, or ORDER_QUIT */
+  int sym;       /* SYM (JOB = -1) */
+  int icntl14;   /* workspace relaxation, % (grows on a retry: the ranks grow theirs) */
+  int threads;   /* OpenMP threads of the call (0: unchanged) */
+  double cntl1;  /* pivoting threshold */
+} Order;
+
+#define ORDER_QUIT 1000
+#define ORDER_TAG 3801
+/* a rank waiting for its next order sleeps this long between looks (s): short against a
+ * factorisation (~1 s), long enough to leave the cores to the host's assembly */
+#define ORDER_POLL_S 0.001
+/* instances a serving rank holds at once (a sweep holds one; room for tools that hold more) */
+#define SERVE_MAX 16
+
+
+/* dmumps_c, first ordered on the other ranks when they take part */
+static void mumpsCall(csfLinSolver* s) {
+#ifdef CS_FEM_MPI
+  if (s->nranks > 1) {
+    const Order o = {(long long)(intptr_t)s, s->id.job, s->id.sym, s->id.icntl[13], s->nthreads,
+                     s->id.cntl[0]};
+    for (int r = 1; r < s->nranks; r++) {
+      MPI_Send(&o, (int)sizeof o, MPI_BYTE, r, ORDER_TAG, MPI_COMM_WORLD);
+    }
+  }
+#endif
+  dmumps_c(&s->id);
+}
 
 
 /* Main workspace S for the numeric factorisation, from the analysis: INFO(8) entries (negative:
@@ -140,6 +187,8 @@ csfLinSolverOptions csf_linSolverDefault(void) {
   o.symmetric = 0;
   o.ordering = 7;
   o.threads = 0;
+  o.max_threads = 0;
+  o.ranks = 1;
   o.pivot_threshold = -1;
   return o;
 }
@@ -209,12 +258,46 @@ csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const i
       k++;
     }
   }
+  /* the initialisation and analysis run on the cap too (0: OpenMP's current count) */
+  s->nthreads = s->opt.threads > 0 ? s->opt.threads : s->opt.max_threads;
   s->id.job = MUMPS_JOB_INIT;
   s->id.par = 1;
   s->id.sym = s->opt.symmetric ? 2 : 0;
   s->id.comm_fortran = MUMPS_USE_COMM_WORLD;
+  s->nranks = 1;
+#ifdef CS_FEM_MPI
+  int mpi_on = 0;
+  MPI_Initialized(&mpi_on);
+  if (!mpi_on) {
+    cs_errorSet(err, CS_ERR_SOLVER, "fem_linsolve: MPI is not initialised (the MPI build's MUMPS "
+                "needs MPI_Init before its first solver)");
+    csf_linSolverDestroy(s);
+    return NULL;
+  }
+  if (s->opt.ranks > 1) {
+    int size = 1, rank = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank != 0 || size != s->opt.ranks) {
+      cs_errorSet(err, CS_ERR_ARG, "fem_linsolve: %d ranks requested, but this is rank %d of %d "
+                  "(the host must be rank 0 of MPI_COMM_WORLD)", s->opt.ranks, rank, size);
+      csf_linSolverDestroy(s);
+      return NULL;
+    }
+    s->nranks = size;
+  } else {
+    s->id.comm_fortran = (MUMPS_INT)MPI_Comm_c2f(MPI_COMM_SELF);
+  }
+#else
+  if (s->opt.ranks > 1) {
+    cs_errorSet(err, CS_ERR_ARG, "fem_linsolve: %d MPI ranks requested from the sequential "
+                "MUMPS build (crawlsim-mpi links the MPI one)", s->opt.ranks);
+    csf_linSolverDestroy(s);
+    return NULL;
+  }
+#endif
   int prev0 = enterThreads(s->nthreads);
-  dmumps_c(&s->id);
+  mumpsCall(s);
   leaveThreads(prev0);
   s->mumps_on = 1;
   if (s->id.infog[0] < 0) {
@@ -239,7 +322,7 @@ csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const i
   s->id.jcn = s->jcn;
   s->id.job = 1; /* analysis */
   int prev = enterThreads(s->nthreads);
-  dmumps_c(&s->id);
+  mumpsCall(s);
   leaveThreads(prev);
   if (s->id.infog[0] < 0) {
     cs_errorSet(err, CS_ERR_SOLVER, "fem_linsolve: MUMPS analysis failed (INFOG(1) %d, (2) %d)",
@@ -250,7 +333,8 @@ csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const i
   s->nthreads = s->opt.threads;
   if (s->nthreads <= 0) {
 #ifdef _OPENMP
-    s->nthreads = s->id.rinfog[0] < CSF_MT_MIN_FLOPS ? 1 : omp_get_max_threads();
+    const int most = s->opt.max_threads > 0 ? s->opt.max_threads : omp_get_max_threads();
+    s->nthreads = s->id.rinfog[0] < CSF_MT_MIN_FLOPS ? 1 : most;
 #else
     s->nthreads = 1;
 #endif
@@ -269,13 +353,13 @@ csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const i
  * workspace when delayed pivots of an indefinite tangent overflow it (INFOG(1) -8, -9). */
 static void mumpsFactor(csfLinSolver* s) {
   s->id.job = 2;
-  dmumps_c(&s->id);
+  mumpsCall(s);
   for (int retry = 0; retry < 2 && (s->id.infog[0] == -9 || s->id.infog[0] == -8); retry++) {
     s->id.icntl[13] *= 2;
     if (growWorkspace(s, 2.0 * (double)s->lwk) != 0) {
       break;
     }
-    dmumps_c(&s->id);
+    mumpsCall(s);
   }
 }
 
@@ -369,7 +453,7 @@ int csf_linSolverSolve(csfLinSolver* s, double* b) {
   s->id.lrhs = s->n;
   s->id.job = 3;
   int prev = enterThreads(s->nthreads);
-  dmumps_c(&s->id);
+  mumpsCall(s);
   if (s->check_solve && s->id.infog[0] >= 0 && !solveAccurate(s, b)) {
     /* the unpivoted LDL^T of an indefinite matrix lost accuracy (a small pivot): factor again
      * with threshold pivoting and solve once more */
@@ -379,7 +463,7 @@ int csf_linSolverSolve(csfLinSolver* s, double* b) {
     if (s->factored) {
       memcpy(b, s->bcopy, (size_t)s->n * sizeof(double));
       s->id.job = 3;
-      dmumps_c(&s->id);
+      mumpsCall(s);
     }
   }
   leaveThreads(prev);
@@ -407,6 +491,11 @@ const char* csf_linSolverName(const csfLinSolver* s) {
     return "klu";
   }
   return s->opt.symmetric ? "mumps-ldlt" : "mumps-lu";
+}
+
+
+int csf_linSolverThreads(const csfLinSolver* s) {
+  return s->opt.kind == CSF_SOLVER_KLU ? 1 : s->nthreads;
 }
 
 
@@ -438,7 +527,7 @@ void csf_linSolverDestroy(csfLinSolver* s) {
   }
   if (s->mumps_on) {
     s->id.job = MUMPS_JOB_END;
-    dmumps_c(&s->id);
+    mumpsCall(s);
   }
   free(s->irn);
   free(s->jcn);
@@ -518,4 +607,142 @@ int csf_linSolverInverseIteration(csfLinSolver* s, const unsigned char* skip, in
     }
   }
   return 0;
+}
+
+
+int csf_linSolverRanks(const csfLinSolver* s) { return s->nranks; }
+
+
+void csf_linSolverMemory(const csfLinSolver* s, double* max_rank_mb, double* total_mb) {
+  /* INFOG(21), INFOG(22): memory effectively used by the factorisation, MB, the largest on one
+   * rank and the sum over the ranks (the workspace given by WK_USER included) */
+  const int on = s->opt.kind != CSF_SOLVER_KLU && s->factored;
+  *max_rank_mb = on ? (double)s->id.infog[20] : 0.0;
+  *total_mb = on ? (double)s->id.infog[21] : 0.0;
+}
+
+
+#ifdef CS_FEM_MPI
+/* receive the next order from rank 0 without spinning in MPI_Recv */
+static void lazyOrder(Order* o) {
+  for (;;) {
+    int flag = 0;
+    MPI_Iprobe(0, ORDER_TAG, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+    if (flag) {
+      MPI_Recv(o, (int)sizeof *o, MPI_BYTE, 0, ORDER_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      return;
+    }
+    const struct timespec ts = {0, (long)(ORDER_POLL_S * 1e9)};
+    nanosleep(&ts, NULL);
+  }
+}
+#endif
+
+
+csStatus csf_linSolverServe(csError* err) {
+#ifdef CS_FEM_MPI
+  /* this rank's instances, each a csfLinSolver of its own (MUMPS structure and workspace),
+   * keyed by the host's solver */
+  long long key[SERVE_MAX];
+  csfLinSolver* inst[SERVE_MAX];
+  memset(inst, 0, sizeof inst);
+  csStatus st = CS_OK;
+  for (;;) {
+    Order o;
+    lazyOrder(&o);
+    if (o.job == ORDER_QUIT) {
+      break;
+    }
+    int k = 0;
+    const int want_free = o.job == MUMPS_JOB_INIT;
+    while (k < SERVE_MAX && !(want_free ? inst[k] == NULL : inst[k] && key[k] == o.key)) {
+      k++;
+    }
+    if (k == SERVE_MAX) {
+      /* the host's call cannot be matched: the collective MUMPS call would hang; report it
+       * and stop serving (the host then fails in MPI, and mpirun ends the job) */
+      st = cs_errorSet(err, CS_ERR_SOLVER, "fem_linsolve: rank cannot serve MUMPS job %d (%s)",
+                       o.job, want_free ? "too many solvers" : "unknown solver");
+      break;
+    }
+    if (want_free) {
+      inst[k] = calloc(1, sizeof *inst[k]);
+      if (!inst[k]) {
+        st = cs_errorSet(err, CS_ERR_MEMORY, "fem_linsolve: out of memory");
+        break;
+      }
+      key[k] = o.key;
+      inst[k]->id.par = 1;
+      inst[k]->id.sym = o.sym;
+      inst[k]->id.comm_fortran = MUMPS_USE_COMM_WORLD;
+      inst[k]->nranks = 1; /* it orders nobody */
+    }
+    csfLinSolver* w = inst[k];
+#ifdef _OPENMP
+    if (o.threads > 0) {
+      omp_set_num_threads(o.threads);
+    }
+#endif
+    w->id.job = o.job;
+    if (o.job != MUMPS_JOB_INIT) {
+      w->id.icntl[13] = o.icntl14;
+      w->id.cntl[0] = o.cntl1;
+    }
+    if (o.job == 2 && growWorkspace(w, workspaceEstimate(w)) != 0) {
+      /* without its workspace MUMPS allocates its own: slower, not wrong */
+      w->id.wk_user = NULL;
+      w->id.lwk_user = 0;
+    }
+    dmumps_c(&w->id);
+    if (o.job == MUMPS_JOB_INIT) {
+      w->mumps_on = 1;
+      w->id.icntl[0] = -1;
+      w->id.icntl[1] = -1;
+      w->id.icntl[2] = -1;
+      w->id.icntl[3] = 0;
+    } else if (o.job == 1 && w->id.infog[0] >= 0) {
+      (void)growWorkspace(w, workspaceEstimate(w));
+    } else if (o.job == MUMPS_JOB_END) {
+      w->mumps_on = 0;
+      free(w->wk);
+      free(w);
+      inst[k] = NULL;
+    }
+  }
+  for (int k = 0; k < SERVE_MAX; k++) {
+    if (inst[k]) {
+      /* the host never ended it: no collective call left to make */
+      free(inst[k]->wk);
+      free(inst[k]);
+    }
+  }
+  return st;
+#else
+  return cs_errorSet(err, CS_ERR_ARG, "fem_linsolve: csf_linSolverServe needs the MPI build");
+#endif
+}
+
+
+void csf_linSolverServeStop(void) {
+#ifdef CS_FEM_MPI
+  int on = 0, size = 1;
+  MPI_Initialized(&on);
+  if (!on) {
+    return;
+  }
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const Order o = {0, ORDER_QUIT, 0, 0, 0, 0.0};
+  for (int r = 1; r < size; r++) {
+    MPI_Send(&o, (int)sizeof o, MPI_BYTE, r, ORDER_TAG, MPI_COMM_WORLD);
+  }
+#endif
+}
+
+
+int csf_linSolverHaveMpi(void) {
+#ifdef CS_FEM_MPI
+  return 1;
+#else
+  return 0;
+#endif
 }

@@ -9,7 +9,9 @@
  * Backends (chosen by measurement, fem/README.md "Sparse solver"):
  *   MUMPS, sequential build (libmumps-seq, CeCILL-C), multifrontal with BLAS-3 fronts
  *     (OpenBLAS), unsymmetric LU (SYM = 0) or symmetric indefinite LDL^T with 2x2 pivots
- *     (SYM = 2: half the entries, half the flops): the default;
+ *     (SYM = 2: half the entries, half the flops): the default; in the cs_fem_mpi build
+ *     (CS_FEM_MPI) the MPI one (libmumps on OpenMPI), on this process or over every rank
+ *     (opt.ranks; the other ranks in csf_linSolverServe);
  *   KLU (SuiteSparse, LGPL-2.1+): left-looking, no supernodes; 30-100x slower on 3D Tet10
  *     meshes, kept as a fallback and for the measurement (always unsymmetric). */
 #ifndef CS_FEM_LINSOLVE_H
@@ -33,8 +35,13 @@ typedef struct csfLinSolverOptions_ {
   int ordering;  /* MUMPS ICNTL(7): 7 automatic (default), 5 METIS, 3 SCOTCH, 4 PORD, 2 AMF,
                   * 6 QAMD, 0 AMD; orderings the library was built without fall back to auto */
   int threads;   /* threads of the factorisation and solves (MUMPS OpenMP and threaded BLAS);
-                  * 0 = by size: one below CSF_MT_MIN_FLOPS (fem_linsolve.c), else the OpenMP
-                  * default (all cores) */
+                  * 0 = by size: one below CSF_MT_MIN_FLOPS, else max_threads */
+  int max_threads; /* the size rule's count above CSF_MT_MIN_FLOPS (0 = the OpenMP default:
+                    * every core of the affinity mask); the thread plan (fem_threads.h) */
+  int ranks;     /* MPI ranks of the factorisation (MPI build only, csf_linSolverHaveMpi): 1
+                  * (default) = this process alone (MPI_COMM_SELF); N > 1 = every rank of
+                  * MPI_COMM_WORLD (N its size), this process being rank 0, the host, and the
+                  * others serving (csf_linSolverServe) */
   double pivot_threshold; /* MUMPS CNTL(1), the relative threshold of partial pivoting. For
                            * LDL^T, < 0 (default) = checked: no pivoting (0); a factorisation
                            * that meets a zero pivot, or an indefinite one whose solve misses a
@@ -42,6 +49,13 @@ typedef struct csfLinSolverOptions_ {
                            * the next one (fem_linsolve.c). >= 0: fixed. LU: < 0 keeps MUMPS's
                            * default, >= 0 sets it. */
 } csfLinSolverOptions;
+
+/* Factorisations below this many flops (MUMPS' estimate from the analysis) run on one thread
+ * by default. Measured on the 2-core machine: the baseline actuator at l_soft 4 (2.2e10 flops,
+ * LDL^T) factors 1.3x faster on two threads, while the small meshes of the tests
+ * (test_fem_locking, < 1e9 flops) ran 1.3x slower on two threads (thread start-up and waiting
+ * dominate small fronts). */
+#define CSF_MT_MIN_FLOPS 5e9
 
 /* MUMPS, unsymmetric, automatic ordering, threads by size. */
 csfLinSolverOptions csf_linSolverDefault(void);
@@ -68,6 +82,9 @@ double csf_linSolverFactorNnz(const csfLinSolver* s);
 /* Floating-point operations of one factorisation estimated by the analysis (MUMPS RINFOG(1);
  * 0 for KLU). */
 double csf_linSolverFlops(const csfLinSolver* s);
+
+/* Threads of the factorisations and solves (opt.threads, or chosen by size at the analysis). */
+int csf_linSolverThreads(const csfLinSolver* s);
 
 /* Backend and mode ("mumps-ldlt", "mumps-lu", "klu"). */
 const char* csf_linSolverName(const csfLinSolver* s);
@@ -108,6 +125,27 @@ int csf_linSolverInverseIteration(csfLinSolver* s, const unsigned char* skip, in
 int csf_linSolverOrdering(const csfLinSolver* s);
 
 void csf_linSolverDestroy(csfLinSolver* s);
+
+/* MPI ranks taking part in the factorisations (1: this process alone). */
+int csf_linSolverRanks(const csfLinSolver* s);
+
+/* Memory the last factorisation used, MB (MUMPS INFOG(21), INFOG(22)): the most on one rank and
+ * the sum over the ranks; 0 for KLU or before a factorisation. */
+void csf_linSolverMemory(const csfLinSolver* s, double* max_rank_mb, double* total_mb);
+
+/* 1 in the MPI build (cs_fem_mpi: MUMPS on OpenMPI), 0 in the sequential one. */
+int csf_linSolverHaveMpi(void);
+
+/* The other ranks' side of a distributed FE (MPI build): called on every rank but 0 of
+ * MPI_COMM_WORLD, it makes the MUMPS calls rank 0's solvers order (creation, analysis,
+ * factorisations, solves, destruction; the host's matrix and right-hand side stay on the host)
+ * until rank 0 calls csf_linSolverServeStop. Waits between calls sleep (no spinning core).
+ * Returns CS_OK, or an error for an order it cannot match (or the sequential build). */
+csStatus csf_linSolverServe(csError* err);
+
+/* Rank 0: end every other rank's csf_linSolverServe (MPI build; nothing otherwise). Call it
+ * once, after the last solver of rank 0 was destroyed. */
+void csf_linSolverServeStop(void);
 
 #ifdef __cplusplus
 }

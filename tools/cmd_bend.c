@@ -34,6 +34,7 @@
 #include "core_text.h"
 #include "cs_commands.h"
 #include "cmd_bend.h"
+#include "cmd_fe_threads.h"
 #include "cs_paths.h"
 #include "cs_signal.h"
 #include "robot_actuator.h"
@@ -58,7 +59,7 @@ static const char kUsage[] =
     "                     [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ]\n"
     "                     [--calibration FILE|analytic] [--cal-rule prism|rbf|rbf-pair]\n"
     "                     [--cal-drop stretch|stiffness|stretch,stiffness]\n"
-    "                     [--branch-switch 0|1] [--out FILE.h5]\n"
+    "                     [--branch-switch 0|1] [--threads N] [--out FILE.h5]\n"
     "  Inflates the listed chambers (1..4) of all three segments at equal pressure from 0 to\n"
     "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
     "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
@@ -81,7 +82,9 @@ static const char kUsage[] =
     "  bifurcation (the tangent gains a negative pivot while the pressure rises) try to leave\n"
     "  the path along the critical mode (default 0: the mode is reported, the path kept).\n"
     "  --mesh-symmetric 1: mesh an eighth of the leg, mirrored and turned, so the mesh has the\n"
-    "  square section's eight symmetries (default 0: gmsh's mesh of the whole body).\n";
+    "  square section's eight symmetries (default 0: gmsh's mesh of the whole body).\n"
+    "  --threads N: the FE's threads (default: this process's cores, its share under mpirun,\n"
+    "  less the cores other processes hold; never more than the affinity mask's cores).\n";
 
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
 
@@ -488,6 +491,8 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
         return 1;
       }
       run->branch_switch = value[0] == '1';
+    } else if (!strcmp(name, "--threads")) {
+      bad = csx_feParseThreads("bend", value, &run->threads);
     } else if (!strcmp(name, "--fibre-law")) {
       run->fibre_tension_only = csr_fibreLawParse(value);
       if (run->fibre_tension_only < 0) {
@@ -635,6 +640,11 @@ int csx_cmdBend(int argc, char** argv) {
   if (run.mesh_symmetric >= 0 && run.model != BEND_FE) {
     fprintf(stderr, "crawlsim bend: --mesh-symmetric is for --model fe (the %s model has no "
             "mesh)\n", kModelNames[run.model]);
+    return 1;
+  }
+  if (run.threads > 0 && run.model != BEND_FE) {
+    fprintf(stderr, "crawlsim bend: --threads is for --model fe (the %s model runs on one "
+            "thread)\n", kModelNames[run.model]);
     return 1;
   }
   if (run.branch_switch >= 0 && run.model != BEND_FE) {

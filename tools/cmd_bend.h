@@ -43,6 +43,7 @@ typedef struct {
                                  mode, 0 stay on it, -1 the model's default (0) */
   double p_indefinite;        /* fe: first converged pressure with an indefinite tangent (NAN) */
   int neg_pivots_max;         /* fe: most negative pivots on the path (-1: LU) */
+  int threads;                /* fe: --threads N (0: the thread plan's default, fem_threads.h) */
 } BendRun;
 
 /* The full FE model's sweep of `run` (fem_bend.h: adaptive load stepping over the whole sweep,

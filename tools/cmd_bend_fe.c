@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cmd_bend.h"
+#include "cmd_fe_threads.h"
 #include "cs_signal.h"
 #include "core_clock.h"
 #include "core_h5.h"
@@ -188,9 +189,11 @@ static csStatus feWallAttrs(csH5File* f, const csfBendInfo* info, csError* err) 
 }
 
 
-static csStatus feSweep(BendRun* run, csrBendCurve* bc, csH5File* f, csfBendInfo* infop,
-                        csError* err) {
+static csStatus feSweep(BendRun* run, const csfThreadPlan* plan, csrBendCurve* bc,
+                        csH5File* f, csfBendInfo* infop, csError* err) {
   csfBendOptions o = csf_bendDefault();
+  o.threads = plan->threads;
+  o.spec.mpi_ranks = csx_feRanks(&o.spec.mpi_ranks_local); /* crawlsim-mpi under mpirun */
   /* chamber j of every segment at ratio[j] x p (--chambers: 1 or 0; --pressures: R_j) */
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
@@ -269,6 +272,7 @@ static csStatus feSweep(BendRun* run, csrBendCurve* bc, csH5File* f, csfBendInfo
             "iterations; assembly %.1f s, factorisation %.1f s, solves %.1f s, total %.1f s; "
             "deformed mesh %s, deck %s\n", info.ntet, info.nnode, info.nfibre, info.n_steps,
             info.n_newton, info.t_assemble, info.t_factor, info.t_solve, info.t_total, vtu, inp);
+    csx_feReportThreads("bend", plan, &info);
     if (info.n_until_trials > 0) {
       fprintf(stderr, "crawlsim bend: fe: until-angle refinement: %d equilibrium trials, %d "
               "failed%s%s\n", info.n_until_trials, info.n_until_failed,
@@ -331,8 +335,10 @@ int csx_bendFe(BendRun* run) {
   csStatus fst = ff ? csr_bendCurveInit(&fbc, 16, &ferr) : ferr.status;
   csfBendInfo info;
   memset(&info, 0, sizeof info);
+  csfThreadPlan plan;
+  csx_fePlanThreads("bend", run->threads, &plan);
   if (fst == CS_OK) {
-    fst = feSweep(run, &fbc, ff, &info, &ferr);
+    fst = feSweep(run, &plan, &fbc, ff, &info, &ferr);
   }
   if (fst == CS_OK) {
     csrBendMeta meta = {"fe",
@@ -354,6 +360,9 @@ int csx_bendFe(BendRun* run) {
     fst = csr_bendCurveWriteH5(ff, &run->act, &fbc, &meta, &ferr);
     if (fst == CS_OK) {
       fst = feWallAttrs(ff, &info, &ferr);
+    }
+    if (fst == CS_OK) {
+      fst = csx_feThreadAttrs(ff, &plan, &info, &ferr);
     }
   }
   if (ff) {

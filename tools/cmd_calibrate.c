@@ -22,6 +22,7 @@
 
 #include "core_clock.h"
 #include "core_math.h"
+#include "cmd_fe_threads.h"
 #include "cs_commands.h"
 #include "cs_signal.h"
 #include "fem_calibration.h"
@@ -34,7 +35,7 @@ static const char kUsage[] =
     "                          [--merge-only] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
     "                          [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]\n"
     "                          [--fibre-law linear|tension-only] [--fibre-turn DEG]\n"
-    "                          [--mesh-symmetric 0|1]\n"
+    "                          [--mesh-symmetric 0|1] [--threads N]\n"
     "                          [--p-step MPA] [--p-max MPA] [--newton-rtol R]\n"
     "                          [--model-out PRED.h5] [--cal-rule prism|rbf|rbf-pair]\n"
     "       crawlsim calibrate --report TABLE.h5 [--actuator ...] [--set ...]\n"
@@ -53,6 +54,8 @@ static const char kUsage[] =
     "  --fibre-turn DEG (a multiple of 90) turns the helices' start about the leg axis, so that\n"
     "  a turned chamber pattern is the exact image of the unturned one but for the mesh (a check\n"
     "  of the FE's symmetry; recorded, and a table's cases must share it).\n"
+    "  --threads N: the FE's threads (default: this process's cores, its share under mpirun,\n"
+    "  less the cores other processes hold).\n"
     "  --p-max caps every case's end pressure (small tables for tests). With every mode\n"
     "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
     "  rules compared, stiffness); --model-out writes the model's predictions for\n"
@@ -133,7 +136,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
   csrCalOptions copt = csr_calModelDefaultOptions();
   const char* sets[MAX_SETS];
   const char* pick[MAX_PICK];
-  int nset = 0, npick = 0, list = 0, merge_only = 0;
+  int nset = 0, npick = 0, list = 0, merge_only = 0, threads = 0;
   csfCalSettings cs = csf_calibrationDefault();
   for (int i = 1; i < argc; i++) {
     const char* a = argv[i];
@@ -156,7 +159,9 @@ int csx_cmdCalibrate(int argc, char** argv) {
     }
     const char* v = argv[++i];
     int bad = 0;
-    if (!strcmp(a, "--mesh-size")) {
+    if (!strcmp(a, "--threads")) {
+      bad = csx_feParseThreads("calibrate", v, &threads);
+    } else if (!strcmp(a, "--mesh-size")) {
       bad = parseNumber(a, v, 0.5, 20, &cs.mesh_size);
     } else if (!strcmp(a, "--fibre-size")) {
       bad = parseNumber(a, v, 0.05, 20, &cs.fibre_size);
@@ -279,7 +284,14 @@ int csx_cmdCalibrate(int argc, char** argv) {
             strerror(errno));
     return 1;
   }
-  /* run what is not done yet */
+  /* run what is not done yet, on the thread plan's count (fem_threads.h) */
+  csfThreadPlan plan;
+  if (!merge_only) {
+    csx_fePlanThreads("calibrate", threads, &plan);
+    cs.threads = plan.threads;
+    cs.threads_why = plan.why;
+    cs.mpi_ranks = csx_feRanks(&cs.mpi_ranks_local); /* crawlsim-mpi under mpirun */
+  }
   char stem[600];
   const double t_all = csu_wallSeconds();
   int ran = 0, skipped = 0;

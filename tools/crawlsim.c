@@ -1,12 +1,20 @@
 /* crawlsim.c: entry point of the `crawlsim` command; dispatches to the subcommands
  * (cs_commands.h). The command-line contract is DESIGN.md's. */
+#define _POSIX_C_SOURCE 200809L /* setenv, unsetenv, execv */
 #include <ode/ode.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "cmd_fe_threads.h"
 #include "cs_commands.h"
+#ifdef CS_FEM_MPI
+#include <mpi.h>
+
+#include "fem_linsolve.h"
+#endif
 
 static const char kUsage[] =
     "usage: crawlsim <command> [options]\n"
@@ -38,11 +46,99 @@ static void odeMessage(int num, const char* msg, va_list ap) {
 static int dispatch(int argc, char** argv);
 
 
+/* OpenMP threads that sleep when they wait (issue 38). libgomp reads OMP_WAIT_POLICY once, when
+ * it is loaded, before main(); its default spins up to 300 000 rounds at every barrier of
+ * MUMPS's and OpenBLAS's small parallel regions, taking cores that other processes hold
+ * (measured 3.3x slower with one other busy process, fem/README.md). So, unless the user chose a
+ * policy, set PASSIVE and start this program again, which libgomp then reads. OpenMPI's idle
+ * waits yield too (read at MPI_Init). If the restart fails the policy is unset again, so that
+ * what the output records (fe_omp_wait_policy) is what ran. */
+static void passiveWaits(char** argv) {
+  if (!getenv("OMPI_MCA_mpi_yield_when_idle")) {
+    setenv("OMPI_MCA_mpi_yield_when_idle", "1", 1);
+  }
+  if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) {
+    return;
+  }
+  setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+  execv("/proc/self/exe", argv);
+  unsetenv("OMP_WAIT_POLICY");
+}
+
+
+#ifdef CS_FEM_MPI
+/* crawlsim-mpi: MPI for every command (the MPI build's MUMPS needs it even on one rank). An FE
+ * command under mpirun runs on rank 0, and the other ranks serve its factorisations
+ * (csf_linSolverServe) until it ends; every other command runs as in crawlsim (a study hands
+ * out its cases over the ranks and each FE case stays on its rank). */
+static int mpiMain(int argc, char** argv) {
+  unsetenv(CSX_FE_RANKS_ENV); /* set below for rank 0's FE command only */
+  int provided = 0, rank = 0, size = 1;
+  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS) {
+    fprintf(stderr, "crawlsim-mpi: MPI_Init_thread failed\n");
+    return 1;
+  }
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  int rc = 0;
+  if (size > 1 && csx_feCommand(argc, argv)) {
+    if (rank == 0) {
+      char v[16];
+      snprintf(v, sizeof v, "%d", size);
+      setenv(CSX_FE_RANKS_ENV, v, 1);
+      rc = dispatch(argc, argv);
+      csf_linSolverServeStop();
+    } else {
+      csError err;
+      cs_errorClear(&err);
+      if (csf_linSolverServe(&err) != CS_OK) {
+        fprintf(stderr, "crawlsim-mpi: rank %d: %s\n", rank, err.msg);
+        rc = 1;
+      }
+    }
+  } else {
+    rc = dispatch(argc, argv);
+  }
+  MPI_Finalize();
+  return rc;
+}
+#else
+/* crawlsim (sequential MUMPS) under an MPI launcher with several ranks: an FE command would run
+ * as that many copies writing one output file (issue 38: it could not be opened). Refused on
+ * every rank, reported by rank 0; a study is not refused (one case per rank). */
+static int refusedUnderMpirun(int argc, char** argv) {
+  static const char* const kSize[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"};
+  static const char* const kRank[] = {"OMPI_COMM_WORLD_RANK", "PMI_RANK"};
+  for (int k = 0; k < 2; k++) {
+    const char* n = getenv(kSize[k]);
+    const int size = n ? atoi(n) : 0;
+    if (size <= 1 || !csx_feCommand(argc, argv)) {
+      continue;
+    }
+    const char* r = getenv(kRank[k]);
+    if (!r || atoi(r) == 0) {
+      fprintf(stderr, "crawlsim: %s%s under an MPI launcher with %d ranks: this crawlsim's FE "
+              "links sequential MUMPS and would run %d copies writing one file; run it without "
+              "mpirun, or `mpirun -n %d crawlsim-mpi %s ...` (MUMPS over MPI)\n", argv[1],
+              strcmp(argv[1], "bend") ? "" : " --model fe", size, size, size, argv[1]);
+    }
+    return 1;
+  }
+  return 0;
+}
+#endif
+
+
 int main(int argc, char** argv) {
+  passiveWaits(argv);
   /* the one process-wide ODE initialisation site (debian-deps.md P1) */
   dInitODE2(0);
   dSetMessageHandler(odeMessage);
-  int rc = dispatch(argc, argv);
+#ifdef CS_FEM_MPI
+  int rc = mpiMain(argc, argv);
+#else
+  int rc = refusedUnderMpirun(argc, argv) ? 1 : dispatch(argc, argv);
+#endif
   dCloseODE();
   return rc;
 }

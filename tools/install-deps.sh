@@ -14,6 +14,7 @@ PKGS=(
   libmumps-seq-dev libopenblas0-openmp      # fem: sequential MUMPS sparse LU + fast BLAS (fem/README.md)
   libsuitesparse-dev                        # fem: KLU fallback solver (LGPL)
   libopenmpi-dev openmpi-bin                # crawlsim study under mpirun (CS_WITH_MPI; already pulled in by libsundials-dev)
+  libmumps-dev                              # fem: MPI-parallel MUMPS on OpenMPI for crawlsim-mpi (issue 38; optional: without it no crawlsim-mpi)
   clang-14 libclang-rt-14-dev               # fuzzing: libFuzzer + ASan/UBSan runtimes (tests/fuzz)
   libomp-14-dev                             # fuzzing: clang-14's OpenMP, which SUNDIALS' CMake config asks for (OpenMP_C)
   llvm-14                                   # fuzzing: llvm-cov/llvm-profdata, the long run's coverage

@@ -160,12 +160,18 @@ csStatus csx_studyMpiInit(int* argc, char*** argv, csxStudyMpi* mpi, csError* er
   memset(mpi, 0, sizeof *mpi);
   mpi->size = 1;
 #ifdef CS_HAVE_MPI
-  if (!csx_studyUnderLauncher()) {
+  int already = 0; /* crawlsim-mpi initialises MPI for every command (its FE needs it) */
+  MPI_Initialized(&already);
+  if (!already && !csx_studyUnderLauncher()) {
     return CS_OK;
   }
   int provided = 0;
-  if (MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS) {
+  if (already) {
+    MPI_Query_thread(&provided);
+  } else if (MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS) {
     return cs_errorSet(err, CS_ERR_EXTERNAL, "MPI_Init_thread failed");
+  } else {
+    mpi->owner = 1;
   }
   mpi->initialised = 1;
   mpi->threads_ok = provided >= MPI_THREAD_SERIALIZED;
@@ -198,8 +204,10 @@ void csx_studyMpiFinalize(csxStudyMpi* mpi) {
     MPI_Send(&token, 1, MPI_INT, 0, TAG_FINAL, MPI_COMM_WORLD);
     lazyRecv(&token, (int)sizeof token, 0, TAG_FINAL, NULL);
   }
-  MPI_Finalize();
-  mpi->initialised = 0;
+  if (mpi->owner) {
+    MPI_Finalize();
+  }
+  mpi->initialised = mpi->owner = 0;
 #else
   (void)mpi;
 #endif

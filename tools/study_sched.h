@@ -36,7 +36,9 @@ typedef enum csxSchedule_ {
 /* This process's place in the study's MPI job. */
 typedef struct csxStudyMpi_ {
   int rank, size;    /* 0 and 1 without MPI */
-  int initialised;   /* 1 if this process called MPI_Init_thread (and must finalize) */
+  int initialised;   /* 1 if MPI is in use (initialised by the study or, in crawlsim-mpi, by
+                      * the program before it) */
+  int owner;         /* 1 if the study called MPI_Init_thread (and must finalize) */
   int threads_ok;    /* 1 if MPI gave MPI_THREAD_SERIALIZED or more (dynamic schedule) */
 } csxStudyMpi;
 

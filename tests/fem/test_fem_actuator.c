@@ -122,6 +122,36 @@ static void test_far_too_fine_mesh_is_refused(void) {
 }
 
 
+/* the factors of a distributed factorisation are spread over the ranks: the refusal compares
+ * this machine's share (bytes x local / ranks) with its memory and says so; all ranks on this
+ * machine need what one rank needs */
+static void test_memory_estimate_counts_the_ranks(void) {
+  csrActuator act;
+  csError err;
+  CS_EXPECT(csr_actuatorPreset(&act, "baseline", &err) == CS_OK);
+  csfActuatorSpec spec = csf_actuatorSpecDefault();
+  spec.mesh_size = 0.02;
+  spec.work_stem = "actuator_too_fine_ranks"; /* never written: refused before meshing */
+  csfActuatorFE fe;
+  double gb[3];
+  const int ranks[3][2] = {{1, 1}, {4, 1}, {4, 4}}; /* (ranks, of them on this machine) */
+  for (int k = 0; k < 3; k++) {
+    spec.mpi_ranks = ranks[k][0];
+    spec.mpi_ranks_local = ranks[k][1];
+    CS_EXPECT(csf_actuatorFECreate(&act, &spec, &fe, &err) == CS_ERR_RANGE);
+    const char* at = strstr(err.msg, "needs about ");
+    CS_EXPECT(at != NULL && sscanf(at, "needs about %lg GB", &gb[k]) == 1);
+    CS_EXPECT((strstr(err.msg, "MPI ranks on this machine") != NULL) == (ranks[k][0] > 1));
+    if (k == 1) {
+      printf("  %s\n", err.msg);
+    }
+  }
+  /* printed to 3 digits (%.3g) */
+  CS_EXPECT_NEAR(gb[1], gb[0] / 4, 0, 5e-3);
+  CS_EXPECT_NEAR(gb[2], gb[0], 0, 5e-3);
+}
+
+
 /* the start of the helices turned by a quarter turn (csfActuatorSpec.fibre_turn, the FE's
  * symmetry check) turns every fibre point by 90 deg about the leg axis and changes nothing else:
  * each fibre element's first end, rebuilt from its host nodes (x = -sum coef_a x_a, 20-node ties
@@ -198,6 +228,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_unresolvable_walls_are_refused);
   CS_RUN(test_mesh_estimate_bounds_the_count);
   CS_RUN(test_far_too_fine_mesh_is_refused);
+  CS_RUN(test_memory_estimate_counts_the_ranks);
   CS_RUN(test_turned_fibres_are_the_fibres_turned);
   return cs_testSummary();
 }
