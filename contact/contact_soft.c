@@ -40,7 +40,7 @@ static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
 
 cscSoftParams csc_softDefaultParams(void) {
   cscSoftParams p;
-  /* silicone on a dry road, as contact_ode.c (REFERENCE.md assumptions) */
+  /* silicone on a dry road, as contact_ode.c (docs/reference.md assumptions) */
   p.mu = 0.8;
   /* 1 N/mm^3: a 15 x 15 mm sole under a stance leg's 0.8 N sinks 3.6 um (stiffness 225 N/mm),
    * a capsule lying along 10 mm of its length under 0.8 N 0.06 mm, the worst case (a capsule

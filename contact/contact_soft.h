@@ -58,7 +58,7 @@
  * terrains_ccd.h) and per touching box a segment-box distance plus nquad points (capsule) or
  * one point-box distance per sole point.
  *
- * Frames and units: world frame of REFERENCE.md (y up), mm, s, N, N mm. */
+ * Frames and units: world frame of docs/reference.md (y up), mm, s, N, N mm. */
 #ifndef CS_CONTACT_SOFT_H
 #define CS_CONTACT_SOFT_H
 

@@ -2,7 +2,7 @@
  *
  * Owns: csStatus (0 = ok, negative = failure), csError (one-line message naming file, line and
  * cause), and the helpers that format them. The library never exits or prints on failure; it
- * returns a status and fills a csError the caller owns (SUNDIALS/GSL style, STYLE.md 13). */
+ * returns a status and fills a csError the caller owns (SUNDIALS/GSL style, docs/style.md 13). */
 #ifndef CS_CORE_STATUS_H
 #define CS_CORE_STATUS_H
 

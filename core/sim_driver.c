@@ -52,7 +52,7 @@ csOptions cs_defaultOptions(void) {
   /* long enough for the 100 Hz leg modes to die out under 5 ms material damping */
   o.settle = 0.3;
   o.gravity = 9810.0;
-  o.legs_weightless = 0; /* conditions `earth` (REFERENCE.md "Scene conditions") */
+  o.legs_weightless = 0; /* conditions `earth` (docs/reference.md "Scene conditions") */
   /* PGS iterations: loads pass from the feet to the support through chains of 13 links,
    * which a Gauss-Seidel sweep propagates one link per iteration. Measured on the crouch gait
    * at 1 m/s^2 (9 s end point): 60 -> 286 mm, 120 -> 334, 240 -> 301, 500 -> 304 mm; 240 is

@@ -1,7 +1,7 @@
 /* sim_internal.h: INTERNAL to core/sim_*.c: the layout of csData and the functions the driver's
  * files share. Nothing outside core/sim_*.c includes it; the public API is sim_model.h.
  *
- * Who writes what in csData during a step (STYLE.md 7):
+ * Who writes what in csData during a step (docs/style.md 7):
  *   schedule   p_cmd
  *   pneumatics p (and the CVODE memory), p0 keeps the pressures at the step's start
  *   legs       the legs' actuation; cosim.b0, b1, w, K, C (co-simulated legs' exchange)

@@ -175,7 +175,7 @@ csStatus cs_settle(const csModel* m, csData* d, csError* err);
  * naming the time and the cause, and the state is as before the call. */
 csStatus cs_step(const csModel* m, csData* d, csError* err);
 
-/* ---- the whole simulation state (STYLE.md 5) -----------------------------------------------
+/* ---- the whole simulation state (docs/style.md 5) -----------------------------------------------
  * A flat array of doubles: time t (s); the data's random seed (QuickStep reorders its rows with
  * ODE's one process-wide generator; each data keeps its own place in it, so the seed is part of
  * what its next step does); the 96 chamber
@@ -257,7 +257,7 @@ void cs_supportCorners(const csModel* m, const csData* d, double corners[24]);
 /* total mass of the robot (t) */
 double cs_robotMass(const csData* d);
 
-/* Run from t = 0 to opt.t_end, sampling into an HDF5 file per DESIGN.md's output contract.
+/* Run from t = 0 to opt.t_end, sampling into an HDF5 file per docs/design.md's output contract.
  * Writes as it goes and flushes every simulated second (core_h5.h: the file on disk is always
  * complete as of its last flush, even after kill -9), so a run that stops on an error leaves a
  * readable file with the samples so far; the root attributes status ("running", "ok",

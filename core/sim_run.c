@@ -1,4 +1,4 @@
-/* sim_run.c: a whole run with HDF5 output per DESIGN.md's output contract (see sim_model.h).
+/* sim_run.c: a whole run with HDF5 output per docs/design.md's output contract (see sim_model.h).
  *
  * Layout: /time [N] s; /support/position [N,3] mm; /support/orientation [N,4] (w,x,y,z);
  * /pressure [N,96] MPa; /legs/<A..H>/centerline [N,K,3] mm; and for seeing and checking a run

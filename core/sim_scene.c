@@ -4,7 +4,7 @@
 #include <string.h>
 
 /* The paper's two scenes (Sec. 5.1 and 5.2): their tables were computed without self-weight,
- * so they default to `paper` (REFERENCE.md "Scene conditions"). */
+ * so they default to `paper` (docs/reference.md "Scene conditions"). */
 static const csScene kScenes[] = {
     /* both scenes run the mission's surrogate by default: rod legs on the 23-mode FE table of
      * the symmetric mesh under `rbf-pair`, the calibration that meets every held-out FE case

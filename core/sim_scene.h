@@ -1,9 +1,9 @@
 /* sim_scene.h: scene descriptions and their physical conditions.
  *
- * Owns: csConditions (`earth` | `paper`, REFERENCE.md "Scene conditions") with their names and
+ * Owns: csConditions (`earth` | `paper`, docs/reference.md "Scene conditions") with their names and
  * what each does to the model, and the table of built-in scenes (csScene): a scene is a terrain
  * file (which holds the start pose and heading), a default gait and default conditions
- * (DESIGN.md "Scenes"). The paper's two scenes, `flat-road` and `obstacle`, default to `paper`;
+ * (docs/design.md "Scenes"). The paper's two scenes, `flat-road` and `obstacle`, default to `paper`;
  * a run on a user's terrain or gait defaults to `earth` (cs_sceneConditions). Everything is
  * overridable from the command line and recorded in the run's output (root attribute
  * `conditions`, sim_run.c).

@@ -1,4 +1,4 @@
-/* sim_state.c: the whole simulation state as a flat array (see sim_model.h, STYLE.md 5).
+/* sim_state.c: the whole simulation state as a flat array (see sim_model.h, docs/style.md 5).
  *
  * Layout: [0] t (s); [1] the data's ODE random seed (sim_internal.h); [2 .. 97] the 96 chamber pressures (MPa); then the
  * robot (csr_robotStateGet: support body, then legs A..H); with co-simulated legs, then the

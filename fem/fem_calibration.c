@@ -2,7 +2,7 @@
  *
  * Rationale.
  * Cases. A leg segment's four chambers give 8 bending modes and 1 elongation mode at equal
- * pressure (REFERENCE.md); by the section's symmetry (the square with its four chambers is
+ * pressure (docs/reference.md); by the section's symmetry (the square with its four chambers is
  * invariant under quarter turns and mirror planes) every chamber set is a rotation or mirror of
  * one of: Omega1 alone (bends towards Omega3, diagonal), Omega1&Omega2 (towards Omega3&Omega4,
  * the gait's mode), Omega1&Omega2&Omega4 (towards Omega3), Omega1&Omega3 and all four

@@ -28,7 +28,7 @@ typedef enum csfSolverKind_ {
   CSF_SOLVER_KLU = 1,
 } csfSolverKind;
 
-/* Options of a solver (STYLE.md 17). */
+/* Options of a solver (docs/style.md 17). */
 typedef struct csfLinSolverOptions_ {
   csfSolverKind kind;
   int symmetric; /* 1: K is symmetric, factor LDL^T from its upper triangle (MUMPS only) */

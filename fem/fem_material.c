@@ -1,6 +1,6 @@
 /* fem_material.c: Yeoh law and fibre law (fem_material.h).
  *
- * Rationale. The paper's Elastosil is second-order Yeoh (REFERENCE.md), written in the
+ * Rationale. The paper's Elastosil is second-order Yeoh (docs/reference.md), written in the
  * isochoric invariant I1b = J^(-2/3) tr C so that the deviatoric energy is exactly
  * incompressible-consistent; the volumetric part U(J) lives in the element layer (mixed P2/P0 or
  * pointwise), because its treatment is a discretisation choice, not a material one. */

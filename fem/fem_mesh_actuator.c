@@ -61,7 +61,7 @@ static csStatus geoClose(FILE* f, const char* path, csError* err) {
 }
 
 
-/* chamber centres (+b,+b) (+b,-b) (-b,-b) (-b,+b) for j = 1..4 (REFERENCE.md) */
+/* chamber centres (+b,+b) (+b,-b) (-b,-b) (-b,+b) for j = 1..4 (docs/reference.md) */
 static const double kSx[4] = {1, 1, -1, -1}, kSy[4] = {1, -1, -1, 1};
 
 

@@ -48,7 +48,7 @@ typedef struct csfNewtonIter_ {
   double jmin_X[3]; /* reference centroid of the element with the smallest J, mm */
 } csfNewtonIter;
 
-/* Newton options (STYLE.md 17). */
+/* Newton options (docs/style.md 17). */
 typedef struct csfNewtonOptions_ {
   int max_iter;   /* Newton iterations per load level */
   double rtol;    /* ||R|| <= rtol * fnorm (dimensionless) */

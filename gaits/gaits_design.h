@@ -6,7 +6,7 @@
  * reader with "<file>:<line>: <cause>" errors. Depends on nothing of ours but the leaf helpers.
  *
  * Format (one statement per line, '#' starts a comment, units s, mm, deg, MPa; leg frame of
- * REFERENCE.md: e1 = crawl direction +x, e2 = lateral +z, e3 down the leg):
+ * docs/reference.md: e1 = crawl direction +x, e2 = lateral +z, e3 down the leg):
  *   name WORD                          the gait's name
  *   sample S                           s between the table's rows inside a move (default 0.05)
  *   pose NAME SETS... TARGET VALUE     add a chamber set to pose NAME (poses are built from

@@ -1,6 +1,6 @@
 /* gaits_labels.h: the 96-label map of the robot's chambers.
  *
- * Owns: the numbering label = 12 k + 4 (s - 1) + j (REFERENCE.md "The robot"), with leg
+ * Owns: the numbering label = 12 k + 4 (s - 1) + j (docs/reference.md "The robot"), with leg
  * k = 0..7 for A..H, segment s = 1..3 (II1 at the base, II3 the foot) and chamber j = 1..4
  * (Ω1..Ω4); its inverse; the chamber names used as gait CSV column names, "A_II1_O1" ..
  * "H_II3_O4" (leg letter, II<s>, O<j>; 'O' stands for Ω so names stay ASCII); and parsing a
@@ -9,7 +9,7 @@
  * It lives in gaits/ (not robot/) because the gait reader must parse column names and gaits/
  * depends on nothing of ours; robot/ uses it from here. Paper checks: 22 = B-II3-Ω2,
  * 91 = H-II2-Ω3, 28 = C-II1-Ω4, 70 = F-II3-Ω2. Labels are 1-based and 0 means "no label"
- * (STYLE.md 10: zero is null). All functions are pure: no state, no allocation. */
+ * (docs/style.md 10: zero is null). All functions are pure: no state, no allocation. */
 #ifndef CS_GAITS_LABELS_H
 #define CS_GAITS_LABELS_H
 

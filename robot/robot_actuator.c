@@ -1,5 +1,5 @@
 /* robot_actuator.c: actuator presets, named parameters, validation (see robot_actuator.h).
- * Preset values: REFERENCE.md "Geometries" table; material and fibre data from the paper
+ * Preset values: docs/reference.md "Geometries" table; material and fibre data from the paper
  * (Sec. 3.3): C10 = 0.11, C20 = 0.02 MPa, rho = 1130e-12 t/mm^3; Kevlar E = 31067 MPa,
  * nu = 0.36, rho = 786e-12 t/mm^3, section radius 0.0889 mm. */
 #include "robot_actuator.h"
@@ -68,7 +68,7 @@ csStatus csr_actuatorPreset(csrActuator* act, const char* name, csError* err) {
     act->n[0] = act->n[1] = act->n[2] = 30;
     act->LS[0] = act->LS[1] = 6;
   } else if (!strcmp(name, "leg")) {
-    /* robot leg, L = 166 mm; joint length 8 mm is REFERENCE.md's assumption */
+    /* robot leg, L = 166 mm; joint length 8 mm is docs/reference.md's assumption */
     act->S[0] = act->S[1] = act->S[2] = 50;
     act->n[0] = act->n[1] = act->n[2] = 30;
     act->LS[0] = act->LS[1] = 8;

@@ -1,4 +1,4 @@
-/* robot_bend_io.h: the HDF5 file of `crawlsim bend` (DESIGN.md "Output contract", bend).
+/* robot_bend_io.h: the HDF5 file of `crawlsim bend` (docs/design.md "Output contract", bend).
  *
  * Owns: writing a csrBendCurve and its metadata to an open csH5File, for every model level
  * (analytic, fe, rod, prb, rom), so that all of them produce the same layout:

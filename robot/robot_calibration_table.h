@@ -1,6 +1,6 @@
 /* robot_calibration_table.h: reading and validating an FE calibration table of chamber modes
  * (the HDF5 file `crawlsim calibrate` writes, fem/fem_calibration.h) into memory, as data: robot/
- * never calls fem/ (DESIGN.md "Data flow").
+ * never calls fem/ (docs/design.md "Data flow").
  *
  * Owns: csrCalTable (the table's root description and its cases with every dataset), the
  * reader csr_calTableRead, which checks the file before anything uses it, and the lookup of a

@@ -2,7 +2,7 @@
  *
  * Owns: the inverse problems a gait designer needs ("which pressure gives this foot stroke?"),
  * solved on the calibration map and the constant-curvature forward kinematics, so that a gait's
- * pressures follow from our model rather than from the paper's printed values (REFERENCE.md,
+ * pressures follow from our model rather than from the paper's printed values (docs/reference.md,
  * "Gait tables": the leg motion is the target, not the pressure).
  *
  * Flat-road leg motions (leg frame: e1 = crawl direction, e3 down the leg):

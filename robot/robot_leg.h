@@ -4,7 +4,7 @@
  * Owns: csrBendMap (pressures of one segment's four chambers -> bend vector of that segment),
  * csrLegSpec (everything a leg needs to build itself), the exchange records of the support
  * interface (csrBaseState in, csrWrench out), csrContactShape, and csrLegType: a const table of
- * operations over a leg's own flat state (STYLE.md 11; SUNDIALS' SUNStepper, MuJoCo plugins).
+ * operations over a leg's own flat state (docs/style.md 11; SUNDIALS' SUNStepper, MuJoCo plugins).
  * The driver (core/) only ever calls the table; a level is registered in one line of
  * robot_robot.c (csr_legTypeFind).
  *
@@ -17,10 +17,10 @@
  *    itself across the step (its own contact with the terrain included) and returns the base
  *    wrench it exerts on the support; ODE then steps the support with that wrench applied.
  *
- * Frames and units: world frame of REFERENCE.md (x crawl direction, y up, z lateral); mm, s,
+ * Frames and units: world frame of docs/reference.md (x crawl direction, y up, z lateral); mm, s,
  * MPa, N, N mm, t. A leg's frame (e1, e2, e3): e3 runs from the hip (base of II1) to the foot
  * along the undeformed leg; e1, e2 span the cross-section with the chamber layout of
- * REFERENCE.md (Ω1 = (+b,+b), Ω2 = (+b,-b), Ω3 = (-b,-b), Ω4 = (-b,+b)). Matrices are row-major
+ * docs/reference.md (Ω1 = (+b,+b), Ω2 = (+b,-b), Ω3 = (-b,-b), Ω4 = (-b,+b)). Matrices are row-major
  * 3x3 (9 doubles); a frame matrix holds e1, e2, e3 as its columns, in world coordinates.
  *
  * Ownership: the creator destroys (destroy is NULL-safe); a leg keeps pointers to spec->act's

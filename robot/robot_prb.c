@@ -215,7 +215,7 @@ static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
     double mass = massBetween(spec->act, s0, s1);
     dMassSetBoxTotal(&m, mass, 2 * spec->act->a, 2 * spec->act->a, len);
     dBodySetMass(b, &m);
-    /* conditions `paper` (REFERENCE.md): the leg keeps its mass and inertia, gravity does not
+    /* conditions `paper` (docs/reference.md): the leg keeps its mass and inertia, gravity does not
      * act on it */
     if (spec->weightless) {
       dBodySetGravityMode(b, 0);

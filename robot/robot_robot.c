@@ -14,7 +14,7 @@ static const csrLegType* const kLegLevels[] = {
     &csr_leg_prb,
     &csr_leg_rod,
 };
-/* Levels DESIGN.md names ("Model levels"): known to the CLI, "not available yet" until they are
+/* Levels docs/design.md names ("Model levels"): known to the CLI, "not available yet" until they are
  * in kLegLevels. */
 static const char* const kPlannedLevels[] = {"prb", "rod", "rom"};
 enum { NLEVEL = sizeof kLegLevels / sizeof kLegLevels[0] };

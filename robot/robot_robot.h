@@ -1,6 +1,6 @@
 /* robot_robot.h: the robot assembly: a rigid support with eight legs under it.
  *
- * Owns: csrRobotModel (layout of REFERENCE.md "The robot", support mass and size, the leg
+ * Owns: csrRobotModel (layout of docs/reference.md "The robot", support mass and size, the leg
  * actuator, leg level and calibration map; constant during a run), csrRobot (the support's ODE
  * body and the eight legs of one instance), the robot's whole state (support body + every
  * leg's state, flat), the support interface of co-simulated legs (hip motion out, base wrench
@@ -79,7 +79,7 @@ void csr_robotDestroy(csrRobot* r);
 /* Centre of mass of the whole robot (world, mm). */
 void csr_robotCenterOfMass(const csrRobot* r, double com[3]);
 
-/* Apply the 96 chamber pressures (MPa, label order of REFERENCE.md) at the start (t0, p0) and
+/* Apply the 96 chamber pressures (MPa, label order of docs/reference.md) at the start (t0, p0) and
  * end (t1, p1) of the coming macro step to every leg (csrLegType.actuate). Returns 0, or the
  * first leg's non-zero code (> 0 recoverable, < 0 fatal, CSR_MAP_OUT_OF_RANGE). */
 int csr_robotActuate(csrRobot* r, double t0, const double p0[CSR_NCHAMBER_TOTAL], double t1,

@@ -28,7 +28,7 @@
  * the semi-discrete equations (and not increased by BDF).
  *
  * Frames and units: world mm, s, N, N mm, t (tonne), MPa. Material frame at rest = the leg
- * frame of robot_leg.h: e1 = d1, e2 = d2, e3 = d3 down the leg (REFERENCE.md chamber layout).
+ * frame of robot_leg.h: e1 = d1, e2 = d2, e3 = d3 down the leg (docs/reference.md chamber layout).
  * Intrinsic curvature u0 is the Darboux vector in the material frame (1/mm): u0 = (κ1, κ2, τ)
  * with κ2 > 0 turning d3 towards +d1. A csrBendMap's bend[2] (rad over the segment, towards
  * bend[0] e1 + bend[1] e2) gives u0 = (-bend[1], bend[0], 0) / S and σ0 = (0, 0, stretch - 1).
@@ -178,7 +178,7 @@ typedef struct csrRodSpec_ {
   double frame[9];                 /* base frame at rest, columns e1 e2 e3, row-major */
   double gravity[3];               /* gravitational acceleration, world (mm/s^2) */
   int weightless;                  /* 1: the leg keeps its mass and inertia but feels no gravity
-                                      (REFERENCE.md conditions `paper`); 0: `earth` (as
+                                      (docs/reference.md conditions `paper`); 0: `earth` (as
                                       csrLegSpec.weightless) */
   csrRodContact contact;           /* leg-terrain contact hook */
 } csrRodSpec;

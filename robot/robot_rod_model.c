@@ -49,7 +49,7 @@
  * (holed section) and its two solid caps c (full section): EA = S / (Lc/(E'A_h) + 2c/(E'A_f)),
  * the same for EI, kGA and GJ, so the calibration's per-segment curvature acts on a uniform
  * piece; with the presets this is 4 % stiffer in bending than the holed section alone (which
- * prb uses over all of S). Joints LS12, LS23: solid blocks of the full section (REFERENCE.md
+ * prb uses over all of S). Joints LS12, LS23: solid blocks of the full section (docs/reference.md
  * assumption), passive. Torsion: St-Venant's J = 0.1406 (2a)^4 of the square (Roark), the holed
  * section scaled by its polar-moment ratio (an estimate: twist is barely loaded in this robot).
  * Mass and rotary inertia: the silicone density over the filleted square, chambers hollow

@@ -6,7 +6,7 @@
  * terrain), cst_boxSignedDistance (closed form, used by the soft contact law where it is exact
  * and cheaper than an iterative query), and cst_terrainBoxesNear (the broad phase).
  *
- * Frames and units: world frame of REFERENCE.md (x crawl direction, y up, z lateral), mm. A
+ * Frames and units: world frame of docs/reference.md (x crawl direction, y up, z lateral), mm. A
  * cstBox is axis-aligned, so a support point is a corner chosen by the signs of the direction;
  * no rotation is stored or needed.
  *

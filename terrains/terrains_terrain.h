@@ -4,7 +4,7 @@
  * description-file parser with line-numbered errors, and building the terrain's ODE geoms.
  *
  * File format (text, one statement per line, '#' starts a comment, units mm, world frame of
- * REFERENCE.md: x = crawl direction, y = up, z = lateral):
+ * docs/reference.md: x = crawl direction, y = up, z = lateral):
  *   name  <word>                           terrain name, e.g. flat-road
  *   box   x0 y0 z0  x1 y1 z1               a solid box with opposite corners (x0<x1, ...)
  *   start x z                              start of the support's centre in the ground plane

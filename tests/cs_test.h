@@ -2,7 +2,7 @@
  *
  * CS_EXPECT(cond) and CS_EXPECT_NEAR(a, b, abs_tol, rel_tol) record a failure and print the
  * expression with %.17g values; a test passes when |a-b| <= max(abs_tol, rel_tol*|b|), and NaN
- * or Inf on either side fails (STYLE.md 22). Every tolerance at a call site carries a comment
+ * or Inf on either side fails (docs/style.md 22). Every tolerance at a call site carries a comment
  * saying why it is that size. A test file's main() runs its cases with CS_RUN and returns
  * cs_testSummary(), which prints "N passed, N failed". */
 #ifndef CS_TEST_H

@@ -1,5 +1,5 @@
 /* cmd_bend.c: `crawlsim bend`, the pressure -> bending characterisation of one actuator
- * (DESIGN.md command-line and output contracts; paper Figs. 3, 6-9).
+ * (docs/design.md command-line and output contracts; paper Figs. 3, 6-9).
  *
  *   crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]
  *                 [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]

@@ -1,5 +1,5 @@
 /* cmd_run.c: `crawlsim run`: simulate a gait on a terrain and write the run HDF5 file.
- * Contract (DESIGN.md): crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv]
+ * Contract (docs/design.md): crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv]
  *   [--legs auto|prb|rod|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,

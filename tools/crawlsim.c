@@ -1,5 +1,5 @@
 /* crawlsim.c: entry point of the `crawlsim` command; dispatches to the subcommands
- * (cs_commands.h). The command-line contract is DESIGN.md's. */
+ * (cs_commands.h). The command-line contract is docs/design.md's. */
 #define _POSIX_C_SOURCE 200809L /* setenv, unsetenv, execv */
 #include <ode/ode.h>
 #include <stdarg.h>

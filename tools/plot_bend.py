@@ -4,7 +4,7 @@
 Usage:
   /usr/bin/python3 tools/plot_bend.py BEND.h5 [more.h5 ...] [-o OUT.png]
 
-Reads the `bend` output contract of DESIGN.md ("Output contract (HDF5)"):
+Reads the `bend` output contract of docs/design.md ("Output contract (HDF5)"):
   /pressure [M] MPa, /angle_deg [M,3] per segment (II1, II2, II3), /angle_total_deg [M],
   /tip_position [M,3] mm (checked, not plotted); attributes `model`, the actuator's name,
   and `p_until_angle_MPa` when `--until-angle` was given.

@@ -5,14 +5,14 @@ Usage:
   /usr/bin/python3 tools/plot_track.py RUN.h5 [-o OUT.png] [--times 0,0.5,1,1.5,2]
                                        [--reference flat-road|obstacle|none]
 
-Reads the `run` output contract of DESIGN.md ("Output contract (HDF5)"):
+Reads the `run` output contract of docs/design.md ("Output contract (HDF5)"):
   /time [N] s, /support/position [N,3] mm (x, y, z displacement of the support's centre
   from t = 0; x crawl direction, y up, z lateral), /support/orientation [N,4] (w, x, y, z),
   /legs/<A..H>/centerline [N,K,3] mm (world frame), root attributes (scene, leg model,
   gait file, wall time, ...). /pressure is part of the contract but is not plotted here.
 
 Draws one PNG with four panels:
-  (a) support x vs t, with the paper's Table 2 (REFERENCE.md) and a +-10 % band after 2 s
+  (a) support x vs t, with the paper's Table 2 (docs/reference.md) and a +-10 % band after 2 s
       (--reference flat-road), or Table 3's x nodes with a +-20 mm band (--reference obstacle);
   (b) support height y and lateral z vs t (with Table 3's height = -y_paper and z nodes);
   (c) pitch and roll of the support in degrees;
@@ -43,12 +43,12 @@ PROG = "plot_track"
 
 LEGS = "ABCDEFGH"
 
-# Paper Table 2 (REFERENCE.md): flat road, support displacement x (mm) at t = 0..9 s; y = z = 0.
+# Paper Table 2 (docs/reference.md): flat road, support displacement x (mm) at t = 0..9 s; y = z = 0.
 TABLE2_T = np.arange(10.0)
 TABLE2_X = np.array([0, 0, 39, 78, 117, 156, 195, 234, 273, 312], dtype=float)
 TABLE2_BAND = 0.10  # +-10 % band, drawn from t = 2 s on (before that x is 0 and a relative band is empty)
 TABLE2_BAND_FROM = 2.0
-# Paper Table 3 (REFERENCE.md): obstacle road, support displacement at its listed times (s):
+# Paper Table 3 (docs/reference.md): obstacle road, support displacement at its listed times (s):
 # x, height (= -y of the paper's table: up positive) and z (mm); the issue's tolerance 20 mm
 TABLE3_T = np.array([0, 1, 2, 3, 4, 5, 7, 11, 12, 14, 24, 29, 32], dtype=float)
 TABLE3_X = np.array([0, 0, 0, 0, 26, 26, 52, 130, 170, 230, 492, 646, 646], dtype=float)
@@ -95,7 +95,7 @@ def load_run(path):
 def pitch_roll_deg(q):
     """Pitch (about lateral z, nose up > 0) and roll (about crawl axis x) in degrees.
 
-    Frames of REFERENCE.md: x crawl direction, y up, z lateral. The attitude is read as
+    Frames of docs/reference.md: x crawl direction, y up, z lateral. The attitude is read as
     R = Ry(yaw) Rz(pitch) Rx(roll); then R[1,0] = sin(pitch) (the body x axis' height) and
     roll = atan2(-R[1,2], R[1,1]). Quaternions are normalised first (w, x, y, z order).
     """

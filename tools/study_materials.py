@@ -12,7 +12,7 @@ Robotics", Soft Robotics 8(3), 2021, doi:10.1089/soro.2019.0115 (data under the 
 constants derived here are used by crawlsim, the data is not copied).
 
 The paper's material law is the incompressible second-order Yeoh form W = C10 (I1 - 3) +
-C20 (I1 - 3)^2 (REFERENCE.md). Under uniaxial tension with stretch l = 1 + e, I1 = l^2 + 2/l and
+C20 (I1 - 3)^2 (docs/reference.md). Under uniaxial tension with stretch l = 1 + e, I1 = l^2 + 2/l and
 the nominal stress is P = 2 (l - l^-2) (C10 + 2 C20 (I1 - 3)): linear in (C10, C20), fitted here
 by least squares to the points with 0 < e <= strain-max (default 1.0: the actuators' walls
 stretch up to ~50 %, the legs' bending stiffness depends on the small-strain modulus 8 C10 with

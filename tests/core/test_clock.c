@@ -1,5 +1,5 @@
 /* test_clock.c: the wall clock is monotonic and the stage timer accumulates what it is given
- * (no timing assertions: only order and counts, STYLE.md "No timing assertions"). */
+ * (no timing assertions: only order and counts, docs/style.md "No timing assertions"). */
 #include "core_clock.h"
 #include "cs_test.h"
 

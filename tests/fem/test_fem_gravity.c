@@ -15,7 +15,7 @@
 
 #define BEAM_L 40.0   /* mm */
 #define BEAM_H 4.0    /* mm, square section */
-#define RHO 1130e-12  /* t/mm^3, Elastosil M4601 (REFERENCE.md) */
+#define RHO 1130e-12  /* t/mm^3, Elastosil M4601 (docs/reference.md) */
 #define C10 0.11      /* MPa */
 #define C20 0.02      /* MPa */
 /* 0.1 of Earth's gravity, mm/s^2: tip deflection ~ 1 % of L, so geometric nonlinearity and the

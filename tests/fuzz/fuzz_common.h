@@ -17,7 +17,7 @@
  * contract aborts, which libFuzzer records as a crash and ctest as a failed test.
  *
  * The process-wide state (the temp file names, the harness's parsed-once data) is test code's:
- * library code has none (STYLE.md 12). */
+ * library code has none (docs/style.md 12). */
 #ifndef CS_FUZZ_COMMON_H
 #define CS_FUZZ_COMMON_H
 

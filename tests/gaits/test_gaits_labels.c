@@ -7,7 +7,7 @@
 #include "gaits_labels.h"
 
 
-/* the four checks REFERENCE.md quotes from the paper */
+/* the four checks docs/reference.md quotes from the paper */
 static void test_paperChecks(void) {
   static const struct {
     int label, leg, seg, chamber;

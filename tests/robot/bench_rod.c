@@ -189,7 +189,7 @@ static double runRoad(int nps, double H, double t_end, const csrBendMap* map, in
   const csrLegType* T = &csr_leg_rod;
   csrLeg* legs[8];
   csrBaseState base[8];
-  /* A..D at -z front to back, E..H at +z (REFERENCE.md); ACFH = k 0, 2, 5, 7 */
+  /* A..D at -z front to back, E..H at +z (docs/reference.md); ACFH = k 0, 2, 5, 7 */
   const double xs[4] = {75, 25, -25, -75};
   for (int k = 0; k < nleg; k++) {
     csrLegSpec sp;

@@ -1,5 +1,5 @@
 /* test_bend_cli.c: `crawlsim bend` end to end: runs the real executable (its path is argv[1],
- * from $<TARGET_FILE:crawlsim>) and checks the HDF5 output contract (DESIGN.md), that
+ * from $<TARGET_FILE:crawlsim>) and checks the HDF5 output contract (docs/design.md), that
  * --until-angle is the model's own root of Θ(p) = DEG, and that bad input exits 1 with exactly
  * one line "crawlsim bend: ..." on stderr, nothing on stdout and no output file.
  * The run/capture helpers are tests/cs_cli.h, which needs POSIX (the project builds with

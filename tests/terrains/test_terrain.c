@@ -1,6 +1,6 @@
 /* test_terrain.c: terrains/terrains_terrain.c: the shipped flat road loads with the geometry
  * of its file, its ODE geoms match the boxes, and every bad input is refused with the right
- * status and a one-line message "<file>:<line>: <cause>" (DESIGN.md command-line contract). */
+ * status and a one-line message "<file>:<line>: <cause>" (docs/design.md command-line contract). */
 #include "terrains_terrain.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""make_synthetic_h5.py: write small synthetic `run` / `bend` files (DESIGN.md output contract)
+"""make_synthetic_h5.py: write small synthetic `run` / `bend` files (docs/design.md output contract)
 for testing tools/plot_track.py and tools/plot_bend.py. Not physics: shapes and units only.
 
   make_synthetic_h5.py run  OUT.h5 [--n N] [--k K] [--drop /dataset] [--short /dataset]

@@ -78,7 +78,7 @@ static void test_calibrate_runs_resumes_and_merges(void) {
     CS_EXPECT(p[0] == 0 && fabs(p[1] - 0.05) < 1e-12);
     double bend[12];
     CS_EXPECT(H5LTread_dataset_double(f, "/cases/O12/bend", bend) >= 0);
-    /* Omega1&Omega2 bend each segment towards -e1 (REFERENCE.md: towards Omega3&Omega4) */
+    /* Omega1&Omega2 bend each segment towards -e1 (docs/reference.md: towards Omega3&Omega4) */
     for (int s = 0; s < 3; s++) {
       CS_EXPECT(bend[6 + 2 * s] < 0);
       /* ... with a side component of mesh asymmetry only (measured < 2 % of the bend) */

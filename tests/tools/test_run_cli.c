@@ -2,7 +2,7 @@
  * path is argv[1], from $<TARGET_FILE:crawlsim>) and checks that every bad flag, terrain,
  * gait, calibration or output path exits 1 with exactly ONE line "crawlsim run: <cause>" on
  * stderr, nothing on stdout (--quiet: no progress lines), and no output file, i.e. it failed
- * before simulating (DESIGN.md command-line contract). One short good run exits 0. */
+ * before simulating (docs/design.md command-line contract). One short good run exits 0. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <hdf5.h>
