@@ -17,11 +17,11 @@ bad=0
 while IFS= read -r f; do
   case "$f" in
     docs/bench/*|*.log|*.csv|*.h5|*.png|*.gif|*.msh) continue ;;
+    tests/tools/test_no_outside_citations.sh) continue ;; # it names the patterns it looks for
   esac
   [ -f "$f" ] || continue
   # a bare DESIGN.md / REFERENCE.md / STYLE.md is a citation of the notes outside the repository
-  hits=$(grep -nP '(?<![\w/.])(DESIGN|REFERENCE|STYLE)\.md|\.\./shared/|(?<![\w.])/(work|home)/[\w.-]' "$f" 2>/dev/null |
-         grep -v 'test_no_outside_citations' || true)
+  hits=$(grep -nP '(?<![\w/.])(DESIGN|REFERENCE|STYLE)\.md|\.\./shared/|(?<![\w.])/(work|home)/[\w.-]' "$f" 2>/dev/null)
   if [ -n "$hits" ]; then
     while IFS= read -r h; do echo "$f:$h"; done <<<"$hits"
     bad=1
