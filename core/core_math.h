@@ -265,6 +265,48 @@ static inline void csu_symEigen3(const csReal A[9], csReal w[3], csReal V[9]) {
   csu_symEigenN(3, A, w, V);
 }
 
+/* Solve A x = b for a 6 x 6 A (row-major, destroyed) by Gaussian elimination with partial
+ * pivoting; x overwrites b. Returns 1 (b partly overwritten) if A is singular, else 0. The
+ * support's implicit step (sim_coupling.c) and the strain leg's tree tests use it. */
+static inline int csu_solve6(csReal A[36], csReal b[6]) {
+  for (int k = 0; k < 6; k++) {
+    int p = k;
+    for (int i = k + 1; i < 6; i++) {
+      if (fabs(A[6 * i + k]) > fabs(A[6 * p + k])) {
+        p = i;
+      }
+    }
+    if (!(fabs(A[6 * p + k]) > 0)) {
+      return 1;
+    }
+    if (p != k) {
+      for (int j = 0; j < 6; j++) {
+        csReal t = A[6 * k + j];
+        A[6 * k + j] = A[6 * p + j];
+        A[6 * p + j] = t;
+      }
+      csReal t = b[k];
+      b[k] = b[p];
+      b[p] = t;
+    }
+    for (int i = k + 1; i < 6; i++) {
+      csReal f = A[6 * i + k] / A[6 * k + k];
+      for (int j = k; j < 6; j++) {
+        A[6 * i + j] -= f * A[6 * k + j];
+      }
+      b[i] -= f * b[k];
+    }
+  }
+  for (int k = 5; k >= 0; k--) {
+    csReal s = b[k];
+    for (int j = k + 1; j < 6; j++) {
+      s -= A[6 * k + j] * b[j];
+    }
+    b[k] = s / A[6 * k + k];
+  }
+  return 0;
+}
+
 /* The implicit spring-damper of ODE's soft constraints (ODE manual, "Soft constraint and
  * constraint force mixing"): a row with error-reduction ERP and constraint-force mixing CFM at
  * step h acts as a spring kp with damper kd integrated implicitly when

@@ -360,48 +360,6 @@ static int implicitPart(const csData* d, const double R[9], double h, const doub
 }
 
 
-/* solve A x = b for 6 x 6 A (row-major, destroyed) by Gaussian elimination with partial
- * pivoting; 1 if singular */
-static int solve6(double A[36], double b[6]) {
-  for (int k = 0; k < 6; k++) {
-    int p = k;
-    for (int i = k + 1; i < 6; i++) {
-      if (fabs(A[6 * i + k]) > fabs(A[6 * p + k])) {
-        p = i;
-      }
-    }
-    if (!(fabs(A[6 * p + k]) > 0)) {
-      return 1;
-    }
-    if (p != k) {
-      for (int j = 0; j < 6; j++) {
-        double t = A[6 * k + j];
-        A[6 * k + j] = A[6 * p + j];
-        A[6 * p + j] = t;
-      }
-      double t = b[k];
-      b[k] = b[p];
-      b[p] = t;
-    }
-    for (int i = k + 1; i < 6; i++) {
-      double f = A[6 * i + k] / A[6 * k + k];
-      for (int j = k; j < 6; j++) {
-        A[6 * i + j] -= f * A[6 * k + j];
-      }
-      b[i] -= f * b[k];
-    }
-  }
-  for (int k = 5; k >= 0; k--) {
-    double s = b[k];
-    for (int j = k + 1; j < 6; j++) {
-      s -= A[6 * k + j] * b[j];
-    }
-    b[k] = s / A[6 * k + k];
-  }
-  return 0;
-}
-
-
 /* a leg's wrench (and gains) finite, else the step is rejected naming the leg (1) */
 static int checkFinite(const csData* d, int k, const csrWrench* w, const double* K,
                        const double* C, csError* err) {
@@ -662,7 +620,7 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
     }
   }
   double F[6];
-  if (solve6(S, rhs) != 0) {
+  if (csu_solve6(S, rhs) != 0) {
     /* singular (cannot happen with a positive mass): the legs' wrench as staggered */
     memcpy(F, W0, sizeof F);
   } else {

@@ -155,41 +155,6 @@ static inline void strainRobotDestroy(StrainRobot* r) {
 }
 
 
-/* solve the 6 x 6 A x = b (A, b destroyed) */
-static inline void strainRobotSolve6(double A[36], double b[6], double x[6]) {
-  for (int k = 0; k < 6; k++) {
-    int p = k;
-    for (int i = k + 1; i < 6; i++) {
-      if (fabs(A[6 * i + k]) > fabs(A[6 * p + k])) {
-        p = i;
-      }
-    }
-    for (int j = 0; j < 6; j++) {
-      double t = A[6 * k + j];
-      A[6 * k + j] = A[6 * p + j];
-      A[6 * p + j] = t;
-    }
-    double t = b[k];
-    b[k] = b[p];
-    b[p] = t;
-    for (int i = k + 1; i < 6; i++) {
-      double l = A[6 * i + k] / A[6 * k + k];
-      for (int j = k; j < 6; j++) {
-        A[6 * i + j] -= l * A[6 * k + j];
-      }
-      b[i] -= l * b[k];
-    }
-  }
-  for (int i = 5; i >= 0; i--) {
-    double s = b[i];
-    for (int j = i + 1; j < 6; j++) {
-      s -= A[6 * i + j] * x[j];
-    }
-    x[i] = s / A[6 * i + i];
-  }
-}
-
-
 /* one step of h with the legs' 96 pressures p96 at its end; 0 ok. leg_s and tree_s, if not
  * NULL, accumulate the wall time of the legs' and the support's parts */
 static inline int strainRobotStep(StrainRobot* r, double h, const double p96[96],
@@ -249,8 +214,10 @@ static inline int strainRobotStep(StrainRobot* r, double h, const double p96[96]
       rhs[i] += s;
     }
   }
-  double dV[6];
-  strainRobotSolve6(W, rhs, dV);
+  if (csu_solve6(W, rhs) != 0) {
+    return 1; /* the support's condensed matrix is singular */
+  }
+  const double* dV = rhs;
   for (int i = 0; i < 6; i++) {
     r->V[i] += dV[i];
   }

@@ -183,41 +183,6 @@ static void released_leg_energy_decreases(void) {
 }
 
 
-/* solve the 6 x 6 system A x = b (Gaussian elimination, partial pivoting); A, b destroyed */
-static void solve6(double A[36], double b[6], double x[6]) {
-  for (int k = 0; k < 6; k++) {
-    int p = k;
-    for (int i = k + 1; i < 6; i++) {
-      if (fabs(A[6 * i + k]) > fabs(A[6 * p + k])) {
-        p = i;
-      }
-    }
-    for (int j = 0; j < 6; j++) {
-      double t = A[6 * k + j];
-      A[6 * k + j] = A[6 * p + j];
-      A[6 * p + j] = t;
-    }
-    double t = b[k];
-    b[k] = b[p];
-    b[p] = t;
-    for (int i = k + 1; i < 6; i++) {
-      double l = A[6 * i + k] / A[6 * k + k];
-      for (int j = k; j < 6; j++) {
-        A[6 * i + j] -= l * A[6 * k + j];
-      }
-      b[i] -= l * b[k];
-    }
-  }
-  for (int i = 5; i >= 0; i--) {
-    double s = b[i];
-    for (int j = i + 1; j < 6; j++) {
-      s -= A[6 * i + j] * x[j];
-    }
-    x[i] = s / A[6 * i + i];
-  }
-}
-
-
 /* a free rigid base: mass mb, inertia diag Ic about its centre c (hip frame), the hip frame as
  * its body frame */
 typedef struct {
@@ -313,7 +278,8 @@ static int coupledStep(const csrStrainModel* m, csrStrainData* d, FreeBase* B, d
   for (int a = 0; a < 6; a++) {
     r[a] = h * r[a] + rho[a];
   }
-  solve6(W, r, dV);
+  CS_EXPECT(csu_solve6(W, r) == 0);
+  memcpy(dV, r, sizeof dV);
   for (int a = 0; a < 6; a++) {
     B->V[a] += dV[a];
   }
