@@ -618,6 +618,31 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
 
 
 
+csStatus csx_bendFileClose(csH5File* f, const char* model, const csrBendCurve* bc, csStatus st,
+                           csError* err) {
+  if (st != CS_OK) {
+    cs_h5AttrString(f, "/", "model", model, NULL);
+    csr_bendCurveFlushH5(f, bc, NULL); /* fails at once if the disk refused already */
+  }
+  cs_h5AttrString(f, "/", "status", st == CS_OK ? "ok" : err->msg, NULL);
+  csError cerr;
+  csStatus cst = cs_h5CloseChecked(f, &cerr);
+  if (st == CS_OK && cst != CS_OK) {
+    st = cst;
+    *err = cerr;
+  }
+  return st;
+}
+
+
+int csx_bendExitCode(csStatus st) {
+  if (st != CS_ERR_INTERRUPTED) {
+    return 1;
+  }
+  return csx_signalExitCode() ? csx_signalExitCode() : 130;
+}
+
+
 int csx_cmdBend(int argc, char** argv) {
   /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
    * polls the flag */
@@ -770,23 +795,12 @@ int csx_cmdBend(int argc, char** argv) {
                            &err);
     }
   }
-  /* whatever happened, the file keeps the rows so far and its status says how it ended */
-  if (st != CS_OK) {
-    cs_h5AttrString(f, "/", "model", kModelNames[run.model], NULL);
-    csr_bendCurveFlushH5(f, &bc, NULL); /* fails at once if the disk refused already */
-  }
-  cs_h5AttrString(f, "/", "status", st == CS_OK ? "ok" : err.msg, NULL);
-  csError cerr;
-  csStatus cst = cs_h5CloseChecked(f, &cerr);
-  if (st == CS_OK && cst != CS_OK) {
-    st = cst;
-    err = cerr;
-  }
+  st = csx_bendFileClose(f, kModelNames[run.model], &bc, st, &err);
   if (st != CS_OK) {
     fprintf(stderr, "crawlsim bend: %s\n", err.msg);
     csr_bendCurveFree(&bc);
     rodTeardown(&run);
-    return st != CS_ERR_INTERRUPTED ? 1 : csx_signalExitCode() ? csx_signalExitCode() : 130;
+    return csx_bendExitCode(st);
   }
 
   /* the table */

@@ -4,7 +4,10 @@
 #ifndef CS_TOOLS_CMD_BEND_H
 #define CS_TOOLS_CMD_BEND_H
 
+#include "core_h5.h"
+#include "core_status.h"
 #include "robot_actuator.h"
+#include "robot_bend_io.h"
 
 typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_PRB, BEND_ROM, BEND_NMODEL } BendModel;
 
@@ -51,5 +54,16 @@ typedef struct {
  * the FE's report lines. Returns the command's exit status (0, or 1 after one error line). Only
  * in builds with the FE (CS_HAVE_FEM). */
 int csx_bendFe(BendRun* run);
+
+/* End a bend file whatever happened: after a failure (st != CS_OK) the model's name and the
+ * rows so far are written too (they reach the disk unless it refused already), the status
+ * says how the sweep ended, and the file is closed checked. Returns the final status: st, or the
+ * close's failure after a good sweep (err then filled by it). */
+csStatus csx_bendFileClose(csH5File* f, const char* model, const csrBendCurve* bc, csStatus st,
+                           csError* err);
+
+/* The command's exit status for a bend that ended with st (!= CS_OK): 1, or 128 + the signal
+ * when interrupted (130 when only gmsh saw Ctrl-C, system() ignoring SIGINT). */
+int csx_bendExitCode(csStatus st);
 
 #endif /* CS_TOOLS_CMD_BEND_H */

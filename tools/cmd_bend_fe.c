@@ -366,26 +366,12 @@ int csx_bendFe(BendRun* run) {
     }
   }
   if (ff) {
-    /* whatever happened, the file keeps the rows so far and its status says how it ended */
-    char status[CS_H5_STATUS_SIZE];
-    snprintf(status, sizeof status, "%s", fst == CS_OK ? "ok" : ferr.msg);
-    if (fst != CS_OK) {
-      cs_h5AttrString(ff, "/", "model", "fe", NULL);
-      csr_bendCurveFlushH5(ff, &fbc, NULL); /* fails at once if the disk refused already */
-    }
-    cs_h5AttrString(ff, "/", "status", status, NULL);
-    csError cerr;
-    csStatus cst = cs_h5CloseChecked(ff, &cerr);
-    if (fst == CS_OK && cst != CS_OK) {
-      fst = cst;
-      ferr = cerr;
-    }
+    fst = csx_bendFileClose(ff, "fe", &fbc, fst, &ferr);
   }
   if (fst != CS_OK) {
     fprintf(stderr, "crawlsim bend: %s\n", ferr.msg);
     csr_bendCurveFree(&fbc);
-    /* interrupted: 128 + the signal (130 when only gmsh saw it, system() ignoring SIGINT) */
-    return fst != CS_ERR_INTERRUPTED ? 1 : csx_signalExitCode() ? csx_signalExitCode() : 130;
+    return csx_bendExitCode(fst);
   }
   printf("crawlsim bend: model fe, actuator %s, chambers %s in II1-II3\n", run->act.name,
          run->chambers);
