@@ -43,7 +43,27 @@ double csc_sphereBoxPenetration(const double c[3], double r, const cstBox* b,
 }
 
 
+/* an oriented box's own frame: the segment's ends in it and the box as an axis-aligned one
+ * there (distances are invariant under the rigid motion, so q(s) is the same function) */
+static cstBox alignedFrame(const cstBox* b, const double p0[3], const double p1[3], double l0[3],
+                           double l1[3]) {
+  cstBox a;
+  memset(&a, 0, sizeof a);
+  csu_copy3(a.lo, b->lo);
+  csu_copy3(a.hi, b->hi);
+  cst_boxToLocal(b, p0, l0);
+  cst_boxToLocal(b, p1, l1);
+  return a;
+}
+
+
 void csc_segBoxInit(cscSegBox* q, const double p0[3], const double p1[3], const cstBox* b) {
+  if (b->oriented) {
+    double l0[3], l1[3];
+    cstBox a = alignedFrame(b, p0, p1, l0, l1);
+    csc_segBoxInit(q, l0, l1, &a);
+    return;
+  }
   double d[3];
   csu_sub3(d, p1, p0);
   /* breakpoints: the slab crossings strictly inside (0, 1), sorted, duplicates removed */
@@ -226,6 +246,18 @@ static double segmentBoxSat(const double p0[3], const double p1[3], const cstBox
 
 double csc_capsuleBoxPenetration(const double p0[3], const double p1[3], double r,
                                  const cstBox* b, cscPenetration* out, double* s) {
+  if (b->oriented) {
+    double l0[3], l1[3];
+    cstBox a = alignedFrame(b, p0, p1, l0, l1);
+    cscPenetration pl;
+    double depth = csc_capsuleBoxPenetration(l0, l1, r, &a, &pl, s);
+    if (out) {
+      out->depth = pl.depth;
+      cst_boxDirToWorld(b, pl.normal, out->normal);
+      cst_boxPointToWorld(b, pl.pos, out->pos);
+    }
+    return depth;
+  }
   cscSegBox q;
   csc_segBoxInit(&q, p0, p1, b);
   double x[3], d[3], n[3] = {0, 1, 0}, depth, s_deep = 0.5;

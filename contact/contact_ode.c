@@ -13,6 +13,7 @@ typedef struct {
   dJointGroupID group;
   double h;
   cscContactStats* stats;
+  dSpaceID terrain; /* to tell the terrain's geom of a pair */
 } CollideCtx;
 
 
@@ -63,12 +64,17 @@ static void nearCallback(void* data, dGeomID o1, dGeomID o2) {
   /* the n points of one geom pair act as parallel springs: each gets kp/n and kd/n so that
    * the pair's stiffness is kp whatever n the collider returns */
   double kp = c->p->kp / n, kd = c->p->kd / n, erp = 1, cfm = 0;
+  /* the terrain geom's own friction (cst_terrainBuildOde: its data points at its box's mu),
+   * else the run's */
+  dGeomID tg = dGeomGetSpace(o1) == c->terrain ? o1 : o2;
+  const double* own_mu = dGeomGetData(tg);
+  double mu = own_mu ? *own_mu : c->p->mu;
   csu_springErpCfm(c->h, kp, kd, &erp, &cfm); /* kp > 0, kd >= 0: csc_contactParamsValidate */
   for (int i = 0; i < n; i++) {
     dContact ct;
     ct.geom = cg[i];
     ct.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
-    ct.surface.mu = c->p->mu;
+    ct.surface.mu = mu;
     ct.surface.soft_erp = erp;
     ct.surface.soft_cfm = cfm;
     ct.surface.bounce = 0;
@@ -85,7 +91,7 @@ static void nearCallback(void* data, dGeomID o1, dGeomID o2) {
 
 void csc_collide(const cscContactParams* p, dWorldID world, dSpaceID terrain, dSpaceID robot,
                  dJointGroupID group, double h, cscContactStats* stats) {
-  CollideCtx c = {p, world, group, h, stats};
+  CollideCtx c = {p, world, group, h, stats, terrain};
   stats->npoints = 0;
   stats->max_depth = 0;
   dSpaceCollide2((dGeomID)terrain, (dGeomID)robot, &c, nearCallback);

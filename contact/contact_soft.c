@@ -410,8 +410,10 @@ static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
       csc_softFootTorsionMoments(&sl, sh->radius, g.xc, g.n, &Jel, &R1el);
     }
     cscSoftFriction f;
-    csc_softFrictionIntegrated(p, &acc, &g, touching, vs, z, zd, &f);
-    csc_softFrictionTorsion(p, &acc, &g, touching, csu_dot3(st->w, g.n), Jel, R1el, z[3],
+    cscSoftParams pbuf;
+    const cscSoftParams* pf = csc_softSlotParams(m, &acc, &pbuf);
+    csc_softFrictionIntegrated(pf, &acc, &g, touching, vs, z, zd, &f);
+    csc_softFrictionTorsion(pf, &acc, &g, touching, csu_dot3(st->w, g.n), Jel, R1el, z[3],
                             &zd[3], &f);
     if (zdot) {
       memcpy(zdot, zd, sizeof zd);
@@ -443,9 +445,11 @@ static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
     }
     cscSoftFriction f = {{0, 0, 0}, 0, 0, 0};
     const double* zk = z + (size_t)k * ss;
+    cscSoftParams pbuf;
+    const cscSoftParams* pf = csc_softSlotParams(m, &acc, &pbuf);
     if (!step) {
       double zd[3];
-      csc_softFrictionIntegrated(p, &acc, &g, touching, vs, zk, zd, &f);
+      csc_softFrictionIntegrated(pf, &acc, &g, touching, vs, zk, zd, &f);
       if (zdot) {
         csu_copy3(zdot + (size_t)k * ss, zd);
       }
@@ -453,7 +457,7 @@ static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
         csc_softAddForce(sh, st, g.sc, xs, f.ft, ld);
       }
     } else {
-      slotStep(p, sh, st, &g, touching, c, zk, zw ? zw + (size_t)k * ss : NULL, ld, &f, xs);
+      slotStep(pf, sh, st, &g, touching, c, zk, zw ? zw + (size_t)k * ss : NULL, ld, &f, xs);
     }
     slotReport(i, &acc, &g, touching, xs, &f, info ? &info[k] : NULL, rep);
   }

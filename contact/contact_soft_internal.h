@@ -37,6 +37,7 @@ typedef struct cscSoftAcc_ {
   double W;        /* N: sum of the elastic force magnitudes */
   double xw[3];    /* N mm: elastic-force-weighted sum of the sample centres */
   double sw;       /* N: elastic-force-weighted sum of the axis parameters (capsules) */
+  double muW;      /* N: elastic-force-weighted sum of the touched surfaces' friction */
   double dmax;     /* mm: deepest sample (-INFINITY: no box within reach) */
   int deep;        /* samples whose centre is inside a box */
 } cscSoftAcc;
@@ -95,6 +96,11 @@ typedef struct cscSoleLoads_ {
  * 1 ms, 7.657e9 -> 7.542e9, and 3.7 % of the settling, all feet down.) */
 void csc_softFootTorsionMoments(const cscSoleLoads* sl, double rho, const double xc[3],
                                 const double n[3], double* Jel, double* R1el);
+/* the law's parameters for one slot's friction: p itself, or (a terrain with friction per
+ * surface, terrains_terrain.h) a copy in *buf whose mu is the touched surfaces' mean weighted
+ * by their elastic loads, so a slot on one surface takes exactly that surface's mu */
+const cscSoftParams* csc_softSlotParams(const cscSoftModel* m, const cscSoftAcc* acc,
+                                        cscSoftParams* buf);
 /* direction, load and centroid of a slot; returns 1 if it touches */
 int csc_softSlotFinish(const cscSoftAcc* acc, cscSoftGeom* g);
 

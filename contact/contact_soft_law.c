@@ -218,6 +218,7 @@ void csc_softCapsuleNormal(const cscSoftModel* m, const cscShape* sh, const cscS
       csu_add3(acc->Fn, acc->Fn, f);
       csu_addScl3(acc->Fel_n, acc->Fel_n, n, el);
       acc->W += el;
+      acc->muW += el * cst_terrainBoxMu(&m->terrain, idx[ib], p->mu);
       csu_addScl3(acc->xw, acc->xw, x, el);
       acc->sw += el * s;
     }
@@ -291,6 +292,7 @@ int csc_softSolePointNormal(const cscSoftModel* m, double rho, double A, const d
     csu_add3(acc->Fn, acc->Fn, f);
     csu_addScl3(acc->Fel_n, acc->Fel_n, n, el);
     acc->W += el;
+    acc->muW += el * cst_terrainBoxMu(&m->terrain, idx[ib], p->mu);
     csu_addScl3(acc->xw, acc->xw, c, el);
   }
   return nb;
@@ -312,6 +314,17 @@ void csc_softFootTorsionMoments(const cscSoleLoads* sl, double rho, const double
       *R1el += el * sqrt(r2 + rho * rho);
     }
   }
+}
+
+
+const cscSoftParams* csc_softSlotParams(const cscSoftModel* m, const cscSoftAcc* acc,
+                                        cscSoftParams* buf) {
+  if (!m->terrain.has_mu || !(acc->W > 0)) {
+    return &m->p; /* one friction everywhere: the same bits as before surfaces had their own */
+  }
+  *buf = m->p;
+  buf->mu = acc->muW / acc->W;
+  return buf;
 }
 
 

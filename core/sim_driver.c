@@ -141,6 +141,22 @@ double cs_modelEndTime(const csModel* m) {
 }
 
 
+csStatus cs_modelApplySceneFile(csModel* m, const cstSceneFile* s, csError* err) {
+  cstTerrain* t = &m->terrain;
+  if (s->has_start) {
+    if (!isfinite(cst_terrainHeightAt(t, s->start[0], s->start[1]))) {
+      return cs_errorSet(err, CS_ERR_RANGE, "%s: start (%g, %g) is not above any box of %s",
+                         s->source, s->start[0], s->start[1], t->source);
+    }
+    t->start[0] = s->start[0];
+    t->start[1] = s->start[1];
+  }
+  if (s->has_heading) t->heading_deg = s->heading_deg;
+  if (s->has_slope) t->slope_deg = s->slope_deg;
+  return CS_OK;
+}
+
+
 void cs_modelStanceCheck(const csModel* m, double mass_total, double* load_per_leg,
                          double* p_critical) {
   double EI = m->robot.leg_params.E_bend * csr_legSectionI(&m->robot.leg);
@@ -280,7 +296,11 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
    * Stepping stays on one thread at a time, as ODE requires for collision (debian-deps.md P3). */
   d->rng_seed = 0;
   d->world = dWorldCreate();
-  dWorldSetGravity(d->world, 0, -m->opt.gravity, 0);
+  /* a sloped terrain turns gravity, not the terrain (terrains_terrain.h `slope`) */
+  double gdir[3];
+  cst_terrainGravityDir(&m->terrain, gdir);
+  dWorldSetGravity(d->world, m->opt.gravity * gdir[0], m->opt.gravity * gdir[1],
+                   m->opt.gravity * gdir[2]);
   dWorldSetQuickStepNumIterations(d->world, m->opt.solver_iterations);
   d->terrain_space = dSimpleSpaceCreate(0);
   d->robot_space = dSimpleSpaceCreate(0);
@@ -292,7 +312,8 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
   double ground = cst_terrainHeightAt(&m->terrain, m->terrain.start[0], m->terrain.start[1]);
   double c[3] = {m->terrain.start[0], ground + csr_actuatorLength(&m->robot.leg) + 0.5,
                  m->terrain.start[1]};
-  csrRobotEnv env = {d->world, d->robot_space, m->opt.h, {0, -m->opt.gravity, 0},
+  csrRobotEnv env = {d->world, d->robot_space, m->opt.h,
+                     {m->opt.gravity * gdir[0], m->opt.gravity * gdir[1], m->opt.gravity * gdir[2]},
                      m->opt.legs_weightless, &m->terrain, &m->contact};
   d->robot = csr_robotCreate(&m->robot, &env, c, err);
   if (!d->robot) {

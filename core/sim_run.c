@@ -26,6 +26,7 @@
 #include "core_h5.h"
 #include "core_xdmf.h"
 #include "sim_internal.h"
+#include "terrains_ccd.h"
 
 enum { MAX_CENTERLINE = 201 };
 
@@ -92,8 +93,14 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
     static const int kHex[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1},
                                    {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}};
     for (int c = 0; c < 8; c++) {
+      double y[3];
       for (int i = 0; i < 3; i++) {
-        tc[24 * b + 3 * c + i] = kHex[c][i] ? bx->hi[i] : bx->lo[i];
+        y[i] = kHex[c][i] ? bx->hi[i] : bx->lo[i];
+      }
+      if (bx->oriented) {
+        cst_boxPointToWorld(bx, y, tc + 24 * b + 3 * c); /* its own frame to the world */
+      } else {
+        memcpy(tc + 24 * b + 3 * c, y, sizeof y);
       }
     }
   }

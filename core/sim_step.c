@@ -193,7 +193,8 @@ static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError
   /* below every terrain box: the robot left the terrain (fell off an edge) */
   double floor_y = INFINITY;
   for (int i = 0; i < m->terrain.nbox; i++) {
-    floor_y = fmin(floor_y, m->terrain.box[i].lo[1]);
+    const cstBox* b = &m->terrain.box[i];
+    floor_y = fmin(floor_y, b->oriented ? b->wlo[1] : b->lo[1]);
   }
   if (x[1] < floor_y) {
     return cs_errorSet(err, CS_ERR_DIVERGED,

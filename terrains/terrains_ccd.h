@@ -6,9 +6,11 @@
  * terrain), cst_boxSignedDistance (closed form, used by the soft contact law where it is exact
  * and cheaper than an iterative query), and cst_terrainBoxesNear (the broad phase).
  *
- * Frames and units: world frame of docs/reference.md (x crawl direction, y up, z lateral), mm. A
- * cstBox is axis-aligned, so a support point is a corner chosen by the signs of the direction;
- * no rotation is stored or needed.
+ * Frames and units: world frame of docs/reference.md (x crawl direction, y up, z lateral), mm. An
+ * axis-aligned cstBox's support point is a corner chosen by the signs of the direction; an
+ * oriented box's is the same in its own frame (the direction turned by R^T), turned back, and
+ * its distances are computed in its frame (exact: distance is invariant under the rigid
+ * motion).
  *
  * Cost of the broad phase: a linear scan, 6 comparisons per box; a terrain holds at most
  * CST_MAX_BOXES = 32 boxes, so a query is at most 192 comparisons (~0.1 us). A spatial tree
@@ -25,6 +27,12 @@ extern "C" {
 #endif
 
 _Static_assert(sizeof(ccd_real_t) == sizeof(double), "crawlsim needs libccd built with CCD_DOUBLE");
+
+/* An oriented box's frame (terrains_terrain.h): a world point x to the box frame, y = R^T (x -
+ * c); a direction or a point of the box frame back to the world. */
+void cst_boxToLocal(const cstBox* b, const double x[3], double y[3]);
+void cst_boxDirToWorld(const cstBox* b, const double y[3], double x[3]);
+void cst_boxPointToWorld(const cstBox* b, const double y[3], double x[3]);
 
 /* libccd support function of a cstBox (obj is a const cstBox*): the corner furthest along dir
  * (any length, need not be unit). Components of dir that are exactly 0 pick the upper face,

@@ -11,6 +11,7 @@
 #include "core_text.h"
 
 #include <ctype.h>
+#include <stdint.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -19,13 +20,18 @@
 
 enum {
   MAX_LINE = 1023, /* bytes per line, line ending excluded */
-  MAX_WORDS = 8    /* words kept per line; more are counted, not stored */
+  MAX_WORDS = 16   /* words kept per line; more are counted, not stored */
 };
 
 /* coordinates beyond 1 km are a typo, and their box sizes could overflow in ODE */
 #define MAX_COORD_MM 1e6
 /* a heading is an angle: more than one turn either way is a typo */
 #define MAX_HEADING_DEG 360.0
+/* the steepest slope: beyond 45 deg the robot's support would rest on its legs' sides */
+#define MAX_SLOPE_DEG 45.0
+/* friction coefficients beyond 10 are a typo (rubber on rough rock is ~1-2) */
+#define MAX_MU 10.0
+#define CST_DEG (3.14159265358979323846 / 180.0) /* radians per degree */
 
 /* one input line split into words (pointers into the line buffer) */
 typedef struct {
@@ -79,6 +85,74 @@ static csStatus parseValues(const Words* w, double* v, int n, const char* what,
 }
 
 
+/* the optional trailing `mu M` of a box statement with n numbers: *mu = M, or -1 without it;
+ * checks the word count (n or n + 2 words after the key) */
+static csStatus parseBoxValues(Words* w, double* v, int n, const char* what, double* mu,
+                               const char* path, int lineno, csError* err) {
+  *mu = -1;
+  if (w->nword == n + 3 && !strcmp(w->word[n + 1], "mu")) {
+    double m;
+    int rc = parseFinite(w->word[n + 2], &m);
+    if (rc) {
+      return cs_errorSet(err, rc == 1 ? CS_ERR_PARSE : CS_ERR_RANGE,
+                         "%s:%d: '%s' friction '%.40s' is not a finite number", path, lineno,
+                         w->word[0], w->word[n + 2]);
+    }
+    if (!(m >= 0 && m <= MAX_MU)) {
+      return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: '%s' friction %g must be in 0..%g", path,
+                         lineno, w->word[0], m, MAX_MU);
+    }
+    *mu = m;
+    w->nword = n + 1; /* the numbers alone */
+  }
+  return parseValues(w, v, n, what, path, lineno, err);
+}
+
+
+static csStatus checkCoords(const double* v, int n, const char* path, int lineno,
+                            csError* err) {
+  for (int i = 0; i < n; i++) {
+    if (fabs(v[i]) > MAX_COORD_MM) {
+      return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: box coordinate %g mm is beyond +-%g mm",
+                         path, lineno, v[i], MAX_COORD_MM);
+    }
+  }
+  return CS_OK;
+}
+
+
+int cst_boxOriented(cstBox* b, const double c[3], const double len[3], const double axis[3],
+                    double deg, double mu) {
+  double an = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  if (!(an > 0) || !isfinite(an)) {
+    return 0;
+  }
+  memset(b, 0, sizeof *b);
+  double u[3] = {axis[0] / an, axis[1] / an, axis[2] / an};
+  double th = deg * CST_DEG, cs = cos(th), sn = sin(th), C = 1 - cs;
+  /* Rodrigues: R = cos I + sin [u]x + (1 - cos) u u^T */
+  double R[9] = {cs + C * u[0] * u[0],        C * u[0] * u[1] - sn * u[2], C * u[0] * u[2] + sn * u[1],
+                 C * u[1] * u[0] + sn * u[2], cs + C * u[1] * u[1],        C * u[1] * u[2] - sn * u[0],
+                 C * u[2] * u[0] - sn * u[1], C * u[2] * u[1] + sn * u[0], cs + C * u[2] * u[2]};
+  memcpy(b->R, R, sizeof R);
+  b->oriented = 1;
+  for (int k = 0; k < 3; k++) {
+    b->c[k] = c[k];
+    b->hi[k] = 0.5 * len[k];
+    b->lo[k] = -b->hi[k];
+  }
+  for (int k = 0; k < 3; k++) {
+    double e = 0;
+    for (int j = 0; j < 3; j++) e += fabs(R[3 * k + j]) * b->hi[j];
+    b->wlo[k] = c[k] - e;
+    b->whi[k] = c[k] + e;
+  }
+  b->own_mu = mu >= 0;
+  b->mu = mu >= 0 ? mu : 0;
+  return 1;
+}
+
+
 csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
   memset(t, 0, sizeof *t);
   snprintf(t->source, sizeof t->source, "%s", path);
@@ -86,7 +160,7 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
   csStatus st = r ? csu_lineOpen(r, path, MAX_LINE, "terrain file", err)
                   : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
   int lineno = 0, got = 0;
-  int start_line = 0, name_line = 0, heading_line = 0; /* where each was given, 0 = not yet */
+  int start_line = 0, name_line = 0, heading_line = 0, slope_line = 0; /* 0 = not yet */
   while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
     lineno = (int)r->lineno;
     char* line = r->line;
@@ -98,7 +172,7 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
       continue; /* blank or comment */
     }
     const char* key = w.word[0];
-    double v[6];
+    double v[10], mu = -1;
     if (!strcmp(key, "name")) {
       /* one word that fits the name buffer; never cut short silently */
       if (w.nword != 2) {
@@ -114,16 +188,13 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
         snprintf(t->name, sizeof t->name, "%s", w.word[1]);
         name_line = lineno;
       }
-    } else if (!strcmp(key, "box")) {
-      st = parseValues(&w, v, 6, "x0 y0 z0 x1 y1 z1 (mm)", path, lineno, err);
-      if (st != CS_OK) {
-        break;
-      }
-      for (int i = 0; i < 6 && st == CS_OK; i++) {
-        if (fabs(v[i]) > MAX_COORD_MM) {
-          st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: box coordinate %g mm is beyond +-%g mm",
-                           path, lineno, v[i], MAX_COORD_MM);
-        }
+    } else if (!strcmp(key, "box") || !strcmp(key, "obox")) {
+      int ob = key[0] == 'o', n = ob ? 10 : 6;
+      st = parseBoxValues(&w, v, n,
+                          ob ? "cx cy cz lx ly lz (mm) ax ay az deg" : "x0 y0 z0 x1 y1 z1 (mm)",
+                          &mu, path, lineno, err);
+      if (st == CS_OK) {
+        st = checkCoords(v, ob ? 6 : 6, path, lineno, err);
       }
       if (st != CS_OK) {
         break;
@@ -133,16 +204,40 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
                          CST_MAX_BOXES);
         break;
       }
-      if (!(v[0] < v[3] && v[1] < v[4] && v[2] < v[5])) {
-        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: box corners must satisfy x0<x1, y0<y1, z0<z1",
-                         path, lineno);
-        break;
+      cstBox* b = &t->box[t->nbox];
+      if (ob) {
+        if (!(v[3] > 0 && v[4] > 0 && v[5] > 0)) {
+          st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: obox edge lengths must be > 0", path,
+                           lineno);
+          break;
+        }
+        if (fabs(v[9]) > MAX_HEADING_DEG || fabs(v[6]) > MAX_COORD_MM ||
+            fabs(v[7]) > MAX_COORD_MM || fabs(v[8]) > MAX_COORD_MM) {
+          st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: obox angle beyond +-%g deg or axis beyond "
+                           "+-%g", path, lineno, MAX_HEADING_DEG, MAX_COORD_MM);
+          break;
+        }
+        if (!cst_boxOriented(b, v, v + 3, v + 6, v[9], mu)) {
+          st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: obox rotation axis must not be zero", path,
+                           lineno);
+          break;
+        }
+      } else {
+        if (!(v[0] < v[3] && v[1] < v[4] && v[2] < v[5])) {
+          st = cs_errorSet(err, CS_ERR_RANGE,
+                           "%s:%d: box corners must satisfy x0<x1, y0<y1, z0<z1", path, lineno);
+          break;
+        }
+        memset(b, 0, sizeof *b);
+        for (int i = 0; i < 3; i++) {
+          b->lo[i] = b->wlo[i] = v[i];
+          b->hi[i] = b->whi[i] = v[i + 3];
+        }
+        b->own_mu = mu >= 0;
+        b->mu = mu >= 0 ? mu : 0;
       }
-      cstBox* b = &t->box[t->nbox++];
-      for (int i = 0; i < 3; i++) {
-        b->lo[i] = v[i];
-        b->hi[i] = v[i + 3];
-      }
+      t->has_mu |= b->own_mu;
+      t->nbox++;
     } else if (!strcmp(key, "start")) {
       st = parseValues(&w, v, 2, "x z (mm)", path, lineno, err);
       if (st == CS_OK && start_line) {
@@ -168,9 +263,24 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
         t->heading_deg = v[0];
         heading_line = lineno;
       }
+    } else if (!strcmp(key, "slope")) {
+      st = parseValues(&w, v, 1, "(degrees)", path, lineno, err);
+      if (st == CS_OK && fabs(v[0]) > MAX_SLOPE_DEG) {
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: slope %g deg is beyond +-%g deg", path,
+                         lineno, v[0], MAX_SLOPE_DEG);
+      }
+      if (st == CS_OK && slope_line) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: second 'slope' (the first is on line %d)",
+                         path, lineno, slope_line);
+      }
+      if (st == CS_OK) {
+        t->slope_deg = v[0];
+        slope_line = lineno;
+      }
     } else {
       st = cs_errorSet(err, CS_ERR_PARSE,
-                       "%s:%d: unknown statement '%.40s' (expected name, box, start, heading)",
+                       "%s:%d: unknown statement '%.40s' (expected name, box, obox, slope, start, "
+                       "heading)",
                        path, lineno, key);
     }
   }
@@ -206,15 +316,48 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
 }
 
 
+/* top of box b on the vertical through (x, z): -INFINITY if the vertical misses it */
+static double boxTopAt(const cstBox* b, double x, double z) {
+  if (!b->oriented) {
+    int in = x >= b->lo[0] && x <= b->hi[0] && z >= b->lo[2] && z <= b->hi[2];
+    return in ? b->hi[1] : -INFINITY;
+  }
+  /* the line (x, y, z) in the box frame: q(y) = q0 + y d with q0 = R^T ((x, 0, z) - c) and
+   * d = R^T e_y; clip y against the three slabs (Kay & Kajiya) */
+  double p[3] = {x - b->c[0], -b->c[1], z - b->c[2]}, ylo = -INFINITY, yhi = INFINITY;
+  for (int k = 0; k < 3; k++) {
+    double q0 = b->R[k] * p[0] + b->R[3 + k] * p[1] + b->R[6 + k] * p[2], d = b->R[3 + k];
+    if (d == 0) {
+      if (q0 < b->lo[k] || q0 > b->hi[k]) return -INFINITY;
+      continue;
+    }
+    double y0 = (b->lo[k] - q0) / d, y1 = (b->hi[k] - q0) / d;
+    ylo = fmax(ylo, fmin(y0, y1));
+    yhi = fmin(yhi, fmax(y0, y1));
+  }
+  return ylo <= yhi ? yhi : -INFINITY;
+}
+
+
 double cst_terrainHeightAt(const cstTerrain* t, double x, double z) {
   double h = -INFINITY;
   for (int i = 0; i < t->nbox; i++) {
-    const cstBox* b = &t->box[i];
-    if (x >= b->lo[0] && x <= b->hi[0] && z >= b->lo[2] && z <= b->hi[2] && b->hi[1] > h) {
-      h = b->hi[1];
-    }
+    h = fmax(h, boxTopAt(&t->box[i], x, z));
   }
   return h;
+}
+
+
+void cst_terrainGravityDir(const cstTerrain* t, double g[3]) {
+  double a = t->slope_deg * CST_DEG;
+  g[0] = t->slope_deg != 0 ? -sin(a) : 0.0;
+  g[1] = t->slope_deg != 0 ? -cos(a) : -1.0;
+  g[2] = 0;
+}
+
+
+double cst_terrainBoxMu(const cstTerrain* t, int i, double mu_default) {
+  return i >= 0 && i < t->nbox && t->box[i].own_mu ? t->box[i].mu : mu_default;
 }
 
 
@@ -222,8 +365,21 @@ int cst_terrainBuildOde(const cstTerrain* t, dSpaceID space) {
   for (int i = 0; i < t->nbox; i++) {
     const cstBox* b = &t->box[i];
     dGeomID g = dCreateBox(space, b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2]);
-    dGeomSetPosition(g, 0.5 * (b->lo[0] + b->hi[0]), 0.5 * (b->lo[1] + b->hi[1]),
-                     0.5 * (b->lo[2] + b->hi[2]));
+    if (b->oriented) {
+      dMatrix3 R; /* ODE's 3 x 4 row-major */
+      for (int r = 0; r < 3; r++) {
+        for (int k = 0; k < 3; k++) R[4 * r + k] = b->R[3 * r + k];
+        R[4 * r + 3] = 0;
+      }
+      dGeomSetPosition(g, b->c[0], b->c[1], b->c[2]);
+      dGeomSetRotation(g, R);
+    } else {
+      dGeomSetPosition(g, 0.5 * (b->lo[0] + b->hi[0]), 0.5 * (b->lo[1] + b->hi[1]),
+                       0.5 * (b->lo[2] + b->hi[2]));
+    }
+    /* the support's contacts read the surface's friction here (contact_ode.c); the geom
+     * never writes through it */
+    dGeomSetData(g, b->own_mu ? (void*)(uintptr_t)&b->mu : NULL);
   }
   return t->nbox;
 }

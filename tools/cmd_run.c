@@ -19,6 +19,7 @@
 
 #include "cs_commands.h"
 #include "cs_paths.h"
+#include "terrains_scenefile.h"
 #include "cs_signal.h"
 #include "robot_calibration.h"
 #include "robot_levels.h"
@@ -73,7 +74,7 @@ static const char* const kValueOptions[] = {
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
     "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--set",
     "--tol", "--levels", "--contact-scale", "--rod-tol", "--cal-rule", "--iterations",
-    "--cal-drop"};
+    "--cal-drop", "--scene-file"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -141,6 +142,8 @@ int csx_cmdRun(int argc, char** argv) {
   const char* coupling = NULL;
   const char* conditions = NULL;
   const char* levels = NULL;
+  const char* scene_file = NULL;
+  static cstSceneFile sf; /* ~1.5 KB of paths: not on the stack */
   double tol = NAN, kscale = NAN, rodtol = NAN;
   unsigned cal_drop = 0;
   const char* sets[32];
@@ -192,6 +195,8 @@ int csx_cmdRun(int argc, char** argv) {
       gait = v;
     } else if (!strcmp(flag, "--terrain")) {
       terrain = v;
+    } else if (!strcmp(flag, "--scene-file")) {
+      scene_file = v;
     } else if (!strcmp(flag, "--legs")) {
       legs = v;
     } else if (!strcmp(flag, "--out")) {
@@ -260,6 +265,18 @@ int csx_cmdRun(int argc, char** argv) {
     }
   }
 
+  /* a scene file (terrains_scenefile.h) fills what the command line left out */
+  int scene_given = 0;
+  for (int i = 1; i < argc; i++) scene_given |= !strncmp(argv[i], "--scene", 7) &&
+                                                (argv[i][7] == '\0' || argv[i][7] == '=');
+  if (scene_file) {
+    if (cst_sceneFileLoad(&sf, scene_file, &err) != CS_OK) goto done;
+    if (!scene_given && sf.scene[0]) scene = sf.scene;
+    if (!terrain && sf.terrain[0]) terrain = sf.terrain;
+    if (!gait && sf.gait[0]) gait = sf.gait;
+    if (!conditions && sf.conditions[0]) conditions = sf.conditions;
+    if (t_end == 0 && sf.has_t_end) t_end = sf.t_end;
+  }
   /* scene -> default terrain, gait and conditions (sim_scene.h) */
   const csScene* sc = cs_sceneFind(scene);
   if (!sc) {
@@ -486,6 +503,7 @@ int csx_cmdRun(int argc, char** argv) {
     goto done;
   }
   if (cs_modelLoad(&m, scene, terrain, gait, calib, &err) != CS_OK) goto done;
+  if (scene_file && cs_modelApplySceneFile(&m, &sf, &err) != CS_OK) goto done;
   if (m.gait) {
     csgGaitSummary gs;
     csg_gaitComputeSummary(m.gait, &gs, NULL);

@@ -13,8 +13,8 @@
 #include "core_math.h"
 #include "cs_test.h"
 
-static const cstBox kGround = {{-300, -20, -150}, {300, 0, 150}};
-static const cstBox kStep = {{50, 0, -150}, {300, 40, 150}};
+static const cstBox kGround = {.lo = {-300, -20, -150}, .hi = {300, 0, 150}};
+static const cstBox kStep = {.lo = {50, 0, -150}, .hi = {300, 40, 150}};
 
 /* closed forms are evaluated with a handful of flops on mm-sized numbers: round-off is
  * ~1e-16 * 300 mm; 1e-12 mm leaves 30x margin and still fails on any real formula error */

@@ -50,7 +50,7 @@ static cstTerrain groundTerrain(void) {
   cstTerrain t;
   memset(&t, 0, sizeof t);
   t.nbox = 1;
-  t.box[0] = (cstBox){{-1e5, -20, -150}, {1e5, 0, 150}};
+  t.box[0] = (cstBox){.lo = {-1e5, -20, -150}, .hi = {1e5, 0, 150}};
   return t;
 }
 
@@ -165,7 +165,7 @@ static void test_soft_normal_capsule_closed_forms(void) {
   /* against a step's edge, the axis at distance e = r - d from the edge line, the normal at
    * 45 deg: (1) parallel to the edge, a line load k_line d^1.5 over 20 mm along (-1, 1)/sqrt 2 */
   cstTerrain step = t;
-  step.box[0] = (cstBox){{50, 0, -150}, {300, 40, 150}};
+  step.box[0] = (cstBox){.lo = {50, 0, -150}, .hi = {300, 40, 150}};
   double e = r - d, cx = 50 - e / sqrt(2), cy = 40 + e / sqrt(2);
   capsuleForce(&p, r, (double[3]){cx, cy, -10}, (double[3]){cx, cy, 10}, &step, f);
   CS_EXPECT_NEAR(f[1], kline * pow(d, 1.5) * 20 / sqrt(2), 0, 1e-12);
@@ -199,7 +199,7 @@ static void test_soft_capsule_slides_onto_an_edge_smoothly(void) {
    * up to (h/2)^2 / (2 r) in depth between them. */
   cscSoftParams p = csc_softDefaultParams();
   cstTerrain step = groundTerrain();
-  step.box[0] = (cstBox){{50, 0, -150}, {300, 40, 150}};
+  step.box[0] = (cstBox){.lo = {50, 0, -150}, .hi = {300, 40, 150}};
   double r = 7.5, d = 0.02, L = 10, y = 40 + r - d, f[3], h = 1e-3;
   double lambda = p.k_area * (4.0 / 3.0) * sqrt(2 * r) * pow(d, 1.5);
   double prev = 0, slope_prev = 0, worst = 0, tv = 0;

@@ -2,18 +2,48 @@
  *
  * Per input: load it and check the error contract (fuzz_common.h); a terrain the reader accepts
  * must hold what the header promises (1..32 boxes with lo < hi, finite coordinates within
- * +-1e6 mm, a start above a box, a heading within +-360 deg, a NUL-terminated non-empty name)
- * and build its ODE geoms (ODE's own asserts abort on a degenerate box). */
+ * +-1e6 mm, an oriented box's rotation orthonormal and its world bounds containing its corners,
+ * a box's own friction in 0..10, a start above a box, a heading within +-360 deg, a slope within
+ * +-45 deg, a unit gravity direction, a NUL-terminated non-empty name) and build its ODE geoms
+ * (ODE's own asserts abort on a degenerate box). */
 #include <math.h>
 #include <string.h>
 
 #include <ode/ode.h>
 
 #include "fuzz_common.h"
+#include "terrains_ccd.h"
 #include "terrains_terrain.h"
 
 #define MAX_COORD_MM 1e6
 #define MAX_HEADING_DEG 360.0
+#define MAX_SLOPE_DEG 45.0
+#define MAX_MU 10.0
+
+
+/* an oriented box: R orthonormal, every corner within the world bounds */
+static void checkOriented(const cstBox* b, int i) {
+  for (int r = 0; r < 3; r++) {
+    for (int c = 0; c < 3; c++) {
+      double dot = 0;
+      for (int k = 0; k < 3; k++) dot += b->R[3 * k + r] * b->R[3 * k + c];
+      if (!(fabs(dot - (r == c)) < 1e-12)) {
+        csz_fail("accepted terrain: box %d rotation not orthonormal (%d.%d = %g)", i, r, c, dot);
+      }
+    }
+  }
+  for (int c = 0; c < 8; c++) {
+    double y[3] = {c & 1 ? b->hi[0] : b->lo[0], c & 2 ? b->hi[1] : b->lo[1],
+                   c & 4 ? b->hi[2] : b->lo[2]}, x[3];
+    cst_boxPointToWorld(b, y, x);
+    for (int k = 0; k < 3; k++) {
+      double tol = 1e-9 * (1 + fabs(x[k]));
+      if (!(x[k] >= b->wlo[k] - tol && x[k] <= b->whi[k] + tol)) {
+        csz_fail("accepted terrain: box %d corner %d outside its world bounds", i, c);
+      }
+    }
+  }
+}
 
 
 int csz_harnessInit(void) {
@@ -36,6 +66,19 @@ static void checkTerrain(const cstTerrain* t) {
         csz_fail("accepted terrain: box %d axis %d is %g..%g", i, k, b->lo[k], b->hi[k]);
       }
     }
+    if (b->own_mu && !(b->mu >= 0 && b->mu <= MAX_MU)) {
+      csz_fail("accepted terrain: box %d friction %g", i, b->mu);
+    }
+    if (b->oriented) {
+      checkOriented(b, i);
+    }
+  }
+  double g[3];
+  cst_terrainGravityDir(t, g);
+  if (!(fabs(t->slope_deg) <= MAX_SLOPE_DEG) ||
+      !(fabs(g[0] * g[0] + g[1] * g[1] + g[2] * g[2] - 1) < 1e-12) || !(g[1] < 0)) {
+    csz_fail("accepted terrain: slope %g deg, gravity (%g, %g, %g)", t->slope_deg, g[0], g[1],
+             g[2]);
   }
   if (!isfinite(cst_terrainHeightAt(t, t->start[0], t->start[1]))) {
     csz_fail("accepted terrain: start (%g, %g) above no box", t->start[0], t->start[1]);

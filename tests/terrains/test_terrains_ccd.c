@@ -14,9 +14,9 @@ static cstTerrain stepTerrain(void) {
   cstTerrain t;
   memset(&t, 0, sizeof t);
   t.nbox = 3;
-  t.box[0] = (cstBox){{-300, -20, -150}, {300, 0, 150}};
-  t.box[1] = (cstBox){{50, 0, -150}, {300, 40, 150}};
-  t.box[2] = (cstBox){{400, 0, -150}, {600, 40, 150}};
+  t.box[0] = (cstBox){.lo = {-300, -20, -150}, .hi = {300, 0, 150}};
+  t.box[1] = (cstBox){.lo = {50, 0, -150}, .hi = {300, 40, 150}};
+  t.box[2] = (cstBox){.lo = {400, 0, -150}, .hi = {600, 40, 150}};
   return t;
 }
 
@@ -66,7 +66,7 @@ static void test_terrains_ccd_mpr_collides_two_boxes(void) {
   ccd.mpr_tolerance = 1e-9;
   CS_EXPECT(!ccdMPRIntersect(&t.box[1], &t.box[2], &ccd));
   CS_EXPECT(ccdMPRIntersect(&t.box[0], &t.box[1], &ccd)); /* they share a face */
-  cstBox probe = {{100, 39.5, -10}, {120, 60, 10}};
+  cstBox probe = {.lo = {100, 39.5, -10}, .hi = {120, 60, 10}};
   ccd_real_t depth;
   ccd_vec3_t dir, pos;
   CS_EXPECT(ccdMPRPenetration(&t.box[1], &probe, &ccd, &depth, &dir, &pos) == 0);
