@@ -127,6 +127,8 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   }
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "version", "0.1.0", err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "friction", m->contact.mu, err);
+  /* the terrain's inclination (deg about +z, +x uphill): gravity is turned by it */
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "slope_deg", m->terrain.slope_deg, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "pressure_scale", m->sched.pressure_scale, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "contact_kp_N_per_mm", m->contact.kp, err);
   if (st == CS_OK) {

@@ -22,6 +22,11 @@ static const csScene kScenes[] = {
     {"obstacle", "terrains/obstacle.terrain", "gaits/obstacle.csv", CS_CONDITIONS_PAPER,
      "robot/calibration_fe_leg_modes.h5", NULL, "rod", 4,
      "paper Sec. 5.2: L-shaped road with a 40 mm step up and down, then a turn (Table 3)"},
+    /* the flat road's designed gait on an inclined road (terrains/slope.terrain): how steep a
+     * slope it climbs (docs/studies/slope.md); the flat road's model and conditions */
+    {"slope", "terrains/slope.terrain", "gaits/flat_road_rod.csv", CS_CONDITIONS_PAPER,
+     "robot/calibration_fe_leg_modes_sym.h5", "rbf-pair", "rod", 8,
+     "the flat road inclined by 10 deg (+x uphill; a scene file's `slope A` sets another)"},
 };
 enum { NSCENE = sizeof kScenes / sizeof kScenes[0] };
 

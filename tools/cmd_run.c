@@ -26,7 +26,8 @@
 #include "sim_model.h"
 
 static const char kRunUsage[] =
-    "usage: crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv] [--legs auto|prb|rod|rom]\n"
+    "usage: crawlsim run [--scene flat-road|obstacle|slope] [--scene-file FILE] [--gait FILE.csv]\n"
+    "                    [--legs auto|prb|rod|rom] [--slope-deg A]\n"
     "                    [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]\n"
     "                    [--terrain FILE] [--dt S] [--output-dt S] [--ramp S] [--tau S]\n"
     "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
@@ -64,6 +65,10 @@ static const char kRunUsage[] =
     "  --cal-drop stretch[,stiffness]: rod legs leave that part of the calibration out (the\n"
     "    segments' axial stretch; a mode table's probed EI, EA), to measure what it does to a\n"
     "    run (README \"Rod against prb\"); rod only; recorded as calibration_dropped;\n"
+    "  --slope-deg A: incline the terrain by A deg about z, +x uphill (gravity turns; x stays\n"
+    "    the distance along the slope); default the terrain's (the slope scene: 10);\n"
+    "  --scene-file FILE: terrain, gait, conditions, start, heading, slope and t-end from a\n"
+    "    scene file (docs/reference/formats.md \"Scene files\"); options given here win;\n"
     "  --set NAME=VALUE: a parameter of the legs' actuator (as crawlsim bend: S1 a C10 ...; the\n"
     "    legs' stiffness and mass follow; the calibration must be of that actuator).\n";
 
@@ -74,7 +79,7 @@ static const char* const kValueOptions[] = {
     "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
     "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--set",
     "--tol", "--levels", "--contact-scale", "--rod-tol", "--cal-rule", "--iterations",
-    "--cal-drop", "--scene-file"};
+    "--cal-drop", "--scene-file", "--slope-deg"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
@@ -143,6 +148,7 @@ int csx_cmdRun(int argc, char** argv) {
   const char* conditions = NULL;
   const char* levels = NULL;
   const char* scene_file = NULL;
+  double slope_deg = NAN;
   static cstSceneFile sf; /* ~1.5 KB of paths: not on the stack */
   double tol = NAN, kscale = NAN, rodtol = NAN;
   unsigned cal_drop = 0;
@@ -197,6 +203,8 @@ int csx_cmdRun(int argc, char** argv) {
       terrain = v;
     } else if (!strcmp(flag, "--scene-file")) {
       scene_file = v;
+    } else if (!strcmp(flag, "--slope-deg")) {
+      ok = parseNum(flag, v, &slope_deg, &err);
     } else if (!strcmp(flag, "--legs")) {
       legs = v;
     } else if (!strcmp(flag, "--out")) {
@@ -280,7 +288,8 @@ int csx_cmdRun(int argc, char** argv) {
   /* scene -> default terrain, gait and conditions (sim_scene.h) */
   const csScene* sc = cs_sceneFind(scene);
   if (!sc) {
-    cs_errorSet(&err, CS_ERR_ARG, "unknown scene '%.60s' (expected flat-road or obstacle)", scene);
+    cs_errorSet(&err, CS_ERR_ARG, "unknown scene '%.60s' (expected flat-road, obstacle or slope)",
+                scene);
     goto done;
   }
   int user_files = terrain != NULL || gait != NULL;
@@ -504,6 +513,13 @@ int csx_cmdRun(int argc, char** argv) {
   }
   if (cs_modelLoad(&m, scene, terrain, gait, calib, &err) != CS_OK) goto done;
   if (scene_file && cs_modelApplySceneFile(&m, &sf, &err) != CS_OK) goto done;
+  if (!isnan(slope_deg)) {
+    if (!(fabs(slope_deg) <= 45)) { /* the terrain file's limit (terrains_terrain.h) */
+      cs_errorSet(&err, CS_ERR_RANGE, "--slope-deg %g must be within +-45 deg", slope_deg);
+      goto done;
+    }
+    m.terrain.slope_deg = slope_deg;
+  }
   if (m.gait) {
     csgGaitSummary gs;
     csg_gaitComputeSummary(m.gait, &gs, NULL);

@@ -56,7 +56,8 @@ static const OptSpec kRunOpts[] = {
     {"--macro-steps", OPT_NUM},   {"--coupling", OPT_WORD},      {"--conditions", OPT_WORD},
     {"--iterations", OPT_NUM},    {"--quiet", OPT_FLAG},         {"--set", OPT_SET},
     {"--cal-rule", OPT_WORD},     {"--rod-tol", OPT_NUM},        {"--out", OPT_OWNED},
-    {"--help", OPT_OWNED},        {"--cal-drop", OPT_WORD},      {NULL, OPT_FLAG}};
+    {"--help", OPT_OWNED},        {"--cal-drop", OPT_WORD},      {"--scene-file", OPT_PATH},
+    {"--slope-deg", OPT_NUM},     {NULL, OPT_FLAG}};
 
 static const OptSpec kCalibrateOpts[] = {
     {"--case", OPT_WORD},       {"--actuator", OPT_ACT}, {"--set", OPT_SET},

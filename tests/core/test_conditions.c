@@ -89,7 +89,8 @@ static void test_sceneDefaultsAndOverrides(void) {
   const csScene* fr = cs_sceneFind("flat-road");
   const csScene* ob = cs_sceneFind("obstacle");
   CS_EXPECT(fr && ob && !cs_sceneFind("moon"));
-  CS_EXPECT(cs_sceneCount() == 2 && cs_sceneAt(0) == fr && cs_sceneAt(2) == NULL);
+  CS_EXPECT(cs_sceneCount() == 3 && cs_sceneAt(0) == fr && cs_sceneAt(3) == NULL);
+  CS_EXPECT(cs_sceneFind("slope") && cs_sceneAt(2) == cs_sceneFind("slope"));
   csConditionsSource src;
   CS_EXPECT(cs_sceneConditions(fr, -1, 0, &src) == CS_CONDITIONS_PAPER &&
             src == CS_CONDITIONS_FROM_SCENE);

@@ -66,7 +66,7 @@ static void test_scenesRunRodLegsOnAnFeModeTable(void) {
     CS_EXPECT(fr->legs && !strcmp(fr->legs, "rod") && ob->legs && !strcmp(ob->legs, "rod"));
     CS_EXPECT(fr->rod_links >= 1 && ob->rod_links >= 1);
   }
-  CS_EXPECT(cs_sceneCount() == 2 && cs_sceneFind("obstacle") && cs_sceneFind("flat-road"));
+  CS_EXPECT(cs_sceneCount() == 3 && cs_sceneFind("obstacle") && cs_sceneFind("flat-road"));
 }
 
 
