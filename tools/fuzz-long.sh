@@ -61,6 +61,7 @@ HARNESSES=(
   "gait_design|gaits/*.gait|gait_design|4096|30|$RUNS|"
   "gait_design_build|gaits/flat_road_paper.gait|gait_design|2048|120|100000|"
   "terrain|terrains/*.terrain|terrain|4096|30|$RUNS|"
+  "scenefile|terrains/*.scene|scenefile|2048|30|$RUNS|"
   "calib_text|robot/calibration_provisional.txt|calib_text|2048|30|$RUNS|"
   "calib_h5||-|96|60|$RUNS|-len_control=0"
   "study||study|8192|30|$RUNS|"

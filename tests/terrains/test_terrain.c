@@ -226,11 +226,75 @@ static void test_badFiles(void) {
 }
 
 
+/* oriented boxes, friction per surface and the slope: what the file says, and the ground
+ * height on an incline against its closed form */
+static void test_inclinesAndFriction(void) {
+  writeText("terrain_incline.terrain",
+            "name incline\n"
+            "box 0 -20 0 100 0 100 mu 0.3\n"
+            "# a ramp: 200 long, 20 thick, 100 wide, turned 15 deg about z (10 cos 15 = 9.659)\n"
+            "obox 200 -9.6592582628906829 50  200 20 100  0 0 1 15 mu 1.2\n"
+            "slope -12.5\n"
+            "start 50 50\n");
+  cstTerrain t;
+  csError err;
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_incline.terrain", &err) == CS_OK);
+  CS_EXPECT(t.nbox == 2 && t.has_mu);
+  CS_EXPECT(!t.box[0].oriented && t.box[0].own_mu && t.box[0].mu == 0.3);
+  CS_EXPECT(t.box[1].oriented && t.box[1].own_mu && t.box[1].mu == 1.2);
+  CS_EXPECT(cst_terrainBoxMu(&t, 0, 0.8) == 0.3 && cst_terrainBoxMu(&t, 1, 0.8) == 1.2);
+  CS_EXPECT(t.slope_deg == -12.5);
+  double g[3];
+  cst_terrainGravityDir(&t, g);
+  /* 1e-15: round-off of sin and cos */
+  CS_EXPECT_NEAR(g[0], sin(12.5 * 3.14159265358979323846 / 180), 1e-15, 0);
+  CS_EXPECT_NEAR(g[1], -cos(12.5 * 3.14159265358979323846 / 180), 1e-15, 0);
+  /* the ramp's top face: the plane through its top centre c + 10 n (n = (-sin 15, cos 15, 0),
+   * its normal) rising at tan 15 deg; checked at three points, 1e-9 mm of round-off */
+  double th = 15 * 3.14159265358979323846 / 180;
+  double top[2] = {200 - 10 * sin(th), -9.6592582628906829 + 10 * cos(th)};
+  for (int i = -1; i <= 1; i++) {
+    double x = 200 + 60 * i;
+    CS_EXPECT_NEAR(cst_terrainHeightAt(&t, x, 50), top[1] + tan(th) * (x - top[0]), 1e-9, 0);
+  }
+  /* beyond its length and its width: not on the ramp */
+  CS_EXPECT(!isfinite(cst_terrainHeightAt(&t, 320, 50)));
+  CS_EXPECT(!isfinite(cst_terrainHeightAt(&t, 200, 120)));
+  /* a zeroed box keeps the run's friction */
+  CS_EXPECT(!t.box[0].oriented);
+  cstTerrain z;
+  memset(&z, 0, sizeof z);
+  z.nbox = 1;
+  CS_EXPECT(cst_terrainBoxMu(&z, 0, 0.8) == 0.8);
+  remove("terrain_incline.terrain");
+
+  expectBad("terrain_mu.terrain", "box 0 -20 0 600 0 300 mu -0.1\nstart 1 1\n", 1, CS_ERR_RANGE,
+            "'box' friction -0.1 must be in 0..10");
+  expectBad("terrain_mu2.terrain", "box 0 -20 0 600 0 300 mu nan\nstart 1 1\n", 1, CS_ERR_RANGE,
+            "friction 'nan' is not a finite number");
+  expectBad("terrain_mu3.terrain", "box 0 -20 0 600 0 300 nu 0.5\nstart 1 1\n", 1, CS_ERR_PARSE,
+            "got 8 values");
+  expectBad("terrain_obox.terrain", "obox 0 0 0 10 10 10 0 0 1\nstart 0 0\n", 1, CS_ERR_PARSE,
+            "'obox' needs 10 numbers");
+  expectBad("terrain_obox2.terrain", "obox 0 0 0 10 0 10 0 0 1 5\nstart 0 0\n", 1, CS_ERR_RANGE,
+            "obox edge lengths must be > 0");
+  expectBad("terrain_obox3.terrain", "obox 0 0 0 10 10 10 0 0 0 5\nstart 0 0\n", 1,
+            CS_ERR_RANGE, "obox rotation axis must not be zero");
+  expectBad("terrain_obox4.terrain", "obox 0 0 0 10 10 10 0 0 1 400\nstart 0 0\n", 1,
+            CS_ERR_RANGE, "obox angle beyond");
+  expectBad("terrain_slope.terrain", "box 0 -20 0 600 0 300\nslope 46\nstart 1 1\n", 2,
+            CS_ERR_RANGE, "slope 46 deg is beyond +-45 deg");
+  expectBad("terrain_slope2.terrain", "box 0 -20 0 600 0 300\nslope 5\nslope 6\nstart 1 1\n", 3,
+            CS_ERR_PARSE, "second 'slope' (the first is on line 2)");
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_flatRoad);
   CS_RUN(test_goodFile);
   CS_RUN(test_buildOde);
   CS_RUN(test_badFiles);
+  CS_RUN(test_inclinesAndFriction);
   return cs_testSummary();
 }
