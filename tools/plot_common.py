@@ -111,3 +111,51 @@ def default_out(path, suffix):
     """The input's path without its extension, plus `suffix` (e.g. "_track.png")."""
     stem, _ = os.path.splitext(path)
     return stem + suffix
+
+
+# What a run's picture title names (issue 36): scene, conditions, legs, calibration and the
+# terrain's slope, from the run file's root attributes (core/sim_run.c).
+RUN_TITLE_ATTRS = {
+    "scene": ("scene",),
+    "conditions": ("conditions",),
+    "legs": ("leg_model",),
+    "links": ("links_per_segment",),
+    "calibration": ("calibration",),
+    "rule": ("calibration_rule",),
+    "slope": ("slope_deg",),
+    "gait": ("gait_file",),
+}
+
+
+def run_title_attrs(f):
+    """The root attributes a run title uses, as strings (None where the file has none)."""
+    return {k: find_attr_text(f.attrs, keys) for k, keys in RUN_TITLE_ATTRS.items()}
+
+
+def run_title(a):
+    """One line: "scene S (slope A deg), conditions C, legs L (n per segment), calibration CAL
+    (rule R), gait G" from run_title_attrs; unknown parts are left out."""
+    parts = []
+    if a.get("scene"):
+        s = f"scene {a['scene']}"
+        try:
+            if a.get("slope") and float(a["slope"]) != 0:
+                s += f" (slope {float(a['slope']):g} deg)"
+        except ValueError:
+            pass
+        parts.append(s)
+    if a.get("conditions"):
+        parts.append(f"conditions {a['conditions']}")
+    if a.get("legs"):
+        s = f"legs {a['legs']}"
+        if a.get("links") and a["legs"] == "rod":
+            s += f" ({a['links']} per segment)"
+        parts.append(s)
+    if a.get("calibration"):
+        s = f"calibration {os.path.basename(a['calibration'])}"
+        if a.get("rule") and a["rule"] != "none":
+            s += f" ({a['rule']})"
+        parts.append(s)
+    if a.get("gait"):
+        parts.append(f"gait {os.path.basename(a['gait'])}")
+    return ", ".join(parts)

@@ -34,10 +34,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # plot_common.py, from any cwd
 from plot_common import InputError, default_out, find_attr_text, load_or_fail, open_h5  # noqa: E402
-from plot_common import read_dataset, save_or_fail  # noqa: E402
+from plot_common import read_dataset, run_title, run_title_attrs, save_or_fail  # noqa: E402
 
 PROG = "plot_track"
 
@@ -76,6 +77,9 @@ def load_run(path):
         }
         legs = {leg: read_dataset(f, f"/legs/{leg}/centerline", path, (None, 3)) for leg in LEGS}
         attrs = {k: find_attr_text(f.attrs, aliases) for k, aliases in ATTR_ALIASES.items()}
+        title = run_title(run_title_attrs(f))
+        terrain = (read_dataset(f, "/terrain/corners", path, (3,)) if "/terrain/corners" in f
+                   else np.zeros((0, 3)))
     # The writer appends samples as the run goes, so a run that stopped mid-sample can leave
     # series one sample apart: plot the common prefix and say so.
     lengths = [a.shape[0] for a in series.values()] + [a.shape[0] for a in legs.values()]
@@ -89,7 +93,24 @@ def load_run(path):
     run["legs"] = {k: a[:n] for k, a in legs.items()}
     run["path"] = path
     run["attrs"] = attrs
+    run["title"] = title
+    run["terrain"] = terrain
     return run
+
+
+def draw_terrain_side(ax, corners):
+    """The terrain boxes in the side view: each box's outline projected on the x-y plane (the
+    hull of its 8 corners: a rectangle for an axis-aligned box, the turned one for an oriented
+    box), filled; returns the number drawn."""
+    n = corners.shape[0] // 8
+    for b in range(n):
+        p = corners[8 * b:8 * b + 8, :2]
+        c = p.mean(axis=0)
+        ang = np.arctan2(p[:, 1] - c[1], p[:, 0] - c[0])
+        hull = p[np.argsort(ang)]  # the projected corners around their centre (a convex shape)
+        ax.fill(hull[:, 0], hull[:, 1], color="tan", alpha=0.45, lw=0.8, ec="saddlebrown",
+                zorder=0)
+    return n
 
 
 def pitch_roll_deg(q):
@@ -205,14 +226,20 @@ def plot_track(run, out, times, reference):
         handles.append(Line2D([], [], color=c, lw=2, label=f"t = {t[i]:.3g} s"))
     feet0 = np.array([run["legs"][leg][0][-1, 1] for leg in LEGS])
     ground = np.nanmin(feet0)
-    if np.isfinite(ground):
+    pts = np.concatenate([run["legs"][leg][i] for i in idx for leg in LEGS])
+    if draw_terrain_side(ax_side, run["terrain"]):
+        # the terrain as it is (the obstacle's step, a ramp), the view held on the legs
+        ax_side.set_xlim(pts[:, 0].min() - 30, pts[:, 0].max() + 30)
+        ax_side.set_ylim(min(pts[:, 1].min(), ground) - 30, pts[:, 1].max() + 20)
+        handles.append(Patch(color="tan", alpha=0.45, label="terrain (boxes, side view)"))
+    elif np.isfinite(ground):
         ax_side.axhline(ground, color="saddlebrown", lw=1.2)
         handles.append(Line2D([], [], color="saddlebrown", lw=1.2,
                               label=f"ground (lowest foot at t = 0: y = {ground:.1f} mm)"))
     handles.append(Line2D([], [], color="k", ls="-", label="legs A\u2013D"))
     handles.append(Line2D([], [], color="k", ls="--", label="legs E\u2013H"))
     handles.append(Line2D([], [], color="k", ls="none", marker="o", ms=3, label="foot (last centreline point)"))
-    ax_side.set_aspect("equal", adjustable="datalim")
+    ax_side.set_aspect("equal", adjustable="box" if len(run["terrain"]) else "datalim")
     ax_side.set_xlabel("x, crawl direction (mm)")
     ax_side.set_ylabel("y, up (mm)")
     ax_side.set_title("(d) legs, side view (x\u2013y plane, world frame)")
@@ -225,9 +252,9 @@ def plot_track(run, out, times, reference):
     gait = a["gait"]
     if gait:
         gait = os.path.basename(gait)
-    title = (f"scene: {show(a['scene'])}   leg model: {show(a['leg_model'])}   gait: {show(gait)}   "
-             f"final x = {x[-1]:.1f} mm at t = {t[-1]:.3g} s")
-    sub = os.path.basename(run["path"])
+    title = run["title"] or (f"scene: {show(a['scene'])}   leg model: {show(a['leg_model'])}   "
+                             f"gait: {show(gait)}")
+    sub = f"{os.path.basename(run['path'])}   final x = {x[-1]:.1f} mm at t = {t[-1]:.3g} s"
     if a["wall_time"]:
         sub += f"   wall time {a['wall_time']} s"
     if a["status"] and a["status"] != "ok":

@@ -1,0 +1,146 @@
+#!/usr/bin/python3
+"""test_run_plots.py: the run pictures of issue 36 (tools/plot_run.py: footfall diagram, chamber
+pressures, foot paths relative to the hips, ground forces per foot; tools/plot_track.py's side
+view with the terrain drawn) on small synthetic run files (make_synthetic_h5.py, plus a terrain
+with a 40 mm step, root attributes for the title, and for one file per-foot contact).
+
+Checks: every picture is written and opens with matplotlib's image reader at a non-zero size;
+the geometric stance (no /contact/stance) is the synthetic feet's truth (on the ground when not
+lifted above 1 mm); a file's /contact/stance is taken over the geometry when present; the title
+names scene, slope, conditions, legs and calibration; the foot paths relative to the hips
+undo the support's attitude (a foot fixed under a turning support keeps its hip offset);
+missing per-foot forces and a bad chamber label are one line on stderr and exit 1.
+Prints "N passed, N failed"; exits non-zero on any failure.
+"""
+
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+import h5py  # noqa: E402
+import matplotlib.image as mpimg  # noqa: E402
+import numpy as np  # noqa: E402
+
+import plot_run  # noqa: E402
+
+PY = sys.executable
+passed = failed = 0
+
+
+def check(cond, what):
+    global passed, failed
+    if cond:
+        passed += 1
+        print(f"ok   {what}")
+    else:
+        failed += 1
+        print(f"FAIL {what}")
+
+
+def png_opens(path, what):
+    try:
+        img = mpimg.imread(path)
+        check(img.ndim == 3 and img.shape[0] > 0 and img.shape[1] > 0,
+              f"{what}: {os.path.basename(path)} opens, {img.shape[1]} x {img.shape[0]} px")
+    except Exception as e:  # a missing or broken file
+        check(False, f"{what}: {path} opens ({e})")
+
+
+def make_run(path, with_contact):
+    subprocess.run([PY, os.path.join(HERE, "make_synthetic_h5.py"), "run", path, "--n", "181"],
+                   check=True, capture_output=True)
+    with h5py.File(path, "a") as f:
+        # the road (long enough for every foot) and a 40 mm step from x = 240 to 460, 8 corners a box
+        boxes = [((-500, -20, -150), (946, 0, 150)), ((240, 0, -150), (460, 40, 150))]
+        hexa = [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1), (0, 1, 0), (1, 1, 0), (1, 1, 1), (0, 1, 1)]
+        c = [[hi[i] if h[i] else lo[i] for i in range(3)] for lo, hi in boxes for h in hexa]
+        f["/terrain/corners"] = np.array(c, float)
+        for k, v in (("scene", "obstacle"), ("conditions", "paper"), ("leg_model", "rod"),
+                     ("calibration", "FE mode table (...): robot/calibration_fe_leg_modes.h5"),
+                     ("calibration_rule", "rbf-pair"), ("links_per_segment", 4.0),
+                     ("slope_deg", 7.5)):
+            f.attrs[k] = v
+        n = f["/time"].shape[0]
+        f["/pressure"][:, 21] = np.linspace(0, 0.3, n)  # label 22 = B_II3_O2
+        if with_contact:
+            st = np.zeros((n, 8))
+            st[:, 0] = 1  # A always stands, the others never: unlike the geometry
+            f["/contact/stance"] = st
+            F = np.zeros((n, 8, 3))
+            F[:, 0, 1] = 2.0
+            f["/contact/foot_force"] = F
+
+
+def main():
+    with tempfile.TemporaryDirectory() as tmp:
+        os.environ["MPLCONFIGDIR"] = os.path.join(tmp, "mpl")
+        run = os.path.join(tmp, "run.h5")
+        make_run(run, False)
+        r = plot_run.load_run(run)
+        # the title from the root attributes
+        for word in ("scene obstacle (slope 7.5 deg)", "conditions paper", "legs rod (4 per segment)",
+                     "calibration calibration_fe_leg_modes.h5 (rbf-pair)"):
+            check(word in r["title"], f"title names '{word}': {r['title']}")
+        # geometric stance is the synthetic truth: a foot stands where it is not lifted (on the
+        # road alone: the synthetic feet ignore the step)
+        road = dict(r, terrain=r["terrain"][:8])
+        st, source = plot_run.stance_of(road, 1.0)
+        foot_y = r["legs"][:, :, -1, 1]
+        truth = foot_y <= 1.0
+        check(st.shape == (r["t"].shape[0], 8) and np.array_equal(st, truth) and 0 < st.mean() < 1,
+              f"geometric stance = feet on the ground ({st.mean():.3f} of samples; {source})")
+        # over the step the ground is 40 mm higher: a foot at y = 39.5 there stands, at 41.5 not
+        top = plot_run.terrain_top(r["terrain"], np.array([300.0, 300.0, 100.0]),
+                                   np.array([0.0, 0.0, 0.0]))
+        check(np.array_equal(top, [40.0, 40.0, 0.0]), f"terrain top under (300, 0) and (100, 0): {top}")
+        # relative foot paths undo the support's attitude: rotate a vector into a frame turned
+        # by 30 deg about z and back
+        q = np.array([np.cos(np.pi / 12), 0, 0, np.sin(np.pi / 12)])
+        v = np.array([1.0, 0.0, 0.0])
+        back = plot_run.quat_rotate_inv(q, np.array([np.cos(np.pi / 6), np.sin(np.pi / 6), 0.0]))
+        check(np.allclose(back, v, atol=1e-12), f"a hip offset turned by the support comes back: {back}")
+        out = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_run.py"), run,
+                              "--chambers", "1,22", "--out-prefix", os.path.join(tmp, "a")],
+                             capture_output=True, text=True)
+        check(out.returncode == 0, f"plot_run.py exits 0 ({out.stderr.strip()[:200]})")
+        for kind in ("footfall", "pressures", "feet"):
+            png_opens(os.path.join(tmp, f"a_{kind}.png"), kind)
+        out = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_track.py"), run, "-o",
+                              os.path.join(tmp, "track.png"), "--reference", "obstacle",
+                              "--times", "0,4"], capture_output=True, text=True)
+        check(out.returncode == 0, f"plot_track.py with the terrain exits 0 ({out.stderr.strip()[:200]})")
+        png_opens(os.path.join(tmp, "track.png"), "side view with the step")
+        # no per-foot forces: one line, exit 1
+        out = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_run.py"), run, "--kind", "forces",
+                              "--out-prefix", os.path.join(tmp, "b")], capture_output=True, text=True)
+        check(out.returncode == 1 and out.stderr.count("\n") == 1 and "foot_force" in out.stderr,
+              f"forces without /contact/foot_force: {out.stderr.strip()}")
+        out = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_run.py"), run, "--chambers", "97"],
+                             capture_output=True, text=True)
+        check(out.returncode == 2 and "--chambers must be in 1..96" in out.stderr,
+              "a chamber label beyond 96 is refused")
+        # the run's own stance and forces, when the file has them
+        run2 = os.path.join(tmp, "run2.h5")
+        make_run(run2, True)
+        r2 = plot_run.load_run(run2)
+        st2, source2 = plot_run.stance_of(r2, 1.0)
+        check(st2[:, 0].all() and not st2[:, 1:].any() and "/contact/stance" in source2,
+              f"/contact/stance taken over the geometry ({source2})")
+        out = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_run.py"), run2, "--kind",
+                              "footfall,forces", "--out-prefix", os.path.join(tmp, "c")],
+                             capture_output=True, text=True)
+        check(out.returncode == 0, f"plot_run.py footfall,forces exits 0 ({out.stderr.strip()[:200]})")
+        png_opens(os.path.join(tmp, "c_forces.png"), "forces")
+        png_opens(os.path.join(tmp, "c_footfall.png"), "footfall from /contact/stance")
+    print(f"{passed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
