@@ -362,6 +362,15 @@ static int footNearTerrain(const cscSoftModel* m, const cscShape* sh, const cscS
     hi[k] = c + ext;
   }
   int idx[CST_MAX_BOXES];
+  if (m->terrain.has_hf) {
+    /* the heightfield's bounds: its footprint, up to its highest sample */
+    const cstHeightfield* hf = &m->terrain.hf;
+    double e = m->p.d_onset;
+    if (lo[1] <= hf->hmax + e && hi[0] >= hf->x0 - e && hi[2] >= hf->z0 - e &&
+        lo[0] <= hf->x0 + hf->dx * (hf->nx - 1) + e && lo[2] <= hf->z0 + hf->dz * (hf->nz - 1) + e) {
+      return 1;
+    }
+  }
   return cst_terrainBoxesNear(&m->terrain, lo, hi, m->p.d_onset, idx, CST_MAX_BOXES) > 0;
 }
 

@@ -13,7 +13,8 @@
 enum {
   CSC_SOFT_MAX_QUAD = 8, /* Gauss-Legendre points per capsule-box line load */
   CSC_SOFT_MIN_SIDE = 2, /* Gauss-Lobatto sole points per side */
-  CSC_SOFT_MAX_SIDE = 5
+  CSC_SOFT_MAX_SIDE = 5,
+  CSC_HF_SAMPLES = 16    /* axis samples of a capsule's stretch on a heightfield (law.c) */
 };
 
 /* tag of a slot without an anchor (step mode) */
@@ -76,8 +77,9 @@ void csc_softCapsuleNormal(const cscSoftModel* m, const cscShape* sh, const cscS
 void csc_softSolePoint(const cscShape* sh, const cscShapeState* st, int i, int j, double c[3],
                        double* A);
 /* normal force of one sole point (centre c, element A) into acc and load; the elastic force
- * against each terrain box near it (in the order of cst_terrainBoxesNear) into el (NULL: not
- * wanted; room for CST_MAX_BOXES); returns how many */
+ * against each terrain box near it (in the order of cst_terrainBoxesNear), then against the
+ * heightfield when within reach, into el (NULL: not wanted; room for CST_MAX_BOXES + 1);
+ * returns how many */
 int csc_softSolePointNormal(const cscSoftModel* m, double rho, double A, const double c[3],
                             const cscShapeState* st, cscSoftAcc* acc, cscShapeLoad* load,
                             double* el);
@@ -87,7 +89,7 @@ typedef struct cscSoleLoads_ {
   int npt;
   double c[CSC_SOFT_MAX_SIDE * CSC_SOFT_MAX_SIDE][3];
   int nel[CSC_SOFT_MAX_SIDE * CSC_SOFT_MAX_SIDE];
-  double el[CSC_SOFT_MAX_SIDE * CSC_SOFT_MAX_SIDE][CST_MAX_BOXES];
+  double el[CSC_SOFT_MAX_SIDE * CSC_SOFT_MAX_SIDE][CST_MAX_BOXES + 1]; /* + the heightfield */
 } cscSoleLoads;
 /* second moments of a foot's elastic sole loads (sl, radius rho) about the centroid xc in the
  * plane normal to n: Jel = sum el |r|^2 (N mm^2), R1el = sum el sqrt(|r|^2 + rho^2) (N mm).

@@ -171,6 +171,98 @@ void csc_softAddForce(const cscShape* sh, const cscShapeState* st, double s, con
 }
 
 
+/* signed distance (mm) of the capsule's axis point at s to the heightfield, +INFINITY beyond
+ * reach */
+static double axisHfDistance(const cstHeightfield* hf, const cscShapeState* st, double s,
+                             double reach) {
+  double x[3], v[3];
+  csc_softAxisPoint(st, s, x, v);
+  return cst_hfSignedDistance(hf, x, reach, NULL, NULL);
+}
+
+
+/* The line load of a capsule (axis length L, radius r, line modulus kline; bounds lo, hi)
+ * against the heightfield: Gauss-Legendre over the stretch of the axis within r of the
+ * surface, each point's depth exact (cst_hfSignedDistance). The stretch is found by sampling
+ * the axis at CSC_HF_SAMPLES + 1 points and bisecting its two ends to 2^-40 of the axis: exact
+ * to round-off where the axis meets the surface once (a plane, a gentle heightfield), but a
+ * contact shorter than 1/CSC_HF_SAMPLES of the axis between two samples is missed, and two
+ * separate contacts are integrated as one stretch (the gap between them adds nothing but
+ * costs quadrature points). */
+static void capsuleHeightfield(const cscSoftModel* m, const cscShapeState* st, double r,
+                               double L, double kline, const double lo[3], const double hi[3],
+                               cscSoftAcc* acc, cscShapeLoad* load) {
+  const cscSoftParams* p = &m->p;
+  const cstHeightfield* hf = &m->terrain.hf;
+  if (lo[1] > hf->hmax + p->d_onset || hi[0] < hf->x0 || hi[2] < hf->z0 ||
+      lo[0] > hf->x0 + hf->dx * (hf->nx - 1) || lo[2] > hf->z0 + hf->dz * (hf->nz - 1)) {
+    return;
+  }
+  double reach = r + p->d_onset, sd[CSC_HF_SAMPLES + 1];
+  int first = -1, last = -1;
+  for (int k = 0; k <= CSC_HF_SAMPLES; k++) {
+    sd[k] = axisHfDistance(hf, st, (double)k / CSC_HF_SAMPLES, reach);
+    if (sd[k] <= 0) {
+      acc->deep++; /* the axis under the surface: r deep */
+      acc->dmax = fmax(acc->dmax, r);
+      return;
+    }
+    if (sd[k] <= r) {
+      if (first < 0) first = k;
+      last = k;
+    }
+    if (isfinite(sd[k])) acc->dmax = fmax(acc->dmax, r - sd[k]);
+  }
+  if (first < 0) {
+    return;
+  }
+  /* bisect the ends: [a, b] with a outside (or the axis end), b inside */
+  double sa = (double)first / CSC_HF_SAMPLES, sb = (double)last / CSC_HF_SAMPLES;
+  if (first > 0) {
+    double a = (double)(first - 1) / CSC_HF_SAMPLES, b = sa;
+    for (int it = 0; it < 40; it++) {
+      double c = 0.5 * (a + b);
+      if (axisHfDistance(hf, st, c, reach) <= r) b = c; else a = c;
+    }
+    sa = b;
+  }
+  if (last < CSC_HF_SAMPLES) {
+    double a = sb, b = (double)(last + 1) / CSC_HF_SAMPLES;
+    for (int it = 0; it < 40; it++) {
+      double c = 0.5 * (a + b);
+      if (axisHfDistance(hf, st, c, reach) <= r) a = c; else b = c;
+    }
+    sb = a;
+  }
+  if (!(sb > sa)) {
+    return;
+  }
+  double mid = 0.5 * (sa + sb), half = 0.5 * (sb - sa);
+  double mu = hf->own_mu ? hf->mu : p->mu;
+  for (int i = 0; i < p->nquad; i++) {
+    double s = mid + half * m->gl_x[i], x[3], v[3], cp[3], n[3];
+    csc_softAxisPoint(st, s, x, v);
+    double depth = r - cst_hfSignedDistance(hf, x, reach, cp, n);
+    if (!(depth > 0)) {
+      continue;
+    }
+    double g = smoothPos(depth, p->d_onset);
+    double el = kline * g * sqrt(g) * L * half * m->gl_w[i];
+    double F = el * smoothPos(1 - p->c_hc * csu_dot3(n, v), HC_CLIP);
+    double f[3];
+    csu_scale3(f, n, F);
+    csu_addScl3(load->f0, load->f0, f, 1 - s);
+    csu_addScl3(load->f1, load->f1, f, s);
+    csu_add3(acc->Fn, acc->Fn, f);
+    csu_addScl3(acc->Fel_n, acc->Fel_n, n, el);
+    acc->W += el;
+    acc->muW += el * mu;
+    csu_addScl3(acc->xw, acc->xw, x, el);
+    acc->sw += el * s;
+  }
+}
+
+
 void csc_softCapsuleNormal(const cscSoftModel* m, const cscShape* sh, const cscShapeState* st,
                            cscSoftAcc* acc, cscShapeLoad* load) {
   const cscSoftParams* p = &m->p;
@@ -223,6 +315,9 @@ void csc_softCapsuleNormal(const cscSoftModel* m, const cscShape* sh, const cscS
       acc->sw += el * s;
     }
   }
+  if (m->terrain.has_hf && L > 0) {
+    capsuleHeightfield(m, st, r, L, kline, lo, hi, acc, load);
+  }
 }
 
 
@@ -256,6 +351,26 @@ static double solePointElastic(const cscSoftParams* p, double rho, double A, con
 }
 
 
+/* add one sole sphere's normal force (elastic el against a surface with normal n, friction mu,
+ * centre c moving at v) to acc and load */
+static void soleAccumulate(const cscSoftParams* p, double el, const double n[3], double mu,
+                           const double c[3], const double v[3], const cscShapeState* st,
+                           cscSoftAcc* acc, cscShapeLoad* load) {
+  double F = el * smoothPos(1 - p->c_hc * csu_dot3(n, v), HC_CLIP);
+  double f[3], r[3], mr[3];
+  csu_scale3(f, n, F);
+  csu_add3(load->f0, load->f0, f);
+  csu_sub3(r, c, st->x0); /* the force passes through the sphere's centre */
+  csu_cross3(mr, r, f);
+  csu_add3(load->m, load->m, mr);
+  csu_add3(acc->Fn, acc->Fn, f);
+  csu_addScl3(acc->Fel_n, acc->Fel_n, n, el);
+  acc->W += el;
+  acc->muW += el * mu;
+  csu_addScl3(acc->xw, acc->xw, c, el);
+}
+
+
 int csc_softSolePointNormal(const cscSoftModel* m, double rho, double A, const double c[3],
                             const cscShapeState* st, cscSoftAcc* acc, cscShapeLoad* load,
                             double* elout) {
@@ -279,21 +394,31 @@ int csc_softSolePointNormal(const cscSoftModel* m, double rho, double A, const d
       acc->deep++; /* the sphere's centre is in the box: rho deep */
     }
     acc->dmax = fmax(acc->dmax, rho - sd);
-    if (el <= 0) {
-      continue;
+    if (el > 0) {
+      soleAccumulate(p, el, n, cst_terrainBoxMu(&m->terrain, idx[ib], p->mu), c, v, st, acc,
+                     load);
     }
-    double F = el * smoothPos(1 - p->c_hc * csu_dot3(n, v), HC_CLIP);
-    double f[3], r[3], mr[3];
-    csu_scale3(f, n, F);
-    csu_add3(load->f0, load->f0, f);
-    csu_sub3(r, c, st->x0); /* the force passes through the sphere's centre */
-    csu_cross3(mr, r, f);
-    csu_add3(load->m, load->m, mr);
-    csu_add3(acc->Fn, acc->Fn, f);
-    csu_addScl3(acc->Fel_n, acc->Fel_n, n, el);
-    acc->W += el;
-    acc->muW += el * cst_terrainBoxMu(&m->terrain, idx[ib], p->mu);
-    csu_addScl3(acc->xw, acc->xw, c, el);
+  }
+  if (m->terrain.has_hf) {
+    /* the heightfield, exact: the sphere's centre against the nearest triangle in reach */
+    const cstHeightfield* hf = &m->terrain.hf;
+    double n[3], cp[3];
+    double sd = cst_hfSignedDistance(hf, c, rho + p->d_onset, cp, n);
+    if (isfinite(sd)) {
+      double depth = rho - sd;
+      double el = depth > 0 ? p->k_area * A * smoothPos(depth, p->d_onset) : 0;
+      if (elout) {
+        elout[nb] = el;
+      }
+      nb++;
+      if (sd <= 0) {
+        acc->deep++;
+      }
+      acc->dmax = fmax(acc->dmax, depth);
+      if (el > 0) {
+        soleAccumulate(p, el, n, hf->own_mu ? hf->mu : p->mu, c, v, st, acc, load);
+      }
+    }
   }
   return nb;
 }

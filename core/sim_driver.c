@@ -389,6 +389,7 @@ void cs_dataDestroy(csData* d) {
     dSpaceDestroy(d->robot_space);
   }
   if (d->terrain_space) {
+    cst_hfReleaseOde(d->terrain_space); /* the heightfield's data is not the geom's */
     dSpaceDestroy(d->terrain_space);
   }
   if (d->world) {

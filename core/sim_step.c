@@ -196,6 +196,9 @@ static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError
     const cstBox* b = &m->terrain.box[i];
     floor_y = fmin(floor_y, b->oriented ? b->wlo[1] : b->lo[1]);
   }
+  if (m->terrain.has_hf) {
+    floor_y = fmin(floor_y, m->terrain.hf.hmin - m->terrain.hf.thickness);
+  }
   if (x[1] < floor_y) {
     return cs_errorSet(err, CS_ERR_DIVERGED,
                        "t = %.4f s: the support fell off the terrain (y = %.1f mm, below the "

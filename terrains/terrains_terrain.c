@@ -20,7 +20,7 @@
 
 enum {
   MAX_LINE = 1023, /* bytes per line, line ending excluded */
-  MAX_WORDS = 16   /* words kept per line; more are counted, not stored */
+  MAX_WORDS = 72   /* words kept per line (a heightfield row: 64 heights); more are counted */
 };
 
 /* coordinates beyond 1 km are a typo, and their box sizes could overflow in ODE */
@@ -31,6 +31,8 @@ enum {
 #define MAX_SLOPE_DEG 45.0
 /* friction coefficients beyond 10 are a typo (rubber on rough rock is ~1-2) */
 #define MAX_MU 10.0
+/* a heightfield's solid depth below its lowest sample: deeper than any foot sinks */
+#define CST_HF_THICKNESS_MM 20.0
 #define CST_DEG (3.14159265358979323846 / 180.0) /* radians per degree */
 
 /* one input line split into words (pointers into the line buffer) */
@@ -161,6 +163,7 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
                   : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
   int lineno = 0, got = 0;
   int start_line = 0, name_line = 0, heading_line = 0, slope_line = 0; /* 0 = not yet */
+  int hf_line = 0, hf_rows = 0; /* the heightfield's line and rows read */
   while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
     lineno = (int)r->lineno;
     char* line = r->line;
@@ -172,7 +175,7 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
       continue; /* blank or comment */
     }
     const char* key = w.word[0];
-    double v[10], mu = -1;
+    double v[CST_HF_MAX], mu = -1;
     if (!strcmp(key, "name")) {
       /* one word that fits the name buffer; never cut short silently */
       if (w.nword != 2) {
@@ -263,6 +266,60 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
         t->heading_deg = v[0];
         heading_line = lineno;
       }
+    } else if (!strcmp(key, "heightfield")) {
+      st = parseBoxValues(&w, v, 6, "x0 z0 dx dz (mm) nx nz", &mu, path, lineno, err);
+      if (st == CS_OK) st = checkCoords(v, 4, path, lineno, err);
+      if (st != CS_OK) break;
+      if (hf_line) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: second 'heightfield' (the first is on line "
+                         "%d)", path, lineno, hf_line);
+        break;
+      }
+      if (!(v[2] > 0 && v[3] > 0) || v[4] != floor(v[4]) || v[5] != floor(v[5]) ||
+          !(v[4] >= 2 && v[4] <= CST_HF_MAX && v[5] >= 2 && v[5] <= CST_HF_MAX)) {
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: heightfield spacing must be > 0 and its "
+                         "sample counts whole numbers in 2..%d", path, lineno, CST_HF_MAX);
+        break;
+      }
+      cstHeightfield* hf = &t->hf;
+      hf->x0 = v[0];
+      hf->z0 = v[1];
+      hf->dx = v[2];
+      hf->dz = v[3];
+      hf->nx = (int)v[4];
+      hf->nz = (int)v[5];
+      hf->thickness = CST_HF_THICKNESS_MM;
+      hf->own_mu = mu >= 0;
+      hf->mu = mu >= 0 ? mu : 0;
+      if (fabs(hf->x0 + hf->dx * (hf->nx - 1)) > MAX_COORD_MM ||
+          fabs(hf->z0 + hf->dz * (hf->nz - 1)) > MAX_COORD_MM) {
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: heightfield reaches beyond +-%g mm", path,
+                         lineno, MAX_COORD_MM);
+        break;
+      }
+      t->has_mu |= hf->own_mu;
+      hf_line = lineno;
+    } else if (!strcmp(key, "row")) {
+      if (!hf_line || hf_rows == t->hf.nz) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'row' %s", path, lineno,
+                         hf_line ? "beyond the heightfield's nz rows" : "before 'heightfield'");
+        break;
+      }
+      st = parseValues(&w, v, t->hf.nx, "(heights, mm: nx of them)", path, lineno, err);
+      if (st == CS_OK) st = checkCoords(v, t->hf.nx, path, lineno, err);
+      if (st != CS_OK) break;
+      for (int i = 0; i < t->hf.nx; i++) {
+        t->hf.h[hf_rows * t->hf.nx + i] = v[i];
+      }
+      hf_rows++;
+      if (hf_rows == t->hf.nz) {
+        t->hf.hmin = t->hf.hmax = t->hf.h[0];
+        for (int i = 1; i < t->hf.nx * t->hf.nz; i++) {
+          t->hf.hmin = fmin(t->hf.hmin, t->hf.h[i]);
+          t->hf.hmax = fmax(t->hf.hmax, t->hf.h[i]);
+        }
+        t->has_hf = 1;
+      }
     } else if (!strcmp(key, "slope")) {
       st = parseValues(&w, v, 1, "(degrees)", path, lineno, err);
       if (st == CS_OK && fabs(v[0]) > MAX_SLOPE_DEG) {
@@ -279,8 +336,8 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
       }
     } else {
       st = cs_errorSet(err, CS_ERR_PARSE,
-                       "%s:%d: unknown statement '%.40s' (expected name, box, obox, slope, start, "
-                       "heading)",
+                       "%s:%d: unknown statement '%.40s' (expected name, box, obox, heightfield, "
+                       "row, slope, start, heading)",
                        path, lineno, key);
     }
   }
@@ -296,10 +353,14 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
   }
   /* whole-file checks name the last line (the end of the file; line 1 if it is empty) */
   int last = lineno > 0 ? lineno : 1;
-  if (t->nbox == 0) {
+  if (hf_line && !t->has_hf) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: end of file after %d of the heightfield's %d "
+                       "rows (line %d)", path, last, hf_rows, t->hf.nz, hf_line);
+  }
+  if (t->nbox == 0 && !t->has_hf) {
     return cs_errorSet(err, CS_ERR_PARSE,
-                       "%s:%d: end of file without a 'box' statement: a terrain needs ground",
-                       path, last);
+                       "%s:%d: end of file without a 'box' or 'heightfield' statement: a terrain "
+                       "needs ground", path, last);
   }
   if (!start_line) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: end of file without a 'start' statement", path,
@@ -344,7 +405,7 @@ double cst_terrainHeightAt(const cstTerrain* t, double x, double z) {
   for (int i = 0; i < t->nbox; i++) {
     h = fmax(h, boxTopAt(&t->box[i], x, z));
   }
-  return h;
+  return t->has_hf ? fmax(h, cst_hfHeightAt(&t->hf, x, z)) : h;
 }
 
 
@@ -381,5 +442,8 @@ int cst_terrainBuildOde(const cstTerrain* t, dSpaceID space) {
      * never writes through it */
     dGeomSetData(g, b->own_mu ? (void*)(uintptr_t)&b->mu : NULL);
   }
-  return t->nbox;
+  if (t->has_hf) {
+    cst_hfBuildOde(&t->hf, space);
+  }
+  return t->nbox + t->has_hf;
 }

@@ -21,6 +21,11 @@
  *                                          gravity turns instead: g = g (-sin deg, -cos deg, 0),
  *                                          exact for a rigid terrain (cst_terrainGravityDir), so
  *                                          x is the distance along the slope
+ *   heightfield x0 z0 dx dz nx nz [mu M]   a heightfield (terrains_hfield.h): nx x nz samples
+ *                                          (2..64 each) from (x0, z0), spaced dx along x and
+ *                                          dz along z, followed by nz lines `row h_0 ... h_nx-1`
+ *                                          (heights, mm, the first row at z0); solid down to
+ *                                          20 mm below its lowest sample; at most one
  *   start x z                              start of the support's centre in the ground plane
  *   heading <deg>                          optional: crawl direction, degrees about +y (0 = +x,
  *                                          right-handed: 90 faces -z); the robot is built
@@ -33,6 +38,7 @@
 #include <ode/ode.h>
 
 #include "core_status.h"
+#include "terrains_hfield.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -61,11 +67,14 @@ typedef struct cstTerrain_ {
   double start[2];     /* support centre start (x, z), mm */
   double heading_deg;  /* crawl direction about +y, degrees */
   double slope_deg;    /* inclination about +z, degrees (+x uphill) */
-  int has_mu;          /* some box has its own friction */
+  int has_mu;          /* some box or the heightfield has its own friction */
+  int has_hf;          /* 1: hf is part of the terrain */
+  cstHeightfield hf;   /* the heightfield (has_hf) */
   char source[256];    /* file it was read from */
 } cstTerrain;
 
-/* Parse a terrain file. A file must have at least one box and a start inside a box; each of
+/* Parse a terrain file. A file must have at least one box or a heightfield and a start above
+ * one; each of
  * name, start and heading may appear once; a name has at most 63 characters, a line at most
  * 1023 bytes (LF or CRLF; lines come from core_text.h's reader); numbers must be finite,
  * coordinates within +-1e6 mm and the heading within +-360 deg.
@@ -90,11 +99,11 @@ double cst_terrainBoxMu(const cstTerrain* t, int i, double mu_default);
 int cst_boxOriented(cstBox* b, const double c[3], const double len[3], const double axis[3],
                     double deg, double mu);
 
-/* Create one static ODE box geom per terrain box in `space` (no bodies); the geom's data of a
- * box with its own friction points at its mu (const double*, read by contact_ode.c; NULL:
- * the run's). Returns
- * the number of geoms created. The caller owns the space and destroys the geoms with it; the
- * terrain must outlive them. */
+/* Create one static ODE box geom per terrain box in `space` (no bodies), and the heightfield's
+ * (cst_hfBuildOde); the geom's data of a surface with its own friction points at its mu
+ * (const double*, read by contact_ode.c; NULL: the run's). Returns the number of geoms
+ * created. The caller owns the space, calls cst_hfReleaseOde(space) and destroys the geoms
+ * with it; the terrain must outlive them. */
 int cst_terrainBuildOde(const cstTerrain* t, dSpaceID space);
 
 #ifdef __cplusplus

@@ -19,6 +19,7 @@
 #include "contact_soft.h"
 #include "cs_test.h"
 #include "terrains_ccd.h"
+#include "terrains_hfield.h"
 
 static const double kH = 1e-3;     /* s */
 static const double kG = 9810.0;   /* mm/s^2 */
@@ -32,11 +33,34 @@ static const double kDeg = 3.14159265358979323846 / 180.0;
  * turned = 0: the ground is a flat box, gravity is turned (a terrain `slope`), the run's
  * friction mu. */
 static double blockOnIncline(double theta, double mu, int turned, double seconds) {
-  cstTerrain t;
+  static cstTerrain t; /* ~33 KB with its heightfield: not on the stack */
   memset(&t, 0, sizeof t);
   cscContactParams p = csc_defaultContactParams();
   double up[3] = {0, 1, 0}; /* the ground's outward normal */
-  if (turned) {
+  if (turned == 2) {
+    /* a heightfield built as the same inclined plane through the origin: 21 x 5 samples,
+     * 2000 mm long as the box */
+    cstHeightfield* hf = &t.hf;
+    hf->nx = 21;
+    hf->nz = 5;
+    hf->x0 = -1000;
+    hf->z0 = -150;
+    hf->dx = 100;
+    hf->dz = 75;
+    for (int j = 0; j < hf->nz; j++) {
+      for (int i = 0; i < hf->nx; i++) hf->h[j * hf->nx + i] = tan(theta) * (hf->x0 + i * hf->dx);
+    }
+    hf->hmin = hf->h[0];
+    hf->hmax = hf->h[hf->nx - 1];
+    hf->thickness = 20;
+    hf->own_mu = 1;
+    hf->mu = mu;
+    t.has_hf = 1;
+    t.has_mu = 1;
+    p.mu = 0.8;
+    up[0] = -sin(theta);
+    up[1] = cos(theta);
+  } else if (turned) {
     /* its top face through the origin: the centre 10 mm below along the turned normal */
     up[0] = -sin(theta);
     up[1] = cos(theta);
@@ -50,10 +74,10 @@ static double blockOnIncline(double theta, double mu, int turned, double seconds
     t.slope_deg = theta / kDeg;
     p.mu = mu;
   }
-  t.nbox = 1;
+  t.nbox = turned == 2 ? 0 : 1;
   double gdir[3];
   cst_terrainGravityDir(&t, gdir);
-  if (turned) { /* gravity straight down; the ground turned */
+  if (turned) { /* gravity straight down; the ground turned (box or heightfield) */
     gdir[0] = 0;
     gdir[1] = -1;
   }
@@ -90,6 +114,7 @@ static double blockOnIncline(double theta, double mu, int turned, double seconds
   double s = (x[0] - x0[0]) * down[0] + (x[1] - x0[1]) * down[1] + (x[2] - x0[2]) * down[2];
   dJointGroupDestroy(group);
   dSpaceDestroy(robot);
+  cst_hfReleaseOde(ground);
   dSpaceDestroy(ground);
   dWorldDestroy(w);
   return s;
@@ -98,13 +123,14 @@ static double blockOnIncline(double theta, double mu, int turned, double seconds
 
 static void test_block_holds_below_and_slides_above_tan_mu(void) {
   const double mu = 0.5, T = 1.0;
-  for (int turned = 0; turned < 2; turned++) {
+  static const char* const kind[3] = {"slope", "oriented box", "heightfield"};
+  for (int turned = 0; turned < 3; turned++) {
     /* 90 % of the limit: held. The contact spring's settling along the slope (m g sin / kp
      * ~ 2e-3 mm) is over before t0 = 0.1 s; 1e-4 mm over 1 s bounds the exact LCP's drift
      * (measured ~1e-9 mm) with room */
     double th = atan(0.9 * mu);
     double s = blockOnIncline(th, mu, turned, T);
-    printf("  %s, tan = 0.9 mu: moved %.2e mm\n", turned ? "oriented box" : "slope", s);
+    printf("  %s, tan = 0.9 mu: moved %.2e mm\n", kind[turned], s);
     CS_EXPECT_NEAR(s, 0.0, 1e-4, 0);
     /* 110 %: slides with a = g (sin - mu cos), the net 10 % of the friction force. 1 % of
      * the net (0.1 % of mu N) for the first-order time steps (measured 0.08 %) */
@@ -113,16 +139,17 @@ static void test_block_holds_below_and_slides_above_tan_mu(void) {
     /* it slides from t = 0 (placed touching): s = a ((t0 + T)^2 - t0^2) / 2 after t0 */
     double a = kG * (sin(th) - mu * cos(th)), t0 = 0.1;
     double expect = 0.5 * a * ((t0 + T) * (t0 + T) - t0 * t0);
-    printf("  %s, tan = 1.1 mu: slid %.2f mm, closed form %.2f mm\n",
-           turned ? "oriented box" : "slope", s, expect);
+    printf("  %s, tan = 1.1 mu: slid %.2f mm, closed form %.2f mm\n", kind[turned], s, expect);
     CS_EXPECT_NEAR(s, expect, 0, 0.01);
   }
-  /* the two ways of making a slope are the same physics: the slides agree to 1e-6 (the
-   * solves differ by the rotation's round-off only; measured 5e-15) */
+  /* the three ways of making a slope are the same physics: the slides agree to 1e-6 (the
+   * solves differ by round-off only; measured 5e-15 for the oriented box) */
   double th = atan(1.3 * mu);
   double s0 = blockOnIncline(th, mu, 0, T), s1 = blockOnIncline(th, mu, 1, T);
-  printf("  tan = 1.3 mu: slope %.3f mm, oriented box %.3f mm\n", s0, s1);
+  double s2 = blockOnIncline(th, mu, 2, T);
+  printf("  tan = 1.3 mu: slope %.3f mm, oriented box %.3f mm, heightfield %.3f mm\n", s0, s1, s2);
   CS_EXPECT_NEAR(s1, s0, 0, 1e-6);
+  CS_EXPECT_NEAR(s2, s0, 0, 1e-6);
 }
 
 
@@ -251,12 +278,116 @@ static void test_own_friction_equals_run_friction(void) {
 }
 
 
+/* loads of a foot and a capsule on terrain t (shapes pressed into the plane y = tan(th) x) */
+static void shapesOnPlane(const cstTerrain* t, double th, cscShapeLoad ld[2], double zd[7],
+                          cscSoftReport* rep) {
+  cscSoftParams p = csc_softDefaultParams();
+  cscShape sh[2] = {csc_softFoot(7.5), csc_softCapsule(7.5)};
+  csError err;
+  cscSoftModel* m = csc_softCreate(&p, t, 2, sh, &err);
+  CS_EXPECT(m != NULL);
+  if (!m) return;
+  cscShapeState st[2];
+  memset(st, 0, sizeof st);
+  /* the foot: its sole in the plane, 3 um deep, e3 = -(plane normal) */
+  double nrm[3] = {-sin(th), cos(th), 0}, tng[3] = {cos(th), sin(th), 0};
+  double R[9] = {tng[0], 0, -nrm[0], tng[1], 0, -nrm[1], tng[2], 1, -nrm[2]};
+  memcpy(st[0].R, R, sizeof R);
+  for (int k = 0; k < 3; k++) st[0].x0[k] = 40 * tng[k] - 0.003 * nrm[k];
+  st[0].v0[0] = 2;
+  /* the capsule: an axis 60 mm long, tilted against the plane so that one end dips 5 um in */
+  for (int k = 0; k < 3; k++) {
+    st[1].x0[k] = -60 * tng[k] + (7.5 - 0.005) * nrm[k];
+    st[1].x1[k] = st[1].x0[k] + 60 * tng[k] + 3 * nrm[k];
+  }
+  st[1].x0[2] = st[1].x1[2] = 20;
+  double z[7] = {0.002, 0, 0, 0, 0.001, 0, 0};
+  CS_EXPECT(csc_softNState(m) == 7);
+  memset(rep, 0, sizeof *rep);
+  CS_EXPECT(csc_softCompute(m, st, z, ld, zd, NULL, rep) == 0);
+  csc_softDestroy(m);
+}
+
+
+static void test_heightfield_plane_equals_plane(void) {
+  const double th = 10 * kDeg;
+  static cstTerrain hfT, boxT;
+  memset(&hfT, 0, sizeof hfT);
+  memset(&boxT, 0, sizeof boxT);
+  cstHeightfield* hf = &hfT.hf;
+  hf->nx = 7;
+  hf->nz = 4;
+  hf->x0 = -150;
+  hf->z0 = -60;
+  hf->dx = 50;
+  hf->dz = 40;
+  for (int j = 0; j < hf->nz; j++) {
+    for (int i = 0; i < hf->nx; i++) hf->h[j * hf->nx + i] = tan(th) * (hf->x0 + i * hf->dx);
+  }
+  hf->hmin = hf->h[0];
+  hf->hmax = hf->h[hf->nx - 1];
+  hf->thickness = 20;
+  hfT.has_hf = 1;
+  /* the same plane as an oriented box's top face: centre 10 mm under the origin */
+  double c[3] = {10 * sin(th), -10 * cos(th), 0}, len[3] = {400, 20, 300}, axis[3] = {0, 0, 1};
+  cst_boxOriented(&boxT.box[0], c, len, axis, 10, -1);
+  boxT.nbox = 1;
+  /* the surface height: the plane's, 1e-12 mm */
+  for (double x = -140; x < 150; x += 37) {
+    CS_EXPECT_NEAR(cst_hfHeightAt(hf, x, 11), tan(th) * x, 1e-12, 0);
+  }
+  cscShapeLoad lh[2], lb[2];
+  double zh[7], zb[7];
+  cscSoftReport rh, rb;
+  shapesOnPlane(&hfT, th, lh, zh, &rh);
+  shapesOnPlane(&boxT, th, lb, zb, &rb);
+  printf("  foot: heightfield F = (%.9g, %.9g) N, box (%.9g, %.9g) N; capsule Fy %.9g / %.9g N\n",
+         lh[0].f0[0], lh[0].f0[1], lb[0].f0[0], lb[0].f0[1], lh[1].f0[1] + lh[1].f1[1],
+         lb[1].f0[1] + lb[1].f1[1]);
+  CS_EXPECT(rh.ncontact == 2 && rb.ncontact == 2);
+  /* the foot: the same sphere distances to round-off (1e-9 relative); the capsule's stretch is
+   * bisected to 2^-40 of the axis on the heightfield, exact roots on the box: 1e-7 relative */
+  for (int k = 0; k < 3; k++) {
+    CS_EXPECT_NEAR(lh[0].f0[k], lb[0].f0[k], 1e-12, 1e-9);
+    CS_EXPECT_NEAR(lh[0].m[k], lb[0].m[k], 1e-9, 1e-9);
+    CS_EXPECT_NEAR(lh[1].f0[k], lb[1].f0[k], 1e-12, 1e-7);
+    CS_EXPECT_NEAR(lh[1].f1[k], lb[1].f1[k], 1e-12, 1e-7);
+  }
+  for (int k = 0; k < 7; k++) CS_EXPECT_NEAR(zh[k], zb[k], 1e-12, 1e-7);
+  CS_EXPECT(fabs(lh[1].f0[1] + lh[1].f1[1]) > 0); /* the capsule does touch */
+  /* ODE: a box resting into both surfaces gets the same contact depth and normal */
+  dSpaceID s1 = dSimpleSpaceCreate(0), s2 = dSimpleSpaceCreate(0);
+  dGeomID gh = cst_hfBuildOde(hf, s1);
+  cst_terrainBuildOde(&boxT, s2);
+  dGeomID gb = dSpaceGetGeom(s2, 0);
+  dGeomID probe = dCreateBox(0, 30, 10, 30);
+  dMatrix3 Rp;
+  dRFromAxisAndAngle(Rp, 0, 0, 1, th);
+  dGeomSetRotation(probe, Rp);
+  dGeomSetPosition(probe, 20 * cos(th) - (5 - 0.01) * sin(th), 20 * sin(th) + (5 - 0.01) * cos(th), 0);
+  dContactGeom ch[8], cb[8];
+  int nh = dCollide(gh, probe, 8, ch, sizeof ch[0]), nbx = dCollide(gb, probe, 8, cb, sizeof cb[0]);
+  CS_EXPECT(nh > 0 && nbx > 0);
+  double dh = 0, db = 0;
+  for (int i = 0; i < nh; i++) dh = fmax(dh, ch[i].depth);
+  for (int i = 0; i < nbx; i++) db = fmax(db, cb[i].depth);
+  printf("  ODE: heightfield %d points, depth %.6g mm; box %d points, depth %.6g mm\n", nh, dh, nbx, db);
+  CS_EXPECT_NEAR(dh, 0.01, 1e-9, 0); /* 10 um, as placed */
+  CS_EXPECT_NEAR(db, 0.01, 1e-9, 0);
+  dGeomDestroy(probe);
+  cst_hfReleaseOde(s1);
+  dSpaceDestroy(s1);
+  dSpaceDestroy(s2);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   dInitODE2(0);
   CS_RUN(test_block_holds_below_and_slides_above_tan_mu);
   CS_RUN(test_oriented_box_geometry_equals_turned_aligned);
   CS_RUN(test_own_friction_equals_run_friction);
+  CS_RUN(test_heightfield_plane_equals_plane);
   dCloseODE();
   return cs_testSummary();
 }

@@ -3,7 +3,8 @@
  * Per input: load it and check the error contract (fuzz_common.h); a terrain the reader accepts
  * must hold what the header promises (1..32 boxes with lo < hi, finite coordinates within
  * +-1e6 mm, an oriented box's rotation orthonormal and its world bounds containing its corners,
- * a box's own friction in 0..10, a start above a box, a heading within +-360 deg, a slope within
+ * a box's own friction in 0..10, a heightfield's grid and heights within their limits, a start
+ * above the ground, a heading within +-360 deg, a slope within
  * +-45 deg, a unit gravity direction, a NUL-terminated non-empty name) and build its ODE geoms
  * (ODE's own asserts abort on a degenerate box). */
 #include <math.h>
@@ -54,8 +55,28 @@ int csz_harnessInit(void) {
 }
 
 
+static void checkHeightfield(const cstHeightfield* hf) {
+  if (hf->nx < 2 || hf->nx > CST_HF_MAX || hf->nz < 2 || hf->nz > CST_HF_MAX ||
+      !(hf->dx > 0) || !(hf->dz > 0) || !(hf->hmin <= hf->hmax) || !(hf->thickness > 0)) {
+    csz_fail("accepted heightfield: %d x %d samples, spacing %g %g, heights %g..%g", hf->nx,
+             hf->nz, hf->dx, hf->dz, hf->hmin, hf->hmax);
+  }
+  for (int i = 0; i < hf->nx * hf->nz; i++) {
+    if (!(hf->h[i] >= hf->hmin && hf->h[i] <= hf->hmax && fabs(hf->h[i]) <= MAX_COORD_MM)) {
+      csz_fail("accepted heightfield: sample %d height %g", i, hf->h[i]);
+    }
+  }
+  if (hf->own_mu && !(hf->mu >= 0 && hf->mu <= MAX_MU)) {
+    csz_fail("accepted heightfield: friction %g", hf->mu);
+  }
+}
+
+
 static void checkTerrain(const cstTerrain* t) {
-  if (t->nbox < 1 || t->nbox > CST_MAX_BOXES) {
+  if (t->has_hf) {
+    checkHeightfield(&t->hf);
+  }
+  if (t->nbox < (t->has_hf ? 0 : 1) || t->nbox > CST_MAX_BOXES) {
     csz_fail("accepted terrain has %d boxes", t->nbox);
   }
   for (int i = 0; i < t->nbox; i++) {
@@ -90,9 +111,12 @@ static void checkTerrain(const cstTerrain* t) {
     csz_fail("accepted terrain: name empty or not terminated");
   }
   dSpaceID space = dSimpleSpaceCreate(0);
-  if (cst_terrainBuildOde(t, space) != t->nbox || dSpaceGetNumGeoms(space) != t->nbox) {
-    csz_fail("accepted terrain: ODE geoms do not match the %d boxes", t->nbox);
+  int ngeom = t->nbox + t->has_hf;
+  if (cst_terrainBuildOde(t, space) != ngeom || dSpaceGetNumGeoms(space) != ngeom) {
+    csz_fail("accepted terrain: ODE geoms do not match the %d boxes and %d heightfield",
+             t->nbox, t->has_hf);
   }
+  cst_hfReleaseOde(space);
   dSpaceDestroy(space);
 }
 
@@ -102,7 +126,7 @@ csStatus csz_harnessRun(const uint8_t* data, size_t size, csError* err) {
   if (csz_writeFile(path, data, size) != 0) {
     csz_fail("cannot write %s", path);
   }
-  cstTerrain t;
+  static cstTerrain t; /* ~33 KB with its heightfield */
   csStatus st = cst_terrainLoad(&t, path, err);
   csz_checkError(st, st == CS_OK, err, path, data, size, CSZ_TEXT);
   if (st == CS_OK) {

@@ -177,8 +177,8 @@ static void test_badFiles(void) {
   expectBad("terrain_nostart.terrain", "name x\nbox 0 -20 0 600 0 300\n# end\n", 3, CS_ERR_PARSE,
             "without a 'start' statement");
   expectBad("terrain_nobox.terrain", "name x\nstart 1 1\n", 2, CS_ERR_PARSE,
-            "without a 'box' statement");
-  expectBad("terrain_empty.terrain", "", 1, CS_ERR_PARSE, "without a 'box' statement");
+            "without a 'box' or 'heightfield' statement");
+  expectBad("terrain_empty.terrain", "", 1, CS_ERR_PARSE, "without a 'box' or 'heightfield' statement");
   expectBad("terrain_outside.terrain", "box 0 -20 0 600 0 300\nstart 700 117.5\n\n", 2,
             CS_ERR_RANGE, "start (700, 117.5) is not above any box");
   expectBad("terrain_start3.terrain", "start 1 2 3\n", 1, CS_ERR_PARSE,
@@ -289,6 +289,47 @@ static void test_inclinesAndFriction(void) {
 }
 
 
+/* a heightfield: read as written, its height on ODE's triangles, and its errors */
+static void test_heightfield(void) {
+  writeText("terrain_hf.terrain",
+            "name bumps\nheightfield -10 0 10 20 3 2 mu 0.5\n"
+            "row 0 1 2   # z = 0\nrow 4 5 6   # z = 20\nstart 0 10\n");
+  static cstTerrain t;
+  csError err;
+  CS_EXPECT(cst_terrainLoad(&t, "terrain_hf.terrain", &err) == CS_OK);
+  CS_EXPECT(t.has_hf && t.nbox == 0 && t.has_mu && t.hf.own_mu && t.hf.mu == 0.5);
+  CS_EXPECT(t.hf.nx == 3 && t.hf.nz == 2 && t.hf.hmin == 0 && t.hf.hmax == 6);
+  CS_EXPECT(t.hf.h[4] == 5); /* sample (1, 1) */
+  /* cell (0, 0): A = 0 at (-10, 0), B = 1 at (0, 0), C = 4 at (-10, 20), D = 5 at (0, 20);
+   * the diagonal B-C: at (-7.5, 5) (ABC) 0 + 0.25 + 0.25 * 4 = 1.25; at (-2.5, 15) (DBC)
+   * 5 + (1 - 5)(1 - 0.75) + (4 - 5)(1 - 0.75) = 3.75; exact in binary */
+  CS_EXPECT(cst_terrainHeightAt(&t, -7.5, 5) == 1.25);
+  CS_EXPECT(cst_terrainHeightAt(&t, -2.5, 15) == 3.75);
+  CS_EXPECT(!isfinite(cst_terrainHeightAt(&t, 10.5, 5)));
+  remove("terrain_hf.terrain");
+  expectBad("terrain_hf1.terrain", "heightfield 0 0 10 10 3 2\nrow 0 0 0\nstart 5 5\n", 3,
+            CS_ERR_PARSE, "after 1 of the heightfield's 2 rows (line 1)");
+  expectBad("terrain_hf2.terrain", "heightfield 0 0 10 10 3 2\nrow 0 0\n", 2, CS_ERR_PARSE,
+            "'row' needs 3 numbers");
+  expectBad("terrain_hf3.terrain", "row 0 0\n", 1, CS_ERR_PARSE, "'row' before 'heightfield'");
+  expectBad("terrain_hf4.terrain", "heightfield 0 0 10 10 65 2\n", 1, CS_ERR_RANGE,
+            "sample counts whole numbers in 2..64");
+  expectBad("terrain_hf5.terrain", "heightfield 0 0 10 10 2.5 2\n", 1, CS_ERR_RANGE,
+            "sample counts whole numbers");
+  expectBad("terrain_hf6.terrain", "heightfield 0 0 0 10 2 2\n", 1, CS_ERR_RANGE,
+            "spacing must be > 0");
+  expectBad("terrain_hf7.terrain",
+            "heightfield 0 0 10 10 2 2\nrow 0 0\nrow 0 0\nrow 0 0\n", 4, CS_ERR_PARSE,
+            "'row' beyond the heightfield's nz rows");
+  expectBad("terrain_hf8.terrain",
+            "heightfield 0 0 10 10 2 2\nrow 0 0\nrow 0 nan\n", 3, CS_ERR_RANGE,
+            "not a finite number");
+  expectBad("terrain_hf9.terrain",
+            "heightfield 0 0 10 10 2 2\nrow 0 0\nrow 0 0\nheightfield 0 0 1 1 2 2\n", 4,
+            CS_ERR_PARSE, "second 'heightfield' (the first is on line 1)");
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_flatRoad);
@@ -296,5 +337,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_buildOde);
   CS_RUN(test_badFiles);
   CS_RUN(test_inclinesAndFriction);
+  CS_RUN(test_heightfield);
   return cs_testSummary();
 }
