@@ -171,6 +171,26 @@ void csc_softAddForce(const cscShape* sh, const cscShapeState* st, double s, con
 }
 
 
+/* add the line load el (N) of the axis point x at parameter s (moving at v) against a surface
+ * with normal n and friction mu to the slot acc and the load (split by the lever rule: through
+ * the axis, no couple) */
+static void axisAccumulate(const cscSoftParams* p, double el, const double n[3], double mu,
+                           const double x[3], const double v[3], double s, cscSoftAcc* acc,
+                           cscShapeLoad* load) {
+  double F = el * smoothPos(1 - p->c_hc * csu_dot3(n, v), HC_CLIP);
+  double f[3];
+  csu_scale3(f, n, F);
+  csu_addScl3(load->f0, load->f0, f, 1 - s);
+  csu_addScl3(load->f1, load->f1, f, s);
+  csu_add3(acc->Fn, acc->Fn, f);
+  csu_addScl3(acc->Fel_n, acc->Fel_n, n, el);
+  acc->W += el;
+  acc->muW += el * mu;
+  csu_addScl3(acc->xw, acc->xw, x, el);
+  acc->sw += el * s;
+}
+
+
 /* signed distance (mm) of the capsule's axis point at s to the heightfield, +INFINITY beyond
  * reach */
 static double axisHfDistance(const cstHeightfield* hf, const cscShapeState* st, double s,
@@ -247,18 +267,7 @@ static void capsuleHeightfield(const cscSoftModel* m, const cscShapeState* st, d
       continue;
     }
     double g = smoothPos(depth, p->d_onset);
-    double el = kline * g * sqrt(g) * L * half * m->gl_w[i];
-    double F = el * smoothPos(1 - p->c_hc * csu_dot3(n, v), HC_CLIP);
-    double f[3];
-    csu_scale3(f, n, F);
-    csu_addScl3(load->f0, load->f0, f, 1 - s);
-    csu_addScl3(load->f1, load->f1, f, s);
-    csu_add3(acc->Fn, acc->Fn, f);
-    csu_addScl3(acc->Fel_n, acc->Fel_n, n, el);
-    acc->W += el;
-    acc->muW += el * mu;
-    csu_addScl3(acc->xw, acc->xw, x, el);
-    acc->sw += el * s;
+    axisAccumulate(p, kline * g * sqrt(g) * L * half * m->gl_w[i], n, mu, x, v, s, acc, load);
   }
 }
 
@@ -301,18 +310,8 @@ void csc_softCapsuleNormal(const cscSoftModel* m, const cscShape* sh, const cscS
         continue;
       }
       double g = smoothPos(depth, p->d_onset);
-      double el = kline * g * sqrt(g) * L * half * m->gl_w[i];
-      double F = el * smoothPos(1 - p->c_hc * csu_dot3(n, v), HC_CLIP);
-      double f[3];
-      csu_scale3(f, n, F);
-      csu_addScl3(load->f0, load->f0, f, 1 - s); /* through the axis: no couple */
-      csu_addScl3(load->f1, load->f1, f, s);
-      csu_add3(acc->Fn, acc->Fn, f);
-      csu_addScl3(acc->Fel_n, acc->Fel_n, n, el);
-      acc->W += el;
-      acc->muW += el * cst_terrainBoxMu(&m->terrain, idx[ib], p->mu);
-      csu_addScl3(acc->xw, acc->xw, x, el);
-      acc->sw += el * s;
+      axisAccumulate(p, kline * g * sqrt(g) * L * half * m->gl_w[i], n,
+                     cst_terrainBoxMu(&m->terrain, idx[ib], p->mu), x, v, s, acc, load);
     }
   }
   if (m->terrain.has_hf && L > 0) {

@@ -28,6 +28,7 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import h5py  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = os.path.join(ROOT, "tools", "studies", "slope.study")
@@ -39,7 +40,24 @@ def text(v):
     return v.decode("utf-8", "replace") if isinstance(v, bytes) else str(v)
 
 
-def read_cases(merged):
+TIP_DEG = 30.0  # the support tilted this far from the road's normal: it is going over
+
+
+def tip_time(run_h5):
+    """First time (s) the support's up axis is TIP_DEG from the road's normal, None if never or
+    no run file. Quaternion (w, x, y, z): the body's y axis has world y component
+    1 - 2 (x^2 + z^2)."""
+    if not os.path.exists(run_h5):
+        return None
+    with h5py.File(run_h5, "r") as f:
+        t, q = f["/time"][()], f["/support/orientation"][()]
+    n = min(len(t), len(q))
+    cos_tilt = 1 - 2 * (q[:n, 1] ** 2 + q[:n, 3] ** 2)
+    over = np.flatnonzero(cos_tilt < np.cos(np.radians(TIP_DEG)))
+    return float(t[over[0]]) if over.size else None
+
+
+def read_cases(merged, case_dir):
     rows = []
     with h5py.File(merged, "r") as f:
         s = f["summary"]
@@ -50,9 +68,11 @@ def read_cases(merged):
                 continue
             verdict = text(f[f"cases/{name}"].attrs.get("verdict", b""))
             word = re.search(r"\): (\w+( \w+)?):", verdict)
+            tip = tip_time(os.path.join(case_dir, name, "run.h5"))
             rows.append({"conditions": m.group(1), "slope_deg": int(m.group(2)),
                          "x_9s_mm": float(s["x_final_mm"][i][0]), "t_s": float(s["t_final_s"][i]),
-                         "verdict": word.group(1) if word else verdict})
+                         "verdict": word.group(1) if word else verdict,
+                         "tilt30_t_s": "" if tip is None else f"{tip:.2f}"})
     rows.sort(key=lambda r: (r["conditions"] != "paper", r["slope_deg"]))
     return rows
 
@@ -66,7 +86,10 @@ def table(rows):
         cells = [f"{a}"]
         for c in ("paper", "earth"):
             r = by.get((c, a))
-            cells += [f"{r['x_9s_mm']:.1f}", r["verdict"]] if r else ["(not run yet)", ""]
+            v = r["verdict"] if r else ""
+            if r and r["tilt30_t_s"]:
+                v += f" (tilt {TIP_DEG:g}° at {r['tilt30_t_s']} s)"
+            cells += [f"{r['x_9s_mm']:.1f}", v] if r else ["(not run yet)", ""]
         out.append("| " + " | ".join(cells) + " |")
     return "\n".join(out)
 
@@ -86,16 +109,18 @@ def plot(rows, out):
     fig, ax = plt.subplots(figsize=(7.5, 4.2), constrained_layout=True)
     for c, col in (("paper", "C0"), ("earth", "C3")):
         rr = [r for r in rows if r["conditions"] == c]
-        ax.plot([r["slope_deg"] for r in rr], [r["x_9s_mm"] for r in rr], "o-", color=col, label=c)
-        for r in rr:
-            if r["verdict"] != "crawls":
-                ax.annotate(r["verdict"], (r["slope_deg"], r["x_9s_mm"]), fontsize=7,
-                            xytext=(4, 4), textcoords="offset points", color=col)
+        ax.plot([r["slope_deg"] for r in rr], [r["x_9s_mm"] for r in rr], "-", color=col, lw=1.2)
+        ok = [r for r in rr if r["verdict"] == "crawls"]
+        bad = [r for r in rr if r["verdict"] != "crawls"]
+        ax.plot([r["slope_deg"] for r in ok], [r["x_9s_mm"] for r in ok], "o", color=col,
+                label=f"{c}: crawls")
+        ax.plot([r["slope_deg"] for r in bad], [r["x_9s_mm"] for r in bad], "x", color=col, ms=8,
+                mew=2, label=f"{c}: stands or tips over (see the table)")
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xlabel("slope (deg, +x uphill)")
     ax.set_ylabel("distance crawled along the slope in 9 s (mm)")
     ax.grid(True, alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=8)
     ax.set_title("slope scene: flat_road_rod.csv gait, rod legs (8 per segment),\n"
                  "calibration_fe_leg_modes_sym.h5 (rbf-pair), friction 0.8", fontsize=9)
     fig.savefig(out, dpi=110)
@@ -117,9 +142,10 @@ def main(argv=None):
     if not os.path.exists(merged):
         print(f"slope_study.py: {merged} was not written (crawlsim study exit {rc})", file=sys.stderr)
         return 1
-    rows = read_cases(merged)
+    rows = read_cases(merged, os.path.join(a.dir, "cases"))
     with open(os.path.join(DOCS, "slope.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=["slope_deg", "conditions", "x_9s_mm", "t_s", "verdict"])
+        w = csv.DictWriter(f, fieldnames=["slope_deg", "conditions", "x_9s_mm", "t_s", "verdict",
+                                          "tilt30_t_s"])
         w.writeheader()
         w.writerows(rows)
     plot(rows, os.path.join(DOCS, "slope.png"))
