@@ -5,7 +5,8 @@
  * space and creates one contact joint per contact point in a caller-owned joint group.
  *
  * Friction is Coulomb, per surface: a terrain box's own mu (terrains_terrain.h, the geom's data)
- * or else the run's cscContactParams.mu. ODE's default "mu" is a constant force limit in newtons; we set
+ * or else the run's cscContactParams.mu. ODE's default "mu" is a constant force limit in
+ * newtons; we set
  * dContactApprox1 so the limit is mu times the normal force (debian-deps.md), with the friction
  * pyramid aligned to the contact's tangent directions. The contact is a stiff spring-damper
  * (kp, kd) mapped to ODE's soft ERP/CFM at the step h: ERP = h kp / (h kp + kd),

@@ -366,8 +366,9 @@ static int footNearTerrain(const cscSoftModel* m, const cscShape* sh, const cscS
     /* the heightfield's bounds: its footprint, up to its highest sample */
     const cstHeightfield* hf = &m->terrain.hf;
     double e = m->p.d_onset;
+    double xe = hf->x0 + hf->dx * (hf->nx - 1), ze = hf->z0 + hf->dz * (hf->nz - 1);
     if (lo[1] <= hf->hmax + e && hi[0] >= hf->x0 - e && hi[2] >= hf->z0 - e &&
-        lo[0] <= hf->x0 + hf->dx * (hf->nx - 1) + e && lo[2] <= hf->z0 + hf->dz * (hf->nz - 1) + e) {
+        lo[0] <= xe + e && lo[2] <= ze + e) {
       return 1;
     }
   }

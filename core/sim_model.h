@@ -133,7 +133,8 @@ csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
                       const char* gait_path, const char* calibration_path, csError* err);
 
 /* After cs_modelLoad: a scene file's start, heading and slope (terrains_scenefile.h) replace
- * the terrain's; a start above no box is CS_ERR_RANGE naming the scene file ("<file>: start (x, z) is not above any box of <terrain>"). */
+ * the terrain's; a start above no box is CS_ERR_RANGE naming the scene file ("<file>: start
+ * (x, z) is not above any box of <terrain>"). */
 csStatus cs_modelApplySceneFile(csModel* m, const cstSceneFile* s, csError* err);
 
 /* Set the conditions (sim_scene.h) and what they decide in the options: `paper` makes the

@@ -85,6 +85,14 @@ static void closestOnTriangle(const double p[3], const double a[3], const double
 }
 
 
+/* the cell index of coordinate x along an axis of n samples from x0, dx apart, clamped to
+ * -1..n in floating point first (a far point must not overflow the int) */
+static int cellIndex(double x, double x0, double dx, int n) {
+  double c = floor((x - x0) / dx);
+  return c < -1 ? -1 : (c > n ? n : (int)c);
+}
+
+
 double cst_hfSignedDistance(const cstHeightfield* hf, const double p[3], double reach,
                             double cp[3], double n[3]) {
   double hs = cst_hfHeightAt(hf, p[0], p[2]);
@@ -96,8 +104,10 @@ double cst_hfSignedDistance(const cstHeightfield* hf, const double p[3], double 
     return INFINITY;
   }
   /* the cells whose x-z extent comes within reach of p */
-  int i0 = (int)floor((p[0] - reach - hf->x0) / hf->dx), i1 = (int)floor((p[0] + reach - hf->x0) / hf->dx);
-  int j0 = (int)floor((p[2] - reach - hf->z0) / hf->dz), j1 = (int)floor((p[2] + reach - hf->z0) / hf->dz);
+  int i0 = cellIndex(p[0] - reach, hf->x0, hf->dx, hf->nx);
+  int i1 = cellIndex(p[0] + reach, hf->x0, hf->dx, hf->nx);
+  int j0 = cellIndex(p[2] - reach, hf->z0, hf->dz, hf->nz);
+  int j1 = cellIndex(p[2] + reach, hf->z0, hf->dz, hf->nz);
   if (i0 < 0) i0 = 0;
   if (j0 < 0) j0 = 0;
   if (i1 > hf->nx - 2) i1 = hf->nx - 2;

@@ -75,7 +75,8 @@ csStatus cst_sceneFileLoad(cstSceneFile* s, const char* path, csError* err) {
     while (k < NKEY && strcmp(w[0], kKeys[k])) k++;
     if (k == NKEY) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (expected scene, "
-                       "terrain, gait, conditions, start, heading, slope, t-end)", path, line, w[0]);
+                       "terrain, gait, conditions, start, heading, slope, t-end)", path, line,
+                       w[0]);
       break;
     }
     int want = k == 4 ? 3 : 2; /* start x z */

@@ -133,9 +133,11 @@ int cst_boxOriented(cstBox* b, const double c[3], const double len[3], const dou
   double u[3] = {axis[0] / an, axis[1] / an, axis[2] / an};
   double th = deg * CST_DEG, cs = cos(th), sn = sin(th), C = 1 - cs;
   /* Rodrigues: R = cos I + sin [u]x + (1 - cos) u u^T */
-  double R[9] = {cs + C * u[0] * u[0],        C * u[0] * u[1] - sn * u[2], C * u[0] * u[2] + sn * u[1],
-                 C * u[1] * u[0] + sn * u[2], cs + C * u[1] * u[1],        C * u[1] * u[2] - sn * u[0],
-                 C * u[2] * u[0] - sn * u[1], C * u[2] * u[1] + sn * u[0], cs + C * u[2] * u[2]};
+  double R[9] = {cs + C * u[0] * u[0],        C * u[0] * u[1] - sn * u[2],
+                 C * u[0] * u[2] + sn * u[1], C * u[1] * u[0] + sn * u[2],
+                 cs + C * u[1] * u[1],        C * u[1] * u[2] - sn * u[0],
+                 C * u[2] * u[0] - sn * u[1], C * u[2] * u[1] + sn * u[0],
+                 cs + C * u[2] * u[2]};
   memcpy(b->R, R, sizeof R);
   b->oriented = 1;
   for (int k = 0; k < 3; k++) {

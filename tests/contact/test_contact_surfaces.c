@@ -364,7 +364,8 @@ static void test_heightfield_plane_equals_plane(void) {
   dMatrix3 Rp;
   dRFromAxisAndAngle(Rp, 0, 0, 1, th);
   dGeomSetRotation(probe, Rp);
-  dGeomSetPosition(probe, 20 * cos(th) - (5 - 0.01) * sin(th), 20 * sin(th) + (5 - 0.01) * cos(th), 0);
+  dGeomSetPosition(probe, 20 * cos(th) - (5 - 0.01) * sin(th),
+                   20 * sin(th) + (5 - 0.01) * cos(th), 0);
   dContactGeom ch[8], cb[8];
   int nh = dCollide(gh, probe, 8, ch, sizeof ch[0]), nbx = dCollide(gb, probe, 8, cb, sizeof cb[0]);
   CS_EXPECT(nh > 0 && nbx > 0);

@@ -68,6 +68,17 @@ static void test_badOptions(void) {
   /* the shipped gait peaks near 0.3 MPa: x 100 is far above the 1 MPa limit */
   expectFailure("--pressure-scale 100", "crawlsim run: --pressure-scale 100 takes ");
   expectFailure("--scene moon", "crawlsim run: unknown scene 'moon'");
+  /* slopes and scene files (terrains_scenefile.h): one line naming the file and line */
+  expectFailure("--scene slope --slope-deg 50", "crawlsim run: --slope-deg 50 must be within");
+  expectFailure("--scene-file runcli_missing.scene",
+                "crawlsim run: runcli_missing.scene: cannot open scene file:");
+  CS_EXPECT(cs_cliWriteText("runcli_bad.scene", "scene slope\nslope 60\n") == 1);
+  expectFailure("--scene-file runcli_bad.scene",
+                "crawlsim run: runcli_bad.scene:2: 'slope' value 60");
+  CS_EXPECT(cs_cliWriteText("runcli_bad.scene", "start 5000 5\n") == 1);
+  expectFailure("--scene-file runcli_bad.scene",
+                "crawlsim run: runcli_bad.scene: start (5000, 5) is not above any box of ");
+  remove("runcli_bad.scene");
   expectFailure("--conditions mars", "crawlsim run: unknown conditions 'mars' (expected earth or");
   expectFailure("--conditions", "crawlsim run: option --conditions needs a value");
   expectFailure("--legs rom", "crawlsim run: leg model 'rom' is not available yet");
