@@ -64,6 +64,58 @@ static csStatus writeSample(const csModel* m, const csData* d, csH5File* f, cons
 }
 
 
+/* every dataset of a run file with its units and what its numbers are (attributes "units" and
+ * "description", docs/reference/output.md): the world frame is x the crawl direction, y up, z
+ * lateral (right-handed), origin where the terrain file puts it */
+static const struct {
+  const char* path;
+  const char* units;
+  const char* description;
+} kDatasetUnits[] = {
+    {"/time", "s", "simulated time of each sample"},
+    {"/support/position", "mm",
+     "support centre's displacement from its position at t = 0, world axes (x crawl, y up, z "
+     "lateral)"},
+    {"/support/orientation", "1",
+     "support orientation quaternion (w, x, y, z), body to world"},
+    {"/support/corners", "mm", "the support box's 8 corners, world frame (VTK hexahedron order)"},
+    {"/pressure", "MPa", "the 96 chamber pressures (gauge), column label - 1 (A_II1_O1 first)"},
+    {"/contact/force", "N",
+     "terrain's force on the robot through ODE's contacts (the support and in-world legs; not "
+     "the co-simulated legs' own soft contact), world frame"},
+    {"/contact/max_depth", "mm", "deepest ODE contact penetration"},
+    {"/contact/leg_max_depth", "mm",
+     "deepest penetration of the co-simulated legs' own soft contact (0 for legs in ODE)"},
+    {"/terrain/corners", "mm", "8 corners per terrain box, world frame"},
+};
+
+
+static csStatus writeUnits(const csModel* m, csH5File* f, csError* err) {
+  csStatus st = CS_OK;
+  for (size_t k = 0; st == CS_OK && k < sizeof kDatasetUnits / sizeof kDatasetUnits[0]; k++) {
+    if (!strcmp(kDatasetUnits[k].path, "/terrain/corners") && m->terrain.nbox == 0) {
+      continue;
+    }
+    st = cs_h5AttrString(f, kDatasetUnits[k].path, "units", kDatasetUnits[k].units, err);
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, kDatasetUnits[k].path, "description",
+                           kDatasetUnits[k].description, err);
+    }
+  }
+  for (int k = 0; st == CS_OK && k < CSR_NLEG; k++) {
+    char path[64];
+    snprintf(path, sizeof path, "/legs/%c/centerline", 'A' + k);
+    st = cs_h5AttrString(f, path, "units", "mm", err);
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, path, "description",
+                           "the leg's centreline from hip to foot, points equally spaced in arc "
+                           "length, world frame", err);
+    }
+  }
+  return st;
+}
+
+
 static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* err) {
   size_t three = 3, four = 4, n96 = CSR_NCHAMBER_TOTAL;
   size_t cl[2] = {(size_t)m->opt.centerline_points, 3}, box[2] = {8, 3};
@@ -100,6 +152,7 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   size_t tdims[2] = {(size_t)m->terrain.nbox * 8, 3};
   csStatus st = m->terrain.nbox > 0 ? cs_h5WriteDoubles(f, "/terrain/corners", 2, tdims, tc, err)
                                     : CS_OK;
+  if (st == CS_OK) st = writeUnits(m, f, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "scene", m->scene, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "conditions", cs_conditionsName(m->conditions),
                                         err);
