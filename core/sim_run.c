@@ -36,6 +36,7 @@ typedef struct {
   int time, pos, quat, pres, legs[CSR_NLEG];
   int corners, cforce, cdepth, ldepth; /* support box corners; contact force and depth; the
                                         * co-simulated legs' own contact depth */
+  int fforce, stance;                  /* per leg: the terrain's force, stance (1) or swing (0) */
 } Series;
 
 
@@ -56,6 +57,15 @@ static csStatus writeSample(const csModel* m, const csData* d, csH5File* f, cons
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->cdepth, &depth, err);
   double ldepth = cs_legContactDepth(m, d);
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->ldepth, &ldepth, err);
+  double ff[CSR_NLEG * 3], stance[CSR_NLEG];
+  const double f_stance = cs_stanceForceThreshold(m);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    cs_footForce(m, d, k, ff + 3 * k);
+    /* standing: the ground pushes the leg up (world y) by more than the threshold */
+    stance[k] = ff[3 * k + 1] > f_stance ? 1.0 : 0.0;
+  }
+  if (st == CS_OK) st = cs_h5SeriesAppend(f, s->fforce, ff, err);
+  if (st == CS_OK) st = cs_h5SeriesAppend(f, s->stance, stance, err);
   for (int k = 0; k < CSR_NLEG && st == CS_OK; k++) {
     cs_legCenterline(m, d, k, m->opt.centerline_points, buf);
     st = cs_h5SeriesAppend(f, s->legs[k], buf, err);
@@ -87,6 +97,13 @@ static const struct {
     {"/contact/leg_max_depth", "mm",
      "deepest penetration of the co-simulated legs' own soft contact (0 for legs in ODE)"},
     {"/terrain/corners", "mm", "8 corners per terrain box, world frame"},
+    {"/contact/foot_force", "N",
+     "the terrain's force on each leg A..H (its foot and any other part touching), world "
+     "frame: ODE's contact joints on in-world legs, the leg's own contact law for co-simulated "
+     "legs"},
+    {"/contact/stance", "1",
+     "1 when the leg stands (the ground pushes it up, world y, by more than the root attribute "
+     "stance_force_threshold_N), 0 when it swings; legs A..H"},
 };
 
 
@@ -119,6 +136,7 @@ static csStatus writeUnits(const csModel* m, csH5File* f, csError* err) {
 static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* err) {
   size_t three = 3, four = 4, n96 = CSR_NCHAMBER_TOTAL;
   size_t cl[2] = {(size_t)m->opt.centerline_points, 3}, box[2] = {8, 3};
+  size_t nleg = CSR_NLEG, legs3[2] = {CSR_NLEG, 3};
   if ((s->time = cs_h5SeriesCreate(f, "/time", 0, NULL, err)) < 0 ||
       (s->corners = cs_h5SeriesCreate(f, "/support/corners", 2, box, err)) < 0 ||
       (s->cforce = cs_h5SeriesCreate(f, "/contact/force", 1, &three, err)) < 0 ||
@@ -126,7 +144,9 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
       (s->ldepth = cs_h5SeriesCreate(f, "/contact/leg_max_depth", 0, NULL, err)) < 0 ||
       (s->pos = cs_h5SeriesCreate(f, "/support/position", 1, &three, err)) < 0 ||
       (s->quat = cs_h5SeriesCreate(f, "/support/orientation", 1, &four, err)) < 0 ||
-      (s->pres = cs_h5SeriesCreate(f, "/pressure", 1, &n96, err)) < 0) {
+      (s->pres = cs_h5SeriesCreate(f, "/pressure", 1, &n96, err)) < 0 ||
+      (s->fforce = cs_h5SeriesCreate(f, "/contact/foot_force", 2, legs3, err)) < 0 ||
+      (s->stance = cs_h5SeriesCreate(f, "/contact/stance", 1, &nleg, err)) < 0) {
     return err ? err->status : CS_ERR_IO;
   }
   for (int k = 0; k < CSR_NLEG; k++) {
@@ -153,6 +173,9 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   csStatus st = m->terrain.nbox > 0 ? cs_h5WriteDoubles(f, "/terrain/corners", 2, tdims, tc, err)
                                     : CS_OK;
   if (st == CS_OK) st = writeUnits(m, f, err);
+  if (st == CS_OK) {
+    st = cs_h5AttrDouble(f, "/", "stance_force_threshold_N", cs_stanceForceThreshold(m), err);
+  }
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "scene", m->scene, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "conditions", cs_conditionsName(m->conditions),
                                         err);

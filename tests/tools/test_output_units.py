@@ -7,7 +7,12 @@ export RUN.h5 --csv --out DIR` writes RUN_tracks.csv with one row per /time samp
 equal the HDF5 series (time, support position and orientation, contact force) and
 RUN_pressure.csv with the 96 named chambers; bad input (a missing file, a file that is not
 HDF5, an HDF5 file that is not a run, an unwritable --out, a second file) is one error line and
-exit 1. Prints "N passed, N failed"; exit 1 on any failure.
+exit 1. Per-foot force against closed forms, on 1 s flat-road runs of each level: with prb
+legs (ODE contact joints) the feet's forces sum to /contact/force to round-off (the support does
+not touch), and with rod and prb legs the time mean of the feet's vertical forces is the
+support's weight m g under `paper` (legs weightless) within 5 %: the mean differs from m g by
+the support's vertical momentum change over the second divided by 1 s (measured 0.4 % rod,
+1.6 % prb over 2 s). Prints "N passed, N failed"; exit 1 on any failure.
 Usage: /usr/bin/python3 test_output_units.py PATH_TO_CRAWLSIM
 """
 import csv
@@ -61,6 +66,8 @@ def main():
             q = f["/support/orientation"][:]
             F = f["/contact/force"][:]
             P = f["/pressure"][:]
+            FF = f["/contact/foot_force"][:]
+            ST = f["/contact/stance"][:]
         out = os.path.join(tmp, "csv")
         os.mkdir(out)
         p = subprocess.run([exe, "export", h5, "--csv", "--out", out], env=env,
@@ -69,18 +76,42 @@ def main():
         with open(os.path.join(out, "r_tracks.csv"), newline="") as fh:
             rows = list(csv.reader(fh))
         head = rows[0]
+        feet = [f"{c}_F{a}_N" for c in "ABCDEFGH" for a in "xyz"] + \
+            [f"{c}_stance" for c in "ABCDEFGH"]
+        check(head[11:] == feet, f"tracks header has the per-foot columns {head[11:14]}")
         check(head[:11] == ["time_s", "x_mm", "y_mm", "z_mm", "qw", "qx", "qy", "qz", "Fx_N",
                             "Fy_N", "Fz_N"], f"tracks header {head[:11]}")
         data = np.array(rows[1:], dtype=float)
         check(data.shape[0] == len(t), f"{data.shape[0]} rows for {len(t)} samples")
-        ref = np.column_stack([t, x, q, F])
-        check(np.allclose(data[:, :11], ref, rtol=1e-8, atol=1e-12), "tracks equal the series")
+        ref = np.column_stack([t, x, q, F, FF.reshape(len(t), 24), ST])
+        check(data.shape[1] == 43 and np.allclose(data, ref, rtol=1e-8, atol=1e-12),
+              "tracks equal the series")
         with open(os.path.join(out, "r_pressure.csv"), newline="") as fh:
             prow = list(csv.reader(fh))
         check(prow[0][1] == "A_II1_O1_MPa" and prow[0][-1] == "H_II3_O4_MPa" and
               len(prow[0]) == 97, "pressure header names the 96 chambers")
         pd = np.array(prow[1:], dtype=float)
         check(np.allclose(pd[:, 1:], P, rtol=1e-8, atol=1e-12), "pressures equal /pressure")
+        for legs in ("prb", "rod"):
+            h = os.path.join(tmp, f"{legs}.h5")
+            p = subprocess.run([exe, "run", "--t-end", "1", "--legs", legs, "--out", h,
+                                "--quiet"], env=env, capture_output=True, text=True)
+            check(p.returncode == 0, f"1 s run with {legs} legs")
+            with h5py.File(h, "r") as f:
+                ff = f["/contact/foot_force"][:]
+                mg = f.attrs["support_mass_kg"] * 9.81
+                check(f.attrs["legs_weightless"] == 1, "paper conditions")
+                mean = ff[:, :, 1].sum(axis=1).mean()
+                check(abs(mean / mg - 1) < 0.05,
+                      f"{legs}: mean of the feet's vertical forces {mean:.4f} N = m g {mg:.4f} N")
+                if legs == "prb":
+                    err = np.abs(ff.sum(axis=1) - f["/contact/force"][:]).max()
+                    check(err < 1e-9, f"prb: the feet's forces sum to /contact/force ({err:.2g})")
+                st = f["/contact/stance"][:]
+                check(st.shape == ff.shape[:2] and set(np.unique(st)) <= {0.0, 1.0} and
+                      st[len(st) // 2:].sum(axis=1).mean() >= 3,
+                      f"{legs}: stance is 0/1 and on average at least three feet stand after "
+                      "0.5 s (prb legs leave the ground for ~0.03 s near 0.8 s)")
         bad_h5 = os.path.join(tmp, "bend.h5")
         with h5py.File(bad_h5, "w") as f:
             f["x"] = [1.0]
