@@ -87,6 +87,18 @@ static void attrSlab(FILE* x, const char* h5, const char* name, const char* type
 }
 
 
+/* an attribute of one cell from sample i, leg k of an [N, 8, 3] series (a Vector) */
+static void legVectorSlab(FILE* x, const char* h5, const char* name, const char* path, long i,
+                          int k, hsize_t N) {
+  fprintf(x, "<Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Cell\"><DataItem "
+             "ItemType=\"HyperSlab\" Dimensions=\"1 3\" Type=\"HyperSlab\">"
+             "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld %d 0 1 1 1 1 1 3</DataItem>"
+             "<DataItem Dimensions=\"%llu 8 3\" NumberType=\"Float\" Precision=\"8\" "
+             "Format=\"HDF\">%s:%s</DataItem></DataItem></Attribute>\n",
+          name, i, k, (unsigned long long)N, h5, path);
+}
+
+
 csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride, csError* err) {
   if (stride < 1) {
     stride = 1;
@@ -105,6 +117,9 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
   hsize_t dp[3], dfc[3];
   int have_p = datasetDims(f, "/pressure", dp) == 2 && dp[1] == 96;
   int have_f = datasetDims(f, "/contact/force", dfc) == 2 && dfc[1] == 3;
+  hsize_t dff[3], dst[3];
+  int have_ff = datasetDims(f, "/contact/foot_force", dff) == 3 && dff[1] == 8 && dff[2] == 3;
+  int have_st = datasetDims(f, "/contact/stance", dst) == 2 && dst[1] == 8;
   hsize_t N = dt[0], nleg[8];
   /* a run that stopped between appends may have series one sample apart: frames go to the
    * shortest; each hyperslab names its own dataset's full shape */
@@ -191,6 +206,13 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
       if (have_p && i < dp[0]) { /* the leg's 12 chambers: labels 12 k + 1 .. 12 k + 12 */
         attrSlab(x, base, "pressure_MPa", "Matrix", "/pressure", (long)i, dp[0], 96,
                  (hsize_t)(12 * k), 12);
+      }
+      if (have_ff && i < dff[0]) {
+        legVectorSlab(x, base, "foot_force_N", "/contact/foot_force", (long)i, k, dff[0]);
+      }
+      if (have_st && i < dst[0]) {
+        attrSlab(x, base, "stance", "Scalar", "/contact/stance", (long)i, dst[0], 8,
+                 (hsize_t)k, 1);
       }
       fprintf(x, "</Grid>\n");
     }

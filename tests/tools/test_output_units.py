@@ -112,6 +112,14 @@ def main():
                       st[len(st) // 2:].sum(axis=1).mean() >= 3,
                       f"{legs}: stance is 0/1 and on average at least three feet stand after "
                       "0.5 s (prb legs leave the ground for ~0.03 s near 0.8 s)")
+        bend = os.path.join(tmp, "b.h5")
+        p = subprocess.run([exe, "bend", "--out", bend], env=env, capture_output=True, text=True)
+        check(p.returncode == 0, "analytic bend sweep")
+        with h5py.File(bend, "r") as f:
+            names = []
+            f.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+            check(len(names) == 4 and all(len(f[n].attrs.get("units", b"")) > 0 for n in names),
+                  f"every bend dataset has units ({names})")
         bad_h5 = os.path.join(tmp, "bend.h5")
         with h5py.File(bad_h5, "w") as f:
             f["x"] = [1.0]
