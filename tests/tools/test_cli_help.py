@@ -7,7 +7,8 @@ its source (a "--name" literal in tools/cmd_*.c) is listed in that file's comman
 every listed option is accepted by the parser (not "unknown option"); every value option takes
 --name=VALUE (an empty one is "needs a value", not unknown) and every flag refuses
 --flag=VALUE; an option with one letter dropped is refused, exit 1, naming the option in
-"did you mean"; one error line each. Prints "N passed, N failed"; exit 1 on any failure.
+"did you mean"; one error line each; the study file's option lists (tools/study_file.c) name
+only options of their commands. Prints "N passed, N failed"; exit 1 on any failure.
 Usage: /usr/bin/python3 test_cli_help.py PATH_TO_CRAWLSIM SOURCE_DIR
 """
 import os
@@ -88,6 +89,17 @@ def main():
         used |= set(re.findall(r'csx_optIs\([^,]+, "(--[a-z0-9-]+)"\)', text))
         used.discard("--help")
         check(used and used <= listed, f"{f}: parsed but not in --help: {sorted(used - listed)}")
+    # the study file's own option lists (tools/study_file.c) name only options its commands
+    # take (a study case runs the command's parser in-process)
+    text = open(os.path.join(src, "tools", "study_file.c"), encoding="utf-8").read()
+    for table, cmd in (("kBendOpts", "bend"), ("kRunOpts", "run"),
+                       ("kCalibrateOpts", "calibrate"), ("kGaitDesignOpts", "gait design")):
+        body = re.search(r"static const OptSpec " + table + r"\[\] = \{(.*?)\};", text, re.S)
+        names = set(re.findall(r'"(--[a-z0-9-]+)"', body.group(1) if body else "")) - {"--help"}
+        rc, out, _ = run(exe, cmd.split() + ["--help"])
+        listed = set(re.findall(r"^  (--[a-z0-9-]+)", out, re.M))
+        check(names and names <= listed,
+              f"study_file.c {table}: not options of {cmd}: {sorted(names - listed)}")
     rc, _, e = run(exe, ["run", "--t-edn", "3"])
     check(rc == 1 and e == "crawlsim run: unknown option --t-edn; did you mean --t-end? "
           "(see crawlsim run --help)\n", f"run --t-edn: {e!r}")
