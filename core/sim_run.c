@@ -4,7 +4,10 @@
  * /pressure [N,96] MPa; /legs/<A..H>/centerline [N,K,3] mm; and for seeing and checking a run
  * /support/corners [N,8,3] mm (world), /contact/force [N,3] N (terrain on robot, world),
  * /contact/max_depth [N] mm (ODE), /contact/leg_max_depth [N] mm (the co-simulated legs' own soft
- * contact, cs_legContactDepth; 0 for legs in ODE), /terrain/corners [nbox*8,3] mm; root attributes scene,
+ * contact, cs_legContactDepth; 0 for legs in ODE), /contact/foot_force [N,8,3] N (the terrain on
+ * each leg, world: cs_footForce), /contact/stance [N,8] (1 standing, 0 swinging),
+ * /terrain/corners [nbox*8,3] mm; every dataset with the attributes units and description
+ * (kDatasetUnits); root attributes stance_force_threshold_N, scene,
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
  * macro_step_s, contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
@@ -26,6 +29,10 @@
 #include "core_h5.h"
 #include "core_xdmf.h"
 #include "sim_internal.h"
+
+#ifndef CS_VERSION_STRING
+#define CS_VERSION_STRING "unknown" /* set by core/CMakeLists.txt */
+#endif
 
 enum { MAX_CENTERLINE = 201 };
 
@@ -194,7 +201,7 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
                          "world frame x crawl direction, y up, z lateral",
                          err);
   }
-  if (st == CS_OK) st = cs_h5AttrString(f, "/", "version", "0.1.0", err);
+  if (st == CS_OK) st = cs_h5AttrString(f, "/", "version", CS_VERSION_STRING, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "friction", m->contact.mu, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "pressure_scale", m->sched.pressure_scale, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "contact_kp_N_per_mm", m->contact.kp, err);

@@ -429,13 +429,9 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind kind; (kind = csx_optNext(&kBendTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (kind == CSX_OPT_HELP) {
-      csx_optHelp(&kBendTable, stdout);
-      return 2;
-    }
-    if (kind == CSX_OPT_ERROR) {
-      fprintf(stderr, "crawlsim bend: %s\n", it.error);
-      return 1;
+    const int end = csx_optReport(&kBendTable, kind, &it);
+    if (end >= 0) {
+      return end == 0 ? 2 : 1; /* 2: after --help */
     }
     if (kind == CSX_OPT_OPERAND) {
       fprintf(stderr, "crawlsim bend: unexpected argument '%.60s' (see crawlsim bend --help)\n",

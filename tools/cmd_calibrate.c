@@ -152,16 +152,12 @@ int csx_cmdCalibrate(int argc, char** argv) {
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kCalTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (k == CSX_OPT_HELP) {
-      csx_optHelp(&kCalTable, stdout);
-      return 0;
+    const int end = csx_optReport(&kCalTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
-    if (k == CSX_OPT_ERROR || k == CSX_OPT_OPERAND) {
-      if (k == CSX_OPT_ERROR) {
-        fprintf(stderr, "crawlsim calibrate: %s\n", it.error);
-      } else {
-        fprintf(stderr, "crawlsim calibrate: unexpected argument '%s'\n", it.value);
-      }
+    if (k == CSX_OPT_OPERAND) {
+      fprintf(stderr, "crawlsim calibrate: unexpected argument '%s'\n", it.value);
       return 1;
     }
     const char* a = it.opt->name;

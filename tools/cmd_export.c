@@ -165,13 +165,9 @@ int csx_cmdExport(int argc, char** argv) {
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kExportTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (k == CSX_OPT_HELP) {
-      csx_optHelp(&kExportTable, stdout);
-      return 0;
-    }
-    if (k == CSX_OPT_ERROR) {
-      fprintf(stderr, "crawlsim export: %s\n", it.error);
-      return 1;
+    const int end = csx_optReport(&kExportTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
     if (k == CSX_OPT_OPERAND) {
       if (in) {

@@ -109,13 +109,9 @@ static int cmdCheck(int argc, char** argv) {
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kCheckTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (k == CSX_OPT_HELP) {
-      csx_optHelp(&kCheckTable, stdout);
-      return 0;
-    }
-    if (k == CSX_OPT_ERROR) {
-      printError("check", it.error);
-      return 1;
+    const int end = csx_optReport(&kCheckTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
     const char* a = it.opt ? it.opt->name : "";
     const char* v = it.value;

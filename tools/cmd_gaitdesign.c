@@ -48,13 +48,9 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kFlatTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (k == CSX_OPT_HELP) {
-      csx_optHelp(&kFlatTable, stdout);
-      return 0;
-    }
-    if (k == CSX_OPT_ERROR) {
-      fprintf(stderr, "crawlsim gait flat-road: %s\n", it.error);
-      return 1;
+    const int stop = csx_optReport(&kFlatTable, k, &it);
+    if (stop >= 0) {
+      return stop;
     }
     if (k == CSX_OPT_OPERAND) {
       if (out) {
@@ -260,13 +256,9 @@ int csx_cmdGaitDesign(int argc, char** argv) {
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kDesignTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (k == CSX_OPT_HELP) {
-      csx_optHelp(&kDesignTable, stdout);
-      return 0;
-    }
-    if (k == CSX_OPT_ERROR) {
-      fprintf(stderr, "crawlsim gait design: %s\n", it.error);
-      return 1;
+    const int end = csx_optReport(&kDesignTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
     if (k == CSX_OPT_OPERAND) {
       if (in) {

@@ -77,13 +77,9 @@ int csx_cmdStudy(int argc, char** argv) {
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kStudyTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (k == CSX_OPT_HELP) {
-      csx_optHelp(&kStudyTable, stdout);
-      return 0;
-    }
-    if (k == CSX_OPT_ERROR) {
-      fprintf(stderr, "crawlsim study: %s\n", it.error);
-      return 1;
+    const int end = csx_optReport(&kStudyTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
     if (k == CSX_OPT_OPERAND) {
       if (file) {

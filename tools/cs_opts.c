@@ -1,6 +1,7 @@
 /* cs_opts.c: parsing and help of the commands' option tables (see cs_opts.h). */
 #include "cs_opts.h"
 
+#include <ctype.h>
 #include <string.h>
 
 enum { MAX_NAME = 64, HELP_WIDTH = 79, HELP_INDENT = 6 };
@@ -85,6 +86,13 @@ csxOptKind csx_optNext(const csxOptTable* t, int argc, char** argv, csxOptIter* 
   const char* a = argv[it->i++];
   if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
     return CSX_OPT_HELP;
+  }
+  /* "-x" is a mistyped option, not an operand (no command takes a negative number or a file
+   * name starting with '-' as an operand) */
+  if (a[0] == '-' && a[1] && a[1] != '-') {
+    snprintf(it->error, sizeof it->error, "unknown option %.60s (options are --name; see "
+             "crawlsim %s --help)", a, t->cmd);
+    return CSX_OPT_ERROR;
   }
   if (strncmp(a, "--", 2) != 0 || !a[2]) {
     it->value = a;
@@ -192,4 +200,21 @@ void csx_optHelp(const csxOptTable* t, FILE* out) {
     wrap(out, t->notes, 2, 2);
     fputc('\n', out);
   }
+}
+
+
+int csx_optReport(const csxOptTable* t, csxOptKind kind, const csxOptIter* it) {
+  if (kind == CSX_OPT_HELP) {
+    csx_optHelp(t, stdout);
+    return 0;
+  }
+  if (kind != CSX_OPT_ERROR) {
+    return -1;
+  }
+  fprintf(stderr, "crawlsim %s: ", t->cmd);
+  for (const char* c = it->error; *c; c++) {
+    fputc(iscntrl((unsigned char)*c) ? '?' : *c, stderr);
+  }
+  fputc('\n', stderr);
+  return 1;
 }

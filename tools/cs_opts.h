@@ -63,6 +63,11 @@ csxOptKind csx_optNext(const csxOptTable* t, int argc, char** argv, csxOptIter* 
  * when none is within about half its length (a guess that far off would mislead). */
 const csxOpt* csx_optNearest(const csxOptTable* t, const char* name, size_t len);
 
+/* The common ends of csx_optNext: CSX_OPT_HELP prints the help on stdout and returns 0 (the
+ * command's exit status), CSX_OPT_ERROR prints "crawlsim <cmd>: <cause>" on stderr (control
+ * characters shown as '?') and returns 1; any other kind returns -1 (the caller handles it). */
+int csx_optReport(const csxOptTable* t, csxOptKind kind, const csxOptIter* it);
+
 /* Print the command's help: usage, about, every option with its value, default and meaning,
  * notes; wrapped at 79 columns. */
 void csx_optHelp(const csxOptTable* t, FILE* out);
