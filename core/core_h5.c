@@ -258,6 +258,7 @@ csStatus cs_h5AttrString(csH5File* f, const char* objpath, const char* name, con
   }
   dropAttr(obj, name);
   hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_cset(type, H5T_CSET_UTF8); /* text, so readers decode it as such (issue 36) */
   H5Tset_size(type, strlen(value) + 1);
   H5Tset_strpad(type, H5T_STR_NULLTERM);
   hid_t space = H5Screate(H5S_SCALAR);
@@ -471,6 +472,7 @@ static csStatus setStatus(hid_t file, const char* text) {
   memset(value, 0, sizeof value);
   snprintf(value, sizeof value, "%s", text);
   hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_cset(type, H5T_CSET_UTF8); /* text, so readers decode it as such (issue 36) */
   H5Tset_size(type, sizeof value);
   H5Tset_strpad(type, H5T_STR_NULLPAD);
   hid_t attr;

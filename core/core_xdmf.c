@@ -73,6 +73,32 @@ static void slab(FILE* x, const char* h5, const char* path, long i, hsize_t N, h
 }
 
 
+/* an attribute of one cell from sample i of an [N, C] series: columns c0 .. c0 + n - 1 (a
+ * Scalar, Vector or Matrix of n components per the XDMF 3 model) */
+static void attrSlab(FILE* x, const char* h5, const char* name, const char* type,
+                     const char* path, long i, hsize_t N, hsize_t C, hsize_t c0, hsize_t n) {
+  fprintf(x, "<Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Cell\"><DataItem "
+             "ItemType=\"HyperSlab\" Dimensions=\"1 %llu\" Type=\"HyperSlab\">"
+             "<DataItem Dimensions=\"3 2\" Format=\"XML\">%ld %llu 1 1 1 %llu</DataItem>"
+             "<DataItem Dimensions=\"%llu %llu\" NumberType=\"Float\" Precision=\"8\" "
+             "Format=\"HDF\">%s:%s</DataItem></DataItem></Attribute>\n",
+          name, type, (unsigned long long)n, i, (unsigned long long)c0, (unsigned long long)n,
+          (unsigned long long)N, (unsigned long long)C, h5, path);
+}
+
+
+/* an attribute of one cell from sample i, leg k of an [N, 8, 3] series (a Vector) */
+static void legVectorSlab(FILE* x, const char* h5, const char* name, const char* path, long i,
+                          int k, hsize_t N) {
+  fprintf(x, "<Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Cell\"><DataItem "
+             "ItemType=\"HyperSlab\" Dimensions=\"1 3\" Type=\"HyperSlab\">"
+             "<DataItem Dimensions=\"3 3\" Format=\"XML\">%ld %d 0 1 1 1 1 1 3</DataItem>"
+             "<DataItem Dimensions=\"%llu 8 3\" NumberType=\"Float\" Precision=\"8\" "
+             "Format=\"HDF\">%s:%s</DataItem></DataItem></Attribute>\n",
+          name, i, k, (unsigned long long)N, h5, path);
+}
+
+
 csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride, csError* err) {
   if (stride < 1) {
     stride = 1;
@@ -87,6 +113,13 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
   int ok = datasetDims(f, "/time", dt) == 1 && datasetDims(f, "/support/corners", dc) == 3 &&
            datasetDims(f, "/legs/A/centerline", dl) == 3;
   int have_terrain = datasetDims(f, "/terrain/corners", dterr) == 2 && dterr[0] % 8 == 0;
+  /* the attributes (optional: a file without them still shows its shapes) */
+  hsize_t dp[3], dfc[3];
+  int have_p = datasetDims(f, "/pressure", dp) == 2 && dp[1] == 96;
+  int have_f = datasetDims(f, "/contact/force", dfc) == 2 && dfc[1] == 3;
+  hsize_t dff[3], dst[3];
+  int have_ff = datasetDims(f, "/contact/foot_force", dff) == 3 && dff[1] == 8 && dff[2] == 3;
+  int have_st = datasetDims(f, "/contact/stance", dst) == 2 && dst[1] == 8;
   hsize_t N = dt[0], nleg[8];
   /* a run that stopped between appends may have series one sample apart: frames go to the
    * shortest; each hyperslab names its own dataset's full shape */
@@ -154,6 +187,9 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
                "NumberOfElements=\"1\"><DataItem Dimensions=\"1 8\" NumberType=\"Int\" "
                "Format=\"XML\">0 1 2 3 4 5 6 7</DataItem></Topology>\n");
     slab(x, base, "/support/corners", (long)i, dc[0], 8);
+    if (have_f && i < dfc[0]) {
+      attrSlab(x, base, "contact_force_N", "Vector", "/contact/force", (long)i, dfc[0], 3, 0, 3);
+    }
     fprintf(x, "</Grid>\n");
     for (int k = 0; k < 8; k++) {
       char p[64];
@@ -167,6 +203,17 @@ csStatus cs_xdmfWriteRun(const char* h5_path, const char* xdmf_path, long stride
       }
       fprintf(x, "</DataItem></Topology>\n");
       slab(x, base, p, (long)i, nleg[k], K);
+      if (have_p && i < dp[0]) { /* the leg's 12 chambers: labels 12 k + 1 .. 12 k + 12 */
+        attrSlab(x, base, "pressure_MPa", "Matrix", "/pressure", (long)i, dp[0], 96,
+                 (hsize_t)(12 * k), 12);
+      }
+      if (have_ff && i < dff[0]) {
+        legVectorSlab(x, base, "foot_force_N", "/contact/foot_force", (long)i, k, dff[0]);
+      }
+      if (have_st && i < dst[0]) {
+        attrSlab(x, base, "stance", "Scalar", "/contact/stance", (long)i, dst[0], 8,
+                 (hsize_t)k, 1);
+      }
       fprintf(x, "</Grid>\n");
     }
     fprintf(x, "</Grid>\n");

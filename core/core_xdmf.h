@@ -7,7 +7,13 @@
  *   - grid "terrain": one hexahedron per terrain box (static, shown at every time);
  *   - a temporal collection of frames, each a spatial collection of grid "support" (one
  *     hexahedron: the support box) and grids "leg_A" .. "leg_H" (one polyline of K points);
- *     every frame's geometry is a hyperslab of the HDF5 series at that sample.
+ *     every frame's geometry is a hyperslab of the HDF5 series at that sample;
+ *   - attributes (cell data, when the run file has the series): the support's
+ *     contact_force_N (Vector, /contact/force), each leg's pressure_MPa (its 12 chambers, II1
+ *     Ω1 first, /pressure), foot_force_N (Vector, /contact/foot_force) and stance (1 standing,
+ *     0 swinging, /contact/stance).
+ * ParaView reads it with its "XDMF Reader" (the XDMF 2 reader): its Xdmf3 readers do not
+ * resolve HyperSlab DataItems written this way (ParaView 5.11, tests/tools/test_xdmf.py).
  * The HDF5 file is named by its base name, so the pair can be moved together. Frames are every
  * `stride`-th sample (stride >= 1): ParaView reads the XML whole, and 300-1000 frames keep it
  * at 1-3 MB. Leaf-level: only HDF5 and the C library. */

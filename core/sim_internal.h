@@ -51,6 +51,9 @@ typedef struct csCosim_ {
  * carry, gs_primed */
 #define CS_COSIM_STATE (6 * CSR_NLEG + 36 + 36 + 3 + 9 + 6 + 6 + 6 + 1)
 
+/* contact joints whose force is measured per ODE step (each ~100 bytes) */
+#define CS_MAX_FEEDBACK 4096
+
 struct csData_ {
   const csModel* m;                 /* for the pneumatic right-hand side */
   dWorldID world;
@@ -76,7 +79,9 @@ struct csData_ {
    * CS_MAX_FEEDBACK joints are measured (nfb_over counts the rest) */
   dJointFeedback* fb;               /* (CS_MAX_FEEDBACK) */
   int nfb, nfb_over;
+  signed char fb_leg[CS_MAX_FEEDBACK]; /* the in-world leg of each measured joint, -1: none */
   double contact_force[3];          /* N, world: terrain on robot, last ODE step */
+  double leg_contact_force[CSR_NLEG][3]; /* N, world: its part on each in-world leg */
   csuTimer timer[CS_NTIMER];
   int nstate;                       /* cs_stateSize */
   double* save;                     /* (nstate) the state before the current step */
@@ -87,8 +92,6 @@ struct csData_ {
   N_Vector y;
 };
 
-/* contact joints whose force is measured per ODE step (each ~100 bytes) */
-#define CS_MAX_FEEDBACK 4096
 
 /* scheduled pressures at time t (zero before t = 0), 96 MPa (sim_driver.c) */
 void cs_schedule(const csModel* m, double t, double* p_cmd);

@@ -251,6 +251,15 @@ int cs_contactCount(const csData* d);
 /* total force (N, world) the terrain exerted on the robot in the last ODE step, summed over
  * every contact joint's feedback: its y component is the load on the ground */
 void cs_contactForce(const csData* d, double f[3]);
+/* The terrain's force on leg k (0..7 = A..H; N, world) now: for in-world legs the feedback
+ * of the last ODE step's contact joints on the leg's bodies, for co-simulated legs their own
+ * contact law at the current state (csrLegType.contactForce; zero for a level that does not
+ * report it) (sim_feet.c) */
+void cs_footForce(const csModel* m, const csData* d, int k, double f[3]);
+/* The force above which a leg counts as standing (N): a tenth of one leg's share of the
+ * support's weight when four legs carry it (the paper's gaits stand on four), so that the
+ * soft contact's grazing forces of a swinging foot do not count (sim_feet.c) */
+double cs_stanceForceThreshold(const csModel* m);
 /* deepest contact penetration of the last ODE step (mm) */
 double cs_contactDepth(const csData* d);
 /* Deepest penetration of the co-simulated legs' own (soft) terrain contact at the current

@@ -4,7 +4,10 @@
  * /pressure [N,96] MPa; /legs/<A..H>/centerline [N,K,3] mm; and for seeing and checking a run
  * /support/corners [N,8,3] mm (world), /contact/force [N,3] N (terrain on robot, world),
  * /contact/max_depth [N] mm (ODE), /contact/leg_max_depth [N] mm (the co-simulated legs' own soft
- * contact, cs_legContactDepth; 0 for legs in ODE), /terrain/corners [nbox*8,3] mm; root attributes scene,
+ * contact, cs_legContactDepth; 0 for legs in ODE), /contact/foot_force [N,8,3] N (the terrain on
+ * each leg, world: cs_footForce), /contact/stance [N,8] (1 standing, 0 swinging),
+ * /terrain/corners [nbox*8,3] mm; every dataset with the attributes units and description
+ * (kDatasetUnits); root attributes stance_force_threshold_N, scene,
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
  * macro_step_s, contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
@@ -28,6 +31,10 @@
 #include "sim_internal.h"
 #include "terrains_ccd.h"
 
+#ifndef CS_VERSION_STRING
+#define CS_VERSION_STRING "unknown" /* set by core/CMakeLists.txt */
+#endif
+
 enum { MAX_CENTERLINE = 201 };
 
 /* at most this share of the wall time goes to writing file images at flushes */
@@ -37,6 +44,7 @@ typedef struct {
   int time, pos, quat, pres, legs[CSR_NLEG];
   int corners, cforce, cdepth, ldepth; /* support box corners; contact force and depth; the
                                         * co-simulated legs' own contact depth */
+  int fforce, stance;                  /* per leg: the terrain's force, stance (1) or swing (0) */
 } Series;
 
 
@@ -57,6 +65,15 @@ static csStatus writeSample(const csModel* m, const csData* d, csH5File* f, cons
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->cdepth, &depth, err);
   double ldepth = cs_legContactDepth(m, d);
   if (st == CS_OK) st = cs_h5SeriesAppend(f, s->ldepth, &ldepth, err);
+  double ff[CSR_NLEG * 3], stance[CSR_NLEG];
+  const double f_stance = cs_stanceForceThreshold(m);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    cs_footForce(m, d, k, ff + 3 * k);
+    /* standing: the ground pushes the leg up (world y) by more than the threshold */
+    stance[k] = ff[3 * k + 1] > f_stance ? 1.0 : 0.0;
+  }
+  if (st == CS_OK) st = cs_h5SeriesAppend(f, s->fforce, ff, err);
+  if (st == CS_OK) st = cs_h5SeriesAppend(f, s->stance, stance, err);
   for (int k = 0; k < CSR_NLEG && st == CS_OK; k++) {
     cs_legCenterline(m, d, k, m->opt.centerline_points, buf);
     st = cs_h5SeriesAppend(f, s->legs[k], buf, err);
@@ -65,9 +82,69 @@ static csStatus writeSample(const csModel* m, const csData* d, csH5File* f, cons
 }
 
 
+/* every dataset of a run file with its units and what its numbers are (attributes "units" and
+ * "description", docs/reference/output.md): the world frame is x the crawl direction, y up, z
+ * lateral (right-handed), origin where the terrain file puts it */
+static const struct {
+  const char* path;
+  const char* units;
+  const char* description;
+} kDatasetUnits[] = {
+    {"/time", "s", "simulated time of each sample"},
+    {"/support/position", "mm",
+     "support centre's displacement from its position at t = 0, world axes (x crawl, y up, z "
+     "lateral)"},
+    {"/support/orientation", "1",
+     "support orientation quaternion (w, x, y, z), body to world"},
+    {"/support/corners", "mm", "the support box's 8 corners, world frame (VTK hexahedron order)"},
+    {"/pressure", "MPa", "the 96 chamber pressures (gauge), column label - 1 (A_II1_O1 first)"},
+    {"/contact/force", "N",
+     "terrain's force on the robot through ODE's contacts (the support and in-world legs; not "
+     "the co-simulated legs' own soft contact), world frame"},
+    {"/contact/max_depth", "mm", "deepest ODE contact penetration"},
+    {"/contact/leg_max_depth", "mm",
+     "deepest penetration of the co-simulated legs' own soft contact (0 for legs in ODE)"},
+    {"/terrain/corners", "mm", "8 corners per terrain box, world frame"},
+    {"/contact/foot_force", "N",
+     "the terrain's force on each leg A..H (its foot and any other part touching), world "
+     "frame: ODE's contact joints on in-world legs, the leg's own contact law for co-simulated "
+     "legs"},
+    {"/contact/stance", "1",
+     "1 when the leg stands (the ground pushes it up, world y, by more than the root attribute "
+     "stance_force_threshold_N), 0 when it swings; legs A..H"},
+};
+
+
+static csStatus writeUnits(const csModel* m, csH5File* f, csError* err) {
+  csStatus st = CS_OK;
+  for (size_t k = 0; st == CS_OK && k < sizeof kDatasetUnits / sizeof kDatasetUnits[0]; k++) {
+    if (!strcmp(kDatasetUnits[k].path, "/terrain/corners") && m->terrain.nbox == 0) {
+      continue;
+    }
+    st = cs_h5AttrString(f, kDatasetUnits[k].path, "units", kDatasetUnits[k].units, err);
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, kDatasetUnits[k].path, "description",
+                           kDatasetUnits[k].description, err);
+    }
+  }
+  for (int k = 0; st == CS_OK && k < CSR_NLEG; k++) {
+    char path[64];
+    snprintf(path, sizeof path, "/legs/%c/centerline", 'A' + k);
+    st = cs_h5AttrString(f, path, "units", "mm", err);
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, path, "description",
+                           "the leg's centreline from hip to foot, points equally spaced in arc "
+                           "length, world frame", err);
+    }
+  }
+  return st;
+}
+
+
 static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* err) {
   size_t three = 3, four = 4, n96 = CSR_NCHAMBER_TOTAL;
   size_t cl[2] = {(size_t)m->opt.centerline_points, 3}, box[2] = {8, 3};
+  size_t nleg = CSR_NLEG, legs3[2] = {CSR_NLEG, 3};
   if ((s->time = cs_h5SeriesCreate(f, "/time", 0, NULL, err)) < 0 ||
       (s->corners = cs_h5SeriesCreate(f, "/support/corners", 2, box, err)) < 0 ||
       (s->cforce = cs_h5SeriesCreate(f, "/contact/force", 1, &three, err)) < 0 ||
@@ -75,7 +152,9 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
       (s->ldepth = cs_h5SeriesCreate(f, "/contact/leg_max_depth", 0, NULL, err)) < 0 ||
       (s->pos = cs_h5SeriesCreate(f, "/support/position", 1, &three, err)) < 0 ||
       (s->quat = cs_h5SeriesCreate(f, "/support/orientation", 1, &four, err)) < 0 ||
-      (s->pres = cs_h5SeriesCreate(f, "/pressure", 1, &n96, err)) < 0) {
+      (s->pres = cs_h5SeriesCreate(f, "/pressure", 1, &n96, err)) < 0 ||
+      (s->fforce = cs_h5SeriesCreate(f, "/contact/foot_force", 2, legs3, err)) < 0 ||
+      (s->stance = cs_h5SeriesCreate(f, "/contact/stance", 1, &nleg, err)) < 0) {
     return err ? err->status : CS_ERR_IO;
   }
   for (int k = 0; k < CSR_NLEG; k++) {
@@ -107,6 +186,10 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   size_t tdims[2] = {(size_t)m->terrain.nbox * 8, 3};
   csStatus st = m->terrain.nbox > 0 ? cs_h5WriteDoubles(f, "/terrain/corners", 2, tdims, tc, err)
                                     : CS_OK;
+  if (st == CS_OK) st = writeUnits(m, f, err);
+  if (st == CS_OK) {
+    st = cs_h5AttrDouble(f, "/", "stance_force_threshold_N", cs_stanceForceThreshold(m), err);
+  }
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "scene", m->scene, err);
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "conditions", cs_conditionsName(m->conditions),
                                         err);
@@ -125,7 +208,7 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
                          "world frame x crawl direction, y up, z lateral",
                          err);
   }
-  if (st == CS_OK) st = cs_h5AttrString(f, "/", "version", "0.1.0", err);
+  if (st == CS_OK) st = cs_h5AttrString(f, "/", "version", CS_VERSION_STRING, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "friction", m->contact.mu, err);
   /* the terrain's inclination (deg about +z, +x uphill): gravity is turned by it */
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "slope_deg", m->terrain.slope_deg, err);

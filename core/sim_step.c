@@ -113,6 +113,18 @@ static csStatus advanceStatus(const csModel* m, const csData* d, int rc, csError
 }
 
 
+/* the in-world leg (0..7) that body b belongs to, -1 for the support or a co-simulated level */
+static int bodyLeg(const csData* d, dBodyID b) {
+  const csrLegType* lt = d->robot->type;
+  for (int k = 0; lt->ownsBody && b != d->robot->support && k < CSR_NLEG; k++) {
+    if (lt->ownsBody(d->robot->legs[k], b)) {
+      return k;
+    }
+  }
+  return -1;
+}
+
+
 /* ask ODE for the force of every contact joint on a robot body (the joints of this step are
  * the only contact joints: the group is emptied after every step). Each body is visited once,
  * through its first geom; a contact joint joins a robot body and the static terrain. */
@@ -127,6 +139,7 @@ static void contactFeedbackAttach(csData* d) {
       continue;
     }
     int nj = dBodyGetNumJoints(b);
+    const int leg = bodyLeg(d, b);
     for (int k = 0; k < nj; k++) {
       dJointID j = dBodyGetJoint(b, k);
       if (dJointGetType(j) != dJointTypeContact) {
@@ -134,6 +147,7 @@ static void contactFeedbackAttach(csData* d) {
       }
       if (d->nfb < CS_MAX_FEEDBACK) {
         memset(&d->fb[d->nfb], 0, sizeof d->fb[d->nfb]);
+        d->fb_leg[d->nfb] = (signed char)leg;
         dJointSetFeedback(j, &d->fb[d->nfb++]);
       } else {
         d->nfb_over++;
@@ -148,9 +162,13 @@ static void contactFeedbackAttach(csData* d) {
  * f1; f2 stays as cleared (zero), since no contact joint has a second moving body */
 static void contactFeedbackSum(csData* d) {
   csu_set3(d->contact_force, 0, 0, 0);
+  memset(d->leg_contact_force, 0, sizeof d->leg_contact_force);
   for (int i = 0; i < d->nfb; i++) {
     for (int k = 0; k < 3; k++) {
       d->contact_force[k] += d->fb[i].f1[k] + d->fb[i].f2[k];
+      if (d->fb_leg[i] >= 0) {
+        d->leg_contact_force[d->fb_leg[i]][k] += d->fb[i].f1[k] + d->fb[i].f2[k];
+      }
     }
   }
 }

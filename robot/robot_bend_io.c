@@ -46,6 +46,16 @@ static csStatus writeRows(csH5File* f, const csrBendCurve* bc, csError* err) {
   if (st == CS_OK) {
     st = cs_h5WriteDoubles(f, "/tip_position", 2, d3, bc->tip, err);
   }
+  /* units and what each is (issue 36: every dataset says its units) */
+  static const char* const kUnits[4][3] = {
+      {"/pressure", "MPa", "the sweep's chamber pressure (gauge) at each row"},
+      {"/angle_deg", "deg", "bending angle of segments II1, II2, II3 at each row"},
+      {"/angle_total_deg", "deg", "total bending angle (sum over the segments) at each row"},
+      {"/tip_position", "mm", "the tip's position in the base frame (e1, e2, e3) at each row"}};
+  for (int k = 0; k < 4 && st == CS_OK; k++) {
+    st = cs_h5AttrString(f, kUnits[k][0], "units", kUnits[k][1], err);
+    if (st == CS_OK) st = cs_h5AttrString(f, kUnits[k][0], "description", kUnits[k][2], err);
+  }
   if (st == CS_OK) {
     st = cs_h5AttrDouble(f, "/", "samples", (double)bc->m, err);
   }

@@ -207,6 +207,14 @@ typedef struct csrLegType_ {
    * out of contact). NULL for a level whose contacts ODE handles (in_world: their depth is in
    * ODE's contact report). */
   double (*contactDepth)(const csrLeg* leg);
+  /* The terrain's force on the leg at the current state (N, world): its foot and any other
+   * part of it in contact, friction included (the run file's per-foot force, issue 36). NULL
+   * for in-world levels, whose contacts are ODE's joints (the driver sums their feedback per
+   * leg through ownsBody), and for a level that does not report it. */
+  void (*contactForce)(const csrLeg* leg, double f[3]);
+  /* In-world levels: 1 when `body` is one of the leg's ODE bodies, else 0. NULL for
+   * co-simulated levels. */
+  int (*ownsBody)(const csrLeg* leg, dBodyID body);
 } csrLegType;
 
 /* The pseudo-rigid-body chain level (robot_prb.c). */

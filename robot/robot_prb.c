@@ -492,6 +492,16 @@ static int sharedCreatePrb(const csrLegSpec* spec, void** shared, csError* err) 
 static void sharedDestroyPrb(void* shared) { (void)shared; }
 
 
+static int ownsBodyPrb(const csrLeg* leg, dBodyID body) {
+  for (int i = 0; i < leg->nbody; i++) {
+    if (leg->body[i] == body) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+
 const csrLegType csr_leg_prb = {
     .name = "prb",
     .in_world = 1,
@@ -510,4 +520,5 @@ const csrLegType csr_leg_prb = {
     .centerline = centerlinePrb,
     .mass = massPrb,
     .massMoment = massMomentPrb,
+    .ownsBody = ownsBodyPrb,
 };

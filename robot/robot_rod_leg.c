@@ -429,6 +429,29 @@ static double contactDepthRod(const csrLeg* leg) {
 }
 
 
+/* every shape through the contact law with its actual friction history (from the state: the
+ * tangential force depends on it), the forces on its nodes summed; the law's history
+ * derivative goes to a scratch */
+static void contactForceRod(const csrLeg* leg, double f[3]) {
+  f[0] = f[1] = f[2] = 0.0;
+  if (!leg->soft) {
+    return;
+  }
+  csr_rodGetState(leg->m, leg->d, leg->scratch);
+  const int n = csr_rodContactShapes(leg->m, leg->d, leg->shapes, leg->N);
+  double dhist[2 * CSR_ROD_MAX_HIST], f0[3], f1[3], mo[3];
+  for (int i = 0; i < n; i++) {
+    const int e = leg->shapes[i].element;
+    const double* hist = leg->scratch + csr_rodStateOffset(leg->m, e) + 13;
+    memset(f0, 0, sizeof f0), memset(f1, 0, sizeof f1), memset(mo, 0, sizeof mo);
+    if (shapeContact(leg, &leg->shapes[i], hist, dhist, f0, f1, mo, NULL) == 0) {
+      csu_add3(f, f, f0);
+      csu_add3(f, f, f1);
+    }
+  }
+}
+
+
 static void massMomentRod(const csrLeg* leg, double mx[3]) {
   csr_rodMassMoment(leg->m, leg->d, mx);
 }
@@ -453,4 +476,5 @@ const csrLegType csr_leg_rod = {
     .mass = massRod,
     .massMoment = massMomentRod,
     .contactDepth = contactDepthRod,
+    .contactForce = contactForceRod,
 };

@@ -34,6 +34,7 @@
 #include "core_text.h"
 #include "cs_commands.h"
 #include "cmd_bend.h"
+#include "cs_opts.h"
 #include "cmd_fe_threads.h"
 #include "cs_paths.h"
 #include "cs_signal.h"
@@ -50,41 +51,55 @@ static const double kBisectTolMPa = 1e-9;   /* bisection stops when the bracket 
 static const double kSweepEps = 1e-9;       /* relative slack when p-max is a multiple of step */
 enum { MAX_SETS = 64 };
 
-static const char kUsage[] =
-    "usage: crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
-    "                     [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
-    "                     [--until-angle DEG] [--mesh-size MM] [--fibre-size MM]\n"
-    "                     [--fibre-split 0|1] [--fibre-law linear|tension-only]\n"
-    "                     [--mesh-symmetric 0|1]\n"
-    "                     [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ]\n"
-    "                     [--calibration FILE|analytic] [--cal-rule prism|rbf|rbf-pair]\n"
-    "                     [--cal-drop stretch|stiffness|stretch,stiffness]\n"
-    "                     [--branch-switch 0|1] [--threads N] [--out FILE.h5]\n"
-    "  Inflates the listed chambers (1..4) of all three segments at equal pressure from 0 to\n"
-    "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
-    "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
-    "  r2 C10 C20 rho Ef nuf rhof rf. --until-angle DEG reports the pressure at which the total\n"
-    "  bending angle reaches DEG (searched up to max(p-max, 2 MPa)).\n"
-    "  --pressures R1,R2,R3,R4: chamber j at R_j x p (unequal pressures; analytic, rod, fe).\n"
-    "  --tip-load FX,FY,FZ: a tip force in N, base frame (rod, fe). --calibration FILE|analytic:\n"
-    "  the rod's pressure -> bend map and, from an FE mode table, its probed EI, EA (default:\n"
-    "  robot/calibration_fe_leg_modes_sym.h5 under rbf-pair, as crawlsim run's rod legs; the\n"
-    "  rod's default actuator is that table's, leg; the other models' is baseline).\n"
-    "  --cal-rule prism|rbf|rbf-pair: that FE mode table's model rule (rod; default rbf-pair on\n"
-    "  the default table, the table's own default, prism, on a table given by --calibration).\n"
-    "  --cal-drop: the rod leaves that part of the calibration out (the segments' axial stretch,\n"
-    "  a mode table's probed EI, EA; as crawlsim run; recorded as calibration_dropped).\n"
-    "  fe only: --fibre-size MM, the fibre element length (default l_soft / 8); --fibre-split 0\n"
-    "  ties each fibre element to the tets holding its two ends (20 nodes) instead of splitting\n"
-    "  it at the tets' faces (1, default). --fibre-law: tension-only (default; thread buckles and\n"
-    "  carries no compression) or linear (compression at full stiffness: with split fibres\n"
-    "  Omega1 & Omega2 then stall near 0.19 MPa, fem/README.md). --branch-switch 1: at a\n"
-    "  bifurcation (the tangent gains a negative pivot while the pressure rises) try to leave\n"
-    "  the path along the critical mode (default 0: the mode is reported, the path kept).\n"
-    "  --mesh-symmetric 1: mesh an eighth of the leg, mirrored and turned, so the mesh has the\n"
-    "  square section's eight symmetries (default 0: gmsh's mesh of the whole body).\n"
-    "  --threads N: the FE's threads (default: this process's cores, its share under mpirun,\n"
-    "  less the cores other processes hold; never more than the affinity mask's cores).\n";
+/* the options of `crawlsim bend`, for parsing and --help (cs_opts.h) */
+static const csxOpt kBendOpts[] = {
+    {"--model", "analytic|fe|rod|prb|rom", "analytic",
+     "the actuator model (rom: not available yet)"},
+    {"--actuator", "fig1|baseline|leg", "baseline (rod: leg, its calibration's)",
+     "the actuator preset"},
+    {"--set", "NAME=VALUE", NULL,
+     "a parameter of the actuator, repeatable; NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1 r2 "
+     "(mm, turns) C10 C20 (MPa) rho (t/mm^3) Ef (MPa) nuf rhof rf (mm)"},
+    {"--chambers", "1,2", "1,2", "the chambers (1..4) inflated in all three segments"},
+    {"--p-max", "MPA", "0.4", "the sweep's last pressure in MPa"},
+    {"--p-step", "MPA", "0.05", "the sweep's pressure increment in MPa"},
+    {"--until-angle", "DEG", NULL,
+     "report the pressure at which the total bending angle reaches DEG degrees (searched up to "
+     "max(p-max, 2 MPa))"},
+    {"--pressures", "R1,R2,R3,R4", NULL,
+     "chamber j at R_j x p (unequal pressures; analytic, rod, fe)"},
+    {"--tip-load", "FX,FY,FZ", "0,0,0", "a tip force in N, base frame (rod, fe)"},
+    {"--calibration", "FILE|analytic", "robot/calibration_fe_leg_modes_sym.h5 (rod)",
+     "the rod's pressure -> bend map and, from an FE mode table, its probed EI, EA"},
+    {"--cal-rule", "prism|rbf|rbf-pair", "rbf-pair on the default table, the table's own "
+     "(prism) on a table given by --calibration",
+     "that FE mode table's model rule (rod)"},
+    {"--cal-drop", "stretch[,stiffness]", "none",
+     "the rod leaves that part of the calibration out (the axial stretch; a mode table's probed "
+     "EI, EA); recorded as calibration_dropped"},
+    {"--mesh-size", "MM", "the FE's default l_soft", "fe: the soft elements' size in mm"},
+    {"--fibre-size", "MM", "l_soft / 8", "fe: the fibre element length in mm"},
+    {"--fibre-split", "0|1", "1",
+     "fe: 1 splits fibre elements at the tets' faces; 0 ties each to the tets holding its two "
+     "ends (20 nodes)"},
+    {"--fibre-law", "tension-only|linear", "tension-only",
+     "fe: tension-only (a thread carries no compression) or linear (compression at full "
+     "stiffness)"},
+    {"--mesh-symmetric", "0|1", "0",
+     "fe: 1 meshes an eighth of the leg, mirrored and turned (the square section's eight "
+     "symmetries)"},
+    {"--branch-switch", "0|1", "0",
+     "fe: 1 at a bifurcation tries to leave the path along the critical mode"},
+    {"--threads", "N", "this process's cores, less those other processes hold",
+     "fe: the FE's threads"},
+    {"--out", "FILE.h5", "bend.h5", "the output file (docs/reference/output.md)"},
+};
+
+static const csxOptTable kBendTable = {
+    "bend", "",
+    "Inflate the listed chambers of all three segments of one actuator at equal pressure from 0 "
+    "to p-max in steps of p-step and write the bending angles and tip positions to FILE.h5.",
+    kBendOpts, CSX_NOPT(kBendOpts), NULL};
 
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
 
@@ -411,35 +426,20 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->inflated[0] = run->inflated[1] = 1;
   run->ratio[0] = run->ratio[1] = 1.0;
   snprintf(run->chambers, sizeof run->chambers, "1,2");
-  for (int i = 1; i < argc; i++) {
-    const char* arg = argv[i];
-    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-      fputs(kUsage, stdout);
-      return 2;
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind kind; (kind = csx_optNext(&kBendTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int end = csx_optReport(&kBendTable, kind, &it);
+    if (end >= 0) {
+      return end == 0 ? 2 : 1; /* 2: after --help */
     }
-    if (strncmp(arg, "--", 2) != 0) {
-      fprintf(stderr, "crawlsim bend: unexpected argument '%s' (see crawlsim bend --help)\n", arg);
+    if (kind == CSX_OPT_OPERAND) {
+      fprintf(stderr, "crawlsim bend: unexpected argument '%.60s' (see crawlsim bend --help)\n",
+              it.value);
       return 1;
     }
-    /* --name value or --name=value */
-    char name[32];
-    const char* value = NULL;
-    const char* eq = strchr(arg, '=');
-    size_t len = eq ? (size_t)(eq - arg) : strlen(arg);
-    if (len >= sizeof name) {
-      fprintf(stderr, "crawlsim bend: unknown option '%s'\n", arg);
-      return 1;
-    }
-    memcpy(name, arg, len);
-    name[len] = '\0';
-    if (eq) {
-      value = eq + 1;
-    } else if (i + 1 < argc) {
-      value = argv[++i];
-    } else {
-      fprintf(stderr, "crawlsim bend: option %s needs a value\n", name);
-      return 1;
-    }
+    const char* name = it.opt->name;
+    const char* value = it.value;
     int bad = 0;
     if (!strcmp(name, "--model")) {
       int m = 0;

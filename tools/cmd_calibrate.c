@@ -24,45 +24,56 @@
 #include "core_math.h"
 #include "cmd_fe_threads.h"
 #include "cs_commands.h"
+#include "cs_opts.h"
 #include "cs_signal.h"
 #include "fem_calibration.h"
 #include "robot_actuator.h"
 #include "robot_bend_io.h"
 #include "robot_calibration.h"
 
-static const char kUsage[] =
-    "usage: crawlsim calibrate [--out FILE.h5] [--dir DIR] [--case NAME]... [--list]\n"
-    "                          [--merge-only] [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
-    "                          [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]\n"
-    "                          [--fibre-law linear|tension-only] [--fibre-turn DEG]\n"
-    "                          [--mesh-symmetric 0|1] [--threads N]\n"
-    "                          [--p-step MPA] [--p-max MPA] [--newton-rtol R]\n"
-    "                          [--model-out PRED.h5] [--cal-rule prism|rbf|rbf-pair]\n"
-    "       crawlsim calibrate --report TABLE.h5 [--actuator ...] [--set ...]\n"
-    "                          [--model-out PRED.h5] [--cal-rule prism|rbf|rbf-pair]\n"
-    "  Runs the full FE model on every calibration case (chamber modes, unequal pressures,\n"
-    "  held-out combinations, stiffness probes, the leg under its weight), one file per case in\n"
-    "  DIR (default calibration_cases/; finished cases are skipped: the run resumes), merges\n"
-    "  them into FILE.h5 (default calibration_fe.h5) and reads the table back as the legs will.\n"
-    "  --list prints the cases. Defaults: actuator leg, l_soft 4 mm, fibres split at element\n"
-    "  faces with l_fibre 0.5 mm (--fibre-split 0: 20-node ties), tension-only (--fibre-law\n"
-    "  linear: compression too), rows every 0.025 MPa, Newton's test |R| <= 1e-6 of the force\n"
-    "  scale (--newton-rtol; recorded: the cases of one table must share it, and the shipped\n"
-    "  table's cases ran at 1e-8);\n"
-    "  --mesh-symmetric 1 meshes an eighth of the leg, mirrors and turns it, so the mesh has the\n"
-    "  square section's eight symmetries (recorded; a table's cases must share it).\n"
-    "  --fibre-turn DEG (a multiple of 90) turns the helices' start about the leg axis, so that\n"
-    "  a turned chamber pattern is the exact image of the unturned one but for the mesh (a check\n"
-    "  of the FE's symmetry; recorded, and a table's cases must share it).\n"
-    "  --threads N: the FE's threads (default: this process's cores, its share under mpirun,\n"
-    "  less the cores other processes hold).\n"
-    "  --p-max caps every case's end pressure (small tables for tests). With every mode\n"
-    "  finished it prints the calibration model's errors (fitted modes, held-out cases, the\n"
-    "  rules compared, stiffness); --model-out writes the model's predictions for\n"
-    "  tools/plot_calibration.py. --report reads a merged table (e.g. the shipped\n"
-    "  robot/calibration_fe_leg_modes.h5) and prints the same report without its case files.\n"
-    "  --cal-rule: the model the report and the predictions are of (default prism; the rules\n"
-    "  compared are printed whatever it is).\n";
+/* the options of `crawlsim calibrate`, for parsing and --help (cs_opts.h) */
+static const csxOpt kCalOpts[] = {
+    {"--out", "FILE.h5", "calibration_fe.h5", "the merged calibration table"},
+    {"--dir", "DIR", "calibration_cases", "one file per case (finished cases are skipped)"},
+    {"--case", "NAME", "every case", "run only this case, repeatable (--list names them)"},
+    {"--list", NULL, "off", "print the cases and exit"},
+    {"--merge-only", NULL, "off", "merge the finished case files, run nothing"},
+    {"--report", "TABLE.h5", NULL,
+     "print the calibration model's report from a merged table alone (no case files)"},
+    {"--model-out", "PRED.h5", NULL,
+     "write the model's predictions for tools/plot_calibration.py"},
+    {"--cal-rule", "prism|rbf|rbf-pair", "prism",
+     "the model rule of the report and the predictions"},
+    {"--actuator", "leg|baseline|fig1", "leg", "the actuator preset"},
+    {"--set", "NAME=VALUE", NULL, "an actuator parameter, repeatable (as crawlsim bend)"},
+    {"--mesh-size", "MM", "4", "the soft elements' size l_soft in mm, 0.5..20"},
+    {"--fibre-size", "MM", "0.5", "the fibre element length l_fibre in mm, 0.05..20"},
+    {"--fibre-split", "0|1", "1",
+     "1 splits fibre elements at the tets' faces; 0: 20-node ties"},
+    {"--fibre-law", "tension-only|linear", "tension-only",
+     "tension-only: a thread carries no compression; linear: compression at full stiffness"},
+    {"--fibre-turn", "DEG", "0",
+     "the helices' start turned about the leg axis by a multiple of 90 degrees (a check of the "
+     "FE's symmetry; recorded, a table's cases must share it)"},
+    {"--mesh-symmetric", "0|1", "0",
+     "1 meshes an eighth of the leg, mirrored and turned (recorded; a table's cases must share "
+     "it)"},
+    {"--p-step", "MPA", "0.025", "the rows' pressure increment in MPa, 1e-4..0.5"},
+    {"--p-max", "MPA", "each case's own", "caps every case's end pressure in MPa (small tables)"},
+    {"--newton-rtol", "R", "1e-6",
+     "Newton's test |R| <= R of the force scale, 1e-12..1e-3 (recorded; the shipped table's "
+     "cases ran at 1e-8)"},
+    {"--threads", "N", "this process's cores, less those other processes hold",
+     "the FE's threads"},
+};
+
+static const csxOptTable kCalTable = {
+    "calibrate", "",
+    "Run the full FE model on every calibration case (chamber modes, unequal pressures, "
+    "held-out combinations, stiffness probes, the leg under its weight), one file per case in "
+    "DIR, merge them into FILE.h5 and read the table back as the legs will; with every mode "
+    "finished, print the calibration model's report.",
+    kCalOpts, CSX_NOPT(kCalOpts), NULL};
 
 enum { MAX_SETS = 32, MAX_PICK = CSF_CAL_MAX_CASES };
 
@@ -138,12 +149,19 @@ int csx_cmdCalibrate(int argc, char** argv) {
   const char* pick[MAX_PICK];
   int nset = 0, npick = 0, list = 0, merge_only = 0, threads = 0;
   csfCalSettings cs = csf_calibrationDefault();
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(kUsage, stdout);
-      return 0;
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind k; (k = csx_optNext(&kCalTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int end = csx_optReport(&kCalTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
+    if (k == CSX_OPT_OPERAND) {
+      fprintf(stderr, "crawlsim calibrate: unexpected argument '%s'\n", it.value);
+      return 1;
+    }
+    const char* a = it.opt->name;
+    const char* v = it.value;
     if (!strcmp(a, "--list")) {
       list = 1;
       continue;
@@ -152,12 +170,6 @@ int csx_cmdCalibrate(int argc, char** argv) {
       merge_only = 1;
       continue;
     }
-    if (i + 1 >= argc || a[0] != '-') {
-      fprintf(stderr, a[0] == '-' ? "crawlsim calibrate: %s needs a value\n"
-                                  : "crawlsim calibrate: unexpected argument '%s'\n", a);
-      return 1;
-    }
-    const char* v = argv[++i];
     int bad = 0;
     if (!strcmp(a, "--threads")) {
       bad = csx_feParseThreads("calibrate", v, &threads);
@@ -230,9 +242,6 @@ int csx_cmdCalibrate(int argc, char** argv) {
         return 1;
       }
       sets[nset++] = v;
-    } else {
-      fprintf(stderr, "crawlsim calibrate: unknown option '%s'\n", a);
-      return 1;
     }
     if (bad) {
       return 1;

@@ -14,14 +14,49 @@
 #include <string.h>
 
 #include "cs_commands.h"
+#include "cs_gaitrange.h"
+#include "cs_opts.h"
+#include "cs_paths.h"
 #include "gaits_csv.h"
+#include "robot_actuator.h"
+#include "robot_calibration.h"
+#include "robot_calibration_model.h"
+#include "robot_leg.h"
+#include "sim_scene.h"
 
+/* `crawlsim gait --help`: the subcommands (each has its own --help) */
 static const char kUsage[] =
     "usage: crawlsim gait <subcommand> ...\n"
-    "  check FILE.csv [--max-pressure MPA] [--max-rows N]\n"
-    "      validate a gait table (time s, 96 chamber pressures MPa) and summarise it;\n"
-    "      --max-pressure: largest accepted pressure (default 1 MPa),\n"
-    "      --max-rows: largest accepted number of data rows (default 100000)\n";
+    "  check FILE.csv      validate a gait table and check it against the calibration run uses\n"
+    "  design FILE.gait    build a gait table from a design description\n"
+    "  flat-road FILE.csv  the older generator of the paper-style two-group gait\n"
+    "Run 'crawlsim gait <subcommand> --help' for its options.\n";
+
+/* the options of `crawlsim gait check`, for parsing and --help (cs_opts.h) */
+static const csxOpt kCheckOpts[] = {
+    {"--max-pressure", "MPA", "1", "largest accepted pressure of the table, in MPa"},
+    {"--max-rows", "N", "100000", "largest accepted number of data rows"},
+    {"--scene", "flat-road|obstacle", "flat-road",
+     "whose default calibration (and rule) to check against, as crawlsim run picks it"},
+    {"--calibration", "FILE|none", "the scene's (as crawlsim run)",
+     "the calibration whose pressure range the gait must stay in; none skips the range check"},
+    {"--cal-rule", "prism|rbf|rbf-pair", "the scene's (as crawlsim run)",
+     "the FE mode table's model rule"},
+    {"--pressure-scale", "K", "1", "multiplies every pressure first (as crawlsim run)"},
+    {"--legs", "prb|rod", "rod",
+     "rod legs also read the mode table's stiffness probes: their segments' mean pressure must "
+     "stay within the probes' range too"},
+    {"--cal-drop", "stretch[,stiffness]", "none",
+     "as crawlsim run: with stiffness, the probes' range is not checked"},
+};
+
+static const csxOptTable kCheckTable = {
+    "gait check", "FILE.csv",
+    "Validate a gait table (time s, 96 chamber pressures MPa; docs/reference/formats.md), check "
+    "that every pressure stays inside the pressure range of the calibration crawlsim run would "
+    "use with the same options, and print one summary line (rows, duration, chambers used, max "
+    "pressure); or one error line naming file, line (or row time) and cause, exit 1.",
+    kCheckOpts, CSX_NOPT(kCheckOpts), NULL};
 
 /* print "crawlsim gait <sub>: <msg>" on one line, control characters shown as '?' */
 static void printError(const char* sub, const char* msg);
@@ -62,49 +97,87 @@ static int parseDouble(const char* s, double* out) {
 static int cmdCheck(int argc, char** argv) {
   csgReadOptions opt = csg_defaultReadOptions();
   const char* path = NULL;
+  const char* scene = "flat-road";
+  const char* calib = NULL;
+  const char* legs = "rod";
+  double scale = 1.0;
+  int cal_rule = -1;
+  unsigned cal_drop = 0;
   char msg[CS_ERROR_MSG_SIZE];
 
-  /* arguments: one file and the reader limits */
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(kUsage, stdout);
-      return 0;
+  /* arguments: one file, the reader limits and the calibration run would use */
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind k; (k = csx_optNext(&kCheckTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int end = csx_optReport(&kCheckTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
-    if (!strcmp(a, "--max-pressure") || !strcmp(a, "--max-rows")) {
-      double v;
-      if (i + 1 >= argc || !parseDouble(argv[i + 1], &v) || !(v > 0.0)) {
-        snprintf(msg, sizeof msg, "%s needs a positive number", a);
+    const char* a = it.opt ? it.opt->name : "";
+    const char* v = it.value;
+    if (k == CSX_OPT_OPERAND) {
+      if (path) {
+        snprintf(msg, sizeof msg, "more than one file given ('%.64s' and '%.64s')", path, v);
         printError("check", msg);
         return 1;
       }
-      i++;
+      path = v;
+    } else if (!strcmp(a, "--max-pressure") || !strcmp(a, "--max-rows") ||
+               !strcmp(a, "--pressure-scale")) {
+      double x;
+      if (!parseDouble(v, &x) || !(x > 0.0)) {
+        snprintf(msg, sizeof msg, "%s '%.64s' needs a positive number", a, v);
+        printError("check", msg);
+        return 1;
+      }
       if (!strcmp(a, "--max-pressure")) {
-        opt.max_pressure = v;
-      } else if (v != floor(v) || v > INT_MAX) {
-        snprintf(msg, sizeof msg, "--max-rows %.64s must be a whole number up to %d", argv[i],
-                 INT_MAX);
+        opt.max_pressure = x;
+      } else if (!strcmp(a, "--pressure-scale")) {
+        scale = x;
+      } else if (x != floor(x) || x > INT_MAX) {
+        snprintf(msg, sizeof msg, "--max-rows %.64s must be a whole number up to %d", v, INT_MAX);
         printError("check", msg);
         return 1;
       } else {
-        opt.max_rows = (long)v;
+        opt.max_rows = (long)x;
       }
-      continue;
+    } else if (!strcmp(a, "--scene")) {
+      scene = v;
+    } else if (!strcmp(a, "--calibration")) {
+      calib = v;
+    } else if (!strcmp(a, "--legs")) {
+      if (strcmp(v, "rod") && strcmp(v, "prb")) {
+        snprintf(msg, sizeof msg, "--legs '%.64s' must be prb or rod", v);
+        printError("check", msg);
+        return 1;
+      }
+      legs = v;
+    } else if (!strcmp(a, "--cal-rule")) {
+      csrCalRule rule;
+      if (!csr_calRuleParse(v, &rule)) {
+        snprintf(msg, sizeof msg, "unknown --cal-rule '%.60s' (expected prism, rbf or rbf-pair)",
+                 v);
+        printError("check", msg);
+        return 1;
+      }
+      cal_rule = (int)rule;
+    } else if (!strcmp(a, "--cal-drop")) {
+      if (!csr_calDropParse(v, &cal_drop)) {
+        snprintf(msg, sizeof msg, "bad --cal-drop '%.60s' (expected stretch, stiffness, "
+                 "stretch,stiffness or none)", v);
+        printError("check", msg);
+        return 1;
+      }
     }
-    if (a[0] == '-' && a[1] != '\0') {
-      snprintf(msg, sizeof msg, "unknown option '%.64s' (see crawlsim gait --help)", a);
-      printError("check", msg);
-      return 1;
-    }
-    if (path) {
-      snprintf(msg, sizeof msg, "more than one file given ('%.64s' and '%.64s')", path, a);
-      printError("check", msg);
-      return 1;
-    }
-    path = a;
   }
   if (!path) {
     printError("check", "missing FILE.csv (usage: crawlsim gait check FILE.csv)");
+    return 1;
+  }
+  const csScene* sc = cs_sceneFind(scene);
+  if (!sc) {
+    snprintf(msg, sizeof msg, "unknown --scene '%.60s' (expected flat-road or obstacle)", scene);
+    printError("check", msg);
     return 1;
   }
 
@@ -122,6 +195,37 @@ static int cmdCheck(int argc, char** argv) {
     printError("check", err.msg);
     return 1;
   }
+  /* the calibration run would load with the same options (run: the scene's table under the
+   * scene's rule, or --calibration under its own rule unless --cal-rule) */
+  char range[CS_ERROR_MSG_SIZE] = "";
+  if (!calib || strcmp(calib, "none")) {
+    char buf[512];
+    if (!calib) {
+      calib = csx_dataPath(sc->calibration, buf, sizeof buf);
+      csrCalRule rule;
+      if (cal_rule < 0 && sc->cal_rule && csr_calRuleParse(sc->cal_rule, &rule)) {
+        cal_rule = (int)rule;
+      }
+    }
+    csrActuator leg;
+    csrCalOptions copt = csr_calModelDefaultOptions();
+    copt.rule = (csrCalRule)cal_rule;
+    csrCalibration* cal = NULL;
+    if (csr_actuatorPreset(&leg, CSX_MISSION_ACTUATOR, &err) == CS_OK) {
+      cal = csr_calibrationOpenWith(calib, &leg, cal_rule >= 0 ? &copt : NULL, &err);
+    }
+    const int stiffness = !strcmp(legs, "rod") && !(cal_drop & CSR_CAL_DROP_STIFFNESS);
+    if (!cal || csx_gaitRangeCheck(g, path, scale, cal, stiffness, &err) != CS_OK) {
+      csr_calibrationClose(cal);
+      csg_gaitDestroy(g);
+      printError("check", err.msg);
+      return 1;
+    }
+    csrBendMap map = csr_calibrationMap(cal);
+    snprintf(range, sizeof range, "; within the calibrated range (up to %g MPa) of %.400s",
+             map.p_max, calib);
+    csr_calibrationClose(cal);
+  }
   char where[64] = "";
   if (s.p_max_label) {
     char name[CSG_LABEL_NAME_SIZE];
@@ -130,7 +234,7 @@ static int cmdCheck(int argc, char** argv) {
   }
   printf("%s: ok: %d row%s, t = %g .. %g s (duration %g s), %d of %d chambers used, ", path, s.nrow,
          s.nrow == 1 ? "" : "s", s.t_first, s.t_last, s.t_last - s.t_first, s.nused, CSG_NLABEL);
-  printf("max pressure %g MPa%s\n", s.p_max, where);
+  printf("max pressure %g MPa%s%s\n", s.p_max, where, range);
   csg_gaitDestroy(g);
   return 0;
 }

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cs_commands.h"
+#include "cs_opts.h"
 #include "cs_paths.h"
 #include "gaits_generate.h"
 #include "robot_calibration.h"
@@ -19,16 +20,53 @@
 #include "sim_model.h"
 
 
+/* the options of `crawlsim gait flat-road`, for parsing and --help (cs_opts.h) */
+static const csxOpt kFlatOpts[] = {
+    {"--stroke", "MM", "39", "the foot travel per stride the gait is designed for, in mm"},
+    {"--strokes", "N", "8", "strides, a whole number 1..1000"},
+    {"--crouch", NULL, "off",
+     "the standing legs crouch before the forward feet land (else the paper's table: the groups "
+     "swap at every whole second)"},
+    {"--t-land", "S", "0.35", "when the swinging group lands and vents, s into each 1 s period"},
+    {"--calibration", "FILE", "robot/calibration_fe_leg.h5",
+     "the calibrated leg the pressures are solved on"},
+    {"--p-max", "MPA", "0.5", "highest pressure a solve may use, in MPa"},
+};
+
+static const csxOptTable kFlatTable = {
+    "gait flat-road", "FILE.csv",
+    "The older generator of the paper-style two-group gait (Sec. 5.1): derive the pressures that "
+    "give --stroke from the calibrated leg model and write the gait table FILE.csv.",
+    kFlatOpts, CSX_NOPT(kFlatOpts), NULL};
+
+
 int csx_cmdGaitFlatRoad(int argc, char** argv) {
   const char* out = NULL;
   const char* calib = NULL;
   double stroke = 39.0, p_max = 0.5, nstroke = 8, t_land = NAN;
   int crouch = 0;
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind k; (k = csx_optNext(&kFlatTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int stop = csx_optReport(&kFlatTable, k, &it);
+    if (stop >= 0) {
+      return stop;
+    }
+    if (k == CSX_OPT_OPERAND) {
+      if (out) {
+        fprintf(stderr, "crawlsim gait flat-road: unexpected argument '%s'\n", it.value);
+        return 1;
+      }
+      out = it.value;
+      continue;
+    }
+    const char* a = it.opt->name;
     double* num = NULL;
     if (!strcmp(a, "--crouch")) {
       crouch = 1;
+      continue;
+    } else if (!strcmp(a, "--calibration")) {
+      calib = it.value;
       continue;
     } else if (!strcmp(a, "--stroke")) {
       num = &stroke;
@@ -36,33 +74,13 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
       num = &p_max;
     } else if (!strcmp(a, "--t-land")) {
       num = &t_land;
-    } else if (!strcmp(a, "--strokes")) {
-      num = &nstroke;
-    } else if (!strcmp(a, "--calibration")) {
-      if (i + 1 >= argc) {
-        fprintf(stderr, "crawlsim gait flat-road: --calibration needs a file\n");
-        return 1;
-      }
-      calib = argv[++i];
-      continue;
-    } else if (a[0] == '-') {
-      fprintf(stderr, "crawlsim gait flat-road: unknown option '%s'\n", a);
-      return 1;
-    } else if (!out) {
-      out = a;
-      continue;
     } else {
-      fprintf(stderr, "crawlsim gait flat-road: unexpected argument '%s'\n", a);
-      return 1;
+      num = &nstroke; /* --strokes */
     }
     char* end;
-    if (i + 1 >= argc) {
-      fprintf(stderr, "crawlsim gait flat-road: %s needs a value\n", a);
-      return 1;
-    }
-    *num = strtod(argv[++i], &end);
-    if (*end || !isfinite(*num) || *num <= 0) {
-      fprintf(stderr, "crawlsim gait flat-road: %s '%s' must be a number > 0\n", a, argv[i]);
+    *num = strtod(it.value, &end);
+    if (*end || end == it.value || !isfinite(*num) || *num <= 0) {
+      fprintf(stderr, "crawlsim gait flat-road: %s '%s' must be a number > 0\n", a, it.value);
       return 1;
     }
   }
@@ -74,8 +92,8 @@ int csx_cmdGaitFlatRoad(int argc, char** argv) {
     return 1;
   }
   if (!out) {
-    fprintf(stderr, "usage: crawlsim gait flat-road FILE.csv [--stroke MM] [--strokes N] "
-                    "[--crouch] [--t-land S] [--calibration FILE] [--p-max MPA]\n");
+    fprintf(stderr, "crawlsim gait flat-road: missing FILE.csv (see crawlsim gait flat-road "
+                    "--help)\n");
     return 1;
   }
   char buf[512];
@@ -135,23 +153,35 @@ done:
 
 /* ---- crawlsim gait design ------------------------------------------------------------------ */
 
-static const char kDesignUsage[] =
-    "usage: crawlsim gait design FILE.gait [--out FILE.csv] [--calibration FILE] [--p-max MPA]\n"
-    "                            [--stretch] [--check] [--check-scene NAME] [--check-t S]\n"
-    "                            [--set NAME=VALUE]... [--cal-rule prism|rbf|rbf-pair]\n"
-    "  Build a gait table from a design description (gaits/gaits_design.h: poses as chamber\n"
-    "  sets with a target stroke/side/lift/rise/bend/pressure, moves with durations, strides\n"
-    "  with phases); pressures from the calibrated leg model (robot_gaitdesign.h).\n"
-    "  --out: the table (default: FILE with .csv); --p-max: highest pressure a solve may use\n"
-    "  (0.3 MPa, capped by the calibration); --stretch: forward kinematics with the map's axial\n"
-    "  stretch (leg levels that stretch; needed by rise targets); --check: short runs of the\n"
-    "  table (scene flat-road under its default conditions, ramps 0.1, 0.2, 0.5 s, to --check-t,\n"
-    "  default the first stride's start + 3 periods) and the stride per cycle of each.\n"
-    "  --set NAME=VALUE: a leg actuator parameter (as crawlsim bend; design studies): the poses\n"
-    "  are solved for that leg (its calibration must be of that actuator, e.g. the provisional\n"
-    "  text map); not with --check.\n"
-    "  --cal-rule: the FE mode table's model rule (default prism; rbf, rbf-pair: crawlsim run\n"
-    "  --help), for the poses and the check runs; refused for other calibrations.\n";
+/* the options of `crawlsim gait design`, for parsing and --help (cs_opts.h) */
+static const csxOpt kDesignOpts[] = {
+    {"--out", "FILE.csv", "the description's name with .csv", "the gait table written"},
+    {"--calibration", "FILE", "robot/calibration_fe_leg.h5",
+     "the calibrated leg the poses are solved on"},
+    {"--cal-rule", "prism|rbf|rbf-pair", "prism",
+     "the FE mode table's model rule, for the poses and the check runs; refused for other "
+     "calibrations"},
+    {"--p-max", "MPA", "0.3, capped by the calibration's range",
+     "highest pressure a solve may use, in MPa"},
+    {"--stretch", NULL, "off",
+     "forward kinematics with the map's axial stretch (leg levels that stretch; needed by rise "
+     "targets)"},
+    {"--check", NULL, "off",
+     "short runs of the table (ramps 0.1, 0.2, 0.5 s) printing the stride per cycle of each"},
+    {"--check-scene", "flat-road|obstacle", "flat-road",
+     "the scene of the --check runs, under its default conditions"},
+    {"--check-t", "S", "the first stride's start + 3 periods", "length of each --check run, s"},
+    {"--set", "NAME=VALUE", NULL,
+     "a leg actuator parameter, repeatable (as crawlsim bend): the poses are solved for that leg "
+     "(its calibration must be of that actuator); not with --check"},
+};
+
+static const csxOptTable kDesignTable = {
+    "gait design", "FILE.gait",
+    "Build a gait table from a design description (docs/reference/formats.md: poses as chamber "
+    "sets with a target stroke/side/lift/rise/bend/pressure, moves with durations, strides with "
+    "phases); pressures from the calibrated leg model.",
+    kDesignOpts, CSX_NOPT(kDesignOpts), NULL};
 
 
 /* the stride per cycle of a short run of `gait_csv` with schedule ramp `ramp`; prints a line */
@@ -223,60 +253,55 @@ int csx_cmdGaitDesign(int argc, char** argv) {
   int cal_rule = -1; /* csrCalRule of --cal-rule, -1: not given */
   int stretch = 0, check = 0, nset = 0;
   const char* sets[32];
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(kDesignUsage, stdout);
-      return 0;
-    } else if (!strcmp(a, "--set")) {
-      if (i + 1 >= argc || nset == 32) {
-        fprintf(stderr, "crawlsim gait design: %s\n",
-                nset == 32 ? "more than 32 --set options" : "--set needs NAME=VALUE");
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind k; (k = csx_optNext(&kDesignTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int end = csx_optReport(&kDesignTable, k, &it);
+    if (end >= 0) {
+      return end;
+    }
+    if (k == CSX_OPT_OPERAND) {
+      if (in) {
+        fprintf(stderr, "crawlsim gait design: unexpected argument '%s'\n", it.value);
         return 1;
       }
-      sets[nset++] = argv[++i];
+      in = it.value;
+      continue;
+    }
+    const char* a = it.opt->name;
+    const char* v = it.value;
+    if (!strcmp(a, "--set")) {
+      if (nset == 32) {
+        fprintf(stderr, "crawlsim gait design: more than 32 --set options\n");
+        return 1;
+      }
+      sets[nset++] = v;
     } else if (!strcmp(a, "--stretch")) {
       stretch = 1;
     } else if (!strcmp(a, "--check")) {
       check = 1;
-    } else if (!strcmp(a, "--out") || !strcmp(a, "--calibration") || !strcmp(a, "--p-max") ||
-               !strcmp(a, "--check-scene") || !strcmp(a, "--check-t") || !strcmp(a, "--cal-rule")) {
-      if (i + 1 >= argc) {
-        fprintf(stderr, "crawlsim gait design: %s needs a value\n", a);
+    } else if (!strcmp(a, "--out")) {
+      out = v;
+    } else if (!strcmp(a, "--calibration")) {
+      calib = v;
+    } else if (!strcmp(a, "--check-scene")) {
+      check_scene = v;
+    } else if (!strcmp(a, "--cal-rule")) {
+      csrCalRule rule;
+      if (!csr_calRuleParse(v, &rule)) {
+        fprintf(stderr, "crawlsim gait design: unknown --cal-rule '%.60s' (expected prism, rbf "
+                "or rbf-pair)\n", v);
         return 1;
       }
-      const char* v = argv[++i];
-      if (!strcmp(a, "--out")) {
-        out = v;
-      } else if (!strcmp(a, "--calibration")) {
-        calib = v;
-      } else if (!strcmp(a, "--check-scene")) {
-        check_scene = v;
-      } else if (!strcmp(a, "--cal-rule")) {
-        csrCalRule rule;
-        if (!csr_calRuleParse(v, &rule)) {
-          fprintf(stderr, "crawlsim gait design: unknown --cal-rule '%.60s' (expected prism, rbf "
-                  "or rbf-pair)\n", v);
-          return 1;
-        }
-        cal_rule = (int)rule;
-      } else {
-        char* end;
-        double x = strtod(v, &end);
-        if (*end || end == v || !isfinite(x) || !(x > 0)) {
-          fprintf(stderr, "crawlsim gait design: %s '%s' must be a number > 0\n", a, v);
-          return 1;
-        }
-        if (!strcmp(a, "--p-max")) p_max = x; else check_t = x;
-      }
-    } else if (a[0] == '-') {
-      fprintf(stderr, "crawlsim gait design: unknown option '%s' (see --help)\n", a);
-      return 1;
-    } else if (!in) {
-      in = a;
+      cal_rule = (int)rule;
     } else {
-      fprintf(stderr, "crawlsim gait design: unexpected argument '%s'\n", a);
-      return 1;
+      char* end;
+      double x = strtod(v, &end);
+      if (*end || end == v || !isfinite(x) || !(x > 0)) {
+        fprintf(stderr, "crawlsim gait design: %s '%s' must be a number > 0\n", a, v);
+        return 1;
+      }
+      if (!strcmp(a, "--p-max")) p_max = x; else check_t = x; /* --check-t */
     }
   }
   if (!in) {

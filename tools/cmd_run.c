@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "cs_commands.h"
+#include "cs_opts.h"
 #include "cs_paths.h"
 #include "terrains_scenefile.h"
 #include "cs_signal.h"
@@ -25,77 +26,92 @@
 #include "robot_levels.h"
 #include "sim_model.h"
 
-static const char kRunUsage[] =
-    "usage: crawlsim run [--scene flat-road|obstacle|slope] [--scene-file FILE] [--gait FILE.csv]\n"
-    "                    [--legs auto|prb|rod|rom] [--slope-deg A]\n"
-    "                    [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]\n"
-    "                    [--terrain FILE] [--dt S] [--output-dt S] [--ramp S] [--tau S]\n"
-    "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
-    "                    [--calibration FILE] [--macro-steps N]\n"
-    "                    [--coupling staggered|stabilised|gs]\n"
-    "                    [--conditions earth|paper] [--set NAME=VALUE]... [--quiet]\n"
-    "                    [--tol MM] [--levels FILE] [--contact-scale K] [--rod-tol K]\n"
-    "                    [--cal-rule prism|rbf|rbf-pair] [--cal-drop stretch|stiffness|...]\n"
-    "  --contact-scale K: multiplies the normal stiffness of every contact law (ODE's\n"
-    "    100 N/mm of prb legs and the support, the rod legs' soft foundation modulus); 1;\n"
-    "  --legs auto --tol MM: the cheapest configuration (level, --links, --macro-steps, --dt)\n"
-    "    measured for the scene whose track error against the rod reference is within MM,\n"
-    "    from FILE (default robot/levels.csv, written by tools/bench_levels.py); the banner\n"
-    "    and the output's legs_auto_choice attribute say what was picked and why;\n"
-    "  --conditions: earth = gravity on every body; paper = the legs keep mass and inertia but\n"
-    "    feel no gravity (the paper's assumption). Default: the scene's (paper for flat-road\n"
-    "    and obstacle) with its own terrain and gait, earth when --terrain or --gait is given;\n"
-    "  --macro-steps N: ODE steps per exchange with co-simulated legs (macro step H = N dt);\n"
-    "  --coupling: how co-simulated legs (rod) hand their wrench to the support (default gs:\n"
-    "    Gauss-Seidel, the support steps first and the legs follow its actual motion; momentum\n"
-    "    exact, 0.6 mm from the converged staggered reference over the 9 s flat road at 1 ms;\n"
-    "    stabilised: the legs first along a predicted motion, cheaper, 22 mm off; staggered:\n"
-    "    explicit, stable below 40 us; README \"Rod legs\"); ignored by prb;\n"
-    "  --rod-tol K: every CVODE tolerance of rod legs times K (default 1; measured on the 9 s\n"
-    "    flat road: K 5-20 runs 3.7-5.6x faster than K 1 and lands 3-7 mm from the converged\n"
-    "    reference, K 1 0.6 mm; README \"Rod legs\", speed); recorded as rod_tolerance_scale;\n"
-    "  --legs: default rod with the scene's elements per segment (--links) on the scene's\n"
-    "    calibration: flat-road 8 on robot/calibration_fe_leg_modes_sym.h5, obstacle 4 on\n"
-    "    robot/calibration_fe_leg_modes.h5 (the table its gait was designed on);\n"
-    "  --cal-rule: the FE mode table's model rule (default: the scene's, rbf-pair on the flat\n"
-    "    road; the table's own default, prism, on the obstacle or a table given by --calibration;\n"
-    "    prism: superposition + prism hats; rbf: + RBF interactions; rbf-pair: the pair\n"
-    "    factor + RBF, the smallest held-out errors; README \"Calibration\"); refused for other\n"
-    "    calibrations; recorded as calibration_rule and in the banner;\n"
-    "  --cal-drop stretch[,stiffness]: rod legs leave that part of the calibration out (the\n"
-    "    segments' axial stretch; a mode table's probed EI, EA), to measure what it does to a\n"
-    "    run (README \"Rod against prb\"); rod only; recorded as calibration_dropped;\n"
-    "  --slope-deg A: incline the terrain by A deg about z, +x uphill (gravity turns; x stays\n"
-    "    the distance along the slope); default the terrain's (the slope scene: 10);\n"
-    "  --scene-file FILE: terrain, gait, conditions, start, heading, slope and t-end from a\n"
-    "    scene file (docs/reference/formats.md \"Scene files\"); options given here win;\n"
-    "  --set NAME=VALUE: a parameter of the legs' actuator (as crawlsim bend: S1 a C10 ...; the\n"
-    "    legs' stiffness and mass follow; the calibration must be of that actuator).\n";
+/* the options of `crawlsim run`, for parsing and --help (cs_opts.h) */
+static const csxOpt kRunOpts[] = {
+    {"--scene", "flat-road|obstacle|slope", "flat-road",
+     "the scene: terrain, gait, calibration and conditions of the paper's Sec. 5.1 (flat-road) "
+     "or 5.2 (obstacle); slope: the flat road inclined by --slope-deg"},
+    {"--scene-file", "FILE", NULL,
+     "terrain, gait, conditions, start, heading, slope and t-end from a scene file "
+     "(docs/reference/formats.md \"Scene files\"); options given here win"},
+    {"--slope-deg", "A", "the terrain's (the slope scene: 10)",
+     "incline the terrain by A deg about z, +x uphill (gravity turns; x stays the distance along "
+     "the slope), within +-45"},
+    {"--gait", "FILE.csv", "the scene's (gaits/flat_road_rod.csv, gaits/obstacle.csv)",
+     "the gait table (docs/reference/formats.md); a gait of your own makes the default "
+     "conditions earth"},
+    {"--terrain", "FILE", "the scene's (terrains/flat_road.terrain, terrains/obstacle.terrain)",
+     "the terrain file; a terrain of your own makes the default conditions earth"},
+    {"--legs", "auto|prb|rod|rom", "rod",
+     "the leg level; auto picks the scene's cheapest measured configuration within --tol; rom "
+     "is not available yet"},
+    {"--friction", "MU", "0.8", "Coulomb friction coefficient of every contact (dimensionless)"},
+    {"--pressure-scale", "K", "1",
+     "multiplies every pressure of the gait (refused if it pushes a gait above 1 MPa)"},
+    {"--t-end", "S", "0 = the gait's length",
+     "simulated time in s; 0 runs until the last row's change has finished"},
+    {"--out", "FILE.h5", "run.h5", "the run file; FILE.xdmf is written beside it"},
+    {"--calibration", "FILE", "the scene's (flat-road: robot/calibration_fe_leg_modes_sym.h5, "
+     "obstacle: robot/calibration_fe_leg_modes.h5)",
+     "the legs' pressure -> shape calibration table"},
+    {"--cal-rule", "prism|rbf|rbf-pair", "the scene's: rbf-pair on flat-road, the table's own "
+     "(prism) on obstacle or with --calibration",
+     "the FE mode table's model rule; refused for other calibration kinds; recorded as "
+     "calibration_rule"},
+    {"--cal-drop", "stretch[,stiffness]", "none",
+     "rod legs leave that part of the calibration out (the segments' axial stretch; a mode "
+     "table's probed EI, EA); recorded as calibration_dropped"},
+    {"--conditions", "earth|paper", "the scene's: paper with its own terrain and gait, earth "
+     "when --terrain or --gait is given",
+     "earth: gravity on every body; paper: the legs keep mass and inertia but feel no gravity "
+     "(the paper's assumption)"},
+    {"--dt", "S", "1e-3", "ODE time step in s (at most 0.01)"},
+    {"--output-dt", "S", "0.01", "sampling interval of the output in s (>= --dt)"},
+    {"--ramp", "S", "0.2", "pressure ramp between gait rows in s"},
+    {"--tau", "S", "0.02", "pneumatic lag time constant in s (0: none)"},
+    {"--gravity", "M/S2", "9.81", "gravitational acceleration in m/s^2"},
+    {"--support-mass", "KG", "0.05", "mass of the support (body) in kg"},
+    {"--links", "N", "the scene's for rod legs (8 on flat-road, 4 on obstacle), else 4",
+     "links (prb) or elements (rod) per leg segment, 1..64"},
+    {"--iterations", "N", "240", "ODE QuickStep iterations per step, 1..10000"},
+    {"--macro-steps", "N", "1", "ODE steps per exchange with co-simulated legs (H = N dt)"},
+    {"--coupling", "staggered|stabilised|gs", "gs",
+     "how co-simulated (rod) legs hand their wrench to the support: gs (Gauss-Seidel: the support "
+     "steps first, momentum exact), stabilised (the legs first along a predicted motion), "
+     "staggered (explicit: needs --dt 3.5e-5 or less); prb ignores it"},
+    {"--contact-scale", "K", "1",
+     "multiplies the normal stiffness of every contact law (ODE's 100 N/mm of prb legs and the "
+     "support, the rod legs' soft foundation modulus), 0 < K <= 1e6"},
+    {"--rod-tol", "K", "1",
+     "multiplies every CVODE tolerance of rod legs, 0 < K <= 1000; recorded as "
+     "rod_tolerance_scale"},
+    {"--tol", "MM", NULL,
+     "with --legs auto: the track error allowed against the rod reference, in mm"},
+    {"--levels", "FILE", "robot/levels.csv",
+     "with --legs auto: the table of measured configurations (tools/bench_levels.py)"},
+    {"--set", "NAME=VALUE", NULL,
+     "a parameter of the legs' actuator, repeatable (as crawlsim bend: S1 a C10 ...); the "
+     "calibration must be of that actuator"},
+    {"--quiet", NULL, "off",
+     "no banner and no progress lines on stderr (the summary, the verdict and errors are still "
+     "printed)"},
+};
 
+static const csxOptTable kRunTable = {
+    "run", "",
+    "Simulate a gait on a terrain and write the run's HDF5 file and its XDMF "
+    "(docs/reference/output.md). Prints the conditions, a progress line per simulated second, a "
+    "stance check, a summary and a verdict line.",
+    kRunOpts, CSX_NOPT(kRunOpts),
+    "Exit status 0 on success, 1 with one error line on bad input or a failed run "
+    "(docs/reference/commands.md)."};
 
-/* the options that take a value (all but --quiet and --help) */
-static const char* const kValueOptions[] = {
-    "--scene", "--gait", "--terrain", "--legs", "--out", "--calibration", "--friction",
-    "--pressure-scale", "--t-end", "--dt", "--output-dt", "--ramp", "--tau", "--support-mass",
-    "--links", "--gravity", "--macro-steps", "--coupling", "--conditions", "--set",
-    "--tol", "--levels", "--contact-scale", "--rod-tol", "--cal-rule", "--iterations",
-    "--cal-drop", "--scene-file", "--slope-deg"};
 
 /* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
  * count would overflow the driver's step counter on 32-bit longs */
 #define MAX_STEPS 1e9
 /* the longest step the driver accepts (sim_driver.c validateOptions) */
 #define MAX_DT_S 0.01
-
-
-static int takesValue(const char* name, size_t len) {
-  for (size_t k = 0; k < sizeof kValueOptions / sizeof kValueOptions[0]; k++) {
-    if (strlen(kValueOptions[k]) == len && !strncmp(kValueOptions[k], name, len)) {
-      return 1;
-    }
-  }
-  return 0;
-}
 
 
 /* parse a finite number given to `flag`; 0 and err filled if it is not one */
@@ -164,35 +180,28 @@ int csx_cmdRun(int argc, char** argv) {
   static csrLevelTable table; /* ~40 KB: not on the stack */
 
   /* options: --name VALUE or --name=VALUE; every failure is one line at done: */
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(kRunUsage, stdout);
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind kind; (kind = csx_optNext(&kRunTable, argc, argv, &it)) != CSX_OPT_END;) {
+    if (kind == CSX_OPT_HELP) {
+      csx_optHelp(&kRunTable, stdout);
       rc = 0;
       goto done;
     }
-    if (!strcmp(a, "--quiet")) {
+    if (kind == CSX_OPT_ERROR) {
+      cs_errorSet(&err, CS_ERR_ARG, "%s", it.error);
+      goto done;
+    }
+    if (kind == CSX_OPT_OPERAND) {
+      cs_errorSet(&err, CS_ERR_ARG, "unexpected argument '%.60s' (see crawlsim run --help)",
+                  it.value);
+      goto done;
+    }
+    const char* flag = it.opt->name;
+    const char* v = it.value;
+    if (!strcmp(flag, "--quiet")) {
       quiet = 1;
       continue;
-    }
-    if (strncmp(a, "--", 2) != 0) {
-      cs_errorSet(&err, CS_ERR_ARG, "unexpected argument '%.60s' (see crawlsim run --help)", a);
-      goto done;
-    }
-    const char* eq = strchr(a, '=');
-    size_t len = eq ? (size_t)(eq - a) : strlen(a);
-    if (!takesValue(a, len)) {
-      cs_errorSet(&err, CS_ERR_ARG, "unknown option '%.*s' (see crawlsim run --help)",
-                  (int)(len > 60 ? 60 : len), a);
-      goto done;
-    }
-    char flag[32];
-    snprintf(flag, sizeof flag, "%.*s", (int)len, a);
-    const char* v = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
-    /* a following option is not a value: `--gait --quiet` means the value was forgotten */
-    if (!v || !v[0] || (!eq && !strncmp(v, "--", 2))) {
-      cs_errorSet(&err, CS_ERR_ARG, "option %s needs a value (see crawlsim run --help)", flag);
-      goto done;
     }
     int ok = 1;
     if (!strcmp(flag, "--scene")) {
@@ -265,8 +274,8 @@ int csx_cmdRun(int argc, char** argv) {
         goto done;
       }
       sets[nset++] = v;
-    } else {
-      ok = parseNum(flag, v, &iters, &err); /* --iterations, the last of kValueOptions */
+    } else if (!strcmp(flag, "--iterations")) {
+      ok = parseNum(flag, v, &iters, &err);
     }
     if (!ok) {
       goto done;

@@ -18,24 +18,33 @@
 
 #include "core_clock.h"
 #include "cs_commands.h"
+#include "cs_opts.h"
 #include "cs_signal.h"
 #include "study_case.h"
 #include "study_file.h"
 #include "study_sched.h"
 
-static const char kUsage[] =
-    "usage: crawlsim study FILE [--out FILE.h5] [--dir DIR] [--resume] [--retry-failed]\n"
-    "                      [--case NAME]... [--schedule dynamic|static] [--list] [--check]\n"
-    "                      [--merge-only]\n"
-    "  Runs the cases of a study file (format: tools/study_file.h, README \"Design studies\"):\n"
-    "  each case is one or more crawlsim commands (bend, run, calibrate, gait-design) run in\n"
-    "  this process; under mpirun one case per rank (rank 0 hands them out: --schedule dynamic,\n"
-    "  or case k on rank k mod n: static). Case files go to DIR (default: FILE.h5's stem +\n"
-    "  _cases), the merged results to FILE.h5 (default: the study's name + .h5); one progress\n"
-    "  line per finished case. --resume keeps finished cases (a killed study continues);\n"
-    "  --retry-failed also reruns failed ones; --case runs only the named cases; --list prints\n"
-    "  the cases and their state; --check only checks the file; --merge-only merges what is\n"
-    "  finished (while a long study runs elsewhere).\n";
+/* the options of `crawlsim study`, for parsing and --help (cs_opts.h) */
+static const csxOpt kStudyOpts[] = {
+    {"--out", "FILE.h5", "the study's name + .h5", "the merged results"},
+    {"--dir", "DIR", "the output's stem + _cases", "where each case's files go"},
+    {"--resume", NULL, "off", "keep finished cases (a killed study continues)"},
+    {"--retry-failed", NULL, "off", "--resume, and rerun failed cases too"},
+    {"--case", "NAME", "every case", "run only the named case, repeatable"},
+    {"--schedule", "dynamic|static", "dynamic (static without MPI_THREAD_SERIALIZED)",
+     "under mpirun: rank 0 hands the cases out (dynamic) or case k runs on rank k mod n "
+     "(static)"},
+    {"--list", NULL, "off", "print the cases and their state, run nothing"},
+    {"--check", NULL, "off", "only check the study file"},
+    {"--merge-only", NULL, "off", "merge what is finished (while a long study runs elsewhere)"},
+};
+
+static const csxOptTable kStudyTable = {
+    "study", "FILE",
+    "Run the cases of a study file (docs/reference/study.md): each case is one or more crawlsim "
+    "commands (bend, run, calibrate, gait-design) run in this process; under mpirun one case per "
+    "rank. One progress line per finished case.",
+    kStudyOpts, CSX_NOPT(kStudyOpts), NULL};
 
 enum { MAX_PICK = 256 };
 
@@ -65,12 +74,23 @@ int csx_cmdStudy(int argc, char** argv) {
   const char* pick[MAX_PICK];
   int npick = 0, resume = 0, retry = 0, list = 0, check = 0, merge_only = 0;
   csxSchedule kind = CSX_SCHEDULE_DYNAMIC;
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(kUsage, stdout);
-      return 0;
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind k; (k = csx_optNext(&kStudyTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int end = csx_optReport(&kStudyTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
+    if (k == CSX_OPT_OPERAND) {
+      if (file) {
+        fprintf(stderr, "crawlsim study: unexpected argument '%s'\n", it.value);
+        return 1;
+      }
+      file = it.value;
+      continue;
+    }
+    const char* a = it.opt->name;
+    const char* v = it.value;
     if (!strcmp(a, "--resume")) {
       resume = 1;
     } else if (!strcmp(a, "--retry-failed")) {
@@ -81,38 +101,24 @@ int csx_cmdStudy(int argc, char** argv) {
       check = 1;
     } else if (!strcmp(a, "--merge-only")) {
       merge_only = 1;
-    } else if (!strcmp(a, "--out") || !strcmp(a, "--dir") || !strcmp(a, "--case") ||
-               !strcmp(a, "--schedule")) {
-      if (i + 1 >= argc || !argv[i + 1][0] || !strncmp(argv[i + 1], "--", 2)) {
-        fprintf(stderr, "crawlsim study: option %s needs a value\n", a);
+    } else if (!strcmp(a, "--out")) {
+      out = v;
+    } else if (!strcmp(a, "--dir")) {
+      dir = v;
+    } else if (!strcmp(a, "--case")) {
+      if (npick == MAX_PICK) {
+        fprintf(stderr, "crawlsim study: more than %d --case options\n", MAX_PICK);
         return 1;
       }
-      const char* v = argv[++i];
-      if (a[2] == 'o') {
-        out = v;
-      } else if (a[2] == 'd') {
-        dir = v;
-      } else if (a[2] == 'c') {
-        if (npick == MAX_PICK) {
-          fprintf(stderr, "crawlsim study: more than %d --case options\n", MAX_PICK);
-          return 1;
-        }
-        pick[npick++] = v;
-      } else if (!strcmp(v, "dynamic") || !strcmp(v, "static")) {
+      pick[npick++] = v;
+    } else if (!strcmp(a, "--schedule")) {
+      if (!strcmp(v, "dynamic") || !strcmp(v, "static")) {
         kind = v[0] == 'd' ? CSX_SCHEDULE_DYNAMIC : CSX_SCHEDULE_STATIC;
       } else {
         fprintf(stderr, "crawlsim study: unknown schedule '%s' (expected dynamic or static)\n",
                 v);
         return 1;
       }
-    } else if (a[0] == '-') {
-      fprintf(stderr, "crawlsim study: unknown option '%s' (see crawlsim study --help)\n", a);
-      return 1;
-    } else if (!file) {
-      file = a;
-    } else {
-      fprintf(stderr, "crawlsim study: unexpected argument '%s'\n", a);
-      return 1;
     }
   }
   if (!file) {

@@ -1,11 +1,13 @@
 /* crawlsim.c: entry point of the `crawlsim` command; dispatches to the subcommands
  * (cs_commands.h). The command-line contract is docs/design.md's. */
 #define _POSIX_C_SOURCE 200809L /* setenv, unsetenv, execv */
+#include <hdf5.h>
 #include <ode/ode.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sundials/sundials_version.h>
 #include <unistd.h>
 
 #include "cmd_fe_threads.h"
@@ -16,8 +18,19 @@
 #include "fem_linsolve.h"
 #endif
 
+#ifndef CS_VERSION_STRING
+#define CS_VERSION_STRING "unknown"
+#endif
+#ifndef CS_ODE_VERSION
+#define CS_ODE_VERSION "unknown"
+#endif
+#ifndef CS_MUMPS_VERSION
+#define CS_MUMPS_VERSION "none"
+#endif
+
 static const char kUsage[] =
     "usage: crawlsim <command> [options]\n"
+    "       crawlsim --version | --help\n"
     "  run       [--scene flat-road|obstacle] [--gait FILE.csv] [--legs auto|prb|rod|rom]\n"
     "            [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5] ...\n"
     "  bend      [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
@@ -25,8 +38,9 @@ static const char kUsage[] =
     "            [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]\n"
     "  gait      check FILE.csv | design FILE.gait [--out FILE.csv] [--check] ...\n"
     "            | flat-road FILE.csv [--stroke MM] [--crouch] ...\n"
-    "  calibrate [--out FILE.h5]\n"
+    "  calibrate [--out FILE.h5] ...\n"
     "  study     FILE [--out FILE.h5] [--resume] ...  (under mpirun: one case per rank)\n"
+    "  export    FILE.h5 --csv [--out DIR]  (a run's tracks as CSV)\n"
     "Run 'crawlsim <command> --help' for the options of one command.\n";
 
 
@@ -44,6 +58,25 @@ static void odeMessage(int num, const char* msg, va_list ap) {
 
 
 static int dispatch(int argc, char** argv);
+
+
+/* `crawlsim --version`: this build and the libraries it runs on (SUNDIALS and HDF5 asked at
+ * run time, ODE and MUMPS as configured: neither has a run-time query) */
+static void printVersion(void) {
+  char sun[64] = "unknown";
+  SUNDIALSGetVersion(sun, (int)sizeof sun);
+  unsigned maj = 0, min = 0, rel = 0;
+  H5get_libversion(&maj, &min, &rel);
+  printf("crawlsim %s\n", CS_VERSION_STRING);
+  printf("  ODE %s, SUNDIALS %s, HDF5 %u.%u.%u, MUMPS %s%s\n", CS_ODE_VERSION, sun, maj, min, rel,
+         CS_MUMPS_VERSION,
+#ifdef CS_FEM_MPI
+         " (MPI)"
+#else
+         ""
+#endif
+  );
+}
 
 
 /* OpenMP threads that sleep when they wait (issue 38). libgomp reads OMP_WAIT_POLICY once, when
@@ -150,6 +183,13 @@ static int dispatch(int argc, char** argv) {
     return argc < 2 ? 1 : 0;
   }
   const char* cmd = argv[1];
+  if (!strcmp(cmd, "--version") || !strcmp(cmd, "-V")) {
+    printVersion();
+    return 0;
+  }
+  if (!strcmp(cmd, "export")) {
+    return csx_cmdExport(argc - 1, argv + 1);
+  }
   if (!strcmp(cmd, "run")) {
     return csx_cmdRun(argc - 1, argv + 1);
   }
@@ -172,6 +212,7 @@ static int dispatch(int argc, char** argv) {
     return csx_cmdStudy(argc - 1, argv + 1);
   }
   fprintf(stderr,
-          "crawlsim: unknown command '%s' (expected run, bend, gait, calibrate or study)\n", cmd);
+          "crawlsim: unknown command '%s' (expected run, bend, gait, calibrate, study or export; "
+          "see crawlsim --help)\n", cmd);
   return 1;
 }

@@ -72,7 +72,7 @@ static void test_badUsage(void) {
   expectFailure("gait check", "crawlsim gait check: missing FILE.csv");
   expectFailure("gait check a.csv b.csv", "crawlsim gait check: more than one file");
   expectFailure("gait check --frobnicate cli_good.csv", "crawlsim gait check: unknown option");
-  expectFailure("gait check cli_good.csv --max-pressure", "crawlsim gait check: --max-pressure");
+  expectFailure("gait check cli_good.csv --max-pressure", "crawlsim gait check: option --max-pressure needs a value");
   expectFailure("gait check cli_good.csv --max-rows 1.5", "crawlsim gait check: --max-rows");
   expectFailure("gait", "crawlsim gait: missing subcommand");
   expectFailure("gait frob", "crawlsim gait: unknown subcommand 'frob'");

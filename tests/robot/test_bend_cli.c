@@ -202,7 +202,7 @@ static void test_badInput(void) {
   expectFailure("--model prb", "crawlsim bend: model 'prb' is not available yet");
   expectFailure("--model rom", "crawlsim bend: model 'rom' is not available yet");
   expectFailure("--model xyz", "crawlsim bend: unknown model 'xyz'");
-  expectFailure("--frobnicate 1", "crawlsim bend: unknown option '--frobnicate'");
+  expectFailure("--frobnicate 1", "crawlsim bend: unknown option --frobnicate");
   expectFailure("stray", "crawlsim bend: unexpected argument 'stray'");
   expectFailure("--branch-switch 2", "crawlsim bend: --branch-switch '2' must be 0 or 1");
   expectFailure("--model analytic --branch-switch 1",

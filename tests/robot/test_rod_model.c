@@ -131,7 +131,7 @@ static void forces_are_energy_gradient(void) {
   double worst = 0;
   for (int e = 1; e <= m->N; e++) {
     for (int k = 0; k < 6; k++) {
-      double Ep, Em;
+      double Ep = 0, Em = 0; /* both sides are always set; the initialisers quiet GCC 12 under LTO */
       for (int side = 0; side < 2; side++) {
         double sg = side ? -1 : 1;
         memcpy(yp, y, (size_t)n * sizeof(double));

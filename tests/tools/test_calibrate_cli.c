@@ -324,8 +324,8 @@ static void expectFailure(const char* args, const char* want) {
 
 
 static void test_bad_options(void) {
-  expectFailure("--bogus 1", "crawlsim calibrate: unknown option '--bogus'");
-  expectFailure("--out", "crawlsim calibrate: --out needs a value");
+  expectFailure("--bogus 1", "crawlsim calibrate: unknown option --bogus");
+  expectFailure("--out", "crawlsim calibrate: option --out needs a value");
   expectFailure("stray", "crawlsim calibrate: unexpected argument 'stray'");
   expectFailure("--p-max 2", "--p-max '2' must be a number in [0.0001, 1]");
   expectFailure("--p-step x", "--p-step 'x' must be a number in");

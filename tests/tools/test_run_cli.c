@@ -55,7 +55,7 @@ static void expectFailure(const char* args, const char* want) {
 
 
 static void test_badOptions(void) {
-  expectFailure("--frobnicate 1", "crawlsim run: unknown option '--frobnicate'");
+  expectFailure("--frobnicate 1", "crawlsim run: unknown option --frobnicate");
   expectFailure("stray", "crawlsim run: unexpected argument 'stray'");
   expectFailure("--friction", "crawlsim run: option --friction needs a value");
   expectFailure("--gait --quiet", "crawlsim run: option --gait needs a value");
@@ -321,6 +321,36 @@ static void test_goodRun(void) {
 }
 
 
+/* issue 36: `gait check` checks a gait against the calibration `run` loads with the same
+ * options, so the two agree: a chamber at 0.45 MPa is refused by both (the flat road's table
+ * ends at 0.4 MPa), one at 0.35 MPa accepted by both; --pressure-scale counts in the check and
+ * --calibration none skips it */
+static void test_gaitCheckAgreesWithRun(void) {
+  CS_EXPECT(cs_cliWriteText("runcli_hi.csv", "time,A_II1_O1\n0,0.45\n0.5,0.45\n"));
+  CS_EXPECT(cs_cliWriteText("runcli_lo.csv", "time,A_II1_O1\n0,0.35\n0.5,0.35\n"));
+  csCliResult r;
+  cs_cliRun(exe_path, "gait check runcli_hi.csv", "runcli", &r);
+  CS_EXPECT(r.status == 1 && cs_cliOneLine(r.err) &&
+            strstr(r.err, "crawlsim gait check: runcli_hi.csv: row at t = 0 s: chamber A_II1_O1 "
+                          "at 0.45 MPa is above the calibrated range (up to 0.4 MPa)") == r.err);
+  cs_cliRun(exe_path, "run --legs prb --t-end 0.5 --quiet --gait runcli_hi.csv --out "
+            "runcli_hi.h5", "runcli", &r);
+  CS_EXPECT(r.status == 1 && strstr(r.err, "is above the calibrated range (up to 0.4 MPa)"));
+  cs_cliRun(exe_path, "gait check runcli_lo.csv", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.out, "within the calibrated range (up to 0.4 MPa)"));
+  cs_cliRun(exe_path, "run --legs prb --t-end 0.5 --quiet --gait runcli_lo.csv --out "
+            "runcli_lo.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  cs_cliRun(exe_path, "gait check runcli_lo.csv --pressure-scale 1.2", "runcli", &r);
+  CS_EXPECT(r.status == 1 && strstr(r.err, "at 0.42 MPa is above the calibrated range"));
+  cs_cliRun(exe_path, "gait check runcli_hi.csv --calibration none", "runcli", &r);
+  CS_EXPECT(r.status == 0 && !strstr(r.out, "calibrated range"));
+  const char* files[] = {"runcli_hi.csv", "runcli_lo.csv", "runcli_hi.h5", "runcli_hi.xdmf",
+                         "runcli_lo.h5", "runcli_lo.xdmf"};
+  for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) remove(files[k]);
+}
+
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_run_cli <path of crawlsim> [case filter]\n");
@@ -332,5 +362,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_badFiles);
   CS_RUN(test_badCalibration);
   CS_RUN(test_goodRun);
+  CS_RUN(test_gaitCheckAgreesWithRun);
   return cs_testSummary();
 }

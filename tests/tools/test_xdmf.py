@@ -11,10 +11,14 @@ yields the shape its item declares; topologies agree with their data (Hexahedron
 per element; Polyline: NodesPerElement = the centreline's points); and the data read through
 the first and the last frame's hyperslabs is the support box and the legs' centrelines (the
 support's corners average to its centre, a leg starts at its hip 65 mm beside the centre
-line); tools/animate_run.py turns the same run into a GIF (Pillow reads its frames). Prints
+line); every frame carries the attributes contact_force_N (support), pressure_MPa,
+foot_force_N and stance (legs); with pvpython, ParaView's XDMF Reader reads every frame and
+each block's points and cell data are exactly the run file's series at that frame's sample;
+tools/animate_run.py turns the same run into a GIF (Pillow reads its frames). Prints
 "N passed, N failed"; exit 1 on any failure.
 Usage: /usr/bin/python3 test_xdmf.py PATH_TO_CRAWLSIM
 """
+import json
 import os
 import shutil
 import subprocess
@@ -152,14 +156,72 @@ def main():
         # 0.3 s at 0.5 simulated s per video s and 10 fps: 6 frames (+1 for t = 0)
         check(a.returncode == 0 and nframes >= 6, f"animate_run.py writes a GIF of {nframes} "
               f"frames {a.stderr.strip()[:200]}")
+        # every frame's attributes: the support's contact force, each leg's 12 pressures, its
+        # foot force and stance (their DataItems were read above)
+        ok_attr = True
+        for fr in frames:
+            sub = {s.get("Name"): s for s in fr.findall("Grid")}
+            ok_attr &= [a.get("Name") for a in sub["support"].findall("Attribute")] == \
+                ["contact_force_N"]
+            for k in "ABCDEFGH":
+                ok_attr &= [a.get("Name") for a in sub["leg_" + k].findall("Attribute")] == \
+                    ["pressure_MPa", "foot_force_N", "stance"]
+        check(ok_attr, "every frame has contact_force_N, pressure_MPa, foot_force_N, stance")
         pv = shutil.which("pvpython")
         if pv:
-            code = ("from paraview.simple import *\n"
-                    f"r = XDMFReader(FileNames=['{xdmf}'])\nr.UpdatePipeline()\n"
-                    "print(len(r.TimestepValues))\n")
-            p = subprocess.run([pv, "-c", code], capture_output=True, text=True)
-            check(p.returncode == 0 and p.stdout.strip().split()[-1] == str(len(frames)),
-                  "pvpython reads every frame")
+            # ParaView's own reader (its "XDMF Reader"), at every frame: the blocks' points and
+            # cell data equal the run file's series at that frame's sample
+            script = os.path.join(tmp, "pv.py")
+            with open(script, "w") as fh:
+                fh.write("import json, sys\n"
+                         "from paraview.simple import XDMFReader\n"
+                         "from paraview import servermanager as sm\n"
+                         "r = XDMFReader(FileNames=[sys.argv[1]])\n"
+                         "out = []\n"
+                         "for t in r.TimestepValues:\n"
+                         "    r.UpdatePipeline(t)\n"
+                         "    it = sm.Fetch(r).NewIterator(); it.InitTraversal(); blocks = []\n"
+                         "    while not it.IsDoneWithTraversal():\n"
+                         "        b = it.GetCurrentDataObject(); cd = b.GetCellData()\n"
+                         "        arr = {cd.GetArrayName(i): list(cd.GetArray(i).GetTuple(0))\n"
+                         "               for i in range(cd.GetNumberOfArrays())}\n"
+                         "        blocks.append([b.GetNumberOfPoints(), list(b.GetPoint(0)), arr])\n"
+                         "        it.GoToNextItem()\n"
+                         "    out.append([t, blocks])\n"
+                         "print('JSON' + json.dumps(out))\n")
+            p = subprocess.run([pv, "--force-offscreen-rendering", script, xdmf],
+                               capture_output=True, text=True)
+            line = [ln for ln in p.stdout.splitlines() if ln.startswith("JSON")]
+            res = json.loads(line[-1][4:]) if line else []
+            # the XDMF 2 reader logs "no caching possible" for geometry behind a HyperSlab: not
+            # an error of the file; anything else it logs is
+            errs = [ln for ln in p.stderr.splitlines() if "ERR" in ln and
+                    "no caching possible" not in ln]
+            check(p.returncode == 0 and len(res) == len(frames) and not errs,
+                  f"pvpython reads all {len(res)} of {len(frames)} frames {errs[:1]}")
+            samples = [int(fr.get("Name").split()[-1]) for fr in frames]
+            worst = 0.0
+            ok_pv = True
+            with h5py.File(h5, "r") as f:
+                for (tv, blocks), i in zip(res, samples):
+                    ok_pv &= abs(tv - t[i]) < 1e-9 and len(blocks) == 10
+                    if len(blocks) != 10:
+                        continue
+                    sup, legs = blocks[1], blocks[2:]
+                    d = [np.abs(np.array(sup[1]) - f["/support/corners"][i, 0]).max(),
+                         np.abs(np.array(sup[2]["contact_force_N"]) - f["/contact/force"][i]).max()]
+                    for k, (n, p0, arr) in enumerate(legs):
+                        c = "ABCDEFGH"[k]
+                        ok_pv &= n == K
+                        d += [np.abs(np.array(p0) - f[f"/legs/{c}/centerline"][i, 0]).max(),
+                              np.abs(np.array(arr["pressure_MPa"]) -
+                                     f["/pressure"][i, 12 * k:12 * k + 12]).max(),
+                              np.abs(np.array(arr["foot_force_N"]) -
+                                     f["/contact/foot_force"][i, k]).max(),
+                              abs(arr["stance"][0] - f["/contact/stance"][i, k])]
+                    worst = max(worst, max(d))
+            check(ok_pv and worst == 0.0 and len(res) > 0,
+                  f"pvpython: every frame's points and attributes are the run file's ({worst})")
         else:
             print("skip pvpython (not installed)")
     finally:
