@@ -27,6 +27,7 @@ static const char kUsage[] =
     "            | flat-road FILE.csv [--stroke MM] [--crouch] ...\n"
     "  calibrate [--out FILE.h5]\n"
     "  study     FILE [--out FILE.h5] [--resume] ...  (under mpirun: one case per rank)\n"
+    "  rom       snapshots [--out DIR] [--ray NAME]... [--mesh-size MM] ...  (reduced FE leg)\n"
     "Run 'crawlsim <command> --help' for the options of one command.\n";
 
 
@@ -171,7 +172,11 @@ static int dispatch(int argc, char** argv) {
   if (!strcmp(cmd, "study")) {
     return csx_cmdStudy(argc - 1, argv + 1);
   }
+  if (!strcmp(cmd, "rom")) {
+    return csx_cmdRom(argc - 1, argv + 1);
+  }
   fprintf(stderr,
-          "crawlsim: unknown command '%s' (expected run, bend, gait, calibrate or study)\n", cmd);
+          "crawlsim: unknown command '%s' (expected run, bend, gait, calibrate, study or rom)\n",
+          cmd);
   return 1;
 }

@@ -12,5 +12,6 @@ int csx_cmdCalibrate(int argc, char** argv); /* cmd_calibrate.c: crawlsim calibr
 int csx_cmdGaitFlatRoad(int argc, char** argv); /* cmd_gaitdesign.c: crawlsim gait flat-road */
 int csx_cmdGaitDesign(int argc, char** argv);   /* cmd_gaitdesign.c: crawlsim gait design */
 int csx_cmdStudy(int argc, char** argv);        /* cmd_study.c: crawlsim study FILE ... */
+int csx_cmdRom(int argc, char** argv);          /* cmd_rom.c: crawlsim rom snapshots ... */
 
 #endif
