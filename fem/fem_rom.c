@@ -413,6 +413,67 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
 }
 
 
+int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
+                         double* G) {
+  if (!r || !d || !load || !G || (int)set < 0 || set >= CSF_ROM_NSET) {
+    return -1;
+  }
+  const csfModel* m = r->fem;
+  const csfMesh* me = m->mesh;
+  const size_t n = (size_t)r->n;
+  const int count[CSF_ROM_NSET] = {me->ntet, m->nfib, me->nface};
+  memset(G, 0, (size_t)count[set] * n * sizeof(double));
+  for (int e = 0; e < count[set]; e++) {
+    double* row = G + (size_t)e * n;
+    if (set == CSF_ROM_SET_TET) {
+      double ue[30], re[30], gv[30], vr, jm;
+      gather(r, d->q, 10, me->tet + 10 * (size_t)e, ue);
+      if (csf_tetKernel(&m->mat, m->dNdX + 120 * (size_t)e, m->wq + 4 * (size_t)e, m->vol[e], ue,
+                        1.0, re, NULL, &vr, gv, &jm)) {
+        return 1;
+      }
+      scatter(r, d, 10, me->tet + 10 * (size_t)e, 1.0, re, NULL, row);
+    } else if (set == CSF_ROM_SET_FIBRE) {
+      const int* fv = m->fib_node + 20 * (size_t)e;
+      const double* cf = m->fib_coef + 20 * (size_t)e;
+      const int nn = m->fib_single[e] ? 10 : 20;
+      double x[60], rf[60], c10[10], E, dch[3];
+      gather(r, d->q, nn, fv, x);
+      for (int a = 0; a < nn; a++) {
+        for (int i = 0; i < 3; i++) {
+          x[3 * a + i] += me->x[3 * fv[a] + i];
+        }
+      }
+      if (nn == 10) {
+        for (int a = 0; a < 10; a++) {
+          c10[a] = cf[a] + cf[10 + a];
+        }
+        cf = c10;
+      }
+      if (csf_fibreKernel(nn, cf, x, m->fib_L0[e], m->fib_EA[e], 0.0, m->fib_tension_only,
+                          m->fib_geo_tension, rf, NULL, &E, dch)) {
+        scatter(r, d, nn, fv, 1.0, rf, NULL, row);
+      }
+    } else if (load->face_p && load->face_p[e] != 0.0) {
+      const int* fn = me->face + 6 * (size_t)e;
+      double xf[18], fe[18], vf;
+      gather(r, d->q, 6, fn, xf);
+      for (int a = 0; a < 6; a++) {
+        for (int i = 0; i < 3; i++) {
+          xf[3 * a + i] += me->x[3 * fn[a] + i];
+        }
+      }
+      csf_faceKernel(xf, load->face_p[e], fe, NULL, &vf);
+      for (int a = 0; a < 18; a++) {
+        fe[a] = -fe[a];
+      }
+      scatter(r, d, 6, fn, 1.0, fe, NULL, row);
+    }
+  }
+  return 0;
+}
+
+
 /* ---- Newton ------------------------------------------------------------------------------- */
 
 csfRomNewtonOptions csf_romNewtonDefault(void) {

@@ -103,6 +103,14 @@ void csf_romDataReset(const csfRom* r, csfRomData* d);
  * > 0 when an element inverts (recoverable: cut the step), < 0 on bad arguments. */
 int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int want_k);
 
+/* The reduced force of every element of `set` in the FE model (weight 1, whatever the rom's
+ * weights) at d->q under `load`: row e of G (nel x n, N) is V_e^T f_e, with f_e the element's
+ * internal force (tets, fibres) or its pressure load with the sign of R (faces: -f_ext). Their
+ * column sums are the unreduced model's parts of r; ECSW fits element weights to them
+ * (tools/rom_ecsw.py). Returns 0, > 0 if an element inverts, < 0 on bad arguments. */
+int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
+                         double* G);
+
 /* Newton options of the reduced statics. */
 typedef struct csfRomNewtonOptions_ {
   int max_iter;  /* iterations per load level */

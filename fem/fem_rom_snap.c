@@ -473,9 +473,7 @@ typedef struct Rows_ {
   double* vol;    /* (cap x 3 x 4) */
 } Rows;
 
-/* enclosed volume of every chamber at the current state, mm^3 (csf_faceKernel's share) */
-static void chamberVolumes(const csfActuatorFE* fe, const csfData* d, double vol[12]) {
-  const csfMesh* me = fe->mesh;
+void csf_romChamberVolumes(const csfMesh* me, const double* u, double vol[12]) {
   memset(vol, 0, 12 * sizeof(double));
   for (int f = 0; f < me->nface; f++) {
     const int tag = me->face_tag[f], s = tag / 10 - 11, j = tag % 10 - 1;
@@ -486,7 +484,7 @@ static void chamberVolumes(const csfActuatorFE* fe, const csfData* d, double vol
     for (int a = 0; a < 6; a++) {
       for (int i = 0; i < 3; i++) {
         const int q = 3 * me->face[6 * f + a] + i;
-        xf[3 * a + i] = me->x[q] + d->u[q];
+        xf[3 * a + i] = me->x[q] + u[q];
       }
     }
     csf_faceKernel(xf, 1.0, fe1, NULL, &vf);
@@ -515,7 +513,7 @@ static csStatus sinkRows(void* user, const csfActuatorFE* fe, const csfData* d, 
     r->stretch[3 * k + s] = seg[s].stretch;
   }
   memcpy(r->tip + 3 * k, tip, 3 * sizeof(double));
-  chamberVolumes(fe, d, r->vol + 12 * k);
+  csf_romChamberVolumes(fe->mesh, d->u, r->vol + 12 * k);
   return CS_OK;
 }
 
@@ -636,4 +634,49 @@ int csf_romSnapDone(const char* path, const csfRomRay* ray, const csfRomSnapSett
   }
   H5E_END_TRY;
   return ok;
+}
+
+
+csStatus csf_romSnapRead(const char* path, csfRomSnapFile* s, csError* err) {
+  memset(s, 0, sizeof *s);
+  csStatus st = CS_OK;
+  H5E_BEGIN_TRY {
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hsize_t dims[3] = {0, 0, 0};
+    H5T_class_t cls;
+    size_t sz = 0;
+    char kind[16] = "";
+    if (f < 0) {
+      st = cs_errorSet(err, CS_ERR_IO, "%s: cannot open the ray file", path);
+    } else if (H5LTget_attribute_info(f, "/", "name", dims, &cls, &sz) < 0 ||
+               sz >= sizeof s->ray.name ||
+               H5LTget_attribute_string(f, "/", "name", s->ray.name) < 0 ||
+               H5LTget_attribute_info(f, "/", "kind", dims, &cls, &sz) < 0 || sz >= sizeof kind ||
+               H5LTget_attribute_string(f, "/", "kind", kind) < 0 ||
+               H5LTget_dataset_info(f, "/t", dims, &cls, &sz) < 0 || dims[0] < 1 ||
+               dims[0] > CSF_ROM_MAX_OUT) {
+      st = cs_errorSet(err, CS_ERR_IO, "%s: not a finished ray file (name, kind, t of 1..%d rows)",
+                       path, CSF_ROM_MAX_OUT);
+    } else {
+      s->m = (int)dims[0];
+      s->ray.nout = s->m;
+      s->ray.kind = strcmp(kind, "test") ? CSF_ROM_TRAIN : CSF_ROM_TEST;
+      if (H5LTread_dataset_double(f, "/t", s->t) < 0 ||
+          H5LTread_dataset_double(f, "/pressure_end", &s->ray.p[0][0]) < 0 ||
+          H5LTread_dataset_double(f, "/gravity_end", s->ray.gravity) < 0 ||
+          H5LTread_dataset_double(f, "/tip_force_end", s->ray.tip_force) < 0 ||
+          H5LTread_dataset_double(f, "/bend", &s->bend[0][0][0]) < 0 ||
+          H5LTread_dataset_double(f, "/tip", &s->tip[0][0]) < 0 ||
+          H5LTread_dataset_double(f, "/chamber_volume", &s->vol[0][0]) < 0 ||
+          !attrDouble(f, "wall_time_s", &s->wall) ||
+          !attrDouble(f, "newton_iterations", &s->newton)) {
+        st = cs_errorSet(err, CS_ERR_IO, "%s: a ray file without its loads or measurements", path);
+      }
+    }
+    if (f >= 0) {
+      H5Fclose(f);
+    }
+  }
+  H5E_END_TRY;
+  return st;
 }

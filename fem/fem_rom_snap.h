@@ -114,6 +114,26 @@ csStatus csf_romSnapRun(csfActuatorFE* fe, csfData* d, const double* s0, const c
                         const csfRomRay* ray, const csfRomSnapSettings* s, const char* path,
                         csfRomSnapInfo* info, csError* err);
 
+/* What a ray file holds besides the displacements (csf_romSnapRead). */
+#define CSF_ROM_MAX_OUT 16
+typedef struct csfRomSnapFile_ {
+  csfRomRay ray;       /* name, kind, end loads, nout (= m) */
+  int m;               /* output states */
+  double t[CSF_ROM_MAX_OUT];
+  double bend[CSF_ROM_MAX_OUT][CSR_NSEG][2]; /* rad */
+  double tip[CSF_ROM_MAX_OUT][3];            /* mm */
+  double vol[CSF_ROM_MAX_OUT][12];           /* mm^3 */
+  double wall;         /* the FE's wall time of the ray, s */
+  double newton;       /* its Newton iterations */
+} csfRomSnapFile;
+
+/* Read a ray file's loads and measurements (not u). */
+csStatus csf_romSnapRead(const char* path, csfRomSnapFile* s, csError* err);
+
+/* The enclosed volume of every chamber (segment s, chamber j at 4 s + j; mm^3) at the
+ * displacement u (ndof, mm): the sum of csf_faceKernel's shares over the chamber's faces. */
+void csf_romChamberVolumes(const csfMesh* me, const double* u, double vol[12]);
+
 /* 1 when `path` is a finished ray file of `ray` with the settings `s` (a resumed production
  * skips it), 0 otherwise. */
 int csf_romSnapDone(const char* path, const csfRomRay* ray, const csfRomSnapSettings* s);

@@ -60,6 +60,7 @@ static const char kUsage[] =
     "                     [--calibration FILE|analytic] [--cal-rule prism|rbf|rbf-pair]\n"
     "                     [--cal-drop stretch|stiffness|stretch,stiffness]\n"
     "                     [--branch-switch 0|1] [--threads N] [--out FILE.h5]\n"
+    "                     [--rom-basis FILE.h5] [--rom-weights FILE.h5]\n"
     "  Inflates the listed chambers (1..4) of all three segments at equal pressure from 0 to\n"
     "  p-max (default 0.4 MPa) in steps of p-step (0.05 MPa) and writes the bending angles and\n"
     "  tip positions to FILE.h5 (default bend.h5). NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1\n"
@@ -84,7 +85,10 @@ static const char kUsage[] =
     "  --mesh-symmetric 1: mesh an eighth of the leg, mirrored and turned, so the mesh has the\n"
     "  square section's eight symmetries (default 0: gmsh's mesh of the whole body).\n"
     "  --threads N: the FE's threads (default: this process's cores, its share under mpirun,\n"
-    "  less the cores other processes hold; never more than the affinity mask's cores).\n";
+    "  less the cores other processes hold; never more than the affinity mask's cores).\n"
+    "  rom only: --rom-basis FILE, the reduced basis (tools/rom_basis.py; its mesh size and the\n"
+    "  symmetric mesh are the model's), --rom-weights FILE, the hyper-reduction's element\n"
+    "  weights (tools/rom_ecsw.py; default every element at weight 1). docs/notes/rom.md.\n";
 
 static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
 
@@ -503,6 +507,10 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
       bad = parsePressures(value, run);
     } else if (!strcmp(name, "--tip-load")) {
       bad = parseNumbers(name, value, 3, run->tip_load);
+    } else if (!strcmp(name, "--rom-basis")) {
+      run->rom_basis = value;
+    } else if (!strcmp(name, "--rom-weights")) {
+      run->rom_weights = value;
     } else if (!strcmp(name, "--cal-rule")) {
       csrCalRule rule;
       if (!csr_calRuleParse(value, &rule)) {
@@ -540,7 +548,8 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   /* the actuator: preset, then every --set in order, then a consistency check; the rod's
    * default is its default calibration's actuator, so that `bend --model rod` runs as is */
   if (!actuator) {
-    actuator = run->model == BEND_ROD ? CSX_MISSION_ACTUATOR : "baseline";
+    actuator = run->model == BEND_ROD || run->model == BEND_ROM ? CSX_MISSION_ACTUATOR
+                                                                : "baseline";
   }
   csError err;
   cs_errorClear(&err);
@@ -677,21 +686,28 @@ int csx_cmdBend(int argc, char** argv) {
             "tangent to switch branches on)\n", kModelNames[run.model]);
     return 1;
   }
+  if ((run.rom_basis || run.rom_weights) && run.model != BEND_ROM) {
+    fprintf(stderr, "crawlsim bend: --rom-basis and --rom-weights are for --model rom\n");
+    return 1;
+  }
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
-  if ((tip && run.model != BEND_ROD && run.model != BEND_FE) ||
+  if ((tip && run.model != BEND_ROD && run.model != BEND_FE && run.model != BEND_ROM) ||
       ((run.calibration || run.cal_rule >= 0 || run.cal_drop) && run.model != BEND_ROD)) {
     fprintf(stderr, "crawlsim bend: %s is for --model %s (the %s model has no %s)\n",
             tip                ? "--tip-load"
             : run.calibration  ? "--calibration"
             : run.cal_rule >= 0 ? "--cal-rule"
                                : "--cal-drop",
-            tip ? "rod or fe" : "rod",
+            tip ? "rod, fe or rom" : "rod",
             kModelNames[run.model], tip ? "tip load" : "calibration");
     return 1;
   }
 #ifdef CS_HAVE_FEM
   if (run.model == BEND_FE) {
     return csx_bendFe(&run);
+  }
+  if (run.model == BEND_ROM) {
+    return csx_bendRom(&run);
   }
 #endif
   BendPointFn eval = bendModelEvaluator(run.model);

@@ -15,7 +15,9 @@ relative projection error over the training snapshots, |u - V V^T M u|_M / |u|_M
 nodal displacement error, mm) of the training snapshots and of the held-out rays (the best any
 reduced model on this basis can do there), and writes BASIS.h5:
   V [ndof, n] (zero rows at clamped dofs), sigma [nsnap] (sqrt of C's eigenvalues, decreasing),
-  Mr [n, n] (V^T M V), attributes n, tol, mass_total (t), rho, nsnap, the rays used.
+  Mr [n, n] (V^T M V), q_snap [nsnap, n] (the training snapshots' reduced coordinates) with
+  their loads p_snap [nsnap,3,4] (MPa), g_snap [nsnap,3] (mm/s^2), F_snap [nsnap,3] (N),
+  attributes n, tol, mass_total_t, rho, nsnap, the rays used, the mesh signature.
 Units: mm, t (tonnes), N.
 """
 import argparse
@@ -94,7 +96,8 @@ def read_rays(snapdir):
             if "u" not in f:
                 continue
             rays.append(dict(name=str(f.attrs["name"]), kind=str(f.attrs["kind"]),
-                             u=f["u"][...], t=f["t"][...], status=str(f.attrs["status"])))
+                             u=f["u"][...], t=f["t"][...], status=str(f.attrs["status"]),
+                             p=f["pressure"][...], g=f["gravity"][...], F=f["tip_force"][...]))
     return rays
 
 
@@ -190,12 +193,24 @@ def main():
         f.attrs["mass_total_t"] = mass_total
         f.attrs["nsnap"] = ns
         f.attrs["fe_mesh_size_mm"] = l_soft
+        # the mesh signature the C side checks (fem/fem_rom_act.h)
+        f.attrs["mesh_nnode"] = x.shape[0]
+        f.attrs["mesh_ntet"] = tet.shape[0]
+        f.attrs["mesh_x_sum"] = float(x.sum())
+        f.attrs["mesh_x_sq"] = float((x * x).sum())
+        f.attrs["snapshots"] = os.path.abspath(a.snapdir)
         f.attrs["train_rays"] = ",".join(r["name"] for r in train)
         f.attrs["test_rays"] = ",".join(r["name"] for r in test)
         f.attrs["units"] = "V: mm per unit reduced coordinate (M-orthonormal, M in t); sigma: t^0.5 mm"
         f["V"] = V
         f["sigma"] = sigma
         f["Mr"] = Mr
+        # the training snapshots in reduced coordinates (q = V^T M u) with their loads: what
+        # the hyper-reduction is fitted on (crawlsim rom ecsw-matrix, tools/rom_ecsw.py)
+        f["q_snap"] = (V.T @ MX).T
+        f["p_snap"] = np.concatenate([r["p"] for r in train], axis=0)
+        f["g_snap"] = np.concatenate([r["g"] for r in train], axis=0)
+        f["F_snap"] = np.concatenate([r["F"] for r in train], axis=0)
     print(f"rom_basis: {out}")
 
 

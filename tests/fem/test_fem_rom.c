@@ -369,6 +369,25 @@ static void test_unit_weights_on_every_element_equal_the_unreduced_model(void) {
          ek, mk);
   CS_EXPECT_NEAR(er / mr, 0.0, 1e-13, 0);
   CS_EXPECT_NEAR(ek / mk, 0.0, 1e-13, 0);
+  /* the element forces sum to the residual less gravity: r = sum_sets sum_e G_e - G g */
+  double sum[4] = {0, 0, 0, 0};
+  for (int s = 0; s < CSF_ROM_NSET; s++) {
+    double* G = malloc((size_t)cnt[s] * n * sizeof(double));
+    CS_EXPECT(csf_romElementForces(r, d0, &ld, (csfRomSet)s, G) == 0);
+    for (int e = 0; e < cnt[s]; e++) {
+      for (int j = 0; j < n; j++) {
+        sum[j] += G[(size_t)e * n + j];
+      }
+    }
+    free(G);
+  }
+  double eg = 0;
+  for (int j = 0; j < n; j++) {
+    sum[j] -= r->G[3 * j + 1] * ld.gravity[1];
+    eg = fmax(eg, fabs(sum[j] - r0[j]));
+  }
+  printf("  element forces summed: |sum - r| %.2e of %.2e\n", eg, mr);
+  CS_EXPECT_NEAR(eg / mr, 0.0, 1e-13, 0);
   /* a negative weight is refused */
   int one = 0;
   double neg = -1.0;
