@@ -28,7 +28,11 @@ extern "C" {
 #endif
 
 /* Element sets of the reduced forces: Tet10 bodies, fibre trusses, pressure faces. */
-typedef enum csfRomSet_ { CSF_ROM_SET_TET = 0, CSF_ROM_SET_FIBRE = 1, CSF_ROM_SET_FACE = 2 } csfRomSet;
+typedef enum csfRomSet_ {
+  CSF_ROM_SET_TET = 0,
+  CSF_ROM_SET_FIBRE = 1,
+  CSF_ROM_SET_FACE = 2
+} csfRomSet;
 #define CSF_ROM_NSET 3
 
 typedef struct csfRom_ {

@@ -52,7 +52,8 @@ void csf_romActuatorDestroy(csfRomActuator* ra);
 /* The mesh size (l_soft, mm) a basis file was made on (NAN and err when unreadable). */
 double csf_romBasisMeshSize(const char* basis_path, csError* err);
 
-/* Reduced statics at chamber pressures p (MPa, segment s chamber j at 4 s + j), gravity g (mm/s^2) and tip force F (N), ramped
+/* Reduced statics at chamber pressures p (MPa, segment s chamber j at 4 s + j), gravity g
+ * (mm/s^2) and tip force F (N), ramped
  * from the last solved load in adaptive steps (halved on failure down to 1e-4 of the range,
  * grown by 1.5 after easy ones). On failure the last solved state is kept and CS_ERR_DIVERGED
  * returned. ra->u holds the displacement afterwards. */

@@ -357,7 +357,8 @@ csStatus csf_romSnapRay(csfActuatorFE* fe, csfData* d, const double* s0, const c
       csf_stateSet(m, d, sc);
       dt = 0.5 * step;
       if (dt < s->dt_min) {
-        snprintf(info->why, sizeof info->why, "no equilibrium beyond t = %.5g (step %.2g): %.200s", t,
+        snprintf(info->why, sizeof info->why, "no equilibrium beyond t = %.5g (step %.2g): %.200s",
+                 t,
                  step, lerr.msg);
         setLoads(fe, ray, t);
         break;

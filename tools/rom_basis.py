@@ -84,6 +84,35 @@ def mass_matrix(x, tet, rho):
     return M, vol.sum()
 
 
+def turn_maps(x):
+    """Node maps of the quarter turns about the leg axis (x, y) -> (-y, x), k = 1, 2, 3: node
+    i goes to node perm[k][i]; None when the mesh lacks the symmetry (not the symmetric mesh)."""
+    from scipy.spatial import cKDTree
+    tree = cKDTree(x)
+    maps = []
+    R = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    Rk = np.eye(3)
+    for _ in range(3):
+        Rk = R @ Rk
+        d, j = tree.query(x @ Rk.T)
+        if d.max() > 1e-6 * np.abs(x).max():
+            return None
+        maps.append((Rk.copy(), j))
+    return maps
+
+
+def turn_snapshots(U, maps):
+    """The snapshots U (ndof, m) turned by each quarter turn: u'_{perm(i)} = R u_i."""
+    out = [U]
+    nn = U.shape[0] // 3
+    for Rk, j in maps:
+        V = np.empty_like(U)
+        Ui = U.reshape(nn, 3, -1)
+        V.reshape(nn, 3, -1)[j] = np.einsum("ab,nbm->nam", Rk, Ui)
+        out.append(V)
+    return np.concatenate(out, axis=1)
+
+
 def read_rays(snapdir):
     rays = []
     for p in sorted(glob.glob(os.path.join(snapdir, "*.h5"))):
@@ -108,6 +137,10 @@ def main():
     ap.add_argument("--tol", type=float, default=1e-3,
                     help="largest relative M-norm projection error of a training snapshot")
     ap.add_argument("--n", type=int, default=0, help="basis size (overrides --tol)")
+    ap.add_argument("--turns", action="store_true",
+                    help="add every training snapshot turned by the section's quarter turns (the "
+                         "symmetric mesh maps onto itself; the fibre helices' start does not, so "
+                         "the turned states are near-equilibria, not equilibria)")
     a = ap.parse_args()
     out = a.out or os.path.join(a.snapdir, "basis.h5")
     with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
@@ -129,6 +162,13 @@ def main():
         sys.exit(f"rom_basis: {a.snapdir}: no training ray file")
     X = np.concatenate([r["u"] for r in train], axis=0).T  # (ndof, ns)
     X[fixed] = 0.0
+    ns_fe = X.shape[1]
+    if a.turns:
+        maps = turn_maps(x)
+        if maps is None:
+            sys.exit("rom_basis: --turns: the mesh is not symmetric under quarter turns")
+        X = turn_snapshots(X, maps)
+        X[fixed] = 0.0
     ns = X.shape[1]
     MX = M @ X
     C = X.T @ MX
@@ -136,7 +176,8 @@ def main():
     order = np.argsort(lam)[::-1]
     lam, Phi = np.clip(lam[order], 0, None), Phi[:, order]
     sigma = np.sqrt(lam)
-    print(f"rom_basis: {len(train)} training rays, {ns} snapshots; {len(test)} held-out rays")
+    print(f"rom_basis: {len(train)} training rays, {ns_fe} FE snapshots"
+          f"{f' ({ns} with the quarter turns)' if a.turns else ''}; {len(test)} held-out rays")
     print("rom_basis: singular values sigma_i / sigma_1 (M-norm):")
     for i in range(0, ns, 8):
         print("  " + " ".join(f"{s / sigma[0]:.2e}" for s in sigma[i:i + 8]))
@@ -192,6 +233,8 @@ def main():
         f.attrs["rho"] = rho
         f.attrs["mass_total_t"] = mass_total
         f.attrs["nsnap"] = ns
+        f.attrs["nsnap_fe"] = ns_fe
+        f.attrs["turns"] = int(a.turns)
         f.attrs["fe_mesh_size_mm"] = l_soft
         # the mesh signature the C side checks (fem/fem_rom_act.h)
         f.attrs["mesh_nnode"] = x.shape[0]
@@ -201,13 +244,14 @@ def main():
         f.attrs["snapshots"] = os.path.abspath(a.snapdir)
         f.attrs["train_rays"] = ",".join(r["name"] for r in train)
         f.attrs["test_rays"] = ",".join(r["name"] for r in test)
-        f.attrs["units"] = "V: mm per unit reduced coordinate (M-orthonormal, M in t); sigma: t^0.5 mm"
+        f.attrs["units"] = ("V: mm per unit reduced coordinate (M-orthonormal, M in t); "
+                            "sigma: t^0.5 mm")
         f["V"] = V
         f["sigma"] = sigma
         f["Mr"] = Mr
         # the training snapshots in reduced coordinates (q = V^T M u) with their loads: what
         # the hyper-reduction is fitted on (crawlsim rom ecsw-matrix, tools/rom_ecsw.py)
-        f["q_snap"] = (V.T @ MX).T
+        f["q_snap"] = (V.T @ MX[:, :ns_fe]).T
         f["p_snap"] = np.concatenate([r["p"] for r in train], axis=0)
         f["g_snap"] = np.concatenate([r["g"] for r in train], axis=0)
         f["F_snap"] = np.concatenate([r["F"] for r in train], axis=0)
