@@ -102,6 +102,7 @@ void csf_romDestroy(csfRom* r) {
   }
   free(r->V);
   free(r->G);
+  free(r->face_ch), free(r->ch_V0), free(r->ch_g0), free(r->ch_H);
   for (int s = 0; s < CSF_ROM_NSET; s++) {
     free(r->el[s]);
     free(r->w[s]);
@@ -109,6 +110,138 @@ void csf_romDestroy(csfRom* r) {
   free(r);
 }
 
+
+/* one face's share at q: volume (mm^3), gradient g (+= V_f^T fe, p = 1) and Hessian H
+ * (+= V_f^T (-kfe) V_f) */
+static void faceShare(const csfRom* r, const double* q, int f, double* vol, double* g, double* H,
+                      double* T) {
+  const csfMesh* me = r->fem->mesh;
+  const int n = r->n;
+  const int* fn = me->face + 6 * (size_t)f;
+  double xf[18], fe[18], kfe[324], vf;
+  for (int a = 0; a < 6; a++) {
+    for (int i = 0; i < 3; i++) {
+      const double* row = r->V + (size_t)(3 * fn[a] + i) * (size_t)n;
+      double s = me->x[3 * fn[a] + i];
+      for (int j = 0; j < n; j++) {
+        s += row[j] * q[j];
+      }
+      xf[3 * a + i] = s;
+    }
+  }
+  csf_faceKernel(xf, 1.0, fe, kfe, &vf);
+  *vol += vf;
+  for (int k = 0; k < 18; k++) {
+    const double* row = r->V + (size_t)(3 * fn[k / 3] + k % 3) * (size_t)n;
+    for (int j = 0; j < n; j++) {
+      g[j] += row[j] * fe[k];
+      double t = 0;
+      for (int l = 0; l < 18; l++) {
+        t -= kfe[18 * k + l] * r->V[(size_t)(3 * fn[l / 3] + l % 3) * (size_t)n + j];
+      }
+      T[(size_t)k * n + j] = t;
+    }
+  }
+  for (int k = 0; k < 18; k++) {
+    const double* row = r->V + (size_t)(3 * fn[k / 3] + k % 3) * (size_t)n;
+    for (int i = 0; i < n; i++) {
+      for (int j = 0; j < n; j++) {
+        H[(size_t)i * n + j] += row[i] * T[(size_t)k * n + j];
+      }
+    }
+  }
+}
+
+csStatus csf_romChamberTensors(csfRom* r, int nch, const int* face_ch, csError* err) {
+  const csfMesh* me = r->fem->mesh;
+  const size_t n = (size_t)r->n, nn = n * n;
+  for (int f = 0; f < me->nface; f++) {
+    if (face_ch[f] < -1 || face_ch[f] >= nch) {
+      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: face %d in chamber %d of %d", f, face_ch[f],
+                         nch);
+    }
+  }
+  free(r->face_ch), free(r->ch_V0), free(r->ch_g0), free(r->ch_H);
+  r->nch = 0;
+  r->face_ch = malloc((size_t)(me->nface + 1) * sizeof(int));
+  r->ch_V0 = calloc((size_t)nch + 1, sizeof(double));
+  r->ch_g0 = calloc((size_t)nch * n + 1, sizeof(double));
+  r->ch_H = calloc((size_t)nch * (n + 1) * nn + 1, sizeof(double));
+  double* q = calloc(n, sizeof(double));
+  double* g = calloc(n, sizeof(double));
+  double* T = calloc(18 * n, sizeof(double));
+  if (!r->face_ch || !r->ch_V0 || !r->ch_g0 || !r->ch_H || !q || !g || !T) {
+    free(q), free(g), free(T);
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (%d chambers, n = %zu)", nch,
+                       n);
+  }
+  memcpy(r->face_ch, face_ch, (size_t)me->nface * sizeof(int));
+  for (int c = 0; c < nch; c++) {
+    double* H0 = r->ch_H + (size_t)c * (n + 1) * nn;
+    for (int f = 0; f < me->nface; f++) {
+      if (face_ch[f] == c) {
+        faceShare(r, q, f, &r->ch_V0[c], r->ch_g0 + (size_t)c * n, H0, T);
+      }
+    }
+    /* H is linear in q: H_k = H(e_k) - H(0) exactly (up to round-off) */
+    for (size_t k = 0; k < n; k++) {
+      double* Hk = H0 + (k + 1) * nn;
+      double vol = 0;
+      q[k] = 1.0;
+      for (int f = 0; f < me->nface; f++) {
+        if (face_ch[f] == c) {
+          faceShare(r, q, f, &vol, g, Hk, T);
+        }
+      }
+      q[k] = 0.0;
+      for (size_t i = 0; i < nn; i++) {
+        Hk[i] -= H0[i];
+      }
+    }
+  }
+  free(q), free(g), free(T);
+  r->nch = nch;
+  return CS_OK;
+}
+
+/* H(q) = H0 + sum_k q_k H_k of chamber c into Hq (n x n) */
+static void chamberHessian(const csfRom* r, int c, const double* q, double* Hq) {
+  const size_t n = (size_t)r->n, nn = n * n;
+  const double* H0 = r->ch_H + (size_t)c * (n + 1) * nn;
+  memcpy(Hq, H0, nn * sizeof(double));
+  for (size_t k = 0; k < n; k++) {
+    if (q[k] == 0.0) {
+      continue;
+    }
+    const double* Hk = H0 + (k + 1) * nn;
+    for (size_t i = 0; i < nn; i++) {
+      Hq[i] += q[k] * Hk[i];
+    }
+  }
+}
+
+double csf_romChamberVolume(const csfRom* r, int c, const double* q) {
+  const size_t n = (size_t)r->n, nn = n * n;
+  const double* H0 = r->ch_H + (size_t)c * (n + 1) * nn;
+  const double* g0 = r->ch_g0 + (size_t)c * n;
+  double v = r->ch_V0[c];
+  for (size_t i = 0; i < n; i++) {
+    double h0 = 0, h3 = 0;
+    for (size_t j = 0; j < n; j++) {
+      h0 += H0[i * n + j] * q[j];
+    }
+    for (size_t k = 0; k < n; k++) {
+      const double* Hk = H0 + (k + 1) * nn + i * n;
+      double s = 0;
+      for (size_t j = 0; j < n; j++) {
+        s += Hk[j] * q[j];
+      }
+      h3 += q[k] * s;
+    }
+    v += q[i] * (g0[i] + 0.5 * h0 + h3 / 6.0);
+  }
+  return v;
+}
 
 csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, const double* w,
                            csError* err) {
@@ -373,8 +506,8 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
     for (int k = 0; k < r->nel[CSF_ROM_SET_FACE]; k++) {
       const int f = r->el[CSF_ROM_SET_FACE][k];
       const double p = load->face_p[f];
-      if (p == 0.0) {
-        continue;
+      if (p == 0.0 || (r->nch > 0 && r->face_ch[f] >= 0)) {
+        continue; /* vented, or a chamber in closed form (below) */
       }
       const int* fn = me->face + 6 * (size_t)f;
       double xf[18], fe[18], kfe[324], vf;
@@ -389,6 +522,35 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
         fe[a] = -fe[a];
       }
       scatter(r, d, 6, fn, r->w[CSF_ROM_SET_FACE][k], fe, want_k ? kfe : NULL, d->r);
+    }
+  }
+  /* chambers in closed form: r -= p g_c(q), K -= p H_c(q) (the lu scratch holds H(q)) */
+  for (int c = 0; load->face_p && c < r->nch; c++) {
+    double p = 0.0;
+    for (int f = 0; f < me->nface; f++) {
+      if (r->face_ch[f] == c) {
+        p = load->face_p[f];
+        break;
+      }
+    }
+    if (p == 0.0) {
+      continue;
+    }
+    double* Hq = d->lu;
+    chamberHessian(r, c, d->q, Hq);
+    const double* H0 = r->ch_H + (size_t)c * (size_t)(n + 1) * (size_t)n * (size_t)n;
+    const double* g0 = r->ch_g0 + (size_t)c * (size_t)n;
+    for (int i = 0; i < n; i++) {
+      double s = 0;
+      for (int j = 0; j < n; j++) {
+        s += (H0[(size_t)i * n + j] + Hq[(size_t)i * n + j]) * d->q[j];
+      }
+      d->r[i] -= p * (g0[i] + 0.5 * s);
+    }
+    if (want_k) {
+      for (size_t i = 0; i < (size_t)n * (size_t)n; i++) {
+        d->K[i] -= p * Hq[i];
+      }
     }
   }
   /* gravity and dead loads, exact */

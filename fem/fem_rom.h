@@ -44,6 +44,16 @@ typedef struct csfRom_ {
   double* w[CSF_ROM_NSET]; /* (nel) their weights (>= 0) */
   double* G;           /* (n x 3) reduced body force per unit acceleration, V^T f_g(e_i),
                         * N s^2/mm (exact: every element, linear in g) */
+  /* chambers in closed form (csf_romChamberTensors): 0 = none, the faces go through the face
+   * set. The volume a chamber's faces enclose is a cubic polynomial of the nodal positions,
+   * hence of q: V_c(q) = V0 + g0.q + q.H0 q / 2 + sum_k q_k q.H_k q / 6, its gradient (the
+   * reduced pressure load per unit pressure) g0 + (H0 + H(q)) q / 2 and its Hessian
+   * H(q) = H0 + sum_k q_k H_k, exactly, from n + 1 evaluations of the faces */
+  int nch;
+  int* face_ch;        /* (nface) chamber of each face, -1: not in a chamber */
+  double* ch_V0;       /* (nch) mm^3 */
+  double* ch_g0;       /* (nch x n) mm^3 per unit q */
+  double* ch_H;        /* (nch x (n + 1) x n x n): H0, H_1 .. H_n */
 } csfRom;
 
 /* Build a reduced model on the finalised FE model `fem` (not copied; must outlive the rom) with
@@ -56,6 +66,16 @@ void csf_romDestroy(csfRom* r);
  * CS_ERR_ARG on an index out of range or a negative or non-finite weight. */
 csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, const double* w,
                            csError* err);
+
+/* Take the chambers' pressure loads in closed form (see csfRom.nch): face f belongs to chamber
+ * face_ch[f] (0..nch-1, -1: none; every face of a chamber must carry the same pressure in a
+ * load). Afterwards the faces of chambers leave the face set (exact, conservative, a symmetric
+ * load stiffness when the chambers are closed: no hyper-reduction needed) and cost O(n^3) per
+ * chamber instead of O(faces n^2). CS_ERR_ARG on a bad chamber index. */
+csStatus csf_romChamberTensors(csfRom* r, int nch, const int* face_ch, csError* err);
+
+/* The volume chamber c encloses at q (mm^3; csf_romChamberTensors first). */
+double csf_romChamberVolume(const csfRom* r, int c, const double* q);
 
 /* Project a full nodal force (ndof, N) onto the basis: fr = V^T f (n). */
 void csf_romProject(const csfRom* r, const double* f, double* fr);

@@ -185,6 +185,25 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
     csf_romActuatorDestroy(ra);
     return err->status;
   }
+  /* the twelve chambers' pressure loads in closed form (fem_rom.h: exact, conservative) */
+  int* fch = malloc((size_t)me->nface * sizeof(int) + 1);
+  if (!fch) {
+    csf_romActuatorDestroy(ra);
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom_act: out of memory");
+  }
+  for (int f = 0; f < me->nface; f++) {
+    const int tag = me->face_tag[f], seg = tag / 10 - 11, j = tag % 10 - 1;
+    fch[f] = tag >= CSF_TAG_CHAMBER(0, 1) && seg >= 0 && seg < CSR_NSEG && j >= 0 &&
+                     j < CSR_NCHAMBER
+                 ? CSR_NCHAMBER * seg + j
+                 : -1;
+  }
+  st = csf_romChamberTensors(ra->rom, CSR_NSEG * CSR_NCHAMBER, fch, err);
+  free(fch);
+  if (st != CS_OK) {
+    csf_romActuatorDestroy(ra);
+    return st;
+  }
   ra->d = csf_romDataCreate(ra->rom, err);
   const size_t nd = (size_t)ra->fe.model->ndof;
   ra->face_p = calloc((size_t)me->nface + 1, sizeof(double));

@@ -3,7 +3,8 @@
  * Owns: csfRomActuator: the actuator's FE model on the snapshots' mesh (meshed again from the
  * same parameters and checked against the basis file's mesh signature), the reduced model on
  * the basis of tools/rom_basis.py (fem_rom.h) with the element weights of a hyper-reduction
- * file when given, the chamber-pressure and tip-force maps, and the reduced statics of a load
+ * file when given and the twelve chambers' pressure loads in closed form
+ * (csf_romChamberTensors: exact, so the chamber faces are never hyper-reduced), the chamber-pressure and tip-force maps, and the reduced statics of a load
  * (chamber pressures per segment, gravity, tip force) reached by an adaptive ramp from the last
  * solved load; the displacement and the measurements (fem_measure.h) of the solved state.
  * Basis file (format "crawlsim-rom-basis 1"): V [ndof, n], attributes n, fe_mesh_size_mm,
