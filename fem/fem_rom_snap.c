@@ -368,6 +368,9 @@ csStatus csf_romSnapRay(csfActuatorFE* fe, csfData* d, const double* s0, const c
     memcpy(sp, sc, ns * sizeof(double));
     csf_stateGet(m, d, sc);
     info->steps++;
+    if (s->progress) {
+      s->progress(s->progress_user, ray->name, tn, it, csf_wallTime() - t0);
+    }
     dt_prev = step;
     t = tn;
     info->t_end = t;

@@ -72,6 +72,9 @@ typedef struct csfRomSnapSettings_ {
   double dt_min;      /* smallest step in t before the ray is ended (-) */
   const char* work_stem; /* scratch path prefix of gmsh's files */
   const volatile sig_atomic_t* cancel; /* NULL, or a signal flag: the ray ends after its step */
+  /* optional, after every converged step: the ray, t, its Newton iterations and wall time (s) */
+  void (*progress)(void* user, const char* ray, double t, int iters, double wall);
+  void* progress_user;
 } csfRomSnapSettings;
 
 csfRomSnapSettings csf_romSnapDefault(void);

@@ -64,6 +64,12 @@ static int parseNumber(const char* flag, const char* v, double lo, double hi, do
 }
 
 
+static void snapProgress(void* user, const char* ray, double t, int iters, double wall) {
+  (void)user;
+  fprintf(stderr, "  %s: t = %.4f, %d Newton iterations, %.0f s\n", ray, t, iters, wall);
+}
+
+
 static int cmdSnapshots(int argc, char** argv) {
   csx_signalInstall();
   const char* dir = "rom_snapshots";
@@ -193,6 +199,7 @@ static int cmdSnapshots(int argc, char** argv) {
   snprintf(stem, sizeof stem, "%.500s/mesh", dir);
   ss.work_stem = stem;
   ss.cancel = csx_signalFlag();
+  ss.progress = snapProgress;
   const double t_all = csu_wallSeconds();
   csfActuatorFE fe;
   csfData* d = NULL;
