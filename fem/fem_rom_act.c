@@ -45,23 +45,23 @@ double csf_romBasisMeshSize(const char* basis_path, csError* err) {
   return l;
 }
 
-/* read a whole 1-D or 2-D dataset of doubles; NULL if absent or of another size than want
+/* read a whole dataset of doubles (rank 1-3); NULL if absent or of another size than want
  * (want 0: any), *count gets the element count */
 static double* readDoubles(hid_t f, const char* name, size_t want, size_t* count) {
   if (H5LTfind_dataset(f, name) <= 0) {
     return NULL;
   }
   int rank = 0;
-  if (H5LTget_dataset_ndims(f, name, &rank) < 0 || rank < 1 || rank > 2) {
+  if (H5LTget_dataset_ndims(f, name, &rank) < 0 || rank < 1 || rank > 3) {
     return NULL;
   }
-  hsize_t dims[2] = {1, 1};
+  hsize_t dims[3] = {1, 1, 1};
   H5T_class_t cls;
   size_t sz;
   if (H5LTget_dataset_info(f, name, dims, &cls, &sz) < 0) {
     return NULL;
   }
-  const size_t n = (size_t)dims[0] * (rank == 2 ? (size_t)dims[1] : 1);
+  const size_t n = (size_t)dims[0] * (size_t)dims[1] * (size_t)dims[2];
   if (want && n != want) {
     return NULL;
   }

@@ -36,8 +36,8 @@ static const char kUsage[] =
     "  of the leg length, volumes within 1 %.\n"
     "       crawlsim rom ecsw-matrix --basis BASIS.h5 --out A.h5 [--work DIR] [--actuator ...]\n"
     "  ecsw-matrix: every element's reduced force at each training snapshot of the basis file\n"
-    "  (rows snapshot x coordinate, a column per element; one matrix per element set), for\n"
-    "  tools/rom_ecsw.py's non-negative least squares.\n"
+    "  (rows snapshot x coordinate, a column per element; one matrix for the Tet10s, one for\n"
+    "  the fibres; the chambers' pressure loads are exact), for tools/rom_ecsw.py's NNLS.\n"
     "       crawlsim rom snapshots [--out DIR] [--ray NAME]... [--list]\n"
     "                              [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
     "                              [--mesh-size MM] [--newton-rtol R] [--threads N]\n"
@@ -430,8 +430,8 @@ static int cmdCheck(int argc, char** argv) {
     nok += ce.ok;
     fe_wall += sf.wall;
     rom_wall += ce.wall;
-    printf("crawlsim rom: ray %-10s (%s): worst bend %.3f deg (%.2f %%), tip %.3f mm (%.2f %% of "
-           "L), volumes %.2f %%: %s; reduced %.2f s, FE %.0f s\n", sf.ray.name,
+    printf("crawlsim rom: ray %-10s (%s): worst bend %.3g deg (%.3g %%), tip %.3g mm (%.3g %% of "
+           "L), volumes %.3g %%: %s; reduced %.2f s, FE %.0f s\n", sf.ray.name,
            sf.ray.kind == CSF_ROM_TEST ? "held out" : "trained", ce.bend_deg, 100 * ce.bend_rel,
            ce.tip_mm, 100 * ce.tip_mm / L, 100 * ce.vol_rel,
            ce.failed ? "FAILED to solve" : ce.ok ? "within the targets" : "outside the targets",
@@ -517,7 +517,9 @@ static int cmdEcswMatrix(int argc, char** argv) {
   static const char* const kName[CSF_ROM_NSET] = {"/A_tet", "/A_fibre", "/A_face"};
   csH5File* f = cs_h5Create(out, &err);
   int rc = f ? 0 : 1;
-  for (int s = 0; s < CSF_ROM_NSET && rc == 0; s++) {
+  /* the bodies and the fibres; the chambers' faces are in closed form (csf_romChamberTensors:
+   * exact), so the face set is not fitted */
+  for (int s = 0; s < CSF_ROM_SET_FACE && rc == 0; s++) {
     const size_t rows = (size_t)ns * (size_t)n, cols = (size_t)cnt[s];
     double* A = malloc(rows * cols * sizeof(double));
     double* G = malloc(cols * (size_t)n * sizeof(double));
@@ -558,8 +560,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
     }
   }
   if (rc == 0) {
-    printf("crawlsim rom: ecsw-matrix: %d snapshots x %d coordinates over %d Tet10, %d fibre "
-           "elements, %d faces -> %s\n", ns, n, cnt[0], cnt[1], cnt[2], out);
+    printf("crawlsim rom: ecsw-matrix: %d snapshots x %d coordinates over %d Tet10 and %d fibre "
+           "elements -> %s\n", ns, n, cnt[0], cnt[1], out);
   }
   free(q), free(p), free(g), free(F);
   csf_romActuatorDestroy(&ra);

@@ -113,6 +113,11 @@ def turn_snapshots(U, maps):
     return np.concatenate(out, axis=1)
 
 
+def text(v):
+    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings)."""
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
 def read_rays(snapdir):
     rays = []
     for p in sorted(glob.glob(os.path.join(snapdir, "*.h5"))):
@@ -124,8 +129,8 @@ def read_rays(snapdir):
                 continue
             if "u" not in f:
                 continue
-            rays.append(dict(name=str(f.attrs["name"]), kind=str(f.attrs["kind"]),
-                             u=f["u"][...], t=f["t"][...], status=str(f.attrs["status"]),
+            rays.append(dict(name=text(f.attrs["name"]), kind=text(f.attrs["kind"]),
+                             u=f["u"][...], t=f["t"][...], status=text(f.attrs["status"]),
                              p=f["pressure"][...], g=f["gravity"][...], F=f["tip_force"][...]))
     return rays
 

@@ -5,7 +5,8 @@
 
 A.h5 is `crawlsim rom ecsw-matrix`'s output: for each element set (Tet10 bodies, fibres,
 pressure faces) the matrix A whose column e holds element e's reduced force V_e^T f_e at every
-training snapshot (rows: snapshot x reduced coordinate). Energy-conserving sampling and
+training snapshot (rows: snapshot x reduced coordinate; the chambers' pressure faces are not
+fitted: their loads are exact in closed form, fem/fem_rom.h). Energy-conserving sampling and
 weighting (Farhat, Avery, Chapman and Cortial 2014): non-negative weights w with A w ~ A 1,
 found by non-negative least squares, one set at a time, each snapshot's block of rows scaled to
 unit norm so that every snapshot counts alike. Non-negative weights of whole elements keep the
@@ -14,7 +15,8 @@ Tet10s (not quadrature points) keeps each element's mixed pressure. Lawson-Hanso
 (scipy.optimize.nnls) is stopped once ||A w - A 1|| <= tol ||A 1|| (the greedy loop below adds
 the element of the largest gradient, then solves the least squares on the kept set and steps
 back into the feasible region, as Lawson-Hanson does). Writes WEIGHTS.h5 (fem/fem_rom_act.h):
-tet_id, tet_w, fibre_id, fibre_w, face_id, face_w and per set the kept count and residual.
+tet_id, tet_w, fibre_id, fibre_w and per set the kept count and residual. A fibre that is
+slack in every training state has no force there and gets no weight.
 """
 import argparse
 import os
@@ -73,6 +75,8 @@ def main():
         n = int(f.attrs["n"])
         ns = int(f.attrs["nsnap"])
         for key, name in (("tet", "A_tet"), ("fibre", "A_fibre"), ("face", "A_face")):
+            if name not in f:
+                continue  # the chambers' faces: in closed form on the C side, not fitted
             A = f[name][...]
             cols = np.flatnonzero(np.abs(A).sum(axis=0) > 0)  # faces never loaded drop out
             A = A[:, cols]
