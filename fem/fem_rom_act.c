@@ -271,6 +271,21 @@ static void setLoad(csfRomActuator* ra, double s, const double* p,
 
 csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,
                               const double g[3], const double F[3], csError* err) {
+  /* no load: the reference state, as the FE's p = 0 row (the smoothed tension-only fibres carry
+   * a small force at zero strain, which neither model equilibrates at rest) */
+  int loaded = g[0] != 0 || g[1] != 0 || g[2] != 0 || F[0] != 0 || F[1] != 0 || F[2] != 0;
+  for (int k = 0; k < CSR_NSEG * CSR_NCHAMBER; k++) {
+    loaded |= p[k] != 0;
+  }
+  if (!loaded) {
+    csf_romDataReset(ra->rom, ra->d);
+    memset(ra->q_conv, 0, (size_t)ra->rom->n * sizeof(double));
+    memset(ra->p, 0, sizeof ra->p);
+    memset(ra->gravity, 0, sizeof ra->gravity);
+    memset(ra->tip_force, 0, sizeof ra->tip_force);
+    csf_romExpand(ra->rom, ra->d->q, ra->u);
+    return CS_OK;
+  }
   memcpy(ra->p0, ra->p, sizeof ra->p0);
   memcpy(ra->g0, ra->gravity, sizeof ra->g0);
   memcpy(ra->F0, ra->tip_force, sizeof ra->F0);

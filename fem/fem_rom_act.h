@@ -56,8 +56,9 @@ double csf_romBasisMeshSize(const char* basis_path, csError* err);
 /* Reduced statics at chamber pressures p (MPa, segment s chamber j at 4 s + j), gravity g
  * (mm/s^2) and tip force F (N), ramped
  * from the last solved load in adaptive steps (halved on failure down to 1e-4 of the range,
- * grown by 1.5 after easy ones). On failure the last solved state is kept and CS_ERR_DIVERGED
- * returned. ra->u holds the displacement afterwards. */
+ * grown by 1.5 after easy ones). No load at all gives the reference state (q = 0), as the FE's
+ * p = 0 row. On failure the last solved state is kept and CS_ERR_DIVERGED returned. ra->u holds
+ * the displacement afterwards. */
 csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,
                               const double g[3], const double F[3], csError* err);
 
