@@ -383,6 +383,29 @@ static void gather(const csfRom* r, const double* q, int nn, const int* nodes, d
   }
 }
 
+/* fibre f's current host-node positions x (3 nn) at q and its chord coefficients (a fibre
+ * inside one host: its two coefficient halves summed into c10, fem_assembly.c); returns nn */
+static int fibreGeometry(const csfRom* r, const double* q, int f, double x[60], double c10[10],
+                         const double** cf) {
+  const csfModel* m = r->fem;
+  const int* fv = m->fib_node + 20 * (size_t)f;
+  const int nn = m->fib_single[f] ? 10 : 20;
+  *cf = m->fib_coef + 20 * (size_t)f;
+  gather(r, q, nn, fv, x);
+  for (int a = 0; a < nn; a++) {
+    for (int i = 0; i < 3; i++) {
+      x[3 * a + i] += m->mesh->x[3 * fv[a] + i];
+    }
+  }
+  if (nn == 10) {
+    for (int a = 0; a < 10; a++) {
+      c10[a] = (*cf)[a] + (*cf)[10 + a];
+    }
+    *cf = c10;
+  }
+  return nn;
+}
+
 /* rr += w V_e^T fe; K += w V_e^T ke V_e (ke: 3nn x 3nn row-major, may be NULL) */
 static void scatter(const csfRom* r, csfRomData* d, int nn, const int* nodes, double w,
                     const double* fe, const double* ke, double* rr) {
@@ -470,21 +493,9 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
   for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
     const int f = r->el[CSF_ROM_SET_FIBRE][k];
     const int* fv = m->fib_node + 20 * (size_t)f;
-    const double* cf = m->fib_coef + 20 * (size_t)f;
-    const int nn = m->fib_single[f] ? 10 : 20;
+    const double* cf;
     double x[60], rf[60], c10[10], kf[3600], E = 0, dch[3], S, dS;
-    gather(r, d->q, nn, fv, x);
-    for (int a = 0; a < nn; a++) {
-      for (int i = 0; i < 3; i++) {
-        x[3 * a + i] += me->x[3 * fv[a] + i];
-      }
-    }
-    if (nn == 10) {
-      for (int a = 0; a < 10; a++) {
-        c10[a] = cf[a] + cf[10 + a];
-      }
-      cf = c10;
-    }
+    const int nn = fibreGeometry(r, d->q, f, x, c10, &cf);
     S = d->fib_S[f];
     if (want_k && d->sync) {
       csf_fibreKernel(nn, cf, x, m->fib_L0[f], m->fib_EA[f], S, m->fib_tension_only,
@@ -597,21 +608,9 @@ int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load,
       scatter(r, d, 10, me->tet + 10 * (size_t)e, 1.0, re, NULL, row);
     } else if (set == CSF_ROM_SET_FIBRE) {
       const int* fv = m->fib_node + 20 * (size_t)e;
-      const double* cf = m->fib_coef + 20 * (size_t)e;
-      const int nn = m->fib_single[e] ? 10 : 20;
+      const double* cf;
       double x[60], rf[60], c10[10], E, dch[3];
-      gather(r, d->q, nn, fv, x);
-      for (int a = 0; a < nn; a++) {
-        for (int i = 0; i < 3; i++) {
-          x[3 * a + i] += me->x[3 * fv[a] + i];
-        }
-      }
-      if (nn == 10) {
-        for (int a = 0; a < 10; a++) {
-          c10[a] = cf[a] + cf[10 + a];
-        }
-        cf = c10;
-      }
+      const int nn = fibreGeometry(r, d->q, e, x, c10, &cf);
       if (csf_fibreKernel(nn, cf, x, m->fib_L0[e], m->fib_EA[e], 0.0, m->fib_tension_only,
                           m->fib_geo_tension, rf, NULL, &E, dch)) {
         scatter(r, d, nn, fv, 1.0, rf, NULL, row);

@@ -64,6 +64,61 @@ static int parseNumber(const char* flag, const char* v, double lo, double hi, do
 }
 
 
+/* the actuator (preset, then every --set) into *act; 1 after one error line */
+static int actuatorFromArgs(const char* name, const char* const* sets, int nset, int validate,
+                            csrActuator* act) {
+  csError err;
+  cs_errorClear(&err);
+  csStatus st = csr_actuatorPreset(act, name, &err);
+  for (int k = 0; k < nset && st == CS_OK; k++) {
+    st = csr_actuatorSetString(act, sets[k], &err);
+  }
+  if (st == CS_OK && validate) {
+    st = csr_actuatorValidate(act, &err);
+  }
+  if (st != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}
+
+
+/* the reduced actuator on the snapshots' FE model (csf_romSnapSetup's: every chamber tagged,
+ * the symmetric mesh of the basis' l_soft; gmsh's files under work/stem); 1 after one error
+ * line */
+static int romOpen(const char* actname, const char* const* sets, int nset, const char* basis,
+                   const char* weights, const char* work, const char* stem_name,
+                   csrActuator* act, csfRomActuator* ra) {
+  if (actuatorFromArgs(actname, sets, nset, 0, act)) {
+    return 1;
+  }
+  csError err;
+  cs_errorClear(&err);
+  const double l = csf_romBasisMeshSize(basis, &err);
+  if (isnan(l)) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  csfActuatorSpec spec = csf_actuatorSpecDefault();
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      spec.ratio[s][j] = 1.0;
+    }
+  }
+  spec.mesh_size = l;
+  spec.mesh_symmetric = 1;
+  char stem[620];
+  snprintf(stem, sizeof stem, "%.500s/%.60s", work, stem_name);
+  spec.work_stem = stem;
+  if (csf_romActuatorCreate(act, &spec, basis, weights, ra, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}
+
+
 static void snapProgress(void* user, const char* ray, double t, int iters, double wall) {
   (void)user;
   fprintf(stderr, "  %s: t = %.4f, %d Newton iterations, %.0f s\n", ray, t, iters, wall);
@@ -145,18 +200,7 @@ static int cmdSnapshots(int argc, char** argv) {
   csError err;
   cs_errorClear(&err);
   csrActuator act;
-  if (csr_actuatorPreset(&act, actname, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-    return 1;
-  }
-  for (int k = 0; k < nset; k++) {
-    if (csr_actuatorSetString(&act, sets[k], &err) != CS_OK) {
-      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-      return 1;
-    }
-  }
-  if (csr_actuatorValidate(&act, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+  if (actuatorFromArgs(actname, sets, nset, 1, &act)) {
     return 1;
   }
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
@@ -367,40 +411,10 @@ static int cmdCheck(int argc, char** argv) {
     fprintf(stderr, "crawlsim rom: check needs --snapshots DIR and --basis FILE\n");
     return 1;
   }
-  csError err;
-  cs_errorClear(&err);
   csrActuator act;
-  if (csr_actuatorPreset(&act, actname, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-    return 1;
-  }
-  for (int k = 0; k < nset; k++) {
-    if (csr_actuatorSetString(&act, sets[k], &err) != CS_OK) {
-      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-      return 1;
-    }
-  }
-  const double l = csf_romBasisMeshSize(basis, &err);
-  if (isnan(l)) {
-    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-    return 1;
-  }
-  /* the snapshots' FE model (csf_romSnapSetup): every chamber tagged, symmetric mesh */
-  csfActuatorSpec spec = csf_actuatorSpecDefault();
-  for (int s = 0; s < CSR_NSEG; s++) {
-    for (int j = 0; j < CSR_NCHAMBER; j++) {
-      spec.ratio[s][j] = 1.0;
-    }
-  }
-  spec.mesh_size = l;
-  spec.mesh_symmetric = 1;
-  char stem[620];
-  snprintf(stem, sizeof stem, "%.500s/check_mesh", dir);
-  spec.work_stem = stem;
   csfRomActuator ra;
   const double t0 = csu_wallSeconds();
-  if (csf_romActuatorCreate(&act, &spec, basis, weights, &ra, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+  if (romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
     return 1;
   }
   const double L = act.S[0] + act.S[1] + act.S[2] + act.LS[0] + act.LS[1];
@@ -421,8 +435,10 @@ static int cmdCheck(int argc, char** argv) {
     char path[620];
     snprintf(path, sizeof path, "%.500s/%.31s.h5", dir, rays[k].name);
     csfRomSnapFile sf;
+    csError err;
+    cs_errorClear(&err);
     if (!chosen || csf_romSnapRead(path, &sf, &err) != CS_OK) {
-      continue;
+      continue; /* not chosen, or not produced (yet) */
     }
     CheckErr ce;
     checkRay(&ra, &act, &sf, L, &ce);
@@ -474,35 +490,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
   csError err;
   cs_errorClear(&err);
   csrActuator act;
-  if (csr_actuatorPreset(&act, actname, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-    return 1;
-  }
-  for (int k = 0; k < nset; k++) {
-    if (csr_actuatorSetString(&act, sets[k], &err) != CS_OK) {
-      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-      return 1;
-    }
-  }
-  const double l = csf_romBasisMeshSize(basis, &err);
-  if (isnan(l)) {
-    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-    return 1;
-  }
-  csfActuatorSpec spec = csf_actuatorSpecDefault();
-  for (int s = 0; s < CSR_NSEG; s++) {
-    for (int j = 0; j < CSR_NCHAMBER; j++) {
-      spec.ratio[s][j] = 1.0;
-    }
-  }
-  spec.mesh_size = l;
-  spec.mesh_symmetric = 1;
-  char stem[620];
-  snprintf(stem, sizeof stem, "%.500s/ecsw_mesh", work);
-  spec.work_stem = stem;
   csfRomActuator ra;
-  if (csf_romActuatorCreate(&act, &spec, basis, NULL, &ra, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+  if (romOpen(actname, sets, nset, basis, NULL, work, "ecsw_mesh", &act, &ra)) {
     return 1;
   }
   const int n = ra.rom->n;
