@@ -256,10 +256,13 @@ def main():
         f["Mr"] = Mr
         # the training snapshots in reduced coordinates (q = V^T M u) with their loads: what
         # the hyper-reduction is fitted on (crawlsim rom ecsw-matrix, tools/rom_ecsw.py)
-        f["q_snap"] = (V.T @ MX[:, :ns_fe]).T
-        f["p_snap"] = np.concatenate([r["p"] for r in train], axis=0)
-        f["g_snap"] = np.concatenate([r["g"] for r in train], axis=0)
-        f["F_snap"] = np.concatenate([r["F"] for r in train], axis=0)
+        # (with --turns every turned state too, with the loads of the FE state it was turned
+        # from: the bodies' and fibres' element forces, all ECSW fits, do not depend on loads)
+        reps = ns // ns_fe
+        f["q_snap"] = (V.T @ MX).T
+        f["p_snap"] = np.tile(np.concatenate([r["p"] for r in train], axis=0), (reps, 1, 1))
+        f["g_snap"] = np.tile(np.concatenate([r["g"] for r in train], axis=0), (reps, 1))
+        f["F_snap"] = np.tile(np.concatenate([r["F"] for r in train], axis=0), (reps, 1))
     print(f"rom_basis: {out}")
 
 
