@@ -12,7 +12,8 @@ found by non-negative least squares, one set at a time, each snapshot's block of
 unit norm so that every snapshot counts alike. Non-negative weights of whole elements keep the
 reduced forces a gradient (conservative) and the reduced tangent symmetric; weighting whole
 Tet10s (not quadrature points) keeps each element's mixed pressure. Lawson-Hanson's active set
-(scipy.optimize.nnls) is stopped once ||A w - A 1|| <= tol ||A 1|| (the greedy loop below adds
+(scipy.optimize.nnls) is stopped once ||A w - A 1|| <= tol ||A 1||, or after 3 min(rows, columns)
+additions, or when the element just added cannot enter (the greedy loop below adds
 the element of the largest gradient, then solves the least squares on the kept set and steps
 back into the feasible region, as Lawson-Hanson does). Writes WEIGHTS.h5 (fem/fem_rom_act.h):
 tet_id, tet_w, fibre_id, fibre_w and per set the kept count and residual. A fibre that is
@@ -36,11 +37,13 @@ def nnls_tol(A, b, tol, max_keep=None):
     r = b.copy()
     max_keep = max_keep or min(m, n)
     it = 0
-    while np.linalg.norm(r) > tol * nb and keep.sum() < max_keep:
+    outer = 0
+    while np.linalg.norm(r) > tol * nb and keep.sum() < max_keep and outer < 3 * max_keep:
+        outer += 1
         g = A.T @ r
         g[keep] = -np.inf
         j = int(np.argmax(g))
-        if g[j] <= 0:
+        if g[j] <= 1e-14 * np.abs(g[np.isfinite(g)]).max():
             break
         keep[j] = True
         while True:
@@ -58,6 +61,8 @@ def nnls_tol(A, b, tol, max_keep=None):
             drop = idx[w[idx] <= 1e-14 * max(1.0, w[idx].max())]
             keep[drop] = False
             w[drop] = 0
+            if j in drop:
+                break  # the element just added cannot enter: Lawson-Hanson's stagnation
         r = b - A @ w
     return w, np.linalg.norm(r) / nb
 
