@@ -54,7 +54,7 @@ enum { MAX_SETS = 64 };
 /* the options of `crawlsim bend`, for parsing and --help (cs_opts.h) */
 static const csxOpt kBendOpts[] = {
     {"--model", "analytic|fe|rod|prb|rom", "analytic",
-     "the actuator model (rom: not available yet)"},
+     "the actuator model (rom: the reduced FE of docs/notes/rom.md, needs --rom-basis)"},
     {"--actuator", "fig1|baseline|leg", "baseline (rod: leg, its calibration's)",
      "the actuator preset"},
     {"--set", "NAME=VALUE", NULL,
@@ -93,6 +93,11 @@ static const csxOpt kBendOpts[] = {
     {"--threads", "N", "this process's cores, less those other processes hold",
      "fe: the FE's threads"},
     {"--out", "FILE.h5", "bend.h5", "the output file (docs/reference/output.md)"},
+    {"--rom-basis", "FILE.h5", NULL,
+     "rom: the reduced basis (tools/rom_basis.py; its mesh size and the symmetric mesh are the "
+     "model's)"},
+    {"--rom-weights", "FILE.h5", "every element at weight 1",
+     "rom: the hyper-reduction's element weights (tools/rom_ecsw.py)"},
 };
 
 static const csxOptTable kBendTable = {
@@ -503,6 +508,10 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
       bad = parsePressures(value, run);
     } else if (!strcmp(name, "--tip-load")) {
       bad = parseNumbers(name, value, 3, run->tip_load);
+    } else if (!strcmp(name, "--rom-basis")) {
+      run->rom_basis = value;
+    } else if (!strcmp(name, "--rom-weights")) {
+      run->rom_weights = value;
     } else if (!strcmp(name, "--cal-rule")) {
       csrCalRule rule;
       if (!csr_calRuleParse(value, &rule)) {
@@ -540,7 +549,8 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   /* the actuator: preset, then every --set in order, then a consistency check; the rod's
    * default is its default calibration's actuator, so that `bend --model rod` runs as is */
   if (!actuator) {
-    actuator = run->model == BEND_ROD ? CSX_MISSION_ACTUATOR : "baseline";
+    actuator = run->model == BEND_ROD || run->model == BEND_ROM ? CSX_MISSION_ACTUATOR
+                                                                : "baseline";
   }
   csError err;
   cs_errorClear(&err);
@@ -677,21 +687,28 @@ int csx_cmdBend(int argc, char** argv) {
             "tangent to switch branches on)\n", kModelNames[run.model]);
     return 1;
   }
+  if ((run.rom_basis || run.rom_weights) && run.model != BEND_ROM) {
+    fprintf(stderr, "crawlsim bend: --rom-basis and --rom-weights are for --model rom\n");
+    return 1;
+  }
   int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
-  if ((tip && run.model != BEND_ROD && run.model != BEND_FE) ||
+  if ((tip && run.model != BEND_ROD && run.model != BEND_FE && run.model != BEND_ROM) ||
       ((run.calibration || run.cal_rule >= 0 || run.cal_drop) && run.model != BEND_ROD)) {
     fprintf(stderr, "crawlsim bend: %s is for --model %s (the %s model has no %s)\n",
             tip                ? "--tip-load"
             : run.calibration  ? "--calibration"
             : run.cal_rule >= 0 ? "--cal-rule"
                                : "--cal-drop",
-            tip ? "rod or fe" : "rod",
+            tip ? "rod, fe or rom" : "rod",
             kModelNames[run.model], tip ? "tip load" : "calibration");
     return 1;
   }
 #ifdef CS_HAVE_FEM
   if (run.model == BEND_FE) {
     return csx_bendFe(&run);
+  }
+  if (run.model == BEND_ROM) {
+    return csx_bendRom(&run);
   }
 #endif
   BendPointFn eval = bendModelEvaluator(run.model);

@@ -47,6 +47,8 @@ typedef struct {
   double p_indefinite;        /* fe: first converged pressure with an indefinite tangent (NAN) */
   int neg_pivots_max;         /* fe: most negative pivots on the path (-1: LU) */
   int threads;                /* fe: --threads N (0: the thread plan's default, fem_threads.h) */
+  const char* rom_basis;      /* rom: --rom-basis FILE (tools/rom_basis.py), required */
+  const char* rom_weights;    /* rom: --rom-weights FILE (tools/rom_ecsw.py), NULL = every element */
 } BendRun;
 
 /* The full FE model's sweep of `run` (fem_bend.h: adaptive load stepping over the whole sweep,
@@ -54,6 +56,11 @@ typedef struct {
  * the FE's report lines. Returns the command's exit status (0, or 1 after one error line). Only
  * in builds with the FE (CS_HAVE_FEM). */
 int csx_bendFe(BendRun* run);
+
+/* The reduced-order FE model's sweep of `run` (fem/fem_rom_act.h: reduced statics by Newton on
+ * the basis' coordinates, each row ramped from the last), written with the FE's output contract
+ * (csr_bendCurveWriteH5) plus the rom's attributes. Returns the exit status. Only with the FE. */
+int csx_bendRom(BendRun* run);
 
 /* End a bend file whatever happened: after a failure (st != CS_OK) the model's name and the
  * rows so far are written too (they reach the disk unless it refused already), the status

@@ -26,7 +26,7 @@ int csx_feCommand(int argc, char** argv) {
   if (argc < 2) {
     return 0;
   }
-  if (!strcmp(argv[1], "calibrate")) {
+  if (!strcmp(argv[1], "calibrate") || !strcmp(argv[1], "rom")) {
     return 1;
   }
   if (strcmp(argv[1], "bend") != 0) {

@@ -41,6 +41,7 @@ static const char kUsage[] =
     "  calibrate [--out FILE.h5] ...\n"
     "  study     FILE [--out FILE.h5] [--resume] ...  (under mpirun: one case per rank)\n"
     "  export    FILE.h5 --csv [--out DIR]  (a run's tracks as CSV)\n"
+    "  rom       snapshots [--out DIR] [--ray NAME]... [--mesh-size MM] ...  (reduced FE leg)\n"
     "Run 'crawlsim <command> --help' for the options of one command.\n";
 
 
@@ -211,8 +212,11 @@ static int dispatch(int argc, char** argv) {
   if (!strcmp(cmd, "study")) {
     return csx_cmdStudy(argc - 1, argv + 1);
   }
+  if (!strcmp(cmd, "rom")) {
+    return csx_cmdRom(argc - 1, argv + 1);
+  }
   fprintf(stderr,
-          "crawlsim: unknown command '%s' (expected run, bend, gait, calibrate, study or export; "
-          "see crawlsim --help)\n", cmd);
+          "crawlsim: unknown command '%s' (expected run, bend, gait, calibrate, study, export or "
+          "rom; see crawlsim --help)\n", cmd);
   return 1;
 }

@@ -13,5 +13,6 @@ int csx_cmdGaitFlatRoad(int argc, char** argv); /* cmd_gaitdesign.c: crawlsim ga
 int csx_cmdGaitDesign(int argc, char** argv);   /* cmd_gaitdesign.c: crawlsim gait design */
 int csx_cmdStudy(int argc, char** argv);        /* cmd_study.c: crawlsim study FILE ... */
 int csx_cmdExport(int argc, char** argv);       /* cmd_export.c: crawlsim export FILE.h5 */
+int csx_cmdRom(int argc, char** argv);          /* cmd_rom.c: crawlsim rom snapshots ... */
 
 #endif

@@ -1,0 +1,827 @@
+/* fem_rom.c: the reduced-order FE model: reduced forces from fem's kernels, Newton on q
+ * (fem_rom.h).
+ *
+ * Rationale.
+ * Every element term is gathered through its own rows of the basis: u_e = V_e q (30 rows for a
+ * Tet10 or a fibre inside one host, 60 for a fibre tied to two, 18 for a pressure face), the
+ * kernel gives f_e and k_e, and r += w_e V_e^T f_e, K += w_e V_e^T k_e V_e. The cost per element
+ * is O(m n + m^2 n + m n^2) for m element dofs and n reduced coordinates, independent of the
+ * FE's size: a hyper-reduced model evaluates a few hundred elements instead of tens of
+ * thousands. Gravity and dead loads are linear in the load and constant in q, so they are
+ * projected once, exactly, over every element (G) and never hyper-reduced.
+ * The kernels' state variables: the mixed Tet10 takes the element dilatation state theta_e in
+ * its geometric stiffness; here theta_e = v/V of the current q (one residual-only kernel call
+ * gives v/V, a second one the tangent), the converged value of the FE's three-field Newton, so
+ * the reduced tangent is the exact derivative of the reduced residual (tested against finite
+ * differences). The fibres likewise take S_state = S(E(q)).
+ * The dense n x n system is solved by LU with partial pivoting (n is tens to a few hundred; the
+ * tangent may be indefinite past a limit point). */
+#include "fem_rom.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fem_element.h"
+#include "fem_material.h"
+
+#define ROM_LS_SHRINK 0.5 /* line-search step factor */
+/* the FE's watchdog line search (fem_newton.c CSF_LS_GROWTH_FIRST, CSF_LS_WATCH) */
+#define ROM_LS_GROWTH_FIRST 1e4
+#define ROM_LS_WATCH 3
+
+csfRom* csf_romCreate(const csfModel* fem, int n, const double* V, csError* err) {
+  if (!fem || !fem->finalized || n < 1 || !V) {
+    cs_errorSet(err, CS_ERR_ARG, "fem_rom: a finalised FE model and a basis of n >= 1 columns "
+                "are needed (n = %d)", n);
+    return NULL;
+  }
+  const size_t nd = (size_t)fem->ndof;
+  for (size_t i = 0; i < nd; i++) {
+    for (int j = 0; j < n; j++) {
+      const double v = V[i * (size_t)n + (size_t)j];
+      if (!isfinite(v) || (fem->fixed[i] && v != 0.0)) {
+        cs_errorSet(err, CS_ERR_ARG, "fem_rom: basis row %zu (node %zu, %c) column %d is %g: "
+                    "the basis must be finite and zero on clamped dofs", i, i / 3,
+                    "xyz"[i % 3], j, v);
+        return NULL;
+      }
+    }
+  }
+  csfRom* r = calloc(1, sizeof *r);
+  if (!r) {
+    cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory");
+    return NULL;
+  }
+  r->fem = fem, r->ndof = fem->ndof, r->n = n;
+  r->V = malloc(nd * (size_t)n * sizeof(double));
+  r->G = calloc((size_t)n * 3, sizeof(double));
+  const int count[CSF_ROM_NSET] = {fem->mesh->ntet, fem->nfib, fem->mesh->nface};
+  int ok = r->V && r->G;
+  for (int s = 0; s < CSF_ROM_NSET && ok; s++) {
+    r->nel[s] = count[s];
+    r->el[s] = malloc((size_t)(count[s] > 0 ? count[s] : 1) * sizeof(int));
+    r->w[s] = malloc((size_t)(count[s] > 0 ? count[s] : 1) * sizeof(double));
+    ok = r->el[s] && r->w[s];
+    for (int e = 0; ok && e < count[s]; e++) {
+      r->el[s][e] = e, r->w[s][e] = 1.0;
+    }
+  }
+  if (!ok) {
+    csf_romDestroy(r);
+    cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (basis %zu x %d)", nd, n);
+    return NULL;
+  }
+  memcpy(r->V, V, nd * (size_t)n * sizeof(double));
+  /* G = V^T f_g(e_i): f_g,a = rho int N_a dV (the FE's 4-point rule, fem_assembly.c) */
+  double Nq[CSF_TET_NQ][10];
+  csf_tetQuadratureShape(Nq);
+  const csfMesh* me = fem->mesh;
+  for (int e = 0; e < me->ntet; e++) {
+    for (int a = 0; a < 10; a++) {
+      double m = 0;
+      for (int g = 0; g < CSF_TET_NQ; g++) {
+        m += fem->mat.rho * fem->wq[4 * e + g] * Nq[g][a];
+      }
+      const int node = me->tet[10 * e + a];
+      for (int i = 0; i < 3; i++) {
+        const double* row = r->V + (size_t)(3 * node + i) * (size_t)n;
+        for (int j = 0; j < n; j++) {
+          r->G[3 * j + i] += m * row[j];
+        }
+      }
+    }
+  }
+  return r;
+}
+
+
+void csf_romDestroy(csfRom* r) {
+  if (!r) {
+    return;
+  }
+  free(r->V);
+  free(r->G);
+  free(r->face_ch), free(r->ch_V0), free(r->ch_g0), free(r->ch_H);
+  for (int s = 0; s < CSF_ROM_NSET; s++) {
+    free(r->el[s]);
+    free(r->w[s]);
+  }
+  free(r);
+}
+
+
+/* one face's share at q: volume (mm^3), gradient g (+= V_f^T fe, p = 1) and Hessian H
+ * (+= V_f^T (-kfe) V_f) */
+static void faceShare(const csfRom* r, const double* q, int f, double* vol, double* g, double* H,
+                      double* T) {
+  const csfMesh* me = r->fem->mesh;
+  const int n = r->n;
+  const int* fn = me->face + 6 * (size_t)f;
+  double xf[18], fe[18], kfe[324], vf;
+  for (int a = 0; a < 6; a++) {
+    for (int i = 0; i < 3; i++) {
+      const double* row = r->V + (size_t)(3 * fn[a] + i) * (size_t)n;
+      double s = me->x[3 * fn[a] + i];
+      for (int j = 0; j < n; j++) {
+        s += row[j] * q[j];
+      }
+      xf[3 * a + i] = s;
+    }
+  }
+  csf_faceKernel(xf, 1.0, fe, kfe, &vf);
+  *vol += vf;
+  for (int k = 0; k < 18; k++) {
+    const double* row = r->V + (size_t)(3 * fn[k / 3] + k % 3) * (size_t)n;
+    for (int j = 0; j < n; j++) {
+      g[j] += row[j] * fe[k];
+      double t = 0;
+      for (int l = 0; l < 18; l++) {
+        t -= kfe[18 * k + l] * r->V[(size_t)(3 * fn[l / 3] + l % 3) * (size_t)n + j];
+      }
+      T[(size_t)k * n + j] = t;
+    }
+  }
+  for (int k = 0; k < 18; k++) {
+    const double* row = r->V + (size_t)(3 * fn[k / 3] + k % 3) * (size_t)n;
+    for (int i = 0; i < n; i++) {
+      for (int j = 0; j < n; j++) {
+        H[(size_t)i * n + j] += row[i] * T[(size_t)k * n + j];
+      }
+    }
+  }
+}
+
+csStatus csf_romChamberTensors(csfRom* r, int nch, const int* face_ch, csError* err) {
+  const csfMesh* me = r->fem->mesh;
+  const size_t n = (size_t)r->n, nn = n * n;
+  for (int f = 0; f < me->nface; f++) {
+    if (face_ch[f] < -1 || face_ch[f] >= nch) {
+      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: face %d in chamber %d of %d", f, face_ch[f],
+                         nch);
+    }
+  }
+  free(r->face_ch), free(r->ch_V0), free(r->ch_g0), free(r->ch_H);
+  r->nch = 0;
+  r->face_ch = malloc((size_t)(me->nface + 1) * sizeof(int));
+  r->ch_V0 = calloc((size_t)nch + 1, sizeof(double));
+  r->ch_g0 = calloc((size_t)nch * n + 1, sizeof(double));
+  r->ch_H = calloc((size_t)nch * (n + 1) * nn + 1, sizeof(double));
+  double* q = calloc(n, sizeof(double));
+  double* g = calloc(n, sizeof(double));
+  double* T = calloc(18 * n, sizeof(double));
+  if (!r->face_ch || !r->ch_V0 || !r->ch_g0 || !r->ch_H || !q || !g || !T) {
+    free(q), free(g), free(T);
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (%d chambers, n = %zu)", nch,
+                       n);
+  }
+  memcpy(r->face_ch, face_ch, (size_t)me->nface * sizeof(int));
+  for (int c = 0; c < nch; c++) {
+    double* H0 = r->ch_H + (size_t)c * (n + 1) * nn;
+    for (int f = 0; f < me->nface; f++) {
+      if (face_ch[f] == c) {
+        faceShare(r, q, f, &r->ch_V0[c], r->ch_g0 + (size_t)c * n, H0, T);
+      }
+    }
+    /* H is linear in q: H_k = H(e_k) - H(0) exactly (up to round-off) */
+    for (size_t k = 0; k < n; k++) {
+      double* Hk = H0 + (k + 1) * nn;
+      double vol = 0;
+      q[k] = 1.0;
+      for (int f = 0; f < me->nface; f++) {
+        if (face_ch[f] == c) {
+          faceShare(r, q, f, &vol, g, Hk, T);
+        }
+      }
+      q[k] = 0.0;
+      for (size_t i = 0; i < nn; i++) {
+        Hk[i] -= H0[i];
+      }
+    }
+  }
+  free(q), free(g), free(T);
+  r->nch = nch;
+  return CS_OK;
+}
+
+/* H(q) = H0 + sum_k q_k H_k of chamber c into Hq (n x n) */
+static void chamberHessian(const csfRom* r, int c, const double* q, double* Hq) {
+  const size_t n = (size_t)r->n, nn = n * n;
+  const double* H0 = r->ch_H + (size_t)c * (n + 1) * nn;
+  memcpy(Hq, H0, nn * sizeof(double));
+  for (size_t k = 0; k < n; k++) {
+    if (q[k] == 0.0) {
+      continue;
+    }
+    const double* Hk = H0 + (k + 1) * nn;
+    for (size_t i = 0; i < nn; i++) {
+      Hq[i] += q[k] * Hk[i];
+    }
+  }
+}
+
+double csf_romChamberVolume(const csfRom* r, int c, const double* q) {
+  const size_t n = (size_t)r->n, nn = n * n;
+  const double* H0 = r->ch_H + (size_t)c * (n + 1) * nn;
+  const double* g0 = r->ch_g0 + (size_t)c * n;
+  double v = r->ch_V0[c];
+  for (size_t i = 0; i < n; i++) {
+    double h0 = 0, h3 = 0;
+    for (size_t j = 0; j < n; j++) {
+      h0 += H0[i * n + j] * q[j];
+    }
+    for (size_t k = 0; k < n; k++) {
+      const double* Hk = H0 + (k + 1) * nn + i * n;
+      double s = 0;
+      for (size_t j = 0; j < n; j++) {
+        s += Hk[j] * q[j];
+      }
+      h3 += q[k] * s;
+    }
+    v += q[i] * (g0[i] + 0.5 * h0 + h3 / 6.0);
+  }
+  return v;
+}
+
+csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, const double* w,
+                           csError* err) {
+  const csfModel* m = r->fem;
+  const int count[CSF_ROM_NSET] = {m->mesh->ntet, m->nfib, m->mesh->nface};
+  if ((int)set < 0 || set >= CSF_ROM_NSET || nel < 0 || nel > count[set] || (nel && (!idx || !w))) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_rom: element set %d: %d weights for %d elements",
+                       (int)set, nel, (int)set >= 0 && set < CSF_ROM_NSET ? count[set] : -1);
+  }
+  for (int e = 0; e < nel; e++) {
+    if (idx[e] < 0 || idx[e] >= count[set] || !(w[e] >= 0.0) || !isfinite(w[e])) {
+      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: element set %d, entry %d: element %d of %d, "
+                         "weight %g (a weight must be finite and >= 0)", (int)set, e, idx[e],
+                         count[set], w[e]);
+    }
+  }
+  memcpy(r->el[set], idx, (size_t)nel * sizeof(int));
+  memcpy(r->w[set], w, (size_t)nel * sizeof(double));
+  r->nel[set] = nel;
+  return CS_OK;
+}
+
+
+void csf_romProject(const csfRom* r, const double* f, double* fr) {
+  memset(fr, 0, (size_t)r->n * sizeof(double));
+  for (int i = 0; i < r->ndof; i++) {
+    if (f[i] == 0.0) {
+      continue;
+    }
+    const double* row = r->V + (size_t)i * (size_t)r->n;
+    for (int j = 0; j < r->n; j++) {
+      fr[j] += row[j] * f[i];
+    }
+  }
+}
+
+
+void csf_romExpand(const csfRom* r, const double* q, double* u) {
+  for (int i = 0; i < r->ndof; i++) {
+    const double* row = r->V + (size_t)i * (size_t)r->n;
+    double s = 0;
+    for (int j = 0; j < r->n; j++) {
+      s += row[j] * q[j];
+    }
+    u[i] = s;
+  }
+}
+
+
+csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
+  csfRomData* d = calloc(1, sizeof *d);
+  if (!d) {
+    cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory");
+    return NULL;
+  }
+  const size_t n = (size_t)r->n, nt = (size_t)r->fem->mesh->ntet + 1,
+               nf = (size_t)r->fem->nfib + 1;
+  d->n = r->n;
+  d->q = calloc(n, sizeof(double));
+  d->r = calloc(n, sizeof(double));
+  d->K = calloc(n * n, sizeof(double));
+  d->theta = calloc(nt, sizeof(double));
+  d->fib_S = calloc(nf, sizeof(double));
+  d->vr = calloc(nt, sizeof(double));
+  d->gel = calloc(30 * nt, sizeof(double));
+  d->fib_E = calloc(nf, sizeof(double));
+  d->fib_d = calloc(3 * nf, sizeof(double));
+  d->vr0 = calloc(nt, sizeof(double));
+  d->g0 = calloc(30 * nt, sizeof(double));
+  d->fib_E0 = calloc(nf, sizeof(double));
+  d->fib_d0 = calloc(3 * nf, sizeof(double));
+  d->theta_save = calloc(nt, sizeof(double));
+  d->fib_S_save = calloc(nf, sizeof(double));
+  d->theta_best = calloc(nt, sizeof(double));
+  d->fib_S_best = calloc(nf, sizeof(double));
+  d->dq = calloc(n, sizeof(double));
+  d->q_save = calloc(n, sizeof(double));
+  d->q_best = calloc(n, sizeof(double));
+  d->q0 = calloc(n, sizeof(double));
+  d->lu = calloc(n * n, sizeof(double));
+  d->tmp = calloc(n, sizeof(double));
+  d->piv = calloc(n, sizeof(int));
+  d->ke_v = calloc(60 * n, sizeof(double));
+  if (!d->q || !d->r || !d->K || !d->theta || !d->fib_S || !d->vr || !d->gel || !d->fib_E ||
+      !d->fib_d || !d->vr0 || !d->g0 || !d->fib_E0 || !d->fib_d0 || !d->theta_save ||
+      !d->fib_S_save || !d->theta_best || !d->fib_S_best || !d->dq || !d->q_save ||
+      !d->q_best || !d->q0 || !d->lu || !d->tmp || !d->piv || !d->ke_v) {
+    csf_romDataDestroy(d);
+    cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (reduced data, n = %d)", r->n);
+    return NULL;
+  }
+  csf_romDataReset(r, d);
+  return d;
+}
+
+
+void csf_romDataReset(const csfRom* r, csfRomData* d) {
+  memset(d->q, 0, (size_t)d->n * sizeof(double));
+  for (int e = 0; e < r->fem->mesh->ntet; e++) {
+    d->theta[e] = 1.0;
+  }
+  for (int f = 0; f < r->fem->nfib; f++) {
+    double dS;
+    csf_fibreLaw(r->fem->fib_tension_only, 0.0, &d->fib_S[f], &dS); /* as csf_dataCreate */
+  }
+}
+
+
+void csf_romDataDestroy(csfRomData* d) {
+  if (!d) {
+    return;
+  }
+  double* bufs[] = {d->q, d->r, d->K, d->theta, d->fib_S, d->vr, d->gel, d->fib_E, d->fib_d,
+                    d->vr0, d->g0, d->fib_E0, d->fib_d0, d->theta_save, d->fib_S_save,
+                    d->theta_best, d->fib_S_best, d->dq, d->q_save, d->q_best, d->q0, d->lu,
+                    d->tmp, d->ke_v};
+  for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++) {
+    free(bufs[k]);
+  }
+  free(d->piv);
+  free(d);
+}
+
+
+/* ---- evaluation ---------------------------------------------------------------------------- */
+
+/* element displacement ue (3 nn) = V_e q over the element's nodes */
+static void gather(const csfRom* r, const double* q, int nn, const int* nodes, double* ue) {
+  const int n = r->n;
+  for (int a = 0; a < nn; a++) {
+    for (int i = 0; i < 3; i++) {
+      const double* row = r->V + (size_t)(3 * nodes[a] + i) * (size_t)n;
+      double s = 0;
+      for (int j = 0; j < n; j++) {
+        s += row[j] * q[j];
+      }
+      ue[3 * a + i] = s;
+    }
+  }
+}
+
+/* fibre f's current host-node positions x (3 nn) at q and its chord coefficients (a fibre
+ * inside one host: its two coefficient halves summed into c10, fem_assembly.c); returns nn */
+static int fibreGeometry(const csfRom* r, const double* q, int f, double x[60], double c10[10],
+                         const double** cf) {
+  const csfModel* m = r->fem;
+  const int* fv = m->fib_node + 20 * (size_t)f;
+  const int nn = m->fib_single[f] ? 10 : 20;
+  *cf = m->fib_coef + 20 * (size_t)f;
+  gather(r, q, nn, fv, x);
+  for (int a = 0; a < nn; a++) {
+    for (int i = 0; i < 3; i++) {
+      x[3 * a + i] += m->mesh->x[3 * fv[a] + i];
+    }
+  }
+  if (nn == 10) {
+    for (int a = 0; a < 10; a++) {
+      c10[a] = (*cf)[a] + (*cf)[10 + a];
+    }
+    *cf = c10;
+  }
+  return nn;
+}
+
+/* rr += w V_e^T fe; K += w V_e^T ke V_e (ke: 3nn x 3nn row-major, may be NULL) */
+static void scatter(const csfRom* r, csfRomData* d, int nn, const int* nodes, double w,
+                    const double* fe, const double* ke, double* rr) {
+  const int n = r->n, m = 3 * nn;
+  for (int k = 0; k < m; k++) {
+    const double* row = r->V + (size_t)(3 * nodes[k / 3] + k % 3) * (size_t)n;
+    const double f = w * fe[k];
+    for (int j = 0; j < n; j++) {
+      rr[j] += row[j] * f;
+    }
+  }
+  if (!ke) {
+    return;
+  }
+  /* T = ke V_e (m x n), then K += w V_e^T T */
+  double* T = d->ke_v;
+  memset(T, 0, (size_t)m * (size_t)n * sizeof(double));
+  for (int k = 0; k < m; k++) {
+    double* Tk = T + (size_t)k * (size_t)n;
+    for (int l = 0; l < m; l++) {
+      const double kv = ke[(size_t)k * (size_t)m + (size_t)l];
+      if (kv == 0.0) {
+        continue;
+      }
+      const double* row = r->V + (size_t)(3 * nodes[l / 3] + l % 3) * (size_t)n;
+      for (int j = 0; j < n; j++) {
+        Tk[j] += kv * row[j];
+      }
+    }
+  }
+  for (int k = 0; k < m; k++) {
+    const double* row = r->V + (size_t)(3 * nodes[k / 3] + k % 3) * (size_t)n;
+    const double* Tk = T + (size_t)k * (size_t)n;
+    for (int i = 0; i < n; i++) {
+      const double vi = w * row[i];
+      if (vi == 0.0) {
+        continue;
+      }
+      double* Ki = d->K + (size_t)i * (size_t)n;
+      for (int j = 0; j < n; j++) {
+        Ki[j] += vi * Tk[j];
+      }
+    }
+  }
+}
+
+int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int want_k) {
+  if (!r || !d || !load || d->n != r->n) {
+    return -1;
+  }
+  const csfModel* m = r->fem;
+  const csfMesh* me = m->mesh;
+  const int n = r->n;
+  double* rint = d->tmp; /* internal part, then the external one into d->r */
+  memset(rint, 0, (size_t)n * sizeof(double));
+  memset(d->r, 0, (size_t)n * sizeof(double));
+  if (want_k) {
+    memset(d->K, 0, (size_t)n * (size_t)n * sizeof(double));
+  }
+  /* Tet10 bodies */
+  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+    const int e = r->el[CSF_ROM_SET_TET][k];
+    const int* tv = me->tet + 10 * e;
+    double ue[30], re[30], ke[900], gv[30], vr, jm;
+    gather(r, d->q, 10, tv, ue);
+    const double* dN = m->dNdX + 120 * (size_t)e;
+    const double* wq = m->wq + 4 * (size_t)e;
+    /* the residual does not depend on theta_e; the tangent takes the state, or v/V (sync:
+     * a residual call first gives it) */
+    double th = d->theta[e];
+    if (want_k && d->sync) {
+      if (csf_tetKernel(&m->mat, dN, wq, m->vol[e], ue, 1.0, re, NULL, &vr, gv, &jm)) {
+        return 1;
+      }
+      th = vr;
+    }
+    if (csf_tetKernel(&m->mat, dN, wq, m->vol[e], ue, th, re, want_k ? ke : NULL, &vr, gv, &jm)) {
+      return 1;
+    }
+    d->vr[e] = vr;
+    memcpy(d->gel + 30 * (size_t)e, gv, sizeof gv);
+    scatter(r, d, 10, tv, r->w[CSF_ROM_SET_TET][k], re, want_k ? ke : NULL, rint);
+  }
+  /* fibres (a fibre inside one host: its two coefficient halves summed, fem_assembly.c) */
+  for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
+    const int f = r->el[CSF_ROM_SET_FIBRE][k];
+    const int* fv = m->fib_node + 20 * (size_t)f;
+    const double* cf;
+    double x[60], rf[60], c10[10], kf[3600], E = 0, dch[3], S, dS;
+    const int nn = fibreGeometry(r, d->q, f, x, c10, &cf);
+    S = d->fib_S[f];
+    if (want_k && d->sync) {
+      csf_fibreKernel(nn, cf, x, m->fib_L0[f], m->fib_EA[f], S, m->fib_tension_only,
+                      m->fib_geo_tension, rf, NULL, &E, dch);
+      csf_fibreLaw(m->fib_tension_only, E, &S, &dS);
+    }
+    const int loaded = csf_fibreKernel(nn, cf, x, m->fib_L0[f], m->fib_EA[f], S,
+                                       m->fib_tension_only, m->fib_geo_tension, rf,
+                                       want_k ? kf : NULL, &E, dch);
+    d->fib_E[f] = E;
+    memcpy(d->fib_d + 3 * (size_t)f, dch, sizeof dch);
+    if (!loaded) {
+      continue;
+    }
+    scatter(r, d, nn, fv, r->w[CSF_ROM_SET_FIBRE][k], rf, want_k ? kf : NULL, rint);
+  }
+  /* follower pressure: R -= f_ext, K += kfe (= -d f_ext / dx) */
+  if (load->face_p) {
+    for (int k = 0; k < r->nel[CSF_ROM_SET_FACE]; k++) {
+      const int f = r->el[CSF_ROM_SET_FACE][k];
+      const double p = load->face_p[f];
+      if (p == 0.0 || (r->nch > 0 && r->face_ch[f] >= 0)) {
+        continue; /* vented, or a chamber in closed form (below) */
+      }
+      const int* fn = me->face + 6 * (size_t)f;
+      double xf[18], fe[18], kfe[324], vf;
+      gather(r, d->q, 6, fn, xf);
+      for (int a = 0; a < 6; a++) {
+        for (int i = 0; i < 3; i++) {
+          xf[3 * a + i] += me->x[3 * fn[a] + i];
+        }
+      }
+      csf_faceKernel(xf, p, fe, want_k ? kfe : NULL, &vf);
+      for (int a = 0; a < 18; a++) {
+        fe[a] = -fe[a];
+      }
+      scatter(r, d, 6, fn, r->w[CSF_ROM_SET_FACE][k], fe, want_k ? kfe : NULL, d->r);
+    }
+  }
+  /* chambers in closed form: r -= p g_c(q), K -= p H_c(q) (the lu scratch holds H(q)) */
+  for (int c = 0; load->face_p && c < r->nch; c++) {
+    double p = 0.0;
+    for (int f = 0; f < me->nface; f++) {
+      if (r->face_ch[f] == c) {
+        p = load->face_p[f];
+        break;
+      }
+    }
+    if (p == 0.0) {
+      continue;
+    }
+    double* Hq = d->lu;
+    chamberHessian(r, c, d->q, Hq);
+    const double* H0 = r->ch_H + (size_t)c * (size_t)(n + 1) * (size_t)n * (size_t)n;
+    const double* g0 = r->ch_g0 + (size_t)c * (size_t)n;
+    for (int i = 0; i < n; i++) {
+      double s = 0;
+      for (int j = 0; j < n; j++) {
+        s += (H0[(size_t)i * n + j] + Hq[(size_t)i * n + j]) * d->q[j];
+      }
+      d->r[i] -= p * (g0[i] + 0.5 * s);
+    }
+    if (want_k) {
+      for (size_t i = 0; i < (size_t)n * (size_t)n; i++) {
+        d->K[i] -= p * Hq[i];
+      }
+    }
+  }
+  /* gravity and dead loads, exact */
+  for (int j = 0; j < n; j++) {
+    d->r[j] -= r->G[3 * j] * load->gravity[0] + r->G[3 * j + 1] * load->gravity[1] +
+               r->G[3 * j + 2] * load->gravity[2];
+    if (load->f_dead) {
+      d->r[j] -= load->f_dead[j];
+    }
+  }
+  double ni = 0, ne = 0, nr = 0;
+  for (int j = 0; j < n; j++) {
+    ni += rint[j] * rint[j];
+    ne += d->r[j] * d->r[j];
+    d->r[j] += rint[j];
+    nr += d->r[j] * d->r[j];
+  }
+  d->fnorm = sqrt(ni) + sqrt(ne);
+  d->rnorm = sqrt(nr);
+  d->n_eval++;
+  return isfinite(d->rnorm) ? 0 : 1;
+}
+
+
+int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
+                         double* G) {
+  if (!r || !d || !load || !G || (int)set < 0 || set >= CSF_ROM_NSET) {
+    return -1;
+  }
+  const csfModel* m = r->fem;
+  const csfMesh* me = m->mesh;
+  const size_t n = (size_t)r->n;
+  const int count[CSF_ROM_NSET] = {me->ntet, m->nfib, me->nface};
+  memset(G, 0, (size_t)count[set] * n * sizeof(double));
+  for (int e = 0; e < count[set]; e++) {
+    double* row = G + (size_t)e * n;
+    if (set == CSF_ROM_SET_TET) {
+      double ue[30], re[30], gv[30], vr, jm;
+      gather(r, d->q, 10, me->tet + 10 * (size_t)e, ue);
+      if (csf_tetKernel(&m->mat, m->dNdX + 120 * (size_t)e, m->wq + 4 * (size_t)e, m->vol[e], ue,
+                        1.0, re, NULL, &vr, gv, &jm)) {
+        return 1;
+      }
+      scatter(r, d, 10, me->tet + 10 * (size_t)e, 1.0, re, NULL, row);
+    } else if (set == CSF_ROM_SET_FIBRE) {
+      const int* fv = m->fib_node + 20 * (size_t)e;
+      const double* cf;
+      double x[60], rf[60], c10[10], E, dch[3];
+      const int nn = fibreGeometry(r, d->q, e, x, c10, &cf);
+      if (csf_fibreKernel(nn, cf, x, m->fib_L0[e], m->fib_EA[e], 0.0, m->fib_tension_only,
+                          m->fib_geo_tension, rf, NULL, &E, dch)) {
+        scatter(r, d, nn, fv, 1.0, rf, NULL, row);
+      }
+    } else if (load->face_p && load->face_p[e] != 0.0) {
+      const int* fn = me->face + 6 * (size_t)e;
+      double xf[18], fe[18], vf;
+      gather(r, d->q, 6, fn, xf);
+      for (int a = 0; a < 6; a++) {
+        for (int i = 0; i < 3; i++) {
+          xf[3 * a + i] += me->x[3 * fn[a] + i];
+        }
+      }
+      csf_faceKernel(xf, load->face_p[e], fe, NULL, &vf);
+      for (int a = 0; a < 18; a++) {
+        fe[a] = -fe[a];
+      }
+      scatter(r, d, 6, fn, 1.0, fe, NULL, row);
+    }
+  }
+  return 0;
+}
+
+
+/* ---- Newton ------------------------------------------------------------------------------- */
+
+csfRomNewtonOptions csf_romNewtonDefault(void) {
+  csfRomNewtonOptions o;
+  o.max_iter = 40;
+  o.rtol = 1e-8; /* the FE's element tests' default (csf_newtonDefault) */
+  o.atol = 1e-12;
+  o.max_ls = 8;
+  return o;
+}
+
+/* solve A x = b in place (A n x n row-major, overwritten by its LU; b becomes x); -1 singular */
+static int luSolve(int n, double* A, int* piv, double* b) {
+  for (int k = 0; k < n; k++) {
+    int p = k;
+    for (int i = k + 1; i < n; i++) {
+      p = fabs(A[(size_t)i * n + k]) > fabs(A[(size_t)p * n + k]) ? i : p;
+    }
+    piv[k] = p;
+    if (A[(size_t)p * n + k] == 0.0) {
+      return -1;
+    }
+    if (p != k) {
+      for (int j = 0; j < n; j++) {
+        const double t = A[(size_t)k * n + j];
+        A[(size_t)k * n + j] = A[(size_t)p * n + j], A[(size_t)p * n + j] = t;
+      }
+      const double t = b[k];
+      b[k] = b[p], b[p] = t;
+    }
+    for (int i = k + 1; i < n; i++) {
+      const double l = A[(size_t)i * n + k] / A[(size_t)k * n + k];
+      A[(size_t)i * n + k] = l;
+      for (int j = k + 1; j < n; j++) {
+        A[(size_t)i * n + j] -= l * A[(size_t)k * n + j];
+      }
+      b[i] -= l * b[k];
+    }
+  }
+  for (int i = n - 1; i >= 0; i--) {
+    double s = b[i];
+    for (int j = i + 1; j < n; j++) {
+      s -= A[(size_t)i * n + j] * b[j];
+    }
+    b[i] = s / A[(size_t)i * n + i];
+  }
+  return 0;
+}
+
+/* the three-field update along alpha dq (fem_newton.c updateTheta): theta_e = (v_e + alpha g_e .
+ * du_e) / V_e, the fibres' S = S(E0 + alpha d0 . dd / L0^2), over the kept elements */
+static void updateStates(const csfRom* r, csfRomData* d, double alpha) {
+  const csfModel* m = r->fem;
+  const csfMesh* me = m->mesh;
+  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+    const int e = r->el[CSF_ROM_SET_TET][k];
+    double due[30];
+    gather(r, d->dq, 10, me->tet + 10 * (size_t)e, due);
+    const double* g = d->g0 + 30 * (size_t)e;
+    double s = 0;
+    for (int a = 0; a < 30; a++) {
+      s += g[a] * due[a];
+    }
+    d->theta[e] = d->vr0[e] + alpha * s / m->vol[e];
+  }
+  for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
+    const int f = r->el[CSF_ROM_SET_FIBRE][k];
+    const int* fv = m->fib_node + 20 * (size_t)f;
+    const double* c = m->fib_coef + 20 * (size_t)f;
+    double du[60], dd[3] = {0, 0, 0};
+    gather(r, d->dq, 20, fv, du);
+    for (int a = 0; a < 20; a++) {
+      for (int i = 0; i < 3; i++) {
+        dd[i] += c[a] * du[3 * a + i];
+      }
+    }
+    const double* d0 = d->fib_d0 + 3 * (size_t)f;
+    const double L0 = m->fib_L0[f];
+    const double El = d->fib_E0[f] + alpha * (d0[0] * dd[0] + d0[1] * dd[1] + d0[2] * dd[2]) /
+                                         (L0 * L0);
+    double dS;
+    csf_fibreLaw(m->fib_tension_only, El, &d->fib_S[f], &dS);
+  }
+}
+
+/* copy the states of the kept elements between buffers (dst <- src) */
+static void copyStates(const csfRom* r, double* th_dst, const double* th_src, double* S_dst,
+                       const double* S_src) {
+  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+    const int e = r->el[CSF_ROM_SET_TET][k];
+    th_dst[e] = th_src[e];
+  }
+  for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
+    const int f = r->el[CSF_ROM_SET_FIBRE][k];
+    S_dst[f] = S_src[f];
+  }
+}
+
+/* the update's base: v/V, g, E and d of the kept elements at the iterate */
+static void keepBase(const csfRom* r, csfRomData* d) {
+  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+    const int e = r->el[CSF_ROM_SET_TET][k];
+    d->vr0[e] = d->vr[e];
+    memcpy(d->g0 + 30 * (size_t)e, d->gel + 30 * (size_t)e, 30 * sizeof(double));
+  }
+  for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
+    const int f = r->el[CSF_ROM_SET_FIBRE][k];
+    d->fib_E0[f] = d->fib_E[f];
+    memcpy(d->fib_d0 + 3 * (size_t)f, d->fib_d + 3 * (size_t)f, 3 * sizeof(double));
+  }
+}
+
+static csStatus newtonFail(const csfRom* r, csfRomData* d, const csfRomLoad* load, int it,
+                           csError* err, const char* why) {
+  memcpy(d->q, d->q_save, (size_t)r->n * sizeof(double));
+  copyStates(r, d->theta, d->theta_save, d->fib_S, d->fib_S_save);
+  csf_romEvaluate(r, d, load, 0);
+  return cs_errorSet(err, CS_ERR_DIVERGED, "fem_rom: %s at iteration %d (|r| %.3g N of %.3g)",
+                     why, it, d->rnorm, d->fnorm);
+}
+
+csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
+                       const csfRomNewtonOptions* o, int* iters, csError* err) {
+  const size_t n = (size_t)r->n;
+  memcpy(d->q_save, d->q, n * sizeof(double));
+  copyStates(r, d->theta_save, d->theta, d->fib_S_save, d->fib_S);
+  int it = 0, strict = 0, since_best = 0;
+  if (iters) {
+    *iters = 0;
+  }
+  if (csf_romEvaluate(r, d, load, 1) != 0) {
+    return newtonFail(r, d, load, it, err, "the starting state is not physical (an inverted "
+                      "element)");
+  }
+  double r_best = INFINITY; /* the first iterate is the first best one (fem_newton.c) */
+  while (!(d->rnorm <= o->rtol * d->fnorm || d->rnorm <= o->atol)) {
+    if (it >= o->max_iter) {
+      return newtonFail(r, d, load, it, err, "Newton did not converge");
+    }
+    memcpy(d->lu, d->K, n * n * sizeof(double));
+    for (size_t j = 0; j < n; j++) {
+      d->dq[j] = -d->r[j];
+    }
+    if (luSolve(r->n, d->lu, d->piv, d->dq) != 0) {
+      return newtonFail(r, d, load, it, err, "singular reduced tangent");
+    }
+    keepBase(r, d);
+    memcpy(d->q0, d->q, n * sizeof(double));
+    /* a full step unless |r| grows past ROM_LS_GROWTH_FIRST (lenient) or at all (strict, after
+     * the watchdog's return), halving otherwise (fem_newton.c) */
+    const double r0 = d->rnorm, growth = strict ? 1.0 : ROM_LS_GROWTH_FIRST;
+    double alpha = 1.0;
+    int ok = 0;
+    for (int ls = 0; ls <= o->max_ls; ls++) {
+      for (size_t j = 0; j < n; j++) {
+        d->q[j] = d->q0[j] + alpha * d->dq[j];
+      }
+      updateStates(r, d, alpha);
+      if (csf_romEvaluate(r, d, load, 1) == 0 && d->rnorm < growth * r0) {
+        ok = 1;
+        break;
+      }
+      alpha *= ROM_LS_SHRINK;
+    }
+    it++;
+    d->n_newton++;
+    if (!ok) {
+      return newtonFail(r, d, load, it, err, "line search failed");
+    }
+    strict = 0;
+    if (d->rnorm < r_best) {
+      r_best = d->rnorm;
+      since_best = 0;
+      memcpy(d->q_best, d->q, n * sizeof(double));
+      copyStates(r, d->theta_best, d->theta, d->fib_S_best, d->fib_S);
+    } else if (++since_best >= ROM_LS_WATCH) {
+      memcpy(d->q, d->q_best, n * sizeof(double));
+      copyStates(r, d->theta, d->theta_best, d->fib_S, d->fib_S_best);
+      if (csf_romEvaluate(r, d, load, 1) != 0) {
+        return newtonFail(r, d, load, it, err, "the best iterate is not physical");
+      }
+      since_best = 0;
+      strict = 1;
+    }
+  }
+  if (iters) {
+    *iters = it;
+  }
+  return CS_OK;
+}

@@ -1,0 +1,159 @@
+/* fem_rom.h: the reduced-order FE model of one actuator (issue 34: the `rom` level).
+ *
+ * Owns: csfRom (the model, constant once built: a basis V of the displacement, u = V q, over a
+ * full FE model's mesh and kernels; the element sets that enter the reduced forces, each element
+ * with a non-negative weight (all elements at weight 1 unless hyper-reduced: ECSW, Farhat et
+ * al. 2014, per element and not per quadrature point, so each Tet10 keeps its mixed pressure);
+ * the exact reduced gravity and dead-load operators), csfRomData (reduced coordinates q,
+ * residual, tangent, scratch), the reduced residual and tangent from fem's element kernels
+ * (fem_element.h, no FE assembly or Newton), and the reduced statics: Newton on q with a load
+ * ramp.
+ * Reduced equations: r(q) = V^T f_int(V q) - V^T f_ext(V q) = 0 with the FE's sign convention
+ * (fem_model.h: R = f_int - f_ext), K_r = dr/dq = V^T K V. The element dilatation of the mixed
+ * form and the fibres' stress state are taken at their converged values theta_e = v/V and
+ * S = S(E) (csf_dataSyncVolume), so K_r is the exact derivative of r and, every kernel being
+ * conservative on closed chambers, symmetric; a weighted sum of element terms keeps both
+ * properties for any non-negative weights.
+ * Units: mm, MPa, N, t/mm^3. Basis V: (ndof x n) row-major, zero rows on clamped dofs. */
+#ifndef CS_FEM_ROM_H
+#define CS_FEM_ROM_H
+
+#include <stddef.h>
+
+#include "core_status.h"
+#include "fem_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Element sets of the reduced forces: Tet10 bodies, fibre trusses, pressure faces. */
+typedef enum csfRomSet_ {
+  CSF_ROM_SET_TET = 0,
+  CSF_ROM_SET_FIBRE = 1,
+  CSF_ROM_SET_FACE = 2
+} csfRomSet;
+#define CSF_ROM_NSET 3
+
+typedef struct csfRom_ {
+  const csfModel* fem; /* not owned: mesh, material, reference geometry, fibres, clamp */
+  int ndof, n;         /* full and reduced sizes */
+  double* V;           /* (ndof x n) basis, mm per unit q, owned */
+  int nel[CSF_ROM_NSET];   /* elements kept in each set */
+  int* el[CSF_ROM_NSET];   /* (nel) their indices in the FE model */
+  double* w[CSF_ROM_NSET]; /* (nel) their weights (>= 0) */
+  double* G;           /* (n x 3) reduced body force per unit acceleration, V^T f_g(e_i),
+                        * N s^2/mm (exact: every element, linear in g) */
+  /* chambers in closed form (csf_romChamberTensors): 0 = none, the faces go through the face
+   * set. The volume a chamber's faces enclose is a cubic polynomial of the nodal positions,
+   * hence of q: V_c(q) = V0 + g0.q + q.H0 q / 2 + sum_k q_k q.H_k q / 6, its gradient (the
+   * reduced pressure load per unit pressure) g0 + (H0 + H(q)) q / 2 and its Hessian
+   * H(q) = H0 + sum_k q_k H_k, exactly, from n + 1 evaluations of the faces */
+  int nch;
+  int* face_ch;        /* (nface) chamber of each face, -1: not in a chamber */
+  double* ch_V0;       /* (nch) mm^3 */
+  double* ch_g0;       /* (nch x n) mm^3 per unit q */
+  double* ch_H;        /* (nch x (n + 1) x n x n): H0, H_1 .. H_n */
+} csfRom;
+
+/* Build a reduced model on the finalised FE model `fem` (not copied; must outlive the rom) with
+ * the basis V (ndof x n, copied; rows of clamped dofs must be zero). Every element kept at
+ * weight 1. NULL and err on failure. */
+csfRom* csf_romCreate(const csfModel* fem, int n, const double* V, csError* err);
+void csf_romDestroy(csfRom* r);
+
+/* Replace the element set `set` by the elements idx[0..nel) with weights w (>= 0; copied).
+ * CS_ERR_ARG on an index out of range or a negative or non-finite weight. */
+csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, const double* w,
+                           csError* err);
+
+/* Take the chambers' pressure loads in closed form (see csfRom.nch): face f belongs to chamber
+ * face_ch[f] (0..nch-1, -1: none; every face of a chamber must carry the same pressure in a
+ * load). Afterwards the faces of chambers leave the face set (exact, conservative, a symmetric
+ * load stiffness when the chambers are closed: no hyper-reduction needed) and cost O(n^3) per
+ * chamber instead of O(faces n^2). CS_ERR_ARG on a bad chamber index. */
+csStatus csf_romChamberTensors(csfRom* r, int nch, const int* face_ch, csError* err);
+
+/* The volume chamber c encloses at q (mm^3; csf_romChamberTensors first). */
+double csf_romChamberVolume(const csfRom* r, int c, const double* q);
+
+/* Project a full nodal force (ndof, N) onto the basis: fr = V^T f (n). */
+void csf_romProject(const csfRom* r, const double* f, double* fr);
+
+/* Reconstruct the displacement u = V q (ndof, mm). */
+void csf_romExpand(const csfRom* r, const double* q, double* u);
+
+/* The loads of a reduced equilibrium. */
+typedef struct csfRomLoad_ {
+  const double* face_p; /* (nface) pressure on every boundary face, MPa (NULL: none) */
+  double gravity[3];    /* body acceleration, mm/s^2 */
+  const double* f_dead; /* (n) reduced dead load V^T f_dead, N (NULL: none; csf_romProject) */
+} csfRomLoad;
+
+/* Reduced state and scratch. The mixed Tet10's dilatation theta_e and the fibres' stress
+ * state S enter the tangent's geometric terms (fem_element.h); as in the FE's three-field Newton
+ * (fem_newton.c) the reduced Newton carries them as state and updates them by the linearised
+ * constraint, so that the spurious volumetric pressure of an overshooting iterate does not
+ * enter the tangent (without it the reduced Newton stalled on a clamped block: |r| grew along
+ * every step). With `sync` set, an evaluation takes them at their converged values v/V and
+ * S(E) instead, and K is the exact derivative of r (tests). */
+typedef struct csfRomData_ {
+  int n;
+  double* q;    /* (n) reduced coordinates */
+  double* r;    /* (n) reduced residual at the last evaluation, N */
+  double* K;    /* (n x n) reduced tangent, N/mm */
+  int sync;     /* 1: theta = v/V, S = S(E) at every evaluation (exact tangent); 0: the states */
+  double* theta;  /* (ntet) element dilatation state (1 at rest) */
+  double* fib_S;  /* (nfib) fibre stress state */
+  double* vr, *gel;     /* (ntet), (ntet x 30) v/V and g_e of the last evaluation */
+  double* fib_E, *fib_d; /* (nfib), (nfib x 3) fibre strain and chord of the last evaluation */
+  double* vr0, *g0, *fib_E0, *fib_d0; /* the same at the Newton iterate (the update's base) */
+  double* theta_save, *fib_S_save, *theta_best, *fib_S_best; /* Newton's restore points */
+  double* dq, *q_save, *q_best, *q0, *lu, *tmp; /* (n) x 5, (n x n), (n) scratch */
+  int* piv;     /* (n) */
+  double* ke_v; /* (60 x n) scratch: element matrix times the element's basis rows */
+  double rnorm, fnorm; /* |r|, force scale |V^T f_int| + |V^T f_ext| (N) */
+  long n_eval, n_newton; /* evaluations, Newton iterations */
+} csfRomData;
+
+csfRomData* csf_romDataCreate(const csfRom* r, csError* err);
+void csf_romDataDestroy(csfRomData* d);
+
+/* The unloaded state: q = 0, theta = 1, the fibres' stress at zero strain. */
+void csf_romDataReset(const csfRom* r, csfRomData* d);
+
+/* Evaluate r(q) (and K(q) when want_k) at d->q under `load` into d->r, d->K (the residual does
+ * not depend on the states; the tangent's geometric terms do, see csfRomData.sync). Returns 0,
+ * > 0 when an element inverts (recoverable: cut the step), < 0 on bad arguments. */
+int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int want_k);
+
+/* The reduced force of every element of `set` in the FE model (weight 1, whatever the rom's
+ * weights) at d->q under `load`: row e of G (nel x n, N) is V_e^T f_e, with f_e the element's
+ * internal force (tets, fibres) or its pressure load with the sign of R (faces: -f_ext). Their
+ * column sums are the unreduced model's parts of r; ECSW fits element weights to them
+ * (tools/rom_ecsw.py). Returns 0, > 0 if an element inverts, < 0 on bad arguments. */
+int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
+                         double* G);
+
+/* Newton options of the reduced statics. */
+typedef struct csfRomNewtonOptions_ {
+  int max_iter;  /* iterations per load level */
+  double rtol;   /* |r| <= rtol (|V^T f_int| + |V^T f_ext|) */
+  double atol;   /* ... or |r| <= atol, N */
+  int max_ls;    /* line-search halvings */
+} csfRomNewtonOptions;
+
+csfRomNewtonOptions csf_romNewtonDefault(void);
+
+/* Solve r(q) = 0 from d->q by the FE's Newton (fem_newton.c): the three-field state update, a
+ * lenient first line search (|r| may grow 1e4-fold) and a watchdog that returns to the best
+ * iterate after 3 steps without improving on it and continues with strict backtracking. On
+ * failure d->q and the states are restored and CS_ERR_DIVERGED returned. `iters` (may be NULL)
+ * gets the iterations. */
+csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
+                       const csfRomNewtonOptions* o, int* iters, csError* err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_FEM_ROM_H */

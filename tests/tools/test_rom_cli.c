@@ -1,0 +1,75 @@
+/* test_rom_cli.c: `crawlsim rom` and `crawlsim bend --model rom` on the command line (argv[1] is
+ * the executable), without running the FE.
+ *
+ * Proves: the ray list holds training and held-out rays; every bad stage, option or file exits
+ * 1 with one line on stderr naming the cause (and the file where there is one), and no crash.
+ * Needs POSIX for tests/cs_cli.h. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stdio.h>
+#include <string.h>
+
+#include "cs_cli.h"
+#include "cs_test.h"
+
+static const char* exe_path = NULL;
+
+/* one line on stderr (its only newline at the end) */
+static int oneLine(const char* s) {
+  const char* nl = strchr(s, '\n');
+  return nl && nl[1] == '\0';
+}
+
+static void expectRefused(const char* args, const char* needle) {
+  csCliResult r;
+  cs_cliRun(exe_path, args, "romcli", &r);
+  const int ok = r.status == 1 && oneLine(r.err) && strstr(r.err, needle) != NULL;
+  if (!ok) {
+    fprintf(stderr, "  `%s`: status %d, stderr: %s\n", args, r.status, r.err);
+  }
+  CS_EXPECT(ok);
+}
+
+
+static void test_ray_list_has_training_and_held_out_rays(void) {
+  csCliResult r;
+  cs_cliRun(exe_path, "rom snapshots --list", "romcli", &r);
+  CS_EXPECT(r.status == 0);
+  int train = 0, test = 0;
+  for (const char* p = r.out; (p = strstr(p, " train ")) != NULL; p++) {
+    train++;
+  }
+  for (const char* p = r.out; (p = strstr(p, " test ")) != NULL; p++) {
+    test++;
+  }
+  printf("  %d training rays, %d held-out rays\n", train, test);
+  CS_EXPECT(train >= 30 && test >= 5);
+  CS_EXPECT(strstr(r.out, "T_H4") != NULL && strstr(r.out, "Fzc") != NULL);
+}
+
+
+static void test_bad_input_is_one_line_and_exit_1(void) {
+  expectRefused("rom frobnicate", "unknown stage 'frobnicate'");
+  expectRefused("rom snapshots --ray NOPE", "--ray 'NOPE': no such ray");
+  expectRefused("rom snapshots --mesh-size 0", "--mesh-size '0'");
+  expectRefused("rom check --snapshots .", "needs --snapshots DIR and --basis FILE");
+  expectRefused("rom check --snapshots . --basis romcli_missing.h5", "romcli_missing.h5");
+  expectRefused("rom ecsw-matrix --basis romcli_missing.h5 --out x.h5", "romcli_missing.h5");
+  expectRefused("bend --model rom --p-max 0.1 --out romcli.h5", "--rom-basis");
+  expectRefused("bend --model rom --rom-basis romcli_missing.h5 --out romcli.h5",
+                "romcli_missing.h5");
+  expectRefused("bend --model analytic --rom-basis x.h5 --out romcli.h5", "--model rom");
+  remove("romcli.h5");
+}
+
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: test_rom_cli CRAWLSIM\n");
+    return 2;
+  }
+  exe_path = argv[1];
+  CS_RUN(test_ray_list_has_training_and_held_out_rays);
+  CS_RUN(test_bad_input_is_one_line_and_exit_1);
+  return cs_testSummary();
+}

@@ -1,0 +1,578 @@
+/* cmd_rom.c: `crawlsim rom`: the reduced-order FE leg's offline stages (issue 34).
+ *
+ *   crawlsim rom snapshots [--out DIR] [--ray NAME]... [--list] [--actuator leg|...]
+ *                          [--set NAME=VALUE]... [--mesh-size MM] [--newton-rtol R]
+ *                          [--threads N]
+ *
+ * snapshots: full-FE static solves on the symmetric mesh along the built-in load rays
+ * (fem/fem_rom_snap.h: chamber modes, per-segment patterns, random rays, gravity, tip forces,
+ * pressure with loads; training and held-out rays), one HDF5 file per ray in DIR (a finished
+ * ray is skipped, so a stopped production resumes ray by ray) and DIR/mesh.h5 (what the offline
+ * basis, tools/rom_basis.py, reads). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cmd_fe_threads.h"
+#include "core_math.h"
+#include "core_clock.h"
+#include "cs_commands.h"
+#include "cs_signal.h"
+#include "fem_measure.h"
+#include "fem_rom_act.h"
+#include "fem_rom_snap.h"
+#include "robot_actuator.h"
+
+static const char kUsage[] =
+    "usage: crawlsim rom check --snapshots DIR --basis BASIS.h5 [--weights W.h5] [--ray NAME]...\n"
+    "                          [--all] [--actuator leg|...] [--set NAME=VALUE]...\n"
+    "  check: the reduced model (basis of tools/rom_basis.py, element weights of\n"
+    "  tools/rom_ecsw.py) along the rays of DIR against the full FE's states: each segment's\n"
+    "  bend (deg and %), the tip (mm), the chamber volumes (%); the held-out rays (kind test)\n"
+    "  unless --ray or --all. Targets (issue 34): bends within 1 deg or 2 %, tip within 1 %\n"
+    "  of the leg length, volumes within 1 %.\n"
+    "       crawlsim rom ecsw-matrix --basis BASIS.h5 --out A.h5 [--work DIR] [--actuator ...]\n"
+    "  ecsw-matrix: every element's reduced force at each training snapshot of the basis file\n"
+    "  (rows snapshot x coordinate, a column per element; one matrix for the Tet10s, one for\n"
+    "  the fibres; the chambers' pressure loads are exact), for tools/rom_ecsw.py's NNLS.\n"
+    "       crawlsim rom snapshots [--out DIR] [--ray NAME]... [--list]\n"
+    "                              [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
+    "                              [--mesh-size MM] [--newton-rtol R] [--threads N]\n"
+    "  snapshots: full-FE statics on the symmetric mesh along the built-in load rays (chamber\n"
+    "  modes in every bending direction, patterns that differ per segment, random rays,\n"
+    "  gravity in three directions, tip forces across and along the leg, pressure with loads;\n"
+    "  the held-out rays T_* are for testing only), four states per ray, one file per ray in\n"
+    "  DIR (default rom_snapshots/) and DIR/mesh.h5; finished rays are skipped (resumable);\n"
+    "  with --ray the rays run in the order given.\n"
+    "  --list prints the rays. Defaults: actuator leg, l_soft 4 mm, Newton's test 1e-6.\n";
+
+enum { MAX_SETS = 32 };
+
+static int parseNumber(const char* flag, const char* v, double lo, double hi, double* out) {
+  char* end;
+  errno = 0;
+  double x = strtod(v, &end);
+  if (end == v || *end || errno || !isfinite(x) || x < lo || x > hi) {
+    fprintf(stderr, "crawlsim rom: %s '%s' must be a number in [%g, %g]\n", flag, v, lo, hi);
+    return 1;
+  }
+  *out = x;
+  return 0;
+}
+
+
+/* the actuator (preset, then every --set) into *act; 1 after one error line */
+static int actuatorFromArgs(const char* name, const char* const* sets, int nset, int validate,
+                            csrActuator* act) {
+  csError err;
+  cs_errorClear(&err);
+  csStatus st = csr_actuatorPreset(act, name, &err);
+  for (int k = 0; k < nset && st == CS_OK; k++) {
+    st = csr_actuatorSetString(act, sets[k], &err);
+  }
+  if (st == CS_OK && validate) {
+    st = csr_actuatorValidate(act, &err);
+  }
+  if (st != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}
+
+
+/* the reduced actuator on the snapshots' FE model (csf_romSnapSetup's: every chamber tagged,
+ * the symmetric mesh of the basis' l_soft; gmsh's files under work/stem); 1 after one error
+ * line */
+static int romOpen(const char* actname, const char* const* sets, int nset, const char* basis,
+                   const char* weights, const char* work, const char* stem_name,
+                   csrActuator* act, csfRomActuator* ra) {
+  if (actuatorFromArgs(actname, sets, nset, 0, act)) {
+    return 1;
+  }
+  csError err;
+  cs_errorClear(&err);
+  const double l = csf_romBasisMeshSize(basis, &err);
+  if (isnan(l)) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  csfActuatorSpec spec = csf_actuatorSpecDefault();
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      spec.ratio[s][j] = 1.0;
+    }
+  }
+  spec.mesh_size = l;
+  spec.mesh_symmetric = 1;
+  char stem[620];
+  snprintf(stem, sizeof stem, "%.500s/%.60s", work, stem_name);
+  spec.work_stem = stem;
+  if (csf_romActuatorCreate(act, &spec, basis, weights, ra, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}
+
+
+static void snapProgress(void* user, const char* ray, double t, int iters, double wall) {
+  (void)user;
+  fprintf(stderr, "  %s: t = %.4f, %d Newton iterations, %.0f s\n", ray, t, iters, wall);
+}
+
+
+static int cmdSnapshots(int argc, char** argv) {
+  csx_signalInstall();
+  const char* dir = "rom_snapshots";
+  const char* actname = "leg";
+  const char* sets[MAX_SETS];
+  const char* pick[CSF_ROM_MAX_RAYS];
+  int nset = 0, npick = 0, list = 0, threads = 0;
+  csfRomSnapSettings ss = csf_romSnapDefault();
+  csfRomRay rays[CSF_ROM_MAX_RAYS];
+  const int nray = csf_romRays(rays, CSF_ROM_MAX_RAYS);
+  for (int i = 1; i < argc; i++) {
+    const char* a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      fputs(kUsage, stdout);
+      return 0;
+    }
+    if (!strcmp(a, "--list")) {
+      list = 1;
+      continue;
+    }
+    if (i + 1 >= argc || a[0] != '-') {
+      fprintf(stderr, a[0] == '-' ? "crawlsim rom: %s needs a value\n"
+                                  : "crawlsim rom: unexpected argument '%s'\n", a);
+      return 1;
+    }
+    const char* v = argv[++i];
+    int bad = 0;
+    if (!strcmp(a, "--threads")) {
+      bad = csx_feParseThreads("rom", v, &threads);
+    } else if (!strcmp(a, "--mesh-size")) {
+      bad = parseNumber(a, v, 0.5, 20, &ss.mesh_size);
+    } else if (!strcmp(a, "--newton-rtol")) {
+      bad = parseNumber(a, v, 1e-12, 1e-3, &ss.newton_rtol);
+    } else if (!strcmp(a, "--out")) {
+      dir = v;
+    } else if (!strcmp(a, "--actuator")) {
+      actname = v;
+    } else if (!strcmp(a, "--ray")) {
+      int found = 0;
+      for (int k = 0; k < nray; k++) {
+        found |= !strcmp(rays[k].name, v);
+      }
+      if (!found) {
+        fprintf(stderr, "crawlsim rom: --ray '%s': no such ray (see --list)\n", v);
+        return 1;
+      }
+      if (npick == CSF_ROM_MAX_RAYS) {
+        fprintf(stderr, "crawlsim rom: more than %d --ray options\n", CSF_ROM_MAX_RAYS);
+        return 1;
+      }
+      pick[npick++] = v;
+    } else if (!strcmp(a, "--set")) {
+      if (nset == MAX_SETS) {
+        fprintf(stderr, "crawlsim rom: more than %d --set options\n", MAX_SETS);
+        return 1;
+      }
+      sets[nset++] = v;
+    } else {
+      fprintf(stderr, "crawlsim rom: unknown option '%s'\n", a);
+      return 1;
+    }
+    if (bad) {
+      return 1;
+    }
+  }
+  if (list) {
+    for (int k = 0; k < nray; k++) {
+      const csfRomRay* y = rays + k;
+      printf("%-10s %-5s  %s\n", y->name, y->kind == CSF_ROM_TRAIN ? "train" : "test", y->about);
+    }
+    return 0;
+  }
+  csError err;
+  cs_errorClear(&err);
+  csrActuator act;
+  if (actuatorFromArgs(actname, sets, nset, 1, &act)) {
+    return 1;
+  }
+  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+    fprintf(stderr, "crawlsim rom: %s: cannot create the snapshot directory: %s\n", dir,
+            strerror(errno));
+    return 1;
+  }
+  /* which rays are still to run */
+  int todo[CSF_ROM_MAX_RAYS], ntodo = 0;
+  char path[CSF_ROM_MAX_RAYS][600];
+  for (int k = 0; k < nray; k++) {
+    snprintf(path[k], sizeof path[k], "%.500s/%.31s.h5", dir, rays[k].name);
+  }
+  /* the list's order, or the --ray options' order (a production runs the most useful first) */
+  for (int q = 0; q < (npick ? npick : nray); q++) {
+    int k = q;
+    for (int j = 0; npick && j < nray; j++) {
+      k = !strcmp(pick[q], rays[j].name) ? j : k;
+    }
+    int dup = 0;
+    for (int j = 0; j < ntodo; j++) {
+      dup |= todo[j] == k;
+    }
+    if (!dup && !csf_romSnapDone(path[k], rays + k, &ss)) {
+      todo[ntodo++] = k;
+    }
+  }
+  char mesh_path[600];
+  snprintf(mesh_path, sizeof mesh_path, "%.500s/mesh.h5", dir);
+  struct stat sb;
+  const int have_mesh = stat(mesh_path, &sb) == 0;
+  if (ntodo == 0 && have_mesh) {
+    printf("crawlsim rom: every chosen ray is done in %s\n", dir);
+    return 0;
+  }
+  csfThreadPlan plan;
+  csx_fePlanThreads("rom", threads, &plan);
+  ss.threads = plan.threads;
+  char stem[620];
+  snprintf(stem, sizeof stem, "%.500s/mesh", dir);
+  ss.work_stem = stem;
+  ss.cancel = csx_signalFlag();
+  ss.progress = snapProgress;
+  const double t_all = csu_wallSeconds();
+  csfActuatorFE fe;
+  csfData* d = NULL;
+  if (csf_romSnapSetup(&act, &ss, &fe, &d, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  fprintf(stderr, "crawlsim rom: %s, l_soft %g mm, symmetric mesh: %d Tet10, %d dofs, %d fibre "
+          "elements (set-up %.1f s)\n", act.name, ss.mesh_size, fe.mesh->ntet, fe.model->ndof,
+          fe.model->nfib, csu_wallSeconds() - t_all);
+  const size_t ns = csf_stateSize(fe.model);
+  double* s0 = malloc(ns * sizeof(double));
+  int rc = 0;
+  if (!s0) {
+    fprintf(stderr, "crawlsim rom: out of memory (%zu values)\n", ns);
+    rc = 1;
+  } else {
+    csf_stateGet(fe.model, d, s0);
+  }
+  if (rc == 0 && csf_romMeshWrite(&fe, &ss, mesh_path, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    rc = 1;
+  }
+  int ran = 0;
+  for (int q = 0; q < ntodo && rc == 0; q++) {
+    const csfRomRay* y = rays + todo[q];
+    char part[620];
+    snprintf(part, sizeof part, "%.590s.part", path[todo[q]]);
+    csfRomSnapInfo info;
+    if (csf_romSnapRun(&fe, d, s0, &act, y, &ss, part, &info, &err) != CS_OK) {
+      fprintf(stderr, "crawlsim rom: ray %s: %s%s\n", y->name, err.msg,
+              err.status == CS_ERR_INTERRUPTED ? " (run again to continue: finished rays are "
+              "kept)" : "");
+      remove(part);
+      rc = err.status != CS_ERR_INTERRUPTED ? 1
+           : csx_signalExitCode() ? csx_signalExitCode() : 130;
+      break;
+    }
+    if (rename(part, path[todo[q]]) != 0) {
+      fprintf(stderr, "crawlsim rom: %s: cannot rename to %s: %s\n", part, path[todo[q]],
+              strerror(errno));
+      rc = 1;
+      break;
+    }
+    ran++;
+    fprintf(stderr, "crawlsim rom: ray %s (%s): t = %.4g, %d steps, %d cut-backs, %ld Newton "
+            "iterations, %.0f s%s%s -> %s\n", y->name, y->kind == CSF_ROM_TRAIN ? "train" : "test",
+            info.t_end, info.steps, info.cutbacks, info.newton, info.wall,
+            info.complete ? "" : ": ended early: ", info.why, path[todo[q]]);
+  }
+  printf("crawlsim rom: %d rays run of %d to do (%.0f s)\n", ran, ntodo,
+         csu_wallSeconds() - t_all);
+  free(s0);
+  csf_dataDestroy(d);
+  csf_actuatorFEDestroy(&fe);
+  return rc;
+}
+
+
+/* one ray of the reduced model against the FE's file; returns the worst errors */
+typedef struct CheckErr_ {
+  double bend_deg, bend_rel, tip_mm, vol_rel, wall;
+  int ok, failed;
+} CheckErr;
+
+static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSnapFile* sf,
+                     double L, CheckErr* ce) {
+  memset(ce, 0, sizeof *ce);
+  csf_romDataReset(ra->rom, ra->d);
+  memset(ra->p, 0, sizeof ra->p);
+  memset(ra->gravity, 0, sizeof ra->gravity);
+  memset(ra->tip_force, 0, sizeof ra->tip_force);
+  memset(ra->q_conv, 0, (size_t)ra->rom->n * sizeof(double));
+  const double t0 = csu_wallSeconds();
+  ce->ok = 1;
+  for (int k = 0; k < sf->m; k++) {
+    const double t = sf->t[k];
+    double p[CSR_NSEG][CSR_NCHAMBER], g[3], F[3];
+    for (int s = 0; s < CSR_NSEG; s++) {
+      for (int j = 0; j < CSR_NCHAMBER; j++) {
+        p[s][j] = t * sf->ray.p[s][j];
+      }
+    }
+    for (int i = 0; i < 3; i++) {
+      g[i] = t * sf->ray.gravity[i], F[i] = t * sf->ray.tip_force[i];
+    }
+    csError err;
+    cs_errorClear(&err);
+    if (csf_romActuatorSolve(ra, &p[0][0], g, F, &err) != CS_OK) {
+      printf("  %-10s t %.3f: %s\n", sf->ray.name, t, err.msg);
+      ce->failed = 1;
+      ce->ok = 0;
+      break;
+    }
+    const csfData v = csf_romActuatorView(ra);
+    csfSegmentState seg[CSR_NSEG];
+    double tip[3], Rtip[9], vol[12];
+    csf_segmentMeasure(act, ra->fe.gauges, ra->fe.model, &v, seg, tip, Rtip);
+    csf_romChamberVolumes(ra->fe.mesh, ra->u, vol);
+    double eb[CSR_NSEG], rb[CSR_NSEG], vmax = 0;
+    for (int s = 0; s < CSR_NSEG; s++) {
+      const double* b = sf->bend[k][s];
+      const double db = hypot(seg[s].bend[0] - b[0], seg[s].bend[1] - b[1]);
+      eb[s] = db * 180.0 / CS_PI;
+      rb[s] = db / fmax(hypot(b[0], b[1]), 1e-12);
+      /* the target: within 1 deg or within 2 % */
+      ce->ok &= eb[s] <= 1.0 || rb[s] <= 0.02;
+      ce->bend_deg = fmax(ce->bend_deg, eb[s]);
+      ce->bend_rel = fmax(ce->bend_rel, fmin(rb[s], 1e9));
+    }
+    for (int q = 0; q < 12; q++) {
+      vmax = fmax(vmax, fabs(vol[q] / sf->vol[k][q] - 1.0));
+    }
+    const double et = hypot(hypot(tip[0] - sf->tip[k][0], tip[1] - sf->tip[k][1]),
+                            tip[2] - sf->tip[k][2]);
+    ce->ok &= et <= 0.01 * L && vmax <= 0.01;
+    ce->tip_mm = fmax(ce->tip_mm, et);
+    ce->vol_rel = fmax(ce->vol_rel, vmax);
+    printf("  %-10s t %.3f: bend error %6.3f %6.3f %6.3f deg (%5.2f %5.2f %5.2f %%), tip %7.3f "
+           "mm, volumes %5.2f %%\n", sf->ray.name, t, eb[0], eb[1], eb[2], 100 * rb[0],
+           100 * rb[1], 100 * rb[2], et, 100 * vmax);
+  }
+  ce->wall = csu_wallSeconds() - t0;
+}
+
+static int cmdCheck(int argc, char** argv) {
+  const char* dir = NULL, *basis = NULL, *weights = NULL, *actname = "leg";
+  const char* sets[MAX_SETS];
+  const char* pick[CSF_ROM_MAX_RAYS];
+  int nset = 0, npick = 0, all = 0;
+  for (int i = 1; i < argc; i++) {
+    const char* a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      fputs(kUsage, stdout);
+      return 0;
+    }
+    if (!strcmp(a, "--all")) {
+      all = 1;
+      continue;
+    }
+    if (i + 1 >= argc || a[0] != '-') {
+      fprintf(stderr, a[0] == '-' ? "crawlsim rom: %s needs a value\n"
+                                  : "crawlsim rom: unexpected argument '%s'\n", a);
+      return 1;
+    }
+    const char* v = argv[++i];
+    if (!strcmp(a, "--snapshots")) {
+      dir = v;
+    } else if (!strcmp(a, "--basis")) {
+      basis = v;
+    } else if (!strcmp(a, "--weights")) {
+      weights = v;
+    } else if (!strcmp(a, "--actuator")) {
+      actname = v;
+    } else if (!strcmp(a, "--ray") && npick < CSF_ROM_MAX_RAYS) {
+      pick[npick++] = v;
+    } else if (!strcmp(a, "--set") && nset < MAX_SETS) {
+      sets[nset++] = v;
+    } else {
+      fprintf(stderr, "crawlsim rom: unknown option '%s' (or too many)\n", a);
+      return 1;
+    }
+  }
+  if (!dir || !basis) {
+    fprintf(stderr, "crawlsim rom: check needs --snapshots DIR and --basis FILE\n");
+    return 1;
+  }
+  csrActuator act;
+  csfRomActuator ra;
+  const double t0 = csu_wallSeconds();
+  if (romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
+    return 1;
+  }
+  const double L = act.S[0] + act.S[1] + act.S[2] + act.LS[0] + act.LS[1];
+  printf("crawlsim rom: check: basis %s (n = %d), weights %s: %d of %d Tet10, %d of %d fibre "
+         "elements, %d of %d faces (set-up %.1f s)\n", basis, ra.rom->n, weights ? weights : "none",
+         ra.rom->nel[CSF_ROM_SET_TET], ra.fe.mesh->ntet, ra.rom->nel[CSF_ROM_SET_FIBRE],
+         ra.fe.model->nfib, ra.rom->nel[CSF_ROM_SET_FACE], ra.fe.mesh->nface,
+         csu_wallSeconds() - t0);
+  csfRomRay rays[CSF_ROM_MAX_RAYS];
+  const int nray = csf_romRays(rays, CSF_ROM_MAX_RAYS);
+  int nrun = 0, nok = 0;
+  double fe_wall = 0, rom_wall = 0;
+  for (int k = 0; k < nray; k++) {
+    int chosen = npick ? 0 : (all || rays[k].kind == CSF_ROM_TEST);
+    for (int q = 0; q < npick; q++) {
+      chosen |= !strcmp(pick[q], rays[k].name);
+    }
+    char path[620];
+    snprintf(path, sizeof path, "%.500s/%.31s.h5", dir, rays[k].name);
+    csfRomSnapFile sf;
+    csError err;
+    cs_errorClear(&err);
+    if (!chosen || csf_romSnapRead(path, &sf, &err) != CS_OK) {
+      continue; /* not chosen, or not produced (yet) */
+    }
+    CheckErr ce;
+    checkRay(&ra, &act, &sf, L, &ce);
+    nrun++;
+    nok += ce.ok;
+    fe_wall += sf.wall;
+    rom_wall += ce.wall;
+    printf("crawlsim rom: ray %-10s (%s): worst bend %.3g deg (%.3g %%), tip %.3g mm (%.3g %% of "
+           "L), volumes %.3g %%: %s; reduced %.2f s, FE %.0f s\n", sf.ray.name,
+           sf.ray.kind == CSF_ROM_TEST ? "held out" : "trained", ce.bend_deg, 100 * ce.bend_rel,
+           ce.tip_mm, 100 * ce.tip_mm / L, 100 * ce.vol_rel,
+           ce.failed ? "FAILED to solve" : ce.ok ? "within the targets" : "outside the targets",
+           ce.wall, sf.wall);
+  }
+  printf("crawlsim rom: %d rays checked, %d within the targets; reduced %.1f s against the FE's "
+         "%.0f s (x%.0f; the FE's under its own run's load)\n", nrun, nok, rom_wall, fe_wall,
+         rom_wall > 0 ? fe_wall / rom_wall : NAN);
+  csf_romActuatorDestroy(&ra);
+  return nrun > 0 ? 0 : 1;
+}
+
+
+/* the element force matrices of the ECSW fit (tools/rom_ecsw.py) */
+static int cmdEcswMatrix(int argc, char** argv) {
+  const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
+  const char* sets[MAX_SETS];
+  int nset = 0;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const char* a = argv[i], *v = argv[i + 1];
+    if (!strcmp(a, "--basis")) {
+      basis = v;
+    } else if (!strcmp(a, "--out")) {
+      out = v;
+    } else if (!strcmp(a, "--work")) {
+      work = v;
+    } else if (!strcmp(a, "--actuator")) {
+      actname = v;
+    } else if (!strcmp(a, "--set") && nset < MAX_SETS) {
+      sets[nset++] = v;
+    } else {
+      fprintf(stderr, "crawlsim rom: ecsw-matrix: unknown option '%s'\n", a);
+      return 1;
+    }
+  }
+  if (!basis || !out || argc % 2 == 0) {
+    fprintf(stderr, "crawlsim rom: ecsw-matrix needs --basis FILE --out FILE (options in pairs)\n");
+    return 1;
+  }
+  csError err;
+  cs_errorClear(&err);
+  csrActuator act;
+  csfRomActuator ra;
+  if (romOpen(actname, sets, nset, basis, NULL, work, "ecsw_mesh", &act, &ra)) {
+    return 1;
+  }
+  const int n = ra.rom->n;
+  int ns = 0;
+  double *q, *p, *g, *F;
+  if (csf_romBasisReadTraining(basis, n, &ns, &q, &p, &g, &F, &err) != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    csf_romActuatorDestroy(&ra);
+    return 1;
+  }
+  const int cnt[CSF_ROM_NSET] = {ra.fe.mesh->ntet, ra.fe.model->nfib, ra.fe.mesh->nface};
+  static const char* const kName[CSF_ROM_NSET] = {"/A_tet", "/A_fibre", "/A_face"};
+  csH5File* f = cs_h5Create(out, &err);
+  int rc = f ? 0 : 1;
+  /* the bodies and the fibres; the chambers' faces are in closed form (csf_romChamberTensors:
+   * exact), so the face set is not fitted */
+  for (int s = 0; s < CSF_ROM_SET_FACE && rc == 0; s++) {
+    const size_t rows = (size_t)ns * (size_t)n, cols = (size_t)cnt[s];
+    double* A = malloc(rows * cols * sizeof(double));
+    double* G = malloc(cols * (size_t)n * sizeof(double));
+    if (!A || !G) {
+      fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
+      rc = 1;
+    }
+    for (int k = 0; k < ns && rc == 0; k++) {
+      memcpy(ra.d->q, q + (size_t)k * n, (size_t)n * sizeof(double));
+      csfRomLoad ld;
+      csf_romActuatorLoad(&ra, p + 12 * (size_t)k, g + 3 * (size_t)k, F + 3 * (size_t)k, &ld);
+      if (csf_romElementForces(ra.rom, ra.d, &ld, (csfRomSet)s, G) != 0) {
+        fprintf(stderr, "crawlsim rom: snapshot %d: an element inverts at its projection\n", k);
+        rc = 1;
+        break;
+      }
+      for (size_t e = 0; e < cols; e++) {
+        for (int j = 0; j < n; j++) {
+          A[((size_t)k * n + j) * cols + e] = G[e * (size_t)n + j];
+        }
+      }
+    }
+    const size_t dims[2] = {rows, cols};
+    if (rc == 0 && cs_h5WriteDoubles(f, kName[s], 2, dims, A, &err) != CS_OK) {
+      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+      rc = 1;
+    }
+    free(A), free(G);
+  }
+  if (f) {
+    cs_h5AttrString(f, "/", "format", "crawlsim-rom-ecsw-matrix 1", &err);
+    cs_h5AttrString(f, "/", "basis", basis, &err);
+    cs_h5AttrDouble(f, "/", "n", n, &err);
+    cs_h5AttrDouble(f, "/", "nsnap", ns, &err);
+    if (cs_h5CloseChecked(f, &err) != CS_OK && rc == 0) {
+      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+      rc = 1;
+    }
+  }
+  if (rc == 0) {
+    printf("crawlsim rom: ecsw-matrix: %d snapshots x %d coordinates over %d Tet10 and %d fibre "
+           "elements -> %s\n", ns, n, cnt[0], cnt[1], out);
+  }
+  free(q), free(p), free(g), free(F);
+  csf_romActuatorDestroy(&ra);
+  return rc;
+}
+
+
+int csx_cmdRom(int argc, char** argv) {
+  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 1 : 0;
+  }
+  if (!strcmp(argv[1], "snapshots")) {
+    return cmdSnapshots(argc - 1, argv + 1);
+  }
+  if (!strcmp(argv[1], "check")) {
+    return cmdCheck(argc - 1, argv + 1);
+  }
+  if (!strcmp(argv[1], "ecsw-matrix")) {
+    return cmdEcswMatrix(argc - 1, argv + 1);
+  }
+  fprintf(stderr, "crawlsim rom: unknown stage '%s' (expected snapshots, check or ecsw-matrix)\n",
+          argv[1]);
+  return 1;
+}

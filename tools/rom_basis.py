@@ -1,0 +1,270 @@
+#!/usr/bin/python3
+"""rom_basis.py: the mass-weighted POD basis of the reduced-order FE leg (issue 34, stage 2).
+
+    /usr/bin/python3 tools/rom_basis.py SNAPDIR [--out BASIS.h5] [--tol 1e-3] [--n N]
+
+Reads SNAPDIR/mesh.h5 and the ray files of `crawlsim rom snapshots` (fem/fem_rom_snap.h),
+assembles the Tet10 consistent mass matrix M (rho of the mesh file; a collapsed Gauss rule of
+4^3 points, exact for the degree-4 integrand N_a N_b det J of a straight element and of high
+order on the curved ones), and takes the POD of the training snapshots in the hip frame (the
+base clamped: the snapshots' displacements relative to the clamped base face, which is their
+frame already) in the M inner product, by the method of snapshots: C = X^T M X = Phi Lambda
+Phi^T, V = X Phi Lambda^(-1/2), so V^T M V = I. The basis size n is the smallest whose largest
+relative projection error over the training snapshots, |u - V V^T M u|_M / |u|_M, is at most
+--tol (or --n). Prints the singular value decay, the projection errors (M-norm and the largest
+nodal displacement error, mm) of the training snapshots and of the held-out rays (the best any
+reduced model on this basis can do there), and writes BASIS.h5:
+  V [ndof, n] (zero rows at clamped dofs), sigma [nsnap] (sqrt of C's eigenvalues, decreasing),
+  Mr [n, n] (V^T M V), q_snap [nsnap, n] (the training snapshots' reduced coordinates) with
+  their loads p_snap [nsnap,3,4] (MPa), g_snap [nsnap,3] (mm/s^2), F_snap [nsnap,3] (N),
+  attributes n, tol, mass_total_t, rho, nsnap, the rays used, the mesh signature.
+Units: mm, t (tonnes), N.
+"""
+import argparse
+import glob
+import os
+import sys
+
+import h5py
+import numpy as np
+import scipy.sparse as sp
+
+
+def tet10_shape(xi):
+    """Tet10 shape values (10) and derivatives (10 x 3) at xi (3,), VTK order (fem_mesh.c)."""
+    L = np.array([1.0 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]])
+    dL = np.array([[-1, -1, -1], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    ed = [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)]
+    N = np.empty(10)
+    dN = np.empty((10, 3))
+    for k in range(4):
+        N[k] = L[k] * (2 * L[k] - 1)
+        dN[k] = (4 * L[k] - 1) * dL[k]
+    for e, (i, j) in enumerate(ed):
+        N[4 + e] = 4 * L[i] * L[j]
+        dN[4 + e] = 4 * (dL[i] * L[j] + L[i] * dL[j])
+    return N, dN
+
+
+def tet_rule(npt=4):
+    """Collapsed (Duffy) Gauss rule on the unit tetrahedron: points (m x 3), weights (m)."""
+    g, w = np.polynomial.legendre.leggauss(npt)
+    g = 0.5 * (g + 1)
+    w = 0.5 * w
+    pts, wts = [], []
+    for a, wa in zip(g, w):
+        for b, wb in zip(g, w):
+            for c, wc in zip(g, w):
+                x = a
+                y = b * (1 - a)
+                z = c * (1 - a) * (1 - b)
+                pts.append((x, y, z))
+                wts.append(wa * wb * wc * (1 - a) ** 2 * (1 - b))
+    return np.array(pts), np.array(wts)
+
+
+def mass_matrix(x, tet, rho):
+    """Consistent mass of the scalar Tet10 field (nnode x nnode, sparse) and the volume."""
+    pts, wts = tet_rule(4)
+    ne = tet.shape[0]
+    Me = np.zeros((ne, 10, 10))
+    vol = np.zeros(ne)
+    X = x[tet]  # (ne, 10, 3)
+    for p, w in zip(pts, wts):
+        N, dN = tet10_shape(p)
+        J = np.einsum("eai,ad->eid", X, dN)  # dx_i/dxi_d
+        det = np.linalg.det(J)
+        if np.any(det <= 0):
+            raise ValueError("an inverted Tet10 in the mesh")
+        Me += (w * det)[:, None, None] * np.outer(N, N)[None]
+        vol += w * det
+    rows = np.repeat(tet, 10, axis=1).ravel()
+    cols = np.tile(tet, (1, 10)).ravel()
+    M = sp.coo_matrix((rho * Me.ravel(), (rows, cols)), shape=(x.shape[0],) * 2).tocsr()
+    return M, vol.sum()
+
+
+def turn_maps(x):
+    """Node maps of the quarter turns about the leg axis (x, y) -> (-y, x), k = 1, 2, 3: node
+    i goes to node perm[k][i]; None when the mesh lacks the symmetry (not the symmetric mesh)."""
+    from scipy.spatial import cKDTree
+    tree = cKDTree(x)
+    maps = []
+    R = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    Rk = np.eye(3)
+    for _ in range(3):
+        Rk = R @ Rk
+        d, j = tree.query(x @ Rk.T)
+        if d.max() > 1e-6 * np.abs(x).max():
+            return None
+        maps.append((Rk.copy(), j))
+    return maps
+
+
+def turn_snapshots(U, maps):
+    """The snapshots U (ndof, m) turned by each quarter turn: u'_{perm(i)} = R u_i."""
+    out = [U]
+    nn = U.shape[0] // 3
+    for Rk, j in maps:
+        V = np.empty_like(U)
+        Ui = U.reshape(nn, 3, -1)
+        V.reshape(nn, 3, -1)[j] = np.einsum("ab,nbm->nam", Rk, Ui)
+        out.append(V)
+    return np.concatenate(out, axis=1)
+
+
+def text(v):
+    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings)."""
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def read_rays(snapdir):
+    rays = []
+    for p in sorted(glob.glob(os.path.join(snapdir, "*.h5"))):
+        if os.path.basename(p) in ("mesh.h5",) or p.endswith(".part"):
+            continue
+        with h5py.File(p, "r") as f:
+            if f.attrs.get("format", b"") not in ("crawlsim-rom-snapshots 1",
+                                                   b"crawlsim-rom-snapshots 1"):
+                continue
+            if "u" not in f:
+                continue
+            rays.append(dict(name=text(f.attrs["name"]), kind=text(f.attrs["kind"]),
+                             u=f["u"][...], t=f["t"][...], status=text(f.attrs["status"]),
+                             p=f["pressure"][...], g=f["gravity"][...], F=f["tip_force"][...]))
+    return rays
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("snapdir")
+    ap.add_argument("--out", default=None)
+    ap.add_argument("--tol", type=float, default=1e-3,
+                    help="largest relative M-norm projection error of a training snapshot")
+    ap.add_argument("--n", type=int, default=0, help="basis size (overrides --tol)")
+    ap.add_argument("--turns", action="store_true",
+                    help="add every training snapshot turned by the section's quarter turns (the "
+                         "symmetric mesh maps onto itself; the fibre helices' start does not, so "
+                         "the turned states are near-equilibria, not equilibria)")
+    a = ap.parse_args()
+    out = a.out or os.path.join(a.snapdir, "basis.h5")
+    with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
+        x = f["x"][...]
+        tet = f["tet"][...].astype(np.int64)
+        fixed = f["fixed"][...] > 0.5
+        rho = float(f.attrs["rho"])
+        l_soft = float(f.attrs["fe_mesh_size_mm"])
+    Ms, vol = mass_matrix(x, tet, rho)
+    M = sp.kron(Ms, sp.identity(3), format="csr")
+    mass_total = Ms.sum()
+    print(f"rom_basis: mesh l_soft {l_soft:g} mm: {tet.shape[0]} Tet10, {3 * x.shape[0]} dofs, "
+          f"{fixed.sum()} clamped; mass {mass_total * 1e6:.4f} g = rho V "
+          f"({rho * vol * 1e6:.4f} g, rel. {mass_total / (rho * vol) - 1:.1e})")
+    rays = read_rays(a.snapdir)
+    train = [r for r in rays if r["kind"] == "train"]
+    test = [r for r in rays if r["kind"] == "test"]
+    if not train:
+        sys.exit(f"rom_basis: {a.snapdir}: no training ray file")
+    X = np.concatenate([r["u"] for r in train], axis=0).T  # (ndof, ns)
+    X[fixed] = 0.0
+    ns_fe = X.shape[1]
+    if a.turns:
+        maps = turn_maps(x)
+        if maps is None:
+            sys.exit("rom_basis: --turns: the mesh is not symmetric under quarter turns")
+        X = turn_snapshots(X, maps)
+        X[fixed] = 0.0
+    ns = X.shape[1]
+    MX = M @ X
+    C = X.T @ MX
+    lam, Phi = np.linalg.eigh(C)
+    order = np.argsort(lam)[::-1]
+    lam, Phi = np.clip(lam[order], 0, None), Phi[:, order]
+    sigma = np.sqrt(lam)
+    print(f"rom_basis: {len(train)} training rays, {ns_fe} FE snapshots"
+          f"{f' ({ns} with the quarter turns)' if a.turns else ''}; {len(test)} held-out rays")
+    print("rom_basis: singular values sigma_i / sigma_1 (M-norm):")
+    for i in range(0, ns, 8):
+        print("  " + " ".join(f"{s / sigma[0]:.2e}" for s in sigma[i:i + 8]))
+    # largest projection error over the training snapshots for each size
+    keep = lam > lam[0] * 1e-24
+    nmax = int(keep.sum())
+    Vall = X @ Phi[:, :nmax] / sigma[:nmax]
+    unorm = np.sqrt(np.einsum("ij,ij->j", X, MX))
+
+    def proj_err(V, U):
+        MU = M @ U
+        Q = V.T @ MU
+        R = U - V @ Q
+        e_m = np.sqrt(np.maximum(np.einsum("ij,ij->j", R, M @ R), 0))
+        nrm = np.sqrt(np.einsum("ij,ij->j", U, MU))
+        e_max = np.abs(R).reshape(-1, 3, R.shape[1])
+        e_max = np.sqrt((e_max ** 2).sum(axis=1)).max(axis=0)
+        return e_m / np.maximum(nrm, 1e-300), e_max
+
+    sizes = sorted(set([k for k in (1, 2, 4, 6, 8, 10, 12, 16, 20, 24, 30, 40, 50, 60, 80, 100,
+                                     120, 160) if k <= nmax] + [nmax]))
+    Ut = np.concatenate([r["u"] for r in test], axis=0).T if test else None
+    if Ut is not None:
+        Ut[fixed] = 0.0
+    n_pick = a.n
+    print("rom_basis: projection error by basis size (relative M-norm, largest nodal mm):")
+    print("     n   train max rel   train max mm   held-out max rel   held-out max mm")
+    for k in sizes:
+        er, em = proj_err(Vall[:, :k], X)
+        line = f"  {k:4d}   {er.max():12.3e}   {em.max():12.4f}"
+        if Ut is not None:
+            tr, tm = proj_err(Vall[:, :k], Ut)
+            line += f"   {tr.max():16.3e}   {tm.max():15.4f}"
+        print(line)
+    if n_pick <= 0:
+        n_pick = nmax
+        for k in range(1, nmax + 1):
+            er, _ = proj_err(Vall[:, :k], X)
+            if er.max() <= a.tol:
+                n_pick = k
+                break
+    n_pick = min(n_pick, nmax)
+    V = Vall[:, :n_pick]
+    V[fixed] = 0.0
+    Mr = V.T @ (M @ V)
+    er, em = proj_err(V, X)
+    print(f"rom_basis: n = {n_pick} (tol {a.tol:g}): training projection error max {er.max():.3e} "
+          f"(M-norm), {em.max():.4f} mm; |V^T M V - I| = {np.abs(Mr - np.eye(n_pick)).max():.1e}")
+    with h5py.File(out, "w") as f:
+        f.attrs["format"] = "crawlsim-rom-basis 1"
+        f.attrs["n"] = n_pick
+        f.attrs["tol"] = a.tol
+        f.attrs["rho"] = rho
+        f.attrs["mass_total_t"] = mass_total
+        f.attrs["nsnap"] = ns
+        f.attrs["nsnap_fe"] = ns_fe
+        f.attrs["turns"] = int(a.turns)
+        f.attrs["fe_mesh_size_mm"] = l_soft
+        # the mesh signature the C side checks (fem/fem_rom_act.h)
+        f.attrs["mesh_nnode"] = x.shape[0]
+        f.attrs["mesh_ntet"] = tet.shape[0]
+        f.attrs["mesh_x_sum"] = float(x.sum())
+        f.attrs["mesh_x_sq"] = float((x * x).sum())
+        f.attrs["snapshots"] = os.path.abspath(a.snapdir)
+        f.attrs["train_rays"] = ",".join(r["name"] for r in train)
+        f.attrs["test_rays"] = ",".join(r["name"] for r in test)
+        f.attrs["units"] = ("V: mm per unit reduced coordinate (M-orthonormal, M in t); "
+                            "sigma: t^0.5 mm")
+        f["V"] = V
+        f["sigma"] = sigma
+        f["Mr"] = Mr
+        # the training snapshots in reduced coordinates (q = V^T M u) with their loads: what
+        # the hyper-reduction is fitted on (crawlsim rom ecsw-matrix, tools/rom_ecsw.py)
+        # (with --turns every turned state too, with the loads of the FE state it was turned
+        # from: the bodies' and fibres' element forces, all ECSW fits, do not depend on loads)
+        reps = ns // ns_fe
+        f["q_snap"] = (V.T @ MX).T
+        f["p_snap"] = np.tile(np.concatenate([r["p"] for r in train], axis=0), (reps, 1, 1))
+        f["g_snap"] = np.tile(np.concatenate([r["g"] for r in train], axis=0), (reps, 1))
+        f["F_snap"] = np.tile(np.concatenate([r["F"] for r in train], axis=0), (reps, 1))
+    print(f"rom_basis: {out}")
+
+
+if __name__ == "__main__":
+    main()
