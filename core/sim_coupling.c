@@ -70,6 +70,20 @@
  * Hence the default for co-simulated legs. H = 2 ms with 1 ms ODE steps: 1.2 mm off;
  * h = H = 2 ms diverges while settling (measured before the two fixes).
  *
+ * Tree scheme (`--coupling tree`, the default of tree-stepped levels: strain; issue 32). One
+ * linearly implicit step of h = H for the support and the legs together, solved as the tree
+ * it is, so nothing lags: every leg condenses its step onto its hip (csrLegType.prepare: its
+ * impulse on the support over the step is ρ - Z ΔV, ΔV the hip's twist change, world at the
+ * hip), the support solves its backward-Euler step with Σ Tᵀ Z T and Σ Tᵀ ρ moved to its centre,
+ * and every leg back-substitutes the support's actual motion (finish). That is the stabilised
+ * scheme's solve above with W0 = Σ ρ / h, A = Σ Tᵀ Z T / h, Kc = 0 and the prediction the twist
+ * now: (M + Σ Tᵀ Z T) Δq' = h m g + Σ Tᵀ ρ, the force F = (Σ Tᵀ ρ - Σ Tᵀ Z T Δq') / h handed to
+ * ODE, whose step lands on it up to the support's gyroscopic term and its own terrain contacts
+ * (ODE resolves those with F held). A is not projected onto passive gains (implicitPart): the
+ * legs' Z comes from their own Newton matrix and the solve is the tree's own. The legs then
+ * finish with their hips' exact body-twist change from the support's actual end state (the
+ * solve linearised it about the start frame; robot_strain_leg.c).
+ *
  * Rejected: sub-iterating the legs to convergence every step (the tightly coupled reference:
  * the driver's state save/restore makes it possible, at several advances per step; a tiny macro
  * step is the reference used, README "Coupling"); handing the legs' gains to ODE through fixed
@@ -135,6 +149,13 @@ static void mat6Mul(double C[36], const double A[36], const double B[36]) {
 }
 
 
+/* The support's backward-Euler step with the legs' force linearised (top), solved for its end
+ * twist; F gets the legs' force along it (N, N mm at the centre, world). 0, or 1 when
+ * M + h A is singular (F = W0 then). */
+static int supportSolve(const csData* d, double h, double mass, const double Iw[9],
+                        const double qd[6], const double W0[6], const double Kdq[6],
+                        const double A[36], const double qd_pred[6], double F[6]);
+
 /* y = M x for 6x6 M */
 static void mat6Vec(double y[6], const double M[36], const double x[6]) {
   for (int i = 0; i < 6; i++) {
@@ -152,6 +173,14 @@ void cs_modelSetLegLevel(csModel* m, const csrLegType* type) {
   /* co-simulated legs default to Gauss-Seidel: momentum exact, and 0.6 mm from the converged
    * staggered reference over the 9 s flat road where the stabilised scheme is 22 mm off (top) */
   m->opt.coupling = type && !type->in_world ? CS_COUPLING_GAUSS_SEIDEL : CS_COUPLING_STAGGERED;
+  if (type && !type->in_world && type->prepare) {
+    /* a tree-stepped level: one step for the support and the legs (bottom), at its own step */
+    m->opt.coupling = CS_COUPLING_TREE;
+    m->opt.macro_steps = 1;
+    if (type->step > 0) {
+      m->opt.h = type->step;
+    }
+  }
 }
 
 
@@ -590,15 +619,29 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
       c->sum_qd[i] += qd[i];
     }
   }
+  double Kdq[6], F[6];
+  mat6Vec(Kdq, c->Kc, dq);
+  (void)supportSolve(d, m->opt.h, mass, Iw, qd, W0, Kdq, c->A, qd_pred, F);
+  if (gs) {
+    for (int i = 0; i < 6; i++) {
+      c->sum_F[i] += F[i];
+    }
+  }
+  dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
+  dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
+}
+
+
+static int supportSolve(const csData* d, double h, double mass, const double Iw[9],
+                        const double qd[6], const double W0[6], const double Kdq[6],
+                        const double A[36], const double qd_pred[6], double F[6]) {
   /* the support's backward-Euler step with the legs' linearised wrench (header):
    *   (M + h A) q'_{j+1} = M q'_j + h (m g + W0 - Kc dq_j + A q'_pred) */
-  const double h = m->opt.h;
   dVector3 grav;
   dWorldGetGravity(d->world, grav);
   const int gmode = dBodyGetGravityMode(d->robot->support);
-  double Kdq[6], Aqp[6], rhs[6], S[36];
-  mat6Vec(Kdq, c->Kc, dq);
-  mat6Vec(Aqp, c->A, qd_pred);
+  double Aqp[6], rhs[6], S[36];
+  mat6Vec(Aqp, A, qd_pred);
   for (int i = 0; i < 6; i++) {
     double Mq;
     if (i < 3) {
@@ -616,29 +659,118 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
       } else if (i >= 3 && k >= 3) {
         Mik = Iw[3 * (i - 3) + (k - 3)];
       }
-      S[6 * i + k] = Mik + h * c->A[6 * i + k];
+      S[6 * i + k] = Mik + h * A[6 * i + k];
     }
   }
-  double F[6];
   if (csu_solve6(S, rhs) != 0) {
     /* singular (cannot happen with a positive mass): the legs' wrench as staggered */
-    memcpy(F, W0, sizeof F);
-  } else {
-    /* F = W0 - Kc dq - A (q'_{j+1} - q'_pred) at the solved q'_{j+1} */
-    double dqd[6], Ad[6];
-    for (int i = 0; i < 6; i++) {
-      dqd[i] = rhs[i] - qd_pred[i];
+    memcpy(F, W0, 6 * sizeof(double));
+    return 1;
+  }
+  /* F = W0 - Kc dq - A (q'_{j+1} - q'_pred) at the solved q'_{j+1} */
+  double dqd[6], Ad[6];
+  for (int i = 0; i < 6; i++) {
+    dqd[i] = rhs[i] - qd_pred[i];
+  }
+  mat6Vec(Ad, A, dqd);
+  for (int i = 0; i < 6; i++) {
+    F[i] = W0[i] - Kdq[i] - Ad[i];
+  }
+  return 0;
+}
+
+
+int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) {
+  csCosim* c = &d->cosim;
+  const csrLegType* type = m->robot.leg_type;
+  cs_errorClear(err); /* whatever err holds after this came from these legs */
+  csr_robotSupportPose(d->robot, c->P0, c->R0, c->v0, c->w0);
+  c->t0 = d->t;
+  mat6Zero(c->Kc);
+  mat6Zero(c->A);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    double Z[36], rho[6];
+    csr_robotBaseStateAt(d->robot, k, c->P0, c->R0, c->v0, c->w0, &c->b0[k]);
+    int rc = type->prepare(d->robot->legs[k], h, &c->b0[k], Z, rho);
+    if (rc != 0) {
+      cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's step "
+                  "of %g s %s (code %d)", d->t, 'A' + k, h,
+                  rc > 0 ? "did not converge" : "failed", rc);
+      return rc;
     }
-    mat6Vec(Ad, c->A, dqd);
-    for (int i = 0; i < 6; i++) {
-      F[i] = W0[i] - Kdq[i] - Ad[i];
+    /* the impulse as the wrench it averages to over the step, the impedance per h: the
+     * stabilised scheme's W0 and A (cs_couplingApplyTree) */
+    for (int i = 0; i < 3; i++) {
+      c->w[k].f[i] = rho[i] / h;
+      c->w[k].m[i] = rho[3 + i] / h;
+    }
+    for (int i = 0; i < 36; i++) {
+      Z[i] /= h;
+    }
+    if (checkFinite(d, k, &c->w[k], Z, Z, err) != 0) {
+      return 1;
+    }
+    double r[3];
+    csu_sub3(r, c->b0[k].x, c->P0);
+    addAtCentre(c->A, Z, r);
+  }
+  return 0;
+}
+
+
+int cs_couplingApplyTree(const csModel* m, csData* d, double h) {
+  csCosim* c = &d->cosim;
+  (void)m;
+  double P[3], R[9], v[3], w[3];
+  csr_robotSupportPose(d->robot, P, R, v, w);
+  double mass, Iw[9];
+  supportInertia(d, R, &mass, Iw);
+  /* W0 at the centre from the hips where they are (the pose prepare saw: nothing moved) */
+  double W0[6] = {0, 0, 0, 0, 0, 0}, qd[6], zero[6] = {0, 0, 0, 0, 0, 0}, F[6];
+  for (int k = 0; k < CSR_NLEG; k++) {
+    double r[3], rxf[3];
+    csu_sub3(r, c->b0[k].x, P);
+    csu_cross3(rxf, r, c->w[k].f);
+    for (int i = 0; i < 3; i++) {
+      W0[i] += c->w[k].f[i];
+      W0[3 + i] += c->w[k].m[i] + rxf[i];
     }
   }
-  if (gs) {
-    for (int i = 0; i < 6; i++) {
-      c->sum_F[i] += F[i];
-    }
+  for (int i = 0; i < 3; i++) {
+    qd[i] = v[i];
+    qd[3 + i] = w[i];
+  }
+  /* Kc = 0 and the prediction the twist now: (M + Σ Tᵀ Z T) Δq' = h m g + Σ Tᵀ ρ, the tree's
+   * own equation (robot_leg.h prepare), and F = (Σ Tᵀ ρ - Σ Tᵀ Z T Δq') / h */
+  int rc = supportSolve(d, h, mass, Iw, qd, W0, zero, c->A, qd, F);
+  if (rc != 0) {
+    return 1;
   }
   dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
   dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
+  return 0;
+}
+
+
+int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err) {
+  csCosim* c = &d->cosim;
+  const csrLegType* type = m->robot.leg_type;
+  cs_errorClear(err);
+  double P1[3], R1[9], v1[3], w1[3];
+  csr_robotSupportPose(d->robot, P1, R1, v1, w1);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csr_robotBaseStateAt(d->robot, k, P1, R1, v1, w1, &c->b1[k]);
+    int rc = type->finish(d->robot->legs[k], &c->b1[k], &c->w[k]);
+    if (rc != 0) {
+      cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's step "
+                  "%s (code %d)", d->t, 'A' + k,
+                  rc > 0 ? "left its valid range (a foot sunk past its bound or a non-finite "
+                  "pose)" : "failed", rc);
+      return rc;
+    }
+    if (checkFinite(d, k, &c->w[k], NULL, NULL, err) != 0) {
+      return 1;
+    }
+  }
+  return 0;
 }

@@ -198,7 +198,7 @@ static csStatus validateOptions(const csOptions* o, csError* err) {
                        o->macro_steps);
   }
   if (o->coupling != CS_COUPLING_STAGGERED && o->coupling != CS_COUPLING_STABILISED &&
-      o->coupling != CS_COUPLING_GAUSS_SEIDEL) {
+      o->coupling != CS_COUPLING_GAUSS_SEIDEL && o->coupling != CS_COUPLING_TREE) {
     return cs_errorSet(err, CS_ERR_RANGE, "unknown coupling scheme %d", (int)o->coupling);
   }
   if (o->coupling_carry != 0 && o->coupling_carry != 1) {
@@ -305,13 +305,21 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
   }
   d->t = -m->opt.settle;
   d->cosim.active = !m->robot.leg_type->in_world;
+  if (d->cosim.active && m->opt.coupling == CS_COUPLING_TREE &&
+      (!m->robot.leg_type->prepare || !m->robot.leg_type->finish || m->opt.macro_steps != 1)) {
+    cs_errorSet(err, CS_ERR_ARG, "the tree coupling needs a tree-stepped leg level (strain) and "
+                "one ODE step per macro step (legs %s, %d macro steps)", cs_modelLegLevel(m),
+                m->opt.macro_steps);
+    cs_dataDestroy(d);
+    return NULL;
+  }
   if (cs_couplingCreate(m, d, err) != CS_OK) {
     cs_dataDestroy(d);
     return NULL;
   }
   /* the state buffer of step rollback: allocated once (no allocation in the step loop) */
   d->nstate = cs_stateSize(m, d);
-  d->save = malloc((size_t)d->nstate * sizeof(double));
+  d->save = malloc((size_t)(CS_MAX_SPLIT + 1) * (size_t)d->nstate * sizeof(double));
   d->fb = calloc(CS_MAX_FEEDBACK, sizeof *d->fb);
   if (!d->save || !d->fb) {
     cs_errorSet(err, CS_ERR_MEMORY, "out of memory");

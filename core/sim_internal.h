@@ -7,7 +7,9 @@
  *   legs       the legs' actuation; cosim.b0, b1, w, K, C (co-simulated legs' exchange)
  *   support    the ODE bodies, cstats (the stabilised scheme's implicit force per ODE step)
  *   check      nothing (reads the support)
- *   cs_step    t, nstep, nreject, save (the state before the step), timer[] */
+ *   cs_step    t, nstep, nreject, save (the state before the step), timer[]
+ * With the tree coupling the legs stage only condenses the legs (cosim.w, A); the support stage
+ * solves the support with them; the legs then finish after it (cosim.w, the legs' state). */
 #ifndef CS_CORE_SIM_INTERNAL_H
 #define CS_CORE_SIM_INTERNAL_H
 
@@ -79,13 +81,19 @@ struct csData_ {
   double contact_force[3];          /* N, world: terrain on robot, last ODE step */
   csuTimer timer[CS_NTIMER];
   int nstate;                       /* cs_stateSize */
-  double* save;                     /* (nstate) the state before the current step */
+  double* save;                     /* (CS_MAX_SPLIT + 1) x nstate: the state before the
+                                       current step, then before each of its halves when a
+                                       tree-coupled step is retried smaller (sim_step.c) */
   csCosim cosim;
   /* CVODE */
   SUNContext sun;
   void* cvode;
   N_Vector y;
 };
+
+/* how often a rejected tree-coupled step is halved before the step fails (sim_step.c): down
+ * to 1/16 of it */
+#define CS_MAX_SPLIT 4
 
 /* contact joints whose force is measured per ODE step (each ~100 bytes) */
 #define CS_MAX_FEEDBACK 4096
@@ -126,6 +134,20 @@ void cs_couplingBegin(const csModel* m, csData* d);
  * support's actual motion; their wrenches, gains, the linearisation point and the impulse
  * carry for the next macro step. 0, > 0 recoverable, < 0 fatal (err). */
 int cs_couplingAdvanceGS(const csModel* m, csData* d, double H, csError* err);
+
+/* ---- the tree coupling (CS_COUPLING_TREE, tree-stepped levels) ----
+ * Before the support stage: every leg condenses its step of h onto its hip (prepare) at the
+ * support's state now; their impulses ρ/h go into cosim.w, their impedances Σ Tᵀ Z T / h at
+ * the support's centre into cosim.A. 0, > 0 recoverable, < 0 fatal (err names the leg). */
+int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err);
+/* Before the support's one ODE step of h: the support's backward-Euler step with the legs'
+ * condensed step solved (the stabilised scheme's solve with Kc = 0 and the prediction the
+ * support's twist now), and the legs' force on the support along it added to the body. 0, or 1
+ * when the condensed matrix is singular (the step is rejected). */
+int cs_couplingApplyTree(const csModel* m, csData* d, double h);
+/* After it: every leg back-substitutes the support's actual motion (finish); cosim.w gets the
+ * legs' base wrenches of the step. 0, > 0 recoverable, < 0 fatal (err). */
+int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err);
 
 /* The coupling's part of the state (CS_COSIM_STATE doubles, co-simulated legs only): what the
  * Gauss-Seidel scheme carries across macro steps. Check returns 0 when x is a valid block. */

@@ -69,7 +69,14 @@ typedef enum csCoupling_ {
    * advances along the support's actual motion over the step, so a hip's path is C1 across
    * exchanges (sim_coupling.c). Rod legs on the flat road at h = H = 1 ms: within 1 mm of the
    * tightly coupled reference over 9 s, at the stabilised scheme's cost */
-  CS_COUPLING_GAUSS_SEIDEL = 2
+  CS_COUPLING_GAUSS_SEIDEL = 2,
+  /* tree: one linearly implicit step of h for the support and the legs together, solved as
+   * the tree it is (issue 32): every leg condenses its step onto its hip (csrLegType.prepare:
+   * its impedance Z and impulse ρ), the support's backward-Euler step (M + Σ Tᵀ Z T) Δq' = ...
+   * is solved with them, every leg back-substitutes its hip's motion (finish). Tree-stepped
+   * levels only (strain), with macro_steps 1; their default (cs_modelSetLegLevel). A step that
+   * fails recoverably is retried as two halves (sim_step.c) */
+  CS_COUPLING_TREE = 3
 } csCoupling;
 
 typedef struct csOptions_ {
@@ -136,8 +143,9 @@ csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
 void cs_modelSetConditions(csModel* m, csConditions c);
 
 /* Set the leg level (m->robot.leg_type) and its default coupling: a co-simulated level
- * (in_world = 0) is coupled stabilised, which is stable where staggered coupling of the rod legs
- * needs H < 40 µs (sim_coupling.c); options set afterwards override it. */
+ * (in_world = 0) is coupled Gauss-Seidel (sim_coupling.c), a tree-stepped one (prepare set:
+ * strain) `tree` with one ODE step per macro step and the level's own step (csrLegType.step)
+ * as h; options set afterwards override them. */
 void cs_modelSetLegLevel(csModel* m, const csrLegType* type);
 
 /* Name of the leg level that runs (m->robot.leg_type->name): what the output records. */
@@ -199,6 +207,7 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   X(CS_TIMER_LEGS, "legs", "stage: actuation and co-simulated legs' advance")       \
   X(CS_TIMER_SUPPORT, "support", "stage: ODE steps of the support (contact incl.)") \
   X(CS_TIMER_CONTACT, "contact", "part of support: collision and contact joints")   \
+  X(CS_TIMER_TREE, "tree", "part of support: the tree coupling's condensed 6 x 6 solve") \
   X(CS_TIMER_CHECK, "check", "stage: divergence and fall checks")                   \
   X(CS_TIMER_SAVE, "save", "the state saved before each step (and restores)")       \
   X(CS_TIMER_OUTPUT, "output", "cs_run: samples written to the output file")        \

@@ -1,9 +1,9 @@
 /* cmd_run.c: `crawlsim run`: simulate a gait on a terrain and write the run HDF5 file.
  * Contract (docs/design.md): crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv]
- *   [--legs auto|prb|rod|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
+ *   [--legs auto|prb|rod|strain|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
- *   --coupling staggered|stabilised|gs, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
+ *   --coupling staggered|stabilised|gs|tree, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
  *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K), --cal-rule prism|rbf|rbf-pair
  *   (the FE mode table's rule),
  *   --tol MM and --levels FILE (with --legs auto: the cheapest measured configuration of the
@@ -22,15 +22,17 @@
 #include "cs_signal.h"
 #include "robot_calibration.h"
 #include "robot_levels.h"
+#include "robot_strain.h"
 #include "sim_model.h"
 
 static const char kRunUsage[] =
-    "usage: crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv] [--legs auto|prb|rod|rom]\n"
+    "usage: crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv]\n"
+    "                    [--legs auto|prb|rod|strain|rom]\n"
     "                    [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]\n"
     "                    [--terrain FILE] [--dt S] [--output-dt S] [--ramp S] [--tau S]\n"
     "                    [--support-mass KG] [--links N] [--iterations N] [--gravity M/S2]\n"
     "                    [--calibration FILE] [--macro-steps N]\n"
-    "                    [--coupling staggered|stabilised|gs]\n"
+    "                    [--coupling staggered|stabilised|gs|tree]\n"
     "                    [--conditions earth|paper] [--set NAME=VALUE]... [--quiet]\n"
     "                    [--tol MM] [--levels FILE] [--contact-scale K] [--rod-tol K]\n"
     "                    [--cal-rule prism|rbf|rbf-pair] [--cal-drop stretch|stiffness|...]\n"
@@ -48,7 +50,12 @@ static const char kRunUsage[] =
     "    Gauss-Seidel, the support steps first and the legs follow its actual motion; momentum\n"
     "    exact, 0.6 mm from the converged staggered reference over the 9 s flat road at 1 ms;\n"
     "    stabilised: the legs first along a predicted motion, cheaper, 22 mm off; staggered:\n"
-    "    explicit, stable below 40 us; README \"Rod legs\"); ignored by prb;\n"
+    "    explicit, stable below 40 us; README \"Rod legs\"); ignored by prb; tree: the\n"
+    "    support and the legs in one implicit step solved as a tree, strain legs only (their\n"
+    "    default; a rejected step is retried in halves);\n"
+    "  --legs strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled\n"
+    "    `tree`; its step is --dt (default 1 ms, the level's own) and --links is the number of\n"
+    "    bending modes per segment (default 3: curvature quadratic along each segment);\n"
     "  --rod-tol K: every CVODE tolerance of rod legs times K (default 1; measured on the 9 s\n"
     "    flat road: K 5-20 runs 3.7-5.6x faster than K 1 and lands 3-7 mm from the converged\n"
     "    reference, K 1 0.6 mm; README \"Rod legs\", speed); recorded as rod_tolerance_scale;\n"
@@ -289,7 +296,7 @@ int csx_cmdRun(int argc, char** argv) {
     }
     if (!isnan(links) || !isnan(macro) || !isnan(dt) || !isnan(rodtol)) {
       cs_errorSet(&err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt and --rod-tol "
-                  "from its table: give them with --legs prb or --legs rod instead");
+                  "from its table: give them with --legs prb, rod or strain instead");
       goto done;
     }
     if (!levels) levels = csx_dataPath("robot/levels.csv", levels_buf, sizeof levels_buf);
@@ -340,7 +347,8 @@ int csx_cmdRun(int argc, char** argv) {
       goto done;
     }
     if (!leg_type) {
-      cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod or rom)",
+      cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod, strain or "
+                  "rom)",
                   legs);
       goto done;
     }
@@ -376,7 +384,9 @@ int csx_cmdRun(int argc, char** argv) {
     cs_errorSet(&err, CS_ERR_RANGE, "--dt %g s must be > 0 and <= %g s", dt, MAX_DT_S);
     goto done;
   }
-  double h = isnan(dt) ? m.opt.h : dt;
+  /* a tree-stepped level's step is its own unless --dt says (csrLegType.step) */
+  double h = !isnan(dt) ? dt : leg_type && leg_type->prepare && leg_type->step > 0
+                                   ? leg_type->step : m.opt.h;
   if (!isnan(out_dt) && !(out_dt >= h)) {
     cs_errorSet(&err, CS_ERR_RANGE, "--output-dt %g s must be >= the step %g s (--dt)", out_dt,
                 h);
@@ -428,9 +438,20 @@ int csx_cmdRun(int argc, char** argv) {
     goto done;
   }
   if (coupling && strcmp(coupling, "staggered") && strcmp(coupling, "stabilised") &&
-      strcmp(coupling, "gs")) {
-    cs_errorSet(&err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered, stabilised or "
-                "gs)", coupling);
+      strcmp(coupling, "gs") && strcmp(coupling, "tree")) {
+    cs_errorSet(&err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered, stabilised, "
+                "gs or tree)", coupling);
+    goto done;
+  }
+  if (coupling && !strcmp(coupling, "tree") && !(leg_type && leg_type->prepare)) {
+    cs_errorSet(&err, CS_ERR_ARG, "--coupling tree needs a tree-stepped leg level (--legs "
+                "strain)");
+    goto done;
+  }
+  if (coupling && leg_type && leg_type->prepare && !strcmp(coupling, "tree") && !isnan(macro) &&
+      macro != 1) {
+    cs_errorSet(&err, CS_ERR_ARG, "--coupling tree takes one ODE step per macro step "
+                "(--macro-steps 1)");
     goto done;
   }
 
@@ -466,6 +487,7 @@ int csx_cmdRun(int argc, char** argv) {
   if (coupling) {
     m.opt.coupling = !strcmp(coupling, "stabilised") ? CS_COUPLING_STABILISED
                      : !strcmp(coupling, "gs")       ? CS_COUPLING_GAUSS_SEIDEL
+                     : !strcmp(coupling, "tree")     ? CS_COUPLING_TREE
                                                      : CS_COUPLING_STAGGERED;
   }
   /* the default output interval must hold a whole macro step */
@@ -478,6 +500,9 @@ int csx_cmdRun(int argc, char** argv) {
     m.robot.leg_params.links_per_segment = (int)links;
   } else if (m.robot.leg_type == &csr_leg_rod && sc->rod_links > 0) {
     m.robot.leg_params.links_per_segment = sc->rod_links; /* converged on the scene's table */
+  } else if (m.robot.leg_type == &csr_leg_strain) {
+    /* bending modes per segment: the level's own default basis */
+    m.robot.leg_params.links_per_segment = csr_strainDefaultParams().bend_order + 1;
   }
   if (!isnan(rodtol)) m.robot.leg_params.rod_tol_scale = rodtol;
   m.opt.t_end = t_end;
@@ -515,7 +540,9 @@ int csx_cmdRun(int argc, char** argv) {
             csr_calibrationRuleName(m.calibration), m.robot.map.name);
     fprintf(stderr, "crawlsim run: legs %s, %d %s per segment\n", cs_modelLegLevel(&m),
             m.robot.leg_params.links_per_segment,
-            m.robot.leg_type == &csr_leg_rod ? "elements" : "links");
+            m.robot.leg_type == &csr_leg_rod      ? "elements"
+            : m.robot.leg_type == &csr_leg_strain ? "bending modes"
+                                                  : "links");
     if (m.robot.leg_params.cal_drop) {
       char what[32];
       csr_calDropFormat(m.robot.leg_params.cal_drop, what, sizeof what);

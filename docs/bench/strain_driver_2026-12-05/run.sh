@@ -1,0 +1,22 @@
+#!/bin/sh
+# The strain leg through the driver against the nodal rod (docs/notes/strain_leg.md "In the
+# driver"), from the repository root; outputs in build/sd (resumable: a finished run is kept).
+B=${B:-build/tools/crawlsim}
+O=build/sd
+mkdir -p $O
+run() { # name, args...
+  n=$1; shift
+  [ -f $O/$n.h5 ] && return
+  /usr/bin/time -f "cpu %U s wall %e s" nice -n 10 $B run --quiet --out $O/$n.tmp.h5 "$@" > $O/$n.log 2>&1 &&
+    mv $O/$n.tmp.h5 $O/$n.h5
+}
+case "$1" in
+  ref)   run rod16_dt025 --scene flat-road --legs rod --links 16 --dt 0.00025 ;;
+  refp)  run rod16_dt025_paper --scene flat-road --gait gaits/flat_road_paper.csv --conditions paper --legs rod --links 16 --dt 0.00025 ;;
+  rod8)  run rod8 --scene flat-road ;;
+  strain) run strain_dt1 --scene flat-road --legs strain ;;
+  strainp) run strain_dt1_paper --scene flat-road --gait gaits/flat_road_paper.csv --conditions paper --legs strain ;;
+  strain05) run strain_dt05 --scene flat-road --legs strain --dt 0.0005 ;;
+  strain2) run strain_dt2 --scene flat-road --legs strain --dt 0.002 ;;
+  *) run "$@" ;;
+esac
