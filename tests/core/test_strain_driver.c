@@ -1,0 +1,297 @@
+/* test_strain_driver.c: the strain leg level through the driver (`--legs strain`, the tree
+ * coupling, sim_coupling.c), on the flat-road scene's own terrain, gait, calibration and rule
+ * (paper conditions):
+ *  - it runs end to end through cs_step, and the legs carry the support: after settling the
+ *    eight legs' base wrenches hold its weight (their vertical sum against m_s g, the support
+ *    not touching the terrain; the tree's momentum balance, not a fitted force);
+ *  - two datas of one model stepped alike are bit-identical, and so is a run continued from a
+ *    restored state (cs_stateGet / cs_stateSet, the driver's rollback);
+ *  - a step the legs reject (prepare > 0, what the kernel returns when its step does not
+ *    converge) is restored and retried in halves through the rollback: the time still advances
+ *    by exactly one step, each rejection is counted, the legs see steps of h/2, and the track
+ *    stays near the unrejected one; a step rejected at every size fails with CS_ERR_REJECTED
+ *    and changes nothing.
+ * The rejecting level is csr_leg_strain with its prepare wrapped (a test double in this file).
+ * ~0.4 s simulated per data at 1 ms steps. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cs_test.h"
+#include "sim_model.h"
+
+static char g_src[512];
+
+/* the wrapped prepare: rejects steps of at least g_reject_from s (INFINITY: none) and counts
+ * the steps of each size it sees (the test owns this state: one model at a time) */
+static double g_reject_from = INFINITY;
+static long g_calls_full, g_calls_half;
+static double g_h_full;
+
+static int prepareRejecting(csrLeg* leg, double h, const csrBaseState* b0, double Z[36],
+                            double rho[6]) {
+  if (h == g_h_full) {
+    g_calls_full++;
+  } else if (h == 0.5 * g_h_full) {
+    g_calls_half++;
+  }
+  if (h >= g_reject_from) {
+    return 1;
+  }
+  return csr_leg_strain.prepare(leg, h, b0, Z, rho);
+}
+
+
+/* the flat road as the scene sets it up (tools/cmd_run.c), on strain legs of `type` */
+static int loadModel(csModel* m, const csrLegType* type) {
+  char terr[600], gait[600], cal[600];
+  snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", g_src);
+  snprintf(gait, sizeof gait, "%s/gaits/flat_road_rod.csv", g_src);
+  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg_modes_sym.h5", g_src);
+  cs_modelInit(m);
+  cs_modelSetConditions(m, CS_CONDITIONS_PAPER);
+  cs_modelSetLegLevel(m, type);
+  m->robot.leg_params.links_per_segment = 3;
+  csrCalRule rule;
+  if (csr_calRuleParse("rbf-pair", &rule)) {
+    m->cal_rule = (int)rule;
+  }
+  csError err;
+  cs_errorClear(&err);
+  if (cs_modelLoad(m, "flat-road", terr, gait, cal, &err) != CS_OK) {
+    fprintf(stderr, "load: %s\n", err.msg);
+    return 0;
+  }
+  return 1;
+}
+
+
+static csData* makeData(const csModel* m) {
+  csError err;
+  cs_errorClear(&err);
+  csData* d = cs_dataCreate(m, &err);
+  CS_EXPECT(d != NULL);
+  if (!d) {
+    printf("  create: %s\n", err.msg);
+    return NULL;
+  }
+  if (cs_settle(m, d, &err) != CS_OK) {
+    printf("  settle: %s\n", err.msg);
+    CS_EXPECT(0);
+  }
+  return d;
+}
+
+
+static int stepN(const csModel* m, csData* d, int n) {
+  csError err;
+  for (int i = 0; i < n; i++) {
+    if (cs_step(m, d, &err) != CS_OK) {
+      printf("  step at t = %g s: %s\n", cs_time(d), err.msg);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
+static int sameState(const csModel* m, const csData* a, const csData* b) {
+  int n = cs_stateSize(m, a);
+  double* xa = malloc(2 * (size_t)n * sizeof(double));
+  if (!xa) {
+    return 0;
+  }
+  cs_stateGet(m, a, xa);
+  cs_stateGet(m, b, xa + n);
+  int same = memcmp(xa, xa + n, (size_t)n * sizeof(double)) == 0;
+  free(xa);
+  return same;
+}
+
+
+static void test_strain_runs_through_the_driver_and_legs_carry_the_support(void) {
+  csModel m;
+  CS_EXPECT(loadModel(&m, &csr_leg_strain));
+  CS_EXPECT(m.opt.coupling == CS_COUPLING_TREE && m.opt.macro_steps == 1);
+  CS_EXPECT(m.opt.h == csr_leg_strain.step);
+  csData* d = makeData(&m);
+  if (!d) {
+    cs_modelDestroy(&m);
+    return;
+  }
+  /* after settling (0.3 s, before the gait's first ramp moves anything): the legs' vertical
+   * wrench against the support's weight; the support itself does not touch the road */
+  double fy = 0;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csrWrench w;
+    cs_legWrench(d, k, &w);
+    fy += w.f[1];
+  }
+  double v[3], cf[3];
+  cs_supportVelocity(d, v);
+  cs_contactForce(d, cf);
+  const double weight = m.robot.support_mass * m.opt.gravity;
+  printf("  settled: legs' vertical force %.5f N, support weight %.5f N (%.3f %%), support "
+         "speed %.3g mm/s, its own contact %.3g N, deepest foot %.4f mm\n", fy, weight,
+         100 * (fy - weight) / weight, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]), cf[1],
+         cs_legContactDepth(&m, d));
+  /* 1 %: what is left of the settling's 0.3 s transient (damped leg modes of ~100 Hz) */
+  CS_EXPECT(fabs(fy - weight) < 0.01 * weight);
+  CS_EXPECT(cf[1] == 0);
+  /* and it runs on into the gait */
+  CS_EXPECT(stepN(&m, d, 100));
+  CS_EXPECT(cs_rejectCount(d) == 0);
+  double x[3];
+  cs_supportDisplacement(d, x);
+  printf("  t = %.3f s: support (%.4f, %.4f, %.4f) mm, %ld steps\n", cs_time(d), x[0], x[1],
+         x[2], cs_stepCount(d));
+  CS_EXPECT(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]));
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+}
+
+
+/* Two datas stepped alike; then a data restored to a saved state and stepped on against the
+ * same data not restored. With the pneumatic lag (CVODE) a restore restarts CVODE, whose step
+ * history is not state (sim_model.h), so there the restored run is compared with itself
+ * (restore, step; restore, step); with tau = 0 every part of the step is state and the
+ * restored run must equal the unrestored one. */
+static void restoreCase(double tau) {
+  csModel m;
+  CS_EXPECT(loadModel(&m, &csr_leg_strain));
+  m.opt.pneumatic_tau = tau;
+  csData* a = makeData(&m);
+  csData* b = makeData(&m);
+  const int n = a ? cs_stateSize(&m, a) : 0;
+  double* x0 = n ? malloc(3 * (size_t)n * sizeof(double)) : NULL;
+  if (!a || !b || !x0) {
+    CS_EXPECT(0);
+    free(x0);
+    cs_dataDestroy(a);
+    cs_dataDestroy(b);
+    cs_modelDestroy(&m);
+    return;
+  }
+  CS_EXPECT(sameState(&m, a, b));
+  CS_EXPECT(stepN(&m, a, 60) && stepN(&m, b, 60));
+  const int same = sameState(&m, a, b);
+  CS_EXPECT(same);
+  double* x1 = x0 + n;
+  double* x2 = x0 + 2 * n;
+  csError err;
+  cs_stateGet(&m, a, x0);
+  CS_EXPECT(stepN(&m, a, 40));
+  if (tau > 0) {
+    /* the reference is a restored run too (CVODE restarted) */
+    CS_EXPECT(cs_stateSet(&m, a, x0, &err) == CS_OK);
+    CS_EXPECT(stepN(&m, a, 40));
+  }
+  cs_stateGet(&m, a, x1);
+  CS_EXPECT(cs_stateSet(&m, a, x0, &err) == CS_OK);
+  /* the restored data reads as the state says: its legs are where b's are */
+  double c0[3 * 25], c1[3 * 25];
+  cs_legCenterline(&m, a, 0, 25, c0);
+  cs_legCenterline(&m, b, 0, 25, c1);
+  CS_EXPECT(memcmp(c0, c1, sizeof c0) == 0);
+  CS_EXPECT(stepN(&m, a, 40));
+  cs_stateGet(&m, a, x2);
+  const int restored = memcmp(x1, x2, (size_t)n * sizeof(double)) == 0;
+  CS_EXPECT(restored);
+  printf("  tau %g s, %d doubles of state: two datas %s; restored and stepped 40 %s the %s\n",
+         tau, n, same ? "bit-identical" : "DIFFER", restored ? "bit-identical to" : "DIFFERS from",
+         tau > 0 ? "same restored again" : "unrestored run");
+  free(x0);
+  cs_dataDestroy(a);
+  cs_dataDestroy(b);
+  cs_modelDestroy(&m);
+}
+
+
+static void test_strain_repeats_and_restores_bit_identically(void) {
+  restoreCase(0.0);
+  restoreCase(0.02);
+}
+
+
+static void test_strain_rejected_step_is_retried_in_halves(void) {
+  csrLegType rejecting = csr_leg_strain;
+  rejecting.prepare = prepareRejecting;
+  csModel m, m_ref;
+  CS_EXPECT(loadModel(&m, &rejecting) && loadModel(&m_ref, &csr_leg_strain));
+  g_h_full = m.opt.h;
+  g_reject_from = INFINITY;
+  csData* d = makeData(&m);
+  csData* ref = makeData(&m_ref);
+  if (!d || !ref) {
+    cs_dataDestroy(d);
+    cs_dataDestroy(ref);
+    cs_modelDestroy(&m);
+    cs_modelDestroy(&m_ref);
+    return;
+  }
+  CS_EXPECT(stepN(&m, d, 50) && stepN(&m_ref, ref, 50));
+  CS_EXPECT(sameState(&m, d, ref)); /* the wrapper changes nothing by itself */
+  /* every full step is rejected for 20 steps: each runs as two halves */
+  g_reject_from = g_h_full;
+  g_calls_full = g_calls_half = 0;
+  const double t0 = cs_time(d);
+  const long rej0 = cs_rejectCount(d), st0 = cs_stepCount(d);
+  CS_EXPECT(stepN(&m, d, 20));
+  CS_EXPECT(stepN(&m_ref, ref, 20));
+  printf("  20 steps from t = %.3f s, full steps rejected: t = %.6f s, %ld steps, %ld rejected, "
+         "prepares of h %ld and h/2 %ld\n", t0, cs_time(d), cs_stepCount(d) - st0,
+         cs_rejectCount(d) - rej0, g_calls_full, g_calls_half);
+  CS_EXPECT(cs_time(d) == cs_time(ref));
+  CS_EXPECT(cs_stepCount(d) - st0 == 20 && cs_rejectCount(d) - rej0 == 20);
+  CS_EXPECT(g_calls_half == 2 * 20 * CSR_NLEG);
+  double x[3], xr[3];
+  cs_supportDisplacement(d, x);
+  cs_supportDisplacement(ref, xr);
+  const double dev = sqrt((x[0] - xr[0]) * (x[0] - xr[0]) + (x[1] - xr[1]) * (x[1] - xr[1]) +
+                          (x[2] - xr[2]) * (x[2] - xr[2]));
+  printf("  support after the halved steps vs unrejected: %.3g mm apart (x %.4f / %.4f mm)\n",
+         dev, x[0], xr[0]);
+  /* 0.05 mm: the support moves ~0.1 mm over these 20 ms; halving the step changes its track
+   * by the step's first-order error, a fraction of that */
+  CS_EXPECT(dev < 0.05);
+  /* every size rejected: the step fails after CS_MAX_SPLIT halvings and changes nothing */
+  g_reject_from = 0;
+  const int n = cs_stateSize(&m, d);
+  double* before = malloc(2 * (size_t)n * sizeof(double));
+  CS_EXPECT(before != NULL);
+  if (before) {
+    cs_stateGet(&m, d, before);
+    const long rej1 = cs_rejectCount(d), st1 = cs_stepCount(d);
+    csError err;
+    cs_errorClear(&err);
+    CS_EXPECT(cs_step(&m, d, &err) == CS_ERR_REJECTED);
+    cs_stateGet(&m, d, before + n);
+    const int unchanged = memcmp(before, before + n, (size_t)n * sizeof(double)) == 0;
+    CS_EXPECT(unchanged);
+    CS_EXPECT(cs_stepCount(d) == st1 && cs_rejectCount(d) > rej1);
+    printf("  rejected at every size: %s, %ld tries rejected, state unchanged: %s\n", err.msg,
+           cs_rejectCount(d) - rej1, unchanged ? "yes" : "NO");
+    free(before);
+  }
+  /* and it goes on when the legs accept again */
+  g_reject_from = INFINITY;
+  CS_EXPECT(stepN(&m, d, 5));
+  cs_dataDestroy(d);
+  cs_dataDestroy(ref);
+  cs_modelDestroy(&m);
+  cs_modelDestroy(&m_ref);
+}
+
+
+int main(int argc, char** argv) {
+  const char* src = getenv("CS_SOURCE_DIR");
+  snprintf(g_src, sizeof g_src, "%s", src ? src : ".");
+  cs_testInit(argc, argv);
+  dInitODE2(0);
+  CS_RUN(test_strain_runs_through_the_driver_and_legs_carry_the_support);
+  CS_RUN(test_strain_repeats_and_restores_bit_identically);
+  CS_RUN(test_strain_rejected_step_is_retried_in_halves);
+  dCloseODE();
+  return cs_testSummary();
+}
