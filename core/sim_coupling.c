@@ -113,24 +113,10 @@ static void addAtCentre(double M[36], const double G[36], const double r[3]) {
   T[6 * 1 + 5] = r[0];
   T[6 * 2 + 3] = r[1];
   T[6 * 2 + 4] = -r[0];
-  double GT[36];
-  for (int i = 0; i < 6; i++) {
-    for (int j = 0; j < 6; j++) {
-      double s = 0;
-      for (int k = 0; k < 6; k++) {
-        s += G[6 * i + k] * T[6 * k + j];
-      }
-      GT[6 * i + j] = s;
-    }
-  }
-  for (int i = 0; i < 6; i++) {
-    for (int j = 0; j < 6; j++) {
-      double s = 0;
-      for (int k = 0; k < 6; k++) {
-        s += T[6 * k + i] * GT[6 * k + j];
-      }
-      M[6 * i + j] += s;
-    }
+  double C[36];
+  csu_congruence6(C, T, G);
+  for (int i = 0; i < 36; i++) {
+    M[i] += C[i];
   }
 }
 

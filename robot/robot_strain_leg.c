@@ -238,29 +238,13 @@ static int prepareStrain(csrLeg* leg, double h, const csrBaseState* b0, double Z
       P[6 * (3 + i) + j] = RT;
     }
   }
-  double ZP[36];
-  for (int i = 0; i < 6; i++) {
-    for (int j = 0; j < 6; j++) {
-      double s = 0;
-      for (int e = 0; e < 6; e++) {
-        s += Zb[6 * i + e] * P[6 * e + j];
-      }
-      ZP[6 * i + j] = s;
-    }
-  }
+  csu_congruence6(Z, P, Zb);
   for (int i = 0; i < 6; i++) {
     double r = 0;
     for (int e = 0; e < 6; e++) {
       r += P[6 * e + i] * rb[e];
     }
     rho[i] = r;
-    for (int j = 0; j < 6; j++) {
-      double s = 0;
-      for (int e = 0; e < 6; e++) {
-        s += P[6 * e + i] * ZP[6 * e + j];
-      }
-      Z[6 * i + j] = s;
-    }
   }
   memcpy(leg->Zw, Z, sizeof leg->Zw);
   leg->hz = h;
