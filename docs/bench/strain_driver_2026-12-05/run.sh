@@ -20,3 +20,18 @@ case "$1" in
   strain2) run strain_dt2 --scene flat-road --legs strain --dt 0.002 ;;
   *) run "$@" ;;
 esac
+# The runs of tracks.txt (sh run.sh NAME ARGS... for the others):
+#   ref refp rod8 strain strainp strain05 strain2
+#   strain_l4 --scene flat-road --legs strain --links 4
+#   rod16_dt05 --scene flat-road --legs rod --links 16 --dt 0.0005
+#   rod16_dt1 --scene flat-road --legs rod --links 16
+#   rod12_dt1 --scene flat-road --legs rod --links 12
+#   rod24_dt1 --scene flat-road --legs rod --links 24
+#   rod8_dt025 --scene flat-road --legs rod --links 8 --dt 0.00025
+#   ob_rod6_dt025 --scene obstacle --legs rod --links 6 --dt 0.00025 --t-end 4
+#   ob_strain --scene obstacle --legs strain --t-end 4
+#   ob_strain_l2 --scene obstacle --legs strain --links 2 --t-end 4
+#   ob_strain_l4 --scene obstacle --legs strain --links 4 --t-end 4
+#   earth_strain --scene flat-road --gait gaits/flat_road_paper.csv --conditions earth --legs strain --t-end 4
+#   earth_rod8 --scene flat-road --gait gaits/flat_road_paper.csv --conditions earth --t-end 4
+#   earth_rod16 --scene flat-road --gait gaits/flat_road_paper.csv --conditions earth --legs rod --links 16 --t-end 4
