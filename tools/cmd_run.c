@@ -54,7 +54,7 @@ static const char kRunUsage[] =
     "    support and the legs in one implicit step solved as a tree, strain legs only (their\n"
     "    default; a rejected step is retried in halves);\n"
     "  --legs strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled\n"
-    "    `tree`; its step is --dt (default 1 ms, the level's own) and --links is the number of\n"
+    "    `tree`; its step is --dt (default 0.5 ms, the level's own) and --links the number of\n"
     "    bending modes per segment (default 3: curvature quadratic along each segment);\n"
     "  --rod-tol K: every CVODE tolerance of rod legs times K (default 1; measured on the 9 s\n"
     "    flat road: K 5-20 runs 3.7-5.6x faster than K 1 and lands 3-7 mm from the converged\n"
