@@ -35,3 +35,8 @@ esac
 #   earth_strain --scene flat-road --gait gaits/flat_road_paper.csv --conditions earth --legs strain --t-end 4
 #   earth_rod8 --scene flat-road --gait gaits/flat_road_paper.csv --conditions earth --t-end 4
 #   earth_rod16 --scene flat-road --gait gaits/flat_road_paper.csv --conditions earth --legs rod --links 16 --t-end 4
+#   ob_strain_dt05 --scene obstacle --legs strain --dt 0.0005 --t-end 4
+#   ob_strain_dt025 --scene obstacle --legs strain --dt 0.00025 --t-end 4
+#   strain025 --scene flat-road --legs strain --dt 0.00025
+# (the strain runs before the default became 0.5 ms: `strain` is --legs strain at 1 ms; today
+# give --dt 0.001 for it)
