@@ -100,19 +100,13 @@ static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, c
 }
 
 
-/* the point twists at q + s ε η into out (np x 6); the kinematics is left at that q */
+/* the point twists at q + ε η into out (np x 6), by the twist recursion alone (no poses or
+ * Jacobians: the kinematics stays valid) */
 static void twistsAt(const csrStrainModel* m, csrStrainData* d, double eps, double* out) {
-  const int n = m->n;
-  for (int j = 0; j < n; j++) {
-    d->q_save[j] = d->q[j];
-    d->q[j] += eps * d->eta[j];
+  for (int j = 0; j < m->n; j++) {
+    d->q_save[j] = d->q[j] + eps * d->eta[j];
   }
-  csr_strainKinematics_(m, d, 1);
-  for (int p = 0; p < m->np; p++) {
-    pointTwist(m, d, p, d->Vb, d->eta, out + 6 * p);
-  }
-  memcpy(d->q, d->q_save, (size_t)n * sizeof(double));
-  d->kin_valid = 0;
+  csr_strainTwists_(m, d->q_save, d->eta, d->Vb, out);
 }
 
 
@@ -159,7 +153,11 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   } else {
     memset(d->Ab, 0, (size_t)6 * m->np * sizeof(double));
   }
-  csr_strainKinematics_(m, d, 1);
+  /* the kinematics relative to the base: the last Finish left it valid at this q (the
+   * return-mapping needed it) */
+  if (d->kin_valid < 2) {
+    csr_strainKinematics_(m, d, 1);
+  }
   /* W_bb, W_lb, W_ll (its lower triangle) and r */
   double Wbb[36], rb[6];
   memset(Wbb, 0, sizeof Wbb);

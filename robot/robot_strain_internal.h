@@ -108,6 +108,13 @@ void csr_strainLegendre_(int n, double s, double* P);
  * if dOm is not NULL, ∂Ω/∂q over the piece's unknowns (6 x ndof[k], row-major) */
 void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s, double h,
                        double Om[6], double* dOm);
+/* T(Ω) v without forming T (6) */
+void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6]);
+/* the body twists V_p = G_p (V_b, η) of every quadrature point (np x 6) at q, by the twist
+ * recursion V_{k+1} = Ad(exp(-Ω)) V_k + T(Ω) Ω̇ (the Jacobian recursion applied to one
+ * velocity: no poses or Jacobians kept) */
+void csr_strainTwists_(const csrStrainModel* m, const double* q, const double* eta,
+                       const double Vb[6], double* V);
 /* strain ξ (6) of piece k at local arc length s */
 void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]);
 /* LU with partial pivoting in place (n x n); 0 ok, 1 singular; and its solve */

@@ -8,6 +8,9 @@
  *  - jacobian_matches_differences: the body Jacobian at the tip of a bent, twisted, stretched
  *    and sheared three-piece rod (flexible, rigid, flexible) against central differences of
  *    the tip pose.
+ *  - twist_recursion_matches_jacobian: the point twists of the velocity recursion
+ *    (csr_strainTwists_, the velocity products' kernel) against G_p (V_b, η) from the pose and
+ *    Jacobian recursion, on the same rod, at every quadrature point.
  *  - magnus_fourth_order: the tip pose of a rod whose bending varies quadratically and twists
  *    (non-commuting strains) converges at order 4 in the sub-intervals.
  *  - mass_matrix_rigid_rod: a rod made of one rigid piece and one flexible piece with q = 0:
@@ -222,6 +225,56 @@ static void jacobian_matches_differences(void) {
 }
 
 
+static void twist_recursion_matches_jacobian(void) {
+  csrRodPiece pc[3] = {uniformPiece(50), uniformPiece(8), uniformPiece(40)};
+  const int order[3] = {2, -1, 2};
+  csrStrainParams sp = csr_strainDefaultParams();
+  sp.axial_order = 1;
+  sp.nsub = 3;
+  csrStrainModel* m = makeRod(pc, order, 3, &sp);
+  if (!m) {
+    return;
+  }
+  csError err;
+  csrStrainData* d = csr_strainDataCreate(m, &err);
+  int n = csr_strainDofs(m), nu = 6 + n;
+  double* q = calloc((size_t)n, sizeof(double));
+  double* eta = calloc((size_t)n, sizeof(double));
+  double* V = calloc((size_t)6 * m->np, sizeof(double));
+  double* G = calloc((size_t)6 * nu, sizeof(double));
+  const double Vb[6] = {0.3, -0.2, 0.5, 10, -4, 7};
+  for (int j = 0; j < n; j++) {
+    q[j] = (j % 7 - 3) * (m->dcomp[j] <= CSR_STRAIN_TW ? 0.007 : 0.02);
+    eta[j] = (j % 5 - 2) * (m->dcomp[j] <= CSR_STRAIN_TW ? 0.03 : 0.1);
+  }
+  csr_strainSetQ(m, d, q);
+  csr_strainKinematics_(m, d, 1);
+  csr_strainTwists_(m, q, eta, Vb, V);
+  double e = 0, vmax = 0;
+  for (int p = 0; p < m->np; p++) {
+    csr_strainPointG_(m, d, p, G);
+    for (int r = 0; r < 6; r++) {
+      double s = 0;
+      for (int k = 0; k < nu; k++) {
+        s += G[r * nu + k] * (k < 6 ? Vb[k] : eta[k - 6]);
+      }
+      e = fmax(e, fabs(s - V[6 * p + r]));
+      vmax = fmax(vmax, fabs(s));
+    }
+  }
+  printf("  %d points: max |V_recursion - G u| = %.3g (largest entry %.3g)\n", m->np, e, vmax);
+  /* the same arithmetic in another order: round-off of the largest entry */
+  CS_EXPECT_NEAR(e, 0, 1e-12 * vmax, 0);
+  CS_EXPECT(vmax > 10);
+  free(q);
+  free(eta);
+  free(V);
+  free(G);
+  csr_strainDataDestroy(d);
+  csr_strainModelDestroy(m);
+}
+
+
 static void tipAt(int nsub, double x[3], double R[9]) {
   csrRodPiece pc = uniformPiece(100);
   csrStrainParams sp = csr_strainDefaultParams();
@@ -387,6 +440,7 @@ int main(int argc, char** argv) {
   CS_RUN(tangent_matches_series);
   CS_RUN(exp_matches_series);
   CS_RUN(jacobian_matches_differences);
+  CS_RUN(twist_recursion_matches_jacobian);
   CS_RUN(magnus_fourth_order);
   CS_RUN(mass_matrix_rigid_rod);
   CS_RUN(first_bending_frequency);
