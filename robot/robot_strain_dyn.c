@@ -199,13 +199,19 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
         F[3 + r] += fb[r];
       }
     }
-    /* r_b += Aᵀ F, r_l += Jᵀ F; W_bb += Aᵀ M A, W_lb (in X) += Jᵀ M A, W_ll += Jᵀ M J */
+    /* r_b += Aᵀ F, r_l += Jᵀ F; W_bb += Aᵀ M A, W_lb += Jᵀ M A, W_ll += Jᵀ M J (its lower
+     * triangle; J's columns from pcol on are zero) */
+    const int nc = m->pcol[p];
     for (int r = 0; r < 6; r++) {
+      const double* Jr = J + r * n;
       for (int c = 0; c < 6; c++) {
         rb[c] += A[6 * r + c] * F[r];
       }
-      for (int j = 0; j < n; j++) {
-        d->rl[j] += J[r * n + j] * F[r];
+      for (int j = 0; j < nc; j++) {
+        d->rl[j] += Jr[j] * F[r];
+      }
+      if (Ms[r] == 0) {
+        continue;
       }
       double MA[6];
       for (int c = 0; c < 6; c++) {
@@ -218,17 +224,15 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
           }
         }
       }
-      for (int j = 0; j < n; j++) {
-        double Jr = J[r * n + j];
-        if (Jr == 0) {
-          continue;
-        }
+      for (int j = 0; j < nc; j++) {
+        double* wlb = d->Wlb + 6 * j;
         for (int c = 0; c < 6; c++) {
-          d->Wlb[6 * j + c] += Jr * MA[c];
+          wlb[c] += Jr[j] * MA[c];
         }
-        double MJ = Ms[r] * Jr;
+        double MJ = Ms[r] * Jr[j];
+        double* wll = d->Wll + (size_t)j * n;
         for (int k = 0; k <= j; k++) {
-          d->Wll[j * n + k] += MJ * J[r * n + k];
+          wll[k] += MJ * Jr[k];
         }
       }
     }
@@ -266,17 +270,9 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   if (csr_strainLuFactor_(d->Wll, n, d->piv)) {
     return 1;
   }
-  /* X = W_ll⁻¹ W_lb column by column, y = W_ll⁻¹ h r_l */
-  for (int c = 0; c < 6; c++) {
-    double* col = d->dq;
-    for (int j = 0; j < n; j++) {
-      col[j] = d->Wlb[6 * j + c];
-    }
-    csr_strainLuSolve_(d->Wll, n, d->piv, col);
-    for (int j = 0; j < n; j++) {
-      d->X[6 * j + c] = col[j];
-    }
-  }
+  /* X = W_ll⁻¹ W_lb (its 6 columns at once), y = W_ll⁻¹ h r_l */
+  memcpy(d->X, d->Wlb, (size_t)n * 6 * sizeof(double));
+  csr_strainLuSolveMulti_(d->Wll, n, d->piv, d->X, 6);
   for (int j = 0; j < n; j++) {
     d->y[j] = h * d->rl[j];
   }

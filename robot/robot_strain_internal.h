@@ -32,6 +32,8 @@ struct csrStrainModel_ {
   int ndof[CSR_ROD_MAX_PIECES];      /* its unknowns (0: rigid) */
   int nsub[CSR_ROD_MAX_PIECES];      /* its Magnus sub-intervals (1 for a rigid piece) */
   int pt0[CSR_ROD_MAX_PIECES + 1];   /* its first quadrature point; pt0[npiece] = np - 1 */
+  int* pcol;                         /* (np) the unknowns that move point p: its Jacobian's
+                                        columns >= pcol[p] are zero */
   int n;                             /* unknowns */
   int np;                            /* quadrature points: the ends and midpoints of every
                                         sub-interval (Simpson), shared at piece ends */
@@ -120,6 +122,8 @@ void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, do
 /* LU with partial pivoting in place (n x n); 0 ok, 1 singular; and its solve */
 int csr_strainLuFactor_(double* A, int n, int* piv);
 void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x);
+/* the same for nrhs right-hand sides at once, B (n x nrhs, row-major) in place */
+void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, int nrhs);
 /* G_p = [Ad(g_p⁻¹), J_p] of point p (6 x (6 + n), row-major) at the current kinematics */
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
 
