@@ -296,6 +296,12 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->Vp);
   free(d->Vs);
   free(d->Ab);
+  free(d->q0);
+  free(d->eta0);
+  free(d->WMll);
+  free(d->WMlb);
+  free(d->rMl);
+  free(d->du);
   free(d);
 }
 
@@ -386,9 +392,16 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->Vp = calloc(np * 6, sizeof(double));
   d->Vs = calloc(np * 6, sizeof(double));
   d->Ab = calloc(np * 6, sizeof(double));
+  d->q0 = calloc(n, sizeof(double));
+  d->eta0 = calloc(n, sizeof(double));
+  d->WMll = calloc(n * n, sizeof(double));
+  d->WMlb = calloc(n * 6, sizeof(double));
+  d->rMl = calloc(n, sizeof(double));
+  d->du = calloc(n + 6, sizeof(double));
   if (!d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
-      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab) {
+      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||
+      !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du) {
     csr_strainDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;
@@ -414,6 +427,7 @@ void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
   memcpy(d->xb, m->hip, sizeof d->xb);
   memset(d->Vb, 0, sizeof d->Vb);
   memset(&d->wbase, 0, sizeof d->wbase);
+  memset(d->Dm, 0, sizeof d->Dm);
   memset(d->tipd_f, 0, sizeof d->tipd_f);
   if (m->soft) {
     csc_softStateInit(m->soft, d->z);

@@ -25,6 +25,10 @@
  * slip overshoots (measured: a foot pushed at 2 mu N went backwards). So
  *   L1 ≈ L(y_p) + K_y (y0 + h S u0 - y_p) + (h K_y + C_y) S Δu, so
  *   h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)),   W -= h Sᵀ (h K_y + C_y) S.
+ * Iterates (csr_strainIterate): the kinematics is at the iterate's end of the step (q0 + h η1,
+ * the base where the last csr_strainUpdate put it), so the load is linearised there, without a
+ * prediction: L1 ≈ L_e + (h K_y + C_y) S (Δu - Δu_it); converged, the step's contact force is
+ * the law's at the step's end (backward Euler), whatever the contact set did within it.
  * The prediction is tangential only (the slip along the surface and the turn about its normal):
  * predicting the normal motion too overshoots the stiff normal law (measured: a foot pressed
  * 0.5 mm bounced to 15 N); the normal part stays linearised at y0 as it was. So
@@ -197,7 +201,7 @@ static void worldRows(const csrStrainModel* m, const csrStrainData* d, int p, in
 
 
 int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
-                               const double* u0, double* Wbb, double* rb, double* G) {
+                               const double* du, double* Wbb, double* rb, double* G) {
   if (!m->soft) {
     return 0;
   }
@@ -206,6 +210,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
   double* Ga = G;
   double* Gb = G + 6 * nu;
   double* S = G + 12 * nu;
+  memset(d->fcw, 0, sizeof d->fcw);
   for (int s = 0; s < m->nshape; s++) {
     cscShapeState st;
     shapeState(m, d, s, &st);
@@ -230,7 +235,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
       rest[c] = h * st.v0[c];
       rest[3 + c] = h * (foot ? st.w[c] : st.v1[c]);
     }
-    if (csu_normalize3(nrm) > 0) {
+    if (!du && csu_normalize3(nrm) > 0) {
       /* the predicted end of the step: the shape slid on along the surface at its start
        * velocity (and turned about the normal); its normal motion is left to the step, whose
        * contact stiffness at y0 is what holds it (predicting it too overshoots the stiff
@@ -265,6 +270,10 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     if (!touching) {
       continue;
     }
+    csu_add3(d->fcw, d->fcw, L0);
+    if (!foot) {
+      csu_add3(d->fcw, d->fcw, L0 + 3);
+    }
     int a = m->shape_a[s], b = m->shape_b[s];
     csr_strainPointG_(m, d, a, Ga);
     csr_strainPointG_(m, d, b, Gb);
@@ -288,13 +297,20 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         D[6 * r + col] = (Lp[r] - Lm[r]) / (2 * del);
       }
     }
-    /* h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)) */
-    double Lr[6];
-    (void)u0;
+    /* the start (du NULL): h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)); an iterate (the
+     * kinematics at its end y_e, ẏ_e): h r += h Sᵀ (L_e - (h K_y + C_y) S Δu_it) */
+    double Lr[6], Sdu[6] = {0, 0, 0, 0, 0, 0};
+    if (du) {
+      for (int r = 0; r < 6; r++) {
+        for (int k = 0; k < nu; k++) {
+          Sdu[r] += S[r * nu + k] * du[k];
+        }
+      }
+    }
     for (int r = 0; r < 6; r++) {
       double t = L0[r];
       for (int c = 0; c < 6; c++) {
-        t += Ky[6 * r + c] * rest[c];
+        t += du ? -(h * Ky[6 * r + c] + Cy[6 * r + c]) * Sdu[c] : Ky[6 * r + c] * rest[c];
       }
       Lr[r] = t;
     }

@@ -90,6 +90,20 @@ struct csrStrainData_ {
   double* Wbl;    /* (6 x n) W_bl (= W_lbᵀ without contact) */
   double Zp[36], rhop[6], Rbp[9]; /* the prepared Z, ρ and the base frame they are in */
   csrWrench wbase; /* the last finished step's base wrench (csr_strainBaseWrench) */
+  /* the step's start and its constant part (robot_strain_dyn.c assembleStart) */
+  double* q0;     /* (n) */
+  double* eta0;   /* (n) */
+  double Vb0[6];  /* the base's body twist at the start */
+  double* WMll;   /* (n x n) inertia + (h τ_d + h²) K */
+  double* WMlb;   /* (n x 6) */
+  double WMbb[36];
+  double* rMl;    /* (n) forces at the start, elastic and damping at the end */
+  double rMb[6];
+  double* du;     /* (6 + n) the iterate's Δu = (ΔV, Δη) */
+  double X0m[3];  /* Σ m x of the leg at the step's start, world (t mm) */
+  double Dm[3];   /* the leg's discrete linear momentum: Σ m x's change over the last step / h,
+                     world (t mm/s; state) */
+  double fcw[3];  /* the contact's force on the leg at the linearisation point, world (N) */
   double* z;      /* (nhist) contact anchors (state) */
   cscShapeState* sst; /* (nshape) scratch */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
@@ -133,7 +147,7 @@ int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csErr
  * full) and h r (r_b, r_l: forces, added), at the current kinematics (with J) and point
  * twists d->Vp; 0 or > 0 (a pose sinks past a shape's radius or is not finite) */
 int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
-                               const double* u0, double* Wbb, double* rb, double* G);
+                               const double* du, double* Wbb, double* rb, double* G);
 /* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
 int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
 /* the point twists d->Vp at the current kinematics */
