@@ -211,6 +211,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
   double* Gb = G + 6 * nu;
   double* S = G + 12 * nu;
   memset(d->fcw, 0, sizeof d->fcw);
+  d->ntouch = 0;
   for (int s = 0; s < m->nshape; s++) {
     cscShapeState st;
     shapeState(m, d, s, &st);
@@ -270,6 +271,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     if (!touching) {
       continue;
     }
+    d->ntouch++;
     csu_add3(d->fcw, d->fcw, L0);
     if (!foot) {
       csu_add3(d->fcw, d->fcw, L0 + 3);

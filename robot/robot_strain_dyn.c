@@ -312,6 +312,36 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   double Wbb[36], rb[6];
   memcpy(Wbb, d->WMbb, sizeof Wbb);
   memcpy(rb, d->rMb, sizeof rb);
+  /* an iterate without contact, whose last factor had none either: W_ll, W_lb, r_l and so X,
+   * y and Z are the last pass's; only the base's momentum rows (ρ) change */
+  int reuse = 0;
+  if (du && d->lu_plain && m->soft) {
+    int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+    reuse = d->ntouch == 0;
+  }
+  if (reuse || (du && d->lu_plain && !m->soft)) {
+    momentumRows(m, d, h, du, Wbb, rb);
+    for (int a = 0; a < 6; a++) {
+      double t = 0;
+      for (int j = 0; j < n; j++) {
+        t += d->Wbl[n * a + j] * d->y[j];
+      }
+      rho[a] = h * rb[a] - t;
+    }
+    memcpy(Z, d->Zp, sizeof d->Zp);
+    memcpy(d->rhop, rho, sizeof d->rhop);
+    for (int a = 0; a < 6; a++) {
+      if (!isfinite(rho[a])) {
+        return 1;
+      }
+    }
+    return 0;
+  }
+  memcpy(Wbb, d->WMbb, sizeof Wbb);
+  memcpy(rb, d->rMb, sizeof rb);
   memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
   memcpy(d->Wlb, d->WMlb, (size_t)n * 6 * sizeof(double));
   memcpy(d->rl, d->rMl, (size_t)n * sizeof(double));
@@ -320,12 +350,14 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
       d->Wbl[n * c + j] = d->Wlb[6 * j + c];
     }
   }
+  d->ntouch = 0;
   if (m->soft) {
     int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
   }
+  d->lu_plain = d->ntouch == 0;
   if (du) {
     momentumRows(m, d, h, du, Wbb, rb);
   }

@@ -104,6 +104,8 @@ struct csrStrainData_ {
   double Dm[3];   /* the leg's discrete linear momentum: Σ m x's change over the last step / h,
                      world (t mm/s; state) */
   double fcw[3];  /* the contact's force on the leg at the linearisation point, world (N) */
+  int ntouch;     /* shapes the last contact assembly found touching */
+  int lu_plain;   /* 1: d->Wll's factor, X and y are W_M's alone (no contact in them) */
   double* z;      /* (nhist) contact anchors (state) */
   cscShapeState* sst; /* (nshape) scratch */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
