@@ -58,30 +58,9 @@ int main(int argc, char** argv) {
   printf("gait %s, mu %.3g, h %.4g s, bend order %d, %d unknowns per leg, passes <= %d to %.3g\n",
          gait_path, mu, h, order, csr_strainDofs(r->m[0]), maxit, tol);
   for (int i = 0; i < nstep; i++) {
-    /* the step [i h, (i + 1) h] in pieces of h / 2^depth: a rejected piece is restored and
-     * halved */
-    double ta = i * h, tb = (i + 1) * h;
-    int depth = 0, fail = 0;
-    while (ta < tb - 1e-12 * h) {
-      double hs = h / (1 << depth);
-      double te = fmin(tb, ta + hs);
-      double p96[96];
-      csg_scheduleEval(g, NULL, te, p96);
-      int it = 0;
-      strainRobotSave(r, save);
-      if (strainRobotStepIter(r, te - ta, p96, maxit, tol, &it, &leg_s, &tree_s) != 0) {
-        strainRobotRestore(r, save);
-        rejected++;
-        if (++depth > 6) {
-          fail = 1;
-          break;
-        }
-        continue;
-      }
-      passes += it;
-      steps++;
-      ta = te;
-    }
+    /* [i h, (i + 1) h]: a rejected piece is restored and halved */
+    int fail = strainRobotAdvance(r, g, i * h, (i + 1) * h, maxit, tol, 6, save, &steps,
+                                  &rejected, &passes, &leg_s, &tree_s);
     if (fail) {
       printf("step %d (t = %.4f s) failed after 6 halvings\n", i, (i + 1) * h);
       status = 1;

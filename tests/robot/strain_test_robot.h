@@ -381,6 +381,43 @@ static inline void strainRobotRestore(StrainRobot* r, const double* y) {
 }
 
 
+/* Advance from ta to tb with Newton steps (strainRobotStepIter, maxit passes to tol), the
+ * gait g giving the pressures at each piece's end: a piece that fails is restored from save
+ * (strainRobotStateSize doubles) and halved, at most max_halve times. 0 ok, 1 failed; the
+ * counters (if not NULL) accumulate steps taken, rejected pieces and passes. */
+static inline int strainRobotAdvance(StrainRobot* r, const csgGait* g, double ta, double tb,
+                                     int maxit, double tol, int max_halve, double* save,
+                                     long* steps, long* rejected, long* passes, double* leg_s,
+                                     double* tree_s) {
+  const double h = tb - ta;
+  int depth = 0;
+  while (ta < tb - 1e-12 * h) {
+    double te = fmin(tb, ta + h / (1 << depth)), p96[96];
+    int it = 0;
+    csg_scheduleEval(g, NULL, te, p96);
+    strainRobotSave(r, save);
+    if (strainRobotStepIter(r, te - ta, p96, maxit, tol, &it, leg_s, tree_s) != 0) {
+      strainRobotRestore(r, save);
+      if (rejected) {
+        (*rejected)++;
+      }
+      if (++depth > max_halve) {
+        return 1;
+      }
+      continue;
+    }
+    if (passes) {
+      *passes += it;
+    }
+    if (steps) {
+      (*steps)++;
+    }
+    ta = te;
+  }
+  return 0;
+}
+
+
 /* centre of mass of support and legs (world mm) */
 static inline void strainRobotCom(StrainRobot* r, double com[3]) {
   double M = r->ms, mx[3];

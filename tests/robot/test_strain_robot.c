@@ -99,38 +99,20 @@ static void newton_5ms_touchdown(void) {
   }
   const double h = 5e-3;
   double y0 = r->x[1];
-  int ns = strainRobotStateSize(r), rejected = 0, steps = 0, passes = 0, failed = 0;
+  int ns = strainRobotStateSize(r), failed = 0;
+  long rejected = 0, steps = 0, passes = 0;
   double* save = calloc((size_t)ns, sizeof(double));
-  double ta = 0;
   for (int i = 0; i < 60 && !failed; i++) {
-    /* [i h, (i + 1) h], a rejected piece restored and halved (at most 4 times) */
-    double tb = (i + 1) * h;
-    int depth = 0;
-    while (ta < tb - 1e-12) {
-      double te = fmin(tb, ta + h / (1 << depth)), p96[96];
-      int it = 0;
-      csg_scheduleEval(g, NULL, te, p96);
-      strainRobotSave(r, save);
-      if (strainRobotStepIter(r, te - ta, p96, 16, 1e-7, &it, NULL, NULL) != 0) {
-        strainRobotRestore(r, save);
-        rejected++;
-        if (++depth > 4) {
-          failed = 1;
-          break;
-        }
-        continue;
-      }
-      passes += it;
-      steps++;
-      ta = te;
-    }
+    /* a rejected piece restored and halved (at most 4 times), as the driver's rollback */
+    failed = strainRobotAdvance(r, g, i * h, (i + 1) * h, 16, 1e-7, 4, save, &steps, &rejected,
+                                &passes, NULL, NULL);
   }
   double N = 0, f[3], mo[3];
   for (int k = 0; k < CSR_NLEG; k++) {
     csr_strainContactWrench(r->m[k], r->d[k], f, mo, NULL);
     N += f[1];
   }
-  printf("  0.3 s at 5 ms: %d steps (%d rejected and halved), %.2f passes per step; support y "
+  printf("  0.3 s at 5 ms: %ld steps (%ld rejected and halved), %.2f passes per step; support y "
          "%+.4f mm, legs' normal force %.4f N (weight %.4f N)\n", steps, rejected,
          steps ? (double)passes / steps : 0.0, r->x[1] - y0, N, r->ms * 9810);
   CS_EXPECT(!failed);
