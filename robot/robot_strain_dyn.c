@@ -211,8 +211,8 @@ static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
         F[3 + r] += fb[r];
       }
     }
-    /* r_b += Aᵀ F, r_l += Jᵀ F; W_bb += Aᵀ M A, W_lb += Jᵀ M A, W_ll += Jᵀ M J (its lower
-     * triangle; J's columns from pcol on are zero) */
+    /* r_b += Aᵀ F, r_l += Jᵀ F; W_bb += Aᵀ M A, W_lb += Jᵀ M A (J's columns from pcol on are
+     * zero) */
     const int nc = m->pcol[p];
     for (int r = 0; r < 6; r++) {
       const double* Jr = J + r * n;
@@ -241,11 +241,22 @@ static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
         for (int c = 0; c < 6; c++) {
           wlb[c] += Jr[j] * MA[c];
         }
-        double MJ = Ms[r] * Jr[j];
-        double* wll = d->WMll + (size_t)j * n;
-        for (int k = 0; k <= j; k++) {
-          wll[k] += MJ * Jr[k];
-        }
+      }
+    }
+    /* W_ll += Jᵀ M J, the six rows in one sweep of the lower triangle (one load and store of
+     * each entry instead of six) */
+    const double* J0 = J;
+    const double* J1 = J + n;
+    const double* J2 = J + 2 * n;
+    const double* J3 = J + 3 * n;
+    const double* J4 = J + 4 * n;
+    const double* J5 = J + 5 * n;
+    for (int j = 0; j < nc; j++) {
+      const double a0 = Ms[0] * J0[j], a1 = Ms[1] * J1[j], a2 = Ms[2] * J2[j];
+      const double a3 = Ms[3] * J3[j], a4 = Ms[4] * J4[j], a5 = Ms[5] * J5[j];
+      double* wll = d->WMll + (size_t)j * n;
+      for (int k = 0; k <= j; k++) {
+        wll[k] += a0 * J0[k] + a1 * J1[k] + a2 * J2[k] + a3 * J3[k] + a4 * J4[k] + a5 * J5[k];
       }
     }
   }
