@@ -144,6 +144,149 @@ static void massMoment(const csrStrainModel* m, const csrStrainData* d, double X
 }
 
 
+/* Ad(g⁻¹) (6 x 6) of the pose g = (R, x) */
+static void adInvOf(const double R[9], const double x[3], double A[36]) {
+  memset(A, 0, 36 * sizeof(double));
+  for (int c = 0; c < 3; c++) {
+    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
+    e[c] = 1;
+    csu_mulMatTVec3(col, R, e);
+    csu_cross3(ex, e, x);
+    csu_mulMatTVec3(rc, R, ex);
+    for (int r = 0; r < 3; r++) {
+      A[6 * r + c] = col[r];
+      A[6 * (r + 3) + c + 3] = col[r];
+      A[6 * (r + 3) + c] = rc[r];
+    }
+  }
+}
+
+
+/* W_M's inertia, Σ_p G_pᵀ M_p G_p (G_p = [Ad(g_p⁻¹), J_p]), by composite inertias (the
+ * composite-rigid-body idea on the pieces): a point p
+ * of piece k moves with the unknowns before the piece as the piece's start point s does,
+ * G_p[:, before] = Ad(g_sp⁻¹) G_s[:, before] (the Jacobian recursion), so the piece's points
+ * add G_s[:, before]ᵀ I_k G_s[:, before] with I_k = Σ_p Ad_spᵀ M_p Ad_sp (6 x 6), the coupling
+ * G_s[:, before]ᵀ F_k with F_k = Σ_p Ad_spᵀ M_p L_p, and Σ_p L_pᵀ M_p L_p on the piece's own
+ * columns (L_p = J_p on them): per point O(6 nd) instead of O(6 n²). Fills d->WMll (full),
+ * d->WMlb and d->WMbb. */
+void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
+  const int n = m->n;
+  double* W = d->WMll;
+  memset(W, 0, (size_t)n * n * sizeof(double));
+  memset(d->WMlb, 0, (size_t)n * 6 * sizeof(double));
+  memset(d->WMbb, 0, sizeof d->WMbb);
+  /* the hip point moves with the base: Ad = I */
+  for (int c = 0; c < 6; c++) {
+    d->WMbb[7 * c] += m->Ms[c];
+  }
+  double* F = d->Gs;                 /* 6 x nd of the piece (scratch) */
+  double* T = d->Gs + 6 * (6 + n);   /* I_k G_s (6 x (6 + n)) and F_kᵀ rows */
+  for (int k = 0; k < m->npiece; k++) {
+    const int s = m->pt0[k], c0 = m->dof0[k], nd = m->ndof[k], nu = 6 + c0;
+    double I[36];
+    memset(I, 0, sizeof I);
+    memset(F, 0, (size_t)6 * (nd + 1) * sizeof(double));
+    const double* Rs = d->R + 9 * s;
+    const double* xs = d->x + 3 * s;
+    for (int p = s + 1; p <= m->pt0[k + 1]; p++) {
+      const double* Mp = m->Ms + 6 * p;
+      double Rr[9], dx[3], xr[3], A[36];
+      for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+          Rr[3 * i + j] = Rs[i] * d->R[9 * p + j] + Rs[3 + i] * d->R[9 * p + 3 + j] +
+                          Rs[6 + i] * d->R[9 * p + 6 + j];
+        }
+      }
+      csu_sub3(dx, d->x + 3 * p, xs);
+      csu_mulMatTVec3(xr, Rs, dx);
+      adInvOf(Rr, xr, A);
+      const double* J = d->J + (size_t)p * 6 * n;
+      for (int r = 0; r < 6; r++) {
+        const double* Ar = A + 6 * r;
+        const double* Lr = J + r * n + c0;
+        for (int a = 0; a < 6; a++) {
+          const double ma = Mp[r] * Ar[a];
+          if (ma == 0) {
+            continue;
+          }
+          for (int b = 0; b < 6; b++) {
+            I[6 * a + b] += ma * Ar[b];
+          }
+          for (int j = 0; j < nd; j++) {
+            F[nd * a + j] += ma * Lr[j];
+          }
+        }
+        for (int i = 0; i < nd; i++) {
+          const double mi = Mp[r] * Lr[i];
+          double* w = W + (size_t)(c0 + i) * n + c0;
+          for (int j = 0; j <= i; j++) {
+            w[j] += mi * Lr[j];
+          }
+        }
+      }
+    }
+    /* G_s = [A_s, J_s[:, 0..c0)] (6 x nu) */
+    double* Gsv = T + 6 * (6 + n);
+    double As[36];
+    adInvOf(Rs, xs, As);
+    const double* Js = d->J + (size_t)s * 6 * n;
+    for (int r = 0; r < 6; r++) {
+      memcpy(Gsv + r * nu, As + 6 * r, 6 * sizeof(double));
+      memcpy(Gsv + r * nu + 6, Js + r * n, (size_t)c0 * sizeof(double));
+    }
+    /* T = I G_s; the before-block += G_sᵀ T (base rows into WMbb / WMlb) */
+    for (int r = 0; r < 6; r++) {
+      for (int c = 0; c < nu; c++) {
+        double t = 0;
+        for (int e = 0; e < 6; e++) {
+          t += I[6 * r + e] * Gsv[e * nu + c];
+        }
+        T[r * nu + c] = t;
+      }
+    }
+    for (int i = 0; i < nu; i++) {
+      for (int j = 0; j <= i; j++) {
+        double t = 0;
+        for (int r = 0; r < 6; r++) {
+          t += Gsv[r * nu + i] * T[r * nu + j];
+        }
+        if (i < 6) {
+          d->WMbb[6 * i + j] += t;
+          if (j != i) {
+            d->WMbb[6 * j + i] += t;
+          }
+        } else if (j < 6) {
+          d->WMlb[6 * (i - 6) + j] += t;
+        } else {
+          W[(size_t)(i - 6) * n + (j - 6)] += t;
+        }
+      }
+    }
+    /* the coupling of the piece's columns with those before: G_sᵀ F (nu x nd) */
+    for (int i = 0; i < nu; i++) {
+      for (int j = 0; j < nd; j++) {
+        double t = 0;
+        for (int r = 0; r < 6; r++) {
+          t += Gsv[r * nu + i] * F[nd * r + j];
+        }
+        if (i < 6) {
+          d->WMlb[6 * (c0 + j) + i] += t;
+        } else {
+          W[(size_t)(c0 + j) * n + (i - 6)] += t;
+        }
+      }
+    }
+  }
+  /* the lower triangle into the upper */
+  for (int j = 0; j < n; j++) {
+    for (int k = 0; k < j; k++) {
+      W[k * n + j] = W[j * n + k];
+    }
+  }
+}
+
+
 /* The step's constant part at its start (the state now): the inertia M(q0), the velocity
  * products, weight and tip load at the start, the strains' elastic and damping forces
  * linearised at the end (exact: they are linear), into d->WM* and d->rM*; the start saved. */
@@ -169,13 +312,10 @@ static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
   if (d->kin_valid < 2) {
     csr_strainKinematics_(m, d, 1);
   }
-  /* W_bb, W_lb, W_ll (its lower triangle) and r */
-  double* Wbb = d->WMbb;
+  /* the inertia W_bb, W_lb, W_ll, then r point by point */
+  csr_strainInertia_(m, d);
   double* rb = d->rMb;
-  memset(Wbb, 0, sizeof d->WMbb);
   memset(rb, 0, sizeof d->rMb);
-  memset(d->WMll, 0, (size_t)n * n * sizeof(double));
-  memset(d->WMlb, 0, (size_t)n * 6 * sizeof(double));
   memset(d->rMl, 0, (size_t)n * sizeof(double));
   double gh[3];
   csu_mulMatTVec3(gh, d->Rb, m->gravity);
@@ -211,8 +351,7 @@ static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
         F[3 + r] += fb[r];
       }
     }
-    /* r_b += Aᵀ F, r_l += Jᵀ F; W_bb += Aᵀ M A, W_lb += Jᵀ M A (J's columns from pcol on are
-     * zero) */
+    /* r_b += Aᵀ F, r_l += Jᵀ F (J's columns from pcol on are zero) */
     const int nc = m->pcol[p];
     for (int r = 0; r < 6; r++) {
       const double* Jr = J + r * n;
@@ -222,51 +361,12 @@ static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
       for (int j = 0; j < nc; j++) {
         d->rMl[j] += Jr[j] * F[r];
       }
-      if (Ms[r] == 0) {
-        continue;
-      }
-      double MA[6];
-      for (int c = 0; c < 6; c++) {
-        MA[c] = Ms[r] * A[6 * r + c];
-      }
-      for (int a = 0; a < 6; a++) {
-        if (A[6 * r + a] != 0) {
-          for (int c = 0; c < 6; c++) {
-            Wbb[6 * a + c] += A[6 * r + a] * MA[c];
-          }
-        }
-      }
-      for (int j = 0; j < nc; j++) {
-        double* wlb = d->WMlb + 6 * j;
-        for (int c = 0; c < 6; c++) {
-          wlb[c] += Jr[j] * MA[c];
-        }
-      }
-    }
-    /* W_ll += Jᵀ M J, the six rows in one sweep of the lower triangle (one load and store of
-     * each entry instead of six) */
-    const double* J0 = J;
-    const double* J1 = J + n;
-    const double* J2 = J + 2 * n;
-    const double* J3 = J + 3 * n;
-    const double* J4 = J + 4 * n;
-    const double* J5 = J + 5 * n;
-    for (int j = 0; j < nc; j++) {
-      const double a0 = Ms[0] * J0[j], a1 = Ms[1] * J1[j], a2 = Ms[2] * J2[j];
-      const double a3 = Ms[3] * J3[j], a4 = Ms[4] * J4[j], a5 = Ms[5] * J5[j];
-      double* wll = d->WMll + (size_t)j * n;
-      for (int k = 0; k <= j; k++) {
-        wll[k] += a0 * J0[k] + a1 * J1[k] + a2 * J2[k] + a3 * J3[k] + a4 * J4[k] + a5 * J5[k];
-      }
     }
   }
-  /* W_ll in full; the strains' elastic and damping forces at the step's end,
+  /* the strains' elastic and damping forces at the step's end,
    * b - K (q0 + h η1) - τ_d K η1 with η1 = η0 + Δη */
   const double tau = m->rpar.damping_time;
   for (int j = 0; j < n; j++) {
-    for (int k = 0; k < j; k++) {
-      d->WMll[k * n + j] = d->WMll[j * n + k];
-    }
     d->rMl[j] += d->b[j] - d->Kd[j] * (d->q[j] + (tau + h) * d->eta[j]);
     d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
     if (!isfinite(d->rMl[j])) {

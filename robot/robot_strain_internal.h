@@ -143,6 +143,11 @@ void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, 
 /* G_p = [Ad(g_p⁻¹), J_p] of point p (6 x (6 + n), row-major) at the current kinematics */
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
 
+/* ---- dynamics (robot_strain_dyn.c) ---- */
+/* the inertia Σ_p G_pᵀ M_p G_p at the current kinematics (with J) into d->WMll (n x n, full),
+ * d->WMlb (n x 6) and d->WMbb, by composite inertias per piece */
+void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d);
+
 /* ---- contact (robot_strain_contact.c) ---- */
 int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err);
 /* the contact's force, its linearisation over a step of h added to W (the four blocks, W_ll
