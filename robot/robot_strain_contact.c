@@ -160,23 +160,11 @@ static void perturb(const csrStrainModel* m, int s, cscShapeState* st, int c, do
 
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G) {
   const int n = m->n, nu = 6 + n;
-  const double* R = d->R + 9 * p;
-  const double* x = d->x + 3 * p;
   const double* J = d->J + (size_t)p * 6 * n;
-  for (int c = 0; c < 3; c++) {
-    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
-    e[c] = 1;
-    csu_mulMatTVec3(col, R, e);
-    csu_cross3(ex, e, x);
-    csu_mulMatTVec3(rc, R, ex);
-    for (int r = 0; r < 3; r++) {
-      G[r * nu + c] = col[r];
-      G[(r + 3) * nu + c + 3] = col[r];
-      G[(r + 3) * nu + c] = rc[r];
-      G[r * nu + c + 3] = 0;
-    }
-  }
+  double A[36];
+  csr_strainAdInv_(d->R + 9 * p, d->x + 3 * p, A);
   for (int r = 0; r < 6; r++) {
+    memcpy(G + r * nu, A + 6 * r, 6 * sizeof(double));
     memcpy(G + r * nu + 6, J + r * n, (size_t)n * sizeof(double));
   }
 }

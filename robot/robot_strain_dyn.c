@@ -112,24 +112,9 @@ static void twistsAt(const csrStrainModel* m, csrStrainData* d, double eps, doub
 }
 
 
-/* the 6 x 6 Ad(g_p⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] of point p */
+/* the 6 x 6 Ad(g_p⁻¹) of point p */
 static void adInv(const csrStrainData* d, int p, double A[36]) {
-  const double* R = d->R + 9 * p;
-  const double* x = d->x + 3 * p;
-  memset(A, 0, 36 * sizeof(double));
-  for (int c = 0; c < 3; c++) {
-    /* column c of the angular block: Rᵀ e_c; of the coupling: Rᵀ (e_c × x) */
-    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
-    e[c] = 1;
-    csu_mulMatTVec3(col, R, e);
-    csu_cross3(ex, e, x);
-    csu_mulMatTVec3(rc, R, ex);
-    for (int r = 0; r < 3; r++) {
-      A[6 * r + c] = col[r];
-      A[6 * (r + 3) + c + 3] = col[r];
-      A[6 * (r + 3) + c] = rc[r];
-    }
-  }
+  csr_strainAdInv_(d->R + 9 * p, d->x + 3 * p, A);
 }
 
 
@@ -141,24 +126,6 @@ static void massMoment(const csrStrainModel* m, const csrStrainData* d, double X
   }
   csu_mulMatVec3(w, d->Rb, t);
   csu_addScl3(X, w, d->xb, m->mass);
-}
-
-
-/* Ad(g⁻¹) (6 x 6) of the pose g = (R, x) */
-static void adInvOf(const double R[9], const double x[3], double A[36]) {
-  memset(A, 0, 36 * sizeof(double));
-  for (int c = 0; c < 3; c++) {
-    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
-    e[c] = 1;
-    csu_mulMatTVec3(col, R, e);
-    csu_cross3(ex, e, x);
-    csu_mulMatTVec3(rc, R, ex);
-    for (int r = 0; r < 3; r++) {
-      A[6 * r + c] = col[r];
-      A[6 * (r + 3) + c + 3] = col[r];
-      A[6 * (r + 3) + c] = rc[r];
-    }
-  }
 }
 
 
@@ -200,7 +167,7 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
       }
       csu_sub3(dx, d->x + 3 * p, xs);
       csu_mulMatTVec3(xr, Rs, dx);
-      adInvOf(Rr, xr, A);
+      csr_strainAdInv_(Rr, xr, A);
       const double* J = d->J + (size_t)p * 6 * n;
       for (int r = 0; r < 6; r++) {
         const double* Ar = A + 6 * r;
@@ -229,7 +196,7 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
     /* G_s = [A_s, J_s[:, 0..c0)] (6 x nu) */
     double* Gsv = T + 6 * (6 + n);
     double As[36];
-    adInvOf(Rs, xs, As);
+    csr_strainAdInv_(Rs, xs, As);
     const double* Js = d->J + (size_t)s * 6 * n;
     for (int r = 0; r < 6; r++) {
       memcpy(Gsv + r * nu, As + 6 * r, 6 * sizeof(double));

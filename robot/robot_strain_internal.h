@@ -115,6 +115,8 @@ struct csrStrainData_ {
 
 /* ad(ξ) (6 x 6) */
 void csr_strainAd_(const double xi[6], double ad[36]);
+/* Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (6 x 6) of the pose g = (R, x) */
+void csr_strainAdInv_(const double R[9], const double x[3], double A[36]);
 /* exp(Ω^) = (R, x) */
 void csr_strainExp_(const double Om[6], double R[9], double x[3]);
 /* T(Ω) = dexp(-Ω) = Σ_j (-ad Ω)^j / (j + 1)! (6 x 6), closed form (Selig's polynomial in ad of

@@ -54,6 +54,24 @@ void csr_strainAd_(const double xi[6], double ad[36]) {
 }
 
 
+void csr_strainAdInv_(const double R[9], const double x[3], double A[36]) {
+  /* [Rᵀ 0; -Rᵀ x^ Rᵀ]: column c of the coupling block is Rᵀ (e_c × x) */
+  memset(A, 0, 36 * sizeof(double));
+  for (int c = 0; c < 3; c++) {
+    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
+    e[c] = 1;
+    csu_mulMatTVec3(col, R, e);
+    csu_cross3(ex, e, x);
+    csu_mulMatTVec3(rc, R, ex);
+    for (int r = 0; r < 3; r++) {
+      A[6 * r + c] = col[r];
+      A[6 * (r + 3) + c + 3] = col[r];
+      A[6 * (r + 3) + c] = rc[r];
+    }
+  }
+}
+
+
 void csr_strainExp_(const double Om[6], double R[9], double x[3]) {
   const double* w = Om;
   const double* v = Om + 3;

@@ -50,24 +50,6 @@ typedef struct {
 } StrainRobot;
 
 
-/* A = [Rᵀ 0; -Rᵀ p^ Rᵀ] for T = (R, p) */
-static inline void strainRobotAdInv(const double R[9], const double p[3], double A[36]) {
-  memset(A, 0, 36 * sizeof(double));
-  for (int c = 0; c < 3; c++) {
-    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
-    e[c] = 1;
-    csu_mulMatTVec3(col, R, e);
-    csu_cross3(ex, e, p);
-    csu_mulMatTVec3(rc, R, ex);
-    for (int r = 0; r < 3; r++) {
-      A[6 * r + c] = col[r];
-      A[6 * (r + 3) + c + 3] = col[r];
-      A[6 * (r + 3) + c] = rc[r];
-    }
-  }
-}
-
-
 static inline void strainRobotHip(const StrainRobot* r, int k, csrBaseState* b) {
   double t[3], Vh[6];
   csu_mulMat3(b->R, r->R, r->F);
@@ -124,7 +106,7 @@ static inline int strainRobotCreate(StrainRobot* r, double mu, int order, csErro
     double off[3];
     csr_robotHipOffset(&rm, k, off);
     csu_set3(r->hip[k], off[0], -0.5 * S[1], off[2]);
-    strainRobotAdInv(r->F, r->hip[k], r->A[k]);
+    csr_strainAdInv_(r->F, r->hip[k], r->A[k]);
     csrStrainSpec spec;
     memset(&spec, 0, sizeof spec);
     spec.act = &r->act;
