@@ -1,8 +1,8 @@
 /* robot_strain.h: the strain-coordinate Cosserat leg (issue 32: model, statics and the implicit
  * step condensed onto the base, one linearised pass or Newton iterations with the base's linear
  * rows in a discrete momentum form; docs/notes/strain_leg.md): one leg as a geometrically
- * exact Cosserat rod whose unknowns are
- * the strains of its pieces (SoRoSim's geometric variable strain), the solid joints LS12, LS23
+ * exact Cosserat rod whose unknowns are the strains of its pieces (SoRoSim's geometric
+ * variable strain), the solid joints LS12, LS23
  * at a constant curvature (or rigid).
  *
  * Owns: csrStrainParams (basis, quadrature, static solver; defaults with reasons in
