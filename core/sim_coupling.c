@@ -140,7 +140,8 @@ static void mat6Mul(double C[36], const double A[36], const double B[36]) {
  * M + h A is singular (F = W0 then). */
 static int supportSolve(const csData* d, double h, double mass, const double Iw[9],
                         const double qd[6], const double W0[6], const double Kdq[6],
-                        const double A[36], const double qd_pred[6], double F[6]);
+                        const double A[36], const double qd_pred[6], double F[6],
+                        double qd1[6]);
 
 /* y = M x for 6x6 M */
 static void mat6Vec(double y[6], const double M[36], const double x[6]) {
@@ -607,7 +608,7 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
   }
   double Kdq[6], F[6];
   mat6Vec(Kdq, c->Kc, dq);
-  (void)supportSolve(d, m->opt.h, mass, Iw, qd, W0, Kdq, c->A, qd_pred, F);
+  (void)supportSolve(d, m->opt.h, mass, Iw, qd, W0, Kdq, c->A, qd_pred, F, NULL);
   if (gs) {
     for (int i = 0; i < 6; i++) {
       c->sum_F[i] += F[i];
@@ -620,7 +621,8 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
 
 static int supportSolve(const csData* d, double h, double mass, const double Iw[9],
                         const double qd[6], const double W0[6], const double Kdq[6],
-                        const double A[36], const double qd_pred[6], double F[6]) {
+                        const double A[36], const double qd_pred[6], double F[6],
+                        double qd1[6]) {
   /* the support's backward-Euler step with the legs' linearised wrench (header):
    *   (M + h A) q'_{j+1} = M q'_j + h (m g + W0 - Kc dq_j + A q'_pred) */
   dVector3 grav;
@@ -653,6 +655,9 @@ static int supportSolve(const csData* d, double h, double mass, const double Iw[
     memcpy(F, W0, 6 * sizeof(double));
     return 1;
   }
+  if (qd1) {
+    memcpy(qd1, rhs, 6 * sizeof(double));
+  }
   /* F = W0 - Kc dq - A (q'_{j+1} - q'_pred) at the solved q'_{j+1} */
   double dqd[6], Ad[6];
   for (int i = 0; i < 6; i++) {
@@ -662,6 +667,28 @@ static int supportSolve(const csData* d, double h, double mass, const double Iw[
   for (int i = 0; i < 6; i++) {
     F[i] = W0[i] - Kdq[i] - Ad[i];
   }
+  return 0;
+}
+
+
+/* a leg's condensed step (Z, ρ at its hip, world) as the stabilised scheme's W0 and A: the
+ * impulse as the wrench it averages to over the step, the impedance per h, summed into c->A */
+static int treeGather(csData* d, int k, double h, double Z[36], const double rho[6],
+                      csError* err) {
+  csCosim* c = &d->cosim;
+  for (int i = 0; i < 3; i++) {
+    c->w[k].f[i] = rho[i] / h;
+    c->w[k].m[i] = rho[3 + i] / h;
+  }
+  for (int i = 0; i < 36; i++) {
+    Z[i] /= h;
+  }
+  if (checkFinite(d, k, &c->w[k], Z, Z, err) != 0) {
+    return 1;
+  }
+  double r[3];
+  csu_sub3(r, c->b0[k].x, c->P0);
+  addAtCentre(c->A, Z, r);
   return 0;
 }
 
@@ -684,54 +711,130 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
                   rc > 0 ? "did not converge" : "failed", rc);
       return rc;
     }
-    /* the impulse as the wrench it averages to over the step, the impedance per h: the
-     * stabilised scheme's W0 and A (cs_couplingApplyTree) */
-    for (int i = 0; i < 3; i++) {
-      c->w[k].f[i] = rho[i] / h;
-      c->w[k].m[i] = rho[3 + i] / h;
-    }
-    for (int i = 0; i < 36; i++) {
-      Z[i] /= h;
-    }
-    if (checkFinite(d, k, &c->w[k], Z, Z, err) != 0) {
+    if (treeGather(d, k, h, Z, rho, err) != 0) {
       return 1;
     }
-    double r[3];
-    csu_sub3(r, c->b0[k].x, c->P0);
-    addAtCentre(c->A, Z, r);
   }
   return 0;
 }
 
 
-int cs_couplingApplyTree(const csModel* m, csData* d, double h) {
-  csCosim* c = &d->cosim;
-  (void)m;
-  double P[3], R[9], v[3], w[3];
-  csr_robotSupportPose(d->robot, P, R, v, w);
-  double mass, Iw[9];
-  supportInertia(d, R, &mass, Iw);
-  /* W0 at the centre from the hips where they are (the pose prepare saw: nothing moved) */
-  double W0[6] = {0, 0, 0, 0, 0, 0}, qd[6], zero[6] = {0, 0, 0, 0, 0, 0}, F[6];
+/* every hip's state at the end of the step for the support's end twist q' = (v; ω) (world):
+ * the centre moved by h v, the rotation by exp(h [ω]) (ODE's own update to O(h² ω²); the legs
+ * finish along ODE's actual end state) */
+static void treeHipsAt(const csData* d, double h, const double qd1[6],
+                       csrBaseState b[CSR_NLEG]) {
+  const csCosim* c = &d->cosim;
+  double P1[3], R1[9], phi[3], dR[9];
+  for (int i = 0; i < 3; i++) {
+    P1[i] = c->P0[i] + h * qd1[i];
+    phi[i] = h * qd1[3 + i];
+  }
+  csu_rotVecToMat3(dR, phi);
+  csu_mulMat3(R1, dR, c->R0);
   for (int k = 0; k < CSR_NLEG; k++) {
-    double r[3], rxf[3];
-    csu_sub3(r, c->b0[k].x, P);
-    csu_cross3(rxf, r, c->w[k].f);
-    for (int i = 0; i < 3; i++) {
-      W0[i] += c->w[k].f[i];
-      W0[3 + i] += c->w[k].m[i] + rxf[i];
+    csr_robotBaseStateAt(d->robot, k, P1, R1, qd1, qd1 + 3, &b[k]);
+  }
+}
+
+
+int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
+  csCosim* c = &d->cosim;
+  const csrLegType* type = m->robot.leg_type;
+  cs_errorClear(err);
+  double mass, Iw[9];
+  supportInertia(d, c->R0, &mass, Iw);
+  double qd[6], zero[6] = {0, 0, 0, 0, 0, 0}, F[6], qd1[6], qit[6];
+  for (int i = 0; i < 3; i++) {
+    qd[i] = c->v0[i];
+    qd[3 + i] = c->w0[i];
+  }
+  memcpy(qit, qd, sizeof qit);
+  const int newton = m->opt.tree_iterations > 1 && type->update && type->iterate;
+  /* damping of the passes (as tests/robot/strain_test_robot.h): a pass whose full move did not
+   * shrink below 0.9 of the last one's halves the next move (down to 1/8), a shrinking one
+   * restores the full step; where a foot's stick/slip changes within the step the full
+   * Newton step can cycle between the two sides */
+  double alpha = 1, chg_last = INFINITY;
+  int it = 0;
+  for (;;) {
+    /* W0 at the centre from the hips where the step started (prepare's and iterate's frame) */
+    double W0[6] = {0, 0, 0, 0, 0, 0};
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double r[3], rxf[3];
+      csu_sub3(r, c->b0[k].x, c->P0);
+      csu_cross3(rxf, r, c->w[k].f);
+      for (int i = 0; i < 3; i++) {
+        W0[i] += c->w[k].f[i];
+        W0[3 + i] += c->w[k].m[i] + rxf[i];
+      }
+    }
+    /* Kc = 0 and the prediction the twist now: (M + Σ Tᵀ Z T) Δq' = h m g + Σ Tᵀ ρ, the tree's
+     * own equation (robot_leg.h prepare), and F = (Σ Tᵀ ρ - Σ Tᵀ Z T Δq') / h. Its linear rows
+     * are already the discrete momentum balance the legs' iterations use (robot_strain.h):
+     * in the world frame at the support's centre of mass, ODE's step x1 = x0 + h v1 makes
+     * m (v1 - v0) = m (x1 - x0) / h - D with D = m (x0 - x_prev) / h the last step's */
+    if (supportSolve(d, h, mass, Iw, qd, W0, zero, c->A, qd, F, qd1) != 0) {
+      cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the support's condensed step matrix is "
+                  "singular", d->t);
+      return 1;
+    }
+    if (!newton) {
+      break;
+    }
+    /* the iterate: the support's end twist moved alpha of the way, every leg back-substitutes
+     * its hip's end state (its full move measured against the last iterate) */
+    double qa[6], chg = 0;
+    for (int i = 0; i < 6; i++) {
+      chg = fmax(chg, h * fabs(qd1[i] - qit[i]));
+      qa[i] = qit[i] + alpha * (qd1[i] - qit[i]);
+    }
+    csrBaseState b1[CSR_NLEG], b1a[CSR_NLEG];
+    treeHipsAt(d, h, qd1, b1);
+    if (alpha < 1) {
+      treeHipsAt(d, h, qa, b1a);
+    }
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double ck = 0;
+      int rc = type->update(d->robot->legs[k], &b1[k], alpha, alpha < 1 ? &b1a[k] : NULL,
+                            &ck);
+      if (rc != 0) {
+        cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
+                    "Newton pass %d %s (code %d)", d->t, 'A' + k, it + 1,
+                    rc > 0 ? "is not finite" : "failed", rc);
+        return rc;
+      }
+      chg = fmax(chg, ck);
+    }
+    memcpy(qit, qa, sizeof qit);
+    it++;
+    alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
+    chg_last = chg;
+    if (it > 1 && chg <= m->opt.tree_tol) {
+      break;
+    }
+    if (it >= m->opt.tree_iterations) {
+      cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the tree step of %g s did not converge "
+                  "in %d Newton passes (last move %.3g mm)", d->t, h, it, chg);
+      return 1;
+    }
+    /* every leg linearises again at the iterate; the support's sums anew */
+    mat6Zero(c->A);
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double Z[36], rho[6];
+      int rc = type->iterate(d->robot->legs[k], Z, rho);
+      if (rc != 0) {
+        cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
+                    "Newton pass %d %s (code %d)", d->t, 'A' + k, it + 1,
+                    rc > 0 ? "left its valid range" : "failed", rc);
+        return rc;
+      }
+      if (treeGather(d, k, h, Z, rho, err) != 0) {
+        return 1;
+      }
     }
   }
-  for (int i = 0; i < 3; i++) {
-    qd[i] = v[i];
-    qd[3 + i] = w[i];
-  }
-  /* Kc = 0 and the prediction the twist now: (M + Σ Tᵀ Z T) Δq' = h m g + Σ Tᵀ ρ, the tree's
-   * own equation (robot_leg.h prepare), and F = (Σ Tᵀ ρ - Σ Tᵀ Z T Δq') / h */
-  int rc = supportSolve(d, h, mass, Iw, qd, W0, zero, c->A, qd, F);
-  if (rc != 0) {
-    return 1;
-  }
+  c->tree_passes += it > 0 ? it : 1;
   dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
   dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
   return 0;

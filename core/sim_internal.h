@@ -47,6 +47,9 @@ typedef struct csCosim_ {
   double sum_P[3], sum_phi[3];      /* start poses (rotation relative to R0) */
   double sum_qd[6];                 /* twists at the starts of steps 1..n-1 */
   double sum_F[6];                  /* the force applied at the centre */
+  /* tree coupling: Newton passes taken by the accepted and rejected tries (a counter, not
+   * state: cs_treePassCount) */
+  long tree_passes;
 } csCosim;
 
 /* doubles in the coupling's state block (cs_couplingStateGet): w, Kc, A, gs_P, gs_R, gs_qd,
@@ -142,9 +145,12 @@ int cs_couplingAdvanceGS(const csModel* m, csData* d, double H, csError* err);
 int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err);
 /* Before the support's one ODE step of h: the support's backward-Euler step with the legs'
  * condensed step solved (the stabilised scheme's solve with Kc = 0 and the prediction the
- * support's twist now), and the legs' force on the support along it added to the body. 0, or 1
- * when the condensed matrix is singular (the step is rejected). */
-int cs_couplingApplyTree(const csModel* m, csData* d, double h);
+ * support's twist now); with tree_iterations > 1 and a level that has update/iterate, Newton
+ * passes of the whole tree (solve, every leg back-substitutes, every leg linearises again)
+ * until nothing moves by more than tree_tol; then the legs' force on the support along the
+ * last solve is added to the body. 0, > 0 (err filled: singular, not converged, a leg's pass
+ * failed recoverably: the step is rejected), < 0 fatal. */
+int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err);
 /* After it: every leg back-substitutes the support's actual motion (finish); cosim.w gets the
  * legs' base wrenches of the step. 0, > 0 recoverable, < 0 fatal (err). */
 int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err);

@@ -89,6 +89,10 @@ typedef struct csOptions_ {
                              into the next macro step (momentum conserved across the interface);
                              0 drops it (measured: the flat road then walks 176 mm instead of
                              298 by 9 s) */
+  int tree_iterations;    /* tree coupling: Newton passes of the whole tree per step (1: one
+                             linearised pass; more: until tree_tol, else the step is rejected and
+                             retried in halves); the level must implement update/iterate */
+  double tree_tol;        /* tree coupling: a pass converges when nothing moves by more (mm) */
   double t_end;           /* end time (s); <= 0: the gait's last row time + ramp */
   double output_dt;       /* output sampling interval (s), a multiple of H after rounding */
   double settle;          /* s of unactuated settling under gravity before t = 0 */
@@ -230,6 +234,8 @@ double cs_time(const csData* d);
 /* steps taken and steps rejected (failed and restored) since cs_dataCreate */
 long cs_stepCount(const csData* d);
 long cs_rejectCount(const csData* d);
+/* Newton passes of the tree coupling so far (accepted and rejected tries, settling included). */
+long cs_treePassCount(const csData* d);
 /* macro steps in which the co-simulated legs' interface gains were not passive and their
  * implicit part was projected (sim_coupling.c; 0 for legs in ODE) */
 long cs_gainProjectionCount(const csData* d);

@@ -181,11 +181,10 @@ static void contactFeedbackSum(csData* d) {
 static csStatus stageSupport(const csModel* m, csData* d, double H, csError* err) {
   if (treeStep(m, d)) {
     double w = csu_wallSeconds();
-    int rc = cs_couplingApplyTree(m, d, H);
+    int rc = cs_couplingApplyTree(m, d, H, err);
     w = csu_timerAdd(&d->timer[CS_TIMER_TREE], w);
     if (rc != 0) {
-      return cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the support's condensed step "
-                         "matrix is singular", d->t);
+      return advanceStatus(m, d, rc, err);
     }
     csc_collide(&m->contact, d->world, d->terrain_space, d->robot_space, d->contacts, H,
                 &d->cstats);

@@ -234,6 +234,17 @@ typedef struct csrLegType_ {
    * 0, > 0 recoverable (e.g. a foot sunk past its bound: the driver restores the state saved
    * before the step and retries smaller), < 0 fatal. */
   int (*finish)(csrLeg* leg, const csrBaseState* b1, csrWrench* w);
+  /* Newton passes over the prepared step (NULL: one linearised pass only). update moves the
+   * leg's iterate to the end of the step for the hip's end state b1 (the support's solve:
+   * ΔV its twist change from b0), only alpha (0 < alpha <= 1) of the way from the last iterate
+   * when b1_alpha (the hip for that damped move; NULL with alpha 1) is given; *change the
+   * full move's largest change of a coordinate against the last iterate, as a length (mm).
+   * iterate linearises the step again at the iterate: Z, ρ as prepare's (same frame and
+   * columns: the impulse is ρ - Z ΔV for the whole step's ΔV). finish then ends the step at
+   * the support's actual end state. 0, > 0 recoverable (retry smaller), < 0 fatal. */
+  int (*update)(csrLeg* leg, const csrBaseState* b1, double alpha, const csrBaseState* b1_alpha,
+                double* change);
+  int (*iterate)(csrLeg* leg, double Z[36], double rho[6]);
 } csrLegType;
 
 /* The pseudo-rigid-body chain level (robot_prb.c). */

@@ -204,15 +204,10 @@ static void bodyTwist(const csrBaseState* b, double V[6]) {
 }
 
 
-static int prepareStrain(csrLeg* leg, double h, const csrBaseState* b0, double Z[36],
-                         double rho[6]) {
-  double Zb[36], rb[6];
-  leg->b = *b0;
-  csr_strainSetBase(leg->m, leg->d, b0);
-  int rc = csr_strainPrepare(leg->m, leg->d, h, Zb, rb);
-  if (rc != 0) {
-    return rc;
-  }
+/* the leg's condensed step (Zb, rb: hip body coordinates, robot_strain.h) as the driver's
+ * world Z, ρ at the hip (robot_leg.h prepare), for the step of h from the hip's state b0 */
+static void toWorld(csrLeg* leg, double h, const csrBaseState* b0, const double Zb[36],
+                    double rb[6], double Z[36], double rho[6]) {
   /* The leg's step is in its hip's body coordinates: ΔV_b = R1ᵀ u1 - R0ᵀ u0 for the hip's
    * world twist u = (v, ω), and R1ᵀ = R0ᵀ (I - h [ω]×) + O(h²), so ΔV_b = P Δu + δ with
    * δ = (0; -h R0ᵀ (ω0 × v0)) + O(h Δu, h²) (ω × ω = 0 in the angular part). δ goes into the
@@ -248,6 +243,44 @@ static int prepareStrain(csrLeg* leg, double h, const csrBaseState* b0, double Z
   }
   memcpy(leg->Zw, Z, sizeof leg->Zw);
   leg->hz = h;
+}
+
+
+static int prepareStrain(csrLeg* leg, double h, const csrBaseState* b0, double Z[36],
+                         double rho[6]) {
+  double Zb[36], rb[6];
+  leg->b = *b0;
+  csr_strainSetBase(leg->m, leg->d, b0);
+  int rc = csr_strainPrepare(leg->m, leg->d, h, Zb, rb);
+  if (rc != 0) {
+    return rc;
+  }
+  toWorld(leg, h, b0, Zb, rb, Z, rho);
+  return 0;
+}
+
+
+/* the prepared step's Newton passes (robot_leg.h update, iterate): the hip's body-twist change
+ * from the step's start (leg->b) to b1, exact as in finish */
+static int updateStrain(csrLeg* leg, const csrBaseState* b1, double alpha,
+                        const csrBaseState* b1_alpha, double* change) {
+  double V0[6], V1[6], dV[6];
+  bodyTwist(&leg->b, V0);
+  bodyTwist(b1, V1);
+  for (int i = 0; i < 6; i++) {
+    dV[i] = V1[i] - V0[i];
+  }
+  return csr_strainUpdateDamped(leg->m, leg->d, dV, alpha, b1_alpha ? b1_alpha : b1, change);
+}
+
+
+static int iterateStrain(csrLeg* leg, double Z[36], double rho[6]) {
+  double Zb[36], rb[6];
+  int rc = csr_strainIterate(leg->m, leg->d, Zb, rb);
+  if (rc != 0) {
+    return rc;
+  }
+  toWorld(leg, leg->hz, &leg->b, Zb, rb, Z, rho);
   return 0;
 }
 
@@ -359,4 +392,6 @@ const csrLegType csr_leg_strain = {
     .step = 5e-4,
     .prepare = prepareStrain,
     .finish = finishStrain,
+    .update = updateStrain,
+    .iterate = iterateStrain,
 };
