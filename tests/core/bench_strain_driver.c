@@ -111,6 +111,10 @@ static int bench(const char* src, const char* arg, double t_end) {
                                                       : "staggered",
          t_run, st == CS_OK ? "" : " (stopped)", c, t_run / c, wall, t_run / wall, nstep,
          cs_rejectCount(d), x[0]);
+  if (m.opt.coupling == CS_COUPLING_TREE) {
+    printf("  tree: %ld Newton passes (%.2f per step, with the settling and the rejected tries)\n",
+           cs_treePassCount(d), (double)cs_treePassCount(d) / (double)cs_stepCount(d));
+  }
   printf("  split of the wall time (%%): legs %.1f, contact %.2f, tree %.2f, support %.2f, "
          "pneumatics %.2f, output %.2f, rest %.2f\n", 100 * tm[CS_TIMER_LEGS].wall / total,
          100 * tm[CS_TIMER_CONTACT].wall / total, 100 * tm[CS_TIMER_TREE].wall / total,
