@@ -14,8 +14,8 @@
  *    stays near the unrejected one; a step rejected at every size fails with CS_ERR_REJECTED
  *    and changes nothing.
  * The rejecting level is csr_leg_strain with its prepare wrapped (a test double in this file).
- * ~0.4 s simulated per data at 1 ms steps (twice the level's step: the mechanics tested here
- * do not need its accuracy); release ~7 s of CPU, under the sanitizers ~50 s. */
+ * ~0.4 s simulated per data at 1 ms steps (the level's step); release ~7 s of CPU, under the
+ * sanitizers ~50 s. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,7 +55,7 @@ static int loadModel(csModel* m, const csrLegType* type) {
   cs_modelInit(m);
   cs_modelSetConditions(m, CS_CONDITIONS_PAPER);
   cs_modelSetLegLevel(m, type);
-  m->opt.h = 1e-3; /* twice the level's step: the mechanics tested here do not need its accuracy */
+  m->opt.h = 1e-3; /* the level's step (csr_leg_strain.step), set here for the tests' own */
   m->robot.leg_params.links_per_segment = 3;
   csrCalRule rule;
   if (csr_calRuleParse("rbf-pair", &rule)) {

@@ -328,12 +328,12 @@ static void test_strainRun(void) {
   CS_EXPECT(f >= 0);
   if (f >= 0) {
     double step = 0, leg_step = 0, links = 0, tree_calls = 0;
-    CS_EXPECT(H5LTget_attribute_double(f, "/", "step_s", &step) >= 0 && step == 5e-4);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "step_s", &step) >= 0 && step == 1e-3);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_s", &leg_step) >= 0 &&
-              leg_step == 5e-4);
+              leg_step == 1e-3);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 3);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_tree_calls", &tree_calls) >= 0 &&
-              tree_calls == 40);
+              tree_calls == 20);
     H5Fclose(f);
   }
   remove("runcli_strain.h5");
