@@ -780,6 +780,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
       return 1;
     }
     if (!newton) {
+      c->tree_passes++;
       break;
     }
     /* the iterate: the support's end twist moved alpha of the way, every leg back-substitutes
@@ -808,6 +809,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
     }
     memcpy(qit, qa, sizeof qit);
     it++;
+    c->tree_passes++;
     alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
     chg_last = chg;
     if (it > 1 && chg <= m->opt.tree_tol) {
@@ -834,7 +836,6 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
       }
     }
   }
-  c->tree_passes += it > 0 ? it : 1;
   dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
   dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
   return 0;

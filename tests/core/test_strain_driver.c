@@ -352,6 +352,32 @@ static void test_strain_rejected_step_is_retried_in_halves(void) {
   /* and it goes on when the legs accept again */
   g_reject_from = INFINITY;
   CS_EXPECT(stepN(&m, d, 5));
+  /* Newton passes that do not converge (2 allowed, a tolerance no move meets): every try is
+   * rejected after exactly its 2 passes, the step fails as above and changes nothing */
+  {
+    double* y = malloc(2 * (size_t)n * sizeof(double));
+    CS_EXPECT(y != NULL);
+    if (y) {
+      m.opt.tree_iterations = 2;
+      m.opt.tree_tol = 1e-300;
+      cs_stateGet(&m, d, y);
+      const long rej1 = cs_rejectCount(d), pass1 = cs_treePassCount(d);
+      csError err;
+      cs_errorClear(&err);
+      CS_EXPECT(cs_step(&m, d, &err) == CS_ERR_REJECTED);
+      cs_stateGet(&m, d, y + n);
+      const int unchanged = memcmp(y, y + n, (size_t)n * sizeof(double)) == 0;
+      const long tries = cs_rejectCount(d) - rej1, passes = cs_treePassCount(d) - pass1;
+      printf("  Newton not converged: %s; %ld tries, %ld passes, state unchanged: %s\n",
+             err.msg, tries, passes, unchanged ? "yes" : "NO");
+      CS_EXPECT(unchanged && tries > 1 && passes == 2 * tries);
+      CS_EXPECT(strstr(err.msg, "did not converge in 2 Newton passes") != NULL);
+      m.opt.tree_iterations = 16;
+      m.opt.tree_tol = 1e-7;
+      CS_EXPECT(stepN(&m, d, 2));
+      free(y);
+    }
+  }
   cs_dataDestroy(d);
   cs_dataDestroy(ref);
   cs_modelDestroy(&m);
