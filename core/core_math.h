@@ -265,6 +265,32 @@ static inline void csu_symEigen3(const csReal A[9], csReal w[3], csReal V[9]) {
   csu_symEigenN(3, A, w, V);
 }
 
+/* The congruence C = Tᵀ G T of 6 x 6 row-major matrices (G T first, then Tᵀ times it): a
+ * 6 x 6 impedance or stiffness G carried through the twist map T (the support's implicit step
+ * moves each leg's gains to its centre, sim_coupling.c; the strain leg's hip frame change,
+ * robot_strain_leg.c). C may not alias T or G. */
+static inline void csu_congruence6(csReal C[36], const csReal T[36], const csReal G[36]) {
+  csReal GT[36];
+  for (int i = 0; i < 6; i++) {
+    for (int j = 0; j < 6; j++) {
+      csReal s = 0;
+      for (int k = 0; k < 6; k++) {
+        s += G[6 * i + k] * T[6 * k + j];
+      }
+      GT[6 * i + j] = s;
+    }
+  }
+  for (int i = 0; i < 6; i++) {
+    for (int j = 0; j < 6; j++) {
+      csReal s = 0;
+      for (int k = 0; k < 6; k++) {
+        s += T[6 * k + i] * GT[6 * k + j];
+      }
+      C[6 * i + j] = s;
+    }
+  }
+}
+
 /* Solve A x = b for a 6 x 6 A (row-major, destroyed) by Gaussian elimination with partial
  * pivoting; x overwrites b. Returns 1 (b partly overwritten) if A is singular, else 0. The
  * support's implicit step (sim_coupling.c) and the strain leg's tree tests use it. */

@@ -70,6 +70,20 @@
  * Hence the default for co-simulated legs. H = 2 ms with 1 ms ODE steps: 1.2 mm off;
  * h = H = 2 ms diverges while settling (measured before the two fixes).
  *
+ * Tree scheme (`--coupling tree`, the default of tree-stepped levels: strain; issue 32). One
+ * linearly implicit step of h = H for the support and the legs together, solved as the tree
+ * it is, so nothing lags: every leg condenses its step onto its hip (csrLegType.prepare: its
+ * impulse on the support over the step is ρ - Z ΔV, ΔV the hip's twist change, world at the
+ * hip), the support solves its backward-Euler step with Σ Tᵀ Z T and Σ Tᵀ ρ moved to its centre,
+ * and every leg back-substitutes the support's actual motion (finish). That is the stabilised
+ * scheme's solve above with W0 = Σ ρ / h, A = Σ Tᵀ Z T / h, Kc = 0 and the prediction the twist
+ * now: (M + Σ Tᵀ Z T) Δq' = h m g + Σ Tᵀ ρ, the force F = (Σ Tᵀ ρ - Σ Tᵀ Z T Δq') / h handed to
+ * ODE, whose step lands on it up to the support's gyroscopic term and its own terrain contacts
+ * (ODE resolves those with F held). A is not projected onto passive gains (implicitPart): the
+ * legs' Z comes from their own Newton matrix and the solve is the tree's own. The legs then
+ * finish with their hips' exact body-twist change from the support's actual end state (the
+ * solve linearised it about the start frame; robot_strain_leg.c).
+ *
  * Rejected: sub-iterating the legs to convergence every step (the tightly coupled reference:
  * the driver's state save/restore makes it possible, at several advances per step; a tiny macro
  * step is the reference used, README "Coupling"); handing the legs' gains to ODE through fixed
@@ -99,24 +113,10 @@ static void addAtCentre(double M[36], const double G[36], const double r[3]) {
   T[6 * 1 + 5] = r[0];
   T[6 * 2 + 3] = r[1];
   T[6 * 2 + 4] = -r[0];
-  double GT[36];
-  for (int i = 0; i < 6; i++) {
-    for (int j = 0; j < 6; j++) {
-      double s = 0;
-      for (int k = 0; k < 6; k++) {
-        s += G[6 * i + k] * T[6 * k + j];
-      }
-      GT[6 * i + j] = s;
-    }
-  }
-  for (int i = 0; i < 6; i++) {
-    for (int j = 0; j < 6; j++) {
-      double s = 0;
-      for (int k = 0; k < 6; k++) {
-        s += T[6 * k + i] * GT[6 * k + j];
-      }
-      M[6 * i + j] += s;
-    }
+  double C[36];
+  csu_congruence6(C, T, G);
+  for (int i = 0; i < 36; i++) {
+    M[i] += C[i];
   }
 }
 
@@ -135,6 +135,14 @@ static void mat6Mul(double C[36], const double A[36], const double B[36]) {
 }
 
 
+/* The support's backward-Euler step with the legs' force linearised (top), solved for its end
+ * twist; F gets the legs' force along it (N, N mm at the centre, world). 0, or 1 when
+ * M + h A is singular (F = W0 then). */
+static int supportSolve(const csData* d, double h, double mass, const double Iw[9],
+                        const double qd[6], const double W0[6], const double Kdq[6],
+                        const double A[36], const double qd_pred[6], double F[6],
+                        double qd1[6]);
+
 /* y = M x for 6x6 M */
 static void mat6Vec(double y[6], const double M[36], const double x[6]) {
   for (int i = 0; i < 6; i++) {
@@ -152,6 +160,14 @@ void cs_modelSetLegLevel(csModel* m, const csrLegType* type) {
   /* co-simulated legs default to Gauss-Seidel: momentum exact, and 0.6 mm from the converged
    * staggered reference over the 9 s flat road where the stabilised scheme is 22 mm off (top) */
   m->opt.coupling = type && !type->in_world ? CS_COUPLING_GAUSS_SEIDEL : CS_COUPLING_STAGGERED;
+  if (type && !type->in_world && type->prepare) {
+    /* a tree-stepped level: one step for the support and the legs (bottom), at its own step */
+    m->opt.coupling = CS_COUPLING_TREE;
+    m->opt.macro_steps = 1;
+    if (type->step > 0) {
+      m->opt.h = type->step;
+    }
+  }
 }
 
 
@@ -590,15 +606,30 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
       c->sum_qd[i] += qd[i];
     }
   }
+  double Kdq[6], F[6];
+  mat6Vec(Kdq, c->Kc, dq);
+  (void)supportSolve(d, m->opt.h, mass, Iw, qd, W0, Kdq, c->A, qd_pred, F, NULL);
+  if (gs) {
+    for (int i = 0; i < 6; i++) {
+      c->sum_F[i] += F[i];
+    }
+  }
+  dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
+  dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
+}
+
+
+static int supportSolve(const csData* d, double h, double mass, const double Iw[9],
+                        const double qd[6], const double W0[6], const double Kdq[6],
+                        const double A[36], const double qd_pred[6], double F[6],
+                        double qd1[6]) {
   /* the support's backward-Euler step with the legs' linearised wrench (header):
    *   (M + h A) q'_{j+1} = M q'_j + h (m g + W0 - Kc dq_j + A q'_pred) */
-  const double h = m->opt.h;
   dVector3 grav;
   dWorldGetGravity(d->world, grav);
   const int gmode = dBodyGetGravityMode(d->robot->support);
-  double Kdq[6], Aqp[6], rhs[6], S[36];
-  mat6Vec(Kdq, c->Kc, dq);
-  mat6Vec(Aqp, c->A, qd_pred);
+  double Aqp[6], rhs[6], S[36];
+  mat6Vec(Aqp, A, qd_pred);
   for (int i = 0; i < 6; i++) {
     double Mq;
     if (i < 3) {
@@ -616,29 +647,220 @@ void cs_couplingApply(const csModel* m, csData* d, int j) {
       } else if (i >= 3 && k >= 3) {
         Mik = Iw[3 * (i - 3) + (k - 3)];
       }
-      S[6 * i + k] = Mik + h * c->A[6 * i + k];
+      S[6 * i + k] = Mik + h * A[6 * i + k];
     }
   }
-  double F[6];
   if (csu_solve6(S, rhs) != 0) {
     /* singular (cannot happen with a positive mass): the legs' wrench as staggered */
-    memcpy(F, W0, sizeof F);
-  } else {
-    /* F = W0 - Kc dq - A (q'_{j+1} - q'_pred) at the solved q'_{j+1} */
-    double dqd[6], Ad[6];
-    for (int i = 0; i < 6; i++) {
-      dqd[i] = rhs[i] - qd_pred[i];
+    memcpy(F, W0, 6 * sizeof(double));
+    return 1;
+  }
+  if (qd1) {
+    memcpy(qd1, rhs, 6 * sizeof(double));
+  }
+  /* F = W0 - Kc dq - A (q'_{j+1} - q'_pred) at the solved q'_{j+1} */
+  double dqd[6], Ad[6];
+  for (int i = 0; i < 6; i++) {
+    dqd[i] = rhs[i] - qd_pred[i];
+  }
+  mat6Vec(Ad, A, dqd);
+  for (int i = 0; i < 6; i++) {
+    F[i] = W0[i] - Kdq[i] - Ad[i];
+  }
+  return 0;
+}
+
+
+/* a leg's condensed step (Z, ρ at its hip, world) as the stabilised scheme's W0 and A: the
+ * impulse as the wrench it averages to over the step, the impedance per h, summed into c->A */
+static int treeGather(csData* d, int k, double h, double Z[36], const double rho[6],
+                      csError* err) {
+  csCosim* c = &d->cosim;
+  for (int i = 0; i < 3; i++) {
+    c->w[k].f[i] = rho[i] / h;
+    c->w[k].m[i] = rho[3 + i] / h;
+  }
+  for (int i = 0; i < 36; i++) {
+    Z[i] /= h;
+  }
+  if (checkFinite(d, k, &c->w[k], Z, Z, err) != 0) {
+    return 1;
+  }
+  double r[3];
+  csu_sub3(r, c->b0[k].x, c->P0);
+  addAtCentre(c->A, Z, r);
+  return 0;
+}
+
+
+int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) {
+  csCosim* c = &d->cosim;
+  const csrLegType* type = m->robot.leg_type;
+  cs_errorClear(err); /* whatever err holds after this came from these legs */
+  csr_robotSupportPose(d->robot, c->P0, c->R0, c->v0, c->w0);
+  c->t0 = d->t;
+  mat6Zero(c->Kc);
+  mat6Zero(c->A);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    double Z[36], rho[6];
+    csr_robotBaseStateAt(d->robot, k, c->P0, c->R0, c->v0, c->w0, &c->b0[k]);
+    int rc = type->prepare(d->robot->legs[k], h, &c->b0[k], Z, rho);
+    if (rc != 0) {
+      cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's step "
+                  "of %g s %s (code %d)", d->t, 'A' + k, h,
+                  rc > 0 ? "did not converge" : "failed", rc);
+      return rc;
     }
-    mat6Vec(Ad, c->A, dqd);
-    for (int i = 0; i < 6; i++) {
-      F[i] = W0[i] - Kdq[i] - Ad[i];
+    if (treeGather(d, k, h, Z, rho, err) != 0) {
+      return 1;
     }
   }
-  if (gs) {
+  return 0;
+}
+
+
+/* every hip's state at the end of the step for the support's end twist q' = (v; ω) (world):
+ * the centre moved by h v, the rotation by exp(h [ω]) (ODE's own update to O(h² ω²); the legs
+ * finish along ODE's actual end state) */
+static void treeHipsAt(const csData* d, double h, const double qd1[6],
+                       csrBaseState b[CSR_NLEG]) {
+  const csCosim* c = &d->cosim;
+  double P1[3], R1[9], phi[3], dR[9];
+  for (int i = 0; i < 3; i++) {
+    P1[i] = c->P0[i] + h * qd1[i];
+    phi[i] = h * qd1[3 + i];
+  }
+  csu_rotVecToMat3(dR, phi);
+  csu_mulMat3(R1, dR, c->R0);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csr_robotBaseStateAt(d->robot, k, P1, R1, qd1, qd1 + 3, &b[k]);
+  }
+}
+
+
+int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
+  csCosim* c = &d->cosim;
+  const csrLegType* type = m->robot.leg_type;
+  cs_errorClear(err);
+  double mass, Iw[9];
+  supportInertia(d, c->R0, &mass, Iw);
+  double qd[6], zero[6] = {0, 0, 0, 0, 0, 0}, F[6], qd1[6], qit[6];
+  for (int i = 0; i < 3; i++) {
+    qd[i] = c->v0[i];
+    qd[3 + i] = c->w0[i];
+  }
+  memcpy(qit, qd, sizeof qit);
+  const int newton = m->opt.tree_iterations > 1 && type->update && type->iterate;
+  /* damping of the passes (as tests/robot/strain_test_robot.h): a pass whose full move did not
+   * shrink below 0.9 of the last one's halves the next move (down to 1/8), a shrinking one
+   * restores the full step; where a foot's stick/slip changes within the step the full
+   * Newton step can cycle between the two sides */
+  double alpha = 1, chg_last = INFINITY;
+  int it = 0;
+  for (;;) {
+    /* W0 at the centre from the hips where the step started (prepare's and iterate's frame) */
+    double W0[6] = {0, 0, 0, 0, 0, 0};
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double r[3], rxf[3];
+      csu_sub3(r, c->b0[k].x, c->P0);
+      csu_cross3(rxf, r, c->w[k].f);
+      for (int i = 0; i < 3; i++) {
+        W0[i] += c->w[k].f[i];
+        W0[3 + i] += c->w[k].m[i] + rxf[i];
+      }
+    }
+    /* Kc = 0 and the prediction the twist now: (M + Σ Tᵀ Z T) Δq' = h m g + Σ Tᵀ ρ, the tree's
+     * own equation (robot_leg.h prepare), and F = (Σ Tᵀ ρ - Σ Tᵀ Z T Δq') / h. Its linear rows
+     * are already the discrete momentum balance the legs' iterations use (robot_strain.h):
+     * in the world frame at the support's centre of mass, ODE's step x1 = x0 + h v1 makes
+     * m (v1 - v0) = m (x1 - x0) / h - D with D = m (x0 - x_prev) / h the last step's */
+    if (supportSolve(d, h, mass, Iw, qd, W0, zero, c->A, qd, F, qd1) != 0) {
+      cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the support's condensed step matrix is "
+                  "singular", d->t);
+      return 1;
+    }
+    if (!newton) {
+      c->tree_passes++;
+      break;
+    }
+    /* the iterate: the support's end twist moved alpha of the way, every leg back-substitutes
+     * its hip's end state (its full move measured against the last iterate) */
+    double qa[6], chg = 0;
     for (int i = 0; i < 6; i++) {
-      c->sum_F[i] += F[i];
+      chg = fmax(chg, h * fabs(qd1[i] - qit[i]));
+      qa[i] = qit[i] + alpha * (qd1[i] - qit[i]);
+    }
+    csrBaseState b1[CSR_NLEG], b1a[CSR_NLEG];
+    treeHipsAt(d, h, qd1, b1);
+    if (alpha < 1) {
+      treeHipsAt(d, h, qa, b1a);
+    }
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double ck = 0;
+      int rc = type->update(d->robot->legs[k], &b1[k], alpha, alpha < 1 ? &b1a[k] : NULL,
+                            &ck);
+      if (rc != 0) {
+        cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
+                    "Newton pass %d %s (code %d)", d->t, 'A' + k, it + 1,
+                    rc > 0 ? "is not finite" : "failed", rc);
+        return rc;
+      }
+      chg = fmax(chg, ck);
+    }
+    memcpy(qit, qa, sizeof qit);
+    it++;
+    c->tree_passes++;
+    alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
+    chg_last = chg;
+    if (it > 1 && chg <= m->opt.tree_tol) {
+      break;
+    }
+    if (it >= m->opt.tree_iterations) {
+      cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the tree step of %g s did not converge "
+                  "in %d Newton passes (last move %.3g mm)", d->t, h, it, chg);
+      return 1;
+    }
+    /* every leg linearises again at the iterate; the support's sums anew */
+    mat6Zero(c->A);
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double Z[36], rho[6];
+      int rc = type->iterate(d->robot->legs[k], Z, rho);
+      if (rc != 0) {
+        cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
+                    "Newton pass %d %s (code %d)", d->t, 'A' + k, it + 1,
+                    rc > 0 ? "left its valid range" : "failed", rc);
+        return rc;
+      }
+      if (treeGather(d, k, h, Z, rho, err) != 0) {
+        return 1;
+      }
     }
   }
   dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
   dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
+  return 0;
+}
+
+
+int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err) {
+  csCosim* c = &d->cosim;
+  const csrLegType* type = m->robot.leg_type;
+  cs_errorClear(err);
+  double P1[3], R1[9], v1[3], w1[3];
+  csr_robotSupportPose(d->robot, P1, R1, v1, w1);
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csr_robotBaseStateAt(d->robot, k, P1, R1, v1, w1, &c->b1[k]);
+    int rc = type->finish(d->robot->legs[k], &c->b1[k], &c->w[k]);
+    if (rc != 0) {
+      cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's step "
+                  "%s (code %d)", d->t, 'A' + k,
+                  rc > 0 ? "left its valid range (a foot sunk past its bound or a non-finite "
+                  "pose)" : "failed", rc);
+      return rc;
+    }
+    if (checkFinite(d, k, &c->w[k], NULL, NULL, err) != 0) {
+      return 1;
+    }
+  }
+  return 0;
 }

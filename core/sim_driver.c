@@ -47,6 +47,14 @@ csOptions cs_defaultOptions(void) {
   /* Gauss-Seidel's momentum carry on: without it the scheme loses the impulse its
    * prediction misses (sim_coupling.c) */
   o.coupling_carry = 1;
+  /* the tree coupling's Newton passes (tests/robot/strain_test_robot.h measured them: 4.4-5.2
+   * passes per 5 ms step on the flat road, 16 settle all but the steps where a foot's
+   * stick/slip changes, which the rollback halves); a pass converges when no leg mode (as a
+   * length, robot_strain.h) and no support twist component times h moves by more than
+   * tree_tol: 1e-7 mm leaves a momentum error ~ m tree_tol / h per step, far below the
+   * issue's 0.01 mm in 9 s (docs/notes/strain_leg.md "Momentum") */
+  o.tree_iterations = 16;
+  o.tree_tol = 1e-7;
   o.t_end = 0;
   o.output_dt = 0.01;
   /* long enough for the 100 Hz leg modes to die out under 5 ms material damping */
@@ -214,11 +222,16 @@ static csStatus validateOptions(const csOptions* o, csError* err) {
                        o->macro_steps);
   }
   if (o->coupling != CS_COUPLING_STAGGERED && o->coupling != CS_COUPLING_STABILISED &&
-      o->coupling != CS_COUPLING_GAUSS_SEIDEL) {
+      o->coupling != CS_COUPLING_GAUSS_SEIDEL && o->coupling != CS_COUPLING_TREE) {
     return cs_errorSet(err, CS_ERR_RANGE, "unknown coupling scheme %d", (int)o->coupling);
   }
   if (o->coupling_carry != 0 && o->coupling_carry != 1) {
     return cs_errorSet(err, CS_ERR_RANGE, "coupling_carry %d must be 0 or 1", o->coupling_carry);
+  }
+  if (o->tree_iterations < 1 || o->tree_iterations > 1000 || !(o->tree_tol > 0) ||
+      !isfinite(o->tree_tol)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "tree coupling: %d Newton passes must be 1..1000 and "
+                       "the tolerance %g mm > 0", o->tree_iterations, o->tree_tol);
   }
   double H = o->macro_steps * o->h;
   if (!(o->output_dt >= H) || !isfinite(o->output_dt)) {
@@ -326,13 +339,21 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
   }
   d->t = -m->opt.settle;
   d->cosim.active = !m->robot.leg_type->in_world;
+  if (d->cosim.active && m->opt.coupling == CS_COUPLING_TREE &&
+      (!m->robot.leg_type->prepare || !m->robot.leg_type->finish || m->opt.macro_steps != 1)) {
+    cs_errorSet(err, CS_ERR_ARG, "the tree coupling needs a tree-stepped leg level (strain) and "
+                "one ODE step per macro step (legs %s, %d macro steps)", cs_modelLegLevel(m),
+                m->opt.macro_steps);
+    cs_dataDestroy(d);
+    return NULL;
+  }
   if (cs_couplingCreate(m, d, err) != CS_OK) {
     cs_dataDestroy(d);
     return NULL;
   }
   /* the state buffer of step rollback: allocated once (no allocation in the step loop) */
   d->nstate = cs_stateSize(m, d);
-  d->save = malloc((size_t)d->nstate * sizeof(double));
+  d->save = malloc((size_t)(CS_MAX_SPLIT + 1) * (size_t)d->nstate * sizeof(double));
   d->fb = calloc(CS_MAX_FEEDBACK, sizeof *d->fb);
   if (!d->save || !d->fb) {
     cs_errorSet(err, CS_ERR_MEMORY, "out of memory");
@@ -443,6 +464,7 @@ long cs_stepCount(const csData* d) { return d->nstep; }
 
 
 long cs_rejectCount(const csData* d) { return d->nreject; }
+long cs_treePassCount(const csData* d) { return d->cosim.tree_passes; }
 long cs_gainProjectionCount(const csData* d) { return d->ngain_proj; }
 
 

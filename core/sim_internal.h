@@ -7,7 +7,9 @@
  *   legs       the legs' actuation; cosim.b0, b1, w, K, C (co-simulated legs' exchange)
  *   support    the ODE bodies, cstats (the stabilised scheme's implicit force per ODE step)
  *   check      nothing (reads the support)
- *   cs_step    t, nstep, nreject, save (the state before the step), timer[] */
+ *   cs_step    t, nstep, nreject, save (the state before the step), timer[]
+ * With the tree coupling the legs stage only condenses the legs (cosim.w, A); the support stage
+ * solves the support with them; the legs then finish after it (cosim.w, the legs' state). */
 #ifndef CS_CORE_SIM_INTERNAL_H
 #define CS_CORE_SIM_INTERNAL_H
 
@@ -45,6 +47,9 @@ typedef struct csCosim_ {
   double sum_P[3], sum_phi[3];      /* start poses (rotation relative to R0) */
   double sum_qd[6];                 /* twists at the starts of steps 1..n-1 */
   double sum_F[6];                  /* the force applied at the centre */
+  /* tree coupling: Newton passes taken by the accepted and rejected tries (a counter, not
+   * state: cs_treePassCount) */
+  long tree_passes;
 } csCosim;
 
 /* doubles in the coupling's state block (cs_couplingStateGet): w, Kc, A, gs_P, gs_R, gs_qd,
@@ -84,7 +89,9 @@ struct csData_ {
   double leg_contact_force[CSR_NLEG][3]; /* N, world: its part on each in-world leg */
   csuTimer timer[CS_NTIMER];
   int nstate;                       /* cs_stateSize */
-  double* save;                     /* (nstate) the state before the current step */
+  double* save;                     /* (CS_MAX_SPLIT + 1) x nstate: the state before the
+                                       current step, then before each of its halves when a
+                                       tree-coupled step is retried smaller (sim_step.c) */
   csCosim cosim;
   /* CVODE */
   SUNContext sun;
@@ -92,6 +99,9 @@ struct csData_ {
   N_Vector y;
 };
 
+/* how often a rejected tree-coupled step is halved before the step fails (sim_step.c): down
+ * to 1/16 of it */
+#define CS_MAX_SPLIT 4
 
 /* scheduled pressures at time t (zero before t = 0), 96 MPa (sim_driver.c) */
 void cs_schedule(const csModel* m, double t, double* p_cmd);
@@ -129,6 +139,23 @@ void cs_couplingBegin(const csModel* m, csData* d);
  * support's actual motion; their wrenches, gains, the linearisation point and the impulse
  * carry for the next macro step. 0, > 0 recoverable, < 0 fatal (err). */
 int cs_couplingAdvanceGS(const csModel* m, csData* d, double H, csError* err);
+
+/* ---- the tree coupling (CS_COUPLING_TREE, tree-stepped levels) ----
+ * Before the support stage: every leg condenses its step of h onto its hip (prepare) at the
+ * support's state now; their impulses ρ/h go into cosim.w, their impedances Σ Tᵀ Z T / h at
+ * the support's centre into cosim.A. 0, > 0 recoverable, < 0 fatal (err names the leg). */
+int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err);
+/* Before the support's one ODE step of h: the support's backward-Euler step with the legs'
+ * condensed step solved (the stabilised scheme's solve with Kc = 0 and the prediction the
+ * support's twist now); with tree_iterations > 1 and a level that has update/iterate, Newton
+ * passes of the whole tree (solve, every leg back-substitutes, every leg linearises again)
+ * until nothing moves by more than tree_tol; then the legs' force on the support along the
+ * last solve is added to the body. 0, > 0 (err filled: singular, not converged, a leg's pass
+ * failed recoverably: the step is rejected), < 0 fatal. */
+int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err);
+/* After it: every leg back-substitutes the support's actual motion (finish); cosim.w gets the
+ * legs' base wrenches of the step. 0, > 0 recoverable, < 0 fatal (err). */
+int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err);
 
 /* The coupling's part of the state (CS_COSIM_STATE doubles, co-simulated legs only): what the
  * Gauss-Seidel scheme carries across macro steps. Check returns 0 when x is a valid block. */

@@ -70,7 +70,14 @@ typedef enum csCoupling_ {
    * advances along the support's actual motion over the step, so a hip's path is C1 across
    * exchanges (sim_coupling.c). Rod legs on the flat road at h = H = 1 ms: within 1 mm of the
    * tightly coupled reference over 9 s, at the stabilised scheme's cost */
-  CS_COUPLING_GAUSS_SEIDEL = 2
+  CS_COUPLING_GAUSS_SEIDEL = 2,
+  /* tree: one linearly implicit step of h for the support and the legs together, solved as
+   * the tree it is (issue 32): every leg condenses its step onto its hip (csrLegType.prepare:
+   * its impedance Z and impulse ρ), the support's backward-Euler step (M + Σ Tᵀ Z T) Δq' = ...
+   * is solved with them, every leg back-substitutes its hip's motion (finish). Tree-stepped
+   * levels only (strain), with macro_steps 1; their default (cs_modelSetLegLevel). A step that
+   * fails recoverably is retried as two halves (sim_step.c) */
+  CS_COUPLING_TREE = 3
 } csCoupling;
 
 typedef struct csOptions_ {
@@ -83,6 +90,10 @@ typedef struct csOptions_ {
                              into the next macro step (momentum conserved across the interface);
                              0 drops it (measured: the flat road then walks 176 mm instead of
                              298 by 9 s) */
+  int tree_iterations;    /* tree coupling: Newton passes of the whole tree per step (1: one
+                             linearised pass; more: until tree_tol, else the step is rejected and
+                             retried in halves); the level must implement update/iterate */
+  double tree_tol;        /* tree coupling: a pass converges when nothing moves by more (mm) */
   double t_end;           /* end time (s); <= 0: the gait's last row time + ramp */
   double output_dt;       /* output sampling interval (s), a multiple of H after rounding */
   double settle;          /* s of unactuated settling under gravity before t = 0 */
@@ -142,8 +153,9 @@ csStatus cs_modelApplySceneFile(csModel* m, const cstSceneFile* s, csError* err)
 void cs_modelSetConditions(csModel* m, csConditions c);
 
 /* Set the leg level (m->robot.leg_type) and its default coupling: a co-simulated level
- * (in_world = 0) is coupled stabilised, which is stable where staggered coupling of the rod legs
- * needs H < 40 µs (sim_coupling.c); options set afterwards override it. */
+ * (in_world = 0) is coupled Gauss-Seidel (sim_coupling.c), a tree-stepped one (prepare set:
+ * strain) `tree` with one ODE step per macro step and the level's own step (csrLegType.step)
+ * as h; options set afterwards override them. */
 void cs_modelSetLegLevel(csModel* m, const csrLegType* type);
 
 /* Name of the leg level that runs (m->robot.leg_type->name): what the output records. */
@@ -205,6 +217,7 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   X(CS_TIMER_LEGS, "legs", "stage: actuation and co-simulated legs' advance")       \
   X(CS_TIMER_SUPPORT, "support", "stage: ODE steps of the support (contact incl.)") \
   X(CS_TIMER_CONTACT, "contact", "part of support: collision and contact joints")   \
+  X(CS_TIMER_TREE, "tree", "part of support: the tree coupling's condensed 6 x 6 solve") \
   X(CS_TIMER_CHECK, "check", "stage: divergence and fall checks")                   \
   X(CS_TIMER_SAVE, "save", "the state saved before each step (and restores)")       \
   X(CS_TIMER_OUTPUT, "output", "cs_run: samples written to the output file")        \
@@ -227,6 +240,8 @@ double cs_time(const csData* d);
 /* steps taken and steps rejected (failed and restored) since cs_dataCreate */
 long cs_stepCount(const csData* d);
 long cs_rejectCount(const csData* d);
+/* Newton passes of the tree coupling so far (accepted and rejected tries, settling included). */
+long cs_treePassCount(const csData* d);
 /* macro steps in which the co-simulated legs' interface gains were not passive and their
  * implicit part was projected (sim_coupling.c; 0 for legs in ODE) */
 long cs_gainProjectionCount(const csData* d);

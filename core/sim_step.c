@@ -7,6 +7,13 @@
  * changes nothing, as MuJoCo's mj_RungeKutta saves and restores around its stages. The copy is
  * ~1.4 k doubles for the prb robot (105 bodies): measured ~2 % of a step (timer "save").
  *
+ * Retried smaller. A tree-coupled step (CS_COUPLING_TREE) that a stage rejects (a leg's step
+ * that did not converge, a foot sunk past its bound: CS_ERR_REJECTED) is restored and tried
+ * again as two halves, each again halved when it is rejected, down to CS_MAX_SPLIT halvings;
+ * each depth saves into its own slot of d->save, so a half that fails for good restores the
+ * whole step (stepTry). The other couplings exchange at a fixed macro step and return the
+ * rejection to the caller, as before.
+ *
  * Order of the arithmetic. With in-world legs and one ODE step per macro step the stages do
  * exactly what the pre-stage driver did, in the same order (pressures at t + h, joint targets
  * from them, contacts, QuickStep), so a run's track is bit-identical to it (test_state). */
@@ -22,9 +29,14 @@
 /* stage functions: each returns CS_OK or a failure status with err filled */
 static csStatus stageSchedule(const csModel* m, csData* d, double t1, csError* err);
 static csStatus stagePneumatics(const csModel* m, csData* d, double t1, csError* err);
-static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err);
+static csStatus stageLegs(const csModel* m, csData* d, double t1, double H, csError* err);
 static csStatus stageLegsAfter(const csModel* m, csData* d, csError* err);
-static csStatus stageSupport(const csModel* m, csData* d, csError* err);
+static csStatus stageSupport(const csModel* m, csData* d, double H, csError* err);
+
+/* the tree coupling is on (a tree-stepped level, CS_COUPLING_TREE) */
+static int treeStep(const csModel* m, const csData* d) {
+  return d->cosim.active && m->opt.coupling == CS_COUPLING_TREE;
+}
 static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError* err);
 
 
@@ -61,7 +73,7 @@ static csStatus advanceStatus(const csModel* m, const csData* d, int rc, csError
 
 /* every leg's actuation for [t, t1]; co-simulated legs then advance across it (Gauss-Seidel:
  * after the support stage, stageLegsAfter) */
-static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err) {
+static csStatus stageLegs(const csModel* m, csData* d, double t1, double H, csError* err) {
   int rc = csr_robotActuate(d->robot, d->t, d->p0, t1, d->p);
   if (rc == CSR_MAP_OUT_OF_RANGE) {
     int worst = 0;
@@ -85,12 +97,20 @@ static csStatus stageLegs(const csModel* m, csData* d, double t1, csError* err) 
   if (!d->cosim.active || cs_couplingGS(m, d)) {
     return CS_OK;
   }
+  if (treeStep(m, d)) {
+    /* the legs condense their step (the step may be a part of the macro step: cs_step) */
+    return advanceStatus(m, d, cs_couplingTreePrepare(m, d, H, err), err);
+  }
   return advanceStatus(m, d, cs_couplingAdvance(m, d, cs_modelMacroStep(m), err), err);
 }
 
 
-/* Gauss-Seidel: the co-simulated legs advance along the support's motion of this step */
+/* Gauss-Seidel: the co-simulated legs advance along the support's motion of this step; tree:
+ * they finish their condensed step along it */
 static csStatus stageLegsAfter(const csModel* m, csData* d, csError* err) {
+  if (treeStep(m, d)) {
+    return advanceStatus(m, d, cs_couplingTreeFinish(m, d, err), err);
+  }
   return advanceStatus(m, d, cs_couplingAdvanceGS(m, d, cs_modelMacroStep(m), err), err);
 }
 
@@ -174,9 +194,25 @@ static void contactFeedbackSum(csData* d) {
 }
 
 
-/* macro_steps ODE steps: the legs' wrenches and rows, contacts, QuickStep */
-static csStatus stageSupport(const csModel* m, csData* d, csError* err) {
-  (void)err;
+/* macro_steps ODE steps: the legs' wrenches and rows, contacts, QuickStep; with the tree
+ * coupling one ODE step of H with the legs' condensed step solved into it */
+static csStatus stageSupport(const csModel* m, csData* d, double H, csError* err) {
+  if (treeStep(m, d)) {
+    double w = csu_wallSeconds();
+    int rc = cs_couplingApplyTree(m, d, H, err);
+    w = csu_timerAdd(&d->timer[CS_TIMER_TREE], w);
+    if (rc != 0) {
+      return advanceStatus(m, d, rc, err);
+    }
+    csc_collide(&m->contact, d->world, d->terrain_space, d->robot_space, d->contacts, H,
+                &d->cstats);
+    contactFeedbackAttach(d);
+    csu_timerAdd(&d->timer[CS_TIMER_CONTACT], w);
+    dWorldQuickStep(d->world, H);
+    contactFeedbackSum(d);
+    dJointGroupEmpty(d->contacts);
+    return CS_OK;
+  }
   if (d->cosim.active && cs_couplingGS(m, d)) {
     cs_couplingBegin(m, d);
   }
@@ -234,10 +270,15 @@ static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError
 }
 
 
-csStatus cs_step(const csModel* m, csData* d, csError* err) {
-  double w0 = csu_wallSeconds(), w = w0;
-  double t1 = d->t + cs_modelMacroStep(m);
-  cs_stateGet(m, d, d->save);
+/* One try of the step [d->t, t1] of length H from the state saved in `save`: the stages in order; on
+ * success d->t = t1, else the state is restored from `save` (nreject counts it). A rejected
+ * tree-coupled step is then retried as two halves, each saved into the next slot of d->save,
+ * down to CS_MAX_SPLIT halvings; when a half fails for good, the whole step is restored. */
+static csStatus stepTry(const csModel* m, csData* d, double t1, double H, int depth,
+                        csError* err) {
+  double w = csu_wallSeconds();
+  double* save = d->save + (size_t)depth * (size_t)d->nstate;
+  cs_stateGet(m, d, save);
   w = csu_timerAdd(&d->timer[CS_TIMER_SAVE], w);
   /* this data's place in ODE's random sequence (sim_internal.h rng_seed) */
   dRandSetSeed(d->rng_seed);
@@ -249,14 +290,14 @@ csStatus cs_step(const csModel* m, csData* d, csError* err) {
     w = csu_timerAdd(&d->timer[CS_TIMER_PNEUMATICS], w);
   }
   if (st == CS_OK) {
-    st = stageLegs(m, d, t1, err);
+    st = stageLegs(m, d, t1, H, err);
     w = csu_timerAdd(&d->timer[CS_TIMER_LEGS], w);
   }
   if (st == CS_OK) {
-    st = stageSupport(m, d, err);
+    st = stageSupport(m, d, H, err);
     w = csu_timerAdd(&d->timer[CS_TIMER_SUPPORT], w);
   }
-  if (st == CS_OK && d->cosim.active && cs_couplingGS(m, d)) {
+  if (st == CS_OK && d->cosim.active && (cs_couplingGS(m, d) || treeStep(m, d))) {
     st = stageLegsAfter(m, d, err);
     w = csu_timerAdd(&d->timer[CS_TIMER_LEGS], w);
   } else if (st == CS_OK && d->cosim.active && m->opt.coupling == CS_COUPLING_GAUSS_SEIDEL) {
@@ -268,15 +309,39 @@ csStatus cs_step(const csModel* m, csData* d, csError* err) {
   }
   if (st == CS_OK) {
     d->t = t1;
-    d->nstep++;
     d->rng_seed = dRandGetSeed();
-  } else {
-    /* a failed step changes nothing: everything back as it was before the stages ran; the
-     * saved state was written by this data, so restoring it cannot be refused */
+    return CS_OK;
+  }
+  /* a failed step changes nothing: everything back as it was before the stages ran; the
+   * saved state was written by this data, so restoring it cannot be refused */
+  dJointGroupEmpty(d->contacts);
+  cs_stateSet(m, d, save, NULL);
+  d->nreject++;
+  csu_timerAdd(&d->timer[CS_TIMER_SAVE], w);
+  if (st != CS_ERR_REJECTED || !treeStep(m, d) || depth >= CS_MAX_SPLIT) {
+    return st;
+  }
+  /* smaller: two halves (each retried smaller in turn) */
+  const double tm = d->t + 0.5 * H;
+  st = stepTry(m, d, tm, 0.5 * H, depth + 1, err);
+  if (st == CS_OK) {
+    st = stepTry(m, d, t1, 0.5 * H, depth + 1, err);
+  }
+  if (st != CS_OK) {
     dJointGroupEmpty(d->contacts);
-    cs_stateSet(m, d, d->save, NULL);
-    d->nreject++;
-    csu_timerAdd(&d->timer[CS_TIMER_SAVE], w);
+    cs_stateSet(m, d, save, NULL);
+  }
+  return st;
+}
+
+
+csStatus cs_step(const csModel* m, csData* d, csError* err) {
+  double w0 = csu_wallSeconds();
+  const double H = cs_modelMacroStep(m), t1 = d->t + H;
+  csStatus st = stepTry(m, d, t1, H, 0, err);
+  if (st == CS_OK) {
+    d->t = t1; /* exactly, however many halves it took */
+    d->nstep++;
   }
   csu_timerAdd(&d->timer[CS_TIMER_STEP], w0);
   return st;

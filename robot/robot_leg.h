@@ -1,5 +1,5 @@
-/* robot_leg.h: the one leg interface every dynamic leg level implements (prb, rod, rom), and
- * the pressure -> segment-bend map (the calibration) the levels share.
+/* robot_leg.h: the one leg interface every dynamic leg level implements (prb, rod, strain,
+ * rom), and the pressure -> segment-bend map (the calibration) the levels share.
  *
  * Owns: csrBendMap (pressures of one segment's four chambers -> bend vector of that segment),
  * csrLegSpec (everything a leg needs to build itself), the exchange records of the support
@@ -12,10 +12,12 @@
  *  - in_world = 1 (prb): the leg's bodies live in the ODE world, jointed to the support body;
  *    ODE steps them together with the support and resolves their contacts. advance() is a
  *    no-op returning a zero wrench; the leg's state is its ODE bodies' states.
- *  - in_world = 0 (rod, rom): the leg is co-simulated with its own integrator. Each macro step
- *    [t, t + H] the driver hands it the hip's motion at both ends (b0, b1), the leg integrates
- *    itself across the step (its own contact with the terrain included) and returns the base
- *    wrench it exerts on the support; ODE then steps the support with that wrench applied.
+ *  - in_world = 0 (rod, strain, rom): the leg is co-simulated with its own integrator. Each
+ *    macro step [t, t + H] the driver hands it the hip's motion at both ends (b0, b1), the leg
+ *    integrates itself across the step (its own contact with the terrain included) and returns
+ *    the base wrench it exerts on the support; ODE then steps the support with that wrench
+ *    applied. A tree-stepped level (strain: prepare, finish below) is instead condensed into
+ *    the support's own implicit step.
  *
  * Frames and units: world frame of docs/reference.md (x crawl direction, y up, z lateral); mm, s,
  * MPa, N, N mm, t. A leg's frame (e1, e2, e3): e3 runs from the hip (base of II1) to the foot
@@ -134,7 +136,8 @@ typedef struct csrContactShape_ {
 typedef struct csrLeg_ csrLeg; /* opaque, per level */
 
 /* One leg level: a const table of operations over a leg's own flat state. Every pointer is
- * non-NULL (a level with nothing to do implements the no-op). Return codes of the int
+ * non-NULL (a level with nothing to do implements the no-op), but contactDepth, prepare and
+ * finish (see there). Return codes of the int
  * operations: 0 ok, > 0 recoverable (the driver rejects the step: it restores the state saved
  * before it and may retry with a smaller step), < 0 fatal (the run stops). */
 typedef struct csrLegType_ {
@@ -215,12 +218,49 @@ typedef struct csrLegType_ {
   /* In-world levels: 1 when `body` is one of the leg's ODE bodies, else 0. NULL for
    * co-simulated levels. */
   int (*ownsBody)(const csrLeg* leg, dBodyID body);
+
+  /* ---- tree-stepped levels (issue 32; the strain leg, robot_strain_leg.c) ------------------
+   * A tree-stepped level steps with the support in ONE linearly implicit step of the driver's
+   * h, solved as the tree it is (core/sim_coupling.c, coupling `tree`): every leg condenses its
+   * step onto its hip (prepare), the support solves its 6 x 6 with the legs' condensed
+   * impedances, every leg back-substitutes the hip's motion (finish). prepare and finish are
+   * NULL for the levels that advance on their own (prb, rod); a tree-stepped level still
+   * implements advance (one step along a prescribed hip motion) and interfaceGains, so the
+   * other coupling schemes can drive it. */
+  /* s: the level's default step h for the tree coupling (0: the driver's default) */
+  double step;
+  /* Condense one step of h from the current state with the hip at b0 (its pose and velocity
+   * now): the leg's impulse on the support over the step is ρ - Z ΔV, with ΔV = [Δv; Δω] the
+   * change over the step of the hip point's velocity (mm/s) and of the base frame's angular
+   * velocity (rad/s), world; ρ (6: N s, N mm s) and Z (6 x 6 row-major: t, t mm, t mm, t mm²)
+   * in the world frame at the hip, rows [force; moment about the hip], the columns and rows of
+   * robot_leg.h's interfaceGains. The state is not changed. 0, > 0 recoverable (the driver
+   * rejects the step and retries it smaller), < 0 fatal. */
+  int (*prepare)(csrLeg* leg, double h, const csrBaseState* b0, double Z[36], double rho[6]);
+  /* Finish the prepared step with the hip's state at its end b1 (after the support's step):
+   * the leg's state moves, *w gets its base wrench averaged over the step (its impulse / h).
+   * 0, > 0 recoverable (e.g. a foot sunk past its bound: the driver restores the state saved
+   * before the step and retries smaller), < 0 fatal. */
+  int (*finish)(csrLeg* leg, const csrBaseState* b1, csrWrench* w);
+  /* Newton passes over the prepared step (NULL: one linearised pass only). update moves the
+   * leg's iterate to the end of the step for the hip's end state b1 (the support's solve:
+   * ΔV its twist change from b0), only alpha (0 < alpha <= 1) of the way from the last iterate
+   * when b1_alpha (the hip for that damped move; NULL with alpha 1) is given; *change the
+   * full move's largest change of a coordinate against the last iterate, as a length (mm).
+   * iterate linearises the step again at the iterate: Z, ρ as prepare's (same frame and
+   * columns: the impulse is ρ - Z ΔV for the whole step's ΔV). finish then ends the step at
+   * the support's actual end state. 0, > 0 recoverable (retry smaller), < 0 fatal. */
+  int (*update)(csrLeg* leg, const csrBaseState* b1, double alpha, const csrBaseState* b1_alpha,
+                double* change);
+  int (*iterate)(csrLeg* leg, double Z[36], double rho[6]);
 } csrLegType;
 
 /* The pseudo-rigid-body chain level (robot_prb.c). */
 extern const csrLegType csr_leg_prb;
 /* The Cosserat rod level (robot_rod*.c, robot_rod.h), registered in robot_robot.c. */
 extern const csrLegType csr_leg_rod;
+/* The strain-coordinate Cosserat rod level (robot_strain*.c, robot_strain.h), tree-stepped. */
+extern const csrLegType csr_leg_strain;
 
 /* The registered level called `name` ("prb", ...), or NULL. Levels the design names but that
  * are not registered yet ("rod", "rom") give NULL with *planned = 1 (planned may be NULL). */

@@ -9,8 +9,9 @@
  * (format 2; format 1, without rod_tol, is still read, every row at rod_tol 1)
  * then one row per measured configuration:
  *   scene        a scene name (a word, at most 31 bytes: flat-road, obstacle, ...)
- *   level        a registered leg level (csr_legTypeFind: prb, rod)
- *   links        links (prb) or elements (rod) per segment, integer 1..64 (`--links`)
+ *   level        a registered leg level (csr_legTypeFind: prb, rod, strain)
+ *   links        links (prb), elements (rod) or bending modes (strain) per segment, integer
+ *                1..64 (`--links`)
  *   macro_steps  ODE steps per exchange, integer 1..100000 (`--macro-steps`; prb: 1)
  *   dt_s         ODE step (s), 0 < dt <= 0.01 (`--dt`)
  *   rod_tol      the rod legs' CVODE tolerances' factor, 0 < K <= 1000 (`--rod-tol`; prb: 1)

@@ -13,6 +13,7 @@
 static const csrLegType* const kLegLevels[] = {
     &csr_leg_prb,
     &csr_leg_rod,
+    &csr_leg_strain, /* the dearest per simulated second today (docs/notes/strain_leg.md) */
 };
 /* Levels docs/design.md names ("Model levels"): known to the CLI, "not available yet" until they are
  * in kLegLevels. */

@@ -80,6 +80,7 @@ void csr_strainModelDestroy(csrStrainModel* m) {
   free(m->dpiece);
   free(m->dscale);
   free(m->Ms);
+  free(m->pcol);
   free(m);
 }
 
@@ -171,7 +172,8 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
   m->dpiece = calloc((size_t)n + 1, sizeof(int));
   m->dscale = calloc((size_t)n + 1, sizeof(double));
   m->Ms = calloc((size_t)np * 6, sizeof(double));
-  if (!m->dcomp || !m->dorder || !m->dpiece || !m->dscale || !m->Ms) {
+  m->pcol = calloc((size_t)np, sizeof(int));
+  if (!m->dcomp || !m->dorder || !m->dpiece || !m->dscale || !m->Ms || !m->pcol) {
     csr_strainModelDestroy(m);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;
@@ -192,6 +194,9 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
     for (int jj = m->dof0[k]; jj < m->dof0[k] + m->ndof[k]; jj++) {
       m->dpiece[jj] = k;
       m->dscale[jj] = m->dcomp[jj] <= CSR_STRAIN_TW ? pc->length : 1.0;
+    }
+    for (int p = m->pt0[k] + 1; p <= m->pt0[k + 1]; p++) {
+      m->pcol[p] = m->dof0[k] + m->ndof[k];
     }
     /* Simpson weights x section mass per length at each sub-interval's ends and midpoint */
     const double ms[6] = {pc->rhoI[0], pc->rhoI[1], pc->rhoI[2], pc->rhoA, pc->rhoA, pc->rhoA};
@@ -291,6 +296,12 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->Vp);
   free(d->Vs);
   free(d->Ab);
+  free(d->q0);
+  free(d->eta0);
+  free(d->WMll);
+  free(d->WMlb);
+  free(d->rMl);
+  free(d->du);
   free(d);
 }
 
@@ -381,9 +392,16 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->Vp = calloc(np * 6, sizeof(double));
   d->Vs = calloc(np * 6, sizeof(double));
   d->Ab = calloc(np * 6, sizeof(double));
+  d->q0 = calloc(n, sizeof(double));
+  d->eta0 = calloc(n, sizeof(double));
+  d->WMll = calloc(n * n, sizeof(double));
+  d->WMlb = calloc(n * 6, sizeof(double));
+  d->rMl = calloc(n, sizeof(double));
+  d->du = calloc(n + 6, sizeof(double));
   if (!d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
-      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab) {
+      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||
+      !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du) {
     csr_strainDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;
@@ -409,6 +427,7 @@ void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
   memcpy(d->xb, m->hip, sizeof d->xb);
   memset(d->Vb, 0, sizeof d->Vb);
   memset(&d->wbase, 0, sizeof d->wbase);
+  memset(d->Dm, 0, sizeof d->Dm);
   memset(d->tipd_f, 0, sizeof d->tipd_f);
   if (m->soft) {
     csc_softStateInit(m->soft, d->z);
@@ -455,6 +474,11 @@ int csr_strainSetQ(const csrStrainModel* m, csrStrainData* d, const double* q) {
 
 int csr_strainActuate(const csrStrainModel* m, csrStrainData* d, const double p[12],
                       csError* err) {
+  /* the same pressures give the same strains and sections: the calibration's section
+   * integration is the step's largest single cost when it runs every step (a held stance) */
+  if (memcmp(p, d->p, sizeof d->p) == 0) {
+    return 0;
+  }
   char msg[256] = "";
   int rc = actuationInto(m, p, d->K1, d->b1, msg, sizeof msg);
   if (rc != 0) {
@@ -646,6 +670,44 @@ void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x) {
       x[k] -= A[k * n + j] * x[j];
     }
     x[k] /= A[k * n + k];
+  }
+}
+
+
+void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, int nrhs) {
+  for (int k = 0; k < n; k++) {
+    if (piv[k] != k) {
+      double* a = B + (size_t)k * nrhs;
+      double* b = B + (size_t)piv[k] * nrhs;
+      for (int c = 0; c < nrhs; c++) {
+        double t = a[c];
+        a[c] = b[c];
+        b[c] = t;
+      }
+    }
+  }
+  for (int k = 0; k < n; k++) {
+    const double* bk = B + (size_t)k * nrhs;
+    for (int i = k + 1; i < n; i++) {
+      double l = A[i * n + k];
+      double* bi = B + (size_t)i * nrhs;
+      for (int c = 0; c < nrhs; c++) {
+        bi[c] -= l * bk[c];
+      }
+    }
+  }
+  for (int k = n - 1; k >= 0; k--) {
+    double* bk = B + (size_t)k * nrhs;
+    for (int j = k + 1; j < n; j++) {
+      double u = A[k * n + j];
+      const double* bj = B + (size_t)j * nrhs;
+      for (int c = 0; c < nrhs; c++) {
+        bk[c] -= u * bj[c];
+      }
+    }
+    for (int c = 0; c < nrhs; c++) {
+      bk[c] /= A[k * n + k];
+    }
   }
 }
 

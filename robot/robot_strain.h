@@ -1,7 +1,8 @@
-/* robot_strain.h: the strain-coordinate Cosserat leg (issue 32; stages 1-2: model, statics and
- * the linearly implicit step condensed onto the base; not yet a registered leg level, see
- * docs/notes/strain_leg.md): one leg as a geometrically exact Cosserat rod whose unknowns are
- * the strains of its pieces (SoRoSim's geometric variable strain), the solid joints LS12, LS23
+/* robot_strain.h: the strain-coordinate Cosserat leg (issue 32: model, statics and the implicit
+ * step condensed onto the base, one linearised pass or Newton iterations with the base's linear
+ * rows in a discrete momentum form; docs/notes/strain_leg.md): one leg as a geometrically
+ * exact Cosserat rod whose unknowns are the strains of its pieces (SoRoSim's geometric
+ * variable strain), the solid joints LS12, LS23
  * at a constant curvature (or rigid).
  *
  * Owns: csrStrainParams (basis, quadrature, static solver; defaults with reasons in
@@ -158,9 +159,18 @@ csStatus csr_strainStatic(const csrStrainModel* m, csrStrainData* d, const csrRo
  * leg onto ΔV: Z = W_bb - W_bl W_ll⁻¹ W_lb and ρ = h r_b - W_bl W_ll⁻¹ h r_l, so the base solves
  * (its own W + Σ Z) ΔV = its own h r + Σ ρ; csr_strainFinish back-substitutes
  * Δη = W_ll⁻¹ (h r_l - W_lb ΔV) and moves q by h η. Z and ρ are in the hip's body coordinates
- * (angular first): Z (6 x 6: t mm², t mm, t) and ρ (N mm s, N s). */
+ * (angular first): Z (6 x 6: t mm², t mm, t) and ρ (N mm s, N s).
+ * Momentum: in the Newton iterations (csr_strainIterate), the base's three linear rows are the
+ * discrete momentum balance (X1 - X0) / h - D_prev = h f (X = Σ m x the leg's mass moment,
+ * world; D_prev the last step's (X1 - X0) / h; f the contact's force at the step's end, the
+ * weight and the tip force), exact at the iterate, in place of backward Euler's velocity form.
+ * A support written the same way (tests/robot/strain_test_robot.h) makes the whole robot's
+ * Σ m x move by exactly h Σ D per step: with no horizontal force its centre of mass moves at
+ * a constant velocity to the iterations' tolerance, whatever h (backward Euler's velocity form
+ * moves it by O(h) of the velocity products every step). */
 
-/* Doubles in the state [q, η, contact anchors] (2n + the soft model's history). */
+/* Doubles in the state [q, η, contact anchors, D] (2n + the soft model's history + 3; D the
+ * discrete linear momentum of the last step, see Momentum above). */
 int csr_strainStateSize(const csrStrainModel* m);
 void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double* y);
 /* 0, or -1 (nothing changed) for non-finite values. */
@@ -181,6 +191,32 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
  * saved before the step and retries smaller). */
 int csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6],
                      const csrBaseState* b1);
+/* Newton iterations on the same step (the contact's force and linearisation at the step's
+ * end, backward Euler converged; the rest of the step is linear in (ΔV, Δη) and exact after one
+ * pass). After csr_strainPrepare, the caller may loop
+ *   solve the base with Z, ρ -> csr_strainUpdate(ΔV, b1) -> csr_strainIterate -> Z, ρ
+ * until every leg's and the base's change is small, then csr_strainCommit. ΔV is always the
+ * whole step's (from the step's start), b1 the base at the end of the step for that ΔV.
+ * csr_strainFinish is csr_strainUpdate + csr_strainCommit (one pass: the contact linearised
+ * at the start, as before).
+ * csr_strainUpdate: back-substitute, the leg's iterate and base move to the end of the step
+ * for dV, b1 (NULL: V_b0 + ΔV, pose unchanged); *change (if not NULL) the largest move of a
+ * mode against the last iterate (rad or strain over its piece, times h: a position). 0, > 0
+ * not finite, < 0 no prepared step.
+ * csr_strainIterate: linearise the prepared step again at the iterate: Z, ρ as in
+ * csr_strainPrepare (affine in the whole step's ΔV). 0, > 0 (a pose sinks past a shape's
+ * radius, W_ll singular, non-finite), < 0 no prepared step.
+ * csr_strainCommit: end the step at the iterate: return-map the friction anchors. 0 or > 0 as
+ * csr_strainFinish; the state saved before csr_strainPrepare restores a rejected step. */
+int csr_strainUpdate(const csrStrainModel* m, csrStrainData* d, const double dV[6],
+                     const csrBaseState* b1, double* change);
+/* csr_strainUpdate moving the iterate only alpha (0 < alpha <= 1) of the way to the solve's
+ * (the base's ΔV_it + alpha (dV - ΔV_it); b1 the base for that ΔV): a damped Newton step where
+ * the contact set changes and the full one cycles. *change is the full step's move. */
+int csr_strainUpdateDamped(const csrStrainModel* m, csrStrainData* d, const double dV[6],
+                           double alpha, const csrBaseState* b1, double* change);
+int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], double rho[6]);
+int csr_strainCommit(const csrStrainModel* m, csrStrainData* d);
 /* The wrench the leg exerted on the support over the last finished step, averaged (its impulse
  * / h: -(Z ΔV - ρ) / h, the discrete step's own), world, force at and moment about the hip
  * (robot_leg.h csrWrench); zero before the first step. */

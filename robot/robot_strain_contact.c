@@ -15,7 +15,7 @@
  *
  * Linearisation: per shape in contact, the load L (foot: force at the sole centre and couple;
  * capsule: the forces on its two ends) against the shape's world coordinates y (foot: sole
- * centre and a small rotation; capsule: its two ends) and their rates, by central differences
+ * centre and a small rotation; capsule: its two ends) and their rates, by forward differences
  * (K_y = ∂L/∂y, C_y = ∂L/∂ẏ, 12 evaluations of one shape); y moves with u through
  * S = ∂ẏ/∂u (the points' G). In the step, y1 = y0 + h S u1 and ẏ1 = S u1. The load is
  * linearised about the predicted end y_p = y0 + h S u0 (the shape moved on at its start
@@ -25,6 +25,10 @@
  * slip overshoots (measured: a foot pushed at 2 mu N went backwards). So
  *   L1 ≈ L(y_p) + K_y (y0 + h S u0 - y_p) + (h K_y + C_y) S Δu, so
  *   h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)),   W -= h Sᵀ (h K_y + C_y) S.
+ * Iterates (csr_strainIterate): the kinematics is at the iterate's end of the step (q0 + h η1,
+ * the base where the last csr_strainUpdate put it), so the load is linearised there, without a
+ * prediction: L1 ≈ L_e + (h K_y + C_y) S (Δu - Δu_it); converged, the step's contact force is
+ * the law's at the step's end (backward Euler), whatever the contact set did within it.
  * The prediction is tangential only (the slip along the surface and the turn about its normal):
  * predicting the normal motion too overshoots the stiff normal law (measured: a foot pressed
  * 0.5 mm bounced to 15 N); the normal part stays linearised at y0 as it was. So
@@ -37,8 +41,8 @@
 #include "core_math.h"
 #include "robot_strain_internal.h"
 
-/* central-difference steps of the linearisation: positions (mm) well inside the law's 1 µm
- * onset, rotations (rad) likewise at the sole's 7.5 mm lever, velocities (mm/s) */
+/* difference steps of the linearisation: positions (mm) well inside the law's 1 µm onset,
+ * rotations (rad) likewise at the sole's 7.5 mm lever, velocities (mm/s) */
 #define CSR_STRAIN_CFD_X 1e-7
 #define CSR_STRAIN_CFD_PHI 1e-8
 #define CSR_STRAIN_CFD_V 1e-6
@@ -156,23 +160,11 @@ static void perturb(const csrStrainModel* m, int s, cscShapeState* st, int c, do
 
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G) {
   const int n = m->n, nu = 6 + n;
-  const double* R = d->R + 9 * p;
-  const double* x = d->x + 3 * p;
   const double* J = d->J + (size_t)p * 6 * n;
-  for (int c = 0; c < 3; c++) {
-    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
-    e[c] = 1;
-    csu_mulMatTVec3(col, R, e);
-    csu_cross3(ex, e, x);
-    csu_mulMatTVec3(rc, R, ex);
-    for (int r = 0; r < 3; r++) {
-      G[r * nu + c] = col[r];
-      G[(r + 3) * nu + c + 3] = col[r];
-      G[(r + 3) * nu + c] = rc[r];
-      G[r * nu + c + 3] = 0;
-    }
-  }
+  double A[36];
+  csr_strainAdInv_(d->R + 9 * p, d->x + 3 * p, A);
   for (int r = 0; r < 6; r++) {
+    memcpy(G + r * nu, A + 6 * r, 6 * sizeof(double));
     memcpy(G + r * nu + 6, J + r * n, (size_t)n * sizeof(double));
   }
 }
@@ -197,7 +189,7 @@ static void worldRows(const csrStrainModel* m, const csrStrainData* d, int p, in
 
 
 int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
-                               const double* u0, double* Wbb, double* rb, double* G) {
+                               const double* du, double* Wbb, double* rb, double* G) {
   if (!m->soft) {
     return 0;
   }
@@ -206,6 +198,8 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
   double* Ga = G;
   double* Gb = G + 6 * nu;
   double* S = G + 12 * nu;
+  memset(d->fcw, 0, sizeof d->fcw);
+  d->ntouch = 0;
   for (int s = 0; s < m->nshape; s++) {
     cscShapeState st;
     shapeState(m, d, s, &st);
@@ -230,7 +224,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
       rest[c] = h * st.v0[c];
       rest[3 + c] = h * (foot ? st.w[c] : st.v1[c]);
     }
-    if (csu_normalize3(nrm) > 0) {
+    if (!du && csu_normalize3(nrm) > 0) {
       /* the predicted end of the step: the shape slid on along the surface at its start
        * velocity (and turned about the normal); its normal motion is left to the step, whose
        * contact stiffness at y0 is what holds it (predicting it too overshoots the stiff
@@ -265,36 +259,50 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     if (!touching) {
       continue;
     }
+    d->ntouch++;
+    csu_add3(d->fcw, d->fcw, L0);
+    if (!foot) {
+      csu_add3(d->fcw, d->fcw, L0 + 3);
+    }
     int a = m->shape_a[s], b = m->shape_b[s];
     csr_strainPointG_(m, d, a, Ga);
     csr_strainPointG_(m, d, b, Gb);
     worldRows(m, d, a, 0, Ga, S);
     worldRows(m, d, foot ? a : b, foot ? 1 : 0, foot ? Ga : Gb, S + 3 * nu);
-    /* K_y, C_y by central differences */
+    /* K_y, C_y by forward differences from L0 (the load at this very state), half the law
+     * evaluations of central differences: their error is δ/w relative where the law bends
+     * over a width w (its 1e-3 mm onset: 1e-4), which slows the Newton passes negligibly and
+     * in one pass moves the step by that fraction of the contact's linear part
+     * (test_strain_friction holds creep and Coulomb) */
     double Ky[36], Cy[36];
     for (int c = 0; c < 12; c++) {
       double del = c < 3 ? CSR_STRAIN_CFD_X
                          : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
                                   : CSR_STRAIN_CFD_V);
-      cscShapeState sp = st, sm = st;
+      cscShapeState sp = st;
       perturb(m, s, &sp, c, del);
-      perturb(m, s, &sm, c, -del);
-      double Lp[6], Lm[6];
+      double Lp[6];
       loadOf(m, d, s, &sp, Lp, NULL, NULL);
-      loadOf(m, d, s, &sm, Lm, NULL, NULL);
       double* D = c < 6 ? Ky : Cy;
       int col = c % 6;
       for (int r = 0; r < 6; r++) {
-        D[6 * r + col] = (Lp[r] - Lm[r]) / (2 * del);
+        D[6 * r + col] = (Lp[r] - L0[r]) / del;
       }
     }
-    /* h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)) */
-    double Lr[6];
-    (void)u0;
+    /* the start (du NULL): h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)); an iterate (the
+     * kinematics at its end y_e, ẏ_e): h r += h Sᵀ (L_e - (h K_y + C_y) S Δu_it) */
+    double Lr[6], Sdu[6] = {0, 0, 0, 0, 0, 0};
+    if (du) {
+      for (int r = 0; r < 6; r++) {
+        for (int k = 0; k < nu; k++) {
+          Sdu[r] += S[r * nu + k] * du[k];
+        }
+      }
+    }
     for (int r = 0; r < 6; r++) {
       double t = L0[r];
       for (int c = 0; c < 6; c++) {
-        t += Ky[6 * r + c] * rest[c];
+        t += du ? -(h * Ky[6 * r + c] + Cy[6 * r + c]) * Sdu[c] : Ky[6 * r + c] * rest[c];
       }
       Lr[r] = t;
     }

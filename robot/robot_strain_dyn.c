@@ -36,18 +36,19 @@
 #define CSR_STRAIN_BIAS_STEP 1e-6
 
 
-int csr_strainStateSize(const csrStrainModel* m) { return 2 * m->n + m->nhist; }
+int csr_strainStateSize(const csrStrainModel* m) { return 2 * m->n + m->nhist + 3; }
 
 
 void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double* y) {
   memcpy(y, d->q, (size_t)m->n * sizeof(double));
   memcpy(y + m->n, d->eta, (size_t)m->n * sizeof(double));
   memcpy(y + 2 * m->n, d->z, (size_t)m->nhist * sizeof(double));
+  memcpy(y + 2 * m->n + m->nhist, d->Dm, sizeof d->Dm);
 }
 
 
 int csr_strainSetState(const csrStrainModel* m, csrStrainData* d, const double* y) {
-  for (int j = 0; j < 2 * m->n + m->nhist; j++) {
+  for (int j = 0; j < 2 * m->n + m->nhist + 3; j++) {
     if (!isfinite(y[j])) {
       return -1;
     }
@@ -55,6 +56,7 @@ int csr_strainSetState(const csrStrainModel* m, csrStrainData* d, const double* 
   memcpy(d->q, y, (size_t)m->n * sizeof(double));
   memcpy(d->eta, y + m->n, (size_t)m->n * sizeof(double));
   memcpy(d->z, y + 2 * m->n, (size_t)m->nhist * sizeof(double));
+  memcpy(d->Dm, y + 2 * m->n + m->nhist, sizeof d->Dm);
   d->kin_valid = 0;
   d->h = 0;
   return 0;
@@ -100,50 +102,163 @@ static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, c
 }
 
 
-/* the point twists at q + s ε η into out (np x 6); the kinematics is left at that q */
+/* the point twists at q + ε η into out (np x 6), by the twist recursion alone (no poses or
+ * Jacobians: the kinematics stays valid) */
 static void twistsAt(const csrStrainModel* m, csrStrainData* d, double eps, double* out) {
-  const int n = m->n;
-  for (int j = 0; j < n; j++) {
-    d->q_save[j] = d->q[j];
-    d->q[j] += eps * d->eta[j];
+  for (int j = 0; j < m->n; j++) {
+    d->q_save[j] = d->q[j] + eps * d->eta[j];
   }
-  csr_strainKinematics_(m, d, 1);
-  for (int p = 0; p < m->np; p++) {
-    pointTwist(m, d, p, d->Vb, d->eta, out + 6 * p);
-  }
-  memcpy(d->q, d->q_save, (size_t)n * sizeof(double));
-  d->kin_valid = 0;
+  csr_strainTwists_(m, d->q_save, d->eta, d->Vb, out);
 }
 
 
-/* the 6 x 6 Ad(g_p⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] of point p */
+/* the 6 x 6 Ad(g_p⁻¹) of point p */
 static void adInv(const csrStrainData* d, int p, double A[36]) {
-  const double* R = d->R + 9 * p;
-  const double* x = d->x + 3 * p;
-  memset(A, 0, 36 * sizeof(double));
-  for (int c = 0; c < 3; c++) {
-    /* column c of the angular block: Rᵀ e_c; of the coupling: Rᵀ (e_c × x) */
-    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
-    e[c] = 1;
-    csu_mulMatTVec3(col, R, e);
-    csu_cross3(ex, e, x);
-    csu_mulMatTVec3(rc, R, ex);
-    for (int r = 0; r < 3; r++) {
-      A[6 * r + c] = col[r];
-      A[6 * (r + 3) + c + 3] = col[r];
-      A[6 * (r + 3) + c] = rc[r];
+  csr_strainAdInv_(d->R + 9 * p, d->x + 3 * p, A);
+}
+
+
+/* Σ_p m_p x_p of the leg, world (t mm), at the current kinematics and base */
+static void massMoment(const csrStrainModel* m, const csrStrainData* d, double X[3]) {
+  double t[3] = {0, 0, 0}, w[3];
+  for (int p = 0; p < m->np; p++) {
+    csu_addScl3(t, t, d->x + 3 * p, m->Ms[6 * p + 3]);
+  }
+  csu_mulMatVec3(w, d->Rb, t);
+  csu_addScl3(X, w, d->xb, m->mass);
+}
+
+
+/* W_M's inertia, Σ_p G_pᵀ M_p G_p (G_p = [Ad(g_p⁻¹), J_p]), by composite inertias (the
+ * composite-rigid-body idea on the pieces): a point p
+ * of piece k moves with the unknowns before the piece as the piece's start point s does,
+ * G_p[:, before] = Ad(g_sp⁻¹) G_s[:, before] (the Jacobian recursion), so the piece's points
+ * add G_s[:, before]ᵀ I_k G_s[:, before] with I_k = Σ_p Ad_spᵀ M_p Ad_sp (6 x 6), the coupling
+ * G_s[:, before]ᵀ F_k with F_k = Σ_p Ad_spᵀ M_p L_p, and Σ_p L_pᵀ M_p L_p on the piece's own
+ * columns (L_p = J_p on them): per point O(6 nd) instead of O(6 n²). Fills d->WMll (full),
+ * d->WMlb and d->WMbb. */
+void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
+  const int n = m->n;
+  double* W = d->WMll;
+  memset(W, 0, (size_t)n * n * sizeof(double));
+  memset(d->WMlb, 0, (size_t)n * 6 * sizeof(double));
+  memset(d->WMbb, 0, sizeof d->WMbb);
+  /* the hip point moves with the base: Ad = I */
+  for (int c = 0; c < 6; c++) {
+    d->WMbb[7 * c] += m->Ms[c];
+  }
+  double* F = d->Gs;                 /* 6 x nd of the piece (scratch) */
+  double* T = d->Gs + 6 * (6 + n);   /* I_k G_s (6 x (6 + n)) and F_kᵀ rows */
+  for (int k = 0; k < m->npiece; k++) {
+    const int s = m->pt0[k], c0 = m->dof0[k], nd = m->ndof[k], nu = 6 + c0;
+    double I[36];
+    memset(I, 0, sizeof I);
+    memset(F, 0, (size_t)6 * (nd + 1) * sizeof(double));
+    const double* Rs = d->R + 9 * s;
+    const double* xs = d->x + 3 * s;
+    for (int p = s + 1; p <= m->pt0[k + 1]; p++) {
+      const double* Mp = m->Ms + 6 * p;
+      double Rr[9], dx[3], xr[3], A[36];
+      for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+          Rr[3 * i + j] = Rs[i] * d->R[9 * p + j] + Rs[3 + i] * d->R[9 * p + 3 + j] +
+                          Rs[6 + i] * d->R[9 * p + 6 + j];
+        }
+      }
+      csu_sub3(dx, d->x + 3 * p, xs);
+      csu_mulMatTVec3(xr, Rs, dx);
+      csr_strainAdInv_(Rr, xr, A);
+      const double* J = d->J + (size_t)p * 6 * n;
+      for (int r = 0; r < 6; r++) {
+        const double* Ar = A + 6 * r;
+        const double* Lr = J + r * n + c0;
+        for (int a = 0; a < 6; a++) {
+          const double ma = Mp[r] * Ar[a];
+          if (ma == 0) {
+            continue;
+          }
+          for (int b = 0; b < 6; b++) {
+            I[6 * a + b] += ma * Ar[b];
+          }
+          for (int j = 0; j < nd; j++) {
+            F[nd * a + j] += ma * Lr[j];
+          }
+        }
+        for (int i = 0; i < nd; i++) {
+          const double mi = Mp[r] * Lr[i];
+          double* w = W + (size_t)(c0 + i) * n + c0;
+          for (int j = 0; j <= i; j++) {
+            w[j] += mi * Lr[j];
+          }
+        }
+      }
+    }
+    /* G_s = [A_s, J_s[:, 0..c0)] (6 x nu) */
+    double* Gsv = T + 6 * (6 + n);
+    double As[36];
+    csr_strainAdInv_(Rs, xs, As);
+    const double* Js = d->J + (size_t)s * 6 * n;
+    for (int r = 0; r < 6; r++) {
+      memcpy(Gsv + r * nu, As + 6 * r, 6 * sizeof(double));
+      memcpy(Gsv + r * nu + 6, Js + r * n, (size_t)c0 * sizeof(double));
+    }
+    /* T = I G_s; the before-block += G_sᵀ T (base rows into WMbb / WMlb) */
+    for (int r = 0; r < 6; r++) {
+      for (int c = 0; c < nu; c++) {
+        double t = 0;
+        for (int e = 0; e < 6; e++) {
+          t += I[6 * r + e] * Gsv[e * nu + c];
+        }
+        T[r * nu + c] = t;
+      }
+    }
+    for (int i = 0; i < nu; i++) {
+      for (int j = 0; j <= i; j++) {
+        double t = 0;
+        for (int r = 0; r < 6; r++) {
+          t += Gsv[r * nu + i] * T[r * nu + j];
+        }
+        if (i < 6) {
+          d->WMbb[6 * i + j] += t;
+          if (j != i) {
+            d->WMbb[6 * j + i] += t;
+          }
+        } else if (j < 6) {
+          d->WMlb[6 * (i - 6) + j] += t;
+        } else {
+          W[(size_t)(i - 6) * n + (j - 6)] += t;
+        }
+      }
+    }
+    /* the coupling of the piece's columns with those before: G_sᵀ F (nu x nd) */
+    for (int i = 0; i < nu; i++) {
+      for (int j = 0; j < nd; j++) {
+        double t = 0;
+        for (int r = 0; r < 6; r++) {
+          t += Gsv[r * nu + i] * F[nd * r + j];
+        }
+        if (i < 6) {
+          d->WMlb[6 * (c0 + j) + i] += t;
+        } else {
+          W[(size_t)(c0 + j) * n + (i - 6)] += t;
+        }
+      }
+    }
+  }
+  /* the lower triangle into the upper */
+  for (int j = 0; j < n; j++) {
+    for (int k = 0; k < j; k++) {
+      W[k * n + j] = W[j * n + k];
     }
   }
 }
 
 
-int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
-                      double rho[6]) {
-  if (!(h > 0) || !isfinite(h) || !Z || !rho) {
-    return -1;
-  }
+/* The step's constant part at its start (the state now): the inertia M(q0), the velocity
+ * products, weight and tip load at the start, the strains' elastic and damping forces
+ * linearised at the end (exact: they are linear), into d->WM* and d->rM*; the start saved. */
+static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
   const int n = m->n;
-  d->h = 0;
   /* the velocity-product accelerations Ġ_p u by central differences */
   double emax = 0;
   for (int j = 0; j < n; j++) {
@@ -159,14 +274,16 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   } else {
     memset(d->Ab, 0, (size_t)6 * m->np * sizeof(double));
   }
-  csr_strainKinematics_(m, d, 1);
-  /* W_bb, W_lb, W_ll (its lower triangle) and r */
-  double Wbb[36], rb[6];
-  memset(Wbb, 0, sizeof Wbb);
-  memset(rb, 0, sizeof rb);
-  memset(d->Wll, 0, (size_t)n * n * sizeof(double));
-  memset(d->Wlb, 0, (size_t)n * 6 * sizeof(double));
-  memset(d->rl, 0, (size_t)n * sizeof(double));
+  /* the kinematics relative to the base: the last Finish left it valid at this q (the
+   * return-mapping needed it) */
+  if (d->kin_valid < 2) {
+    csr_strainKinematics_(m, d, 1);
+  }
+  /* the inertia W_bb, W_lb, W_ll, then r point by point */
+  csr_strainInertia_(m, d);
+  double* rb = d->rMb;
+  memset(rb, 0, sizeof d->rMb);
+  memset(d->rMl, 0, (size_t)n * sizeof(double));
   double gh[3];
   csu_mulMatTVec3(gh, d->Rb, m->gravity);
   for (int p = 0; p < m->np; p++) {
@@ -201,64 +318,126 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
         F[3 + r] += fb[r];
       }
     }
-    /* r_b += Aᵀ F, r_l += Jᵀ F; W_bb += Aᵀ M A, W_lb (in X) += Jᵀ M A, W_ll += Jᵀ M J */
+    /* r_b += Aᵀ F, r_l += Jᵀ F (J's columns from pcol on are zero) */
+    const int nc = m->pcol[p];
     for (int r = 0; r < 6; r++) {
+      const double* Jr = J + r * n;
       for (int c = 0; c < 6; c++) {
         rb[c] += A[6 * r + c] * F[r];
       }
-      for (int j = 0; j < n; j++) {
-        d->rl[j] += J[r * n + j] * F[r];
-      }
-      double MA[6];
-      for (int c = 0; c < 6; c++) {
-        MA[c] = Ms[r] * A[6 * r + c];
-      }
-      for (int a = 0; a < 6; a++) {
-        if (A[6 * r + a] != 0) {
-          for (int c = 0; c < 6; c++) {
-            Wbb[6 * a + c] += A[6 * r + a] * MA[c];
-          }
-        }
-      }
-      for (int j = 0; j < n; j++) {
-        double Jr = J[r * n + j];
-        if (Jr == 0) {
-          continue;
-        }
-        for (int c = 0; c < 6; c++) {
-          d->Wlb[6 * j + c] += Jr * MA[c];
-        }
-        double MJ = Ms[r] * Jr;
-        for (int k = 0; k <= j; k++) {
-          d->Wll[j * n + k] += MJ * J[r * n + k];
-        }
+      for (int j = 0; j < nc; j++) {
+        d->rMl[j] += Jr[j] * F[r];
       }
     }
   }
-  /* W_ll in full, W_bl = W_lbᵀ, then the contact (which need not be symmetric) */
+  /* the strains' elastic and damping forces at the step's end,
+   * b - K (q0 + h η1) - τ_d K η1 with η1 = η0 + Δη */
+  const double tau = m->rpar.damping_time;
   for (int j = 0; j < n; j++) {
-    for (int k = 0; k < j; k++) {
-      d->Wll[k * n + j] = d->Wll[j * n + k];
+    d->rMl[j] += d->b[j] - d->Kd[j] * (d->q[j] + (tau + h) * d->eta[j]);
+    d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+    if (!isfinite(d->rMl[j])) {
+      return 1;
     }
+  }
+  massMoment(m, d, d->X0m);
+  memcpy(d->q0, d->q, (size_t)n * sizeof(double));
+  memcpy(d->eta0, d->eta, (size_t)n * sizeof(double));
+  memcpy(d->Vb0, d->Vb, sizeof d->Vb0);
+  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
+  memset(d->du, 0, (size_t)(6 + n) * sizeof(double));
+  return 0;
+}
+
+
+/* An iterate's base rows of linear momentum in the discrete momentum form (robot_strain.h,
+ * Momentum): their residual, exact at the iterate,
+ *   R = R_b1ᵀ ((X(q1, g_b1) - X0) / h - D_prev - h (f_contact + m g + f_tip)),
+ * X = Σ m x the leg's mass moment, D_prev the last step's (X1 - X0) / h, and h r of those rows
+ * replaced by W Δu_it - R: the Newton pass solves W Δu = W Δu_it - R on them (W's rows are the
+ * momentum's Jacobian, Σ m ∂x/∂u / h · h = the mass matrix's rows). */
+static void momentumRows(const csrStrainModel* m, const csrStrainData* d, double h,
+                         const double* du, const double Wbb[36], double rb[6]) {
+  const int n = m->n;
+  double X1[3], f[3], Rw[3], Rl[3];
+  massMoment(m, d, X1);
+  /* the world forces: contact, weight (the model's gravity is zero when weightless), tip */
+  csu_scale3(f, m->gravity, m->mass);
+  csu_add3(f, f, d->fcw);
+  csu_add3(f, f, d->tipd_f);
+  for (int i = 0; i < 3; i++) {
+    Rw[i] = (X1[i] - d->X0m[i]) / h - d->Dm[i] - h * f[i];
+  }
+  csu_mulMatTVec3(Rl, d->Rb, Rw);
+  for (int i = 0; i < 3; i++) {
+    double Wdu = 0;
+    for (int c = 0; c < 6; c++) {
+      Wdu += Wbb[6 * (3 + i) + c] * du[c];
+    }
+    for (int j = 0; j < n; j++) {
+      Wdu += d->Wbl[n * (3 + i) + j] * du[6 + j];
+    }
+    rb[3 + i] = (Wdu - Rl[i]) / h;
+  }
+}
+
+
+/* W = W_M + the contact's linearisation at the current kinematics and point twists (du NULL:
+ * the step's start, predicted; else the iterate Δu = du), factored and condensed: Z, ρ */
+static int condense(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                    double Z[36], double rho[6]) {
+  const int n = m->n;
+  double Wbb[36], rb[6];
+  memcpy(Wbb, d->WMbb, sizeof Wbb);
+  memcpy(rb, d->rMb, sizeof rb);
+  /* an iterate without contact, whose last factor had none either: W_ll, W_lb, r_l and so X,
+   * y and Z are the last pass's; only the base's momentum rows (ρ) change */
+  int reuse = 0;
+  if (du && d->lu_plain && m->soft) {
+    int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+    reuse = d->ntouch == 0;
+  }
+  if (reuse || (du && d->lu_plain && !m->soft)) {
+    momentumRows(m, d, h, du, Wbb, rb);
+    for (int a = 0; a < 6; a++) {
+      double t = 0;
+      for (int j = 0; j < n; j++) {
+        t += d->Wbl[n * a + j] * d->y[j];
+      }
+      rho[a] = h * rb[a] - t;
+    }
+    memcpy(Z, d->Zp, sizeof d->Zp);
+    memcpy(d->rhop, rho, sizeof d->rhop);
+    for (int a = 0; a < 6; a++) {
+      if (!isfinite(rho[a])) {
+        return 1;
+      }
+    }
+    return 0;
+  }
+  memcpy(Wbb, d->WMbb, sizeof Wbb);
+  memcpy(rb, d->rMb, sizeof rb);
+  memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
+  memcpy(d->Wlb, d->WMlb, (size_t)n * 6 * sizeof(double));
+  memcpy(d->rl, d->rMl, (size_t)n * sizeof(double));
+  for (int j = 0; j < n; j++) {
     for (int c = 0; c < 6; c++) {
       d->Wbl[n * c + j] = d->Wlb[6 * j + c];
     }
   }
+  d->ntouch = 0;
   if (m->soft) {
-    /* u0 = (V_b, η) in the scratch after the linearisation's rows */
-    double* uu = d->Gs + 21 * (6 + n);
-    memcpy(uu, d->Vb, 6 * sizeof(double));
-    memcpy(uu + 6, d->eta, (size_t)n * sizeof(double));
-    int rc = csr_strainContactAssemble_(m, d, h, uu, Wbb, rb, d->Gs);
+    int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
   }
-  /* the strains' elastic and damping forces, linearised at the step's end */
-  const double tau = m->rpar.damping_time;
-  for (int j = 0; j < n; j++) {
-    d->rl[j] += d->b[j] - d->Kd[j] * (d->q[j] + (tau + h) * d->eta[j]);
-    d->Wll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+  d->lu_plain = d->ntouch == 0;
+  if (du) {
+    momentumRows(m, d, h, du, Wbb, rb);
   }
   for (int j = 0; j < n; j++) {
     if (!isfinite(d->rl[j])) {
@@ -268,30 +447,21 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   if (csr_strainLuFactor_(d->Wll, n, d->piv)) {
     return 1;
   }
-  /* X = W_ll⁻¹ W_lb column by column, y = W_ll⁻¹ h r_l */
-  for (int c = 0; c < 6; c++) {
-    double* col = d->dq;
-    for (int j = 0; j < n; j++) {
-      col[j] = d->Wlb[6 * j + c];
-    }
-    csr_strainLuSolve_(d->Wll, n, d->piv, col);
-    for (int j = 0; j < n; j++) {
-      d->X[6 * j + c] = col[j];
-    }
-  }
+  /* X = W_ll⁻¹ W_lb (its 6 columns at once), y = W_ll⁻¹ h r_l */
+  memcpy(d->X, d->Wlb, (size_t)n * 6 * sizeof(double));
+  csr_strainLuSolveMulti_(d->Wll, n, d->piv, d->X, 6);
   for (int j = 0; j < n; j++) {
     d->y[j] = h * d->rl[j];
   }
   csr_strainLuSolve_(d->Wll, n, d->piv, d->y);
   /* Z = W_bb - W_bl X, ρ = h r_b - W_bl y */
-  double WbX[36];
   for (int a = 0; a < 6; a++) {
     for (int c = 0; c < 6; c++) {
       double t = 0;
       for (int j = 0; j < n; j++) {
         t += d->Wbl[n * a + j] * d->X[6 * j + c];
       }
-      WbX[6 * a + c] = t;
+      Z[6 * a + c] = Wbb[6 * a + c] - t;
     }
     double t = 0;
     for (int j = 0; j < n; j++) {
@@ -299,56 +469,143 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     }
     rho[a] = h * rb[a] - t;
   }
-  for (int i = 0; i < 36; i++) {
-    Z[i] = Wbb[i] - WbX[i];
-  }
   memcpy(d->Zp, Z, sizeof d->Zp);
   memcpy(d->rhop, rho, sizeof d->rhop);
-  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
+  for (int a = 0; a < 6; a++) {
+    if (!isfinite(rho[a])) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+
+int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+                      double rho[6]) {
+  if (!(h > 0) || !isfinite(h) || !Z || !rho) {
+    return -1;
+  }
+  d->h = 0;
+  int rc = assembleStart(m, d, h);
+  if (rc == 0) {
+    rc = condense(m, d, h, NULL, Z, rho);
+  }
+  if (rc != 0) {
+    return rc;
+  }
   d->h = h;
   return 0;
 }
 
 
-int csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6],
-                     const csrBaseState* b1) {
+int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], double rho[6]) {
+  if (!(d->h > 0) || !Z || !rho) {
+    return -1;
+  }
+  /* the kinematics and point twists at the iterate's end of the step */
+  if (d->kin_valid < 2) {
+    csr_strainKinematics_(m, d, 1);
+  }
+  csr_strainPointTwists_(m, d);
+  return condense(m, d, d->h, d->du, Z, rho);
+}
+
+
+int csr_strainUpdate(const csrStrainModel* m, csrStrainData* d, const double dV[6],
+                     const csrBaseState* b1, double* change) {
+  return csr_strainUpdateDamped(m, d, dV, 1.0, b1, change);
+}
+
+
+int csr_strainUpdateDamped(const csrStrainModel* m, csrStrainData* d, const double dV[6],
+                           double alpha, const csrBaseState* b1, double* change) {
+  if (!(d->h > 0) || !dV || !(alpha > 0 && alpha <= 1)) {
+    return -1;
+  }
   const int n = m->n;
+  const double h = d->h;
+  /* the base's ΔV of this iterate: the last one moved by alpha toward the solve's */
+  double dVa[6];
+  for (int c = 0; c < 6; c++) {
+    dVa[c] = d->du[c] + alpha * (dV[c] - d->du[c]);
+  }
   /* the base's impulse on the leg is Z ΔV - ρ (hip body coordinates, (moment; force)): the leg
    * exerts its opposite, averaged over the step */
   double Jb[6];
   for (int a = 0; a < 6; a++) {
     double s = -d->rhop[a];
     for (int c = 0; c < 6; c++) {
-      s += d->Zp[6 * a + c] * dV[c];
+      s += d->Zp[6 * a + c] * dVa[c];
     }
-    Jb[a] = -s / d->h;
+    Jb[a] = -s / h;
   }
   csu_mulMatVec3(d->wbase.m, d->Rbp, Jb);
   csu_mulMatVec3(d->wbase.f, d->Rbp, Jb + 3);
+  /* Δη = y - X ΔV; the largest move of a mode against the last iterate, as rotation or
+   * strain over its piece */
+  double chg = 0;
   for (int j = 0; j < n; j++) {
     double s = d->y[j];
     for (int c = 0; c < 6; c++) {
       s -= d->X[6 * j + c] * dV[c];
     }
-    d->eta[j] += s;
-    d->q[j] += d->h * d->eta[j];
+    chg = fmax(chg, h * fabs(s - d->du[6 + j]) * m->dscale[j]);
+    s = d->du[6 + j] + alpha * (s - d->du[6 + j]);
+    d->du[6 + j] = s;
+    d->eta[j] = d->eta0[j] + s;
+    d->q[j] = d->q0[j] + h * d->eta[j];
+  }
+  memcpy(d->du, dVa, 6 * sizeof(double));
+  if (change) {
+    *change = isfinite(chg) ? chg : INFINITY;
   }
   d->kin_valid = 0;
-  d->h = 0;
   if (b1) {
-    csr_strainSetBase(m, d, b1);
+    memcpy(d->Rb, b1->R, sizeof d->Rb);
+    memcpy(d->xb, b1->x, sizeof d->xb);
+    csu_mulMatTVec3(d->Vb, b1->R, b1->w);
+    csu_mulMatTVec3(d->Vb + 3, b1->R, b1->v);
   } else {
     for (int c = 0; c < 6; c++) {
-      d->Vb[c] += dV[c];
+      d->Vb[c] = d->Vb0[c] + dVa[c];
     }
+  }
+  return isfinite(chg) ? 0 : 1;
+}
+
+
+int csr_strainCommit(const csrStrainModel* m, csrStrainData* d) {
+  if (!(d->h > 0)) {
+    return -1;
+  }
+  const double h = d->h;
+  d->h = 0;
+  /* the kinematics at the step's end: the next step's start and the return-mapping need it */
+  if (d->kin_valid < 2) {
+    csr_strainKinematics_(m, d, 1);
+  }
+  double X1[3];
+  massMoment(m, d, X1);
+  for (int i = 0; i < 3; i++) {
+    d->Dm[i] = (X1[i] - d->X0m[i]) / h;
   }
   if (!m->soft) {
     return 0;
   }
   /* return-map the friction anchors at the step's end */
-  csr_strainKinematics_(m, d, 1);
   csr_strainPointTwists_(m, d);
   return csr_strainContactUpdate_(m, d);
+}
+
+
+int csr_strainFinish(const csrStrainModel* m, csrStrainData* d, const double dV[6],
+                     const csrBaseState* b1) {
+  int rc = csr_strainUpdate(m, d, dV, b1, NULL);
+  if (rc != 0) {
+    d->h = 0;
+    return rc;
+  }
+  return csr_strainCommit(m, d);
 }
 
 

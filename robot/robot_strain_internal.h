@@ -32,6 +32,8 @@ struct csrStrainModel_ {
   int ndof[CSR_ROD_MAX_PIECES];      /* its unknowns (0: rigid) */
   int nsub[CSR_ROD_MAX_PIECES];      /* its Magnus sub-intervals (1 for a rigid piece) */
   int pt0[CSR_ROD_MAX_PIECES + 1];   /* its first quadrature point; pt0[npiece] = np - 1 */
+  int* pcol;                         /* (np) the unknowns that move point p: its Jacobian's
+                                        columns >= pcol[p] are zero */
   int n;                             /* unknowns */
   int np;                            /* quadrature points: the ends and midpoints of every
                                         sub-interval (Simpson), shared at piece ends */
@@ -88,6 +90,22 @@ struct csrStrainData_ {
   double* Wbl;    /* (6 x n) W_bl (= W_lbᵀ without contact) */
   double Zp[36], rhop[6], Rbp[9]; /* the prepared Z, ρ and the base frame they are in */
   csrWrench wbase; /* the last finished step's base wrench (csr_strainBaseWrench) */
+  /* the step's start and its constant part (robot_strain_dyn.c assembleStart) */
+  double* q0;     /* (n) */
+  double* eta0;   /* (n) */
+  double Vb0[6];  /* the base's body twist at the start */
+  double* WMll;   /* (n x n) inertia + (h τ_d + h²) K */
+  double* WMlb;   /* (n x 6) */
+  double WMbb[36];
+  double* rMl;    /* (n) forces at the start, elastic and damping at the end */
+  double rMb[6];
+  double* du;     /* (6 + n) the iterate's Δu = (ΔV, Δη) */
+  double X0m[3];  /* Σ m x of the leg at the step's start, world (t mm) */
+  double Dm[3];   /* the leg's discrete linear momentum: Σ m x's change over the last step / h,
+                     world (t mm/s; state) */
+  double fcw[3];  /* the contact's force on the leg at the linearisation point, world (N) */
+  int ntouch;     /* shapes the last contact assembly found touching */
+  int lu_plain;   /* 1: d->Wll's factor, X and y are W_M's alone (no contact in them) */
   double* z;      /* (nhist) contact anchors (state) */
   cscShapeState* sst; /* (nshape) scratch */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
@@ -97,6 +115,8 @@ struct csrStrainData_ {
 
 /* ad(ξ) (6 x 6) */
 void csr_strainAd_(const double xi[6], double ad[36]);
+/* Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (6 x 6) of the pose g = (R, x) */
+void csr_strainAdInv_(const double R[9], const double x[3], double A[36]);
 /* exp(Ω^) = (R, x) */
 void csr_strainExp_(const double Om[6], double R[9], double x[3]);
 /* T(Ω) = dexp(-Ω) = Σ_j (-ad Ω)^j / (j + 1)! (6 x 6), closed form (Selig's polynomial in ad of
@@ -108,13 +128,27 @@ void csr_strainLegendre_(int n, double s, double* P);
  * if dOm is not NULL, ∂Ω/∂q over the piece's unknowns (6 x ndof[k], row-major) */
 void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s, double h,
                        double Om[6], double* dOm);
+/* T(Ω) v without forming T (6) */
+void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6]);
+/* the body twists V_p = G_p (V_b, η) of every quadrature point (np x 6) at q, by the twist
+ * recursion V_{k+1} = Ad(exp(-Ω)) V_k + T(Ω) Ω̇ (the Jacobian recursion applied to one
+ * velocity: no poses or Jacobians kept) */
+void csr_strainTwists_(const csrStrainModel* m, const double* q, const double* eta,
+                       const double Vb[6], double* V);
 /* strain ξ (6) of piece k at local arc length s */
 void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]);
 /* LU with partial pivoting in place (n x n); 0 ok, 1 singular; and its solve */
 int csr_strainLuFactor_(double* A, int n, int* piv);
 void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x);
+/* the same for nrhs right-hand sides at once, B (n x nrhs, row-major) in place */
+void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, int nrhs);
 /* G_p = [Ad(g_p⁻¹), J_p] of point p (6 x (6 + n), row-major) at the current kinematics */
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
+
+/* ---- dynamics (robot_strain_dyn.c) ---- */
+/* the inertia Σ_p G_pᵀ M_p G_p at the current kinematics (with J) into d->WMll (n x n, full),
+ * d->WMlb (n x 6) and d->WMbb, by composite inertias per piece */
+void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d);
 
 /* ---- contact (robot_strain_contact.c) ---- */
 int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err);
@@ -122,7 +156,7 @@ int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csErr
  * full) and h r (r_b, r_l: forces, added), at the current kinematics (with J) and point
  * twists d->Vp; 0 or > 0 (a pose sinks past a shape's radius or is not finite) */
 int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
-                               const double* u0, double* Wbb, double* rb, double* G);
+                               const double* du, double* Wbb, double* rb, double* G);
 /* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
 int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
 /* the point twists d->Vp at the current kinematics */

@@ -10,9 +10,11 @@
  * gradients of the discrete work), not an approximation of the continuous one.
  * T(Ω) = dexp(-Ω) in closed form is Selig's degree-4 polynomial in ad(Ω) (the minimal
  * polynomial of ad on se(3) is x (x² + θ²)²); near θ = |ω| = 0 its coefficients cancel
- * (relative error ~ ε/θ⁴), so below θ = 0.05 the series is summed instead (its terms fall as
- * θ^(j-1)/(j+1)!, 10 terms reach round-off). test_strain_model checks both against a 60-term
- * series. */
+ * (relative error ~ ε/θ⁴), so below θ = 0.05 its coefficients come from the series folded
+ * down by the minimal polynomial (its terms fall as θ^(j-1)/(j+1)!, 10 terms reach round-off).
+ * T is formed on its 3 x 3 blocks and, where only T v is needed (the twist recursion of the
+ * velocity products), applied to the vector. test_strain_model checks both branches against a
+ * 60-term series. */
 #include <math.h>
 #include <string.h>
 
@@ -52,6 +54,24 @@ void csr_strainAd_(const double xi[6], double ad[36]) {
 }
 
 
+void csr_strainAdInv_(const double R[9], const double x[3], double A[36]) {
+  /* [Rᵀ 0; -Rᵀ x^ Rᵀ]: column c of the coupling block is Rᵀ (e_c × x) */
+  memset(A, 0, 36 * sizeof(double));
+  for (int c = 0; c < 3; c++) {
+    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
+    e[c] = 1;
+    csu_mulMatTVec3(col, R, e);
+    csu_cross3(ex, e, x);
+    csu_mulMatTVec3(rc, R, ex);
+    for (int r = 0; r < 3; r++) {
+      A[6 * r + c] = col[r];
+      A[6 * (r + 3) + c + 3] = col[r];
+      A[6 * (r + 3) + c] = rc[r];
+    }
+  }
+}
+
+
 void csr_strainExp_(const double Om[6], double R[9], double x[3]) {
   const double* w = Om;
   const double* v = Om + 3;
@@ -82,53 +102,77 @@ void csr_strainExp_(const double Om[6], double R[9], double x[3]) {
 }
 
 
-static void mul6(double C[36], const double A[36], const double B[36]) {
-  for (int i = 0; i < 6; i++) {
-    for (int j = 0; j < 6; j++) {
-      double s = 0;
-      for (int k = 0; k < 6; k++) {
-        s += A[6 * i + k] * B[6 * k + j];
-      }
-      C[6 * i + j] = s;
+/* C = A B (3 x 3) */
+static void mul3(double C[9], const double A[9], const double B[9]) {
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      C[3 * i + j] = A[3 * i] * B[j] + A[3 * i + 1] * B[3 + j] + A[3 * i + 2] * B[6 + j];
     }
   }
 }
 
 
-void csr_strainTangent_(const double Om[6], double T[36]) {
-  double ad[36], P[36], tmp[36];
-  csr_strainAd_(Om, ad);
-  double th = csu_norm3(Om);
-  memset(T, 0, 36 * sizeof(double));
-  for (int i = 0; i < 6; i++) {
-    T[7 * i] = 1;
-  }
-  memcpy(P, ad, sizeof P);
+/* the coefficients c_0..c_4 of T(Ω) = Σ_j c_j ad(Ω)^j (its minimal polynomial x (x² + θ²)²
+ * reduces every higher power). θ >= SERIES_THETA: Selig's closed form; below, the series
+ * Σ_j (-1)^j ad^j / (j + 1)! folded down by ad^j = -2 θ² ad^(j-2) - θ⁴ ad^(j-4) (j >= 5), its
+ * terms falling as θ^(j-1) / (j + 1)! (header: 12 terms reach round-off) */
+static void tangentCoefficients(double th, double c[5]) {
   if (th < CSR_STRAIN_SERIES_THETA) {
-    /* Σ_j (-ad)^j / (j + 1)! */
-    double f = -0.5;
-    for (int j = 1; j <= CSR_STRAIN_SERIES_TERMS; j++) {
-      for (int i = 0; i < 36; i++) {
-        T[i] += f * P[i];
-      }
+    double s[CSR_STRAIN_SERIES_TERMS + 1], f = 1, t2 = th * th, t4 = t2 * t2;
+    for (int j = 0; j <= CSR_STRAIN_SERIES_TERMS; j++) {
+      s[j] = f;
       f *= -1.0 / (j + 2);
-      mul6(tmp, P, ad);
-      memcpy(P, tmp, sizeof P);
     }
+    for (int j = CSR_STRAIN_SERIES_TERMS; j >= 5; j--) {
+      s[j - 2] -= 2 * t2 * s[j];
+      s[j - 4] -= t4 * s[j];
+    }
+    memcpy(c, s, 5 * sizeof(double));
     return;
   }
   /* dexp(-Ω) = I + c1 ad + c2 ad² + c3 ad³ + c4 ad⁴ (Selig; the odd coefficients of dexp(Ω)
    * change sign with ad) */
-  double s = sin(th), c = cos(th), t2 = th * th, t3 = t2 * th, t4 = t3 * th, t5 = t4 * th;
-  double k[4] = {-(4 - 4 * c - th * s) / (2 * t2), (4 * th - 5 * s + th * c) / (2 * t3),
-                 -(2 - 2 * c - th * s) / (2 * t4), (2 * th - 3 * s + th * c) / (2 * t5)};
-  for (int j = 0; j < 4; j++) {
-    for (int i = 0; i < 36; i++) {
-      T[i] += k[j] * P[i];
+  double sn = sin(th), cs = cos(th), t2 = th * th, t3 = t2 * th, t4 = t3 * th, t5 = t4 * th;
+  c[0] = 1;
+  c[1] = -(4 - 4 * cs - th * sn) / (2 * t2);
+  c[2] = (4 * th - 5 * sn + th * cs) / (2 * t3);
+  c[3] = -(2 - 2 * cs - th * sn) / (2 * t4);
+  c[4] = (2 * th - 3 * sn + th * cs) / (2 * t5);
+}
+
+
+void csr_strainTangent_(const double Om[6], double T[36]) {
+  /* ad^j = [A_j 0; B_j A_j] with A_1 = ω^, B_1 = v^: A_{j+1} = A_j ω^, B_{j+1} = B_j ω^ + A_j v^
+   * (3 x 3 blocks: the 6 x 6 products' zero block skipped) */
+  double c[5], W[9], Vh[9], A[9], B[9], An[9], Bn[9], t[9];
+  tangentCoefficients(csu_norm3(Om), c);
+  hat3(Om, W);
+  hat3(Om + 3, Vh);
+  double TA[9] = {c[0], 0, 0, 0, c[0], 0, 0, 0, c[0]}, TB[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  memcpy(A, W, sizeof A);
+  memcpy(B, Vh, sizeof B);
+  for (int j = 1; j <= 4; j++) {
+    for (int i = 0; i < 9; i++) {
+      TA[i] += c[j] * A[i];
+      TB[i] += c[j] * B[i];
     }
-    if (j < 3) {
-      mul6(tmp, P, ad);
-      memcpy(P, tmp, sizeof P);
+    if (j < 4) {
+      mul3(An, A, W);
+      mul3(Bn, B, W);
+      mul3(t, A, Vh);
+      for (int i = 0; i < 9; i++) {
+        Bn[i] += t[i];
+      }
+      memcpy(A, An, sizeof A);
+      memcpy(B, Bn, sizeof B);
+    }
+  }
+  for (int r = 0; r < 3; r++) {
+    for (int cc = 0; cc < 3; cc++) {
+      T[6 * r + cc] = TA[3 * r + cc];
+      T[6 * r + cc + 3] = 0;
+      T[6 * (r + 3) + cc] = TB[3 * r + cc];
+      T[6 * (r + 3) + cc + 3] = TA[3 * r + cc];
     }
   }
 }
@@ -280,4 +324,104 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
     }
   }
   d->kin_valid = want_J ? 2 : 1;
+}
+
+
+/* ad(Ω) (a; b) = (ω × a; v × a + ω × b) */
+static void adApply(const double Om[6], const double in[6], double out[6]) {
+  double t[3];
+  csu_cross3(out, Om, in);
+  csu_cross3(out + 3, Om + 3, in);
+  csu_cross3(t, Om, in + 3);
+  csu_add3(out + 3, out + 3, t);
+}
+
+
+void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6]) {
+  double c[5], P[6], Q[6];
+  tangentCoefficients(csu_norm3(Om), c);
+  memcpy(out, v, 6 * sizeof(double));
+  memcpy(P, v, sizeof P);
+  for (int j = 1; j <= 4; j++) {
+    adApply(Om, P, Q);
+    memcpy(P, Q, sizeof P);
+    for (int i = 0; i < 6; i++) {
+      out[i] += c[j] * P[i];
+    }
+  }
+}
+
+
+/* strain rate ξ̇ = Φ η (6) of piece k at local arc length s */
+static void strainRateAt(const csrStrainModel* m, const double* eta, int k, const double* P,
+                         double xd[6]) {
+  memset(xd, 0, 6 * sizeof(double));
+  for (int j = m->dof0[k]; j < m->dof0[k] + m->ndof[k]; j++) {
+    xd[m->dcomp[j]] += P[m->dorder[j]] * eta[j];
+  }
+}
+
+
+/* Ω of one Zanna step (as csr_strainMagnus_) and its rate Ω̇ = (∂Ω/∂q) η */
+static void magnusRate(const csrStrainModel* m, const double* q, const double* eta, int k,
+                       double s, double h, double Om[6], double Omd[6]) {
+  const double g = sqrt(3.0) / 6, S = m->piece[k].length;
+  double sa = s + (0.5 - g) * h, sb = s + (0.5 + g) * h;
+  double Pa[CSR_STRAIN_MAX_ORDER + 1], Pb[CSR_STRAIN_MAX_ORDER + 1];
+  csr_strainLegendre_(m->pmax, 2 * sa / S - 1, Pa);
+  csr_strainLegendre_(m->pmax, 2 * sb / S - 1, Pb);
+  double xa[6], xb[6], xad[6], xbd[6], t1[6], t2[6], t3[6];
+  strainRateAt(m, q, k, Pa, xa);
+  strainRateAt(m, q, k, Pb, xb);
+  xa[5] += 1;
+  xb[5] += 1;
+  strainRateAt(m, eta, k, Pa, xad);
+  strainRateAt(m, eta, k, Pb, xbd);
+  const double c2 = sqrt(3.0) * h * h / 12;
+  adApply(xa, xb, t1);
+  adApply(xad, xb, t2);
+  adApply(xa, xbd, t3);
+  for (int r = 0; r < 6; r++) {
+    Om[r] = 0.5 * h * (xa[r] + xb[r]) + c2 * t1[r];
+    Omd[r] = 0.5 * h * (xad[r] + xbd[r]) + c2 * (t2[r] + t3[r]);
+  }
+}
+
+
+/* V_to = Ad(exp(-Ω)) V_from + T(Ω) Ω̇ */
+static void twistStep(const double Om[6], const double Omd[6], const double Vf[6],
+                      double Vt[6]) {
+  double Re[9], pe[3], pxa[3], u[3], tw[6];
+  csr_strainExp_(Om, Re, pe);
+  csu_cross3(pxa, pe, Vf);
+  csu_sub3(u, Vf + 3, pxa);
+  csu_mulMatTVec3(Vt, Re, Vf);
+  csu_mulMatTVec3(Vt + 3, Re, u);
+  csr_strainTangentApply_(Om, Omd, tw);
+  for (int r = 0; r < 6; r++) {
+    Vt[r] += tw[r];
+  }
+}
+
+
+void csr_strainTwists_(const csrStrainModel* m, const double* q, const double* eta,
+                       const double Vb[6], double* V) {
+  memcpy(V, Vb, 6 * sizeof(double));
+  for (int k = 0; k < m->npiece; k++) {
+    double h = m->piece[k].length / m->nsub[k];
+    for (int i = 0; i < m->nsub[k]; i++) {
+      int p = m->pt0[k] + 2 * i;
+      double Om[6], Omd[6] = {0, 0, 0, 0, 0, 0};
+      if (m->rigid[k]) {
+        const double Oh[6] = {0, 0, 0, 0, 0, 0.5 * h}, Of[6] = {0, 0, 0, 0, 0, h};
+        twistStep(Oh, Omd, V + 6 * p, V + 6 * (p + 1));
+        twistStep(Of, Omd, V + 6 * p, V + 6 * (p + 2));
+        continue;
+      }
+      magnusRate(m, q, eta, k, i * h, 0.5 * h, Om, Omd);
+      twistStep(Om, Omd, V + 6 * p, V + 6 * (p + 1));
+      magnusRate(m, q, eta, k, i * h, h, Om, Omd);
+      twistStep(Om, Omd, V + 6 * p, V + 6 * (p + 2));
+    }
+  }
 }

@@ -350,7 +350,8 @@ def pareto_png(path, rows, machine):
     fig, axes = plt.subplots(nrow, ncol, figsize=(5.6 * ncol, 4.4 * nrow), squeeze=False)
     for ax in axes.flat[len(tasks):]:
         ax.axis("off")
-    colours = {"prb": "tab:blue", "rod": "tab:orange", "analytic": "tab:green", "fe": "tab:red"}
+    colours = {"prb": "tab:blue", "rod": "tab:orange", "strain": "tab:purple", "analytic": "tab:green",
+               "fe": "tab:red"}
     for ax, task in zip(axes.flat, tasks):
         for r in (r for r in rows if r["task"] == task and r["status"] == "ok"):
             e = max(r["error_mm"], 1e-3)

@@ -1,9 +1,9 @@
 /* cmd_run.c: `crawlsim run`: simulate a gait on a terrain and write the run HDF5 file.
  * Contract (docs/design.md): crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv]
- *   [--legs auto|prb|rod|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
+ *   [--legs auto|prb|rod|strain|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
- *   --coupling staggered|stabilised|gs, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
+ *   --coupling staggered|stabilised|gs|tree, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
  *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K), --cal-rule prism|rbf|rbf-pair
  *   (the FE mode table's rule),
  *   --tol MM and --levels FILE (with --legs auto: the cheapest measured configuration of the
@@ -24,6 +24,7 @@
 #include "cs_signal.h"
 #include "robot_calibration.h"
 #include "robot_levels.h"
+#include "robot_strain.h"
 #include "sim_model.h"
 
 /* the options of `crawlsim run`, for parsing and --help (cs_opts.h) */
@@ -42,9 +43,11 @@ static const csxOpt kRunOpts[] = {
      "conditions earth"},
     {"--terrain", "FILE", "the scene's (terrains/flat_road.terrain, terrains/obstacle.terrain)",
      "the terrain file; a terrain of your own makes the default conditions earth"},
-    {"--legs", "auto|prb|rod|rom", "rod",
-     "the leg level; auto picks the scene's cheapest measured configuration within --tol; rom "
-     "is not available yet"},
+    {"--legs", "auto|prb|rod|strain|rom", "rod",
+     "the leg level; auto picks the scene's cheapest measured configuration within --tol; "
+     "strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled tree, its "
+     "step --dt (default 1 ms, the level's own) and --links bending modes per segment (default "
+     "3); rom is not available yet"},
     {"--friction", "MU", "0.8", "Coulomb friction coefficient of every contact (dimensionless)"},
     {"--pressure-scale", "K", "1",
      "multiplies every pressure of the gait (refused if it pushes a gait above 1 MPa)"},
@@ -65,20 +68,22 @@ static const csxOpt kRunOpts[] = {
      "when --terrain or --gait is given",
      "earth: gravity on every body; paper: the legs keep mass and inertia but feel no gravity "
      "(the paper's assumption)"},
-    {"--dt", "S", "1e-3", "ODE time step in s (at most 0.01)"},
+    {"--dt", "S", "1e-3 (strain: the level's own step, 1e-3)", "ODE time step in s (at most 0.01)"},
     {"--output-dt", "S", "0.01", "sampling interval of the output in s (>= --dt)"},
     {"--ramp", "S", "0.2", "pressure ramp between gait rows in s"},
     {"--tau", "S", "0.02", "pneumatic lag time constant in s (0: none)"},
     {"--gravity", "M/S2", "9.81", "gravitational acceleration in m/s^2"},
     {"--support-mass", "KG", "0.05", "mass of the support (body) in kg"},
-    {"--links", "N", "the scene's for rod legs (8 on flat-road, 4 on obstacle), else 4",
+    {"--links", "N", "the scene's for rod legs (8 on flat-road, 4 on obstacle), strain 3, else 4",
      "links (prb) or elements (rod) per leg segment, 1..64"},
     {"--iterations", "N", "240", "ODE QuickStep iterations per step, 1..10000"},
     {"--macro-steps", "N", "1", "ODE steps per exchange with co-simulated legs (H = N dt)"},
-    {"--coupling", "staggered|stabilised|gs", "gs",
-     "how co-simulated (rod) legs hand their wrench to the support: gs (Gauss-Seidel: the support "
+    {"--coupling", "staggered|stabilised|gs|tree", "gs (rod), tree (strain)",
+     "how co-simulated legs hand their wrench to the support: gs (Gauss-Seidel: the support "
      "steps first, momentum exact), stabilised (the legs first along a predicted motion), "
-     "staggered (explicit: needs --dt 3.5e-5 or less); prb ignores it"},
+     "staggered (explicit: needs --dt 3.5e-5 or less), tree (the support and the legs in one "
+     "implicit step solved as a tree with Newton passes, strain legs only; a rejected step is "
+     "retried in halves); prb ignores it"},
     {"--contact-scale", "K", "1",
      "multiplies the normal stiffness of every contact law (ODE's 100 N/mm of prb legs and the "
      "support, the rod legs' soft foundation modulus), 0 < K <= 1e6"},
@@ -324,7 +329,7 @@ int csx_cmdRun(int argc, char** argv) {
     }
     if (!isnan(links) || !isnan(macro) || !isnan(dt) || !isnan(rodtol)) {
       cs_errorSet(&err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt and --rod-tol "
-                  "from its table: give them with --legs prb or --legs rod instead");
+                  "from its table: give them with --legs prb, rod or strain instead");
       goto done;
     }
     if (!levels) levels = csx_dataPath("robot/levels.csv", levels_buf, sizeof levels_buf);
@@ -375,7 +380,8 @@ int csx_cmdRun(int argc, char** argv) {
       goto done;
     }
     if (!leg_type) {
-      cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod or rom)",
+      cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod, strain or "
+                  "rom)",
                   legs);
       goto done;
     }
@@ -411,7 +417,9 @@ int csx_cmdRun(int argc, char** argv) {
     cs_errorSet(&err, CS_ERR_RANGE, "--dt %g s must be > 0 and <= %g s", dt, MAX_DT_S);
     goto done;
   }
-  double h = isnan(dt) ? m.opt.h : dt;
+  /* a tree-stepped level's step is its own unless --dt says (csrLegType.step) */
+  double h = !isnan(dt) ? dt : leg_type && leg_type->prepare && leg_type->step > 0
+                                   ? leg_type->step : m.opt.h;
   if (!isnan(out_dt) && !(out_dt >= h)) {
     cs_errorSet(&err, CS_ERR_RANGE, "--output-dt %g s must be >= the step %g s (--dt)", out_dt,
                 h);
@@ -463,9 +471,20 @@ int csx_cmdRun(int argc, char** argv) {
     goto done;
   }
   if (coupling && strcmp(coupling, "staggered") && strcmp(coupling, "stabilised") &&
-      strcmp(coupling, "gs")) {
-    cs_errorSet(&err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered, stabilised or "
-                "gs)", coupling);
+      strcmp(coupling, "gs") && strcmp(coupling, "tree")) {
+    cs_errorSet(&err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered, stabilised, "
+                "gs or tree)", coupling);
+    goto done;
+  }
+  if (coupling && !strcmp(coupling, "tree") && !(leg_type && leg_type->prepare)) {
+    cs_errorSet(&err, CS_ERR_ARG, "--coupling tree needs a tree-stepped leg level (--legs "
+                "strain)");
+    goto done;
+  }
+  if (coupling && leg_type && leg_type->prepare && !strcmp(coupling, "tree") && !isnan(macro) &&
+      macro != 1) {
+    cs_errorSet(&err, CS_ERR_ARG, "--coupling tree takes one ODE step per macro step "
+                "(--macro-steps 1)");
     goto done;
   }
 
@@ -501,6 +520,7 @@ int csx_cmdRun(int argc, char** argv) {
   if (coupling) {
     m.opt.coupling = !strcmp(coupling, "stabilised") ? CS_COUPLING_STABILISED
                      : !strcmp(coupling, "gs")       ? CS_COUPLING_GAUSS_SEIDEL
+                     : !strcmp(coupling, "tree")     ? CS_COUPLING_TREE
                                                      : CS_COUPLING_STAGGERED;
   }
   /* the default output interval must hold a whole macro step */
@@ -513,6 +533,9 @@ int csx_cmdRun(int argc, char** argv) {
     m.robot.leg_params.links_per_segment = (int)links;
   } else if (m.robot.leg_type == &csr_leg_rod && sc->rod_links > 0) {
     m.robot.leg_params.links_per_segment = sc->rod_links; /* converged on the scene's table */
+  } else if (m.robot.leg_type == &csr_leg_strain) {
+    /* bending modes per segment: the level's own default basis */
+    m.robot.leg_params.links_per_segment = csr_strainDefaultParams().bend_order + 1;
   }
   if (!isnan(rodtol)) m.robot.leg_params.rod_tol_scale = rodtol;
   m.opt.t_end = t_end;
@@ -558,7 +581,9 @@ int csx_cmdRun(int argc, char** argv) {
             csr_calibrationRuleName(m.calibration), m.robot.map.name);
     fprintf(stderr, "crawlsim run: legs %s, %d %s per segment\n", cs_modelLegLevel(&m),
             m.robot.leg_params.links_per_segment,
-            m.robot.leg_type == &csr_leg_rod ? "elements" : "links");
+            m.robot.leg_type == &csr_leg_rod      ? "elements"
+            : m.robot.leg_type == &csr_leg_strain ? "bending modes"
+                                                  : "links");
     if (m.robot.leg_params.cal_drop) {
       char what[32];
       csr_calDropFormat(m.robot.leg_params.cal_drop, what, sizeof what);

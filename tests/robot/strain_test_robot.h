@@ -11,7 +11,8 @@
  *     body coordinates (A_i = Ad(T_i⁻¹), T_i the hip's fixed pose in the support; F_s its
  *     weight), V += ΔV, g_s <- g_s exp(h V);
  *  3. every leg back-substitutes its hip's ΔV_i = A_i ΔV and takes its hip's new state
- *     (csr_strainFinish).
+ *     (csr_strainUpdate); with Newton iterations, every leg linearises again at the iterate
+ *     (csr_strainIterate) and 1-3 repeat until nothing moves, then the legs commit.
  * The support does not touch the terrain (only the legs do, through their own contact). */
 #ifndef CS_TESTS_STRAIN_TEST_ROBOT_H
 #define CS_TESTS_STRAIN_TEST_ROBOT_H
@@ -43,27 +44,10 @@ typedef struct {
   double F[9];             /* the legs' frame in the support frame */
   double ms, Is[3];        /* support mass (t) and principal inertia at its centre (t mm²) */
   double R[9], x[3], V[6]; /* support pose (centre) and body twist */
+  double D[3];             /* its discrete linear momentum m (x1 - x0) / h of the last step */
   double g[3];             /* gravity on the support (mm/s²) */
   double t;
 } StrainRobot;
-
-
-/* A = [Rᵀ 0; -Rᵀ p^ Rᵀ] for T = (R, p) */
-static inline void strainRobotAdInv(const double R[9], const double p[3], double A[36]) {
-  memset(A, 0, 36 * sizeof(double));
-  for (int c = 0; c < 3; c++) {
-    double e[3] = {0, 0, 0}, ex[3], col[3], rc[3];
-    e[c] = 1;
-    csu_mulMatTVec3(col, R, e);
-    csu_cross3(ex, e, p);
-    csu_mulMatTVec3(rc, R, ex);
-    for (int r = 0; r < 3; r++) {
-      A[6 * r + c] = col[r];
-      A[6 * (r + 3) + c + 3] = col[r];
-      A[6 * (r + 3) + c] = rc[r];
-    }
-  }
-}
 
 
 static inline void strainRobotHip(const StrainRobot* r, int k, csrBaseState* b) {
@@ -122,7 +106,7 @@ static inline int strainRobotCreate(StrainRobot* r, double mu, int order, csErro
     double off[3];
     csr_robotHipOffset(&rm, k, off);
     csu_set3(r->hip[k], off[0], -0.5 * S[1], off[2]);
-    strainRobotAdInv(r->F, r->hip[k], r->A[k]);
+    csr_strainAdInv_(r->F, r->hip[k], r->A[k]);
     csrStrainSpec spec;
     memset(&spec, 0, sizeof spec);
     spec.act = &r->act;
@@ -155,104 +139,263 @@ static inline void strainRobotDestroy(StrainRobot* r) {
 }
 
 
-/* one step of h with the legs' 96 pressures p96 at its end; 0 ok. leg_s and tree_s, if not
- * NULL, accumulate the wall time of the legs' and the support's parts */
-static inline int strainRobotStep(StrainRobot* r, double h, const double p96[96],
-                                  double* leg_s, double* tree_s) {
+/* the support's own part of the step from its start state (R0, V0): W (36) and h r (6) */
+static inline void strainRobotOwn(const StrainRobot* r, double h, const double R0[9],
+                                  const double V0[6], double W[36], double rhs[6]) {
+  const double Ms[6] = {r->Is[0], r->Is[1], r->Is[2], r->ms, r->ms, r->ms};
+  double mu[3] = {Ms[0] * V0[0], Ms[1] * V0[1], Ms[2] * V0[2]};
+  double pi[3] = {Ms[3] * V0[3], Ms[4] * V0[4], Ms[5] * V0[5]};
+  double a1[3], a2[3], gb[3];
+  csu_cross3(a1, V0, mu);
+  csu_cross3(a2, V0 + 3, pi);
+  csu_mulMatTVec3(gb, R0, r->g);
+  memset(W, 0, 36 * sizeof(double));
+  for (int i = 0; i < 3; i++) {
+    rhs[i] = h * (-a1[i] - a2[i]);
+    W[7 * i] = Ms[i];
+    W[7 * (i + 3)] = Ms[3 + i];
+  }
+  csu_cross3(a1, V0, pi);
+  for (int i = 0; i < 3; i++) {
+    rhs[3 + i] = h * (-a1[i] + r->ms * gb[i]);
+  }
+}
+
+
+/* W += Aᵀ Z A, rhs += Aᵀ ρ */
+static inline void strainRobotAddLeg(const double A[36], const double Z[36], const double rho[6],
+                                     double W[36], double rhs[6]) {
+  double ZA[36];
+  for (int i = 0; i < 6; i++) {
+    for (int j = 0; j < 6; j++) {
+      double s = 0;
+      for (int e = 0; e < 6; e++) {
+        s += Z[6 * i + e] * A[6 * e + j];
+      }
+      ZA[6 * i + j] = s;
+    }
+  }
+  for (int i = 0; i < 6; i++) {
+    for (int j = 0; j < 6; j++) {
+      double s = 0;
+      for (int e = 0; e < 6; e++) {
+        s += A[6 * e + i] * ZA[6 * e + j];
+      }
+      W[6 * i + j] += s;
+    }
+    double s = 0;
+    for (int e = 0; e < 6; e++) {
+      s += A[6 * e + i] * rho[e];
+    }
+    rhs[i] += s;
+  }
+}
+
+
+/* One step of h with the legs' 96 pressures p96 at its end; 0 ok, 1 failed (the robot is then
+ * mid-step: the caller restores what it saved). maxit 1: one linearised pass (the legs'
+ * contact linearised at the start); maxit > 1: Newton iterations of the whole tree
+ * (csr_strainIterate/Update) until no mode and no support coordinate moves by more than tol
+ * (rad or mm) against the last iterate, failing after maxit passes. *iters (if not NULL) the
+ * passes taken; leg_s and tree_s (if not NULL) accumulate the wall time of the legs' and the
+ * support's parts. */
+static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96[96], int maxit,
+                                      double tol, int* iters, double* leg_s, double* tree_s) {
   double W[36], rhs[6], Zs[CSR_NLEG][36], rhos[CSR_NLEG][6];
-  double t0 = csu_wallSeconds();
+  double R0[9], x0[3], V0[6], dVp[6] = {0, 0, 0, 0, 0, 0};
+  memcpy(R0, r->R, sizeof R0);
+  memcpy(x0, r->x, sizeof x0);
+  memcpy(V0, r->V, sizeof V0);
+  double t0 = csu_wallSeconds(), tl = 0, tt = 0;
   for (int k = 0; k < CSR_NLEG; k++) {
     if (csr_strainActuate(r->m[k], r->d[k], p96 + 12 * k, NULL) != 0 ||
         csr_strainPrepare(r->m[k], r->d[k], h, Zs[k], rhos[k]) != 0) {
       return 1;
     }
   }
-  double t1 = csu_wallSeconds();
-  /* the support's own: M_s and h (F + ad(V)ᵀ M V) */
-  const double Ms[6] = {r->Is[0], r->Is[1], r->Is[2], r->ms, r->ms, r->ms};
-  double mu[3] = {Ms[0] * r->V[0], Ms[1] * r->V[1], Ms[2] * r->V[2]};
-  double pi[3] = {Ms[3] * r->V[3], Ms[4] * r->V[4], Ms[5] * r->V[5]};
-  double a1[3], a2[3], gb[3];
-  csu_cross3(a1, r->V, mu);
-  csu_cross3(a2, r->V + 3, pi);
-  csu_mulMatTVec3(gb, r->R, r->g);
-  memset(W, 0, sizeof W);
-  for (int i = 0; i < 3; i++) {
-    rhs[i] = h * (-a1[i] - a2[i]);
-    W[7 * i] = Ms[i];
-    W[7 * (i + 3)] = Ms[3 + i];
-  }
-  csu_cross3(a1, r->V, pi);
-  for (int i = 0; i < 3; i++) {
-    rhs[3 + i] = h * (-a1[i] + r->ms * gb[i]);
-  }
-  /* + Σ Aᵀ Z A, Σ Aᵀ ρ */
-  for (int k = 0; k < CSR_NLEG; k++) {
-    const double* A = r->A[k];
-    double ZA[36];
+  /* damping: a pass whose full move did not shrink below 0.9 of the last one's halves the
+   * next move (down to 1/8); a shrinking one restores the full step */
+  int it = 0, ok = 0;
+  double alpha = 1, chg_last = INFINITY;
+  for (;;) {
+    double t1 = csu_wallSeconds();
+    tl += t1 - t0;
+    strainRobotOwn(r, h, R0, V0, W, rhs);
+    if (it > 0) {
+      /* an iterate: the support's linear momentum rows in the legs' discrete momentum form
+       * (robot_strain.h): R_1ᵀ (m (x1 - x0) / h - D - h m g) = 0 at the iterate's end pose,
+       * its rows of W m I, so h r = m ΔV_it - R */
+      double Rw[3], Rl[3];
+      for (int i = 0; i < 3; i++) {
+        Rw[i] = r->ms * ((r->x[i] - x0[i]) / h - h * r->g[i]) - r->D[i];
+      }
+      csu_mulMatTVec3(Rl, r->R, Rw);
+      for (int i = 0; i < 3; i++) {
+        rhs[3 + i] = r->ms * dVp[3 + i] - Rl[i];
+      }
+    }
+    for (int k = 0; k < CSR_NLEG; k++) {
+      strainRobotAddLeg(r->A[k], Zs[k], rhos[k], W, rhs);
+    }
+    if (csu_solve6(W, rhs) != 0) {
+      return 1; /* the support's condensed matrix is singular */
+    }
+    const double* dV = rhs;
+    double chg = 0;
     for (int i = 0; i < 6; i++) {
-      for (int j = 0; j < 6; j++) {
-        double s = 0;
-        for (int e = 0; e < 6; e++) {
-          s += Zs[k][6 * i + e] * A[6 * e + j];
+      chg = fmax(chg, h * fabs(dV[i] - dVp[i]));
+      dVp[i] += alpha * (dV[i] - dVp[i]);
+      r->V[i] = V0[i] + dVp[i];
+    }
+    double Om[6], Re[9], pe[3], t[3];
+    for (int i = 0; i < 6; i++) {
+      Om[i] = h * r->V[i];
+    }
+    csr_strainExp_(Om, Re, pe);
+    csu_mulMat3(r->R, R0, Re);
+    csu_mulMatVec3(t, R0, pe);
+    csu_add3(r->x, x0, t);
+    t0 = csu_wallSeconds();
+    tt += t0 - t1;
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double dVk[6], c = 0;
+      for (int i = 0; i < 6; i++) {
+        dVk[i] = 0;
+        for (int j = 0; j < 6; j++) {
+          dVk[i] += r->A[k][6 * i + j] * dV[j];
         }
-        ZA[6 * i + j] = s;
+      }
+      csrBaseState b;
+      strainRobotHip(r, k, &b);
+      if (csr_strainUpdateDamped(r->m[k], r->d[k], dVk, alpha, &b, &c) != 0) {
+        return 1;
+      }
+      chg = fmax(chg, c);
+    }
+    it++;
+    alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
+    chg_last = chg;
+    if (maxit <= 1 || (it > 1 && chg <= tol)) {
+      ok = 1;
+      break;
+    }
+    if (it >= maxit) {
+      break;
+    }
+    for (int k = 0; k < CSR_NLEG; k++) {
+      if (csr_strainIterate(r->m[k], r->d[k], Zs[k], rhos[k]) != 0) {
+        return 1;
       }
     }
-    for (int i = 0; i < 6; i++) {
-      for (int j = 0; j < 6; j++) {
-        double s = 0;
-        for (int e = 0; e < 6; e++) {
-          s += A[6 * e + i] * ZA[6 * e + j];
-        }
-        W[6 * i + j] += s;
-      }
-      double s = 0;
-      for (int e = 0; e < 6; e++) {
-        s += A[6 * e + i] * rhos[k][e];
-      }
-      rhs[i] += s;
-    }
   }
-  if (csu_solve6(W, rhs) != 0) {
-    return 1; /* the support's condensed matrix is singular */
+  if (iters) {
+    *iters = it;
   }
-  const double* dV = rhs;
-  for (int i = 0; i < 6; i++) {
-    r->V[i] += dV[i];
+  if (!ok) {
+    return 1;
   }
-  double Om[6], Re[9], pe[3], Rn[9], t[3];
-  for (int i = 0; i < 6; i++) {
-    Om[i] = h * r->V[i];
+  for (int i = 0; i < 3; i++) {
+    r->D[i] = r->ms * (r->x[i] - x0[i]) / h;
   }
-  csr_strainExp_(Om, Re, pe);
-  csu_mulMat3(Rn, r->R, Re);
-  csu_mulMatVec3(t, r->R, pe);
-  csu_add3(r->x, r->x, t);
-  memcpy(r->R, Rn, sizeof Rn);
-  double t2 = csu_wallSeconds();
   for (int k = 0; k < CSR_NLEG; k++) {
-    double dVk[6];
-    for (int i = 0; i < 6; i++) {
-      dVk[i] = 0;
-      for (int j = 0; j < 6; j++) {
-        dVk[i] += r->A[k][6 * i + j] * dV[j];
-      }
-    }
-    csrBaseState b;
-    strainRobotHip(r, k, &b);
-    if (csr_strainFinish(r->m[k], r->d[k], dVk, &b) != 0) {
+    if (csr_strainCommit(r->m[k], r->d[k]) != 0) {
       return 1;
     }
   }
-  double t3 = csu_wallSeconds();
+  tl += csu_wallSeconds() - t0;
   if (leg_s) {
-    *leg_s += (t1 - t0) + (t3 - t2);
+    *leg_s += tl;
   }
   if (tree_s) {
-    *tree_s += t2 - t1;
+    *tree_s += tt;
   }
   r->t += h;
+  return 0;
+}
+
+
+/* one linearised pass (strainRobotStepIter with maxit 1) */
+static inline int strainRobotStep(StrainRobot* r, double h, const double p96[96],
+                                  double* leg_s, double* tree_s) {
+  return strainRobotStepIter(r, h, p96, 1, 0, NULL, leg_s, tree_s);
+}
+
+
+/* the robot's whole state: the support and every leg's state (a caller-owned buffer of
+ * strainRobotStateSize doubles) */
+static inline int strainRobotStateSize(const StrainRobot* r) {
+  int n = 9 + 3 + 6 + 1 + 3;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    n += csr_strainStateSize(r->m[k]);
+  }
+  return n;
+}
+
+
+static inline void strainRobotSave(const StrainRobot* r, double* y) {
+  memcpy(y, r->R, 9 * sizeof(double));
+  memcpy(y + 9, r->x, 3 * sizeof(double));
+  memcpy(y + 12, r->V, 6 * sizeof(double));
+  y[18] = r->t;
+  memcpy(y + 19, r->D, 3 * sizeof(double));
+  y += 22;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csr_strainGetState(r->m[k], r->d[k], y);
+    y += csr_strainStateSize(r->m[k]);
+  }
+}
+
+
+static inline void strainRobotRestore(StrainRobot* r, const double* y) {
+  memcpy(r->R, y, 9 * sizeof(double));
+  memcpy(r->x, y + 9, 3 * sizeof(double));
+  memcpy(r->V, y + 12, 6 * sizeof(double));
+  r->t = y[18];
+  memcpy(r->D, y + 19, 3 * sizeof(double));
+  y += 22;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csr_strainSetState(r->m[k], r->d[k], y);
+    csrBaseState b;
+    strainRobotHip(r, k, &b);
+    csr_strainSetBase(r->m[k], r->d[k], &b);
+    y += csr_strainStateSize(r->m[k]);
+  }
+}
+
+
+/* Advance from ta to tb with Newton steps (strainRobotStepIter, maxit passes to tol), the
+ * gait g giving the pressures at each piece's end: a piece that fails is restored from save
+ * (strainRobotStateSize doubles) and halved, at most max_halve times. 0 ok, 1 failed; the
+ * counters (if not NULL) accumulate steps taken, rejected pieces and passes. */
+static inline int strainRobotAdvance(StrainRobot* r, const csgGait* g, double ta, double tb,
+                                     int maxit, double tol, int max_halve, double* save,
+                                     long* steps, long* rejected, long* passes, double* leg_s,
+                                     double* tree_s) {
+  const double h = tb - ta;
+  int depth = 0;
+  while (ta < tb - 1e-12 * h) {
+    double te = fmin(tb, ta + h / (1 << depth)), p96[96];
+    int it = 0;
+    csg_scheduleEval(g, NULL, te, p96);
+    strainRobotSave(r, save);
+    if (strainRobotStepIter(r, te - ta, p96, maxit, tol, &it, leg_s, tree_s) != 0) {
+      strainRobotRestore(r, save);
+      if (rejected) {
+        (*rejected)++;
+      }
+      if (++depth > max_halve) {
+        return 1;
+      }
+      continue;
+    }
+    if (passes) {
+      *passes += it;
+    }
+    if (steps) {
+      (*steps)++;
+    }
+    ta = te;
+  }
   return 0;
 }
 

@@ -8,6 +8,11 @@
  *  - jacobian_matches_differences: the body Jacobian at the tip of a bent, twisted, stretched
  *    and sheared three-piece rod (flexible, rigid, flexible) against central differences of
  *    the tip pose.
+ *  - twist_recursion_matches_jacobian: the point twists of the velocity recursion
+ *    (csr_strainTwists_, the velocity products' kernel) against G_p (V_b, η) from the pose and
+ *    Jacobian recursion, on the same rod, at every quadrature point.
+ *  - composite_inertia_matches_sum: the step's inertia by composite inertias per piece
+ *    (csr_strainInertia_) against Σ_p G_pᵀ M_p G_p summed point by point, on the bent rod.
  *  - magnus_fourth_order: the tip pose of a rod whose bending varies quadratically and twists
  *    (non-commuting strains) converges at order 4 in the sub-intervals.
  *  - mass_matrix_rigid_rod: a rod made of one rigid piece and one flexible piece with q = 0:
@@ -156,13 +161,20 @@ static void veeSkew(const double A[9], double w[3]) {
 }
 
 
-static void jacobian_matches_differences(void) {
+/* a three-piece rod (flexible, rigid, flexible) with linear axial modes, bent, twisted,
+ * stretched and sheared: q_j = (j % 7 - 3) x 0.007 (κ, τ modes) or 0.02 (σ modes) */
+static csrStrainModel* bentRod(void) {
   csrRodPiece pc[3] = {uniformPiece(50), uniformPiece(8), uniformPiece(40)};
   const int order[3] = {2, -1, 2}; /* the middle piece rigid */
   csrStrainParams sp = csr_strainDefaultParams();
   sp.axial_order = 1;
   sp.nsub = 3;
-  csrStrainModel* m = makeRod(pc, order, 3, &sp);
+  return makeRod(pc, order, 3, &sp);
+}
+
+
+static void jacobian_matches_differences(void) {
+  csrStrainModel* m = bentRod();
   if (!m) {
     return;
   }
@@ -217,6 +229,99 @@ static void jacobian_matches_differences(void) {
   CS_EXPECT(jmax > 10); /* a real lever: the curvature modes move the tip by their length */
   free(q);
   free(J);
+  csr_strainDataDestroy(d);
+  csr_strainModelDestroy(m);
+}
+
+
+static void twist_recursion_matches_jacobian(void) {
+  csrStrainModel* m = bentRod();
+  if (!m) {
+    return;
+  }
+  csError err;
+  csrStrainData* d = csr_strainDataCreate(m, &err);
+  int n = csr_strainDofs(m), nu = 6 + n;
+  double* q = calloc((size_t)n, sizeof(double));
+  double* eta = calloc((size_t)n, sizeof(double));
+  double* V = calloc((size_t)6 * m->np, sizeof(double));
+  double* G = calloc((size_t)6 * nu, sizeof(double));
+  const double Vb[6] = {0.3, -0.2, 0.5, 10, -4, 7};
+  for (int j = 0; j < n; j++) {
+    q[j] = (j % 7 - 3) * (m->dcomp[j] <= CSR_STRAIN_TW ? 0.007 : 0.02);
+    eta[j] = (j % 5 - 2) * (m->dcomp[j] <= CSR_STRAIN_TW ? 0.03 : 0.1);
+  }
+  csr_strainSetQ(m, d, q);
+  csr_strainKinematics_(m, d, 1);
+  csr_strainTwists_(m, q, eta, Vb, V);
+  double e = 0, vmax = 0;
+  for (int p = 0; p < m->np; p++) {
+    csr_strainPointG_(m, d, p, G);
+    for (int r = 0; r < 6; r++) {
+      double s = 0;
+      for (int k = 0; k < nu; k++) {
+        s += G[r * nu + k] * (k < 6 ? Vb[k] : eta[k - 6]);
+      }
+      e = fmax(e, fabs(s - V[6 * p + r]));
+      vmax = fmax(vmax, fabs(s));
+    }
+  }
+  printf("  %d points: max |V_recursion - G u| = %.3g (largest entry %.3g)\n", m->np, e, vmax);
+  /* the same arithmetic in another order: round-off of the largest entry */
+  CS_EXPECT_NEAR(e, 0, 1e-12 * vmax, 0);
+  CS_EXPECT(vmax > 10);
+  free(q);
+  free(eta);
+  free(V);
+  free(G);
+  csr_strainDataDestroy(d);
+  csr_strainModelDestroy(m);
+}
+
+
+static void composite_inertia_matches_sum(void) {
+  csrStrainModel* m = bentRod();
+  if (!m) {
+    return;
+  }
+  csError err;
+  csrStrainData* d = csr_strainDataCreate(m, &err);
+  int n = csr_strainDofs(m), nu = 6 + n;
+  double* q = calloc((size_t)n, sizeof(double));
+  double* G = calloc((size_t)6 * nu, sizeof(double));
+  double* W = calloc((size_t)nu * nu, sizeof(double));
+  for (int j = 0; j < n; j++) {
+    q[j] = (j % 7 - 3) * (m->dcomp[j] <= CSR_STRAIN_TW ? 0.007 : 0.02);
+  }
+  csr_strainSetQ(m, d, q);
+  csr_strainKinematics_(m, d, 1);
+  for (int p = 0; p < m->np; p++) {
+    csr_strainPointG_(m, d, p, G);
+    for (int r = 0; r < 6; r++) {
+      for (int a = 0; a < nu; a++) {
+        for (int b = 0; b < nu; b++) {
+          W[a * nu + b] += G[r * nu + a] * m->Ms[6 * p + r] * G[r * nu + b];
+        }
+      }
+    }
+  }
+  csr_strainInertia_(m, d);
+  double e = 0, wmax = 0;
+  for (int a = 0; a < nu; a++) {
+    for (int b = 0; b < nu; b++) {
+      double c = a < 6 ? (b < 6 ? d->WMbb[6 * a + b] : d->WMlb[6 * (b - 6) + a])
+                       : (b < 6 ? d->WMlb[6 * (a - 6) + b] : d->WMll[(a - 6) * n + (b - 6)]);
+      e = fmax(e, fabs(c - W[a * nu + b]));
+      wmax = fmax(wmax, fabs(W[a * nu + b]));
+    }
+  }
+  printf("  %d x %d: max |composite - point sum| = %.3g (largest entry %.3g)\n", nu, nu, e, wmax);
+  /* the same sums regrouped: round-off of the largest entry */
+  CS_EXPECT_NEAR(e, 0, 1e-12 * wmax, 0);
+  CS_EXPECT(wmax > 0);
+  free(q);
+  free(G);
+  free(W);
   csr_strainDataDestroy(d);
   csr_strainModelDestroy(m);
 }
@@ -387,6 +492,8 @@ int main(int argc, char** argv) {
   CS_RUN(tangent_matches_series);
   CS_RUN(exp_matches_series);
   CS_RUN(jacobian_matches_differences);
+  CS_RUN(twist_recursion_matches_jacobian);
+  CS_RUN(composite_inertia_matches_sum);
   CS_RUN(magnus_fourth_order);
   CS_RUN(mass_matrix_rigid_rod);
   CS_RUN(first_bending_frequency);

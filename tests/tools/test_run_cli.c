@@ -351,6 +351,40 @@ static void test_gaitCheckAgreesWithRun(void) {
 }
 
 
+/* `--legs strain`: the tree coupling at the level's own step and bending modes, recorded in the
+ * file (leg_model, coupling, step_s, leg_step_s, links_per_segment, the tree timer); the
+ * coupling refused for other levels and with more than one ODE step per macro step */
+static void test_strainRun(void) {
+  csCliResult r;
+  cs_cliRun(exe_path, "run --t-end 0.02 --quiet --legs strain --out runcli_strain.h5", "runcli",
+            &r);
+  CS_EXPECT(r.status == 0);
+  CS_EXPECT(strstr(r.out, "verdict (paper, strain legs): stands") != NULL);
+  if (r.status != 0) {
+    fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", r.status, r.out, r.err);
+  }
+  expectAttrString("runcli_strain.h5", "leg_model", "strain");
+  expectAttrString("runcli_strain.h5", "coupling", "tree");
+  hid_t f = H5Fopen("runcli_strain.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double step = 0, leg_step = 0, links = 0, tree_calls = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "step_s", &step) >= 0 && step == 1e-3);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_s", &leg_step) >= 0 &&
+              leg_step == 1e-3);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 3);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_tree_calls", &tree_calls) >= 0 &&
+              tree_calls == 20);
+    H5Fclose(f);
+  }
+  remove("runcli_strain.h5");
+  remove("runcli_strain.xdmf");
+  expectFailure("--legs rod --coupling tree", "crawlsim run: --coupling tree needs a tree-stepped");
+  expectFailure("--legs strain --macro-steps 2", "crawlsim run: the tree coupling needs");
+  expectFailure("--legs strain --links 8", "crawlsim run: strain leg: need 1..7 bending modes");
+}
+
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_run_cli <path of crawlsim> [case filter]\n");
@@ -363,5 +397,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_badCalibration);
   CS_RUN(test_goodRun);
   CS_RUN(test_gaitCheckAgreesWithRun);
+  CS_RUN(test_strainRun);
   return cs_testSummary();
 }

@@ -1,0 +1,399 @@
+/* test_strain_driver.c: the strain leg level through the driver (`--legs strain`, the tree
+ * coupling, sim_coupling.c), on the flat-road scene's own terrain, gait, calibration and rule
+ * (paper conditions):
+ *  - it runs end to end through cs_step, and the legs carry the support: after settling the
+ *    eight legs' base wrenches hold its weight (their vertical sum against m_s g, the support
+ *    not touching the terrain; the tree's momentum balance, not a fitted force);
+ *  - two datas of one model stepped alike are bit-identical, and so is a run continued from a
+ *    restored state (cs_stateGet / cs_stateSet, the driver's rollback);
+ *  - frictionless, the centre of mass drifts at first order in h (the leg's step's own error;
+ *    the driver adds none that stays as h shrinks);
+ *  - a step the legs reject (prepare > 0, what the kernel returns when its step does not
+ *    converge) is restored and retried in halves through the rollback: the time still advances
+ *    by exactly one step, each rejection is counted, the legs see steps of h/2, and the track
+ *    stays near the unrejected one; a step rejected at every size fails with CS_ERR_REJECTED
+ *    and changes nothing.
+ * The rejecting level is csr_leg_strain with its prepare wrapped (a test double in this file).
+ * ~0.4 s simulated per data at 1 ms steps (the level's step); release ~7 s of CPU, under the
+ * sanitizers ~50 s. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cs_test.h"
+#include "sim_model.h"
+
+static char g_src[512];
+
+/* the wrapped prepare: rejects steps of at least g_reject_from s (INFINITY: none) and counts
+ * the steps of each size it sees (the test owns this state: one model at a time) */
+static double g_reject_from = INFINITY;
+static long g_calls_full, g_calls_half;
+static double g_h_full;
+
+static int prepareRejecting(csrLeg* leg, double h, const csrBaseState* b0, double Z[36],
+                            double rho[6]) {
+  if (h == g_h_full) {
+    g_calls_full++;
+  } else if (h == 0.5 * g_h_full) {
+    g_calls_half++;
+  }
+  if (h >= g_reject_from) {
+    return 1;
+  }
+  return csr_leg_strain.prepare(leg, h, b0, Z, rho);
+}
+
+
+/* the flat road as the scene sets it up (tools/cmd_run.c), on strain legs of `type` */
+static int loadModel(csModel* m, const csrLegType* type) {
+  char terr[600], gait[600], cal[600];
+  snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", g_src);
+  snprintf(gait, sizeof gait, "%s/gaits/flat_road_rod.csv", g_src);
+  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg_modes_sym.h5", g_src);
+  cs_modelInit(m);
+  cs_modelSetConditions(m, CS_CONDITIONS_PAPER);
+  cs_modelSetLegLevel(m, type);
+  m->opt.h = 1e-3; /* the level's step (csr_leg_strain.step), set here for the tests' own */
+  m->robot.leg_params.links_per_segment = 3;
+  csrCalRule rule;
+  if (csr_calRuleParse("rbf-pair", &rule)) {
+    m->cal_rule = (int)rule;
+  }
+  csError err;
+  cs_errorClear(&err);
+  if (cs_modelLoad(m, "flat-road", terr, gait, cal, &err) != CS_OK) {
+    fprintf(stderr, "load: %s\n", err.msg);
+    return 0;
+  }
+  return 1;
+}
+
+
+static csData* makeData(const csModel* m) {
+  csError err;
+  cs_errorClear(&err);
+  csData* d = cs_dataCreate(m, &err);
+  CS_EXPECT(d != NULL);
+  if (!d) {
+    printf("  create: %s\n", err.msg);
+    return NULL;
+  }
+  if (cs_settle(m, d, &err) != CS_OK) {
+    printf("  settle: %s\n", err.msg);
+    CS_EXPECT(0);
+  }
+  return d;
+}
+
+
+static int stepN(const csModel* m, csData* d, int n) {
+  csError err;
+  for (int i = 0; i < n; i++) {
+    if (cs_step(m, d, &err) != CS_OK) {
+      printf("  step at t = %g s: %s\n", cs_time(d), err.msg);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
+static int sameState(const csModel* m, const csData* a, const csData* b) {
+  int n = cs_stateSize(m, a);
+  double* xa = malloc(2 * (size_t)n * sizeof(double));
+  if (!xa) {
+    return 0;
+  }
+  cs_stateGet(m, a, xa);
+  cs_stateGet(m, b, xa + n);
+  int same = memcmp(xa, xa + n, (size_t)n * sizeof(double)) == 0;
+  free(xa);
+  return same;
+}
+
+
+static void test_strain_runs_through_the_driver_and_legs_carry_the_support(void) {
+  csModel m;
+  CS_EXPECT(loadModel(&m, &csr_leg_strain));
+  CS_EXPECT(m.opt.coupling == CS_COUPLING_TREE && m.opt.macro_steps == 1);
+  {
+    /* the level sets its own step (loadModel then takes 1 ms) */
+    csModel m0;
+    cs_modelInit(&m0);
+    m0.opt.macro_steps = 3;
+    cs_modelSetLegLevel(&m0, &csr_leg_strain);
+    CS_EXPECT(m0.opt.h == csr_leg_strain.step && m0.opt.macro_steps == 1 &&
+              m0.opt.coupling == CS_COUPLING_TREE);
+    cs_modelDestroy(&m0);
+  }
+  csData* d = makeData(&m);
+  if (!d) {
+    cs_modelDestroy(&m);
+    return;
+  }
+  /* after settling (0.3 s, before the gait's first ramp moves anything): the legs' vertical
+   * wrench against the support's weight; the support itself does not touch the road */
+  double fy = 0;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    csrWrench w;
+    cs_legWrench(d, k, &w);
+    fy += w.f[1];
+  }
+  double v[3], cf[3];
+  cs_supportVelocity(d, v);
+  cs_contactForce(d, cf);
+  const double weight = m.robot.support_mass * m.opt.gravity;
+  printf("  settled: legs' vertical force %.5f N, support weight %.5f N (%.3f %%), support "
+         "speed %.3g mm/s, its own contact %.3g N, deepest foot %.4f mm\n", fy, weight,
+         100 * (fy - weight) / weight, sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]), cf[1],
+         cs_legContactDepth(&m, d));
+  /* 1 %: what is left of the settling's 0.3 s transient (damped leg modes of ~100 Hz) */
+  CS_EXPECT(fabs(fy - weight) < 0.01 * weight);
+  CS_EXPECT(cf[1] == 0);
+  /* and it runs on into the gait */
+  CS_EXPECT(stepN(&m, d, 100));
+  CS_EXPECT(cs_rejectCount(d) == 0);
+  double x[3];
+  cs_supportDisplacement(d, x);
+  printf("  t = %.3f s: support (%.4f, %.4f, %.4f) mm, %ld steps\n", cs_time(d), x[0], x[1],
+         x[2], cs_stepCount(d));
+  CS_EXPECT(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]));
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+}
+
+
+/* Two datas stepped alike; then a data restored to a saved state and stepped on against the
+ * same data not restored. With the pneumatic lag (CVODE) a restore restarts CVODE, whose step
+ * history is not state (sim_model.h), so there the restored run is compared with itself
+ * (restore, step; restore, step); with tau = 0 every part of the step is state and the
+ * restored run must equal the unrestored one. */
+static void restoreCase(double tau) {
+  csModel m;
+  CS_EXPECT(loadModel(&m, &csr_leg_strain));
+  m.opt.pneumatic_tau = tau;
+  csData* a = makeData(&m);
+  csData* b = makeData(&m);
+  const int n = a ? cs_stateSize(&m, a) : 0;
+  double* x0 = n ? malloc(3 * (size_t)n * sizeof(double)) : NULL;
+  if (!a || !b || !x0) {
+    CS_EXPECT(0);
+    free(x0);
+    cs_dataDestroy(a);
+    cs_dataDestroy(b);
+    cs_modelDestroy(&m);
+    return;
+  }
+  CS_EXPECT(sameState(&m, a, b));
+  CS_EXPECT(stepN(&m, a, 60) && stepN(&m, b, 60));
+  const int same = sameState(&m, a, b);
+  CS_EXPECT(same);
+  double* x1 = x0 + n;
+  double* x2 = x0 + 2 * n;
+  csError err;
+  cs_stateGet(&m, a, x0);
+  CS_EXPECT(stepN(&m, a, 40));
+  if (tau > 0) {
+    /* the reference is a restored run too (CVODE restarted) */
+    CS_EXPECT(cs_stateSet(&m, a, x0, &err) == CS_OK);
+    CS_EXPECT(stepN(&m, a, 40));
+  }
+  cs_stateGet(&m, a, x1);
+  CS_EXPECT(cs_stateSet(&m, a, x0, &err) == CS_OK);
+  /* the restored data reads as the state says: its legs are where b's are */
+  double c0[3 * 25], c1[3 * 25];
+  cs_legCenterline(&m, a, 0, 25, c0);
+  cs_legCenterline(&m, b, 0, 25, c1);
+  CS_EXPECT(memcmp(c0, c1, sizeof c0) == 0);
+  CS_EXPECT(stepN(&m, a, 40));
+  cs_stateGet(&m, a, x2);
+  const int restored = memcmp(x1, x2, (size_t)n * sizeof(double)) == 0;
+  CS_EXPECT(restored);
+  printf("  tau %g s, %d doubles of state: two datas %s; restored and stepped 40 %s the %s\n",
+         tau, n, same ? "bit-identical" : "DIFFER", restored ? "bit-identical to" : "DIFFERS from",
+         tau > 0 ? "same restored again" : "unrestored run");
+  free(x0);
+  cs_dataDestroy(a);
+  cs_dataDestroy(b);
+  cs_modelDestroy(&m);
+}
+
+
+static void test_strain_repeats_and_restores_bit_identically(void) {
+  restoreCase(0.0);
+  restoreCase(0.02);
+}
+
+
+/* the horizontal drift of the centre of mass over 1 s of the gait with frictionless feet at
+ * step h, and how far the support moved meanwhile (mm) */
+static double frictionlessDrift(double h, int passes, double* moved) {
+  csModel m;
+  CS_EXPECT(loadModel(&m, &csr_leg_strain));
+  m.contact.mu = 0;
+  m.opt.h = h;
+  m.opt.tree_iterations = passes;
+  csData* d = makeData(&m);
+  if (!d) {
+    cs_modelDestroy(&m);
+    return NAN;
+  }
+  double c0[3], c1[3], x0[3], x1[3];
+  *moved = 0;
+  cs_robotCenterOfMass(&m, d, c0);
+  cs_supportDisplacement(d, x0);
+  for (int i = 0; i < 10; i++) {
+    CS_EXPECT(stepN(&m, d, (int)lround(0.1 / h)));
+    cs_supportDisplacement(d, x1);
+    *moved = fmax(*moved, hypot(x1[0] - x0[0], x1[2] - x0[2]));
+  }
+  cs_robotCenterOfMass(&m, d, c1);
+  cs_dataDestroy(d);
+  cs_modelDestroy(&m);
+  return hypot(c1[0] - c0[0], c1[2] - c0[2]);
+}
+
+
+/* Frictionless feet: nothing pushes the robot horizontally (the support does not touch the
+ * road), so its centre of mass stays but for the step's momentum error. Through the driver the
+ * support is ODE's body, solved in world coordinates, and the legs step in their hips' body
+ * coordinates: an inconsistency between the two would be an error per step that does not
+ * shrink with h (measured before the frame turn was put into the impulse, robot_strain_leg.c:
+ * 0.0067 / 0.0077 / 0.0096 mm at 2 / 1 / 0.5 ms). One linearised pass (tree_iterations 1)
+ * drifts at first order in h (the leg's velocity products at the step's start,
+ * docs/notes/strain_leg.md: 0.0275 / 0.0138 mm at 2 / 1 ms); the Newton passes with the legs'
+ * momentum rows (the default, 16 passes to 1e-7 mm) remove most of it, but through the driver
+ * the rest is still first order (measured 1.21e-3 / 6.04e-4 mm at 2 / 1 ms, 23x below one
+ * pass; the harness without ODE holds 1e-6 mm: the driver's part is not isolated, see the
+ * notes). So: with the passes the drift halves with the step, is below a tenth of one pass's
+ * at the same step, and below 1e-4 of the support's motion (1.5e-3 mm: the issue's 0.01 mm in
+ * 9 s at this rate over 9 s is 5.4e-3 mm at 1 ms). */
+static void test_strain_frictionless_centre_of_mass_drift_is_first_order(void) {
+  double moved2, moved1, moved1p;
+  const double d2 = frictionlessDrift(2e-3, 16, &moved2);
+  const double d1 = frictionlessDrift(1e-3, 16, &moved1);
+  const double d1p = frictionlessDrift(1e-3, 1, &moved1p);
+  printf("  frictionless, 1 s of the gait: the support moved up to %.2f / %.2f mm, the centre of "
+         "mass %.3e / %.3e mm horizontally at h = 2 / 1 ms (ratio %.3f); one pass at 1 ms "
+         "%.3e mm (%.1fx)\n", moved2, moved1, d2, d1, d2 / d1, d1p, d1p / d1);
+  /* the support must have moved for this to mean anything */
+  CS_EXPECT(moved1 > 5 && moved2 > 5 && moved1p > 5);
+  /* first order: 2 within 10 % (measured 2.00) */
+  CS_EXPECT(fabs(d2 / d1 - 2) < 0.2);
+  /* the Newton passes: a tenth of one pass's drift (measured 1/23) */
+  CS_EXPECT(d1 < 0.1 * d1p);
+  /* and small: 1e-4 of the support's motion (measured 4e-5) */
+  CS_EXPECT(d1 < 1e-4 * moved1);
+}
+
+
+static void test_strain_rejected_step_is_retried_in_halves(void) {
+  csrLegType rejecting = csr_leg_strain;
+  rejecting.prepare = prepareRejecting;
+  csModel m, m_ref;
+  CS_EXPECT(loadModel(&m, &rejecting) && loadModel(&m_ref, &csr_leg_strain));
+  g_h_full = m.opt.h;
+  g_reject_from = INFINITY;
+  csData* d = makeData(&m);
+  csData* ref = makeData(&m_ref);
+  if (!d || !ref) {
+    cs_dataDestroy(d);
+    cs_dataDestroy(ref);
+    cs_modelDestroy(&m);
+    cs_modelDestroy(&m_ref);
+    return;
+  }
+  CS_EXPECT(stepN(&m, d, 50) && stepN(&m_ref, ref, 50));
+  CS_EXPECT(sameState(&m, d, ref)); /* the wrapper changes nothing by itself */
+  /* every full step is rejected for 20 steps: each runs as two halves */
+  g_reject_from = g_h_full;
+  g_calls_full = g_calls_half = 0;
+  const double t0 = cs_time(d);
+  const long rej0 = cs_rejectCount(d), st0 = cs_stepCount(d);
+  CS_EXPECT(stepN(&m, d, 20));
+  CS_EXPECT(stepN(&m_ref, ref, 20));
+  printf("  20 steps from t = %.3f s, full steps rejected: t = %.6f s, %ld steps, %ld rejected, "
+         "prepares of h %ld and h/2 %ld\n", t0, cs_time(d), cs_stepCount(d) - st0,
+         cs_rejectCount(d) - rej0, g_calls_full, g_calls_half);
+  CS_EXPECT(cs_time(d) == cs_time(ref));
+  CS_EXPECT(cs_stepCount(d) - st0 == 20 && cs_rejectCount(d) - rej0 == 20);
+  CS_EXPECT(g_calls_half == 2 * 20 * CSR_NLEG);
+  double x[3], xr[3];
+  cs_supportDisplacement(d, x);
+  cs_supportDisplacement(ref, xr);
+  const double dev = sqrt((x[0] - xr[0]) * (x[0] - xr[0]) + (x[1] - xr[1]) * (x[1] - xr[1]) +
+                          (x[2] - xr[2]) * (x[2] - xr[2]));
+  printf("  support after the halved steps vs unrejected: %.3g mm apart (x %.4f / %.4f mm)\n",
+         dev, x[0], xr[0]);
+  /* 0.05 mm: the support moves ~0.1 mm over these 20 ms; halving the step changes its track
+   * by the step's first-order error, a fraction of that */
+  CS_EXPECT(dev < 0.05);
+  /* every size rejected: the step fails after CS_MAX_SPLIT halvings and changes nothing */
+  g_reject_from = 0;
+  const int n = cs_stateSize(&m, d);
+  double* before = malloc(2 * (size_t)n * sizeof(double));
+  CS_EXPECT(before != NULL);
+  if (before) {
+    cs_stateGet(&m, d, before);
+    const long rej1 = cs_rejectCount(d), st1 = cs_stepCount(d);
+    csError err;
+    cs_errorClear(&err);
+    CS_EXPECT(cs_step(&m, d, &err) == CS_ERR_REJECTED);
+    cs_stateGet(&m, d, before + n);
+    const int unchanged = memcmp(before, before + n, (size_t)n * sizeof(double)) == 0;
+    CS_EXPECT(unchanged);
+    CS_EXPECT(cs_stepCount(d) == st1 && cs_rejectCount(d) > rej1);
+    printf("  rejected at every size: %s, %ld tries rejected, state unchanged: %s\n", err.msg,
+           cs_rejectCount(d) - rej1, unchanged ? "yes" : "NO");
+    free(before);
+  }
+  /* and it goes on when the legs accept again */
+  g_reject_from = INFINITY;
+  CS_EXPECT(stepN(&m, d, 5));
+  /* Newton passes that do not converge (2 allowed, a tolerance no move meets): every try is
+   * rejected after exactly its 2 passes, the step fails as above and changes nothing */
+  {
+    double* y = malloc(2 * (size_t)n * sizeof(double));
+    CS_EXPECT(y != NULL);
+    if (y) {
+      m.opt.tree_iterations = 2;
+      m.opt.tree_tol = 1e-300;
+      cs_stateGet(&m, d, y);
+      const long rej1 = cs_rejectCount(d), pass1 = cs_treePassCount(d);
+      csError err;
+      cs_errorClear(&err);
+      CS_EXPECT(cs_step(&m, d, &err) == CS_ERR_REJECTED);
+      cs_stateGet(&m, d, y + n);
+      const int unchanged = memcmp(y, y + n, (size_t)n * sizeof(double)) == 0;
+      const long tries = cs_rejectCount(d) - rej1, passes = cs_treePassCount(d) - pass1;
+      printf("  Newton not converged: %s; %ld tries, %ld passes, state unchanged: %s\n",
+             err.msg, tries, passes, unchanged ? "yes" : "NO");
+      CS_EXPECT(unchanged && tries > 1 && passes == 2 * tries);
+      CS_EXPECT(strstr(err.msg, "did not converge in 2 Newton passes") != NULL);
+      m.opt.tree_iterations = 16;
+      m.opt.tree_tol = 1e-7;
+      CS_EXPECT(stepN(&m, d, 2));
+      free(y);
+    }
+  }
+  cs_dataDestroy(d);
+  cs_dataDestroy(ref);
+  cs_modelDestroy(&m);
+  cs_modelDestroy(&m_ref);
+}
+
+
+int main(int argc, char** argv) {
+  const char* src = getenv("CS_SOURCE_DIR");
+  snprintf(g_src, sizeof g_src, "%s", src ? src : ".");
+  cs_testInit(argc, argv);
+  dInitODE2(0);
+  CS_RUN(test_strain_runs_through_the_driver_and_legs_carry_the_support);
+  CS_RUN(test_strain_repeats_and_restores_bit_identically);
+  CS_RUN(test_strain_rejected_step_is_retried_in_halves);
+  CS_RUN(test_strain_frictionless_centre_of_mass_drift_is_first_order);
+  dCloseODE();
+  return cs_testSummary();
+}
