@@ -46,14 +46,6 @@
 #define CSR_STRAIN_CFD_X 1e-7
 #define CSR_STRAIN_CFD_PHI 1e-8
 #define CSR_STRAIN_CFD_V 1e-6
-/* Newton iterates of a step whose saturated friction slots take the secant to their anchors
- * (anchorSecant); later ones the law's tangent. The secant puts the iterate on the right side
- * of stick and slip, the tangent then converges quadratically (the secant alone converges
- * linearly where a foot slides on). Measured on the flat road at 5 ms, 0-2 s, passes <= 16 to
- * 1e-7 (docs/notes/strain_leg.md): steps halved / passes per step 56 / 4.86 with the tangent
- * throughout, 42 / 6.27 with the secant throughout, 45 / 5.04, 40 / 5.19, 35 / 5.39 with it in
- * the first 2, 3, 4 iterates. */
-#define CSR_STRAIN_SECANT_PASSES 3
 
 
 int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err) {
@@ -203,7 +195,10 @@ static void worldRows(const csrStrainModel* m, const csrStrainData* d, int p, in
  * slip direction û its stiffness becomes the secant to the anchor, N m(u) / (u delta_t) =
  * mu N / |s| (the transverse one already is): linearised there, the force vanishes at the
  * anchor, so the next pass lands between slip and stick. Only the iteration matrix changes:
- * converged, the step is the law's. ΔA = -h Σ k_i [I; r_i^] û ûᵀ [I, -r_i^] on the foot's
+ * converged, the step is the law's. Where a foot slides on, the secant converges linearly
+ * where the tangent would quadratically; limiting it to a step's first 3 iterates was tried
+ * and over the 9 s flat road at 5 ms halved more steps and took more passes in all (numbers in
+ * docs/notes/strain_leg.md). ΔA = -h Σ k_i [I; r_i^] û ûᵀ [I, -r_i^] on the foot's
  * (v, ω) (r_i from the sole centre to the slot's point). */
 static void anchorSecant(const csrStrainModel* m, double h, const cscShapeState* st,
                          const cscSlotInfo* slot, int nslot, double A[36]) {
@@ -340,7 +335,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     for (int i = 0; i < 36; i++) {
       A[i] = h * Ky[i] + Cy[i];
     }
-    if (du && foot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST && d->nit <= CSR_STRAIN_SECANT_PASSES) {
+    if (du && foot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST) {
       anchorSecant(m, h, &st, slot, nslot, A);
     }
     /* the start (du NULL): h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)); an iterate (the

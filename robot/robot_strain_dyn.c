@@ -486,7 +486,6 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     return -1;
   }
   d->h = 0;
-  d->nit = 0;
   int rc = assembleStart(m, d, h);
   if (rc == 0) {
     rc = condense(m, d, h, NULL, Z, rho);
@@ -508,7 +507,6 @@ int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], d
     csr_strainKinematics_(m, d, 1);
   }
   csr_strainPointTwists_(m, d);
-  d->nit++;
   return condense(m, d, d->h, d->du, Z, rho);
 }
 

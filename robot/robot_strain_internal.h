@@ -106,7 +106,6 @@ struct csrStrainData_ {
   double fcw[3];  /* the contact's force on the leg at the linearisation point, world (N) */
   int ntouch;     /* shapes the last contact assembly found touching */
   int lu_plain;   /* 1: d->Wll's factor, X and y are W_M's alone (no contact in them) */
-  int nit;        /* iterates linearised in the prepared step (csr_strainIterate) */
   double* z;      /* (nhist) contact anchors (state) */
   cscShapeState* sst; /* (nshape) scratch */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
