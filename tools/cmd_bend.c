@@ -55,7 +55,7 @@ static const char kUsage[] =
     "                     [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
     "                     [--until-angle DEG] [--mesh-size MM] [--fibre-size MM]\n"
     "                     [--fibre-split 0|1] [--fibre-law linear|tension-only]\n"
-    "                     [--mesh-symmetric 0|1]\n"
+    "                     [--mesh-symmetric 0|1] [--segments 1|3]\n"
     "                     [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ]\n"
     "                     [--calibration FILE|analytic] [--cal-rule prism|rbf|rbf-pair]\n"
     "                     [--cal-drop stretch|stiffness|stretch,stiffness]\n"
@@ -83,6 +83,8 @@ static const char kUsage[] =
     "  the path along the critical mode (default 0: the mode is reported, the path kept).\n"
     "  --mesh-symmetric 1: mesh an eighth of the leg, mirrored and turned, so the mesh has the\n"
     "  square section's eight symmetries (default 0: gmsh's mesh of the whole body).\n"
+    "  --segments 1: the paper's single segment, II1 of the actuator alone (S2, S3, LS12, LS23\n"
+    "  and n2, n3 taken as 0; its Table 1 and Fig. 3a; default 3: the whole actuator).\n"
     "  --threads N: the FE's threads (default: this process's cores, its share under mpirun,\n"
     "  less the cores other processes hold; never more than the affinity mask's cores).\n";
 
@@ -404,6 +406,7 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->fibre_size = NAN;
   run->fibre_split = -1;
   run->mesh_symmetric = -1;
+  run->segments = -1;
   run->cal_rule = -1;
   run->branch_switch = -1;
   run->fibre_tension_only = -1;
@@ -485,6 +488,12 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
         return 1;
       }
       run->mesh_symmetric = value[0] == '1';
+    } else if (!strcmp(name, "--segments")) {
+      if (strcmp(value, "1") && strcmp(value, "3")) {
+        fprintf(stderr, "crawlsim bend: --segments '%s' must be 1 or 3\n", value);
+        return 1;
+      }
+      run->segments = value[0] - '0';
     } else if (!strcmp(name, "--branch-switch")) {
       if (strcmp(value, "0") && strcmp(value, "1")) {
         fprintf(stderr, "crawlsim bend: --branch-switch '%s' must be 0 or 1\n", value);
@@ -665,6 +674,11 @@ int csx_cmdBend(int argc, char** argv) {
   if (run.mesh_symmetric >= 0 && run.model != BEND_FE) {
     fprintf(stderr, "crawlsim bend: --mesh-symmetric is for --model fe (the %s model has no "
             "mesh)\n", kModelNames[run.model]);
+    return 1;
+  }
+  if (run.segments >= 0 && run.model != BEND_FE) {
+    fprintf(stderr, "crawlsim bend: --segments is for --model fe (the %s model takes the three "
+            "segments)\n", kModelNames[run.model]);
     return 1;
   }
   if (run.threads > 0 && run.model != BEND_FE) {
