@@ -18,7 +18,7 @@ Usage:
   /usr/bin/python3 tools/fem_mesh_study.py [--crawlsim build/tools/crawlsim]
       [--sizes 4,3,2,1.5,1] [--segments 1|3] [--actuator fig1] [--chambers 1,2]
       [--p-max 0.5] [--p-step 0.05] [--threads 1] [--mem-limit-gb 12] [--deadline HH:MM]
-      [--out docs/studies/fem_mesh] [--work out/fem_mesh] [--resume]
+      [--out docs/studies/fem_mesh] [--work out/fem_mesh] [--resume] [--refresh]
 The chart and table: tools/plot_fem_mesh_study.py --study DIR.
 """
 import argparse
@@ -59,6 +59,33 @@ def rss_mb(pid):
     except OSError:
         pass
     return 0.0
+
+
+def msh_counts(path):
+    """Tet10 elements and nodes of gmsh's mesh file (format 2.2, as fem_mesh writes it): the
+    mesh of a case stopped before the CLI's summary. The FE may drop nothing from it (it fixes
+    folded elements in place), so these are the counts it ran on."""
+    tets = nodes = 0
+    try:
+        with open(path) as f:
+            sect = None
+            for line in f:
+                if line.startswith("$"):
+                    sect = line.strip()
+                    first = True
+                    continue
+                if sect == "$Nodes" and first:
+                    nodes, first = int(line), False
+                elif sect == "$Elements":
+                    if first:
+                        first = False
+                        continue
+                    parts = line.split(None, 2)
+                    if len(parts) > 1 and parts[1] == "11":
+                        tets += 1
+    except OSError:
+        return None
+    return tets, nodes
 
 
 def parse_log(path, rec):
@@ -146,6 +173,9 @@ def run_case(a, l_soft):
         status = "failed"
     rec["status"] = status
     parse_log(log, rec)
+    counts = msh_counts(os.path.join(a.work, name + ".msh"))
+    if counts:
+        rec["tet10_msh"], rec["nodes_msh"] = counts
     with open(os.path.join(a.out, name + ".json"), "w") as f:
         json.dump(rec, f, indent=1, sort_keys=True)
     return rec
@@ -186,7 +216,21 @@ def main():
     ap.add_argument("--out", default="docs/studies/fem_mesh")
     ap.add_argument("--work", default="out/fem_mesh")
     ap.add_argument("--resume", action="store_true")
+    ap.add_argument("--refresh", action="store_true",
+                    help="re-read the logs and meshes of the cases in --out (no runs)")
     a = ap.parse_args()
+    if a.refresh:
+        for path in glob.glob(os.path.join(a.out, "l*.json")):
+            with open(path) as f:
+                rec = json.load(f)
+            parse_log(os.path.join(a.out, rec["case"] + ".log"), rec)
+            counts = msh_counts(os.path.join(a.work, rec["case"] + ".msh"))
+            if counts:
+                rec["tet10_msh"], rec["nodes_msh"] = counts
+            with open(path, "w") as f:
+                json.dump(rec, f, indent=1, sort_keys=True)
+        write_csv(a.out)
+        return 0
     a.deadline_ts = 0
     if a.deadline:
         h, m = (int(x) for x in a.deadline.split(":"))
