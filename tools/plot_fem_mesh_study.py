@@ -15,7 +15,8 @@ Usage:
 The second form reads the cases of tools/fem_mesh_study.py (DIR/l*.json and DIR/*/l*.json; per
 l_soft the finished case, else the one that got furthest): the convergence chart (angle against
 the mesh's element size h = (V / Tet10)^(1/3), with the Richardson estimate of the converged
-angle and the observed order from the three finest meshes that reached a pressure) and the cost (CPU time, factor memory) against Tet10; the Markdown tables on stdout.
+angle and the observed order from the three finest meshes that reached a pressure) and the
+cost (CPU time, factor memory) against Tet10; the Markdown tables on stdout.
 Run e.g. `bench_fem_bend baseline L 0.2 0.05 nan 1,2 > /tmp/mesh_L.log` for each L first. A log
 without the closing summary (a run stopped early, or a crawlsim log) needs LOG.meta holding the
 `mesh: ...` line of a bench_fem_bend run of the same mesh; its setup time counts as 0.
@@ -94,13 +95,13 @@ def richardson(h, f):
     p = 1.0
     for _ in range(200):
         q = math.log((r21 ** p - s) / (r32 ** p - s))
-        pn = abs(math.log(abs(e32 / e21)) + q) / math.log(r21)
+        pn = (math.log(abs(e32 / e21)) + q) / math.log(r21)  # Celik's |.| left off: a
+        if pn <= 0:                                          # negative order = diverging
+            return None, None, "not converging (differences %+.3g, %+.3g deg)" % (e21, e32)
         if abs(pn - p) < 1e-10:
             break
         p = pn
     p = pn
-    if abs(e32) < abs(e21) * (r32 / r21) ** 0 and p <= 0:
-        return None, None, "not converging"
     f_ext = (r21 ** p * f[0] - f[1]) / (r21 ** p - 1.0)
     return p, f_ext, ""
 
