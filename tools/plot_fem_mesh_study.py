@@ -191,26 +191,30 @@ def study(a):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.3))
+    # each pressure relative to its finest mesh, so that all pressures share one axis
+    hmax = max(r["h"] for r in recs)
     for k, p in enumerate(ps):
-        pts = [(r["h"], r["ang"][p], r) for r in recs if p in r["ang"]]
+        pts = sorted(((r["h"], r["ang"][p], r) for r in recs if p in r["ang"]),
+                     key=lambda q: q[0])
         if not pts:
             continue
-        line, = ax.plot([q[0] for q in pts], [q[1] for q in pts], "o-", label="%.1f MPa" % p)
+        fin = pts[0][1]
+        line, = ax.plot([q[0] for q in pts], [100 * (q[1] / fin - 1) for q in pts], "o-",
+                        label="%.1f MPa (finest %.2f deg)" % (p, fin))
         for hh, v, r in pts:
             if r["status"] != "done":
-                ax.plot([hh], [v], "x", color="k", ms=8)
+                ax.plot([hh], [100 * (v / fin - 1)], "x", color="k", ms=8)
         if p in rich:
-            ax.plot([0], [rich[p]], "*", color=line.get_color(), ms=10)
-            ax.plot([0, min(q[0] for q in pts)], [rich[p], pts[-1][1] if pts[-1][0] ==
-                                                  min(q[0] for q in pts) else rich[p]],
-                    ":", color=line.get_color())
+            ax.plot([0, pts[0][0]], [100 * (rich[p] / fin - 1), 0], ":", color=line.get_color())
+            ax.plot([0], [100 * (rich[p] / fin - 1)], "*", color=line.get_color(), ms=11)
     for r in recs:
-        ax.annotate("%g" % r["l_soft"], (r["h"], ax.get_ylim()[0]), textcoords="offset points",
-                    xytext=(0, 3), fontsize=7, ha="center")
-    ax.set_xlim(left=-0.05)
-    ax.set_xlabel("element size h = (V / Tet10)^(1/3) (mm); labels: l_soft (mm); * Richardson")
-    ax.set_ylabel("bending angle (deg)")
-    ax.set_title(a.title)
+        ax.annotate("%g" % r["l_soft"], (r["h"], 0), textcoords="offset points",
+                    xytext=(0, -14), fontsize=7, ha="center")
+    ax.set_xlim(-0.05, 1.08 * hmax)
+    ax.set_ylabel("angle against the finest mesh at that pressure (%)")
+    ax.set_xlabel("element size h = (V / Tet10)^(1/3) (mm); labels: l_soft (mm); * Richardson;"
+                  " x stopped", fontsize=8)
+    ax.set_title(a.title, fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     done = [r for r in recs if r["status"] == "done"]
@@ -224,7 +228,7 @@ def study(a):
         bx.annotate("%g" % r["l_soft"], (r["tet10"], r["maxrss_mb"]), textcoords="offset points",
                     xytext=(4, -10), fontsize=7)
     bx.set_xlabel("Tet10 elements")
-    bx.set_title("cost of the sweep (1 thread; CPU time: the load-free measure)")
+    bx.set_title("cost of the sweep (1 thread; CPU time: the load-free measure)", fontsize=10)
     bx.grid(True, which="both", alpha=0.3)
     bx.legend(fontsize=8)
     fig.tight_layout()
