@@ -213,7 +213,9 @@ static double physicalMemory(void) {
 void csf_actuatorEstimate(const csrActuator* act, double l_soft, csfMeshEstimate* e) {
   double V = csr_actuatorOuterArea(act) * csr_actuatorLength(act);
   for (int s = 0; s < CSR_NSEG; s++) {
-    V -= CSR_NCHAMBER * CS_PI * act->r1 * act->r1 * (act->S[s] - 2 * act->c);
+    if (act->S[s] > 0) { /* a single segment (csr_actuatorSingleSegment) has S2 = S3 = 0 */
+      V -= CSR_NCHAMBER * CS_PI * act->r1 * act->r1 * (act->S[s] - 2 * act->c);
+    }
   }
   e->volume = V;
   e->tet10 = V / (0.2 * l_soft * l_soft * l_soft);
@@ -227,7 +229,7 @@ void csf_actuatorEstimate(const csrActuator* act, double l_soft, csfMeshEstimate
 csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
                               csfActuatorFE* fe, csError* err) {
   memset(fe, 0, sizeof *fe);
-  csStatus st = csr_actuatorValidate(act, err);
+  csStatus st = csr_actuatorValidateSingle(act, err);
   if (st != CS_OK) {
     return st;
   }
@@ -309,7 +311,7 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
       const double r = sp->ratio[s][j];
-      if (r == 0.0) {
+      if (r == 0.0 || !(act->S[s] > 0)) { /* vented, or a segment a single one does not have */
         continue;
       }
       if (csf_modelAddPressure(m, CSF_TAG_CHAMBER(s, j + 1), r) <= 0) {

@@ -313,6 +313,11 @@ int csf_segmentMeasure(const csrActuator* act, const csfGauges* g, const csfMode
     st->twist = w[2];
     /* centreline: constant-curvature arc of angle theta through both centroids */
     const double S = act->S[s];
+    if (!(S > 0)) { /* II2, II3 of a single segment (csr_actuatorSingleSegment): both faces are
+                     * the tip face; no length, no stretch */
+      st->stretch = 1.0;
+      continue;
+    }
     double dc[3], cl[3];
     csu_sub3(dc, st->cb, st->ca);
     csu_mulMatTVec3(cl, st->Ra, dc);

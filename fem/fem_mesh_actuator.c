@@ -39,7 +39,7 @@ static void geoHead(FILE* f, const csrActuator* act, double l_soft, const char* 
 /* validate, open `path` and write the head; the caller closes with geoClose */
 static csStatus geoOpen(const csrActuator* act, double l_soft, const char* path, const char* what,
                         FILE** f, csError* err) {
-  csStatus st = csr_actuatorValidate(act, err);
+  csStatus st = csr_actuatorValidateSingle(act, err);
   if (st != CS_OK) {
     return st;
   }
@@ -53,6 +53,13 @@ static csStatus geoOpen(const csrActuator* act, double l_soft, const char* path,
   }
   geoHead(*f, act, l_soft, what);
   return CS_OK;
+}
+
+
+/* blocks along z: 5 (segment, joint, segment, joint, segment), or 1 for a single segment
+ * (csr_actuatorSingleSegment) */
+static int geoBlocks(const csrActuator* act) {
+  return csr_actuatorIsSingle(act) ? 1 : 5;
 }
 
 
@@ -74,9 +81,10 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
   const double a = act->a, b = act->b, c = act->c, r1 = act->r1, r2 = act->r2;
   const double L = csr_actuatorLength(act);
   const double eps = 1e-3 * fmin(r1, c); /* bounding-box slack (mm), far below any feature */
-  /* five blocks along z: segment, joint, segment, joint, segment */
+  /* five blocks along z: segment, joint, segment, joint, segment (one for a single segment) */
+  const int nblk = geoBlocks(act), nseg = (nblk + 1) / 2;
   double z = 0.0;
-  for (int k = 0; k < 5; k++) {
+  for (int k = 0; k < nblk; k++) {
     double h = (k % 2 == 0) ? act->S[k / 2] : act->LS[k / 2];
     fprintf(f, "Rectangle(%d) = {%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", k + 1, -a, -a, z,
             2 * a, 2 * a, r2);
@@ -94,7 +102,9 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
     }
     z += h;
   }
-  fprintf(f, "BooleanFragments{ Volume{:}; Delete; }{}\n");
+  if (nblk > 1) { /* glue the blocks (one block: nothing to glue, and gmsh fails on it) */
+    fprintf(f, "BooleanFragments{ Volume{:}; Delete; }{}\n");
+  }
   fprintf(f, "Physical Volume(1) = {Volume{:}};\n");
   fprintf(f, "sb() = Surface In BoundingBox{%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n",
           -a - eps, -a - eps, -eps, a + eps, a + eps, eps);
@@ -102,7 +112,7 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
   fprintf(f, "st() = Surface In BoundingBox{%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n",
           -a - eps, -a - eps, L - eps, a + eps, a + eps, L + eps);
   fprintf(f, "Physical Surface(%d) = {st()};\n", CSF_TAG_TIP);
-  for (int s = 0; s < CSR_NSEG; s++) {
+  for (int s = 0; s < nseg; s++) {
     double z0 = csr_actuatorSegmentStart(act, s);
     for (int j = 0; j < 4; j++) {
       double cx = kSx[j] * b, cy = kSy[j] * b;
@@ -117,7 +127,7 @@ csStatus csf_meshWriteGeo(const csrActuator* act, double l_soft, const char* pat
    * elements can follow the wall (coarser meshes fold: measured 324 folded Tet10 at l_soft 4
    * with 4 segments, 29 with 6) */
   fprintf(f, "MeshSize{ PointsOf{ Surface{");
-  for (int s = 0; s < CSR_NSEG; s++) {
+  for (int s = 0; s < nseg; s++) {
     for (int j = 0; j < 4; j++) {
       fprintf(f, "%ssc%d%d()", (s || j) ? ", " : "", s, j);
     }
@@ -139,8 +149,9 @@ csStatus csf_meshWriteGeoEighth(const csrActuator* act, double l_soft, const cha
   /* each block cut to the wedge 0 <= y <= x by a triangular prism (tags from news/newv/newp:
    * the prism's own entities take numbers too), then the half of chamber Omega1 (centre
    * (+b, +b), on the wedge's diagonal face) that lies in it */
+  const int nblk = geoBlocks(act), nseg = (nblk + 1) / 2;
   double z = 0.0;
-  for (int k = 0; k < 5; k++) {
+  for (int k = 0; k < nblk; k++) {
     double h = (k % 2 == 0) ? act->S[k / 2] : act->LS[k / 2];
     fprintf(f, "r%d = news; Rectangle(r%d) = {%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", k, k,
             -a, -a, z, 2 * a, 2 * a, r2);
@@ -164,7 +175,9 @@ csStatus csf_meshWriteGeoEighth(const csrActuator* act, double l_soft, const cha
     }
     z += h;
   }
-  fprintf(f, "BooleanFragments{ Volume{:}; Delete; }{}\n");
+  if (nblk > 1) { /* glue the blocks (one block: nothing to glue, and gmsh fails on it) */
+    fprintf(f, "BooleanFragments{ Volume{:}; Delete; }{}\n");
+  }
   fprintf(f, "Physical Volume(1) = {Volume{:}};\n");
   fprintf(f, "sb() = Surface In BoundingBox{%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", -eps,
           -eps, -eps, a + eps, a + eps, eps);
@@ -172,7 +185,7 @@ csStatus csf_meshWriteGeoEighth(const csrActuator* act, double l_soft, const cha
   fprintf(f, "st() = Surface In BoundingBox{%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", -eps,
           -eps, L - eps, a + eps, a + eps, L + eps);
   fprintf(f, "Physical Surface(%d) = {st()};\n", CSF_TAG_TIP);
-  for (int s = 0; s < CSR_NSEG; s++) {
+  for (int s = 0; s < nseg; s++) {
     double z0 = csr_actuatorSegmentStart(act, s);
     fprintf(f, "sc%d() = Surface In BoundingBox{%.17g, %.17g, %.17g, %.17g, %.17g, %.17g};\n", s,
             b - r1 - eps, b - r1 - eps, z0 + c - eps, b + r1 + eps, b + r1 + eps,
@@ -180,7 +193,8 @@ csStatus csf_meshWriteGeoEighth(const csrActuator* act, double l_soft, const cha
     fprintf(f, "Physical Surface(%d) = {sc%d()};\n", CSF_TAG_CHAMBER(s, 1), s);
   }
   /* half a chamber circle: the same element size as on the whole one */
-  fprintf(f, "MeshSize{ PointsOf{ Surface{sc0(), sc1(), sc2()}; } } = %.17g;\n",
+  fprintf(f, "MeshSize{ PointsOf{ Surface{%s}; } } = %.17g;\n",
+          nseg == 1 ? "sc0()" : "sc0(), sc1(), sc2()",
           fmin(l_soft, 2.0 * CS_PI * r1 / CSF_CHAMBER_SEGMENTS));
   return geoClose(f, path, err);
 }

@@ -168,6 +168,35 @@ csStatus csr_actuatorValidate(const csrActuator* act, csError* err) {
 }
 
 
+void csr_actuatorSingleSegment(const csrActuator* act, csrActuator* one) {
+  *one = *act;
+  one->S[1] = one->S[2] = 0.0;
+  one->LS[0] = one->LS[1] = 0.0;
+  one->n[1] = one->n[2] = 0.0;
+}
+
+
+int csr_actuatorIsSingle(const csrActuator* act) {
+  return act->S[1] == 0.0 && act->S[2] == 0.0 && act->LS[0] == 0.0 && act->LS[1] == 0.0;
+}
+
+
+csStatus csr_actuatorValidateSingle(const csrActuator* act, csError* err) {
+  if (!csr_actuatorIsSingle(act)) {
+    return csr_actuatorValidate(act, err);
+  }
+  if (act->n[1] != 0.0 || act->n[2] != 0.0) {
+    return cs_errorSet(err, CS_ERR_RANGE, "actuator: a single segment has no fibres on II2, II3 "
+                       "(got n2 = %g, n3 = %g)", act->n[1], act->n[2]);
+  }
+  /* segment II1 checked as one of three equal segments */
+  csrActuator three = *act;
+  three.S[1] = three.S[2] = act->S[0];
+  three.n[1] = three.n[2] = act->n[0];
+  return csr_actuatorValidate(&three, err);
+}
+
+
 double csr_actuatorLength(const csrActuator* act) {
   return act->S[0] + act->LS[0] + act->S[1] + act->LS[1] + act->S[2];
 }

@@ -52,6 +52,20 @@ csStatus csr_actuatorSetString(csrActuator* act, const char* assignment, csError
  * shorter than half a segment, fillet smaller than the half side, C10 > 0, ...). */
 csStatus csr_actuatorValidate(const csrActuator* act, csError* err);
 
+/* The paper's single-segment model (its Sec. 3.3 and Table 1: part II1 of the Fig. 1a actuator
+ * analysed alone): `one` = `act` with S2 = S3 = LS12 = LS23 = 0 and n2 = n3 = 0, so that every
+ * length, start and volume below describes segment II1 alone. Only the FE meshes it
+ * (csr_actuatorValidateSingle); the other model levels take three segments
+ * (csr_actuatorValidate refuses S2 = 0). */
+void csr_actuatorSingleSegment(const csrActuator* act, csrActuator* one);
+
+/* 1 when `act` is a single-segment actuator (S2 = S3 = LS12 = LS23 = 0), else 0. */
+int csr_actuatorIsSingle(const csrActuator* act);
+
+/* Validate either form: three segments (csr_actuatorValidate) or a single segment (II1 as
+ * csr_actuatorValidate checks it, n2 = n3 = 0). For the FE, the only level that meshes one. */
+csStatus csr_actuatorValidateSingle(const csrActuator* act, csError* err);
+
 /* Total length S1 + LS12 + S2 + LS23 + S3 (mm). */
 double csr_actuatorLength(const csrActuator* act);
 

@@ -90,6 +90,9 @@ static const csxOpt kBendOpts[] = {
      "symmetries)"},
     {"--branch-switch", "0|1", "0",
      "fe: 1 at a bifurcation tries to leave the path along the critical mode"},
+    {"--segments", "1|3", "3",
+     "1: the paper's single segment, II1 of the actuator alone (S2, S3, LS12, LS23 and n2, n3 "
+     "taken as 0; its Table 1 and Fig. 3a); 3: the whole actuator (fe)"},
     {"--threads", "N", "this process's cores, less those other processes hold",
      "fe: the FE's threads"},
     {"--out", "FILE.h5", "bend.h5", "the output file (docs/reference/output.md)"},
@@ -424,6 +427,7 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->fibre_size = NAN;
   run->fibre_split = -1;
   run->mesh_symmetric = -1;
+  run->segments = -1;
   run->cal_rule = -1;
   run->branch_switch = -1;
   run->fibre_tension_only = -1;
@@ -490,6 +494,12 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
         return 1;
       }
       run->mesh_symmetric = value[0] == '1';
+    } else if (!strcmp(name, "--segments")) {
+      if (strcmp(value, "1") && strcmp(value, "3")) {
+        fprintf(stderr, "crawlsim bend: --segments '%s' must be 1 or 3\n", value);
+        return 1;
+      }
+      run->segments = value[0] - '0';
     } else if (!strcmp(name, "--branch-switch")) {
       if (strcmp(value, "0") && strcmp(value, "1")) {
         fprintf(stderr, "crawlsim bend: --branch-switch '%s' must be 0 or 1\n", value);
@@ -675,6 +685,11 @@ int csx_cmdBend(int argc, char** argv) {
   if (run.mesh_symmetric >= 0 && run.model != BEND_FE) {
     fprintf(stderr, "crawlsim bend: --mesh-symmetric is for --model fe (the %s model has no "
             "mesh)\n", kModelNames[run.model]);
+    return 1;
+  }
+  if (run.segments >= 0 && run.model != BEND_FE) {
+    fprintf(stderr, "crawlsim bend: --segments is for --model fe (the %s model takes the three "
+            "segments)\n", kModelNames[run.model]);
     return 1;
   }
   if (run.threads > 0 && run.model != BEND_FE) {

@@ -40,6 +40,8 @@ typedef struct {
                                  -1 the model's default */
   int fibre_tension_only;     /* fe: 1 tension-only fibre law, 0 linear (tension and
                                  compression), -1 the model's default (tension-only) */
+  int segments;               /* fe: 1 the paper's single segment (II1 alone, its Table 1 and
+                               * Fig. 3a), 3 (default, -1 unset) the whole actuator */
   int mesh_symmetric;         /* fe: 1 the mesh with the section's symmetry, 0 the whole-body
                                  mesh, -1 the model's default (0) */
   int branch_switch;          /* fe: 1 try to leave the path at a bifurcation along the critical

@@ -195,9 +195,15 @@ static csStatus feSweep(BendRun* run, const csfThreadPlan* plan, csrBendCurve* b
   o.threads = plan->threads;
   o.spec.mpi_ranks = csx_feRanks(&o.spec.mpi_ranks_local); /* crawlsim-mpi under mpirun */
   /* chamber j of every segment at ratio[j] x p (--chambers: 1 or 0; --pressures: R_j) */
+  if (run->segments == 1) {
+    /* II1 alone: the actuator's record (the output's parameters) says S2 = S3 = 0 */
+    csrActuator one;
+    csr_actuatorSingleSegment(&run->act, &one);
+    run->act = one;
+  }
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
-      o.spec.ratio[s][j] = run->ratio[j];
+      o.spec.ratio[s][j] = run->act.S[s] > 0 ? run->ratio[j] : 0.0;
     }
   }
   for (int i = 0; i < 3; i++) {
@@ -373,8 +379,9 @@ int csx_bendFe(BendRun* run) {
     csr_bendCurveFree(&fbc);
     return csx_bendExitCode(fst);
   }
-  printf("crawlsim bend: model fe, actuator %s, chambers %s in II1-II3\n", run->act.name,
-         run->chambers);
+  printf("crawlsim bend: model fe, actuator %s, chambers %s in %s\n", run->act.name,
+         run->chambers, csr_actuatorIsSingle(&run->act) ? "II1 alone (single segment)"
+                                                        : "II1-II3");
   printf("%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
          "total(deg)");
   for (size_t i = 0; i < fbc.m; i++) {

@@ -1,7 +1,8 @@
 /* test_fem_actuator.c: the actuator set-up refuses geometries the mesh cannot resolve, naming
  * the wall and the parameters, before gmsh runs; the wall thicknesses against closed forms; the
  * mesh-cost estimate against gmsh's own count, and a mesh far too fine refused with it; the
- * helices' turn (the FE's symmetry check) turns the fibres and nothing else. */
+ * helices' turn (the FE's symmetry check) turns the fibres and nothing else; the paper's single
+ * segment (II1 alone) meshes, loads and measures II1 and nothing beyond it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +10,7 @@
 
 #include "cs_test.h"
 #include "fem_actuator.h"
+#include "fem_measure.h"
 #include "fem_mesh.h"
 #include "fem_model.h"
 
@@ -222,6 +224,99 @@ static void test_turned_fibres_are_the_fibres_turned(void) {
 }
 
 
+/* The paper's single segment (its Sec. 3.3, Table 1: II1 of the Fig. 1a actuator alone, 40 mm,
+ * 24 turns): only the FE takes it (the other levels' validation refuses S2 = 0); its mesh is
+ * II1's solid (volume = the estimate's closed form, the outer section x S1 less four chambers of
+ * S1 - 2c, to gmsh's geometric tolerance), ends at z = S1, has II1's four chambers and no
+ * other; the chambers asked for in II2, II3 are not loaded; the fibres lie on II1; at u = 0 the
+ * gauges give zero angles (II2 and II3: both faces are the tip face). */
+static void test_single_segment_is_II1_alone(void) {
+  csrActuator act, one;
+  csError err;
+  CS_EXPECT(csr_actuatorPreset(&act, "fig1", &err) == CS_OK);
+  csr_actuatorSingleSegment(&act, &one);
+  CS_EXPECT(csr_actuatorIsSingle(&one) && !csr_actuatorIsSingle(&act));
+  CS_EXPECT_NEAR(csr_actuatorLength(&one), 40.0, 1e-12, 0);
+  CS_EXPECT(csr_actuatorValidate(&one, &err) == CS_ERR_RANGE);
+  CS_EXPECT(strstr(err.msg, "S2 = 0 must be > 0") != NULL);
+  CS_EXPECT(csr_actuatorValidateSingle(&one, &err) == CS_OK);
+  csrActuator bad = one;
+  bad.n[2] = 3;
+  CS_EXPECT(csr_actuatorValidateSingle(&bad, &err) == CS_ERR_RANGE);
+  CS_EXPECT(strstr(err.msg, "single segment has no fibres on II2, II3") != NULL);
+  csfActuatorSpec spec = csf_actuatorSpecDefault(); /* Omega1 & Omega2 asked in all three */
+  spec.mesh_size = 5.0;
+  spec.fibre_size = 0.8;
+  spec.fibre_split = 0; /* one element per fibre segment: its midpoint by fibrePoints */
+  spec.work_stem = "actuator_single";
+  csfActuatorFE fe;
+  CS_EXPECT(csf_actuatorFECreate(&one, &spec, &fe, &err) == CS_OK);
+  if (!fe.model) {
+    fprintf(stderr, "%s\n", err.msg);
+    return;
+  }
+  const csfMesh* me = fe.mesh;
+  double vol = 0, zmax = 0;
+  for (int t = 0; t < me->ntet; t++) {
+    vol += csf_meshTetVolume(me, t);
+  }
+  for (int i = 0; i < me->nnode; i++) {
+    zmax = fmax(zmax, me->x[3 * i + 2]);
+  }
+  csfMeshEstimate e;
+  csf_actuatorEstimate(&one, 5.0, &e);
+  const double a = one.a, r2 = one.r2, r1 = one.r1;
+  const double area = (2 * a - 2 * r2) * (2 * a - 2 * r2) + 4 * (2 * a - 2 * r2) * r2 +
+                      3.14159265358979323846 * r2 * r2;
+  CS_EXPECT_NEAR(e.volume, area * 40.0 - 4 * 3.14159265358979323846 * r1 * r1 * 30.0, 1e-9, 0);
+  CS_EXPECT_NEAR(vol, e.volume, 0, 5e-3);
+  CS_EXPECT_NEAR(zmax, 40.0, 1e-9, 0);
+  int faces[CSR_NSEG][CSR_NCHAMBER] = {{0}};
+  for (int f = 0; f < me->nface; f++) {
+    for (int s = 0; s < CSR_NSEG; s++) {
+      for (int j = 0; j < CSR_NCHAMBER; j++) {
+        faces[s][j] += me->face_tag[f] == CSF_TAG_CHAMBER(s, j + 1);
+      }
+    }
+  }
+  for (int j = 0; j < CSR_NCHAMBER; j++) {
+    CS_EXPECT(faces[0][j] > 0 && faces[1][j] == 0 && faces[2][j] == 0);
+  }
+  CS_EXPECT(fe.ncham == 2);
+  /* the helices run over II1, 0 <= z <= S1, to its end (the last point at S1) */
+  const int nf = fe.model->nfib;
+  double* pf = malloc(3 * (size_t)(nf > 0 ? nf : 1) * sizeof(double));
+  double zf_min = INFINITY, zf_max = -INFINITY;
+  if (pf) {
+    fibrePoints(&fe, pf);
+    for (int f = 0; f < nf; f++) {
+      zf_min = fmin(zf_min, pf[3 * f + 2]), zf_max = fmax(zf_max, pf[3 * f + 2]);
+    }
+    free(pf);
+  }
+  CS_EXPECT(nf > 0 && zf_min >= -1e-9 && zf_max <= 40.0 + 1e-9 && zf_max > 40.0 - 1.0);
+  csfData* d = csf_dataCreate(fe.model, &err);
+  CS_EXPECT(d != NULL);
+  if (d) {
+    double ang[3], tot, tip[3];
+    csf_bendMeasure(&one, fe.gauges, fe.model, d, fe.axis, NULL, ang, &tot, tip);
+    CS_EXPECT_NEAR(ang[0], 0.0, 1e-9, 0);
+    CS_EXPECT_NEAR(ang[1], 0.0, 1e-9, 0);
+    CS_EXPECT_NEAR(ang[2], 0.0, 1e-9, 0);
+    CS_EXPECT_NEAR(tip[2], 40.0, 1e-9, 0);
+    csfSegmentState seg[CSR_NSEG];
+    double Rtip[9];
+    CS_EXPECT(csf_segmentMeasure(&one, fe.gauges, fe.model, d, seg, tip, Rtip) == 0);
+    CS_EXPECT_NEAR(seg[0].stretch, 1.0, 1e-4, 0); /* face-node centroids, not the axis */
+    CS_EXPECT(seg[1].stretch == 1.0 && seg[2].stretch == 1.0);
+    csf_dataDestroy(d);
+  }
+  printf("  single segment at l_soft 5: %d Tet10, %d nodes, %d fibre elements, volume %.1f mm^3 "
+         "(closed form %.1f)\n", me->ntet, me->nnode, fe.model->nfib, vol, e.volume);
+  csf_actuatorFEDestroy(&fe);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_wall_thicknesses);
@@ -230,5 +325,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_far_too_fine_mesh_is_refused);
   CS_RUN(test_memory_estimate_counts_the_ranks);
   CS_RUN(test_turned_fibres_are_the_fibres_turned);
+  CS_RUN(test_single_segment_is_II1_alone);
   return cs_testSummary();
 }

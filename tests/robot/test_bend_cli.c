@@ -211,6 +211,10 @@ static void test_badInput(void) {
   expectFailure("--mesh-symmetric 2", "crawlsim bend: --mesh-symmetric '2' must be 0 or 1");
   expectFailure("--model rod --mesh-symmetric 1",
                 "crawlsim bend: --mesh-symmetric is for --model fe");
+  expectFailure("--segments 2", "crawlsim bend: --segments '2' must be 1 or 3");
+  expectFailure("--model rod --segments 1", "crawlsim bend: --segments is for --model fe");
+  /* a single segment by hand reaches the three-segment models' validation */
+  expectFailure("--set S2=0", "crawlsim bend: actuator: S2 = 0 must be > 0 mm");
   expectFailure("--p-max abc", "crawlsim bend: --p-max 'abc' is not a finite number");
   expectFailure("--p-max nan", "crawlsim bend: --p-max 'nan' is not a finite number");
   expectFailure("--p-step 0", "crawlsim bend: --p-step 0 must be > 0 MPa");
