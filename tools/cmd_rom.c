@@ -1,8 +1,6 @@
-/* cmd_rom.c: `crawlsim rom`: the reduced-order FE leg's offline stages (issue 34).
- *
- *   crawlsim rom snapshots [--out DIR] [--ray NAME]... [--list] [--actuator leg|...]
- *                          [--set NAME=VALUE]... [--mesh-size MM] [--newton-rtol R]
- *                          [--threads N]
+/* cmd_rom.c: `crawlsim rom`: the reduced-order FE leg's offline stages (issue 34), each
+ * subcommand (snapshots, check, ecsw-matrix) parsed from its own option table that also prints
+ * its --help (cs_opts.h).
  *
  * snapshots: full-FE static solves on the symmetric mesh along the built-in load rays
  * (fem/fem_rom_snap.h: chamber modes, per-segment patterns, random rays, gravity, tip forces,
@@ -20,36 +18,127 @@
 #include "core_math.h"
 #include "core_clock.h"
 #include "cs_commands.h"
+#include "cs_opts.h"
 #include "cs_signal.h"
 #include "fem_measure.h"
 #include "fem_rom_act.h"
 #include "fem_rom_snap.h"
 #include "robot_actuator.h"
 
+/* `crawlsim rom` and `crawlsim rom --help`: the subcommands (each has its own --help) */
 static const char kUsage[] =
-    "usage: crawlsim rom check --snapshots DIR --basis BASIS.h5 [--weights W.h5] [--ray NAME]...\n"
-    "                          [--all] [--actuator leg|...] [--set NAME=VALUE]...\n"
-    "  check: the reduced model (basis of tools/rom_basis.py, element weights of\n"
-    "  tools/rom_ecsw.py) along the rays of DIR against the full FE's states: each segment's\n"
-    "  bend (deg and %), the tip (mm), the chamber volumes (%); the held-out rays (kind test)\n"
-    "  unless --ray or --all. Targets (issue 34): bends within 1 deg or 2 %, tip within 1 %\n"
-    "  of the leg length, volumes within 1 %.\n"
-    "       crawlsim rom ecsw-matrix --basis BASIS.h5 --out A.h5 [--work DIR] [--actuator ...]\n"
-    "  ecsw-matrix: every element's reduced force at each training snapshot of the basis file\n"
-    "  (rows snapshot x coordinate, a column per element; one matrix for the Tet10s, one for\n"
-    "  the fibres; the chambers' pressure loads are exact), for tools/rom_ecsw.py's NNLS.\n"
-    "       crawlsim rom snapshots [--out DIR] [--ray NAME]... [--list]\n"
-    "                              [--actuator leg|baseline|fig1] [--set NAME=VALUE]...\n"
-    "                              [--mesh-size MM] [--newton-rtol R] [--threads N]\n"
-    "  snapshots: full-FE statics on the symmetric mesh along the built-in load rays (chamber\n"
-    "  modes in every bending direction, patterns that differ per segment, random rays,\n"
-    "  gravity in three directions, tip forces across and along the leg, pressure with loads;\n"
-    "  the held-out rays T_* are for testing only), four states per ray, one file per ray in\n"
-    "  DIR (default rom_snapshots/) and DIR/mesh.h5; finished rays are skipped (resumable);\n"
-    "  with --ray the rays run in the order given.\n"
-    "  --list prints the rays. Defaults: actuator leg, l_soft 4 mm, Newton's test 1e-6.\n";
+    "usage: crawlsim rom <subcommand> [options]\n"
+    "  snapshots    full-FE statics along the built-in load rays (the basis' training data)\n"
+    "  check        the reduced model along the rays of a snapshot directory against the FE\n"
+    "  ecsw-matrix  every element's reduced force at the basis' training snapshots (for\n"
+    "               tools/rom_ecsw.py)\n"
+    "Run 'crawlsim rom <subcommand> --help' for its options.\n";
+
+/* the options every subcommand builds the actuator from (as crawlsim bend) */
+#define ROM_OPT_ACTUATOR                                                                        \
+  {"--actuator", "leg|baseline|fig1", "leg",                                                    \
+   "the actuator preset (robot/robot_actuator.h) the FE model is built from"}
+#define ROM_OPT_SET                                                                             \
+  {"--set", "NAME=VALUE", "none",                                                               \
+   "change one actuator parameter after the preset (repeatable, at most 32; the names of "      \
+   "crawlsim bend --set)"}
+
+static const csxOpt kSnapOpts[] = {
+    {"--out", "DIR", "rom_snapshots",
+     "the snapshot directory: one HDF5 file per ray and DIR/mesh.h5 (created if missing)"},
+    {"--ray", "NAME", "every ray of --list, in its order",
+     "run this ray (repeatable; the rays run in the order given, so a production can do the most "
+     "useful first)"},
+    {"--list", NULL, "off", "print the rays (name, train or test, what it loads) and exit"},
+    ROM_OPT_ACTUATOR,
+    ROM_OPT_SET,
+    {"--mesh-size", "MM", "4", "the FE mesh's characteristic length l_soft, in mm (0.5 .. 20)"},
+    {"--newton-rtol", "R", "1e-6",
+     "Newton's relative residual test of every static step (1e-12 .. 1e-3)"},
+    {"--threads", "N", "this process's cores, less those other processes hold",
+     "the FE's threads, an integer in 1..1024"},
+};
+
+static const csxOptTable kSnapTable = {
+    "rom snapshots", "",
+    "Full-FE statics on the symmetric mesh along the built-in load rays (chamber modes in every "
+    "bending direction, patterns that differ per segment, random rays, gravity in three "
+    "directions, tip forces across and along the leg, pressure with loads; the held-out rays T_* "
+    "are for testing only), four states per ray, one HDF5 file per ray in DIR and DIR/mesh.h5 "
+    "(what tools/rom_basis.py reads). Finished rays are skipped, so a stopped production resumes "
+    "ray by ray.",
+    kSnapOpts, CSX_NOPT(kSnapOpts), NULL};
+
+static const csxOpt kCheckOpts[] = {
+    {"--snapshots", "DIR", NULL, "the snapshot directory of crawlsim rom snapshots (required)"},
+    {"--basis", "BASIS.h5", NULL, "the reduced basis of tools/rom_basis.py (required)"},
+    {"--weights", "W.h5", "none: every element",
+     "the element weights of tools/rom_ecsw.py (the hyper-reduction)"},
+    {"--ray", "NAME", "the held-out rays (kind test)",
+     "check this ray (repeatable; one of crawlsim rom snapshots --list)"},
+    {"--all", NULL, "off", "check every ray of DIR, training and held out"},
+    ROM_OPT_ACTUATOR,
+    ROM_OPT_SET,
+};
+
+static const csxOptTable kCheckTable = {
+    "rom check", "",
+    "The reduced model (basis of tools/rom_basis.py, element weights of tools/rom_ecsw.py) along "
+    "the rays of DIR against the full FE's states: each segment's bend (deg and %), the tip (mm), "
+    "the chamber volumes (%), a line per state and per ray. Targets (issue 34): bends within 1 "
+    "deg or 2 %, tip within 1 % of the leg length, volumes within 1 %. Exit 1 when no ray was "
+    "checked.",
+    kCheckOpts, CSX_NOPT(kCheckOpts), NULL};
+
+static const csxOpt kEcswOpts[] = {
+    {"--basis", "BASIS.h5", NULL,
+     "the reduced basis of tools/rom_basis.py, with its training snapshots (required)"},
+    {"--out", "A.h5", NULL, "the matrices' file (required)"},
+    {"--work", "DIR", ".", "where gmsh's files of the basis' mesh are written"},
+    ROM_OPT_ACTUATOR,
+    ROM_OPT_SET,
+};
+
+static const csxOptTable kEcswTable = {
+    "rom ecsw-matrix", "",
+    "Every element's reduced force at each training snapshot of the basis file (rows snapshot x "
+    "coordinate, a column per element; one matrix for the Tet10s, /A_tet, one for the fibres, "
+    "/A_fibre; the chambers' pressure loads are exact and not fitted), for tools/rom_ecsw.py's "
+    "NNLS.",
+    kEcswOpts, CSX_NOPT(kEcswOpts), NULL};
 
 enum { MAX_SETS = 32 };
+
+/* one more repeatable value (--set, --ray) into list[*n]; 1 after one error line when full */
+static int pushValue(const char* what, const char* v, const char** list, int* n, int max) {
+  if (*n == max) {
+    fprintf(stderr, "crawlsim rom: more than %d %s options\n", max, what);
+    return 1;
+  }
+  list[(*n)++] = v;
+  return 0;
+}
+
+/* is `name` one of the built-in rays? 1, or 0 after one error line */
+static int knownRay(const char* name) {
+  csfRomRay rays[CSF_ROM_MAX_RAYS];
+  const int nray = csf_romRays(rays, CSF_ROM_MAX_RAYS);
+  for (int k = 0; k < nray; k++) {
+    if (!strcmp(rays[k].name, name)) {
+      return 1;
+    }
+  }
+  fprintf(stderr, "crawlsim rom: --ray '%s': no such ray (see crawlsim rom snapshots --list)\n",
+          name);
+  return 0;
+}
+
+/* an operand where a subcommand takes none: one error line */
+static int unexpected(const csxOptTable* t, const char* a) {
+  fprintf(stderr, "crawlsim %s: unexpected argument '%.200s' (see crawlsim %s --help)\n", t->cmd,
+          a, t->cmd);
+  return 1;
+}
 
 static int parseNumber(const char* flag, const char* v, double lo, double hi, double* out) {
   char* end;
@@ -135,56 +224,34 @@ static int cmdSnapshots(int argc, char** argv) {
   csfRomSnapSettings ss = csf_romSnapDefault();
   csfRomRay rays[CSF_ROM_MAX_RAYS];
   const int nray = csf_romRays(rays, CSF_ROM_MAX_RAYS);
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(kUsage, stdout);
-      return 0;
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind k; (k = csx_optNext(&kSnapTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int end = csx_optReport(&kSnapTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
-    if (!strcmp(a, "--list")) {
-      list = 1;
-      continue;
+    if (k == CSX_OPT_OPERAND) {
+      return unexpected(&kSnapTable, it.value);
     }
-    if (i + 1 >= argc || a[0] != '-') {
-      fprintf(stderr, a[0] == '-' ? "crawlsim rom: %s needs a value\n"
-                                  : "crawlsim rom: unexpected argument '%s'\n", a);
-      return 1;
-    }
-    const char* v = argv[++i];
+    const char* a = it.opt->name, *v = it.value;
     int bad = 0;
-    if (!strcmp(a, "--threads")) {
+    if (csx_optIs(it.opt, "--list")) {
+      list = 1;
+    } else if (csx_optIs(it.opt, "--threads")) {
       bad = csx_feParseThreads("rom", v, &threads);
-    } else if (!strcmp(a, "--mesh-size")) {
+    } else if (csx_optIs(it.opt, "--mesh-size")) {
       bad = parseNumber(a, v, 0.5, 20, &ss.mesh_size);
-    } else if (!strcmp(a, "--newton-rtol")) {
+    } else if (csx_optIs(it.opt, "--newton-rtol")) {
       bad = parseNumber(a, v, 1e-12, 1e-3, &ss.newton_rtol);
-    } else if (!strcmp(a, "--out")) {
+    } else if (csx_optIs(it.opt, "--out")) {
       dir = v;
-    } else if (!strcmp(a, "--actuator")) {
+    } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
-    } else if (!strcmp(a, "--ray")) {
-      int found = 0;
-      for (int k = 0; k < nray; k++) {
-        found |= !strcmp(rays[k].name, v);
-      }
-      if (!found) {
-        fprintf(stderr, "crawlsim rom: --ray '%s': no such ray (see --list)\n", v);
-        return 1;
-      }
-      if (npick == CSF_ROM_MAX_RAYS) {
-        fprintf(stderr, "crawlsim rom: more than %d --ray options\n", CSF_ROM_MAX_RAYS);
-        return 1;
-      }
-      pick[npick++] = v;
-    } else if (!strcmp(a, "--set")) {
-      if (nset == MAX_SETS) {
-        fprintf(stderr, "crawlsim rom: more than %d --set options\n", MAX_SETS);
-        return 1;
-      }
-      sets[nset++] = v;
-    } else {
-      fprintf(stderr, "crawlsim rom: unknown option '%s'\n", a);
-      return 1;
+    } else if (csx_optIs(it.opt, "--ray")) {
+      bad = !knownRay(v) || pushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
+    } else if (csx_optIs(it.opt, "--set")) {
+      bad = pushValue("--set", v, sets, &nset, MAX_SETS);
     }
     if (bad) {
       return 1;
@@ -374,36 +441,34 @@ static int cmdCheck(int argc, char** argv) {
   const char* sets[MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, all = 0;
-  for (int i = 1; i < argc; i++) {
-    const char* a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      fputs(kUsage, stdout);
-      return 0;
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind k; (k = csx_optNext(&kCheckTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int end = csx_optReport(&kCheckTable, k, &it);
+    if (end >= 0) {
+      return end;
     }
-    if (!strcmp(a, "--all")) {
+    if (k == CSX_OPT_OPERAND) {
+      return unexpected(&kCheckTable, it.value);
+    }
+    const char* v = it.value;
+    int bad = 0;
+    if (csx_optIs(it.opt, "--all")) {
       all = 1;
-      continue;
-    }
-    if (i + 1 >= argc || a[0] != '-') {
-      fprintf(stderr, a[0] == '-' ? "crawlsim rom: %s needs a value\n"
-                                  : "crawlsim rom: unexpected argument '%s'\n", a);
-      return 1;
-    }
-    const char* v = argv[++i];
-    if (!strcmp(a, "--snapshots")) {
+    } else if (csx_optIs(it.opt, "--snapshots")) {
       dir = v;
-    } else if (!strcmp(a, "--basis")) {
+    } else if (csx_optIs(it.opt, "--basis")) {
       basis = v;
-    } else if (!strcmp(a, "--weights")) {
+    } else if (csx_optIs(it.opt, "--weights")) {
       weights = v;
-    } else if (!strcmp(a, "--actuator")) {
+    } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
-    } else if (!strcmp(a, "--ray") && npick < CSF_ROM_MAX_RAYS) {
-      pick[npick++] = v;
-    } else if (!strcmp(a, "--set") && nset < MAX_SETS) {
-      sets[nset++] = v;
-    } else {
-      fprintf(stderr, "crawlsim rom: unknown option '%s' (or too many)\n", a);
+    } else if (csx_optIs(it.opt, "--ray")) {
+      bad = !knownRay(v) || pushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
+    } else if (csx_optIs(it.opt, "--set")) {
+      bad = pushValue("--set", v, sets, &nset, MAX_SETS);
+    }
+    if (bad) {
       return 1;
     }
   }
@@ -466,25 +531,31 @@ static int cmdEcswMatrix(int argc, char** argv) {
   const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
   const char* sets[MAX_SETS];
   int nset = 0;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const char* a = argv[i], *v = argv[i + 1];
-    if (!strcmp(a, "--basis")) {
+  csxOptIter it;
+  csx_optBegin(&it);
+  for (csxOptKind k; (k = csx_optNext(&kEcswTable, argc, argv, &it)) != CSX_OPT_END;) {
+    const int end = csx_optReport(&kEcswTable, k, &it);
+    if (end >= 0) {
+      return end;
+    }
+    if (k == CSX_OPT_OPERAND) {
+      return unexpected(&kEcswTable, it.value);
+    }
+    const char* v = it.value;
+    if (csx_optIs(it.opt, "--basis")) {
       basis = v;
-    } else if (!strcmp(a, "--out")) {
+    } else if (csx_optIs(it.opt, "--out")) {
       out = v;
-    } else if (!strcmp(a, "--work")) {
+    } else if (csx_optIs(it.opt, "--work")) {
       work = v;
-    } else if (!strcmp(a, "--actuator")) {
+    } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
-    } else if (!strcmp(a, "--set") && nset < MAX_SETS) {
-      sets[nset++] = v;
-    } else {
-      fprintf(stderr, "crawlsim rom: ecsw-matrix: unknown option '%s'\n", a);
+    } else if (csx_optIs(it.opt, "--set") && pushValue("--set", v, sets, &nset, MAX_SETS)) {
       return 1;
     }
   }
-  if (!basis || !out || argc % 2 == 0) {
-    fprintf(stderr, "crawlsim rom: ecsw-matrix needs --basis FILE --out FILE (options in pairs)\n");
+  if (!basis || !out) {
+    fprintf(stderr, "crawlsim rom: ecsw-matrix needs --basis FILE and --out FILE\n");
     return 1;
   }
   csError err;
@@ -559,9 +630,14 @@ static int cmdEcswMatrix(int argc, char** argv) {
 
 
 int csx_cmdRom(int argc, char** argv) {
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-    fputs(kUsage, argc < 2 ? stderr : stdout);
-    return argc < 2 ? 1 : 0;
+  if (argc < 2) {
+    fprintf(stderr, "crawlsim rom: missing subcommand (snapshots, check or ecsw-matrix; see "
+            "crawlsim rom --help)\n");
+    return 1;
+  }
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    fputs(kUsage, stdout);
+    return 0;
   }
   if (!strcmp(argv[1], "snapshots")) {
     return cmdSnapshots(argc - 1, argv + 1);
@@ -572,7 +648,7 @@ int csx_cmdRom(int argc, char** argv) {
   if (!strcmp(argv[1], "ecsw-matrix")) {
     return cmdEcswMatrix(argc - 1, argv + 1);
   }
-  fprintf(stderr, "crawlsim rom: unknown stage '%s' (expected snapshots, check or ecsw-matrix)\n",
-          argv[1]);
+  fprintf(stderr, "crawlsim rom: unknown stage '%.64s' (expected snapshots, check or ecsw-matrix; "
+          "see crawlsim rom --help)\n", argv[1]);
   return 1;
 }

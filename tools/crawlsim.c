@@ -41,7 +41,9 @@ static const char kUsage[] =
     "  calibrate [--out FILE.h5] ...\n"
     "  study     FILE [--out FILE.h5] [--resume] ...  (under mpirun: one case per rank)\n"
     "  export    FILE.h5 --csv [--out DIR]  (a run's tracks as CSV)\n"
-    "  rom       snapshots [--out DIR] [--ray NAME]... [--mesh-size MM] ...  (reduced FE leg)\n"
+    "  rom       snapshots [--out DIR] [--ray NAME]... [--list] [--mesh-size MM] ...\n"
+    "            | check --snapshots DIR --basis B.h5 [--weights W.h5] [--all] ...\n"
+    "            | ecsw-matrix --basis B.h5 --out A.h5 ...  (the reduced FE leg)\n"
     "Run 'crawlsim <command> --help' for the options of one command.\n";
 
 

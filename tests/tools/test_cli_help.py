@@ -43,6 +43,7 @@ COMMANDS = {
     "run": "cmd_run.c", "bend": "cmd_bend.c", "gait check": "cmd_gait.c",
     "gait design": "cmd_gaitdesign.c", "gait flat-road": "cmd_gaitdesign.c",
     "calibrate": "cmd_calibrate.c", "study": "cmd_study.c", "export": "cmd_export.c",
+    "rom snapshots": "cmd_rom.c", "rom check": "cmd_rom.c", "rom ecsw-matrix": "cmd_rom.c",
 }
 
 
@@ -51,7 +52,7 @@ def main():
     rc, out, err = run(exe, ["--version"])
     check(rc == 0 and out.startswith("crawlsim ") and all(
         w in out for w in ("ODE", "SUNDIALS", "HDF5", "MUMPS")), f"--version: {rc} {out!r}")
-    for args in (["--help"], ["gait", "--help"]):
+    for args in (["--help"], ["gait", "--help"], ["rom", "--help"]):
         rc, out, _ = run(exe, args)
         check(rc == 0 and "usage" in out, f"{' '.join(args)} exits 0 with a usage")
     listed_by_file = {}

@@ -2,7 +2,9 @@
  * the executable), without running the FE.
  *
  * Proves: the ray list holds training and held-out rays; every bad stage, option or file exits
- * 1 with one line on stderr naming the cause (and the file where there is one), and no crash.
+ * 1 with one line on stderr naming the cause (and the file where there is one), and no crash;
+ * the subcommands parse from their option tables (--name=VALUE, the nearest option named, a
+ * missing value, an operand refused; the rest in tests/tools/test_cli_help.py).
  * Needs POSIX for tests/cs_cli.h. */
 #define _POSIX_C_SOURCE 200809L
 
@@ -52,6 +54,14 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom frobnicate", "unknown stage 'frobnicate'");
   expectRefused("rom snapshots --ray NOPE", "--ray 'NOPE': no such ray");
   expectRefused("rom snapshots --mesh-size 0", "--mesh-size '0'");
+  expectRefused("rom snapshots --mesh-size=0", "--mesh-size '0'");
+  expectRefused("rom snapshots --mesh-sise 3", "did you mean --mesh-size?");
+  expectRefused("rom snapshots --threads", "--threads needs a value");
+  expectRefused("rom snapshots stray", "unexpected argument 'stray'");
+  expectRefused("rom check --ray NOPE --snapshots . --basis x.h5", "--ray 'NOPE': no such ray");
+  expectRefused("rom check --wieghts w.h5", "did you mean --weights?");
+  expectRefused("rom ecsw-matrix --basis", "--basis needs a value");
+  expectRefused("rom ecsw-matrix --out x.h5", "needs --basis FILE and --out FILE");
   expectRefused("rom check --snapshots .", "needs --snapshots DIR and --basis FILE");
   expectRefused("rom check --snapshots . --basis romcli_missing.h5", "romcli_missing.h5");
   expectRefused("rom ecsw-matrix --basis romcli_missing.h5 --out x.h5", "romcli_missing.h5");
