@@ -268,7 +268,8 @@ int main(int argc, char** argv) {
   const double t_on = (swing || push) ? 0 : 1e9, t_off = (swing || push) ? 1 : 1e9;
   double foot0[MAX_LEVELS] = {NAN, NAN, NAN, NAN};
   printf("%s: support %.1f g; per level: hip y (mm from start), Fx on the support (N), foot x "
-         "from the hip's start, foot height, foot drift since t = 0 (mm), contact depth (mm), contact force x, y (N)\n", scen, M * 1e6);
+         "from the hip's start, foot height, foot drift since t = 0 (mm), contact depth (mm), "
+         "contact force x, y (N)\n", scen, M * 1e6);
   for (long k = 0; k * 1e-3 < t_end + 0.5 - 1e-9; k++) {
     double t = -0.5 + k * 1e-3, x0, x1, v0, v1, p0[12], p1[12];
     hipX(t, side ? vside : 0, rig[0].hip0[0], &x0, &v0);
