@@ -23,3 +23,6 @@ echo "exit $rc" >> $O/$n.log
 # and rod6_dt025 (--links 6 --dt 0.00025); out/fixed_*.log, compare_fixed.txt, tracks_fixed.txt.
 # One leg: build/tests/robot/bench_leg_pair swing|side|push 12.5 5 T rod:16 rod:8 strain:3 with
 # CS_SOURCE_DIR=$PWD CS_CALIBRATION=robot/calibration_fe_leg_modes_sym.h5 (out/pair_*.txt).
+# Also after it: rod4 (--links 4), rod16_dt025_paper / rod8_paper / strain_paper (--gait
+# gaits/flat_road_paper.csv --conditions paper; strain --dt 0.001), ob_rod6_dt025 (--scene
+# obstacle --links 6 --dt 0.00025 --t-end 4); compare_fixed_paper.txt.
