@@ -98,8 +98,25 @@ static int shapeContact(const csrLeg* leg, const csrRodShape* sh, const double* 
   memcpy(cs.v1, sh->v1, sizeof cs.v1);
   memcpy(cs.w, sh->omega, sizeof cs.w);
   memcpy(cs.R, sh->R, sizeof cs.R);
-  int capsule = 1;
-  if (e == leg->N) {
+  int capsule = 1, shortened = 0;
+  if (e < leg->N) {
+    /* an element within a radius (and 1 mm) of the tip, as the foot element below: when the
+     * foot element is shorter than that (8 or more elements per segment: l_N 6.25 mm at 8,
+     * radius 7.5 mm), the end of the capsule above it reached the road first and the leg stood
+     * on it with its sole up to 5 mm above the road (docs/notes/strain_leg.md "Why the flat
+     * road differs"); its axis now stops at arc length L - (radius + 1), or it has no capsule */
+    const double* sn = csr_rodNodeArc(leg->m);
+    double cut = csr_rodLength(leg->m) - (leg->radius + 1.0);
+    if (sn[e] > cut) {
+      double u = (cut - sn[e - 1]) / (sn[e] - sn[e - 1]);
+      capsule = u > 0;
+      shortened = 1;
+      for (int c = 0; c < 3; c++) {
+        cs.x1[c] = sh->p0[c] + u * (sh->p1[c] - sh->p0[c]);
+        cs.v1[c] = sh->v0[c] + u * (sh->v1[c] - sh->v0[c]);
+      }
+    }
+  } else {
     /* the foot element's capsule stops a radius (and 1 mm) short of the sole: its axis would
      * otherwise end on the sole face, and its end region would push the ground with the
      * cap's depth (the foot hovered 0.5 mm above the road under a 1 N stance load); the cap
@@ -126,7 +143,7 @@ static int shapeContact(const csrLeg* leg, const csrRodShape* sh, const double* 
     if (depth) {
       *depth = fmax(*depth, rep.max_depth);
     }
-    if (e < leg->N) {
+    if (e < leg->N && !shortened) {
       /* the capsule's axis is the element's chord: its node forces are the rod's */
       memcpy(f0, ld.f0, 3 * sizeof(double));
       memcpy(f1, ld.f1, 3 * sizeof(double));

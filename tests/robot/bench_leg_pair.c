@@ -1,7 +1,12 @@
 /* bench_leg_pair.c: one leg of each level (prb, rod) under the same hip boundary conditions, on
- * the flat road (not a test: prints both side by side every 0.1 s).
+ * the flat road (not a test: prints them side by side every 0.1 s).
  *
- *   bench_leg_pair swing|side|push [support_g] [side_speed_mm_s] [t_end_s]
+ *   bench_leg_pair swing|side|push [support_g] [side_speed_mm_s] [t_end_s] [LEVEL[:N] ...]
+ *
+ * LEVEL[:N]: up to 4 levels with N links / elements / bending modes per segment (default prb
+ * and rod at their defaults); the calibration is $CS_CALIBRATION if set (a path from the
+ * source directory, e.g. robot/calibration_fe_leg_modes_sym.h5 for the strain level), else
+ * robot/calibration_fe_leg.h5.
  *
  * The leg is weightless (conditions `paper`); the flat-road gait's S-shape (II1 Ω3&Ω4 and II2
  * Ω1&Ω2 at 0.1744 MPa, smoothstep ramps of 0.2 s) where a case actuates.
@@ -31,7 +36,7 @@
 #include "robot_rod.h"
 #include "terrains_terrain.h"
 
-enum { NCL = 25 };
+enum { NCL = 25, MAX_LEVELS = 4 };
 static const double kP = 0.1744; /* MPa: the flat-road gait's S-shape */
 
 typedef struct {
@@ -217,7 +222,9 @@ int main(int argc, char** argv) {
   }
   const char* src = getenv("CS_SOURCE_DIR");
   char cal_path[600], terr_path[600];
-  snprintf(cal_path, sizeof cal_path, "%s/robot/calibration_fe_leg.h5", src ? src : "../../..");
+  const char* cal_rel = getenv("CS_CALIBRATION");
+  snprintf(cal_path, sizeof cal_path, "%s/%s", src ? src : "../../..",
+           cal_rel ? cal_rel : "robot/calibration_fe_leg.h5");
   snprintf(terr_path, sizeof terr_path, "%s/terrains/flat_road.terrain", src ? src : "../../..");
   dInitODE2(0);
   csError err;
@@ -231,26 +238,45 @@ int main(int argc, char** argv) {
     return 1;
   }
   csrBendMap map = csr_calibrationMap(cal);
-  csrLegParams lp = csr_defaultLegParams(&act);
   cscContactParams cp = csc_defaultContactParams();
-  Rig rig[2];
-  const char* names[2] = {"prb", "rod"};
-  for (int i = 0; i < 2; i++) {
-    if (rigCreate(&rig[i], names[i], swing, M, &act, &lp, &map, &tr, &cp) != 0) {
+  Rig rig[MAX_LEVELS];
+  char names[MAX_LEVELS][32];
+  csrLegParams lp[MAX_LEVELS];
+  int nlev = 0;
+  for (int a = 5; a < argc && nlev < MAX_LEVELS; a++, nlev++) {
+    snprintf(names[nlev], sizeof names[nlev], "%s", argv[a]);
+  }
+  if (nlev == 0) {
+    snprintf(names[0], sizeof names[0], "prb");
+    snprintf(names[1], sizeof names[1], "rod");
+    nlev = 2;
+  }
+  for (int i = 0; i < nlev; i++) {
+    char level[32];
+    snprintf(level, sizeof level, "%s", names[i]);
+    char* colon = strchr(level, ':');
+    lp[i] = csr_defaultLegParams(&act);
+    if (colon) {
+      *colon = 0;
+      lp[i].links_per_segment = atoi(colon + 1);
+    }
+    if (rigCreate(&rig[i], level, swing, M, &act, &lp[i], &map, &tr, &cp) != 0) {
+      fprintf(stderr, "bench_leg_pair: level %s not created\n", names[i]);
       return 1;
     }
   }
   const double t_on = (swing || push) ? 0 : 1e9, t_off = (swing || push) ? 1 : 1e9;
-  double foot0[2] = {NAN, NAN};
+  double foot0[MAX_LEVELS] = {NAN, NAN, NAN, NAN};
   printf("%s: support %.1f g; per level: hip y (mm from start), Fx on the support (N), foot x "
-         "from the hip's start, foot height, foot drift since t = 0 (mm)\n", scen, M * 1e6);
+         "from the hip's start, foot height, foot drift since t = 0 (mm), contact depth (mm), "
+         "contact force x, y (N)\n", scen, M * 1e6);
   for (long k = 0; k * 1e-3 < t_end + 0.5 - 1e-9; k++) {
     double t = -0.5 + k * 1e-3, x0, x1, v0, v1, p0[12], p1[12];
     hipX(t, side ? vside : 0, rig[0].hip0[0], &x0, &v0);
     hipX(t + 1e-3, side ? vside : 0, rig[0].hip0[0], &x1, &v1);
     gaitPressures(t, t_on, t_off, p0);
     gaitPressures(t + 1e-3, t_on, t_off, p1);
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < nlev; i++) {
       if (rigStep(&rig[i], t, swing, x0, x1, v0, v1, p0, p1, &cp) != 0) {
         return 1;
       }
@@ -258,21 +284,46 @@ int main(int argc, char** argv) {
     double tn = t + 1e-3;
     if (tn > -1e-9 && fabs(tn * 10 - round(tn * 10)) < 1e-6) {
       printf("t %5.2f", tn);
-      for (int i = 0; i < 2; i++) {
+      for (int i = 0; i < nlev; i++) {
         double cl[3 * NCL];
         rig[i].T->centerline(rig[i].leg, NCL, cl);
         const double* foot = cl + 3 * (NCL - 1);
         if (isnan(foot0[i])) {
           foot0[i] = foot[0];
         }
-        printf(" | %s y %7.3f Fx %+7.4f foot %7.3f h %6.3f drift %+7.3f", names[i],
-               rig[i].y - rig[i].hip0[1], rig[i].Fx, foot[0] - rig[i].hip0[0], foot[1],
-               foot[0] - foot0[i]);
+        double fc[3] = {NAN, NAN, NAN};
+        double depth = rig[i].T->contactDepth ? rig[i].T->contactDepth(rig[i].leg) : NAN;
+        if (rig[i].T->contactForce) {
+          rig[i].T->contactForce(rig[i].leg, fc);
+        }
+        printf(" | %s y %7.3f Fx %+7.4f foot %7.3f h %6.3f drift %+7.3f depth %6.3f Fc %+7.4f "
+               "%+7.4f", names[i], rig[i].y - rig[i].hip0[1], rig[i].Fx, foot[0] - rig[i].hip0[0],
+               foot[1], foot[0] - foot0[i], depth, fc[0], fc[1]);
       }
       printf("\n");
     }
   }
-  for (int i = 0; i < 2; i++) {
+  /* the foot's box at the end (contactShapes' last shape, when the level draws one): its
+   * lowest corner and the tilt of its axis 3 from the vertical, against the tip node */
+  for (int i = 0; i < nlev; i++) {
+    csrContactShape sh[256];
+    int ns = rig[i].T->contactShapes ? rig[i].T->contactShapes(rig[i].leg, sh, 256) : 0;
+    if (ns > 0 && sh[ns - 1].kind == CSR_SHAPE_BOX) {
+      const csrContactShape* b = &sh[ns - 1];
+      double low = INFINITY;
+      for (int c = 0; c < 8; c++) {
+        double y = b->a[1];
+        for (int ax = 0; ax < 3; ax++) {
+          y += ((c >> ax) & 1 ? 1 : -1) * b->half[ax] * b->R[3 + ax];
+        }
+        low = fmin(low, y);
+      }
+      printf("%s: foot box centre y %.3f, lowest corner y %.3f mm, half %.2f %.2f %.2f, axis 3 "
+             "vertical component %.4f\n", names[i], b->a[1], low, b->half[0], b->half[1],
+             b->half[2], b->R[5]);
+    }
+  }
+  for (int i = 0; i < nlev; i++) {
     rigDestroy(&rig[i]);
   }
   csr_calibrationClose(cal);

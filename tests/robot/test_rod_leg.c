@@ -12,6 +12,8 @@
  *  - stance_foot_holds: the same leg, the hip then moved 0.2 mm sideways (a tangential load far
  *    below μN): the foot does not slide (its bristle deflects elastically); frictionless, it
  *    follows the hip.
+ *  - fine_leg_stands_on_its_sole: the same press at 16 elements per segment, where the foot
+ *    element is shorter than a capsule radius: the sole, not element N-1's capsule, carries it.
  *  - tolerance_scale: csrLegParams.rod_tol_scale 0 and 1 are the shipped tolerances (the same
  *    bits), 0.1 takes more CVODE steps for the same hanging leg released under gravity and
  *    lands within the shipped tolerances' error of it. */
@@ -178,7 +180,7 @@ static int moveHip(const csrLegType* T, csrLeg* leg, double* t, csrBaseState* b,
  * and settles leaning on a friction-held foot, one of many equilibria), then optionally moved
  * `side` mm along x over 0.1 s; the wrench, the foot's x drift in the sideways move, its lateral
  * offset after pressing, and the series stiffness of the leg and the sole */
-static void standing(double delta, double side, double mu, double* fy, double* drift,
+static void standing(int links, double delta, double side, double mu, double* fy, double* drift,
                      double* lateral, double* k_expect) {
   const csrLegType* T = &csr_leg_rod;
   csrActuator act;
@@ -186,6 +188,9 @@ static void standing(double delta, double side, double mu, double* fy, double* d
   csrLegSpec sp;
   double hip[3] = {0, 0, 0};
   legSpec(&sp, &act, &lp, hip);
+  if (links > 0) {
+    lp.links_per_segment = links;
+  }
   hip[1] = csr_actuatorLength(&act);
   memcpy(sp.hip, hip, sizeof hip);
   sp.weightless = 1;
@@ -233,7 +238,7 @@ static void standing(double delta, double side, double mu, double* fy, double* d
 
 static void foot_pressed_on_road(void) {
   double fy = NAN, drift = 0, lat = NAN, k = NAN;
-  standing(0.5, 0, 0.8, &fy, &drift, &lat, &k);
+  standing(0, 0.5, 0, 0.8, &fy, &drift, &lat, &k);
   printf("  hip lowered 0.5 mm: the leg pushes the support up with %.6f N (series springs "
          "%.6f N), foot %.2g mm off the axis\n", fy, 0.5 * k, lat);
   /* pressed straight down, the symmetric leg stays on its axis: measured 2.2e-3 mm (2e-5 mm
@@ -252,7 +257,7 @@ static void foot_pressed_on_road(void) {
 
 static void stance_foot_holds(void) {
   double fy = NAN, drift = NAN, lat = NAN, k = NAN;
-  standing(0.5, 0.2, 0.8, &fy, &drift, &lat, &k);
+  standing(0, 0.5, 0.2, 0.8, &fy, &drift, &lat, &k);
   printf("  hip moved 0.2 mm sideways over 0.1 s: foot drift %.3g mm (normal load %.4f N)\n",
          drift, fy);
   /* stick: the lateral force (~0.05 N/mm lateral stiffness of the leg x 0.2 mm = 0.01 N) is far
@@ -261,7 +266,7 @@ static void stance_foot_holds(void) {
   CS_EXPECT(fabs(drift) < 8e-3);
   /* frictionless, the same motion slides the foot with the hip (the test can fail) */
   double drift0 = NAN;
-  standing(0.5, 0.2, 0.0, &fy, &drift0, &lat, &k);
+  standing(0, 0.5, 0.2, 0.0, &fy, &drift0, &lat, &k);
   printf("  frictionless: foot drift %.3g mm\n", drift0);
   CS_EXPECT(drift0 > 0.1);
 }
@@ -269,6 +274,19 @@ static void stance_foot_holds(void) {
 
 /* the hanging leg of table_conformance released under gravity for 0.1 s (5 ms advances) with
  * tolerance scale f: its state in x (13 N doubles) and CVODE's steps */
+static void fine_leg_stands_on_its_sole(void) {
+  /* 16 elements per segment: the foot element (3.1 mm) is shorter than a capsule radius plus
+   * 1 mm, so the end of element N-1's capsule used to reach the road first (the leg stood on
+   * it, the sole 4.05 mm up); the same closed form as at 4 elements, to the same 1e-3 */
+  double fy = NAN, drift = 0, lat = NAN, k = NAN;
+  standing(16, 0.5, 0, 0.8, &fy, &drift, &lat, &k);
+  printf("  16 elements per segment, hip lowered 0.5 mm: %.6f N (series springs %.6f N)\n", fy,
+         0.5 * k);
+  CS_EXPECT(lat < 1e-2);
+  CS_EXPECT_NEAR(fy, 0.5 * k, 0, 1e-3);
+}
+
+
 static long hangScaled(double f, double* x) {
   const csrLegType* T = &csr_leg_rod;
   csrActuator act;
@@ -339,6 +357,7 @@ int main(int argc, char** argv) {
   CS_RUN(table_conformance);
   CS_RUN(foot_pressed_on_road);
   CS_RUN(stance_foot_holds);
+  CS_RUN(fine_leg_stands_on_its_sole);
   CS_RUN(tolerance_scale);
   return cs_testSummary();
 }
