@@ -4,7 +4,7 @@ the legs read from it.
 
 Usage:
   /usr/bin/python3 tools/plot_calibration.py TABLE.h5 [--model PRED.h5] -o DIR
-                                             [--holdout-cols N] [--only bend|stretch|holdout|stiffness]
+        [--holdout-cols N] [--only bend|stretch|holdout|stiffness]
 
 TABLE.h5 is a mode table of `crawlsim calibrate` (root attribute format
 "crawlsim-fe-calibration 1"; /cases/<name>/ with kind, ratio1..ratio4 and the datasets pressure
@@ -255,7 +255,8 @@ def plot_holdout(t, model, out, cols=2):
     axes[0][0].legend(handles=handles, fontsize=7, loc="upper left")
     rule = f" ({model['name']})" if model is not None else ""
     # the model's name is a long sentence (rule, modes, ranges): wrapped to the figure's width
-    title = f"Held-out and symmetry cases of {os.path.basename(t['path'])}: FE against the model{rule}"
+    title = (f"Held-out and symmetry cases of {os.path.basename(t['path'])}: "
+             f"FE against the model{rule}")
     fig.suptitle(textwrap.fill(title, width=75 * cols), fontsize=9)
     fig.savefig(out, dpi=100)
     plt.close(fig)

@@ -98,7 +98,8 @@ def load_vtu(path):
     elif np.all(types == VTK_TETRA):
         k = 4
     else:
-        raise InputError(f"{path}: cells other than (quadratic) tetrahedra (types {sorted(set(types))})")
+        raise InputError(f"{path}: cells other than (quadratic) tetrahedra "
+                         f"(types {sorted(set(types))})")
     if not np.array_equal(offs, k * np.arange(1, len(types) + 1)) or conn.size != k * len(types):
         raise InputError(f"{path}: the connectivity is not {k} nodes a cell")
     cells = conn.reshape(-1, k)
@@ -120,7 +121,8 @@ def boundary_faces(cells):
         if cells.shape[1] == 10:
             full.append(cells[:, [a, b, c, EDGE_MID[(a, b)], EDGE_MID[(b, c)], EDGE_MID[(a, c)]]])
         else:
-            full.append(np.concatenate([cells[:, [a, b, c]], -np.ones((len(cells), 3), int)], axis=1))
+            none = -np.ones((len(cells), 3), int)
+            full.append(np.concatenate([cells[:, [a, b, c]], none], axis=1))
     tri, full = np.concatenate(tri), np.concatenate(full)
     key = np.sort(tri, axis=1)
     _, inv, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
@@ -174,7 +176,8 @@ def plot_shape(bend, mesh, out, all_surfaces, elev, azim):
     ax.plot(p, tot, "k-o", ms=3.5, lw=1.6, label="FE, total bend")
     last = len(bend["p"]) - 1  # the mesh is the sweep's last converged state: its last row
     ax.plot([bend["p"][last]], [bend["total"][last]], "r*", ms=16, mec="k",
-            label=f"shape on the right: p = {bend['p'][last]:.3g} MPa, {bend['total'][last]:.1f} deg")
+            label=f"shape on the right: p = {bend['p'][last]:.3g} MPa, "
+                  f"{bend['total'][last]:.1f} deg")
     ax.set_xlabel("pressure p (MPa)")
     ax.set_ylabel("total bending angle \u0398 (deg)")
     ax.set_title("(a) bend curve")
@@ -212,8 +215,10 @@ def plot_shape(bend, mesh, out, all_surfaces, elev, azim):
 def main(argv=None):
     ap = argparse.ArgumentParser(description="The FE's deformed shape beside its bend curve.")
     ap.add_argument("bend", metavar="BEND.h5", help="output of `crawlsim bend --model fe`")
-    ap.add_argument("--vtu", metavar="BEND.vtu", help="the deformed mesh (default: BEND.h5's stem + .vtu)")
-    ap.add_argument("-o", "--output", metavar="OUT.png", help="output PNG (default: BEND_shape.png)")
+    ap.add_argument("--vtu", metavar="BEND.vtu",
+                    help="the deformed mesh (default: BEND.h5's stem + .vtu, or .vtu.gz)")
+    ap.add_argument("-o", "--output", metavar="OUT.png",
+                    help="output PNG (default: BEND_shape.png)")
     ap.add_argument("--all-surfaces", action="store_true", help="draw the chambers' walls too")
     ap.add_argument("--elev", type=float, default=20.0, help="view elevation, deg (default 20)")
     ap.add_argument("--azim", type=float, default=-60.0, help="view azimuth, deg (default -60)")
