@@ -4,6 +4,7 @@ the legs read from it.
 
 Usage:
   /usr/bin/python3 tools/plot_calibration.py TABLE.h5 [--model PRED.h5] -o DIR
+        [--holdout-cols N] [--only bend|stretch|holdout|stiffness]
 
 TABLE.h5 is a mode table of `crawlsim calibrate` (root attribute format
 "crawlsim-fe-calibration 1"; /cases/<name>/ with kind, ratio1..ratio4 and the datasets pressure
@@ -18,7 +19,8 @@ Writes into DIR:
                             the paper's Figs. 3 and 6): FE points, the model as lines;
   calibration_stretch.png   each fitted mode's centreline stretch and largest radial growth;
   calibration_holdout.png   the held-out and symmetry cases: FE points against the model (bend
-                            per segment, and the tip's path in the base frame);
+                            per segment, and the tip's path in the base frame), a grid of
+                            --holdout-cols cases to a row (default 2: ~1040 px wide);
   calibration_stiffness.png EI and EA of each segment against the mean chamber pressure: the
                             probes of each probed mode, the model's merged points, 8 C10 I and
                             8 C10 A.
@@ -29,7 +31,9 @@ bad usage.
 
 import argparse
 import os
+import re
 import sys
+import textwrap
 
 import matplotlib
 
@@ -197,36 +201,63 @@ def plot_stretch(t, model, out):
     plt.close(fig)
 
 
-def plot_holdout(t, model, out):
+def holdout_layout(n, cols):
+    """Rows and case columns of the held-out grid: each case is a cell of two panels side by side
+    (bend, tip path), `cols` cells to a row (fewer when there are fewer cases)."""
+    cols = max(1, min(cols, n))
+    return (n + cols - 1) // cols, cols
+
+
+def plot_holdout(t, model, out, cols=2):
     held = [c for c in t["cases"].values() if c["kind"] in ("holdout", "symmetry")]
     if not held:
         raise InputError(f"{t['path']}: no held-out or symmetry case to plot")
-    fig, axes = plt.subplots(2, len(held), figsize=(4.4 * len(held), 7.2), squeeze=False,
-                             constrained_layout=True)
+    # H2 before H10: the names' numbers in numeric order
+    held.sort(key=lambda c: [(0, int(w), "") if w.isdigit() else (1, 0, w)
+                             for w in re.split(r"(\d+)", c["name"]) if w])
+    rows, cols = holdout_layout(len(held), cols)
+    # 2.6 x 2.3 in a panel at 100 dpi: two cases a row are 1040 px wide, readable when the page
+    # shows it at ~900 px (the README's width); the rows grow downwards instead of the strip
+    fig, axes = plt.subplots(rows, 2 * cols, figsize=(2.6 * 2 * cols, 2.3 * rows + 0.7),
+                             squeeze=False, constrained_layout=True)
+    for k in range(len(held), rows * cols):
+        axes[k // cols][2 * (k % cols)].set_visible(False)
+        axes[k // cols][2 * (k % cols) + 1].set_visible(False)
     for k, c in enumerate(held):
-        ax, axt = axes[0][k], axes[1][k]
+        ax, axt = axes[k // cols][2 * (k % cols)], axes[k // cols][2 * (k % cols) + 1]
         mc = model["cases"].get(c["name"]) if model else None
         for s in range(3):
             fe_and_model(ax, c["p"], angle_deg(c["bend"])[:, s], mc["p"] if mc else None,
                          angle_deg(mc["bend"])[:, s] if mc else None, SEG_COLORS[s])
-        ax.set_title(f"{c['name']} ({c['kind']}; {pattern(c)})", fontsize=10)
-        ax.set_xlabel("pressure p (MPa)")
-        ax.set_ylabel("segment bend angle (deg)")
+        ax.set_title(f"{c['name']} ({c['kind']}; {pattern(c)})", fontsize=9)
+        ax.set_xlabel("pressure p (MPa)", fontsize=8)
+        ax.set_ylabel("segment bend (deg)", fontsize=8)
+        ax.tick_params(labelsize=7)
         ax.grid(True, alpha=0.3)
         # the tip's path in the base frame: e1 (towards Omega1&Omega2) across, e3 down the leg
-        axt.plot(c["tip"][:, 0], c["tip"][:, 2], "ko", ms=3.5, label="FE")
+        axt.plot(c["tip"][:, 0], c["tip"][:, 2], "ko", ms=2.5)
         if mc is not None:
-            axt.plot(mc["tip"][:, 0], mc["tip"][:, 2], "r-", lw=1.4, label="model")
+            axt.plot(mc["tip"][:, 0], mc["tip"][:, 2], "r-", lw=1.3)
             n = min(len(mc["p"]), len(c["p"]))
             err = np.linalg.norm(mc["tip"][:n] - c["tip"][:n], axis=1).max()
-            axt.set_title(f"tip path (worst error {err:.2f} mm)", fontsize=10)
-        axt.set_xlabel("tip e1 (mm)")
-        axt.set_ylabel("tip e3 (mm)")
+            axt.set_title(f"{c['name']} tip path, worst {err:.2f} mm", fontsize=9)
+        else:
+            axt.set_title(f"{c['name']} tip path", fontsize=9)
+        axt.set_xlabel("tip e1 (mm)", fontsize=8)
+        axt.set_ylabel("tip e3 (mm)", fontsize=8)
+        axt.tick_params(labelsize=7)
         axt.set_aspect("equal", adjustable="datalim")
         axt.grid(True, alpha=0.3)
-        axt.legend(fontsize=8)
-    axes[0][0].legend(handles=legend_handles(model), fontsize=8, loc="upper left")
-    fig.suptitle("Held-out and symmetry cases: FE against the model", fontsize=11)
+    handles = legend_handles(model)
+    handles.append(Line2D([], [], color="k", marker="o", ls="none", ms=3, label="FE tip"))
+    if model is not None:
+        handles.append(Line2D([], [], color="r", lw=1.3, label="model tip"))
+    axes[0][0].legend(handles=handles, fontsize=7, loc="upper left")
+    rule = f" ({model['name']})" if model is not None else ""
+    # the model's name is a long sentence (rule, modes, ranges): wrapped to the figure's width
+    title = (f"Held-out and symmetry cases of {os.path.basename(t['path'])}: "
+             f"FE against the model{rule}")
+    fig.suptitle(textwrap.fill(title, width=75 * cols), fontsize=9)
     fig.savefig(out, dpi=100)
     plt.close(fig)
 
@@ -271,7 +302,13 @@ def main(argv=None):
     ap.add_argument("table", metavar="TABLE.h5", help="mode table of `crawlsim calibrate`")
     ap.add_argument("--model", metavar="PRED.h5", help="`crawlsim calibrate --model-out` file")
     ap.add_argument("-o", "--outdir", metavar="DIR", required=True, help="directory for the PNGs")
+    ap.add_argument("--holdout-cols", metavar="N", type=int, default=2,
+                    help="held-out cases to a row of calibration_holdout.png (default 2)")
+    ap.add_argument("--only", metavar="KIND", choices=("bend", "stretch", "holdout", "stiffness"),
+                    help="write this picture alone")
     args = ap.parse_args(argv)
+    if args.holdout_cols < 1:
+        ap.error("--holdout-cols must be at least 1")
 
     t = load_or_fail(PROG, load_table, args.table)
     model = load_or_fail(PROG, load_model, args.model) if args.model else None
@@ -280,8 +317,13 @@ def main(argv=None):
             os.makedirs(args.outdir)
         except OSError as e:
             fail(PROG, f"{args.outdir}: cannot create ({e.strerror or e})")
-    for name, fn in (("bend", plot_bend), ("stretch", plot_stretch), ("holdout", plot_holdout),
+    def holdout(t, model, out):
+        plot_holdout(t, model, out, args.holdout_cols)
+
+    for name, fn in (("bend", plot_bend), ("stretch", plot_stretch), ("holdout", holdout),
                      ("stiffness", plot_stiffness)):
+        if args.only and name != args.only:
+            continue
         out = os.path.join(args.outdir, f"calibration_{name}.png")
         try:
             save_or_fail(PROG, out, lambda fn=fn, out=out: fn(t, model, out))

@@ -10,6 +10,12 @@ lifted above 1 mm); a file's /contact/stance is taken over the geometry when pre
 names scene, slope, conditions, legs and calibration; the foot paths relative to the hips
 undo the support's attitude (a foot fixed under a turning support keeps its hip offset);
 missing per-foot forces and a bad chamber label are one line on stderr and exit 1.
+The other pictures of issue 36 item 4: the animation (tools/animate_run.py, the quick start's
+GIF: several frames) and tools/quickstart.sh calling it; the FE's deformed shape beside the bend
+curve (tools/plot_fe_shape.py) on a synthetic quadratic-tetrahedra VTU of two cubes, one inside
+the other (the boundary faces are the two cubes' 12 + 12 triangles, the skin the outer cube's
+12, split in four); the held-out grid of tools/plot_calibration.py (rows of two cases, at most
+1100 px wide, taller than a strip).
 Prints "N passed, N failed"; exits non-zero on any failure.
 """
 
@@ -27,6 +33,8 @@ import h5py  # noqa: E402
 import matplotlib.image as mpimg  # noqa: E402
 import numpy as np  # noqa: E402
 
+import plot_calibration  # noqa: E402
+import plot_fe_shape  # noqa: E402
 import plot_run  # noqa: E402
 
 PY = sys.executable
@@ -75,6 +83,130 @@ def make_run(path, with_contact):
             F = np.zeros((n, 8, 3))
             F[:, 0, 1] = 2.0
             f["/contact/foot_force"] = F
+
+
+def kuhn_cube(lo, h):
+    """A cube [lo, lo + h]^3 as six tetrahedra along its diagonal (Kuhn): points [8,3], cells [6,4]."""
+    import itertools
+    pts = np.array([[lo + h * ((v >> a) & 1) for a in range(3)] for v in range(8)], float)
+    cells = []
+    for perm in itertools.permutations(range(3)):
+        v, tet = 0, [0]
+        for a in perm:
+            v |= 1 << a
+            tet.append(v)
+        cells.append(tet)
+    return pts, np.array(cells)
+
+
+def write_quadratic_vtu(path, parts, shift):
+    """A VTU of quadratic tetrahedra (VTK 24) from linear parts [(points, cells)], edge midpoints
+    added; the points moved by `shift` (mm), stored as the displacement as fem_output.c does."""
+    x, cells10 = [], []
+    for pts, cells in parts:
+        base = len(x)
+        x.extend(pts.tolist())
+        mid = {}
+        for c in cells:
+            g = [base + i for i in c]
+            row = list(g)
+            for a, b in ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)):
+                key = tuple(sorted((g[a], g[b])))
+                if key not in mid:
+                    mid[key] = len(x)
+                    x.append(((np.array(x[g[a]]) + np.array(x[g[b]])) / 2).tolist())
+                row.append(mid[key])
+            cells10.append(row)
+    x = np.array(x)
+    u = np.tile(np.asarray(shift, float), (len(x), 1))
+    def arr(v):
+        return "\n".join(" ".join(f"{a:.9g}" for a in np.atleast_1d(r)) for r in v)
+    with open(path, "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="0.1">\n'
+                f'<UnstructuredGrid>\n<Piece NumberOfPoints="{len(x)}" NumberOfCells="{len(cells10)}">\n'
+                f'<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">\n{arr(x + u)}\n'
+                '</DataArray></Points>\n<Cells>\n'
+                f'<DataArray type="Int32" Name="connectivity" format="ascii">\n{arr(cells10)}\n</DataArray>\n'
+                '<DataArray type="Int32" Name="offsets" format="ascii">\n'
+                f'{arr(10 * np.arange(1, len(cells10) + 1))}\n</DataArray>\n'
+                '<DataArray type="UInt8" Name="types" format="ascii">\n'
+                f'{arr([24] * len(cells10))}\n</DataArray>\n</Cells>\n'
+                '<PointData Vectors="displacement"><DataArray type="Float64" Name="displacement" '
+                f'NumberOfComponents="3" format="ascii">\n{arr(u)}\n</DataArray></PointData>\n'
+                '</Piece>\n</UnstructuredGrid>\n</VTKFile>\n')
+
+
+def other_pictures(tmp):
+    """The animation, the FE shape beside the bend curve and the held-out grid."""
+    from PIL import Image
+    run = os.path.join(tmp, "run.h5")
+    with h5py.File(run, "a") as f:  # the support's box (animate_run.py draws it): 240 x 40 x 150 mm
+        box = np.array([[sx * 120, sy * 20, sz * 75] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], float)
+        f["/support/corners"] = f["/support/position"][:][:, None, :] + box[None, :, :]
+    gif = os.path.join(tmp, "run.gif")
+    out = subprocess.run([PY, os.path.join(ROOT, "tools", "animate_run.py"), run, "-o", gif,
+                          "--fps", "10", "--speed", "2"], capture_output=True, text=True)
+    check(out.returncode == 0, f"animate_run.py exits 0 ({out.stderr.strip()[:200]})")
+    try:
+        with Image.open(gif) as im:
+            n = getattr(im, "n_frames", 1)
+            check(im.size[0] > 0 and im.size[1] > 0 and n > 1,
+                  f"the animation opens: {im.size[0]} x {im.size[1]} px, {n} frames")
+    except Exception as e:
+        check(False, f"the animation {gif} opens ({e})")
+    with open(os.path.join(ROOT, "tools", "quickstart.sh")) as f:
+        calls = [l for l in f.read().splitlines() if "animate_run.py" in l and "echo" not in l
+                 and not l.lstrip().startswith("#")]
+    check(any("-o out/flat_road_paper.gif" in l for l in calls),
+          f"quickstart.sh writes out/flat_road_paper.gif itself ({calls})")
+
+    # the FE shape: an outer cube (0..10 mm) with a sealed inner one (4..6 mm) as its "chamber"
+    vtu = os.path.join(tmp, "bend.vtu")
+    write_quadratic_vtu(vtu, [kuhn_cube(0.0, 10.0), kuhn_cube(4.0, 2.0)], (0.0, 0.0, 3.0))
+    mesh = plot_fe_shape.load_vtu(vtu)
+    tri, full = plot_fe_shape.boundary_faces(mesh["cells"])
+    check(tri.shape == (24, 3) and full.shape == (24, 6), f"boundary faces of two cubes: {tri.shape[0]} (24)")
+    skin = plot_fe_shape.outer_skin(mesh["x"] - mesh["u"], tri)
+    outer = np.all((mesh["x"] - mesh["u"])[tri] % 10.0 == 0.0, axis=(1, 2))
+    check(skin.sum() == 12 and np.array_equal(skin, outer), f"the skin is the outer cube's 12 faces ({skin.sum()})")
+    verts, mag, nf = plot_fe_shape.surface_triangles(mesh, False)
+    check(verts.shape == (48, 3, 3) and nf == 12 and np.allclose(mag, 3.0),
+          f"skin faces split in four: {verts.shape[0]} triangles, |u| {mag.min():.3g}..{mag.max():.3g} mm")
+    bend = os.path.join(tmp, "bend.h5")
+    subprocess.run([PY, os.path.join(HERE, "make_synthetic_h5.py"), "bend", bend], check=True,
+                   capture_output=True)
+    shape_png = os.path.join(tmp, "shape.png")
+    out = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_fe_shape.py"), bend, "-o", shape_png],
+                         capture_output=True, text=True)
+    check(out.returncode == 0, f"plot_fe_shape.py exits 0 ({out.stderr.strip()[:200]})")
+    png_opens(shape_png, "FE shape beside the bend curve")
+    bad = os.path.join(tmp, "bad.vtu")
+    with open(bad, "w") as f:
+        f.write("<VTKFile><UnstructuredGrid><Piece NumberOfPoints='4'>")
+    out = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_fe_shape.py"), bend, "--vtu", bad,
+                          "-o", os.path.join(tmp, "bad.png")], capture_output=True, text=True)
+    check(out.returncode == 1 and out.stderr.count("\n") == 1 and "bad.vtu" in out.stderr,
+          f"a broken VTU: {out.stderr.strip()}")
+
+    # the held-out grid: 9 held-out and symmetry cases in rows of two
+    table, pred = os.path.join(tmp, "cal.h5"), os.path.join(tmp, "pred.h5")
+    for kind, path in (("caltable", table), ("calpred", pred)):
+        subprocess.run([PY, os.path.join(HERE, "make_synthetic_h5.py"), kind, path], check=True,
+                       capture_output=True)
+    check(plot_calibration.holdout_layout(9, 2) == (5, 2) and plot_calibration.holdout_layout(1, 2) == (1, 1),
+          "held-out layout: 9 cases in 5 rows of 2, one case alone")
+    caldir = os.path.join(tmp, "cal")
+    out = subprocess.run([PY, os.path.join(ROOT, "tools", "plot_calibration.py"), table, "--model",
+                          pred, "-o", caldir, "--only", "holdout"], capture_output=True, text=True)
+    check(out.returncode == 0 and os.listdir(caldir) == ["calibration_holdout.png"],
+          f"plot_calibration --only holdout writes that picture alone ({out.stderr.strip()[:200]})")
+    png = os.path.join(caldir, "calibration_holdout.png")
+    png_opens(png, "held-out grid")
+    try:
+        h, w = mpimg.imread(png).shape[:2]
+        check(w <= 1100 and h >= w, f"held-out grid {w} x {h} px: at most 1100 wide, not a strip")
+    except Exception as e:
+        check(False, f"held-out grid size ({e})")
 
 
 def main():
@@ -138,6 +270,7 @@ def main():
         check(out.returncode == 0, f"plot_run.py footfall,forces exits 0 ({out.stderr.strip()[:200]})")
         png_opens(os.path.join(tmp, "c_forces.png"), "forces")
         png_opens(os.path.join(tmp, "c_footfall.png"), "footfall from /contact/stance")
+        other_pictures(tmp)
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0
 
