@@ -235,6 +235,7 @@ static int readAttrString(hid_t obj, const char* name, char* out, size_t size) {
     char* buf = malloc(n + 1);
     hid_t mt = H5Tcopy(H5T_C_S1);
     H5Tset_size(mt, n + 1);
+    H5Tset_cset(mt, H5Tget_cset(ft)); /* run files write UTF-8; HDF5 converts no charsets */
     if (buf && H5Aread(a, mt, buf) >= 0) {
       buf[n] = '\0';
       snprintf(out, size, "%s", buf);

@@ -72,6 +72,9 @@ static int attrString(hid_t f, const char* name, char* out, size_t size) {
   }
   hid_t t = H5Tcopy(H5T_C_S1);
   H5Tset_size(t, size);
+  hid_t ft = H5Aget_type(a);
+  H5Tset_cset(t, H5Tget_cset(ft)); /* the run and bend files' strings are UTF-8 */
+  H5Tclose(ft);
   int ok = H5Aread(a, t, out) >= 0;
   out[size - 1] = '\0';
   H5Tclose(t);

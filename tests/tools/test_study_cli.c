@@ -71,6 +71,9 @@ static int readAttr(hid_t f, const char* obj, const char* name, char* out, size_
   }
   hid_t t = H5Tcopy(H5T_C_S1);
   H5Tset_size(t, size);
+  hid_t ft = H5Aget_type(a);
+  H5Tset_cset(t, H5Tget_cset(ft)); /* run and bend files write UTF-8 */
+  H5Tclose(ft);
   int ok = H5Aread(a, t, out) >= 0;
   out[size - 1] = '\0';
   H5Tclose(t);
