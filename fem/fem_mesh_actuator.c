@@ -252,9 +252,15 @@ csfMesh* csf_meshGmsh(const char* geo, const char* stem, csError* err) {
            geo, msh, log);
   int rc = system(cmd);
   if (rc != -1 && WIFSIGNALED(rc) && (WTERMSIG(rc) == SIGINT || WTERMSIG(rc) == SIGTERM)) {
-    /* Ctrl-C reaches gmsh too (the process group); system() ignored it here meanwhile */
+    /* Ctrl-C reaches gmsh too (the process group), while system() made this process ignore
+     * SIGINT: the signal was meant for us as well, so it is raised again here (POSIX's advice to
+     * callers of system()), and whatever the program installed for it (a cancel flag, or the
+     * default ending) acts as if it had arrived; without it a study recorded the case as failed
+     * instead of interrupted */
+    const int sig = WTERMSIG(rc);
     cs_errorSet(err, CS_ERR_INTERRUPTED, "fem_mesh: gmsh was interrupted (signal %d) meshing %s",
-                WTERMSIG(rc), geo);
+                sig, geo);
+    raise(sig);
     return NULL;
   }
   if (rc != 0) {
