@@ -249,6 +249,7 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
   if (!m) {
     return cs_errorSet(err, CS_ERR_MEMORY, "out of memory for the model");
   }
+  dInitODE2(0); /* counted: nested in a caller's own (crawlsim.c), closed below */
   cs_modelInit(m);
   csRunPlan plan;
   csData* d = NULL;
@@ -290,6 +291,7 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
   cs_dataDestroy(d);
   cs_modelDestroy(m);
   free(m);
+  dCloseODE();
   if (err) {
     *err = e;
   }
@@ -309,6 +311,9 @@ csSim* cs_simCreate(const csRunDef* def, csError* err) {
     cs_errorSet(err, CS_ERR_MEMORY, "out of memory for the simulation");
     return NULL;
   }
+  /* ODE's per-process and per-thread data: counted, so nested in a caller's own init
+   * (crawlsim.c) and closed by cs_simDestroy */
+  dInitODE2(0);
   cs_modelInit(&s->m);
   csStatus st = cs_runDefBuild(def, &s->m, &s->plan, err);
   if (st == CS_OK) {
@@ -346,6 +351,7 @@ void cs_simDestroy(csSim* s) {
   free(s->x_settled);
   free(s->x_save);
   free(s);
+  dCloseODE();
 }
 
 
