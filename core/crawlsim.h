@@ -5,7 +5,7 @@
  *
  * Owns: csRunDef (everything `crawlsim run` takes; docs/reference/commands.md), csRunResult,
  * the opaque csSim (a model, constant during a run, and its data, the state a run changes),
- * csController. Implemented in core/sim_api.c over the driver (sim_model.h).
+ * csController. Implemented in core/cs_api.c over the driver (sim_model.h).
  *
  * Conventions (docs/reference.md): lengths mm, time s, pressure MPa (gauge), force N, mass as
  * each field says; world frame x the crawl direction, y up, z lateral (right-handed);
