@@ -5,7 +5,7 @@
  *
  * Owns: csRunDef (everything `crawlsim run` takes; docs/reference/commands.md), csRunResult,
  * the opaque csSim (a model, constant during a run, and its data, the state a run changes),
- * csController. Implemented in core/sim_api.c over the driver (sim_model.h).
+ * csController. Implemented in core/cs_api.c over the driver (sim_model.h).
  *
  * Conventions (docs/reference.md): lengths mm, time s, pressure MPa (gauge), force N, mass as
  * each field says; world frame x the crawl direction, y up, z lateral (right-handed);
@@ -88,8 +88,9 @@ typedef struct csRunDef {
   const volatile sig_atomic_t* cancel; /* NULL, or a flag the caller sets (a signal handler):
                                 cs_run ends after the step in progress, CS_ERR_INTERRUPTED */
   const char* data_dir;      /* where the shipped gaits/, terrains/, robot/ are; NULL:
-                                $CRAWLSIM_DATA_DIR, else the build's source tree, else the
-                                installed share/crawlsim */
+                                $CRAWLSIM_DATA_DIR, else share/crawlsim beside the installed
+                                library (<prefix>/lib/../share/crawlsim), else the source tree
+                                it was built from */
   void (*log)(void* user, const char* line); /* NULL, or called with each line of what the run
                                 is (scene, conditions, calibration, legs, the auto pick, the
                                 stance check) before it settles; `line` has no newline */
@@ -121,7 +122,9 @@ typedef struct csRunResult {
   double wall_s;             /* wall time of the stepping loop (s) */
   double real_time_factor;   /* simulated s per wall s */
   double robot_mass_g;       /* support and legs */
-  long steps, rejected_steps, gain_projections;
+  long steps, rejected_steps;/* macro steps accepted and rejected since the robot was built
+                                (the settling's included, as the file's attributes) */
+  long gain_projections;     /* steps whose legs' interface gains were projected */
   int ntimer;                /* stage timers (sim_model.h CS_TIMER_LIST) */
   char timer_name[CS_RUN_MAX_TIMERS][16];
   double timer_s[CS_RUN_MAX_TIMERS];

@@ -94,6 +94,24 @@ static int sourceEval(void* ctx, double t, double* p_cmd) {
 
 /* ---- shared by cs_run and cs_simCreate ------------------------------------------------------ */
 
+/* ODE's informational messages ("zero length vector in dRFrom2Axes"): not errors, and the
+ * library prints nothing; a host's own handler (crawlsim.c's) is kept */
+static void odeQuiet(int num, const char* msg, va_list ap) {
+  (void)num;
+  (void)msg;
+  (void)ap;
+}
+
+
+/* ODE's per-process and per-thread data: dInitODE2 is counted, so this nests in a caller's own
+ * initialisation; paired with dCloseODE when the run or the simulation ends */
+static void odeOpen(void) {
+  dInitODE2(0);
+  if (!dGetMessageHandler()) {
+    dSetMessageHandler(odeQuiet);
+  }
+}
+
 static void logLine(const csRunDef* def, const char* fmt, ...)
     __attribute__((format(printf, 2, 3)));
 static void logLine(const csRunDef* def, const char* fmt, ...) {
@@ -249,6 +267,7 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
   if (!m) {
     return cs_errorSet(err, CS_ERR_MEMORY, "out of memory for the model");
   }
+  odeOpen(); /* closed below */
   cs_modelInit(m);
   csRunPlan plan;
   csData* d = NULL;
@@ -290,6 +309,7 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
   cs_dataDestroy(d);
   cs_modelDestroy(m);
   free(m);
+  dCloseODE();
   if (err) {
     *err = e;
   }
@@ -309,6 +329,7 @@ csSim* cs_simCreate(const csRunDef* def, csError* err) {
     cs_errorSet(err, CS_ERR_MEMORY, "out of memory for the simulation");
     return NULL;
   }
+  odeOpen(); /* closed by cs_simDestroy */
   cs_modelInit(&s->m);
   csStatus st = cs_runDefBuild(def, &s->m, &s->plan, err);
   if (st == CS_OK) {
@@ -346,6 +367,7 @@ void cs_simDestroy(csSim* s) {
   free(s->x_settled);
   free(s->x_save);
   free(s);
+  dCloseODE();
 }
 
 

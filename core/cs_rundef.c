@@ -3,8 +3,10 @@
  * its option parser and the run, moved here unchanged so that the command, the study runner
  * and the Python package resolve a run alike. Messages name a field by the `crawlsim run`
  * option it mirrors. */
+#define _GNU_SOURCE /* dladdr: where this library is, to find the data installed beside it */
 #include "cs_rundef.h"
 
+#include <dlfcn.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,22 +47,47 @@ csRunDef cs_defaultRunDef(void) {
 }
 
 
+/* an object of this library, whose address dladdr turns into the library's file */
+static const char kDataAnchor = 0;
+
+/* does dir hold the shipped data (its flat road's terrain)? */
+static int hasData(const char* dir) {
+  char probe[1200];
+  snprintf(probe, sizeof probe, "%s/terrains/flat_road.terrain", dir);
+  FILE* f = fopen(probe, "rb");
+  if (f) {
+    fclose(f);
+  }
+  return f != NULL;
+}
+
+
 const char* cs_runDataPath(const csRunDef* def, const char* rel, char* buf, size_t size) {
   const char* dir = def && def->data_dir && def->data_dir[0] ? def->data_dir : NULL;
   if (!dir) {
     const char* env = getenv("CRAWLSIM_DATA_DIR");
     dir = env && env[0] ? env : NULL;
   }
+  char beside[1024] = "", found[1100];
+  if (!dir) {
+    /* an installed library: <prefix>/lib[/...]/libcrawlsim.so finds <prefix>/share/crawlsim
+     * (the install may have been moved: cmake --install --prefix) */
+    Dl_info info;
+    if (dladdr(&kDataAnchor, &info) && info.dli_fname) {
+      snprintf(beside, sizeof beside, "%s", info.dli_fname);
+      for (int up = 0; up < 3 && !dir; up++) {
+        char* slash = strrchr(beside, '/');
+        if (!slash) break;
+        *slash = '\0';
+        snprintf(found, sizeof found, "%s/share/crawlsim", beside);
+        dir = hasData(found) ? found : NULL;
+      }
+    }
+  }
   if (!dir) {
     /* the build tree's sources when they are there (the command and the tests), else the
-     * installed data */
-    char probe[1024];
-    snprintf(probe, sizeof probe, "%s/terrains/flat_road.terrain", CS_SOURCE_DIR);
-    FILE* f = fopen(probe, "rb");
-    dir = f ? CS_SOURCE_DIR : CS_INSTALL_DATA_DIR;
-    if (f) {
-      fclose(f);
-    }
+     * configured install prefix's data */
+    dir = hasData(CS_SOURCE_DIR) ? CS_SOURCE_DIR : CS_INSTALL_DATA_DIR;
   }
   snprintf(buf, size, "%s/%s", dir, rel);
   return buf;
@@ -148,7 +175,25 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
       return cs_errorSet(err, CS_ERR_ARG, "--set number %d is NULL", k + 1);
     }
   }
-  /* numbers: each against its field's range */
+  /* numbers: NaN is "the default", an infinity is never meant */
+  const struct {
+    const char* flag;
+    double v;
+  } nums[] = {{"--tol", def->legs_tol_mm}, {"--friction", def->friction},
+              {"--pressure-scale", def->pressure_scale}, {"--t-end", def->t_end},
+              {"--dt", def->dt}, {"--output-dt", def->output_dt}, {"--ramp", def->ramp},
+              {"--tau", def->tau}, {"--gravity", def->gravity},
+              {"--support-mass", def->support_mass_kg}, {"--slope-deg", def->slope_deg},
+              {"--links", def->links}, {"--iterations", def->iterations},
+              {"--macro-steps", def->macro_steps}, {"--contact-scale", def->contact_scale},
+              {"--rod-tol", def->rod_tol}};
+  for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
+    if (isinf(nums[k].v)) {
+      return cs_errorSet(err, CS_ERR_RANGE, "%s %g is not a finite number", nums[k].flag,
+                         nums[k].v);
+    }
+  }
+  /* each against its field's range */
   if (!isnan(def->friction) && !(def->friction >= 0)) {
     return cs_errorSet(err, CS_ERR_RANGE, "--friction %g must be >= 0", def->friction);
   }

@@ -29,8 +29,9 @@ typedef struct csRunPlan_ {
  * with cs_modelDestroy) and err the cause, naming the field or file. */
 csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csError* err);
 
-/* A shipped file's path: rel under def->data_dir, $CRAWLSIM_DATA_DIR, the source tree the
- * library was built from (if it holds the data), else the installed share/crawlsim. */
+/* A shipped file's path: rel under def->data_dir, $CRAWLSIM_DATA_DIR, share/crawlsim beside
+ * the installed library (found with dladdr), the source tree the library was built from (if it
+ * holds the data), else the configured prefix's share/crawlsim. */
 const char* cs_runDataPath(const csRunDef* def, const char* rel, char* buf, size_t size);
 
 #ifdef __cplusplus

@@ -211,7 +211,7 @@ static int pneumaticRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   csData* d = user;
   double pc[CSR_NCHAMBER_TOTAL];
   if (cs_schedule(d->m, t, pc) != 0) {
-    return -1; /* the pressure source failed: the step fails (sim_api.c says why) */
+    return -1; /* the pressure source failed: the step fails (cs_api.c says why) */
   }
   const double* p = N_VGetArrayPointer(y);
   double* dp = N_VGetArrayPointer(ydot);

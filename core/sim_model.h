@@ -139,7 +139,7 @@ typedef struct csModel_ {
                                  legs_auto_choice attribute); "" when the level was named */
   double legs_auto_tol_mm;    /* `--legs auto`: the tolerance asked for (mm); NaN otherwise */
   /* What commands the chambers instead of the gait table (crawlsim.h's pressure command and
-   * controller, sim_api.c): NULL, the table. The model's choice of source is fixed during a
+   * controller, cs_api.c): NULL, the table. The model's choice of source is fixed during a
    * step; what the source returns is the caller's input (MuJoCo's mjcb_control). */
   csPressureSource pressure_source;
   void* pressure_ctx;
