@@ -12,10 +12,12 @@ feedforward; its strides from 2 s on repeat with a period of 2 s, so past the ta
 stride (9 s) the controller replays that period (t -> 3 + (t - 3) mod 2). Each side's twelve
 legs' chambers get the gait's command times a gain, the same gain for the four legs of a row:
     e = psi_cmd - psi          (rad; psi the support's heading, + towards -z, the A-D side)
-    u = kp e - kd w_y          (w_y the support's yaw rate, rad/s)
-    k_AD = 1 - u,  k_EH = 1 + u,  both clipped to [1 - u_max, 1 + u_max]
+    u = kp e - kd w_y          (w_y the support's yaw rate, rad/s), clipped to [-u_max, u_max]
+    k_AD = 1 - max(u, 0),  k_EH = 1 - max(-u, 0)
 A row that pushes with less pressure takes shorter strides, so the robot yaws towards that
-row: e > 0 (turn towards -z) shortens the A-D row. The gains are computed between steps from
+row: e > 0 (turn towards -z) lowers the A-D row's pressures. Only lowered, never raised: the
+gait already reaches 0.32 MPa and the calibration table ends at 0.4 MPa, so a gain above 1.24
+would leave the range the legs are calibrated for (the library refuses it). The gains are computed between steps from
 the state (the support's pose and twist: what an IMU would give); within a step the callback
 is a function of time alone (core/crawlsim.h csController), as the library requires. Nothing
 moves the support but the legs' contact forces: the controller only changes chamber commands.
@@ -61,7 +63,7 @@ class HeadingController:
         e = math.atan2(math.sin(self.psi_cmd - psi), math.cos(self.psi_cmd - psi))
         u = self.kp * e - self.kd * self._w[1]
         u = max(-self.u_max, min(self.u_max, u))
-        self.k = (1.0 - u, 1.0 + u)
+        self.k = (1.0 - max(u, 0.0), 1.0 - max(-u, 0.0))
         self.gain[self.rows[0]] = self.k[0]
         self.gain[self.rows[1]] = self.k[1]
         return psi
@@ -152,7 +154,7 @@ def main(argv=None):
     ap.add_argument("--heading", type=float, default=-20.0,
                     help="commanded heading, deg (+ towards -z, the A-D side); default -20")
     ap.add_argument("--t-end", type=float, default=9.0, help="simulated s (default 9)")
-    ap.add_argument("--kp", type=float, default=2.0, help="gain per rad of heading error (2)")
+    ap.add_argument("--kp", type=float, default=4.0, help="gain per rad of heading error (4)")
     ap.add_argument("--kd", type=float, default=0.0, help="gain per rad/s of yaw rate, s (0)")
     ap.add_argument("--u-max", type=float, default=0.5, help="largest change of a row's gain (0.5)")
     ap.add_argument("--tol", type=float, default=5.0, help="allowed final error, deg (5)")
