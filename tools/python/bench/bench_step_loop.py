@@ -3,7 +3,7 @@
 (issue 35: at most 1.2x), in one process (docs/reference/python.md "Cost of a Python loop").
 
 Usage:
-  /usr/bin/python3 tools/python/bench_step_loop.py [--steps 10000] [--chunk 1000]
+  /usr/bin/python3 tools/python/bench/bench_step_loop.py [--steps 10000] [--chunk 1000]
       [--legs rod] [--links N] [--rod-tol K] [--controller]
 
 Three simulations of the same definition (the flat road's gait) advance together:
