@@ -13,7 +13,7 @@ import tempfile
 from . import _lib
 from .errors import Error
 from .results import RunFile
-from .rundef import RunDef
+from .rundef import from_args
 
 
 def _s(b):
@@ -68,12 +68,7 @@ def run(rundef=None, check=True, **kw):
     out="FILE.h5" it stays (with FILE.xdmf). Bad input raises crawlsim.Error before anything
     is built. A run that fails part way raises crawlsim.Error too unless check=False, which
     returns the RunResult (its tracks up to the failure, its message)."""
-    if rundef is None:
-        rundef = RunDef(**kw)
-    elif kw:
-        raise Error("run: give a RunDef or keyword arguments, not both")
-    elif not isinstance(rundef, RunDef):
-        raise Error(f"run: expected a RunDef, not {type(rundef).__name__}")
+    rundef = from_args(rundef, kw, "run")
     tmp = None
     out = rundef.out
     c, keep = rundef.to_c()

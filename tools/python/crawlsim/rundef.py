@@ -121,6 +121,18 @@ class RunDef:
         return self
 
 
+def from_args(rundef, kw, who):
+    """The RunDef a call was given: `rundef` itself, or RunDef(**kw) when it is None (both at
+    once, or something else, raise naming the caller `who`)."""
+    if rundef is None:
+        return RunDef(**kw)
+    if kw:
+        raise Error(f"{who}: give a RunDef or keyword arguments, not both")
+    if not isinstance(rundef, RunDef):
+        raise Error(f"{who}: expected a RunDef, not {type(rundef).__name__}")
+    return rundef
+
+
 def _unknown(name):
     near = difflib.get_close_matches(name, list(_KIND) + ["log"], n=1)
     hint = f" (did you mean {near[0]}?)" if near else ""

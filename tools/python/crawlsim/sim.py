@@ -26,7 +26,7 @@ import numpy as np
 from . import _lib
 from .errors import Error
 from .results import heading_deg
-from .rundef import RunDef
+from .rundef import from_args
 
 _D = ctypes.c_double
 
@@ -62,12 +62,7 @@ class Sim:
     Sim is garbage-collected)."""
 
     def __init__(self, rundef=None, **kw):
-        if rundef is None:
-            rundef = RunDef(**kw)
-        elif kw:
-            raise Error("Sim: give a RunDef or keyword arguments, not both")
-        elif not isinstance(rundef, RunDef):
-            raise Error(f"Sim: expected a RunDef, not {type(rundef).__name__}")
+        rundef = from_args(rundef, kw, "Sim")
         self._L = _lib.lib()
         self._s = None
         self._controller = None  # the Python callable
