@@ -6,6 +6,8 @@ set -euo pipefail
 prefix=$1 test=$2
 site=$(cat "$prefix/pythonpath.txt")
 export PYTHONPATH=$site PYTHONNOUSERSITE=1 CRAWLSIM_TEST_PREFIX=$prefix
+# no __pycache__ left in the source tree (tests/python)
+export PYTHONDONTWRITEBYTECODE=1
 unset LD_LIBRARY_PATH CRAWLSIM_LIBRARY
 work=$(mktemp -d "${TMPDIR:-/tmp}/crawlsim-pytest.XXXXXX")
 trap 'rm -rf "$work"' EXIT
