@@ -12,6 +12,12 @@
 extern "C" {
 #endif
 
+/* The functions of the public API (crawlsim.h): the shared library libcrawlsim is built with
+ * -fvisibility=hidden and exports these alone (CMakeLists.txt "libcrawlsim"). */
+#ifndef CS_API
+#define CS_API __attribute__((visibility("default")))
+#endif
+
 /* X-macro list: name, value, message. */
 #define CS_STATUS_LIST(X)                                   \
   X(CS_OK, 0, "ok")                                         \
@@ -42,10 +48,10 @@ typedef struct csError_ {
 } csError;
 
 /* Human-readable name of a status (static string). */
-const char* cs_statusString(csStatus s);
+CS_API const char* cs_statusString(csStatus s);
 
 /* Clear an error record to CS_OK and an empty message. NULL-safe. */
-void cs_errorClear(csError* err);
+CS_API void cs_errorClear(csError* err);
 
 /* Fill err (if not NULL) with status and a printf-style message; returns status so callers can
  * write `return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: ...", ...)`. Control characters in the

@@ -108,14 +108,17 @@ double cs_modelMacroStep(const csModel* m) { return m->opt.macro_steps * m->opt.
 csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
                       const char* gait_path, const char* calibration_path, csError* err) {
   snprintf(m->scene, sizeof m->scene, "%s", scene);
-  snprintf(m->gait_path, sizeof m->gait_path, "%s", gait_path);
+  snprintf(m->gait_path, sizeof m->gait_path, "%s", gait_path ? gait_path : "");
   csStatus st = cst_terrainLoad(&m->terrain, terrain_path, err);
   if (st != CS_OK) {
     return st;
   }
   csg_gaitDestroy(m->gait);
-  m->gait = csg_gaitRead(gait_path, NULL, err);
-  if (!m->gait) {
+  m->gait = NULL;
+  if (gait_path) {
+    m->gait = csg_gaitRead(gait_path, NULL, err);
+  }
+  if (gait_path && !m->gait) {
     return err ? err->status : CS_ERR_PARSE;
   }
   csr_calibrationClose(m->calibration);
@@ -186,12 +189,20 @@ void cs_modelDestroy(csModel* m) {
 }
 
 
-void cs_schedule(const csModel* m, double t, double* p_cmd) {
+int cs_schedule(const csModel* m, double t, double* p_cmd) {
+  if (t >= 0 && m->pressure_source) {
+    if (m->pressure_source(m->pressure_ctx, t, p_cmd) == 0) {
+      return 0;
+    }
+    memset(p_cmd, 0, CSR_NCHAMBER_TOTAL * sizeof(double));
+    return -1;
+  }
   if (t < 0 || !m->gait) {
     memset(p_cmd, 0, CSR_NCHAMBER_TOTAL * sizeof(double));
-    return;
+    return 0;
   }
   csg_scheduleEval(m->gait, &m->sched, t, p_cmd);
+  return 0;
 }
 
 
@@ -199,7 +210,9 @@ void cs_schedule(const csModel* m, double t, double* p_cmd) {
 static int pneumaticRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   csData* d = user;
   double pc[CSR_NCHAMBER_TOTAL];
-  cs_schedule(d->m, t, pc);
+  if (cs_schedule(d->m, t, pc) != 0) {
+    return -1; /* the pressure source failed: the step fails (cs_api.c says why) */
+  }
   const double* p = N_VGetArrayPointer(y);
   double* dp = N_VGetArrayPointer(ydot);
   double inv_tau = 1.0 / d->m->opt.pneumatic_tau;
@@ -443,6 +456,12 @@ const double* cs_pressures(const csData* d) { return d->p; }
 void cs_supportVelocity(const csData* d, double v[3]) {
   const dReal* V = dBodyGetLinearVel(d->robot->support);
   csu_set3(v, V[0], V[1], V[2]);
+}
+
+
+void cs_supportAngularVelocity(const csData* d, double w[3]) {
+  const dReal* W = dBodyGetAngularVel(d->robot->support);
+  csu_set3(w, W[0], W[1], W[2]);
 }
 
 

@@ -108,12 +108,18 @@ typedef struct csOptions_ {
   double max_speed;       /* mm/s: a body faster than this means the run diverged */
   int progress;           /* print a progress line to stderr every simulated second */
   const volatile sig_atomic_t* cancel; /* NULL, or a flag the caller sets (e.g. from its signal
-                             handler): cs_run then ends after the step in progress, writes the
+                             handler): cs_runWrite then ends after the step in progress, writes the
                              status "interrupted at t = ..." and returns CS_ERR_INTERRUPTED */
 } csOptions;
 
 /* Defaults with reasons (sim_driver.c). */
 csOptions cs_defaultOptions(void);
+
+/* A source of the chamber commands for time t >= 0 (s): fills p_cmd [96] (MPa, label order)
+ * and returns 0, or non-zero when it cannot (the command is then zero and the pneumatic
+ * integrator fails, so the step fails). Asked wherever the schedule is (cs_schedule): at the
+ * end of each step and at the pneumatic integrator's inner times. */
+typedef int (*csPressureSource)(void* ctx, double t, double* p_cmd);
 
 typedef struct csModel_ {
   csOptions opt;
@@ -132,12 +138,18 @@ typedef struct csModel_ {
   char legs_auto_choice[1024]; /* `--legs auto`: what was picked and why (the output's
                                  legs_auto_choice attribute); "" when the level was named */
   double legs_auto_tol_mm;    /* `--legs auto`: the tolerance asked for (mm); NaN otherwise */
+  /* What commands the chambers instead of the gait table (crawlsim.h's pressure command and
+   * controller, cs_api.c): NULL, the table. The model's choice of source is fixed during a
+   * step; what the source returns is the caller's input (MuJoCo's mjcb_control). */
+  csPressureSource pressure_source;
+  void* pressure_ctx;
 } csModel;
 
 /* Fill a model with the defaults of every part (no files read, no map yet; prb legs). */
 void cs_modelInit(csModel* m);
 
-/* Load a scene's files into an initialised model: terrain description, gait table, and the
+/* Load a scene's files into an initialised model: terrain description, gait table (none when
+ * gait_path is NULL: the pressures are zero unless m->pressure_source commands them), and the
  * calibration bound to the leg actuator. Options may be changed before and after. On failure
  * err names the file and line. */
 csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
@@ -251,6 +263,8 @@ void cs_supportDisplacement(const csData* d, double pos[3]);
 void cs_supportOrientation(const csData* d, double q[4]);
 /* support centre velocity, world, mm/s */
 void cs_supportVelocity(const csData* d, double v[3]);
+/* support angular velocity, world, rad/s */
+void cs_supportAngularVelocity(const csData* d, double w[3]);
 /* actual chamber pressures (96, MPa) */
 const double* cs_pressures(const csData* d);
 /* centreline of leg k (0..7) at `npts` points, (npts x 3) world mm */
@@ -294,11 +308,11 @@ double cs_robotMass(const csData* d);
  * "interrupted at t = ... s" or the error), samples and flushed_t_s say how far it reaches; the
  * timers go in as attributes at the end. opt.cancel set: ends after the step in progress with
  * CS_ERR_INTERRUPTED. `wall_s` gets the wall time of the loop. */
-csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_s,
-                csError* err);
+csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* wall_s,
+                     csError* err);
 
 /* A run that failed before t = 0 (while settling, `cause`) still leaves its output file: the
- * header (every attribute cs_run writes first), the contract's series with no samples, the
+ * header (every attribute cs_runWrite writes first), the contract's series with no samples, the
  * `status` attribute saying what stderr says and `failed_at_s`, the time of the failure
  * (negative: settling runs from -opt.settle to 0). No XDMF (there is nothing to show). */
 csStatus cs_runRecordFailure(const csModel* m, const csData* d, const char* out_path,

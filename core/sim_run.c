@@ -261,8 +261,8 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
 }
 
 
-csStatus cs_run(const csModel* m, csData* d, const char* out_path, double* wall_s,
-                csError* err) {
+csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* wall_s,
+                     csError* err) {
   double t_end = cs_modelEndTime(m);
   if (m->opt.centerline_points > MAX_CENTERLINE) {
     return cs_errorSet(err, CS_ERR_RANGE, "at most %d centreline points", MAX_CENTERLINE);

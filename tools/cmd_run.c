@@ -8,24 +8,21 @@
  *   (the FE mode table's rule),
  *   --tol MM and --levels FILE (with --legs auto: the cheapest measured configuration of the
  *   scene whose track error is within MM, from the table robot/levels.csv, robot_levels.h).
- * Options take "--name VALUE" or "--name=VALUE". Bad input (flags, files, an unwritable
- * --out) is found before the robot is built or settled, and every failure prints exactly one
- * line "crawlsim run: <cause>" on stderr (file:line for file errors) and exits 1. */
-#include <errno.h>
+ * Options take "--name VALUE" or "--name=VALUE". Each option fills the field of the run
+ * definition it names (crawlsim.h csRunDef); the library validates it, runs and returns the
+ * result this command prints. Bad input (flags, files, an unwritable --out) is found before
+ * the robot is built or settled, and every failure prints exactly one line
+ * "crawlsim run: <cause>" on stderr (file:line for file errors) and exits 1. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "crawlsim.h"
 #include "cs_commands.h"
 #include "cs_opts.h"
-#include "cs_paths.h"
-#include "terrains_scenefile.h"
 #include "cs_signal.h"
-#include "robot_calibration.h"
-#include "robot_levels.h"
-#include "robot_strain.h"
-#include "sim_model.h"
 
 /* the options of `crawlsim run`, for parsing and --help (cs_opts.h) */
 static const csxOpt kRunOpts[] = {
@@ -112,550 +109,134 @@ static const csxOptTable kRunTable = {
     "(docs/reference/commands.md)."};
 
 
-/* the longest run one command may ask for: beyond this --t-end / --dt is a typo, and the step
- * count would overflow the driver's step counter on 32-bit longs */
-#define MAX_STEPS 1e9
-/* the longest step the driver accepts (sim_driver.c validateOptions) */
-#define MAX_DT_S 0.01
+/* the options that fill a number or a string of the run definition */
+static const struct {
+  const char* flag;
+  size_t off;
+  int is_num;
+} kRunFields[] = {
+    {"--scene", offsetof(csRunDef, scene), 0},
+    {"--scene-file", offsetof(csRunDef, scene_file), 0},
+    {"--gait", offsetof(csRunDef, gait), 0},
+    {"--terrain", offsetof(csRunDef, terrain), 0},
+    {"--legs", offsetof(csRunDef, legs), 0},
+    {"--out", offsetof(csRunDef, out), 0},
+    {"--calibration", offsetof(csRunDef, calibration), 0},
+    {"--cal-rule", offsetof(csRunDef, cal_rule), 0},
+    {"--cal-drop", offsetof(csRunDef, cal_drop), 0},
+    {"--conditions", offsetof(csRunDef, conditions), 0},
+    {"--coupling", offsetof(csRunDef, coupling), 0},
+    {"--levels", offsetof(csRunDef, levels), 0},
+    {"--slope-deg", offsetof(csRunDef, slope_deg), 1},
+    {"--friction", offsetof(csRunDef, friction), 1},
+    {"--pressure-scale", offsetof(csRunDef, pressure_scale), 1},
+    {"--t-end", offsetof(csRunDef, t_end), 1},
+    {"--dt", offsetof(csRunDef, dt), 1},
+    {"--output-dt", offsetof(csRunDef, output_dt), 1},
+    {"--ramp", offsetof(csRunDef, ramp), 1},
+    {"--tau", offsetof(csRunDef, tau), 1},
+    {"--support-mass", offsetof(csRunDef, support_mass_kg), 1},
+    {"--links", offsetof(csRunDef, links), 1},
+    {"--gravity", offsetof(csRunDef, gravity), 1},
+    {"--macro-steps", offsetof(csRunDef, macro_steps), 1},
+    {"--tol", offsetof(csRunDef, legs_tol_mm), 1},
+    {"--contact-scale", offsetof(csRunDef, contact_scale), 1},
+    {"--rod-tol", offsetof(csRunDef, rod_tol), 1},
+    {"--iterations", offsetof(csRunDef, iterations), 1},
+};
 
 
-/* parse a finite number given to `flag`; 0 and err filled if it is not one */
-static int parseNum(const char* flag, const char* s, double* v, csError* err) {
-  char* end;
-  *v = strtod(s, &end);
-  if (end == s || *end != '\0' || !isfinite(*v)) {
-    cs_errorSet(err, CS_ERR_PARSE, "%s '%.60s' is not a finite number", flag, s);
-    return 0;
+/* the library's lines of what the run is (csRunDef.log), on stderr as the banner */
+static void printBanner(void* user, const char* line) {
+  (void)user;
+  fprintf(stderr, "crawlsim run: %s\n", line);
+}
+
+
+/* the option `flag` with value v into the definition; 0 and err filled if v is not a number
+ * where one is needed */
+static int setField(csRunDef* def, const char* flag, const char* v, csError* err) {
+  for (size_t k = 0; k < sizeof kRunFields / sizeof kRunFields[0]; k++) {
+    if (strcmp(flag, kRunFields[k].flag)) continue;
+    char* field = (char*)def + kRunFields[k].off;
+    if (!kRunFields[k].is_num) {
+      memcpy(field, &v, sizeof v);
+      return 1;
+    }
+    char* end;
+    double x = strtod(v, &end);
+    if (end == v || *end != '\0' || !isfinite(x)) {
+      cs_errorSet(err, CS_ERR_PARSE, "%s '%.60s' is not a finite number", flag, v);
+      return 0;
+    }
+    memcpy(field, &x, sizeof x);
+    return 1;
   }
   return 1;
 }
 
 
-/* fail now, not after settling, if the output file cannot be written: open it for appending
- * (which neither truncates an existing file nor needs HDF5) and remove it again if it is new */
-static csStatus checkWritable(const char* path, csError* err) {
-  FILE* f = fopen(path, "rb");
-  int existed = f != NULL;
-  if (f) {
-    fclose(f);
-  }
-  errno = 0;
-  f = fopen(path, "ab");
-  if (!f) {
-    return cs_errorSet(err, CS_ERR_IO, "--out %s: cannot create output file: %s", path,
-                       strerror(errno));
-  }
-  fclose(f);
-  if (!existed) {
-    remove(path);
-  }
-  return CS_OK;
-}
-
-
 int csx_cmdRun(int argc, char** argv) {
-  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
-   * polls the flag */
+  /* SIGINT/SIGTERM end the run after the step in progress (cs_signal.h): exit 128 + signal */
   csx_signalInstall();
-  const char* scene = "flat-road";
-  const char* gait = NULL;
-  const char* terrain = NULL;
-  const char* legs = NULL; /* the scene's (sim_scene.c) */
-  const char* out = "run.h5";
-  const char* calib = NULL;
-  double friction = NAN, scale = 1.0, t_end = 0, dt = NAN, out_dt = NAN, ramp = NAN, tau = NAN;
-  double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN, macro = NAN;
-  const char* coupling = NULL;
-  const char* conditions = NULL;
-  const char* levels = NULL;
-  const char* scene_file = NULL;
-  double slope_deg = NAN;
-  static cstSceneFile sf; /* ~1.5 KB of paths: not on the stack */
-  double tol = NAN, kscale = NAN, rodtol = NAN;
-  unsigned cal_drop = 0;
+  csRunDef def = cs_defaultRunDef();
+  def.out = "run.h5";
+  def.progress = 1;
+  def.log = printBanner;
+  def.cancel = csx_signalFlag();
   const char* sets[32];
-  int quiet = 0, nset = 0;
   csError err;
   cs_errorClear(&err);
-  csModel m;
-  cs_modelInit(&m);
-  int rc = 1;
-  csData* d = NULL;
-  char terrain_buf[512], gait_buf[512], calib_buf[512], levels_buf[512];
-  static csrLevelTable table; /* ~40 KB: not on the stack */
-
-  /* options: --name VALUE or --name=VALUE; every failure is one line at done: */
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind kind; (kind = csx_optNext(&kRunTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (kind == CSX_OPT_HELP) {
-      csx_optHelp(&kRunTable, stdout);
-      rc = 0;
-      goto done;
-    }
-    if (kind == CSX_OPT_ERROR) {
-      cs_errorSet(&err, CS_ERR_ARG, "%s", it.error);
-      goto done;
-    }
+    if (kind == CSX_OPT_HELP || kind == CSX_OPT_ERROR) return csx_optReport(&kRunTable, kind, &it);
     if (kind == CSX_OPT_OPERAND) {
-      cs_errorSet(&err, CS_ERR_ARG, "unexpected argument '%.60s' (see crawlsim run --help)",
-                  it.value);
-      goto done;
+      fprintf(stderr, "crawlsim run: unexpected argument '%.60s' (see crawlsim run --help)\n",
+              it.value);
+      return 1;
     }
     const char* flag = it.opt->name;
-    const char* v = it.value;
     if (!strcmp(flag, "--quiet")) {
-      quiet = 1;
-      continue;
-    }
-    int ok = 1;
-    if (!strcmp(flag, "--scene")) {
-      scene = v;
-    } else if (!strcmp(flag, "--gait")) {
-      gait = v;
-    } else if (!strcmp(flag, "--terrain")) {
-      terrain = v;
-    } else if (!strcmp(flag, "--scene-file")) {
-      scene_file = v;
-    } else if (!strcmp(flag, "--slope-deg")) {
-      ok = parseNum(flag, v, &slope_deg, &err);
-    } else if (!strcmp(flag, "--legs")) {
-      legs = v;
-    } else if (!strcmp(flag, "--out")) {
-      out = v;
-    } else if (!strcmp(flag, "--calibration")) {
-      calib = v;
-    } else if (!strcmp(flag, "--friction")) {
-      ok = parseNum(flag, v, &friction, &err);
-    } else if (!strcmp(flag, "--pressure-scale")) {
-      ok = parseNum(flag, v, &scale, &err);
-    } else if (!strcmp(flag, "--t-end")) {
-      ok = parseNum(flag, v, &t_end, &err);
-    } else if (!strcmp(flag, "--dt")) {
-      ok = parseNum(flag, v, &dt, &err);
-    } else if (!strcmp(flag, "--output-dt")) {
-      ok = parseNum(flag, v, &out_dt, &err);
-    } else if (!strcmp(flag, "--ramp")) {
-      ok = parseNum(flag, v, &ramp, &err);
-    } else if (!strcmp(flag, "--tau")) {
-      ok = parseNum(flag, v, &tau, &err);
-    } else if (!strcmp(flag, "--support-mass")) {
-      ok = parseNum(flag, v, &support_kg, &err);
-    } else if (!strcmp(flag, "--links")) {
-      ok = parseNum(flag, v, &links, &err);
-    } else if (!strcmp(flag, "--gravity")) {
-      ok = parseNum(flag, v, &gravity, &err);
-    } else if (!strcmp(flag, "--macro-steps")) {
-      ok = parseNum(flag, v, &macro, &err);
-    } else if (!strcmp(flag, "--coupling")) {
-      coupling = v;
-    } else if (!strcmp(flag, "--conditions")) {
-      conditions = v;
-    } else if (!strcmp(flag, "--tol")) {
-      ok = parseNum(flag, v, &tol, &err);
-    } else if (!strcmp(flag, "--contact-scale")) {
-      ok = parseNum(flag, v, &kscale, &err);
-    } else if (!strcmp(flag, "--rod-tol")) {
-      ok = parseNum(flag, v, &rodtol, &err);
-    } else if (!strcmp(flag, "--levels")) {
-      levels = v;
-    } else if (!strcmp(flag, "--cal-rule")) {
-      csrCalRule rule;
-      if (!csr_calRuleParse(v, &rule)) {
-        cs_errorSet(&err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf or "
-                    "rbf-pair)", v);
-        goto done;
-      }
-      m.cal_rule = (int)rule;
-    } else if (!strcmp(flag, "--cal-drop")) {
-      if (!csr_calDropParse(v, &cal_drop)) {
-        cs_errorSet(&err, CS_ERR_ARG, "bad --cal-drop '%.60s' (expected stretch, stiffness, "
-                    "stretch,stiffness or none)", v);
-        goto done;
-      }
+      def.progress = 0;
+      def.log = NULL;
     } else if (!strcmp(flag, "--set")) {
-      if (nset == 32) {
-        cs_errorSet(&err, CS_ERR_ARG, "more than 32 --set options");
-        goto done;
+      if (def.n_actuator_set == 32) {
+        fprintf(stderr, "crawlsim run: more than 32 --set options\n");
+        return 1;
       }
-      sets[nset++] = v;
-    } else if (!strcmp(flag, "--iterations")) {
-      ok = parseNum(flag, v, &iters, &err);
-    }
-    if (!ok) {
-      goto done;
-    }
-  }
-
-  /* a scene file (terrains_scenefile.h) fills what the command line left out */
-  int scene_given = 0;
-  for (int i = 1; i < argc; i++) scene_given |= !strncmp(argv[i], "--scene", 7) &&
-                                                (argv[i][7] == '\0' || argv[i][7] == '=');
-  if (scene_file) {
-    if (cst_sceneFileLoad(&sf, scene_file, &err) != CS_OK) goto done;
-    if (!scene_given && sf.scene[0]) scene = sf.scene;
-    if (!terrain && sf.terrain[0]) terrain = sf.terrain;
-    if (!gait && sf.gait[0]) gait = sf.gait;
-    if (!conditions && sf.conditions[0]) conditions = sf.conditions;
-    if (t_end == 0 && sf.has_t_end) t_end = sf.t_end;
-  }
-  /* scene -> default terrain, gait and conditions (sim_scene.h) */
-  const csScene* sc = cs_sceneFind(scene);
-  if (!sc) {
-    cs_errorSet(&err, CS_ERR_ARG, "unknown scene '%.60s' (expected flat-road, obstacle or slope)",
-                scene);
-    goto done;
-  }
-  int user_files = terrain != NULL || gait != NULL;
-  if (!legs) legs = sc->legs;
-  if (!terrain) terrain = csx_dataPath(sc->terrain, terrain_buf, sizeof terrain_buf);
-  if (!gait) gait = csx_dataPath(sc->gait, gait_buf, sizeof gait_buf);
-  int requested = -1;
-  if (conditions) {
-    csConditions c;
-    if (cs_conditionsParse(conditions, &c, &err) != CS_OK) goto done;
-    requested = (int)c;
-  }
-  csConditionsSource cond_src;
-  cs_modelSetConditions(&m, cs_sceneConditions(sc, requested, user_files, &cond_src));
-  /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */
-  const csrLegType* leg_type = NULL;
-  if (!strcmp(legs, "auto")) {
-    /* the scene's cheapest measured configuration within the tolerance (issue 11) */
-    if (isnan(tol)) {
-      cs_errorSet(&err, CS_ERR_ARG, "--legs auto needs --tol MM (the track error allowed "
-                  "against the reference, see robot/levels.csv)");
-      goto done;
-    }
-    if (!isnan(links) || !isnan(macro) || !isnan(dt) || !isnan(rodtol)) {
-      cs_errorSet(&err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt and --rod-tol "
-                  "from its table: give them with --legs prb, rod or strain instead");
-      goto done;
-    }
-    if (!levels) levels = csx_dataPath("robot/levels.csv", levels_buf, sizeof levels_buf);
-    if (csr_levelTableRead(levels, &table, &err) != CS_OK) goto done;
-    int k = csr_levelTablePick(&table, scene, tol, &err);
-    if (k < 0) goto done;
-    const csrLevelRow* row = &table.row[k];
-    const csrLevelRow* fin = &table.row[csr_levelTableFinest(&table, scene)];
-    /* the scene's costliest row: what always running the dearest configuration would cost */
-    const csrLevelRow* top = &table.row[csr_levelTableCostliest(&table, scene)];
-    leg_type = csr_legTypeFind(row->level, NULL);
-    links = row->links;
-    macro = row->macro_steps;
-    dt = row->dt_s;
-    rodtol = row->rod_tol;
-    m.legs_auto_tol_mm = tol;
-    char tolnote[32] = "";
-    if (row->rod_tol != 1) {
-      snprintf(tolnote, sizeof tolnote, ", rod tol %g", row->rod_tol);
-    }
-    snprintf(m.legs_auto_choice, sizeof m.legs_auto_choice,
-             "%s, links %d, macro steps %d, dt %g s%s: the cheapest of %d configurations measured "
-             "on %.31s within --tol %g mm (error %.3g mm against the reference, %.3g CPU s per "
-             "simulated s); the most accurate (%s, links %d, macro steps %d, dt %g s: %.3g mm) "
-             "costs %.3g, the costliest (%s, links %d, macro steps %d, dt %g s: %.3g mm) %.3g "
-             "CPU s per simulated s, %.2fx; %.200s line %d, measured on %.63s%s",
-             row->level, row->links, row->macro_steps, row->dt_s, tolnote,
-             csr_levelTableCount(&table, scene), scene, tol, row->error_mm, row->cpu_s_per_s,
-             fin->level, fin->links, fin->macro_steps, fin->dt_s, fin->error_mm,
-             fin->cpu_s_per_s, top->level, top->links, top->macro_steps, top->dt_s,
-             top->error_mm, top->cpu_s_per_s, top->cpu_s_per_s / row->cpu_s_per_s, levels,
-             row->line, row->machine,
-             user_files || conditions
-                 ? " (measured with the scene's own terrain, gait and conditions, not this run's)"
-                 : "");
-  } else {
-    int planned = 0;
-    leg_type = csr_legTypeFind(legs, &planned);
-    if (!leg_type && planned) {
-      char names[128] = "";
-      for (int i = 0, n = 0; i < csr_legTypeCount() && n < (int)sizeof names; i++) {
-        int w = snprintf(names + n, sizeof names - n, "%s%s", i ? ", " : "",
-                         csr_legTypeAt(i)->name);
-        n += w > 0 ? w : 0;
-      }
-      cs_errorSet(&err, CS_ERR_ARG, "leg model '%s' is not available yet (available: %s)", legs,
-                  names);
-      goto done;
-    }
-    if (!leg_type) {
-      cs_errorSet(&err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod, strain or "
-                  "rom)",
-                  legs);
-      goto done;
+      sets[def.n_actuator_set++] = it.value;
+      def.actuator_set = sets;
+    } else if (!setField(&def, flag, it.value, &err)) {
+      fprintf(stderr, "crawlsim run: %s\n", err.msg);
+      return 1;
     }
   }
-  if (leg_type && !m.legs_auto_choice[0] && (!isnan(tol) || levels)) {
-    cs_errorSet(&err, CS_ERR_ARG, "--tol and --levels go with --legs auto");
-    goto done;
-  }
-  /* the scene's calibration (its gait was designed on it) under the scene's rule, overridable
-   * with --calibration (which then keeps that table's own default rule) and --cal-rule */
-  if (!calib) {
-    calib = csx_dataPath(sc->calibration, calib_buf, sizeof calib_buf);
-    csrCalRule rule;
-    if (m.cal_rule < 0 && sc->cal_rule && csr_calRuleParse(sc->cal_rule, &rule)) {
-      m.cal_rule = (int)rule;
+  csRunResult r;
+  csStatus st = cs_run(&def, &r, &err);
+  if (r.verdict[0]) {
+    printf("final t = %.3f s: support displacement x = %.2f mm, y = %.2f mm, z = %.2f mm, "
+           "tilt %.2f deg\n", r.t_end, r.position[0], r.position[1], r.position[2], r.tilt_deg);
+    printf("wall time %.2f s, real-time factor %.2f (simulated s per wall s), output %s\n",
+           r.wall_s, r.real_time_factor, def.out);
+    /* where the time went: one entry per stage timer, as in the HDF5 attributes */
+    printf("time split (s):");
+    for (int k = 0; k < r.ntimer; k++) {
+      printf(" %s %.3f%s", r.timer_name[k], r.timer_s[k], k + 1 < r.ntimer ? "," : "\n");
+    }
+    if (r.gain_projections > 0) {
+      printf("coupling: the legs' interface gains were not passive in %ld macro step(s); their "
+             "implicit part was projected onto passive gains there (README \"Rod legs\")\n",
+             r.gain_projections);
+    }
+    if (st != CS_OK) {
+      printf("verdict (%s, %s legs): %s: %s\n", r.conditions, r.legs, r.verdict, r.message);
+    } else {
+      printf("verdict (%s, %s legs): %s: x = %.1f mm, z = %.1f mm in %.2f s, tilt %.1f deg\n",
+             r.conditions, r.legs, r.verdict, r.position[0], r.position[2], r.t_end, r.tilt_deg);
     }
   }
-
-  /* numbers: check each against its flag's range before anything is loaded or built */
-  if (!isnan(friction) && !(friction >= 0)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--friction %g must be >= 0", friction);
-    goto done;
-  }
-  if (!(scale >= 0)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--pressure-scale %g must be >= 0", scale);
-    goto done;
-  }
-  if (!(t_end >= 0)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--t-end %g s must be >= 0 (0: the gait's length)", t_end);
-    goto done;
-  }
-  if (!isnan(dt) && !(dt > 0 && dt <= MAX_DT_S)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--dt %g s must be > 0 and <= %g s", dt, MAX_DT_S);
-    goto done;
-  }
-  /* a tree-stepped level's step is its own unless --dt says (csrLegType.step) */
-  double h = !isnan(dt) ? dt : leg_type && leg_type->prepare && leg_type->step > 0
-                                   ? leg_type->step : m.opt.h;
-  if (!isnan(out_dt) && !(out_dt >= h)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--output-dt %g s must be >= the step %g s (--dt)", out_dt,
-                h);
-    goto done;
-  }
-  if (!isnan(ramp) && !(ramp >= 0)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--ramp %g s must be >= 0", ramp);
-    goto done;
-  }
-  if (!isnan(tau) && !(tau >= 0)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--tau %g s must be >= 0 (0: no pressure lag)", tau);
-    goto done;
-  }
-  if (!isnan(gravity) && !(gravity >= 0)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--gravity %g m/s^2 must be >= 0", gravity);
-    goto done;
-  }
-  if (!isnan(support_kg) && !(support_kg > 0)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--support-mass %g kg must be > 0", support_kg);
-    goto done;
-  }
-  if (!isnan(links) && (links != floor(links) || links < 1 || links > 64)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--links %g must be an integer in 1..64", links);
-    goto done;
-  }
-  /* checked before the conversion to int, which would be undefined for 1e30 */
-  if (!isnan(iters) && (iters != floor(iters) || iters < 1 || iters > 10000)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--iterations %g must be an integer in 1..10000", iters);
-    goto done;
-  }
-  if (!isnan(macro) && (macro != floor(macro) || macro < 1 || macro > 100000)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--macro-steps %g must be an integer in 1..100000", macro);
-    goto done;
-  }
-  if (!isnan(macro) && !isnan(out_dt) && !(out_dt >= macro * h)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--output-dt %g s must be >= the macro step %g s "
-                "(--macro-steps x --dt)", out_dt, macro * h);
-    goto done;
-  }
-  /* 1e6: a contact a million times stiffer than the default is a typo, not a study */
-  if (!isnan(kscale) && !(kscale > 0 && kscale <= 1e6)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--contact-scale %g must be > 0 and <= 1e6", kscale);
-    goto done;
-  }
-  /* 1000: CVODE's relative tolerance (1e-4 shipped) near 0.1, where the steps are bounded by
-   * the macro step alone and the track is no longer an integration of anything */
-  if (!isnan(rodtol) && !(rodtol > 0 && rodtol <= 1000)) {
-    cs_errorSet(&err, CS_ERR_RANGE, "--rod-tol %g must be > 0 and <= 1000", rodtol);
-    goto done;
-  }
-  if (coupling && strcmp(coupling, "staggered") && strcmp(coupling, "stabilised") &&
-      strcmp(coupling, "gs") && strcmp(coupling, "tree")) {
-    cs_errorSet(&err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered, stabilised, "
-                "gs or tree)", coupling);
-    goto done;
-  }
-  if (coupling && !strcmp(coupling, "tree") && !(leg_type && leg_type->prepare)) {
-    cs_errorSet(&err, CS_ERR_ARG, "--coupling tree needs a tree-stepped leg level (--legs "
-                "strain)");
-    goto done;
-  }
-  if (coupling && leg_type && leg_type->prepare && !strcmp(coupling, "tree") && !isnan(macro) &&
-      macro != 1) {
-    cs_errorSet(&err, CS_ERR_ARG, "--coupling tree takes one ODE step per macro step "
-                "(--macro-steps 1)");
-    goto done;
-  }
-
-  m.opt.progress = !quiet;
-  m.opt.cancel = csx_signalFlag(); /* SIGINT/SIGTERM: status "interrupted at t", exit 128+sig */
-  /* --set: the legs' actuator of a design study; their stiffness and mass follow from it */
-  for (int k = 0; k < nset; k++) {
-    if (csr_actuatorSetString(&m.robot.leg, sets[k], &err) != CS_OK) goto done;
-  }
-  if (nset > 0) {
-    if (csr_actuatorValidate(&m.robot.leg, &err) != CS_OK) goto done;
-    m.robot.leg_params = csr_defaultLegParams(&m.robot.leg);
-  }
-  cs_modelSetLegLevel(&m, leg_type); /* the one place the level is stored (and its coupling) */
-  if (cal_drop && m.robot.leg_type != &csr_leg_rod) {
-    cs_errorSet(&err, CS_ERR_ARG, "--cal-drop: only rod legs take the calibration's stretch and "
-                "stiffness (legs %s)", cs_modelLegLevel(&m));
-    goto done;
-  }
-  m.robot.leg_params.cal_drop = cal_drop;
-  if (!isnan(friction)) m.contact.mu = friction;
-  if (!isnan(kscale)) {
-    m.contact.kp *= kscale;
-    m.contact.stiffness_scale = kscale;
-  }
-  m.sched.pressure_scale = scale;
-  if (!isnan(ramp)) m.sched.ramp = ramp;
-  m.opt.h = h;
-  if (!isnan(out_dt)) m.opt.output_dt = out_dt;
-  if (!isnan(tau)) m.opt.pneumatic_tau = tau;
-  if (!isnan(iters)) m.opt.solver_iterations = (int)iters;
-  if (!isnan(macro)) m.opt.macro_steps = (int)macro;
-  if (coupling) {
-    m.opt.coupling = !strcmp(coupling, "stabilised") ? CS_COUPLING_STABILISED
-                     : !strcmp(coupling, "gs")       ? CS_COUPLING_GAUSS_SEIDEL
-                     : !strcmp(coupling, "tree")     ? CS_COUPLING_TREE
-                                                     : CS_COUPLING_STAGGERED;
-  }
-  /* the default output interval must hold a whole macro step */
-  if (isnan(out_dt) && m.opt.output_dt < cs_modelMacroStep(&m)) {
-    m.opt.output_dt = cs_modelMacroStep(&m);
-  }
-  if (!isnan(gravity)) m.opt.gravity = gravity * 1e3; /* m/s^2 -> mm/s^2 */
-  if (!isnan(support_kg)) m.robot.support_mass = support_kg * 1e-3; /* kg -> t */
-  if (!isnan(links)) {
-    m.robot.leg_params.links_per_segment = (int)links;
-  } else if (m.robot.leg_type == &csr_leg_rod && sc->rod_links > 0) {
-    m.robot.leg_params.links_per_segment = sc->rod_links; /* converged on the scene's table */
-  } else if (m.robot.leg_type == &csr_leg_strain) {
-    /* bending modes per segment: the level's own default basis */
-    m.robot.leg_params.links_per_segment = csr_strainDefaultParams().bend_order + 1;
-  }
-  if (!isnan(rodtol)) m.robot.leg_params.rod_tol_scale = rodtol;
-  m.opt.t_end = t_end;
-  if (csc_contactParamsValidate(&m.contact, &err) != CS_OK ||
-      csg_scheduleCheckOptions(&m.sched, &err) != CS_OK) {
-    goto done;
-  }
-  if (cs_modelLoad(&m, scene, terrain, gait, calib, &err) != CS_OK) goto done;
-  if (scene_file && cs_modelApplySceneFile(&m, &sf, &err) != CS_OK) goto done;
-  if (!isnan(slope_deg)) {
-    if (!(fabs(slope_deg) <= 45)) { /* the terrain file's limit (terrains_terrain.h) */
-      cs_errorSet(&err, CS_ERR_RANGE, "--slope-deg %g must be within +-45 deg", slope_deg);
-      goto done;
-    }
-    m.terrain.slope_deg = slope_deg;
-  }
-  if (m.gait) {
-    csgGaitSummary gs;
-    csg_gaitComputeSummary(m.gait, &gs, NULL);
-    if (gs.p_max * scale > csg_defaultReadOptions().max_pressure) {
-      cs_errorSet(&err, CS_ERR_RANGE, "--pressure-scale %g takes %s to %g MPa, above the %g MPa "
-                  "limit of gait pressures", scale, gait, gs.p_max * scale,
-                  csg_defaultReadOptions().max_pressure);
-      goto done;
-    }
-  }
-  if (cs_modelEndTime(&m) / m.opt.h > MAX_STEPS) {
-    cs_errorSet(&err, CS_ERR_RANGE, "a run to t = %g s at --dt %g s takes more than %g steps",
-                cs_modelEndTime(&m), m.opt.h, MAX_STEPS);
-    goto done;
-  }
-  if (checkWritable(out, &err) != CS_OK) goto done;
-
-  d = cs_dataCreate(&m, &err);
-  if (!d) goto done;
-  if (!quiet) {
-    fprintf(stderr, "crawlsim run: scene %s, gait %s, legs %s, friction %.3g, t_end %.3g s, "
-            "robot mass %.1f g\n", scene, gait, cs_modelLegLevel(&m), m.contact.mu,
-            cs_modelEndTime(&m), cs_robotMass(d) * 1e6);
-    fprintf(stderr, "crawlsim run: conditions %s (%s): %s\n", cs_conditionsName(m.conditions),
-            cs_conditionsSourceName(cond_src), cs_conditionsWhat(m.conditions));
-    fprintf(stderr, "crawlsim run: calibration (rule %s): %s\n",
-            csr_calibrationRuleName(m.calibration), m.robot.map.name);
-    fprintf(stderr, "crawlsim run: legs %s, %d %s per segment\n", cs_modelLegLevel(&m),
-            m.robot.leg_params.links_per_segment,
-            m.robot.leg_type == &csr_leg_rod      ? "elements"
-            : m.robot.leg_type == &csr_leg_strain ? "bending modes"
-                                                  : "links");
-    if (m.robot.leg_params.cal_drop) {
-      char what[32];
-      csr_calDropFormat(m.robot.leg_params.cal_drop, what, sizeof what);
-      fprintf(stderr, "crawlsim run: calibration parts left out (--cal-drop): %s\n", what);
-    }
-    if (m.legs_auto_choice[0]) {
-      fprintf(stderr, "crawlsim run: --legs auto picked %s\n", m.legs_auto_choice);
-    }
-    double load, pcr;
-    cs_modelStanceCheck(&m, cs_robotMass(d), &load, &pcr);
-    fprintf(stderr, "crawlsim run: stance check: %.2f N per leg on half the legs vs sway-buckling "
-            "load %.2f N per leg (%.0f %%)%s\n", load, pcr, 100 * load / pcr,
-            load > 0.5 * pcr ? ": expect the stance legs to sway and fold" : "");
-  }
-  if (cs_settle(&m, d, &err) != CS_OK) {
-    /* the output file says so too (the contract: what was written stays readable) */
-    csError ferr;
-    cs_errorClear(&ferr);
-    if (cs_runRecordFailure(&m, d, out, &err, &ferr) != CS_OK) {
-      char cause[sizeof err.msg];
-      memcpy(cause, err.msg, sizeof cause);
-      cs_errorSet(&err, err.status, "%.300s (output file not written: %.150s)", cause, ferr.msg);
-    }
-    goto done;
-  }
-  double wall = 0;
-  csStatus st = cs_run(&m, d, out, &wall, &err);
-  double x[3], q[4];
-  cs_supportDisplacement(d, x);
-  cs_supportOrientation(d, q);
-  /* tilt: angle between the support's up axis and world up */
-  double tilt = acos(fmin(1.0, 1 - 2 * (q[1] * q[1] + q[3] * q[3]))) * 180 / 3.14159265358979;
-  printf("final t = %.3f s: support displacement x = %.2f mm, y = %.2f mm, z = %.2f mm, "
-         "tilt %.2f deg\n", cs_time(d), x[0], x[1], x[2], tilt);
-  printf("wall time %.2f s, real-time factor %.2f (simulated s per wall s), output %s\n", wall,
-         wall > 0 ? cs_time(d) / wall : 0, out);
-  /* where the time went: one entry per stage timer (sim_model.h), as in the HDF5 attributes */
-  const csuTimer* tm = cs_timers(d);
-  printf("time split (s):");
-  for (int k = 0; k < CS_NTIMER; k++) {
-    printf(" %s %.3f%s", cs_timerName((csTimerId)k), tm[k].wall, k + 1 < CS_NTIMER ? "," : "\n");
-  }
-  if (cs_gainProjectionCount(d) > 0) {
-    printf("coupling: the legs' interface gains were not passive in %ld macro step(s); their "
-           "implicit part was projected onto passive gains there (README \"Rod legs\")\n",
-           cs_gainProjectionCount(d));
-  }
-  /* the verdict (issue 10): falls (off the terrain), stops (any other failure: the message
-   * says which), tips over, crawls or stands, with when and how far */
-  const char* how = st != CS_OK ? (strstr(err.msg, "fell off") ? "falls" : "stops") :
-                    tilt > 30 ? "tips over" :
-                    fabs(x[0]) >= 20 || fabs(x[2]) >= 20 ? "crawls" : "stands";
-  if (st != CS_OK) {
-    printf("verdict (%s, %s legs): %s: %s\n", cs_conditionsName(m.conditions),
-           cs_modelLegLevel(&m), how, err.msg);
-  } else {
-    printf("verdict (%s, %s legs): %s: x = %.1f mm, z = %.1f mm in %.2f s, tilt %.1f deg\n",
-           cs_conditionsName(m.conditions), cs_modelLegLevel(&m), how, x[0], x[2], cs_time(d),
-           tilt);
-  }
-  if (st == CS_ERR_INTERRUPTED) {
-    rc = csx_signalExitCode() ? csx_signalExitCode() : 1;
-    goto done;
-  }
-  if (st != CS_OK) goto done;
-  rc = 0;
-
-done:
-  if (rc != 0) {
-    fprintf(stderr, "crawlsim run: %s\n", err.msg[0] ? err.msg : "failed");
-  }
-  cs_dataDestroy(d);
-  cs_modelDestroy(&m);
-  return rc;
+  if (st == CS_OK) return 0;
+  fprintf(stderr, "crawlsim run: %s\n", err.msg[0] ? err.msg : "failed");
+  return st == CS_ERR_INTERRUPTED && csx_signalExitCode() ? csx_signalExitCode() : 1;
 }

@@ -66,6 +66,7 @@ HARNESSES=(
   "calib_h5||-|96|60|$RUNS|-len_control=0"
   "study||study|8192|30|$RUNS|"
   "levels|robot/levels.csv|-|2048|30|$RUNS|"
+  "rundef||rundef|2048|30|1000000|"
 )
 
 # exit 3 when the fuzzers do not build (tools/test-all.sh then fails)

@@ -11,6 +11,7 @@ PKGS=(
   libhdf5-dev                               # output files (serial HDF5 + HL)
   gmsh                                      # FE mesher, run as a separate program (GPL stays out of our binaries)
   python3-matplotlib python3-h5py           # plots, run with Debian's /usr/bin/python3
+  python3-pytest                            # tests of the Python package (tests/python), run with /usr/bin/python3
   python3-scipy                             # tools/gait_search.py: scipy.optimize's Nelder-Mead over simulations
   libmumps-seq-dev libopenblas0-openmp      # fem: sequential MUMPS sparse LU + fast BLAS (fem/README.md)
   libsuitesparse-dev                        # fem: KLU fallback solver (LGPL)

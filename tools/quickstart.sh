@@ -14,6 +14,11 @@ cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build -j2
+# the library, its header and the Python package under ~/.local (docs/reference/api.md,
+# docs/reference/python.md): afterwards `/usr/bin/python3 -c "import crawlsim"` works, the
+# package finding its library without LD_LIBRARY_PATH
+cmake --install build --prefix "$HOME/.local" >/dev/null
+echo "quickstart: installed libcrawlsim and the Python package crawlsim under $HOME/.local"
 mkdir -p out
 
 run() { # run the flat road; a run that stops (collapse, fall) still leaves a readable file

@@ -136,7 +136,7 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
     snprintf(out, sizeof out, "bench_flatroad_%s.h5", level);
   }
   double c0 = cpu(), wall = 0;
-  csStatus st = cs_run(&m, d, out, &wall, &err);
+  csStatus st = cs_runWrite(&m, d, out, &wall, &err);
   double c = cpu() - c0;
   double x[3];
   cs_supportDisplacement(d, x);

@@ -57,7 +57,7 @@ static csStatus runTo(csModel* m, double t_end, const char* out, double x_end[3]
   csStatus st = cs_settle(m, d, &err);
   cs_robotCenterOfMass(m, d, g_com0);
   if (st == CS_OK) {
-    st = cs_run(m, d, out, NULL, &err);
+    st = cs_runWrite(m, d, out, NULL, &err);
   }
   cs_supportDisplacement(d, x_end);
   cs_robotCenterOfMass(m, d, g_com1);

@@ -48,7 +48,7 @@ static csStatus runRodWith(double mu, int stabilised, const char* out, double x_
     st = d ? cs_settle(&m, d, &err) : err.status;
     if (st == CS_OK) {
       cs_robotCenterOfMass(&m, d, g_com0);
-      st = cs_run(&m, d, out, NULL, &err);
+      st = cs_runWrite(&m, d, out, NULL, &err);
       cs_supportDisplacement(d, x_end);
       cs_robotCenterOfMass(&m, d, g_com1);
     }

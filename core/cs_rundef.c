@@ -1,0 +1,517 @@
+/* cs_rundef.c: the run definition: defaults, the one validation, and its resolution into a
+ * loaded model (crawlsim.h, cs_rundef.h). What `crawlsim run` (tools/cmd_run.c) did between
+ * its option parser and the run, moved here unchanged so that the command, the study runner
+ * and the Python package resolve a run alike. Messages name a field by the `crawlsim run`
+ * option it mirrors. */
+#define _GNU_SOURCE /* dladdr: where this library is, to find the data installed beside it */
+#include "cs_rundef.h"
+
+#include <dlfcn.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "robot_calibration.h"
+#include "robot_levels.h"
+#include "robot_strain.h"
+#include "terrains_scenefile.h"
+
+#ifndef CS_SOURCE_DIR
+#define CS_SOURCE_DIR "." /* set by core/CMakeLists.txt */
+#endif
+#ifndef CS_INSTALL_DATA_DIR
+#define CS_INSTALL_DATA_DIR "/usr/local/share/crawlsim" /* set by core/CMakeLists.txt */
+#endif
+
+/* the longest run one definition may ask for: beyond this t_end / dt is a typo, and the step
+ * count would overflow the driver's step counter on 32-bit longs */
+#define MAX_STEPS 1e9
+/* the longest step the driver accepts (sim_driver.c validateOptions) */
+#define MAX_DT_S 0.01
+/* --set assignments of one run */
+#define MAX_SET 32
+
+
+csRunDef cs_defaultRunDef(void) {
+  csRunDef d;
+  memset(&d, 0, sizeof d);
+  d.legs_tol_mm = NAN;
+  d.friction = NAN;
+  d.pressure_scale = 1.0;
+  d.t_end = 0;
+  d.dt = d.output_dt = d.ramp = d.tau = d.gravity = d.support_mass_kg = NAN;
+  d.slope_deg = d.links = d.iterations = d.macro_steps = NAN;
+  d.contact_scale = d.rod_tol = NAN;
+  return d;
+}
+
+
+/* an object of this library, whose address dladdr turns into the library's file */
+static const char kDataAnchor = 0;
+
+/* does dir hold the shipped data (its flat road's terrain)? */
+static int hasData(const char* dir) {
+  char probe[1200];
+  snprintf(probe, sizeof probe, "%s/terrains/flat_road.terrain", dir);
+  FILE* f = fopen(probe, "rb");
+  if (f) {
+    fclose(f);
+  }
+  return f != NULL;
+}
+
+
+const char* cs_runDataPath(const csRunDef* def, const char* rel, char* buf, size_t size) {
+  const char* dir = def && def->data_dir && def->data_dir[0] ? def->data_dir : NULL;
+  if (!dir) {
+    const char* env = getenv("CRAWLSIM_DATA_DIR");
+    dir = env && env[0] ? env : NULL;
+  }
+  char beside[1024] = "", found[1100];
+  if (!dir) {
+    /* an installed library: <prefix>/lib[/...]/libcrawlsim.so finds <prefix>/share/crawlsim
+     * (the install may have been moved: cmake --install --prefix) */
+    Dl_info info;
+    if (dladdr(&kDataAnchor, &info) && info.dli_fname) {
+      snprintf(beside, sizeof beside, "%s", info.dli_fname);
+      for (int up = 0; up < 3 && !dir; up++) {
+        char* slash = strrchr(beside, '/');
+        if (!slash) break;
+        *slash = '\0';
+        snprintf(found, sizeof found, "%s/share/crawlsim", beside);
+        dir = hasData(found) ? found : NULL;
+      }
+    }
+  }
+  if (!dir) {
+    /* the build tree's sources when they are there (the command and the tests), else the
+     * configured install prefix's data */
+    dir = hasData(CS_SOURCE_DIR) ? CS_SOURCE_DIR : CS_INSTALL_DATA_DIR;
+  }
+  snprintf(buf, size, "%s/%s", dir, rel);
+  return buf;
+}
+
+
+/* the leg level a name asks for (NULL for "auto" and unknown names) */
+static const csrLegType* legTypeNamed(const char* legs) {
+  return legs && strcmp(legs, "auto") ? csr_legTypeFind(legs, NULL) : NULL;
+}
+
+
+/* Every check of the definition that needs no file, with the scene that gives the defaults
+ * (the definition's, or a scene file's) */
+static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* err) {
+  const csScene* sc = cs_sceneFind(scene_name);
+  if (!sc) {
+    return cs_errorSet(err, CS_ERR_ARG, "unknown scene '%.60s' (expected flat-road, obstacle or "
+                       "slope)", scene_name ? scene_name : "(null)");
+  }
+  if (def->conditions) {
+    csConditions c;
+    if (cs_conditionsParse(def->conditions, &c, err) != CS_OK) return err ? err->status : CS_ERR_ARG;
+  }
+  const char* legs = def->legs ? def->legs : sc->legs;
+  const csrLegType* type = NULL;
+  if (!strcmp(legs, "auto")) {
+    if (isnan(def->legs_tol_mm)) {
+      return cs_errorSet(err, CS_ERR_ARG, "--legs auto needs --tol MM (the track error allowed "
+                         "against the reference, see robot/levels.csv)");
+    }
+    if (!isnan(def->links) || !isnan(def->macro_steps) || !isnan(def->dt) ||
+        !isnan(def->rod_tol)) {
+      return cs_errorSet(err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt and "
+                         "--rod-tol from its table: give them with --legs prb, rod or strain "
+                         "instead");
+    }
+    if (!(def->legs_tol_mm >= 0)) {
+      return cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be >= 0", def->legs_tol_mm);
+    }
+  } else {
+    int planned = 0;
+    type = csr_legTypeFind(legs, &planned);
+    if (!type && planned) {
+      char names[128] = "";
+      for (int i = 0, n = 0; i < csr_legTypeCount() && n < (int)sizeof names; i++) {
+        int w = snprintf(names + n, sizeof names - n, "%s%s", i ? ", " : "",
+                         csr_legTypeAt(i)->name);
+        n += w > 0 ? w : 0;
+      }
+      return cs_errorSet(err, CS_ERR_ARG, "leg model '%s' is not available yet (available: %s)",
+                         legs, names);
+    }
+    if (!type) {
+      return cs_errorSet(err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod, "
+                         "strain or rom)", legs);
+    }
+    if (!isnan(def->legs_tol_mm) || def->levels) {
+      return cs_errorSet(err, CS_ERR_ARG, "--tol and --levels go with --legs auto");
+    }
+  }
+  if (def->cal_rule) {
+    csrCalRule rule;
+    if (!csr_calRuleParse(def->cal_rule, &rule)) {
+      return cs_errorSet(err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf or "
+                         "rbf-pair)", def->cal_rule);
+    }
+  }
+  unsigned drop = 0;
+  if (def->cal_drop && !csr_calDropParse(def->cal_drop, &drop)) {
+    return cs_errorSet(err, CS_ERR_ARG, "bad --cal-drop '%.60s' (expected stretch, stiffness, "
+                       "stretch,stiffness or none)", def->cal_drop);
+  }
+  if (drop && type && type != &csr_leg_rod) {
+    return cs_errorSet(err, CS_ERR_ARG, "--cal-drop: only rod legs take the calibration's "
+                       "stretch and stiffness (legs %s)", type->name);
+  }
+  if (def->n_actuator_set < 0 || def->n_actuator_set > MAX_SET ||
+      (def->n_actuator_set > 0 && !def->actuator_set)) {
+    return cs_errorSet(err, CS_ERR_ARG, "%d --set options: 0..%d, each a NAME=VALUE string",
+                       def->n_actuator_set, MAX_SET);
+  }
+  for (int k = 0; k < def->n_actuator_set; k++) {
+    if (!def->actuator_set[k]) {
+      return cs_errorSet(err, CS_ERR_ARG, "--set number %d is NULL", k + 1);
+    }
+  }
+  /* numbers: NaN is "the default", an infinity is never meant */
+  const struct {
+    const char* flag;
+    double v;
+  } nums[] = {{"--tol", def->legs_tol_mm}, {"--friction", def->friction},
+              {"--pressure-scale", def->pressure_scale}, {"--t-end", def->t_end},
+              {"--dt", def->dt}, {"--output-dt", def->output_dt}, {"--ramp", def->ramp},
+              {"--tau", def->tau}, {"--gravity", def->gravity},
+              {"--support-mass", def->support_mass_kg}, {"--slope-deg", def->slope_deg},
+              {"--links", def->links}, {"--iterations", def->iterations},
+              {"--macro-steps", def->macro_steps}, {"--contact-scale", def->contact_scale},
+              {"--rod-tol", def->rod_tol}};
+  for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
+    if (isinf(nums[k].v)) {
+      return cs_errorSet(err, CS_ERR_RANGE, "%s %g is not a finite number", nums[k].flag,
+                         nums[k].v);
+    }
+  }
+  /* each against its field's range */
+  if (!isnan(def->friction) && !(def->friction >= 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--friction %g must be >= 0", def->friction);
+  }
+  if (!(def->pressure_scale >= 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--pressure-scale %g must be >= 0",
+                       def->pressure_scale);
+  }
+  if (!(def->t_end >= 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--t-end %g s must be >= 0 (0: the gait's length)",
+                       def->t_end);
+  }
+  if (!isnan(def->dt) && !(def->dt > 0 && def->dt <= MAX_DT_S)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--dt %g s must be > 0 and <= %g s", def->dt,
+                       MAX_DT_S);
+  }
+  /* a tree-stepped level's step is its own unless dt says (csrLegType.step) */
+  double h = !isnan(def->dt) ? def->dt
+             : type && type->prepare && type->step > 0 ? type->step
+                                                       : cs_defaultOptions().h;
+  if (!isnan(def->output_dt) && !(def->output_dt >= h)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--output-dt %g s must be >= the step %g s (--dt)",
+                       def->output_dt, h);
+  }
+  if (!isnan(def->ramp) && !(def->ramp >= 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--ramp %g s must be >= 0", def->ramp);
+  }
+  if (!isnan(def->tau) && !(def->tau >= 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--tau %g s must be >= 0 (0: no pressure lag)",
+                       def->tau);
+  }
+  if (!isnan(def->gravity) && !(def->gravity >= 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--gravity %g m/s^2 must be >= 0", def->gravity);
+  }
+  if (!isnan(def->support_mass_kg) && !(def->support_mass_kg > 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--support-mass %g kg must be > 0",
+                       def->support_mass_kg);
+  }
+  double links = def->links, iters = def->iterations, macro = def->macro_steps;
+  if (!isnan(links) && (links != floor(links) || links < 1 || links > 64)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--links %g must be an integer in 1..64", links);
+  }
+  /* checked before any conversion to int, which would be undefined for 1e30 */
+  if (!isnan(iters) && (iters != floor(iters) || iters < 1 || iters > 10000)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--iterations %g must be an integer in 1..10000",
+                       iters);
+  }
+  if (!isnan(macro) && (macro != floor(macro) || macro < 1 || macro > 100000)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--macro-steps %g must be an integer in 1..100000",
+                       macro);
+  }
+  if (!isnan(macro) && !isnan(def->output_dt) && !(def->output_dt >= macro * h)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--output-dt %g s must be >= the macro step %g s "
+                       "(--macro-steps x --dt)", def->output_dt, macro * h);
+  }
+  /* 1e6: a contact a million times stiffer than the default is a typo, not a study */
+  if (!isnan(def->contact_scale) && !(def->contact_scale > 0 && def->contact_scale <= 1e6)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--contact-scale %g must be > 0 and <= 1e6",
+                       def->contact_scale);
+  }
+  /* 1000: CVODE's relative tolerance (1e-4 shipped) near 0.1, where the steps are bounded by
+   * the macro step alone and the track is no longer an integration of anything */
+  if (!isnan(def->rod_tol) && !(def->rod_tol > 0 && def->rod_tol <= 1000)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--rod-tol %g must be > 0 and <= 1000", def->rod_tol);
+  }
+  const char* cp = def->coupling;
+  if (cp && strcmp(cp, "staggered") && strcmp(cp, "stabilised") && strcmp(cp, "gs") &&
+      strcmp(cp, "tree")) {
+    return cs_errorSet(err, CS_ERR_ARG, "unknown coupling '%.60s' (expected staggered, "
+                       "stabilised, gs or tree)", cp);
+  }
+  if (cp && !strcmp(cp, "tree") && type && !type->prepare) {
+    return cs_errorSet(err, CS_ERR_ARG, "--coupling tree needs a tree-stepped leg level (--legs "
+                       "strain)");
+  }
+  if (cp && !strcmp(cp, "tree") && type && type->prepare && !isnan(macro) && macro != 1) {
+    return cs_errorSet(err, CS_ERR_ARG, "--coupling tree takes one ODE step per macro step "
+                       "(--macro-steps 1)");
+  }
+  /* the terrain file's limit (terrains_terrain.h) */
+  if (!isnan(def->slope_deg) && !(fabs(def->slope_deg) <= 45)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--slope-deg %g must be within +-45 deg",
+                       def->slope_deg);
+  }
+  if (!(def->no_gait == 0 || def->no_gait == 1) || !(def->progress == 0 || def->progress == 1)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "no_gait and progress are 0 or 1");
+  }
+  return CS_OK;
+}
+
+
+csStatus cs_runDefValidate(const csRunDef* def, csError* err) {
+  if (!def) {
+    return cs_errorSet(err, CS_ERR_ARG, "no run definition (NULL)");
+  }
+  /* a scene file may name the scene: its defaults are checked again once it is read */
+  return checkDef(def, def->scene ? def->scene : "flat-road", err);
+}
+
+
+/* the leg level `auto` picked from the measured table (issue 11): sets the level and its
+ * configuration in m and the choice's explanation */
+static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files, csModel* m,
+                         double* links, double* macro, double* dt, double* rodtol,
+                         const csrLegType** leg_type, csError* err) {
+  char levels_buf[512];
+  const char* levels = def->levels ? def->levels
+                                   : cs_runDataPath(def, "robot/levels.csv", levels_buf,
+                                                    sizeof levels_buf);
+  csrLevelTable* table = malloc(sizeof *table); /* ~40 KB: not on the stack */
+  if (!table) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "out of memory for the level table");
+  }
+  csStatus st = csr_levelTableRead(levels, table, err);
+  int k = st == CS_OK ? csr_levelTablePick(table, scene, def->legs_tol_mm, err) : -1;
+  if (k < 0) {
+    free(table);
+    return err ? err->status : CS_ERR_ARG;
+  }
+  const double tol = def->legs_tol_mm;
+  const csrLevelRow* row = &table->row[k];
+  const csrLevelRow* fin = &table->row[csr_levelTableFinest(table, scene)];
+  /* the scene's costliest row: what always running the dearest configuration would cost */
+  const csrLevelRow* top = &table->row[csr_levelTableCostliest(table, scene)];
+  *leg_type = csr_legTypeFind(row->level, NULL);
+  *links = row->links;
+  *macro = row->macro_steps;
+  *dt = row->dt_s;
+  *rodtol = row->rod_tol;
+  m->legs_auto_tol_mm = tol;
+  char tolnote[32] = "";
+  if (row->rod_tol != 1) {
+    snprintf(tolnote, sizeof tolnote, ", rod tol %g", row->rod_tol);
+  }
+  snprintf(m->legs_auto_choice, sizeof m->legs_auto_choice,
+           "%s, links %d, macro steps %d, dt %g s%s: the cheapest of %d configurations measured "
+           "on %.31s within --tol %g mm (error %.3g mm against the reference, %.3g CPU s per "
+           "simulated s); the most accurate (%s, links %d, macro steps %d, dt %g s: %.3g mm) "
+           "costs %.3g, the costliest (%s, links %d, macro steps %d, dt %g s: %.3g mm) %.3g "
+           "CPU s per simulated s, %.2fx; %.200s line %d, measured on %.63s%s",
+           row->level, row->links, row->macro_steps, row->dt_s, tolnote,
+           csr_levelTableCount(table, scene), scene, tol, row->error_mm, row->cpu_s_per_s,
+           fin->level, fin->links, fin->macro_steps, fin->dt_s, fin->error_mm, fin->cpu_s_per_s,
+           top->level, top->links, top->macro_steps, top->dt_s, top->error_mm,
+           top->cpu_s_per_s, top->cpu_s_per_s / row->cpu_s_per_s, levels, row->line,
+           row->machine,
+           user_files || def->conditions
+               ? " (measured with the scene's own terrain, gait and conditions, not this run's)"
+               : "");
+  if (!*leg_type) {
+    st = cs_errorSet(err, CS_ERR_ARG, "%s: level '%.30s' is not a registered leg level",
+                     levels, row->level);
+  }
+  free(table);
+  return st;
+}
+
+
+csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csError* err) {
+  csStatus st = cs_runDefValidate(def, err);
+  if (st != CS_OK) return st;
+  memset(plan, 0, sizeof *plan);
+  const char* scene = def->scene ? def->scene : "flat-road";
+  const char* terrain = def->terrain;
+  const char* gait = def->no_gait ? NULL : def->gait;
+  const char* conditions = def->conditions;
+  double t_end = def->t_end;
+  /* a scene file (terrains_scenefile.h) fills what the definition left out */
+  cstSceneFile* sf = NULL;
+  if (def->scene_file) {
+    sf = malloc(sizeof *sf); /* ~1.5 KB of paths */
+    if (!sf) return cs_errorSet(err, CS_ERR_MEMORY, "out of memory for the scene file");
+    if (cst_sceneFileLoad(sf, def->scene_file, err) != CS_OK) {
+      free(sf);
+      return err ? err->status : CS_ERR_PARSE;
+    }
+    if (!def->scene && sf->scene[0]) scene = sf->scene;
+    if (!terrain && sf->terrain[0]) terrain = sf->terrain;
+    if (!gait && !def->no_gait && sf->gait[0]) gait = sf->gait;
+    if (!conditions && sf->conditions[0]) conditions = sf->conditions;
+    if (t_end == 0 && sf->has_t_end) t_end = sf->t_end;
+    st = checkDef(def, scene, err); /* the scene file's scene gives the defaults */
+  }
+  /* scene -> default terrain, gait and conditions (sim_scene.h) */
+  const csScene* sc = cs_sceneFind(scene);
+  plan->scene = sc;
+  int user_files = terrain != NULL || gait != NULL || def->no_gait;
+  const char* legs = def->legs ? def->legs : sc ? sc->legs : "rod";
+  if (st == CS_OK) {
+    if (terrain) {
+      snprintf(plan->terrain, sizeof plan->terrain, "%s", terrain);
+    } else {
+      cs_runDataPath(def, sc->terrain, plan->terrain, sizeof plan->terrain);
+    }
+    if (gait) {
+      snprintf(plan->gait, sizeof plan->gait, "%s", gait);
+    } else if (!def->no_gait) {
+      cs_runDataPath(def, sc->gait, plan->gait, sizeof plan->gait);
+    }
+    int requested = -1;
+    if (conditions) {
+      csConditions c;
+      st = cs_conditionsParse(conditions, &c, err);
+      requested = (int)c;
+    }
+    if (st == CS_OK) {
+      cs_modelSetConditions(m, cs_sceneConditions(sc, requested, user_files, &plan->cond_src));
+    }
+  }
+  /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */
+  const csrLegType* leg_type = legTypeNamed(legs);
+  double links = def->links, macro = def->macro_steps, dt = def->dt, rodtol = def->rod_tol;
+  if (st == CS_OK && !strcmp(legs, "auto")) {
+    st = pickAuto(def, scene, user_files, m, &links, &macro, &dt, &rodtol, &leg_type, err);
+    if (st == CS_OK && def->coupling && !strcmp(def->coupling, "tree") && !leg_type->prepare) {
+      st = cs_errorSet(err, CS_ERR_ARG, "--coupling tree needs a tree-stepped leg level (--legs "
+                       "auto picked %s)", leg_type->name);
+    }
+  }
+  if (st == CS_OK && def->cal_rule) {
+    csrCalRule rule;
+    csr_calRuleParse(def->cal_rule, &rule);
+    m->cal_rule = (int)rule;
+  }
+  /* the scene's calibration (its gait was designed on it) under the scene's rule, overridable
+   * with calibration (which then keeps that table's own default rule) and cal_rule */
+  if (st == CS_OK) {
+    if (def->calibration) {
+      snprintf(plan->calibration, sizeof plan->calibration, "%s", def->calibration);
+    } else {
+      cs_runDataPath(def, sc->calibration, plan->calibration, sizeof plan->calibration);
+      csrCalRule rule;
+      if (m->cal_rule < 0 && sc->cal_rule && csr_calRuleParse(sc->cal_rule, &rule)) {
+        m->cal_rule = (int)rule;
+      }
+    }
+  }
+  /* the actuator of a design study (--set); the legs' stiffness and mass follow from it */
+  for (int k = 0; st == CS_OK && k < def->n_actuator_set; k++) {
+    st = csr_actuatorSetString(&m->robot.leg, def->actuator_set[k], err);
+  }
+  if (st == CS_OK && def->n_actuator_set > 0) {
+    st = csr_actuatorValidate(&m->robot.leg, err);
+    m->robot.leg_params = csr_defaultLegParams(&m->robot.leg);
+  }
+  if (st != CS_OK) {
+    free(sf);
+    return st;
+  }
+  cs_modelSetLegLevel(m, leg_type); /* the one place the level is stored (and its coupling) */
+  unsigned cal_drop = 0;
+  if (def->cal_drop) csr_calDropParse(def->cal_drop, &cal_drop);
+  if (cal_drop && m->robot.leg_type != &csr_leg_rod) {
+    free(sf);
+    return cs_errorSet(err, CS_ERR_ARG, "--cal-drop: only rod legs take the calibration's "
+                       "stretch and stiffness (legs %s)", cs_modelLegLevel(m));
+  }
+  m->robot.leg_params.cal_drop = cal_drop;
+  if (!isnan(def->friction)) m->contact.mu = def->friction;
+  if (!isnan(def->contact_scale)) {
+    m->contact.kp *= def->contact_scale;
+    m->contact.stiffness_scale = def->contact_scale;
+  }
+  m->sched.pressure_scale = def->pressure_scale;
+  if (!isnan(def->ramp)) m->sched.ramp = def->ramp;
+  /* a tree-stepped level's step is its own unless dt says (csrLegType.step) */
+  m->opt.h = !isnan(dt) ? dt : leg_type->prepare && leg_type->step > 0 ? leg_type->step
+                                                                       : m->opt.h;
+  if (!isnan(def->output_dt)) m->opt.output_dt = def->output_dt;
+  if (!isnan(def->tau)) m->opt.pneumatic_tau = def->tau;
+  if (!isnan(def->iterations)) m->opt.solver_iterations = (int)def->iterations;
+  if (!isnan(macro)) m->opt.macro_steps = (int)macro;
+  if (def->coupling) {
+    const char* cp = def->coupling;
+    m->opt.coupling = !strcmp(cp, "stabilised") ? CS_COUPLING_STABILISED
+                      : !strcmp(cp, "gs")       ? CS_COUPLING_GAUSS_SEIDEL
+                      : !strcmp(cp, "tree")     ? CS_COUPLING_TREE
+                                                : CS_COUPLING_STAGGERED;
+  }
+  /* the default output interval must hold a whole macro step */
+  if (isnan(def->output_dt) && m->opt.output_dt < cs_modelMacroStep(m)) {
+    m->opt.output_dt = cs_modelMacroStep(m);
+  }
+  if (!isnan(def->gravity)) m->opt.gravity = def->gravity * 1e3; /* m/s^2 -> mm/s^2 */
+  if (!isnan(def->support_mass_kg)) m->robot.support_mass = def->support_mass_kg * 1e-3;
+  if (!isnan(links)) {
+    m->robot.leg_params.links_per_segment = (int)links;
+  } else if (m->robot.leg_type == &csr_leg_rod && sc->rod_links > 0) {
+    m->robot.leg_params.links_per_segment = sc->rod_links; /* converged on the scene's table */
+  } else if (m->robot.leg_type == &csr_leg_strain) {
+    /* bending modes per segment: the level's own default basis */
+    m->robot.leg_params.links_per_segment = csr_strainDefaultParams().bend_order + 1;
+  }
+  if (!isnan(rodtol)) m->robot.leg_params.rod_tol_scale = rodtol;
+  m->opt.t_end = t_end;
+  m->opt.progress = def->progress;
+  m->opt.cancel = def->cancel;
+  st = csc_contactParamsValidate(&m->contact, err);
+  if (st == CS_OK) st = csg_scheduleCheckOptions(&m->sched, err);
+  if (st == CS_OK) {
+    st = cs_modelLoad(m, scene, plan->terrain, plan->gait[0] ? plan->gait : NULL,
+                      plan->calibration, err);
+  }
+  if (st == CS_OK && sf) st = cs_modelApplySceneFile(m, sf, err);
+  free(sf);
+  if (st != CS_OK) return st;
+  if (!isnan(def->slope_deg)) m->terrain.slope_deg = def->slope_deg;
+  if (m->gait) {
+    csgGaitSummary gs;
+    csg_gaitComputeSummary(m->gait, &gs, NULL);
+    if (gs.p_max * def->pressure_scale > csg_defaultReadOptions().max_pressure) {
+      return cs_errorSet(err, CS_ERR_RANGE, "--pressure-scale %g takes %s to %g MPa, above the "
+                         "%g MPa limit of gait pressures", def->pressure_scale, plan->gait,
+                         gs.p_max * def->pressure_scale, csg_defaultReadOptions().max_pressure);
+    }
+  }
+  if (cs_modelEndTime(m) / m->opt.h > MAX_STEPS) {
+    return cs_errorSet(err, CS_ERR_RANGE, "a run to t = %g s at --dt %g s takes more than %g "
+                       "steps", cs_modelEndTime(m), m->opt.h, MAX_STEPS);
+  }
+  return CS_OK;
+}

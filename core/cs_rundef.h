@@ -1,0 +1,40 @@
+/* cs_rundef.h: INTERNAL to core/cs_*.c: from a run definition (crawlsim.h csRunDef) to a
+ * loaded model (sim_model.h csModel): the scene's defaults, the leg level (`auto` from the
+ * measured table, robot_levels.h), every range check (cs_runDefValidate), the files read.
+ *
+ * Owns: csRunPlan (what the definition resolved to, for the log lines and the result) and
+ * cs_runDefBuild. The public side is crawlsim.h; cs_api.c uses this. */
+#ifndef CS_CORE_RUNDEF_H
+#define CS_CORE_RUNDEF_H
+
+#include "crawlsim.h"
+#include "sim_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* what a definition resolved to */
+typedef struct csRunPlan_ {
+  const csScene* scene;           /* the built-in scene that gave the defaults */
+  csConditionsSource cond_src;    /* where the conditions came from */
+  char terrain[512], gait[512];   /* the files read ("" gait: none) */
+  char calibration[512];
+} csRunPlan;
+
+/* Resolve def into the initialised model m (cs_modelInit) and load its files: the scene file,
+ * the scene's defaults, the conditions, the leg level (auto: the measured table), the
+ * options, the terrain, gait and calibration, and the checks that need them (pressure scale
+ * against the gait, the number of steps). On failure m holds what was loaded so far (free it
+ * with cs_modelDestroy) and err the cause, naming the field or file. */
+csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csError* err);
+
+/* A shipped file's path: rel under def->data_dir, $CRAWLSIM_DATA_DIR, share/crawlsim beside
+ * the installed library (found with dladdr), the source tree the library was built from (if it
+ * holds the data), else the configured prefix's share/crawlsim. */
+const char* cs_runDataPath(const csRunDef* def, const char* rel, char* buf, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,77 @@
+"""crawlsim.run: a whole run returns its result and its tracks as arrays (the file kept with
+out=, read back and removed without), the result's end pose is the last sample's, and the
+plotting example reads the file."""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import crawlsim
+from conftest import FAST, SOURCE_DIR
+
+
+@pytest.fixture(scope="module")
+def kept(tmp_path_factory):
+    out = tmp_path_factory.mktemp("run") / "r.h5"
+    return crawlsim.run(t_end=0.5, out=out, **FAST), out
+
+
+def test_run_returns_result_and_tracks(kept):
+    r, out = kept
+    assert r.ok and r.status_name == "CS_OK" and r.message == ""
+    assert r.verdict in ("crawls", "stands", "tips over")
+    assert r.legs == "rod" and r.links == 2 and r.scene == "flat-road"
+    assert r.t_end == pytest.approx(0.5, abs=1e-9)
+    t = r.tracks
+    assert t.t[0] == 0.0 and t.t[-1] == pytest.approx(0.5, abs=1e-9)
+    n = len(t.t)
+    assert t.position.shape == (n, 3) and t.orientation.shape == (n, 4)
+    assert t.pressure.shape == (n, 96) and t.centerline.shape[:2] == (8, n)
+    assert t.foot_force.shape == (n, 8, 3) and t.stance.shape == (n, 8)
+    assert np.array_equal(r.position, t.position[-1])
+    assert t.attrs["version"] == crawlsim.version()
+    assert out.is_file() and out.with_suffix(".xdmf").is_file()
+    assert r.steps > 0 and "legs" in r.timers
+
+
+def test_run_without_out_leaves_no_file(tmp_path, monkeypatch):
+    monkeypatch.setenv("TMPDIR", str(tmp_path))
+    import tempfile
+
+    monkeypatch.setattr(tempfile, "tempdir", None)
+    r = crawlsim.run(t_end=0.1, **FAST)
+    assert r.ok and r.tracks is not None and len(r.tracks.t) > 5
+    assert r.out is None
+    assert os.listdir(tmp_path) == []
+
+
+def test_read_run_gives_the_same_arrays(kept):
+    r, out = kept
+    f = crawlsim.read_run(out)
+    assert np.array_equal(f.position, r.tracks.position)
+    assert f.heading.shape == f.t.shape
+    assert abs(f.heading[0]) < 1.0  # deg: the flat road starts heading along +x
+
+
+def test_plot_example_reads_a_run(kept, tmp_path):
+    _, out = kept
+    png = tmp_path / "r.png"
+    ex = os.path.join(SOURCE_DIR, "tools", "python", "examples", "plot_run.py")
+    p = subprocess.run([sys.executable, ex, str(out), "-o", str(png)], capture_output=True,
+                       text=True)
+    assert p.returncode == 0, p.stderr
+    assert png.stat().st_size > 10000
+    bad = subprocess.run([sys.executable, ex, str(tmp_path / "absent.h5")], capture_output=True,
+                         text=True)
+    assert bad.returncode == 1 and bad.stderr.count("\n") == 1 and "absent.h5" in bad.stderr
+
+
+def test_heading_of_a_quaternion_about_y():
+    for deg in (-170.0, -30.0, 0.0, 12.5, 90.0):
+        a = np.radians(deg) / 2
+        q = np.array([np.cos(a), 0.0, np.sin(a), 0.0])  # a turn about world +y (up)
+        assert crawlsim.heading_deg(q) == pytest.approx(deg, abs=1e-9)
+    assert crawlsim.tilt_deg([1, 0, 0, 0]) == 0.0
