@@ -504,6 +504,32 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
 }
 
 
+int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d) {
+  if (!m->soft) {
+    return 1;
+  }
+  for (int s = 0; s < m->nshape; s++) {
+    int a = m->shape_a[s], b = m->shape_b[s];
+    cscShapeState st;
+    memset(&st, 0, sizeof st);
+    double Rb[9], xb[3];
+    csr_strainWorld_(d, d->R + 9 * a, d->x + 3 * a, st.R, st.x0);
+    csr_strainWorld_(d, d->R + 9 * b, d->x + 3 * b, Rb, xb);
+    memcpy(st.x1, xb, sizeof xb);
+    double L[6], couple[3];
+    if (loadOf(m, d, s, &st, L, couple, NULL) != 0) {
+      return 0;
+    }
+    for (int i = 0; i < 6; i++) {
+      if (L[i] != 0 || (i < 3 && couple[i] != 0)) {
+        return 0;
+      }
+    }
+  }
+  return 1;
+}
+
+
 int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d) {
   if (!m->soft) {
     return 0;

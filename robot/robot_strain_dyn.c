@@ -382,6 +382,34 @@ static void momentumRows(const csrStrainModel* m, const csrStrainData* d, double
 }
 
 
+/* An iterate without contact, whose last factor had none either: W_ll, W_lb, r_l and so X, y
+ * and Z are the last pass's; only the base's momentum rows (ρ) change (they need the poses
+ * alone: the leg's mass moment) */
+static int condensePlain(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                         double Z[36], double rho[6]) {
+  const int n = m->n;
+  double Wbb[36], rb[6];
+  memcpy(Wbb, d->WMbb, sizeof Wbb);
+  memcpy(rb, d->rMb, sizeof rb);
+  momentumRows(m, d, h, du, Wbb, rb);
+  for (int a = 0; a < 6; a++) {
+    double t = 0;
+    for (int j = 0; j < n; j++) {
+      t += d->Wbl[n * a + j] * d->y[j];
+    }
+    rho[a] = h * rb[a] - t;
+  }
+  memcpy(Z, d->Zp, sizeof d->Zp);
+  memcpy(d->rhop, rho, sizeof d->rhop);
+  for (int a = 0; a < 6; a++) {
+    if (!isfinite(rho[a])) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+
 /* A Newton iterate that keeps the step's last iteration matrix W_f (factored in d->Wll, its
  * blocks d->Wu, d->Wlb, d->Wbl, d->Wbbp; Z = d->Zp): the chord step W_f δ = -R(Δu_it), so in
  * the whole step's Δu the right-hand side is W_f Δu_it - R = h r + (W_f - W_M) Δu_it, with
@@ -459,26 +487,7 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
       return rc > 0 ? rc : 1;
     }
     if (d->lu_plain && d->ntouch == 0) {
-      /* an iterate without contact, whose last factor had none either: W_ll, W_lb, r_l and
-       * so X, y and Z are the last pass's; only the base's momentum rows (ρ) change */
-      memcpy(Wbb, d->WMbb, sizeof Wbb);
-      memcpy(rb, d->rMb, sizeof rb);
-      momentumRows(m, d, h, du, Wbb, rb);
-      for (int a = 0; a < 6; a++) {
-        double t = 0;
-        for (int j = 0; j < n; j++) {
-          t += d->Wbl[n * a + j] * d->y[j];
-        }
-        rho[a] = h * rb[a] - t;
-      }
-      memcpy(Z, d->Zp, sizeof d->Zp);
-      memcpy(d->rhop, rho, sizeof d->rhop);
-      for (int a = 0; a < 6; a++) {
-        if (!isfinite(rho[a])) {
-          return 1;
-        }
-      }
-      return 0;
+      return condensePlain(m, d, h, du, Z, rho);
     }
     /* keep W while the slots keep their state and the leg's move shrank at least 4x over the
      * last kept iterate (a chord iteration contracting slower than that costs more passes
@@ -579,6 +588,18 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
 int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], double rho[6]) {
   if (!(d->h > 0) || !Z || !rho) {
     return -1;
+  }
+  /* a leg without contact in its factor: if no shape touches at the iterate's poses, the
+   * iterate needs those poses alone (no Jacobians, no point twists) */
+  if (d->lu_plain) {
+    if (d->kin_valid < 1) {
+      csr_strainKinematics_(m, d, 0);
+    }
+    if (csr_strainContactNone_(m, d)) {
+      memset(d->fcw, 0, sizeof d->fcw);
+      d->ntouch = 0;
+      return condensePlain(m, d, d->h, d->du, Z, rho);
+    }
   }
   /* the kinematics and point twists at the iterate's end of the step */
   if (d->kin_valid < 2) {

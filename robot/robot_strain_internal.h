@@ -170,6 +170,10 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
  * slot's state (touching, saturated) is d->csig's. 0 or > 0 as csr_strainContactAssemble_. */
 int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb[6], double* fl,
                             int* same);
+/* 1 when no shape touches at the current poses (d->R, d->x: the kinematics without J is
+ * enough) with the shapes at rest: the law's force is zero wherever its elastic part is, at
+ * any velocity, so then none touches at the shapes' real velocities either; 0 otherwise */
+int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d);
 /* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
 int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
 /* the point twists d->Vp at the current kinematics */
