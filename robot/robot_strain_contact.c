@@ -229,6 +229,26 @@ static void anchorSecant(const csrStrainModel* m, double h, const cscShapeState*
 }
 
 
+/* 1 when shape s's load (L, couple) is not zero: then counted in d->ntouch and its force added
+ * to d->fcw (world) */
+static int countTouch(const csrStrainModel* m, csrStrainData* d, int s, const double L[6],
+                      const double couple[3]) {
+  int touching = couple[0] != 0 || couple[1] != 0 || couple[2] != 0;
+  for (int i = 0; i < 6; i++) {
+    touching |= L[i] != 0;
+  }
+  if (!touching) {
+    return 0;
+  }
+  d->ntouch++;
+  csu_add3(d->fcw, d->fcw, L);
+  if (s != m->nshape - 1) {
+    csu_add3(d->fcw, d->fcw, L + 3);
+  }
+  return 1;
+}
+
+
 /* the contact's state signature of shape s's slots: bit 0 touching, bit 1 past the friction's
  * saturation (u >= 2 - u_elastic: the Newton iterates take the anchors' secant there) */
 static unsigned char slotSig(const cscSoftParams* p, const cscSlotInfo* si) {
@@ -308,18 +328,8 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     for (int i = 0; i < nslot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST; i++) {
       d->csig[first + i] = slotSig(csc_softParams(m->soft), slot + i);
     }
-    int touching = 0;
-    for (int i = 0; i < 6; i++) {
-      touching |= L0[i] != 0;
-    }
-    touching |= couple[0] != 0 || couple[1] != 0 || couple[2] != 0;
-    if (!touching) {
+    if (!countTouch(m, d, s, L0, couple)) {
       continue;
-    }
-    d->ntouch++;
-    csu_add3(d->fcw, d->fcw, L0);
-    if (!foot) {
-      csu_add3(d->fcw, d->fcw, L0 + 3);
     }
     int a = m->shape_a[s], b = m->shape_b[s];
     csr_strainPointG_(m, d, a, Ga);
@@ -456,20 +466,10 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
         *same = 0;
       }
     }
-    int touching = 0;
-    for (int i = 0; i < 6; i++) {
-      touching |= L[i] != 0;
-    }
-    touching |= couple[0] != 0 || couple[1] != 0 || couple[2] != 0;
-    if (!touching) {
+    if (!countTouch(m, d, s, L, couple)) {
       continue;
     }
-    d->ntouch++;
     int foot = s == m->nshape - 1;
-    csu_add3(d->fcw, d->fcw, L);
-    if (!foot) {
-      csu_add3(d->fcw, d->fcw, L + 3);
-    }
     /* Sᵀ L = G_pᵀ (R_pᵀ couple; R_pᵀ f) at each end point p (R_p its world frame) */
     int pts[2] = {m->shape_a[s], m->shape_b[s]};
     for (int e = 0; e < (foot ? 1 : 2); e++) {
