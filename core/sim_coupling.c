@@ -810,9 +810,15 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
     memcpy(qit, qa, sizeof qit);
     it++;
     c->tree_passes++;
+    /* converged: this move, or what is left of the passes' moves after it when an undamped
+     * pass contracts at a rate < 1 (chg rate / (1 - rate): Newton's, or a leg's kept
+     * iteration matrix, robot_strain_dyn.c condense), is below the tolerance */
+    const double rate = chg / chg_last;
+    const int full = alpha == 1;
     alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
     chg_last = chg;
-    if (it > 1 && chg <= m->opt.tree_tol) {
+    if (it > 1 && (chg <= m->opt.tree_tol ||
+                   (full && rate < 1 && chg * rate / (1 - rate) <= m->opt.tree_tol))) {
       break;
     }
     if (it >= m->opt.tree_iterations) {

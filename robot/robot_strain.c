@@ -298,6 +298,9 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->Ab);
   free(d->q0);
   free(d->eta0);
+  free(d->Wu);
+  free(d->csig);
+  free(d->fl);
   free(d->WMll);
   free(d->WMlb);
   free(d->rMl);
@@ -398,7 +401,17 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->WMlb = calloc(n * 6, sizeof(double));
   d->rMl = calloc(n, sizeof(double));
   d->du = calloc(n + 6, sizeof(double));
-  if (!d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
+  d->Wu = calloc(n * n, sizeof(double));
+  d->fl = calloc(n, sizeof(double));
+  int nslot_all = 1;
+  for (int s = 0; m->soft && s < m->nshape; s++) {
+    int first, count;
+    csc_softShapeSlots(m->soft, s, &first, &count);
+    nslot_all = first + count > nslot_all ? first + count : nslot_all;
+  }
+  d->csig = calloc((size_t)nslot_all, 1);
+  if (!d->Wu || !d->fl || !d->csig ||
+      !d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
       !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||
       !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du) {

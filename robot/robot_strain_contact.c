@@ -229,6 +229,37 @@ static void anchorSecant(const csrStrainModel* m, double h, const cscShapeState*
 }
 
 
+/* 1 when shape s's load (L, couple) is not zero: then counted in d->ntouch and its force added
+ * to d->fcw (world) */
+static int countTouch(const csrStrainModel* m, csrStrainData* d, int s, const double L[6],
+                      const double couple[3]) {
+  int touching = couple[0] != 0 || couple[1] != 0 || couple[2] != 0;
+  for (int i = 0; i < 6; i++) {
+    touching |= L[i] != 0;
+  }
+  if (!touching) {
+    return 0;
+  }
+  d->ntouch++;
+  csu_add3(d->fcw, d->fcw, L);
+  if (s != m->nshape - 1) {
+    csu_add3(d->fcw, d->fcw, L + 3);
+  }
+  return 1;
+}
+
+
+/* the contact's state signature of shape s's slots: bit 0 touching, bit 1 past the friction's
+ * saturation (u >= 2 - u_elastic: the Newton iterates take the anchors' secant there) */
+static unsigned char slotSig(const cscSoftParams* p, const cscSlotInfo* si) {
+  unsigned char c = si->depth > 0;
+  if (c && p->mu > 0 && si->ratio >= 2 - p->u_elastic) {
+    c |= 2;
+  }
+  return c;
+}
+
+
 int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
                                const double* du, double* Wbb, double* rb, double* G) {
   if (!m->soft) {
@@ -287,23 +318,18 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         csu_mulMat3(Rn, dR, st.R);
         memcpy(st.R, Rn, sizeof Rn);
       }
-      rc = loadOf(m, d, s, &st, L0, couple, NULL);
+      rc = loadOf(m, d, s, &st, L0, couple,
+                  nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL);
     }
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
-    int touching = 0;
-    for (int i = 0; i < 6; i++) {
-      touching |= L0[i] != 0;
+    /* the slots' state at the linearisation point: the iterates keep this W while it holds */
+    for (int i = 0; i < nslot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST; i++) {
+      d->csig[first + i] = slotSig(csc_softParams(m->soft), slot + i);
     }
-    touching |= couple[0] != 0 || couple[1] != 0 || couple[2] != 0;
-    if (!touching) {
+    if (!countTouch(m, d, s, L0, couple)) {
       continue;
-    }
-    d->ntouch++;
-    csu_add3(d->fcw, d->fcw, L0);
-    if (!foot) {
-      csu_add3(d->fcw, d->fcw, L0 + 3);
     }
     int a = m->shape_a[s], b = m->shape_b[s];
     csr_strainPointG_(m, d, a, Ga);
@@ -410,6 +436,97 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     }
   }
   return 0;
+}
+
+
+int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb[6], double* fl,
+                            int* same) {
+  *same = 1;
+  memset(d->fcw, 0, sizeof d->fcw);
+  d->ntouch = 0;
+  if (!m->soft) {
+    return 0;
+  }
+  const int n = m->n;
+  const cscSoftParams* sp = csc_softParams(m->soft);
+  for (int s = 0; s < m->nshape; s++) {
+    cscShapeState st;
+    shapeState(m, d, s, &st);
+    int first, nslot;
+    csc_softShapeSlots(m->soft, s, &first, &nslot);
+    cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
+    int has_slot = nslot <= CSR_STRAIN_MAX_SHAPE_HIST;
+    double L[6], couple[3];
+    int rc = loadOf(m, d, s, &st, L, couple, has_slot ? slot : NULL);
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+    for (int i = 0; i < nslot && has_slot; i++) {
+      if (slotSig(sp, slot + i) != d->csig[first + i]) {
+        *same = 0;
+      }
+    }
+    if (!countTouch(m, d, s, L, couple)) {
+      continue;
+    }
+    int foot = s == m->nshape - 1;
+    /* Sᵀ L = G_pᵀ (R_pᵀ couple; R_pᵀ f) at each end point p (R_p its world frame) */
+    int pts[2] = {m->shape_a[s], m->shape_b[s]};
+    for (int e = 0; e < (foot ? 1 : 2); e++) {
+      const int p = pts[e];
+      double Rw[9], xw[3], F[6];
+      csr_strainWorld_(d, d->R + 9 * p, d->x + 3 * p, Rw, xw);
+      const double* mo = foot ? L + 3 : (e == 0 ? couple : NULL);
+      if (mo) {
+        csu_mulMatTVec3(F, Rw, mo);
+      } else {
+        F[0] = F[1] = F[2] = 0;
+      }
+      csu_mulMatTVec3(F + 3, Rw, e == 0 ? L : L + 3);
+      double A[36];
+      csr_strainAdInv_(d->R + 9 * p, d->x + 3 * p, A);
+      const double* J = d->J + (size_t)p * 6 * n;
+      const int nc = m->pcol[p];
+      for (int r = 0; r < 6; r++) {
+        if (F[r] == 0) {
+          continue;
+        }
+        for (int c = 0; c < 6; c++) {
+          fb[c] += A[6 * r + c] * F[r];
+        }
+        for (int j = 0; j < nc; j++) {
+          fl[j] += J[r * n + j] * F[r];
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+
+int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d) {
+  if (!m->soft) {
+    return 1;
+  }
+  for (int s = 0; s < m->nshape; s++) {
+    int a = m->shape_a[s], b = m->shape_b[s];
+    cscShapeState st;
+    memset(&st, 0, sizeof st);
+    double Rb[9], xb[3];
+    csr_strainWorld_(d, d->R + 9 * a, d->x + 3 * a, st.R, st.x0);
+    csr_strainWorld_(d, d->R + 9 * b, d->x + 3 * b, Rb, xb);
+    memcpy(st.x1, xb, sizeof xb);
+    double L[6], couple[3];
+    if (loadOf(m, d, s, &st, L, couple, NULL) != 0) {
+      return 0;
+    }
+    for (int i = 0; i < 6; i++) {
+      if (L[i] != 0 || (i < 3 && couple[i] != 0)) {
+        return 0;
+      }
+    }
+  }
+  return 1;
 }
 
 

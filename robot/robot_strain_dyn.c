@@ -382,42 +382,123 @@ static void momentumRows(const csrStrainModel* m, const csrStrainData* d, double
 }
 
 
-/* W = W_M + the contact's linearisation at the current kinematics and point twists (du NULL:
- * the step's start, predicted; else the iterate Δu = du), factored and condensed: Z, ρ */
-static int condense(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
-                    double Z[36], double rho[6]) {
+/* An iterate without contact, whose last factor had none either: W_ll, W_lb, r_l and so X, y
+ * and Z are the last pass's; only the base's momentum rows (ρ) change (they need the poses
+ * alone: the leg's mass moment) */
+static int condensePlain(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                         double Z[36], double rho[6]) {
   const int n = m->n;
   double Wbb[36], rb[6];
   memcpy(Wbb, d->WMbb, sizeof Wbb);
   memcpy(rb, d->rMb, sizeof rb);
-  /* an iterate without contact, whose last factor had none either: W_ll, W_lb, r_l and so X,
-   * y and Z are the last pass's; only the base's momentum rows (ρ) change */
-  int reuse = 0;
-  if (du && d->lu_plain && m->soft) {
-    int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
+  momentumRows(m, d, h, du, Wbb, rb);
+  for (int a = 0; a < 6; a++) {
+    double t = 0;
+    for (int j = 0; j < n; j++) {
+      t += d->Wbl[n * a + j] * d->y[j];
+    }
+    rho[a] = h * rb[a] - t;
+  }
+  memcpy(Z, d->Zp, sizeof d->Zp);
+  memcpy(d->rhop, rho, sizeof d->rhop);
+  for (int a = 0; a < 6; a++) {
+    if (!isfinite(rho[a])) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+
+/* A Newton iterate that keeps the step's last iteration matrix W_f (factored in d->Wll, its
+ * blocks d->Wu, d->Wlb, d->Wbl, d->Wbbp; Z = d->Zp): the chord step W_f δ = -R(Δu_it), so in
+ * the whole step's Δu the right-hand side is W_f Δu_it - R = h r + (W_f - W_M) Δu_it, with
+ * h r = h (r_M + the contact's force at the iterate, fl, fb) and W_M Δu = h r_M the step's
+ * part without contact (linear in Δu: its residual is W_M Δu_it - h r_M). Converged it is the
+ * same step (R = 0); only the iterates' path differs. Then ρ as in the full pass, Z kept. */
+static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                        const double fb[6], double Z[36], double rho[6]) {
+  const int n = m->n;
+  const double* dV = du;
+  const double* de = du + 6;
+  double rb[6];
+  for (int j = 0; j < n; j++) {
+    const double* wu = d->Wu + (size_t)j * n;
+    const double* wm = d->WMll + (size_t)j * n;
+    double t = h * (d->rMl[j] + d->fl[j]);
+    for (int k = 0; k < n; k++) {
+      t += (wu[k] - wm[k]) * de[k];
+    }
+    for (int c = 0; c < 6; c++) {
+      t += (d->Wlb[6 * j + c] - d->WMlb[6 * j + c]) * dV[c];
+    }
+    d->y[j] = t;
+  }
+  for (int a = 0; a < 6; a++) {
+    double t = h * (d->rMb[a] + fb[a]);
+    for (int c = 0; c < 6; c++) {
+      t += (d->Wbbp[6 * a + c] - d->WMbb[6 * a + c]) * dV[c];
+    }
+    for (int j = 0; j < n; j++) {
+      t += (d->Wbl[n * a + j] - d->WMlb[6 * j + a]) * de[j];
+    }
+    rb[a] = t / h;
+  }
+  momentumRows(m, d, h, du, d->Wbbp, rb);
+  for (int j = 0; j < n; j++) {
+    if (!isfinite(d->y[j])) {
+      return 1;
+    }
+  }
+  csr_strainLuSolve_(d->Wll, n, d->piv, d->y);
+  for (int a = 0; a < 6; a++) {
+    double t = 0;
+    for (int j = 0; j < n; j++) {
+      t += d->Wbl[n * a + j] * d->y[j];
+    }
+    rho[a] = h * rb[a] - t;
+    if (!isfinite(rho[a])) {
+      return 1;
+    }
+  }
+  memcpy(Z, d->Zp, sizeof d->Zp);
+  memcpy(d->rhop, rho, sizeof d->rhop);
+  return 0;
+}
+
+
+/* W = W_M + the contact's linearisation at the current kinematics and point twists (du NULL:
+ * the step's start, predicted; else the iterate Δu = du), factored and condensed: Z, ρ.
+ * An iterate keeps the last iteration matrix (condenseKept) while every contact slot is in the
+ * state (touching, past the friction's saturation) it was linearised in and the leg's moves
+ * shrink: a new linearisation costs the contact's 12 law evaluations per touching shape, its
+ * assembly and an LU of W_ll; a kept one, the law once per shape and one solve
+ * (docs/notes/strain_leg.md, Cost). */
+static int condense(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                    double Z[36], double rho[6]) {
+  const int n = m->n;
+  double Wbb[36], rb[6];
+  if (du) {
+    double fb[6] = {0, 0, 0, 0, 0, 0};
+    int same = 1;
+    memset(d->fl, 0, (size_t)n * sizeof(double));
+    int rc = csr_strainContactLoads_(m, d, fb, d->fl, &same);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
-    reuse = d->ntouch == 0;
-  }
-  if (reuse || (du && d->lu_plain && !m->soft)) {
-    momentumRows(m, d, h, du, Wbb, rb);
-    for (int a = 0; a < 6; a++) {
-      double t = 0;
-      for (int j = 0; j < n; j++) {
-        t += d->Wbl[n * a + j] * d->y[j];
-      }
-      rho[a] = h * rb[a] - t;
+    if (d->lu_plain && d->ntouch == 0) {
+      return condensePlain(m, d, h, du, Z, rho);
     }
-    memcpy(Z, d->Zp, sizeof d->Zp);
-    memcpy(d->rhop, rho, sizeof d->rhop);
-    for (int a = 0; a < 6; a++) {
-      if (!isfinite(rho[a])) {
-        return 1;
-      }
+    /* keep W while the slots keep their state and the leg's move shrank at least 4x over the
+     * last kept iterate (a chord iteration contracting slower than that costs more passes
+     * than the new linearisation saves) */
+    int shrinks = d->nreuse == 0 || d->chg_last <= 0.25 * d->chg_prev;
+    if (!d->lu_plain && same && shrinks) {
+      d->nreuse++;
+      return condenseKept(m, d, h, du, fb, Z, rho);
     }
-    return 0;
   }
+  d->nreuse = 0;
   memcpy(Wbb, d->WMbb, sizeof Wbb);
   memcpy(rb, d->rMb, sizeof rb);
   memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
@@ -443,6 +524,10 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
     if (!isfinite(d->rl[j])) {
       return 1;
     }
+  }
+  if (!d->lu_plain) {
+    memcpy(d->Wu, d->Wll, (size_t)n * n * sizeof(double));
+    memcpy(d->Wbbp, Wbb, sizeof Wbb);
   }
   if (csr_strainLuFactor_(d->Wll, n, d->piv)) {
     return 1;
@@ -494,6 +579,8 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     return rc;
   }
   d->h = h;
+  d->chg_last = d->chg_prev = INFINITY;
+  d->nreuse = 0;
   return 0;
 }
 
@@ -501,6 +588,18 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
 int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], double rho[6]) {
   if (!(d->h > 0) || !Z || !rho) {
     return -1;
+  }
+  /* a leg without contact in its factor: if no shape touches at the iterate's poses, the
+   * iterate needs those poses alone (no Jacobians, no point twists) */
+  if (d->lu_plain) {
+    if (d->kin_valid < 1) {
+      csr_strainKinematics_(m, d, 0);
+    }
+    if (csr_strainContactNone_(m, d)) {
+      memset(d->fcw, 0, sizeof d->fcw);
+      d->ntouch = 0;
+      return condensePlain(m, d, d->h, d->du, Z, rho);
+    }
   }
   /* the kinematics and point twists at the iterate's end of the step */
   if (d->kin_valid < 2) {
@@ -556,6 +655,8 @@ int csr_strainUpdateDamped(const csrStrainModel* m, csrStrainData* d, const doub
     d->q[j] = d->q0[j] + h * d->eta[j];
   }
   memcpy(d->du, dVa, 6 * sizeof(double));
+  d->chg_prev = d->chg_last;
+  d->chg_last = chg;
   if (change) {
     *change = isfinite(chg) ? chg : INFINITY;
   }

@@ -106,6 +106,14 @@ struct csrStrainData_ {
   double fcw[3];  /* the contact's force on the leg at the linearisation point, world (N) */
   int ntouch;     /* shapes the last contact assembly found touching */
   int lu_plain;   /* 1: d->Wll's factor, X and y are W_M's alone (no contact in them) */
+  /* the iteration matrix kept over a step's Newton iterates (robot_strain_dyn.c condense) */
+  double* Wu;     /* (n x n) W_ll as factored, unfactored (with the contact's part) */
+  double Wbbp[36]; /* W_bb as condensed */
+  unsigned char* csig; /* (the contact's slots) their state where W was linearised: bit 0
+                          touching, bit 1 past the friction's saturation */
+  double* fl;     /* (n) scratch: the contact's generalised force at an iterate */
+  double chg_last, chg_prev; /* the leg's last two iterate moves (csr_strainUpdateDamped) */
+  int nreuse;     /* iterates in a row that kept the iteration matrix */
   double* z;      /* (nhist) contact anchors (state) */
   cscShapeState* sst; /* (nshape) scratch */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
@@ -157,6 +165,15 @@ int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csErr
  * twists d->Vp; 0 or > 0 (a pose sinks past a shape's radius or is not finite) */
 int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
                                const double* du, double* Wbb, double* rb, double* G);
+/* the contact's force alone at the current kinematics and point twists (no linearisation):
+ * Σ Sᵀ L added to fb (6) and fl (n) (N, N mm), d->fcw and d->ntouch set; *same 1 when every
+ * slot's state (touching, saturated) is d->csig's. 0 or > 0 as csr_strainContactAssemble_. */
+int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb[6], double* fl,
+                            int* same);
+/* 1 when no shape touches at the current poses (d->R, d->x: the kinematics without J is
+ * enough) with the shapes at rest: the law's force is zero wherever its elastic part is, at
+ * any velocity, so then none touches at the shapes' real velocities either; 0 otherwise */
+int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d);
 /* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
 int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
 /* the point twists d->Vp at the current kinematics */

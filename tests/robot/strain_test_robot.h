@@ -273,9 +273,15 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
       chg = fmax(chg, c);
     }
     it++;
+    /* converged as the driver's tree step (core/sim_coupling.c): this move, or what is left
+     * of the moves after it when an undamped pass contracts at a rate < 1 (chg rate /
+     * (1 - rate)), is below tol */
+    const double rate = chg / chg_last;
+    const int full = alpha == 1;
     alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
     chg_last = chg;
-    if (maxit <= 1 || (it > 1 && chg <= tol)) {
+    int conv = chg <= tol || (full && rate < 1 && chg * rate / (1 - rate) <= tol);
+    if (maxit <= 1 || (it > 1 && conv)) {
       ok = 1;
       break;
     }
