@@ -18,18 +18,18 @@ import sys
 
 ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
 ap.add_argument('-o', '--out', default='-', help='output file (default stdout)')
-ap.add_argument('--D', type=float, default=50.0,
+ap.add_argument('--D', type=float, default=59.0,
                 help='support advance per walk cycle, mm (measured): places the hips for the '
                 'landings and, with --xdrift, sets the number of walk slots (rule 7)')
 ap.add_argument('--xdrift', type=float, default=0.0,
                 help='how far the turn and the lateral crawl carry the support back along x, mm '
                 '(measured): the walk turns this far past xturn (rule 7)')
-ap.add_argument('--Dz', type=float, default=60.0,
+ap.add_argument('--Dz', type=float, default=43.4,
                 help='support advance per lateral cycle, mm (measured): the number of lateral '
                 'slots is zend / (Dz / 4)')
 ap.add_argument('--over', type=float, default=10.0,
                 help='landing overshoot ahead of the planned foot, mm (measured)')
-ap.add_argument('--Tp', type=float, default=0.5,
+ap.add_argument('--Tp', type=float, default=0.55,
                 help='the walk\'s slot: the time one pair takes to step, s (the cycle is 4 slots)')
 ap.add_argument('--Tclimb', type=float, default=0.8,
                 help='the walk\'s slot while the support climbs (planned x below --xclimb), s')
@@ -39,12 +39,13 @@ ap.add_argument('--xclimb', type=float, default=130.0,
                 '25 + 10 mm ahead of them: 240 - 75 - 35)')
 ap.add_argument('--t-place', type=float, default=1.8,
                 help='when the front pair steps ahead, s (the walk starts one --Tstart later)')
-ap.add_argument('--Tpz', type=float, default=0.5, help='the lateral crawl\'s slot, s')
+ap.add_argument('--Tpz', type=float, default=0.4, help='the lateral crawl\'s slot, s')
 ap.add_argument('--Tstart', type=float, default=0.8,
                 help='slot of the steps into the walk and into the lateral stance (the support '
                 'standing), s')
 ap.add_argument('--Tturn', type=float, default=0.6,
-                help='slot of the steps into and out of the lateral stance (the support standing), s')
+                help='slot of the steps into and out of the lateral stance (the support '
+                'standing), s')
 ap.add_argument('--rise', type=float, default=40.0,
                 help='stretch of a road leg in the walk, mm (the step is 40 mm: rule 2)')
 ap.add_argument('--rise-z', type=float, default=15.0,
@@ -73,8 +74,9 @@ STEPZ = SHZ / 3
 
 HEADER = """\
 # gaits/obstacle.gait: the obstacle road's gait (paper Sec. 5.2, Fig. 13/14, Table 3), written
-# by tools/obstacle_gait.py ({args}; run it again rather than edit this file) and turned into
-# gaits/obstacle.csv on the mission's calibration by
+# by tools/obstacle_gait.py (run it again rather than edit this file) with
+{args}
+# and turned into gaits/obstacle.csv on the mission's calibration by
 #   crawlsim gait design gaits/obstacle.gait --stretch --out gaits/obstacle.csv
 #     --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair --p-max 0.4
 # (--stretch: the legs' elongation counts: all four chambers stretch a leg 40 mm at 0.26 MPa).
@@ -116,10 +118,10 @@ HEADER = """\
 #     stance feet {SHZ:g} mm sideways over three slots ({Tpz:g} s each). At the end every pair
 #     steps back under its hips and every chamber vents (a release with the feet aside rolled
 #     the support over the +z row: measured on the earlier design).
-""".format(args='D %g, xdrift %g, Dz %g, over %g mm; Tclimb %g, Tp %g, Tpz %g, Tstart %g, '
-           'Tturn %g s; t-place %g s; xclimb %g, rise %g, rise-z %g mm'
-           % (a.D, a.xdrift, a.Dz, a.over, a.Tclimb, a.Tp, a.Tpz, a.Tstart, a.Tturn, a.t_place,
-              a.xclimb, a.rise, a.rise_z),
+""".format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
+           '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
+           % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
+              a.Tstart, a.Tturn, a.t_place),
            Tp=a.Tp, rise=a.rise, step=STEP, SH=SH, risez=a.rise_z, SHZ=SHZ, Tpz=a.Tpz)
 
 out = [HEADER]
@@ -261,8 +263,8 @@ def stance(l, b, r0, s0, s1):
         k = m + 1
 
 
-comment('# the walk: %d slots from %.2f s (%g s while the support climbs, then %g s; '
-        'support planned at D = %g mm per cycle)' % (NS, tw, a.Tclimb, a.Tp, a.D))
+comment('# the walk: %d slots from %.2f s (%g s while the support climbs, then %g s;\n'
+        '# support planned at D = %g mm per cycle)' % (NS, tw, a.Tclimb, a.Tp, a.D))
 pending = {}      # leg -> slot index its current stance began
 for l in OFF:
     pending[l] = 0
@@ -295,8 +297,8 @@ xend = XP[NS]
 
 # rule 9: the turn into a staggered sideways stance; pair ZPAIRS[j] lifts first in lateral slot
 # j, having pushed j slots: it stands at RZ - SHZ + j STEPZ (pair 0 under its hips)
-comment('# the turn from %.2f s (support planned at x + %.0f mm): the pairs step into a '
-        'staggered sideways stance' % (t, xend))
+comment('# the turn from %.2f s (support planned at x + %.0f mm): the pairs step into a\n'
+        '# staggered sideways stance' % (t, xend))
 side0 = {}
 for j, pair in enumerate(ZPAIRS):
     sz = RZ - SHZ + j * STEPZ if j > 0 else 0.0
@@ -335,8 +337,8 @@ for l in OFF:
     if t > ts + 1e-9:
         emit(ts, t - ts, {l: need('L15', off)}, linear=True)
     zs[l] = off
-comment('# the feet back under the hips, pair by pair, then every chamber vented (the paper\'s '
-        '"release all pressure")')
+comment('# the feet back under the hips, pair by pair, then every chamber vented\n'
+        '# (the paper\'s "release all pressure")')
 for pair in ZPAIRS:
     step(t, a.Tturn, pair, {l: need('V', zs[l]) for l in pair}, {l: 'straight' for l in pair},
          {l: 'R15' for l in pair})
@@ -347,6 +349,11 @@ t += 1.0
 w('# per offset r (mm ahead of the hip, negative behind): road stance G (stretched S-shape),\n'
   '# step stance S (vented S-shape), swing top A (12 mm above the vented leg, branch plus);\n'
   '# sideways: L40 / L15 (stretched, foot aside along e2), VL (vented, aside)\n')
+# every x offset a stance uses gets both stance lengths, road G and step S (their feet differ by
+# the step's height: tests/core/test_obstacle.c)
+for kind, val in list(POSES):
+    if kind in ('G', 'S'):
+        need('S' if kind == 'G' else 'G', val)
 for kind, val in POSES:
     for line in pose_lines(kind, val):
         w(line)
@@ -355,7 +362,10 @@ for m in moves:
         w(m[1] + '\n')
     else:
         t0, dur, legs, pose, lin = m
-        w('move %.3f %.3f %s %s%s\n' % (t0, dur, legs, pose, ' linear' if lin else ''))
+        # the end written as the rounded start plus a rounded duration equal to the rounded end,
+        # so that a leg's consecutive moves meet exactly
+        ts, te = round(t0, 4), round(t0 + dur, 4)
+        w('move %.4f %.4f %s %s%s\n' % (ts, te - ts, legs, pose, ' linear' if lin else ''))
 w('end %.2f\n' % (t + 1.0))
 text = ''.join(out)
 if a.out == '-':
