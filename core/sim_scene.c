@@ -15,12 +15,10 @@ static const csScene kScenes[] = {
     {"flat-road", "terrains/flat_road.terrain", "gaits/flat_road_rod.csv", CS_CONDITIONS_PAPER,
      "robot/calibration_fe_leg_modes_sym.h5", "rbf-pair", "rod", 8,
      "paper Sec. 5.1: 600 x 300 mm flat road, 8 strides of 39 mm in 9 s (Table 2)"},
-    /* the obstacle gait was designed on the 9-mode table (its all-four mode stretches the legs
-     * 40 mm for the climb) with rod legs at 4 elements per segment; on the 23-mode table it
-     * falls back off the step at 15.2 s (docs/bench/defaults_2026-12-05/tracks.txt), so the
-     * scene keeps the model its gait climbs on until a gait is designed on the mission's table */
+    /* the obstacle's gait (a wave: six legs stand while a pair steps) was designed on the same
+     * model at the rod's 4 elements per segment (tools/obstacle_gait.py, docs/studies/obstacle.md) */
     {"obstacle", "terrains/obstacle.terrain", "gaits/obstacle.csv", CS_CONDITIONS_PAPER,
-     "robot/calibration_fe_leg_modes.h5", NULL, "rod", 4,
+     "robot/calibration_fe_leg_modes_sym.h5", "rbf-pair", "rod", 4,
      "paper Sec. 5.2: L-shaped road with a 40 mm step up and down, then a turn (Table 3)"},
     /* the flat road's designed gait on an inclined road (terrains/slope.terrain): how steep a
      * slope it climbs (docs/studies/slope.md); the flat road's model and conditions */

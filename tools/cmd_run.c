@@ -51,11 +51,10 @@ static const csxOpt kRunOpts[] = {
     {"--t-end", "S", "0 = the gait's length",
      "simulated time in s; 0 runs until the last row's change has finished"},
     {"--out", "FILE.h5", "run.h5", "the run file; FILE.xdmf is written beside it"},
-    {"--calibration", "FILE", "the scene's (flat-road: robot/calibration_fe_leg_modes_sym.h5, "
-     "obstacle: robot/calibration_fe_leg_modes.h5)",
+    {"--calibration", "FILE", "the scene's (robot/calibration_fe_leg_modes_sym.h5)",
      "the legs' pressure -> shape calibration table"},
-    {"--cal-rule", "prism|rbf|rbf-pair", "the scene's: rbf-pair on flat-road, the table's own "
-     "(prism) on obstacle or with --calibration",
+    {"--cal-rule", "prism|rbf|rbf-pair", "the scene's (rbf-pair); the table's own (prism) with "
+     "--calibration",
      "the FE mode table's model rule; refused for other calibration kinds; recorded as "
      "calibration_rule"},
     {"--cal-drop", "stretch[,stiffness]", "none",

@@ -1,259 +1,371 @@
 #!/usr/bin/python3
-"""Write gaits/obstacle.gait, the obstacle road's gait description (README "Obstacle road").
+"""Write gaits/obstacle.gait, the obstacle road's gait description (docs/studies/obstacle.md).
 
 The description is long (one move line per leg group and phase) but follows from a few rules
-and the terrain's two edges; this script is those rules. It plans, cycle by cycle, where each
-foot lands, from the hips' expected positions (the measured hip advance per shift, D) and the
-edges of terrains/obstacle.terrain, and writes the moves; `crawlsim gait design` then turns the
-description into gaits/obstacle.csv with pressures from the calibrated leg model.
+and the terrain's two edges; this script is those rules. It plans, slot by slot, where each
+foot lands, from the hips' expected positions (the measured support advance per cycle, D) and
+the edges of terrains/obstacle.terrain, and writes the moves; `crawlsim gait design` then turns
+the description into gaits/obstacle.csv with pressures from the calibrated leg model:
 
   /usr/bin/python3 tools/obstacle_gait.py -o gaits/obstacle.gait
-  crawlsim gait design gaits/obstacle.gait --stretch \\
-      --calibration robot/calibration_fe_leg_modes.h5 --p-max 0.4
+  crawlsim gait design gaits/obstacle.gait --stretch --out gaits/obstacle.csv \\
+      --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair --p-max 0.4
 
-Options set the measured constants (defaults: the values the shipped file was made with)."""
+Options set the measured constants and the design's few parameters (defaults: the values the
+shipped file was made with)."""
 import argparse
 import sys
 
 ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
 ap.add_argument('-o', '--out', default='-', help='output file (default stdout)')
-ap.add_argument('--D', type=float, default=43.0,
-                help='hip advance per x cycle near the edges, mm (measured)')
-ap.add_argument('--xmean', type=float, default=40.2,
-                help='mean support advance per x cycle over the whole walk, mm (measured): with '
-                '--xdrift it sets the number of x cycles (rule 7)')
-ap.add_argument('--xdrift', type=float, default=19.7,
-                help='how far the lateral crawl carries the support back along x, mm (measured): '
-                'the walk turns this far past xturn (rule 7)')
-ap.add_argument('--Dz', type=float, default=55.6,
-                help='mean support advance per lateral cycle, mm (measured, the release included):'
-                ' the number of lateral cycles is zend / Dz')
+ap.add_argument('--D', type=float, default=59.0,
+                help='support advance per walk cycle, mm (measured): places the hips for the '
+                'landings and, with --xdrift, sets the number of walk slots (rule 7)')
+ap.add_argument('--xdrift', type=float, default=0.0,
+                help='how far the turn and the lateral crawl carry the support back along x, mm '
+                '(measured): the walk turns this far past xturn (rule 7)')
+ap.add_argument('--Dz', type=float, default=43.4,
+                help='support advance per lateral cycle, mm (measured): the number of lateral '
+                'slots is zend / (Dz / 4)')
 ap.add_argument('--over', type=float, default=10.0,
                 help='landing overshoot ahead of the planned foot, mm (measured)')
+ap.add_argument('--Tp', type=float, default=0.55,
+                help='the walk\'s slot: the time one pair takes to step, s (the cycle is 4 slots)')
+ap.add_argument('--Tclimb', type=float, default=0.8,
+                help='the walk\'s slot while the support climbs (planned x below --xclimb), s')
+ap.add_argument('--xclimb', type=float, default=130.0,
+                help='support x (mm) from which the walk takes the --Tp slot: the rear hips\' '
+                'feet then land on the step (its edge at 240, the rear hips at 75, a landing '
+                '25 + 10 mm ahead of them: 240 - 75 - 35)')
+ap.add_argument('--t-place', type=float, default=1.8,
+                help='when the front pair steps ahead, s (the walk starts one --Tstart later)')
+ap.add_argument('--Tpz', type=float, default=0.4, help='the lateral crawl\'s slot, s')
+ap.add_argument('--Tstart', type=float, default=0.8,
+                help='slot of the steps into the walk and into the lateral stance (the support '
+                'standing), s')
+ap.add_argument('--Tturn', type=float, default=0.6,
+                help='slot of the steps into and out of the lateral stance (the support '
+                'standing), s')
+ap.add_argument('--rise', type=float, default=40.0,
+                help='stretch of a road leg in the walk, mm (the step is 40 mm: rule 2)')
+ap.add_argument('--rise-z', type=float, default=15.0,
+                help='stretch of the legs in the lateral crawl, mm')
 ap.add_argument('--xturn', type=float, default=646.0, help='x of the turn, mm (Table 3)')
 ap.add_argument('--zend', type=float, default=270.0, help='lateral travel, mm (Table 3)')
 a = ap.parse_args()
 
-SH, SHZ = 40, 50              # stance stroke of one shift: along x, along z (mm)
+SH, SHZ = 40.0, 50.0          # stance stroke of one stance (3 slots): along x, along z (mm)
 RS = (5, 15, 25, 35)          # landing offsets ahead of the hip (mm); stance ends at r - SH
 PREF = (25, 15, 35, 5)        # in this order of preference
 MARGIN = 25.0                 # wanted distance of a landing from an edge (mm)
 BAND = 20.0                   # within this of an edge a landing takes the step's length
-NEAR = 60.0                   # a cycle with a hip this near an edge uses the slow timing
-SLOW = (0.2, 0.4, 0.1, 0.2, 1.0, 0.3)    # lift, swing, hold, land, shift, settle (s)
-FAST = (0.15, 0.3, 0.1, 0.15, 0.8, 0.2)
+FRAC = (0.25, 0.4, 0.1, 0.25)  # a slot: lift, swing, hold, land (fractions of the slot)
 EDGES = (240.0, 460.0)        # terrains/obstacle.terrain: the step from x = 240 to 460
 START = 150.0                 # the support's start x in the terrain
 OFF = {'A': 75, 'E': 75, 'B': 25, 'F': 25, 'C': -25, 'G': -25, 'D': -75, 'H': -75}
 PAIRS = ('DH', 'CG', 'BF', 'AE')
 # the lateral crawl's pairs: one leg ahead of the centre and one behind, on opposite sides, so
 # that their sideways reactions cancel in yaw moment (pairs abreast turned the support 56 deg
-# in six lateral cycles: measured)
+# in six lateral cycles: measured on the earlier design)
 ZPAIRS = ('AH', 'DE', 'BG', 'CF')
-RZ = SHZ // 2
+RZ = SHZ / 2
+STEP = SH / 3                 # a stance foot's travel per slot relative to its hip (mm)
+STEPZ = SHZ / 3
 
 HEADER = """\
 # gaits/obstacle.gait: the obstacle road's gait (paper Sec. 5.2, Fig. 13/14, Table 3), written
-# by tools/obstacle_gait.py (D {D:g}, xmean {xmean:g}, xdrift {xdrift:g}, Dz {Dz:g}, over {over:g}
-# mm; run it again rather than edit this file) and turned into gaits/obstacle.csv by
-#   crawlsim gait design obstacle.gait --stretch --calibration robot/calibration_fe_leg_modes.h5
-#            --p-max 0.4
-# (--stretch: the legs' elongation counts; the FE mode table: its all-four mode stretches a leg
-# 40 mm at 0.26 MPa, where the pair-mode table's analytic stretch gives 13.8 mm at its 0.3 MPa
-# end). README "Obstacle road" has the track and the runs behind each rule.
+# by tools/obstacle_gait.py (run it again rather than edit this file) with
+{args}
+# and turned into gaits/obstacle.csv on the mission's calibration by
+#   crawlsim gait design gaits/obstacle.gait --stretch --out gaits/obstacle.csv
+#     --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair --p-max 0.4
+# (--stretch: the legs' elongation counts: all four chambers stretch a leg 40 mm at 0.26 MPa).
+# docs/studies/obstacle.md has the track and the runs behind each rule.
 #
-# Rules (each found by simulation, rod legs, `paper`):
-#  1. Six legs stand while two swing: the pairs DH, CG, BF, AE step in turn, rear to front.
-#     Four-leg stances (groups ACFH / BDEG) tipped over at 3 s: one foot not quite down leaves
-#     a triangle with the support's centre on its edge.
-#  2. The support stays level, 40 mm above the road (the paper raises it 50 mm, Table 3): a leg
-#     on the road stands stretched 40 mm by all four chambers of its segments (pose R,
-#     0.26 MPa), a leg on the step stands vented, so their feet differ by the step's height
-#     (G* poses against S*). The paper's sequence (BCFG raised, ADEH reaching onto the step,
-#     BCFG vented) tilts the support over the edge; on these legs it tipped backwards and left
-#     the road at 4.5 s.
-#  3. The support moves only in a shift, all eight legs carrying: every foot goes from r ahead
-#     of its hip to r - {SH} mm, together, so no foot slides; the stance is centred on the hip
-#     (r - {SH} .. r within -35 .. 35 mm).
-#  4. A road leg bends by raising one pair of chambers above the stretch's 0.26 MPa (GP/GM):
+# Rules (rod legs, `paper`):
+#  1. A wave: six legs stand while one pair steps, the pairs DH, CG, BF, AE in turn, one slot
+#     ({Tp:g} s) each; a cycle is four slots. Four-leg stances tipped over on the edges (one
+#     foot not quite down leaves a triangle with the support's centre on its edge).
+#  2. The support stays level, {rise:g} mm above the road on the walk: a leg on the road stands
+#     stretched by all four chambers of its segments (pose R), a leg on the step stands vented,
+#     so their feet differ by the step's height (G* poses against S*). The paper's sequence
+#     (BCFG raised, ADEH reaching onto the step, BCFG vented) tilted the support over the edge.
+#  3. The stance legs carry the support at constant speed: every standing foot moves back
+#     relative to its hip by {step:.2f} mm per slot (`linear`), {SH:g} mm over its three
+#     slots of stance, so no standing foot slides against another; the support advances
+#     4/3 x {SH:g} mm per cycle where the earlier design (all legs still while a pair stepped,
+#     then one shift) made {SH:g}, at no more stroke.
+#  4. A road leg bends by raising one pair of chambers above the stretch's pressure (GP/GM):
 #     the rod level takes its stiffness from FE probes up to a mean segment pressure of
-#     0.3 MPa, so the pair gets at most 0.08 MPa more: 35 mm of stroke.
-#  5. A swing goes up, over and down: from the stance to the `plus` foot pose AM (foot behind
-#     the hip, 12 mm above the vented leg: 52 mm above the road for a road leg; the `plus`
-#     branch keeps II1 on chambers 3,4 behind the hip), over to AP on the same branch (the
-#     solver's own choice changes branch at the hip, where the leg passes straight and the
-#     foot drops 12 mm: measured, it dropped onto the step's corner and threw the support
-#     27 mm up), a hold of 0.1 s (without it the landing feet overshot by 10-20 mm), then
-#     straight down onto the stance pose.
-#  6. Where a foot lands: r in 5..35 mm ahead of the hip, chosen at least 25 mm from both
-#     edges where it can be (a foot's contact radius is 7.5-11 mm; measured landings missed
-#     their plan by up to 23 mm), the hips placed by the advance per cycle measured on the
-#     climb, D. A
-#     landing within 20 mm of an edge, on either side, takes the step's leg length: if the
-#     foot is over the road it hangs 40 mm up, carrying nothing until its next step; a leg of
-#     the road's length landing on the step lifts the support 40 mm (measured: it tipped).
-#  7. The walk has round((646 + xdrift) / xmean) cycles, xmean the mean advance measured over
-#     the whole walk (683.5 mm at the turn after 17 cycles), xdrift how far the lateral crawl
-#     then carries the support back along x (17.5 and 21.9 mm in two runs with rule 11), so that
-#     the crawl ends at Table 3's x = 646 mm; the lateral crawl has round(270 / Dz) cycles. A
-#     cycle's ~40 mm quantise where the walk turns: 16 cycles ended 27.8 mm from Table 3's end
-#     point, 17 cycles 17.0 mm (2026-12-03).
-#  8. The cycles near an edge are slow (0.9 s a pair, a 1 s shift, 0.3 s to settle); on the
-#     flat road 0.7 s, 0.8 s and 0.2 s.
-#  9. The turn: each pair steps to the lateral stance (L40, still 40 mm up), all legs come
-#     down to a 15 mm stretch (L15), then lateral cycles along +z: pairs swing sideways
-#     (vented: the foot rises 15 mm), all shift {SHZ} mm; at the end every leg vents. The
-#     lateral pairs are diagonal (AH, DE, BG, CF): a pair's sideways reactions then cancel in
-#     yaw; with the pairs abreast (DH, CG, BF, AE) the support turned 10 deg per lateral cycle
-#     (56 deg at the end, measured) and crabbed 90 mm along +x, off the road's end. Before the
-#     release every pair steps back under its hips (see there).
-# 10. The lateral cycles use the slow timing (0.9 s a pair, a 1 s shift): with the flat road's
-#     0.7 s pairs the support slid back 20-40 mm along z while a pair swung (the swinging legs'
-#     inertia against the stance feet's friction, which only the 50 g support's weight loads
-#     under `paper`) and turned to 13.5 deg of yaw: 34.7 mm per cycle; slow, 55.6 mm per cycle,
-#     yaw back within 2 deg after the turn and 3 mm of drift along x per cycle (rod legs,
-#     2026-12-03; README "Obstacle road").
-# 11. The lateral pairs step in alternating order, AH DE BG CF in one cycle and CF BG DE AH in
-#     the next, so that no pair always steps first: with the same order every cycle the crawl's
-#     drift back along x depended on where the walk turned (12.2 mm from a turn at x = 679, 29.2
-#     mm from one at 642: the same gait with 17 and 16 x cycles), alternating it 17.5 and 21.9
-#     mm (rod legs, 2026-12-03; docs/bench/obstacle_stroke_2026-12-03/lateral_order.txt).
-""".format(D=a.D, xmean=a.xmean, xdrift=a.xdrift, Dz=a.Dz, over=a.over, SH=SH, SHZ=SHZ)
+#     0.3 MPa, so the stroke stays within 35 mm of the hip.
+#  5. A step goes up, over and down: from the stance to the `plus` foot pose AM (12 mm above
+#     the vented leg), over to AP on the same branch (the solver's own choice changes branch
+#     where the leg passes straight and the foot drops 12 mm), a short hold, straight down.
+#  6. Where a foot lands: r in 5..35 mm ahead of the hip, at least 25 mm from both edges
+#     where it can be (landings missed their plan by up to 23 mm), the hips placed by D per
+#     cycle. A landing within 20 mm of an edge takes the step's leg length (over the road the
+#     foot hangs 40 mm up, carrying nothing until its next step).
+#  7. The walk has round((646 + xdrift) / (D / 4)) slots: it turns where the support, at D per
+#     cycle, is xdrift past Table 3's x = 646 mm; the lateral crawl has round(270 / (Dz / 4))
+#     slots.
+#  8. The start: the legs stretch (1 s), the front pair steps ahead (the support standing),
+#     then the wave starts with the pairs behind it still under their hips: each stance foot
+#     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
+#     jolt.
+#  9. The turn: the support stands while the pairs step into a staggered sideways stance (still
+#     {rise:g} mm up), all legs come down to a {risez:g} mm stretch, then the lateral wave along
+#     +z: the diagonal pairs AH, DE, BG, CF in turn (a pair's sideways reactions cancel in yaw),
+#     stance feet {SHZ:g} mm sideways over three slots ({Tpz:g} s each). At the end every pair
+#     steps back under its hips and every chamber vents (a release with the feet aside rolled
+#     the support over the +z row: measured on the earlier design).
+""".format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
+           '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
+           % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
+              a.Tstart, a.Tturn, a.t_place),
+           Tp=a.Tp, rise=a.rise, step=STEP, SH=SH, risez=a.rise_z, SHZ=SHZ, Tpz=a.Tpz)
 
 out = [HEADER]
 w = out.append
 w('name obstacle\nsample 0.05\n')
-w('# R: all four chambers of every segment, the straight leg 40 mm longer (a leg on the road)\n')
-w('pose R II1:1,2,3,4 II2:1,2,3,4 II3:1,2,3,4 rise 40\n')
-w('# R15: the same, 15 mm (the lateral crawl\'s stance on the road)\n')
-w('pose R15 II1:1,2,3,4 II2:1,2,3,4 II3:1,2,3,4 rise 15\n')
-w('# U0: the first lift-off, from under the hip\n')
+w('# R: all four chambers of every segment, the straight leg %g mm longer (a leg on the road)\n'
+  % a.rise)
+w('pose R II1:1,2,3,4 II2:1,2,3,4 II3:1,2,3,4 rise %g\n' % a.rise)
+w('# R15: the same, %g mm (the lateral crawl\'s stance on the road)\n' % a.rise_z)
+w('pose R15 II1:1,2,3,4 II2:1,2,3,4 II3:1,2,3,4 rise %g\n' % a.rise_z)
+w('# U0: a lift-off from under the hip\n')
 w('pose U0 foot 0 12 plus\n')
-w('# per stroke r: road stance (stretched, S-shape ahead GP / behind GM), step stance (vented\n'
-  '# S-shape SP / SM), swing tops AP / AM (12 mm above the vented leg, branch plus)\n')
-allr = sorted(set(RS) | set(abs(r - SH) for r in RS))
-for r in allr:
-    w('pose GP%d II1:1,2 II2:3,4 II3:1,2,3,4 pressure-of R\n' % r)
-    w('pose GP%d II1:3,4 II2:1,2 stroke %d\n' % (r, r))
-    w('pose GM%d II1:3,4 II2:1,2 II3:1,2,3,4 pressure-of R\n' % r)
-    w('pose GM%d II1:1,2 II2:3,4 stroke -%d\n' % (r, r))
-    w('pose SP%d II1:3,4 II2:1,2 stroke %d\n' % (r, r))
-    w('pose SM%d II1:1,2 II2:3,4 stroke -%d\n' % (r, r))
-    w('pose AP%d foot %d 12 plus\n' % (r, r))
-    w('pose AM%d foot -%d 12 plus\n' % (r, r))
-w('# the lateral crawl: sideways S-shapes (chambers 2,3 on II1 move the foot to +z) over a\n'
-  '# stretch of 40 mm (L40, the turn) or 15 mm (L15); VL: vented, in the air\n')
-for r in sorted({RZ, abs(RZ - SHZ)}):
-    for base, b0 in (('L40', 'R'), ('L15', 'R15')):
-        w('pose %sP%d II1:1,4 II2:2,3 II3:1,2,3,4 pressure-of %s\n' % (base, r, b0))
-        w('pose %sP%d II1:2,3 II2:1,4 side %d\n' % (base, r, r))
-        w('pose %sM%d II1:2,3 II2:1,4 II3:1,2,3,4 pressure-of %s\n' % (base, r, b0))
-        w('pose %sM%d II1:1,4 II2:2,3 side -%d\n' % (base, r, r))
-    w('pose VLP%d II1:2,3 II2:1,4 side %d\n' % (r, r))
-    w('pose VLM%d II1:1,4 II2:2,3 side -%d\n' % (r, r))
+
+POSES = []        # (kind, offset) in order of first use, written before the moves
 
 
-def air(s):
-    if s == 0:
-        return 'U0'
-    return ('AP%d' % s) if s > 0 else ('AM%d' % -s)
+def tag(v):
+    """a pose name's number: 13.333 -> 13q33"""
+    s = ('%.2f' % abs(v)).rstrip('0').rstrip('.')
+    return s.replace('.', 'q')
 
 
-def stance(b, s):
-    if s == 0:
-        return 'R' if b == 'G' else 'straight'
-    return '%s%s%d' % (b, 'P' if s > 0 else 'M', abs(s))
+def need(kind, v):
+    if abs(v) < 1e-9 and kind in ('G', 'S', 'A', 'V', 'L15', 'L40'):
+        return {'G': 'R', 'S': 'straight', 'A': 'U0', 'V': 'straight', 'L15': 'R15',
+                'L40': 'R'}[kind]
+    key = (kind, round(v, 2))
+    if key not in POSES:
+        POSES.append(key)
+    return '%s%s%s' % ({'A': 'A', 'V': 'VL'}.get(kind, kind), 'P' if v > 0 else 'M', tag(v))
 
 
-def emit(t0, dur, moves):
+def pose_lines(kind, v):
+    n = need(kind, v)
+    r = abs(v)
+    sgn = '' if v > 0 else '-'
+    # the bend pair that moves the foot to +e1: II1 on 3,4 and II2 on 1,2 (an S-shape)
+    fwd, back = ('II1:3,4 II2:1,2', 'II1:1,2 II2:3,4') if v > 0 else \
+        ('II1:1,2 II2:3,4', 'II1:3,4 II2:1,2')
+    side, oside = ('II1:2,3 II2:1,4', 'II1:1,4 II2:2,3') if v > 0 else \
+        ('II1:1,4 II2:2,3', 'II1:2,3 II2:1,4')
+    if kind == 'G':
+        return ['pose %s %s II3:1,2,3,4 pressure-of R\n' % (n, back),
+                'pose %s %s stroke %s%g\n' % (n, fwd, sgn, r)]
+    if kind == 'S':
+        return ['pose %s %s stroke %s%g\n' % (n, fwd, sgn, r)]
+    if kind == 'A':
+        return ['pose %s foot %s%g 12 plus\n' % (n, sgn, r)]
+    if kind in ('L15', 'L40'):
+        base = 'R15' if kind == 'L15' else 'R'
+        return ['pose %s %s II3:1,2,3,4 pressure-of %s\n' % (n, oside, base),
+                'pose %s %s side %s%g\n' % (n, side, sgn, r)]
+    if kind == 'V':
+        return ['pose %s %s side %s%g\n' % (n, side, sgn, r)]
+    raise ValueError(kind)
+
+
+moves = []        # (t0, dur, legs, pose, linear)
+
+
+def emit(t0, dur, mv, linear=False):
     """move lines at t0 for {leg: pose}, legs with the same pose in one line"""
     g = {}
-    for l, pose in moves.items():
+    for l, pose in mv.items():
         g.setdefault(pose, []).append(l)
     for pose, ls in sorted(g.items(), key=lambda kv: ''.join(sorted(kv[1]))):
-        w('move %.2f %.2f %s %s\n' % (t0, dur, ''.join(sorted(ls)), pose))
+        moves.append((t0, dur, ''.join(sorted(ls)), pose, linear))
 
 
-w('# 0..1 s: raise: every leg stretches 40 mm (the paper: BCFG raise the support 50 mm)\n')
-w('move 0 1 ABCDEFGH R\n')
-state = {k: ('G', 0) for k in OFF}
-t, x = 1.0, 0.0
-NX = int(round((a.xturn + a.xdrift) / a.xmean))
-NZ = int(round(a.zend / a.Dz))
-for k in range(NX):
-    near = any(abs(START + OFF[l] + x + dx - e) < NEAR for l in OFF for e in EDGES
-               for dx in (0, a.D))
-    tl, ts, th, td, tsh, tset = SLOW if near else FAST
-    w('# cycle %d from %.2f s: hips planned at x + %.0f mm (%s)\n'
-      % (k, t, x, 'near an edge: slow' if near else 'flat road'))
-    for pair in PAIRS:
-        lift, swing, land = {}, {}, {}
-        for l in pair:
-            hip = START + OFF[l] + x
-            best, bestm = None, -1.0
-            for r in PREF:
-                m = min(abs(hip + r + a.over - e) for e in EDGES)
-                if m >= MARGIN:
-                    best, bestm = r, m
-                    break
-                if m > bestm:
-                    best, bestm = r, m
-            r = best
-            landx = hip + r + a.over
-            b = 'S' if EDGES[0] - BAND < landx < EDGES[1] + BAND else 'G'
-            where = 'step' if EDGES[0] < landx < EDGES[1] else 'road'
-            w('#  %s: hip at %.0f, foot to %.0f (%s, %.0f mm from an edge)%s\n'
-              % (l, hip, landx, where, bestm,
-                 ', step length' if b == 'S' and where == 'road' else ''))
-            lift[l] = air(state[l][1])
-            swing[l] = air(r)
-            land[l] = stance(b, r)
-            state[l] = (b, r)
-        emit(t, tl, lift)
-        emit(t + tl, ts, swing)
-        emit(t + tl + ts + th, td, land)
-        t += tl + ts + th + td
-    shift = {}
-    for l in OFF:
-        b, s = state[l]
-        shift[l] = stance(b, s - SH)
-        state[l] = (b, s - SH)
-    w('#  shift: the support %d mm along +x\n' % SH)
-    emit(t, tsh, shift)
-    t += tsh + tset
-    x += a.D
-tl, ts, th, td, tsh, tset = SLOW
-w('# the turn from %.2f s (hips planned at x + %.0f mm): each pair to the lateral stance\n'
-  % (t, x))
+def comment(s):
+    moves.append((None, s))
+
+
+def plan(l, hipx):
+    """landing offset r and stance kind (G road / S step length) for a foot of hip x (terrain)"""
+    best, bestm = None, -1.0
+    for r in PREF:
+        m = min(abs(hipx + r + a.over - e) for e in EDGES)
+        if m >= MARGIN:
+            best, bestm = r, m
+            break
+        if m > bestm:
+            best, bestm = r, m
+    landx = hipx + best + a.over
+    # rule 6: on the step the vented length; on the road the road's, also next to a riser (a
+    # rear foot hanging over the road with the step's length left the centre of mass behind
+    # the standing feet while the pair ahead stepped: the support tipped backwards off the
+    # step, measured); just past the down edge the step's length, hanging (a road leg landing
+    # on the step's corner lifts the support 40 mm)
+    b = 'S' if EDGES[0] < landx < EDGES[1] + BAND else 'G'
+    where = 'step' if EDGES[0] < landx < EDGES[1] else 'road'
+    comment('#  %s: hip at %.0f, foot to %.0f (%s, %.0f mm from an edge)%s'
+            % (l, hipx, landx, where, bestm, ', step length' if b == 'S' and where == 'road'
+               else ''))
+    return best, b
+
+
+def step(t0, slot, legs, lift_pose, air_pose, land_pose):
+    fl, fs, fh, fd = FRAC
+    emit(t0, fl * slot, {l: lift_pose[l] for l in legs})
+    emit(t0 + fl * slot, fs * slot, {l: air_pose[l] for l in legs})
+    emit(t0 + (fl + fs + fh) * slot, fd * slot, {l: land_pose[l] for l in legs})
+
+
+comment('# 0..1 s: raise: every leg stretches %g mm' % a.rise)
+emit(0, 1, {l: 'R' for l in OFF})
+# state per leg: (kind G/S, offset mm, time the stance began or None if standing still)
+state = {l: ['G', 0.0] for l in OFF}
+t = a.t_place
+# rule 8: the front pair steps ahead, the support standing
+comment('# %.2f s: the front pair steps ahead (the support stands)' % t)
+land = {}
+for l in PAIRS[3]:
+    r, b = plan(l, START + OFF[l])
+    state[l] = [b, float(r)]
+    land[l] = need(b, r)
+step(t, a.Tstart, PAIRS[3], {l: 'U0' for l in PAIRS[3]}, {l: need('A', state[l][1])
+                                                              for l in PAIRS[3]}, land)
+t += a.Tstart
+tw = t
+NS = int(round((a.xturn + a.xdrift) / (a.D / 4)))
+# slot start times: the climb's slots until the support is planned past xclimb (rule 8)
+T0, XP = [tw], [0.0]          # slot starts, planned support x there
+for s in range(NS):
+    tp = a.Tclimb if XP[-1] < a.xclimb else a.Tp
+    T0.append(T0[-1] + tp)
+    XP.append(XP[-1] + a.D / 4)
+
+
+def stance(l, b, r0, s0, s1):
+    """the stance moves of leg l from slot s0 to s1 (its foot from r0 back STEP per slot), one
+    linear move per run of equal slots, so that every standing foot moves at the same speed"""
+    k = s0
+    while k < s1:
+        m = k
+        while m + 1 < s1 and abs((T0[m + 2] - T0[m + 1]) - (T0[k + 1] - T0[k])) < 1e-9:
+            m += 1
+        emit(T0[k], T0[m + 1] - T0[k], {l: need(b, r0 - STEP * (m + 1 - s0))}, linear=True)
+        k = m + 1
+
+
+comment('# the walk: %d slots from %.2f s (%g s while the support climbs, then %g s;\n'
+        '# support planned at D = %g mm per cycle)' % (NS, tw, a.Tclimb, a.Tp, a.D))
+pending = {}      # leg -> slot index its current stance began
+for l in OFF:
+    pending[l] = 0
+for s in range(NS):
+    t0 = T0[s]
+    pair = PAIRS[s % 4]
+    if s % 4 == 0:
+        comment('# cycle %d from %.2f s: support planned at x + %.0f mm' % (s // 4, t0, XP[s]))
+    lift, air, lnd = {}, {}, {}
+    for l in pair:
+        s0 = pending.pop(l)
+        b, r0 = state[l]
+        off = r0 - STEP * (s - s0)
+        stance(l, b, r0, s0, s)
+        lift[l] = need('A', off)
+        r, b2 = plan(l, START + OFF[l] + XP[s + 1])
+        air[l] = need('A', r)
+        lnd[l] = need(b2, r)
+        state[l] = [b2, float(r)]
+        pending[l] = s + 1
+    step(t0, T0[s + 1] - t0, pair, lift, air, lnd)
+t = T0[NS]
+for l in OFF:
+    s0 = pending.pop(l)
+    b, r0 = state[l]
+    off = r0 - STEP * (NS - s0)
+    stance(l, b, r0, s0, NS)
+    state[l] = [b, off]
+xend = XP[NS]
+
+# rule 9: the turn into a staggered sideways stance; pair ZPAIRS[j] lifts first in lateral slot
+# j, having pushed j slots: it stands at RZ - SHZ + j STEPZ (pair 0 under its hips)
+comment('# the turn from %.2f s (support planned at x + %.0f mm): the pairs step into a\n'
+        '# staggered sideways stance' % (t, xend))
+side0 = {}
+for j, pair in enumerate(ZPAIRS):
+    sz = RZ - SHZ + j * STEPZ if j > 0 else 0.0
+    for l in pair:
+        side0[l] = sz
+    step(t, a.Tturn, pair, {l: need('A', state[l][1]) for l in pair},
+         {l: need('V', side0[l]) for l in pair}, {l: need('L40', side0[l]) for l in pair})
+    t += a.Tturn
+comment('# all legs down to the %g mm stretch' % a.rise_z)
+emit(t, 1.0, {l: need('L15', side0[l]) for l in OFF})
+t += 1.0
+tz = t
+NZS = int(round(a.zend / (a.Dz / 4)))
+comment('# the lateral wave: %d slots of %g s from %.2f s' % (NZS, a.Tpz, tz))
+zs = {l: side0[l] for l in OFF}
+pending = {l: tz for l in OFF}
+for s in range(NZS):
+    t0 = tz + s * a.Tpz
+    pair = ZPAIRS[s % 4]
+    lift, air, lnd = {}, {}, {}
+    for l in pair:
+        ts = pending.pop(l)
+        off = zs[l] - STEPZ * round((t0 - ts) / a.Tpz)
+        if t0 > ts + 1e-9:
+            emit(ts, t0 - ts, {l: need('L15', off)}, linear=True)
+        lift[l] = need('V', off)
+        air[l] = need('V', RZ)
+        lnd[l] = need('L15', RZ)
+        zs[l] = RZ
+        pending[l] = t0 + a.Tpz
+    step(t0, a.Tpz, pair, lift, air, lnd)
+t = tz + NZS * a.Tpz
+for l in OFF:
+    ts = pending.pop(l)
+    off = zs[l] - STEPZ * round((t - ts) / a.Tpz)
+    if t > ts + 1e-9:
+        emit(ts, t - ts, {l: need('L15', off)}, linear=True)
+    zs[l] = off
+comment('# the feet back under the hips, pair by pair, then every chamber vented\n'
+        '# (the paper\'s "release all pressure")')
 for pair in ZPAIRS:
-    emit(t, tl, {l: air(state[l][1]) for l in pair})
-    emit(t + tl, ts, {l: 'VLP%d' % RZ for l in pair})
-    emit(t + tl + ts + th, td, {l: 'L40P%d' % RZ for l in pair})
-    t += tl + ts + th + td
-w('# all legs down to the 15 mm stretch\n')
-emit(t, 1.0, {l: 'L15P%d' % RZ for l in OFF})
-t += 1.2
-tl, ts, th, td, tsh, tset = SLOW
-for kz in range(NZ):
-    w('# lateral cycle %d from %.2f s\n' % (kz, t))
-    if kz > 0:
-        for pair in (ZPAIRS if kz % 2 == 0 else ZPAIRS[::-1]):  # rule 11
-            emit(t, tl, {l: 'VLM%d' % abs(RZ - SHZ) for l in pair})
-            emit(t + tl, ts, {l: 'VLP%d' % RZ for l in pair})
-            emit(t + tl + ts + th, td, {l: 'L15P%d' % RZ for l in pair})
-            t += tl + ts + th + td
-    emit(t, tsh, {l: 'L15M%d' % abs(RZ - SHZ) for l in OFF})
-    t += tsh + tset
-w('# the feet back under the hips, pair by pair (a release with every foot %d mm aside of its\n'
-  '# hip rolled the support over the +z row: measured), then every chamber vented (the\n'
-  '# paper\'s "release all pressure")\n' % abs(RZ - SHZ))
-for pair in ZPAIRS:
-    emit(t, tl, {l: 'VLM%d' % abs(RZ - SHZ) for l in pair})
-    emit(t + tl, ts, {l: 'straight' for l in pair})
-    emit(t + tl + ts + th, td, {l: 'R15' for l in pair})
-    t += tl + ts + th + td
+    step(t, a.Tturn, pair, {l: need('V', zs[l]) for l in pair}, {l: 'straight' for l in pair},
+         {l: 'R15' for l in pair})
+    t += a.Tturn
 emit(t, 1.0, {l: 'straight' for l in OFF})
 t += 1.0
+
+w('# per offset r (mm ahead of the hip, negative behind): road stance G (stretched S-shape),\n'
+  '# step stance S (vented S-shape), swing top A (12 mm above the vented leg, branch plus);\n'
+  '# sideways: L40 / L15 (stretched, foot aside along e2), VL (vented, aside)\n')
+# every x offset a stance uses gets both stance lengths, road G and step S (their feet differ by
+# the step's height: tests/core/test_obstacle.c)
+for kind, val in list(POSES):
+    if kind in ('G', 'S'):
+        need('S' if kind == 'G' else 'G', val)
+for kind, val in POSES:
+    for line in pose_lines(kind, val):
+        w(line)
+for m in moves:
+    if m[0] is None:
+        w(m[1] + '\n')
+    else:
+        t0, dur, legs, pose, lin = m
+        # the end written as the rounded start plus a rounded duration equal to the rounded end,
+        # so that a leg's consecutive moves meet exactly
+        ts, te = round(t0, 4), round(t0 + dur, 4)
+        w('move %.4f %.4f %s %s%s\n' % (ts, te - ts, legs, pose, ' linear' if lin else ''))
 w('end %.2f\n' % (t + 1.0))
 text = ''.join(out)
 if a.out == '-':
