@@ -25,9 +25,14 @@ import glob
 import os
 import sys
 
-import h5py
-import numpy as np
-import scipy.sparse as sp
+# one BLAS thread: numpy's batched 3x3 inverses and determinants (tet_reference, dilatations)
+# stalled for minutes in OpenBLAS's thread hand-offs on the loaded two-core machine
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
+import scipy.sparse as sp  # noqa: E402
 
 
 def tet10_shape(xi):
