@@ -24,6 +24,7 @@
 
 #include "fem_element.h"
 #include "fem_material.h"
+#include "fem_rom_mixed.h"
 
 #define ROM_LS_SHRINK 0.5 /* line-search step factor */
 /* the FE's watchdog line search (fem_newton.c CSF_LS_GROWTH_FIRST, CSF_LS_WATCH) */
@@ -103,6 +104,7 @@ void csf_romDestroy(csfRom* r) {
   free(r->V);
   free(r->G);
   free(r->face_ch), free(r->ch_V0), free(r->ch_g0), free(r->ch_H);
+  free(r->P), free(r->A_chol);
   for (int s = 0; s < CSF_ROM_NSET; s++) {
     free(r->el[s]);
     free(r->w[s]);
@@ -261,7 +263,7 @@ csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, co
   memcpy(r->el[set], idx, (size_t)nel * sizeof(int));
   memcpy(r->w[set], w, (size_t)nel * sizeof(double));
   r->nel[set] = nel;
-  return CS_OK;
+  return set == CSF_ROM_SET_TET && r->m > 0 ? csf_romMixedFactor(r, err) : CS_OK;
 }
 
 
@@ -300,6 +302,12 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
   const size_t n = (size_t)r->n, nt = (size_t)r->fem->mesh->ntet + 1,
                nf = (size_t)r->fem->nfib + 1;
   d->n = r->n;
+  d->m = r->m;
+  const size_t m = (size_t)r->m;
+  d->ph = calloc(m + 1, sizeof(double));
+  d->Bm = calloc(2 * m * n + 1, sizeof(double));
+  d->mtmp = calloc(m + n, sizeof(double));
+  d->rel = m ? calloc(30 * nt, sizeof(double)) : calloc(1, sizeof(double));
   d->q = calloc(n, sizeof(double));
   d->r = calloc(n, sizeof(double));
   d->K = calloc(n * n, sizeof(double));
@@ -328,7 +336,8 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
   if (!d->q || !d->r || !d->K || !d->theta || !d->fib_S || !d->vr || !d->gel || !d->fib_E ||
       !d->fib_d || !d->vr0 || !d->g0 || !d->fib_E0 || !d->fib_d0 || !d->theta_save ||
       !d->fib_S_save || !d->theta_best || !d->fib_S_best || !d->dq || !d->q_save ||
-      !d->q_best || !d->q0 || !d->lu || !d->tmp || !d->piv || !d->ke_v) {
+      !d->q_best || !d->q0 || !d->lu || !d->tmp || !d->piv || !d->ke_v || !d->ph || !d->Bm ||
+      !d->mtmp || !d->rel) {
     csf_romDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (reduced data, n = %d)", r->n);
     return NULL;
@@ -357,7 +366,7 @@ void csf_romDataDestroy(csfRomData* d) {
   double* bufs[] = {d->q, d->r, d->K, d->theta, d->fib_S, d->vr, d->gel, d->fib_E, d->fib_d,
                     d->vr0, d->g0, d->fib_E0, d->fib_d0, d->theta_save, d->fib_S_save,
                     d->theta_best, d->fib_S_best, d->dq, d->q_save, d->q_best, d->q0, d->lu,
-                    d->tmp, d->ke_v};
+                    d->tmp, d->ke_v, d->ph, d->Bm, d->mtmp, d->rel};
   for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++) {
     free(bufs[k]);
   }
@@ -452,8 +461,126 @@ static void scatter(const csfRom* r, csfRomData* d, int nn, const int* nodes, do
   }
 }
 
+/* v = V_e^T g (n) over a Tet10's rows: the element's volume gradient in reduced coordinates */
+static void reduceVector(const csfRom* r, const int* nodes, const double* g, double* v) {
+  const int n = r->n;
+  memset(v, 0, (size_t)n * sizeof(double));
+  for (int k = 0; k < 30; k++) {
+    const double* row = r->V + (size_t)(3 * nodes[k / 3] + k % 3) * (size_t)n;
+    for (int j = 0; j < n; j++) {
+      v[j] += row[j] * g[k];
+    }
+  }
+}
+
+/* The Tet10s of the mixed model (fem_rom.h csfRom.m) into rint and d->K: pass 1 the element
+ * volumes and b = sum_e w_e P_e (v_e - V_e), p^ = A^-1 b; pass 2 each element's force with its
+ * pressure p_e = P_e . p^ in place of the kernel's own kappa (v_e / V_e - 1) and, for the
+ * tangent, the kernel's matrix at theta_e = 1 + p_e,state / kappa (the geometric term of the
+ * state pressure, as the FE's three-field Newton; sync: p_e) less its element bulk term
+ * kappa / V_e g g^T, which the reduced one B^T A^-1 B replaces. Returns 1 on an inverted
+ * element. */
+static int mixedTets(const csfRom* r, csfRomData* d, int want_k, double* rint) {
+  const csfModel* m = r->fem;
+  const csfMesh* me = m->mesh;
+  const int n = r->n, mm = r->m;
+  const double kappa = m->mat.kappa;
+  double* b = d->ph;
+  memset(b, 0, (size_t)mm * sizeof(double));
+  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+    const int e = r->el[CSF_ROM_SET_TET][k];
+    double ue[30], gv[30], vr, jm;
+    gather(r, d->q, 10, me->tet + 10 * e, ue);
+    if (csf_tetKernel(&m->mat, m->dNdX + 120 * (size_t)e, m->wq + 4 * (size_t)e, m->vol[e], ue,
+                      1.0, d->rel + 30 * (size_t)e, NULL, &vr, gv, &jm)) {
+      return 1;
+    }
+    d->vr[e] = vr;
+    memcpy(d->gel + 30 * (size_t)e, gv, sizeof gv);
+    const double c = r->w[CSF_ROM_SET_TET][k] * (vr - 1.0) * m->vol[e];
+    const double* Pe = r->P + (size_t)e * (size_t)mm;
+    for (int i = 0; i < mm; i++) {
+      b[i] += c * Pe[i];
+    }
+  }
+  csf_romMixedSolve(r, b); /* now p^ */
+  if (want_k) {
+    memset(d->Bm, 0, (size_t)mm * (size_t)n * sizeof(double));
+  }
+  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+    const int e = r->el[CSF_ROM_SET_TET][k];
+    const int* tv = me->tet + 10 * e;
+    const double* Pe = r->P + (size_t)e * (size_t)mm;
+    const double* gv = d->gel + 30 * (size_t)e;
+    const double w = r->w[CSF_ROM_SET_TET][k];
+    double pe = 0;
+    for (int i = 0; i < mm; i++) {
+      pe += Pe[i] * b[i];
+    }
+    double fe[30], ke[900];
+    const double dp = pe - kappa * (d->vr[e] - 1.0);
+    const double* re = d->rel + 30 * (size_t)e;
+    for (int a = 0; a < 30; a++) {
+      fe[a] = re[a] + dp * gv[a];
+    }
+    if (want_k) {
+      double ue[30], rtmp[30], gtmp[30], vr, jm;
+      gather(r, d->q, 10, tv, ue);
+      const double th = d->sync ? 1.0 + pe / kappa : d->theta[e];
+      if (csf_tetKernel(&m->mat, m->dNdX + 120 * (size_t)e, m->wq + 4 * (size_t)e, m->vol[e],
+                        ue, th, rtmp, ke, &vr, gtmp, &jm)) {
+        return 1;
+      }
+      const double s = kappa / m->vol[e];
+      for (int a = 0; a < 30; a++) {
+        for (int c = 0; c < 30; c++) {
+          ke[30 * a + c] -= s * gv[a] * gv[c];
+        }
+      }
+      double* vg = d->mtmp + mm; /* (n) V_e^T g_e */
+      reduceVector(r, tv, gv, vg);
+      for (int i = 0; i < mm; i++) {
+        const double c = w * Pe[i];
+        if (c == 0.0) {
+          continue;
+        }
+        double* Bi = d->Bm + (size_t)i * (size_t)n;
+        for (int j = 0; j < n; j++) {
+          Bi[j] += c * vg[j];
+        }
+      }
+    }
+    scatter(r, d, 10, tv, w, fe, want_k ? ke : NULL, rint);
+  }
+  if (want_k) {
+    /* K += B^T A^-1 B, column by column of B */
+    double* col = d->mtmp;
+    double* ab = d->Bm + (size_t)mm * n; /* (m x n) A^-1 B */
+    for (int j = 0; j < n; j++) {
+      for (int i = 0; i < mm; i++) {
+        col[i] = d->Bm[(size_t)i * n + j];
+      }
+      csf_romMixedSolve(r, col);
+      for (int i = 0; i < mm; i++) {
+        ab[(size_t)i * n + j] = col[i];
+      }
+    }
+    for (int i = 0; i < mm; i++) {
+      const double* Bi = d->Bm + (size_t)i * n;
+      const double* ABi = ab + (size_t)i * n;
+      for (int a = 0; a < n; a++) {
+        double* Ka = d->K + (size_t)a * n;
+        for (int c = 0; c < n; c++) {
+          Ka[c] += Bi[a] * ABi[c];
+        }
+      }
+    }
+  }
+  return 0;
+}
+
 int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int want_k) {
-  if (!r || !d || !load || d->n != r->n) {
+  if (!r || !d || !load || d->n != r->n || d->m != r->m) {
     return -1;
   }
   const csfModel* m = r->fem;
@@ -466,7 +593,12 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
     memset(d->K, 0, (size_t)n * (size_t)n * sizeof(double));
   }
   /* Tet10 bodies */
-  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+  if (r->m > 0) {
+    if (mixedTets(r, d, want_k, rint)) {
+      return 1;
+    }
+  }
+  for (int k = 0; r->m == 0 && k < r->nel[CSF_ROM_SET_TET]; k++) {
     const int e = r->el[CSF_ROM_SET_TET][k];
     const int* tv = me->tet + 10 * e;
     double ue[30], re[30], ke[900], gv[30], vr, jm;
@@ -689,7 +821,39 @@ static int luSolve(int n, double* A, int* piv, double* b) {
 static void updateStates(const csfRom* r, csfRomData* d, double alpha) {
   const csfModel* m = r->fem;
   const csfMesh* me = m->mesh;
-  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+  if (r->m > 0) {
+    /* mixed: p^_state = A^-1 sum_e w_e P_e (v_e + alpha g_e . du_e - V_e), linearised at the
+     * iterate, and theta_e = 1 + P_e . p^_state / kappa carries it into the kernel */
+    const int mm = r->m;
+    double* ps = d->mtmp;
+    memset(ps, 0, (size_t)mm * sizeof(double));
+    for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+      const int e = r->el[CSF_ROM_SET_TET][k];
+      double due[30];
+      gather(r, d->dq, 10, me->tet + 10 * (size_t)e, due);
+      const double* g = d->g0 + 30 * (size_t)e;
+      double sg = 0;
+      for (int a = 0; a < 30; a++) {
+        sg += g[a] * due[a];
+      }
+      const double c = r->w[CSF_ROM_SET_TET][k] * ((d->vr0[e] - 1.0) * m->vol[e] + alpha * sg);
+      const double* Pe = r->P + (size_t)e * (size_t)mm;
+      for (int i = 0; i < mm; i++) {
+        ps[i] += c * Pe[i];
+      }
+    }
+    csf_romMixedSolve(r, ps);
+    for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+      const int e = r->el[CSF_ROM_SET_TET][k];
+      const double* Pe = r->P + (size_t)e * (size_t)mm;
+      double pe = 0;
+      for (int i = 0; i < mm; i++) {
+        pe += Pe[i] * ps[i];
+      }
+      d->theta[e] = 1.0 + pe / m->mat.kappa;
+    }
+  }
+  for (int k = 0; r->m == 0 && k < r->nel[CSF_ROM_SET_TET]; k++) {
     const int e = r->el[CSF_ROM_SET_TET][k];
     double due[30];
     gather(r, d->dq, 10, me->tet + 10 * (size_t)e, due);

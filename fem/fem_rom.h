@@ -54,6 +54,21 @@ typedef struct csfRom_ {
   double* ch_V0;       /* (nch) mm^3 */
   double* ch_g0;       /* (nch x n) mm^3 per unit q */
   double* ch_H;        /* (nch x (n + 1) x n x n): H0, H_1 .. H_n */
+  /* mixed reduced model (csf_romSetPressureBasis; m = 0: the displacement-only model). The
+   * element pressures of the FE's P2/P0 form are p = P p^ with their own basis P (ntet x m,
+   * MPa per unit p^) instead of one free pressure per element: the element constraint
+   * v_e - V_e = V_e p_e / kappa holds only in P's span, weighted by the kept elements,
+   *   A p^ = b(q),  A = sum_e w_e (V_e / kappa) P_e P_e^T,  b = sum_e w_e P_e (v_e(q) - V_e),
+   * so p^ is a function of q and the reduced problem stays one of q alone: the stationary point
+   * of sum_e w_e int W_dev + b^T A^-1 b / 2 (the FE's bulk energy sum_e kappa (v_e - V_e)^2 /
+   * (2 V_e) when P = I). Its residual V^T (f_dev + G^T p) and tangent V^T (K_dev + sum_e p_e
+   * dg_e/du) V + B^T A^-1 B (B = sum_e w_e P_e g_e^T V_e, m x n) are conservative and symmetric.
+   * A displacement basis of nearly isochoric snapshot modes no longer pays the bulk energy of
+   * every element's small volume change (the locking of the displacement-only POD model,
+   * docs/notes/rom.md), only of its m pressure-mode moments. */
+  int m;
+  double* P;           /* (ntet x m) element pressure basis, owned */
+  double* A_chol;      /* (m x m) Cholesky factor (lower) of A over the kept elements */
 } csfRom;
 
 /* Build a reduced model on the finalised FE model `fem` (not copied; must outlive the rom) with
@@ -63,9 +78,16 @@ csfRom* csf_romCreate(const csfModel* fem, int n, const double* V, csError* err)
 void csf_romDestroy(csfRom* r);
 
 /* Replace the element set `set` by the elements idx[0..nel) with weights w (>= 0; copied).
- * CS_ERR_ARG on an index out of range or a negative or non-finite weight. */
+ * CS_ERR_ARG on an index out of range or a negative or non-finite weight, and on a mixed rom
+ * when a pressure mode loses all support (the set is then changed: set other weights). */
 csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, const double* w,
                            csError* err);
+
+/* Make the rom mixed (see csfRom.m) with the element pressure basis P (ntet x m, copied; m = 0
+ * makes it displacement-only again). A is factored over the kept Tet10s (again at every
+ * csf_romSetWeights). CS_ERR_ARG when A is not positive definite (a pressure mode without
+ * support in the kept elements) or P is not finite. */
+csStatus csf_romSetPressureBasis(csfRom* r, int m, const double* P, csError* err);
 
 /* Take the chambers' pressure loads in closed form (see csfRom.nch): face f belongs to chamber
  * face_ch[f] (0..nch-1, -1: none; every face of a chamber must carry the same pressure in a
@@ -98,7 +120,7 @@ typedef struct csfRomLoad_ {
  * every step). With `sync` set, an evaluation takes them at their converged values v/V and
  * S(E) instead, and K is the exact derivative of r (tests). */
 typedef struct csfRomData_ {
-  int n;
+  int n, m;     /* the rom's sizes when created (a data set serves one rom configuration) */
   double* q;    /* (n) reduced coordinates */
   double* r;    /* (n) reduced residual at the last evaluation, N */
   double* K;    /* (n x n) reduced tangent, N/mm */
@@ -112,6 +134,12 @@ typedef struct csfRomData_ {
   double* dq, *q_save, *q_best, *q0, *lu, *tmp; /* (n) x 5, (n x n), (n) scratch */
   int* piv;     /* (n) */
   double* ke_v; /* (60 x n) scratch: element matrix times the element's basis rows */
+  /* mixed model (csfRom.m > 0): the reduced pressures of the last evaluation, p^ = A^-1 b(q),
+   * MPa; the element residuals without the volumetric term; B (m x n); scratch */
+  double* ph;   /* (m) */
+  double* rel;  /* (ntet x 30) */
+  double* Bm;   /* (m x n) */
+  double* mtmp; /* (m + n) */
   double rnorm, fnorm; /* |r|, force scale |V^T f_int| + |V^T f_ext| (N) */
   long n_eval, n_newton; /* evaluations, Newton iterations */
 } csfRomData;

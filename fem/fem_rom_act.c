@@ -118,6 +118,36 @@ static csStatus readWeights(csfRomActuator* ra, const char* path, csError* err) 
   return st;
 }
 
+/* P [ntet, m] of a mixed basis file into the rom (none: displacement-only, CS_OK) */
+static csStatus readPressureBasis(const char* basis_path, csfRom* rom, csError* err) {
+  double m_attr = 0;
+  double* P = NULL;
+  size_t np = 0;
+  const size_t ntet = (size_t)rom->fem->mesh->ntet;
+  int bad = 0;
+  H5E_BEGIN_TRY {
+    hid_t f = H5Fopen(basis_path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f >= 0) {
+      if (readAttr(f, "m", &m_attr) && m_attr > 0) {
+        P = readDoubles(f, "P", ntet * (size_t)m_attr, &np);
+        bad = !P;
+      }
+      H5Fclose(f);
+    }
+  }
+  H5E_END_TRY;
+  if (bad) {
+    return cs_errorSet(err, CS_ERR_IO, "%s: attribute m = %g but no dataset P of %zu x %g "
+                       "(the element pressure basis)", basis_path, m_attr, ntet, m_attr);
+  }
+  if (!P) {
+    return CS_OK;
+  }
+  const csStatus st = csf_romSetPressureBasis(rom, (int)m_attr, P, err);
+  free(P);
+  return st;
+}
+
 csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* spec,
                                const char* basis_path, const char* weights_path,
                                csfRomActuator* ra, csError* err) {
@@ -184,6 +214,13 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
   if (!ra->rom) {
     csf_romActuatorDestroy(ra);
     return err->status;
+  }
+  /* the mixed model's element pressure basis, when the file has one (tools/rom_basis.py
+   * --mixed: P [ntet, m], attribute m) */
+  st = readPressureBasis(basis_path, ra->rom, err);
+  if (st != CS_OK) {
+    csf_romActuatorDestroy(ra);
+    return st;
   }
   /* the twelve chambers' pressure loads in closed form (fem_rom.h: exact, conservative) */
   int* fch = malloc((size_t)me->nface * sizeof(int) + 1);

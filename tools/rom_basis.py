@@ -25,9 +25,14 @@ import glob
 import os
 import sys
 
-import h5py
-import numpy as np
-import scipy.sparse as sp
+# one BLAS thread: numpy's batched 3x3 inverses and determinants (tet_reference, dilatations)
+# stalled for minutes in OpenBLAS's thread hand-offs on the loaded two-core machine
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
+import scipy.sparse as sp  # noqa: E402
 
 
 def tet10_shape(xi):
@@ -84,6 +89,63 @@ def mass_matrix(x, tet, rho):
     return M, vol.sum()
 
 
+# the FE's Tet10 rule (fem/fem_element.c kTetQ, kTetW): 4 points, degree 2, weights 1/24
+QA, QB = 0.5854101966249685, 0.1381966011250105
+FE_RULE = np.array([[QB, QB, QB], [QA, QB, QB], [QB, QA, QB], [QB, QB, QA]])
+
+
+def tet_reference(x, tet):
+    """The FE's reference geometry (csf_tetReference): dN/dX at the 4 points (ne, 4, 10, 3) and
+    weights times det J (ne, 4), mm^3."""
+    X = x[tet]
+    ne = tet.shape[0]
+    dNdX = np.empty((ne, 4, 10, 3))
+    wq = np.empty((ne, 4))
+    for g, p in enumerate(FE_RULE):
+        _, dN = tet10_shape(p)
+        J = np.einsum("eai,ad->eid", X, dN)
+        det = np.linalg.det(J)
+        dNdX[:, g] = np.einsum("ad,edi->eai", dN, np.linalg.inv(J))
+        wq[:, g] = det / 24.0
+    return dNdX, wq
+
+
+def dilatations(U, tet, dNdX, wq):
+    """Element dilatations v_e / V_e - 1 (ne, ns) of displacements U (ndof, ns): the FE's
+    condensed P0 field, p_e = kappa (v_e / V_e - 1) (fem_element.c csf_tetKernel)."""
+    nn = U.shape[0] // 3
+    vol = wq.sum(axis=1)
+    out = np.empty((tet.shape[0], U.shape[1]))
+    for k in range(U.shape[1]):
+        ue = U[:, k].reshape(nn, 3)[tet]  # (ne, 10, 3)
+        F = np.einsum("eai,egaj->egij", ue, dNdX) + np.eye(3)
+        out[:, k] = (wq * np.linalg.det(F)).sum(axis=1) / vol - 1.0
+    return out
+
+
+def supremizers(P, x, tet, dNdX, wq, fixed):
+    """s_k = X^-1 B^T P_k (ndof, m): B^T p = sum_e p_e g_e with g_e = dv_e/du at rest (the
+    discrete divergence of the P2/P0 element), X the H1 product of the displacement (the vector
+    Laplacian over the free dofs; the supremizer of reduced Stokes, Rozza & Veroy 2007, Ballarin
+    et al. 2015)."""
+    from scipy.sparse.linalg import splu
+    nn = x.shape[0]
+    g0 = np.einsum("eg,egai->eai", wq, dNdX)  # (ne, 10, 3)
+    Ke = np.einsum("eg,egai,egbi->eab", wq, dNdX, dNdX)
+    rows = np.repeat(tet, 10, axis=1).ravel()
+    cols = np.tile(tet, (1, 10)).ravel()
+    L = sp.coo_matrix((Ke.ravel(), (rows, cols)), shape=(nn, nn)).tocsr()
+    Xh = sp.kron(L, sp.identity(3), format="csc")
+    free = np.flatnonzero(~fixed)
+    lu = splu(Xh[free][:, free].tocsc())
+    S = np.zeros((3 * nn, P.shape[1]))
+    for k in range(P.shape[1]):
+        rhs = np.zeros(3 * nn)
+        np.add.at(rhs.reshape(nn, 3), tet, P[:, k][:, None, None] * g0)
+        S[free, k] = lu.solve(rhs[free])
+    return S
+
+
 def turn_maps(x):
     """Node maps of the quarter turns about the leg axis (x, y) -> (-y, x), k = 1, 2, 3: node
     i goes to node perm[k][i]; None when the mesh lacks the symmetry (not the symmetric mesh)."""
@@ -111,6 +173,63 @@ def turn_snapshots(U, maps):
         V.reshape(nn, 3, -1)[j] = np.einsum("ab,nbm->nam", Rk, Ui)
         out.append(V)
     return np.concatenate(out, axis=1)
+
+
+def mixed_bases(a, V, X, Ut, x, tet, fixed, M):
+    """The pressure basis P (ntet, m; volume-orthonormal, POD of the training dilatations) and
+    V enriched by P's supremizers, M-orthonormalised against V (twice); prints the sizes and the
+    held-out pressure fields' projection errors."""
+    dNdX, wq = tet_reference(x, tet)
+    vol = wq.sum(axis=1)
+    Th = dilatations(X, tet, dNdX, wq)
+    Cp = Th.T @ (vol[:, None] * Th)
+    lam, Phi = np.linalg.eigh(Cp)
+    order = np.argsort(lam)[::-1]
+    lam, Phi = np.clip(lam[order], 0, None), Phi[:, order]
+    mmax = int((lam > lam[0] * 1e-24).sum())
+    Pall = Th @ Phi[:, :mmax] / np.sqrt(lam[:mmax])
+    tn = np.sqrt(np.einsum("ej,ej,e->j", Th, Th, vol))
+
+    def perr(Pk, T):
+        R = T - Pk @ (Pk.T @ (vol[:, None] * T))
+        return np.sqrt(np.einsum("ej,ej,e->j", R, R, vol)) / np.maximum(
+            np.sqrt(np.einsum("ej,ej,e->j", T, T, vol)), 1e-300)
+
+    m = a.m if a.m > 0 else mmax
+    if a.m <= 0:
+        for k in range(1, mmax + 1):
+            if perr(Pall[:, :k], Th).max() <= a.ptol:
+                m = k
+                break
+    m = min(m, mmax)
+    P = Pall[:, :m]
+    line = (f"rom_basis: mixed: m = {m} pressure modes of {mmax} (ptol {a.ptol:g}): training "
+            f"pressure projection error max {perr(P, Th).max():.3e} (|dilatation| up to "
+            f"{np.abs(Th).max():.2e})")
+    if Ut is not None:
+        line += f"; held-out {perr(P, dilatations(Ut, tet, dNdX, wq)).max():.3e}"
+    print(line)
+    if a.no_supremizers:
+        return V, P, m
+    S = supremizers(P, x, tet, dNdX, wq, fixed)
+    S[fixed] = 0.0
+    cols = [V]
+    Q = V.copy()
+    kept = 0
+    for k in range(S.shape[1]):
+        s = S[:, k].copy()
+        n0 = np.sqrt(s @ (M @ s))
+        for _ in range(2):
+            s -= Q @ (Q.T @ (M @ s))
+        n1 = np.sqrt(max(s @ (M @ s), 0.0))
+        if n1 <= 1e-8 * n0:
+            continue
+        s /= n1
+        Q = np.concatenate([Q, s[:, None]], axis=1)
+        kept += 1
+    print(f"rom_basis: mixed: {kept} supremizers added: n = {V.shape[1]} + {kept}")
+    del tn, cols
+    return Q, P, m
 
 
 def text(v):
@@ -146,6 +265,16 @@ def main():
                     help="add every training snapshot turned by the section's quarter turns (the "
                          "symmetric mesh maps onto itself; the fibre helices' start does not, so "
                          "the turned states are near-equilibria, not equilibria)")
+    ap.add_argument("--mixed", action="store_true",
+                    help="the mixed reduced model: a POD basis P of the training states' element "
+                         "pressures (their dilatations; volume-weighted) and the displacement "
+                         "basis enriched by P's supremizers (written as P, attribute m)")
+    ap.add_argument("--ptol", type=float, default=1e-3,
+                    help="--mixed: largest relative projection error of a training pressure field")
+    ap.add_argument("--m", type=int, default=0, help="--mixed: pressure basis size (overrides "
+                    "--ptol)")
+    ap.add_argument("--no-supremizers", action="store_true",
+                    help="--mixed: no supremizer enrichment (to measure what it does)")
     a = ap.parse_args()
     out = a.out or os.path.join(a.snapdir, "basis.h5")
     with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
@@ -227,6 +356,10 @@ def main():
     n_pick = min(n_pick, nmax)
     V = Vall[:, :n_pick]
     V[fixed] = 0.0
+    n_pod, P, m_pick = n_pick, None, 0
+    if a.mixed:
+        V, P, m_pick = mixed_bases(a, V, X, Ut, x, tet, fixed, M)
+        n_pick = V.shape[1]
     Mr = V.T @ (M @ V)
     er, em = proj_err(V, X)
     print(f"rom_basis: n = {n_pick} (tol {a.tol:g}): training projection error max {er.max():.3e} "
@@ -252,6 +385,11 @@ def main():
         f.attrs["units"] = ("V: mm per unit reduced coordinate (M-orthonormal, M in t); "
                             "sigma: t^0.5 mm")
         f["V"] = V
+        f.attrs["n_pod"] = n_pod
+        if P is not None:
+            f.attrs["m"] = m_pick
+            f.attrs["supremizers"] = int(not a.no_supremizers)
+            f["P"] = P
         f["sigma"] = sigma
         f["Mr"] = Mr
         # the training snapshots in reduced coordinates (q = V^T M u) with their loads: what

@@ -1,0 +1,114 @@
+/* fem_rom_mixed.c: the mixed reduced model's pressure basis and the factor of its pressure
+ * matrix A (fem_rom_mixed.h, fem_rom.h csfRom.m).
+ *
+ * Rationale. The FE's Tet10 is the P2/P0 three-field element: per element a constant dilatation
+ * theta_e and pressure p_e, condensed to p_e = kappa (v_e / V_e - 1) (fem_element.c). In the
+ * reduced model p = P p^ with P from the POD of the training states' element pressures
+ * (tools/rom_basis.py --mixed); the constraint sum_e w_e P_e (v_e - V_e - V_e p_e / kappa) = 0
+ * is linear in p^ for a fixed q and gives p^ = A^-1 b(q). A is symmetric positive definite as
+ * long as every pressure mode has support in the kept elements (kappa > 0, V_e > 0, w_e >= 0):
+ * Cholesky, m is a few tens. */
+#include "fem_rom_mixed.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+csStatus csf_romMixedFactor(csfRom* r, csError* err) {
+  const int m = r->m;
+  const double kappa = r->fem->mat.kappa;
+  if (!(kappa > 0.0)) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_rom: the mixed model needs a bulk modulus > 0 "
+                       "(kappa %g MPa)", kappa);
+  }
+  double* L = r->A_chol;
+  memset(L, 0, (size_t)m * (size_t)m * sizeof(double));
+  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
+    const int e = r->el[CSF_ROM_SET_TET][k];
+    const double c = r->w[CSF_ROM_SET_TET][k] * r->fem->vol[e] / kappa;
+    const double* Pe = r->P + (size_t)e * (size_t)m;
+    for (int i = 0; i < m; i++) {
+      for (int j = 0; j <= i; j++) {
+        L[(size_t)i * m + j] += c * Pe[i] * Pe[j];
+      }
+    }
+  }
+  /* in-place Cholesky of the lower triangle; the scale of A's diagonal sets the test */
+  double dmax = 0;
+  for (int i = 0; i < m; i++) {
+    dmax = fmax(dmax, L[(size_t)i * m + i]);
+  }
+  for (int j = 0; j < m; j++) {
+    double s = L[(size_t)j * m + j];
+    for (int k = 0; k < j; k++) {
+      s -= L[(size_t)j * m + k] * L[(size_t)j * m + k];
+    }
+    if (!(s > 1e-12 * dmax)) {
+      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: pressure mode %d of %d has no support in "
+                         "the kept Tet10s (the mixed pressure matrix is singular)", j, m);
+    }
+    const double ljj = sqrt(s);
+    L[(size_t)j * m + j] = ljj;
+    for (int i = j + 1; i < m; i++) {
+      double t = L[(size_t)i * m + j];
+      for (int k = 0; k < j; k++) {
+        t -= L[(size_t)i * m + k] * L[(size_t)j * m + k];
+      }
+      L[(size_t)i * m + j] = t / ljj;
+    }
+  }
+  return CS_OK;
+}
+
+void csf_romMixedSolve(const csfRom* r, double* x) {
+  const int m = r->m;
+  const double* L = r->A_chol;
+  for (int i = 0; i < m; i++) {
+    double s = x[i];
+    for (int k = 0; k < i; k++) {
+      s -= L[(size_t)i * m + k] * x[k];
+    }
+    x[i] = s / L[(size_t)i * m + i];
+  }
+  for (int i = m - 1; i >= 0; i--) {
+    double s = x[i];
+    for (int k = i + 1; k < m; k++) {
+      s -= L[(size_t)k * m + i] * x[k];
+    }
+    x[i] = s / L[(size_t)i * m + i];
+  }
+}
+
+csStatus csf_romSetPressureBasis(csfRom* r, int m, const double* P, csError* err) {
+  const int ntet = r->fem->mesh->ntet;
+  if (m < 0 || (m > 0 && !P)) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_rom: a pressure basis of %d columns", m);
+  }
+  for (size_t i = 0; i < (size_t)ntet * (size_t)m; i++) {
+    if (!isfinite(P[i])) {
+      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: pressure basis entry (element %zu, column "
+                         "%zu) is not finite", i / (size_t)m, i % (size_t)m);
+    }
+  }
+  free(r->P), free(r->A_chol);
+  r->P = NULL, r->A_chol = NULL, r->m = 0;
+  if (m == 0) {
+    return CS_OK;
+  }
+  r->P = malloc((size_t)ntet * (size_t)m * sizeof(double));
+  r->A_chol = malloc((size_t)m * (size_t)m * sizeof(double));
+  if (!r->P || !r->A_chol) {
+    free(r->P), free(r->A_chol);
+    r->P = NULL, r->A_chol = NULL;
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (pressure basis %d x %d)",
+                       ntet, m);
+  }
+  memcpy(r->P, P, (size_t)ntet * (size_t)m * sizeof(double));
+  r->m = m;
+  csStatus st = csf_romMixedFactor(r, err);
+  if (st != CS_OK) {
+    free(r->P), free(r->A_chol);
+    r->P = NULL, r->A_chol = NULL, r->m = 0;
+  }
+  return st;
+}

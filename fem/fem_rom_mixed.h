@@ -1,0 +1,25 @@
+/* fem_rom_mixed.h: the mixed reduced model's pressure-space algebra (internal to fem_rom*.c).
+ *
+ * Owns: the factor of A = sum_e w_e (V_e / kappa) P_e P_e^T over the kept Tet10s (fem_rom.h,
+ * csfRom.m) and the solve A x = b. The evaluation that uses them is csf_romEvaluate. */
+#ifndef CS_FEM_ROM_MIXED_H
+#define CS_FEM_ROM_MIXED_H
+
+#include "core_status.h"
+#include "fem_rom.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* (Re)factor A over r's kept Tet10s and weights into r->A_chol (m > 0). CS_ERR_ARG when A is
+ * not positive definite. */
+csStatus csf_romMixedFactor(csfRom* r, csError* err);
+
+/* x = A^-1 x (m), in place, from r->A_chol. */
+void csf_romMixedSolve(const csfRom* r, double* x);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_FEM_ROM_MIXED_H */
