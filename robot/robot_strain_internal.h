@@ -106,6 +106,15 @@ struct csrStrainData_ {
   double fcw[3];  /* the contact's force on the leg at the linearisation point, world (N) */
   int ntouch;     /* shapes the last contact assembly found touching */
   int lu_plain;   /* 1: d->Wll's factor, X and y are W_M's alone (no contact in them) */
+  /* BDF2 (step_order 2): the last step's start (state) and this step's coefficients */
+  double* qm1;    /* (n) q at the last step's start */
+  double* etam1;  /* (n) η there */
+  double Vbm1[6]; /* the base's body twist there */
+  double Xm1[3];  /* Σ m x there, world (t mm) */
+  double Dm1[3];  /* D of the step before the last (t mm/s) */
+  double hprev;   /* the last step's length (s); 0: none (the next is backward Euler) */
+  double bc[3];   /* this step's coefficients (csr_strainBdf2Coeffs) */
+  double he;      /* c[2] h: the implicit part's step (s) */
   double* z;      /* (nhist) contact anchors (state) */
   cscShapeState* sst; /* (nshape) scratch */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */

@@ -356,6 +356,17 @@ static void massMomentStrain(const csrLeg* leg, double mx[3]) {
 }
 
 
+/* the terrain's force on the leg now (robot_leg.h contactForce): every touching shape through
+ * the law with the friction anchors of the state (return-mapped at the last step's end), so a
+ * stance foot reports its stick force, not only the normal one */
+static void contactForceStrain(const csrLeg* leg, double f[3]) {
+  double mo[3];
+  if (csr_strainContactWrench(leg->m, leg->d, f, mo, NULL) != 0) {
+    f[0] = f[1] = f[2] = 0.0;
+  }
+}
+
+
 static double contactDepthStrain(const csrLeg* leg) {
   double f[3], mo[3];
   cscSoftReport rep;
@@ -386,6 +397,7 @@ const csrLegType csr_leg_strain = {
     .mass = massStrain,
     .massMoment = massMomentStrain,
     .contactDepth = contactDepthStrain,
+    .contactForce = contactForceStrain,
     /* 1 ms: the largest step whose track is within 1 mm of the half-step run on both scenes
      * (issue 32's rule; docs/notes/strain_leg.md "In the driver", Newton passes): the flat
      * road's 9 s alone would allow 2.5 ms (0.95 mm from 1.25 ms; 5 ms 1.53 mm from 2.5 ms), but

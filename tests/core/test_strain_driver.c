@@ -3,7 +3,8 @@
  * (paper conditions):
  *  - it runs end to end through cs_step, and the legs carry the support: after settling the
  *    eight legs' base wrenches hold its weight (their vertical sum against m_s g, the support
- *    not touching the terrain; the tree's momentum balance, not a fitted force);
+ *    not touching the terrain; the tree's momentum balance, not a fitted force), every foot
+ *    reports its ground force (the run file's /contact datasets) and they sum to the weight;
  *  - two datas of one model stepped alike are bit-identical, and so is a run continued from a
  *    restored state (cs_stateGet / cs_stateSet, the driver's rollback);
  *  - frictionless, the centre of mass drifts at first order in h (the leg's step's own error;
@@ -152,6 +153,24 @@ static void test_strain_runs_through_the_driver_and_legs_carry_the_support(void)
   /* 1 %: what is left of the settling's 0.3 s transient (damped leg modes of ~100 Hz) */
   CS_EXPECT(fabs(fy - weight) < 0.01 * weight);
   CS_EXPECT(cf[1] == 0);
+  /* the run file's /contact/foot_force and /contact/stance (cs_footForce, the level's
+   * contactForce): standing, every foot carries, and the terrain's forces on the feet sum to
+   * the legs' vertical wrench (weightless legs under `paper`: the same 1 % of the weight) */
+  double ff[3] = {0, 0, 0};
+  int stance = 0;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    double f[3];
+    cs_footForce(&m, d, k, f);
+    for (int i = 0; i < 3; i++) {
+      ff[i] += f[i];
+    }
+    stance += f[1] > cs_stanceForceThreshold(&m);
+    printf("  foot %c: (%.5f, %.5f, %.5f) N\n", 'A' + k, f[0], f[1], f[2]);
+  }
+  printf("  feet: sum (%.5f, %.5f, %.5f) N, %d in stance (threshold %.4f N)\n", ff[0], ff[1],
+         ff[2], stance, cs_stanceForceThreshold(&m));
+  CS_EXPECT(stance == CSR_NLEG);
+  CS_EXPECT(fabs(ff[1] - weight) < 0.01 * weight);
   /* and it runs on into the gait */
   CS_EXPECT(stepN(&m, d, 100));
   CS_EXPECT(cs_rejectCount(d) == 0);
