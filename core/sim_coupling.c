@@ -699,6 +699,11 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
   cs_errorClear(err); /* whatever err holds after this came from these legs */
   csr_robotSupportPose(d->robot, c->P0, c->R0, c->v0, c->w0);
   c->t0 = d->t;
+  /* the support's gyroscopic torque is the tree solve's (cs_couplingApplyTree), so that ODE's
+   * step lands on the solved twist: with ODE's own (implicit) term the two differed by ~1e-8
+   * rad/s per step, and the legs, finishing along ODE's twist, took an impulse the support did
+   * not give (docs/notes/strain_leg.md, "Drift") */
+  dBodySetGyroscopicMode(d->robot->support, 0);
   mat6Zero(c->Kc);
   mat6Zero(c->A);
   for (int k = 0; k < CSR_NLEG; k++) {
@@ -738,16 +743,54 @@ static void treeHipsAt(const csData* d, double h, const double qd1[6],
 }
 
 
+/* An iterate's ρ made exact there: the leg's impulse is ρ - Z Δu for its hip's world twist
+ * change Δu, and the leg linearised at the hip's exact end state b_it (treeHipsAt: the arm
+ * turned with the support), where the support's solve maps its centre's twist change Δq to
+ * the hip by T Δq with the arm at the step's start. The two differ at the iterate by
+ * ω1 × (r1 - r0), O(h): left in, the support took a different impulse from the one the leg
+ * balanced, and the frictionless centre of mass drifted at first order (docs/notes/
+ * strain_leg.md, "Drift"). So ρ -= Z (Δu_it - T Δq_it): the support's linear model passes
+ * through the leg's impulse at the iterate, Z its slope. */
+static void treeAtIterate(const csCosim* c, int k, const double qd0[6], const double qit[6],
+                          const csrBaseState* bit, const double Z[36], double rho[6]) {
+  double r[3], dq[6], e[6], t[3];
+  csu_sub3(r, c->b0[k].x, c->P0);
+  for (int i = 0; i < 6; i++) {
+    dq[i] = qit[i] - qd0[i];
+  }
+  /* e = Δu_it - T Δq_it: (Δv_hip - Δv_c - Δω × r0; Δω_hip - Δω) */
+  csu_cross3(t, dq + 3, r);
+  for (int i = 0; i < 3; i++) {
+    e[i] = (bit->v[i] - c->b0[k].v[i]) - dq[i] - t[i];
+    e[3 + i] = (bit->w[i] - c->b0[k].w[i]) - dq[3 + i];
+  }
+  for (int i = 0; i < 6; i++) {
+    double s = 0;
+    for (int j = 0; j < 6; j++) {
+      s += Z[6 * i + j] * e[j];
+    }
+    rho[i] -= s;
+  }
+}
+
+
 int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
   csCosim* c = &d->cosim;
   const csrLegType* type = m->robot.leg_type;
   cs_errorClear(err);
   double mass, Iw[9];
   supportInertia(d, c->R0, &mass, Iw);
-  double qd[6], zero[6] = {0, 0, 0, 0, 0, 0}, F[6], qd1[6], qit[6];
+  double qd[6], gyro[6] = {0, 0, 0, 0, 0, 0}, F[6], qd1[6], qit[6];
   for (int i = 0; i < 3; i++) {
     qd[i] = c->v0[i];
     qd[3 + i] = c->w0[i];
+  }
+  /* ω × I ω at the start (explicit, as ODE's own would be without its implicit correction),
+   * subtracted from the support's torque in the solve and handed to ODE with the rest */
+  {
+    double Iw0[3];
+    csu_mulMatVec3(Iw0, Iw, c->w0);
+    csu_cross3(gyro + 3, c->w0, Iw0);
   }
   memcpy(qit, qd, sizeof qit);
   const int newton = m->opt.tree_iterations > 1 && type->update && type->iterate;
@@ -774,7 +817,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
      * are already the discrete momentum balance the legs' iterations use (robot_strain.h):
      * in the world frame at the support's centre of mass, ODE's step x1 = x0 + h v1 makes
      * m (v1 - v0) = m (x1 - x0) / h - D with D = m (x0 - x_prev) / h the last step's */
-    if (supportSolve(d, h, mass, Iw, qd, W0, zero, c->A, qd, F, qd1) != 0) {
+    if (supportSolve(d, h, mass, Iw, qd, W0, gyro, c->A, qd, F, qd1) != 0) {
       cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the support's condensed step matrix is "
                   "singular", d->t);
       return 1;
@@ -808,6 +851,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
       chg = fmax(chg, ck);
     }
     memcpy(qit, qa, sizeof qit);
+    const csrBaseState* bit = alpha < 1 ? b1a : b1;
     it++;
     c->tree_passes++;
     alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
@@ -831,6 +875,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
                     rc > 0 ? "left its valid range" : "failed", rc);
         return rc;
       }
+      treeAtIterate(c, k, qd, qit, &bit[k], Z, rho);
       if (treeGather(d, k, h, Z, rho, err) != 0) {
         return 1;
       }

@@ -237,6 +237,9 @@ int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[
  * (ω > 2: variable-step BDF2 is zero-stable only below 1 + √2). A support stepped with the
  * legs (tests/robot/strain_test_robot.h) takes the same coefficients. */
 void csr_strainBdf2Coeffs(double h, double h_prev, double c[3]);
+/* The coefficients the next step of h takes at the current state: csr_strainBdf2Coeffs with
+ * the last step's length under step_order 2, (1, 0, 1) under step_order 1. */
+void csr_strainStepCoeffs(const csrStrainModel* m, const csrStrainData* d, double h, double c[3]);
 /* Kinetic energy (leg and base motion) and elastic energy relative to the rest strains (N mm). */
 void csr_strainEnergy(const csrStrainModel* m, csrStrainData* d, double* kinetic,
                       double* elastic);

@@ -41,6 +41,12 @@
 static int historySize(const csrStrainModel* m) { return 2 * m->n + 13; }
 
 
+void csr_strainStepCoeffs(const csrStrainModel* m, const csrStrainData* d, double h,
+                          double c[3]) {
+  csr_strainBdf2Coeffs(h, m->par.step_order == 2 ? d->hprev : 0, c);
+}
+
+
 int csr_strainStateSize(const csrStrainModel* m) {
   return 2 * m->n + m->nhist + 3 + historySize(m);
 }
