@@ -189,12 +189,13 @@ typedef struct {
   double* p;
   int n;
 } CosimField;
-enum { COSIM_NFIELD = 2 * CSR_NLEG + 8 };
+enum { COSIM_NFIELD = 2 * CSR_NLEG + 12 };
 #define COSIM_LEN(f) (sizeof(((csCosim*)0)->f) / sizeof(double))
 _Static_assert(CS_COSIM_STATE == CSR_NLEG * (COSIM_LEN(w[0].f) + COSIM_LEN(w[0].m)) +
                                      COSIM_LEN(Kc) + COSIM_LEN(A) + COSIM_LEN(gs_P) +
                                      COSIM_LEN(gs_R) + COSIM_LEN(gs_qd) + COSIM_LEN(carry) +
-                                     COSIM_LEN(gs_qd_prev) + 1,
+                                     COSIM_LEN(gs_qd_prev) + COSIM_LEN(tb_P) + COSIM_LEN(tb_R) +
+                                     COSIM_LEN(tb_v) + COSIM_LEN(tb_w) + 1,
                "CS_COSIM_STATE must be the length of cosimFields' list");
 static int cosimFields(csCosim* c, CosimField f[COSIM_NFIELD]) {
   int q = 0;
@@ -209,6 +210,10 @@ static int cosimFields(csCosim* c, CosimField f[COSIM_NFIELD]) {
   f[q++] = (CosimField){c->gs_qd, (int)COSIM_LEN(gs_qd)};
   f[q++] = (CosimField){c->carry, (int)COSIM_LEN(carry)};
   f[q++] = (CosimField){c->gs_qd_prev, (int)COSIM_LEN(gs_qd_prev)};
+  f[q++] = (CosimField){c->tb_P, (int)COSIM_LEN(tb_P)};
+  f[q++] = (CosimField){c->tb_R, (int)COSIM_LEN(tb_R)};
+  f[q++] = (CosimField){c->tb_v, (int)COSIM_LEN(tb_v)};
+  f[q++] = (CosimField){c->tb_w, (int)COSIM_LEN(tb_w)};
   f[q++] = (CosimField){&c->gs_primed, 1};
   return q;
 }
@@ -706,6 +711,13 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
   dBodySetGyroscopicMode(d->robot->support, 0);
   mat6Zero(c->Kc);
   mat6Zero(c->A);
+  /* the legs' formula for this step (the same for all: they share their steps) */
+  c->tb_c[0] = 1, c->tb_c[1] = 0, c->tb_c[2] = 1;
+  if (type->stepCoeffs) {
+    type->stepCoeffs(d->robot->legs[0], h, c->tb_c);
+  }
+  const double he = c->tb_c[2] * h;
+  c->tb_h = h;
   for (int k = 0; k < CSR_NLEG; k++) {
     double Z[36], rho[6];
     csr_robotBaseStateAt(d->robot, k, c->P0, c->R0, c->v0, c->w0, &c->b0[k]);
@@ -716,7 +728,7 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
                   rc > 0 ? "did not converge" : "failed", rc);
       return rc;
     }
-    if (treeGather(d, k, h, Z, rho, err) != 0) {
+    if (treeGather(d, k, he, Z, rho, err) != 0) {
       return 1;
     }
   }
@@ -724,19 +736,48 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
 }
 
 
-/* every hip's state at the end of the step for the support's end twist q' = (v; ω) (world):
- * the centre moved by h v, the rotation by exp(h [ω]) (ODE's own update to O(h² ω²); the legs
- * finish along ODE's actual end state) */
-static void treeHipsAt(const csData* d, double h, const double qd1[6],
-                       csrBaseState b[CSR_NLEG]) {
-  const csCosim* c = &d->cosim;
-  double P1[3], R1[9], phi[3], dR[9];
-  for (int i = 0; i < 3; i++) {
-    P1[i] = c->P0[i] + h * qd1[i];
-    phi[i] = h * qd1[3 + i];
+/* BDF2's step (c->tb_c not backward Euler's) */
+static int treeBdf(const csCosim* c) {
+  return c->tb_c[0] != 1 || c->tb_c[1] != 0 || c->tb_c[2] != 1;
+}
+
+
+/* The support's end pose for its end twist q' = (v; ω) (world). Backward Euler: the centre
+ * moved by h v, the rotation by exp(h [ω]) (ODE's own update to O(h² ω²)). BDF2 (the legs'
+ * coefficients c, he = c2 h): P1 = c0 P0 + c1 P_-1 + he v, R1 = exp(c1 ψ_-1 + he ω) R0 with
+ * ψ_-1 = log(R_-1 R0ᵀ), the formula on the rotation vector about R0 (its dexp⁻¹ correction
+ * enters at O(h³)); the driver sets ODE's body there after its step (cs_couplingTreeFinish) */
+static void treeEndPose(const csCosim* c, double h, const double qd1[6], double P1[3],
+                        double R1[9]) {
+  double phi[3], dR[9];
+  if (!treeBdf(c)) {
+    for (int i = 0; i < 3; i++) {
+      P1[i] = c->P0[i] + h * qd1[i];
+      phi[i] = h * qd1[3 + i];
+    }
+  } else {
+    const double he = c->tb_c[2] * h;
+    double RRt[9], R0t[9], psi[3];
+    csu_transpose3(R0t, c->R0);
+    csu_mulMat3(RRt, c->tb_R, R0t);
+    csu_mat3ToRotVec(psi, RRt);
+    for (int i = 0; i < 3; i++) {
+      P1[i] = c->tb_c[0] * c->P0[i] + c->tb_c[1] * c->tb_P[i] + he * qd1[i];
+      phi[i] = c->tb_c[1] * psi[i] + he * qd1[3 + i];
+    }
   }
   csu_rotVecToMat3(dR, phi);
   csu_mulMat3(R1, dR, c->R0);
+}
+
+
+/* every hip's state at the end of the step for the support's end twist q' = (v; ω) (world), the
+ * support at treeEndPose (the legs finish along ODE's actual end state) */
+static void treeHipsAt(const csData* d, double h, const double qd1[6],
+                       csrBaseState b[CSR_NLEG]) {
+  const csCosim* c = &d->cosim;
+  double P1[3], R1[9];
+  treeEndPose(c, h, qd1, P1, R1);
   for (int k = 0; k < CSR_NLEG; k++) {
     csr_robotBaseStateAt(d->robot, k, P1, R1, qd1, qd1 + 3, &b[k]);
   }
@@ -792,6 +833,17 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
     csu_mulMatVec3(Iw0, Iw, c->w0);
     csu_cross3(gyro + 3, c->w0, Iw0);
   }
+  /* BDF2 (the legs' formula, cs_couplingTreePrepare): the solve is backward Euler's with he =
+   * c2 h for h and the history's q̄' = c0 q'0 + c1 q'_-1 for q'0 on the mass side:
+   *   (M + he A) q'1 = M q̄' + he (m g + W0 - ω × I ω + A q'_pred) */
+  const int bdf = treeBdf(c);
+  const double he = c->tb_c[2] * h;
+  double qbar[6], qm1[6];
+  memcpy(qm1, c->tb_v, sizeof c->tb_v);
+  memcpy(qm1 + 3, c->tb_w, sizeof c->tb_w);
+  for (int i = 0; i < 6; i++) {
+    qbar[i] = bdf ? c->tb_c[0] * qd[i] + c->tb_c[1] * qm1[i] : qd[i];
+  }
   memcpy(qit, qd, sizeof qit);
   const int newton = m->opt.tree_iterations > 1 && type->update && type->iterate;
   /* damping of the passes (as tests/robot/strain_test_robot.h): a pass whose full move did not
@@ -817,7 +869,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
      * are already the discrete momentum balance the legs' iterations use (robot_strain.h):
      * in the world frame at the support's centre of mass, ODE's step x1 = x0 + h v1 makes
      * m (v1 - v0) = m (x1 - x0) / h - D with D = m (x0 - x_prev) / h the last step's */
-    if (supportSolve(d, h, mass, Iw, qd, W0, gyro, c->A, qd, F, qd1) != 0) {
+    if (supportSolve(d, he, mass, Iw, qbar, W0, gyro, c->A, qd, F, qd1) != 0) {
       cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the support's condensed step matrix is "
                   "singular", d->t);
       return 1;
@@ -876,10 +928,23 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
         return rc;
       }
       treeAtIterate(c, k, qd, qit, &bit[k], Z, rho);
-      if (treeGather(d, k, h, Z, rho, err) != 0) {
+      if (treeGather(d, k, he, Z, rho, err) != 0) {
         return 1;
       }
     }
+  }
+  if (bdf) {
+    /* ODE steps v1 = v0 + h (F + m g) / m (its gyroscopic term off): the force that lands on
+     * the solved twist; its position update is replaced by BDF2's in cs_couplingTreeFinish */
+    dVector3 grav;
+    dWorldGetGravity(d->world, grav);
+    const int gmode = dBodyGetGravityMode(d->robot->support);
+    double dw[3];
+    for (int i = 0; i < 3; i++) {
+      F[i] = mass * (qd1[i] - qd[i]) / h - (gmode ? mass * grav[i] : 0);
+      dw[i] = (qd1[3 + i] - qd[3 + i]) / h;
+    }
+    csu_mulMatVec3(F + 3, Iw, dw);
   }
   dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
   dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
@@ -893,6 +958,28 @@ int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err) {
   cs_errorClear(err);
   double P1[3], R1[9], v1[3], w1[3];
   csr_robotSupportPose(d->robot, P1, R1, v1, w1);
+  if (treeBdf(c)) {
+    /* BDF2's pose for ODE's end twist (treeEndPose) in place of ODE's x0 + h v1 */
+    double qd1[6];
+    memcpy(qd1, v1, sizeof v1);
+    memcpy(qd1 + 3, w1, sizeof w1);
+    treeEndPose(c, c->tb_h, qd1, P1, R1);
+    dMatrix3 Rd;
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 3; j++) {
+        Rd[4 * i + j] = R1[3 * i + j];
+      }
+      Rd[4 * i + 3] = 0;
+    }
+    dBodySetPosition(d->robot->support, P1[0], P1[1], P1[2]);
+    dBodySetRotation(d->robot->support, Rd);
+    csr_robotSupportPose(d->robot, P1, R1, v1, w1);
+  }
+  /* the history for the next step's formula */
+  memcpy(c->tb_P, c->P0, sizeof c->tb_P);
+  memcpy(c->tb_R, c->R0, sizeof c->tb_R);
+  memcpy(c->tb_v, c->v0, sizeof c->tb_v);
+  memcpy(c->tb_w, c->w0, sizeof c->tb_w);
   for (int k = 0; k < CSR_NLEG; k++) {
     csr_robotBaseStateAt(d->robot, k, P1, R1, v1, w1, &c->b1[k]);
     int rc = type->finish(d->robot->legs[k], &c->b1[k], &c->w[k]);

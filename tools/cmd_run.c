@@ -4,7 +4,8 @@
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
  *   --coupling staggered|stabilised|gs|tree, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
- *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K), --cal-rule prism|rbf|rbf-pair
+ *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K), --step-order 1|2 (strain
+ *   legs' tree step: backward Euler or BDF2), --cal-rule prism|rbf|rbf-pair
  *   (the FE mode table's rule),
  *   --tol MM and --levels FILE (with --legs auto: the cheapest measured configuration of the
  *   scene whose track error is within MM, from the table robot/levels.csv, robot_levels.h).
@@ -90,6 +91,8 @@ static const csxOpt kRunOpts[] = {
     {"--rod-tol", "K", "1",
      "multiplies every CVODE tolerance of rod legs, 0 < K <= 1000; recorded as "
      "rod_tolerance_scale"},
+    {"--step-order", "1|2", "the level's (strain: 1)",
+     "strain legs: the tree step's formula, 1 backward Euler, 2 BDF2 (support and legs)"},
     {"--tol", "MM", NULL,
      "with --legs auto: the track error allowed against the rod reference, in mm"},
     {"--levels", "FILE", "robot/levels.csv",
@@ -165,6 +168,7 @@ int csx_cmdRun(int argc, char** argv) {
   const char* calib = NULL;
   double friction = NAN, scale = 1.0, t_end = 0, dt = NAN, out_dt = NAN, ramp = NAN, tau = NAN;
   double support_kg = NAN, links = NAN, iters = NAN, gravity = NAN, macro = NAN;
+  double step_order = NAN;
   const char* coupling = NULL;
   const char* conditions = NULL;
   const char* levels = NULL;
@@ -257,6 +261,8 @@ int csx_cmdRun(int argc, char** argv) {
       ok = parseNum(flag, v, &kscale, &err);
     } else if (!strcmp(flag, "--rod-tol")) {
       ok = parseNum(flag, v, &rodtol, &err);
+    } else if (!strcmp(flag, "--step-order")) {
+      ok = parseNum(flag, v, &step_order, &err);
     } else if (!strcmp(flag, "--levels")) {
       levels = v;
     } else if (!strcmp(flag, "--cal-rule")) {
@@ -409,6 +415,10 @@ int csx_cmdRun(int argc, char** argv) {
     cs_errorSet(&err, CS_ERR_RANGE, "--pressure-scale %g must be >= 0", scale);
     goto done;
   }
+  if (!isnan(step_order) && step_order != 1 && step_order != 2) {
+    cs_errorSet(&err, CS_ERR_RANGE, "--step-order %g must be 1 or 2", step_order);
+    goto done;
+  }
   if (!(t_end >= 0)) {
     cs_errorSet(&err, CS_ERR_RANGE, "--t-end %g s must be >= 0 (0: the gait's length)", t_end);
     goto done;
@@ -538,6 +548,7 @@ int csx_cmdRun(int argc, char** argv) {
     m.robot.leg_params.links_per_segment = csr_strainDefaultParams().bend_order + 1;
   }
   if (!isnan(rodtol)) m.robot.leg_params.rod_tol_scale = rodtol;
+  if (!isnan(step_order)) m.robot.leg_params.step_order = (int)step_order;
   m.opt.t_end = t_end;
   if (csc_contactParamsValidate(&m.contact, &err) != CS_OK ||
       csg_scheduleCheckOptions(&m.sched, &err) != CS_OK) {
