@@ -852,6 +852,33 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
    * Newton step can cycle between the two sides */
   double alpha = 1, chg_last = INFINITY;
   int it = 0;
+  if (bdf && newton) {
+    /* BDF2's first iterate where the support's twist is unchanged: the legs back-substitute
+     * their hips' end states for it (treeEndPose of q'0) and linearise there, so the first
+     * solve sees the legs and the support at one consistent end of the step (prepare left
+     * the legs' bases at the start, a first residual of their whole momentum) */
+    csrBaseState bp[CSR_NLEG];
+    treeHipsAt(d, h, qd, bp);
+    mat6Zero(c->A);
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double Z[36], rho[6], ck = 0;
+      int rc = type->update(d->robot->legs[k], &bp[k], 1.0, NULL, &ck);
+      if (rc == 0) {
+        rc = type->iterate(d->robot->legs[k], Z, rho);
+      }
+      if (rc != 0) {
+        cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
+                    "first BDF2 iterate %s (code %d)", d->t, 'A' + k,
+                    rc > 0 ? "left its valid range" : "failed", rc);
+        return rc;
+      }
+      treeAtIterate(c, k, qd, qd, &bp[k], Z, rho);
+      if (treeGather(d, k, he, Z, rho, err) != 0) {
+        return 1;
+      }
+    }
+    c->tree_passes++;
+  }
   for (;;) {
     /* W0 at the centre from the hips where the step started (prepare's and iterate's frame) */
     double W0[6] = {0, 0, 0, 0, 0, 0};
@@ -973,6 +1000,11 @@ int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err) {
     }
     dBodySetPosition(d->robot->support, P1[0], P1[1], P1[2]);
     dBodySetRotation(d->robot->support, Rd);
+    /* R from the body's quaternion, as ODE's own step leaves it and a restored state sets
+     * it: otherwise a restored run differs in the last bits */
+    const dReal* qb = dBodyGetQuaternion(d->robot->support);
+    dQuaternion qq = {qb[0], qb[1], qb[2], qb[3]};
+    dBodySetQuaternion(d->robot->support, qq);
     csr_robotSupportPose(d->robot, P1, R1, v1, w1);
   }
   /* the history for the next step's formula */
