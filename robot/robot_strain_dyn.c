@@ -293,6 +293,18 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
 }
 
 
+/* the step's start: Σ m x (kinematics valid), q0, η0, the base's twist and frame, Δu = 0 */
+static void saveStart(const csrStrainModel* m, csrStrainData* d) {
+  const int n = m->n;
+  massMoment(m, d, d->X0m);
+  memcpy(d->q0, d->q, (size_t)n * sizeof(double));
+  memcpy(d->eta0, d->eta, (size_t)n * sizeof(double));
+  memcpy(d->Vb0, d->Vb, sizeof d->Vb0);
+  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
+  memset(d->du, 0, (size_t)(6 + n) * sizeof(double));
+}
+
+
 /* The step's inertia and forces at the state now, into d->WM* and d->rM*.
  * at_iterate 0 (step_order 1, the step's start): the inertia M(q0), the velocity products,
  * weight and tip load at the start, the strains' elastic and damping forces linearised at the
@@ -430,12 +442,7 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
       return 1;
     }
   }
-  massMoment(m, d, d->X0m);
-  memcpy(d->q0, d->q, (size_t)n * sizeof(double));
-  memcpy(d->eta0, d->eta, (size_t)n * sizeof(double));
-  memcpy(d->Vb0, d->Vb, sizeof d->Vb0);
-  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
-  memset(d->du, 0, (size_t)(6 + n) * sizeof(double));
+  saveStart(m, d);
   return 0;
 }
 
@@ -591,12 +598,7 @@ static int prepareBdf(const csrStrainModel* m, csrStrainData* d, double h, doubl
   if (d->kin_valid < 1) {
     csr_strainKinematics_(m, d, 0);
   }
-  massMoment(m, d, d->X0m);
-  memcpy(d->q0, d->q, (size_t)n * sizeof(double));
-  memcpy(d->eta0, d->eta, (size_t)n * sizeof(double));
-  memcpy(d->Vb0, d->Vb, sizeof d->Vb0);
-  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
-  memset(d->du, 0, (size_t)(6 + n) * sizeof(double));
+  saveStart(m, d);
   for (int j = 0; j < n; j++) {
     d->q[j] = d->bc[0] * d->q0[j] + d->bc[1] * d->qm1[j] + d->he * d->eta[j];
   }

@@ -151,13 +151,15 @@ static int openCal(LegCal* c) {
 }
 
 
-/* the leg hanging along -y (e1 = +x, e2 = +z, e3 = -y) at the origin, weightless */
-static csrStrainModel* legModel(const LegCal* c) {
+/* the leg hanging along -y (e1 = +x, e2 = +z, e3 = -y) at the origin, weightless, with the
+ * parameters sp (NULL: the defaults) */
+static csrStrainModel* legModelParams(const LegCal* c, const csrStrainParams* sp) {
   csrStrainSpec spec;
   memset(&spec, 0, sizeof spec);
   spec.act = &c->act;
   spec.map = &c->map;
   spec.calib = c->has_rodcal ? &c->rodcal : NULL;
+  spec.params = sp;
   const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
   memcpy(spec.frame, F, sizeof F);
   spec.weightless = 1;
@@ -170,6 +172,9 @@ static csrStrainModel* legModel(const LegCal* c) {
   CS_EXPECT(m != NULL);
   return m;
 }
+
+
+static csrStrainModel* legModel(const LegCal* c) { return legModelParams(c, NULL); }
 
 
 static void released_leg_energy_decreases(void) {
@@ -410,20 +415,11 @@ static void free_floating_momentum(void) {
 /* the tip (world mm) after 0.3 s of a smooth pulse (II1-Ω3&Ω4, II2-Ω1&Ω2 to 0.18 MPa as
  * 1 - cos over 0.3 s: smooth, so no kink limits the order) from rest, base held, at step h */
 static int pulseTip(const LegCal* c, int step_order, double h, double tip[3]) {
-  csrStrainSpec spec;
-  memset(&spec, 0, sizeof spec);
-  spec.act = &c->act;
-  spec.map = &c->map;
-  spec.calib = c->has_rodcal ? &c->rodcal : NULL;
-  const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
-  memcpy(spec.frame, F, sizeof F);
-  spec.weightless = 1;
   csrStrainParams sp = csr_strainDefaultParams();
   sp.step_order = step_order;
-  spec.params = &sp;
   csError err;
   cs_errorClear(&err);
-  csrStrainModel* m = csr_strainModelCreate(&spec, &err);
+  csrStrainModel* m = legModelParams(c, &sp);
   csrStrainData* d = m ? csr_strainDataCreate(m, &err) : NULL;
   int rc = d ? 0 : 1;
   const int n = (int)lround(0.3 / h);
