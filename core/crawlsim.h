@@ -81,6 +81,8 @@ typedef struct csRunDef {
   const char* coupling;      /* "staggered" | "stabilised" | "gs" | "tree"; NULL: the level's */
   double contact_scale;      /* multiplies every contact stiffness, (0, 1e6] (NaN: 1) */
   double rod_tol;            /* multiplies rod legs' CVODE tolerances, (0, 1000] (NaN: 1) */
+  double step_order;         /* strain legs' tree step: 1 backward Euler, 2 BDF2 (NaN: the
+                                level's, 1) */
   const char* out;           /* cs_run's HDF5 file (and FILE.xdmf beside it); NULL: none.
                                 cs_simCreate ignores it */
   int progress;              /* 1: cs_run prints a progress line per simulated second on

@@ -42,7 +42,7 @@ csRunDef cs_defaultRunDef(void) {
   d.t_end = 0;
   d.dt = d.output_dt = d.ramp = d.tau = d.gravity = d.support_mass_kg = NAN;
   d.slope_deg = d.links = d.iterations = d.macro_steps = NAN;
-  d.contact_scale = d.rod_tol = NAN;
+  d.contact_scale = d.rod_tol = d.step_order = NAN;
   return d;
 }
 
@@ -186,7 +186,7 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
               {"--support-mass", def->support_mass_kg}, {"--slope-deg", def->slope_deg},
               {"--links", def->links}, {"--iterations", def->iterations},
               {"--macro-steps", def->macro_steps}, {"--contact-scale", def->contact_scale},
-              {"--rod-tol", def->rod_tol}};
+              {"--rod-tol", def->rod_tol}, {"--step-order", def->step_order}};
   for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
     if (isinf(nums[k].v)) {
       return cs_errorSet(err, CS_ERR_RANGE, "%s %g is not a finite number", nums[k].flag,
@@ -255,6 +255,9 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
   }
   /* 1000: CVODE's relative tolerance (1e-4 shipped) near 0.1, where the steps are bounded by
    * the macro step alone and the track is no longer an integration of anything */
+  if (!isnan(def->step_order) && def->step_order != 1 && def->step_order != 2) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--step-order %g must be 1 or 2", def->step_order);
+  }
   if (!isnan(def->rod_tol) && !(def->rod_tol > 0 && def->rod_tol <= 1000)) {
     return cs_errorSet(err, CS_ERR_RANGE, "--rod-tol %g must be > 0 and <= 1000", def->rod_tol);
   }
@@ -487,6 +490,7 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
     m->robot.leg_params.links_per_segment = csr_strainDefaultParams().bend_order + 1;
   }
   if (!isnan(rodtol)) m->robot.leg_params.rod_tol_scale = rodtol;
+  if (!isnan(def->step_order)) m->robot.leg_params.step_order = (int)def->step_order;
   m->opt.t_end = t_end;
   m->opt.progress = def->progress;
   m->opt.cancel = def->cancel;

@@ -189,12 +189,13 @@ typedef struct {
   double* p;
   int n;
 } CosimField;
-enum { COSIM_NFIELD = 2 * CSR_NLEG + 8 };
+enum { COSIM_NFIELD = 2 * CSR_NLEG + 12 };
 #define COSIM_LEN(f) (sizeof(((csCosim*)0)->f) / sizeof(double))
 _Static_assert(CS_COSIM_STATE == CSR_NLEG * (COSIM_LEN(w[0].f) + COSIM_LEN(w[0].m)) +
                                      COSIM_LEN(Kc) + COSIM_LEN(A) + COSIM_LEN(gs_P) +
                                      COSIM_LEN(gs_R) + COSIM_LEN(gs_qd) + COSIM_LEN(carry) +
-                                     COSIM_LEN(gs_qd_prev) + 1,
+                                     COSIM_LEN(gs_qd_prev) + COSIM_LEN(tb_P) + COSIM_LEN(tb_R) +
+                                     COSIM_LEN(tb_v) + COSIM_LEN(tb_w) + 1,
                "CS_COSIM_STATE must be the length of cosimFields' list");
 static int cosimFields(csCosim* c, CosimField f[COSIM_NFIELD]) {
   int q = 0;
@@ -209,6 +210,10 @@ static int cosimFields(csCosim* c, CosimField f[COSIM_NFIELD]) {
   f[q++] = (CosimField){c->gs_qd, (int)COSIM_LEN(gs_qd)};
   f[q++] = (CosimField){c->carry, (int)COSIM_LEN(carry)};
   f[q++] = (CosimField){c->gs_qd_prev, (int)COSIM_LEN(gs_qd_prev)};
+  f[q++] = (CosimField){c->tb_P, (int)COSIM_LEN(tb_P)};
+  f[q++] = (CosimField){c->tb_R, (int)COSIM_LEN(tb_R)};
+  f[q++] = (CosimField){c->tb_v, (int)COSIM_LEN(tb_v)};
+  f[q++] = (CosimField){c->tb_w, (int)COSIM_LEN(tb_w)};
   f[q++] = (CosimField){&c->gs_primed, 1};
   return q;
 }
@@ -699,8 +704,20 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
   cs_errorClear(err); /* whatever err holds after this came from these legs */
   csr_robotSupportPose(d->robot, c->P0, c->R0, c->v0, c->w0);
   c->t0 = d->t;
+  /* the support's gyroscopic torque is the tree solve's (cs_couplingApplyTree), so that ODE's
+   * step lands on the solved twist: with ODE's own (implicit) term the two differed by ~1e-8
+   * rad/s per step, and the legs, finishing along ODE's twist, took an impulse the support did
+   * not give (docs/notes/strain_leg.md, "Drift") */
+  dBodySetGyroscopicMode(d->robot->support, 0);
   mat6Zero(c->Kc);
   mat6Zero(c->A);
+  /* the legs' formula for this step (the same for all: they share their steps) */
+  c->tb_c[0] = 1, c->tb_c[1] = 0, c->tb_c[2] = 1;
+  if (type->stepCoeffs) {
+    type->stepCoeffs(d->robot->legs[0], h, c->tb_c);
+  }
+  const double he = c->tb_c[2] * h;
+  c->tb_h = h;
   for (int k = 0; k < CSR_NLEG; k++) {
     double Z[36], rho[6];
     csr_robotBaseStateAt(d->robot, k, c->P0, c->R0, c->v0, c->w0, &c->b0[k]);
@@ -711,7 +728,7 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
                   rc > 0 ? "did not converge" : "failed", rc);
       return rc;
     }
-    if (treeGather(d, k, h, Z, rho, err) != 0) {
+    if (treeGather(d, k, he, Z, rho, err) != 0) {
       return 1;
     }
   }
@@ -719,21 +736,81 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
 }
 
 
-/* every hip's state at the end of the step for the support's end twist q' = (v; ω) (world):
- * the centre moved by h v, the rotation by exp(h [ω]) (ODE's own update to O(h² ω²); the legs
- * finish along ODE's actual end state) */
-static void treeHipsAt(const csData* d, double h, const double qd1[6],
-                       csrBaseState b[CSR_NLEG]) {
-  const csCosim* c = &d->cosim;
-  double P1[3], R1[9], phi[3], dR[9];
-  for (int i = 0; i < 3; i++) {
-    P1[i] = c->P0[i] + h * qd1[i];
-    phi[i] = h * qd1[3 + i];
+/* BDF2's step (c->tb_c not backward Euler's) */
+static int treeBdf(const csCosim* c) {
+  return c->tb_c[0] != 1 || c->tb_c[1] != 0 || c->tb_c[2] != 1;
+}
+
+
+/* The support's end pose for its end twist q' = (v; ω) (world). Backward Euler: the centre
+ * moved by h v, the rotation by exp(h [ω]) (ODE's own update to O(h² ω²)). BDF2 (the legs'
+ * coefficients c, he = c2 h): P1 = c0 P0 + c1 P_-1 + he v, R1 = exp(c1 ψ_-1 + he ω) R0 with
+ * ψ_-1 = log(R_-1 R0ᵀ), the formula on the rotation vector about R0 (its dexp⁻¹ correction
+ * enters at O(h³)); the driver sets ODE's body there after its step (cs_couplingTreeFinish) */
+static void treeEndPose(const csCosim* c, double h, const double qd1[6], double P1[3],
+                        double R1[9]) {
+  double phi[3], dR[9];
+  if (!treeBdf(c)) {
+    for (int i = 0; i < 3; i++) {
+      P1[i] = c->P0[i] + h * qd1[i];
+      phi[i] = h * qd1[3 + i];
+    }
+  } else {
+    const double he = c->tb_c[2] * h;
+    double RRt[9], R0t[9], psi[3];
+    csu_transpose3(R0t, c->R0);
+    csu_mulMat3(RRt, c->tb_R, R0t);
+    csu_mat3ToRotVec(psi, RRt);
+    for (int i = 0; i < 3; i++) {
+      P1[i] = c->tb_c[0] * c->P0[i] + c->tb_c[1] * c->tb_P[i] + he * qd1[i];
+      phi[i] = c->tb_c[1] * psi[i] + he * qd1[3 + i];
+    }
   }
   csu_rotVecToMat3(dR, phi);
   csu_mulMat3(R1, dR, c->R0);
+}
+
+
+/* every hip's state at the end of the step for the support's end twist q' = (v; ω) (world), the
+ * support at treeEndPose (the legs finish along ODE's actual end state) */
+static void treeHipsAt(const csData* d, double h, const double qd1[6],
+                       csrBaseState b[CSR_NLEG]) {
+  const csCosim* c = &d->cosim;
+  double P1[3], R1[9];
+  treeEndPose(c, h, qd1, P1, R1);
   for (int k = 0; k < CSR_NLEG; k++) {
     csr_robotBaseStateAt(d->robot, k, P1, R1, qd1, qd1 + 3, &b[k]);
+  }
+}
+
+
+/* An iterate's ρ made exact there: the leg's impulse is ρ - Z Δu for its hip's world twist
+ * change Δu, and the leg linearised at the hip's exact end state b_it (treeHipsAt: the arm
+ * turned with the support), where the support's solve maps its centre's twist change Δq to
+ * the hip by T Δq with the arm at the step's start. The two differ at the iterate by
+ * ω1 × (r1 - r0), O(h): left in, the support took a different impulse from the one the leg
+ * balanced, and the frictionless centre of mass drifted at first order (docs/notes/
+ * strain_leg.md, "Drift"). So ρ -= Z (Δu_it - T Δq_it): the support's linear model passes
+ * through the leg's impulse at the iterate, Z its slope. */
+static void treeAtIterate(const csCosim* c, int k, const double qd0[6], const double qit[6],
+                          const csrBaseState* bit, const double Z[36], double rho[6]) {
+  double r[3], dq[6], e[6], t[3];
+  csu_sub3(r, c->b0[k].x, c->P0);
+  for (int i = 0; i < 6; i++) {
+    dq[i] = qit[i] - qd0[i];
+  }
+  /* e = Δu_it - T Δq_it: (Δv_hip - Δv_c - Δω × r0; Δω_hip - Δω) */
+  csu_cross3(t, dq + 3, r);
+  for (int i = 0; i < 3; i++) {
+    e[i] = (bit->v[i] - c->b0[k].v[i]) - dq[i] - t[i];
+    e[3 + i] = (bit->w[i] - c->b0[k].w[i]) - dq[3 + i];
+  }
+  for (int i = 0; i < 6; i++) {
+    double s = 0;
+    for (int j = 0; j < 6; j++) {
+      s += Z[6 * i + j] * e[j];
+    }
+    rho[i] -= s;
   }
 }
 
@@ -744,10 +821,28 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
   cs_errorClear(err);
   double mass, Iw[9];
   supportInertia(d, c->R0, &mass, Iw);
-  double qd[6], zero[6] = {0, 0, 0, 0, 0, 0}, F[6], qd1[6], qit[6];
+  double qd[6], gyro[6] = {0, 0, 0, 0, 0, 0}, F[6], qd1[6], qit[6];
   for (int i = 0; i < 3; i++) {
     qd[i] = c->v0[i];
     qd[3 + i] = c->w0[i];
+  }
+  /* ω × I ω at the start (explicit, as ODE's own would be without its implicit correction),
+   * subtracted from the support's torque in the solve and handed to ODE with the rest */
+  {
+    double Iw0[3];
+    csu_mulMatVec3(Iw0, Iw, c->w0);
+    csu_cross3(gyro + 3, c->w0, Iw0);
+  }
+  /* BDF2 (the legs' formula, cs_couplingTreePrepare): the solve is backward Euler's with he =
+   * c2 h for h and the history's q̄' = c0 q'0 + c1 q'_-1 for q'0 on the mass side:
+   *   (M + he A) q'1 = M q̄' + he (m g + W0 - ω × I ω + A q'_pred) */
+  const int bdf = treeBdf(c);
+  const double he = c->tb_c[2] * h;
+  double qbar[6], qm1[6];
+  memcpy(qm1, c->tb_v, sizeof c->tb_v);
+  memcpy(qm1 + 3, c->tb_w, sizeof c->tb_w);
+  for (int i = 0; i < 6; i++) {
+    qbar[i] = bdf ? c->tb_c[0] * qd[i] + c->tb_c[1] * qm1[i] : qd[i];
   }
   memcpy(qit, qd, sizeof qit);
   const int newton = m->opt.tree_iterations > 1 && type->update && type->iterate;
@@ -757,6 +852,33 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
    * Newton step can cycle between the two sides */
   double alpha = 1, chg_last = INFINITY;
   int it = 0;
+  if (bdf && newton) {
+    /* BDF2's first iterate where the support's twist is unchanged: the legs back-substitute
+     * their hips' end states for it (treeEndPose of q'0) and linearise there, so the first
+     * solve sees the legs and the support at one consistent end of the step (prepare left
+     * the legs' bases at the start, a first residual of their whole momentum) */
+    csrBaseState bp[CSR_NLEG];
+    treeHipsAt(d, h, qd, bp);
+    mat6Zero(c->A);
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double Z[36], rho[6], ck = 0;
+      int rc = type->update(d->robot->legs[k], &bp[k], 1.0, NULL, &ck);
+      if (rc == 0) {
+        rc = type->iterate(d->robot->legs[k], Z, rho);
+      }
+      if (rc != 0) {
+        cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
+                    "first BDF2 iterate %s (code %d)", d->t, 'A' + k,
+                    rc > 0 ? "left its valid range" : "failed", rc);
+        return rc;
+      }
+      treeAtIterate(c, k, qd, qd, &bp[k], Z, rho);
+      if (treeGather(d, k, he, Z, rho, err) != 0) {
+        return 1;
+      }
+    }
+    c->tree_passes++;
+  }
   for (;;) {
     /* W0 at the centre from the hips where the step started (prepare's and iterate's frame) */
     double W0[6] = {0, 0, 0, 0, 0, 0};
@@ -774,7 +896,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
      * are already the discrete momentum balance the legs' iterations use (robot_strain.h):
      * in the world frame at the support's centre of mass, ODE's step x1 = x0 + h v1 makes
      * m (v1 - v0) = m (x1 - x0) / h - D with D = m (x0 - x_prev) / h the last step's */
-    if (supportSolve(d, h, mass, Iw, qd, W0, zero, c->A, qd, F, qd1) != 0) {
+    if (supportSolve(d, he, mass, Iw, qbar, W0, gyro, c->A, qd, F, qd1) != 0) {
       cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the support's condensed step matrix is "
                   "singular", d->t);
       return 1;
@@ -808,17 +930,16 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
       chg = fmax(chg, ck);
     }
     memcpy(qit, qa, sizeof qit);
+    const csrBaseState* bit = alpha < 1 ? b1a : b1;
     it++;
     c->tree_passes++;
-    /* converged: this move, or what is left of the passes' moves after it when an undamped
-     * pass contracts at a rate < 1 (chg rate / (1 - rate): Newton's, or a leg's kept
-     * iteration matrix, robot_strain_dyn.c condense), is below the tolerance */
-    const double rate = chg / chg_last;
-    const int full = alpha == 1;
+    /* converged: this move is below the tolerance. (Accepting when the contracting passes'
+     * estimated remaining move, chg rate / (1 - rate), is below it saved 6 % of the passes
+     * but left each step's momentum rows unconverged by up to that much: the frictionless
+     * centre of mass then drifted 1.9e-4 mm per s instead of 3e-7; docs/notes/strain_leg.md) */
     alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
     chg_last = chg;
-    if (it > 1 && (chg <= m->opt.tree_tol ||
-                   (full && rate < 1 && chg * rate / (1 - rate) <= m->opt.tree_tol))) {
+    if (it > 1 && chg <= m->opt.tree_tol) {
       break;
     }
     if (it >= m->opt.tree_iterations) {
@@ -837,10 +958,24 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
                     rc > 0 ? "left its valid range" : "failed", rc);
         return rc;
       }
-      if (treeGather(d, k, h, Z, rho, err) != 0) {
+      treeAtIterate(c, k, qd, qit, &bit[k], Z, rho);
+      if (treeGather(d, k, he, Z, rho, err) != 0) {
         return 1;
       }
     }
+  }
+  if (bdf) {
+    /* ODE steps v1 = v0 + h (F + m g) / m (its gyroscopic term off): the force that lands on
+     * the solved twist; its position update is replaced by BDF2's in cs_couplingTreeFinish */
+    dVector3 grav;
+    dWorldGetGravity(d->world, grav);
+    const int gmode = dBodyGetGravityMode(d->robot->support);
+    double dw[3];
+    for (int i = 0; i < 3; i++) {
+      F[i] = mass * (qd1[i] - qd[i]) / h - (gmode ? mass * grav[i] : 0);
+      dw[i] = (qd1[3 + i] - qd[3 + i]) / h;
+    }
+    csu_mulMatVec3(F + 3, Iw, dw);
   }
   dBodyAddForce(d->robot->support, F[0], F[1], F[2]);
   dBodyAddTorque(d->robot->support, F[3], F[4], F[5]);
@@ -854,6 +989,33 @@ int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err) {
   cs_errorClear(err);
   double P1[3], R1[9], v1[3], w1[3];
   csr_robotSupportPose(d->robot, P1, R1, v1, w1);
+  if (treeBdf(c)) {
+    /* BDF2's pose for ODE's end twist (treeEndPose) in place of ODE's x0 + h v1 */
+    double qd1[6];
+    memcpy(qd1, v1, sizeof v1);
+    memcpy(qd1 + 3, w1, sizeof w1);
+    treeEndPose(c, c->tb_h, qd1, P1, R1);
+    dMatrix3 Rd;
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 3; j++) {
+        Rd[4 * i + j] = R1[3 * i + j];
+      }
+      Rd[4 * i + 3] = 0;
+    }
+    dBodySetPosition(d->robot->support, P1[0], P1[1], P1[2]);
+    dBodySetRotation(d->robot->support, Rd);
+    /* R from the body's quaternion, as ODE's own step leaves it and a restored state sets
+     * it: otherwise a restored run differs in the last bits */
+    const dReal* qb = dBodyGetQuaternion(d->robot->support);
+    dQuaternion qq = {qb[0], qb[1], qb[2], qb[3]};
+    dBodySetQuaternion(d->robot->support, qq);
+    csr_robotSupportPose(d->robot, P1, R1, v1, w1);
+  }
+  /* the history for the next step's formula */
+  memcpy(c->tb_P, c->P0, sizeof c->tb_P);
+  memcpy(c->tb_R, c->R0, sizeof c->tb_R);
+  memcpy(c->tb_v, c->v0, sizeof c->tb_v);
+  memcpy(c->tb_w, c->w0, sizeof c->tb_w);
   for (int k = 0; k < CSR_NLEG; k++) {
     csr_robotBaseStateAt(d->robot, k, P1, R1, v1, w1, &c->b1[k]);
     int rc = type->finish(d->robot->legs[k], &c->b1[k], &c->w[k]);

@@ -50,11 +50,15 @@ typedef struct csCosim_ {
   /* tree coupling: Newton passes taken by the accepted and rejected tries (a counter, not
    * state: cs_treePassCount) */
   long tree_passes;
+  /* tree coupling with the legs' multistep formula (csrLegType.stepCoeffs, BDF2): the support
+   * at the last step's start (state) and this step's coefficients */
+  double tb_P[3], tb_R[9], tb_v[3], tb_w[3];
+  double tb_c[3], tb_h;             /* and this step's length (s) */
 } csCosim;
 
 /* doubles in the coupling's state block (cs_couplingStateGet): w, Kc, A, gs_P, gs_R, gs_qd,
- * carry, gs_primed */
-#define CS_COSIM_STATE (6 * CSR_NLEG + 36 + 36 + 3 + 9 + 6 + 6 + 6 + 1)
+ * carry, gs_qd_prev, the tree's tb_P, tb_R, tb_v, tb_w, gs_primed (last) */
+#define CS_COSIM_STATE (6 * CSR_NLEG + 36 + 36 + 3 + 9 + 6 + 6 + 6 + 18 + 1)
 
 /* contact joints whose force is measured per ODE step (each ~100 bytes) */
 #define CS_MAX_FEEDBACK 4096

@@ -9,7 +9,7 @@
  * /terrain/corners [nbox*8,3] mm; every dataset with the attributes units and description
  * (kDatasetUnits); root attributes stance_force_threshold_N, scene,
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
- * macro_step_s, leg_step_s, contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
+ * macro_step_s, leg_step_s, leg_step_order (tree coupling), contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
  * rejected_steps, gain_projections (sim_coupling.c implicitPart) and per timer (sim_model.h
  * CS_TIMER_LIST) timer_<name>_s and
@@ -248,6 +248,12 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
      * in-world level's ODE step */
     st = cs_h5AttrDouble(f, "/", "leg_step_s", m->robot.leg_type->in_world ? m->opt.h
                                                : cs_modelMacroStep(m), err);
+  }
+  if (st == CS_OK && !m->robot.leg_type->in_world && m->opt.coupling == CS_COUPLING_TREE) {
+    /* the tree step's formula: 1 backward Euler, 2 BDF2 (csrLegParams.step_order, 0: the
+     * level's default, backward Euler) */
+    const int order = m->robot.leg_params.step_order ? m->robot.leg_params.step_order : 1;
+    st = cs_h5AttrDouble(f, "/", "leg_step_order", order, err);
   }
   if (st == CS_OK && m->legs_auto_choice[0]) {
     st = cs_h5AttrString(f, "/", "legs_auto_choice", m->legs_auto_choice, err);

@@ -70,6 +70,8 @@ typedef struct csrLegParams_ {
                              the shipped ones (a convergence knob: bench_flatroad argument 9) */
   unsigned cal_drop;      /* rod: parts of the calibration left out, CSR_CAL_DROP_* (0: none;
                              `crawlsim run --cal-drop`) */
+  int step_order;         /* strain: the tree step's order, 1 backward Euler, 2 BDF2; 0: the
+                             level's default (robot_strain_leg.c) */
 } csrLegParams;
 
 /* Parts of a calibration a rod leg can leave out (csrLegParams.cal_drop), to measure what each
@@ -253,6 +255,12 @@ typedef struct csrLegType_ {
   int (*update)(csrLeg* leg, const csrBaseState* b1, double alpha, const csrBaseState* b1_alpha,
                 double* change);
   int (*iterate)(csrLeg* leg, double Z[36], double rho[6]);
+  /* The multistep formula the leg's next step of h takes (NULL: backward Euler): the step is
+   * y1 = c[0] y0 + c[1] y_-1 + c[2] h f(y1) on positions and velocities (y_-1 the last step's
+   * start), and prepare's Z, ρ are impulses over c[2] h (the force at the step's end times
+   * c[2] h). The support takes the same formula (core/sim_coupling.c); c depends on the leg's
+   * state (its last step), the same for every leg of a run. */
+  void (*stepCoeffs)(const csrLeg* leg, double h, double c[3]);
 } csrLegType;
 
 /* The pseudo-rigid-body chain level (robot_prb.c). */

@@ -61,6 +61,9 @@ csrStrainParams csr_strainDefaultParams(void) {
   /* Newton stops when no mode moves by more than 1e-11 rad (or strain) over its piece */
   p.static_tol = 1e-11;
   p.static_max_iter = 40;
+  /* backward Euler until BDF2 is chosen by measurement (docs/notes/strain_leg.md, "Second
+   * order") */
+  p.step_order = 1;
   return p;
 }
 
@@ -104,10 +107,11 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
   if (bad_order || par.bend_order < 0 || par.bend_order > CSR_STRAIN_MAX_ORDER ||
       par.axial_order < 0 || par.axial_order > CSR_STRAIN_MAX_ORDER || par.joint_order < -1 ||
       par.joint_order > CSR_STRAIN_MAX_ORDER || par.nsub < 1 || par.nsub > CSR_STRAIN_MAX_SUB ||
-      (par.shear != 0 && par.shear != 1) || !(par.static_tol > 0) || par.static_max_iter < 1) {
+      (par.shear != 0 && par.shear != 1) || !(par.static_tol > 0) || par.static_max_iter < 1 ||
+      (par.step_order != 1 && par.step_order != 2)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
-                "static_max_iter >= 1", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
+                "static_max_iter >= 1, step_order 1 or 2", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
                 CSR_STRAIN_MAX_SUB);
     return NULL;
   }
@@ -305,6 +309,8 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->WMlb);
   free(d->rMl);
   free(d->du);
+  free(d->qm1);
+  free(d->etam1);
   free(d);
 }
 
@@ -401,6 +407,8 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->WMlb = calloc(n * 6, sizeof(double));
   d->rMl = calloc(n, sizeof(double));
   d->du = calloc(n + 6, sizeof(double));
+  d->qm1 = calloc(n, sizeof(double));
+  d->etam1 = calloc(n, sizeof(double));
   d->Wu = calloc(n * n, sizeof(double));
   d->fl = calloc(n, sizeof(double));
   int nslot_all = 1;
@@ -414,7 +422,8 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
       !d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
       !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||
-      !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du) {
+      !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du ||
+      !d->qm1 || !d->etam1) {
     csr_strainDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;
@@ -441,6 +450,12 @@ void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
   memset(d->Vb, 0, sizeof d->Vb);
   memset(&d->wbase, 0, sizeof d->wbase);
   memset(d->Dm, 0, sizeof d->Dm);
+  memset(d->qm1, 0, (size_t)m->n * sizeof(double));
+  memset(d->etam1, 0, (size_t)m->n * sizeof(double));
+  memset(d->Vbm1, 0, sizeof d->Vbm1);
+  memset(d->Xm1, 0, sizeof d->Xm1);
+  memset(d->Dm1, 0, sizeof d->Dm1);
+  d->hprev = 0;
   memset(d->tipd_f, 0, sizeof d->tipd_f);
   if (m->soft) {
     csc_softStateInit(m->soft, d->z);

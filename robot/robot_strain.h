@@ -66,6 +66,10 @@ typedef struct csrStrainParams_ {
   double static_tol;   /* static Newton: largest update of a mode at convergence, as rotation
                           (rad) or strain (-) over its piece */
   int static_max_iter; /* static Newton iterations per load increment */
+  int step_order;      /* the dynamic step (robot_strain_dyn.c): 1 backward Euler linearised at
+                          the step's start (inertia, velocity products and weight there); 2
+                          BDF2 (variable step, a backward-Euler first step) with the whole
+                          residual at the iterate */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */
@@ -169,8 +173,10 @@ csStatus csr_strainStatic(const csrStrainModel* m, csrStrainData* d, const csrRo
  * a constant velocity to the iterations' tolerance, whatever h (backward Euler's velocity form
  * moves it by O(h) of the velocity products every step). */
 
-/* Doubles in the state [q, η, contact anchors, D] (2n + the soft model's history + 3; D the
- * discrete linear momentum of the last step, see Momentum above). */
+/* Doubles in the state [q, η, contact anchors, D, history] (2n + the soft model's history + 3
+ * + 2n + 13; D the discrete linear momentum of the last step, see Momentum above; the history
+ * is BDF2's (step_order 2): the last step's start q, η, base twist, mass moment and D, and its
+ * length, 0 before the first step). */
 int csr_strainStateSize(const csrStrainModel* m);
 void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double* y);
 /* 0, or -1 (nothing changed) for non-finite values. */
@@ -225,6 +231,15 @@ void csr_strainBaseWrench(const csrStrainModel* m, const csrStrainData* d, csrWr
  * (world), and the contact report (deepest penetration, sliding slots). 0 or the law's code. */
 int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[3], double mo[3],
                             cscSoftReport* rep);
+/* BDF2's coefficients for a step of h after a step of h_prev (variable step, ω = h / h_prev):
+ * y1 = c[0] y0 + c[1] y_-1 + c[2] h f(y1), c = ((1+ω)²/(1+2ω), -ω²/(1+2ω), (1+ω)/(1+2ω));
+ * backward Euler (1, 0, 1) for the first step (h_prev 0) and after a step more than doubles
+ * (ω > 2: variable-step BDF2 is zero-stable only below 1 + √2). A support stepped with the
+ * legs (tests/robot/strain_test_robot.h) takes the same coefficients. */
+void csr_strainBdf2Coeffs(double h, double h_prev, double c[3]);
+/* The coefficients the next step of h takes at the current state: csr_strainBdf2Coeffs with
+ * the last step's length under step_order 2, (1, 0, 1) under step_order 1. */
+void csr_strainStepCoeffs(const csrStrainModel* m, const csrStrainData* d, double h, double c[3]);
 /* Kinetic energy (leg and base motion) and elastic energy relative to the rest strains (N mm). */
 void csr_strainEnergy(const csrStrainModel* m, csrStrainData* d, double* kinetic,
                       double* elastic);

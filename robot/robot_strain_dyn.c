@@ -36,7 +36,32 @@
 #define CSR_STRAIN_BIAS_STEP 1e-6
 
 
-int csr_strainStateSize(const csrStrainModel* m) { return 2 * m->n + m->nhist + 3; }
+/* the BDF2 history's doubles after [q, η, anchors, D]: q and η (2n), the base twist (6), Σ m x
+ * (3), D (3) of the last step's start, and its length (1) */
+static int historySize(const csrStrainModel* m) { return 2 * m->n + 13; }
+
+
+void csr_strainStepCoeffs(const csrStrainModel* m, const csrStrainData* d, double h,
+                          double c[3]) {
+  csr_strainBdf2Coeffs(h, m->par.step_order == 2 ? d->hprev : 0, c);
+}
+
+
+int csr_strainStateSize(const csrStrainModel* m) {
+  return 2 * m->n + m->nhist + 3 + historySize(m);
+}
+
+
+void csr_strainBdf2Coeffs(double h, double h_prev, double c[3]) {
+  const double w = h_prev > 0 ? h / h_prev : 0;
+  if (!(w > 0) || w > 2) {
+    c[0] = 1, c[1] = 0, c[2] = 1;
+    return;
+  }
+  c[0] = (1 + w) * (1 + w) / (1 + 2 * w);
+  c[1] = -w * w / (1 + 2 * w);
+  c[2] = (1 + w) / (1 + 2 * w);
+}
 
 
 void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double* y) {
@@ -44,11 +69,18 @@ void csr_strainGetState(const csrStrainModel* m, const csrStrainData* d, double*
   memcpy(y + m->n, d->eta, (size_t)m->n * sizeof(double));
   memcpy(y + 2 * m->n, d->z, (size_t)m->nhist * sizeof(double));
   memcpy(y + 2 * m->n + m->nhist, d->Dm, sizeof d->Dm);
+  double* yh = y + 2 * m->n + m->nhist + 3;
+  memcpy(yh, d->qm1, (size_t)m->n * sizeof(double));
+  memcpy(yh + m->n, d->etam1, (size_t)m->n * sizeof(double));
+  memcpy(yh + 2 * m->n, d->Vbm1, sizeof d->Vbm1);
+  memcpy(yh + 2 * m->n + 6, d->Xm1, sizeof d->Xm1);
+  memcpy(yh + 2 * m->n + 9, d->Dm1, sizeof d->Dm1);
+  yh[2 * m->n + 12] = d->hprev;
 }
 
 
 int csr_strainSetState(const csrStrainModel* m, csrStrainData* d, const double* y) {
-  for (int j = 0; j < 2 * m->n + m->nhist + 3; j++) {
+  for (int j = 0; j < csr_strainStateSize(m); j++) {
     if (!isfinite(y[j])) {
       return -1;
     }
@@ -57,6 +89,13 @@ int csr_strainSetState(const csrStrainModel* m, csrStrainData* d, const double* 
   memcpy(d->eta, y + m->n, (size_t)m->n * sizeof(double));
   memcpy(d->z, y + 2 * m->n, (size_t)m->nhist * sizeof(double));
   memcpy(d->Dm, y + 2 * m->n + m->nhist, sizeof d->Dm);
+  const double* yh = y + 2 * m->n + m->nhist + 3;
+  memcpy(d->qm1, yh, (size_t)m->n * sizeof(double));
+  memcpy(d->etam1, yh + m->n, (size_t)m->n * sizeof(double));
+  memcpy(d->Vbm1, yh + 2 * m->n, sizeof d->Vbm1);
+  memcpy(d->Xm1, yh + 2 * m->n + 6, sizeof d->Xm1);
+  memcpy(d->Dm1, yh + 2 * m->n + 9, sizeof d->Dm1);
+  d->hprev = yh[2 * m->n + 12];
   d->kin_valid = 0;
   d->h = 0;
   return 0;
@@ -254,10 +293,29 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
 }
 
 
-/* The step's constant part at its start (the state now): the inertia M(q0), the velocity
- * products, weight and tip load at the start, the strains' elastic and damping forces
- * linearised at the end (exact: they are linear), into d->WM* and d->rM*; the start saved. */
-static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
+/* the step's start: Σ m x (kinematics valid), q0, η0, the base's twist and frame, Δu = 0 */
+static void saveStart(const csrStrainModel* m, csrStrainData* d) {
+  const int n = m->n;
+  massMoment(m, d, d->X0m);
+  memcpy(d->q0, d->q, (size_t)n * sizeof(double));
+  memcpy(d->eta0, d->eta, (size_t)n * sizeof(double));
+  memcpy(d->Vb0, d->Vb, sizeof d->Vb0);
+  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
+  memset(d->du, 0, (size_t)(6 + n) * sizeof(double));
+}
+
+
+/* The step's inertia and forces at the state now, into d->WM* and d->rM*.
+ * at_iterate 0 (step_order 1, the step's start): the inertia M(q0), the velocity products,
+ * weight and tip load at the start, the strains' elastic and damping forces linearised at the
+ * end (exact: they are linear), W Δu = h r backward Euler linearised at the start.
+ * at_iterate 1 (step_order 2, the state an iterate u_it = u0 + Δu_it, q_it = q̄ + h η_it with
+ * h = c[2] h_step): everything at the iterate, so that h r = W Δu_it - R(u_it) with the BDF
+ * residual R = M(q_it) (u_it - ū) - h (F(q_it, u_it) + b - K q_it - τ_d K η_it), ū = c[0] u0 +
+ * c[1] u_-1; the contact (added by condense) and the momentum rows complete it:
+ *   h r = M (ū - u0) + (h τ_d + h²) K Δη_it + h (F + b - K q_it - τ_d K η_it).
+ * Converged (R = 0 with the contact's force at the iterate) the step is BDF2 exactly. */
+static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_iterate) {
   const int n = m->n;
   /* the velocity-product accelerations Ġ_p u by central differences */
   double emax = 0;
@@ -330,9 +388,53 @@ static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
       }
     }
   }
+  const double tau = m->rpar.damping_time;
+  if (at_iterate) {
+    /* BDF's history, M (ū - u0) / h with ū - u0 = (c0 - 1) u0 + c1 u_-1 (zero for backward
+     * Euler), by the inertia alone (before K joins W_ll's diagonal) */
+    const double c0 = d->bc[0], c1 = d->bc[1];
+    if (c0 != 1 || c1 != 0) {
+      double* w = d->Gs; /* 6 + n scratch */
+      for (int c = 0; c < 6; c++) {
+        w[c] = ((c0 - 1) * d->Vb0[c] + c1 * d->Vbm1[c]) / h;
+      }
+      for (int j = 0; j < n; j++) {
+        w[6 + j] = ((c0 - 1) * d->eta0[j] + c1 * d->etam1[j]) / h;
+      }
+      for (int a = 0; a < 6; a++) {
+        double t = 0;
+        for (int c = 0; c < 6; c++) {
+          t += d->WMbb[6 * a + c] * w[c];
+        }
+        for (int j = 0; j < n; j++) {
+          t += d->WMlb[6 * j + a] * w[6 + j];
+        }
+        rb[a] += t;
+      }
+      for (int j = 0; j < n; j++) {
+        double t = 0;
+        for (int c = 0; c < 6; c++) {
+          t += d->WMlb[6 * j + c] * w[c];
+        }
+        for (int k = 0; k < n; k++) {
+          t += d->WMll[(size_t)j * n + k] * w[6 + k];
+        }
+        d->rMl[j] += t;
+      }
+    }
+    /* the elastic and damping forces at the iterate and W's (h τ_d + h²) K Δη_it */
+    for (int j = 0; j < n; j++) {
+      d->rMl[j] += d->b[j] - d->Kd[j] * (d->q[j] + tau * d->eta[j]) +
+                   (tau + h) * d->Kd[j] * d->du[6 + j];
+      d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+      if (!isfinite(d->rMl[j])) {
+        return 1;
+      }
+    }
+    return 0;
+  }
   /* the strains' elastic and damping forces at the step's end,
    * b - K (q0 + h η1) - τ_d K η1 with η1 = η0 + Δη */
-  const double tau = m->rpar.damping_time;
   for (int j = 0; j < n; j++) {
     d->rMl[j] += d->b[j] - d->Kd[j] * (d->q[j] + (tau + h) * d->eta[j]);
     d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
@@ -340,12 +442,7 @@ static int assembleStart(const csrStrainModel* m, csrStrainData* d, double h) {
       return 1;
     }
   }
-  massMoment(m, d, d->X0m);
-  memcpy(d->q0, d->q, (size_t)n * sizeof(double));
-  memcpy(d->eta0, d->eta, (size_t)n * sizeof(double));
-  memcpy(d->Vb0, d->Vb, sizeof d->Vb0);
-  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
-  memset(d->du, 0, (size_t)(6 + n) * sizeof(double));
+  saveStart(m, d);
   return 0;
 }
 
@@ -366,7 +463,13 @@ static void momentumRows(const csrStrainModel* m, const csrStrainData* d, double
   csu_add3(f, f, d->fcw);
   csu_add3(f, f, d->tipd_f);
   for (int i = 0; i < 3; i++) {
-    Rw[i] = (X1[i] - d->X0m[i]) / h - d->Dm[i] - h * f[i];
+    /* BDF2 (robot_strain.h): (X1 - X̄) / h - D̄ = h f, X̄ = c0 X0 + c1 X_-1, D̄ = c0 D0 + c1 D_-1
+     * (h the implicit part's step); backward Euler: X̄ = X0, D̄ = D0 */
+    const double Xb = m->par.step_order == 2 ? d->bc[0] * d->X0m[i] + d->bc[1] * d->Xm1[i]
+                                             : d->X0m[i];
+    const double Db = m->par.step_order == 2 ? d->bc[0] * d->Dm[i] + d->bc[1] * d->Dm1[i]
+                                             : d->Dm[i];
+    Rw[i] = (X1[i] - Xb) / h - Db - h * f[i];
   }
   csu_mulMatTVec3(Rl, d->Rb, Rw);
   for (int i = 0; i < 3; i++) {
@@ -478,7 +581,8 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
                     double Z[36], double rho[6]) {
   const int n = m->n;
   double Wbb[36], rb[6];
-  if (du) {
+  /* BDF2 (step_order 2) assembles the whole residual at every iterate: nothing is kept */
+  if (du && m->par.step_order == 1) {
     double fb[6] = {0, 0, 0, 0, 0, 0};
     int same = 1;
     memset(d->fl, 0, (size_t)n * sizeof(double));
@@ -556,6 +660,10 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   }
   memcpy(d->Zp, Z, sizeof d->Zp);
   memcpy(d->rhop, rho, sizeof d->rhop);
+  if (m->par.step_order == 2) {
+    /* Z, ρ are in the hip's body coordinates at the iterate */
+    memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
+  }
   for (int a = 0; a < 6; a++) {
     if (!isfinite(rho[a])) {
       return 1;
@@ -565,15 +673,49 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
 }
 
 
+/* BDF2's prepare (step_order 2): the start saved, the first iterate u_it = u0 at the predicted
+ * q̄ + c2 h η0, everything assembled there */
+static int prepareBdf(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+                      double rho[6]) {
+  const int n = m->n;
+  csr_strainBdf2Coeffs(h, d->hprev, d->bc);
+  d->he = d->bc[2] * h;
+  if (d->kin_valid < 1) {
+    csr_strainKinematics_(m, d, 0);
+  }
+  saveStart(m, d);
+  for (int j = 0; j < n; j++) {
+    d->q[j] = d->bc[0] * d->q0[j] + d->bc[1] * d->qm1[j] + d->he * d->eta[j];
+  }
+  d->kin_valid = 0;
+  csr_strainKinematics_(m, d, 1);
+  d->lu_plain = 0;
+  int rc = assemble(m, d, d->he, 1);
+  return rc != 0 ? rc : condense(m, d, d->he, d->du, Z, rho);
+}
+
+
 int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
                       double rho[6]) {
   if (!(h > 0) || !isfinite(h) || !Z || !rho) {
     return -1;
   }
   d->h = 0;
-  int rc = assembleStart(m, d, h);
-  if (rc == 0) {
-    rc = condense(m, d, h, NULL, Z, rho);
+  int rc;
+  if (m->par.step_order == 2) {
+    rc = prepareBdf(m, d, h, Z, rho);
+    if (rc != 0) {
+      /* the start back: the state is not changed by a failed prepare */
+      memcpy(d->q, d->q0, (size_t)m->n * sizeof(double));
+      d->kin_valid = 0;
+    }
+  } else {
+    d->bc[0] = 1, d->bc[1] = 0, d->bc[2] = 1;
+    d->he = h;
+    rc = assemble(m, d, h, 0);
+    if (rc == 0) {
+      rc = condense(m, d, h, NULL, Z, rho);
+    }
   }
   if (rc != 0) {
     return rc;
@@ -590,8 +732,9 @@ int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], d
     return -1;
   }
   /* a leg without contact in its factor: if no shape touches at the iterate's poses, the
-   * iterate needs those poses alone (no Jacobians, no point twists) */
-  if (d->lu_plain) {
+   * iterate needs those poses alone (no Jacobians, no point twists); BDF2 assembles its whole
+   * residual at the iterate instead */
+  if (d->lu_plain && m->par.step_order == 1) {
     if (d->kin_valid < 1) {
       csr_strainKinematics_(m, d, 0);
     }
@@ -604,6 +747,10 @@ int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], d
   /* the kinematics and point twists at the iterate's end of the step */
   if (d->kin_valid < 2) {
     csr_strainKinematics_(m, d, 1);
+  }
+  if (m->par.step_order == 2) {
+    int rc = assemble(m, d, d->he, 1);
+    return rc != 0 ? rc : condense(m, d, d->he, d->du, Z, rho);
   }
   csr_strainPointTwists_(m, d);
   return condense(m, d, d->h, d->du, Z, rho);
@@ -622,7 +769,8 @@ int csr_strainUpdateDamped(const csrStrainModel* m, csrStrainData* d, const doub
     return -1;
   }
   const int n = m->n;
-  const double h = d->h;
+  const double h = d->h, he = d->he;
+  const int bdf = m->par.step_order == 2;
   /* the base's ΔV of this iterate: the last one moved by alpha toward the solve's */
   double dVa[6];
   for (int c = 0; c < 6; c++) {
@@ -636,7 +784,7 @@ int csr_strainUpdateDamped(const csrStrainModel* m, csrStrainData* d, const doub
     for (int c = 0; c < 6; c++) {
       s += d->Zp[6 * a + c] * dVa[c];
     }
-    Jb[a] = -s / h;
+    Jb[a] = -s / he;
   }
   csu_mulMatVec3(d->wbase.m, d->Rbp, Jb);
   csu_mulMatVec3(d->wbase.f, d->Rbp, Jb + 3);
@@ -652,7 +800,8 @@ int csr_strainUpdateDamped(const csrStrainModel* m, csrStrainData* d, const doub
     s = d->du[6 + j] + alpha * (s - d->du[6 + j]);
     d->du[6 + j] = s;
     d->eta[j] = d->eta0[j] + s;
-    d->q[j] = d->q0[j] + h * d->eta[j];
+    d->q[j] = bdf ? d->bc[0] * d->q0[j] + d->bc[1] * d->qm1[j] + he * d->eta[j]
+                  : d->q0[j] + h * d->eta[j];
   }
   memcpy(d->du, dVa, 6 * sizeof(double));
   d->chg_prev = d->chg_last;
@@ -688,8 +837,18 @@ int csr_strainCommit(const csrStrainModel* m, csrStrainData* d) {
   double X1[3];
   massMoment(m, d, X1);
   for (int i = 0; i < 3; i++) {
-    d->Dm[i] = (X1[i] - d->X0m[i]) / h;
+    const double Dnew = m->par.step_order == 2
+                            ? (X1[i] - d->bc[0] * d->X0m[i] - d->bc[1] * d->Xm1[i]) / d->he
+                            : (X1[i] - d->X0m[i]) / h;
+    /* the history moves on (BDF2's; kept by backward Euler too, unused there) */
+    d->Dm1[i] = d->Dm[i];
+    d->Xm1[i] = d->X0m[i];
+    d->Dm[i] = Dnew;
   }
+  memcpy(d->qm1, d->q0, (size_t)m->n * sizeof(double));
+  memcpy(d->etam1, d->eta0, (size_t)m->n * sizeof(double));
+  memcpy(d->Vbm1, d->Vb0, sizeof d->Vbm1);
+  d->hprev = h;
   if (!m->soft) {
     return 0;
   }

@@ -114,6 +114,15 @@ struct csrStrainData_ {
   double* fl;     /* (n) scratch: the contact's generalised force at an iterate */
   double chg_last, chg_prev; /* the leg's last two iterate moves (csr_strainUpdateDamped) */
   int nreuse;     /* iterates in a row that kept the iteration matrix */
+  /* BDF2 (step_order 2): the last step's start (state) and this step's coefficients */
+  double* qm1;    /* (n) q at the last step's start */
+  double* etam1;  /* (n) η there */
+  double Vbm1[6]; /* the base's body twist there */
+  double Xm1[3];  /* Σ m x there, world (t mm) */
+  double Dm1[3];  /* D of the step before the last (t mm/s) */
+  double hprev;   /* the last step's length (s); 0: none (the next is backward Euler) */
+  double bc[3];   /* this step's coefficients (csr_strainBdf2Coeffs) */
+  double he;      /* c[2] h: the implicit part's step (s) */
   double* z;      /* (nhist) contact anchors (state) */
   cscShapeState* sst; /* (nshape) scratch */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */

@@ -39,6 +39,9 @@
 enum { BASE_DOUBLES = 18 };
 /* capsules drawn along the centreline (contactShapes) */
 enum { DRAWN_CAPSULES = 15 };
+/* the level's step formula (csrLegParams.step_order 0): backward Euler until BDF2 is measured
+ * through the driver (docs/notes/strain_leg.md, "Second order") */
+enum { STRAIN_STEP_ORDER = 1 };
 
 struct csrLeg_ {
   csrActuator act;
@@ -51,6 +54,8 @@ struct csrLeg_ {
   csrBaseState b;            /* the hip now (the prepared step's start between prepare and
                                 finish) */
   csrBaseState b_init;       /* the hip at creation (reset) */
+  csrBaseState b_it;         /* the hip where the last Newton update left the leg (iterate's
+                                frame) */
   double Zw[36];             /* the last prepared step's Z in the world frame at the hip */
   double hz;                 /* its step (s); 0 before the first */
   int ns;                    /* doubles of the strain state */
@@ -77,9 +82,11 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   }
   const csrLegParams* lp = spec->params;
   if (lp->links_per_segment < 1 || lp->links_per_segment > CSR_STRAIN_MAX_ORDER + 1 ||
-      !(lp->E_bend > 0) || !(lp->damping_time >= 0) || !(lp->contact_radius > 0)) {
+      !(lp->E_bend > 0) || !(lp->damping_time >= 0) || !(lp->contact_radius > 0) ||
+      lp->step_order < 0 || lp->step_order > 2) {
     cs_errorSet(err, CS_ERR_RANGE, "strain leg: need 1..%d bending modes per segment (--links), "
-                "E_bend > 0, damping >= 0, contact radius > 0", CSR_STRAIN_MAX_ORDER + 1);
+                "E_bend > 0, damping >= 0, contact radius > 0, step order 0, 1 or 2",
+                CSR_STRAIN_MAX_ORDER + 1);
     return NULL;
   }
   csrLeg* leg = calloc(1, sizeof *leg);
@@ -95,6 +102,7 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->rp.cal_drop = lp->cal_drop;
   leg->sp = csr_strainDefaultParams();
   leg->sp.bend_order = lp->links_per_segment - 1;
+  leg->sp.step_order = lp->step_order ? lp->step_order : STRAIN_STEP_ORDER;
   leg->soft = csc_softDefaultParams();
   if (spec->contact) {
     leg->soft.mu = spec->contact->mu;
@@ -204,6 +212,10 @@ static void bodyTwist(const csrBaseState* b, double V[6]) {
 }
 
 
+static void mapToWorld(csrLeg* leg, double h, const double R[9], const double Zb[36],
+                       const double rb[6], double Z[36], double rho[6]);
+
+
 /* the leg's condensed step (Zb, rb: hip body coordinates, robot_strain.h) as the driver's
  * world Z, ρ at the hip (robot_leg.h prepare), for the step of h from the hip's state b0 */
 static void toWorld(csrLeg* leg, double h, const csrBaseState* b0, const double Zb[36],
@@ -223,12 +235,19 @@ static void toWorld(csrLeg* leg, double h, const csrBaseState* b0, const double 
       rb[i] += h * Zb[6 * i + 3 + e] * dlin[e];
     }
   }
-  /* P = [[0, Rᵀ], [Rᵀ, 0]]: world hip twist (v; ω) -> body (ω_b; v_b) */
+  mapToWorld(leg, h, b0->R, Zb, rb, Z, rho);
+}
+
+
+/* Z_w = Pᵀ Z_b P, ρ_w = Pᵀ ρ_b with P = [[0, Rᵀ], [Rᵀ, 0]] (world hip twist (v; ω) -> body
+ * (ω_b; v_b) in the frame R) */
+static void mapToWorld(csrLeg* leg, double h, const double R[9], const double Zb[36],
+                       const double rb[6], double Z[36], double rho[6]) {
   double P[36];
   memset(P, 0, sizeof P);
   for (int i = 0; i < 3; i++) {
     for (int j = 0; j < 3; j++) {
-      const double RT = b0->R[3 * j + i];
+      const double RT = R[3 * j + i];
       P[6 * i + 3 + j] = RT;
       P[6 * (3 + i) + j] = RT;
     }
@@ -270,18 +289,47 @@ static int updateStrain(csrLeg* leg, const csrBaseState* b1, double alpha,
   for (int i = 0; i < 6; i++) {
     dV[i] = V1[i] - V0[i];
   }
-  return csr_strainUpdateDamped(leg->m, leg->d, dV, alpha, b1_alpha ? b1_alpha : b1, change);
+  leg->b_it = b1_alpha ? *b1_alpha : *b1;
+  return csr_strainUpdateDamped(leg->m, leg->d, dV, alpha, &leg->b_it, change);
 }
 
 
+/* An iterate's Z, ρ in the world: the leg linearised its step at the iterate, its hip's frame
+ * R_it there (its rows, the momentum and contact ones, are in that frame), so the support's
+ * world twist change maps to the hip's body-twist change as ΔV_b = R_itᵀ Δu + δ_it with
+ * δ_it = (R_itᵀ - R0ᵀ) u0 exact (u0 the hip's world twist at the step's start) and the impulse
+ * back by R_it. Mapped with the start's frame R0 instead (before 2026-12-05), the leg's linear
+ * momentum rows reached the support turned by the step's rotation, and the frictionless centre
+ * of mass drifted at first order through the driver (docs/notes/strain_leg.md, "Drift"). */
 static int iterateStrain(csrLeg* leg, double Z[36], double rho[6]) {
   double Zb[36], rb[6];
   int rc = csr_strainIterate(leg->m, leg->d, Zb, rb);
   if (rc != 0) {
     return rc;
   }
-  toWorld(leg, leg->hz, &leg->b, Zb, rb, Z, rho);
+  const csrBaseState* b0 = &leg->b;
+  const double* Ri = leg->b_it.R;
+  double dw[3], dv[3], a[3], c[3], delta[6];
+  csu_mulMatTVec3(a, Ri, b0->w);
+  csu_mulMatTVec3(c, b0->R, b0->w);
+  csu_sub3(dw, a, c);
+  csu_mulMatTVec3(a, Ri, b0->v);
+  csu_mulMatTVec3(c, b0->R, b0->v);
+  csu_sub3(dv, a, c);
+  memcpy(delta, dw, sizeof dw);
+  memcpy(delta + 3, dv, sizeof dv);
+  for (int i = 0; i < 6; i++) {
+    for (int e = 0; e < 6; e++) {
+      rb[i] -= Zb[6 * i + e] * delta[e];
+    }
+  }
+  mapToWorld(leg, leg->hz, Ri, Zb, rb, Z, rho);
   return 0;
+}
+
+
+static void stepCoeffsStrain(const csrLeg* leg, double h, double c[3]) {
+  csr_strainStepCoeffs(leg->m, leg->d, h, c);
 }
 
 
@@ -356,6 +404,17 @@ static void massMomentStrain(const csrLeg* leg, double mx[3]) {
 }
 
 
+/* the terrain's force on the leg now (robot_leg.h contactForce): every touching shape through
+ * the law with the friction anchors of the state (return-mapped at the last step's end), so a
+ * stance foot reports its stick force, not only the normal one */
+static void contactForceStrain(const csrLeg* leg, double f[3]) {
+  double mo[3];
+  if (csr_strainContactWrench(leg->m, leg->d, f, mo, NULL) != 0) {
+    f[0] = f[1] = f[2] = 0.0;
+  }
+}
+
+
 static double contactDepthStrain(const csrLeg* leg) {
   double f[3], mo[3];
   cscSoftReport rep;
@@ -386,6 +445,7 @@ const csrLegType csr_leg_strain = {
     .mass = massStrain,
     .massMoment = massMomentStrain,
     .contactDepth = contactDepthStrain,
+    .contactForce = contactForceStrain,
     /* 1 ms: the largest step whose track is within 1 mm of the half-step run on both scenes
      * (issue 32's rule; docs/notes/strain_leg.md "In the driver", Newton passes): the flat
      * road's 9 s alone would allow 2.5 ms (0.95 mm from 1.25 ms; 5 ms 1.53 mm from 2.5 ms), but
@@ -395,4 +455,5 @@ const csrLegType csr_leg_strain = {
     .finish = finishStrain,
     .update = updateStrain,
     .iterate = iterateStrain,
+    .stepCoeffs = stepCoeffsStrain,
 };

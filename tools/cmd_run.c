@@ -4,7 +4,8 @@
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
  *   --coupling staggered|stabilised|gs|tree, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
- *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K), --cal-rule prism|rbf|rbf-pair
+ *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K), --step-order 1|2 (strain
+ *   legs' tree step: backward Euler or BDF2), --cal-rule prism|rbf|rbf-pair
  *   (the FE mode table's rule),
  *   --tol MM and --levels FILE (with --legs auto: the cheapest measured configuration of the
  *   scene whose track error is within MM, from the table robot/levels.csv, robot_levels.h).
@@ -86,6 +87,8 @@ static const csxOpt kRunOpts[] = {
     {"--rod-tol", "K", "1",
      "multiplies every CVODE tolerance of rod legs, 0 < K <= 1000; recorded as "
      "rod_tolerance_scale"},
+    {"--step-order", "1|2", "the level's (strain: 1)",
+     "strain legs: the tree step's formula, 1 backward Euler, 2 BDF2 (support and legs)"},
     {"--tol", "MM", NULL,
      "with --legs auto: the track error allowed against the rod reference, in mm"},
     {"--levels", "FILE", "robot/levels.csv",
@@ -141,6 +144,7 @@ static const struct {
     {"--tol", offsetof(csRunDef, legs_tol_mm), 1},
     {"--contact-scale", offsetof(csRunDef, contact_scale), 1},
     {"--rod-tol", offsetof(csRunDef, rod_tol), 1},
+    {"--step-order", offsetof(csRunDef, step_order), 1},
     {"--iterations", offsetof(csRunDef, iterations), 1},
 };
 

@@ -4,7 +4,9 @@
  * the legs (condense, back-substitute, contact) and the support's solve.
  *
  * Usage: bench_strain_robot [GAIT.csv] [MU] [H_S] [T_END_S] [BEND_ORDER] [MAXIT] [TOL]
- * (defaults: gaits/flat_road.csv under CS_SOURCE_DIR, 0.8, 5e-3, 9, 2, 8, 1e-7; conditions
+ *        [STEP_ORDER]
+ * (defaults: gaits/flat_road.csv under CS_SOURCE_DIR, 0.8, 5e-3, 9, 2, 8, 1e-7, 1: backward
+ * Euler, 2: BDF2 for the legs and the support, strain_test_robot.h; conditions
  * `paper`, the shipped calibration robot/calibration_fe_leg.h5). MAXIT 1 is the one linearised
  * pass; more are Newton iterations of the whole tree to TOL (rad or mm of a mode's or the
  * support's move against the last iterate). A step that fails (not converged in MAXIT passes,
@@ -35,6 +37,7 @@ int main(int argc, char** argv) {
   int order = argc > 5 ? atoi(argv[5]) : 2;
   int maxit = argc > 6 ? atoi(argv[6]) : 8;
   double tol = argc > 7 ? atof(argv[7]) : 1e-7;
+  int step_order = argc > 8 ? atoi(argv[8]) : 1;
   csError err;
   cs_errorClear(&err);
   csgGait* g = csg_gaitRead(gait_path, NULL, &err);
@@ -43,7 +46,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   StrainRobot* r = calloc(1, sizeof *r);
-  if (!r || strainRobotCreate(r, mu, order, &err) != 0) {
+  if (!r || strainRobotCreateOrder(r, mu, order, step_order, &err) != 0) {
     fprintf(stderr, "bench_strain_robot: %s\n", err.msg);
     return 1;
   }
@@ -55,8 +58,9 @@ int main(int argc, char** argv) {
   long passes = 0, steps = 0, rejected = 0;
   int ns = strainRobotStateSize(r);
   double* save = calloc((size_t)ns, sizeof(double));
-  printf("gait %s, mu %.3g, h %.4g s, bend order %d, %d unknowns per leg, passes <= %d to %.3g\n",
-         gait_path, mu, h, order, csr_strainDofs(r->m[0]), maxit, tol);
+  printf("gait %s, mu %.3g, h %.4g s, bend order %d, %d unknowns per leg, passes <= %d to %.3g, "
+         "step order %d\n", gait_path, mu, h, order, csr_strainDofs(r->m[0]), maxit, tol,
+         step_order);
   for (int i = 0; i < nstep; i++) {
     /* [i h, (i + 1) h]: a rejected piece is restored and halved */
     int fail = strainRobotAdvance(r, g, i * h, (i + 1) * h, maxit, tol, 6, save, &steps,

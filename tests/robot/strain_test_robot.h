@@ -47,6 +47,8 @@ typedef struct {
   double D[3];             /* its discrete linear momentum m (x1 - x0) / h of the last step */
   double g[3];             /* gravity on the support (mm/s²) */
   double t;
+  /* BDF2 (the legs' step_order 2): the last step's start pose, twist, D and length (0: none) */
+  double Rm1[9], xm1[3], Vm1[6], Dm1[3], hprev;
 } StrainRobot;
 
 
@@ -67,8 +69,10 @@ static inline void strainRobotHip(const StrainRobot* r, int k, csrBaseState* b) 
 
 
 /* the robot standing with its feet on the flat road (hips at the leg's length), friction mu,
- * bending order `order`; 0 ok */
-static inline int strainRobotCreate(StrainRobot* r, double mu, int order, csError* err) {
+ * bending order `order`, the legs' and the support's step_order (1 backward Euler, 2 BDF2);
+ * 0 ok */
+static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, int step_order,
+                                         csError* err) {
   memset(r, 0, sizeof *r);
   if (csr_actuatorPreset(&r->act, "leg", err) != CS_OK) {
     return 1;
@@ -87,6 +91,7 @@ static inline int strainRobotCreate(StrainRobot* r, double mu, int order, csErro
   r->soft.mu = mu;
   r->sp = csr_strainDefaultParams();
   r->sp.bend_order = order;
+  r->sp.step_order = step_order;
   csrRobotModel rm;
   if (csr_robotDefaultModel(&rm, err) != CS_OK) {
     return 1;
@@ -130,6 +135,11 @@ static inline int strainRobotCreate(StrainRobot* r, double mu, int order, csErro
 }
 
 
+static inline int strainRobotCreate(StrainRobot* r, double mu, int order, csError* err) {
+  return strainRobotCreateOrder(r, mu, order, 1, err);
+}
+
+
 static inline void strainRobotDestroy(StrainRobot* r) {
   for (int k = 0; k < CSR_NLEG; k++) {
     csr_strainDataDestroy(r->d[k]);
@@ -158,6 +168,45 @@ static inline void strainRobotOwn(const StrainRobot* r, double h, const double R
   csu_cross3(a1, V0, pi);
   for (int i = 0; i < 3; i++) {
     rhs[3 + i] = h * (-a1[i] + r->ms * gb[i]);
+  }
+}
+
+
+/* the support's end pose (R, x) for its end twist V from the start (R0, x0): backward Euler
+ * g0 exp(h V) (c NULL); BDF2 with coefficients c (csr_strainBdf2Coeffs, he = c[2] h) on the
+ * rotation vector about R0 and the centre's world position:
+ *   R = R0 exp(φ), φ = c1 log(R0ᵀ R_-1) + he ω;   x = c0 x0 + c1 x_-1 + he R v
+ * (the dexp⁻¹ correction of φ' is O(h²) there and enters at O(h³): ω × ω = 0) */
+static inline void strainRobotPose(const StrainRobot* r, double h, const double* c,
+                                   const double R0[9], const double x0[3], const double V[6],
+                                   double R[9], double x[3]) {
+  double Om[6], Re[9], pe[3], t[3];
+  if (!c) {
+    for (int i = 0; i < 6; i++) {
+      Om[i] = h * V[i];
+    }
+    csr_strainExp_(Om, Re, pe);
+    csu_mulMat3(R, R0, Re);
+    csu_mulMatVec3(t, R0, pe);
+    csu_add3(x, x0, t);
+    return;
+  }
+  const double he = c[2] * h;
+  double Rr[9], phi[3];
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      Rr[3 * i + j] = R0[i] * r->Rm1[j] + R0[3 + i] * r->Rm1[3 + j] + R0[6 + i] * r->Rm1[6 + j];
+    }
+  }
+  csu_mat3ToRotVec(phi, Rr);
+  for (int i = 0; i < 3; i++) {
+    phi[i] = c[1] * phi[i] + he * V[i];
+  }
+  csu_rotVecToMat3(Re, phi);
+  csu_mulMat3(R, R0, Re);
+  csu_mulMatVec3(t, R, V + 3);
+  for (int i = 0; i < 3; i++) {
+    x[i] = c[0] * x0[i] + c[1] * r->xm1[i] + he * t[i];
   }
 }
 
@@ -206,6 +255,14 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
   memcpy(R0, r->R, sizeof R0);
   memcpy(x0, r->x, sizeof x0);
   memcpy(V0, r->V, sizeof V0);
+  /* BDF2 (the legs' step_order 2): every pass an iterate, the support's whole residual at it */
+  const int bdf = r->sp.step_order == 2;
+  double c[3] = {1, 0, 1};
+  if (bdf) {
+    csr_strainBdf2Coeffs(h, r->hprev, c);
+    strainRobotPose(r, h, c, R0, x0, V0, r->R, r->x);
+  }
+  const double he = c[2] * h;
   double t0 = csu_wallSeconds(), tl = 0, tt = 0;
   for (int k = 0; k < CSR_NLEG; k++) {
     if (csr_strainActuate(r->m[k], r->d[k], p96 + 12 * k, NULL) != 0 ||
@@ -220,8 +277,28 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
   for (;;) {
     double t1 = csu_wallSeconds();
     tl += t1 - t0;
-    strainRobotOwn(r, h, R0, V0, W, rhs);
-    if (it > 0) {
+    if (bdf) {
+      /* the support's BDF residual at the iterate: h r = M_s (V̄ - V0) + he F(R_it, V_it) (its
+       * own rows; the gyroscopic term's Jacobian left out of W), V̄ = c0 V0 + c1 V_-1 */
+      strainRobotOwn(r, he, r->R, r->V, W, rhs);
+      for (int i = 0; i < 6; i++) {
+        rhs[i] += W[7 * i] * ((c[0] - 1) * V0[i] + c[1] * r->Vm1[i]);
+      }
+      /* the linear rows in BDF2's momentum form: R_itᵀ (m (x_it - x̄) / he - D̄ - he m g) */
+      double Rw[3], Rl[3];
+      for (int i = 0; i < 3; i++) {
+        const double xb = c[0] * x0[i] + c[1] * r->xm1[i];
+        const double Db = c[0] * r->D[i] + c[1] * r->Dm1[i];
+        Rw[i] = r->ms * ((r->x[i] - xb) / he - he * r->g[i]) - Db;
+      }
+      csu_mulMatTVec3(Rl, r->R, Rw);
+      for (int i = 0; i < 3; i++) {
+        rhs[3 + i] = r->ms * dVp[3 + i] - Rl[i];
+      }
+    } else {
+      strainRobotOwn(r, h, R0, V0, W, rhs);
+    }
+    if (it > 0 && !bdf) {
       /* an iterate: the support's linear momentum rows in the legs' discrete momentum form
        * (robot_strain.h): R_1ᵀ (m (x1 - x0) / h - D - h m g) = 0 at the iterate's end pose,
        * its rows of W m I, so h r = m ΔV_it - R */
@@ -247,14 +324,7 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
       dVp[i] += alpha * (dV[i] - dVp[i]);
       r->V[i] = V0[i] + dVp[i];
     }
-    double Om[6], Re[9], pe[3], t[3];
-    for (int i = 0; i < 6; i++) {
-      Om[i] = h * r->V[i];
-    }
-    csr_strainExp_(Om, Re, pe);
-    csu_mulMat3(r->R, R0, Re);
-    csu_mulMatVec3(t, R0, pe);
-    csu_add3(r->x, x0, t);
+    strainRobotPose(r, h, bdf ? c : NULL, R0, x0, r->V, r->R, r->x);
     t0 = csu_wallSeconds();
     tt += t0 - t1;
     for (int k = 0; k < CSR_NLEG; k++) {
@@ -301,8 +371,15 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
     return 1;
   }
   for (int i = 0; i < 3; i++) {
-    r->D[i] = r->ms * (r->x[i] - x0[i]) / h;
+    const double Dn = bdf ? r->ms * (r->x[i] - c[0] * x0[i] - c[1] * r->xm1[i]) / he
+                          : r->ms * (r->x[i] - x0[i]) / h;
+    r->Dm1[i] = r->D[i];
+    r->D[i] = Dn;
   }
+  memcpy(r->Rm1, R0, sizeof R0);
+  memcpy(r->xm1, x0, sizeof x0);
+  memcpy(r->Vm1, V0, sizeof V0);
+  r->hprev = h;
   for (int k = 0; k < CSR_NLEG; k++) {
     if (csr_strainCommit(r->m[k], r->d[k]) != 0) {
       return 1;
@@ -330,7 +407,7 @@ static inline int strainRobotStep(StrainRobot* r, double h, const double p96[96]
 /* the robot's whole state: the support and every leg's state (a caller-owned buffer of
  * strainRobotStateSize doubles) */
 static inline int strainRobotStateSize(const StrainRobot* r) {
-  int n = 9 + 3 + 6 + 1 + 3;
+  int n = 9 + 3 + 6 + 1 + 3 + 22;
   for (int k = 0; k < CSR_NLEG; k++) {
     n += csr_strainStateSize(r->m[k]);
   }
@@ -344,7 +421,12 @@ static inline void strainRobotSave(const StrainRobot* r, double* y) {
   memcpy(y + 12, r->V, 6 * sizeof(double));
   y[18] = r->t;
   memcpy(y + 19, r->D, 3 * sizeof(double));
-  y += 22;
+  memcpy(y + 22, r->Rm1, 9 * sizeof(double));
+  memcpy(y + 31, r->xm1, 3 * sizeof(double));
+  memcpy(y + 34, r->Vm1, 6 * sizeof(double));
+  memcpy(y + 40, r->Dm1, 3 * sizeof(double));
+  y[43] = r->hprev;
+  y += 44;
   for (int k = 0; k < CSR_NLEG; k++) {
     csr_strainGetState(r->m[k], r->d[k], y);
     y += csr_strainStateSize(r->m[k]);
@@ -358,7 +440,12 @@ static inline void strainRobotRestore(StrainRobot* r, const double* y) {
   memcpy(r->V, y + 12, 6 * sizeof(double));
   r->t = y[18];
   memcpy(r->D, y + 19, 3 * sizeof(double));
-  y += 22;
+  memcpy(r->Rm1, y + 22, 9 * sizeof(double));
+  memcpy(r->xm1, y + 31, 3 * sizeof(double));
+  memcpy(r->Vm1, y + 34, 6 * sizeof(double));
+  memcpy(r->Dm1, y + 40, 3 * sizeof(double));
+  r->hprev = y[43];
+  y += 44;
   for (int k = 0; k < CSR_NLEG; k++) {
     csr_strainSetState(r->m[k], r->d[k], y);
     csrBaseState b;

@@ -14,7 +14,11 @@
  *    the scheme's first order (measured and held).
  *  - repeat_and_restore_bit_identical: the same steps twice, and from a saved state and base,
  *    give the same bits.
- *  - bad_step_refused: h <= 0 is refused and changes nothing. */
+ *  - bad_step_refused: h <= 0 is refused and changes nothing.
+ *  - step_order_observed: the leg, base held, swung by a smooth pressure pulse for 0.3 s and
+ *    stepped with Newton passes to convergence at h = 4, 2, 1, 0.5 ms: the order observed from
+ *    the tip's successive differences is 1 for backward Euler (step_order 1, linearised at the
+ *    start) and 2 for BDF2 (step_order 2, the residual at the iterate). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -32,6 +36,27 @@ static int stepHeld(const csrStrainModel* m, csrStrainData* d, double h) {
     rc = csr_strainFinish(m, d, zero, NULL);
   }
   return rc;
+}
+
+
+/* one step with the base held, Newton passes until no mode moves by more than tol (rad or
+ * strain over its piece, times h); 0 ok */
+static int stepHeldNewton(const csrStrainModel* m, csrStrainData* d, double h, double tol) {
+  double Z[36], rho[6];
+  const double zero[6] = {0, 0, 0, 0, 0, 0};
+  int rc = csr_strainPrepare(m, d, h, Z, rho);
+  for (int it = 0; rc == 0; it++) {
+    double chg = 0;
+    rc = csr_strainUpdate(m, d, zero, NULL, &chg);
+    if (rc != 0 || (it > 0 && chg <= tol)) {
+      break;
+    }
+    if (it >= 30) {
+      return 1;
+    }
+    rc = csr_strainIterate(m, d, Z, rho);
+  }
+  return rc != 0 ? rc : csr_strainCommit(m, d);
 }
 
 
@@ -126,13 +151,15 @@ static int openCal(LegCal* c) {
 }
 
 
-/* the leg hanging along -y (e1 = +x, e2 = +z, e3 = -y) at the origin, weightless */
-static csrStrainModel* legModel(const LegCal* c) {
+/* the leg hanging along -y (e1 = +x, e2 = +z, e3 = -y) at the origin, weightless, with the
+ * parameters sp (NULL: the defaults) */
+static csrStrainModel* legModelParams(const LegCal* c, const csrStrainParams* sp) {
   csrStrainSpec spec;
   memset(&spec, 0, sizeof spec);
   spec.act = &c->act;
   spec.map = &c->map;
   spec.calib = c->has_rodcal ? &c->rodcal : NULL;
+  spec.params = sp;
   const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
   memcpy(spec.frame, F, sizeof F);
   spec.weightless = 1;
@@ -145,6 +172,9 @@ static csrStrainModel* legModel(const LegCal* c) {
   CS_EXPECT(m != NULL);
   return m;
 }
+
+
+static csrStrainModel* legModel(const LegCal* c) { return legModelParams(c, NULL); }
 
 
 static void released_leg_energy_decreases(void) {
@@ -382,6 +412,63 @@ static void free_floating_momentum(void) {
 }
 
 
+/* the tip (world mm) after 0.3 s of a smooth pulse (II1-Ω3&Ω4, II2-Ω1&Ω2 to 0.18 MPa as
+ * 1 - cos over 0.3 s: smooth, so no kink limits the order) from rest, base held, at step h */
+static int pulseTip(const LegCal* c, int step_order, double h, double tip[3]) {
+  csrStrainParams sp = csr_strainDefaultParams();
+  sp.step_order = step_order;
+  csError err;
+  cs_errorClear(&err);
+  csrStrainModel* m = legModelParams(c, &sp);
+  csrStrainData* d = m ? csr_strainDataCreate(m, &err) : NULL;
+  int rc = d ? 0 : 1;
+  const int n = (int)lround(0.3 / h);
+  for (int i = 1; rc == 0 && i <= n; i++) {
+    double p[12];
+    memset(p, 0, sizeof p);
+    p[2] = p[3] = p[4] = p[5] = 0.09 * (1 - cos(2 * M_PI * i * h / 0.3));
+    rc = csr_strainActuate(m, d, p, &err) != 0 || stepHeldNewton(m, d, h, 1e-12) != 0;
+  }
+  if (rc == 0) {
+    double R[9];
+    csr_strainPose(m, d, csr_strainLength(m), tip, R);
+  }
+  csr_strainDataDestroy(d);
+  csr_strainModelDestroy(m);
+  return rc;
+}
+
+
+static void step_order_observed(void) {
+  LegCal c;
+  if (!openCal(&c)) {
+    return;
+  }
+  const double hs[4] = {2e-3, 1e-3, 5e-4, 2.5e-4};
+  double order[2][2];
+  for (int so = 1; so <= 2; so++) {
+    double tip[4][3], dif[3];
+    for (int i = 0; i < 4; i++) {
+      CS_EXPECT(pulseTip(&c, so, hs[i], tip[i]) == 0);
+    }
+    for (int i = 0; i < 3; i++) {
+      double t[3];
+      csu_sub3(t, tip[i], tip[i + 1]);
+      dif[i] = csu_norm3(t);
+    }
+    order[so - 1][0] = log2(dif[0] / dif[1]);
+    order[so - 1][1] = log2(dif[1] / dif[2]);
+    printf("  step_order %d: tip (%.4f, %.4f, %.4f) mm at 0.25 ms; |tip(h) - tip(h/2)| %.3e / "
+           "%.3e / %.3e mm at h = 2 / 1 / 0.5 ms: observed order %.3f, %.3f\n", so, tip[3][0],
+           tip[3][1], tip[3][2], dif[0], dif[1], dif[2], order[so - 1][0], order[so - 1][1]);
+  }
+  /* the two schemes' own orders, from the last two ratios (the smallest steps) */
+  CS_EXPECT(fabs(order[0][1] - 1) < 0.2);
+  CS_EXPECT(fabs(order[1][1] - 2) < 0.2);
+  csr_calibrationClose(c.cal);
+}
+
+
 static void repeat_and_restore_bit_identical(void) {
   LegCal c;
   if (!openCal(&c)) {
@@ -482,5 +569,6 @@ int main(int argc, char** argv) {
   CS_RUN(free_floating_momentum);
   CS_RUN(repeat_and_restore_bit_identical);
   CS_RUN(bad_step_refused);
+  CS_RUN(step_order_observed);
   return cs_testSummary();
 }

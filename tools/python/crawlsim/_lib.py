@@ -78,6 +78,7 @@ RUNDEF_FIELDS = [
     ("coupling", ctypes.c_char_p, "str"),
     ("contact_scale", ctypes.c_double, "num"),
     ("rod_tol", ctypes.c_double, "num"),
+    ("step_order", ctypes.c_double, "num"),
     ("out", ctypes.c_char_p, "str"),
     ("progress", ctypes.c_int, "int"),
     ("cancel", ctypes.c_void_p, "raw"),
