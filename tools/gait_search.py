@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Search the flat-road gait design's few parameters by simulation (issue 33).
 
-usage: /usr/bin/python3 tools/gait_search.py [--dir DIR] [--evals N] [--robust] [--x0 S,H,U,TL]
-           [--crawlsim build/tools/crawlsim] [--mpirun N] [--write-gait P.gait --params S,H,U,TL]
+usage: /usr/bin/python3 tools/gait_search.py [--dir DIR] [--evals N] [--robust] [--x0 S,H,U,TL[,E]]
+           [--free S,E] [--step 0.6,2] [--crawlsim build/tools/crawlsim] [--mpirun N]
+           [--write-gait P.gait --params S,H,U,TL[,E]]
 
 A design is the shipped flat-road gait's structure (gaits/flat_road.gait: a level-sole stance
 stroke centred on the hip at constant speed, an overlapped load transfer, a level-sole swing, a
@@ -12,6 +13,14 @@ first extra step) with four parameters:
   U   swing height (mm): the swing top's lift (the lift-off pose is U - 2 mm)
   TL  overlap / landing time (s): the lift-off and the landing each take TL at the stance's foot
       speed, the swing 1 - 2 TL
+and, optionally, a fifth for the start (a design parameter, not a per-time-node term):
+  E   the first steps' extra reach (mm): each group's first landing (BDEG at 1 s, ACFH at 2 s)
+      is E ahead of +S/2, so that its first stance stroke (BDEG 1..2 s, ACFH 2..3 s) is S + E;
+      every later stride is unchanged. (The first two strides are the short ones: on the
+      default model the 1..2 and 2..3 s strides are ~5 mm shorter than the steady ones.) Four
+      parameters give the old description byte for byte.
+--free names the parameters the optimiser moves (the others stay at --x0); --step sets the
+initial simplex's step of each free one (default a tenth of its box).
 Each design is written as a description (`crawlsim gait design --stretch` on the mission's
 table: robot/calibration_fe_leg_modes_sym.h5 under rbf-pair, the map the default rod legs use)
 and run on the default model (`crawlsim run --scene flat-road --gait ...`, paper conditions).
@@ -44,12 +53,12 @@ RULE = "rbf-pair"
 P_MAX = 0.4          # MPa, the table's range
 T_NODES = range(2, 10)
 PACE = 39.0          # mm per second, Table 2
-NAMES = ("S", "H", "U", "TL")
+NAMES = ("S", "H", "U", "TL", "E")
 # start: the shipped design's H, U, TL; S scaled by its measured one-branch stride (a first run
 # of S 40.6 strode ~63 mm per second, 1.55 S)
 X0 = (25.0, 3.0, 11.0, 1.0 / 6.0)
-LO = (12.0, 1.0, 6.0, 0.08)
-HI = (45.0, 8.0, 16.0, 0.25)
+LO = (12.0, 1.0, 6.0, 0.08, -5.0)
+HI = (45.0, 8.0, 16.0, 0.25, 15.0)
 
 
 def fail(msg):
@@ -65,17 +74,31 @@ except ImportError as e:  # Debian: python3-h5py python3-numpy python3-scipy
     fail(f"needs h5py, numpy and scipy ({e})")
 
 
-def gait_text(S, H, U, TL):
-    """The description of one design (the structure of gaits/flat_road.gait)."""
+def gait_text(S, H, U, TL, E=None):
+    """The description of one design (the structure of gaits/flat_road.gait); E None: the
+    four-parameter design (no first-step term)."""
     TL = round(TL, 4)    # times on a 1e-4 s grid, so that consecutive moves abut exactly
     ulo = U - 2.0
     back = S * TL        # the foot's travel at the stance speed S mm/s during TL
     sw = 1.0 - 2.0 * TL  # the swing's duration
     f = lambda v: f"{v:.4f}".rstrip("0").rstrip(".")
-    return f"""# flat-road design searched by tools/gait_search.py: S {f(S)} mm, H {f(H)} mm, U {f(U)} mm,
+    if E is None:
+        head = f"""# flat-road design searched by tools/gait_search.py: S {f(S)} mm, H {f(H)} mm, U {f(U)} mm,
 # TL {f(TL)} s (the structure of gaits/flat_road.gait; its rules hold with these values).
 # params: {f(S)},{f(H)},{f(U)},{f(TL)}
-# Poses on the mission's map with the FE's stretch:
+"""
+        first_poses, fu1, hp1, fu2, hp2 = "", "FU", "Hp", "FU", "Hp"
+    else:
+        head = f"""# flat-road design searched by tools/gait_search.py: S {f(S)} mm, H {f(H)} mm, U {f(U)} mm,
+# TL {f(TL)} s, first step's extra reach E {f(E)} mm (the structure of gaits/flat_road.gait;
+# its rules hold with these values).
+# params: {f(S)},{f(H)},{f(U)},{f(TL)},{f(E)}
+"""
+        # each group's first stance stroke starts E further forward: S + E long
+        first_poses = (f"pose Hp1 foot {f(S / 2 + E)} {f(H)} plus\n"
+                       f"pose FU1 foot {f(S / 2 + E + back)} {f(U)} plus\n")
+        fu1, hp1, fu2, hp2 = "FU1", "Hp1", "FU1", "Hp1"
+    return head + f"""# Poses on the mission's map with the FE's stretch:
 #   crawlsim gait design THIS --stretch --calibration {CAL} --cal-rule {RULE} --p-max {P_MAX}
 name flat-road
 sample 0.05
@@ -89,15 +112,15 @@ pose Hm  foot {f(-S / 2)} {f(H)} plus
 pose HmU foot {f(-S / 2 - back)} {f(ulo)} plus
 pose FU  foot {f(S / 2 + back)} {f(U)} plus
 pose M0U foot {f(-back)} {f(ulo)} plus
-# 0..1 s: BDEG lift, reach forward and land at Hp (the support stands); ACFH crouch to M0
-move 0    0.6  BDEG FU
+{first_poses}# 0..1 s: BDEG lift, reach forward and land at {hp1} (the support stands); ACFH crouch to M0
+move 0    0.6  BDEG {fu1}
 move 0.6  0.3  ACFH M0
-move 0.6  0.4  BDEG Hp
-# 1..2 s: BDEG carry the support a whole stroke; ACFH lift off, swing and land at Hp at 2 s
+move 0.6  0.4  BDEG {hp1}
+# 1..2 s: BDEG carry the support a whole stroke; ACFH lift off, swing and land at {hp2} at 2 s
 move 1.0    1.0    BDEG Hm linear
 move 1.0    {f(TL)} ACFH M0U linear
-move {f(1 + TL)} {f(sw)} ACFH FU
-move {f(1 + TL + sw)} {f(TL)} ACFH Hp linear
+move {f(1 + TL)} {f(sw)} ACFH {fu2}
+move {f(1 + TL + sw)} {f(TL)} ACFH {hp2} linear
 # strides 2..9 s
 stride 7 1 2.0 ACFH BDEG
 phase 0      1.0    swing Hm linear
@@ -131,23 +154,33 @@ class Search:
         os.makedirs(self.dir, exist_ok=True)
         self.results = os.path.join(self.dir, "results.csv")
         self.seen = {}
+        self.n = a.n_params
         if os.path.exists(self.results):
+            col = 5
             for line in open(self.results):
-                if line.startswith("#") or line.startswith("key"):
+                if line.startswith("#"):
                     continue
                 w = line.strip().split(",")
-                self.seen[w[0]] = float(w[5])
+                if w[0] == "key":
+                    col = w.index("score")
+                    continue
+                self.seen[w[0]] = float(w[col])
 
     def study(self, name, cases):
-        """Write and run a study of cases [(case, gait_path_or_None, run_words)]; resumable."""
+        """Write and run a study of cases [(case, gait_csv_or_None, run_words)]; resumable. A
+        case without a gait table solves its description DIR/CASE.gait first (gait-design)."""
         path = os.path.join(self.dir, name + ".study")
         lines = [f"study {name}", ""]
         for c, gait, words in cases:
-            gd = os.path.join(self.dir, f"{c.split('__')[0]}.gait")
-            lines.append(f"case {c} gait-design {gd} --stretch --calibration @data/{CAL} "
-                         f"--cal-rule {RULE} --p-max {P_MAX}")
-            lines.append(f"then run --scene flat-road --conditions paper --gait @case/gait.csv "
-                         f"{words}".rstrip())
+            if gait is None:
+                gd = os.path.join(self.dir, f"{c.split('__')[0]}.gait")
+                lines.append(f"case {c} gait-design {gd} --stretch --calibration @data/{CAL} "
+                             f"--cal-rule {RULE} --p-max {P_MAX}")
+                lines.append(f"then run --scene flat-road --conditions paper "
+                             f"--gait @case/gait.csv {words}".rstrip())
+            else:
+                lines.append(f"case {c} run --scene flat-road --conditions paper --gait {gait} "
+                             f"{words}".rstrip())
         text = "\n".join(lines) + "\n"
         if not os.path.exists(path) or open(path).read() != text:
             open(path, "w").write(text)
@@ -190,7 +223,15 @@ class Search:
             return 5.0
         return max(errs) + 0.05 * max(0.0, r["z"] - 5.0) + 0.05 * max(0.0, r["tilt"] - 3.0)
 
-    def evaluate(self, v):
+    def full(self, v):
+        """The whole parameter vector from the optimiser's free ones (the rest from --x0)."""
+        x = list(self.a.x0)
+        for i, vi in zip(self.a.free, v):
+            x[i] = vi
+        return x
+
+    def evaluate(self, vfree):
+        v = self.full(vfree)
         x = [min(max(vi, lo), hi) for vi, lo, hi in zip(v, LO, HI)]
         k = key(x)
         if k in self.seen:
@@ -204,34 +245,51 @@ class Search:
         new = not os.path.exists(self.results)
         with open(self.results, "a") as f:
             if new:
-                f.write("key,S_mm,H_mm,U_mm,TL_s,score,x2,x3,x4,x5,x6,x7,x8,x9,zmax_mm,tilt_deg\n")
+                f.write("key,S_mm,H_mm,U_mm,TL_s," + ("E_mm," if self.n == 5 else "")
+                        + "score,x2,x3,x4,x5,x6,x7,x8,x9,zmax_mm,tilt_deg\n")
             xs = r["x"] if r and "x" in r else [float("nan")] * 10
-            f.write(f"{k},{x[0]:.4f},{x[1]:.4f},{x[2]:.4f},{x[3]:.4f},{s:.6f},"
+            f.write(f"{k}," + "".join(f"{xi:.4f}," for xi in x) + f"{s:.6f},"
                     + ",".join(f"{xs[j]:.2f}" for j in T_NODES)
                     + f",{(r or {}).get('z', float('nan')):.2f},"
                     f"{(r or {}).get('tilt', float('nan')):.2f}\n")
         self.seen[k] = s
-        print(f"{PROG}: {k} S {x[0]:.2f} H {x[1]:.2f} U {x[2]:.2f} TL {x[3]:.3f}: score "
-              f"{s:.4f} x(9) {xs[9]:.1f} mm", flush=True)
+        print(f"{PROG}: {k} S {x[0]:.2f} H {x[1]:.2f} U {x[2]:.2f} TL {x[3]:.3f}"
+              + (f" E {x[4]:.2f}" if self.n == 5 else "")
+              + f": score {s:.4f} x(2) {xs[2]:.1f} x(9) {xs[9]:.1f} mm", flush=True)
         return s
 
     def robust(self, x):
         k = key(x)
         c = f"d{k}"
         open(os.path.join(self.dir, c + ".gait"), "w").write(gait_text(*x))
-        cases = [(c, None, "")] + [(f"{c}__{n}", None, w) for n, w in ROBUST]
-        res = self.study(f"robust_{k}", cases)
+        # the nominal run solves the design; the robustness runs reuse its table (the solve
+        # costs as much as a run)
+        res = self.study(f"eval_{k}", [(c, None, "")])
+        table = os.path.join(self.dir, "cases", c, "gait.csv")
+        if not os.path.exists(table):
+            fail(f"{table}: the design's table was not written (see {self.dir}/cases/{c}/)")
+        res.update(self.study(f"robust_{k}",
+                              [(f"{c}__{n}", table, w) for n, w in ROBUST]))
         nom = res[c]
         x9 = nom["x"][9] if nom and "x" in nom else float("nan")
         path = os.path.join(self.dir, "robust.csv")
         with open(path, "w") as f:
-            f.write(f"# design {k}: S {x[0]:.4f} H {x[1]:.4f} U {x[2]:.4f} TL {x[3]:.4f}\n")
-            f.write("case,options,x9_mm,vs_nominal_pct,vs_table2_pct,zmax_mm,tilt_deg,status\n")
+            f.write(f"# design {k}: " + " ".join(f"{n} {xi:.4f}" for n, xi in zip(NAMES, x))
+                    + "\n")
+            f.write("case,options,x9_mm,vs_nominal_pct,vs_table2_pct,worst_pct,worst_t_s,"
+                    + ",".join(f"x{j}" for j in range(1, 10)) + ",zmax_mm,tilt_deg,status\n")
             for cname, w in [(c, "")] + [(f"{c}__{n}", w) for n, w in ROBUST]:
                 r = res[cname]
-                xi = r["x"][9] if r and "x" in r else float("nan")
+                xs = r["x"] if r and "x" in r else [float("nan")] * 10
+                xi = xs[9]
+                # the worst node against Table 2 from 2 s (signed relative error, its time)
+                errs = [((xs[j] - PACE * (j - 1)) / (PACE * (j - 1)), j) for j in T_NODES]
+                ew = max(errs, key=lambda e: abs(e[0])) if not math.isnan(xi) \
+                    else (float("nan"), 0)
                 f.write(f"{cname},{w},{xi:.2f},{100 * (xi - x9) / x9:+.2f},"
-                        f"{100 * (xi - 312) / 312:+.2f},{(r or {}).get('z', float('nan')):.2f},"
+                        f"{100 * (xi - 312) / 312:+.2f},{100 * ew[0]:+.2f},{ew[1]},"
+                        + ",".join(f"{xs[j]:.2f}" for j in range(1, 10))
+                        + f",{(r or {}).get('z', float('nan')):.2f},"
                         f"{(r or {}).get('tilt', float('nan')):.2f},{(r or {}).get('status', '?')}\n")
         print(open(path).read(), end="")
 
@@ -242,6 +300,10 @@ def main():
     ap.add_argument("--evals", type=int, default=40, help="Nelder-Mead's budget of designs")
     ap.add_argument("--robust", action="store_true")
     ap.add_argument("--x0", default=",".join(str(v) for v in X0))
+    ap.add_argument("--free", default=None, help="the parameters the optimiser moves "
+                    "(default: all of --x0's)")
+    ap.add_argument("--step", default=None, help="initial simplex step of each free parameter "
+                    "(default: a tenth of its box)")
     ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
     ap.add_argument("--mpirun", type=int, default=1)
     ap.add_argument("--write-gait", default=None)
@@ -252,8 +314,8 @@ def main():
             p = [float(v) for v in (a.params or a.x0).split(",")]
         except ValueError:
             p = []
-        if len(p) != 4 or not all(math.isfinite(v) for v in p):
-            fail(f"--params '{a.params}': expected four numbers S,H,U,TL")
+        if len(p) not in (4, 5) or not all(math.isfinite(v) for v in p):
+            fail(f"--params '{a.params}': expected four numbers S,H,U,TL (or five: S,H,U,TL,E)")
         if not all(lo <= v <= hi for v, lo, hi in zip(p, LO, HI)):
             fail(f"--params '{a.params}': outside the search's box "
                  + ", ".join(f"{n} {lo:g}..{hi:g}" for n, lo, hi in zip(NAMES, LO, HI)))
@@ -261,20 +323,36 @@ def main():
         return
     if not os.access(a.crawlsim, os.X_OK):
         fail(f"{a.crawlsim}: not an executable (build first, or give --crawlsim)")
-    x0 = [float(v) for v in a.x0.split(",")]
-    if len(x0) != 4:
-        fail("--x0 needs S,H,U,TL")
+    try:
+        x0 = [float(v) for v in a.x0.split(",")]
+    except ValueError:
+        x0 = []
+    if len(x0) not in (4, 5):
+        fail(f"--x0 '{a.x0}': needs S,H,U,TL or S,H,U,TL,E")
+    a.x0, a.n_params = x0, len(x0)
+    names = NAMES[:len(x0)]
+    free = (a.free or ",".join(names)).split(",")
+    if not free or any(n not in names for n in free) or len(set(free)) != len(free):
+        fail(f"--free '{a.free}': names among {','.join(names)}")
+    a.free = [names.index(n) for n in free]
+    try:
+        step = ([float(v) for v in a.step.split(",")] if a.step
+                else [0.1 * (HI[i] - LO[i]) for i in a.free])
+    except ValueError:
+        step = []
+    if len(step) != len(free) or not all(math.isfinite(v) and v != 0 for v in step):
+        fail(f"--step '{a.step}': one non-zero number per --free parameter")
     s = Search(a)
     if a.evals > 0:
-        # initial simplex: steps of about a tenth of each box
-        simplex = [x0] + [[x0[j] + (0.1 * (HI[j] - LO[j]) if j == i else 0) for j in range(4)]
-                          for i in range(4)]
-        res = minimize(s.evaluate, x0, method="Nelder-Mead",
+        v0 = [x0[i] for i in a.free]
+        simplex = [v0] + [[v0[j] + (step[j] if j == i else 0) for j in range(len(v0))]
+                          for i in range(len(v0))]
+        res = minimize(s.evaluate, v0, method="Nelder-Mead",
                        options={"maxfev": a.evals, "initial_simplex": simplex,
                                 "xatol": 0.05, "fatol": 1e-3})
-        best = [min(max(v, lo), hi) for v, lo, hi in zip(res.x, LO, HI)]
-        print(f"{PROG}: best S {best[0]:.3f} H {best[1]:.3f} U {best[2]:.3f} TL {best[3]:.4f}: "
-              f"score {res.fun:.4f} ({res.nfev} designs)")
+        best = [min(max(v, lo), hi) for v, lo, hi in zip(s.full(res.x), LO, HI)]
+        print(f"{PROG}: best " + " ".join(f"{n} {v:.4f}" for n, v in zip(names, best))
+              + f": score {res.fun:.4f} ({res.nfev} designs)")
     else:
         best = x0
     if a.robust:
