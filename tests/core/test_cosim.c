@@ -586,8 +586,9 @@ static void test_cosim_state_round_trip(void) {
     CS_EXPECT(cs_settle(&m, d, &err) == CS_OK);
     int n = cs_stateSize(&m, d);
     /* time, seed, pressures, support, 8 legs of (x, v), the coupling's block (sim_state.c:
-     * 8 wrenches, Kc, A, pose 3 + 9, twists 6 + 6, carry 6, primed) */
-    CS_EXPECT(n == 2 + 96 + 13 + 8 * 6 + (8 * 6 + 36 + 36 + 3 + 9 + 6 + 6 + 6 + 1));
+     * 8 wrenches, Kc, A, pose 3 + 9, twists 6 + 6, carry 6, the tree's BDF2 history of the
+     * support 3 + 9 + 3 + 3, primed) */
+    CS_EXPECT(n == 2 + 96 + 13 + 8 * 6 + (8 * 6 + 36 + 36 + 3 + 9 + 6 + 6 + 6 + 18 + 1));
     double* s0 = malloc(n * sizeof(double));
     double* r1 = malloc(n * sizeof(double));
     double* r2 = malloc(n * sizeof(double));
