@@ -251,8 +251,11 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   }
   if (st == CS_OK && !m->robot.leg_type->in_world && m->opt.coupling == CS_COUPLING_TREE) {
     /* the tree step's formula: 1 backward Euler, 2 BDF2 (csrLegParams.step_order, 0: the
-     * level's default, backward Euler) */
-    const int order = m->robot.leg_params.step_order ? m->robot.leg_params.step_order : 1;
+     * level's default, csrLegType.step_order; 0 there: backward Euler) */
+    const int lvl = m->robot.leg_type->step_order;
+    const int order = m->robot.leg_params.step_order ? m->robot.leg_params.step_order
+                      : lvl                          ? lvl
+                                                     : 1;
     st = cs_h5AttrDouble(f, "/", "leg_step_order", order, err);
   }
   if (st == CS_OK && m->legs_auto_choice[0]) {

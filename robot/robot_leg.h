@@ -231,6 +231,9 @@ typedef struct csrLegType_ {
    * other coupling schemes can drive it. */
   /* s: the level's default step h for the tree coupling (0: the driver's default) */
   double step;
+  /* the level's default step formula for the tree coupling (csrLegParams.step_order 0):
+   * 1 backward Euler, 2 BDF2 (0: backward Euler, as stepCoeffs NULL) */
+  int step_order;
   /* Condense one step of h from the current state with the hip at b0 (its pose and velocity
    * now): the leg's impulse on the support over the step is ρ - Z ΔV, with ΔV = [Δv; Δω] the
    * change over the step of the hip point's velocity (mm/s) and of the base frame's angular

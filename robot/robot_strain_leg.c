@@ -39,8 +39,8 @@
 enum { BASE_DOUBLES = 18 };
 /* capsules drawn along the centreline (contactShapes) */
 enum { DRAWN_CAPSULES = 15 };
-/* the level's step formula (csrLegParams.step_order 0): backward Euler until BDF2 is measured
- * through the driver (docs/notes/strain_leg.md, "Second order") */
+/* the level's step formula (csrLegParams.step_order 0, csrLegType.step_order): backward Euler
+ * until BDF2 is cheaper through the driver (docs/notes/strain_leg.md, "Second order") */
 enum { STRAIN_STEP_ORDER = 1 };
 
 struct csrLeg_ {
@@ -451,6 +451,7 @@ const csrLegType csr_leg_strain = {
      * road's 9 s alone would allow 2.5 ms (0.95 mm from 1.25 ms; 5 ms 1.53 mm from 2.5 ms), but
      * the obstacle's first 4 s at 2 ms are 2.3 mm from 1 ms, at 1 ms 0.23 mm from 0.5 ms */
     .step = 1e-3,
+    .step_order = STRAIN_STEP_ORDER,
     .prepare = prepareStrain,
     .finish = finishStrain,
     .update = updateStrain,

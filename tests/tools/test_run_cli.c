@@ -352,7 +352,8 @@ static void test_gaitCheckAgreesWithRun(void) {
 
 
 /* `--legs strain`: the tree coupling at the level's own step and bending modes, recorded in the
- * file (leg_model, coupling, step_s, leg_step_s, links_per_segment, the tree timer); the
+ * file (leg_model, coupling, step_s, leg_step_s, leg_step_order, links_per_segment, the tree
+ * timer), and --step-order 2 as run; the
  * coupling refused for other levels and with more than one ODE step per macro step */
 static void test_strainRun(void) {
   csCliResult r;
@@ -375,10 +376,27 @@ static void test_strainRun(void) {
     CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 3);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_tree_calls", &tree_calls) >= 0 &&
               tree_calls == 20);
+    double order = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_order", &order) >= 0 && order == 1);
     H5Fclose(f);
   }
   remove("runcli_strain.h5");
   remove("runcli_strain.xdmf");
+  /* --step-order 2 runs BDF2 and the file says so */
+  cs_cliRun(exe_path,
+            "run --t-end 0.02 --quiet --legs strain --step-order 2 --out runcli_strain2.h5",
+            "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  f = H5Fopen("runcli_strain2.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double order = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_order", &order) >= 0 && order == 2);
+    H5Fclose(f);
+  }
+  remove("runcli_strain2.h5");
+  remove("runcli_strain2.xdmf");
+  expectFailure("--legs strain --step-order 3", "crawlsim run: --step-order 3 must be 1 or 2");
   expectFailure("--legs rod --coupling tree", "crawlsim run: --coupling tree needs a tree-stepped");
   expectFailure("--legs strain --macro-steps 2", "crawlsim run: the tree coupling needs");
   expectFailure("--legs strain --links 8", "crawlsim run: strain leg: need 1..7 bending modes");
