@@ -19,7 +19,6 @@ def track(p):
     with h5py.File(p, "r") as f:
         n = int(f.attrs.get("samples", len(f["time"])))
         t, x = f["time"][:n], f["support/position"][:n]
-        cpu = None
     out = {}
     for s in range(1, 10):
         i = np.where(np.abs(t - s) < 1e-6)[0]
@@ -54,5 +53,7 @@ for scene, ref in (("flat", ROD16), ("ob", ROD6_OBST)):
             ra, rb = runs[(tag, a)], runs[(tag, b)]
             secs = sorted(set(ra) & set(rb))
             dd = [np.hypot(ra[s][0] - rb[s][0], ra[s][2] - rb[s][2]) for s in secs]
+            if not dd:
+                continue  # a run that stopped before 1 s
             print("  %g vs %g ms: max |(dx, dz)| %.2f mm (at %s s)" %
                   (1e3 * a, 1e3 * b, max(dd), secs[int(np.argmax(dd))]))
