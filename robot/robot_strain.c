@@ -64,6 +64,9 @@ csrStrainParams csr_strainDefaultParams(void) {
   /* backward Euler until BDF2 is chosen by measurement (docs/notes/strain_leg.md, "Second
    * order") */
   p.step_order = 1;
+  /* BDF2's whole residual at every iterate (the exact step; 0 is cheaper: docs/notes/
+   * strain_leg.md, "Fast step") */
+  p.step_refresh = 1;
   return p;
 }
 
@@ -108,10 +111,11 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       par.axial_order < 0 || par.axial_order > CSR_STRAIN_MAX_ORDER || par.joint_order < -1 ||
       par.joint_order > CSR_STRAIN_MAX_ORDER || par.nsub < 1 || par.nsub > CSR_STRAIN_MAX_SUB ||
       (par.shear != 0 && par.shear != 1) || !(par.static_tol > 0) || par.static_max_iter < 1 ||
-      (par.step_order != 1 && par.step_order != 2)) {
+      (par.step_order != 1 && par.step_order != 2) ||
+      (par.step_refresh != 0 && par.step_refresh != 1)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
-                "static_max_iter >= 1, step_order 1 or 2", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
+                "static_max_iter >= 1, step_order 1 or 2, step_refresh 0 or 1", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
                 CSR_STRAIN_MAX_SUB);
     return NULL;
   }

@@ -70,6 +70,11 @@ typedef struct csrStrainParams_ {
                           the step's start (inertia, velocity products and weight there); 2
                           BDF2 (variable step, a backward-Euler first step) with the whole
                           residual at the iterate */
+  int step_refresh;    /* step_order 2: 1 assembles the inertia, velocity products and weight
+                          at every Newton iterate (Newton on BDF2's whole residual); 0 once,
+                          at the step's first iterate (a linearly implicit BDF2: the iterates
+                          as backward Euler's, only the contact and the momentum rows at the
+                          iterate; robot_strain_dyn.c, Step) */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */

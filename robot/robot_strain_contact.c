@@ -558,7 +558,13 @@ int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[
   if (!m->soft) {
     return 0;
   }
-  csr_strainKinematics_(m, d, 1);
+  /* the kinematics (relative to the base, a function of q alone) is usually still valid from
+   * the last step's commit: recomputing it for every output sample's foot force and depth was
+   * ~4 % of a run at 5 ms (docs/notes/strain_leg.md, "Fast step"); the point twists also
+   * depend on the base's twist, so they are taken anew */
+  if (d->kin_valid < 2) {
+    csr_strainKinematics_(m, d, 1);
+  }
   csr_strainPointTwists_(m, d);
   int rc = 0;
   for (int s = 0; s < m->nshape; s++) {

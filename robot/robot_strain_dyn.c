@@ -293,6 +293,12 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
 }
 
 
+/* BDF2 with its whole residual assembled at every iterate (step_refresh) */
+static int bdfFull(const csrStrainModel* m) {
+  return m->par.step_order == 2 && m->par.step_refresh;
+}
+
+
 /* the step's start: Σ m x (kinematics valid), q0, η0, the base's twist and frame, Δu = 0 */
 static void saveStart(const csrStrainModel* m, csrStrainData* d) {
   const int n = m->n;
@@ -581,8 +587,12 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
                     double Z[36], double rho[6]) {
   const int n = m->n;
   double Wbb[36], rb[6];
-  /* BDF2 (step_order 2) assembles the whole residual at every iterate: nothing is kept */
-  if (du && m->par.step_order == 1) {
+  /* BDF2 with step_refresh assembles the whole residual at every iterate: nothing is kept.
+   * Backward Euler and the linearly implicit BDF2 (step_refresh 0) keep W_M and r_M over the
+   * step's iterates (the linear model of everything but the contact), the latter once its
+   * prepare has condensed at the first iterate (w_step) */
+  const int full = bdfFull(m);
+  if (du && !full && (m->par.step_order == 1 || d->w_step)) {
     double fb[6] = {0, 0, 0, 0, 0, 0};
     int same = 1;
     memset(d->fl, 0, (size_t)n * sizeof(double));
@@ -664,6 +674,7 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
     /* Z, ρ are in the hip's body coordinates at the iterate */
     memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
   }
+  d->w_step = 1;
   for (int a = 0; a < 6; a++) {
     if (!isfinite(rho[a])) {
       return 1;
@@ -684,6 +695,23 @@ static int prepareBdf(const csrStrainModel* m, csrStrainData* d, double h, doubl
     csr_strainKinematics_(m, d, 0);
   }
   saveStart(m, d);
+  if (!m->par.step_refresh && d->bc[1] != 0) {
+    /* the linearly implicit step assembles its inertia, velocity products and weight once,
+     * here: at the velocities extrapolated from the last two starts, u0 + ω (u0 - u_-1)
+     * (ω = h / h_prev), O(h²) from the step's end, so that what the step freezes errs by
+     * O(h³) per step as BDF2 itself (at u0 the velocity products' O(h) error made the step
+     * first order: test_strain_dyn step_order_observed). The iterate is then Δu = u_p - u0,
+     * and the assembled h r = W Δu_p - R(u_p) is the linear model about it. */
+    const double w = h / d->hprev;
+    for (int c = 0; c < 6; c++) {
+      d->du[c] = w * (d->Vb0[c] - d->Vbm1[c]);
+      d->Vb[c] = d->Vb0[c] + d->du[c];
+    }
+    for (int j = 0; j < n; j++) {
+      d->du[6 + j] = w * (d->eta0[j] - d->etam1[j]);
+      d->eta[j] = d->eta0[j] + d->du[6 + j];
+    }
+  }
   for (int j = 0; j < n; j++) {
     d->q[j] = d->bc[0] * d->q0[j] + d->bc[1] * d->qm1[j] + d->he * d->eta[j];
   }
@@ -701,12 +729,15 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     return -1;
   }
   d->h = 0;
+  d->w_step = 0;
   int rc;
   if (m->par.step_order == 2) {
     rc = prepareBdf(m, d, h, Z, rho);
     if (rc != 0) {
       /* the start back: the state is not changed by a failed prepare */
       memcpy(d->q, d->q0, (size_t)m->n * sizeof(double));
+      memcpy(d->eta, d->eta0, (size_t)m->n * sizeof(double));
+      memcpy(d->Vb, d->Vb0, sizeof d->Vb);
       d->kin_valid = 0;
     }
   } else {
@@ -732,28 +763,38 @@ int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], d
     return -1;
   }
   /* a leg without contact in its factor: if no shape touches at the iterate's poses, the
-   * iterate needs those poses alone (no Jacobians, no point twists); BDF2 assembles its whole
-   * residual at the iterate instead */
-  if (d->lu_plain && m->par.step_order == 1) {
+   * iterate needs those poses alone (no Jacobians, no point twists); BDF2 with step_refresh
+   * assembles its whole residual at the iterate instead */
+  /* the linearly implicit BDF2 refreshes its linear model at the iterate (as step_refresh
+   * would every pass) when the leg's own move shrank less than 4x over its last iterate: the
+   * frozen inertia and velocity products no longer carry the iteration there (a touch-down,
+   * a foot's stick/slip) */
+  int full = bdfFull(m);
+  if (m->par.step_order == 2 && !full && d->chg_prev < INFINITY &&
+      !(d->chg_last <= 0.25 * d->chg_prev)) {
+    full = 1;
+    d->w_step = 0;
+  }
+  if (d->lu_plain && !full) {
     if (d->kin_valid < 1) {
       csr_strainKinematics_(m, d, 0);
     }
     if (csr_strainContactNone_(m, d)) {
       memset(d->fcw, 0, sizeof d->fcw);
       d->ntouch = 0;
-      return condensePlain(m, d, d->h, d->du, Z, rho);
+      return condensePlain(m, d, d->he, d->du, Z, rho);
     }
   }
   /* the kinematics and point twists at the iterate's end of the step */
   if (d->kin_valid < 2) {
     csr_strainKinematics_(m, d, 1);
   }
-  if (m->par.step_order == 2) {
+  if (full) {
     int rc = assemble(m, d, d->he, 1);
     return rc != 0 ? rc : condense(m, d, d->he, d->du, Z, rho);
   }
   csr_strainPointTwists_(m, d);
-  return condense(m, d, d->h, d->du, Z, rho);
+  return condense(m, d, d->he, d->du, Z, rho);
 }
 
 

@@ -114,6 +114,8 @@ struct csrStrainData_ {
   double* fl;     /* (n) scratch: the contact's generalised force at an iterate */
   double chg_last, chg_prev; /* the leg's last two iterate moves (csr_strainUpdateDamped) */
   int nreuse;     /* iterates in a row that kept the iteration matrix */
+  int w_step;     /* 1: W_M, r_M and the factor are this step's (a linearly implicit BDF2's
+                     prepare sets it after its full condensation) */
   /* BDF2 (step_order 2): the last step's start (state) and this step's coefficients */
   double* qm1;    /* (n) q at the last step's start */
   double* etam1;  /* (n) η there */

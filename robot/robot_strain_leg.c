@@ -42,6 +42,11 @@ enum { DRAWN_CAPSULES = 15 };
 /* the level's step formula (csrLegParams.step_order 0, csrLegType.step_order): backward Euler
  * until BDF2 is cheaper through the driver (docs/notes/strain_leg.md, "Second order") */
 enum { STRAIN_STEP_ORDER = 1 };
+/* BDF2's iterates: 1 Newton on the whole residual; 0 the linearly implicit step (the inertia,
+ * velocity products and weight assembled once, at the step's first iterate, refreshed where
+ * the iteration stalls), not the default: through the driver it took more passes per step
+ * than it saved per pass (docs/notes/strain_leg.md, "Fast step") */
+enum { STRAIN_STEP_REFRESH = 1 };
 
 struct csrLeg_ {
   csrActuator act;
@@ -103,6 +108,7 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->sp = csr_strainDefaultParams();
   leg->sp.bend_order = lp->links_per_segment - 1;
   leg->sp.step_order = lp->step_order ? lp->step_order : STRAIN_STEP_ORDER;
+  leg->sp.step_refresh = STRAIN_STEP_REFRESH;
   leg->soft = csc_softDefaultParams();
   if (spec->contact) {
     leg->soft.mu = spec->contact->mu;

@@ -3,7 +3,7 @@
  * after the other in ONE process, so their ratio is measured under the same load (not a test:
  * prints numbers; docs/notes/strain_leg.md "In the driver").
  *
- *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S]]]...
+ *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM]]]]]...
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -13,7 +13,9 @@
  * load than wall time) and the real-time factor from it, the wall time, and the split of the
  * step by stage from the driver's wall timers (sim_model.h): legs (actuation, the legs'
  * condensation and back-substitution, or their advance), contact (the support's collision),
- * tree (the condensed 6 x 6 solve), support (its ODE step, less contact and tree), pneumatics,
+ * tree (cs_couplingApplyTree: the support's 6 x 6 solves AND every Newton pass after the
+ * first, i.e. the legs' update and iterate, which is most of the leg work at 5 ms; the first
+ * pass is in legs), support (its ODE step, less contact and tree), pneumatics,
  * output, the rest (schedule, check, state saves); then the support's x at the end. The
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
  * so compare the shares of runs made together. The data files come from $CS_SOURCE_DIR
@@ -39,15 +41,20 @@ static void quiet(int num, const char* msg, va_list ap) {
 
 static int bench(const char* src, const char* arg, double t_end) {
   char level[32] = "", terr[600], gait[600], cal[600];
-  int links = 0;
-  double dt = 0;
-  /* LEVEL[:LINKS[:DT]] */
+  int links = 0, order = 0;
+  double dt = 0, tol = 0;
+  /* LEVEL[:LINKS[:DT[:ORDER]]] (ORDER: the tree step's formula, 1 backward Euler, 2 BDF2; 0 or
+   * absent: the level's default; TREE_TOL: the tree step's Newton tolerance, mm) */
   const char* c1 = strchr(arg, ':');
   snprintf(level, sizeof level, "%.*s", c1 ? (int)(c1 - arg) : (int)strlen(arg), arg);
   if (c1) {
     links = atoi(c1 + 1);
     const char* c2 = strchr(c1 + 1, ':');
     dt = c2 ? atof(c2 + 1) : 0;
+    const char* c3 = c2 ? strchr(c2 + 1, ':') : NULL;
+    order = c3 ? atoi(c3 + 1) : 0;
+    const char* c4 = c3 ? strchr(c3 + 1, ':') : NULL;
+    tol = c4 ? atof(c4 + 1) : 0;
   }
   const csrLegType* type = csr_legTypeFind(level, NULL);
   if (!type) {
@@ -64,6 +71,10 @@ static int bench(const char* src, const char* arg, double t_end) {
   m.robot.leg_params.links_per_segment = links > 0 ? links : type->prepare ? 3 : 8;
   if (dt > 0) {
     m.opt.h = dt;
+  }
+  m.robot.leg_params.step_order = order;
+  if (tol > 0) {
+    m.opt.tree_tol = tol;
   }
   m.opt.t_end = t_end;
   csrCalRule rule;
@@ -102,9 +113,10 @@ static int bench(const char* src, const char* arg, double t_end) {
   const double rest = step - tm[CS_TIMER_LEGS].wall - tm[CS_TIMER_SUPPORT].wall -
                       tm[CS_TIMER_PNEUMATICS].wall;
   const double t_run = cs_time(d);
-  printf("%s, %d per segment, h %g ms, coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
+  printf("%s, %d per segment, h %g ms (order %d, tol %g mm), coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
          "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", level,
          m.robot.leg_params.links_per_segment, m.opt.h * 1e3,
+         order ? order : type->step_order ? type->step_order : 1, m.opt.tree_tol,
          m.opt.coupling == CS_COUPLING_TREE           ? "tree"
          : m.opt.coupling == CS_COUPLING_GAUSS_SEIDEL ? "gs"
          : m.opt.coupling == CS_COUPLING_STABILISED   ? "stabilised"

@@ -18,7 +18,8 @@
  *  - step_order_observed: the leg, base held, swung by a smooth pressure pulse for 0.3 s and
  *    stepped with Newton passes to convergence at h = 4, 2, 1, 0.5 ms: the order observed from
  *    the tip's successive differences is 1 for backward Euler (step_order 1, linearised at the
- *    start) and 2 for BDF2 (step_order 2, the residual at the iterate). */
+ *    start) and 2 for BDF2 (step_order 2, the residual at the iterate); the linearly implicit
+ *    BDF2 (step_refresh 0) rises toward 2. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -414,9 +415,10 @@ static void free_floating_momentum(void) {
 
 /* the tip (world mm) after 0.3 s of a smooth pulse (II1-Ω3&Ω4, II2-Ω1&Ω2 to 0.18 MPa as
  * 1 - cos over 0.3 s: smooth, so no kink limits the order) from rest, base held, at step h */
-static int pulseTip(const LegCal* c, int step_order, double h, double tip[3]) {
+static int pulseTip(const LegCal* c, int step_order, int refresh, double h, double tip[3]) {
   csrStrainParams sp = csr_strainDefaultParams();
   sp.step_order = step_order;
+  sp.step_refresh = refresh;
   csError err;
   cs_errorClear(&err);
   csrStrainModel* m = legModelParams(c, &sp);
@@ -445,26 +447,35 @@ static void step_order_observed(void) {
     return;
   }
   const double hs[4] = {2e-3, 1e-3, 5e-4, 2.5e-4};
-  double order[2][2];
-  for (int so = 1; so <= 2; so++) {
+  /* backward Euler; BDF2 with the residual at every iterate; BDF2 linearly implicit */
+  const int sorder[3] = {1, 2, 2}, refresh[3] = {1, 1, 0};
+  double order[3][2];
+  for (int v = 0; v < 3; v++) {
+    const int so = sorder[v];
     double tip[4][3], dif[3];
     for (int i = 0; i < 4; i++) {
-      CS_EXPECT(pulseTip(&c, so, hs[i], tip[i]) == 0);
+      CS_EXPECT(pulseTip(&c, so, refresh[v], hs[i], tip[i]) == 0);
     }
     for (int i = 0; i < 3; i++) {
       double t[3];
       csu_sub3(t, tip[i], tip[i + 1]);
       dif[i] = csu_norm3(t);
     }
-    order[so - 1][0] = log2(dif[0] / dif[1]);
-    order[so - 1][1] = log2(dif[1] / dif[2]);
-    printf("  step_order %d: tip (%.4f, %.4f, %.4f) mm at 0.25 ms; |tip(h) - tip(h/2)| %.3e / "
-           "%.3e / %.3e mm at h = 2 / 1 / 0.5 ms: observed order %.3f, %.3f\n", so, tip[3][0],
-           tip[3][1], tip[3][2], dif[0], dif[1], dif[2], order[so - 1][0], order[so - 1][1]);
+    order[v][0] = log2(dif[0] / dif[1]);
+    order[v][1] = log2(dif[1] / dif[2]);
+    printf("  step_order %d, step_refresh %d: tip (%.4f, %.4f, %.4f) mm at 0.25 ms; |tip(h) - "
+           "tip(h/2)| %.3e / %.3e / %.3e mm at h = 2 / 1 / 0.5 ms: observed order %.3f, %.3f\n",
+           so, refresh[v], tip[3][0], tip[3][1], tip[3][2], dif[0], dif[1], dif[2],
+           order[v][0], order[v][1]);
   }
-  /* the two schemes' own orders, from the last two ratios (the smallest steps) */
+  /* the schemes' own orders, from the last two ratios (the smallest steps) */
   CS_EXPECT(fabs(order[0][1] - 1) < 0.2);
   CS_EXPECT(fabs(order[1][1] - 2) < 0.2);
+  /* the linearly implicit BDF2 (step_refresh 0): its differences are 3-7x below the full
+   * BDF2's here and its observed order rises toward 2 as h shrinks (1.31, 1.73 measured: the
+   * frozen terms' O(h³) per step is not yet asymptotic at 2 ms); first order (as it was with
+   * the velocity products at u0, 1.06 / 1.04) fails both */
+  CS_EXPECT(order[2][1] > 1.5 && order[2][1] > order[2][0]);
   csr_calibrationClose(c.cal);
 }
 
