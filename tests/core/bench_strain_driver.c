@@ -61,7 +61,13 @@ static int bench(const char* src, const char* arg, double t_end) {
   cs_modelInit(&m);
   cs_modelSetConditions(&m, CS_CONDITIONS_PAPER);
   cs_modelSetLegLevel(&m, type);
-  m.robot.leg_params.links_per_segment = links > 0 ? links : type->prepare ? 3 : 8;
+  if (csr_legSettingSet(type, &m.robot.leg_settings, "links",
+                        links > 0 ? links : type->prepare ? 3 : 8, NULL) != CS_OK) {
+    fprintf(stderr, "bench_strain_driver: --links %d is not a value of legs %s\n", links,
+            type->name);
+    cs_modelDestroy(&m);
+    return 1;
+  }
   if (dt > 0) {
     m.opt.h = dt;
   }
@@ -104,7 +110,7 @@ static int bench(const char* src, const char* arg, double t_end) {
   const double t_run = cs_time(d);
   printf("%s, %d per segment, h %g ms, coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
          "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", level,
-         m.robot.leg_params.links_per_segment, m.opt.h * 1e3,
+         (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h * 1e3,
          m.opt.coupling == CS_COUPLING_TREE           ? "tree"
          : m.opt.coupling == CS_COUPLING_GAUSS_SEIDEL ? "gs"
          : m.opt.coupling == CS_COUPLING_STABILISED   ? "stabilised"
