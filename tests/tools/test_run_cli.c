@@ -116,9 +116,6 @@ static void test_badOptions(void) {
   expectFailure("--legs rod --step-order 2",
                 "crawlsim run: --step-order is for strain legs, not rod (their setting "
                 "step_order)");
-  expectFailure("--legs strain --links 9",
-                "crawlsim run: legs strain: links 9 must be a whole number in 1..7 (bending "
-                "modes per segment)");
   /* the pair-mode table (named: the scenes default to a mode table): a rule applies to mode
    * tables only */
   {
@@ -408,7 +405,9 @@ static void test_strainRun(void) {
   expectFailure("--legs strain --step-order 3", "crawlsim run: --step-order 3 must be 1 or 2");
   expectFailure("--legs rod --coupling tree", "crawlsim run: --coupling tree needs a tree-stepped");
   expectFailure("--legs strain --macro-steps 2", "crawlsim run: the tree coupling needs");
-  expectFailure("--legs strain --links 8", "crawlsim run: strain leg: need 1..7 bending modes");
+  expectFailure("--legs strain --links 8",
+                "crawlsim run: legs strain: links 8 must be a whole number in 1..7 (bending "
+                "modes per segment)");
 }
 
 
