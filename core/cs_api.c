@@ -140,14 +140,15 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
         cs_conditionsSourceName(plan->cond_src), cs_conditionsWhat(m->conditions));
   logLine(def, "calibration (rule %s): %s", csr_calibrationRuleName(m->calibration),
         m->robot.map.name);
-  logLine(def, "legs %s, %d %s per segment", cs_modelLegLevel(m),
-        m->robot.leg_params.links_per_segment,
-        m->robot.leg_type == &csr_leg_rod      ? "elements"
-        : m->robot.leg_type == &csr_leg_strain ? "bending modes"
-                                               : "links");
-  if (m->robot.leg_params.cal_drop) {
+  const csrLegType* lt = m->robot.leg_type;
+  const csrLegSetting* links = csr_legSettingFind(lt, "links");
+  logLine(def, "legs %s, %d %s", cs_modelLegLevel(m),
+        (int)csr_legSettingGet(lt, &m->robot.leg_settings, "links", 0),
+        links ? links->what : "links per segment");
+  const unsigned drop = (unsigned)csr_legSettingGet(lt, &m->robot.leg_settings, "cal_drop", 0);
+  if (drop) {
     char what[32];
-    csr_calDropFormat(m->robot.leg_params.cal_drop, what, sizeof what);
+    csr_calDropFormat(drop, what, sizeof what);
     logLine(def, "calibration parts left out (--cal-drop): %s", what);
   }
   if (m->legs_auto_choice[0]) {
@@ -188,7 +189,7 @@ static void resultPlan(const csModel* m, csRunResult* res) {
   snprintf(res->scene, sizeof res->scene, "%s", m->scene);
   snprintf(res->conditions, sizeof res->conditions, "%s", cs_conditionsName(m->conditions));
   snprintf(res->legs, sizeof res->legs, "%s", cs_modelLegLevel(m));
-  res->links = m->robot.leg_params.links_per_segment;
+  res->links = (int)csr_legSettingGet(m->robot.leg_type, &m->robot.leg_settings, "links", 0);
   res->macro_steps = m->opt.macro_steps;
   res->dt = m->opt.h;
   snprintf(res->calibration, sizeof res->calibration, "%s", m->robot.map.name);

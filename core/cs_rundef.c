@@ -14,7 +14,6 @@
 
 #include "robot_calibration.h"
 #include "robot_levels.h"
-#include "robot_strain.h"
 #include "terrains_scenefile.h"
 
 #ifndef CS_SOURCE_DIR
@@ -100,6 +99,26 @@ static const csrLegType* legTypeNamed(const char* legs) {
 }
 
 
+/* An option that sets a leg level's own setting `name` (robot_leg.h csrLegSetting) is refused,
+ * in one line naming the levels that have it, for a level that has none */
+static csStatus levelTakes(const csrLegType* T, const char* flag, const char* name,
+                           csError* err) {
+  if (csr_legSettingFind(T, name)) {
+    return CS_OK;
+  }
+  char names[128] = "";
+  for (int i = 0, n = 0; i < csr_legTypeCount() && n < (int)sizeof names; i++) {
+    const csrLegType* L = csr_legTypeAt(i);
+    if (csr_legSettingFind(L, name)) {
+      int w = snprintf(names + n, sizeof names - n, "%s%s", n ? ", " : "", L->name);
+      n += w > 0 ? w : 0;
+    }
+  }
+  return cs_errorSet(err, CS_ERR_ARG, "%s is for %s legs, not %s (their setting %s)", flag,
+                     names[0] ? names : "no", T->name, name);
+}
+
+
 /* Every check of the definition that needs no file, with the scene that gives the defaults
  * (the definition's, or a scene file's) */
 static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* err) {
@@ -161,9 +180,19 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
     return cs_errorSet(err, CS_ERR_ARG, "bad --cal-drop '%.60s' (expected stretch, stiffness, "
                        "stretch,stiffness or none)", def->cal_drop);
   }
-  if (drop && type && type != &csr_leg_rod) {
-    return cs_errorSet(err, CS_ERR_ARG, "--cal-drop: only rod legs take the calibration's "
-                       "stretch and stiffness (legs %s)", type->name);
+  /* the options that set a level's own settings, against the level (auto: after its pick) */
+  const struct {
+    const char* flag;
+    const char* name;
+    int given;
+  } own[] = {{"--links", "links", !isnan(def->links)},
+             {"--rod-tol", "rod_tol", !isnan(def->rod_tol)},
+             {"--cal-drop", "cal_drop", drop != 0},
+             {"--step-order", "step_order", !isnan(def->step_order)}};
+  for (size_t k = 0; type && k < sizeof own / sizeof own[0]; k++) {
+    if (own[k].given && levelTakes(type, own[k].flag, own[k].name, err) != CS_OK) {
+      return err ? err->status : CS_ERR_ARG;
+    }
   }
   if (def->n_actuator_set < 0 || def->n_actuator_set > MAX_SET ||
       (def->n_actuator_set > 0 && !def->actuator_set)) {
@@ -446,14 +475,35 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
     return st;
   }
   cs_modelSetLegLevel(m, leg_type); /* the one place the level is stored (and its coupling) */
+  /* the level's own settings: its defaults, then the scene's and the definition's values (a
+   * level that has none of a given setting was refused above, or by levelTakes for auto) */
+  csrLegSettings* ls = &m->robot.leg_settings;
+  csr_legSettingsDefault(leg_type, ls);
   unsigned cal_drop = 0;
   if (def->cal_drop) csr_calDropParse(def->cal_drop, &cal_drop);
-  if (cal_drop && m->robot.leg_type != &csr_leg_rod) {
-    free(sf);
-    return cs_errorSet(err, CS_ERR_ARG, "--cal-drop: only rod legs take the calibration's "
-                       "stretch and stiffness (legs %s)", cs_modelLegLevel(m));
+  if (cal_drop) {
+    st = levelTakes(leg_type, "--cal-drop", "cal_drop", err);
+    if (st == CS_OK) st = csr_legSettingSet(leg_type, ls, "cal_drop", cal_drop, err);
   }
-  m->robot.leg_params.cal_drop = cal_drop;
+  if (st == CS_OK && !isnan(def->step_order)) {
+    st = levelTakes(leg_type, "--step-order", "step_order", err);
+    if (st == CS_OK) st = csr_legSettingSet(leg_type, ls, "step_order", def->step_order, err);
+  }
+  if (st == CS_OK && !isnan(links)) {
+    st = csr_legSettingSet(leg_type, ls, "links", links, err);
+  } else if (st == CS_OK && sc->rod_links > 0 && !strcmp(leg_type->name, "rod")) {
+    /* the scene's table is for the rod level by name (sim_scene.h rod_links): converged on it */
+    st = csr_legSettingSet(leg_type, ls, "links", sc->rod_links, err);
+  }
+  /* rod_tol: the definition's (refused above for a level without it), or auto's row (every
+   * row has one: it applies where the level has the setting) */
+  if (st == CS_OK && !isnan(rodtol) && csr_legSettingFind(leg_type, "rod_tol")) {
+    st = csr_legSettingSet(leg_type, ls, "rod_tol", rodtol, err);
+  }
+  if (st != CS_OK) {
+    free(sf);
+    return st;
+  }
   if (!isnan(def->friction)) m->contact.mu = def->friction;
   if (!isnan(def->contact_scale)) {
     m->contact.kp *= def->contact_scale;
@@ -481,16 +531,6 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   }
   if (!isnan(def->gravity)) m->opt.gravity = def->gravity * 1e3; /* m/s^2 -> mm/s^2 */
   if (!isnan(def->support_mass_kg)) m->robot.support_mass = def->support_mass_kg * 1e-3;
-  if (!isnan(links)) {
-    m->robot.leg_params.links_per_segment = (int)links;
-  } else if (m->robot.leg_type == &csr_leg_rod && sc->rod_links > 0) {
-    m->robot.leg_params.links_per_segment = sc->rod_links; /* converged on the scene's table */
-  } else if (m->robot.leg_type == &csr_leg_strain) {
-    /* bending modes per segment: the level's own default basis */
-    m->robot.leg_params.links_per_segment = csr_strainDefaultParams().bend_order + 1;
-  }
-  if (!isnan(rodtol)) m->robot.leg_params.rod_tol_scale = rodtol;
-  if (!isnan(def->step_order)) m->robot.leg_params.step_order = (int)def->step_order;
   m->opt.t_end = t_end;
   m->opt.progress = def->progress;
   m->opt.cancel = def->cancel;

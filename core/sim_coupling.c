@@ -60,15 +60,12 @@
  * extrapolated without the carry it ran but walked 176 mm instead of the reference's 298.
  * The first macro step (nothing carried yet, gs_primed = 0) runs stabilised and leaves what it
  * carries (cs_couplingPrime). Everything carried is in the state (cs_couplingStateGet), so a
- * failed step restores it. Measured on the flat road, shipped gait, `paper`, H = h = 1 ms,
- * since the rods' base force is their momentum balance and their hip node massless
- * (robot_rod_dyn.c, robot_rod_model.c; 2026-12-02): x at whole seconds within 0.62 mm of the
- * staggered 25 µs reference over 9 s (the reference converged: 20 µs within 0.01 mm, and gs at
- * 25 µs lands on it), the paper's table within 1.8 mm; the stabilised scheme 22 mm short at
- * 9 s. Frictionless the centre of mass stays to round-off and the carry (0.066 mm in 2 s; the
- * support -0.6 mm in 9 s), where the stabilised scheme's momentum error moves it 1.8 mm in 2 s.
- * Hence the default for co-simulated legs. H = 2 ms with 1 ms ODE steps: 1.2 mm off;
- * h = H = 2 ms diverges while settling (measured before the two fixes).
+ * failed step restores it. With the rods' base force their momentum balance and their hip
+ * node massless (robot_rod_dyn.c, robot_rod_model.c), gs at H = h = 1 ms follows the converged
+ * staggered reference and the paper's table on the flat road to within a few mm, and keeps the
+ * frictionless centre of mass where the stabilised scheme's momentum error moves it: hence the
+ * default for co-simulated legs. Longer macro steps lose accuracy, and h = H = 2 ms diverged
+ * while settling (the numbers: docs/notes/code_measurements.md "Gauss-Seidel coupling").
  *
  * Tree scheme (`--coupling tree`, the default of tree-stepped levels: strain; issue 32). One
  * linearly implicit step of h = H for the support and the legs together, solved as the tree
@@ -281,10 +278,9 @@ static void supportInertia(const csData* d, const double R[9], double* mass, dou
  * (B = M^-1/2 sym(A) M^-1/2 with its negative eigenvalues set to 0; the antisymmetric part,
  * which does no work, is kept): in that direction the legs' wrench acts explicitly (W0 and
  * Kc dq are applied as they are), and where A is passive the step is unchanged to the bit.
- * Measured (2026-12-03): every projection on the obstacle scene had h min eig(B) between -3.7
- * and -68, i.e. M + h A itself indefinite; none on the 9 s flat road at the default
- * tolerances (a few at --rod-tol 5-50). Returns 1 when it
- * projected. */
+ * Where it projected on the obstacle scene, M + h A itself was indefinite; the flat road at the
+ * default tolerances needed none (docs/notes/code_measurements.md "Projection of the legs'
+ * gains"). Returns 1 when it projected. */
 /* the symmetric part of a 6 x 6 matrix is positive definite: its Cholesky factorisation has
  * positive pivots throughout (whether a matrix is definite does not depend on the metric) */
 static int symPositiveDefinite6(const double A[36]) {

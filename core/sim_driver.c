@@ -1,5 +1,6 @@
 /* sim_driver.c: model/data life cycle and read-outs (see sim_model.h); the stages are in
- * sim_step.c, the state in sim_state.c, the co-simulation interface in sim_coupling.c.
+ * sim_step.c, the state in sim_state.c, the scheduled pressures in sim_schedule.c, the
+ * co-simulation interface in sim_coupling.c.
  *
  * Rationale. ODE owns the rigid support, the leg links and the terrain; the chamber pressures
  * are the continuous state handed to SUNDIALS. Their dynamics here are the simplest physical
@@ -186,23 +187,6 @@ void cs_modelDestroy(csModel* m) {
     csr_calibrationClose(m->calibration);
     m->calibration = NULL;
   }
-}
-
-
-int cs_schedule(const csModel* m, double t, double* p_cmd) {
-  if (t >= 0 && m->pressure_source) {
-    if (m->pressure_source(m->pressure_ctx, t, p_cmd) == 0) {
-      return 0;
-    }
-    memset(p_cmd, 0, CSR_NCHAMBER_TOTAL * sizeof(double));
-    return -1;
-  }
-  if (t < 0 || !m->gait) {
-    memset(p_cmd, 0, CSR_NCHAMBER_TOTAL * sizeof(double));
-    return 0;
-  }
-  csg_scheduleEval(m->gait, &m->sched, t, p_cmd);
-  return 0;
 }
 
 

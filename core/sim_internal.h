@@ -108,7 +108,7 @@ struct csData_ {
 #define CS_MAX_SPLIT 4
 
 /* scheduled pressures at time t (zero before t = 0), 96 MPa: the model's pressure source if
- * it has one, else the gait table (sim_driver.c). Returns 0, or -1 when the source failed
+ * it has one, else the gait table (sim_schedule.c). Returns 0, or -1 when the source failed
  * (p_cmd is then zero; the pneumatic integrator fails the step, cs_api.c checks the rest) */
 int cs_schedule(const csModel* m, double t, double* p_cmd);
 

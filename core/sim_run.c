@@ -231,16 +231,22 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
                              : "staggered",
                          err);
   }
-  if (st == CS_OK && m->robot.leg_type == &csr_leg_rod) {
-    /* the rod's CVODE tolerances relative to the shipped ones (csrLegParams.rod_tol_scale) */
-    const double tol = m->robot.leg_params.rod_tol_scale;
+  /* the level's own settings (robot_leg.h csrLegSetting), where it has them */
+  const csrLegType* lt = m->robot.leg_type;
+  const csrLegSettings* ls = &m->robot.leg_settings;
+  if (st == CS_OK && csr_legSettingFind(lt, "rod_tol")) {
+    /* the rod's CVODE tolerances relative to the shipped ones (0: the shipped ones) */
+    const double tol = csr_legSettingGet(lt, ls, "rod_tol", 1.0);
     st = cs_h5AttrDouble(f, "/", "rod_tolerance_scale", tol > 0 ? tol : 1.0, err);
+  }
+  if (st == CS_OK && csr_legSettingFind(lt, "cal_drop")) {
     char drop[32];
-    csr_calDropFormat(m->robot.leg_params.cal_drop, drop, sizeof drop);
-    if (st == CS_OK) st = cs_h5AttrString(f, "/", "calibration_dropped", drop, err);
+    csr_calDropFormat((unsigned)csr_legSettingGet(lt, ls, "cal_drop", 0), drop, sizeof drop);
+    st = cs_h5AttrString(f, "/", "calibration_dropped", drop, err);
   }
   if (st == CS_OK) {
-    st = cs_h5AttrDouble(f, "/", "links_per_segment", m->robot.leg_params.links_per_segment, err);
+    st = cs_h5AttrDouble(f, "/", "links_per_segment", (int)csr_legSettingGet(lt, ls, "links", 0),
+                         err);
   }
   if (st == CS_OK) {
     /* the legs' own step: the tree coupling's one step (before any halving: steps and
@@ -250,12 +256,10 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
                                                : cs_modelMacroStep(m), err);
   }
   if (st == CS_OK && !m->robot.leg_type->in_world && m->opt.coupling == CS_COUPLING_TREE) {
-    /* the tree step's formula: 1 backward Euler, 2 BDF2 (csrLegParams.step_order, 0: the
-     * level's default, csrLegType.step_order; 0 there: backward Euler) */
-    const int lvl = m->robot.leg_type->step_order;
-    const int order = m->robot.leg_params.step_order ? m->robot.leg_params.step_order
-                      : lvl                          ? lvl
-                                                     : 1;
+    /* the tree step's formula: 1 backward Euler, 2 BDF2 (the level's setting step_order; a
+     * level without one: its csrLegType.step_order; 0 there: backward Euler) */
+    const int lvl = lt->step_order ? lt->step_order : 1;
+    const int order = (int)csr_legSettingGet(lt, ls, "step_order", lvl);
     st = cs_h5AttrDouble(f, "/", "leg_step_order", order, err);
   }
   if (st == CS_OK && m->legs_auto_choice[0]) {

@@ -315,9 +315,9 @@ csStatus csf_bendStageRow(Run* r, double p, const double ang[3], double tot,
  * The prediction is inverse quadratic interpolation, p as a quadratic in the total angle
  * through (a_pp, p_pp), (a_prev, p_prev), (a_conv, p): its error is third order in the step.
  * Why: stepping on to the next regular pressure overshoots, and the refinement then solves
- * the bracket again; on the baseline 360 deg run that last step (0.3894 -> 0.4000 MPa, 356.0
- * -> 365.3 deg) took 49 s with a cut-back and the refinement trial another equilibrium solve,
- * of a 512 s run (2026-12-02). Returns the step's (possibly shortened) target pressure. */
+ * the bracket again: on the baseline 360 deg run that last step cost a cut-back and another
+ * equilibrium solve (docs/notes/code_measurements.md "FE bend: the step that lands on the
+ * target angle"). Returns the step's (possibly shortened) target pressure. */
 #define CSF_BEND_UNTIL_AIM 0.5
 static double untilTarget(const Run* r, double target) {
   const csfBendOptions* o = r->o;
@@ -379,11 +379,10 @@ static int stageStep(Run* r, double* target_out, int* iters, int* cut) {
      * lost in the run), but |R| misjudges the start: its excess sits in the stiff fibre
      * directions, the shortfall of s_conv in the soft bending mode (at 0.031 MPa the secant's
      * 770 N converged in 13 iterations, s_conv's 200 N in 21), and the guard doubled the
-     * iterations at 0.03-0.05 MPa. Residuals at the target itself, before any Newton step
-     * (2026-12-02, baseline 360 deg run): the predictors that converge have 600-3900 times
-     * the converged state's (717 against 1.1 N at 0.031 MPa, 9731 against 2.5 N at 0.178),
-     * so no threshold on that ratio separates the failures either; a guard at 20x sent the
-     * step at 0.031 MPa to s_conv and took two cut-backs there */
+     * iterations at 0.03-0.05 MPa. The residual at the target before any Newton step does not
+     * separate the failures either: the predictors that converge start hundreds to thousands
+     * of times above the converged state's (docs/notes/code_measurements.md "FE bend: no guard
+     * on the predictor's residual") */
     if (plain) {
       csf_stateSet(m, d, r->w.s_conv);
     } else if (r->have_pp && r->p > r->p_prev && r->p_prev > r->p_pp) {

@@ -1,5 +1,5 @@
 /* fem_calibration.h: the FE calibration of a leg's chamber modes and stiffness (calibration
- * layer: writes the table that robot/robot_calibration.h reads; docs/design.md "Data flow").
+ * layer: writes the table that robot/calibration/robot_calibration.h reads; docs/design.md "Data flow").
  *
  * Owns: the calibration cases (chamber pressure ratios per segment with their sweep range:
  * the modes the legs' model is fitted to, the combinations held out of the fit to measure its

@@ -5,10 +5,11 @@
  * Rationale (the symmetric mesh). gmsh meshes the whole section without regard to its symmetry,
  * so a chamber pattern and the same pattern turned by 90 deg see different meshes: at l_soft 4
  * the tips of H4 and of H4 turned (docs/notes/fe_design_space.md, issue 8) differ by 2.2 mm at
- * 0.3-0.4 MPa, 1.9 mm for H6, of which the fibres' common start contributes at most 0.25 mm
- * (measured with --fibre-turn, 2026-12-03): the rest is the mesh. gmsh meshes the eighth
- * 0 <= y <= x; its mirror image in the plane x = y completes the quarter x, y >= 0, whose x = 0
- * face is then its y = 0 face turned by 90 deg (on y = 0 the mirror and the quarter turn agree);
+ * 0.3-0.4 MPa, 1.9 mm for H6, of which the fibres' common start contributes little
+ * (docs/notes/code_measurements.md "FE symmetric mesh"): the rest is the mesh. gmsh meshes
+ * the eighth 0 <= y <= x; its mirror image in the plane x = y completes the quarter x, y >= 0,
+ * whose x = 0 face is then its y = 0 face turned by 90 deg (on y = 0 the mirror and the quarter
+ * turn agree);
  * four turned copies give a mesh that the eight symmetries of the square section (the dihedral
  * group the calibration's rules use) map onto itself, so turned and mirrored patterns are exact
  * images of each other up to the fibres and round-off. (A quarter meshed with periodic cut

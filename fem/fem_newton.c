@@ -27,10 +27,9 @@
  * After a return to the best iterate the first step must decrease the residual below the best's
  * (CSF_LS_GROWTH = 1; it was 2): the Newton step from that iterate is the one that already led to
  * CSF_LS_WATCH steps without improvement, and taking it again under a lenient test repeats them
- * exactly. Measured (trace of b = 3, r1 = 2, Omega1&Omega2 at 0.225 MPa, 2026-12-02, with the
- * limit 2 then used after a return): |R| 52.5 -> 86.6 -> 169 N, back to 52.5, and the same
- * three values again until the stagnation test ended the attempt at iteration 12; at 0.225 MPa
- * from a better start 1.54e-2 -> 0.27 -> 0.10 -> 1.54e-2 ... the same cycle of period three. */
+ * exactly: with the limit 2 a trace cycled through the same three residuals until the
+ * stagnation test ended the attempt (docs/notes/code_measurements.md "FE line search after a
+ * return to the best iterate"). */
 #define CSF_LS_GROWTH_FIRST 1e4
 #define CSF_LS_GROWTH 1.0
 #define CSF_LS_WATCH 3

@@ -22,7 +22,7 @@ enum {
 
 static const char kHeader[] =
     "scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine";
-/* format 1 (tables written before 2026-12-03): every row at rod_tol 1 */
+/* format 1 (tables without the rod_tol column): every row at rod_tol 1 */
 static const char kHeader1[] =
     "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine";
 static const char* const kColumn[NCOL] = {"scene", "level", "links", "macro_steps", "dt_s",

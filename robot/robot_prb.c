@@ -34,6 +34,9 @@
 /* sign between our bend angle and ODE's universal-joint angle (see actuatePrb) */
 #define CSR_PRB_ANGLE_SIGN -1.0
 
+/* the level's settings (kPrbSettings, at the end) */
+enum { PRB_LINKS };
+
 struct csrLeg_ {
   csrActuator act;
   csrLegParams par;
@@ -64,11 +67,6 @@ struct csrLeg_ {
 
 csrLegParams csr_defaultLegParams(const csrActuator* act) {
   csrLegParams p;
-  /* 4 links per 50 mm segment: 12.5 mm joints; the tip error of the tangent polygon is
-   * ~θ^2/(24 n^2) relative, 0.2 % at θ = 47°, well below the calibration's uncertainty */
-  p.links_per_segment = 4;
-  p.rod_tol_scale = 1;
-  p.cal_drop = 0;
   /* small-strain bending modulus of the Yeoh law with the fibres holding λ2 = 1:
    * W ≈ 4 C10 ε^2 -> σ = 8 C10 ε (plane-strain-like modulus, 0.88 MPa for Elastosil) */
   p.E_bend = 8.0 * act->C10;
@@ -147,7 +145,10 @@ static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
     return NULL;
   }
   const csrLegParams* par = spec->params;
-  if (par->links_per_segment < 1 || par->links_per_segment > 64 || !(par->E_bend > 0) ||
+  double set[CSR_LEG_MAX_SETTINGS];
+  csr_legSettingsRead(&csr_leg_prb, spec->settings, set);
+  const int links = (int)set[PRB_LINKS];
+  if (links < 1 || links > 64 || !(par->E_bend > 0) ||
       !(par->damping_time >= 0) || !(par->contact_radius > 0) || !(spec->h > 0)) {
     cs_errorSet(err, CS_ERR_RANGE,
                 "prb leg: need 1..64 links per segment, E_bend > 0, damping >= 0, radius > 0");
@@ -162,7 +163,7 @@ static csrLeg* createPrb(const csrLegSpec* spec, csError* err) {
   leg->par = *par;
   leg->map = spec->map;
   leg->h = spec->h;
-  leg->n = par->links_per_segment;
+  leg->n = links;
   leg->nhinge = CSR_NSEG * leg->n;
   leg->nbody = leg->nhinge + 1;
   leg->L = csr_actuatorLength(spec->act);
@@ -502,9 +503,18 @@ static int ownsBodyPrb(const csrLeg* leg, dBodyID body) {
 }
 
 
+/* the level's own settings (robot_leg.h csrLegSetting), in the order of PRB_* */
+static const csrLegSetting kPrbSettings[] = {
+    /* 4 links per 50 mm segment: 12.5 mm joints; the tip error of the tangent polygon is
+     * ~θ^2/(24 n^2) relative, 0.2 % at θ = 47°, well below the calibration's uncertainty */
+    [PRB_LINKS] = {"links", "links per segment", 4, 1, 64, 1},
+};
+
 const csrLegType csr_leg_prb = {
     .name = "prb",
     .in_world = 1,
+    .settings = kPrbSettings,
+    .nsettings = (int)(sizeof kPrbSettings / sizeof kPrbSettings[0]),
     .create = createPrb,
     .destroy = destroyPrb,
     .sharedCreate = sharedCreatePrb,

@@ -56,6 +56,7 @@ csStatus csr_robotDefaultModel(csrRobotModel* m, csError* err) {
   }
   m->leg_params = csr_defaultLegParams(&m->leg);
   m->leg_type = &csr_leg_prb;
+  csr_legSettingsDefault(m->leg_type, &m->leg_settings);
   /* assumption: the paper says only "lightweight"; 50 g for a 210 x 145 mm printed frame */
   m->support_mass = 50e-6;
   /* 210 mm long (paper); 10 mm thick; as wide as the two rows of legs (130 + 15 mm) */
@@ -111,6 +112,7 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env, const 
   memset(&spec, 0, sizeof spec);
   spec.act = &m->leg;
   spec.params = &m->leg_params;
+  spec.settings = &m->leg_settings;
   spec.map = &m->map;
   spec.world = env->world;
   spec.space = env->space;

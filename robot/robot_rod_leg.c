@@ -4,8 +4,9 @@
  * What the table maps to (robot_rod.h):
  *  - create: the leg's rod model and data from csrLegSpec: the actuator, its calibration map,
  *    hip and frame, gravity (spec->weightless: the `paper` conditions), csrLegParams'
- *    E_bend (E' of the rod), damping_time, contact_radius, and links_per_segment as the rod's
- *    elements per segment (the same resolution knob: `--links`); when spec->terrain is given,
+ *    E_bend (E' of the rod), damping_time, contact_radius, and the level's settings (kRodSettings:
+ *    links as the rod's elements per segment, the same resolution knob as prb's: `--links`;
+ *    rod_tol, cal_drop); when spec->terrain is given,
  *    the soft contact model over N capsules (one per element, radius contact_radius) and the
  *    foot's sole (half side a), with csc_softDefaultParams and spec->contact's friction
  *    coefficient. Only the integrated friction history is supported (CSC_HISTORY_STEP needs an
@@ -34,6 +35,9 @@
 #include "contact_soft.h"
 #include "robot_calibration.h"
 #include "robot_rod.h"
+
+/* the level's settings (kRodSettings, at the end) */
+enum { ROD_LINKS, ROD_TOL, ROD_CAL_DROP };
 
 struct csrLeg_ {
   csrActuator act;
@@ -233,8 +237,12 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
     return NULL;
   }
   const csrLegParams* lp = spec->params;
-  if (lp->links_per_segment < 1 || lp->links_per_segment > 64 || !(lp->E_bend > 0) ||
-      !(lp->damping_time >= 0) || !(lp->contact_radius > 0) || !(lp->rod_tol_scale >= 0)) {
+  double set[CSR_LEG_MAX_SETTINGS];
+  csr_legSettingsRead(&csr_leg_rod, spec->settings, set);
+  const int links = (int)set[ROD_LINKS];
+  const double tol_scale = set[ROD_TOL];
+  if (links < 1 || links > 64 || !(lp->E_bend > 0) ||
+      !(lp->damping_time >= 0) || !(lp->contact_radius > 0) || !(tol_scale >= 0)) {
     cs_errorSet(err, CS_ERR_RANGE, "rod leg: need 1..64 elements per segment (--links), E_bend "
                 "> 0, damping >= 0, contact radius > 0, tolerance scale >= 0");
     return NULL;
@@ -247,15 +255,15 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
   leg->act = *spec->act;
   leg->gain_step = spec->h;
   csrRodParams par = csr_rodDefaultParams(&leg->act);
-  par.elements_per_segment = lp->links_per_segment;
+  par.elements_per_segment = links;
   par.E = lp->E_bend;
   par.damping_time = lp->damping_time;
   par.contact_radius = lp->contact_radius;
-  par.cal_drop = lp->cal_drop;
+  par.cal_drop = (unsigned)set[ROD_CAL_DROP];
   /* the bristles deflect by at most mu delta_t (8 µm by default): their error to 1e-5 mm */
   par.atol_hist = 1e-5;
   /* 0: the shipped tolerances (x 1 keeps their bits) */
-  const double f = lp->rod_tol_scale > 0 ? lp->rod_tol_scale : 1.0;
+  const double f = tol_scale > 0 ? tol_scale : 1.0;
   par.rtol *= f;
   par.atol_pos *= f;
   par.atol_rot *= f;
@@ -474,9 +482,23 @@ static void massMomentRod(const csrLeg* leg, double mx[3]) {
 }
 
 
+/* the level's own settings (robot_leg.h csrLegSetting), in the order of ROD_* */
+static const csrLegSetting kRodSettings[] = {
+    /* the scenes give their converged count (sim_scene.h rod_links) */
+    [ROD_LINKS] = {"links", "elements per segment", 4, 1, 64, 1},
+    /* every CVODE tolerance (rtol and the atols) times this; 0 or 1: the shipped ones (a
+     * convergence knob: `--rod-tol`, bench_flatroad argument 9) */
+    [ROD_TOL] = {"rod_tol", "times the shipped CVODE tolerances", 1, 0, 1000, 0},
+    /* parts of the calibration left out, CSR_CAL_DROP_* bits (`--cal-drop`) */
+    [ROD_CAL_DROP] = {"cal_drop", "CSR_CAL_DROP_* bits", 0, 0,
+                      CSR_CAL_DROP_STRETCH | CSR_CAL_DROP_STIFFNESS, 1},
+};
+
 const csrLegType csr_leg_rod = {
     .name = "rod",
     .in_world = 0,
+    .settings = kRodSettings,
+    .nsettings = (int)(sizeof kRodSettings / sizeof kRodSettings[0]),
     .create = createRod,
     .destroy = destroyRod,
     .sharedCreate = sharedCreateRod,

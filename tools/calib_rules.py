@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Prototype base rules of the calibration model (robot/robot_calibration_model.c) and score them
+"""Prototype base rules of the calibration model (robot/calibration/robot_calibration_model.c) and score them
 as `crawlsim calibrate --report` does.
 
 For each rule it prints: per held-out case (H1-H7 of the shipped table and H8 of

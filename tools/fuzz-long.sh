@@ -216,9 +216,9 @@ if [ "$MODE" = long ] && [ "$COVERAGE" != 0 ]; then
     done
     llvm-profdata-14 merge -o "$COV/profiles/all.profdata" "$COV"/profiles/*.profraw
     readers=()
-    for f in gaits/gaits_csv.c gaits/gaits_design.c terrains/terrains_terrain.c core/core_text.c \
-             robot/robot_calibration.c robot/robot_calibration_table.c \
-             robot/robot_calibration_build.c tools/study_file.c robot/robot_levels.c; do
+    for f in gaits/gaits_csv.c gaits/gaits_design.c terrains/terrains_terrain.c core/base/core_text.c \
+             robot/calibration/robot_calibration.c robot/calibration/robot_calibration_table.c \
+             robot/calibration/robot_calibration_build.c tools/study_file.c robot/robot_levels.c; do
       [ -f "$f" ] && readers+=("$ROOT/$f")
     done
     llvm-cov-14 report -instr-profile="$COV/profiles/all.profdata" "${objects[@]:1}" \

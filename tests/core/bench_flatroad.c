@@ -107,8 +107,17 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
   }
   cs_modelSetConditions(&m, CS_CONDITIONS_PAPER);
   cs_modelSetLegLevel(&m, type);
-  m.robot.leg_params.links_per_segment = links;
-  m.robot.leg_params.rod_tol_scale = bc->tol_scale;
+  /* the level's own settings by name: links for every level, the tolerance scale where the
+   * level has one (rod) */
+  csError serr;
+  cs_errorClear(&serr);
+  if (csr_legSettingSet(type, &m.robot.leg_settings, "links", links, &serr) != CS_OK ||
+      (csr_legSettingFind(type, "rod_tol") &&
+       csr_legSettingSet(type, &m.robot.leg_settings, "rod_tol", bc->tol_scale, &serr) != CS_OK)) {
+    fprintf(stderr, "bench_flatroad: %s\n", serr.msg);
+    cs_modelDestroy(&m);
+    return 1;
+  }
   if (!isnan(bc->mu)) {
     m.contact.mu = bc->mu;
   }
@@ -156,8 +165,8 @@ static int bench(const char* src, const char* level, int links, double dt, doubl
   printf("\n  legs %.0f %% of the step: %.1f us of CPU per leg and macro step (%d legs, %.0f "
          "macro steps)\n", 100 * legs_share, 1e6 * c * legs_share / (CSR_NLEG * steps),
          CSR_NLEG, steps);
-  if (type == &csr_leg_rod) {
-    /* CVODE's work per leg and macro step, summed over the legs */
+  if (!strcmp(type->name, "rod")) {
+    /* CVODE's work per leg and macro step, summed over the legs (the rod's own counters) */
     csrRodStats sum, s;
     memset(&sum, 0, sizeof sum);
     for (int k = 0; k < CSR_NLEG; k++) {

@@ -68,11 +68,21 @@ static int bench(const char* src, const char* arg, double t_end) {
   cs_modelInit(&m);
   cs_modelSetConditions(&m, CS_CONDITIONS_PAPER);
   cs_modelSetLegLevel(&m, type);
-  m.robot.leg_params.links_per_segment = links > 0 ? links : type->prepare ? 3 : 8;
+  if (csr_legSettingSet(type, &m.robot.leg_settings, "links",
+                        links > 0 ? links : type->prepare ? 3 : 8, NULL) != CS_OK) {
+    fprintf(stderr, "bench_strain_driver: --links %d is not a value of legs %s\n", links,
+            type->name);
+    cs_modelDestroy(&m);
+    return 1;
+  }
   if (dt > 0) {
     m.opt.h = dt;
   }
-  m.robot.leg_params.step_order = order;
+  if (order > 0 && csr_legSettingSet(type, &m.robot.leg_settings, "step_order", order, NULL) != CS_OK) {
+    fprintf(stderr, "bench_strain_driver: order %d is not a value of legs %s\n", order, type->name);
+    cs_modelDestroy(&m);
+    return 1;
+  }
   if (tol > 0) {
     m.opt.tree_tol = tol;
   }
@@ -115,8 +125,8 @@ static int bench(const char* src, const char* arg, double t_end) {
   const double t_run = cs_time(d);
   printf("%s, %d per segment, h %g ms (order %d, tol %g mm), coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
          "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", level,
-         m.robot.leg_params.links_per_segment, m.opt.h * 1e3,
-         order ? order : type->step_order ? type->step_order : 1, m.opt.tree_tol,
+         (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h * 1e3,
+         (int)csr_legSettingGet(type, &m.robot.leg_settings, "step_order", 1), m.opt.tree_tol,
          m.opt.coupling == CS_COUPLING_TREE           ? "tree"
          : m.opt.coupling == CS_COUPLING_GAUSS_SEIDEL ? "gs"
          : m.opt.coupling == CS_COUPLING_STABILISED   ? "stabilised"

@@ -69,7 +69,7 @@ static void test_rundef_validation(void) {
   d = cs_defaultRunDef(); d.coupling = "tree"; expectRefused(d, "--coupling tree needs");
   d = cs_defaultRunDef(); d.cal_rule = "hats"; expectRefused(d, "unknown --cal-rule 'hats'");
   d = cs_defaultRunDef(); d.cal_drop = "ei"; expectRefused(d, "bad --cal-drop 'ei'");
-  d = prbDef(); d.cal_drop = "stretch"; expectRefused(d, "--cal-drop: only rod legs");
+  d = prbDef(); d.cal_drop = "stretch"; expectRefused(d, "--cal-drop is for rod legs, not prb");
   d = cs_defaultRunDef(); d.n_actuator_set = 2; expectRefused(d, "--set");
   d = cs_defaultRunDef(); d.no_gait = 7; expectRefused(d, "no_gait");
 }

@@ -58,7 +58,7 @@ static int loadModel(csModel* m, const csrLegType* type) {
   cs_modelSetConditions(m, CS_CONDITIONS_PAPER);
   cs_modelSetLegLevel(m, type);
   m->opt.h = 1e-3; /* the level's step (csr_leg_strain.step), set here for the tests' own */
-  m->robot.leg_params.links_per_segment = 3;
+  CS_EXPECT(csr_legSettingSet(type, &m->robot.leg_settings, "links", 3, NULL) == CS_OK);
   csrCalRule rule;
   if (csr_calRuleParse("rbf-pair", &rule)) {
     m->cal_rule = (int)rule;
@@ -255,7 +255,10 @@ static double frictionlessDriftOrder(double h, int passes, int order, double* mo
   m.contact.mu = 0;
   m.opt.h = h;
   m.opt.tree_iterations = passes;
-  m.robot.leg_params.step_order = order;
+  if (order > 0) { /* 0: the level's default */
+    CS_EXPECT(csr_legSettingSet(m.robot.leg_type, &m.robot.leg_settings, "step_order", order,
+                                NULL) == CS_OK);
+  }
   csData* d = makeData(&m);
   if (!d) {
     cs_modelDestroy(&m);
@@ -322,7 +325,8 @@ static void test_strain_bdf2_keeps_momentum_and_restores(void) {
   CS_EXPECT(d2 < 1e-5);
   csModel m;
   CS_EXPECT(loadModel(&m, &csr_leg_strain));
-  m.robot.leg_params.step_order = 2;
+  CS_EXPECT(csr_legSettingSet(m.robot.leg_type, &m.robot.leg_settings, "step_order", 2, NULL) ==
+            CS_OK);
   m.opt.h = 2e-3;
   m.opt.pneumatic_tau = 0;
   csData* a = makeData(&m);

@@ -77,9 +77,10 @@ static void hipX(double t, double v, double x0, double* x, double* vx) {
 }
 
 
-static int rigCreate(Rig* r, const char* level, int clamp_high, double M, csrActuator* act,
-                     csrLegParams* lp, const csrBendMap* map, const cstTerrain* tr,
-                     const cscContactParams* cp) {
+/* links: the level's setting links (0: its default) */
+static int rigCreate(Rig* r, const char* level, int links, int clamp_high, double M,
+                     csrActuator* act, csrLegParams* lp, const csrBendMap* map,
+                     const cstTerrain* tr, const cscContactParams* cp) {
   memset(r, 0, sizeof *r);
   csError err;
   cs_errorClear(&err);
@@ -120,6 +121,13 @@ static int rigCreate(Rig* r, const char* level, int clamp_high, double M, csrAct
   memset(&sp, 0, sizeof sp);
   sp.act = act;
   sp.params = lp;
+  csrLegSettings set;
+  csr_legSettingsDefault(r->T, &set);
+  if (links > 0 && csr_legSettingSet(r->T, &set, "links", links, &err) != CS_OK) {
+    fprintf(stderr, "bench_leg_pair: %s\n", err.msg);
+    return 1;
+  }
+  sp.settings = &set;
   sp.map = map;
   memcpy(sp.hip, r->hip0, sizeof sp.hip);
   memcpy(sp.frame, F, sizeof F);
@@ -256,11 +264,12 @@ int main(int argc, char** argv) {
     snprintf(level, sizeof level, "%s", names[i]);
     char* colon = strchr(level, ':');
     lp[i] = csr_defaultLegParams(&act);
+    int links = 0;
     if (colon) {
       *colon = 0;
-      lp[i].links_per_segment = atoi(colon + 1);
+      links = atoi(colon + 1);
     }
-    if (rigCreate(&rig[i], level, swing, M, &act, &lp[i], &map, &tr, &cp) != 0) {
+    if (rigCreate(&rig[i], level, links, swing, M, &act, &lp[i], &map, &tr, &cp) != 0) {
       fprintf(stderr, "bench_leg_pair: level %s not created\n", names[i]);
       return 1;
     }

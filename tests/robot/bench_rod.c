@@ -176,7 +176,12 @@ static double runRoad(int nps, double H, double t_end, const csrBendMap* map, in
   cs_errorClear(&err);
   csr_actuatorPreset(&act, "leg", &err);
   csrLegParams lp = csr_defaultLegParams(&act);
-  lp.links_per_segment = nps;
+  csrLegSettings set;
+  csr_legSettingsDefault(&csr_leg_rod, &set);
+  if (csr_legSettingSet(&csr_leg_rod, &set, "links", nps, &err) != CS_OK) {
+    fprintf(stderr, "bench_rod: %s\n", err.msg);
+    return NAN;
+  }
   cstTerrain tr;
   memset(&tr, 0, sizeof tr);
   tr.nbox = 1;
@@ -196,6 +201,7 @@ static double runRoad(int nps, double H, double t_end, const csrBendMap* map, in
     memset(&sp, 0, sizeof sp);
     sp.act = &act;
     sp.params = &lp;
+    sp.settings = &set;
     sp.map = map;
     memcpy(sp.frame, F, sizeof F);
     sp.hip[0] = xs[k % 4];

@@ -39,7 +39,9 @@ static int g_weightless = 0;
 
 
 /* build the rig for `act` (NULL: the `leg` preset) with `par` (NULL: its default leg params) */
-static void rigInitWith(Rig* r, double gravity, const csrActuator* act, const csrLegParams* par) {
+/* links: the prb level's setting links (0: its default) */
+static void rigInitWith(Rig* r, double gravity, const csrActuator* act, const csrLegParams* par,
+                        int links) {
   memset(r, 0, sizeof *r);
   csError err;
   if (act) {
@@ -66,6 +68,12 @@ static void rigInitWith(Rig* r, double gravity, const csrActuator* act, const cs
   memset(&spec, 0, sizeof spec);
   spec.act = &r->act;
   spec.params = &r->par;
+  csrLegSettings set;
+  csr_legSettingsDefault(&csr_leg_prb, &set);
+  if (links > 0) {
+    CS_EXPECT(csr_legSettingSet(&csr_leg_prb, &set, "links", links, NULL) == CS_OK);
+  }
+  spec.settings = &set;
   spec.map = &r->map;
   spec.world = r->world;
   spec.space = r->space;
@@ -80,7 +88,7 @@ static void rigInitWith(Rig* r, double gravity, const csrActuator* act, const cs
 }
 
 
-static void rigInit(Rig* r, double gravity) { rigInitWith(r, gravity, NULL, NULL); }
+static void rigInit(Rig* r, double gravity) { rigInitWith(r, gravity, NULL, NULL, 0); }
 
 
 static void rigFree(Rig* r) {
@@ -228,9 +236,8 @@ static double prbFirstFrequencyError(int links_per_segment) {
   uniformLeg(&act);
   csrLegParams par = csr_defaultLegParams(&act);
   par.damping_time = 0;
-  par.links_per_segment = links_per_segment;
   Rig r;
-  rigInitWith(&r, 0, &act, &par);
+  rigInitWith(&r, 0, &act, &par, links_per_segment);
   const double p[12] = {0};
   /* static sag under g/100 across the leg, with damping from a temporary world damping */
   dWorldSetGravity(r.world, -98.1, 0, 0);

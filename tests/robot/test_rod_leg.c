@@ -14,7 +14,7 @@
  *    follows the hip.
  *  - fine_leg_stands_on_its_sole: the same press at 16 elements per segment, where the foot
  *    element is shorter than a capsule radius: the sole, not element N-1's capsule, carries it.
- *  - tolerance_scale: csrLegParams.rod_tol_scale 0 and 1 are the shipped tolerances (the same
+ *  - tolerance_scale: the rod's setting rod_tol 0 and 1 are the shipped tolerances (the same
  *    bits), 0.1 takes more CVODE steps for the same hanging leg released under gravity and
  *    lands within the shipped tolerances' error of it. */
 #include <stdlib.h>
@@ -91,7 +91,7 @@ static void table_conformance(void) {
   }
   CS_EXPECT(!strcmp(T->name, "rod") && T->in_world == 0);
   const int n = T->stateSize(leg);
-  const int N = 3 * lp.links_per_segment + 2;
+  const int N = 3 * (int)csr_legSettingGet(T, sp.settings, "links", 0) + 2;
   CS_EXPECT(n == 13 * N); /* no terrain: no contact history */
   double* x0 = calloc((size_t)n, sizeof(double));
   double* x1 = calloc((size_t)n, sizeof(double));
@@ -188,9 +188,12 @@ static void standing(int links, double delta, double side, double mu, double* fy
   csrLegSpec sp;
   double hip[3] = {0, 0, 0};
   legSpec(&sp, &act, &lp, hip);
+  csrLegSettings set;
+  csr_legSettingsDefault(T, &set);
   if (links > 0) {
-    lp.links_per_segment = links;
+    CS_EXPECT(csr_legSettingSet(T, &set, "links", links, NULL) == CS_OK);
   }
+  sp.settings = &set;
   hip[1] = csr_actuatorLength(&act);
   memcpy(sp.hip, hip, sizeof hip);
   sp.weightless = 1;
@@ -294,7 +297,10 @@ static long hangScaled(double f, double* x) {
   csrLegSpec sp;
   const double hip[3] = {10, 200, -65};
   legSpec(&sp, &act, &lp, hip);
-  lp.rod_tol_scale = f;
+  csrLegSettings set;
+  csr_legSettingsDefault(T, &set);
+  CS_EXPECT(csr_legSettingSet(T, &set, "rod_tol", f, NULL) == CS_OK);
+  sp.settings = &set;
   sp.gravity[1] = -9810;
   csError err;
   cs_errorClear(&err);
@@ -340,8 +346,16 @@ static void tolerance_scale(void) {
     csrLegSpec sp;
     const double hip[3] = {10, 200, -65};
     legSpec(&sp, &act, &lp, hip);
-    lp.rod_tol_scale = bad[i];
     csError err;
+    cs_errorClear(&err);
+    /* refused by name, with the range */
+    csrLegSettings set;
+    csr_legSettingsDefault(&csr_leg_rod, &set);
+    CS_EXPECT(csr_legSettingSet(&csr_leg_rod, &set, "rod_tol", bad[i], &err) == CS_ERR_RANGE &&
+              strstr(err.msg, "rod_tol") != NULL);
+    /* and by the level itself when written past the setter */
+    set.v[csr_legSettingFind(&csr_leg_rod, "rod_tol") - csr_leg_rod.settings] = bad[i];
+    sp.settings = &set;
     cs_errorClear(&err);
     csrLeg* leg = csr_leg_rod.create(&sp, &err);
     CS_EXPECT(leg == NULL && strstr(err.msg, "tolerance scale") != NULL);

@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
   printf("leg actuator, L = %.1f mm, g = %g m/s^2 across the axis, chambers vented\n", L, g);
   printf("  Euler-Bernoulli (E'I = %.0f N mm^2, joints rigid): tip sag %.3f mm\n", EI, w);
   printf("  prb chain (%d links/segment):                   tip sag %.3f mm\n",
-         par.links_per_segment, sag_prb);
+         (int)csr_legSettingGet(&csr_leg_prb, NULL, "links", 0), sag_prb);
   fflush(stdout);
 
   csfBendOptions o = csf_bendDefault();

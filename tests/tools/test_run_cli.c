@@ -107,9 +107,15 @@ static void test_badOptions(void) {
   expectFailure("--legs rod --cal-drop stretch,ei",
                 "crawlsim run: bad --cal-drop 'stretch,ei' (expected stretch, stiffness, "
                 "stretch,stiffness or none)");
+  /* a leg level's own setting, for a level that has none of that name (robot_leg.h
+   * csrLegSetting): one line naming the levels that take it */
   expectFailure("--legs prb --cal-drop stretch",
-                "crawlsim run: --cal-drop: only rod legs take the calibration's stretch and "
-                "stiffness (legs prb)");
+                "crawlsim run: --cal-drop is for rod legs, not prb (their setting cal_drop)");
+  expectFailure("--legs strain --rod-tol 2",
+                "crawlsim run: --rod-tol is for rod legs, not strain (their setting rod_tol)");
+  expectFailure("--legs rod --step-order 2",
+                "crawlsim run: --step-order is for strain legs, not rod (their setting "
+                "step_order)");
   /* the pair-mode table (named: the scenes default to a mode table): a rule applies to mode
    * tables only */
   {
@@ -399,7 +405,9 @@ static void test_strainRun(void) {
   expectFailure("--legs strain --step-order 3", "crawlsim run: --step-order 3 must be 1 or 2");
   expectFailure("--legs rod --coupling tree", "crawlsim run: --coupling tree needs a tree-stepped");
   expectFailure("--legs strain --macro-steps 2", "crawlsim run: the tree coupling needs");
-  expectFailure("--legs strain --links 8", "crawlsim run: strain leg: need 1..7 bending modes");
+  expectFailure("--legs strain --links 8",
+                "crawlsim run: legs strain: links 8 must be a whole number in 1..7 (bending "
+                "modes per segment)");
 }
 
 

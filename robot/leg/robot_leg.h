@@ -59,23 +59,37 @@ typedef struct csrBendMap_ {
 /* eval's return for a pressure above csrBendMap.p_max (fatal: the run must not extrapolate) */
 #define CSR_MAP_OUT_OF_RANGE (-2)
 
-/* Parameters of the dynamic leg levels (model side; defaults in robot_prb.c). A level ignores
- * the fields it has no use for. */
+/* The leg's material and shape, the same for every level (model side; defaults from the
+ * actuator, csr_defaultLegParams). What one level alone takes is its own setting (below). */
 typedef struct csrLegParams_ {
-  int links_per_segment;  /* prb: rigid links per segment (joint length S/n) */
   double E_bend;          /* effective bending modulus of the silicone section (MPa) */
   double damping_time;    /* material damping as a time constant: kd = k * damping_time (s) */
   double contact_radius;  /* radius of the leg's collision capsules (mm) */
-  double rod_tol_scale;   /* rod: every CVODE tolerance (rtol and the atols) times this; 0 or 1:
-                             the shipped ones (a convergence knob: bench_flatroad argument 9) */
-  unsigned cal_drop;      /* rod: parts of the calibration left out, CSR_CAL_DROP_* (0: none;
-                             `crawlsim run --cal-drop`) */
-  int step_order;         /* strain: the tree step's order, 1 backward Euler, 2 BDF2; 0: the
-                             level's default (robot_strain_leg.c) */
 } csrLegParams;
 
-/* Parts of a calibration a rod leg can leave out (csrLegParams.cal_drop), to measure what each
- * does: the segments' axial stretch (the rod's intrinsic stretch strain stays 0) and a mode
+/* One of a level's own settings (csrLegType.settings): a number a run may set by name, with the
+ * level's default and the values it accepts. Names shared by several levels mean the same knob
+ * ("links": the discretisation per segment, whatever the level's unit of it). */
+typedef struct csrLegSetting_ {
+  const char* name;   /* "links", "rod_tol", "cal_drop", "step_order", ... */
+  const char* what;   /* what a value counts, for messages ("elements per segment") */
+  double value;       /* the level's default */
+  double lo, hi;      /* accepted values, closed; integral settings say so (integer) */
+  int integer;        /* 1: only whole numbers */
+} csrLegSetting;
+
+#define CSR_LEG_MAX_SETTINGS 4
+
+/* The values of one level's settings, in the order of its table (csrLegType.settings). A block
+ * for another level than the one reading it (or none) reads as that level's defaults, so that a
+ * zeroed model or spec means "the defaults" (csr_legSettingsRead). */
+typedef struct csrLegSettings_ {
+  const struct csrLegType_* type; /* the level the values are for; NULL: none set */
+  double v[CSR_LEG_MAX_SETTINGS];
+} csrLegSettings;
+
+/* Parts of a calibration a rod leg can leave out (the rod's setting cal_drop), to measure what
+ * each does: the segments' axial stretch (the rod's intrinsic stretch strain stays 0) and a mode
  * table's probed section stiffness EI, EA (the rod keeps its default section). */
 #define CSR_CAL_DROP_STRETCH 1u
 #define CSR_CAL_DROP_STIFFNESS 2u
@@ -84,6 +98,7 @@ typedef struct csrLegParams_ {
 typedef struct csrLegSpec_ {
   const csrActuator* act;        /* copied by the leg */
   const csrLegParams* params;    /* copied by the leg */
+  const csrLegSettings* settings; /* the level's own settings, copied; NULL: its defaults */
   const csrBendMap* map;         /* kept: pressures -> segment bends */
   double hip[3];                 /* hip position at creation, world mm */
   double frame[9];               /* leg frame at creation (columns e1, e2, e3), world */
@@ -145,6 +160,9 @@ typedef struct csrLeg_ csrLeg; /* opaque, per level */
 typedef struct csrLegType_ {
   const char* name;  /* the level's name as the CLI and the output's leg_model attribute spell it */
   int in_world;      /* 1: bodies in the ODE world (see top); 0: co-simulated, own integrator */
+  /* the level's own settings, with their defaults and ranges (at most CSR_LEG_MAX_SETTINGS) */
+  const csrLegSetting* settings;
+  int nsettings;
 
   /* Build the leg hanging straight from spec->hip along spec->frame's e3, at rest, vented.
    * Returns NULL and fills err on failure. */
@@ -231,8 +249,8 @@ typedef struct csrLegType_ {
    * other coupling schemes can drive it. */
   /* s: the level's default step h for the tree coupling (0: the driver's default) */
   double step;
-  /* the level's default step formula for the tree coupling (csrLegParams.step_order 0):
-   * 1 backward Euler, 2 BDF2 (0: backward Euler, as stepCoeffs NULL) */
+  /* the level's default step formula for the tree coupling (its setting step_order, where it
+   * has one): 1 backward Euler, 2 BDF2 (0: backward Euler, as stepCoeffs NULL) */
   int step_order;
   /* Condense one step of h from the current state with the hip at b0 (its pose and velocity
    * now): the leg's impulse on the support over the step is ρ - Z ΔV, with ΔV = [Δv; Δω] the
@@ -285,6 +303,24 @@ double csr_legSectionI(const csrActuator* act);
 
 /* Default leg parameters for an actuator (E_bend from C10, see robot_prb.c). */
 csrLegParams csr_defaultLegParams(const csrActuator* act);
+
+/* ---- a level's own settings (robot_leg.c) ---- */
+/* The setting `name` of level T, or NULL when T has none of that name. */
+const csrLegSetting* csr_legSettingFind(const csrLegType* T, const char* name);
+/* s = T's defaults. */
+void csr_legSettingsDefault(const csrLegType* T, csrLegSettings* s);
+/* Set T's setting `name` to v in s (s becomes T's defaults first when it holds another level's
+ * values). CS_ERR_ARG when T has no such setting, CS_ERR_RANGE when v is outside its values;
+ * err names the level, the setting and the range. */
+csStatus csr_legSettingSet(const csrLegType* T, csrLegSettings* s, const char* name, double v,
+                           csError* err);
+/* The value of T's setting `name` in s (T's default when s is NULL or another level's), or
+ * `fallback` when T has no such setting. */
+double csr_legSettingGet(const csrLegType* T, const csrLegSettings* s, const char* name,
+                         double fallback);
+/* T's values out of s, in the order of T's table, into v[CSR_LEG_MAX_SETTINGS] (T's defaults
+ * when s is NULL or another level's): what a level reads in create. */
+void csr_legSettingsRead(const csrLegType* T, const csrLegSettings* s, double* v);
 
 #ifdef __cplusplus
 }

@@ -94,7 +94,7 @@ csrCalibration* csr_calibrationOpenWith(const char* path, const csrActuator* leg
  * set, or 0 for another name. */
 int csr_calRuleParse(const char* name, csrCalRule* rule);
 const char* csr_calRuleName(csrCalRule rule); /* "?" for a rule without a user-facing name */
-/* The parts of a calibration a rod leg leaves out (csrLegParams.cal_drop), as a user writes them:
+/* The parts of a calibration a rod leg leaves out (its setting cal_drop), as a user writes them:
  * "stretch", "stiffness" or both, comma-separated, or "none". Parse: 1 and *drop set, or 0
  * (*drop untouched) for anything else; format: "none" or the words joined by commas. */
 int csr_calDropParse(const char* text, unsigned* drop);

@@ -4,9 +4,9 @@
  *
  * What the table maps to (robot_strain.h):
  *  - create: the strain model of the actuator with the nodal rod's material and calibration
- *    path (csrLegParams' E_bend, damping_time, contact_radius, cal_drop into csrRodParams; a
+ *    path (csrLegParams' E_bend, damping_time, contact_radius into csrRodParams; a
  *    map made of an FE mode table also gives its probed section stiffness), the resolution
- *    knob links_per_segment (`--links`) as the number of Legendre modes of each bending
+ *    knob, the level's setting links (`--links`), as the number of Legendre modes of each bending
  *    curvature per segment (bend_order = links - 1, 1..7: the strain level's "elements"); the
  *    leg-terrain contact of contact_soft.h with spec->contact's friction and stiffness scale.
  *  - state: the strain state [q, η, friction anchors] and the hip's last pose and velocity
@@ -39,14 +39,17 @@
 enum { BASE_DOUBLES = 18 };
 /* capsules drawn along the centreline (contactShapes) */
 enum { DRAWN_CAPSULES = 15 };
-/* the level's step formula (csrLegParams.step_order 0, csrLegType.step_order): backward Euler
- * until BDF2 is cheaper through the driver (docs/notes/strain_leg.md, "Second order") */
+/* the level's step formula (the default of its setting step_order, csrLegType.step_order):
+ * backward Euler until BDF2 is cheaper through the driver (docs/notes/strain_leg.md, "Second
+ * order") */
 enum { STRAIN_STEP_ORDER = 1 };
 /* BDF2's iterates: 1 Newton on the whole residual; 0 the linearly implicit step (the inertia,
  * velocity products and weight assembled once, at the step's first iterate, refreshed where
  * the iteration stalls), not the default: through the driver it took more passes per step
  * than it saved per pass (docs/notes/strain_leg.md, "Fast step") */
 enum { STRAIN_STEP_REFRESH = 1 };
+/* the level's settings (kStrainSettings, at the end) */
+enum { STRAIN_LINKS, STRAIN_ORDER };
 
 struct csrLeg_ {
   csrActuator act;
@@ -86,9 +89,12 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
     return NULL;
   }
   const csrLegParams* lp = spec->params;
-  if (lp->links_per_segment < 1 || lp->links_per_segment > CSR_STRAIN_MAX_ORDER + 1 ||
+  double set[CSR_LEG_MAX_SETTINGS];
+  csr_legSettingsRead(&csr_leg_strain, spec->settings, set);
+  const int links = (int)set[STRAIN_LINKS], step_order = (int)set[STRAIN_ORDER];
+  if (links < 1 || links > CSR_STRAIN_MAX_ORDER + 1 ||
       !(lp->E_bend > 0) || !(lp->damping_time >= 0) || !(lp->contact_radius > 0) ||
-      lp->step_order < 0 || lp->step_order > 2) {
+      step_order < 0 || step_order > 2) {
     cs_errorSet(err, CS_ERR_RANGE, "strain leg: need 1..%d bending modes per segment (--links), "
                 "E_bend > 0, damping >= 0, contact radius > 0, step order 0, 1 or 2",
                 CSR_STRAIN_MAX_ORDER + 1);
@@ -104,10 +110,9 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->rp.E = lp->E_bend;
   leg->rp.damping_time = lp->damping_time;
   leg->rp.contact_radius = lp->contact_radius;
-  leg->rp.cal_drop = lp->cal_drop;
   leg->sp = csr_strainDefaultParams();
-  leg->sp.bend_order = lp->links_per_segment - 1;
-  leg->sp.step_order = lp->step_order ? lp->step_order : STRAIN_STEP_ORDER;
+  leg->sp.bend_order = links - 1;
+  leg->sp.step_order = step_order ? step_order : STRAIN_STEP_ORDER;
   leg->sp.step_refresh = STRAIN_STEP_REFRESH;
   leg->soft = csc_softDefaultParams();
   if (spec->contact) {
@@ -432,8 +437,18 @@ static double contactDepthStrain(const csrLeg* leg) {
 }
 
 
+/* the level's own settings (robot_leg.h csrLegSetting), in the order of STRAIN_* */
+static const csrLegSetting kStrainSettings[] = {
+    /* 3: the default basis, bend_order 2 + 1 (robot_strain.c csr_strainDefaultParams) */
+    [STRAIN_LINKS] = {"links", "bending modes per segment", 3, 1, CSR_STRAIN_MAX_ORDER + 1, 1},
+    /* the tree step's formula: 1 backward Euler, 2 BDF2 */
+    [STRAIN_ORDER] = {"step_order", "1 backward Euler, 2 BDF2", STRAIN_STEP_ORDER, 1, 2, 1},
+};
+
 const csrLegType csr_leg_strain = {
     .name = "strain",
+    .settings = kStrainSettings,
+    .nsettings = (int)(sizeof kStrainSettings / sizeof kStrainSettings[0]),
     .in_world = 0,
     .create = createStrain,
     .destroy = destroyStrain,

@@ -21,8 +21,8 @@
  * k is the least-squares fit of the bend vectors (rad) of every row of the bending modes used
  * (all but O1, O13, O1234; a mode left out for cross-validation is left out of the fit too) by
  * Levenberg-Marquardt. Shipped table: k ~ (0.10-0.11, 0.03-0.06, -0.61--0.63, 1.96-2.21) per
- * MPa, MPa^2 for the three segments; with the three refining modes of 2026-12-02 merged in the
- * fit moves little (0.13, 0.05-0.09, -0.66--0.68, 1.78-2.04).
+ * MPa, MPa^2 for the three segments; with the refining modes merged in the fit moves little
+ * (docs/notes/code_measurements.md "Calibration: the pair factor with the refining modes").
  * Alternatives measured (tools/calib_rules.py, docs/bench/calib_rules_2026-12-03): the same
  * factor linear in n and l only (H2 misses from 0.15 MPa: the linear term acts already at low
  * pressure where the superposition is right), quadratic only (H4 8.0 mm), and the curvature
