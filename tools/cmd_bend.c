@@ -249,8 +249,8 @@ static int rodSetup(BendRun* run, csError* err) {
   if (isfinite(rb->map.p_max)) {
     if (run->p_max * rmax > rb->map.p_max * (1 + 1e-12)) {
       cs_errorSet(err, CS_ERR_ARG, "--p-max %g MPa puts a chamber at %g MPa, above the "
-              "calibration's range (%g MPa, %s): lower --p-max or use --calibration analytic",
-              run->p_max, run->p_max * rmax, rb->map.p_max, rb->map.name);
+                  "calibration's range (%g MPa, %s): lower --p-max or use --calibration analytic",
+                  run->p_max, run->p_max * rmax, rb->map.p_max, rb->map.name);
       return 1;
     }
     run->p_ceiling = rb->map.p_max / rmax;
@@ -265,7 +265,7 @@ static int rodSetup(BendRun* run, csError* err) {
     par.elements_per_joint = (int)ceil(lmax / run->mesh_size - 1e-9);
     if (par.elements_per_segment > 1000) {
       cs_errorSet(err, CS_ERR_ARG, "--mesh-size %g mm gives more than 1000 rod elements per "
-              "segment", run->mesh_size);
+                  "segment", run->mesh_size);
       return 1;
     }
   }
@@ -370,7 +370,7 @@ static int parseNumbers(const char* flag, const char* text, int n, double* v, cs
     v[k] = strtod(s, &end);
     if (end == s || !isfinite(v[k]) || (k < n - 1 ? *end != ',' : *end != '\0')) {
       cs_errorSet(err, CS_ERR_ARG, "%s '%s': expected %d comma-separated finite numbers",
-              flag, text, n);
+                  flag, text, n);
       return 1;
     }
     s = end + 1;
@@ -389,7 +389,7 @@ static int parsePressures(const char* text, BendRun* run, csError* err) {
   for (int j = 0; j < CSR_NCHAMBER; j++) {
     if (r[j] < 0) {
       cs_errorSet(err, CS_ERR_ARG, "--pressures '%s': ratio %g of chamber %d is negative",
-              text, r[j], j + 1);
+                  text, r[j], j + 1);
       return 1;
     }
     top = fmax(top, r[j]);
@@ -460,8 +460,8 @@ static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOpt
       }
       if (m == BEND_NMODEL) {
         cs_errorSet(err, CS_ERR_ARG,
-                "unknown model '%s' (expected analytic, fe, rod, prb or rom)",
-                value);
+                    "unknown model '%s' (expected analytic, fe, rod, prb or rom)",
+                    value);
         return 1;
       }
       run->model = (BendModel)m;
@@ -529,14 +529,14 @@ static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOpt
       csrCalRule rule;
       if (!csr_calRuleParse(value, &rule)) {
         cs_errorSet(err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf or "
-                "rbf-pair)", value);
+                    "rbf-pair)", value);
         return 1;
       }
       run->cal_rule = (int)rule;
     } else if (!strcmp(name, "--cal-drop")) {
       if (!csr_calDropParse(value, &run->cal_drop)) {
         cs_errorSet(err, CS_ERR_ARG, "bad --cal-drop '%.60s' (expected stretch, stiffness, "
-                "stretch,stiffness or none)", value);
+                    "stretch,stiffness or none)", value);
         return 1;
       }
     } else if (!strcmp(name, "--calibration")) {
@@ -585,30 +585,30 @@ static int checkModelOptions(const BendRun* run, csError* err) {
   if ((!isnan(run->fibre_size) || run->fibre_split >= 0 || run->fibre_tension_only >= 0) &&
       run->model != BEND_FE) {
     cs_errorSet(err, CS_ERR_ARG, "%s is for --model fe (the %s model has no fibre elements)",
-            !isnan(run->fibre_size)   ? "--fibre-size"
-            : run->fibre_split >= 0 ? "--fibre-split"
-                                   : "--fibre-law",
-            kModelNames[run->model]);
+                !isnan(run->fibre_size)  ? "--fibre-size"
+                : run->fibre_split >= 0 ? "--fibre-split"
+                                        : "--fibre-law",
+                kModelNames[run->model]);
     return 1;
   }
   if (run->mesh_symmetric >= 0 && run->model != BEND_FE) {
     cs_errorSet(err, CS_ERR_ARG, "--mesh-symmetric is for --model fe (the %s model has no "
-            "mesh)", kModelNames[run->model]);
+                "mesh)", kModelNames[run->model]);
     return 1;
   }
   if (run->segments >= 0 && run->model != BEND_FE) {
     cs_errorSet(err, CS_ERR_ARG, "--segments is for --model fe (the %s model takes the three "
-            "segments)", kModelNames[run->model]);
+                "segments)", kModelNames[run->model]);
     return 1;
   }
   if (run->threads > 0 && run->model != BEND_FE) {
     cs_errorSet(err, CS_ERR_ARG, "--threads is for --model fe (the %s model runs on one "
-            "thread)", kModelNames[run->model]);
+                "thread)", kModelNames[run->model]);
     return 1;
   }
   if (run->branch_switch >= 0 && run->model != BEND_FE) {
     cs_errorSet(err, CS_ERR_ARG, "--branch-switch is for --model fe (the %s model has no "
-            "tangent to switch branches on)", kModelNames[run->model]);
+                "tangent to switch branches on)", kModelNames[run->model]);
     return 1;
   }
   if ((run->rom_basis || run->rom_weights) && run->model != BEND_ROM) {
@@ -619,12 +619,12 @@ static int checkModelOptions(const BendRun* run, csError* err) {
   if ((tip && run->model != BEND_ROD && run->model != BEND_FE && run->model != BEND_ROM) ||
       ((run->calibration || run->cal_rule >= 0 || run->cal_drop) && run->model != BEND_ROD)) {
     cs_errorSet(err, CS_ERR_ARG, "%s is for --model %s (the %s model has no %s)",
-            tip                ? "--tip-load"
-            : run->calibration  ? "--calibration"
-            : run->cal_rule >= 0 ? "--cal-rule"
-                               : "--cal-drop",
-            tip ? "rod, fe or rom" : "rod",
-            kModelNames[run->model], tip ? "tip load" : "calibration");
+                tip                  ? "--tip-load"
+                : run->calibration   ? "--calibration"
+                : run->cal_rule >= 0 ? "--cal-rule"
+                                     : "--cal-drop",
+                tip ? "rod, fe or rom" : "rod",
+                kModelNames[run->model], tip ? "tip load" : "calibration");
     return 1;
   }
   return 0;

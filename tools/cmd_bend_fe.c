@@ -380,14 +380,14 @@ csStatus csx_bendFe(BendRun* run, csxBendResult* res, csError* ferr) {
   }
   csx_bendResultFill(run, &fbc, res);
   fprintf(run->table, "crawlsim bend: model fe, actuator %s, chambers %s in %s\n", run->act.name,
-         run->chambers, csr_actuatorIsSingle(&run->act) ? "II1 alone (single segment)"
+          run->chambers, csr_actuatorIsSingle(&run->act) ? "II1 alone (single segment)"
                                                         : "II1-II3");
   fprintf(run->table, "%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
-         "total(deg)");
+          "total(deg)");
   for (size_t i = 0; i < fbc.m; i++) {
     const double* a = &fbc.angle_deg[3 * i];
     fprintf(run->table, "%9.4f %9.3f %9.3f %9.3f %10.3f\n", fbc.pressure[i], a[0], a[1], a[2],
-           fbc.angle_total[i]);
+            fbc.angle_total[i]);
   }
   if (!isnan(run->until_angle)) {
     if (isnan(fbc.p_until_angle) && fbc.m > 0 &&

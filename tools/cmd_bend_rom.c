@@ -153,11 +153,11 @@ csStatus csx_bendRom(BendRun* run, csxBendResult* res, csError* err) {
   fprintf(run->table, "crawlsim bend: model rom, actuator %s, chambers %s in II1-II3\n",
           run->act.name, run->chambers);
   fprintf(run->table, "%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
-         "total(deg)");
+          "total(deg)");
   for (size_t i = 0; i < bc.m; i++) {
     const double* a = &bc.angle_deg[3 * i];
     fprintf(run->table, "%9.4f %9.3f %9.3f %9.3f %10.3f\n", bc.pressure[i], a[0], a[1], a[2],
-           bc.angle_total[i]);
+            bc.angle_total[i]);
   }
   csr_bendCurveFree(&bc);
   csf_romActuatorDestroy(&ra);

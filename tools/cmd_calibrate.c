@@ -128,7 +128,7 @@ static int parseNumber(const char* flag, const char* v, double lo, double hi, do
   double x = strtod(v, &end);
   if (end == v || *end || errno || !isfinite(x) || x < lo || x > hi) {
     cs_errorSet(err, CS_ERR_ARG, "%s '%s' must be a number in [%g, %g]", flag, v, lo,
-            hi);
+                hi);
     return 1;
   }
   *out = x;
@@ -149,7 +149,7 @@ static int reportModel(FILE* table, csrCalibration* cal, const char* path,
   if (!model) {
     if (need_model) {
       cs_errorSet(err, CS_ERR_ARG, "%s: a pair-mode table, no mode model to report",
-              path);
+                  path);
       rc = 1;
     }
   } else if (csr_calReportPrint(model, csr_calibrationTable(cal), table, err) != CS_OK ||
@@ -225,7 +225,7 @@ static int parseCal(int argc, char** argv, CalDef* d, csxOptIter* it, csxOptKind
       bad = cs->fibre_tension_only < 0;
       if (bad) {
         cs_errorSet(err, CS_ERR_ARG, "--fibre-law '%s' must be linear or tension-only",
-                v);
+                    v);
       }
     } else if (!strcmp(a, "--p-step")) {
       bad = parseNumber(a, v, 1e-4, 0.5, &cs->p_step, err);
@@ -244,7 +244,7 @@ static int parseCal(int argc, char** argv, CalDef* d, csxOptIter* it, csxOptKind
     } else if (!strcmp(a, "--cal-rule")) {
       if (!csr_calRuleParse(v, &d->copt.rule)) {
         cs_errorSet(err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf or "
-                "rbf-pair)", v);
+                    "rbf-pair)", v);
         return 1;
       }
     } else if (!strcmp(a, "--actuator")) {
@@ -285,12 +285,12 @@ static int executeCal(const CalDef* d, CalResult* res, csError* err) {
   if (d->list) {
     for (int k = 0; k < ncase; k++) {
       fprintf(d->table, "%-10s %-8s p <= %.3g MPa  ratio %g:%g:%g:%g%s  %s\n", cases[k].name,
-             cases[k].kind == CSF_CAL_MODE      ? "mode"
-             : cases[k].kind == CSF_CAL_HOLDOUT ? "held-out"
-             : cases[k].kind == CSF_CAL_GRAVITY ? "gravity"
-                                                : "symmetry",
-             cases[k].p_max, cases[k].ratio[0], cases[k].ratio[1], cases[k].ratio[2],
-             cases[k].ratio[3], cases[k].probes ? ", probes" : "", cases[k].about);
+              cases[k].kind == CSF_CAL_MODE      ? "mode"
+              : cases[k].kind == CSF_CAL_HOLDOUT ? "held-out"
+              : cases[k].kind == CSF_CAL_GRAVITY ? "gravity"
+                                                 : "symmetry",
+              cases[k].p_max, cases[k].ratio[0], cases[k].ratio[1], cases[k].ratio[2],
+              cases[k].ratio[3], cases[k].probes ? ", probes" : "", cases[k].about);
     }
     return 0;
   }
@@ -317,7 +317,7 @@ static int executeCal(const CalDef* d, CalResult* res, csError* err) {
   }
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     cs_errorSet(err, CS_ERR_ARG, "%s: cannot create the case directory: %s", dir,
-            strerror(errno));
+                strerror(errno));
     return 1;
   }
   /* run what is not done yet, on the thread plan's count (fem_threads.h) */
@@ -371,7 +371,7 @@ static int executeCal(const CalDef* d, CalResult* res, csError* err) {
     }
     if (rename(part, path) != 0) {
       cs_errorSet(err, CS_ERR_ARG, "%s: cannot rename to %s: %s", part, path,
-              strerror(errno));
+                  strerror(errno));
       return 1;
     }
     fprintf(d->notes, "crawlsim calibrate: case %s done in %.0f s -> %s\n", cases[k].name,

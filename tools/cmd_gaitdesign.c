@@ -234,7 +234,7 @@ static int checkRun(FILE* table, const char* gait_csv, const char* scene_name, d
   double t_mark = des->nstride ? des->stride_t0 : 0.0;
   double x_prev = 0, x[3];
   fprintf(table, "  check %s (%s), ramp %.2f s: x at stride starts (mm):", sc->name,
-         cs_conditionsName(m.conditions), ramp);
+          cs_conditionsName(m.conditions), ramp);
   int nstr = 0;
   double sum = 0;
   while (cs_time(d) < t_end - 1e-9) {
@@ -308,7 +308,7 @@ static int parseDesign(int argc, char** argv, DesignDef* d, csxOptIter* it, csxO
       csrCalRule rule;
       if (!csr_calRuleParse(v, &rule)) {
         cs_errorSet(err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf "
-                "or rbf-pair)", v);
+                    "or rbf-pair)", v);
         return 1;
       }
       d->cal_rule = (int)rule;
