@@ -879,78 +879,51 @@ void csx_bendResultFill(const BendRun* run, const csrBendCurve* bc, csxBendResul
 }
 
 
-/* parse argv into run, its lines going to table and notes: -1 to go on; else the exit status,
- * after the help or one error line on stderr (cli) or in the log (not cli) */
-static int parseCommand(int argc, char** argv, BendRun* run, FILE* table, FILE* notes, int cli,
-                        csxStepResult* sres) {
-  csxOptIter it;
-  csxOptKind kind;
-  csError err;
-  cs_errorClear(&err);
-  const int p = parseArgs(argc, argv, run, &it, &kind, &err);
-  if (p == 2 && cli) {
-    return csx_optReport(&kBendTable, kind, &it);
-  }
-  if (p != 0) {
-    const char* msg = p == 1 ? err.msg : kind == CSX_OPT_HELP ? "--help is not a step" : it.error;
-    if (cli) {
-      fprintf(stderr, "crawlsim bend: %s\n", msg);
-    } else {
-      csx_stepFailed(sres, notes, "bend", msg);
-    }
-    return 1;
-  }
-  run->table = table;
-  run->notes = notes;
-  return -1;
-}
-
-
-int csx_cmdBend(int argc, char** argv) {
+/* `crawlsim bend` with its table on `table`, its notes on `notes` and its results in *sres
+ * (NULL: the command line; else a study's step, both streams its log) */
+static int bendCommand(int argc, char** argv, FILE* table, FILE* notes, csxStepResult* sres) {
   /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
    * polls the flag */
   csx_signalInstall();
   BendRun run;
-  int rc = parseCommand(argc, argv, &run, stdout, stderr, 1, NULL);
-  if (rc >= 0) {
-    return rc;
-  }
-  csxBendResult res;
+  csxOptIter it;
+  csxOptKind kind;
   csError err;
   cs_errorClear(&err);
+  int p = parseArgs(argc, argv, &run, &it, &kind, &err);
+  p = csx_parseEnd(&kBendTable, p, kind, &it, &err, notes, sres);
+  if (p >= 0) {
+    return p;
+  }
+  run.table = table;
+  run.notes = notes;
+  csxBendResult res;
   csStatus st = csx_bendExecute(&run, &res, &err);
+  if (sres) {
+    sres->p_until = res.p_until;
+    sres->angle_total = res.angle_total;
+    sres->p_end = res.p_end;
+    /* the case summary's piece: the until-angle line, else the last row */
+    if (res.until_line[0]) {
+      snprintf(sres->summary, sizeof sres->summary, "%s", res.until_line);
+    } else if (!isnan(res.angle_total)) {
+      snprintf(sres->summary, sizeof sres->summary, "bend: total %.3f deg at %.4f MPa",
+               res.angle_total, res.p_end);
+    }
+  }
   if (st != CS_OK) {
-    fprintf(stderr, "crawlsim bend: %s\n", err.msg[0] ? err.msg : "failed");
+    csx_stepFailed(sres, notes, "bend", err.msg);
     return csx_bendExitCode(st);
   }
   return 0;
 }
 
 
-int csx_stepBend(int argc, char** argv, FILE* log, csxStepResult* sres) {
-  csx_signalInstall();
-  BendRun run;
-  int rc = parseCommand(argc, argv, &run, log, log, 0, sres);
-  if (rc >= 0) {
-    return rc;
-  }
-  csxBendResult res;
-  csError err;
-  cs_errorClear(&err);
-  csStatus st = csx_bendExecute(&run, &res, &err);
-  sres->p_until = res.p_until;
-  sres->angle_total = res.angle_total;
-  sres->p_end = res.p_end;
-  /* the case summary's piece: the until-angle line, else the last row */
-  if (res.until_line[0]) {
-    snprintf(sres->summary, sizeof sres->summary, "%s", res.until_line);
-  } else if (!isnan(res.angle_total)) {
-    snprintf(sres->summary, sizeof sres->summary, "bend: total %.3f deg at %.4f MPa",
-             res.angle_total, res.p_end);
-  }
-  if (st != CS_OK) {
-    csx_stepFailed(sres, log, "bend", err.msg);
-    return csx_bendExitCode(st);
-  }
-  return 0;
+int csx_cmdBend(int argc, char** argv) {
+  return bendCommand(argc, argv, stdout, stderr, NULL);
+}
+
+
+int csx_stepBend(int argc, char** argv, FILE* log, csxStepResult* res) {
+  return bendCommand(argc, argv, log, log, res);
 }

@@ -421,69 +421,43 @@ static int executeCal(const CalDef* d, CalResult* res, csError* err) {
 }
 
 
-/* parse argv into d with its lines on table and notes: -1 to go on; else the exit status after
- * the help or one error line (stderr on the command line, the log and sres in a study's step) */
-static int parseCommand(int argc, char** argv, CalDef* d, FILE* table, FILE* notes, int cli,
-                        csxStepResult* sres) {
-  csxOptIter it;
-  csxOptKind kind;
-  csError err;
-  cs_errorClear(&err);
-  const int p = parseCal(argc, argv, d, &it, &kind, &err);
-  if (p == 2 && cli) {
-    return csx_optReport(&kCalTable, kind, &it);
-  }
-  if (p != 0) {
-    const char* msg = p == 1 ? err.msg : kind == CSX_OPT_HELP ? "--help is not a step" : it.error;
-    if (cli) {
-      fprintf(stderr, "crawlsim calibrate: %s\n", msg);
-    } else {
-      csx_stepFailed(sres, notes, "calibrate", msg);
-    }
-    return 1;
-  }
-  d->table = table;
-  d->notes = notes;
-  return -1;
-}
-
-
-int csx_cmdCalibrate(int argc, char** argv) {
+/* `crawlsim calibrate` with its results on `table`, the cases' progress on `notes` and its
+ * results in *sres (NULL: the command line; else a study's step, both streams its log) */
+static int calibrateCommand(int argc, char** argv, FILE* table, FILE* notes,
+                            csxStepResult* sres) {
   /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
    * polls the flag */
   csx_signalInstall();
   CalDef d;
-  int rc = parseCommand(argc, argv, &d, stdout, stderr, 1, NULL);
+  csxOptIter it;
+  csxOptKind kind;
+  csError err;
+  cs_errorClear(&err);
+  int rc = parseCal(argc, argv, &d, &it, &kind, &err);
+  rc = csx_parseEnd(&kCalTable, rc, kind, &it, &err, notes, sres);
   if (rc >= 0) {
     return rc;
   }
+  d.table = table;
+  d.notes = notes;
   CalResult res;
   memset(&res, 0, sizeof res);
-  csError err;
-  cs_errorClear(&err);
   rc = executeCal(&d, &res, &err);
+  if (sres) {
+    snprintf(sres->summary, sizeof sres->summary, "%s", res.table_line);
+  }
   if (rc != 0) {
-    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg[0] ? err.msg : "failed");
+    csx_stepFailed(sres, notes, "calibrate", err.msg);
   }
   return rc;
 }
 
 
-int csx_stepCalibrate(int argc, char** argv, FILE* log, csxStepResult* sres) {
-  csx_signalInstall();
-  CalDef d;
-  int rc = parseCommand(argc, argv, &d, log, log, 0, sres);
-  if (rc >= 0) {
-    return rc;
-  }
-  CalResult res;
-  memset(&res, 0, sizeof res);
-  csError err;
-  cs_errorClear(&err);
-  rc = executeCal(&d, &res, &err);
-  snprintf(sres->summary, sizeof sres->summary, "%s", res.table_line);
-  if (rc != 0) {
-    csx_stepFailed(sres, log, "calibrate", err.msg);
-  }
-  return rc;
+int csx_cmdCalibrate(int argc, char** argv) {
+  return calibrateCommand(argc, argv, stdout, stderr, NULL);
+}
+
+
+int csx_stepCalibrate(int argc, char** argv, FILE* log, csxStepResult* res) {
+  return calibrateCommand(argc, argv, log, log, res);
 }

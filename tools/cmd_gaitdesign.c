@@ -443,64 +443,38 @@ done:
 }
 
 
-/* parse argv into d with its lines on table: -1 to go on; else the exit status after the help
- * or one error line (stderr on the command line, the log and sres in a study's step) */
-static int parseCommand(int argc, char** argv, DesignDef* d, FILE* table, int cli,
-                        csxStepResult* sres) {
+/* `crawlsim gait design` with its lines on `table`, a failure's on `notes` and its results in
+ * *sres (NULL: the command line; else a study's step, both streams its log) */
+static int designCommand(int argc, char** argv, FILE* table, FILE* notes, csxStepResult* sres) {
+  DesignDef d;
   csxOptIter it;
   csxOptKind kind;
   csError err;
   cs_errorClear(&err);
-  const int p = parseDesign(argc, argv, d, &it, &kind, &err);
-  if (p == 2 && cli) {
-    return csx_optReport(&kDesignTable, kind, &it);
+  int rc = parseDesign(argc, argv, &d, &it, &kind, &err);
+  rc = csx_parseEnd(&kDesignTable, rc, kind, &it, &err, notes, sres);
+  if (rc >= 0) {
+    return rc;
   }
-  if (p != 0) {
-    const char* msg = p == 1 ? err.msg : kind == CSX_OPT_HELP ? "--help is not a step" : it.error;
-    if (cli) {
-      fprintf(stderr, "crawlsim gait design: %s\n", msg);
-    } else {
-      csx_stepFailed(sres, table, "gait design", msg);
-    }
-    return 1;
+  d.table = table;
+  DesignResult res;
+  memset(&res, 0, sizeof res);
+  rc = executeDesign(&d, &res, &err);
+  if (sres) {
+    snprintf(sres->summary, sizeof sres->summary, "%s", res.summary);
   }
-  d->table = table;
-  return -1;
+  if (rc && (sres || err.msg[0])) {
+    csx_stepFailed(sres, notes, "gait design", err.msg);
+  }
+  return rc;
 }
 
 
 int csx_cmdGaitDesign(int argc, char** argv) {
-  DesignDef d;
-  int rc = parseCommand(argc, argv, &d, stdout, 1, NULL);
-  if (rc >= 0) {
-    return rc;
-  }
-  DesignResult res;
-  memset(&res, 0, sizeof res);
-  csError err;
-  cs_errorClear(&err);
-  rc = executeDesign(&d, &res, &err);
-  if (rc && err.msg[0]) {
-    fprintf(stderr, "crawlsim gait design: %s\n", err.msg);
-  }
-  return rc;
+  return designCommand(argc, argv, stdout, stderr, NULL);
 }
 
 
-int csx_stepGaitDesign(int argc, char** argv, FILE* log, csxStepResult* sres) {
-  DesignDef d;
-  int rc = parseCommand(argc, argv, &d, log, 0, sres);
-  if (rc >= 0) {
-    return rc;
-  }
-  DesignResult res;
-  memset(&res, 0, sizeof res);
-  csError err;
-  cs_errorClear(&err);
-  rc = executeDesign(&d, &res, &err);
-  snprintf(sres->summary, sizeof sres->summary, "%s", res.summary);
-  if (rc) {
-    csx_stepFailed(sres, log, "gait design", err.msg);
-  }
-  return rc;
+int csx_stepGaitDesign(int argc, char** argv, FILE* log, csxStepResult* res) {
+  return designCommand(argc, argv, log, log, res);
 }

@@ -266,59 +266,47 @@ static csRunDef commandDef(FILE* lines) {
 }
 
 
-int csx_cmdRun(int argc, char** argv) {
+/* `crawlsim run` with its banner and progress on `notes`, its summary on `table` and its
+ * results in *res (NULL: the command line; else a study's step, both streams its log) */
+static int runCommand(int argc, char** argv, FILE* table, FILE* notes, csxStepResult* res) {
   /* SIGINT/SIGTERM end the run after the step in progress (cs_signal.h): exit 128 + signal */
   csx_signalInstall();
-  csRunDef def = commandDef(stderr);
+  csRunDef def = commandDef(notes);
   const char* sets[32];
   csError err;
   cs_errorClear(&err);
   csxOptIter it;
   csxOptKind kind;
   int p = parseRun(argc, argv, &def, sets, &it, &kind, &err);
-  if (p == 2) return csx_optReport(&kRunTable, kind, &it);
-  if (p == 1) {
-    fprintf(stderr, "crawlsim run: %s\n", err.msg);
-    return 1;
-  }
-  csRunResult r;
-  csStatus st = cs_run(&def, &r, &err);
-  if (r.verdict[0]) printSummary(stdout, &def, &r, st);
-  if (st == CS_OK) return 0;
-  fprintf(stderr, "crawlsim run: %s\n", err.msg[0] ? err.msg : "failed");
-  return st == CS_ERR_INTERRUPTED && csx_signalExitCode() ? csx_signalExitCode() : 1;
-}
-
-
-int csx_stepRun(int argc, char** argv, FILE* log, csxStepResult* res) {
-  csx_signalInstall();
-  csRunDef def = commandDef(log);
-  const char* sets[32];
-  csError err;
-  cs_errorClear(&err);
-  csxOptIter it;
-  csxOptKind kind;
-  int p = parseRun(argc, argv, &def, sets, &it, &kind, &err);
-  if (p != 0) {
-    csx_stepFailed(res, log, "run", p == 1 ? err.msg : kind == CSX_OPT_HELP ? "--help is not a "
-                   "step" : it.error);
-    return 1;
-  }
+  p = csx_parseEnd(&kRunTable, p, kind, &it, &err, notes, res);
+  if (p >= 0) return p;
   csRunResult r;
   csStatus st = cs_run(&def, &r, &err);
   if (r.verdict[0]) {
     /* it stepped: the file holds its samples, the result where it got */
-    printSummary(log, &def, &r, st);
-    res->t_final = r.t_end;
-    memcpy(res->x_final, r.position, sizeof res->x_final);
-    res->wrote_samples = def.out != NULL;
-    char line[CS_ERROR_MSG_SIZE + 128];
-    verdictLine(&r, st, line, sizeof line);
-    /* the case file keeps its first 255 characters, as it kept the log's verdict line */
-    snprintf(res->verdict, sizeof res->verdict, "%.*s", (int)sizeof res->verdict - 1, line);
-    snprintf(res->summary, sizeof res->summary, "%.*s", (int)sizeof res->summary - 1, line);
+    printSummary(table, &def, &r, st);
+    if (res) {
+      res->t_final = r.t_end;
+      memcpy(res->x_final, r.position, sizeof res->x_final);
+      res->wrote_samples = def.out != NULL;
+      char line[CS_ERROR_MSG_SIZE + 128];
+      verdictLine(&r, st, line, sizeof line);
+      /* the case file keeps its first 255 characters, as it kept the log's verdict line */
+      snprintf(res->verdict, sizeof res->verdict, "%.*s", (int)sizeof res->verdict - 1, line);
+      snprintf(res->summary, sizeof res->summary, "%.*s", (int)sizeof res->summary - 1, line);
+    }
   }
   if (st == CS_OK) return 0;
-  csx_stepFailed(res, log, "run", err.msg[0] ? err.msg : "failed");
+  csx_stepFailed(res, notes, "run", err.msg);
   return st == CS_ERR_INTERRUPTED && csx_signalExitCode() ? csx_signalExitCode() : 1;
+}
+
+
+int csx_cmdRun(int argc, char** argv) {
+  return runCommand(argc, argv, stdout, stderr, NULL);
+}
+
+
+int csx_stepRun(int argc, char** argv, FILE* log, csxStepResult* res) {
+  return runCommand(argc, argv, log, log, res);
 }

@@ -7,6 +7,7 @@
 
 #include <stdio.h>
 
+#include "cs_opts.h"
 #include "study_case.h" /* csxStepResult */
 
 int csx_cmdRun(int argc, char** argv);       /* cmd_run.c: crawlsim run ... */
@@ -27,5 +28,12 @@ int csx_stepBend(int argc, char** argv, FILE* log, csxStepResult* res);      /* 
 int csx_stepCalibrate(int argc, char** argv, FILE* log, csxStepResult* res); /* cmd_calibrate.c */
 int csx_stepGaitDesign(int argc, char** argv, FILE* log, csxStepResult* res);
 /* cmd_gaitdesign.c */
+
+/* The end of a command's parse (cmd_step.c): its parser returned p (0 parsed; 1 err filled; 2
+ * `it` holds --help or an option error of table t, `kind`). Returns -1 to go on, else the exit
+ * status after the help on stdout (the command line, res NULL) or after one line "crawlsim
+ * <cmd>: <cause>" on `notes` (stderr, or a step's log with res->message filled). */
+int csx_parseEnd(const csxOptTable* t, int p, csxOptKind kind, const csxOptIter* it,
+                 const csError* err, FILE* notes, csxStepResult* res);
 
 #endif

@@ -114,15 +114,18 @@ csStatus csx_studyMakeDir(const char* path, csError* err) {
 
 
 void csx_stepFailed(csxStepResult* res, FILE* log, const char* cmd, const char* msg) {
-  snprintf(res->message, sizeof res->message, "crawlsim %s: %s", cmd,
-           msg && *msg ? msg : "failed");
-  for (char* c = res->message; *c; c++) {
+  char line[CS_ERROR_MSG_SIZE];
+  snprintf(line, sizeof line, "crawlsim %s: %s", cmd, msg && *msg ? msg : "failed");
+  for (char* c = line; *c; c++) {
     if (iscntrl((unsigned char)*c)) {
       *c = '?'; /* one line, whatever the words held (as csx_optReport) */
     }
   }
+  if (res) {
+    memcpy(res->message, line, sizeof res->message);
+  }
   if (log) {
-    fprintf(log, "%s\n", res->message);
+    fprintf(log, "%s\n", line);
   }
 }
 

@@ -66,7 +66,8 @@ typedef struct csxStepResult_ {
  * results in *res. Returns the command's exit status (0, 1, or 128 + a signal). */
 typedef int (*csxStepFn)(int argc, char** argv, FILE* log, csxStepResult* res);
 
-/* A failed step's end: "crawlsim <cmd>: <msg>" as the last line of log and as res->message. */
+/* A failed command's end: "crawlsim <cmd>: <msg>" (control characters shown as '?') as a line
+ * of `log` (NULL: none) and as res->message (res NULL: the command line, the line alone). */
 void csx_stepFailed(csxStepResult* res, FILE* log, const char* cmd, const char* msg);
 
 /* The commands a step can run, indexed by csxStudyCmd (NULL: not available in this build). */
