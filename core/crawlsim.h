@@ -15,8 +15,9 @@
  * Ownership: the caller owns every string and array it passes and every buffer it reads into;
  * a csRunDef's strings are read during the call they are passed to (cs_simCreate copies what
  * it keeps). csSim is created by cs_simCreate and freed by cs_simDestroy. The library never
- * prints (except the progress lines csRunDef.progress asks for, on stderr), never exits, and
- * returns a status with a one-line message in the caller's csError on every failure.
+ * writes to stdout or stderr (what a run has to say goes to the caller's callbacks,
+ * csRunDef.log and csRunDef.progress), never exits, and returns a status with a one-line
+ * message in the caller's csError on every failure.
  * Thread safety: distinct csSim objects may be used from distinct threads only one at a time
  * (ODE keeps one process-wide random generator, which each step sets from its own seed).
  *
@@ -85,8 +86,12 @@ typedef struct csRunDef {
                                 level's, 1) */
   const char* out;           /* cs_run's HDF5 file (and FILE.xdmf beside it); NULL: none.
                                 cs_simCreate ignores it */
-  int progress;              /* 1: cs_run prints a progress line per simulated second on
-                                stderr */
+  void (*progress)(void* user, double t, const double x[3], double wall_s); /* NULL, or
+                                called by cs_run once per simulated second with the time (s),
+                                the support's displacement from t = 0 x[3] (mm, world) and the
+                                stepping loop's wall time (s); `crawlsim run` prints its
+                                progress line from it */
+  void* progress_user;
   const volatile sig_atomic_t* cancel; /* NULL, or a flag the caller sets (a signal handler):
                                 cs_run ends after the step in progress, CS_ERR_INTERRUPTED */
   const char* data_dir;      /* where the shipped gaits/, terrains/, robot/ are; NULL:

@@ -309,8 +309,8 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
     return cs_errorSet(err, CS_ERR_RANGE, "--slope-deg %g must be within +-45 deg",
                        def->slope_deg);
   }
-  if (!(def->no_gait == 0 || def->no_gait == 1) || !(def->progress == 0 || def->progress == 1)) {
-    return cs_errorSet(err, CS_ERR_RANGE, "no_gait and progress are 0 or 1");
+  if (!(def->no_gait == 0 || def->no_gait == 1)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "no_gait is 0 or 1");
   }
   return CS_OK;
 }
@@ -533,6 +533,7 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   if (!isnan(def->support_mass_kg)) m->robot.support_mass = def->support_mass_kg * 1e-3;
   m->opt.t_end = t_end;
   m->opt.progress = def->progress;
+  m->opt.progress_user = def->progress_user;
   m->opt.cancel = def->cancel;
   st = csc_contactParamsValidate(&m->contact, err);
   if (st == CS_OK) st = csg_scheduleCheckOptions(&m->sched, err);

@@ -30,6 +30,19 @@
 #define CS_SUN_COMM_NULL NULL
 #endif
 
+#if SUNDIALS_VERSION_MAJOR < 7
+/* CVODE's default error handler prints to stderr; the library never prints (crawlsim.h): a
+ * failed pneumatic step is returned as a status with its own message (the controller's, the
+ * gait's) instead. SUNDIALS 7 has no per-solver handler: the context's are cleared below. */
+static void cvodeSilent(int code, const char* module, const char* fn, char* msg, void* user) {
+  (void)code;
+  (void)module;
+  (void)fn;
+  (void)msg;
+  (void)user;
+}
+#endif
+
 _Static_assert(sizeof(dReal) == sizeof(double), "crawlsim needs ODE built in double precision");
 _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
 
@@ -74,7 +87,8 @@ csOptions cs_defaultOptions(void) {
   o.centerline_points = 25;
   /* 10 m/s: nothing in a crawling gait comes near it */
   o.max_speed = 1e4;
-  o.progress = 0;
+  o.progress = NULL;
+  o.progress_user = NULL;
   o.cancel = NULL;
   return o;
 }
@@ -365,6 +379,9 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
       cs_dataDestroy(d);
       return NULL;
     }
+#if SUNDIALS_VERSION_MAJOR >= 7
+    SUNContext_ClearErrHandlers(d->sun);
+#endif
     d->y = N_VNew_Serial(CSR_NCHAMBER_TOTAL, d->sun);
     N_VConst(0.0, d->y);
     d->cvode = CVodeCreate(CV_BDF, d->sun);
@@ -372,7 +389,11 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
         CVodeSStolerances(d->cvode, m->opt.pneumatic_rtol, m->opt.pneumatic_atol) !=
             CV_SUCCESS ||
         CVodeSetUserData(d->cvode, d) != CV_SUCCESS || CVDiag(d->cvode) != CVDIAG_SUCCESS ||
-        CVodeSetMaxNumSteps(d->cvode, 100000) != CV_SUCCESS) {
+        CVodeSetMaxNumSteps(d->cvode, 100000) != CV_SUCCESS
+#if SUNDIALS_VERSION_MAJOR < 7
+        || CVodeSetErrHandlerFn(d->cvode, cvodeSilent, NULL) != CV_SUCCESS
+#endif
+    ) {
       cs_errorSet(err, CS_ERR_SOLVER, "CVODE: cannot set up the pneumatic integrator");
       cs_dataDestroy(d);
       return NULL;

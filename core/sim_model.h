@@ -106,7 +106,11 @@ typedef struct csOptions_ {
   double pneumatic_atol;  /* CVODE absolute tolerance (MPa) */
   int centerline_points;  /* samples per leg centreline in the output */
   double max_speed;       /* mm/s: a body faster than this means the run diverged */
-  int progress;           /* print a progress line to stderr every simulated second */
+  /* NULL, or called by cs_runWrite once per simulated second with the time t (s), the
+   * support's displacement from t = 0 x[3] (mm, world) and the stepping loop's wall time (s):
+   * the caller prints or keeps it; the library itself never writes to stdout or stderr */
+  void (*progress)(void* user, double t, const double x[3], double wall_s);
+  void* progress_user;
   const volatile sig_atomic_t* cancel; /* NULL, or a flag the caller sets (e.g. from its signal
                              handler): cs_runWrite then ends after the step in progress, writes the
                              status "interrupted at t = ..." and returns CS_ERR_INTERRUPTED */

@@ -336,8 +336,7 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
         double x[3];
         cs_supportDisplacement(d, x);
         double w = csu_wallSeconds() - w0;
-        fprintf(stderr, "  t = %5.2f s  x = %7.2f  y = %6.2f  z = %6.2f mm  (%.1f s wall)\n",
-                cs_time(d), x[0], x[1], x[2], w);
+        m->opt.progress(m->opt.progress_user, cs_time(d), x, w);
       }
     }
   }

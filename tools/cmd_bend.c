@@ -122,18 +122,22 @@ static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG]
 static csStatus rodPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
                          csError* err);
 /* build / free the rod of a sweep (run->rod) */
-static int rodSetup(BendRun* run);
+static int rodSetup(BendRun* run, csError* err);
 static void rodTeardown(BendRun* run);
-/* "a,b,c,d" -> n finite numbers; prints the error line naming the flag */
-static int parseNumbers(const char* flag, const char* text, int n, double* v);
+/* "a,b,c,d" -> n finite numbers; 1 with err naming the flag */
+static int parseNumbers(const char* flag, const char* text, int n, double* v, csError* err);
 /* the one place that maps a model level to its evaluator; NULL = not available yet */
 static BendPointFn bendModelEvaluator(BendModel m);
-/* parse argv into run; returns 0, 1 on error (message printed), 2 after --help */
-static int parseArgs(int argc, char** argv, BendRun* run);
-/* strict number parser: whole string, finite, > 0; prints the error line naming the unit */
-static int parsePositive(const char* flag, const char* text, const char* unit, double* v);
-/* "1,2" -> inflated[], canonical text (core_text.h's parser); prints the error line */
-static int parseChambers(const char* text, BendRun* run);
+/* parse and check argv into run (the definition of a bend): 0; 1 with err filled; 2 when `it`
+ * holds --help or an option error (*kind, for csx_optReport) */
+static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOptKind* kind,
+                     csError* err);
+static int checkModelOptions(const BendRun* run, csError* err);
+/* strict number parser: whole string, finite, > 0; 1 with err naming the unit */
+static int parsePositive(const char* flag, const char* text, const char* unit, double* v,
+                         csError* err);
+/* "1,2" -> inflated[], canonical text (core_text.h's parser); 1 with err */
+static int parseChambers(const char* text, BendRun* run, csError* err);
 /* Θ(p) for --until-angle */
 static csStatus totalAngle(BendRun* run, BendPointFn eval, double p, double* theta_deg,
                            csError* err);
@@ -191,16 +195,14 @@ static int analyticBendMap(const void* ctx, int seg, const double p[4], double b
 }
 
 
-static int rodSetup(BendRun* run) {
+static int rodSetup(BendRun* run, csError* err) {
   RodBend* rb = calloc(1, sizeof *rb);
   if (!rb) {
-    fprintf(stderr, "crawlsim bend: out of memory\n");
+    cs_errorSet(err, CS_ERR_MEMORY, "out of memory");
     return 1;
   }
   run->rod = rb;
   rb->act = run->act;
-  csError err;
-  cs_errorClear(&err);
   if (run->calibration && !strcmp(run->calibration, "analytic")) {
     rb->map.eval = analyticBendMap;
     rb->map.ctx = rb;
@@ -216,17 +218,21 @@ static int rodSetup(BendRun* run) {
     if (!run->calibration && run->cal_rule < 0) {
       csrCalRule rule;
       if (!csr_calRuleParse(CSX_MISSION_CAL_RULE, &rule)) {
-        fprintf(stderr, "crawlsim bend: unknown default rule '%s'\n", CSX_MISSION_CAL_RULE);
+        cs_errorSet(err, CS_ERR_ARG, "unknown default rule '%s'", CSX_MISSION_CAL_RULE);
         return 1;
       }
       run->cal_rule = (int)rule;
     }
     csrCalOptions cal_opt = csr_calModelDefaultOptions();
     cal_opt.rule = (csrCalRule)run->cal_rule;
-    rb->cal = csr_calibrationOpenWith(path, &run->act, run->cal_rule >= 0 ? &cal_opt : NULL, &err);
+    rb->cal = csr_calibrationOpenWith(path, &run->act, run->cal_rule >= 0 ? &cal_opt : NULL, err);
     if (!rb->cal) {
-      fprintf(stderr, "crawlsim bend: %s%s\n", err.msg,
-              run->calibration ? "" : " (--calibration analytic works for any actuator)");
+      if (!run->calibration) {
+        char cause[sizeof err->msg];
+        memcpy(cause, err->msg, sizeof cause);
+        cs_errorSet(err, err->status, "%.400s (--calibration analytic works for any actuator)",
+                    cause);
+      }
       return 1;
     }
     rb->map = csr_calibrationMap(rb->cal);
@@ -242,9 +248,9 @@ static int rodSetup(BendRun* run) {
   }
   if (isfinite(rb->map.p_max)) {
     if (run->p_max * rmax > rb->map.p_max * (1 + 1e-12)) {
-      fprintf(stderr, "crawlsim bend: --p-max %g MPa puts a chamber at %g MPa, above the "
-              "calibration's range (%g MPa, %s): lower --p-max or use --calibration analytic\n",
-              run->p_max, run->p_max * rmax, rb->map.p_max, rb->map.name);
+      cs_errorSet(err, CS_ERR_ARG, "--p-max %g MPa puts a chamber at %g MPa, above the "
+                  "calibration's range (%g MPa, %s): lower --p-max or use --calibration analytic",
+                  run->p_max, run->p_max * rmax, rb->map.p_max, rb->map.name);
       return 1;
     }
     run->p_ceiling = rb->map.p_max / rmax;
@@ -258,8 +264,8 @@ static int rodSetup(BendRun* run) {
     par.elements_per_segment = (int)ceil(smax / run->mesh_size - 1e-9);
     par.elements_per_joint = (int)ceil(lmax / run->mesh_size - 1e-9);
     if (par.elements_per_segment > 1000) {
-      fprintf(stderr, "crawlsim bend: --mesh-size %g mm gives more than 1000 rod elements per "
-              "segment\n", run->mesh_size);
+      cs_errorSet(err, CS_ERR_ARG, "--mesh-size %g mm gives more than 1000 rod elements per "
+                  "segment", run->mesh_size);
       return 1;
     }
   }
@@ -271,10 +277,9 @@ static int rodSetup(BendRun* run) {
   sp.calib = rb->has_rodcal ? &rb->rodcal : NULL;
   csu_eye3(sp.frame); /* the base frame: the output's tip is in it */
   sp.weightless = 1;  /* gravity off, as for the other models */
-  rb->m = csr_rodModelCreate(&sp, &err);
-  rb->d = rb->m ? csr_rodDataCreate(rb->m, &err) : NULL;
+  rb->m = csr_rodModelCreate(&sp, err);
+  rb->d = rb->m ? csr_rodDataCreate(rb->m, err) : NULL;
   if (!rb->d) {
-    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
     return 1;
   }
   run->mesh_size = fmax(run->act.S[0], fmax(run->act.S[1], run->act.S[2])) /
@@ -326,15 +331,16 @@ static BendPointFn bendModelEvaluator(BendModel m) {
 }
 
 
-static int parsePositive(const char* flag, const char* text, const char* unit, double* v) {
+static int parsePositive(const char* flag, const char* text, const char* unit, double* v,
+                         csError* err) {
   char* end = NULL;
   double x = strtod(text, &end);
   if (end == text || *end != '\0' || !isfinite(x)) {
-    fprintf(stderr, "crawlsim bend: %s '%s' is not a finite number\n", flag, text);
+    cs_errorSet(err, CS_ERR_ARG, "%s '%s' is not a finite number", flag, text);
     return 1;
   }
   if (!(x > 0)) {
-    fprintf(stderr, "crawlsim bend: %s %s must be > 0 %s\n", flag, text, unit);
+    cs_errorSet(err, CS_ERR_ARG, "%s %s must be > 0 %s", flag, text, unit);
     return 1;
   }
   *v = x;
@@ -342,11 +348,9 @@ static int parsePositive(const char* flag, const char* text, const char* unit, d
 }
 
 
-static int parseChambers(const char* text, BendRun* run) {
+static int parseChambers(const char* text, BendRun* run, csError* err) {
   unsigned mask = 0;
-  csError err;
-  if (csu_chamberListParse(text, CSR_NCHAMBER, "--chambers", &mask, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+  if (csu_chamberListParse(text, CSR_NCHAMBER, "--chambers", &mask, err) != CS_OK) {
     return 1;
   }
   for (int j = 0; j < CSR_NCHAMBER; j++) {
@@ -359,14 +363,14 @@ static int parseChambers(const char* text, BendRun* run) {
 }
 
 
-static int parseNumbers(const char* flag, const char* text, int n, double* v) {
+static int parseNumbers(const char* flag, const char* text, int n, double* v, csError* err) {
   const char* s = text;
   for (int k = 0; k < n; k++) {
     char* end = NULL;
     v[k] = strtod(s, &end);
     if (end == s || !isfinite(v[k]) || (k < n - 1 ? *end != ',' : *end != '\0')) {
-      fprintf(stderr, "crawlsim bend: %s '%s': expected %d comma-separated finite numbers\n",
-              flag, text, n);
+      cs_errorSet(err, CS_ERR_ARG, "%s '%s': expected %d comma-separated finite numbers",
+                  flag, text, n);
       return 1;
     }
     s = end + 1;
@@ -376,22 +380,22 @@ static int parseNumbers(const char* flag, const char* text, int n, double* v) {
 
 
 /* --pressures R1,R2,R3,R4: ratios >= 0, one at least > 0; the chambers text lists j:R_j */
-static int parsePressures(const char* text, BendRun* run) {
+static int parsePressures(const char* text, BendRun* run, csError* err) {
   double r[CSR_NCHAMBER];
-  if (parseNumbers("--pressures", text, CSR_NCHAMBER, r)) {
+  if (parseNumbers("--pressures", text, CSR_NCHAMBER, r, err)) {
     return 1;
   }
   double top = 0;
   for (int j = 0; j < CSR_NCHAMBER; j++) {
     if (r[j] < 0) {
-      fprintf(stderr, "crawlsim bend: --pressures '%s': ratio %g of chamber %d is negative\n",
-              text, r[j], j + 1);
+      cs_errorSet(err, CS_ERR_ARG, "--pressures '%s': ratio %g of chamber %d is negative",
+                  text, r[j], j + 1);
       return 1;
     }
     top = fmax(top, r[j]);
   }
   if (!(top > 0)) {
-    fprintf(stderr, "crawlsim bend: --pressures '%s': every ratio is 0\n", text);
+    cs_errorSet(err, CS_ERR_ARG, "--pressures '%s': every ratio is 0", text);
     return 1;
   }
   char* w = run->chambers;
@@ -412,7 +416,8 @@ static int parsePressures(const char* text, BendRun* run) {
 }
 
 
-static int parseArgs(int argc, char** argv, BendRun* run) {
+static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOptKind* kind,
+                     csError* err) {
   const char* actuator = NULL; /* default below, by model */
   const char* sets[MAX_SETS];
   int nset = 0;
@@ -435,20 +440,18 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
   run->inflated[0] = run->inflated[1] = 1;
   run->ratio[0] = run->ratio[1] = 1.0;
   snprintf(run->chambers, sizeof run->chambers, "1,2");
-  csxOptIter it;
-  csx_optBegin(&it);
-  for (csxOptKind kind; (kind = csx_optNext(&kBendTable, argc, argv, &it)) != CSX_OPT_END;) {
-    const int end = csx_optReport(&kBendTable, kind, &it);
-    if (end >= 0) {
-      return end == 0 ? 2 : 1; /* 2: after --help */
+  csx_optBegin(it);
+  while ((*kind = csx_optNext(&kBendTable, argc, argv, it)) != CSX_OPT_END) {
+    if (*kind == CSX_OPT_HELP || *kind == CSX_OPT_ERROR) {
+      return 2;
     }
-    if (kind == CSX_OPT_OPERAND) {
-      fprintf(stderr, "crawlsim bend: unexpected argument '%.60s' (see crawlsim bend --help)\n",
-              it.value);
+    if (*kind == CSX_OPT_OPERAND) {
+      cs_errorSet(err, CS_ERR_ARG, "unexpected argument '%.60s' (see crawlsim bend --help)",
+                  it->value);
       return 1;
     }
-    const char* name = it.opt->name;
-    const char* value = it.value;
+    const char* name = it->opt->name;
+    const char* value = it->value;
     int bad = 0;
     if (!strcmp(name, "--model")) {
       int m = 0;
@@ -456,9 +459,9 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
         m++;
       }
       if (m == BEND_NMODEL) {
-        fprintf(stderr,
-                "crawlsim bend: unknown model '%s' (expected analytic, fe, rod, prb or rom)\n",
-                value);
+        cs_errorSet(err, CS_ERR_ARG,
+                    "unknown model '%s' (expected analytic, fe, rod, prb or rom)",
+                    value);
         return 1;
       }
       run->model = (BendModel)m;
@@ -466,58 +469,58 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
       actuator = value;
     } else if (!strcmp(name, "--set")) {
       if (nset == MAX_SETS) {
-        fprintf(stderr, "crawlsim bend: more than %d --set options\n", MAX_SETS);
+        cs_errorSet(err, CS_ERR_ARG, "more than %d --set options", MAX_SETS);
         return 1;
       }
       sets[nset++] = value;
     } else if (!strcmp(name, "--chambers")) {
-      bad = parseChambers(value, run);
+      bad = parseChambers(value, run, err);
     } else if (!strcmp(name, "--p-max")) {
-      bad = parsePositive(name, value, "MPa", &run->p_max);
+      bad = parsePositive(name, value, "MPa", &run->p_max, err);
     } else if (!strcmp(name, "--p-step")) {
-      bad = parsePositive(name, value, "MPa", &run->p_step);
+      bad = parsePositive(name, value, "MPa", &run->p_step, err);
     } else if (!strcmp(name, "--until-angle")) {
-      bad = parsePositive(name, value, "degrees", &run->until_angle);
+      bad = parsePositive(name, value, "degrees", &run->until_angle, err);
     } else if (!strcmp(name, "--mesh-size")) {
-      bad = parsePositive(name, value, "mm", &run->mesh_size);
+      bad = parsePositive(name, value, "mm", &run->mesh_size, err);
     } else if (!strcmp(name, "--fibre-size")) {
-      bad = parsePositive(name, value, "mm", &run->fibre_size);
+      bad = parsePositive(name, value, "mm", &run->fibre_size, err);
     } else if (!strcmp(name, "--fibre-split")) {
       if (strcmp(value, "0") && strcmp(value, "1")) {
-        fprintf(stderr, "crawlsim bend: --fibre-split '%s' must be 0 or 1\n", value);
+        cs_errorSet(err, CS_ERR_ARG, "--fibre-split '%s' must be 0 or 1", value);
         return 1;
       }
       run->fibre_split = value[0] == '1';
     } else if (!strcmp(name, "--mesh-symmetric")) {
       if (strcmp(value, "0") && strcmp(value, "1")) {
-        fprintf(stderr, "crawlsim bend: --mesh-symmetric '%s' must be 0 or 1\n", value);
+        cs_errorSet(err, CS_ERR_ARG, "--mesh-symmetric '%s' must be 0 or 1", value);
         return 1;
       }
       run->mesh_symmetric = value[0] == '1';
     } else if (!strcmp(name, "--segments")) {
       if (strcmp(value, "1") && strcmp(value, "3")) {
-        fprintf(stderr, "crawlsim bend: --segments '%s' must be 1 or 3\n", value);
+        cs_errorSet(err, CS_ERR_ARG, "--segments '%s' must be 1 or 3", value);
         return 1;
       }
       run->segments = value[0] - '0';
     } else if (!strcmp(name, "--branch-switch")) {
       if (strcmp(value, "0") && strcmp(value, "1")) {
-        fprintf(stderr, "crawlsim bend: --branch-switch '%s' must be 0 or 1\n", value);
+        cs_errorSet(err, CS_ERR_ARG, "--branch-switch '%s' must be 0 or 1", value);
         return 1;
       }
       run->branch_switch = value[0] == '1';
     } else if (!strcmp(name, "--threads")) {
-      bad = csx_feParseThreads("bend", value, &run->threads);
+      bad = csx_feParseThreads(value, &run->threads, err);
     } else if (!strcmp(name, "--fibre-law")) {
       run->fibre_tension_only = csr_fibreLawParse(value);
       if (run->fibre_tension_only < 0) {
-        fprintf(stderr, "crawlsim bend: --fibre-law '%s' must be linear or tension-only\n", value);
+        cs_errorSet(err, CS_ERR_ARG, "--fibre-law '%s' must be linear or tension-only", value);
         return 1;
       }
     } else if (!strcmp(name, "--pressures")) {
-      bad = parsePressures(value, run);
+      bad = parsePressures(value, run, err);
     } else if (!strcmp(name, "--tip-load")) {
-      bad = parseNumbers(name, value, 3, run->tip_load);
+      bad = parseNumbers(name, value, 3, run->tip_load, err);
     } else if (!strcmp(name, "--rom-basis")) {
       run->rom_basis = value;
     } else if (!strcmp(name, "--rom-weights")) {
@@ -525,31 +528,31 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
     } else if (!strcmp(name, "--cal-rule")) {
       csrCalRule rule;
       if (!csr_calRuleParse(value, &rule)) {
-        fprintf(stderr, "crawlsim bend: unknown --cal-rule '%.60s' (expected prism, rbf or "
-                "rbf-pair)\n", value);
+        cs_errorSet(err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf or "
+                    "rbf-pair)", value);
         return 1;
       }
       run->cal_rule = (int)rule;
     } else if (!strcmp(name, "--cal-drop")) {
       if (!csr_calDropParse(value, &run->cal_drop)) {
-        fprintf(stderr, "crawlsim bend: bad --cal-drop '%.60s' (expected stretch, stiffness, "
-                "stretch,stiffness or none)\n", value);
+        cs_errorSet(err, CS_ERR_ARG, "bad --cal-drop '%.60s' (expected stretch, stiffness, "
+                    "stretch,stiffness or none)", value);
         return 1;
       }
     } else if (!strcmp(name, "--calibration")) {
       if (!*value) {
-        fprintf(stderr, "crawlsim bend: --calibration needs a file name or 'analytic'\n");
+        cs_errorSet(err, CS_ERR_ARG, "--calibration needs a file name or 'analytic'");
         return 1;
       }
       run->calibration = value;
     } else if (!strcmp(name, "--out")) {
       if (!*value) {
-        fprintf(stderr, "crawlsim bend: --out needs a file name\n");
+        cs_errorSet(err, CS_ERR_ARG, "--out needs a file name");
         return 1;
       }
       run->out = value;
     } else {
-      fprintf(stderr, "crawlsim bend: unknown option '%s' (see crawlsim bend --help)\n", name);
+      cs_errorSet(err, CS_ERR_ARG, "unknown option '%s' (see crawlsim bend --help)", name);
       return 1;
     }
     if (bad) {
@@ -562,20 +565,66 @@ static int parseArgs(int argc, char** argv, BendRun* run) {
     actuator = run->model == BEND_ROD || run->model == BEND_ROM ? CSX_MISSION_ACTUATOR
                                                                 : "baseline";
   }
-  csError err;
-  cs_errorClear(&err);
-  if (csr_actuatorPreset(&run->act, actuator, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+  if (csr_actuatorPreset(&run->act, actuator, err) != CS_OK) {
     return 1;
   }
   for (int k = 0; k < nset; k++) {
-    if (csr_actuatorSetString(&run->act, sets[k], &err) != CS_OK) {
-      fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+    if (csr_actuatorSetString(&run->act, sets[k], err) != CS_OK) {
       return 1;
     }
   }
-  if (csr_actuatorValidate(&run->act, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
+  if (csr_actuatorValidate(&run->act, err) != CS_OK) {
+    return 1;
+  }
+  return checkModelOptions(run, err);
+}
+
+
+/* the options only some models take: 0, or 1 with err naming the option */
+static int checkModelOptions(const BendRun* run, csError* err) {
+  if ((!isnan(run->fibre_size) || run->fibre_split >= 0 || run->fibre_tension_only >= 0) &&
+      run->model != BEND_FE) {
+    cs_errorSet(err, CS_ERR_ARG, "%s is for --model fe (the %s model has no fibre elements)",
+                !isnan(run->fibre_size)  ? "--fibre-size"
+                : run->fibre_split >= 0 ? "--fibre-split"
+                                        : "--fibre-law",
+                kModelNames[run->model]);
+    return 1;
+  }
+  if (run->mesh_symmetric >= 0 && run->model != BEND_FE) {
+    cs_errorSet(err, CS_ERR_ARG, "--mesh-symmetric is for --model fe (the %s model has no "
+                "mesh)", kModelNames[run->model]);
+    return 1;
+  }
+  if (run->segments >= 0 && run->model != BEND_FE) {
+    cs_errorSet(err, CS_ERR_ARG, "--segments is for --model fe (the %s model takes the three "
+                "segments)", kModelNames[run->model]);
+    return 1;
+  }
+  if (run->threads > 0 && run->model != BEND_FE) {
+    cs_errorSet(err, CS_ERR_ARG, "--threads is for --model fe (the %s model runs on one "
+                "thread)", kModelNames[run->model]);
+    return 1;
+  }
+  if (run->branch_switch >= 0 && run->model != BEND_FE) {
+    cs_errorSet(err, CS_ERR_ARG, "--branch-switch is for --model fe (the %s model has no "
+                "tangent to switch branches on)", kModelNames[run->model]);
+    return 1;
+  }
+  if ((run->rom_basis || run->rom_weights) && run->model != BEND_ROM) {
+    cs_errorSet(err, CS_ERR_ARG, "--rom-basis and --rom-weights are for --model rom");
+    return 1;
+  }
+  int tip = run->tip_load[0] != 0 || run->tip_load[1] != 0 || run->tip_load[2] != 0;
+  if ((tip && run->model != BEND_ROD && run->model != BEND_FE && run->model != BEND_ROM) ||
+      ((run->calibration || run->cal_rule >= 0 || run->cal_drop) && run->model != BEND_ROD)) {
+    cs_errorSet(err, CS_ERR_ARG, "%s is for --model %s (the %s model has no %s)",
+                tip                  ? "--tip-load"
+                : run->calibration   ? "--calibration"
+                : run->cal_rule >= 0 ? "--cal-rule"
+                                     : "--cal-drop",
+                tip ? "rod, fe or rom" : "rod",
+                kModelNames[run->model], tip ? "tip load" : "calibration");
     return 1;
   }
   return 0;
@@ -663,210 +712,218 @@ int csx_bendExitCode(csStatus st) {
 }
 
 
-int csx_cmdBend(int argc, char** argv) {
-  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
-   * polls the flag */
-  csx_signalInstall();
-  BendRun run;
-  int rc = parseArgs(argc, argv, &run);
-  if (rc != 0) {
-    return rc == 2 ? 0 : 1;
-  }
-  /* options only some models take */
-  if ((!isnan(run.fibre_size) || run.fibre_split >= 0 || run.fibre_tension_only >= 0) &&
-      run.model != BEND_FE) {
-    fprintf(stderr, "crawlsim bend: %s is for --model fe (the %s model has no fibre elements)\n",
-            !isnan(run.fibre_size)   ? "--fibre-size"
-            : run.fibre_split >= 0 ? "--fibre-split"
-                                   : "--fibre-law",
-            kModelNames[run.model]);
-    return 1;
-  }
-  if (run.mesh_symmetric >= 0 && run.model != BEND_FE) {
-    fprintf(stderr, "crawlsim bend: --mesh-symmetric is for --model fe (the %s model has no "
-            "mesh)\n", kModelNames[run.model]);
-    return 1;
-  }
-  if (run.segments >= 0 && run.model != BEND_FE) {
-    fprintf(stderr, "crawlsim bend: --segments is for --model fe (the %s model takes the three "
-            "segments)\n", kModelNames[run.model]);
-    return 1;
-  }
-  if (run.threads > 0 && run.model != BEND_FE) {
-    fprintf(stderr, "crawlsim bend: --threads is for --model fe (the %s model runs on one "
-            "thread)\n", kModelNames[run.model]);
-    return 1;
-  }
-  if (run.branch_switch >= 0 && run.model != BEND_FE) {
-    fprintf(stderr, "crawlsim bend: --branch-switch is for --model fe (the %s model has no "
-            "tangent to switch branches on)\n", kModelNames[run.model]);
-    return 1;
-  }
-  if ((run.rom_basis || run.rom_weights) && run.model != BEND_ROM) {
-    fprintf(stderr, "crawlsim bend: --rom-basis and --rom-weights are for --model rom\n");
-    return 1;
-  }
-  int tip = run.tip_load[0] != 0 || run.tip_load[1] != 0 || run.tip_load[2] != 0;
-  if ((tip && run.model != BEND_ROD && run.model != BEND_FE && run.model != BEND_ROM) ||
-      ((run.calibration || run.cal_rule >= 0 || run.cal_drop) && run.model != BEND_ROD)) {
-    fprintf(stderr, "crawlsim bend: %s is for --model %s (the %s model has no %s)\n",
-            tip                ? "--tip-load"
-            : run.calibration  ? "--calibration"
-            : run.cal_rule >= 0 ? "--cal-rule"
-                               : "--cal-drop",
-            tip ? "rod, fe or rom" : "rod",
-            kModelNames[run.model], tip ? "tip load" : "calibration");
-    return 1;
-  }
+csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err) {
+  res->p_until = res->angle_total = res->p_end = NAN;
+  res->until_line[0] = '\0';
 #ifdef CS_HAVE_FEM
-  if (run.model == BEND_FE) {
-    return csx_bendFe(&run);
+  if (run->model == BEND_FE) {
+    return csx_bendFe(run, res, err);
   }
-  if (run.model == BEND_ROM) {
-    return csx_bendRom(&run);
+  if (run->model == BEND_ROM) {
+    return csx_bendRom(run, res, err);
   }
 #endif
-  BendPointFn eval = bendModelEvaluator(run.model);
+  BendPointFn eval = bendModelEvaluator(run->model);
   if (!eval) {
-    fprintf(stderr, "crawlsim bend: model '%s' is not available yet\n", kModelNames[run.model]);
-    return 1;
+    return cs_errorSet(err, CS_ERR_ARG, "model '%s' is not available yet",
+                       kModelNames[run->model]);
   }
-  if (run.model == BEND_ROD && rodSetup(&run) != 0) {
-    rodTeardown(&run);
-    return 1;
+  if (run->model == BEND_ROD && rodSetup(run, err) != 0) {
+    rodTeardown(run);
+    return err->status != CS_OK ? err->status : CS_ERR_ARG;
   }
-  if (run.model == BEND_ANALYTIC) {
+  if (run->model == BEND_ANALYTIC) {
     for (int s = 0; s < CSR_NSEG; s++) {
-      if (run.act.n[s] == 0) {
-        fprintf(stderr,
+      if (run->act.n[s] == 0) {
+        fprintf(run->notes,
                 "crawlsim bend: note: n%d = 0, but the analytic model assumes fibres that stop "
                 "radial growth (lambda2 = 1)\n",
                 s + 1);
       }
     }
-    if (!isnan(run.mesh_size)) {
-      fprintf(stderr, "crawlsim bend: note: --mesh-size is ignored by the analytic model\n");
+    if (!isnan(run->mesh_size)) {
+      fprintf(run->notes, "crawlsim bend: note: --mesh-size is ignored by the analytic model\n");
     }
   }
 
   /* open the output first so that an unwritable path fails before any work */
-  csError err;
-  cs_errorClear(&err);
-  csH5File* f = cs_h5Create(run.out, &err);
+  csH5File* f = cs_h5Create(run->out, err);
   if (!f) {
-    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
-    rodTeardown(&run);
-    return 1;
+    rodTeardown(run);
+    return err->status;
   }
 
   /* the sweep: 0, step, ..., and p-max as the last row */
   double t0 = csu_wallSeconds();
-  size_t nstep = (size_t)floor(run.p_max / run.p_step * (1 + kSweepEps));
+  size_t nstep = (size_t)floor(run->p_max / run->p_step * (1 + kSweepEps));
   csrBendCurve bc;
-  csStatus st = csr_bendCurveInit(&bc, nstep + 2, &err);
+  csStatus st = csr_bendCurveInit(&bc, nstep + 2, err);
   for (size_t i = 0; st == CS_OK && i <= nstep + 1; i++) {
     /* i x step may round above p-max (6 x 0.05 > 0.3): never beyond it (a calibrated range
      * ends there) */
-    double p = (i <= nstep) ? fmin((double)i * run.p_step, run.p_max) : run.p_max;
-    if (i == nstep + 1 && p - (double)nstep * run.p_step <= kSweepEps * run.p_max) {
+    double p = (i <= nstep) ? fmin((double)i * run->p_step, run->p_max) : run->p_max;
+    if (i == nstep + 1 && p - (double)nstep * run->p_step <= kSweepEps * run->p_max) {
       break; /* p-max was on the grid */
     }
     if (*csx_signalFlag()) {
-      st = cs_errorSet(&err, CS_ERR_INTERRUPTED, "interrupted at p = %.6g MPa (%zu rows kept)",
+      st = cs_errorSet(err, CS_ERR_INTERRUPTED, "interrupted at p = %.6g MPa (%zu rows kept)",
                        bc.m > 0 ? bc.pressure[bc.m - 1] : 0.0, bc.m);
       break;
     }
     double ang[CSR_NSEG], tip[3];
-    st = eval(&run, p, ang, tip, &err);
+    st = eval(run, p, ang, tip, err);
     if (st != CS_OK) {
       /* where: the pressure, the sweep's step and the discretisation; the rows so far stay */
-      char cause[sizeof err.msg];
-      memcpy(cause, err.msg, sizeof cause);
-      cs_errorSet(&err, st, "%s model failed at p = %.6g MPa (sweep step %zu of %zu, from %.6g "
+      char cause[sizeof err->msg];
+      memcpy(cause, err->msg, sizeof cause);
+      cs_errorSet(err, st, "%s model failed at p = %.6g MPa (sweep step %zu of %zu, from %.6g "
                   "MPa; %d elements; the %zu rows before it are kept): %.300s",
-                  kModelNames[run.model], p, i, nstep, bc.m > 0 ? bc.pressure[bc.m - 1] : 0.0,
-                  (int)run.n_elements_soft, bc.m, cause);
+                  kModelNames[run->model], p, i, nstep, bc.m > 0 ? bc.pressure[bc.m - 1] : 0.0,
+                  (int)run->n_elements_soft, bc.m, cause);
     }
     if (st == CS_OK) {
-      st = csr_bendCurvePush(&bc, p, ang, tip, &err);
+      st = csr_bendCurvePush(&bc, p, ang, tip, err);
     }
     if (st == CS_OK) {
       /* the file on disk holds every row so far, whatever stops the sweep */
-      st = csr_bendCurveFlushH5(f, &bc, &err);
+      st = csr_bendCurveFlushH5(f, &bc, err);
     }
   }
   double p_until = NAN, p_searched = NAN;
-  if (st == CS_OK && !isnan(run.until_angle)) {
-    st = findUntilAngle(&run, eval, &bc, &p_until, &p_searched, &err);
+  if (st == CS_OK && !isnan(run->until_angle)) {
+    st = findUntilAngle(run, eval, &bc, &p_until, &p_searched, err);
     bc.p_until_angle = p_until;
   }
   double wall = csu_wallSeconds() - t0;
   if (st == CS_OK) {
-    csrBendMeta meta = {kModelNames[run.model], run.chambers, run.mesh_size,  run.n_elements_soft,
-                        run.n_elements_fibre,   wall,         run.until_angle,
-                        run.p_limit,            run.p_resume, 0, 0, 0, NAN, -1, NAN, 0};
-    st = csr_bendCurveWriteH5(f, &run.act, &bc, &meta, &err);
+    csrBendMeta meta = {kModelNames[run->model], run->chambers, run->mesh_size,
+                        run->n_elements_soft, run->n_elements_fibre, wall, run->until_angle,
+                        run->p_limit, run->p_resume, 0, 0, 0, NAN, -1, NAN, 0};
+    st = csr_bendCurveWriteH5(f, &run->act, &bc, &meta, err);
   }
-  if (st == CS_OK && run.model == BEND_ROD) {
+  if (st == CS_OK && run->model == BEND_ROD) {
     char drop[32];
-    csr_calDropFormat(run.cal_drop, drop, sizeof drop);
-    st = cs_h5AttrString(f, "/", "calibration_dropped", drop, &err);
+    csr_calDropFormat(run->cal_drop, drop, sizeof drop);
+    st = cs_h5AttrString(f, "/", "calibration_dropped", drop, err);
     if (st == CS_OK) {
-      st = cs_h5AttrString(f, "/", "calibration", run.rod->map.name ? run.rod->map.name : "?",
-                           &err);
+      st = cs_h5AttrString(f, "/", "calibration", run->rod->map.name ? run->rod->map.name : "?",
+                           err);
     }
     if (st == CS_OK) {
       st = cs_h5AttrString(f, "/", "calibration_rule",
-                           run.rod->cal ? csr_calibrationRuleName(run.rod->cal) : "none", &err);
+                           run->rod->cal ? csr_calibrationRuleName(run->rod->cal) : "none", err);
     }
     if (st == CS_OK) {
       st = cs_h5AttrString(f, "/", "calibration_stiffness",
-                           run.rod->has_rodcal && !(run.cal_drop & CSR_CAL_DROP_STIFFNESS)
+                           run->rod->has_rodcal && !(run->cal_drop & CSR_CAL_DROP_STIFFNESS)
                                ? "probed"
                                : "default",
-                           &err);
+                           err);
     }
   }
-  st = csx_bendFileClose(f, kModelNames[run.model], &bc, st, &err);
+  st = csx_bendFileClose(f, kModelNames[run->model], &bc, st, err);
   if (st != CS_OK) {
-    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
     csr_bendCurveFree(&bc);
-    rodTeardown(&run);
-    return csx_bendExitCode(st);
+    rodTeardown(run);
+    return st;
   }
+  csx_bendResultFill(run, &bc, res);
 
   /* the table */
-  printf("crawlsim bend: model %s, actuator %s, chambers %s in II1-II3\n", kModelNames[run.model],
-         run.act.name, run.chambers);
-  if (run.model == BEND_ROD) {
-    printf("rod: %d elements (%.4g mm in the segments), calibration %s, rule %s, section "
-           "stiffness %s, tip load (%g, %g, %g) N in the base frame, gravity off\n",
-           (int)run.n_elements_soft, run.mesh_size,
-           run.rod->map.name ? run.rod->map.name : "?",
-           run.rod->cal ? csr_calibrationRuleName(run.rod->cal) : "none",
-           run.rod->has_rodcal && !(run.cal_drop & CSR_CAL_DROP_STIFFNESS) ? "probed (FE)"
+  fprintf(run->table, "crawlsim bend: model %s, actuator %s, chambers %s in II1-II3\n",
+          kModelNames[run->model], run->act.name, run->chambers);
+  if (run->model == BEND_ROD) {
+    fprintf(run->table, "rod: %d elements (%.4g mm in the segments), calibration %s, rule %s, "
+            "section stiffness %s, tip load (%g, %g, %g) N in the base frame, gravity off\n",
+            (int)run->n_elements_soft, run->mesh_size,
+            run->rod->map.name ? run->rod->map.name : "?",
+            run->rod->cal ? csr_calibrationRuleName(run->rod->cal) : "none",
+            run->rod->has_rodcal && !(run->cal_drop & CSR_CAL_DROP_STIFFNESS) ? "probed (FE)"
                                                                            : "default (8 C10 I)",
-           run.tip_load[0], run.tip_load[1], run.tip_load[2]);
+            run->tip_load[0], run->tip_load[1], run->tip_load[2]);
   }
-  printf("%9s %9s %9s %9s %10s %10s %10s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
-         "total(deg)", "tip e1(mm)", "tip e2(mm)", "tip e3(mm)");
+  fprintf(run->table, "%9s %9s %9s %9s %10s %10s %10s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)",
+          "II3 (deg)", "total(deg)", "tip e1(mm)", "tip e2(mm)", "tip e3(mm)");
   for (size_t i = 0; i < bc.m; i++) {
     const double* a = &bc.angle_deg[3 * i];
     const double* x = &bc.tip[3 * i];
-    printf("%9.4f %9.3f %9.3f %9.3f %10.3f %10.3f %10.3f %10.3f\n", bc.pressure[i], a[0], a[1],
-           a[2], bc.angle_total[i], x[0], x[1], x[2]);
+    fprintf(run->table, "%9.4f %9.3f %9.3f %9.3f %10.3f %10.3f %10.3f %10.3f\n", bc.pressure[i],
+            a[0], a[1], a[2], bc.angle_total[i], x[0], x[1], x[2]);
   }
-  if (!isnan(run.until_angle)) {
+  if (!isnan(run->until_angle)) {
     if (isnan(p_until)) {
-      printf("until-angle: total angle %g deg not reached up to %g MPa\n", run.until_angle,
-             p_searched);
+      snprintf(res->until_line, sizeof res->until_line,
+               "until-angle: total angle %g deg not reached up to %g MPa", run->until_angle,
+               p_searched);
     } else {
-      printf("until-angle: total angle %g deg at p = %.6f MPa%s\n", run.until_angle, p_until,
-             p_until > run.p_max ? " (above --p-max)" : "");
+      snprintf(res->until_line, sizeof res->until_line,
+               "until-angle: total angle %g deg at p = %.6f MPa%s", run->until_angle, p_until,
+               p_until > run->p_max ? " (above --p-max)" : "");
+    }
+    fprintf(run->table, "%s\n", res->until_line);
+  }
+  fprintf(run->table, "wrote %s (%.3f s)\n", run->out, wall);
+  csr_bendCurveFree(&bc);
+  rodTeardown(run);
+  return CS_OK;
+}
+
+
+void csx_bendResultFill(const BendRun* run, const csrBendCurve* bc, csxBendResult* res) {
+  (void)run;
+  res->p_until = bc->p_until_angle;
+  if (bc->m > 0) {
+    res->angle_total = bc->angle_total[bc->m - 1];
+    res->p_end = bc->pressure[bc->m - 1];
+  }
+}
+
+
+/* `crawlsim bend` with its table on `table`, its notes on `notes` and its results in *sres
+ * (NULL: the command line; else a study's step, both streams its log) */
+static int bendCommand(int argc, char** argv, FILE* table, FILE* notes, csxStepResult* sres) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
+  BendRun run;
+  csxOptIter it;
+  csxOptKind kind;
+  csError err;
+  cs_errorClear(&err);
+  int p = parseArgs(argc, argv, &run, &it, &kind, &err);
+  p = csx_parseEnd(&kBendTable, p, kind, &it, &err, notes, sres);
+  if (p >= 0) {
+    return p;
+  }
+  run.table = table;
+  run.notes = notes;
+  csxBendResult res;
+  csStatus st = csx_bendExecute(&run, &res, &err);
+  if (sres) {
+    sres->p_until = res.p_until;
+    sres->angle_total = res.angle_total;
+    sres->p_end = res.p_end;
+    /* the case summary's piece: the until-angle line, else the last row */
+    if (res.until_line[0]) {
+      snprintf(sres->summary, sizeof sres->summary, "%s", res.until_line);
+    } else if (!isnan(res.angle_total)) {
+      snprintf(sres->summary, sizeof sres->summary, "bend: total %.3f deg at %.4f MPa",
+               res.angle_total, res.p_end);
     }
   }
-  printf("wrote %s (%.3f s)\n", run.out, wall);
-  csr_bendCurveFree(&bc);
-  rodTeardown(&run);
+  if (st != CS_OK) {
+    csx_stepFailed(sres, notes, "bend", err.msg);
+    return csx_bendExitCode(st);
+  }
   return 0;
+}
+
+
+int csx_cmdBend(int argc, char** argv) {
+  return bendCommand(argc, argv, stdout, stderr, NULL);
+}
+
+
+int csx_stepBend(int argc, char** argv, FILE* log, csxStepResult* res) {
+  return bendCommand(argc, argv, log, log, res);
 }

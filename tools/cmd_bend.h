@@ -4,6 +4,8 @@
 #ifndef CS_TOOLS_CMD_BEND_H
 #define CS_TOOLS_CMD_BEND_H
 
+#include <stdio.h>
+
 #include "core_h5.h"
 #include "core_status.h"
 #include "robot_actuator.h"
@@ -51,18 +53,37 @@ typedef struct {
   int threads;                /* fe: --threads N (0: the thread plan's default, fem_threads.h) */
   const char* rom_basis;      /* rom: --rom-basis FILE (tools/rom_basis.py), required */
   const char* rom_weights;    /* rom: --rom-weights FILE (tools/rom_ecsw.py), NULL = every element */
+  FILE* table;                /* where the result table goes (the command: stdout; a study's
+                                 step: the case's log) */
+  FILE* notes;                /* where notes and the FE's progress lines go (stderr; the log) */
 } BendRun;
 
+/* What a bend gives back besides its file (read by the study runner instead of the text). */
+typedef struct {
+  double p_until;        /* MPa at --until-angle; NaN: not asked or not reached */
+  double angle_total;    /* deg: the last row's total angle (NaN: no row) */
+  double p_end;          /* MPa: the last row's pressure (NaN: no row) */
+  char until_line[256];  /* the until-angle line of the table ("" without --until-angle) */
+} csxBendResult;
+
+/* Run the bend `run` defines (parsed and checked by the command's parser): write run->out,
+ * print the table on run->table and notes on run->notes, fill *res. CS_OK, or a status with
+ * err filled (the rows so far stay in the file). */
+csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err);
+
+/* res's numbers from a finished sweep's curve */
+void csx_bendResultFill(const BendRun* run, const csrBendCurve* bc, csxBendResult* res);
+
 /* The full FE model's sweep of `run` (fem_bend.h: adaptive load stepping over the whole sweep,
- * --until-angle found by the load stepping itself): writes run->out and prints the table and
- * the FE's report lines. Returns the command's exit status (0, or 1 after one error line). Only
- * in builds with the FE (CS_HAVE_FEM). */
-int csx_bendFe(BendRun* run);
+ * --until-angle found by the load stepping itself): writes run->out, prints the table on
+ * run->table and the FE's report lines on run->notes, fills *res. CS_OK or a status with err.
+ * Only in builds with the FE (CS_HAVE_FEM). */
+csStatus csx_bendFe(BendRun* run, csxBendResult* res, csError* err);
 
 /* The reduced-order FE model's sweep of `run` (fem/fem_rom_act.h: reduced statics by Newton on
  * the basis' coordinates, each row ramped from the last), written with the FE's output contract
  * (csr_bendCurveWriteH5) plus the rom's attributes. Returns the exit status. Only with the FE. */
-int csx_bendRom(BendRun* run);
+csStatus csx_bendRom(BendRun* run, csxBendResult* res, csError* err);
 
 /* End a bend file whatever happened: after a failure (st != CS_OK) the model's name and the
  * rows so far are written too (they reach the disk unless it refused already), the status

@@ -34,6 +34,7 @@ typedef struct {
   csH5File* f;   /* the output: the rows so far are flushed after every converged step */
   const csrBendCurve* bc;
   csError flush_err; /* the first flush that failed (then no more are tried) */
+  FILE* notes;       /* where the lines go (BendRun.notes) */
 } FeReport;
 
 static const double kHeartbeatS = 50.0;
@@ -49,8 +50,8 @@ static void feHeartbeat(void* user, const csfNewtonIter* it) {
   rep->iters++;
   const double now = csu_wallSeconds();
   if (now - rep->t_last >= kHeartbeatS) {
-    fprintf(stderr, "  fe: working at load %.5f MPa: Newton iteration %d, |R| %.3g N (of %.3g), "
-            "%ld iterations in the last %.0f s\n", it->load, it->iter, it->rnorm, it->fnorm,
+    fprintf(rep->notes, "  fe: working at load %.5f MPa: Newton iteration %d, |R| %.3g N (of "
+            "%.3g), %ld iterations in the last %.0f s\n", it->load, it->iter, it->rnorm, it->fnorm,
             rep->iters, now - rep->t_last);
     rep->t_last = now;
     rep->iters = 0;
@@ -70,7 +71,7 @@ static void feProgress(void* user, const csfBendStep* st) {
     csr_bendCurveFlushH5(rep->f, rep->bc, &rep->flush_err);
   }
   if (st->note) {
-    fprintf(stderr, "  fe: %s\n", st->note); /* a bifurcation and the branch switched to */
+    fprintf(rep->notes, "  fe: %s\n", st->note); /* a bifurcation and the branch switched to */
   }
   char inertia[128] = "";
   if (st->neg_pivots > 0) {
@@ -87,12 +88,12 @@ static void feProgress(void* user, const csfBendStep* st) {
   char walls[160];
   feWalls(st, walls, sizeof walls);
   if (st->volume_control) {
-    fprintf(stderr, "  fe: volume control: V %.1f mm^3, p = %.5f MPa (dp %+.5f), %d Newton "
+    fprintf(rep->notes, "  fe: volume control: V %.1f mm^3, p = %.5f MPa (dp %+.5f), %d Newton "
             "iterations, %.2f s, total %.2f deg%s%s\n", st->volume, st->p, st->dp,
             st->newton_iters, st->wall, st->angle_total, inertia, walls);
     return;
   }
-  fprintf(stderr, "  fe: p = %.4f MPa (dp %.4f), %d Newton iterations, %d cut-backs, %.2f s, "
+  fprintf(rep->notes, "  fe: p = %.4f MPa (dp %.4f), %d Newton iterations, %d cut-backs, %.2f s, "
           "total %.2f deg%s%s\n", st->p, st->dp, st->newton_iters, st->cutbacks, st->wall,
           st->angle_total, inertia, walls);
 }
@@ -111,51 +112,52 @@ static void feWalls(const csfBendStep* st, char* out, size_t sz) {
 
 
 /* the summary of the free surfaces at the sweep's end (fem_wall.h) */
-static void feWallReport(const csrActuator* act, const csfBendInfo* info, int stalled) {
+static void feWallReport(FILE* notes, const csrActuator* act, const csfBendInfo* info,
+                         int stalled) {
   const csfBendWall* w = &info->wall;
   if (w->vented.npoint > 0) {
     char where[160];
     csf_bendDescribePoint(act, w->vented.X, where, sizeof where);
     const int past = w->vented.lam_eq < CSF_CREASE_STRETCH;
-    fprintf(stderr, "crawlsim bend: fe: vented chambers' walls at the end: compressed to a "
+    fprintf(notes, "crawlsim bend: fe: vented chambers' walls at the end: compressed to a "
             "plane-strain-equivalent stretch lam_c sqrt(lam_t) = %.3f (lam_c %.3f along (%.2f, "
             "%.2f, %.2f), lam_t %.3f), %s: %s the crease onset %.2f (Hong, Zhao & Suo 2009)",
             w->vented.lam_eq, w->vented.lam_c, w->vented.dir[0], w->vented.dir[1],
             w->vented.dir[2], w->vented.lam_t, where, past ? "past" : "short of",
             CSF_CREASE_STRETCH);
     if (!isnan(info->p_crease)) {
-      fprintf(stderr, ", passed at %.5f MPa (%.2f deg)", info->p_crease, info->angle_crease);
+      fprintf(notes, ", passed at %.5f MPa (%.2f deg)", info->p_crease, info->angle_crease);
     }
-    fprintf(stderr, "; the most distorted element (J %.3f) is %.2f mm from that point\n",
+    fprintf(notes, "; the most distorted element (J %.3f) is %.2f mm from that point\n",
             info->j_min, info->j_min_wall_dist);
     if (isfinite(w->gap.gap)) {
       csf_bendDescribePoint(act, w->gap.X, where, sizeof where);
-      fprintf(stderr, "crawlsim bend: fe: smallest gap between opposite walls of a vented "
+      fprintf(notes, "crawlsim bend: fe: smallest gap between opposite walls of a vented "
               "chamber: %.3f mm (%.3f mm undeformed), %s\n", w->gap.gap, w->gap0, where);
     }
     const int closed = isfinite(w->gap.gap) && w->gap.gap < kGapClosed * w->gap0;
     if (past && stalled) {
-      fprintf(stderr, "crawlsim bend: fe: the sweep ended with the vented chambers' walls past "
+      fprintf(notes, "crawlsim bend: fe: the sweep ended with the vented chambers' walls past "
               "the crease onset%s: a real wall folds into a self-contacting crease there%s, "
               "which this model (no self-contact) cannot follow; a limit of the model, not of "
               "its mesh (fem/README.md \"Creases and closing chambers\")\n",
               closed ? " and a chamber closed" : "",
               closed ? " and the chamber's opposite walls have met" : "");
     } else if (past) {
-      fprintf(stderr, "crawlsim bend: fe: past %.5f MPa the states are the smooth, creaseless "
+      fprintf(notes, "crawlsim bend: fe: past %.5f MPa the states are the smooth, creaseless "
               "solution, which a real wall leaves by creasing (this model has no self-contact)"
               "\n", info->p_crease);
     }
   }
   if (w->skin.npoint > 0) {
-    fprintf(stderr, "crawlsim bend: fe: the skin at the end: plane-strain-equivalent stretch "
+    fprintf(notes, "crawlsim bend: fe: the skin at the end: plane-strain-equivalent stretch "
             "%.3f (lam_c %.3f, lam_t %.3f) at (%.2f, %.2f, %.2f) mm%s", w->skin.lam_eq,
             w->skin.lam_c, w->skin.lam_t, w->skin.X[0], w->skin.X[1], w->skin.X[2],
             w->skin.lam_eq < CSF_CREASE_STRETCH ? ", past the crease onset" : "");
     if (!isnan(info->p_crease_skin)) {
-      fprintf(stderr, " (from %.5f MPa)", info->p_crease_skin);
+      fprintf(notes, " (from %.5f MPa)", info->p_crease_skin);
     }
-    fprintf(stderr, "\n");
+    fprintf(notes, "\n");
   }
 }
 
@@ -243,7 +245,7 @@ static csStatus feSweep(BendRun* run, const csfThreadPlan* plan, csrBendCurve* b
   o.spec.work_stem = stem;
   o.vtu_path = vtu;
   o.inp_path = inp;
-  FeReport report = {csu_wallSeconds(), 0, f, bc, {CS_OK, ""}};
+  FeReport report = {csu_wallSeconds(), 0, f, bc, {CS_OK, ""}, run->notes};
   o.cancel = csx_signalFlag();
   o.progress = feProgress;
   o.progress_user = &report;
@@ -253,8 +255,8 @@ static csStatus feSweep(BendRun* run, const csfThreadPlan* plan, csrBendCurve* b
   o.info = &info;
   if (isfinite(o.until_angle)) {
     /* the sweep's own bound: an angle the actuator never reaches ends at p-max, not never */
-    fprintf(stderr, "crawlsim bend: fe: --until-angle %g deg: the sweep stops at --p-max %g MPa "
-            "(its limit) if the angle is not reached first\n", o.until_angle, o.p_max);
+    fprintf(run->notes, "crawlsim bend: fe: --until-angle %g deg: the sweep stops at --p-max %g "
+            "MPa (its limit) if the angle is not reached first\n", o.until_angle, o.p_max);
   }
   st = csf_bend(&run->act, &o, bc, err);
   if (st == CS_OK && report.flush_err.status != CS_OK) {
@@ -274,77 +276,75 @@ static csStatus feSweep(BendRun* run, const csfThreadPlan* plan, csrBendCurve* b
     run->p_limit = info.p_limit;
     run->limit_shown = info.limit_shown;
     run->p_resume = info.p_resume;
-    fprintf(stderr, "crawlsim bend: fe: %d tets, %d nodes, %d fibre elements, %d steps, %ld Newton "
-            "iterations; assembly %.1f s, factorisation %.1f s, solves %.1f s, total %.1f s; "
-            "deformed mesh %s, deck %s\n", info.ntet, info.nnode, info.nfibre, info.n_steps,
+    fprintf(run->notes, "crawlsim bend: fe: %d tets, %d nodes, %d fibre elements, %d steps, %ld "
+            "Newton iterations; assembly %.1f s, factorisation %.1f s, solves %.1f s, total %.1f "
+            "s; deformed mesh %s, deck %s\n", info.ntet, info.nnode, info.nfibre, info.n_steps,
             info.n_newton, info.t_assemble, info.t_factor, info.t_solve, info.t_total, vtu, inp);
-    csx_feReportThreads("bend", plan, &info);
+    csx_feReportThreads(run->notes, "bend", plan, &info);
     if (info.n_until_trials > 0) {
-      fprintf(stderr, "crawlsim bend: fe: until-angle refinement: %d equilibrium trials, %d "
+      fprintf(run->notes, "crawlsim bend: fe: until-angle refinement: %d equilibrium trials, %d "
               "failed%s%s\n", info.n_until_trials, info.n_until_failed,
               info.until_note[0] ? "; last failure: " : "", info.until_note);
     }
     if (info.bifurcation_note[0]) {
-      fprintf(stderr, "crawlsim bend: fe: %s\n", info.bifurcation_note);
+      fprintf(run->notes, "crawlsim bend: fe: %s\n", info.bifurcation_note);
     }
     if (!isnan(info.p_indefinite)) {
-      fprintf(stderr, "crawlsim bend: fe: the tangent stiffness lost positive definiteness "
+      fprintf(run->notes, "crawlsim bend: fe: the tangent stiffness lost positive definiteness "
               "between %.5f and %.5f MPa (up to %d negative pivots of LDL^T): the pressure-"
               "controlled path crossed a critical point there (a limit point if the pressure "
               "falls under volume control, otherwise a bifurcation: a lower-energy branch "
               "exists)\n", info.p_definite, info.p_indefinite, info.neg_pivots_max);
     } else if (info.neg_pivots_max == 0) {
-      fprintf(stderr, "crawlsim bend: fe: every converged state had a positive definite "
+      fprintf(run->notes, "crawlsim bend: fe: every converged state had a positive definite "
               "tangent (stable under pressure control)\n");
     }
     if (info.n_hard_passed > 0) {
-      fprintf(stderr, "crawlsim bend: fe: %d hard stretch%s of the path (pressure control failed, "
-              "the pressure kept rising under chamber-volume control: no limit point) followed "
-              "by volume%s\n", info.n_hard_passed, info.n_hard_passed > 1 ? "es" : "",
+      fprintf(run->notes, "crawlsim bend: fe: %d hard stretch%s of the path (pressure control "
+              "failed, the pressure kept rising under chamber-volume control: no limit point) "
+              "followed by volume%s\n", info.n_hard_passed, info.n_hard_passed > 1 ? "es" : "",
               info.n_rows_skipped > 0 && isnan(info.p_resume) ? "; some output pressures have "
               "no row" : "");
     }
     if (!isnan(info.p_limit) && !isnan(info.p_resume)) {
-      fprintf(stderr, "crawlsim bend: fe: pressure limit point at %.5f MPa (%.2f deg): passed "
+      fprintf(run->notes, "crawlsim bend: fe: pressure limit point at %.5f MPa (%.2f deg): passed "
               "by chamber-volume control (%d steps); stable again at %.5f MPa (%.2f deg), where "
               "the sweep resumed: under pressure control the actuator snaps across, the curve "
               "has no rows in between\n", info.p_limit, info.angle_limit, info.n_volume_steps,
               info.p_resume, info.angle_resume);
     } else if (!isnan(info.p_limit) && info.limit_shown) {
-      fprintf(stderr, "crawlsim bend: fe: pressure limit point at %.5f MPa (%.2f deg)%s%s: the "
+      fprintf(run->notes, "crawlsim bend: fe: pressure limit point at %.5f MPa (%.2f deg)%s%s: the "
               "sweep ends there\n", info.p_limit, info.angle_limit,
               info.limit_note[0] ? "; past it: " : "", info.limit_note);
     } else if (!isnan(info.p_limit)) {
-      fprintf(stderr, "crawlsim bend: fe: the sweep ends at %.5f MPa (%.2f deg): pressure control "
-              "failed there and the pressure did not fall under volume control (no limit point "
-              "shown)%s%s; the most distorted element (reference centroid %.2f, %.2f, %.2f mm) "
-              "has a pointwise J of %.3f%s\n",
-              info.p_limit, info.angle_limit, info.limit_note[0] ? "; " : "", info.limit_note,
-              info.j_min_X[0], info.j_min_X[1], info.j_min_X[2], info.j_min,
+      fprintf(run->notes, "crawlsim bend: fe: the sweep ends at %.5f MPa (%.2f deg): pressure "
+              "control failed there and the pressure did not fall under volume control (no limit "
+              "point shown)%s%s; the most distorted element (reference centroid %.2f, %.2f, %.2f "
+              "mm) has a pointwise J of %.3f%s\n", info.p_limit, info.angle_limit,
+              info.limit_note[0] ? "; " : "", info.limit_note, info.j_min_X[0], info.j_min_X[1],
+              info.j_min_X[2], info.j_min,
               info.j_min < CSX_J_DISTORTED ? " (its elements fold)" : "");
     }
     /* stalled (both controls failed, no limit point): the walls say why */
     const int stalled = !isnan(info.p_limit) && !info.limit_shown && isnan(info.p_resume);
-    feWallReport(&run->act, &info, stalled);
+    feWallReport(run->notes, &run->act, &info, stalled);
   }
   *infop = info;
   return st;
 }
 
-int csx_bendFe(BendRun* run) {
-  csError ferr;
-  cs_errorClear(&ferr);
-  csH5File* ff = cs_h5Create(run->out, &ferr);
+csStatus csx_bendFe(BendRun* run, csxBendResult* res, csError* ferr) {
+  csH5File* ff = cs_h5Create(run->out, ferr);
   csrBendCurve fbc;
   memset(&fbc, 0, sizeof fbc);
   double t0 = csu_wallSeconds();
-  csStatus fst = ff ? csr_bendCurveInit(&fbc, 16, &ferr) : ferr.status;
+  csStatus fst = ff ? csr_bendCurveInit(&fbc, 16, ferr) : ferr->status;
   csfBendInfo info;
   memset(&info, 0, sizeof info);
   csfThreadPlan plan;
-  csx_fePlanThreads("bend", run->threads, &plan);
+  csx_fePlanThreads(run->notes, "bend", run->threads, &plan);
   if (fst == CS_OK) {
-    fst = feSweep(run, &plan, &fbc, ff, &info, &ferr);
+    fst = feSweep(run, &plan, &fbc, ff, &info, ferr);
   }
   if (fst == CS_OK) {
     csrBendMeta meta = {"fe",
@@ -363,56 +363,58 @@ int csx_bendFe(BendRun* run) {
                         run->neg_pivots_max,
                         run->limit_shown ? NAN : run->p_limit,
                         run->mesh_symmetric};
-    fst = csr_bendCurveWriteH5(ff, &run->act, &fbc, &meta, &ferr);
+    fst = csr_bendCurveWriteH5(ff, &run->act, &fbc, &meta, ferr);
     if (fst == CS_OK) {
-      fst = feWallAttrs(ff, &info, &ferr);
+      fst = feWallAttrs(ff, &info, ferr);
     }
     if (fst == CS_OK) {
-      fst = csx_feThreadAttrs(ff, &plan, &info, &ferr);
+      fst = csx_feThreadAttrs(ff, &plan, &info, ferr);
     }
   }
   if (ff) {
-    fst = csx_bendFileClose(ff, "fe", &fbc, fst, &ferr);
+    fst = csx_bendFileClose(ff, "fe", &fbc, fst, ferr);
   }
   if (fst != CS_OK) {
-    fprintf(stderr, "crawlsim bend: %s\n", ferr.msg);
     csr_bendCurveFree(&fbc);
-    return csx_bendExitCode(fst);
+    return fst;
   }
-  printf("crawlsim bend: model fe, actuator %s, chambers %s in %s\n", run->act.name,
-         run->chambers, csr_actuatorIsSingle(&run->act) ? "II1 alone (single segment)"
+  csx_bendResultFill(run, &fbc, res);
+  fprintf(run->table, "crawlsim bend: model fe, actuator %s, chambers %s in %s\n", run->act.name,
+          run->chambers, csr_actuatorIsSingle(&run->act) ? "II1 alone (single segment)"
                                                         : "II1-II3");
-  printf("%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
-         "total(deg)");
+  fprintf(run->table, "%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
+          "total(deg)");
   for (size_t i = 0; i < fbc.m; i++) {
     const double* a = &fbc.angle_deg[3 * i];
-    printf("%9.4f %9.3f %9.3f %9.3f %10.3f\n", fbc.pressure[i], a[0], a[1], a[2],
-           fbc.angle_total[i]);
+    fprintf(run->table, "%9.4f %9.3f %9.3f %9.3f %10.3f\n", fbc.pressure[i], a[0], a[1], a[2],
+            fbc.angle_total[i]);
   }
   if (!isnan(run->until_angle)) {
     if (isnan(fbc.p_until_angle) && fbc.m > 0 &&
         fbc.angle_total[fbc.m - 1] >= run->until_angle) {
       /* bracketed by converged states, but the refinement did not reach the angle tolerance */
-      printf("until-angle: total angle %g deg passed (%.3f deg at %.6f MPa) but not refined to "
-             "the angle tolerance: no pressure reported\n",
-             run->until_angle, fbc.angle_total[fbc.m - 1], fbc.pressure[fbc.m - 1]);
+      snprintf(res->until_line, sizeof res->until_line, "until-angle: total angle %g deg passed "
+               "(%.3f deg at %.6f MPa) but not refined to the angle tolerance: no pressure "
+               "reported", run->until_angle, fbc.angle_total[fbc.m - 1], fbc.pressure[fbc.m - 1]);
     } else if (isnan(fbc.p_until_angle) && fbc.m > 0 &&
                fbc.pressure[fbc.m - 1] < run->p_max * (1.0 - 1e-9) && !isnan(run->p_limit)) {
       /* the sweep ended below p-max (a limit point without a stable branch, or both controls
        * failed: the report line above says which) */
-      printf("until-angle: total angle %g deg not reached: the sweep ended at %.5f MPa, below "
-             "p-max %g MPa (last row %.2f deg at %.4f MPa)\n", run->until_angle, run->p_limit,
-             run->p_max, fbc.angle_total[fbc.m - 1], fbc.pressure[fbc.m - 1]);
+      snprintf(res->until_line, sizeof res->until_line, "until-angle: total angle %g deg not "
+               "reached: the sweep ended at %.5f MPa, below p-max %g MPa (last row %.2f deg at "
+               "%.4f MPa)", run->until_angle, run->p_limit, run->p_max, fbc.angle_total[fbc.m - 1],
+               fbc.pressure[fbc.m - 1]);
     } else if (isnan(fbc.p_until_angle)) {
-      printf("until-angle: total angle %g deg not reached up to %g MPa\n", run->until_angle,
-             run->p_max);
+      snprintf(res->until_line, sizeof res->until_line, "until-angle: total angle %g deg not "
+               "reached up to %g MPa", run->until_angle, run->p_max);
     } else {
-      printf("until-angle: total angle %g deg at p = %.6f MPa\n", run->until_angle,
-             fbc.p_until_angle);
+      snprintf(res->until_line, sizeof res->until_line, "until-angle: total angle %g deg at p = "
+               "%.6f MPa", run->until_angle, fbc.p_until_angle);
     }
+    fprintf(run->table, "%s\n", res->until_line);
   }
   csr_bendCurveFree(&fbc);
-  return 0;
+  return CS_OK;
 }
 #else
 typedef int csxBendFeUnused; /* ISO C: a translation unit must not be empty */

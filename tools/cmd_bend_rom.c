@@ -88,34 +88,30 @@ static csStatus romSweep(BendRun* run, csrBendCurve* bc, csfRomActuator* ra, dou
 }
 
 
-int csx_bendRom(BendRun* run) {
+csStatus csx_bendRom(BendRun* run, csxBendResult* res, csError* err) {
   if (!run->rom_basis) {
-    fprintf(stderr, "crawlsim bend: --model rom needs --rom-basis FILE (tools/rom_basis.py; "
-            "docs/notes/rom.md)\n");
-    return 1;
+    return cs_errorSet(err, CS_ERR_ARG, "--model rom needs --rom-basis FILE "
+                       "(tools/rom_basis.py; docs/notes/rom.md)");
   }
   if (!isnan(run->until_angle)) {
-    fprintf(stderr, "crawlsim bend: --until-angle is not offered by --model rom yet\n");
-    return 1;
+    return cs_errorSet(err, CS_ERR_ARG, "--until-angle is not offered by --model rom yet");
   }
-  csError err;
-  cs_errorClear(&err);
-  csH5File* f = cs_h5Create(run->out, &err);
+  csH5File* f = cs_h5Create(run->out, err);
   csrBendCurve bc;
   memset(&bc, 0, sizeof bc);
   const double t0 = csu_wallSeconds();
-  csStatus st = f ? csr_bendCurveInit(&bc, 16, &err) : err.status;
+  csStatus st = f ? csr_bendCurveInit(&bc, 16, err) : err->status;
   csfRomActuator ra;
   memset(&ra, 0, sizeof ra);
   double t_sweep = NAN;
   if (st == CS_OK) {
-    st = romSweep(run, &bc, &ra, &t_sweep, &err);
+    st = romSweep(run, &bc, &ra, &t_sweep, err);
   }
   const double wall = csu_wallSeconds() - t0;
   if (st == CS_OK) {
     csrBendMeta meta = {"rom", run->chambers, run->mesh_size, run->n_elements_soft,
                         run->n_elements_fibre, wall, NAN, NAN, NAN, 0, 0, 0, NAN, -1, NAN, 1};
-    st = csr_bendCurveWriteH5(f, &run->act, &bc, &meta, &err);
+    st = csr_bendCurveWriteH5(f, &run->act, &bc, &meta, err);
     const struct {
       const char* name;
       double v;
@@ -130,43 +126,42 @@ int csx_bendRom(BendRun* run) {
         {"rom_sweep_s", t_sweep},
     };
     for (size_t k = 0; st == CS_OK && k < sizeof a / sizeof a[0]; k++) {
-      st = cs_h5AttrDouble(f, "/", a[k].name, a[k].v, &err);
+      st = cs_h5AttrDouble(f, "/", a[k].name, a[k].v, err);
     }
     if (st == CS_OK) {
-      st = cs_h5AttrString(f, "/", "rom_basis", run->rom_basis, &err);
+      st = cs_h5AttrString(f, "/", "rom_basis", run->rom_basis, err);
     }
     if (st == CS_OK) {
       st = cs_h5AttrString(f, "/", "rom_weights", run->rom_weights ? run->rom_weights : "none",
-                           &err);
+                           err);
     }
   }
   if (f) {
-    st = csx_bendFileClose(f, "rom", &bc, st, &err);
+    st = csx_bendFileClose(f, "rom", &bc, st, err);
   }
   if (st != CS_OK) {
-    fprintf(stderr, "crawlsim bend: %s\n", err.msg);
     csr_bendCurveFree(&bc);
     csf_romActuatorDestroy(&ra);
-    return csx_bendExitCode(st);
+    return st;
   }
-  fprintf(stderr, "crawlsim bend: rom: n = %d, %d of %d Tet10, %d of %d fibre elements, %d of %d "
-          "faces; %d steps, %d cut-backs, %ld reduced Newton iterations; sweep %.3f s (set-up "
-          "included %.1f s)\n", ra.rom->n,
-          ra.rom->nel[CSF_ROM_SET_TET], ra.fe.mesh->ntet, ra.rom->nel[CSF_ROM_SET_FIBRE],
-          ra.fe.model->nfib, ra.rom->nel[CSF_ROM_SET_FACE], ra.fe.mesh->nface, ra.n_steps,
-          ra.n_cutbacks, ra.n_newton, t_sweep, wall);
-  printf("crawlsim bend: model rom, actuator %s, chambers %s in II1-II3\n", run->act.name,
-         run->chambers);
-  printf("%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
-         "total(deg)");
+  csx_bendResultFill(run, &bc, res);
+  fprintf(run->notes, "crawlsim bend: rom: n = %d, %d of %d Tet10, %d of %d fibre elements, %d of "
+          "%d faces; %d steps, %d cut-backs, %ld reduced Newton iterations; sweep %.3f s (set-up "
+          "included %.1f s)\n", ra.rom->n, ra.rom->nel[CSF_ROM_SET_TET], ra.fe.mesh->ntet,
+          ra.rom->nel[CSF_ROM_SET_FIBRE], ra.fe.model->nfib, ra.rom->nel[CSF_ROM_SET_FACE],
+          ra.fe.mesh->nface, ra.n_steps, ra.n_cutbacks, ra.n_newton, t_sweep, wall);
+  fprintf(run->table, "crawlsim bend: model rom, actuator %s, chambers %s in II1-II3\n",
+          run->act.name, run->chambers);
+  fprintf(run->table, "%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
+          "total(deg)");
   for (size_t i = 0; i < bc.m; i++) {
     const double* a = &bc.angle_deg[3 * i];
-    printf("%9.4f %9.3f %9.3f %9.3f %10.3f\n", bc.pressure[i], a[0], a[1], a[2],
-           bc.angle_total[i]);
+    fprintf(run->table, "%9.4f %9.3f %9.3f %9.3f %10.3f\n", bc.pressure[i], a[0], a[1], a[2],
+            bc.angle_total[i]);
   }
   csr_bendCurveFree(&bc);
   csf_romActuatorDestroy(&ra);
-  return 0;
+  return CS_OK;
 }
 #else
 typedef int csxBendRomUnused; /* ISO C: a translation unit must not be empty */

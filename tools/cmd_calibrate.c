@@ -77,27 +77,58 @@ static const csxOptTable kCalTable = {
 
 enum { MAX_SETS = 32, MAX_PICK = CSF_CAL_MAX_CASES };
 
+/* the definition of a calibration: the parsed options (the strings point into argv) */
+typedef struct {
+  const char* out;       /* the merged table */
+  const char* dir;       /* the case files */
+  const char* actname;   /* the actuator preset */
+  const char* model_out; /* NULL, or the model's predictions */
+  const char* report;    /* NULL, or a merged table to report on alone */
+  csrCalOptions copt;    /* the model rule of the report */
+  const char* sets[MAX_SETS];
+  const char* pick[MAX_PICK];
+  int nset, npick, list, merge_only, threads;
+  csfCalSettings cs;     /* the FE settings of every case */
+  FILE* table;           /* where the results go (the command: stdout; a study's step: its log) */
+  FILE* notes;           /* where the cases' progress goes (stderr; the log) */
+} CalDef;
+
+/* what a calibration gives back besides its files */
+typedef struct {
+  int ran, skipped, finished, ncase; /* cases run now, already done, finished of all */
+  char table_line[256];  /* "crawlsim calibrate: table FILE (N cases)" ("": nothing merged) */
+} CalResult;
+
+
+/* a case's progress lines: its name and where they go */
+typedef struct {
+  const char* name;
+  FILE* notes;
+} CaseProgress;
+
 
 static void progress(void* user, const csfBendStep* s) {
-  const char* name = user;
+  const CaseProgress* cp = user;
+  const char* name = cp->name;
   const char* indef = s->neg_pivots > 0 ? ", tangent indefinite" : "";
   if (s->volume_control) {
-    fprintf(stderr, "  %s: volume control: p = %.5f MPa (dp %+.5f), %d Newton iterations, "
+    fprintf(cp->notes, "  %s: volume control: p = %.5f MPa (dp %+.5f), %d Newton iterations, "
             "%.1f s%s\n", name, s->p, s->dp, s->newton_iters, s->wall, indef);
     return;
   }
-  fprintf(stderr, "  %s: p = %.4f MPa, %d Newton iterations, %d cut-backs, %.1f s, total %.1f "
+  fprintf(cp->notes, "  %s: p = %.4f MPa, %d Newton iterations, %d cut-backs, %.1f s, total %.1f "
           "deg%s\n", name, s->p, s->newton_iters, s->cutbacks, s->wall, s->angle_total, indef);
 }
 
 
-static int parseNumber(const char* flag, const char* v, double lo, double hi, double* out) {
+static int parseNumber(const char* flag, const char* v, double lo, double hi, double* out,
+                       csError* err) {
   char* end;
   errno = 0;
   double x = strtod(v, &end);
   if (end == v || *end || errno || !isfinite(x) || x < lo || x > hi) {
-    fprintf(stderr, "crawlsim calibrate: %s '%s' must be a number in [%g, %g]\n", flag, v, lo,
-            hi);
+    cs_errorSet(err, CS_ERR_ARG, "%s '%s' must be a number in [%g, %g]", flag, v, lo,
+                hi);
     return 1;
   }
   *out = x;
@@ -105,198 +136,194 @@ static int parseNumber(const char* flag, const char* v, double lo, double hi, do
 }
 
 
-/* Print the table's map and its calibration model's report (and write the predictions to
- * model_out); closes cal. A pair-mode table has no model: an error only when `need_model`. */
-static int reportModel(csrCalibration* cal, const char* path, const char* model_out,
-                       int need_model) {
-  csError err;
-  cs_errorClear(&err);
+/* Print the table's map and its calibration model's report on `table` (and write the
+ * predictions to model_out); closes cal. A pair-mode table has no model: an error only when
+ * `need_model`. 0, or 1 with err filled. */
+static int reportModel(FILE* table, csrCalibration* cal, const char* path,
+                       const char* model_out, int need_model, csError* err) {
   csrBendMap map = csr_calibrationMap(cal);
-  printf("crawlsim calibrate: %s (pressures up to %g MPa)\n", map.name, map.p_max);
+  fprintf(table, "crawlsim calibrate: %s (pressures up to %g MPa)\n", map.name, map.p_max);
   /* the model's errors against the table (robot_calibration_model.h) */
   const csrCalModel* model = csr_calibrationModel(cal);
   int rc = 0;
   if (!model) {
     if (need_model) {
-      fprintf(stderr, "crawlsim calibrate: %s: a pair-mode table, no mode model to report\n",
-              path);
+      cs_errorSet(err, CS_ERR_ARG, "%s: a pair-mode table, no mode model to report",
+                  path);
       rc = 1;
     }
-  } else if (csr_calReportPrint(model, csr_calibrationTable(cal), stdout, &err) != CS_OK ||
+  } else if (csr_calReportPrint(model, csr_calibrationTable(cal), table, err) != CS_OK ||
              (model_out &&
-              csr_calReportWrite(model, csr_calibrationTable(cal), model_out, &err) != CS_OK)) {
-    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+              csr_calReportWrite(model, csr_calibrationTable(cal), model_out, err) != CS_OK)) {
     rc = 1;
   } else if (model_out) {
-    printf("crawlsim calibrate: model predictions %s\n", model_out);
+    fprintf(table, "crawlsim calibrate: model predictions %s\n", model_out);
   }
   csr_calibrationClose(cal);
   return rc;
 }
 
 
-int csx_cmdCalibrate(int argc, char** argv) {
-  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
-   * polls the flag */
-  csx_signalInstall();
-  const char* out = "calibration_fe.h5";
-  const char* dir = "calibration_cases";
-  const char* actname = "leg";
-  const char* model_out = NULL;
-  const char* report = NULL;
-  csrCalOptions copt = csr_calModelDefaultOptions();
-  const char* sets[MAX_SETS];
-  const char* pick[MAX_PICK];
-  int nset = 0, npick = 0, list = 0, merge_only = 0, threads = 0;
-  csfCalSettings cs = csf_calibrationDefault();
-  csxOptIter it;
-  csx_optBegin(&it);
-  for (csxOptKind k; (k = csx_optNext(&kCalTable, argc, argv, &it)) != CSX_OPT_END;) {
-    const int end = csx_optReport(&kCalTable, k, &it);
-    if (end >= 0) {
-      return end;
+/* argv into d: 0; 1 with err filled; 2 when `it` holds --help or an option error (*kind) */
+static int parseCal(int argc, char** argv, CalDef* d, csxOptIter* it, csxOptKind* kind,
+                    csError* err) {
+  memset(d, 0, sizeof *d);
+  d->out = "calibration_fe.h5";
+  d->dir = "calibration_cases";
+  d->actname = "leg";
+  d->copt = csr_calModelDefaultOptions();
+  d->cs = csf_calibrationDefault();
+  csfCalSettings* cs = &d->cs;
+  csx_optBegin(it);
+  while ((*kind = csx_optNext(&kCalTable, argc, argv, it)) != CSX_OPT_END) {
+    if (*kind == CSX_OPT_HELP || *kind == CSX_OPT_ERROR) {
+      return 2;
     }
-    if (k == CSX_OPT_OPERAND) {
-      fprintf(stderr, "crawlsim calibrate: unexpected argument '%s'\n", it.value);
+    if (*kind == CSX_OPT_OPERAND) {
+      cs_errorSet(err, CS_ERR_ARG, "unexpected argument '%s'", it->value);
       return 1;
     }
-    const char* a = it.opt->name;
-    const char* v = it.value;
+    const char* a = it->opt->name;
+    const char* v = it->value;
     if (!strcmp(a, "--list")) {
-      list = 1;
+      d->list = 1;
       continue;
     }
     if (!strcmp(a, "--merge-only")) {
-      merge_only = 1;
+      d->merge_only = 1;
       continue;
     }
     int bad = 0;
     if (!strcmp(a, "--threads")) {
-      bad = csx_feParseThreads("calibrate", v, &threads);
+      bad = csx_feParseThreads(v, &d->threads, err);
     } else if (!strcmp(a, "--mesh-size")) {
-      bad = parseNumber(a, v, 0.5, 20, &cs.mesh_size);
+      bad = parseNumber(a, v, 0.5, 20, &cs->mesh_size, err);
     } else if (!strcmp(a, "--fibre-size")) {
-      bad = parseNumber(a, v, 0.05, 20, &cs.fibre_size);
+      bad = parseNumber(a, v, 0.05, 20, &cs->fibre_size, err);
     } else if (!strcmp(a, "--fibre-split")) {
       bad = strcmp(v, "0") != 0 && strcmp(v, "1") != 0;
       if (bad) {
-        fprintf(stderr, "crawlsim calibrate: --fibre-split '%s' must be 0 or 1\n", v);
+        cs_errorSet(err, CS_ERR_ARG, "--fibre-split '%s' must be 0 or 1", v);
       }
-      cs.fibre_split = !strcmp(v, "1");
+      cs->fibre_split = !strcmp(v, "1");
     } else if (!strcmp(a, "--mesh-symmetric")) {
       bad = strcmp(v, "0") != 0 && strcmp(v, "1") != 0;
       if (bad) {
-        fprintf(stderr, "crawlsim calibrate: --mesh-symmetric '%s' must be 0 or 1\n", v);
+        cs_errorSet(err, CS_ERR_ARG, "--mesh-symmetric '%s' must be 0 or 1", v);
       }
-      cs.mesh_symmetric = !strcmp(v, "1");
+      cs->mesh_symmetric = !strcmp(v, "1");
     } else if (!strcmp(a, "--fibre-turn")) {
       double deg = 0;
-      bad = parseNumber(a, v, -270, 270, &deg);
+      bad = parseNumber(a, v, -270, 270, &deg, err);
       if (!bad && fmod(deg, 90.0) != 0) {
-        fprintf(stderr, "crawlsim calibrate: --fibre-turn '%s' must be a multiple of 90\n", v);
+        cs_errorSet(err, CS_ERR_ARG, "--fibre-turn '%s' must be a multiple of 90", v);
         bad = 1;
       }
-      cs.fibre_turn = (int)(deg / 90.0);
+      cs->fibre_turn = (int)(deg / 90.0);
     } else if (!strcmp(a, "--fibre-law")) {
-      cs.fibre_tension_only = csr_fibreLawParse(v);
-      bad = cs.fibre_tension_only < 0;
+      cs->fibre_tension_only = csr_fibreLawParse(v);
+      bad = cs->fibre_tension_only < 0;
       if (bad) {
-        fprintf(stderr, "crawlsim calibrate: --fibre-law '%s' must be linear or tension-only\n",
-                v);
+        cs_errorSet(err, CS_ERR_ARG, "--fibre-law '%s' must be linear or tension-only",
+                    v);
       }
     } else if (!strcmp(a, "--p-step")) {
-      bad = parseNumber(a, v, 1e-4, 0.5, &cs.p_step);
+      bad = parseNumber(a, v, 1e-4, 0.5, &cs->p_step, err);
     } else if (!strcmp(a, "--newton-rtol")) {
-      bad = parseNumber(a, v, 1e-12, 1e-3, &cs.newton_rtol);
+      bad = parseNumber(a, v, 1e-12, 1e-3, &cs->newton_rtol, err);
     } else if (!strcmp(a, "--p-max")) {
-      bad = parseNumber(a, v, 1e-4, 1.0, &cs.p_cap);
+      bad = parseNumber(a, v, 1e-4, 1.0, &cs->p_cap, err);
     } else if (!strcmp(a, "--out")) {
-      out = v;
+      d->out = v;
     } else if (!strcmp(a, "--dir")) {
-      dir = v;
+      d->dir = v;
     } else if (!strcmp(a, "--model-out")) {
-      model_out = v;
+      d->model_out = v;
     } else if (!strcmp(a, "--report")) {
-      report = v;
+      d->report = v;
     } else if (!strcmp(a, "--cal-rule")) {
-      if (!csr_calRuleParse(v, &copt.rule)) {
-        fprintf(stderr, "crawlsim calibrate: unknown --cal-rule '%.60s' (expected prism, rbf or "
-                "rbf-pair)\n", v);
+      if (!csr_calRuleParse(v, &d->copt.rule)) {
+        cs_errorSet(err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf or "
+                    "rbf-pair)", v);
         return 1;
       }
     } else if (!strcmp(a, "--actuator")) {
-      actname = v;
+      d->actname = v;
     } else if (!strcmp(a, "--case")) {
       if (!csf_calibrationCaseFind(v)) {
-        fprintf(stderr, "crawlsim calibrate: --case '%s': no such case (see --list)\n", v);
+        cs_errorSet(err, CS_ERR_ARG, "--case '%s': no such case (see --list)", v);
         return 1;
       }
-      if (npick == MAX_PICK) {
-        fprintf(stderr, "crawlsim calibrate: more than %d --case options\n", MAX_PICK);
+      if (d->npick == MAX_PICK) {
+        cs_errorSet(err, CS_ERR_ARG, "more than %d --case options", MAX_PICK);
         return 1;
       }
-      pick[npick++] = v;
+      d->pick[d->npick++] = v;
     } else if (!strcmp(a, "--set")) {
-      if (nset == MAX_SETS) {
-        fprintf(stderr, "crawlsim calibrate: more than %d --set options\n", MAX_SETS);
+      if (d->nset == MAX_SETS) {
+        cs_errorSet(err, CS_ERR_ARG, "more than %d --set options", MAX_SETS);
         return 1;
       }
-      sets[nset++] = v;
+      d->sets[d->nset++] = v;
     }
     if (bad) {
       return 1;
     }
   }
+  return 0;
+}
+
+
+/* run the calibration d defines, its lines on d->table and d->notes: the exit status (0; 1
+ * or 128 + a signal with err filled) and *res */
+static int executeCal(const CalDef* d, CalResult* res, csError* err) {
+  csfCalSettings cs = d->cs;
+  const char* const out = d->out;
+  const char* const dir = d->dir;
   int ncase = 0;
   const csfCalCase* cases = csf_calibrationCases(&ncase);
-  if (list) {
+  if (d->list) {
     for (int k = 0; k < ncase; k++) {
-      printf("%-10s %-8s p <= %.3g MPa  ratio %g:%g:%g:%g%s  %s\n", cases[k].name,
-             cases[k].kind == CSF_CAL_MODE      ? "mode"
-             : cases[k].kind == CSF_CAL_HOLDOUT ? "held-out"
-             : cases[k].kind == CSF_CAL_GRAVITY ? "gravity"
-                                                : "symmetry",
-             cases[k].p_max, cases[k].ratio[0], cases[k].ratio[1], cases[k].ratio[2],
-             cases[k].ratio[3], cases[k].probes ? ", probes" : "", cases[k].about);
+      fprintf(d->table, "%-10s %-8s p <= %.3g MPa  ratio %g:%g:%g:%g%s  %s\n", cases[k].name,
+              cases[k].kind == CSF_CAL_MODE      ? "mode"
+              : cases[k].kind == CSF_CAL_HOLDOUT ? "held-out"
+              : cases[k].kind == CSF_CAL_GRAVITY ? "gravity"
+                                                 : "symmetry",
+              cases[k].p_max, cases[k].ratio[0], cases[k].ratio[1], cases[k].ratio[2],
+              cases[k].ratio[3], cases[k].probes ? ", probes" : "", cases[k].about);
     }
     return 0;
   }
   /* the actuator: preset, then every --set, then a consistency check */
-  csError err;
-  cs_errorClear(&err);
   csrActuator act;
-  if (csr_actuatorPreset(&act, actname, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+  if (csr_actuatorPreset(&act, d->actname, err) != CS_OK) {
     return 1;
   }
-  for (int k = 0; k < nset; k++) {
-    if (csr_actuatorSetString(&act, sets[k], &err) != CS_OK) {
-      fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+  for (int k = 0; k < d->nset; k++) {
+    if (csr_actuatorSetString(&act, d->sets[k], err) != CS_OK) {
       return 1;
     }
   }
-  if (csr_actuatorValidate(&act, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+  if (csr_actuatorValidate(&act, err) != CS_OK) {
     return 1;
   }
-  if (report) {
+  if (d->report) {
     /* the report of a merged table alone (no case files needed) */
-    csrCalibration* cal = csr_calibrationOpenWith(report, &act, &copt, &err);
+    csrCalibration* cal = csr_calibrationOpenWith(d->report, &act, &d->copt, err);
     if (!cal) {
-      fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
       return 1;
     }
-    return reportModel(cal, report, model_out, 1);
+    return reportModel(d->table, cal, d->report, d->model_out, 1, err);
   }
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "crawlsim calibrate: %s: cannot create the case directory: %s\n", dir,
-            strerror(errno));
+    cs_errorSet(err, CS_ERR_ARG, "%s: cannot create the case directory: %s", dir,
+                strerror(errno));
     return 1;
   }
   /* run what is not done yet, on the thread plan's count (fem_threads.h) */
   csfThreadPlan plan;
-  if (!merge_only) {
-    csx_fePlanThreads("calibrate", threads, &plan);
+  if (!d->merge_only) {
+    csx_fePlanThreads(d->notes, "calibrate", d->threads, &plan);
     cs.threads = plan.threads;
     cs.threads_why = plan.why;
     cs.mpi_ranks = csx_feRanks(&cs.mpi_ranks_local); /* crawlsim-mpi under mpirun */
@@ -304,10 +331,10 @@ int csx_cmdCalibrate(int argc, char** argv) {
   char stem[600];
   const double t_all = csu_wallSeconds();
   int ran = 0, skipped = 0;
-  for (int k = 0; k < ncase && !merge_only; k++) {
-    int chosen = npick == 0;
-    for (int q = 0; q < npick; q++) {
-      chosen |= !strcmp(pick[q], cases[k].name);
+  for (int k = 0; k < ncase && !d->merge_only; k++) {
+    int chosen = d->npick == 0;
+    for (int q = 0; q < d->npick; q++) {
+      chosen |= !strcmp(d->pick[q], cases[k].name);
     }
     if (!chosen) {
       continue;
@@ -319,7 +346,7 @@ int csx_cmdCalibrate(int argc, char** argv) {
       skipped++;
       continue;
     }
-    fprintf(stderr, "crawlsim calibrate: case %s (%s): 0..%g MPa\n", cases[k].name,
+    fprintf(d->notes, "crawlsim calibrate: case %s (%s): 0..%g MPa\n", cases[k].name,
             cases[k].about, cs.p_cap > 0 ? fmin(cases[k].p_max, cs.p_cap) : cases[k].p_max);
     snprintf(stem, sizeof stem, "%s/%s.mesh", dir, cases[k].name); /* per case: runs of
                                                                     * other cases may share dir */
@@ -327,24 +354,27 @@ int csx_cmdCalibrate(int argc, char** argv) {
     char vtu[620];
     snprintf(vtu, sizeof vtu, "%s/%s.vtu", dir, cases[k].name); /* the deformed leg (ParaView) */
     cs.vtu_path = vtu;
+    CaseProgress cp = {cases[k].name, d->notes};
     cs.progress = progress;
-    cs.progress_user = (void*)cases[k].name;
+    cs.progress_user = &cp;
     cs.cancel = csx_signalFlag(); /* SIGINT/SIGTERM: this case ends, no case file; resumable */
     const double t0 = csu_wallSeconds();
-    if (csf_calibrationRunCase(&act, cases + k, &cs, part, &err) != CS_OK) {
-      fprintf(stderr, "crawlsim calibrate: case %s: %s%s\n", cases[k].name, err.msg,
-              err.status == CS_ERR_INTERRUPTED ? " (run again to continue: finished cases are "
-              "kept)" : "");
+    if (csf_calibrationRunCase(&act, cases + k, &cs, part, err) != CS_OK) {
+      char cause[sizeof err->msg];
+      memcpy(cause, err->msg, sizeof cause);
+      cs_errorSet(err, err->status, "case %s: %.400s%s", cases[k].name, cause,
+                  err->status == CS_ERR_INTERRUPTED ? " (run again to continue: finished cases "
+                  "are kept)" : "");
       remove(part);
-      return err.status != CS_ERR_INTERRUPTED ? 1
+      return err->status != CS_ERR_INTERRUPTED ? 1
              : csx_signalExitCode() ? csx_signalExitCode() : 130;
     }
     if (rename(part, path) != 0) {
-      fprintf(stderr, "crawlsim calibrate: %s: cannot rename to %s: %s\n", part, path,
-              strerror(errno));
+      cs_errorSet(err, CS_ERR_ARG, "%s: cannot rename to %s: %s", part, path,
+                  strerror(errno));
       return 1;
     }
-    fprintf(stderr, "crawlsim calibrate: case %s done in %.0f s -> %s\n", cases[k].name,
+    fprintf(d->notes, "crawlsim calibrate: case %s done in %.0f s -> %s\n", cases[k].name,
             csu_wallSeconds() - t0, path);
     ran++;
   }
@@ -359,28 +389,75 @@ int csx_cmdCalibrate(int argc, char** argv) {
       np++;
     }
   }
-  printf("crawlsim calibrate: %d cases run, %d already done, %d of %d finished (%.0f s)\n", ran,
-         skipped, np, ncase, csu_wallSeconds() - t_all);
+  res->ran = ran;
+  res->skipped = skipped;
+  res->finished = np;
+  res->ncase = ncase;
+  fprintf(d->table, "crawlsim calibrate: %d cases run, %d already done, %d of %d finished (%.0f "
+          "s)\n", ran, skipped, np, ncase, csu_wallSeconds() - t_all);
   if (np == 0) {
-    fprintf(stderr, "crawlsim calibrate: %s: no finished case to merge\n", dir);
+    cs_errorSet(err, CS_ERR_ARG, "%s: no finished case to merge", dir);
     return 1;
   }
-  if (csf_calibrationMerge(paths, np, out, &err) != CS_OK) {
-    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
+  if (csf_calibrationMerge(paths, np, out, err) != CS_OK) {
     return 1;
   }
-  printf("crawlsim calibrate: table %s (%d cases)\n", out, np);
+  snprintf(res->table_line, sizeof res->table_line, "crawlsim calibrate: table %s (%d cases)",
+           out, np);
+  fprintf(d->table, "%s\n", res->table_line);
   /* read it back as the legs will */
-  csrCalibration* cal = csr_calibrationOpenWith(out, &act, &copt, &err);
+  csrCalibration* cal = csr_calibrationOpenWith(out, &act, &d->copt, err);
   if (!cal && np < ncase) {
     /* cases still to run (the calibration goes case by case): not an error yet */
-    printf("crawlsim calibrate: not usable by the legs until every mode is finished: %s\n",
-           err.msg);
+    fprintf(d->table, "crawlsim calibrate: not usable by the legs until every mode is finished: "
+            "%s\n", err->msg);
+    cs_errorClear(err);
     return 0;
   }
   if (!cal) {
-    fprintf(stderr, "crawlsim calibrate: %s\n", err.msg);
     return 1;
   }
-  return reportModel(cal, out, model_out, 0);
+  return reportModel(d->table, cal, out, d->model_out, 0, err);
+}
+
+
+/* `crawlsim calibrate` with its results on `table`, the cases' progress on `notes` and its
+ * results in *sres (NULL: the command line; else a study's step, both streams its log) */
+static int calibrateCommand(int argc, char** argv, FILE* table, FILE* notes,
+                            csxStepResult* sres) {
+  /* SIGINT/SIGTERM end the work after the step in progress (cs_signal.h); this command
+   * polls the flag */
+  csx_signalInstall();
+  CalDef d;
+  csxOptIter it;
+  csxOptKind kind;
+  csError err;
+  cs_errorClear(&err);
+  int rc = parseCal(argc, argv, &d, &it, &kind, &err);
+  rc = csx_parseEnd(&kCalTable, rc, kind, &it, &err, notes, sres);
+  if (rc >= 0) {
+    return rc;
+  }
+  d.table = table;
+  d.notes = notes;
+  CalResult res;
+  memset(&res, 0, sizeof res);
+  rc = executeCal(&d, &res, &err);
+  if (sres) {
+    snprintf(sres->summary, sizeof sres->summary, "%s", res.table_line);
+  }
+  if (rc != 0) {
+    csx_stepFailed(sres, notes, "calibrate", err.msg);
+  }
+  return rc;
+}
+
+
+int csx_cmdCalibrate(int argc, char** argv) {
+  return calibrateCommand(argc, argv, stdout, stderr, NULL);
+}
+
+
+int csx_stepCalibrate(int argc, char** argv, FILE* log, csxStepResult* res) {
+  return calibrateCommand(argc, argv, log, log, res);
 }

@@ -8,12 +8,12 @@
 enum { MAX_THREADS = 1024 };
 
 
-int csx_feParseThreads(const char* cmd, const char* value, int* out) {
+int csx_feParseThreads(const char* value, int* out, csError* err) {
   char* end = NULL;
   const long v = strtol(value, &end, 10);
   if (!value[0] || !end || *end != '\0' || v < 1 || v > MAX_THREADS) {
-    fprintf(stderr, "crawlsim %s: --threads '%.40s' must be an integer in 1..%d\n", cmd, value,
-            MAX_THREADS);
+    cs_errorSet(err, CS_ERR_ARG, "--threads '%.40s' must be an integer in 1..%d", value,
+                MAX_THREADS);
     return 1;
   }
   *out = (int)v;
@@ -65,35 +65,36 @@ int csx_feRanks(int* local) {
 #include "fem_linsolve.h"
 
 
-void csx_fePlanThreads(const char* cmd, int requested, csfThreadPlan* plan) {
+void csx_fePlanThreads(FILE* notes, const char* cmd, int requested, csfThreadPlan* plan) {
   csf_threadPlan(requested, plan);
   char wait[96];
   csf_threadWaitPolicy(wait, sizeof wait);
   int local = 1;
   const int ranks = csx_feRanks(&local);
   if (ranks > 1) {
-    fprintf(stderr, "crawlsim %s: fe: MUMPS over %d MPI ranks (%d on this machine), rank 0 runs "
+    fprintf(notes, "crawlsim %s: fe: MUMPS over %d MPI ranks (%d on this machine), rank 0 runs "
             "the rest of the FE and writes the output\n", cmd, ranks, local);
   }
-  fprintf(stderr, "crawlsim %s: fe: %d thread%s%s (%s); the factorisation takes them from %.0e "
+  fprintf(notes, "crawlsim %s: fe: %d thread%s%s (%s); the factorisation takes them from %.0e "
           "flops per factorisation, smaller ones run on one; OpenMP waits: %s\n", cmd,
           plan->threads, plan->threads > 1 ? "s" : "", ranks > 1 ? " per rank" : "", plan->why,
           CSF_MT_MIN_FLOPS, wait);
 }
 
 
-void csx_feReportThreads(const char* cmd, const csfThreadPlan* plan, const csfBendInfo* info) {
+void csx_feReportThreads(FILE* notes, const char* cmd, const csfThreadPlan* plan,
+                         const csfBendInfo* info) {
   const int small = info->factor_flops > 0 && info->factor_flops < CSF_MT_MIN_FLOPS;
-  fprintf(stderr, "crawlsim %s: fe: the factorisation (%s, %.3g flops) ran on %d thread%s%s",
+  fprintf(notes, "crawlsim %s: fe: the factorisation (%s, %.3g flops) ran on %d thread%s%s",
           cmd, info->solver, info->factor_flops, info->factor_threads,
           info->factor_threads > 1 ? "s" : "",
           small && plan->threads > 1 ? " (below the threshold, one thread is faster)" : "");
   if (info->mpi_ranks > 1) {
-    fprintf(stderr, " on each of %d MPI ranks", info->mpi_ranks);
+    fprintf(notes, " on each of %d MPI ranks", info->mpi_ranks);
   }
-  fprintf(stderr, "; its memory %.0f MB (the most on one rank: %.0f MB)", info->factor_mem_total_mb,
+  fprintf(notes, "; its memory %.0f MB (the most on one rank: %.0f MB)", info->factor_mem_total_mb,
           info->factor_mem_rank_mb);
-  fputc('\n', stderr);
+  fputc('\n', notes);
 }
 
 

@@ -5,8 +5,12 @@
 #ifndef CS_TOOLS_CMD_FE_THREADS_H
 #define CS_TOOLS_CMD_FE_THREADS_H
 
-/* --threads VALUE: an integer in 1..1024 into *out; 0, or 1 after one error line naming cmd */
-int csx_feParseThreads(const char* cmd, const char* value, int* out);
+#include <stdio.h>
+
+#include "core_status.h"
+
+/* --threads VALUE: an integer in 1..1024 into *out; 0, or 1 with err filled */
+int csx_feParseThreads(const char* value, int* out, csError* err);
 
 /* 1 if argv (argv[1] the subcommand) is a command that runs the full FE: `bend --model fe`,
  * `calibrate` */
@@ -28,11 +32,12 @@ int csx_feRanks(int* local);
 
 /* Make the plan (requested 0: the default rule) and print the banner line
  * "crawlsim CMD: fe: N threads (why); the factorisation uses them from 5e9 flops, ...;
- * OpenMP waits: POLICY". */
-void csx_fePlanThreads(const char* cmd, int requested, csfThreadPlan* plan);
+ * OpenMP waits: POLICY" on `notes`. */
+void csx_fePlanThreads(FILE* notes, const char* cmd, int requested, csfThreadPlan* plan);
 
-/* The summary line of what the factorisation used (info filled by csf_bend). */
-void csx_feReportThreads(const char* cmd, const csfThreadPlan* plan, const csfBendInfo* info);
+/* The summary line of what the factorisation used (info filled by csf_bend), on `notes`. */
+void csx_feReportThreads(FILE* notes, const char* cmd, const csfThreadPlan* plan,
+                         const csfBendInfo* info);
 
 /* Root attributes: fe_threads (the plan), fe_threads_why, fe_factor_threads, fe_factor_flops,
  * fe_omp_wait_policy, fe_affinity_cores, fe_mpi_ranks (of the factorisation),

@@ -184,12 +184,34 @@ static const csxOptTable kDesignTable = {
     kDesignOpts, CSX_NOPT(kDesignOpts), NULL};
 
 
-/* the stride per cycle of a short run of `gait_csv` with schedule ramp `ramp`; prints a line */
-static int checkRun(const char* gait_csv, const char* scene_name, double ramp, double t_end,
-                    const csgDesign* des, const char* calib, int cal_rule) {
+/* the definition of a gait design: the parsed options (the strings point into argv) */
+typedef struct {
+  const char* in;          /* the design description FILE.gait */
+  const char* out;         /* the table; NULL: in with .csv */
+  const char* calib;       /* NULL: the default calibration */
+  const char* check_scene; /* the --check runs' scene */
+  double p_max, check_t;   /* MPa, s; NaN: the defaults */
+  int cal_rule;            /* csrCalRule of --cal-rule, -1: not given */
+  int stretch, check, nset;
+  const char* sets[32];
+  FILE* table;             /* where the lines go (the command: stdout; a study's step: its log) */
+} DesignDef;
+
+/* what a design gives back besides its table */
+typedef struct {
+  char rows_line[1024]; /* "<out>: N rows, t = 0 .. T s, from <in>" */
+  char summary[256];    /* the same without the output's directory */
+} DesignResult;
+
+
+/* the stride per cycle of a short run of `gait_csv` with schedule ramp `ramp`; prints a line
+ * on table; 0, or 1 with *err filled */
+static int checkRun(FILE* table, const char* gait_csv, const char* scene_name, double ramp,
+                    double t_end, const csgDesign* des, const char* calib, int cal_rule,
+                    csError* cerr) {
   const csScene* sc = cs_sceneFind(scene_name);
   if (!sc) {
-    fprintf(stderr, "crawlsim gait design: unknown --check-scene '%s'\n", scene_name);
+    cs_errorSet(cerr, CS_ERR_ARG, "unknown --check-scene '%s'", scene_name);
     return 1;
   }
   char terr[512];
@@ -211,19 +233,19 @@ static int checkRun(const char* gait_csv, const char* scene_name, double ramp, d
   double period = des->nstride ? des->stride_period : 1.0;
   double t_mark = des->nstride ? des->stride_t0 : 0.0;
   double x_prev = 0, x[3];
-  printf("  check %s (%s), ramp %.2f s: x at stride starts (mm):", sc->name,
-         cs_conditionsName(m.conditions), ramp);
+  fprintf(table, "  check %s (%s), ramp %.2f s: x at stride starts (mm):", sc->name,
+          cs_conditionsName(m.conditions), ramp);
   int nstr = 0;
   double sum = 0;
   while (cs_time(d) < t_end - 1e-9) {
     csStatus st = cs_step(&m, d, &err);
     if (st != CS_OK) {
-      printf("\n");
+      fprintf(table, "\n");
       goto done;
     }
     if (cs_time(d) >= t_mark - 1e-9) {
       cs_supportDisplacement(d, x);
-      printf(" %.1f", x[0]);
+      fprintf(table, " %.1f", x[0]);
       if (t_mark > (des->nstride ? des->stride_t0 : 0) + 1e-9) {
         sum += x[0] - x_prev;
         nstr++;
@@ -233,81 +255,89 @@ static int checkRun(const char* gait_csv, const char* scene_name, double ramp, d
     }
   }
   cs_supportDisplacement(d, x);
-  printf("; stride per cycle %.1f mm over %d strides; z %.1f mm\n", nstr ? sum / nstr : 0.0, nstr,
-         x[2]);
+  fprintf(table, "; stride per cycle %.1f mm over %d strides; z %.1f mm\n", nstr ? sum / nstr : 0.0,
+          nstr, x[2]);
   rc = 0;
 done:
-  if (rc) fprintf(stderr, "crawlsim gait design: check run: %s\n", err.msg);
+  if (rc) cs_errorSet(cerr, err.status ? err.status : CS_ERR_SOLVER, "check run: %.450s", err.msg);
   cs_dataDestroy(d);
   cs_modelDestroy(&m);
   return rc;
 }
 
 
-int csx_cmdGaitDesign(int argc, char** argv) {
-  const char* in = NULL;
-  const char* out = NULL;
-  const char* calib = NULL;
-  const char* check_scene = "flat-road";
-  double p_max = NAN, check_t = NAN;
-  int cal_rule = -1; /* csrCalRule of --cal-rule, -1: not given */
-  int stretch = 0, check = 0, nset = 0;
-  const char* sets[32];
-  csxOptIter it;
-  csx_optBegin(&it);
-  for (csxOptKind k; (k = csx_optNext(&kDesignTable, argc, argv, &it)) != CSX_OPT_END;) {
-    const int end = csx_optReport(&kDesignTable, k, &it);
-    if (end >= 0) {
-      return end;
+/* argv into d: 0; 1 with err filled; 2 when `it` holds --help or an option error (*kind) */
+static int parseDesign(int argc, char** argv, DesignDef* d, csxOptIter* it, csxOptKind* kind,
+                       csError* err) {
+  memset(d, 0, sizeof *d);
+  d->check_scene = "flat-road";
+  d->p_max = d->check_t = NAN;
+  d->cal_rule = -1;
+  csx_optBegin(it);
+  while ((*kind = csx_optNext(&kDesignTable, argc, argv, it)) != CSX_OPT_END) {
+    if (*kind == CSX_OPT_HELP || *kind == CSX_OPT_ERROR) {
+      return 2;
     }
-    if (k == CSX_OPT_OPERAND) {
-      if (in) {
-        fprintf(stderr, "crawlsim gait design: unexpected argument '%s'\n", it.value);
+    if (*kind == CSX_OPT_OPERAND) {
+      if (d->in) {
+        cs_errorSet(err, CS_ERR_ARG, "unexpected argument '%s'", it->value);
         return 1;
       }
-      in = it.value;
+      d->in = it->value;
       continue;
     }
-    const char* a = it.opt->name;
-    const char* v = it.value;
+    const char* a = it->opt->name;
+    const char* v = it->value;
     if (!strcmp(a, "--set")) {
-      if (nset == 32) {
-        fprintf(stderr, "crawlsim gait design: more than 32 --set options\n");
+      if (d->nset == 32) {
+        cs_errorSet(err, CS_ERR_ARG, "more than 32 --set options");
         return 1;
       }
-      sets[nset++] = v;
+      d->sets[d->nset++] = v;
     } else if (!strcmp(a, "--stretch")) {
-      stretch = 1;
+      d->stretch = 1;
     } else if (!strcmp(a, "--check")) {
-      check = 1;
+      d->check = 1;
     } else if (!strcmp(a, "--out")) {
-      out = v;
+      d->out = v;
     } else if (!strcmp(a, "--calibration")) {
-      calib = v;
+      d->calib = v;
     } else if (!strcmp(a, "--check-scene")) {
-      check_scene = v;
+      d->check_scene = v;
     } else if (!strcmp(a, "--cal-rule")) {
       csrCalRule rule;
       if (!csr_calRuleParse(v, &rule)) {
-        fprintf(stderr, "crawlsim gait design: unknown --cal-rule '%.60s' (expected prism, rbf "
-                "or rbf-pair)\n", v);
+        cs_errorSet(err, CS_ERR_ARG, "unknown --cal-rule '%.60s' (expected prism, rbf "
+                    "or rbf-pair)", v);
         return 1;
       }
-      cal_rule = (int)rule;
+      d->cal_rule = (int)rule;
     } else {
       char* end;
       double x = strtod(v, &end);
       if (*end || end == v || !isfinite(x) || !(x > 0)) {
-        fprintf(stderr, "crawlsim gait design: %s '%s' must be a number > 0\n", a, v);
+        cs_errorSet(err, CS_ERR_ARG, "%s '%s' must be a number > 0", a, v);
         return 1;
       }
-      if (!strcmp(a, "--p-max")) p_max = x; else check_t = x; /* --check-t */
+      if (!strcmp(a, "--p-max")) d->p_max = x; else d->check_t = x; /* --check-t */
     }
   }
-  if (!in) {
-    fprintf(stderr, "crawlsim gait design: missing FILE.gait (see --help)\n");
+  if (!d->in) {
+    cs_errorSet(err, CS_ERR_ARG, "missing FILE.gait (see --help)");
     return 1;
   }
+  return 0;
+}
+
+
+
+/* build the gait table d defines, its lines on d->table: 0, or 1 with err filled; *res */
+static int executeDesign(const DesignDef* d, DesignResult* res, csError* err) {
+  const char* const in = d->in;
+  const char* out = d->out;
+  const char* calib = d->calib;
+  const double p_max = d->p_max;
+  const int cal_rule = d->cal_rule, stretch = d->stretch, check = d->check, nset = d->nset;
   char outbuf[1024], calbuf[512];
   if (!out) {
     snprintf(outbuf, sizeof outbuf, "%s", in);
@@ -319,8 +349,6 @@ int csx_cmdGaitDesign(int argc, char** argv) {
   }
   const int calib_given = calib != NULL;
   if (!calib) calib = csx_dataPath(CSX_DEFAULT_CALIBRATION, calbuf, sizeof calbuf);
-  csError err;
-  cs_errorClear(&err);
   int rc = 1;
   csgDesign* des = malloc(sizeof *des);
   csrDesignedPoses* poses = malloc(sizeof *poses);
@@ -329,31 +357,31 @@ int csx_cmdGaitDesign(int argc, char** argv) {
   csgGait* g = NULL;
   csrActuator leg;
   if (!des || !poses || !comment) {
-    cs_errorSet(&err, CS_ERR_MEMORY, "out of memory");
+    cs_errorSet(err, CS_ERR_MEMORY, "out of memory");
     goto done;
   }
-  if (csg_designRead(des, in, &err) != CS_OK) goto done;
-  if (csr_actuatorPreset(&leg, "leg", &err) != CS_OK) goto done;
+  if (csg_designRead(des, in, err) != CS_OK) goto done;
+  if (csr_actuatorPreset(&leg, "leg", err) != CS_OK) goto done;
   /* --set: the design study's leg (the check runs would build the shipped one) */
   if (nset > 0 && check) {
-    cs_errorSet(&err, CS_ERR_ARG, "--check runs the shipped leg: with --set, run the table with "
+    cs_errorSet(err, CS_ERR_ARG, "--check runs the shipped leg: with --set, run the table with "
                 "crawlsim run --set ... instead");
     goto done;
   }
   for (int k = 0; k < nset; k++) {
-    if (csr_actuatorSetString(&leg, sets[k], &err) != CS_OK) goto done;
+    if (csr_actuatorSetString(&leg, d->sets[k], err) != CS_OK) goto done;
   }
-  if (csr_actuatorValidate(&leg, &err) != CS_OK) goto done;
+  if (csr_actuatorValidate(&leg, err) != CS_OK) goto done;
   csrCalOptions cal_opt = csr_calModelDefaultOptions();
   cal_opt.rule = (csrCalRule)cal_rule;
-  cal = csr_calibrationOpenWith(calib, &leg, cal_rule >= 0 ? &cal_opt : NULL, &err);
+  cal = csr_calibrationOpenWith(calib, &leg, cal_rule >= 0 ? &cal_opt : NULL, err);
   if (!cal) goto done;
   csrBendMap map = csr_calibrationMap(cal);
   csrGaitDesignOptions opt = csr_defaultGaitDesignOptions();
   if (!isnan(p_max)) opt.p_max = p_max;
   opt.stretch = stretch;
-  if (csr_designPoses(&leg, &map, des, &opt, poses, &err) != CS_OK) goto done;
-  g = csr_designGait(&leg, &map, des, &opt, poses, &err);
+  if (csr_designPoses(&leg, &map, des, &opt, poses, err) != CS_OK) goto done;
+  g = csr_designGait(&leg, &map, des, &opt, poses, err);
   if (!g) goto done;
   /* the header says where the table came from; no machine paths (the source-tree prefix and
    * the data directory are dropped, so regenerating on another machine gives the same bytes) */
@@ -385,24 +413,68 @@ int csx_cmdGaitDesign(int argc, char** argv) {
     size_t cut = strlen(CS_SOURCE_DIR "/");
     memmove(src, src + cut, strlen(src + cut) + 1);
   }
-  if (csg_gaitWrite(g, out, comment, &err) != CS_OK) goto done;
-  printf("%s: %d rows, t = 0 .. %g s, from %s\n%s\n", out, g->nrow, g->time[g->nrow - 1], in,
-         posetext);
+  if (csg_gaitWrite(g, out, comment, err) != CS_OK) goto done;
+  snprintf(res->rows_line, sizeof res->rows_line, "%s: %d rows, t = 0 .. %g s, from %s", out,
+           g->nrow, g->time[g->nrow - 1], in);
+  {
+    /* the line without the output's directory (a study's case summary) */
+    const char* slash = strrchr(out, '/');
+    snprintf(res->summary, sizeof res->summary, "%s: %d rows, t = 0 .. %g s, from %s",
+             slash ? slash + 1 : out, g->nrow, g->time[g->nrow - 1], in);
+  }
+  fprintf(d->table, "%s\n%s\n", res->rows_line, posetext);
   rc = 0;
   if (check) {
-    double t_end = isnan(check_t) ? (des->nstride ? des->stride_t0 + 3 * des->stride_period : 4.0)
-                                  : check_t;
+    double t_end = isnan(d->check_t)
+                       ? (des->nstride ? des->stride_t0 + 3 * des->stride_period : 4.0)
+                       : d->check_t;
     const double ramps[3] = {0.1, 0.2, 0.5};
     for (int i = 0; i < 3 && rc == 0; i++) {
-      rc = checkRun(out, check_scene, ramps[i], t_end, des, calib, cal_rule);
+      rc = checkRun(d->table, out, d->check_scene, ramps[i], t_end, des, calib, cal_rule, err);
     }
   }
 done:
-  if (rc && err.msg[0]) fprintf(stderr, "crawlsim gait design: %s\n", err.msg);
   csg_gaitDestroy(g);
   csr_calibrationClose(cal);
   free(des);
   free(poses);
   free(comment);
   return rc;
+}
+
+
+/* `crawlsim gait design` with its lines on `table`, a failure's on `notes` and its results in
+ * *sres (NULL: the command line; else a study's step, both streams its log) */
+static int designCommand(int argc, char** argv, FILE* table, FILE* notes, csxStepResult* sres) {
+  DesignDef d;
+  csxOptIter it;
+  csxOptKind kind;
+  csError err;
+  cs_errorClear(&err);
+  int rc = parseDesign(argc, argv, &d, &it, &kind, &err);
+  rc = csx_parseEnd(&kDesignTable, rc, kind, &it, &err, notes, sres);
+  if (rc >= 0) {
+    return rc;
+  }
+  d.table = table;
+  DesignResult res;
+  memset(&res, 0, sizeof res);
+  rc = executeDesign(&d, &res, &err);
+  if (sres) {
+    snprintf(sres->summary, sizeof sres->summary, "%s", res.summary);
+  }
+  if (rc && (sres || err.msg[0])) {
+    csx_stepFailed(sres, notes, "gait design", err.msg);
+  }
+  return rc;
+}
+
+
+int csx_cmdGaitDesign(int argc, char** argv) {
+  return designCommand(argc, argv, stdout, stderr, NULL);
+}
+
+
+int csx_stepGaitDesign(int argc, char** argv, FILE* log, csxStepResult* res) {
+  return designCommand(argc, argv, log, log, res);
 }

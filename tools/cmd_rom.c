@@ -239,7 +239,11 @@ static int cmdSnapshots(int argc, char** argv) {
     if (csx_optIs(it.opt, "--list")) {
       list = 1;
     } else if (csx_optIs(it.opt, "--threads")) {
-      bad = csx_feParseThreads("rom", v, &threads);
+      csError terr;
+      bad = csx_feParseThreads(v, &threads, &terr);
+      if (bad) {
+        fprintf(stderr, "crawlsim rom: %s\n", terr.msg);
+      }
     } else if (csx_optIs(it.opt, "--mesh-size")) {
       bad = parseNumber(a, v, 0.5, 20, &ss.mesh_size);
     } else if (csx_optIs(it.opt, "--newton-rtol")) {
@@ -304,7 +308,7 @@ static int cmdSnapshots(int argc, char** argv) {
     return 0;
   }
   csfThreadPlan plan;
-  csx_fePlanThreads("rom", threads, &plan);
+  csx_fePlanThreads(stderr, "rom", threads, &plan);
   ss.threads = plan.threads;
   char stem[620];
   snprintf(stem, sizeof stem, "%.500s/mesh", dir);

@@ -149,10 +149,17 @@ static const struct {
 };
 
 
-/* the library's lines of what the run is (csRunDef.log), on stderr as the banner */
+/* the library's lines of what the run is (csRunDef.log), as the banner on the stream `user`
+ * (the command: stderr; a study's step: the case's log) */
 static void printBanner(void* user, const char* line) {
-  (void)user;
-  fprintf(stderr, "crawlsim run: %s\n", line);
+  fprintf((FILE*)user, "crawlsim run: %s\n", line);
+}
+
+
+/* the progress line per simulated second (csRunDef.progress) on the stream `user` */
+static void printProgress(void* user, double t, const double x[3], double wall_s) {
+  fprintf((FILE*)user, "  t = %5.2f s  x = %7.2f  y = %6.2f  z = %6.2f mm  (%.1f s wall)\n", t,
+          x[0], x[1], x[2], wall_s);
 }
 
 
@@ -179,67 +186,127 @@ static int setField(csRunDef* def, const char* flag, const char* v, csError* err
 }
 
 
-int csx_cmdRun(int argc, char** argv) {
-  /* SIGINT/SIGTERM end the run after the step in progress (cs_signal.h): exit 128 + signal */
-  csx_signalInstall();
+/* the verdict line of a run that started stepping (r->verdict set) into out */
+static void verdictLine(const csRunResult* r, csStatus st, char* out, size_t size) {
+  if (st != CS_OK) {
+    snprintf(out, size, "verdict (%s, %s legs): %s: %s", r->conditions, r->legs, r->verdict,
+             r->message);
+  } else {
+    snprintf(out, size, "verdict (%s, %s legs): %s: x = %.1f mm, z = %.1f mm in %.2f s, tilt "
+             "%.1f deg", r->conditions, r->legs, r->verdict, r->position[0], r->position[2],
+             r->t_end, r->tilt_deg);
+  }
+}
+
+
+/* the summary of a run that started stepping, ending with its verdict line, on out */
+static void printSummary(FILE* out, const csRunDef* def, const csRunResult* r, csStatus st) {
+  fprintf(out, "final t = %.3f s: support displacement x = %.2f mm, y = %.2f mm, z = %.2f mm, "
+          "tilt %.2f deg\n", r->t_end, r->position[0], r->position[1], r->position[2],
+          r->tilt_deg);
+  fprintf(out, "wall time %.2f s, real-time factor %.2f (simulated s per wall s), output %s\n",
+          r->wall_s, r->real_time_factor, def->out);
+  /* where the time went: one entry per stage timer, as in the HDF5 attributes */
+  fprintf(out, "time split (s):");
+  for (int k = 0; k < r->ntimer; k++) {
+    fprintf(out, " %s %.3f%s", r->timer_name[k], r->timer_s[k], k + 1 < r->ntimer ? "," : "\n");
+  }
+  if (r->gain_projections > 0) {
+    fprintf(out, "coupling: the legs' interface gains were not passive in %ld macro step(s); "
+            "their implicit part was projected onto passive gains there (README \"Rod legs\")\n",
+            r->gain_projections);
+  }
+  char line[CS_ERROR_MSG_SIZE + 128];
+  verdictLine(r, st, line, sizeof line);
+  fprintf(out, "%s\n", line);
+}
+
+
+/* argv into def (the --set values kept in sets[32]): 0; 1 with err filled; 2 when `it` holds
+ * --help or an option error (csx_optReport's kinds, *kind) */
+static int parseRun(int argc, char** argv, csRunDef* def, const char** sets, csxOptIter* it,
+                    csxOptKind* kind, csError* err) {
+  csx_optBegin(it);
+  while ((*kind = csx_optNext(&kRunTable, argc, argv, it)) != CSX_OPT_END) {
+    if (*kind == CSX_OPT_HELP || *kind == CSX_OPT_ERROR) return 2;
+    if (*kind == CSX_OPT_OPERAND) {
+      cs_errorSet(err, CS_ERR_ARG, "unexpected argument '%.60s' (see crawlsim run --help)",
+                  it->value);
+      return 1;
+    }
+    const char* flag = it->opt->name;
+    if (!strcmp(flag, "--quiet")) {
+      def->progress = NULL;
+      def->log = NULL;
+    } else if (!strcmp(flag, "--set")) {
+      if (def->n_actuator_set == 32) {
+        cs_errorSet(err, CS_ERR_ARG, "more than 32 --set options");
+        return 1;
+      }
+      sets[def->n_actuator_set++] = it->value;
+      def->actuator_set = sets;
+    } else if (!setField(def, flag, it->value, err)) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+
+/* the definition the command starts from, its lines going to `lines` */
+static csRunDef commandDef(FILE* lines) {
   csRunDef def = cs_defaultRunDef();
   def.out = "run.h5";
-  def.progress = 1;
+  def.progress = printProgress;
+  def.progress_user = lines;
   def.log = printBanner;
+  def.log_user = lines;
   def.cancel = csx_signalFlag();
+  return def;
+}
+
+
+/* `crawlsim run` with its banner and progress on `notes`, its summary on `table` and its
+ * results in *res (NULL: the command line; else a study's step, both streams its log) */
+static int runCommand(int argc, char** argv, FILE* table, FILE* notes, csxStepResult* res) {
+  /* SIGINT/SIGTERM end the run after the step in progress (cs_signal.h): exit 128 + signal */
+  csx_signalInstall();
+  csRunDef def = commandDef(notes);
   const char* sets[32];
   csError err;
   cs_errorClear(&err);
   csxOptIter it;
-  csx_optBegin(&it);
-  for (csxOptKind kind; (kind = csx_optNext(&kRunTable, argc, argv, &it)) != CSX_OPT_END;) {
-    if (kind == CSX_OPT_HELP || kind == CSX_OPT_ERROR) return csx_optReport(&kRunTable, kind, &it);
-    if (kind == CSX_OPT_OPERAND) {
-      fprintf(stderr, "crawlsim run: unexpected argument '%.60s' (see crawlsim run --help)\n",
-              it.value);
-      return 1;
-    }
-    const char* flag = it.opt->name;
-    if (!strcmp(flag, "--quiet")) {
-      def.progress = 0;
-      def.log = NULL;
-    } else if (!strcmp(flag, "--set")) {
-      if (def.n_actuator_set == 32) {
-        fprintf(stderr, "crawlsim run: more than 32 --set options\n");
-        return 1;
-      }
-      sets[def.n_actuator_set++] = it.value;
-      def.actuator_set = sets;
-    } else if (!setField(&def, flag, it.value, &err)) {
-      fprintf(stderr, "crawlsim run: %s\n", err.msg);
-      return 1;
-    }
-  }
+  csxOptKind kind;
+  int p = parseRun(argc, argv, &def, sets, &it, &kind, &err);
+  p = csx_parseEnd(&kRunTable, p, kind, &it, &err, notes, res);
+  if (p >= 0) return p;
   csRunResult r;
   csStatus st = cs_run(&def, &r, &err);
   if (r.verdict[0]) {
-    printf("final t = %.3f s: support displacement x = %.2f mm, y = %.2f mm, z = %.2f mm, "
-           "tilt %.2f deg\n", r.t_end, r.position[0], r.position[1], r.position[2], r.tilt_deg);
-    printf("wall time %.2f s, real-time factor %.2f (simulated s per wall s), output %s\n",
-           r.wall_s, r.real_time_factor, def.out);
-    /* where the time went: one entry per stage timer, as in the HDF5 attributes */
-    printf("time split (s):");
-    for (int k = 0; k < r.ntimer; k++) {
-      printf(" %s %.3f%s", r.timer_name[k], r.timer_s[k], k + 1 < r.ntimer ? "," : "\n");
-    }
-    if (r.gain_projections > 0) {
-      printf("coupling: the legs' interface gains were not passive in %ld macro step(s); their "
-             "implicit part was projected onto passive gains there (README \"Rod legs\")\n",
-             r.gain_projections);
-    }
-    if (st != CS_OK) {
-      printf("verdict (%s, %s legs): %s: %s\n", r.conditions, r.legs, r.verdict, r.message);
-    } else {
-      printf("verdict (%s, %s legs): %s: x = %.1f mm, z = %.1f mm in %.2f s, tilt %.1f deg\n",
-             r.conditions, r.legs, r.verdict, r.position[0], r.position[2], r.t_end, r.tilt_deg);
+    /* it stepped: the file holds its samples, the result where it got */
+    printSummary(table, &def, &r, st);
+    if (res) {
+      res->t_final = r.t_end;
+      memcpy(res->x_final, r.position, sizeof res->x_final);
+      res->wrote_samples = def.out != NULL;
+      char line[CS_ERROR_MSG_SIZE + 128];
+      verdictLine(&r, st, line, sizeof line);
+      /* the case file keeps its first 255 characters, as it kept the log's verdict line */
+      snprintf(res->verdict, sizeof res->verdict, "%.*s", (int)sizeof res->verdict - 1, line);
+      snprintf(res->summary, sizeof res->summary, "%.*s", (int)sizeof res->summary - 1, line);
     }
   }
   if (st == CS_OK) return 0;
-  fprintf(stderr, "crawlsim run: %s\n", err.msg[0] ? err.msg : "failed");
+  csx_stepFailed(res, notes, "run", err.msg);
   return st == CS_ERR_INTERRUPTED && csx_signalExitCode() ? csx_signalExitCode() : 1;
+}
+
+
+int csx_cmdRun(int argc, char** argv) {
+  return runCommand(argc, argv, stdout, stderr, NULL);
+}
+
+
+int csx_stepRun(int argc, char** argv, FILE* log, csxStepResult* res) {
+  return runCommand(argc, argv, log, log, res);
 }

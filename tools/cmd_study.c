@@ -137,7 +137,6 @@ int csx_cmdStudy(int argc, char** argv) {
   const double t0 = csu_wallSeconds();
   int rc = 1;
   int* pending = NULL;
-  FILE* pout = NULL;
   csxStudy* s = csx_studyRead(file, &err);
   if (!s) {
     if (root) {
@@ -251,13 +250,11 @@ int csx_cmdStudy(int argc, char** argv) {
   if (kind == CSX_SCHEDULE_DYNAMIC && mpi.size > 1 && !mpi.threads_ok) {
     kind = CSX_SCHEDULE_STATIC;
   }
-  /* a stream on the terminal's stderr that the steps' capture does not touch */
-  int pfd = dup(2);
-  pout = pfd >= 0 ? fdopen(pfd, "w") : NULL;
-  Progress prog = {pout ? pout : stderr, s};
+  /* the progress lines go to stderr; the steps write only to their logs (csxStepFn) */
+  Progress prog = {stderr, s};
   int nfailed = 0;
   csStatus st = csx_studyRunPending(s, pending + 2, head[1], dir, &(csxStudyCommands){{
-      csx_cmdBend, csx_cmdRun, csx_cmdCalibrate, csx_cmdGaitDesign}, csx_signalFlag()}, kind,
+      csx_stepBend, csx_stepRun, csx_stepCalibrate, csx_stepGaitDesign}, csx_signalFlag()}, kind,
       &mpi, progressLine, &prog, &nfailed, &err);
   if (st != CS_OK) {
     fprintf(stderr, "crawlsim study: rank %d: %s\n", mpi.rank, err.msg);
@@ -297,9 +294,6 @@ int csx_cmdStudy(int argc, char** argv) {
   }
 
 done:
-  if (pout) {
-    fclose(pout);
-  }
   free(pending);
   csx_studyDestroy(s);
   csx_studyMpiFinalize(&mpi);

@@ -2,17 +2,19 @@
  *
  * Why in-process and not a child `crawlsim` per case: a case is exactly what the command does
  * on the command line (the same parser, checks and output), an MPI rank stays one process (a
- * fork under mpirun is fragile), and there is nothing to find on PATH. The cost is that a step
- * shares the process: its output is captured by pointing file descriptors 1 and 2 at the log
- * for the duration of the call (POSIX dup/dup2), and a command must not keep state between
- * calls (none does: each builds its model and data and frees them).
+ * fork under mpirun is fragile), and there is nothing to find on PATH. Each step is the
+ * command's step function (csxStepFn): the command's parser builds its definition from the
+ * case's words, the command writes its lines to a log stream this file opens and owns, and its
+ * results come back in a struct; nothing is redirected and no log is read for results (the log
+ * is only copied into the case file). A command must not keep state between calls (none does:
+ * each builds its model and data and frees them).
  *
  * The HDF5 C API is used directly here (object copy, reading attributes and the last row of a
  * dataset), which core_h5.h, a writer, does not offer. All HDF5 calls are made from the thread
  * that runs the cases (debian-deps.md P5). */
 #define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
@@ -58,21 +60,17 @@ typedef struct {
 /* "<dir>/<name><suffix>" into out; -1 if it does not fit */
 static int joinPath(char* out, size_t size, const char* dir, const char* name,
                     const char* suffix);
-/* run one step with stdout/stderr in `log`; returns the command's exit status (or -1) */
-static int runCaptured(csxCommandFn fn, int argc, char** argv, const char* log, csError* err);
 /* a whole text file (the last `keep` bytes); NULL if unreadable; *len its length */
 static char* readText(const char* path, size_t keep, size_t* len);
-/* the last non-empty line of text starting with `prefix` ("" = any) into out */
-static int findLine(const char* text, const char* prefix, int last, char* out, size_t size);
 /* HDF5 helpers: attributes, text datasets, the last row of a dataset */
 static int attrString(hid_t obj, const char* name, const char* value);
 static int attrDoubles(hid_t obj, const char* name, const double* v, int n);
 static int readAttrString(hid_t obj, const char* name, char* out, size_t size);
 static int readAttrDouble(hid_t obj, const char* name, double* v);
 static int writeText(hid_t loc, const char* name, const char* text, size_t len);
-static int readLastRow(hid_t f, const char* path, double* row, int ncol);
-/* key results from the steps' outputs and logs */
-static void collectResults(const csxStudyCase* c, const char* work, int nran, Results* r);
+/* key results from the steps' result structs */
+static void collectResults(const csxStudyCase* c, const csxStepResult* sr, int nran,
+                           Results* r);
 /* the case file */
 static csStatus writeCaseFile(const csxStudy* s, int i, const char* dir, const char* work,
                               int nran, const csxCaseResult* res, const char* message,
@@ -115,35 +113,28 @@ csStatus csx_studyMakeDir(const char* path, csError* err) {
 }
 
 
-static int runCaptured(csxCommandFn fn, int argc, char** argv, const char* log, csError* err) {
-  fflush(NULL);
-  int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0666);
-  if (fd < 0) {
-    cs_errorSet(err, CS_ERR_IO, "%s: cannot create log: %s", log, strerror(errno));
-    return -1;
-  }
-  int out = dup(1), er = dup(2);
-  if (out < 0 || er < 0 || dup2(fd, 1) < 0 || dup2(fd, 2) < 0) {
-    cs_errorSet(err, CS_ERR_IO, "%s: cannot redirect output: %s", log, strerror(errno));
-    if (out >= 0) {
-      dup2(out, 1);
-      close(out);
+void csx_stepFailed(csxStepResult* res, FILE* log, const char* cmd, const char* msg) {
+  char line[CS_ERROR_MSG_SIZE];
+  snprintf(line, sizeof line, "crawlsim %s: %s", cmd, msg && *msg ? msg : "failed");
+  for (char* c = line; *c; c++) {
+    if (iscntrl((unsigned char)*c)) {
+      *c = '?'; /* one line, whatever the words held (as csx_optReport) */
     }
-    if (er >= 0) {
-      dup2(er, 2);
-      close(er);
-    }
-    close(fd);
-    return -1;
   }
-  close(fd);
-  int rc = fn(argc, argv);
-  fflush(NULL);
-  dup2(out, 1);
-  dup2(er, 2);
-  close(out);
-  close(er);
-  return rc;
+  if (res) {
+    memcpy(res->message, line, sizeof res->message);
+  }
+  if (log) {
+    fprintf(log, "%s\n", line);
+  }
+}
+
+
+/* a step's result before the step: nothing known */
+static void stepResultInit(csxStepResult* r) {
+  memset(r, 0, sizeof *r);
+  r->p_until = r->angle_total = r->p_end = r->t_final = NAN;
+  r->x_final[0] = r->x_final[1] = r->x_final[2] = NAN;
 }
 
 
@@ -169,28 +160,6 @@ static char* readText(const char* path, size_t keep, size_t* len) {
   buf[n] = '\0';
   *len = n;
   return buf;
-}
-
-
-static int findLine(const char* text, const char* prefix, int last, char* out, size_t size) {
-  int found = 0;
-  size_t np = strlen(prefix);
-  for (const char* p = text; p && *p;) {
-    const char* e = strchr(p, '\n');
-    size_t n = e ? (size_t)(e - p) : strlen(p);
-    while (n > 0 && (p[n - 1] == '\r' || p[n - 1] == ' ')) {
-      n--;
-    }
-    if (n > 0 && n >= np && !strncmp(p, prefix, np)) {
-      snprintf(out, size, "%.*s", (int)n, p);
-      found = 1;
-      if (!last) {
-        return 1;
-      }
-    }
-    p = e ? e + 1 : NULL;
-  }
-  return found;
 }
 
 
@@ -291,36 +260,6 @@ static int writeText(hid_t loc, const char* name, const char* text, size_t len) 
 }
 
 
-static int readLastRow(hid_t f, const char* path, double* row, int ncol) {
-  if (H5Lexists(f, path, H5P_DEFAULT) <= 0) {
-    return 0;
-  }
-  hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
-  hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
-  int ok = 0;
-  hsize_t dims[2] = {0, 1};
-  int rank = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
-  if (rank >= 1 && rank <= 2) {
-    H5Sget_simple_extent_dims(sp, dims, NULL);
-    if (dims[0] > 0 && (rank == 1 ? ncol == 1 : dims[1] == (hsize_t)ncol)) {
-      hsize_t start[2] = {dims[0] - 1, 0}, count[2] = {1, (hsize_t)ncol};
-      hsize_t mdim = (hsize_t)ncol;
-      hid_t ms = H5Screate_simple(1, &mdim, NULL);
-      H5Sselect_hyperslab(sp, H5S_SELECT_SET, start, NULL, count, NULL);
-      ok = H5Dread(d, H5T_NATIVE_DOUBLE, ms, sp, H5P_DEFAULT, row) >= 0;
-      H5Sclose(ms);
-    }
-  }
-  if (sp >= 0) {
-    H5Sclose(sp);
-  }
-  if (d >= 0) {
-    H5Dclose(d);
-  }
-  return ok;
-}
-
-
 /* open an HDF5 file read-only, or -1 (no message: HDF5's error stack is off) */
 static hid_t openRead(const char* path) {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
@@ -377,39 +316,20 @@ csxCaseState csx_studyCaseState(const csxStudy* s, int i, const char* dir, csxCa
 }
 
 
-static void collectResults(const csxStudyCase* c, const char* work, int nran, Results* r) {
+static void collectResults(const csxStudyCase* c, const csxStepResult* sr, int nran,
+                           Results* r) {
   r->p_until = r->angle_total = r->p_end = r->t_final = NAN;
   r->x_final[0] = r->x_final[1] = r->x_final[2] = NAN;
   r->verdict[0] = '\0';
   for (int k = 0; k < nran; k++) {
-    csxStudyCmd cmd = c->step[k].cmd;
-    char path[CSX_STUDY_PATH_SIZE];
-    if (joinPath(path, sizeof path, work, kOutName[cmd], "") != 0) {
-      continue;
-    }
-    if (cmd == CSX_STUDY_BEND) {
-      hid_t f = openRead(path);
-      if (f >= 0) {
-        readAttrDouble(f, "p_until_angle_MPa", &r->p_until);
-        readLastRow(f, "/angle_total_deg", &r->angle_total, 1);
-        readLastRow(f, "/pressure", &r->p_end, 1);
-        H5Fclose(f);
-      }
-    } else if (cmd == CSX_STUDY_RUN) {
-      hid_t f = openRead(path);
-      if (f >= 0) {
-        readLastRow(f, "/time", &r->t_final, 1);
-        readLastRow(f, "/support/position", r->x_final, 3);
-        H5Fclose(f);
-      }
-      char log[CSX_STUDY_PATH_SIZE];
-      size_t n = 0;
-      char* text = joinPath(log, sizeof log, work, "run", ".log") == 0
-                       ? readText(log, LOG_KEEP_BYTES, &n) : NULL;
-      if (text) {
-        findLine(text, "verdict", 1, r->verdict, sizeof r->verdict);
-        free(text);
-      }
+    if (c->step[k].cmd == CSX_STUDY_BEND) {
+      r->p_until = sr[k].p_until;
+      r->angle_total = sr[k].angle_total;
+      r->p_end = sr[k].p_end;
+    } else if (c->step[k].cmd == CSX_STUDY_RUN) {
+      r->t_final = sr[k].t_final;
+      memcpy(r->x_final, sr[k].x_final, sizeof r->x_final);
+      memcpy(r->verdict, sr[k].verdict, sizeof r->verdict); /* the same size, NUL-ended */
     }
   }
 }
@@ -526,6 +446,7 @@ csStatus csx_studyRunCase(const csxStudy* s, int i, const char* dir, const csxSt
   char message[CS_ERROR_MSG_SIZE] = "";
   res->state = CSX_CASE_COMPLETE;
   int nran = 0;
+  csxStepResult sr[CSX_STUDY_NCMD]; /* what each step that ran reported */
   for (int k = 0; k < c->nstep && res->state == CSX_CASE_COMPLETE; k++) {
     const csxStudyStep* sp = &c->step[k];
     if (!cmd->fn[sp->cmd]) {
@@ -570,12 +491,17 @@ csStatus csx_studyRunCase(const csxStudy* s, int i, const char* dir, const csxSt
     }
     /* an output left by a killed earlier attempt must not pass for this one's */
     remove(out);
-    int rc = runCaptured(cmd->fn[sp->cmd], argc, argv, log, err);
+    FILE* lf = fopen(log, "w");
+    if (!lf) {
+      free(argv);
+      free(store);
+      return cs_errorSet(err, CS_ERR_IO, "%s: cannot create log: %s", log, strerror(errno));
+    }
+    stepResultInit(&sr[k]);
+    int rc = cmd->fn[sp->cmd](argc, argv, lf, &sr[k]);
+    fclose(lf); /* the log is a record for the reader; the results are in sr[k] */
     free(argv);
     free(store);
-    if (rc < 0) {
-      return err->status != CS_OK ? err->status : CS_ERR_IO;
-    }
     if (cmd->cancel && *cmd->cancel) {
       /* a signal ended the step: its result is no result; no case file, the case stays pending */
       return cs_errorSet(err, CS_ERR_INTERRUPTED, "case %s: interrupted in %s (exit %d); it "
@@ -586,60 +512,19 @@ csStatus csx_studyRunCase(const csxStudy* s, int i, const char* dir, const csxSt
       continue;
     }
     /* a run that ended early but wrote its samples (the robot fell) is a result */
-    size_t n = 0;
-    char* text = readText(log, LOG_KEEP_BYTES, &n);
-    char last[CS_ERROR_MSG_SIZE] = "";
-    if (text) {
-      findLine(text, "", 1, last, sizeof last);
-    }
-    hid_t f = sp->cmd == CSX_STUDY_RUN ? openRead(out) : -1;
-    int wrote = f >= 0 && H5Lexists(f, "/time", H5P_DEFAULT) > 0;
-    if (f >= 0) {
-      H5Fclose(f);
-    }
-    res->state = wrote && k == c->nstep - 1 ? CSX_CASE_STOPPED : CSX_CASE_FAILED;
+    res->state = sp->cmd == CSX_STUDY_RUN && sr[k].wrote_samples && k == c->nstep - 1
+                     ? CSX_CASE_STOPPED : CSX_CASE_FAILED;
     snprintf(message, sizeof message, "%s (exit %d): %s", csx_studyCmdName(sp->cmd), rc,
-             last[0] ? last : "no message");
-    free(text);
+             sr[k].message[0] ? sr[k].message : "no message");
   }
   res->wall_s = csu_wallSeconds() - t0;
   /* the summary: one piece per step that has something to say */
   Results r;
-  collectResults(c, work, nran, &r);
+  collectResults(c, sr, nran, &r);
   res->summary[0] = '\0';
-  char piece[CSX_STUDY_SUMMARY_SIZE];
   for (int k = 0; k < nran; k++) {
-    csxStudyCmd sc = c->step[k].cmd;
-    char log[CSX_STUDY_PATH_SIZE];
-    size_t n = 0;
-    char* text = joinPath(log, sizeof log, work, kArgv0[sc], ".log") == 0
-                     ? readText(log, LOG_KEEP_BYTES, &n) : NULL;
-    piece[0] = '\0';
-    if (sc == CSX_STUDY_BEND && text && findLine(text, "until-angle:", 1, piece, sizeof piece)) {
-      /* "until-angle: total angle 360 deg at p = 0.387462 MPa" */
-    } else if (sc == CSX_STUDY_BEND && !isnan(r.angle_total)) {
-      snprintf(piece, sizeof piece, "bend: total %.3f deg at %.4f MPa", r.angle_total, r.p_end);
-    } else if (sc == CSX_STUDY_RUN && r.verdict[0]) {
-      snprintf(piece, sizeof piece, "%s", r.verdict);
-    } else if (sc == CSX_STUDY_CALIBRATE && text) {
-      findLine(text, "crawlsim calibrate: table", 1, piece, sizeof piece);
-    } else if (sc == CSX_STUDY_GAIT_DESIGN && text) {
-      char line[CSX_STUDY_SUMMARY_SIZE];
-      if (findLine(text, "", 0, line, sizeof line)) {
-        /* "<path>/gait.csv: 181 rows, ..." -> "gait.csv: 181 rows, ..." */
-        const char* colon = strstr(line, ": ");
-        const char* base = line;
-        for (const char* q = line; colon && q < colon; q++) {
-          if (*q == '/') {
-            base = q + 1;
-          }
-        }
-        snprintf(piece, sizeof piece, "%s", base);
-      }
-    }
-    free(text);
-    if (piece[0]) {
-      addSummary(res->summary, piece);
+    if (sr[k].summary[0]) {
+      addSummary(res->summary, sr[k].summary);
     }
   }
   if (res->state == CSX_CASE_FAILED) {

@@ -1,6 +1,7 @@
 """crawlsim.run: a whole run returns its result and its tracks as arrays (the file kept with
-out=, read back and removed without), the result's end pose is the last sample's, and the
-plotting example reads the file."""
+out=, read back and removed without), the result's end pose is the last sample's, the plotting
+example reads the file, and what a run has to say reaches the caller's callbacks (log,
+progress) while the library writes nothing to stdout or stderr."""
 
 import os
 import subprocess
@@ -75,3 +76,25 @@ def test_heading_of_a_quaternion_about_y():
         q = np.array([np.cos(a), 0.0, np.sin(a), 0.0])  # a turn about world +y (up)
         assert crawlsim.heading_deg(q) == pytest.approx(deg, abs=1e-9)
     assert crawlsim.tilt_deg([1, 0, 0, 0]) == 0.0
+
+
+def test_callbacks_get_the_lines_and_nothing_is_printed(capfd):
+    lines, calls = [], []
+    r = crawlsim.run(t_end=1.0, log=lines.append,
+                     progress=lambda t, x, wall: calls.append((t, x, wall)),
+                     legs="prb")
+    out, err = capfd.readouterr()  # file descriptors 1 and 2, C's writes included
+    assert r.ok
+    assert out == "" and err == ""
+    assert len(lines) >= 4 and all("\n" not in line for line in lines)
+    assert any(line.startswith("stance check") for line in lines)
+    # once per simulated second: at t = 1 s (1000 steps of 1 ms), where the run ended
+    assert len(calls) == 1
+    t, x, wall = calls[0]
+    assert t == pytest.approx(1.0, abs=1e-9) and wall > 0
+    assert x == pytest.approx(tuple(r.position), abs=1e-12)  # the same state read twice
+
+
+def test_progress_must_be_callable():
+    with pytest.raises(crawlsim.Error, match="progress"):
+        crawlsim.RunDef(progress=3)

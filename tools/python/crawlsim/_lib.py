@@ -43,6 +43,9 @@ class csError(ctypes.Structure):
 
 
 LOGFN = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_char_p)
+# void (*progress)(void* user, double t, const double x[3], double wall_s)
+PROGRESSFN = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_double, c_double_p,
+                              ctypes.c_double)
 
 # csRunDef, field by field in the header's order: (name, ctypes type, kind) where kind says how
 # the Python RunDef converts a value: "str" (NULL = default), "num" (NaN = default), "int",
@@ -80,7 +83,8 @@ RUNDEF_FIELDS = [
     ("rod_tol", ctypes.c_double, "num"),
     ("step_order", ctypes.c_double, "num"),
     ("out", ctypes.c_char_p, "str"),
-    ("progress", ctypes.c_int, "int"),
+    ("progress", PROGRESSFN, "raw"),
+    ("progress_user", ctypes.c_void_p, "raw"),
     ("cancel", ctypes.c_void_p, "raw"),
     ("data_dir", ctypes.c_char_p, "str"),
     ("log", LOGFN, "raw"),

@@ -31,13 +31,17 @@ class RunDef:
     list of "NAME=VALUE" strings or a dict {NAME: VALUE}. no_gait=True runs without a gait
     table (the pressures are zero until set_pressures or a controller commands them).
     `log` may be a callable that receives each line describing what the run is (scene,
-    conditions, calibration, legs, stance check) before it settles."""
+    conditions, calibration, legs, stance check) before it settles; `progress` a callable
+    progress(t, x, wall_s) that run() calls once per simulated second with the time (s), the
+    support's displacement from t = 0 (a tuple of 3, mm) and the wall time so far (s). The
+    library itself prints nothing."""
 
-    __slots__ = ("_values", "log")
+    __slots__ = ("_values", "log", "progress")
 
     def __init__(self, **kw):
         object.__setattr__(self, "_values", {})
         object.__setattr__(self, "log", None)
+        object.__setattr__(self, "progress", None)
         d = _lib.lib().cs_defaultRunDef()
         for name, kind in _KIND.items():
             if kind == "strlist":
@@ -64,6 +68,11 @@ class RunDef:
             if value is not None and not callable(value):
                 raise Error("RunDef.log must be a callable taking one line of text, or None")
             object.__setattr__(self, "log", value)
+            return
+        if name == "progress":
+            if value is not None and not callable(value):
+                raise Error("RunDef.progress must be a callable progress(t, x, wall_s), or None")
+            object.__setattr__(self, "progress", value)
             return
         kind = _KIND.get(name)
         if kind is None:
@@ -110,6 +119,18 @@ class RunDef:
             fn = _lib.LOGFN(trampoline)
             keep.append(fn)
             c.log = fn
+        if self.progress is not None:
+            user_progress = self.progress
+
+            def progress_trampoline(_user, t, x, wall_s):
+                try:
+                    user_progress(t, (x[0], x[1], x[2]), wall_s)
+                except Exception:  # noqa: BLE001: a callback must not unwind through C
+                    pass
+
+            pfn = _lib.PROGRESSFN(progress_trampoline)
+            keep.append(pfn)
+            c.progress = pfn
         return c, keep
 
     def validate(self):
@@ -134,9 +155,9 @@ def from_args(rundef, kw, who):
 
 
 def _unknown(name):
-    near = difflib.get_close_matches(name, list(_KIND) + ["log"], n=1)
+    near = difflib.get_close_matches(name, list(_KIND) + ["log", "progress"], n=1)
     hint = f" (did you mean {near[0]}?)" if near else ""
-    return f"RunDef has no field '{name}'{hint}; fields: {', '.join(_KIND)}, log"
+    return f"RunDef has no field '{name}'{hint}; fields: {', '.join(_KIND)}, log, progress"
 
 
 def _convert(name, kind, v):
