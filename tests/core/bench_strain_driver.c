@@ -3,7 +3,7 @@
  * after the other in ONE process, so their ratio is measured under the same load (not a test:
  * prints numbers; docs/notes/strain_leg.md "In the driver").
  *
- *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S]]]...
+ *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER]]]]...
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -17,7 +17,7 @@
  * output, the rest (schedule, check, state saves); then the support's x at the end. The
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
  * so compare the shares of runs made together. The data files come from $CS_SOURCE_DIR
- * (default ../../..). */
+ * (default ../../..); with CS_BENCH_KEEP=DIR each run's file stays in DIR. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -39,15 +39,17 @@ static void quiet(int num, const char* msg, va_list ap) {
 
 static int bench(const char* src, const char* arg, double t_end) {
   char level[32] = "", terr[600], gait[600], cal[600];
-  int links = 0;
+  int links = 0, order = 0;
   double dt = 0;
-  /* LEVEL[:LINKS[:DT]] */
+  /* LEVEL[:LINKS[:DT[:ORDER]]] (ORDER: the tree step's formula, 1 BE, 2 BDF2) */
   const char* c1 = strchr(arg, ':');
   snprintf(level, sizeof level, "%.*s", c1 ? (int)(c1 - arg) : (int)strlen(arg), arg);
   if (c1) {
     links = atoi(c1 + 1);
     const char* c2 = strchr(c1 + 1, ':');
     dt = c2 ? atof(c2 + 1) : 0;
+    const char* c3 = c2 ? strchr(c2 + 1, ':') : NULL;
+    order = c3 ? atoi(c3 + 1) : 0;
   }
   const csrLegType* type = csr_legTypeFind(level, NULL);
   if (!type) {
@@ -65,6 +67,7 @@ static int bench(const char* src, const char* arg, double t_end) {
   if (dt > 0) {
     m.opt.h = dt;
   }
+  m.robot.leg_params.step_order = order;
   m.opt.t_end = t_end;
   csrCalRule rule;
   if (csr_calRuleParse("rbf-pair", &rule)) {
@@ -84,13 +87,23 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
-  char out[64];
-  snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
+  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/LEVEL_LINKS_DT_ORDER.h5 (its track, for the
+   * errors against a reference: docs/bench/levels_one_process_2026-12-05) */
+  const char* keep = getenv("CS_BENCH_KEEP");
+  char out[700];
+  if (keep) {
+    snprintf(out, sizeof out, "%s/%s_%d_%g_%d.h5", keep, level,
+             m.robot.leg_params.links_per_segment, m.opt.h, order);
+  } else {
+    snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
+  }
   const double c0 = cpu();
   double wall = 0;
   csStatus st = cs_runWrite(&m, d, out, &wall, &err);
   const double c = cpu() - c0;
-  remove(out);
+  if (!keep) {
+    remove(out);
+  }
   /* steps and rejections of the run (the data's counts include the settling) */
   const long nstep = cs_stepCount(d) - lround(m.opt.settle / cs_modelMacroStep(&m));
   double x[3];
@@ -102,9 +115,9 @@ static int bench(const char* src, const char* arg, double t_end) {
   const double rest = step - tm[CS_TIMER_LEGS].wall - tm[CS_TIMER_SUPPORT].wall -
                       tm[CS_TIMER_PNEUMATICS].wall;
   const double t_run = cs_time(d);
-  printf("%s, %d per segment, h %g ms, coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
+  printf("%s, %d per segment, h %g ms%s, coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
          "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", level,
-         m.robot.leg_params.links_per_segment, m.opt.h * 1e3,
+         m.robot.leg_params.links_per_segment, m.opt.h * 1e3, order == 2 ? " BDF2" : "",
          m.opt.coupling == CS_COUPLING_TREE           ? "tree"
          : m.opt.coupling == CS_COUPLING_GAUSS_SEIDEL ? "gs"
          : m.opt.coupling == CS_COUPLING_STABILISED   ? "stabilised"
