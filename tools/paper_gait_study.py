@@ -19,15 +19,17 @@ import argparse
 import csv
 import os
 import re
-import subprocess
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import h5py  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from plot_study_common import fill_markers, run_study, study_paths  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = os.path.join(ROOT, "tools", "studies", "paper_gait.study")
@@ -149,35 +151,26 @@ def main(argv=None):
                     help="work folder (case files, merged study file)")
     ap.add_argument("--report-only", action="store_true")
     a = ap.parse_args(argv)
-    os.makedirs(a.dir, exist_ok=True)
-    merged = os.path.join(a.dir, "paper_gait.h5")
-    args = [a.crawlsim, "study", STUDY, "--out", merged, "--dir", os.path.join(a.dir, "cases")]
-    args += ["--merge-only"] if a.report_only else ["--resume"]
-    rc = subprocess.run(args).returncode
+    merged, case_dir = study_paths(a.dir, "paper_gait")
+    rc = run_study(a.crawlsim, STUDY, merged, case_dir, a.report_only)
     if not os.path.exists(merged):
         print(f"paper_gait_study.py: {merged} was not written (crawlsim study exit {rc})",
               file=sys.stderr)
         return 1
-    rows, tracks = read_cases(merged, os.path.join(a.dir, "cases"))
+    rows, tracks = read_cases(merged, case_dir)
     with open(os.path.join(DOCS, "paper_gait.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()) if rows else ["case"])
         w.writeheader()
         w.writerows(rows)
     if rows:
         plot(rows, tracks, os.path.join(DOCS, "paper_gait.png"))
-    md = os.path.join(DOCS, "paper_gait.md")
-    body = open(md).read()
-    i, j = body.find(BEGIN), body.find(END)
-    if i < 0 or j < i:
-        print(f"paper_gait_study.py: {md} has no table markers", file=sys.stderr)
-        return 1
     missing = [n for n in ORDER if n not in {r["case"] for r in rows}]
     lines = [table(rows)]
     if missing:
         lines += ["", "Not run yet: " + ", ".join(missing) + "."]
-    body = body[:i + len(BEGIN)] + "\n" + "\n".join(lines) + "\n" + body[j:]
-    with open(md, "w") as f:
-        f.write(body)
+    if not fill_markers(os.path.join(DOCS, "paper_gait.md"), BEGIN, END, lines,
+                        "paper_gait_study.py"):
+        return 1
     print(f"paper_gait_study.py: {len(rows)} cases in docs/studies/paper_gait.csv, "
           "paper_gait.png, paper_gait.md")
     return 0 if rc in (0, 1) else rc
