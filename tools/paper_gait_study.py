@@ -131,8 +131,11 @@ def plot(rows, tracks, out):
     names = [r["case"] for r in rows]
     x9 = [float(r["x9_mm"]) for r in rows]
     cols = ["C2" if n == "designed" else "C0" for n in names]
-    a2.barh(range(len(names)), x9, color=cols)
-    a2.axvspan(0.9 * 312, 1.1 * 312, color="0.85", label="312 mm within 10 %")
+    a2.barh(range(len(names)), x9, color=cols, zorder=2)
+    for k, r in enumerate(rows):
+        if not np.isfinite(x9[k]):
+            a2.text(0, k, f" {r['verdict']} before 9 s", va="center", fontsize=7)
+    a2.axvspan(0.9 * 312, 1.1 * 312, color="0.85", label="312 mm within 10 %", zorder=0)
     a2.axvline(312, color="k", lw=0.8)
     a2.set_yticks(range(len(names)))
     a2.set_yticklabels(names, fontsize=7)
