@@ -139,10 +139,10 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
                          "against the reference, see robot/levels.csv)");
     }
     if (!isnan(def->links) || !isnan(def->macro_steps) || !isnan(def->dt) ||
-        !isnan(def->rod_tol)) {
-      return cs_errorSet(err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt and "
-                         "--rod-tol from its table: give them with --legs prb, rod or strain "
-                         "instead");
+        !isnan(def->rod_tol) || !isnan(def->step_order)) {
+      return cs_errorSet(err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt, "
+                         "--rod-tol and --step-order from its table: give them with --legs prb, "
+                         "rod or strain instead");
     }
     if (!(def->legs_tol_mm >= 0)) {
       return cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be >= 0", def->legs_tol_mm);
@@ -329,7 +329,7 @@ csStatus cs_runDefValidate(const csRunDef* def, csError* err) {
  * configuration in m and the choice's explanation */
 static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files, csModel* m,
                          double* links, double* macro, double* dt, double* rodtol,
-                         const csrLegType** leg_type, csError* err) {
+                         double* order, const csrLegType** leg_type, csError* err) {
   char levels_buf[512];
   const char* levels = def->levels ? def->levels
                                    : cs_runDataPath(def, "robot/levels.csv", levels_buf,
@@ -354,10 +354,17 @@ static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files,
   *macro = row->macro_steps;
   *dt = row->dt_s;
   *rodtol = row->rod_tol;
+  if (row->step_order > 0) {
+    *order = row->step_order;
+  }
   m->legs_auto_tol_mm = tol;
-  char tolnote[32] = "";
+  char tolnote[64] = "";
   if (row->rod_tol != 1) {
     snprintf(tolnote, sizeof tolnote, ", rod tol %g", row->rod_tol);
+  }
+  if (row->step_order > 0) {
+    snprintf(tolnote + strlen(tolnote), sizeof tolnote - strlen(tolnote), ", step order %d",
+             row->step_order);
   }
   snprintf(m->legs_auto_choice, sizeof m->legs_auto_choice,
            "%s, links %d, macro steps %d, dt %g s%s: the cheapest of %d configurations measured "
@@ -437,8 +444,10 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */
   const csrLegType* leg_type = legTypeNamed(legs);
   double links = def->links, macro = def->macro_steps, dt = def->dt, rodtol = def->rod_tol;
+  double order = def->step_order;
   if (st == CS_OK && !strcmp(legs, "auto")) {
-    st = pickAuto(def, scene, user_files, m, &links, &macro, &dt, &rodtol, &leg_type, err);
+    st = pickAuto(def, scene, user_files, m, &links, &macro, &dt, &rodtol, &order, &leg_type,
+                  err);
     if (st == CS_OK && def->coupling && !strcmp(def->coupling, "tree") && !leg_type->prepare) {
       st = cs_errorSet(err, CS_ERR_ARG, "--coupling tree needs a tree-stepped leg level (--legs "
                        "auto picked %s)", leg_type->name);
@@ -485,9 +494,10 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
     st = levelTakes(leg_type, "--cal-drop", "cal_drop", err);
     if (st == CS_OK) st = csr_legSettingSet(leg_type, ls, "cal_drop", cal_drop, err);
   }
-  if (st == CS_OK && !isnan(def->step_order)) {
-    st = levelTakes(leg_type, "--step-order", "step_order", err);
-    if (st == CS_OK) st = csr_legSettingSet(leg_type, ls, "step_order", def->step_order, err);
+  /* step_order: the definition's, or auto's row (strain rows carry one) */
+  if (st == CS_OK && !isnan(order)) {
+    if (!isnan(def->step_order)) st = levelTakes(leg_type, "--step-order", "step_order", err);
+    if (st == CS_OK) st = csr_legSettingSet(leg_type, ls, "step_order", order, err);
   }
   if (st == CS_OK && !isnan(links)) {
     st = csr_legSettingSet(leg_type, ls, "links", links, err);

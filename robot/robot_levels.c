@@ -16,17 +16,22 @@
 
 enum {
   MAX_LINE = 1023, /* bytes per line, line ending excluded */
-  NCOL = 10,       /* columns of the format (2) */
-  NCOL1 = 9        /* of format 1 (no rod_tol) */
+  NCOL = 11,       /* columns of the format (3) */
+  NCOL2 = 10,      /* of format 2 (no step_order) */
+  NCOL1 = 9        /* of format 1 (no rod_tol either) */
 };
 
 static const char kHeader[] =
+    "scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,cpu_s_per_s,wall_s_per_s,"
+    "machine";
+/* format 2 (tables written before 2026-12-06): every row at step_order 0 */
+static const char kHeader2[] =
     "scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine";
-/* format 1 (tables without the rod_tol column): every row at rod_tol 1 */
+/* format 1 (tables written before 2026-12-03): every row at rod_tol 1 and step_order 0 */
 static const char kHeader1[] =
     "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine";
 static const char* const kColumn[NCOL] = {"scene", "level", "links", "macro_steps", "dt_s",
-                                          "rod_tol", "error_mm", "cpu_s_per_s",
+                                          "rod_tol", "step_order", "error_mm", "cpu_s_per_s",
                                           "wall_s_per_s", "machine"};
 /* the ranges of the flags the row's settings stand for (tools/cmd_run.c) */
 #define MAX_LINKS 64
@@ -36,6 +41,8 @@ static const char* const kColumn[NCOL] = {"scene", "level", "links", "macro_step
 #define MAX_VALUE 1e6
 /* `crawlsim run --rod-tol`'s range */
 #define MAX_ROD_TOL 1000
+/* `crawlsim run --step-order`'s range (0: the level's default formula) */
+#define MAX_STEP_ORDER 2
 
 /* split `line` in place at commas into at most NCOL fields; returns the field count (which
  * may exceed NCOL: the extra ones are counted, not stored) */
@@ -112,16 +119,17 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
                        planned ? "not available yet" : "not a leg level (prb, rod, strain)");
   }
   strcpy(r->level, field[1]);
-  /* links, macro_steps, dt_s, rod_tol, error_mm, cpu_s_per_s, wall_s_per_s: ranges (lo
-   * open?) */
-  double v[7];
-  static const double kLo[7] = {1, 1, 0, 0, 0, 0, 0};
-  static const int kOpen[7] = {0, 0, 1, 1, 0, 1, 1};
-  static const double kHi[7] = {MAX_LINKS, MAX_MACRO, MAX_DT_S, MAX_ROD_TOL,
+  /* links, macro_steps, dt_s, rod_tol, step_order, error_mm, cpu_s_per_s, wall_s_per_s:
+   * ranges (lo open?), integers */
+  double v[8];
+  static const double kLo[8] = {1, 1, 0, 0, 0, 0, 0, 0};
+  static const int kOpen[8] = {0, 0, 1, 1, 0, 0, 1, 1};
+  static const double kHi[8] = {MAX_LINKS, MAX_MACRO, MAX_DT_S, MAX_ROD_TOL, MAX_STEP_ORDER,
                                 MAX_VALUE, MAX_VALUE, MAX_VALUE};
-  for (int c = 2; c < 9; c++) {
-    csStatus st = parseField(field[c], c, kLo[c - 2], kOpen[c - 2], kHi[c - 2], c < 4, path,
-                             line, &v[c - 2], err);
+  static const int kInt[8] = {1, 1, 0, 0, 1, 0, 0, 0};
+  for (int c = 2; c < 10; c++) {
+    csStatus st = parseField(field[c], c, kLo[c - 2], kOpen[c - 2], kHi[c - 2], kInt[c - 2],
+                             path, line, &v[c - 2], err);
     if (st != CS_OK) {
       return st;
     }
@@ -130,10 +138,11 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
   r->macro_steps = (int)v[1];
   r->dt_s = v[2];
   r->rod_tol = v[3];
-  r->error_mm = v[4];
-  r->cpu_s_per_s = v[5];
-  r->wall_s_per_s = v[6];
-  snprintf(r->machine, sizeof r->machine, "%s", field[9]);
+  r->step_order = (int)v[4];
+  r->error_mm = v[5];
+  r->cpu_s_per_s = v[6];
+  r->wall_s_per_s = v[7];
+  snprintf(r->machine, sizeof r->machine, "%s", field[10]);
   return CS_OK;
 }
 
@@ -153,12 +162,13 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
       continue;
     }
     if (!have_header) {
-      if (strcmp(line, kHeader) != 0 && strcmp(line, kHeader1) != 0) {
+      if (strcmp(line, kHeader) != 0 && strcmp(line, kHeader2) != 0 &&
+          strcmp(line, kHeader1) != 0) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: the header must be '%s' (got '%.60s')",
                          path, r.lineno, kHeader, line);
         break;
       }
-      ncol = strcmp(line, kHeader) ? NCOL1 : NCOL;
+      ncol = !strcmp(line, kHeader) ? NCOL : !strcmp(line, kHeader2) ? NCOL2 : NCOL1;
       have_header = 1;
       continue;
     }
@@ -166,14 +176,23 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
     int n = splitFields(line, raw);
     if (n != ncol) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: %d field%s, expected %d (%s)", path,
-                       r.lineno, n, n == 1 ? "" : "s", ncol, ncol == NCOL ? kHeader : kHeader1);
+                       r.lineno, n, n == 1 ? "" : "s", ncol,
+                       ncol == NCOL ? kHeader : ncol == NCOL2 ? kHeader2 : kHeader1);
       break;
     }
-    /* format 1: rod_tol 1 in its place */
-    static char kOne[] = "1";
+    /* formats 1 and 2: rod_tol 1 and step_order 0 in their places */
+    static char kOne[] = "1", kZero[] = "0";
     char* field[NCOL];
     for (int c = 0; c < NCOL; c++) {
-      field[c] = ncol == NCOL ? raw[c] : (c < 5 ? raw[c] : (c == 5 ? kOne : raw[c - 1]));
+      if (ncol == NCOL || c < 5) {
+        field[c] = raw[c];
+      } else if (c == 5) {
+        field[c] = ncol == NCOL2 ? raw[5] : kOne;
+      } else if (c == 6) {
+        field[c] = kZero;
+      } else {
+        field[c] = raw[c - (NCOL - ncol)];
+      }
     }
     if (t->nrow == CSR_LEVELS_MAX_ROWS) {
       st = cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: more than %d rows", path, r.lineno,
@@ -190,11 +209,11 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
       const csrLevelRow* o = &t->row[i];
       if (!strcmp(o->scene, row->scene) && !strcmp(o->level, row->level) &&
           o->links == row->links && o->macro_steps == row->macro_steps && o->dt_s == row->dt_s &&
-          o->rod_tol == row->rod_tol) {
+          o->rod_tol == row->rod_tol && o->step_order == row->step_order) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: repeats the configuration of line %d "
-                         "(%s, %s, links %d, macro steps %d, dt %g s, rod tol %g)", path,
-                         r.lineno, o->line, row->scene, row->level, row->links,
-                         row->macro_steps, row->dt_s, row->rod_tol);
+                         "(%s, %s, links %d, macro steps %d, dt %g s, rod tol %g, step order "
+                         "%d)", path, r.lineno, o->line, row->scene, row->level, row->links,
+                         row->macro_steps, row->dt_s, row->rod_tol, row->step_order);
         break;
       }
     }

@@ -5,8 +5,10 @@
  *
  * File format (text, LF or CRLF, '#' comment lines and blank lines skipped): one header line,
  * exactly
- *   scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine
- * (format 2; format 1, without rod_tol, is still read, every row at rod_tol 1)
+ *   scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,cpu_s_per_s,wall_s_per_s,
+ *   machine
+ * (format 3; format 2, without step_order, and format 1, without rod_tol either, are still read,
+ * every row at step_order 0 and rod_tol 1)
  * then one row per measured configuration:
  *   scene        a scene name (a word, at most 31 bytes: flat-road, obstacle, ...)
  *   level        a registered leg level (csr_legTypeFind: prb, rod, strain)
@@ -15,11 +17,13 @@
  *   macro_steps  ODE steps per exchange, integer 1..100000 (`--macro-steps`; prb: 1)
  *   dt_s         ODE step (s), 0 < dt <= 0.01 (`--dt`)
  *   rod_tol      the rod legs' CVODE tolerances' factor, 0 < K <= 1000 (`--rod-tol`; prb: 1)
+ *   step_order   the tree step's formula, integer 0..2 (`--step-order`: 1 backward Euler, 2 BDF2;
+ *                0 the level's default; prb and rod: 0)
  *   error_mm     the scene's track error against the benchmark's reference (mm), finite, >= 0
  *   cpu_s_per_s  CPU seconds of the whole process per simulated second, finite, > 0
  *   wall_s_per_s wall seconds per simulated second on the benchmark's machine, finite, > 0
  *   machine      free text without commas (where it was measured)
- * A repeated (scene, level, links, macro_steps, dt_s, rod_tol) is refused. Every refusal is one line
+ * A repeated (scene, level, links, macro_steps, dt_s, rod_tol, step_order) is refused. Every refusal is one line
  * "<file>:<line>: <cause>" in err (CS_ERR_PARSE or CS_ERR_RANGE; CS_ERR_IO when unreadable).
  *
  * The pick: among the scene's rows with error_mm <= tol, the smallest cpu_s_per_s (a tie: the
@@ -45,6 +49,7 @@ typedef struct csrLevelRow_ {
   int macro_steps;      /* ODE steps per exchange */
   double dt_s;          /* s: ODE step */
   double rod_tol;       /* the rod's CVODE tolerance factor (`--rod-tol`) */
+  int step_order;       /* the tree step's formula (`--step-order`; 0: the level's default) */
   double error_mm;      /* mm: track error against the reference */
   double cpu_s_per_s;   /* CPU s per simulated s */
   double wall_s_per_s;  /* wall s per simulated s */

@@ -26,7 +26,8 @@ discards the cache.
 
 Usage: /usr/bin/python3 tools/bench_levels.py [--crawlsim build/tools/crawlsim]
          [--tasks track,bend] [--scenes flat-road,obstacle] [--obstacle-t-end 4]
-         [--prb-links 2,4,8] [--rod-configs 2x1,4x1,...,6x1@5e-4,4x1t5,...] [--ref-links 6]
+         [--prb-links 2,4,8] [--rod-configs 2x1,4x1,8x1,...,4x1t20,...] [--ref-links 16]
+         [--strain-configs 3@1e-3o1,3@5e-3o2]
          [--ref-dt 2.5e-4] [--fe-meshes 6,5] [--tip-meshes 5,6]
          [--work DIR] [--out-dir docs] [--table robot/levels.csv]
        /usr/bin/python3 tools/bench_levels.py --plot-only   (redraw the chart from the CSV)
@@ -49,7 +50,8 @@ PROG = "bench_levels.py"
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 # the `--legs auto` table's header (robot/robot_levels.h reads exactly these columns)
-TABLE_COLUMNS = ["scene", "level", "links", "macro_steps", "dt_s", "rod_tol", "error_mm",
+TABLE_COLUMNS = ["scene", "level", "links", "macro_steps", "dt_s", "rod_tol", "step_order",
+                 "error_mm",
                  "cpu_s_per_s",
                  "wall_s_per_s", "machine"]
 
@@ -90,20 +92,23 @@ def cached(work, key, compute):
 
 
 # ---------------------------------------------------------------------------------- tracks
-def track_config_name(level, links, macro, dt, k=1.0):
-    return f"{level}-l{links}-m{macro}-dt{dt:g}" + (f"-k{k:g}" if k != 1 else "")
+def track_config_name(level, links, macro, dt, k=1.0, order=0):
+    return f"{level}-l{links}-m{macro}-dt{dt:g}" + (f"-k{k:g}" if k != 1 else "") + \
+        (f"-o{order}" if order else "")
 
 
-def run_track(a, scene, level, links, macro, dt, k=1.0):
-    key = f"track-{scene}-" + track_config_name(level, links, macro, dt, k) + \
+def run_track(a, scene, level, links, macro, dt, k=1.0, order=0):
+    key = f"track-{scene}-" + track_config_name(level, links, macro, dt, k, order) + \
         (f"-t{a.obstacle_t_end:g}" if scene == "obstacle" else "")
     out = os.path.join(a.work, key + ".h5")
 
     def compute():
         cmd = [a.crawlsim, "run", "--scene", scene, "--legs", level, "--links", str(links),
                "--quiet", "--out", out]
-        if level != "prb":
+        if level == "rod":
             cmd += ["--macro-steps", str(macro)]
+        if order:
+            cmd += ["--step-order", str(order)]
         if dt != 1e-3:
             cmd += ["--dt", f"{dt:g}"]
         if k != 1:
@@ -156,33 +161,42 @@ def tracks(a, rows, table):
         nm, _, dt = c.partition("@")
         n, m = (int(v) for v in nm.split("x"))
         rod_configs.append((n, m, float(dt) if dt else 1e-3, float(k) if k else 1.0))
+    # "N@DToK": N bending modes per segment, tree step DT, step formula K (1 BE, 2 BDF2)
+    strain_configs = []
+    for c in (c for c in a.strain_configs.split(",") if c):
+        c, _, o = c.partition("o")
+        n, _, dt = c.partition("@")
+        strain_configs.append((int(n), 1, float(dt) if dt else 1e-3, 1.0, int(o) if o else 0))
     for scene in a.scenes.split(","):
         ref = run_track(a, scene, "rod", a.ref_links, 1, a.ref_dt)
         if ref["rc"] != 0:
             fail(f"the {scene} reference run failed: {ref['last']}")
         t_ref = sim_seconds(ref)
-        configs = [("prb", n, 1, 1e-3, 1.0)
+        configs = [("prb", n, 1, 1e-3, 1.0, 0)
                    for n in (int(v) for v in a.prb_links.split(",") if v)]
-        configs += [("rod", n, m, dt, k) for n, m, dt, k in rod_configs]
-        points = [(ref, "rod", a.ref_links, 1, a.ref_dt, 1.0, True)]
-        for level, links, macro, dt, k in configs:
-            res = run_track(a, scene, level, links, macro, dt, k)
-            points.append((res, level, links, macro, dt, k, False))
+        configs += [("rod", n, m, dt, k, 0) for n, m, dt, k in rod_configs]
+        configs += [("strain",) + c for c in strain_configs]
+        points = [(ref, "rod", a.ref_links, 1, a.ref_dt, 1.0, 0, True)]
+        for level, links, macro, dt, k, order in configs:
+            res = run_track(a, scene, level, links, macro, dt, k, order)
+            points.append((res, level, links, macro, dt, k, order, False))
             print(f"  {scene} {level} links {links} macro {macro} rod tol {k:g}: rc {res['rc']}, "
                   f"{res['cpu_s']:.1f} s CPU, {res['wall_s']:.1f} s wall", file=sys.stderr)
         # the reference's own error: the same rod at half its step (not a choice for auto)
         check = None
         if a.ref_check_dt:
             check = run_track(a, scene, "rod", a.ref_links, 1, a.ref_check_dt)
-        for res, level, links, macro, dt, k, is_ref in points + \
-                ([(check, "rod", a.ref_links, 1, a.ref_check_dt, 1.0, False)] if check else []):
+        for res, level, links, macro, dt, k, order, is_ref in points + \
+                ([(check, "rod", a.ref_links, 1, a.ref_check_dt, 1.0, 0, False)] if check
+                 else []):
             ok = res["rc"] == 0
             is_check = check is not None and res is check
             t_sim = sim_seconds(res) if os.path.exists(res["h5"]) else float("nan")
             err = 0.0 if is_ref else (track_error(res, ref) if ok else float("nan"))
-            setting = f"links {links}" + (f", macro {macro} x {dt * 1e3:g} ms" if level != "prb"
+            setting = f"links {links}" + (f", macro {macro} x {dt * 1e3:g} ms" if level == "rod"
                                          else f", dt {dt * 1e3:g} ms") + \
-                (f", rod tol {k:g}" if k != 1 else "")
+                (f", rod tol {k:g}" if k != 1 else "") + \
+                ({1: ", BE", 2: ", BDF2"}.get(order, "") if level == "strain" else "")
             rows.append({"task": scene, "model": level, "setting": setting,
                          "error_mm": err, "wall_s": res["wall_s"], "cpu_s": res["cpu_s"],
                          "sim_s": t_sim, "load": res["load"], "status": "ok" if ok else
@@ -192,6 +206,7 @@ def tracks(a, rows, table):
             if ok and not is_ref and not is_check:
                 table.append({"scene": scene, "level": level, "links": links,
                               "macro_steps": macro, "dt_s": f"{dt:g}", "rod_tol": f"{k:g}",
+                              "step_order": order,
                               "error_mm": f"{err:.2f}",
                               "cpu_s_per_s": f"{res['cpu_s'] / t_ref:.3f}",
                               "wall_s_per_s": f"{res['wall_s'] / t_ref:.3f}",
@@ -432,13 +447,17 @@ def main():
     ap.add_argument("--obstacle-t-end", type=float, default=4.0)
     ap.add_argument("--prb-links", default="2,4,8")
     ap.add_argument("--rod-configs",
-                    default="2x1,4x1,6x1,2x2,4x2,2x1@5e-4,4x1@5e-4,6x1@5e-4,"
-                    "4x1t5,4x1t20,2x1t10,2x1t20,2x2t10,4x2t10",
+                    default="2x1,4x1,8x1,12x1,4x2,8x2,8x1@5e-4,16x1@5e-4,2x1t20,4x1t20,"
+                    "8x1t20",
                     help="rod elements per segment x macro steps [@ ODE step s] [t --rod-tol K], comma "
                     "separated")
-    ap.add_argument("--ref-links", type=int, default=6)
-    # the reference: the finest rod run here; the same rod at twice its step (6x1@5e-4 in
+    ap.add_argument("--strain-configs", default="3@1e-3o1,3@5e-3o2",
+                    help="strain bending modes per segment [@ tree step s] [o step order: 1 BE, "
+                    "2 BDF2], comma separated")
+    # the reference the issues name (32, 33): the nodal rod converged in its elements and step,
+    # 16 elements per segment at 0.25 ms; the same rod at twice its step (16x1@5e-4 in
     # --rod-configs) measures how far the reference itself may be from converged
+    ap.add_argument("--ref-links", type=int, default=16)
     ap.add_argument("--ref-dt", type=float, default=2.5e-4)
     ap.add_argument("--ref-check-dt", type=float, default=0,
                     help="also run the reference at this step, not as a choice (0: skip)")
@@ -489,7 +508,7 @@ def main():
     pareto_png(os.path.join(a.out_dir, "levels_pareto.png"), rows, a.machine)
     if table:
         with open(a.table, "w", newline="") as f:
-            f.write("# crawlsim leg levels 2: written by tools/bench_levels.py; error_mm = max "
+            f.write("# crawlsim leg levels 3: written by tools/bench_levels.py; error_mm = max "
                     "over whole seconds of |support (dx, dz)| against a rod reference "
                     f"(links {a.ref_links}, dt {a.ref_dt:g} s); cpu_s_per_s = CPU seconds of "
                     "the whole process per simulated second\n")

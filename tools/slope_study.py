@@ -18,7 +18,6 @@ import argparse
 import csv
 import os
 import re
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -29,6 +28,7 @@ matplotlib.use("Agg")
 import h5py  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from plot_study_common import fill_markers, run_study, study_paths  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = os.path.join(ROOT, "tools", "studies", "slope.study")
@@ -134,27 +134,18 @@ def main(argv=None):
                     help="work folder (case files, merged study file)")
     ap.add_argument("--report-only", action="store_true")
     a = ap.parse_args(argv)
-    os.makedirs(a.dir, exist_ok=True)
-    merged = os.path.join(a.dir, "slope.h5")
-    args = [a.crawlsim, "study", STUDY, "--out", merged, "--dir", os.path.join(a.dir, "cases")]
-    args += ["--merge-only"] if a.report_only else ["--resume"]
-    rc = subprocess.run(args).returncode
+    merged, case_dir = study_paths(a.dir, "slope")
+    rc = run_study(a.crawlsim, STUDY, merged, case_dir, a.report_only)
     if not os.path.exists(merged):
         print(f"slope_study.py: {merged} was not written (crawlsim study exit {rc})", file=sys.stderr)
         return 1
-    rows = read_cases(merged, os.path.join(a.dir, "cases"))
+    rows = read_cases(merged, case_dir)
     with open(os.path.join(DOCS, "slope.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=["slope_deg", "conditions", "x_9s_mm", "t_s", "verdict",
                                           "tilt30_t_s"])
         w.writeheader()
         w.writerows(rows)
     plot(rows, os.path.join(DOCS, "slope.png"))
-    md = os.path.join(DOCS, "slope.md")
-    body = open(md).read()
-    i, j = body.find(BEGIN), body.find(END)
-    if i < 0 or j < i:
-        print(f"slope_study.py: {md} has no table markers", file=sys.stderr)
-        return 1
     lines = [table(rows), ""]
     for c in ("paper", "earth"):
         s = steepest(rows, c)
@@ -165,9 +156,8 @@ def main(argv=None):
         else:
             lines.append(f"- **{c}**: crawls uphill on every slope up to {s} deg (the steepest "
                          "of the angles run before the first that does not crawl)")
-    body = body[:i + len(BEGIN)] + "\n" + "\n".join(lines) + "\n" + body[j:]
-    with open(md, "w") as f:
-        f.write(body)
+    if not fill_markers(os.path.join(DOCS, "slope.md"), BEGIN, END, lines, "slope_study.py"):
+        return 1
     print(f"slope_study.py: {len(rows)} cases in docs/studies/slope.csv, slope.png, slope.md")
     return 0 if rc in (0, 1) else rc
 

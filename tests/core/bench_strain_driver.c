@@ -19,7 +19,7 @@
  * output, the rest (schedule, check, state saves); then the support's x at the end. The
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
  * so compare the shares of runs made together. The data files come from $CS_SOURCE_DIR
- * (default ../../..). */
+ * (default ../../..); with CS_BENCH_KEEP=DIR each run's file stays in DIR. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -105,13 +105,23 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
-  char out[64];
-  snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
+  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/LEVEL_LINKS_DT_ORDER.h5 (its track, for the
+   * errors against a reference: docs/bench/levels_one_process_2026-12-05) */
+  const char* keep = getenv("CS_BENCH_KEEP");
+  char out[700];
+  if (keep) {
+    snprintf(out, sizeof out, "%s/%s_%d_%g_%d.h5", keep, level,
+             (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order);
+  } else {
+    snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
+  }
   const double c0 = cpu();
   double wall = 0;
   csStatus st = cs_runWrite(&m, d, out, &wall, &err);
   const double c = cpu() - c0;
-  remove(out);
+  if (!keep) {
+    remove(out);
+  }
   /* steps and rejections of the run (the data's counts include the settling) */
   const long nstep = cs_stepCount(d) - lround(m.opt.settle / cs_modelMacroStep(&m));
   double x[3];

@@ -4,7 +4,8 @@
  * Per input: read it and check the error contract (fuzz_common.h); a table the reader accepts
  * must hold what the header promises (1..CSR_LEVELS_MAX_ROWS rows; each a non-empty scene word
  * and a registered level, NUL-terminated; links 1..64, macro steps 1..100000, 0 < dt <= 0.01,
- * 0 < rod_tol <= 1000, finite error >= 0, finite costs > 0, a line number within the input; no configuration
+ * 0 < rod_tol <= 1000, step_order 0..2, finite error >= 0, finite costs > 0, a line number
+ * within the input; no configuration
  * twice), and the pick must keep its promise for the first row's scene at three tolerances
  * (below, at and above the row's error): a picked row is of that scene, within the tolerance,
  * and no row of the scene within it is cheaper; a refusal names the file. */
@@ -30,6 +31,7 @@ static void checkRow(const csrLevelRow* r, size_t size) {
   }
   if (r->links < 1 || r->links > 64 || r->macro_steps < 1 || r->macro_steps > 100000 ||
       !(r->dt_s > 0 && r->dt_s <= 0.01) || !(r->rod_tol > 0 && r->rod_tol <= 1000) ||
+      r->step_order < 0 || r->step_order > 2 ||
       !(r->error_mm >= 0) || !isfinite(r->error_mm) ||
       !(r->cpu_s_per_s > 0) || !isfinite(r->cpu_s_per_s) || !(r->wall_s_per_s > 0) ||
       !isfinite(r->wall_s_per_s)) {
@@ -89,7 +91,8 @@ csStatus csz_harnessRun(const uint8_t* data, size_t size, csError* err) {
       const csrLevelRow* a = &g_t.row[i];
       const csrLevelRow* b = &g_t.row[j];
       if (!strcmp(a->scene, b->scene) && !strcmp(a->level, b->level) && a->links == b->links &&
-          a->macro_steps == b->macro_steps && a->dt_s == b->dt_s && a->rod_tol == b->rod_tol) {
+          a->macro_steps == b->macro_steps && a->dt_s == b->dt_s && a->rod_tol == b->rod_tol &&
+          a->step_order == b->step_order) {
         csz_fail("accepted table repeats a configuration (lines %d, %d)", b->line, a->line);
       }
     }

@@ -28,10 +28,9 @@ def test_step_advances_by_the_macro_step(sim):
 
 def test_state_round_trip_repeats_steps_bit_for_bit():
     """Steps after set_state repeat bit for bit (core/sim_model.h: the integrators restart from
-    the state). On prb legs: with rod legs two restores of one state are followed by steps
-    that differ at the rod integrators' tolerance (measured 2026-12-05, docs/reference/python.md
-    "Known limits"), a property of the C library that this package cannot change."""
-    with crawlsim.Sim(scene="flat-road", legs="prb", links=2) as sim:
+    the state), on the scene's default legs (rod legs, whose integrators restart from the
+    state; tests/core/test_state.c checks the same in C)."""
+    with crawlsim.Sim(scene="flat-road") as sim:
         sim.step(20)
         x = sim.get_state()
         sim.step(30)

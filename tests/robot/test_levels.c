@@ -10,10 +10,13 @@
 #include "cs_test.h"
 #include "robot_levels.h"
 
-/* format 1 (no rod_tol column: every row at 1) and format 2 */
+/* format 1 (no rod_tol column: every row at 1), format 2 and format 3 (step_order) */
 #define HEADER "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
 #define HEADER2 \
   "scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
+#define HEADER3                                                                             \
+  "scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,cpu_s_per_s,wall_s_per_s," \
+  "machine\n"
 #define PATH "test_levels.csv"
 
 static csrLevelTable g_t; /* large: not on the stack */
@@ -170,6 +173,34 @@ static void test_levels_format2_rod_tol(void) {
 }
 
 
+/* format 3: the step_order column is read (0..2, an integer), is part of a configuration (a
+ * strain row at 5 ms in BE and in BDF2 are two), and format 1 and 2 rows read as step order 0
+ * (the level's default formula) */
+static void test_levels_format3_step_order(void) {
+  csError err;
+  CS_EXPECT(readText(kGood, &err) == CS_OK && g_t.row[0].step_order == 0);
+  static const char kGood3[] =
+      HEADER3
+      "flat-road,strain,3,1,0.005,1,2,4,0.5,0.6,m\n"
+      "flat-road,strain,3,1,0.005,1,1,9,0.4,0.5,m\n"
+      "flat-road,rod,8,1,0.001,1,0,3,1.5,1.6,m\n";
+  CS_EXPECT(readText(kGood3, &err) == CS_OK);
+  CS_EXPECT(g_t.nrow == 3 && g_t.row[0].step_order == 2 && g_t.row[1].step_order == 1 &&
+            g_t.row[0].error_mm == 4 && g_t.row[0].cpu_s_per_s == 0.5 &&
+            g_t.row[2].rod_tol == 1 && !strcmp(g_t.row[2].machine, "m"));
+  /* within 5 mm the BDF2 row, within 9 the cheaper BE one */
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 5, &err) == 0);
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 9, &err) == 1);
+  expectRefused(HEADER3 "flat-road,strain,3,1,0.005,1,3,4,0.5,0.6,m\n", 2,
+                "step_order 3 is outside [0, 2]");
+  expectRefused(HEADER3 "flat-road,strain,3,1,0.005,1,1.5,4,0.5,0.6,m\n", 2,
+                "step_order 1.5 is not an integer");
+  expectRefused(HEADER3 "flat-road,strain,3,1,0.005,1,4,0.5,0.6,m\n", 2, "10 fields, expected 11");
+  expectRefused(HEADER3 "flat-road,strain,3,1,0.005,1,2,4,0.5,0.6,m\n"
+                        "flat-road,strain,3,1,0.005,1,2,5,0.5,0.6,m\n", 3, "step order 2");
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_levels_good_table_reads);
@@ -177,6 +208,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_levels_unmet_tolerance_names_best_error);
   CS_RUN(test_levels_bad_lines_refused);
   CS_RUN(test_levels_format2_rod_tol);
+  CS_RUN(test_levels_format3_step_order);
   remove(PATH);
   return cs_testSummary();
 }

@@ -4,7 +4,7 @@
  *    a tight one (its smallest): a property of the measured data, so this fails if the table
  *    stops showing a trade-off;
  *  - the configuration recorded in the output (leg_model, links_per_segment, step_s,
- *    macro_step_s, rod_tolerance_scale) is the one the banner and legs_auto_choice name, and the one the table
+ *    macro_step_s, rod_tolerance_scale, leg_step_order) is the one the banner and legs_auto_choice name, and the one the table
  *    says is cheapest within the tolerance (computed here, independently of the picker);
  *  - a tolerance below the best error is one error line naming the best achievable error;
  *  - the table holds at least two configurations of every registered level per scene, and the
@@ -58,9 +58,13 @@ static void expectRuns(const char* scene, double tol, int k) {
   cs_cliRun(exe_path, args, "levelscli", &res);
   CS_EXPECT(res.status == 0);
   char want[256];
-  char tolnote[32] = "";
+  char tolnote[64] = "";
   if (r->rod_tol != 1) {
     snprintf(tolnote, sizeof tolnote, ", rod tol %g", r->rod_tol);
+  }
+  if (r->step_order > 0) {
+    snprintf(tolnote + strlen(tolnote), sizeof tolnote - strlen(tolnote), ", step order %d",
+             r->step_order);
   }
   snprintf(want, sizeof want, "--legs auto picked %s, links %d, macro steps %d, dt %g s%s:",
            r->level, r->links, r->macro_steps, r->dt_s, tolnote);
@@ -85,6 +89,12 @@ static void expectRuns(const char* scene, double tol, int k) {
       double k = 0;
       CS_EXPECT(H5LTget_attribute_double(f, "/", "rod_tolerance_scale", &k) >= 0 &&
                 k == r->rod_tol);
+    }
+    if (r->step_order > 0) {
+      /* the row's --step-order is the run's tree step */
+      double o = 0;
+      CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_order", &o) >= 0 &&
+                o == r->step_order);
     }
     CS_EXPECT(H5LTget_attribute_double(f, "/", "macro_step_s", &H) >= 0);
     /* prb is an in-world level: one ODE step per exchange whatever the row says */
