@@ -298,7 +298,10 @@ static int loadRodScene(csModel* m, int links) {
     return 0;
   }
   cs_modelSetLegLevel(m, rod);
-  m->robot.leg_params.links_per_segment = links;
+  if (csr_legSettingSet(rod, &m->robot.leg_settings, "links", links, &err) != CS_OK) {
+    fprintf(stderr, "links: %s\n", err.msg);
+    return 0;
+  }
   return 1;
 }
 
