@@ -65,7 +65,7 @@
 extern "C" {
 #endif
 
-#define CSG_DESIGN_MAX_POSES 64
+#define CSG_DESIGN_MAX_POSES 128
 #define CSG_DESIGN_MAX_SETS 6
 #define CSG_DESIGN_MAX_MOVES 1024
 #define CSG_DESIGN_NAME 32
