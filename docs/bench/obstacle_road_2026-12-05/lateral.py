@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The lateral crawl slot by slot: usage lateral.py RUN.h5 TZ TPZ [NSLOTS].
 Per slot (from TZ, TPZ s each): the support's z advance, and the mean slide along z of the feet
-that stand (stance flag set) through the whole slot, in world coordinates (mm): a foot that
+that stand (within 3 mm of the road, y < 3) through the whole slot (the run's stance flag stays
+0 for most standing feet of the lateral crawl), in world coordinates (mm): a foot that
 grips does not move; the support's advance minus the stance feet's mean slide would be the
 planned stroke if the legs were stiff."""
 import sys
@@ -12,7 +13,6 @@ t = f['time'][:]
 tz, tp = float(sys.argv[2]), float(sys.argv[3])
 n = int(sys.argv[4]) if len(sys.argv) > 4 else int((t[-1] - tz) / tp)
 pos = f['support/position'][:]
-st = f['contact/stance'][:]
 feet = np.stack([f['legs/' + L + '/centerline'][:, -1, :] for L in 'ABCDEFGH'], axis=1)
 tot = []
 for s in range(n):
@@ -22,7 +22,7 @@ for s in range(n):
         break
     dz = pos[i1, 2] - pos[i0, 2]
     dx = pos[i1, 0] - pos[i0, 0]
-    standing = [k for k in range(8) if st[i0:i1 + 1, k].all()]
+    standing = [k for k in range(8) if (feet[i0:i1 + 1, k, 1] < 3).all()]
     slide = np.mean([feet[i1, k, 2] - feet[i0, k, 2] for k in standing]) if standing else 0
     zmin = pos[i0:i1 + 1, 2].min() - pos[i0, 2]
     tot.append(dz)
