@@ -128,8 +128,8 @@ HEADER = """\
 #     then the wave starts with the pairs behind it still under their hips: each stance foot
 #     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
 #     jolt.
-#  9. The turn: the support stands while the pairs step into a staggered sideways stance (still
-#     {rise:g} mm up), all legs come down to a {risez:g} mm stretch, then the lateral wave along
+#  9. The turn: the support stands while the pairs step into a staggered sideways stance
+#     ({turnh}), then the lateral wave along
 #     +z: the diagonal pairs AH, DE, BG, CF in turn (a pair's sideways reactions cancel in yaw),
 #     stance feet {SHZ:g} mm sideways over three slots ({Tpz:g} s each). At the end every pair
 #     steps back under its hips and every chamber vents (a release with the feet aside rolled
@@ -145,6 +145,9 @@ HEADER = """\
            'landing takes the\n#     stretch of its landing time), as Table 3\'s support comes '
            'down from 40 mm at 14 s to\n#     13 mm at 24 s and 0 at 29 s; the turn then needs '
            'no descent of its own.' % (a.rise, a.rise_low, a.nlow),
+           turnh='still %g mm up, all legs then come down to a %g mm stretch' % (a.rise, a.rise_z)
+           if a.rise_low is None or abs(a.rise_low - a.rise) < 1e-6 else
+           'at the walk\'s %g mm stretch' % a.rise_low,
            Tp=a.Tp, rise=a.rise, step=STEP, SH=SH, risez=a.rise_z, SHZ=SHZ, Tpz=a.Tpz)
 
 out = [HEADER]
