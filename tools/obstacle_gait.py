@@ -60,6 +60,9 @@ ap.add_argument('--SHZ', type=float, default=50.0,
                 'over three slots)')
 ap.add_argument('--fracz', default='0.25,0.4,0.1,0.25',
                 help='a lateral slot: lift, swing, hold, land (fractions of --Tpz)')
+ap.add_argument('--fract', default='0.25,0.4,0.1,0.25',
+                help='a step of the turn and of the release: lift, swing, hold, land (fractions '
+                'of --Tturn)')
 ap.add_argument('--walk-slots', type=int, default=None,
                 help='number of walk slots (default: rule 7); 0 tests the turn and the lateral '
                 'crawl alone')
@@ -84,6 +87,9 @@ ZPAIRS = ('AH', 'DE', 'BG', 'CF')
 FRACZ = tuple(float(v) for v in a.fracz.split(','))
 if len(FRACZ) != 4 or abs(sum(FRACZ) - 1) > 1e-9 or min(FRACZ) <= 0:
     sys.exit('obstacle_gait.py: --fracz takes four positive fractions that add up to 1')
+FRACT = tuple(float(v) for v in a.fract.split(','))
+if len(FRACT) != 4 or abs(sum(FRACT) - 1) > 1e-9 or min(FRACT) <= 0:
+    sys.exit('obstacle_gait.py: --fract takes four positive fractions that add up to 1')
 RZ = SHZ / 2
 STEP = SH / 3                 # a stance foot's travel per slot relative to its hip (mm)
 STEPZ = SHZ / 3
@@ -390,7 +396,8 @@ for j, pair in enumerate(ZPAIRS):
     for l in pair:
         side0[l] = sz
     step(t, a.Tturn, pair, {l: need('A', state[l][1]) for l in pair},
-         {l: need('V', side0[l]) for l in pair}, {l: need(lturn, side0[l]) for l in pair})
+         {l: need('V', side0[l]) for l in pair}, {l: need(lturn, side0[l]) for l in pair},
+         FRACT)
     t += a.Tturn
 if lturn == 'L40':
     comment('# all legs down to the %g mm stretch' % a.rise_z)
@@ -427,7 +434,7 @@ comment('# the feet back under the hips, pair by pair, then every chamber vented
         '# (the paper\'s "release all pressure")')
 for pair in ZPAIRS:
     step(t, a.Tturn, pair, {l: need('V', zs[l]) for l in pair}, {l: 'straight' for l in pair},
-         {l: 'R15' for l in pair})
+         {l: 'R15' for l in pair}, FRACT)
     t += a.Tturn
 emit(t, 1.0, {l: 'straight' for l in OFF})
 t += 1.0
