@@ -21,10 +21,10 @@ ap.add_argument('-o', '--out', default='-', help='output file (default stdout)')
 ap.add_argument('--D', type=float, default=59.0,
                 help='support advance per walk cycle, mm (measured): places the hips for the '
                 'landings and, with --xdrift, sets the number of walk slots (rule 7)')
-ap.add_argument('--xdrift', type=float, default=0.0,
+ap.add_argument('--xdrift', type=float, default=14.0,
                 help='how far the turn and the lateral crawl carry the support back along x, mm '
                 '(measured): the walk turns this far past xturn (rule 7)')
-ap.add_argument('--Dz', type=float, default=43.4,
+ap.add_argument('--Dz', type=float, default=67.5,
                 help='support advance per lateral cycle, mm (measured): the number of lateral '
                 'slots is zend / (Dz / 4)')
 ap.add_argument('--over', type=float, default=10.0,
@@ -39,28 +39,28 @@ ap.add_argument('--xclimb', type=float, default=130.0,
                 '25 + 10 mm ahead of them: 240 - 75 - 35)')
 ap.add_argument('--t-place', type=float, default=1.8,
                 help='when the front pair steps ahead, s (the walk starts one --Tstart later)')
-ap.add_argument('--Tpz', type=float, default=0.4, help='the lateral crawl\'s slot, s')
+ap.add_argument('--Tpz', type=float, default=0.5, help='the lateral crawl\'s slot, s')
 ap.add_argument('--Tstart', type=float, default=0.8,
                 help='slot of the steps into the walk and into the lateral stance (the support '
                 'standing), s')
-ap.add_argument('--Tturn', type=float, default=0.6,
+ap.add_argument('--Tturn', type=float, default=0.8,
                 help='slot of the steps into and out of the lateral stance (the support '
                 'standing), s')
 ap.add_argument('--rise', type=float, default=40.0,
                 help='stretch of a road leg in the walk, mm (the step is 40 mm: rule 2)')
 ap.add_argument('--rise-z', type=float, default=15.0,
                 help='stretch of the legs in the lateral crawl, mm')
-ap.add_argument('--rise-low', type=float, default=None,
+ap.add_argument('--rise-low', type=float, default=15.0,
                 help='stretch of a road leg once every foot stands on the road past the step, '
-                'mm (rule 10; default: the walk stays at --rise)')
+                'mm (rule 10; --rise keeps the walk up)')
 ap.add_argument('--nlow', type=int, default=4,
                 help='slots over which the walk comes down from --rise to --rise-low (rule 10)')
-ap.add_argument('--SHZ', type=float, default=50.0,
+ap.add_argument('--SHZ', type=float, default=65.0,
                 help='stance stroke of the lateral crawl, mm (the feet move this far sideways '
                 'over three slots)')
-ap.add_argument('--fracz', default='0.25,0.4,0.1,0.25',
+ap.add_argument('--fracz', default='0.15,0.5,0.15,0.2',
                 help='a lateral slot: lift, swing, hold, land (fractions of --Tpz)')
-ap.add_argument('--fract', default='0.25,0.4,0.1,0.25',
+ap.add_argument('--fract', default='0.15,0.5,0.15,0.2',
                 help='a step of the turn and of the release: lift, swing, hold, land (fractions '
                 'of --Tturn)')
 ap.add_argument('--walk-slots', type=int, default=None,
