@@ -84,12 +84,18 @@ PAIRS = ('DH', 'CG', 'BF', 'AE')
 # that their sideways reactions cancel in yaw moment (pairs abreast turned the support 56 deg
 # in six lateral cycles: measured on the earlier design)
 ZPAIRS = ('AH', 'DE', 'BG', 'CF')
-FRACZ = tuple(float(v) for v in a.fracz.split(','))
-if len(FRACZ) != 4 or abs(sum(FRACZ) - 1) > 1e-9 or min(FRACZ) <= 0:
-    sys.exit('obstacle_gait.py: --fracz takes four positive fractions that add up to 1')
-FRACT = tuple(float(v) for v in a.fract.split(','))
-if len(FRACT) != 4 or abs(sum(FRACT) - 1) > 1e-9 or min(FRACT) <= 0:
-    sys.exit('obstacle_gait.py: --fract takes four positive fractions that add up to 1')
+
+
+def fractions(text, opt):
+    """a step's four phases (lift, swing, hold, land) as fractions of its slot"""
+    f = tuple(float(v) for v in text.split(','))
+    if len(f) != 4 or abs(sum(f) - 1) > 1e-9 or min(f) <= 0:
+        sys.exit('obstacle_gait.py: %s takes four positive fractions that add up to 1' % opt)
+    return f
+
+
+FRACZ = fractions(a.fracz, '--fracz')
+FRACT = fractions(a.fract, '--fract')
 RZ = SHZ / 2
 STEP = SH / 3                 # a stance foot's travel per slot relative to its hip (mm)
 STEPZ = SHZ / 3
