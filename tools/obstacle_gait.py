@@ -21,10 +21,10 @@ ap.add_argument('-o', '--out', default='-', help='output file (default stdout)')
 ap.add_argument('--D', type=float, default=59.0,
                 help='support advance per walk cycle, mm (measured): places the hips for the '
                 'landings and, with --xdrift, sets the number of walk slots (rule 7)')
-ap.add_argument('--xdrift', type=float, default=0.0,
+ap.add_argument('--xdrift', type=float, default=14.0,
                 help='how far the turn and the lateral crawl carry the support back along x, mm '
                 '(measured): the walk turns this far past xturn (rule 7)')
-ap.add_argument('--Dz', type=float, default=43.4,
+ap.add_argument('--Dz', type=float, default=67.5,
                 help='support advance per lateral cycle, mm (measured): the number of lateral '
                 'slots is zend / (Dz / 4)')
 ap.add_argument('--over', type=float, default=10.0,
@@ -39,22 +39,38 @@ ap.add_argument('--xclimb', type=float, default=130.0,
                 '25 + 10 mm ahead of them: 240 - 75 - 35)')
 ap.add_argument('--t-place', type=float, default=1.8,
                 help='when the front pair steps ahead, s (the walk starts one --Tstart later)')
-ap.add_argument('--Tpz', type=float, default=0.4, help='the lateral crawl\'s slot, s')
+ap.add_argument('--Tpz', type=float, default=0.5, help='the lateral crawl\'s slot, s')
 ap.add_argument('--Tstart', type=float, default=0.8,
                 help='slot of the steps into the walk and into the lateral stance (the support '
                 'standing), s')
-ap.add_argument('--Tturn', type=float, default=0.6,
+ap.add_argument('--Tturn', type=float, default=0.8,
                 help='slot of the steps into and out of the lateral stance (the support '
                 'standing), s')
 ap.add_argument('--rise', type=float, default=40.0,
                 help='stretch of a road leg in the walk, mm (the step is 40 mm: rule 2)')
 ap.add_argument('--rise-z', type=float, default=15.0,
                 help='stretch of the legs in the lateral crawl, mm')
+ap.add_argument('--rise-low', type=float, default=15.0,
+                help='stretch of a road leg once every foot stands on the road past the step, '
+                'mm (rule 10; --rise keeps the walk up)')
+ap.add_argument('--nlow', type=int, default=4,
+                help='slots over which the walk comes down from --rise to --rise-low (rule 10)')
+ap.add_argument('--SHZ', type=float, default=65.0,
+                help='stance stroke of the lateral crawl, mm (the feet move this far sideways '
+                'over three slots)')
+ap.add_argument('--fracz', default='0.15,0.5,0.15,0.2',
+                help='a lateral slot: lift, swing, hold, land (fractions of --Tpz)')
+ap.add_argument('--fract', default='0.15,0.5,0.15,0.2',
+                help='a step of the turn and of the release: lift, swing, hold, land (fractions '
+                'of --Tturn)')
+ap.add_argument('--walk-slots', type=int, default=None,
+                help='number of walk slots (default: rule 7); 0 tests the turn and the lateral '
+                'crawl alone')
 ap.add_argument('--xturn', type=float, default=646.0, help='x of the turn, mm (Table 3)')
 ap.add_argument('--zend', type=float, default=270.0, help='lateral travel, mm (Table 3)')
 a = ap.parse_args()
 
-SH, SHZ = 40.0, 50.0          # stance stroke of one stance (3 slots): along x, along z (mm)
+SH, SHZ = 40.0, a.SHZ         # stance stroke of one stance (3 slots): along x, along z (mm)
 RS = (5, 15, 25, 35)          # landing offsets ahead of the hip (mm); stance ends at r - SH
 PREF = (25, 15, 35, 5)        # in this order of preference
 MARGIN = 25.0                 # wanted distance of a landing from an edge (mm)
@@ -68,6 +84,18 @@ PAIRS = ('DH', 'CG', 'BF', 'AE')
 # that their sideways reactions cancel in yaw moment (pairs abreast turned the support 56 deg
 # in six lateral cycles: measured on the earlier design)
 ZPAIRS = ('AH', 'DE', 'BG', 'CF')
+
+
+def fractions(text, opt):
+    """a step's four phases (lift, swing, hold, land) as fractions of its slot"""
+    f = tuple(float(v) for v in text.split(','))
+    if len(f) != 4 or abs(sum(f) - 1) > 1e-9 or min(f) <= 0:
+        sys.exit('obstacle_gait.py: %s takes four positive fractions that add up to 1' % opt)
+    return f
+
+
+FRACZ = fractions(a.fracz, '--fracz')
+FRACT = fractions(a.fract, '--fract')
 RZ = SHZ / 2
 STEP = SH / 3                 # a stance foot's travel per slot relative to its hip (mm)
 STEPZ = SHZ / 3
@@ -112,16 +140,26 @@ HEADER = """\
 #     then the wave starts with the pairs behind it still under their hips: each stance foot
 #     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
 #     jolt.
-#  9. The turn: the support stands while the pairs step into a staggered sideways stance (still
-#     {rise:g} mm up), all legs come down to a {risez:g} mm stretch, then the lateral wave along
+#  9. The turn: the support stands while the pairs step into a staggered sideways stance
+#     ({turnh}), then the lateral wave along
 #     +z: the diagonal pairs AH, DE, BG, CF in turn (a pair's sideways reactions cancel in yaw),
 #     stance feet {SHZ:g} mm sideways over three slots ({Tpz:g} s each). At the end every pair
 #     steps back under its hips and every chamber vents (a release with the feet aside rolled
-#     the support over the +z row: measured on the earlier design).
+#     the support over the +z row: measured on the earlier design).{rule10}
 """.format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
            '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
            % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
               a.Tstart, a.Tturn, a.t_place),
+           rule10='' if a.rise_low is None else
+           '\n# 10. Past the step the walk comes down: from the first slot in which every foot '
+           'stands on\n#     the road, the road legs\' stretch falls linearly from %g to %g mm '
+           'over %d slots\n#     (each stance move ends at the stretch of its slot\'s end, each '
+           'landing takes the\n#     stretch of its landing time), as Table 3\'s support comes '
+           'down from 40 mm at 14 s to\n#     13 mm at 24 s and 0 at 29 s; the turn then needs '
+           'no descent of its own.' % (a.rise, a.rise_low, a.nlow),
+           turnh='still %g mm up, all legs then come down to a %g mm stretch' % (a.rise, a.rise_z)
+           if a.rise_low is None or abs(a.rise_low - a.rise) < 1e-6 else
+           'at the walk\'s %g mm stretch' % a.rise_low,
            Tp=a.Tp, rise=a.rise, step=STEP, SH=SH, risez=a.rise_z, SHZ=SHZ, Tpz=a.Tpz)
 
 out = [HEADER]
@@ -144,13 +182,40 @@ def tag(v):
     return s.replace('.', 'q')
 
 
+BASES = []        # stretches between --rise and --rise-z the lowering uses (rule 10)
+
+
+def base_pose(h):
+    """the name of the straight stretched pose of stretch h mm"""
+    if abs(h - a.rise) < 1e-6:
+        return 'R'
+    if abs(h - a.rise_z) < 1e-6:
+        return 'R15'
+    h = round(h, 2)
+    if h not in BASES:
+        BASES.append(h)
+    return 'RH' + tag(h)
+
+
+def gkind(h):
+    """the road stance kind at stretch h: G at --rise, L15-based G15 at --rise-z, else Gh"""
+    if abs(h - a.rise) < 1e-6:
+        return 'G'
+    return 'G@%g' % round(h, 2)
+
+
 def need(kind, v):
     if abs(v) < 1e-9 and kind in ('G', 'S', 'A', 'V', 'L15', 'L40'):
         return {'G': 'R', 'S': 'straight', 'A': 'U0', 'V': 'straight', 'L15': 'R15',
                 'L40': 'R'}[kind]
+    if abs(v) < 1e-9 and kind.startswith('G@'):
+        return base_pose(float(kind[2:]))
     key = (kind, round(v, 2))
     if key not in POSES:
         POSES.append(key)
+    if kind.startswith('G@'):
+        return '%s%s%s' % (base_pose(float(kind[2:])).replace('R', 'G', 1), 'P' if v > 0 else 'M',
+                           tag(v))
     return '%s%s%s' % ({'A': 'A', 'V': 'VL'}.get(kind, kind), 'P' if v > 0 else 'M', tag(v))
 
 
@@ -163,8 +228,9 @@ def pose_lines(kind, v):
         ('II1:1,2 II2:3,4', 'II1:3,4 II2:1,2')
     side, oside = ('II1:2,3 II2:1,4', 'II1:1,4 II2:2,3') if v > 0 else \
         ('II1:1,4 II2:2,3', 'II1:2,3 II2:1,4')
-    if kind == 'G':
-        return ['pose %s %s II3:1,2,3,4 pressure-of R\n' % (n, back),
+    if kind == 'G' or kind.startswith('G@'):
+        b = 'R' if kind == 'G' else base_pose(float(kind[2:]))
+        return ['pose %s %s II3:1,2,3,4 pressure-of %s\n' % (n, back, b),
                 'pose %s %s stroke %s%g\n' % (n, fwd, sgn, r)]
     if kind == 'S':
         return ['pose %s %s stroke %s%g\n' % (n, fwd, sgn, r)]
@@ -219,8 +285,8 @@ def plan(l, hipx):
     return best, b
 
 
-def step(t0, slot, legs, lift_pose, air_pose, land_pose):
-    fl, fs, fh, fd = FRAC
+def step(t0, slot, legs, lift_pose, air_pose, land_pose, frac=FRAC):
+    fl, fs, fh, fd = frac
     emit(t0, fl * slot, {l: lift_pose[l] for l in legs})
     emit(t0 + fl * slot, fs * slot, {l: air_pose[l] for l in legs})
     emit(t0 + (fl + fs + fh) * slot, fd * slot, {l: land_pose[l] for l in legs})
@@ -242,7 +308,7 @@ step(t, a.Tstart, PAIRS[3], {l: 'U0' for l in PAIRS[3]}, {l: need('A', state[l][
                                                               for l in PAIRS[3]}, land)
 t += a.Tstart
 tw = t
-NS = int(round((a.xturn + a.xdrift) / (a.D / 4)))
+NS = int(round((a.xturn + a.xdrift) / (a.D / 4))) if a.walk_slots is None else a.walk_slots
 # slot start times: the climb's slots until the support is planned past xclimb (rule 8)
 T0, XP = [tw], [0.0]          # slot starts, planned support x there
 for s in range(NS):
@@ -251,15 +317,35 @@ for s in range(NS):
     XP.append(XP[-1] + a.D / 4)
 
 
+LOW = [None]      # rule 10: the slot boundary from which the walk comes down (None: not yet)
+
+
+def height(k):
+    """a road leg's stretch at slot boundary k (rule 10), mm"""
+    if a.rise_low is None or LOW[0] is None or k <= LOW[0]:
+        return a.rise
+    f = min(1.0, (k - LOW[0]) / float(a.nlow))
+    return a.rise + f * (a.rise_low - a.rise)
+
+
+def skind(b, k):
+    """the stance kind of a foot of kind b (G road / S step) at slot boundary k"""
+    return gkind(height(k)) if b == 'G' else b
+
+
 def stance(l, b, r0, s0, s1):
     """the stance moves of leg l from slot s0 to s1 (its foot from r0 back STEP per slot), one
-    linear move per run of equal slots, so that every standing foot moves at the same speed"""
+    linear move per run of equal slots and equal stretch, so that every standing foot moves at
+    the same speed (and, while the walk comes down, at the same stretch)"""
     k = s0
     while k < s1:
         m = k
-        while m + 1 < s1 and abs((T0[m + 2] - T0[m + 1]) - (T0[k + 1] - T0[k])) < 1e-9:
+        while m + 1 < s1 and abs((T0[m + 2] - T0[m + 1]) - (T0[k + 1] - T0[k])) < 1e-9 and \
+                abs(height(m + 2) - height(k + 1)) < 1e-9 and \
+                abs(height(k + 1) - height(k)) < 1e-9:
             m += 1
-        emit(T0[k], T0[m + 1] - T0[k], {l: need(b, r0 - STEP * (m + 1 - s0))}, linear=True)
+        emit(T0[k], T0[m + 1] - T0[k], {l: need(skind(b, m + 1), r0 - STEP * (m + 1 - s0))},
+             linear=True)
         k = m + 1
 
 
@@ -271,6 +357,12 @@ for l in OFF:
 for s in range(NS):
     t0 = T0[s]
     pair = PAIRS[s % 4]
+    if a.rise_low is not None and LOW[0] is None and all(state[l][0] == 'G' for l in OFF) \
+            and XP[s] > EDGES[1] - START:
+        # rule 10: every foot stands on the road past the step: come down from here
+        LOW[0] = s
+        comment('# from %.2f s every foot stands on the road: the walk comes down from %g to '
+                '%g mm over %d slots' % (t0, a.rise, a.rise_low, a.nlow))
     if s % 4 == 0:
         comment('# cycle %d from %.2f s: support planned at x + %.0f mm' % (s // 4, t0, XP[s]))
     lift, air, lnd = {}, {}, {}
@@ -282,7 +374,7 @@ for s in range(NS):
         lift[l] = need('A', off)
         r, b2 = plan(l, START + OFF[l] + XP[s + 1])
         air[l] = need('A', r)
-        lnd[l] = need(b2, r)
+        lnd[l] = need(skind(b2, s + 1), r)
         state[l] = [b2, float(r)]
         pending[l] = s + 1
     step(t0, T0[s + 1] - t0, pair, lift, air, lnd)
@@ -300,16 +392,23 @@ xend = XP[NS]
 comment('# the turn from %.2f s (support planned at x + %.0f mm): the pairs step into a\n'
         '# staggered sideways stance' % (t, xend))
 side0 = {}
+hN = height(NS)
+if abs(hN - a.rise_z) > 1e-6 and abs(hN - a.rise) > 1e-6:
+    sys.exit('obstacle_gait.py: the walk ends at a %g mm stretch: the turn takes --rise or '
+             '--rise-z' % hN)
+lturn = 'L15' if abs(hN - a.rise_z) < 1e-6 else 'L40'
 for j, pair in enumerate(ZPAIRS):
     sz = RZ - SHZ + j * STEPZ if j > 0 else 0.0
     for l in pair:
         side0[l] = sz
     step(t, a.Tturn, pair, {l: need('A', state[l][1]) for l in pair},
-         {l: need('V', side0[l]) for l in pair}, {l: need('L40', side0[l]) for l in pair})
+         {l: need('V', side0[l]) for l in pair}, {l: need(lturn, side0[l]) for l in pair},
+         FRACT)
     t += a.Tturn
-comment('# all legs down to the %g mm stretch' % a.rise_z)
-emit(t, 1.0, {l: need('L15', side0[l]) for l in OFF})
-t += 1.0
+if lturn == 'L40':
+    comment('# all legs down to the %g mm stretch' % a.rise_z)
+    emit(t, 1.0, {l: need('L15', side0[l]) for l in OFF})
+    t += 1.0
 tz = t
 NZS = int(round(a.zend / (a.Dz / 4)))
 comment('# the lateral wave: %d slots of %g s from %.2f s' % (NZS, a.Tpz, tz))
@@ -329,7 +428,7 @@ for s in range(NZS):
         lnd[l] = need('L15', RZ)
         zs[l] = RZ
         pending[l] = t0 + a.Tpz
-    step(t0, a.Tpz, pair, lift, air, lnd)
+    step(t0, a.Tpz, pair, lift, air, lnd, FRACZ)
 t = tz + NZS * a.Tpz
 for l in OFF:
     ts = pending.pop(l)
@@ -341,7 +440,7 @@ comment('# the feet back under the hips, pair by pair, then every chamber vented
         '# (the paper\'s "release all pressure")')
 for pair in ZPAIRS:
     step(t, a.Tturn, pair, {l: need('V', zs[l]) for l in pair}, {l: 'straight' for l in pair},
-         {l: 'R15' for l in pair})
+         {l: 'R15' for l in pair}, FRACT)
     t += a.Tturn
 emit(t, 1.0, {l: 'straight' for l in OFF})
 t += 1.0
@@ -354,9 +453,14 @@ w('# per offset r (mm ahead of the hip, negative behind): road stance G (stretch
 for kind, val in list(POSES):
     if kind in ('G', 'S'):
         need('S' if kind == 'G' else 'G', val)
-for kind, val in POSES:
-    for line in pose_lines(kind, val):
-        w(line)
+lines = [ln for kind, val in POSES for ln in pose_lines(kind, val)]
+if BASES:
+    w('# RH: the straight leg stretched between %g and %g mm (the walk coming down: rule 10)\n'
+      % (a.rise, a.rise_z))
+for h in BASES:
+    w('pose %s II1:1,2,3,4 II2:1,2,3,4 II3:1,2,3,4 rise %g\n' % (base_pose(h), h))
+for line in lines:
+    w(line)
 for m in moves:
     if m[0] is None:
         w(m[1] + '\n')

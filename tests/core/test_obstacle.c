@@ -13,6 +13,7 @@
  * wave's first cycle (the pairs step in turn while the standing feet push) carries the support
  * forward, level, the front two pairs on the step, the rear two on the road, no ODE contact
  * deeper than 1 mm. */
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -114,10 +115,23 @@ static void test_obstacleStancesKeepTheSupportLevel(void) {
   csgDesign* d = NULL;
   csrDesignedPoses* poses = designedPoses(&m, &d);
   CS_EXPECT(poses != NULL);
-  int pairs = 0;
-  double worst = 0, mean_max = 0;
+  int pairs = 0, lowered = 0;
+  double worst = 0, worst_low = 0, mean_max = 0;
   for (int q = 1; poses && q < d->npose; q++) {
     const char* n = d->pose[q].name;
+    /* rule 10's lowered road stances G<h>P<r> / GH<h>P<r> against their straight leg R<h> /
+     * RH<h> of the same stretch: the stance bend must not change the support's height */
+    if (n[0] == 'G' && (isdigit((unsigned char)n[1]) || n[1] == 'H')) {
+      char base[CSG_DESIGN_NAME];
+      size_t k = strcspn(n + 1, "PM");
+      snprintf(base, sizeof base, "R%.*s", (int)k, n + 1);
+      int b = csg_designPoseFind(d, base);
+      CS_EXPECT(b > 0);
+      if (b > 0) {
+        worst_low = fmax(worst_low, fabs(poses->foot[q][2] - poses->foot[b][2]));
+        lowered++;
+      }
+    }
     /* road stance GP<r> / GM<r> against the step stance SP<r> / SM<r> of the same stroke */
     if (n[0] == 'G' && (n[1] == 'P' || n[1] == 'M')) {
       char twin[CSG_DESIGN_NAME];
@@ -145,9 +159,14 @@ static void test_obstacleStancesKeepTheSupportLevel(void) {
    * the stretched and the vented leg */
   CS_EXPECT(pairs >= 8);
   CS_EXPECT(worst < 1.5);
+  /* the walk comes down through three stretches to 15 mm (rule 10), several offsets each; the
+   * same 1.5 mm as the S-shapes' own stretch above */
+  CS_EXPECT(lowered >= 8);
+  CS_EXPECT(worst_low < 1.5);
   CS_EXPECT(mean_max <= 0.3);
-  printf("  %d stance pairs: road feet 40 mm +- %.2f mm below the step's; highest mean segment "
-         "pressure %.4f MPa\n", pairs, worst, mean_max);
+  printf("  %d stance pairs: road feet 40 mm +- %.2f mm below the step's; %d lowered stances "
+         "within %.2f mm of their straight leg's stretch; highest mean segment pressure %.4f "
+         "MPa\n", pairs, worst, lowered, worst_low, mean_max);
   free(d);
   free(poses);
   cs_modelDestroy(&m);

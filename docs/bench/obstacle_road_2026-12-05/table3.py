@@ -1,0 +1,1 @@
+../obstacle_pace_2026-12-05/table3.py
