@@ -27,7 +27,7 @@ stance legs as straight as the stroke allows. The rules:
   5. The end: the walk stops at --t-walk; the legs hold (no venting: a vented leg with its foot
      aside drags it).
 
-  /usr/bin/python3 tools/earth_gait.py --T 0.4 --SH 36 -o gaits/flat_road_earth.gait
+  /usr/bin/python3 tools/earth_gait.py --T 0.35 --SH 36 -o gaits/flat_road_earth.gait
   crawlsim gait design gaits/flat_road_earth.gait --stretch --out gaits/flat_road_earth.csv \\
       --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair --p-max 0.4
 """

@@ -9,7 +9,7 @@
  * (2) the control: the searched two-group gait (gaits/flat_road_rod.csv) on the same model and
  * conditions tips past 10 deg within 1.6 s (its four S-bent stance legs fold;
  * docs/studies/earth_gait.md), so (1) is the gait's doing, not the model's. Rod legs at the
- * scene's 8 elements, 4.8 s simulated (~30 s on an idle core); labelled slow. */
+ * scene's 8 elements, about 5 s simulated (15-40 s on the shared machine); labelled slow. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
