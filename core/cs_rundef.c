@@ -426,19 +426,22 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
     } else {
       cs_runDataPath(def, sc->terrain, plan->terrain, sizeof plan->terrain);
     }
-    if (gait) {
-      snprintf(plan->gait, sizeof plan->gait, "%s", gait);
-    } else if (!def->no_gait) {
-      cs_runDataPath(def, sc->gait, plan->gait, sizeof plan->gait);
-    }
     int requested = -1;
     if (conditions) {
-      csConditions c;
+      csConditions c = CS_CONDITIONS_EARTH;
       st = cs_conditionsParse(conditions, &c, err);
       requested = (int)c;
     }
+    csConditions cond = cs_sceneConditions(sc, requested, user_files, &plan->cond_src);
     if (st == CS_OK) {
-      cs_modelSetConditions(m, cs_sceneConditions(sc, requested, user_files, &plan->cond_src));
+      cs_modelSetConditions(m, cond);
+    }
+    if (gait) {
+      snprintf(plan->gait, sizeof plan->gait, "%s", gait);
+    } else if (!def->no_gait) {
+      /* the scene's gait for the conditions it runs under (sim_scene.h) */
+      const char* g = cond == CS_CONDITIONS_EARTH && sc->gait_earth ? sc->gait_earth : sc->gait;
+      cs_runDataPath(def, g, plan->gait, sizeof plan->gait);
     }
   }
   /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */

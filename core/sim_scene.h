@@ -41,6 +41,8 @@ typedef struct csScene_ {
   const char* name;        /* as --scene spells it */
   const char* terrain;     /* terrain description file (start pose, heading) */
   const char* gait;        /* default gait table */
+  const char* gait_earth;  /* default gait table under `earth` (NULL: `gait`): a gait
+                              designed without self-weight may not carry the robot */
   csConditions conditions; /* default conditions of the scene's own terrain and gait */
   const char* calibration; /* default calibration (the one the scene's gait was designed on) */
   const char* cal_rule;    /* the default calibration's rule (`--cal-rule` word), used when

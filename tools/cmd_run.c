@@ -36,7 +36,9 @@ static const csxOpt kRunOpts[] = {
     {"--slope-deg", "A", "the terrain's (the slope scene: 10)",
      "incline the terrain by A deg about z, +x uphill (gravity turns; x stays the distance along "
      "the slope), within +-45"},
-    {"--gait", "FILE.csv", "the scene's (gaits/flat_road_rod.csv, gaits/obstacle.csv)",
+    {"--gait", "FILE.csv",
+     "the scene's (gaits/flat_road_rod.csv, under earth gaits/flat_road_earth.csv; "
+     "gaits/obstacle.csv)",
      "the gait table (docs/reference/formats.md); a gait of your own makes the default "
      "conditions earth"},
     {"--terrain", "FILE", "the scene's (terrains/flat_road.terrain, terrains/obstacle.terrain)",

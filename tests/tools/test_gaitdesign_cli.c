@@ -5,7 +5,8 @@
  * the shipped calibration today, byte for byte (gaits/flat_road.csv from flat_road.gait,
  * gaits/flat_road_paper.csv from flat_road_paper.gait, gaits/obstacle.csv from obstacle.gait
  * (with --stretch), gaits/flat_road_rod.csv from flat_road_rod.gait (with --stretch on the
- * mission's table under rbf-pair), gaits/flat_road_crouch.csv from
+ * mission's table under rbf-pair), gaits/flat_road_earth.csv from flat_road_earth.gait (the
+ * same), gaits/flat_road_crouch.csv from
  * `gait flat-road --crouch`; a calibration or design change that is not carried to the
  * shipped gaits fails here), (2) a generated table passes `crawlsim gait check`, (3) every bad
  * option, description or input exits 1 with one line "crawlsim gait <sub>: ..." on stderr
@@ -108,6 +109,8 @@ static void test_shippedGaitsAreRegenerable(void) {
            "--cal-rule rbf-pair --p-max 0.4", src ? src : ".");
   expectRegenerates("obstacle.csv", flags, "obstacle.gait");
   expectRegenerates("flat_road_rod.csv", flags, "flat_road_rod.gait");
+  /* the flat road's wave gait for `earth` (tools/earth_gait.py), on the same map */
+  expectRegenerates("flat_road_earth.csv", flags, "flat_road_earth.gait");
   expectRegenerates("flat_road_crouch.csv", "--crouch", NULL);
 }
 

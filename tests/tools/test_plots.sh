@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # test_plots.sh: smoke test of tools/plot_track.py, tools/plot_bend.py, tools/plot_gait.py and
 # tools/plot_calibration.py, tools/stance_slip.py and tools/rod_vs_fe.py (argument 1: the
-# crawlsim binary, which rod_vs_fe.py runs), and tools/bench_levels.py --plot-only.
+# crawlsim binary, which rod_vs_fe.py runs), tools/bench_levels.py --plot-only, and that
+# tools/gait_search.py and tools/earth_gait.py reproduce the shipped gait descriptions.
 # Writes small synthetic run/bend files (tests/tools/make_synthetic_h5.py, h5py) in a temp dir,
 # runs both scripts, checks the PNGs exist and are non-empty PNGs, and checks that a missing
 # file or dataset gives exit status 1 with a one-line message.
@@ -235,6 +236,22 @@ expect_fail1 "gait_search bad --params" "gait_search.py: --params '1,2': expecte
   "$PY" "$SEARCH" --write-gait "$TMP/bad.gait" --params 1,2
 expect_fail1 "gait_search --params outside the box" "outside the search's box" \
   "$PY" "$SEARCH" --write-gait "$TMP/bad.gait" --params 100,3,11,0.2
+
+# tools/earth_gait.py: the shipped earth gait is the script's description of the values its
+# header names; bad input is one line and exit 1. tools/earth_track.py: a missing run file is
+# one line and exit 1
+EG="$ROOT/tools/earth_gait.py"
+eg_args=$(sed -n 's/^#   T \([0-9.]*\) s, SH \([0-9.]*\) mm, bias \([-0-9.]*\) mm, U \([0-9.]*\) mm, rise \([0-9.]*\) mm.*/--T \1 --SH \2 --bias \3 --U \4 --rise \5/p' "$ROOT/gaits/flat_road_earth.gait")
+if [ -n "$eg_args" ] && "$PY" "$EG" $eg_args -o "$TMP/fre.gait" >"$TMP/out.txt" 2>&1 &&
+   cmp -s "$TMP/fre.gait" "$ROOT/gaits/flat_road_earth.gait"; then
+  ok "earth_gait reproduces gaits/flat_road_earth.gait ($eg_args)"
+else
+  bad "earth_gait reproduces gaits/flat_road_earth.gait ($eg_args)" "$TMP/out.txt"
+fi
+expect_fail1 "earth_gait bad --frac" "earth_gait.py: --frac needs four fractions" \
+  "$PY" "$EG" --frac 0.5,0.5 -o "$TMP/bad.gait"
+expect_fail1 "earth_track missing file" "earth_track.py: $TMP/none.h5: not a run file" \
+  "$PY" "$ROOT/tools/earth_track.py" "$TMP/none.h5"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -269,6 +269,13 @@ static void test_goodRun(void) {
   strncat(gargs, " --conditions paper", sizeof gargs - strlen(gargs) - 1);
   cs_cliRun(exe_path, gargs, "runcli", &r);
   CS_EXPECT(r.status == 0 && strstr(r.err, "conditions paper (--conditions)") != NULL);
+  /* the flat road's own gait follows the conditions: under `earth` the wave designed for them
+   * (gaits/flat_road_earth.csv), under `paper` the searched one (sim_scene.c) */
+  cs_cliRun(exe_path, "run --t-end 0.02 --out runcli_earth.h5 --conditions earth", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "gaits/flat_road_earth.csv") != NULL &&
+            strstr(r.err, "conditions earth (--conditions)") != NULL);
+  cs_cliRun(exe_path, "run --t-end 0.02 --out runcli_earth.h5 --conditions paper", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "gaits/flat_road_rod.csv") != NULL);
   remove("runcli_earth.h5");
   remove("runcli_earth.xdmf");
   /* a macro step of 20 ODE steps: the output interval follows it (0.02 s > 0.01 s) */
