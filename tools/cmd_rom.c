@@ -104,7 +104,9 @@ static const csxOptTable kEcswTable = {
     "Every element's reduced force at each training snapshot of the basis file (rows snapshot x "
     "coordinate, a column per element; one matrix for the Tet10s, /A_tet, one for the fibres, "
     "/A_fibre; the chambers' pressure loads are exact and not fitted), for tools/rom_ecsw.py's "
-    "NNLS.",
+    "NNLS. A mixed basis (pressure modes P, m of them) adds to each snapshot's Tet10 rows the "
+    "element's constraint share P_e (v_e - V_e), and /A_tet_pressure holds each Tet10's share of "
+    "the pressure matrix, so that the weights keep the reduced pressures.",
     kEcswOpts, CSX_NOPT(kEcswOpts), NULL};
 
 enum { MAX_SETS = 32 };
@@ -580,9 +582,10 @@ static int cmdEcswMatrix(int argc, char** argv) {
   /* the bodies and the fibres; the chambers' faces are in closed form (csf_romChamberTensors:
    * exact), so the face set is not fitted */
   for (int s = 0; s < CSF_ROM_SET_FACE && rc == 0; s++) {
-    const size_t rows = (size_t)ns * (size_t)n, cols = (size_t)cnt[s];
+    const int wd = csf_romElementForcesWidth(ra.rom, (csfRomSet)s);
+    const size_t rows = (size_t)ns * (size_t)wd, cols = (size_t)cnt[s];
     double* A = malloc(rows * cols * sizeof(double));
-    double* G = malloc(cols * (size_t)n * sizeof(double));
+    double* G = malloc(cols * (size_t)wd * sizeof(double));
     if (!A || !G) {
       fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
       rc = 1;
@@ -597,8 +600,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
         break;
       }
       for (size_t e = 0; e < cols; e++) {
-        for (int j = 0; j < n; j++) {
-          A[((size_t)k * n + j) * cols + e] = G[e * (size_t)n + j];
+        for (int j = 0; j < wd; j++) {
+          A[((size_t)k * wd + j) * cols + e] = G[e * (size_t)wd + j];
         }
       }
     }
@@ -609,7 +612,35 @@ static int cmdEcswMatrix(int argc, char** argv) {
     }
     free(A), free(G);
   }
+  /* the mixed model's pressure matrix A = sum_e w_e (V_e / kappa) P_e P_e^T, per element (its
+   * lower triangle, mm^3/MPa; constant in q): weights fitted to it as well keep p^ = A^-1 b */
+  const int mp = ra.rom->m;
+  if (mp > 0 && rc == 0) {
+    const size_t rows = (size_t)mp * (size_t)(mp + 1) / 2, cols = (size_t)cnt[0];
+    double* A = malloc(rows * cols * sizeof(double));
+    if (!A) {
+      fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
+      rc = 1;
+    }
+    for (size_t e = 0; rc == 0 && e < cols; e++) {
+      const double* Pe = ra.rom->P + e * (size_t)mp;
+      const double c = ra.fe.model->vol[e] / ra.fe.model->mat.kappa;
+      size_t row = 0;
+      for (int i = 0; i < mp; i++) {
+        for (int j = 0; j <= i; j++) {
+          A[row++ * cols + e] = c * Pe[i] * Pe[j];
+        }
+      }
+    }
+    const size_t dims[2] = {rows, cols};
+    if (rc == 0 && cs_h5WriteDoubles(f, "/A_tet_pressure", 2, dims, A, &err) != CS_OK) {
+      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+      rc = 1;
+    }
+    free(A);
+  }
   if (f) {
+    cs_h5AttrDouble(f, "/", "m", mp, &err);
     cs_h5AttrString(f, "/", "format", "crawlsim-rom-ecsw-matrix 1", &err);
     cs_h5AttrString(f, "/", "basis", basis, &err);
     cs_h5AttrDouble(f, "/", "n", n, &err);
@@ -620,8 +651,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
     }
   }
   if (rc == 0) {
-    printf("crawlsim rom: ecsw-matrix: %d snapshots x %d coordinates over %d Tet10 and %d fibre "
-           "elements -> %s\n", ns, n, cnt[0], cnt[1], out);
+    printf("crawlsim rom: ecsw-matrix: %d snapshots x %d coordinates (%d pressure modes) over %d "
+           "Tet10 and %d fibre elements -> %s\n", ns, n, mp, cnt[0], cnt[1], out);
   }
   free(q), free(p), free(g), free(F);
   csf_romActuatorDestroy(&ra);
