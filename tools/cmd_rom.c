@@ -19,6 +19,7 @@
 #include "core_clock.h"
 #include "cs_commands.h"
 #include "cs_opts.h"
+#include "cmd_rom.h"
 #include "cs_signal.h"
 #include "fem_measure.h"
 #include "fem_rom_act.h"
@@ -32,16 +33,9 @@ static const char kUsage[] =
     "  check        the reduced model along the rays of a snapshot directory against the FE\n"
     "  ecsw-matrix  every element's reduced force at the basis' training snapshots (for\n"
     "               tools/rom_ecsw.py)\n"
+    "  modes        the tangents of the FE and of the reduced model at a pressure (for\n"
+    "               tools/rom_modes.py: the first eigenfrequencies)\n"
     "Run 'crawlsim rom <subcommand> --help' for its options.\n";
-
-/* the options every subcommand builds the actuator from (as crawlsim bend) */
-#define ROM_OPT_ACTUATOR                                                                        \
-  {"--actuator", "leg|baseline|fig1", "leg",                                                    \
-   "the actuator preset (robot/robot_actuator.h) the FE model is built from"}
-#define ROM_OPT_SET                                                                             \
-  {"--set", "NAME=VALUE", "none",                                                               \
-   "change one actuator parameter after the preset (repeatable, at most 32; the names of "      \
-   "crawlsim bend --set)"}
 
 static const csxOpt kSnapOpts[] = {
     {"--out", "DIR", "rom_snapshots",
@@ -109,10 +103,9 @@ static const csxOptTable kEcswTable = {
     "the pressure matrix, so that the weights keep the reduced pressures.",
     kEcswOpts, CSX_NOPT(kEcswOpts), NULL};
 
-enum { MAX_SETS = 32 };
 
 /* one more repeatable value (--set, --ray) into list[*n]; 1 after one error line when full */
-static int pushValue(const char* what, const char* v, const char** list, int* n, int max) {
+int csx_romPushValue(const char* what, const char* v, const char** list, int* n, int max) {
   if (*n == max) {
     fprintf(stderr, "crawlsim rom: more than %d %s options\n", max, what);
     return 1;
@@ -136,13 +129,13 @@ static int knownRay(const char* name) {
 }
 
 /* an operand where a subcommand takes none: one error line */
-static int unexpected(const csxOptTable* t, const char* a) {
+int csx_romUnexpected(const csxOptTable* t, const char* a) {
   fprintf(stderr, "crawlsim %s: unexpected argument '%.200s' (see crawlsim %s --help)\n", t->cmd,
           a, t->cmd);
   return 1;
 }
 
-static int parseNumber(const char* flag, const char* v, double lo, double hi, double* out) {
+int csx_romParseNumber(const char* flag, const char* v, double lo, double hi, double* out) {
   char* end;
   errno = 0;
   double x = strtod(v, &end);
@@ -178,7 +171,7 @@ static int actuatorFromArgs(const char* name, const char* const* sets, int nset,
 /* the reduced actuator on the snapshots' FE model (csf_romSnapSetup's: every chamber tagged,
  * the symmetric mesh of the basis' l_soft; gmsh's files under work/stem); 1 after one error
  * line */
-static int romOpen(const char* actname, const char* const* sets, int nset, const char* basis,
+int csx_romOpen(const char* actname, const char* const* sets, int nset, const char* basis,
                    const char* weights, const char* work, const char* stem_name,
                    csrActuator* act, csfRomActuator* ra) {
   if (actuatorFromArgs(actname, sets, nset, 0, act)) {
@@ -220,7 +213,7 @@ static int cmdSnapshots(int argc, char** argv) {
   csx_signalInstall();
   const char* dir = "rom_snapshots";
   const char* actname = "leg";
-  const char* sets[MAX_SETS];
+  const char* sets[CSX_ROM_MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, list = 0, threads = 0;
   csfRomSnapSettings ss = csf_romSnapDefault();
@@ -234,7 +227,7 @@ static int cmdSnapshots(int argc, char** argv) {
       return end;
     }
     if (k == CSX_OPT_OPERAND) {
-      return unexpected(&kSnapTable, it.value);
+      return csx_romUnexpected(&kSnapTable, it.value);
     }
     const char* a = it.opt->name, *v = it.value;
     int bad = 0;
@@ -243,17 +236,17 @@ static int cmdSnapshots(int argc, char** argv) {
     } else if (csx_optIs(it.opt, "--threads")) {
       bad = csx_feParseThreads("rom", v, &threads);
     } else if (csx_optIs(it.opt, "--mesh-size")) {
-      bad = parseNumber(a, v, 0.5, 20, &ss.mesh_size);
+      bad = csx_romParseNumber(a, v, 0.5, 20, &ss.mesh_size);
     } else if (csx_optIs(it.opt, "--newton-rtol")) {
-      bad = parseNumber(a, v, 1e-12, 1e-3, &ss.newton_rtol);
+      bad = csx_romParseNumber(a, v, 1e-12, 1e-3, &ss.newton_rtol);
     } else if (csx_optIs(it.opt, "--out")) {
       dir = v;
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--ray")) {
-      bad = !knownRay(v) || pushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
+      bad = !knownRay(v) || csx_romPushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
     } else if (csx_optIs(it.opt, "--set")) {
-      bad = pushValue("--set", v, sets, &nset, MAX_SETS);
+      bad = csx_romPushValue("--set", v, sets, &nset, CSX_ROM_MAX_SETS);
     }
     if (bad) {
       return 1;
@@ -440,7 +433,7 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
 
 static int cmdCheck(int argc, char** argv) {
   const char* dir = NULL, *basis = NULL, *weights = NULL, *actname = "leg";
-  const char* sets[MAX_SETS];
+  const char* sets[CSX_ROM_MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, all = 0;
   csxOptIter it;
@@ -451,7 +444,7 @@ static int cmdCheck(int argc, char** argv) {
       return end;
     }
     if (k == CSX_OPT_OPERAND) {
-      return unexpected(&kCheckTable, it.value);
+      return csx_romUnexpected(&kCheckTable, it.value);
     }
     const char* v = it.value;
     int bad = 0;
@@ -466,9 +459,9 @@ static int cmdCheck(int argc, char** argv) {
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--ray")) {
-      bad = !knownRay(v) || pushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
+      bad = !knownRay(v) || csx_romPushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
     } else if (csx_optIs(it.opt, "--set")) {
-      bad = pushValue("--set", v, sets, &nset, MAX_SETS);
+      bad = csx_romPushValue("--set", v, sets, &nset, CSX_ROM_MAX_SETS);
     }
     if (bad) {
       return 1;
@@ -481,7 +474,7 @@ static int cmdCheck(int argc, char** argv) {
   csrActuator act;
   csfRomActuator ra;
   const double t0 = csu_wallSeconds();
-  if (romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
+  if (csx_romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
     return 1;
   }
   const double L = act.S[0] + act.S[1] + act.S[2] + act.LS[0] + act.LS[1];
@@ -531,7 +524,7 @@ static int cmdCheck(int argc, char** argv) {
 /* the element force matrices of the ECSW fit (tools/rom_ecsw.py) */
 static int cmdEcswMatrix(int argc, char** argv) {
   const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
-  const char* sets[MAX_SETS];
+  const char* sets[CSX_ROM_MAX_SETS];
   int nset = 0;
   csxOptIter it;
   csx_optBegin(&it);
@@ -541,7 +534,7 @@ static int cmdEcswMatrix(int argc, char** argv) {
       return end;
     }
     if (k == CSX_OPT_OPERAND) {
-      return unexpected(&kEcswTable, it.value);
+      return csx_romUnexpected(&kEcswTable, it.value);
     }
     const char* v = it.value;
     if (csx_optIs(it.opt, "--basis")) {
@@ -552,7 +545,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
       work = v;
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
-    } else if (csx_optIs(it.opt, "--set") && pushValue("--set", v, sets, &nset, MAX_SETS)) {
+    } else if (csx_optIs(it.opt, "--set") &&
+               csx_romPushValue("--set", v, sets, &nset, CSX_ROM_MAX_SETS)) {
       return 1;
     }
   }
@@ -564,7 +558,7 @@ static int cmdEcswMatrix(int argc, char** argv) {
   cs_errorClear(&err);
   csrActuator act;
   csfRomActuator ra;
-  if (romOpen(actname, sets, nset, basis, NULL, work, "ecsw_mesh", &act, &ra)) {
+  if (csx_romOpen(actname, sets, nset, basis, NULL, work, "ecsw_mesh", &act, &ra)) {
     return 1;
   }
   const int n = ra.rom->n;
@@ -662,7 +656,7 @@ static int cmdEcswMatrix(int argc, char** argv) {
 
 int csx_cmdRom(int argc, char** argv) {
   if (argc < 2) {
-    fprintf(stderr, "crawlsim rom: missing subcommand (snapshots, check or ecsw-matrix; see "
+    fprintf(stderr, "crawlsim rom: missing subcommand (snapshots, check, ecsw-matrix or modes; see "
             "crawlsim rom --help)\n");
     return 1;
   }
@@ -679,7 +673,11 @@ int csx_cmdRom(int argc, char** argv) {
   if (!strcmp(argv[1], "ecsw-matrix")) {
     return cmdEcswMatrix(argc - 1, argv + 1);
   }
-  fprintf(stderr, "crawlsim rom: unknown stage '%.64s' (expected snapshots, check or ecsw-matrix; "
+  if (!strcmp(argv[1], "modes")) {
+    return csx_cmdRomModes(argc - 1, argv + 1);
+  }
+  fprintf(stderr, "crawlsim rom: unknown stage '%.64s' (expected snapshots, check, ecsw-matrix or "
+          "modes; "
           "see crawlsim rom --help)\n", argv[1]);
   return 1;
 }
