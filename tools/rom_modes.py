@@ -56,8 +56,10 @@ def main():
     worst = 0.0
     with h5py.File(a.modes, "r") as f:
         nlev = int(f.attrs["nlevel"])
+        ray = f.attrs["ray"]
+        ray = ray.decode() if isinstance(ray, bytes) else ray
         print(f"rom_modes: basis {a.basis}: n = {V.shape[1]}, m = {int(f.attrs['m'])}; FE "
-              f"{len(free)} free dofs; ray {f.attrs["ray"].decode() if isinstance(f.attrs["ray"], bytes) else f.attrs["ray"]}")
+              f"{len(free)} free dofs; ray {ray}")
         for lev in range(nlev):
             g = f[f"p{lev}"]
             p = float(g.attrs["p_MPa"])
