@@ -368,6 +368,7 @@ static int cmdSnapshots(int argc, char** argv) {
 /* one ray of the reduced model against the FE's file; returns the worst errors */
 typedef struct CheckErr_ {
   double bend_deg, bend_rel, tip_mm, vol_rel, wall;
+  long newton; /* reduced Newton iterations of the ray */
   int ok, failed;
 } CheckErr;
 
@@ -380,6 +381,7 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
   memset(ra->tip_force, 0, sizeof ra->tip_force);
   memset(ra->q_conv, 0, (size_t)ra->rom->n * sizeof(double));
   const double t0 = csu_wallSeconds();
+  const long it0 = ra->n_newton;
   ce->ok = 1;
   for (int k = 0; k < sf->m; k++) {
     const double t = sf->t[k];
@@ -429,6 +431,7 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
            100 * rb[1], 100 * rb[2], et, 100 * vmax);
   }
   ce->wall = csu_wallSeconds() - t0;
+  ce->newton = ra->n_newton - it0;
 }
 
 static int cmdCheck(int argc, char** argv) {
@@ -507,11 +510,12 @@ static int cmdCheck(int argc, char** argv) {
     fe_wall += sf.wall;
     rom_wall += ce.wall;
     printf("crawlsim rom: ray %-10s (%s): worst bend %.3g deg (%.3g %%), tip %.3g mm (%.3g %% of "
-           "L), volumes %.3g %%: %s; reduced %.2f s, FE %.0f s\n", sf.ray.name,
+           "L), volumes %.3g %%: %s; reduced %.2f s (%ld Newton iterations, %.3g ms each), FE "
+           "%.0f s\n", sf.ray.name,
            sf.ray.kind == CSF_ROM_TEST ? "held out" : "trained", ce.bend_deg, 100 * ce.bend_rel,
            ce.tip_mm, 100 * ce.tip_mm / L, 100 * ce.vol_rel,
            ce.failed ? "FAILED to solve" : ce.ok ? "within the targets" : "outside the targets",
-           ce.wall, sf.wall);
+           ce.wall, ce.newton, ce.newton > 0 ? 1e3 * ce.wall / (double)ce.newton : NAN, sf.wall);
   }
   printf("crawlsim rom: %d rays checked, %d within the targets; reduced %.1f s against the FE's "
          "%.0f s (x%.0f; the FE's under its own run's load)\n", nrun, nok, rom_wall, fe_wall,
