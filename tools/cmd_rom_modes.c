@@ -37,6 +37,9 @@ static const csxOpt kModesOpts[] = {
     {"--pressure", "P", "0 and 0.15",
      "a pressure level in MPa, 0 .. 0.6 (repeatable, at most 8): the pattern's largest chamber "
      "pressure"},
+    {"--rom-only", NULL, "off",
+     "the reduced model's tangents alone (no FE solve: tools/rom_modes.py --fe takes the FE's "
+     "from an earlier file of the same mesh and levels)"},
     {"--work", "DIR", ".", "where gmsh's files of the basis' mesh are written"},
     ROM_OPT_ACTUATOR,
     ROM_OPT_SET,
@@ -77,7 +80,7 @@ static csStatus writeIntsAsDoubles(csH5File* f, const char* path, size_t n, cons
 
 /* one pressure level: the reduced and the FE tangents into group /p<k> of f */
 static csStatus modesLevel(csfRomActuator* ra, const csfRomRay* pattern, double pmax, int k,
-                           csH5File* f, csError* err) {
+                           int rom_only, csH5File* f, csError* err) {
   const int n = ra->rom->n;
   const csfModel* m = ra->fe.model;
   double scale = 0;
@@ -117,6 +120,21 @@ static csStatus modesLevel(csfRomActuator* ra, const csfRomRay* pattern, double 
                        "physical", pmax);
   }
   const double rom_wall = csu_wallSeconds() - t0;
+  const size_t dnn[2] = {(size_t)n, (size_t)n}, dn = (size_t)n;
+  char g[32], path[64];
+  snprintf(g, sizeof g, "/p%d", k);
+  if (rom_only) {
+    snprintf(path, sizeof path, "%s/K_rom", g);
+    st = cs_h5WriteDoubles(f, path, 2, dnn, ra->d->K, err);
+    snprintf(path, sizeof path, "%s/q", g);
+    if (st == CS_OK) st = cs_h5WriteDoubles(f, path, 1, &dn, ra->d->q, err);
+    if (st == CS_OK) st = cs_h5AttrDouble(f, g, "p_MPa", pmax, err);
+    if (st == CS_OK) st = cs_h5AttrDouble(f, g, "rom_wall_s", rom_wall, err);
+    if (st == CS_OK) {
+      printf("crawlsim rom: modes: %g MPa: reduced statics and tangent %.2f s\n", pmax, rom_wall);
+    }
+    return st;
+  }
   /* the FE's statics on the same model and its tangent */
   csfData* d = csf_dataCreate(m, err);
   if (!d) {
@@ -160,10 +178,7 @@ static csStatus modesLevel(csfRomActuator* ra, const csfRomRay* pattern, double 
     }
   }
   const double fe_wall = csu_wallSeconds() - t0;
-  char g[32], path[64];
-  snprintf(g, sizeof g, "/p%d", k);
-  const size_t dnn[2] = {(size_t)n, (size_t)n}, dn = (size_t)n, dd = (size_t)m->ndof,
-               dz = (size_t)m->nnz;
+  const size_t dd = (size_t)m->ndof, dz = (size_t)m->nnz;
   snprintf(path, sizeof path, "%s/K_rom", g);
   if (st == CS_OK) st = cs_h5WriteDoubles(f, path, 2, dnn, ra->d->K, err);
   snprintf(path, sizeof path, "%s/q", g);
@@ -195,7 +210,7 @@ int csx_cmdRomModes(int argc, char** argv) {
   const char* basis = NULL, *weights = NULL, *out = NULL, *work = ".", *actname = "leg";
   const char* rayname = "O12";
   const char* sets[CSX_ROM_MAX_SETS];
-  int nset = 0, np = 0;
+  int nset = 0, np = 0, rom_only = 0;
   double plev[MODES_MAX_LEVELS];
   csxOptIter it;
   csx_optBegin(&it);
@@ -217,6 +232,8 @@ int csx_cmdRomModes(int argc, char** argv) {
       out = v;
     } else if (csx_optIs(it.opt, "--work")) {
       work = v;
+    } else if (csx_optIs(it.opt, "--rom-only")) {
+      rom_only = 1;
     } else if (csx_optIs(it.opt, "--ray")) {
       rayname = v;
     } else if (csx_optIs(it.opt, "--actuator")) {
@@ -263,7 +280,7 @@ int csx_cmdRomModes(int argc, char** argv) {
   csH5File* f = cs_h5Create(out, &err);
   csStatus st = f ? CS_OK : err.status;
   for (int k = 0; k < np && st == CS_OK; k++) {
-    st = modesLevel(&ra, pattern, plev[k], k, f, &err);
+    st = modesLevel(&ra, pattern, plev[k], k, rom_only, f, &err);
   }
   if (f) {
     if (st == CS_OK) st = cs_h5AttrString(f, "/", "format", "crawlsim-rom-modes 1", &err);

@@ -39,6 +39,8 @@ def main():
     ap.add_argument("snapdir")
     ap.add_argument("basis")
     ap.add_argument("--k", type=int, default=4, help="how many frequencies to compare")
+    ap.add_argument("--fe", default=None, help="take the FE's tangents from this modes file "
+                    "(same mesh and levels; MODES.h5 then from `crawlsim rom modes --rom-only`)")
     a = ap.parse_args()
     with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
         x = f["x"][...]
@@ -54,6 +56,7 @@ def main():
     Mff = M[free][:, free]
     k = a.k
     worst = 0.0
+    fe_file = h5py.File(a.fe or a.modes, "r")
     with h5py.File(a.modes, "r") as f:
         nlev = int(f.attrs["nlevel"])
         ray = f.attrs["ray"]
@@ -61,8 +64,12 @@ def main():
         print(f"rom_modes: basis {a.basis}: n = {V.shape[1]}, m = {int(f.attrs['m'])}; FE "
               f"{len(free)} free dofs; ray {ray}")
         for lev in range(nlev):
-            g = f[f"p{lev}"]
+            g = fe_file[f"p{lev}"]
+            gr = f[f"p{lev}"]
             p = float(g.attrs["p_MPa"])
+            if abs(float(gr.attrs["p_MPa"]) - p) > 1e-12:
+                sys.exit(f"rom_modes: level {lev}: {gr.attrs['p_MPa']} MPa in {a.modes}, {p} in "
+                         f"{a.fe}")
             nd = V.shape[0]
             K = sp.csr_matrix((g["K_fe_val"][...], g["K_fe_col"][...].astype(np.int64),
                                g["K_fe_row_ptr"][...].astype(np.int64)), shape=(nd, nd))
@@ -72,7 +79,7 @@ def main():
             lam, Phi = spla.eigsh(Kff.tocsc(), k=k + 4, M=Mff.tocsc(), sigma=0, which="LM")
             order = np.argsort(lam)
             lam, Phi = lam[order], Phi[:, order]
-            Kr = g["K_rom"][...]
+            Kr = gr["K_rom"][...]
             asym_r = np.abs(Kr - Kr.T).max() / np.abs(Kr).max()
             lr, Pr = sla.eigh(0.5 * (Kr + Kr.T), Mr)
             f_fe = np.sqrt(np.maximum(lam, 0)) / (2 * np.pi)
