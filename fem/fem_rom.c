@@ -718,15 +718,74 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
 }
 
 
+int csf_romElementForcesWidth(const csfRom* r, csfRomSet set) {
+  return r->n + (set == CSF_ROM_SET_TET ? r->m : 0);
+}
+
+/* The mixed model's Tet10 rows (csf_romElementForces): the unreduced model's p^ (every Tet10 at
+ * weight 1: b over all of them, A over all of them), then per element the reduced force with
+ * its pressure p_e = P_e . p^ and its constraint share P_e (v_e - V_e). */
+static int mixedElementForces(const csfRom* r, csfRomData* d, double* G) {
+  const csfModel* m = r->fem;
+  const csfMesh* me = m->mesh;
+  const int n = r->n, mm = r->m, wd = n + mm;
+  const double kappa = m->mat.kappa;
+  double* L = malloc((size_t)mm * (size_t)mm * sizeof(double));
+  double* ph = calloc((size_t)mm, sizeof(double));
+  csError err;
+  if (!L || !ph || csf_romMixedFactorInto(r, 1, L, &err) != CS_OK) {
+    free(L), free(ph);
+    return -1;
+  }
+  memset(G, 0, (size_t)me->ntet * (size_t)wd * sizeof(double));
+  for (int e = 0; e < me->ntet; e++) {
+    double ue[30], vr, jm;
+    gather(r, d->q, 10, me->tet + 10 * (size_t)e, ue);
+    if (csf_tetKernel(&m->mat, m->dNdX + 120 * (size_t)e, m->wq + 4 * (size_t)e, m->vol[e], ue,
+                      1.0, d->rel + 30 * (size_t)e, NULL, &vr, d->gel + 30 * (size_t)e, &jm)) {
+      free(L), free(ph);
+      return 1;
+    }
+    d->vr[e] = vr;
+    const double* Pe = r->P + (size_t)e * (size_t)mm;
+    double* row = G + (size_t)e * wd + n;
+    for (int i = 0; i < mm; i++) {
+      row[i] = Pe[i] * (vr - 1.0) * m->vol[e];
+      ph[i] += row[i];
+    }
+  }
+  csf_romMixedSolveWith(mm, L, ph);
+  for (int e = 0; e < me->ntet; e++) {
+    const double* Pe = r->P + (size_t)e * (size_t)mm;
+    double pe = 0, fe[30];
+    for (int i = 0; i < mm; i++) {
+      pe += Pe[i] * ph[i];
+    }
+    const double dp = pe - kappa * (d->vr[e] - 1.0);
+    const double* re = d->rel + 30 * (size_t)e;
+    const double* gv = d->gel + 30 * (size_t)e;
+    for (int a = 0; a < 30; a++) {
+      fe[a] = re[a] + dp * gv[a];
+    }
+    scatter(r, d, 10, me->tet + 10 * (size_t)e, 1.0, fe, NULL, G + (size_t)e * wd);
+  }
+  free(L), free(ph);
+  return 0;
+}
+
 int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
                          double* G) {
-  if (!r || !d || !load || !G || (int)set < 0 || set >= CSF_ROM_NSET) {
+  if (!r || !d || !load || !G || (int)set < 0 || set >= CSF_ROM_NSET || d->n != r->n ||
+      d->m != r->m) {
     return -1;
   }
   const csfModel* m = r->fem;
   const csfMesh* me = m->mesh;
   const size_t n = (size_t)r->n;
   const int count[CSF_ROM_NSET] = {me->ntet, m->nfib, me->nface};
+  if (set == CSF_ROM_SET_TET && r->m > 0) {
+    return mixedElementForces(r, d, G);
+  }
   memset(G, 0, (size_t)count[set] * n * sizeof(double));
   for (int e = 0; e < count[set]; e++) {
     double* row = G + (size_t)e * n;

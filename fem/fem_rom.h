@@ -159,9 +159,18 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
  * weights) at d->q under `load`: row e of G (nel x n, N) is V_e^T f_e, with f_e the element's
  * internal force (tets, fibres) or its pressure load with the sign of R (faces: -f_ext). Their
  * column sums are the unreduced model's parts of r; ECSW fits element weights to them
- * (tools/rom_ecsw.py). Returns 0, > 0 if an element inverts, < 0 on bad arguments. */
+ * (tools/rom_ecsw.py).
+ * Mixed rom (m > 0), Tet10 set: rows of n + m (csf_romElementForcesWidth): V_e^T f_e with the
+ * element's pressure p_e = P_e . p^ of the unreduced model (p^ = A^-1 b with A and b over every
+ * Tet10 at weight 1), then the element's constraint share P_e (v_e - V_e) (mm^3 per unit p^):
+ * the column sums are the unreduced r's Tet10 part and b, so weights fitted to both keep the
+ * reduced pressures as well as the forces. Returns 0, > 0 if an element inverts, < 0 on bad
+ * arguments or out of memory. */
 int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
                          double* G);
+
+/* The row width of csf_romElementForces for `set`: n, or n + m for a mixed rom's Tet10s. */
+int csf_romElementForcesWidth(const csfRom* r, csfRomSet set);
 
 /* Newton options of the reduced statics. */
 typedef struct csfRomNewtonOptions_ {

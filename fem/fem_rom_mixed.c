@@ -14,18 +14,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-csStatus csf_romMixedFactor(csfRom* r, csError* err) {
+csStatus csf_romMixedFactorInto(const csfRom* r, int all, double* L, csError* err) {
   const int m = r->m;
   const double kappa = r->fem->mat.kappa;
   if (!(kappa > 0.0)) {
     return cs_errorSet(err, CS_ERR_ARG, "fem_rom: the mixed model needs a bulk modulus > 0 "
                        "(kappa %g MPa)", kappa);
   }
-  double* L = r->A_chol;
   memset(L, 0, (size_t)m * (size_t)m * sizeof(double));
-  for (int k = 0; k < r->nel[CSF_ROM_SET_TET]; k++) {
-    const int e = r->el[CSF_ROM_SET_TET][k];
-    const double c = r->w[CSF_ROM_SET_TET][k] * r->fem->vol[e] / kappa;
+  const int nel = all ? r->fem->mesh->ntet : r->nel[CSF_ROM_SET_TET];
+  for (int k = 0; k < nel; k++) {
+    const int e = all ? k : r->el[CSF_ROM_SET_TET][k];
+    const double c = (all ? 1.0 : r->w[CSF_ROM_SET_TET][k]) * r->fem->vol[e] / kappa;
     const double* Pe = r->P + (size_t)e * (size_t)m;
     for (int i = 0; i < m; i++) {
       for (int j = 0; j <= i; j++) {
@@ -60,9 +60,11 @@ csStatus csf_romMixedFactor(csfRom* r, csError* err) {
   return CS_OK;
 }
 
-void csf_romMixedSolve(const csfRom* r, double* x) {
-  const int m = r->m;
-  const double* L = r->A_chol;
+csStatus csf_romMixedFactor(csfRom* r, csError* err) {
+  return csf_romMixedFactorInto(r, 0, r->A_chol, err);
+}
+
+void csf_romMixedSolveWith(int m, const double* L, double* x) {
   for (int i = 0; i < m; i++) {
     double s = x[i];
     for (int k = 0; k < i; k++) {
@@ -77,6 +79,10 @@ void csf_romMixedSolve(const csfRom* r, double* x) {
     }
     x[i] = s / L[(size_t)i * m + i];
   }
+}
+
+void csf_romMixedSolve(const csfRom* r, double* x) {
+  csf_romMixedSolveWith(r->m, r->A_chol, x);
 }
 
 csStatus csf_romSetPressureBasis(csfRom* r, int m, const double* P, csError* err) {

@@ -16,8 +16,16 @@ extern "C" {
  * not positive definite. */
 csStatus csf_romMixedFactor(csfRom* r, csError* err);
 
+/* Factor A into L (m x m, lower Cholesky factor) over the kept Tet10s and their weights
+ * (all = 0) or over every Tet10 at weight 1 (all = 1: the unreduced model's A, which the ECSW
+ * fit's element rows need whatever the rom's weights). CS_ERR_ARG when not positive definite. */
+csStatus csf_romMixedFactorInto(const csfRom* r, int all, double* L, csError* err);
+
 /* x = A^-1 x (m), in place, from r->A_chol. */
 void csf_romMixedSolve(const csfRom* r, double* x);
+
+/* x = A^-1 x (m), in place, from the factor L of csf_romMixedFactorInto. */
+void csf_romMixedSolveWith(int m, const double* L, double* x);
 
 #ifdef __cplusplus
 }

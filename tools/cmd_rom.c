@@ -19,6 +19,7 @@
 #include "core_clock.h"
 #include "cs_commands.h"
 #include "cs_opts.h"
+#include "cmd_rom.h"
 #include "cs_signal.h"
 #include "fem_measure.h"
 #include "fem_rom_act.h"
@@ -32,16 +33,9 @@ static const char kUsage[] =
     "  check        the reduced model along the rays of a snapshot directory against the FE\n"
     "  ecsw-matrix  every element's reduced force at the basis' training snapshots (for\n"
     "               tools/rom_ecsw.py)\n"
+    "  modes        the tangents of the FE and of the reduced model at a pressure (for\n"
+    "               tools/rom_modes.py: the first eigenfrequencies)\n"
     "Run 'crawlsim rom <subcommand> --help' for its options.\n";
-
-/* the options every subcommand builds the actuator from (as crawlsim bend) */
-#define ROM_OPT_ACTUATOR                                                                        \
-  {"--actuator", "leg|baseline|fig1", "leg",                                                    \
-   "the actuator preset (robot/robot_actuator.h) the FE model is built from"}
-#define ROM_OPT_SET                                                                             \
-  {"--set", "NAME=VALUE", "none",                                                               \
-   "change one actuator parameter after the preset (repeatable, at most 32; the names of "      \
-   "crawlsim bend --set)"}
 
 static const csxOpt kSnapOpts[] = {
     {"--out", "DIR", "rom_snapshots",
@@ -104,13 +98,14 @@ static const csxOptTable kEcswTable = {
     "Every element's reduced force at each training snapshot of the basis file (rows snapshot x "
     "coordinate, a column per element; one matrix for the Tet10s, /A_tet, one for the fibres, "
     "/A_fibre; the chambers' pressure loads are exact and not fitted), for tools/rom_ecsw.py's "
-    "NNLS.",
+    "NNLS. A mixed basis (pressure modes P, m of them) adds to each snapshot's Tet10 rows the "
+    "element's constraint share P_e (v_e - V_e), and /A_tet_pressure holds each Tet10's share of "
+    "the pressure matrix, so that the weights keep the reduced pressures.",
     kEcswOpts, CSX_NOPT(kEcswOpts), NULL};
 
-enum { MAX_SETS = 32 };
 
 /* one more repeatable value (--set, --ray) into list[*n]; 1 after one error line when full */
-static int pushValue(const char* what, const char* v, const char** list, int* n, int max) {
+int csx_romPushValue(const char* what, const char* v, const char** list, int* n, int max) {
   if (*n == max) {
     fprintf(stderr, "crawlsim rom: more than %d %s options\n", max, what);
     return 1;
@@ -134,13 +129,13 @@ static int knownRay(const char* name) {
 }
 
 /* an operand where a subcommand takes none: one error line */
-static int unexpected(const csxOptTable* t, const char* a) {
+int csx_romUnexpected(const csxOptTable* t, const char* a) {
   fprintf(stderr, "crawlsim %s: unexpected argument '%.200s' (see crawlsim %s --help)\n", t->cmd,
           a, t->cmd);
   return 1;
 }
 
-static int parseNumber(const char* flag, const char* v, double lo, double hi, double* out) {
+int csx_romParseNumber(const char* flag, const char* v, double lo, double hi, double* out) {
   char* end;
   errno = 0;
   double x = strtod(v, &end);
@@ -176,7 +171,7 @@ static int actuatorFromArgs(const char* name, const char* const* sets, int nset,
 /* the reduced actuator on the snapshots' FE model (csf_romSnapSetup's: every chamber tagged,
  * the symmetric mesh of the basis' l_soft; gmsh's files under work/stem); 1 after one error
  * line */
-static int romOpen(const char* actname, const char* const* sets, int nset, const char* basis,
+int csx_romOpen(const char* actname, const char* const* sets, int nset, const char* basis,
                    const char* weights, const char* work, const char* stem_name,
                    csrActuator* act, csfRomActuator* ra) {
   if (actuatorFromArgs(actname, sets, nset, 0, act)) {
@@ -218,7 +213,7 @@ static int cmdSnapshots(int argc, char** argv) {
   csx_signalInstall();
   const char* dir = "rom_snapshots";
   const char* actname = "leg";
-  const char* sets[MAX_SETS];
+  const char* sets[CSX_ROM_MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, list = 0, threads = 0;
   csfRomSnapSettings ss = csf_romSnapDefault();
@@ -232,7 +227,7 @@ static int cmdSnapshots(int argc, char** argv) {
       return end;
     }
     if (k == CSX_OPT_OPERAND) {
-      return unexpected(&kSnapTable, it.value);
+      return csx_romUnexpected(&kSnapTable, it.value);
     }
     const char* a = it.opt->name, *v = it.value;
     int bad = 0;
@@ -245,17 +240,17 @@ static int cmdSnapshots(int argc, char** argv) {
         fprintf(stderr, "crawlsim rom: %s\n", terr.msg);
       }
     } else if (csx_optIs(it.opt, "--mesh-size")) {
-      bad = parseNumber(a, v, 0.5, 20, &ss.mesh_size);
+      bad = csx_romParseNumber(a, v, 0.5, 20, &ss.mesh_size);
     } else if (csx_optIs(it.opt, "--newton-rtol")) {
-      bad = parseNumber(a, v, 1e-12, 1e-3, &ss.newton_rtol);
+      bad = csx_romParseNumber(a, v, 1e-12, 1e-3, &ss.newton_rtol);
     } else if (csx_optIs(it.opt, "--out")) {
       dir = v;
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--ray")) {
-      bad = !knownRay(v) || pushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
+      bad = !knownRay(v) || csx_romPushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
     } else if (csx_optIs(it.opt, "--set")) {
-      bad = pushValue("--set", v, sets, &nset, MAX_SETS);
+      bad = csx_romPushValue("--set", v, sets, &nset, CSX_ROM_MAX_SETS);
     }
     if (bad) {
       return 1;
@@ -377,6 +372,7 @@ static int cmdSnapshots(int argc, char** argv) {
 /* one ray of the reduced model against the FE's file; returns the worst errors */
 typedef struct CheckErr_ {
   double bend_deg, bend_rel, tip_mm, vol_rel, wall;
+  long newton; /* reduced Newton iterations of the ray */
   int ok, failed;
 } CheckErr;
 
@@ -389,6 +385,7 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
   memset(ra->tip_force, 0, sizeof ra->tip_force);
   memset(ra->q_conv, 0, (size_t)ra->rom->n * sizeof(double));
   const double t0 = csu_wallSeconds();
+  const long it0 = ra->n_newton;
   ce->ok = 1;
   for (int k = 0; k < sf->m; k++) {
     const double t = sf->t[k];
@@ -438,11 +435,12 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
            100 * rb[1], 100 * rb[2], et, 100 * vmax);
   }
   ce->wall = csu_wallSeconds() - t0;
+  ce->newton = ra->n_newton - it0;
 }
 
 static int cmdCheck(int argc, char** argv) {
   const char* dir = NULL, *basis = NULL, *weights = NULL, *actname = "leg";
-  const char* sets[MAX_SETS];
+  const char* sets[CSX_ROM_MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, all = 0;
   csxOptIter it;
@@ -453,7 +451,7 @@ static int cmdCheck(int argc, char** argv) {
       return end;
     }
     if (k == CSX_OPT_OPERAND) {
-      return unexpected(&kCheckTable, it.value);
+      return csx_romUnexpected(&kCheckTable, it.value);
     }
     const char* v = it.value;
     int bad = 0;
@@ -468,9 +466,9 @@ static int cmdCheck(int argc, char** argv) {
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--ray")) {
-      bad = !knownRay(v) || pushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
+      bad = !knownRay(v) || csx_romPushValue("--ray", v, pick, &npick, CSF_ROM_MAX_RAYS);
     } else if (csx_optIs(it.opt, "--set")) {
-      bad = pushValue("--set", v, sets, &nset, MAX_SETS);
+      bad = csx_romPushValue("--set", v, sets, &nset, CSX_ROM_MAX_SETS);
     }
     if (bad) {
       return 1;
@@ -483,7 +481,7 @@ static int cmdCheck(int argc, char** argv) {
   csrActuator act;
   csfRomActuator ra;
   const double t0 = csu_wallSeconds();
-  if (romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
+  if (csx_romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
     return 1;
   }
   const double L = act.S[0] + act.S[1] + act.S[2] + act.LS[0] + act.LS[1];
@@ -516,11 +514,12 @@ static int cmdCheck(int argc, char** argv) {
     fe_wall += sf.wall;
     rom_wall += ce.wall;
     printf("crawlsim rom: ray %-10s (%s): worst bend %.3g deg (%.3g %%), tip %.3g mm (%.3g %% of "
-           "L), volumes %.3g %%: %s; reduced %.2f s, FE %.0f s\n", sf.ray.name,
+           "L), volumes %.3g %%: %s; reduced %.2f s (%ld Newton iterations, %.3g ms each), FE "
+           "%.0f s\n", sf.ray.name,
            sf.ray.kind == CSF_ROM_TEST ? "held out" : "trained", ce.bend_deg, 100 * ce.bend_rel,
            ce.tip_mm, 100 * ce.tip_mm / L, 100 * ce.vol_rel,
            ce.failed ? "FAILED to solve" : ce.ok ? "within the targets" : "outside the targets",
-           ce.wall, sf.wall);
+           ce.wall, ce.newton, ce.newton > 0 ? 1e3 * ce.wall / (double)ce.newton : NAN, sf.wall);
   }
   printf("crawlsim rom: %d rays checked, %d within the targets; reduced %.1f s against the FE's "
          "%.0f s (x%.0f; the FE's under its own run's load)\n", nrun, nok, rom_wall, fe_wall,
@@ -533,7 +532,7 @@ static int cmdCheck(int argc, char** argv) {
 /* the element force matrices of the ECSW fit (tools/rom_ecsw.py) */
 static int cmdEcswMatrix(int argc, char** argv) {
   const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
-  const char* sets[MAX_SETS];
+  const char* sets[CSX_ROM_MAX_SETS];
   int nset = 0;
   csxOptIter it;
   csx_optBegin(&it);
@@ -543,7 +542,7 @@ static int cmdEcswMatrix(int argc, char** argv) {
       return end;
     }
     if (k == CSX_OPT_OPERAND) {
-      return unexpected(&kEcswTable, it.value);
+      return csx_romUnexpected(&kEcswTable, it.value);
     }
     const char* v = it.value;
     if (csx_optIs(it.opt, "--basis")) {
@@ -554,7 +553,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
       work = v;
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
-    } else if (csx_optIs(it.opt, "--set") && pushValue("--set", v, sets, &nset, MAX_SETS)) {
+    } else if (csx_optIs(it.opt, "--set") &&
+               csx_romPushValue("--set", v, sets, &nset, CSX_ROM_MAX_SETS)) {
       return 1;
     }
   }
@@ -566,7 +566,7 @@ static int cmdEcswMatrix(int argc, char** argv) {
   cs_errorClear(&err);
   csrActuator act;
   csfRomActuator ra;
-  if (romOpen(actname, sets, nset, basis, NULL, work, "ecsw_mesh", &act, &ra)) {
+  if (csx_romOpen(actname, sets, nset, basis, NULL, work, "ecsw_mesh", &act, &ra)) {
     return 1;
   }
   const int n = ra.rom->n;
@@ -584,9 +584,10 @@ static int cmdEcswMatrix(int argc, char** argv) {
   /* the bodies and the fibres; the chambers' faces are in closed form (csf_romChamberTensors:
    * exact), so the face set is not fitted */
   for (int s = 0; s < CSF_ROM_SET_FACE && rc == 0; s++) {
-    const size_t rows = (size_t)ns * (size_t)n, cols = (size_t)cnt[s];
+    const int wd = csf_romElementForcesWidth(ra.rom, (csfRomSet)s);
+    const size_t rows = (size_t)ns * (size_t)wd, cols = (size_t)cnt[s];
     double* A = malloc(rows * cols * sizeof(double));
-    double* G = malloc(cols * (size_t)n * sizeof(double));
+    double* G = malloc(cols * (size_t)wd * sizeof(double));
     if (!A || !G) {
       fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
       rc = 1;
@@ -601,8 +602,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
         break;
       }
       for (size_t e = 0; e < cols; e++) {
-        for (int j = 0; j < n; j++) {
-          A[((size_t)k * n + j) * cols + e] = G[e * (size_t)n + j];
+        for (int j = 0; j < wd; j++) {
+          A[((size_t)k * wd + j) * cols + e] = G[e * (size_t)wd + j];
         }
       }
     }
@@ -613,7 +614,35 @@ static int cmdEcswMatrix(int argc, char** argv) {
     }
     free(A), free(G);
   }
+  /* the mixed model's pressure matrix A = sum_e w_e (V_e / kappa) P_e P_e^T, per element (its
+   * lower triangle, mm^3/MPa; constant in q): weights fitted to it as well keep p^ = A^-1 b */
+  const int mp = ra.rom->m;
+  if (mp > 0 && rc == 0) {
+    const size_t rows = (size_t)mp * (size_t)(mp + 1) / 2, cols = (size_t)cnt[0];
+    double* A = malloc(rows * cols * sizeof(double));
+    if (!A) {
+      fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
+      rc = 1;
+    }
+    for (size_t e = 0; rc == 0 && e < cols; e++) {
+      const double* Pe = ra.rom->P + e * (size_t)mp;
+      const double c = ra.fe.model->vol[e] / ra.fe.model->mat.kappa;
+      size_t row = 0;
+      for (int i = 0; i < mp; i++) {
+        for (int j = 0; j <= i; j++) {
+          A[row++ * cols + e] = c * Pe[i] * Pe[j];
+        }
+      }
+    }
+    const size_t dims[2] = {rows, cols};
+    if (rc == 0 && cs_h5WriteDoubles(f, "/A_tet_pressure", 2, dims, A, &err) != CS_OK) {
+      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+      rc = 1;
+    }
+    free(A);
+  }
   if (f) {
+    cs_h5AttrDouble(f, "/", "m", mp, &err);
     cs_h5AttrString(f, "/", "format", "crawlsim-rom-ecsw-matrix 1", &err);
     cs_h5AttrString(f, "/", "basis", basis, &err);
     cs_h5AttrDouble(f, "/", "n", n, &err);
@@ -624,8 +653,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
     }
   }
   if (rc == 0) {
-    printf("crawlsim rom: ecsw-matrix: %d snapshots x %d coordinates over %d Tet10 and %d fibre "
-           "elements -> %s\n", ns, n, cnt[0], cnt[1], out);
+    printf("crawlsim rom: ecsw-matrix: %d snapshots x %d coordinates (%d pressure modes) over %d "
+           "Tet10 and %d fibre elements -> %s\n", ns, n, mp, cnt[0], cnt[1], out);
   }
   free(q), free(p), free(g), free(F);
   csf_romActuatorDestroy(&ra);
@@ -635,7 +664,7 @@ static int cmdEcswMatrix(int argc, char** argv) {
 
 int csx_cmdRom(int argc, char** argv) {
   if (argc < 2) {
-    fprintf(stderr, "crawlsim rom: missing subcommand (snapshots, check or ecsw-matrix; see "
+    fprintf(stderr, "crawlsim rom: missing subcommand (snapshots, check, ecsw-matrix or modes; see "
             "crawlsim rom --help)\n");
     return 1;
   }
@@ -652,7 +681,11 @@ int csx_cmdRom(int argc, char** argv) {
   if (!strcmp(argv[1], "ecsw-matrix")) {
     return cmdEcswMatrix(argc - 1, argv + 1);
   }
-  fprintf(stderr, "crawlsim rom: unknown stage '%.64s' (expected snapshots, check or ecsw-matrix; "
+  if (!strcmp(argv[1], "modes")) {
+    return csx_cmdRomModes(argc - 1, argv + 1);
+  }
+  fprintf(stderr, "crawlsim rom: unknown stage '%.64s' (expected snapshots, check, ecsw-matrix or "
+          "modes; "
           "see crawlsim rom --help)\n", argv[1]);
   return 1;
 }

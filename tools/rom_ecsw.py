@@ -18,6 +18,10 @@ the element of the largest gradient, then solves the least squares on the kept s
 back into the feasible region, as Lawson-Hanson does). Writes WEIGHTS.h5 (fem/fem_rom_act.h):
 tet_id, tet_w, fibre_id, fibre_w and per set the kept count and residual. A fibre that is
 slack in every training state has no force there and gets no weight.
+A mixed basis (attribute m > 0: pressure modes, fem/fem_rom.h csfRom.m): each snapshot's Tet10
+rows also hold the elements' constraint shares P_e (v_e - V_e), and /A_tet_pressure each Tet10's
+share of the pressure matrix A; both are fitted with the forces (each its own unit-norm block),
+so the hyper-reduced p^ = A_w^-1 b_w stays the unreduced one on the training states.
 """
 import argparse
 import os
@@ -79,19 +83,39 @@ def main():
     with h5py.File(a.matrix, "r") as f:
         n = int(f.attrs["n"])
         ns = int(f.attrs["nsnap"])
+        mp = int(f.attrs["m"]) if "m" in f.attrs else 0
         for key, name in (("tet", "A_tet"), ("fibre", "A_fibre"), ("face", "A_face")):
             if name not in f:
                 continue  # the chambers' faces: in closed form on the C side, not fitted
             A = f[name][...]
+            # a mixed basis: each snapshot's Tet10 rows are n forces and m constraint shares
+            blocks = [n, mp] if key == "tet" and mp > 0 else [n]
+            wd = sum(blocks)
+            if key == "tet" and mp > 0:
+                # and the pressure matrix A = sum_e (V_e/kappa) P_e P_e^T, once (constant in q)
+                A = np.vstack([A, f["A_tet_pressure"][...]])
+                blocks_extra = A.shape[0] - ns * wd
+            else:
+                blocks_extra = 0
             cols = np.flatnonzero(np.abs(A).sum(axis=0) > 0)  # faces never loaded drop out
             A = A[:, cols]
             b = A.sum(axis=1)
-            # each snapshot's block of n rows at unit norm
+            # each snapshot's block of forces (and of constraint shares) at unit norm, so every
+            # snapshot counts alike and forces (N) and volumes (mm^3) are commensurate; the
+            # pressure matrix as one block
+            spans = []
             for k in range(ns):
-                s = np.linalg.norm(b[k * n:(k + 1) * n])
+                o = k * wd
+                for nb in blocks:
+                    spans.append((o, o + nb))
+                    o += nb
+            if blocks_extra:
+                spans.append((ns * wd, ns * wd + blocks_extra))
+            for lo, hi in spans:
+                s = np.linalg.norm(b[lo:hi])
                 if s > 0:
-                    A[k * n:(k + 1) * n] /= s
-                    b[k * n:(k + 1) * n] /= s
+                    A[lo:hi] /= s
+                    b[lo:hi] /= s
             t0 = time.time()
             w, rel = nnls_tol(A, b, a.tol)
             sel = np.flatnonzero(w > 0)

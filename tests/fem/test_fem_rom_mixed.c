@@ -508,6 +508,128 @@ static void test_mixed_residual_and_tangent_against_p2p0_and_finite_differences(
   blockDestroy(&b);
 }
 
+/* The mixed model's ECSW rows (csf_romElementForces, n + m per Tet10): their column sums are the
+ * unreduced residual and b = A p^; every Tet10 at weight 1 in another order is the unreduced
+ * model; on a hyper-reduced set (half the Tet10s, uneven weights) r and K stay conservative: K
+ * equals r's central differences and is symmetric */
+static void test_mixed_ecsw_rows_sum_to_the_model_and_weights_keep_the_tangent_exact(void) {
+  Block b;
+  blockCreate(&b, 1, 3, 4.0, 50.0);
+  const csfModel* m = b.m;
+  const int n = 5, mp = 4, ntet = m->mesh->ntet, wd = n + mp;
+  double* V = randomBasis(m, n, 11, 0.05);
+  double* P = malloc((size_t)ntet * mp * sizeof(double));
+  srand(5);
+  for (int i = 0; i < ntet * mp; i++) {
+    P[i] = (double)rand() / RAND_MAX - 0.3;
+  }
+  csError err = {0};
+  csfRom* r = csf_romCreate(m, n, V, &err);
+  CS_EXPECT(csf_romSetPressureBasis(r, mp, P, &err) == CS_OK);
+  CS_EXPECT(csf_romElementForcesWidth(r, CSF_ROM_SET_TET) == wd);
+  CS_EXPECT(csf_romElementForcesWidth(r, CSF_ROM_SET_FIBRE) == n);
+  csfRomData* d = csf_romDataCreate(r, &err);
+  d->sync = 1;
+  const double q[5] = {0.7, -0.5, 0.6, -0.2, 0.4};
+  memcpy(d->q, q, sizeof q);
+  csfRomLoad ld = {NULL, {0, 0, 0}, NULL}; /* no load: r is the Tet10s' internal force */
+  CS_EXPECT(csf_romEvaluate(r, d, &ld, 1) == 0);
+  double r_all[5], ph[4], K_all[25];
+  memcpy(r_all, d->r, sizeof r_all);
+  memcpy(ph, d->ph, sizeof ph);
+  memcpy(K_all, d->K, sizeof K_all);
+  double* G = malloc((size_t)ntet * wd * sizeof(double));
+  CS_EXPECT(csf_romElementForces(r, d, &ld, CSF_ROM_SET_TET, G) == 0);
+  double sr[5] = {0}, sb[4] = {0}, Ab[4] = {0};
+  for (int e = 0; e < ntet; e++) {
+    for (int j = 0; j < n; j++) {
+      sr[j] += G[(size_t)e * wd + j];
+    }
+    for (int i = 0; i < mp; i++) {
+      sb[i] += G[(size_t)e * wd + n + i];
+      /* A p^ with A = sum_e (V_e / kappa) P_e P_e^T, from its definition */
+      for (int j = 0; j < mp; j++) {
+        Ab[i] += m->vol[e] / m->mat.kappa * P[(size_t)e * mp + i] * P[(size_t)e * mp + j] * ph[j];
+      }
+    }
+  }
+  double er = 0, mr = 0, eb = 0, mb = 0;
+  for (int j = 0; j < n; j++) {
+    er = fmax(er, fabs(sr[j] - r_all[j]));
+    mr = fmax(mr, fabs(r_all[j]));
+  }
+  for (int i = 0; i < mp; i++) {
+    eb = fmax(eb, fabs(sb[i] - Ab[i]));
+    mb = fmax(mb, fabs(Ab[i]));
+  }
+  printf("  ECSW rows: sum of the force rows - r %.2e of %.2e, sum of the constraint rows - "
+         "A p^ %.2e of %.2e\n", er, mr, eb, mb);
+  /* the same sums regrouped (and A p^ = b through a Cholesky solve of m = 4): round-off */
+  CS_EXPECT(mr > 0 && mb > 0);
+  CS_EXPECT_NEAR(er / mr, 0.0, 1e-12, 0);
+  CS_EXPECT_NEAR(eb / mb, 0.0, 1e-10, 0);
+  /* every Tet10 at weight 1, in reversed order: the unreduced model */
+  int* idx = malloc((size_t)ntet * sizeof(int));
+  double* w = malloc((size_t)ntet * sizeof(double));
+  for (int e = 0; e < ntet; e++) {
+    idx[e] = ntet - 1 - e, w[e] = 1.0;
+  }
+  CS_EXPECT(csf_romSetWeights(r, CSF_ROM_SET_TET, ntet, idx, w, &err) == CS_OK);
+  CS_EXPECT(csf_romEvaluate(r, d, &ld, 1) == 0);
+  double e1 = 0, ek1 = 0, mk = 0;
+  for (int j = 0; j < n; j++) {
+    e1 = fmax(e1, fabs(d->r[j] - r_all[j]));
+  }
+  for (int i = 0; i < n * n; i++) {
+    ek1 = fmax(ek1, fabs(d->K[i] - K_all[i]));
+    mk = fmax(mk, fabs(K_all[i]));
+  }
+  printf("  every Tet10 at weight 1 (reversed): |r - r_all| %.2e, |K - K_all| %.2e of %.2e\n",
+         e1 / mr, ek1, mk);
+  CS_EXPECT_NEAR(e1 / mr, 0.0, 1e-12, 0);
+  CS_EXPECT_NEAR(ek1 / mk, 0.0, 1e-12, 0);
+  /* half the Tet10s with weights in [0.5, 2.5): r changes, K stays its exact derivative */
+  int nk = 0;
+  for (int e = 0; e < ntet; e += 2) {
+    idx[nk] = e, w[nk] = 0.5 + 2.0 * rand() / RAND_MAX;
+    nk++;
+  }
+  CS_EXPECT(csf_romSetWeights(r, CSF_ROM_SET_TET, nk, idx, w, &err) == CS_OK);
+  CS_EXPECT(csf_romEvaluate(r, d, &ld, 1) == 0);
+  double K[25], rp[5], dr = 0;
+  memcpy(K, d->K, sizeof K);
+  for (int j = 0; j < n; j++) {
+    dr = fmax(dr, fabs(d->r[j] - r_all[j]));
+  }
+  mk = 0;
+  for (int i = 0; i < n * n; i++) {
+    mk = fmax(mk, fabs(K[i]));
+  }
+  const double h = 1e-6; /* as the test above */
+  double efd = 0, asym = 0;
+  for (int j = 0; j < n; j++) {
+    d->q[j] = q[j] + h;
+    csf_romEvaluate(r, d, &ld, 0);
+    memcpy(rp, d->r, sizeof rp);
+    d->q[j] = q[j] - h;
+    csf_romEvaluate(r, d, &ld, 0);
+    d->q[j] = q[j];
+    for (int i = 0; i < n; i++) {
+      efd = fmax(efd, fabs((rp[i] - d->r[i]) / (2 * h) - K[i * n + j]));
+      asym = fmax(asym, fabs(K[i * n + j] - K[j * n + i]));
+    }
+  }
+  printf("  %d of %d Tet10s kept, uneven weights: r moved %.2e of %.2e (the weights act); max |K - "
+         "K_fd| / max |K| = %.2e, asymmetry %.2e\n", nk, ntet, dr, mr, efd / mk, asym / mk);
+  CS_EXPECT(dr > 1e-3 * mr);
+  CS_EXPECT_NEAR(efd / mk, 0.0, 1e-6, 0);
+  CS_EXPECT_NEAR(asym / mk, 0.0, 1e-12, 0);
+  free(G), free(idx), free(w), free(V), free(P);
+  csf_romDataDestroy(d);
+  csf_romDestroy(r);
+  blockDestroy(&b);
+}
+
 /* The full displacement basis (every free dof) and P = I: the reduced Newton lands on the FE's
  * equilibrium (the same nearly incompressible block, gravity across) */
 static void test_full_bases_reproduce_the_fe_solution(void) {
@@ -556,6 +678,7 @@ static void test_full_bases_reproduce_the_fe_solution(void) {
 
 int main(void) {
   CS_RUN(test_mixed_residual_and_tangent_against_p2p0_and_finite_differences);
+  CS_RUN(test_mixed_ecsw_rows_sum_to_the_model_and_weights_keep_the_tangent_exact);
   CS_RUN(test_full_bases_reproduce_the_fe_solution);
 
   CS_RUN(test_displacement_pod_locks_and_the_mixed_model_does_not);

@@ -65,6 +65,11 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom check --snapshots .", "needs --snapshots DIR and --basis FILE");
   expectRefused("rom check --snapshots . --basis romcli_missing.h5", "romcli_missing.h5");
   expectRefused("rom ecsw-matrix --basis romcli_missing.h5 --out x.h5", "romcli_missing.h5");
+  expectRefused("rom modes --out x.h5", "needs --basis FILE and --out FILE");
+  expectRefused("rom modes --basis x.h5 --out x.h5 --pressure 0.9", "--pressure '0.9'");
+  expectRefused("rom modes --basis x.h5 --out x.h5 --ray NOPE", "--ray 'NOPE': no such ray");
+  expectRefused("rom modes --basis romcli_missing.h5 --out x.h5", "romcli_missing.h5");
+  expectRefused("rom modes --presure 0.1", "did you mean --pressure?");
   expectRefused("bend --model rom --p-max 0.1 --out romcli.h5", "--rom-basis");
   expectRefused("bend --model rom --rom-basis romcli_missing.h5 --out romcli.h5",
                 "romcli_missing.h5");
