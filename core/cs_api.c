@@ -158,7 +158,9 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
   cs_modelStanceCheck(m, cs_robotMass(d), &load, &pcr);
   logLine(def, "stance check: %.2f N per leg on half the legs vs sway-buckling load %.2f N per "
         "leg (%.0f %%)%s", load, pcr, 100 * load / pcr,
-        load > 0.5 * pcr ? ": expect the stance legs to sway and fold" : "");
+        load > 0.5 * pcr ? ": bent stance legs will sway and fold; nearly straight ones, six "
+                           "or more down, can stand (docs/studies/earth_gait.md)"
+                         : "");
 }
 
 
