@@ -24,7 +24,9 @@
  * the model itself (Θ grows monotonically with p): inside the sweep when the sweep reaches DEG,
  * otherwise up to max(p-max, kUntilCeilingMPa); if Θ stays below DEG there, the result is NaN
  * and a line says so. Models are dispatched in one place, bendModelEvaluator(); a model level
- * that lands adds its branch there (and fills mesh size / element counts in BendRun). */
+ * that lands adds its branch there (and fills mesh size / element counts in BendRun). The
+ * mesh-free models' points and the sweep's grid are the library's (core/cs_bend.h), the same
+ * code as the public cs_bend; this file adds the options, the file, the table and the search. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
