@@ -4,6 +4,7 @@
  * loop with the chamber pressures set between steps or by a controller callback.
  *
  * Owns: csRunDef (everything `crawlsim run` takes; docs/reference/commands.md), csRunResult,
+ * csBendDef (one actuator's bend by the mesh-free models; core/cs_bend.c),
  * the opaque csSim (a model, constant during a run, and its data, the state a run changes),
  * csController. Implemented in core/cs_api.c over the driver (sim_model.h).
  *
@@ -221,6 +222,53 @@ CS_API int cs_simStateSize(const csSim* s);
 CS_API void cs_simStateGet(const csSim* s, double* x);
 /* CS_ERR_ARG (nothing changes) if x is not a state of this simulation; clears a failure */
 CS_API csStatus cs_simStateSet(csSim* s, const double* x, csError* err);
+
+/* ---- one actuator bent (what `crawlsim bend --model analytic|rod` computes) ---------------
+ * The listed chambers of all three segments of one actuator at equal pressure p = 0, p_step,
+ * ... up to p_max (p_max itself always the last row), by the analytic model (paper Eqs. 1-11)
+ * or the Cosserat rod with the calibration and rule `bend --model rod` takes (the rod is
+ * solved statically at each row, continued from the last, gravity off). The FE models (fe,
+ * rom) are only in `crawlsim bend`: libcrawlsim does not link the FE (fem/). Start from
+ * cs_defaultBendDef(); strings NULL and numbers NaN mean the default; messages name the `bend`
+ * option a field mirrors (`p_max` is --p-max). Units: mm, MPa, deg, N. */
+typedef struct csBendDef {
+  const char* model;         /* "analytic" (default) | "rod" */
+  const char* actuator;      /* preset "fig1" | "baseline" | "leg"; NULL: baseline (analytic),
+                                leg (rod: its default calibration's) */
+  const char* const* actuator_set; /* n_actuator_set "NAME=VALUE" strings (`bend --set`),
+                                applied in order after the preset */
+  int n_actuator_set;        /* 0..64 */
+  const char* chambers;      /* inflated chambers (1..4), e.g. "1,2" (NULL: "1,2") */
+  double p_max;              /* MPa, > 0 (NaN: 0.4) */
+  double p_step;             /* MPa, > 0 (NaN: 0.05) */
+  double tip_load[3];        /* rod: a dead tip force, N, base frame (0, 0, 0) */
+  const char* calibration;   /* rod: an FE table or "analytic"; NULL: the mission's table */
+  const char* cal_rule;      /* rod: "prism" | "rbf" | "rbf-pair"; NULL: rbf-pair on the
+                                default table, a given table's own */
+  const char* cal_drop;      /* rod: "stretch", "stiffness", "stretch,stiffness"; NULL or
+                                "none": nothing left out */
+  double mesh_size;          /* rod: element length in mm (NaN: 4 per segment) */
+  const char* data_dir;      /* where the shipped robot/ tables are, as csRunDef.data_dir */
+} csBendDef;
+
+/* Every field at its default (strings NULL, numbers NaN, tip_load 0). */
+CS_API csBendDef cs_defaultBendDef(void);
+
+/* Check every field without reading a file (the model's word, the actuator with its sets,
+ * the chambers, the ranges, the rod-only fields on the rod only): CS_OK or CS_ERR_ARG /
+ * CS_ERR_RANGE with a message naming the option. def NULL: CS_ERR_ARG. */
+CS_API csStatus cs_bendDefValidate(const csBendDef* def, csError* err);
+
+/* The number of rows def's sweep has, or -1 (err filled) if def is not valid. */
+CS_API int cs_bendRowCount(const csBendDef* def, csError* err);
+
+/* Run def's sweep into the caller's arrays of `capacity` rows: pressure [n] (MPa),
+ * angle_deg [n][3] (the segments II1..II3, deg; their sum is the total angle, Eq. 11) and
+ * tip [n][3] (mm, the actuator's base frame); *n the rows written. A capacity below
+ * cs_bendRowCount: CS_ERR_RANGE, nothing computed. A failure part way keeps the rows so far
+ * in the arrays and *n and returns its status with the pressure in the message. */
+CS_API csStatus cs_bend(const csBendDef* def, int capacity, double* pressure, double* angle_deg,
+                        double* tip, int* n, csError* err);
 
 /* "0.1.0 (git ...)": the version every output records */
 CS_API const char* cs_version(void);

@@ -24,7 +24,9 @@
  * the model itself (Θ grows monotonically with p): inside the sweep when the sweep reaches DEG,
  * otherwise up to max(p-max, kUntilCeilingMPa); if Θ stays below DEG there, the result is NaN
  * and a line says so. Models are dispatched in one place, bendModelEvaluator(); a model level
- * that lands adds its branch there (and fills mesh size / element counts in BendRun). */
+ * that lands adds its branch there (and fills mesh size / element counts in BendRun). The
+ * mesh-free models' points and the sweep's grid are the library's (core/cs_bend.h), the same
+ * code as the public cs_bend; this file adds the options, the file, the table and the search. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -34,21 +36,19 @@
 #include "core_text.h"
 #include "cs_commands.h"
 #include "cmd_bend.h"
+#include "cs_bend.h"
 #include "cs_opts.h"
 #include "cmd_fe_threads.h"
 #include "cs_paths.h"
 #include "cs_signal.h"
 #include "robot_actuator.h"
-#include "robot_analytic.h"
 #include "robot_bend_io.h"
 #include "robot_calibration.h"
-#include "robot_rod.h"
 
 static const double kDefaultPMax = 0.4;     /* MPa, the paper's multi-segment sweep (Sec. 3.3) */
 static const double kDefaultPStep = 0.05;   /* MPa, the paper's increment */
 static const double kUntilCeilingMPa = 2.0; /* search ceiling of --until-angle beyond p-max */
 static const double kBisectTolMPa = 1e-9;   /* bisection stops when the bracket is this small */
-static const double kSweepEps = 1e-9;       /* relative slack when p-max is a multiple of step */
 enum { MAX_SETS = 64 };
 
 /* the options of `crawlsim bend`, for parsing and --help (cs_opts.h) */
@@ -115,15 +115,11 @@ static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "p
 typedef csStatus (*BendPointFn)(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
                                 csError* err);
 
-/* the analytic model (robot_analytic.h): three segment equilibria and the FK */
-static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
-                              csError* err);
-/* the Cosserat rod (robot_rod.h): a static equilibrium continued from the last one */
-static csStatus rodPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
-                         csError* err);
-/* build / free the rod of a sweep (run->rod) */
-static int rodSetup(BendRun* run, csError* err);
-static void rodTeardown(BendRun* run);
+/* the mesh-free models (analytic, rod) at p: the library's solver (core/cs_bend.h) */
+static csStatus solverPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
+                            csError* err);
+/* open the solver of run (run->solver): CS_OK or a status with err */
+static csStatus solverOpen(BendRun* run, csBendSolver* solver, csError* err);
 /* "a,b,c,d" -> n finite numbers; 1 with err naming the flag */
 static int parseNumbers(const char* flag, const char* text, int n, double* v, csError* err);
 /* the one place that maps a model level to its evaluator; NULL = not available yet */
@@ -146,181 +142,49 @@ static csStatus findUntilAngle(BendRun* run, BendPointFn eval, const csrBendCurv
                                double* p_out, double* p_searched, csError* err);
 
 
-static csStatus analyticPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
-                              csError* err) {
-  double P[CSR_NSEG * CSR_NCHAMBER]; /* (segment x chamber), row-major */
-  for (int s = 0; s < CSR_NSEG; s++) {
-    for (int j = 0; j < CSR_NCHAMBER; j++) {
-      P[CSR_NCHAMBER * s + j] = run->ratio[j] * p;
-    }
-  }
-  csrSegmentStrain st[CSR_NSEG];
-  csStatus rc = csr_analyticActuator(&run->act, P, st, err);
-  if (rc != CS_OK) {
-    return rc;
-  }
-  for (int s = 0; s < CSR_NSEG; s++) {
-    angle_deg[s] = st[s].theta / CS_DEG;
-  }
-  run->mesh_size = NAN; /* mesh-free */
-  run->n_elements_soft = run->n_elements_fibre = 0;
-  return csr_ccForwardKinematics(&run->act, st, 1, NULL, tip, NULL, err);
-}
-
-
-/* the rod of a bend sweep: its calibration, model and data */
-typedef struct RodBend_ {
-  csrCalibration* cal; /* an FE table, or NULL with the analytic map */
-  csrBendMap map;
-  csrRodCalibration rodcal; /* a mode table's strains and section stiffness (has_rodcal) */
-  int has_rodcal;
-  csrActuator act;     /* the analytic map's actuator */
-  csrRodModel* m;
-  csrRodData* d;
-} RodBend;
-
-
-/* the analytic model as the rod's calibration: bend θ towards φ, stretch λ0 */
-static int analyticBendMap(const void* ctx, int seg, const double p[4], double bend[2],
-                           double* stretch) {
-  const RodBend* rb = ctx;
-  csrSegmentStrain st;
-  if (csr_analyticSegment(&rb->act, seg, p, &st, NULL) != CS_OK) {
-    return -1;
-  }
-  bend[0] = st.theta * cos(st.phi);
-  bend[1] = st.theta * sin(st.phi);
-  *stretch = st.lambda0;
-  return 0;
-}
-
-
-static int rodSetup(BendRun* run, csError* err) {
-  RodBend* rb = calloc(1, sizeof *rb);
-  if (!rb) {
-    cs_errorSet(err, CS_ERR_MEMORY, "out of memory");
-    return 1;
-  }
-  run->rod = rb;
-  rb->act = run->act;
-  if (run->calibration && !strcmp(run->calibration, "analytic")) {
-    rb->map.eval = analyticBendMap;
-    rb->map.ctx = rb;
-    rb->map.name = "analytic";
-    rb->map.p_max = INFINITY;
-  } else {
-    char buf[1024];
-    const char* path =
-        run->calibration ? run->calibration
-                         : csx_dataPath(CSX_MISSION_CALIBRATION, buf, sizeof buf);
-    /* the mission's table under the mission's rule unless told otherwise; a table given by
-     * --calibration alone keeps its own default rule (as crawlsim run) */
-    if (!run->calibration && run->cal_rule < 0) {
-      csrCalRule rule;
-      if (!csr_calRuleParse(CSX_MISSION_CAL_RULE, &rule)) {
-        cs_errorSet(err, CS_ERR_ARG, "unknown default rule '%s'", CSX_MISSION_CAL_RULE);
-        return 1;
-      }
-      run->cal_rule = (int)rule;
-    }
-    csrCalOptions cal_opt = csr_calModelDefaultOptions();
-    cal_opt.rule = (csrCalRule)run->cal_rule;
-    rb->cal = csr_calibrationOpenWith(path, &run->act, run->cal_rule >= 0 ? &cal_opt : NULL, err);
-    if (!rb->cal) {
-      if (!run->calibration) {
-        char cause[sizeof err->msg];
-        memcpy(cause, err->msg, sizeof cause);
-        cs_errorSet(err, err->status, "%.400s (--calibration analytic works for any actuator)",
-                    cause);
-      }
-      return 1;
-    }
-    rb->map = csr_calibrationMap(rb->cal);
-    /* a mode table's probed EI, EA as well as its strains: the rod legs of crawlsim run take
-     * both through csr_calibrationRodFromMap; without this the bend rod kept its default
-     * section and --cal-drop stiffness had nothing to drop */
-    rb->has_rodcal = csr_calibrationRod(rb->cal, &rb->rodcal);
-  }
-  /* the sweep must stay inside the calibrated pressures (they are not extrapolated) */
-  double rmax = 0;
-  for (int j = 0; j < CSR_NCHAMBER; j++) {
-    rmax = fmax(rmax, run->ratio[j]);
-  }
-  if (isfinite(rb->map.p_max)) {
-    if (run->p_max * rmax > rb->map.p_max * (1 + 1e-12)) {
-      cs_errorSet(err, CS_ERR_ARG, "--p-max %g MPa puts a chamber at %g MPa, above the "
-                  "calibration's range (%g MPa, %s): lower --p-max or use --calibration analytic",
-                  run->p_max, run->p_max * rmax, rb->map.p_max, rb->map.name);
-      return 1;
-    }
-    run->p_ceiling = rb->map.p_max / rmax;
-  }
-  /* elements: --mesh-size is the element length in the segments (and joints) */
-  csrRodParams par = csr_rodDefaultParams(&run->act);
-  par.cal_drop = run->cal_drop;
-  if (!isnan(run->mesh_size)) {
-    double smax = fmax(run->act.S[0], fmax(run->act.S[1], run->act.S[2]));
-    double lmax = fmax(run->act.LS[0], run->act.LS[1]);
-    par.elements_per_segment = (int)ceil(smax / run->mesh_size - 1e-9);
-    par.elements_per_joint = (int)ceil(lmax / run->mesh_size - 1e-9);
-    if (par.elements_per_segment > 1000) {
-      cs_errorSet(err, CS_ERR_ARG, "--mesh-size %g mm gives more than 1000 rod elements per "
-                  "segment", run->mesh_size);
-      return 1;
-    }
-  }
-  csrRodSpec sp;
-  memset(&sp, 0, sizeof sp);
-  sp.act = &run->act;
-  sp.params = &par;
-  sp.map = &rb->map;
-  sp.calib = rb->has_rodcal ? &rb->rodcal : NULL;
-  csu_eye3(sp.frame); /* the base frame: the output's tip is in it */
-  sp.weightless = 1;  /* gravity off, as for the other models */
-  rb->m = csr_rodModelCreate(&sp, err);
-  rb->d = rb->m ? csr_rodDataCreate(rb->m, err) : NULL;
-  if (!rb->d) {
-    return 1;
-  }
-  run->mesh_size = fmax(run->act.S[0], fmax(run->act.S[1], run->act.S[2])) /
-                   par.elements_per_segment;
-  run->n_elements_soft = csr_rodElements(rb->m);
+/* the mesh-free models' point: the library's solver (core/cs_bend.h), opened by
+ * csx_bendExecute; what the model used (element length, elements) is recorded for the file */
+static csStatus solverPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
+                            csError* err) {
+  csStatus st = cs_bendSolverPoint(run->solver, p, angle_deg, tip, err);
+  run->mesh_size = run->solver->mesh_size; /* NaN: mesh-free */
+  run->n_elements_soft = run->solver->n_elements;
   run->n_elements_fibre = 0;
-  return 0;
+  return st;
 }
 
 
-static void rodTeardown(BendRun* run) {
-  RodBend* rb = run->rod;
-  if (!rb) {
-    return;
+static csStatus solverOpen(BendRun* run, csBendSolver* solver, csError* err) {
+  csBendSpec sp;
+  memset(&sp, 0, sizeof sp);
+  sp.kind = run->model == BEND_ROD ? CS_BEND_ROD : CS_BEND_ANALYTIC;
+  sp.act = run->act;
+  memcpy(sp.ratio, run->ratio, sizeof sp.ratio);
+  memcpy(sp.tip_load, run->tip_load, sizeof sp.tip_load);
+  sp.p_max = run->p_max;
+  sp.calibration = run->calibration;
+  char buf[1024];
+  sp.default_path = csx_dataPath(CSX_MISSION_CALIBRATION, buf, sizeof buf);
+  sp.cal_rule = run->cal_rule;
+  sp.cal_drop = run->cal_drop;
+  sp.mesh_size = sp.kind == CS_BEND_ROD ? run->mesh_size : NAN;
+  run->solver = solver;
+  csStatus st = cs_bendSolverOpen(solver, &sp, err);
+  if (sp.kind == CS_BEND_ROD) {
+    run->mesh_size = solver->mesh_size;
+    run->n_elements_soft = solver->n_elements;
+    run->n_elements_fibre = 0;
   }
-  csr_rodDataDestroy(rb->d);
-  csr_rodModelDestroy(rb->m);
-  csr_calibrationClose(rb->cal);
-  free(rb);
-  run->rod = NULL;
-}
-
-
-static csStatus rodPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
-                         csError* err) {
-  double P[CSR_NSEG * CSR_NCHAMBER];
-  for (int s = 0; s < CSR_NSEG; s++) {
-    for (int j = 0; j < CSR_NCHAMBER; j++) {
-      P[CSR_NCHAMBER * s + j] = run->ratio[j] * p;
-    }
-  }
-  return csr_rodBendPoint(run->rod->m, run->rod->d, P, run->tip_load, angle_deg, tip, err);
+  run->p_ceiling = solver->p_ceiling;
+  return st;
 }
 
 
 static BendPointFn bendModelEvaluator(BendModel m) {
   switch (m) {
     case BEND_ANALYTIC:
-      return analyticPoint;
     case BEND_ROD:
-      return rodPoint;
+      return solverPoint;
     case BEND_FE:  /* a whole sweep, not point-wise: feSweep() below */
     case BEND_PRB: /* pseudo-rigid-body chain */
     case BEND_ROM: /* reduced FE */
@@ -728,9 +592,11 @@ csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err) {
     return cs_errorSet(err, CS_ERR_ARG, "model '%s' is not available yet",
                        kModelNames[run->model]);
   }
-  if (run->model == BEND_ROD && rodSetup(run, err) != 0) {
-    rodTeardown(run);
-    return err->status != CS_OK ? err->status : CS_ERR_ARG;
+  csBendSolver solver;
+  csStatus ost = solverOpen(run, &solver, err);
+  if (ost != CS_OK) {
+    cs_bendSolverClose(&solver);
+    return ost;
   }
   if (run->model == BEND_ANALYTIC) {
     for (int s = 0; s < CSR_NSEG; s++) {
@@ -749,22 +615,18 @@ csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err) {
   /* open the output first so that an unwritable path fails before any work */
   csH5File* f = cs_h5Create(run->out, err);
   if (!f) {
-    rodTeardown(run);
+    cs_bendSolverClose(&solver);
     return err->status;
   }
 
   /* the sweep: 0, step, ..., and p-max as the last row */
   double t0 = csu_wallSeconds();
-  size_t nstep = (size_t)floor(run->p_max / run->p_step * (1 + kSweepEps));
+  size_t nstep = cs_bendSweepSteps(run->p_max, run->p_step);
+  size_t nrow = cs_bendSweepRows(run->p_max, run->p_step);
   csrBendCurve bc;
   csStatus st = csr_bendCurveInit(&bc, nstep + 2, err);
-  for (size_t i = 0; st == CS_OK && i <= nstep + 1; i++) {
-    /* i x step may round above p-max (6 x 0.05 > 0.3): never beyond it (a calibrated range
-     * ends there) */
-    double p = (i <= nstep) ? fmin((double)i * run->p_step, run->p_max) : run->p_max;
-    if (i == nstep + 1 && p - (double)nstep * run->p_step <= kSweepEps * run->p_max) {
-      break; /* p-max was on the grid */
-    }
+  for (size_t i = 0; st == CS_OK && i < nrow; i++) {
+    double p = cs_bendSweepPressure(run->p_max, run->p_step, i);
     if (*csx_signalFlag()) {
       st = cs_errorSet(err, CS_ERR_INTERRUPTED, "interrupted at p = %.6g MPa (%zu rows kept)",
                        bc.m > 0 ? bc.pressure[bc.m - 1] : 0.0, bc.m);
@@ -806,25 +668,22 @@ csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err) {
     csr_calDropFormat(run->cal_drop, drop, sizeof drop);
     st = cs_h5AttrString(f, "/", "calibration_dropped", drop, err);
     if (st == CS_OK) {
-      st = cs_h5AttrString(f, "/", "calibration", run->rod->map.name ? run->rod->map.name : "?",
-                           err);
+      st = cs_h5AttrString(f, "/", "calibration", solver.map.name ? solver.map.name : "?", err);
     }
     if (st == CS_OK) {
       st = cs_h5AttrString(f, "/", "calibration_rule",
-                           run->rod->cal ? csr_calibrationRuleName(run->rod->cal) : "none", err);
+                           cs_bendSolverRuleName(&solver), err);
     }
     if (st == CS_OK) {
       st = cs_h5AttrString(f, "/", "calibration_stiffness",
-                           run->rod->has_rodcal && !(run->cal_drop & CSR_CAL_DROP_STIFFNESS)
-                               ? "probed"
-                               : "default",
+                           cs_bendSolverProbedStiffness(&solver) ? "probed" : "default",
                            err);
     }
   }
   st = csx_bendFileClose(f, kModelNames[run->model], &bc, st, err);
   if (st != CS_OK) {
     csr_bendCurveFree(&bc);
-    rodTeardown(run);
+    cs_bendSolverClose(&solver);
     return st;
   }
   csx_bendResultFill(run, &bc, res);
@@ -836,10 +695,8 @@ csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err) {
     fprintf(run->table, "rod: %d elements (%.4g mm in the segments), calibration %s, rule %s, "
             "section stiffness %s, tip load (%g, %g, %g) N in the base frame, gravity off\n",
             (int)run->n_elements_soft, run->mesh_size,
-            run->rod->map.name ? run->rod->map.name : "?",
-            run->rod->cal ? csr_calibrationRuleName(run->rod->cal) : "none",
-            run->rod->has_rodcal && !(run->cal_drop & CSR_CAL_DROP_STIFFNESS) ? "probed (FE)"
-                                                                           : "default (8 C10 I)",
+            solver.map.name ? solver.map.name : "?", cs_bendSolverRuleName(&solver),
+            cs_bendSolverProbedStiffness(&solver) ? "probed (FE)" : "default (8 C10 I)",
             run->tip_load[0], run->tip_load[1], run->tip_load[2]);
   }
   fprintf(run->table, "%9s %9s %9s %9s %10s %10s %10s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)",
@@ -864,7 +721,7 @@ csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err) {
   }
   fprintf(run->table, "wrote %s (%.3f s)\n", run->out, wall);
   csr_bendCurveFree(&bc);
-  rodTeardown(run);
+  cs_bendSolverClose(&solver);
   return CS_OK;
 }
 

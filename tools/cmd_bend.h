@@ -8,6 +8,7 @@
 
 #include "core_h5.h"
 #include "core_status.h"
+#include "cs_bend.h"
 #include "robot_actuator.h"
 #include "robot_bend_io.h"
 
@@ -35,7 +36,8 @@ typedef struct {
   const char* calibration;    /* --calibration (rod), NULL = default */
   int cal_rule;               /* --cal-rule (rod): csrCalRule of an FE mode table, -1 = default */
   unsigned cal_drop;          /* --cal-drop (rod): CSR_CAL_DROP_* parts left out, 0 = none */
-  struct RodBend_* rod;       /* the rod's model, data and calibration during a rod sweep */
+  csBendSolver* solver;       /* analytic, rod: the library's solver during a sweep
+                                 (core/cs_bend.h) */
   double p_ceiling;           /* MPa: --until-angle searches up to max(p-max, this); NAN: 2 MPa */
   double fibre_size;          /* fe: l_fibre, mm (NAN: the model's default, l_soft / 8) */
   int fibre_split;            /* fe: 1 fibre elements split at element faces, 0 20-node ties,

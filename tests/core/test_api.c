@@ -6,7 +6,8 @@
  *    command leaves the support where it settled;
  *  - failures: a controller that fails, or commands out of range, fail the step and change
  *    nothing; a step after a failure is refused until reset; reset returns to t = 0;
- *  - cs_run without an output file and its result.
+ *  - cs_run without an output file and its result;
+ *  - cs_bend: its grid, the straight actuator at p = 0, bad input refused.
  * Short runs (0.05-0.2 s of prb legs at the shipped step): ~10 s, so it runs under the
  * sanitizers too. */
 #include <math.h>
@@ -323,10 +324,56 @@ static void test_run_without_file(void) {
 }
 
 
+/* cs_bend (the analytic model, milliseconds): the sweep's grid, the unpressurised straight
+ * actuator, a bend that grows with p, and bad input refused with a message, never a crash */
+static void test_bend(void) {
+  csError err;
+  csBendDef d = cs_defaultBendDef();
+  CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_OK);
+  CS_EXPECT(cs_bendDefValidate(NULL, &err) == CS_ERR_ARG && strstr(err.msg, "NULL"));
+  CS_EXPECT(cs_bendRowCount(NULL, NULL) == -1);
+  d.p_max = 0.33; /* off the 0.05 grid: 0, 0.05, ..., 0.3 and 0.33 */
+  int rows = cs_bendRowCount(&d, &err);
+  CS_EXPECT(rows == 8);
+  double p[8], ang[8][3], tip[8][3];
+  int n = -1;
+  CS_EXPECT(cs_bend(&d, 7, p, &ang[0][0], &tip[0][0], &n, &err) == CS_ERR_RANGE && n == 0 &&
+            strstr(err.msg, "capacity"));
+  CS_EXPECT(cs_bend(&d, 8, NULL, &ang[0][0], &tip[0][0], &n, &err) == CS_ERR_ARG);
+  CS_EXPECT(cs_bend(&d, 8, p, &ang[0][0], &tip[0][0], &n, &err) == CS_OK && n == 8);
+  CS_EXPECT(p[0] == 0 && p[7] == 0.33 && fabs(p[6] - 0.3) < 1e-15);
+  /* p = 0: no bend, the tip on the axis e3 */
+  CS_EXPECT(ang[0][0] == 0 && ang[0][1] == 0 && ang[0][2] == 0);
+  CS_EXPECT(fabs(tip[0][0]) < 1e-12 && fabs(tip[0][1]) < 1e-12 && tip[0][2] > 0);
+  for (int i = 1; i < 8; i++) { /* Θ grows with p (chambers 1,2 of every segment) */
+    CS_EXPECT(ang[i][0] + ang[i][1] + ang[i][2] > ang[i - 1][0] + ang[i - 1][1] + ang[i - 1][2]);
+  }
+  const char* sets[] = {"S1=-3"};
+  d = cs_defaultBendDef(); d.model = "fe";
+  CS_EXPECT(cs_bendDefValidate(&d, &err) != CS_OK && strstr(err.msg, "'fe'"));
+  d = cs_defaultBendDef(); d.p_step = 0;
+  CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_RANGE && strstr(err.msg, "--p-step"));
+  d = cs_defaultBendDef(); d.p_max = INFINITY;
+  CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_RANGE && strstr(err.msg, "--p-max"));
+  d = cs_defaultBendDef(); d.chambers = "0";
+  CS_EXPECT(cs_bendDefValidate(&d, &err) != CS_OK && strstr(err.msg, "--chambers"));
+  d = cs_defaultBendDef(); d.actuator_set = sets; d.n_actuator_set = 1;
+  CS_EXPECT(cs_bendDefValidate(&d, &err) != CS_OK && strstr(err.msg, "S1"));
+  d = cs_defaultBendDef(); d.n_actuator_set = 1; /* no strings */
+  CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_ARG && strstr(err.msg, "--set"));
+  d = cs_defaultBendDef(); d.calibration = "analytic";
+  CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_ARG && strstr(err.msg, "--calibration"));
+  d = cs_defaultBendDef(); d.model = "rod"; d.calibration = "/nonexistent/cal.h5"; d.p_max = 0.3;
+  CS_EXPECT(cs_bend(&d, 8, p, &ang[0][0], &tip[0][0], &n, &err) != CS_OK && n == 0 &&
+            strstr(err.msg, "nonexistent"));
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_rundef_validation);
   CS_RUN(test_null_and_bad_files);
+  CS_RUN(test_bend);
   CS_RUN(test_command_and_readouts);
   CS_RUN(test_run_without_file);
   CS_RUN(test_zero_command_stands);

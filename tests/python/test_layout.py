@@ -13,7 +13,8 @@ import pytest
 
 from crawlsim import _lib
 
-STRUCTS = {"csRunDef": _lib.csRunDef, "csRunResult": _lib.csRunResult, "csError": _lib.csError}
+STRUCTS = {"csRunDef": _lib.csRunDef, "csRunResult": _lib.csRunResult,
+           "csBendDef": _lib.csBendDef, "csError": _lib.csError}
 
 
 def c_layout(tmp_path):

@@ -13,10 +13,14 @@ A thin package over the shared library libcrawlsim (core/crawlsim.h) with ctypes
 
     f = crawlsim.read_run("run.h5")                       # any run file, as arrays
 
+    b = crawlsim.bend(model="rod", actuator="leg", chambers="1,2", p_max=0.4, p_step=0.05)
+    b.pressure, b.angle_deg, b.angle_total, b.tip        # one actuator bent, as arrays
+
 Errors (bad input, a failed step, a step after a failure) raise crawlsim.Error carrying the
 C library's one-line message. Manual: docs/reference/python.md.
 """
 
+from .bend import BendResult, bend
 from .errors import Error
 from .results import LEGS, RunFile, heading_deg, read_run, tilt_deg
 from .rundef import RunDef
@@ -41,5 +45,5 @@ def library_path():
     return _lib.lib()._name
 
 
-__all__ = ["Error", "RunDef", "RunFile", "RunResult", "Sim", "read_run", "run", "heading_deg",
+__all__ = ["BendResult", "bend", "Error", "RunDef", "RunFile", "RunResult", "Sim", "read_run", "run", "heading_deg",
            "tilt_deg", "version", "library_path", "LEGS", "NCHAMBER", "NLEG"]

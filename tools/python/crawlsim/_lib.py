@@ -1,6 +1,6 @@
 """crawlsim._lib: INTERNAL: libcrawlsim found and loaded with ctypes, its types and prototypes.
 
-Owns: the ctypes mirror of core/crawlsim.h (csRunDef, csRunResult, csError, the csController
+Owns: the ctypes mirror of core/crawlsim.h (csRunDef, csRunResult, csBendDef, csError, the csController
 type and every function's argtypes/restype), where the library is looked for, and `check`,
 which turns a failed status into crawlsim.Error with the C message.
 
@@ -127,6 +127,25 @@ class csRunResult(ctypes.Structure):
     ]
 
 
+class csBendDef(ctypes.Structure):
+    """core/crawlsim.h csBendDef (one actuator bent by the analytic model or the rod)."""
+    _fields_ = [
+        ("model", ctypes.c_char_p),
+        ("actuator", ctypes.c_char_p),
+        ("actuator_set", ctypes.POINTER(ctypes.c_char_p)),
+        ("n_actuator_set", ctypes.c_int),
+        ("chambers", ctypes.c_char_p),
+        ("p_max", ctypes.c_double),
+        ("p_step", ctypes.c_double),
+        ("tip_load", ctypes.c_double * 3),
+        ("calibration", ctypes.c_char_p),
+        ("cal_rule", ctypes.c_char_p),
+        ("cal_drop", ctypes.c_char_p),
+        ("mesh_size", ctypes.c_double),
+        ("data_dir", ctypes.c_char_p),
+    ]
+
+
 # int (*csController)(csSim* s, double t, double* p_cmd, void* user); p_cmd as an address
 # (an int in Python: the controller's trampoline keeps one numpy view per address)
 CONTROLLER = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, ctypes.c_void_p,
@@ -161,6 +180,11 @@ PROTOTYPES = {
     "cs_simStateSize": (_I, [_P]),
     "cs_simStateGet": (None, [_P, c_double_p]),
     "cs_simStateSet": (_I, [_P, c_double_p, _E]),
+    "cs_defaultBendDef": (csBendDef, []),
+    "cs_bendDefValidate": (_I, [ctypes.POINTER(csBendDef), _E]),
+    "cs_bendRowCount": (_I, [ctypes.POINTER(csBendDef), _E]),
+    "cs_bend": (_I, [ctypes.POINTER(csBendDef), _I, c_double_p, c_double_p, c_double_p,
+                     ctypes.POINTER(_I), _E]),
     "cs_version": (ctypes.c_char_p, []),
     "cs_statusString": (ctypes.c_char_p, [_I]),
 }

@@ -1,0 +1,84 @@
+/* cs_bend.h: INTERNAL: one actuator's pressure -> bend point by the mesh-free models, the one
+ * implementation behind the public cs_bend (crawlsim.h) and `crawlsim bend --model
+ * analytic|rod` (tools/cmd_bend.c, which adds its file, table, --pressures and --until-angle).
+ *
+ * Owns: csBendSolver (the actuator, the chamber ratios, and for the rod its calibration, model
+ * and data), its open/point/close, and the sweep's pressure grid. The FE models (fe, rom) are
+ * not here: libcrawlsim does not link fem/; they stay in the command (tools/cmd_bend_fe.c).
+ * Units: mm, MPa, deg, N. Messages name the `crawlsim bend` options the fields mirror. */
+#ifndef CS_CORE_CS_BEND_H
+#define CS_CORE_CS_BEND_H
+
+#include <stddef.h>
+
+#include "core_status.h"
+#include "robot_actuator.h"
+#include "robot_calibration.h"
+#include "robot_rod.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* the mission's calibration, the default of the rod (the same table and rule as the rod legs
+ * of the scenes, core/sim_scene.c; docs/notes/calibration.md); its actuator is `leg` and it
+ * holds 0..0.4 MPa */
+#define CS_BEND_CALIBRATION "robot/calibration_fe_leg_modes_sym.h5"
+#define CS_BEND_CAL_RULE "rbf-pair"
+#define CS_BEND_ROD_ACTUATOR "leg"
+
+typedef enum { CS_BEND_ANALYTIC, CS_BEND_ROD } csBendKind;
+
+/* what opens a solver: everything parsed and checked by the caller */
+typedef struct {
+  csBendKind kind;
+  csrActuator act;
+  double ratio[CSR_NCHAMBER]; /* chamber j at ratio[j] x p in all three segments */
+  double tip_load[3];         /* rod: N, base frame */
+  double p_max;               /* MPa: the sweep's top (checked against the calibration) */
+  const char* calibration;    /* rod: a table or "analytic"; NULL: default_path */
+  const char* default_path;   /* rod: CS_BEND_CALIBRATION resolved by the caller */
+  int cal_rule;               /* rod: csrCalRule, -1: the default table's CS_BEND_CAL_RULE, a
+                                 given table's own */
+  unsigned cal_drop;          /* rod: CSR_CAL_DROP_* */
+  double mesh_size;           /* rod: element length in mm, NaN: the rod's default */
+} csBendSpec;
+
+typedef struct {
+  csBendSpec spec;
+  csrActuator map_act;        /* the analytic map's actuator (rod with calibration analytic) */
+  csrCalibration* cal;        /* an FE table, or NULL */
+  csrBendMap map;
+  csrRodCalibration rodcal;   /* a mode table's strains and probed section stiffness */
+  int has_rodcal;
+  csrRodModel* m;
+  csrRodData* d;
+  double mesh_size;           /* what the model uses: mm (NaN for the analytic model) */
+  int n_elements;             /* rod elements (0: analytic) */
+  double p_ceiling;           /* MPa: the calibration's top over the largest ratio (NaN: none) */
+} csBendSolver;
+
+/* Build the solver of spec into *s (zeroed first; the caller owns *s): CS_OK or a status with
+ * err; on failure call cs_bendSolverClose all the same. */
+csStatus cs_bendSolverOpen(csBendSolver* s, const csBendSpec* spec, csError* err);
+/* Per-segment angles angle_deg[3] (deg) and the tip in the base frame tip[3] (mm) at p (MPa);
+ * the rod continues from its last point. */
+csStatus cs_bendSolverPoint(csBendSolver* s, double p, double angle_deg[CSR_NSEG],
+                            double tip[3], csError* err);
+/* Free what open built (NULL-safe, idempotent). */
+void cs_bendSolverClose(csBendSolver* s);
+/* the rod's rule name ("none" without a table) and section stiffness ("probed" | "default") */
+const char* cs_bendSolverRuleName(const csBendSolver* s);
+int cs_bendSolverProbedStiffness(const csBendSolver* s);
+
+/* The sweep p = 0, p_step, ... with p_max itself always the last row: its number of rows, the
+ * number of whole steps (nstep, the rows before a last off-grid p_max are nstep + 1) and row
+ * i's pressure. */
+size_t cs_bendSweepSteps(double p_max, double p_step);
+size_t cs_bendSweepRows(double p_max, double p_step);
+double cs_bendSweepPressure(double p_max, double p_step, size_t i);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_CORE_CS_BEND_H */
