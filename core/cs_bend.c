@@ -48,8 +48,8 @@ static csStatus rodOpen(csBendSolver* s, csError* err) {
      * --calibration alone keeps its own default rule (as crawlsim run) */
     if (!sp->calibration && sp->cal_rule < 0) {
       csrCalRule rule;
-      if (!csr_calRuleParse(CS_BEND_CAL_RULE, &rule)) {
-        return cs_errorSet(err, CS_ERR_ARG, "unknown default rule '%s'", CS_BEND_CAL_RULE);
+      if (!csr_calRuleParse(CS_MISSION_CAL_RULE, &rule)) {
+        return cs_errorSet(err, CS_ERR_ARG, "unknown default rule '%s'", CS_MISSION_CAL_RULE);
       }
       sp->cal_rule = (int)rule;
     }
@@ -218,7 +218,7 @@ static csStatus bendSpec(const csBendDef* def, csBendSpec* sp, double* p_step, c
                        "rod; fe and rom are in `crawlsim bend`)", model);
   }
   int rod = sp->kind == CS_BEND_ROD;
-  const char* actuator = def->actuator ? def->actuator : rod ? CS_BEND_ROD_ACTUATOR : "baseline";
+  const char* actuator = def->actuator ? def->actuator : rod ? CS_MISSION_ACTUATOR : "baseline";
   csStatus st = csr_actuatorPreset(&sp->act, actuator, err);
   if (st != CS_OK) {
     return st;
@@ -343,7 +343,7 @@ csStatus cs_bend(const csBendDef* def, int capacity, double* pressure, double* a
   if (sp.kind == CS_BEND_ROD && !sp.calibration) {
     csRunDef rd = cs_defaultRunDef();
     rd.data_dir = def->data_dir;
-    sp.default_path = cs_runDataPath(&rd, CS_BEND_CALIBRATION, path, sizeof path);
+    sp.default_path = cs_runDataPath(&rd, CS_MISSION_CALIBRATION, path, sizeof path);
   }
   csBendSolver s;
   st = cs_bendSolverOpen(&s, &sp, err);

@@ -15,17 +15,11 @@
 #include "robot_actuator.h"
 #include "robot_calibration.h"
 #include "robot_rod.h"
+#include "sim_scene.h" /* CS_MISSION_*: the rod's default table, rule and actuator */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* the mission's calibration, the default of the rod (the same table and rule as the rod legs
- * of the scenes, core/sim_scene.c; docs/notes/calibration.md); its actuator is `leg` and it
- * holds 0..0.4 MPa */
-#define CS_BEND_CALIBRATION "robot/calibration_fe_leg_modes_sym.h5"
-#define CS_BEND_CAL_RULE "rbf-pair"
-#define CS_BEND_ROD_ACTUATOR "leg"
 
 typedef enum { CS_BEND_ANALYTIC, CS_BEND_ROD } csBendKind;
 
@@ -37,8 +31,8 @@ typedef struct {
   double tip_load[3];         /* rod: N, base frame */
   double p_max;               /* MPa: the sweep's top (checked against the calibration) */
   const char* calibration;    /* rod: a table or "analytic"; NULL: default_path */
-  const char* default_path;   /* rod: CS_BEND_CALIBRATION resolved by the caller */
-  int cal_rule;               /* rod: csrCalRule, -1: the default table's CS_BEND_CAL_RULE, a
+  const char* default_path;   /* rod: CS_MISSION_CALIBRATION resolved by the caller */
+  int cal_rule;               /* rod: csrCalRule, -1: the default table's CS_MISSION_CAL_RULE, a
                                  given table's own */
   unsigned cal_drop;          /* rod: CSR_CAL_DROP_* */
   double mesh_size;           /* rod: element length in mm, NaN: the rod's default */

@@ -22,6 +22,14 @@
 extern "C" {
 #endif
 
+/* The mission's calibration: the 23-mode FE table of the symmetric mesh under the `rbf-pair`
+ * rule, the table and rule that meet every held-out FE case (docs/notes/calibration.md). The
+ * default of the scenes' rod legs (sim_scene.c) and of the rod's bend (cs_bend.c, `crawlsim
+ * bend --model rod`); its actuator is `leg` and it holds 0..0.4 MPa. */
+#define CS_MISSION_CALIBRATION "robot/calibration_fe_leg_modes_sym.h5"
+#define CS_MISSION_CAL_RULE "rbf-pair"
+#define CS_MISSION_ACTUATOR "leg"
+
 typedef enum csConditions_ {
   CS_CONDITIONS_EARTH = 0, /* gravity on every body */
   CS_CONDITIONS_PAPER = 1  /* gravity on the support only; legs keep mass and inertia */

@@ -164,7 +164,7 @@ static csStatus solverOpen(BendRun* run, csBendSolver* solver, csError* err) {
   sp.p_max = run->p_max;
   sp.calibration = run->calibration;
   char buf[1024];
-  sp.default_path = csx_dataPath(CSX_MISSION_CALIBRATION, buf, sizeof buf);
+  sp.default_path = csx_dataPath(CS_MISSION_CALIBRATION, buf, sizeof buf);
   sp.cal_rule = run->cal_rule;
   sp.cal_drop = run->cal_drop;
   sp.mesh_size = sp.kind == CS_BEND_ROD ? run->mesh_size : NAN;
@@ -426,7 +426,7 @@ static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOpt
   /* the actuator: preset, then every --set in order, then a consistency check; the rod's
    * default is its default calibration's actuator, so that `bend --model rod` runs as is */
   if (!actuator) {
-    actuator = run->model == BEND_ROD || run->model == BEND_ROM ? CSX_MISSION_ACTUATOR
+    actuator = run->model == BEND_ROD || run->model == BEND_ROM ? CS_MISSION_ACTUATOR
                                                                 : "baseline";
   }
   if (csr_actuatorPreset(&run->act, actuator, err) != CS_OK) {
