@@ -63,6 +63,20 @@ ap.add_argument('--fracz', default='0.15,0.5,0.15,0.2',
 ap.add_argument('--fract', default='0.15,0.5,0.15,0.2',
                 help='a step of the turn and of the release: lift, swing, hold, land (fractions '
                 'of --Tturn)')
+ap.add_argument('--zgroups', type=int, default=4, choices=(2, 4),
+                help='the lateral crawl: 4, the wave of the diagonal pairs AH, DE, BG, CF (six '
+                'legs stand, --SHZ over three slots); 2, two groups of four, ACFH and BDEG, as '
+                'the flat road walks (four legs stand, --SHZ in their one slot of stance, the '
+                'turn one slot of ACFH stepping aside)')
+ap.add_argument('--Tvent', type=float, default=1.0,
+                help='the last vent of every chamber, s (the run ends one --Tvent after it)')
+ap.add_argument('--xslots', type=int, default=0,
+                help='with --zgroups 2: slots of the walk in two groups after the wave (rule 11)')
+ap.add_argument('--SX', type=float, default=24.0,
+                help='stance stroke of the walk in two groups, mm per slot (rule 11)')
+ap.add_argument('--x2', type=float, default=None,
+                help='with --xslots: the wave ends at the first slot whose planned support x is '
+                'past this, mm (instead of rule 7)')
 ap.add_argument('--walk-slots', type=int, default=None,
                 help='number of walk slots (default: rule 7); 0 tests the turn and the lateral '
                 'crawl alone')
@@ -145,11 +159,25 @@ HEADER = """\
 #     +z: the diagonal pairs AH, DE, BG, CF in turn (a pair's sideways reactions cancel in yaw),
 #     stance feet {SHZ:g} mm sideways over three slots ({Tpz:g} s each). At the end every pair
 #     steps back under its hips and every chamber vents (a release with the feet aside rolled
-#     the support over the +z row: measured on the earlier design).{rule10}
+#     the support over the +z row: measured on the earlier design).{rule10}{rule11}
 """.format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
            '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
            % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
-              a.Tstart, a.Tturn, a.t_place),
+              a.Tstart, a.Tturn, a.t_place) +
+           ('' if a.zgroups == 4 else
+            ';\n#   zgroups 2, xslots %d, x2 %s, SX %g, SHZ %g mm, Tvent %g s'
+            % (a.xslots, a.x2, a.SX, a.SHZ, a.Tvent)),
+           rule11='' if a.zgroups == 4 else
+           '\n# 11. The end in two groups of four (ACFH, BDEG, as the flat road walks; each group\'s '
+           'sideways\n#     reactions cancel in yaw: A, C, F, H stand at x +75, -25, +25, -75 mm): '
+           'from the slot whose\n#     planned support x passes x2 the wave gives way to %d slots '
+           'of a walk in two groups\n#     (%g mm of stroke in a slot of stance; the first slot ACFH '
+           'step ahead, the support\n#     standing); in the last of them the swinging group lands '
+           'aside and the lateral crawl\n#     starts in the next slot, the group standing aside '
+           'pushing %g mm along +z while the\n#     other swings: no turn of its own. Two groups '
+           'stroke more per second than the wave\n#     (a stance of one slot, not three): '
+           'measured %s.'
+           % (a.xslots, a.SX, a.SHZ, 'docs/bench/obstacle_pace_2026-12-06'),
            rule10='' if a.rise_low is None else
            '\n# 10. Past the step the walk comes down: from the first slot in which every foot '
            'stands on\n#     the road, the road legs\' stretch falls linearly from %g to %g mm '
@@ -309,6 +337,8 @@ step(t, a.Tstart, PAIRS[3], {l: 'U0' for l in PAIRS[3]}, {l: need('A', state[l][
 t += a.Tstart
 tw = t
 NS = int(round((a.xturn + a.xdrift) / (a.D / 4))) if a.walk_slots is None else a.walk_slots
+if a.x2 is not None:
+    NS = next(k for k in range(1000) if k * a.D / 4 > a.x2)
 # slot start times: the climb's slots until the support is planned past xclimb (rule 8)
 T0, XP = [tw], [0.0]          # slot starts, planned support x there
 for s in range(NS):
@@ -387,63 +417,133 @@ for l in OFF:
     state[l] = [b, off]
 xend = XP[NS]
 
-# rule 9: the turn into a staggered sideways stance; pair ZPAIRS[j] lifts first in lateral slot
-# j, having pushed j slots: it stands at RZ - SHZ + j STEPZ (pair 0 under its hips)
-comment('# the turn from %.2f s (support planned at x + %.0f mm): the pairs step into a\n'
-        '# staggered sideways stance' % (t, xend))
-side0 = {}
 hN = height(NS)
 if abs(hN - a.rise_z) > 1e-6 and abs(hN - a.rise) > 1e-6:
     sys.exit('obstacle_gait.py: the walk ends at a %g mm stretch: the turn takes --rise or '
              '--rise-z' % hN)
 lturn = 'L15' if abs(hN - a.rise_z) < 1e-6 else 'L40'
-for j, pair in enumerate(ZPAIRS):
-    sz = RZ - SHZ + j * STEPZ if j > 0 else 0.0
-    for l in pair:
-        side0[l] = sz
-    step(t, a.Tturn, pair, {l: need('A', state[l][1]) for l in pair},
-         {l: need('V', side0[l]) for l in pair}, {l: need(lturn, side0[l]) for l in pair},
-         FRACT)
-    t += a.Tturn
-if lturn == 'L40':
-    comment('# all legs down to the %g mm stretch' % a.rise_z)
-    emit(t, 1.0, {l: need('L15', side0[l]) for l in OFF})
-    t += 1.0
-tz = t
-NZS = int(round(a.zend / (a.Dz / 4)))
-comment('# the lateral wave: %d slots of %g s from %.2f s' % (NZS, a.Tpz, tz))
-zs = {l: side0[l] for l in OFF}
-pending = {l: tz for l in OFF}
-for s in range(NZS):
-    t0 = tz + s * a.Tpz
-    pair = ZPAIRS[s % 4]
-    lift, air, lnd = {}, {}, {}
-    for l in pair:
+if a.zgroups == 4:
+    # rule 9: the turn into a staggered sideways stance; pair ZPAIRS[j] lifts first in lateral slot
+    # j, having pushed j slots: it stands at RZ - SHZ + j STEPZ (pair 0 under its hips)
+    comment('# the turn from %.2f s (support planned at x + %.0f mm): the pairs step into a\n'
+            '# staggered sideways stance' % (t, xend))
+    side0 = {}
+    for j, pair in enumerate(ZPAIRS):
+        sz = RZ - SHZ + j * STEPZ if j > 0 else 0.0
+        for l in pair:
+            side0[l] = sz
+        step(t, a.Tturn, pair, {l: need('A', state[l][1]) for l in pair},
+             {l: need('V', side0[l]) for l in pair}, {l: need(lturn, side0[l]) for l in pair},
+             FRACT)
+        t += a.Tturn
+    if lturn == 'L40':
+        comment('# all legs down to the %g mm stretch' % a.rise_z)
+        emit(t, 1.0, {l: need('L15', side0[l]) for l in OFF})
+        t += 1.0
+    tz = t
+    NZS = int(round(a.zend / (a.Dz / 4)))
+    comment('# the lateral wave: %d slots of %g s from %.2f s' % (NZS, a.Tpz, tz))
+    zs = {l: side0[l] for l in OFF}
+    pending = {l: tz for l in OFF}
+    for s in range(NZS):
+        t0 = tz + s * a.Tpz
+        pair = ZPAIRS[s % 4]
+        lift, air, lnd = {}, {}, {}
+        for l in pair:
+            ts = pending.pop(l)
+            off = zs[l] - STEPZ * round((t0 - ts) / a.Tpz)
+            if t0 > ts + 1e-9:
+                emit(ts, t0 - ts, {l: need('L15', off)}, linear=True)
+            lift[l] = need('V', off)
+            air[l] = need('V', RZ)
+            lnd[l] = need('L15', RZ)
+            zs[l] = RZ
+            pending[l] = t0 + a.Tpz
+        step(t0, a.Tpz, pair, lift, air, lnd, FRACZ)
+    t = tz + NZS * a.Tpz
+    for l in OFF:
         ts = pending.pop(l)
-        off = zs[l] - STEPZ * round((t0 - ts) / a.Tpz)
-        if t0 > ts + 1e-9:
-            emit(ts, t0 - ts, {l: need('L15', off)}, linear=True)
-        lift[l] = need('V', off)
-        air[l] = need('V', RZ)
-        lnd[l] = need('L15', RZ)
-        zs[l] = RZ
-        pending[l] = t0 + a.Tpz
-    step(t0, a.Tpz, pair, lift, air, lnd, FRACZ)
-t = tz + NZS * a.Tpz
-for l in OFF:
-    ts = pending.pop(l)
-    off = zs[l] - STEPZ * round((t - ts) / a.Tpz)
-    if t > ts + 1e-9:
-        emit(ts, t - ts, {l: need('L15', off)}, linear=True)
-    zs[l] = off
-comment('# the feet back under the hips, pair by pair, then every chamber vented\n'
-        '# (the paper\'s "release all pressure")')
-for pair in ZPAIRS:
-    step(t, a.Tturn, pair, {l: need('V', zs[l]) for l in pair}, {l: 'straight' for l in pair},
-         {l: 'R15' for l in pair}, FRACT)
-    t += a.Tturn
-emit(t, 1.0, {l: 'straight' for l in OFF})
-t += 1.0
+        off = zs[l] - STEPZ * round((t - ts) / a.Tpz)
+        if t > ts + 1e-9:
+            emit(ts, t - ts, {l: need('L15', off)}, linear=True)
+        zs[l] = off
+    comment('# the feet back under the hips, pair by pair, then every chamber vented\n'
+            '# (the paper\'s "release all pressure")')
+    for pair in ZPAIRS:
+        step(t, a.Tturn, pair, {l: need('V', zs[l]) for l in pair}, {l: 'straight' for l in pair},
+             {l: 'R15' for l in pair}, FRACT)
+        t += a.Tturn
+else:
+    # rule 9 with two groups: the turn is one slot in which ACFH step aside to +RZ (the
+    # support standing on BDEG); then the groups alternate, BDEG first: the group that stands
+    # pushes its feet from +RZ to -RZ (SHZ) in its one slot, the other swings from where it
+    # stands (BDEG: the walk's last stance) to +RZ
+    if lturn != 'L15':
+        sys.exit('obstacle_gait.py: --zgroups 2 needs the walk to end at --rise-z (rule 10)')
+    GZ = ('ACFH', 'BDEG')
+    HX = a.SX / 2
+    gk = skind('G', NS)
+    if a.xslots > 0:
+        # rule 11: the walk's end in two groups (--SX per slot of stance): a slot in which ACFH
+        # step to +SX/2 (the support standing on BDEG), then the groups alternate, BDEG first;
+        # in the last of these slots the swinging group lands aside (+RZ), the lateral stance:
+        # the crawl along +z starts in the next slot without a turn of its own
+        comment('# from %.2f s (support planned at x + %.0f mm): two groups, ACFH step to %g mm'
+                % (t, xend, HX))
+        step(t, a.Tpz, GZ[0], {l: need('A', state[l][1]) for l in GZ[0]},
+             {l: need('A', HX) for l in GZ[0]}, {l: need(gk, HX) for l in GZ[0]}, FRACZ)
+        t += a.Tpz
+        xs = {l: state[l][1] for l in OFF}
+        for l in GZ[0]:
+            xs[l] = HX
+        for k in range(a.xslots):
+            st, sw = GZ[k % 2], GZ[(k + 1) % 2]
+            last = k == a.xslots - 1
+            emit(t, a.Tpz, {l: need(gk, -HX) for l in st}, linear=True)
+            step(t, a.Tpz, sw, {l: need('A', xs[l]) for l in sw},
+                 {l: need('V', RZ) if last else need('A', HX) for l in sw},
+                 {l: need('L15', RZ) if last else need(gk, HX) for l in sw}, FRACZ)
+            for l in st:
+                xs[l] = -HX
+            for l in sw:
+                xs[l] = HX
+            t += a.Tpz
+        g0 = a.xslots % 2          # the group that stands aside: it pushes first
+        for l in OFF:
+            state[l] = ['G', xs[l]]
+    else:
+        comment('# the turn from %.2f s (support planned at x + %.0f mm): ACFH step aside, %g mm'
+                % (t, xend, RZ))
+        step(t, a.Tpz, GZ[0], {l: need('A', state[l][1]) for l in GZ[0]},
+             {l: need('V', RZ) for l in GZ[0]}, {l: need('L15', RZ) for l in GZ[0]}, FRACZ)
+        t += a.Tpz
+        g0 = 0
+    tz = t
+    NZS = int(round(a.zend / (a.Dz / 2)))
+    comment('# the lateral crawl: %d slots of %g s from %.2f s, groups ACFH / BDEG' % (NZS, a.Tpz, tz))
+    zs = {l: RZ for l in GZ[g0]}
+    first = True
+    for s in range(NZS):
+        t0 = tz + s * a.Tpz
+        st, sw = GZ[(g0 + s) % 2], GZ[(g0 + s + 1) % 2]
+        emit(t0, a.Tpz, {l: need('L15', -RZ) for l in st}, linear=True)
+        for l in st:
+            zs[l] = -RZ
+        lift = {l: need('A', state[l][1]) if first else need('V', zs[l]) for l in sw}
+        step(t0, a.Tpz, sw, lift, {l: need('V', RZ) for l in sw},
+             {l: need('L15', RZ) for l in sw}, FRACZ)
+        for l in sw:
+            zs[l] = RZ
+        first = False
+    t = tz + NZS * a.Tpz
+    comment('# the feet back under the hips, group by group, then every chamber vented\n'
+            '# (the paper\'s "release all pressure")')
+    for g in GZ:
+        step(t, a.Tturn, g, {l: need('V', zs[l]) for l in g}, {l: 'straight' for l in g},
+             {l: 'R15' for l in g}, FRACT)
+        t += a.Tturn
+emit(t, a.Tvent, {l: 'straight' for l in OFF})
+t += a.Tvent
 
 w('# per offset r (mm ahead of the hip, negative behind): road stance G (stretched S-shape),\n'
   '# step stance S (vented S-shape), swing top A (12 mm above the vented leg, branch plus);\n'
@@ -470,7 +570,7 @@ for m in moves:
         # so that a leg's consecutive moves meet exactly
         ts, te = round(t0, 4), round(t0 + dur, 4)
         w('move %.4f %.4f %s %s%s\n' % (ts, te - ts, legs, pose, ' linear' if lin else ''))
-w('end %.2f\n' % (t + 1.0))
+w('end %.2f\n' % (t + a.Tvent))
 text = ''.join(out)
 if a.out == '-':
     sys.stdout.write(text)
