@@ -24,7 +24,7 @@ ap.add_argument('--D', type=float, default=59.0,
 ap.add_argument('--xdrift', type=float, default=14.0,
                 help='how far the turn and the lateral crawl carry the support back along x, mm '
                 '(measured): the walk turns this far past xturn (rule 7)')
-ap.add_argument('--Dz', type=float, default=67.5,
+ap.add_argument('--Dz', type=float, default=70.4,
                 help='support advance per lateral cycle, mm (measured): the number of lateral '
                 'slots is zend / (Dz / 4)')
 ap.add_argument('--over', type=float, default=10.0,
@@ -39,11 +39,11 @@ ap.add_argument('--xclimb', type=float, default=130.0,
                 '25 + 10 mm ahead of them: 240 - 75 - 35)')
 ap.add_argument('--t-place', type=float, default=1.8,
                 help='when the front pair steps ahead, s (the walk starts one --Tstart later)')
-ap.add_argument('--Tpz', type=float, default=0.5, help='the lateral crawl\'s slot, s')
+ap.add_argument('--Tpz', type=float, default=0.55, help='the lateral crawl\'s slot, s')
 ap.add_argument('--Tstart', type=float, default=0.8,
                 help='slot of the steps into the walk and into the lateral stance (the support '
                 'standing), s')
-ap.add_argument('--Tturn', type=float, default=0.8,
+ap.add_argument('--Tturn', type=float, default=0.55,
                 help='slot of the steps into and out of the lateral stance (the support '
                 'standing), s')
 ap.add_argument('--rise', type=float, default=40.0,
@@ -55,7 +55,7 @@ ap.add_argument('--rise-low', type=float, default=15.0,
                 'mm (rule 10; --rise keeps the walk up)')
 ap.add_argument('--nlow', type=int, default=4,
                 help='slots over which the walk comes down from --rise to --rise-low (rule 10)')
-ap.add_argument('--SHZ', type=float, default=65.0,
+ap.add_argument('--SHZ', type=float, default=25.0,
                 help='stance stroke of the lateral crawl, mm (the feet move this far sideways '
                 'over three slots)')
 ap.add_argument('--fracz', default='0.15,0.5,0.15,0.2',
@@ -63,20 +63,20 @@ ap.add_argument('--fracz', default='0.15,0.5,0.15,0.2',
 ap.add_argument('--fract', default='0.15,0.5,0.15,0.2',
                 help='a step of the turn and of the release: lift, swing, hold, land (fractions '
                 'of --Tturn)')
-ap.add_argument('--zgroups', type=int, default=4, choices=(2, 4),
+ap.add_argument('--zgroups', type=int, default=2, choices=(2, 4),
                 help='the lateral crawl: 4, the wave of the diagonal pairs AH, DE, BG, CF (six '
                 'legs stand, --SHZ over three slots); 2, two groups of four, ACFH and BDEG, as '
                 'the flat road walks (four legs stand, --SHZ in their one slot of stance, the '
                 'turn one slot of ACFH stepping aside)')
-ap.add_argument('--Tvent', type=float, default=1.0,
+ap.add_argument('--Tvent', type=float, default=0.5,
                 help='the last vent of every chamber, s (the run ends one --Tvent after it)')
-ap.add_argument('--xslots', type=int, default=0,
+ap.add_argument('--xslots', type=int, default=3,
                 help='with --zgroups 2: slots of the walk in two groups after the wave (rule 11)')
-ap.add_argument('--SX', type=float, default=24.0,
+ap.add_argument('--SX', type=float, default=14.0,
                 help='stance stroke of the walk in two groups, mm per slot (rule 11)')
-ap.add_argument('--x2', type=float, default=None,
-                help='with --xslots: the wave ends at the first slot whose planned support x is '
-                'past this, mm (instead of rule 7)')
+ap.add_argument('--x2', type=float, default=540.0,
+                help='the wave ends at the first slot whose planned support x is past this, mm '
+                '(rule 11; 0: rule 7 sets the walk\'s slots)')
 ap.add_argument('--walk-slots', type=int, default=None,
                 help='number of walk slots (default: rule 7); 0 tests the turn and the lateral '
                 'crawl alone')
@@ -114,6 +114,40 @@ RZ = SHZ / 2
 STEP = SH / 3                 # a stance foot's travel per slot relative to its hip (mm)
 STEPZ = SHZ / 3
 
+RULE7 = {4: """\
+#  7. The walk has round((646 + xdrift) / (D / 4)) slots: it turns where the support, at D per
+#     cycle, is xdrift past Table 3's x = 646 mm; the lateral crawl has round(270 / (Dz / 4))
+#     slots.""", 2: """\
+#  7. The wave ends at the first slot whose planned support x passes x2 (rule 11); the lateral
+#     crawl has round(270 / (Dz / 2)) slots, Dz its measured advance per cycle of two slots
+#     (the release included)."""}
+RULE9 = {4: """\
+#  9. The turn: the support stands while the pairs step into a staggered sideways stance
+#     ({turnh}), then the lateral wave along
+#     +z: the diagonal pairs AH, DE, BG, CF in turn (a pair's sideways reactions cancel in yaw),
+#     stance feet {SHZ:g} mm sideways over three slots ({Tpz:g} s each). At the end every pair
+#     steps back under its hips and every chamber vents (a release with the feet aside rolled
+#     the support over the +z row: measured on the earlier design).""", 2: """\
+#  9. The end of the walk and the lateral crawl: rule 11. At the end each group steps back
+#     under its hips and every chamber vents (a release with the feet aside rolled the support
+#     over the +z row: measured on the earlier design)."""}
+RULE11 = """
+# 11. The end in two groups of four, ACFH and BDEG, as the flat road walks (a group's sideways
+#     reactions cancel in yaw: A, C, F, H stand at x +75, -25, +25, -75 mm). From the slot of
+#     rule 7 the wave gives way to one slot in which ACFH step {HX:g} mm ahead of their hips
+#     (the support standing on BDEG), then {xslots} slots in which the groups alternate, the
+#     standing group stroking {SX:g} mm along x in its one slot of stance; the swinging group
+#     of the last of them lands aside ({RZ:g} mm along +z) and the lateral crawl starts in the
+#     next slot, the group standing aside pushing {SHZ:g} mm along +z while the other swings
+#     ({Tpz:g} s slots): no turn of its own. A stance of one slot moves the support more per
+#     second than the wave's stance of three: measured 37-41 mm per slot along x at SX 17-20
+#     and 33-41 mm along z at SHZ 22-32 (the legs' sway and the landing overshoot add to the
+#     stroke; docs/bench/obstacle_pace_2026-12-06)."""
+
+
+TURNH = ('still %g mm up, all legs then come down to a %g mm stretch' % (a.rise, a.rise_z)
+           if a.rise_low is None or abs(a.rise_low - a.rise) < 1e-6 else
+           'at the walk\'s %g mm stretch' % a.rise_low)
 HEADER = """\
 # gaits/obstacle.gait: the obstacle road's gait (paper Sec. 5.2, Fig. 13/14, Table 3), written
 # by tools/obstacle_gait.py (run it again rather than edit this file) with
@@ -147,19 +181,12 @@ HEADER = """\
 #     where it can be (landings missed their plan by up to 23 mm), the hips placed by D per
 #     cycle. A landing within 20 mm of an edge takes the step's leg length (over the road the
 #     foot hangs 40 mm up, carrying nothing until its next step).
-#  7. The walk has round((646 + xdrift) / (D / 4)) slots: it turns where the support, at D per
-#     cycle, is xdrift past Table 3's x = 646 mm; the lateral crawl has round(270 / (Dz / 4))
-#     slots.
+{rule7}
 #  8. The start: the legs stretch (1 s), the front pair steps ahead (the support standing),
 #     then the wave starts with the pairs behind it still under their hips: each stance foot
 #     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
 #     jolt.
-#  9. The turn: the support stands while the pairs step into a staggered sideways stance
-#     ({turnh}), then the lateral wave along
-#     +z: the diagonal pairs AH, DE, BG, CF in turn (a pair's sideways reactions cancel in yaw),
-#     stance feet {SHZ:g} mm sideways over three slots ({Tpz:g} s each). At the end every pair
-#     steps back under its hips and every chamber vents (a release with the feet aside rolled
-#     the support over the +z row: measured on the earlier design).{rule10}{rule11}
+{rule9}{rule10}{rule11}
 """.format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
            '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
            % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
@@ -167,17 +194,10 @@ HEADER = """\
            ('' if a.zgroups == 4 else
             ';\n#   zgroups 2, xslots %d, x2 %s, SX %g, SHZ %g mm, Tvent %g s'
             % (a.xslots, a.x2, a.SX, a.SHZ, a.Tvent)),
+           rule7=RULE7[a.zgroups],
+           rule9=RULE9[a.zgroups].format(turnh=TURNH, SHZ=SHZ, Tpz=a.Tpz),
            rule11='' if a.zgroups == 4 else
-           '\n# 11. The end in two groups of four (ACFH, BDEG, as the flat road walks; each group\'s '
-           'sideways\n#     reactions cancel in yaw: A, C, F, H stand at x +75, -25, +25, -75 mm): '
-           'from the slot whose\n#     planned support x passes x2 the wave gives way to %d slots '
-           'of a walk in two groups\n#     (%g mm of stroke in a slot of stance; the first slot ACFH '
-           'step ahead, the support\n#     standing); in the last of them the swinging group lands '
-           'aside and the lateral crawl\n#     starts in the next slot, the group standing aside '
-           'pushing %g mm along +z while the\n#     other swings: no turn of its own. Two groups '
-           'stroke more per second than the wave\n#     (a stance of one slot, not three): '
-           'measured %s.'
-           % (a.xslots, a.SX, a.SHZ, 'docs/bench/obstacle_pace_2026-12-06'),
+           RULE11.format(HX=a.SX / 2, xslots=a.xslots, SX=a.SX, RZ=SHZ / 2, SHZ=SHZ, Tpz=a.Tpz),
            rule10='' if a.rise_low is None else
            '\n# 10. Past the step the walk comes down: from the first slot in which every foot '
            'stands on\n#     the road, the road legs\' stretch falls linearly from %g to %g mm '
@@ -185,9 +205,6 @@ HEADER = """\
            'landing takes the\n#     stretch of its landing time), as Table 3\'s support comes '
            'down from 40 mm at 14 s to\n#     13 mm at 24 s and 0 at 29 s; the turn then needs '
            'no descent of its own.' % (a.rise, a.rise_low, a.nlow),
-           turnh='still %g mm up, all legs then come down to a %g mm stretch' % (a.rise, a.rise_z)
-           if a.rise_low is None or abs(a.rise_low - a.rise) < 1e-6 else
-           'at the walk\'s %g mm stretch' % a.rise_low,
            Tp=a.Tp, rise=a.rise, step=STEP, SH=SH, risez=a.rise_z, SHZ=SHZ, Tpz=a.Tpz)
 
 out = [HEADER]
@@ -337,7 +354,7 @@ step(t, a.Tstart, PAIRS[3], {l: 'U0' for l in PAIRS[3]}, {l: need('A', state[l][
 t += a.Tstart
 tw = t
 NS = int(round((a.xturn + a.xdrift) / (a.D / 4))) if a.walk_slots is None else a.walk_slots
-if a.x2 is not None:
+if a.x2 is not None and a.x2 > 0:
     NS = next(k for k in range(1000) if k * a.D / 4 > a.x2)
 # slot start times: the climb's slots until the support is planned past xclimb (rule 8)
 T0, XP = [tw], [0.0]          # slot starts, planned support x there
