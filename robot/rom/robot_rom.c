@@ -53,8 +53,9 @@ struct csrRomData_ {
   SUNMatrix A;
   SUNLinearSolver LS;
   void* cvode;
-  long steps, rhs, jacs;
+  long steps, rhs, jacs, restarts;
   int cb_status;
+  int need_reinit;    /* 1: the next advance restarts CVODE (after create, reset, set, failure) */
 };
 
 
@@ -798,6 +799,7 @@ void csr_romReset(const csrRomModel* m, csrRomData* d, double t, const csrBaseSt
   d->t = t;
   d->base = *b;
   d->pt0 = d->pt1 = t;
+  d->need_reinit = 1;
   memset(d->p0, 0, sizeof d->p0);
   memset(d->p1, 0, sizeof d->p1);
 }
@@ -825,7 +827,7 @@ const double* csr_romQdot(const csrRomData* d) { return d->y + d->n; }
 double csr_romTime(const csrRomData* d) { return d->t; }
 
 
-void csr_romStats(const csrRomData* d, long* steps, long* rhs_n, long* jacs) {
+void csr_romStats(const csrRomData* d, long* steps, long* rhs_n, long* jacs, long* restarts) {
   long ns = 0;
   if (d->cvode) {
     CVodeGetNumSteps(d->cvode, &ns);
@@ -833,6 +835,23 @@ void csr_romStats(const csrRomData* d, long* steps, long* rhs_n, long* jacs) {
   *steps = d->steps + ns;
   *rhs_n = d->rhs;
   *jacs = d->jacs;
+  *restarts = d->restarts;
+}
+
+
+/* a hip that starts a step more than this away from where the last one ended (mm, rad) has
+ * jumped (a teleport, a restored driver): CVODE restarts. Smaller differences are the
+ * coupling's normal corrections of the predicted end state (as the rod's, robot_rod_dyn.c) */
+#define CSR_ROM_BASE_JUMP_X 0.1
+#define CSR_ROM_BASE_JUMP_PHI 1e-3
+
+static int baseJumped(const csrBaseState* a, const csrBaseState* b) {
+  double dx[3], Rt[9], Rab[9], phi[3];
+  csu_sub3(dx, a->x, b->x);
+  csu_transpose3(Rt, a->R);
+  csu_mulMat3(Rab, Rt, b->R);
+  csu_mat3ToRotVec(phi, Rab);
+  return !(csu_norm3(dx) <= CSR_ROM_BASE_JUMP_X && csu_norm3(phi) <= CSR_ROM_BASE_JUMP_PHI);
 }
 
 
@@ -845,29 +864,53 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
   const int n = m->n;
   setBase(&d->bm, t, H, b0, b1);
   double P0[3], L0[3];
-  d->base = *b0;
-  csr_romMomentum(m, d, P0, L0);
-  memcpy(d->backup, d->y, 2 * (size_t)n * sizeof(double));
-  long ns = 0;
-  CVodeGetNumSteps(d->cvode, &ns);
-  d->steps += ns;
-  d->cb_status = 0;
-  /* the moment's impulse from zero, its tolerance the averaged wrench's over a 10 mm arm */
-  double* at = N_VGetArrayPointer(d->atol);
-  for (int k = 0; k < 3; k++) {
-    d->y[2 * n + k] = 0;
-    at[2 * n + k] = m->par.atol_wrench * 10.0 * H;
+  {
+    const csrBaseState last = d->base;
+    d->base = *b0;
+    csr_romMomentum(m, d, P0, L0);
+    d->base = last; /* compared with b0 below */
   }
-  if (CVodeReInit(d->cvode, t, d->yv) != CV_SUCCESS ||
-      CVodeSVtolerances(d->cvode, m->par.rtol, d->atol) != CV_SUCCESS ||
-      CVodeSetStopTime(d->cvode, t + H) != CV_SUCCESS) {
-    cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE restart failed at t = %g s", t);
+  memcpy(d->backup, d->y, 2 * (size_t)n * sizeof(double));
+  d->cb_status = 0;
+  const int restart = d->need_reinit || fabs(t - d->t) > 1e-12 * (1 + fabs(t)) ||
+                      baseJumped(&d->base, b0);
+  if (restart) {
+    long ns = 0;
+    CVodeGetNumSteps(d->cvode, &ns);
+    d->steps += ns;
+    d->restarts++;
+    /* the moment's impulse from zero: only its change over an advance is used, and its
+     * absolute value sets the rounding of that change, so a restored state (which does not
+     * hold it) steps bit for bit only from zero */
+    for (int k = 0; k < 3; k++) {
+      d->y[2 * n + k] = 0;
+    }
+    /* the moment impulse's tolerance: the averaged wrench's over a 10 mm arm, for steps of
+     * this H (set at restarts only: CVODE takes tolerances before its first step, its error
+     * weights' data is bound there) */
+    double* at = N_VGetArrayPointer(d->atol);
+    for (int k = 0; k < 3; k++) {
+      at[2 * n + k] = m->par.atol_wrench * 10.0 * H;
+    }
+    if (CVodeReInit(d->cvode, t, d->yv) != CV_SUCCESS ||
+        CVodeSVtolerances(d->cvode, m->par.rtol, d->atol) != CV_SUCCESS) {
+      cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE restart failed at t = %g s", t);
+      return -1;
+    }
+    d->need_reinit = 0;
+  }
+  d->base = *b0;
+  if (CVodeSetStopTime(d->cvode, t + H) != CV_SUCCESS) {
+    cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE refused the stop time %g s", t + H);
     return -1;
   }
+  double I0[3];
+  memcpy(I0, d->y + 2 * n, sizeof I0);
   sunrealtype tret = t;
   const int flag = CVode(d->cvode, t + H, d->yv, &tret, CV_NORMAL);
   if (flag < 0) {
     memcpy(d->y, d->backup, 2 * (size_t)n * sizeof(double));
+    d->need_reinit = 1;
     const int fatal = d->cb_status < 0 || flag == CV_ILL_INPUT || flag == CV_MEM_FAIL ||
                       flag == CV_MEM_NULL;
     char* name = CVodeGetReturnFlagName(flag);
@@ -878,7 +921,9 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
     return fatal ? -1 : 1;
   }
   double Iq[3];
-  memcpy(Iq, d->y + 2 * n, sizeof Iq);
+  for (int k = 0; k < 3; k++) {
+    Iq[k] = d->y[2 * n + k] - I0[k];
+  }
   d->t = t + H;
   d->base = *b1;
   if (w) {
@@ -931,6 +976,7 @@ int csr_romSetState(const csrRomModel* m, csrRomData* d, const double* x) {
   d->pt1 = b[19];
   memcpy(d->p0, b + 20, 12 * sizeof(double));
   memcpy(d->p1, b + 32, 12 * sizeof(double));
+  d->need_reinit = 1;
   /* the reduced FE's states (θ, fibre stress) are synchronised at every evaluation (sync = 1):
    * nothing else to restore */
   return 0;

@@ -109,11 +109,13 @@ void csr_romActuate(csrRomData* d, double t0, const double p0[12], double t1,
  * nodal force); NULL: none. Copied. */
 void csr_romSetDeadLoad(const csrRomModel* m, csrRomData* d, const double* fr);
 
-/* Advance from t to t + H (t must be the data's time) with the hip moving from b0 to b1 (see
- * the base motion above); *w (may be NULL) gets the base wrench averaged over the step. Every
- * step restarts CVODE from the state (so a restored state steps bit for bit as the original:
- * nothing but the state carries over). 0, > 0 recoverable (CVODE's error test or Newton failed;
- * the state is unchanged), < 0 fatal (err says why). */
+/* Advance from t to t + H with the hip moving from b0 to b1 (see the base motion above); *w
+ * (may be NULL) gets the base wrench averaged over the step. CVODE carries its history (order,
+ * step size, Jacobian) from one advance to the next, as the rod's does; it restarts from the
+ * state after create, reset, set and a failed step, and when t is not where the last advance
+ * ended or the hip jumped (> 0.1 mm, > 1e-3 rad): two restores of one state step bit for bit
+ * alike (a restore costs a first-order start and a Jacobian). 0, > 0 recoverable (CVODE's
+ * error test or Newton failed; the state is unchanged), < 0 fatal (err says why). */
 int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
                    const csrBaseState* b0, const csrBaseState* b1, csrWrench* w, csError* err);
 
@@ -132,8 +134,8 @@ int csr_romStateSize(const csrRomModel* m);
 void csr_romGetState(const csrRomModel* m, const csrRomData* d, double* x);
 int csr_romSetState(const csrRomModel* m, csrRomData* d, const double* x);
 
-/* CVODE's counters summed over the data's life: steps, right-hand sides, Jacobians. */
-void csr_romStats(const csrRomData* d, long* steps, long* rhs, long* jacs);
+/* CVODE's counters summed over the data's life: steps, right-hand sides, Jacobians, restarts. */
+void csr_romStats(const csrRomData* d, long* steps, long* rhs, long* jacs, long* restarts);
 
 #ifdef __cplusplus
 }

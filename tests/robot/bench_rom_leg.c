@@ -136,8 +136,8 @@ int main(int argc, char** argv) {
     nstep++;
   }
   const double c = cpu() - c0;
-  long st, nr, nj;
-  csr_romStats(d, &st, &nr, &nj);
+  long st, nr, nj, nre;
+  csr_romStats(d, &st, &nr, &nj, &nre);
   /* the foot: the tip face's mean displacement (tip_unit: nodal weights of a unit traction) */
   double* u = malloc((size_t)ra.fe.model->ndof * sizeof(double));
   csf_romExpand(ra.rom, csr_romQ(d), u);
@@ -148,8 +148,8 @@ int main(int argc, char** argv) {
     }
   }
   printf("%s, H = %g ms, %g s simulated: CPU %.3g s per simulated second (one leg, one core), "
-         "%ld macro steps, %ld CVODE steps, %ld rhs, %ld jacobians\n",
-         swing ? "swing" : "gait", H * 1e3, t, c / t, nstep, st, nr, nj);
+         "%ld macro steps, %ld CVODE steps, %ld rhs, %ld jacobians, %ld restarts\n",
+         swing ? "swing" : "gait", H * 1e3, t, c / t, nstep, st, nr, nj, nre);
   printf("foot displacement (hip frame) %.4f %.4f %.4f mm; wrench f %.5g %.5g %.5g N, m %.5g "
          "%.5g %.5g N mm (weight %.5g N)\n", foot[0], foot[1], foot[2], w.f[0], w.f[1], w.f[2],
          w.m[0], w.m[1], w.m[2], m->mass * 9810.0);

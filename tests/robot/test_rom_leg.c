@@ -585,10 +585,10 @@ static void test_held_base_and_tip_load_settle_on_the_reduced_statics(void) {
     gap = fmax(gap, fabs(q[k] - sd->q[k]));
     scale = fmax(scale, fabs(sd->q[k]));
   }
-  long st, nr, nj;
-  csr_romStats(d, &st, &nr, &nj);
+  long st, nr, nj, nre;
+  csr_romStats(d, &st, &nr, &nj, &nre);
   printf("  statics |q| %.4g; after 30 periods |q - q_static| %.2e (%ld steps, %ld rhs, %ld "
-         "jacobians)\n", scale, gap, st, nr, nj);
+         "jacobians, %ld restarts)\n", scale, gap, st, nr, nj, nre);
   /* critically damped: the transient is below e^{-ω t} (1 + ω t) ~ 1e-79 after 30 periods;
    * what remains is CVODE's rtol 1e-9 */
   CS_EXPECT(gap <= 1e-7 * scale);
@@ -806,8 +806,8 @@ static void test_steadily_spinning_base_wrench_is_the_centripetal_force(void) {
 }
 
 
-/* a state saved mid-motion (pressurised, base moving) and restored into another data steps bit
- * for bit as the original */
+/* a state saved mid-motion (pressurised, base moving) and restored into another data and into
+ * the same steps bit for bit alike, and as the original run to its integration error */
 static void test_restored_state_steps_bit_for_bit(void) {
   Block b;
   blockCreate(&b, 4);
@@ -869,9 +869,16 @@ static void test_restored_state_steps_bit_for_bit(void) {
   }
   CS_EXPECT(memcmp(xa, xb, (size_t)ns * sizeof(double)) == 0);
   CS_EXPECT(memcmp(&wa, &wb, sizeof wa) == 0);
-  /* every advance restarts CVODE from the state: the original run's steps are the same */
-  CS_EXPECT(memcmp(xa, xo, (size_t)ns * sizeof(double)) == 0);
-  CS_EXPECT(memcmp(&wa, &wo, sizeof wa) == 0);
+  /* the original run carried CVODE's history on where the restores restarted it: the same
+   * states to the integration error (rtol 1e-6 of |q|, atol 1e-6) */
+  double dq = 0, qs = 0;
+  for (int k = 1; k <= 2 * b.n; k++) {
+    dq = fmax(dq, fabs(xa[k] - xo[k]));
+    qs = fmax(qs, fabs(xo[k]));
+  }
+  printf("  restored against the original run: |dy| %.2e of %.2e; wrench %.3g vs %.3g N\n", dq,
+         qs, wa.f[1], wo.f[1]);
+  CS_EXPECT(dq <= 1e-4 * qs);
   /* a non-finite state is refused and changes nothing */
   xs[1] = NAN;
   CS_EXPECT(csr_romSetState(m, e, xs) < 0);
