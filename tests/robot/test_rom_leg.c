@@ -669,6 +669,31 @@ static void test_pressure_and_gravity_settle_on_the_reduced_statics(void) {
 }
 
 
+/* the deformed first mass moment s(q) = s0 + Tᵀ q (t mm, hip frame) */
+static void deformedMoment(const csrRomModel* m, const double* q, double s[3]) {
+  memcpy(s, m->s0, 3 * sizeof(double));
+  for (int k = 0; k < m->n; k++) {
+    for (int i = 0; i < 3; i++) {
+      s[i] += m->T[3 * k + i] * q[k];
+    }
+  }
+}
+
+
+/* the averaged base wrench w against f_ref, m_ref, each within rel of its magnitude */
+static void expectWrench(const char* what, const csrWrench* w, const double f_ref[3],
+                         const double m_ref[3], double rel) {
+  const double fs = csu_norm3(f_ref), ms = csu_norm3(m_ref);
+  printf("  %s: f (%.6g %.6g %.6g) vs (%.6g %.6g %.6g) N; m_h (%.5g %.5g %.5g) vs (%.5g %.5g "
+         "%.5g) N mm\n", what, w->f[0], w->f[1], w->f[2], f_ref[0], f_ref[1], f_ref[2], w->m[0],
+         w->m[1], w->m[2], m_ref[0], m_ref[1], m_ref[2]);
+  for (int k = 0; k < 3; k++) {
+    CS_EXPECT_NEAR(w->f[k], f_ref[k], rel * fs, 0);
+    CS_EXPECT_NEAR(w->m[k], m_ref[k], rel * ms, 0);
+  }
+}
+
+
 /* the hip accelerated uniformly along a (with gravity g): once the damped leg has settled in
  * the accelerated frame it moves rigidly with the hip, P = m v_h, and the momentum balance
  * gives the averaged base wrench in closed form, f = m (g - a) and m_h = R s(q) x (g - a) (s the
@@ -677,7 +702,6 @@ static void test_uniformly_accelerated_base_wrench_is_m_times_g_minus_a(void) {
   Block b;
   blockCreate(&b, 4);
   csError err = {0};
-  const int n = b.n;
   double w1;
   csrRomParams par = criticallyDamped(&b, &w1);
   par.gravity[1] = -9810.0;
@@ -704,24 +728,11 @@ static void test_uniformly_accelerated_base_wrench_is_m_times_g_minus_a(void) {
     ga[k] = par.gravity[k] - a[k];
     f_ref[k] = m->mass * ga[k];
   }
-  memcpy(s, m->s0, sizeof s);
-  const double* q = csr_romQ(d);
-  for (int k = 0; k < n; k++) {
-    for (int i = 0; i < 3; i++) {
-      s[i] += m->T[3 * k + i] * q[k];
-    }
-  }
+  deformedMoment(m, csr_romQ(d), s);
   csu_cross3(m_ref, s, ga);
-  const double fs = m->mass * csu_norm3(ga), ms = csu_norm3(m_ref);
-  printf("  f (%.6g %.6g %.6g) N vs m (g - a) (%.6g %.6g %.6g); m_h (%.5g %.5g %.5g) vs "
-         "(%.5g %.5g %.5g) N mm\n", w.f[0], w.f[1], w.f[2], f_ref[0], f_ref[1], f_ref[2],
-         w.m[0], w.m[1], w.m[2], m_ref[0], m_ref[1], m_ref[2]);
-  for (int k = 0; k < 3; k++) {
-    /* the transient has decayed (1e-79); the impulse quadrature and ΔP/H carry CVODE's
-     * rtol 1e-9 on states of |P| = m |v_h| growing to 600 H a: 1e-6 of the weight */
-    CS_EXPECT_NEAR(w.f[k], f_ref[k], 1e-6 * fs, 0);
-    CS_EXPECT_NEAR(w.m[k], m_ref[k], 1e-6 * ms, 0);
-  }
+  /* the transient has decayed (1e-79); the impulse and ΔP/H carry CVODE's rtol 1e-9 on
+   * states of |P| = m |v_h| growing to 600 H a: 1e-6 of the weight */
+  expectWrench("uniform acceleration", &w, f_ref, m_ref, 1e-6);
   csr_romDataDestroy(d);
   csr_romModelDestroy(m);
   blockDestroy(&b);
@@ -738,7 +749,6 @@ static void test_steadily_spinning_base_wrench_is_the_centripetal_force(void) {
   Block b;
   blockCreate(&b, 4);
   csError err = {0};
-  const int n = b.n;
   double w1;
   csrRomParams par = criticallyDamped(&b, &w1);
   csrRomModel* m = csr_romModelCreate(b.rom, &par, NULL, &err);
@@ -762,13 +772,7 @@ static void test_steadily_spinning_base_wrench_is_the_centripetal_force(void) {
   }
   double P[3], L[3], s[3], Rs[3], ws[3], f_ref[3], m_ref[3];
   csr_romMomentum(m, d, P, L);
-  memcpy(s, m->s0, sizeof s);
-  const double* q = csr_romQ(d);
-  for (int k = 0; k < n; k++) {
-    for (int i = 0; i < 3; i++) {
-      s[i] += m->T[3 * k + i] * q[k];
-    }
-  }
+  deformedMoment(m, csr_romQ(d), s);
   csu_mulMatVec3(Rs, b0.R, s);
   csu_cross3(ws, b0.w, Rs);
   csu_cross3(f_ref, b0.w, ws);
@@ -790,16 +794,10 @@ static void test_steadily_spinning_base_wrench_is_the_centripetal_force(void) {
   }
   memcpy(f_ref, f_avg, sizeof f_ref);
   memcpy(m_ref, m_avg, sizeof m_ref);
-  const double fs = csu_norm3(f_ref), ms = csu_norm3(m_ref);
-  printf("  spin %.4g rad/s: f (%.6g %.6g %.6g) vs (%.6g %.6g %.6g) N; m_h (%.5g %.5g %.5g) vs "
-         "(%.5g %.5g %.5g) N mm\n", Om, w.f[0], w.f[1], w.f[2], f_ref[0], f_ref[1], f_ref[2],
-         w.m[0], w.m[1], w.m[2], m_ref[0], m_ref[1], m_ref[2]);
-  for (int k = 0; k < 3; k++) {
-    /* a rotation about a fixed axis is exact in the Hermite frame motion (robot_rom.h); the
-     * transient has decayed; CVODE's rtol 1e-9 on the momenta and the quadrature: 1e-6 */
-    CS_EXPECT_NEAR(w.f[k], f_ref[k], 1e-6 * fs, 0);
-    CS_EXPECT_NEAR(w.m[k], m_ref[k], 1e-6 * ms, 0);
-  }
+  /* a rotation about a fixed axis is exact in the Hermite frame motion (robot_rom.h); the
+   * transient has decayed; CVODE's rtol 1e-9 on the momenta and the impulse: 1e-6 */
+  printf("  spin %.4g rad/s\n", Om);
+  expectWrench("steady spin", &w, f_ref, m_ref, 1e-6);
   csr_romDataDestroy(d);
   csr_romModelDestroy(m);
   blockDestroy(&b);
