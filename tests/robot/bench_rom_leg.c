@@ -13,7 +13,8 @@
  *   swing the hip oscillating ±5 mm at 2 Hz along x, vented.
  * Prints: basis size, the set-up's wall time, CPU time per simulated second (one core),
  * CVODE steps, right-hand sides, Jacobians, the foot's displacement (the tip face's mean,
- * hip frame) and the step-averaged base wrench at t_end. */
+ * hip frame) and the step-averaged base wrench at t_end; for gait, the foot of the reduced
+ * statics of the end's load (fem_rom_act.h), where the damped leg settles. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +22,7 @@
 #include <time.h>
 
 #include "core_clock.h"
+#include "core_math.h"
 #include "fem_mesh.h"
 #include "fem_rom_act.h"
 #include "robot_rom.h"
@@ -153,6 +155,23 @@ int main(int argc, char** argv) {
   printf("foot displacement (hip frame) %.4f %.4f %.4f mm; wrench f %.5g %.5g %.5g N, m %.5g "
          "%.5g %.5g N mm (weight %.5g N)\n", foot[0], foot[1], foot[2], w.f[0], w.f[1], w.f[2],
          w.m[0], w.m[1], w.m[2], m->mass * 9810.0);
+  /* the reduced statics of the end's load (gravity in the hip frame, the end's pressures),
+   * ramped from rest by fem_rom_act.h: where the damped dynamics settle once the load holds */
+  double pe[12], ge[3];
+  pressures(t, !swing, pe);
+  csu_mulMatTVec3(ge, b0.R, par.gravity);
+  const double F0[3] = {0, 0, 0};
+  if (!swing && csf_romActuatorSolve(&ra, pe, ge, F0, &err) == CS_OK) {
+    double fs[3] = {0, 0, 0};
+    for (int i = 0; i < me->nnode; i++) {
+      for (int k = 0; k < 3; k++) {
+        fs[k] += ra.fe.tip_unit[3 * i + k] * ra.u[3 * i + k];
+      }
+    }
+    printf("reduced statics of the end's load: foot %.4f %.4f %.4f mm\n", fs[0], fs[1], fs[2]);
+  } else if (!swing) {
+    printf("reduced statics of the end's load: %s\n", err.msg);
+  }
   free(u), free(face_ch);
   csr_romDataDestroy(d);
   csr_romModelDestroy(m);
