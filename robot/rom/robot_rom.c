@@ -53,7 +53,7 @@ struct csrRomData_ {
   SUNMatrix A;
   SUNLinearSolver LS;
   void* cvode;
-  long steps, rhs, jacs, restarts;
+  long steps, rhs, jacs, restarts, retries;
   int cb_status;
   int need_reinit;    /* 1: the next advance restarts CVODE (after create, reset, set, failure) */
 };
@@ -64,7 +64,7 @@ csrRomParams csr_romDefaultParams(void) {
   p.rho = 1.07e-9;          /* the silicone's density (fem_material.h's default rho) */
   p.damping_time = 2e-3;    /* s: the rod's csrLegParams default is of this order */
   p.rtol = 1e-6;
-  p.atol_q = 1e-6;
+  p.atol_u = 1e-5; /* mm: 10 nm of displacement */
   p.atol_wrench = 1e-4;
   p.max_steps = 20000;
   p.gravity[0] = p.gravity[1] = p.gravity[2] = 0;
@@ -202,10 +202,10 @@ csrRomModel* csr_romModelCreate(const csfRom* rom, const csrRomParams* par, cons
     return NULL;
   }
   csrRomParams p = par ? *par : csr_romDefaultParams();
-  if (!(p.rho > 0) || !(p.damping_time >= 0) || !(p.rtol > 0) || !(p.atol_q > 0) ||
+  if (!(p.rho > 0) || !(p.damping_time >= 0) || !(p.rtol > 0) || !(p.atol_u > 0) ||
       !(p.atol_wrench > 0) || p.max_steps < 1 ||
       !isfinite(p.gravity[0] + p.gravity[1] + p.gravity[2])) {
-    cs_errorSet(err, CS_ERR_RANGE, "rom leg: need rho > 0, damping_time >= 0, rtol, atol_q, "
+    cs_errorSet(err, CS_ERR_RANGE, "rom leg: need rho > 0, damping_time >= 0, rtol, atol_u, "
                 "atol_wrench > 0, max_steps >= 1");
     return NULL;
   }
@@ -765,8 +765,12 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
   d->y = N_VGetArrayPointer(d->yv);
   double* at = N_VGetArrayPointer(d->atol);
   for (int k = 0; k < n; k++) {
-    at[k] = m->par.atol_q;
-    at[n + k] = m->par.atol_q * 1e3; /* q' over a millisecond */
+    double vmax = 0; /* the largest nodal displacement of a unit q_k, mm */
+    for (int i = 0; i < m->rom->ndof; i++) {
+      vmax = fmax(vmax, fabs(m->rom->V[(size_t)i * n + k]));
+    }
+    at[k] = m->par.atol_u / (vmax > 0 ? vmax : 1.0);
+    at[n + k] = 1e3 * at[k]; /* q' over a millisecond */
   }
   for (int k = 0; k < 3; k++) {
     at[2 * n + k] = 1.0; /* set per advance */
@@ -835,7 +839,7 @@ void csr_romStats(const csrRomData* d, long* steps, long* rhs_n, long* jacs, lon
   *steps = d->steps + ns;
   *rhs_n = d->rhs;
   *jacs = d->jacs;
-  *restarts = d->restarts;
+  *restarts = d->restarts; /* retries included */
 }
 
 
@@ -852,6 +856,34 @@ static int baseJumped(const csrBaseState* a, const csrBaseState* b) {
   csu_mulMat3(Rab, Rt, b->R);
   csu_mat3ToRotVec(phi, Rab);
   return !(csu_norm3(dx) <= CSR_ROM_BASE_JUMP_X && csu_norm3(phi) <= CSR_ROM_BASE_JUMP_PHI);
+}
+
+
+/* restart CVODE from the state at t for steps of H (the moment impulse from zero) */
+static int restartAt(const csrRomModel* m, csrRomData* d, double t, double H) {
+  const int n = m->n;
+  long ns = 0;
+  CVodeGetNumSteps(d->cvode, &ns);
+  d->steps += ns;
+  d->restarts++;
+  /* the moment's impulse from zero: only its change over an advance is used, and its absolute
+   * value sets the rounding of that change, so a restored state (which does not hold it)
+   * steps bit for bit only from zero */
+  for (int k = 0; k < 3; k++) {
+    d->y[2 * n + k] = 0;
+  }
+  /* the moment impulse's tolerance: the averaged wrench's over a 10 mm arm, for steps of this
+   * H (set at restarts only: CVODE binds its error weights' data before its first step) */
+  double* at = N_VGetArrayPointer(d->atol);
+  for (int k = 0; k < 3; k++) {
+    at[2 * n + k] = m->par.atol_wrench * 10.0 * H;
+  }
+  if (CVodeReInit(d->cvode, t, d->yv) != CV_SUCCESS ||
+      CVodeSVtolerances(d->cvode, m->par.rtol, d->atol) != CV_SUCCESS) {
+    return -1;
+  }
+  d->need_reinit = 0;
+  return 0;
 }
 
 
@@ -872,47 +904,38 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
   }
   memcpy(d->backup, d->y, 2 * (size_t)n * sizeof(double));
   d->cb_status = 0;
-  const int restart = d->need_reinit || fabs(t - d->t) > 1e-12 * (1 + fabs(t)) ||
-                      baseJumped(&d->base, b0);
-  if (restart) {
-    long ns = 0;
-    CVodeGetNumSteps(d->cvode, &ns);
-    d->steps += ns;
-    d->restarts++;
-    /* the moment's impulse from zero: only its change over an advance is used, and its
-     * absolute value sets the rounding of that change, so a restored state (which does not
-     * hold it) steps bit for bit only from zero */
-    for (int k = 0; k < 3; k++) {
-      d->y[2 * n + k] = 0;
-    }
-    /* the moment impulse's tolerance: the averaged wrench's over a 10 mm arm, for steps of
-     * this H (set at restarts only: CVODE takes tolerances before its first step, its error
-     * weights' data is bound there) */
-    double* at = N_VGetArrayPointer(d->atol);
-    for (int k = 0; k < 3; k++) {
-      at[2 * n + k] = m->par.atol_wrench * 10.0 * H;
-    }
-    if (CVodeReInit(d->cvode, t, d->yv) != CV_SUCCESS ||
-        CVodeSVtolerances(d->cvode, m->par.rtol, d->atol) != CV_SUCCESS) {
+  int restart = d->need_reinit || fabs(t - d->t) > 1e-12 * (1 + fabs(t)) ||
+                baseJumped(&d->base, b0);
+  d->base = *b0;
+  double I0[3];
+  for (;;) {
+    if (restart && restartAt(m, d, t, H) != 0) {
       cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE restart failed at t = %g s", t);
       return -1;
     }
-    d->need_reinit = 0;
-  }
-  d->base = *b0;
-  if (CVodeSetStopTime(d->cvode, t + H) != CV_SUCCESS) {
-    cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE refused the stop time %g s", t + H);
-    return -1;
-  }
-  double I0[3];
-  memcpy(I0, d->y + 2 * n, sizeof I0);
-  sunrealtype tret = t;
-  const int flag = CVode(d->cvode, t + H, d->yv, &tret, CV_NORMAL);
-  if (flag < 0) {
+    if (CVodeSetStopTime(d->cvode, t + H) != CV_SUCCESS) {
+      cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE refused the stop time %g s", t + H);
+      return -1;
+    }
+    memcpy(I0, d->y + 2 * n, sizeof I0);
+    sunrealtype tret = t;
+    const int flag = CVode(d->cvode, t + H, d->yv, &tret, CV_NORMAL);
+    if (flag >= 0) {
+      break;
+    }
     memcpy(d->y, d->backup, 2 * (size_t)n * sizeof(double));
     d->need_reinit = 1;
     const int fatal = d->cb_status < 0 || flag == CV_ILL_INPUT || flag == CV_MEM_FAIL ||
                       flag == CV_MEM_NULL;
+    if (!fatal && !restart) {
+      /* a continued step that failed (its history extrapolated across the kink of the hip's
+       * acceleration or of the pressures' rate at the macro step's start, which a tight
+       * tolerance cannot resolve by shrinking h): once more from the state, fresh */
+      restart = 1;
+      d->retries++;
+      d->cb_status = 0;
+      continue;
+    }
     char* name = CVodeGetReturnFlagName(flag);
     cs_errorSet(err, fatal ? CS_ERR_SOLVER : CS_ERR_DIVERGED,
                 "rom advance from t = %.6g s by H = %.3g s failed at t = %.6g s: CVODE %s", t,

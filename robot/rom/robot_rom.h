@@ -53,8 +53,10 @@ typedef struct csrRomParams_ {
   double rho;          /* density, t/mm^3 (silicone: 1.07e-9) */
   double damping_time; /* τ_d (s): C = τ_d K_r(0) */
   double rtol;         /* CVODE relative tolerance */
-  double atol_q;       /* CVODE absolute tolerance on q (the basis' units: mm for a basis of
-                          displacements, mm t^0.5 for an M-orthonormal one) and on q' per s */
+  double atol_u;       /* CVODE absolute tolerance as a displacement (mm): q_k's is atol_u
+                          over the largest nodal displacement of a unit q_k (max_i |V_ik|), so
+                          it means the same for any scaling of the basis (M-orthonormal bases
+                          have q in mm t^0.5); q_k' gets 1e3 times that (per ms) */
   double atol_wrench;  /* N: absolute tolerance of the step-averaged base wrench */
   long max_steps;      /* CVODE steps per macro step */
   double gravity[3];   /* the scene's gravitational acceleration, world, mm/s² (0: none) */
@@ -113,9 +115,11 @@ void csr_romSetDeadLoad(const csrRomModel* m, csrRomData* d, const double* fr);
  * (may be NULL) gets the base wrench averaged over the step. CVODE carries its history (order,
  * step size, Jacobian) from one advance to the next, as the rod's does; it restarts from the
  * state after create, reset, set and a failed step, and when t is not where the last advance
- * ended or the hip jumped (> 0.1 mm, > 1e-3 rad): two restores of one state step bit for bit
- * alike (a restore costs a first-order start and a Jacobian). 0, > 0 recoverable (CVODE's
- * error test or Newton failed; the state is unchanged), < 0 fatal (err says why). */
+ * ended or the hip jumped (> 0.1 mm, > 1e-3 rad), and retries a continued step that failed
+ * once from the state (a kink of the hip's acceleration at the step's start that the history
+ * cannot cross at a tight tolerance): two restores of one state step bit for bit alike (a
+ * restart costs a first-order start and a Jacobian). 0, > 0 recoverable (CVODE's error test or
+ * Newton failed; the state is unchanged), < 0 fatal (err says why). */
 int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
                    const csrBaseState* b0, const csrBaseState* b1, csrWrench* w, csError* err);
 
@@ -134,7 +138,8 @@ int csr_romStateSize(const csrRomModel* m);
 void csr_romGetState(const csrRomModel* m, const csrRomData* d, double* x);
 int csr_romSetState(const csrRomModel* m, csrRomData* d, const double* x);
 
-/* CVODE's counters summed over the data's life: steps, right-hand sides, Jacobians, restarts. */
+/* CVODE's counters summed over the data's life: steps, right-hand sides, Jacobians, restarts
+ * (the retries of failed continued steps included). */
 void csr_romStats(const csrRomData* d, long* steps, long* rhs, long* jacs, long* restarts);
 
 #ifdef __cplusplus
