@@ -161,6 +161,25 @@ int main(int argc, char** argv) {
   pressures(t, !swing, pe);
   csu_mulMatTVec3(ge, b0.R, par.gravity);
   const double F0[3] = {0, 0, 0};
+  /* how far the dynamics' end is from the statics' equations: their residual at its q, and the
+   * consistent mass' gravity T against the FE's body-force rule G */
+  {
+    csfRomLoad ld;
+    csf_romActuatorLoad(&ra, pe, ge, F0, &ld);
+    memcpy(ra.d->q, csr_romQ(d), (size_t)m->n * sizeof(double));
+    if (csf_romEvaluate(ra.rom, ra.d, &ld, 0) == 0) {
+      double rn = 0, tg = 0, gg = 0;
+      for (int k = 0; k < m->n; k++) {
+        rn += ra.d->r[k] * ra.d->r[k];
+        for (int i = 0; i < 3; i++) {
+          tg = fmax(tg, fabs(m->T[3 * k + i] - ra.rom->G[3 * k + i]));
+          gg = fmax(gg, fabs(ra.rom->G[3 * k + i]));
+        }
+      }
+      printf("the statics' residual at the dynamics' end: |r| %.3g N (force scale %.3g N); "
+             "|T - G| %.3g of %.3g t\n", sqrt(rn), ra.d->fnorm, tg, gg);
+    }
+  }
   if (!swing && csf_romActuatorSolve(&ra, pe, ge, F0, &err) == CS_OK) {
     double fs[3] = {0, 0, 0};
     for (int i = 0; i < me->nnode; i++) {
