@@ -181,17 +181,6 @@ static int growWorkspace(csfLinSolver* s, double entries) {
 }
 
 
-csfLinSolverOptions csf_linSolverDefault(void) {
-  csfLinSolverOptions o;
-  o.kind = CSF_SOLVER_MUMPS;
-  o.symmetric = 0;
-  o.ordering = 7;
-  o.threads = 0;
-  o.max_threads = 0;
-  o.ranks = 1;
-  o.pivot_threshold = -1;
-  return o;
-}
 
 
 csfLinSolver* csf_linSolverCreate(const csfLinSolverOptions* opt, int n, const int* row_ptr,

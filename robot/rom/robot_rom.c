@@ -1,0 +1,1006 @@
+/* robot_rom.c: the reduced-order FE leg's dynamics in the hip's floating frame (robot_rom.h):
+ * the consistent mass operators, the right-hand side and its dense Jacobian for CVODE (BDF), the
+ * base motion across a macro step, advance with the base wrench by momentum balance, momentum,
+ * state get/set.
+ *
+ * Integration: y = [q, q'] (2n), y' = [q', M_r⁻¹ F(t, q, q')]. The reduced leg is stiff (the
+ * bulk and fibre modes of the FE survive in the span at kHz, the damping C = τ_d K_r(0) makes
+ * them real eigenvalues near -τ_d ω²), so CVODE's BDF with a Newton iteration on the dense
+ * 2n x 2n matrix I - γJ, J from the reduced tangent K_r(q) (csf_romEvaluate, exact derivative
+ * with the states synchronised) and the inertia operators. n is a few tens: a dense LU is the
+ * whole linear algebra. */
+#include "robot_rom.h"
+
+#include <cvode/cvode.h>
+#include <math.h>
+#include <nvector/nvector_serial.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sundials/sundials_config.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "core_math.h"
+#include "fem_mesh.h"
+
+_Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
+
+/* the base motion of one macro step (robot_rom.h "Base motion") */
+typedef struct RomBase_ {
+  double ta, H;
+  double x0[3], v0[3], x1[3], v1[3]; /* hip point, world */
+  double R0[9];                      /* frame at ta */
+  double dphi0[3], Phi[3], dphi1[3]; /* rotation vector's Hermite data, frame-0 coordinates */
+} RomBase;
+
+struct csrRomData_ {
+  const csrRomModel* m;
+  int n;
+  double t;
+  csrBaseState base;  /* the hip at t */
+  double pt0, pt1, p0[12], p1[12];
+  double* fdead;      /* (n) reduced dead load, or unused when have_dead = 0 */
+  int have_dead;
+  RomBase bm;
+  csfRomData* fd;     /* the reduced FE's evaluation data */
+  double* face_p;     /* (nface) */
+  double* F;          /* (n) scratch: generalised force */
+  double* G;          /* (n x n) scratch */
+  double* backup;     /* (2n) the state before a step, restored when it fails */
+  double* y;          /* pointer into yv */
+  SUNContext sun;
+  N_Vector yv, atol;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  void* cvode;
+  long steps, rhs, jacs, restarts, retries;
+  int cb_status;
+  int need_reinit;    /* 1: the next advance restarts CVODE (after create, reset, set, failure) */
+};
+
+
+csrRomParams csr_romDefaultParams(void) {
+  csrRomParams p;
+  p.rho = 1.07e-9;          /* the silicone's density (fem_material.h's default rho) */
+  p.damping_time = 2e-3;    /* s: the rod's csrLegParams default is of this order */
+  p.rtol = 1e-6;
+  p.atol_u = 1e-5; /* mm: 10 nm of displacement */
+  p.atol_wrench = 1e-4;
+  p.max_steps = 20000;
+  p.gravity[0] = p.gravity[1] = p.gravity[2] = 0;
+  return p;
+}
+
+
+/* ---- mass operators --------------------------------------------------------------------- */
+
+/* collapsed Gauss rule on the unit tetrahedron: 4 Gauss-Legendre points per direction (64
+ * points, exact for polynomials of degree 7: N_a N_b is of degree 4, times the Jacobian of a
+ * curved Tet10 of degree 6), as tools/rom_basis.py's tet_rule(4) */
+static void tetRule(double pts[64][3], double wts[64]) {
+  static const double g[4] = {0.5 - 0.5 * 0.8611363115940526, 0.5 - 0.5 * 0.3399810435848563,
+                              0.5 + 0.5 * 0.3399810435848563, 0.5 + 0.5 * 0.8611363115940526};
+  static const double w[4] = {0.5 * 0.3478548451374538, 0.5 * 0.6521451548625461,
+                              0.5 * 0.6521451548625461, 0.5 * 0.3478548451374538};
+  int k = 0;
+  for (int i = 0; i < 4; i++) {
+    for (int j = 0; j < 4; j++) {
+      for (int l = 0; l < 4; l++) {
+        const double a = g[i], b = g[j], c = g[l];
+        pts[k][0] = a;
+        pts[k][1] = b * (1 - a);
+        pts[k][2] = c * (1 - a) * (1 - b);
+        wts[k] = w[i] * w[j] * w[l] * (1 - a) * (1 - a) * (1 - b);
+        k++;
+      }
+    }
+  }
+}
+
+
+static double det3(const double J[9]) {
+  return J[0] * (J[4] * J[8] - J[5] * J[7]) - J[1] * (J[3] * J[8] - J[5] * J[6]) +
+         J[2] * (J[3] * J[7] - J[4] * J[6]);
+}
+
+
+/* the scalar consistent mass of Tet10 e (10 x 10, t) */
+static int elementMass(const csfMesh* me, int e, double rho, double pts[64][3],
+                       const double* wts, double Me[100]) {
+  const int* tv = me->tet + 10 * e;
+  memset(Me, 0, 100 * sizeof(double));
+  for (int p = 0; p < 64; p++) {
+    double N[10], dN[30], J[9] = {0};
+    csf_tet10Shape(pts[p], N, dN);
+    for (int a = 0; a < 10; a++) {
+      const double* x = me->x + 3 * tv[a];
+      for (int i = 0; i < 3; i++) {
+        for (int d = 0; d < 3; d++) {
+          J[3 * i + d] += x[i] * dN[3 * a + d];
+        }
+      }
+    }
+    const double det = det3(J);
+    if (!(det > 0)) {
+      return -1;
+    }
+    const double f = rho * wts[p] * det;
+    for (int a = 0; a < 10; a++) {
+      for (int b = 0; b < 10; b++) {
+        Me[10 * a + b] += f * N[a] * N[b];
+      }
+    }
+  }
+  return 0;
+}
+
+
+/* in-place inverse of an SPD matrix (n x n) by Cholesky; -1 when not positive definite */
+static int spdInverse(int n, const double* A, double* Ainv, double* L) {
+  memcpy(L, A, (size_t)n * n * sizeof(double));
+  for (int j = 0; j < n; j++) {
+    double s = L[j * n + j];
+    for (int k = 0; k < j; k++) {
+      s -= L[j * n + k] * L[j * n + k];
+    }
+    if (!(s > 0)) {
+      return -1;
+    }
+    L[j * n + j] = sqrt(s);
+    for (int i = j + 1; i < n; i++) {
+      double t = L[i * n + j];
+      for (int k = 0; k < j; k++) {
+        t -= L[i * n + k] * L[j * n + k];
+      }
+      L[i * n + j] = t / L[j * n + j];
+    }
+  }
+  for (int c = 0; c < n; c++) {
+    double* x = Ainv + (size_t)c * n; /* column c of the inverse, stored as row c (symmetric) */
+    for (int i = 0; i < n; i++) {
+      double t = i == c ? 1.0 : 0.0;
+      for (int k = 0; k < i; k++) {
+        t -= L[i * n + k] * x[k];
+      }
+      x[i] = t / L[i * n + i];
+    }
+    for (int i = n - 1; i >= 0; i--) {
+      double t = x[i];
+      for (int k = i + 1; k < n; k++) {
+        t -= L[k * n + i] * x[k];
+      }
+      x[i] = t / L[i * n + i];
+    }
+  }
+  return 0;
+}
+
+
+void csr_romModelDestroy(csrRomModel* m) {
+  if (!m) {
+    return;
+  }
+  free(m->Mr), free(m->Minv), free(m->C), free(m->T), free(m->e), free(m->Q), free(m->d);
+  free(m->S), free(m->face_ch);
+  free(m);
+}
+
+
+/* the index of the pair (i, j), i <= j, in the order (00 11 22 01 02 12) */
+static int pairIndex(int i, int j) {
+  if (i == j) {
+    return i;
+  }
+  return (i + j == 1) ? 3 : (i + j == 2 ? 4 : 5);
+}
+
+
+csrRomModel* csr_romModelCreate(const csfRom* rom, const csrRomParams* par, const int* face_ch,
+                                csError* err) {
+  if (!rom || !rom->fem || rom->n <= 0) {
+    cs_errorSet(err, CS_ERR_ARG, "rom leg: no reduced model");
+    return NULL;
+  }
+  csrRomParams p = par ? *par : csr_romDefaultParams();
+  if (!(p.rho > 0) || !(p.damping_time >= 0) || !(p.rtol > 0) || !(p.atol_u > 0) ||
+      !(p.atol_wrench > 0) || p.max_steps < 1 ||
+      !isfinite(p.gravity[0] + p.gravity[1] + p.gravity[2])) {
+    cs_errorSet(err, CS_ERR_RANGE, "rom leg: need rho > 0, damping_time >= 0, rtol, atol_u, "
+                "atol_wrench > 0, max_steps >= 1");
+    return NULL;
+  }
+  const csfMesh* me = rom->fem->mesh;
+  const int n = rom->n;
+  const size_t nn = (size_t)n * n;
+  csrRomModel* m = calloc(1, sizeof *m);
+  double* P = calloc(9 * nn, sizeof(double)); /* P_ij = Σ_a (Me V)_{a,i}ᵀ V_{a,j} */
+  double* pv = calloc(9 * (size_t)n, sizeof(double)); /* p_ij = Σ_a (Me V)_{a,i} X_{a,j} */
+  double* MV = calloc(30 * (size_t)n, sizeof(double));
+  double* L = calloc(nn, sizeof(double));
+  if (!m || !P || !pv || !MV || !L) {
+    free(P), free(pv), free(MV), free(L), free(m);
+    cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
+    return NULL;
+  }
+  m->rom = rom;
+  m->n = n;
+  m->par = p;
+  m->nface = me->nface;
+  m->Mr = calloc(nn, sizeof(double));
+  m->Minv = calloc(nn, sizeof(double));
+  m->C = calloc(nn, sizeof(double));
+  m->T = calloc(3 * (size_t)n, sizeof(double));
+  m->e = calloc(3 * (size_t)n, sizeof(double));
+  m->Q = calloc(3 * nn, sizeof(double));
+  m->d = calloc(6 * (size_t)n, sizeof(double));
+  m->S = calloc(6 * nn, sizeof(double));
+  m->face_ch = malloc((size_t)(me->nface > 0 ? me->nface : 1) * sizeof(int));
+  csStatus st = CS_OK;
+  if (!m->Mr || !m->Minv || !m->C || !m->T || !m->e || !m->Q || !m->d || !m->S || !m->face_ch) {
+    st = cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory (n = %d)", n);
+  }
+  for (int f = 0; st == CS_OK && f < me->nface; f++) {
+    m->face_ch[f] = face_ch ? face_ch[f] : -1;
+    if (m->face_ch[f] < -1 || m->face_ch[f] >= 12) {
+      st = cs_errorSet(err, CS_ERR_ARG, "rom leg: face %d in chamber %d (0..11 or -1)", f,
+                       m->face_ch[f]);
+    }
+  }
+  /* one pass over the Tet10s: the nine P_ij, the p_ij, mass, first and second moments */
+  double pts[64][3], wts[64];
+  tetRule(pts, wts);
+  const double* V = rom->V;
+  for (int e = 0; st == CS_OK && e < me->ntet; e++) {
+    double Me[100];
+    if (elementMass(me, e, p.rho, pts, wts, Me) != 0) {
+      st = cs_errorSet(err, CS_ERR_ARG, "rom leg: Tet10 %d is inverted", e);
+      break;
+    }
+    const int* tv = me->tet + 10 * e;
+    memset(MV, 0, 30 * (size_t)n * sizeof(double));
+    for (int a = 0; a < 10; a++) {
+      const double* Xa = me->x + 3 * tv[a];
+      for (int b = 0; b < 10; b++) {
+        const double mab = Me[10 * a + b];
+        const double* Xb = me->x + 3 * tv[b];
+        m->mass += mab;
+        for (int i = 0; i < 3; i++) {
+          m->s0[i] += mab * Xb[i];
+          for (int j = i; j < 3; j++) {
+            m->J0[pairIndex(i, j)] += mab * Xa[i] * Xb[j];
+          }
+        }
+        for (int i = 0; i < 3; i++) {
+          const double* Vb = V + ((size_t)3 * tv[b] + i) * n;
+          double* out = MV + ((size_t)3 * a + i) * n;
+          for (int k = 0; k < n; k++) {
+            out[k] += mab * Vb[k];
+          }
+        }
+      }
+    }
+    for (int a = 0; a < 10; a++) {
+      const double* Xa = me->x + 3 * tv[a];
+      for (int i = 0; i < 3; i++) {
+        const double* mv = MV + ((size_t)3 * a + i) * n;
+        for (int j = 0; j < 3; j++) {
+          double* pij = pv + (size_t)(3 * i + j) * n;
+          for (int k = 0; k < n; k++) {
+            pij[k] += mv[k] * Xa[j];
+          }
+          const double* Va = V + ((size_t)3 * tv[a] + j) * n;
+          double* Pij = P + (size_t)(3 * i + j) * nn;
+          for (int k = 0; k < n; k++) {
+            if (mv[k] != 0) {
+              for (int l = 0; l < n; l++) {
+                Pij[(size_t)k * n + l] += mv[k] * Va[l];
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  if (st == CS_OK) {
+#define PIJ(i, j) (P + (size_t)(3 * (i) + (j)) * nn)
+#define PVIJ(i, j) (pv + (size_t)(3 * (i) + (j)) * n)
+    for (size_t k = 0; k < nn; k++) {
+      m->Mr[k] = PIJ(0, 0)[k] + PIJ(1, 1)[k] + PIJ(2, 2)[k];
+      /* E_0 y = (0, -y2, y1), E_1 y = (y2, 0, -y0), E_2 y = (-y1, y0, 0) */
+      m->Q[k] = -PIJ(1, 2)[k] + PIJ(2, 1)[k];
+      m->Q[nn + k] = PIJ(0, 2)[k] - PIJ(2, 0)[k];
+      m->Q[2 * nn + k] = -PIJ(0, 1)[k] + PIJ(1, 0)[k];
+      for (int i = 0; i < 3; i++) {
+        for (int j = i; j < 3; j++) {
+          m->S[(size_t)pairIndex(i, j) * nn + k] = 0.5 * (PIJ(i, j)[k] + PIJ(j, i)[k]);
+        }
+      }
+    }
+    for (int k = 0; k < n; k++) {
+      /* T[:, i] = Σ_a (Me V)_{a,i}: the p_ij with X replaced by 1; from the mass rows */
+      m->e[k] = -PVIJ(1, 2)[k] + PVIJ(2, 1)[k];
+      m->e[n + k] = PVIJ(0, 2)[k] - PVIJ(2, 0)[k];
+      m->e[2 * n + k] = -PVIJ(0, 1)[k] + PVIJ(1, 0)[k];
+      for (int i = 0; i < 3; i++) {
+        for (int j = i; j < 3; j++) {
+          m->d[(size_t)pairIndex(i, j) * n + k] = 0.5 * (PVIJ(i, j)[k] + PVIJ(j, i)[k]);
+        }
+      }
+    }
+#undef PIJ
+#undef PVIJ
+  }
+  /* T = VᵀM 1_i: a second, cheap pass (Σ_b Me_ab summed over a) */
+  for (int e = 0; st == CS_OK && e < me->ntet; e++) {
+    double Me[100];
+    elementMass(me, e, p.rho, pts, wts, Me);
+    const int* tv = me->tet + 10 * e;
+    for (int b = 0; b < 10; b++) {
+      double mb = 0;
+      for (int a = 0; a < 10; a++) {
+        mb += Me[10 * a + b];
+      }
+      for (int i = 0; i < 3; i++) {
+        const double* Vb = V + ((size_t)3 * tv[b] + i) * n;
+        for (int k = 0; k < n; k++) {
+          m->T[(size_t)k * 3 + i] += mb * Vb[k];
+        }
+      }
+    }
+  }
+  if (st == CS_OK && spdInverse(n, m->Mr, m->Minv, L) != 0) {
+    st = cs_errorSet(err, CS_ERR_ARG, "rom leg: the reduced mass VᵀMV is not positive definite "
+                     "(a basis vector without mass, or dependent vectors)");
+  }
+  /* C = τ_d K_r(0): the reduced tangent at rest, vented, no load */
+  if (st == CS_OK) {
+    csfRomData* fd = csf_romDataCreate(rom, err);
+    if (!fd) {
+      st = CS_ERR_MEMORY;
+    } else {
+      csf_romDataReset(rom, fd);
+      fd->sync = 1;
+      csfRomLoad ld;
+      memset(&ld, 0, sizeof ld);
+      if (csf_romEvaluate(rom, fd, &ld, 1) != 0) {
+        st = cs_errorSet(err, CS_ERR_ARG, "rom leg: the reduced tangent at rest failed");
+      } else {
+        for (size_t k = 0; k < nn; k++) {
+          m->C[k] = p.damping_time * fd->K[k];
+        }
+      }
+      csf_romDataDestroy(fd);
+    }
+  }
+  free(P), free(pv), free(MV), free(L);
+  if (st != CS_OK) {
+    csr_romModelDestroy(m);
+    return NULL;
+  }
+  return m;
+}
+
+
+/* ---- base motion ------------------------------------------------------------------------ */
+
+static void setBase(RomBase* bm, double ta, double H, const csrBaseState* b0,
+                    const csrBaseState* b1) {
+  bm->ta = ta;
+  bm->H = H;
+  memcpy(bm->x0, b0->x, sizeof bm->x0);
+  memcpy(bm->v0, b0->v, sizeof bm->v0);
+  memcpy(bm->x1, b1->x, sizeof bm->x1);
+  memcpy(bm->v1, b1->v, sizeof bm->v1);
+  memcpy(bm->R0, b0->R, sizeof bm->R0);
+  double R01[9], R0t[9];
+  csu_transpose3(R0t, b0->R);
+  csu_mulMat3(R01, R0t, b1->R);
+  csu_mat3ToRotVec(bm->Phi, R01);
+  double wb0[3], wb1[3];
+  csu_mulMatTVec3(wb0, b0->R, b0->w);
+  csu_mulMatTVec3(wb1, b1->R, b1->w);
+  csu_scale3(bm->dphi0, wb0, H);
+  csu_scale3(bm->dphi1, wb1, H);
+}
+
+
+/* at time t: frame R, hip velocity vh and acceleration ah (world), ω and α (hip frame) */
+static void baseAt(const RomBase* bm, double t, double R[9], double vh[3], double ah[3],
+                   double w[3], double al[3]) {
+  const double H = bm->H, u = (t - bm->ta) / H, u2 = u * u, u3 = u2 * u;
+  const double h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
+  const double d00 = 6 * u2 - 6 * u, d10 = 3 * u2 - 4 * u + 1, d01 = -d00, d11 = 3 * u2 - 2 * u;
+  const double s00 = 12 * u - 6, s10 = 6 * u - 4, s01 = -s00, s11 = 6 * u - 2;
+  double phi[3];
+  for (int k = 0; k < 3; k++) {
+    const double p0 = bm->x0[k], p1 = bm->x1[k], m0 = H * bm->v0[k], m1 = H * bm->v1[k];
+    vh[k] = (d00 * p0 + d10 * m0 + d01 * p1 + d11 * m1) / H;
+    ah[k] = (s00 * p0 + s10 * m0 + s01 * p1 + s11 * m1) / (H * H);
+    phi[k] = h10 * bm->dphi0[k] + h01 * bm->Phi[k] + h11 * bm->dphi1[k];
+    w[k] = (d10 * bm->dphi0[k] + d01 * bm->Phi[k] + d11 * bm->dphi1[k]) / H;
+    al[k] = (s10 * bm->dphi0[k] + s01 * bm->Phi[k] + s11 * bm->dphi1[k]) / (H * H);
+  }
+  double dR[9];
+  csu_rotVecToMat3(dR, phi);
+  csu_mulMat3(R, bm->R0, dR);
+}
+
+
+/* ---- right-hand side and Jacobian --------------------------------------------------------- */
+
+/* the centrifugal coefficients c_ij of ω×(ω×r) = Σ c_ij D_ij r, order (00 11 22 01 02 12) */
+static void centrifugal(const double w[3], double c[6]) {
+  const double w2 = csu_dot3(w, w);
+  c[0] = w[0] * w[0] - w2;
+  c[1] = w[1] * w[1] - w2;
+  c[2] = w[2] * w[2] - w2;
+  c[3] = 2 * w[0] * w[1];
+  c[4] = 2 * w[0] * w[2];
+  c[5] = 2 * w[1] * w[2];
+}
+
+
+/* the loads of the reduced FE at t: chamber pressures on their faces, the dead load */
+static void loadAt(const csrRomModel* m, csrRomData* d, double t, csfRomLoad* ld) {
+  memset(ld, 0, sizeof *ld);
+  double al = d->pt1 > d->pt0 ? (t - d->pt0) / (d->pt1 - d->pt0) : 1.0;
+  al = al < 0 ? 0 : (al > 1 ? 1 : al);
+  int any = 0;
+  for (int f = 0; f < m->nface; f++) {
+    const int c = m->face_ch[f];
+    d->face_p[f] = c < 0 ? 0.0 : (1 - al) * d->p0[c] + al * d->p1[c];
+    any |= d->face_p[f] != 0;
+  }
+  ld->face_p = any ? d->face_p : NULL;
+  ld->f_dead = d->have_dead ? d->fdead : NULL;
+}
+
+
+/* F(t, q, q') into d->F; want_k: also the reduced tangent in d->fd->K. 0, > 0 recoverable */
+static int generalisedForce(const csrRomModel* m, csrRomData* d, double t, const double* q,
+                            const double* qd, int want_k, double w_out[3], double al_out[3]) {
+  const int n = m->n;
+  const size_t nn = (size_t)n * n;
+  double R[9], vh[3], ah[3], w[3], al[3], c[6];
+  baseAt(&d->bm, t, R, vh, ah, w, al);
+  centrifugal(w, c);
+  csfRomLoad ld;
+  loadAt(m, d, t, &ld);
+  memcpy(d->fd->q, q, (size_t)n * sizeof(double));
+  const int rc = csf_romEvaluate(m->rom, d->fd, &ld, want_k);
+  if (rc != 0) {
+    return rc > 0 ? 1 : -1;
+  }
+  /* the frame's acceleration minus gravity, in the hip frame */
+  double ga[3], gb[3];
+  csu_sub3(ga, m->par.gravity, ah);
+  csu_mulMatTVec3(gb, R, ga);
+  for (int k = 0; k < n; k++) {
+    double f = -d->fd->r[k];
+    const double* Tk = m->T + 3 * (size_t)k;
+    f += Tk[0] * gb[0] + Tk[1] * gb[1] + Tk[2] * gb[2];
+    for (int i = 0; i < 3; i++) {
+      f -= al[i] * m->e[(size_t)i * n + k];
+    }
+    for (int i = 0; i < 6; i++) {
+      f -= c[i] * m->d[(size_t)i * n + k];
+    }
+    const double* Ck = m->C + (size_t)k * n;
+    const double* Q0 = m->Q + (size_t)k * n;
+    const double* Q1 = Q0 + nn;
+    const double* Q2 = Q1 + nn;
+    const double* S0 = m->S + (size_t)k * n;
+    for (int l = 0; l < n; l++) {
+      const double Qal = al[0] * Q0[l] + al[1] * Q1[l] + al[2] * Q2[l];
+      const double Qw = w[0] * Q0[l] + w[1] * Q1[l] + w[2] * Q2[l];
+      double Sc = 0;
+      for (int i = 0; i < 6; i++) {
+        Sc += c[i] * S0[(size_t)i * nn + l];
+      }
+      f -= (Qal + Sc) * q[l] + (Ck[l] + 2 * Qw) * qd[l];
+    }
+    d->F[k] = f;
+  }
+  if (w_out) {
+    memcpy(w_out, w, 3 * sizeof(double));
+    memcpy(al_out, al, 3 * sizeof(double));
+  }
+  return 0;
+}
+
+
+static void momentIntegrand(const csrRomModel* m, const csrRomData* d, double t, const double* Y,
+                            double* out);
+
+
+static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+  csrRomData* d = user;
+  const csrRomModel* m = d->m;
+  const int n = m->n;
+  const double* Y = N_VGetArrayPointer(y);
+  double* Yd = N_VGetArrayPointer(ydot);
+  d->rhs++;
+  const int rc = generalisedForce(m, d, (double)t, Y, Y + n, 0, NULL, NULL);
+  if (rc != 0) {
+    d->cb_status = rc;
+    return rc;
+  }
+  memcpy(Yd, Y + n, (size_t)n * sizeof(double));
+  for (int k = 0; k < n; k++) {
+    const double* Mk = m->Minv + (size_t)k * n;
+    double a = 0;
+    for (int l = 0; l < n; l++) {
+      a += Mk[l] * d->F[l];
+    }
+    Yd[n + k] = a;
+  }
+  momentIntegrand(m, d, (double)t, Y, Yd + 2 * n);
+  return 0;
+}
+
+
+/* J = [[0, I], [M⁻¹ ∂F/∂q, M⁻¹ ∂F/∂q']] with ∂F/∂q = -K_r(q) - Σ α_k Q_k - Σ c_ij S_ij and
+ * ∂F/∂q' = -C - 2 Σ ω_k Q_k (the pressures' load stiffness is in K_r: fem_rom.h) */
+static int jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, N_Vector t1,
+               N_Vector t2, N_Vector t3) {
+  (void)fy, (void)t1, (void)t2, (void)t3;
+  csrRomData* d = user;
+  const csrRomModel* m = d->m;
+  const int n = m->n;
+  const size_t nn = (size_t)n * n;
+  const double* Y = N_VGetArrayPointer(y);
+  double w[3], al[3], c[6];
+  d->jacs++;
+  const int rc = generalisedForce(m, d, (double)t, Y, Y + n, 1, w, al);
+  if (rc != 0) {
+    d->cb_status = rc;
+    return rc;
+  }
+  centrifugal(w, c);
+  SUNMatZero(J);
+  for (int k = 0; k < n; k++) {
+    SM_ELEMENT_D(J, k, n + k) = 1.0;
+  }
+  for (int half = 0; half < 2; half++) {
+    /* G = ∂F/∂q (half 0) or ∂F/∂q' (half 1) */
+    for (size_t kl = 0; kl < nn; kl++) {
+      double g;
+      if (half == 0) {
+        g = -d->fd->K[kl] - al[0] * m->Q[kl] - al[1] * m->Q[nn + kl] - al[2] * m->Q[2 * nn + kl];
+        for (int i = 0; i < 6; i++) {
+          g -= c[i] * m->S[(size_t)i * nn + kl];
+        }
+      } else {
+        g = -m->C[kl] - 2 * (w[0] * m->Q[kl] + w[1] * m->Q[nn + kl] + w[2] * m->Q[2 * nn + kl]);
+      }
+      d->G[kl] = g;
+    }
+    for (int k = 0; k < n; k++) {
+      const double* Mk = m->Minv + (size_t)k * n;
+      for (int l = 0; l < n; l++) {
+        double a = 0;
+        for (int j = 0; j < n; j++) {
+          a += Mk[j] * d->G[(size_t)j * n + l];
+        }
+        SM_ELEMENT_D(J, n + k, half * n + l) = a;
+      }
+    }
+  }
+  return 0;
+}
+
+
+/* the first mass moment s(q) = s0 + Tᵀ q (hip frame, t mm) */
+static void firstMoment(const csrRomModel* m, const double* q, double s[3]) {
+  memcpy(s, m->s0, 3 * sizeof(double));
+  for (int k = 0; k < m->n; k++) {
+    for (int i = 0; i < 3; i++) {
+      s[i] += m->T[3 * (size_t)k + i] * q[k];
+    }
+  }
+}
+
+
+/* P and L_h (world) at q, q' with the frame R, hip velocity vh (world), ω (hip frame) */
+static void momentumOf(const csrRomModel* m, const double* q, const double* qd, const double R[9],
+                       const double vh[3], const double w[3], double P[3], double L[3]) {
+  const int n = m->n;
+  const size_t nn = (size_t)n * n;
+  double s[3], pb[3], ws[3];
+  firstMoment(m, q, s);
+  /* P = m v_h + R (ω × s + Tᵀ q') */
+  csu_cross3(ws, w, s);
+  for (int i = 0; i < 3; i++) {
+    pb[i] = ws[i];
+    for (int k = 0; k < n; k++) {
+      pb[i] += m->T[3 * (size_t)k + i] * qd[k];
+    }
+  }
+  double Rp[3];
+  csu_mulMatVec3(Rp, R, pb);
+  for (int i = 0; i < 3; i++) {
+    P[i] = m->mass * vh[i] + Rp[i];
+  }
+  /* L_h = R [ s × Rᵀ v_h + I(q) ω + h ],  J(q)_ij = J0_ij + 2 d_ij.q + q.S_ij q,
+   * I = tr(J) 1 - J,  h_k = q'.(e_k + Q_k q) */
+  double Jq[6];
+  for (int i = 0; i < 6; i++) {
+    double a = m->J0[i];
+    for (int k = 0; k < n; k++) {
+      const double* Sk = m->S + (size_t)i * nn + (size_t)k * n;
+      double sq = 0;
+      for (int l = 0; l < n; l++) {
+        sq += Sk[l] * q[l];
+      }
+      a += (2 * m->d[(size_t)i * n + k] + sq) * q[k];
+    }
+    Jq[i] = a;
+  }
+  const double tr = Jq[0] + Jq[1] + Jq[2];
+  const double I[9] = {tr - Jq[0], -Jq[3], -Jq[4], -Jq[3], tr - Jq[1], -Jq[5],
+                       -Jq[4], -Jq[5], tr - Jq[2]};
+  double vb[3], lb[3], Iw[3];
+  csu_mulMatTVec3(vb, R, vh);
+  csu_cross3(lb, s, vb);
+  csu_mulMatVec3(Iw, I, w);
+  csu_add3(lb, lb, Iw);
+  for (int i = 0; i < 3; i++) {
+    const double* e = m->e + (size_t)i * n;
+    const double* Qi = m->Q + (size_t)i * nn;
+    double h = 0;
+    for (int k = 0; k < n; k++) {
+      double a = e[k];
+      for (int l = 0; l < n; l++) {
+        a += Qi[(size_t)k * n + l] * q[l];
+      }
+      h += qd[k] * a;
+    }
+    lb[i] += h;
+  }
+  csu_mulMatVec3(L, R, lb);
+}
+
+
+/* the integrand of the base moment's impulse: R s(q) × g - v_h × P (the last 3 components of
+ * y: CVODE has no quadrature module (CVODES has), so they ride in y, restarted from zero at
+ * every advance and under error control, as the rod's impulse; their Jacobian rows are left
+ * out: nothing depends on them, and the modified Newton converges on them with y) */
+static void momentIntegrand(const csrRomModel* m, const csrRomData* d, double t, const double* Y,
+                            double* out) {
+  double R[9], vh[3], ah[3], w[3], al[3], s[3], Rs[3], P[3], L[3], a[3], b[3];
+  baseAt(&d->bm, t, R, vh, ah, w, al);
+  firstMoment(m, Y, s);
+  csu_mulMatVec3(Rs, R, s);
+  csu_cross3(a, Rs, m->par.gravity);
+  momentumOf(m, Y, Y + m->n, R, vh, w, P, L);
+  csu_cross3(b, vh, P);
+  csu_sub3(out, a, b);
+}
+
+
+void csr_romMomentum(const csrRomModel* m, const csrRomData* d, double P[3], double L[3]) {
+  double wb[3];
+  csu_mulMatTVec3(wb, d->base.R, d->base.w);
+  momentumOf(m, d->y, d->y + m->n, d->base.R, d->base.v, wb, P, L);
+}
+
+
+/* ---- data ------------------------------------------------------------------------------- */
+
+static int contextCreate(SUNContext* ctx) {
+#if SUNDIALS_VERSION_MAJOR >= 7
+  return SUNContext_Create(SUN_COMM_NULL, ctx);
+#else
+  return SUNContext_Create(NULL, ctx);
+#endif
+}
+
+
+#if SUNDIALS_VERSION_MAJOR < 7
+/* the library never prints: CVODE's messages are dropped, its return flags name the cause */
+static void silentHandler(int code, const char* module, const char* fn, char* msg, void* user) {
+  (void)code, (void)module, (void)fn, (void)msg, (void)user;
+}
+#endif
+
+
+void csr_romDataDestroy(csrRomData* d) {
+  if (!d) {
+    return;
+  }
+  CVodeFree(&d->cvode);
+  SUNLinSolFree(d->LS);
+  SUNMatDestroy(d->A);
+  N_VDestroy(d->yv);
+  N_VDestroy(d->atol);
+  if (d->sun) {
+    SUNContext_Free(&d->sun);
+  }
+  csf_romDataDestroy(d->fd);
+  free(d->fdead), free(d->face_p), free(d->F), free(d->G), free(d->backup);
+  free(d);
+}
+
+
+csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
+  if (!m) {
+    cs_errorSet(err, CS_ERR_ARG, "rom leg: no model");
+    return NULL;
+  }
+  const int n = m->n;
+  csrRomData* d = calloc(1, sizeof *d);
+  if (!d) {
+    cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
+    return NULL;
+  }
+  d->m = m;
+  d->n = n;
+  d->fd = csf_romDataCreate(m->rom, err);
+  d->fdead = calloc((size_t)n, sizeof(double));
+  d->face_p = calloc((size_t)(m->nface > 0 ? m->nface : 1), sizeof(double));
+  d->F = calloc((size_t)n, sizeof(double));
+  d->G = calloc((size_t)n * n, sizeof(double));
+  d->backup = calloc(2 * (size_t)n, sizeof(double));
+  if (!d->fd || !d->fdead || !d->face_p || !d->F || !d->G || !d->backup) {
+    csr_romDataDestroy(d);
+    cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory (n = %d)", n);
+    return NULL;
+  }
+  d->fd->sync = 1; /* the exact tangent (fem_rom.h): the Jacobian of CVODE's Newton */
+  if (contextCreate(&d->sun) != 0) {
+    d->sun = NULL;
+    csr_romDataDestroy(d);
+    cs_errorSet(err, CS_ERR_SOLVER, "rom leg: cannot create a SUNDIALS context");
+    return NULL;
+  }
+  d->yv = N_VNew_Serial(2 * n + 3, d->sun);
+  d->atol = N_VNew_Serial(2 * n + 3, d->sun);
+  d->A = d->yv ? SUNDenseMatrix(2 * n + 3, 2 * n + 3, d->sun) : NULL;
+  d->LS = d->A ? SUNLinSol_Dense(d->yv, d->A, d->sun) : NULL;
+  if (!d->yv || !d->atol || !d->A || !d->LS) {
+    csr_romDataDestroy(d);
+    cs_errorSet(err, CS_ERR_MEMORY, "rom leg: cannot allocate SUNDIALS objects");
+    return NULL;
+  }
+  d->y = N_VGetArrayPointer(d->yv);
+  double* at = N_VGetArrayPointer(d->atol);
+  for (int k = 0; k < n; k++) {
+    double vmax = 0; /* the largest nodal displacement of a unit q_k, mm */
+    for (int i = 0; i < m->rom->ndof; i++) {
+      vmax = fmax(vmax, fabs(m->rom->V[(size_t)i * n + k]));
+    }
+    at[k] = m->par.atol_u / (vmax > 0 ? vmax : 1.0);
+    at[n + k] = 1e3 * at[k]; /* q' over a millisecond */
+  }
+  for (int k = 0; k < 3; k++) {
+    at[2 * n + k] = 1.0; /* set per advance */
+  }
+  d->cvode = CVodeCreate(CV_BDF, d->sun);
+  if (!d->cvode || CVodeInit(d->cvode, rhs, 0.0, d->yv) != CV_SUCCESS ||
+      CVodeSVtolerances(d->cvode, m->par.rtol, d->atol) != CV_SUCCESS ||
+      CVodeSetUserData(d->cvode, d) != CV_SUCCESS ||
+      CVodeSetLinearSolver(d->cvode, d->LS, d->A) != CV_SUCCESS ||
+      CVodeSetJacFn(d->cvode, jac) != CV_SUCCESS ||
+      CVodeSetMaxNumSteps(d->cvode, m->par.max_steps) != CV_SUCCESS) {
+    csr_romDataDestroy(d);
+    cs_errorSet(err, CS_ERR_SOLVER, "rom leg: cannot set up CVODE (BDF, dense)");
+    return NULL;
+  }
+#if SUNDIALS_VERSION_MAJOR < 7
+  CVodeSetErrHandlerFn(d->cvode, silentHandler, NULL);
+#endif
+  csrBaseState b;
+  memset(&b, 0, sizeof b);
+  csu_eye3(b.R);
+  csr_romReset(m, d, 0.0, &b);
+  return d;
+}
+
+
+void csr_romReset(const csrRomModel* m, csrRomData* d, double t, const csrBaseState* b) {
+  memset(d->y, 0, (2 * (size_t)m->n + 3) * sizeof(double));
+  csf_romDataReset(m->rom, d->fd);
+  d->t = t;
+  d->base = *b;
+  d->pt0 = d->pt1 = t;
+  d->need_reinit = 1;
+  memset(d->p0, 0, sizeof d->p0);
+  memset(d->p1, 0, sizeof d->p1);
+}
+
+
+void csr_romActuate(csrRomData* d, double t0, const double p0[12], double t1,
+                    const double p1[12]) {
+  d->pt0 = t0;
+  d->pt1 = t1;
+  memcpy(d->p0, p0, sizeof d->p0);
+  memcpy(d->p1, p1, sizeof d->p1);
+}
+
+
+void csr_romSetDeadLoad(const csrRomModel* m, csrRomData* d, const double* fr) {
+  d->have_dead = fr != NULL;
+  if (fr) {
+    memcpy(d->fdead, fr, (size_t)m->n * sizeof(double));
+  }
+}
+
+
+const double* csr_romQ(const csrRomData* d) { return d->y; }
+const double* csr_romQdot(const csrRomData* d) { return d->y + d->n; }
+double csr_romTime(const csrRomData* d) { return d->t; }
+
+
+void csr_romStats(const csrRomData* d, long* steps, long* rhs_n, long* jacs, long* restarts) {
+  long ns = 0;
+  if (d->cvode) {
+    CVodeGetNumSteps(d->cvode, &ns);
+  }
+  *steps = d->steps + ns;
+  *rhs_n = d->rhs;
+  *jacs = d->jacs;
+  *restarts = d->restarts; /* retries included */
+}
+
+
+/* a hip that starts a step more than this away from where the last one ended (mm, rad) has
+ * jumped (a teleport, a restored driver): CVODE restarts. Smaller differences are the
+ * coupling's normal corrections of the predicted end state (as the rod's, robot_rod_dyn.c) */
+#define CSR_ROM_BASE_JUMP_X 0.1
+#define CSR_ROM_BASE_JUMP_PHI 1e-3
+
+static int baseJumped(const csrBaseState* a, const csrBaseState* b) {
+  double dx[3], Rt[9], Rab[9], phi[3];
+  csu_sub3(dx, a->x, b->x);
+  csu_transpose3(Rt, a->R);
+  csu_mulMat3(Rab, Rt, b->R);
+  csu_mat3ToRotVec(phi, Rab);
+  return !(csu_norm3(dx) <= CSR_ROM_BASE_JUMP_X && csu_norm3(phi) <= CSR_ROM_BASE_JUMP_PHI);
+}
+
+
+/* restart CVODE from the state at t for steps of H (the moment impulse from zero) */
+static int restartAt(const csrRomModel* m, csrRomData* d, double t, double H) {
+  const int n = m->n;
+  long ns = 0;
+  CVodeGetNumSteps(d->cvode, &ns);
+  d->steps += ns;
+  d->restarts++;
+  /* the moment's impulse from zero: only its change over an advance is used, and its absolute
+   * value sets the rounding of that change, so a restored state (which does not hold it)
+   * steps bit for bit only from zero */
+  for (int k = 0; k < 3; k++) {
+    d->y[2 * n + k] = 0;
+  }
+  /* the moment impulse's tolerance: the averaged wrench's over a 10 mm arm, for steps of this
+   * H (set at restarts only: CVODE binds its error weights' data before its first step) */
+  double* at = N_VGetArrayPointer(d->atol);
+  for (int k = 0; k < 3; k++) {
+    at[2 * n + k] = m->par.atol_wrench * 10.0 * H;
+  }
+  if (CVodeReInit(d->cvode, t, d->yv) != CV_SUCCESS ||
+      CVodeSVtolerances(d->cvode, m->par.rtol, d->atol) != CV_SUCCESS) {
+    return -1;
+  }
+  d->need_reinit = 0;
+  return 0;
+}
+
+
+int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
+                   const csrBaseState* b0, const csrBaseState* b1, csrWrench* w, csError* err) {
+  if (!m || !d || !b0 || !b1 || !(H > 0) || !isfinite(H) || !isfinite(t)) {
+    cs_errorSet(err, CS_ERR_ARG, "rom advance: need a model, data, both base states and H > 0");
+    return -1;
+  }
+  const int n = m->n;
+  setBase(&d->bm, t, H, b0, b1);
+  double P0[3], L0[3];
+  {
+    const csrBaseState last = d->base;
+    d->base = *b0;
+    csr_romMomentum(m, d, P0, L0);
+    d->base = last; /* compared with b0 below */
+  }
+  memcpy(d->backup, d->y, 2 * (size_t)n * sizeof(double));
+  d->cb_status = 0;
+  int restart = d->need_reinit || fabs(t - d->t) > 1e-12 * (1 + fabs(t)) ||
+                baseJumped(&d->base, b0);
+  d->base = *b0;
+  double I0[3];
+  for (;;) {
+    if (restart && restartAt(m, d, t, H) != 0) {
+      cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE restart failed at t = %g s", t);
+      return -1;
+    }
+    if (CVodeSetStopTime(d->cvode, t + H) != CV_SUCCESS) {
+      cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE refused the stop time %g s", t + H);
+      return -1;
+    }
+    memcpy(I0, d->y + 2 * n, sizeof I0);
+    sunrealtype tret = t;
+    const int flag = CVode(d->cvode, t + H, d->yv, &tret, CV_NORMAL);
+    if (flag >= 0) {
+      break;
+    }
+    memcpy(d->y, d->backup, 2 * (size_t)n * sizeof(double));
+    d->need_reinit = 1;
+    const int fatal = d->cb_status < 0 || flag == CV_ILL_INPUT || flag == CV_MEM_FAIL ||
+                      flag == CV_MEM_NULL;
+    if (!fatal && !restart) {
+      /* a continued step that failed (its history extrapolated across the kink of the hip's
+       * acceleration or of the pressures' rate at the macro step's start, which a tight
+       * tolerance cannot resolve by shrinking h): once more from the state, fresh */
+      restart = 1;
+      d->retries++;
+      d->cb_status = 0;
+      continue;
+    }
+    char* name = CVodeGetReturnFlagName(flag);
+    cs_errorSet(err, fatal ? CS_ERR_SOLVER : CS_ERR_DIVERGED,
+                "rom advance from t = %.6g s by H = %.3g s failed at t = %.6g s: CVODE %s", t,
+                H, (double)tret, name ? name : "?");
+    free(name);
+    return fatal ? -1 : 1;
+  }
+  double Iq[3];
+  for (int k = 0; k < 3; k++) {
+    Iq[k] = d->y[2 * n + k] - I0[k];
+  }
+  d->t = t + H;
+  d->base = *b1;
+  if (w) {
+    double P1[3], L1[3];
+    csr_romMomentum(m, d, P1, L1);
+    for (int k = 0; k < 3; k++) {
+      w->f[k] = m->mass * m->par.gravity[k] - (P1[k] - P0[k]) / H;
+      w->m[k] = (Iq[k] - (L1[k] - L0[k])) / H;
+    }
+  }
+  return 0;
+}
+
+
+int csr_romStateSize(const csrRomModel* m) { return 1 + 2 * m->n + 18 + 2 + 24; }
+
+
+void csr_romGetState(const csrRomModel* m, const csrRomData* d, double* x) {
+  const int n = m->n;
+  x[0] = d->t;
+  memcpy(x + 1, d->y, 2 * (size_t)n * sizeof(double));
+  double* b = x + 1 + 2 * n;
+  memcpy(b, d->base.x, 3 * sizeof(double));
+  memcpy(b + 3, d->base.R, 9 * sizeof(double));
+  memcpy(b + 12, d->base.v, 3 * sizeof(double));
+  memcpy(b + 15, d->base.w, 3 * sizeof(double));
+  b[18] = d->pt0;
+  b[19] = d->pt1;
+  memcpy(b + 20, d->p0, 12 * sizeof(double));
+  memcpy(b + 32, d->p1, 12 * sizeof(double));
+}
+
+
+int csr_romSetState(const csrRomModel* m, csrRomData* d, const double* x) {
+  const int ns = csr_romStateSize(m);
+  for (int i = 0; i < ns; i++) {
+    if (!isfinite(x[i])) {
+      return -1;
+    }
+  }
+  const int n = m->n;
+  d->t = x[0];
+  memcpy(d->y, x + 1, 2 * (size_t)n * sizeof(double));
+  const double* b = x + 1 + 2 * n;
+  memcpy(d->base.x, b, 3 * sizeof(double));
+  memcpy(d->base.R, b + 3, 9 * sizeof(double));
+  memcpy(d->base.v, b + 12, 3 * sizeof(double));
+  memcpy(d->base.w, b + 15, 3 * sizeof(double));
+  d->pt0 = b[18];
+  d->pt1 = b[19];
+  memcpy(d->p0, b + 20, 12 * sizeof(double));
+  memcpy(d->p1, b + 32, 12 * sizeof(double));
+  d->need_reinit = 1;
+  /* the reduced FE's states (θ, fibre stress) are synchronised at every evaluation (sync = 1):
+   * nothing else to restore */
+  return 0;
+}
