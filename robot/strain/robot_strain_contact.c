@@ -260,6 +260,68 @@ static unsigned char slotSig(const cscSoftParams* p, const cscSlotInfo* si) {
 }
 
 
+/* Shape s's ghost load at its state st (the active set, header): its last linearisation's
+ * affine load L + K_y (y - y_lin) + C_y (ẏ - ẏ_lin), in the linearisation's coordinates (the
+ * foot's rotation as the world rotation vector of R R_linᵀ, as `perturb` turns it) */
+static void ghostLoad(const csrStrainModel* m, const csrStrainGhost* g, int s,
+                      const cscShapeState* st, double L[6]) {
+  double dy[6], dv[6];
+  csu_sub3(dy, st->x0, g->y.x0);
+  csu_sub3(dv, st->v0, g->y.v0);
+  if (s == m->nshape - 1) {
+    double Rt[9], dR[9];
+    csu_transpose3(Rt, g->y.R);
+    csu_mulMat3(dR, st->R, Rt);
+    csu_mat3ToRotVec(dy + 3, dR);
+    csu_sub3(dv + 3, st->w, g->y.w);
+  } else {
+    csu_sub3(dy + 3, st->x1, g->y.x1);
+    csu_sub3(dv + 3, st->v1, g->y.v1);
+  }
+  for (int r = 0; r < 6; r++) {
+    double t = g->L[r];
+    for (int c = 0; c < 6; c++) {
+      t += g->K[6 * r + c] * dy[c] + g->C[6 * r + c] * dv[c];
+    }
+    L[r] = t;
+  }
+}
+
+
+/* 1 when the law's load (L, couple) of a shape is zero */
+static int loadZero(const double L[6], const double couple[3]) {
+  int z = couple[0] == 0 && couple[1] == 0 && couple[2] == 0;
+  for (int i = 0; i < 6; i++) {
+    z &= L[i] == 0;
+  }
+  return z;
+}
+
+
+void csr_strainGhostReset_(const csrStrainModel* m, csrStrainData* d) {
+  if (m->soft) {
+    memset(d->ghost, 0, (size_t)m->nshape * sizeof *d->ghost);
+  }
+  d->nghost = 0;
+  d->fresh = 0;
+}
+
+
+int csr_strainGhostRelease_(const csrStrainModel* m, csrStrainData* d) {
+  int n = 0;
+  for (int s = 0; m->soft && s < m->nshape; s++) {
+    csrStrainGhost* g = d->ghost + s;
+    if (g->on) {
+      g->on = 0;
+      g->state = 2;
+      n++;
+    }
+  }
+  d->nghost = 0;
+  return n;
+}
+
+
 int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
                                const double* du, double* Wbb, double* rb, double* G) {
   if (!m->soft) {
@@ -272,7 +334,11 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
   double* S = G + 12 * nu;
   memset(d->fcw, 0, sizeof d->fcw);
   d->ntouch = 0;
+  d->nghost = 0;
+  const int active = m->par.active_set;
   for (int s = 0; s < m->nshape; s++) {
+    csrStrainGhost* g = d->ghost + s;
+    g->on = 0;
     cscShapeState st;
     shapeState(m, d, s, &st);
     /* the contact normal (mean over the shape's touching slots) */
@@ -328,8 +394,20 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     for (int i = 0; i < nslot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST; i++) {
       d->csig[first + i] = slotSig(csc_softParams(m->soft), slot + i);
     }
+    /* an iterate: a shape out of contact that touched at its last linearisation of this step
+     * is held by its ghost, linearised as there */
+    int ghost = 0;
+    if (du && active && g->state == 1 && loadZero(L0, couple)) {
+      ghostLoad(m, g, s, &st, L0);
+      memset(couple, 0, sizeof couple);
+      ghost = 1;
+    }
     if (!countTouch(m, d, s, L0, couple)) {
       continue;
+    }
+    if (ghost) {
+      g->on = 1;
+      d->nghost++;
     }
     int a = m->shape_a[s], b = m->shape_b[s];
     csr_strainPointG_(m, d, a, Ga);
@@ -342,7 +420,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
      * in one pass moves the step by that fraction of the contact's linear part
      * (test_strain_friction holds creep and Coulomb) */
     double Ky[36], Cy[36];
-    for (int c = 0; c < 12; c++) {
+    for (int c = 0; c < 12 && !ghost; c++) {
       double del = c < 3 ? CSR_STRAIN_CFD_X
                          : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
                                   : CSR_STRAIN_CFD_V);
@@ -356,12 +434,23 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         D[6 * r + col] = (Lp[r] - L0[r]) / del;
       }
     }
+    if (ghost) {
+      memcpy(Ky, g->K, sizeof Ky);
+      memcpy(Cy, g->C, sizeof Cy);
+    } else if (active && g->state != 2) {
+      /* the shape's linearisation: its ghost if a later iterate finds it out of contact */
+      g->y = st;
+      memcpy(g->L, L0, sizeof g->L);
+      memcpy(g->K, Ky, sizeof g->K);
+      memcpy(g->C, Cy, sizeof g->C);
+      g->state = 1;
+    }
     /* the step's load against the shape's rates, A = h K_y + C_y (y1 = y0 + h ẏ1) */
     double A[36];
     for (int i = 0; i < 36; i++) {
       A[i] = h * Ky[i] + Cy[i];
     }
-    if (du && foot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST) {
+    if (du && foot && !ghost && nslot <= CSR_STRAIN_MAX_SHAPE_HIST) {
       anchorSecant(m, h, &st, slot, nslot, A);
     }
     /* the start (du NULL): h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)); an iterate (the
@@ -449,7 +538,10 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
   }
   const int n = m->n;
   const cscSoftParams* sp = csc_softParams(m->soft);
+  d->nghost = 0;
   for (int s = 0; s < m->nshape; s++) {
+    csrStrainGhost* g = d->ghost + s;
+    g->on = 0;
     cscShapeState st;
     shapeState(m, d, s, &st);
     int first, nslot;
@@ -461,13 +553,24 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
-    for (int i = 0; i < nslot && has_slot; i++) {
+    /* out of contact after touching at its last linearisation: its ghost, whose stiffness
+     * the kept matrix already holds (its slots' state does not matter) */
+    const int ghost = m->par.active_set && g->state == 1 && loadZero(L, couple);
+    if (ghost) {
+      ghostLoad(m, g, s, &st, L);
+      memset(couple, 0, sizeof couple);
+    }
+    for (int i = 0; i < nslot && has_slot && !ghost; i++) {
       if (slotSig(sp, slot + i) != d->csig[first + i]) {
         *same = 0;
       }
     }
     if (!countTouch(m, d, s, L, couple)) {
       continue;
+    }
+    if (ghost) {
+      g->on = 1;
+      d->nghost++;
     }
     int foot = s == m->nshape - 1;
     /* Sᵀ L = G_pᵀ (R_pᵀ couple; R_pᵀ f) at each end point p (R_p its world frame) */

@@ -607,12 +607,13 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
      * last kept iterate (a chord iteration contracting slower than that costs more passes
      * than the new linearisation saves) */
     int shrinks = d->nreuse == 0 || d->chg_last <= 0.25 * d->chg_prev;
-    if (!d->lu_plain && same && shrinks) {
+    if (!d->lu_plain && same && shrinks && !d->fresh) {
       d->nreuse++;
       return condenseKept(m, d, h, du, fb, Z, rho);
     }
   }
   d->nreuse = 0;
+  d->fresh = 0;
   memcpy(Wbb, d->WMbb, sizeof Wbb);
   memcpy(rb, d->rMb, sizeof rb);
   memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
@@ -730,6 +731,8 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   }
   d->h = 0;
   d->w_step = 0;
+  /* the active set is the step's: none held before its first linearisation */
+  csr_strainGhostReset_(m, d);
   int rc;
   if (m->par.step_order == 2) {
     rc = prepareBdf(m, d, h, Z, rho);
@@ -795,6 +798,21 @@ int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], d
   }
   csr_strainPointTwists_(m, d);
   return condense(m, d, d->he, d->du, Z, rho);
+}
+
+
+int csr_strainRelease(const csrStrainModel* m, csrStrainData* d) {
+  if (!(d->h > 0)) {
+    return 0;
+  }
+  const int n = csr_strainGhostRelease_(m, d);
+  if (n > 0) {
+    /* the kept matrix holds the released shapes' stiffness: the next iterate linearises
+     * afresh (kept, the chord crawls through the gap: docs/notes/strain_leg.md, "Newton's
+     * contraction", FAST2_LOSTKEEP) */
+    d->fresh = 1;
+  }
+  return n;
 }
 
 
