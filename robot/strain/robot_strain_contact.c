@@ -362,6 +362,21 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
       rest[c] = h * st.v0[c];
       rest[3 + c] = h * (foot ? st.w[c] : st.v1[c]);
     }
+    if (!du && d->pred) {
+      /* the shape's predicted end pose (robot_strain_dyn.c predictShapes): its motion over
+       * the step at the start's velocities to second order, y(q0 + h η0) - y0 in place of
+       * h S u0 */
+      const cscShapeState* sp = d->sst + s;
+      csu_sub3(rest, sp->x0, st.x0);
+      if (foot) {
+        double Rt[9], dR[9];
+        csu_transpose3(Rt, st.R);
+        csu_mulMat3(dR, sp->R, Rt);
+        csu_mat3ToRotVec(rest + 3, dR);
+      } else {
+        csu_sub3(rest + 3, sp->x1, st.x1);
+      }
+    }
     if (!du && csu_normalize3(nrm) > 0) {
       /* the predicted end of the step: the shape slid on along the surface at its start
        * velocity (and turned about the normal); its normal motion is left to the step, whose

@@ -143,7 +143,9 @@ struct csrStrainData_ {
   int nghost;     /* shapes held by their ghost load at the last evaluation */
   int fresh;      /* 1: the next iterate linearises afresh (a ghost was released) */
   double* z;      /* (nhist) contact anchors (state) */
-  cscShapeState* sst; /* (nshape) scratch */
+  cscShapeState* sst; /* (nshape) scratch; in a prepare with pred set, every shape's pose at
+                          the predicted end of the step (robot_strain_dyn.c predictShapes) */
+  int pred;       /* 1: sst holds the predicted poses (backward Euler's prepare) */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
 };
 

@@ -117,13 +117,14 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
-  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/LEVEL_LINKS_DT_ORDER.h5 (its track, for the
+  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/LEVEL_LINKS_DT_ORDER[_noactive].h5 (its track, for the
    * errors against a reference: docs/bench/levels_one_process_2026-12-05) */
   const char* keep = getenv("CS_BENCH_KEEP");
   char out[700];
   if (keep) {
-    snprintf(out, sizeof out, "%s/%s_%d_%g_%d.h5", keep, level,
-             (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order);
+    snprintf(out, sizeof out, "%s/%s_%d_%g_%d%s.h5", keep, level,
+             (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order,
+             active == 0 ? "_noactive" : "");
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }

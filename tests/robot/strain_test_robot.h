@@ -70,10 +70,10 @@ static inline void strainRobotHip(const StrainRobot* r, int k, csrBaseState* b) 
 
 
 /* the robot standing with its feet on the flat road (hips at the leg's length), friction mu,
- * bending order `order`, the legs' and the support's step_order (1 backward Euler, 2 BDF2);
- * 0 ok */
-static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, int step_order,
-                                         csError* err) {
+ * bending order `order`, the legs' and the support's step_order (1 backward Euler, 2 BDF2),
+ * the legs' active_set (csrStrainParams); 0 ok */
+static inline int strainRobotCreateActive(StrainRobot* r, double mu, int order, int step_order,
+                                          int active_set, csError* err) {
   memset(r, 0, sizeof *r);
   if (csr_actuatorPreset(&r->act, "leg", err) != CS_OK) {
     return 1;
@@ -93,6 +93,7 @@ static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, i
   r->sp = csr_strainDefaultParams();
   r->sp.bend_order = order;
   r->sp.step_order = step_order;
+  r->sp.active_set = active_set;
   csrRobotModel rm;
   if (csr_robotDefaultModel(&rm, err) != CS_OK) {
     return 1;
@@ -133,6 +134,13 @@ static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, i
     }
   }
   return 0;
+}
+
+
+/* the same with the legs' default active set (csrStrainParams.active_set 1) */
+static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, int step_order,
+                                         csError* err) {
+  return strainRobotCreateActive(r, mu, order, step_order, 1, err);
 }
 
 
