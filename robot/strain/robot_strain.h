@@ -79,7 +79,8 @@ typedef struct csrStrainParams_ {
                           linearisation and is out at the iterate by that linearisation's
                           affine load (a "ghost", allowed to pull) until the passes converge,
                           then drop it (csr_strainRelease) and go on: the converged step is the
-                          law's (robot_strain_contact.c, Active set); 0: the law alone */
+                          law's (robot_strain_contact.c, Active set); 0: the law alone.
+                          Backward Euler's only: step_order 2 ignores it */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */
