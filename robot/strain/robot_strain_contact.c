@@ -33,7 +33,17 @@
  * predicting the normal motion too overshoots the stiff normal law (measured: a foot pressed
  * 0.5 mm bounced to 15 N); the normal part stays linearised at y0 as it was. So
  * the contact's stiffness and damping implicit in the step, the couple of a capsule's friction
- * offsets explicit. */
+ * offsets explicit.
+ *
+ * Active set (csrStrainParams.active_set, backward Euler): a stance foot rests ~0.6 µm deep in
+ * a law far stiffer than the step's motion, so a first solve that lifts it by a fraction of a
+ * micrometre left the next iterate without contact (its linearisation zero: the robot's free
+ * fall for the step, then Newton walking back down the stiff law; docs/notes/strain_leg.md,
+ * "Newton's contraction"). So every linearisation records each touching shape's y, L, K_y,
+ * C_y (csrStrainGhost), and at a later iterate of the step a shape that touched there and is
+ * out of contact is held by its ghost, the affine L + K_y Δy + C_y Δẏ (it may pull), in the
+ * residual and the matrix. Converged passes drop the ghosts they held (csr_strainRelease) and
+ * go on, a dropped shape never held again in the step: the step ends on the law alone. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -260,7 +270,7 @@ static unsigned char slotSig(const cscSoftParams* p, const cscSlotInfo* si) {
 }
 
 
-/* Shape s's ghost load at its state st (the active set, header): its last linearisation's
+/* Shape s's ghost load at its state st (Active set, above): its last linearisation's
  * affine load L + K_y (y - y_lin) + C_y (ẏ - ẏ_lin), in the linearisation's coordinates (the
  * foot's rotation as the world rotation vector of R R_linᵀ, as `perturb` turns it) */
 static void ghostLoad(const csrStrainModel* m, const csrStrainGhost* g, int s,
