@@ -936,7 +936,18 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
     alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
     chg_last = chg;
     if (it > 1 && chg <= m->opt.tree_tol) {
-      break;
+      /* converged; a leg that held a contact shape by its ghost (robot_leg.h release) drops
+       * it and the passes go on from here, undamped, so the step that ends is the law's */
+      int released = 0;
+      for (int k = 0; type->release && k < CSR_NLEG; k++) {
+        released += type->release(d->robot->legs[k]);
+      }
+      if (released == 0) {
+        break;
+      }
+      c->tree_released += released;
+      alpha = 1.0;
+      chg_last = INFINITY;
     }
     if (it >= m->opt.tree_iterations) {
       cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: the tree step of %g s did not converge "

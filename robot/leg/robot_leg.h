@@ -276,6 +276,11 @@ typedef struct csrLegType_ {
   int (*update)(csrLeg* leg, const csrBaseState* b1, double alpha, const csrBaseState* b1_alpha,
                 double* change);
   int (*iterate)(csrLeg* leg, double Z[36], double rho[6]);
+  /* The passes converged (NULL: nothing to do): drop what only steered them (the strain leg's
+   * active set: contact shapes out of contact held by their last linearisation's affine
+   * load) and return how many; > 0: the converged iterate is not the leg's law, the caller
+   * goes on with the passes (iterate linearises afresh). */
+  int (*release)(csrLeg* leg);
   /* The multistep formula the leg's next step of h takes (NULL: backward Euler): the step is
    * y1 = c[0] y0 + c[1] y_-1 + c[2] h f(y1) on positions and velocities (y_-1 the last step's
    * start), and prepare's Z, ρ are impulses over c[2] h (the force at the step's end times

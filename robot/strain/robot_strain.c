@@ -67,6 +67,9 @@ csrStrainParams csr_strainDefaultParams(void) {
   /* BDF2's whole residual at every iterate (the exact step; 0 is cheaper: docs/notes/
    * strain_leg.md, "Fast step") */
   p.step_refresh = 1;
+  /* the stance feet's active set in the Newton passes (docs/notes/strain_leg.md, "Active
+   * set") */
+  p.active_set = 1;
   return p;
 }
 
@@ -112,10 +115,11 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       par.joint_order > CSR_STRAIN_MAX_ORDER || par.nsub < 1 || par.nsub > CSR_STRAIN_MAX_SUB ||
       (par.shear != 0 && par.shear != 1) || !(par.static_tol > 0) || par.static_max_iter < 1 ||
       (par.step_order != 1 && par.step_order != 2) ||
-      (par.step_refresh != 0 && par.step_refresh != 1)) {
+      (par.step_refresh != 0 && par.step_refresh != 1) ||
+      (par.active_set != 0 && par.active_set != 1)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
-                "static_max_iter >= 1, step_order 1 or 2, step_refresh 0 or 1", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
+                "static_max_iter >= 1, step_order 1 or 2, step_refresh and active_set 0 or 1", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
                 CSR_STRAIN_MAX_SUB);
     return NULL;
   }
@@ -308,6 +312,7 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->eta0);
   free(d->Wu);
   free(d->csig);
+  free(d->ghost);
   free(d->fl);
   free(d->WMll);
   free(d->WMlb);
@@ -422,7 +427,8 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
     nslot_all = first + count > nslot_all ? first + count : nslot_all;
   }
   d->csig = calloc((size_t)nslot_all, 1);
-  if (!d->Wu || !d->fl || !d->csig ||
+  d->ghost = calloc((size_t)m->nshape + 1, sizeof(csrStrainGhost));
+  if (!d->Wu || !d->fl || !d->csig || !d->ghost ||
       !d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
       !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||

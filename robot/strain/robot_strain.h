@@ -75,6 +75,12 @@ typedef struct csrStrainParams_ {
                           at the step's first iterate (a linearly implicit BDF2: the iterates
                           as backward Euler's, only the contact and the momentum rows at the
                           iterate; robot_strain_dyn.c, Step) */
+  int active_set;      /* 1: the Newton iterates hold a contact shape that touched at its last
+                          linearisation and is out at the iterate by that linearisation's
+                          affine load (a "ghost", allowed to pull) until the passes converge,
+                          then drop it (csr_strainRelease) and go on: the converged step is the
+                          law's (robot_strain_contact.c, Active set); 0: the law alone.
+                          Backward Euler's only: step_order 2 ignores it */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */
@@ -228,6 +234,11 @@ int csr_strainUpdateDamped(const csrStrainModel* m, csrStrainData* d, const doub
                            double alpha, const csrBaseState* b1, double* change);
 int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], double rho[6]);
 int csr_strainCommit(const csrStrainModel* m, csrStrainData* d);
+/* The Newton passes converged: drop the ghosts of the last iterate (active_set; shapes out of
+ * contact held by their last linearisation's affine load) for the rest of the step. Returns
+ * how many were dropped: 0, the converged iterate is the law's step; > 0, it is not, and the
+ * caller goes on with the passes (csr_strainIterate linearises afresh without them). */
+int csr_strainRelease(const csrStrainModel* m, csrStrainData* d);
 /* The wrench the leg exerted on the support over the last finished step, averaged (its impulse
  * / h: -(Z ΔV - ρ) / h, the discrete step's own), world, force at and moment about the hip
  * (robot_leg.h csrWrench); zero before the first step. */

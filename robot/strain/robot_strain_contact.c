@@ -33,7 +33,17 @@
  * predicting the normal motion too overshoots the stiff normal law (measured: a foot pressed
  * 0.5 mm bounced to 15 N); the normal part stays linearised at y0 as it was. So
  * the contact's stiffness and damping implicit in the step, the couple of a capsule's friction
- * offsets explicit. */
+ * offsets explicit.
+ *
+ * Active set (csrStrainParams.active_set, backward Euler): a stance foot rests ~0.6 µm deep in
+ * a law far stiffer than the step's motion, so a first solve that lifts it by a fraction of a
+ * micrometre left the next iterate without contact (its linearisation zero: the robot's free
+ * fall for the step, then Newton walking back down the stiff law; docs/notes/strain_leg.md,
+ * "Newton's contraction"). So every linearisation records each touching shape's y, L, K_y,
+ * C_y (csrStrainGhost), and at a later iterate of the step a shape that touched there and is
+ * out of contact is held by its ghost, the affine L + K_y Δy + C_y Δẏ (it may pull), in the
+ * residual and the matrix. Converged passes drop the ghosts they held (csr_strainRelease) and
+ * go on, a dropped shape never held again in the step: the step ends on the law alone. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -260,6 +270,76 @@ static unsigned char slotSig(const cscSoftParams* p, const cscSlotInfo* si) {
 }
 
 
+/* Shape s's ghost load at its state st (Active set, above): its last linearisation's
+ * affine load L + K_y (y - y_lin) + C_y (ẏ - ẏ_lin), in the linearisation's coordinates (the
+ * foot's rotation as the world rotation vector of R R_linᵀ, as `perturb` turns it) */
+static void ghostLoad(const csrStrainModel* m, const csrStrainGhost* g, int s,
+                      const cscShapeState* st, double L[6]) {
+  double dy[6], dv[6];
+  csu_sub3(dy, st->x0, g->y.x0);
+  csu_sub3(dv, st->v0, g->y.v0);
+  if (s == m->nshape - 1) {
+    double Rt[9], dR[9];
+    csu_transpose3(Rt, g->y.R);
+    csu_mulMat3(dR, st->R, Rt);
+    csu_mat3ToRotVec(dy + 3, dR);
+    csu_sub3(dv + 3, st->w, g->y.w);
+  } else {
+    csu_sub3(dy + 3, st->x1, g->y.x1);
+    csu_sub3(dv + 3, st->v1, g->y.v1);
+  }
+  for (int r = 0; r < 6; r++) {
+    double t = g->L[r];
+    for (int c = 0; c < 6; c++) {
+      t += g->K[6 * r + c] * dy[c] + g->C[6 * r + c] * dv[c];
+    }
+    L[r] = t;
+  }
+}
+
+
+/* the active set's ghosts are backward Euler's: with BDF2's whole residual at every iterate
+ * they stopped the flat road at 0.84 s at 5 ms (a step not converged at 1/16; without them it
+ * runs: docs/notes/strain_leg.md, "Active set") */
+static int activeSet(const csrStrainModel* m) {
+  return m->par.active_set && m->par.step_order == 1;
+}
+
+
+/* 1 when the law's load (L, couple) of a shape is zero */
+static int loadZero(const double L[6], const double couple[3]) {
+  int z = couple[0] == 0 && couple[1] == 0 && couple[2] == 0;
+  for (int i = 0; i < 6; i++) {
+    z &= L[i] == 0;
+  }
+  return z;
+}
+
+
+void csr_strainGhostReset_(const csrStrainModel* m, csrStrainData* d) {
+  if (m->soft) {
+    memset(d->ghost, 0, (size_t)m->nshape * sizeof *d->ghost);
+  }
+  d->nghost = 0;
+  d->fresh = 0;
+}
+
+
+int csr_strainGhostRelease_(const csrStrainModel* m, csrStrainData* d) {
+  int n = 0;
+  for (int s = 0; m->soft && s < m->nshape; s++) {
+    csrStrainGhost* g = d->ghost + s;
+    if (g->on) {
+      g->on = 0;
+      g->state = 2;
+      n++;
+    }
+  }
+  d->nghost = 0;
+  return n;
+}
+
+
 int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double h,
                                const double* du, double* Wbb, double* rb, double* G) {
   if (!m->soft) {
@@ -272,7 +352,11 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
   double* S = G + 12 * nu;
   memset(d->fcw, 0, sizeof d->fcw);
   d->ntouch = 0;
+  d->nghost = 0;
+  const int active = activeSet(m);
   for (int s = 0; s < m->nshape; s++) {
+    csrStrainGhost* g = d->ghost + s;
+    g->on = 0;
     cscShapeState st;
     shapeState(m, d, s, &st);
     /* the contact normal (mean over the shape's touching slots) */
@@ -295,6 +379,21 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     for (int c = 0; c < 3; c++) {
       rest[c] = h * st.v0[c];
       rest[3 + c] = h * (foot ? st.w[c] : st.v1[c]);
+    }
+    if (!du && d->pred) {
+      /* the shape's predicted end pose (robot_strain_dyn.c predictShapes): its motion over
+       * the step at the start's velocities to second order, y(q0 + h η0) - y0 in place of
+       * h S u0 */
+      const cscShapeState* sp = d->sst + s;
+      csu_sub3(rest, sp->x0, st.x0);
+      if (foot) {
+        double Rt[9], dR[9];
+        csu_transpose3(Rt, st.R);
+        csu_mulMat3(dR, sp->R, Rt);
+        csu_mat3ToRotVec(rest + 3, dR);
+      } else {
+        csu_sub3(rest + 3, sp->x1, st.x1);
+      }
     }
     if (!du && csu_normalize3(nrm) > 0) {
       /* the predicted end of the step: the shape slid on along the surface at its start
@@ -328,8 +427,20 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     for (int i = 0; i < nslot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST; i++) {
       d->csig[first + i] = slotSig(csc_softParams(m->soft), slot + i);
     }
+    /* an iterate: a shape out of contact that touched at its last linearisation of this step
+     * is held by its ghost, linearised as there */
+    int ghost = 0;
+    if (du && active && g->state == 1 && loadZero(L0, couple)) {
+      ghostLoad(m, g, s, &st, L0);
+      memset(couple, 0, sizeof couple);
+      ghost = 1;
+    }
     if (!countTouch(m, d, s, L0, couple)) {
       continue;
+    }
+    if (ghost) {
+      g->on = 1;
+      d->nghost++;
     }
     int a = m->shape_a[s], b = m->shape_b[s];
     csr_strainPointG_(m, d, a, Ga);
@@ -342,7 +453,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
      * in one pass moves the step by that fraction of the contact's linear part
      * (test_strain_friction holds creep and Coulomb) */
     double Ky[36], Cy[36];
-    for (int c = 0; c < 12; c++) {
+    for (int c = 0; c < 12 && !ghost; c++) {
       double del = c < 3 ? CSR_STRAIN_CFD_X
                          : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
                                   : CSR_STRAIN_CFD_V);
@@ -356,12 +467,23 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         D[6 * r + col] = (Lp[r] - L0[r]) / del;
       }
     }
+    if (ghost) {
+      memcpy(Ky, g->K, sizeof Ky);
+      memcpy(Cy, g->C, sizeof Cy);
+    } else if (active && g->state != 2) {
+      /* the shape's linearisation: its ghost if a later iterate finds it out of contact */
+      g->y = st;
+      memcpy(g->L, L0, sizeof g->L);
+      memcpy(g->K, Ky, sizeof g->K);
+      memcpy(g->C, Cy, sizeof g->C);
+      g->state = 1;
+    }
     /* the step's load against the shape's rates, A = h K_y + C_y (y1 = y0 + h ẏ1) */
     double A[36];
     for (int i = 0; i < 36; i++) {
       A[i] = h * Ky[i] + Cy[i];
     }
-    if (du && foot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST) {
+    if (du && foot && !ghost && nslot <= CSR_STRAIN_MAX_SHAPE_HIST) {
       anchorSecant(m, h, &st, slot, nslot, A);
     }
     /* the start (du NULL): h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)); an iterate (the
@@ -449,7 +571,10 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
   }
   const int n = m->n;
   const cscSoftParams* sp = csc_softParams(m->soft);
+  d->nghost = 0;
   for (int s = 0; s < m->nshape; s++) {
+    csrStrainGhost* g = d->ghost + s;
+    g->on = 0;
     cscShapeState st;
     shapeState(m, d, s, &st);
     int first, nslot;
@@ -461,13 +586,24 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
-    for (int i = 0; i < nslot && has_slot; i++) {
+    /* out of contact after touching at its last linearisation: its ghost, whose stiffness
+     * the kept matrix already holds (its slots' state does not matter) */
+    const int ghost = activeSet(m) && g->state == 1 && loadZero(L, couple);
+    if (ghost) {
+      ghostLoad(m, g, s, &st, L);
+      memset(couple, 0, sizeof couple);
+    }
+    for (int i = 0; i < nslot && has_slot && !ghost; i++) {
       if (slotSig(sp, slot + i) != d->csig[first + i]) {
         *same = 0;
       }
     }
     if (!countTouch(m, d, s, L, couple)) {
       continue;
+    }
+    if (ghost) {
+      g->on = 1;
+      d->nghost++;
     }
     int foot = s == m->nshape - 1;
     /* Sᵀ L = G_pᵀ (R_pᵀ couple; R_pᵀ f) at each end point p (R_p its world frame) */

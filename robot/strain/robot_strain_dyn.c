@@ -607,12 +607,13 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
      * last kept iterate (a chord iteration contracting slower than that costs more passes
      * than the new linearisation saves) */
     int shrinks = d->nreuse == 0 || d->chg_last <= 0.25 * d->chg_prev;
-    if (!d->lu_plain && same && shrinks) {
+    if (!d->lu_plain && same && shrinks && !d->fresh) {
       d->nreuse++;
       return condenseKept(m, d, h, du, fb, Z, rho);
     }
   }
   d->nreuse = 0;
+  d->fresh = 0;
   memcpy(Wbb, d->WMbb, sizeof Wbb);
   memcpy(rb, d->rMb, sizeof rb);
   memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
@@ -684,6 +685,47 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
 }
 
 
+/* The shapes' poses at the predicted end of the step, q0 + h η0 with the hip moved on by its
+ * start twist (g_b exp(h V_b)), into d->sst (x0, x1, R), from the poses' kinematics there; the
+ * kinematics at q0 back after (its Jacobians untouched). The start's contact linearisation
+ * carries the shapes over the step by y0 + h S u1 (robot_strain_contact.c), linear in the
+ * strains: a stance leg that bends by δ = h |η| L over a step moves its foot by ~δ²/L more
+ * than that, micrometres at 5 ms, against a foot resting 0.6 µm deep (docs/notes/
+ * strain_leg.md, "Active set"); these poses give the linear model that offset. */
+static void predictShapes(const csrStrainModel* m, csrStrainData* d, double h) {
+  const int n = m->n;
+  const int valid = d->kin_valid;
+  for (int j = 0; j < n; j++) {
+    d->q_save[j] = d->q[j];
+    d->q[j] += h * d->eta[j];
+  }
+  csr_strainKinematics_(m, d, 0);
+  double Rb[9], xb[3], Om[6], Re[9], pe[3], t[3];
+  memcpy(Rb, d->Rb, sizeof Rb);
+  memcpy(xb, d->xb, sizeof xb);
+  for (int c = 0; c < 6; c++) {
+    Om[c] = h * d->Vb[c];
+  }
+  csr_strainExp_(Om, Re, pe);
+  csu_mulMat3(d->Rb, Rb, Re);
+  csu_mulMatVec3(t, Rb, pe);
+  csu_add3(d->xb, xb, t);
+  for (int s = 0; s < m->nshape; s++) {
+    const int a = m->shape_a[s], b = m->shape_b[s];
+    double Rt[9];
+    cscShapeState* st = d->sst + s;
+    csr_strainWorld_(d, d->R + 9 * a, d->x + 3 * a, st->R, st->x0);
+    csr_strainWorld_(d, d->R + 9 * b, d->x + 3 * b, Rt, st->x1);
+  }
+  memcpy(d->Rb, Rb, sizeof Rb);
+  memcpy(d->xb, xb, sizeof xb);
+  memcpy(d->q, d->q_save, (size_t)n * sizeof(double));
+  csr_strainKinematics_(m, d, 0);
+  d->kin_valid = valid;
+  d->pred = 1;
+}
+
+
 /* BDF2's prepare (step_order 2): the start saved, the first iterate u_it = u0 at the predicted
  * q̄ + c2 h η0, everything assembled there */
 static int prepareBdf(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
@@ -730,6 +772,8 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   }
   d->h = 0;
   d->w_step = 0;
+  /* the active set is the step's: none held before its first linearisation */
+  csr_strainGhostReset_(m, d);
   int rc;
   if (m->par.step_order == 2) {
     rc = prepareBdf(m, d, h, Z, rho);
@@ -745,7 +789,11 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     d->he = h;
     rc = assemble(m, d, h, 0);
     if (rc == 0) {
+      if (m->soft && m->par.active_set) {
+        predictShapes(m, d, h);
+      }
       rc = condense(m, d, h, NULL, Z, rho);
+      d->pred = 0;
     }
   }
   if (rc != 0) {
@@ -795,6 +843,21 @@ int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], d
   }
   csr_strainPointTwists_(m, d);
   return condense(m, d, d->he, d->du, Z, rho);
+}
+
+
+int csr_strainRelease(const csrStrainModel* m, csrStrainData* d) {
+  if (!(d->h > 0)) {
+    return 0;
+  }
+  const int n = csr_strainGhostRelease_(m, d);
+  if (n > 0) {
+    /* the kept matrix holds the released shapes' stiffness: the next iterate linearises
+     * afresh (kept, the chord crawls through the gap: docs/notes/strain_leg.md, "Newton's
+     * contraction", FAST2_LOSTKEEP) */
+    d->fresh = 1;
+  }
+  return n;
 }
 
 

@@ -19,6 +19,19 @@
 enum { CSR_STRAIN_K1 = 0, CSR_STRAIN_K2, CSR_STRAIN_TW, CSR_STRAIN_S1, CSR_STRAIN_S2,
        CSR_STRAIN_S3 };
 
+/* One contact shape's last linearisation in the step's Newton passes (the active set,
+ * robot_strain_contact.c): the shape's state y there (pose and rates, world), its load L, and
+ * K_y = ∂L/∂y, C_y = ∂L/∂ẏ (6 x 6 row-major, the coordinates of the linearisation's
+ * differences). Out of contact at an iterate, the shape's "ghost" load is the affine
+ * L + K_y (y_it - y) + C_y (ẏ_it - ẏ). */
+typedef struct csrStrainGhost_ {
+  cscShapeState y;
+  double L[6], K[36], C[36];
+  unsigned char state; /* 0: not touching at any linearisation of this step; 1: touching at its
+                          last one (L, K, C valid); 2: released (csr_strainRelease) */
+  unsigned char on;    /* 1: held by its ghost load at the last evaluation */
+} csrStrainGhost;
+
 struct csrStrainModel_ {
   csrStrainParams par;
   csrRodParams rpar;
@@ -125,8 +138,14 @@ struct csrStrainData_ {
   double hprev;   /* the last step's length (s); 0: none (the next is backward Euler) */
   double bc[3];   /* this step's coefficients (csr_strainBdf2Coeffs) */
   double he;      /* c[2] h: the implicit part's step (s) */
+  /* the active set of the step's Newton passes (not state: reset by every prepare) */
+  csrStrainGhost* ghost; /* (nshape) */
+  int nghost;     /* shapes held by their ghost load at the last evaluation */
+  int fresh;      /* 1: the next iterate linearises afresh (a ghost was released) */
   double* z;      /* (nhist) contact anchors (state) */
-  cscShapeState* sst; /* (nshape) scratch */
+  cscShapeState* sst; /* (nshape) scratch; in a prepare with pred set, every shape's pose at
+                          the predicted end of the step (robot_strain_dyn.c predictShapes) */
+  int pred;       /* 1: sst holds the predicted poses (backward Euler's prepare) */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
 };
 
@@ -185,6 +204,10 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
  * enough) with the shapes at rest: the law's force is zero wherever its elastic part is, at
  * any velocity, so then none touches at the shapes' real velocities either; 0 otherwise */
 int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d);
+/* every shape's active-set record cleared (a step's start) */
+void csr_strainGhostReset_(const csrStrainModel* m, csrStrainData* d);
+/* drop the shapes held by their ghost at the last evaluation: how many (csr_strainRelease) */
+int csr_strainGhostRelease_(const csrStrainModel* m, csrStrainData* d);
 /* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
 int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
 /* the point twists d->Vp at the current kinematics */

@@ -49,7 +49,7 @@ enum { STRAIN_STEP_ORDER = 1 };
  * than it saved per pass (docs/notes/strain_leg.md, "Fast step") */
 enum { STRAIN_STEP_REFRESH = 1 };
 /* the level's settings (kStrainSettings, at the end) */
-enum { STRAIN_LINKS, STRAIN_ORDER };
+enum { STRAIN_LINKS, STRAIN_ORDER, STRAIN_ACTIVE };
 
 struct csrLeg_ {
   csrActuator act;
@@ -114,6 +114,7 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->sp.bend_order = links - 1;
   leg->sp.step_order = step_order ? step_order : STRAIN_STEP_ORDER;
   leg->sp.step_refresh = STRAIN_STEP_REFRESH;
+  leg->sp.active_set = set[STRAIN_ACTIVE] != 0;
   leg->soft = csc_softDefaultParams();
   if (spec->contact) {
     leg->soft.mu = spec->contact->mu;
@@ -305,6 +306,9 @@ static int updateStrain(csrLeg* leg, const csrBaseState* b1, double alpha,
 }
 
 
+static int releaseStrain(csrLeg* leg) { return csr_strainRelease(leg->m, leg->d); }
+
+
 /* An iterate's Z, ρ in the world: the leg linearised its step at the iterate, its hip's frame
  * R_it there (its rows, the momentum and contact ones, are in that frame), so the support's
  * world twist change maps to the hip's body-twist change as ΔV_b = R_itᵀ Δu + δ_it with
@@ -443,6 +447,9 @@ static const csrLegSetting kStrainSettings[] = {
     [STRAIN_LINKS] = {"links", "bending modes per segment", 3, 1, CSR_STRAIN_MAX_ORDER + 1, 1},
     /* the tree step's formula: 1 backward Euler, 2 BDF2 */
     [STRAIN_ORDER] = {"step_order", "1 backward Euler, 2 BDF2", STRAIN_STEP_ORDER, 1, 2, 1},
+    /* the Newton passes' active set for the stance feet (robot_strain.h active_set) */
+    [STRAIN_ACTIVE] = {"active_set", "1 contact ghosts in the Newton passes, 0 the law alone",
+                       1, 0, 1, 1},
 };
 
 const csrLegType csr_leg_strain = {
@@ -477,5 +484,6 @@ const csrLegType csr_leg_strain = {
     .finish = finishStrain,
     .update = updateStrain,
     .iterate = iterateStrain,
+    .release = releaseStrain,
     .stepCoeffs = stepCoeffsStrain,
 };

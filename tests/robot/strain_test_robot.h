@@ -49,6 +49,7 @@ typedef struct {
   double t;
   /* BDF2 (the legs' step_order 2): the last step's start pose, twist, D and length (0: none) */
   double Rm1[9], xm1[3], Vm1[6], Dm1[3], hprev;
+  long released; /* contact ghosts the legs released at converged passes (a counter) */
 } StrainRobot;
 
 
@@ -69,10 +70,10 @@ static inline void strainRobotHip(const StrainRobot* r, int k, csrBaseState* b) 
 
 
 /* the robot standing with its feet on the flat road (hips at the leg's length), friction mu,
- * bending order `order`, the legs' and the support's step_order (1 backward Euler, 2 BDF2);
- * 0 ok */
-static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, int step_order,
-                                         csError* err) {
+ * bending order `order`, the legs' and the support's step_order (1 backward Euler, 2 BDF2),
+ * the legs' active_set (csrStrainParams); 0 ok */
+static inline int strainRobotCreateActive(StrainRobot* r, double mu, int order, int step_order,
+                                          int active_set, csError* err) {
   memset(r, 0, sizeof *r);
   if (csr_actuatorPreset(&r->act, "leg", err) != CS_OK) {
     return 1;
@@ -92,6 +93,7 @@ static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, i
   r->sp = csr_strainDefaultParams();
   r->sp.bend_order = order;
   r->sp.step_order = step_order;
+  r->sp.active_set = active_set;
   csrRobotModel rm;
   if (csr_robotDefaultModel(&rm, err) != CS_OK) {
     return 1;
@@ -132,6 +134,13 @@ static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, i
     }
   }
   return 0;
+}
+
+
+/* the same with the legs' default active set (csrStrainParams.active_set 1) */
+static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, int step_order,
+                                         csError* err) {
+  return strainRobotCreateActive(r, mu, order, step_order, 1, err);
 }
 
 
@@ -350,7 +359,21 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
     const int full = alpha == 1;
     alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
     chg_last = chg;
-    int conv = chg <= tol || (full && rate < 1 && chg * rate / (1 - rate) <= tol);
+    int conv = chg <= tol || (full && rate > 0 && rate < 1 && chg * rate / (1 - rate) <= tol);
+    if (maxit > 1 && it > 1 && conv) {
+      /* a leg that held a contact shape by its ghost drops it and the passes go on, undamped
+       * (csr_strainRelease; core/sim_coupling.c the same) */
+      int released = 0;
+      for (int k = 0; k < CSR_NLEG; k++) {
+        released += csr_strainRelease(r->m[k], r->d[k]);
+      }
+      if (released > 0) {
+        r->released += released;
+        conv = 0;
+        alpha = 1.0;
+        chg_last = INFINITY;
+      }
+    }
     if (maxit <= 1 || (it > 1 && conv)) {
       ok = 1;
       break;
