@@ -17,8 +17,9 @@
  *
  * ---- Static solver ------------------------------------------------------------------------
  * Newton on R(q) = b - K q + Q_ext(q) = 0 with the Jacobian -∂R/∂q = K - ∂Q_ext/∂q by central
- * differences of R (2n kinematic passes; n = 30 for the default leg; the statics are not on the
- * step path) and a dense LU. Load stepping as the nodal rod does (robot_rod_static.c): rest
+ * differences of R (2n kinematic passes, each the poses and the adjoint projection of the
+ * loads: no Jacobians; n = 42 for the default leg; the statics are not on the step path) and
+ * a dense LU. Load stepping as the nodal rod does (robot_rod_static.c): rest
  * strains, K, tip load and weight move linearly from the last solved load, the increment
  * doubles after a success and halves after a failure down to 1/4096. */
 #include <math.h>
@@ -579,44 +580,37 @@ void csr_strainStiffness(const csrStrainModel* m, const csrStrainData* d, double
 }
 
 
-/* Q = b - K q + J_tipᵀ F_tip + gfac Σ weights (d's K, b; tip load f, mo world) */
+/* Q = b - K q + J_tipᵀ F_tip + gfac Σ weights (d's K, b; tip load f, mo world): the point
+ * wrenches projected by the adjoint recursion (csr_strainProject_: the poses alone, no
+ * Jacobians; the static solver's differences call this 2n + 1 times per Newton iteration) */
 static void forceWith(const csrStrainModel* m, csrStrainData* d, const double f[3],
                       const double mo[3], double gfac, double* Q) {
-  ensureKinematics(m, d, 1);
+  ensureKinematics(m, d, 0);
   const int n = m->n;
-  for (int j = 0; j < n; j++) {
-    Q[j] = d->b[j] - d->Kd[j] * d->q[j];
-  }
+  double* F = d->Vs; /* (np x 6) scratch: body wrenches at the points */
+  memset(F, 0, (size_t)6 * m->np * sizeof(double));
   /* the tip wrench in the tip's body frame, (m; f) */
   const int tp = m->np - 1;
-  double F[6], Rw[9], xw[3];
+  double Rw[9], xw[3];
   csr_strainWorld_(d, d->R + 9 * tp, d->x + 3 * tp, Rw, xw);
-  csu_mulMatTVec3(F, Rw, mo);
-  csu_mulMatTVec3(F + 3, Rw, f);
-  const double* Jt = d->J + (size_t)tp * 6 * n;
-  for (int r = 0; r < 6; r++) {
-    if (F[r] != 0) {
-      for (int j = 0; j < n; j++) {
-        Q[j] += Jt[r * n + j] * F[r];
+  csu_mulMatTVec3(F + 6 * tp, Rw, mo);
+  csu_mulMatTVec3(F + 6 * tp + 3, Rw, f);
+  if (gfac != 0 && csu_dot3(m->gravity, m->gravity) != 0) {
+    /* weights ρA g at the Simpson points, in each point's body frame */
+    double gh[3];
+    csu_mulMatTVec3(gh, d->Rb, m->gravity); /* in the hip frame */
+    for (int p = 0; p < m->np; p++) {
+      double gb[3];
+      csu_mulMatTVec3(gb, d->R + 9 * p, gh);
+      for (int r = 0; r < 3; r++) {
+        F[6 * p + 3 + r] += gfac * m->Ms[6 * p + 3 + r] * gb[r];
       }
     }
   }
-  if (gfac == 0 || csu_dot3(m->gravity, m->gravity) == 0) {
-    return;
-  }
-  /* weights ρA g at the Simpson points, in each point's body frame */
-  double gh[3];
-  csu_mulMatTVec3(gh, d->Rb, m->gravity); /* in the hip frame */
-  for (int p = 0; p < m->np; p++) {
-    double gb[3];
-    csu_mulMatTVec3(gb, d->R + 9 * p, gh);
-    const double* Jp = d->J + (size_t)p * 6 * n;
-    for (int r = 0; r < 3; r++) {
-      double w = gfac * m->Ms[6 * p + 3 + r] * gb[r];
-      for (int j = 0; j < n; j++) {
-        Q[j] += Jp[(r + 3) * n + j] * w;
-      }
-    }
+  double Fb[6];
+  csr_strainProject_(m, d->q, F, Fb, Q);
+  for (int j = 0; j < n; j++) {
+    Q[j] += d->b[j] - d->Kd[j] * d->q[j];
   }
 }
 

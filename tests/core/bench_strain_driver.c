@@ -16,7 +16,11 @@
  * tree (cs_couplingApplyTree: the support's 6 x 6 solves AND every Newton pass after the
  * first, i.e. the legs' update and iterate, which is most of the leg work at 5 ms; the first
  * pass is in legs), support (its ODE step, less contact and tree), pneumatics,
- * output, the rest (schedule, check, state saves); then the support's x at the end. The
+ * output, the rest (schedule, check, state saves); then the support's x at the end; then the
+ * same split with the legs' own calls timed apart (legTimerWrap below: the calibration, the
+ * first pass, the later Newton passes and the finish; the tree solve alone). The scene is the
+ * flat road, or CS_BENCH_SCENE (a built-in scene's name, e.g. obstacle: its terrain, gait,
+ * table and rule, under `paper`). The
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
  * so compare the shares of runs made together. The data files come from $CS_SOURCE_DIR
  * (default ../../..); with CS_BENCH_KEEP=DIR each run's file stays in DIR. */
@@ -184,9 +188,15 @@ static int bench(const char* src, const char* arg, double t_end) {
     fprintf(stderr, "bench_strain_driver: unknown level '%s'\n", level);
     return 1;
   }
-  snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", src);
-  snprintf(gait, sizeof gait, "%s/gaits/flat_road_rod.csv", src);
-  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg_modes_sym.h5", src);
+  const char* scene_name = getenv("CS_BENCH_SCENE") ? getenv("CS_BENCH_SCENE") : "flat-road";
+  const csScene* scene = cs_sceneFind(scene_name);
+  if (!scene) {
+    fprintf(stderr, "bench_strain_driver: unknown scene '%s'\n", scene_name);
+    return 1;
+  }
+  snprintf(terr, sizeof terr, "%s/%s", src, scene->terrain);
+  snprintf(gait, sizeof gait, "%s/%s", src, scene->gait);
+  snprintf(cal, sizeof cal, "%s/%s", src, scene->calibration);
   csrLegType timed;
   legTimerWrap(type, &timed);
   type = &timed;
@@ -214,12 +224,12 @@ static int bench(const char* src, const char* arg, double t_end) {
   }
   m.opt.t_end = t_end;
   csrCalRule rule;
-  if (csr_calRuleParse("rbf-pair", &rule)) {
+  if (csr_calRuleParse(scene->cal_rule, &rule)) {
     m.cal_rule = (int)rule;
   }
   csError err;
   cs_errorClear(&err);
-  if (cs_modelLoad(&m, "flat-road", terr, gait, cal, &err) != CS_OK) {
+  if (cs_modelLoad(&m, scene->name, terr, gait, cal, &err) != CS_OK) {
     fprintf(stderr, "bench_strain_driver: %s\n", err.msg);
     cs_modelDestroy(&m);
     return 1;
@@ -231,12 +241,12 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
-  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/LEVEL_LINKS_DT_ORDER.h5 (its track, for the
+  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/SCENE_LEVEL_LINKS_DT_ORDER.h5 (its track, for the
    * errors against a reference: docs/bench/levels_one_process_2026-12-05) */
   const char* keep = getenv("CS_BENCH_KEEP");
   char out[700];
   if (keep) {
-    snprintf(out, sizeof out, "%s/%s_%d_%g_%d.h5", keep, level,
+    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d.h5", keep, scene->name, level,
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order);
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
@@ -244,7 +254,10 @@ static int bench(const char* src, const char* arg, double t_end) {
   memset(gLegTime.t, 0, sizeof gLegTime.t); /* the run's, not the settling's */
   const double c0 = cpu();
   double wall = 0;
+  const double w_all = csu_wallSeconds();
   csStatus st = cs_runWrite(&m, d, out, &wall, &err);
+  /* cs_runWrite's wall time after the run's loop: the file's last image and its XDMF */
+  const double w_end = csu_wallSeconds() - w_all - wall;
   const double c = cpu() - c0;
   if (!keep) {
     remove(out);
@@ -260,8 +273,8 @@ static int bench(const char* src, const char* arg, double t_end) {
   const double rest = step - tm[CS_TIMER_LEGS].wall - tm[CS_TIMER_SUPPORT].wall -
                       tm[CS_TIMER_PNEUMATICS].wall;
   const double t_run = cs_time(d);
-  printf("%s, %d per segment, h %g ms (order %d, tol %g mm), coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
-         "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", level,
+  printf("%s: %s, %d per segment, h %g ms (order %d, tol %g mm), coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
+         "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", scene->name, level,
          (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h * 1e3,
          (int)csr_legSettingGet(type, &m.robot.leg_settings, "step_order", 1), m.opt.tree_tol,
          m.opt.coupling == CS_COUPLING_TREE           ? "tree"
@@ -282,6 +295,9 @@ static int bench(const char* src, const char* arg, double t_end) {
   printf("  legs: %.1f us of CPU per leg and step (the CPU time shared by the wall fractions)\n",
          1e6 * c * tm[CS_TIMER_LEGS].wall / total / (CSR_NLEG * (double)nstep));
   printStages(tm, c, nstep);
+  printf("  after the run: the file's last image and the XDMF beside it %.3f s wall (%.1f %% of "
+         "the run's wall time; at 100x real time the run would take %.3f s)\n", w_end,
+         100 * w_end / (wall > 0 ? wall : 1), t_run / 100);
   if (st != CS_OK) {
     printf("  stopped: %s\n", err.msg);
   }
