@@ -646,6 +646,32 @@ void csr_strainMassMatrix(const csrStrainModel* m, csrStrainData* d, double* M) 
 
 /* ---- statics -------------------------------------------------------------------------------- */
 
+/* a[j] -= l p[j] for j in [j0, n) on rows a of the factor below its pivot row p (distinct
+ * rows: restrict lets the compiler vectorise without a run-time overlap test) */
+static void elimRow(double* restrict a, const double* restrict p, double l, int j0, int n) {
+  for (int j = j0; j < n; j++) {
+    a[j] -= l * p[j];
+  }
+}
+
+
+/* the same on four rows at once, each entry the same operation: the pivot row's entries are
+ * loaded once for the four (17-23 % fewer instructions in the factor, measured on a 42 x 42
+ * matrix: docs/notes/strain_leg.md "Kernel and fixed costs"; the same bits) */
+static void elimRows4(double* restrict a0, double* restrict a1, double* restrict a2,
+                      double* restrict a3, const double* restrict p, const double l[4], int j0,
+                      int n) {
+  const double l0 = l[0], l1 = l[1], l2 = l[2], l3 = l[3];
+  for (int j = j0; j < n; j++) {
+    const double pj = p[j];
+    a0[j] -= l0 * pj;
+    a1[j] -= l1 * pj;
+    a2[j] -= l2 * pj;
+    a3[j] -= l3 * pj;
+  }
+}
+
+
 /* LU with partial pivoting of A (n x n) in place; 0 ok, 1 singular */
 int csr_strainLuFactor_(double* A, int n, int* piv) {
   for (int k = 0; k < n; k++) {
@@ -666,11 +692,21 @@ int csr_strainLuFactor_(double* A, int n, int* piv) {
         A[p * n + j] = t;
       }
     }
-    for (int i = k + 1; i < n; i++) {
-      double l = A[i * n + k] /= A[k * n + k];
-      for (int j = k + 1; j < n; j++) {
-        A[i * n + j] -= l * A[k * n + j];
+    const double* pk = A + k * n;
+    int i = k + 1;
+    for (; i + 3 < n; i += 4) {
+      double* r[4];
+      double l[4];
+      for (int q = 0; q < 4; q++) {
+        r[q] = A + (i + q) * n;
+        l[q] = r[q][k] /= pk[k];
       }
+      elimRows4(r[0], r[1], r[2], r[3], pk, l, k + 1, n);
+    }
+    for (; i < n; i++) {
+      double* a = A + i * n;
+      const double l = a[k] /= pk[k];
+      elimRow(a, pk, l, k + 1, n);
     }
   }
   return 0;
@@ -700,6 +736,14 @@ void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x) {
 }
 
 
+/* b[c] -= l r[c] over nrhs columns (distinct rows of B) */
+static void rowAxpy(double* restrict b, const double* restrict r, double l, int nrhs) {
+  for (int c = 0; c < nrhs; c++) {
+    b[c] -= l * r[c];
+  }
+}
+
+
 void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, int nrhs) {
   for (int k = 0; k < n; k++) {
     if (piv[k] != k) {
@@ -712,24 +756,17 @@ void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, 
       }
     }
   }
+  /* every entry the same operations in the same order as one right-hand side at a time */
   for (int k = 0; k < n; k++) {
     const double* bk = B + (size_t)k * nrhs;
     for (int i = k + 1; i < n; i++) {
-      double l = A[i * n + k];
-      double* bi = B + (size_t)i * nrhs;
-      for (int c = 0; c < nrhs; c++) {
-        bi[c] -= l * bk[c];
-      }
+      rowAxpy(B + (size_t)i * nrhs, bk, A[i * n + k], nrhs);
     }
   }
   for (int k = n - 1; k >= 0; k--) {
     double* bk = B + (size_t)k * nrhs;
     for (int j = k + 1; j < n; j++) {
-      double u = A[k * n + j];
-      const double* bj = B + (size_t)j * nrhs;
-      for (int c = 0; c < nrhs; c++) {
-        bk[c] -= u * bj[c];
-      }
+      rowAxpy(bk, B + (size_t)j * nrhs, A[k * n + j], nrhs);
     }
     for (int c = 0; c < nrhs; c++) {
       bk[c] /= A[k * n + k];
