@@ -44,6 +44,8 @@
  * 0.5 / 0.7 / 1.0 / 1.5, and 4.0 deg of bend at 0.5 against 5.9 at 0.7: 0.5 (the distance from
  * a corner of the prism to its edge midpoint) */
 #define RBF_WIDTH 0.5
+/* the most doubles of the tabulated field (32 MB; the shipped tables need ~0.1-1 MB) */
+#define RBF_TABLE_MAX ((size_t)4 << 20)
 /* images closer than this in shape space are the same pattern (exact ratios in the tables) */
 #define RBF_SAME_TOL 1e-12
 
@@ -201,6 +203,10 @@ static int tabulate(csrCalModel* m) {
     return 1;
   }
   const size_t per_int = (size_t)CSR_NSEG * 4 * n * NF;
+  if ((size_t)(nb - 1) * per_int > RBF_TABLE_MAX) {
+    free(B);
+    return 1; /* a table of very many distinct rows: the definition, not a huge table */
+  }
   double* G = calloc((size_t)(nb - 1) * per_int, sizeof(double));
   if (!G) {
     free(B);

@@ -361,8 +361,9 @@ static double tabulatedError(const char* file, csrCalRule rule) {
       size = fmax(size, fabs(s0[c]));
     }
   }
-  printf("  %s, rule %d: largest |tabulated - definition| %.3g (largest value %.3g)\n", file,
-         (int)rule, err, size);
+  printf("  %s, rule %d (%d images, %d pressure breakpoints): largest |tabulated - "
+         "definition| %.3g (largest value %.3g)\n", file, (int)rule, m->rbf_n, m->rbf_nb, err,
+         size);
   /* the same sums in another order (~200 terms of up to ~0.5 rad) and cubics re-expanded in
    * powers of the interval's local pressure: round-off, far below the calibration's own
    * error (degrees) */
