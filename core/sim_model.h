@@ -309,7 +309,8 @@ void cs_supportCorners(const csModel* m, const csData* d, double corners[24]);
 double cs_robotMass(const csData* d);
 
 /* Run from t = 0 to opt.t_end, sampling into an HDF5 file per docs/design.md's output contract.
- * Writes as it goes and flushes every simulated second (core_h5.h: the file on disk is always
+ * Writes as it goes and flushes every simulated second, at most once per wall second
+ * (sim_run.c says why; core_h5.h: the file on disk is always
  * complete as of its last flush, even after kill -9), so a run that stops on an error leaves a
  * readable file with the samples so far; the root attributes status ("running", "ok",
  * "interrupted at t = ... s" or the error), samples and flushed_t_s say how far it reaches; the

@@ -20,7 +20,10 @@
  * reaches; at the end status is "ok", "interrupted at t = ... s" (opt.cancel) or the error.
  * A flush is skipped (the next one catches up) while image writing has cost more than
  * FLUSH_WALL_SHARE of the wall time so far: the image grows with the run, so flushing every
- * second of a long run would cost a time quadratic in its length. */
+ * second of a long run would cost a time quadratic in its length; and within FLUSH_MIN_WALL_S
+ * of wall time after the last one (or the run's start): a run faster than real time would
+ * otherwise write its whole image many times per wall second for a file nobody can watch that
+ * fast (at 100x real time a 9 s run takes 0.09 s: one image at the end instead of nine). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -39,6 +42,8 @@ enum { MAX_CENTERLINE = 201 };
 
 /* at most this share of the wall time goes to writing file images at flushes */
 static const double FLUSH_WALL_SHARE = 0.05;
+/* and at most one flush per this much wall time (s) */
+static const double FLUSH_MIN_WALL_S = 1.0;
 
 typedef struct {
   int time, pos, quat, pres, legs[CSR_NLEG];
@@ -300,6 +305,7 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
   double w0 = csu_wallSeconds();
   long nsample = 0;        /* samples appended */
   double flush_wall = 0;   /* wall time spent in flushes (s) */
+  double flush_last = w0;  /* wall time of the last flush (the run's start before the first) */
   if (st == CS_OK) {
     double wo = csu_wallSeconds();
     st = writeSample(m, d, f, &s, buf, err);
@@ -324,12 +330,14 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
     }
     if (i % per_second == 0) {
       double wo = csu_wallSeconds();
-      if (st == CS_OK && flush_wall <= FLUSH_WALL_SHARE * (wo - w0)) {
+      if (st == CS_OK && flush_wall <= FLUSH_WALL_SHARE * (wo - w0) &&
+          wo - flush_last >= FLUSH_MIN_WALL_S) {
         /* how far the file on disk reaches once this flush is through */
         st = cs_h5AttrDouble(f, "/", "samples", (double)nsample, err);
         if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "flushed_t_s", cs_time(d), err);
         if (st == CS_OK) st = cs_h5Flush(f, err);
-        flush_wall += csu_wallSeconds() - wo;
+        flush_last = csu_wallSeconds();
+        flush_wall += flush_last - wo;
       }
       csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
       if (m->opt.progress) {

@@ -560,6 +560,8 @@ void csr_calModelDestroy(csrCalModel* m) {
     csr_calCurveFree_(&m->rbf_res[r]);
   }
   free(m->rbf_inv);
+  free(m->rbf_B);
+  free(m->rbf_G);
   for (int q = 0; q < 2; q++) {
     for (int s = 0; s < CSR_NSEG; s++) {
       free(m->kp[q][s]), free(m->kv[q][s]);

@@ -77,6 +77,13 @@ struct csrCalModel_ {
   double rbf_x[RBF_MAXN][4];
   int rbf_role[RBF_MAXN], rbf_k[RBF_MAXN], rbf_mir[RBF_MAXN];
   double* rbf_inv;
+  /* the same field tabulated per pressure interval (robot_calibration_rbf.c "Tabulated"):
+   * rbf_nb breakpoints rbf_B (the union of the residual curves' rows; 0: not tabulated) and
+   * rbf_G ((rbf_nb - 1) x CSR_NSEG x 4 powers x rbf_n x NF): A^-1 times the images' residual
+   * cubics in the interval's local pressure */
+  int rbf_nb;
+  double* rbf_B;
+  double* rbf_G;
   int nk[2][CSR_NSEG];     /* stiffness points of EI (0) and EA (1) per segment */
   double* kp[2][CSR_NSEG]; /* (nk) mean pressure, MPa */
   double* kv[2][CSR_NSEG]; /* (nk) EI (N mm^2) or EA (N) */
@@ -136,6 +143,10 @@ int csr_calRbfBuild_(csrCalModel* m, const csrCalCase* const mode[CSR_CAL_NROLE]
  * the changes of stretch, radial and largest radial growth; no allocation */
 void csr_calRbfField_(const csrCalModel* m, int s, const double pc[4], double bend[2],
                       double sc[3]);
+/* the same by the cardinal weights of every image (the definition; the tabulated field is
+ * checked against it, test_calibration_rbf) */
+void csr_calRbfFieldDirect_(const csrCalModel* m, int s, const double pc[4], double bend[2],
+                            double sc[3]);
 
 /* ---- the pair factor of CSR_CAL_RULE_RBF_PAIR (robot_calibration_pair.c) --------------- */
 

@@ -20,6 +20,14 @@
  * mode's monotone cubic, exact at its rows). Gaussian without a polynomial part: away from the
  * modes the residual decays to 0 and the model to the superposition, never an extrapolation of
  * a trend. The width is chosen by the left-out errors of the refining modes (RBF_WIDTH).
+ * Tabulated. Evaluated as written, the field costs the cardinal weights w = A^-1 phi (rbf_n^2
+ * products) and one curve evaluation per mode at every call, once per leg, segment and step in
+ * a run. The residual curves are cubic on every interval between the union of their rows, so
+ * on such an interval the field is sum_i phi_i(x) sum_k tau^k G_ik (tau = P - B_i, k = 0..3),
+ * with G_ik = sum_j (A^-1)_ij L_j a_rj,k (L_j the image's turn and mirror, a_rj,k the power
+ * coefficients of its mode's cubic there): the same function, summed in another order, for
+ * rbf_n kernels and 4 rbf_n NF products (tabulate; the difference to the definition
+ * is round-off, test_calibration_rbf field_tabulated_matches_definition).
  * Alternatives measured and rejected (same script): the cubic r^3 and thin-plate kernels with a
  * linear part (held out 4.6-5.0 deg / 20.5-22.4 mm but left out 6.1-6.7 deg / 17.9-18.1 mm),
  * the RBF without the superposition base (H7 23.6 mm, H2 misses), and a base from the pressure
@@ -36,6 +44,8 @@
  * 0.5 / 0.7 / 1.0 / 1.5, and 4.0 deg of bend at 0.5 against 5.9 at 0.7: 0.5 (the distance from
  * a corner of the prism to its edge midpoint) */
 #define RBF_WIDTH 0.5
+/* the most doubles of the tabulated field (32 MB; the shipped tables need ~0.1-1 MB) */
+#define RBF_TABLE_MAX ((size_t)4 << 20)
 /* images closer than this in shape space are the same pattern (exact ratios in the tables) */
 #define RBF_SAME_TOL 1e-12
 
@@ -131,6 +141,119 @@ static int invertSpd(double* A, int n, double* inv) {
 }
 
 
+static int compareDouble(const void* a, const void* b) {
+  const double x = *(const double*)a, y = *(const double*)b;
+  return (x > y) - (x < y);
+}
+
+
+/* the power coefficients a[k] (k = 0..3) in tau = P - lo of curve c's component q of segment s
+ * on [lo, hi], an interval inside one of its Hermite intervals or outside its rows (constant:
+ * csr_calCurveEval_ clamps) */
+static void curveCubic(const csrCalCurve* c, int s, int q, double lo, double hi, double a[4]) {
+  const int n = CSR_NSEG * c->nc, off = s * c->nc + q, last = c->m - 1;
+  const double mid = 0.5 * (lo + hi);
+  a[1] = a[2] = a[3] = 0;
+  if (mid <= c->p[0] || mid >= c->p[last]) {
+    a[0] = c->y[(mid <= c->p[0] ? 0 : last) * n + off];
+    return;
+  }
+  int i = 0;
+  while (i < last - 1 && c->p[i + 1] <= mid) i++;
+  const double h = c->p[i + 1] - c->p[i];
+  const double y0 = c->y[i * n + off], y1 = c->y[(i + 1) * n + off];
+  const double m0 = h * c->d[i * n + off], m1 = h * c->d[(i + 1) * n + off];
+  /* the Hermite cubic in t = (P - p_i) / h: c0 + c1 t + c2 t^2 + c3 t^3 */
+  const double c0 = y0, c1 = m0, c2 = -3 * y0 - 2 * m0 + 3 * y1 - m1,
+               c3 = 2 * y0 + m0 - 2 * y1 + m1;
+  /* its Taylor coefficients at t0 (P = lo), then in tau = h (t - t0) */
+  const double t0 = (lo - c->p[i]) / h;
+  a[0] = c0 + t0 * (c1 + t0 * (c2 + t0 * c3));
+  a[1] = (c1 + t0 * (2 * c2 + 3 * t0 * c3)) / h;
+  a[2] = (c2 + 3 * t0 * c3) / (h * h);
+  a[3] = c3 / (h * h * h);
+}
+
+
+/* the tabulated field (header): 1 ok (or nothing to tabulate: rbf_nb stays 0 and the
+ * definition is used), 0 out of memory */
+static int tabulate(csrCalModel* m) {
+  const int n = m->rbf_n;
+  int ntot = 0;
+  for (int r = 0; r < CSR_CAL_NROLE; r++) ntot += m->rbf_res[r].m;
+  if (n == 0 || ntot < 2) {
+    return 1;
+  }
+  double* B = malloc((size_t)ntot * sizeof(double));
+  if (!B) {
+    return 0;
+  }
+  int nb = 0;
+  for (int r = 0; r < CSR_CAL_NROLE; r++) {
+    for (int i = 0; i < m->rbf_res[r].m; i++) B[nb++] = m->rbf_res[r].p[i];
+  }
+  qsort(B, (size_t)nb, sizeof(double), compareDouble);
+  int u = 0;
+  for (int i = 0; i < nb; i++) {
+    if (u == 0 || B[i] != B[u - 1]) B[u++] = B[i];
+  }
+  nb = u;
+  if (nb < 2) {
+    free(B);
+    return 1;
+  }
+  const size_t per_int = (size_t)CSR_NSEG * 4 * n * NF;
+  if ((size_t)(nb - 1) * per_int > RBF_TABLE_MAX) {
+    free(B);
+    return 1; /* a table of very many distinct rows: the definition, not a huge table */
+  }
+  double* G = calloc((size_t)(nb - 1) * per_int, sizeof(double));
+  if (!G) {
+    free(B);
+    return 0;
+  }
+  /* the images' residual cubics on one interval, turned into the image's frame:
+   * L[j][k][NF] (k the power) */
+  double* L = malloc((size_t)n * 4 * NF * sizeof(double));
+  if (!L) {
+    free(B), free(G);
+    return 0;
+  }
+  for (int iv = 0; iv < nb - 1; iv++) {
+    for (int s = 0; s < CSR_NSEG; s++) {
+      for (int j = 0; j < n; j++) {
+        const csrCalCurve* c = &m->rbf_res[m->rbf_role[j]];
+        double a[NF][4];
+        for (int q = 0; q < NF; q++) curveCubic(c, s, q, B[iv], B[iv + 1], a[q]);
+        for (int k = 0; k < 4; k++) {
+          double* Ljk = L + ((size_t)j * 4 + k) * NF;
+          const double bc[2] = {a[F_A][k], a[F_B][k]};
+          csr_calFromCanonical_(bc, m->rbf_k[j], m->rbf_mir[j], Ljk + F_A);
+          for (int q = F_STRETCH; q < NF; q++) Ljk[q] = a[q][k];
+        }
+      }
+      /* G_ik = sum_j (A^-1)_ij L_jk (A^-1 symmetric) */
+      double* Gs = G + (size_t)iv * per_int + (size_t)s * 4 * n * NF;
+      for (int i = 0; i < n; i++) {
+        const double* row = m->rbf_inv + (size_t)i * n;
+        for (int k = 0; k < 4; k++) {
+          double* g = Gs + ((size_t)k * n + i) * NF;
+          for (int j = 0; j < n; j++) {
+            const double* Ljk = L + ((size_t)j * 4 + k) * NF;
+            for (int q = 0; q < NF; q++) g[q] += row[j] * Ljk[q];
+          }
+        }
+      }
+    }
+  }
+  free(L);
+  m->rbf_nb = nb;
+  m->rbf_B = B;
+  m->rbf_G = G;
+  return 1;
+}
+
+
 int csr_calRbfBuild_(csrCalModel* m, const csrCalCase* const mode[CSR_CAL_NROLE]) {
   int n = 0;
   for (int r = 0; r < CSR_CAL_NROLE; r++) {
@@ -178,11 +301,52 @@ int csr_calRbfBuild_(csrCalModel* m, const csrCalCase* const mode[CSR_CAL_NROLE]
    * table's 35 images) */
   const int ok = invertSpd(A, n, m->rbf_inv);
   free(A);
-  return ok ? 1 : -1;
+  if (!ok) {
+    return -1;
+  }
+  return tabulate(m);
 }
 
 
 void csr_calRbfField_(const csrCalModel* m, int s, const double pc[4], double bend[2],
+                      double sc[3]) {
+  const int nb = m->rbf_nb;
+  if (nb < 2) {
+    csr_calRbfFieldDirect_(m, s, pc, bend, sc);
+    return;
+  }
+  const int n = m->rbf_n;
+  const double P = pc[0];
+  const double x[4] = {pc[0] / P, pc[1] / P, pc[2] / P, pc[3] / P};
+  /* the interval of P (clamped to the rows, as the curves clamp) */
+  const double* B = m->rbf_B;
+  const double Pc = P <= B[0] ? B[0] : (P >= B[nb - 1] ? B[nb - 1] : P);
+  int lo = 0, hi = nb - 1;
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    (B[mid] <= Pc ? (lo = mid) : (hi = mid));
+  }
+  const double tau = Pc - B[lo];
+  const double tk[4] = {1, tau, tau * tau, tau * tau * tau};
+  const double* G = m->rbf_G + ((size_t)lo * CSR_NSEG + s) * 4 * n * NF;
+  double f[NF] = {0, 0, 0, 0, 0};
+  for (int i = 0; i < n; i++) {
+    double r2 = 0;
+    for (int q = 0; q < 4; q++) r2 += (x[q] - m->rbf_x[i][q]) * (x[q] - m->rbf_x[i][q]);
+    const double phi = kernel(r2);
+    double g[NF] = {0, 0, 0, 0, 0};
+    for (int k = 3; k >= 0; k--) {
+      const double* Gk = G + ((size_t)k * n + i) * NF;
+      for (int q = 0; q < NF; q++) g[q] += tk[k] * Gk[q];
+    }
+    for (int q = 0; q < NF; q++) f[q] += phi * g[q];
+  }
+  bend[0] = f[F_A], bend[1] = f[F_B];
+  for (int q = 0; q < 3; q++) sc[q] = f[F_STRETCH + q];
+}
+
+
+void csr_calRbfFieldDirect_(const csrCalModel* m, int s, const double pc[4], double bend[2],
                       double sc[3]) {
   const int n = m->rbf_n;
   const double P = pc[0];

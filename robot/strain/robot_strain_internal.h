@@ -180,6 +180,12 @@ int csr_strainLuFactor_(double* A, int n, int* piv);
 void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x);
 /* the same for nrhs right-hand sides at once, B (n x nrhs, row-major) in place */
 void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, int nrhs);
+/* Σ_p G_pᵀ F_p for body wrenches F (np x 6: each (m; f) in its point's body frame, N mm and
+ * N) at coordinates q, by the adjoint of the Jacobian recursion (no Jacobians, no kinematics
+ * needed): Fb (6) = Σ_p Ad(g_p⁻¹)ᵀ F_p onto the base's body twist, Q (n, overwritten) =
+ * Σ_p J_pᵀ F_p */
+void csr_strainProject_(const csrStrainModel* m, const double* q, const double* F, double Fb[6],
+                        double* Q);
 /* G_p = [Ad(g_p⁻¹), J_p] of point p (6 x (6 + n), row-major) at the current kinematics */
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
 

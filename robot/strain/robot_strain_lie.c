@@ -13,7 +13,11 @@
  * (relative error ~ ε/θ⁴), so below θ = 0.05 its coefficients come from the series folded
  * down by the minimal polynomial (its terms fall as θ^(j-1)/(j+1)!, 10 terms reach round-off).
  * T is formed on its 3 x 3 blocks and, where only T v is needed (the twist recursion of the
- * velocity products), applied to the vector. test_strain_model checks both branches against a
+ * velocity products), applied to the vector.
+ * Where only Σ_p G_pᵀ F_p of point wrenches is needed, the adjoint (backward) recursion of
+ * the same map gives it without the 6 x n Jacobians (csr_strainProject_): from the tip back,
+ * W_p = F_p + Σ_children Ad(exp(-Ω))ᵀ W_child and the piece's forces (∂Ω/∂q)ᵀ T(Ω)ᵀ W_child,
+ * O(6 nd + 36) per step instead of O(6 n) per point twice (the Jacobians, then Jᵀ F). test_strain_model checks both branches against a
  * 60-term series. */
 #include <math.h>
 #include <string.h>
@@ -246,6 +250,67 @@ void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s
 }
 
 
+/* Jt[:, c] = Ad(exp(-Ω)) Jf[:, c] = (Reᵀ a; Reᵀ (b - pe × a)) for the columns c < ncol of
+ * the 6 x n Jacobians Jf (a its rows 0-2, b 3-5) and Jt (distinct points). Row by row with
+ * every column's arithmetic in the order of the cross product and csu_mulMatTVec3 (so the
+ * same bits as a column at a time), which the compiler vectorises over the columns. */
+static void adExpColumns(const double Re[9], const double pe[3], const double* restrict Jf,
+                         double* restrict Jt, int n, int ncol) {
+  const double R0 = Re[0], R1 = Re[1], R2 = Re[2], R3 = Re[3], R4 = Re[4], R5 = Re[5],
+               R6 = Re[6], R7 = Re[7], R8 = Re[8], p0 = pe[0], p1 = pe[1], p2 = pe[2];
+  const double *a0 = Jf, *a1 = Jf + n, *a2 = Jf + 2 * n;
+  const double *b0 = Jf + 3 * n, *b1 = Jf + 4 * n, *b2 = Jf + 5 * n;
+  double *w0 = Jt, *w1 = Jt + n, *w2 = Jt + 2 * n, *t0 = Jt + 3 * n, *t1 = Jt + 4 * n,
+         *t2 = Jt + 5 * n;
+  for (int c = 0; c < ncol; c++) {
+    const double x0 = a0[c], x1 = a1[c], x2 = a2[c];
+    const double u0 = b0[c] - (p1 * x2 - p2 * x1);
+    const double u1 = b1[c] - (p2 * x0 - p0 * x2);
+    const double u2 = b2[c] - (p0 * x1 - p1 * x0);
+    w0[c] = R0 * x0 + R3 * x1 + R6 * x2;
+    w1[c] = R1 * x0 + R4 * x1 + R7 * x2;
+    w2[c] = R2 * x0 + R5 * x1 + R8 * x2;
+    t0[c] = R0 * u0 + R3 * u1 + R6 * u2;
+    t1[c] = R1 * u0 + R4 * u1 + R7 * u2;
+    t2[c] = R2 * u0 + R5 * u1 + R8 * u2;
+  }
+}
+
+
+/* J[r][jj] += Σ_i T[r][i] dOm[i][jj] (J the piece's first column in a 6 x n Jacobian, dOm
+ * 6 x nd): each entry summed over i in order from 0, as a column at a time did, the terms of
+ * T's zero block (rows 0-2, columns 3-5) left out (adding ±0 to the sum changes no bit), the
+ * columns vectorised */
+static void tangentColumns(const double T[36], const double* restrict dOm, int nd,
+                           double* restrict J, int n) {
+  for (int r = 0; r < 6; r++) {
+    const double* Tr = T + 6 * r;
+    const double T0 = Tr[0], T1 = Tr[1], T2 = Tr[2], T3 = Tr[3], T4 = Tr[4], T5 = Tr[5];
+    double* Jr = J + (size_t)r * n;
+    if (r < 3) {
+      for (int jj = 0; jj < nd; jj++) {
+        double s = 0;
+        s += T0 * dOm[jj];
+        s += T1 * dOm[nd + jj];
+        s += T2 * dOm[2 * nd + jj];
+        Jr[jj] += s;
+      }
+    } else {
+      for (int jj = 0; jj < nd; jj++) {
+        double s = 0;
+        s += T0 * dOm[jj];
+        s += T1 * dOm[nd + jj];
+        s += T2 * dOm[2 * nd + jj];
+        s += T3 * dOm[3 * nd + jj];
+        s += T4 * dOm[4 * nd + jj];
+        s += T5 * dOm[5 * nd + jj];
+        Jr[jj] += s;
+      }
+    }
+  }
+}
+
+
 /* pose and Jacobian at point `to` from point `from` through the step Ω (dOm over piece k's
  * unknowns, NULL for a rigid step) */
 static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int to, int k,
@@ -259,22 +324,8 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
     return;
   }
   const int n = m->n, ncol = m->dof0[k] + m->ndof[k];
-  const double* Jf = d->J + (size_t)from * 6 * n;
+  adExpColumns(Re, pe, d->J + (size_t)from * 6 * n, d->J + (size_t)to * 6 * n, n, ncol);
   double* Jt = d->J + (size_t)to * 6 * n;
-  /* Ad(exp(-Ω)) (a; b) = (Reᵀ a; Reᵀ (b - pe × a)) on each column */
-  for (int c = 0; c < ncol; c++) {
-    double a[3] = {Jf[c], Jf[n + c], Jf[2 * n + c]};
-    double bb[3] = {Jf[3 * n + c], Jf[4 * n + c], Jf[5 * n + c]};
-    double pxa[3], u[3], w[3];
-    csu_cross3(pxa, pe, a);
-    csu_sub3(u, bb, pxa);
-    csu_mulMatTVec3(w, Re, a);
-    csu_mulMatTVec3(tmp, Re, u);
-    for (int r = 0; r < 3; r++) {
-      Jt[r * n + c] = w[r];
-      Jt[(r + 3) * n + c] = tmp[r];
-    }
-  }
   for (int r = 0; r < 6; r++) {
     for (int c = ncol; c < n; c++) {
       Jt[r * n + c] = 0;
@@ -283,16 +334,7 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
   if (dOm) {
     double T[36];
     csr_strainTangent_(Om, T);
-    int nd = m->ndof[k], c0 = m->dof0[k];
-    for (int r = 0; r < 6; r++) {
-      for (int jj = 0; jj < nd; jj++) {
-        double s = 0;
-        for (int i = 0; i < 6; i++) {
-          s += T[6 * r + i] * dOm[nd * i + jj];
-        }
-        Jt[r * n + c0 + jj] += s;
-      }
-    }
+    tangentColumns(T, dOm, m->ndof[k], Jt + m->dof0[k], n);
   }
 }
 
@@ -324,6 +366,80 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
     }
   }
   d->kin_valid = want_J ? 2 : 1;
+}
+
+
+/* Ad(exp(-Ω))ᵀ of one Zanna step applied to a wrench W (μ; φ) at its end point: the wrench
+ * at its start, (Re μ + pe × Re φ; Re φ) for exp(Ω) = (Re, pe) (the transpose of stepPoint's
+ * column map (a; b) -> (Reᵀ a; Reᵀ (b - pe × a))) */
+static void adExpTApply(const double Re[9], const double pe[3], const double W[6],
+                        double out[6]) {
+  double rf[3], t[3];
+  csu_mulMatVec3(rf, Re, W + 3);
+  csu_mulMatVec3(out, Re, W);
+  csu_cross3(t, pe, rf);
+  csu_add3(out, out, t);
+  memcpy(out + 3, rf, sizeof rf);
+}
+
+
+/* one step's share of the adjoint recursion (csr_strainProject_): the wrench W_to at the step's
+ * end point adds Ad(exp(-Ω))ᵀ W_to to its start's (acc) and (∂Ω/∂q)ᵀ T(Ω)ᵀ W_to to piece k's
+ * generalised forces (a flexible piece) */
+static void projectStep(const csrStrainModel* m, const double* q, int k, double s, double h,
+                        const double W_to[6], double acc[6], double* Q) {
+  double Om[6] = {0, 0, 0, 0, 0, h}, dOm[6 * CSR_STRAIN_MAX_PIECE_DOF];
+  if (!m->rigid[k]) {
+    csr_strainMagnus_(m, q, k, s, h, Om, dOm);
+  }
+  double Re[9], pe[3], back[6];
+  csr_strainExp_(Om, Re, pe);
+  adExpTApply(Re, pe, W_to, back);
+  for (int i = 0; i < 6; i++) {
+    acc[i] += back[i];
+  }
+  if (m->rigid[k]) {
+    return;
+  }
+  double T[36], u[6];
+  csr_strainTangent_(Om, T);
+  for (int i = 0; i < 6; i++) {
+    double t = 0;
+    for (int r = 0; r < 6; r++) {
+      t += T[6 * r + i] * W_to[r];
+    }
+    u[i] = t;
+  }
+  const int nd = m->ndof[k], c0 = m->dof0[k];
+  for (int jj = 0; jj < nd; jj++) {
+    double t = 0;
+    for (int i = 0; i < 6; i++) {
+      t += dOm[nd * i + jj] * u[i];
+    }
+    Q[c0 + jj] += t;
+  }
+}
+
+
+void csr_strainProject_(const csrStrainModel* m, const double* q, const double* F, double Fb[6],
+                        double* Q) {
+  memset(Q, 0, (size_t)m->n * sizeof(double));
+  /* W: the wrench of everything from the current chain point to the tip, at that point */
+  double W[6];
+  memcpy(W, F + 6 * (m->np - 1), sizeof W);
+  for (int k = m->npiece - 1; k >= 0; k--) {
+    const double h = m->piece[k].length / m->nsub[k];
+    for (int i = m->nsub[k] - 1; i >= 0; i--) {
+      const int p = m->pt0[k] + 2 * i;
+      double acc[6];
+      memcpy(acc, F + 6 * p, sizeof acc);
+      projectStep(m, q, k, i * h, h, W, acc, Q);                 /* p -> p + 2 (the chain) */
+      projectStep(m, q, k, i * h, 0.5 * h, F + 6 * (p + 1), acc, Q); /* p -> p + 1 (a leaf) */
+      memcpy(W, acc, sizeof W);
+    }
+  }
+  /* the hip point moves with the base: Ad = I */
+  memcpy(Fb, W, sizeof W);
 }
 
 

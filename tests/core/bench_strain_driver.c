@@ -19,7 +19,11 @@
  * tree (cs_couplingApplyTree: the support's 6 x 6 solves AND every Newton pass after the
  * first, i.e. the legs' update and iterate, which is most of the leg work at 5 ms; the first
  * pass is in legs), support (its ODE step, less contact and tree), pneumatics,
- * output, the rest (schedule, check, state saves); then the support's x at the end. The
+ * output, the rest (schedule, check, state saves); then the support's x at the end; then the
+ * same split with the legs' own calls timed apart (legTimerWrap below: the calibration, the
+ * first pass, the later Newton passes and the finish; the tree solve alone). The scene is the
+ * flat road, or CS_BENCH_SCENE (a built-in scene's name, e.g. obstacle: its terrain, gait,
+ * table and rule, under `paper`). The
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
  * so compare the shares of runs made together. The data files come from $CS_SOURCE_DIR
  * (default ../../..); with CS_BENCH_KEEP=DIR each run's file stays in DIR. */
@@ -39,6 +43,129 @@ static void quiet(int num, const char* msg, va_list ap) {
   (void)num;
   (void)msg;
   (void)ap;
+}
+
+
+/* ---- the legs' own stages, timed from outside the library (issue 32's stage split) --------
+ * The driver's timers (sim_model.h) put the legs' first pass (prepare) and end (finish) in
+ * "legs" and every later Newton pass (update + iterate) in "tree" with the support's 6 x 6
+ * solves. To print the tree solve apart, the bench runs the level through a copy of its
+ * csrLegType whose calls are wrapped by the monotonic clock (core_clock.h csu_wallSeconds,
+ * ~25 ns a reading against the legs' ~50-100 us a pass): the wrappers only read the clock and
+ * add to the sums below, never touch what the leg computes, so the run's results are the
+ * unwrapped level's bit for bit (the x(end) it prints is the check). The sums are this
+ * program's (a bench, one run at a time): the library keeps no global state. */
+enum { LT_ACTUATE, LT_PREPARE, LT_FINISH, LT_UPDATE, LT_ITERATE, LT_ADVANCE, LT_N };
+static struct {
+  const csrLegType* inner; /* the level the wrappers call */
+  csuTimer t[LT_N];
+} gLegTime;
+
+
+static int timedActuate(csrLeg* leg, double t0, const double p0[12], double t1,
+                        const double p1[12]) {
+  const double w = csu_wallSeconds();
+  const int rc = gLegTime.inner->actuate(leg, t0, p0, t1, p1);
+  csu_timerAdd(&gLegTime.t[LT_ACTUATE], w);
+  return rc;
+}
+
+
+static int timedAdvance(csrLeg* leg, double t, double H, const csrBaseState* b0,
+                        const csrBaseState* b1, csrWrench* wr, csError* err) {
+  const double w = csu_wallSeconds();
+  const int rc = gLegTime.inner->advance(leg, t, H, b0, b1, wr, err);
+  csu_timerAdd(&gLegTime.t[LT_ADVANCE], w);
+  return rc;
+}
+
+
+static int timedPrepare(csrLeg* leg, double h, const csrBaseState* b0, double Z[36],
+                        double rho[6]) {
+  const double w = csu_wallSeconds();
+  const int rc = gLegTime.inner->prepare(leg, h, b0, Z, rho);
+  csu_timerAdd(&gLegTime.t[LT_PREPARE], w);
+  return rc;
+}
+
+
+static int timedFinish(csrLeg* leg, const csrBaseState* b1, csrWrench* wr) {
+  const double w = csu_wallSeconds();
+  const int rc = gLegTime.inner->finish(leg, b1, wr);
+  csu_timerAdd(&gLegTime.t[LT_FINISH], w);
+  return rc;
+}
+
+
+static int timedUpdate(csrLeg* leg, const csrBaseState* b1, double alpha,
+                       const csrBaseState* b1_alpha, double* change) {
+  const double w = csu_wallSeconds();
+  const int rc = gLegTime.inner->update(leg, b1, alpha, b1_alpha, change);
+  csu_timerAdd(&gLegTime.t[LT_UPDATE], w);
+  return rc;
+}
+
+
+static int timedIterate(csrLeg* leg, double Z[36], double rho[6]) {
+  const double w = csu_wallSeconds();
+  const int rc = gLegTime.inner->iterate(leg, Z, rho);
+  csu_timerAdd(&gLegTime.t[LT_ITERATE], w);
+  return rc;
+}
+
+
+/* *timed = *type with its stepping calls wrapped (those it has) */
+static void legTimerWrap(const csrLegType* type, csrLegType* timed) {
+  memset(&gLegTime, 0, sizeof gLegTime);
+  gLegTime.inner = type;
+  *timed = *type;
+  timed->actuate = type->actuate ? timedActuate : NULL;
+  timed->advance = type->advance ? timedAdvance : NULL;
+  timed->prepare = type->prepare ? timedPrepare : NULL;
+  timed->finish = type->finish ? timedFinish : NULL;
+  timed->update = type->update ? timedUpdate : NULL;
+  timed->iterate = type->iterate ? timedIterate : NULL;
+}
+
+
+/* the stage split of one run (after it): the driver's timers with "legs" and "tree" opened up
+ * by the wrappers' sums (settling excluded: the sums restart with the run, as the driver's) */
+static void printStages(const csuTimer* tm, double cpu_s, long nstep) {
+  const double step = tm[CS_TIMER_STEP].wall, out = tm[CS_TIMER_OUTPUT].wall;
+  const double total = step + out;
+  const csuTimer* lt = gLegTime.t;
+  const double act = lt[LT_ACTUATE].wall;
+  const double first = lt[LT_PREPARE].wall + lt[LT_ADVANCE].wall;
+  const double passes = lt[LT_UPDATE].wall + lt[LT_ITERATE].wall;
+  const double fin = lt[LT_FINISH].wall;
+  const double legs = act + first + passes + fin;
+  /* the tree stage less the legs' passes inside it: the support's 6 x 6 solves and sums */
+  const double tree = tm[CS_TIMER_TREE].wall - passes;
+  const double support = tm[CS_TIMER_SUPPORT].wall - tm[CS_TIMER_CONTACT].wall -
+                         tm[CS_TIMER_TREE].wall;
+  /* the driver's "legs" stage less the wrapped calls: its loops, hip states, wrench sums */
+  const double glue = tm[CS_TIMER_LEGS].wall - act - first - fin;
+  const double rest = step - tm[CS_TIMER_LEGS].wall - tm[CS_TIMER_SUPPORT].wall -
+                      tm[CS_TIMER_PNEUMATICS].wall;
+  printf("  stages (%% of the wall time, the legs opened up by wrapping the level's calls): "
+         "legs %.1f [calibration %.1f, first pass %.1f, later passes %.1f, finish %.1f], "
+         "tree solve %.2f, contact %.2f, support/ODE %.2f, pneumatics/CVODE %.2f, output "
+         "%.2f, driver glue %.2f, rest %.2f\n",
+         100 * legs / total, 100 * act / total, 100 * first / total, 100 * passes / total,
+         100 * fin / total, 100 * tree / total, 100 * tm[CS_TIMER_CONTACT].wall / total,
+         100 * support / total, 100 * tm[CS_TIMER_PNEUMATICS].wall / total, 100 * out / total,
+         100 * glue / total, 100 * rest / total);
+  /* the same as CPU per simulated second's share: what each stage costs at the run's rate */
+  printf("  per leg and step (CPU by the wall shares): calibration %.2f us, first pass %.2f "
+         "us, later passes %.2f us, finish %.2f us; output %.1f us per step (%ld passes: "
+         "%.2f us per later pass and leg)\n",
+         1e6 * cpu_s * act / total / (CSR_NLEG * (double)nstep),
+         1e6 * cpu_s * first / total / (CSR_NLEG * (double)nstep),
+         1e6 * cpu_s * passes / total / (CSR_NLEG * (double)nstep),
+         1e6 * cpu_s * fin / total / (CSR_NLEG * (double)nstep),
+         1e6 * cpu_s * out / total / (double)nstep, lt[LT_ITERATE].count,
+         lt[LT_ITERATE].count > 0 ? 1e6 * cpu_s * passes / total / (double)lt[LT_ITERATE].count
+                                  : 0.0);
 }
 
 
@@ -66,9 +193,18 @@ static int bench(const char* src, const char* arg, double t_end) {
     fprintf(stderr, "bench_strain_driver: unknown level '%s'\n", level);
     return 1;
   }
-  snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", src);
-  snprintf(gait, sizeof gait, "%s/gaits/flat_road_rod.csv", src);
-  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg_modes_sym.h5", src);
+  const char* scene_name = getenv("CS_BENCH_SCENE") ? getenv("CS_BENCH_SCENE") : "flat-road";
+  const csScene* scene = cs_sceneFind(scene_name);
+  if (!scene) {
+    fprintf(stderr, "bench_strain_driver: unknown scene '%s'\n", scene_name);
+    return 1;
+  }
+  snprintf(terr, sizeof terr, "%s/%s", src, scene->terrain);
+  snprintf(gait, sizeof gait, "%s/%s", src, scene->gait);
+  snprintf(cal, sizeof cal, "%s/%s", src, scene->calibration);
+  csrLegType timed;
+  legTimerWrap(type, &timed);
+  type = &timed;
   csModel m;
   cs_modelInit(&m);
   cs_modelSetConditions(&m, CS_CONDITIONS_PAPER);
@@ -100,12 +236,12 @@ static int bench(const char* src, const char* arg, double t_end) {
   }
   m.opt.t_end = t_end;
   csrCalRule rule;
-  if (csr_calRuleParse("rbf-pair", &rule)) {
+  if (csr_calRuleParse(scene->cal_rule, &rule)) {
     m.cal_rule = (int)rule;
   }
   csError err;
   cs_errorClear(&err);
-  if (cs_modelLoad(&m, "flat-road", terr, gait, cal, &err) != CS_OK) {
+  if (cs_modelLoad(&m, scene->name, terr, gait, cal, &err) != CS_OK) {
     fprintf(stderr, "bench_strain_driver: %s\n", err.msg);
     cs_modelDestroy(&m);
     return 1;
@@ -117,20 +253,24 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
-  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/LEVEL_LINKS_DT_ORDER[_noactive].h5 (its track, for the
+  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/SCENE_LEVEL_LINKS_DT_ORDER[_noactive].h5 (its track, for the
    * errors against a reference: docs/bench/levels_one_process_2026-12-05) */
   const char* keep = getenv("CS_BENCH_KEEP");
   char out[700];
   if (keep) {
-    snprintf(out, sizeof out, "%s/%s_%d_%g_%d%s.h5", keep, level,
+    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s.h5", keep, scene->name, level,
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order,
              active == 0 ? "_noactive" : "");
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }
+  memset(gLegTime.t, 0, sizeof gLegTime.t); /* the run's, not the settling's */
   const double c0 = cpu();
   double wall = 0;
+  const double w_all = csu_wallSeconds();
   csStatus st = cs_runWrite(&m, d, out, &wall, &err);
+  /* cs_runWrite's wall time after the run's loop: the file's last image and its XDMF */
+  const double w_end = csu_wallSeconds() - w_all - wall;
   const double c = cpu() - c0;
   if (!keep) {
     remove(out);
@@ -146,8 +286,8 @@ static int bench(const char* src, const char* arg, double t_end) {
   const double rest = step - tm[CS_TIMER_LEGS].wall - tm[CS_TIMER_SUPPORT].wall -
                       tm[CS_TIMER_PNEUMATICS].wall;
   const double t_run = cs_time(d);
-  printf("%s, %d per segment, h %g ms (order %d, tol %g mm), coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
-         "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", level,
+  printf("%s: %s, %d per segment, h %g ms (order %d, tol %g mm), coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
+         "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", scene->name, level,
          (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h * 1e3,
          (int)csr_legSettingGet(type, &m.robot.leg_settings, "step_order", 1), m.opt.tree_tol,
          m.opt.coupling == CS_COUPLING_TREE           ? "tree"
@@ -170,6 +310,10 @@ static int bench(const char* src, const char* arg, double t_end) {
          100 * tm[CS_TIMER_OUTPUT].wall / total, 100 * rest / total);
   printf("  legs: %.1f us of CPU per leg and step (the CPU time shared by the wall fractions)\n",
          1e6 * c * tm[CS_TIMER_LEGS].wall / total / (CSR_NLEG * (double)nstep));
+  printStages(tm, c, nstep);
+  printf("  after the run: the file's last image and the XDMF beside it %.3f s wall (%.1f %% of "
+         "the run's wall time; at 100x real time the run would take %.3f s)\n", w_end,
+         100 * w_end / (wall > 0 ? wall : 1), t_run / 100);
   if (st != CS_OK) {
     printf("  stopped: %s\n", err.msg);
   }

@@ -18,7 +18,11 @@
  *    of and prints the FE's difference from it;
  * and on the symmetric-mesh table (robot/calibration_fe_leg_modes_sym.h5, 23 modes) under
  * RBF_PAIR the same three, and every held-out case (H1-H12) within the issue's target over
- * 0-0.4 MPa. */
+ * 0-0.4 MPa;
+ *  - field_tabulated_matches_definition: the field tabulated per pressure interval (what the
+ *    model evaluates, robot_calibration_rbf.c "Tabulated") against its definition by the
+ *    cardinal weights, on random patterns of all three tables and both rules, at the rows and
+ *    between them: round-off (the largest difference is printed). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,6 +31,7 @@
 #include "core_math.h"
 #include "cs_test.h"
 #include "robot_calibration.h"
+#include "robot_calibration_internal.h"
 
 /* the shipped table and the RBF model of it (NULL when it is not a mode table) */
 typedef struct {
@@ -317,6 +322,66 @@ static void test_full_images_found(void) {
 }
 
 
+/* the tabulated field against the definition: the largest difference over random canonical
+ * patterns (P from 0 to past the range, the rows themselves included) */
+static double tabulatedError(const char* file, csrCalRule rule) {
+  Shipped sh;
+  if (!openTable(&sh, file, rule, 0)) {
+    return 0;
+  }
+  const csrCalModel* m = sh.model;
+  CS_EXPECT(m->rbf_nb >= 2); /* the shipped tables are tabulated */
+  double err = 0, size = 0;
+  unsigned seed = 11;
+  for (int k = 0; k < 600; k++) {
+    double p[4];
+    for (int j = 0; j < 4; j++) {
+      seed = seed * 1664525u + 1013904223u;
+      p[j] = (double)(seed >> 8) / 16777216.0;
+    }
+    /* canonical: the highest first, p[1] >= p[3]; P on a row every third pattern */
+    double P = 1.05 * m->p_max * p[0];
+    if (k % 3 == 0) {
+      P = m->rbf_B[k % m->rbf_nb];
+    }
+    if (!(P > 0)) {
+      continue;
+    }
+    const double pc[4] = {P, P * fmax(p[1], p[3]), P * p[2], P * fmin(p[1], p[3])};
+    const int s = k % 3;
+    double b0[2], s0[3], b1[2], s1[3];
+    csr_calRbfFieldDirect_(m, s, pc, b0, s0);
+    csr_calRbfField_(m, s, pc, b1, s1);
+    for (int c = 0; c < 2; c++) {
+      err = fmax(err, fabs(b1[c] - b0[c]));
+      size = fmax(size, fabs(b0[c]));
+    }
+    for (int c = 0; c < 3; c++) {
+      err = fmax(err, fabs(s1[c] - s0[c]));
+      size = fmax(size, fabs(s0[c]));
+    }
+  }
+  printf("  %s, rule %d (%d images, %d pressure breakpoints): largest |tabulated - "
+         "definition| %.3g (largest value %.3g)\n", file, (int)rule, m->rbf_n, m->rbf_nb, err,
+         size);
+  /* the same sums in another order (~200 terms of up to ~0.5 rad) and cubics re-expanded in
+   * powers of the interval's local pressure: round-off, far below the calibration's own
+   * error (degrees) */
+  CS_EXPECT(err <= 1e-12 * fmax(size, 1.0));
+  CS_EXPECT(size > 0); /* the comparison saw the field */
+  closeShipped(&sh);
+  return err;
+}
+
+
+static void test_field_tabulated_matches_definition(void) {
+  tabulatedError(kShipped, CSR_CAL_RULE_RBF);
+  tabulatedError(kShipped, CSR_CAL_RULE_RBF_PAIR);
+  tabulatedError(kFull, CSR_CAL_RULE_RBF_PAIR);
+  tabulatedError(kSym, CSR_CAL_RULE_RBF_PAIR);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_rbf_returns_fitted_rows);
@@ -333,5 +398,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_sym_pair_symmetry);
   CS_RUN(test_sym_pair_holdout_and_left_out);
   CS_RUN(test_sym_pair_every_holdout_meets_the_target);
+  CS_RUN(test_field_tabulated_matches_definition);
   return cs_testSummary();
 }

@@ -11,6 +11,10 @@
  *  - twist_recursion_matches_jacobian: the point twists of the velocity recursion
  *    (csr_strainTwists_, the velocity products' kernel) against G_p (V_b, η) from the pose and
  *    Jacobian recursion, on the same rod, at every quadrature point.
+ *  - project_adjoint_matches_jacobians: Σ_p G_pᵀ F_p of random point wrenches by the adjoint
+ *    recursion (csr_strainProject_, no Jacobians) against the Jacobians' products, on the same
+ *    rod and on the default leg's layout; prints the CPU ratio of the two in one run (not
+ *    asserted).
  *  - composite_inertia_matches_sum: the step's inertia by composite inertias per piece
  *    (csr_strainInertia_) against Σ_p G_pᵀ M_p G_p summed point by point, on the bent rod.
  *  - magnus_fourth_order: the tip pose of a rod whose bending varies quadratically and twists
@@ -23,6 +27,7 @@
  *    a 10 x 10 x 400 mm rod are 0.05 %). */
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "core_math.h"
 #include "cs_test.h"
@@ -279,6 +284,102 @@ static void twist_recursion_matches_jacobian(void) {
 }
 
 
+/* Σ_p G_pᵀ F_p by the Jacobians (kinematics with J, then the products): Fb (6), Q (n) */
+static void projectByJacobians(const csrStrainModel* m, csrStrainData* d, const double* F,
+                               double Fb[6], double* Q) {
+  const int n = m->n;
+  csr_strainKinematics_(m, d, 1);
+  memset(Fb, 0, 6 * sizeof(double));
+  memset(Q, 0, (size_t)n * sizeof(double));
+  for (int p = 0; p < m->np; p++) {
+    double A[36];
+    csr_strainAdInv_(d->R + 9 * p, d->x + 3 * p, A);
+    const double* J = d->J + (size_t)p * 6 * n;
+    for (int r = 0; r < 6; r++) {
+      for (int c = 0; c < 6; c++) {
+        Fb[c] += A[6 * r + c] * F[6 * p + r];
+      }
+      for (int j = 0; j < n; j++) {
+        Q[j] += J[r * n + j] * F[6 * p + r];
+      }
+    }
+  }
+}
+
+
+static void projectCase(csrStrainModel* m, const char* what) {
+  csError err;
+  csrStrainData* d = csr_strainDataCreate(m, &err);
+  const int n = csr_strainDofs(m);
+  double* q = calloc((size_t)n, sizeof(double));
+  double* F = calloc((size_t)6 * m->np, sizeof(double));
+  double* Q0 = calloc((size_t)n, sizeof(double));
+  double* Q1 = calloc((size_t)n, sizeof(double));
+  for (int j = 0; j < n; j++) {
+    q[j] = (j % 7 - 3) * (m->dcomp[j] <= CSR_STRAIN_TW ? 0.007 : 0.02);
+  }
+  /* moments ~1 N mm, forces ~0.1 N at every point */
+  for (int i = 0; i < 6 * m->np; i++) {
+    F[i] = ((i * 37) % 11 - 5) * (i % 6 < 3 ? 0.2 : 0.02);
+  }
+  csr_strainSetQ(m, d, q);
+  double Fb0[6], Fb1[6];
+  projectByJacobians(m, d, F, Fb0, Q0);
+  csr_strainProject_(m, q, F, Fb1, Q1);
+  double e = 0, qmax = 0;
+  for (int j = 0; j < n; j++) {
+    e = fmax(e, fabs(Q1[j] - Q0[j]));
+    qmax = fmax(qmax, fabs(Q0[j]));
+  }
+  for (int c = 0; c < 6; c++) {
+    e = fmax(e, fabs(Fb1[c] - Fb0[c]));
+    qmax = fmax(qmax, fabs(Fb0[c]));
+  }
+  /* CPU of each, in one run (printed for the notes, never asserted) */
+  const int reps = 200;
+  clock_t t0 = clock();
+  for (int r = 0; r < reps; r++) {
+    d->kin_valid = 0;
+    projectByJacobians(m, d, F, Fb0, Q0);
+  }
+  clock_t t1 = clock();
+  for (int r = 0; r < reps; r++) {
+    csr_strainProject_(m, q, F, Fb1, Q1);
+  }
+  clock_t t2 = clock();
+  printf("  %s (n = %d, %d points): max |adjoint - Jᵀ F| = %.3g (largest %.3g); CPU "
+         "Jacobians + products / adjoint = %.2f\n", what, n, m->np, e, qmax,
+         (double)(t1 - t0) / (double)(t2 > t1 ? t2 - t1 : 1));
+  /* the same derivative summed backwards instead of forwards: round-off of the largest */
+  CS_EXPECT_NEAR(e, 0, 1e-12 * qmax, 0);
+  CS_EXPECT(qmax > 1);
+  free(q);
+  free(F);
+  free(Q0);
+  free(Q1);
+  csr_strainDataDestroy(d);
+}
+
+
+static void project_adjoint_matches_jacobians(void) {
+  csrStrainModel* m = bentRod();
+  if (m) {
+    projectCase(m, "bent three-piece rod");
+    csr_strainModelDestroy(m);
+  }
+  /* the default leg's layout: five pieces (bend order 2 in the segments, constant joints) */
+  csrRodPiece pc[5] = {uniformPiece(50), uniformPiece(8), uniformPiece(50), uniformPiece(8),
+                       uniformPiece(50)};
+  const int order[5] = {2, 0, 2, 0, 2};
+  csrStrainParams sp = csr_strainDefaultParams();
+  m = makeRod(pc, order, 5, &sp);
+  if (m) {
+    projectCase(m, "leg layout");
+    csr_strainModelDestroy(m);
+  }
+}
+
+
 static void composite_inertia_matches_sum(void) {
   csrStrainModel* m = bentRod();
   if (!m) {
@@ -493,6 +594,7 @@ int main(int argc, char** argv) {
   CS_RUN(exp_matches_series);
   CS_RUN(jacobian_matches_differences);
   CS_RUN(twist_recursion_matches_jacobian);
+  CS_RUN(project_adjoint_matches_jacobians);
   CS_RUN(composite_inertia_matches_sum);
   CS_RUN(magnus_fourth_order);
   CS_RUN(mass_matrix_rigid_rod);
