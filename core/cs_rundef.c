@@ -141,8 +141,8 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
     if (!isnan(def->links) || !isnan(def->macro_steps) || !isnan(def->dt) ||
         !isnan(def->rod_tol) || !isnan(def->step_order)) {
       return cs_errorSet(err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt, "
-                         "--rod-tol and --step-order from its table: give them with --legs prb, "
-                         "rod or strain instead");
+                         "--rod-tol and --step-order from its table: give them with --legs rod "
+                         "or strain instead");
     }
     if (!(def->legs_tol_mm >= 0)) {
       return cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be >= 0", def->legs_tol_mm);
@@ -160,8 +160,11 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
       return cs_errorSet(err, CS_ERR_ARG, "leg model '%s' is not available yet (available: %s)",
                          legs, names);
     }
+    if (!type && csr_legRetired(legs)) {
+      return cs_errorSet(err, CS_ERR_ARG, "--legs %s: %s", legs, csr_legRetired(legs));
+    }
     if (!type) {
-      return cs_errorSet(err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod, "
+      return cs_errorSet(err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, rod, "
                          "strain or rom)", legs);
     }
     if (!isnan(def->legs_tol_mm) || def->levels) {
