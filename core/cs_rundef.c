@@ -328,6 +328,46 @@ csStatus cs_runDefValidate(const csRunDef* def, csError* err) {
 }
 
 
+int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t size) {
+  char levels_buf[512];
+  const char* levels = def->levels ? def->levels
+                                   : cs_runDataPath(def, "robot/levels.csv", levels_buf,
+                                                    sizeof levels_buf);
+  csrLevelTable* table = malloc(sizeof *table); /* ~40 KB: not on the stack */
+  csError e;
+  cs_errorClear(&e);
+  if (!table || csr_levelTableRead(levels, table, &e) != CS_OK) {
+    snprintf(out, size, "track error not known (%s)", table ? e.msg : "out of memory");
+    free(table);
+    return 0;
+  }
+  const csrLegType* lt = m->robot.leg_type;
+  const csrLegSettings* ls = &m->robot.leg_settings;
+  const int links = (int)csr_legSettingGet(lt, ls, "links", 0);
+  const double rod_tol = csr_legSettingGet(lt, ls, "rod_tol", 1);
+  const int order = (int)csr_legSettingGet(lt, ls, "step_order", 0);
+  int found = 0;
+  for (int i = 0; i < table->nrow && !found; i++) {
+    const csrLevelRow* r = &table->row[i];
+    /* a row's step order 0 is the level's default formula, which is what an unset one runs */
+    const int row_order = r->step_order > 0 ? r->step_order : order;
+    if (!strcmp(r->scene, m->scene) && !strcmp(r->level, cs_modelLegLevel(m)) &&
+        r->links == links && r->macro_steps == m->opt.macro_steps && r->dt_s == m->opt.h &&
+        r->rod_tol == rod_tol && row_order == order) {
+      snprintf(out, size, "track error %.3g mm against the reference of %s (line %d; measured "
+               "on the scene's own gait and conditions)", r->error_mm, levels, r->line);
+      found = 1;
+    }
+  }
+  if (!found) {
+    snprintf(out, size, "track error of this configuration not measured (%s has no row for it)",
+             levels);
+  }
+  free(table);
+  return found;
+}
+
+
 /* the leg level `auto` picked from the measured table (issue 11): sets the level and its
  * configuration in m and the choice's explanation */
 static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files, csModel* m,

@@ -215,6 +215,27 @@ static void test_badCalibration(void) {
 }
 
 
+/* issue 33 item 1: the banner states the default discretisation's measured track error, read
+ * from the shipped level table's row of the configuration that runs, or that it was not
+ * measured (the banner is on stderr) */
+static void test_bannerStatesTrackError(void) {
+  csCliResult r;
+  cs_cliRun(exe_path, "run --t-end 0.01 --out runcli_banner.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  const char* line = strstr(r.err, "crawlsim run: legs rod, 8 elements per segment: track error ");
+  CS_EXPECT(line != NULL);
+  double mm = -1;
+  CS_EXPECT(line && sscanf(line, "crawlsim run: legs rod, 8 elements per segment: track error %lf "
+                                 "mm", &mm) == 1 && mm >= 0);
+  CS_EXPECT(line && strstr(line, "robot/levels.csv (line ") != NULL);
+  cs_cliRun(exe_path, "run --t-end 0.01 --links 3 --out runcli_banner.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "legs rod, 3 elements per segment: track error of "
+                                           "this configuration not measured") != NULL);
+  remove("runcli_banner.h5");
+  remove("runcli_banner.xdmf");
+}
+
+
 static void test_goodRun(void) {
   remove("runcli_ok.h5");
   csCliResult r;
@@ -433,6 +454,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_badFiles);
   CS_RUN(test_badCalibration);
   CS_RUN(test_goodRun);
+  CS_RUN(test_bannerStatesTrackError);
   CS_RUN(test_gaitCheckAgreesWithRun);
   CS_RUN(test_strainRun);
   return cs_testSummary();
