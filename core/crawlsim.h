@@ -54,7 +54,7 @@ typedef struct csRunDef {
                                 default conditions (earth) */
   const char* conditions;    /* "earth" | "paper"; NULL: the scene's with its own files, earth
                                 with a user's terrain or gait */
-  const char* legs;          /* leg level "prb" | "rod" | "strain" | "auto"; NULL: the scene's */
+  const char* legs;          /* leg level "rod" | "strain" | "auto"; NULL: the scene's */
   double legs_tol_mm;        /* legs "auto": the track error allowed against the rod
                                 reference (mm, needed) */
   const char* levels;        /* legs "auto": the measured table; NULL: robot/levels.csv */
@@ -76,7 +76,7 @@ typedef struct csRunDef {
   double support_mass_kg;    /* kg (NaN: 0.05) */
   double slope_deg;          /* incline of the terrain about z, +x uphill, within +-45 (NaN:
                                 the terrain's or the scene file's) */
-  double links;              /* links (prb) / elements (rod) / bending modes - 1 (strain) per
+  double links;              /* elements (rod) / bending modes - 1 (strain) per
                                 segment, integer 1..64 (NaN: the scene's / the level's) */
   double iterations;         /* ODE QuickStep iterations, integer 1..10000 (NaN: 240) */
   double macro_steps;        /* ODE steps per exchange with co-simulated legs, 1..100000 */

@@ -142,9 +142,11 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
         m->robot.map.name);
   const csrLegType* lt = m->robot.leg_type;
   const csrLegSetting* links = csr_legSettingFind(lt, "links");
-  logLine(def, "legs %s, %d %s", cs_modelLegLevel(m),
+  char track[768];
+  cs_runDefTrackError(def, m, track, sizeof track);
+  logLine(def, "legs %s, %d %s: %s", cs_modelLegLevel(m),
         (int)csr_legSettingGet(lt, &m->robot.leg_settings, "links", 0),
-        links ? links->what : "links per segment");
+        links ? links->what : "links per segment", track);
   const unsigned drop = (unsigned)csr_legSettingGet(lt, &m->robot.leg_settings, "cal_drop", 0);
   if (drop) {
     char what[32];

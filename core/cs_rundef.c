@@ -141,8 +141,8 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
     if (!isnan(def->links) || !isnan(def->macro_steps) || !isnan(def->dt) ||
         !isnan(def->rod_tol) || !isnan(def->step_order)) {
       return cs_errorSet(err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt, "
-                         "--rod-tol and --step-order from its table: give them with --legs prb, "
-                         "rod or strain instead");
+                         "--rod-tol and --step-order from its table: give them with --legs rod "
+                         "or strain instead");
     }
     if (!(def->legs_tol_mm >= 0)) {
       return cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be >= 0", def->legs_tol_mm);
@@ -160,8 +160,11 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
       return cs_errorSet(err, CS_ERR_ARG, "leg model '%s' is not available yet (available: %s)",
                          legs, names);
     }
+    if (!type && csr_legRetired(legs)) {
+      return cs_errorSet(err, CS_ERR_ARG, "--legs %s: %s", legs, csr_legRetired(legs));
+    }
     if (!type) {
-      return cs_errorSet(err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, prb, rod, "
+      return cs_errorSet(err, CS_ERR_ARG, "unknown leg model '%.60s' (expected auto, rod, "
                          "strain or rom)", legs);
     }
     if (!isnan(def->legs_tol_mm) || def->levels) {
@@ -322,6 +325,46 @@ csStatus cs_runDefValidate(const csRunDef* def, csError* err) {
   }
   /* a scene file may name the scene: its defaults are checked again once it is read */
   return checkDef(def, def->scene ? def->scene : "flat-road", err);
+}
+
+
+int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t size) {
+  char levels_buf[512];
+  const char* levels = def->levels ? def->levels
+                                   : cs_runDataPath(def, "robot/levels.csv", levels_buf,
+                                                    sizeof levels_buf);
+  csrLevelTable* table = malloc(sizeof *table); /* ~40 KB: not on the stack */
+  csError e;
+  cs_errorClear(&e);
+  if (!table || csr_levelTableRead(levels, table, &e) != CS_OK) {
+    snprintf(out, size, "track error not known (%s)", table ? e.msg : "out of memory");
+    free(table);
+    return 0;
+  }
+  const csrLegType* lt = m->robot.leg_type;
+  const csrLegSettings* ls = &m->robot.leg_settings;
+  const int links = (int)csr_legSettingGet(lt, ls, "links", 0);
+  const double rod_tol = csr_legSettingGet(lt, ls, "rod_tol", 1);
+  const int order = (int)csr_legSettingGet(lt, ls, "step_order", 0);
+  int found = 0;
+  for (int i = 0; i < table->nrow && !found; i++) {
+    const csrLevelRow* r = &table->row[i];
+    /* a row's step order 0 is the level's default formula, which is what an unset one runs */
+    const int row_order = r->step_order > 0 ? r->step_order : order;
+    if (!strcmp(r->scene, m->scene) && !strcmp(r->level, cs_modelLegLevel(m)) &&
+        r->links == links && r->macro_steps == m->opt.macro_steps && r->dt_s == m->opt.h &&
+        r->rod_tol == rod_tol && row_order == order) {
+      snprintf(out, size, "track error %.3g mm against the reference of %s (line %d; measured "
+               "on the scene's own gait and conditions)", r->error_mm, levels, r->line);
+      found = 1;
+    }
+  }
+  if (!found) {
+    snprintf(out, size, "track error of this configuration not measured (%s has no row for it)",
+             levels);
+  }
+  free(table);
+  return found;
 }
 
 

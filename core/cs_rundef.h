@@ -29,6 +29,13 @@ typedef struct csRunPlan_ {
  * with cs_modelDestroy) and err the cause, naming the field or file. */
 csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csError* err);
 
+/* The measured track error of the configuration m runs (issue 33 item 1: the default's
+ * discretisation error beside every track): the row of the level table (def->levels, else the
+ * shipped robot/levels.csv) with m's scene, level, links, macro steps, step, rod tolerance and
+ * step order, as one sentence in out. Returns 1 when a row matched, 0 otherwise (out then says
+ * that the configuration was not measured, or why the table could not be read). */
+int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t size);
+
 /* A shipped file's path: rel under def->data_dir, $CRAWLSIM_DATA_DIR, share/crawlsim beside
  * the installed library (found with dladdr), the source tree the library was built from (if it
  * holds the data), else the configured prefix's share/crawlsim. */

@@ -48,14 +48,11 @@ _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUN
 
 csOptions cs_defaultOptions(void) {
   csOptions o;
-  /* 1 ms: the joint springs are implicit (any h is stable) and 1 ms resolves the 0.2 s
-   * pressure ramps. At 240 QuickStep iterations the prb track is converged in h (README
-   * "Earlier findings", item 3: 0.5 ms moves the 9 s end point by 0.5 %; an early note here
-   * said ~15 %, measured before the iterations were converged); it is not converged in the
-   * links per segment, where stick-slip and touch-down events decide each stride */
+  /* 1 ms resolves the 0.2 s pressure ramps; the rod legs' tracks are converged in it (0.73 mm
+   * from 0.25 ms over the 9 s flat road, docs/studies/speed_accuracy.md) */
   o.h = 1e-3;
-  /* one ODE step per exchange: in-world legs (prb) need no other; a co-simulated level picks
-   * its macro step from the coupling study (issue 9) */
+  /* one ODE step per exchange (the coupling study, issue 9: a longer exchange costs accuracy
+   * on the flat road, docs/studies/speed_accuracy.md) */
   o.macro_steps = 1;
   o.coupling = CS_COUPLING_STAGGERED;
   /* Gauss-Seidel's momentum carry on: without it the scheme loses the impulse its
@@ -101,6 +98,8 @@ void cs_modelInit(csModel* m) {
   m->sched = csg_defaultScheduleOptions();
   m->contact = csc_defaultContactParams();
   csr_robotDefaultModel(&m->robot, NULL);
+  /* rod legs are co-simulated: their coupling (Gauss-Seidel) comes with the level */
+  cs_modelSetLegLevel(m, m->robot.leg_type);
   m->legs_auto_tol_mm = NAN;
   m->cal_rule = -1;
 }
@@ -259,50 +258,6 @@ static csStatus validateOptions(const csOptions* o, csError* err) {
 }
 
 
-/* The terrain's heading (terrains_terrain.h: crawl direction, degrees about +y, right-handed,
- * 0 = +x): the robot is built along +x, then every body of it (the support and an in-world
- * leg's links) turns rigidly about the vertical through the support's centre. ODE keeps joint
- * anchors and axes in body coordinates, so a rigid turn of all bodies leaves every joint as it
- * was. A co-simulated leg's state lives outside ODE: a heading with such a level is refused. */
-static csStatus applyHeading(const csModel* m, csData* d, csError* err) {
-  double deg = m->terrain.heading_deg;
-  if (deg == 0) {
-    return CS_OK;
-  }
-  if (!m->robot.leg_type->in_world) {
-    return cs_errorSet(err, CS_ERR_ARG, "%s: heading %g deg needs an in-world leg level (prb); "
-                       "the %s level is built along +x only", m->terrain.source, deg,
-                       cs_modelLegLevel(m));
-  }
-  double up[3] = {0, 1, 0}, Rh[9];
-  csu_axisAngleToMat3(Rh, up, deg * CS_PI / 180.0);
-  const dReal* c = dBodyGetPosition(d->robot->support);
-  double o[3] = {c[0], c[1], c[2]};
-  int ng = dSpaceGetNumGeoms(d->robot_space);
-  for (int i = 0; i < ng; i++) {
-    dGeomID g = dSpaceGetGeom(d->robot_space, i);
-    dBodyID b = dGeomGetBody(g);
-    if (!b || dBodyGetFirstGeom(b) != g) {
-      continue; /* each body once */
-    }
-    const dReal* p = dBodyGetPosition(b);
-    const dReal* R4 = dBodyGetRotation(b);
-    double rel[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]}, q[3], R[9], Rn[9];
-    csu_mulMatVec3(q, Rh, rel);
-    for (int r = 0; r < 3; r++) {
-      for (int k = 0; k < 3; k++) {
-        R[3 * r + k] = R4[4 * r + k];
-      }
-    }
-    csu_mulMat3(Rn, Rh, R);
-    dMatrix3 M = {Rn[0], Rn[1], Rn[2], 0, Rn[3], Rn[4], Rn[5], 0, Rn[6], Rn[7], Rn[8], 0};
-    dBodySetPosition(b, o[0] + q[0], o[1] + q[1], o[2] + q[2]);
-    dBodySetRotation(b, M);
-  }
-  return CS_OK;
-}
-
-
 csData* cs_dataCreate(const csModel* m, csError* err) {
   if (validateOptions(&m->opt, err) != CS_OK ||
       csc_contactParamsValidate(&m->contact, err) != CS_OK) {
@@ -338,13 +293,12 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
                  m->terrain.start[1]};
   csrRobotEnv env = {d->world, d->robot_space, m->opt.h,
                      {m->opt.gravity * gdir[0], m->opt.gravity * gdir[1], m->opt.gravity * gdir[2]},
-                     m->opt.legs_weightless, &m->terrain, &m->contact};
+                     m->opt.legs_weightless, &m->terrain, &m->contact,
+                     /* the terrain's heading (terrains_terrain.h: degrees about +y, 0 = +x):
+                      * the robot is built turned, every level alike (robot_robot.h) */
+                     m->terrain.heading_deg * CS_PI / 180.0};
   d->robot = csr_robotCreate(&m->robot, &env, c, err);
   if (!d->robot) {
-    cs_dataDestroy(d);
-    return NULL;
-  }
-  if (applyHeading(m, d, err) != CS_OK) {
     cs_dataDestroy(d);
     return NULL;
   }

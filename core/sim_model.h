@@ -14,8 +14,8 @@
  *              dp/dt = (p_cmd - p)/tau, integrated by CVODE (BDF, diagonal solver) to t + H
  *   legs       every leg's actuate(t, p(t), t + H, p(t + H)) (robot_leg.h); co-simulated legs
  *              then advance across [t, t + H] given the hip's motion and hand back their base
- *              wrench (and, for the stabilised scheme, their interface gains); in-world legs
- *              (prb) do nothing more here
+ *              wrench (and, for the stabilised scheme, their interface gains); an in-world
+ *              level (none is registered since prb was retired) would do nothing more here
  *   support    macro_steps ODE steps of h: the legs' wrenches applied to the support body (with
  *              the stabilised scheme corrected by their gains, solved implicitly with the
  *              support's step), contacts of the support and the in-world legs with the terrain
@@ -149,7 +149,10 @@ typedef struct csModel_ {
   void* pressure_ctx;
 } csModel;
 
-/* Fill a model with the defaults of every part (no files read, no map yet; prb legs). */
+/* Fill a model with the defaults of every part (no files read, no map yet): rod legs (the
+ * mission's surrogate, co-simulated Gauss-Seidel) at the level's default settings. The caller
+ * names the calibration to cs_modelLoad: the mission's is CS_MISSION_CALIBRATION under
+ * CS_MISSION_CAL_RULE (sim_scene.h; set cal_rule to it), as the scenes run it. */
 void cs_modelInit(csModel* m);
 
 /* Load a scene's files into an initialised model: terrain description, gait table (none when

@@ -11,7 +11,7 @@ static const csScene kScenes[] = {
      * (docs/notes/calibration.md), with the rod's elements per segment converged on it */
     /* the flat road's gait was designed on that model and its parameters searched by
      * simulating it (gaits/flat_road_rod.gait, tools/gait_search.py); gaits/flat_road.csv, the
-     * design of the pair-mode table and prb legs, stays shipped */
+     * design of the pair-mode table and the retired prb legs, stays shipped */
     /* under `earth` the four S-bent stance legs of that gait fold (tilt past 10 deg at 1.23 s);
      * a wave on six straighter stance legs walks (tools/earth_gait.py, docs/studies/earth_gait.md) */
     {"flat-road", "terrains/flat_road.terrain", "gaits/flat_road_rod.csv",

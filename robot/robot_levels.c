@@ -115,8 +115,11 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
   /* level: a registered leg level */
   int planned = 0;
   if (strlen(field[1]) >= sizeof r->level || !csr_legTypeFind(field[1], &planned)) {
+    const char* retired = csr_legRetired(field[1]);
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: level '%.40s' is %s", path, line, field[1],
-                       planned ? "not available yet" : "not a leg level (prb, rod, strain)");
+                       retired   ? retired
+                       : planned ? "not available yet"
+                                 : "not a leg level (rod, strain)");
   }
   strcpy(r->level, field[1]);
   /* links, macro_steps, dt_s, rod_tol, step_order, error_mm, cpu_s_per_s, wall_s_per_s:

@@ -11,14 +11,15 @@
  * every row at step_order 0 and rod_tol 1)
  * then one row per measured configuration:
  *   scene        a scene name (a word, at most 31 bytes: flat-road, obstacle, ...)
- *   level        a registered leg level (csr_legTypeFind: prb, rod, strain)
- *   links        links (prb), elements (rod) or bending modes (strain) per segment, integer
+ *   level        a registered leg level (csr_legTypeFind: rod, strain; a retired one, prb, is
+ *                refused naming why, csr_legRetired)
+ *   links        elements (rod) or bending modes (strain) per segment, integer
  *                1..64 (`--links`)
- *   macro_steps  ODE steps per exchange, integer 1..100000 (`--macro-steps`; prb: 1)
+ *   macro_steps  ODE steps per exchange, integer 1..100000 (`--macro-steps`)
  *   dt_s         ODE step (s), 0 < dt <= 0.01 (`--dt`)
- *   rod_tol      the rod legs' CVODE tolerances' factor, 0 < K <= 1000 (`--rod-tol`; prb: 1)
+ *   rod_tol      the rod legs' CVODE tolerances' factor, 0 < K <= 1000 (`--rod-tol`; strain: 1)
  *   step_order   the tree step's formula, integer 0..2 (`--step-order`: 1 backward Euler, 2 BDF2;
- *                0 the level's default; prb and rod: 0)
+ *                0 the level's default; rod: 0)
  *   error_mm     the scene's track error against the benchmark's reference (mm), finite, >= 0
  *   cpu_s_per_s  CPU seconds of the whole process per simulated second, finite, > 0
  *   wall_s_per_s wall seconds per simulated second on the benchmark's machine, finite, > 0

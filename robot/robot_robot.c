@@ -11,14 +11,31 @@
 /* The registered leg levels, cheapest first. Registering a level is one line here (its
  * csrLegType is declared in robot_leg.h). */
 static const csrLegType* const kLegLevels[] = {
-    &csr_leg_prb,
     &csr_leg_rod,
     &csr_leg_strain, /* the dearest per simulated second today (docs/notes/strain_leg.md) */
 };
-/* Levels docs/design.md names ("Model levels"): known to the CLI, "not available yet" until they are
- * in kLegLevels. */
-static const char* const kPlannedLevels[] = {"prb", "rod", "rom"};
+/* Levels docs/design.md names ("Model levels") that are not registered yet: known to the CLI,
+ * "not available yet" until they are in kLegLevels. */
+static const char* const kPlannedLevels[] = {"rom"};
 enum { NLEVEL = sizeof kLegLevels / sizeof kLegLevels[0] };
+/* Levels that were retired, with what to use instead (csr_legRetired). */
+static const struct {
+  const char* name;
+  const char* why;
+} kRetiredLevels[] = {
+    {"prb", "the prb level was retired (2026-12-06): off the speed/accuracy front "
+            "(docs/studies/speed_accuracy.md); use rod (the default) or strain"},
+};
+
+
+const char* csr_legRetired(const char* name) {
+  for (size_t i = 0; name && i < sizeof kRetiredLevels / sizeof kRetiredLevels[0]; i++) {
+    if (!strcmp(kRetiredLevels[i].name, name)) {
+      return kRetiredLevels[i].why;
+    }
+  }
+  return NULL;
+}
 
 
 const csrLegType* csr_legTypeFind(const char* name, int* planned) {
@@ -55,7 +72,8 @@ csStatus csr_robotDefaultModel(csrRobotModel* m, csError* err) {
     return st;
   }
   m->leg_params = csr_defaultLegParams(&m->leg);
-  m->leg_type = &csr_leg_prb;
+  /* the mission's surrogate: the nodal rod (docs/models.md; issue 33 item 1) */
+  m->leg_type = &csr_leg_rod;
   csr_legSettingsDefault(m->leg_type, &m->leg_settings);
   /* assumption: the paper says only "lightweight"; 50 g for a 210 x 145 mm printed frame */
   m->support_mass = 50e-6;
@@ -97,6 +115,12 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env, const 
   r->type = m->leg_type;
   r->support = dBodyCreate(env->world);
   dBodySetPosition(r->support, c[0], c[1] + 0.5 * m->support_size[1], c[2]);
+  /* the heading Rh turns the robot about the vertical through the hip plane's centre */
+  const double up[3] = {0, 1, 0};
+  double Rh[9];
+  csu_axisAngleToMat3(Rh, up, env->heading);
+  const dMatrix3 R4 = {Rh[0], Rh[1], Rh[2], 0, Rh[3], Rh[4], Rh[5], 0, Rh[6], Rh[7], Rh[8], 0};
+  dBodySetRotation(r->support, R4);
   dMass ms;
   dMassSetBoxTotal(&ms, m->support_mass, m->support_size[0], m->support_size[1],
                    m->support_size[2]);
@@ -106,8 +130,8 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env, const 
   dGeomSetBody(r->support_geom, r->support);
   r->mass_total = m->support_mass;
 
-  /* leg frame: e1 = +x, e2 = +z, e3 = -y (hanging), right-handed: e1 x e2 = e3; the support
-   * starts unrotated, so support-frame and world coordinates agree at creation */
+  /* leg frame in the support frame: e1 = +x, e2 = +z, e3 = -y (hanging), right-handed:
+   * e1 x e2 = e3; in the world it is turned by the heading Rh, as the hips are */
   csrLegSpec spec;
   memset(&spec, 0, sizeof spec);
   spec.act = &m->leg;
@@ -123,9 +147,8 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env, const 
   spec.terrain = env->terrain;
   spec.contact = env->contact;
   const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
-  memcpy(spec.frame, F, sizeof F);
+  csu_mulMat3(spec.frame, Rh, F);
   memcpy(r->frame_local, F, sizeof F);
-  const dReal* P = dBodyGetPosition(r->support);
   r->nstate = CSR_BODY_STATE;
   if (m->leg_type->sharedCreate(&spec, &r->leg_shared, err) != 0) {
     csr_robotDestroy(r);
@@ -133,10 +156,12 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env, const 
   }
   spec.shared = r->leg_shared;
   for (int k = 0; k < CSR_NLEG; k++) {
-    double off[3];
+    double off[3], off_w[3];
     csr_robotHipOffset(m, k, off);
-    csu_add3(spec.hip, c, off);
-    csu_set3(r->hip_local[k], spec.hip[0] - P[0], spec.hip[1] - P[1], spec.hip[2] - P[2]);
+    csu_mulMatVec3(off_w, Rh, off);
+    csu_add3(spec.hip, c, off_w);
+    /* from the support's centre, which sits half its thickness above the hip plane */
+    csu_set3(r->hip_local[k], off[0], off[1] - 0.5 * m->support_size[1], off[2]);
     r->legs[k] = m->leg_type->create(&spec, err);
     if (!r->legs[k]) {
       csr_robotDestroy(r);

@@ -40,7 +40,7 @@ typedef struct csrRobotModel_ {
   double l_AE;               /* spacing between the two rows, mm */
 } csrRobotModel;
 
-/* Fill with the documented defaults (actuator `leg`, prb legs, support 210 mm long, 50 g).
+/* Fill with the documented defaults (actuator `leg`, rod legs, support 210 mm long, 50 g).
  * The map is left empty: the caller supplies the calibration. */
 csStatus csr_robotDefaultModel(csrRobotModel* m, csError* err);
 
@@ -70,10 +70,15 @@ typedef struct csrRobotEnv_ {
   int weightless_legs;             /* 0: `earth`; 1: `paper` (robot_leg.h csrLegSpec) */
   const cstTerrain* terrain;       /* borrowed: must outlive the robot */
   const cscContactParams* contact; /* borrowed: must outlive the robot */
+  double heading;                  /* crawl direction at creation: radians about +y,
+                                      right-handed, 0 = +x (the terrain's heading) */
 } csrRobotEnv;
 
-/* Build the support (centre of its bottom face at `hip_plane_centre`, world mm) and the eight
- * legs of m->leg_type hanging straight down from it. Returns NULL with err on failure. */
+/* Build the support (centre of its bottom face at `hip_plane_centre`, world mm) turned by
+ * env->heading about the vertical, and the eight legs of m->leg_type hanging straight down
+ * from it: every leg is created at its turned hip with its frame turned, so a co-simulated
+ * leg's own state starts at the heading as the support does. Returns NULL with err on
+ * failure. */
 csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env,
                           const double hip_plane_centre[3], csError* err);
 void csr_robotDestroy(csrRobot* r);

@@ -5,7 +5,7 @@
  *  - create: the leg's rod model and data from csrLegSpec: the actuator, its calibration map,
  *    hip and frame, gravity (spec->weightless: the `paper` conditions), csrLegParams'
  *    E_bend (E' of the rod), damping_time, contact_radius, and the level's settings (kRodSettings:
- *    links as the rod's elements per segment, the same resolution knob as prb's: `--links`;
+ *    links as the rod's elements per segment, the resolution knob `--links`;
  *    rod_tol, cal_drop); when spec->terrain is given,
  *    the soft contact model over N capsules (one per element, radius contact_radius) and the
  *    foot's sole (half side a), with csc_softDefaultParams and spec->contact's friction

@@ -3,8 +3,8 @@
 
 Tasks (each point = one `crawlsim` process, timed as a whole: wall clock and CPU seconds of
 the child from getrusage, with the load average beside them because the machine is shared):
-  track  (3) flat-road and (4) obstacle track: `crawlsim run --scene S` for prb at several
-         links per segment and rod at several elements per segment (`--links`), macro steps
+  track  (3) flat-road and (4) obstacle track: `crawlsim run --scene S` for rod at several
+         elements per segment (`--links`), macro steps
          (`--macro-steps`) and ODE steps (`--dt`); error = max over whole seconds of |(dx, dz)|
          of the support against a rod reference at a fine discretisation and a small step
          (--ref-*: 6 elements per segment, h = H = 0.25 ms); the same rod at 0.5 ms is one of
@@ -26,7 +26,7 @@ discards the cache.
 
 Usage: /usr/bin/python3 tools/bench_levels.py [--crawlsim build/tools/crawlsim]
          [--tasks track,bend] [--scenes flat-road,obstacle] [--obstacle-t-end 4]
-         [--prb-links 2,4,8] [--rod-configs 2x1,4x1,8x1,...,4x1t20,...] [--ref-links 16]
+         [--rod-configs 2x1,4x1,8x1,...,4x1t20,...] [--ref-links 16]
          [--strain-configs 3@1e-3o1,3@5e-3o2]
          [--ref-dt 2.5e-4] [--fe-meshes 6,5] [--tip-meshes 5,6]
          [--work DIR] [--out-dir docs] [--table robot/levels.csv]
@@ -172,9 +172,7 @@ def tracks(a, rows, table):
         if ref["rc"] != 0:
             fail(f"the {scene} reference run failed: {ref['last']}")
         t_ref = sim_seconds(ref)
-        configs = [("prb", n, 1, 1e-3, 1.0, 0)
-                   for n in (int(v) for v in a.prb_links.split(",") if v)]
-        configs += [("rod", n, m, dt, k, 0) for n, m, dt, k in rod_configs]
+        configs = [("rod", n, m, dt, k, 0) for n, m, dt, k in rod_configs]
         configs += [("strain",) + c for c in strain_configs]
         points = [(ref, "rod", a.ref_links, 1, a.ref_dt, 1.0, 0, True)]
         for level, links, macro, dt, k, order in configs:
@@ -445,7 +443,6 @@ def main():
     # 4 s: the raise and the first pair steps (the gait before 2026-12-03 headed off the road
     # backwards from 3 s; the whole run is the README's "Obstacle road")
     ap.add_argument("--obstacle-t-end", type=float, default=4.0)
-    ap.add_argument("--prb-links", default="2,4,8")
     ap.add_argument("--rod-configs",
                     default="2x1,4x1,8x1,12x1,4x2,8x2,8x1@5e-4,16x1@5e-4,2x1t20,4x1t20,"
                     "8x1t20",

@@ -1,7 +1,7 @@
 /* cmd_bend.c: `crawlsim bend`, the pressure -> bending characterisation of one actuator
  * (docs/design.md command-line and output contracts; paper Figs. 3, 6-9).
  *
- *   crawlsim bend [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]
+ *   crawlsim bend [--model analytic|fe|rod|rom] [--actuator fig1|baseline|leg]
  *                 [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]
  *                 [--until-angle DEG] [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]
  *                 [--fibre-law linear|tension-only] [--out FILE.h5]
@@ -44,6 +44,7 @@
 #include "robot_actuator.h"
 #include "robot_bend_io.h"
 #include "robot_calibration.h"
+#include "robot_leg.h"
 
 static const double kDefaultPMax = 0.4;     /* MPa, the paper's multi-segment sweep (Sec. 3.3) */
 static const double kDefaultPStep = 0.05;   /* MPa, the paper's increment */
@@ -53,7 +54,7 @@ enum { MAX_SETS = 64 };
 
 /* the options of `crawlsim bend`, for parsing and --help (cs_opts.h) */
 static const csxOpt kBendOpts[] = {
-    {"--model", "analytic|fe|rod|prb|rom", "analytic",
+    {"--model", "analytic|fe|rod|rom", "analytic",
      "the actuator model (rom: the reduced FE of docs/notes/rom.md, needs --rom-basis)"},
     {"--actuator", "fig1|baseline|leg", "baseline (rod: leg, its calibration's)",
      "the actuator preset"},
@@ -109,7 +110,7 @@ static const csxOptTable kBendTable = {
     "to p-max in steps of p-step and write the bending angles and tip positions to FILE.h5.",
     kBendOpts, CSX_NOPT(kBendOpts), NULL};
 
-static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "prb", "rom"};
+static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "rom"};
 
 /* Evaluate the model at pressure p (MPa): per-segment angles (deg), tip in the base frame (mm). */
 typedef csStatus (*BendPointFn)(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
@@ -186,7 +187,6 @@ static BendPointFn bendModelEvaluator(BendModel m) {
     case BEND_ROD:
       return solverPoint;
     case BEND_FE:  /* a whole sweep, not point-wise: feSweep() below */
-    case BEND_PRB: /* pseudo-rigid-body chain */
     case BEND_ROM: /* reduced FE */
     case BEND_NMODEL:
       return NULL;
@@ -322,9 +322,12 @@ static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOpt
       while (m < BEND_NMODEL && strcmp(value, kModelNames[m])) {
         m++;
       }
+      if (m == BEND_NMODEL && csr_legRetired(value)) {
+        cs_errorSet(err, CS_ERR_ARG, "--model %s: %s", value, csr_legRetired(value));
+        return 1;
+      }
       if (m == BEND_NMODEL) {
-        cs_errorSet(err, CS_ERR_ARG,
-                    "unknown model '%s' (expected analytic, fe, rod, prb or rom)",
+        cs_errorSet(err, CS_ERR_ARG, "unknown model '%s' (expected analytic, fe, rod or rom)",
                     value);
         return 1;
       }

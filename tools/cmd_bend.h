@@ -12,7 +12,7 @@
 #include "robot_actuator.h"
 #include "robot_bend_io.h"
 
-typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_PRB, BEND_ROM, BEND_NMODEL } BendModel;
+typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_ROM, BEND_NMODEL } BendModel;
 
 /* one bend run: parsed options and what the model reports about itself */
 typedef struct {

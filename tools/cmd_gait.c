@@ -43,8 +43,8 @@ static const csxOpt kCheckOpts[] = {
     {"--cal-rule", "prism|rbf|rbf-pair", "the scene's (as crawlsim run)",
      "the FE mode table's model rule"},
     {"--pressure-scale", "K", "1", "multiplies every pressure first (as crawlsim run)"},
-    {"--legs", "prb|rod", "rod",
-     "rod legs also read the mode table's stiffness probes: their segments' mean pressure must "
+    {"--legs", "rod|strain", "rod",
+     "both levels also read the mode table's stiffness probes: their segments' mean pressure must "
      "stay within the probes' range too"},
     {"--cal-drop", "stretch[,stiffness]", "none",
      "as crawlsim run: with stiffness, the probes' range is not checked"},
@@ -146,8 +146,13 @@ static int cmdCheck(int argc, char** argv) {
     } else if (!strcmp(a, "--calibration")) {
       calib = v;
     } else if (!strcmp(a, "--legs")) {
-      if (strcmp(v, "rod") && strcmp(v, "prb")) {
-        snprintf(msg, sizeof msg, "--legs '%.64s' must be prb or rod", v);
+      if (csr_legRetired(v)) {
+        snprintf(msg, sizeof msg, "--legs %.16s: %s", v, csr_legRetired(v));
+        printError("check", msg);
+        return 1;
+      }
+      if (strcmp(v, "rod") && strcmp(v, "strain")) {
+        snprintf(msg, sizeof msg, "--legs '%.64s' must be rod or strain", v);
         printError("check", msg);
         return 1;
       }
@@ -214,7 +219,8 @@ static int cmdCheck(int argc, char** argv) {
     if (csr_actuatorPreset(&leg, CSX_MISSION_ACTUATOR, &err) == CS_OK) {
       cal = csr_calibrationOpenWith(calib, &leg, cal_rule >= 0 ? &copt : NULL, &err);
     }
-    const int stiffness = !strcmp(legs, "rod") && !(cal_drop & CSR_CAL_DROP_STIFFNESS);
+    /* rod and strain legs both read the probes (csr_calibrationRodFromMap) */
+    const int stiffness = legs && !(cal_drop & CSR_CAL_DROP_STIFFNESS);
     if (!cal || csx_gaitRangeCheck(g, path, scale, cal, stiffness, &err) != CS_OK) {
       csr_calibrationClose(cal);
       csg_gaitDestroy(g);

@@ -1,6 +1,6 @@
 /* cmd_run.c: `crawlsim run`: simulate a gait on a terrain and write the run HDF5 file.
  * Contract (docs/design.md): crawlsim run [--scene flat-road|obstacle] [--gait FILE.csv]
- *   [--legs auto|prb|rod|strain|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
+ *   [--legs auto|rod|strain|rom] [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5]
  * Extra options: --terrain FILE, --dt S, --output-dt S, --ramp S, --tau S, --support-mass KG,
  *   --links N, --iterations N, --gravity M/S2, --calibration FILE, --macro-steps N,
  *   --coupling staggered|stabilised|gs|tree, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
@@ -43,11 +43,11 @@ static const csxOpt kRunOpts[] = {
      "conditions earth"},
     {"--terrain", "FILE", "the scene's (terrains/flat_road.terrain, terrains/obstacle.terrain)",
      "the terrain file; a terrain of your own makes the default conditions earth"},
-    {"--legs", "auto|prb|rod|strain|rom", "rod",
+    {"--legs", "auto|rod|strain|rom", "rod",
      "the leg level; auto picks the scene's cheapest measured configuration within --tol; "
      "strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled tree, its "
      "step --dt (default 1 ms, the level's own) and --links bending modes per segment (default "
-     "3); rom is not available yet"},
+     "3); rom is not available yet; prb was retired (refused naming rod or strain)"},
     {"--friction", "MU", "0.8", "Coulomb friction coefficient of every contact (dimensionless)"},
     {"--pressure-scale", "K", "1",
      "multiplies every pressure of the gait (refused if it pushes a gait above 1 MPa)"},
@@ -74,7 +74,7 @@ static const csxOpt kRunOpts[] = {
     {"--gravity", "M/S2", "9.81", "gravitational acceleration in m/s^2"},
     {"--support-mass", "KG", "0.05", "mass of the support (body) in kg"},
     {"--links", "N", "the scene's for rod legs (8 on flat-road, 4 on obstacle), strain 3, else 4",
-     "links (prb) or elements (rod) per leg segment, 1..64"},
+     "elements (rod) or bending modes (strain) per leg segment, 1..64"},
     {"--iterations", "N", "240", "ODE QuickStep iterations per step, 1..10000"},
     {"--macro-steps", "N", "1", "ODE steps per exchange with co-simulated legs (H = N dt)"},
     {"--coupling", "staggered|stabilised|gs|tree", "gs (rod), tree (strain)",
@@ -82,10 +82,10 @@ static const csxOpt kRunOpts[] = {
      "steps first, momentum exact), stabilised (the legs first along a predicted motion), "
      "staggered (explicit: needs --dt 3.5e-5 or less), tree (the support and the legs in one "
      "implicit step solved as a tree with Newton passes, strain legs only; a rejected step is "
-     "retried in halves); prb ignores it"},
+     "retried in halves)"},
     {"--contact-scale", "K", "1",
-     "multiplies the normal stiffness of every contact law (ODE's 100 N/mm of prb legs and the "
-     "support, the rod legs' soft foundation modulus), 0 < K <= 1e6"},
+     "multiplies the normal stiffness of every contact law (ODE's 100 N/mm of the support, the "
+     "legs' soft foundation modulus), 0 < K <= 1e6"},
     {"--rod-tol", "K", "1",
      "multiplies every CVODE tolerance of rod legs, 0 < K <= 1000; recorded as "
      "rod_tolerance_scale"},

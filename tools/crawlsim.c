@@ -31,9 +31,9 @@
 static const char kUsage[] =
     "usage: crawlsim <command> [options]\n"
     "       crawlsim --version | --help\n"
-    "  run       [--scene flat-road|obstacle] [--gait FILE.csv] [--legs auto|prb|rod|rom]\n"
+    "  run       [--scene flat-road|obstacle] [--gait FILE.csv] [--legs auto|rod|strain]\n"
     "            [--friction MU] [--pressure-scale K] [--t-end S] [--out FILE.h5] ...\n"
-    "  bend      [--model analytic|fe|rod|prb|rom] [--actuator fig1|baseline|leg]\n"
+    "  bend      [--model analytic|fe|rod|rom] [--actuator fig1|baseline|leg]\n"
     "            [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]\n"
     "            [--until-angle DEG] [--mesh-size MM] [--out FILE.h5]\n"
     "  gait      check FILE.csv | design FILE.gait [--out FILE.csv] [--check] ...\n"

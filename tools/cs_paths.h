@@ -11,13 +11,6 @@
 #define CS_SOURCE_DIR "."
 #endif
 
-/* The pair-mode FE table of the `leg` actuator (one chamber mode, 0..0.3 MPa, l_soft 4 mm),
- * regenerable with `crawlsim calibrate --out robot/calibration_fe_leg.h5` (README,
- * "Calibration"): the default of `crawlsim gait design` and `gait flat-road`, whose shipped
- * tables were designed on it. The provisional text reference stays available with
- * --calibration. */
-#define CSX_DEFAULT_CALIBRATION "robot/calibration_fe_leg.h5"
-
 /* The actuator of the mission's calibration (core/sim_scene.h CS_MISSION_*, whose header the
  * study-file reader, also built alone into its fuzz harness, does not see). */
 #define CSX_MISSION_ACTUATOR "leg"

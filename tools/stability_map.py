@@ -6,8 +6,8 @@ gaits/flat_road_paper.csv under `paper`: the gait that walks on both levels) swe
 setting at a time from the default (rod legs, stabilised coupling, h = H = 1 ms):
   coupling x macro step   staggered at H = 25 us .. 1 ms; stabilised at H = 1 .. 200 ms as
                           macro steps of 1 ms ODE steps, and at h = H = 2 .. 10 ms
-  contact stiffness       --contact-scale 1e-4 .. 1e5 (ODE's kp for prb, the rod's soft
-                          foundation modulus), both levels
+  contact stiffness       --contact-scale 1e-4 .. 1e5 (the rod's soft foundation modulus; the
+                          committed map also swept prb legs, retired 2026-12-06)
   pressure                --pressure-scale up to 0.5 MPa of the table's 0.1744 MPa, with the
                           FE calibration (its range ends at 0.3 MPa) and with the provisional
                           one (analytic x 3.08, no range limit); and one actuator's bend past
@@ -18,8 +18,8 @@ costly and the staggered limit shows while settling). Each run is classified fro
 tips over (a finished run whose support tilted past 30 deg), or hangs (killed after
 --timeout s: a hang is a failure mode too). A finished run also gets its distance from the
 same level's default run at the common end time (a run can finish and be wrong). The
-contact depth column is ODE's (prb feet and the support); the rod legs' own soft contact is
-not in it.
+contact depth column is ODE's (the support; the committed map's prb feet); the rod legs' own
+soft contact is not in it.
 
 Writes docs/stability_map.csv and docs/stability_map.png (--out-dir); runs cached in --work.
 Usage: /usr/bin/python3 tools/stability_map.py [--crawlsim build/tools/crawlsim]
@@ -65,16 +65,12 @@ def cases(a):
     for k in [1e-4, 1e-3, 1e-2, 0.1, 1, 10, 1e3, 1e5]:
         out.append(("contact stiffness scale", "rod", k,
                     ["--legs", "rod", "--contact-scale", f"{k:g}"]))
-    for k in [1e-4, 1e-2, 1, 1e2, 1e4]:
-        out.append(("contact stiffness scale", "prb", k,
-                    ["--legs", "prb", "--contact-scale", f"{k:g}"]))
     prov = os.path.join(ROOT, "robot", "calibration_provisional.txt")
     # 0.29, not 0.3: the FE table ends at 0.3 MPa and a scaled 0.1744 lands a rounding above it
     for p in [0.1744, 0.25, 0.29, 0.35, 0.5]:
         s = p / GAIT_P_MAX
-        for legs in ["prb", "rod"]:
-            out.append(("highest gait pressure (MPa)", f"{legs}, FE calibration", p,
-                        ["--legs", legs, "--pressure-scale", f"{s:.6g}"]))
+        out.append(("highest gait pressure (MPa)", "rod, FE calibration", p,
+                    ["--legs", "rod", "--pressure-scale", f"{s:.6g}"]))
         out.append(("highest gait pressure (MPa)", "rod, provisional calibration", p,
                     ["--legs", "rod", "--pressure-scale", f"{s:.6g}", "--calibration", prov]))
     return out
@@ -159,17 +155,16 @@ def main():
         print(f"{PROG}: {a.crawlsim}: not an executable (build first)", file=sys.stderr)
         sys.exit(1)
     os.makedirs(a.work, exist_ok=True)
-    # "off": distance at the end from the same level's default run (rod: stabilised, 1 ms;
-    # prb: contact scale 1); not on the pressure axis, where the gait itself changes
-    bases = {"rod": run_case(a, "default-rod", ["--legs", "rod"]),
-             "prb": run_case(a, "default-prb", ["--legs", "prb"])}
+    # "off": distance at the end from the default run (rod: stabilised, 1 ms); not on the
+    # pressure axis, where the gait itself changes
+    bases = {"rod": run_case(a, "default-rod", ["--legs", "rod"])}
     rows = []
     for axis, label, value, args in cases(a):
         key = re.sub(r"[^A-Za-z0-9.]+", "_", f"{axis}-{label}-{value:g}")
         r = run_case(a, key, args)
         outcome = classify(r["rc"], r["last"], r["tilt"])
         es = end_state(r["h5"])
-        base = bases["prb" if "prb" in args else "rod"]
+        base = bases["rod"]
         base_end = end_state(base["h5"]) if base["rc"] == 0 else None
         off = ""
         if "pressure" in axis:

@@ -340,7 +340,7 @@ static inline int csu_solve6(csReal A[36], csReal b[6]) {
  * Units: h s, kp N/mm (or N mm/rad), kd N s/mm (N mm s/rad); CFM in ODE's (mm/s)/N. kd = 0 is
  * a pure spring (ERP = 1), kp = 0 a pure damper (ERP = 0). Returns 0, or -1 (outputs untouched)
  * unless h > 0, kp >= 0, kd >= 0, h kp + kd > 0 and all are finite. Pure math, no ODE: the one
- * place contact_ode.c, robot_prb.c and the coupling hooks get the mapping from. */
+ * place contact_ode.c and the coupling hooks get the mapping from. */
 static inline int csu_springErpCfm(csReal h, csReal kp, csReal kd, csReal* erp, csReal* cfm) {
   if (!(h > 0 && kp >= 0 && kd >= 0 && isfinite(h) && isfinite(kp) && isfinite(kd))) {
     return -1;

@@ -3,7 +3,7 @@
  * Owns: csrActuator, the named geometries of docs/reference.md (`fig1`, `baseline`, `leg`), setting
  * any parameter by its paper name (S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1 r2 C10 C20, plus rho,
  * Ef, nuf, rhof, rf), validation of a parameter set, and the bend-curve record that every model
- * level (analytic, prb, rod, rom, fe) fills for `crawlsim bend`.
+ * level (analytic, rod, rom, fe) fills for `crawlsim bend`.
  *
  * Units: mm, MPa (N/mm^2), t/mm^3 (so that mm-N-s is consistent), turns are counts.
  * Frames: a segment's cross-section frame (e1, e2), axis e3 from base to tip; chamber centres

@@ -1,7 +1,7 @@
 /* robot_bend_io.h: the HDF5 file of `crawlsim bend` (docs/design.md "Output contract", bend).
  *
  * Owns: writing a csrBendCurve and its metadata to an open csH5File, for every model level
- * (analytic, fe, rod, prb, rom), so that all of them produce the same layout:
+ * (analytic, fe, rod, rom), so that all of them produce the same layout:
  *   /pressure [M] MPa; /angle_deg [M,3] per segment; /angle_total_deg [M]; /tip_position [M,3]
  *   mm (base frame e1, e2, e3); root attributes: model, actuator, chambers, every actuator
  *   parameter under its paper name (S1 ... C20, rho, Ef, nuf, rhof, rf), mesh_size_mm,

@@ -27,8 +27,8 @@ csStatus csr_footFromPressures(const csrActuator* act, const csrBendMap* map,
     if (map->eval(map->ctx, s, p + 4 * s, bend, &stretch) != 0) {
       return cs_errorSet(err, CS_ERR_SOLVER, "calibration map failed on segment %d", s + 1);
     }
-    /* bend = -kappa S (robot_analytic.h): back to the stretch-gradient curvature; the prb
-     * level ignores the stretch, so the designed motion does too */
+    /* bend = -kappa S (robot_analytic.h): back to the stretch-gradient curvature; without
+     * --stretch the designed motion ignores the stretch (the older gaits' legs bent only) */
     st[s].lambda0 = 1.0;
     st[s].kappa[0] = -bend[0] / act->S[s];
     st[s].kappa[1] = -bend[1] / act->S[s];

@@ -69,7 +69,7 @@ csStatus csr_designFlatRoad(const csrActuator* act, const csrBendMap* map, doubl
 typedef struct csrGaitDesignOptions_ {
   double p_max;   /* MPa: highest pressure a solve may use (capped by the map's range) */
   int stretch;    /* 1: the forward kinematics include the map's axial stretch (a leg level
-                     that stretches); 0: bends only, as the prb chain (rise targets refused) */
+                     that stretches); 0: bends only (rise targets refused) */
 } csrGaitDesignOptions;
 
 /* p_max 0.3 MPa, no stretch. */

@@ -309,7 +309,7 @@ csStatus csr_designPoses(const csrActuator* act, const csrBendMap* map, const cs
         p = out->set_p[set->ref][k];
       } else if (set->kind == CSG_TARGET_RISE && !opt->stretch) {
         return cs_errorSet(err, CS_ERR_ARG, "%s:%d: pose %s: 'rise' needs a leg level that "
-                           "stretches (the prb chain bends only)", d->source, set->line, po->name);
+                           "stretches (without it the legs bend only)", d->source, set->line, po->name);
       } else {
         /* bisection on the set's pressure: the target must lie between its ends */
         double v0, v1;

@@ -1,10 +1,12 @@
 /* robot_leg.c: a leg level's own settings by name (robot_leg.h csrLegSetting): each level
  * declares its settings with defaults and ranges in its table of operations, so that the run
  * definition and the command line set them by name and refuse a setting for a level that has
- * none of that name, without knowing the levels (docs/design.md "Model levels"). */
+ * none of that name, without knowing the levels (docs/design.md "Model levels"); and what
+ * every level shares: the leg's default material parameters and its section's second moment. */
 #include <math.h>
 #include <string.h>
 
+#include "robot_analytic.h"
 #include "robot_leg.h"
 
 
@@ -65,4 +67,33 @@ double csr_legSettingGet(const csrLegType* T, const csrLegSettings* s, const cha
   double v[CSR_LEG_MAX_SETTINGS];
   csr_legSettingsRead(T, s, v);
   return v[k - T->settings];
+}
+
+
+csrLegParams csr_defaultLegParams(const csrActuator* act) {
+  csrLegParams p;
+  /* small-strain bending modulus of the Yeoh law with the fibres holding λ2 = 1:
+   * W ≈ 4 C10 ε^2 -> σ = 8 C10 ε (plane-strain-like modulus, 0.88 MPa for Elastosil) */
+  p.E_bend = 8.0 * act->C10;
+  /* material damping as a Kelvin-Voigt time constant. Silicone's loss is nearly rate
+   * independent (loss factor η ~ 0.1-0.2) and the air in chambers and tubes adds more; a
+   * time constant τ gives the loss factor ω τ at frequency ω, so τ is chosen for η ≈ 0.3 at
+   * the hanging leg's first bending mode, ω1 = 3.516 sqrt(EI / (m' L^4)) ≈ 15 rad/s:
+   * τ = 0.3 / 15 = 0.02 s. The 100 Hz link modes are then over-damped, which the implicit
+   * joint springs handle at any step. With 5 ms the leg swung for seconds after each move. */
+  p.damping_time = 0.02;
+  /* the leg's half side: the capsules fill the square section's inscribed circle */
+  p.contact_radius = act->a;
+  return p;
+}
+
+
+/* second moment of area (mm^4) of the chambered section about a principal axis: the analytic
+ * model's exact section quadrature (robot_analytic.h), so every level shares one section */
+double csr_legSectionI(const csrActuator* a) {
+  csrSectionProps sp;
+  if (csr_analyticSectionCompute(a, NULL, &sp, NULL) != CS_OK) {
+    return NAN; /* invalid actuator: a level validates it before use */
+  }
+  return sp.I_holed;
 }

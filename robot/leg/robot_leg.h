@@ -1,4 +1,4 @@
-/* robot_leg.h: the one leg interface every dynamic leg level implements (prb, rod, strain,
+/* robot_leg.h: the one leg interface every dynamic leg level implements (rod, strain,
  * rom), and the pressure -> segment-bend map (the calibration) the levels share.
  *
  * Owns: csrBendMap (pressures of one segment's four chambers -> bend vector of that segment),
@@ -9,7 +9,8 @@
  * robot_robot.c (csr_legTypeFind).
  *
  * Two kinds of level (csrLegType.in_world):
- *  - in_world = 1 (prb): the leg's bodies live in the ODE world, jointed to the support body;
+ *  - in_world = 1 (none registered since prb was retired, 2026-12-06; the driver keeps the
+ *    path): the leg's bodies live in the ODE world, jointed to the support body;
  *    ODE steps them together with the support and resolves their contacts. advance() is a
  *    no-op returning a zero wrench; the leg's state is its ODE bodies' states.
  *  - in_world = 0 (rod, strain, rom): the leg is co-simulated with its own integrator. Each
@@ -178,9 +179,9 @@ typedef struct csrLegType_ {
   void (*sharedDestroy)(void* shared);
 
   /* Size (doubles) of the leg's whole state: everything a step changes, so that
-   * setState(getState()) followed by a step gives bit-identical results. For prb: its bodies'
-   * positions, quaternions, linear and angular velocities (13 each) and the joint targets it
-   * last set; for rod: its integrator's state vector plus contact/friction history (stick
+   * setState(getState()) followed by a step gives bit-identical results. For an in-world
+   * level: its bodies' positions, quaternions, linear and angular velocities (13 each) and what
+   * else it last set; for rod: its integrator's state vector plus contact/friction history (stick
    * points). Constant for a leg's lifetime. */
   int (*stateSize)(const csrLeg* leg);
   /* Copy the state into x[stateSize] (no side effects). */
@@ -195,8 +196,7 @@ typedef struct csrLegType_ {
 
   /* Set the actuation for the coming macro step from the 12 chamber pressures (MPa,
    * segment-major: p[4 s + j] is segment II(s+1) chamber Ω(j+1)) at its start (t0, p0) and end
-   * (t1, p1); pressures are linear in between. prb sets its joint targets from p1 (implicit
-   * springs take end-of-step targets). May return CSR_MAP_OUT_OF_RANGE (fatal) when a pressure
+   * (t1, p1); pressures are linear in between. May return CSR_MAP_OUT_OF_RANGE (fatal) when a pressure
    * is above the calibrated range. Called once per macro step, before advance. */
   int (*actuate)(csrLeg* leg, double t0, const double p0[12], double t1, const double p1[12]);
   /* Advance the leg from t to t + H with the hip moving from b0 (at t) to b1 (at t + H); fill
@@ -244,7 +244,7 @@ typedef struct csrLegType_ {
    * h, solved as the tree it is (core/sim_coupling.c, coupling `tree`): every leg condenses its
    * step onto its hip (prepare), the support solves its 6 x 6 with the legs' condensed
    * impedances, every leg back-substitutes the hip's motion (finish). prepare and finish are
-   * NULL for the levels that advance on their own (prb, rod); a tree-stepped level still
+   * NULL for the levels that advance on their own (rod); a tree-stepped level still
    * implements advance (one step along a prescribed hip motion) and interfaceGains, so the
    * other coupling schemes can drive it. */
   /* s: the level's default step h for the tree coupling (0: the driver's default) */
@@ -289,16 +289,19 @@ typedef struct csrLegType_ {
   void (*stepCoeffs)(const csrLeg* leg, double h, double c[3]);
 } csrLegType;
 
-/* The pseudo-rigid-body chain level (robot_prb.c). */
-extern const csrLegType csr_leg_prb;
 /* The Cosserat rod level (robot_rod*.c, robot_rod.h), registered in robot_robot.c. */
 extern const csrLegType csr_leg_rod;
 /* The strain-coordinate Cosserat rod level (robot_strain*.c, robot_strain.h), tree-stepped. */
 extern const csrLegType csr_leg_strain;
 
-/* The registered level called `name` ("prb", ...), or NULL. Levels the design names but that
- * are not registered yet ("rod", "rom") give NULL with *planned = 1 (planned may be NULL). */
+/* The registered level called `name` ("rod", "strain"), or NULL. Levels the design names but
+ * that are not registered yet ("rom") give NULL with *planned = 1 (planned may be NULL). */
 const csrLegType* csr_legTypeFind(const char* name, int* planned);
+/* For a level that was retired ("prb", 2026-12-06: off the speed/accuracy front, docs/studies/
+ * speed_accuracy.md), one sentence saying so and what to use instead (static string); NULL for
+ * any other name. Every reader of a level's name (the run definition, the commands, the level
+ * table) refuses it with this sentence. */
+const char* csr_legRetired(const char* name);
 /* The registered levels, cheapest first: how many, and the i-th (NULL outside 0..count-1). */
 int csr_legTypeCount(void);
 const csrLegType* csr_legTypeAt(int i);
@@ -306,7 +309,7 @@ const csrLegType* csr_legTypeAt(int i);
 /* Second moment of area of the chambered section about a principal axis (mm^4). */
 double csr_legSectionI(const csrActuator* act);
 
-/* Default leg parameters for an actuator (E_bend from C10, see robot_prb.c). */
+/* Default leg parameters for an actuator (E_bend from C10, robot_leg.c). */
 csrLegParams csr_defaultLegParams(const csrActuator* act);
 
 /* ---- a level's own settings (robot_leg.c) ---- */

@@ -10,7 +10,7 @@
 
 #include "robot_rod_internal.h"
 
-/* pressures equal within this (MPa) reuse the cached actuation (as robot_prb.c: 1e-7 MPa moves
+/* pressures equal within this (MPa) reuse the cached actuation (1e-7 MPa moves
  * a bend by < 1e-6 relative at gait pressures) */
 #define CSR_ROD_P_TOL 1e-7
 

@@ -41,7 +41,7 @@
  *
  * ---- Sections (the default, before the FE calibration supplies EI(p), EA(p), ...) ----------
  * E' = 8 C10: the small-strain modulus of the Yeoh law with the fibres holding λ2 = 1, the one
- * the prb level and the analytic model use (robot_prb.c, robot_analytic.h D2); G = 2 C10 = μ0
+ * the analytic model uses (robot_analytic.h D2; csr_defaultLegParams, robot_leg.c); G = 2 C10 = μ0
  * of the incompressible silicone; Timoshenko coefficient of a rectangle, Cowper's
  * k = 10(1 + ν)/(12 + 11ν) = 0.857 at ν = 1/2. Areas and second moments come from the
  * analytic model's exact section quadrature. Each actuated segment is one uniform piece whose
@@ -49,11 +49,11 @@
  * (holed section) and its two solid caps c (full section): EA = S / (Lc/(E'A_h) + 2c/(E'A_f)),
  * the same for EI, kGA and GJ, so the calibration's per-segment curvature acts on a uniform
  * piece; with the presets this is 4 % stiffer in bending than the holed section alone (which
- * prb uses over all of S). Joints LS12, LS23: solid blocks of the full section (docs/reference.md
+ * the retired prb level used over all of S). Joints LS12, LS23: solid blocks of the full section (docs/reference.md
  * assumption), passive. Torsion: St-Venant's J = 0.1406 (2a)^4 of the square (Roark), the holed
  * section scaled by its polar-moment ratio (an estimate: twist is barely loaded in this robot).
  * Mass and rotary inertia: the silicone density over the filleted square, chambers hollow
- * over Lc (as massBetween in robot_prb.c), averaged over each piece (exact total and centre
+ * over Lc, averaged over each piece (exact total and centre
  * of mass per piece: the segment is symmetric). Nodes carry the lumped masses of their half
  * elements, elements their rotary inertia. */
 #include <math.h>
@@ -79,7 +79,8 @@ csrRodParams csr_rodDefaultParams(const csrActuator* act) {
   p.E = 8.0 * C10;
   p.G = 2.0 * C10;
   p.shear_coeff = 10.0 * 1.5 / (12.0 + 11.0 * 0.5);
-  /* the prb level's material damping (robot_prb.c: loss factor ≈ 0.3 at the first mode) */
+  /* the legs' material damping (csr_defaultLegParams, robot_leg.c: loss factor ≈ 0.3 at the
+   * first mode) */
   p.damping_time = 0.02;
   /* tolerances, chosen by the foot path of a leg in the flat-road gait against an rtol 1e-8
    * run (bench_rod gait): these give 0.19 mm over 1.5 s at ~300 steps per simulated second,

@@ -3,13 +3,13 @@
  *   bench_flatroad [level|sweep] [links] [dt_s] [t_end_s] [gait.csv|-] [coupling] [macro_steps]
  *                  [carry] [tol_scale] [mu]
  *
- * level: rod (default) or prb: one run of the scene (default gait, `paper` conditions, the
+ * level: rod (default) or strain: one run of the scene (default gait, `paper` conditions, the
  * level's default coupling: stabilised for rod, one ODE step per macro step) to t_end (9 s),
  * written to a scratch HDF5 file through cs_run, as `crawlsim run` does. Prints the real-time
  * factor on one core from the process CPU time (insensitive to other jobs sharing the machine)
  * and from wall time, the stage split (legs, support, contact, output, ...), the legs' cost per
  * leg and per macro step, and the support displacement at the end.
- * sweep: rod at 2, 3, 4, 6 elements per segment and prb at 4 links, each to t_end: how the cost
+ * sweep: rod at 2, 3, 4, 6 and 8 elements per segment, each to t_end: how the cost
  * grows with the rod's elements; the legs stage is the sum of eight independent leg advances,
  * so its cost is linear in the number of legs (printed per leg).
  * coupling: staggered, stabilised or gs (default: the level's), macro_steps ODE steps per
@@ -30,7 +30,7 @@
 static double cpu(void) { return (double)clock() / CLOCKS_PER_SEC; }
 
 
-/* ODE's messages (prb's universal joints attached before their axes are set) are noise here */
+/* ODE's informational messages are noise here */
 static void quiet(int num, const char* msg, va_list ap) {
   (void)num;
   (void)msg;
@@ -220,12 +220,9 @@ int main(int argc, char** argv) {
   dSetMessageHandler(quiet);
   int rc = 0;
   if (!strcmp(what, "sweep")) {
-    const int n[] = {2, 3, 4, 6};
-    for (int i = 0; i < 4 && rc == 0; i++) {
+    const int n[] = {2, 3, 4, 6, 8};
+    for (int i = 0; i < 5 && rc == 0; i++) {
       rc = bench(src, "rod", n[i], dt, t_end, gait, &bc);
-    }
-    if (rc == 0) {
-      rc = bench(src, "prb", 4, dt, t_end, gait, &bc);
     }
   } else {
     rc = bench(src, what, links, dt, t_end, gait, &bc);

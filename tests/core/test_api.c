@@ -1,4 +1,5 @@
-/* test_api.c: the public API (core/crawlsim.h) on the shipped flat road with prb legs:
+/* test_api.c: the public API (core/crawlsim.h) on the shipped flat road with the scene's rod legs
+ * at their cheapest measured configuration (2 elements per segment, `--rod-tol 20`):
  *  - the run definition: defaults valid; every field out of range refused with a message
  *    naming the field (its `crawlsim run` option); NULL everywhere an error, never a crash;
  *  - pressures from a controller: one that replays the gait table gives the table's run bit
@@ -8,8 +9,7 @@
  *    nothing; a step after a failure is refused until reset; reset returns to t = 0;
  *  - cs_run without an output file and its result;
  *  - cs_bend: its grid, the straight actuator at p = 0, bad input refused.
- * Short runs (0.05-0.2 s of prb legs at the shipped step): ~10 s, so it runs under the
- * sanitizers too. */
+ * Short runs (0.05-0.2 s at the shipped step), so it runs under the sanitizers too. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,10 +18,12 @@
 #include "crawlsim.h"
 #include "cs_test.h"
 
-/* the fast level: prb legs (in ODE's world), the scene's gait, terrain and calibration */
-static csRunDef prbDef(void) {
+/* the scene's own legs (rod), gait, terrain and calibration, at the cheapest rod of the
+ * speed/accuracy chart (docs/studies/speed_accuracy.md): the API is what is tested here */
+static csRunDef cheapDef(void) {
   csRunDef d = cs_defaultRunDef();
-  d.legs = "prb";
+  d.links = 2;
+  d.rod_tol = 20;
   return d;
 }
 
@@ -70,7 +72,8 @@ static void test_rundef_validation(void) {
   d = cs_defaultRunDef(); d.coupling = "tree"; expectRefused(d, "--coupling tree needs");
   d = cs_defaultRunDef(); d.cal_rule = "hats"; expectRefused(d, "unknown --cal-rule 'hats'");
   d = cs_defaultRunDef(); d.cal_drop = "ei"; expectRefused(d, "bad --cal-drop 'ei'");
-  d = prbDef(); d.cal_drop = "stretch"; expectRefused(d, "--cal-drop is for rod legs, not prb");
+  d = cs_defaultRunDef(); d.legs = "strain"; d.cal_drop = "stretch";
+  expectRefused(d, "--cal-drop is for rod legs, not strain");
   d = cs_defaultRunDef(); d.n_actuator_set = 2; expectRefused(d, "--set");
   d = cs_defaultRunDef(); d.no_gait = 7; expectRefused(d, "no_gait");
 }
@@ -101,15 +104,15 @@ static void test_null_and_bad_files(void) {
   csRunResult r;
   CS_EXPECT(cs_run(NULL, &r, &err) == CS_ERR_ARG && r.status == CS_ERR_ARG);
   CS_EXPECT(cs_run(NULL, NULL, NULL) == CS_ERR_ARG);
-  csRunDef d = prbDef();
+  csRunDef d = cheapDef();
   d.gait = "no/such/gait.csv";
   CS_EXPECT(cs_simCreate(&d, &err) == NULL && strstr(err.msg, "no/such/gait.csv"));
   CS_EXPECT(cs_run(&d, &r, &err) != CS_OK && strstr(r.message, "no/such/gait.csv") &&
             r.verdict[0] == '\0');
-  d = prbDef();
+  d = cheapDef();
   d.out = "no/such/dir/run.h5";
   CS_EXPECT(cs_run(&d, &r, &err) == CS_ERR_IO && strstr(err.msg, "--out no/such/dir/run.h5"));
-  d = prbDef();
+  d = cheapDef();
   d.no_gait = 1; /* nothing to say how long */
   CS_EXPECT(cs_run(&d, &r, &err) == CS_ERR_ARG && strstr(err.msg, "--t-end > 0"));
 }
@@ -126,7 +129,7 @@ static int replayGait(csSim* s, double t, double* p_cmd, void* user) {
 
 /* n steps of a with the gait and b with the replaying controller: every state value equal */
 static void replayCompare(double tau, int n) {
-  csRunDef d = prbDef();
+  csRunDef d = cheapDef();
   d.tau = tau;
   csError err;
   csSim* a = cs_simCreate(&d, &err);
@@ -176,7 +179,7 @@ static void test_controller_replays_gait(void) {
 
 /* zero pressures held: the settled robot stays where it settled */
 static void test_zero_command_stands(void) {
-  csRunDef d = prbDef();
+  csRunDef d = cheapDef();
   csError err;
   csSim* s = cs_simCreate(&d, &err);
   CS_EXPECT(s != NULL);
@@ -218,7 +221,7 @@ static int nanLate(csSim* s, double t, double* p_cmd, void* user) {
 /* a failing controller (with and without the lag): the step fails, nothing changes, the next
  * step is refused, reset returns to t = 0 */
 static void failureCase(double tau, csController f, const char* what) {
-  csRunDef d = prbDef();
+  csRunDef d = cheapDef();
   d.tau = tau;
   csError err;
   csSim* s = cs_simCreate(&d, &err);
@@ -258,14 +261,14 @@ static void test_controller_failure(void) {
 
 
 static void test_command_and_readouts(void) {
-  csRunDef d = prbDef();
+  csRunDef d = cheapDef();
   d.no_gait = 1;
   csError err;
   csSim* s = cs_simCreate(&d, &err);
   CS_EXPECT(s != NULL);
   if (!s) return;
   CS_EXPECT(cs_simChamberCount(s) == 96 && cs_simLegCount(s) == 8);
-  CS_EXPECT_NEAR(cs_simMacroStep(s), 1e-3, 0, 0); /* prb's default step, exactly */
+  CS_EXPECT_NEAR(cs_simMacroStep(s), 1e-3, 0, 0); /* the rod's default exchange, exactly */
   double p[96] = {0};
   p[10] = 1.5;
   CS_EXPECT(cs_simSetPressureCommand(s, p, &err) == CS_ERR_RANGE && strstr(err.msg, "index 10"));
@@ -308,12 +311,12 @@ static void test_command_and_readouts(void) {
 
 
 static void test_run_without_file(void) {
-  csRunDef d = prbDef();
+  csRunDef d = cheapDef();
   d.t_end = 0.05;
   csRunResult r;
   csError err;
   CS_EXPECT(cs_run(&d, &r, &err) == CS_OK);
-  CS_EXPECT(r.status == CS_OK && !strcmp(r.verdict, "stands") && !strcmp(r.legs, "prb"));
+  CS_EXPECT(r.status == CS_OK && !strcmp(r.verdict, "stands") && !strcmp(r.legs, "rod"));
   CS_EXPECT(!strcmp(r.scene, "flat-road") && !strcmp(r.conditions, "paper"));
   CS_EXPECT_NEAR(r.t_end, 0.05, 1e-9, 0); /* 50 steps of 1 ms, summed */
   /* steps since creation, the settling's included (as the file's `steps` attribute) */

@@ -4,13 +4,13 @@
  * The test points file descriptors 1 and 2 at two temporary files (POSIX dup/dup2, in the test
  * only: the library must need no such thing) around calls that used to print or could print
  * through a dependency (HDF5's error stack, ODE's messages, SUNDIALS' error handler):
- *  - a whole run of 1 s (prb legs on the shipped flat road) with its HDF5 file, the log and the
+ *  - a whole run of 1 s (rod legs on the shipped flat road) with its HDF5 file, the log and the
  *    progress callbacks set: the progress callback is called once per simulated second (here
  *    once, at t = 1 s, with the support's displacement) and the log gets the banner lines;
  *  - the same with both callbacks NULL (the default);
  *  - failures: a range error, a calibration file that does not exist, an output file in a
  *    directory that does not exist, a stepped simulation whose controller fails;
- * then checks that both files are empty. ~10 s (1 s of prb legs). */
+ * then checks that both files are empty. A few seconds (1 s of rod legs). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -106,7 +106,7 @@ static void test_library_writes_nothing_to_stdout_or_stderr(void) {
   Seen seen;
   memset(&seen, 0, sizeof seen);
   csRunDef d = cs_defaultRunDef();
-  d.legs = "prb";
+  d.legs = "rod";
   d.t_end = 1.0;
   d.out = "test_api_quiet.h5";
   d.log = onLog;
@@ -118,7 +118,7 @@ static void test_library_writes_nothing_to_stdout_or_stderr(void) {
   const csStatus st_run = cs_run(&d, &r, &err);
   /* the same without callbacks (the default: nothing said at all) */
   csRunDef q = cs_defaultRunDef();
-  q.legs = "prb";
+  q.legs = "rod";
   q.t_end = 0.05;
   csRunResult rq;
   const csStatus st_quiet = cs_run(&q, &rq, &err);
@@ -127,16 +127,16 @@ static void test_library_writes_nothing_to_stdout_or_stderr(void) {
   b.friction = -1;
   const csStatus st_range = cs_run(&b, NULL, &err);
   b = cs_defaultRunDef();
-  b.legs = "prb";
+  b.legs = "rod";
   b.calibration = "no_such_calibration.h5";
   const csStatus st_cal = cs_run(&b, NULL, &err);
   b = cs_defaultRunDef();
-  b.legs = "prb";
+  b.legs = "rod";
   b.t_end = 0.05;
   b.out = "no_such_directory/run.h5";
   const csStatus st_out = cs_run(&b, NULL, &err);
   csRunDef c = cs_defaultRunDef();
-  c.legs = "prb";
+  c.legs = "rod";
   csSim* s = cs_simCreate(&c, &err);
   csStatus st_ctrl = CS_OK;
   if (s) {

@@ -1,7 +1,9 @@
-/* test_run.c: end-to-end physics sanity of the flat-road co-simulation (prb legs).
+/* test_run.c: end-to-end physics sanity of the flat-road co-simulation with the library's
+ * default legs (rod, 4 elements per segment, Gauss-Seidel) on the mission's table (sim_scene.h
+ * CS_MISSION_*), the flat-road scene's own gait (designed on that table).
  *
  * The robot of the paper, with its Elastosil legs, stands at 80 % of its sway-buckling load on
- * four legs under Earth gravity and folds when it loads bent legs (README, "Flat road").
+ * four legs under Earth gravity and folds when it loads bent legs (docs/studies/earth_gait.md).
  * These tests check the mechanism of friction-driven crawling, so they run at 1 m/s^2, where
  * the stance load is 8 % of the buckling load and the legs keep their shapes; one test runs
  * at 9.81 m/s^2 to check that the collapse ends the run with a clear error and a readable
@@ -22,13 +24,20 @@ static char g_src[512];
 static void path(char* buf, size_t n, const char* rel) { snprintf(buf, n, "%s/%s", g_src, rel); }
 
 
-/* model of the shipped flat-road scene at gravity g (m/s^2) */
-static int loadModel(csModel* m, double g) {
+/* model of the shipped flat-road scene at gravity g (m/s^2) with gait `gait_rel` (NULL: the
+ * scene's own) */
+static int loadModelGait(csModel* m, double g, const char* gait_rel) {
   char terr[600], gait[600], cal[600];
   path(terr, sizeof terr, "terrains/flat_road.terrain");
-  path(gait, sizeof gait, "gaits/flat_road_paper.csv");
-  path(cal, sizeof cal, "robot/calibration_fe_leg.h5"); /* the default calibration */
+  /* the scene's own gait, designed on the mission's table (sim_scene.h) */
+  const csScene* sc = cs_sceneFind("flat-road");
+  path(gait, sizeof gait, gait_rel ? gait_rel : sc ? sc->gait : "gaits/flat_road_rod.csv");
+  path(cal, sizeof cal, CS_MISSION_CALIBRATION);
   cs_modelInit(m);
+  csrCalRule rule;
+  if (csr_calRuleParse(CS_MISSION_CAL_RULE, &rule)) {
+    m->cal_rule = (int)rule;
+  }
   m->opt.gravity = g * 1e3;
   csError err;
   cs_errorClear(&err);
@@ -38,6 +47,9 @@ static int loadModel(csModel* m, double g) {
   }
   return st == CS_OK;
 }
+
+
+static int loadModel(csModel* m, double g) { return loadModelGait(m, g, NULL); }
 
 
 /* centre of mass at t = 0 and at the end of the last runTo (world, mm) */
@@ -171,8 +183,9 @@ static void stridesOnce(void) {
  * stays put whatever the legs do (the support itself may swing against the legs) */
 static void test_run_advances_only_with_friction(void) {
   stridesOnce();
-  /* three strides (3..6 s) designed for 39 mm each: 60 mm is half of that */
-  CS_EXPECT(g_x6[0] - g_x3[0] > 60.0);
+  /* three strides (3..6 s): the design moves the stance feet 23.7 mm back per second
+   * (gaits/flat_road_rod.gait, S); half of the three strides' 71 mm is the floor */
+  CS_EXPECT(g_x6[0] - g_x3[0] > 0.5 * 3 * 23.7);
   csModel m;
   CS_EXPECT(loadModel(&m, 1.0));
   m.contact.mu = 0;
@@ -194,17 +207,19 @@ static void test_run_advances_only_with_friction(void) {
 static void test_run_half_pressure_shortens_stride(void) {
   stridesOnce();
   double full = g_x6[0] - g_x3[0], half = g_x6[1] - g_x3[1];
-  /* measured: 155 mm at full pressure, -6 mm at half (the half-size S-shape no longer lifts
-   * the swinging feet clear, so the groups' pushes cancel); "shorter" is the physical claim */
+  /* the half-size poses no longer lift the swinging feet clear, so the groups' pushes cancel
+   * (docs/notes/flat_road.md); "shorter" is the physical claim */
   CS_EXPECT(half < 0.5 * full);
 }
 
 
-/* at Earth gravity the legs fold and the robot leaves the road: the run stops with an error
- * naming the time and the cause, and the file holds every sample up to it */
+/* at Earth gravity the paper's table (four S-bent stance legs) folds its legs and the robot
+ * leaves the road (docs/studies/earth_gait.md; the scene's own gait folds too but stays on the
+ * road): the run stops with an error naming the time and the cause, and the file holds every
+ * sample up to it */
 static void test_run_collapse_is_reported_and_file_stays_readable(void) {
   csModel m;
-  CS_EXPECT(loadModel(&m, 9.81));
+  CS_EXPECT(loadModelGait(&m, 9.81, "gaits/flat_road_paper.csv"));
   double x[3];
   char msg[CS_ERROR_MSG_SIZE] = "";
   csStatus st = runTo(&m, 9.0, "collapse.h5", x, msg);

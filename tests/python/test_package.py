@@ -30,9 +30,9 @@ def test_rundef_starts_at_the_c_defaults():
 
 
 def test_rundef_keywords_and_attributes_set_fields():
-    d = crawlsim.RunDef(friction=0.5, legs="prb", actuator_set={"S1": 45})
+    d = crawlsim.RunDef(friction=0.5, legs="strain", actuator_set={"S1": 45})
     d.t_end = 2
-    assert d.friction == 0.5 and d.legs == "prb" and d.t_end == 2.0
+    assert d.friction == 0.5 and d.legs == "strain" and d.t_end == 2.0
     assert d.actuator_set == ["S1=45"]
     d.friction = None
     assert d.friction is None

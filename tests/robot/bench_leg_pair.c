@@ -1,12 +1,12 @@
-/* bench_leg_pair.c: one leg of each level (prb, rod) under the same hip boundary conditions, on
+/* bench_leg_pair.c: one leg of each level (rod, strain) under the same hip boundary conditions, on
  * the flat road (not a test: prints them side by side every 0.1 s).
  *
  *   bench_leg_pair swing|side|push [support_g] [side_speed_mm_s] [t_end_s] [LEVEL[:N] ...]
  *
- * LEVEL[:N]: up to 4 levels with N links / elements / bending modes per segment (default prb
- * and rod at their defaults); the calibration is $CS_CALIBRATION if set (a path from the
- * source directory, e.g. robot/calibration_fe_leg_modes_sym.h5 for the strain level), else
- * robot/calibration_fe_leg.h5.
+ * LEVEL[:N]: up to 4 levels with N links / elements / bending modes per segment (default rod
+ * and strain at their defaults); the calibration is $CS_CALIBRATION if set (a path from the
+ * source directory, e.g. robot/calibration_fe_leg.h5, the pair-mode table), else the mission's
+ * table, robot/calibration_fe_leg_modes_sym.h5 (its own rule).
  *
  * The leg is weightless (conditions `paper`); the flat-road gait's S-shape (II1 Ω3&Ω4 and II2
  * Ω1&Ω2 at 0.1744 MPa, smoothstep ramps of 0.2 s) where a case actuates.
@@ -20,8 +20,9 @@
  *  - push: one leg pushing a fixed support: the same vertically free support, its x held; the
  *    S-shape at t = 0 (the bending leg pushes the support back through its foot), vented at
  *    1 s.
- * prb: its ODE bodies with the support body on a slider to a kinematic carriage (x prescribed,
- * y free), QuickStep at 1 ms with 240 iterations, ODE contacts. rod: the hip's vertical degree
+ * An in-world level (none is registered since prb was retired): its ODE bodies with the
+ * support body on a slider to a kinematic carriage (x prescribed, y free), QuickStep at 1 ms
+ * with 240 iterations, ODE contacts. rod, strain: the hip's vertical degree
  * of freedom integrated here at H = 1 ms, implicitly in the leg's condensed vertical gain (the
  * driver's stabilised scheme in one dimension: (M + H A) v' = M v + H (W - M g) + H A v). The
  * data files come from $CS_SOURCE_DIR (default ../../..). */
@@ -232,7 +233,7 @@ int main(int argc, char** argv) {
   char cal_path[600], terr_path[600];
   const char* cal_rel = getenv("CS_CALIBRATION");
   snprintf(cal_path, sizeof cal_path, "%s/%s", src ? src : "../../..",
-           cal_rel ? cal_rel : "robot/calibration_fe_leg.h5");
+           cal_rel ? cal_rel : "robot/calibration_fe_leg_modes_sym.h5");
   snprintf(terr_path, sizeof terr_path, "%s/terrains/flat_road.terrain", src ? src : "../../..");
   dInitODE2(0);
   csError err;
@@ -255,8 +256,8 @@ int main(int argc, char** argv) {
     snprintf(names[nlev], sizeof names[nlev], "%s", argv[a]);
   }
   if (nlev == 0) {
-    snprintf(names[0], sizeof names[0], "prb");
-    snprintf(names[1], sizeof names[1], "rod");
+    snprintf(names[0], sizeof names[0], "rod");
+    snprintf(names[1], sizeof names[1], "strain");
     nlev = 2;
   }
   for (int i = 0; i < nlev; i++) {

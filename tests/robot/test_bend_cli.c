@@ -199,7 +199,9 @@ static void expectFailure(const char* args, const char* want) {
 
 
 static void test_badInput(void) {
-  expectFailure("--model prb", "crawlsim bend: model 'prb' is not available yet");
+  expectFailure("--model prb", "crawlsim bend: --model prb: the prb level was retired "
+                "(2026-12-06): off the speed/accuracy front (docs/studies/speed_accuracy.md); "
+                "use rod (the default) or strain");
   /* the reduced FE needs its basis (tools/rom_basis.py; test_rom_cli has the rest) */
   expectFailure("--model rom", "crawlsim bend: --model rom needs --rom-basis FILE");
   expectFailure("--model xyz", "crawlsim bend: unknown model 'xyz'");

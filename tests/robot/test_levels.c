@@ -55,11 +55,11 @@ static void expectRefused(const char* text, int line, const char* cause) {
 static const char kGood[] =
     "# comment\n"
     "\n" HEADER
-    "flat-road,prb,2,1,0.001,50,1.0,2.0,test machine\n"
+    "flat-road,strain,2,1,0.001,50,1.0,2.0,test machine\n"
     "flat-road,rod,4,1,0.001,5,3.0,6.0,test machine\r\n"
     "flat-road,rod,6,1,0.001,1,5.0,9.0,test machine\n"
     "obstacle,rod,2,2,0.001,30,0.5,1.0,test machine\n"
-    "obstacle,prb,4,1,0.001,8,2.5,5.0,test machine\n";
+    "obstacle,strain,4,1,0.001,8,2.5,5.0,test machine\n";
 
 
 static void test_levels_good_table_reads(void) {
@@ -91,7 +91,7 @@ static void test_levels_loose_tolerance_picks_cheaper_than_tight(void) {
       CS_EXPECT(g_t.row[tight].error_mm <= 8 && g_t.row[loose].error_mm <= 100);
     }
   }
-  /* the cheapest within: 5 mm takes rod 4 (3 CPU s/s), not rod 6 (5), not prb (50 mm) */
+  /* the cheapest within: 5 mm takes rod 4 (3 CPU s/s), not rod 6 (5), not strain (50 mm) */
   CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 5, &err) == 1);
   /* a tolerance on a row's error admits it (<=) */
   CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 1, &err) == 2);
@@ -117,25 +117,30 @@ static void test_levels_bad_lines_refused(void) {
   expectRefused("scene,level,links\n", 1, "the header must be");
   expectRefused("# only a comment\n", 1, "no header line");
   expectRefused(HEADER, 1, "no rows after the header");
-  expectRefused(HEADER "flat-road,prb,2,1,0.001,50,1.0,2.0\n", 2, "8 fields, expected 9");
-  expectRefused(HEADER "flat-road,prb,2,1,0.001,50,1.0,2.0,m,extra\n", 2, "10 fields");
-  expectRefused(HEADER "flat-road,prb,2,1,0.001,50,1.0,2.0,m\n"
-                "obstacle,prb,2,1,0.001,fifty,1.0,2.0,m\n", 3, "error_mm 'fifty' is not a number");
-  expectRefused(HEADER "flat-road,prb,2,1,0.001,nan,1.0,2.0,m\n", 2, "error_mm 'nan' is not a "
+  expectRefused(HEADER "flat-road,strain,2,1,0.001,50,1.0,2.0\n", 2, "8 fields, expected 9");
+  expectRefused(HEADER "flat-road,strain,2,1,0.001,50,1.0,2.0,m,extra\n", 2, "10 fields");
+  expectRefused(HEADER "flat-road,strain,2,1,0.001,50,1.0,2.0,m\n"
+                "obstacle,strain,2,1,0.001,fifty,1.0,2.0,m\n", 3, "error_mm 'fifty' is not a number");
+  expectRefused(HEADER "flat-road,strain,2,1,0.001,nan,1.0,2.0,m\n", 2, "error_mm 'nan' is not a "
                 "finite number");
-  expectRefused(HEADER "flat-road,prb,2,1,0.001,1e999,1.0,2.0,m\n", 2, "not a finite number");
-  expectRefused(HEADER "flat-road,prb,2,1,0.001,-1,1.0,2.0,m\n", 2, "error_mm -1 is outside");
-  expectRefused(HEADER "flat-road,prb,2,1,0.001,5,0,2.0,m\n", 2, "cpu_s_per_s 0 is outside");
-  expectRefused(HEADER "flat-road,prb,0,1,0.001,5,1,2.0,m\n", 2, "links 0 is outside");
-  expectRefused(HEADER "flat-road,prb,2.5,1,0.001,5,1,2.0,m\n", 2, "links 2.5 is not an integer");
-  expectRefused(HEADER "flat-road,prb,2,1,0.02,5,1,2.0,m\n", 2, "dt_s 0.02 is outside");
-  expectRefused(HEADER "flat-road,prb,2,1,,5,1,2.0,m\n", 2, "dt_s '' is not a number");
+  expectRefused(HEADER "flat-road,strain,2,1,0.001,1e999,1.0,2.0,m\n", 2, "not a finite number");
+  expectRefused(HEADER "flat-road,strain,2,1,0.001,-1,1.0,2.0,m\n", 2, "error_mm -1 is outside");
+  expectRefused(HEADER "flat-road,strain,2,1,0.001,5,0,2.0,m\n", 2, "cpu_s_per_s 0 is outside");
+  expectRefused(HEADER "flat-road,strain,0,1,0.001,5,1,2.0,m\n", 2, "links 0 is outside");
+  expectRefused(HEADER "flat-road,strain,2.5,1,0.001,5,1,2.0,m\n", 2, "links 2.5 is not an integer");
+  expectRefused(HEADER "flat-road,strain,2,1,0.02,5,1,2.0,m\n", 2, "dt_s 0.02 is outside");
+  expectRefused(HEADER "flat-road,strain,2,1,,5,1,2.0,m\n", 2, "dt_s '' is not a number");
   expectRefused(HEADER "flat-road,fem,2,1,0.001,5,1,2.0,m\n", 2, "level 'fem' is not a leg level");
   expectRefused(HEADER "flat-road,rom,2,1,0.001,5,1,2.0,m\n", 2, "level 'rom' is not available");
-  expectRefused(HEADER ",prb,2,1,0.001,5,1,2.0,m\n", 2, "scene '' must be one word");
-  expectRefused(HEADER "flat road,prb,2,1,0.001,5,1,2.0,m\n", 2, "must be one word");
-  expectRefused(HEADER "flat-road,prb,2,1,0.001,5,1,2.0,m\n"
-                "flat-road,prb,2,1,0.001,6,2,3.0,m\n", 3, "repeats the configuration of line 2");
+  /* a retired level: one line naming why and what to use */
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,5,1,2.0,m\n", 2, "level 'prb' is the prb level "
+                "was retired");
+  expectRefused(HEADER "flat-road,prb,2,1,0.001,5,1,2.0,m\n", 2, "use rod (the default) or "
+                "strain");
+  expectRefused(HEADER ",strain,2,1,0.001,5,1,2.0,m\n", 2, "scene '' must be one word");
+  expectRefused(HEADER "flat road,strain,2,1,0.001,5,1,2.0,m\n", 2, "must be one word");
+  expectRefused(HEADER "flat-road,strain,2,1,0.001,5,1,2.0,m\n"
+                "flat-road,strain,2,1,0.001,6,2,3.0,m\n", 3, "repeats the configuration of line 2");
   /* an empty file: one line naming it, no line 0 (found by fuzz_levels) */
   csError e0;
   CS_EXPECT(readText("", &e0) == CS_ERR_PARSE);
@@ -157,7 +162,7 @@ static void test_levels_format2_rod_tol(void) {
       HEADER2
       "flat-road,rod,4,1,0.001,1,5,3.0,6.0,m\n"
       "flat-road,rod,4,1,0.001,10,8,1.0,2.0,m\n"
-      "flat-road,prb,4,1,0.001,1,30,4.0,4.0,m\n";
+      "flat-road,strain,4,1,0.001,1,30,4.0,4.0,m\n";
   CS_EXPECT(readText(kGood2, &err) == CS_OK);
   CS_EXPECT(g_t.nrow == 3 && g_t.row[1].rod_tol == 10 && g_t.row[1].error_mm == 8 &&
             g_t.row[1].cpu_s_per_s == 1.0 && !strcmp(g_t.row[1].machine, "m"));

@@ -2,7 +2,7 @@
 # test_install.sh BUILD_DIR SOURCE_DIR CC [CFLAGS...]: `cmake --install` of the build into a
 # temporary prefix, then the C example (tools/examples/crawl_controller.c) built against the
 # installed library twice, through pkg-config and through find_package(crawlsim), and run on
-# the flat road with prb legs for 0.3 s. Checks that the library exports the cs_ API alone and
+# the flat road with rod legs for 0.3 s. Checks that the library exports the cs_ API alone and
 # that the installed data is there. Exit 0 on success.
 set -euo pipefail
 B=$1; S=$2; CC=$3; shift 3
@@ -48,9 +48,9 @@ cmake --build "$T/cm/build" > "$T/cmb.log" 2>&1 || { cat "$T/cmb.log"; fail "CMa
 # run it from elsewhere (no source tree on the way; the library finds its data beside itself)
 unset CRAWLSIM_DATA_DIR
 cd "$T"
-"$T/ex_pc" prb 0.3 > "$T/out.txt" 2> "$T/err.txt" || { cat "$T/err.txt"; fail "the example failed"; }
+"$T/ex_pc" rod 0.3 > "$T/out.txt" 2> "$T/err.txt" || { cat "$T/err.txt"; fail "the example failed"; }
 cat "$T/out.txt"
 grep -q '^0.300 ' "$T/out.txt" || fail "the track does not reach t = 0.3 s"
 grep -q 'the controller was asked' "$T/out.txt" || fail "no summary line"
-"$T/cm/build/ex_cmake" prb 0.1 > /dev/null 2>&1 || fail "the CMake-built example failed"
+"$T/cm/build/ex_cmake" rod 0.1 > /dev/null 2>&1 || fail "the CMake-built example failed"
 echo "test_install: ok"

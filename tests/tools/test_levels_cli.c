@@ -97,8 +97,7 @@ static void expectRuns(const char* scene, double tol, int k) {
                 o == r->step_order);
     }
     CS_EXPECT(H5LTget_attribute_double(f, "/", "macro_step_s", &H) >= 0);
-    /* prb is an in-world level: one ODE step per exchange whatever the row says */
-    CS_EXPECT_NEAR(H, r->dt_s * (strcmp(r->level, "prb") ? r->macro_steps : 1), 1e-15, 1e-12);
+    CS_EXPECT_NEAR(H, r->dt_s * r->macro_steps, 1e-15, 1e-12);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "legs_auto_tol_mm", &t) >= 0 && t == tol);
     hsize_t dims[1] = {0};
     H5T_class_t cls;
@@ -189,7 +188,7 @@ static void test_levels_benchmark_has_every_task_and_level(void) {
   cs_cliSlurp(path, text, sizeof text);
   CS_EXPECT(text[0] != '\0');
   static const char* const kWant[] = {
-      "\nflat-road,prb,", "\nflat-road,rod,", "\nobstacle,prb,", "\nobstacle,rod,",
+      "\nflat-road,rod,", "\nobstacle,rod,",
       "\"(1) bend O12 ", "\"(2) bend O12 + tip load", ",analytic,", ",rod,", ",fe,"};
   for (size_t i = 0; i < sizeof kWant / sizeof kWant[0]; i++) {
     CS_EXPECT(strstr(text, kWant[i]) != NULL);
@@ -204,13 +203,13 @@ static void test_levels_bad_table_and_options_refused(void) {
   CS_EXPECT(cs_cliWriteText("levelscli_table.csv",
                             "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,"
                             "wall_s_per_s,machine\n"
-                            "flat-road,prb,2,1,0.001,50,1.0,2.0,m\n"
+                            "flat-road,strain,2,1,0.001,50,1.0,2.0,m\n"
                             "flat-road,rod,4,1,0.001,5,-3.0,6.0,m\n"));
   expectError("--legs auto --tol 10 --levels levelscli_table.csv",
               "crawlsim run: levelscli_table.csv:3: cpu_s_per_s -3 is outside");
   expectError("--legs auto --tol 10 --levels levelscli_missing.csv", "levelscli_missing.csv");
   expectError("--legs auto", "--legs auto needs --tol MM");
-  expectError("--legs prb --tol 5", "--tol and --levels go with --legs auto");
+  expectError("--legs rod --tol 5", "--tol and --levels go with --legs auto");
   expectError("--legs auto --tol 5 --links 4", "--legs auto sets --links");
   expectError("--legs auto --tol nan", "--tol 'nan' is not a finite number");
   remove("levelscli_table.csv");

@@ -109,8 +109,12 @@ static void test_badOptions(void) {
                 "stretch,stiffness or none)");
   /* a leg level's own setting, for a level that has none of that name (robot_leg.h
    * csrLegSetting): one line naming the levels that take it */
-  expectFailure("--legs prb --cal-drop stretch",
-                "crawlsim run: --cal-drop is for rod legs, not prb (their setting cal_drop)");
+  expectFailure("--legs strain --cal-drop stretch",
+                "crawlsim run: --cal-drop is for rod legs, not strain (their setting cal_drop)");
+  /* a retired level: one line saying so and naming what to use */
+  expectFailure("--legs prb", "crawlsim run: --legs prb: the prb level was retired (2026-12-06): "
+                "off the speed/accuracy front (docs/studies/speed_accuracy.md); use rod (the "
+                "default) or strain");
   expectFailure("--legs strain --rod-tol 2",
                 "crawlsim run: --rod-tol is for rod legs, not strain (their setting rod_tol)");
   expectFailure("--legs rod --step-order 2",
@@ -208,6 +212,27 @@ static void test_badCalibration(void) {
                        "total_angle_deg 360\n",
                        "crawlsim run: runcli_calib.txt:4: total_angle_deg 360 at 1e-300 MPa "
                        "needs a factor");
+}
+
+
+/* issue 33 item 1: the banner states the default discretisation's measured track error, read
+ * from the shipped level table's row of the configuration that runs, or that it was not
+ * measured (the banner is on stderr) */
+static void test_bannerStatesTrackError(void) {
+  csCliResult r;
+  cs_cliRun(exe_path, "run --t-end 0.01 --out runcli_banner.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  const char* line = strstr(r.err, "crawlsim run: legs rod, 8 elements per segment: track error ");
+  CS_EXPECT(line != NULL);
+  double mm = -1;
+  CS_EXPECT(line && sscanf(line, "crawlsim run: legs rod, 8 elements per segment: track error %lf "
+                                 "mm", &mm) == 1 && mm >= 0);
+  CS_EXPECT(line && strstr(line, "robot/levels.csv (line ") != NULL);
+  cs_cliRun(exe_path, "run --t-end 0.01 --links 3 --out runcli_banner.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "legs rod, 3 elements per segment: track error of "
+                                           "this configuration not measured") != NULL);
+  remove("runcli_banner.h5");
+  remove("runcli_banner.xdmf");
 }
 
 
@@ -346,12 +371,12 @@ static void test_gaitCheckAgreesWithRun(void) {
   CS_EXPECT(r.status == 1 && cs_cliOneLine(r.err) &&
             strstr(r.err, "crawlsim gait check: runcli_hi.csv: row at t = 0 s: chamber A_II1_O1 "
                           "at 0.45 MPa is above the calibrated range (up to 0.4 MPa)") == r.err);
-  cs_cliRun(exe_path, "run --legs prb --t-end 0.5 --quiet --gait runcli_hi.csv --out "
+  cs_cliRun(exe_path, "run --links 2 --rod-tol 20 --t-end 0.5 --quiet --gait runcli_hi.csv --out "
             "runcli_hi.h5", "runcli", &r);
   CS_EXPECT(r.status == 1 && strstr(r.err, "is above the calibrated range (up to 0.4 MPa)"));
   cs_cliRun(exe_path, "gait check runcli_lo.csv", "runcli", &r);
   CS_EXPECT(r.status == 0 && strstr(r.out, "within the calibrated range (up to 0.4 MPa)"));
-  cs_cliRun(exe_path, "run --legs prb --t-end 0.5 --quiet --gait runcli_lo.csv --out "
+  cs_cliRun(exe_path, "run --links 2 --rod-tol 20 --t-end 0.5 --quiet --gait runcli_lo.csv --out "
             "runcli_lo.h5", "runcli", &r);
   CS_EXPECT(r.status == 0);
   cs_cliRun(exe_path, "gait check runcli_lo.csv --pressure-scale 1.2", "runcli", &r);
@@ -429,6 +454,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_badFiles);
   CS_RUN(test_badCalibration);
   CS_RUN(test_goodRun);
+  CS_RUN(test_bannerStatesTrackError);
   CS_RUN(test_gaitCheckAgreesWithRun);
   CS_RUN(test_strainRun);
   return cs_testSummary();

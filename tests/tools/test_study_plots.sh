@@ -55,7 +55,7 @@ check "sec4 redraw error names the file" grep -q "bad.md: no row" "$work/err.txt
 cat > "$work/earth.study" <<EOF
 study earth_plot_test
 defaults gait-design --calibration @data/robot/calibration_provisional.txt --p-max 0.9
-defaults run --legs prb --conditions earth --calibration @data/robot/calibration_provisional.txt --gait @case/gait.csv --t-end 0.6
+defaults run --legs rod --links 2 --rod-tol 20 --conditions earth --calibration @data/robot/calibration_provisional.txt --gait @case/gait.csv --t-end 0.6
 case ref gait-design @data/gaits/flat_road.gait
 then run
 case rtv615 gait-design @data/gaits/flat_road.gait --set C10=0.1631 --set C20=0.0160

@@ -8,7 +8,7 @@
  *
  * Build against the installed library:
  *   cc crawl_controller.c $(pkg-config --cflags --libs crawlsim) -o crawl_controller
- * Run: ./crawl_controller [prb|rod|strain] [T_END_S] */
+ * Run: ./crawl_controller [rod|strain] [T_END_S] */
 #include <crawlsim/crawlsim.h>
 #include <math.h>
 #include <stdio.h>
@@ -34,7 +34,7 @@ static int replayScaled(csSim* s, double t, double* p_cmd, void* user) {
 int main(int argc, char** argv) {
   csRunDef def = cs_defaultRunDef();
   def.scene = "flat-road";
-  def.legs = argc > 1 ? argv[1] : "prb";
+  def.legs = argc > 1 ? argv[1] : NULL; /* NULL: the scene's (rod) */
   double t_end = argc > 2 ? atof(argv[2]) : 1.0;
   csError err;
   csSim* s = cs_simCreate(&def, &err);
