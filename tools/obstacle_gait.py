@@ -82,6 +82,16 @@ ap.add_argument('--walk-slots', type=int, default=None,
                 'crawl alone')
 ap.add_argument('--xturn', type=float, default=646.0, help='x of the turn, mm (Table 3)')
 ap.add_argument('--zend', type=float, default=270.0, help='lateral travel, mm (Table 3)')
+ap.add_argument('--clear', type=float, default=0.0,
+                help='rule 12: wanted clearance of a landing\'s scatter band from an edge, mm '
+                '(0: off, rule 6 alone)')
+ap.add_argument('--scatter', default='-10,16',
+                help='rule 12: where a landing falls against its plan, mm, short and long '
+                '(measured: D and H landed 10 mm short in the nominal run and 11, 16 mm long '
+                'with a 25 g, 75 g support; docs/studies/obstacle.md, Robustness)')
+ap.add_argument('--rmax', type=float, default=45.0,
+                help='rule 12: the longest landing offset ahead of the hip when no offset of '
+                'rule 6 keeps --clear, mm')
 a = ap.parse_args()
 
 SH, SHZ = 40.0, a.SHZ         # stance stroke of one stance (3 slots): along x, along z (mm)
@@ -306,6 +316,17 @@ def comment(s):
     moves.append((None, s))
 
 
+SCAT = tuple(float(v) for v in a.scatter.split(','))
+if len(SCAT) != 2 or SCAT[0] > 0 or SCAT[1] < 0:
+    sys.exit('obstacle_gait.py: --scatter takes two numbers, short (<= 0) and long (>= 0)')
+
+
+def band_clear(x):
+    """rule 12: distance of the band [x + short, x + long] from the nearest edge (0 across one)"""
+    lo, hi = x + SCAT[0], x + SCAT[1]
+    return min(0.0 if lo <= e <= hi else min(abs(lo - e), abs(hi - e)) for e in EDGES)
+
+
 def plan(l, hipx):
     """landing offset r and stance kind (G road / S step length) for a foot of hip x (terrain)"""
     best, bestm = None, -1.0
@@ -316,6 +337,16 @@ def plan(l, hipx):
             break
         if m > bestm:
             best, bestm = r, m
+    if a.clear > 0 and band_clear(hipx + best + a.over) < a.clear:
+        # rule 12: the landing's scatter band comes within --clear of an edge: take, among rule
+        # 6's offsets and the longer ones up to --rmax, the one whose band keeps furthest away
+        cands = list(PREF) + [r for r in (40, 45, 50) if r <= a.rmax]
+        r12 = max(cands, key=lambda r: (band_clear(hipx + r + a.over), -abs(r - best)))
+        comment('#  %s: rule 12: landing %.0f keeps %.0f mm of its band from an edge; offset %g '
+                'keeps %.0f' % (l, hipx + best + a.over, band_clear(hipx + best + a.over), r12,
+                                band_clear(hipx + r12 + a.over)))
+        best = r12
+        bestm = min(abs(hipx + best + a.over - e) for e in EDGES)
     landx = hipx + best + a.over
     # rule 6: on the step the vented length; on the road the road's, also next to a riser (a
     # rear foot hanging over the road with the step's length left the centre of mass behind
