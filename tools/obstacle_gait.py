@@ -89,6 +89,9 @@ ap.add_argument('--scatter', default='-10,16',
                 help='rule 12: where a landing falls against its plan, mm, short and long '
                 '(measured: D and H landed 10 mm short in the nominal run and 11, 16 mm long '
                 'with a 25 g, 75 g support; docs/studies/obstacle.md, Robustness)')
+ap.add_argument('--rmin', type=float, default=5.0,
+                help='rule 12: the shortest landing offset ahead of the hip (below 5 the stance '
+                'ends more than 35 mm behind the hip, past rule 4), mm')
 ap.add_argument('--rmax', type=float, default=45.0,
                 help='rule 12: the longest landing offset ahead of the hip when no offset of '
                 'rule 6 keeps --clear, mm')
@@ -337,10 +340,13 @@ def plan(l, hipx):
             break
         if m > bestm:
             best, bestm = r, m
-    if a.clear > 0 and band_clear(hipx + best + a.over) < a.clear:
-        # rule 12: the landing's scatter band comes within --clear of an edge: take, among rule
-        # 6's offsets and the longer ones up to --rmax, the one whose band keeps furthest away
-        cands = list(PREF) + [r for r in (40, 45, 50) if r <= a.rmax]
+    if a.clear > 0 and hipx + best + a.over < EDGES[0] and \
+            band_clear(hipx + best + a.over) < a.clear:
+        # rule 12: a landing on the road before the riser (the failures of the 25 g and 75 g
+        # runs) whose scatter band comes within --clear of an edge: take, among rule 6's
+        # offsets and the shorter and longer ones in --rmin..--rmax, the one whose band keeps
+        # furthest away
+        cands = list(PREF) + [r for r in (-15, -10, -5, 0, 40, 45, 50) if a.rmin <= r <= a.rmax]
         r12 = max(cands, key=lambda r: (band_clear(hipx + r + a.over), -abs(r - best)))
         comment('#  %s: rule 12: landing %.0f keeps %.0f mm of its band from an edge; offset %g '
                 'keeps %.0f' % (l, hipx + best + a.over, band_clear(hipx + best + a.over), r12,
