@@ -5,15 +5,7 @@
 cd "$(dirname "$0")/../../.."
 B=docs/bench/obstacle_pace_2026-12-06
 g=$1; te=$2; shift 2
-opt() {
-  case $1 in
-    nominal) echo "" ;; ramp0.1) echo "--ramp 0.1" ;; ramp0.5) echo "--ramp 0.5" ;;
-    mu0.6) echo "--friction 0.6" ;; mu1.0) echo "--friction 1.0" ;;
-    m25g) echo "--support-mass 0.025" ;; m75g) echo "--support-mass 0.075" ;;
-    tau0.5x) echo "--tau 0.01" ;; tau2x) echo "--tau 0.04" ;;
-    dt_half) echo "--dt 0.0005" ;;
-  esac
-}
+. $B/opts.sh
 for n in "$@"; do
   nice -n 10 build/tools/crawlsim run --scene obstacle --gait runs/$g.csv --conditions paper --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair $(opt $n) --t-end $te --out runs/${g}_$n.h5 > $B/${g}_$n.log 2>&1
   /usr/bin/python3 docs/bench/obstacle_road_2026-12-05/table3.py runs/${g}_$n.h5 > $B/${g}_$n.table3.txt 2>&1
