@@ -96,6 +96,12 @@ ap.add_argument('--rmax', type=float, default=45.0,
                 help='rule 12: the longest landing offset ahead of the hip when no offset of '
                 'rule 6 keeps --clear, mm')
 a = ap.parse_args()
+try:
+    SCAT = tuple(float(v) for v in a.scatter.split(','))
+except ValueError:
+    SCAT = ()
+if len(SCAT) != 2 or SCAT[0] > 0 or SCAT[1] < 0:
+    sys.exit('obstacle_gait.py: --scatter takes two numbers, short (<= 0) and long (>= 0)')
 
 SH, SHZ = 40.0, a.SHZ         # stance stroke of one stance (3 slots): along x, along z (mm)
 RS = (5, 15, 25, 35)          # landing offsets ahead of the hip (mm); stance ends at r - SH
@@ -199,7 +205,7 @@ HEADER = """\
 #     then the wave starts with the pairs behind it still under their hips: each stance foot
 #     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
 #     jolt.
-{rule9}{rule10}{rule11}
+{rule9}{rule10}{rule11}{rule12}
 """.format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
            '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
            % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
@@ -218,6 +224,11 @@ HEADER = """\
            'landing takes the\n#     stretch of its landing time), as Table 3\'s support comes '
            'down from 40 mm at 14 s to\n#     13 mm at 24 s and 0 at 29 s; the turn then needs '
            'no descent of its own.' % (a.rise, a.rise_low, a.nlow),
+           rule12='' if a.clear <= 0 else
+           '\n# 12. (trial) A landing on the road before the riser whose band, its planned x plus '
+           '%g..%g mm\n#     (where such landings fell against the plan, measured), comes within '
+           '%g mm of an edge\n#     takes the offset in %g..%g mm whose band keeps furthest away.'
+           % (SCAT[0], SCAT[1], a.clear, a.rmin, a.rmax),
            Tp=a.Tp, rise=a.rise, step=STEP, SH=SH, risez=a.rise_z, SHZ=SHZ, Tpz=a.Tpz)
 
 out = [HEADER]
@@ -317,11 +328,6 @@ def emit(t0, dur, mv, linear=False):
 
 def comment(s):
     moves.append((None, s))
-
-
-SCAT = tuple(float(v) for v in a.scatter.split(','))
-if len(SCAT) != 2 or SCAT[0] > 0 or SCAT[1] < 0:
-    sys.exit('obstacle_gait.py: --scatter takes two numbers, short (<= 0) and long (>= 0)')
 
 
 def band_clear(x):
