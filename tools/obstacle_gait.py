@@ -82,7 +82,26 @@ ap.add_argument('--walk-slots', type=int, default=None,
                 'crawl alone')
 ap.add_argument('--xturn', type=float, default=646.0, help='x of the turn, mm (Table 3)')
 ap.add_argument('--zend', type=float, default=270.0, help='lateral travel, mm (Table 3)')
+ap.add_argument('--clear', type=float, default=0.0,
+                help='rule 12: wanted clearance of a landing\'s scatter band from an edge, mm '
+                '(0: off, rule 6 alone)')
+ap.add_argument('--scatter', default='-10,16',
+                help='rule 12: where a landing falls against its plan, mm, short and long '
+                '(measured: D and H landed 10 mm short in the nominal run and 11, 16 mm long '
+                'with a 25 g, 75 g support; docs/studies/obstacle.md, Robustness)')
+ap.add_argument('--rmin', type=float, default=5.0,
+                help='rule 12: the shortest landing offset ahead of the hip (below 5 the stance '
+                'ends more than 35 mm behind the hip, past rule 4), mm')
+ap.add_argument('--rmax', type=float, default=45.0,
+                help='rule 12: the longest landing offset ahead of the hip when no offset of '
+                'rule 6 keeps --clear, mm')
 a = ap.parse_args()
+try:
+    SCAT = tuple(float(v) for v in a.scatter.split(','))
+except ValueError:
+    SCAT = ()
+if len(SCAT) != 2 or SCAT[0] > 0 or SCAT[1] < 0:
+    sys.exit('obstacle_gait.py: --scatter takes two numbers, short (<= 0) and long (>= 0)')
 
 SH, SHZ = 40.0, a.SHZ         # stance stroke of one stance (3 slots): along x, along z (mm)
 RS = (5, 15, 25, 35)          # landing offsets ahead of the hip (mm); stance ends at r - SH
@@ -186,7 +205,7 @@ HEADER = """\
 #     then the wave starts with the pairs behind it still under their hips: each stance foot
 #     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
 #     jolt.
-{rule9}{rule10}{rule11}
+{rule9}{rule10}{rule11}{rule12}
 """.format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
            '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
            % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
@@ -205,6 +224,11 @@ HEADER = """\
            'landing takes the\n#     stretch of its landing time), as Table 3\'s support comes '
            'down from 40 mm at 14 s to\n#     13 mm at 24 s and 0 at 29 s; the turn then needs '
            'no descent of its own.' % (a.rise, a.rise_low, a.nlow),
+           rule12='' if a.clear <= 0 else
+           '\n# 12. (trial) A landing on the road before the riser whose band, its planned x plus '
+           '%g..%g mm\n#     (where such landings fell against the plan, measured), comes within '
+           '%g mm of an edge\n#     takes the offset in %g..%g mm whose band keeps furthest away.'
+           % (SCAT[0], SCAT[1], a.clear, a.rmin, a.rmax),
            Tp=a.Tp, rise=a.rise, step=STEP, SH=SH, risez=a.rise_z, SHZ=SHZ, Tpz=a.Tpz)
 
 out = [HEADER]
@@ -306,6 +330,12 @@ def comment(s):
     moves.append((None, s))
 
 
+def band_clear(x):
+    """rule 12: distance of the band [x + short, x + long] from the nearest edge (0 across one)"""
+    lo, hi = x + SCAT[0], x + SCAT[1]
+    return min(0.0 if lo <= e <= hi else min(abs(lo - e), abs(hi - e)) for e in EDGES)
+
+
 def plan(l, hipx):
     """landing offset r and stance kind (G road / S step length) for a foot of hip x (terrain)"""
     best, bestm = None, -1.0
@@ -316,6 +346,19 @@ def plan(l, hipx):
             break
         if m > bestm:
             best, bestm = r, m
+    if a.clear > 0 and hipx + best + a.over < EDGES[0] and \
+            band_clear(hipx + best + a.over) < a.clear:
+        # rule 12: a landing on the road before the riser (the failures of the 25 g and 75 g
+        # runs) whose scatter band comes within --clear of an edge: take, among rule 6's
+        # offsets and the shorter and longer ones in --rmin..--rmax, the one whose band keeps
+        # furthest away
+        cands = list(PREF) + [r for r in (-15, -10, -5, 0, 40, 45, 50) if a.rmin <= r <= a.rmax]
+        r12 = max(cands, key=lambda r: (band_clear(hipx + r + a.over), -abs(r - best)))
+        comment('#  %s: rule 12: landing %.0f keeps %.0f mm of its band from an edge; offset %g '
+                'keeps %.0f' % (l, hipx + best + a.over, band_clear(hipx + best + a.over), r12,
+                                band_clear(hipx + r12 + a.over)))
+        best = r12
+        bestm = min(abs(hipx + best + a.over - e) for e in EDGES)
     landx = hipx + best + a.over
     # rule 6: on the step the vented length; on the road the road's, also next to a riser (a
     # rear foot hanging over the road with the step's length left the centre of mass behind

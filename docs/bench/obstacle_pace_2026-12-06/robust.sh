@@ -5,15 +5,7 @@
 cd "$(dirname "$0")/../../.."
 B=docs/bench/obstacle_pace_2026-12-06
 mkdir -p runs
-opt() {
-  case $1 in
-    nominal) echo "" ;; ramp0.1) echo "--ramp 0.1" ;; ramp0.5) echo "--ramp 0.5" ;;
-    mu0.6) echo "--friction 0.6" ;; mu1.0) echo "--friction 1.0" ;;
-    m25g) echo "--support-mass 0.025" ;; m75g) echo "--support-mass 0.075" ;;
-    tau0.5x) echo "--tau 0.01" ;; tau2x) echo "--tau 0.04" ;;
-    dt_half) echo "--dt 0.0005" ;;
-  esac
-}
+. $B/opts.sh
 names=${*:-"nominal ramp0.1 ramp0.5 mu0.6 mu1.0 m25g m75g tau0.5x tau2x dt_half"}
 for n in $names; do
   nice -n 10 build/tools/crawlsim run --scene obstacle $(opt $n) --out runs/r_$n.h5 > $B/r_$n.log 2>&1
