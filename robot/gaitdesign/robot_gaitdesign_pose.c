@@ -17,6 +17,10 @@
 /* bisection halvings of a set's pressure: 1 MPa / 2^50 ~ 1e-15 MPa */
 enum { SET_BISECTIONS = 50 };
 
+/* a length for the gait file's "%.2f mm" comment: anything that prints as zero is printed as 0,
+ * so the sign of a round-off residue (a foot's side of -1e-15 mm) never changes the file */
+static double printedMm(double v) { return fabs(v) < 0.005 ? 0.0 : v; }
+
 csrGaitDesignOptions csr_defaultGaitDesignOptions(void) {
   csrGaitDesignOptions o;
   /* the shipped FE calibration's range (robot/calibration_fe_leg.h5: 0..0.3 MPa) */
@@ -395,7 +399,8 @@ void csr_designPosesFormat(const csgDesign* d, const csrDesignedPoses* poses, ch
     }
     if (n < size) {
       w = snprintf(buf + n, size - n, " -> foot stroke %.2f, side %.2f, lift %.2f mm",
-                   poses->foot[q][0], poses->foot[q][1], -poses->foot[q][2]);
+                   printedMm(poses->foot[q][0]), printedMm(poses->foot[q][1]),
+                   printedMm(-poses->foot[q][2]));
       n += w > 0 ? (size_t)w : 0;
     }
   }
