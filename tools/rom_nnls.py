@@ -11,8 +11,8 @@ step back into w >= 0 when a kept weight would turn negative and drop the column
 zero. What makes it fast: the kept set's least squares is solved through the upper-triangular
 factor R of its Gram matrix, R^T R = A_P^T A_P, which grows by one row and column per added
 column (R^T s = A_P^T a_j, rho^2 = a_j.a_j - s.s: O(m k + k^2) for k kept columns of m rows,
-instead of a fresh O(m k^2) QR per step); a drop, rare, refactors the kept Gram matrix, which is
-kept alongside (O(k^3)). The residual and gradient are updated with one product by A per step.
+instead of a fresh O(m k^2) QR per step); a drop deletes its column from R by Givens rotations
+(O(k^2)). The residual and gradient are updated with one product by A per step.
 The normal equations square the kept columns' condition number: a column whose new pivot
 rho^2 falls below 1e-12 a_j.a_j (numerically in the span of the kept ones) is not added, as
 Lawson-Hanson's own test of a new column's independence does; the stopping tolerances of an
@@ -22,7 +22,7 @@ It stops at ||A w - b|| <= tol ||b||, at max_keep kept columns, after 3 n outer 
 free column has a positive gradient (the exact NNLS solution: then w and the kept set are
 scipy.optimize.nnls's, tests/tools/test_rom_tools.py). `record`: relative residuals at which the
 weights are also returned (the first step at or below each, as separate runs stopped there would
-return them): `path` maps each to (w, rel, kept, seconds).
+return them): `path` maps each to (w, rel, kept, wall seconds, CPU seconds).
 """
 import time
 
@@ -32,7 +32,8 @@ import scipy.linalg as sla
 
 def nnls_chol(A, b, tol=0.0, max_keep=None, record=()):
     """Lawson-Hanson NNLS of A (m x n), b (m) stopped at ||A w - b|| <= tol ||b||.
-    Returns (w (n), relative residual, {tol_k: (w, rel, kept, s)} for each tol_k of record)."""
+    Returns (w (n), relative residual, {tol_k: (w, rel, kept, wall s, CPU s)} per tol_k of
+    record)."""
     A = np.asarray(A, dtype=float)
     b = np.asarray(b, dtype=float)
     m, n = A.shape
@@ -44,9 +45,10 @@ def nnls_chol(A, b, tol=0.0, max_keep=None, record=()):
     kept = []  # the passive set, in the order of R's rows
     cap = max(16, min(max_keep, 256))
     R = np.zeros((cap, cap))  # upper triangular, R^T R = A_P^T A_P
-    G = np.zeros((cap, cap))  # A_P^T A_P (for refactoring after a drop)
+    AP = np.empty((cap, m))  # the kept columns of A as rows, in the order of R
     r = b.copy()
     t0 = time.time()
+    c0 = time.process_time()
     path = {}
     pending = sorted(set(float(t) for t in record), reverse=True)
     eps_g = None
@@ -57,23 +59,42 @@ def nnls_chol(A, b, tol=0.0, max_keep=None, record=()):
     def note(rel):
         while pending and rel <= pending[0]:
             t = pending.pop(0)
-            path[t] = (w.copy(), rel, len(kept), time.time() - t0)
+            path[t] = (w.copy(), rel, len(kept), time.time() - t0, time.process_time() - c0)
 
     def grow(k):
-        nonlocal R, G
+        nonlocal R, AP
         if k > R.shape[0]:
             c2 = max(k, 2 * R.shape[0])
             R2 = np.zeros((c2, c2))
-            G2 = np.zeros((c2, c2))
             R2[:R.shape[0], :R.shape[0]] = R
-            G2[:G.shape[0], :G.shape[0]] = G
-            R, G = R2, G2
+            AP2 = np.empty((c2, m))
+            AP2[:AP.shape[0]] = AP
+            R, AP = R2, AP2
 
     def solve(k):
         """z_P = (A_P^T A_P)^-1 A_P^T b through R."""
         cp = c[kept]
         y = sla.solve_triangular(R[:k, :k], cp, trans="T", lower=False, check_finite=False)
         return sla.solve_triangular(R[:k, :k], y, lower=False, check_finite=False)
+
+    def delete(i, k):
+        """R (k x k) without column i: the Hessenberg rest back to triangular by Givens
+        rotations of rows (i, i+1), ..., (k-2, k-1) (Golub and Van Loan, 6.5.2); O(k^2)."""
+        R[:k, i:k - 1] = R[:k, i + 1:k].copy()
+        for l in range(i, k - 1):
+            x, y = R[l, l], R[l + 1, l]
+            h = np.hypot(x, y)
+            if h == 0.0:
+                continue
+            cs, sn = x / h, y / h
+            rl = R[l, l:k - 1].copy()
+            rl1 = R[l + 1, l:k - 1]
+            R[l, l:k - 1] = cs * rl + sn * rl1
+            R[l + 1, l:k - 1] = -sn * rl + cs * rl1
+            R[l + 1, l] = 0.0
+        R[k - 1, :k] = 0.0
+        R[:k, k - 1] = 0.0
+        AP[i:k - 1] = AP[i + 1:k].copy()
 
     if nb == 0.0:
         return w, 0.0, path
@@ -93,7 +114,7 @@ def nnls_chol(A, b, tol=0.0, max_keep=None, record=()):
             break  # Kuhn-Tucker conditions hold: the exact NNLS solution
         k = len(kept)
         aj = At[j]
-        v = At[kept] @ aj if k else np.zeros(0)
+        v = AP[:k] @ aj
         d = float(aj @ aj)
         s = sla.solve_triangular(R[:k, :k], v, trans="T", lower=False,
                                  check_finite=False) if k else np.zeros(0)
@@ -104,9 +125,7 @@ def nnls_chol(A, b, tol=0.0, max_keep=None, record=()):
         grow(k + 1)
         R[:k, k] = s
         R[k, k] = np.sqrt(rho2)
-        G[:k, k] = v
-        G[k, :k] = v
-        G[k, k] = d
+        AP[k] = aj
         kept.append(j)
         while True:
             k = len(kept)
@@ -123,20 +142,16 @@ def nnls_chol(A, b, tol=0.0, max_keep=None, record=()):
             # the column just added enters with weight 0 when alpha = 0: Lawson-Hanson's
             # "cannot enter" (its z_j <= 0); refuse it for this step instead of cycling
             w[kept] = wp
-            idx = [kk for kk, dr in zip(kept, drop) if not dr]
-            gone = [kk for kk, dr in zip(kept, drop) if dr]
-            w[gone] = 0.0
-            if j in gone:
-                banned[j] = True
-            keep_pos = np.flatnonzero(~drop)
-            kept = idx
-            k = len(kept)
-            Gk = G[np.ix_(keep_pos, keep_pos)].copy()
-            G[:k, :k] = Gk
-            R[:k, :k] = sla.cholesky(Gk, lower=False, check_finite=False) if k else R[:0, :0]
-            if k == 0:
+            for i in np.flatnonzero(drop)[::-1]:
+                delete(int(i), len(kept))
+                w[kept[i]] = 0.0
+                if kept[i] == j:
+                    banned[j] = True
+                del kept[i]
+            if not kept:
                 break
-        r = b - (At[kept].T @ w[kept] if kept else 0.0)
+        k = len(kept)
+        r = b - AP[:k].T @ w[kept] if k else b.copy()
         if not banned[j]:
             banned[:] = False  # the kept set changed: every column may be tried again
         rel = rel_now()
