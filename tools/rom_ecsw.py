@@ -88,7 +88,10 @@ def main():
                     A[lo:hi] /= s
                     b[lo:hi] /= s
             t0, c0 = time.time(), time.process_time()
-            w, rel, path = nnls_chol(A, b, tols[-1], record=tols)
+            w, rel, path = nnls_chol(
+                A, b, tols[-1], record=tols, on_record=lambda t, e, key=key: print(
+                    f"rom_ecsw: {key}: reached tol {t:g}: {e[2]} kept, {e[3]:.1f} s "
+                    f"({e[4]:.1f} s of CPU)", flush=True))
             for t in tols:
                 wt, relt, _, sec, cpu = path.get(
                     t, (w, rel, 0, time.time() - t0, time.process_time() - c0))

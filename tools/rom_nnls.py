@@ -30,10 +30,10 @@ import numpy as np
 import scipy.linalg as sla
 
 
-def nnls_chol(A, b, tol=0.0, max_keep=None, record=()):
+def nnls_chol(A, b, tol=0.0, max_keep=None, record=(), on_record=None):
     """Lawson-Hanson NNLS of A (m x n), b (m) stopped at ||A w - b|| <= tol ||b||.
     Returns (w (n), relative residual, {tol_k: (w, rel, kept, wall s, CPU s)} per tol_k of
-    record)."""
+    record); on_record(tol_k, that tuple) is called as each is reached."""
     A = np.asarray(A, dtype=float)
     b = np.asarray(b, dtype=float)
     m, n = A.shape
@@ -60,6 +60,8 @@ def nnls_chol(A, b, tol=0.0, max_keep=None, record=()):
         while pending and rel <= pending[0]:
             t = pending.pop(0)
             path[t] = (w.copy(), rel, len(kept), time.time() - t0, time.process_time() - c0)
+            if on_record:
+                on_record(t, path[t])
 
     def grow(k):
         nonlocal R, AP
