@@ -16,8 +16,8 @@ Tet10s (not quadrature points) keeps each element's mixed pressure. Lawson-Hanso
 columns) is stopped once ||A w - A 1|| <= tol ||A 1||. Several --tol: one pass to the smallest,
 the weights of each larger tolerance taken where the pass first reaches it (what a separate
 run stopped there returns), each written to WEIGHTS_tol<tol>.h5. Writes WEIGHTS.h5
-(fem/fem_rom_act.h): tet_id, tet_w, fibre_id, fibre_w and per set the kept count and residual. A fibre that is
-slack in every training state has no force there and gets no weight.
+(fem/fem_rom_act.h): tet_id, tet_w, fibre_id, fibre_w and per set the kept count and residual.
+A fibre that is slack in every training state has no force there and gets no weight.
 A mixed basis (attribute m > 0: pressure modes, fem/fem_rom.h csfRom.m): each snapshot's Tet10
 rows also hold the elements' constraint shares P_e (v_e - V_e), and /A_tet_pressure each Tet10's
 share of the pressure matrix A; both are fitted with the forces (each its own unit-norm block),
