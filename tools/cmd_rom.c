@@ -89,6 +89,9 @@ static const csxOpt kEcswOpts[] = {
      "the reduced basis of tools/rom_basis.py, with its training snapshots (required)"},
     {"--out", "A.h5", NULL, "the matrices' file (required)"},
     {"--work", "DIR", ".", "where gmsh's files of the basis' mesh are written"},
+    {"--stride", "K", "1",
+     "every K-th training snapshot only (1 .. 64): the rows grow with the snapshots times the "
+     "basis size, the matrices with the elements besides"},
     ROM_OPT_ACTUATOR,
     ROM_OPT_SET,
 };
@@ -533,7 +536,7 @@ static int cmdCheck(int argc, char** argv) {
 static int cmdEcswMatrix(int argc, char** argv) {
   const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
   const char* sets[CSX_ROM_MAX_SETS];
-  int nset = 0;
+  int nset = 0, stride = 1;
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kEcswTable, argc, argv, &it)) != CSX_OPT_END;) {
@@ -551,6 +554,16 @@ static int cmdEcswMatrix(int argc, char** argv) {
       out = v;
     } else if (csx_optIs(it.opt, "--work")) {
       work = v;
+    } else if (csx_optIs(it.opt, "--stride")) {
+      double d;
+      if (csx_romParseNumber("--stride", v, 1, 64, &d)) {
+        return 1;
+      }
+      if (d != floor(d)) {
+        fprintf(stderr, "crawlsim rom: --stride %s: not a whole number\n", v);
+        return 1;
+      }
+      stride = (int)d;
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--set") &&
@@ -576,6 +589,15 @@ static int cmdEcswMatrix(int argc, char** argv) {
     fprintf(stderr, "crawlsim rom: %s\n", err.msg);
     csf_romActuatorDestroy(&ra);
     return 1;
+  }
+  /* --stride: keep snapshots 0, K, 2K, ... (compacted in place) */
+  const int ns_all = ns;
+  ns = 0;
+  for (int k = 0; k < ns_all; k += stride, ns++) {
+    memmove(q + (size_t)ns * n, q + (size_t)k * n, (size_t)n * sizeof(double));
+    memmove(p + 12 * (size_t)ns, p + 12 * (size_t)k, 12 * sizeof(double));
+    memmove(g + 3 * (size_t)ns, g + 3 * (size_t)k, 3 * sizeof(double));
+    memmove(F + 3 * (size_t)ns, F + 3 * (size_t)k, 3 * sizeof(double));
   }
   const int cnt[CSF_ROM_NSET] = {ra.fe.mesh->ntet, ra.fe.model->nfib, ra.fe.mesh->nface};
   static const char* const kName[CSF_ROM_NSET] = {"/A_tet", "/A_fibre", "/A_face"};
@@ -647,14 +669,16 @@ static int cmdEcswMatrix(int argc, char** argv) {
     cs_h5AttrString(f, "/", "basis", basis, &err);
     cs_h5AttrDouble(f, "/", "n", n, &err);
     cs_h5AttrDouble(f, "/", "nsnap", ns, &err);
+    cs_h5AttrDouble(f, "/", "stride", stride, &err);
     if (cs_h5CloseChecked(f, &err) != CS_OK && rc == 0) {
       fprintf(stderr, "crawlsim rom: %s\n", err.msg);
       rc = 1;
     }
   }
   if (rc == 0) {
-    printf("crawlsim rom: ecsw-matrix: %d snapshots x %d coordinates (%d pressure modes) over %d "
-           "Tet10 and %d fibre elements -> %s\n", ns, n, mp, cnt[0], cnt[1], out);
+    printf("crawlsim rom: ecsw-matrix: %d snapshots (of %d, stride %d) x %d coordinates (%d "
+           "pressure modes) over %d Tet10 and %d fibre elements -> %s\n", ns, ns_all, stride, n,
+           mp, cnt[0], cnt[1], out);
   }
   free(q), free(p), free(g), free(F);
   csf_romActuatorDestroy(&ra);

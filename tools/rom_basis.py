@@ -232,43 +232,47 @@ def mixed_bases(a, V, X, Ut, x, tet, fixed, M):
     return Q, P, m
 
 
-def enrich_vibration(V, path, k, fixed, M):
-    """V with the FE's k lowest vibration modes at rest (K phi = omega^2 M phi over the free
-    dofs, K of the 0 MPa level of a `crawlsim rom modes` file), M-orthonormalised against V
-    (twice): the small-amplitude shapes a basis of load snapshots lacks (the tip-loaded
-    cantilever's bending, torsion), as nonlinear reduced models of structures add vibration
-    modes to static snapshots."""
+def enrich_vibration(V, path, k, fixed, M, levels=(0.0,)):
+    """V with the FE's k lowest vibration modes at each pressure level of `levels` (MPa; K phi =
+    omega^2 M phi over the free dofs, K the FE's tangent at that level's equilibrium in a
+    `crawlsim rom modes` file), M-orthonormalised against V and each other (twice): the
+    small-amplitude shapes a basis of load snapshots lacks (the tip-loaded cantilever's bending,
+    torsion), as nonlinear reduced models of structures add vibration modes to static snapshots;
+    at loaded levels, the modes of the ballooned, prestressed leg (its load stiffness)."""
     import scipy.sparse.linalg as spla
     free = np.flatnonzero(~fixed)
     nd = V.shape[0]
-    with h5py.File(path, "r") as f:
-        g = None
-        for key in f:
-            if key.startswith("p") and abs(float(f[key].attrs["p_MPa"])) == 0.0:
-                g = f[key]
-        if g is None:
-            sys.exit(f"rom_basis: --vib {path}: no 0 MPa level")
-        K = sp.csr_matrix((g["K_fe_val"][...], g["K_fe_col"][...].astype(np.int64),
-                           g["K_fe_row_ptr"][...].astype(np.int64)), shape=(nd, nd))
-    Kff = K[free][:, free]
-    Kff = 0.5 * (Kff + Kff.T)
-    lam, Phi = spla.eigsh(Kff.tocsc(), k=k, M=M[free][:, free].tocsc(), sigma=0, which="LM")
     Q = V.copy()
-    kept = 0
-    for j in np.argsort(lam):
-        s = np.zeros(nd)
-        s[free] = Phi[:, j]
-        n0 = np.sqrt(s @ (M @ s))
-        for _ in range(2):
-            s -= Q @ (Q.T @ (M @ s))
-        n1 = np.sqrt(max(s @ (M @ s), 0.0))
-        if n1 <= 1e-8 * n0:
-            continue
-        Q = np.concatenate([Q, (s / n1)[:, None]], axis=1)
-        kept += 1
-    f_hz = np.sqrt(np.maximum(np.sort(lam), 0)) / (2 * np.pi)
-    print(f"rom_basis: vibration enrichment: {kept} of the FE's {k} lowest modes at rest "
-          f"({', '.join(f'{x:.1f}' for x in f_hz)} Hz) added: n = {V.shape[1]} + {kept}")
+    Mff = M[free][:, free].tocsc()
+    with h5py.File(path, "r") as f:
+        for lev in levels:
+            g = None
+            for key in f:
+                if key.startswith("p") and abs(float(f[key].attrs["p_MPa"]) - lev) <= 1e-9:
+                    g = f[key]
+            if g is None or "K_fe_val" not in g:
+                sys.exit(f"rom_basis: --vib {path}: no FE tangent at {lev:g} MPa")
+            K = sp.csr_matrix((g["K_fe_val"][...], g["K_fe_col"][...].astype(np.int64),
+                               g["K_fe_row_ptr"][...].astype(np.int64)), shape=(nd, nd))
+            Kff = K[free][:, free]
+            Kff = 0.5 * (Kff + Kff.T)
+            lam, Phi = spla.eigsh(Kff.tocsc(), k=k, M=Mff, sigma=0, which="LM")
+            kept = 0
+            for j in np.argsort(lam):
+                s = np.zeros(nd)
+                s[free] = Phi[:, j]
+                n0 = np.sqrt(s @ (M @ s))
+                for _ in range(2):
+                    s -= Q @ (Q.T @ (M @ s))
+                n1 = np.sqrt(max(s @ (M @ s), 0.0))
+                if n1 <= 1e-8 * n0:
+                    continue
+                Q = np.concatenate([Q, (s / n1)[:, None]], axis=1)
+                kept += 1
+            f_hz = np.sqrt(np.maximum(np.sort(lam), 0)) / (2 * np.pi)
+            print(f"rom_basis: vibration enrichment: {kept} of the FE's {k} lowest modes at "
+                  f"{lev:g} MPa ({', '.join(f'{x:.1f}' for x in f_hz)} Hz) added: n = "
+                  f"{Q.shape[1]}")
     return Q
 
 
@@ -302,9 +306,12 @@ def main():
                     help="largest relative M-norm projection error of a training snapshot")
     ap.add_argument("--n", type=int, default=0, help="basis size (overrides --tol)")
     ap.add_argument("--vib", default=None,
-                    help="enrich the basis with the FE's lowest vibration modes at rest: the "
-                    "0 MPa level of a `crawlsim rom modes` file (its FE tangent; M consistent)")
-    ap.add_argument("--nvib", type=int, default=8, help="--vib: how many modes")
+                    help="enrich the basis with the FE's lowest vibration modes at rest (or at "
+                    "--vib-level): a `crawlsim rom modes` file's FE tangents (M consistent)")
+    ap.add_argument("--nvib", type=int, default=8, help="--vib: how many modes per level")
+    ap.add_argument("--vib-level", type=float, action="append", default=None,
+                    help="--vib: a pressure level (MPa) of the modes file whose FE modes are "
+                    "added (repeatable; default 0, the rest state)")
     ap.add_argument("--turns", action="store_true",
                     help="add every training snapshot turned by the section's quarter turns (the "
                          "symmetric mesh maps onto itself; the fibre helices' start does not, so "
@@ -402,7 +409,7 @@ def main():
     V[fixed] = 0.0
     n_pod, P, m_pick = n_pick, None, 0
     if a.vib:
-        V = enrich_vibration(V, a.vib, a.nvib, fixed, M)
+        V = enrich_vibration(V, a.vib, a.nvib, fixed, M, a.vib_level or [0.0])
         n_pick = V.shape[1]
     if a.mixed:
         V, P, m_pick = mixed_bases(a, V, X, Ut, x, tet, fixed, M)

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """rom_ecsw.py: hyper-reduction of the reduced-order FE leg by ECSW (issue 34, stage 4).
 
-    /usr/bin/python3 tools/rom_ecsw.py A.h5 [--out WEIGHTS.h5] [--tol 1e-3]
+    /usr/bin/python3 tools/rom_ecsw.py A.h5 [--out WEIGHTS.h5] [--tol 1e-3 [--tol 1e-4 ...]]
 
 A.h5 is `crawlsim rom ecsw-matrix`'s output: for each element set (Tet10 bodies, fibres,
 pressure faces) the matrix A whose column e holds element e's reduced force V_e^T f_e at every
@@ -12,12 +12,12 @@ found by non-negative least squares, one set at a time, each snapshot's block of
 unit norm so that every snapshot counts alike. Non-negative weights of whole elements keep the
 reduced forces a gradient (conservative) and the reduced tangent symmetric; weighting whole
 Tet10s (not quadrature points) keeps each element's mixed pressure. Lawson-Hanson's active set
-(scipy.optimize.nnls) is stopped once ||A w - A 1|| <= tol ||A 1||, or after 3 min(rows, columns)
-additions, or when the element just added cannot enter (the greedy loop below adds
-the element of the largest gradient, then solves the least squares on the kept set and steps
-back into the feasible region, as Lawson-Hanson does). Writes WEIGHTS.h5 (fem/fem_rom_act.h):
-tet_id, tet_w, fibre_id, fibre_w and per set the kept count and residual. A fibre that is
-slack in every training state has no force there and gets no weight.
+(scipy.optimize.nnls's algorithm, tools/rom_nnls.py: an incremental Cholesky factor of the kept
+columns) is stopped once ||A w - A 1|| <= tol ||A 1||. Several --tol: one pass to the smallest,
+the weights of each larger tolerance taken where the pass first reaches it (what a separate
+run stopped there returns), each written to WEIGHTS_tol<tol>.h5. Writes WEIGHTS.h5
+(fem/fem_rom_act.h): tet_id, tet_w, fibre_id, fibre_w and per set the kept count and residual.
+A fibre that is slack in every training state has no force there and gets no weight.
 A mixed basis (attribute m > 0: pressure modes, fem/fem_rom.h csfRom.m): each snapshot's Tet10
 rows also hold the elements' constraint shares P_e (v_e - V_e), and /A_tet_pressure each Tet10's
 share of the pressure matrix A; both are fitted with the forces (each its own unit-norm block),
@@ -28,58 +28,29 @@ import os
 import sys
 import time
 
-import h5py
-import numpy as np
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # the shared two-core machine
+os.environ.setdefault("OMP_NUM_THREADS", "1")
 
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
 
-def nnls_tol(A, b, tol, max_keep=None):
-    """Lawson-Hanson NNLS stopped at ||A w - b|| <= tol ||b||. Returns (w, rel. residual)."""
-    m, n = A.shape
-    w = np.zeros(n)
-    keep = np.zeros(n, bool)
-    nb = np.linalg.norm(b)
-    r = b.copy()
-    max_keep = max_keep or min(m, n)
-    it = 0
-    outer = 0
-    while np.linalg.norm(r) > tol * nb and keep.sum() < max_keep and outer < 3 * max_keep:
-        outer += 1
-        g = A.T @ r
-        g[keep] = -np.inf
-        j = int(np.argmax(g))
-        if g[j] <= 1e-14 * np.abs(g[np.isfinite(g)]).max():
-            break
-        keep[j] = True
-        while True:
-            it += 1
-            idx = np.flatnonzero(keep)
-            z, *_ = np.linalg.lstsq(A[:, idx], b, rcond=None)
-            if np.all(z > 0):
-                w[:] = 0
-                w[idx] = z
-                break
-            # step back into the feasible region (Lawson-Hanson's inner loop)
-            neg = z <= 0
-            alpha = np.min(w[idx][neg] / (w[idx][neg] - z[neg]))
-            w[idx] = w[idx] + alpha * (z - w[idx])
-            drop = idx[w[idx] <= 1e-14 * max(1.0, w[idx].max())]
-            keep[drop] = False
-            w[drop] = 0
-            if j in drop:
-                break  # the element just added cannot enter: Lawson-Hanson's stagnation
-        r = b - A @ w
-    return w, np.linalg.norm(r) / nb
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rom_nnls import nnls_chol  # noqa: E402
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("matrix")
     ap.add_argument("--out", default=None)
-    ap.add_argument("--tol", type=float, default=1e-3,
-                    help="relative residual of the fit, each snapshot block at unit norm")
+    ap.add_argument("--tol", type=float, action="append", default=None,
+                    help="relative residual of the fit, each snapshot block at unit norm "
+                    "(default 1e-3; repeat for several: one pass, one weights file each)")
     a = ap.parse_args()
+    tols = sorted(set(a.tol or [1e-3]), reverse=True)
     out = a.out or os.path.join(os.path.dirname(a.matrix) or ".", "weights.h5")
-    res = {}
+    outs = {tols[0]: out} if len(tols) == 1 else {
+        t: f"{os.path.splitext(out)[0]}_tol{t:g}.h5" for t in tols}
+    res = {t: {} for t in tols}
     with h5py.File(a.matrix, "r") as f:
         n = int(f.attrs["n"])
         ns = int(f.attrs["nsnap"])
@@ -116,23 +87,31 @@ def main():
                 if s > 0:
                     A[lo:hi] /= s
                     b[lo:hi] /= s
-            t0 = time.time()
-            w, rel = nnls_tol(A, b, a.tol)
-            sel = np.flatnonzero(w > 0)
-            res[key] = (cols[sel], w[sel], rel, A.shape[1])
-            print(f"rom_ecsw: {key}: {len(sel)} of {A.shape[1]} elements kept, relative residual "
-                  f"{rel:.2e} (tol {a.tol:g}), {time.time() - t0:.1f} s")
-    with h5py.File(out, "w") as f:
-        f.attrs["format"] = "crawlsim-rom-weights 1"
-        f.attrs["tol"] = a.tol
-        f.attrs["matrix"] = os.path.abspath(a.matrix)
-        for key, (idx, w, rel, ncol) in res.items():
-            f[f"{key}_id"] = idx.astype(float)
-            f[f"{key}_w"] = w
-            f.attrs[f"{key}_kept"] = len(idx)
-            f.attrs[f"{key}_candidates"] = ncol
-            f.attrs[f"{key}_residual"] = rel
-    print(f"rom_ecsw: {out}")
+            t0, c0 = time.time(), time.process_time()
+            w, rel, path = nnls_chol(
+                A, b, tols[-1], record=tols, on_record=lambda t, e, key=key: print(
+                    f"rom_ecsw: {key}: reached tol {t:g}: {e[2]} kept, {e[3]:.1f} s "
+                    f"({e[4]:.1f} s of CPU)", flush=True))
+            for t in tols:
+                wt, relt, _, sec, cpu = path.get(
+                    t, (w, rel, 0, time.time() - t0, time.process_time() - c0))
+                sel = np.flatnonzero(wt > 0)
+                res[t][key] = (cols[sel], wt[sel], relt, A.shape[1])
+                print(f"rom_ecsw: {key} ({A.shape[0]} rows): tol {t:g}: {len(sel)} of "
+                      f"{A.shape[1]} elements kept, relative residual {relt:.2e}, {sec:.1f} s "
+                      f"({cpu:.1f} s of CPU)", flush=True)
+    for t in tols:
+        with h5py.File(outs[t], "w") as f:
+            f.attrs["format"] = "crawlsim-rom-weights 1"
+            f.attrs["tol"] = t
+            f.attrs["matrix"] = os.path.abspath(a.matrix)
+            for key, (idx, w, rel, ncol) in res[t].items():
+                f[f"{key}_id"] = idx.astype(float)
+                f[f"{key}_w"] = w
+                f.attrs[f"{key}_kept"] = len(idx)
+                f.attrs[f"{key}_candidates"] = ncol
+                f.attrs[f"{key}_residual"] = rel
+        print(f"rom_ecsw: {outs[t]}")
 
 
 if __name__ == "__main__":

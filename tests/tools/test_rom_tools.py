@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """test_rom_tools.py: the offline tools of the reduced-order leg (tools/rom_basis.py,
-tools/rom_ecsw.py) on closed forms.
+tools/rom_nnls.py) on closed forms.
 
 Proves: (1) the consistent Tet10 mass of a straight element totals rho V and its row sums are
 rho int N_a dV = -rho V / 20 at the vertices and rho V / 5 at the edge nodes (the quadratic
 tetrahedron's closed form); (2) the quarter-turn node maps of a
 point cloud with the symmetry map it onto itself and are refused without it; (3) the
-tolerance-stopped Lawson-Hanson NNLS reaches scipy's NNLS residual with tol 0, stops early
-with a looser tol, and keeps every weight non-negative.
+Lawson-Hanson NNLS of tools/rom_nnls.py (incremental Cholesky) finds scipy's kept set and weights
+with tol 0, stops early with a looser tol, keeps every weight non-negative, and the weights it
+records at a larger tolerance are those of a run stopped there.
 """
 import os
 import sys
@@ -16,7 +17,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 import rom_basis  # noqa: E402
-import rom_ecsw  # noqa: E402
+import rom_nnls  # noqa: E402
 
 failed = 0
 
@@ -60,16 +61,40 @@ R, j = maps[0]
 expect(np.allclose(T[:, 2:4].reshape(-1, 3, 2)[j[5]], R @ U.reshape(-1, 3, 2)[5]),
        "a turned snapshot moves node i's displacement, turned, to its image")
 
-# (3) NNLS stopped at a tolerance
+# (3) NNLS (tools/rom_nnls.py): the exact problem gives scipy's active set and weights (its
+# Fortran Lawson-Hanson, a Householder QR of the kept columns) to round-off, on wide ECSW-like
+# problems (b = A 1, A >= 0: a zero residual) and on tall ones with a residual and zero weights;
+# stopped at a tolerance it keeps fewer columns, the residual at or below it, the weights >= 0
 from scipy.optimize import nnls  # noqa: E402
+for m, n, kind in ((40, 200, "ecsw"), (30, 500, "ecsw"), (60, 30, "tall"), (200, 80, "tall"),
+                   (100, 100, "tall")):
+    worst_w, same, worst_r = 0.0, True, 0.0
+    for trial in range(4):
+        if kind == "ecsw":
+            A = np.abs(rng.normal(size=(m, n)))
+            b = A @ np.ones(n)
+        else:
+            A = rng.normal(size=(m, n))
+            b = rng.normal(size=m)
+        w0, r0 = nnls(A, b, maxiter=50 * n)
+        w, rel, _ = rom_nnls.nnls_chol(A, b, 0.0)
+        same &= set(np.flatnonzero(w0 > 0)) == set(np.flatnonzero(w > 0))
+        worst_w = max(worst_w, np.abs(w - w0).max() / np.abs(w0).max())
+        worst_r = max(worst_r, abs(rel - r0 / np.linalg.norm(b)))
+    # round-off: the weights are O(1), kappa(A_P) of these random problems O(10-100), and the
+    # normal equations square it: 1e-10 leaves a margin of 1e3 over what is measured (1e-13)
+    expect(same and worst_w < 1e-10 and worst_r < 1e-10,
+           f"{m} x {n} {kind}: scipy's kept set, weights within {worst_w:.1e}, residual within "
+           f"{worst_r:.1e}")
 A = np.abs(rng.normal(size=(40, 200)))
 b = A @ np.ones(200)
-w0, r0 = nnls(A, b)
-w, rel = rom_ecsw.nnls_tol(A, b, 0.0)
-expect(abs(rel - r0 / np.linalg.norm(b)) < 1e-8, f"tol 0: residual {rel:.2e} = scipy's "
-       f"{r0 / np.linalg.norm(b):.2e}")
-w2, rel2 = rom_ecsw.nnls_tol(A, b, 1e-2)
-expect(rel2 <= 1e-2 and (w2 > 0).sum() <= (w > 0).sum() and np.all(w2 >= 0),
-       f"tol 1e-2: residual {rel2:.2e} with {(w2 > 0).sum()} of 200 elements, weights >= 0")
+w, rel, _ = rom_nnls.nnls_chol(A, b, 0.0)
+w2, rel2, path = rom_nnls.nnls_chol(A, b, 1e-2, record=(1e-1, 1e-2))
+expect(rel2 <= 1e-2 and (w2 > 0).sum() < (w > 0).sum() and np.all(w2 >= 0),
+       f"tol 1e-2: residual {rel2:.2e} with {(w2 > 0).sum()} of 200 elements "
+       f"(exact: {(w > 0).sum()}), weights >= 0")
+w1, rel1, _ = rom_nnls.nnls_chol(A, b, 1e-1)
+expect(np.array_equal(path[1e-1][0], w1) and path[1e-1][1] == rel1 and rel1 <= 1e-1,
+       f"a recorded tolerance (1e-1: {path[1e-1][2]} kept) = a run stopped there")
 print(f"{failed} failed")
 sys.exit(1 if failed else 0)
