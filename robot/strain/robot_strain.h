@@ -84,10 +84,9 @@ typedef struct csrStrainParams_ {
   int friction_tangent; /* the stick-anchor friction in the Newton iterates' matrix
                           (robot_strain_contact.c, anchorSecant): 0 the anchors' secant on
                           every saturated slot of the foot; 1 the law's consistent tangent
-                          (the return map differentiated: no secant); 2 the tangent where a
-                          slot was saturated at its last linearisation too, the secant where
-                          it has just saturated. Only the matrix: converged, the step is the
-                          law's whichever (docs/notes/strain_leg.md, "The friction's tangent") */
+                          (the return map differentiated: no secant). Only the matrix:
+                          converged, the step is the law's either way (docs/notes/
+                          strain_leg.md, "The friction's tangent") */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */

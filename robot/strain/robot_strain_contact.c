@@ -210,14 +210,13 @@ static void worldRows(const csrStrainModel* m, const csrStrainData* d, int p, in
  * and over the 9 s flat road at 5 ms halved more steps and took more passes in all (numbers in
  * docs/notes/strain_leg.md). ΔA = -h Σ k_i [I; r_i^] û ûᵀ [I, -r_i^] on the foot's
  * (v, ω) (r_i from the sole centre to the slot's point). */
-/* (friction_tangent, robot_strain.h: 0 every saturated slot takes the secant; 1 none, the
- * law's consistent tangent, which K_y's differences already are: in stick the anchor spring
- * N/delta_t, in slip the cone's projection derivative (I - û ûᵀ) mu N / |s| with the normal
- * coupling mu ∂N/∂y û; 2 only a slot not saturated at the last linearisation, sig0 its
- * signature there (slotSig)) */
+/* (csrStrainParams.friction_tangent 1: no secant, the law's consistent tangent, which K_y's
+ * differences already are: in stick the anchor spring N/delta_t, in slip the cone's
+ * projection derivative (I - û ûᵀ) mu N / |s| with the normal coupling mu û ∂N/∂y; measured
+ * worse: the flat road at 5 ms stops at 0.93 s, a foot's slots cycling across the saturation's
+ * onset u = 1..1.6, docs/notes/strain_leg.md "The friction's tangent") */
 static void anchorSecant(const csrStrainModel* m, double h, const cscShapeState* st,
-                         const cscSlotInfo* slot, const unsigned char* sig0, int nslot,
-                         double A[36]) {
+                         const cscSlotInfo* slot, int nslot, double A[36]) {
   const cscSoftParams* p = csc_softParams(m->soft);
   if (!(p->mu > 0) || m->par.friction_tangent == 1) {
     return;
@@ -226,9 +225,6 @@ static void anchorSecant(const csrStrainModel* m, double h, const cscShapeState*
     const cscSlotInfo* si = slot + i;
     double fn = csu_norm3(si->ft);
     if (!(si->depth > 0) || si->ratio < 2 - p->u_elastic || !(fn > 0)) {
-      continue;
-    }
-    if (m->par.friction_tangent == 2 && (sig0[i] & 2)) {
       continue;
     }
     double k = si->N / (p->delta_t * si->ratio), uh[3], r[3], c[3];
@@ -432,11 +428,8 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
-    /* the slots' state at the linearisation point: the iterates keep this W while it holds
-     * (sig0: the state at the last linearisation, for friction_tangent 2) */
-    unsigned char sig0[CSR_STRAIN_MAX_SHAPE_HIST];
+    /* the slots' state at the linearisation point: the iterates keep this W while it holds */
     for (int i = 0; i < nslot && nslot <= CSR_STRAIN_MAX_SHAPE_HIST; i++) {
-      sig0[i] = d->csig[first + i];
       d->csig[first + i] = slotSig(csc_softParams(m->soft), slot + i);
     }
     /* an iterate: a shape out of contact that touched at its last linearisation of this step
@@ -496,7 +489,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
       A[i] = h * Ky[i] + Cy[i];
     }
     if (du && foot && !ghost && nslot <= CSR_STRAIN_MAX_SHAPE_HIST) {
-      anchorSecant(m, h, &st, slot, sig0, nslot, A);
+      anchorSecant(m, h, &st, slot, nslot, A);
     }
     /* the start (du NULL): h r += h Sᵀ (L(y_p) + K_y (y0 + h S u0 - y_p)); an iterate (the
      * kinematics at its end y_e, ẏ_e): h r += h Sᵀ (L_e - A S Δu_it) */

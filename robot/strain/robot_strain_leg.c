@@ -493,8 +493,8 @@ static const csrLegSetting kStrainSettings[] = {
                        1, 0, 1, 1},
     /* the friction in the Newton iterates' matrix (robot_strain.h friction_tangent) */
     [STRAIN_FRICTION] = {"friction_tangent",
-                         "0 the anchors' secant, 1 the law's tangent, 2 the tangent but the "
-                         "secant on a slot just saturated", 0, 0, 2, 1},
+                         "0 the anchors' secant in the Newton iterates, 1 the law's tangent",
+                         0, 0, 1, 1},
 };
 
 const csrLegType csr_leg_strain = {

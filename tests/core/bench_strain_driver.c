@@ -7,8 +7,7 @@
  *
  * (ORDER 0, TREE_TOL 0: the defaults; ACTIVE the strain level's setting active_set, 1 the
  * contact ghosts in the Newton passes, 0 the law alone; FRIC its setting friction_tangent, 0
- * the anchors' secant in the iterates, 1 the law's tangent, 2 the tangent but the secant on a
- * slot just saturated; -1 or absent: the default)
+ * the anchors' secant in the iterates, 1 the law's tangent; -1 or absent: the default)
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -264,7 +263,7 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
-  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/SCENE_LEVEL_LINKS_DT_ORDER[_noactive][_tangent[2]].h5 (its track, for the
+  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/SCENE_LEVEL_LINKS_DT_ORDER[_noactive][_tangent].h5 (its track, for the
    * errors against a reference: docs/bench/levels_one_process_2026-12-05) */
   const char* keep = getenv("CS_BENCH_KEEP");
   char out[700];
@@ -272,7 +271,7 @@ static int bench(const char* src, const char* arg, double t_end) {
     snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s.h5", keep, scene->name, level,
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order,
              active == 0 ? "_noactive" : "",
-             fric == 1 ? "_tangent" : fric == 2 ? "_tangent2" : "");
+             fric == 1 ? "_tangent" : "");
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }
