@@ -327,7 +327,8 @@ csStatus csr_legSettingSet(const csrLegType* T, csrLegSettings* s, const char* n
 double csr_legSettingGet(const csrLegType* T, const csrLegSettings* s, const char* name,
                          double fallback);
 /* T's values out of s, in the order of T's table, into v[CSR_LEG_MAX_SETTINGS] (T's defaults
- * when s is NULL or another level's): what a level reads in create. */
+ * when s is NULL or another level's; a block of a table sharing T's settings, a wrapper of T,
+ * is T's): what a level reads in create. */
 void csr_legSettingsRead(const csrLegType* T, const csrLegSettings* s, double* v);
 
 #ifdef __cplusplus

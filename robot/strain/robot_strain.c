@@ -71,6 +71,9 @@ csrStrainParams csr_strainDefaultParams(void) {
   /* the stance feet's active set in the Newton passes (docs/notes/strain_leg.md, "Active
    * set") */
   p.active_set = 1;
+  /* the anchors' secant until the tangent is chosen by measurement (docs/notes/strain_leg.md,
+   * "The friction's tangent") */
+  p.friction_tangent = 0;
   return p;
 }
 
@@ -117,10 +120,12 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       (par.shear != 0 && par.shear != 1) || !(par.static_tol > 0) || par.static_max_iter < 1 ||
       (par.step_order != 1 && par.step_order != 2) ||
       (par.step_refresh != 0 && par.step_refresh != 1) ||
-      (par.active_set != 0 && par.active_set != 1)) {
+      (par.active_set != 0 && par.active_set != 1) ||
+      (par.friction_tangent != 0 && par.friction_tangent != 1)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
-                "static_max_iter >= 1, step_order 1 or 2, step_refresh and active_set 0 or 1", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
+                "static_max_iter >= 1, step_order 1 or 2, step_refresh, active_set and "
+                "friction_tangent 0 or 1", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
                 CSR_STRAIN_MAX_SUB);
     return NULL;
   }

@@ -81,6 +81,12 @@ typedef struct csrStrainParams_ {
                           then drop it (csr_strainRelease) and go on: the converged step is the
                           law's (robot_strain_contact.c, Active set); 0: the law alone.
                           Backward Euler's only: step_order 2 ignores it */
+  int friction_tangent; /* the stick-anchor friction in the Newton iterates' matrix
+                          (robot_strain_contact.c, anchorSecant): 0 the anchors' secant on
+                          every saturated slot of the foot; 1 the law's consistent tangent
+                          (the return map differentiated: no secant). Only the matrix:
+                          converged, the step is the law's either way (docs/notes/
+                          strain_leg.md, "The friction's tangent") */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */

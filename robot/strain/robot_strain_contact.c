@@ -210,10 +210,15 @@ static void worldRows(const csrStrainModel* m, const csrStrainData* d, int p, in
  * and over the 9 s flat road at 5 ms halved more steps and took more passes in all (numbers in
  * docs/notes/strain_leg.md). ΔA = -h Σ k_i [I; r_i^] û ûᵀ [I, -r_i^] on the foot's
  * (v, ω) (r_i from the sole centre to the slot's point). */
+/* (csrStrainParams.friction_tangent 1: no secant, the law's consistent tangent, which K_y's
+ * differences already are: in stick the anchor spring N/delta_t, in slip the cone's
+ * projection derivative (I - û ûᵀ) mu N / |s| with the normal coupling mu û ∂N/∂y; measured
+ * worse: the flat road at 5 ms stops at 0.93 s, a foot's slots cycling across the saturation's
+ * onset u = 1..1.6, docs/notes/strain_leg.md "The friction's tangent") */
 static void anchorSecant(const csrStrainModel* m, double h, const cscShapeState* st,
                          const cscSlotInfo* slot, int nslot, double A[36]) {
   const cscSoftParams* p = csc_softParams(m->soft);
-  if (!(p->mu > 0)) {
+  if (!(p->mu > 0) || m->par.friction_tangent == 1) {
     return;
   }
   for (int i = 0; i < nslot; i++) {

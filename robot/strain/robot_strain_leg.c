@@ -54,7 +54,7 @@ enum { STRAIN_STEP_ORDER = 1 };
  * than it saved per pass (docs/notes/strain_leg.md, "Fast step") */
 enum { STRAIN_STEP_REFRESH = 1 };
 /* the level's settings (kStrainSettings, at the end) */
-enum { STRAIN_LINKS, STRAIN_ORDER, STRAIN_ACTIVE };
+enum { STRAIN_LINKS, STRAIN_ORDER, STRAIN_ACTIVE, STRAIN_FRICTION };
 
 /* the contact at the current state for contactForce and contactDepth (header) */
 typedef struct {
@@ -131,6 +131,7 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->sp.step_order = step_order ? step_order : STRAIN_STEP_ORDER;
   leg->sp.step_refresh = STRAIN_STEP_REFRESH;
   leg->sp.active_set = set[STRAIN_ACTIVE] != 0;
+  leg->sp.friction_tangent = (int)set[STRAIN_FRICTION];
   leg->soft = csc_softDefaultParams();
   if (spec->contact) {
     leg->soft.mu = spec->contact->mu;
@@ -490,6 +491,10 @@ static const csrLegSetting kStrainSettings[] = {
     /* the Newton passes' active set for the stance feet (robot_strain.h active_set) */
     [STRAIN_ACTIVE] = {"active_set", "1 contact ghosts in the Newton passes, 0 the law alone",
                        1, 0, 1, 1},
+    /* the friction in the Newton iterates' matrix (robot_strain.h friction_tangent) */
+    [STRAIN_FRICTION] = {"friction_tangent",
+                         "0 the anchors' secant in the Newton iterates, 1 the law's tangent",
+                         0, 0, 1, 1},
 };
 
 const csrLegType csr_leg_strain = {

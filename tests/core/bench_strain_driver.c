@@ -3,10 +3,11 @@
  * after the other in ONE process, so their ratio is measured under the same load (not a test:
  * prints numbers; docs/notes/strain_leg.md "In the driver").
  *
- *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE]]]]]]...
+ *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC]]]]]]]...
  *
  * (ORDER 0, TREE_TOL 0: the defaults; ACTIVE the strain level's setting active_set, 1 the
- * contact ghosts in the Newton passes, 0 the law alone, absent: the default)
+ * contact ghosts in the Newton passes, 0 the law alone; FRIC its setting friction_tangent, 0
+ * the anchors' secant in the iterates, 1 the law's tangent; -1 or absent: the default)
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -171,7 +172,7 @@ static void printStages(const csuTimer* tm, double cpu_s, long nstep) {
 
 static int bench(const char* src, const char* arg, double t_end) {
   char level[32] = "", terr[600], gait[600], cal[600];
-  int links = 0, order = 0, active = -1;
+  int links = 0, order = 0, active = -1, fric = -1;
   double dt = 0, tol = 0;
   /* LEVEL[:LINKS[:DT[:ORDER]]] (ORDER: the tree step's formula, 1 backward Euler, 2 BDF2; 0 or
    * absent: the level's default; TREE_TOL: the tree step's Newton tolerance, mm) */
@@ -187,6 +188,8 @@ static int bench(const char* src, const char* arg, double t_end) {
     tol = c4 ? atof(c4 + 1) : 0;
     const char* c5 = c4 ? strchr(c4 + 1, ':') : NULL;
     active = c5 ? atoi(c5 + 1) : -1;
+    const char* c6 = c5 ? strchr(c5 + 1, ':') : NULL;
+    fric = c6 ? atoi(c6 + 1) : -1;
   }
   const csrLegType* type = csr_legTypeFind(level, NULL);
   if (!type) {
@@ -231,6 +234,13 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
+  if (fric >= 0 &&
+      csr_legSettingSet(type, &m.robot.leg_settings, "friction_tangent", fric, NULL) != CS_OK) {
+    fprintf(stderr, "bench_strain_driver: friction_tangent %d is not a value of legs %s\n", fric,
+            type->name);
+    cs_modelDestroy(&m);
+    return 1;
+  }
   if (tol > 0) {
     m.opt.tree_tol = tol;
   }
@@ -253,14 +263,15 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
-  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/SCENE_LEVEL_LINKS_DT_ORDER[_noactive].h5 (its track, for the
+  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/SCENE_LEVEL_LINKS_DT_ORDER[_noactive][_tangent].h5 (its track, for the
    * errors against a reference: docs/bench/levels_one_process_2026-12-05) */
   const char* keep = getenv("CS_BENCH_KEEP");
   char out[700];
   if (keep) {
-    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s.h5", keep, scene->name, level,
+    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s.h5", keep, scene->name, level,
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order,
-             active == 0 ? "_noactive" : "");
+             active == 0 ? "_noactive" : "",
+             fric == 1 ? "_tangent" : "");
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }
@@ -298,10 +309,11 @@ static int bench(const char* src, const char* arg, double t_end) {
          cs_rejectCount(d), x[0]);
   if (m.opt.coupling == CS_COUPLING_TREE) {
     printf("  tree: %ld Newton passes (%.2f per step, with the settling and the rejected tries), "
-           "%ld contact ghosts released (active_set %d)\n",
+           "%ld contact ghosts released (active_set %d, friction_tangent %d)\n",
            cs_treePassCount(d), (double)cs_treePassCount(d) / (double)cs_stepCount(d),
            cs_treeReleaseCount(d),
-           (int)csr_legSettingGet(type, &m.robot.leg_settings, "active_set", 0));
+           (int)csr_legSettingGet(type, &m.robot.leg_settings, "active_set", 0),
+           (int)csr_legSettingGet(type, &m.robot.leg_settings, "friction_tangent", 0));
   }
   printf("  split of the wall time (%%): legs %.1f, contact %.2f, tree %.2f, support %.2f, "
          "pneumatics %.2f, output %.2f, rest %.2f\n", 100 * tm[CS_TIMER_LEGS].wall / total,

@@ -72,8 +72,21 @@ static inline void strainRobotHip(const StrainRobot* r, int k, csrBaseState* b) 
 /* the robot standing with its feet on the flat road (hips at the leg's length), friction mu,
  * bending order `order`, the legs' and the support's step_order (1 backward Euler, 2 BDF2),
  * the legs' active_set (csrStrainParams); 0 ok */
+static inline int strainRobotCreateParams(StrainRobot* r, double mu, const csrStrainParams* sp,
+                                          csError* err);
 static inline int strainRobotCreateActive(StrainRobot* r, double mu, int order, int step_order,
                                           int active_set, csError* err) {
+  csrStrainParams sp = csr_strainDefaultParams();
+  sp.bend_order = order;
+  sp.step_order = step_order;
+  sp.active_set = active_set;
+  return strainRobotCreateParams(r, mu, &sp, err);
+}
+
+
+/* the same with the legs' parameters sp (csrStrainParams) */
+static inline int strainRobotCreateParams(StrainRobot* r, double mu, const csrStrainParams* sp,
+                                          csError* err) {
   memset(r, 0, sizeof *r);
   if (csr_actuatorPreset(&r->act, "leg", err) != CS_OK) {
     return 1;
@@ -90,10 +103,7 @@ static inline int strainRobotCreateActive(StrainRobot* r, double mu, int order, 
   r->tr = csTestFlatRoad();
   r->soft = csc_softDefaultParams();
   r->soft.mu = mu;
-  r->sp = csr_strainDefaultParams();
-  r->sp.bend_order = order;
-  r->sp.step_order = step_order;
-  r->sp.active_set = active_set;
+  r->sp = *sp;
   csrRobotModel rm;
   if (csr_robotDefaultModel(&rm, err) != CS_OK) {
     return 1;

@@ -16,7 +16,9 @@
  *    converge (a step that does not is halved, as the driver's rollback would), the support
  *    settles within 2 mm, the legs carry its weight.
  *  - active_set_same_step: the same steps with and without the contact ghosts of the Newton
- *    passes (csrStrainParams.active_set) converge to the same step, the ghosts in fewer passes. */
+ *    passes (csrStrainParams.active_set) converge to the same step, the ghosts in fewer passes.
+ *  - friction_tangent_same_step: the same with the friction's consistent tangent in place of
+ *    the anchors' secant (csrStrainParams.friction_tangent): the same converged steps. */
 #include "cs_test.h"
 #include "strain_test_robot.h"
 
@@ -130,6 +132,73 @@ static void newton_5ms_touchdown(void) {
 }
 
 
+/* What two variants of the Newton passes did on the same steps (sameSteps) */
+typedef struct {
+  long both, only_ref, only_alt; /* steps converged in one piece both ways / by one alone */
+  long p_ref, p_alt;             /* their passes, over the steps converged both ways */
+  long with_release;             /* of those, steps where alt released contact ghosts */
+  double dx, dmax; /* largest difference of the converged steps: support position (mm), any
+                      state entry relative to 1 + |entry| */
+} SameSteps;
+
+
+/* Steps i0 .. i0 + n - 1 of h on gait g, each started from ref's state: ref and alt take the
+ * same step (passes to 1e-9: mm, rad over a piece) and the converged ones are compared; where
+ * ref does not converge in one piece it goes on from the start in halves (its own run decides
+ * the next step's start). Before i0, ref alone advances from its state. */
+static SameSteps sameSteps(StrainRobot* ref, StrainRobot* alt, const csgGait* g, int i0, int n,
+                           double h) {
+  const double tol = 1e-9;
+  const int ns = strainRobotStateSize(ref);
+  double* y0 = calloc((size_t)ns, sizeof(double));
+  double* ya = calloc((size_t)ns, sizeof(double));
+  double* yr = calloc((size_t)ns, sizeof(double));
+  SameSteps o;
+  memset(&o, 0, sizeof o);
+  for (int i = 0; i < i0; i++) {
+    long st = 0;
+    CS_EXPECT(strainRobotAdvance(ref, g, i * h, (i + 1) * h, 16, tol, 4, yr, &st, NULL, NULL,
+                                 NULL, NULL) == 0);
+  }
+  for (int i = i0; i < i0 + n; i++) {
+    double p96[96];
+    csg_scheduleEval(g, NULL, (i + 1) * h, p96);
+    strainRobotSave(ref, y0);
+    strainRobotRestore(alt, y0);
+    const long rel0 = alt->released;
+    int ia = 0, ir = 0;
+    const int ra = strainRobotStepIter(alt, h, p96, 16, tol, &ia, NULL, NULL);
+    const int rr = strainRobotStepIter(ref, h, p96, 16, tol, &ir, NULL, NULL);
+    o.only_ref += rr == 0 && ra != 0;
+    o.only_alt += rr != 0 && ra == 0;
+    if (ra == 0 && rr == 0) {
+      o.both++;
+      o.p_alt += ia;
+      o.p_ref += ir;
+      o.with_release += alt->released > rel0;
+      strainRobotSave(alt, ya);
+      strainRobotSave(ref, yr);
+      /* every state entry: the support's pose and twist, the legs' strains, rates, anchors */
+      for (int j = 0; j < ns; j++) {
+        o.dmax = fmax(o.dmax, fabs(ya[j] - yr[j]) / (1 + fabs(yr[j])));
+      }
+      for (int j = 9; j < 12; j++) {
+        o.dx = fmax(o.dx, fabs(ya[j] - yr[j]));
+      }
+    } else if (rr != 0) {
+      long st = 0;
+      strainRobotRestore(ref, y0);
+      CS_EXPECT(strainRobotAdvance(ref, g, i * h, (i + 1) * h, 16, tol, 4, yr, &st, NULL, NULL,
+                                   NULL, NULL) == 0);
+    }
+  }
+  free(y0);
+  free(ya);
+  free(yr);
+  return o;
+}
+
+
 /* The active set (csrStrainParams.active_set: contact ghosts in the Newton passes, released
  * when they converge) changes the passes' path, not the step: from the same state, the step
  * converged with the ghosts equals the one without to the iterations' tolerance. 5 ms steps
@@ -146,60 +215,62 @@ static void active_set_same_step(void) {
     fprintf(stderr, "  %s\n", err.msg);
     return;
   }
-  /* a: the default (ghosts); b: the law alone */
-  const double h = 5e-3, tol = 1e-9;
-  const int ns = strainRobotStateSize(a);
-  double* y0 = calloc((size_t)ns, sizeof(double));
-  double* ya = calloc((size_t)ns, sizeof(double));
-  double* yb = calloc((size_t)ns, sizeof(double));
-  long pa = 0, pb = 0, both = 0, with_release = 0;
-  double dmax = 0, dx = 0;
-  for (int i = 0; i < 60; i++) {
-    double p96[96];
-    csg_scheduleEval(g, NULL, (i + 1) * h, p96);
-    strainRobotSave(b, y0);
-    strainRobotRestore(a, y0);
-    const long rel0 = a->released;
-    int ia = 0, ib = 0;
-    const int ra = strainRobotStepIter(a, h, p96, 16, tol, &ia, NULL, NULL);
-    const int rb = strainRobotStepIter(b, h, p96, 16, tol, &ib, NULL, NULL);
-    if (ra == 0 && rb == 0) {
-      both++;
-      pa += ia;
-      pb += ib;
-      with_release += a->released > rel0;
-      strainRobotSave(a, ya);
-      strainRobotSave(b, yb);
-      /* every state entry: the support's pose and twist, the legs' strains, rates, anchors */
-      for (int j = 0; j < ns; j++) {
-        dmax = fmax(dmax, fabs(ya[j] - yb[j]) / (1 + fabs(yb[j])));
-      }
-      for (int j = 9; j < 12; j++) {
-        dx = fmax(dx, fabs(ya[j] - yb[j]));
-      }
-    } else {
-      /* b goes on from the start in halves (its own run decides the next step's start) */
-      long st = 0;
-      strainRobotRestore(b, y0);
-      CS_EXPECT(strainRobotAdvance(b, g, i * h, (i + 1) * h, 16, tol, 4, yb, &st, NULL, NULL,
-                                   NULL, NULL) == 0);
-    }
-  }
+  /* a: the default (ghosts); b: the law alone, the reference */
+  const SameSteps o = sameSteps(b, a, g, 0, 60, 5e-3);
   printf("  60 steps of 5 ms from standing: %ld converged in one piece both ways, %ld of them "
          "released ghosts; passes %ld with the active set, %ld without; largest difference "
          "of the converged steps: support position %.2e mm, any state entry %.2e "
-         "(relative to 1 + |entry|)\n", both, with_release, pa, pb, dx, dmax);
-  CS_EXPECT(both >= 40);
-  CS_EXPECT(with_release >= 1); /* the ghosts' release was exercised */
-  CS_EXPECT(pa < pb);           /* fewer passes: what the active set is for */
+         "(relative to 1 + |entry|)\n", o.both, o.with_release, o.p_alt, o.p_ref, o.dx, o.dmax);
+  CS_EXPECT(o.both >= 40);
+  CS_EXPECT(o.with_release >= 1); /* the ghosts' release was exercised */
+  CS_EXPECT(o.p_alt < o.p_ref);   /* fewer passes: what the active set is for */
   /* the converged steps agree to the iterations' tolerance: a move below 1e-9 mm per pass,
    * times the few passes' contraction; a ghost left in (a foot held by a pulling spring)
    * differs by micrometres and mm/s */
-  CS_EXPECT(dx < 1e-7);
-  CS_EXPECT(dmax < 1e-6);
-  free(y0);
-  free(ya);
-  free(yb);
+  CS_EXPECT(o.dx < 1e-7);
+  CS_EXPECT(o.dmax < 1e-6);
+  strainRobotDestroy(a);
+  strainRobotDestroy(b);
+  free(a);
+  free(b);
+  csg_gaitDestroy(g);
+}
+
+
+/* The friction's tangent (csrStrainParams.friction_tangent 1: the law's consistent tangent in
+ * the Newton iterates' matrix in place of the anchors' secant) changes the passes' path, not
+ * the step: from the same state, the steps that converge both ways agree to the iterations'
+ * tolerance. 5 ms steps of the harness's flat road (mu 0.8) as active_set_same_step, from
+ * 0.9 s (CS_TANGENT_T0), where the feet's slots saturate in the iterates (from standing to
+ * 0.3 s none does: the two agree bit for bit there), every step from the secant's state. */
+static void friction_tangent_same_step(void) {
+  csgGait* g = NULL;
+  StrainRobot* a = robotOn(0.8, &g);
+  StrainRobot* b = calloc(1, sizeof *b);
+  csError err;
+  cs_errorClear(&err);
+  csrStrainParams sp = csr_strainDefaultParams();
+  sp.bend_order = 2;
+  sp.friction_tangent = 1;
+  if (!a || !b || strainRobotCreateParams(b, 0.8, &sp, &err) != 0) {
+    CS_EXPECT(0);
+    fprintf(stderr, "  %s\n", err.msg);
+    return;
+  }
+  /* a: the default (the anchors' secant), the reference; b: the law's tangent */
+  const double h = 5e-3;
+  const int i0 = (int)(getenv("CS_TANGENT_T0") ? atof(getenv("CS_TANGENT_T0")) / h : 180);
+  const SameSteps o = sameSteps(a, b, g, i0, 60, h);
+  printf("  60 steps of 5 ms from %.3f s: %ld converged in one piece both ways (%ld only with "
+         "the secant, %ld only with the tangent); passes %ld with the secant, %ld with the "
+         "tangent; largest difference of the converged steps: support position %.2e mm, any "
+         "state entry %.2e (relative to 1 + |entry|)\n", i0 * h, o.both, o.only_ref,
+         o.only_alt, o.p_ref, o.p_alt, o.dx, o.dmax);
+  CS_EXPECT(o.both >= 40);
+  CS_EXPECT(o.p_ref != o.p_alt); /* the window exercised the secant (else the runs are one) */
+  /* the same law converged: active_set_same_step's bounds */
+  CS_EXPECT(o.dx < 1e-7);
+  CS_EXPECT(o.dmax < 1e-6);
   strainRobotDestroy(a);
   strainRobotDestroy(b);
   free(a);
@@ -213,5 +284,6 @@ int main(int argc, char** argv) {
   CS_RUN(frictionless_centre_of_mass);
   CS_RUN(newton_5ms_touchdown);
   CS_RUN(active_set_same_step);
+  CS_RUN(friction_tangent_same_step);
   return cs_testSummary();
 }
