@@ -14,7 +14,8 @@
  *    0.5 s; the sole centroid's drift over the last 0.3 s is the creep.
  *  - slide: the hip is dragged along x at 5 mm/s; once steady, the base wrench is the contact
  *    force (no gravity, the leg's momentum constant), so |f_x| / (mu f_y) over the last 0.1 s
- *    is the friction against the Coulomb force. */
+ *    is the friction against the Coulomb force.
+ *  - restore: a state saved mid-slide steps bit for bit alike from two restores. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -233,9 +234,54 @@ static void dragged_sole_slides_at_the_coulomb_force(void) {
 }
 
 
+/* a state saved mid-slide (the bristle at the Coulomb limit, the hip moving) restored into the
+ * same data steps bit for bit as from the first restore: the friction history is state */
+static void restored_sliding_state_steps_bit_for_bit(void) {
+  Rig r;
+  rigCreate(&r);
+  press(&r);
+  const double v = 5.0;
+  for (int s = 0; s < 60; s++) {
+    const double x = v * (r.t + kH - 0.1) * (r.t + kH > 0.1);
+    const csrBaseState b1 = hipAt(x, v, BZ - kPress, 0);
+    step(&r, &b1, NULL);
+  }
+  const int ns = csr_romStateSize(r.m);
+  CS_EXPECT(ns == 1 + 2 * r.m->n + 44 + r.m->nz);
+  double* x0 = malloc((size_t)ns * sizeof(double));
+  double* xa = malloc((size_t)ns * sizeof(double));
+  double* xb = malloc((size_t)ns * sizeof(double));
+  csr_romGetState(r.m, r.d, x0);
+  const csrBaseState base0 = r.base;
+  const double t0 = r.t;
+  double zmax = 0;
+  for (int i = 0; i < r.m->nz; i++) {
+    zmax = fmax(zmax, fabs(csr_romZ(r.d)[i]));
+  }
+  CS_EXPECT(zmax > 0); /* the bristle is loaded: the restore has something to restore */
+  for (int pass = 0; pass < 2; pass++) {
+    CS_ASSERT(csr_romSetState(r.m, r.d, x0) == 0);
+    r.t = t0;
+    r.base = base0;
+    for (int s = 0; s < 20; s++) {
+      const double x = v * (r.t + kH - 0.1);
+      const csrBaseState b1 = hipAt(x, v, BZ - kPress, 0);
+      step(&r, &b1, NULL);
+    }
+    csr_romGetState(r.m, r.d, pass == 0 ? xa : xb);
+  }
+  CS_EXPECT(memcmp(xa, xb, (size_t)ns * sizeof(double)) == 0);
+  x0[ns - 1] = NAN;
+  CS_EXPECT(csr_romSetState(r.m, r.d, x0) < 0);
+  free(x0), free(xa), free(xb);
+  rigDestroy(&r);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(stance_sole_holds_below_the_coulomb_limit);
   CS_RUN(dragged_sole_slides_at_the_coulomb_force);
+  CS_RUN(restored_sliding_state_steps_bit_for_bit);
   return cs_testSummary();
 }
