@@ -46,7 +46,16 @@ struct csrRomData_ {
   double* face_p;     /* (nface) */
   double* F;          /* (n) scratch: generalised force */
   double* G;          /* (n x n) scratch */
-  double* backup;     /* (2n) the state before a step, restored when it fails */
+  double* backup;     /* (2n + nz) the state before a step, restored when it fails */
+  /* contact (m->contact): y = [q, q', I_m (3), z (nz), I_f (3)], I_f the contact force's
+   * impulse; scratch for the sole's load and its differences */
+  int ny;             /* 2n + 3, + nz + 3 with contact */
+  double* Fc;         /* (n) */
+  double* Fc1;        /* (n) */
+  double* zd;         /* (nz) */
+  double* zd1;        /* (nz) */
+  double* Yp;         /* (ny) a perturbed state */
+  double* hfd;        /* (2n + nz) the difference steps of q, q', z */
   double* y;          /* pointer into yv */
   SUNContext sun;
   N_Vector yv, atol;
@@ -181,7 +190,7 @@ void csr_romModelDestroy(csrRomModel* m) {
     return;
   }
   free(m->Mr), free(m->Minv), free(m->C), free(m->T), free(m->e), free(m->Q), free(m->d);
-  free(m->S), free(m->face_ch);
+  free(m->S), free(m->face_ch), free(m->Us), free(m->Ws);
   free(m);
 }
 
@@ -404,6 +413,17 @@ static void setBase(RomBase* bm, double ta, double H, const csrBaseState* b0,
 }
 
 
+/* the hip point at time t (world), the cubic Hermite of baseAt */
+static void baseX(const RomBase* bm, double t, double xh[3]) {
+  const double H = bm->H, u = (t - bm->ta) / H, u2 = u * u, u3 = u2 * u;
+  const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2,
+               h11 = u3 - u2;
+  for (int k = 0; k < 3; k++) {
+    xh[k] = h00 * bm->x0[k] + h10 * H * bm->v0[k] + h01 * bm->x1[k] + h11 * H * bm->v1[k];
+  }
+}
+
+
 /* at time t: frame R, hip velocity vh and acceleration ah (world), ω and α (hip frame) */
 static void baseAt(const RomBase* bm, double t, double R[9], double vh[3], double ah[3],
                    double w[3], double al[3]) {
@@ -535,6 +555,76 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     Yd[n + k] = a;
   }
   momentIntegrand(m, d, (double)t, Y, Yd + 2 * n);
+  if (m->contact) {
+    /* the sole's load: into the accelerations, its history's rate, the force's impulse and
+     * its moment about the hip into the moment's impulse */
+    double R[9], xh[3], vh[3], ah[3], w[3], al[3], x0[3], r[3], rf[3];
+    baseAt(&d->bm, (double)t, R, vh, ah, w, al);
+    baseX(&d->bm, (double)t, xh);
+    cscShapeLoad ld;
+    const int rcc = csr_romSoleLoad(m, R, xh, vh, w, Y, Y + n, Y + 2 * n + 3, d->Fc,
+                                    Yd + 2 * n + 3, &ld, x0, NULL);
+    if (rcc != 0) {
+      d->cb_status = rcc > 0 ? 1 : -1;
+      return d->cb_status;
+    }
+    for (int k = 0; k < n; k++) {
+      const double* Mk = m->Minv + (size_t)k * n;
+      double a = 0;
+      for (int l = 0; l < n; l++) {
+        a += Mk[l] * d->Fc[l];
+      }
+      Yd[n + k] += a;
+    }
+    csu_sub3(r, x0, xh);
+    csu_cross3(rf, r, ld.f0);
+    for (int k = 0; k < 3; k++) {
+      Yd[2 * n + k] += rf[k] + ld.m[k];
+      Yd[2 * n + 3 + m->nz + k] = ld.f0[k];
+    }
+  }
+  return 0;
+}
+
+
+/* the sole's part of the Jacobian, by one-sided differences of its (cheap) load over q, q' and
+ * z: the rows of q'' (through M_r⁻¹) and of z' */
+static int soleJacobian(const csrRomModel* m, csrRomData* d, double t, const double* Y,
+                        SUNMatrix J) {
+  const int n = m->n, nz = m->nz, oz = 2 * n + 3;
+  double R[9], xh[3], vh[3], ah[3], w[3], al[3];
+  baseAt(&d->bm, t, R, vh, ah, w, al);
+  baseX(&d->bm, t, xh);
+  int rc = csr_romSoleLoad(m, R, xh, vh, w, Y, Y + n, Y + oz, d->Fc, d->zd, NULL, NULL, NULL);
+  if (rc != 0) {
+    return rc;
+  }
+  memcpy(d->Yp, Y, (size_t)d->ny * sizeof(double));
+  for (int c = 0; c < 2 * n + nz; c++) {
+    const int col = c < 2 * n ? c : oz + (c - 2 * n);
+    const double h = d->hfd[c];
+    d->Yp[col] = Y[col] + h;
+    rc = csr_romSoleLoad(m, R, xh, vh, w, d->Yp, d->Yp + n, d->Yp + oz, d->Fc1, d->zd1, NULL,
+                         NULL, NULL);
+    d->Yp[col] = Y[col];
+    if (rc != 0) {
+      return rc;
+    }
+    for (int l = 0; l < n; l++) {
+      d->Fc1[l] = (d->Fc1[l] - d->Fc[l]) / h;
+    }
+    for (int k = 0; k < n; k++) {
+      const double* Mk = m->Minv + (size_t)k * n;
+      double a = 0;
+      for (int l = 0; l < n; l++) {
+        a += Mk[l] * d->Fc1[l];
+      }
+      SM_ELEMENT_D(J, n + k, col) += a;
+    }
+    for (int i = 0; i < nz; i++) {
+      SM_ELEMENT_D(J, oz + i, col) = (d->zd1[i] - d->zd[i]) / h;
+    }
+  }
   return 0;
 }
 
@@ -584,6 +674,13 @@ static int jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, 
         }
         SM_ELEMENT_D(J, n + k, half * n + l) = a;
       }
+    }
+  }
+  if (m->contact) {
+    const int rcs = soleJacobian(m, d, (double)t, Y, J);
+    if (rcs != 0) {
+      d->cb_status = rcs > 0 ? 1 : -1;
+      return d->cb_status;
     }
   }
   return 0;
@@ -718,6 +815,7 @@ void csr_romDataDestroy(csrRomData* d) {
   }
   csf_romDataDestroy(d->fd);
   free(d->fdead), free(d->face_p), free(d->F), free(d->G), free(d->backup);
+  free(d->Fc), free(d->Fc1), free(d->zd), free(d->zd1), free(d->Yp), free(d->hfd);
   free(d);
 }
 
@@ -740,8 +838,17 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
   d->face_p = calloc((size_t)(m->nface > 0 ? m->nface : 1), sizeof(double));
   d->F = calloc((size_t)n, sizeof(double));
   d->G = calloc((size_t)n * n, sizeof(double));
-  d->backup = calloc(2 * (size_t)n, sizeof(double));
-  if (!d->fd || !d->fdead || !d->face_p || !d->F || !d->G || !d->backup) {
+  const int nz = m->contact ? m->nz : 0;
+  d->ny = 2 * n + 3 + (m->contact ? nz + 3 : 0);
+  d->backup = calloc(2 * (size_t)n + nz, sizeof(double));
+  d->Fc = calloc((size_t)n, sizeof(double));
+  d->Fc1 = calloc((size_t)n, sizeof(double));
+  d->zd = calloc((size_t)nz + 1, sizeof(double));
+  d->zd1 = calloc((size_t)nz + 1, sizeof(double));
+  d->Yp = calloc((size_t)d->ny, sizeof(double));
+  d->hfd = calloc(2 * (size_t)n + nz, sizeof(double));
+  if (!d->fd || !d->fdead || !d->face_p || !d->F || !d->G || !d->backup || !d->Fc || !d->Fc1 ||
+      !d->zd || !d->zd1 || !d->Yp || !d->hfd) {
     csr_romDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory (n = %d)", n);
     return NULL;
@@ -753,9 +860,9 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
     cs_errorSet(err, CS_ERR_SOLVER, "rom leg: cannot create a SUNDIALS context");
     return NULL;
   }
-  d->yv = N_VNew_Serial(2 * n + 3, d->sun);
-  d->atol = N_VNew_Serial(2 * n + 3, d->sun);
-  d->A = d->yv ? SUNDenseMatrix(2 * n + 3, 2 * n + 3, d->sun) : NULL;
+  d->yv = N_VNew_Serial(d->ny, d->sun);
+  d->atol = N_VNew_Serial(d->ny, d->sun);
+  d->A = d->yv ? SUNDenseMatrix(d->ny, d->ny, d->sun) : NULL;
   d->LS = d->A ? SUNLinSol_Dense(d->yv, d->A, d->sun) : NULL;
   if (!d->yv || !d->atol || !d->A || !d->LS) {
     csr_romDataDestroy(d);
@@ -771,9 +878,19 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
     }
     at[k] = m->par.atol_u / (vmax > 0 ? vmax : 1.0);
     at[n + k] = 1e3 * at[k]; /* q' over a millisecond */
+    /* the sole's difference steps: 1e-7 mm of nodal displacement, 1e-5 mm/s of its rate
+     * (below the contact law's smoothing lengths d_onset 1e-3 mm and v_plastic 1e-3 mm/s,
+     * above round-off on poses of tens of mm) */
+    d->hfd[k] = 1e-7 / (vmax > 0 ? vmax : 1.0);
+    d->hfd[n + k] = 1e-5 / (vmax > 0 ? vmax : 1.0);
   }
-  for (int k = 0; k < 3; k++) {
-    at[2 * n + k] = 1.0; /* set per advance */
+  for (int k = 2 * n; k < d->ny; k++) {
+    at[k] = 1.0; /* the impulses: set per advance */
+  }
+  for (int i = 0; i < nz; i++) {
+    /* the bristle (mm; the torsional one in rad over a 1 mm arm): as a displacement */
+    at[2 * n + 3 + i] = m->par.atol_u;
+    d->hfd[2 * n + i] = 1e-8;
   }
   d->cvode = CVodeCreate(CV_BDF, d->sun);
   if (!d->cvode || CVodeInit(d->cvode, rhs, 0.0, d->yv) != CV_SUCCESS ||
@@ -798,7 +915,10 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
 
 
 void csr_romReset(const csrRomModel* m, csrRomData* d, double t, const csrBaseState* b) {
-  memset(d->y, 0, (2 * (size_t)m->n + 3) * sizeof(double));
+  memset(d->y, 0, (size_t)d->ny * sizeof(double));
+  if (m->contact) {
+    csc_softStateInit(m->contact, d->y + 2 * m->n + 3);
+  }
   csf_romDataReset(m->rom, d->fd);
   d->t = t;
   d->base = *b;
@@ -827,6 +947,9 @@ void csr_romSetDeadLoad(const csrRomModel* m, csrRomData* d, const double* fr) {
 
 
 const double* csr_romQ(const csrRomData* d) { return d->y; }
+const double* csr_romZ(const csrRomData* d) {
+  return d->m->contact ? d->y + 2 * d->n + 3 : NULL;
+}
 const double* csr_romQdot(const csrRomData* d) { return d->y + d->n; }
 double csr_romTime(const csrRomData* d) { return d->t; }
 
@@ -869,14 +992,21 @@ static int restartAt(const csrRomModel* m, csrRomData* d, double t, double H) {
   /* the moment's impulse from zero: only its change over an advance is used, and its absolute
    * value sets the rounding of that change, so a restored state (which does not hold it)
    * steps bit for bit only from zero */
+  const int oi = 2 * n + 3 + (m->contact ? m->nz : 0); /* the force impulse, with contact */
   for (int k = 0; k < 3; k++) {
     d->y[2 * n + k] = 0;
+    if (m->contact) {
+      d->y[oi + k] = 0;
+    }
   }
   /* the moment impulse's tolerance: the averaged wrench's over a 10 mm arm, for steps of this
    * H (set at restarts only: CVODE binds its error weights' data before its first step) */
   double* at = N_VGetArrayPointer(d->atol);
   for (int k = 0; k < 3; k++) {
     at[2 * n + k] = m->par.atol_wrench * 10.0 * H;
+    if (m->contact) {
+      at[oi + k] = m->par.atol_wrench * H;
+    }
   }
   if (CVodeReInit(d->cvode, t, d->yv) != CV_SUCCESS ||
       CVodeSVtolerances(d->cvode, m->par.rtol, d->atol) != CV_SUCCESS) {
@@ -902,12 +1032,14 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
     csr_romMomentum(m, d, P0, L0);
     d->base = last; /* compared with b0 below */
   }
+  const int nz = m->contact ? m->nz : 0, oi = 2 * n + 3 + nz;
   memcpy(d->backup, d->y, 2 * (size_t)n * sizeof(double));
+  memcpy(d->backup + 2 * n, d->y + 2 * n + 3, (size_t)nz * sizeof(double));
   d->cb_status = 0;
   int restart = d->need_reinit || fabs(t - d->t) > 1e-12 * (1 + fabs(t)) ||
                 baseJumped(&d->base, b0);
   d->base = *b0;
-  double I0[3];
+  double I0[3], F0[3] = {0, 0, 0};
   for (;;) {
     if (restart && restartAt(m, d, t, H) != 0) {
       cs_errorSet(err, CS_ERR_SOLVER, "rom advance: CVODE restart failed at t = %g s", t);
@@ -918,12 +1050,16 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
       return -1;
     }
     memcpy(I0, d->y + 2 * n, sizeof I0);
+    if (nz) {
+      memcpy(F0, d->y + oi, sizeof F0);
+    }
     sunrealtype tret = t;
     const int flag = CVode(d->cvode, t + H, d->yv, &tret, CV_NORMAL);
     if (flag >= 0) {
       break;
     }
     memcpy(d->y, d->backup, 2 * (size_t)n * sizeof(double));
+    memcpy(d->y + 2 * n + 3, d->backup + 2 * n, (size_t)nz * sizeof(double));
     d->need_reinit = 1;
     const int fatal = d->cb_status < 0 || flag == CV_ILL_INPUT || flag == CV_MEM_FAIL ||
                       flag == CV_MEM_NULL;
@@ -943,9 +1079,12 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
     free(name);
     return fatal ? -1 : 1;
   }
-  double Iq[3];
+  double Iq[3], If[3] = {0, 0, 0};
   for (int k = 0; k < 3; k++) {
     Iq[k] = d->y[2 * n + k] - I0[k];
+    if (nz) {
+      If[k] = d->y[oi + k] - F0[k];
+    }
   }
   d->t = t + H;
   d->base = *b1;
@@ -953,7 +1092,8 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
     double P1[3], L1[3];
     csr_romMomentum(m, d, P1, L1);
     for (int k = 0; k < 3; k++) {
-      w->f[k] = m->mass * m->par.gravity[k] - (P1[k] - P0[k]) / H;
+      /* the contact's impulse reached the leg from outside the support: the support gets it */
+      w->f[k] = m->mass * m->par.gravity[k] - (P1[k] - P0[k]) / H + If[k] / H;
       w->m[k] = (Iq[k] - (L1[k] - L0[k])) / H;
     }
   }
@@ -961,7 +1101,9 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
 }
 
 
-int csr_romStateSize(const csrRomModel* m) { return 1 + 2 * m->n + 18 + 2 + 24; }
+int csr_romStateSize(const csrRomModel* m) {
+  return 1 + 2 * m->n + 18 + 2 + 24 + (m->contact ? m->nz : 0);
+}
 
 
 void csr_romGetState(const csrRomModel* m, const csrRomData* d, double* x) {
@@ -977,6 +1119,9 @@ void csr_romGetState(const csrRomModel* m, const csrRomData* d, double* x) {
   b[19] = d->pt1;
   memcpy(b + 20, d->p0, 12 * sizeof(double));
   memcpy(b + 32, d->p1, 12 * sizeof(double));
+  if (m->contact) {
+    memcpy(b + 44, d->y + 2 * n + 3, (size_t)m->nz * sizeof(double));
+  }
 }
 
 
@@ -999,6 +1144,9 @@ int csr_romSetState(const csrRomModel* m, csrRomData* d, const double* x) {
   d->pt1 = b[19];
   memcpy(d->p0, b + 20, 12 * sizeof(double));
   memcpy(d->p1, b + 32, 12 * sizeof(double));
+  if (m->contact) {
+    memcpy(d->y + 2 * n + 3, b + 44, (size_t)m->nz * sizeof(double));
+  }
   d->need_reinit = 1;
   /* the reduced FE's states (θ, fibre stress) are synchronised at every evaluation (sync = 1):
    * nothing else to restore */

@@ -30,8 +30,8 @@
  * moving hip point (world), s(q) = ∫ρ (X + u) dV its first mass moment (hip frame),
  *   H f = m g H - ΔP,   H m = ∫ (R s(q) × g - v_h × P) dt - ΔL_h,
  * the time integral a CVODE quadrature: the support receives exactly the momentum the leg's
- * state lost, whatever the integration error. Contact forces would add their impulse and
- * moment to both (not built yet: the leg touches nothing).
+ * state lost, whatever the integration error. The sole's contact forces (csr_romModelSetSole)
+ * add their impulse to f and their moment about the hip to m, integrated in y alike.
  * Base motion across a step: the hip point by cubic Hermite interpolation of (x, v) at both
  * ends; the frame R(t) = R0 exp(φ(t)) with φ the cubic Hermite of the rotation vector from
  * φ(0) = 0, φ'(0) = R0ᵀw0 to φ(H) = log(R0ᵀR1), φ'(H) = R0ᵀw1, and ω ≈ φ', α ≈ φ'' (exact for
@@ -41,6 +41,7 @@
 #ifndef CS_ROBOT_ROM_H
 #define CS_ROBOT_ROM_H
 
+#include "contact_soft.h"
 #include "core_status.h"
 #include "fem_rom.h"
 #include "robot_leg.h"
@@ -83,6 +84,15 @@ typedef struct csrRomModel_ {
    * (0..11, segment-major as robot_leg.h's actuate; -1: none); nface faces */
   int nface;
   int* face_ch;
+  /* contact at the sole (csr_romModelSetSole; contact NULL: the leg touches nothing) */
+  const cscSoftModel* contact; /* borrowed: one foot shape against the terrain */
+  int nz;              /* its friction history length (doubles, integrated in y) */
+  int nsole;           /* the sole's nodes */
+  double Xs[3];        /* their centroid at rest, hip frame, mm */
+  double Rs0[9];       /* the sole's frame at rest in the hip frame (columns e1 e2 in the sole,
+                          e3 its outward normal), row-major */
+  double* Us;          /* (3 x n) the centroid's displacement per unit q, mm */
+  double* Ws;          /* (3 x n) the sole's rotation vector per unit q, rad */
 } csrRomModel;
 
 /* Build the model on `rom` (borrowed). face_ch (nface, copied) maps the mesh's faces to the
@@ -91,6 +101,31 @@ typedef struct csrRomModel_ {
 csrRomModel* csr_romModelCreate(const csfRom* rom, const csrRomParams* par, const int* face_ch,
                                 csError* err);
 void csr_romModelDestroy(csrRomModel* m);
+
+/* Contact at the sole (issue 34, item 3): the sole is the foot shape of `contact` (borrowed,
+ * exactly one shape, a CSC_SHAPE_FOOT, integrated history; the terrain is the model's), its
+ * pose carried by the `nsole` mesh nodes `sole` (the tip face's, copied into the operators):
+ *   centre   x0 = x_h + R (X̄ + Ū q),        Ū = mean over the sole nodes of V's rows,
+ *   frame    R_f = R exp(θ) Rs0,  θ = W q,   W = J⁻¹ Σ_a r_a × V_a,  J = Σ_a (|r_a|² 1 - r_a r_aᵀ),
+ * r_a = X_a - X̄: θ is the least-squares rotation of the sole's nodes (exact for a rigid
+ * rotation of the sole to first order; its virtual work is that of the nodal forces
+ * f_a = (J⁻¹ m) × r_a, which have the couple m). The foot's load (f0 at x0, couple m, world)
+ * enters the reduced equations as Ūᵀ Rᵀ f0 + Wᵀ Rᵀ m; its history z rides in y after the moment
+ * impulse, with the force's impulse (for the base wrench). Rs0: the sole's frame at rest (hip
+ * frame, row-major, orthonormal, e3 out of the leg). CS_ERR_ARG / CS_ERR_RANGE on a bad shape,
+ * fewer than three nodes or nodes on a line. Call before creating data. */
+csStatus csr_romModelSetSole(csrRomModel* m, const cscSoftModel* contact, int nsole,
+                             const int* sole, const double Rs0[9], csError* err);
+
+/* The sole's pose and load at one state (used inside the integration; exposed for tests): the
+ * hip frame R, hip point x_h and velocity v_h (world), ω (hip frame, rad/s), q, q' (n) and the
+ * history z (nz). Fills Fc (n, the reduced contact force, N per unit q, added to the right-hand
+ * side), zdot (nz), and if not NULL the foot's load (world, f0 at the foot centre x0, couple
+ * about it) and the slot report. Returns csc_softCompute's code (> 0 recoverable). */
+int csr_romSoleLoad(const csrRomModel* m, const double R[9], const double xh[3],
+                    const double vh[3], const double w[3], const double* q, const double* qd,
+                    const double* z, double* Fc, double* zdot, cscShapeLoad* load, double x0[3],
+                    cscSlotInfo* slot);
 
 /* The data of one leg: the state y = [q (n), q' (n)], its time, the hip state the last step
  * ended at, the pressures of the step, CVODE and scratch. */
@@ -132,8 +167,11 @@ const double* csr_romQ(const csrRomData* d);
 const double* csr_romQdot(const csrRomData* d);
 double csr_romTime(const csrRomData* d);
 
+/* The sole's friction history (nz doubles, pointer into the data; NULL without contact). */
+const double* csr_romZ(const csrRomData* d);
+
 /* The whole state as a flat vector (doubles): time, y (2n), the hip state (18), the pressures'
- * t0, t1, p0 (12), p1 (12). setState returns < 0 (data unchanged) on a non-finite entry. */
+ * t0, t1, p0 (12), p1 (12), the sole's history (nz). setState returns < 0 (data unchanged) on a non-finite entry. */
 int csr_romStateSize(const csrRomModel* m);
 void csr_romGetState(const csrRomModel* m, const csrRomData* d, double* x);
 int csr_romSetState(const csrRomModel* m, csrRomData* d, const double* x);

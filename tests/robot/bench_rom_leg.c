@@ -10,7 +10,11 @@
  * whose e3 points down (world -y), earth gravity. Scenarios:
  *   gait  (default) the hip held still; II1 Ω1&Ω2 ramped to 0.1 MPa over 0.2 s (smoothstep)
  *         at t = 0, held;
- *   swing the hip oscillating ±5 mm at 2 Hz along x, vented.
+ *   swing the hip oscillating ±5 mm at 2 Hz along x, vented;
+ *   stance the sole (the tip face's nodes) in contact with a flat ground (csr_romModelSetSole,
+ *         contact_soft.h's foot with its defaults, half side from the face): the ground
+ *         0.05 mm below the hanging sole, the hip lowered 0.3 mm over 0.1 s and held, then
+ *         gait's pressures from t = 0.1 s: the leg bends against its foot's friction.
  * Prints: basis size, the set-up's wall time, CPU time per simulated second (one core),
  * CVODE steps, right-hand sides, Jacobians, the foot's displacement (the tip face's mean,
  * hip frame) and the step-averaged base wrench at t_end; for gait, the foot of the reduced
@@ -22,6 +26,7 @@
 #include <time.h>
 
 #include "core_clock.h"
+#include "contact_soft.h"
 #include "core_math.h"
 #include "fem_mesh.h"
 #include "fem_rom_act.h"
@@ -36,6 +41,13 @@ static void pressures(double t, int gait, double p[12]) {
   }
   const double u = fmin(1.0, fmax(0.0, t / 0.2)), s = u * u * (3 - 2 * u);
   p[0] = p[1] = 0.1 * s;
+}
+
+/* stance: the hip lowered 0.3 mm over 0.1 s (smoothstep) */
+static void hipStance(double t, csrBaseState* b) {
+  const double u = fmin(1.0, fmax(0.0, t / 0.1));
+  b->x[1] = -0.3 * u * u * (3 - 2 * u);
+  b->v[1] = -0.3 * 6 * u * (1 - u) / 0.1;
 }
 
 static void hip(double t, int swing, csrBaseState* b) {
@@ -59,6 +71,7 @@ int main(int argc, char** argv) {
   const char* basis = argv[1];
   const char* weights = argc > 2 && strcmp(argv[2], "-") != 0 ? argv[2] : NULL;
   const int swing = argc > 3 && strcmp(argv[3], "swing") == 0;
+  const int stance = argc > 3 && strcmp(argv[3], "stance") == 0;
   const double t_end = argc > 4 ? atof(argv[4]) : 0.5;
   const double H = (argc > 5 ? atof(argv[5]) : 1.0) * 1e-3;
   const double S = argc > 6 ? atof(argv[6]) : 15.0;
@@ -105,6 +118,38 @@ int main(int argc, char** argv) {
   par.gravity[1] = -9810.0;
   const double w1 = csu_wallSeconds();
   csrRomModel* m = csr_romModelCreate(ra.rom, &par, face_ch, &err);
+  cscSoftModel* cm = NULL;
+  int* sole = malloc((size_t)me->nnode * sizeof(int));
+  int nsole = 0;
+  if (m && stance) {
+    /* the sole: the tip face's nodes (tip_unit's support); the leg hangs along the hip's e3,
+     * so the sole's frame at rest is the hip's; the ground 0.05 mm below its lowest node */
+    double zmax = -INFINITY, half = 0, xc[2] = {0, 0};
+    for (int i = 0; i < me->nnode; i++) {
+      if (ra.fe.tip_unit[3 * i] != 0 || ra.fe.tip_unit[3 * i + 2] != 0) {
+        sole[nsole++] = i;
+        zmax = fmax(zmax, me->x[3 * i + 2]);
+        xc[0] += me->x[3 * i], xc[1] += me->x[3 * i + 1];
+      }
+    }
+    for (int a = 0; a < nsole; a++) {
+      half = fmax(half, fabs(me->x[3 * sole[a]] - xc[0] / nsole));
+    }
+    cstTerrain tr;
+    memset(&tr, 0, sizeof tr);
+    tr.nbox = 1;
+    tr.box[0] = (cstBox){.lo = {-300, -zmax - 50, -150}, .hi = {300, -zmax - 0.05, 150}};
+    cscSoftParams cp = csc_softDefaultParams();
+    cscShape foot = csc_softFoot(half);
+    cm = csc_softCreate(&cp, &tr, 1, &foot, &err);
+    const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    if (!cm || csr_romModelSetSole(m, cm, nsole, sole, I, &err) != CS_OK) {
+      fprintf(stderr, "bench_rom_leg: %s\n", err.msg);
+      return 1;
+    }
+    printf("stance: %d sole nodes, foot half side %.3g mm, ground at y = %.4g mm\n", nsole,
+           half, -zmax - 0.05);
+  }
   csrRomData* d = m ? csr_romDataCreate(m, &err) : NULL;
   if (!d) {
     fprintf(stderr, "bench_rom_leg: %s\n", err.msg);
@@ -127,6 +172,11 @@ int main(int argc, char** argv) {
     pressures(t, !swing, p0);
     pressures(t + H, !swing, p1);
     hip(t + H, swing, &b1);
+    if (stance) {
+      hipStance(t + H, &b1);
+      pressures(t - 0.1, 1, p0);
+      pressures(t + H - 0.1, 1, p1);
+    }
     csr_romActuate(d, t, p0, t + H, p1);
     const int rc = csr_romAdvance(m, d, t, H, &b0, &b1, &w, &err);
     if (rc != 0) {
@@ -151,10 +201,16 @@ int main(int argc, char** argv) {
   }
   printf("%s, H = %g ms, %g s simulated: CPU %.3g s per simulated second (one leg, one core), "
          "%ld macro steps, %ld CVODE steps, %ld rhs, %ld jacobians, %ld restarts\n",
-         swing ? "swing" : "gait", H * 1e3, t, c / t, nstep, st, nr, nj, nre);
+         swing ? "swing" : (stance ? "stance" : "gait"), H * 1e3, t, c / t, nstep, st, nr, nj, nre);
   printf("foot displacement (hip frame) %.4f %.4f %.4f mm; wrench f %.5g %.5g %.5g N, m %.5g "
          "%.5g %.5g N mm (weight %.5g N)\n", foot[0], foot[1], foot[2], w.f[0], w.f[1], w.f[2],
          w.m[0], w.m[1], w.m[2], m->mass * 9810.0);
+  if (stance) {
+    const double* z = csr_romZ(d);
+    printf("stance: the sole's friction history (bristle mm, torsion rad) %.4g %.4g %.4g %.4g; "
+           "the support carries f_y %.5g N (weight %.5g N)\n", z[0], z[1], z[2], z[3], w.f[1],
+           -m->mass * 9810.0);
+  }
   /* the reduced statics of the end's load (gravity in the hip frame, the end's pressures),
    * ramped from rest by fem_rom_act.h: where the damped dynamics settle once the load holds */
   double pe[12], ge[3];
@@ -180,7 +236,7 @@ int main(int argc, char** argv) {
              "|T - G| %.3g of %.3g t\n", sqrt(rn), ra.d->fnorm, tg, gg);
     }
   }
-  if (!swing && csf_romActuatorSolve(&ra, pe, ge, F0, &err) == CS_OK) {
+  if (!swing && !stance && csf_romActuatorSolve(&ra, pe, ge, F0, &err) == CS_OK) {
     double fs[3] = {0, 0, 0};
     for (int i = 0; i < me->nnode; i++) {
       for (int k = 0; k < 3; k++) {
@@ -188,10 +244,11 @@ int main(int argc, char** argv) {
       }
     }
     printf("reduced statics of the end's load: foot %.4f %.4f %.4f mm\n", fs[0], fs[1], fs[2]);
-  } else if (!swing) {
+  } else if (!swing && !stance) {
     printf("reduced statics of the end's load: %s\n", err.msg);
   }
-  free(u), free(face_ch);
+  free(u), free(face_ch), free(sole);
+  csc_softDestroy(cm);
   csr_romDataDestroy(d);
   csr_romModelDestroy(m);
   csf_romActuatorDestroy(&ra);
