@@ -104,6 +104,8 @@ ap.add_argument('--rmax', type=float, default=45.0,
                 'rule 6 keeps --clear, mm')
 a = ap.parse_args()
 DC = a.D if a.Dclimb is None else a.Dclimb
+if DC <= 0 or a.settle < 0:
+    sys.exit('obstacle_gait.py: --Dclimb takes a positive advance (mm), --settle a time >= 0 (s)')
 try:
     SCAT = tuple(float(v) for v in a.scatter.split(','))
 except ValueError:
