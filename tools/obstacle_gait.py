@@ -82,6 +82,13 @@ ap.add_argument('--walk-slots', type=int, default=None,
                 'crawl alone')
 ap.add_argument('--xturn', type=float, default=646.0, help='x of the turn, mm (Table 3)')
 ap.add_argument('--zend', type=float, default=270.0, help='lateral travel, mm (Table 3)')
+ap.add_argument('--Dclimb', type=float, default=None,
+                help='rule 13 (trial): support advance per cycle while the support climbs (planned x '
+                'below --xclimb), mm (measured); places the hips for the climb\'s landings only '
+                '(default --D)')
+ap.add_argument('--settle', type=float, default=0.0,
+                help='rule 13 (trial): all eight legs stand this long before the rear pair\'s slot '
+                'whose landings can reach within 25 mm of the up edge, s (0: off)')
 ap.add_argument('--clear', type=float, default=0.0,
                 help='rule 12: wanted clearance of a landing\'s scatter band from an edge, mm '
                 '(0: off, rule 6 alone)')
@@ -96,6 +103,9 @@ ap.add_argument('--rmax', type=float, default=45.0,
                 help='rule 12: the longest landing offset ahead of the hip when no offset of '
                 'rule 6 keeps --clear, mm')
 a = ap.parse_args()
+DC = a.D if a.Dclimb is None else a.Dclimb
+if DC <= 0 or a.settle < 0:
+    sys.exit('obstacle_gait.py: --Dclimb takes a positive advance (mm), --settle a time >= 0 (s)')
 try:
     SCAT = tuple(float(v) for v in a.scatter.split(','))
 except ValueError:
@@ -205,7 +215,7 @@ HEADER = """\
 #     then the wave starts with the pairs behind it still under their hips: each stance foot
 #     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
 #     jolt.
-{rule9}{rule10}{rule11}{rule12}
+{rule9}{rule10}{rule11}{rule12}{rule13}
 """.format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
            '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
            % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
@@ -224,6 +234,11 @@ HEADER = """\
            'landing takes the\n#     stretch of its landing time), as Table 3\'s support comes '
            'down from 40 mm at 14 s to\n#     13 mm at 24 s and 0 at 29 s; the turn then needs '
            'no descent of its own.' % (a.rise, a.rise_low, a.nlow),
+           rule13='' if a.Dclimb is None and a.settle <= 0 else
+           '\n# 13. (trial) The climb: its landings placed by the climb\'s own measured advance, '
+           'Dclimb %g mm\n#     per cycle; all eight legs stand %g s before the rear pair\'s slot '
+           'whose landings can\n#     reach within 25 mm of the up edge (the support settles).'
+           % (DC, a.settle),
            rule12='' if a.clear <= 0 else
            '\n# 12. (trial) A landing on the road before the riser whose band, its planned x plus '
            '%g..%g mm\n#     (where such landings fell against the plan, measured), comes within '
@@ -401,10 +416,23 @@ if a.x2 is not None and a.x2 > 0:
     NS = next(k for k in range(1000) if k * a.D / 4 > a.x2)
 # slot start times: the climb's slots until the support is planned past xclimb (rule 8)
 T0, XP = [tw], [0.0]          # slot starts, planned support x there
+DUR = []                      # slot lengths (a slot ends at T0[s] + DUR[s])
+XL = [0.0]                    # planned support x for the landings (rule 13: --Dclimb)
+SETTLE = None                 # rule 13: the slot before which all eight stand --settle s
 for s in range(NS):
     tp = a.Tclimb if XP[-1] < a.xclimb else a.Tp
-    T0.append(T0[-1] + tp)
+    climbing = XP[-1] < a.xclimb
     XP.append(XP[-1] + a.D / 4)
+    # rule 13: the climb's landings placed by the climb's measured advance; past the climb the
+    # plan's own x again (the later rows as rule 6 has them)
+    XL.append(XL[-1] + DC / 4 if climbing else XP[-1])
+    gap = 0.0
+    if a.settle > 0 and SETTLE is None and s % 4 == 0 and \
+            START + OFF['D'] + XL[-1] + max(RS) + a.over >= EDGES[0] - MARGIN:
+        SETTLE, gap = s, a.settle
+    T0[-1] += gap
+    DUR.append(tp)
+    T0.append(T0[-1] + tp)
 
 
 LOW = [None]      # rule 10: the slot boundary from which the walk comes down (None: not yet)
@@ -430,11 +458,12 @@ def stance(l, b, r0, s0, s1):
     k = s0
     while k < s1:
         m = k
-        while m + 1 < s1 and abs((T0[m + 2] - T0[m + 1]) - (T0[k + 1] - T0[k])) < 1e-9 and \
+        while m + 1 < s1 and abs(DUR[m + 1] - DUR[k]) < 1e-9 and \
+                abs(T0[m + 1] - T0[m] - DUR[m]) < 1e-9 and \
                 abs(height(m + 2) - height(k + 1)) < 1e-9 and \
                 abs(height(k + 1) - height(k)) < 1e-9:
             m += 1
-        emit(T0[k], T0[m + 1] - T0[k], {l: need(skind(b, m + 1), r0 - STEP * (m + 1 - s0))},
+        emit(T0[k], T0[m] + DUR[m] - T0[k], {l: need(skind(b, m + 1), r0 - STEP * (m + 1 - s0))},
              linear=True)
         k = m + 1
 
@@ -462,12 +491,14 @@ for s in range(NS):
         off = r0 - STEP * (s - s0)
         stance(l, b, r0, s0, s)
         lift[l] = need('A', off)
-        r, b2 = plan(l, START + OFF[l] + XP[s + 1])
+        r, b2 = plan(l, START + OFF[l] + XL[s + 1])
         air[l] = need('A', r)
         lnd[l] = need(skind(b2, s + 1), r)
         state[l] = [b2, float(r)]
         pending[l] = s + 1
-    step(t0, T0[s + 1] - t0, pair, lift, air, lnd)
+    if s == SETTLE:
+        comment('# rule 13: all eight stand %.2f..%.2f s' % (t0 - a.settle, t0))
+    step(t0, DUR[s], pair, lift, air, lnd)
 t = T0[NS]
 for l in OFF:
     s0 = pending.pop(l)

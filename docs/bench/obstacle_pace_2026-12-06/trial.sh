@@ -1,13 +1,13 @@
 #!/bin/sh
 # usage: trial.sh GAIT_NAME T_END RUN... : run runs/GAIT_NAME.csv (designed from GAIT_NAME.gait
 # here) on the obstacle scene with each robustness option in turn (robust.sh's names), to T_END,
-# one after the other (nice 10); logs, Table 3 scores and feet.py at the climb's landings here
+# one after the other (nice 10; CRAWLSIM: the binary, default build/tools/crawlsim); logs, Table 3 scores and feet.py at the climb's landings here
 cd "$(dirname "$0")/../../.."
 B=docs/bench/obstacle_pace_2026-12-06
 g=$1; te=$2; shift 2
 . $B/opts.sh
 for n in "$@"; do
-  nice -n 10 build/tools/crawlsim run --scene obstacle --gait runs/$g.csv --conditions paper --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair $(opt $n) --t-end $te --out runs/${g}_$n.h5 > $B/${g}_$n.log 2>&1
+  nice -n 10 ${CRAWLSIM:-build/tools/crawlsim} run --scene obstacle --gait runs/$g.csv --conditions paper --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair $(opt $n) --t-end $te --out runs/${g}_$n.h5 > $B/${g}_$n.log 2>&1
   /usr/bin/python3 docs/bench/obstacle_road_2026-12-05/table3.py runs/${g}_$n.h5 > $B/${g}_$n.table3.txt 2>&1
   /usr/bin/python3 $B/feet.py runs/${g}_$n.h5 5.0 5.5 9.8 10.3 11.5 > $B/${g}_$n.feet.txt 2>&1
   echo "$n $(opt $n): $(tail -n 1 $B/${g}_$n.table3.txt)"
