@@ -77,7 +77,8 @@ def main():
     rays = [r for r in read_rays(a.snapdir) if r["kind"] == "test"
             and (not a.ray or r["name"] in a.ray)]
     if not rays:
-        sys.exit(f"rom_project: {a.snapdir}: no held-out ray" + (f" named {a.ray}" if a.ray else ""))
+        sys.exit(f"rom_project: {a.snapdir}: no held-out ray"
+                 + (f" named {a.ray}" if a.ray else ""))
     print(f"rom_project: basis {os.path.basename(a.basis)}: n = {V.shape[1]} ({n_pod} POD), "
           f"tip: {tip.sum()} nodes at the free end (axis e{ax + 1})")
     for V_use, label in ((V[:, :n_pod], "POD modes only"), (V, "the whole displacement basis")):
