@@ -303,6 +303,15 @@ def text(v):
     return v.decode() if isinstance(v, bytes) else str(v)
 
 
+def read_mesh(snapdir):
+    """SNAPDIR/mesh.h5 (crawlsim rom snapshots): node coordinates x (nnode, 3) mm, Tet10
+    connectivity tet (ntet, 10), the clamped dofs fixed (3 nnode,) bool, rho t/mm^3 and the
+    file's attributes."""
+    with h5py.File(os.path.join(snapdir, "mesh.h5"), "r") as f:
+        return (f["x"][...], f["tet"][...].astype(np.int64), f["fixed"][...] > 0.5,
+                float(f.attrs["rho"]), dict(f.attrs))
+
+
 def read_rays(snapdir):
     rays = []
     for p in sorted(glob.glob(os.path.join(snapdir, "*.h5"))):
@@ -354,12 +363,8 @@ def main():
                     help="--mixed: no supremizer enrichment (to measure what it does)")
     a = ap.parse_args()
     out = a.out or os.path.join(a.snapdir, "basis.h5")
-    with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
-        x = f["x"][...]
-        tet = f["tet"][...].astype(np.int64)
-        fixed = f["fixed"][...] > 0.5
-        rho = float(f.attrs["rho"])
-        l_soft = float(f.attrs["fe_mesh_size_mm"])
+    x, tet, fixed, rho, attrs = read_mesh(a.snapdir)
+    l_soft = float(attrs["fe_mesh_size_mm"])
     Ms, vol = mass_matrix(x, tet, rho)
     M = sp.kron(Ms, sp.identity(3), format="csr")
     mass_total = Ms.sum()

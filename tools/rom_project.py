@@ -26,7 +26,8 @@ import numpy as np  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rom_basis import dilatations, mass_matrix, read_rays, tet_reference  # noqa: E402
+from rom_basis import (dilatations, mass_matrix, read_mesh, read_rays,  # noqa: E402
+                       tet_reference)
 
 
 def project(V, M, U, tip):
@@ -54,11 +55,7 @@ def main():
     ap.add_argument("--ray", action="append", help="a held-out ray (repeatable; default all)")
     a = ap.parse_args()
     try:
-        with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
-            x = f["x"][...]
-            tet = f["tet"][...].astype(np.int64)
-            fixed = f["fixed"][...] > 0.5
-            rho = float(f.attrs["rho"])
+        x, tet, fixed, rho, _ = read_mesh(a.snapdir)
         with h5py.File(a.basis, "r") as f:
             V = f["V"][...]
             n_pod = int(f.attrs.get("n_pod", V.shape[1]))

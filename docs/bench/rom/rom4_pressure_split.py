@@ -15,12 +15,11 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
                                 "tools"))
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
-from rom_basis import (dilatations, read_rays, split_pressure_modes,  # noqa: E402
-                       tet_reference)
+from rom_basis import (dilatations, read_mesh, read_rays,  # noqa: E402
+                       split_pressure_modes, tet_reference)
 
 snap, basis = sys.argv[1], sys.argv[2]
-with h5py.File(os.path.join(snap, "mesh.h5"), "r") as f:
-    x, tet, fixed = f["x"][...], f["tet"][...].astype(np.int64), f["fixed"][...] > 0.5
+x, tet, fixed, _, _ = read_mesh(snap)
 with h5py.File(basis, "r") as f:
     P = f["P"][...]
 dNdX, wq = tet_reference(x, tet)
