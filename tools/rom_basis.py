@@ -203,6 +203,11 @@ def mixed_bases(a, V, X, Ut, x, tet, fixed, M):
                 break
     m = min(m, mmax)
     P = Pall[:, :m]
+    if a.p_split:
+        P = split_pressure_modes(P, x, tet, vol, a.p_split)
+        print(f"rom_basis: mixed: {m} pressure modes split at x3 = {a.p_split} mm: "
+              f"{P.shape[1]} modes")
+        m = P.shape[1]
     line = (f"rom_basis: mixed: m = {m} pressure modes of {mmax} (ptol {a.ptol:g}): training "
             f"pressure projection error max {perr(P, Th).max():.3e} (|dilatation| up to "
             f"{np.abs(Th).max():.2e})")
@@ -230,6 +235,23 @@ def mixed_bases(a, V, X, Ut, x, tet, fixed, M):
     print(f"rom_basis: mixed: {kept} supremizers added: n = {V.shape[1]} + {kept}")
     del tn, cols
     return Q, P, m
+
+
+def split_pressure_modes(P, x, tet, vol, cuts):
+    """Each pressure mode restricted to each zone of the leg between the cuts (x3 of the
+    element's vertex centroid, mm; cuts in the connectors between segments make each segment a
+    zone), volume-orthonormalised again (an SVD of the volume-weighted columns; columns below
+    1e-10 of the zone's largest singular value dropped): the segments' pressure fields combine
+    independently, as the chambers' pressures of the segments do. Returns (ntet, <= zones x m)."""
+    z = x[tet[:, :4]].mean(axis=1)[:, 2]
+    edges = [-np.inf] + sorted(cuts) + [np.inf]
+    sv = np.sqrt(vol)[:, None]
+    out = []
+    for lo, hi in zip(edges[:-1], edges[1:]):  # zone by zone: the modes keep their zone
+        u, sig, _ = np.linalg.svd(sv * P * ((z >= lo) & (z < hi))[:, None], full_matrices=False)
+        if sig.size and sig[0] > 0:
+            out.append(u[:, sig > sig[0] * 1e-10] / sv)
+    return np.concatenate(out, axis=1)
 
 
 def enrich_vibration(V, path, k, fixed, M, levels=(0.0,)):
@@ -281,6 +303,15 @@ def text(v):
     return v.decode() if isinstance(v, bytes) else str(v)
 
 
+def read_mesh(snapdir):
+    """SNAPDIR/mesh.h5 (crawlsim rom snapshots): node coordinates x (nnode, 3) mm, Tet10
+    connectivity tet (ntet, 10), the clamped dofs fixed (3 nnode,) bool, rho t/mm^3 and the
+    file's attributes."""
+    with h5py.File(os.path.join(snapdir, "mesh.h5"), "r") as f:
+        return (f["x"][...], f["tet"][...].astype(np.int64), f["fixed"][...] > 0.5,
+                float(f.attrs["rho"]), dict(f.attrs))
+
+
 def read_rays(snapdir):
     rays = []
     for p in sorted(glob.glob(os.path.join(snapdir, "*.h5"))):
@@ -322,18 +353,18 @@ def main():
                          "basis enriched by P's supremizers (written as P, attribute m)")
     ap.add_argument("--ptol", type=float, default=1e-3,
                     help="--mixed: largest relative projection error of a training pressure field")
+    ap.add_argument("--p-split", type=lambda v: [float(c) for c in v.split(",")], default=None,
+                    help="--mixed: split every pressure mode at these x3 (mm, comma-separated; "
+                    "the connectors between the segments): the segments' pressure fields "
+                    "combine independently (m becomes up to zones x m)")
     ap.add_argument("--m", type=int, default=0, help="--mixed: pressure basis size (overrides "
                     "--ptol)")
     ap.add_argument("--no-supremizers", action="store_true",
                     help="--mixed: no supremizer enrichment (to measure what it does)")
     a = ap.parse_args()
     out = a.out or os.path.join(a.snapdir, "basis.h5")
-    with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
-        x = f["x"][...]
-        tet = f["tet"][...].astype(np.int64)
-        fixed = f["fixed"][...] > 0.5
-        rho = float(f.attrs["rho"])
-        l_soft = float(f.attrs["fe_mesh_size_mm"])
+    x, tet, fixed, rho, attrs = read_mesh(a.snapdir)
+    l_soft = float(attrs["fe_mesh_size_mm"])
     Ms, vol = mass_matrix(x, tet, rho)
     M = sp.kron(Ms, sp.identity(3), format="csr")
     mass_total = Ms.sum()
@@ -443,6 +474,8 @@ def main():
         if P is not None:
             f.attrs["m"] = m_pick
             f.attrs["supremizers"] = int(not a.no_supremizers)
+            if a.p_split:
+                f.attrs["p_split_x3_mm"] = np.array(a.p_split)
             f["P"] = P
         f["sigma"] = sigma
         f["Mr"] = Mr

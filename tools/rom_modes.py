@@ -30,7 +30,7 @@ import scipy.sparse as sp  # noqa: E402
 import scipy.sparse.linalg as spla  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from rom_basis import mass_matrix  # noqa: E402
+from rom_basis import mass_matrix, read_mesh  # noqa: E402
 
 
 def main():
@@ -42,11 +42,7 @@ def main():
     ap.add_argument("--fe", default=None, help="take the FE's tangents from this modes file "
                     "(same mesh and levels; MODES.h5 then from `crawlsim rom modes --rom-only`)")
     a = ap.parse_args()
-    with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
-        x = f["x"][...]
-        tet = f["tet"][...].astype(np.int64)
-        fixed = f["fixed"][...] > 0.5
-        rho = float(f.attrs["rho"])
+    x, tet, fixed, rho, _ = read_mesh(a.snapdir)
     with h5py.File(a.basis, "r") as f:
         V = f["V"][...]
         Mr = f["Mr"][...]

@@ -8,7 +8,11 @@ tetrahedron's closed form); (2) the quarter-turn node maps of a
 point cloud with the symmetry map it onto itself and are refused without it; (3) the
 Lawson-Hanson NNLS of tools/rom_nnls.py (incremental Cholesky) finds scipy's kept set and weights
 with tol 0, stops early with a looser tol, keeps every weight non-negative, and the weights it
-records at a larger tolerance are those of a run stopped there.
+records at a larger tolerance are those of a run stopped there; (4) tools/rom_project.py's
+M-orthogonal projection reproduces a state in the basis' span (error at round-off, on a
+non-orthonormal basis) and leaves a state M-orthogonal to it whole (relative error 1, the tip
+error its mean tip displacement); (5) rom_basis.py's segment-split pressure modes are
+volume-orthonormal, vanish outside their zone and reproduce each zone's share of a mode.
 """
 import os
 import sys
@@ -18,6 +22,7 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 import rom_basis  # noqa: E402
 import rom_nnls  # noqa: E402
+import rom_project  # noqa: E402
 
 failed = 0
 
@@ -96,5 +101,45 @@ expect(rel2 <= 1e-2 and (w2 > 0).sum() < (w > 0).sum() and np.all(w2 >= 0),
 w1, rel1, _ = rom_nnls.nnls_chol(A, b, 1e-1)
 expect(np.array_equal(path[1e-1][0], w1) and path[1e-1][1] == rel1 and rel1 <= 1e-1,
        f"a recorded tolerance (1e-1: {path[1e-1][2]} kept) = a run stopped there")
+
+# (4) projection onto a span in a mass inner product (SPD, banded, 12 nodes x 3 dofs)
+nd = 36
+Mp = np.diag(np.linspace(1.0, 3.0, nd)) + 0.2 * (np.eye(nd, k=1) + np.eye(nd, k=-1))
+Vb = rng.normal(size=(nd, 5))  # not M-orthonormal: project() solves with the Gram matrix
+tipn = np.zeros(nd // 3, bool)
+tipn[-3:] = True
+Uin = Vb @ rng.normal(size=(5, 2))
+e_rel, e_max, e_tip, _ = rom_project.project(Vb, Mp, Uin, tipn)
+expect(e_rel.max() < 1e-12 and e_max.max() < 1e-12 * np.abs(Uin).max(),
+       f"a state in the span projects exactly (relative {e_rel.max():.1e})")
+w = rng.normal(size=nd)
+w -= Vb @ np.linalg.solve(Vb.T @ Mp @ Vb, Vb.T @ Mp @ w)  # M-orthogonal to span(Vb)
+e_rel, e_max, e_tip, u_max = rom_project.project(Vb, Mp, w[:, None], tipn)
+tip_mean = np.linalg.norm(w.reshape(-1, 3)[tipn].mean(axis=0))
+expect(abs(e_rel[0] - 1) < 1e-12 and abs(e_tip[0] - tip_mean) < 1e-12 * tip_mean
+       and abs(e_max[0] - u_max[0]) < 1e-12 * u_max[0],
+       f"a state M-orthogonal to the span is left whole (relative {e_rel[0]:.15f})")
+
+# (5) the pressure modes split at the segments' connectors (--p-split)
+ne = 60
+xs = np.zeros((4 * ne, 3))
+xs[:, 2] = np.repeat(np.linspace(0.0, 59.0, ne), 4)  # element e's vertices all at x3 = e
+tets = np.arange(4 * ne).reshape(ne, 4)
+tets = np.concatenate([tets, np.repeat(tets[:, :1], 6, axis=1)], axis=1)  # (ne, 10)
+vols = rng.uniform(0.5, 2.0, ne)
+Pg = rng.normal(size=(ne, 3))
+Ps = rom_basis.split_pressure_modes(Pg, xs, tets, vols, [19.0, 42.0])
+z = xs[tets[:, 0], 2]
+zone = (z >= 19.0).astype(int) + (z >= 42.0)
+gram = Ps.T @ (vols[:, None] * Ps)
+outside = max(np.abs(Ps[zone != zone[np.argmax(np.abs(Ps[:, k]))], k]).max()
+              for k in range(Ps.shape[1]))
+share = Pg * (zone == 1)[:, None]  # a mode's middle-zone share lies in the span
+res = share - Ps @ (Ps.T @ (vols[:, None] * share))
+expect(Ps.shape[1] == 9 and np.abs(gram - np.eye(9)).max() < 1e-12 and outside < 1e-12
+       and np.abs(res).max() < 1e-12 * np.abs(share).max(),
+       f"split pressure modes: 9 of 3 x 3, volume-orthonormal "
+       f"({np.abs(gram - np.eye(9)).max():.1e}),"
+       f" zero outside their zone, a zone's share reproduced ({np.abs(res).max():.1e})")
 print(f"{failed} failed")
 sys.exit(1 if failed else 0)
