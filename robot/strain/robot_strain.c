@@ -309,6 +309,8 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->z);
   free(d->sst);
   free(d->Gs);
+  free(d->Rs_save);
+  free(d->xs_save);
   free(d->y);
   free(d->rl);
   free(d->Vp);
@@ -416,6 +418,8 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->Vp = calloc(np * 6, sizeof(double));
   d->Vs = calloc(np * 6, sizeof(double));
   d->Ab = calloc(np * 6, sizeof(double));
+  d->Rs_save = calloc(np * 9, sizeof(double));
+  d->xs_save = calloc(np * 3, sizeof(double));
   d->q0 = calloc(n, sizeof(double));
   d->eta0 = calloc(n, sizeof(double));
   d->WMll = calloc(n * n, sizeof(double));
@@ -437,7 +441,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   if (!d->Wu || !d->fl || !d->csig || !d->ghost ||
       !d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
-      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||
+      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab || !d->Rs_save || !d->xs_save ||
       !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du ||
       !d->qm1 || !d->etam1) {
     csr_strainDataDestroy(d);

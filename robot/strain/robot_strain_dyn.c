@@ -130,14 +130,26 @@ static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, c
   csu_add3(t, Vb + 3, wx);
   csu_mulMatTVec3(V, R, Vb);
   csu_mulMatTVec3(V + 3, R, t);
+  /* J η over the columns that move p (pcol[p] on are zero), each row summed in j's order as
+   * one row at a time, the six rows side by side (the compiler keeps them in registers) */
   const double* J = d->J + (size_t)p * 6 * n;
-  for (int r = 0; r < 6; r++) {
-    double s = 0;
-    for (int j = 0; j < n; j++) {
-      s += J[r * n + j] * eta[j];
-    }
-    V[r] += s;
+  const int nc = m->pcol[p];
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0;
+  for (int j = 0; j < nc; j++) {
+    const double e = eta[j];
+    s0 += J[j] * e;
+    s1 += J[n + j] * e;
+    s2 += J[2 * n + j] * e;
+    s3 += J[3 * n + j] * e;
+    s4 += J[4 * n + j] * e;
+    s5 += J[5 * n + j] * e;
   }
+  V[0] += s0;
+  V[1] += s1;
+  V[2] += s2;
+  V[3] += s3;
+  V[4] += s4;
+  V[5] += s5;
 }
 
 
@@ -699,6 +711,8 @@ static void predictShapes(const csrStrainModel* m, csrStrainData* d, double h) {
     d->q_save[j] = d->q[j];
     d->q[j] += h * d->eta[j];
   }
+  memcpy(d->Rs_save, d->R, (size_t)9 * m->np * sizeof(double));
+  memcpy(d->xs_save, d->x, (size_t)3 * m->np * sizeof(double));
   csr_strainKinematics_(m, d, 0);
   double Rb[9], xb[3], Om[6], Re[9], pe[3], t[3];
   memcpy(Rb, d->Rb, sizeof Rb);
@@ -720,7 +734,9 @@ static void predictShapes(const csrStrainModel* m, csrStrainData* d, double h) {
   memcpy(d->Rb, Rb, sizeof Rb);
   memcpy(d->xb, xb, sizeof xb);
   memcpy(d->q, d->q_save, (size_t)n * sizeof(double));
-  csr_strainKinematics_(m, d, 0);
+  /* the poses at q0 back from their copy (the same numbers the kinematics would recompute) */
+  memcpy(d->R, d->Rs_save, (size_t)9 * m->np * sizeof(double));
+  memcpy(d->x, d->xs_save, (size_t)3 * m->np * sizeof(double));
   d->kin_valid = valid;
   d->pred = 1;
 }

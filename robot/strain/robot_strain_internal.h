@@ -86,6 +86,8 @@ struct csrStrainData_ {
   double* x;      /* (np x 3) */
   double* J;      /* (np x 6 x n) body Jacobians */
   int kin_valid;
+  double* Rs_save; /* (np x 9) scratch: the poses kept over a kinematics elsewhere */
+  double* xs_save; /* (np x 3) */
   /* scratch of the static solver */
   double *Q, *Qp, *Qm, *A, *dq, *q_save, *q_start, *K1, *b1, *K0, *b0;
   int* piv;

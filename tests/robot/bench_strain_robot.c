@@ -95,6 +95,14 @@ int main(int argc, char** argv) {
          "legs %.3f s, support solve %.4f s (wall); %ld steps taken (%ld rejected and halved), "
          "%.2f passes per step\n", wall, cpu, t_end, t_end / wall, t_end / cpu, leg_s, tree_s,
          steps, rejected, steps ? (double)passes / steps : 0.0);
+  /* STRAIN_DUMP=FILE: the robot's whole final state as raw doubles (to compare two builds) */
+  const char* dump = getenv("STRAIN_DUMP");
+  FILE* fd = dump ? fopen(dump, "wb") : NULL;
+  if (fd) {
+    strainRobotSave(r, save);
+    fwrite(save, sizeof(double), (size_t)ns, fd);
+    fclose(fd);
+  }
   free(save);
   strainRobotDestroy(r);
   free(r);

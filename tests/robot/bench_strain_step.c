@@ -73,6 +73,19 @@ int main(int argc, char** argv) {
   printf("bend order %d, contact %d: %d unknowns, %.1f us CPU (%.1f us wall) per leg step (%d "
          "steps of 5 ms)\n", order, contact, csr_strainDofs(m), 1e6 * (c1 - c0) / nstep,
          1e6 * (t1 - t0) / nstep, nstep);
+  /* STRAIN_DUMP=FILE: the leg's final state as raw doubles (to compare two builds) */
+  const char* dump = getenv("STRAIN_DUMP");
+  FILE* fd = dump ? fopen(dump, "wb") : NULL;
+  if (fd) {
+    int ns = csr_strainStateSize(m);
+    double* y = calloc((size_t)ns, sizeof(double));
+    if (y) {
+      csr_strainGetState(m, d, y);
+      fwrite(y, sizeof(double), (size_t)ns, fd);
+      free(y);
+    }
+    fclose(fd);
+  }
   csr_strainDataDestroy(d);
   csr_strainModelDestroy(m);
   return status;
