@@ -759,6 +759,18 @@ static void rowAxpy(double* restrict b, const double* restrict r, double l, int 
 }
 
 
+/* rowAxpy for six columns (the condensation's W_ll⁻¹ W_lb), unrolled: the same operation on
+ * every entry, without the call and loop overhead of six-entry loops */
+static inline void rowAxpy6(double* restrict b, const double* restrict r, double l) {
+  b[0] -= l * r[0];
+  b[1] -= l * r[1];
+  b[2] -= l * r[2];
+  b[3] -= l * r[3];
+  b[4] -= l * r[4];
+  b[5] -= l * r[5];
+}
+
+
 void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, int nrhs) {
   for (int k = 0; k < n; k++) {
     if (piv[k] != k) {
@@ -772,6 +784,24 @@ void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, 
     }
   }
   /* every entry the same operations in the same order as one right-hand side at a time */
+  if (nrhs == 6) {
+    for (int k = 0; k < n; k++) {
+      const double* bk = B + (size_t)k * 6;
+      for (int i = k + 1; i < n; i++) {
+        rowAxpy6(B + (size_t)i * 6, bk, A[i * n + k]);
+      }
+    }
+    for (int k = n - 1; k >= 0; k--) {
+      double* bk = B + (size_t)k * 6;
+      for (int j = k + 1; j < n; j++) {
+        rowAxpy6(bk, B + (size_t)j * 6, A[k * n + j]);
+      }
+      for (int c = 0; c < 6; c++) {
+        bk[c] /= A[k * n + k];
+      }
+    }
+    return;
+  }
   for (int k = 0; k < n; k++) {
     const double* bk = B + (size_t)k * nrhs;
     for (int i = k + 1; i < n; i++) {
