@@ -180,6 +180,27 @@ static void massMoment(const csrStrainModel* m, const csrStrainData* d, double X
 }
 
 
+/* acc[j] = Σ_r g[r] B[r][j] for j < len (B 6 rows of leading dimension ld), each entry summed
+ * over r from 0 as a six-term dot product would be (the same bits), a loop over j the
+ * compiler vectorises (acc and B distinct) */
+static void rowCombine6(double* restrict acc, const double* restrict B, int ld,
+                        const double g[6], int len) {
+  const double g0 = g[0], g1 = g[1], g2 = g[2], g3 = g[3], g4 = g[4], g5 = g[5];
+  const double *b0 = B, *b1 = B + ld, *b2 = B + 2 * ld, *b3 = B + 3 * ld, *b4 = B + 4 * ld,
+               *b5 = B + 5 * ld;
+  for (int j = 0; j < len; j++) {
+    double t = 0;
+    t += g0 * b0[j];
+    t += g1 * b1[j];
+    t += g2 * b2[j];
+    t += g3 * b3[j];
+    t += g4 * b4[j];
+    t += g5 * b5[j];
+    acc[j] = t;
+  }
+}
+
+
 /* W_M's inertia, Σ_p G_pᵀ M_p G_p (G_p = [Ad(g_p⁻¹), J_p]), by composite inertias (the
  * composite-rigid-body idea on the pieces): a point p
  * of piece k moves with the unknowns before the piece as the piece's start point s does,
@@ -263,12 +284,13 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
         T[r * nu + c] = t;
       }
     }
+    double* acc = Gsv + 6 * nu; /* a row of G_sᵀ T or G_sᵀ F (scratch, nu) */
     for (int i = 0; i < nu; i++) {
+      const double g[6] = {Gsv[i], Gsv[nu + i], Gsv[2 * nu + i], Gsv[3 * nu + i],
+                           Gsv[4 * nu + i], Gsv[5 * nu + i]};
+      rowCombine6(acc, T, nu, g, i + 1);
       for (int j = 0; j <= i; j++) {
-        double t = 0;
-        for (int r = 0; r < 6; r++) {
-          t += Gsv[r * nu + i] * T[r * nu + j];
-        }
+        const double t = acc[j];
         if (i < 6) {
           d->WMbb[6 * i + j] += t;
           if (j != i) {
@@ -283,11 +305,11 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
     }
     /* the coupling of the piece's columns with those before: G_sᵀ F (nu x nd) */
     for (int i = 0; i < nu; i++) {
+      const double g[6] = {Gsv[i], Gsv[nu + i], Gsv[2 * nu + i], Gsv[3 * nu + i],
+                           Gsv[4 * nu + i], Gsv[5 * nu + i]};
+      rowCombine6(acc, F, nd, g, nd);
       for (int j = 0; j < nd; j++) {
-        double t = 0;
-        for (int r = 0; r < 6; r++) {
-          t += Gsv[r * nu + i] * F[nd * r + j];
-        }
+        const double t = acc[j];
         if (i < 6) {
           d->WMlb[6 * (c0 + j) + i] += t;
         } else {
