@@ -180,6 +180,14 @@ static void massMoment(const csrStrainModel* m, const csrStrainData* d, double X
 }
 
 
+/* y[j] += a x[j] for j < len (distinct arrays: vectorised without an overlap test) */
+static inline void axpy(double* restrict y, const double* restrict x, double a, int len) {
+  for (int j = 0; j < len; j++) {
+    y[j] += a * x[j];
+  }
+}
+
+
 /* acc[j] = Σ_r g[r] B[r][j] for j < len (B 6 rows of leading dimension ld), each entry summed
  * over r from 0 as a six-term dot product would be (the same bits), a loop over j the
  * compiler vectorises (acc and B distinct) */
@@ -252,16 +260,10 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
           for (int b = 0; b < 6; b++) {
             I[6 * a + b] += ma * Ar[b];
           }
-          for (int j = 0; j < nd; j++) {
-            F[nd * a + j] += ma * Lr[j];
-          }
+          axpy(F + nd * a, Lr, ma, nd);
         }
         for (int i = 0; i < nd; i++) {
-          const double mi = Mp[r] * Lr[i];
-          double* w = W + (size_t)(c0 + i) * n + c0;
-          for (int j = 0; j <= i; j++) {
-            w[j] += mi * Lr[j];
-          }
+          axpy(W + (size_t)(c0 + i) * n + c0, Lr, Mp[r] * Lr[i], i + 1);
         }
       }
     }
