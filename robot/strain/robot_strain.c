@@ -820,6 +820,80 @@ void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, 
 }
 
 
+/* Cholesky A = Uᵀ U of a symmetric positive definite A (n x n) in place: U in the upper
+ * triangle (row-major; the strict lower triangle is scratch, never read); half the LU's
+ * operations, each row update a contiguous loop (elimRow); 0 ok, 1 a pivot not positive */
+int csr_strainCholFactor_(double* A, int n) {
+  for (int k = 0; k < n; k++) {
+    double* Ak = A + (size_t)k * n;
+    if (!(Ak[k] > 0) || !isfinite(Ak[k])) {
+      return 1;
+    }
+    const double dk = sqrt(Ak[k]);
+    Ak[k] = dk;
+    for (int j = k + 1; j < n; j++) {
+      Ak[j] /= dk;
+    }
+    /* rows i > k: a_ij -= u_ki u_kj for j >= i, four rows at a time sharing the pivot row's
+     * loads (from the block's first column: the entries left of a row's diagonal are never
+     * read again) */
+    int i = k + 1;
+    for (; i + 3 < n; i += 4) {
+      const double l[4] = {Ak[i], Ak[i + 1], Ak[i + 2], Ak[i + 3]};
+      elimRows4(A + (size_t)i * n, A + (size_t)(i + 1) * n, A + (size_t)(i + 2) * n,
+                A + (size_t)(i + 3) * n, Ak, l, i, n);
+    }
+    for (; i < n; i++) {
+      elimRow(A + (size_t)i * n, Ak, Ak[i], i, n);
+    }
+  }
+  return 0;
+}
+
+
+void csr_strainCholSolve_(const double* U, int n, double* x) {
+  /* Uᵀ y = b, then U x = y */
+  for (int k = 0; k < n; k++) {
+    const double* Uk = U + (size_t)k * n;
+    x[k] /= Uk[k];
+    for (int j = k + 1; j < n; j++) {
+      x[j] -= Uk[j] * x[k];
+    }
+  }
+  for (int k = n - 1; k >= 0; k--) {
+    const double* Uk = U + (size_t)k * n;
+    for (int j = k + 1; j < n; j++) {
+      x[k] -= Uk[j] * x[j];
+    }
+    x[k] /= Uk[k];
+  }
+}
+
+
+void csr_strainCholSolve6_(const double* U, int n, double* B) {
+  for (int k = 0; k < n; k++) {
+    const double* Uk = U + (size_t)k * n;
+    double* bk = B + (size_t)k * 6;
+    for (int c = 0; c < 6; c++) {
+      bk[c] /= Uk[k];
+    }
+    for (int j = k + 1; j < n; j++) {
+      rowAxpy6(B + (size_t)j * 6, bk, Uk[j]);
+    }
+  }
+  for (int k = n - 1; k >= 0; k--) {
+    const double* Uk = U + (size_t)k * n;
+    double* bk = B + (size_t)k * 6;
+    for (int j = k + 1; j < n; j++) {
+      rowAxpy6(bk, B + (size_t)j * 6, Uk[j]);
+    }
+    for (int c = 0; c < 6; c++) {
+      bk[c] /= Uk[k];
+    }
+  }
+}
+
+
 /* Newton at fixed loads (d's K, b; tip f, mo; weight factor g) from d->q: 0 converged (q
  * updated), 1 not (q undefined) */
 static int newton(const csrStrainModel* m, csrStrainData* d, const double f[3],

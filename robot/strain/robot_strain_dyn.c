@@ -680,16 +680,34 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
     memcpy(d->Wu, d->Wll, (size_t)n * n * sizeof(double));
     memcpy(d->Wbbp, Wbb, sizeof Wbb);
   }
-  if (csr_strainLuFactor_(d->Wll, n, d->piv)) {
+  /* W_ll without contact is W_M's, symmetric positive definite (mass plus stiffness): its
+   * Cholesky factor, half the LU's work (this factor is used here alone: a later iterate
+   * without contact keeps X and y, one with contact linearises afresh); with the contact's
+   * friction W_ll is unsymmetric: LU. A Cholesky that meets a pivot <= 0 falls back to the
+   * LU. */
+  int chol = 0;
+  if (d->lu_plain) {
+    chol = csr_strainCholFactor_(d->Wll, n) == 0;
+    if (!chol) {
+      /* W_ll was W_M's alone */
+      memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
+    }
+  }
+  if (!chol && csr_strainLuFactor_(d->Wll, n, d->piv)) {
     return 1;
   }
   /* X = W_ll⁻¹ W_lb (its 6 columns at once), y = W_ll⁻¹ h r_l */
   memcpy(d->X, d->Wlb, (size_t)n * 6 * sizeof(double));
-  csr_strainLuSolveMulti_(d->Wll, n, d->piv, d->X, 6);
   for (int j = 0; j < n; j++) {
     d->y[j] = h * d->rl[j];
   }
-  csr_strainLuSolve_(d->Wll, n, d->piv, d->y);
+  if (chol) {
+    csr_strainCholSolve6_(d->Wll, n, d->X);
+    csr_strainCholSolve_(d->Wll, n, d->y);
+  } else {
+    csr_strainLuSolveMulti_(d->Wll, n, d->piv, d->X, 6);
+    csr_strainLuSolve_(d->Wll, n, d->piv, d->y);
+  }
   /* Z = W_bb - W_bl X, ρ = h r_b - W_bl y */
   for (int a = 0; a < 6; a++) {
     for (int c = 0; c < 6; c++) {

@@ -182,6 +182,13 @@ int csr_strainLuFactor_(double* A, int n, int* piv);
 void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x);
 /* the same for nrhs right-hand sides at once, B (n x nrhs, row-major) in place */
 void csr_strainLuSolveMulti_(const double* A, int n, const int* piv, double* B, int nrhs);
+/* Cholesky Uᵀ U of a symmetric positive definite A (n x n) in place (U upper, row-major, the
+ * strict lower triangle overwritten);
+ * 0 ok, 1 not positive definite (A then partly overwritten); its solve, and the solve of six
+ * right-hand sides B (n x 6, row-major) in place */
+int csr_strainCholFactor_(double* A, int n);
+void csr_strainCholSolve_(const double* U, int n, double* x);
+void csr_strainCholSolve6_(const double* U, int n, double* B);
 /* Σ_p G_pᵀ F_p for body wrenches F (np x 6: each (m; f) in its point's body frame, N mm and
  * N) at coordinates q, by the adjoint of the Jacobian recursion (no Jacobians, no kinematics
  * needed): Fb (6) = Σ_p Ad(g_p⁻¹)ᵀ F_p onto the base's body twist, Q (n, overwritten) =
