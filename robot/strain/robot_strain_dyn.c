@@ -892,14 +892,20 @@ int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], d
     }
   }
   /* the kinematics and point twists at the iterate's end of the step */
-  if (d->kin_valid < 2) {
-    csr_strainKinematics_(m, d, 1);
-  }
   if (full) {
+    if (d->kin_valid < 2) {
+      csr_strainKinematics_(m, d, 1);
+    }
     int rc = assemble(m, d, d->he, 1);
     return rc != 0 ? rc : condense(m, d, d->he, d->du, Z, rho);
   }
-  csr_strainPointTwists_(m, d);
+  /* the contact's loads and linearisation need the Jacobians and twists at the shapes' ends
+   * alone, the chain points: the midpoints' Jacobians (half of the recursion's columns) are
+   * skipped, the same numbers at the chain points */
+  if (d->kin_valid < 2) {
+    csr_strainKinematics_(m, d, 2);
+  }
+  csr_strainPointTwistsChain_(m, d);
   return condense(m, d, d->he, d->du, Z, rho);
 }
 
@@ -1039,6 +1045,13 @@ void csr_strainBaseWrench(const csrStrainModel* m, const csrStrainData* d, csrWr
 
 void csr_strainPointTwists_(const csrStrainModel* m, csrStrainData* d) {
   for (int p = 0; p < m->np; p++) {
+    pointTwist(m, d, p, d->Vb, d->eta, d->Vp + 6 * p);
+  }
+}
+
+
+void csr_strainPointTwistsChain_(const csrStrainModel* m, csrStrainData* d) {
+  for (int p = 0; p < m->np; p += 2) {
     pointTwist(m, d, p, d->Vb, d->eta, d->Vp + 6 * p);
   }
 }

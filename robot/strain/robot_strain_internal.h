@@ -225,13 +225,18 @@ void csr_strainGhostReset_(const csrStrainModel* m, csrStrainData* d);
 int csr_strainGhostRelease_(const csrStrainModel* m, csrStrainData* d);
 /* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
 int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
-/* the point twists d->Vp at the current kinematics */
+/* the point twists d->Vp at the current kinematics; chain 1: at the chain points alone (even
+ * p, after csr_strainKinematics_ with want_J 2) */
 void csr_strainPointTwists_(const csrStrainModel* m, csrStrainData* d);
+void csr_strainPointTwistsChain_(const csrStrainModel* m, csrStrainData* d);
 /* pose relative to the base (Rr, xr) -> world (R, x) */
 void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double xr[3],
                       double R[9], double x[3]);
-/* the kinematics at every quadrature point relative to the base (poses and, with want_J,
- * Jacobians) */
+/* the kinematics at every quadrature point relative to the base (poses and, with want_J 1,
+ * Jacobians: kin_valid 2). want_J 2: the Jacobians at the chain points alone (the sub-
+ * intervals' ends, even p: the contact's shapes are there), not at the midpoints (odd p,
+ * leaves of the recursion, needed by the inertia and the step's forces only), kin_valid 1:
+ * for a Newton iterate's contact (docs/notes/strain_leg.md, "Kernel, round 3") */
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J);
 
 #endif /* CS_ROBOT_STRAIN_INTERNAL_H */

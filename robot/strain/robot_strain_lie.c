@@ -340,6 +340,9 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
 
 
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J) {
+  /* want_J 2: the Jacobians at the chain points alone (the midpoints are leaves: nothing
+   * downstream of them needs theirs), poses everywhere */
+  const int mid_J = want_J == 1;
   /* the clamp: poses are relative to the base (hip) frame */
   csu_eye3(d->R);
   memset(d->x, 0, 3 * sizeof(double));
@@ -354,18 +357,18 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
       int p = m->pt0[k] + 2 * i;
       if (m->rigid[k]) {
         const double Oh[6] = {0, 0, 0, 0, 0, 0.5 * h}, Of[6] = {0, 0, 0, 0, 0, h};
-        stepPoint(m, d, p, p + 1, k, Oh, NULL, want_J);
+        stepPoint(m, d, p, p + 1, k, Oh, NULL, mid_J);
         stepPoint(m, d, p, p + 2, k, Of, NULL, want_J);
         continue;
       }
       double Om[6];
-      csr_strainMagnus_(m, d->q, k, i * h, 0.5 * h, Om, want_J ? dOm : NULL);
-      stepPoint(m, d, p, p + 1, k, Om, want_J ? dOm : NULL, want_J);
+      csr_strainMagnus_(m, d->q, k, i * h, 0.5 * h, Om, mid_J ? dOm : NULL);
+      stepPoint(m, d, p, p + 1, k, Om, mid_J ? dOm : NULL, mid_J);
       csr_strainMagnus_(m, d->q, k, i * h, h, Om, want_J ? dOm : NULL);
       stepPoint(m, d, p, p + 2, k, Om, want_J ? dOm : NULL, want_J);
     }
   }
-  d->kin_valid = want_J ? 2 : 1;
+  d->kin_valid = want_J == 1 ? 2 : 1;
 }
 
 
