@@ -177,6 +177,7 @@ void csr_strainTwists_(const csrStrainModel* m, const double* q, const double* e
                        const double Vb[6], double* V);
 /* strain ξ (6) of piece k at local arc length s */
 void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]);
+/* ---- dense factorisations (robot_strain_linalg.c) ---- */
 /* LU with partial pivoting in place (n x n); 0 ok, 1 singular; and its solve */
 int csr_strainLuFactor_(double* A, int n, int* piv);
 void csr_strainLuSolve_(const double* A, int n, const int* piv, double* x);
