@@ -1020,8 +1020,9 @@ int csr_strainCommit(const csrStrainModel* m, csrStrainData* d) {
   if (!m->soft) {
     return 0;
   }
-  /* return-map the friction anchors at the step's end */
-  csr_strainPointTwists_(m, d);
+  /* return-map the friction anchors at the step's end (the shapes' twists, at the chain
+   * points: the next prepare forms every point's twist anew) */
+  csr_strainPointTwistsChain_(m, d);
   return csr_strainContactUpdate_(m, d);
 }
 
