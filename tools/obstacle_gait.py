@@ -37,6 +37,12 @@ ap.add_argument('--xclimb', type=float, default=130.0,
                 help='support x (mm) from which the walk takes the --Tp slot: the rear hips\' '
                 'feet then land on the step (its edge at 240, the rear hips at 75, a landing '
                 '25 + 10 mm ahead of them: 240 - 75 - 35)')
+ap.add_argument('--Tcross', type=float, default=None,
+                help='rule 14: the walk\'s slot while the support crosses the plateau (planned x from '
+                '--xclimb to --xcross), s (default --Tp)')
+ap.add_argument('--xcross', type=float, default=235.0,
+                help='rule 14: support x (mm) from which the walk takes the --Tp slot again: the front '
+                'hips then stand past the down edge (460 - 150 - 75)')
 ap.add_argument('--t-place', type=float, default=1.8,
                 help='when the front pair steps ahead, s (the walk starts one --Tstart later)')
 ap.add_argument('--Tpz', type=float, default=0.55, help='the lateral crawl\'s slot, s')
@@ -215,7 +221,7 @@ HEADER = """\
 #     then the wave starts with the pairs behind it still under their hips: each stance foot
 #     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
 #     jolt.
-{rule9}{rule10}{rule11}{rule12}{rule13}
+{rule9}{rule10}{rule11}{rule12}{rule13}{rule14}
 """.format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
            '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
            % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
@@ -239,6 +245,10 @@ HEADER = """\
            'Dclimb %g mm\n#     per cycle; all eight legs stand %g s before the rear pair\'s slot '
            'whose landings can\n#     reach within 25 mm of the up edge (the support settles).'
            % (DC, a.settle),
+           rule14='' if a.Tcross is None else
+           '\n# 14. (trial) The crossing: the walk\'s slot is %g s while the support is planned between x = %g\n'
+           '#     and %g mm (the front hips then past the down edge), to win back time on the plateau.'
+           % (a.Tcross, a.xclimb, a.xcross),
            rule12='' if a.clear <= 0 else
            '\n# 12. (trial) A landing on the road before the riser whose band, its planned x plus '
            '%g..%g mm\n#     (where such landings fell against the plan, measured), comes within '
@@ -420,7 +430,8 @@ DUR = []                      # slot lengths (a slot ends at T0[s] + DUR[s])
 XL = [0.0]                    # planned support x for the landings (rule 13: --Dclimb)
 SETTLE = None                 # rule 13: the slot before which all eight stand --settle s
 for s in range(NS):
-    tp = a.Tclimb if XP[-1] < a.xclimb else a.Tp
+    tp = a.Tclimb if XP[-1] < a.xclimb else a.Tp if XP[-1] >= a.xcross or a.Tcross is None \
+        else a.Tcross
     climbing = XP[-1] < a.xclimb
     XP.append(XP[-1] + a.D / 4)
     # rule 13: the climb's landings placed by the climb's measured advance; past the climb the

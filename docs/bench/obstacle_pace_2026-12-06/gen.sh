@@ -1,10 +1,10 @@
 #!/bin/sh
 # usage: gen.sh NAME [obstacle_gait.py options]: write NAME.gait here and design it into
 # runs/NAME.csv on the mission's table (as run.sh does, without the run), for trial.sh;
-# CRAWLSIM: the binary (default build/tools/crawlsim)
+# CRAWLSIM: the binary (default build/tools/crawlsim); OUTDIR: the folder of NAME.gait (default this one)
 set -e
 cd "$(dirname "$0")/../../.."
-B=docs/bench/obstacle_pace_2026-12-06
+B=${OUTDIR:-docs/bench/obstacle_pace_2026-12-06}
 CS=${CRAWLSIM:-build/tools/crawlsim}
 n=$1; shift
 mkdir -p runs
