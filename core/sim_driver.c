@@ -444,6 +444,9 @@ long cs_stepCount(const csData* d) { return d->nstep; }
 long cs_rejectCount(const csData* d) { return d->nreject; }
 long cs_treePassCount(const csData* d) { return d->cosim.tree_passes; }
 long cs_treeReleaseCount(const csData* d) { return d->cosim.tree_released; }
+
+
+long cs_treeLimitCount(const csData* d) { return d->cosim.tree_limited; }
 long cs_gainProjectionCount(const csData* d) { return d->ngain_proj; }
 
 

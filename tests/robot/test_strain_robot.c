@@ -18,7 +18,9 @@
  *  - active_set_same_step: the same steps with and without the contact ghosts of the Newton
  *    passes (csrStrainParams.active_set) converge to the same step, the ghosts in fewer passes.
  *  - friction_tangent_same_step: the same with the friction's consistent tangent in place of
- *    the anchors' secant (csrStrainParams.friction_tangent): the same converged steps. */
+ *    the anchors' secant (csrStrainParams.friction_tangent): the same converged steps.
+ *  - slot_trust_same_step: the same with the tangent and the passes' slot trust region
+ *    (csrStrainParams.slot_trust): the globalisation changes the path, not the step. */
 #include "cs_test.h"
 #include "strain_test_robot.h"
 
@@ -279,11 +281,50 @@ static void friction_tangent_same_step(void) {
 }
 
 
+static void slot_trust_same_step(void) {
+  csgGait* g = NULL;
+  StrainRobot* a = robotOn(0.8, &g);
+  StrainRobot* b = calloc(1, sizeof *b);
+  csError err;
+  cs_errorClear(&err);
+  csrStrainParams sp = csr_strainDefaultParams();
+  sp.bend_order = 2;
+  sp.friction_tangent = 1;
+  sp.slot_trust = 1;
+  if (!a || !b || strainRobotCreateParams(b, 0.8, &sp, &err) != 0) {
+    CS_EXPECT(0);
+    fprintf(stderr, "  %s\n", err.msg);
+    return;
+  }
+  /* a: the default (the anchors' secant, full moves), the reference; b: the law's tangent
+   * with the slot trust region */
+  const double h = 5e-3;
+  const int i0 = (int)(getenv("CS_TANGENT_T0") ? atof(getenv("CS_TANGENT_T0")) / h : 180);
+  const SameSteps o = sameSteps(a, b, g, i0, 60, h);
+  printf("  60 steps of 5 ms from %.3f s: %ld converged in one piece both ways (%ld only with "
+         "the secant, %ld only with the tangent and the trust region); passes %ld against %ld, "
+         "%ld of them shortened by the trust region; largest difference of the converged "
+         "steps: support position %.2e mm, any state entry %.2e (relative to 1 + |entry|)\n",
+         i0 * h, o.both, o.only_ref, o.only_alt, o.p_ref, o.p_alt, b->limited, o.dx, o.dmax);
+  CS_EXPECT(o.both >= 40);
+  CS_EXPECT(b->limited > 0); /* the window exercised the trust region (else it proves nothing) */
+  /* the same law converged: active_set_same_step's bounds */
+  CS_EXPECT(o.dx < 1e-7);
+  CS_EXPECT(o.dmax < 1e-6);
+  strainRobotDestroy(a);
+  strainRobotDestroy(b);
+  free(a);
+  free(b);
+  csg_gaitDestroy(g);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(frictionless_centre_of_mass);
   CS_RUN(newton_5ms_touchdown);
   CS_RUN(active_set_same_step);
   CS_RUN(friction_tangent_same_step);
+  CS_RUN(slot_trust_same_step);
   return cs_testSummary();
 }
