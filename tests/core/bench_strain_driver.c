@@ -28,7 +28,7 @@
  * table and rule, under `paper`). The
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
  * so compare the shares of runs made together. CS_BENCH_PTOL=K scales the pneumatic
- * tolerances by K. The data files come from $CS_SOURCE_DIR
+ * tolerances by K, CS_BENCH_PASSES=N sets the tree step's passes before a rejection. The data files come from $CS_SOURCE_DIR
  * (default ../../..); with CS_BENCH_KEEP=DIR each run's file stays in DIR. */
 #include <math.h>
 #include <stdarg.h>
@@ -254,6 +254,10 @@ static int bench(const char* src, const char* arg, double t_end) {
   }
   if (tol > 0) {
     m.opt.tree_tol = tol;
+  }
+  /* CS_BENCH_PASSES=N: the tree step's Newton passes before a step is rejected (tree_iterations) */
+  if (getenv("CS_BENCH_PASSES") && atoi(getenv("CS_BENCH_PASSES")) > 0) {
+    m.opt.tree_iterations = atoi(getenv("CS_BENCH_PASSES"));
   }
   /* CS_BENCH_PTOL=K multiplies the pneumatics' CVODE tolerances (the run-to-run noise floor's
    * "10x tighter pneumatic tolerance": K = 0.1) */
