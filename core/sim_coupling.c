@@ -904,18 +904,27 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
     /* the iterate: the support's end twist moved alpha of the way, every leg back-substitutes
      * its hip's end state (its full move measured against the last iterate) */
     double qa[6], chg = 0;
-    for (int i = 0; i < 6; i++) {
-      chg = fmax(chg, h * fabs(qd1[i] - qit[i]));
-      qa[i] = qit[i] + alpha * (qd1[i] - qit[i]);
-    }
     csrBaseState b1[CSR_NLEG], b1a[CSR_NLEG];
     treeHipsAt(d, h, qd1, b1);
-    if (alpha < 1) {
+    /* the legs' globalisation (robot_leg.h stepLimit): the whole tree's move damped by the
+     * least fraction any leg allows; the damping's memory (alpha) is not changed by it */
+    double amove = alpha;
+    for (int k = 0; it > 0 && type->stepLimit && k < CSR_NLEG; k++) {
+      amove = fmin(amove, type->stepLimit(d->robot->legs[k], &b1[k]));
+    }
+    if (amove < alpha) {
+      c->tree_limited++;
+    }
+    for (int i = 0; i < 6; i++) {
+      chg = fmax(chg, h * fabs(qd1[i] - qit[i]));
+      qa[i] = qit[i] + amove * (qd1[i] - qit[i]);
+    }
+    if (amove < 1) {
       treeHipsAt(d, h, qa, b1a);
     }
     for (int k = 0; k < CSR_NLEG; k++) {
       double ck = 0;
-      int rc = type->update(d->robot->legs[k], &b1[k], alpha, alpha < 1 ? &b1a[k] : NULL,
+      int rc = type->update(d->robot->legs[k], &b1[k], amove, amove < 1 ? &b1a[k] : NULL,
                             &ck);
       if (rc != 0) {
         cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
@@ -926,7 +935,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
       chg = fmax(chg, ck);
     }
     memcpy(qit, qa, sizeof qit);
-    const csrBaseState* bit = alpha < 1 ? b1a : b1;
+    const csrBaseState* bit = amove < 1 ? b1a : b1;
     it++;
     c->tree_passes++;
     /* converged: this move is below the tolerance. (Accepting when the contracting passes'

@@ -58,14 +58,18 @@ csOptions cs_defaultOptions(void) {
   /* Gauss-Seidel's momentum carry on: without it the scheme loses the impulse its
    * prediction misses (sim_coupling.c) */
   o.coupling_carry = 1;
-  /* the tree coupling's Newton passes (tests/robot/strain_test_robot.h measured them: 4.4-5.2
-   * passes per 5 ms step on the flat road, 16 settle all but the steps where a foot's
-   * stick/slip changes, which the rollback halves); a pass converges when no leg mode (as a
+  /* the tree coupling's Newton passes before a step is rejected and halved: 24, where the
+   * flat road's 9 s at 5 ms rejects 2 steps (the same 2 at 32 and 48) against 20 at 16, in
+   * 3.96 passes per step against 4.16 (a rejection costs its passes and the halves'), the
+   * track 0.06 mm from 16's; at 1 ms 1 rejected against 2, the same 2.64 passes per step
+   * (docs/notes/strain_leg.md, "Passes per step"). A pass converges when no leg mode (as a
    * length, robot_strain.h) and no support twist component times h moves by more than
-   * tree_tol: 1e-7 mm leaves a momentum error ~ m tree_tol / h per step, far below the
-   * issue's 0.01 mm in 9 s (docs/notes/strain_leg.md "Momentum") */
-  o.tree_iterations = 16;
-  o.tree_tol = 1e-7;
+   * tree_tol. 1e-6 mm: on the 9 s flat road it moves the track by 0.02 mm at 1 ms and 0.09 mm
+   * at 5 ms from 1e-7, below the run-to-run noise floor (the step +-10 %: 0.07-0.12 / 0.28-0.37
+   * mm), for 17-18 % fewer passes; the frictionless centre of mass drifts 1.1e-5 mm in 1 s at
+   * 1 ms, 100x below the issue's 0.01 mm in 9 s (docs/notes/strain_leg.md, "Passes per step") */
+  o.tree_iterations = 24;
+  o.tree_tol = 1e-6;
   o.t_end = 0;
   o.output_dt = 0.01;
   /* long enough for the 100 Hz leg modes to die out under 5 ms material damping */
@@ -444,6 +448,9 @@ long cs_stepCount(const csData* d) { return d->nstep; }
 long cs_rejectCount(const csData* d) { return d->nreject; }
 long cs_treePassCount(const csData* d) { return d->cosim.tree_passes; }
 long cs_treeReleaseCount(const csData* d) { return d->cosim.tree_released; }
+
+
+long cs_treeLimitCount(const csData* d) { return d->cosim.tree_limited; }
 long cs_gainProjectionCount(const csData* d) { return d->ngain_proj; }
 
 

@@ -53,6 +53,9 @@ typedef struct csCosim_ {
   /* and the contact ghosts the legs released at converged passes (csrLegType.release: each
    * sends the passes on; a counter, not state: cs_treeReleaseCount) */
   long tree_released;
+  /* and the passes whose move a leg's globalisation shortened (csrLegType.stepLimit; a
+   * counter, not state: cs_treeLimitCount) */
+  long tree_limited;
   /* tree coupling with the legs' multistep formula (csrLegType.stepCoeffs, BDF2): the support
    * at the last step's start (state) and this step's coefficients */
   double tb_P[3], tb_R[9], tb_v[3], tb_w[3];

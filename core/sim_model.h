@@ -264,6 +264,9 @@ long cs_treePassCount(const csData* d);
 /* contact ghosts the tree step's legs released when their passes converged (each sent the
  * passes on; robot_leg.h release), settling and rejected tries included */
 long cs_treeReleaseCount(const csData* d);
+/* Newton passes of the tree step whose move a leg's globalisation shortened (robot_leg.h
+ * stepLimit), settling and rejected tries included */
+long cs_treeLimitCount(const csData* d);
 /* macro steps in which the co-simulated legs' interface gains were not passive and their
  * implicit part was projected (sim_coupling.c; 0 for legs in ODE) */
 long cs_gainProjectionCount(const csData* d);

@@ -79,7 +79,7 @@ typedef struct csrLegSetting_ {
   int integer;        /* 1: only whole numbers */
 } csrLegSetting;
 
-#define CSR_LEG_MAX_SETTINGS 4
+#define CSR_LEG_MAX_SETTINGS 6
 
 /* The values of one level's settings, in the order of its table (csrLegType.settings). A block
  * for another level than the one reading it (or none) reads as that level's defaults, so that a
@@ -281,6 +281,11 @@ typedef struct csrLegType_ {
    * load) and return how many; > 0: the converged iterate is not the leg's law, the caller
    * goes on with the passes (iterate linearises afresh). */
   int (*release)(csrLeg* leg);
+  /* Before update with the same b1 (NULL: no limit): the largest fraction (0, 1] of the move
+   * from the last iterate toward b1's that the level's globalisation allows (the strain
+   * leg's slot_trust: a foot slot moves at most two stick ranges); the caller damps
+   * the whole tree's move by the least of its legs'. */
+  double (*stepLimit)(csrLeg* leg, const csrBaseState* b1);
   /* The multistep formula the leg's next step of h takes (NULL: backward Euler): the step is
    * y1 = c[0] y0 + c[1] y_-1 + c[2] h f(y1) on positions and velocities (y_-1 the last step's
    * start), and prepare's Z, ρ are impulses over c[2] h (the force at the step's end times

@@ -75,6 +75,9 @@ csrStrainParams csr_strainDefaultParams(void) {
   /* the anchors' secant until the tangent is chosen by measurement (docs/notes/strain_leg.md,
    * "The friction's tangent") */
   p.friction_tangent = 0;
+  /* the full Newton move until the slot trust region is chosen by measurement
+   * (docs/notes/strain_leg.md, "Passes per step") */
+  p.slot_trust = 0;
   return p;
 }
 

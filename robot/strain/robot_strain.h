@@ -87,6 +87,12 @@ typedef struct csrStrainParams_ {
                           (the return map differentiated: no secant). Only the matrix:
                           converged, the step is the law's either way (docs/notes/
                           strain_leg.md, "The friction's tangent") */
+  int slot_trust;      /* globalisation of the Newton passes at the friction's saturation
+                          (robot_strain_contact.c, Slot trust region): 1 a pass moves the
+                          whole tree (support and every leg) at most as far as takes a
+                          touching foot slot two stick ranges (2 mu delta_t) along the
+                          surface (csr_strainStepLimit); 0 the full Newton move. Backward
+                          Euler only. Only the path: converged, the step is the law's */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */
@@ -245,6 +251,12 @@ int csr_strainCommit(const csrStrainModel* m, csrStrainData* d);
  * how many were dropped: 0, the converged iterate is the law's step; > 0, it is not, and the
  * caller goes on with the passes (csr_strainIterate linearises afresh without them). */
 int csr_strainRelease(const csrStrainModel* m, csrStrainData* d);
+/* Before csr_strainUpdateDamped with the same dV (the support's solve, the base's twist change
+ * from the step's start, body coordinates): the largest fraction alpha (0 < alpha <= 1) of the
+ * move from the last iterate that slot_trust allows (1 when it is off, no foot slot touches,
+ * or the last linearisation was the step's start: a sliding foot's first move is millimetres).
+ * The caller damps the whole tree's move by the least alpha of its legs. */
+double csr_strainStepLimit(const csrStrainModel* m, csrStrainData* d, const double dV[6]);
 /* The wrench the leg exerted on the support over the last finished step, averaged (its impulse
  * / h: -(Z ΔV - ρ) / h, the discrete step's own), world, force at and moment about the hip
  * (robot_leg.h csrWrench); zero before the first step. */

@@ -648,6 +648,85 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
 }
 
 
+/* Slot trust region (csrStrainParams.slot_trust). The step-mode friction of a slot is
+ * F = -(N/delta_t)(mu delta_t m(u) û + tau_t e'), u = |z_t| / (mu delta_t) its offset from the
+ * anchor over the stick range: linear to u_elastic, flat (m = 1, m' = 0) from 2 - u_elastic, a
+ * parabola between. The law's tangent (friction_tangent 1) has no stiffness along the slip of a
+ * saturated slot, so where a foot's slots saturate, a pass's linear model lets the foot slide
+ * freely: measured, passes predicted a slot to move 15-16 stick ranges and the next one back
+ * (u 1.0 -> 15.6 -> 0.3, at a step of 0.3 ms), and the flat road at 5 ms stopped at 0.93 s
+ * (docs/notes/strain_leg.md, "The friction's tangent"). So a trust region on the slots'
+ * tangential offsets, the semismooth Newton's usual globalisation: a pass moves the whole tree
+ * at most as far as takes any touching foot slot with friction CSR_STRAIN_TRUST_RADIUS stick ranges
+ * along the surface (predicted linearly: its material point moves by h (δv + δω × r) for the
+ * iterate's change (δv, δω) of the foot's world twist, G at the iterate). Only the passes' path
+ * changes: converged, the step is the law's. (Also tried, docs/notes/strain_leg.md "Passes per
+ * step": stopping a slot at the saturation band's edge when it would cross it, either way or
+ * only from the flat side: the run stopped at 0.32-4.94 s; radius 1: at 0.92 s, radius 4: at
+ * 7.94 s.) */
+#define CSR_STRAIN_TRUST_RADIUS 2.0
+
+
+double csr_strainContactLimit_(const csrStrainModel* m, csrStrainData* d, double h,
+                               const double db[6], const double* dl) {
+  if (!m->soft || d->ntouch == 0) {
+    return 1.0;
+  }
+  const cscSoftParams* p = csc_softParams(m->soft);
+  if (!(p->mu > 0)) {
+    return 1.0;
+  }
+  const int n = m->n, nu = 6 + n, s = m->nshape - 1;
+  int first, nslot;
+  csc_softShapeSlots(m->soft, s, &first, &nslot);
+  if (nslot > CSR_STRAIN_MAX_SHAPE_HIST) {
+    return 1.0;
+  }
+  cscShapeState st;
+  shapeState(m, d, s, &st);
+  cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
+  double L[6], couple[3];
+  if (loadOf(m, d, s, &st, L, couple, slot) != 0 || loadZero(L, couple)) {
+    return 1.0;
+  }
+  /* the foot's world twist change for the move: rows of S (translation, rotation) */
+  double* G = d->Gs;
+  double* S = d->Gs + 6 * nu;
+  const int pf = m->shape_a[s];
+  csr_strainPointG_(m, d, pf, G);
+  worldRows(m, d, pf, 0, G, S);
+  worldRows(m, d, pf, 1, G, S + 3 * nu);
+  double dvw[6];
+  for (int r = 0; r < 6; r++) {
+    double t = 0;
+    for (int k = 0; k < nu; k++) {
+      t += S[r * nu + k] * (k < 6 ? db[k] : dl[k - 6]);
+    }
+    dvw[r] = t;
+  }
+  const double rmax = CSR_STRAIN_TRUST_RADIUS * p->mu * p->delta_t;
+  double alpha = 1.0;
+  for (int i = 0; i < nslot; i++) {
+    const cscSlotInfo* si = slot + i;
+    if (!(si->depth > 0) || !(csu_norm3(si->ft) > 0)) {
+      continue; /* out of contact, or no anchor yet (touched down in this step: no friction,
+                   its point not reported) */
+    }
+    double r[3], dz[3];
+    csu_sub3(r, si->point, st.x0);
+    csu_cross3(dz, dvw + 3, r);
+    csu_add3(dz, dz, dvw);
+    csu_scale3(dz, dz, h);
+    csu_addScl3(dz, dz, si->normal, -csu_dot3(dz, si->normal));
+    const double len = csu_norm3(dz);
+    if (len > rmax) {
+      alpha = fmin(alpha, rmax / len);
+    }
+  }
+  return alpha;
+}
+
+
 int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d) {
   if (!m->soft) {
     return 1;

@@ -830,6 +830,7 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   }
   d->h = 0;
   d->w_step = 0;
+  d->at_iterate = 0;
   /* the active set is the step's: none held before its first linearisation */
   csr_strainGhostReset_(m, d);
   int rc;
@@ -875,6 +876,7 @@ int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], d
    * would every pass) when the leg's own move shrank less than 4x over its last iterate: the
    * frozen inertia and velocity products no longer carry the iteration there (a touch-down,
    * a foot's stick/slip) */
+  d->at_iterate = 1;
   int full = bdfFull(m);
   if (m->par.step_order == 2 && !full && d->chg_prev < INFINITY &&
       !(d->chg_last <= 0.25 * d->chg_prev)) {
@@ -922,6 +924,30 @@ int csr_strainRelease(const csrStrainModel* m, csrStrainData* d) {
     d->fresh = 1;
   }
   return n;
+}
+
+
+double csr_strainStepLimit(const csrStrainModel* m, csrStrainData* d, const double dV[6]) {
+  if (!m->par.slot_trust || m->par.step_order != 1 || !(d->h > 0) || !dV || !d->at_iterate ||
+      d->lu_plain || d->kin_valid < 2) {
+    return 1.0;
+  }
+  /* the full move from the last iterate: the base's ΔV and the rates' y - X ΔV (as
+   * csr_strainUpdateDamped) less the iterate's */
+  const int n = m->n;
+  double* dd = d->fl; /* scratch (n): the contact's force at the iterate is used up */
+  double dd6[6];
+  for (int c = 0; c < 6; c++) {
+    dd6[c] = dV[c] - d->du[c];
+  }
+  for (int j = 0; j < n; j++) {
+    double t = d->y[j];
+    for (int c = 0; c < 6; c++) {
+      t -= d->X[6 * j + c] * dV[c];
+    }
+    dd[j] = t - d->du[6 + j];
+  }
+  return csr_strainContactLimit_(m, d, d->h, dd6, dd);
 }
 
 

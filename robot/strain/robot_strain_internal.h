@@ -144,6 +144,8 @@ struct csrStrainData_ {
   csrStrainGhost* ghost; /* (nshape) */
   int nghost;     /* shapes held by their ghost load at the last evaluation */
   int fresh;      /* 1: the next iterate linearises afresh (a ghost was released) */
+  int at_iterate; /* 1: the step was last linearised at a Newton iterate (csr_strainIterate),
+                     0 at its start (prepare): csr_strainStepLimit limits only the former */
   double* z;      /* (nhist) contact anchors (state) */
   cscShapeState* sst; /* (nshape) scratch; in a prepare with pred set, every shape's pose at
                           the predicted end of the step (robot_strain_dyn.c predictShapes) */
@@ -224,6 +226,12 @@ int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d);
 void csr_strainGhostReset_(const csrStrainModel* m, csrStrainData* d);
 /* drop the shapes held by their ghost at the last evaluation: how many (csr_strainRelease) */
 int csr_strainGhostRelease_(const csrStrainModel* m, csrStrainData* d);
+/* the largest fraction (0, 1] of the iterate's move (db: the base's twist change, body
+ * coordinates; dl (n): the rates' change) that moves no touching foot slot with friction more
+ * than the trust radius along the surface (slot_trust; the kinematics with J at the iterate
+ * valid) */
+double csr_strainContactLimit_(const csrStrainModel* m, csrStrainData* d, double h,
+                               const double db[6], const double* dl);
 /* return-map the anchors at the current state (kinematics with J valid, d->Vp set) */
 int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d);
 /* the point twists d->Vp at the current kinematics; chain 1: at the chain points alone (even

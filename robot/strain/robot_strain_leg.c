@@ -54,7 +54,7 @@ enum { STRAIN_STEP_ORDER = 1 };
  * than it saved per pass (docs/notes/strain_leg.md, "Fast step") */
 enum { STRAIN_STEP_REFRESH = 1 };
 /* the level's settings (kStrainSettings, at the end) */
-enum { STRAIN_LINKS, STRAIN_ORDER, STRAIN_ACTIVE, STRAIN_FRICTION };
+enum { STRAIN_LINKS, STRAIN_ORDER, STRAIN_ACTIVE, STRAIN_FRICTION, STRAIN_TRUST };
 
 /* the contact at the current state for contactForce and contactDepth (header) */
 typedef struct {
@@ -132,6 +132,7 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->sp.step_refresh = STRAIN_STEP_REFRESH;
   leg->sp.active_set = set[STRAIN_ACTIVE] != 0;
   leg->sp.friction_tangent = (int)set[STRAIN_FRICTION];
+  leg->sp.slot_trust = (int)set[STRAIN_TRUST];
   leg->soft = csc_softDefaultParams();
   if (spec->contact) {
     leg->soft.mu = spec->contact->mu;
@@ -338,6 +339,17 @@ static int updateStrain(csrLeg* leg, const csrBaseState* b1, double alpha,
 static int releaseStrain(csrLeg* leg) { return csr_strainRelease(leg->m, leg->d); }
 
 
+static double stepLimitStrain(csrLeg* leg, const csrBaseState* b1) {
+  double V0[6], V1[6], dV[6];
+  bodyTwist(&leg->b, V0);
+  bodyTwist(b1, V1);
+  for (int i = 0; i < 6; i++) {
+    dV[i] = V1[i] - V0[i];
+  }
+  return csr_strainStepLimit(leg->m, leg->d, dV);
+}
+
+
 /* An iterate's Z, ρ in the world: the leg linearised its step at the iterate, its hip's frame
  * R_it there (its rows, the momentum and contact ones, are in that frame), so the support's
  * world twist change maps to the hip's body-twist change as ΔV_b = R_itᵀ Δu + δ_it with
@@ -495,6 +507,10 @@ static const csrLegSetting kStrainSettings[] = {
     [STRAIN_FRICTION] = {"friction_tangent",
                          "0 the anchors' secant in the Newton iterates, 1 the law's tangent",
                          0, 0, 1, 1},
+    /* the passes' globalisation at the friction's saturation (robot_strain.h slot_trust) */
+    [STRAIN_TRUST] = {"slot_trust",
+                      "1 a Newton pass moves a foot slot at most two stick ranges, "
+                      "0 the full move", 0, 0, 1, 1},
 };
 
 const csrLegType csr_leg_strain = {
@@ -530,5 +546,6 @@ const csrLegType csr_leg_strain = {
     .update = updateStrain,
     .iterate = iterateStrain,
     .release = releaseStrain,
+    .stepLimit = stepLimitStrain,
     .stepCoeffs = stepCoeffsStrain,
 };

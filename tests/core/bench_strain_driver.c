@@ -3,11 +3,12 @@
  * after the other in ONE process, so their ratio is measured under the same load (not a test:
  * prints numbers; docs/notes/strain_leg.md "In the driver").
  *
- *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC]]]]]]]...
+ *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC[:TRUST]]]]]]]]...
  *
  * (ORDER 0, TREE_TOL 0: the defaults; ACTIVE the strain level's setting active_set, 1 the
  * contact ghosts in the Newton passes, 0 the law alone; FRIC its setting friction_tangent, 0
- * the anchors' secant in the iterates, 1 the law's tangent; -1 or absent: the default)
+ * the anchors' secant in the iterates, 1 the law's tangent; TRUST its setting slot_trust, 1 the
+ * passes' slot trust region, 0 the full move; -1 or absent: the default)
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -26,7 +27,8 @@
  * flat road, or CS_BENCH_SCENE (a built-in scene's name, e.g. obstacle: its terrain, gait,
  * table and rule, under `paper`). The
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
- * so compare the shares of runs made together. The data files come from $CS_SOURCE_DIR
+ * so compare the shares of runs made together. CS_BENCH_PTOL=K scales the pneumatic
+ * tolerances by K, CS_BENCH_PASSES=N sets the tree step's passes before a rejection. The data files come from $CS_SOURCE_DIR
  * (default ../../..); with CS_BENCH_KEEP=DIR each run's file stays in DIR. */
 #include <math.h>
 #include <stdarg.h>
@@ -172,7 +174,7 @@ static void printStages(const csuTimer* tm, double cpu_s, long nstep) {
 
 static int bench(const char* src, const char* arg, double t_end) {
   char level[32] = "", terr[600], gait[600], cal[600];
-  int links = 0, order = 0, active = -1, fric = -1;
+  int links = 0, order = 0, active = -1, fric = -1, trust = -1;
   double dt = 0, tol = 0;
   /* LEVEL[:LINKS[:DT[:ORDER]]] (ORDER: the tree step's formula, 1 backward Euler, 2 BDF2; 0 or
    * absent: the level's default; TREE_TOL: the tree step's Newton tolerance, mm) */
@@ -190,6 +192,8 @@ static int bench(const char* src, const char* arg, double t_end) {
     active = c5 ? atoi(c5 + 1) : -1;
     const char* c6 = c5 ? strchr(c5 + 1, ':') : NULL;
     fric = c6 ? atoi(c6 + 1) : -1;
+    const char* c7 = c6 ? strchr(c6 + 1, ':') : NULL;
+    trust = c7 ? atoi(c7 + 1) : -1;
   }
   const csrLegType* type = csr_legTypeFind(level, NULL);
   if (!type) {
@@ -241,8 +245,25 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
+  if (trust >= 0 &&
+      csr_legSettingSet(type, &m.robot.leg_settings, "slot_trust", trust, NULL) != CS_OK) {
+    fprintf(stderr, "bench_strain_driver: slot_trust %d is not a value of legs %s\n", trust,
+            type->name);
+    cs_modelDestroy(&m);
+    return 1;
+  }
   if (tol > 0) {
     m.opt.tree_tol = tol;
+  }
+  /* CS_BENCH_PASSES=N: the tree step's Newton passes before a step is rejected (tree_iterations) */
+  if (getenv("CS_BENCH_PASSES") && atoi(getenv("CS_BENCH_PASSES")) > 0) {
+    m.opt.tree_iterations = atoi(getenv("CS_BENCH_PASSES"));
+  }
+  /* CS_BENCH_PTOL=K multiplies the pneumatics' CVODE tolerances (the run-to-run noise floor's
+   * "10x tighter pneumatic tolerance": K = 0.1) */
+  if (getenv("CS_BENCH_PTOL") && atof(getenv("CS_BENCH_PTOL")) > 0) {
+    m.opt.pneumatic_rtol *= atof(getenv("CS_BENCH_PTOL"));
+    m.opt.pneumatic_atol *= atof(getenv("CS_BENCH_PTOL"));
   }
   m.opt.t_end = t_end;
   csrCalRule rule;
@@ -268,10 +289,10 @@ static int bench(const char* src, const char* arg, double t_end) {
   const char* keep = getenv("CS_BENCH_KEEP");
   char out[700];
   if (keep) {
-    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s.h5", keep, scene->name, level,
+    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s%s.h5", keep, scene->name, level,
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order,
              active == 0 ? "_noactive" : "",
-             fric == 1 ? "_tangent" : "");
+             fric == 1 ? "_tangent" : "", trust == 1 ? "_trust" : "");
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }
@@ -309,11 +330,13 @@ static int bench(const char* src, const char* arg, double t_end) {
          cs_rejectCount(d), x[0]);
   if (m.opt.coupling == CS_COUPLING_TREE) {
     printf("  tree: %ld Newton passes (%.2f per step, with the settling and the rejected tries), "
-           "%ld contact ghosts released (active_set %d, friction_tangent %d)\n",
+           "%ld contact ghosts released, %ld passes limited (active_set %d, friction_tangent "
+           "%d, slot_trust %d)\n",
            cs_treePassCount(d), (double)cs_treePassCount(d) / (double)cs_stepCount(d),
-           cs_treeReleaseCount(d),
+           cs_treeReleaseCount(d), cs_treeLimitCount(d),
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "active_set", 0),
-           (int)csr_legSettingGet(type, &m.robot.leg_settings, "friction_tangent", 0));
+           (int)csr_legSettingGet(type, &m.robot.leg_settings, "friction_tangent", 0),
+           (int)csr_legSettingGet(type, &m.robot.leg_settings, "slot_trust", 0));
   }
   printf("  split of the wall time (%%): legs %.1f, contact %.2f, tree %.2f, support %.2f, "
          "pneumatics %.2f, output %.2f, rest %.2f\n", 100 * tm[CS_TIMER_LEGS].wall / total,

@@ -7,7 +7,7 @@
  *    reports its ground force (the run file's /contact datasets) and they sum to the weight;
  *  - two datas of one model stepped alike are bit-identical, and so is a run continued from a
  *    restored state (cs_stateGet / cs_stateSet, the driver's rollback);
- *  - frictionless, the centre of mass stays (1e-5 mm in 1 s at 2 and 1 ms, the Newton passes'
+ *  - frictionless, the centre of mass stays (1e-4 mm in 1 s at 2 and 1 ms, the Newton passes'
  *    discrete momentum form through the support's ODE step), with BDF2 (--step-order 2) too,
  *    whose restored runs are bit-identical;
  *  - a step the legs reject (prepare > 0, what the kernel returns when its step does not
@@ -293,10 +293,12 @@ static double frictionlessDrift(double h, int passes, double* moved) {
  * treeAtIterate: the hip's twist change with the arm turned, the leg's rows in the iterate's
  * frame) and ODE landing on the solved twist (the gyroscopic torque the solve's). Before those
  * (docs/notes/strain_leg.md, "Drift") the drift was first order, 1.21e-3 / 6.04e-4 mm at 2 / 1
- * ms in this 1 s; now 7.2e-7 / 5.9e-8 mm. One linearised pass (tree_iterations 1) still drifts
- * at first order (the leg's velocity products at the step's start: 1.38e-2 mm at 1 ms). The
- * bounds: 1e-5 mm in 1 s at both steps (the issue's 0.01 mm in 9 s is 1.1e-3 mm per s), and
- * one pass at least 100 times more. */
+ * ms in this 1 s; then 7.2e-7 / 5.9e-8 mm at tree_tol 1e-7, and 2.7e-6 / 1.1e-5 mm at the
+ * default 1e-6 since 2026-12-06 (what is left is the passes' tolerance: a move below tree_tol
+ * left unresolved per step, so the bound scales with it). One linearised pass
+ * (tree_iterations 1) still drifts at first order (the leg's velocity products at the step's
+ * start: 1.4e-2 mm at 1 ms). The bounds: 1e-4 mm in 1 s at both steps (the issue's 0.01 mm in
+ * 9 s is 1.1e-3 mm per s), and one pass at least 100 times more than Newton at 1 ms. */
 static void test_strain_frictionless_centre_of_mass_stays(void) {
   double moved2, moved1, moved1p;
   const double d2 = frictionlessDrift(2e-3, 16, &moved2);
@@ -307,7 +309,7 @@ static void test_strain_frictionless_centre_of_mass_stays(void) {
          moved2, moved1, d2, d1, d1p);
   /* the support must have moved for this to mean anything */
   CS_EXPECT(moved1 > 5 && moved2 > 5 && moved1p > 5);
-  CS_EXPECT(d2 < 1e-5 && d1 < 1e-5);
+  CS_EXPECT(d2 < 1e-4 && d1 < 1e-4);
   CS_EXPECT(d1p > 100 * d1);
 }
 

@@ -50,6 +50,7 @@ typedef struct {
   /* BDF2 (the legs' step_order 2): the last step's start pose, twist, D and length (0: none) */
   double Rm1[9], xm1[3], Vm1[6], Dm1[3], hprev;
   long released; /* contact ghosts the legs released at converged passes (a counter) */
+  long limited;  /* passes whose move the legs' slot trust region shortened (a counter) */
 } StrainRobot;
 
 
@@ -337,26 +338,35 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
       return 1; /* the support's condensed matrix is singular */
     }
     const double* dV = rhs;
-    double chg = 0;
+    double chg = 0, dVk[CSR_NLEG][6];
+    for (int k = 0; k < CSR_NLEG; k++) {
+      for (int i = 0; i < 6; i++) {
+        dVk[k][i] = 0;
+        for (int j = 0; j < 6; j++) {
+          dVk[k][i] += r->A[k][6 * i + j] * dV[j];
+        }
+      }
+    }
+    /* the legs' globalisation (slot_trust; core/sim_coupling.c the same): the whole move
+     * damped by the least fraction a leg allows */
+    double amove = alpha;
+    for (int k = 0; it > 0 && k < CSR_NLEG; k++) {
+      amove = fmin(amove, csr_strainStepLimit(r->m[k], r->d[k], dVk[k]));
+    }
+    r->limited += amove < alpha;
     for (int i = 0; i < 6; i++) {
       chg = fmax(chg, h * fabs(dV[i] - dVp[i]));
-      dVp[i] += alpha * (dV[i] - dVp[i]);
+      dVp[i] += amove * (dV[i] - dVp[i]);
       r->V[i] = V0[i] + dVp[i];
     }
     strainRobotPose(r, h, bdf ? c : NULL, R0, x0, r->V, r->R, r->x);
     t0 = csu_wallSeconds();
     tt += t0 - t1;
     for (int k = 0; k < CSR_NLEG; k++) {
-      double dVk[6], c = 0;
-      for (int i = 0; i < 6; i++) {
-        dVk[i] = 0;
-        for (int j = 0; j < 6; j++) {
-          dVk[i] += r->A[k][6 * i + j] * dV[j];
-        }
-      }
+      double c = 0;
       csrBaseState b;
       strainRobotHip(r, k, &b);
-      if (csr_strainUpdateDamped(r->m[k], r->d[k], dVk, alpha, &b, &c) != 0) {
+      if (csr_strainUpdateDamped(r->m[k], r->d[k], dVk[k], amove, &b, &c) != 0) {
         return 1;
       }
       chg = fmax(chg, c);
@@ -366,7 +376,7 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
      * of the moves after it when an undamped pass contracts at a rate < 1 (chg rate /
      * (1 - rate)), is below tol */
     const double rate = chg / chg_last;
-    const int full = alpha == 1;
+    const int full = amove == 1;
     alpha = it > 1 && chg > 0.9 * chg_last ? fmax(0.125, 0.5 * alpha) : 1.0;
     chg_last = chg;
     int conv = chg <= tol || (full && rate > 0 && rate < 1 && chg * rate / (1 - rate) <= tol);

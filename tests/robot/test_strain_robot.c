@@ -18,7 +18,9 @@
  *  - active_set_same_step: the same steps with and without the contact ghosts of the Newton
  *    passes (csrStrainParams.active_set) converge to the same step, the ghosts in fewer passes.
  *  - friction_tangent_same_step: the same with the friction's consistent tangent in place of
- *    the anchors' secant (csrStrainParams.friction_tangent): the same converged steps. */
+ *    the anchors' secant (csrStrainParams.friction_tangent): the same converged steps.
+ *  - slot_trust_same_step: the same with the tangent and the passes' slot trust region
+ *    (csrStrainParams.slot_trust): the globalisation changes the path, not the step. */
 #include "cs_test.h"
 #include "strain_test_robot.h"
 
@@ -237,13 +239,11 @@ static void active_set_same_step(void) {
 }
 
 
-/* The friction's tangent (csrStrainParams.friction_tangent 1: the law's consistent tangent in
- * the Newton iterates' matrix in place of the anchors' secant) changes the passes' path, not
- * the step: from the same state, the steps that converge both ways agree to the iterations'
- * tolerance. 5 ms steps of the harness's flat road (mu 0.8) as active_set_same_step, from
- * 0.9 s (CS_TANGENT_T0), where the feet's slots saturate in the iterates (from standing to
- * 0.3 s none does: the two agree bit for bit there), every step from the secant's state. */
-static void friction_tangent_same_step(void) {
+/* 60 steps of 5 ms of the harness's flat road (mu 0.8) from 0.9 s (CS_TANGENT_T0), every step
+ * from the reference's (the defaults: the anchors' secant, full moves) state, against a robot
+ * with the friction's tangent and slot_trust as given (sameSteps); its passes shortened by the
+ * trust region into *limited. 1 when both robots were made. */
+static int tangentAgainstSecant(int trust, SameSteps* o, long* limited, double* t0) {
   csgGait* g = NULL;
   StrainRobot* a = robotOn(0.8, &g);
   StrainRobot* b = calloc(1, sizeof *b);
@@ -252,30 +252,71 @@ static void friction_tangent_same_step(void) {
   csrStrainParams sp = csr_strainDefaultParams();
   sp.bend_order = 2;
   sp.friction_tangent = 1;
+  sp.slot_trust = trust;
   if (!a || !b || strainRobotCreateParams(b, 0.8, &sp, &err) != 0) {
     CS_EXPECT(0);
     fprintf(stderr, "  %s\n", err.msg);
-    return;
+    return 0;
   }
-  /* a: the default (the anchors' secant), the reference; b: the law's tangent */
   const double h = 5e-3;
   const int i0 = (int)(getenv("CS_TANGENT_T0") ? atof(getenv("CS_TANGENT_T0")) / h : 180);
-  const SameSteps o = sameSteps(a, b, g, i0, 60, h);
-  printf("  60 steps of 5 ms from %.3f s: %ld converged in one piece both ways (%ld only with "
-         "the secant, %ld only with the tangent); passes %ld with the secant, %ld with the "
-         "tangent; largest difference of the converged steps: support position %.2e mm, any "
-         "state entry %.2e (relative to 1 + |entry|)\n", i0 * h, o.both, o.only_ref,
-         o.only_alt, o.p_ref, o.p_alt, o.dx, o.dmax);
-  CS_EXPECT(o.both >= 40);
-  CS_EXPECT(o.p_ref != o.p_alt); /* the window exercised the secant (else the runs are one) */
-  /* the same law converged: active_set_same_step's bounds */
-  CS_EXPECT(o.dx < 1e-7);
-  CS_EXPECT(o.dmax < 1e-6);
+  *o = sameSteps(a, b, g, i0, 60, h);
+  *limited = b->limited;
+  *t0 = i0 * h;
   strainRobotDestroy(a);
   strainRobotDestroy(b);
   free(a);
   free(b);
   csg_gaitDestroy(g);
+  return 1;
+}
+
+
+/* The friction's tangent (csrStrainParams.friction_tangent 1: the law's consistent tangent in
+ * the Newton iterates' matrix in place of the anchors' secant) changes the passes' path, not
+ * the step: from the same state, the steps that converge both ways agree to the iterations'
+ * tolerance. 5 ms steps of the harness's flat road (mu 0.8) as active_set_same_step, from
+ * 0.9 s (CS_TANGENT_T0), where the feet's slots saturate in the iterates (from standing to
+ * 0.3 s none does: the two agree bit for bit there), every step from the secant's state. */
+static void friction_tangent_same_step(void) {
+  SameSteps o;
+  long limited;
+  double t0;
+  if (!tangentAgainstSecant(0, &o, &limited, &t0)) {
+    return;
+  }
+  printf("  60 steps of 5 ms from %.3f s: %ld converged in one piece both ways (%ld only with "
+         "the secant, %ld only with the tangent); passes %ld with the secant, %ld with the "
+         "tangent; largest difference of the converged steps: support position %.2e mm, any "
+         "state entry %.2e (relative to 1 + |entry|)\n", t0, o.both, o.only_ref,
+         o.only_alt, o.p_ref, o.p_alt, o.dx, o.dmax);
+  CS_EXPECT(o.both >= 40);
+  CS_EXPECT(o.p_ref != o.p_alt); /* the window exercised the secant (else the runs are one) */
+  CS_EXPECT(limited == 0);       /* slot_trust 0: full moves */
+  /* the same law converged: active_set_same_step's bounds */
+  CS_EXPECT(o.dx < 1e-7);
+  CS_EXPECT(o.dmax < 1e-6);
+}
+
+
+/* The slot trust region (csrStrainParams.slot_trust 1, with the tangent) shortens passes, not
+ * the step: the same comparison, and the window must have shortened some passes. */
+static void slot_trust_same_step(void) {
+  SameSteps o;
+  long limited;
+  double t0;
+  if (!tangentAgainstSecant(1, &o, &limited, &t0)) {
+    return;
+  }
+  printf("  60 steps of 5 ms from %.3f s: %ld converged in one piece both ways (%ld only with "
+         "the secant, %ld only with the tangent and the trust region); passes %ld against %ld, "
+         "%ld of them shortened by the trust region; largest difference of the converged "
+         "steps: support position %.2e mm, any state entry %.2e (relative to 1 + |entry|)\n",
+         t0, o.both, o.only_ref, o.only_alt, o.p_ref, o.p_alt, limited, o.dx, o.dmax);
+  CS_EXPECT(o.both >= 40);
+  CS_EXPECT(limited > 0); /* the window exercised the trust region (else it proves nothing) */
+  CS_EXPECT(o.dx < 1e-7);
+  CS_EXPECT(o.dmax < 1e-6);
 }
 
 
@@ -285,5 +326,6 @@ int main(int argc, char** argv) {
   CS_RUN(newton_5ms_touchdown);
   CS_RUN(active_set_same_step);
   CS_RUN(friction_tangent_same_step);
+  CS_RUN(slot_trust_same_step);
   return cs_testSummary();
 }
