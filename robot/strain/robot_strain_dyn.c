@@ -929,8 +929,9 @@ int csr_strainRelease(const csrStrainModel* m, csrStrainData* d) {
 
 double csr_strainStepLimit(const csrStrainModel* m, csrStrainData* d, const double dV[6]) {
   if (!m->par.slot_trust || m->par.step_order != 1 || !(d->h > 0) || !dV || !d->at_iterate ||
-      d->lu_plain || d->kin_valid < 2) {
-    return 1.0;
+      d->lu_plain || d->kin_valid < 1) {
+    return 1.0; /* an iterate's condense formed the Jacobians at the chain points at least
+                   (want_J 2, kin_valid 1; the foot's point is one) or everywhere (kin_valid 2) */
   }
   /* the full move from the last iterate: the base's ΔV and the rates' y - X ΔV (as
    * csr_strainUpdateDamped) less the iterate's */
