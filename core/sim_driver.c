@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "core_math.h"
+#include "core_nvector.h"
 #include "core_sun.h"
 #include "sim_internal.h"
 
@@ -190,6 +191,7 @@ static int pneumaticRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   if (cs_schedule(d->m, t, pc) != 0) {
     return -1; /* the pressure source failed: the step fails (cs_api.c says why) */
   }
+  d->pn_count[1]++; /* cs_pneumaticCounts */
   const double* p = N_VGetArrayPointer(y);
   double* dp = N_VGetArrayPointer(ydot);
   double inv_tau = 1.0 / d->m->opt.pneumatic_tau;
@@ -317,6 +319,10 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
     }
     d->y = N_VNew_Serial(CSR_NCHAMBER_TOTAL, d->sun);
     if (d->y) {
+      /* SUNDIALS' vector kernels compiled here, the same bits (core_nvector.h): the library's
+       * own were most of CVODE's cost on the 96 pressures (docs/notes/performance.md "Fixed
+       * costs"); CVODE's work vectors are cloned from y and inherit them */
+      cs_nvectorFastOps(d->y);
       N_VConst(0.0, d->y);
     }
     d->cvode = CVodeCreate(CV_BDF, d->sun);
@@ -422,6 +428,12 @@ long cs_rejectCount(const csData* d) { return d->nreject; }
 long cs_treePassCount(const csData* d) { return d->cosim.tree_passes; }
 long cs_treeReleaseCount(const csData* d) { return d->cosim.tree_released; }
 long cs_gainProjectionCount(const csData* d) { return d->ngain_proj; }
+
+
+void cs_pneumaticCounts(const csData* d, long counts[2]) {
+  counts[0] = d->pn_count[0];
+  counts[1] = d->pn_count[1];
+}
 
 
 const csrLeg* cs_leg(const csData* d, int k) { return d->robot->legs[k]; }

@@ -44,6 +44,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core_nvector.h"
 #include "core_sun.h"
 #include "robot_rod_internal.h"
 
@@ -203,8 +204,8 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
     return NULL;
   }
   /* CVODE clones its work vectors from yv: they all get the optimised kernels */
-  csr_rodVectorOps_(d->yv);
-  csr_rodVectorOps_(d->atol);
+  cs_nvectorFastOps(d->yv);
+  cs_nvectorFastOps(d->atol);
   d->y = N_VGetArrayPointer(d->yv);
   /* per-component absolute tolerances */
   double* at = N_VGetArrayPointer(d->atol);
