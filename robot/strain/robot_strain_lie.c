@@ -340,6 +340,7 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
 
 
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J) {
+  d->kin_gen++; /* csr_strainPointTwists_'s memo */
   /* the clamp: poses are relative to the base (hip) frame */
   csu_eye3(d->R);
   memset(d->x, 0, 3 * sizeof(double));
