@@ -20,28 +20,9 @@
 #include <string.h>
 
 #include "core_math.h"
+#include "core_nvector.h"
+#include "core_sun.h"
 #include "sim_internal.h"
-
-/* SUNDIALS 7 takes a SUNComm (SUN_COMM_NULL) where 6.x takes a void* communicator
- * (debian-deps.md P4): the one place that differs */
-#if SUNDIALS_VERSION_MAJOR >= 7
-#define CS_SUN_COMM_NULL SUN_COMM_NULL
-#else
-#define CS_SUN_COMM_NULL NULL
-#endif
-
-#if SUNDIALS_VERSION_MAJOR < 7
-/* CVODE's default error handler prints to stderr; the library never prints (crawlsim.h): a
- * failed pneumatic step is returned as a status with its own message (the controller's, the
- * gait's) instead. SUNDIALS 7 has no per-solver handler: the context's are cleared below. */
-static void cvodeSilent(int code, const char* module, const char* fn, char* msg, void* user) {
-  (void)code;
-  (void)module;
-  (void)fn;
-  (void)msg;
-  (void)user;
-}
-#endif
 
 _Static_assert(sizeof(dReal) == sizeof(double), "crawlsim needs ODE built in double precision");
 _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
@@ -214,6 +195,7 @@ static int pneumaticRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   if (cs_schedule(d->m, t, pc) != 0) {
     return -1; /* the pressure source failed: the step fails (cs_api.c says why) */
   }
+  d->pn_count[1]++; /* cs_pneumaticCounts */
   const double* p = N_VGetArrayPointer(y);
   double* dp = N_VGetArrayPointer(ydot);
   double inv_tau = 1.0 / d->m->opt.pneumatic_tau;
@@ -332,26 +314,27 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
 
   /* pneumatics */
   if (m->opt.pneumatic_tau > 0) {
-    if (SUNContext_Create(CS_SUN_COMM_NULL, &d->sun) != 0) {
+    /* a context that never prints: a failed pneumatic step is returned as a status with its
+     * own message (the controller's, the gait's) instead */
+    if (cs_sunContextCreate(&d->sun) != 0) {
       cs_errorSet(err, CS_ERR_SOLVER, "SUNDIALS: cannot create a context");
       cs_dataDestroy(d);
       return NULL;
     }
-#if SUNDIALS_VERSION_MAJOR >= 7
-    SUNContext_ClearErrHandlers(d->sun);
-#endif
     d->y = N_VNew_Serial(CSR_NCHAMBER_TOTAL, d->sun);
-    N_VConst(0.0, d->y);
+    if (d->y) {
+      /* SUNDIALS' vector kernels compiled here, the same bits (core_nvector.h): the library's
+       * own were most of CVODE's cost on the 96 pressures (docs/notes/performance.md "Fixed
+       * costs"); CVODE's work vectors are cloned from y and inherit them */
+      cs_nvectorFastOps(d->y);
+      N_VConst(0.0, d->y);
+    }
     d->cvode = CVodeCreate(CV_BDF, d->sun);
     if (!d->y || !d->cvode || CVodeInit(d->cvode, pneumaticRhs, d->t, d->y) != CV_SUCCESS ||
         CVodeSStolerances(d->cvode, m->opt.pneumatic_rtol, m->opt.pneumatic_atol) !=
             CV_SUCCESS ||
         CVodeSetUserData(d->cvode, d) != CV_SUCCESS || CVDiag(d->cvode) != CVDIAG_SUCCESS ||
-        CVodeSetMaxNumSteps(d->cvode, 100000) != CV_SUCCESS
-#if SUNDIALS_VERSION_MAJOR < 7
-        || CVodeSetErrHandlerFn(d->cvode, cvodeSilent, NULL) != CV_SUCCESS
-#endif
-    ) {
+        CVodeSetMaxNumSteps(d->cvode, 100000) != CV_SUCCESS || cs_cvodeSilence(d->cvode) != 0) {
       cs_errorSet(err, CS_ERR_SOLVER, "CVODE: cannot set up the pneumatic integrator");
       cs_dataDestroy(d);
       return NULL;
@@ -452,6 +435,12 @@ long cs_treeReleaseCount(const csData* d) { return d->cosim.tree_released; }
 
 long cs_treeLimitCount(const csData* d) { return d->cosim.tree_limited; }
 long cs_gainProjectionCount(const csData* d) { return d->ngain_proj; }
+
+
+void cs_pneumaticCounts(const csData* d, long counts[2]) {
+  counts[0] = d->pn_count[0];
+  counts[1] = d->pn_count[1];
+}
 
 
 const csrLeg* cs_leg(const csData* d, int k) { return d->robot->legs[k]; }

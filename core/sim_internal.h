@@ -107,6 +107,8 @@ struct csData_ {
   SUNContext sun;
   void* cvode;
   N_Vector y;
+  long pn_count[2]; /* CVODE's internal steps and right-hand sides on the pressures so far
+                       (cs_pneumaticCounts), across its restarts */
 };
 
 /* how often a rejected tree-coupled step is halved before the step fails (sim_step.c): down

@@ -270,6 +270,10 @@ long cs_treeLimitCount(const csData* d);
 /* macro steps in which the co-simulated legs' interface gains were not passive and their
  * implicit part was projected (sim_coupling.c; 0 for legs in ODE) */
 long cs_gainProjectionCount(const csData* d);
+/* the pneumatic integrator's work so far (settling included, across its restarts): counts[0]
+ * CVODE's internal steps, counts[1] its right-hand side evaluations (the difference quotient of
+ * its diagonal Jacobian included); zeros without the pneumatic lag */
+void cs_pneumaticCounts(const csData* d, long counts[2]);
 /* support centre displacement from its position at t = 0, world frame, mm */
 void cs_supportDisplacement(const csData* d, double pos[3]);
 /* support orientation quaternion (w, x, y, z) */

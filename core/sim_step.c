@@ -57,8 +57,13 @@ static csStatus stagePneumatics(const csModel* m, csData* d, double t1, csError*
     return CS_OK;
   }
   sunrealtype tret;
+  /* CVODE's step counter restarts with it (CVodeReInit after a restore): the call's share */
+  long nst0 = 0, nst1 = 0;
+  CVodeGetNumSteps(d->cvode, &nst0);
   CVodeSetStopTime(d->cvode, t1);
   int rc = CVode(d->cvode, t1, d->y, &tret, CV_NORMAL);
+  CVodeGetNumSteps(d->cvode, &nst1);
+  d->pn_count[0] += nst1 - nst0;
   if (rc < 0) {
     return cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: CVODE failed on the chamber pressures "
                        "(flag %d)", d->t, rc);

@@ -44,6 +44,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core_nvector.h"
+#include "core_sun.h"
 #include "robot_rod_internal.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
@@ -87,31 +89,6 @@ static void wrenchOf(const csrRodModel* m, const csrRodData* d, const double a0[
                      csrWrench* w);
 /* add CVODE's counters to the accumulated statistics (before a restart) */
 static void accumulateStats(csrRodData* d);
-/* SUNContext across SUNDIALS 6.4 / 7.x (debian-deps.md P4) */
-static int contextCreate(SUNContext* ctx);
-
-
-static int contextCreate(SUNContext* ctx) {
-#if SUNDIALS_VERSION_MAJOR >= 7
-  return SUNContext_Create(SUN_COMM_NULL, ctx);
-#else
-  return SUNContext_Create(NULL, ctx);
-#endif
-}
-
-
-#if SUNDIALS_VERSION_MAJOR < 7
-/* the library never prints: CVODE's messages end up in the csError of the call */
-static void silentHandler(int code, const char* module, const char* fn, char* msg, void* user) {
-  (void)code;
-  (void)module;
-  (void)fn;
-  (void)msg;
-  (void)user;
-}
-#endif
-
-
 void csr_rodDataDestroy(csrRodData* d) {
   if (!d) {
     return;
@@ -212,15 +189,13 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
     cs_errorSet(err, CS_ERR_MEMORY, "rod: out of memory");
     return NULL;
   }
-  if (contextCreate(&d->sun) != 0) {
+  /* a context that never prints: CVODE's messages end up in the csError of the call */
+  if (cs_sunContextCreate(&d->sun) != 0) {
     d->sun = NULL;
     csr_rodDataDestroy(d);
     cs_errorSet(err, CS_ERR_SOLVER, "rod: cannot create a SUNDIALS context");
     return NULL;
   }
-#if SUNDIALS_VERSION_MAJOR >= 7
-  SUNContext_ClearErrHandlers(d->sun);
-#endif
   d->yv = N_VNew_Serial(ny, d->sun);
   d->atol = N_VNew_Serial(ny, d->sun);
   if (!d->yv || !d->atol || !csr_rodBtAlloc_(&d->bt_static, m->N)) {
@@ -229,8 +204,8 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
     return NULL;
   }
   /* CVODE clones its work vectors from yv: they all get the optimised kernels */
-  csr_rodVectorOps_(d->yv);
-  csr_rodVectorOps_(d->atol);
+  cs_nvectorFastOps(d->yv);
+  cs_nvectorFastOps(d->atol);
   d->y = N_VGetArrayPointer(d->yv);
   /* per-component absolute tolerances */
   double* at = N_VGetArrayPointer(d->atol);
@@ -260,9 +235,7 @@ csrRodData* csr_rodDataCreate(const csrRodModel* m, csError* err) {
                 "out of memory, or a setting CVODE refused");
     return NULL;
   }
-#if SUNDIALS_VERSION_MAJOR < 7
-  CVodeSetErrHandlerFn(d->cvode, silentHandler, NULL);
-#endif
+  cs_cvodeSilence(d->cvode);
   d->started = 1;
   d->need_reinit = 1;
   return d;

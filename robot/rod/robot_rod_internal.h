@@ -424,10 +424,6 @@ void csr_rodKinW_(const csrRodData* d, double g, int j, double W[9]);
 int csr_rodLinsolAttach_(csrRodData* d);
 void csr_rodLinsolFree_(csrRodData* d);
 
-/* Replace the serial vector v's kernels by the project-compiled ones of robot_rod_nvector.c
- * (same arithmetic; its clones inherit them). */
-void csr_rodVectorOps_(N_Vector v);
-
 /* The actuation interpolated between two (robot_rod_act.c): out = (1 - u) a + u b, u in [0, 1]. */
 void csr_rodActuationLerp_(const csrRodSegmentActuation* a, const csrRodSegmentActuation* b,
                            double u, csrRodSegmentActuation* out);

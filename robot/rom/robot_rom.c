@@ -21,6 +21,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "core_math.h"
+#include "core_sun.h"
 #include "fem_mesh.h"
 
 _Static_assert(sizeof(sunrealtype) == sizeof(double), "crawlsim needs double SUNDIALS");
@@ -784,23 +785,6 @@ void csr_romMomentum(const csrRomModel* m, const csrRomData* d, double P[3], dou
 
 /* ---- data ------------------------------------------------------------------------------- */
 
-static int contextCreate(SUNContext* ctx) {
-#if SUNDIALS_VERSION_MAJOR >= 7
-  return SUNContext_Create(SUN_COMM_NULL, ctx);
-#else
-  return SUNContext_Create(NULL, ctx);
-#endif
-}
-
-
-#if SUNDIALS_VERSION_MAJOR < 7
-/* the library never prints: CVODE's messages are dropped, its return flags name the cause */
-static void silentHandler(int code, const char* module, const char* fn, char* msg, void* user) {
-  (void)code, (void)module, (void)fn, (void)msg, (void)user;
-}
-#endif
-
-
 void csr_romDataDestroy(csrRomData* d) {
   if (!d) {
     return;
@@ -854,7 +838,7 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
     return NULL;
   }
   d->fd->sync = 1; /* the exact tangent (fem_rom.h): the Jacobian of CVODE's Newton */
-  if (contextCreate(&d->sun) != 0) {
+  if (cs_sunContextCreate(&d->sun) != 0) { /* it never prints: the flags name the cause */
     d->sun = NULL;
     csr_romDataDestroy(d);
     cs_errorSet(err, CS_ERR_SOLVER, "rom leg: cannot create a SUNDIALS context");
@@ -903,9 +887,7 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
     cs_errorSet(err, CS_ERR_SOLVER, "rom leg: cannot set up CVODE (BDF, dense)");
     return NULL;
   }
-#if SUNDIALS_VERSION_MAJOR < 7
-  CVodeSetErrHandlerFn(d->cvode, silentHandler, NULL);
-#endif
+  cs_cvodeSilence(d->cvode);
   csrBaseState b;
   memset(&b, 0, sizeof b);
   csu_eye3(b.R);

@@ -300,6 +300,7 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->A);
   free(d->dq);
   free(d->q_save);
+  free(d->vp_eta);
   free(d->q_start);
   free(d->K1);
   free(d->b1);
@@ -404,6 +405,8 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->A = calloc(n * n, sizeof(double));
   d->dq = calloc(n, sizeof(double));
   d->q_save = calloc(n, sizeof(double));
+  d->vp_eta = calloc(n, sizeof(double));
+  d->vp_gen = -1;
   d->q_start = calloc(n, sizeof(double));
   d->K1 = calloc(n, sizeof(double));
   d->b1 = calloc(n, sizeof(double));
@@ -443,7 +446,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->csig = calloc((size_t)nslot_all, 1);
   d->ghost = calloc((size_t)m->nshape + 1, sizeof(csrStrainGhost));
   if (!d->Wu || !d->fl || !d->csig || !d->ghost ||
-      !d->q || !d->eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
+      !d->q || !d->eta || !d->vp_eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
       !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||
       !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du || !d->Rs_save || !d->xs_save ||

@@ -391,6 +391,7 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
     const double* J = d->J + (size_t)p * 6 * n;
     double* V = d->Vp + 6 * p;
     pointTwist(m, d, p, d->Vb, d->eta, V);
+    d->vp_gen = -1; /* written here, not by csr_strainPointTwists_: its memo is off */
     double A[36];
     adInv(d, p, A);
     /* F_p - M_p Ġ_p u + ad(V)ᵀ M_p V, ad(V)ᵀ (μ; π) = (-ω × μ - v × π; -ω × π) */
@@ -1072,13 +1073,26 @@ void csr_strainBaseWrench(const csrStrainModel* m, const csrStrainData* d, csrWr
 
 
 void csr_strainPointTwists_(const csrStrainModel* m, csrStrainData* d) {
+  /* Vp is a function of R, x, J (changed only by csr_strainKinematics_, which counts kin_gen),
+   * Vb and η: with all of them as at the last call, Vp holds these very bits already. The
+   * output's contact read-out after a step's commit asks again: 32 M instructions per simulated
+   * second of the flat road at 5 ms (docs/notes/performance.md "Fixed costs") */
+  const size_t ne = (size_t)m->n * sizeof(double);
+  if (d->vp_gen == d->kin_gen && memcmp(d->vp_Vb, d->Vb, sizeof d->Vb) == 0 &&
+      memcmp(d->vp_eta, d->eta, ne) == 0) {
+    return;
+  }
   for (int p = 0; p < m->np; p++) {
     pointTwist(m, d, p, d->Vb, d->eta, d->Vp + 6 * p);
   }
+  d->vp_gen = d->kin_gen;
+  memcpy(d->vp_Vb, d->Vb, sizeof d->vp_Vb);
+  memcpy(d->vp_eta, d->eta, ne);
 }
 
 
 void csr_strainPointTwistsChain_(const csrStrainModel* m, csrStrainData* d) {
+  d->vp_gen = -1; /* written here, not by csr_strainPointTwists_: its memo is off */
   for (int p = 0; p < m->np; p += 2) {
     pointTwist(m, d, p, d->Vb, d->eta, d->Vp + 6 * p);
   }

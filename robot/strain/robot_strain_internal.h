@@ -88,6 +88,7 @@ struct csrStrainData_ {
   int kin_valid;
   double* Rs_save; /* (np x 9) scratch: the poses kept over a kinematics elsewhere */
   double* xs_save; /* (np x 3) */
+  long kin_gen;   /* counts csr_strainKinematics_'s calls: R, x, J change only there */
   /* scratch of the static solver */
   double *Q, *Qp, *Qm, *A, *dq, *q_save, *q_start, *K1, *b1, *K0, *b0;
   int* piv;
@@ -99,6 +100,12 @@ struct csrStrainData_ {
   double* y;      /* (n) W_ll⁻¹ h r_l */
   double* rl;     /* (n) */
   double* Vp;     /* (np x 6) point twists */
+  /* what csr_strainPointTwists_ last computed Vp from (kin_gen, Vb, η; vp_gen -1: nothing): the
+   * same inputs give the same bits, so it is not done again (the output's contact read-out
+   * after a step's commit, docs/notes/performance.md "Fixed costs") */
+  long vp_gen;
+  double vp_Vb[6];
+  double* vp_eta; /* (n) */
   double* Vs;     /* (np x 6) scratch: twists at q ± εη */
   double* Ab;     /* (np x 6) Ȧu at the points (the velocity-product accelerations) */
   double h;       /* the prepared step (s); 0: none prepared */

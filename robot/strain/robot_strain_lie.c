@@ -343,6 +343,7 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
   /* want_J 2: the Jacobians at the chain points alone (the midpoints are leaves: nothing
    * downstream of them needs theirs), poses everywhere */
   const int mid_J = want_J == 1;
+  d->kin_gen++; /* csr_strainPointTwists_'s memo */
   /* the clamp: poses are relative to the base (hip) frame */
   csu_eye3(d->R);
   memset(d->x, 0, 3 * sizeof(double));

@@ -349,6 +349,13 @@ static int bench(const char* src, const char* arg, double t_end) {
   printf("  after the run: the file's last image and the XDMF beside it %.3f s wall (%.1f %% of "
          "the run's wall time; at 100x real time the run would take %.3f s)\n", w_end,
          100 * w_end / (wall > 0 ? wall : 1), t_run / 100);
+  long pn[2];
+  cs_pneumaticCounts(d, pn);
+  const long nstep_all = cs_stepCount(d) + cs_rejectCount(d);
+  printf("  pneumatics: %ld CVODE steps and %ld right-hand sides on the 96 pressures (%.2f and "
+         "%.2f per macro step tried, with the settling)\n", pn[0], pn[1],
+         (double)pn[0] / (double)(nstep_all > 0 ? nstep_all : 1),
+         (double)pn[1] / (double)(nstep_all > 0 ? nstep_all : 1));
   if (st != CS_OK) {
     printf("  stopped: %s\n", err.msg);
   }

@@ -1,4 +1,4 @@
-/* test_rod_nvector.c: the rod's CVODE vector kernels (robot_rod_nvector.c) give the same bits as
+/* test_rod_nvector.c: the CVODE vector kernels of the rod and the pressures (core/sun/core_nvector.c) give the same bits as
  * SUNDIALS' own serial ones, so replacing them changes no result.
  *
  * Cases:
@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cs_test.h"
+#include "core_nvector.h"
 #include "robot_rod_internal.h"
 
 static double rnd(unsigned* s) {
@@ -73,7 +74,7 @@ static void kernels_match_serial(void) {
 #endif
   Pair p;
   N_Vector proto = N_VNew_Serial(NLEN, ctx);
-  csr_rodVectorOps_(proto);
+  cs_nvectorFastOps(proto);
   p.x = N_VClone(proto);
   p.y = N_VClone(proto);
   p.z = N_VClone(proto);
@@ -179,7 +180,7 @@ static void clones_inherit(void) {
 #endif
   N_Vector v = N_VNew_Serial(8, ctx);
   N_Vector plain = N_VNew_Serial(8, ctx);
-  csr_rodVectorOps_(v);
+  cs_nvectorFastOps(v);
   N_Vector c = N_VClone(v);
   CS_EXPECT(c->ops->nvwrmsnorm == v->ops->nvwrmsnorm);
   CS_EXPECT(c->ops->nvlinearsum == v->ops->nvlinearsum);

@@ -1,4 +1,6 @@
-/* robot_rod_nvector.c: the rod's CVODE vector operations, compiled with the project.
+/* core_nvector.c: CVODE's serial vector operations compiled with the project (core_nvector.h),
+ * for every CVODE user: the rod legs (robot/rod/robot_rod_dyn.c, where they were measured
+ * first) and the driver's 96 chamber pressures (core/sim_driver.c).
  *
  * ---- Why (measured) --------------------------------------------------------------------------
  * Debian's SUNDIALS 6.4.1 (libsundials-nvecserial6, also inside libsundials_cvode) is built
@@ -7,7 +9,8 @@
  * road (N_VWSqrSumLocal_Serial alone 10-12 %, N_VLinearSum, N_VScale, N_VConst the rest) for
  * vectors of 234 doubles. An N_Vector's operations are a table that every clone copies
  * (N_VCloneEmpty), so replacing the entries of the one vector CVODE is created with moves all of
- * its internal vectors to these.
+ * its internal vectors to these. The 96 chamber pressures' CVODE spent 2600 instructions per
+ * N_VLinearSum_Serial of 96 doubles (callgrind, docs/notes/performance.md "Fixed costs").
  *
  * They are the serial vector's operations with the same case analysis and the same arithmetic
  * in the same order (SUNDIALS v6.4.1 src/nvector/serial/nvector_serial.c, BSD-3-Clause): the
@@ -18,7 +21,7 @@
  * SUNDIALS' generic fallbacks, which call the ones here. */
 #include <math.h>
 
-#include "robot_rod_internal.h"
+#include "core_nvector.h"
 
 #define LEN(v) NV_LENGTH_S(v)
 #define DAT(v) NV_DATA_S(v)
@@ -265,7 +268,7 @@ static void compare(sunrealtype c, N_Vector x, N_Vector z) {
 }
 
 
-void csr_rodVectorOps_(N_Vector v) {
+void cs_nvectorFastOps(N_Vector v) {
   N_Vector_Ops o = v->ops;
   o->nvlinearsum = linearSum;
   o->nvconst = constant;
