@@ -89,7 +89,7 @@ static void test_robotStandsOnRomLegs(const char* file, double S) {
   fy /= nstep > 0 ? nstep : 1;
   cs_simSupportPose(s, x, q);
   const double W = g_mass_g * 1e-3 * 1e-3 * 9810.0; /* g -> t, times mm/s^2: N */
-  const double tilt = 2 * acos(fmin(1.0, fabs(q[0]))) * 180 / M_PI;
+  const double tilt = 2 * acos(fmin(1.0, fabs(q[0]))) * 180 / acos(-1.0);
   const double dx = sqrt((x[0] - x0[0]) * (x[0] - x0[0]) + (x[1] - x0[1]) * (x[1] - x0[1]) +
                          (x[2] - x0[2]) * (x[2] - x0[2]));
   printf("  standing on rom legs: sum of the feet's f_y %.5g N against the weight %.5g N "
