@@ -14,6 +14,7 @@
 #include "cs_test.h"
 #include "rom_test_block.h"
 #include "robot_actuator.h"
+#include "robot_leg.h"
 #include "robot_rom_file.h"
 
 static const char* kPath = "test_rom_leg_file.h5";
@@ -168,9 +169,130 @@ static void test_romLegFileBadFilesAreRefused(void) {
   remove(kPath);
 }
 
+/* The level `rom` (robot_leg.h's table over the file) on the block: its mass and first moment
+ * are the block's closed forms, its centreline runs from the clamped face's centre to the
+ * sole's, the state round-trips bit for bit, and its interface gains over a long step h tend to
+ * the rigid block's spatial inertia about the hip divided by h (the modes' share,
+ * Gᵀ S⁻¹ G ~ M / (ω_1 h)², 1.4e-8 of the mass at the block's ω_1 = 2π 134 Hz and h = 10 s,
+ * vanishes; asked 1e-6): C h against [[m 1, -[s]x], [[s]x, J]] (s = m c, J the
+ * block's inertia about the hip), which checks the frame's mapping and the second moments. */
+static void test_romLevelOnTheBlock(void) {
+  Block b;
+  blockCreate(&b, 4);
+  csError err = {0};
+  int* ch = chamberFaces(&b);
+  CS_ASSERT(csf_romChamberTensors(b.rom, 12, ch, &err) == CS_OK);
+  int sole[64], ns = 0;
+  for (int i = 0; i < b.me->nnode && ns < 64; i++) {
+    if (fabs(b.me->x[3 * i + 2] - BZ) < 1e-9) {
+      sole[ns++] = i;
+    }
+  }
+  csrActuator act;
+  CS_ASSERT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
+  act.rho = RHO;
+  CS_ASSERT(csr_romLegFileWrite(kPath, b.rom, ns, sole, &act, 1.0, NULL, NULL, &err) == CS_OK);
+  const csrLegType* T = csr_legTypeFind("rom", NULL);
+  CS_ASSERT(T != NULL && T->needs_file);
+  csrLegParams lp = csr_defaultLegParams(&act);
+  csrLegSpec spec;
+  memset(&spec, 0, sizeof spec);
+  spec.act = &act;
+  spec.params = &lp;
+  spec.leg_file = kPath;
+  spec.h = 10.0; /* s: long, so that the modes' share of the gains vanishes */
+  const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0}; /* e1 = x, e2 = z, e3 = -y: hanging */
+  memcpy(spec.frame, F, sizeof F);
+  csu_set3(spec.hip, 10, 20, 30);
+  void* sh = NULL;
+  const int rc = T->sharedCreate(&spec, &sh, &err);
+  if (rc != 0) {
+    printf("  sharedCreate: %s\n", err.msg);
+  }
+  CS_ASSERT(rc == 0);
+  spec.shared = sh;
+  csrLeg* leg = T->create(&spec, &err);
+  CS_ASSERT(leg != NULL);
+  const double m = RHO * BX * BY * BZ, c[3] = {0.5 * BX, 0.5 * BY, 0.5 * BZ};
+  double cw[3], mx[3];
+  csu_mulMatVec3(cw, F, c);
+  T->massMoment(leg, mx);
+  CS_EXPECT(fabs(T->mass(leg) - m) < 1e-12 * m);
+  for (int i = 0; i < 3; i++) {
+    CS_EXPECT(fabs(mx[i] - m * (spec.hip[i] + cw[i])) < 1e-9 * m * 30);
+  }
+  double cl[5 * 3], end0[3], end1[3];
+  const double c0[3] = {0.5 * BX, 0.5 * BY, 0}, c1[3] = {0.5 * BX, 0.5 * BY, BZ};
+  T->centerline(leg, 5, cl);
+  csu_mulMatVec3(end0, F, c0);
+  csu_mulMatVec3(end1, F, c1);
+  double e = 0;
+  for (int i = 0; i < 3; i++) {
+    e = fmax(e, fmax(fabs(cl[i] - spec.hip[i] - end0[i]), fabs(cl[12 + i] - spec.hip[i] - end1[i])));
+  }
+  printf("  centreline ends at rest: %.2g mm from the faces' centres\n", e);
+  CS_EXPECT(e < 1e-9);
+  /* the state: get, set, get again: the same bytes */
+  const int nsz = T->stateSize(leg);
+  double* x0 = malloc((size_t)nsz * sizeof(double));
+  double* x1 = malloc((size_t)nsz * sizeof(double));
+  T->getState(leg, x0);
+  CS_EXPECT(T->setState(leg, x0) == 0);
+  T->getState(leg, x1);
+  CS_EXPECT(memcmp(x0, x1, (size_t)nsz * sizeof(double)) == 0);
+  /* the gains against the rigid block's spatial inertia about the hip (world) */
+  double K[36], C[36];
+  T->interfaceGains(leg, K, C);
+  double Jl[9], Ih[9], Jw[9], tmp[9], Ft[9];
+  const double L3[3] = {BX, BY, BZ};
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      /* ∫ρ x_i x_j over [0, L]^3: m L_i² / 3 on the diagonal, m L_i L_j / 4 off it */
+      Jl[3 * i + j] = i == j ? m * L3[i] * L3[i] / 3 : m * L3[i] * L3[j] / 4;
+      Ft[3 * i + j] = F[3 * j + i];
+    }
+  }
+  const double tr = Jl[0] + Jl[4] + Jl[8];
+  for (int i = 0; i < 9; i++) {
+    Ih[i] = (i % 4 == 0 ? tr : 0) - Jl[i];
+  }
+  csu_mulMat3(tmp, F, Ih);
+  csu_mulMat3(Jw, tmp, Ft);
+  const double s[3] = {m * cw[0], m * cw[1], m * cw[2]};
+  const double sx[9] = {0, -s[2], s[1], s[2], 0, -s[0], -s[1], s[0], 0};
+  double Z[36] = {0}, dmax = 0, kmax = 0, zmax = 0;
+  for (int i = 0; i < 3; i++) {
+    Z[6 * i + i] = m;
+    for (int j = 0; j < 3; j++) {
+      Z[6 * i + 3 + j] = -sx[3 * i + j];
+      Z[6 * (3 + i) + j] = sx[3 * i + j];
+      Z[6 * (3 + i) + 3 + j] = Jw[3 * i + j];
+    }
+  }
+  for (int i = 0; i < 36; i++) {
+    /* rows and columns in their own units: compare each block to its own scale */
+    const int r = i / 6 >= 3, q = i % 6 >= 3;
+    const double scale = r && q ? Jw[0] + Jw[4] + Jw[8] : (r || q ? m * BZ : m);
+    dmax = fmax(dmax, fabs(C[i] * spec.h - Z[i]) / scale);
+    kmax = fmax(kmax, fabs(K[i]));
+    zmax = fmax(zmax, fabs(C[i] - C[6 * (i % 6) + i / 6]));
+  }
+  printf("  gains at h = %g s: |C h - M6| %.2g of each block's scale; K %.2g; asymmetry %.2g\n",
+         spec.h, dmax, kmax, zmax);
+  CS_EXPECT(dmax < 1e-6);
+  CS_EXPECT(kmax == 0 && zmax == 0);
+  free(x0), free(x1);
+  T->destroy(leg);
+  T->sharedDestroy(sh);
+  free(ch);
+  blockDestroy(&b);
+  remove(kPath);
+}
+
 int main(void) {
   CS_RUN(test_romLegFileRoundTripIsBitExact);
   CS_RUN(test_romLegFileBadFilesAreRefused);
+  CS_RUN(test_romLevelOnTheBlock);
   remove(kPath);
   return cs_testSummary();
 }
