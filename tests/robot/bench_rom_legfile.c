@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   csf_romDataReset(lf.rom, d);
   const int n = lf.rom->n;
   for (int k = 0; k < n; k++) {
-    d->q[k] = 0.01 * sin(1.0 + 2.3 * k);
+    d->q[k] = 1e-7 * sin(1.0 + 2.3 * k); /* M-orthonormal basis: q in mm t^0.5, about 1e-4 mm */
   }
   double* face_p = calloc((size_t)lf.mesh->nface, sizeof(double));
   for (int f = 0; f < lf.mesh->nface; f++) {
