@@ -301,8 +301,9 @@ extern const csrLegType csr_leg_strain;
 /* The reduced-order FE level (robot/rom/robot_rom_leg.c): needs spec->leg_file. */
 extern const csrLegType csr_leg_rom;
 
-/* The registered level called `name` ("rod", "strain"), or NULL. Levels the design names but
- * that are not registered yet ("rom") give NULL with *planned = 1 (planned may be NULL). */
+/* The registered level called `name` ("rod", "strain", "rom"), or NULL. Levels the design
+ * names but that are not registered yet (none today) give NULL with *planned = 1 (planned may
+ * be NULL). */
 const csrLegType* csr_legTypeFind(const char* name, int* planned);
 /* For a level that was retired ("prb", 2026-12-06: off the speed/accuracy front, docs/studies/
  * speed_accuracy.md), one sentence saying so and what to use instead (static string); NULL for
