@@ -54,7 +54,9 @@ typedef struct csRunDef {
                                 default conditions (earth) */
   const char* conditions;    /* "earth" | "paper"; NULL: the scene's with its own files, earth
                                 with a user's terrain or gait */
-  const char* legs;          /* leg level "rod" | "strain" | "auto"; NULL: the scene's */
+  const char* legs;          /* leg level "rod" | "strain" | "rom" | "auto"; NULL: the scene's */
+  const char* rom_file;      /* legs "rom": the reduced leg's file (`crawlsim rom leg-file`),
+                                needed; refused with another level */
   double legs_tol_mm;        /* legs "auto": the track error allowed against the rod
                                 reference (mm, needed) */
   const char* levels;        /* legs "auto": the measured table; NULL: robot/levels.csv */

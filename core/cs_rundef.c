@@ -170,6 +170,13 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
     if (!isnan(def->legs_tol_mm) || def->levels) {
       return cs_errorSet(err, CS_ERR_ARG, "--tol and --levels go with --legs auto");
     }
+    if (!strcmp(type->name, "rom") && !def->rom_file) {
+      return cs_errorSet(err, CS_ERR_ARG, "--legs rom needs --rom-file LEG.h5 (the reduced "
+                         "leg's file: crawlsim rom leg-file)");
+    }
+  }
+  if (def->rom_file && (!type || strcmp(type->name, "rom") != 0)) {
+    return cs_errorSet(err, CS_ERR_ARG, "--rom-file goes with --legs rom (not %s)", legs);
   }
   if (def->cal_rule) {
     csrCalRule rule;
@@ -530,6 +537,14 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
     return st;
   }
   cs_modelSetLegLevel(m, leg_type); /* the one place the level is stored (and its coupling) */
+  if (def->rom_file) {
+    if (strlen(def->rom_file) >= sizeof m->robot.leg_file) {
+      free(sf);
+      return cs_errorSet(err, CS_ERR_ARG, "--rom-file: a path of %zu characters (at most %zu)",
+                         strlen(def->rom_file), sizeof m->robot.leg_file - 1);
+    }
+    snprintf(m->robot.leg_file, sizeof m->robot.leg_file, "%s", def->rom_file);
+  }
   /* the level's own settings: its defaults, then the scene's and the definition's values (a
    * level that has none of a given setting was refused above, or by levelTakes for auto) */
   csrLegSettings* ls = &m->robot.leg_settings;

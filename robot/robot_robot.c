@@ -12,11 +12,12 @@
  * csrLegType is declared in robot_leg.h). */
 static const csrLegType* const kLegLevels[] = {
     &csr_leg_rod,
-    &csr_leg_strain, /* the dearest per simulated second today (docs/notes/strain_leg.md) */
+    &csr_leg_strain, /* docs/notes/strain_leg.md */
+    &csr_leg_rom,    /* the reduced FE leg from its file (docs/notes/rom.md): the dearest */
 };
 /* Levels docs/design.md names ("Model levels") that are not registered yet: known to the CLI,
  * "not available yet" until they are in kLegLevels. */
-static const char* const kPlannedLevels[] = {"rom"};
+static const char* const kPlannedLevels[] = {NULL}; /* none today */
 enum { NLEVEL = sizeof kLegLevels / sizeof kLegLevels[0] };
 /* Levels that were retired, with what to use instead (csr_legRetired). */
 static const struct {
@@ -51,7 +52,7 @@ const csrLegType* csr_legTypeFind(const char* name, int* planned) {
     }
   }
   for (size_t i = 0; i < sizeof kPlannedLevels / sizeof kPlannedLevels[0]; i++) {
-    if (planned && !strcmp(kPlannedLevels[i], name)) {
+    if (planned && kPlannedLevels[i] && !strcmp(kPlannedLevels[i], name)) {
       *planned = 1;
     }
   }
@@ -146,6 +147,7 @@ csrRobot* csr_robotCreate(const csrRobotModel* m, const csrRobotEnv* env, const 
   spec.weightless = env->weightless_legs;
   spec.terrain = env->terrain;
   spec.contact = env->contact;
+  spec.leg_file = m->leg_file[0] ? m->leg_file : NULL;
   const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
   csu_mulMat3(spec.frame, Rh, F);
   memcpy(r->frame_local, F, sizeof F);

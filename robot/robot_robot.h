@@ -33,6 +33,7 @@ typedef struct csrRobotModel_ {
   const csrLegType* leg_type; /* the leg level: the single source of which level runs */
   csrLegSettings leg_settings; /* the level's own settings (for another level than leg_type:
                                  leg_type's defaults, csr_legSettingsRead) */
+  char leg_file[512];        /* a level's own file (rom: `crawlsim rom leg-file`); "": none */
   csrBendMap map;            /* calibration: pressure -> segment bend */
   double support_mass;       /* t (1 kg = 1e-3 t) */
   double support_size[3];    /* x length, y thickness, z width of the support box, mm */

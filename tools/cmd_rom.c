@@ -33,6 +33,7 @@ static const char kUsage[] =
     "  check        the reduced model along the rays of a snapshot directory against the FE\n"
     "  ecsw-matrix  every element's reduced force at the basis' training snapshots (for\n"
     "               tools/rom_ecsw.py)\n"
+    "  leg-file     one file with the reduced leg of a basis, for `crawlsim run --legs rom`\n"
     "  modes        the tangents of the FE and of the reduced model at a pressure (for\n"
     "               tools/rom_modes.py: the first eigenfrequencies)\n"
     "Run 'crawlsim rom <subcommand> --help' for its options.\n";
@@ -708,8 +709,11 @@ int csx_cmdRom(int argc, char** argv) {
   if (!strcmp(argv[1], "modes")) {
     return csx_cmdRomModes(argc - 1, argv + 1);
   }
-  fprintf(stderr, "crawlsim rom: unknown stage '%.64s' (expected snapshots, check, ecsw-matrix or "
-          "modes; "
+  if (!strcmp(argv[1], "leg-file")) {
+    return csx_cmdRomLegFile(argc - 1, argv + 1);
+  }
+  fprintf(stderr, "crawlsim rom: unknown stage '%.64s' (expected snapshots, check, ecsw-matrix, "
+          "modes or leg-file; "
           "see crawlsim rom --help)\n", argv[1]);
   return 1;
 }

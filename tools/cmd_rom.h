@@ -34,6 +34,9 @@ int csx_romOpen(const char* actname, const char* const* sets, int nset, const ch
                 const char* weights, const char* work, const char* stem_name, csrActuator* act,
                 csfRomActuator* ra);
 
+/* `crawlsim rom leg-file` (cmd_rom_legfile.c) */
+int csx_cmdRomLegFile(int argc, char** argv);
+
 /* `crawlsim rom modes` (cmd_rom_modes.c) */
 int csx_cmdRomModes(int argc, char** argv);
 

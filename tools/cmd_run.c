@@ -47,7 +47,11 @@ static const csxOpt kRunOpts[] = {
      "the leg level; auto picks the scene's cheapest measured configuration within --tol; "
      "strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled tree, its "
      "step --dt (default 1 ms, the level's own) and --links bending modes per segment (default "
-     "3); rom is not available yet; prb was retired (refused naming rod or strain)"},
+     "3); rom: the reduced FE leg of --rom-file (docs/notes/rom.md), contact at its sole only; prb "
+     "was retired (refused naming rod or strain)"},
+    {"--rom-file", "LEG.h5", NULL,
+     "with --legs rom: the reduced leg's file (crawlsim rom leg-file), built for the legs' "
+     "actuator (--set)"},
     {"--friction", "MU", "0.8", "Coulomb friction coefficient of every contact (dimensionless)"},
     {"--pressure-scale", "K", "1",
      "multiplies every pressure of the gait (refused if it pushes a gait above 1 MPa)"},
@@ -124,6 +128,7 @@ static const struct {
     {"--gait", offsetof(csRunDef, gait), 0},
     {"--terrain", offsetof(csRunDef, terrain), 0},
     {"--legs", offsetof(csRunDef, legs), 0},
+    {"--rom-file", offsetof(csRunDef, rom_file), 0},
     {"--out", offsetof(csRunDef, out), 0},
     {"--calibration", offsetof(csRunDef, calibration), 0},
     {"--cal-rule", offsetof(csRunDef, cal_rule), 0},

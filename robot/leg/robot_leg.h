@@ -100,6 +100,8 @@ typedef struct csrLegSpec_ {
   const csrActuator* act;        /* copied by the leg */
   const csrLegParams* params;    /* copied by the leg */
   const csrLegSettings* settings; /* the level's own settings, copied; NULL: its defaults */
+  const char* leg_file;          /* a level's own data file (rom: the reduced leg, robot_rom_file.h);
+                                    NULL: none; read by sharedCreate */
   const csrBendMap* map;         /* kept: pressures -> segment bends */
   double hip[3];                 /* hip position at creation, world mm */
   double frame[9];               /* leg frame at creation (columns e1, e2, e3), world */
@@ -164,6 +166,9 @@ typedef struct csrLegType_ {
   /* the level's own settings, with their defaults and ranges (at most CSR_LEG_MAX_SETTINGS) */
   const csrLegSetting* settings;
   int nsettings;
+  /* 1: the level builds its legs from a data file (csrLegSpec.leg_file: rom), so the speed
+   * table (robot/levels.csv) measures it only where such a file is given */
+  int needs_file;
 
   /* Build the leg hanging straight from spec->hip along spec->frame's e3, at rest, vented.
    * Returns NULL and fills err on failure. */
@@ -298,9 +303,12 @@ typedef struct csrLegType_ {
 extern const csrLegType csr_leg_rod;
 /* The strain-coordinate Cosserat rod level (robot_strain*.c, robot_strain.h), tree-stepped. */
 extern const csrLegType csr_leg_strain;
+/* The reduced-order FE level (robot/rom/robot_rom_leg.c): needs spec->leg_file. */
+extern const csrLegType csr_leg_rom;
 
-/* The registered level called `name` ("rod", "strain"), or NULL. Levels the design names but
- * that are not registered yet ("rom") give NULL with *planned = 1 (planned may be NULL). */
+/* The registered level called `name` ("rod", "strain", "rom"), or NULL. Levels the design
+ * names but that are not registered yet (none today) give NULL with *planned = 1 (planned may
+ * be NULL). */
 const csrLegType* csr_legTypeFind(const char* name, int* planned);
 /* For a level that was retired ("prb", 2026-12-06: off the speed/accuracy front, docs/studies/
  * speed_accuracy.md), one sentence saying so and what to use instead (static string); NULL for

@@ -1,6 +1,6 @@
 /* robot_rom.h: the reduced-order FE leg's dynamics in the floating frame of the hip (issue 34,
- * the `rom` level's model; its registration behind robot_leg.h is not done yet: docs/notes/rom.md
- * "--legs rom").
+ * the `rom` level's model, registered behind robot_leg.h by robot_rom_leg.c over a leg file,
+ * robot_rom_file.h; docs/notes/rom.md "--legs rom").
  *
  * Owns: csrRomParams (density, Kelvin-Voigt damping time, CVODE tolerances), csrRomModel (the
  * constant reduced inertia operators of a csfRom: the consistent Tet10 mass projected on the

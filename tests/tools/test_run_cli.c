@@ -81,7 +81,15 @@ static void test_badOptions(void) {
   remove("runcli_bad.scene");
   expectFailure("--conditions mars", "crawlsim run: unknown conditions 'mars' (expected earth or");
   expectFailure("--conditions", "crawlsim run: option --conditions needs a value");
-  expectFailure("--legs rom", "crawlsim run: leg model 'rom' is not available yet");
+  /* the rom level reads its leg file (robot/rom/robot_rom_file.h): refused in one line */
+  expectFailure("--legs rom", "crawlsim run: --legs rom needs --rom-file LEG.h5");
+  expectFailure("--rom-file x.h5", "crawlsim run: --rom-file goes with --legs rom (not rod)");
+  expectFailure("--legs rom --rom-file runcli_missing.h5",
+                "crawlsim run: runcli_missing.h5: cannot open as an HDF5 file");
+  CS_EXPECT(cs_cliWriteText("runcli_notleg.h5", "not hdf5\n") == 1);
+  expectFailure("--legs rom --rom-file runcli_notleg.h5",
+                "crawlsim run: runcli_notleg.h5: cannot open as an HDF5 file");
+  remove("runcli_notleg.h5");
   expectFailure("--legs bogus", "crawlsim run: unknown leg model 'bogus'");
   expectFailure("--support-mass 0", "crawlsim run: --support-mass 0 kg must be > 0");
   expectFailure("--macro-steps 0", "crawlsim run: --macro-steps 0 must be an integer in 1..");

@@ -58,6 +58,7 @@ RUNDEF_FIELDS = [
     ("no_gait", ctypes.c_int, "int"),
     ("conditions", ctypes.c_char_p, "str"),
     ("legs", ctypes.c_char_p, "str"),
+    ("rom_file", ctypes.c_char_p, "str"),
     ("legs_tol_mm", ctypes.c_double, "num"),
     ("levels", ctypes.c_char_p, "str"),
     ("calibration", ctypes.c_char_p, "str"),

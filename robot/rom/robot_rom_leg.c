@@ -1,0 +1,608 @@
+/* robot_rom_leg.c: the reduced-order FE leg behind the leg interface (csr_leg_rom, robot_leg.h),
+ * over robot_rom.h's dynamics and a leg file (robot_rom_file.h, `crawlsim rom leg-file`).
+ *
+ * What the eight legs share (sharedCreate): the file's mesh, FE model of the kernels and
+ * reduced model, one csrRomModel (the inertia operators and K_r(0): the set-up's cost, paid
+ * once), the sole's soft contact (one foot of the actuator's half side a against the terrain,
+ * the law's defaults with the run's friction and stiffness scale, as the rod's foot), the
+ * centreline's band operators and the gains' factor. Each leg owns its csrRomData.
+ * Frames: the file's hip frame (the clamped face at z = 0, the leg along +z, the chambers in
+ * x, y) is the leg frame of robot_leg.h (e1, e2, e3), so the hip's R is the leg frame as is.
+ * Contact: at the sole only (the rod also has capsules along the leg: a rom leg's shin passes
+ * through the terrain unseen). Interface gains: the inertial response condensed on the hip
+ * over one backward-Euler step of spec->h (below); the contact's stiffness is not in them. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_math.h"
+#include "fem_model.h"
+#include "robot_leg.h"
+#include "robot_rom.h"
+#include "robot_rom_file.h"
+
+#define ROM_NBAND 24 /* centreline bands along the leg */
+
+typedef struct RomShared_ {
+  csrRomLegFile lf;
+  csrRomModel* m;
+  cscSoftModel* soft;     /* NULL without a terrain */
+  double a;               /* the foot's half side, mm */
+  double h;               /* the gains' step, s */
+  double* Sl;             /* (n x n) Cholesky factor (lower) of M_r + h C + h² K_r(0) */
+  /* the centreline: npt points in order of their reference z, each the mean of a band's nodes
+   * (the hip: the clamped face's centroid; the foot: the sole's) */
+  int npt;
+  double zr[ROM_NBAND + 2];
+  double Xp[(ROM_NBAND + 2) * 3];
+  double* Up;             /* (npt x 3 x n) */
+  double L;               /* mm, the leg's reference length (the sole's z) */
+} RomShared;
+
+struct csrLeg_ {
+  const RomShared* sh;
+  csrRomData* d;
+  csrBaseState b_reset;
+  double* x;              /* (state size) scratch */
+  double* G, *Y;          /* (n x 6) gains' scratch */
+  double* Fc, *zd;        /* (n), (nz) contact scratch */
+  cscSlotInfo* slot;      /* (nslot) */
+  double* pts;            /* (npt x 3) centreline scratch */
+};
+
+/* Cholesky A = L Lᵀ in place (lower); 0 or the failing row + 1 */
+static int cholesky(double* A, int n) {
+  for (int j = 0; j < n; j++) {
+    double s = A[(size_t)j * n + j];
+    for (int k = 0; k < j; k++) {
+      s -= A[(size_t)j * n + k] * A[(size_t)j * n + k];
+    }
+    if (!(s > 0)) {
+      return j + 1;
+    }
+    const double l = sqrt(s);
+    A[(size_t)j * n + j] = l;
+    for (int i = j + 1; i < n; i++) {
+      double t = A[(size_t)i * n + j];
+      for (int k = 0; k < j; k++) {
+        t -= A[(size_t)i * n + k] * A[(size_t)j * n + k];
+      }
+      A[(size_t)i * n + j] = t / l;
+    }
+  }
+  return 0;
+}
+
+static void cholSolve(const double* L, int n, double* b) {
+  for (int i = 0; i < n; i++) {
+    double s = b[i];
+    for (int k = 0; k < i; k++) {
+      s -= L[(size_t)i * n + k] * b[k];
+    }
+    b[i] = s / L[(size_t)i * n + i];
+  }
+  for (int i = n - 1; i >= 0; i--) {
+    double s = b[i];
+    for (int k = i + 1; k < n; k++) {
+      s -= L[(size_t)k * n + i] * b[k];
+    }
+    b[i] = s / L[(size_t)i * n + i];
+  }
+}
+
+static void sharedDestroyRom(void* p) {
+  RomShared* sh = p;
+  if (!sh) {
+    return;
+  }
+  csr_romModelDestroy(sh->m);
+  csc_softDestroy(sh->soft);
+  csr_romLegFileFree(&sh->lf);
+  free(sh->Sl), free(sh->Up);
+  free(sh);
+}
+
+/* the centreline's points: the clamped face's centroid, the bands' node means, the sole's */
+static csStatus buildBands(RomShared* sh, csError* err) {
+  const csfMesh* me = sh->lf.mesh;
+  const csfRom* rom = sh->lf.rom;
+  const int n = rom->n;
+  double L = 0;
+  for (int a = 0; a < sh->lf.nsole; a++) {
+    L = fmax(L, me->x[3 * sh->lf.sole[a] + 2]);
+  }
+  if (!(L > 0)) {
+    return cs_errorSet(err, CS_ERR_IO, "rom leg: the sole is not at z > 0 in the leg file");
+  }
+  sh->L = L;
+  sh->Up = calloc((size_t)(ROM_NBAND + 2) * 3 * n, sizeof(double));
+  double cnt[ROM_NBAND + 2] = {0}, zs[ROM_NBAND + 2] = {0}, X[(ROM_NBAND + 2) * 3] = {0};
+  if (!sh->Up) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
+  }
+  /* slot 0: the clamped face (z = 0, no displacement); 1..NB: the bands; NB + 1: the sole */
+  for (int i = 0; i < me->nnode; i++) {
+    const double z = me->x[3 * i + 2];
+    int b;
+    if (sh->lf.model->fixed[3 * i]) {
+      b = 0;
+    } else {
+      b = 1 + (int)floor(z / L * ROM_NBAND);
+      b = b < 1 ? 1 : b > ROM_NBAND ? ROM_NBAND : b;
+    }
+    cnt[b] += 1, zs[b] += z;
+    for (int k = 0; k < 3; k++) {
+      X[3 * b + k] += me->x[3 * i + k];
+      if (b > 0) {
+        const double* Vr = rom->V + (size_t)(3 * i + k) * n;
+        double* U = sh->Up + ((size_t)b * 3 + k) * n;
+        for (int j = 0; j < n; j++) {
+          U[j] += Vr[j];
+        }
+      }
+    }
+  }
+  sh->npt = 0;
+  for (int b = 0; b <= ROM_NBAND; b++) {
+    if (cnt[b] == 0) {
+      continue;
+    }
+    const int p = sh->npt++;
+    sh->zr[p] = b == 0 ? 0.0 : zs[b] / cnt[b];
+    for (int k = 0; k < 3; k++) {
+      sh->Xp[3 * p + k] = X[3 * b + k] / cnt[b];
+      const double* U = sh->Up + ((size_t)b * 3 + k) * n;
+      double* Ud = sh->Up + ((size_t)p * 3 + k) * n;
+      for (int j = 0; j < n; j++) {
+        Ud[j] = U[j] / cnt[b];
+      }
+    }
+  }
+  /* the foot: the sole's centroid (the model's sole operators) */
+  const int p = sh->npt++;
+  sh->zr[p] = L;
+  const csrRomModel* m = sh->m;
+  for (int k = 0; k < 3; k++) {
+    sh->Xp[3 * p + k] = m->contact ? m->Xs[k] : 0.0;
+    double* Ud = sh->Up + ((size_t)p * 3 + k) * n;
+    memset(Ud, 0, (size_t)n * sizeof(double));
+  }
+  if (!m->contact) { /* no sole operators: the sole's nodes' mean here */
+    for (int a = 0; a < sh->lf.nsole; a++) {
+      const int i = sh->lf.sole[a];
+      for (int k = 0; k < 3; k++) {
+        sh->Xp[3 * p + k] += me->x[3 * i + k] / sh->lf.nsole;
+        const double* Vr = rom->V + (size_t)(3 * i + k) * n;
+        double* Ud = sh->Up + ((size_t)p * 3 + k) * n;
+        for (int j = 0; j < n; j++) {
+          Ud[j] += Vr[j] / sh->lf.nsole;
+        }
+      }
+    }
+  } else {
+    for (int k = 0; k < 3; k++) {
+      memcpy(sh->Up + ((size_t)p * 3 + k) * n, m->Us + (size_t)k * n, (size_t)n * sizeof(double));
+    }
+  }
+  return CS_OK;
+}
+
+static int sharedCreateRom(const csrLegSpec* spec, void** shared, csError* err) {
+  *shared = NULL;
+  if (!spec || !spec->act || !spec->params) {
+    cs_errorSet(err, CS_ERR_ARG, "rom leg: NULL spec, actuator or parameters");
+    return -1;
+  }
+  if (!spec->leg_file) {
+    cs_errorSet(err, CS_ERR_ARG, "rom leg: no leg file (--rom-file LEG.h5, made by crawlsim rom "
+                "leg-file)");
+    return -1;
+  }
+  RomShared* sh = calloc(1, sizeof *sh);
+  if (!sh) {
+    cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
+    return -1;
+  }
+  if (csr_romLegFileRead(spec->leg_file, &sh->lf, err) != CS_OK ||
+      csr_romLegFileCheckActuator(&sh->lf, spec->leg_file, spec->act, err) != CS_OK) {
+    sharedDestroyRom(sh);
+    return -1;
+  }
+  csrRomParams par = csr_romDefaultParams();
+  par.rho = spec->act->rho;
+  par.damping_time = spec->params->damping_time;
+  if (!spec->weightless) {
+    memcpy(par.gravity, spec->gravity, sizeof par.gravity);
+  }
+  sh->m = csr_romModelCreate(sh->lf.rom, &par, sh->lf.rom->face_ch, err);
+  if (!sh->m) {
+    sharedDestroyRom(sh);
+    return -1;
+  }
+  sh->a = spec->act->a;
+  if (spec->terrain) {
+    cscSoftParams sp = csc_softDefaultParams();
+    if (spec->contact) {
+      sp.mu = spec->contact->mu;
+      sp.k_area *= spec->contact->stiffness_scale;
+    }
+    const cscShape foot = csc_softFoot(sh->a);
+    const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}; /* the sole's frame at rest: the hip's */
+    sh->soft = csc_softCreate(&sp, spec->terrain, 1, &foot, err);
+    if (!sh->soft ||
+        csr_romModelSetSole(sh->m, sh->soft, sh->lf.nsole, sh->lf.sole, I, err) != CS_OK) {
+      sharedDestroyRom(sh);
+      return -1;
+    }
+  }
+  /* the gains' factor: M_r + h C + h² K_r(0), K_r(0) the reduced tangent at rest */
+  const int n = sh->m->n;
+  sh->h = spec->h > 0 ? spec->h : 1e-3;
+  sh->Sl = malloc((size_t)n * n * sizeof(double));
+  csfRomData* fd = csf_romDataCreate(sh->lf.rom, err);
+  if (!sh->Sl || !fd) {
+    if (fd) {
+      cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
+    }
+    csf_romDataDestroy(fd);
+    sharedDestroyRom(sh);
+    return -1;
+  }
+  csf_romDataReset(sh->lf.rom, fd);
+  fd->sync = 1;
+  const csfRomLoad ld0 = {NULL, {0, 0, 0}, NULL};
+  const int rc = csf_romEvaluate(sh->lf.rom, fd, &ld0, 1);
+  for (size_t i = 0; rc == 0 && i < (size_t)n * n; i++) {
+    sh->Sl[i] = sh->m->Mr[i] + sh->h * sh->m->C[i] + sh->h * sh->h * fd->K[i];
+  }
+  csf_romDataDestroy(fd);
+  if (rc != 0 || cholesky(sh->Sl, n) != 0) {
+    cs_errorSet(err, CS_ERR_ARG, "%s: the reduced tangent at rest is not positive definite",
+                spec->leg_file);
+    sharedDestroyRom(sh);
+    return -1;
+  }
+  if (buildBands(sh, err) != CS_OK) {
+    sharedDestroyRom(sh);
+    return -1;
+  }
+  *shared = sh;
+  return 0;
+}
+
+static void destroyRom(csrLeg* leg) {
+  if (!leg) {
+    return;
+  }
+  csr_romDataDestroy(leg->d);
+  free(leg->x), free(leg->G), free(leg->Y), free(leg->Fc), free(leg->zd), free(leg->slot);
+  free(leg->pts);
+  free(leg);
+}
+
+static csrLeg* createRom(const csrLegSpec* spec, csError* err) {
+  if (!spec || !spec->shared) {
+    cs_errorSet(err, CS_ERR_ARG, "rom leg: no shared model (sharedCreate first)");
+    return NULL;
+  }
+  const RomShared* sh = spec->shared;
+  csrLeg* leg = calloc(1, sizeof *leg);
+  if (!leg) {
+    cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
+    return NULL;
+  }
+  leg->sh = sh;
+  const int n = sh->m->n, nz = sh->m->nz > 0 ? sh->m->nz : 1;
+  const int nslot = sh->soft ? csc_softNSlot(sh->soft) : 1;
+  leg->d = csr_romDataCreate(sh->m, err);
+  leg->x = malloc((size_t)csr_romStateSize(sh->m) * sizeof(double));
+  leg->G = malloc((size_t)n * 6 * sizeof(double));
+  leg->Y = malloc((size_t)n * 6 * sizeof(double));
+  leg->Fc = malloc((size_t)n * sizeof(double));
+  leg->zd = malloc((size_t)nz * sizeof(double));
+  leg->slot = calloc((size_t)nslot, sizeof *leg->slot);
+  leg->pts = malloc((size_t)sh->npt * 3 * sizeof(double));
+  if (!leg->d || !leg->x || !leg->G || !leg->Y || !leg->Fc || !leg->zd || !leg->slot ||
+      !leg->pts) {
+    if (leg->d) cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
+    destroyRom(leg);
+    return NULL;
+  }
+  memset(&leg->b_reset, 0, sizeof leg->b_reset);
+  memcpy(leg->b_reset.x, spec->hip, sizeof leg->b_reset.x);
+  memcpy(leg->b_reset.R, spec->frame, sizeof leg->b_reset.R);
+  csr_romReset(sh->m, leg->d, 0.0, &leg->b_reset);
+  return leg;
+}
+
+static int sharedSize(const csrLeg* leg) { return csr_romStateSize(leg->sh->m); }
+
+static int stateSizeRom(const csrLeg* leg) { return sharedSize(leg); }
+
+static void getStateRom(const csrLeg* leg, double* x) { csr_romGetState(leg->sh->m, leg->d, x); }
+
+static int setStateRom(csrLeg* leg, const double* x) {
+  return csr_romSetState(leg->sh->m, leg->d, x);
+}
+
+static void resetRom(csrLeg* leg) { csr_romReset(leg->sh->m, leg->d, 0.0, &leg->b_reset); }
+
+static int actuateRom(csrLeg* leg, double t0, const double p0[12], double t1,
+                      const double p1[12]) {
+  csr_romActuate(leg->d, t0, p0, t1, p1);
+  return 0;
+}
+
+static int advanceRom(csrLeg* leg, double t, double H, const csrBaseState* b0,
+                      const csrBaseState* b1, csrWrench* w, csError* err) {
+  return csr_romAdvance(leg->sh->m, leg->d, t, H, b0, b1, w, err);
+}
+
+/* the hip state the data holds (the state vector's block after t and y) */
+static const double* baseOf(const csrLeg* leg) {
+  csr_romGetState(leg->sh->m, leg->d, leg->x);
+  return leg->x + 1 + 2 * leg->sh->m->n;
+}
+
+/* s(q) = s0 + Tᵀ q (hip frame, t mm) */
+static void firstMoment(const csrRomModel* m, const double* q, double s[3]) {
+  for (int i = 0; i < 3; i++) {
+    double a = m->s0[i];
+    for (int k = 0; k < m->n; k++) {
+      a += m->T[3 * k + i] * q[k];
+    }
+    s[i] = a;
+  }
+}
+
+/* Interface gains: the leg's inertia condensed on the hip over one backward-Euler step of h.
+ * A change ΔV = [Δv; Δω] (world) of the hip's twist over the step drives the reduced
+ * coordinates through G = [T Rᵀ, E(q) Rᵀ] (E_k = e_k + Q_k q: robot_rom.h's base-acceleration
+ * terms, impulse form), the leg answers with Δq' = -S⁻¹ G ΔV, S = M_r + h C + h² K_r(0), and
+ * its momenta change by M6 ΔV + Gᵀ Δq' (M6 the rigid spatial inertia of the deformed leg about
+ * the hip; the same G carries q' into the momenta: R Tᵀ q', R E(q)ᵀ q'). The impulse on the
+ * support is -(M6 - Gᵀ S⁻¹ G) ΔV: C = (M6 - Gᵀ S⁻¹ G) / h, symmetric, positive semi-definite;
+ * K = 0 (a free leg has no stiffness at its hip; the sole's contact stiffness, seen through
+ * the leg, is not included). */
+static void interfaceGainsRom(const csrLeg* leg, double K[36], double C[36]) {
+  const RomShared* sh = leg->sh;
+  const csrRomModel* m = sh->m;
+  const int n = m->n;
+  const double* b = baseOf(leg);
+  const double* R = b + 3;
+  const double* q = csr_romQ(leg->d);
+  double* G = leg->G;
+  double* Y = leg->Y;
+  for (int k = 0; k < n; k++) {
+    double E[3];
+    for (int i = 0; i < 3; i++) {
+      const double* Qi = m->Q + ((size_t)i * n + k) * n;
+      double a = m->e[(size_t)i * n + k];
+      for (int l = 0; l < n; l++) {
+        a += Qi[l] * q[l];
+      }
+      E[i] = a;
+    }
+    for (int j = 0; j < 3; j++) {
+      double gt = 0, ge = 0;
+      for (int i = 0; i < 3; i++) {
+        gt += m->T[3 * k + i] * R[3 * j + i];
+        ge += E[i] * R[3 * j + i];
+      }
+      G[6 * k + j] = gt;
+      G[6 * k + 3 + j] = ge;
+    }
+  }
+  double col[4096];
+  double* c = n <= 4096 ? col : NULL;
+  for (int j = 0; c && j < 6; j++) {
+    for (int k = 0; k < n; k++) {
+      c[k] = G[6 * k + j];
+    }
+    cholSolve(sh->Sl, n, c);
+    for (int k = 0; k < n; k++) {
+      Y[6 * k + j] = c[k];
+    }
+  }
+  /* M6: [[m 1, -[s]x], [[s]x, J]] about the hip, world */
+  double s[3], sw[3];
+  firstMoment(m, q, s);
+  csu_mulMatVec3(sw, R, s);
+  /* ∫ρ r_i r_j = J0_ij + 2 d_ijᵀ q + qᵀ S_ij q (hip frame; order 00 11 22 01 02 12) */
+  static const int ii[6] = {0, 1, 2, 0, 0, 1}, jj[6] = {0, 1, 2, 1, 2, 2};
+  double Jm[9];
+  for (int p = 0; p < 6; p++) {
+    double a = m->J0[p];
+    const double* dp = m->d + (size_t)p * n;
+    const double* Sp = m->S + (size_t)p * n * n;
+    for (int k = 0; k < n; k++) {
+      double t = 0;
+      for (int l = 0; l < n; l++) {
+        t += Sp[(size_t)k * n + l] * q[l];
+      }
+      a += 2 * dp[k] * q[k] + q[k] * t;
+    }
+    Jm[3 * ii[p] + jj[p]] = Jm[3 * jj[p] + ii[p]] = a;
+  }
+  const double tr = Jm[0] + Jm[4] + Jm[8];
+  double Ih[9], RI[9], Iw[9], Rt[9];
+  for (int i = 0; i < 9; i++) {
+    Ih[i] = (i % 4 == 0 ? tr : 0.0) - Jm[i];
+  }
+  csu_mulMat3(RI, R, Ih);
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      Rt[3 * i + j] = R[3 * j + i];
+    }
+  }
+  csu_mulMat3(Iw, RI, Rt);
+  double Z[36];
+  memset(Z, 0, sizeof Z);
+  const double sx[9] = {0, -sw[2], sw[1], sw[2], 0, -sw[0], -sw[1], sw[0], 0};
+  for (int i = 0; i < 3; i++) {
+    Z[6 * i + i] = m->mass;
+    for (int j = 0; j < 3; j++) {
+      Z[6 * i + 3 + j] = -sx[3 * i + j];
+      Z[6 * (3 + i) + j] = sx[3 * i + j];
+      Z[6 * (3 + i) + 3 + j] = Iw[3 * i + j];
+    }
+  }
+  for (int i = 0; c && i < 6; i++) {
+    for (int j = 0; j < 6; j++) {
+      double a = 0;
+      for (int k = 0; k < n; k++) {
+        a += G[6 * k + i] * Y[6 * k + j];
+      }
+      Z[6 * i + j] -= a;
+    }
+  }
+  for (int i = 0; i < 36; i++) {
+    K[i] = 0.0;
+    C[i] = 0.5 * (Z[i] + Z[6 * (i % 6) + i / 6]) / sh->h;
+  }
+}
+
+/* the sole's load at the current state (0 out of contact or without a terrain) */
+static int soleNow(const csrLeg* leg, cscShapeLoad* ld, double x0[3]) {
+  const RomShared* sh = leg->sh;
+  if (!sh->m->contact) {
+    return -1;
+  }
+  const double* b = baseOf(leg);
+  return csr_romSoleLoad(sh->m, b + 3, b, b + 12, b + 15, csr_romQ(leg->d), csr_romQdot(leg->d),
+                         csr_romZ(leg->d), leg->Fc, leg->zd, ld, x0, leg->slot);
+}
+
+static int contactShapesRom(const csrLeg* leg, csrContactShape* shapes, int max) {
+  const RomShared* sh = leg->sh;
+  const csrRomModel* m = sh->m;
+  if (max < 1 || !m->contact) {
+    return m->contact ? 1 : 0;
+  }
+  const int n = m->n;
+  const double* b = baseOf(leg);
+  const double* q = csr_romQ(leg->d);
+  double xb[3], th[3], Rth[9], Rf[9], xw[3];
+  for (int i = 0; i < 3; i++) {
+    double a = m->Xs[i], c = 0;
+    for (int k = 0; k < n; k++) {
+      a += m->Us[(size_t)i * n + k] * q[k];
+      c += m->Ws[(size_t)i * n + k] * q[k];
+    }
+    xb[i] = a, th[i] = c;
+  }
+  csu_rotVecToMat3(Rth, th);
+  csu_mulMat3(Rf, b + 3, Rth);
+  csu_mulMatVec3(xw, b + 3, xb);
+  csrContactShape* c = &shapes[0];
+  memset(c, 0, sizeof *c);
+  c->kind = CSR_SHAPE_BOX;
+  /* a thin box on the sole, 0.5 mm into the leg along its e3 */
+  for (int k = 0; k < 3; k++) {
+    c->a[k] = b[k] + xw[k] - 0.5 * Rf[3 * k + 2];
+  }
+  memcpy(c->R, Rf, sizeof c->R);
+  c->half[0] = c->half[1] = sh->a;
+  c->half[2] = 0.5;
+  c->s = sh->L;
+  return 1;
+}
+
+static void centerlineRom(const csrLeg* leg, int k, double* out) {
+  const RomShared* sh = leg->sh;
+  const int n = sh->m->n, np = sh->npt;
+  const double* b = baseOf(leg);
+  const double* q = csr_romQ(leg->d);
+  for (int p = 0; p < np; p++) {
+    double xl[3], xw[3];
+    for (int i = 0; i < 3; i++) {
+      const double* U = sh->Up + ((size_t)p * 3 + i) * n;
+      double a = sh->Xp[3 * p + i];
+      for (int j = 0; j < n; j++) {
+        a += U[j] * q[j];
+      }
+      xl[i] = a;
+    }
+    csu_mulMatVec3(xw, b + 3, xl);
+    for (int i = 0; i < 3; i++) {
+      leg->pts[3 * p + i] = b[i] + xw[i];
+    }
+  }
+  /* k points equally spaced in the reference arc length (the leg's z), linear between the
+   * band points */
+  int p = 0;
+  for (int i = 0; i < k; i++) {
+    const double z = k > 1 ? sh->L * i / (k - 1) : 0.0;
+    while (p < np - 2 && sh->zr[p + 1] < z) {
+      p++;
+    }
+    const double dz = sh->zr[p + 1] - sh->zr[p];
+    const double u = dz > 0 ? fmin(1.0, fmax(0.0, (z - sh->zr[p]) / dz)) : 0.0;
+    for (int j = 0; j < 3; j++) {
+      out[3 * i + j] = (1 - u) * leg->pts[3 * p + j] + u * leg->pts[3 * (p + 1) + j];
+    }
+  }
+}
+
+static double massRom(const csrLeg* leg) { return leg->sh->m->mass; }
+
+static void massMomentRom(const csrLeg* leg, double mx[3]) {
+  const csrRomModel* m = leg->sh->m;
+  const double* b = baseOf(leg);
+  double s[3], sw[3];
+  firstMoment(m, csr_romQ(leg->d), s);
+  csu_mulMatVec3(sw, b + 3, s);
+  for (int i = 0; i < 3; i++) {
+    mx[i] = m->mass * b[i] + sw[i];
+  }
+}
+
+static double contactDepthRom(const csrLeg* leg) {
+  cscShapeLoad ld;
+  double x0[3];
+  if (soleNow(leg, &ld, x0) < 0) {
+    return 0.0;
+  }
+  int first = 0, cnt = 0;
+  csc_softShapeSlots(leg->sh->soft, 0, &first, &cnt);
+  double depth = 0.0;
+  for (int i = first; i < first + cnt; i++) {
+    depth = fmax(depth, leg->slot[i].depth);
+  }
+  return depth;
+}
+
+static void contactForceRom(const csrLeg* leg, double f[3]) {
+  cscShapeLoad ld;
+  double x0[3];
+  f[0] = f[1] = f[2] = 0.0;
+  if (soleNow(leg, &ld, x0) < 0) {
+    return;
+  }
+  csu_add3(f, ld.f0, ld.f1);
+}
+
+const csrLegType csr_leg_rom = {
+    .name = "rom",
+    .in_world = 0,
+    .settings = NULL,
+    .nsettings = 0,
+    .needs_file = 1,
+    .create = createRom,
+    .destroy = destroyRom,
+    .sharedCreate = sharedCreateRom,
+    .sharedDestroy = sharedDestroyRom,
+    .stateSize = stateSizeRom,
+    .getState = getStateRom,
+    .setState = setStateRom,
+    .reset = resetRom,
+    .actuate = actuateRom,
+    .advance = advanceRom,
+    .interfaceGains = interfaceGainsRom,
+    .contactShapes = contactShapesRom,
+    .centerline = centerlineRom,
+    .mass = massRom,
+    .massMoment = massMomentRom,
+    .contactDepth = contactDepthRom,
+    .contactForce = contactForceRom,
+};

@@ -1,0 +1,298 @@
+/* test_rom_leg_file.c: the rom leg's file (robot/rom/robot_rom_file.h) written and read back
+ * builds the same reduced model without the mesher or the chambers' tensors: on the test block
+ * (rom_test_block.h) with a pressure basis, element weights and the twelve chambers' cubic
+ * forms, the residual, tangent and chamber volume of the read model equal the original's bit
+ * for bit at a loaded state (the same kernels on the same arrays in the same order: any
+ * difference is a lost or reordered value), the consistent mass agrees, and bad files are
+ * refused in one line naming the file and the cause. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_h5.h"
+#include "cs_test.h"
+#include "rom_test_block.h"
+#include "robot_actuator.h"
+#include "robot_leg.h"
+#include "robot_rom_file.h"
+
+static const char* kPath = "test_rom_leg_file.h5";
+
+/* r, K and one chamber's volume at q under pressure and gravity */
+static void evaluate(const csfRom* rom, const double* q, double* r, double* K, double* vol) {
+  csError err = {0};
+  csfRomData* d = csf_romDataCreate(rom, &err);
+  CS_ASSERT(d != NULL);
+  csf_romDataReset(rom, d);
+  d->sync = 1;
+  memcpy(d->q, q, (size_t)rom->n * sizeof(double));
+  double* face_p = calloc((size_t)rom->fem->mesh->nface, sizeof(double));
+  for (int f = 0; f < rom->fem->mesh->nface; f++) {
+    face_p[f] = rom->face_ch[f] == 0 ? 0.01 : 0.0;
+  }
+  csfRomLoad ld = {face_p, {0, -9810, 0}, NULL};
+  CS_ASSERT(csf_romEvaluate(rom, d, &ld, 1) == 0);
+  memcpy(r, d->r, (size_t)rom->n * sizeof(double));
+  memcpy(K, d->K, (size_t)rom->n * rom->n * sizeof(double));
+  *vol = csf_romChamberVolume(rom, 0, q);
+  free(face_p);
+  csf_romDataDestroy(d);
+}
+
+static void test_romLegFileRoundTripIsBitExact(void) {
+  Block b;
+  blockCreate(&b, 4);
+  csError err = {0};
+  /* a mixed model (two pressure modes), weights on a subset of the Tet10s, 12 chambers */
+  const int ntet = b.me->ntet, m = 2;
+  double* P = malloc((size_t)ntet * m * sizeof(double));
+  for (int e = 0; e < ntet; e++) {
+    P[e * m] = 1.0;
+    P[e * m + 1] = (double)e / ntet - 0.5;
+  }
+  CS_ASSERT(csf_romSetPressureBasis(b.rom, m, P, &err) == CS_OK);
+  int* idx = malloc((size_t)ntet * sizeof(int));
+  double* w = malloc((size_t)ntet * sizeof(double));
+  int nk = 0;
+  for (int e = 0; e < ntet; e += 2) {
+    idx[nk] = e, w[nk++] = 1.5 + 0.25 * (e % 3);
+  }
+  CS_ASSERT(csf_romSetWeights(b.rom, CSF_ROM_SET_TET, nk, idx, w, &err) == CS_OK);
+  int* ch = chamberFaces(&b);
+  CS_ASSERT(csf_romChamberTensors(b.rom, 12, ch, &err) == CS_OK);
+  int* sole = malloc((size_t)b.me->nnode * sizeof(int));
+  int ns = 0;
+  for (int i = 0; i < b.me->nnode; i++) {
+    if (fabs(b.me->x[3 * i + 2] - BZ) < 1e-9) {
+      sole[ns++] = i;
+    }
+  }
+  csrActuator act;
+  CS_ASSERT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
+  CS_EXPECT(csr_romLegFileWrite(kPath, b.rom, ns, sole, &act, 8.0, "block", NULL, &err) ==
+            CS_OK);
+  csrRomLegFile lf;
+  const csStatus st = csr_romLegFileRead(kPath, &lf, &err);
+  if (st != CS_OK) {
+    printf("  read: %s\n", err.msg);
+  }
+  CS_ASSERT(st == CS_OK);
+  CS_EXPECT(lf.rom->n == b.rom->n && lf.rom->m == m && lf.nsole == ns && lf.l_soft == 8.0);
+  CS_EXPECT(lf.rom->nel[0] == nk && lf.rom->nch == 12 && lf.model->nfib == b.fem->nfib);
+  const int n = b.rom->n;
+  double q[64], r0[64], r1[64], K0[64 * 64], K1[64 * 64], v0, v1;
+  for (int k = 0; k < n; k++) {
+    q[k] = 0.02 * sin(1.0 + 2.3 * k); /* a state of a few tenths of a mm */
+  }
+  evaluate(b.rom, q, r0, K0, &v0);
+  evaluate(lf.rom, q, r1, K1, &v1);
+  double rn = 0;
+  for (int k = 0; k < n; k++) {
+    rn = fmax(rn, fabs(r0[k]));
+  }
+  printf("  round trip: n = %d, m = %d, %d of %d Tet10 kept, %d sole nodes; |r| %.3g N; r, K and "
+         "the chamber's volume (%.6g mm^3) %s\n", n, m, nk, ntet, ns, rn, v1,
+         memcmp(r0, r1, (size_t)n * sizeof(double)) == 0 &&
+                 memcmp(K0, K1, (size_t)n * n * sizeof(double)) == 0 && v0 == v1
+             ? "bit for bit"
+             : "DIFFER");
+  CS_EXPECT(rn > 0);
+  CS_EXPECT(memcmp(r0, r1, (size_t)n * sizeof(double)) == 0);
+  CS_EXPECT(memcmp(K0, K1, (size_t)n * n * sizeof(double)) == 0);
+  CS_EXPECT(v0 == v1);
+  /* the inertia operators from the read model: the same mass (the block's rho V) */
+  csrRomParams par = csr_romDefaultParams();
+  par.rho = RHO;
+  csrRomModel* m0 = csr_romModelCreate(b.rom, &par, ch, &err);
+  csrRomModel* m1 = csr_romModelCreate(lf.rom, &par, lf.rom->face_ch, &err);
+  CS_ASSERT(m0 && m1);
+  CS_EXPECT(m0->mass == m1->mass && fabs(m1->mass - RHO * BX * BY * BZ) < 1e-12 * m1->mass);
+  CS_EXPECT(memcmp(m0->Mr, m1->Mr, (size_t)n * n * sizeof(double)) == 0);
+  csr_romModelDestroy(m0);
+  csr_romModelDestroy(m1);
+  /* the actuator check: the same passes, another is refused naming the parameter */
+  CS_EXPECT(csr_romLegFileCheckActuator(&lf, kPath, &act, &err) == CS_OK);
+  csrActuator other = act;
+  other.S[0] += 1.0;
+  CS_EXPECT(csr_romLegFileCheckActuator(&lf, kPath, &other, &err) == CS_ERR_ARG);
+  printf("  another actuator: %s\n", err.msg);
+  CS_EXPECT(strstr(err.msg, kPath) && strstr(err.msg, "S1 is "));
+  csr_romLegFileFree(&lf);
+  free(P), free(idx), free(w), free(ch), free(sole);
+  blockDestroy(&b);
+}
+
+static void test_romLegFileBadFilesAreRefused(void) {
+  csError err = {0};
+  csrRomLegFile lf;
+  /* not HDF5 */
+  FILE* f = fopen(kPath, "w");
+  CS_ASSERT(f != NULL);
+  fputs("not hdf5\n", f);
+  fclose(f);
+  CS_EXPECT(csr_romLegFileRead(kPath, &lf, &err) == CS_ERR_IO);
+  printf("  %s\n", err.msg);
+  CS_EXPECT(strstr(err.msg, "cannot open as an HDF5 file") != NULL);
+  /* HDF5 but not a leg file */
+  csH5File* h = cs_h5Create(kPath, &err);
+  CS_ASSERT(h != NULL);
+  cs_h5AttrString(h, "/", "format", "crawlsim-rom-basis 1", &err);
+  cs_h5Close(h);
+  CS_EXPECT(csr_romLegFileRead(kPath, &lf, &err) == CS_ERR_IO);
+  printf("  %s\n", err.msg);
+  CS_EXPECT(strstr(err.msg, "not a rom leg file") != NULL);
+  /* a leg file whose element names a node that does not exist */
+  h = cs_h5Create(kPath, &err);
+  CS_ASSERT(h != NULL);
+  cs_h5AttrString(h, "/", "format", CSR_ROM_FILE_FORMAT, &err);
+  cs_h5AttrString(h, "/", "status", "complete", &err);
+  cs_h5AttrString(h, "/", "actuator_names", "S1", &err);
+  const char* num[] = {"n", "C10", "kappa", "rho", "fe_mesh_size_mm", "fib_split",
+                       "fib_tension_only"};
+  for (size_t k = 0; k < sizeof num / sizeof num[0]; k++) {
+    cs_h5AttrDouble(h, "/", num[k], 1.0, &err);
+  }
+  const char* zero[] = {"m", "C20", "kappa_pt", "form", "fib_geo_tension"};
+  for (size_t k = 0; k < sizeof zero / sizeof zero[0]; k++) {
+    cs_h5AttrDouble(h, "/", zero[k], 0.0, &err);
+  }
+  const double x[6] = {0, 0, 0, 1, 0, 0}, tet[10] = {0, 1, 1, 1, 1, 1, 1, 1, 1, 5};
+  const size_t dx[2] = {2, 3}, dt[2] = {1, 10};
+  cs_h5WriteDoubles(h, "/mesh/x", 2, dx, x, &err);
+  cs_h5WriteDoubles(h, "/mesh/tet", 2, dt, tet, &err);
+  CS_EXPECT(cs_h5Close(h) == CS_OK);
+  CS_EXPECT(csr_romLegFileRead(kPath, &lf, &err) == CS_ERR_IO);
+  printf("  %s\n", err.msg);
+  CS_EXPECT(strstr(err.msg, "/mesh/tet[9] = 5 is not an index in 0..1") != NULL);
+  CS_EXPECT(lf.rom == NULL && lf.mesh == NULL);
+  remove(kPath);
+}
+
+/* The level `rom` (robot_leg.h's table over the file) on the block: its mass and first moment
+ * are the block's closed forms, its centreline runs from the clamped face's centre to the
+ * sole's, the state round-trips bit for bit, and its interface gains over a long step h tend to
+ * the rigid block's spatial inertia about the hip divided by h (the modes' share,
+ * Gᵀ S⁻¹ G ~ M / (ω_1 h)², 1.4e-8 of the mass at the block's ω_1 = 2π 134 Hz and h = 10 s,
+ * vanishes; asked 1e-6): C h against [[m 1, -[s]x], [[s]x, J]] (s = m c, J the
+ * block's inertia about the hip), which checks the frame's mapping and the second moments. */
+static void test_romLevelOnTheBlock(void) {
+  Block b;
+  blockCreate(&b, 4);
+  csError err = {0};
+  int* ch = chamberFaces(&b);
+  CS_ASSERT(csf_romChamberTensors(b.rom, 12, ch, &err) == CS_OK);
+  int sole[64], ns = 0;
+  for (int i = 0; i < b.me->nnode && ns < 64; i++) {
+    if (fabs(b.me->x[3 * i + 2] - BZ) < 1e-9) {
+      sole[ns++] = i;
+    }
+  }
+  csrActuator act;
+  CS_ASSERT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
+  act.rho = RHO;
+  CS_ASSERT(csr_romLegFileWrite(kPath, b.rom, ns, sole, &act, 1.0, NULL, NULL, &err) == CS_OK);
+  const csrLegType* T = csr_legTypeFind("rom", NULL);
+  CS_ASSERT(T != NULL && T->needs_file);
+  csrLegParams lp = csr_defaultLegParams(&act);
+  csrLegSpec spec;
+  memset(&spec, 0, sizeof spec);
+  spec.act = &act;
+  spec.params = &lp;
+  spec.leg_file = kPath;
+  spec.h = 10.0; /* s: long, so that the modes' share of the gains vanishes */
+  const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0}; /* e1 = x, e2 = z, e3 = -y: hanging */
+  memcpy(spec.frame, F, sizeof F);
+  csu_set3(spec.hip, 10, 20, 30);
+  void* sh = NULL;
+  const int rc = T->sharedCreate(&spec, &sh, &err);
+  if (rc != 0) {
+    printf("  sharedCreate: %s\n", err.msg);
+  }
+  CS_ASSERT(rc == 0);
+  spec.shared = sh;
+  csrLeg* leg = T->create(&spec, &err);
+  CS_ASSERT(leg != NULL);
+  const double m = RHO * BX * BY * BZ, c[3] = {0.5 * BX, 0.5 * BY, 0.5 * BZ};
+  double cw[3], mx[3];
+  csu_mulMatVec3(cw, F, c);
+  T->massMoment(leg, mx);
+  CS_EXPECT(fabs(T->mass(leg) - m) < 1e-12 * m);
+  for (int i = 0; i < 3; i++) {
+    CS_EXPECT(fabs(mx[i] - m * (spec.hip[i] + cw[i])) < 1e-9 * m * 30);
+  }
+  double cl[5 * 3], end0[3], end1[3];
+  const double c0[3] = {0.5 * BX, 0.5 * BY, 0}, c1[3] = {0.5 * BX, 0.5 * BY, BZ};
+  T->centerline(leg, 5, cl);
+  csu_mulMatVec3(end0, F, c0);
+  csu_mulMatVec3(end1, F, c1);
+  double e = 0;
+  for (int i = 0; i < 3; i++) {
+    e = fmax(e, fmax(fabs(cl[i] - spec.hip[i] - end0[i]), fabs(cl[12 + i] - spec.hip[i] - end1[i])));
+  }
+  printf("  centreline ends at rest: %.2g mm from the faces' centres\n", e);
+  CS_EXPECT(e < 1e-9);
+  /* the state: get, set, get again: the same bytes */
+  const int nsz = T->stateSize(leg);
+  double* x0 = malloc((size_t)nsz * sizeof(double));
+  double* x1 = malloc((size_t)nsz * sizeof(double));
+  T->getState(leg, x0);
+  CS_EXPECT(T->setState(leg, x0) == 0);
+  T->getState(leg, x1);
+  CS_EXPECT(memcmp(x0, x1, (size_t)nsz * sizeof(double)) == 0);
+  /* the gains against the rigid block's spatial inertia about the hip (world) */
+  double K[36], C[36];
+  T->interfaceGains(leg, K, C);
+  double Jl[9], Ih[9], Jw[9], tmp[9], Ft[9];
+  const double L3[3] = {BX, BY, BZ};
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      /* ∫ρ x_i x_j over [0, L]^3: m L_i² / 3 on the diagonal, m L_i L_j / 4 off it */
+      Jl[3 * i + j] = i == j ? m * L3[i] * L3[i] / 3 : m * L3[i] * L3[j] / 4;
+      Ft[3 * i + j] = F[3 * j + i];
+    }
+  }
+  const double tr = Jl[0] + Jl[4] + Jl[8];
+  for (int i = 0; i < 9; i++) {
+    Ih[i] = (i % 4 == 0 ? tr : 0) - Jl[i];
+  }
+  csu_mulMat3(tmp, F, Ih);
+  csu_mulMat3(Jw, tmp, Ft);
+  const double s[3] = {m * cw[0], m * cw[1], m * cw[2]};
+  const double sx[9] = {0, -s[2], s[1], s[2], 0, -s[0], -s[1], s[0], 0};
+  double Z[36] = {0}, dmax = 0, kmax = 0, zmax = 0;
+  for (int i = 0; i < 3; i++) {
+    Z[6 * i + i] = m;
+    for (int j = 0; j < 3; j++) {
+      Z[6 * i + 3 + j] = -sx[3 * i + j];
+      Z[6 * (3 + i) + j] = sx[3 * i + j];
+      Z[6 * (3 + i) + 3 + j] = Jw[3 * i + j];
+    }
+  }
+  for (int i = 0; i < 36; i++) {
+    /* rows and columns in their own units: compare each block to its own scale */
+    const int r = i / 6 >= 3, q = i % 6 >= 3;
+    const double scale = r && q ? Jw[0] + Jw[4] + Jw[8] : (r || q ? m * BZ : m);
+    dmax = fmax(dmax, fabs(C[i] * spec.h - Z[i]) / scale);
+    kmax = fmax(kmax, fabs(K[i]));
+    zmax = fmax(zmax, fabs(C[i] - C[6 * (i % 6) + i / 6]));
+  }
+  printf("  gains at h = %g s: |C h - M6| %.2g of each block's scale; K %.2g; asymmetry %.2g\n",
+         spec.h, dmax, kmax, zmax);
+  CS_EXPECT(dmax < 1e-6);
+  CS_EXPECT(kmax == 0 && zmax == 0);
+  free(x0), free(x1);
+  T->destroy(leg);
+  T->sharedDestroy(sh);
+  free(ch);
+  blockDestroy(&b);
+  remove(kPath);
+}
+
+int main(void) {
+  CS_RUN(test_romLegFileRoundTripIsBitExact);
+  CS_RUN(test_romLegFileBadFilesAreRefused);
+  CS_RUN(test_romLevelOnTheBlock);
+  remove(kPath);
+  return cs_testSummary();
+}
