@@ -31,6 +31,40 @@
 #define ROM_LS_GROWTH_FIRST 1e4
 #define ROM_LS_WATCH 3
 
+/* the kept fibres' chord operators D_k and reference chords X_k (fem_rom.h csfRom.fib_D); a
+ * fibre inside one host lists its ten nodes twice (fem_model.h fib_single), so the sum over all
+ * 20 coefficients is its chord in both cases. 0, or -1 out of memory. */
+static int fibreOperators(csfRom* r) {
+  const csfModel* m = r->fem;
+  const int n = r->n, nel = r->nel[CSF_ROM_SET_FIBRE];
+  free(r->fib_D), free(r->fib_X);
+  r->fib_D = calloc((size_t)(nel > 0 ? nel : 1) * 3 * (size_t)n, sizeof(double));
+  r->fib_X = calloc((size_t)(nel > 0 ? nel : 1) * 3, sizeof(double));
+  if (!r->fib_D || !r->fib_X) {
+    return -1;
+  }
+  for (int k = 0; k < nel; k++) {
+    const int f = r->el[CSF_ROM_SET_FIBRE][k];
+    const int* fv = m->fib_node + 20 * (size_t)f;
+    const double* c = m->fib_coef + 20 * (size_t)f;
+    double* D = r->fib_D + (size_t)k * 3 * (size_t)n;
+    for (int a = 0; a < 20; a++) {
+      if (c[a] == 0.0) {
+        continue;
+      }
+      for (int i = 0; i < 3; i++) {
+        const double* row = r->V + (size_t)(3 * fv[a] + i) * (size_t)n;
+        double* Di = D + (size_t)i * (size_t)n;
+        for (int j = 0; j < n; j++) {
+          Di[j] += c[a] * row[j];
+        }
+        r->fib_X[3 * k + i] += c[a] * m->mesh->x[3 * fv[a] + i];
+      }
+    }
+  }
+  return 0;
+}
+
 csfRom* csf_romCreate(const csfModel* fem, int n, const double* V, csError* err) {
   if (!fem || !fem->finalized || n < 1 || !V) {
     cs_errorSet(err, CS_ERR_ARG, "fem_rom: a finalised FE model and a basis of n >= 1 columns "
@@ -74,6 +108,12 @@ csfRom* csf_romCreate(const csfModel* fem, int n, const double* V, csError* err)
     return NULL;
   }
   memcpy(r->V, V, nd * (size_t)n * sizeof(double));
+  if (fibreOperators(r) != 0) {
+    csf_romDestroy(r);
+    cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (the fibres' chord operators, %d x "
+                "3 x %d)", fem->nfib, n);
+    return NULL;
+  }
   /* G = V^T f_g(e_i): f_g,a = rho int N_a dV (the FE's 4-point rule, fem_assembly.c) */
   double Nq[CSF_TET_NQ][10];
   csf_tetQuadratureShape(Nq);
@@ -105,6 +145,7 @@ void csf_romDestroy(csfRom* r) {
   free(r->G);
   free(r->face_ch), free(r->ch_V0), free(r->ch_g0), free(r->ch_H);
   free(r->P), free(r->A_chol);
+  free(r->fib_D), free(r->fib_X);
   for (int s = 0; s < CSF_ROM_NSET; s++) {
     free(r->el[s]);
     free(r->w[s]);
@@ -263,6 +304,10 @@ csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, co
   memcpy(r->el[set], idx, (size_t)nel * sizeof(int));
   memcpy(r->w[set], w, (size_t)nel * sizeof(double));
   r->nel[set] = nel;
+  if (set == CSF_ROM_SET_FIBRE && fibreOperators(r) != 0) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (the fibres' chord operators, "
+                       "%d x 3 x %d)", nel, r->n);
+  }
   return set == CSF_ROM_SET_TET && r->m > 0 ? csf_romMixedFactor(r, err) : CS_OK;
 }
 
@@ -621,28 +666,58 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
     memcpy(d->gel + 30 * (size_t)e, gv, sizeof gv);
     scatter(r, d, 10, tv, r->w[CSF_ROM_SET_TET][k], re, want_k ? ke : NULL, rint);
   }
-  /* fibres (a fibre inside one host: its two coefficient halves summed, fem_assembly.c) */
+  /* fibres through their chord operators (csfRom.fib_D): the kernel on the chord alone (one
+   * "node" of coefficient 1: its force f_d = dW/dd and 3 x 3 tangent H), then
+   * r += w D^T f_d, K += w D^T H D */
   for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
     const int f = r->el[CSF_ROM_SET_FIBRE][k];
-    const int* fv = m->fib_node + 20 * (size_t)f;
-    const double* cf;
-    double x[60], rf[60], c10[10], kf[3600], E = 0, dch[3], S, dS;
-    const int nn = fibreGeometry(r, d->q, f, x, c10, &cf);
+    const double* D = r->fib_D + (size_t)k * 3 * (size_t)n;
+    const double one = 1.0;
+    double dch[3], fd[3], H[9], E = 0, dout[3], S, dS;
+    for (int i = 0; i < 3; i++) {
+      const double* Di = D + (size_t)i * (size_t)n;
+      double s = r->fib_X[3 * k + i];
+      for (int j = 0; j < n; j++) {
+        s += Di[j] * d->q[j];
+      }
+      dch[i] = s;
+    }
     S = d->fib_S[f];
     if (want_k && d->sync) {
-      csf_fibreKernel(nn, cf, x, m->fib_L0[f], m->fib_EA[f], S, m->fib_tension_only,
-                      m->fib_geo_tension, rf, NULL, &E, dch);
+      csf_fibreKernel(1, &one, dch, m->fib_L0[f], m->fib_EA[f], S, m->fib_tension_only,
+                      m->fib_geo_tension, fd, NULL, &E, dout);
       csf_fibreLaw(m->fib_tension_only, E, &S, &dS);
     }
-    const int loaded = csf_fibreKernel(nn, cf, x, m->fib_L0[f], m->fib_EA[f], S,
-                                       m->fib_tension_only, m->fib_geo_tension, rf,
-                                       want_k ? kf : NULL, &E, dch);
+    const int loaded = csf_fibreKernel(1, &one, dch, m->fib_L0[f], m->fib_EA[f], S,
+                                       m->fib_tension_only, m->fib_geo_tension, fd,
+                                       want_k ? H : NULL, &E, dout);
     d->fib_E[f] = E;
-    memcpy(d->fib_d + 3 * (size_t)f, dch, sizeof dch);
+    memcpy(d->fib_d + 3 * (size_t)f, dout, sizeof dout);
     if (!loaded) {
       continue;
     }
-    scatter(r, d, nn, fv, r->w[CSF_ROM_SET_FIBRE][k], rf, want_k ? kf : NULL, rint);
+    const double w = r->w[CSF_ROM_SET_FIBRE][k];
+    for (int j = 0; j < n; j++) {
+      rint[j] += w * (D[j] * fd[0] + D[n + j] * fd[1] + D[2 * (size_t)n + j] * fd[2]);
+    }
+    if (!want_k) {
+      continue;
+    }
+    /* T = w H D (3 x n), K += D^T T */
+    double* T = d->ke_v;
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < n; j++) {
+        T[(size_t)i * n + j] = w * (H[3 * i] * D[j] + H[3 * i + 1] * D[n + j] +
+                                    H[3 * i + 2] * D[2 * (size_t)n + j]);
+      }
+    }
+    for (int a = 0; a < n; a++) {
+      const double d0 = D[a], d1 = D[n + a], d2 = D[2 * (size_t)n + a];
+      double* Ka = d->K + (size_t)a * n;
+      for (int j = 0; j < n; j++) {
+        Ka[j] += d0 * T[j] + d1 * T[n + j] + d2 * T[2 * (size_t)n + j];
+      }
+    }
   }
   /* follower pressure: R -= f_ext, K += kfe (= -d f_ext / dx) */
   if (load->face_p) {
@@ -925,13 +1000,11 @@ static void updateStates(const csfRom* r, csfRomData* d, double alpha) {
   }
   for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
     const int f = r->el[CSF_ROM_SET_FIBRE][k];
-    const int* fv = m->fib_node + 20 * (size_t)f;
-    const double* c = m->fib_coef + 20 * (size_t)f;
-    double du[60], dd[3] = {0, 0, 0};
-    gather(r, d->dq, 20, fv, du);
-    for (int a = 0; a < 20; a++) {
-      for (int i = 0; i < 3; i++) {
-        dd[i] += c[a] * du[3 * a + i];
+    const double* D = r->fib_D + (size_t)k * 3 * (size_t)r->n;
+    double dd[3] = {0, 0, 0};
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < r->n; j++) {
+        dd[i] += D[(size_t)i * r->n + j] * d->dq[j];
       }
     }
     const double* d0 = d->fib_d0 + 3 * (size_t)f;

@@ -66,6 +66,14 @@ typedef struct csfRom_ {
    * A displacement basis of nearly isochoric snapshot modes no longer pays the bulk energy of
    * every element's small volume change (the locking of the displacement-only POD model,
    * docs/notes/rom.md), only of its m pressure-mode moments. */
+  /* the kept fibres' chord operators (built by csf_romCreate and csf_romSetWeights): the chord
+   * d = sum_a c_a x_a of fibre el[FIBRE][k] is linear in q, d = X_k + D_k q with D_k =
+   * sum_a c_a V_a (3 x n, V_a the host node's three basis rows) and X_k the reference chord, both
+   * constant; the fibre's force c (x) f_d and tangent (c c^T) (x) H (fem_element.h
+   * csf_fibreKernel) reduce to D_k^T f_d and D_k^T H D_k: O(n^2) per fibre instead of
+   * O(nn^2 n + nn n^2) through its 3 nn = 60 basis rows */
+  double* fib_D;       /* (nel[FIBRE] x 3 x n), mm per unit q */
+  double* fib_X;       /* (nel[FIBRE] x 3), mm */
   int m;
   double* P;           /* (ntet x m) element pressure basis, owned */
   double* A_chol;      /* (m x m) Cholesky factor (lower) of A over the kept elements */
