@@ -26,11 +26,11 @@
 extern "C" {
 #endif
 
-/* csfRomActuator.k_lag's default: a new reduced tangent when a step on the kept one reduces
- * |r| by less than this factor (docs/notes/rom.md, session romfast: measured on the bend sweep) */
-#ifndef CSF_ROM_ACT_K_LAG
-#define CSF_ROM_ACT_K_LAG 0.6
-#endif
+/* csfRomActuator.k_lag's default: 0, Newton. A lagged tangent (0.25 ... 0.9) did not pay on
+ * the bend sweep (docs/notes/rom.md, session romfast: the three-field Newton contracts only
+ * linearly, a step on a kept tangent less, and the residual alone costs a quarter of the
+ * tangent's evaluation) */
+#define CSF_ROM_ACT_K_LAG 0.0
 
 typedef struct csfRomActuator_ {
   csfActuatorFE fe;    /* the FE model the reduced forces come from (no solver data) */
