@@ -262,15 +262,11 @@ static void feSolution(Box* b, double* u_half, double* u_one) {
 }
 
 
-/* V = every free dof: the rom is the FE, and its Newton lands on the FE's equilibrium */
-static void test_full_basis_reproduces_the_fe_equilibrium(void) {
-  Box b;
-  boxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0);
-  const csfModel* m = b.m;
+/* V = every free dof of the block (ndof x n, identity on the free dofs), and the FE's face
+ * pressure per unit load (1 MPa) scaled to the rom's loads (P_BOX) */
+static double* fullBasis(Box* b, int* n_out) {
+  const csfModel* m = b->m;
   const int nd = m->ndof;
-  double* uh = malloc(nd * sizeof(double));
-  double* u1 = malloc(nd * sizeof(double));
-  feSolution(&b, uh, u1);
   int n = 0;
   for (int i = 0; i < nd; i++) {
     n += !m->fixed[i];
@@ -281,10 +277,25 @@ static void test_full_basis_reproduces_the_fe_equilibrium(void) {
       V[(size_t)i * n + j++] = 1.0;
     }
   }
-  /* the FE's face pressure per unit load is 1 MPa: the rom's loads are scaled to the FE's */
   for (int f = 0; f < m->mesh->nface; f++) {
-    b.m->face_p[f] *= P_BOX;
+    b->m->face_p[f] *= P_BOX;
   }
+  *n_out = n;
+  return V;
+}
+
+
+/* V = every free dof: the rom is the FE, and its Newton lands on the FE's equilibrium */
+static void test_full_basis_reproduces_the_fe_equilibrium(void) {
+  Box b;
+  boxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0);
+  const csfModel* m = b.m;
+  const int nd = m->ndof;
+  double* uh = malloc(nd * sizeof(double));
+  double* u1 = malloc(nd * sizeof(double));
+  feSolution(&b, uh, u1);
+  int n;
+  double* V = fullBasis(&b, &n);
   csError err = {0};
   csfRom* r = csf_romCreate(m, n, V, &err);
   csfRomData* rd = csf_romDataCreate(r, &err);
@@ -315,19 +326,8 @@ static void test_lagged_tangent_reaches_the_equilibrium_with_fewer_tangents(void
   double* uh = malloc(nd * sizeof(double));
   double* u1 = malloc(nd * sizeof(double));
   feSolution(&b, uh, u1);
-  int n = 0;
-  for (int i = 0; i < nd; i++) {
-    n += !m->fixed[i];
-  }
-  double* V = calloc((size_t)nd * n, sizeof(double));
-  for (int i = 0, j = 0; i < nd; i++) {
-    if (!m->fixed[i]) {
-      V[(size_t)i * n + j++] = 1.0;
-    }
-  }
-  for (int f = 0; f < m->mesh->nface; f++) {
-    b.m->face_p[f] *= P_BOX;
-  }
+  int n;
+  double* V = fullBasis(&b, &n);
   csError err = {0};
   csfRom* r = csf_romCreate(m, n, V, &err);
   /* the pressure face in closed form, as the actuators' chambers (its Hessian's scratch must
