@@ -31,6 +31,40 @@
 #define ROM_LS_GROWTH_FIRST 1e4
 #define ROM_LS_WATCH 3
 
+/* the kept fibres' chord operators D_k and reference chords X_k (fem_rom.h csfRom.fib_D); a
+ * fibre inside one host lists its ten nodes twice (fem_model.h fib_single), so the sum over all
+ * 20 coefficients is its chord in both cases. 0, or -1 out of memory. */
+static int fibreOperators(csfRom* r) {
+  const csfModel* m = r->fem;
+  const int n = r->n, nel = r->nel[CSF_ROM_SET_FIBRE];
+  free(r->fib_D), free(r->fib_X);
+  r->fib_D = calloc((size_t)(nel > 0 ? nel : 1) * 3 * (size_t)n, sizeof(double));
+  r->fib_X = calloc((size_t)(nel > 0 ? nel : 1) * 3, sizeof(double));
+  if (!r->fib_D || !r->fib_X) {
+    return -1;
+  }
+  for (int k = 0; k < nel; k++) {
+    const int f = r->el[CSF_ROM_SET_FIBRE][k];
+    const int* fv = m->fib_node + 20 * (size_t)f;
+    const double* c = m->fib_coef + 20 * (size_t)f;
+    double* D = r->fib_D + (size_t)k * 3 * (size_t)n;
+    for (int a = 0; a < 20; a++) {
+      if (c[a] == 0.0) {
+        continue;
+      }
+      for (int i = 0; i < 3; i++) {
+        const double* row = r->V + (size_t)(3 * fv[a] + i) * (size_t)n;
+        double* Di = D + (size_t)i * (size_t)n;
+        for (int j = 0; j < n; j++) {
+          Di[j] += c[a] * row[j];
+        }
+        r->fib_X[3 * k + i] += c[a] * m->mesh->x[3 * fv[a] + i];
+      }
+    }
+  }
+  return 0;
+}
+
 csfRom* csf_romCreate(const csfModel* fem, int n, const double* V, csError* err) {
   if (!fem || !fem->finalized || n < 1 || !V) {
     cs_errorSet(err, CS_ERR_ARG, "fem_rom: a finalised FE model and a basis of n >= 1 columns "
@@ -74,6 +108,12 @@ csfRom* csf_romCreate(const csfModel* fem, int n, const double* V, csError* err)
     return NULL;
   }
   memcpy(r->V, V, nd * (size_t)n * sizeof(double));
+  if (fibreOperators(r) != 0) {
+    csf_romDestroy(r);
+    cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (the fibres' chord operators, %d x "
+                "3 x %d)", fem->nfib, n);
+    return NULL;
+  }
   /* G = V^T f_g(e_i): f_g,a = rho int N_a dV (the FE's 4-point rule, fem_assembly.c) */
   double Nq[CSF_TET_NQ][10];
   csf_tetQuadratureShape(Nq);
@@ -105,6 +145,7 @@ void csf_romDestroy(csfRom* r) {
   free(r->G);
   free(r->face_ch), free(r->ch_V0), free(r->ch_g0), free(r->ch_H);
   free(r->P), free(r->A_chol);
+  free(r->fib_D), free(r->fib_X);
   for (int s = 0; s < CSF_ROM_NSET; s++) {
     free(r->el[s]);
     free(r->w[s]);
@@ -263,6 +304,10 @@ csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, co
   memcpy(r->el[set], idx, (size_t)nel * sizeof(int));
   memcpy(r->w[set], w, (size_t)nel * sizeof(double));
   r->nel[set] = nel;
+  if (set == CSF_ROM_SET_FIBRE && fibreOperators(r) != 0) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (the fibres' chord operators, "
+                       "%d x 3 x %d)", nel, r->n);
+  }
   return set == CSF_ROM_SET_TET && r->m > 0 ? csf_romMixedFactor(r, err) : CS_OK;
 }
 
@@ -311,6 +356,7 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
   d->q = calloc(n, sizeof(double));
   d->r = calloc(n, sizeof(double));
   d->K = calloc(n * n, sizeof(double));
+  d->Ku = calloc(n * n, sizeof(double));
   d->theta = calloc(nt, sizeof(double));
   d->fib_S = calloc(nf, sizeof(double));
   d->vr = calloc(nt, sizeof(double));
@@ -332,8 +378,8 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
   d->lu = calloc(n * n, sizeof(double));
   d->tmp = calloc(n, sizeof(double));
   d->piv = calloc(n, sizeof(int));
-  d->ke_v = calloc(60 * n, sizeof(double));
-  if (!d->q || !d->r || !d->K || !d->theta || !d->fib_S || !d->vr || !d->gel || !d->fib_E ||
+  d->ke_v = calloc(61 * n, sizeof(double));
+  if (!d->q || !d->r || !d->K || !d->Ku || !d->theta || !d->fib_S || !d->vr || !d->gel || !d->fib_E ||
       !d->fib_d || !d->vr0 || !d->g0 || !d->fib_E0 || !d->fib_d0 || !d->theta_save ||
       !d->fib_S_save || !d->theta_best || !d->fib_S_best || !d->dq || !d->q_save ||
       !d->q_best || !d->q0 || !d->lu || !d->tmp || !d->piv || !d->ke_v || !d->ph || !d->Bm ||
@@ -349,6 +395,7 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
 
 void csf_romDataReset(const csfRom* r, csfRomData* d) {
   memset(d->q, 0, (size_t)d->n * sizeof(double));
+  d->lu_valid = 0;
   for (int e = 0; e < r->fem->mesh->ntet; e++) {
     d->theta[e] = 1.0;
   }
@@ -363,7 +410,7 @@ void csf_romDataDestroy(csfRomData* d) {
   if (!d) {
     return;
   }
-  double* bufs[] = {d->q, d->r, d->K, d->theta, d->fib_S, d->vr, d->gel, d->fib_E, d->fib_d,
+  double* bufs[] = {d->q, d->r, d->K, d->Ku, d->theta, d->fib_S, d->vr, d->gel, d->fib_E, d->fib_d,
                     d->vr0, d->g0, d->fib_E0, d->fib_d0, d->theta_save, d->fib_S_save,
                     d->theta_best, d->fib_S_best, d->dq, d->q_save, d->q_best, d->q0, d->lu,
                     d->tmp, d->ke_v, d->ph, d->Bm, d->mtmp, d->rel};
@@ -461,6 +508,59 @@ static void scatter(const csfRom* r, csfRomData* d, int nn, const int* nodes, do
   }
 }
 
+/* A Tet10's share, its tangent symmetric (the mixed kernel's is: fem_element.h): rr += w V_e^T fe
+ * as scatter(), and the upper triangle of w V_e^T ke V_e into d->Ku (csf_romEvaluate mirrors it):
+ * T = ke V_e (30 x n) row by row, then each row i of the triangle summed over the 30 element
+ * dofs in a row buffer (L1-resident) and added to Ku once: half scatter()'s O(30 n^2) and no
+ * pass over Ku per element dof. */
+static void scatterTetSym(const csfRom* r, csfRomData* d, const int* nodes, double w,
+                          const double* fe, const double* ke, double* rr) {
+  const int n = r->n;
+  const double* row[30];
+  for (int k = 0; k < 30; k++) {
+    row[k] = r->V + (size_t)(3 * nodes[k / 3] + k % 3) * (size_t)n;
+    const double f = w * fe[k];
+    for (int j = 0; j < n; j++) {
+      rr[j] += row[k][j] * f;
+    }
+  }
+  if (!ke) {
+    return;
+  }
+  double* T = d->ke_v;
+  for (int k = 0; k < 30; k++) {
+    double* Tk = T + (size_t)k * (size_t)n;
+    memset(Tk, 0, (size_t)n * sizeof(double));
+    for (int l = 0; l < 30; l++) {
+      const double kv = w * ke[30 * k + l];
+      if (kv == 0.0) {
+        continue;
+      }
+      for (int j = 0; j < n; j++) {
+        Tk[j] += kv * row[l][j];
+      }
+    }
+  }
+  double* acc = d->ke_v + 60 * (size_t)n; /* (n) row buffer */
+  for (int i = 0; i < n; i++) {
+    memset(acc + i, 0, (size_t)(n - i) * sizeof(double));
+    for (int k = 0; k < 30; k++) {
+      const double vi = row[k][i];
+      if (vi == 0.0) {
+        continue;
+      }
+      const double* Tk = T + (size_t)k * (size_t)n;
+      for (int j = i; j < n; j++) {
+        acc[j] += vi * Tk[j];
+      }
+    }
+    double* Ki = d->Ku + (size_t)i * (size_t)n;
+    for (int j = i; j < n; j++) {
+      Ki[j] += acc[j];
+    }
+  }
+}
+
 /* v = V_e^T g (n) over a Tet10's rows: the element's volume gradient in reduced coordinates */
 static void reduceVector(const csfRom* r, const int* nodes, const double* g, double* v) {
   const int n = r->n;
@@ -550,7 +650,7 @@ static int mixedTets(const csfRom* r, csfRomData* d, int want_k, double* rint) {
         }
       }
     }
-    scatter(r, d, 10, tv, w, fe, want_k ? ke : NULL, rint);
+    scatterTetSym(r, d, tv, w, fe, want_k ? ke : NULL, rint);
   }
   if (want_k) {
     /* K += B^T A^-1 B, column by column of B */
@@ -591,6 +691,7 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
   memset(d->r, 0, (size_t)n * sizeof(double));
   if (want_k) {
     memset(d->K, 0, (size_t)n * (size_t)n * sizeof(double));
+    memset(d->Ku, 0, (size_t)n * (size_t)n * sizeof(double));
   }
   /* Tet10 bodies */
   if (r->m > 0) {
@@ -619,30 +720,70 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
     }
     d->vr[e] = vr;
     memcpy(d->gel + 30 * (size_t)e, gv, sizeof gv);
-    scatter(r, d, 10, tv, r->w[CSF_ROM_SET_TET][k], re, want_k ? ke : NULL, rint);
+    scatterTetSym(r, d, tv, r->w[CSF_ROM_SET_TET][k], re, want_k ? ke : NULL, rint);
   }
-  /* fibres (a fibre inside one host: its two coefficient halves summed, fem_assembly.c) */
+  /* fibres through their chord operators (csfRom.fib_D): the kernel on the chord alone (one
+   * "node" of coefficient 1: its force f_d = dW/dd and 3 x 3 tangent H), then
+   * r += w D^T f_d, K += w D^T H D */
   for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
     const int f = r->el[CSF_ROM_SET_FIBRE][k];
-    const int* fv = m->fib_node + 20 * (size_t)f;
-    const double* cf;
-    double x[60], rf[60], c10[10], kf[3600], E = 0, dch[3], S, dS;
-    const int nn = fibreGeometry(r, d->q, f, x, c10, &cf);
+    const double* D = r->fib_D + (size_t)k * 3 * (size_t)n;
+    const double one = 1.0;
+    double dch[3], fd[3], H[9], E = 0, dout[3], S, dS;
+    for (int i = 0; i < 3; i++) {
+      const double* Di = D + (size_t)i * (size_t)n;
+      double s = r->fib_X[3 * k + i];
+      for (int j = 0; j < n; j++) {
+        s += Di[j] * d->q[j];
+      }
+      dch[i] = s;
+    }
     S = d->fib_S[f];
     if (want_k && d->sync) {
-      csf_fibreKernel(nn, cf, x, m->fib_L0[f], m->fib_EA[f], S, m->fib_tension_only,
-                      m->fib_geo_tension, rf, NULL, &E, dch);
+      csf_fibreKernel(1, &one, dch, m->fib_L0[f], m->fib_EA[f], S, m->fib_tension_only,
+                      m->fib_geo_tension, fd, NULL, &E, dout);
       csf_fibreLaw(m->fib_tension_only, E, &S, &dS);
     }
-    const int loaded = csf_fibreKernel(nn, cf, x, m->fib_L0[f], m->fib_EA[f], S,
-                                       m->fib_tension_only, m->fib_geo_tension, rf,
-                                       want_k ? kf : NULL, &E, dch);
+    const int loaded = csf_fibreKernel(1, &one, dch, m->fib_L0[f], m->fib_EA[f], S,
+                                       m->fib_tension_only, m->fib_geo_tension, fd,
+                                       want_k ? H : NULL, &E, dout);
     d->fib_E[f] = E;
-    memcpy(d->fib_d + 3 * (size_t)f, dch, sizeof dch);
+    memcpy(d->fib_d + 3 * (size_t)f, dout, sizeof dout);
     if (!loaded) {
       continue;
     }
-    scatter(r, d, nn, fv, r->w[CSF_ROM_SET_FIBRE][k], rf, want_k ? kf : NULL, rint);
+    const double w = r->w[CSF_ROM_SET_FIBRE][k];
+    for (int j = 0; j < n; j++) {
+      rint[j] += w * (D[j] * fd[0] + D[n + j] * fd[1] + D[2 * (size_t)n + j] * fd[2]);
+    }
+    if (!want_k) {
+      continue;
+    }
+    /* T = w H D (3 x n), K += D^T T */
+    double* T = d->ke_v;
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < n; j++) {
+        T[(size_t)i * n + j] = w * (H[3 * i] * D[j] + H[3 * i + 1] * D[n + j] +
+                                    H[3 * i + 2] * D[2 * (size_t)n + j]);
+      }
+    }
+    for (int a = 0; a < n; a++) { /* the upper triangle (symmetric: H is) */
+      const double d0 = D[a], d1 = D[n + a], d2 = D[2 * (size_t)n + a];
+      double* Ka = d->Ku + (size_t)a * n;
+      for (int j = a; j < n; j++) {
+        Ka[j] += d0 * T[j] + d1 * T[n + j] + d2 * T[2 * (size_t)n + j];
+      }
+    }
+  }
+  /* the bodies' and fibres' symmetric tangent from its upper triangle */
+  for (int i = 0; want_k && i < n; i++) {
+    const double* Ui = d->Ku + (size_t)i * (size_t)n;
+    double* Ki = d->K + (size_t)i * (size_t)n;
+    Ki[i] += Ui[i];
+    for (int j = i + 1; j < n; j++) {
+      Ki[j] += Ui[j];
+      d->K[(size_t)j * n + i] += Ui[j];
+    }
   }
   /* follower pressure: R -= f_ext, K += kfe (= -d f_ext / dx) */
   if (load->face_p) {
@@ -667,7 +808,8 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
       scatter(r, d, 6, fn, r->w[CSF_ROM_SET_FACE][k], fe, want_k ? kfe : NULL, d->r);
     }
   }
-  /* chambers in closed form: r -= p g_c(q), K -= p H_c(q) (the lu scratch holds H(q)) */
+  /* chambers in closed form: r -= p g_c(q), K -= p H_c(q) (the Ku scratch holds H(q); lu
+   * holds the Newton's kept factor) */
   for (int c = 0; load->face_p && c < r->nch; c++) {
     double p = 0.0;
     for (int f = 0; f < me->nface; f++) {
@@ -679,7 +821,7 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
     if (p == 0.0) {
       continue;
     }
-    double* Hq = d->lu;
+    double* Hq = d->Ku;
     chamberHessian(r, c, d->q, Hq);
     const double* H0 = r->ch_H + (size_t)c * (size_t)(n + 1) * (size_t)n * (size_t)n;
     const double* g0 = r->ch_g0 + (size_t)c * (size_t)n;
@@ -714,6 +856,7 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
   d->fnorm = sqrt(ni) + sqrt(ne);
   d->rnorm = sqrt(nr);
   d->n_eval++;
+  d->n_tangent += want_k != 0;
   return isfinite(d->rnorm) ? 0 : 1;
 }
 
@@ -834,11 +977,12 @@ csfRomNewtonOptions csf_romNewtonDefault(void) {
   o.rtol = 1e-8; /* the FE's element tests' default (csf_newtonDefault) */
   o.atol = 1e-12;
   o.max_ls = 8;
+  o.k_lag = 0.0;
   return o;
 }
 
-/* solve A x = b in place (A n x n row-major, overwritten by its LU; b becomes x); -1 singular */
-static int luSolve(int n, double* A, int* piv, double* b) {
+/* LU with partial pivoting of A (n x n row-major) in place, the row swaps in piv; -1 singular */
+static int luFactor(int n, double* A, int* piv) {
   for (int k = 0; k < n; k++) {
     int p = k;
     for (int i = k + 1; i < n; i++) {
@@ -853,8 +997,6 @@ static int luSolve(int n, double* A, int* piv, double* b) {
         const double t = A[(size_t)k * n + j];
         A[(size_t)k * n + j] = A[(size_t)p * n + j], A[(size_t)p * n + j] = t;
       }
-      const double t = b[k];
-      b[k] = b[p], b[p] = t;
     }
     for (int i = k + 1; i < n; i++) {
       const double l = A[(size_t)i * n + k] / A[(size_t)k * n + k];
@@ -862,17 +1004,33 @@ static int luSolve(int n, double* A, int* piv, double* b) {
       for (int j = k + 1; j < n; j++) {
         A[(size_t)i * n + j] -= l * A[(size_t)k * n + j];
       }
-      b[i] -= l * b[k];
     }
+  }
+  return 0;
+}
+
+/* solve with luFactor's factor: b becomes x */
+static void luSolveFactored(int n, const double* LU, const int* piv, double* b) {
+  for (int k = 0; k < n; k++) {
+    if (piv[k] != k) {
+      const double t = b[k];
+      b[k] = b[piv[k]], b[piv[k]] = t;
+    }
+  }
+  for (int i = 1; i < n; i++) {
+    double s = b[i];
+    for (int j = 0; j < i; j++) {
+      s -= LU[(size_t)i * n + j] * b[j];
+    }
+    b[i] = s;
   }
   for (int i = n - 1; i >= 0; i--) {
     double s = b[i];
     for (int j = i + 1; j < n; j++) {
-      s -= A[(size_t)i * n + j] * b[j];
+      s -= LU[(size_t)i * n + j] * b[j];
     }
-    b[i] = s / A[(size_t)i * n + i];
+    b[i] = s / LU[(size_t)i * n + i];
   }
-  return 0;
 }
 
 /* the three-field update along alpha dq (fem_newton.c updateTheta): theta_e = (v_e + alpha g_e .
@@ -925,13 +1083,11 @@ static void updateStates(const csfRom* r, csfRomData* d, double alpha) {
   }
   for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
     const int f = r->el[CSF_ROM_SET_FIBRE][k];
-    const int* fv = m->fib_node + 20 * (size_t)f;
-    const double* c = m->fib_coef + 20 * (size_t)f;
-    double du[60], dd[3] = {0, 0, 0};
-    gather(r, d->dq, 20, fv, du);
-    for (int a = 0; a < 20; a++) {
-      for (int i = 0; i < 3; i++) {
-        dd[i] += c[a] * du[3 * a + i];
+    const double* D = r->fib_D + (size_t)k * 3 * (size_t)r->n;
+    double dd[3] = {0, 0, 0};
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < r->n; j++) {
+        dd[i] += D[(size_t)i * r->n + j] * d->dq[j];
       }
     }
     const double* d0 = d->fib_d0 + 3 * (size_t)f;
@@ -972,6 +1128,7 @@ static void keepBase(const csfRom* r, csfRomData* d) {
 
 static csStatus newtonFail(const csfRom* r, csfRomData* d, const csfRomLoad* load, int it,
                            csError* err, const char* why) {
+  d->lu_valid = 0;
   memcpy(d->q, d->q_save, (size_t)r->n * sizeof(double));
   copyStates(r, d->theta, d->theta_save, d->fib_S, d->fib_S_save);
   csf_romEvaluate(r, d, load, 0);
@@ -979,16 +1136,30 @@ static csStatus newtonFail(const csfRom* r, csfRomData* d, const csfRomLoad* loa
                      why, it, d->rnorm, d->fnorm);
 }
 
+/* factor K at the current iterate into d->lu (d->lu_valid); -1 singular */
+static int factorTangent(const csfRom* r, csfRomData* d) {
+  const int n = r->n;
+  memcpy(d->lu, d->K, (size_t)n * (size_t)n * sizeof(double));
+  d->lu_valid = luFactor(n, d->lu, d->piv) == 0;
+  return d->lu_valid ? 0 : -1;
+}
+
 csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
                        const csfRomNewtonOptions* o, int* iters, csError* err) {
   const size_t n = (size_t)r->n;
+  const int lag = o->k_lag > 0.0;
   memcpy(d->q_save, d->q, n * sizeof(double));
   copyStates(r, d->theta_save, d->theta, d->fib_S_save, d->fib_S);
   int it = 0, strict = 0, since_best = 0;
   if (iters) {
     *iters = 0;
   }
-  if (csf_romEvaluate(r, d, load, 1) != 0) {
+  if (!lag) {
+    d->lu_valid = 0;
+  }
+  /* the tangent of this iterate is in d->K (fresh) or only the residual was evaluated */
+  int fresh = !(lag && d->lu_valid);
+  if (csf_romEvaluate(r, d, load, fresh) != 0) {
     return newtonFail(r, d, load, it, err, "the starting state is not physical (an inverted "
                       "element)");
   }
@@ -997,18 +1168,55 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
     if (it >= o->max_iter) {
       return newtonFail(r, d, load, it, err, "Newton did not converge");
     }
-    memcpy(d->lu, d->K, n * n * sizeof(double));
+    if (fresh && factorTangent(r, d) != 0) {
+      return newtonFail(r, d, load, it, err, "singular reduced tangent");
+    }
     for (size_t j = 0; j < n; j++) {
       d->dq[j] = -d->r[j];
     }
-    if (luSolve(r->n, d->lu, d->piv, d->dq) != 0) {
-      return newtonFail(r, d, load, it, err, "singular reduced tangent");
-    }
+    luSolveFactored(r->n, d->lu, d->piv, d->dq);
     keepBase(r, d);
     memcpy(d->q0, d->q, n * sizeof(double));
+    const double r0 = d->rnorm;
+    if (!fresh) {
+      /* a step on the kept factor: taken if it reduces |r|, else taken back; the tangent is
+       * formed at this iterate and the step redone as a Newton step */
+      for (size_t j = 0; j < n; j++) {
+        d->q[j] = d->q0[j] + d->dq[j];
+      }
+      /* the residual does not depend on the states: they follow only a step that is taken
+       * (reset to v/V at q0 instead, the spurious pressure of an overshooting iterate would
+       * enter the next tangent: the stall csfRomData describes) */
+      const int ev = csf_romEvaluate(r, d, load, 0);
+      if (ev == 0 && d->rnorm < r0) {
+        updateStates(r, d, 1.0);
+        it++;
+        d->n_newton++;
+        fresh = 0;
+        if (d->rnorm > o->k_lag * r0) {
+          /* slow contraction: a new tangent at the new iterate */
+          if (csf_romEvaluate(r, d, load, 1) != 0) {
+            return newtonFail(r, d, load, it, err, "the iterate is not physical");
+          }
+          fresh = 1;
+        }
+        if (d->rnorm < r_best) {
+          r_best = d->rnorm;
+          memcpy(d->q_best, d->q, n * sizeof(double));
+          copyStates(r, d->theta_best, d->theta, d->fib_S_best, d->fib_S);
+        }
+        continue;
+      }
+      memcpy(d->q, d->q0, n * sizeof(double));
+      if (csf_romEvaluate(r, d, load, 1) != 0) {
+        return newtonFail(r, d, load, it, err, "the iterate is not physical");
+      }
+      fresh = 1;
+      continue;
+    }
     /* a full step unless |r| grows past ROM_LS_GROWTH_FIRST (lenient) or at all (strict, after
      * the watchdog's return), halving otherwise (fem_newton.c) */
-    const double r0 = d->rnorm, growth = strict ? 1.0 : ROM_LS_GROWTH_FIRST;
+    const double growth = strict ? 1.0 : ROM_LS_GROWTH_FIRST;
     double alpha = 1.0;
     int ok = 0;
     for (int ls = 0; ls <= o->max_ls; ls++) {
@@ -1016,7 +1224,8 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
         d->q[j] = d->q0[j] + alpha * d->dq[j];
       }
       updateStates(r, d, alpha);
-      if (csf_romEvaluate(r, d, load, 1) == 0 && d->rnorm < growth * r0) {
+      /* with a lagged tangent the trial evaluates the residual alone first */
+      if (csf_romEvaluate(r, d, load, !lag) == 0 && d->rnorm < growth * r0) {
         ok = 1;
         break;
       }
@@ -1026,6 +1235,13 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
     d->n_newton++;
     if (!ok) {
       return newtonFail(r, d, load, it, err, "line search failed");
+    }
+    fresh = !lag;
+    if (lag && d->rnorm > o->k_lag * r0) {
+      if (csf_romEvaluate(r, d, load, 1) != 0) {
+        return newtonFail(r, d, load, it, err, "the iterate is not physical");
+      }
+      fresh = 1;
     }
     strict = 0;
     if (d->rnorm < r_best) {
@@ -1039,6 +1255,7 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
       if (csf_romEvaluate(r, d, load, 1) != 0) {
         return newtonFail(r, d, load, it, err, "the best iterate is not physical");
       }
+      fresh = 1;
       since_best = 0;
       strict = 1;
     }

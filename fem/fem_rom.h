@@ -66,6 +66,14 @@ typedef struct csfRom_ {
    * A displacement basis of nearly isochoric snapshot modes no longer pays the bulk energy of
    * every element's small volume change (the locking of the displacement-only POD model,
    * docs/notes/rom.md), only of its m pressure-mode moments. */
+  /* the kept fibres' chord operators (built by csf_romCreate and csf_romSetWeights): the chord
+   * d = sum_a c_a x_a of fibre el[FIBRE][k] is linear in q, d = X_k + D_k q with D_k =
+   * sum_a c_a V_a (3 x n, V_a the host node's three basis rows) and X_k the reference chord, both
+   * constant; the fibre's force c (x) f_d and tangent (c c^T) (x) H (fem_element.h
+   * csf_fibreKernel) reduce to D_k^T f_d and D_k^T H D_k: O(n^2) per fibre instead of
+   * O(nn^2 n + nn n^2) through its 3 nn = 60 basis rows */
+  double* fib_D;       /* (nel[FIBRE] x 3 x n), mm per unit q */
+  double* fib_X;       /* (nel[FIBRE] x 3), mm */
   int m;
   double* P;           /* (ntet x m) element pressure basis, owned */
   double* A_chol;      /* (m x m) Cholesky factor (lower) of A over the kept elements */
@@ -124,6 +132,8 @@ typedef struct csfRomData_ {
   double* q;    /* (n) reduced coordinates */
   double* r;    /* (n) reduced residual at the last evaluation, N */
   double* K;    /* (n x n) reduced tangent, N/mm */
+  double* Ku;   /* (n x n) scratch: the bodies' and fibres' tangent (upper triangle), then a
+                 * chamber's Hessian */
   int sync;     /* 1: theta = v/V, S = S(E) at every evaluation (exact tangent); 0: the states */
   double* theta;  /* (ntet) element dilatation state (1 at rest) */
   double* fib_S;  /* (nfib) fibre stress state */
@@ -133,7 +143,7 @@ typedef struct csfRomData_ {
   double* theta_save, *fib_S_save, *theta_best, *fib_S_best; /* Newton's restore points */
   double* dq, *q_save, *q_best, *q0, *lu, *tmp; /* (n) x 5, (n x n), (n) scratch */
   int* piv;     /* (n) */
-  double* ke_v; /* (60 x n) scratch: element matrix times the element's basis rows */
+  double* ke_v; /* (61 x n) scratch: element matrix times the element's basis rows, a row */
   /* mixed model (csfRom.m > 0): the reduced pressures of the last evaluation, p^ = A^-1 b(q),
    * MPa; the element residuals without the volumetric term; B (m x n); scratch */
   double* ph;   /* (m) */
@@ -142,6 +152,8 @@ typedef struct csfRomData_ {
   double* mtmp; /* (m + n) */
   double rnorm, fnorm; /* |r|, force scale |V^T f_int| + |V^T f_ext| (N) */
   long n_eval, n_newton; /* evaluations, Newton iterations */
+  long n_tangent;        /* evaluations that formed K */
+  int lu_valid;          /* lu holds the LU factor of a tangent (csfRomNewtonOptions.k_lag) */
 } csfRomData;
 
 csfRomData* csf_romDataCreate(const csfRom* r, csError* err);
@@ -178,15 +190,23 @@ typedef struct csfRomNewtonOptions_ {
   double rtol;   /* |r| <= rtol (|V^T f_int| + |V^T f_ext|) */
   double atol;   /* ... or |r| <= atol, N */
   int max_ls;    /* line-search halvings */
+  /* 0: Newton (K formed and factored at every iterate). > 0: a lagged tangent (chord or
+   * modified Newton, Dennis and Schnabel 1983 ch. 5; the FE codes' "modified Newton"): the
+   * factor of the last tangent is kept, also from one call to the next (d->lu_valid), and the
+   * iterates evaluate the residual alone, which is O(n) per element against the tangent's O(n^2);
+   * K is formed and factored again at the current iterate when a step reduces |r| by less
+   * than this factor (or not at all: the step is then taken back and redone as a Newton step
+   * with its line search). Same solution (the residual decides); more, cheaper iterations. */
+  double k_lag;
 } csfRomNewtonOptions;
 
 csfRomNewtonOptions csf_romNewtonDefault(void);
 
 /* Solve r(q) = 0 from d->q by the FE's Newton (fem_newton.c): the three-field state update, a
  * lenient first line search (|r| may grow 1e4-fold) and a watchdog that returns to the best
- * iterate after 3 steps without improving on it and continues with strict backtracking. On
- * failure d->q and the states are restored and CS_ERR_DIVERGED returned. `iters` (may be NULL)
- * gets the iterations. */
+ * iterate after 3 steps without improving on it and continues with strict backtracking; with
+ * o->k_lag > 0 a lagged tangent (see there). On failure d->q and the states are restored, the
+ * kept factor dropped and CS_ERR_DIVERGED returned. `iters` (may be NULL) gets the iterations. */
 csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
                        const csfRomNewtonOptions* o, int* iters, csError* err);
 

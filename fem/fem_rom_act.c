@@ -248,9 +248,13 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
   ra->f_dead = calloc((size_t)n, sizeof(double));
   ra->u = calloc(nd, sizeof(double));
   ra->q_conv = calloc((size_t)n, sizeof(double));
+  ra->q_prev = calloc((size_t)n, sizeof(double));
+  ra->nhist = 0;
+  ra->k_lag = CSF_ROM_ACT_K_LAG;
   double* tmp = calloc(nd, sizeof(double));
   double* fr = calloc((size_t)n, sizeof(double));
-  if (!ra->d || !ra->face_p || !ra->Ftip || !ra->f_dead || !ra->u || !ra->q_conv || !tmp || !fr) {
+  if (!ra->d || !ra->face_p || !ra->Ftip || !ra->f_dead || !ra->u || !ra->q_conv || !ra->q_prev || !tmp ||
+      !fr) {
     free(tmp), free(fr);
     csf_romActuatorDestroy(ra);
     return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom_act: out of memory");
@@ -278,7 +282,9 @@ void csf_romActuatorDestroy(csfRomActuator* ra) {
   csf_romDestroy(ra->rom);
   csf_actuatorFEDestroy(&ra->fe);
   free(ra->face_p), free(ra->Ftip), free(ra->f_dead), free(ra->u), free(ra->q_conv);
+  free(ra->q_prev);
   ra->d = NULL, ra->rom = NULL, ra->face_p = ra->Ftip = ra->f_dead = ra->u = ra->q_conv = NULL;
+  ra->q_prev = NULL;
 }
 
 /* the loads at ramp parameter s in [0, 1] between the start (p0, g0, F0) and the target */
@@ -306,6 +312,46 @@ static void setLoad(csfRomActuator* ra, double s, const double* p,
   ld->f_dead = ra->f_dead;
 }
 
+/* the load as one vector for the predictor's line test (fem_rom_act.h csfRomActuator.L_conv) */
+static void loadVector(const double* p, const double g[3], const double F[3], double L[18]) {
+  memcpy(L, p, 12 * sizeof(double));
+  for (int i = 0; i < 3; i++) {
+    L[12 + i] = 1e-4 * g[i], L[15 + i] = F[i];
+  }
+}
+
+/* the start of the next Newton solve at load Lt: the secant q_conv + lambda (q_conv - q_prev)
+ * when Lt - L_conv = lambda (L_conv - L_prev), lambda > 0 (to round-off), else q_conv. Only the
+ * start moves: the residual decides the solution, and the element states (the tangent's) stay
+ * those of q_conv, as after a converged step. */
+static void predict(csfRomActuator* ra, const double Lt[18]) {
+  const int n = ra->rom->n;
+  memcpy(ra->d->q, ra->q_conv, (size_t)n * sizeof(double));
+  if (ra->nhist < 2) {
+    return;
+  }
+  double a[18], b[18], ab = 0, bb = 0, aa = 0;
+  for (int i = 0; i < 18; i++) {
+    a[i] = Lt[i] - ra->L_conv[i], b[i] = ra->L_conv[i] - ra->L_prev[i];
+    ab += a[i] * b[i], bb += b[i] * b[i], aa += a[i] * a[i];
+  }
+  if (!(bb > 0) || !(ab > 0)) {
+    return;
+  }
+  const double lambda = ab / bb;
+  double off = 0;
+  for (int i = 0; i < 18; i++) {
+    off += (a[i] - lambda * b[i]) * (a[i] - lambda * b[i]);
+  }
+  if (off > 1e-18 * aa) {
+    return; /* not along the last step's line */
+  }
+  const double l = fmin(lambda, 2.0); /* no farther than twice the last step */
+  for (int j = 0; j < n; j++) {
+    ra->d->q[j] = ra->q_conv[j] + l * (ra->q_conv[j] - ra->q_prev[j]);
+  }
+}
+
 csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,
                               const double g[3], const double F[3], csError* err) {
   /* no load: the reference state, as the FE's p = 0 row (the smoothed tension-only fibres carry
@@ -327,8 +373,19 @@ csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,
   memcpy(ra->g0, ra->gravity, sizeof ra->g0);
   memcpy(ra->F0, ra->tip_force, sizeof ra->F0);
   const size_t n = (size_t)ra->rom->n;
+  /* the predictor's history holds only if the caller left the last solved state in place (the
+   * callers reset q and the load to start a new path) */
+  double L0[18];
+  loadVector(&ra->p[0][0], ra->gravity, ra->tip_force, L0);
+  if (ra->nhist == 0 || memcmp(L0, ra->L_conv, sizeof L0) != 0 ||
+      memcmp(ra->d->q, ra->q_conv, n * sizeof(double)) != 0) {
+    memcpy(ra->q_conv, ra->d->q, n * sizeof(double));
+    memcpy(ra->L_conv, L0, sizeof L0);
+    ra->nhist = 1;
+  }
   csfRomNewtonOptions o = csf_romNewtonDefault();
   o.rtol = 1e-6; /* the FE sweep's test (fem_bend.c CSF_BEND_NEWTON_RTOL) */
+  o.k_lag = ra->k_lag;
   double s = 0.0, ds = 1.0;
   csError lerr;
   cs_errorClear(&lerr);
@@ -336,12 +393,25 @@ csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,
     const double sn = fmin(1.0, s + ds);
     csfRomLoad ld;
     setLoad(ra, sn, p, g, F, &ld);
+    double Lt[18], ps[12], Fs[3];
+    for (int k = 0; k < 12; k++) {
+      ps[k] = (1 - sn) * (&ra->p0[0][0])[k] + sn * p[k];
+    }
+    for (int i = 0; i < 3; i++) {
+      Fs[i] = (1 - sn) * ra->F0[i] + sn * F[i];
+    }
+    loadVector(ps, ld.gravity, Fs, Lt);
+    predict(ra, Lt);
     int it = 0;
     if (csf_romNewton(ra->rom, ra->d, &ld, &o, &it, &lerr) == CS_OK) {
       s = sn;
       ra->n_steps++;
       ra->n_newton += it;
+      memcpy(ra->q_prev, ra->q_conv, n * sizeof(double));
+      memcpy(ra->L_prev, ra->L_conv, sizeof Lt);
       memcpy(ra->q_conv, ra->d->q, n * sizeof(double));
+      memcpy(ra->L_conv, Lt, sizeof Lt);
+      ra->nhist = ra->nhist < 2 ? ra->nhist + 1 : 2;
       ds = it <= RAMP_GROW_ITERS ? 1.5 * ds : ds;
     } else {
       ra->n_cutbacks++;

@@ -26,6 +26,12 @@
 extern "C" {
 #endif
 
+/* csfRomActuator.k_lag's default: 0, Newton. A lagged tangent (0.25 ... 0.9) did not pay on
+ * the bend sweep (docs/notes/rom.md, session romfast: the three-field Newton contracts only
+ * linearly, a step on a kept tangent less, and the residual alone costs a quarter of the
+ * tangent's evaluation) */
+#define CSF_ROM_ACT_K_LAG 0.0
+
 typedef struct csfRomActuator_ {
   csfActuatorFE fe;    /* the FE model the reduced forces come from (no solver data) */
   csfRom* rom;
@@ -37,6 +43,12 @@ typedef struct csfRomActuator_ {
   double p[CSR_NSEG][CSR_NCHAMBER], gravity[3], tip_force[3]; /* the solved load */
   double p0[CSR_NSEG][CSR_NCHAMBER], g0[3], F0[3]; /* ramp scratch: the ramp's start */
   double* q_conv;      /* (n) last converged q */
+  /* the predictor (csf_romActuatorSolve): the converged state before q_conv and both loads (the
+   * 12 chamber pressures in MPa, gravity in 1e4 mm/s^2, the tip force in N), nhist of them valid */
+  double* q_prev;      /* (n) */
+  double L_prev[18], L_conv[18];
+  int nhist;
+  double k_lag;        /* the reduced Newton's lagged tangent (fem_rom.h csfRomNewtonOptions) */
   long n_newton;       /* reduced Newton iterations so far */
   int n_steps, n_cutbacks; /* ramp steps so far */
   char basis_path[512];
@@ -56,7 +68,10 @@ double csf_romBasisMeshSize(const char* basis_path, csError* err);
 /* Reduced statics at chamber pressures p (MPa, segment s chamber j at 4 s + j), gravity g
  * (mm/s^2) and tip force F (N), ramped
  * from the last solved load in adaptive steps (halved on failure down to 1e-4 of the range,
- * grown by 1.5 after easy ones). No load at all gives the reference state (q = 0), as the FE's
+ * grown by 1.5 after easy ones). Each step starts from the secant predictor of the last two
+ * solved states when its load continues theirs along the same line (a sweep), else from the
+ * last solved state; the reduced Newton keeps its tangent while it contracts by ra->k_lag
+ * (csfRomNewtonOptions.k_lag; 0: Newton). No load at all gives the reference state (q = 0), as the FE's
  * p = 0 row. On failure the last solved state is kept and CS_ERR_DIVERGED returned. ra->u holds
  * the displacement afterwards. */
 csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #include "cmd_bend.h"
 #include "core_clock.h"
@@ -17,7 +18,7 @@
 #include "fem_rom_act.h"
 
 static csStatus romSweep(BendRun* run, csrBendCurve* bc, csfRomActuator* ra, double* t_sweep,
-                         csError* err) {
+                         double* t_cpu, csError* err) {
   const double l = csf_romBasisMeshSize(run->rom_basis, err);
   if (isnan(l)) {
     return err->status;
@@ -51,6 +52,8 @@ static csStatus romSweep(BendRun* run, csrBendCurve* bc, csfRomActuator* ra, dou
   run->n_elements_fibre = ra->fe.model->nfib;
   run->mesh_symmetric = 1;
   const double t0 = csu_wallSeconds(); /* the sweep alone (the set-up meshes with gmsh) */
+  struct timespec c0, c1; /* and its CPU time: wall times on a loaded machine say little */
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
   const size_t nstep = (size_t)floor(run->p_max / run->p_step * (1 + 1e-9));
   double prev[4] = {0, 0, 0, 0};
   for (size_t i = 0; st == CS_OK && i <= nstep + 1; i++) {
@@ -84,6 +87,8 @@ static csStatus romSweep(BendRun* run, csrBendCurve* bc, csfRomActuator* ra, dou
     st = csr_bendCurvePush(bc, p, ang, tip, err);
   }
   *t_sweep = csu_wallSeconds() - t0;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
+  *t_cpu = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
   return st;
 }
 
@@ -103,9 +108,9 @@ csStatus csx_bendRom(BendRun* run, csxBendResult* res, csError* err) {
   csStatus st = f ? csr_bendCurveInit(&bc, 16, err) : err->status;
   csfRomActuator ra;
   memset(&ra, 0, sizeof ra);
-  double t_sweep = NAN;
+  double t_sweep = NAN, t_cpu = NAN;
   if (st == CS_OK) {
-    st = romSweep(run, &bc, &ra, &t_sweep, err);
+    st = romSweep(run, &bc, &ra, &t_sweep, &t_cpu, err);
   }
   const double wall = csu_wallSeconds() - t0;
   if (st == CS_OK) {
@@ -124,6 +129,8 @@ csStatus csx_bendRom(BendRun* run, csxBendResult* res, csError* err) {
         {"rom_steps", ra.n_steps},
         {"rom_cutbacks", ra.n_cutbacks},
         {"rom_sweep_s", t_sweep},
+        {"rom_sweep_cpu_s", t_cpu},
+        {"rom_tangents", (double)ra.d->n_tangent},
     };
     for (size_t k = 0; st == CS_OK && k < sizeof a / sizeof a[0]; k++) {
       st = cs_h5AttrDouble(f, "/", a[k].name, a[k].v, err);
@@ -146,10 +153,11 @@ csStatus csx_bendRom(BendRun* run, csxBendResult* res, csError* err) {
   }
   csx_bendResultFill(run, &bc, res);
   fprintf(run->notes, "crawlsim bend: rom: n = %d, %d of %d Tet10, %d of %d fibre elements, %d of "
-          "%d faces; %d steps, %d cut-backs, %ld reduced Newton iterations; sweep %.3f s (set-up "
-          "included %.1f s)\n", ra.rom->n, ra.rom->nel[CSF_ROM_SET_TET], ra.fe.mesh->ntet,
-          ra.rom->nel[CSF_ROM_SET_FIBRE], ra.fe.model->nfib, ra.rom->nel[CSF_ROM_SET_FACE],
-          ra.fe.mesh->nface, ra.n_steps, ra.n_cutbacks, ra.n_newton, t_sweep, wall);
+          "%d faces; %d steps, %d cut-backs, %ld reduced Newton iterations, %ld evaluations, %ld "
+          "tangents; sweep %.3f s wall, %.3f s CPU (set-up included %.1f s wall)\n", ra.rom->n,
+          ra.rom->nel[CSF_ROM_SET_TET], ra.fe.mesh->ntet, ra.rom->nel[CSF_ROM_SET_FIBRE],
+          ra.fe.model->nfib, ra.rom->nel[CSF_ROM_SET_FACE], ra.fe.mesh->nface, ra.n_steps,
+          ra.n_cutbacks, ra.n_newton, ra.d->n_eval, ra.d->n_tangent, t_sweep, t_cpu, wall);
   fprintf(run->table, "crawlsim bend: model rom, actuator %s, chambers %s in II1-II3\n",
           run->act.name, run->chambers);
   fprintf(run->table, "%9s %9s %9s %9s %10s\n", "p (MPa)", "II1 (deg)", "II2 (deg)", "II3 (deg)",
