@@ -3,7 +3,11 @@
  * or without terrain, swung by a tip force of 0.05 N along x at 2 Hz (so the velocity products
  * and the foot's friction work as in a gait) (issue 32; built, not registered).
  *
- * Usage: bench_strain_step [BEND_ORDER] [CONTACT 0|1] [STEPS]   (defaults 2, 1, 2000) */
+ * Usage: bench_strain_step [BEND_ORDER] [CONTACT 0|1] [STEPS] [AXIAL_ORDER] [JOINT_ORDER]
+ *        [SHEAR 0|1] [NSUB]
+ * (defaults 2, 1, 2000, then csr_strainDefaultParams' axial_order, joint_order, shear, nsub; the
+ * last four measure how the cost grows with the strain modes, docs/notes/strain_leg.md "Cost
+ * against modes and legs") */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -37,6 +41,10 @@ int main(int argc, char** argv) {
   cscSoftParams soft = csc_softDefaultParams();
   csrStrainParams par = csr_strainDefaultParams();
   par.bend_order = order;
+  if (argc > 4) par.axial_order = atoi(argv[4]);
+  if (argc > 5) par.joint_order = atoi(argv[5]);
+  if (argc > 6) par.shear = atoi(argv[6]);
+  if (argc > 7) par.nsub = atoi(argv[7]);
   csrStrainSpec sp;
   memset(&sp, 0, sizeof sp);
   sp.act = &act;
@@ -70,9 +78,10 @@ int main(int argc, char** argv) {
     }
   }
   double t1 = csu_wallSeconds(), c1 = cpuSeconds();
-  printf("bend order %d, contact %d: %d unknowns, %.1f us CPU (%.1f us wall) per leg step (%d "
-         "steps of 5 ms)\n", order, contact, csr_strainDofs(m), 1e6 * (c1 - c0) / nstep,
-         1e6 * (t1 - t0) / nstep, nstep);
+  printf("bend order %d (axial %d, joints %d, shear %d, %d sub-intervals), contact %d: %d "
+         "unknowns, %.1f us CPU (%.1f us wall) per leg step (%d steps of 5 ms)\n", order,
+         par.axial_order, par.joint_order, par.shear, par.nsub, contact, csr_strainDofs(m),
+         1e6 * (c1 - c0) / nstep, 1e6 * (t1 - t0) / nstep, nstep);
   /* STRAIN_DUMP=FILE: the leg's final state as raw doubles (to compare two builds) */
   const char* dump = getenv("STRAIN_DUMP");
   FILE* fd = dump ? fopen(dump, "wb") : NULL;
