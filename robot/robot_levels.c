@@ -121,6 +121,13 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
                        : planned ? "not available yet"
                                  : "not a leg level (rod, strain)");
   }
+  if (csr_legTypeFind(field[1], &planned)->needs_file) {
+    /* a level that runs from a file of its own (rom: --rom-file) has no row: --legs auto
+     * picks among levels every run has */
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: level '%.40s' runs from a leg file of its "
+                       "own (--%s-file), so --legs auto cannot pick it: no rows", path, line,
+                       field[1], field[1]);
+  }
   strcpy(r->level, field[1]);
   /* links, macro_steps, dt_s, rod_tol, step_order, error_mm, cpu_s_per_s, wall_s_per_s:
    * ranges (lo open?), integers */

@@ -131,7 +131,7 @@ static void test_levels_bad_lines_refused(void) {
   expectRefused(HEADER "flat-road,strain,2,1,0.02,5,1,2.0,m\n", 2, "dt_s 0.02 is outside");
   expectRefused(HEADER "flat-road,strain,2,1,,5,1,2.0,m\n", 2, "dt_s '' is not a number");
   expectRefused(HEADER "flat-road,fem,2,1,0.001,5,1,2.0,m\n", 2, "level 'fem' is not a leg level");
-  expectRefused(HEADER "flat-road,rom,2,1,0.001,5,1,2.0,m\n", 2, "level 'rom' is not available");
+  expectRefused(HEADER "flat-road,rom,2,1,0.001,5,1,2.0,m\n", 2, "level 'rom' runs from a leg file of its own (--rom-file)");
   /* a retired level: one line naming why and what to use */
   expectRefused(HEADER "flat-road,prb,2,1,0.001,5,1,2.0,m\n", 2, "level 'prb' is the prb level "
                 "was retired");
