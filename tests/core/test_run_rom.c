@@ -9,7 +9,8 @@
  *
  * Criterion (a closed form: statics). No gait (zero pressures), earth conditions (the legs
  * weigh), the provisional calibration (the rom does not use the map; the run needs one of the
- * legs' actuator). After cs_simCreate's settling (0.3 s), over a window of WINDOW s:
+ * legs' actuator), the level's default coupling (stabilised: Gauss-Seidel diverges while settling,
+ * docs/notes/rom.md "Settling on rom legs"). After cs_simCreate's settling (0.3 s), over a window of WINDOW s:
  *  - the terrain's force on the eight legs, averaged over the window, carries the robot's
  *    weight: |Σ f_y - m g| <= 5 % of m g. The support does not touch the ground (its force
  *    would be missing from the feet's), and its momentum change over the window, M Δv / T,
