@@ -443,9 +443,9 @@ static int soleStepMatrix(const csrLeg* leg, const double* b, double Ac[9], doub
  *   Z = M6 + h J_sᵀ A_c J_s - G'ᵀ S'⁻¹ G'   (symmetric, positive semi-definite):
  * C = Z / h, K = 0. Out of contact (A_c = 0) Z is the inertia alone, M6 - Gᵀ S⁻¹ G (a free leg
  * has no stiffness at its hip). Without the contact in them, a leg standing on its sole
- * hands the support an explicit stiffness (about 90 N/mm per leg at the hip on the short leg)
- * that the 50 g support's step cannot carry at h = 1 ms (docs/notes/rom.md "Settling on rom
- * legs"). Not in them: the sole's rotation (the contact's couple on its tilt). */
+ * hands the support an explicit stiffness that the light support's step cannot carry
+ * (docs/notes/rom.md "Settling on rom legs"). Not in them: the sole's rotation (the
+ * contact's couple on its tilt). */
 static void interfaceGainsRom(const csrLeg* leg, double K[36], double C[36]) {
   const RomShared* sh = leg->sh;
   const csrRomModel* m = sh->m;
