@@ -365,15 +365,16 @@ static void firstMoment(const csrRomModel* m, const double* q, double s[3]) {
   }
 }
 
-#define ROM_GAIN_DV 1e-2 /* mm/s: the contact's step matrix by central differences (the hip
-                            moves h ε = 1e-5 mm at h = 1 ms, below the law's d_onset 1e-3 mm) */
+#define ROM_GAIN_DX 1e-5 /* mm: the contact's step matrix by central differences, the sole
+                            moved by h ε = 1e-5 mm (ε = 1e-2 mm/s at h = 1 ms), below the law's
+                            smoothing length d_onset 1e-3 mm */
 #define ROM_GAIN_NZ 32   /* the longest sole history the gains advance (the foot's: 4) */
 
 /* The sole's contact over one backward-Euler step of h, as seen by the sole's centre: a change
  * Δv of its velocity (world) held over the step changes the force on the leg by -A_c Δv, the
  * position moving by h Δv and the friction history by h Δz' (the law's own rate, so a sticking
  * bristle adds h k_t): A_c = h K_c + D_c (+ the bristle), by central differences
- * of the law at the current state, symmetrised. Fills p, the sole's centre from the hip (world,
+ * of the law at the current state, symmetrised and projected onto semi-definite matrices. Fills p, the sole's centre from the hip (world,
  * mm). Returns 0 when the sole feels nothing (out of contact, no terrain): A_c = 0. */
 static int soleStepMatrix(const csrLeg* leg, const double* b, double Ac[9], double p[3]) {
   const RomShared* sh = leg->sh;
@@ -392,7 +393,7 @@ static int soleStepMatrix(const csrLeg* leg, const double* b, double Ac[9], doub
     return 0;
   }
   csu_sub3(p, x0, b);
-  const double h = sh->h, e = ROM_GAIN_DV;
+  const double h = sh->h, e = ROM_GAIN_DX / h;
   int any = 0;
   for (int j = 0; j < 3; j++) {
     double fs[2][3];
@@ -422,9 +423,18 @@ static int soleStepMatrix(const csrLeg* leg, const double* b, double Ac[9], doub
       any |= Ac[3 * i + j] != 0;
     }
   }
+  /* its symmetric part, projected onto positive semi-definite matrices (a bristle between
+   * stick and slip, or advanced over a long h, can give a negative direction: passive gains,
+   * as the stabilised scheme asks) */
+  double w[3], V[9];
+  csu_symEigen3(Ac, w, V);
   for (int i = 0; i < 3; i++) {
-    for (int j = i + 1; j < 3; j++) {
-      Ac[3 * i + j] = Ac[3 * j + i] = 0.5 * (Ac[3 * i + j] + Ac[3 * j + i]);
+    for (int j = 0; j < 3; j++) {
+      double a = 0;
+      for (int k = 0; k < 3; k++) {
+        a += V[3 * i + k] * fmax(w[k], 0.0) * V[3 * j + k];
+      }
+      Ac[3 * i + j] = a;
     }
   }
   return any;
