@@ -157,6 +157,10 @@ void cs_modelSetLegLevel(csModel* m, const csrLegType* type) {
   /* co-simulated legs default to Gauss-Seidel: momentum exact, and 0.6 mm from the converged
    * staggered reference over the 9 s flat road where the stabilised scheme is 22 mm off (top) */
   m->opt.coupling = type && !type->in_world ? CS_COUPLING_GAUSS_SEIDEL : CS_COUPLING_STAGGERED;
+  if (type && !type->in_world && type->coupling_stabilised) {
+    /* a level whose gains hold its contact's stiffness (rom): the implicit solve with them */
+    m->opt.coupling = CS_COUPLING_STABILISED;
+  }
   if (type && !type->in_world && type->prepare) {
     /* a tree-stepped level: one step for the support and the legs (bottom), at its own step */
     m->opt.coupling = CS_COUPLING_TREE;

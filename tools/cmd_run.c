@@ -81,7 +81,7 @@ static const csxOpt kRunOpts[] = {
      "elements (rod) or bending modes (strain) per leg segment, 1..64"},
     {"--iterations", "N", "240", "ODE QuickStep iterations per step, 1..10000"},
     {"--macro-steps", "N", "1", "ODE steps per exchange with co-simulated legs (H = N dt)"},
-    {"--coupling", "staggered|stabilised|gs|tree", "gs (rod), tree (strain)",
+    {"--coupling", "staggered|stabilised|gs|tree", "gs (rod), tree (strain), stabilised (rom)",
      "how co-simulated legs hand their wrench to the support: gs (Gauss-Seidel: the support "
      "steps first, momentum exact), stabilised (the legs first along a predicted motion), "
      "staggered (explicit: needs --dt 3.5e-5 or less), tree (the support and the legs in one "

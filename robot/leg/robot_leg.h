@@ -169,6 +169,11 @@ typedef struct csrLegType_ {
   /* 1: the level builds its legs from a data file (csrLegSpec.leg_file: rom), so the speed
    * table (robot/levels.csv) measures it only where such a file is given */
   int needs_file;
+  /* 1: a co-simulated level that is coupled `stabilised` unless the run names a scheme (rom:
+   * its interface gains carry the sole's contact stiffness, which Gauss-Seidel's carry hands
+   * the support a step late; docs/notes/rom.md "Settling on rom legs"); 0: Gauss-Seidel, or
+   * tree for a tree-stepped level (core/sim_coupling.c) */
+  int coupling_stabilised;
 
   /* Build the leg hanging straight from spec->hip along spec->frame's e3, at rest, vented.
    * Returns NULL and fills err on failure. */

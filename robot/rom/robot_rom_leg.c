@@ -9,8 +9,9 @@
  * Frames: the file's hip frame (the clamped face at z = 0, the leg along +z, the chambers in
  * x, y) is the leg frame of robot_leg.h (e1, e2, e3), so the hip's R is the leg frame as is.
  * Contact: at the sole only (the rod also has capsules along the leg: a rom leg's shin passes
- * through the terrain unseen). Interface gains: the inertial response condensed on the hip
- * over one backward-Euler step of spec->h (below); the contact's stiffness is not in them. */
+ * through the terrain unseen). Interface gains: the leg's step of spec->h condensed on the hip,
+ * its sole's contact in it (below); the level is coupled `stabilised` by default, the scheme
+ * that solves the support's step with them (coupling_stabilised). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +31,8 @@ typedef struct RomShared_ {
   double a;               /* the foot's half side, mm */
   double h;               /* the gains' step, s */
   double* Sl;             /* (n x n) Cholesky factor (lower) of M_r + h C + h² K_r(0) */
+  double* S0;             /* (n x n) the same matrix, unfactored (the gains in contact add the
+                             sole's contact to it) */
   /* the centreline: npt points in order of their reference z, each the mean of a band's nodes
    * (the hip: the clamped face's centroid; the foot: the sole's) */
   int npt;
@@ -45,6 +48,8 @@ struct csrLeg_ {
   csrBaseState b_reset;
   double* x;              /* (state size) scratch */
   double* G, *Y;          /* (n x 6) gains' scratch */
+  double* Sc;             /* (n x n) gains' scratch: S with the sole's contact, factored */
+  double* Fz;             /* (nz) gains' scratch: the history advanced one step */
   double* Fc, *zd;        /* (n), (nz) contact scratch */
   cscSlotInfo* slot;      /* (nslot) */
   double* pts;            /* (npt x 3) centreline scratch */
@@ -98,7 +103,7 @@ static void sharedDestroyRom(void* p) {
   csr_romModelDestroy(sh->m);
   csc_softDestroy(sh->soft);
   csr_romLegFileFree(&sh->lf);
-  free(sh->Sl), free(sh->Up);
+  free(sh->Sl), free(sh->S0), free(sh->Up);
   free(sh);
 }
 
@@ -239,8 +244,9 @@ static int sharedCreateRom(const csrLegSpec* spec, void** shared, csError* err) 
   const int n = sh->m->n;
   sh->h = spec->h > 0 ? spec->h : 1e-3;
   sh->Sl = malloc((size_t)n * n * sizeof(double));
+  sh->S0 = malloc((size_t)n * n * sizeof(double));
   csfRomData* fd = csf_romDataCreate(sh->lf.rom, err);
-  if (!sh->Sl || !fd) {
+  if (!sh->Sl || !sh->S0 || !fd) {
     if (fd) {
       cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
     }
@@ -256,6 +262,7 @@ static int sharedCreateRom(const csrLegSpec* spec, void** shared, csError* err) 
     sh->Sl[i] = sh->m->Mr[i] + sh->h * sh->m->C[i] + sh->h * sh->h * fd->K[i];
   }
   csf_romDataDestroy(fd);
+  memcpy(sh->S0, sh->Sl, (size_t)n * n * sizeof(double));
   if (rc != 0 || cholesky(sh->Sl, n) != 0) {
     cs_errorSet(err, CS_ERR_ARG, "%s: the reduced tangent at rest is not positive definite",
                 spec->leg_file);
@@ -276,6 +283,7 @@ static void destroyRom(csrLeg* leg) {
   }
   csr_romDataDestroy(leg->d);
   free(leg->x), free(leg->G), free(leg->Y), free(leg->Fc), free(leg->zd), free(leg->slot);
+  free(leg->Sc), free(leg->Fz);
   free(leg->pts);
   free(leg);
 }
@@ -298,12 +306,14 @@ static csrLeg* createRom(const csrLegSpec* spec, csError* err) {
   leg->x = malloc((size_t)csr_romStateSize(sh->m) * sizeof(double));
   leg->G = malloc((size_t)n * 6 * sizeof(double));
   leg->Y = malloc((size_t)n * 6 * sizeof(double));
+  leg->Sc = malloc((size_t)n * n * sizeof(double));
+  leg->Fz = malloc((size_t)nz * sizeof(double));
   leg->Fc = malloc((size_t)n * sizeof(double));
   leg->zd = malloc((size_t)nz * sizeof(double));
   leg->slot = calloc((size_t)nslot, sizeof *leg->slot);
   leg->pts = malloc((size_t)sh->npt * 3 * sizeof(double));
   if (!leg->d || !leg->x || !leg->G || !leg->Y || !leg->Fc || !leg->zd || !leg->slot ||
-      !leg->pts) {
+      !leg->pts || !leg->Sc || !leg->Fz) {
     if (leg->d) cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
     destroyRom(leg);
     return NULL;
@@ -355,19 +365,102 @@ static void firstMoment(const csrRomModel* m, const double* q, double s[3]) {
   }
 }
 
-/* Interface gains: the leg's inertia condensed on the hip over one backward-Euler step of h.
- * A change ΔV = [Δv; Δω] (world) of the hip's twist over the step drives the reduced
- * coordinates through G = [T Rᵀ, E(q) Rᵀ] (E_k = e_k + Q_k q: robot_rom.h's base-acceleration
- * terms, impulse form), the leg answers with Δq' = -S⁻¹ G ΔV, S = M_r + h C + h² K_r(0), and
- * its momenta change by M6 ΔV + Gᵀ Δq' (M6 the rigid spatial inertia of the deformed leg about
- * the hip; the same G carries q' into the momenta: R Tᵀ q', R E(q)ᵀ q'). The impulse on the
- * support is -(M6 - Gᵀ S⁻¹ G) ΔV: C = (M6 - Gᵀ S⁻¹ G) / h, symmetric, positive semi-definite;
- * K = 0 (a free leg has no stiffness at its hip; the sole's contact stiffness, seen through
- * the leg, is not included). */
+#define ROM_GAIN_DX 1e-5 /* mm: the contact's step matrix by central differences, the sole
+                            moved by h ε = 1e-5 mm (ε = 1e-2 mm/s at h = 1 ms), below the law's
+                            smoothing length d_onset 1e-3 mm */
+#define ROM_GAIN_NZ 32   /* the longest sole history the gains advance (the foot's: 4) */
+
+/* The sole's contact over one backward-Euler step of h, as seen by the sole's centre: a change
+ * Δv of its velocity (world) held over the step changes the force on the leg by -A_c Δv, the
+ * position moving by h Δv and the friction history by h Δz' (the law's own rate, so a sticking
+ * bristle adds h k_t): A_c = h K_c + D_c (+ the bristle), by central differences
+ * of the law at the current state, symmetrised and projected onto semi-definite matrices. Fills p, the sole's centre from the hip (world,
+ * mm). Returns 0 when the sole feels nothing (out of contact, no terrain): A_c = 0. */
+static int soleStepMatrix(const csrLeg* leg, const double* b, double Ac[9], double p[3]) {
+  const RomShared* sh = leg->sh;
+  const csrRomModel* m = sh->m;
+  memset(Ac, 0, 9 * sizeof(double));
+  if (!m->contact || m->nz > ROM_GAIN_NZ) {
+    return 0;
+  }
+  const double* q = csr_romQ(leg->d);
+  const double* qd = csr_romQdot(leg->d);
+  const double* z = csr_romZ(leg->d);
+  cscShapeLoad ld;
+  double x0[3], zd0[ROM_GAIN_NZ];
+  if (csr_romSoleLoad(m, b + 3, b, b + 12, b + 15, q, qd, z, leg->Fc, zd0, &ld, x0,
+                      leg->slot) != 0) {
+    return 0;
+  }
+  csu_sub3(p, x0, b);
+  const double h = sh->h, e = ROM_GAIN_DX / h;
+  int any = 0;
+  for (int j = 0; j < 3; j++) {
+    double fs[2][3];
+    for (int side = 0; side < 2; side++) {
+      const double sg = side ? -1.0 : 1.0;
+      double xh[3], vh[3];
+      csu_copy3(xh, b);
+      csu_copy3(vh, b + 12);
+      xh[j] += sg * h * e;
+      vh[j] += sg * e;
+      double zd[ROM_GAIN_NZ];
+      if (csr_romSoleLoad(m, b + 3, xh, vh, b + 15, q, qd, z, leg->Fc, zd, &ld, x0,
+                          leg->slot) != 0) {
+        return 0;
+      }
+      for (int i = 0; i < m->nz; i++) {
+        leg->Fz[i] = z[i] + h * (zd[i] - zd0[i]);
+      }
+      if (csr_romSoleLoad(m, b + 3, xh, vh, b + 15, q, qd, leg->Fz, leg->Fc, zd, &ld, x0,
+                          leg->slot) != 0) {
+        return 0;
+      }
+      csu_copy3(fs[side], ld.f0);
+    }
+    for (int i = 0; i < 3; i++) {
+      Ac[3 * i + j] = -(fs[0][i] - fs[1][i]) / (2 * e);
+      any |= Ac[3 * i + j] != 0;
+    }
+  }
+  /* its symmetric part, projected onto positive semi-definite matrices (a bristle between
+   * stick and slip, or advanced over a long h, can give a negative direction: passive gains,
+   * as the stabilised scheme asks) */
+  double w[3], V[9];
+  csu_symEigen3(Ac, w, V);
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      double a = 0;
+      for (int k = 0; k < 3; k++) {
+        a += V[3 * i + k] * fmax(w[k], 0.0) * V[3 * j + k];
+      }
+      Ac[3 * i + j] = a;
+    }
+  }
+  return any;
+}
+
+/* Interface gains: the leg's inertia, and in contact its sole's, condensed on the hip over one
+ * backward-Euler step of h. A change ΔV = [Δv; Δω] (world) of the hip's twist over the step
+ * drives the reduced coordinates through G = [T Rᵀ, E(q) Rᵀ] (E_k = e_k + Q_k q: robot_rom.h's
+ * base-acceleration terms, impulse form) and moves the sole's centre p (from the hip) by
+ * J_s ΔV + R Ū Δq', J_s = [1, -[p]×]; the sole's contact answers with -A_c times that
+ * (soleStepMatrix). The leg's step, S Δq' = -G ΔV + h Ūᵀ Rᵀ Δf with S = M_r + h C + h² K_r(0):
+ *   S' Δq' = -G' ΔV,  S' = S + h Ūᵀ Rᵀ A_c R Ū,  G' = G + h Ūᵀ Rᵀ A_c J_s,
+ * and the support's impulse, the leg's momenta change M6 ΔV + Gᵀ Δq' (M6 the rigid spatial
+ * inertia of the deformed leg about the hip; the same G carries q' into the momenta) less the
+ * contact's impulse h J_sᵀ Δf, is -Z ΔV with
+ *   Z = M6 + h J_sᵀ A_c J_s - G'ᵀ S'⁻¹ G'   (symmetric, positive semi-definite):
+ * C = Z / h, K = 0. Out of contact (A_c = 0) Z is the inertia alone, M6 - Gᵀ S⁻¹ G (a free leg
+ * has no stiffness at its hip). Without the contact in them, a leg standing on its sole
+ * hands the support an explicit stiffness that the light support's step cannot carry
+ * (docs/notes/rom.md "Settling on rom legs"). Not in them: the sole's rotation (the
+ * contact's couple on its tilt). */
 static void interfaceGainsRom(const csrLeg* leg, double K[36], double C[36]) {
   const RomShared* sh = leg->sh;
   const csrRomModel* m = sh->m;
   const int n = m->n;
+  const double h = sh->h;
   const double* b = baseOf(leg);
   const double* R = b + 3;
   const double* q = csr_romQ(leg->d);
@@ -393,13 +486,108 @@ static void interfaceGainsRom(const csrLeg* leg, double K[36], double C[36]) {
       G[6 * k + 3 + j] = ge;
     }
   }
+  /* the sole's contact, if it touches: S', G' and the rigid part h J_sᵀ A_c J_s */
+  double Ac[9], p[3], Js[18], AJ[18], P[18], Zc[36];
+  memset(Zc, 0, sizeof Zc);
+  const double* Sf = sh->Sl;
+  if (soleStepMatrix(leg, b, Ac, p)) {
+    /* J_s = [1, -[p]x] (3 x 6) */
+    const double px[9] = {0, -p[2], p[1], p[2], 0, -p[0], -p[1], p[0], 0};
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 3; j++) {
+        Js[6 * i + j] = i == j;
+        Js[6 * i + 3 + j] = -px[3 * i + j];
+      }
+    }
+    /* AJ = A_c J_s (3 x 6); P = Rᵀ AJ; B = Rᵀ A_c R (hip frame) */
+    double B[9], RtA[9];
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 6; j++) {
+        double a = 0;
+        for (int l = 0; l < 3; l++) {
+          a += Ac[3 * i + l] * Js[6 * l + j];
+        }
+        AJ[6 * i + j] = a;
+      }
+    }
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 6; j++) {
+        double a = 0;
+        for (int l = 0; l < 3; l++) {
+          a += R[3 * l + i] * AJ[6 * l + j];
+        }
+        P[6 * i + j] = a;
+      }
+      for (int j = 0; j < 3; j++) {
+        double a = 0;
+        for (int l = 0; l < 3; l++) {
+          a += R[3 * l + i] * Ac[3 * l + j];
+        }
+        RtA[3 * i + j] = a;
+      }
+    }
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 3; j++) {
+        double a = 0;
+        for (int l = 0; l < 3; l++) {
+          a += RtA[3 * i + l] * R[3 * l + j];
+        }
+        B[3 * i + j] = a;
+      }
+    }
+    for (int i = 0; i < 6; i++) {
+      for (int j = 0; j < 6; j++) {
+        double a = 0;
+        for (int l = 0; l < 3; l++) {
+          a += Js[6 * l + i] * AJ[6 * l + j];
+        }
+        Zc[6 * i + j] = h * a;
+      }
+    }
+    /* S' = S + h Ūᵀ B Ū, G' = G + h Ūᵀ P (Ū: 3 x n, row i = m->Us + i n) */
+    const double* U = m->Us;
+    for (int k = 0; k < n; k++) {
+      for (int l = 0; l < n; l++) {
+        double a = 0;
+        for (int i = 0; i < 3; i++) {
+          double t = 0;
+          for (int j = 0; j < 3; j++) {
+            t += B[3 * i + j] * U[(size_t)j * n + l];
+          }
+          a += U[(size_t)i * n + k] * t;
+        }
+        leg->Sc[(size_t)k * n + l] = sh->S0[(size_t)k * n + l] + h * a;
+      }
+      for (int j = 0; j < 6; j++) {
+        double a = 0;
+        for (int i = 0; i < 3; i++) {
+          a += U[(size_t)i * n + k] * P[6 * i + j];
+        }
+        G[6 * k + j] += h * a;
+      }
+    }
+    if (cholesky(leg->Sc, n) == 0) {
+      Sf = leg->Sc;
+    } else { /* not passive: the contact left out, the inertia alone (as out of contact) */
+      memset(Zc, 0, sizeof Zc);
+      for (int k = 0; k < n; k++) {
+        for (int j = 0; j < 6; j++) {
+          double a = 0;
+          for (int i = 0; i < 3; i++) {
+            a += U[(size_t)i * n + k] * P[6 * i + j];
+          }
+          G[6 * k + j] -= h * a;
+        }
+      }
+    }
+  }
   double col[4096];
   double* c = n <= 4096 ? col : NULL;
   for (int j = 0; c && j < 6; j++) {
     for (int k = 0; k < n; k++) {
       c[k] = G[6 * k + j];
     }
-    cholSolve(sh->Sl, n, c);
+    cholSolve(Sf, n, c);
     for (int k = 0; k < n; k++) {
       Y[6 * k + j] = c[k];
     }
@@ -453,12 +641,12 @@ static void interfaceGainsRom(const csrLeg* leg, double K[36], double C[36]) {
       for (int k = 0; k < n; k++) {
         a += G[6 * k + i] * Y[6 * k + j];
       }
-      Z[6 * i + j] -= a;
+      Z[6 * i + j] += Zc[6 * i + j] - a;
     }
   }
   for (int i = 0; i < 36; i++) {
     K[i] = 0.0;
-    C[i] = 0.5 * (Z[i] + Z[6 * (i % 6) + i / 6]) / sh->h;
+    C[i] = 0.5 * (Z[i] + Z[6 * (i % 6) + i / 6]) / h;
   }
 }
 
@@ -588,6 +776,7 @@ const csrLegType csr_leg_rom = {
     .settings = NULL,
     .nsettings = 0,
     .needs_file = 1,
+    .coupling_stabilised = 1,
     .create = createRom,
     .destroy = destroyRom,
     .sharedCreate = sharedCreateRom,

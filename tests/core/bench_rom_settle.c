@@ -1,0 +1,104 @@
+/* bench_rom_settle.c: the robot on rom legs settling, step by step (not a test: prints the
+ * support's height and speed, the feet's force and the legs' sole depth at every macro step,
+ * so a divergence is seen as it grows; docs/notes/rom.md "Settling on rom legs").
+ *
+ *   bench_rom_settle LEG.h5 STEPS [COUPLING [DT_S [MACRO]]]
+ *
+ * The scene as test_run_rom: no gait, earth, the short leg (S = 15 mm), the provisional
+ * calibration from $CS_SOURCE_DIR. Time starts at -settle (the driver's), the steps are
+ * cs_step's macro steps from the built robot (0.5 mm above the ground). CS_BENCH_CARRY=0: the
+ * Gauss-Seidel scheme without its impulse carry (csOptions.coupling_carry). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <ode/ode.h>
+
+#include "cs_rundef.h"
+#include "sim_model.h"
+
+static void quiet(int num, const char* msg, va_list ap) {
+  (void)num, (void)msg, (void)ap;
+}
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    fprintf(stderr, "usage: %s LEG.h5 STEPS [COUPLING [DT_S [MACRO]]]\n", argv[0]);
+    return 2;
+  }
+  const char* src = getenv("CS_SOURCE_DIR");
+  char cal[600];
+  snprintf(cal, sizeof cal, "%s/robot/calibration_provisional.txt", src ? src : ".");
+  const char* sets[3] = {"S1=15", "S2=15", "S3=15"};
+  csRunDef def = cs_defaultRunDef();
+  def.legs = "rom";
+  def.rom_file = argv[1];
+  def.actuator_set = sets;
+  def.n_actuator_set = 3;
+  def.calibration = cal;
+  def.no_gait = 1;
+  def.t_end = 1;
+  def.conditions = "earth";
+  if (argc > 3) def.coupling = argv[3];
+  if (argc > 4) def.dt = atof(argv[4]);
+  if (argc > 5) def.macro_steps = atof(argv[5]);
+  const long nstep = atol(argv[2]);
+  dInitODE2(0);
+  dSetMessageHandler(quiet);
+  dSetErrorHandler(quiet);
+  csModel* m = malloc(sizeof *m);
+  cs_modelInit(m);
+  csRunPlan plan;
+  csError err;
+  cs_errorClear(&err);
+  clock_t c0 = clock();
+  if (cs_runDefBuild(&def, m, &plan, &err) != CS_OK) {
+    printf("build: %s\n", err.msg);
+    return 1;
+  }
+  if (getenv("CS_BENCH_CARRY")) {
+    m->opt.coupling_carry = atoi(getenv("CS_BENCH_CARRY"));
+  }
+  csData* d = cs_dataCreate(m, &err);
+  if (!d) {
+    printf("data: %s\n", err.msg);
+    return 1;
+  }
+  printf("set-up %.1f s CPU; mass %.2f g, h %g s, macro %d, coupling %d\n",
+         (double)(clock() - c0) / CLOCKS_PER_SEC, cs_robotMass(d) * 1e6, m->opt.h,
+         m->opt.macro_steps, (int)m->opt.coupling);
+  printf("step t_s y_mm vy_mm/s |w| sum_fy_N sum_wy_N depth_mm cpu_s\n");
+  double p0[3];
+  cs_supportDisplacement(d, p0);
+  for (long i = 0; i < nstep; i++) {
+    clock_t c = clock();
+    csStatus st = cs_step(m, d, &err);
+    double p[3], v[3], w[3], fy = 0, wy = 0;
+    cs_supportDisplacement(d, p);
+    cs_supportVelocity(d, v);
+    cs_supportAngularVelocity(d, w);
+    for (int k = 0; k < 8; k++) {
+      double f[3];
+      csrWrench wr;
+      cs_footForce(m, d, k, f);
+      cs_legWrench(d, k, &wr);
+      fy += f[1];
+      wy += wr.f[1];
+    }
+    printf("%ld %.5f %.5f %.4g %.3g %.5g %.5g %.5f %.2f%s%s\n", i, cs_time(d), p[1], v[1],
+           sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), fy, wy, cs_legContactDepth(m, d),
+           (double)(clock() - c) / CLOCKS_PER_SEC, st == CS_OK ? "" : " FAILED: ",
+           st == CS_OK ? "" : err.msg);
+    fflush(stdout);
+    if (st != CS_OK) {
+      break;
+    }
+  }
+  cs_dataDestroy(d);
+  cs_modelDestroy(m);
+  free(m);
+  dCloseODE();
+  return 0;
+}
