@@ -71,6 +71,10 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom modes --basis x.h5 --out x.h5 --pressure 0.9", "--pressure '0.9'");
   expectRefused("rom modes --basis x.h5 --out x.h5 --ray NOPE", "--ray 'NOPE': no such ray");
   expectRefused("rom modes --basis romcli_missing.h5 --out x.h5", "romcli_missing.h5");
+  expectRefused("rom leg-file --basis x.h5", "leg-file needs --basis and --out");
+  expectRefused("rom leg-file --basis x.h5 --out x.h5 stray", "unexpected argument 'stray'");
+  expectRefused("rom leg-file --wieghts w.h5", "did you mean --weights?");
+  expectRefused("rom leg-file --basis romcli_missing.h5 --out romcli_leg.h5", "romcli_missing.h5");
   expectRefused("rom modes --presure 0.1", "did you mean --pressure?");
   expectRefused("bend --model rom --p-max 0.1 --out romcli.h5", "--rom-basis");
   expectRefused("bend --model rom --rom-basis romcli_missing.h5 --out romcli.h5",
