@@ -311,6 +311,13 @@ static int activeSet(const csrStrainModel* m) {
 }
 
 
+/* the active set acting in this linearisation: backward Euler's always; BDF2's until its
+ * first iterate, on the start's records (csr_strainGhostStart_) */
+static int activeNow(const csrStrainModel* m, const csrStrainData* d) {
+  return activeSet(m) || (m->par.active_set && d->ghost_hold);
+}
+
+
 /* 1 when the law's load (L, couple) of a shape is zero */
 static int loadZero(const double L[6], const double couple[3]) {
   int z = couple[0] == 0 && couple[1] == 0 && couple[2] == 0;
@@ -330,6 +337,54 @@ void csr_strainGhostReset_(const csrStrainModel* m, csrStrainData* d) {
   }
   d->nghost = 0;
   d->fresh = 0;
+  d->ghost_hold = 0;
+}
+
+
+/* BDF2's first iterate (the driver's, at the support's unchanged twist) evaluates the law at
+ * q̄ + h_e η0 with the hips extrapolated at their start twist: on a robot whose support
+ * accelerates, its stance feet land ~1 µm off their start, out of a law they rest 0.6 µm deep
+ * in (the first solve saw the robot in free fall: 2.0e-2 mm moves against backward Euler's
+ * 1.2e-3, 7 passes a standing step against 3). So until that iterate every shape that
+ * touches at the step's start is held by its start's linearisation (the affine load, touching
+ * or not there), backward Euler's linear model about the last converged state; the passes
+ * after it evaluate the law (docs/notes/strain_leg.md "BDF2's passes"). */
+int csr_strainGhostStart_(const csrStrainModel* m, csrStrainData* d) {
+  if (!m->soft || !m->par.active_set) {
+    return 0;
+  }
+  for (int s = 0; s < m->nshape; s++) {
+    csrStrainGhost* g = d->ghost + s;
+    cscShapeState st;
+    shapeState(m, d, s, &st);
+    double L0[6], couple[3];
+    int rc = loadOf(m, d, s, &st, L0, couple, NULL);
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+    if (loadZero(L0, couple)) {
+      continue;
+    }
+    for (int c = 0; c < 12; c++) {
+      const int foot = s == m->nshape - 1;
+      double del = c < 3 ? CSR_STRAIN_CFD_X
+                         : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
+                                  : CSR_STRAIN_CFD_V);
+      cscShapeState sp = st;
+      perturb(m, s, &sp, c, del);
+      double Lp[6];
+      loadOf(m, d, s, &sp, Lp, NULL, NULL);
+      double* D = c < 6 ? g->K : g->C;
+      for (int r = 0; r < 6; r++) {
+        D[6 * r + c % 6] = (Lp[r] - L0[r]) / del;
+      }
+    }
+    g->y = st;
+    memcpy(g->L, L0, sizeof g->L);
+    g->state = 1;
+  }
+  d->ghost_hold = 1;
+  return 0;
 }
 
 
@@ -361,7 +416,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
   memset(d->fcw, 0, sizeof d->fcw);
   d->ntouch = 0;
   d->nghost = 0;
-  const int active = activeSet(m);
+  const int active = activeNow(m, d);
   for (int s = 0; s < m->nshape; s++) {
     csrStrainGhost* g = d->ghost + s;
     g->on = 0;
@@ -436,9 +491,10 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
       d->csig[first + i] = slotSig(csc_softParams(m->soft), slot + i);
     }
     /* an iterate: a shape out of contact that touched at its last linearisation of this step
-     * is held by its ghost, linearised as there */
+     * is held by its ghost, linearised as there; until BDF2's first iterate every shape that
+     * touched at the start is (csr_strainGhostStart_) */
     int ghost = 0;
-    if (du && active && g->state == 1 && loadZero(L0, couple)) {
+    if (du && active && g->state == 1 && (loadZero(L0, couple) || d->ghost_hold)) {
       ghostLoad(m, g, s, &st, L0);
       memset(couple, 0, sizeof couple);
       ghost = 1;
@@ -478,7 +534,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     if (ghost) {
       memcpy(Ky, g->K, sizeof Ky);
       memcpy(Cy, g->C, sizeof Cy);
-    } else if (active && g->state != 2) {
+    } else if (active && g->state != 2 && !(d->ghost_hold && g->state == 1)) {
       /* the shape's linearisation: its ghost if a later iterate finds it out of contact */
       g->y = st;
       memcpy(g->L, L0, sizeof g->L);
@@ -596,7 +652,7 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
     }
     /* out of contact after touching at its last linearisation: its ghost, whose stiffness
      * the kept matrix already holds (its slots' state does not matter) */
-    const int ghost = activeSet(m) && g->state == 1 && loadZero(L, couple);
+    const int ghost = activeNow(m, d) && g->state == 1 && loadZero(L, couple);
     if (ghost) {
       ghostLoad(m, g, s, &st, L);
       memset(couple, 0, sizeof couple);

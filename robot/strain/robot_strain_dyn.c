@@ -796,6 +796,18 @@ static int prepareBdf(const csrStrainModel* m, csrStrainData* d, double h, doubl
     csr_strainKinematics_(m, d, 0);
   }
   saveStart(m, d);
+  if (m->soft && m->par.active_set) {
+    /* the contact's linear model about the start until the first iterate (robot_strain_contact.c
+     * csr_strainGhostStart_) */
+    if (d->kin_valid < 2) {
+      csr_strainKinematics_(m, d, 2);
+    }
+    csr_strainPointTwistsChain_(m, d);
+    int rc = csr_strainGhostStart_(m, d);
+    if (rc != 0) {
+      return rc;
+    }
+  }
   if (!m->par.step_refresh && d->bc[1] != 0) {
     /* the linearly implicit step assembles its inertia, velocity products and weight once,
      * here: at the velocities extrapolated from the last two starts, u0 + ω (u0 - u_-1)
@@ -866,7 +878,17 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
 }
 
 
+static int iterateAt(const csrStrainModel* m, csrStrainData* d, double Z[36], double rho[6]);
+
+
 int csr_strainIterate(const csrStrainModel* m, csrStrainData* d, double Z[36], double rho[6]) {
+  const int rc = iterateAt(m, d, Z, rho);
+  d->ghost_hold = 0; /* BDF2's contact model about the start ends with the first iterate */
+  return rc;
+}
+
+
+static int iterateAt(const csrStrainModel* m, csrStrainData* d, double Z[36], double rho[6]) {
   if (!(d->h > 0) || !Z || !rho) {
     return -1;
   }

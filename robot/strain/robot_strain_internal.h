@@ -151,6 +151,8 @@ struct csrStrainData_ {
   csrStrainGhost* ghost; /* (nshape) */
   int nghost;     /* shapes held by their ghost load at the last evaluation */
   int fresh;      /* 1: the next iterate linearises afresh (a ghost was released) */
+  int ghost_hold; /* 1: BDF2's start records stand (csr_strainGhostStart_): the linearisations
+                     until the step's first iterate do not replace them */
   int at_iterate; /* 1: the step was last linearised at a Newton iterate (csr_strainIterate),
                      0 at its start (prepare): csr_strainStepLimit limits only the former */
   double* z;      /* (nhist) contact anchors (state) */
@@ -231,6 +233,11 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
 int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d);
 /* every shape's active-set record cleared (a step's start) */
 void csr_strainGhostReset_(const csrStrainModel* m, csrStrainData* d);
+/* BDF2's prepare: every touching shape's record (y, L, K_y, C_y) at the current state, the
+ * step's start (the last step's converged end), held until the step's first iterate (d->
+ * ghost_hold); the kinematics with J at the chain points and d->Vp there valid. 0 or > 0 as
+ * csr_strainContactAssemble_ */
+int csr_strainGhostStart_(const csrStrainModel* m, csrStrainData* d);
 /* drop the shapes held by their ghost at the last evaluation: how many (csr_strainRelease) */
 int csr_strainGhostRelease_(const csrStrainModel* m, csrStrainData* d);
 /* the largest fraction (0, 1] of the iterate's move (db: the base's twist change, body

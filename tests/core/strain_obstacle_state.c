@@ -1,0 +1,59 @@
+/* strain_obstacle_state.c: the obstacle scene on strain legs (its defaults, as `crawlsim run
+ * --scene obstacle --legs strain`) run to T seconds, its whole state (cs_simStateGet) written
+ * as text: the count, then one value a line in C's exact hexadecimal form (%a), so a test can
+ * restore it bit for bit (test_strain_obstacle_stop). Built, not registered:
+ *
+ *   strain_obstacle_state T FILE        (data files from $CS_SOURCE_DIR, else the build's)
+ *
+ * tests/core/data/strain_obstacle_26.8.state is its output at T = 26.8 from a build with the
+ * tree step's old damping rule (test_strain_obstacle_stop's header says why and when to
+ * regenerate it). */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "crawlsim.h"
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    fprintf(stderr, "usage: strain_obstacle_state T FILE\n");
+    return 2;
+  }
+  const double T = atof(argv[1]);
+  csRunDef def = cs_defaultRunDef();
+  def.scene = "obstacle";
+  def.legs = "strain";
+  def.data_dir = getenv("CS_SOURCE_DIR");
+  csError err;
+  csSim* s = cs_simCreate(&def, &err);
+  if (!s) {
+    fprintf(stderr, "strain_obstacle_state: %s\n", err.msg);
+    return 1;
+  }
+  if (cs_simRunUntil(s, T, &err) != CS_OK) {
+    fprintf(stderr, "strain_obstacle_state: %s\n", err.msg);
+    cs_simDestroy(s);
+    return 1;
+  }
+  const int n = cs_simStateSize(s);
+  double* x = malloc((size_t)n * sizeof(double));
+  FILE* f = fopen(argv[2], "w");
+  if (!x || !f) {
+    fprintf(stderr, "strain_obstacle_state: cannot write %s\n", argv[2]);
+    free(x);
+    if (f) {
+      fclose(f);
+    }
+    cs_simDestroy(s);
+    return 1;
+  }
+  cs_simStateGet(s, x);
+  fprintf(f, "%d\n", n);
+  for (int i = 0; i < n; i++) {
+    fprintf(f, "%a\n", x[i]);
+  }
+  fclose(f);
+  printf("t %.6f: %d values in %s\n", cs_simTime(s), n, argv[2]);
+  free(x);
+  cs_simDestroy(s);
+  return 0;
+}
