@@ -426,17 +426,25 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
       ce->bend_deg = fmax(ce->bend_deg, eb[s]);
       ce->bend_rel = fmax(ce->bend_rel, fmin(rb[s], 1e9));
     }
+    int qw = 0; /* the worst chamber (segment qw / 4, chamber qw % 4) */
     for (int q = 0; q < 12; q++) {
-      vmax = fmax(vmax, fabs(vol[q] / sf->vol[k][q] - 1.0));
+      const double e = fabs(vol[q] / sf->vol[k][q] - 1.0);
+      qw = e > vmax ? q : qw;
+      vmax = fmax(vmax, e);
     }
     const double et = hypot(hypot(tip[0] - sf->tip[k][0], tip[1] - sf->tip[k][1]),
                             tip[2] - sf->tip[k][2]);
     ce->ok &= et <= 0.01 * L && vmax <= 0.01;
     ce->tip_mm = fmax(ce->tip_mm, et);
     ce->vol_rel = fmax(ce->vol_rel, vmax);
+    /* the worst chamber's signed error, and its volume change's: a chamber that inflates
+     * sixfold misses its volume by a sixth of the error of its volume change */
+    const double v0 = ra->rom->nch > qw ? ra->rom->ch_V0[qw] : NAN;
     printf("  %-10s t %.3f: bend error %6.3f %6.3f %6.3f deg (%5.2f %5.2f %5.2f %%), tip %7.3f "
-           "mm, volumes %5.2f %%\n", sf->ray.name, t, eb[0], eb[1], eb[2], 100 * rb[0],
-           100 * rb[1], 100 * rb[2], et, 100 * vmax);
+           "mm, volumes %5.2f %% (worst II%d Omega%d: %+.2f %%, V/V0 %.2f, its change %+.1f "
+           "%%)\n", sf->ray.name, t, eb[0], eb[1], eb[2], 100 * rb[0], 100 * rb[1], 100 * rb[2],
+           et, 100 * vmax, qw / 4 + 1, qw % 4 + 1, 100 * (vol[qw] / sf->vol[k][qw] - 1.0),
+           sf->vol[k][qw] / v0, 100 * (vol[qw] - sf->vol[k][qw]) / (sf->vol[k][qw] - v0));
   }
   ce->wall = csu_wallSeconds() - t0;
   ce->newton = ra->n_newton - it0;

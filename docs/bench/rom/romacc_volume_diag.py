@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""romacc_volume_diag.py: where a chamber volume's error comes from (issue 34, session romacc).
+
+    /usr/bin/python3 docs/bench/rom/romacc_volume_diag.py SNAPDIR BASIS.h5 [--ray T_S2 ...]
+
+For every state of the named held-out rays: the twelve chambers' volumes of the FE state
+(recomputed from its displacement with the FE's own face rule: it must reproduce the file's
+/chamber_volume, csf_romChamberVolumes) and of two projections of it onto span(V):
+  - the M-orthogonal projection (rom_project.py's: what rom_basis.py sizes the basis by);
+  - the projection in the chamber faces' nodes alone (least squares on their displacements):
+    the best a basis can do for the volumes' geometry.
+The volumes are those of `crawlsim rom check` (the full reconstruction u = V q of the
+chambers' quadratic faces; the FE computes its own the same way); relative error, worst
+chamber, and the chamber's inflation V / V0 to read the error against the volume change.
+Units mm, mm^3.
+"""
+import argparse
+import os
+import sys
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
+import scipy.sparse as sp  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                                "tools"))
+from rom_basis import mass_matrix, read_mesh, read_rays  # noqa: E402
+
+# fem_element.c kTriQ: Dunavant degree 4 (s, t, weight incl. the 1/2 of the reference triangle)
+TRIQ = np.array([[0.445948490915965, 0.445948490915965, 0.223381589678011 / 2],
+                 [0.108103018168070, 0.445948490915965, 0.223381589678011 / 2],
+                 [0.445948490915965, 0.108103018168070, 0.223381589678011 / 2],
+                 [0.091576213509771, 0.091576213509771, 0.109951743655322 / 2],
+                 [0.816847572980459, 0.091576213509771, 0.109951743655322 / 2],
+                 [0.091576213509771, 0.816847572980459, 0.109951743655322 / 2]])
+
+
+def tri6(s, t):
+    l0 = 1 - s - t
+    N = np.array([l0 * (2 * l0 - 1), s * (2 * s - 1), t * (2 * t - 1), 4 * l0 * s, 4 * s * t,
+                  4 * t * l0])
+    dN = np.array([[-(4 * l0 - 1), -(4 * l0 - 1)], [4 * s - 1, 0], [0, 4 * t - 1],
+                   [4 * (l0 - s), -4 * s], [4 * t, 4 * s], [-4 * t, 4 * (l0 - t)]])
+    return N, dN
+
+
+def chamber_volumes(x, face, cid, u):
+    """The twelve chambers' volumes at nodal displacement u (nnode*3,): csf_faceKernel's
+    v = -sum_q w (x_q . (x_s x x_t)) / 3 summed over each chamber's faces."""
+    xf = (x + u.reshape(-1, 3))[face]  # (nf, 6, 3)
+    v = np.zeros(face.shape[0])
+    for s, t, w in TRIQ:
+        N, dN = tri6(s, t)
+        xs = np.einsum("a,fai->fi", dN[:, 0], xf)
+        xt = np.einsum("a,fai->fi", dN[:, 1], xf)
+        xq = np.einsum("a,fai->fi", N, xf)
+        v -= w * np.einsum("fi,fi->f", xq, np.cross(xs, xt)) / 3.0
+    return np.bincount(cid, weights=v, minlength=12)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("snapdir")
+    ap.add_argument("basis")
+    ap.add_argument("--ray", action="append")
+    a = ap.parse_args()
+    x, tet, fixed, rho, _ = read_mesh(a.snapdir)
+    with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
+        face = f["face"][...].astype(np.int64)
+        tag = f["face_tag"][...].astype(np.int64)
+    seg, ch = tag // 10 - 11, tag % 10 - 1
+    inch = (seg >= 0) & (seg < 3) & (ch >= 0) & (ch < 4) & (tag >= 111)
+    face, cid = face[inch], (4 * seg + ch)[inch]
+    with h5py.File(a.basis, "r") as f:
+        V = f["V"][...]
+    Ms, _ = mass_matrix(x, tet, rho)
+    M = sp.kron(Ms, sp.identity(3), format="csr")
+    G = np.linalg.cholesky(V.T @ (M @ V))
+    # the chamber faces' dofs
+    fn = np.unique(face.ravel())
+    fd = (3 * fn[:, None] + np.arange(3)).ravel()
+    Vf = V[fd]
+    print(f"romacc_volume_diag: basis {a.basis}: n = {V.shape[1]}; {face.shape[0]} chamber "
+          f"faces, {fn.size} nodes")
+    for r in read_rays(a.snapdir):
+        if a.ray and r["name"] not in a.ray:
+            continue
+        with h5py.File(os.path.join(a.snapdir, r["name"] + ".h5"), "r") as f:
+            vfe = f["chamber_volume"][...].reshape(-1, 12)
+        v0 = chamber_volumes(x, face, cid, np.zeros(x.size))
+        for k in range(r["u"].shape[0]):
+            u = r["u"][k]
+            v = chamber_volumes(x, face, cid, u)
+            qm = np.linalg.solve(G.T, np.linalg.solve(G, V.T @ (M @ u)))
+            um = V @ qm
+            qf, *_ = np.linalg.lstsq(Vf, u[fd], rcond=None)
+            uf = V @ qf
+            vm = chamber_volumes(x, face, cid, um)
+            vf = chamber_volumes(x, face, cid, uf)
+            em, ef = vm / v - 1, vf / v - 1
+            cm, cf = np.argmax(np.abs(em)), np.argmax(np.abs(ef))
+            rel = np.sqrt(((u - um) @ (M @ (u - um))) / (u @ (M @ u)))
+            fmax = np.abs(u[fd] - um[fd]).reshape(-1, 3)
+            print(f"{r['name']:8s} t {r['t'][k]:.2f}: FE volume recomputed {np.abs(v / vfe[k] - 1).max():.1e}; "
+                  f"M-projection (M-norm {100 * rel:.2f} %, faces' largest nodal "
+                  f"{np.sqrt((fmax ** 2).sum(1)).max():.3f} mm) volumes worst {100 * em[cm]:+.2f} % "
+                  f"(chamber {cm // 4 + 1}.{cm % 4 + 1}, V/V0 {v[cm] / v0[cm]:.2f}); "
+                  f"faces' projection worst {100 * ef[cf]:+.2f} % (chamber {cf // 4 + 1}.{cf % 4 + 1})")
+            print("    V/V0 FE: " + " ".join(f"{z:.2f}" for z in v / v0))
+            print("    M-proj err %: " + " ".join(f"{100 * z:+.2f}" for z in em))
+
+
+if __name__ == "__main__":
+    main()
