@@ -31,6 +31,9 @@ extern "C" {
  * linearly, a step on a kept tangent less, and the residual alone costs a quarter of the
  * tangent's evaluation) */
 #define CSF_ROM_ACT_K_LAG 0.0
+/* csfRomActuator.bfgs's default (with k_lag > 0 only): 0, the plain chord (session romacc
+ * measures the BFGS update on the sweep: docs/notes/rom.md) */
+#define CSF_ROM_ACT_BFGS 0
 
 typedef struct csfRomActuator_ {
   csfActuatorFE fe;    /* the FE model the reduced forces come from (no solver data) */
@@ -49,6 +52,7 @@ typedef struct csfRomActuator_ {
   double L_prev[18], L_conv[18];
   int nhist;
   double k_lag;        /* the reduced Newton's lagged tangent (fem_rom.h csfRomNewtonOptions) */
+  int bfgs;            /* its BFGS pairs on the kept factor (csfRomNewtonOptions.bfgs; 0: chord) */
   long n_newton;       /* reduced Newton iterations so far */
   int n_steps, n_cutbacks; /* ramp steps so far */
   char basis_path[512];
