@@ -9,6 +9,14 @@ For every state of the named held-out rays: the twelve chambers' volumes of the 
   - the M-orthogonal projection (rom_project.py's: what rom_basis.py sizes the basis by);
   - the projection in the chamber faces' nodes alone (least squares on their displacements):
     the best a basis can do for the volumes' geometry.
+With --legfile LEG.h5 (`crawlsim rom leg-file` of the same mesh: it holds the fibre elements)
+also the energies a near-incompressible, fibre-reinforced leg weighs, of the FE state and of
+its M-projection: the bulk energy sum_e kappa V_e theta_e^2 / 2 (theta_e = v_e / V_e - 1, the
+FE's P0 dilatation; kappa from the file) and the fibres' sum_f EA L0 E_f^2 / 2 over the
+stretched ones (E_f the Green strain of the chord, fem_element.c csf_fibreKernel; tension
+only), against the chambers' pressure work sum_c p_c (V_c - V0_c) as the scale. A projection
+that pays many times the FE's bulk or fibre energy is what the Galerkin solution cannot take:
+it settles on a stiffer state (locking).
 The volumes are those of `crawlsim rom check` (the full reconstruction u = V q of the
 chambers' quadratic faces; the FE computes its own the same way); relative error, worst
 chamber, and the chamber's inflation V / V0 to read the error against the volume change.
@@ -27,7 +35,7 @@ import scipy.sparse as sp  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
                                 "tools"))
-from rom_basis import mass_matrix, read_mesh, read_rays  # noqa: E402
+from rom_basis import dilatations, mass_matrix, read_mesh, read_rays, tet_reference  # noqa: E402
 
 # fem_element.c kTriQ: Dunavant degree 4 (s, t, weight incl. the 1/2 of the reference triangle)
 TRIQ = np.array([[0.445948490915965, 0.445948490915965, 0.223381589678011 / 2],
@@ -66,6 +74,7 @@ def main():
     ap.add_argument("snapdir")
     ap.add_argument("basis")
     ap.add_argument("--ray", action="append")
+    ap.add_argument("--legfile", default=None)
     a = ap.parse_args()
     x, tet, fixed, rho, _ = read_mesh(a.snapdir)
     with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
@@ -85,6 +94,24 @@ def main():
     Vf = V[fd]
     print(f"romacc_volume_diag: basis {a.basis}: n = {V.shape[1]}; {face.shape[0]} chamber "
           f"faces, {fn.size} nodes")
+    fib = None
+    if a.legfile:
+        with h5py.File(a.legfile, "r") as f:
+            if np.abs(f["mesh/x"][...] - x).max() > 1e-9:
+                sys.exit(f"romacc_volume_diag: {a.legfile}: another mesh")
+            fib = (f["fibre/node"][...].astype(np.int64), f["fibre/coef"][...],
+                   f["fibre/L0"][...], f["fibre/EA"][...])
+            kappa = float(f.attrs["kappa"])
+        dNdX, wq = tet_reference(x, tet)[:2]
+        Ve = wq.sum(axis=1)
+
+    def energies(u):
+        th = dilatations(u[:, None], tet, dNdX, wq)[:, 0]
+        xc = (x + u.reshape(-1, 3))[fib[0]]  # (nf, 20, 3)
+        d = np.einsum("fa,fai->fi", fib[1], xc)
+        E = 0.5 * ((d ** 2).sum(1) / fib[2] ** 2 - 1.0)
+        return (0.5 * kappa * (Ve * th ** 2).sum(),
+                0.5 * (fib[3] * fib[2] * np.maximum(E, 0) ** 2).sum(), E.max())
     for r in read_rays(a.snapdir):
         if a.ray and r["name"] not in a.ray:
             continue
@@ -109,6 +136,15 @@ def main():
                   f"{np.sqrt((fmax ** 2).sum(1)).max():.3f} mm) volumes worst {100 * em[cm]:+.2f} % "
                   f"(chamber {cm // 4 + 1}.{cm % 4 + 1}, V/V0 {v[cm] / v0[cm]:.2f}); "
                   f"faces' projection worst {100 * ef[cf]:+.2f} % (chamber {cf // 4 + 1}.{cf % 4 + 1})")
+            if fib is not None:
+                pr = r["p"][k].ravel() if r["p"].ndim == 3 else r["p"].ravel() * r["t"][k]
+                work = float((pr * (v - v0)).sum())
+                b_fe, f_fe, e_fe = energies(u)
+                b_pm, f_pm, e_pm = energies(um)
+                print(f"    energies (N mm): pressure work {work:.3g}; bulk FE {b_fe:.3g}, "
+                      f"M-projection {b_pm:.3g} ({b_pm / max(b_fe, 1e-300):.0f}x); fibres FE "
+                      f"{f_fe:.3g}, M-projection {f_pm:.3g} ({f_pm / max(f_fe, 1e-300):.1f}x); "
+                      f"largest fibre strain {e_fe:.3g} / {e_pm:.3g}")
             print("    V/V0 FE: " + " ".join(f"{z:.2f}" for z in v / v0))
             print("    M-proj err %: " + " ".join(f"{100 * z:+.2f}" for z in em))
 
