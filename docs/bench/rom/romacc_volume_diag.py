@@ -16,7 +16,9 @@ FE's P0 dilatation; kappa from the file) and the fibres' sum_f EA L0 E_f^2 / 2 o
 stretched ones (E_f the Green strain of the chord, fem_element.c csf_fibreKernel; tension
 only), against the chambers' pressure work sum_c p_c (V_c - V0_c) as the scale. A projection
 that pays many times the FE's bulk or fibre energy is what the Galerkin solution cannot take:
-it settles on a stiffer state (locking).
+it settles on a stiffer state (locking). With --rom-states DIR (`crawlsim rom check --states
+DIR`) the same volumes and energies of the reduced model's own solution (its bulk energy here is
+the full P0 dilatation's, not the mixed model's projected one).
 The volumes are those of `crawlsim rom check` (the full reconstruction u = V q of the
 chambers' quadratic faces; the FE computes its own the same way); relative error, worst
 chamber, and the chamber's inflation V / V0 to read the error against the volume change.
@@ -75,6 +77,7 @@ def main():
     ap.add_argument("basis")
     ap.add_argument("--ray", action="append")
     ap.add_argument("--legfile", default=None)
+    ap.add_argument("--rom-states", default=None)
     a = ap.parse_args()
     x, tet, fixed, rho, _ = read_mesh(a.snapdir)
     with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
@@ -145,6 +148,21 @@ def main():
                       f"M-projection {b_pm:.3g} ({b_pm / max(b_fe, 1e-300):.0f}x); fibres FE "
                       f"{f_fe:.3g}, M-projection {f_pm:.3g} ({f_pm / max(f_fe, 1e-300):.1f}x); "
                       f"largest fibre strain {e_fe:.3g} / {e_pm:.3g}")
+            rp = a.rom_states and os.path.join(a.rom_states, r["name"] + ".h5")
+            if rp and os.path.exists(rp):
+                with h5py.File(rp, "r") as f:
+                    ur = f["u"][k]
+                vr = chamber_volumes(x, face, cid, ur)
+                er = vr / v - 1
+                cr = np.argmax(np.abs(er))
+                line = (f"    reduced model's state: volumes worst {100 * er[cr]:+.2f} % (chamber "
+                        f"{cr // 4 + 1}.{cr % 4 + 1})")
+                if fib is not None:
+                    b_r, f_r, e_r = energies(ur)
+                    line += (f"; bulk (full P0) {b_r:.3g} ({b_r / max(b_fe, 1e-300):.0f}x the FE's),"
+                             f" fibres {f_r:.3g} ({f_r / max(f_fe, 1e-300):.1f}x), largest fibre "
+                             f"strain {e_r:.3g}")
+                print(line)
             print("    V/V0 FE: " + " ".join(f"{z:.2f}" for z in v / v0))
             print("    M-proj err %: " + " ".join(f"{100 * z:+.2f}" for z in em))
 
