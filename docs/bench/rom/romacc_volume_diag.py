@@ -88,6 +88,7 @@ def main():
     face, cid = face[inch], (4 * seg + ch)[inch]
     with h5py.File(a.basis, "r") as f:
         V = f["V"][...]
+        P = f["P"][...] if "P" in f else None
     Ms, _ = mass_matrix(x, tet, rho)
     M = sp.kron(Ms, sp.identity(3), format="csr")
     G = np.linalg.cholesky(V.T @ (M @ V))
@@ -109,11 +110,20 @@ def main():
         Ve = wq.sum(axis=1)
 
     def energies(u):
+        """bulk energy of the full P0 dilatation, the mixed model's bulk energy b^T A^-1 b / 2
+        (only the dilatation's part in span(P): A = sum_e V_e / kappa P_e P_e^T, b = sum_e P_e
+        V_e theta_e; fem/fem_rom_mixed.h), the stretched fibres' energy, the largest strain"""
         th = dilatations(u[:, None], tet, dNdX, wq)[:, 0]
+        if P is not None:
+            A = (P * (Ve / kappa)[:, None]).T @ P
+            b = P.T @ (Ve * th)
+            bulk_p = 0.5 * float(b @ np.linalg.solve(A, b))
+        else:
+            bulk_p = float("nan")
         xc = (x + u.reshape(-1, 3))[fib[0]]  # (nf, 20, 3)
         d = np.einsum("fa,fai->fi", fib[1], xc)
         E = 0.5 * ((d ** 2).sum(1) / fib[2] ** 2 - 1.0)
-        return (0.5 * kappa * (Ve * th ** 2).sum(),
+        return (0.5 * kappa * (Ve * th ** 2).sum(), bulk_p,
                 0.5 * (fib[3] * fib[2] * np.maximum(E, 0) ** 2).sum(), E.max())
     for r in read_rays(a.snapdir):
         if a.ray and r["name"] not in a.ray:
@@ -142,10 +152,11 @@ def main():
             if fib is not None:
                 pr = r["p"][k].ravel() if r["p"].ndim == 3 else r["p"].ravel() * r["t"][k]
                 work = float((pr * (v - v0)).sum())
-                b_fe, f_fe, e_fe = energies(u)
-                b_pm, f_pm, e_pm = energies(um)
+                b_fe, bp_fe, f_fe, e_fe = energies(u)
+                b_pm, bp_pm, f_pm, e_pm = energies(um)
                 print(f"    energies (N mm): pressure work {work:.3g}; bulk FE {b_fe:.3g}, "
-                      f"M-projection {b_pm:.3g} ({b_pm / max(b_fe, 1e-300):.0f}x); fibres FE "
+                      f"M-projection {b_pm:.3g} ({b_pm / max(b_fe, 1e-300):.0f}x; in span(P): FE "
+                      f"{bp_fe:.3g}, M-projection {bp_pm:.3g}); fibres FE "
                       f"{f_fe:.3g}, M-projection {f_pm:.3g} ({f_pm / max(f_fe, 1e-300):.1f}x); "
                       f"largest fibre strain {e_fe:.3g} / {e_pm:.3g}")
             rp = a.rom_states and os.path.join(a.rom_states, r["name"] + ".h5")
@@ -158,8 +169,9 @@ def main():
                 line = (f"    reduced model's state: volumes worst {100 * er[cr]:+.2f} % (chamber "
                         f"{cr // 4 + 1}.{cr % 4 + 1})")
                 if fib is not None:
-                    b_r, f_r, e_r = energies(ur)
+                    b_r, bp_r, f_r, e_r = energies(ur)
                     line += (f"; bulk (full P0) {b_r:.3g} ({b_r / max(b_fe, 1e-300):.0f}x the FE's),"
+                             f" in span(P) {bp_r:.3g},"
                              f" fibres {f_r:.3g} ({f_r / max(f_fe, 1e-300):.1f}x), largest fibre "
                              f"strain {e_r:.3g}")
                 print(line)
