@@ -379,11 +379,16 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
   d->tmp = calloc(n, sizeof(double));
   d->piv = calloc(n, sizeof(int));
   d->ke_v = calloc(61 * n, sizeof(double));
+  d->bf_s = calloc(CSF_ROM_BFGS_MAX * n, sizeof(double));
+  d->bf_y = calloc(CSF_ROM_BFGS_MAX * n, sizeof(double));
+  d->bf_rho = calloc(CSF_ROM_BFGS_MAX, sizeof(double));
+  d->bf_a = calloc(CSF_ROM_BFGS_MAX, sizeof(double));
+  d->bf_r0 = calloc(n, sizeof(double));
   if (!d->q || !d->r || !d->K || !d->Ku || !d->theta || !d->fib_S || !d->vr || !d->gel || !d->fib_E ||
       !d->fib_d || !d->vr0 || !d->g0 || !d->fib_E0 || !d->fib_d0 || !d->theta_save ||
       !d->fib_S_save || !d->theta_best || !d->fib_S_best || !d->dq || !d->q_save ||
       !d->q_best || !d->q0 || !d->lu || !d->tmp || !d->piv || !d->ke_v || !d->ph || !d->Bm ||
-      !d->mtmp || !d->rel) {
+      !d->mtmp || !d->rel || !d->bf_s || !d->bf_y || !d->bf_rho || !d->bf_a || !d->bf_r0) {
     csf_romDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (reduced data, n = %d)", r->n);
     return NULL;
@@ -396,6 +401,7 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
 void csf_romDataReset(const csfRom* r, csfRomData* d) {
   memset(d->q, 0, (size_t)d->n * sizeof(double));
   d->lu_valid = 0;
+  d->bf_k = 0;
   for (int e = 0; e < r->fem->mesh->ntet; e++) {
     d->theta[e] = 1.0;
   }
@@ -413,7 +419,8 @@ void csf_romDataDestroy(csfRomData* d) {
   double* bufs[] = {d->q, d->r, d->K, d->Ku, d->theta, d->fib_S, d->vr, d->gel, d->fib_E, d->fib_d,
                     d->vr0, d->g0, d->fib_E0, d->fib_d0, d->theta_save, d->fib_S_save,
                     d->theta_best, d->fib_S_best, d->dq, d->q_save, d->q_best, d->q0, d->lu,
-                    d->tmp, d->ke_v, d->ph, d->Bm, d->mtmp, d->rel};
+                    d->tmp, d->ke_v, d->ph, d->Bm, d->mtmp, d->rel, d->bf_s, d->bf_y,
+                    d->bf_rho, d->bf_a, d->bf_r0};
   for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++) {
     free(bufs[k]);
   }
@@ -978,6 +985,7 @@ csfRomNewtonOptions csf_romNewtonDefault(void) {
   o.atol = 1e-12;
   o.max_ls = 8;
   o.k_lag = 0.0;
+  o.bfgs = 0;
   return o;
 }
 
@@ -1136,12 +1144,88 @@ static csStatus newtonFail(const csfRom* r, csfRomData* d, const csfRomLoad* loa
                      why, it, d->rnorm, d->fnorm);
 }
 
-/* factor K at the current iterate into d->lu (d->lu_valid); -1 singular */
+/* factor K at the current iterate into d->lu (d->lu_valid); -1 singular. A new factor drops
+ * the BFGS pairs of the old one. */
 static int factorTangent(const csfRom* r, csfRomData* d) {
   const int n = r->n;
   memcpy(d->lu, d->K, (size_t)n * (size_t)n * sizeof(double));
   d->lu_valid = luFactor(n, d->lu, d->piv) == 0;
+  d->bf_k = 0;
   return d->lu_valid ? 0 : -1;
+}
+
+void csf_romQuasiNewtonApply(const csfRom* r, csfRomData* d, double* x) {
+  /* the two-loop recursion (Nocedal and Wright 2006, alg. 7.4), H0 = K0^-1 (the kept LU) */
+  const size_t n = (size_t)r->n;
+  for (int k = d->bf_k - 1; k >= 0; k--) {
+    const double* s = d->bf_s + (size_t)k * n, *y = d->bf_y + (size_t)k * n;
+    double a = 0;
+    for (size_t j = 0; j < n; j++) {
+      a += s[j] * x[j];
+    }
+    a *= d->bf_rho[k];
+    d->bf_a[k] = a;
+    for (size_t j = 0; j < n; j++) {
+      x[j] -= a * y[j];
+    }
+  }
+  luSolveFactored(r->n, d->lu, d->piv, x);
+  for (int k = 0; k < d->bf_k; k++) {
+    const double* s = d->bf_s + (size_t)k * n, *y = d->bf_y + (size_t)k * n;
+    double b = 0;
+    for (size_t j = 0; j < n; j++) {
+      b += y[j] * x[j];
+    }
+    b = d->bf_a[k] - d->bf_rho[k] * b;
+    for (size_t j = 0; j < n; j++) {
+      x[j] += b * s[j];
+    }
+  }
+}
+
+int csf_romQuasiNewtonPush(const csfRom* r, csfRomData* d, const double* s, const double* y,
+                           int cap) {
+  const size_t n = (size_t)r->n;
+  cap = cap < CSF_ROM_BFGS_MAX ? cap : CSF_ROM_BFGS_MAX;
+  double ys = 0, ss = 0, yy = 0;
+  for (size_t j = 0; j < n; j++) {
+    ys += y[j] * s[j], ss += s[j] * s[j], yy += y[j] * y[j];
+  }
+  /* curvature condition: BFGS keeps H positive definite only with y . s > 0; a pair this close
+   * to it (round-off of the residual's difference) is not worth storing either */
+  if (cap <= 0 || !(ys > 1e-12 * sqrt(ss * yy))) {
+    return 0;
+  }
+  if (d->bf_k == cap) {
+    /* the oldest pair leaves (L-BFGS's memory) */
+    memmove(d->bf_s, d->bf_s + n, (size_t)(cap - 1) * n * sizeof(double));
+    memmove(d->bf_y, d->bf_y + n, (size_t)(cap - 1) * n * sizeof(double));
+    memmove(d->bf_rho, d->bf_rho + 1, (size_t)(cap - 1) * sizeof(double));
+    d->bf_k--;
+  }
+  memcpy(d->bf_s + (size_t)d->bf_k * n, s, n * sizeof(double));
+  memcpy(d->bf_y + (size_t)d->bf_k * n, y, n * sizeof(double));
+  d->bf_rho[d->bf_k] = 1.0 / ys;
+  d->bf_k++;
+  return 1;
+}
+
+csStatus csf_romFactorTangent(const csfRom* r, csfRomData* d, csError* err) {
+  if (factorTangent(r, d) != 0) {
+    return cs_errorSet(err, CS_ERR_SOLVER, "fem_rom: singular reduced tangent");
+  }
+  return CS_OK;
+}
+
+/* after a step taken on the kept factor: its secant pair (s = q - q0, y = r - r0) */
+static void pushStep(const csfRom* r, csfRomData* d, int cap) {
+  const size_t n = (size_t)r->n;
+  double* s = d->tmp;
+  for (size_t j = 0; j < n; j++) {
+    s[j] = d->q[j] - d->q0[j];
+    d->bf_r0[j] = d->r[j] - d->bf_r0[j]; /* y, in the r0 buffer: it is refilled every step */
+  }
+  csf_romQuasiNewtonPush(r, d, s, d->bf_r0, cap);
 }
 
 csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
@@ -1157,6 +1241,8 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
   if (!lag) {
     d->lu_valid = 0;
   }
+  const int bfgs = lag ? o->bfgs : 0;
+  d->bf_k = 0; /* the pairs belong to the last call's load */
   /* the tangent of this iterate is in d->K (fresh) or only the residual was evaluated */
   int fresh = !(lag && d->lu_valid);
   if (csf_romEvaluate(r, d, load, fresh) != 0) {
@@ -1174,7 +1260,12 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
     for (size_t j = 0; j < n; j++) {
       d->dq[j] = -d->r[j];
     }
-    luSolveFactored(r->n, d->lu, d->piv, d->dq);
+    memcpy(d->bf_r0, d->r, n * sizeof(double));
+    if (bfgs > 0) {
+      csf_romQuasiNewtonApply(r, d, d->dq); /* K0^-1 alone while no pair is stored */
+    } else {
+      luSolveFactored(r->n, d->lu, d->piv, d->dq);
+    }
     keepBase(r, d);
     memcpy(d->q0, d->q, n * sizeof(double));
     const double r0 = d->rnorm;
@@ -1193,6 +1284,9 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
         it++;
         d->n_newton++;
         fresh = 0;
+        if (bfgs > 0) {
+          pushStep(r, d, bfgs);
+        }
         if (d->rnorm > o->k_lag * r0) {
           /* slow contraction: a new tangent at the new iterate */
           if (csf_romEvaluate(r, d, load, 1) != 0) {
@@ -1237,6 +1331,9 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
       return newtonFail(r, d, load, it, err, "line search failed");
     }
     fresh = !lag;
+    if (bfgs > 0 && d->rnorm <= o->k_lag * r0) {
+      pushStep(r, d, bfgs); /* the factor is kept: this step's pair corrects it */
+    }
     if (lag && d->rnorm > o->k_lag * r0) {
       if (csf_romEvaluate(r, d, load, 1) != 0) {
         return newtonFail(r, d, load, it, err, "the iterate is not physical");

@@ -154,6 +154,10 @@ typedef struct csfRomData_ {
   long n_eval, n_newton; /* evaluations, Newton iterations */
   long n_tangent;        /* evaluations that formed K */
   int lu_valid;          /* lu holds the LU factor of a tangent (csfRomNewtonOptions.k_lag) */
+  /* the BFGS pairs on the kept factor (csfRomNewtonOptions.bfgs): s, y (CSF_ROM_BFGS_MAX x n),
+   * 1 / (y . s), their count; the residual at the step's start (n); the two-loop's alphas */
+  double* bf_s, *bf_y, *bf_rho, *bf_r0, *bf_a;
+  int bf_k;
 } csfRomData;
 
 csfRomData* csf_romDataCreate(const csfRom* r, csError* err);
@@ -198,7 +202,19 @@ typedef struct csfRomNewtonOptions_ {
    * than this factor (or not at all: the step is then taken back and redone as a Newton step
    * with its line search). Same solution (the residual decides); more, cheaper iterations. */
   double k_lag;
+  /* With k_lag > 0: the number of secant pairs (s, y) = (dq, dr) of the steps taken since the
+   * factor was formed that correct it, 0 .. CSF_ROM_BFGS_MAX (0: the plain chord). The step on
+   * a kept factor is then -H r with H the BFGS inverse update of K0^-1 by those pairs (the
+   * two-loop recursion of L-BFGS with K0^-1 as its initial matrix; Nocedal and Wright 2006,
+   * alg. 7.4): H y_k = s_k for the last pair, so the iterates contract superlinearly where the
+   * chord contracts linearly, at O(pairs n) per step against the tangent's O(n^2) per element.
+   * r is the gradient of the reduced energy (conservative loads: fem_rom.h), so BFGS's
+   * symmetric positive update fits; a pair with y . s <= 0 is not stored. The pairs are dropped
+   * with every new factor and at every call (the load changes r). */
+  int bfgs;
 } csfRomNewtonOptions;
+
+#define CSF_ROM_BFGS_MAX 16 /* the most secant pairs csfRomNewtonOptions.bfgs may keep */
 
 csfRomNewtonOptions csf_romNewtonDefault(void);
 
@@ -209,6 +225,17 @@ csfRomNewtonOptions csf_romNewtonDefault(void);
  * kept factor dropped and CS_ERR_DIVERGED returned. `iters` (may be NULL) gets the iterations. */
 csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
                        const csfRomNewtonOptions* o, int* iters, csError* err);
+
+/* The quasi-Newton pieces of csf_romNewton (csfRomNewtonOptions.bfgs), callable for tests:
+ * csf_romFactorTangent factors d->K (an evaluation with the tangent first) into the kept
+ * factor and drops the pairs (CS_ERR_SOLVER when singular); csf_romQuasiNewtonPush stores the
+ * secant pair (s, y) (n each) when y . s > 0, the oldest leaving past cap (<= CSF_ROM_BFGS_MAX),
+ * and returns 1 if stored; csf_romQuasiNewtonApply overwrites x (n) with H x, H the BFGS update
+ * of the factor's inverse by the stored pairs (H y = s for the last pair stored). */
+csStatus csf_romFactorTangent(const csfRom* r, csfRomData* d, csError* err);
+int csf_romQuasiNewtonPush(const csfRom* r, csfRomData* d, const double* s, const double* y,
+                           int cap);
+void csf_romQuasiNewtonApply(const csfRom* r, csfRomData* d, double* x);
 
 #ifdef __cplusplus
 }

@@ -251,6 +251,7 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
   ra->q_prev = calloc((size_t)n, sizeof(double));
   ra->nhist = 0;
   ra->k_lag = CSF_ROM_ACT_K_LAG;
+  ra->bfgs = CSF_ROM_ACT_BFGS;
   double* tmp = calloc(nd, sizeof(double));
   double* fr = calloc((size_t)n, sizeof(double));
   if (!ra->d || !ra->face_p || !ra->Ftip || !ra->f_dead || !ra->u || !ra->q_conv || !ra->q_prev || !tmp ||
@@ -386,6 +387,7 @@ csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,
   csfRomNewtonOptions o = csf_romNewtonDefault();
   o.rtol = 1e-6; /* the FE sweep's test (fem_bend.c CSF_BEND_NEWTON_RTOL) */
   o.k_lag = ra->k_lag;
+  o.bfgs = ra->bfgs;
   double s = 0.0, ds = 1.0;
   csError lerr;
   cs_errorClear(&lerr);

@@ -26,11 +26,14 @@
 extern "C" {
 #endif
 
-/* csfRomActuator.k_lag's default: 0, Newton. A lagged tangent (0.25 ... 0.9) did not pay on
- * the bend sweep (docs/notes/rom.md, session romfast: the three-field Newton contracts only
- * linearly, a step on a kept tangent less, and the residual alone costs a quarter of the
- * tangent's evaluation) */
-#define CSF_ROM_ACT_K_LAG 0.0
+/* csfRomActuator.k_lag's and .bfgs's defaults: a tangent kept while the steps on it contract
+ * |r| by 0.9 at least, corrected by BFGS with 8 secant pairs. The plain chord (bfgs 0) did not
+ * pay on the bend sweep (session romfast: the three-field Newton contracts only linearly, a
+ * step on a kept tangent less, and the residual alone costs a quarter of the tangent's
+ * evaluation); with the BFGS pairs it forms a third of Newton's tangents and costs less than
+ * Newton (measured: docs/notes/rom.md, session romacc). k_lag 0: Newton. */
+#define CSF_ROM_ACT_K_LAG 0.9
+#define CSF_ROM_ACT_BFGS 8
 
 typedef struct csfRomActuator_ {
   csfActuatorFE fe;    /* the FE model the reduced forces come from (no solver data) */
@@ -49,6 +52,7 @@ typedef struct csfRomActuator_ {
   double L_prev[18], L_conv[18];
   int nhist;
   double k_lag;        /* the reduced Newton's lagged tangent (fem_rom.h csfRomNewtonOptions) */
+  int bfgs;            /* its BFGS pairs on the kept factor (csfRomNewtonOptions.bfgs; 0: chord) */
   long n_newton;       /* reduced Newton iterations so far */
   int n_steps, n_cutbacks; /* ramp steps so far */
   char basis_path[512];

@@ -41,6 +41,7 @@
 #define SHRINK_ITERS 16
 #define FIRST_REL 0.25  /* first step relative to the output spacing (fem_bend.c) */
 #define RAND_SEED 20261205u /* the random rays' seed (a fixed draw, not chosen) */
+#define RAND_SEED_SPARSE 20261206u /* the sparse random rays' seed (a fixed draw, not chosen) */
 
 csfRomSnapSettings csf_romSnapDefault(void) {
   csfRomSnapSettings s;
@@ -239,6 +240,27 @@ int csf_romRays(csfRomRay* rays, int cap) {
     }
     y->gravity[0] = -G_EARTH;
     y->tip_force[0] = 0.03, y->tip_force[1] = 0.02, y->tip_force[2] = -0.3;
+  }
+  /* sparse random rays, appended after the held-out ones so that every ray above keeps its
+   * draw (session romacc): per segment a level uniform in [0.1, 0.4] MPa, each chamber vented
+   * with probability 0.4, else uniform in [0, 1] of the level. They train what R1-R6 (every
+   * chamber loaded) leave out: vented chambers squeezed between loaded ones, and segments
+   * loaded lightly while their neighbours are loaded hard, independently per segment. */
+  unsigned seed_sparse = RAND_SEED_SPARSE;
+  for (int k = 0; k < 6; k++) {
+    char name[16];
+    snprintf(name, sizeof name, "RS%d", k + 1);
+    if (!(y = addRay(rays, &n, cap, name, CSF_ROM_TRAIN, "sparse random: per segment a level "
+                     "in [0.1, 0.4] MPa, each chamber vented (p 0.4) or uniform below it"))) {
+      return n;
+    }
+    for (int s = 0; s < CSR_NSEG; s++) {
+      const double level = 0.1 + (P_RAY - 0.1) * draw(&seed_sparse);
+      for (int j = 0; j < CSR_NCHAMBER; j++) {
+        const double vent = draw(&seed_sparse), frac = draw(&seed_sparse);
+        y->p[s][j] = vent < 0.4 ? 0.0 : level * frac;
+      }
+    }
   }
   return n;
 }

@@ -72,6 +72,9 @@ static const csxOpt kCheckOpts[] = {
     {"--ray", "NAME", "the held-out rays (kind test)",
      "check this ray (repeatable; one of crawlsim rom snapshots --list)"},
     {"--all", NULL, "off", "check every ray of DIR, training and held out"},
+    {"--states", "DIR", "none",
+     "write the reduced model's displacements u = V q of each ray to DIR/RAY.h5 (/u, /t: the "
+     "snapshot files' layout, for tools that compare them with the FE's)"},
     ROM_OPT_ACTUATOR,
     ROM_OPT_SET,
 };
@@ -380,8 +383,34 @@ typedef struct CheckErr_ {
   int ok, failed;
 } CheckErr;
 
+/* the reduced states of a ray (rom check --states): /u (m x ndof, mm) and /t, as the
+ * snapshot files */
+static int writeStates(const char* dir, const csfRomSnapFile* sf, int m, size_t ndof,
+                       const double* u) {
+  char path[620];
+  snprintf(path, sizeof path, "%.500s/%.31s.h5", dir, sf->ray.name);
+  csError err;
+  cs_errorClear(&err);
+  csH5File* f = cs_h5Create(path, &err);
+  if (!f) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  const size_t du[2] = {(size_t)m, ndof}, dt = (size_t)m;
+  csStatus st = cs_h5AttrString(f, "/", "format", "crawlsim-rom-check-states 1", &err);
+  if (st == CS_OK) st = cs_h5AttrString(f, "/", "name", sf->ray.name, &err);
+  if (st == CS_OK) st = cs_h5WriteDoubles(f, "/u", 2, du, u, &err);
+  if (st == CS_OK) st = cs_h5WriteDoubles(f, "/t", 1, &dt, sf->t, &err);
+  const csStatus sc = cs_h5CloseChecked(f, &err);
+  if (st != CS_OK || sc != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}
+
 static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSnapFile* sf,
-                     double L, CheckErr* ce) {
+                     double L, double* states, CheckErr* ce) {
   memset(ce, 0, sizeof *ce);
   csf_romDataReset(ra->rom, ra->d);
   memset(ra->p, 0, sizeof ra->p);
@@ -415,6 +444,10 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
     double tip[3], Rtip[9], vol[12];
     csf_segmentMeasure(act, ra->fe.gauges, ra->fe.model, &v, seg, tip, Rtip);
     csf_romChamberVolumes(ra->fe.mesh, ra->u, vol);
+    if (states) {
+      const size_t nd = (size_t)ra->fe.model->ndof;
+      memcpy(states + (size_t)k * nd, ra->u, nd * sizeof(double));
+    }
     double eb[CSR_NSEG], rb[CSR_NSEG], vmax = 0;
     for (int s = 0; s < CSR_NSEG; s++) {
       const double* b = sf->bend[k][s];
@@ -426,24 +459,32 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
       ce->bend_deg = fmax(ce->bend_deg, eb[s]);
       ce->bend_rel = fmax(ce->bend_rel, fmin(rb[s], 1e9));
     }
+    int qw = 0; /* the worst chamber (segment qw / 4, chamber qw % 4) */
     for (int q = 0; q < 12; q++) {
-      vmax = fmax(vmax, fabs(vol[q] / sf->vol[k][q] - 1.0));
+      const double e = fabs(vol[q] / sf->vol[k][q] - 1.0);
+      qw = e > vmax ? q : qw;
+      vmax = fmax(vmax, e);
     }
     const double et = hypot(hypot(tip[0] - sf->tip[k][0], tip[1] - sf->tip[k][1]),
                             tip[2] - sf->tip[k][2]);
     ce->ok &= et <= 0.01 * L && vmax <= 0.01;
     ce->tip_mm = fmax(ce->tip_mm, et);
     ce->vol_rel = fmax(ce->vol_rel, vmax);
+    /* the worst chamber's signed error, and its volume change's: a chamber that inflates
+     * sixfold misses its volume by a sixth of the error of its volume change */
+    const double v0 = ra->rom->nch > qw ? ra->rom->ch_V0[qw] : NAN;
     printf("  %-10s t %.3f: bend error %6.3f %6.3f %6.3f deg (%5.2f %5.2f %5.2f %%), tip %7.3f "
-           "mm, volumes %5.2f %%\n", sf->ray.name, t, eb[0], eb[1], eb[2], 100 * rb[0],
-           100 * rb[1], 100 * rb[2], et, 100 * vmax);
+           "mm, volumes %5.2f %% (worst II%d Omega%d: %+.2f %%, V/V0 %.2f, its change %+.1f "
+           "%%)\n", sf->ray.name, t, eb[0], eb[1], eb[2], 100 * rb[0], 100 * rb[1], 100 * rb[2],
+           et, 100 * vmax, qw / 4 + 1, qw % 4 + 1, 100 * (vol[qw] / sf->vol[k][qw] - 1.0),
+           sf->vol[k][qw] / v0, 100 * (vol[qw] - sf->vol[k][qw]) / (sf->vol[k][qw] - v0));
   }
   ce->wall = csu_wallSeconds() - t0;
   ce->newton = ra->n_newton - it0;
 }
 
 static int cmdCheck(int argc, char** argv) {
-  const char* dir = NULL, *basis = NULL, *weights = NULL, *actname = "leg";
+  const char* dir = NULL, *basis = NULL, *weights = NULL, *actname = "leg", *sdir = NULL;
   const char* sets[CSX_ROM_MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, all = 0;
@@ -467,6 +508,8 @@ static int cmdCheck(int argc, char** argv) {
       basis = v;
     } else if (csx_optIs(it.opt, "--weights")) {
       weights = v;
+    } else if (csx_optIs(it.opt, "--states")) {
+      sdir = v;
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--ray")) {
@@ -512,7 +555,20 @@ static int cmdCheck(int argc, char** argv) {
       continue; /* not chosen, or not produced (yet) */
     }
     CheckErr ce;
-    checkRay(&ra, &act, &sf, L, &ce);
+    const size_t nd = (size_t)ra.fe.model->ndof;
+    double* states = sdir ? malloc((size_t)sf.m * nd * sizeof(double) + 1) : NULL;
+    if (sdir && !states) {
+      fprintf(stderr, "crawlsim rom: out of memory (the states of ray %s)\n", sf.ray.name);
+      csf_romActuatorDestroy(&ra);
+      return 1;
+    }
+    checkRay(&ra, &act, &sf, L, states, &ce);
+    if (states && !ce.failed && writeStates(sdir, &sf, sf.m, nd, states)) {
+      free(states);
+      csf_romActuatorDestroy(&ra);
+      return 1;
+    }
+    free(states);
     nrun++;
     nok += ce.ok;
     fe_wall += sf.wall;

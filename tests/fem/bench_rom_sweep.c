@@ -1,7 +1,8 @@
 /* bench_rom_sweep.c: the reduced model's 0-0.4 MPa bend sweep with each Newton setting in one
  * run (issue 34, the 300x target; docs/notes/rom.md, session romfast). Built, not registered.
  *
- *   bench_rom_sweep BASIS.h5 WEIGHTS.h5|none [S] [K_LAG ...]
+ *   bench_rom_sweep BASIS.h5 WEIGHTS.h5|none [S] [K_LAG[bP] ...]  (bP: P BFGS pairs, default 8,
+ *                                                              on the kept factor; session romacc)
  *
  * The short leg (segments of S mm, default 15) meshed once as `crawlsim bend --model rom` does,
  * Omega1 and Omega2 of every segment from 0 to 0.4 MPa in rows of 0.05 MPa, the sweep repeated
@@ -36,11 +37,15 @@ int main(int argc, char** argv) {
   const char* weights = strcmp(argv[2], "none") ? argv[2] : NULL;
   const double S = argc > 3 ? atof(argv[3]) : 15.0;
   double lags[MAXSET] = {0.0, 0.25, 0.5, 0.75, 0.9};
+  int bfgs[MAXSET] = {0};
   int nlag = 5;
   if (argc > 4) {
     nlag = 0;
     for (int i = 4; i < argc && nlag < MAXSET - 1; i++) {
-      lags[nlag++] = atof(argv[i]);
+      /* K_LAG, or K_LAGbP: with P BFGS pairs on the kept factor (csfRomNewtonOptions.bfgs) */
+      char* end;
+      lags[nlag] = strtod(argv[i], &end);
+      bfgs[nlag++] = *end == 'b' ? (end[1] ? atoi(end + 1) : 8) : 0;
     }
   }
   csError err;
@@ -84,7 +89,7 @@ int main(int argc, char** argv) {
          cpuSeconds() - c0);
   double ang0[NROW][3], q0[NROW * 256];
   int have0 = 0;
-  printf("   k_lag  predictor   CPU (s)   iterations  evaluations  tangents   max |d bend| (deg)  "
+  printf("   k_lag  bfgs  predictor   CPU (s)   iterations  evaluations  tangents   max |d bend| (deg)  "
          "max |dq| / max |q|\n");
   for (int k = 0; k <= nlag; k++) {
     const double lag = k < nlag ? lags[k] : lags[0];
@@ -94,6 +99,7 @@ int main(int argc, char** argv) {
     memset(ra.q_conv, 0, (size_t)n * sizeof(double));
     ra.nhist = 0;
     ra.k_lag = lag;
+    ra.bfgs = k < nlag ? bfgs[k] : bfgs[0];
     const long it0 = ra.n_newton, ev0 = ra.d->n_eval, tg0 = ra.d->n_tangent;
     double prev[4] = {0, 0, 0, 0}, dang = 0, dq = 0, qmax = 0;
     const double t0 = cpuSeconds();
@@ -132,7 +138,8 @@ int main(int argc, char** argv) {
     }
     const double t = cpuSeconds() - t0;
     have0 = 1;
-    printf("  %6.2f  %9s  %8.3f  %11ld  %11ld  %8ld   %18.2e  %18.2e\n", lag, pred ? "secant" : "none",
+    printf("  %6.2f  %4d  %9s  %8.3f  %11ld  %11ld  %8ld   %18.2e  %18.2e\n", lag, ra.bfgs,
+           pred ? "secant" : "none",
            t, ra.n_newton - it0, ra.d->n_eval - ev0, ra.d->n_tangent - tg0, dang, dq / qmax);
   }
   printf("bench_rom_sweep: rows at 0.4 MPa of the first setting: %.3f %.3f %.3f deg\n",

@@ -339,25 +339,133 @@ static void test_lagged_tangent_reaches_the_equilibrium_with_fewer_tangents(void
   CS_EXPECT(csf_romChamberTensors(r, 1, fch, &err) == CS_OK);
   free(fch);
   double* u = malloc(nd * sizeof(double));
-  long tangents[2], iters[2];
-  for (int lag = 0; lag < 2; lag++) {
+  long tangents[3], iters[3];
+  static const char* const kName[3] = {"Newton", "lagged tangent (k_lag 0.25)",
+                                       "lagged tangent with BFGS (k_lag 0.25, 8 pairs)"};
+  for (int lag = 0; lag < 3; lag++) {
     csfRomData* rd = csf_romDataCreate(r, &err);
     csfRomNewtonOptions o = csf_romNewtonDefault();
     o.k_lag = lag ? 0.25 : 0.0;
+    o.bfgs = lag == 2 ? 8 : 0;
     CS_EXPECT(romRampWith(r, rd, m, 4, &o, &err) == CS_OK);
     csf_romExpand(r, rd->q, u);
     double umax, e = maxAbsDiff(nd, u, u1, &umax);
     tangents[lag] = rd->n_tangent, iters[lag] = rd->n_newton;
     printf("  %s: max |u_rom - u_fe| = %.2e mm of %.3f mm; %ld iterations, %ld evaluations, "
-           "%ld tangents\n", lag ? "lagged tangent (k_lag 0.25)" : "Newton", e, umax,
-           rd->n_newton, rd->n_eval, rd->n_tangent);
-    /* the residual test decides both: as test_full_basis_reproduces_the_fe_equilibrium */
+           "%ld tangents\n", kName[lag], e, umax, rd->n_newton, rd->n_eval, rd->n_tangent);
+    /* the residual test decides all three: as test_full_basis_reproduces_the_fe_equilibrium */
     CS_EXPECT_NEAR(e / umax, 0.0, 1e-6, 0);
     csf_romDataDestroy(rd);
   }
-  CS_EXPECT(tangents[1] < tangents[0]);
-  CS_EXPECT(iters[1] > tangents[1]); /* steps were taken on a kept factor */
+  CS_EXPECT(tangents[1] < tangents[0] && tangents[2] < tangents[0]);
+  CS_EXPECT(iters[1] > tangents[1] && iters[2] > tangents[2]); /* steps on a kept factor */
   free(V), free(u), free(uh), free(u1);
+  csf_romDestroy(r);
+  boxDestroy(&b);
+}
+
+
+/* uniform in [0, 1) from a fixed LCG (Numerical Recipes' constants): reproducible draws */
+static double urand(unsigned* state) {
+  *state = *state * 1664525u + 1013904223u;
+  return (double)(*state >> 8) / 16777216.0;
+}
+
+/* The BFGS update of the kept factor (csfRomNewtonOptions.bfgs), against its closed-form
+ * properties: without pairs H is the factor's inverse (K H x = x); with pairs stored, H meets
+ * the secant equation of the last one, H y = s (Nocedal and Wright 2006, eq. 6.6), and stays
+ * symmetric (x1 . H x2 = x2 . H x1); a pair against the curvature condition (y . s <= 0) is
+ * refused; past the memory the oldest pair leaves and the secant equation of the newest holds. */
+static void test_bfgs_update_meets_the_secant_equation(void) {
+  Box b;
+  boxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0);
+  const csfModel* m = b.m;
+  int n;
+  double* V = fullBasis(&b, &n);
+  csError err = {0};
+  csfRom* r = csf_romCreate(m, n, V, &err);
+  csfRomData* rd = csf_romDataCreate(r, &err);
+  CS_EXPECT(romRamp(r, rd, m, 2, &err) == CS_OK); /* a loaded state: K is not the rest one */
+  csfRomLoad none = {0};
+  rd->sync = 1;
+  CS_EXPECT(csf_romEvaluate(r, rd, &none, 1) == 0);
+  CS_EXPECT(csf_romFactorTangent(r, rd, &err) == CS_OK);
+  const size_t nn = (size_t)n;
+  double* x = malloc(nn * sizeof(double));
+  double* hx = malloc(nn * sizeof(double));
+  double* s = malloc(nn * sizeof(double));
+  double* y = malloc(nn * sizeof(double));
+  unsigned seed = 7u;
+  double kmax = 0;
+  for (size_t i = 0; i < nn * nn; i++) {
+    kmax = fmax(kmax, fabs(rd->K[i]));
+  }
+  /* no pairs: K (H x) = x */
+  for (size_t j = 0; j < nn; j++) {
+    x[j] = urand(&seed) - 0.5;
+  }
+  memcpy(hx, x, nn * sizeof(double));
+  csf_romQuasiNewtonApply(r, rd, hx);
+  double e0 = 0;
+  for (size_t i = 0; i < nn; i++) {
+    double kh = 0;
+    for (size_t j = 0; j < nn; j++) {
+      kh += rd->K[i * nn + j] * hx[j];
+    }
+    e0 = fmax(e0, fabs(kh - x[i]));
+  }
+  /* pairs: s random, y = K s scaled per pair plus a perturbation (a secant of another curvature)
+   * so that H differs from K^-1 */
+  double esec = 0, esym = 0;
+  int refused = 0, stored = 0;
+  for (int k = 0; k < 12; k++) {
+    for (size_t j = 0; j < nn; j++) {
+      s[j] = urand(&seed) - 0.5;
+    }
+    for (size_t i = 0; i < nn; i++) {
+      double ks = 0;
+      for (size_t j = 0; j < nn; j++) {
+        ks += rd->K[i * nn + j] * s[j];
+      }
+      y[i] = (1.0 + 0.3 * k) * ks + 0.05 * kmax * (urand(&seed) - 0.5);
+    }
+    stored += csf_romQuasiNewtonPush(r, rd, s, y, 5);
+    memcpy(hx, y, nn * sizeof(double));
+    csf_romQuasiNewtonApply(r, rd, hx);
+    double ds = 0, sn = 0;
+    for (size_t j = 0; j < nn; j++) {
+      ds = fmax(ds, fabs(hx[j] - s[j])), sn = fmax(sn, fabs(s[j]));
+    }
+    esec = fmax(esec, ds / sn);
+    /* a pair with y . s < 0 is refused */
+    for (size_t j = 0; j < nn; j++) {
+      y[j] = -y[j];
+    }
+    refused += csf_romQuasiNewtonPush(r, rd, s, y, 5) == 0;
+  }
+  /* symmetry of H with 5 pairs */
+  for (size_t j = 0; j < nn; j++) {
+    x[j] = urand(&seed) - 0.5, s[j] = urand(&seed) - 0.5;
+  }
+  memcpy(hx, x, nn * sizeof(double));
+  csf_romQuasiNewtonApply(r, rd, hx);
+  memcpy(y, s, nn * sizeof(double));
+  csf_romQuasiNewtonApply(r, rd, y);
+  double a1 = 0, a2 = 0;
+  for (size_t j = 0; j < nn; j++) {
+    a1 += s[j] * hx[j], a2 += x[j] * y[j];
+  }
+  esym = fabs(a1 - a2) / fmax(fabs(a1), 1e-300);
+  printf("  n = %d: K H x - x %.1e (|x| <= 0.5); secant H y = s %.1e relative over 12 pairs "
+         "(memory 5, %d stored, %d kept); %d of 12 pairs with y.s < 0 refused; asymmetry %.1e\n",
+         n, e0, esec, stored, rd->bf_k, refused, esym);
+  /* round-off of an LU solve and a few rank-two corrections on a K of condition ~1e4-1e6 */
+  CS_EXPECT_NEAR(e0, 0.0, 1e-8, 0);
+  CS_EXPECT_NEAR(esec, 0.0, 1e-8, 0);
+  CS_EXPECT_NEAR(esym, 0.0, 1e-8, 0);
+  CS_EXPECT(stored == 12 && refused == 12 && rd->bf_k == 5);
+  free(x), free(hx), free(s), free(y), free(V);
+  csf_romDataDestroy(rd);
   csf_romDestroy(r);
   boxDestroy(&b);
 }
@@ -514,6 +622,7 @@ int main(void) {
   CS_RUN(test_reduced_residual_and_tangent_match_the_fe_and_finite_differences);
   CS_RUN(test_full_basis_reproduces_the_fe_equilibrium);
   CS_RUN(test_lagged_tangent_reaches_the_equilibrium_with_fewer_tangents);
+  CS_RUN(test_bfgs_update_meets_the_secant_equation);
   CS_RUN(test_snapshot_basis_reproduces_its_snapshots);
   CS_RUN(test_unit_weights_on_every_element_equal_the_unreduced_model);
   return cs_testSummary();

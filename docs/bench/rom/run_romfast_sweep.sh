@@ -6,7 +6,8 @@
 # take from the sweep's); the rom's bend prints its sweep's own CPU time; then
 # tests/fem/bench_rom_sweep: the rom sweep per Newton setting (k_lag, predictor) after one set-up.
 # From the repository root after a Release build; arguments OUT, BASIS, WEIGHTS ("none": every
-# element). CS and BENCH (environment): the crawlsim and bench_rom_sweep binaries.
+# element). CS and BENCH (environment): the crawlsim and bench_rom_sweep binaries; BENCH_ARGS
+# (environment): bench_rom_sweep's settings after the segment length (default its own list).
 set -euo pipefail
 OUT=$1
 BASIS=$2
@@ -30,5 +31,7 @@ echo "== load after the FE set-up: $(uptime)"
 /usr/bin/time -f "== rom: %e s wall, %U s user, %S s system, %M kB" "$CS" bend \
   --model rom --rom-basis "$BASIS" "${RW[@]}" "${EX[@]}" --out "$OUT/bend_rom.h5" 2>&1
 echo "== load after the rom: $(uptime)"
-(cd "$OUT" && /usr/bin/time -f "== bench_rom_sweep: %e s wall, %U s user" "$BENCH" "$BASIS" "$W" 15)
+read -r -a BA <<< "${BENCH_ARGS:-}"
+(cd "$OUT" && /usr/bin/time -f "== bench_rom_sweep: %e s wall, %U s user" "$BENCH" "$BASIS" "$W" 15 \
+  "${BA[@]}")
 echo "== load at the end: $(uptime)"
