@@ -15,8 +15,9 @@
  *
  * Linearisation: per shape in contact, the load L (foot: force at the sole centre and couple;
  * capsule: the forces on its two ends) against the shape's world coordinates y (foot: sole
- * centre and a small rotation; capsule: its two ends) and their rates, by forward differences
- * (K_y = ∂L/∂y, C_y = ∂L/∂ẏ, 12 evaluations of one shape); y moves with u through
+ * centre and a small rotation; capsule: its two ends) and their rates, K_y = ∂L/∂y and
+ * C_y = ∂L/∂ẏ: the foot's from the law's own derivatives (csc_softShapeJacobian), the
+ * capsules' by forward differences (12 evaluations of one shape); y moves with u through
  * S = ∂ẏ/∂u (the points' G). In the step, y1 = y0 + h S u1 and ẏ1 = S u1. The load is
  * linearised about the predicted end y_p = y0 + h S u0 (the shape moved on at its start
  * velocity), not about y0: a sliding foot moves millimetres in a step against a stick range
@@ -531,7 +532,19 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
      * in one pass moves the step by that fraction of the contact's linear part
      * (test_strain_friction holds creep and Coulomb) */
     double Ky[36], Cy[36];
+    /* the foot's K_y, C_y from the law's own derivatives (contact_soft_jac.c, within 1e-8 of
+     * central differences in test_contact_soft_jac): one evaluation in place of 12 and exact
+     * where the differences err by δ/w; the shapes and terrains it does not cover (capsules, a
+     * heightfield, friction per surface) are differenced as below */
     int nd = 12;
+    if (!ghost && foot) {
+      int off, cnt;
+      csc_softShapeState(m->soft, s, &off, &cnt);
+      double Lj[6];
+      if (csc_softShapeJacobian(m->soft, s, &st, d->z + off, Lj, Ky, Cy) == 0) {
+        nd = 0;
+      }
+    }
     for (int c = 0; c < nd && !ghost; c++) {
       double del = c < 3 ? CSR_STRAIN_CFD_X
                          : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
