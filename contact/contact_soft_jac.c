@@ -36,6 +36,7 @@ typedef struct {
 } dvec;
 
 
+
 static inline dual jConst(double v) {
   dual r;
   r.v = v;
@@ -274,8 +275,8 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
   csc_softSolePoint(sh, st, k / sh->nside, k % sh->nside, cv, &A);
   dvec c, vc, r;
   footPoint(cv, st->x0, &c);
-  footVelocity(&c, x0, v0, w, &vc);
   vSub(&r, &c, x0);
+  int have_vc = 0; /* the sphere's velocity, formed where a box presses it */
   double lo[3], hi[3];
   for (int j = 0; j < 3; j++) {
     lo[j] = cv[j] - rho;
@@ -303,6 +304,10 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
     dual el = jScl(jSmoothPos(depth, p->d_onset), p->k_area * A);
     if (!(el.v > 0)) {
       continue;
+    }
+    if (!have_vc) {
+      footVelocity(&c, x0, v0, w, &vc);
+      have_vc = 1;
     }
     /* F = el <1 - c_hc n·v>, f = n F through the sphere's centre */
     dual hc = jSmoothPos(jSub(jConst(1), jScl(vDot(&n, &vc), p->c_hc)), JAC_HC_CLIP);
