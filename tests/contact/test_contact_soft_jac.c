@@ -204,11 +204,30 @@ static cscSoftModel* footModel(const cstTerrain* t, cscShape* sh) {
 }
 
 
-static void test_soft_jacobian_matches_differences_level_ground(void) {
+/* a level ground: a slab whose top is y = 0, ending at x = xend */
+static cstTerrain levelGround(double xend) {
   cstTerrain t;
   memset(&t, 0, sizeof t);
   t.nbox = 1;
-  t.box[0] = (cstBox){.lo = {-1e3, -20, -150}, .hi = {1e3, 0, 150}};
+  t.box[0] = (cstBox){.lo = {-1e3, -20, -150}, .hi = {xend, 0, 150}};
+  return t;
+}
+
+
+/* a capsule of radius 2 mm and the foot on terrain t, history mode hist */
+static cscSoftModel* capsuleFootModel(const cstTerrain* t, cscHistoryMode hist) {
+  cscSoftParams p = csc_softDefaultParams();
+  p.history = hist;
+  cscShape sh[2] = {csc_softCapsule(2.0), csc_softFoot(kHalf)};
+  csError err;
+  cscSoftModel* m = csc_softCreate(&p, t, 2, sh, &err);
+  CS_EXPECT(m != NULL);
+  return m;
+}
+
+
+static void test_soft_jacobian_matches_differences_level_ground(void) {
+  cstTerrain t = levelGround(1e3);
   cscShape sh;
   cscSoftModel* m = footModel(&t, &sh);
   if (!m) {
@@ -266,10 +285,7 @@ static void test_soft_jacobian_matches_differences_tilted_ground(void) {
 static void test_soft_jacobian_matches_differences_over_an_edge(void) {
   /* the ground ends at x = 7.47: the foot's xi = +7.5 column of spheres (rim radius 1 mm) is
    * 0.03 mm past the edge, its closest feature the edge, its normal turned towards +x */
-  cstTerrain t;
-  memset(&t, 0, sizeof t);
-  t.nbox = 1;
-  t.box[0] = (cstBox){.lo = {-1e3, -20, -150}, .hi = {7.47, 0, 150}};
+  cstTerrain t = levelGround(7.47);
   cscShape sh;
   cscSoftModel* m = footModel(&t, &sh);
   if (!m) {
@@ -296,16 +312,8 @@ static void test_soft_jacobian_matches_differences_over_an_edge(void) {
 
 
 static void test_soft_jacobian_declines_what_it_does_not_cover(void) {
-  cstTerrain t;
-  memset(&t, 0, sizeof t);
-  t.nbox = 1;
-  t.box[0] = (cstBox){.lo = {-1e3, -20, -150}, .hi = {1e3, 0, 150}};
-  cscSoftParams p = csc_softDefaultParams();
-  p.history = CSC_HISTORY_STEP;
-  cscShape sh[2] = {csc_softCapsule(2.0), csc_softFoot(kHalf)};
-  csError err;
-  cscSoftModel* m = csc_softCreate(&p, &t, 2, sh, &err);
-  CS_EXPECT(m != NULL);
+  cstTerrain t = levelGround(1e3);
+  cscSoftModel* m = capsuleFootModel(&t, CSC_HISTORY_STEP);
   if (!m) {
     return;
   }
@@ -324,9 +332,7 @@ static void test_soft_jacobian_declines_what_it_does_not_cover(void) {
   CS_EXPECT(csc_softShapeJacobian(m, 5, &st, z, L, K, C) == -1);
   csc_softDestroy(m);
   /* integrated history: not covered */
-  p.history = CSC_HISTORY_INTEGRATED;
-  m = csc_softCreate(&p, &t, 2, sh, &err);
-  CS_EXPECT(m != NULL);
+  m = capsuleFootModel(&t, CSC_HISTORY_INTEGRATED);
   if (m) {
     st = footPose(x0, zero, zero, zero);
     CS_EXPECT(csc_softShapeJacobian(m, 1, &st, z + 3, L, K, C) == CSC_SOFT_NO_JACOBIAN);
@@ -339,16 +345,8 @@ static void test_soft_update_load_is_update_then_compute(void) {
   /* a capsule lying 2 µm deep and a sliding foot with anchors in every regime (free ones
    * anchor at the update, saturated ones are pulled to u = 2 - u_elastic): the load at the
    * updated anchors must be the law's evaluated anew, bit for bit */
-  cstTerrain t;
-  memset(&t, 0, sizeof t);
-  t.nbox = 1;
-  t.box[0] = (cstBox){.lo = {-1e3, -20, -150}, .hi = {1e3, 0, 150}};
-  cscSoftParams p = csc_softDefaultParams();
-  p.history = CSC_HISTORY_STEP;
-  cscShape sh[2] = {csc_softCapsule(2.0), csc_softFoot(kHalf)};
-  csError err;
-  cscSoftModel* m = csc_softCreate(&p, &t, 2, sh, &err);
-  CS_EXPECT(m != NULL);
+  cstTerrain t = levelGround(1e3);
+  cscSoftModel* m = capsuleFootModel(&t, CSC_HISTORY_STEP);
   if (!m) {
     return;
   }
