@@ -5,7 +5,9 @@
  * Owns: cscSoftParams (the law's parameters, units and defaults), cscShape (a leg's contact
  * shapes: capsules along the leg, the flat foot), cscSoftModel (parameters + shapes + a copy of
  * the terrain's boxes; constant during a run), the flat history state (caller-owned), and the
- * functions that turn the shapes' poses and velocities plus the history into forces.
+ * functions that turn the shapes' poses and velocities plus the history into forces (and, for
+ * a leg that linearises the law in an implicit step, a foot's force derivatives:
+ * contact_soft_jac.c).
  *
  * Model, per shape against every nearby terrain box (geometry: contact_geom.h, closed forms):
  * - Normal force: an elastic foundation (Winkler; Johnson, Contact Mechanics, ch. 4.3) with
