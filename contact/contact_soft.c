@@ -32,10 +32,11 @@ static void slotStep(const cscSoftParams* p, const cscShape* sh, const cscShapeS
 static void slotReport(int shape, const cscSoftAcc* acc, const cscSoftGeom* g, int touching,
                        const double xs[3], const cscSoftFriction* f, cscSlotInfo* info,
                        cscSoftReport* rep);
-/* one shape: normal and friction loads, history rate or (step mode, zw) update */
+/* one shape: normal and friction loads, history rate or (step mode, zw) update; with zw and
+ * then_load, the update and then the friction at the updated anchors into ld, info and rep */
 static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
-                         const double* z, double* zw, cscShapeLoad* ld, double* zdot,
-                         cscSlotInfo* info, cscSoftReport* rep);
+                         const double* z, double* zw, int then_load, cscShapeLoad* ld,
+                         double* zdot, cscSlotInfo* info, cscSoftReport* rep);
 
 
 cscSoftParams csc_softDefaultParams(void) {
@@ -377,8 +378,8 @@ static int footNearTerrain(const cscSoftModel* m, const cscShape* sh, const cscS
 
 
 static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
-                         const double* z, double* zw, cscShapeLoad* ld, double* zdot,
-                         cscSlotInfo* info, cscSoftReport* rep) {
+                         const double* z, double* zw, int then_load, cscShapeLoad* ld,
+                         double* zdot, cscSlotInfo* info, cscSoftReport* rep) {
   const cscSoftParams* p = &m->p;
   const cscShape* sh = &m->shape[i];
   int step = p->history == CSC_HISTORY_STEP, nz = m->zoff[i + 1] - m->zoff[i];
@@ -468,6 +469,11 @@ static int shapeEvaluate(const cscSoftModel* m, int i, const cscShapeState* st,
       }
     } else {
       slotStep(pf, sh, st, &g, touching, c, zk, zw ? zw + (size_t)k * ss : NULL, ld, &f, xs);
+      if (zw && then_load) {
+        /* the load at the updated anchor from the same geometry: what a new evaluation with
+         * the updated history would add, in the same order */
+        slotStep(pf, sh, st, &g, touching, c, zw + (size_t)k * ss, NULL, ld, &f, xs);
+      }
     }
     slotReport(i, &acc, &g, touching, xs, &f, info ? &info[k] : NULL, rep);
   }
@@ -481,7 +487,7 @@ int csc_softComputeShape(const cscSoftModel* m, int i, const cscShapeState* s, c
   if (!m || i < 0 || i >= m->nshape || !s || !load || (!z && m->zoff[i + 1] > m->zoff[i])) {
     return -1;
   }
-  return shapeEvaluate(m, i, s, z, NULL, load, zdot, slot, rep);
+  return shapeEvaluate(m, i, s, z, NULL, 0, load, zdot, slot, rep);
 }
 
 
@@ -493,7 +499,20 @@ int csc_softUpdateShape(const cscSoftModel* m, int i, const cscShapeState* s, do
     return 0;
   }
   cscShapeLoad scratch;
-  return shapeEvaluate(m, i, s, z, z, &scratch, NULL, NULL, NULL);
+  return shapeEvaluate(m, i, s, z, z, 0, &scratch, NULL, NULL, NULL);
+}
+
+
+int csc_softUpdateShapeLoad(const cscSoftModel* m, int i, const cscShapeState* s, double* z,
+                            cscShapeLoad* load, cscSlotInfo* slot, cscSoftReport* rep) {
+  if (!m || i < 0 || i >= m->nshape || !s || !load || (!z && m->zoff[i + 1] > m->zoff[i])) {
+    return -1;
+  }
+  if (m->p.history != CSC_HISTORY_STEP) {
+    /* integrated history: the update changes nothing */
+    return shapeEvaluate(m, i, s, z, NULL, 0, load, NULL, slot, rep);
+  }
+  return shapeEvaluate(m, i, s, z, z, 1, load, NULL, slot, rep);
 }
 
 
@@ -508,7 +527,7 @@ int csc_softCompute(const cscSoftModel* m, const cscShapeState* s, const double*
   int worst = 0;
   for (int i = 0; i < m->nshape; i++) {
     cscShapeLoad scratch;
-    int rc = shapeEvaluate(m, i, &s[i], z + m->zoff[i], NULL, load ? &load[i] : &scratch,
+    int rc = shapeEvaluate(m, i, &s[i], z + m->zoff[i], NULL, 0, load ? &load[i] : &scratch,
                            zdot ? zdot + m->zoff[i] : NULL, slot ? slot + m->first[i] : NULL,
                            rep);
     worst = rc > worst ? rc : worst;

@@ -5,7 +5,9 @@
  * Owns: cscSoftParams (the law's parameters, units and defaults), cscShape (a leg's contact
  * shapes: capsules along the leg, the flat foot), cscSoftModel (parameters + shapes + a copy of
  * the terrain's boxes; constant during a run), the flat history state (caller-owned), and the
- * functions that turn the shapes' poses and velocities plus the history into forces.
+ * functions that turn the shapes' poses and velocities plus the history into forces (and, for
+ * a leg that linearises the law in an implicit step, a foot's force derivatives:
+ * contact_soft_jac.c).
  *
  * Model, per shape against every nearby terrain box (geometry: contact_geom.h, closed forms):
  * - Normal force: an elastic foundation (Winkler; Johnson, Contact Mechanics, ch. 4.3) with
@@ -213,6 +215,27 @@ int csc_softComputeShape(const cscSoftModel* m, int i, const cscShapeState* s, c
                          cscShapeLoad* load, double* zdot, cscSlotInfo* slot,
                          cscSoftReport* rep);
 int csc_softUpdateShape(const cscSoftModel* m, int i, const cscShapeState* s, double* z);
+/* csc_softUpdateShape, then the load, slots and report (each may be NULL but load) that
+ * csc_softComputeShape gives at the updated history, from one evaluation of the shape's
+ * geometry (the same bits as the two calls: the friction at the new anchors is summed in the
+ * same order). Returns as csc_softUpdateShape. */
+int csc_softUpdateShapeLoad(const cscSoftModel* m, int i, const cscShapeState* s, double* z,
+                            cscShapeLoad* load, cscSlotInfo* slot, cscSoftReport* rep);
+
+/* What csc_softShapeJacobian returns for a shape or law it does not differentiate. */
+#define CSC_SOFT_NO_JACOBIAN (-2)
+
+/* The load of shape i at pose s and history z (its block) with its derivatives, for a leg that
+ * linearises the law inside an implicit step (contact_soft_jac.c). Covered: a foot (step-mode
+ * sole points) against terrain boxes with one friction; otherwise returns CSC_SOFT_NO_JACOBIAN
+ * and the caller differences csc_softComputeShape. L (6) = (f0, m): the resultant (N) and the
+ * moment about x0 (N mm), as csc_softComputeShape's load to round-off; K (6 x 6, row-major) its
+ * derivative with respect to (x0 (mm), φ (rad): R turned to exp(φ^) R about x0, the world
+ * rotation vector), C (6 x 6) with respect to (v0 (mm/s), w (rad/s)). Returns 0, > 0 as
+ * csc_softComputeShape (a non-finite pose or history, a sole point's centre inside a box),
+ * -1 for bad arguments. */
+int csc_softShapeJacobian(const cscSoftModel* m, int i, const cscShapeState* s, const double* z,
+                          double L[6], double K[36], double C[36]);
 
 /* The load of shape i (pose s) as one force f (N) at a point P (mm) plus a couple M (N mm),
  * statically equivalent (same resultant, same moment about any point), for a per-element hook

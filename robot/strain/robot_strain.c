@@ -326,6 +326,9 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->Wu);
   free(d->csig);
   free(d->ghost);
+  free(d->memo);
+  free(d->memo_z);
+  free(d->memo_slot);
   free(d->fl);
   free(d->WMll);
   free(d->WMlb);
@@ -445,7 +448,10 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   }
   d->csig = calloc((size_t)nslot_all, 1);
   d->ghost = calloc((size_t)m->nshape + 1, sizeof(csrStrainGhost));
-  if (!d->Wu || !d->fl || !d->csig || !d->ghost ||
+  d->memo = calloc((size_t)m->nshape + 1, sizeof(csrStrainLoadMemo));
+  d->memo_z = calloc((size_t)m->nhist + 1, sizeof(double));
+  d->memo_slot = calloc((size_t)nslot_all, sizeof(cscSlotInfo));
+  if (!d->Wu || !d->fl || !d->csig || !d->ghost || !d->memo || !d->memo_z || !d->memo_slot ||
       !d->q || !d->eta || !d->vp_eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
       !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||

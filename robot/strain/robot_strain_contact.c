@@ -15,8 +15,9 @@
  *
  * Linearisation: per shape in contact, the load L (foot: force at the sole centre and couple;
  * capsule: the forces on its two ends) against the shape's world coordinates y (foot: sole
- * centre and a small rotation; capsule: its two ends) and their rates, by forward differences
- * (K_y = ∂L/∂y, C_y = ∂L/∂ẏ, 12 evaluations of one shape); y moves with u through
+ * centre and a small rotation; capsule: its two ends) and their rates, K_y = ∂L/∂y and
+ * C_y = ∂L/∂ẏ: the foot's from the law's own derivatives (csc_softShapeJacobian), the
+ * capsules' by forward differences (12 evaluations of one shape); y moves with u through
  * S = ∂ẏ/∂u (the points' G). In the step, y1 = y0 + h S u1 and ẏ1 = S u1. The load is
  * linearised about the predicted end y_p = y0 + h S u0 (the shape moved on at its start
  * velocity), not about y0: a sliding foot moves millimetres in a step against a stick range
@@ -121,25 +122,94 @@ static void shapeState(const csrStrainModel* m, const csrStrainData* d, int s,
 
 
 /* the load vector L (6) of shape s: foot (force, couple), capsule (f0, f1); couple out */
-static int loadOf(const csrStrainModel* m, const csrStrainData* d, int s,
-                  const cscShapeState* st, double L[6], double couple[3], cscSlotInfo* slot) {
+static void loadVector(const csrStrainModel* m, int s, const cscShapeLoad* ld, double L[6],
+                       double couple[3]) {
+  int foot = s == m->nshape - 1;
+  memcpy(L, ld->f0, 3 * sizeof(double));
+  memcpy(L + 3, foot ? ld->m : ld->f1, 3 * sizeof(double));
+  if (couple) {
+    if (foot) {
+      memset(couple, 0, 3 * sizeof(double));
+    } else {
+      memcpy(couple, ld->m, 3 * sizeof(double));
+    }
+  }
+}
+
+
+/* the law at shape s's state st, not remembered (the linearisation's differences, a
+ * query at other rates) */
+static int lawLoad(const csrStrainModel* m, const csrStrainData* d, int s,
+                   const cscShapeState* st, double L[6], double couple[3], cscSlotInfo* slot) {
   int off, cnt;
   csc_softShapeState(m->soft, s, &off, &cnt);
   cscShapeLoad ld;
   double zdot[CSR_STRAIN_MAX_SHAPE_HIST];
   (void)cnt;
   int rc = csc_softComputeShape(m->soft, s, st, d->z + off, &ld, zdot, slot, NULL);
-  int foot = s == m->nshape - 1;
-  memcpy(L, ld.f0, 3 * sizeof(double));
-  memcpy(L + 3, foot ? ld.m : ld.f1, 3 * sizeof(double));
-  if (couple) {
-    if (foot) {
-      memset(couple, 0, 3 * sizeof(double));
-    } else {
-      memcpy(couple, ld.m, 3 * sizeof(double));
-    }
-  }
+  loadVector(m, s, &ld, L, couple);
   return rc;
+}
+
+
+/* 1 when shape s's memo was evaluated at st with the history d->z holds now */
+static int memoHolds(const csrStrainModel* m, const csrStrainData* d, int s,
+                     const cscShapeState* st) {
+  const csrStrainLoadMemo* mo = d->memo + s;
+  if (!mo->valid || memcmp(&mo->st, st, sizeof *st) != 0) {
+    return 0;
+  }
+  int off, cnt;
+  csc_softShapeState(m->soft, s, &off, &cnt);
+  return memcmp(d->memo_z + off, d->z + off, (size_t)cnt * sizeof(double)) == 0;
+}
+
+
+/* shape s's memo set to the state st and the history now (its load, report and slots already
+ * written) */
+static void memoKeep(const csrStrainModel* m, csrStrainData* d, int s, const cscShapeState* st,
+                     int rc) {
+  csrStrainLoadMemo* mo = d->memo + s;
+  int off, cnt;
+  csc_softShapeState(m->soft, s, &off, &cnt);
+  memcpy(d->memo_z + off, d->z + off, (size_t)cnt * sizeof(double));
+  mo->st = *st;
+  mo->rc = rc;
+  mo->valid = 1;
+}
+
+
+/* The law at shape s's state st (L, couple as loadVector; slot: its slots' report or NULL;
+ * rep: added to, or NULL), through the shape's memo (csrStrainLoadMemo): the same bits as
+ * the law evaluated anew */
+static int loadOf(const csrStrainModel* m, csrStrainData* d, int s, const cscShapeState* st,
+                  double L[6], double couple[3], cscSlotInfo* slot, cscSoftReport* rep) {
+  csrStrainLoadMemo* mo = d->memo + s;
+  int first, nslot;
+  csc_softShapeSlots(m->soft, s, &first, &nslot);
+  if (!memoHolds(m, d, s, st)) {
+    int off, cnt;
+    csc_softShapeState(m->soft, s, &off, &cnt);
+    double zdot[CSR_STRAIN_MAX_SHAPE_HIST];
+    (void)cnt;
+    memset(&mo->rep, 0, sizeof mo->rep);
+    int rc = csc_softComputeShape(m->soft, s, st, d->z + off, &mo->ld, zdot,
+                                  d->memo_slot + first, &mo->rep);
+    memoKeep(m, d, s, st, rc);
+  }
+  loadVector(m, s, &mo->ld, L, couple);
+  if (slot) {
+    memcpy(slot, d->memo_slot + first, (size_t)nslot * sizeof *slot);
+  }
+  if (rep) {
+    /* as csc_softComputeShape adds a shape to a report: counts summed, maxima (>= 0) */
+    rep->ncontact += mo->rep.ncontact;
+    rep->nsliding += mo->rep.nsliding;
+    rep->ndeep += mo->rep.ndeep;
+    rep->max_depth = fmax(rep->max_depth, mo->rep.max_depth);
+    rep->max_ratio = fmax(rep->max_ratio, mo->rep.max_ratio);
+  }
+  return mo->rc;
 }
 
 
@@ -358,7 +428,7 @@ int csr_strainGhostStart_(const csrStrainModel* m, csrStrainData* d) {
     cscShapeState st;
     shapeState(m, d, s, &st);
     double L0[6], couple[3];
-    int rc = loadOf(m, d, s, &st, L0, couple, NULL);
+    int rc = loadOf(m, d, s, &st, L0, couple, NULL, NULL);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
@@ -373,7 +443,7 @@ int csr_strainGhostStart_(const csrStrainModel* m, csrStrainData* d) {
       cscShapeState sp = st;
       perturb(m, s, &sp, c, del);
       double Lp[6];
-      loadOf(m, d, s, &sp, Lp, NULL, NULL);
+      lawLoad(m, d, s, &sp, Lp, NULL, NULL);
       double* D = c < 6 ? g->K : g->C;
       for (int r = 0; r < 6; r++) {
         D[6 * r + c % 6] = (Lp[r] - L0[r]) / del;
@@ -427,7 +497,8 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     csc_softShapeSlots(m->soft, s, &first, &nslot);
     cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
     double L0[6], couple[3], nrm[3] = {0, 0, 0};
-    int rc = loadOf(m, d, s, &st, L0, couple, nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL);
+    int rc = loadOf(m, d, s, &st, L0, couple, nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL,
+                    NULL);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
@@ -481,7 +552,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         memcpy(st.R, Rn, sizeof Rn);
       }
       rc = loadOf(m, d, s, &st, L0, couple,
-                  nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL);
+                  nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL, NULL);
     }
     if (rc != 0) {
       return rc > 0 ? rc : 1;
@@ -517,14 +588,27 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
      * in one pass moves the step by that fraction of the contact's linear part
      * (test_strain_friction holds creep and Coulomb) */
     double Ky[36], Cy[36];
-    for (int c = 0; c < 12 && !ghost; c++) {
+    /* the foot's K_y, C_y from the law's own derivatives (contact_soft_jac.c, within 1e-8 of
+     * central differences in test_contact_soft_jac): one evaluation in place of 12 and exact
+     * where the differences err by δ/w; the shapes and terrains it does not cover (capsules, a
+     * heightfield, friction per surface) are differenced as below */
+    int nd = 12;
+    if (!ghost && foot) {
+      int off, cnt;
+      csc_softShapeState(m->soft, s, &off, &cnt);
+      double Lj[6];
+      if (csc_softShapeJacobian(m->soft, s, &st, d->z + off, Lj, Ky, Cy) == 0) {
+        nd = 0;
+      }
+    }
+    for (int c = 0; c < nd && !ghost; c++) {
       double del = c < 3 ? CSR_STRAIN_CFD_X
                          : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
                                   : CSR_STRAIN_CFD_V);
       cscShapeState sp = st;
       perturb(m, s, &sp, c, del);
       double Lp[6];
-      loadOf(m, d, s, &sp, Lp, NULL, NULL);
+      lawLoad(m, d, s, &sp, Lp, NULL, NULL);
       double* D = c < 6 ? Ky : Cy;
       int col = c % 6;
       for (int r = 0; r < 6; r++) {
@@ -646,7 +730,7 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
     cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
     int has_slot = nslot <= CSR_STRAIN_MAX_SHAPE_HIST;
     double L[6], couple[3];
-    int rc = loadOf(m, d, s, &st, L, couple, has_slot ? slot : NULL);
+    int rc = loadOf(m, d, s, &st, L, couple, has_slot ? slot : NULL, NULL);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
@@ -742,7 +826,7 @@ double csr_strainContactLimit_(const csrStrainModel* m, csrStrainData* d, double
   shapeState(m, d, s, &st);
   cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
   double L[6], couple[3];
-  if (loadOf(m, d, s, &st, L, couple, slot) != 0 || loadZero(L, couple)) {
+  if (loadOf(m, d, s, &st, L, couple, slot, NULL) != 0 || loadZero(L, couple)) {
     return 1.0;
   }
   /* the foot's world twist change for the move: rows of S (translation, rotation) */
@@ -796,7 +880,7 @@ int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d) {
     csr_strainWorld_(d, d->R + 9 * b, d->x + 3 * b, Rb, xb);
     memcpy(st.x1, xb, sizeof xb);
     double L[6], couple[3];
-    if (loadOf(m, d, s, &st, L, couple, NULL) != 0) {
+    if (lawLoad(m, d, s, &st, L, couple, NULL) != 0) {
       return 0;
     }
     for (int i = 0; i < 6; i++) {
@@ -816,9 +900,17 @@ int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d) {
   for (int s = 0; s < m->nshape; s++) {
     cscShapeState st;
     shapeState(m, d, s, &st);
-    int off, cnt;
+    int off, cnt, first, nslot;
     csc_softShapeState(m->soft, s, &off, &cnt);
-    int rc = csc_softUpdateShape(m->soft, s, &st, d->z + off);
+    csc_softShapeSlots(m->soft, s, &first, &nslot);
+    /* the return-mapping and the law at the new anchors from one evaluation of the geometry
+     * (the same bits as the two): the output's read-out and the next prepare, at this very
+     * state, find them in the memo */
+    csrStrainLoadMemo* mo = d->memo + s;
+    memset(&mo->rep, 0, sizeof mo->rep);
+    int rc = csc_softUpdateShapeLoad(m->soft, s, &st, d->z + off, &mo->ld,
+                                     d->memo_slot + first, &mo->rep);
+    memoKeep(m, d, s, &st, rc);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
@@ -849,11 +941,9 @@ int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[
   for (int s = 0; s < m->nshape; s++) {
     cscShapeState st;
     shapeState(m, d, s, &st);
-    int off, cnt;
-    csc_softShapeState(m->soft, s, &off, &cnt);
-    cscShapeLoad ld;
-    double zdot[CSR_STRAIN_MAX_SHAPE_HIST];
-    int r = csc_softComputeShape(m->soft, s, &st, d->z + off, &ld, zdot, NULL, rep);
+    double L[6], couple[3];
+    int r = loadOf(m, d, s, &st, L, couple, NULL, rep);
+    const cscShapeLoad ld = d->memo[s].ld;
     rc = rc ? rc : r;
     /* forces at x0 and x1 and the couple, moments about the hip */
     double arm[3], t[3];

@@ -32,6 +32,19 @@ typedef struct csrStrainGhost_ {
   unsigned char on;    /* 1: held by its ghost load at the last evaluation */
 } csrStrainGhost;
 
+/* One contact shape's last evaluation of the law (robot_strain_contact.c loadOf): the law is a
+ * function of the shape's state and its history block alone, so an evaluation at the same bits
+ * (the output's read-out after a commit, the next prepare at the committed state, an iterate
+ * that linearises afresh after reading its loads) returns these. A cache, not state: keyed by
+ * the bits of st and of the history (csrStrainData.memo_z), it cannot change a result. */
+typedef struct csrStrainLoadMemo_ {
+  int valid;          /* 1: st, ld, rep and the slots are an evaluation's */
+  int rc;             /* its return code */
+  cscShapeState st;   /* the state it was evaluated at */
+  cscShapeLoad ld;    /* the law's load there */
+  cscSoftReport rep;  /* this shape's part of a report */
+} csrStrainLoadMemo;
+
 struct csrStrainModel_ {
   csrStrainParams par;
   csrRodParams rpar;
@@ -156,6 +169,9 @@ struct csrStrainData_ {
   int at_iterate; /* 1: the step was last linearised at a Newton iterate (csr_strainIterate),
                      0 at its start (prepare): csr_strainStepLimit limits only the former */
   double* z;      /* (nhist) contact anchors (state) */
+  csrStrainLoadMemo* memo; /* (nshape) the law's last evaluation per shape (a cache) */
+  double* memo_z;          /* (nhist) the history each shape's memo was evaluated with */
+  cscSlotInfo* memo_slot;  /* (the contact's slots) their report at the memo */
   cscShapeState* sst; /* (nshape) scratch; in a prepare with pred set, every shape's pose at
                           the predicted end of the step (robot_strain_dyn.c predictShapes) */
   int pred;       /* 1: sst holds the predicted poses (backward Euler's prepare) */
