@@ -53,13 +53,16 @@ void cs_footholdApply(const csModel* m, csData* d, double t, double* p_cmd) {
   for (int k = 0; k < s->n && t >= s->fh[k].t; k++) {
     const csgFoothold* f = &s->fh[k];
     if (d->fh_choice[k] < 0) {
-      double land[CSG_FOOTHOLD_MAX_CAND], pos[3];
+      double land[CSG_FOOTHOLD_MAX_CAND], lo[CSG_FOOTHOLD_MAX_CAND], hi[CSG_FOOTHOLD_MAX_CAND];
+      double pos[3];
       for (int i = 0; i < f->ncand; i++) {
         land[i] = f->cand[i].land;
+        lo[i] = f->cand[i].lo;
+        hi[i] = f->cand[i].hi;
       }
       cs_supportDisplacement(d, pos);
-      const int c = csg_footholdChoose(f->ncand, land, f->nominal, pos[0] - f->xplan, m->fh_edge,
-                                       m->fh_nedge, f->margin);
+      const int c = csg_footholdChoose(f->ncand, land, lo, hi, f->nominal, pos[0] - f->xplan,
+                                       m->fh_edge, m->fh_nedge, f->margin);
       d->fh_choice[k] = c >= 0 ? c : f->nominal; /* -1 only for a non-finite support x */
     }
     if (t < f->w0 || t >= f->w1) {

@@ -12,22 +12,18 @@
 #define MAX_WORDS 16
 
 
-/* clearance of landing x (planned at x_plan) from the edges: the distance to the nearest,
- * negative when an edge lies between x_plan and x (mm); +inf without edges */
-static double clearance(double x, double x_plan, const double* edges, int nedge) {
+/* clearance of landing x from the edges: the distance to the nearest (mm); +inf without edges */
+static double clearance(double x, const double* edges, int nedge) {
   double c = INFINITY;
-  int crossed = 0;
   for (int k = 0; k < nedge; k++) {
     c = fmin(c, fabs(x - edges[k]));
-    const double lo = fmin(x, x_plan), hi = fmax(x, x_plan);
-    crossed |= edges[k] > lo && edges[k] < hi;
   }
-  return crossed ? -c : c;
+  return c;
 }
 
 
-int csg_footholdChoose(int n, const double* land, int nominal, double delta,
-                       const double* edges, int nedge, double margin) {
+int csg_footholdChoose(int n, const double* land, const double* lo, const double* hi,
+                       int nominal, double delta, const double* edges, int nedge, double margin) {
   if (n < 1 || !land || nominal < 0 || nominal >= n || (nedge > 0 && !edges) || nedge < 0 ||
       !isfinite(delta) || !isfinite(margin)) {
     return -1;
@@ -39,21 +35,26 @@ int csg_footholdChoose(int n, const double* land, int nominal, double delta,
     if (!isfinite(edges[k])) return -1;
   }
   const double target = land[nominal];
-  int best = -1, safest = 0;
-  double best_d = INFINITY, safest_c = -INFINITY;
+  int best = -1, safe_fit = -1, safest = 0;
+  double best_d = INFINITY, safe_fit_c = -INFINITY, safest_c = -INFINITY;
   for (int i = 0; i < n; i++) {
     const double x = land[i] + delta;
-    const double c = clearance(x, land[i], edges, nedge);
+    const double c = clearance(x, edges, nedge);
+    const int fits = (!lo || x >= lo[i]) && (!hi || x <= hi[i]);
     if (c > safest_c) {
       safest_c = c;
       safest = i;
     }
-    if (c >= margin && fabs(x - target) < best_d) {
+    if (fits && c > safe_fit_c) {
+      safe_fit_c = c;
+      safe_fit = i;
+    }
+    if (fits && c >= margin && fabs(x - target) < best_d) {
       best_d = fabs(x - target);
       best = i;
     }
   }
-  return best >= 0 ? best : safest;
+  return best >= 0 ? best : safe_fit >= 0 ? safe_fit : safest;
 }
 
 
@@ -152,20 +153,26 @@ static csStatus statementCandidate(csgFootholdSet* s, char** w, int nw, const ch
                        line);
   }
   csgFoothold* f = &s->fh[s->n - 1];
-  if ((nw != 5 && nw != 6) || strcmp(w[2], "land") || (nw == 6 && strcmp(w[5], "nominal"))) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'candidate' needs OFFSET land L FILE "
-                       "[nominal]", path, line);
+  if ((nw != 8 && nw != 9) || strcmp(w[2], "land") || strcmp(w[4], "fits") ||
+      (nw == 9 && strcmp(w[8], "nominal"))) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'candidate' needs OFFSET land L fits LO HI "
+                       "FILE [nominal]", path, line);
   }
   if (f->ncand >= CSG_FOOTHOLD_MAX_CAND) {
     return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: more than %d candidates", path, line,
                        CSG_FOOTHOLD_MAX_CAND);
   }
   csgFootholdCand* c = &f->cand[f->ncand];
-  if (!number(w[1], &c->offset) || !number(w[3], &c->land)) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: OFFSET and L must be finite numbers (mm)",
-                       path, line);
+  if (!number(w[1], &c->offset) || !number(w[3], &c->land) || !number(w[5], &c->lo) ||
+      !number(w[6], &c->hi)) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: OFFSET, L, LO and HI must be finite numbers "
+                       "(mm)", path, line);
   }
-  if (nw == 6) {
+  if (!(c->lo <= c->land && c->land <= c->hi)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: the landing %g mm is outside the span it fits, "
+                       "%g..%g mm", path, line, c->land, c->lo, c->hi);
+  }
+  if (nw == 9) {
     if (f->nominal >= 0) {
       return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: a second nominal candidate", path, line);
     }
@@ -173,11 +180,12 @@ static csStatus statementCandidate(csgFootholdSet* s, char** w, int nw, const ch
   }
   /* the table's path: relative to the .foothold file's folder */
   char file[1024];
+  const char* fname = w[7];
   const char* slash = strrchr(path, '/');
-  if (w[4][0] == '/' || !slash) {
-    snprintf(file, sizeof file, "%s", w[4]);
+  if (fname[0] == '/' || !slash) {
+    snprintf(file, sizeof file, "%s", fname);
   } else {
-    snprintf(file, sizeof file, "%.*s/%s", (int)(slash - path), path, w[4]);
+    snprintf(file, sizeof file, "%.*s/%s", (int)(slash - path), path, fname);
   }
   csError e;
   cs_errorClear(&e);
@@ -189,7 +197,7 @@ static csStatus statementCandidate(csgFootholdSet* s, char** w, int nw, const ch
   const csgGait* g = c->table;
   if (!(g->time[0] <= f->w0 && g->time[g->nrow - 1] >= f->w1)) {
     return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: candidate table %s holds %g..%g s, not the "
-                       "window %g..%g s", path, line, w[4], g->time[0], g->time[g->nrow - 1],
+                       "window %g..%g s", path, line, fname, g->time[0], g->time[g->nrow - 1],
                        f->w0, f->w1);
   }
   return CS_OK;

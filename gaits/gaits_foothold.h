@@ -18,11 +18,13 @@
  *       along x the plan expected at T; M (mm) the clearance from every edge a landing should
  *       keep; the candidates' columns of LEGS replace the nominal table's for W0 <= t < W1 (s,
  *       T <= W0 < W1)
- *   candidate OFFSET land L FILE [nominal]
+ *   candidate OFFSET land L fits LO HI FILE [nominal]
  *       one candidate of the foothold above it: its landing OFFSET (mm ahead of the hip), the
- *       landing L (mm, terrain x) it makes when the support stands where the plan put it, and
- *       its table FILE (a gait CSV, gaits_csv.h, path relative to the .foothold file's folder)
- *       whose LEGS columns hold over the window; `nominal` marks the candidate the nominal
+ *       landing L (mm, terrain x) it makes when the support stands where the plan put it, the
+ *       span LO..HI (mm, terrain x, finite, LO <= L <= HI) of landings its stance length suits
+ *       (the designer's rule: a road leg's stretched length before the riser, the vented step
+ *       length on the plateau and just past it), and its table FILE (a gait CSV, gaits_csv.h,
+ *       path relative to the .foothold file's folder) whose LEGS columns hold over the window; `nominal` marks the candidate the nominal
  *       table (NAME.csv) holds: exactly one per foothold
  * Footholds sharing a leg may not overlap in their windows; a candidate table covers its
  * window (first row <= W0, last row >= W1).
@@ -41,22 +43,23 @@ extern "C" {
 #define CSG_FOOTHOLD_MAX 16      /* footholds per file */
 #define CSG_FOOTHOLD_MAX_CAND 12 /* candidates per foothold */
 
-/* The choice (pure; no allocation). Candidate i lands at land[i] + delta: land[i] its landing
- * when the hips stand where the plan put them, delta (mm) how far the measured hips stand
- * ahead of the plan. A landing's clearance is its distance to the nearest of the nedge edges
- * (mm, terrain x), negative when an edge lies between land[i] and land[i] + delta (the
- * candidate's stance length was designed for the other side of it). Among the candidates
- * whose clearance is at least margin, the one landing nearest the nominal candidate's planned
- * landing land[nominal] (the plan's foothold, kept where the support lets it); if none keeps
- * the margin, the one of largest clearance. Ties go to the lower index. Without edges every
- * candidate keeps the margin. Returns the index, or -1 for n < 1, a nominal outside 0..n-1,
- * NULL arrays or a non-finite value. */
-int csg_footholdChoose(int n, const double* land, int nominal, double delta,
-                       const double* edges, int nedge, double margin);
+/* The choice (pure; no allocation). Candidate i lands at x_i = land[i] + delta: land[i] its
+ * landing when the hips stand where the plan put them, delta (mm) how far the measured hips
+ * stand ahead of the plan. It fits when lo[i] <= x_i <= hi[i] (its stance length suits that
+ * landing); its clearance is the distance from x_i to the nearest of the nedge edges (mm,
+ * terrain x; +inf without edges). Among the fitting candidates whose clearance is at least
+ * margin, the one landing nearest the nominal candidate's planned landing land[nominal] (the
+ * plan's foothold, kept where the support lets it); if none, the fitting one of largest
+ * clearance; if none fits, the one of largest clearance. Ties go to the lower index. lo, hi
+ * NULL: every candidate fits. Returns the index, or -1 for n < 1, a nominal outside 0..n-1,
+ * NULL land or edges (with nedge > 0) or a non-finite land, delta, edge or margin. */
+int csg_footholdChoose(int n, const double* land, const double* lo, const double* hi,
+                       int nominal, double delta, const double* edges, int nedge, double margin);
 
 typedef struct csgFootholdCand_ {
   double offset;      /* mm ahead of the hip (as designed) */
   double land;        /* mm, terrain x: its landing with the support on plan */
+  double lo, hi;      /* mm, terrain x: the landings its stance length suits */
   csgGait* table;     /* owned: its rows; the foothold's legs' columns are used */
 } csgFootholdCand;
 

@@ -832,8 +832,12 @@ if a.foothold_out:
                 out_f.write(','.join(head[c] for c in [0] + cols) + '\n')
                 for i in range(i0, i1 + 1):
                     out_f.write(','.join(tables[o][i][c] for c in [0] + cols) + '\n')
-            index.append('candidate %g land %.3f %s/%s%s\n'
-                         % (o, land, os.path.basename(folder), fn,
+            # the landings its stance length suits (rule 6): the step's length from the riser
+            # to BAND past the down edge, the road's on either side
+            lo, hi = ((EDGES[0], EDGES[1] + BAND) if EDGES[0] < land < EDGES[1] + BAND else
+                      (-1e6, EDGES[0]) if land <= EDGES[0] else (EDGES[1] + BAND, 1e6))
+            index.append('candidate %g land %.3f fits %g %g %s/%s%s\n'
+                         % (o, land, lo, hi, os.path.basename(folder), fn,
                             ' nominal' if abs(o - f['r']) < 1e-9 else ''))
     with open(name + '.foothold', 'w') as out_f:
         out_f.write(''.join(index))

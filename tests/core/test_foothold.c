@@ -68,7 +68,8 @@ static int writeFoothold(const char* path, double scale, double xplan) {
   FILE* f = fopen(path, "w");
   if (!f) return -1;
   fprintf(f, "foothold %g B xplan %g margin 0 window %g %g\n", T_LIFT, xplan, W0, W1);
-  fprintf(f, "candidate 10 land 100 fh_nominal.csv nominal\ncandidate -20 land 70 fh_other.csv\n");
+  fprintf(f, "candidate 10 land 100 fits -1e3 1e3 fh_nominal.csv nominal\n"
+             "candidate -20 land 70 fits -1e3 1e3 fh_other.csv\n");
   fclose(f);
   return 0;
 }

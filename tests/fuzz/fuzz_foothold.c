@@ -48,7 +48,7 @@ csStatus csz_harnessRun(const uint8_t* data, size_t size, csError* err) {
           f->nominal >= f->ncand) {
         csz_fail("foothold %d: %d candidates, nominal %d", k, f->ncand, f->nominal);
       }
-      double land[CSG_FOOTHOLD_MAX_CAND];
+      double land[CSG_FOOTHOLD_MAX_CAND], lo[CSG_FOOTHOLD_MAX_CAND], hi[CSG_FOOTHOLD_MAX_CAND];
       for (int i = 0; i < f->ncand; i++) {
         const csgGait* g = f->cand[i].table;
         if (!isfinite(f->cand[i].offset) || !isfinite(f->cand[i].land) || !g ||
@@ -56,6 +56,9 @@ csStatus csz_harnessRun(const uint8_t* data, size_t size, csError* err) {
           csz_fail("foothold %d candidate %d", k, i);
         }
         land[i] = f->cand[i].land;
+        lo[i] = f->cand[i].lo;
+        hi[i] = f->cand[i].hi;
+        if (!(lo[i] <= land[i] && land[i] <= hi[i])) csz_fail("candidate %d outside its span", i);
       }
       for (int j = 0; j < k; j++) {
         if ((s->fh[j].legs & f->legs) && f->w0 < s->fh[j].w1) {
@@ -64,7 +67,7 @@ csStatus csz_harnessRun(const uint8_t* data, size_t size, csError* err) {
       }
       const double edges[2] = {240, 460};
       for (double delta = -100; delta <= 100; delta += 25) {
-        int c = csg_footholdChoose(f->ncand, land, f->nominal, delta, edges, 2, f->margin);
+        int c = csg_footholdChoose(f->ncand, land, lo, hi, f->nominal, delta, edges, 2, f->margin);
         if (c < 0 || c >= f->ncand) csz_fail("choice %d of %d candidates", c, f->ncand);
       }
     }

@@ -21,10 +21,11 @@ static void test_hipAheadKeepsThePlannedLanding(void) {
     land[i] = 300 + offset[i] + 10;
   }
   const double edges[2] = {240, 460};
-  CS_EXPECT(csg_footholdChoose(5, land, 3, 0.0, edges, 2, 25) == 3);      /* on plan */
-  CS_EXPECT(csg_footholdChoose(5, land, 3, 30.0, edges, 2, 25) == 0);     /* 30 ahead: 30 - 30 */
-  CS_EXPECT(csg_footholdChoose(5, land, 3, -10.0, edges, 2, 25) == 4);    /* 10 behind: 40 */
-  CS_EXPECT(csg_footholdChoose(5, land, 3, 20.0, edges, 2, 25) == 1);     /* 20 ahead: 10 */
+  /* on plan: the plan's 30; 30 ahead: 30 - 30; 10 behind: 40; 20 ahead: 10 */
+  CS_EXPECT(csg_footholdChoose(5, land, NULL, NULL, 3, 0.0, edges, 2, 25) == 3);
+  CS_EXPECT(csg_footholdChoose(5, land, NULL, NULL, 3, 30.0, edges, 2, 25) == 0);
+  CS_EXPECT(csg_footholdChoose(5, land, NULL, NULL, 3, -10.0, edges, 2, 25) == 4);
+  CS_EXPECT(csg_footholdChoose(5, land, NULL, NULL, 3, 20.0, edges, 2, 25) == 1);
 }
 
 
@@ -32,29 +33,32 @@ static void test_hipAheadKeepsThePlannedLanding(void) {
 static void test_edgeBetweenTakesTheFurther(void) {
   const double land[2] = {228, 255}; /* 12 before the riser at 240, 15 past it */
   const double edges[2] = {240, 460};
-  CS_EXPECT(csg_footholdChoose(2, land, 0, 0.0, edges, 2, 25) == 1);
+  CS_EXPECT(csg_footholdChoose(2, land, NULL, NULL, 0, 0.0, edges, 2, 25) == 1);
   const double land2[2] = {222, 250}; /* 18 before, 10 past */
-  CS_EXPECT(csg_footholdChoose(2, land2, 1, 0.0, edges, 2, 25) == 0);
+  CS_EXPECT(csg_footholdChoose(2, land2, NULL, NULL, 1, 0.0, edges, 2, 25) == 0);
 }
 
 
-/* a landing carried across an edge by the shift is refused (its stance length was designed
- * for the other side), and without edges the plan's landing is kept */
-static void test_crossingAndNoEdges(void) {
+/* a landing its stance length does not suit is refused (the span it fits), and without edges
+ * the plan's landing is kept */
+static void test_fitsAndNoEdges(void) {
   const double land[3] = {200, 215, 270}; /* road, road, plateau */
+  const double lo[3] = {-1e6, -1e6, 240}, hi[3] = {240, 240, 460};
   const double edges[2] = {240, 460};
-  /* 30 ahead: 215 -> 245 crosses the riser (clearance -5), 200 -> 230 keeps 10, 270 -> 300
-   * keeps 60: the nearest to the plan's 215 among those keeping 10 mm is 200's (230) */
-  CS_EXPECT(csg_footholdChoose(3, land, 1, 30.0, edges, 2, 10) == 0);
-  /* a margin none keeps: the largest clearance (270 -> 300, 60 mm) */
-  CS_EXPECT(csg_footholdChoose(3, land, 1, 30.0, edges, 2, 100) == 2);
-  CS_EXPECT(csg_footholdChoose(3, land, 1, 30.0, NULL, 0, 25) == 0);
-  CS_EXPECT(csg_footholdChoose(3, land, 1, 0.0, NULL, 0, 25) == 1);
+  /* 30 ahead: 215 -> 245 is past the riser with a road length (does not fit), 200 -> 230
+   * keeps 10, 270 -> 300 keeps 60: the nearest to the plan's 215 keeping 10 mm is 200's (230) */
+  CS_EXPECT(csg_footholdChoose(3, land, lo, hi, 1, 30.0, edges, 2, 10) == 0);
+  /* a margin none keeps: the fitting one of largest clearance (270 -> 300, 60 mm) */
+  CS_EXPECT(csg_footholdChoose(3, land, lo, hi, 1, 30.0, edges, 2, 100) == 2);
+  /* none fits (all shifted 300 mm): the largest clearance */
+  CS_EXPECT(csg_footholdChoose(3, land, lo, hi, 1, 300.0, edges, 2, 10) == 2);
+  CS_EXPECT(csg_footholdChoose(3, land, lo, hi, 1, 30.0, NULL, 0, 25) == 0);
+  CS_EXPECT(csg_footholdChoose(3, land, lo, hi, 1, 0.0, NULL, 0, 25) == 1);
   /* bad arguments */
-  CS_EXPECT(csg_footholdChoose(0, land, 0, 0.0, edges, 2, 25) == -1);
-  CS_EXPECT(csg_footholdChoose(3, land, 3, 0.0, edges, 2, 25) == -1);
-  CS_EXPECT(csg_footholdChoose(3, land, 1, NAN, edges, 2, 25) == -1);
-  CS_EXPECT(csg_footholdChoose(3, NULL, 1, 0.0, edges, 2, 25) == -1);
+  CS_EXPECT(csg_footholdChoose(0, land, lo, hi, 0, 0.0, edges, 2, 25) == -1);
+  CS_EXPECT(csg_footholdChoose(3, land, lo, hi, 3, 0.0, edges, 2, 25) == -1);
+  CS_EXPECT(csg_footholdChoose(3, land, lo, hi, 1, NAN, edges, 2, 25) == -1);
+  CS_EXPECT(csg_footholdChoose(3, NULL, lo, hi, 1, 0.0, edges, 2, 25) == -1);
 }
 
 
@@ -78,8 +82,8 @@ static void test_readGood(void) {
   writeTables();
   writeText("fh_good.foothold", "# two candidates\n\n"
             "foothold 1 DH xplan 90 margin 25 window 1 3\n"
-            "candidate 0 land 200 fh_c0.csv\n"
-            "candidate 10 land 210 fh_c1.csv nominal  # the plan's\n");
+            "candidate 0 land 200 fits -1000 240 fh_c0.csv\n"
+            "candidate 10 land 210 fits -1000 240 fh_c1.csv nominal  # the plan's\n");
   csError err;
   cs_errorClear(&err);
   csgFootholdSet* s = csg_footholdRead("fh_good.foothold", NULL, &err);
@@ -90,7 +94,8 @@ static void test_readGood(void) {
     CS_EXPECT(f->legs == ((1u << 3) | (1u << 7)));
     CS_EXPECT(f->ncand == 2 && f->nominal == 1);
     CS_EXPECT(f->t == 1 && f->xplan == 90 && f->margin == 25 && f->w0 == 1 && f->w1 == 3);
-    CS_EXPECT(f->cand[1].offset == 10 && f->cand[1].land == 210);
+    CS_EXPECT(f->cand[1].offset == 10 && f->cand[1].land == 210 && f->cand[1].lo == -1000 &&
+              f->cand[1].hi == 240);
     CS_EXPECT(f->cand[1].table && f->cand[1].table->nrow == 4);
   } else {
     fprintf(stderr, "  %s\n", err.msg);
@@ -131,22 +136,25 @@ static void test_readBad(void) {
             "not a finite number");
   expectBad("fh_b5.foothold", "foothold 2 DH xplan 9 margin 25 window 1 3\n", CS_ERR_RANGE, 1,
             "T <= W0 < W1");
-  expectBad("fh_b6.foothold", "candidate 0 land 200 fh_c0.csv\n", CS_ERR_PARSE, 1,
+  expectBad("fh_b6.foothold", "candidate 0 land 200 fits -1000 1000 fh_c0.csv\n", CS_ERR_PARSE, 1,
             "before any 'foothold'");
-  snprintf(text, sizeof text, "%scandidate 0 land 200 fh_c0.csv\n", f1);
+  snprintf(text, sizeof text, "%scandidate 0 land 200 fits -1000 1000 fh_c0.csv\n", f1);
   expectBad("fh_b7.foothold", text, CS_ERR_PARSE, 2, "no nominal candidate");
-  snprintf(text, sizeof text, "%scandidate 0 land 200 fh_none.csv nominal\n", f1);
+  snprintf(text, sizeof text, "%scandidate 0 land 200 fits -1000 1000 fh_none.csv nominal\n", f1);
   expectBad("fh_b8.foothold", text, CS_ERR_IO, 2, "candidate table");
-  snprintf(text, sizeof text, "%scandidate 0 land 200 fh_c0.csv nominal\n"
-           "candidate 1 land 201 fh_c1.csv nominal\n", f1);
+  snprintf(text, sizeof text, "%scandidate 0 land 200 fits -1000 1000 fh_c0.csv nominal\n"
+           "candidate 1 land 201 fits -1000 1000 fh_c1.csv nominal\n", f1);
   expectBad("fh_b9.foothold", text, CS_ERR_PARSE, 3, "second nominal");
   expectBad("fh_b10.foothold", "foothold 0.5 DH xplan 9 margin 25 window 0.5 5\n"
-            "candidate 0 land 200 fh_c0.csv nominal\n", CS_ERR_RANGE, 2, "not the window");
-  snprintf(text, sizeof text, "%scandidate 0 land 200 fh_c0.csv nominal\n"
+            "candidate 0 land 200 fits -1000 1000 fh_c0.csv nominal\n", CS_ERR_RANGE, 2,
+            "not the window");
+  snprintf(text, sizeof text, "%scandidate 0 land 200 fits -1000 1000 fh_c0.csv nominal\n"
            "foothold 1.5 H xplan 9 margin 25 window 2 3\n", f1);
   expectBad("fh_b11.foothold", text, CS_ERR_RANGE, 3, "overlaps");
-  snprintf(text, sizeof text, "%scandidate 0 land x fh_c0.csv nominal\n", f1);
+  snprintf(text, sizeof text, "%scandidate 0 land x fits -1000 1000 fh_c0.csv nominal\n", f1);
   expectBad("fh_b12.foothold", text, CS_ERR_PARSE, 2, "finite numbers");
+  snprintf(text, sizeof text, "%scandidate 0 land 300 fits 0 240 fh_c0.csv nominal\n", f1);
+  expectBad("fh_b14.foothold", text, CS_ERR_RANGE, 2, "outside the span");
   expectBad("fh_b13.foothold", "# nothing\n", CS_ERR_PARSE, 1, "no foothold");
 }
 
@@ -155,7 +163,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_hipAheadKeepsThePlannedLanding);
   CS_RUN(test_edgeBetweenTakesTheFurther);
-  CS_RUN(test_crossingAndNoEdges);
+  CS_RUN(test_fitsAndNoEdges);
   CS_RUN(test_readGood);
   CS_RUN(test_readBad);
   return cs_testSummary();
