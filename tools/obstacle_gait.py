@@ -122,6 +122,9 @@ ap.add_argument('--foothold-out', default=None, metavar='NAME',
                 'into NAME.foothold.d/, and write the companion NAME.foothold (needs -o FILE; '
                 '--crawlsim names the binary)')
 ap.add_argument('--crawlsim', default='build/tools/crawlsim', help='the binary for --foothold-out')
+ap.add_argument('--design-cache', default=None, metavar='DIR',
+                help='with --foothold-out: keep each designed candidate table in DIR and reuse it '
+                'for the same statements (a rerun with other footholds designs only what is new)')
 a = ap.parse_args()
 DC = a.D if a.Dclimb is None else a.Dclimb
 
@@ -743,15 +746,31 @@ if missing:
              ', '.join('%s:%d' % k for k in sorted(missing)))
 
 
-def design(gait, csv):
-    """crawlsim gait design on the mission's table (as the shipped gait is designed)"""
+def design(gait, csv, cache=None):
+    """crawlsim gait design on the mission's table (as the shipped gait is designed); cache: a
+    folder of tables already designed, keyed by the description's statements (its comments
+    and `foothold` lines, which change no row, left out)"""
+    import hashlib
+    import os
+    import shutil
     import subprocess
+    key = None
+    if cache:
+        body = ''.join(ln for ln in open(gait) if not ln.startswith('#') and
+                       not ln.startswith('foothold '))
+        key = os.path.join(cache, hashlib.sha1(body.encode()).hexdigest() + '.csv')
+        if os.path.exists(key):
+            shutil.copyfile(key, csv)
+            return
     cmd = [a.crawlsim, 'gait', 'design', gait, '--stretch', '--calibration',
            'robot/calibration_fe_leg_modes_sym.h5', '--cal-rule', 'rbf-pair', '--p-max', '0.4',
            '--out', csv]
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if r.returncode != 0:
         sys.exit('obstacle_gait.py: %s failed: %s' % (' '.join(cmd), r.stdout.strip()[-300:]))
+    if key:
+        os.makedirs(cache, exist_ok=True)
+        shutil.copyfile(csv, key)
 
 
 def read_csv(path):
@@ -800,7 +819,7 @@ if a.foothold_out:
             spec = '%s:%d:%g' % (f['legs'], f['cycle'], o)
             subprocess.run([sys.executable, sys.argv[0]] + argv + ['--force', spec, '-o', var],
                            check=True)
-            design(var, os.path.join(folder, 'var.csv'))
+            design(var, os.path.join(folder, 'var.csv'), a.design_cache)
             h2, rows = read_csv(os.path.join(folder, 'var.csv'))
             if h2 != head or [r[0] for r in rows] != [r[0] for r in nom]:
                 sys.exit('obstacle_gait.py: candidate %s: its rows are not at the nominal '
