@@ -122,6 +122,12 @@ ap.add_argument('--foothold-out', default=None, metavar='NAME',
                 'into NAME.foothold.d/, and write the companion NAME.foothold (needs -o FILE; '
                 '--crawlsim names the binary)')
 ap.add_argument('--crawlsim', default='build/tools/crawlsim', help='the binary for --foothold-out')
+ap.add_argument('--low-slot', type=int, default=None, metavar='S',
+                help='rule 10 starts at walk slot S whatever the landings (--foothold-out gives each '
+                'candidate the nominal plan\'s slot: a foothold changes its own legs only)')
+ap.add_argument('--foothold-reuse', action='store_true',
+                help='with --foothold-out: a foothold whose candidate tables are all in '
+                'NAME.foothold.d already keeps them (not designed again)')
 ap.add_argument('--design-cache', default=None, metavar='DIR',
                 help='with --foothold-out: keep each designed candidate table in DIR and reuse it '
                 'for the same statements (a rerun with other footholds designs only what is new)')
@@ -535,8 +541,9 @@ for l in OFF:
 for s in range(NS):
     t0 = T0[s]
     pair = PAIRS[s % 4]
-    if a.rise_low is not None and LOW[0] is None and all(state[l][0] == 'G' for l in OFF) \
-            and XP[s] > EDGES[1] - START:
+    if a.rise_low is not None and LOW[0] is None and (
+            s == a.low_slot if a.low_slot is not None else
+            all(state[l][0] == 'G' for l in OFF) and XP[s] > EDGES[1] - START):
         # rule 10: every foot stands on the road past the step: come down from here
         LOW[0] = s
         comment('# from %.2f s every foot stands on the road: the walk comes down from %g to '
@@ -791,7 +798,8 @@ if a.foothold_out:
     name = a.foothold_out
     folder = name + '.foothold.d'
     os.makedirs(folder, exist_ok=True)
-    design(a.out, name + '.csv')
+    if not (a.foothold_reuse and os.path.exists(name + '.csv')):
+        design(a.out, name + '.csv')
     head, nom = read_csv(name + '.csv')
     argv = []
     skip = False
@@ -811,13 +819,32 @@ if a.foothold_out:
     for k, f in enumerate(FHINFO):
         cols = [i for i, h in enumerate(head) if h[:1] in f['legs']]
         tables = {}
+        names = ['f%d_%s_%g.csv' % (k + 1, f['legs'], o) for o in f['offsets']]
+        if a.foothold_reuse and all(os.path.exists(os.path.join(folder, n)) for n in names):
+            # --foothold-reuse: this foothold's candidates are in the folder (a rerun that adds
+            # footholds after it): its window from them (the rows kept: one before the window,
+            # then to its end)
+            rows = [ln.split(',') for ln in open(os.path.join(folder, names[0]))
+                    if ln.strip() and not ln.startswith('#')][1:]
+            index.append('# %s in cycle %d: the plan\'s offset %g mm (nominal)\n'
+                         'foothold %.4f %s xplan %.3f margin %g window %s %s\n'
+                         % (f['legs'], f['cycle'], f['r'], f['t'], f['legs'], f['xplan'],
+                            f['margin'], rows[1][0], rows[-1][0]))
+            for o, land, fn in zip(f['offsets'], f['lands'], names):
+                lo, hi = ((EDGES[0], EDGES[1] + BAND) if EDGES[0] < land < EDGES[1] + BAND else
+                          (-1e6, EDGES[0]) if land <= EDGES[0] else (EDGES[1] + BAND, 1e6))
+                index.append('candidate %g land %.3f fits %g %g %s/%s%s\n'
+                             % (o, land, lo, hi, os.path.basename(folder), fn,
+                                ' nominal' if abs(o - f['r']) < 1e-9 else ''))
+            continue
         for o in f['offsets']:
             if abs(o - f['r']) < 1e-9:
                 tables[o] = nom
                 continue
             var = os.path.join(folder, 'var.gait')
             spec = '%s:%d:%g' % (f['legs'], f['cycle'], o)
-            subprocess.run([sys.executable, sys.argv[0]] + argv + ['--force', spec, '-o', var],
+            low = [] if LOW[0] is None else ['--low-slot', str(LOW[0])]
+            subprocess.run([sys.executable, sys.argv[0]] + argv + low + ['--force', spec, '-o', var],
                            check=True)
             design(var, os.path.join(folder, 'var.csv'), a.design_cache)
             h2, rows = read_csv(os.path.join(folder, 'var.csv'))
