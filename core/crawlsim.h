@@ -52,6 +52,9 @@ typedef struct csRunDef {
                                 controller sets them (cs_simSetPressureCommand/Controller);
                                 cs_run needs t_end > 0 then. Counts as a user's file for the
                                 default conditions (earth) */
+  const char* foothold;      /* the gait's companion .foothold file (landings chosen from the
+                                measured support, gaits_foothold.h); NULL: the scene's (none
+                                today; never with a user's gait); "none": none */
   const char* conditions;    /* "earth" | "paper"; NULL: the scene's with its own files, earth
                                 with a user's terrain or gait */
   const char* legs;          /* leg level "rod" | "strain" | "rom" | "auto"; NULL: the scene's */

@@ -156,6 +156,10 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
   if (m->legs_auto_choice[0]) {
     logLine(def, "--legs auto picked %s", m->legs_auto_choice);
   }
+  if (m->foothold) {
+    logLine(def, "footholds %s: %d landings chosen from the measured support (%d terrain edges)",
+            plan->foothold, m->foothold->n, m->fh_nedge);
+  }
   double load, pcr;
   cs_modelStanceCheck(m, cs_robotMass(d), &load, &pcr);
   logLine(def, "stance check: %.2f N per leg on half the legs vs sway-buckling load %.2f N per "

@@ -615,6 +615,16 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   if (st == CS_OK && sf) st = cs_modelApplySceneFile(m, sf, err);
   free(sf);
   if (st != CS_OK) return st;
+  /* the gait's footholds: the option's file; none by default (no scene ships one) */
+  if (def->foothold && strcmp(def->foothold, "none") != 0) {
+    if (def->no_gait) {
+      return cs_errorSet(err, CS_ERR_ARG, "--foothold %s needs a gait table (no_gait is set)",
+                         def->foothold);
+    }
+    st = cs_modelLoadFoothold(m, def->foothold, err);
+    if (st != CS_OK) return st;
+    snprintf(plan->foothold, sizeof plan->foothold, "%s", def->foothold);
+  }
   if (!isnan(def->slope_deg)) m->terrain.slope_deg = def->slope_deg;
   if (m->gait) {
     csgGaitSummary gs;

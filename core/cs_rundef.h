@@ -19,6 +19,7 @@ typedef struct csRunPlan_ {
   const csScene* scene;           /* the built-in scene that gave the defaults */
   csConditionsSource cond_src;    /* where the conditions came from */
   char terrain[512], gait[512];   /* the files read ("" gait: none) */
+  char foothold[512];             /* the gait's .foothold file read ("": none) */
   char calibration[512];
 } csRunPlan;
 

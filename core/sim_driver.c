@@ -182,6 +182,8 @@ void cs_modelDestroy(csModel* m) {
   if (m) {
     csg_gaitDestroy(m->gait);
     m->gait = NULL;
+    csg_footholdDestroy(m->foothold);
+    m->foothold = NULL;
     csr_calibrationClose(m->calibration);
     m->calibration = NULL;
   }
@@ -192,7 +194,7 @@ void cs_modelDestroy(csModel* m) {
 static int pneumaticRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   csData* d = user;
   double pc[CSR_NCHAMBER_TOTAL];
-  if (cs_schedule(d->m, t, pc) != 0) {
+  if (cs_schedule(d->m, d, t, pc) != 0) {
     return -1; /* the pressure source failed: the step fails (cs_api.c says why) */
   }
   d->pn_count[1]++; /* cs_pneumaticCounts */
@@ -255,6 +257,9 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
     return NULL;
   }
   d->m = m;
+  for (int k = 0; k < CSG_FOOTHOLD_MAX; k++) {
+    d->fh_choice[k] = -1; /* not decided */
+  }
   /* QuickStep shuffles its constraint rows with ODE's one process-wide generator; each data
    * keeps its own seed, starting at 0, and puts it in for its steps only (cs_step), so a run's
    * result is independent of what else ran in the same process (the determinism test).

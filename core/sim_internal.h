@@ -107,6 +107,8 @@ struct csData_ {
   SUNContext sun;
   void* cvode;
   N_Vector y;
+  double fh_choice[CSG_FOOTHOLD_MAX]; /* the footholds' latched candidates (-1: not yet
+                                       decided), in the state after the coupling's block */
   long pn_count[2]; /* CVODE's internal steps and right-hand sides on the pressures so far
                        (cs_pneumaticCounts), across its restarts */
 };
@@ -116,9 +118,16 @@ struct csData_ {
 #define CS_MAX_SPLIT 4
 
 /* scheduled pressures at time t (zero before t = 0), 96 MPa: the model's pressure source if
- * it has one, else the gait table (sim_schedule.c). Returns 0, or -1 when the source failed
+ * it has one, else the gait table with its footholds' chosen candidates (sim_schedule.c,
+ * sim_foothold.c; a foothold reached at t is decided here, from d's state, which is the
+ * step's start wherever the schedule is asked). Returns 0, or -1 when the source failed
  * (p_cmd is then zero; the pneumatic integrator fails the step, cs_api.c checks the rest) */
-int cs_schedule(const csModel* m, double t, double* p_cmd);
+int cs_schedule(const csModel* m, csData* d, double t, double* p_cmd);
+
+/* the footholds' part of the schedule (sim_foothold.c): decides the footholds whose lift t
+ * has reached, then writes each open window's chosen candidate into its legs' columns of
+ * p_cmd (the table's command at t) */
+void cs_footholdApply(const csModel* m, csData* d, double t, double* p_cmd);
 
 /* ---- sim_coupling.c: the support interface of co-simulated legs ---- */
 

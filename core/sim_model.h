@@ -41,6 +41,7 @@
 #include "core_clock.h"
 #include "core_status.h"
 #include "gaits_csv.h"
+#include "gaits_foothold.h"
 #include "gaits_schedule.h"
 #include "robot_calibration.h"
 #include "robot_robot.h"
@@ -147,6 +148,12 @@ typedef struct csModel_ {
    * step; what the source returns is the caller's input (MuJoCo's mjcb_control). */
   csPressureSource pressure_source;
   void* pressure_ctx;
+  /* The gait's footholds (gaits_foothold.h; `--foothold`): NULL, none (the table alone). Each
+   * is decided once, from the state at the start of the first step that reaches its lift,
+   * and its choice is part of the state (cs_stateGet); the player is sim_foothold.c. */
+  csgFootholdSet* foothold;   /* owned */
+  int fh_nedge;
+  double fh_edge[2 * CST_MAX_BOXES]; /* mm, terrain x: the edges of the raised boxes */
 } csModel;
 
 /* Fill a model with the defaults of every part (no files read, no map yet): rod legs (the
@@ -194,7 +201,13 @@ double cs_modelMacroStep(const csModel* m);
 void cs_modelStanceCheck(const csModel* m, double mass_total, double* load_per_leg,
                          double* p_critical);
 
-/* Free what the model owns (gait, calibration). NULL-safe. */
+/* After cs_modelLoad with a gait: read the gait's companion .foothold file (gaits_foothold.h)
+ * into m->foothold and take the terrain's edges along x (the x ends of every box whose top
+ * stands above the lowest box top). Refused (CS_ERR_RANGE, naming the file) on a terrain
+ * turned or inclined (the footholds measure along the terrain's x) or without a gait. */
+csStatus cs_modelLoadFoothold(csModel* m, const char* path, csError* err);
+
+/* Free what the model owns (gait, calibration, footholds). NULL-safe. */
 void cs_modelDestroy(csModel* m);
 
 typedef struct csData_ csData; /* opaque: ODE world, robot, CVODE memory, state, timers */

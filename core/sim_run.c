@@ -11,7 +11,8 @@
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
  * macro_step_s, leg_step_s, leg_step_order (tree coupling), contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
- * rejected_steps, gain_projections (sim_coupling.c implicitPart) and per timer (sim_model.h
+ * rejected_steps, gain_projections (sim_coupling.c implicitPart), with footholds foothold_file
+ * and foothold_choices ("T LEGS OFFSET; ..."), and per timer (sim_model.h
  * CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
  * simulated second (core_h5.c: each flush writes the whole file image and renames it into
@@ -371,6 +372,29 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
   cs_h5AttrDouble(f, "/", "steps", (double)cs_stepCount(d), NULL);
   cs_h5AttrDouble(f, "/", "rejected_steps", (double)cs_rejectCount(d), NULL);
   cs_h5AttrDouble(f, "/", "gain_projections", (double)cs_gainProjectionCount(d), NULL);
+  if (m->foothold) {
+    /* what each foothold chose: "T LEGS OFFSET" per foothold ("-" while undecided) */
+    char fh[CS_H5_STATUS_SIZE] = "";
+    size_t len = 0;
+    for (int k = 0; k < m->foothold->n && len < sizeof fh; k++) {
+      const csgFoothold* o = &m->foothold->fh[k];
+      char legs[9];
+      int n = 0;
+      for (int l = 0; l < 8; l++) {
+        if (o->legs & (1u << l)) legs[n++] = (char)('A' + l);
+      }
+      legs[n] = '\0';
+      const int c = (int)d->fh_choice[k];
+      if (c >= 0) {
+        len += (size_t)snprintf(fh + len, sizeof fh - len, "%s%g %s %g", k ? "; " : "", o->t, legs,
+                                o->cand[c].offset);
+      } else {
+        len += (size_t)snprintf(fh + len, sizeof fh - len, "%s%g %s -", k ? "; " : "", o->t, legs);
+      }
+    }
+    cs_h5AttrString(f, "/", "foothold_file", m->foothold->source, NULL);
+    cs_h5AttrString(f, "/", "foothold_choices", fh, NULL);
+  }
   for (int k = 0; k < CS_NTIMER; k++) {
     char name[64];
     snprintf(name, sizeof name, "timer_%s_s", cs_timerName((csTimerId)k));

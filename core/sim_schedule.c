@@ -8,7 +8,7 @@
 #include "sim_internal.h"
 
 
-int cs_schedule(const csModel* m, double t, double* p_cmd) {
+int cs_schedule(const csModel* m, csData* d, double t, double* p_cmd) {
   if (t >= 0 && m->pressure_source) {
     if (m->pressure_source(m->pressure_ctx, t, p_cmd) == 0) {
       return 0;
@@ -21,5 +21,8 @@ int cs_schedule(const csModel* m, double t, double* p_cmd) {
     return 0;
   }
   csg_scheduleEval(m->gait, &m->sched, t, p_cmd);
+  if (m->foothold) {
+    cs_footholdApply(m, d, t, p_cmd);
+  }
   return 0;
 }

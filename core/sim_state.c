@@ -3,7 +3,8 @@
  * Layout: [0] t (s); [1] the data's ODE random seed (sim_internal.h); [2 .. 97] the 96 chamber pressures (MPa); then the
  * robot (csr_robotStateGet: support body, then legs A..H); with co-simulated legs, then the
  * coupling's block (CS_COSIM_STATE: what the Gauss-Seidel scheme carries from one macro step
- * to the next, sim_coupling.c). Restoring is bit-exact for every
+ * to the next, sim_coupling.c); with footholds (--foothold), one value per foothold: its
+ * latched candidate, -1 while undecided (sim_foothold.c). Restoring is bit-exact for every
  * part: the bodies through robot_odebody.h, the seed as the integer it is (ODE keeps it below
  * 2^32, exact in a double), the pressures by copy, and CVODE restarted from them. */
 #include <cvode/cvode.h>
@@ -19,20 +20,27 @@ enum { HEAD = 2 + CSR_NCHAMBER_TOTAL }; /* t, seed, pressures */
 #define SEED_LIMIT 4294967296.0
 
 
+/* the footholds' latches: one per foothold of the model */
+static int footholdCount(const csModel* m) { return m->foothold ? m->foothold->n : 0; }
+
+
 int cs_stateSize(const csModel* m, const csData* d) {
-  (void)m;
-  return HEAD + csr_robotStateSize(d->robot) + (d->cosim.active ? CS_COSIM_STATE : 0);
+  return HEAD + csr_robotStateSize(d->robot) + (d->cosim.active ? CS_COSIM_STATE : 0) +
+         footholdCount(m);
 }
 
 
 void cs_stateGet(const csModel* m, const csData* d, double* x) {
-  (void)m;
   x[0] = d->t;
   x[1] = (double)d->rng_seed;
   memcpy(x + 2, d->p, sizeof d->p);
   csr_robotStateGet(d->robot, x + HEAD);
   if (d->cosim.active) {
     cs_couplingStateGet(d, x + HEAD + csr_robotStateSize(d->robot));
+  }
+  const int nfh = footholdCount(m);
+  if (nfh > 0) {
+    memcpy(x + cs_stateSize(m, d) - nfh, d->fh_choice, sizeof(double) * (size_t)nfh);
   }
 }
 
@@ -52,6 +60,15 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   if (d->cosim.active && cs_couplingStateCheck(xc) != 0) {
     return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the coupling's part is not finite");
   }
+  const int nfh = footholdCount(m);
+  const double* xf = x + cs_stateSize(m, d) - nfh;
+  for (int k = 0; k < nfh; k++) {
+    if (!(xf[k] == -1 || (xf[k] >= 0 && xf[k] < m->foothold->fh[k].ncand &&
+                          xf[k] == floor(xf[k])))) {
+      return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: foothold %d's choice %g is not -1 or a "
+                         "candidate", k + 1, xf[k]);
+    }
+  }
   if (csr_robotStateSet(d->robot, x + HEAD) != 0) {
     return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the robot's part is not a state of this "
                        "robot (non-finite value or non-unit quaternion)");
@@ -59,10 +76,13 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   if (d->cosim.active) {
     cs_couplingStateSet(d, xc);
   }
+  if (nfh > 0) {
+    memcpy(d->fh_choice, xf, sizeof(double) * (size_t)nfh);
+  }
   d->t = x[0];
   d->rng_seed = (unsigned long)x[1];
   memcpy(d->p, x + 2, sizeof d->p);
-  cs_schedule(m, d->t, d->p_cmd);
+  cs_schedule(m, d, d->t, d->p_cmd);
   /* the pneumatic integrator restarts from the restored pressures (its step-size history is
    * not state, sim_model.h) */
   if (d->cvode) {

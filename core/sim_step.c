@@ -43,7 +43,7 @@ static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError
 
 static csStatus stageSchedule(const csModel* m, csData* d, double t1, csError* err) {
   (void)err;
-  cs_schedule(m, t1, d->p_cmd);
+  cs_schedule(m, d, t1, d->p_cmd);
   return CS_OK;
 }
 
@@ -53,7 +53,7 @@ static csStatus stageSchedule(const csModel* m, csData* d, double t1, csError* e
 static csStatus stagePneumatics(const csModel* m, csData* d, double t1, csError* err) {
   memcpy(d->p0, d->p, sizeof d->p0);
   if (m->opt.pneumatic_tau <= 0) {
-    cs_schedule(m, t1, d->p);
+    cs_schedule(m, d, t1, d->p);
     return CS_OK;
   }
   sunrealtype tret;

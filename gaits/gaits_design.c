@@ -344,6 +344,51 @@ static int posePeek(const csgDesign* d, const char* name) {
 }
 
 
+/* `foothold T LEGS OFFSETS [margin MM]` (gaits_design.h) */
+static csStatus statementFoothold(csgDesign* d, char** w, int nw, const char* path, int line,
+                                  csError* err) {
+  if (d->nfoothold >= CSG_DESIGN_MAX_FOOTHOLDS) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: more than %d footholds", path, line,
+                       CSG_DESIGN_MAX_FOOTHOLDS);
+  }
+  if ((nw != 4 && nw != 6) || (nw == 6 && strcmp(w[4], "margin"))) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'foothold' needs T LEGS OFFSETS [margin MM]",
+                       path, line);
+  }
+  csgDesignFoothold* f = &d->foothold[d->nfoothold];
+  memset(f, 0, sizeof *f);
+  f->line = line;
+  f->margin = 10;
+  if (!parseNumber(w[1], &f->t) || !(f->t >= 0 && f->t <= MAX_TIME_S) ||
+      (nw == 6 && (!parseNumber(w[5], &f->margin) || !(f->margin >= 0)))) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: foothold needs T in 0..%g s and a margin >= 0 "
+                       "mm", path, line, MAX_TIME_S);
+  }
+  csStatus st = parseLegs(w[2], &f->legs, path, line, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  const char* c = w[3];
+  while (*c) {
+    char* end;
+    const double v = strtod(c, &end);
+    if (end == c || !isfinite(v) || (*end && *end != ',') || (*end == ',' && !end[1]) ||
+        f->noffset >= CSG_DESIGN_MAX_OFFSETS) {
+      f->noffset = 0;
+      break;
+    }
+    f->offset[f->noffset++] = v;
+    c = *end ? end + 1 : end;
+  }
+  if (f->noffset == 0) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: OFFSETS '%.40s' must be 1..%d numbers (mm) "
+                       "separated by commas", path, line, w[3], CSG_DESIGN_MAX_OFFSETS);
+  }
+  d->nfoothold++;
+  return CS_OK;
+}
+
+
 csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
   memset(d, 0, sizeof *d);
   snprintf(d->source, sizeof d->source, "%s", path);
@@ -483,6 +528,8 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
       } else {
         st = parseLegs(w[1], &d->mirror, path, line, err);
       }
+    } else if (!strcmp(key, "foothold")) {
+      st = statementFoothold(d, w, nw, path, line, err);
     } else if (!strcmp(key, "end")) {
       if (nw != 2 || end_line) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'end' needs one time (s), once", path, line);
@@ -496,7 +543,7 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
       }
     } else {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.30s' (expected name, "
-                       "sample, pose, move, stride, phase, mirror, end)", path, line, key);
+                       "sample, pose, move, stride, phase, mirror, foothold, end)", path, line, key);
     }
   }
   if (st == CS_OK && got < 0) {

@@ -48,6 +48,16 @@
  *   phase START DURATION ROLE POSE [last POSE2] [linear|ease-in|ease-out]
  *                                      in every stride, the ROLE (swing | stand) legs move to
  *                                      POSE at START s into the stride (POSE2 in the last one)
+ *   foothold T LEGS OFFSETS [margin MM]
+ *                                      the step of LEGS lifting at T (s) is a foothold: its
+ *                                      landing is chosen during the run among the OFFSETS
+ *                                      (mm ahead of the hip, comma-separated) from where the
+ *                                      support stands, keeping MM (default 10) from the
+ *                                      terrain's edges (gaits_foothold.h). The table written
+ *                                      holds the plan's candidate; the candidates' tables and
+ *                                      the companion NAME.foothold come from the generator that
+ *                                      knows each offset's moves (tools/obstacle_gait.py
+ *                                      --foothold-out): this reader records and checks the line
  *   end T                              the table ends with a row at T (s) repeating the last
  *   mirror LEGS                        legs LEGS take every pose reflected across their own
  *                                      sagittal plane (e2 -> -e2: chambers Ω1<->Ω2, Ω3<->Ω4):
@@ -71,6 +81,8 @@ extern "C" {
 #define CSG_DESIGN_MAX_SETS 6
 #define CSG_DESIGN_MAX_MOVES 1024
 #define CSG_DESIGN_NAME 32
+#define CSG_DESIGN_MAX_FOOTHOLDS 16 /* gaits_foothold.h CSG_FOOTHOLD_MAX */
+#define CSG_DESIGN_MAX_OFFSETS 12   /* gaits_foothold.h CSG_FOOTHOLD_MAX_CAND */
 /* pose index of the built-in all-vented pose */
 #define CSG_POSE_STRAIGHT 0
 
@@ -122,6 +134,16 @@ typedef struct csgDesignMove_ {
   int line;                   /* the move or phase line it came from */
 } csgDesignMove;
 
+/* a `foothold` line */
+typedef struct csgDesignFoothold_ {
+  double t;                   /* s: the lift */
+  unsigned legs;
+  int noffset;
+  double offset[CSG_DESIGN_MAX_OFFSETS]; /* mm ahead of the hip */
+  double margin;              /* mm */
+  int line;
+} csgDesignFoothold;
+
 typedef struct csgDesign_ {
   char name[64];
   char source[256];
@@ -135,6 +157,8 @@ typedef struct csgDesign_ {
   int stride_n;               /* its number of strides */
   int nmove;                  /* sorted by t0 (stable), strides expanded */
   csgDesignMove move[CSG_DESIGN_MAX_MOVES];
+  int nfoothold;              /* `foothold` lines, in file order */
+  csgDesignFoothold foothold[CSG_DESIGN_MAX_FOOTHOLDS];
 } csgDesign;
 
 /* Read a description (format above) into *d (caller memory; it is large, ~76 KB: allocate it).

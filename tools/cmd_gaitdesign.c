@@ -435,6 +435,12 @@ static int executeDesign(const DesignDef* d, DesignResult* res, csError* err) {
              slash ? slash + 1 : out, g->nrow, g->time[g->nrow - 1], in);
   }
   fprintf(d->table, "%s\n%s\n", res->rows_line, posetext);
+  if (des->nfoothold > 0) {
+    /* the table holds the plan's candidates; the others need the generator (gaits_design.h) */
+    fprintf(d->table, "%d foothold line%s (the table holds the plan's landing; the candidates' "
+            "tables and NAME.foothold: tools/obstacle_gait.py --foothold-out)\n", des->nfoothold,
+            des->nfoothold > 1 ? "s" : "");
+  }
   rc = 0;
   if (check) {
     double t_end = isnan(d->check_t)

@@ -41,6 +41,9 @@ static const csxOpt kRunOpts[] = {
      "gaits/obstacle.csv)",
      "the gait table (docs/reference/formats.md); a gait of your own makes the default "
      "conditions earth"},
+    {"--foothold", "FILE|none", "none",
+     "the gait's companion .foothold file: the landings it lists are chosen during the run "
+     "from where the support stands (docs/reference/formats.md \"Foothold files\")"},
     {"--terrain", "FILE", "the scene's (terrains/flat_road.terrain, terrains/obstacle.terrain)",
      "the terrain file; a terrain of your own makes the default conditions earth"},
     {"--legs", "auto|rod|strain|rom", "rod",
@@ -126,6 +129,7 @@ static const struct {
     {"--scene", offsetof(csRunDef, scene), 0},
     {"--scene-file", offsetof(csRunDef, scene_file), 0},
     {"--gait", offsetof(csRunDef, gait), 0},
+    {"--foothold", offsetof(csRunDef, foothold), 0},
     {"--terrain", offsetof(csRunDef, terrain), 0},
     {"--legs", offsetof(csRunDef, legs), 0},
     {"--rom-file", offsetof(csRunDef, rom_file), 0},

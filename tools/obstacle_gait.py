@@ -108,8 +108,58 @@ ap.add_argument('--rmin', type=float, default=5.0,
 ap.add_argument('--rmax', type=float, default=45.0,
                 help='rule 12: the longest landing offset ahead of the hip when no offset of '
                 'rule 6 keeps --clear, mm')
+ap.add_argument('--foothold', action='append', default=[], metavar='LEGS:CYCLE:OFFSETS[:MARGIN]',
+                help='rule 15: the step of the pair LEGS (DH, CG, BF, AE) in walk cycle CYCLE (0-based) '
+                'is a foothold: its landing is chosen during the run among OFFSETS (mm ahead of the '
+                'hip, comma-separated; the plan\'s own offset is added) from the measured support, '
+                'keeping MARGIN mm (default 10) from the edges (a `foothold` line in the description; '
+                'gaits/gaits_foothold.h)')
+ap.add_argument('--force', action='append', default=[], metavar='LEGS:CYCLE:OFFSET',
+                help='the step of LEGS in walk cycle CYCLE lands OFFSET mm ahead of the hip whatever '
+                'rules 6 and 12 say (--foothold-out writes each candidate with it)')
+ap.add_argument('--foothold-out', default=None, metavar='NAME',
+                help='with --foothold: design -o\'s description into NAME.csv and every candidate '
+                'into NAME.foothold.d/, and write the companion NAME.foothold (needs -o FILE; '
+                '--crawlsim names the binary)')
+ap.add_argument('--crawlsim', default='build/tools/crawlsim', help='the binary for --foothold-out')
+ap.add_argument('--low-slot', type=int, default=None, metavar='S',
+                help='rule 10 starts at walk slot S whatever the landings (--foothold-out gives each '
+                'candidate the nominal plan\'s slot: a foothold changes its own legs only)')
+ap.add_argument('--foothold-reuse', action='store_true',
+                help='with --foothold-out: a foothold whose candidate tables are all in '
+                'NAME.foothold.d already keeps them (not designed again)')
+ap.add_argument('--design-cache', default=None, metavar='DIR',
+                help='with --foothold-out: keep each designed candidate table in DIR and reuse it '
+                'for the same statements (a rerun with other footholds designs only what is new)')
 a = ap.parse_args()
 DC = a.D if a.Dclimb is None else a.Dclimb
+
+
+def fh_spec(text, opt, nparts):
+    """LEGS:CYCLE:VALUES[:MARGIN] of --foothold / --force"""
+    p = text.split(':')
+    try:
+        if len(p) not in nparts or p[0] not in ('DH', 'CG', 'BF', 'AE') or int(p[1]) < 0:
+            raise ValueError
+        vals = tuple(float(v) for v in p[2].split(','))
+        margin = float(p[3]) if len(p) > 3 else 10.0
+    except (ValueError, IndexError):
+        sys.exit('obstacle_gait.py: %s %s: LEGS (DH, CG, BF or AE):CYCLE:OFFSETS%s' %
+                 (opt, text, '[:MARGIN]' if 4 in nparts else ''))
+    return (p[0], int(p[1])), vals, margin
+
+
+FH = {}           # (pair, cycle) -> (offsets, margin): rule 15's footholds
+for text in a.foothold:
+    key, vals, margin = fh_spec(text, '--foothold', (3, 4))
+    FH[key] = (vals, margin)
+FORCE = {}        # (pair, cycle) -> offset
+for text in a.force:
+    key, vals, _ = fh_spec(text, '--force', (3,))
+    FORCE[key] = vals[0]
+FHINFO = []       # per foothold: dict(t, legs, xplan, margin, plan r, offsets, lands)
+if a.foothold_out and (not FH or a.out == '-'):
+    sys.exit('obstacle_gait.py: --foothold-out needs --foothold and -o FILE')
 if DC <= 0 or a.settle < 0:
     sys.exit('obstacle_gait.py: --Dclimb takes a positive advance (mm), --settle a time >= 0 (s)')
 try:
@@ -361,17 +411,21 @@ def band_clear(x):
     return min(0.0 if lo <= e <= hi else min(abs(lo - e), abs(hi - e)) for e in EDGES)
 
 
-def plan(l, hipx):
-    """landing offset r and stance kind (G road / S step length) for a foot of hip x (terrain)"""
+def plan(l, hipx, force=None):
+    """landing offset r and stance kind (G road / S step length) for a foot of hip x (terrain);
+    force: the offset (--force), the kind then follows from its landing as rule 6 says"""
     best, bestm = None, -1.0
-    for r in PREF:
+    for r in (PREF if force is None else ()):
         m = min(abs(hipx + r + a.over - e) for e in EDGES)
         if m >= MARGIN:
             best, bestm = r, m
             break
         if m > bestm:
             best, bestm = r, m
-    if a.clear > 0 and hipx + best + a.over < EDGES[0] and \
+    if force is not None:
+        best = force
+        bestm = min(abs(hipx + best + a.over - e) for e in EDGES)
+    elif a.clear > 0 and hipx + best + a.over < EDGES[0] and \
             band_clear(hipx + best + a.over) < a.clear:
         # rule 12: a landing on the road before the riser (the failures of the 25 g and 75 g
         # runs) whose scatter band comes within --clear of an edge: take, among rule 6's
@@ -487,8 +541,9 @@ for l in OFF:
 for s in range(NS):
     t0 = T0[s]
     pair = PAIRS[s % 4]
-    if a.rise_low is not None and LOW[0] is None and all(state[l][0] == 'G' for l in OFF) \
-            and XP[s] > EDGES[1] - START:
+    if a.rise_low is not None and LOW[0] is None and (
+            s == a.low_slot if a.low_slot is not None else
+            all(state[l][0] == 'G' for l in OFF) and XP[s] > EDGES[1] - START):
         # rule 10: every foot stands on the road past the step: come down from here
         LOW[0] = s
         comment('# from %.2f s every foot stands on the road: the walk comes down from %g to '
@@ -502,7 +557,19 @@ for s in range(NS):
         off = r0 - STEP * (s - s0)
         stance(l, b, r0, s0, s)
         lift[l] = need('A', off)
-        r, b2 = plan(l, START + OFF[l] + XL[s + 1])
+        key = (pair, s // 4)
+        r, b2 = plan(l, START + OFF[l] + XL[s + 1], FORCE.get(key))
+        if key in FH and l == pair[0]:
+            # rule 15: a foothold: the plan's offset is the nominal candidate; each candidate's
+            # landing with the hips where the plan puts them (the player shifts it by how far
+            # the measured support stands from XP[s] at the lift)
+            offs, margin = FH[key]
+            offs = sorted(set(offs) | {float(r)})
+            FHINFO.append(dict(t=T0[s], legs=pair, cycle=s // 4, xplan=XP[s], margin=margin, r=r,
+                               offsets=offs, lands=[START + OFF[l] + XL[s + 1] + o + a.over
+                                                    for o in offs]))
+            comment('foothold %.4f %s %s margin %g' % (T0[s], pair, ','.join('%g' % o for o in offs),
+                                                      margin))
         air[l] = need('A', r)
         lnd[l] = need(skind(b2, s + 1), r)
         state[l] = [b2, float(r)]
@@ -679,3 +746,144 @@ if a.out == '-':
 else:
     with open(a.out, 'w') as f:
         f.write(text)
+
+missing = set(FH) - {(f['legs'], f['cycle']) for f in FHINFO}
+if missing:
+    sys.exit('obstacle_gait.py: --foothold %s: no such step in the walk' %
+             ', '.join('%s:%d' % k for k in sorted(missing)))
+
+
+def design(gait, csv, cache=None):
+    """crawlsim gait design on the mission's table (as the shipped gait is designed); cache: a
+    folder of tables already designed, keyed by the description's statements (its comments
+    and `foothold` lines, which change no row, left out)"""
+    import hashlib
+    import os
+    import shutil
+    import subprocess
+    key = None
+    if cache:
+        body = ''.join(ln for ln in open(gait) if not ln.startswith('#') and
+                       not ln.startswith('foothold '))
+        key = os.path.join(cache, hashlib.sha1(body.encode()).hexdigest() + '.csv')
+        if os.path.exists(key):
+            shutil.copyfile(key, csv)
+            return
+    cmd = [a.crawlsim, 'gait', 'design', gait, '--stretch', '--calibration',
+           'robot/calibration_fe_leg_modes_sym.h5', '--cal-rule', 'rbf-pair', '--p-max', '0.4',
+           '--out', csv]
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if r.returncode != 0:
+        sys.exit('obstacle_gait.py: %s failed: %s' % (' '.join(cmd), r.stdout.strip()[-300:]))
+    if key:
+        os.makedirs(cache, exist_ok=True)
+        shutil.copyfile(csv, key)
+
+
+def read_csv(path):
+    """(header, rows as (time text, fields)) of a gait CSV, comments dropped"""
+    lines = [ln.rstrip('\n') for ln in open(path) if ln.strip() and not ln.startswith('#')]
+    head = lines[0].split(',')
+    rows = [ln.split(',') for ln in lines[1:]]
+    return head, rows
+
+
+if a.foothold_out:
+    # rule 15's companion: every candidate designed as a whole gait with its offset forced,
+    # compared with the nominal table: its legs' columns over the rows where any candidate
+    # differs (one row before, two after: the schedule's ramp at a row reads the row before it
+    # and the time of the row after, gaits_schedule.h) into NAME.foothold.d/, and the index
+    import os
+    import subprocess
+    name = a.foothold_out
+    folder = name + '.foothold.d'
+    os.makedirs(folder, exist_ok=True)
+    if not (a.foothold_reuse and os.path.exists(name + '.csv')):
+        design(a.out, name + '.csv')
+    head, nom = read_csv(name + '.csv')
+    argv = []
+    skip = False
+    for x in sys.argv[1:]:
+        if skip:
+            skip = False
+            continue
+        if x in ('-o', '--out', '--foothold-out'):
+            skip = True
+            continue
+        if x.startswith('--out=') or x.startswith('--foothold-out='):
+            continue
+        argv.append(x)
+    index = ['# %s.foothold: the landings of %s.csv chosen during the run from the measured '
+             'support\n# (gaits/gaits_foothold.h), written by tools/obstacle_gait.py rule 15 with\n'
+             '#   %s\n' % (os.path.basename(name), os.path.basename(name), ' '.join(argv))]
+    for k, f in enumerate(FHINFO):
+        cols = [i for i, h in enumerate(head) if h[:1] in f['legs']]
+        tables = {}
+        names = ['f%d_%s_%g.csv' % (k + 1, f['legs'], o) for o in f['offsets']]
+        if a.foothold_reuse and all(os.path.exists(os.path.join(folder, n)) for n in names):
+            # --foothold-reuse: this foothold's candidates are in the folder (a rerun that adds
+            # footholds after it): its window from them (the rows kept: one before the window,
+            # then to its end)
+            rows = [ln.split(',') for ln in open(os.path.join(folder, names[0]))
+                    if ln.strip() and not ln.startswith('#')][1:]
+            index.append('# %s in cycle %d: the plan\'s offset %g mm (nominal)\n'
+                         'foothold %.4f %s xplan %.3f margin %g window %s %s\n'
+                         % (f['legs'], f['cycle'], f['r'], f['t'], f['legs'], f['xplan'],
+                            f['margin'], rows[1][0], rows[-1][0]))
+            for o, land, fn in zip(f['offsets'], f['lands'], names):
+                lo, hi = ((EDGES[0], EDGES[1] + BAND) if EDGES[0] < land < EDGES[1] + BAND else
+                          (-1e6, EDGES[0]) if land <= EDGES[0] else (EDGES[1] + BAND, 1e6))
+                index.append('candidate %g land %.3f fits %g %g %s/%s%s\n'
+                             % (o, land, lo, hi, os.path.basename(folder), fn,
+                                ' nominal' if abs(o - f['r']) < 1e-9 else ''))
+            continue
+        for o in f['offsets']:
+            if abs(o - f['r']) < 1e-9:
+                tables[o] = nom
+                continue
+            var = os.path.join(folder, 'var.gait')
+            spec = '%s:%d:%g' % (f['legs'], f['cycle'], o)
+            low = [] if LOW[0] is None else ['--low-slot', str(LOW[0])]
+            subprocess.run([sys.executable, sys.argv[0]] + argv + low + ['--force', spec, '-o', var],
+                           check=True)
+            design(var, os.path.join(folder, 'var.csv'), a.design_cache)
+            h2, rows = read_csv(os.path.join(folder, 'var.csv'))
+            if h2 != head or [r[0] for r in rows] != [r[0] for r in nom]:
+                sys.exit('obstacle_gait.py: candidate %s: its rows are not at the nominal '
+                         'table\'s times' % spec)
+            for i, (r1, r0) in enumerate(zip(rows, nom)):
+                if any(r1[c] != r0[c] for c in range(1, len(head)) if c not in cols):
+                    sys.exit('obstacle_gait.py: candidate %s changes other legs (row %d)' % (spec, i))
+            tables[o] = rows
+            os.remove(var)
+            os.remove(os.path.join(folder, 'var.csv'))
+        diff = [i for i in range(len(nom)) if any(tables[o][i][c] != nom[i][c]
+                                                  for o in tables for c in cols)]
+        if not diff:
+            sys.exit('obstacle_gait.py: the candidates of foothold %s:%d do not differ'
+                     % (f['legs'], f['cycle']))
+        i0, i1 = max(0, diff[0] - 1), min(len(nom) - 1, diff[-1] + 2)
+        w0, w1 = float(nom[diff[0]][0]), float(nom[i1][0])
+        if w0 < f['t']:
+            sys.exit('obstacle_gait.py: foothold %s:%d differs before its lift' % (f['legs'], f['cycle']))
+        index.append('# %s in cycle %d: the plan\'s offset %g mm (nominal)\n'
+                     'foothold %.4f %s xplan %.3f margin %g window %s %s\n'
+                     % (f['legs'], f['cycle'], f['r'], f['t'], f['legs'], f['xplan'], f['margin'],
+                        nom[diff[0]][0], nom[i1][0]))
+        for o, land in zip(f['offsets'], f['lands']):
+            fn = 'f%d_%s_%g.csv' % (k + 1, f['legs'], o)
+            with open(os.path.join(folder, fn), 'w') as out_f:
+                out_f.write('# candidate %g mm of foothold %d (%s, lift %.4f s): its legs\' rows '
+                            'over %g..%g s\n' % (o, k + 1, f['legs'], f['t'], w0, w1))
+                out_f.write(','.join(head[c] for c in [0] + cols) + '\n')
+                for i in range(i0, i1 + 1):
+                    out_f.write(','.join(tables[o][i][c] for c in [0] + cols) + '\n')
+            # the landings its stance length suits (rule 6): the step's length from the riser
+            # to BAND past the down edge, the road's on either side
+            lo, hi = ((EDGES[0], EDGES[1] + BAND) if EDGES[0] < land < EDGES[1] + BAND else
+                      (-1e6, EDGES[0]) if land <= EDGES[0] else (EDGES[1] + BAND, 1e6))
+            index.append('candidate %g land %.3f fits %g %g %s/%s%s\n'
+                         % (o, land, lo, hi, os.path.basename(folder), fn,
+                            ' nominal' if abs(o - f['r']) < 1e-9 else ''))
+    with open(name + '.foothold', 'w') as out_f:
+        out_f.write(''.join(index))

@@ -161,6 +161,17 @@ static void test_badDesigns(void) {
   expectBadDesign(t, 3, "role 'walk' is not swing or stand");
   snprintf(t, sizeof t, "%sstride 2 1 0 ACFH ABDE\n", pose);
   expectBadDesign(t, 2, "the two leg sets of a stride share legs");
+  /* the foothold line (gaits_design.h): its words, legs, offsets and margin */
+  snprintf(t, sizeof t, "%sfoothold 1 DH\n", pose);
+  expectBadDesign(t, 2, "'foothold' needs T LEGS OFFSETS [margin MM]");
+  snprintf(t, sizeof t, "%sfoothold 1 DX 0,10\n", pose);
+  expectBadDesign(t, 2, "leg set 'DX': 'X' is not a leg A..H");
+  snprintf(t, sizeof t, "%sfoothold 1 DH 0,,10\n", pose);
+  expectBadDesign(t, 2, "OFFSETS '0,,10' must be 1..12 numbers (mm) separated by commas");
+  snprintf(t, sizeof t, "%sfoothold 1 DH 0,10 margin -1\n", pose);
+  expectBadDesign(t, 2, "foothold needs T in 0..");
+  snprintf(t, sizeof t, "%sfoothold 1 DH 0,10 width 3\n", pose);
+  expectBadDesign(t, 2, "'foothold' needs T LEGS OFFSETS [margin MM]");
   snprintf(t, sizeof t, "%smove 0 1 A S\nend 0.5\n", pose);
   expectBadDesign(t, 3, "end 0.5 s is before the last move ends (1 s)");
   expectBadDesign(pose, 1, "end of file without a 'move'");
