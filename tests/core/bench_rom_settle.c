@@ -4,8 +4,9 @@
  *
  *   bench_rom_settle LEG.h5 STEPS [COUPLING [DT_S [MACRO]]]
  *
- * The scene as test_run_rom: no gait, earth, the short leg (S = 15 mm), the provisional
- * calibration from $CS_SOURCE_DIR. Time starts at -settle (the driver's), the steps are
+ * The scene as test_run_rom: no gait, earth, the legs' segments S from CRAWLSIM_ROM_LEG_S (mm,
+ * default 15: the short leg; 50 for the robot's own leg), the provisional calibration from
+ * $CS_SOURCE_DIR. Time starts at -settle (the driver's), the steps are
  * cs_step's macro steps from the built robot (0.5 mm above the ground). CS_BENCH_CARRY=0: the
  * Gauss-Seidel scheme without its impulse carry (csOptions.coupling_carry). */
 #include <math.h>
@@ -31,7 +32,13 @@ int main(int argc, char** argv) {
   const char* src = getenv("CS_SOURCE_DIR");
   char cal[600];
   snprintf(cal, sizeof cal, "%s/robot/calibration_provisional.txt", src ? src : ".");
-  const char* sets[3] = {"S1=15", "S2=15", "S3=15"};
+  const char* es = getenv("CRAWLSIM_ROM_LEG_S");
+  const double S = es ? atof(es) : 15.0;
+  char s1[32], s2[32], s3[32];
+  snprintf(s1, sizeof s1, "S1=%g", S);
+  snprintf(s2, sizeof s2, "S2=%g", S);
+  snprintf(s3, sizeof s3, "S3=%g", S);
+  const char* sets[3] = {s1, s2, s3};
   csRunDef def = cs_defaultRunDef();
   def.legs = "rom";
   def.rom_file = argv[1];
