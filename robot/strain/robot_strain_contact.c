@@ -238,6 +238,43 @@ static void perturb(const csrStrainModel* m, int s, cscShapeState* st, int c, do
 }
 
 
+/* K_y, C_y (6 x 6 each, row-major: the load's derivatives along the shape's 6 pose and 6 rate
+ * coordinates of perturb) of shape s at state st, where the law's load is L0. The foot's come
+ * from the law's own derivatives (contact_soft_jac.c, within 1e-8 of central differences in
+ * test_contact_soft_jac): one evaluation in place of 12 and exact where differences err by
+ * delta / w; the shapes and terrains it does not cover (capsules, a heightfield, friction per
+ * surface) by forward differences from L0, half the evaluations of central ones: their error is
+ * delta / w relative where the law bends over a width w (its 1e-3 mm onset: 1e-4), which slows
+ * the Newton passes negligibly (test_strain_friction holds creep and Coulomb). The differences
+ * bypass the memo (lawLoad): a perturbed state is never asked again. */
+static void shapeTangent(const csrStrainModel* m, csrStrainData* d, int s,
+                         const cscShapeState* st, const double L0[6], double Ky[36],
+                         double Cy[36]) {
+  const int foot = s == m->nshape - 1;
+  if (foot) {
+    int off, cnt;
+    csc_softShapeState(m->soft, s, &off, &cnt);
+    double Lj[6];
+    if (csc_softShapeJacobian(m->soft, s, st, d->z + off, Lj, Ky, Cy) == 0) {
+      return;
+    }
+  }
+  for (int c = 0; c < 12; c++) {
+    double del = c < 3 ? CSR_STRAIN_CFD_X
+                       : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
+                                : CSR_STRAIN_CFD_V);
+    cscShapeState sp = *st;
+    perturb(m, s, &sp, c, del);
+    double Lp[6];
+    lawLoad(m, d, s, &sp, Lp, NULL, NULL);
+    double* D = c < 6 ? Ky : Cy;
+    for (int r = 0; r < 6; r++) {
+      D[6 * r + c % 6] = (Lp[r] - L0[r]) / del;
+    }
+  }
+}
+
+
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G) {
   const int n = m->n, nu = 6 + n;
   const double* J = d->J + (size_t)p * 6 * n;
@@ -435,20 +472,7 @@ int csr_strainGhostStart_(const csrStrainModel* m, csrStrainData* d) {
     if (loadZero(L0, couple)) {
       continue;
     }
-    for (int c = 0; c < 12; c++) {
-      const int foot = s == m->nshape - 1;
-      double del = c < 3 ? CSR_STRAIN_CFD_X
-                         : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
-                                  : CSR_STRAIN_CFD_V);
-      cscShapeState sp = st;
-      perturb(m, s, &sp, c, del);
-      double Lp[6];
-      lawLoad(m, d, s, &sp, Lp, NULL, NULL);
-      double* D = c < 6 ? g->K : g->C;
-      for (int r = 0; r < 6; r++) {
-        D[6 * r + c % 6] = (Lp[r] - L0[r]) / del;
-      }
-    }
+    shapeTangent(m, d, s, &st, L0, g->K, g->C);
     g->y = st;
     memcpy(g->L, L0, sizeof g->L);
     g->state = 1;
@@ -582,38 +606,10 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     csr_strainPointG_(m, d, b, Gb);
     worldRows(m, d, a, 0, Ga, S);
     worldRows(m, d, foot ? a : b, foot ? 1 : 0, foot ? Ga : Gb, S + 3 * nu);
-    /* K_y, C_y by forward differences from L0 (the load at this very state), half the law
-     * evaluations of central differences: their error is δ/w relative where the law bends
-     * over a width w (its 1e-3 mm onset: 1e-4), which slows the Newton passes negligibly and
-     * in one pass moves the step by that fraction of the contact's linear part
-     * (test_strain_friction holds creep and Coulomb) */
+    /* K_y, C_y at this very state (shapeTangent); a ghost keeps its own */
     double Ky[36], Cy[36];
-    /* the foot's K_y, C_y from the law's own derivatives (contact_soft_jac.c, within 1e-8 of
-     * central differences in test_contact_soft_jac): one evaluation in place of 12 and exact
-     * where the differences err by δ/w; the shapes and terrains it does not cover (capsules, a
-     * heightfield, friction per surface) are differenced as below */
-    int nd = 12;
-    if (!ghost && foot) {
-      int off, cnt;
-      csc_softShapeState(m->soft, s, &off, &cnt);
-      double Lj[6];
-      if (csc_softShapeJacobian(m->soft, s, &st, d->z + off, Lj, Ky, Cy) == 0) {
-        nd = 0;
-      }
-    }
-    for (int c = 0; c < nd && !ghost; c++) {
-      double del = c < 3 ? CSR_STRAIN_CFD_X
-                         : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
-                                  : CSR_STRAIN_CFD_V);
-      cscShapeState sp = st;
-      perturb(m, s, &sp, c, del);
-      double Lp[6];
-      lawLoad(m, d, s, &sp, Lp, NULL, NULL);
-      double* D = c < 6 ? Ky : Cy;
-      int col = c % 6;
-      for (int r = 0; r < 6; r++) {
-        D[6 * r + col] = (Lp[r] - L0[r]) / del;
-      }
+    if (!ghost) {
+      shapeTangent(m, d, s, &st, L0, Ky, Cy);
     }
     if (ghost) {
       memcpy(Ky, g->K, sizeof Ky);
