@@ -219,12 +219,8 @@ csgFootholdSet* csg_footholdRead(const char* path, const csgReadOptions* opt, cs
   int got = 0, line = 0;
   while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
     line = (int)r->lineno;
-    char* hash = strchr(r->line, '#');
-    if (hash) {
-      *hash = '\0';
-    }
     char* w[MAX_WORDS];
-    int nw = csu_splitWords(r->line, w, MAX_WORDS);
+    int nw = csu_statementWords(r->line, w, MAX_WORDS);
     if (nw == 0) {
       continue;
     }

@@ -64,10 +64,8 @@ csStatus cst_sceneFileLoad(cstSceneFile* s, const char* path, csError* err) {
   int seen[NKEY] = {0}, got = 0;
   while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
     int line = (int)r->lineno;
-    char* hash = strchr(r->line, '#');
-    if (hash) *hash = '\0';
     char* w[MAX_WORDS];
-    int nw = csu_splitWords(r->line, w, MAX_WORDS);
+    int nw = csu_statementWords(r->line, w, MAX_WORDS);
     if (nw == 0) {
       continue;
     }

@@ -168,11 +168,8 @@ csStatus cst_terrainLoad(cstTerrain* t, const char* path, csError* err) {
   int hf_line = 0, hf_rows = 0; /* the heightfield's line and rows read */
   while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
     lineno = (int)r->lineno;
-    char* line = r->line;
-    char* hash = strchr(line, '#');
-    if (hash) *hash = '\0';
     Words w;
-    w.nword = csu_splitWords(line, w.word, MAX_WORDS);
+    w.nword = csu_statementWords(r->line, w.word, MAX_WORDS);
     if (w.nword == 0) {
       continue; /* blank or comment */
     }

@@ -67,6 +67,16 @@ static inline void cs_testInit(int argc, char** argv) {
   cs_test_state_.filter = argc > 1 ? argv[1] : NULL;
 }
 
+/* Write text to path (a test's input file); a file that cannot be opened is a failed check. */
+static inline void cs_testWriteText(const char* path, const char* text) {
+  FILE* f = fopen(path, "wb");
+  CS_EXPECT(f != NULL);
+  if (f) {
+    fputs(text, f);
+    fclose(f);
+  }
+}
+
 static inline int cs_testSummary(void) {
   printf("%d passed, %d failed\n", cs_test_state_.cases - cs_test_state_.failed_cases,
          cs_test_state_.failed_cases);

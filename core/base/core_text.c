@@ -150,6 +150,15 @@ int csu_splitWords(char* line, char** word, int max) {
 }
 
 
+
+int csu_statementWords(char* line, char** word, int max) {
+  char* hash = strchr(line, '#');
+  if (hash) {
+    *hash = '\0';
+  }
+  return csu_splitWords(line, word, max);
+}
+
 csStatus csu_chamberListParse(const char* text, int nmax, const char* label, unsigned* mask,
                               csError* err) {
   const char* lab = label ? label : "chamber list";

@@ -63,6 +63,10 @@ void csu_lineClose(csuLineReader* r);
  * are counted, not stored: a caller checks the count against what its statement takes). */
 int csu_splitWords(char* line, char** word, int max);
 
+/* The words of a statement line: drops a '#' comment (to the line's end) in place, then
+ * csu_splitWords. 0 for a blank or comment-only line. */
+int csu_statementWords(char* line, char** word, int max);
+
 /* Trim spaces and tabs at both ends of s in place; returns the first kept byte (inside s). */
 char* csu_trimBlanks(char* s);
 

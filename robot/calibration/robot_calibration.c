@@ -87,12 +87,9 @@ csrProvisionalMap* csr_provisionalMapCreate(const char* path, const csrActuator*
   double p_ref = NAN, angle_ref = NAN;
   while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
     lineno = (int)r->lineno;
-    char* line = r->line;
-    char* hash = strchr(line, '#');
-    if (hash) *hash = '\0';
     /* split into words: key, value, and anything after (an error) */
     char* word[3] = {NULL, NULL, NULL};
-    int nword = csu_splitWords(line, word, 3);
+    int nword = csu_statementWords(r->line, word, 3);
     if (nword == 0) {
       continue; /* blank or comment */
     }

@@ -62,25 +62,15 @@ static void test_fitsAndNoEdges(void) {
 }
 
 
-static void writeText(const char* path, const char* text) {
-  FILE* f = fopen(path, "wb");
-  CS_EXPECT(f != NULL);
-  if (f) {
-    fputs(text, f);
-    fclose(f);
-  }
-}
-
-
 static void writeTables(void) {
-  writeText("fh_c0.csv", "time,D_II1_O1,H_II1_O1\n0.9,0.1,0.1\n1,0.1,0.1\n2,0.2,0.2\n3,0,0\n");
-  writeText("fh_c1.csv", "time,D_II1_O1,H_II1_O1\n0.9,0.1,0.1\n1,0.1,0.1\n2,0.3,0.3\n3,0,0\n");
+  cs_testWriteText("fh_c0.csv", "time,D_II1_O1,H_II1_O1\n0.9,0.1,0.1\n1,0.1,0.1\n2,0.2,0.2\n3,0,0\n");
+  cs_testWriteText("fh_c1.csv", "time,D_II1_O1,H_II1_O1\n0.9,0.1,0.1\n1,0.1,0.1\n2,0.3,0.3\n3,0,0\n");
 }
 
 
 static void test_readGood(void) {
   writeTables();
-  writeText("fh_good.foothold", "# two candidates\n\n"
+  cs_testWriteText("fh_good.foothold", "# two candidates\n\n"
             "foothold 1 DH xplan 90 margin 25 window 1 3\n"
             "candidate 0 land 200 fits -1000 240 fh_c0.csv\n"
             "candidate 10 land 210 fits -1000 240 fh_c1.csv nominal  # the plan's\n");
@@ -106,7 +96,7 @@ static void test_readGood(void) {
 
 static void expectBad(const char* name, const char* text, csStatus status, int line,
                       const char* cause) {
-  writeText(name, text);
+  cs_testWriteText(name, text);
   csError err;
   cs_errorClear(&err);
   csgFootholdSet* s = csg_footholdRead(name, NULL, &err);

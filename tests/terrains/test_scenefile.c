@@ -10,19 +10,9 @@
 #include "cs_test.h"
 
 
-static void writeText(const char* path, const char* text) {
-  FILE* f = fopen(path, "wb");
-  CS_EXPECT(f != NULL);
-  if (f) {
-    fputs(text, f);
-    fclose(f);
-  }
-}
-
-
 static void expectBad(const char* text, int line, csStatus want, const char* cause) {
   const char* path = "scenefile_bad.scene";
-  writeText(path, text);
+  cs_testWriteText(path, text);
   static cstSceneFile s;
   csError err;
   cs_errorClear(&err);
@@ -42,7 +32,7 @@ static void expectBad(const char* text, int line, csStatus want, const char* cau
 
 
 static void test_goodSceneFile(void) {
-  writeText("scenefile_good.scene", "# a scene\nscene obstacle\n"
+  cs_testWriteText("scenefile_good.scene", "# a scene\nscene obstacle\n"
                                     "terrain t/road.terrain   # relative\n"
                                     "gait /abs/g.csv\nconditions earth\nstart 150 117.5\n"
                                     "heading -90\nslope 7.5\nt-end 3\n");

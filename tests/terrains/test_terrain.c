@@ -11,21 +11,11 @@
 #include "cs_test.h"
 
 
-static void writeText(const char* path, const char* text) {
-  FILE* f = fopen(path, "wb");
-  CS_EXPECT(f != NULL);
-  if (f) {
-    fputs(text, f);
-    fclose(f);
-  }
-}
-
-
 /* write `text` to `path`, load it and expect status `want` and a message that starts with
  * "<path>:<line>:" and contains `cause` */
 static void expectBad(const char* path, const char* text, int line, csStatus want,
                       const char* cause) {
-  writeText(path, text);
+  cs_testWriteText(path, text);
   cstTerrain t;
   csError err;
   cs_errorClear(&err);
@@ -69,7 +59,7 @@ static void test_flatRoad(void) {
 
 static void test_goodFile(void) {
   /* a step road: the higher box wins where they overlap; comments, CRLF, tabs, heading */
-  writeText("terrain_step.terrain",
+  cs_testWriteText("terrain_step.terrain",
             "# step road\r\nname step\t# trailing comment\r\n\r\n"
             "box 0 -20 0  600 0 300\r\nbox 300 -20 0 600 25 300\r\n"
             "start 150 117.5\r\nheading -90\r\n");
@@ -80,12 +70,12 @@ static void test_goodFile(void) {
   CS_EXPECT(cst_terrainHeightAt(&t, 100, 100) == 0);
   CS_EXPECT(cst_terrainHeightAt(&t, 400, 100) == 25);
   /* no name, no trailing newline, a 63-character name is the longest allowed */
-  writeText("terrain_noname.terrain", "box 0 -1 0 10 0 10\nstart 5 5");
+  cs_testWriteText("terrain_noname.terrain", "box 0 -1 0 10 0 10\nstart 5 5");
   CS_EXPECT(cst_terrainLoad(&t, "terrain_noname.terrain", &err) == CS_OK);
   CS_EXPECT(!strcmp(t.name, "unnamed") && t.start[1] == 5);
   char text[256];
   snprintf(text, sizeof text, "name %063d\nbox 0 -1 0 10 0 10\nstart 5 5\n", 7);
-  writeText("terrain_name63.terrain", text);
+  cs_testWriteText("terrain_name63.terrain", text);
   CS_EXPECT(cst_terrainLoad(&t, "terrain_name63.terrain", &err) == CS_OK);
   CS_EXPECT(strlen(t.name) == 63);
   remove("terrain_step.terrain");
@@ -97,7 +87,7 @@ static void test_goodFile(void) {
 static void test_buildOde(void) {
   cstTerrain t;
   csError err;
-  writeText("terrain_ode.terrain",
+  cs_testWriteText("terrain_ode.terrain",
             "box 0 -20 0 600 0 300\nbox 300 0 0 600 25 300\nbox -10 -5 -10 0 5 0\nstart 1 1\n");
   CS_EXPECT(cst_terrainLoad(&t, "terrain_ode.terrain", &err) == CS_OK);
   remove("terrain_ode.terrain");
@@ -190,7 +180,7 @@ static void test_badFiles(void) {
   memcpy(text, "box 0 -20 0 600 0 300", 21);
   text[1023] = '\n';
   strcpy(text + 1024, "start 1 1\n");
-  writeText("terrain_line1023.terrain", text);
+  cs_testWriteText("terrain_line1023.terrain", text);
   CS_EXPECT(cst_terrainLoad(&t, "terrain_line1023.terrain", &err) == CS_OK);
   remove("terrain_line1023.terrain");
   memset(text, ' ', 1100);
@@ -229,7 +219,7 @@ static void test_badFiles(void) {
 /* oriented boxes, friction per surface and the slope: what the file says, and the ground
  * height on an incline against its closed form */
 static void test_inclinesAndFriction(void) {
-  writeText("terrain_incline.terrain",
+  cs_testWriteText("terrain_incline.terrain",
             "name incline\n"
             "box 0 -20 0 100 0 100 mu 0.3\n"
             "# a ramp: 200 long, 20 thick, 100 wide, turned 15 deg about z (10 cos 15 = 9.659)\n"
@@ -291,7 +281,7 @@ static void test_inclinesAndFriction(void) {
 
 /* a heightfield: read as written, its height on ODE's triangles, and its errors */
 static void test_heightfield(void) {
-  writeText("terrain_hf.terrain",
+  cs_testWriteText("terrain_hf.terrain",
             "name bumps\nheightfield -10 0 10 20 3 2 mu 0.5\n"
             "row 0 1 2   # z = 0\nrow 4 5 6   # z = 20\nstart 0 10\n");
   static cstTerrain t;
