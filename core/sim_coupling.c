@@ -852,11 +852,11 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
    * Newton step can cycle between the two sides */
   double alpha = 1, chg_last = INFINITY;
   int it = 0, released_late = 0;
-  /* the last halving (sim_step.c, CS_MAX_SPLIT) has no smaller retry behind it: its passes go
-   * on to twice the budget rather than stop the run (the earth collapse on strain legs at
-   * 0.853 s: a damped pass contracting at 0.5 a pass reached 4.9e-6 mm at the 24th;
-   * docs/notes/strain_leg.md "The earth collapse") */
-  const int pass_limit = h < 1.5 * cs_modelMacroStep(m) / (1 << CS_MAX_SPLIT)
+  /* the halvings from CS_SPLIT_MORE_PASSES on (sim_internal.h; it was the last one): their
+   * passes go on to twice the budget before the try is halved again or the run stops (the
+   * earth collapse on strain legs at 0.853 s: a damped pass contracting at 0.5 a pass reached
+   * 4.9e-6 mm at the 24th; docs/notes/strain_leg.md "The earth collapse") */
+  const int pass_limit = h < 1.5 * cs_modelMacroStep(m) / (1 << CS_SPLIT_MORE_PASSES)
                              ? 2 * m->opt.tree_iterations : m->opt.tree_iterations;
   if (bdf && newton) {
     /* BDF2's first iterate where the support's twist is unchanged: the legs back-substitute

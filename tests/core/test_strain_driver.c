@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "cs_test.h"
+#include "sim_internal.h" /* CS_MAX_SPLIT, CS_SPLIT_MORE_PASSES: the retry rules tested */
 #include "sim_model.h"
 
 static char g_src[512];
@@ -420,8 +421,9 @@ static void test_strain_rejected_step_is_retried_in_halves(void) {
   g_reject_from = INFINITY;
   CS_EXPECT(stepN(&m, d, 5));
   /* Newton passes that do not converge (2 allowed, a tolerance no move meets): every try is
-   * rejected after exactly its 2 passes, the last halving (no smaller retry behind it) after
-   * twice that, 4; the step fails as above and changes nothing */
+   * rejected after exactly its 2 passes, from halving CS_SPLIT_MORE_PASSES on after twice
+   * that, 4; the first half of every size fails, so one try per size, CS_MAX_SPLIT + 1; the
+   * step fails as above and changes nothing */
   {
     double* y = malloc(2 * (size_t)n * sizeof(double));
     CS_EXPECT(y != NULL);
@@ -438,7 +440,8 @@ static void test_strain_rejected_step_is_retried_in_halves(void) {
       const long tries = cs_rejectCount(d) - rej1, passes = cs_treePassCount(d) - pass1;
       printf("  Newton not converged: %s; %ld tries, %ld passes, state unchanged: %s\n",
              err.msg, tries, passes, unchanged ? "yes" : "NO");
-      CS_EXPECT(unchanged && tries > 1 && passes == 2 * (tries - 1) + 4);
+      const long deep = CS_MAX_SPLIT - CS_SPLIT_MORE_PASSES + 1; /* tries with 4 passes */
+      CS_EXPECT(unchanged && tries == CS_MAX_SPLIT + 1 && passes == 2 * (tries - deep) + 4 * deep);
       CS_EXPECT(strstr(err.msg, "did not converge in 4 Newton passes") != NULL);
       m.opt.tree_iterations = 16;
       m.opt.tree_tol = 1e-7;
