@@ -1,15 +1,19 @@
 /* test_contact_geom.c: the narrow phase (contact_geom.h) against exact geometry and against
  * libccd's MPR, on the boxes of a step road: the ground's top face, the step's convex top edge,
  * its corner, the concave corner at its foot. The closed forms must be exact (round-off); MPR
- * must agree with them where its portal lands on the right face, to its tolerance.
+ * must agree with them where its portal lands on the right face, to its tolerance. And the soft
+ * law's capsule line load rolled round the step's edge (its normal, depth, force and stiffness
+ * in closed form: the normal turns continuously over the edge).
  *
  * Scene (mm, y up): ground [-300, 300] x [-20, 0] x [-150, 150]; step [50, 300] x [0, 40] x
  * [-150, 150]: the step's top edge is the line x = 50, y = 40; its corner (50, 40, 150). */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 #include <time.h>
 
 #include "contact_geom.h"
+#include "contact_soft.h"
 #include "core_math.h"
 #include "cs_test.h"
 
@@ -350,6 +354,131 @@ static void test_geom_cost_closed_form_vs_mpr(void) {
 }
 
 
+/* A capsule lying parallel to the step's top edge (along z, 20 mm) rolled round it: its axis at
+ * c(θ) = edge + e (-sin θ, cos θ) for θ in [0°, 90°] (the edge's quadrant), over the top face
+ * for θ < 0 and beside the side face for θ > 90° (c the same formula: its distance to the face
+ * is e cos θ or e sin θ there). Closed forms of the soft law's capsule line load against the
+ * step (contact_soft.h: every axis point at the same depth d = r - ρ, ρ the axis' distance to
+ * the box): the slot's normal n = (c - closest point) / ρ, (-sin θ, cos θ, 0) on the edge, the
+ * face's normal beyond it, so it turns continuously (the step of θ bounds each turn); depth
+ * r - ρ; force F = k_line d^1.5 L n; and its stiffness against a translation of the capsule,
+ * K = ∂F/∂c = k_line L (-1.5 d^0.5 n nᵀ + d^1.5 (I - n nᵀ - t tᵀ) / ρ) on the edge (the normal
+ * turns with the axis: the second term), -1.5 k_line L d^0.5 n nᵀ on a face (t = e_z, the
+ * edge's direction), against central differences of the law. These are what the strain leg's
+ * Newton passes linearise (robot_strain_contact.c differences this law): a normal switching
+ * faces over the edge would fail the continuity, a face normal on the edge the K's second
+ * term (2e-3 of |K| here, the check resolves 1e-6). */
+static void test_geom_capsule_round_an_edge_closed_form(void) {
+  cscSoftParams p = csc_softDefaultParams();
+  p.history = CSC_HISTORY_STEP; /* fresh slots have no anchor: the normal load alone */
+  cstTerrain t;
+  memset(&t, 0, sizeof t);
+  t.nbox = 1;
+  t.box[0] = kStep;
+  const double r = 6.0, d = 0.02, e = r - d, L = 20;
+  const double kline = p.k_area * (4.0 / 3.0) * sqrt(2 * r);
+  cscShape sh = csc_softCapsule(r);
+  csError err;
+  cscSoftModel* m = csc_softCreate(&p, &t, 1, &sh, &err);
+  CS_EXPECT(m != NULL);
+  if (!m) {
+    return;
+  }
+  double z[4];
+  csc_softStateInit(m, z);
+  /* load and slot of the capsule with its axis through c (x, y), along z */
+  double nprev[3] = {0, 0, 0}, worst_turn = 0, worst_n = 0, worst_d = 0, worst_f = 0;
+  double worst_k = 0, worst_kt = 0;
+  const double dth = 0.5 * CS_PI / 180;
+  int nk = 0;
+  for (int i = -40; i <= 220; i++) {
+    const double th = i * dth;
+    cscShapeState st;
+    memset(&st, 0, sizeof st);
+    const double cx = 50 - e * sin(th), cy = 40 + e * cos(th);
+    csu_set3(st.x0, cx, cy, -L / 2);
+    csu_set3(st.x1, cx, cy, L / 2);
+    cscShapeLoad ld;
+    cscSlotInfo slot;
+    CS_EXPECT(csc_softCompute(m, &st, z, &ld, NULL, &slot, NULL) == 0);
+    double n[3], rho;
+    if (th < 0) {
+      csu_set3(n, 0, 1, 0);
+      rho = e * cos(th);
+    } else if (th > 0.5 * CS_PI) {
+      csu_set3(n, -1, 0, 0);
+      rho = e * sin(th);
+    } else {
+      csu_set3(n, -sin(th), cos(th), 0);
+      rho = e;
+    }
+    const double dep = r - rho, Fm = kline * pow(dep, 1.5) * L;
+    double dn[3], f[3];
+    csu_sub3(dn, slot.normal, n);
+    csu_add3(f, ld.f0, ld.f1);
+    worst_n = fmax(worst_n, csu_norm3(dn));
+    worst_d = fmax(worst_d, fabs(slot.depth - dep));
+    for (int k = 0; k < 3; k++) {
+      worst_f = fmax(worst_f, fabs(f[k] - Fm * n[k]) / Fm);
+    }
+    if (i > -40) {
+      double tn[3];
+      csu_sub3(tn, slot.normal, nprev);
+      worst_turn = fmax(worst_turn, csu_norm3(tn));
+    }
+    csu_copy3(nprev, slot.normal);
+    /* the stiffness at a few angles away from the regions' seams (0°, 90°) */
+    if (i % 20 != 10) {
+      continue;
+    }
+    nk++;
+    double K[9], Kmax = 0;
+    for (int a = 0; a < 3; a++) {
+      for (int b = 0; b < 3; b++) {
+        double P = (a == b) - n[a] * n[b] - (a == 2) * (b == 2);
+        int edge = th > 0 && th < 0.5 * CS_PI;
+        K[3 * a + b] = kline * L * (-1.5 * sqrt(dep) * n[a] * n[b] +
+                                    (edge ? pow(dep, 1.5) * P / rho : 0));
+        Kmax = fmax(Kmax, fabs(K[3 * a + b]));
+      }
+    }
+    const double del = 1e-6;
+    for (int b = 0; b < 3; b++) {
+      double Fp[3], Fn[3];
+      for (int sgn = -1; sgn <= 1; sgn += 2) {
+        cscShapeState sp = st;
+        sp.x0[b] += sgn * del;
+        sp.x1[b] += sgn * del;
+        cscShapeLoad lp;
+        CS_EXPECT(csc_softCompute(m, &sp, z, &lp, NULL, NULL, NULL) == 0);
+        csu_add3(sgn > 0 ? Fp : Fn, lp.f0, lp.f1);
+      }
+      for (int a = 0; a < 3; a++) {
+        const double Kd = (Fp[a] - Fn[a]) / (2 * del);
+        worst_k = fmax(worst_k, fabs(Kd - K[3 * a + b]) / Kmax);
+        /* the normal's turn alone: the tangential row and column of the edge's quadrant */
+        if (th > 0 && th < 0.5 * CS_PI && a < 2 && b < 2) {
+          const double turn = pow(dep, 1.5) * kline * L / rho;
+          worst_kt = fmax(worst_kt, fabs(Kd - K[3 * a + b]) / turn);
+        }
+      }
+    }
+  }
+  printf("  capsule round an edge (r %.1f mm, %.2f mm deep, 261 angles): normal %.2e, depth "
+         "%.2e mm, force %.2e relative, largest turn %.4f per %.4f rad; stiffness at %d angles "
+         "%.2e of |K|, %.2e of the turning term\n", r, d, worst_n, worst_d, worst_f, worst_turn,
+         dth, nk, worst_k, worst_kt);
+  CS_EXPECT(worst_n < TOL_EXACT);
+  CS_EXPECT(worst_d < TOL_EXACT);
+  CS_EXPECT(worst_f < 1e-12); /* relative: the same depth at every quadrature point */
+  /* a unit vector turning by dth moves by 2 sin(dth / 2) <= dth */
+  CS_EXPECT(worst_turn <= dth * (1 + 1e-9));
+  CS_EXPECT(worst_k < 1e-6);
+  CS_EXPECT(worst_kt < 1e-3);
+  csc_softDestroy(m);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_geom_sphere_face_edge_corner);
@@ -357,6 +486,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_geom_segment_distance_exact);
   CS_RUN(test_geom_capsule_face_edge_corner);
   CS_RUN(test_geom_capsule_axis_inside);
+  CS_RUN(test_geom_capsule_round_an_edge_closed_form);
   CS_RUN(test_geom_foot_block_ccd);
   CS_RUN(test_geom_cost_closed_form_vs_mpr);
   return cs_testSummary();
