@@ -1,28 +1,34 @@
-/* strain_obstacle_state.c: the obstacle scene on strain legs (its defaults, as `crawlsim run
- * --scene obstacle --legs strain`) run to T seconds, its whole state (cs_simStateGet) written
- * as text: the count, then one value a line in C's exact hexadecimal form (%a), so a test can
- * restore it bit for bit (test_strain_obstacle_stop). Built, not registered:
+/* strain_obstacle_state.c: a scene on strain legs (its defaults, as `crawlsim run --scene
+ * SCENE --legs strain [--gait GAIT --conditions COND]`) run to T seconds, its whole state
+ * (cs_simStateGet) written as text: the count, then one value a line in C's exact hexadecimal
+ * form (%a), so a test can restore it bit for bit. Built, not registered:
  *
- *   strain_obstacle_state T FILE        (data files from $CS_SOURCE_DIR, else the build's)
+ *   strain_obstacle_state T FILE [SCENE GAIT COND]   (data files from $CS_SOURCE_DIR, else
+ *                                                     the build's; default: the obstacle)
  *
  * tests/core/data/strain_obstacle_26.8.state is its output at T = 26.8 from a build with the
  * tree step's old damping rule (test_strain_obstacle_stop's header says why and when to
- * regenerate it). */
+ * regenerate it); tests/core/data/strain_earth_0.904.state its output at T = 0.904 with
+ * `flat-road gaits/flat_road_paper.csv earth` (test_strain_earth_edge's header). */
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "crawlsim.h"
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    fprintf(stderr, "usage: strain_obstacle_state T FILE\n");
+  if (argc != 3 && argc != 6) {
+    fprintf(stderr, "usage: strain_obstacle_state T FILE [SCENE GAIT CONDITIONS]\n");
     return 2;
   }
   const double T = atof(argv[1]);
   csRunDef def = cs_defaultRunDef();
-  def.scene = "obstacle";
+  def.scene = argc == 6 ? argv[3] : "obstacle";
   def.legs = "strain";
   def.data_dir = getenv("CS_SOURCE_DIR");
+  if (argc == 6) {
+    def.gait = argv[4];
+    def.conditions = argv[5];
+  }
   csError err;
   csSim* s = cs_simCreate(&def, &err);
   if (!s) {
