@@ -114,12 +114,12 @@ struct csData_ {
 };
 
 /* how often a rejected tree-coupled step is halved before the step fails (sim_step.c): down
- * to 1/256 of it. 8, not the earlier 4 (1/16): under `earth` the paper's table falls off the
- * road's start edge, and a leg struck across the edge at ~0.5 m/s (Hunt-Crossley's factor ~50
- * on its normal force, the friction's bristle damping with it) changes its velocity within
- * 62.5 us by more than Newton's linear model of the law holds over: its passes cycle at 1/16
- * of the 1 ms step and converge at 1/32-1/128 (docs/notes/strain_leg.md "The road's edge").
- * A step that converges at 1/16 or above is tried exactly as before. */
+ * to 1/256 of it. 8, not the earlier 4 (1/16): where a leg is struck onto an edge at a
+ * fraction of a m/s (the earth collapse off the road's start edge), Hunt-Crossley's damping
+ * and the friction's bristle damping, both scaled by the normal force, change the leg's
+ * velocity within 1/16 of the 1 ms step by more than Newton's linear model of the law holds
+ * over: the passes cycle there and converge at 1/64 (docs/notes/strain_leg.md "The road's
+ * edge"). A step that converges at 1/16 or above is tried exactly as before. */
 #define CS_MAX_SPLIT 8
 
 /* from this halving on (1/16 of the step, the last one before CS_MAX_SPLIT was 8) a try gets

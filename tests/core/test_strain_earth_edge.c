@@ -2,14 +2,14 @@
  * (gaits/flat_road_paper.csv) on strain legs, restored at 0.904 s from
  * tests/core/data/strain_earth_0.904.state and stepped to 0.906 s. The robot slides backwards
  * off the road's start edge and falls; at 0.90425 s leg H lies across the edge (x = 0) and is
- * struck onto it at ~0.5 m/s: Hunt-Crossley's factor ~50 on its normal force (13 N from an
- * elastic 0.25 N) and the friction's bristle damping with it. The contact's normal stays
- * within 1e-3 over the passes (the geometry is smooth over the edge), but over 62.5 us, 1/16
- * of the 1 ms step, the leg's velocity changes by more than Newton's linear model of the law
- * holds over: the passes cycle, then crawl at 1/8 damping, and the run stopped there ("did
+ * struck onto it at ~0.4 m/s: Hunt-Crossley's factor ~40 on its normal force (8-16 N where the
+ * elastic load is ~0.3 N) and the friction's bristle damping with it. The contact's normal
+ * stays within 1e-3 over the passes (the geometry is smooth over the edge), but over 62.5 us,
+ * 1/16 of the 1 ms step, the leg's velocity changes by more than Newton's linear model of the
+ * law holds over: the passes cycle, then crawl at 1/8 damping, and the run stopped there ("did
  * not converge in 48 Newton passes"). A rejected tree step now halves down to 1/256
- * (sim_internal.h CS_MAX_SPLIT 8): the same steps converge at 1/32-1/128 and the run falls off
- * the road at 1.021 s as the rod does at 1.023 s (docs/notes/strain_leg.md "The road's edge").
+ * (sim_internal.h CS_MAX_SPLIT 8): the same steps converge at 1/64 and the run falls off the
+ * road at 1.021 s as the rod does at 1.023 s (docs/notes/strain_leg.md "The road's edge").
  * Checked: every step succeeds, the time reaches 0.906 s, the support goes on falling (its
  * height drops > 1 mm over the 2 ms: it falls at ~0.9 m/s here) and the feet's forces stay
  * finite. With CS_MAX_SPLIT 4 this test fails at 0.9043 s with the run's own message. The
