@@ -23,85 +23,30 @@
 
 #include "crawlsim.h"
 #include "cs_test.h"
-
-static double* readState(const char* path, int* n) {
-  FILE* f = fopen(path, "r");
-  if (!f) {
-    return NULL;
-  }
-  double* x = NULL;
-  if (fscanf(f, "%d", n) == 1 && *n > 0 && *n < 1000000) {
-    x = malloc((size_t)*n * sizeof(double));
-    for (int i = 0; x && i < *n; i++) {
-      if (fscanf(f, "%la", x + i) != 1) {
-        free(x);
-        x = NULL;
-      }
-    }
-  }
-  fclose(f);
-  return x;
-}
-
+#include "restored_run.h"
 
 static void test_earth_strain_steps_across_the_road_edge(void) {
   const char* src = getenv("CS_SOURCE_DIR");
   char path[4096], gait[4096];
   snprintf(path, sizeof path, "%s/tests/core/data/strain_earth_0.904.state", src ? src : ".");
   snprintf(gait, sizeof gait, "%s/gaits/flat_road_paper.csv", src ? src : ".");
-  int n = 0;
-  double* x = readState(path, &n);
-  CS_EXPECT(x != NULL);
-  if (!x) {
-    fprintf(stderr, "  cannot read %s\n", path);
-    return;
-  }
   csRunDef def = cs_defaultRunDef();
   def.scene = "flat-road";
   def.legs = "strain";
   def.gait = gait;
   def.conditions = "earth";
   def.data_dir = src;
-  csError err;
-  csSim* s = cs_simCreate(&def, &err);
-  CS_EXPECT(s != NULL);
-  if (!s) {
-    fprintf(stderr, "  %s\n", err.msg);
-    free(x);
-    return;
+  RestoredRun r = restoredRun(&def, path, 0.904, 0.906,
+                              "strain_obstacle_state 0.904 FILE flat-road GAIT earth, this "
+                              "file's header");
+  CS_EXPECT(r.ran);
+  if (r.ran) {
+    CS_EXPECT(!r.failed);
+    CS_EXPECT_NEAR(r.t, 0.906, 1e-9, 0);
+    printf("  support height %.3f -> %.3f mm over 0.904 -> %.3f s\n", r.p0[1], r.p1[1], r.t);
+    CS_EXPECT(r.p0[1] - r.p1[1] > 1.0); /* mm: falling at ~0.9 m/s, not held */
+    CS_EXPECT(r.forces_finite);
   }
-  CS_EXPECT(cs_simStateSize(s) == n);
-  if (cs_simStateSize(s) != n) {
-    fprintf(stderr, "  the state has %d values, the file %d: regenerate it with "
-            "strain_obstacle_state 0.904 %s flat-road %s earth (this file's header)\n",
-            cs_simStateSize(s), n, path, gait);
-  } else {
-    CS_EXPECT(cs_simStateSet(s, x, &err) == CS_OK);
-    CS_EXPECT_NEAR(cs_simTime(s), 0.904, 1e-9, 0); /* the file's time, to round-off */
-    double p0[3], q[4], p1[3], f[24];
-    cs_simSupportPose(s, p0, q);
-    int failed = 0;
-    while (cs_simTime(s) < 0.906 - 1e-9 && !failed) {
-      if (cs_simStep(s, &err) != CS_OK) {
-        fprintf(stderr, "  %s\n", err.msg);
-        failed = 1;
-      }
-    }
-    CS_EXPECT(!failed);
-    CS_EXPECT_NEAR(cs_simTime(s), 0.906, 1e-9, 0);
-    cs_simSupportPose(s, p1, q);
-    printf("  support height %.3f -> %.3f mm over %.3f -> %.3f s\n", p0[1], p1[1], 0.904,
-           cs_simTime(s));
-    CS_EXPECT(p0[1] - p1[1] > 1.0); /* mm: falling at ~0.9 m/s, not held */
-    cs_simFootForces(s, f);
-    int finite = 1;
-    for (int i = 0; i < 24; i++) {
-      finite &= isfinite(f[i]);
-    }
-    CS_EXPECT(finite);
-  }
-  cs_simDestroy(s);
-  free(x);
 }
 
 

@@ -19,81 +19,26 @@
 
 #include "crawlsim.h"
 #include "cs_test.h"
-
-static double* readState(const char* path, int* n) {
-  FILE* f = fopen(path, "r");
-  if (!f) {
-    return NULL;
-  }
-  double* x = NULL;
-  if (fscanf(f, "%d", n) == 1 && *n > 0 && *n < 1000000) {
-    x = malloc((size_t)*n * sizeof(double));
-    for (int i = 0; x && i < *n; i++) {
-      if (fscanf(f, "%la", x + i) != 1) {
-        free(x);
-        x = NULL;
-      }
-    }
-  }
-  fclose(f);
-  return x;
-}
-
+#include "restored_run.h"
 
 static void test_obstacle_strain_steps_across_26_846(void) {
   const char* src = getenv("CS_SOURCE_DIR");
   char path[4096];
   snprintf(path, sizeof path, "%s/tests/core/data/strain_obstacle_26.8.state", src ? src : ".");
-  int n = 0;
-  double* x = readState(path, &n);
-  CS_EXPECT(x != NULL);
-  if (!x) {
-    fprintf(stderr, "  cannot read %s\n", path);
-    return;
-  }
   csRunDef def = cs_defaultRunDef();
   def.scene = "obstacle";
   def.legs = "strain";
   def.data_dir = src;
-  csError err;
-  csSim* s = cs_simCreate(&def, &err);
-  CS_EXPECT(s != NULL);
-  if (!s) {
-    fprintf(stderr, "  %s\n", err.msg);
-    free(x);
-    return;
+  RestoredRun r = restoredRun(&def, path, 26.8, 26.9,
+                              "strain_obstacle_state 26.8 FILE built with the damping's old "
+                              "rule, this file's header");
+  CS_EXPECT(r.ran);
+  if (r.ran) {
+    CS_EXPECT(!r.failed);
+    CS_EXPECT_NEAR(r.t, 26.9, 1e-9, 0);          /* reached, to the step's round-off */
+    CS_EXPECT(fabs(r.p1[0] - r.p0[0]) > 1.0);    /* mm: crawling at ~60 mm/s, not standing */
+    CS_EXPECT(r.forces_finite);
   }
-  CS_EXPECT(cs_simStateSize(s) == n);
-  if (cs_simStateSize(s) != n) {
-    fprintf(stderr, "  the state has %d values, the file %d: regenerate it with "
-            "strain_obstacle_state 26.8 %s built with the damping's old rule (this file's "
-            "header)\n", cs_simStateSize(s), n, path);
-  } else {
-    CS_EXPECT(cs_simStateSet(s, x, &err) == CS_OK);
-    /* the file's time, to the step's round-off */
-    CS_EXPECT_NEAR(cs_simTime(s), 26.8, 1e-9, 0);
-    double p0[3], q[4], p1[3], f[24];
-    cs_simSupportPose(s, p0, q);
-    int failed = 0;
-    while (cs_simTime(s) < 26.9 - 1e-9 && !failed) {
-      if (cs_simStep(s, &err) != CS_OK) {
-        fprintf(stderr, "  %s\n", err.msg);
-        failed = 1;
-      }
-    }
-    CS_EXPECT(!failed);
-    CS_EXPECT_NEAR(cs_simTime(s), 26.9, 1e-9, 0); /* reached, to the step's round-off */
-    cs_simSupportPose(s, p1, q);
-    CS_EXPECT(fabs(p1[0] - p0[0]) > 1.0); /* mm: crawling at ~60 mm/s, not standing */
-    cs_simFootForces(s, f);
-    int finite = 1;
-    for (int i = 0; i < 24; i++) {
-      finite &= isfinite(f[i]);
-    }
-    CS_EXPECT(finite);
-  }
-  cs_simDestroy(s);
-  free(x);
 }
 
 
