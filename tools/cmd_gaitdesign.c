@@ -225,6 +225,7 @@ static int checkRun(FILE* table, const char* gait_csv, const char* scene_name, d
   cs_modelInit(&m);
   cs_modelSetConditions(&m, sc->conditions);
   m.sched.ramp = ramp;
+  m.ramp_given = 1; /* the check's ramp, not the table's */
   m.opt.t_end = t_end;
   m.opt.output_dt = 0.05;
   m.cal_rule = cal_rule;
