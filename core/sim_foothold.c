@@ -37,11 +37,11 @@ csStatus cs_modelLoadFoothold(csModel* m, const char* path, csError* err) {
       const csgGait* c = s->fh[k].cand[i].table;
       for (int r = 0; r + 1 < c->nrow; r++) {
         if (c->time[r + 1] - c->time[r] < m->sched.ramp - CSG_RAMP_ROUNDING) {
-          double gap = c->time[r + 1] - c->time[r];
-          csg_footholdDestroy(s);
+          double gap = c->time[r + 1] - c->time[r], t = c->time[r];
+          csg_footholdDestroy(s); /* c is gone from here */
           return cs_errorSet(err, CS_ERR_RANGE, "--foothold %s: the ramp %g s is longer than "
-                             "a candidate's rows (%g s at t = %g s): footholds need a ramp that "
-                             "fits the rows", path, m->sched.ramp, gap, c->time[r]);
+                             "a candidate's rows (%.3g s at t = %g s): footholds need a ramp "
+                             "that fits the rows", path, m->sched.ramp, gap, t);
         }
       }
     }
