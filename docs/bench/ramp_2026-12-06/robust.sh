@@ -20,7 +20,7 @@ esac
 o() {
   case $1 in
     nominal) echo "$base" ;; ramp0.1) echo "$base --ramp 0.1" ;; ramp0.5) echo "$base --ramp 0.5" ;;
-    ramp0.2) echo "$base --ramp 0.2" ;;
+    ramp0.2) echo "$base --ramp 0.2" ;; ramp0.3) echo "$base --ramp 0.3" ;;
     mu0.6) echo "$base --friction 0.6" ;; mu1.0) echo "$base --friction 1.0" ;; mu0) echo "$base --friction 0" ;;
     m25g) echo "$base --support-mass 0.025" ;; m75g) echo "$base --support-mass 0.075" ;;
     tau0.5x) echo "$base --tau 0.01" ;; tau2x) echo "$base --tau 0.04" ;;

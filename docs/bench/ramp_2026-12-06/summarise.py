@@ -12,7 +12,7 @@ TABLE2 = {t: 39.0 * (t - 1) for t in range(2, 10)}  # paper Table 2, x (mm) at t
 def main(d):
     print("# run: options | x at 2..9 s (mm) | worst vs Table 2 from 2 s | x9 vs 312 mm | "
           "max |z| (mm, whole s) | final tilt | verdict")
-    order = ["nominal", "ramp0.1", "ramp0.2", "ramp0.5", "mu0.6", "mu1.0", "m25g", "m75g",
+    order = ["nominal", "ramp0.1", "ramp0.2", "ramp0.3", "ramp0.5", "mu0.6", "mu1.0", "m25g", "m75g",
              "tau0.5x", "tau2x", "dt_half", "mu0"]
     logs = {os.path.basename(p)[2:-4]: p for p in glob.glob(os.path.join(d, "r_*.log"))}
     for n in [k for k in order if k in logs] + sorted(k for k in logs if k not in order):
