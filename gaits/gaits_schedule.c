@@ -153,9 +153,11 @@ static int locate(const csgGait* g, const csgScheduleOptions* opt, double t, sch
   if (sp->row < 0 || !(opt->ramp > 0.0)) {
     return 1;
   }
-  /* r_k <= ramp, so a row with t >= t_k + ramp has finished, and so has every earlier one
-   * (t_k + ramp grows with k): the scan visits only the rows of the last ramp length */
-  for (int k = sp->row; k >= 0 && t < g->time[k] + opt->ramp; k--) {
+  /* r_k <= ramp + CSG_RAMP_ROUNDING, so a row with t at or past t_k plus that has finished,
+   * and so has every earlier one (the bound grows with k): the scan visits only the rows of
+   * the last ramp length */
+  const double reach = opt->ramp + CSG_RAMP_ROUNDING;
+  for (int k = sp->row; k >= 0 && t < g->time[k] + reach; k--) {
     if (rowRunning(g, opt->ramp, k, sp->row, t)) {
       sp->j = k;
     }
@@ -173,6 +175,16 @@ static double rowFraction(const csgGait* g, double ramp, int k, int row, double 
 }
 
 
+/* the options of opt NULL: the defaults, with the table's stated ramp if any */
+static csgScheduleOptions defaultsFor(const csgGait* g) {
+  csgScheduleOptions o = csg_defaultScheduleOptions();
+  if (g && !isnan(g->ramp)) {
+    o.ramp = g->ramp;
+  }
+  return o;
+}
+
+
 /* row k's pressures (96), NULL for k < 0 (vented) */
 static const double* rowPressure(const csgGait* g, int k) {
   return k >= 0 ? &g->pressure[(size_t)CSG_NLABEL * k] : NULL;
@@ -181,7 +193,7 @@ static const double* rowPressure(const csgGait* g, int k) {
 
 csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, double t,
                           double p_out[CSG_NLABEL]) {
-  csgScheduleOptions def = csg_defaultScheduleOptions();
+  csgScheduleOptions def = defaultsFor(g);
   const csgScheduleOptions* o = opt ? opt : &def;
   schedulePoint sp;
   if (!p_out || !locate(g, o, t, &sp)) {
@@ -229,7 +241,7 @@ csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, doubl
 
 csStatus csg_scheduleEvalRate(const csgGait* g, const csgScheduleOptions* opt, double t,
                               double dpdt_out[CSG_NLABEL]) {
-  csgScheduleOptions def = csg_defaultScheduleOptions();
+  csgScheduleOptions def = defaultsFor(g);
   const csgScheduleOptions* o = opt ? opt : &def;
   schedulePoint sp;
   if (!dpdt_out || !locate(g, o, t, &sp)) {

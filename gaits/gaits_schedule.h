@@ -77,8 +77,10 @@ csgScheduleOptions csg_defaultScheduleOptions(void);
  * unknown shape). The evaluators return CS_ERR_ARG for the same cases, without a message. */
 csStatus csg_scheduleCheckOptions(const csgScheduleOptions* opt, csError* err);
 
-/* p(t) (MPa) of all chambers at time t (s): p_out[label - 1], shape (96). opt NULL = defaults.
- * g must be a valid table (csg_gaitValidate). No allocation; O(log nrow). Returns CS_OK, or
+/* p(t) (MPa) of all chambers at time t (s): p_out[label - 1], shape (96). opt NULL = defaults
+ * with the table's stated ramp (`# @ramp`, gaits_csv.h) where it states one.
+ * g must be a valid table (csg_gaitValidate). No allocation; O(log nrow + the rows within one
+ * ramp before t). Returns CS_OK, or
  * CS_ERR_ARG (p_out untouched) for NULL or empty g, bad options or a non-finite t. */
 csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, double t,
                           double p_out[CSG_NLABEL]);

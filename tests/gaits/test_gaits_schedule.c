@@ -327,6 +327,19 @@ static void test_roundingSpacing(void) {
   o.ramp = 0.1 + 1e-12;
   CS_EXPECT(pAt(g, &o, 0.3, L1) == 0.1);
   CS_EXPECT_NEAR(pAt(g, &o, 0.25, L1), 0.05, 1e-16, 0);
+  /* within rounding either way, the same pressures as the spacing itself, bit for bit */
+  csgScheduleOptions lo = o, hi = o, eq = o;
+  lo.ramp = gap - 1e-12;
+  hi.ramp = gap + 1e-12;
+  eq.ramp = gap;
+  int same = 1;
+  for (int k = 0; k <= 100; k++) {
+    double t = 0.2 + gap * k / 100.0;
+    double p = pAt(g, &eq, t, L1);
+    same &= pAt(g, &lo, t, L1) == p && pAt(g, &hi, t, L1) == p;
+    same &= rateAt(g, &lo, t, L1) == rateAt(g, &eq, t, L1);
+  }
+  CS_EXPECT(same);
   /* but 1e-6 s longer overlaps, as it should: at row 1's time row 0 is not quite done */
   o.ramp = 0.1 + 1e-6;
   CS_EXPECT(pAt(g, &o, 0.3, L1) < 0.1 && pAt(g, &o, 0.3, L1) > 0.1 - 1e-9);
