@@ -75,7 +75,8 @@ typedef struct csRunDef {
   double t_end;              /* s; 0: the gait's last row plus one ramp */
   double dt;                 /* ODE step, s, (0, 0.01] (NaN: 1e-3, strain: its own) */
   double output_dt;          /* output sampling interval, s (NaN: 0.01) */
-  double ramp;               /* pressure ramp between gait rows, s (NaN: 0.2) */
+  double ramp;               /* pressure ramp: each gait row's change takes it, s (NaN: the
+                                gait's `# @ramp`, else 0.2; gaits_schedule.h) */
   double tau;                /* pneumatic lag, s; 0: none (NaN: 0.02) */
   double gravity;            /* m/s^2 (NaN: 9.81) */
   double support_mass_kg;    /* kg (NaN: 0.05) */

@@ -138,6 +138,13 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
         cs_modelEndTime(m), cs_robotMass(d) * 1e6);
   logLine(def, "conditions %s (%s): %s", cs_conditionsName(m->conditions),
         cs_conditionsSourceName(plan->cond_src), cs_conditionsWhat(m->conditions));
+  if (m->gait) {
+    logLine(def, "pressure ramp %.4g s (%s), %s", m->sched.ramp,
+          m->ramp_given                ? "--ramp"
+          : !isnan(m->gait->ramp)      ? "the gait's @ramp"
+                                       : "default",
+          "each row's change takes it to arrive (gaits_schedule.h)");
+  }
   logLine(def, "calibration (rule %s): %s", csr_calibrationRuleName(m->calibration),
         m->robot.map.name);
   const csrLegType* lt = m->robot.leg_type;

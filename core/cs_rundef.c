@@ -581,7 +581,10 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
     m->contact.stiffness_scale = def->contact_scale;
   }
   m->sched.pressure_scale = def->pressure_scale;
-  if (!isnan(def->ramp)) m->sched.ramp = def->ramp;
+  if (!isnan(def->ramp)) {
+    m->sched.ramp = def->ramp;
+    m->ramp_given = 1;
+  }
   /* a tree-stepped level's step is its own unless dt says (csrLegType.step) */
   m->opt.h = !isnan(dt) ? dt : leg_type->prepare && leg_type->step > 0 ? leg_type->step
                                                                        : m->opt.h;

@@ -120,6 +120,11 @@ csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
   if (gait_path && !m->gait) {
     return err ? err->status : CS_ERR_PARSE;
   }
+  /* a table that states its ramp (a designed motion sampled every `ramp` s) plays with it
+   * unless the caller chose one (gaits_csv.h, gaits_schedule.h) */
+  if (m->gait && !m->ramp_given && !isnan(m->gait->ramp)) {
+    m->sched.ramp = m->gait->ramp;
+  }
   csr_calibrationClose(m->calibration);
   /* a rule given (--cal-rule) applies to an FE mode table only: other kinds are refused */
   csrCalOptions cal_opt = csr_calModelDefaultOptions();

@@ -29,6 +29,23 @@ csStatus cs_modelLoadFoothold(csModel* m, const char* path, csError* err) {
   if (!s) {
     return err ? err->status : CS_ERR_PARSE;
   }
+  /* a candidate holds only the rows around its change, and the row before them must stand
+   * finished (gaits_schedule.h): so every change must end by the next row, the ramp fit the
+   * rows (a longer --ramp reaches back before the slice) */
+  for (int k = 0; k < s->n; k++) {
+    for (int i = 0; i < s->fh[k].ncand; i++) {
+      const csgGait* c = s->fh[k].cand[i].table;
+      for (int r = 0; r + 1 < c->nrow; r++) {
+        if (c->time[r + 1] - c->time[r] < m->sched.ramp - CSG_RAMP_ROUNDING) {
+          double gap = c->time[r + 1] - c->time[r], t = c->time[r];
+          csg_footholdDestroy(s); /* c is gone from here */
+          return cs_errorSet(err, CS_ERR_RANGE, "--foothold %s: the ramp %g s is longer than "
+                             "a candidate's rows (%.3g s at t = %g s): footholds need a ramp "
+                             "that fits the rows", path, m->sched.ramp, gap, t);
+        }
+      }
+    }
+  }
   csg_footholdDestroy(m->foothold);
   m->foothold = s;
   /* the edges: x ends of every box standing above the lowest box top (the road) */

@@ -131,6 +131,8 @@ typedef struct csModel_ {
   cstTerrain terrain;
   csgGait* gait;              /* owned */
   csgScheduleOptions sched;   /* ramp length, pressure scale */
+  int ramp_given;             /* 1: sched.ramp was set by the caller (--ramp) and stands; 0:
+                                 cs_modelLoad takes the gait's stated ramp (`# @ramp`) if any */
   csrRobotModel robot;        /* robot.leg_type is the leg level: the one place it is stored */
   cscContactParams contact;
   csrCalibration* calibration; /* owned; robot.map points into it */

@@ -61,6 +61,7 @@ csgGait* csg_gaitCreate(int nrow, csError* err) {
     cs_errorSet(err, CS_ERR_MEMORY, "csg_gaitCreate: out of memory");
     return NULL;
   }
+  g->ramp = NAN; /* states none: the run's ramp applies */
   if (csg_gaitSetRowCount(g, nrow, err) != CS_OK) {
     csg_gaitDestroy(g);
     return NULL;
@@ -226,6 +227,10 @@ static csStatus validateTable(const csgGait* g, double max_pressure, long max_ro
     return cs_errorSet(err, CS_ERR_RANGE, "%s: gait has %d rows, more than the limit %ld", who,
                        g->nrow, max_rows);
   }
+  if (!isnan(g->ramp) && !(isfinite(g->ramp) && g->ramp >= 0.0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s: gait ramp %g s must be >= 0 and finite (or NaN: "
+                       "none stated)", who, g->ramp);
+  }
   for (int i = 0; i < g->nrow; i++) {
     double t = g->time[i];
     if (!isfinite(t)) {
@@ -377,6 +382,48 @@ static int parseNumber(char* field, double* out) {
 }
 
 
+/* A comment line that is a directive (`# @name value`, gaits_csv.h) sets it in g; any other
+ * comment or blank line is left alone. CS_OK, or an error naming the line. */
+static csStatus readDirective(csuLineReader* r, csgGait* g, csError* err) {
+  const char* s = r->line;
+  s += strspn(s, " \t");
+  if (*s != '#') {
+    return CS_OK;
+  }
+  s++;
+  s += strspn(s, " \t");
+  if (*s != '@') {
+    return CS_OK;
+  }
+  s++;
+  size_t n = strcspn(s, " \t");
+  if (n != 4 || strncmp(s, "ramp", 4) != 0) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: unknown directive '@%.*s' (known: @ramp S)",
+                       r->path, r->lineno, (int)(n < QUOTE_MAX ? n : QUOTE_MAX), s);
+  }
+  if (!isnan(g->ramp)) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: @ramp stated twice", r->path, r->lineno);
+  }
+  const char* value = s + n + strspn(s + n, " \t");
+  char* end = NULL;
+  double v = strtod(value, &end);
+  if (end == value || end[strspn(end, " \t")] != '\0') {
+    size_t m = strlen(value);
+    while (m > 0 && (value[m - 1] == ' ' || value[m - 1] == '\t')) {
+      m--;
+    }
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: @ramp needs one number (s), got '%.*s'",
+                       r->path, r->lineno, (int)(m < QUOTE_MAX ? m : QUOTE_MAX), value);
+  }
+  if (!isfinite(v) || v < 0.0) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: @ramp %g s must be >= 0 and finite", r->path,
+                       r->lineno, v);
+  }
+  g->ramp = v;
+  return CS_OK;
+}
+
+
 /* parse one data row into row `i` of g; CS_OK or an error naming line and column */
 static csStatus parseRow(csuLineReader* r, const headerInfo* h, csgGait* g, int i,
                          const csgReadOptions* opt, long prev_lineno, csError* err) {
@@ -450,6 +497,10 @@ static csStatus readTable(csuLineReader* r, csgGait* g, const csgReadOptions* op
     if (!isSkippable(r->line)) {
       break;
     }
+    csStatus dst = readDirective(r, g, err);
+    if (dst != CS_OK) {
+      return dst;
+    }
   }
   if (got < 0) {
     return (csStatus)got;
@@ -470,6 +521,10 @@ static csStatus readTable(csuLineReader* r, csgGait* g, const csgReadOptions* op
   long prev_lineno = 0;
   while ((got = csu_lineNext(r, err)) > 0) {
     if (isSkippable(r->line)) {
+      st = readDirective(r, g, err);
+      if (st != CS_OK) {
+        return st;
+      }
       continue;
     }
     if (g->nrow >= opt->max_rows) {
@@ -514,6 +569,7 @@ csgGait* csg_gaitRead(const char* path, const csgReadOptions* opt, csError* err)
     cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
     return NULL;
   }
+  g->ramp = NAN; /* until a `# @ramp` line states one */
   /* the reader holds one line buffer of max_line_bytes + 2 and an 8 KiB chunk: on the heap */
   csuLineReader* r = malloc(sizeof *r);
   csStatus st = r ? csu_lineOpen(r, path, o.max_line_bytes, "gait CSV", err)
@@ -563,6 +619,13 @@ csStatus csg_gaitWrite(const csgGait* g, const char* path, const char* comment, 
     size_t n = strcspn(c, "\n");
     bad |= fprintf(f, "# %.*s\n", (int)n, c) < 0;
     c += n + (c[n] == '\n');
+  }
+
+  /* the stated ramp, read back exactly */
+  if (!isnan(g->ramp)) {
+    char rbuf[64];
+    formatTime(g->ramp, rbuf, sizeof rbuf);
+    bad |= fprintf(f, "# @ramp %s\n", rbuf) < 0;
   }
 
   /* header: all 96 chambers by name, in label order */

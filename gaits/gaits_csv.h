@@ -9,6 +9,7 @@
  *
  * CSV format (read and written here):
  *   # optional comment lines start with '#' (allowed anywhere; blank lines are skipped too)
+ *   # @ramp 0.05
  *   time,A_II1_O1,A_II1_O2,...
  *   0,0.18,0,...
  *   1,0,0.18,...
@@ -21,9 +22,14 @@
  *   pressures. Fields are decimal numbers as strtod reads them; spaces or tabs around a field
  *   are ignored; empty fields, NaN and Inf are errors.
  * - Times are >= 0 and strictly increasing. Pressures are >= 0 and <= max_pressure.
+ * - A comment whose text starts with '@' is a directive, `# @name value` (anywhere, at most
+ *   once each). The one known: `# @ramp S`, the table's pressure ramp in s (>= 0, finite;
+ *   gaits_schedule.h), which a run uses where --ramp is not given: a table whose rows sample a
+ *   designed motion every S s states S, so it plays as designed. An unknown name, a second
+ *   @ramp, a value that is not one number or out of range are errors naming the line.
  * - LF or CRLF line endings; a UTF-8 byte-order mark at the start is ignored. At least one
  *   data row. What a row means over time (holds, ramps) is gaits_schedule.h's business.
- * The writer writes a comment, then all 96 columns by name in label order, pressures with
+ * The writer writes a comment, the @ramp directive if the table states one, then all 96 columns by name in label order, pressures with
  * %.6g and times with the shortest %.Ng (N >= 6) that reads back exactly.
  *
  * Errors: a one-line message in csError, "<file>:<line>: column <c> (<name>): <cause>"
@@ -76,6 +82,7 @@ typedef struct csgGait_ {
   double* time;     /* (nrow) s: when row i takes effect; strictly increasing, time[0] >= 0 */
   double* pressure; /* (nrow x CSG_NLABEL) MPa, row-major: pressure[CSG_NLABEL*i + label-1] */
   int cap;          /* allocated rows (>= nrow); internal */
+  double ramp;      /* s: the ramp the table states (`# @ramp`), NAN if none (>= 0 otherwise) */
 } csgGait;
 
 /* ---- building a table in code (gait generators) ---- */
@@ -107,8 +114,8 @@ double csg_gaitTime(const csgGait* g, int row);
 /* Pressure (MPa) of chamber `label` (1..96) in row `row` (0-based), or NAN if out of range. */
 double csg_gaitPressure(const csgGait* g, int row, int label);
 
-/* Check the value rules: at least one row and at most opt->max_rows; finite times, time[0] >= 0,
- * strictly increasing; finite pressures in [0, opt->max_pressure]. opt NULL = defaults.
+/* Check the value rules: at least one row and at most opt->max_rows; ramp NAN or finite and
+ * >= 0; finite times, time[0] >= 0, strictly increasing; finite pressures in [0, opt->max_pressure]. opt NULL = defaults.
  * Messages name the row (0-based index) and chamber, e.g.
  * "csg_gaitValidate: gait row 3 (t = 2 s), chamber A_II1_O2: negative pressure (...): -0.1 MPa".
  * Returns CS_OK, CS_ERR_RANGE or CS_ERR_ARG (NULL, no rows, bad options). */

@@ -102,14 +102,46 @@ static double shapeSlope(csgRampShape shape, double u) {
 }
 
 
-/* where t sits: row i (-1 before the first), the previous and current rows' pressures, the
- * ramp fraction u and 1/r_i (1/s; 0 for a step). Returns 0 if the arguments are bad. */
+/* Whether row k's ramp fits its row spacing: it ends by the next row's time, or overruns it
+ * by less than CSG_RAMP_ROUNDING (the last row's ramp never fits: it has no next row). */
+static int rampFits(const csgGait* g, double ramp, int k) {
+  return k + 1 < g->nrow && g->time[k + 1] - g->time[k] >= ramp - CSG_RAMP_ROUNDING;
+}
+
+
+/* Row k's ramp length r_k (s): the ramp, or the row spacing where the two differ by rounding
+ * only (either way), so that this change fills the interval to the next row exactly. (That
+ * is what a ramp cut to the row spacing gave before, so such tables play as they did.) */
+static double rowRamp(const csgGait* g, double ramp, int k) {
+  if (k + 1 < g->nrow) {
+    double gap = g->time[k + 1] - g->time[k];
+    if (fabs(gap - ramp) <= CSG_RAMP_ROUNDING) {
+      return gap;
+    }
+  }
+  return ramp;
+}
+
+
+/* Whether row k's change (k <= row, the row of t) still runs at t. A fitting ramp has
+ * finished by the next row's time (so the next change starts from the exact plateau); else
+ * compare with the end time itself, so t = t_k + r_k is finished exactly even when
+ * (t - t_k) / r_k rounds to just below 1. */
+static int rowRunning(const csgGait* g, double ramp, int k, int row, double t) {
+  if (k < row && rampFits(g, ramp, k)) {
+    return 0;
+  }
+  return t < g->time[k] + rowRamp(g, ramp, k);
+}
+
+
+/* Where t sits: the rows whose ramps still run at t are among j..row (j = row + 1: none);
+ * every row before j has finished its change, so the schedule is P_{j-1} (vented for j = 0)
+ * plus the changes (P_k - P_{k-1}) S(u_k), k = j..row, with S = 1 for a finished one.
+ * Returns 0 if the arguments are bad. */
 typedef struct {
-  int row;
-  const double* prev; /* (96) MPa, NULL = vented (before row 0) */
-  const double* cur;  /* (96) MPa, NULL before the first row */
-  double u;           /* ramp fraction, in [0, 1] */
-  double inv_ramp;    /* 1/s */
+  int row; /* the last row with t_k <= t, -1 before the first */
+  int j;   /* the first running row (row + 1 when none runs) */
 } schedulePoint;
 
 static int locate(const csgGait* g, const csgScheduleOptions* opt, double t, schedulePoint* sp) {
@@ -117,51 +149,91 @@ static int locate(const csgGait* g, const csgScheduleOptions* opt, double t, sch
     return 0;
   }
   sp->row = findRow(g, t);
-  sp->prev = NULL;
-  sp->cur = NULL;
-  sp->u = 1.0;
-  sp->inv_ramp = 0.0;
-  if (sp->row < 0) {
+  sp->j = sp->row + 1;
+  if (sp->row < 0 || !(opt->ramp > 0.0)) {
     return 1;
   }
-  int i = sp->row;
-  sp->cur = &g->pressure[(size_t)CSG_NLABEL * i];
-  sp->prev = i > 0 ? &g->pressure[(size_t)CSG_NLABEL * (i - 1)] : NULL;
-  /* ramp clamped to the row spacing so it ends by the next row's time */
-  double r = opt->ramp;
-  if (i + 1 < g->nrow && g->time[i + 1] - g->time[i] < r) {
-    r = g->time[i + 1] - g->time[i];
-  }
-  if (r > 0.0) {
-    /* compare with the end time itself, so t = t_i + r lands on the plateau exactly even when
-     * (t - t_i) / r rounds to just below 1 */
-    sp->u = t >= g->time[i] + r ? 1.0 : (t - g->time[i]) / r;
-    sp->inv_ramp = 1.0 / r;
+  /* r_k <= ramp + CSG_RAMP_ROUNDING, so a row with t at or past t_k plus that has finished,
+   * and so has every earlier one (the bound grows with k): the scan visits only the rows of
+   * the last ramp length */
+  const double reach = opt->ramp + CSG_RAMP_ROUNDING;
+  for (int k = sp->row; k >= 0 && t < g->time[k] + reach; k--) {
+    if (rowRunning(g, opt->ramp, k, sp->row, t)) {
+      sp->j = k;
+    }
   }
   return 1;
 }
 
 
+/* the ramp fraction u_k = (t - t_k) / r_k of row k at t (1 once finished) and 1 / r_k */
+static double rowFraction(const csgGait* g, double ramp, int k, int row, double t,
+                          double* inv_r) {
+  double r = rowRamp(g, ramp, k);
+  *inv_r = 1.0 / r;
+  return rowRunning(g, ramp, k, row, t) ? (t - g->time[k]) / r : 1.0;
+}
+
+
+/* the options of opt NULL: the defaults, with the table's stated ramp if any */
+static csgScheduleOptions defaultsFor(const csgGait* g) {
+  csgScheduleOptions o = csg_defaultScheduleOptions();
+  if (g && !isnan(g->ramp)) {
+    o.ramp = g->ramp;
+  }
+  return o;
+}
+
+
+/* row k's pressures (96), NULL for k < 0 (vented) */
+static const double* rowPressure(const csgGait* g, int k) {
+  return k >= 0 ? &g->pressure[(size_t)CSG_NLABEL * k] : NULL;
+}
+
+
 csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, double t,
                           double p_out[CSG_NLABEL]) {
-  csgScheduleOptions def = csg_defaultScheduleOptions();
+  csgScheduleOptions def = defaultsFor(g);
   const csgScheduleOptions* o = opt ? opt : &def;
   schedulePoint sp;
   if (!p_out || !locate(g, o, t, &sp)) {
     return CS_ERR_ARG;
   }
   double k = o->pressure_scale;
-  if (!sp.cur) {
+  const double* base = rowPressure(g, sp.j - 1); /* the last finished row's plateau */
+  if (sp.j > sp.row) {
+    /* nothing running: the plateau (vented before the first row) */
     for (int l = 0; l < CSG_NLABEL; l++) {
-      p_out[l] = 0.0;
+      p_out[l] = base ? k * base[l] : 0.0;
     }
     return CS_OK;
   }
-  double s = shapeValue(o->shape, sp.u);
+  double inv_r;
+  if (sp.j == sp.row) {
+    /* one change running, the case of every ramp that fits its row spacing: written as a
+     * blend so both plateaus come out exact (s = 0 -> a, s = 1 -> cur) */
+    double s = shapeValue(o->shape, rowFraction(g, o->ramp, sp.row, sp.row, t, &inv_r));
+    const double* cur = rowPressure(g, sp.row);
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      double a = base ? base[l] : 0.0;
+      p_out[l] = k * ((1.0 - s) * a + s * cur[l]);
+    }
+    return CS_OK;
+  }
+  /* several changes running (a ramp longer than the row spacing): their superposition */
   for (int l = 0; l < CSG_NLABEL; l++) {
-    double a = sp.prev ? sp.prev[l] : 0.0;
-    /* written as a blend so both plateaus come out exact (s = 0 -> a, s = 1 -> cur) */
-    p_out[l] = k * ((1.0 - s) * a + s * sp.cur[l]);
+    p_out[l] = base ? base[l] : 0.0;
+  }
+  for (int r = sp.j; r <= sp.row; r++) {
+    double s = shapeValue(o->shape, rowFraction(g, o->ramp, r, sp.row, t, &inv_r));
+    const double* prev = rowPressure(g, r - 1);
+    const double* cur = rowPressure(g, r);
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      p_out[l] += (cur[l] - (prev ? prev[l] : 0.0)) * s;
+    }
+  }
+  for (int l = 0; l < CSG_NLABEL; l++) {
+    p_out[l] *= k;
   }
   return CS_OK;
 }
@@ -169,17 +241,25 @@ csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, doubl
 
 csStatus csg_scheduleEvalRate(const csgGait* g, const csgScheduleOptions* opt, double t,
                               double dpdt_out[CSG_NLABEL]) {
-  csgScheduleOptions def = csg_defaultScheduleOptions();
+  csgScheduleOptions def = defaultsFor(g);
   const csgScheduleOptions* o = opt ? opt : &def;
   schedulePoint sp;
   if (!dpdt_out || !locate(g, o, t, &sp)) {
     return CS_ERR_ARG;
   }
-  double ds = sp.cur ? shapeSlope(o->shape, sp.u) * sp.inv_ramp : 0.0;
   for (int l = 0; l < CSG_NLABEL; l++) {
-    double a = sp.prev ? sp.prev[l] : 0.0;
-    double b = sp.cur ? sp.cur[l] : 0.0;
-    dpdt_out[l] = o->pressure_scale * (b - a) * ds;
+    dpdt_out[l] = 0.0;
+  }
+  /* the derivative of the sum above: sum_k (P_k - P_{k-1}) S'(u_k) / r_k (finished rows and
+   * a step, ramp 0, add nothing) */
+  for (int r = sp.j; r <= sp.row; r++) {
+    double inv_r;
+    double ds = shapeSlope(o->shape, rowFraction(g, o->ramp, r, sp.row, t, &inv_r)) * inv_r;
+    const double* prev = rowPressure(g, r - 1);
+    const double* cur = rowPressure(g, r);
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      dpdt_out[l] += o->pressure_scale * (cur[l] - (prev ? prev[l] : 0.0)) * ds;
+    }
   }
   return CS_OK;
 }

@@ -172,7 +172,8 @@ static const csxOpt kDesignOpts[] = {
      "forward kinematics with the map's axial stretch (leg levels that stretch; needed by rise "
      "targets)"},
     {"--check", NULL, "off",
-     "short runs of the table (ramps 0.1, 0.2, 0.5 s) printing the stride per cycle of each"},
+     "short runs of the table (its own ramp, then ramps 0.1 and 0.5 s) printing the stride per "
+     "cycle of each"},
     {"--check-scene", "flat-road|obstacle", "flat-road",
      "the scene of the --check runs, under its default conditions"},
     {"--check-t", "S", "the first stride's start + 3 periods", "length of each --check run, s"},
@@ -225,6 +226,7 @@ static int checkRun(FILE* table, const char* gait_csv, const char* scene_name, d
   cs_modelInit(&m);
   cs_modelSetConditions(&m, sc->conditions);
   m.sched.ramp = ramp;
+  m.ramp_given = 1; /* the check's ramp, not the table's */
   m.opt.t_end = t_end;
   m.opt.output_dt = 0.05;
   m.cal_rule = cal_rule;
@@ -446,7 +448,8 @@ static int executeDesign(const DesignDef* d, DesignResult* res, csError* err) {
     double t_end = isnan(d->check_t)
                        ? (des->nstride ? des->stride_t0 + 3 * des->stride_period : 4.0)
                        : d->check_t;
-    const double ramps[3] = {0.1, 0.2, 0.5};
+    /* the table's own ramp (its nominal), then the robustness set's actuation times */
+    const double ramps[3] = {isnan(g->ramp) ? CSG_DEFAULT_RAMP : g->ramp, 0.1, 0.5};
     for (int i = 0; i < 3 && rc == 0; i++) {
       rc = checkRun(d->table, out, d->check_scene, ramps[i], t_end, des, calib, run_rule, err);
     }

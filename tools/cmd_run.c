@@ -76,7 +76,9 @@ static const csxOpt kRunOpts[] = {
      "(the paper's assumption)"},
     {"--dt", "S", "1e-3 (strain: the level's own step, 1e-3)", "ODE time step in s (at most 0.01)"},
     {"--output-dt", "S", "0.01", "sampling interval of the output in s (>= --dt)"},
-    {"--ramp", "S", "0.2", "pressure ramp between gait rows in s"},
+    {"--ramp", "S", "the gait's '# @ramp', else 0.2",
+     "pressure ramp in s: each gait row's change takes S to arrive (overlapping when the rows "
+     "come faster)"},
     {"--tau", "S", "0.02", "pneumatic lag time constant in s (0: none)"},
     {"--gravity", "M/S2", "9.81", "gravitational acceleration in m/s^2"},
     {"--support-mass", "KG", "0.05", "mass of the support (body) in kg"},

@@ -365,9 +365,10 @@ csgGait* csr_designGait(const csrActuator* act, const csrBendMap* map, const csg
   /* row times on one grid for every leg: the points k * sample (rounded to 1 ns, so they
    * print as the decimals they are) from one sample before each timed move to its end, each
    * step move's own time, and the end row. Between moves there are no rows: the table holds,
-   * and a step move keeps the run's ramp. A row carries the pressures of the next row's
-   * time: with the run's ramp >= sample each row's change fills the interval to the next row,
-   * so the table follows the designed motion (the run's ramp only shapes each sample). */
+   * and a step move changes over one sample (the table's ramp; the run's ramp in a table of
+   * step moves only). A row carries the pressures
+   * of the next row's time: with the table's ramp (= sample, `# @ramp`) each row's change
+   * fills the interval to the next row, so the table follows the designed motion. */
   long ncand = 2;
   for (int i = 0; i < d->nmove; i++) {
     ncand += 3 + (long)ceil(d->move[i].duration / d->sample);
@@ -459,6 +460,14 @@ csgGait* csr_designGait(const csrActuator* act, const csrBendMap* map, const csg
   g = csg_gaitCreate((int)nrow, err);
   if (!g) {
     goto fail;
+  }
+  /* a table with timed moves states the sample as its ramp, so each row's change fills the
+   * interval to the next row and the run plays the designed motion (gaits_schedule.h);
+   * --ramp overrides. One of step moves only (the paper's table) leaves the run's ramp. */
+  for (int i = 0; i < d->nmove; i++) {
+    if (d->move[i].duration > 0.0) {
+      g->ramp = d->sample;
+    }
   }
   for (long r = 0; r < nrow; r++) {
     double t = times[r];

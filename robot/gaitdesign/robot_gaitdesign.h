@@ -63,9 +63,10 @@ csStatus csr_designFlatRoad(const csrActuator* act, const csrBendMap* map, doubl
  * conditions the four stance feet hold mu x the support's weight, 0.39 N at mu 0.8, while the
  * four swinging legs weigh 139 g), so a move's peak acceleration 6 D / T^2 is what the design
  * controls, not the pressure's ramp. The table holds a row every `sample` s (one grid for all
- * legs); row k carries the pressures of time (k + 1) sample, so with the run's ramp >= sample
- * each row's change fills the interval to the next row and the table follows the designed
- * motion one sample behind (the run's ramp then only shapes each sample's change). */
+ * legs); row k carries the pressures of time (k + 1) sample, and a table with timed moves
+ * states `# @ramp sample` (gaits_csv.h), so each row's change fills the interval to the next row and the
+ * table follows the designed motion one sample behind. A longer --ramp (an actuation time,
+ * gaits_schedule.h) smears and delays that motion. */
 typedef struct csrGaitDesignOptions_ {
   double p_max;   /* MPa: highest pressure a solve may use (capped by the map's range) */
   int stretch;    /* 1: the forward kinematics include the map's axial stretch (a leg level

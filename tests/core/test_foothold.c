@@ -223,10 +223,31 @@ static void test_badFile(void) {
 }
 
 
+/* a ramp longer than the candidates' 0.05 s rows would reach back before their slice: refused
+ * with a message naming the ramp; the table's own ramp (0.05 s, `# @ramp`) is accepted */
+static void test_longRampRefused(void) {
+  CS_EXPECT(writeFoothold("fh_ramp.foothold", 0.9, 50.0) == 0);
+  csRunDef d = cheapDef();
+  d.foothold = "fh_ramp.foothold";
+  d.ramp = 0.5;
+  csError err;
+  cs_errorClear(&err);
+  csSim* s = cs_simCreate(&d, &err);
+  CS_EXPECT(s == NULL && strstr(err.msg, "ramp 0.5 s") != NULL);
+  printf("long ramp: %s\n", err.msg);
+  cs_simDestroy(s);
+  d.ramp = NAN;
+  s = cs_simCreate(&d, &err);
+  CS_EXPECT(s != NULL);
+  cs_simDestroy(s);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_sameCandidatesSameRun);
   CS_RUN(test_choiceActsAndRestores);
   CS_RUN(test_badFile);
+  CS_RUN(test_longRampRefused);
   return cs_testSummary();
 }

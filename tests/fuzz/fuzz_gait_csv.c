@@ -2,8 +2,8 @@
  *
  * Per input: read it with the default limits and check the error contract (fuzz_common.h); a
  * table the reader accepts must pass csg_gaitValidate, give a summary, and survive the writer:
- * csg_gaitWrite then csg_gaitRead gives the same times exactly and the same pressures to the
- * writer's 6 digits. The input is read a second time with tight limits (4 rows, 64-byte lines,
+ * csg_gaitWrite then csg_gaitRead gives the same times and stated ramp exactly and the same
+ * pressures to the writer's 6 digits. The input is read a second time with tight limits (4 rows, 64-byte lines,
  * 0.5 MPa), which must refuse whatever the defaults refuse (limits only ever take away). */
 #include <math.h>
 #include <string.h>
@@ -33,6 +33,10 @@ static void roundTrip(const csgGait* g) {
   }
   if (back->nrow != g->nrow) {
     csz_fail("round trip: %d rows became %d", g->nrow, back->nrow);
+  }
+  /* the stated ramp (`# @ramp`) comes back exactly, or stays unstated */
+  if (!(back->ramp == g->ramp || (isnan(back->ramp) && isnan(g->ramp)))) {
+    csz_fail("round trip: ramp %.17g became %.17g", g->ramp, back->ramp);
   }
   for (int i = 0; i < g->nrow; i++) {
     if (back->time[i] != g->time[i]) {

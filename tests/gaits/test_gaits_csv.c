@@ -1,7 +1,7 @@
 /* test_gaits_csv.c: the gait table (gaits_csv.h): building in code, validation, the CSV
  * reader on good input (CRLF, BOM, comments, subsets, any column order, label numbers), a
- * write -> read round trip of a random table, and every bad-input case, each checked for its
- * status AND a one-line message naming the file, line and column. Files are written into the
+ * write -> read round trip of a random table, the `# @ramp` directive, and every bad-input
+ * case, each checked for its status AND a one-line message naming the file, line and column. Files are written into the
  * working directory (the build tree). */
 #include <math.h>
 #include <stdio.h>
@@ -386,6 +386,57 @@ static void test_badRows(void) {
 }
 
 
+/* ---- the `# @ramp S` directive ---- */
+
+/* read where it stands (before the header, among the rows), none = NAN, written back exactly;
+ * every bad directive refused with file and line */
+static void test_rampDirective(void) {
+  csError err;
+  writeText("ramp_none.csv", "# a @ramp in prose is a comment\ntime,A_II1_O1\n0,0.1\n");
+  csgGait* g = csg_gaitRead("ramp_none.csv", NULL, &err);
+  CS_EXPECT(g && isnan(g->ramp));
+  csg_gaitDestroy(g);
+  writeText("ramp_head.csv", "# designed\n  #  @ramp 0.05  \ntime,A_II1_O1\n0,0.1\n1,0\n");
+  g = csg_gaitRead("ramp_head.csv", NULL, &err);
+  CS_EXPECT(g && g->ramp == 0.05 && g->nrow == 2);
+  if (g) {
+    /* written back: the directive reads back to the same double */
+    g->ramp = 0.1 + 0.2; /* 0.30000000000000004 needs 17 digits */
+    CS_EXPECT(csg_gaitWrite(g, "ramp_written.csv", "comment", &err) == CS_OK);
+    csgGait* h = csg_gaitRead("ramp_written.csv", NULL, &err);
+    CS_EXPECT(h && h->ramp == 0.1 + 0.2);
+    csg_gaitDestroy(h);
+    g->ramp = -1.0; /* the writer refuses an invalid ramp, as the validator does */
+    CS_EXPECT(csg_gaitWrite(g, "ramp_bad_written.csv", NULL, &err) == CS_ERR_RANGE &&
+              strstr(err.msg, "ramp"));
+    CS_EXPECT(csg_gaitValidate(g, NULL, &err) == CS_ERR_RANGE);
+  }
+  csg_gaitDestroy(g);
+  writeText("ramp_rows.csv", "time,A_II1_O1\n0,0.1\n#@ramp 0\n1,0\n");
+  g = csg_gaitRead("ramp_rows.csv", NULL, &err);
+  CS_EXPECT(g && g->ramp == 0.0);
+  csg_gaitDestroy(g);
+  /* made in code: none stated */
+  g = csg_gaitCreate(1, &err);
+  CS_EXPECT(g && isnan(g->ramp));
+  csg_gaitDestroy(g);
+
+  const char* rows = "time,A_II1_O1\n0,0\n";
+  char text[256];
+#define WITH(line) (snprintf(text, sizeof text, "# c\n%s\n%s", line, rows), text)
+  bad("bad_ramp_negative.csv", WITH("# @ramp -0.1"), CS_ERR_RANGE, 2, 0, ">= 0");
+  bad("bad_ramp_nan.csv", WITH("# @ramp nan"), CS_ERR_RANGE, 2, 0, "@ramp");
+  bad("bad_ramp_inf.csv", WITH("# @ramp inf"), CS_ERR_RANGE, 2, 0, "finite");
+  bad("bad_ramp_text.csv", WITH("# @ramp fast"), CS_ERR_PARSE, 2, 0, "'fast'");
+  bad("bad_ramp_unit.csv", WITH("# @ramp 0.2 s"), CS_ERR_PARSE, 2, 0, "one number");
+  bad("bad_ramp_empty.csv", WITH("# @ramp"), CS_ERR_PARSE, 2, 0, "one number");
+  bad("bad_ramp_unknown.csv", WITH("# @rampe 0.2"), CS_ERR_PARSE, 2, 0, "'@rampe'");
+  bad("bad_ramp_twice.csv", "# @ramp 0.1\ntime,A_II1_O1\n0,0\n# @ramp 0.1\n", CS_ERR_PARSE, 4, 0,
+      "twice");
+#undef WITH
+}
+
+
 /* ---- bad input: size limits, checked before memory grows ---- */
 
 static void test_badSize(void) {
@@ -448,5 +499,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_badHeader);
   CS_RUN(test_badRows);
   CS_RUN(test_badSize);
+  CS_RUN(test_rampDirective);
   return cs_testSummary();
 }

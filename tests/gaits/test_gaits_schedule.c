@@ -1,7 +1,9 @@
 /* test_gaits_schedule.c: p(t) from a gait table (gaits_schedule.h): exact plateaus, zero
- * before the first row, monotone ramps, continuity of value and slope at the ramp ends, the
- * ramp clamped to a short row spacing, the pressure scale, the shapes, steps (ramp 0), the
- * rate against finite differences, and argument errors. */
+ * before the first row, monotone ramps, continuity of value and slope at the ramp ends,
+ * ramps longer than the row spacing (overlapping changes in closed form: a reversal mid-ramp,
+ * a step under a ramp longer than dense repeated rows, the commands' range kept), spacings
+ * equal to the ramp up to rounding, the pressure scale, the shapes, steps (ramp 0), the rate
+ * against finite differences, and argument errors. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -24,7 +26,7 @@
 /* labels used by the test table */
 enum { L1 = 1, L2 = 2, L96 = 96 };
 
-/* rows (s):     t = 0.5    1.5   1.6 (0.1 after: the ramp is clamped)   3.0
+/* rows (s):     t = 0.5    1.5   1.6 (0.1 after: the 0.2 s ramps overlap)   3.0
  * chamber 1:      0.2      0     0                                      0
  * chamber 2:      0        0.3   0.1                                    0
  * chamber 96:     0.25     0.25  0.25                                   0.25 */
@@ -141,9 +143,9 @@ static void test_continuityAtRampEnds(void) {
   if (!g) {
     return;
   }
-  /* ramp ends: row starts, plateau starts (ramp 0.2 or clamped 0.1), and the clamped end at
-   * 1.6 where the next ramp starts at once */
-  static const double kEnds[] = {0.5, 0.7, 1.5, 1.6, 1.8, 3.0, 3.2};
+  /* ramp ends where no other ramp runs: row starts, plateau starts (1.8: the overlapping
+   * changes of 1.5 and 1.6 both done) */
+  static const double kEnds[] = {0.5, 0.7, 1.5, 1.8, 3.0, 3.2};
   static const int kLabels[] = {L1, L2, L96};
   for (int shape = CSG_RAMP_SMOOTHSTEP; shape <= CSG_RAMP_QUINTIC; shape++) {
     csgScheduleOptions o = csg_defaultScheduleOptions();
@@ -161,6 +163,21 @@ static void test_continuityAtRampEnds(void) {
         CS_EXPECT_NEAR(rateAt(g, &o, t + FD_STEP, l), 0.0, 1e-3, 0);
         CS_EXPECT_NEAR(rateAt(g, &o, t, l), 0.0, 1e-12, 0);
       }
+    }
+  }
+  /* inside the overlap (1.6: row 2 starts while row 1 runs; 1.7: row 1 ends while row 2
+   * runs) value and slope stay continuous, the slope not zero */
+  for (int shape = CSG_RAMP_SMOOTHSTEP; shape <= CSG_RAMP_QUINTIC; shape++) {
+    csgScheduleOptions o = csg_defaultScheduleOptions();
+    o.shape = (csgRampShape)shape;
+    static const double kInner[] = {1.6, 1.7};
+    for (int e = 0; e < 2; e++) {
+      double t = kInner[e];
+      CS_EXPECT_NEAR(pAt(g, &o, t - FD_STEP, L2), pAt(g, &o, t, L2), 1e-5, 0); /* |p'| h */
+      CS_EXPECT_NEAR(pAt(g, &o, t + FD_STEP, L2), pAt(g, &o, t, L2), 1e-5, 0);
+      CS_EXPECT_NEAR(rateAt(g, &o, t - FD_STEP, L2), rateAt(g, &o, t, L2), 1e-3, 0);
+      CS_EXPECT_NEAR(rateAt(g, &o, t + FD_STEP, L2), rateAt(g, &o, t, L2), 1e-3, 0);
+      CS_EXPECT(fabs(rateAt(g, &o, t, L2)) > 0.1);
     }
   }
   /* the linear shape, by contrast, kinks: its slope jumps at a ramp start */
@@ -195,23 +212,137 @@ static void test_rateMatchesDifferences(void) {
 }
 
 
-/* a ramp longer than the row spacing is clamped to it and ends exactly at the next row */
-static void test_clampedRamp(void) {
+/* smoothstep, for closed forms */
+static double smooth(double u) { return u <= 0 ? 0 : u >= 1 ? 1 : u * u * (3 - 2 * u); }
+
+
+/* a ramp longer than the row spacing: each row's change still takes the full ramp and the
+ * changes add (a reversal mid-ramp), in closed form */
+static void test_overlappingRamps(void) {
   csgGait* g = makeGait();
   if (!g) {
     return;
   }
   csgScheduleOptions o = csg_defaultScheduleOptions();
-  /* row 1 at 1.5, row 2 at 1.6: chamber 2 goes 0 -> 0.3 over [1.5, 1.6], not [1.5, 1.7] */
-  CS_EXPECT_NEAR(pAt(g, &o, 1.55, L2), 0.15, 1e-15, 0); /* midpoint of the clamped ramp */
-  CS_EXPECT_NEAR(pAt(g, &o, 1.6 - 1e-9, L2), 0.3, 1e-12, 0);
-  CS_EXPECT(pAt(g, &o, 1.6, L2) == 0.3); /* the next ramp starts from the full plateau */
-  /* and chamber 1 reaches 0 by 1.6 */
-  CS_EXPECT(pAt(g, &o, 1.6, L1) == 0.0);
-  /* a ramp longer than every spacing: the last row still ramps over the full length */
+  /* chamber 2: 0 -> 0.3 from 1.5, reversed to 0.1 at 1.6 while still rising:
+   * p = 0.3 S((t - 1.5)/0.2) - 0.2 S((t - 1.6)/0.2); it peaks inside the overlap, below 0.3 */
+  static const double kT[] = {1.55, 1.6, 1.63, 1.65, 1.7, 1.75, 1.8, 2.0};
+  double peak = 0.0;
+  for (size_t i = 0; i < sizeof kT / sizeof kT[0]; i++) {
+    double t = kT[i];
+    double want = 0.3 * smooth((t - 1.5) / 0.2) - 0.2 * smooth((t - 1.6) / 0.2);
+    CS_EXPECT_NEAR(pAt(g, &o, t, L2), want, 1e-15, 0);
+    /* the rate is the derivative of the same sum: 6u(1-u)/r per change */
+    double u1 = (t - 1.5) / 0.2, u2 = (t - 1.6) / 0.2;
+    double rate = (u1 >= 0 && u1 < 1 ? 0.3 * 6 * u1 * (1 - u1) / 0.2 : 0) -
+                  (u2 >= 0 && u2 < 1 ? 0.2 * 6 * u2 * (1 - u2) / 0.2 : 0);
+    CS_EXPECT_NEAR(rateAt(g, &o, t, L2), rate, 1e-12, 0);
+    peak = fmax(peak, pAt(g, &o, t, L2));
+  }
+  CS_EXPECT(peak > 0.16 && peak < 0.3); /* the reversal caught the rise mid-way */
+  CS_EXPECT(pAt(g, &o, 1.8, L2) == 0.1); /* both done: the plateau exactly */
+  /* chamber 1: 0.2 -> 0 from 1.5 takes the full 0.2 s though row 2 comes at 1.6 */
+  CS_EXPECT_NEAR(pAt(g, &o, 1.6, L1), 0.1, 1e-15, 0);
+  CS_EXPECT(pAt(g, &o, 1.7, L1) == 0.0);
+  /* a ramp longer than every spacing: each change spreads over 10 s */
   o.ramp = 10.0;
-  CS_EXPECT_NEAR(pAt(g, &o, 1.0, L1), 0.1, 1e-15, 0);  /* clamped to 1 s, midpoint */
-  CS_EXPECT_NEAR(pAt(g, &o, 8.0, L2), 0.05, 1e-15, 0); /* last row: 0.1 -> 0 over 10 s */
+  CS_EXPECT_NEAR(pAt(g, &o, 1.0, L1), 0.2 * smooth(0.05), 1e-15, 0);
+  CS_EXPECT_NEAR(pAt(g, &o, 8.0, L2),
+                 0.3 * smooth(0.65) - 0.2 * smooth(0.64) - 0.1 * smooth(0.5), 1e-15, 0);
+  CS_EXPECT(pAt(g, &o, 13.0, L2) == 0.0 && pAt(g, &o, 13.0, L96) == 0.25);
+  csg_gaitDestroy(g);
+}
+
+
+/* a step command in a table that repeats it every 0.05 s, played with a 0.5 s ramp: the
+ * repeated rows add nothing, so the chamber follows one 0.5 s ramp, p = P S((t - 1)/0.5), and
+ * arrives exactly; every value stays within the commands' range [0, P] */
+static void test_stepUnderLongRamp(void) {
+  csError err;
+  const int n = 60; /* rows 0, 0.05, ..., 2.95 s; the step at row 20 (1 s) */
+  csgGait* g = csg_gaitCreate(n, &err);
+  CS_EXPECT(g != NULL);
+  if (!g) {
+    return;
+  }
+  for (int i = 0; i < n; i++) {
+    csg_gaitSetTime(g, i, 0.05 * i, &err);
+    csg_gaitSetPressure(g, i, L1, i >= 20 ? 0.25 : 0.0, &err);
+    /* chamber 2: a fast square wave, 0.05 s up, 0.05 s down, from 0.5 s */
+    csg_gaitSetPressure(g, i, L2, i >= 10 && i % 2 ? 0.3 : 0.0, &err);
+  }
+  CS_EXPECT(csg_gaitValidate(g, NULL, &err) == CS_OK);
+  csgScheduleOptions o = csg_defaultScheduleOptions();
+  o.ramp = 0.5;
+  int in_range = 1;
+  for (int k = 0; k <= 3000; k++) {
+    double t = 0.001 * k;
+    double want = 0.25 * smooth((t - 1.0) / 0.5);
+    CS_EXPECT_NEAR(pAt(g, &o, t, L1), want, 1e-15, 0);
+    double p2 = pAt(g, &o, t, L2);
+    in_range &= p2 >= -1e-15 && p2 <= 0.3 + 1e-15;
+  }
+  CS_EXPECT(in_range);
+  /* the square wave's mean (0.15 MPa) comes through and its ripple is smoothed: the kernel
+   * 6u(1-u)/T (T = 0.5 s) passes a 10 Hz wave (fT = 5) by 12/(2 pi fT)^2 = 0.0122, so the
+   * fundamental (4/pi) 0.15 MPa leaves 0.0023 MPa (harmonics 1e-4): 3e-3 bounds it */
+  for (int k = 0; k < 10; k++) {
+    CS_EXPECT_NEAR(pAt(g, &o, 2.0 + 0.01 * k, L2), 0.15, 3e-3, 0);
+  }
+  CS_EXPECT(pAt(g, &o, 1.5, L1) == 0.25 && pAt(g, &o, 2.2, L1) == 0.25);
+  CS_EXPECT(pAt(g, &o, 1.0, L1) == 0.0);
+  CS_EXPECT_NEAR(rateAt(g, &o, 1.25, L1), 0.25 * 1.5 / 0.5, 1e-12, 0); /* S'(1/2) = 1.5 */
+  /* the old rule (each change cut to the 0.05 s rows) would have arrived by 1.05 s */
+  CS_EXPECT(pAt(g, &o, 1.05, L1) < 0.01);
+  csg_gaitDestroy(g);
+}
+
+
+/* a spacing equal to the ramp up to rounding counts as the spacing (either way), so the
+ * change fills the interval and the next one starts from the exact plateau */
+static void test_roundingSpacing(void) {
+  csError err;
+  csgGait* g = csg_gaitCreate(4, &err);
+  CS_EXPECT(g != NULL);
+  if (!g) {
+    return;
+  }
+  /* spacings 0.3 - 0.2 = 0.09999999999999998 (below 0.1) and 0.7 - 0.6 = 0.09999999999999998,
+   * 0.6 - 0.3 = 0.3 (fits) */
+  static const double kT[] = {0.2, 0.3, 0.6, 0.7};
+  static const double kP[] = {0.1, 0.3, 0.05, 0.2};
+  for (int i = 0; i < 4; i++) {
+    csg_gaitSetTime(g, i, kT[i], &err);
+    csg_gaitSetPressure(g, i, L1, kP[i], &err);
+  }
+  csgScheduleOptions o = csg_defaultScheduleOptions();
+  o.ramp = 0.1;
+  CS_EXPECT(pAt(g, &o, 0.3, L1) == 0.1);   /* row 0's change done exactly at row 1 */
+  CS_EXPECT(pAt(g, &o, 0.7, L1) == 0.05);  /* row 2's change: 0.1 s, done by row 3 */
+  CS_EXPECT(pAt(g, &o, 0.45, L1) == 0.3);
+  /* inside: the ramp is the spacing, 0.25 of the way at a quarter of it */
+  double gap = 0.3 - 0.2;
+  CS_EXPECT_NEAR(pAt(g, &o, 0.2 + 0.25 * gap, L1), smooth(0.25) * 0.1, 1e-16, 0);
+  /* a ramp 1e-12 s longer than the spacing is the same ramp */
+  o.ramp = 0.1 + 1e-12;
+  CS_EXPECT(pAt(g, &o, 0.3, L1) == 0.1);
+  CS_EXPECT_NEAR(pAt(g, &o, 0.25, L1), 0.05, 1e-16, 0);
+  /* within rounding either way, the same pressures as the spacing itself, bit for bit */
+  csgScheduleOptions lo = o, hi = o, eq = o;
+  lo.ramp = gap - 1e-12;
+  hi.ramp = gap + 1e-12;
+  eq.ramp = gap;
+  int same = 1;
+  for (int k = 0; k <= 100; k++) {
+    double t = 0.2 + gap * k / 100.0;
+    double p = pAt(g, &eq, t, L1);
+    same &= pAt(g, &lo, t, L1) == p && pAt(g, &hi, t, L1) == p;
+    same &= rateAt(g, &lo, t, L1) == rateAt(g, &eq, t, L1);
+  }
+  CS_EXPECT(same);
+  /* but 1e-6 s longer overlaps, as it should: at row 1's time row 0 is not quite done */
+  o.ramp = 0.1 + 1e-6;
+  CS_EXPECT(pAt(g, &o, 0.3, L1) < 0.1 && pAt(g, &o, 0.3, L1) > 0.1 - 1e-9);
   csg_gaitDestroy(g);
 }
 
@@ -288,7 +419,9 @@ int main(int argc, char** argv) {
   CS_RUN(test_monotoneRamp);
   CS_RUN(test_continuityAtRampEnds);
   CS_RUN(test_rateMatchesDifferences);
-  CS_RUN(test_clampedRamp);
+  CS_RUN(test_overlappingRamps);
+  CS_RUN(test_stepUnderLongRamp);
+  CS_RUN(test_roundingSpacing);
   CS_RUN(test_scaleAndSteps);
   CS_RUN(test_badArguments);
   return cs_testSummary();
