@@ -14,7 +14,7 @@ tag=$g; [ "$fh" = none ] && tag=${g}_nofh
 . docs/bench/obstacle_pace_2026-12-06/opts.sh
 for n in "$@"; do
   [ -s $B/${tag}_$n.table3.txt ] && continue
-  nice -n 5 ${CRAWLSIM:-build/tools/crawlsim} run --scene obstacle --gait runs/$g.csv --foothold $fh $(opt $n) --t-end 35 --out runs/${tag}_$n.h5 > $B/${tag}_$n.log 2>&1
+  nice -n 5 ${CRAWLSIM:-build/tools/crawlsim} run --scene obstacle --gait runs/$g.csv --foothold $fh --conditions paper $(opt $n) --t-end 35 --out runs/${tag}_$n.h5 > $B/${tag}_$n.log 2>&1
   /usr/bin/python3 docs/bench/obstacle_road_2026-12-05/table3.py runs/${tag}_$n.h5 > $B/${tag}_$n.table3.txt 2>&1
   ch=$(/usr/bin/python3 -c "import h5py,sys; f=h5py.File(sys.argv[1],'r'); v=f.attrs.get('foothold_choices', ''); print(v.decode() if isinstance(v, bytes) else v)" runs/${tag}_$n.h5 2>/dev/null)
   echo "${tag} $n $(opt $n): $(sed -n 2p $B/${tag}_$n.table3.txt) | $(tail -n 1 $B/${tag}_$n.table3.txt) | footholds: $ch" >> $B/set.txt
