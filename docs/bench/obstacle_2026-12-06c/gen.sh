@@ -10,6 +10,6 @@ B=docs/bench/obstacle_2026-12-06c
 CS=${CRAWLSIM:-build/tools/crawlsim}
 n=$1; shift
 mkdir -p runs
-nice -n 5 /usr/bin/python3 tools/obstacle_gait.py -o $B/$n.gait --crawlsim $CS --foothold-out runs/$n --design-cache runs/design_cache "$@" > $B/$n.design.log 2>&1
+nice -n 5 /usr/bin/python3 tools/obstacle_gait.py -o $B/$n.gait --crawlsim $CS --foothold-out runs/$n --design-cache runs/design_cache "$@"
 cp runs/$n.foothold $B/$n.foothold
 echo "$n: $(grep -c '^candidate' runs/$n.foothold) candidates in $(grep -c '^foothold' runs/$n.foothold) footholds"
