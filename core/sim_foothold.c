@@ -9,6 +9,8 @@
  * legs and the support move), so the choice is a function of that state: a retried step
  * restores the state, the undecided latch with it, and decides again from the same state. The
  * latches are part of the state (sim_state.c), so cs_stateSet restores them bit for bit.
+ * Footholds are applied in order, so where a chained one (the same legs' next step, gaits_
+ * foothold.h) overlaps the earlier one's window, the later's columns hold.
  * Nothing is allocated here (the candidates' commands go through one stack array). */
 #include <math.h>
 #include <string.h>

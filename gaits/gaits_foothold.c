@@ -133,11 +133,17 @@ static csStatus statementFoothold(csgFootholdSet* s, char** w, int nw, const cha
     return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: footholds must come in increasing T (%g s "
                        "after %g s)", path, line, f->t, s->fh[s->n - 1].t);
   }
+  /* a chain: the next step of the same legs may be a foothold too (its window starts in the
+   * swing, while the earlier's rows still run to the lift and two rows past it); the later's
+   * columns hold from its W0 on (the player applies footholds in order), so it must start and
+   * end after the earlier one, or the earlier's rows would come back after it */
   for (int k = 0; k < s->n; k++) {
     const csgFoothold* o = &s->fh[k];
-    if ((o->legs & f->legs) && f->w0 < o->w1) {
+    if ((o->legs & f->legs) && f->w0 < o->w1 && !(f->w0 > o->w0 && f->w1 > o->w1)) {
       return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: its window %g..%g s overlaps that of line "
-                         "%d on a shared leg", path, line, f->w0, f->w1, o->line);
+                         "%d (%g..%g s) on a shared leg without following it (a chained "
+                         "foothold starts and ends later)", path, line, f->w0, f->w1, o->line,
+                         o->w0, o->w1);
     }
   }
   s->n++;

@@ -26,7 +26,9 @@
  *       length on the plateau and just past it), and its table FILE (a gait CSV, gaits_csv.h,
  *       path relative to the .foothold file's folder) whose LEGS columns hold over the window; `nominal` marks the candidate the nominal
  *       table (NAME.csv) holds: exactly one per foothold
- * Footholds sharing a leg may not overlap in their windows; a candidate table covers its
+ * Footholds sharing a leg may overlap in their windows only as a chain: the later one starts
+ * and ends later (W0 and W1 both greater) and its columns hold from its W0 on (the next step
+ * of the same legs, decided while the earlier's rows still run); a candidate table covers its
  * window (first row <= W0, last row >= W1).
  * Errors: "<file>:<line>: <cause>" (CS_ERR_PARSE malformed, CS_ERR_RANGE values, CS_ERR_IO a
  * file that cannot be read, a candidate table's own reader message). */

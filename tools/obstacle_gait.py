@@ -121,6 +121,10 @@ ap.add_argument('--foothold-out', default=None, metavar='NAME',
                 help='with --foothold: design -o\'s description into NAME.csv and every candidate '
                 'into NAME.foothold.d/, and write the companion NAME.foothold (needs -o FILE; '
                 '--crawlsim names the binary)')
+ap.add_argument('--decide', choices=('lift', 'swing'), default='lift',
+                help='rule 15: when a foothold reads the support: at its step\'s lift, or at the '
+                'swing\'s start (the first row any candidate changes; the plan\'s x there '
+                'interpolated within the slot), nearer where the foot lands')
 ap.add_argument('--crawlsim', default='build/tools/crawlsim', help='the binary for --foothold-out')
 ap.add_argument('--low-slot', type=int, default=None, metavar='S',
                 help='rule 10 starts at walk slot S whatever the landings (--foothold-out gives each '
@@ -566,6 +570,7 @@ for s in range(NS):
             offs, margin = FH[key]
             offs = sorted(set(offs) | {float(r)})
             FHINFO.append(dict(t=T0[s], legs=pair, cycle=s // 4, xplan=XP[s], margin=margin, r=r,
+                               dur=DUR[s], dx=XP[s + 1] - XP[s],
                                offsets=offs, lands=[START + OFF[l] + XL[s + 1] + o + a.over
                                                     for o in offs]))
             comment('foothold %.4f %s %s margin %g' % (T0[s], pair, ','.join('%g' % o for o in offs),
@@ -816,6 +821,13 @@ if a.foothold_out:
     index = ['# %s.foothold: the landings of %s.csv chosen during the run from the measured '
              'support\n# (gaits/gaits_foothold.h), written by tools/obstacle_gait.py rule 15 with\n'
              '#   %s\n' % (os.path.basename(name), os.path.basename(name), ' '.join(argv))]
+    def decide(f, w0):
+        """rule 15's decision time and the plan's support x then: the lift, or (--decide swing)
+        the window's start, the plan's x moving D/4 per slot (rule 3)"""
+        if a.decide == 'lift':
+            return f['t'], f['xplan']
+        return w0, f['xplan'] + f['dx'] * min(1.0, (w0 - f['t']) / f['dur'])
+
     for k, f in enumerate(FHINFO):
         cols = [i for i, h in enumerate(head) if h[:1] in f['legs']]
         tables = {}
@@ -826,9 +838,10 @@ if a.foothold_out:
             # then to its end)
             rows = [ln.split(',') for ln in open(os.path.join(folder, names[0]))
                     if ln.strip() and not ln.startswith('#')][1:]
+            td, xd = decide(f, float(rows[1][0]))
             index.append('# %s in cycle %d: the plan\'s offset %g mm (nominal)\n'
                          'foothold %.4f %s xplan %.3f margin %g window %s %s\n'
-                         % (f['legs'], f['cycle'], f['r'], f['t'], f['legs'], f['xplan'],
+                         % (f['legs'], f['cycle'], f['r'], td, f['legs'], xd,
                             f['margin'], rows[1][0], rows[-1][0]))
             for o, land, fn in zip(f['offsets'], f['lands'], names):
                 lo, hi = ((EDGES[0], EDGES[1] + BAND) if EDGES[0] < land < EDGES[1] + BAND else
@@ -866,9 +879,10 @@ if a.foothold_out:
         w0, w1 = float(nom[diff[0]][0]), float(nom[i1][0])
         if w0 < f['t']:
             sys.exit('obstacle_gait.py: foothold %s:%d differs before its lift' % (f['legs'], f['cycle']))
+        td, xd = decide(f, w0)
         index.append('# %s in cycle %d: the plan\'s offset %g mm (nominal)\n'
                      'foothold %.4f %s xplan %.3f margin %g window %s %s\n'
-                     % (f['legs'], f['cycle'], f['r'], f['t'], f['legs'], f['xplan'], f['margin'],
+                     % (f['legs'], f['cycle'], f['r'], td, f['legs'], xd, f['margin'],
                         nom[diff[0]][0], nom[i1][0]))
         for o, land in zip(f['offsets'], f['lands']):
             fn = 'f%d_%s_%g.csv' % (k + 1, f['legs'], o)

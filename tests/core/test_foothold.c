@@ -9,6 +9,8 @@
  *  - save and restore: from a state before the lift, two restores run to the same state bit
  *    for bit (the choice made again from the same state); a latch put in the state is the one
  *    that acts; a latch that is not a candidate is refused;
+ *  - a chain (leg B's next step a foothold too, its window starting inside the first's): the
+ *    later's columns hold over the overlap and after it;
  *  - a bad .foothold file fails cs_simCreate with a message naming the file and line.
  * The flat road has no raised box (no edges): the choice is the candidate nearest the plan's
  * landing (gaits_foothold.h), which these cases steer through xplan. */
@@ -201,6 +203,47 @@ static void test_choiceActsAndRestores(void) {
 }
 
 
+/* a chain: leg B's next step a foothold too, its window starting inside the first's; each
+ * picks its shorter candidate (the plan expected the support 30 mm behind): over the overlap
+ * and after it the later's columns hold (B at 0.25 of the table's pressures, not the first's
+ * 0.5) */
+static void test_chainLaterHolds(void) {
+  CS_EXPECT(writeCandidate("fh_nominal.csv", 1.0) == 0 && writeCandidate("fh_half.csv", 0.5) == 0 &&
+            writeCandidate("fh_quarter.csv", 0.25) == 0);
+  FILE* f = fopen("fh_chain.foothold", "w");
+  CS_EXPECT(f != NULL);
+  if (!f) return;
+  fprintf(f, "foothold %g B xplan -30 margin 0 window %g 0.3\n"
+             "candidate 10 land 100 fits -1e3 1e3 fh_nominal.csv nominal\n"
+             "candidate -20 land 70 fits -1e3 1e3 fh_half.csv\n"
+             "foothold 0.15 B xplan -30 margin 0 window 0.15 %g\n"
+             "candidate 10 land 100 fits -1e3 1e3 fh_nominal.csv nominal\n"
+             "candidate -20 land 70 fits -1e3 1e3 fh_quarter.csv\n", T_LIFT, W0, W1);
+  fclose(f);
+  csSim* a = make(NULL);
+  csSim* b = make("fh_chain.foothold");
+  CS_EXPECT(a && b);
+  if (a && b) {
+    runTo(a, 0.12);
+    runTo(b, 0.12);
+    const double pa1 = legPressure(a, LEG), pb1 = legPressure(b, LEG);
+    runTo(a, 0.27);
+    runTo(b, 0.27);
+    const double pa2 = legPressure(a, LEG), pb2 = legPressure(b, LEG);
+    runTo(a, 0.38);
+    runTo(b, 0.38);
+    const double pa3 = legPressure(a, LEG), pb3 = legPressure(b, LEG);
+    printf("chain: leg B / table at 0.12 s %.4f (first: 0.5), 0.27 s %.4f and 0.38 s %.4f "
+           "(second: 0.25)\n", pb1 / pa1, pb2 / pa2, pb3 / pa3);
+    CS_EXPECT(pa1 > 0.1 && fabs(pb1 / pa1 - 0.5) < 0.05);
+    CS_EXPECT(pa2 > 0.1 && fabs(pb2 / pa2 - 0.25) < 0.025);
+    CS_EXPECT(pa3 > 0.1 && fabs(pb3 / pa3 - 0.25) < 0.025);
+  }
+  cs_simDestroy(a);
+  cs_simDestroy(b);
+}
+
+
 static void test_badFile(void) {
   FILE* f = fopen("fh_bad.foothold", "w");
   CS_EXPECT(f != NULL);
@@ -247,6 +290,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_sameCandidatesSameRun);
   CS_RUN(test_choiceActsAndRestores);
+  CS_RUN(test_chainLaterHolds);
   CS_RUN(test_badFile);
   CS_RUN(test_longRampRefused);
   return cs_testSummary();

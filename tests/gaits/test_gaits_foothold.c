@@ -94,6 +94,24 @@ static void test_readGood(void) {
 }
 
 
+/* a chain: the same legs' next step a foothold whose window starts within the earlier's and
+ * ends after it (accepted) */
+static void test_readChain(void) {
+  writeTables();
+  cs_testWriteText("fh_chain.foothold",
+            "foothold 1 DH xplan 90 margin 25 window 1 2.5\n"
+            "candidate 0 land 200 fits -1000 240 fh_c0.csv nominal\n"
+            "foothold 1.5 H xplan 95 margin 25 window 2 3\n"
+            "candidate 0 land 205 fits -1000 240 fh_c1.csv nominal\n");
+  csError err;
+  cs_errorClear(&err);
+  csgFootholdSet* s = csg_footholdRead("fh_chain.foothold", NULL, &err);
+  CS_EXPECT(s != NULL && s->n == 2);
+  if (!s) fprintf(stderr, "  %s\n", err.msg);
+  csg_footholdDestroy(s);
+}
+
+
 static void expectBad(const char* name, const char* text, csStatus status, int line,
                       const char* cause) {
   cs_testWriteText(name, text);
@@ -138,8 +156,10 @@ static void test_readBad(void) {
   expectBad("fh_b10.foothold", "foothold 0.5 DH xplan 9 margin 25 window 0.5 5\n"
             "candidate 0 land 200 fits -1000 1000 fh_c0.csv nominal\n", CS_ERR_RANGE, 2,
             "not the window");
+  /* a window overlapping an earlier one on a shared leg without following it (ending first:
+   * the earlier's rows would come back after it) */
   snprintf(text, sizeof text, "%scandidate 0 land 200 fits -1000 1000 fh_c0.csv nominal\n"
-           "foothold 1.5 H xplan 9 margin 25 window 2 3\n", f1);
+           "foothold 1.5 H xplan 9 margin 25 window 2 2.5\n", f1);
   expectBad("fh_b11.foothold", text, CS_ERR_RANGE, 3, "overlaps");
   snprintf(text, sizeof text, "%scandidate 0 land x fits -1000 1000 fh_c0.csv nominal\n", f1);
   expectBad("fh_b12.foothold", text, CS_ERR_PARSE, 2, "finite numbers");
@@ -155,6 +175,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_edgeBetweenTakesTheFurther);
   CS_RUN(test_fitsAndNoEdges);
   CS_RUN(test_readGood);
+  CS_RUN(test_readChain);
   CS_RUN(test_readBad);
   return cs_testSummary();
 }
