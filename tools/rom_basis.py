@@ -294,7 +294,7 @@ def fibre_strains(U, x, fib):
 
 def fibre_basis(a, X, Ut, x, fib):
     """Qf (nfib, mf): the W-orthonormal POD (W = EA L0) of the training fibre strains and their
-    stresses S(E); with --p-split each mode split per zone as the pressure modes. Prints the
+    stresses S(E); with --f-split each mode split per zone as --p-split does. Prints the
     held-out strain fields' projection error."""
     W = fib[3] * fib[2]
     E = fibre_strains(X, x, fib)
@@ -306,9 +306,9 @@ def fibre_basis(a, X, Ut, x, fib):
     kmax = int((lam > lam[0] * 1e-24).sum())
     mf = min(a.fibre_modes, kmax)
     Q = Y @ Phi[:, :mf] / np.sqrt(lam[:mf])
-    if a.p_split:
+    if a.f_split:
         z = (x[fib[0]][:, :, 2]).mean(axis=1)
-        edges = [-np.inf] + sorted(a.p_split) + [np.inf]
+        edges = [-np.inf] + sorted(a.f_split) + [np.inf]
         sw = np.sqrt(W)[:, None]
         out = []
         for lo, hi in zip(edges[:-1], edges[1:]):
@@ -324,7 +324,7 @@ def fibre_basis(a, X, Ut, x, fib):
                 np.maximum(np.sqrt(np.einsum("fj,fj,f->j", T, T, W)), 1e-300))
 
     line = (f"rom_basis: fibres: {Q.shape[1]} strain modes ({mf} of {kmax}"
-            f"{', split' if a.p_split else ''}; {fib[0].shape[0]} fibres): training strain "
+            f"{', split' if a.f_split else ''}; {fib[0].shape[0]} fibres): training strain "
             f"projection error max {perr(E).max():.3e}, stress {perr(Y[:, E.shape[1]:]).max():.3e}")
     if Ut is not None:
         Et = fibre_strains(Ut, x, fib)
@@ -440,8 +440,10 @@ def main():
                     "--ptol)")
     ap.add_argument("--fibre-modes", type=int, default=0,
                     help="the mixed fibre field: this many POD modes of the training fibre "
-                    "strains and stresses (split per zone with --p-split), written as Qf, "
-                    "attribute mf; needs --fibres")
+                    "strains and stresses, written as Qf, attribute mf; needs --fibres")
+    ap.add_argument("--f-split", type=lambda v: [float(c) for c in v.split(",")], default=None,
+                    help="--fibre-modes: split every fibre strain mode at these x3 (mm; as "
+                    "--p-split, by the mean x3 of the fibre's host nodes)")
     ap.add_argument("--fibres", default=None,
                     help="--fibre-modes: a `crawlsim rom leg-file` of the same mesh (its fibre "
                     "elements)")
