@@ -537,10 +537,9 @@ def main():
         n_pick = V.shape[1]
     Qf = None
     if a.fibre_modes > 0:
-        if a.turns:
-            sys.exit("rom_basis: --fibre-modes with --turns: the turned states' fibre strains "
-                     "are not those of the FE (the helices' start does not turn onto itself)")
-        Qf = fibre_basis(a, X, Ut, x, read_fibres(a.fibres, x))
+        # the FE states' only: with --turns the turned states are near-equilibria whose fibre
+        # strains are no FE's (the helices' start does not turn onto itself)
+        Qf = fibre_basis(a, X[:, :ns_fe], Ut, x, read_fibres(a.fibres, x))
     Mr = V.T @ (M @ V)
     er, em = proj_err(V, X)
     print(f"rom_basis: n = {n_pick} (tol {a.tol:g}): training projection error max {er.max():.3e} "
