@@ -12,6 +12,7 @@
 #include "cs_test.h"
 #include "fem_rom.h"
 #include "fem_test_util.h"
+#include "rom_test_util.h"
 
 #define P_BOX 0.006 /* the block's end pressure, MPa (test_fem_rom.c: large rotations) */
 
@@ -106,10 +107,7 @@ static void test_identity_fibre_basis_is_the_fe_fibre_model(void) {
   csError err = {0};
   csfRom* r0 = csf_romCreate(m, n, V, &err);
   csfRom* r1 = csf_romCreate(m, n, V, &err);
-  double* Q = calloc((size_t)nf * nf, sizeof(double));
-  for (int f = 0; f < nf; f++) {
-    Q[(size_t)f * nf + f] = 1.0;
-  }
+  double* Q = ftIdentity(nf);
   CS_EXPECT(csf_romSetFibreBasis(r1, nf, Q, &err) == CS_OK);
   csfRomData* d0 = csf_romDataCreate(r0, &err);
   csfRomData* d1 = csf_romDataCreate(r1, &err);
@@ -170,21 +168,10 @@ static void test_mixed_fibre_tangent_matches_finite_differences(void) {
     csfRomLoad ld = {pass == 0 ? fp : NULL, {0, -9810.0, 0}, NULL};
     memcpy(d->q, q, sizeof q);
     CS_EXPECT(csf_romEvaluate(r, d, &ld, 1) == 0);
-    double K[25], rp[5], efd = 0, asym = 0;
+    double K[25], asym;
     memcpy(K, d->K, sizeof K);
-    const double mk = maxAbs(25, K), h = 1e-6;
-    for (int j = 0; j < n; j++) {
-      d->q[j] = q[j] + h;
-      csf_romEvaluate(r, d, &ld, 0);
-      memcpy(rp, d->r, sizeof rp);
-      d->q[j] = q[j] - h;
-      csf_romEvaluate(r, d, &ld, 0);
-      d->q[j] = q[j];
-      for (int i = 0; i < n; i++) {
-        efd = fmax(efd, fabs((rp[i] - d->r[i]) / (2 * h) - K[i * n + j]));
-        asym = fmax(asym, fabs(K[i * n + j] - K[j * n + i]));
-      }
-    }
+    const double mk = maxAbs(25, K);
+    const double efd = rtFdTangent(r, d, &ld, q, K, 1e-6, &asym); /* h as test_fem_rom.c */
     printf("  mixed fibres (mf = %d of %d)%s: |K - K_fd| / |K| = %.2e, asymmetry %.2e\n", mf, nf,
            pass == 0 ? " with the open pressure face" : ", no pressure", efd / mk, asym / mk);
     /* measured 7e-10; without Z^T C Z it is 0.55 */
@@ -269,20 +256,9 @@ static void test_snapshots_come_back_with_a_fibre_basis(void) {
   }
   csError err = {0};
   /* (a) every free dof, Q = I */
-  int n = 0;
-  for (int i = 0; i < nd; i++) {
-    n += !m->fixed[i];
-  }
-  double* V = calloc((size_t)nd * n, sizeof(double));
-  for (int i = 0, j = 0; i < nd; i++) {
-    if (!m->fixed[i]) {
-      V[(size_t)i * n + j++] = 1.0;
-    }
-  }
-  double* Q = calloc((size_t)nf * nf, sizeof(double));
-  for (int f = 0; f < nf; f++) {
-    Q[(size_t)f * nf + f] = 1.0;
-  }
+  int n;
+  double* V = ftFreeDofBasis(m, &n);
+  double* Q = ftIdentity(nf);
   csfRom* r = csf_romCreate(m, n, V, &err);
   CS_EXPECT(csf_romSetFibreBasis(r, nf, Q, &err) == CS_OK);
   csfRomData* rd = csf_romDataCreate(r, &err);
