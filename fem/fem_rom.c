@@ -24,6 +24,7 @@
 
 #include "fem_element.h"
 #include "fem_material.h"
+#include "fem_rom_fibre.h"
 #include "fem_rom_mixed.h"
 
 #define ROM_LS_SHRINK 0.5 /* line-search step factor */
@@ -145,6 +146,7 @@ void csf_romDestroy(csfRom* r) {
   free(r->G);
   free(r->face_ch), free(r->ch_V0), free(r->ch_g0), free(r->ch_H);
   free(r->P), free(r->A_chol);
+  free(r->Qf), free(r->Gf_chol);
   free(r->fib_D), free(r->fib_X);
   for (int s = 0; s < CSF_ROM_NSET; s++) {
     free(r->el[s]);
@@ -308,6 +310,9 @@ csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, co
     return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (the fibres' chord operators, "
                        "%d x 3 x %d)", nel, r->n);
   }
+  if (set == CSF_ROM_SET_FIBRE && r->mf > 0) {
+    return csf_romFibreFactor(r, err);
+  }
   return set == CSF_ROM_SET_TET && r->m > 0 ? csf_romMixedFactor(r, err) : CS_OK;
 }
 
@@ -348,7 +353,12 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
                nf = (size_t)r->fem->nfib + 1;
   d->n = r->n;
   d->m = r->m;
-  const size_t m = (size_t)r->m;
+  d->mf = r->mf;
+  const size_t m = (size_t)r->m, mf = (size_t)r->mf;
+  d->fq_e = calloc(3 * mf + 1, sizeof(double));
+  d->fq_B = calloc(3 * mf * n + 1, sizeof(double));
+  d->fq_C = calloc(mf * mf + 1, sizeof(double));
+  d->fq_E = mf ? calloc(nf, sizeof(double)) : calloc(1, sizeof(double));
   d->ph = calloc(m + 1, sizeof(double));
   d->Bm = calloc(2 * m * n + 1, sizeof(double));
   d->mtmp = calloc(m + n, sizeof(double));
@@ -376,7 +386,7 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
   d->q_best = calloc(n, sizeof(double));
   d->q0 = calloc(n, sizeof(double));
   d->lu = calloc(n * n, sizeof(double));
-  d->tmp = calloc(n, sizeof(double));
+  d->tmp = calloc(2 * n, sizeof(double));
   d->piv = calloc(n, sizeof(int));
   d->ke_v = calloc(61 * n, sizeof(double));
   d->bf_s = calloc(CSF_ROM_BFGS_MAX * n, sizeof(double));
@@ -388,7 +398,8 @@ csfRomData* csf_romDataCreate(const csfRom* r, csError* err) {
       !d->fib_d || !d->vr0 || !d->g0 || !d->fib_E0 || !d->fib_d0 || !d->theta_save ||
       !d->fib_S_save || !d->theta_best || !d->fib_S_best || !d->dq || !d->q_save ||
       !d->q_best || !d->q0 || !d->lu || !d->tmp || !d->piv || !d->ke_v || !d->ph || !d->Bm ||
-      !d->mtmp || !d->rel || !d->bf_s || !d->bf_y || !d->bf_rho || !d->bf_a || !d->bf_r0) {
+      !d->mtmp || !d->rel || !d->bf_s || !d->bf_y || !d->bf_rho || !d->bf_a || !d->bf_r0 ||
+      !d->fq_e || !d->fq_B || !d->fq_C || !d->fq_E) {
     csf_romDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (reduced data, n = %d)", r->n);
     return NULL;
@@ -420,7 +431,7 @@ void csf_romDataDestroy(csfRomData* d) {
                     d->vr0, d->g0, d->fib_E0, d->fib_d0, d->theta_save, d->fib_S_save,
                     d->theta_best, d->fib_S_best, d->dq, d->q_save, d->q_best, d->q0, d->lu,
                     d->tmp, d->ke_v, d->ph, d->Bm, d->mtmp, d->rel, d->bf_s, d->bf_y,
-                    d->bf_rho, d->bf_a, d->bf_r0};
+                    d->bf_rho, d->bf_a, d->bf_r0, d->fq_e, d->fq_B, d->fq_C, d->fq_E};
   for (size_t k = 0; k < sizeof bufs / sizeof bufs[0]; k++) {
     free(bufs[k]);
   }
@@ -687,7 +698,7 @@ static int mixedTets(const csfRom* r, csfRomData* d, int want_k, double* rint) {
 }
 
 int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int want_k) {
-  if (!r || !d || !load || d->n != r->n || d->m != r->m) {
+  if (!r || !d || !load || d->n != r->n || d->m != r->m || d->mf != r->mf) {
     return -1;
   }
   const csfModel* m = r->fem;
@@ -731,8 +742,11 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
   }
   /* fibres through their chord operators (csfRom.fib_D): the kernel on the chord alone (one
    * "node" of coefficient 1: its force f_d = dW/dd and 3 x 3 tangent H), then
-   * r += w D^T f_d, K += w D^T H D */
-  for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
+   * r += w D^T f_d, K += w D^T H D; the mixed fibre field (csfRom.mf) in fem_rom_fibre.c */
+  if (r->mf > 0) {
+    csf_romFibresMixed(r, d, want_k, rint);
+  }
+  for (int k = 0; r->mf == 0 && k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
     const int f = r->el[CSF_ROM_SET_FIBRE][k];
     const double* D = r->fib_D + (size_t)k * 3 * (size_t)n;
     const double one = 1.0;
@@ -926,8 +940,8 @@ static int mixedElementForces(const csfRom* r, csfRomData* d, double* G) {
 int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
                          double* G) {
   if (!r || !d || !load || !G || (int)set < 0 || set >= CSF_ROM_NSET || d->n != r->n ||
-      d->m != r->m) {
-    return -1;
+      d->m != r->m || (set == CSF_ROM_SET_FIBRE && r->mf > 0)) {
+    return -1; /* the mixed fibres' ECSW rows are not built */
   }
   const csfModel* m = r->fem;
   const csfMesh* me = m->mesh;
@@ -1089,7 +1103,10 @@ static void updateStates(const csfRom* r, csfRomData* d, double alpha) {
     }
     d->theta[e] = d->vr0[e] + alpha * s / m->vol[e];
   }
-  for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
+  if (r->mf > 0) {
+    csf_romFibreStates(r, d, alpha);
+  }
+  for (int k = 0; r->mf == 0 && k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
     const int f = r->el[CSF_ROM_SET_FIBRE][k];
     const double* D = r->fib_D + (size_t)k * 3 * (size_t)r->n;
     double dd[3] = {0, 0, 0};

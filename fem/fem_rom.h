@@ -77,6 +77,22 @@ typedef struct csfRom_ {
   int m;
   double* P;           /* (ntet x m) element pressure basis, owned */
   double* A_chol;      /* (m x m) Cholesky factor (lower) of A over the kept elements */
+  /* mixed fibre field (csf_romSetFibreBasis; mf = 0: every fibre strains on its own, the FE's
+   * law). The nearly inextensible fibres lock a linear span as the bulk does: a combination of
+   * snapshot modes stretches the fibres far more than any snapshot did (docs/notes/rom.md,
+   * "Locking"). With mf > 0 the fibres' Green strains E_f(q) enter the law only through their
+   * projection onto a strain basis Q (nfib x mf, from the training states' fibre strains),
+   * weighted by the kept fibres' stiffness W_f = w_f EA_f L0_f (N):
+   *   E^ = G^-1 sum_f W_f Q_f E_f(q),  G = sum_f W_f Q_f Q_f^T,  Ebar_f = Q_f . E^,
+   * and the fibre energy is sum_f W_f psi(Ebar_f) (psi' = S, fem_material.h csf_fibreLaw): an
+   * assumed-strain (B-bar-like) field, conservative, its tangent symmetric. Each fibre's force is
+   * the FE kernel's with S(E_f) replaced by the W-projection S*_f = Q_f . G^-1 sum_g W_g Q_g
+   * S(Ebar_g) (fem_rom_fibre.c); Q = I is the FE's fibre model, exactly. A strain component
+   * outside span(Q) costs no fibre energy, as a dilatation outside span(P) costs no bulk
+   * energy. */
+  int mf;
+  double* Qf;          /* (nfib x mf) fibre strain basis (strain per unit E^), owned */
+  double* Gf_chol;     /* (mf x mf) Cholesky factor (lower) of G over the kept fibres, N */
 } csfRom;
 
 /* Build a reduced model on the finalised FE model `fem` (not copied; must outlive the rom) with
@@ -96,6 +112,12 @@ csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, co
  * csf_romSetWeights). CS_ERR_ARG when A is not positive definite (a pressure mode without
  * support in the kept elements) or P is not finite. */
 csStatus csf_romSetPressureBasis(csfRom* r, int m, const double* P, csError* err);
+
+/* Give the fibres the strain basis Q (nfib x mf, copied; mf = 0: the FE's fibres again; see
+ * csfRom.mf). G is factored over the kept fibres (again at every csf_romSetWeights of the fibre
+ * set). CS_ERR_ARG when Q is not finite or a mode has no support in the kept fibres. A data set
+ * (csf_romDataCreate) serves the mf it was created with. */
+csStatus csf_romSetFibreBasis(csfRom* r, int mf, const double* Q, csError* err);
 
 /* Take the chambers' pressure loads in closed form (see csfRom.nch): face f belongs to chamber
  * face_ch[f] (0..nch-1, -1: none; every face of a chamber must carry the same pressure in a
@@ -150,6 +172,14 @@ typedef struct csfRomData_ {
   double* rel;  /* (ntet x 30) */
   double* Bm;   /* (m x n) */
   double* mtmp; /* (m + n) */
+  /* mixed fibres (csfRom.mf > 0): E^ and the projected stress coefficients (2 mf); B =
+   * sum_f W_f Q_f dE_f/dq and G^-1 B (2 mf x n); C = sum_f W_f S'(Ebar_f) Q_f Q_f^T (mf x mf);
+   * a fibre strain per fibre (the states' update) */
+  int mf;
+  double* fq_e;
+  double* fq_B;
+  double* fq_C;
+  double* fq_E;
   double rnorm, fnorm; /* |r|, force scale |V^T f_int| + |V^T f_ext| (N) */
   long n_eval, n_newton; /* evaluations, Newton iterations */
   long n_tangent;        /* evaluations that formed K */

@@ -118,18 +118,21 @@ static csStatus readWeights(csfRomActuator* ra, const char* path, csError* err) 
   return st;
 }
 
-/* P [ntet, m] of a mixed basis file into the rom (none: displacement-only, CS_OK) */
-static csStatus readPressureBasis(const char* basis_path, csfRom* rom, csError* err) {
+/* P [ntet, m] of a mixed basis file into the rom (none: displacement-only, CS_OK), or with
+ * `fibre` the fibre strain basis Qf [nfib, mf] (none: the FE's fibres, CS_OK) */
+static csStatus readPressureBasis(const char* basis_path, csfRom* rom, int fibre, csError* err) {
   double m_attr = 0;
   double* P = NULL;
   size_t np = 0;
-  const size_t ntet = (size_t)rom->fem->mesh->ntet;
+  const size_t rows = fibre ? (size_t)rom->fem->nfib : (size_t)rom->fem->mesh->ntet;
+  const char* attr = fibre ? "mf" : "m";
+  const char* name = fibre ? "Qf" : "P";
   int bad = 0;
   H5E_BEGIN_TRY {
     hid_t f = H5Fopen(basis_path, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (f >= 0) {
-      if (readAttr(f, "m", &m_attr) && m_attr > 0) {
-        P = readDoubles(f, "P", ntet * (size_t)m_attr, &np);
+      if (readAttr(f, attr, &m_attr) && m_attr > 0) {
+        P = readDoubles(f, name, rows * (size_t)m_attr, &np);
         bad = !P;
       }
       H5Fclose(f);
@@ -137,13 +140,15 @@ static csStatus readPressureBasis(const char* basis_path, csfRom* rom, csError* 
   }
   H5E_END_TRY;
   if (bad) {
-    return cs_errorSet(err, CS_ERR_IO, "%s: attribute m = %g but no dataset P of %zu x %g "
-                       "(the element pressure basis)", basis_path, m_attr, ntet, m_attr);
+    return cs_errorSet(err, CS_ERR_IO, "%s: attribute %s = %g but no dataset %s of %zu x %g "
+                       "(the %s)", basis_path, attr, m_attr, name, rows, m_attr,
+                       fibre ? "fibre strain basis" : "element pressure basis");
   }
   if (!P) {
     return CS_OK;
   }
-  const csStatus st = csf_romSetPressureBasis(rom, (int)m_attr, P, err);
+  const csStatus st = fibre ? csf_romSetFibreBasis(rom, (int)m_attr, P, err)
+                            : csf_romSetPressureBasis(rom, (int)m_attr, P, err);
   free(P);
   return st;
 }
@@ -216,8 +221,12 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
     return err->status;
   }
   /* the mixed model's element pressure basis, when the file has one (tools/rom_basis.py
-   * --mixed: P [ntet, m], attribute m) */
-  st = readPressureBasis(basis_path, ra->rom, err);
+   * --mixed: P [ntet, m], attribute m) and the fibre strain basis (--fibre-modes: Qf [nfib,
+   * mf], attribute mf) */
+  st = readPressureBasis(basis_path, ra->rom, 0, err);
+  if (st == CS_OK) {
+    st = readPressureBasis(basis_path, ra->rom, 1, err);
+  }
   if (st != CS_OK) {
     csf_romActuatorDestroy(ra);
     return st;

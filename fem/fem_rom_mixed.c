@@ -33,7 +33,16 @@ csStatus csf_romMixedFactorInto(const csfRom* r, int all, double* L, csError* er
       }
     }
   }
-  /* in-place Cholesky of the lower triangle; the scale of A's diagonal sets the test */
+  const int j = csf_romCholesky(m, L);
+  if (j >= 0) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_rom: pressure mode %d of %d has no support in "
+                       "the kept Tet10s (the mixed pressure matrix is singular)", j, m);
+  }
+  return CS_OK;
+}
+
+int csf_romCholesky(int m, double* L) {
+  /* in-place Cholesky of the lower triangle; the scale of the diagonal sets the test */
   double dmax = 0;
   for (int i = 0; i < m; i++) {
     dmax = fmax(dmax, L[(size_t)i * m + i]);
@@ -44,8 +53,7 @@ csStatus csf_romMixedFactorInto(const csfRom* r, int all, double* L, csError* er
       s -= L[(size_t)j * m + k] * L[(size_t)j * m + k];
     }
     if (!(s > 1e-12 * dmax)) {
-      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: pressure mode %d of %d has no support in "
-                         "the kept Tet10s (the mixed pressure matrix is singular)", j, m);
+      return j;
     }
     const double ljj = sqrt(s);
     L[(size_t)j * m + j] = ljj;
@@ -57,7 +65,7 @@ csStatus csf_romMixedFactorInto(const csfRom* r, int all, double* L, csError* er
       L[(size_t)i * m + j] = t / ljj;
     }
   }
-  return CS_OK;
+  return -1;
 }
 
 csStatus csf_romMixedFactor(csfRom* r, csError* err) {

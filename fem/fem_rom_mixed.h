@@ -21,6 +21,10 @@ csStatus csf_romMixedFactor(csfRom* r, csError* err);
  * fit's element rows need whatever the rom's weights). CS_ERR_ARG when not positive definite. */
 csStatus csf_romMixedFactorInto(const csfRom* r, int all, double* L, csError* err);
 
+/* In-place Cholesky factor of the symmetric matrix whose lower triangle L (m x m) holds:
+ * -1, or the first column whose pivot is not above 1e-12 of the largest diagonal entry. */
+int csf_romCholesky(int m, double* L);
+
 /* x = A^-1 x (m), in place, from r->A_chol. */
 void csf_romMixedSolve(const csfRom* r, double* x);
 

@@ -532,8 +532,9 @@ static int cmdCheck(int argc, char** argv) {
     return 1;
   }
   const double L = act.S[0] + act.S[1] + act.S[2] + act.LS[0] + act.LS[1];
-  printf("crawlsim rom: check: basis %s (n = %d), weights %s: %d of %d Tet10, %d of %d fibre "
-         "elements, %d of %d faces (set-up %.1f s)\n", basis, ra.rom->n, weights ? weights : "none",
+  printf("crawlsim rom: check: basis %s (n = %d, m = %d pressure modes, mf = %d fibre strain "
+         "modes), weights %s: %d of %d Tet10, %d of %d fibre elements, %d of %d faces (set-up "
+         "%.1f s)\n", basis, ra.rom->n, ra.rom->m, ra.rom->mf, weights ? weights : "none",
          ra.rom->nel[CSF_ROM_SET_TET], ra.fe.mesh->ntet, ra.rom->nel[CSF_ROM_SET_FIBRE],
          ra.fe.model->nfib, ra.rom->nel[CSF_ROM_SET_FACE], ra.fe.mesh->nface,
          csu_wallSeconds() - t0);

@@ -18,6 +18,11 @@ reduced model on this basis can do there), and writes BASIS.h5:
   Mr [n, n] (V^T M V), q_snap [nsnap, n] (the training snapshots' reduced coordinates) with
   their loads p_snap [nsnap,3,4] (MPa), g_snap [nsnap,3] (mm/s^2), F_snap [nsnap,3] (N),
   attributes n, tol, mass_total_t, rho, nsnap, the rays used, the mesh signature.
+With --fibre-modes K --fibres LEG.h5 (a `crawlsim rom leg-file` of the same mesh, for its fibre
+elements) also the fibre strain basis of the mixed fibre field (fem/fem_rom.h csfRom.mf): the
+POD, weighted by W_f = EA_f L0_f, of the training states' fibre Green strains E_f and of their
+stresses S(E_f) (the tension-only law is not linear: S* = S(E) at a training state needs both
+in the span), written as Qf [nfib, mf] with attribute mf.
 Units: mm, t (tonnes), N.
 """
 import argparse
@@ -254,6 +259,80 @@ def split_pressure_modes(P, x, tet, vol, cuts):
     return np.concatenate(out, axis=1)
 
 
+# the FE's smoothed tension-only fibre law (fem/fem_material.h CSF_FIBRE_SLACK, csf_fibreLaw)
+FIBRE_SLACK = 5e-4
+
+
+def fibre_law(E, tension_only=True):
+    """S(E) of csf_fibreLaw (strain units)."""
+    if not tension_only:
+        return E.copy()
+    dl = FIBRE_SLACK
+    return np.where(E <= -dl, 0.0, np.where(E < dl, (E + dl) ** 2 / (4 * dl), E))
+
+
+def read_fibres(path, x):
+    """The fibre elements of a leg file (robot/rom/robot_rom_file.h): host nodes (nfib, 20),
+    chord coefficients (nfib, 20), L0 (mm), EA (N), the tension-only flag."""
+    with h5py.File(path, "r") as f:
+        if f["mesh/x"].shape != x.shape or not np.allclose(f["mesh/x"][...], x):
+            sys.exit(f"rom_basis: --fibres {path}: another mesh")
+        return (f["fibre/node"][...].astype(np.int64), f["fibre/coef"][...], f["fibre/L0"][...],
+                f["fibre/EA"][...], bool(f.attrs.get("fib_tension_only", 1)))
+
+
+def fibre_strains(U, x, fib):
+    """Green strains (nfib, ns) of the fibres' chords at displacements U (ndof, ns)."""
+    node, coef, L0 = fib[0], fib[1], fib[2]
+    out = np.empty((node.shape[0], U.shape[1]))
+    for k in range(U.shape[1]):
+        xc = (x + U[:, k].reshape(-1, 3))[node]  # (nf, 20, 3)
+        d = np.einsum("fa,fai->fi", coef, xc)
+        out[:, k] = 0.5 * ((d ** 2).sum(1) / L0 ** 2 - 1.0)
+    return out
+
+
+def fibre_basis(a, X, Ut, x, fib):
+    """Qf (nfib, mf): the W-orthonormal POD (W = EA L0) of the training fibre strains and their
+    stresses S(E); with --f-split each mode split per zone as --p-split does. Prints the
+    held-out strain fields' projection error."""
+    W = fib[3] * fib[2]
+    E = fibre_strains(X, x, fib)
+    Y = np.concatenate([E, fibre_law(E, fib[4])], axis=1)
+    C = Y.T @ (W[:, None] * Y)
+    lam, Phi = np.linalg.eigh(C)
+    order = np.argsort(lam)[::-1]
+    lam, Phi = np.clip(lam[order], 0, None), Phi[:, order]
+    kmax = int((lam > lam[0] * 1e-24).sum())
+    mf = min(a.fibre_modes, kmax)
+    Q = Y @ Phi[:, :mf] / np.sqrt(lam[:mf])
+    if a.f_split:
+        z = (x[fib[0]][:, :, 2]).mean(axis=1)
+        edges = [-np.inf] + sorted(a.f_split) + [np.inf]
+        sw = np.sqrt(W)[:, None]
+        out = []
+        for lo, hi in zip(edges[:-1], edges[1:]):
+            u, sig, _ = np.linalg.svd(sw * Q * ((z >= lo) & (z < hi))[:, None],
+                                      full_matrices=False)
+            if sig.size and sig[0] > 0:
+                out.append(u[:, sig > sig[0] * 1e-10] / sw)
+        Q = np.concatenate(out, axis=1)
+
+    def perr(T):
+        R = T - Q @ (Q.T @ (W[:, None] * T))
+        return (np.sqrt(np.einsum("fj,fj,f->j", R, R, W)) /
+                np.maximum(np.sqrt(np.einsum("fj,fj,f->j", T, T, W)), 1e-300))
+
+    line = (f"rom_basis: fibres: {Q.shape[1]} strain modes ({mf} of {kmax}"
+            f"{', split' if a.f_split else ''}; {fib[0].shape[0]} fibres): training strain "
+            f"projection error max {perr(E).max():.3e}, stress {perr(Y[:, E.shape[1]:]).max():.3e}")
+    if Ut is not None:
+        Et = fibre_strains(Ut, x, fib)
+        line += f"; held-out strain {perr(Et).max():.3e}"
+    print(line)
+    return Q
+
+
 def enrich_vibration(V, path, k, fixed, M, levels=(0.0,)):
     """V with the FE's k lowest vibration modes at each pressure level of `levels` (MPa; K phi =
     omega^2 M phi over the free dofs, K the FE's tangent at that level's equilibrium in a
@@ -359,9 +438,20 @@ def main():
                     "combine independently (m becomes up to zones x m)")
     ap.add_argument("--m", type=int, default=0, help="--mixed: pressure basis size (overrides "
                     "--ptol)")
+    ap.add_argument("--fibre-modes", type=int, default=0,
+                    help="the mixed fibre field: this many POD modes of the training fibre "
+                    "strains and stresses, written as Qf, attribute mf; needs --fibres")
+    ap.add_argument("--f-split", type=lambda v: [float(c) for c in v.split(",")], default=None,
+                    help="--fibre-modes: split every fibre strain mode at these x3 (mm; as "
+                    "--p-split, by the mean x3 of the fibre's host nodes)")
+    ap.add_argument("--fibres", default=None,
+                    help="--fibre-modes: a `crawlsim rom leg-file` of the same mesh (its fibre "
+                    "elements)")
     ap.add_argument("--no-supremizers", action="store_true",
                     help="--mixed: no supremizer enrichment (to measure what it does)")
     a = ap.parse_args()
+    if a.fibre_modes > 0 and not a.fibres:
+        sys.exit("rom_basis: --fibre-modes needs --fibres LEG.h5 (the fibre elements)")
     out = a.out or os.path.join(a.snapdir, "basis.h5")
     x, tet, fixed, rho, attrs = read_mesh(a.snapdir)
     l_soft = float(attrs["fe_mesh_size_mm"])
@@ -445,6 +535,11 @@ def main():
     if a.mixed:
         V, P, m_pick = mixed_bases(a, V, X, Ut, x, tet, fixed, M)
         n_pick = V.shape[1]
+    Qf = None
+    if a.fibre_modes > 0:
+        # the FE states' only: with --turns the turned states are near-equilibria whose fibre
+        # strains are no FE's (the helices' start does not turn onto itself)
+        Qf = fibre_basis(a, X[:, :ns_fe], Ut, x, read_fibres(a.fibres, x))
     Mr = V.T @ (M @ V)
     er, em = proj_err(V, X)
     print(f"rom_basis: n = {n_pick} (tol {a.tol:g}): training projection error max {er.max():.3e} "
@@ -477,6 +572,9 @@ def main():
             if a.p_split:
                 f.attrs["p_split_x3_mm"] = np.array(a.p_split)
             f["P"] = P
+        if Qf is not None:
+            f.attrs["mf"] = Qf.shape[1]
+            f["Qf"] = Qf
         f["sigma"] = sigma
         f["Mr"] = Mr
         # the training snapshots in reduced coordinates (q = V^T M u) with their loads: what

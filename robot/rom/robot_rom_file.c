@@ -386,6 +386,10 @@ csStatus csr_romLegFileWrite(const char* out, const csfRom* rom, int nsole, cons
   const csfModel* fm = rom->fem;
   const csfMesh* me = fm->mesh;
   const size_t n = (size_t)rom->n, nd = (size_t)fm->ndof;
+  if (rom->mf > 0) { /* the format has no fibre strain basis (fem_rom.h csfRom.mf) yet */
+    return cs_errorSet(err, CS_ERR_ARG, "%s: the basis has a fibre strain basis (mf = %d), which "
+                       "a leg file does not carry", out, rom->mf);
+  }
   csH5File* f = cs_h5Create(out, err);
   if (!f) {
     return err->status;

@@ -54,4 +54,30 @@ static inline double ftMeanStress(const csfModel* m, const csfData* d, int c) {
   return s / v;
 }
 
+/* the reduced models' full basis: every free dof of m (ndof x n, the identity on the free
+ * dofs, zero rows on clamped ones); *n_out gets n; the caller frees */
+static inline double* ftFreeDofBasis(const csfModel* m, int* n_out) {
+  int n = 0;
+  for (int i = 0; i < m->ndof; i++) {
+    n += !m->fixed[i];
+  }
+  double* V = calloc((size_t)m->ndof * (size_t)(n > 0 ? n : 1), sizeof(double));
+  for (int i = 0, j = 0; V && i < m->ndof; i++) {
+    if (!m->fixed[i]) {
+      V[(size_t)i * n + j++] = 1.0;
+    }
+  }
+  *n_out = n;
+  return V;
+}
+
+/* the k x k identity (row-major; the caller frees) */
+static inline double* ftIdentity(int k) {
+  double* I = calloc((size_t)k * (size_t)k + 1, sizeof(double));
+  for (int i = 0; I && i < k; i++) {
+    I[(size_t)i * k + i] = 1.0;
+  }
+  return I;
+}
+
 #endif /* CS_FEM_TEST_UTIL_H */

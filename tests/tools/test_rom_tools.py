@@ -141,5 +141,57 @@ expect(Ps.shape[1] == 9 and np.abs(gram - np.eye(9)).max() < 1e-12 and outside <
        f"split pressure modes: 9 of 3 x 3, volume-orthonormal "
        f"({np.abs(gram - np.eye(9)).max():.1e}),"
        f" zero outside their zone, a zone's share reproduced ({np.abs(res).max():.1e})")
+
+# (6) the fibre strain basis (--fibre-modes): Green strains of chords, the smoothed tension-only
+# law, a W-orthonormal basis that holds the training strains and stresses
+nf = 40
+xf = rng.normal(size=(2 * nf, 3))
+node = np.zeros((nf, 20), dtype=np.int64)
+coef = np.zeros((nf, 20))
+node[:, 0], node[:, 1] = np.arange(0, 2 * nf, 2), np.arange(1, 2 * nf, 2)
+coef[:, 0], coef[:, 1] = -1.0, 1.0  # d = x_b - x_a
+L0 = np.linalg.norm(xf[1::2] - xf[0::2], axis=1)
+EA = rng.uniform(1e3, 3e4, nf)
+fib = (node, coef, L0, EA, True)
+stretch = rng.uniform(0.98, 1.05, (nf, 3))
+U = np.zeros((xf.size, 3))
+for k in range(3):  # each fibre's end b moved along the chord: |d| = stretch L0
+    u = np.zeros_like(xf)
+    u[1::2] = (stretch[:, k] - 1.0)[:, None] * (xf[1::2] - xf[0::2])
+    U[:, k] = u.ravel()
+E = rom_basis.fibre_strains(U, xf, fib)
+dl = rom_basis.FIBRE_SLACK
+Sl = rom_basis.fibre_law(np.array([-dl, dl, 2 * dl, -2 * dl, 0.0]))
+expect(np.abs(E - 0.5 * (stretch ** 2 - 1)).max() < 1e-12
+       and np.abs(Sl - [0.0, dl, 2 * dl, 0.0, dl / 4]).max() < 1e-15,
+       f"fibre Green strains of stretched chords ({np.abs(E - 0.5 * (stretch ** 2 - 1)).max():.1e})"
+       f" and the tension-only law at its joints")
+
+
+class _A:
+    fibre_modes, f_split = 6, None
+
+
+Qf = rom_basis.fibre_basis(_A, U, None, xf, fib)
+W = EA * L0
+St = rom_basis.fibre_law(E)
+res = np.concatenate([E, St], 1)
+res = res - Qf @ (Qf.T @ (W[:, None] * res))
+expect(Qf.shape[1] == 6 and np.abs(Qf.T @ (W[:, None] * Qf) - np.eye(6)).max() < 1e-10
+       and np.abs(res).max() < 1e-10 * np.abs(E).max(),
+       f"fibre strain basis: W-orthonormal, training strains and stresses reproduced "
+       f"({np.abs(res).max():.1e})")
+zf = xf[node][:, :, 2].mean(axis=1)  # the zone's measure: the host nodes' mean x3
+_A.f_split = [float(np.median(zf))]
+Qs = rom_basis.fibre_basis(_A, U, None, xf, fib)
+side = zf >= _A.f_split[0]
+mixed_zone = max(min(np.abs(Qs[side, k]).max(), np.abs(Qs[~side, k]).max())
+                 for k in range(Qs.shape[1]))
+res = np.concatenate([E, St], 1)
+res = res - Qs @ (Qs.T @ (W[:, None] * res))
+expect(Qs.shape[1] == 12 and np.abs(Qs.T @ (W[:, None] * Qs) - np.eye(12)).max() < 1e-10
+       and mixed_zone < 1e-12 and np.abs(res).max() < 1e-10 * np.abs(E).max(),
+       f"split fibre strain modes: 12 of 2 x 6, W-orthonormal, each in one zone "
+       f"({mixed_zone:.1e}), the training fields reproduced ({np.abs(res).max():.1e})")
 print(f"{failed} failed")
 sys.exit(1 if failed else 0)
