@@ -66,6 +66,15 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
                                csfRomActuator* ra, csError* err);
 void csf_romActuatorDestroy(csfRomActuator* ra);
 
+/* The same from a reduced model built elsewhere, without gmsh (a leg file,
+ * robot/rom/robot_rom_file.h): ra takes the mesh, the finalised FE model and the rom on it (its
+ * weights, pressure basis and the twelve chambers' forms set); csf_romActuatorDestroy frees them,
+ * also on failure. spec->ratio sets the bending axis of the measurements (fem_actuator.h
+ * csf_actuatorFEFromModel); source names the file in messages. */
+csStatus csf_romActuatorFromModel(const csrActuator* act, const csfActuatorSpec* spec,
+                                  csfMesh* mesh, csfModel* model, csfRom* rom,
+                                  const char* source, csfRomActuator* ra, csError* err);
+
 /* The mesh size (l_soft, mm) a basis file was made on (NAN and err when unreadable). */
 double csf_romBasisMeshSize(const char* basis_path, csError* err);
 
