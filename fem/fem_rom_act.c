@@ -268,6 +268,7 @@ static csStatus finish(csfRomActuator* ra, csError* err) {
   ra->nhist = 0;
   ra->k_lag = CSF_ROM_ACT_K_LAG;
   ra->bfgs = CSF_ROM_ACT_BFGS;
+  ra->rtol = CSF_ROM_ACT_RTOL;
   double* tmp = calloc(nd, sizeof(double));
   double* fr = calloc((size_t)n, sizeof(double));
   if (!ra->d || !ra->face_p || !ra->Ftip || !ra->f_dead || !ra->u || !ra->q_conv || !ra->q_prev || !tmp ||
@@ -425,9 +426,10 @@ csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,
     ra->nhist = 1;
   }
   csfRomNewtonOptions o = csf_romNewtonDefault();
-  o.rtol = 1e-6; /* the FE sweep's test (fem_bend.c CSF_BEND_NEWTON_RTOL) */
+  o.rtol = ra->rtol;
   o.k_lag = ra->k_lag;
   o.bfgs = ra->bfgs;
+  o.bfgs_keep = ra->bfgs_keep;
   double s = 0.0, ds = 1.0;
   csError lerr;
   cs_errorClear(&lerr);

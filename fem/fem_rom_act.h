@@ -34,6 +34,9 @@ extern "C" {
  * Newton (measured: docs/notes/rom.md, session romacc). k_lag 0: Newton. */
 #define CSF_ROM_ACT_K_LAG 0.9
 #define CSF_ROM_ACT_BFGS 8
+/* csfRomActuator.rtol's default: the FE sweep's residual test (fem_bend.c
+ * CSF_BEND_NEWTON_RTOL), |r| <= rtol (|V^T f_int| + |V^T f_ext|) */
+#define CSF_ROM_ACT_RTOL 1e-6
 
 typedef struct csfRomActuator_ {
   csfActuatorFE fe;    /* the FE model the reduced forces come from (no solver data) */
@@ -53,6 +56,8 @@ typedef struct csfRomActuator_ {
   int nhist;
   double k_lag;        /* the reduced Newton's lagged tangent (fem_rom.h csfRomNewtonOptions) */
   int bfgs;            /* its BFGS pairs on the kept factor (csfRomNewtonOptions.bfgs; 0: chord) */
+  double rtol;         /* its relative residual test (csfRomNewtonOptions.rtol) */
+  int bfgs_keep;       /* the pairs kept from one load step to the next (csfRomNewtonOptions) */
   long n_newton;       /* reduced Newton iterations so far */
   int n_steps, n_cutbacks; /* ramp steps so far */
   char basis_path[512];

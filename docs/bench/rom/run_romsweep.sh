@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Session romsweep (docs/notes/rom.md, "The sweep at 300x"): the short leg's reduced models for
+# the 0-0.4 MPa bend sweep, from the FE production to the leg files, then the timed sweep. From
+# the repository root after a Release build. DATA is the data directory (outside git); each stage
+# is resumable (a file that exists is not made again):
+#   snap                     the FE rays O12, S, O1 (session rom3's three-ray basis), one FE process
+#   basis NAME NPOD M        tools/rom_basis.py --turns --mixed: NPOD POD modes (0: every one),
+#                            M pressure modes (0: rom_basis.py's --ptol 1e-3), their
+#                            supremizers: n = NPOD + M (0 0: session rom3's b3, n 96, m 48)
+#   ecsw NAME TOL...         the ECSW matrix of DATA/NAME/basis.h5 and one fit pass to the
+#                            smallest TOL: DATA/NAME/weights_tol<TOL>.h5 for each
+#   leg NAME TOL|none        crawlsim rom leg-file: DATA/NAME/leg_<TOL>.h5 (none: every element)
+#   timed OUT LEG...         run_romsweep_timed.sh: the FE's sweep and each leg file's in one run
+# CS: the crawlsim binary (default build/tools/crawlsim).
+set -euo pipefail
+DATA=$1
+stage=$2
+shift 2
+CS=${CS:-$PWD/build/tools/crawlsim}
+EX=(--actuator leg --set S1=15 --set S2=15 --set S3=15)
+export OMP_WAIT_POLICY=PASSIVE OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+mkdir -p "$DATA"
+case $stage in
+snap)
+  nice -n 5 "$CS" rom snapshots --out "$DATA/snap" --mesh-size 8 --threads 1 "${EX[@]}" \
+    --ray O12 --ray S --ray O1
+  ;;
+basis)
+  name=$1 npod=$2 m=$3
+  mkdir -p "$DATA/$name"
+  [ -f "$DATA/$name/basis.h5" ] && exit 0
+  args=(--turns --mixed --tol 1e-12) # session rom3's b3 with NPOD 0, M 0
+  [ "$npod" != 0 ] && args+=(--n "$npod")
+  [ "$m" != 0 ] && args+=(--m "$m")
+  /usr/bin/time -f '== basis: %e s wall, %U s user' nice -n 5 /usr/bin/python3 \
+    tools/rom_basis.py "$DATA/snap" "${args[@]}" --out "$DATA/$name/basis.h5" 2>&1 \
+    | tee "$DATA/$name/basis.log"
+  ;;
+ecsw)
+  name=$1
+  shift
+  D=$DATA/$name
+  if [ ! -f "$D/ecsw_matrix.h5" ]; then
+    /usr/bin/time -f '== ecsw-matrix: %e s wall, %U s user' nice -n 5 "$CS" rom ecsw-matrix \
+      --basis "$D/basis.h5" --out "$D/ecsw_matrix.h5" --work "$D" "${EX[@]}" 2>&1 \
+      | tee "$D/ecsw_matrix.log"
+  fi
+  T=()
+  for t in "$@"; do T+=(--tol "$t"); done
+  /usr/bin/time -f '== ecsw fit: %e s wall, %U s user' nice -n 5 /usr/bin/python3 \
+    tools/rom_ecsw.py "$D/ecsw_matrix.h5" --out "$D/weights.h5" "${T[@]}" 2>&1 \
+    | tee "$D/ecsw_fit.log"
+  ;;
+leg)
+  name=$1 tol=$2
+  D=$DATA/$name
+  W=()
+  [ "$tol" != none ] && W=(--weights "$D/weights_tol$tol.h5")
+  [ -f "$D/leg_$tol.h5" ] && exit 0
+  /usr/bin/time -f '== leg-file: %e s wall, %U s user' nice -n 5 "$CS" rom leg-file \
+    --basis "$D/basis.h5" "${W[@]}" --out "$D/leg_$tol.h5" --work "$D" "${EX[@]}" 2>&1 \
+    | tee "$D/leg_$tol.log"
+  ;;
+*)
+  echo "run_romsweep.sh: unknown stage '$stage' (snap, basis, ecsw, leg)" >&2
+  exit 1
+  ;;
+esac
