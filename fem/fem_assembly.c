@@ -159,6 +159,20 @@ csStatus csf_modelFinalize(csfModel* m, csError* err) {
 }
 
 
+csStatus csf_modelFinalizeKernels(csfModel* m, csError* err) {
+  free(m->fib_single);
+  m->fib_single = malloc((size_t)(m->nfib > 0 ? m->nfib : 1));
+  if (!m->fib_single) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_model: out of memory (fibres)");
+  }
+  for (int f = 0; f < m->nfib; f++) {
+    m->fib_single[f] = !memcmp(m->fib_node + 20 * f, m->fib_node + 20 * f + 10, 10 * sizeof(int));
+  }
+  m->finalized = CSF_MODEL_KERNELS;
+  return CS_OK;
+}
+
+
 /* atomic add into shared arrays (OpenMP when enabled) */
 static inline void atomicAdd(double* dst, double v) {
 #ifdef _OPENMP
