@@ -55,7 +55,8 @@ leg)
   name=$1 tol=$2
   D=$DATA/$name
   W=()
-  [ "$tol" != none ] && W=(--weights "$D/weights_tol$tol.h5")
+  # rom_ecsw.py names the files by the tolerance in Python's %g (3e-2: weights_tol0.03.h5)
+  [ "$tol" != none ] && W=(--weights "$D/weights_tol$(printf '%g' "$tol").h5")
   [ -f "$D/leg_$tol.h5" ] && exit 0
   /usr/bin/time -f '== leg-file: %e s wall, %U s user' nice -n 5 "$CS" rom leg-file \
     --basis "$D/basis.h5" "${W[@]}" --out "$D/leg_$tol.h5" --work "$D" "${EX[@]}" 2>&1 \
