@@ -208,6 +208,17 @@ static void pressureAxis(const csrActuator* act, const csfActuatorSpec* sp, csfA
 }
 
 
+/* the tip face's traction weights and the measurement gauges of the mesh */
+static csStatus tipAndGauges(const csrActuator* act, csfActuatorFE* fe, csError* err) {
+  csStatus st = tipWeights(fe, err);
+  if (st == CS_OK) {
+    fe->gauges = csf_gaugesCreate(act, fe->mesh, err);
+    st = fe->gauges ? CS_OK : (err ? err->status : CS_ERR_MEMORY);
+  }
+  return st;
+}
+
+
 void csf_actuatorWalls(const csrActuator* act, double l_soft, csfWalls* w) {
   const double a = act->a, b = act->b, r1 = act->r1, r2 = act->r2;
   /* chamber centre (b, b) to the outer boundary: the straight side at a - b, or the fillet arc
@@ -361,11 +372,7 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
   }
   st = csf_modelFinalize(m, err);
   if (st == CS_OK) {
-    st = tipWeights(fe, err);
-  }
-  if (st == CS_OK) {
-    fe->gauges = csf_gaugesCreate(act, fe->mesh, err);
-    st = fe->gauges ? CS_OK : (err ? err->status : CS_ERR_MEMORY);
+    st = tipAndGauges(act, fe, err);
   }
   if (st != CS_OK) {
     csf_actuatorFEDestroy(fe);
@@ -387,11 +394,7 @@ csStatus csf_actuatorFEFromModel(const csrActuator* act, const csfActuatorSpec* 
     return cs_errorSet(err, CS_ERR_ARG, "fem_actuator: a model needs its own mesh");
   }
   pressureAxis(act, spec, fe);
-  csStatus st = tipWeights(fe, err);
-  if (st == CS_OK) {
-    fe->gauges = csf_gaugesCreate(act, fe->mesh, err);
-    st = fe->gauges ? CS_OK : (err ? err->status : CS_ERR_MEMORY);
-  }
+  const csStatus st = tipAndGauges(act, fe, err);
   if (st != CS_OK) {
     csf_actuatorFEDestroy(fe);
   }

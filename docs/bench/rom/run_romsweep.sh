@@ -10,7 +10,12 @@
 #   ecsw NAME TOL...         the ECSW matrix of DATA/NAME/basis.h5 and one fit pass to the
 #                            smallest TOL: DATA/NAME/weights_tol<TOL>.h5 for each
 #   leg NAME TOL|none        crawlsim rom leg-file: DATA/NAME/leg_<TOL>.h5 (none: every element)
-#   timed OUT LEG...         run_romsweep_timed.sh: the FE's sweep and each leg file's in one run
+#   ecswtet NAME TOL...      the Tet10 set alone fitted further (rom_ecsw.py --set tet):
+#                            DATA/NAME/wtet_tol<TOL>.h5
+#   legmix NAME TTOL FTOL    the Tet10 weights of TTOL (wtet) with the fibres' of FTOL (weights),
+#                            romsweep_combine_weights.py: DATA/NAME/leg_t<TTOL>_f<FTOL>.h5
+#                            (TTOL, FTOL as Python's %g writes them: 0.001, 0.01)
+# The timed run is run_romsweep_timed.sh.
 # CS: the crawlsim binary (default build/tools/crawlsim).
 set -euo pipefail
 DATA=$1
@@ -62,8 +67,28 @@ leg)
     --basis "$D/basis.h5" "${W[@]}" --out "$D/leg_$tol.h5" --work "$D" "${EX[@]}" 2>&1 \
     | tee "$D/leg_$tol.log"
   ;;
+ecswtet)
+  name=$1
+  shift
+  D=$DATA/$name
+  T=()
+  for t in "$@"; do T+=(--tol "$t"); done
+  /usr/bin/time -f '== ecsw fit, Tet10s: %e s wall, %U s user' nice -n 5 /usr/bin/python3 \
+    tools/rom_ecsw.py "$D/ecsw_matrix.h5" --set tet --out "$D/wtet.h5" "${T[@]}" 2>&1 \
+    | tee "$D/ecsw_tet_fit.log"
+  ;;
+legmix)
+  name=$1 tt=$2 tf=$3
+  D=$DATA/$name
+  W=$D/weights_t${tt}_f${tf}.h5
+  /usr/bin/python3 "$(dirname "$0")/romsweep_combine_weights.py" "$D/wtet_tol$tt.h5" \
+    "$D/weights_tol$tf.h5" "$W"
+  /usr/bin/time -f '== leg-file: %e s wall, %U s user' nice -n 5 "$CS" rom leg-file \
+    --basis "$D/basis.h5" --weights "$W" --out "$D/leg_t${tt}_f${tf}.h5" --work "$D" \
+    "${EX[@]}" 2>&1 | tee "$D/leg_t${tt}_f${tf}.log"
+  ;;
 *)
-  echo "run_romsweep.sh: unknown stage '$stage' (snap, basis, ecsw, leg)" >&2
+  echo "run_romsweep.sh: unknown stage '$stage' (snap, basis, ecsw, leg, ecswtet, legmix)" >&2
   exit 1
   ;;
 esac
