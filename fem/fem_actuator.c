@@ -183,6 +183,42 @@ static csStatus tipWeights(csfActuatorFE* fe, csError* err) {
 }
 
 
+/* the pressurised chambers' count and the reference bending axis: e3 x (away from the pressure
+ * moment sum_j r_j (x_j, y_j) of the chambers' centres), e2 when it vanishes (elongation) */
+static void pressureAxis(const csrActuator* act, const csfActuatorSpec* sp, csfActuatorFE* fe) {
+  static const double sx[4] = {1, 1, -1, -1}, sy[4] = {1, -1, -1, 1};
+  double cc[2] = {0, 0};
+  fe->ncham = 0;
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      const double r = sp->ratio[s][j];
+      if (r == 0.0 || !(act->S[s] > 0)) {
+        continue;
+      }
+      cc[0] += r * sx[j], cc[1] += r * sy[j];
+      fe->ncham++;
+    }
+  }
+  csu_set3(fe->axis, 0, 1, 0);
+  if (hypot(cc[0], cc[1]) > 1e-12) {
+    double dir[3] = {-cc[0], -cc[1], 0}, e3[3] = {0, 0, 1};
+    csu_normalize3(dir);
+    csu_cross3(fe->axis, e3, dir);
+  }
+}
+
+
+/* the tip face's traction weights and the measurement gauges of the mesh */
+static csStatus tipAndGauges(const csrActuator* act, csfActuatorFE* fe, csError* err) {
+  csStatus st = tipWeights(fe, err);
+  if (st == CS_OK) {
+    fe->gauges = csf_gaugesCreate(act, fe->mesh, err);
+    st = fe->gauges ? CS_OK : (err ? err->status : CS_ERR_MEMORY);
+  }
+  return st;
+}
+
+
 void csf_actuatorWalls(const csrActuator* act, double l_soft, csfWalls* w) {
   const double a = act->a, b = act->b, r1 = act->r1, r2 = act->r2;
   /* chamber centre (b, b) to the outer boundary: the straight side at a - b, or the fillet arc
@@ -305,9 +341,7 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
       m->fixed[3 * i] = m->fixed[3 * i + 1] = m->fixed[3 * i + 2] = 1;
     }
   }
-  /* chambers; the pressure moment sum_j r_j (x_j, y_j) fixes the reference bending axis */
-  static const double sx[4] = {1, 1, -1, -1}, sy[4] = {1, -1, -1, 1};
-  double cc[2] = {0, 0};
+  /* chambers; the pressure moment fixes the reference bending axis (pressureAxis) */
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
       const double r = sp->ratio[s][j];
@@ -319,16 +353,9 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
         return cs_errorSet(err, CS_ERR_EXTERNAL, "fem_actuator: chamber %d of segment %d has no "
                            "tagged faces in the mesh", j + 1, s + 1);
       }
-      cc[0] += r * sx[j], cc[1] += r * sy[j];
-      fe->ncham++;
     }
   }
-  csu_set3(fe->axis, 0, 1, 0);
-  if (hypot(cc[0], cc[1]) > 1e-12) {
-    double dir[3] = {-cc[0], -cc[1], 0}, e3[3] = {0, 0, 1};
-    csu_normalize3(dir);
-    csu_cross3(fe->axis, e3, dir);
-  }
+  pressureAxis(act, sp, fe);
   for (int i = 0; i < 3; i++) {
     m->gravity[i] = sp->gravity[i];
   }
@@ -345,11 +372,7 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
   }
   st = csf_modelFinalize(m, err);
   if (st == CS_OK) {
-    st = tipWeights(fe, err);
-  }
-  if (st == CS_OK) {
-    fe->gauges = csf_gaugesCreate(act, fe->mesh, err);
-    st = fe->gauges ? CS_OK : (err ? err->status : CS_ERR_MEMORY);
+    st = tipAndGauges(act, fe, err);
   }
   if (st != CS_OK) {
     csf_actuatorFEDestroy(fe);
@@ -357,4 +380,23 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* sp,
   }
   csf_actuatorSetTipForce(fe, sp->tip_force);
   return CS_OK;
+}
+
+
+csStatus csf_actuatorFEFromModel(const csrActuator* act, const csfActuatorSpec* spec,
+                                 csfMesh* mesh, csfModel* model, csfActuatorFE* fe,
+                                 csError* err) {
+  memset(fe, 0, sizeof *fe);
+  fe->mesh = mesh;
+  fe->model = model;
+  if (!mesh || !model || model->mesh != mesh) {
+    csf_actuatorFEDestroy(fe);
+    return cs_errorSet(err, CS_ERR_ARG, "fem_actuator: a model needs its own mesh");
+  }
+  pressureAxis(act, spec, fe);
+  const csStatus st = tipAndGauges(act, fe, err);
+  if (st != CS_OK) {
+    csf_actuatorFEDestroy(fe);
+  }
+  return st;
 }

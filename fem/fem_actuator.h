@@ -106,6 +106,14 @@ csStatus csf_actuatorFECreate(const csrActuator* act, const csfActuatorSpec* spe
                               csfActuatorFE* fe, csError* err);
 void csf_actuatorFEDestroy(csfActuatorFE* fe);
 
+/* The same from a mesh and a finalised model built elsewhere (a reduced leg's file,
+ * robot/rom/robot_rom_file.h: no gmsh): fe takes both (csf_actuatorFEDestroy frees them, also on
+ * failure) and gets the tip face's weights, the gauges, the pressurised chambers' count and the
+ * bending axis of spec->ratio (the model's loads are left as they are). */
+csStatus csf_actuatorFEFromModel(const csrActuator* act, const csfActuatorSpec* spec,
+                                 csfMesh* mesh, csfModel* model, csfActuatorFE* fe,
+                                 csError* err);
+
 /* Set the dead tip force (N, base frame) on the model's f_dead (replaces the previous one). */
 void csf_actuatorSetTipForce(csfActuatorFE* fe, const double F[3]);
 

@@ -145,16 +145,26 @@ csStatus csf_modelFinalize(csfModel* m, csError* err) {
       }
     }
   }
+  /* fibres inside one host (fib_single), as a kernels-only model has them */
+  const csStatus st = csf_modelFinalizeKernels(m, err);
+  if (st == CS_OK) {
+    m->finalized = 1;
+  }
+  return st;
+}
+
+
+csStatus csf_modelFinalizeKernels(csfModel* m, csError* err) {
   /* fibres inside one host: both halves name the same 10 nodes */
   free(m->fib_single);
   m->fib_single = malloc((size_t)(m->nfib > 0 ? m->nfib : 1));
   if (!m->fib_single) {
-    return cs_errorSet(err, CS_ERR_MEMORY, "fem_model: out of memory (pattern)");
+    return cs_errorSet(err, CS_ERR_MEMORY, "fem_model: out of memory (fibres)");
   }
   for (int f = 0; f < m->nfib; f++) {
     m->fib_single[f] = !memcmp(m->fib_node + 20 * f, m->fib_node + 20 * f + 10, 10 * sizeof(int));
   }
-  m->finalized = 1;
+  m->finalized = CSF_MODEL_KERNELS;
   return CS_OK;
 }
 

@@ -21,6 +21,13 @@ extern "C" {
  * csf_dataCreate). */
 csStatus csf_modelFinalize(csfModel* m, csError* err);
 
+/* What the element kernels need of csf_modelFinalize (fib_single), without the sparse pattern
+ * (whose sort of every node's neighbours costs 0.5 s of CPU on the short leg's 23 409 fibres):
+ * a model for a reduced model (fem_rom.h), which never assembles. m->finalized becomes
+ * CSF_MODEL_KERNELS, which csf_dataCreate (the FE's solvers) refuses. */
+#define CSF_MODEL_KERNELS 2
+csStatus csf_modelFinalizeKernels(csfModel* m, csError* err);
+
 /* Assemble R (and K when want_k) at the current d->u and load factor. Returns 0, > 0 when the
  * state is not physical (an inverted element: recoverable, cut the step), < 0 on fatal errors. */
 int csf_assemble(const csfModel* m, csfData* d, double load, int want_k);

@@ -10,7 +10,7 @@
 
 
 csfData* csf_dataCreate(const csfModel* m, csError* err) {
-  if (!m->finalized) {
+  if (m->finalized != 1) { /* CSF_MODEL_KERNELS: no pattern to assemble into */
     cs_errorSet(err, CS_ERR_ARG, "fem_model: csf_modelFinalize must run before csf_dataCreate");
     return NULL;
   }

@@ -1000,6 +1000,7 @@ csfRomNewtonOptions csf_romNewtonDefault(void) {
   o.max_ls = 8;
   o.k_lag = 0.0;
   o.bfgs = 0;
+  o.bfgs_keep = 0;
   return o;
 }
 
@@ -1259,7 +1260,9 @@ csStatus csf_romNewton(const csfRom* r, csfRomData* d, const csfRomLoad* load,
     d->lu_valid = 0;
   }
   const int bfgs = lag ? o->bfgs : 0;
-  d->bf_k = 0; /* the pairs belong to the last call's load */
+  if (!o->bfgs_keep || !d->lu_valid) {
+    d->bf_k = 0; /* the pairs belong to the last call's load */
+  }
   /* the tangent of this iterate is in d->K (fresh) or only the residual was evaluated */
   int fresh = !(lag && d->lu_valid);
   if (csf_romEvaluate(r, d, load, fresh) != 0) {

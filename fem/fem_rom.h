@@ -242,6 +242,11 @@ typedef struct csfRomNewtonOptions_ {
    * symmetric positive update fits; a pair with y . s <= 0 is not stored. The pairs are dropped
    * with every new factor and at every call (the load changes r). */
   int bfgs;
+  /* 1: the secant pairs of the last call are kept into this one while its factor is (a sweep's
+   * next load: the energy's curvature changes little from one row to the next, and the pairs of
+   * the last row's steps correct the kept factor from the first step on); 0: dropped at every
+   * call. The residual decides the solution either way. */
+  int bfgs_keep;
 } csfRomNewtonOptions;
 
 #define CSF_ROM_BFGS_MAX 16 /* the most secant pairs csfRomNewtonOptions.bfgs may keep */

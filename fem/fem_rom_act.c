@@ -153,6 +153,8 @@ static csStatus readPressureBasis(const char* basis_path, csfRom* rom, int fibre
   return st;
 }
 
+static csStatus finish(csfRomActuator* ra, csError* err);
+
 csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* spec,
                                const char* basis_path, const char* weights_path,
                                csfRomActuator* ra, csError* err) {
@@ -250,9 +252,23 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
     csf_romActuatorDestroy(ra);
     return st;
   }
+  st = finish(ra, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  if (weights_path && (st = readWeights(ra, weights_path, err)) != CS_OK) {
+    csf_romActuatorDestroy(ra);
+    return st;
+  }
+  return CS_OK;
+}
+
+/* the reduced actuator's state and load maps once ra->fe and ra->rom exist (freed on failure) */
+static csStatus finish(csfRomActuator* ra, csError* err) {
+  const int n = ra->rom->n;
   ra->d = csf_romDataCreate(ra->rom, err);
   const size_t nd = (size_t)ra->fe.model->ndof;
-  ra->face_p = calloc((size_t)me->nface + 1, sizeof(double));
+  ra->face_p = calloc((size_t)ra->fe.mesh->nface + 1, sizeof(double));
   ra->Ftip = calloc(3 * (size_t)n, sizeof(double));
   ra->f_dead = calloc((size_t)n, sizeof(double));
   ra->u = calloc(nd, sizeof(double));
@@ -261,6 +277,7 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
   ra->nhist = 0;
   ra->k_lag = CSF_ROM_ACT_K_LAG;
   ra->bfgs = CSF_ROM_ACT_BFGS;
+  ra->rtol = CSF_ROM_ACT_RTOL;
   double* tmp = calloc(nd, sizeof(double));
   double* fr = calloc((size_t)n, sizeof(double));
   if (!ra->d || !ra->face_p || !ra->Ftip || !ra->f_dead || !ra->u || !ra->q_conv || !ra->q_prev || !tmp ||
@@ -280,11 +297,35 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
     }
   }
   free(tmp), free(fr);
-  if (weights_path && (st = readWeights(ra, weights_path, err)) != CS_OK) {
+  return CS_OK;
+}
+
+csStatus csf_romActuatorFromModel(const csrActuator* act, const csfActuatorSpec* spec,
+                                  csfMesh* mesh, csfModel* model, csfRom* rom,
+                                  const char* source, csfRomActuator* ra, csError* err) {
+  memset(ra, 0, sizeof *ra);
+  snprintf(ra->basis_path, sizeof ra->basis_path, "%s", source ? source : "");
+  ra->rom = rom;
+  if (!rom || rom->fem != model) {
+    csf_romActuatorDestroy(ra);
+    csf_modelDestroy(model);
+    csf_meshDestroy(mesh);
+    return cs_errorSet(err, CS_ERR_ARG, "fem_rom_act: the reduced model is not on this FE model");
+  }
+  if (rom->nch != CSR_NSEG * CSR_NCHAMBER) {
+    csf_romActuatorDestroy(ra);
+    csf_modelDestroy(model);
+    csf_meshDestroy(mesh);
+    return cs_errorSet(err, CS_ERR_ARG, "fem_rom_act: %s: the reduced model has %d chambers in "
+                       "closed form, not %d", source ? source : "", rom->nch,
+                       CSR_NSEG * CSR_NCHAMBER);
+  }
+  csStatus st = csf_actuatorFEFromModel(act, spec, mesh, model, &ra->fe, err);
+  if (st != CS_OK) {
     csf_romActuatorDestroy(ra);
     return st;
   }
-  return CS_OK;
+  return finish(ra, err);
 }
 
 void csf_romActuatorDestroy(csfRomActuator* ra) {
@@ -394,9 +435,10 @@ csStatus csf_romActuatorSolve(csfRomActuator* ra, const double* p,
     ra->nhist = 1;
   }
   csfRomNewtonOptions o = csf_romNewtonDefault();
-  o.rtol = 1e-6; /* the FE sweep's test (fem_bend.c CSF_BEND_NEWTON_RTOL) */
+  o.rtol = ra->rtol;
   o.k_lag = ra->k_lag;
   o.bfgs = ra->bfgs;
+  o.bfgs_keep = ra->bfgs_keep;
   double s = 0.0, ds = 1.0;
   csError lerr;
   cs_errorClear(&lerr);

@@ -34,6 +34,9 @@ extern "C" {
  * Newton (measured: docs/notes/rom.md, session romacc). k_lag 0: Newton. */
 #define CSF_ROM_ACT_K_LAG 0.9
 #define CSF_ROM_ACT_BFGS 8
+/* csfRomActuator.rtol's default: the FE sweep's residual test (fem_bend.c
+ * CSF_BEND_NEWTON_RTOL), |r| <= rtol (|V^T f_int| + |V^T f_ext|) */
+#define CSF_ROM_ACT_RTOL 1e-6
 
 typedef struct csfRomActuator_ {
   csfActuatorFE fe;    /* the FE model the reduced forces come from (no solver data) */
@@ -53,6 +56,8 @@ typedef struct csfRomActuator_ {
   int nhist;
   double k_lag;        /* the reduced Newton's lagged tangent (fem_rom.h csfRomNewtonOptions) */
   int bfgs;            /* its BFGS pairs on the kept factor (csfRomNewtonOptions.bfgs; 0: chord) */
+  double rtol;         /* its relative residual test (csfRomNewtonOptions.rtol) */
+  int bfgs_keep;       /* the pairs kept from one load step to the next (csfRomNewtonOptions) */
   long n_newton;       /* reduced Newton iterations so far */
   int n_steps, n_cutbacks; /* ramp steps so far */
   char basis_path[512];
@@ -65,6 +70,15 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
                                const char* basis_path, const char* weights_path,
                                csfRomActuator* ra, csError* err);
 void csf_romActuatorDestroy(csfRomActuator* ra);
+
+/* The same from a reduced model built elsewhere, without gmsh (a leg file,
+ * robot/rom/robot_rom_file.h): ra takes the mesh, the finalised FE model and the rom on it (its
+ * weights, pressure basis and the twelve chambers' forms set); csf_romActuatorDestroy frees them,
+ * also on failure. spec->ratio sets the bending axis of the measurements (fem_actuator.h
+ * csf_actuatorFEFromModel); source names the file in messages. */
+csStatus csf_romActuatorFromModel(const csrActuator* act, const csfActuatorSpec* spec,
+                                  csfMesh* mesh, csfModel* model, csfRom* rom,
+                                  const char* source, csfRomActuator* ra, csError* err);
 
 /* The mesh size (l_soft, mm) a basis file was made on (NAN and err when unreadable). */
 double csf_romBasisMeshSize(const char* basis_path, csError* err);

@@ -102,6 +102,9 @@ static const csxOpt kBendOpts[] = {
      "model's)"},
     {"--rom-weights", "FILE.h5", "every element at weight 1",
      "rom: the hyper-reduction's element weights (tools/rom_ecsw.py)"},
+    {"--rom-file", "LEG.h5", NULL,
+     "rom: a leg file of `crawlsim rom leg-file` (the basis, its weights and the chambers' "
+     "forms, read without meshing); instead of --rom-basis and --rom-weights"},
 };
 
 static const csxOptTable kBendTable = {
@@ -392,6 +395,8 @@ static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOpt
       run->rom_basis = value;
     } else if (!strcmp(name, "--rom-weights")) {
       run->rom_weights = value;
+    } else if (!strcmp(name, "--rom-file")) {
+      run->rom_file = value;
     } else if (!strcmp(name, "--cal-rule")) {
       csrCalRule rule;
       if (!csr_calRuleParse(value, &rule)) {
@@ -478,8 +483,13 @@ static int checkModelOptions(const BendRun* run, csError* err) {
                 "tangent to switch branches on)", kModelNames[run->model]);
     return 1;
   }
-  if ((run->rom_basis || run->rom_weights) && run->model != BEND_ROM) {
-    cs_errorSet(err, CS_ERR_ARG, "--rom-basis and --rom-weights are for --model rom");
+  if ((run->rom_basis || run->rom_weights || run->rom_file) && run->model != BEND_ROM) {
+    cs_errorSet(err, CS_ERR_ARG, "--rom-basis, --rom-weights and --rom-file are for --model rom");
+    return 1;
+  }
+  if (run->rom_file && (run->rom_basis || run->rom_weights)) {
+    cs_errorSet(err, CS_ERR_ARG, "--rom-file holds the basis and the weights: give it without "
+                "--rom-basis and --rom-weights");
     return 1;
   }
   int tip = run->tip_load[0] != 0 || run->tip_load[1] != 0 || run->tip_load[2] != 0;

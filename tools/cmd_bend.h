@@ -55,6 +55,8 @@ typedef struct {
   int threads;                /* fe: --threads N (0: the thread plan's default, fem_threads.h) */
   const char* rom_basis;      /* rom: --rom-basis FILE (tools/rom_basis.py), required */
   const char* rom_weights;    /* rom: --rom-weights FILE (tools/rom_ecsw.py), NULL = every element */
+  const char* rom_file;       /* rom: --rom-file LEG.h5 (crawlsim rom leg-file): the basis, weights
+                                 and chambers' forms read without gmsh; replaces --rom-basis */
   FILE* table;                /* where the result table goes (the command: stdout; a study's
                                  step: the case's log) */
   FILE* notes;                /* where notes and the FE's progress lines go (stderr; the log) */

@@ -16,38 +16,73 @@
 #ifdef CS_HAVE_FEM
 #include "fem_measure.h"
 #include "fem_rom_act.h"
+#include "robot_rom_file.h"
+
+/* the reduced actuator from a leg file (robot/rom/robot_rom_file.h): the mesh, the FE model of
+ * the kernels, the basis, the weights and the chambers' cubic forms as `crawlsim rom leg-file`
+ * computed them, so no gmsh and no n + 1 passes over the chambers' faces (the set-up of the
+ * --rom-basis path, 80 % of its command's CPU: docs/notes/rom.md, session romacc) */
+static csStatus romFromFile(BendRun* run, const csfActuatorSpec* spec, csfRomActuator* ra,
+                            csError* err) {
+  csrRomLegFile lf;
+  csStatus st = csr_romLegFileRead(run->rom_file, &lf, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  st = csr_romLegFileCheckActuator(&lf, run->rom_file, &run->act, err);
+  if (st == CS_OK && !isnan(run->mesh_size) &&
+      fabs(run->mesh_size - lf.l_soft) > 1e-12 * lf.l_soft) {
+    st = cs_errorSet(err, CS_ERR_ARG, "--mesh-size %g: the leg file %s was made on l_soft %g mm",
+                     run->mesh_size, run->rom_file, lf.l_soft);
+  }
+  if (st != CS_OK) {
+    csr_romLegFileFree(&lf);
+    return st;
+  }
+  run->mesh_size = lf.l_soft;
+  csfMesh* me = lf.mesh;
+  csfModel* m = lf.model;
+  csfRom* rom = lf.rom;
+  lf.mesh = NULL, lf.model = NULL, lf.rom = NULL; /* ra owns them from here */
+  csr_romLegFileFree(&lf);
+  return csf_romActuatorFromModel(&run->act, spec, me, m, rom, run->rom_file, ra, err);
+}
 
 static csStatus romSweep(BendRun* run, csrBendCurve* bc, csfRomActuator* ra, double* t_sweep,
                          double* t_cpu, csError* err) {
-  const double l = csf_romBasisMeshSize(run->rom_basis, err);
-  if (isnan(l)) {
-    return err->status;
-  }
-  if (!isnan(run->mesh_size) && fabs(run->mesh_size - l) > 1e-12 * l) {
-    return cs_errorSet(err, CS_ERR_ARG, "--mesh-size %g: the basis %s was made on l_soft %g mm",
-                       run->mesh_size, run->rom_basis, l);
-  }
   csfActuatorSpec spec = csf_actuatorSpecDefault();
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
       spec.ratio[s][j] = run->ratio[j]; /* the bending axis of the angles (fem_actuator.c) */
     }
   }
-  spec.mesh_size = l;
-  spec.mesh_symmetric = 1;
-  char stem[512];
-  snprintf(stem, sizeof stem, "%s", run->out);
-  char* dot = strrchr(stem, '.');
-  if (dot && !strchr(dot, '/')) {
-    *dot = '\0';
+  csStatus st = CS_OK;
+  if (run->rom_file) {
+    st = romFromFile(run, &spec, ra, err);
+  } else {
+    const double l = csf_romBasisMeshSize(run->rom_basis, err);
+    if (isnan(l)) {
+      return err->status;
+    }
+    if (!isnan(run->mesh_size) && fabs(run->mesh_size - l) > 1e-12 * l) {
+      return cs_errorSet(err, CS_ERR_ARG, "--mesh-size %g: the basis %s was made on l_soft %g "
+                         "mm", run->mesh_size, run->rom_basis, l);
+    }
+    spec.mesh_size = l;
+    spec.mesh_symmetric = 1;
+    char stem[512];
+    snprintf(stem, sizeof stem, "%s", run->out);
+    char* dot = strrchr(stem, '.');
+    if (dot && !strchr(dot, '/')) {
+      *dot = '\0';
+    }
+    spec.work_stem = stem;
+    st = csf_romActuatorCreate(&run->act, &spec, run->rom_basis, run->rom_weights, ra, err);
+    run->mesh_size = l;
   }
-  spec.work_stem = stem;
-  csStatus st = csf_romActuatorCreate(&run->act, &spec, run->rom_basis, run->rom_weights, ra,
-                                      err);
   if (st != CS_OK) {
     return st;
   }
-  run->mesh_size = l;
   run->n_elements_soft = ra->fe.mesh->ntet;
   run->n_elements_fibre = ra->fe.model->nfib;
   run->mesh_symmetric = 1;
@@ -85,6 +120,11 @@ static csStatus romSweep(BendRun* run, csrBendCurve* bc, csfRomActuator* ra, dou
                     tip);
     prev[0] = ang[0], prev[1] = ang[1], prev[2] = ang[2], prev[3] = tot;
     st = csr_bendCurvePush(bc, p, ang, tip, err);
+    if (st == CS_OK) {
+      /* the base-to-tip rotation, joints included, as the FE's rows (fem_bend.c): the push's
+       * sum of the segments leaves the joints out (0.35 deg at 0.4 MPa on the short leg) */
+      bc->angle_total[bc->m - 1] = tot;
+    }
   }
   *t_sweep = csu_wallSeconds() - t0;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
@@ -94,9 +134,10 @@ static csStatus romSweep(BendRun* run, csrBendCurve* bc, csfRomActuator* ra, dou
 
 
 csStatus csx_bendRom(BendRun* run, csxBendResult* res, csError* err) {
-  if (!run->rom_basis) {
+  if (!run->rom_basis && !run->rom_file) {
     return cs_errorSet(err, CS_ERR_ARG, "--model rom needs --rom-basis FILE "
-                       "(tools/rom_basis.py; docs/notes/rom.md)");
+                       "(tools/rom_basis.py) or --rom-file LEG.h5 (crawlsim rom leg-file; "
+                       "docs/notes/rom.md)");
   }
   if (!isnan(run->until_angle)) {
     return cs_errorSet(err, CS_ERR_ARG, "--until-angle is not offered by --model rom yet");
@@ -136,11 +177,14 @@ csStatus csx_bendRom(BendRun* run, csxBendResult* res, csError* err) {
       st = cs_h5AttrDouble(f, "/", a[k].name, a[k].v, err);
     }
     if (st == CS_OK) {
-      st = cs_h5AttrString(f, "/", "rom_basis", run->rom_basis, err);
+      st = cs_h5AttrString(f, "/", "rom_basis", run->rom_basis ? run->rom_basis : "none", err);
     }
     if (st == CS_OK) {
       st = cs_h5AttrString(f, "/", "rom_weights", run->rom_weights ? run->rom_weights : "none",
                            err);
+    }
+    if (st == CS_OK) {
+      st = cs_h5AttrString(f, "/", "rom_file", run->rom_file ? run->rom_file : "none", err);
     }
   }
   if (f) {

@@ -45,6 +45,10 @@ def main():
     ap.add_argument("--tol", type=float, action="append", default=None,
                     help="relative residual of the fit, each snapshot block at unit norm "
                     "(default 1e-3; repeat for several: one pass, one weights file each)")
+    ap.add_argument("--set", action="append", choices=["tet", "fibre", "face"], default=None,
+                    help="fit only these element sets (repeatable; default every set in the "
+                    "matrix): a set left out is absent from the weights file, every element "
+                    "of it kept at weight 1 (fem/fem_rom_act.h)")
     a = ap.parse_args()
     tols = sorted(set(a.tol or [1e-3]), reverse=True)
     out = a.out or os.path.join(os.path.dirname(a.matrix) or ".", "weights.h5")
@@ -58,6 +62,8 @@ def main():
         for key, name in (("tet", "A_tet"), ("fibre", "A_fibre"), ("face", "A_face")):
             if name not in f:
                 continue  # the chambers' faces: in closed form on the C side, not fitted
+            if a.set and key not in a.set:
+                continue
             A = f[name][...]
             # a mixed basis: each snapshot's Tet10 rows are n forces and m constraint shares
             blocks = [n, mp] if key == "tet" and mp > 0 else [n]

@@ -215,7 +215,7 @@ csStatus csr_romLegFileRead(const char* path, csrRomLegFile* lf, csError* err) {
     fm->fib_split = fsp != 0;
   }
   if (st == CS_OK) {
-    st = csf_modelFinalize(fm, err);
+    st = csf_modelFinalizeKernels(fm, err); /* the rom never assembles: no sparse pattern */
   }
   /* the reduced model */
   double* V = NULL;

@@ -1,8 +1,13 @@
 /* bench_rom_sweep.c: the reduced model's 0-0.4 MPa bend sweep with each Newton setting in one
  * run (issue 34, the 300x target; docs/notes/rom.md, session romfast). Built, not registered.
  *
- *   bench_rom_sweep BASIS.h5 WEIGHTS.h5|none [S] [K_LAG[bP] ...]  (bP: P BFGS pairs, default 8,
- *                                                              on the kept factor; session romacc)
+ *   bench_rom_sweep BASIS.h5 WEIGHTS.h5|none [S] [K_LAG[bP][rRTOL][k][s] ...]  (bP: P BFGS
+ *                   pairs, default 8, on the kept factor; session romacc; session romsweep:
+ *                   rRTOL the residual test, default CSF_ROM_ACT_RTOL; k the pairs kept from
+ *                   one load step to the next; s the tangent at the converged states theta =
+ *                   v/V, S(E), csfRomData.sync)
+ *   bench_rom_sweep LEG.h5 leg [S] [K_LAG[bP][rRTOL] ...]  (a leg file of `crawlsim rom
+ *                   leg-file`: no gmsh, the set-up's CPU is the file's read)
  *
  * The short leg (segments of S mm, default 15) meshed once as `crawlsim bend --model rom` does,
  * Omega1 and Omega2 of every segment from 0 to 0.4 MPa in rows of 0.05 MPa, the sweep repeated
@@ -19,6 +24,7 @@
 
 #include "fem_measure.h"
 #include "fem_rom_act.h"
+#include "robot_rom_file.h"
 
 static double cpuSeconds(void) {
   struct timespec t;
@@ -34,10 +40,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   const char* basis = argv[1];
-  const char* weights = strcmp(argv[2], "none") ? argv[2] : NULL;
+  const int leg = !strcmp(argv[2], "leg");
+  const char* weights = strcmp(argv[2], "none") && !leg ? argv[2] : NULL;
   const double S = argc > 3 ? atof(argv[3]) : 15.0;
   double lags[MAXSET] = {0.0, 0.25, 0.5, 0.75, 0.9};
   int bfgs[MAXSET] = {0};
+  double rtol[MAXSET];
+  int keep[MAXSET] = {0}, sync[MAXSET] = {0};
+  for (int k = 0; k < MAXSET; k++) {
+    rtol[k] = CSF_ROM_ACT_RTOL;
+  }
   int nlag = 5;
   if (argc > 4) {
     nlag = 0;
@@ -45,7 +57,24 @@ int main(int argc, char** argv) {
       /* K_LAG, or K_LAGbP: with P BFGS pairs on the kept factor (csfRomNewtonOptions.bfgs) */
       char* end;
       lags[nlag] = strtod(argv[i], &end);
-      bfgs[nlag++] = *end == 'b' ? (end[1] ? atoi(end + 1) : 8) : 0;
+      bfgs[nlag] = 0;
+      if (*end == 'b') {
+        bfgs[nlag] = (int)strtol(end + 1, &end, 10);
+        bfgs[nlag] = bfgs[nlag] ? bfgs[nlag] : 8;
+      }
+      keep[nlag] = sync[nlag] = 0;
+      for (int more = 1; more;) {
+        if (*end == 'r') {
+          rtol[nlag] = strtod(end + 1, &end);
+        } else if (*end == 'k') {
+          keep[nlag] = 1, end++;
+        } else if (*end == 's') {
+          sync[nlag] = 1, end++;
+        } else {
+          more = 0;
+        }
+      }
+      nlag++;
     }
   }
   csError err;
@@ -63,25 +92,43 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  const double l = csf_romBasisMeshSize(basis, &err);
-  if (isnan(l)) {
-    fprintf(stderr, "bench_rom_sweep: %s\n", err.msg);
-    return 1;
-  }
   csfActuatorSpec spec = csf_actuatorSpecDefault();
   for (int s = 0; s < CSR_NSEG; s++) {
     spec.ratio[s][0] = spec.ratio[s][1] = 1.0;
     spec.ratio[s][2] = spec.ratio[s][3] = 0.0;
   }
-  spec.mesh_size = l;
   spec.mesh_symmetric = 1;
   spec.work_stem = "bench_rom_sweep";
   csfRomActuator ra;
   memset(&ra, 0, sizeof ra);
   const double c0 = cpuSeconds();
-  if (csf_romActuatorCreate(&act, &spec, basis, weights, &ra, &err) != CS_OK) {
-    fprintf(stderr, "bench_rom_sweep: %s\n", err.msg);
-    return 1;
+  if (leg) {
+    csrRomLegFile lf;
+    if (csr_romLegFileRead(basis, &lf, &err) != CS_OK ||
+        csr_romLegFileCheckActuator(&lf, basis, &act, &err) != CS_OK) {
+      fprintf(stderr, "bench_rom_sweep: %s\n", err.msg);
+      return 1;
+    }
+    csfMesh* me = lf.mesh;
+    csfModel* mo = lf.model;
+    csfRom* rom = lf.rom;
+    lf.mesh = NULL, lf.model = NULL, lf.rom = NULL;
+    csr_romLegFileFree(&lf);
+    if (csf_romActuatorFromModel(&act, &spec, me, mo, rom, basis, &ra, &err) != CS_OK) {
+      fprintf(stderr, "bench_rom_sweep: %s\n", err.msg);
+      return 1;
+    }
+  } else {
+    const double l = csf_romBasisMeshSize(basis, &err);
+    if (isnan(l)) {
+      fprintf(stderr, "bench_rom_sweep: %s\n", err.msg);
+      return 1;
+    }
+    spec.mesh_size = l;
+    if (csf_romActuatorCreate(&act, &spec, basis, weights, &ra, &err) != CS_OK) {
+      fprintf(stderr, "bench_rom_sweep: %s\n", err.msg);
+      return 1;
+    }
   }
   const int n = ra.rom->n;
   printf("bench_rom_sweep: n = %d, m = %d, %d Tet10, %d fibres kept; set-up %.2f s CPU\n", n,
@@ -89,7 +136,7 @@ int main(int argc, char** argv) {
          cpuSeconds() - c0);
   double ang0[NROW][3], q0[NROW * 256];
   int have0 = 0;
-  printf("   k_lag  bfgs  predictor   CPU (s)   iterations  evaluations  tangents   max |d bend| (deg)  "
+  printf("   k_lag  bfgs     rtol  keep  sync  predictor   CPU (s)   iterations  evaluations  tangents   max |d bend| (deg)  "
          "max |dq| / max |q|\n");
   for (int k = 0; k <= nlag; k++) {
     const double lag = k < nlag ? lags[k] : lags[0];
@@ -100,6 +147,9 @@ int main(int argc, char** argv) {
     ra.nhist = 0;
     ra.k_lag = lag;
     ra.bfgs = k < nlag ? bfgs[k] : bfgs[0];
+    ra.rtol = k < nlag ? rtol[k] : rtol[0];
+    ra.bfgs_keep = k < nlag ? keep[k] : keep[0];
+    ra.d->sync = k < nlag ? sync[k] : sync[0];
     const long it0 = ra.n_newton, ev0 = ra.d->n_eval, tg0 = ra.d->n_tangent;
     double prev[4] = {0, 0, 0, 0}, dang = 0, dq = 0, qmax = 0;
     const double t0 = cpuSeconds();
@@ -138,8 +188,8 @@ int main(int argc, char** argv) {
     }
     const double t = cpuSeconds() - t0;
     have0 = 1;
-    printf("  %6.2f  %4d  %9s  %8.3f  %11ld  %11ld  %8ld   %18.2e  %18.2e\n", lag, ra.bfgs,
-           pred ? "secant" : "none",
+    printf("  %6.2f  %4d  %7.0e  %4d  %4d  %9s  %8.3f  %11ld  %11ld  %8ld   %18.2e  %18.2e\n",
+           lag, ra.bfgs, ra.rtol, ra.bfgs_keep, ra.d->sync, pred ? "secant" : "none",
            t, ra.n_newton - it0, ra.d->n_eval - ev0, ra.d->n_tangent - tg0, dang, dq / qmax);
   }
   printf("bench_rom_sweep: rows at 0.4 MPa of the first setting: %.3f %.3f %.3f deg\n",

@@ -618,6 +618,65 @@ static void test_unit_weights_on_every_element_equal_the_unreduced_model(void) {
 }
 
 
+/* A model finalised for the kernels only (csf_modelFinalizeKernels: a leg file's, no sparse
+ * pattern; session romsweep) gives the reduced residual and tangent of the fully finalised one
+ * bit for bit, and the FE's solvers refuse it. */
+static void test_kernels_only_model_gives_the_same_rom_and_no_fe_solver(void) {
+  Box b;
+  boxCreate(&b, 2, 3.0, CSF_KAPPA_RATIO * 2 * 0.11, 1);
+  csError err = {0};
+  /* the same block, model and fibre, finalised for the kernels only */
+  csfMaterial mat = b.m->mat;
+  csfModel* mk = csf_modelCreate(b.me, &mat, &err);
+  if (!mk) {
+    CS_EXPECT(mk != NULL);
+    boxDestroy(&b);
+    return;
+  }
+  CS_EXPECT(csf_modelAddPressure(mk, 2, 1.0) > 0);
+  double fib[3 * 3] = {0.3, 0.2, 0.3, 1.7, 1.2, 1.5, 0.5, 0.7, 2.7}; /* boxCreate's, L = 3 */
+  CS_EXPECT(csf_modelAddFibre(mk, 3, fib, 31067.0, 0.0889, &err) == CS_OK);
+  memcpy(mk->fixed, b.m->fixed, (size_t)mk->ndof);
+  mk->fib_tension_only = 1;
+  CS_EXPECT(csf_modelFinalizeKernels(mk, &err) == CS_OK);
+  CS_EXPECT(mk->finalized == CSF_MODEL_KERNELS && mk->row_ptr == NULL && mk->nfib == b.m->nfib);
+  const int nd = b.m->ndof, n = 4;
+  double* V = calloc((size_t)nd * n, sizeof(double));
+  srand(7);
+  for (int i = 0; i < nd; i++) {
+    for (int j = 0; !b.m->fixed[i] && j < n; j++) {
+      V[(size_t)i * n + j] = 0.02 * ((double)rand() / RAND_MAX - 0.5) * b.me->x[3 * (i / 3) + 2];
+    }
+  }
+  csfRom* r0 = csf_romCreate(b.m, n, V, &err);
+  csfRom* r1 = csf_romCreate(mk, n, V, &err);
+  CS_EXPECT(r0 && r1);
+  csfRomData* d0 = csf_romDataCreate(r0, &err);
+  csfRomData* d1 = csf_romDataCreate(r1, &err);
+  const double q[4] = {0.5, -0.3, 0.8, 0.2};
+  memcpy(d0->q, q, sizeof q);
+  memcpy(d1->q, q, sizeof q);
+  double* fp = facePressure(b.m, 0.03);
+  csfRomLoad ld = {fp, {0, -9810.0, 0}, NULL};
+  CS_EXPECT(csf_romEvaluate(r0, d0, &ld, 1) == 0);
+  CS_EXPECT(csf_romEvaluate(r1, d1, &ld, 1) == 0);
+  const int same = !memcmp(d0->r, d1->r, n * sizeof(double)) &&
+                   !memcmp(d0->K, d1->K, (size_t)n * n * sizeof(double));
+  printf("  kernels-only model: |r| %.3g N, r and K %s; csf_dataCreate: ", d0->rnorm,
+         same ? "bit for bit" : "DIFFER");
+  CS_EXPECT(d0->rnorm > 0 && same);
+  csfData* fd = csf_dataCreate(mk, &err);
+  printf("%s\n", fd ? "accepted" : err.msg);
+  CS_EXPECT(fd == NULL && strstr(err.msg, "csf_modelFinalize must run") != NULL);
+  csf_dataDestroy(fd);
+  free(V), free(fp);
+  csf_romDataDestroy(d0), csf_romDataDestroy(d1);
+  csf_romDestroy(r0), csf_romDestroy(r1);
+  csf_modelDestroy(mk);
+  boxDestroy(&b);
+}
+
+
 int main(void) {
   CS_RUN(test_reduced_residual_and_tangent_match_the_fe_and_finite_differences);
   CS_RUN(test_full_basis_reproduces_the_fe_equilibrium);
@@ -625,5 +684,6 @@ int main(void) {
   CS_RUN(test_bfgs_update_meets_the_secant_equation);
   CS_RUN(test_snapshot_basis_reproduces_its_snapshots);
   CS_RUN(test_unit_weights_on_every_element_equal_the_unreduced_model);
+  CS_RUN(test_kernels_only_model_gives_the_same_rom_and_no_fe_solver);
   return cs_testSummary();
 }

@@ -14,6 +14,7 @@
 
 #include "core_h5.h"
 #include "cs_test.h"
+#include "fem_assembly.h"
 #include "rom_test_block.h"
 #include "robot_actuator.h"
 #include "robot_leg.h"
@@ -121,6 +122,9 @@ static void test_romLegFileRoundTripIsBitExact(void) {
   CS_EXPECT(csr_romLegFileCheckActuator(&lf, kPath, &other, &err) == CS_ERR_ARG);
   printf("  another actuator: %s\n", err.msg);
   CS_EXPECT(strstr(err.msg, kPath) && strstr(err.msg, "S1 is "));
+  /* the read model is finalised for the kernels only (no sparse pattern: session romsweep;
+   * the residual and tangent above are those of the fully finalised model, bit for bit) */
+  CS_EXPECT(lf.model->finalized == CSF_MODEL_KERNELS && lf.model->row_ptr == NULL);
   csr_romLegFileFree(&lf);
   free(P), free(idx), free(w), free(ch), free(sole);
   blockDestroy(&b);

@@ -80,6 +80,12 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("bend --model rom --rom-basis romcli_missing.h5 --out romcli.h5",
                 "romcli_missing.h5");
   expectRefused("bend --model analytic --rom-basis x.h5 --out romcli.h5", "--model rom");
+  /* a leg file instead of the basis (session romsweep) */
+  expectRefused("bend --model rom --rom-file romcli_missing.h5 --p-max 0.1 --out romcli.h5",
+                "romcli_missing.h5");
+  expectRefused("bend --model rom --rom-file x.h5 --rom-basis y.h5 --out romcli.h5",
+                "--rom-file holds the basis and the weights");
+  expectRefused("bend --model fe --rom-file x.h5 --out romcli.h5", "--model rom");
   remove("romcli.h5");
 }
 
