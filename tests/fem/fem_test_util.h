@@ -58,10 +58,17 @@ static inline double ftMeanStress(const csfModel* m, const csfData* d, int c) {
  * dofs, zero rows on clamped ones); *n_out gets n; the caller frees */
 static inline double* ftFreeDofBasis(const csfModel* m, int* n_out) {
   int n = 0;
+  *n_out = 0;
+  if (m->ndof <= 0) {
+    return NULL;
+  }
   for (int i = 0; i < m->ndof; i++) {
     n += !m->fixed[i];
   }
-  double* V = calloc((size_t)m->ndof * (size_t)(n > 0 ? n : 1), sizeof(double));
+  /* both factors positive ints, so the product fits a size_t (GCC's alloc-size check cannot see
+   * the sign of ndof through the loop otherwise) */
+  const size_t rows = (size_t)(unsigned)m->ndof, cols = (size_t)(unsigned)(n > 0 ? n : 1);
+  double* V = calloc(rows * cols, sizeof(double));
   for (int i = 0, j = 0; V && i < m->ndof; i++) {
     if (!m->fixed[i]) {
       V[(size_t)i * n + j++] = 1.0;
