@@ -54,33 +54,16 @@ csStatus csf_romFibreFactor(csfRom* r, csError* err) {
 }
 
 csStatus csf_romSetFibreBasis(csfRom* r, int mf, const double* Q, csError* err) {
-  const int nfib = r->fem->nfib;
-  if (mf < 0 || (mf > 0 && !Q) || (mf > 0 && nfib == 0)) {
-    return cs_errorSet(err, CS_ERR_ARG, "fem_rom: a fibre strain basis of %d columns for %d "
-                       "fibres", mf, nfib);
+  csStatus st = csf_romBasisReplace(r->fem->nfib, mf, Q, "fibre strain basis", "fibre", &r->Qf,
+                                    &r->Gf_chol, err);
+  if (st != CS_OK) {
+    return st;
   }
-  for (size_t i = 0; i < (size_t)nfib * (size_t)mf; i++) {
-    if (!isfinite(Q[i])) {
-      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: fibre strain basis entry (fibre %zu, column "
-                         "%zu) is not finite", i / (size_t)mf, i % (size_t)mf);
-    }
-  }
-  free(r->Qf), free(r->Gf_chol);
-  r->Qf = NULL, r->Gf_chol = NULL, r->mf = 0;
+  r->mf = mf;
   if (mf == 0) {
     return CS_OK;
   }
-  r->Qf = malloc((size_t)nfib * (size_t)mf * sizeof(double));
-  r->Gf_chol = malloc((size_t)mf * (size_t)mf * sizeof(double));
-  if (!r->Qf || !r->Gf_chol) {
-    free(r->Qf), free(r->Gf_chol);
-    r->Qf = NULL, r->Gf_chol = NULL;
-    return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (fibre strain basis %d x %d)",
-                       nfib, mf);
-  }
-  memcpy(r->Qf, Q, (size_t)nfib * (size_t)mf * sizeof(double));
-  r->mf = mf;
-  const csStatus st = csf_romFibreFactor(r, err);
+  st = csf_romFibreFactor(r, err);
   if (st != CS_OK) {
     free(r->Qf), free(r->Gf_chol);
     r->Qf = NULL, r->Gf_chol = NULL, r->mf = 0;

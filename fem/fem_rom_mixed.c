@@ -93,33 +93,45 @@ void csf_romMixedSolve(const csfRom* r, double* x) {
   csf_romMixedSolveWith(r->m, r->A_chol, x);
 }
 
-csStatus csf_romSetPressureBasis(csfRom* r, int m, const double* P, csError* err) {
-  const int ntet = r->fem->mesh->ntet;
-  if (m < 0 || (m > 0 && !P)) {
-    return cs_errorSet(err, CS_ERR_ARG, "fem_rom: a pressure basis of %d columns", m);
+csStatus csf_romBasisReplace(int rows, int m, const double* B, const char* what,
+                             const char* row, double** basis, double** chol, csError* err) {
+  if (m < 0 || (m > 0 && (!B || rows <= 0))) {
+    return cs_errorSet(err, CS_ERR_ARG, "fem_rom: a %s of %d columns for %d %ss", what, m, rows,
+                       row);
   }
-  for (size_t i = 0; i < (size_t)ntet * (size_t)m; i++) {
-    if (!isfinite(P[i])) {
-      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: pressure basis entry (element %zu, column "
-                         "%zu) is not finite", i / (size_t)m, i % (size_t)m);
+  for (size_t i = 0; i < (size_t)rows * (size_t)m; i++) {
+    if (!isfinite(B[i])) {
+      return cs_errorSet(err, CS_ERR_ARG, "fem_rom: %s entry (%s %zu, column %zu) is not finite",
+                         what, row, i / (size_t)m, i % (size_t)m);
     }
   }
-  free(r->P), free(r->A_chol);
-  r->P = NULL, r->A_chol = NULL, r->m = 0;
+  double *b = NULL, *c = NULL;
+  if (m > 0) {
+    b = malloc((size_t)rows * (size_t)m * sizeof(double));
+    c = malloc((size_t)m * (size_t)m * sizeof(double));
+    if (!b || !c) {
+      free(b), free(c);
+      return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (%s %d x %d)", what, rows,
+                         m);
+    }
+    memcpy(b, B, (size_t)rows * (size_t)m * sizeof(double));
+  }
+  free(*basis), free(*chol);
+  *basis = b, *chol = c;
+  return CS_OK;
+}
+
+csStatus csf_romSetPressureBasis(csfRom* r, int m, const double* P, csError* err) {
+  csStatus st = csf_romBasisReplace(r->fem->mesh->ntet, m, P, "pressure basis", "element", &r->P,
+                                    &r->A_chol, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  r->m = m;
   if (m == 0) {
     return CS_OK;
   }
-  r->P = malloc((size_t)ntet * (size_t)m * sizeof(double));
-  r->A_chol = malloc((size_t)m * (size_t)m * sizeof(double));
-  if (!r->P || !r->A_chol) {
-    free(r->P), free(r->A_chol);
-    r->P = NULL, r->A_chol = NULL;
-    return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (pressure basis %d x %d)",
-                       ntet, m);
-  }
-  memcpy(r->P, P, (size_t)ntet * (size_t)m * sizeof(double));
-  r->m = m;
-  csStatus st = csf_romMixedFactor(r, err);
+  st = csf_romMixedFactor(r, err);
   if (st != CS_OK) {
     free(r->P), free(r->A_chol);
     r->P = NULL, r->A_chol = NULL, r->m = 0;

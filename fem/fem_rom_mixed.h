@@ -21,6 +21,13 @@ csStatus csf_romMixedFactor(csfRom* r, csError* err);
  * fit's element rows need whatever the rom's weights). CS_ERR_ARG when not positive definite. */
 csStatus csf_romMixedFactorInto(const csfRom* r, int all, double* L, csError* err);
 
+/* The part of csf_romSetPressureBasis and csf_romSetFibreBasis that does not depend on the
+ * basis: checks B (rows x m, m >= 0, finite; `what` and `row` name the basis and its rows in the
+ * error), then replaces *basis by a copy of B and *chol by an m x m buffer for its factor (both
+ * NULL for m = 0), freeing the old ones. On an error nothing changes. */
+csStatus csf_romBasisReplace(int rows, int m, const double* B, const char* what,
+                             const char* row, double** basis, double** chol, csError* err);
+
 /* In-place Cholesky factor of the symmetric matrix whose lower triangle L (m x m) holds:
  * -1, or the first column whose pivot is not above 1e-12 of the largest diagonal entry. */
 int csf_romCholesky(int m, double* L);

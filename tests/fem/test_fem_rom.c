@@ -14,62 +14,16 @@
 #include "fem_element.h"
 #include "fem_rom.h"
 #include "fem_test_util.h"
+#include "rom_test_util.h"
 
 /* the blocks' end pressure, MPa (bends the 6 mm block by about 1.5 mm: large rotations) */
 #define P_BOX 0.006
 
-typedef struct Box_ {
-  csfMesh* me;
-  csfModel* m;
-  csfData* d;
-} Box;
-
-/* a clamped block 2 x 1.5 x L (z = 0 clamped), pressure on the face x = 2 (tag 2, open), a
- * fibre through it (tension-only, or linear: the FE's Newton stagnates on the tension-only
- * fibre in a 2 mm block, whose smoothing zone its 771 N EA crosses at every iterate), gravity
- * across it */
-static void boxCreate(Box* b, int nz, double L, double kappa, int tension_only) {
-  csError err = {0};
-  int n[3] = {1, 1, nz};
-  double sc[3] = {2.0, 1.5, L};
-  b->me = csf_meshCreateBox(n, ftScaleMap, sc, 0.0, &err);
-  csfMaterial mat = csf_materialDefault(0.11, 0.02, 1130e-12);
-  mat.kappa = kappa;
-  b->m = csf_modelCreate(b->me, &mat, &err);
-  CS_EXPECT(csf_modelAddPressure(b->m, 2, 1.0) > 0);
-  double fib[3 * 3] = {0.3, 0.2, 0.1 * L, 1.7, 1.2, 0.5 * L, 0.5, 0.7, 0.9 * L};
-  CS_EXPECT(csf_modelAddFibre(b->m, 3, fib, 31067.0, 0.0889, &err) == CS_OK);
-  for (int dir = 0; dir < 3; dir++) {
-    ftFix(b->m, 2, 0.0, dir, 0.0);
-  }
-  b->m->gravity[1] = -9810.0;
-  b->m->fib_tension_only = tension_only;
-  CS_EXPECT(csf_modelFinalize(b->m, &err) == CS_OK);
-  b->d = csf_dataCreate(b->m, &err);
-  CS_EXPECT(b->d != NULL);
-}
-
-static void boxDestroy(Box* b) {
-  csf_dataDestroy(b->d);
-  csf_modelDestroy(b->m);
-  csf_meshDestroy(b->me);
-}
-
-/* the rom's per-face pressure at load factor `load` (the FE's face_p per unit load) */
-static double* facePressure(const csfModel* m, double load) {
-  double* p = malloc((size_t)m->mesh->nface * sizeof(double));
-  for (int f = 0; f < m->mesh->nface; f++) {
-    p[f] = load * m->face_p[f];
-  }
-  return p;
-}
-
-
 /* r and K of the rom against V^T R, V^T K V of the FE's assembly at u = V q, and K against
  * central differences of r */
 static void test_reduced_residual_and_tangent_match_the_fe_and_finite_differences(void) {
-  Box b;
-  boxCreate(&b, 2, 3.0, 50.0, 1); /* moderate kappa: a well-conditioned FD check (as
+  RtBox b;
+  rtBoxCreate(&b, 2, 3.0, 50.0, 1, 1); /* moderate kappa: a well-conditioned FD check (as
                                 * test_fem_element) */
   const csfModel* m = b.m;
   const int nd = m->ndof, n = 5;
@@ -93,7 +47,7 @@ static void test_reduced_residual_and_tangent_match_the_fe_and_finite_difference
   const double q[5] = {1.0, 0.7, -0.4, 0.3, 0.9};
   memcpy(rd->q, q, sizeof q);
   const double load = 0.05; /* MPa */
-  double* fp = facePressure(m, load);
+  double* fp = rtFacePressure(m, load);
   double fdead[5] = {0.01, -0.02, 0.0, 0.005, 0.0};
   csfRomLoad ld = {fp, {0, -9810.0, 0}, fdead};
   CS_EXPECT(csf_romEvaluate(r, rd, &ld, 1) == 0);
@@ -204,7 +158,7 @@ static void test_reduced_residual_and_tangent_match_the_fe_and_finite_difference
   free(rp), free(K), free(KV), free(col), free(y), free(V), free(fp);
   csf_romDataDestroy(rd);
   csf_romDestroy(r);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 
@@ -214,7 +168,7 @@ static csStatus romRampWith(const csfRom* r, csfRomData* rd, const csfModel* m, 
   const csfRomNewtonOptions o = *op;
   for (int s = 1; s <= nstep; s++) {
     const double lam = (double)s / nstep;
-    double* fp = facePressure(m, lam);
+    double* fp = rtFacePressure(m, lam);
     csfRomLoad ld = {fp, {m->gravity[0], m->gravity[1], m->gravity[2]}, NULL};
     csStatus st = csf_romNewton(r, rd, &ld, &o, NULL, err);
     free(fp);
@@ -245,7 +199,7 @@ static double maxAbsDiff(int n, const double* a, const double* b, double* amax) 
 
 /* the FE's solution of the clamped block under pressure and gravity (kappa of the FE's
  * default material), in 4 load steps; returns u at loads 0.5 and 1 */
-static void feSolution(Box* b, double* u_half, double* u_one) {
+static void feSolution(RtBox* b, double* u_half, double* u_one) {
   csError err = {0};
   csfNewtonOptions o = csf_newtonDefault();
   for (int s = 1; s <= 4; s++) {
@@ -264,7 +218,7 @@ static void feSolution(Box* b, double* u_half, double* u_one) {
 
 /* V = every free dof of the block (ndof x n, identity on the free dofs), and the FE's face
  * pressure per unit load (1 MPa) scaled to the rom's loads (P_BOX) */
-static double* fullBasis(Box* b, int* n_out) {
+static double* fullBasis(RtBox* b, int* n_out) {
   const csfModel* m = b->m;
   const int nd = m->ndof;
   int n = 0;
@@ -287,8 +241,8 @@ static double* fullBasis(Box* b, int* n_out) {
 
 /* V = every free dof: the rom is the FE, and its Newton lands on the FE's equilibrium */
 static void test_full_basis_reproduces_the_fe_equilibrium(void) {
-  Box b;
-  boxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0);
+  RtBox b;
+  rtBoxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0, 1);
   const csfModel* m = b.m;
   const int nd = m->ndof;
   double* uh = malloc(nd * sizeof(double));
@@ -311,7 +265,7 @@ static void test_full_basis_reproduces_the_fe_equilibrium(void) {
   free(V), free(u), free(uh), free(u1);
   csf_romDataDestroy(rd);
   csf_romDestroy(r);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 
@@ -319,8 +273,8 @@ static void test_full_basis_reproduces_the_fe_equilibrium(void) {
  * same four load steps reach the FE's equilibrium to the Newton tolerance as Newton does, with
  * fewer tangents formed (the factor is kept across steps and iterates while |r| contracts) */
 static void test_lagged_tangent_reaches_the_equilibrium_with_fewer_tangents(void) {
-  Box b;
-  boxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0);
+  RtBox b;
+  rtBoxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0, 1);
   const csfModel* m = b.m;
   const int nd = m->ndof;
   double* uh = malloc(nd * sizeof(double));
@@ -361,7 +315,7 @@ static void test_lagged_tangent_reaches_the_equilibrium_with_fewer_tangents(void
   CS_EXPECT(iters[1] > tangents[1] && iters[2] > tangents[2]); /* steps on a kept factor */
   free(V), free(u), free(uh), free(u1);
   csf_romDestroy(r);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 
@@ -377,8 +331,8 @@ static double urand(unsigned* state) {
  * symmetric (x1 . H x2 = x2 . H x1); a pair against the curvature condition (y . s <= 0) is
  * refused; past the memory the oldest pair leaves and the secant equation of the newest holds. */
 static void test_bfgs_update_meets_the_secant_equation(void) {
-  Box b;
-  boxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0);
+  RtBox b;
+  rtBoxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0, 1);
   const csfModel* m = b.m;
   int n;
   double* V = fullBasis(&b, &n);
@@ -467,15 +421,15 @@ static void test_bfgs_update_meets_the_secant_equation(void) {
   free(x), free(hx), free(s), free(y), free(V);
   csf_romDataDestroy(rd);
   csf_romDestroy(r);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 
 /* V = two FE snapshots (orthonormalised): the reduced Newton returns both to the Newton
  * tolerance (each lies in the span and makes V^T R vanish) */
 static void test_snapshot_basis_reproduces_its_snapshots(void) {
-  Box b;
-  boxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0);
+  RtBox b;
+  rtBoxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0, 1);
   const csfModel* m = b.m;
   const int nd = m->ndof, n = 2;
   double* uh = malloc(nd * sizeof(double));
@@ -511,7 +465,7 @@ static void test_snapshot_basis_reproduces_its_snapshots(void) {
   double umax, e1 = 0, eh = 0;
   csfRomNewtonOptions o = csf_romNewtonDefault();
   for (int s = 1; s <= 4; s++) {
-    double* fp = facePressure(m, s / 4.0);
+    double* fp = rtFacePressure(m, s / 4.0);
     csfRomLoad ld = {fp, {m->gravity[0], m->gravity[1], m->gravity[2]}, NULL};
     CS_EXPECT(csf_romNewton(r, rd, &ld, &o, NULL, &err) == CS_OK);
     free(fp);
@@ -534,15 +488,15 @@ static void test_snapshot_basis_reproduces_its_snapshots(void) {
   free(V), free(u), free(uh), free(u1);
   csf_romDataDestroy(rd);
   csf_romDestroy(r);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 
 /* every element at weight 1 through csf_romSetWeights, in reversed order: the unreduced model
  * to round-off; weights 2 on the bodies and fibres double their part */
 static void test_unit_weights_on_every_element_equal_the_unreduced_model(void) {
-  Box b;
-  boxCreate(&b, 2, 3.0, CSF_KAPPA_RATIO * 2 * 0.11, 1);
+  RtBox b;
+  rtBoxCreate(&b, 2, 3.0, CSF_KAPPA_RATIO * 2 * 0.11, 1, 1);
   const csfModel* m = b.m;
   const int nd = m->ndof, n = 4;
   double* V = calloc((size_t)nd * n, sizeof(double));
@@ -558,7 +512,7 @@ static void test_unit_weights_on_every_element_equal_the_unreduced_model(void) {
   d0->sync = 1;
   const double q[4] = {0.5, -0.3, 0.8, 0.2};
   memcpy(d0->q, q, sizeof q);
-  double* fp = facePressure(m, 0.03);
+  double* fp = rtFacePressure(m, 0.03);
   csfRomLoad ld = {fp, {0, -9810.0, 0}, NULL};
   CS_EXPECT(csf_romEvaluate(r, d0, &ld, 1) == 0);
   double r0[4], K0[16];
@@ -614,7 +568,7 @@ static void test_unit_weights_on_every_element_equal_the_unreduced_model(void) {
   free(V), free(fp);
   csf_romDataDestroy(d0);
   csf_romDestroy(r);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 
@@ -622,19 +576,19 @@ static void test_unit_weights_on_every_element_equal_the_unreduced_model(void) {
  * pattern; session romsweep) gives the reduced residual and tangent of the fully finalised one
  * bit for bit, and the FE's solvers refuse it. */
 static void test_kernels_only_model_gives_the_same_rom_and_no_fe_solver(void) {
-  Box b;
-  boxCreate(&b, 2, 3.0, CSF_KAPPA_RATIO * 2 * 0.11, 1);
+  RtBox b;
+  rtBoxCreate(&b, 2, 3.0, CSF_KAPPA_RATIO * 2 * 0.11, 1, 1);
   csError err = {0};
   /* the same block, model and fibre, finalised for the kernels only */
   csfMaterial mat = b.m->mat;
   csfModel* mk = csf_modelCreate(b.me, &mat, &err);
   if (!mk) {
     CS_EXPECT(mk != NULL);
-    boxDestroy(&b);
+    rtBoxDestroy(&b);
     return;
   }
   CS_EXPECT(csf_modelAddPressure(mk, 2, 1.0) > 0);
-  double fib[3 * 3] = {0.3, 0.2, 0.3, 1.7, 1.2, 1.5, 0.5, 0.7, 2.7}; /* boxCreate's, L = 3 */
+  double fib[3 * 3] = {0.3, 0.2, 0.3, 1.7, 1.2, 1.5, 0.5, 0.7, 2.7}; /* rtBoxCreate's, L = 3 */
   CS_EXPECT(csf_modelAddFibre(mk, 3, fib, 31067.0, 0.0889, &err) == CS_OK);
   memcpy(mk->fixed, b.m->fixed, (size_t)mk->ndof);
   mk->fib_tension_only = 1;
@@ -656,7 +610,7 @@ static void test_kernels_only_model_gives_the_same_rom_and_no_fe_solver(void) {
   const double q[4] = {0.5, -0.3, 0.8, 0.2};
   memcpy(d0->q, q, sizeof q);
   memcpy(d1->q, q, sizeof q);
-  double* fp = facePressure(b.m, 0.03);
+  double* fp = rtFacePressure(b.m, 0.03);
   csfRomLoad ld = {fp, {0, -9810.0, 0}, NULL};
   CS_EXPECT(csf_romEvaluate(r0, d0, &ld, 1) == 0);
   CS_EXPECT(csf_romEvaluate(r1, d1, &ld, 1) == 0);
@@ -673,7 +627,7 @@ static void test_kernels_only_model_gives_the_same_rom_and_no_fe_solver(void) {
   csf_romDataDestroy(d0), csf_romDataDestroy(d1);
   csf_romDestroy(r0), csf_romDestroy(r1);
   csf_modelDestroy(mk);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 

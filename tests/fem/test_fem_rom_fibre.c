@@ -16,55 +16,8 @@
 
 #define P_BOX 0.006 /* the block's end pressure, MPa (test_fem_rom.c: large rotations) */
 
-typedef struct Box_ {
-  csfMesh* me;
-  csfModel* m;
-  csfData* d;
-} Box;
-
-/* a clamped block 2 x 1.5 x L (z = 0), pressure on the face x = 2 (tag 2), three fibres
- * through it (tension-only or linear), gravity across it */
-static void boxCreate(Box* b, int nz, double L, double kappa, int tension_only) {
-  csError err = {0};
-  int n[3] = {1, 1, nz};
-  double sc[3] = {2.0, 1.5, L};
-  b->me = csf_meshCreateBox(n, ftScaleMap, sc, 0.0, &err);
-  csfMaterial mat = csf_materialDefault(0.11, 0.02, 1130e-12);
-  mat.kappa = kappa;
-  b->m = csf_modelCreate(b->me, &mat, &err);
-  CS_EXPECT(csf_modelAddPressure(b->m, 2, 1.0) > 0);
-  const double fib[3][9] = {{0.3, 0.2, 0.1 * L, 1.7, 1.2, 0.5 * L, 0.5, 0.7, 0.9 * L},
-                            {1.8, 0.3, 0.05 * L, 0.4, 1.1, 0.6 * L, 1.5, 1.3, 0.95 * L},
-                            {1.0, 0.75, 0.02 * L, 1.2, 0.5, 0.5 * L, 0.9, 1.0, 0.97 * L}};
-  for (int k = 0; k < 3; k++) {
-    CS_EXPECT(csf_modelAddFibre(b->m, 3, fib[k], 31067.0, 0.0889, &err) == CS_OK);
-  }
-  for (int dir = 0; dir < 3; dir++) {
-    ftFix(b->m, 2, 0.0, dir, 0.0);
-  }
-  b->m->gravity[1] = -9810.0;
-  b->m->fib_tension_only = tension_only;
-  CS_EXPECT(csf_modelFinalize(b->m, &err) == CS_OK);
-  b->d = csf_dataCreate(b->m, &err);
-  CS_EXPECT(b->d != NULL);
-}
-
-static void boxDestroy(Box* b) {
-  csf_dataDestroy(b->d);
-  csf_modelDestroy(b->m);
-  csf_meshDestroy(b->me);
-}
-
-static double* facePressure(const csfModel* m, double load) {
-  double* p = malloc((size_t)m->mesh->nface * sizeof(double));
-  for (int f = 0; f < m->mesh->nface; f++) {
-    p[f] = load * m->face_p[f];
-  }
-  return p;
-}
-
 /* a random basis of n columns over the free dofs, the first stretching the block along x */
-static double* randomBasis(const Box* b, int n, unsigned seed) {
+static double* randomBasis(const RtBox* b, int n, unsigned seed) {
   const csfModel* m = b->m;
   double* V = calloc((size_t)m->ndof * n, sizeof(double));
   srand(seed);
@@ -99,8 +52,8 @@ static double maxAbsDiff(int k, const double* a, const double* b) {
 
 /* Q = I: each fibre its own strain mode, the FE's fibres: r and K as without a fibre basis */
 static void test_identity_fibre_basis_is_the_fe_fibre_model(void) {
-  Box b;
-  boxCreate(&b, 2, 3.0, 50.0, 1);
+  RtBox b;
+  rtBoxCreate(&b, 2, 3.0, 50.0, 1, 3);
   const csfModel* m = b.m;
   const int n = 5, nf = m->nfib;
   double* V = randomBasis(&b, n, 11);
@@ -115,7 +68,7 @@ static void test_identity_fibre_basis_is_the_fe_fibre_model(void) {
   const double q[5] = {1.0, 0.7, -0.4, 0.3, 0.9};
   memcpy(d0->q, q, sizeof q);
   memcpy(d1->q, q, sizeof q);
-  double* fp = facePressure(m, 0.05);
+  double* fp = rtFacePressure(m, 0.05);
   csfRomLoad ld = {fp, {0, -9810.0, 0}, NULL};
   CS_EXPECT(csf_romEvaluate(r0, d0, &ld, 1) == 0);
   CS_EXPECT(csf_romEvaluate(r1, d1, &ld, 1) == 0);
@@ -135,14 +88,14 @@ static void test_identity_fibre_basis_is_the_fe_fibre_model(void) {
   free(fp), free(Q), free(V);
   csf_romDataDestroy(d0), csf_romDataDestroy(d1);
   csf_romDestroy(r0), csf_romDestroy(r1);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 /* a reduced fibre basis (3 random modes for the block's fibres), fibre weights not 1: K against
  * central differences of r; without the open pressure face K is symmetric */
 static void test_mixed_fibre_tangent_matches_finite_differences(void) {
-  Box b;
-  boxCreate(&b, 2, 3.0, 50.0, 1);
+  RtBox b;
+  rtBoxCreate(&b, 2, 3.0, 50.0, 1, 3);
   const csfModel* m = b.m;
   const int n = 5, nf = m->nfib, mf = 3;
   double* V = randomBasis(&b, n, 7);
@@ -163,7 +116,7 @@ static void test_mixed_fibre_tangent_matches_finite_differences(void) {
   csfRomData* d = csf_romDataCreate(r, &err);
   d->sync = 1;
   const double q[5] = {1.0, 0.7, -0.4, 0.3, 0.9};
-  double* fp = facePressure(m, 0.05);
+  double* fp = rtFacePressure(m, 0.05);
   for (int pass = 0; pass < 2; pass++) {
     csfRomLoad ld = {pass == 0 ? fp : NULL, {0, -9810.0, 0}, NULL};
     memcpy(d->q, q, sizeof q);
@@ -190,11 +143,11 @@ static void test_mixed_fibre_tangent_matches_finite_differences(void) {
   free(fp), free(Q), free(V), free(idx), free(w);
   csf_romDataDestroy(d);
   csf_romDestroy(r);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 /* the FE's solution in 4 load steps of the block's end pressure; u at loads 0.5 and 1 */
-static void feSolution(Box* b, double* u_half, double* u_one) {
+static void feSolution(RtBox* b, double* u_half, double* u_one) {
   csError err = {0};
   csfNewtonOptions o = csf_newtonDefault();
   for (int s = 1; s <= 4; s++) {
@@ -222,7 +175,7 @@ static csStatus ramp(const csfRom* r, csfRomData* rd, const csfModel* m, double*
   memset(rd->q, 0, (size_t)r->n * sizeof(double));
   csf_romDataReset(r, rd);
   for (int s = 1; s <= 4; s++) {
-    double* fp = facePressure(m, s / 4.0);
+    double* fp = rtFacePressure(m, s / 4.0);
     csfRomLoad ld = {fp, {m->gravity[0], m->gravity[1], m->gravity[2]}, NULL};
     const csStatus st = csf_romNewton(r, rd, &ld, &o, NULL, err);
     free(fp);
@@ -242,8 +195,8 @@ static csStatus ramp(const csfRom* r, csfRomData* rd, const csfModel* m, double*
  * reproduces both (linear fibres: with the tension-only law Q must span S(E) as well,
  * tools/rom_basis.py --fibre-modes). */
 static void test_snapshots_come_back_with_a_fibre_basis(void) {
-  Box b;
-  boxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0);
+  RtBox b;
+  rtBoxCreate(&b, 4, 6.0, CSF_KAPPA_RATIO * 2 * 0.11, 0, 3);
   const csfModel* m = b.m;
   const int nd = m->ndof, nf = m->nfib;
   double* uh = malloc(nd * sizeof(double));
@@ -313,7 +266,7 @@ static void test_snapshots_come_back_with_a_fibre_basis(void) {
   csf_romDataDestroy(rd);
   csf_romDestroy(r);
   free(V2), free(Q), free(Q2), free(E), free(u), free(ur), free(uh), free(u1);
-  boxDestroy(&b);
+  rtBoxDestroy(&b);
 }
 
 int main(void) {
