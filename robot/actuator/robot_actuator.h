@@ -88,7 +88,8 @@ typedef struct csrBendCurve_ {
   size_t m, cap;
   double* pressure;     /* (m) MPa */
   double* angle_deg;    /* (m x 3) bending angle per segment, degrees */
-  double* angle_total;  /* (m) total bending angle, degrees */
+  double* angle_total;  /* (m) total bending angle, degrees: the segments' sum as pushed; the FE
+                         * and rom levels overwrite it with the base-to-tip rotation (joints) */
   double* tip;          /* (m x 3) tip position in the base frame (e1, e2, e3), mm */
   double p_until_angle; /* MPa at which the total angle reached --until-angle, or NAN */
 } csrBendCurve;

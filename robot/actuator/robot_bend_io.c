@@ -50,7 +50,9 @@ static csStatus writeRows(csH5File* f, const csrBendCurve* bc, csError* err) {
   static const char* const kUnits[4][3] = {
       {"/pressure", "MPa", "the sweep's chamber pressure (gauge) at each row"},
       {"/angle_deg", "deg", "bending angle of segments II1, II2, II3 at each row"},
-      {"/angle_total_deg", "deg", "total bending angle (sum over the segments) at each row"},
+      {"/angle_total_deg", "deg",
+       "total bending angle at each row: the base-to-tip rotation (the rod's segments' sum; FE "
+       "and rom: measured, the joints included)"},
       {"/tip_position", "mm", "the tip's position in the base frame (e1, e2, e3) at each row"}};
   for (int k = 0; k < 4 && st == CS_OK; k++) {
     st = cs_h5AttrString(f, kUnits[k][0], "units", kUnits[k][1], err);
