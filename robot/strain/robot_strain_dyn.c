@@ -344,10 +344,11 @@ void csr_strainInertiaApply_(const csrStrainModel* m, const double* Rk, const do
   const int n = m->n;
   memset(out, 0, (size_t)(6 + n) * sizeof(double));
   const double* eta = u + 6;
+  double* restrict ol = out + 6;
   for (int p = 0; p < m->np; p++) {
     const double* R = Rk + 9 * p;
     const double* x = xk + 3 * p;
-    const double* J = Jk + (size_t)p * 6 * n;
+    const double* restrict J = Jk + (size_t)p * 6 * n;
     const double* Ms = m->Ms + 6 * p;
     const int nc = m->pcol[p];
     double V[6], wx[3], t[3];
@@ -355,14 +356,23 @@ void csr_strainInertiaApply_(const csrStrainModel* m, const double* Rk, const do
     csu_add3(t, u + 3, wx);
     csu_mulMatTVec3(V, R, u);
     csu_mulMatTVec3(V + 3, R, t);
-    for (int r = 0; r < 6; r++) {
-      const double* Jr = J + r * n;
-      double s = 0;
-      for (int j = 0; j < nc; j++) {
-        s += Jr[j] * eta[j];
-      }
-      V[r] = Ms[r] * (V[r] + s);
+    /* J η, the six rows side by side (as pointTwist) */
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0;
+    for (int j = 0; j < nc; j++) {
+      const double e = eta[j];
+      s0 += J[j] * e;
+      s1 += J[n + j] * e;
+      s2 += J[2 * n + j] * e;
+      s3 += J[3 * n + j] * e;
+      s4 += J[4 * n + j] * e;
+      s5 += J[5 * n + j] * e;
     }
+    V[0] = Ms[0] * (V[0] + s0);
+    V[1] = Ms[1] * (V[1] + s1);
+    V[2] = Ms[2] * (V[2] + s2);
+    V[3] = Ms[3] * (V[3] + s3);
+    V[4] = Ms[4] * (V[4] + s4);
+    V[5] = Ms[5] * (V[5] + s5);
     double Rm[3], Rp[3], xRp[3];
     csu_mulMatVec3(Rm, R, V);
     csu_mulMatVec3(Rp, R, V + 3);
@@ -371,8 +381,11 @@ void csr_strainInertiaApply_(const csrStrainModel* m, const double* Rk, const do
       out[c] += Rm[c] + xRp[c];
       out[3 + c] += Rp[c];
     }
-    for (int r = 0; r < 6; r++) {
-      axpy(out + 6, J + r * n, V[r], nc);
+    /* Jᵀ (μ; π), one pass over the columns (vectorised: ol and J distinct) */
+    const double v0 = V[0], v1 = V[1], v2 = V[2], v3 = V[3], v4 = V[4], v5 = V[5];
+    for (int j = 0; j < nc; j++) {
+      ol[j] += J[j] * v0 + J[n + j] * v1 + J[2 * n + j] * v2 + J[3 * n + j] * v3 +
+               J[4 * n + j] * v4 + J[5 * n + j] * v5;
     }
   }
 }
@@ -428,13 +441,6 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
    * return-mapping needed it) */
   if (d->kin_valid < 2) {
     csr_strainKinematics_(m, d, 1);
-  }
-  if (m->par.keep_matrix && !at_iterate) {
-    /* the start's kinematics for the residual's M(q0) Δu at later passes (the iterates
-     * overwrite d->R, d->x, d->J) and for a refactorisation at an iterate */
-    memcpy(d->R0, d->R, (size_t)9 * m->np * sizeof(double));
-    memcpy(d->x0, d->x, (size_t)3 * m->np * sizeof(double));
-    memcpy(d->J0, d->J, (size_t)6 * m->np * m->n * sizeof(double));
   }
   /* the inertia W_bb, W_lb, W_ll (a step keeping its factor skips it: the residual forms
    * M(q0) Δu matrix-free), then r point by point */
@@ -631,12 +637,21 @@ static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, con
   const double* dV = du;
   const double* de = du + 6;
   double rb[6];
-  if (m->par.keep_matrix) {
-    /* the factor may be an earlier step's (Kept matrix): W_f Δu_it - R with the residual
-     * R = W_M Δu_it - h (r_M + f) formed from its parts, W_M Δu = M(q0) Δu (matrix-free at the
-     * start's kinematics) + (h τ_d + h²) K Δη, whatever W_f is */
+  if (!d->wm_step) {
+    /* the factor is an earlier step's and this step's W_M was not assembled (Kept matrix):
+     * W_f Δu_it - R with the residual R = W_M Δu_it - h (r_M + f) formed from its parts,
+     * W_M Δu = M(q0) Δu (matrix-free at the start's kinematics) + (h τ_d + h²) K Δη, whatever
+     * W_f is (where W_M is assembled, below, the same sums from its matrix) */
     const double tau = m->rpar.damping_time;
-    csr_strainInertiaApply_(m, d->R0, d->x0, d->J0, du, d->Mu);
+    int zero = 1;
+    for (int k = 0; k < 6 + n && zero; k++) {
+      zero = du[k] == 0;
+    }
+    if (zero) {
+      memset(d->Mu, 0, (size_t)(6 + n) * sizeof(double)); /* a kept step's first pass */
+    } else {
+      csr_strainInertiaApply_(m, d->R0, d->x0, d->J0, du, d->Mu);
+    }
     for (int j = 0; j < n; j++) {
       const double* wu = d->Wu + (size_t)j * n;
       double t = h * (d->rMl[j] + d->fl[j]) - d->Mu[6 + j] - (h * tau + h * h) * d->Kd[j] * de[j];
@@ -659,7 +674,7 @@ static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, con
       rb[a] = t / h;
     }
   } else {
-    /* the factor is this step's or was linearised in it: W_f - W_M from the assembled W_M */
+    /* this step's W_M assembled: W_f - W_M from its matrix (W_f this step's or an earlier's) */
     for (int j = 0; j < n; j++) {
       const double* wu = d->Wu + (size_t)j * n;
       const double* wm = d->WMll + (size_t)j * n;
@@ -742,6 +757,9 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
      * than the new linearisation saves); a factor without contact is this step's exact W_M
      * (condensePlain above) unless it is an earlier step's */
     int shrinks = d->nreuse == 0 || d->chg_last <= 0.25 * d->chg_prev;
+    if (d->lu_plain && d->w_lag && d->ntouch == 0) {
+      shrinks = 1; /* as in iterateAt: a kept factor without contact at an iterate without */
+    }
     if ((!d->lu_plain || d->w_lag) && same && shrinks && !d->fresh) {
       d->nreuse++;
       return condenseKept(m, d, h, du, fb, Z, rho);
@@ -957,12 +975,21 @@ static int prepareKept(const csrStrainModel* m, csrStrainData* d, double h, doub
     d->q[j] = d->q0[j] + h * d->eta0[j];
   }
   d->kin_valid = 0;
-  csr_strainKinematics_(m, d, 2);
-  csr_strainPointTwistsChain_(m, d);
   double fb[6] = {0, 0, 0, 0, 0, 0};
-  int same = 1;
+  int same = 1, rc = 0;
   memset(d->fl, 0, (size_t)n * sizeof(double));
-  int rc = csr_strainContactLoads_(m, d, fb, d->fl, &same);
+  /* the poses first: a leg that touches nowhere there needs no Jacobians or twists (its
+   * factor's state holds if it had no contact either) */
+  csr_strainKinematics_(m, d, 0);
+  if (csr_strainContactNone_(m, d)) {
+    memset(d->fcw, 0, sizeof d->fcw);
+    d->ntouch = 0;
+    same = d->lu_plain;
+  } else {
+    csr_strainKinematics_(m, d, 2);
+    csr_strainPointTwistsChain_(m, d);
+    rc = csr_strainContactLoads_(m, d, fb, d->fl, &same);
+  }
   int kept = 0;
   if (rc == 0 && same) {
     d->w_lag = 1;
@@ -1056,6 +1083,25 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     d->nstep++;
     int keep = m->par.keep_matrix && d->kf && d->kf_h == h && keptStrains(m, d);
     rc = assemble(m, d, h, 0, !keep);
+    if (rc == 0 && m->par.keep_matrix) {
+      /* the start's kinematics for the residual's M(q0) Δu at later passes (the iterates
+       * overwrite d->R, d->x, d->J) and for a refactorisation at an iterate: a kept step
+       * swaps the arrays (the start's into R0, x0, J0, d->R... scratch), a new factor copies */
+      if (keep) {
+        double* t = d->R;
+        d->R = d->R0, d->R0 = t;
+        t = d->x;
+        d->x = d->x0, d->x0 = t;
+        t = d->J;
+        d->J = d->J0, d->J0 = t;
+        d->kin_valid = 0;
+        d->kin_gen++;
+      } else {
+        memcpy(d->R0, d->R, (size_t)9 * m->np * sizeof(double));
+        memcpy(d->x0, d->x, (size_t)3 * m->np * sizeof(double));
+        memcpy(d->J0, d->J, (size_t)6 * m->np * m->n * sizeof(double));
+      }
+    }
     if (rc == 0 && keep) {
       keep = prepareKept(m, d, h, Z, rho);
       d->nkept += keep;
@@ -1068,11 +1114,13 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
         d->kin_valid = 2;
         d->kin_gen++;
         csr_strainPointTwists_(m, d); /* the chain points' twists were the predicted end's */
-        csr_strainInertia_(m, d);
-        for (int j = 0; j < m->n; j++) {
-          d->WMll[j * m->n + j] += (h * tau + h * h) * d->Kd[j];
+        if (!d->wm_step) {
+          csr_strainInertia_(m, d);
+          for (int j = 0; j < m->n; j++) {
+            d->WMll[j * m->n + j] += (h * tau + h * h) * d->Kd[j];
+          }
+          d->wm_step = 1;
         }
-        d->wm_step = 1;
       }
     }
     if (rc == 0 && !keep) {
@@ -1131,8 +1179,11 @@ static int iterateAt(const csrStrainModel* m, csrStrainData* d, double Z[36], do
       if (!d->w_lag) {
         return condensePlain(m, d, d->he, d->du, Z, rho);
       }
-      /* an earlier step's factor without contact: its chord step, while it contracts */
-      if (!d->fresh && (d->nreuse == 0 || d->chg_last <= 0.25 * d->chg_prev)) {
+      /* an earlier step's factor without contact: its chord step. Its contraction is not
+       * tested: the factor lags by the inertia's change alone (keep_strain bounds it), while
+       * the leg's move from pass to pass follows the support's, which the stance legs'
+       * contact decides (tested, the 4x rule refreshed swing legs at most passes) */
+      if (!d->fresh) {
         const double fb[6] = {0, 0, 0, 0, 0, 0};
         memset(d->fl, 0, (size_t)m->n * sizeof(double));
         d->nreuse++;
