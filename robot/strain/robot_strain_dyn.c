@@ -119,12 +119,13 @@ void csr_strainSetTipLoad(csrStrainData* d, const double force[3], const double 
 }
 
 
-/* V = G_p u at point p (current kinematics) */
-static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, const double Vb[6],
-                       const double* eta, double V[6]) {
+/* V = G_p (V_b, η) at point p of the kinematics R, x, J (as d->R, d->x, d->J) */
+static void pointTwistOf(const csrStrainModel* m, const double* Rk, const double* xk,
+                         const double* Jk, int p, const double Vb[6], const double* eta,
+                         double V[6]) {
   const int n = m->n;
-  const double* R = d->R + 9 * p;
-  const double* x = d->x + 3 * p;
+  const double* R = Rk + 9 * p;
+  const double* x = xk + 3 * p;
   /* Ad(g⁻¹) V_b = (Rᵀ ω; Rᵀ (v + ω × x)) */
   double wx[3], t[3];
   csu_cross3(wx, Vb, x);
@@ -133,7 +134,7 @@ static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, c
   csu_mulMatTVec3(V + 3, R, t);
   /* J η over the columns that move p (pcol[p] on are zero), each row summed in j's order as
    * one row at a time, the six rows side by side (the compiler keeps them in registers) */
-  const double* J = d->J + (size_t)p * 6 * n;
+  const double* J = Jk + (size_t)p * 6 * n;
   const int nc = m->pcol[p];
   double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0;
   for (int j = 0; j < nc; j++) {
@@ -151,6 +152,13 @@ static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, c
   V[3] += s3;
   V[4] += s4;
   V[5] += s5;
+}
+
+
+/* V = G_p u at point p (current kinematics) */
+static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, const double Vb[6],
+                       const double* eta, double V[6]) {
+  pointTwistOf(m, d->R, d->x, d->J, p, Vb, eta, V);
 }
 
 
@@ -351,28 +359,11 @@ void csr_strainInertiaApply_(const csrStrainModel* m, const double* Rk, const do
     const double* restrict J = Jk + (size_t)p * 6 * n;
     const double* Ms = m->Ms + 6 * p;
     const int nc = m->pcol[p];
-    double V[6], wx[3], t[3];
-    csu_cross3(wx, u, x);
-    csu_add3(t, u + 3, wx);
-    csu_mulMatTVec3(V, R, u);
-    csu_mulMatTVec3(V + 3, R, t);
-    /* J η, the six rows side by side (as pointTwist) */
-    double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0;
-    for (int j = 0; j < nc; j++) {
-      const double e = eta[j];
-      s0 += J[j] * e;
-      s1 += J[n + j] * e;
-      s2 += J[2 * n + j] * e;
-      s3 += J[3 * n + j] * e;
-      s4 += J[4 * n + j] * e;
-      s5 += J[5 * n + j] * e;
+    double V[6];
+    pointTwistOf(m, Rk, xk, Jk, p, u, eta, V);
+    for (int r = 0; r < 6; r++) {
+      V[r] *= Ms[r];
     }
-    V[0] = Ms[0] * (V[0] + s0);
-    V[1] = Ms[1] * (V[1] + s1);
-    V[2] = Ms[2] * (V[2] + s2);
-    V[3] = Ms[3] * (V[3] + s3);
-    V[4] = Ms[4] * (V[4] + s4);
-    V[5] = Ms[5] * (V[5] + s5);
     double Rm[3], Rp[3], xRp[3];
     csu_mulMatVec3(Rm, R, V);
     csu_mulMatVec3(Rp, R, V + 3);

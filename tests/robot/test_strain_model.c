@@ -367,18 +367,23 @@ static void projectCase(csrStrainModel* m, const char* what) {
 }
 
 
+/* the default leg's layout: five pieces (bend order 2 in the segments, constant joints) */
+static csrStrainModel* legLayout(void) {
+  csrRodPiece pc[5] = {uniformPiece(50), uniformPiece(8), uniformPiece(50), uniformPiece(8),
+                       uniformPiece(50)};
+  const int order[5] = {2, 0, 2, 0, 2};
+  csrStrainParams sp = csr_strainDefaultParams();
+  return makeRod(pc, order, 5, &sp);
+}
+
+
 static void project_adjoint_matches_jacobians(void) {
   csrStrainModel* m = bentRod();
   if (m) {
     projectCase(m, "bent three-piece rod");
     csr_strainModelDestroy(m);
   }
-  /* the default leg's layout: five pieces (bend order 2 in the segments, constant joints) */
-  csrRodPiece pc[5] = {uniformPiece(50), uniformPiece(8), uniformPiece(50), uniformPiece(8),
-                       uniformPiece(50)};
-  const int order[5] = {2, 0, 2, 0, 2};
-  csrStrainParams sp = csr_strainDefaultParams();
-  m = makeRod(pc, order, 5, &sp);
+  m = legLayout();
   if (m) {
     projectCase(m, "leg layout");
     csr_strainModelDestroy(m);
@@ -499,11 +504,7 @@ static void inertia_product_matches_assembled(void) {
     applyCase(m, "bent rod");
     csr_strainModelDestroy(m);
   }
-  csrRodPiece pc[5] = {uniformPiece(50), uniformPiece(8), uniformPiece(50), uniformPiece(8),
-                       uniformPiece(50)};
-  const int order[5] = {2, 0, 2, 0, 2};
-  csrStrainParams sp = csr_strainDefaultParams();
-  m = makeRod(pc, order, 5, &sp);
+  m = legLayout();
   if (m) {
     applyCase(m, "leg layout");
     csr_strainModelDestroy(m);
