@@ -245,6 +245,12 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
     const double tol = csr_legSettingGet(lt, ls, "rod_tol", 1.0);
     st = cs_h5AttrDouble(f, "/", "rod_tolerance_scale", tol > 0 ? tol : 1.0, err);
   }
+  if (st == CS_OK && csr_legSettingFind(lt, "keep_matrix")) {
+    /* the strain level's iteration matrix across steps (0: a new one every step; > 0 kept
+     * until a mode moves this far, rad) */
+    st = cs_h5AttrDouble(f, "/", "strain_keep_matrix", csr_legSettingGet(lt, ls, "keep_matrix", 0),
+                         err);
+  }
   if (st == CS_OK && m->robot.leg_file[0]) {
     /* the level's own file (rom: the reduced leg of `crawlsim rom leg-file`) */
     st = cs_h5AttrString(f, "/", "leg_file", m->robot.leg_file, err);

@@ -78,6 +78,10 @@ csrStrainParams csr_strainDefaultParams(void) {
   /* the full Newton move until the slot trust region is chosen by measurement
    * (docs/notes/strain_leg.md, "Passes per step") */
   p.slot_trust = 0;
+  /* a new factor every step until keeping it is chosen by measurement (docs/notes/
+   * strain_leg.md, "A kept iteration matrix") */
+  p.keep_matrix = 0;
+  p.keep_strain = 0.05;
   return p;
 }
 
@@ -125,11 +129,14 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       (par.step_order != 1 && par.step_order != 2) ||
       (par.step_refresh != 0 && par.step_refresh != 1) ||
       (par.active_set != 0 && par.active_set != 1) ||
-      (par.friction_tangent != 0 && par.friction_tangent != 1)) {
+      (par.friction_tangent != 0 && par.friction_tangent != 1) ||
+      (par.keep_matrix != 0 && par.keep_matrix != 1) ||
+      (par.keep_matrix && par.step_order != 1) || isnan(par.keep_strain)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
                 "static_max_iter >= 1, step_order 1 or 2, step_refresh, active_set and "
-                "friction_tangent 0 or 1", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
+                "friction_tangent 0 or 1, keep_matrix 0 or 1 (1 with step_order 1 only), "
+                "keep_strain not NaN", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
                 CSR_STRAIN_MAX_SUB);
     return NULL;
   }
@@ -330,6 +337,11 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->memo_z);
   free(d->memo_slot);
   free(d->fl);
+  free(d->R0);
+  free(d->x0);
+  free(d->J0);
+  free(d->qf);
+  free(d->Mu);
   free(d->WMll);
   free(d->WMlb);
   free(d->rMl);
@@ -440,6 +452,11 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->etam1 = calloc(n, sizeof(double));
   d->Wu = calloc(n * n, sizeof(double));
   d->fl = calloc(n, sizeof(double));
+  d->R0 = calloc(np * 9, sizeof(double));
+  d->x0 = calloc(np * 3, sizeof(double));
+  d->J0 = calloc(np * 6 * n, sizeof(double));
+  d->qf = calloc(n, sizeof(double));
+  d->Mu = calloc(n + 6, sizeof(double));
   int nslot_all = 1;
   for (int s = 0; m->soft && s < m->nshape; s++) {
     int first, count;
@@ -456,7 +473,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
       !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||
       !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du || !d->Rs_save || !d->xs_save ||
-      !d->qm1 || !d->etam1) {
+      !d->qm1 || !d->etam1 || !d->R0 || !d->x0 || !d->J0 || !d->qf || !d->Mu) {
     csr_strainDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;
@@ -488,6 +505,7 @@ void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
   memset(d->Vbm1, 0, sizeof d->Vbm1);
   memset(d->Xm1, 0, sizeof d->Xm1);
   memset(d->Dm1, 0, sizeof d->Dm1);
+  d->kf = 0; /* a kept factor is the last state's */
   d->hprev = 0;
   memset(d->tipd_f, 0, sizeof d->tipd_f);
   if (m->soft) {

@@ -93,6 +93,20 @@ typedef struct csrStrainParams_ {
                           touching foot slot two stick ranges (2 mu delta_t) along the
                           surface (csr_strainStepLimit); 0 the full Newton move. Backward
                           Euler only. Only the path: converged, the step is the law's */
+  int keep_matrix;     /* 1: the leg's factored iteration matrix (W_ll with the contact's
+                          linearisation, its Schur complement Z onto the base) is kept across
+                          steps and refreshed by keep_strain, a contact slot changing state, a
+                          Newton iterate contracting less than 4x, a new step length or a
+                          restored state; the residual is exact whatever the factor's age (the
+                          inertia's product M(q0) Δu formed matrix-free; robot_strain_dyn.c,
+                          Kept matrix). 0: a new factor every step. Backward Euler only. A
+                          cache, not state: a restored run refactors where the uninterrupted
+                          one kept, so its steps agree to the passes' tolerance, not bit for
+                          bit */
+  double keep_strain;  /* keep_matrix: a step refactors when a mode moved more than this since
+                          the factorisation (rad or strain over its piece, the measure of
+                          csr_strainUpdate's change without h); < 0: every step (the
+                          matrix-free residual with a fresh factor) */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */
@@ -274,6 +288,11 @@ void csr_strainBdf2Coeffs(double h, double h_prev, double c[3]);
 /* The coefficients the next step of h takes at the current state: csr_strainBdf2Coeffs with
  * the last step's length under step_order 2, (1, 0, 1) under step_order 1. */
 void csr_strainStepCoeffs(const csrStrainModel* m, const csrStrainData* d, double h, double c[3]);
+/* Steps prepared, factorisations of W_ll and steps prepared on an earlier step's factor
+ * (keep_matrix) since the data's creation (counts, not state). */
+void csr_strainCounts(const csrStrainData* d, long* steps, long* factors, long* kept);
+/* The same of a leg of the strain level (robot_leg.h csr_leg_strain). */
+void csr_legStrainCounts(const csrLeg* leg, long* steps, long* factors, long* kept);
 /* Kinetic energy (leg and base motion) and elastic energy relative to the rest strains (N mm). */
 void csr_strainEnergy(const csrStrainModel* m, csrStrainData* d, double* kinetic,
                       double* elastic);

@@ -98,6 +98,7 @@ int csr_strainSetState(const csrStrainModel* m, csrStrainData* d, const double* 
   d->hprev = yh[2 * m->n + 12];
   d->kin_valid = 0;
   d->h = 0;
+  d->kf = 0; /* a restored state (a rejected step's retry) refactors */
   return 0;
 }
 
@@ -118,12 +119,13 @@ void csr_strainSetTipLoad(csrStrainData* d, const double force[3], const double 
 }
 
 
-/* V = G_p u at point p (current kinematics) */
-static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, const double Vb[6],
-                       const double* eta, double V[6]) {
+/* V = G_p (V_b, η) at point p of the kinematics R, x, J (as d->R, d->x, d->J) */
+static void pointTwistOf(const csrStrainModel* m, const double* Rk, const double* xk,
+                         const double* Jk, int p, const double Vb[6], const double* eta,
+                         double V[6]) {
   const int n = m->n;
-  const double* R = d->R + 9 * p;
-  const double* x = d->x + 3 * p;
+  const double* R = Rk + 9 * p;
+  const double* x = xk + 3 * p;
   /* Ad(g⁻¹) V_b = (Rᵀ ω; Rᵀ (v + ω × x)) */
   double wx[3], t[3];
   csu_cross3(wx, Vb, x);
@@ -132,7 +134,7 @@ static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, c
   csu_mulMatTVec3(V + 3, R, t);
   /* J η over the columns that move p (pcol[p] on are zero), each row summed in j's order as
    * one row at a time, the six rows side by side (the compiler keeps them in registers) */
-  const double* J = d->J + (size_t)p * 6 * n;
+  const double* J = Jk + (size_t)p * 6 * n;
   const int nc = m->pcol[p];
   double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0;
   for (int j = 0; j < nc; j++) {
@@ -150,6 +152,13 @@ static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, c
   V[3] += s3;
   V[4] += s4;
   V[5] += s5;
+}
+
+
+/* V = G_p u at point p (current kinematics) */
+static void pointTwist(const csrStrainModel* m, const csrStrainData* d, int p, const double Vb[6],
+                       const double* eta, double V[6]) {
+  pointTwistOf(m, d->R, d->x, d->J, p, Vb, eta, V);
 }
 
 
@@ -217,7 +226,8 @@ static void rowCombine6(double* restrict acc, const double* restrict B, int ld,
  * G_s[:, before]ᵀ F_k with F_k = Σ_p Ad_spᵀ M_p L_p, and Σ_p L_pᵀ M_p L_p on the piece's own
  * columns (L_p = J_p on them): per point O(6 nd) instead of O(6 n²). Fills d->WMll (full),
  * d->WMlb and d->WMbb. */
-void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
+static void inertiaFrom(const csrStrainModel* m, csrStrainData* d, const double* Rk,
+                        const double* xk, const double* Jk) {
   const int n = m->n;
   double* W = d->WMll;
   memset(W, 0, (size_t)n * n * sizeof(double));
@@ -234,21 +244,21 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
     double I[36];
     memset(I, 0, sizeof I);
     memset(F, 0, (size_t)6 * (nd + 1) * sizeof(double));
-    const double* Rs = d->R + 9 * s;
-    const double* xs = d->x + 3 * s;
+    const double* Rs = Rk + 9 * s;
+    const double* xs = xk + 3 * s;
     for (int p = s + 1; p <= m->pt0[k + 1]; p++) {
       const double* Mp = m->Ms + 6 * p;
       double Rr[9], dx[3], xr[3], A[36];
       for (int i = 0; i < 3; i++) {
         for (int j = 0; j < 3; j++) {
-          Rr[3 * i + j] = Rs[i] * d->R[9 * p + j] + Rs[3 + i] * d->R[9 * p + 3 + j] +
-                          Rs[6 + i] * d->R[9 * p + 6 + j];
+          Rr[3 * i + j] = Rs[i] * Rk[9 * p + j] + Rs[3 + i] * Rk[9 * p + 3 + j] +
+                          Rs[6 + i] * Rk[9 * p + 6 + j];
         }
       }
-      csu_sub3(dx, d->x + 3 * p, xs);
+      csu_sub3(dx, xk + 3 * p, xs);
       csu_mulMatTVec3(xr, Rs, dx);
       csr_strainAdInv_(Rr, xr, A);
-      const double* J = d->J + (size_t)p * 6 * n;
+      const double* J = Jk + (size_t)p * 6 * n;
       for (int r = 0; r < 6; r++) {
         const double* Ar = A + 6 * r;
         const double* Lr = J + r * n + c0;
@@ -271,7 +281,7 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
     double* Gsv = T + 6 * (6 + n);
     double As[36];
     csr_strainAdInv_(Rs, xs, As);
-    const double* Js = d->J + (size_t)s * 6 * n;
+    const double* Js = Jk + (size_t)s * 6 * n;
     for (int r = 0; r < 6; r++) {
       memcpy(Gsv + r * nu, As + 6 * r, 6 * sizeof(double));
       memcpy(Gsv + r * nu + 6, Js + r * n, (size_t)c0 * sizeof(double));
@@ -329,6 +339,49 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
 }
 
 
+void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d) {
+  inertiaFrom(m, d, d->R, d->x, d->J);
+}
+
+
+/* M u = Σ_p G_pᵀ M_p (G_p u) point by point: V_p = G_p u as pointTwist, (μ; π) = M_p V_p, and
+ * G_pᵀ (μ; π) = (Ad(g_p⁻¹)ᵀ (μ; π); J_pᵀ (μ; π)) with Ad(g⁻¹)ᵀ (μ; π) = (R μ + x × R π; R π).
+ * The same sum as csr_strainInertia_'s matrix times u, in another order (round-off apart) */
+void csr_strainInertiaApply_(const csrStrainModel* m, const double* Rk, const double* xk,
+                             const double* Jk, const double* u, double* out) {
+  const int n = m->n;
+  memset(out, 0, (size_t)(6 + n) * sizeof(double));
+  const double* eta = u + 6;
+  double* restrict ol = out + 6;
+  for (int p = 0; p < m->np; p++) {
+    const double* R = Rk + 9 * p;
+    const double* x = xk + 3 * p;
+    const double* restrict J = Jk + (size_t)p * 6 * n;
+    const double* Ms = m->Ms + 6 * p;
+    const int nc = m->pcol[p];
+    double V[6];
+    pointTwistOf(m, Rk, xk, Jk, p, u, eta, V);
+    for (int r = 0; r < 6; r++) {
+      V[r] *= Ms[r];
+    }
+    double Rm[3], Rp[3], xRp[3];
+    csu_mulMatVec3(Rm, R, V);
+    csu_mulMatVec3(Rp, R, V + 3);
+    csu_cross3(xRp, x, Rp);
+    for (int c = 0; c < 3; c++) {
+      out[c] += Rm[c] + xRp[c];
+      out[3 + c] += Rp[c];
+    }
+    /* Jᵀ (μ; π), one pass over the columns (vectorised: ol and J distinct) */
+    const double v0 = V[0], v1 = V[1], v2 = V[2], v3 = V[3], v4 = V[4], v5 = V[5];
+    for (int j = 0; j < nc; j++) {
+      ol[j] += J[j] * v0 + J[n + j] * v1 + J[2 * n + j] * v2 + J[3 * n + j] * v3 +
+               J[4 * n + j] * v4 + J[5 * n + j] * v5;
+    }
+  }
+}
+
+
 /* BDF2 with its whole residual assembled at every iterate (step_refresh) */
 static int bdfFull(const csrStrainModel* m) {
   return m->par.step_order == 2 && m->par.step_refresh;
@@ -357,7 +410,8 @@ static void saveStart(const csrStrainModel* m, csrStrainData* d) {
  * c[1] u_-1; the contact (added by condense) and the momentum rows complete it:
  *   h r = M (ū - u0) + (h τ_d + h²) K Δη_it + h (F + b - K q_it - τ_d K η_it).
  * Converged (R = 0 with the contact's force at the iterate) the step is BDF2 exactly. */
-static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_iterate) {
+static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_iterate,
+                    int inertia) {
   const int n = m->n;
   /* the velocity-product accelerations Ġ_p u by central differences */
   double emax = 0;
@@ -379,8 +433,12 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
   if (d->kin_valid < 2) {
     csr_strainKinematics_(m, d, 1);
   }
-  /* the inertia W_bb, W_lb, W_ll, then r point by point */
-  csr_strainInertia_(m, d);
+  /* the inertia W_bb, W_lb, W_ll (a step keeping its factor skips it: the residual forms
+   * M(q0) Δu matrix-free), then r point by point */
+  if (inertia) {
+    csr_strainInertia_(m, d);
+  }
+  d->wm_step = inertia;
   double* rb = d->rMb;
   memset(rb, 0, sizeof d->rMb);
   memset(d->rMl, 0, (size_t)n * sizeof(double));
@@ -480,7 +538,9 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
    * b - K (q0 + h η1) - τ_d K η1 with η1 = η0 + Δη */
   for (int j = 0; j < n; j++) {
     d->rMl[j] += d->b[j] - d->Kd[j] * (d->q[j] + (tau + h) * d->eta[j]);
-    d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+    if (inertia) {
+      d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+    }
     if (!isfinite(d->rMl[j])) {
       return 1;
     }
@@ -568,27 +628,66 @@ static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, con
   const double* dV = du;
   const double* de = du + 6;
   double rb[6];
-  for (int j = 0; j < n; j++) {
-    const double* wu = d->Wu + (size_t)j * n;
-    const double* wm = d->WMll + (size_t)j * n;
-    double t = h * (d->rMl[j] + d->fl[j]);
-    for (int k = 0; k < n; k++) {
-      t += (wu[k] - wm[k]) * de[k];
+  if (!d->wm_step) {
+    /* the factor is an earlier step's and this step's W_M was not assembled (Kept matrix):
+     * W_f Δu_it - R with the residual R = W_M Δu_it - h (r_M + f) formed from its parts,
+     * W_M Δu = M(q0) Δu (matrix-free at the start's kinematics) + (h τ_d + h²) K Δη, whatever
+     * W_f is (where W_M is assembled, below, the same sums from its matrix) */
+    const double tau = m->rpar.damping_time;
+    int zero = 1;
+    for (int k = 0; k < 6 + n && zero; k++) {
+      zero = du[k] == 0;
     }
-    for (int c = 0; c < 6; c++) {
-      t += (d->Wlb[6 * j + c] - d->WMlb[6 * j + c]) * dV[c];
-    }
-    d->y[j] = t;
-  }
-  for (int a = 0; a < 6; a++) {
-    double t = h * (d->rMb[a] + fb[a]);
-    for (int c = 0; c < 6; c++) {
-      t += (d->Wbbp[6 * a + c] - d->WMbb[6 * a + c]) * dV[c];
+    if (zero) {
+      memset(d->Mu, 0, (size_t)(6 + n) * sizeof(double)); /* a kept step's first pass */
+    } else {
+      csr_strainInertiaApply_(m, d->R0, d->x0, d->J0, du, d->Mu);
     }
     for (int j = 0; j < n; j++) {
-      t += (d->Wbl[n * a + j] - d->WMlb[6 * j + a]) * de[j];
+      const double* wu = d->Wu + (size_t)j * n;
+      double t = h * (d->rMl[j] + d->fl[j]) - d->Mu[6 + j] - (h * tau + h * h) * d->Kd[j] * de[j];
+      for (int k = 0; k < n; k++) {
+        t += wu[k] * de[k];
+      }
+      for (int c = 0; c < 6; c++) {
+        t += d->Wlb[6 * j + c] * dV[c];
+      }
+      d->y[j] = t;
     }
-    rb[a] = t / h;
+    for (int a = 0; a < 6; a++) {
+      double t = h * (d->rMb[a] + fb[a]) - d->Mu[a];
+      for (int c = 0; c < 6; c++) {
+        t += d->Wbbp[6 * a + c] * dV[c];
+      }
+      for (int j = 0; j < n; j++) {
+        t += d->Wbl[n * a + j] * de[j];
+      }
+      rb[a] = t / h;
+    }
+  } else {
+    /* this step's W_M assembled: W_f - W_M from its matrix (W_f this step's or an earlier's) */
+    for (int j = 0; j < n; j++) {
+      const double* wu = d->Wu + (size_t)j * n;
+      const double* wm = d->WMll + (size_t)j * n;
+      double t = h * (d->rMl[j] + d->fl[j]);
+      for (int k = 0; k < n; k++) {
+        t += (wu[k] - wm[k]) * de[k];
+      }
+      for (int c = 0; c < 6; c++) {
+        t += (d->Wlb[6 * j + c] - d->WMlb[6 * j + c]) * dV[c];
+      }
+      d->y[j] = t;
+    }
+    for (int a = 0; a < 6; a++) {
+      double t = h * (d->rMb[a] + fb[a]);
+      for (int c = 0; c < 6; c++) {
+        t += (d->Wbbp[6 * a + c] - d->WMbb[6 * a + c]) * dV[c];
+      }
+      for (int j = 0; j < n; j++) {
+        t += (d->Wbl[n * a + j] - d->WMlb[6 * j + a]) * de[j];
+      }
+      rb[a] = t / h;
+    }
   }
   momentumRows(m, d, h, du, d->Wbbp, rb);
   for (int j = 0; j < n; j++) {
@@ -596,7 +695,11 @@ static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, con
       return 1;
     }
   }
-  csr_strainLuSolve_(d->Wll, n, d->piv, d->y);
+  if (d->chol) {
+    csr_strainCholSolve_(d->Wll, n, d->y);
+  } else {
+    csr_strainLuSolve_(d->Wll, n, d->piv, d->y);
+  }
   for (int a = 0; a < 6; a++) {
     double t = 0;
     for (int j = 0; j < n; j++) {
@@ -637,20 +740,34 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
-    if (d->lu_plain && d->ntouch == 0) {
+    if (d->lu_plain && d->ntouch == 0 && !d->w_lag) {
       return condensePlain(m, d, h, du, Z, rho);
     }
     /* keep W while the slots keep their state and the leg's move shrank at least 4x over the
      * last kept iterate (a chord iteration contracting slower than that costs more passes
-     * than the new linearisation saves) */
+     * than the new linearisation saves); a factor without contact is this step's exact W_M
+     * (condensePlain above) unless it is an earlier step's */
     int shrinks = d->nreuse == 0 || d->chg_last <= 0.25 * d->chg_prev;
-    if (!d->lu_plain && same && shrinks && !d->fresh) {
+    if (d->lu_plain && d->w_lag && d->ntouch == 0) {
+      shrinks = 1; /* as in iterateAt: a kept factor without contact at an iterate without */
+    }
+    if ((!d->lu_plain || d->w_lag) && same && shrinks && !d->fresh) {
       d->nreuse++;
       return condenseKept(m, d, h, du, fb, Z, rho);
     }
   }
   d->nreuse = 0;
   d->fresh = 0;
+  if (m->par.keep_matrix && !d->wm_step) {
+    /* a step that kept an earlier factor refactors: W_M at the start's kinematics, as its
+     * prepare would have assembled it */
+    const double tau = m->rpar.damping_time;
+    inertiaFrom(m, d, d->R0, d->x0, d->J0);
+    for (int j = 0; j < n; j++) {
+      d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+    }
+    d->wm_step = 1;
+  }
   memcpy(Wbb, d->WMbb, sizeof Wbb);
   memcpy(rb, d->rMb, sizeof rb);
   memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
@@ -677,10 +794,11 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
       return 1;
     }
   }
-  if (!d->lu_plain) {
+  if (!d->lu_plain || m->par.keep_matrix) {
     memcpy(d->Wu, d->Wll, (size_t)n * n * sizeof(double));
     memcpy(d->Wbbp, Wbb, sizeof Wbb);
   }
+  d->kf = 0;
   /* W_ll without contact is W_M's, symmetric positive definite (mass plus stiffness): its
    * Cholesky factor, half the LU's work (this factor is used here alone: a later iterate
    * without contact keeps X and y, one with contact linearises afresh); with the contact's
@@ -696,6 +814,15 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   }
   if (!chol && csr_strainLuFactor_(d->Wll, n, d->piv)) {
     return 1;
+  }
+  d->chol = chol;
+  d->nfactor++;
+  if (m->par.keep_matrix) {
+    /* this factor may serve the next steps (csr_strainPrepare, Kept matrix) */
+    d->kf = 1;
+    d->kf_h = h;
+    d->w_lag = 0;
+    memcpy(d->qf, d->q, (size_t)n * sizeof(double));
   }
   /* X = W_ll⁻¹ W_lb (its 6 columns at once), y = W_ll⁻¹ h r_l */
   memcpy(d->X, d->Wlb, (size_t)n * 6 * sizeof(double));
@@ -740,6 +867,22 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
 }
 
 
+/* the base's pose at the step's end at its start twist, g_b exp(h V_b), into Rb, xb */
+static void predictBase(const csrStrainData* d, double h, double* Rb, double* xb) {
+  double Om[6], Re[9], pe[3], t[3];
+  for (int c = 0; c < 6; c++) {
+    Om[c] = h * d->Vb[c];
+  }
+  csr_strainExp_(Om, Re, pe);
+  double R1[9], x1[3]; /* Rb, xb may be d->Rb, d->xb */
+  csu_mulMat3(R1, d->Rb, Re);
+  csu_mulMatVec3(t, d->Rb, pe);
+  csu_add3(x1, d->xb, t);
+  memcpy(Rb, R1, sizeof R1);
+  memcpy(xb, x1, sizeof x1);
+}
+
+
 /* The shapes' poses at the predicted end of the step, q0 + h η0 with the hip moved on by its
  * start twist (g_b exp(h V_b)), into d->sst (x0, x1, R), from the poses' kinematics there; the
  * kinematics at q0 back after (its Jacobians untouched). The start's contact linearisation
@@ -757,16 +900,10 @@ static void predictShapes(const csrStrainModel* m, csrStrainData* d, double h) {
   memcpy(d->Rs_save, d->R, (size_t)9 * m->np * sizeof(double));
   memcpy(d->xs_save, d->x, (size_t)3 * m->np * sizeof(double));
   csr_strainKinematics_(m, d, 0);
-  double Rb[9], xb[3], Om[6], Re[9], pe[3], t[3];
+  double Rb[9], xb[3];
   memcpy(Rb, d->Rb, sizeof Rb);
   memcpy(xb, d->xb, sizeof xb);
-  for (int c = 0; c < 6; c++) {
-    Om[c] = h * d->Vb[c];
-  }
-  csr_strainExp_(Om, Re, pe);
-  csu_mulMat3(d->Rb, Rb, Re);
-  csu_mulMatVec3(t, Rb, pe);
-  csu_add3(d->xb, xb, t);
+  predictBase(d, h, d->Rb, d->xb);
   for (int s = 0; s < m->nshape; s++) {
     const int a = m->shape_a[s], b = m->shape_b[s];
     double Rt[9];
@@ -782,6 +919,81 @@ static void predictShapes(const csrStrainModel* m, csrStrainData* d, double h) {
   memcpy(d->x, d->xs_save, (size_t)3 * m->np * sizeof(double));
   d->kin_valid = valid;
   d->pred = 1;
+}
+
+
+/* ---- Kept matrix (keep_matrix) ------------------------------------------------------------
+ * A step keeps the last factorisation of W (W_ll with the contact's linearisation factored,
+ * X = W_ll⁻¹ W_lb, Z onto the base) when it has the same h, no mode moved more than
+ * keep_strain since that factorisation, the state was not restored since, and at its first
+ * iterate every contact slot is in the state the factor was linearised in. Its passes are
+ * then chord steps W_f δ = -R with the exact residual (condenseKept): the step converges to
+ * the same backward Euler step as with a fresh W, only the path differs. Within the step a
+ * kept factor is dropped as before: a slot changing state, a released ghost, an iterate whose
+ * move shrank less than 4x over the last. What a kept step skips: the inertia's assembly, the
+ * contact's linearisation (its law's derivatives and Sᵀ A S), the factorisation and its
+ * six-column solve (docs/notes/strain_leg.md, "A kept iteration matrix"). */
+
+/* 1: no mode moved more than keep_strain since the kept factorisation (rad or strain over its
+ * piece) */
+static int keptStrains(const csrStrainModel* m, const csrStrainData* d) {
+  if (!(m->par.keep_strain >= 0)) {
+    return 0;
+  }
+  for (int j = 0; j < m->n; j++) {
+    if (fabs(d->q[j] - d->qf[j]) * m->dscale[j] > m->par.keep_strain) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
+/* A kept step's first pass (after assemble without the inertia: r_M, the start saved, Δu = 0):
+ * the chord step from the iterate Δu = 0, the strains at q0 + h η0 and the hip at
+ * g_b exp(h V_b0), with the contact's load there (no linearisation) and the base's momentum
+ * rows as an iterate's. Returns 1 when it is taken (Z, ρ, d->y set), 0 when the step must
+ * refactor (a slot not in the factor's state, a pose past a shape's radius, not finite): the
+ * state (q, base) is the start's either way, the kinematics not valid. */
+static int prepareKept(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+                       double rho[6]) {
+  const int n = m->n;
+  double Rb[9], xb[3];
+  memcpy(Rb, d->Rb, sizeof Rb);
+  memcpy(xb, d->xb, sizeof xb);
+  predictBase(d, h, d->Rb, d->xb);
+  for (int j = 0; j < n; j++) {
+    d->q[j] = d->q0[j] + h * d->eta0[j];
+  }
+  d->kin_valid = 0;
+  double fb[6] = {0, 0, 0, 0, 0, 0};
+  int same = 1, rc = 0;
+  memset(d->fl, 0, (size_t)n * sizeof(double));
+  /* the poses first: a leg that touches nowhere there needs no Jacobians or twists (its
+   * factor's state holds if it had no contact either) */
+  csr_strainKinematics_(m, d, 0);
+  if (csr_strainContactNone_(m, d)) {
+    memset(d->fcw, 0, sizeof d->fcw);
+    d->ntouch = 0;
+    same = d->lu_plain;
+  } else {
+    csr_strainKinematics_(m, d, 2);
+    csr_strainPointTwistsChain_(m, d);
+    rc = csr_strainContactLoads_(m, d, fb, d->fl, &same);
+  }
+  int kept = 0;
+  if (rc == 0 && same) {
+    d->w_lag = 1;
+    kept = condenseKept(m, d, h, d->du, fb, Z, rho) == 0;
+  }
+  memcpy(d->q, d->q0, (size_t)n * sizeof(double));
+  memcpy(d->Rb, Rb, sizeof Rb);
+  memcpy(d->xb, xb, sizeof xb);
+  d->kin_valid = 0;
+  if (!kept) {
+    d->w_lag = 0;
+  }
+  return kept;
 }
 
 
@@ -831,7 +1043,7 @@ static int prepareBdf(const csrStrainModel* m, csrStrainData* d, double h, doubl
   d->kin_valid = 0;
   csr_strainKinematics_(m, d, 1);
   d->lu_plain = 0;
-  int rc = assemble(m, d, d->he, 1);
+  int rc = assemble(m, d, d->he, 1, 1);
   return rc != 0 ? rc : condense(m, d, d->he, d->du, Z, rho);
 }
 
@@ -859,8 +1071,50 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
   } else {
     d->bc[0] = 1, d->bc[1] = 0, d->bc[2] = 1;
     d->he = h;
-    rc = assemble(m, d, h, 0);
-    if (rc == 0) {
+    d->nstep++;
+    int keep = m->par.keep_matrix && d->kf && d->kf_h == h && keptStrains(m, d);
+    rc = assemble(m, d, h, 0, !keep);
+    if (rc == 0 && m->par.keep_matrix) {
+      /* the start's kinematics for the residual's M(q0) Δu at later passes (the iterates
+       * overwrite d->R, d->x, d->J) and for a refactorisation at an iterate: a kept step
+       * swaps the arrays (the start's into R0, x0, J0, d->R... scratch), a new factor copies */
+      if (keep) {
+        double* t = d->R;
+        d->R = d->R0, d->R0 = t;
+        t = d->x;
+        d->x = d->x0, d->x0 = t;
+        t = d->J;
+        d->J = d->J0, d->J0 = t;
+        d->kin_valid = 0;
+        d->kin_gen++;
+      } else {
+        memcpy(d->R0, d->R, (size_t)9 * m->np * sizeof(double));
+        memcpy(d->x0, d->x, (size_t)3 * m->np * sizeof(double));
+        memcpy(d->J0, d->J, (size_t)6 * m->np * m->n * sizeof(double));
+      }
+    }
+    if (rc == 0 && keep) {
+      keep = prepareKept(m, d, h, Z, rho);
+      d->nkept += keep;
+      if (!keep) {
+        /* refactor after all: the start's kinematics back, W_M as assemble forms it */
+        const double tau = m->rpar.damping_time;
+        memcpy(d->R, d->R0, (size_t)9 * m->np * sizeof(double));
+        memcpy(d->x, d->x0, (size_t)3 * m->np * sizeof(double));
+        memcpy(d->J, d->J0, (size_t)6 * m->np * m->n * sizeof(double));
+        d->kin_valid = 2;
+        d->kin_gen++;
+        csr_strainPointTwists_(m, d); /* the chain points' twists were the predicted end's */
+        if (!d->wm_step) {
+          csr_strainInertia_(m, d);
+          for (int j = 0; j < m->n; j++) {
+            d->WMll[j * m->n + j] += (h * tau + h * h) * d->Kd[j];
+          }
+          d->wm_step = 1;
+        }
+      }
+    }
+    if (rc == 0 && !keep) {
       if (m->soft && m->par.active_set) {
         predictShapes(m, d, h);
       }
@@ -913,7 +1167,19 @@ static int iterateAt(const csrStrainModel* m, csrStrainData* d, double Z[36], do
     if (csr_strainContactNone_(m, d)) {
       memset(d->fcw, 0, sizeof d->fcw);
       d->ntouch = 0;
-      return condensePlain(m, d, d->he, d->du, Z, rho);
+      if (!d->w_lag) {
+        return condensePlain(m, d, d->he, d->du, Z, rho);
+      }
+      /* an earlier step's factor without contact: its chord step. Its contraction is not
+       * tested: the factor lags by the inertia's change alone (keep_strain bounds it), while
+       * the leg's move from pass to pass follows the support's, which the stance legs'
+       * contact decides (tested, the 4x rule refreshed swing legs at most passes) */
+      if (!d->fresh) {
+        const double fb[6] = {0, 0, 0, 0, 0, 0};
+        memset(d->fl, 0, (size_t)m->n * sizeof(double));
+        d->nreuse++;
+        return condenseKept(m, d, d->he, d->du, fb, Z, rho);
+      }
     }
   }
   /* the kinematics and point twists at the iterate's end of the step */
@@ -921,7 +1187,7 @@ static int iterateAt(const csrStrainModel* m, csrStrainData* d, double Z[36], do
     if (d->kin_valid < 2) {
       csr_strainKinematics_(m, d, 1);
     }
-    int rc = assemble(m, d, d->he, 1);
+    int rc = assemble(m, d, d->he, 1, 1);
     return rc != 0 ? rc : condense(m, d, d->he, d->du, Z, rho);
   }
   /* the contact's loads and linearisation need the Jacobians and twists at the shapes' ends
@@ -1166,4 +1432,11 @@ void csr_strainMomentum(const csrStrainModel* m, csrStrainData* d, double P[3]) 
     csu_mulMatVec3(vw, R, V + 3);
     csu_addScl3(P, P, vw, m->Ms[6 * p + 3]);
   }
+}
+
+
+void csr_strainCounts(const csrStrainData* d, long* steps, long* factors, long* kept) {
+  *steps = d->nstep;
+  *factors = d->nfactor;
+  *kept = d->nkept;
 }

@@ -149,6 +149,21 @@ struct csrStrainData_ {
   double* fl;     /* (n) scratch: the contact's generalised force at an iterate */
   double chg_last, chg_prev; /* the leg's last two iterate moves (csr_strainUpdateDamped) */
   int nreuse;     /* iterates in a row that kept the iteration matrix */
+  /* the iteration matrix kept across steps (keep_matrix; robot_strain_dyn.c, Kept matrix) */
+  double* R0;     /* (np x 9) the step's start kinematics: M(q0) Δu = Σ G_pᵀ M_p G_p Δu */
+  double* x0;     /* (np x 3) */
+  double* J0;     /* (np x 6 x n) */
+  double* Mu;     /* (6 + n) scratch: M(q0) Δu */
+  double* qf;     /* (n) q where the kept factor was linearised */
+  double kf_h;    /* its step (s) */
+  int kf;         /* 1: d->Wll, piv, X, Wu, Wlb, Wbl, Wbbp, Zp are a factorisation the next
+                     step may keep */
+  int chol;       /* 1: d->Wll holds a Cholesky factor (no contact in it), 0 an LU */
+  int wm_step;    /* 1: d->WM* are this step's W_M (0: a kept step's prepare skipped them) */
+  int w_lag;      /* 1: the factor is an earlier step's */
+  long nfactor;   /* factorisations of W_ll since the data's creation (a count, not state) */
+  long nstep;     /* prepared steps since then */
+  long nkept;     /* of them, prepared on an earlier step's factor */
   int w_step;     /* 1: W_M, r_M and the factor are this step's (a linearly implicit BDF2's
                      prepare sets it after its full condensation) */
   /* BDF2 (step_order 2): the last step's start (state) and this step's coefficients */
@@ -227,6 +242,11 @@ void csr_strainProject_(const csrStrainModel* m, const double* q, const double* 
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
 
 /* ---- dynamics (robot_strain_dyn.c) ---- */
+/* out (6 + n) = M u, M = Σ_p G_pᵀ M_p G_p the inertia at the kinematics R, x, J (np x 9,
+ * np x 3, np x 6 x n, as d->R, d->x, d->J with Jacobians at every point), u = (V_b, η) (6 + n):
+ * matrix-free, O(6 Σ_p pcol[p]) (no assembly) */
+void csr_strainInertiaApply_(const csrStrainModel* m, const double* R, const double* x,
+                             const double* J, const double* u, double* out);
 /* the inertia Σ_p G_pᵀ M_p G_p at the current kinematics (with J) into d->WMll (n x n, full),
  * d->WMlb (n x 6) and d->WMbb, by composite inertias per piece */
 void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d);

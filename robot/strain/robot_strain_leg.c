@@ -54,7 +54,7 @@ enum { STRAIN_STEP_ORDER = 1 };
  * than it saved per pass (docs/notes/strain_leg.md, "Fast step") */
 enum { STRAIN_STEP_REFRESH = 1 };
 /* the level's settings (kStrainSettings, at the end) */
-enum { STRAIN_LINKS, STRAIN_ORDER, STRAIN_ACTIVE, STRAIN_FRICTION, STRAIN_TRUST };
+enum { STRAIN_LINKS, STRAIN_ORDER, STRAIN_ACTIVE, STRAIN_FRICTION, STRAIN_TRUST, STRAIN_KEEP };
 
 /* the contact at the current state for contactForce and contactDepth (header) */
 typedef struct {
@@ -133,6 +133,10 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->sp.active_set = set[STRAIN_ACTIVE] != 0;
   leg->sp.friction_tangent = (int)set[STRAIN_FRICTION];
   leg->sp.slot_trust = (int)set[STRAIN_TRUST];
+  leg->sp.keep_matrix = set[STRAIN_KEEP] > 0;
+  if (set[STRAIN_KEEP] > 0) {
+    leg->sp.keep_strain = set[STRAIN_KEEP];
+  }
   leg->soft = csc_softDefaultParams();
   if (spec->contact) {
     leg->soft.mu = spec->contact->mu;
@@ -511,6 +515,11 @@ static const csrLegSetting kStrainSettings[] = {
     [STRAIN_TRUST] = {"slot_trust",
                       "1 a Newton pass moves a foot slot at most two stick ranges, "
                       "0 the full move", 0, 0, 1, 1},
+    /* the legs' iteration matrix across steps (robot_strain.h keep_matrix, keep_strain) */
+    [STRAIN_KEEP] = {"keep_matrix",
+                     "0 a new iteration matrix every step, > 0 each leg's factor kept across "
+                     "steps until a mode moves this far (rad or strain over its piece)",
+                     0, 0, 1, 0},
 };
 
 const csrLegType csr_leg_strain = {
@@ -549,3 +558,8 @@ const csrLegType csr_leg_strain = {
     .stepLimit = stepLimitStrain,
     .stepCoeffs = stepCoeffsStrain,
 };
+
+
+void csr_legStrainCounts(const csrLeg* leg, long* steps, long* factors, long* kept) {
+  csr_strainCounts(leg->d, steps, factors, kept);
+}

@@ -3,12 +3,14 @@
  * after the other in ONE process, so their ratio is measured under the same load (not a test:
  * prints numbers; docs/notes/strain_leg.md "In the driver").
  *
- *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC[:TRUST]]]]]]]]...
+ *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC[:TRUST[:KEEP]]]]]]]]]...
  *
  * (ORDER 0, TREE_TOL 0: the defaults; ACTIVE the strain level's setting active_set, 1 the
  * contact ghosts in the Newton passes, 0 the law alone; FRIC its setting friction_tangent, 0
  * the anchors' secant in the iterates, 1 the law's tangent; TRUST its setting slot_trust, 1 the
- * passes' slot trust region, 0 the full move; -1 or absent: the default)
+ * passes' slot trust region, 0 the full move; KEEP its setting keep_matrix, 0 a new iteration
+ * matrix every step, > 0 the legs' factors kept across steps until a mode moves that far; -1
+ * or absent: the default; with keep_matrix the legs' factorisations per step are printed)
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -37,6 +39,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "robot_strain.h"
 #include "sim_model.h"
 
 static double cpu(void) { return (double)clock() / CLOCKS_PER_SEC; }
@@ -62,6 +65,8 @@ enum { LT_ACTUATE, LT_PREPARE, LT_FINISH, LT_UPDATE, LT_ITERATE, LT_ADVANCE, LT_
 static struct {
   const csrLegType* inner; /* the level the wrappers call */
   csuTimer t[LT_N];
+  csrLeg* legs[CSR_NLEG];  /* the legs seen by prepare (the strain level's counts) */
+  int nlegs;
 } gLegTime;
 
 
@@ -85,6 +90,13 @@ static int timedAdvance(csrLeg* leg, double t, double H, const csrBaseState* b0,
 
 static int timedPrepare(csrLeg* leg, double h, const csrBaseState* b0, double Z[36],
                         double rho[6]) {
+  int seen = 0;
+  for (int k = 0; k < gLegTime.nlegs; k++) {
+    seen |= gLegTime.legs[k] == leg;
+  }
+  if (!seen && gLegTime.nlegs < CSR_NLEG) {
+    gLegTime.legs[gLegTime.nlegs++] = leg;
+  }
   const double w = csu_wallSeconds();
   const int rc = gLegTime.inner->prepare(leg, h, b0, Z, rho);
   csu_timerAdd(&gLegTime.t[LT_PREPARE], w);
@@ -175,7 +187,7 @@ static void printStages(const csuTimer* tm, double cpu_s, long nstep) {
 static int bench(const char* src, const char* arg, double t_end) {
   char level[32] = "", terr[600], gait[600], cal[600];
   int links = 0, order = 0, active = -1, fric = -1, trust = -1;
-  double dt = 0, tol = 0;
+  double dt = 0, tol = 0, kmat = -1;
   /* LEVEL[:LINKS[:DT[:ORDER]]] (ORDER: the tree step's formula, 1 backward Euler, 2 BDF2; 0 or
    * absent: the level's default; TREE_TOL: the tree step's Newton tolerance, mm) */
   const char* c1 = strchr(arg, ':');
@@ -194,6 +206,8 @@ static int bench(const char* src, const char* arg, double t_end) {
     fric = c6 ? atoi(c6 + 1) : -1;
     const char* c7 = c6 ? strchr(c6 + 1, ':') : NULL;
     trust = c7 ? atoi(c7 + 1) : -1;
+    const char* c8 = c7 ? strchr(c7 + 1, ':') : NULL;
+    kmat = c8 ? atof(c8 + 1) : -1;
   }
   const csrLegType* type = csr_legTypeFind(level, NULL);
   if (!type) {
@@ -252,6 +266,13 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
+  if (kmat >= 0 &&
+      csr_legSettingSet(type, &m.robot.leg_settings, "keep_matrix", kmat, NULL) != CS_OK) {
+    fprintf(stderr, "bench_strain_driver: keep_matrix %g is not a value of legs %s\n", kmat,
+            type->name);
+    cs_modelDestroy(&m);
+    return 1;
+  }
   if (tol > 0) {
     m.opt.tree_tol = tol;
   }
@@ -284,15 +305,19 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
-  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/SCENE_LEVEL_LINKS_DT_ORDER[_noactive][_tangent].h5 (its track, for the
+  /* CS_BENCH_KEEP=DIR keeps each run's file as DIR/SCENE_LEVEL_LINKS_DT_ORDER[_noactive][_tangent][_trust][_keepK].h5 (its track, for the
    * errors against a reference: docs/bench/levels_one_process_2026-12-05) */
   const char* keep = getenv("CS_BENCH_KEEP");
   char out[700];
   if (keep) {
-    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s%s.h5", keep, scene->name, level,
+    char ks[32] = "";
+    if (kmat > 0) {
+      snprintf(ks, sizeof ks, "_keep%g", kmat);
+    }
+    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s%s%s.h5", keep, scene->name, level,
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order,
              active == 0 ? "_noactive" : "",
-             fric == 1 ? "_tangent" : "", trust == 1 ? "_trust" : "");
+             fric == 1 ? "_tangent" : "", trust == 1 ? "_trust" : "", ks);
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }
@@ -337,6 +362,20 @@ static int bench(const char* src, const char* arg, double t_end) {
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "active_set", 0),
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "friction_tangent", 0),
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "slot_trust", 0));
+    if (gLegTime.inner == &csr_leg_strain) {
+      long lsteps = 0, lfac = 0, lkept = 0;
+      for (int k = 0; k < gLegTime.nlegs; k++) {
+        long a, b, c;
+        csr_legStrainCounts(gLegTime.legs[k], &a, &b, &c);
+        lsteps += a;
+        lfac += b;
+        lkept += c;
+      }
+      printf("  legs: %ld prepared steps (%ld on an earlier step's factor), %ld factorisations "
+             "of W_ll (%.3f per leg step; keep_matrix %g; the settling's included)\n", lsteps,
+             lkept, lfac, lsteps > 0 ? (double)lfac / (double)lsteps : 0.0,
+             csr_legSettingGet(type, &m.robot.leg_settings, "keep_matrix", 0));
+    }
   }
   printf("  split of the wall time (%%): legs %.1f, contact %.2f, tree %.2f, support %.2f, "
          "pneumatics %.2f, output %.2f, rest %.2f\n", 100 * tm[CS_TIMER_LEGS].wall / total,

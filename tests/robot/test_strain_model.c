@@ -17,6 +17,9 @@
  *    asserted).
  *  - composite_inertia_matches_sum: the step's inertia by composite inertias per piece
  *    (csr_strainInertia_) against Σ_p G_pᵀ M_p G_p summed point by point, on the bent rod.
+ *  - inertia_product_matches_assembled: the inertia's product M u formed matrix-free
+ *    (csr_strainInertiaApply_, Σ_p G_pᵀ M_p (G_p u): the kept iteration matrix's residual)
+ *    against the assembled inertia times u, on the bent rod and the leg's layout.
  *  - cholesky_solves_spd_and_rejects_indefinite: the Cholesky factor of the step's leg block
  *    without contact (the condensation's factor when no shape touches) solves one and six
  *    right-hand sides to round-off and agrees with the LU; an indefinite matrix is refused.
@@ -364,18 +367,23 @@ static void projectCase(csrStrainModel* m, const char* what) {
 }
 
 
+/* the default leg's layout: five pieces (bend order 2 in the segments, constant joints) */
+static csrStrainModel* legLayout(void) {
+  csrRodPiece pc[5] = {uniformPiece(50), uniformPiece(8), uniformPiece(50), uniformPiece(8),
+                       uniformPiece(50)};
+  const int order[5] = {2, 0, 2, 0, 2};
+  csrStrainParams sp = csr_strainDefaultParams();
+  return makeRod(pc, order, 5, &sp);
+}
+
+
 static void project_adjoint_matches_jacobians(void) {
   csrStrainModel* m = bentRod();
   if (m) {
     projectCase(m, "bent three-piece rod");
     csr_strainModelDestroy(m);
   }
-  /* the default leg's layout: five pieces (bend order 2 in the segments, constant joints) */
-  csrRodPiece pc[5] = {uniformPiece(50), uniformPiece(8), uniformPiece(50), uniformPiece(8),
-                       uniformPiece(50)};
-  const int order[5] = {2, 0, 2, 0, 2};
-  csrStrainParams sp = csr_strainDefaultParams();
-  m = makeRod(pc, order, 5, &sp);
+  m = legLayout();
   if (m) {
     projectCase(m, "leg layout");
     csr_strainModelDestroy(m);
@@ -428,6 +436,79 @@ static void composite_inertia_matches_sum(void) {
   free(W);
   csr_strainDataDestroy(d);
   csr_strainModelDestroy(m);
+}
+
+
+/* The matrix-free inertia product (csr_strainInertiaApply_: Σ_p G_pᵀ M_p (G_p u), the kept
+ * iteration matrix's residual) against the assembled inertia (csr_strainInertia_) times u,
+ * on the bent rod and on the default leg's layout, for u moving the base alone, the strains
+ * alone and both: round-off of the largest term. */
+static void applyCase(csrStrainModel* m, const char* what) {
+  csError err;
+  csrStrainData* d = csr_strainDataCreate(m, &err);
+  const int n = csr_strainDofs(m), nu = 6 + n;
+  double* q = calloc((size_t)n, sizeof(double));
+  double* u = calloc((size_t)nu, sizeof(double));
+  double* a = calloc((size_t)nu, sizeof(double));
+  double* b = calloc((size_t)nu, sizeof(double));
+  if (!d || !q || !u || !a || !b) {
+    CS_EXPECT(0);
+  } else {
+    for (int j = 0; j < n; j++) {
+      q[j] = (j % 7 - 3) * (m->dcomp[j] <= CSR_STRAIN_TW ? 0.007 : 0.02);
+    }
+    csr_strainSetQ(m, d, q);
+    csr_strainKinematics_(m, d, 1);
+    csr_strainInertia_(m, d);
+    double emax = 0;
+    for (int kase = 0; kase < 3; kase++) {
+      for (int i = 0; i < nu; i++) {
+        const int on = kase == 2 || (kase == 0) == (i < 6);
+        u[i] = on ? ((i * 29) % 13 - 6) * (i < 6 ? 3.0 : 0.7) : 0.0;
+      }
+      csr_strainInertiaApply_(m, d->R, d->x, d->J, u, a);
+      /* the assembled blocks times u: a term's scale is Σ |W_ab u_b| */
+      double e = 0, scale = 0;
+      for (int r = 0; r < nu; r++) {
+        double t = 0, s = 0;
+        for (int c = 0; c < nu; c++) {
+          const double w = r < 6 ? (c < 6 ? d->WMbb[6 * r + c] : d->WMlb[6 * (c - 6) + r])
+                                 : (c < 6 ? d->WMlb[6 * (r - 6) + c]
+                                          : d->WMll[(size_t)(r - 6) * n + (c - 6)]);
+          t += w * u[c];
+          s += fabs(w * u[c]);
+        }
+        b[r] = t;
+        e = fmax(e, fabs(a[r] - t));
+        scale = fmax(scale, s);
+      }
+      printf("  %s (n = %d), u %s: max |Σ G_pᵀ M_p G_p u - W_M u| = %.3g (largest term %.3g)\n",
+             what, n, kase == 0 ? "base" : (kase == 1 ? "strains" : "both"), e, scale);
+      CS_EXPECT(scale > 0);
+      CS_EXPECT_NEAR(e, 0, 1e-13 * scale, 0);
+      emax = fmax(emax, e);
+    }
+    (void)emax;
+  }
+  free(q);
+  free(u);
+  free(a);
+  free(b);
+  csr_strainDataDestroy(d);
+}
+
+
+static void inertia_product_matches_assembled(void) {
+  csrStrainModel* m = bentRod();
+  if (m) {
+    applyCase(m, "bent rod");
+    csr_strainModelDestroy(m);
+  }
+  m = legLayout();
+  if (m) {
+    applyCase(m, "leg layout");
+    csr_strainModelDestroy(m);
+  }
 }
 
 
@@ -687,6 +768,7 @@ int main(int argc, char** argv) {
   CS_RUN(twist_recursion_matches_jacobian);
   CS_RUN(project_adjoint_matches_jacobians);
   CS_RUN(composite_inertia_matches_sum);
+  CS_RUN(inertia_product_matches_assembled);
   CS_RUN(cholesky_solves_spd_and_rejects_indefinite);
   CS_RUN(magnus_fourth_order);
   CS_RUN(mass_matrix_rigid_rod);
