@@ -11,7 +11,7 @@
  * base, the contact anchors, scratch), the kinematics (pose and geometric Jacobian along the
  * rod, robot_strain_lie.c), the generalised elastic, tip and gravity forces, the generalised
  * mass matrix and the static solver (robot_strain.c), the step condensed onto the base
- * (robot_strain_dyn.c) and the leg-terrain contact inside it (robot_strain_contact.c).
+ * (robot_strain_dyn.c, its inertia in robot_strain_inertia.c) and the leg-terrain contact inside it (robot_strain_contact.c).
  *
  * Strain field (body frame of the cross-section, angular part first, SE(3) twist per unit rest
  * arc length X): ξ = (u; ν) with u = (κ1, κ2, τ) the Darboux vector and ν = e3 + σ the

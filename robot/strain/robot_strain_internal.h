@@ -241,7 +241,15 @@ void csr_strainProject_(const csrStrainModel* m, const double* q, const double* 
 /* G_p = [Ad(g_p⁻¹), J_p] of point p (6 x (6 + n), row-major) at the current kinematics */
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
 
-/* ---- dynamics (robot_strain_dyn.c) ---- */
+/* ---- inertia (robot_strain_inertia.c; the step in robot_strain_dyn.c) ---- */
+/* V = G_p (V_b, η) at point p of the current kinematics (d->R, d->x, d->J), body frame */
+void csr_strainPointTwist_(const csrStrainModel* m, const csrStrainData* d, int p, const double Vb[6],
+                           const double* eta, double V[6]);
+/* Σ_p m_p x_p of the leg, world (t mm), at the current kinematics and base */
+void csr_strainMassMomentAt_(const csrStrainModel* m, const csrStrainData* d, double X[3]);
+/* W_M's inertia Σ_p G_pᵀ M_p G_p at the kinematics R, x, J into d->WMll, d->WMlb, d->WMbb */
+void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const double* Rk,
+                            const double* xk, const double* Jk);
 /* out (6 + n) = M u, M = Σ_p G_pᵀ M_p G_p the inertia at the kinematics R, x, J (np x 9,
  * np x 3, np x 6 x n, as d->R, d->x, d->J with Jacobians at every point), u = (V_b, η) (6 + n):
  * matrix-free, O(6 Σ_p pcol[p]) (no assembly) */
