@@ -348,6 +348,8 @@ static int advanceRom(csrLeg* leg, double t, double H, const csrBaseState* b0,
   return csr_romAdvance(leg->sh->m, leg->d, t, H, b0, b1, w, err);
 }
 
+void csr_romLegStats(const csrLeg* leg, csrRomStats* s) { csr_romGetStats(leg->d, s); }
+
 /* the hip state the data holds (the state vector's block after t and y) */
 static const double* baseOf(const csrLeg* leg) {
   csr_romGetState(leg->sh->m, leg->d, leg->x);
