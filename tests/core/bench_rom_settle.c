@@ -1,6 +1,7 @@
 /* bench_rom_settle.c: the robot on rom legs settling, step by step (not a test: prints the
  * support's height and speed, the feet's force and the legs' sole depth at every macro step,
- * so a divergence is seen as it grows; docs/notes/rom.md "Settling on rom legs").
+ * so a divergence is seen as it grows, and the eight legs' CVODE counters over the step,
+ * csrRomStats; docs/notes/rom.md "Settling on rom legs", "The rom leg's contact steps").
  *
  *   bench_rom_settle LEG.h5 STEPS [COUPLING [DT_S [MACRO]]]
  *
