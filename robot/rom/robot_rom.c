@@ -63,7 +63,16 @@ struct csrRomData_ {
   SUNMatrix A;
   SUNLinearSolver LS;
   void* cvode;
-  long steps, rhs, jacs, restarts, retries;
+  /* the lagged tangent (csrRomParams.tangent_lag): K_r at q_lag and pressures p_lag */
+  double* Klag;       /* (n x n) */
+  double* qlag;       /* (n) */
+  double* vmax;       /* (n) max_i |V_ik|, mm per unit q_k */
+  double plag[12];
+  int lag_valid;
+  long tangents;      /* evaluations with the tangent (jacs less the lagged ones) */
+  long steps, rhs, jacs, restarts, retries, sole;
+  /* CVODE's counters of its earlier lives (a restart's CVodeReInit zeroes them) */
+  long cv_setups, cv_niters, cv_nfails, cv_efails;
   int cb_status;
   int need_reinit;    /* 1: the next advance restarts CVODE (after create, reset, set, failure) */
 };
@@ -77,6 +86,7 @@ csrRomParams csr_romDefaultParams(void) {
   p.atol_u = 1e-5; /* mm: 10 nm of displacement */
   p.atol_wrench = 1e-4;
   p.max_steps = 20000;
+  p.tangent_lag = 0;
   p.gravity[0] = p.gravity[1] = p.gravity[2] = 0;
   return p;
 }
@@ -213,10 +223,10 @@ csrRomModel* csr_romModelCreate(const csfRom* rom, const csrRomParams* par, cons
   }
   csrRomParams p = par ? *par : csr_romDefaultParams();
   if (!(p.rho > 0) || !(p.damping_time >= 0) || !(p.rtol > 0) || !(p.atol_u > 0) ||
-      !(p.atol_wrench > 0) || p.max_steps < 1 ||
+      !(p.atol_wrench > 0) || p.max_steps < 1 || !(p.tangent_lag >= 0) ||
       !isfinite(p.gravity[0] + p.gravity[1] + p.gravity[2])) {
     cs_errorSet(err, CS_ERR_RANGE, "rom leg: need rho > 0, damping_time >= 0, rtol, atol_u, "
-                "atol_wrench > 0, max_steps >= 1");
+                "atol_wrench > 0, max_steps >= 1, tangent_lag >= 0");
     return NULL;
   }
   const csfMesh* me = rom->fem->mesh;
@@ -563,6 +573,7 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     baseAt(&d->bm, (double)t, R, vh, ah, w, al);
     baseX(&d->bm, (double)t, xh);
     cscShapeLoad ld;
+    d->sole++;
     const int rcc = csr_romSoleLoad(m, R, xh, vh, w, Y, Y + n, Y + 2 * n + 3, d->Fc,
                                     Yd + 2 * n + 3, &ld, x0, NULL);
     if (rcc != 0) {
@@ -596,6 +607,7 @@ static int soleJacobian(const csrRomModel* m, csrRomData* d, double t, const dou
   double R[9], xh[3], vh[3], ah[3], w[3], al[3];
   baseAt(&d->bm, t, R, vh, ah, w, al);
   baseX(&d->bm, t, xh);
+  d->sole += 1 + 2 * n + nz;
   int rc = csr_romSoleLoad(m, R, xh, vh, w, Y, Y + n, Y + oz, d->Fc, d->zd, NULL, NULL, NULL);
   if (rc != 0) {
     return rc;
@@ -642,10 +654,41 @@ static int jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, 
   const double* Y = N_VGetArrayPointer(y);
   double w[3], al[3], c[6];
   d->jacs++;
-  const int rc = generalisedForce(m, d, (double)t, Y, Y + n, 1, w, al);
-  if (rc != 0) {
-    d->cb_status = rc;
-    return rc;
+  /* the pressures now (loadAt's interpolation) */
+  double pc[12], pal = d->pt1 > d->pt0 ? ((double)t - d->pt0) / (d->pt1 - d->pt0) : 1.0;
+  pal = pal < 0 ? 0 : (pal > 1 ? 1 : pal);
+  for (int i = 0; i < 12; i++) {
+    pc[i] = (1 - pal) * d->p0[i] + pal * d->p1[i];
+  }
+  int reuse = d->lag_valid && m->par.tangent_lag > 0;
+  if (reuse) {
+    double moved = 0, dp = 0;
+    for (int k = 0; k < n; k++) {
+      moved += fabs(Y[k] - d->qlag[k]) * d->vmax[k];
+    }
+    for (int i = 0; i < 12; i++) {
+      dp = fmax(dp, fabs(pc[i] - d->plag[i]));
+    }
+    reuse = moved <= m->par.tangent_lag && dp <= 1e-3;
+  }
+  const double* K = d->fd->K;
+  if (reuse) {
+    double R[9], vh[3], ah[3];
+    baseAt(&d->bm, (double)t, R, vh, ah, w, al);
+    K = d->Klag;
+  } else {
+    const int rc = generalisedForce(m, d, (double)t, Y, Y + n, 1, w, al);
+    if (rc != 0) {
+      d->cb_status = rc;
+      return rc;
+    }
+    d->tangents++;
+    if (m->par.tangent_lag > 0) {
+      memcpy(d->Klag, d->fd->K, nn * sizeof(double));
+      memcpy(d->qlag, Y, (size_t)n * sizeof(double));
+      memcpy(d->plag, pc, sizeof pc);
+      d->lag_valid = 1;
+    }
   }
   centrifugal(w, c);
   SUNMatZero(J);
@@ -657,7 +700,7 @@ static int jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, 
     for (size_t kl = 0; kl < nn; kl++) {
       double g;
       if (half == 0) {
-        g = -d->fd->K[kl] - al[0] * m->Q[kl] - al[1] * m->Q[nn + kl] - al[2] * m->Q[2 * nn + kl];
+        g = -K[kl] - al[0] * m->Q[kl] - al[1] * m->Q[nn + kl] - al[2] * m->Q[2 * nn + kl];
         for (int i = 0; i < 6; i++) {
           g -= c[i] * m->S[(size_t)i * nn + kl];
         }
@@ -800,6 +843,7 @@ void csr_romDataDestroy(csrRomData* d) {
   csf_romDataDestroy(d->fd);
   free(d->fdead), free(d->face_p), free(d->F), free(d->G), free(d->backup);
   free(d->Fc), free(d->Fc1), free(d->zd), free(d->zd1), free(d->Yp), free(d->hfd);
+  free(d->Klag), free(d->qlag), free(d->vmax);
   free(d);
 }
 
@@ -831,8 +875,12 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
   d->zd1 = calloc((size_t)nz + 1, sizeof(double));
   d->Yp = calloc((size_t)d->ny, sizeof(double));
   d->hfd = calloc(2 * (size_t)n + nz, sizeof(double));
+  d->Klag = m->par.tangent_lag > 0 ? calloc((size_t)n * n, sizeof(double)) : NULL;
+  d->qlag = calloc((size_t)n, sizeof(double));
+  d->vmax = calloc((size_t)n, sizeof(double));
   if (!d->fd || !d->fdead || !d->face_p || !d->F || !d->G || !d->backup || !d->Fc || !d->Fc1 ||
-      !d->zd || !d->zd1 || !d->Yp || !d->hfd) {
+      !d->zd || !d->zd1 || !d->Yp || !d->hfd || (m->par.tangent_lag > 0 && !d->Klag) ||
+      !d->qlag || !d->vmax) {
     csr_romDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory (n = %d)", n);
     return NULL;
@@ -860,6 +908,7 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
     for (int i = 0; i < m->rom->ndof; i++) {
       vmax = fmax(vmax, fabs(m->rom->V[(size_t)i * n + k]));
     }
+    d->vmax[k] = vmax;
     at[k] = m->par.atol_u / (vmax > 0 ? vmax : 1.0);
     at[n + k] = 1e3 * at[k]; /* q' over a millisecond */
     /* the sole's difference steps: 1e-7 mm of nodal displacement, 1e-5 mm/s of its rate
@@ -948,6 +997,29 @@ void csr_romStats(const csrRomData* d, long* steps, long* rhs_n, long* jacs, lon
 }
 
 
+void csr_romGetStats(const csrRomData* d, csrRomStats* s) {
+  long ns = 0, nsu = 0, nni = 0, nnf = 0, nef = 0;
+  if (d->cvode) {
+    CVodeGetNumSteps(d->cvode, &ns);
+    CVodeGetNumLinSolvSetups(d->cvode, &nsu);
+    CVodeGetNumNonlinSolvIters(d->cvode, &nni);
+    CVodeGetNumNonlinSolvConvFails(d->cvode, &nnf);
+    CVodeGetNumErrTestFails(d->cvode, &nef);
+  }
+  s->steps = d->steps + ns;
+  s->rhs = d->rhs;
+  s->jacs = d->jacs;
+  s->tangents = d->tangents;
+  s->lin_setups = d->cv_setups + nsu;
+  s->nl_iters = d->cv_niters + nni;
+  s->nl_fails = d->cv_nfails + nnf;
+  s->err_fails = d->cv_efails + nef;
+  s->restarts = d->restarts;
+  s->retries = d->retries;
+  s->sole = d->sole;
+}
+
+
 /* a hip that starts a step more than this away from where the last one ended (mm, rad) has
  * jumped (a teleport, a restored driver): CVODE restarts. Smaller differences are the
  * coupling's normal corrections of the predicted end state (as the rod's, robot_rod_dyn.c) */
@@ -967,9 +1039,18 @@ static int baseJumped(const csrBaseState* a, const csrBaseState* b) {
 /* restart CVODE from the state at t for steps of H (the moment impulse from zero) */
 static int restartAt(const csrRomModel* m, csrRomData* d, double t, double H) {
   const int n = m->n;
-  long ns = 0;
+  long ns = 0, nsu = 0, nni = 0, nnf = 0, nef = 0;
   CVodeGetNumSteps(d->cvode, &ns);
+  CVodeGetNumLinSolvSetups(d->cvode, &nsu);
+  CVodeGetNumNonlinSolvIters(d->cvode, &nni);
+  CVodeGetNumNonlinSolvConvFails(d->cvode, &nnf);
+  CVodeGetNumErrTestFails(d->cvode, &nef);
+  d->lag_valid = 0; /* a restart takes a fresh tangent (two restores step alike) */
   d->steps += ns;
+  d->cv_setups += nsu;
+  d->cv_niters += nni;
+  d->cv_nfails += nnf;
+  d->cv_efails += nef;
   d->restarts++;
   /* the moment's impulse from zero: only its change over an advance is used, and its absolute
    * value sets the rounding of that change, so a restored state (which does not hold it)

@@ -60,6 +60,12 @@ typedef struct csrRomParams_ {
                           have q in mm t^0.5); q_k' gets 1e3 times that (per ms) */
   double atol_wrench;  /* N: absolute tolerance of the step-averaged base wrench */
   long max_steps;      /* CVODE steps per macro step */
+  double tangent_lag;  /* mm: a Jacobian reuses the last reduced FE tangent K_r while no node
+                          has moved more than this since it was computed (the bound
+                          Σ_k |Δq_k| max_i |V_ik|) and no chamber pressure by more than
+                          1e-3 MPa; its contact and frame parts are always fresh. 0: a new
+                          K_r at every Jacobian. CVODE asks for a Jacobian after every Newton
+                          failure, which in contact the sole's law causes, not K_r */
   double gravity[3];   /* the scene's gravitational acceleration, world, mm/s² (0: none) */
 } csrRomParams;
 
@@ -179,6 +185,30 @@ int csr_romSetState(const csrRomModel* m, csrRomData* d, const double* x);
 /* CVODE's counters summed over the data's life: steps, right-hand sides, Jacobians, restarts
  * (the retries of failed continued steps included). */
 void csr_romStats(const csrRomData* d, long* steps, long* rhs, long* jacs, long* restarts);
+
+/* The integration's counters summed over the data's life (CVODE's own summed across its
+ * restarts), to see where a step's cost goes: rhs counts the reduced evaluations without the
+ * tangent (0.0142 s each on the real leg's b10 file), tangents those with it (0.128 s), sole the
+ * sole's contact-law calls (2n + nz + 1 per Jacobian by differences). */
+typedef struct csrRomStats_ {
+  long steps;       /* CVODE's accepted internal steps */
+  long rhs;         /* right-hand sides (reduced evaluations without the tangent) */
+  long jacs;        /* Jacobians */
+  long tangents;    /* reduced evaluations with the tangent (jacs less the lagged ones) */
+  long lin_setups;  /* CVODE's linear solver set-ups (a new LU of I - γJ) */
+  long nl_iters;    /* Newton iterations */
+  long nl_fails;    /* Newton convergence failures */
+  long err_fails;   /* local error test failures */
+  long restarts;    /* CVODE restarts (order 1, new Jacobian), retries included */
+  long retries;     /* continued steps that failed and were redone from a restart */
+  long sole;        /* the sole's contact-law calls */
+} csrRomStats;
+
+void csr_romGetStats(const csrRomData* d, csrRomStats* s);
+
+/* The same for a leg of the `rom` level (csr_leg_rom; robot_rom_leg.c), e.g. cs_leg(d, k) of a
+ * run with --legs rom. Only for legs of that level. */
+void csr_romLegStats(const csrLeg* leg, csrRomStats* s);
 
 #ifdef __cplusplus
 }

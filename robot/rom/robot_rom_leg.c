@@ -23,6 +23,7 @@
 #include "robot_rom_file.h"
 
 #define ROM_NBAND 24 /* centreline bands along the leg */
+#define ROM_TANGENT_LAG 1e-2 /* mm, csrRomParams.tangent_lag of the level's legs */
 
 typedef struct RomShared_ {
   csrRomLegFile lf;
@@ -216,6 +217,12 @@ static int sharedCreateRom(const csrLegSpec* spec, void** shared, csError* err) 
   csrRomParams par = csr_romDefaultParams();
   par.rho = spec->act->rho;
   par.damping_time = spec->params->damping_time;
+  /* in contact CVODE's Newton fails on the sole's law (touch-down of the sole points, the
+   * bristle's stick-slip), not on K_r, and asks for a Jacobian after every failure: keep K_r
+   * while the leg moved less than this (mm), its contact part fresh. On the real leg's landing
+   * 12 of 77 Jacobians took a tangent, the same steps, a third less CPU (docs/notes/rom.md
+   * "The rom leg's contact steps") */
+  par.tangent_lag = ROM_TANGENT_LAG;
   if (!spec->weightless) {
     memcpy(par.gravity, spec->gravity, sizeof par.gravity);
   }
@@ -347,6 +354,8 @@ static int advanceRom(csrLeg* leg, double t, double H, const csrBaseState* b0,
                       const csrBaseState* b1, csrWrench* w, csError* err) {
   return csr_romAdvance(leg->sh->m, leg->d, t, H, b0, b1, w, err);
 }
+
+void csr_romLegStats(const csrLeg* leg, csrRomStats* s) { csr_romGetStats(leg->d, s); }
 
 /* the hip state the data holds (the state vector's block after t and y) */
 static const double* baseOf(const csrLeg* leg) {

@@ -1,6 +1,7 @@
 /* bench_rom_settle.c: the robot on rom legs settling, step by step (not a test: prints the
  * support's height and speed, the feet's force and the legs' sole depth at every macro step,
- * so a divergence is seen as it grows; docs/notes/rom.md "Settling on rom legs").
+ * so a divergence is seen as it grows, and the eight legs' CVODE counters over the step,
+ * csrRomStats; docs/notes/rom.md "Settling on rom legs", "The rom leg's contact steps").
  *
  *   bench_rom_settle LEG.h5 STEPS [COUPLING [DT_S [MACRO]]]
  *
@@ -18,6 +19,7 @@
 #include <ode/ode.h>
 
 #include "cs_rundef.h"
+#include "robot_rom.h"
 #include "sim_model.h"
 
 static void quiet(int num, const char* msg, va_list ap) {
@@ -76,7 +78,12 @@ int main(int argc, char** argv) {
   printf("set-up %.1f s CPU; mass %.2f g, h %g s, macro %d, coupling %d\n",
          (double)(clock() - c0) / CLOCKS_PER_SEC, cs_robotMass(d) * 1e6, m->opt.h,
          m->opt.macro_steps, (int)m->opt.coupling);
-  printf("step t_s y_mm vy_mm/s |w| sum_fy_N sum_wy_N depth_mm cpu_s\n");
+  printf("step t_s y_mm vy_mm/s |w| sum_fy_N sum_wy_N depth_mm cpu_s | eight legs' CVODE "
+         "counters over the step: steps rhs jacs tangents setups newton nfail efail restarts sole\n");
+  csrRomStats s0[8];
+  for (int k = 0; k < 8; k++) {
+    csr_romLegStats(cs_leg(d, k), &s0[k]);
+  }
   double p0[3];
   cs_supportDisplacement(d, p0);
   for (long i = 0; i < nstep; i++) {
@@ -94,10 +101,27 @@ int main(int argc, char** argv) {
       fy += f[1];
       wy += wr.f[1];
     }
-    printf("%ld %.5f %.5f %.4g %.3g %.5g %.5g %.5f %.2f%s%s\n", i, cs_time(d), p[1], v[1],
-           sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), fy, wy, cs_legContactDepth(m, d),
-           (double)(clock() - c) / CLOCKS_PER_SEC, st == CS_OK ? "" : " FAILED: ",
-           st == CS_OK ? "" : err.msg);
+    const double cpu = (double)(clock() - c) / CLOCKS_PER_SEC;
+    long cnt[10] = {0};
+    for (int k = 0; k < 8; k++) {
+      csrRomStats s1;
+      csr_romLegStats(cs_leg(d, k), &s1);
+      cnt[0] += s1.steps - s0[k].steps;
+      cnt[1] += s1.rhs - s0[k].rhs;
+      cnt[2] += s1.jacs - s0[k].jacs;
+      cnt[3] += s1.lin_setups - s0[k].lin_setups;
+      cnt[4] += s1.nl_iters - s0[k].nl_iters;
+      cnt[5] += s1.nl_fails - s0[k].nl_fails;
+      cnt[6] += s1.err_fails - s0[k].err_fails;
+      cnt[7] += s1.restarts - s0[k].restarts;
+      cnt[8] += s1.sole - s0[k].sole;
+      cnt[9] += s1.tangents - s0[k].tangents;
+      s0[k] = s1;
+    }
+    printf("%ld %.5f %.5f %.4g %.3g %.5g %.5g %.5f %.2f | %ld %ld %ld %ld %ld %ld %ld %ld %ld %ld%s%s\n",
+           i, cs_time(d), p[1], v[1], sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), fy, wy,
+           cs_legContactDepth(m, d), cpu, cnt[0], cnt[1], cnt[2], cnt[9], cnt[3], cnt[4], cnt[5],
+           cnt[6], cnt[7], cnt[8], st == CS_OK ? "" : " FAILED: ", st == CS_OK ? "" : err.msg);
     fflush(stdout);
     if (st != CS_OK) {
       break;
