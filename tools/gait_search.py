@@ -84,6 +84,9 @@ except ImportError as e:  # Debian: python3-h5py python3-numpy python3-scipy
     fail(f"needs h5py, numpy and scipy ({e})")
 
 
+TABLE_RAMP = [None]  # --table-ramp: the actuation time the design states (`ramp R`), or None
+
+
 def gait_text(S, H, U, TL, E=None, O=None):
     """The description of one design (the structure of gaits/flat_road.gait); E None: the
     four-parameter design (no first-step term); O None or 0: no ground overlap (the
@@ -162,17 +165,22 @@ def _gait_text_overlap(S, H, U, TL, E, O, f):
     if sw < 0.1:
         fail(f"O {O} and TL {TL}: the swing would last {sw:.3f} s (at least 0.1 s)")
     h = O / 2.0
+    R = TABLE_RAMP[0]
     head = f"""# flat-road design searched by tools/gait_search.py: S {f(S)} mm, H {f(H)} mm, U {f(U)} mm,
 # TL {f(TL)} s, first step's extra reach E {f(E)} mm, ground overlap O {f(O)} s (the structure
 # of gaits/flat_road.gait with both groups standing O around each swap; its rules hold with
-# these values).
+# these values){'' if R is None else f', designed for an actuation time of {f(R)} s'}.
 # params: {f(S)},{f(H)},{f(U)},{f(TL)},{f(E)},{f(O)}
 """
+    ramp = "" if R is None else (
+        f"# the actuation time the design assumes: the table states it (`# @ramp {f(R)}`), a run\n"
+        f"# plays it where --ramp is not given; every move is delayed by about half of it\n"
+        f"ramp {f(R)}\n")
     return head + f"""# Poses on the mission's map with the FE's stretch:
 #   crawlsim gait design THIS --stretch --calibration {CAL} --cal-rule {RULE} --p-max {P_MAX}
 name flat-road
 sample 0.05
-# stance at a constant crouch H; the swing U up. Every pose on one branch (`plus`: II1 and II3
+{ramp}# stance at a constant crouch H; the swing U up. Every pose on one branch (`plus`: II1 and II3
 # on Omega3&4, II2 on Omega1&2), so that no move passes a straight leg: on two branches the
 # cross-fade between them inflates all four chambers of a segment for a sample, which on the
 # FE's stretch lengthens the stance legs (the support rose 13 mm at every mid-stride, measured).
@@ -220,7 +228,8 @@ move 9.3    0.2    ABCDEFGH straight
 
 
 def key(x):
-    return hashlib.sha1(",".join(f"{v:.4f}" for v in x).encode()).hexdigest()[:10]
+    v = list(x) + ([] if TABLE_RAMP[0] is None else [TABLE_RAMP[0]])
+    return hashlib.sha1(",".join(f"{w:.4f}" for w in v).encode()).hexdigest()[:10]
 
 
 # the robustness set (issue 33): one run option each
@@ -413,9 +422,16 @@ def main():
     ap.add_argument("--mpirun", type=int, default=1)
     ap.add_argument("--ramps", default="", help="actuation times (s) whose runs enter the "
                     "objective beside the nominal, e.g. 0.5,0.1 (default: none)")
+    ap.add_argument("--table-ramp", type=float, default=None, help="the actuation time (s) "
+                    "the designs state (`ramp R`: their table's `# @ramp`, so the nominal runs "
+                    "with it); six parameters only (default: none, the table states its sample)")
     ap.add_argument("--write-gait", default=None)
     ap.add_argument("--params", default=None)
     a = ap.parse_args()
+    if a.table_ramp is not None:
+        if not (math.isfinite(a.table_ramp) and 0.001 <= a.table_ramp <= 1.0):
+            fail(f"--table-ramp {a.table_ramp}: an actuation time in 0.001..1 s")
+        TABLE_RAMP[0] = a.table_ramp
     if a.write_gait:
         try:
             p = [float(v) for v in (a.params or a.x0).split(",")]
@@ -427,6 +443,8 @@ def main():
         if not all(lo <= v <= hi for v, lo, hi in zip(p, LO, HI)):
             fail(f"--params '{a.params}': outside the search's box "
                  + ", ".join(f"{n} {lo:g}..{hi:g}" for n, lo, hi in zip(NAMES, LO, HI)))
+        if a.table_ramp is not None and (len(p) != 6 or p[5] <= 0):
+            fail("--table-ramp: needs six parameters with O > 0 (S,H,U,TL,E,O)")
         open(a.write_gait, "w").write(gait_text(*p))
         return
     if not os.access(a.crawlsim, os.X_OK):
@@ -444,6 +462,8 @@ def main():
         a.ramps = [-1.0]
     if not all(math.isfinite(v) and v > 0 for v in a.ramps):
         fail(f"--ramps '{raw}': positive actuation times in s, comma-separated")
+    if a.table_ramp is not None and (len(x0) != 6 or x0[5] <= 0):
+        fail("--table-ramp: needs six parameters with O > 0 (S,H,U,TL,E,O)")
     a.x0, a.n_params = x0, len(x0)
     names = NAMES[:len(x0)]
     free = (a.free or ",".join(names)).split(",")
