@@ -400,7 +400,7 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
                   : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
   Stride sd;
   memset(&sd, 0, sizeof sd);
-  int got = 0, line = 0, name_line = 0, sample_line = 0, end_line = 0;
+  int got = 0, line = 0, name_line = 0, sample_line = 0, ramp_line = 0, end_line = 0;
   while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
     line = (int)r->lineno;
     char* w[MAX_WORDS];
@@ -436,6 +436,19 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
       } else {
         d->sample = v[0];
         sample_line = line;
+      }
+    } else if (!strcmp(key, "ramp")) {
+      /* the actuation time the design assumes, stated by the table (gaits_csv.h `@ramp`) */
+      if (nw != 2 || ramp_line) {
+        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'ramp' needs one number (s), once", path,
+                         line);
+      } else if ((st = needNumbers(w, nw, 1, 1, v, path, line, err)) == CS_OK &&
+                 !(v[0] >= MIN_SAMPLE_S && v[0] <= MAX_SAMPLE_S)) {
+        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: ramp %g s is outside %g..%g s", path, line,
+                         v[0], MIN_SAMPLE_S, MAX_SAMPLE_S);
+      } else {
+        d->ramp = v[0];
+        ramp_line = line;
       }
     } else if (!strcmp(key, "pose")) {
       st = statementPose(d, w, nw, path, line, err);
@@ -539,7 +552,8 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
       }
     } else {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.30s' (expected name, "
-                       "sample, pose, move, stride, phase, mirror, foothold, end)", path, line, key);
+                       "sample, ramp, pose, move, stride, phase, mirror, foothold, end)", path, line,
+                       key);
     }
   }
   if (st == CS_OK && got < 0) {

@@ -9,6 +9,11 @@
  * docs/reference.md: e1 = crawl direction +x, e2 = lateral +z, e3 down the leg):
  *   name WORD                          the gait's name
  *   sample S                           s between the table's rows inside a move (default 0.05)
+ *   ramp R                             the actuation time (s) the design assumes: the table
+ *                                      states it as its ramp (`# @ramp R`, gaits_schedule.h),
+ *                                      which a run uses where --ramp is not given (default: the
+ *                                      sample, so each row's change fills the interval to the
+ *                                      next and the run plays the designed motion)
  *   pose NAME SETS... TARGET VALUE     add a chamber set to pose NAME (poses are built from
  *                                      their set lines in file order; `straight` = all vented
  *                                      is built in). SETS: one or more II<s>:<chambers>, e.g.
@@ -148,6 +153,7 @@ typedef struct csgDesign_ {
   char name[64];
   char source[256];
   double sample;              /* s */
+  double ramp;                /* s; 0: not stated (the table states the sample) */
   double end;                 /* s; 0: no end row */
   unsigned mirror;            /* legs (bit k = leg k) that use the poses reflected (e2 -> -e2) */
   int npose;                  /* pose[0] is `straight` */

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Search the flat-road gait design's few parameters by simulation (issue 33).
 
-usage: /usr/bin/python3 tools/gait_search.py [--dir DIR] [--evals N] [--robust] [--x0 S,H,U,TL[,E]]
-           [--free S,E] [--step 0.6,2] [--crawlsim build/tools/crawlsim] [--mpirun N]
-           [--write-gait P.gait --params S,H,U,TL[,E]]
+usage: /usr/bin/python3 tools/gait_search.py [--dir DIR] [--evals N] [--robust]
+           [--x0 S,H,U,TL[,E[,O]]] [--free S,E] [--step 0.6,2] [--ramps 0.5,0.1]
+           [--crawlsim build/tools/crawlsim] [--mpirun N]
+           [--write-gait P.gait --params S,H,U,TL[,E[,O]]]
 
 A design is the shipped flat-road gait's structure (gaits/flat_road.gait: a level-sole stance
 stroke centred on the hip at constant speed, an overlapped load transfer, a level-sole swing, a
@@ -19,6 +20,13 @@ and, optionally, a fifth for the start (a design parameter, not a per-time-node 
       every later stride is unchanged. (The first two strides are the short ones: on the
       default model the 1..2 and 2..3 s strides are ~5 mm shorter than the steady ones.) Four
       parameters give the old description byte for byte.
+and, optionally, a sixth for the load transfer (2026-12-06; five parameters, or O = 0, give the
+five-parameter description byte for byte):
+  O   ground overlap (s): at every swap both groups stand at H and push at the stance speed for
+      O, O/2 either side of the whole second; a stance lasts 1 + O (stroke S (1 + O) centred on
+      the hip), the swing 1 - O - 2 TL. Why: a run's ramp (an actuation time r) filters every
+      pressure with a kernel r long, which only delays a move linear in pressure over r but
+      blurs the corners where a foot leaves or reaches the road (docs/notes/ramp.md).
 --free names the parameters the optimiser moves (the others stay at --x0); --step sets the
 initial simplex's step of each free one (default a tenth of its box).
 Each design is written as a description (`crawlsim gait design --stretch` on the mission's
@@ -31,7 +39,9 @@ replays its path from them.
 
 Objective (never per time node): the worst relative error of the support's x against Table 2
 at the whole seconds 2..9 s (x(k) = 39 (k - 1) mm), plus penalties for |z| > 5 mm, tilt > 3 deg
-and a failed run. --robust adds, for the best design, the robustness set (ramps 0.1/0.5 s,
+and a failed run; with --ramps R1,R2.. also the design's table run with each actuation time
+(`--ramp R`), each entering the maximum as half its relative distance from 312 mm at 9 s (the
+issue's 10 % then weighs as the nominal's 5 %: a score <= 0.05 meets both). --robust adds, for the best design, the robustness set (ramps 0.1/0.5 s,
 friction 0.6/1.0, support 25/75 g, pneumatic lag x0.5/x2, the step halved) and friction 0,
 and prints each run's x(9 s) against the nominal one.
 
@@ -53,12 +63,12 @@ RULE = "rbf-pair"
 P_MAX = 0.4          # MPa, the table's range
 T_NODES = range(2, 10)
 PACE = 39.0          # mm per second, Table 2
-NAMES = ("S", "H", "U", "TL", "E")
+NAMES = ("S", "H", "U", "TL", "E", "O")
 # start: the shipped design's H, U, TL; S scaled by its measured one-branch stride (a first run
 # of S 40.6 strode ~63 mm per second, 1.55 S)
 X0 = (25.0, 3.0, 11.0, 1.0 / 6.0)
-LO = (12.0, 1.0, 6.0, 0.08, -5.0)
-HI = (45.0, 8.0, 16.0, 0.25, 15.0)
+LO = (12.0, 1.0, 6.0, 0.08, -5.0, 0.0)
+HI = (45.0, 8.0, 16.0, 0.25, 15.0, 0.6)
 
 
 def fail(msg):
@@ -74,14 +84,20 @@ except ImportError as e:  # Debian: python3-h5py python3-numpy python3-scipy
     fail(f"needs h5py, numpy and scipy ({e})")
 
 
-def gait_text(S, H, U, TL, E=None):
+TABLE_RAMP = [None]  # --table-ramp: the actuation time the design states (`ramp R`), or None
+
+
+def gait_text(S, H, U, TL, E=None, O=None):
     """The description of one design (the structure of gaits/flat_road.gait); E None: the
-    four-parameter design (no first-step term)."""
+    four-parameter design (no first-step term); O None or 0: no ground overlap (the
+    five-parameter design, byte for byte)."""
     TL = round(TL, 4)    # times on a 1e-4 s grid, so that consecutive moves abut exactly
     ulo = U - 2.0
     back = S * TL        # the foot's travel at the stance speed S mm/s during TL
-    sw = 1.0 - 2.0 * TL  # the swing's duration
     f = lambda v: f"{v:.4f}".rstrip("0").rstrip(".")
+    if O is not None and O > 0:
+        return _gait_text_overlap(S, H, U, TL, 0.0 if E is None else E, round(O, 4), f)
+    sw = 1.0 - 2.0 * TL  # the swing's duration
     if E is None:
         head = f"""# flat-road design searched by tools/gait_search.py: S {f(S)} mm, H {f(H)} mm, U {f(U)} mm,
 # TL {f(TL)} s (the structure of gaits/flat_road.gait; its rules hold with these values).
@@ -133,8 +149,87 @@ move 9.3    0.2    ABCDEFGH straight
 """
 
 
+def _gait_text_overlap(S, H, U, TL, E, O, f):
+    """The design with a ground overlap O (s): at every swap both groups stand on the road at
+    the stance height and push at the same foot speed S mm/s for O (O/2 either side of the
+    whole second), so that each group's stance lasts 1 + O s (stroke S (1 + O), centred on the
+    hip) and its swing (lift-off TL, forward 1 - O - 2 TL, landing TL) is that much shorter.
+    Why: an actuation time r (the run's ramp) filters every pressure by a kernel r long, which
+    only delays a move that is linear in pressure over r but blurs the corners where a foot
+    leaves or reaches the road; two groups that both stand for O >= ~r/2 around the swap keep
+    the support carried while the blurred lift-off and landing overlap."""
+    ulo = U - 2.0
+    back = S * TL
+    ov = S * O / 2.0     # the stance foot's travel in O/2
+    sw = 1.0 - O - 2.0 * TL
+    if sw < 0.1:
+        fail(f"O {O} and TL {TL}: the swing would last {sw:.3f} s (at least 0.1 s)")
+    h = O / 2.0
+    R = TABLE_RAMP[0]
+    head = f"""# flat-road design searched by tools/gait_search.py: S {f(S)} mm, H {f(H)} mm, U {f(U)} mm,
+# TL {f(TL)} s, first step's extra reach E {f(E)} mm, ground overlap O {f(O)} s (the structure
+# of gaits/flat_road.gait with both groups standing O around each swap; its rules hold with
+# these values){'' if R is None else f', designed for an actuation time of {f(R)} s'}.
+# params: {f(S)},{f(H)},{f(U)},{f(TL)},{f(E)},{f(O)}
+"""
+    ramp = "" if R is None else (
+        f"# the actuation time the design assumes: the table states it (`# @ramp {f(R)}`), a run\n"
+        f"# plays it where --ramp is not given; every move is delayed by about half of it\n"
+        f"ramp {f(R)}\n")
+    return head + f"""# Poses on the mission's map with the FE's stretch:
+#   crawlsim gait design THIS --stretch --calibration {CAL} --cal-rule {RULE} --p-max {P_MAX}
+name flat-road
+sample 0.05
+{ramp}# stance at a constant crouch H; the swing U up. Every pose on one branch (`plus`: II1 and II3
+# on Omega3&4, II2 on Omega1&2), so that no move passes a straight leg: on two branches the
+# cross-fade between them inflates all four chambers of a segment for a sample, which on the
+# FE's stretch lengthens the stance legs (the support rose 13 mm at every mid-stride, measured).
+# A stance runs Hp2 -> Hp (landed, O/2 before the swap) -> Hm (the stride) -> Hm2 (O/2 after)
+# at the constant foot speed S mm/s, so the groups overlap O on the road at each swap.
+pose M0  foot 0 {f(H)} plus
+pose Hp  foot {f(S / 2)} {f(H)} plus
+pose Hm  foot {f(-S / 2)} {f(H)} plus
+pose Hp2 foot {f(S / 2 + ov)} {f(H)} plus
+pose Hm2 foot {f(-S / 2 - ov)} {f(H)} plus
+pose HmU foot {f(-S / 2 - ov - back)} {f(ulo)} plus
+pose FU  foot {f(S / 2 + ov + back)} {f(U)} plus
+pose M0b foot {f(-ov)} {f(H)} plus
+pose M0U foot {f(-ov - back)} {f(ulo)} plus
+pose Hp1 foot {f(S / 2 + E)} {f(H)} plus
+pose Hq1 foot {f(S / 2 + E + ov)} {f(H)} plus
+pose FU1 foot {f(S / 2 + E + back)} {f(U)} plus
+pose FQ1 foot {f(S / 2 + E + ov + back)} {f(U)} plus
+# 0..1 s: BDEG lift, reach forward and land at Hp1 (the support stands); ACFH crouch to M0.
+# Both end by 0.75 s and the robot settles 0.25 s before the first push, so that a slow
+# actuation (a ramp of up to 0.5 s delays a move by half its ramp) still lands BDEG by 1 s
+move 0    0.45 BDEG FU1
+move 0.45 0.3  ACFH M0
+move 0.45 0.3  BDEG Hp1
+# 1..2 s: BDEG carry the support a whole stroke; ACFH push with them for O/2, lift off, swing,
+# land at Hq1 O/2 before 2 s and push on to Hp1
+move 1.0    1.0    BDEG Hm linear
+move 1.0    {f(h)} ACFH M0b linear
+move {f(1 + h)} {f(TL)} ACFH M0U linear
+move {f(1 + h + TL)} {f(sw)} ACFH FQ1
+move {f(1 + h + TL + sw)} {f(TL)} ACFH Hq1 linear
+move {f(2 - h)} {f(h)} ACFH Hp1 linear
+# strides 2..9 s
+stride 7 1 2.0 ACFH BDEG
+phase 0      1.0    swing Hm linear
+phase 0      {f(h)} stand Hm2 linear
+phase {f(h)} {f(TL)} stand HmU linear
+phase {f(h + TL)} {f(sw)} stand FU
+phase {f(h + TL + sw)} {f(TL)} stand Hp2 linear
+phase {f(1 - h)} {f(h)} stand Hp linear
+# 9..9.5 s: every leg under its hip, then vented
+move 9.0    0.3    ABCDEFGH M0
+move 9.3    0.2    ABCDEFGH straight
+"""
+
+
 def key(x):
-    return hashlib.sha1(",".join(f"{v:.4f}" for v in x).encode()).hexdigest()[:10]
+    v = list(x) + ([] if TABLE_RAMP[0] is None else [TABLE_RAMP[0]])
+    return hashlib.sha1(",".join(f"{w:.4f}" for w in v).encode()).hexdigest()[:10]
 
 
 # the robustness set (issue 33): one run option each
@@ -240,21 +335,40 @@ class Search:
         open(os.path.join(self.dir, c + ".gait"), "w").write(gait_text(*x))
         r = self.study(f"eval_{k}", [(c, None, "")])[c]
         s = self.score(r)
+        # the actuation-time cases (--ramps): the design's table played with each ramp; each
+        # enters as half its relative distance from 312 mm at 9 s, so that the issue's 10 %
+        # weighs as the nominal's 5 % (score <= 0.05: both met)
+        x9r = []
+        if self.a.ramps:
+            table = os.path.join(self.dir, "cases", c, "gait.csv")
+            rr = self.study(f"ramps_{k}", [(f"{c}__ramp{q:g}", table, f"--ramp {q:g}")
+                                            for q in self.a.ramps]) \
+                if os.path.exists(table) else {}
+            for q in self.a.ramps:
+                t = rr.get(f"{c}__ramp{q:g}")
+                x9 = t["x"][9] if t and "x" in t else float("nan")
+                x9r.append(x9)
+                s = max(s, 0.5 * abs(x9 - 312.0) / 312.0 if math.isfinite(x9) else 5.0)
         # out-of-box candidates pay for the distance (Nelder-Mead has no bounds)
         s += sum(abs(vi - xi) for vi, xi in zip(v, x)) * 0.05
         new = not os.path.exists(self.results)
         with open(self.results, "a") as f:
             if new:
-                f.write("key,S_mm,H_mm,U_mm,TL_s," + ("E_mm," if self.n == 5 else "")
-                        + "score,x2,x3,x4,x5,x6,x7,x8,x9,zmax_mm,tilt_deg\n")
+                f.write("key,S_mm,H_mm,U_mm,TL_s," + ("E_mm," if self.n >= 5 else "")
+                        + ("O_s," if self.n == 6 else "")
+                        + "score,x2,x3,x4,x5,x6,x7,x8,x9,zmax_mm,tilt_deg"
+                        + "".join(f",x9_ramp{r:g}" for r in self.a.ramps) + "\n")
             xs = r["x"] if r and "x" in r else [float("nan")] * 10
             f.write(f"{k}," + "".join(f"{xi:.4f}," for xi in x) + f"{s:.6f},"
                     + ",".join(f"{xs[j]:.2f}" for j in T_NODES)
                     + f",{(r or {}).get('z', float('nan')):.2f},"
-                    f"{(r or {}).get('tilt', float('nan')):.2f}\n")
+                    f"{(r or {}).get('tilt', float('nan')):.2f}"
+                    + "".join(f",{v:.2f}" for v in x9r) + "\n")
         self.seen[k] = s
         print(f"{PROG}: {k} S {x[0]:.2f} H {x[1]:.2f} U {x[2]:.2f} TL {x[3]:.3f}"
-              + (f" E {x[4]:.2f}" if self.n == 5 else "")
+              + (f" E {x[4]:.2f}" if self.n >= 5 else "")
+              + (f" O {x[5]:.3f}" if self.n == 6 else "")
+              + "".join(f" x(9) at ramp {r:g} s {rx:.1f}" for r, rx in zip(self.a.ramps, x9r))
               + f": score {s:.4f} x(2) {xs[2]:.1f} x(9) {xs[9]:.1f} mm", flush=True)
         return s
 
@@ -306,19 +420,31 @@ def main():
                     "(default: a tenth of its box)")
     ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
     ap.add_argument("--mpirun", type=int, default=1)
+    ap.add_argument("--ramps", default="", help="actuation times (s) whose runs enter the "
+                    "objective beside the nominal, e.g. 0.5,0.1 (default: none)")
+    ap.add_argument("--table-ramp", type=float, default=None, help="the actuation time (s) "
+                    "the designs state (`ramp R`: their table's `# @ramp`, so the nominal runs "
+                    "with it); six parameters only (default: none, the table states its sample)")
     ap.add_argument("--write-gait", default=None)
     ap.add_argument("--params", default=None)
     a = ap.parse_args()
+    if a.table_ramp is not None:
+        if not (math.isfinite(a.table_ramp) and 0.001 <= a.table_ramp <= 1.0):
+            fail(f"--table-ramp {a.table_ramp}: an actuation time in 0.001..1 s")
+        TABLE_RAMP[0] = a.table_ramp
     if a.write_gait:
         try:
             p = [float(v) for v in (a.params or a.x0).split(",")]
         except ValueError:
             p = []
-        if len(p) not in (4, 5) or not all(math.isfinite(v) for v in p):
-            fail(f"--params '{a.params}': expected four numbers S,H,U,TL (or five: S,H,U,TL,E)")
+        if len(p) not in (4, 5, 6) or not all(math.isfinite(v) for v in p):
+            fail(f"--params '{a.params}': expected four numbers S,H,U,TL (or five: S,H,U,TL,E; "
+                 "six: S,H,U,TL,E,O)")
         if not all(lo <= v <= hi for v, lo, hi in zip(p, LO, HI)):
             fail(f"--params '{a.params}': outside the search's box "
                  + ", ".join(f"{n} {lo:g}..{hi:g}" for n, lo, hi in zip(NAMES, LO, HI)))
+        if a.table_ramp is not None and (len(p) != 6 or p[5] <= 0):
+            fail("--table-ramp: needs six parameters with O > 0 (S,H,U,TL,E,O)")
         open(a.write_gait, "w").write(gait_text(*p))
         return
     if not os.access(a.crawlsim, os.X_OK):
@@ -327,8 +453,17 @@ def main():
         x0 = [float(v) for v in a.x0.split(",")]
     except ValueError:
         x0 = []
-    if len(x0) not in (4, 5):
-        fail(f"--x0 '{a.x0}': needs S,H,U,TL or S,H,U,TL,E")
+    if len(x0) not in (4, 5, 6):
+        fail(f"--x0 '{a.x0}': needs S,H,U,TL, S,H,U,TL,E or S,H,U,TL,E,O")
+    raw = a.ramps
+    try:
+        a.ramps = [float(v) for v in raw.split(",")] if raw else []
+    except ValueError:
+        a.ramps = [-1.0]
+    if not all(math.isfinite(v) and v > 0 for v in a.ramps):
+        fail(f"--ramps '{raw}': positive actuation times in s, comma-separated")
+    if a.table_ramp is not None and (len(x0) != 6 or x0[5] <= 0):
+        fail("--table-ramp: needs six parameters with O > 0 (S,H,U,TL,E,O)")
     a.x0, a.n_params = x0, len(x0)
     names = NAMES[:len(x0)]
     free = (a.free or ",".join(names)).split(",")

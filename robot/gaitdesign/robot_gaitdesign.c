@@ -462,12 +462,16 @@ csgGait* csr_designGait(const csrActuator* act, const csrBendMap* map, const csg
     goto fail;
   }
   /* a table with timed moves states the sample as its ramp, so each row's change fills the
-   * interval to the next row and the run plays the designed motion (gaits_schedule.h);
-   * --ramp overrides. One of step moves only (the paper's table) leaves the run's ramp. */
+   * interval to the next row and the run plays the designed motion (gaits_schedule.h), or
+   * the actuation time the description states (`ramp`); --ramp overrides. One of step moves
+   * only (the paper's table) leaves the run's ramp unless the description states one. */
   for (int i = 0; i < d->nmove; i++) {
     if (d->move[i].duration > 0.0) {
       g->ramp = d->sample;
     }
+  }
+  if (d->ramp > 0.0) {
+    g->ramp = d->ramp;
   }
   for (long r = 0; r < nrow; r++) {
     double t = times[r];

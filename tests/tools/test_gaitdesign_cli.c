@@ -136,6 +136,9 @@ static void test_badDesigns(void) {
   const char* pose = "pose S II1:3,4 II2:1,2 stroke 39\n";
   char t[2048];
   expectBadDesign("nmae x\n", 1, "unknown statement 'nmae'");
+  expectBadDesign("ramp 0\n", 1, "ramp 0 s is outside");
+  expectBadDesign("ramp 0.2 0.3\n", 1, "'ramp' needs one number (s), once");
+  expectBadDesign("ramp 0.2\nramp 0.3\n", 2, "'ramp' needs one number (s), once");
   expectBadDesign("pose S II4:1 stroke 3\n", 1, "chamber set 'II4:1' is not II<1..3>");
   expectBadDesign("pose S II1:1,5 stroke 3\n", 1, "chamber set 'II1:1,5'");
   expectBadDesign("pose S II1:1 II1:1 stroke 3\n", 1, "chamber II1:1 is in the set twice");
@@ -258,6 +261,7 @@ static void test_footPoseBranch(void) {
   cs_cliWriteText("gaitdesign_branch.gait",
                   "name branch\n"
                   "sample 0.05\n"
+                  "ramp 0.3\n"
                   "pose AUTO foot -25 12\n"
                   "pose PLUS foot -25 12 plus\n"
                   "pose MINUS foot 25 12 minus\n"
@@ -283,9 +287,10 @@ static void test_footPoseBranch(void) {
    * Ω1&Ω2 only, both inflated (columns 1..4 A_II1_O1..O4, 5..8 A_II2_O1..O4) */
   FILE* f = fopen("gaitdesign_branch.csv", "r");
   CS_EXPECT(f != NULL);
-  int rows = 0, on_branch = 0;
+  int rows = 0, on_branch = 0, stated = 0;
   char line[8192];
   while (f && fgets(line, sizeof line, f)) {
+    stated += !strcmp(line, "# @ramp 0.3\n"); /* the description's `ramp`, not its sample */
     if (line[0] == '#' || line[0] == 't') continue;
     double v[9];
     if (sscanf(line, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4],
@@ -298,6 +303,7 @@ static void test_footPoseBranch(void) {
   }
   if (f) fclose(f);
   CS_EXPECT(rows == 21 && on_branch == rows);
+  CS_EXPECT(stated == 1);
   if (on_branch != rows) {
     fprintf(stderr, "  %d of %d rows of the plus swing on the branch\n", on_branch, rows);
   }
