@@ -69,6 +69,10 @@ ap.add_argument('--SHZ', type=float, default=25.0,
                 'over three slots)')
 ap.add_argument('--fracz', default='0.15,0.5,0.15,0.2',
                 help='a lateral slot: lift, swing, hold, land (fractions of --Tpz)')
+ap.add_argument('--frac', default='0.25,0.4,0.1,0.25',
+                help='a step of the wave: lift, swing, hold, land (fractions of its slot); '
+                'if they add up to less than 1 the rest ends the slot with all eight legs '
+                'standing (the landing settles before the next pair lifts)')
 ap.add_argument('--fract', default='0.15,0.5,0.15,0.2',
                 help='a step of the turn and of the release: lift, swing, hold, land (fractions '
                 'of --Tturn)')
@@ -182,7 +186,6 @@ RS = (5, 15, 25, 35)          # landing offsets ahead of the hip (mm); stance en
 PREF = (25, 15, 35, 5)        # in this order of preference
 MARGIN = 25.0                 # wanted distance of a landing from an edge (mm)
 BAND = 20.0                   # within this of an edge a landing takes the step's length
-FRAC = (0.25, 0.4, 0.1, 0.25)  # a slot: lift, swing, hold, land (fractions of the slot)
 EDGES = (240.0, 460.0)        # terrains/obstacle.terrain: the step from x = 240 to 460
 START = 150.0                 # the support's start x in the terrain
 OFF = {'A': 75, 'E': 75, 'B': 25, 'F': 25, 'C': -25, 'G': -25, 'D': -75, 'H': -75}
@@ -193,14 +196,17 @@ PAIRS = ('DH', 'CG', 'BF', 'AE')
 ZPAIRS = ('AH', 'DE', 'BG', 'CF')
 
 
-def fractions(text, opt):
-    """a step's four phases (lift, swing, hold, land) as fractions of its slot"""
+def fractions(text, opt, below=False):
+    """a step's four phases (lift, swing, hold, land) as fractions of its slot (below: their
+    sum may be less than 1, the rest a stand at the slot's end)"""
     f = tuple(float(v) for v in text.split(','))
-    if len(f) != 4 or abs(sum(f) - 1) > 1e-9 or min(f) <= 0:
-        sys.exit('obstacle_gait.py: %s takes four positive fractions that add up to 1' % opt)
+    if len(f) != 4 or min(f) <= 0 or (sum(f) > 1 + 1e-9 if below else abs(sum(f) - 1) > 1e-9):
+        sys.exit('obstacle_gait.py: %s takes four positive fractions that add up to %s' %
+                 (opt, 'at most 1' if below else '1'))
     return f
 
 
+FRAC = fractions(a.frac, '--frac', below=True)  # a wave's slot: lift, swing, hold, land
 FRACZ = fractions(a.fracz, '--fracz')
 FRACT = fractions(a.fract, '--fract')
 RZ = SHZ / 2
@@ -286,7 +292,10 @@ HEADER = """\
               a.Tstart, a.Tturn, a.t_place) +
            ('' if a.zgroups == 4 else
             ';\n#   zgroups 2, xslots %d, x2 %s, SX %g, SHZ %g mm, Tvent %g s'
-            % (a.xslots, a.x2, a.SX, a.SHZ, a.Tvent)),
+            % (a.xslots, a.x2, a.SX, a.SHZ, a.Tvent)) +
+           ('' if abs(sum(FRAC) - 1) < 1e-9 and FRAC == (0.25, 0.4, 0.1, 0.25) else
+            ';\n#   frac %s (wave step: lift, swing, hold, land; the rest: all legs stand)'
+            % a.frac),
            rule7=RULE7[a.zgroups],
            rule9=RULE9[a.zgroups].format(turnh=TURNH, SHZ=SHZ, Tpz=a.Tpz),
            rule11='' if a.zgroups == 4 else
