@@ -7,8 +7,9 @@
  *                                                     the build's; default: the obstacle)
  *
  * tests/core/data/strain_obstacle_26.8.state is its output at T = 26.8 from a build with the
- * tree step's old damping rule (test_strain_obstacle_stop's header says why and when to
- * regenerate it); tests/core/data/strain_earth_0.904.state its output at T = 0.904 with
+ * tree step's old damping rule on the obstacle's default table of then (kept as
+ * tests/core/data/strain_obstacle_26.8_gait.csv: give it with `obstacle GAIT paper`;
+ * test_strain_obstacle_stop's header says why and when to regenerate it); tests/core/data/strain_earth_0.904.state its output at T = 0.904 with
  * `flat-road gaits/flat_road_paper.csv earth` (test_strain_earth_edge's header). */
 #include <stdio.h>
 #include <stdlib.h>

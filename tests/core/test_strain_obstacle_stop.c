@@ -1,5 +1,8 @@
-/* test_strain_obstacle_stop.c: the obstacle scene on strain legs (its defaults) restored at
- * 26.8 s from tests/core/data/strain_obstacle_26.8.state and stepped to 26.9 s. At 26.846 s a
+/* test_strain_obstacle_stop.c: the obstacle scene on strain legs restored at 26.8 s from
+ * tests/core/data/strain_obstacle_26.8.state and stepped to 26.9 s on the gait table that made
+ * the state, tests/core/data/strain_obstacle_26.8_gait.csv (the scene's default until
+ * 2026-12-06, gaits/obstacle.csv of 9e90162; the default since differs from 7.4 s on, and the
+ * stop is that table's event, so the test names it, `paper` as the scene's). At 26.846 s a
  * foot's nonsmooth contact held the tree step's damped Newton passes in a cycle of period four
  * (moves 2.0, 2.4, 0.94, 0.54, 2.0 ... e-4 mm) at every halving of the step down to 1/16, and
  * the whole climb stopped there (docs/notes/strain_leg.md "The obstacle's stop"); the retried
@@ -11,8 +14,9 @@
  * 26.8 s (main at d77e82c). The fixed code reaches 26.8 s in a slightly different state (earlier
  * retried steps take the new rule) from which the old rule happens to pass, so when the
  * state's layout changes, regenerate the file with strain_obstacle_state built with the old
- * rule (the `else` of the damping restored) and check that this test fails there; a size
- * mismatch fails with that instruction. */
+ * rule (the `else` of the damping restored), run as `strain_obstacle_state 26.8 FILE obstacle
+ * tests/core/data/strain_obstacle_26.8_gait.csv paper`, and check that this test fails there; a
+ * size mismatch fails with that instruction. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,15 +27,19 @@
 
 static void test_obstacle_strain_steps_across_26_846(void) {
   const char* src = getenv("CS_SOURCE_DIR");
-  char path[4096];
+  char path[4096], gait[4096];
   snprintf(path, sizeof path, "%s/tests/core/data/strain_obstacle_26.8.state", src ? src : ".");
+  snprintf(gait, sizeof gait, "%s/tests/core/data/strain_obstacle_26.8_gait.csv",
+           src ? src : ".");
   csRunDef def = cs_defaultRunDef();
   def.scene = "obstacle";
+  def.gait = gait;
+  def.conditions = "paper"; /* a gait of one's own defaults to earth */
   def.legs = "strain";
   def.data_dir = src;
   RestoredRun r = restoredRun(&def, path, 26.8, 26.9,
-                              "strain_obstacle_state 26.8 FILE built with the damping's old "
-                              "rule, this file's header");
+                              "strain_obstacle_state 26.8 FILE obstacle GAIT paper built with "
+                              "the damping's old rule, this file's header");
   CS_EXPECT(r.ran);
   if (r.ran) {
     CS_EXPECT(!r.failed);
