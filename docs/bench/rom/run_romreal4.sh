@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Session romreal, fourth (docs/notes/rom.md, "The real leg with the fibre field"): the real
+# leg's basis with the mixed fibre field of branch romlock, held out, every element kept.
+# From the repository root after a Release build. Usage:
+#   run_romreal4.sh OUT STAGE ...
+# OUT/snap holds mesh.h5, the training rays and the held-out T_H4, T_S2 (copies of
+# data/rom/leg_l8, or of finished rays of the production); stages, in order:
+#   legfile      a leg file of a 4-mode basis, for its fibre elements only (rom_basis.py
+#                --fibres reads them; the leg file refuses a fibre basis)    -> OUT/legf/leg.h5
+#   basis        N POD modes + quarter turns, M pressure modes split at the real leg's
+#                connectors (x3 = S1 + LS12/2 = 54 mm, S1 + LS12 + S2 + LS23/2 = 112 mm),
+#                supremizers, every fibre strain mode of the training (strains and stresses
+#                of the FE states)                                           -> OUT/b<N>_f.h5
+#   base         the same file without its fibre basis (Qf, mf): the same span with the FE's
+#                fibres, for the locking's share                             -> OUT/b<N>_base.h5
+#   project      the held-out states' best projection onto the span (tools/rom_project.py)
+#                                                                            -> OUT/b<N>_f_projection.log
+#   energy       what the span charges them: bulk in span(P), fibres with and without span(Q)
+#                (romlock_span_energy.py)                                   -> OUT/b<N>_f_span_energy.log
+#   check-CFG-RAY   rom check of RAY on OUT/b<N>_CFG.h5 (CFG f or base), every element kept
+#                                                                            -> OUT/check_<CFG>_<RAY>.log
+# Each stage is skipped when its output is complete (resumable per ray: a check is one ray, as
+# every reduced Newton iteration with every element costs about a minute of wall time under load).
+# Environment: CS the crawlsim binary, N (96), M (16), NICE (5).
+set -euo pipefail
+OUT=$(readlink -f "$1")
+shift
+CS=${CS:-$PWD/build/tools/crawlsim}
+N=${N:-96}
+M=${M:-16}
+NICE=${NICE:-5}
+PY=/usr/bin/python3
+SNAP=$OUT/snap
+export OMP_WAIT_POLICY=PASSIVE OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+T=(/usr/bin/time -f '%e s wall, %U s user, %M kB resident')
+mkdir -p "$OUT/legf"
+for stage in "$@"; do
+  echo "== $stage ($(date -u +%H:%M:%S), load $(cut -d' ' -f1-3 /proc/loadavg))"
+  case $stage in
+    legfile)
+      [ -s "$OUT/legf/leg.h5" ] || {
+        "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --n 4 --out "$OUT/legf/b4.h5" \
+          > "$OUT/legf/b4_basis.log" 2>&1
+        "${T[@]}" nice -n "$NICE" "$CS" rom leg-file --basis "$OUT/legf/b4.h5" \
+          --out "$OUT/legf/leg.h5" --work "$OUT/legf" --actuator leg > "$OUT/legf/leg.log" 2>&1
+      } ;;
+    basis)
+      [ -s "$OUT/b${N}_f.h5" ] ||
+        "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$M" \
+          --p-split 54,112 --mixed --fibre-modes 100000 --fibres "$OUT/legf/leg.h5" \
+          --out "$OUT/b${N}_f.h5" > "$OUT/b${N}_f_basis.log" 2>&1 ;;
+    base)
+      [ -s "$OUT/b${N}_base.h5" ] ||
+        $PY - "$OUT/b${N}_f.h5" "$OUT/b${N}_base.h5" <<'PYEOF'
+import os
+import sys
+import h5py
+# every dataset and attribute but the fibre basis: bit-identical V, P, snapshots
+with h5py.File(sys.argv[1], "r") as src, h5py.File(sys.argv[2] + ".tmp", "w") as dst:
+    for k, v in src.attrs.items():
+        if k != "mf":
+            dst.attrs[k] = v
+    for k in src:
+        if k != "Qf":
+            src.copy(k, dst)
+os.replace(sys.argv[2] + ".tmp", sys.argv[2])
+PYEOF
+      ;;
+    project)
+      [ -s "$OUT/b${N}_f_projection.log" ] ||
+        "${T[@]}" nice -n "$NICE" $PY tools/rom_project.py "$SNAP" "$OUT/b${N}_f.h5" \
+          > "$OUT/b${N}_f_projection.log" 2>&1 ;;
+    energy)
+      [ -s "$OUT/b${N}_f_span_energy.log" ] ||
+        "${T[@]}" nice -n "$NICE" $PY docs/bench/rom/romlock_span_energy.py "$SNAP" \
+          "$OUT/b${N}_f.h5" "$OUT/legf/leg.h5" --ray T_H4 --ray T_S2 \
+          > "$OUT/b${N}_f_span_energy.log" 2>&1 ;;
+    check-*)
+      cfg=${stage#check-}
+      ray=${cfg#*-}
+      cfg=${cfg%%-*}
+      log=$OUT/check_${cfg}_${ray}.log
+      grep -qs 'rays checked' "$log" ||
+        (cd "$OUT" && "${T[@]}" nice -n "$NICE" stdbuf -oL "$CS" rom check --snapshots "$SNAP" \
+          --basis "$OUT/b${N}_${cfg}.h5" --ray "$ray" --actuator leg > "$log" 2>&1) ;;
+    *) echo "run_romreal4.sh: unknown stage $stage" >&2; exit 2 ;;
+  esac
+done
+echo "== done ($(date -u +%H:%M:%S), load $(cut -d' ' -f1-3 /proc/loadavg))"
