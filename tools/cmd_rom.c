@@ -96,6 +96,9 @@ static const csxOpt kEcswOpts[] = {
     {"--stride", "K", "1",
      "every K-th training snapshot only (1 .. 64): the rows grow with the snapshots times the "
      "basis size, the matrices with the elements besides"},
+    {"--only", "SET", "both: tet and fibre",
+     "write this element set's matrices only (tet or fibre): a set's fit does not need the "
+     "other's"},
     ROM_OPT_ACTUATOR,
     ROM_OPT_SET,
 };
@@ -107,7 +110,10 @@ static const csxOptTable kEcswTable = {
     "/A_fibre; the chambers' pressure loads are exact and not fitted), for tools/rom_ecsw.py's "
     "NNLS. A mixed basis (pressure modes P, m of them) adds to each snapshot's Tet10 rows the "
     "element's constraint share P_e (v_e - V_e), and /A_tet_pressure holds each Tet10's share of "
-    "the pressure matrix, so that the weights keep the reduced pressures.",
+    "the pressure matrix, so that the weights keep the reduced pressures. A fibre strain basis "
+    "(Qf, mf modes) adds to each snapshot's fibre rows the fibre's shares W_f Q_f E_f and W_f "
+    "Q_f S(Ebar_f), and /A_fibre_projection holds each fibre's share of the projection matrix "
+    "G = sum W_f Q_f Q_f^T (fem/fem_rom_fibre.h).",
     kEcswOpts, CSX_NOPT(kEcswOpts), NULL};
 
 
@@ -594,7 +600,7 @@ static int cmdCheck(int argc, char** argv) {
 static int cmdEcswMatrix(int argc, char** argv) {
   const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
   const char* sets[CSX_ROM_MAX_SETS];
-  int nset = 0, stride = 1;
+  int nset = 0, stride = 1, only = -1;
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kEcswTable, argc, argv, &it)) != CSX_OPT_END;) {
@@ -622,6 +628,12 @@ static int cmdEcswMatrix(int argc, char** argv) {
         return 1;
       }
       stride = (int)d;
+    } else if (csx_optIs(it.opt, "--only")) {
+      only = !strcmp(v, "tet") ? CSF_ROM_SET_TET : !strcmp(v, "fibre") ? CSF_ROM_SET_FIBRE : -2;
+      if (only == -2) {
+        fprintf(stderr, "crawlsim rom: --only '%s': expected tet or fibre\n", v);
+        return 1;
+      }
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--set") &&
@@ -664,6 +676,9 @@ static int cmdEcswMatrix(int argc, char** argv) {
   /* the bodies and the fibres; the chambers' faces are in closed form (csf_romChamberTensors:
    * exact), so the face set is not fitted */
   for (int s = 0; s < CSF_ROM_SET_FACE && rc == 0; s++) {
+    if (only >= 0 && s != only) {
+      continue;
+    }
     const int wd = csf_romElementForcesWidth(ra.rom, (csfRomSet)s);
     const size_t rows = (size_t)ns * (size_t)wd, cols = (size_t)cnt[s];
     double* A = malloc(rows * cols * sizeof(double));
@@ -697,7 +712,7 @@ static int cmdEcswMatrix(int argc, char** argv) {
   /* the mixed model's pressure matrix A = sum_e w_e (V_e / kappa) P_e P_e^T, per element (its
    * lower triangle, mm^3/MPa; constant in q): weights fitted to it as well keep p^ = A^-1 b */
   const int mp = ra.rom->m;
-  if (mp > 0 && rc == 0) {
+  if (mp > 0 && rc == 0 && only != CSF_ROM_SET_FIBRE) {
     const size_t rows = (size_t)mp * (size_t)(mp + 1) / 2, cols = (size_t)cnt[0];
     double* A = malloc(rows * cols * sizeof(double));
     if (!A) {
@@ -721,8 +736,36 @@ static int cmdEcswMatrix(int argc, char** argv) {
     }
     free(A);
   }
+  /* the fibre projection matrix G = sum_f W_f Q_f Q_f^T, per fibre (its lower triangle, N;
+   * constant in q): weights fitted to it keep E^ and S* (fem/fem_rom_fibre.h) */
+  const int mf = ra.rom->mf;
+  if (mf > 0 && rc == 0 && only != CSF_ROM_SET_TET) {
+    const size_t rows = (size_t)mf * (size_t)(mf + 1) / 2, cols = (size_t)cnt[1];
+    double* A = malloc(rows * cols * sizeof(double));
+    if (!A) {
+      fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
+      rc = 1;
+    }
+    for (size_t e = 0; rc == 0 && e < cols; e++) {
+      const double* Qe = ra.rom->Qf + e * (size_t)mf;
+      const double W = ra.fe.model->fib_EA[e] * ra.fe.model->fib_L0[e];
+      size_t row = 0;
+      for (int i = 0; i < mf; i++) {
+        for (int j = 0; j <= i; j++) {
+          A[row++ * cols + e] = W * Qe[i] * Qe[j];
+        }
+      }
+    }
+    const size_t dims[2] = {rows, cols};
+    if (rc == 0 && cs_h5WriteDoubles(f, "/A_fibre_projection", 2, dims, A, &err) != CS_OK) {
+      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+      rc = 1;
+    }
+    free(A);
+  }
   if (f) {
     cs_h5AttrDouble(f, "/", "m", mp, &err);
+    cs_h5AttrDouble(f, "/", "mf", mf, &err);
     cs_h5AttrString(f, "/", "format", "crawlsim-rom-ecsw-matrix 1", &err);
     cs_h5AttrString(f, "/", "basis", basis, &err);
     cs_h5AttrDouble(f, "/", "n", n, &err);
@@ -735,8 +778,9 @@ static int cmdEcswMatrix(int argc, char** argv) {
   }
   if (rc == 0) {
     printf("crawlsim rom: ecsw-matrix: %d snapshots (of %d, stride %d) x %d coordinates (%d "
-           "pressure modes) over %d Tet10 and %d fibre elements -> %s\n", ns, ns_all, stride, n,
-           mp, cnt[0], cnt[1], out);
+           "pressure modes, %d fibre strain modes) over %d Tet10 and %d fibre elements (%s) "
+           "-> %s\n", ns, ns_all, stride, n, mp, mf, cnt[0], cnt[1],
+           only < 0 ? "both sets" : only == 0 ? "the Tet10s only" : "the fibres only", out);
   }
   free(q), free(p), free(g), free(F);
   csf_romActuatorDestroy(&ra);
