@@ -884,7 +884,7 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
 
 int csf_romElementForcesWidth(const csfRom* r, csfRomSet set) {
   return r->n + (set == CSF_ROM_SET_TET ? r->m : 0) +
-         (set == CSF_ROM_SET_FIBRE ? 2 * r->mf : 0);
+         (set == CSF_ROM_SET_FIBRE ? 4 * r->mf : 0);
 }
 
 /* The mixed model's Tet10 rows (csf_romElementForces): the unreduced model's p^ (every Tet10 at

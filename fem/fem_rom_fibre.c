@@ -278,7 +278,7 @@ void csf_romFibreStates(const csfRom* r, csfRomData* d, double alpha) {
 
 int csf_romFibreElementForces(const csfRom* r, const double* q, double* G) {
   const csfModel* m = r->fem;
-  const int n = r->n, mf = r->mf, nf = m->nfib, wd = n + 2 * mf;
+  const int n = r->n, mf = r->mf, nf = m->nfib, wd = n + 4 * mf;
   double* L = malloc((size_t)mf * (size_t)mf * sizeof(double));
   double* E = malloc((size_t)(nf > 0 ? nf : 1) * 4 * sizeof(double)); /* E, then the chords */
   double* eh = calloc(2 * (size_t)mf, sizeof(double));
@@ -322,14 +322,23 @@ int csf_romFibreElementForces(const csfRom* r, const double* q, double* G) {
     const double* Q = r->Qf + (size_t)f * (size_t)mf;
     double* row = G + (size_t)f * wd;
     double S, dS;
-    csf_fibreLaw(m->fib_tension_only, dot(mf, Q, eh), &S, &dS);
+    const double Eb = dot(mf, Q, eh);
+    csf_fibreLaw(m->fib_tension_only, Eb, &S, &dS);
     for (int i = 0; i < mf; i++) {
       row[n + i] = W * Q[i] * E[f];          /* its share of sum W Q E (N) */
       row[n + mf + i] = W * Q[i] * S;        /* its share of sum W Q S(Ebar) (N) */
+      row[n + 2 * mf + i] = W * Q[i] * Eb;   /* its share of G E^ (N) */
       sh[i] += row[n + mf + i];
     }
   }
   csf_romMixedSolveWith(mf, L, sh);
+  for (int f = 0; f < nf; f++) { /* its share of G s^ (N) */
+    const double* Q = r->Qf + (size_t)f * (size_t)mf;
+    const double c = m->fib_EA[f] * m->fib_L0[f] * dot(mf, Q, sh);
+    for (int i = 0; i < mf; i++) {
+      G[(size_t)f * wd + n + 3 * mf + i] = c * Q[i];
+    }
+  }
   /* each fibre's reduced force at the unreduced S*_f: V_f^T (c (x) EA S*_f d_f / L0) */
   for (int f = 0; f < nf; f++) {
     const int* fv = m->fib_node + 20 * (size_t)f;

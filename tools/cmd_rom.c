@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "cmd_fe_threads.h"
 #include "core_math.h"
@@ -384,7 +385,7 @@ static int cmdSnapshots(int argc, char** argv) {
 
 /* one ray of the reduced model against the FE's file; returns the worst errors */
 typedef struct CheckErr_ {
-  double bend_deg, bend_rel, tip_mm, vol_rel, wall;
+  double bend_deg, bend_rel, tip_mm, vol_rel, wall, cpu; /* cpu: the process's (clock()), s */
   long newton; /* reduced Newton iterations of the ray */
   int ok, failed;
 } CheckErr;
@@ -424,6 +425,7 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
   memset(ra->tip_force, 0, sizeof ra->tip_force);
   memset(ra->q_conv, 0, (size_t)ra->rom->n * sizeof(double));
   const double t0 = csu_wallSeconds();
+  const clock_t c0 = clock();
   const long it0 = ra->n_newton;
   ce->ok = 1;
   for (int k = 0; k < sf->m; k++) {
@@ -486,6 +488,7 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
            sf->vol[k][qw] / v0, 100 * (vol[qw] - sf->vol[k][qw]) / (sf->vol[k][qw] - v0));
   }
   ce->wall = csu_wallSeconds() - t0;
+  ce->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
   ce->newton = ra->n_newton - it0;
 }
 
@@ -581,12 +584,13 @@ static int cmdCheck(int argc, char** argv) {
     fe_wall += sf.wall;
     rom_wall += ce.wall;
     printf("crawlsim rom: ray %-10s (%s): worst bend %.3g deg (%.3g %%), tip %.3g mm (%.3g %% of "
-           "L), volumes %.3g %%: %s; reduced %.2f s (%ld Newton iterations, %.3g ms each), FE "
-           "%.0f s\n", sf.ray.name,
+           "L), volumes %.3g %%: %s; reduced %.2f s (%ld Newton iterations, %.3g ms each; CPU "
+           "%.2f s, %.3g ms each), FE %.0f s\n", sf.ray.name,
            sf.ray.kind == CSF_ROM_TEST ? "held out" : "trained", ce.bend_deg, 100 * ce.bend_rel,
            ce.tip_mm, 100 * ce.tip_mm / L, 100 * ce.vol_rel,
            ce.failed ? "FAILED to solve" : ce.ok ? "within the targets" : "outside the targets",
-           ce.wall, ce.newton, ce.newton > 0 ? 1e3 * ce.wall / (double)ce.newton : NAN, sf.wall);
+           ce.wall, ce.newton, ce.newton > 0 ? 1e3 * ce.wall / (double)ce.newton : NAN, ce.cpu,
+           ce.newton > 0 ? 1e3 * ce.cpu / (double)ce.newton : NAN, sf.wall);
   }
   printf("crawlsim rom: %d rays checked, %d within the targets; reduced %.1f s against the FE's "
          "%.0f s (x%.0f; the FE's under its own run's load)\n", nrun, nok, rom_wall, fe_wall,

@@ -23,10 +23,12 @@ rows also hold the elements' constraint shares P_e (v_e - V_e), and /A_tet_press
 share of the pressure matrix A; both are fitted with the forces (each its own unit-norm block),
 so the hyper-reduced p^ = A_w^-1 b_w stays the unreduced one on the training states.
 A fibre strain basis (attribute mf > 0, fem/fem_rom_fibre.h): each snapshot's fibre rows also
-hold the fibres' shares W_f Q_f E_f and W_f Q_f S(Ebar_f) of the projections, and
-/A_fibre_projection each fibre's share of G = sum W Q Q^T; fitted the same way (forces, strain
-shares, stress shares per snapshot and G once, each its own unit-norm block), so the weighted
-E^ and S* stay the unreduced ones on the training states.
+hold the fibres' shares W_f Q_f E_f and W_f Q_f S(Ebar_f) of the projections and of G's action
+on that state's E^ and s^, and /A_fibre_projection each fibre's share of G = sum W Q Q^T;
+fitted the same way (forces, the four shares per snapshot and G once, each its own unit-norm
+block), so the weighted E^ and S* stay the unreduced ones on the training states. G's
+mf (mf + 1) / 2 rows (7 260 at mf = 120) can outnumber the snapshots' rows and set the fit's
+cost: --no-projection leaves them out and relies on G's action at the training states.
 With several --tol, each weights file is written as soon as every set has reached its
 tolerance (the larger tolerances' files exist while the pass goes on to the smallest).
 """
@@ -56,6 +58,9 @@ def main():
                     help="fit only these element sets (repeatable; default every set in the "
                     "matrix): a set left out is absent from the weights file, every element "
                     "of it kept at weight 1 (fem/fem_rom_act.h)")
+    ap.add_argument("--no-projection", action="store_true",
+                    help="leave /A_fibre_projection (G's entries) out of the fibre fit: the "
+                    "snapshots' rows of G's action on their E^ and s^ remain")
     a = ap.parse_args()
     tols = sorted(set(a.tol or [1e-3]), reverse=True)
     out = a.out or os.path.join(os.path.dirname(a.matrix) or ".", "weights.h5")
@@ -87,14 +92,15 @@ def main():
         for key, name in todo:
             # the chambers' faces are in closed form on the C side, not fitted
             # a mixed basis: each snapshot's Tet10 rows are n forces and m constraint shares,
-            # with a fibre strain basis its fibre rows n forces and two blocks of mf shares
+            # with a fibre strain basis its fibre rows n forces and four blocks of mf shares
             blocks = ([n, mp] if key == "tet" and mp > 0 else
-                      [n, mfib, mfib] if key == "fibre" and mfib > 0 else [n])
+                      [n, mfib, mfib, mfib, mfib] if key == "fibre" and mfib > 0 else [n])
             wd = sum(blocks)
             # and the constant matrix, once: the pressure matrix A = sum_e (V_e/kappa) P_e P_e^T
             # or the fibre projection G = sum_f W_f Q_f Q_f^T
             extra = ("A_tet_pressure" if key == "tet" and mp > 0 else
-                     "A_fibre_projection" if key == "fibre" and mfib > 0 else None)
+                     "A_fibre_projection" if key == "fibre" and mfib > 0 and
+                     not a.no_projection else None)
             r0, nc = f[name].shape
             blocks_extra = f[extra].shape[0] if extra else 0
             A = np.empty((r0 + blocks_extra, nc))  # one copy in memory (GB for the fibres)

@@ -286,7 +286,7 @@ static void test_mixed_fibre_ecsw_rows_and_weighted_model(void) {
   RtBox b;
   rtBoxCreate(&b, 4, 6.0, 50.0, 1, 3);
   const csfModel* m = b.m;
-  const int n = 5, nf = m->nfib, mf = 3, wd = n + 2 * mf, ng = mf * (mf + 1) / 2;
+  const int n = 5, nf = m->nfib, mf = 3, wd = n + 4 * mf, ng = mf * (mf + 1) / 2;
   double* V = randomBasis(&b, n, 5);
   csError err = {0};
   csfRom* r = csf_romCreate(m, n, V, &err);
@@ -316,7 +316,7 @@ static void test_mixed_fibre_ecsw_rows_and_weighted_model(void) {
   double* G = malloc((size_t)nf * wd * sizeof(double));
   CS_EXPECT(csf_romElementForces(r, d, &ld, CSF_ROM_SET_FIBRE, G) == 0);
   /* column sums against the model: r, and G E^, G s^ with G from its definition */
-  double sum[11] = {0}, ref[11] = {0};
+  double sum[17] = {0}, ref[17] = {0};
   memcpy(ref, r_all, sizeof r_all);
   for (int f = 0; f < nf; f++) {
     const double W = m->fib_EA[f] * m->fib_L0[f];
@@ -328,12 +328,14 @@ static void test_mixed_fibre_ecsw_rows_and_weighted_model(void) {
       for (int k = 0; k < mf; k++) {
         ref[n + i] += W * Qf[i] * Qf[k] * eh[k];
         ref[n + mf + i] += W * Qf[i] * Qf[k] * sh[k];
+        ref[n + 2 * mf + i] += W * Qf[i] * Qf[k] * eh[k];
+        ref[n + 3 * mf + i] += W * Qf[i] * Qf[k] * sh[k];
       }
     }
   }
   double es[3] = {0}, ms[3] = {0};
   for (int j = 0; j < wd; j++) {
-    const int blk = j < n ? 0 : j < n + mf ? 1 : 2;
+    const int blk = j < n ? 0 : (j - n) / mf % 2 == 0 ? 1 : 2; /* r; G E^; G s^ */
     es[blk] = fmax(es[blk], fabs(sum[j] - ref[j]));
     ms[blk] = fmax(ms[blk], fabs(ref[j]));
   }
