@@ -26,6 +26,7 @@
 #include "fem_rom_act.h"
 #include "fem_rom_snap.h"
 #include "robot_actuator.h"
+#include "robot_rom_file.h"
 
 /* `crawlsim rom` and `crawlsim rom --help`: the subcommands (each has its own --help) */
 static const char kUsage[] =
@@ -67,8 +68,12 @@ static const csxOptTable kSnapTable = {
 
 static const csxOpt kCheckOpts[] = {
     {"--snapshots", "DIR", NULL, "the snapshot directory of crawlsim rom snapshots (required)"},
-    {"--basis", "BASIS.h5", NULL, "the reduced basis of tools/rom_basis.py (required)"},
-    {"--weights", "W.h5", "none: every element",
+    {"--basis", "BASIS.h5", NULL,
+     "the reduced basis of tools/rom_basis.py (required unless --leg-file)"},
+    {"--leg-file", "LEG.h5", "none",
+     "the reduced model of a leg file (crawlsim rom leg-file) instead of --basis: no gmsh and "
+     "no chamber forms to compute; --weights then replace its sets' weights"},
+    {"--weights", "W.h5", "none: every element (or the leg file's)",
      "the element weights of tools/rom_ecsw.py (the hyper-reduction)"},
     {"--ray", "NAME", "the held-out rays (kind test)",
      "check this ray (repeatable; one of crawlsim rom snapshots --list)"},
@@ -492,8 +497,49 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
   ce->newton = ra->n_newton - it0;
 }
 
+/* the reduced actuator from a leg file (as bend --model rom --rom-file), its weights replaced
+ * by those of `weights` (may be NULL); 1 after one error line */
+static int openLegFile(const char* actname, const char* const* sets, int nset, const char* path,
+                       const char* weights, csrActuator* act, csfRomActuator* ra) {
+  if (actuatorFromArgs(actname, sets, nset, 0, act)) {
+    return 1;
+  }
+  csError err;
+  cs_errorClear(&err);
+  csrRomLegFile lf;
+  csStatus st = csr_romLegFileRead(path, &lf, &err);
+  if (st == CS_OK) {
+    st = csr_romLegFileCheckActuator(&lf, path, act, &err);
+  }
+  if (st == CS_OK) {
+    csfActuatorSpec spec = csf_actuatorSpecDefault();
+    for (int s = 0; s < CSR_NSEG; s++) {
+      for (int j = 0; j < CSR_NCHAMBER; j++) {
+        spec.ratio[s][j] = 1.0;
+      }
+    }
+    spec.mesh_size = lf.l_soft;
+    spec.mesh_symmetric = 1;
+    csfMesh* me = lf.mesh;
+    csfModel* m = lf.model;
+    csfRom* rom = lf.rom;
+    lf.mesh = NULL, lf.model = NULL, lf.rom = NULL; /* ra owns them from here */
+    st = csf_romActuatorFromModel(act, &spec, me, m, rom, path, ra, &err);
+    if (st == CS_OK && weights && (st = csf_romActuatorSetWeights(ra, weights, &err)) != CS_OK) {
+      csf_romActuatorDestroy(ra);
+    }
+  }
+  csr_romLegFileFree(&lf);
+  if (st != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}
+
 static int cmdCheck(int argc, char** argv) {
   const char* dir = NULL, *basis = NULL, *weights = NULL, *actname = "leg", *sdir = NULL;
+  const char* legf = NULL;
   const char* sets[CSX_ROM_MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, all = 0;
@@ -515,6 +561,8 @@ static int cmdCheck(int argc, char** argv) {
       dir = v;
     } else if (csx_optIs(it.opt, "--basis")) {
       basis = v;
+    } else if (csx_optIs(it.opt, "--leg-file")) {
+      legf = v;
     } else if (csx_optIs(it.opt, "--weights")) {
       weights = v;
     } else if (csx_optIs(it.opt, "--states")) {
@@ -530,16 +578,19 @@ static int cmdCheck(int argc, char** argv) {
       return 1;
     }
   }
-  if (!dir || !basis) {
-    fprintf(stderr, "crawlsim rom: check needs --snapshots DIR and --basis FILE\n");
+  if (!dir || !basis == !legf) {
+    fprintf(stderr, "crawlsim rom: check needs --snapshots DIR and --basis FILE (or --leg-file "
+            "FILE instead of --basis)\n");
     return 1;
   }
   csrActuator act;
   csfRomActuator ra;
   const double t0 = csu_wallSeconds();
-  if (csx_romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
+  if (legf ? openLegFile(actname, sets, nset, legf, weights, &act, &ra)
+           : csx_romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
     return 1;
   }
+  basis = legf ? legf : basis;
   const double L = act.S[0] + act.S[1] + act.S[2] + act.LS[0] + act.LS[1];
   printf("crawlsim rom: check: basis %s (n = %d, m = %d pressure modes, mf = %d fibre strain "
          "modes), weights %s: %d of %d Tet10, %d of %d fibre elements, %d of %d faces (set-up "
