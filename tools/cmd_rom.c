@@ -651,6 +651,38 @@ static int cmdCheck(int argc, char** argv) {
 }
 
 
+/* a constant matrix's element shares, e.g. the pressure matrix sum_e (V_e / kappa) P_e P_e^T:
+ * column e (of cols) holds the lower triangle of c_e B_e B_e^T, B_e row e of B (cols x m),
+ * c_e = scale x[e] (y ? y[e] : 1), into dataset `name`; 0, or 1 after one error line */
+static int writeOuterRows(csH5File* f, const char* name, int cols_i, int m, const double* B,
+                          const double* x, const double* y, double scale) {
+  const size_t rows = (size_t)m * (size_t)(m + 1) / 2, cols = (size_t)cols_i;
+  double* A = malloc(rows * cols * sizeof(double) + 1);
+  if (!A) {
+    fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
+    return 1;
+  }
+  for (size_t e = 0; e < cols; e++) {
+    const double* Be = B + e * (size_t)m;
+    const double c = scale * x[e] * (y ? y[e] : 1.0);
+    size_t row = 0;
+    for (int i = 0; i < m; i++) {
+      for (int j = 0; j <= i; j++) {
+        A[row++ * cols + e] = c * Be[i] * Be[j];
+      }
+    }
+  }
+  const size_t dims[2] = {rows, cols};
+  csError err;
+  cs_errorClear(&err);
+  const int rc = cs_h5WriteDoubles(f, name, 2, dims, A, &err) != CS_OK;
+  if (rc) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+  }
+  free(A);
+  return rc;
+}
+
 /* the element force matrices of the ECSW fit (tools/rom_ecsw.py) */
 static int cmdEcswMatrix(int argc, char** argv) {
   const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
@@ -768,55 +800,15 @@ static int cmdEcswMatrix(int argc, char** argv) {
    * lower triangle, mm^3/MPa; constant in q): weights fitted to it as well keep p^ = A^-1 b */
   const int mp = ra.rom->m;
   if (mp > 0 && rc == 0 && only != CSF_ROM_SET_FIBRE) {
-    const size_t rows = (size_t)mp * (size_t)(mp + 1) / 2, cols = (size_t)cnt[0];
-    double* A = malloc(rows * cols * sizeof(double));
-    if (!A) {
-      fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
-      rc = 1;
-    }
-    for (size_t e = 0; rc == 0 && e < cols; e++) {
-      const double* Pe = ra.rom->P + e * (size_t)mp;
-      const double c = ra.fe.model->vol[e] / ra.fe.model->mat.kappa;
-      size_t row = 0;
-      for (int i = 0; i < mp; i++) {
-        for (int j = 0; j <= i; j++) {
-          A[row++ * cols + e] = c * Pe[i] * Pe[j];
-        }
-      }
-    }
-    const size_t dims[2] = {rows, cols};
-    if (rc == 0 && cs_h5WriteDoubles(f, "/A_tet_pressure", 2, dims, A, &err) != CS_OK) {
-      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-      rc = 1;
-    }
-    free(A);
+    rc = writeOuterRows(f, "/A_tet_pressure", cnt[0], mp, ra.rom->P, ra.fe.model->vol, NULL,
+                        1.0 / ra.fe.model->mat.kappa);
   }
   /* the fibre projection matrix G = sum_f W_f Q_f Q_f^T, per fibre (its lower triangle, N;
    * constant in q): weights fitted to it keep E^ and S* (fem/fem_rom_fibre.h) */
   const int mf = ra.rom->mf;
   if (mf > 0 && rc == 0 && only != CSF_ROM_SET_TET) {
-    const size_t rows = (size_t)mf * (size_t)(mf + 1) / 2, cols = (size_t)cnt[1];
-    double* A = malloc(rows * cols * sizeof(double));
-    if (!A) {
-      fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
-      rc = 1;
-    }
-    for (size_t e = 0; rc == 0 && e < cols; e++) {
-      const double* Qe = ra.rom->Qf + e * (size_t)mf;
-      const double W = ra.fe.model->fib_EA[e] * ra.fe.model->fib_L0[e];
-      size_t row = 0;
-      for (int i = 0; i < mf; i++) {
-        for (int j = 0; j <= i; j++) {
-          A[row++ * cols + e] = W * Qe[i] * Qe[j];
-        }
-      }
-    }
-    const size_t dims[2] = {rows, cols};
-    if (rc == 0 && cs_h5WriteDoubles(f, "/A_fibre_projection", 2, dims, A, &err) != CS_OK) {
-      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-      rc = 1;
-    }
-    free(A);
+    rc = writeOuterRows(f, "/A_fibre_projection", cnt[1], mf, ra.rom->Qf, ra.fe.model->fib_EA,
+                        ra.fe.model->fib_L0, 1.0);
   }
   if (f) {
     cs_h5AttrDouble(f, "/", "m", mp, &err);
