@@ -883,7 +883,8 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
 
 
 int csf_romElementForcesWidth(const csfRom* r, csfRomSet set) {
-  return r->n + (set == CSF_ROM_SET_TET ? r->m : 0);
+  return r->n + (set == CSF_ROM_SET_TET ? r->m : 0) +
+         (set == CSF_ROM_SET_FIBRE ? 4 * r->mf : 0);
 }
 
 /* The mixed model's Tet10 rows (csf_romElementForces): the unreduced model's p^ (every Tet10 at
@@ -940,8 +941,8 @@ static int mixedElementForces(const csfRom* r, csfRomData* d, double* G) {
 int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
                          double* G) {
   if (!r || !d || !load || !G || (int)set < 0 || set >= CSF_ROM_NSET || d->n != r->n ||
-      d->m != r->m || (set == CSF_ROM_SET_FIBRE && r->mf > 0)) {
-    return -1; /* the mixed fibres' ECSW rows are not built */
+      d->m != r->m) {
+    return -1;
   }
   const csfModel* m = r->fem;
   const csfMesh* me = m->mesh;
@@ -949,6 +950,9 @@ int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load,
   const int count[CSF_ROM_NSET] = {me->ntet, m->nfib, me->nface};
   if (set == CSF_ROM_SET_TET && r->m > 0) {
     return mixedElementForces(r, d, G);
+  }
+  if (set == CSF_ROM_SET_FIBRE && r->mf > 0) {
+    return csf_romFibreElementForces(r, d->q, G);
   }
   memset(G, 0, (size_t)count[set] * n * sizeof(double));
   for (int e = 0; e < count[set]; e++) {

@@ -210,12 +210,16 @@ int csf_romEvaluate(const csfRom* r, csfRomData* d, const csfRomLoad* load, int 
  * element's pressure p_e = P_e . p^ of the unreduced model (p^ = A^-1 b with A and b over every
  * Tet10 at weight 1), then the element's constraint share P_e (v_e - V_e) (mm^3 per unit p^):
  * the column sums are the unreduced r's Tet10 part and b, so weights fitted to both keep the
- * reduced pressures as well as the forces. Returns 0, > 0 if an element inverts, < 0 on bad
- * arguments or out of memory. */
+ * reduced pressures as well as the forces.
+ * Mixed fibres (mf > 0), fibre set: rows of n + 4 mf: each fibre's reduced force at the
+ * unreduced S*, then its shares W_f Q_f E_f and W_f Q_f S(Ebar_f) of the projections and of
+ * G's action on E^ and s^ (fem_rom_fibre.h derives the weighted model and why these rows).
+ * Returns 0, > 0 if an element inverts, < 0 on bad arguments or out of memory. */
 int csf_romElementForces(const csfRom* r, csfRomData* d, const csfRomLoad* load, csfRomSet set,
                          double* G);
 
-/* The row width of csf_romElementForces for `set`: n, or n + m for a mixed rom's Tet10s. */
+/* The row width of csf_romElementForces for `set`: n, n + m for a mixed rom's Tet10s, n + 4 mf
+ * for the fibres of a rom with a fibre strain basis. */
 int csf_romElementForcesWidth(const csfRom* r, csfRomSet set);
 
 /* Newton options of the reduced statics. */

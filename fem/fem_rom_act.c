@@ -328,6 +328,10 @@ csStatus csf_romActuatorFromModel(const csrActuator* act, const csfActuatorSpec*
   return finish(ra, err);
 }
 
+csStatus csf_romActuatorSetWeights(csfRomActuator* ra, const char* weights_path, csError* err) {
+  return readWeights(ra, weights_path, err);
+}
+
 void csf_romActuatorDestroy(csfRomActuator* ra) {
   csf_romDataDestroy(ra->d);
   csf_romDestroy(ra->rom);

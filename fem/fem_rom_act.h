@@ -71,6 +71,11 @@ csStatus csf_romActuatorCreate(const csrActuator* act, const csfActuatorSpec* sp
                                csfRomActuator* ra, csError* err);
 void csf_romActuatorDestroy(csfRomActuator* ra);
 
+/* Replace the kept elements and weights of every set the weights file holds (the others stay
+ * as they are): a leg file's every-element model hyper-reduced by another fit without its
+ * set-up (`crawlsim rom check --leg-file`). An error names the file and the cause. */
+csStatus csf_romActuatorSetWeights(csfRomActuator* ra, const char* weights_path, csError* err);
+
 /* The same from a reduced model built elsewhere, without gmsh (a leg file,
  * robot/rom/robot_rom_file.h): ra takes the mesh, the finalised FE model and the rom on it (its
  * weights, pressure basis and the twelve chambers' forms set); csf_romActuatorDestroy frees them,

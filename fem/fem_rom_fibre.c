@@ -30,14 +30,17 @@
 #include "fem_material.h"
 #include "fem_rom_mixed.h"
 
-csStatus csf_romFibreFactor(csfRom* r, csError* err) {
+/* G = sum_f W_f Q_f Q_f^T over the kept fibres and their weights (all = 0) or over every fibre
+ * at weight 1 (all = 1: the unreduced model's G, which the ECSW rows need) into its Cholesky
+ * factor L (mf x mf); CS_ERR_ARG when singular */
+static csStatus factorInto(const csfRom* r, int all, double* L, csError* err) {
   const csfModel* m = r->fem;
   const int mf = r->mf;
-  double* L = r->Gf_chol;
+  const int nk = all ? m->nfib : r->nel[CSF_ROM_SET_FIBRE];
   memset(L, 0, (size_t)mf * (size_t)mf * sizeof(double));
-  for (int k = 0; k < r->nel[CSF_ROM_SET_FIBRE]; k++) {
-    const int f = r->el[CSF_ROM_SET_FIBRE][k];
-    const double W = r->w[CSF_ROM_SET_FIBRE][k] * m->fib_EA[f] * m->fib_L0[f];
+  for (int k = 0; k < nk; k++) {
+    const int f = all ? k : r->el[CSF_ROM_SET_FIBRE][k];
+    const double W = (all ? 1.0 : r->w[CSF_ROM_SET_FIBRE][k]) * m->fib_EA[f] * m->fib_L0[f];
     const double* Q = r->Qf + (size_t)f * (size_t)mf;
     for (int i = 0; i < mf; i++) {
       for (int j = 0; j <= i; j++) {
@@ -48,9 +51,14 @@ csStatus csf_romFibreFactor(csfRom* r, csError* err) {
   const int j = csf_romCholesky(mf, L);
   if (j >= 0) {
     return cs_errorSet(err, CS_ERR_ARG, "fem_rom: fibre strain mode %d of %d has no support in "
-                       "the kept fibres (the fibre projection matrix is singular)", j, mf);
+                       "the %s fibres (the fibre projection matrix is singular)", j, mf,
+                       all ? "model's" : "kept");
   }
   return CS_OK;
+}
+
+csStatus csf_romFibreFactor(csfRom* r, csError* err) {
+  return factorInto(r, 0, r->Gf_chol, err);
 }
 
 csStatus csf_romSetFibreBasis(csfRom* r, int mf, const double* Q, csError* err) {
@@ -266,4 +274,91 @@ void csf_romFibreStates(const csfRom* r, csfRomData* d, double alpha) {
     const int f = r->el[CSF_ROM_SET_FIBRE][k];
     d->fib_S[f] = dot(mf, r->Qf + (size_t)f * (size_t)mf, sh);
   }
+}
+
+int csf_romFibreElementForces(const csfRom* r, const double* q, double* G) {
+  const csfModel* m = r->fem;
+  const int n = r->n, mf = r->mf, nf = m->nfib, wd = n + 4 * mf;
+  double* L = malloc((size_t)mf * (size_t)mf * sizeof(double));
+  double* E = malloc((size_t)(nf > 0 ? nf : 1) * 4 * sizeof(double)); /* E, then the chords */
+  double* eh = calloc(2 * (size_t)mf, sizeof(double));
+  csError err;
+  if (!L || !E || !eh || factorInto(r, 1, L, &err) != CS_OK) {
+    free(L), free(E), free(eh);
+    return -1;
+  }
+  double* dch = E + nf;
+  for (int f = 0; f < nf; f++) {
+    const int* fv = m->fib_node + 20 * (size_t)f;
+    const double* c = m->fib_coef + 20 * (size_t)f;
+    double* d = dch + 3 * (size_t)f;
+    d[0] = d[1] = d[2] = 0.0;
+    /* d = sum_a c_a (X_a + V_a q) over all 20 coefficients (fibreOperators in fem_rom.c) */
+    for (int a = 0; a < 20; a++) {
+      if (c[a] == 0.0) {
+        continue;
+      }
+      for (int i = 0; i < 3; i++) {
+        const double* row = r->V + (size_t)(3 * fv[a] + i) * (size_t)n;
+        d[i] += c[a] * (m->mesh->x[3 * fv[a] + i] + dot(n, row, q));
+      }
+    }
+    const double L0 = m->fib_L0[f];
+    E[f] = 0.5 * ((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (L0 * L0) - 1.0);
+  }
+  /* the unreduced projections: E^ = G^-1 sum_f W_f Q_f E_f, then s^ = G^-1 sum W Q S(Ebar) */
+  double* sh = eh + mf;
+  for (int f = 0; f < nf; f++) {
+    const double c = m->fib_EA[f] * m->fib_L0[f] * E[f];
+    const double* Q = r->Qf + (size_t)f * (size_t)mf;
+    for (int i = 0; i < mf; i++) {
+      eh[i] += c * Q[i];
+    }
+  }
+  csf_romMixedSolveWith(mf, L, eh);
+  memset(G, 0, (size_t)nf * (size_t)wd * sizeof(double));
+  for (int f = 0; f < nf; f++) {
+    const double W = m->fib_EA[f] * m->fib_L0[f];
+    const double* Q = r->Qf + (size_t)f * (size_t)mf;
+    double* row = G + (size_t)f * wd;
+    double S, dS;
+    const double Eb = dot(mf, Q, eh);
+    csf_fibreLaw(m->fib_tension_only, Eb, &S, &dS);
+    for (int i = 0; i < mf; i++) {
+      row[n + i] = W * Q[i] * E[f];          /* its share of sum W Q E (N) */
+      row[n + mf + i] = W * Q[i] * S;        /* its share of sum W Q S(Ebar) (N) */
+      row[n + 2 * mf + i] = W * Q[i] * Eb;   /* its share of G E^ (N) */
+      sh[i] += row[n + mf + i];
+    }
+  }
+  csf_romMixedSolveWith(mf, L, sh);
+  for (int f = 0; f < nf; f++) { /* its share of G s^ (N) */
+    const double* Q = r->Qf + (size_t)f * (size_t)mf;
+    const double c = m->fib_EA[f] * m->fib_L0[f] * dot(mf, Q, sh);
+    for (int i = 0; i < mf; i++) {
+      G[(size_t)f * wd + n + 3 * mf + i] = c * Q[i];
+    }
+  }
+  /* each fibre's reduced force at the unreduced S*_f: V_f^T (c (x) EA S*_f d_f / L0) */
+  for (int f = 0; f < nf; f++) {
+    const int* fv = m->fib_node + 20 * (size_t)f;
+    const double* c = m->fib_coef + 20 * (size_t)f;
+    const double* d = dch + 3 * (size_t)f;
+    const double t = m->fib_EA[f] * dot(mf, r->Qf + (size_t)f * (size_t)mf, sh) / m->fib_L0[f];
+    double* row = G + (size_t)f * wd;
+    for (int a = 0; a < 20; a++) {
+      if (c[a] == 0.0) {
+        continue;
+      }
+      for (int i = 0; i < 3; i++) {
+        const double fi = c[a] * t * d[i];
+        const double* vr = r->V + (size_t)(3 * fv[a] + i) * (size_t)n;
+        for (int j = 0; j < n; j++) {
+          row[j] += fi * vr[j];
+        }
+      }
+    }
+  }
+  free(L), free(E), free(eh);
+  return 0;
 }

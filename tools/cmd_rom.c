@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "cmd_fe_threads.h"
 #include "core_math.h"
@@ -25,6 +26,7 @@
 #include "fem_rom_act.h"
 #include "fem_rom_snap.h"
 #include "robot_actuator.h"
+#include "robot_rom_file.h"
 
 /* `crawlsim rom` and `crawlsim rom --help`: the subcommands (each has its own --help) */
 static const char kUsage[] =
@@ -66,8 +68,12 @@ static const csxOptTable kSnapTable = {
 
 static const csxOpt kCheckOpts[] = {
     {"--snapshots", "DIR", NULL, "the snapshot directory of crawlsim rom snapshots (required)"},
-    {"--basis", "BASIS.h5", NULL, "the reduced basis of tools/rom_basis.py (required)"},
-    {"--weights", "W.h5", "none: every element",
+    {"--basis", "BASIS.h5", NULL,
+     "the reduced basis of tools/rom_basis.py (required unless --leg-file)"},
+    {"--leg-file", "LEG.h5", "none",
+     "the reduced model of a leg file (crawlsim rom leg-file) instead of --basis: no gmsh and "
+     "no chamber forms to compute; --weights then replace its sets' weights"},
+    {"--weights", "W.h5", "none: every element (or the leg file's)",
      "the element weights of tools/rom_ecsw.py (the hyper-reduction)"},
     {"--ray", "NAME", "the held-out rays (kind test)",
      "check this ray (repeatable; one of crawlsim rom snapshots --list)"},
@@ -96,6 +102,9 @@ static const csxOpt kEcswOpts[] = {
     {"--stride", "K", "1",
      "every K-th training snapshot only (1 .. 64): the rows grow with the snapshots times the "
      "basis size, the matrices with the elements besides"},
+    {"--only", "SET", "both: tet and fibre",
+     "write this element set's matrices only (tet or fibre): a set's fit does not need the "
+     "other's"},
     ROM_OPT_ACTUATOR,
     ROM_OPT_SET,
 };
@@ -107,7 +116,10 @@ static const csxOptTable kEcswTable = {
     "/A_fibre; the chambers' pressure loads are exact and not fitted), for tools/rom_ecsw.py's "
     "NNLS. A mixed basis (pressure modes P, m of them) adds to each snapshot's Tet10 rows the "
     "element's constraint share P_e (v_e - V_e), and /A_tet_pressure holds each Tet10's share of "
-    "the pressure matrix, so that the weights keep the reduced pressures.",
+    "the pressure matrix, so that the weights keep the reduced pressures. A fibre strain basis "
+    "(Qf, mf modes) adds to each snapshot's fibre rows the fibre's shares W_f Q_f E_f and W_f "
+    "Q_f S(Ebar_f), and /A_fibre_projection holds each fibre's share of the projection matrix "
+    "G = sum W_f Q_f Q_f^T (fem/fem_rom_fibre.h).",
     kEcswOpts, CSX_NOPT(kEcswOpts), NULL};
 
 
@@ -378,7 +390,7 @@ static int cmdSnapshots(int argc, char** argv) {
 
 /* one ray of the reduced model against the FE's file; returns the worst errors */
 typedef struct CheckErr_ {
-  double bend_deg, bend_rel, tip_mm, vol_rel, wall;
+  double bend_deg, bend_rel, tip_mm, vol_rel, wall, cpu; /* cpu: the process's (clock()), s */
   long newton; /* reduced Newton iterations of the ray */
   int ok, failed;
 } CheckErr;
@@ -418,6 +430,7 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
   memset(ra->tip_force, 0, sizeof ra->tip_force);
   memset(ra->q_conv, 0, (size_t)ra->rom->n * sizeof(double));
   const double t0 = csu_wallSeconds();
+  const clock_t c0 = clock();
   const long it0 = ra->n_newton;
   ce->ok = 1;
   for (int k = 0; k < sf->m; k++) {
@@ -480,11 +493,53 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
            sf->vol[k][qw] / v0, 100 * (vol[qw] - sf->vol[k][qw]) / (sf->vol[k][qw] - v0));
   }
   ce->wall = csu_wallSeconds() - t0;
+  ce->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
   ce->newton = ra->n_newton - it0;
+}
+
+/* the reduced actuator from a leg file (as bend --model rom --rom-file), its weights replaced
+ * by those of `weights` (may be NULL); 1 after one error line */
+static int openLegFile(const char* actname, const char* const* sets, int nset, const char* path,
+                       const char* weights, csrActuator* act, csfRomActuator* ra) {
+  if (actuatorFromArgs(actname, sets, nset, 0, act)) {
+    return 1;
+  }
+  csError err;
+  cs_errorClear(&err);
+  csrRomLegFile lf;
+  csStatus st = csr_romLegFileRead(path, &lf, &err);
+  if (st == CS_OK) {
+    st = csr_romLegFileCheckActuator(&lf, path, act, &err);
+  }
+  if (st == CS_OK) {
+    csfActuatorSpec spec = csf_actuatorSpecDefault();
+    for (int s = 0; s < CSR_NSEG; s++) {
+      for (int j = 0; j < CSR_NCHAMBER; j++) {
+        spec.ratio[s][j] = 1.0;
+      }
+    }
+    spec.mesh_size = lf.l_soft;
+    spec.mesh_symmetric = 1;
+    csfMesh* me = lf.mesh;
+    csfModel* m = lf.model;
+    csfRom* rom = lf.rom;
+    lf.mesh = NULL, lf.model = NULL, lf.rom = NULL; /* ra owns them from here */
+    st = csf_romActuatorFromModel(act, &spec, me, m, rom, path, ra, &err);
+    if (st == CS_OK && weights && (st = csf_romActuatorSetWeights(ra, weights, &err)) != CS_OK) {
+      csf_romActuatorDestroy(ra);
+    }
+  }
+  csr_romLegFileFree(&lf);
+  if (st != CS_OK) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
 }
 
 static int cmdCheck(int argc, char** argv) {
   const char* dir = NULL, *basis = NULL, *weights = NULL, *actname = "leg", *sdir = NULL;
+  const char* legf = NULL;
   const char* sets[CSX_ROM_MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, all = 0;
@@ -506,6 +561,8 @@ static int cmdCheck(int argc, char** argv) {
       dir = v;
     } else if (csx_optIs(it.opt, "--basis")) {
       basis = v;
+    } else if (csx_optIs(it.opt, "--leg-file")) {
+      legf = v;
     } else if (csx_optIs(it.opt, "--weights")) {
       weights = v;
     } else if (csx_optIs(it.opt, "--states")) {
@@ -521,16 +578,19 @@ static int cmdCheck(int argc, char** argv) {
       return 1;
     }
   }
-  if (!dir || !basis) {
-    fprintf(stderr, "crawlsim rom: check needs --snapshots DIR and --basis FILE\n");
+  if (!dir || !basis == !legf) {
+    fprintf(stderr, "crawlsim rom: check needs --snapshots DIR and --basis FILE (or --leg-file "
+            "FILE instead of --basis)\n");
     return 1;
   }
   csrActuator act;
   csfRomActuator ra;
   const double t0 = csu_wallSeconds();
-  if (csx_romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
+  if (legf ? openLegFile(actname, sets, nset, legf, weights, &act, &ra)
+           : csx_romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
     return 1;
   }
+  basis = legf ? legf : basis;
   const double L = act.S[0] + act.S[1] + act.S[2] + act.LS[0] + act.LS[1];
   printf("crawlsim rom: check: basis %s (n = %d, m = %d pressure modes, mf = %d fibre strain "
          "modes), weights %s: %d of %d Tet10, %d of %d fibre elements, %d of %d faces (set-up "
@@ -575,12 +635,13 @@ static int cmdCheck(int argc, char** argv) {
     fe_wall += sf.wall;
     rom_wall += ce.wall;
     printf("crawlsim rom: ray %-10s (%s): worst bend %.3g deg (%.3g %%), tip %.3g mm (%.3g %% of "
-           "L), volumes %.3g %%: %s; reduced %.2f s (%ld Newton iterations, %.3g ms each), FE "
-           "%.0f s\n", sf.ray.name,
+           "L), volumes %.3g %%: %s; reduced %.2f s (%ld Newton iterations, %.3g ms each; CPU "
+           "%.2f s, %.3g ms each), FE %.0f s\n", sf.ray.name,
            sf.ray.kind == CSF_ROM_TEST ? "held out" : "trained", ce.bend_deg, 100 * ce.bend_rel,
            ce.tip_mm, 100 * ce.tip_mm / L, 100 * ce.vol_rel,
            ce.failed ? "FAILED to solve" : ce.ok ? "within the targets" : "outside the targets",
-           ce.wall, ce.newton, ce.newton > 0 ? 1e3 * ce.wall / (double)ce.newton : NAN, sf.wall);
+           ce.wall, ce.newton, ce.newton > 0 ? 1e3 * ce.wall / (double)ce.newton : NAN, ce.cpu,
+           ce.newton > 0 ? 1e3 * ce.cpu / (double)ce.newton : NAN, sf.wall);
   }
   printf("crawlsim rom: %d rays checked, %d within the targets; reduced %.1f s against the FE's "
          "%.0f s (x%.0f; the FE's under its own run's load)\n", nrun, nok, rom_wall, fe_wall,
@@ -590,11 +651,43 @@ static int cmdCheck(int argc, char** argv) {
 }
 
 
+/* a constant matrix's element shares, e.g. the pressure matrix sum_e (V_e / kappa) P_e P_e^T:
+ * column e (of cols) holds the lower triangle of c_e B_e B_e^T, B_e row e of B (cols x m),
+ * c_e = scale x[e] (y ? y[e] : 1), into dataset `name`; 0, or 1 after one error line */
+static int writeOuterRows(csH5File* f, const char* name, int cols_i, int m, const double* B,
+                          const double* x, const double* y, double scale) {
+  const size_t rows = (size_t)m * (size_t)(m + 1) / 2, cols = (size_t)cols_i;
+  double* A = malloc(rows * cols * sizeof(double) + 1);
+  if (!A) {
+    fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
+    return 1;
+  }
+  for (size_t e = 0; e < cols; e++) {
+    const double* Be = B + e * (size_t)m;
+    const double c = scale * x[e] * (y ? y[e] : 1.0);
+    size_t row = 0;
+    for (int i = 0; i < m; i++) {
+      for (int j = 0; j <= i; j++) {
+        A[row++ * cols + e] = c * Be[i] * Be[j];
+      }
+    }
+  }
+  const size_t dims[2] = {rows, cols};
+  csError err;
+  cs_errorClear(&err);
+  const int rc = cs_h5WriteDoubles(f, name, 2, dims, A, &err) != CS_OK;
+  if (rc) {
+    fprintf(stderr, "crawlsim rom: %s\n", err.msg);
+  }
+  free(A);
+  return rc;
+}
+
 /* the element force matrices of the ECSW fit (tools/rom_ecsw.py) */
 static int cmdEcswMatrix(int argc, char** argv) {
   const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
   const char* sets[CSX_ROM_MAX_SETS];
-  int nset = 0, stride = 1;
+  int nset = 0, stride = 1, only = -1;
   csxOptIter it;
   csx_optBegin(&it);
   for (csxOptKind k; (k = csx_optNext(&kEcswTable, argc, argv, &it)) != CSX_OPT_END;) {
@@ -622,6 +715,12 @@ static int cmdEcswMatrix(int argc, char** argv) {
         return 1;
       }
       stride = (int)d;
+    } else if (csx_optIs(it.opt, "--only")) {
+      only = !strcmp(v, "tet") ? CSF_ROM_SET_TET : !strcmp(v, "fibre") ? CSF_ROM_SET_FIBRE : -2;
+      if (only == -2) {
+        fprintf(stderr, "crawlsim rom: --only '%s': expected tet or fibre\n", v);
+        return 1;
+      }
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--set") &&
@@ -664,6 +763,9 @@ static int cmdEcswMatrix(int argc, char** argv) {
   /* the bodies and the fibres; the chambers' faces are in closed form (csf_romChamberTensors:
    * exact), so the face set is not fitted */
   for (int s = 0; s < CSF_ROM_SET_FACE && rc == 0; s++) {
+    if (only >= 0 && s != only) {
+      continue;
+    }
     const int wd = csf_romElementForcesWidth(ra.rom, (csfRomSet)s);
     const size_t rows = (size_t)ns * (size_t)wd, cols = (size_t)cnt[s];
     double* A = malloc(rows * cols * sizeof(double));
@@ -697,32 +799,20 @@ static int cmdEcswMatrix(int argc, char** argv) {
   /* the mixed model's pressure matrix A = sum_e w_e (V_e / kappa) P_e P_e^T, per element (its
    * lower triangle, mm^3/MPa; constant in q): weights fitted to it as well keep p^ = A^-1 b */
   const int mp = ra.rom->m;
-  if (mp > 0 && rc == 0) {
-    const size_t rows = (size_t)mp * (size_t)(mp + 1) / 2, cols = (size_t)cnt[0];
-    double* A = malloc(rows * cols * sizeof(double));
-    if (!A) {
-      fprintf(stderr, "crawlsim rom: out of memory (%zu x %zu)\n", rows, cols);
-      rc = 1;
-    }
-    for (size_t e = 0; rc == 0 && e < cols; e++) {
-      const double* Pe = ra.rom->P + e * (size_t)mp;
-      const double c = ra.fe.model->vol[e] / ra.fe.model->mat.kappa;
-      size_t row = 0;
-      for (int i = 0; i < mp; i++) {
-        for (int j = 0; j <= i; j++) {
-          A[row++ * cols + e] = c * Pe[i] * Pe[j];
-        }
-      }
-    }
-    const size_t dims[2] = {rows, cols};
-    if (rc == 0 && cs_h5WriteDoubles(f, "/A_tet_pressure", 2, dims, A, &err) != CS_OK) {
-      fprintf(stderr, "crawlsim rom: %s\n", err.msg);
-      rc = 1;
-    }
-    free(A);
+  if (mp > 0 && rc == 0 && only != CSF_ROM_SET_FIBRE) {
+    rc = writeOuterRows(f, "/A_tet_pressure", cnt[0], mp, ra.rom->P, ra.fe.model->vol, NULL,
+                        1.0 / ra.fe.model->mat.kappa);
+  }
+  /* the fibre projection matrix G = sum_f W_f Q_f Q_f^T, per fibre (its lower triangle, N;
+   * constant in q): weights fitted to it keep E^ and S* (fem/fem_rom_fibre.h) */
+  const int mf = ra.rom->mf;
+  if (mf > 0 && rc == 0 && only != CSF_ROM_SET_TET) {
+    rc = writeOuterRows(f, "/A_fibre_projection", cnt[1], mf, ra.rom->Qf, ra.fe.model->fib_EA,
+                        ra.fe.model->fib_L0, 1.0);
   }
   if (f) {
     cs_h5AttrDouble(f, "/", "m", mp, &err);
+    cs_h5AttrDouble(f, "/", "mf", mf, &err);
     cs_h5AttrString(f, "/", "format", "crawlsim-rom-ecsw-matrix 1", &err);
     cs_h5AttrString(f, "/", "basis", basis, &err);
     cs_h5AttrDouble(f, "/", "n", n, &err);
@@ -735,8 +825,9 @@ static int cmdEcswMatrix(int argc, char** argv) {
   }
   if (rc == 0) {
     printf("crawlsim rom: ecsw-matrix: %d snapshots (of %d, stride %d) x %d coordinates (%d "
-           "pressure modes) over %d Tet10 and %d fibre elements -> %s\n", ns, ns_all, stride, n,
-           mp, cnt[0], cnt[1], out);
+           "pressure modes, %d fibre strain modes) over %d Tet10 and %d fibre elements (%s) "
+           "-> %s\n", ns, ns_all, stride, n, mp, mf, cnt[0], cnt[1],
+           only < 0 ? "both sets" : only == 0 ? "the Tet10s only" : "the fibres only", out);
   }
   free(q), free(p), free(g), free(F);
   csf_romActuatorDestroy(&ra);

@@ -22,6 +22,15 @@ A mixed basis (attribute m > 0: pressure modes, fem/fem_rom.h csfRom.m): each sn
 rows also hold the elements' constraint shares P_e (v_e - V_e), and /A_tet_pressure each Tet10's
 share of the pressure matrix A; both are fitted with the forces (each its own unit-norm block),
 so the hyper-reduced p^ = A_w^-1 b_w stays the unreduced one on the training states.
+A fibre strain basis (attribute mf > 0, fem/fem_rom_fibre.h): each snapshot's fibre rows also
+hold the fibres' shares W_f Q_f E_f and W_f Q_f S(Ebar_f) of the projections and of G's action
+on that state's E^ and s^, and /A_fibre_projection each fibre's share of G = sum W Q Q^T;
+fitted the same way (forces, the four shares per snapshot and G once, each its own unit-norm
+block), so the weighted E^ and S* stay the unreduced ones on the training states. G's
+mf (mf + 1) / 2 rows (7 260 at mf = 120) can outnumber the snapshots' rows and set the fit's
+cost: --no-projection leaves them out and relies on G's action at the training states.
+With several --tol, each weights file is written as soon as every set has reached its
+tolerance (the larger tolerances' files exist while the pass goes on to the smallest).
 """
 import argparse
 import os
@@ -49,33 +58,58 @@ def main():
                     help="fit only these element sets (repeatable; default every set in the "
                     "matrix): a set left out is absent from the weights file, every element "
                     "of it kept at weight 1 (fem/fem_rom_act.h)")
+    ap.add_argument("--no-projection", action="store_true",
+                    help="leave /A_fibre_projection (G's entries) out of the fibre fit: the "
+                    "snapshots' rows of G's action on their E^ and s^ remain")
     a = ap.parse_args()
     tols = sorted(set(a.tol or [1e-3]), reverse=True)
     out = a.out or os.path.join(os.path.dirname(a.matrix) or ".", "weights.h5")
     outs = {tols[0]: out} if len(tols) == 1 else {
         t: f"{os.path.splitext(out)[0]}_tol{t:g}.h5" for t in tols}
     res = {t: {} for t in tols}
+
+    def write(t):
+        with h5py.File(outs[t], "w") as f:
+            f.attrs["format"] = "crawlsim-rom-weights 1"
+            f.attrs["tol"] = t
+            f.attrs["matrix"] = os.path.abspath(a.matrix)
+            for key, (idx, w, rel, ncol) in res[t].items():
+                f[f"{key}_id"] = idx.astype(float)
+                f[f"{key}_w"] = w
+                f.attrs[f"{key}_kept"] = len(idx)
+                f.attrs[f"{key}_candidates"] = ncol
+                f.attrs[f"{key}_residual"] = rel
+        print(f"rom_ecsw: {outs[t]}", flush=True)
+
     with h5py.File(a.matrix, "r") as f:
         n = int(f.attrs["n"])
         ns = int(f.attrs["nsnap"])
         mp = int(f.attrs["m"]) if "m" in f.attrs else 0
-        for key, name in (("tet", "A_tet"), ("fibre", "A_fibre"), ("face", "A_face")):
-            if name not in f:
-                continue  # the chambers' faces: in closed form on the C side, not fitted
-            if a.set and key not in a.set:
-                continue
-            A = f[name][...]
-            # a mixed basis: each snapshot's Tet10 rows are n forces and m constraint shares
-            blocks = [n, mp] if key == "tet" and mp > 0 else [n]
+        mfib = int(f.attrs["mf"]) if "mf" in f.attrs else 0
+        todo = [(key, name) for key, name in (("tet", "A_tet"), ("fibre", "A_fibre"),
+                                              ("face", "A_face"))
+                if name in f and not (a.set and key not in a.set)]
+        for key, name in todo:
+            # the chambers' faces are in closed form on the C side, not fitted
+            # a mixed basis: each snapshot's Tet10 rows are n forces and m constraint shares,
+            # with a fibre strain basis its fibre rows n forces and four blocks of mf shares
+            blocks = ([n, mp] if key == "tet" and mp > 0 else
+                      [n, mfib, mfib, mfib, mfib] if key == "fibre" and mfib > 0 else [n])
             wd = sum(blocks)
-            if key == "tet" and mp > 0:
-                # and the pressure matrix A = sum_e (V_e/kappa) P_e P_e^T, once (constant in q)
-                A = np.vstack([A, f["A_tet_pressure"][...]])
-                blocks_extra = A.shape[0] - ns * wd
-            else:
-                blocks_extra = 0
+            # and the constant matrix, once: the pressure matrix A = sum_e (V_e/kappa) P_e P_e^T
+            # or the fibre projection G = sum_f W_f Q_f Q_f^T
+            extra = ("A_tet_pressure" if key == "tet" and mp > 0 else
+                     "A_fibre_projection" if key == "fibre" and mfib > 0 and
+                     not a.no_projection else None)
+            r0, nc = f[name].shape
+            blocks_extra = f[extra].shape[0] if extra else 0
+            A = np.empty((r0 + blocks_extra, nc))  # one copy in memory (GB for the fibres)
+            f[name].read_direct(A, dest_sel=np.s_[:r0])
+            if extra:
+                f[extra].read_direct(A, dest_sel=np.s_[r0:])
             cols = np.flatnonzero(np.abs(A).sum(axis=0) > 0)  # faces never loaded drop out
-            A = A[:, cols]
+            if len(cols) < nc:
+                A = A[:, cols]
             b = A.sum(axis=1)
             # each snapshot's block of forces (and of constraint shares) at unit norm, so every
             # snapshot counts alike and forces (N) and volumes (mm^3) are commensurate; the
@@ -94,10 +128,17 @@ def main():
                     A[lo:hi] /= s
                     b[lo:hi] /= s
             t0, c0 = time.time(), time.process_time()
-            w, rel, path = nnls_chol(
-                A, b, tols[-1], record=tols, on_record=lambda t, e, key=key: print(
-                    f"rom_ecsw: {key}: reached tol {t:g}: {e[2]} kept, {e[3]:.1f} s "
-                    f"({e[4]:.1f} s of CPU)", flush=True))
+            last = key == todo[-1][0]
+
+            def reached(t, e, key=key, cols=cols, ncol=A.shape[1], last=last):
+                sel = np.flatnonzero(e[0] > 0)
+                res[t][key] = (cols[sel], e[0][sel], e[1], ncol)
+                print(f"rom_ecsw: {key}: reached tol {t:g}: {e[2]} kept, {e[3]:.1f} s "
+                      f"({e[4]:.1f} s of CPU)", flush=True)
+                if last and t != tols[-1]:
+                    write(t)  # every set has its weights at t: the file exists from now on
+
+            w, rel, path = nnls_chol(A, b, tols[-1], record=tols, on_record=reached)
             for t in tols:
                 wt, relt, _, sec, cpu = path.get(
                     t, (w, rel, 0, time.time() - t0, time.process_time() - c0))
@@ -106,18 +147,10 @@ def main():
                 print(f"rom_ecsw: {key} ({A.shape[0]} rows): tol {t:g}: {len(sel)} of "
                       f"{A.shape[1]} elements kept, relative residual {relt:.2e}, {sec:.1f} s "
                       f"({cpu:.1f} s of CPU)", flush=True)
+            del A
     for t in tols:
-        with h5py.File(outs[t], "w") as f:
-            f.attrs["format"] = "crawlsim-rom-weights 1"
-            f.attrs["tol"] = t
-            f.attrs["matrix"] = os.path.abspath(a.matrix)
-            for key, (idx, w, rel, ncol) in res[t].items():
-                f[f"{key}_id"] = idx.astype(float)
-                f[f"{key}_w"] = w
-                f.attrs[f"{key}_kept"] = len(idx)
-                f.attrs[f"{key}_candidates"] = ncol
-                f.attrs[f"{key}_residual"] = rel
-        print(f"rom_ecsw: {outs[t]}")
+        if t == tols[-1] or len(tols) == 1 or t not in path:
+            write(t)  # the smallest, and any the pass ended before reaching
 
 
 if __name__ == "__main__":

@@ -248,6 +248,20 @@ csStatus csr_romLegFileRead(const char* path, csrRomLegFile* lf, csError* err) {
     st = w ? csf_romSetWeights(lf->rom, (csfRomSet)s, (int)ne, id, w, err) : err->status;
     free(id), free(w);
   }
+  /* the mixed fibre field (absent: the FE's fibres), factored over the kept fibres */
+  if (st == CS_OK && cs_h5ReaderHas(r, "/Qf")) {
+    size_t dq[4] = {0, 0, 0, 0};
+    const size_t wq[2] = {(size_t)fm->nfib, 0};
+    double* Q = cs_h5ReaderDoubles(r, "/Qf", 2, wq, dq, NULL, err);
+    st = Q ? csf_romSetFibreBasis(lf->rom, (int)dq[1], Q, err) : err->status;
+    if (st != CS_OK && Q) {
+      /* a one-line cause naming the file (not finite, or a mode without kept fibres) */
+      char why[sizeof err->msg];
+      snprintf(why, sizeof why, "%s", err->msg);
+      st = cs_errorSet(err, CS_ERR_IO, "%s: /Qf: %s", path, why);
+    }
+    free(Q);
+  }
   /* the chambers' cubic forms, as csf_romChamberTensors leaves them */
   if (st == CS_OK) {
     const int nch = 12;
@@ -386,10 +400,6 @@ csStatus csr_romLegFileWrite(const char* out, const csfRom* rom, int nsole, cons
   const csfModel* fm = rom->fem;
   const csfMesh* me = fm->mesh;
   const size_t n = (size_t)rom->n, nd = (size_t)fm->ndof;
-  if (rom->mf > 0) { /* the format has no fibre strain basis (fem_rom.h csfRom.mf) yet */
-    return cs_errorSet(err, CS_ERR_ARG, "%s: the basis has a fibre strain basis (mf = %d), which "
-                       "a leg file does not carry", out, rom->mf);
-  }
   csH5File* f = cs_h5Create(out, err);
   if (!f) {
     return err->status;
@@ -436,6 +446,10 @@ csStatus csr_romLegFileWrite(const char* out, const csfRom* rom, int nsole, cons
     const size_t dp[2] = {(size_t)me->ntet, (size_t)rom->m};
     st = cs_h5WriteDoubles(f, "/P", 2, dp, rom->P, err);
   }
+  if (rom->mf > 0 && st == CS_OK) { /* the mixed fibre field's strain basis (csfRom.mf) */
+    const size_t dq[2] = {(size_t)fm->nfib, (size_t)rom->mf};
+    st = cs_h5WriteDoubles(f, "/Qf", 2, dq, rom->Qf, err);
+  }
   /* the kept elements and their weights, every set (all of them at 1 without weights) */
   static const char* const kId[CSF_ROM_NSET] = {"/weights/tet_id", "/weights/fibre_id",
                                                 "/weights/face_id"};
@@ -480,6 +494,7 @@ csStatus csr_romLegFileWrite(const char* out, const csfRom* rom, int nsole, cons
   if (st == CS_OK) st = cs_h5AttrString(f, "/", "weights", weights ? weights : "", err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "n", (double)n, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "m", rom->m, err);
+  if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "mf", rom->mf, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "fe_mesh_size_mm", l_soft, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "C10", fm->mat.C10, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "C20", fm->mat.C20, err);

@@ -12,13 +12,14 @@
  *   (fem_model.h; absent: no fibres);
  *   /V [3 nnode, n] (the basis, hip frame: the clamped face at z = 0, the leg along +z, the
  *   chambers' layout in x, y as docs/reference.md's e1, e2); /P [ntet, m] (the mixed model's
- *   element pressure basis, when m > 0);
+ *   element pressure basis, when m > 0); /Qf [nfib, mf] (the mixed fibre field's strain
+ *   basis, fem_rom.h csfRom.mf; absent: the FE's fibres; factored over the kept fibres);
  *   /weights/{tet,fibre,face}_{id,w}: the kept elements of each set and their weights;
  *   /chambers/face_ch [nface] (0..11 = 4 s + j, -1), /chambers/V0 [12] mm^3,
  *   /chambers/g0 [12, n], /chambers/H [12, n + 1, n, n] (fem_rom.h csfRom's cubic forms);
  *   /sole [nsole] the tip face's nodes; /actuator [na] the actuator's parameters in
  *   csr_actuatorVisit's order, named by the attribute actuator_names (comma-separated);
- *   attributes format, n, m, C10, C20, kappa, kappa_pt, rho, form, fib_tension_only,
+ *   attributes format, n, m, mf, C10, C20, kappa, kappa_pt, rho, form, fib_tension_only,
  *   fib_geo_tension, fib_split, mass_t, fe_mesh_size_mm, basis, weights, status ("complete").
  * Units: mm, MPa, N, t. */
 #ifndef CS_ROBOT_ROM_FILE_H
@@ -56,10 +57,10 @@ typedef struct csrRomLegFile_ {
 csStatus csr_romLegFileRead(const char* path, csrRomLegFile* lf, csError* err);
 void csr_romLegFileFree(csrRomLegFile* lf); /* NULL-safe; leaves *lf zeroed */
 
-/* Write the file of `rom` (its FE model and mesh, weights, pressure basis and the twelve
- * chambers' forms: csf_romChamberTensors with nch = 12), the sole's nodes, the actuator it was
- * built for, the mesh size and the names of the basis and weights files (information; may be
- * NULL). The file is complete on CS_OK (attribute status "complete"). */
+/* Write the file of `rom` (its FE model and mesh, weights, pressure and fibre strain bases and
+ * the twelve chambers' forms: csf_romChamberTensors with nch = 12), the sole's nodes, the
+ * actuator it was built for, the mesh size and the names of the basis and weights files
+ * (information; may be NULL). The file is complete on CS_OK (attribute status "complete"). */
 csStatus csr_romLegFileWrite(const char* path, const csfRom* rom, int nsole, const int* sole,
                              const csrActuator* act, double l_soft, const char* basis,
                              const char* weights, csError* err);

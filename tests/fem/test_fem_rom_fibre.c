@@ -42,6 +42,14 @@ static double maxAbs(int k, const double* a) {
   return s;
 }
 
+static double vecDot(int k, const double* a, const double* b) {
+  double s = 0;
+  for (int i = 0; i < k; i++) {
+    s += a[i] * b[i];
+  }
+  return s;
+}
+
 static double maxAbsDiff(int k, const double* a, const double* b) {
   double s = 0;
   for (int i = 0; i < k; i++) {
@@ -269,9 +277,175 @@ static void test_snapshots_come_back_with_a_fibre_basis(void) {
   rtBoxDestroy(&b);
 }
 
+/* The weighted fibre model and its ECSW rows (fem_rom_fibre.h): the rows' column sums are the
+ * unreduced fibre residual, G E^ and G s^; every fibre at weight 1 in another order is the
+ * unreduced model; weights 1 + z with z in the null space of the rows (and of G's entries) keep
+ * r exactly, the same size of perturbation outside it does not (what a fit to these rows buys);
+ * on a sparse weighted set K is r's derivative and symmetric */
+static void test_mixed_fibre_ecsw_rows_and_weighted_model(void) {
+  RtBox b;
+  rtBoxCreate(&b, 4, 6.0, 50.0, 1, 3);
+  const csfModel* m = b.m;
+  const int n = 5, nf = m->nfib, mf = 3, wd = n + 4 * mf, ng = mf * (mf + 1) / 2;
+  double* V = randomBasis(&b, n, 5);
+  csError err = {0};
+  csfRom* r = csf_romCreate(m, n, V, &err);
+  CS_EXPECT(csf_romSetWeights(r, CSF_ROM_SET_TET, 0, NULL, NULL, &err) == CS_OK); /* fibres only */
+  double* Q = malloc((size_t)nf * mf * sizeof(double));
+  srand(9);
+  for (int i = 0; i < nf * mf; i++) {
+    Q[i] = (double)rand() / RAND_MAX - 0.3;
+  }
+  CS_EXPECT(csf_romSetFibreBasis(r, mf, Q, &err) == CS_OK);
+  CS_EXPECT(csf_romElementForcesWidth(r, CSF_ROM_SET_FIBRE) == wd);
+  csfRomData* d = csf_romDataCreate(r, &err);
+  d->sync = 1;
+  const double q[5] = {1.2, 0.7, -0.4, 0.3, 0.9};
+  memcpy(d->q, q, sizeof q);
+  csfRomLoad ld = {NULL, {0, 0, 0}, NULL}; /* r is the fibres' internal force */
+  CS_EXPECT(csf_romEvaluate(r, d, &ld, 1) == 0);
+  double r_all[5], K_all[25], eh[3], sh[3];
+  memcpy(r_all, d->r, sizeof r_all);
+  memcpy(K_all, d->K, sizeof K_all);
+  memcpy(eh, d->fq_e, sizeof eh);
+  memcpy(sh, d->fq_e + mf, sizeof sh);
+  double taut = 0;
+  for (int f = 0; f < nf; f++) {
+    taut += d->fib_E[f] > CSF_FIBRE_SLACK;
+  }
+  double* G = malloc((size_t)nf * wd * sizeof(double));
+  CS_EXPECT(csf_romElementForces(r, d, &ld, CSF_ROM_SET_FIBRE, G) == 0);
+  /* column sums against the model: r, and G E^, G s^ with G from its definition */
+  double sum[17] = {0}, ref[17] = {0};
+  memcpy(ref, r_all, sizeof r_all);
+  for (int f = 0; f < nf; f++) {
+    const double W = m->fib_EA[f] * m->fib_L0[f];
+    const double* Qf = Q + (size_t)f * mf;
+    for (int j = 0; j < wd; j++) {
+      sum[j] += G[(size_t)f * wd + j];
+    }
+    for (int i = 0; i < mf; i++) {
+      for (int k = 0; k < mf; k++) {
+        ref[n + i] += W * Qf[i] * Qf[k] * eh[k];
+        ref[n + mf + i] += W * Qf[i] * Qf[k] * sh[k];
+        ref[n + 2 * mf + i] += W * Qf[i] * Qf[k] * eh[k];
+        ref[n + 3 * mf + i] += W * Qf[i] * Qf[k] * sh[k];
+      }
+    }
+  }
+  double es[3] = {0}, ms[3] = {0};
+  for (int j = 0; j < wd; j++) {
+    const int blk = j < n ? 0 : (j - n) / mf % 2 == 0 ? 1 : 2; /* r; G E^; G s^ */
+    es[blk] = fmax(es[blk], fabs(sum[j] - ref[j]));
+    ms[blk] = fmax(ms[blk], fabs(ref[j]));
+  }
+  printf("  fibre ECSW rows (%d fibres, %.0f taut, mf = %d): sums - r %.2e of %.2e N, - G E^ "
+         "%.2e of %.2e N, - G s^ %.2e of %.2e N\n", nf, taut, mf, es[0], ms[0], es[1], ms[1],
+         es[2], ms[2]);
+  CS_EXPECT(taut >= 3 && ms[0] > 0 && ms[1] > 0 && ms[2] > 0);
+  for (int k = 0; k < 3; k++) {
+    CS_EXPECT_NEAR(es[k] / ms[k], 0.0, 1e-10, 0);
+  }
+  /* every fibre at weight 1, reversed: the unreduced model */
+  int* idx = malloc((size_t)nf * sizeof(int));
+  double* w = malloc((size_t)nf * sizeof(double));
+  for (int f = 0; f < nf; f++) {
+    idx[f] = nf - 1 - f, w[f] = 1.0;
+  }
+  CS_EXPECT(csf_romSetWeights(r, CSF_ROM_SET_FIBRE, nf, idx, w, &err) == CS_OK);
+  CS_EXPECT(csf_romEvaluate(r, d, &ld, 1) == 0);
+  const double e1 = maxAbsDiff(n, d->r, r_all) / maxAbs(n, r_all);
+  const double ek1 = maxAbsDiff(n * n, d->K, K_all) / maxAbs(n * n, K_all);
+  printf("  every fibre at weight 1, reversed: r %.2e, K %.2e (relative)\n", e1, ek1);
+  CS_EXPECT_NEAR(e1, 0.0, 1e-13, 0);
+  CS_EXPECT_NEAR(ek1, 0.0, 1e-13, 0);
+  /* the rows' matrix M (rows x nf): the wd rows of this state and G's ng entries, each row at
+   * unit norm; z = y - its projection on M's rows (modified Gram-Schmidt) */
+  const int nr = wd + ng;
+  CS_EXPECT(nf > nr + 3); /* a null space to move in */
+  double* M = calloc((size_t)nr * nf, sizeof(double));
+  for (int f = 0; f < nf; f++) {
+    const double W = m->fib_EA[f] * m->fib_L0[f];
+    const double* Qf = Q + (size_t)f * mf;
+    for (int j = 0; j < wd; j++) {
+      M[(size_t)j * nf + f] = G[(size_t)f * wd + j];
+    }
+    for (int i = 0, row = wd; i < mf; i++) {
+      for (int k = 0; k <= i; k++, row++) {
+        M[(size_t)row * nf + f] = W * Qf[i] * Qf[k];
+      }
+    }
+  }
+  int rank = 0;
+  for (int i = 0; i < nr; i++) {
+    double* Mi = M + (size_t)i * nf;
+    const double n0 = sqrt(vecDot(nf, Mi, Mi));
+    for (int k = 0; k < rank; k++) {
+      const double* U = M + (size_t)k * nf;
+      const double c = vecDot(nf, Mi, U);
+      for (int f = 0; f < nf; f++) {
+        Mi[f] -= c * U[f];
+      }
+    }
+    const double nn = sqrt(vecDot(nf, Mi, Mi));
+    if (nn > 1e-10 * n0) {
+      for (int f = 0; f < nf; f++) {
+        M[(size_t)rank * nf + f] = Mi[f] / nn;
+      }
+      rank++;
+    }
+  }
+  double* z = malloc((size_t)nf * sizeof(double));
+  double* z2 = malloc((size_t)nf * sizeof(double));
+  for (int f = 0; f < nf; f++) {
+    z[f] = z2[f] = (double)rand() / RAND_MAX - 0.5;
+  }
+  for (int k = 0; k < rank; k++) {
+    const double c = vecDot(nf, z, M + (size_t)k * nf);
+    for (int f = 0; f < nf; f++) {
+      z[f] -= c * M[(size_t)k * nf + f];
+    }
+  }
+  double err_w[2];
+  for (int pass = 0; pass < 2; pass++) {
+    const double* zz = pass == 0 ? z : z2;
+    const double sc = 0.5 / maxAbs(nf, zz);
+    for (int f = 0; f < nf; f++) {
+      idx[f] = f, w[f] = 1.0 + sc * zz[f];
+    }
+    CS_EXPECT(csf_romSetWeights(r, CSF_ROM_SET_FIBRE, nf, idx, w, &err) == CS_OK);
+    CS_EXPECT(csf_romEvaluate(r, d, &ld, 0) == 0);
+    err_w[pass] = maxAbsDiff(n, d->r, r_all) / maxAbs(n, r_all);
+  }
+  printf("  weights 1 + z (|z| <= 0.5; rank of the rows %d of %d): z in their null space: r "
+         "%.2e; z random: r %.2e (relative)\n", rank, nr, err_w[0], err_w[1]);
+  CS_EXPECT_NEAR(err_w[0], 0.0, 1e-10, 0);
+  CS_EXPECT(err_w[1] > 1e-4); /* the test sees weights that miss the rows */
+  /* a sparse set: every other fibre, weight 2: K against central differences, symmetric */
+  int nk = 0;
+  for (int f = 0; f < nf; f += 2) {
+    idx[nk] = f, w[nk++] = 2.0;
+  }
+  CS_EXPECT(csf_romSetWeights(r, CSF_ROM_SET_FIBRE, nk, idx, w, &err) == CS_OK);
+  memcpy(d->q, q, sizeof q);
+  CS_EXPECT(csf_romEvaluate(r, d, &ld, 1) == 0);
+  double K[25], asym;
+  memcpy(K, d->K, sizeof K);
+  const double efd = rtFdTangent(r, d, &ld, q, K, 1e-6, &asym);
+  printf("  sparse set (%d of %d fibres, weight 2): |K - K_fd| / |K| = %.2e, asymmetry %.2e\n",
+         nk, nf, efd / maxAbs(25, K), asym / maxAbs(25, K));
+  CS_EXPECT_NEAR(efd / maxAbs(25, K), 0.0, 1e-6, 0);
+  CS_EXPECT_NEAR(asym / maxAbs(25, K), 0.0, 1e-12, 0);
+  free(M), free(z), free(z2), free(idx), free(w), free(G), free(Q), free(V);
+  csf_romDataDestroy(d);
+  csf_romDestroy(r);
+  rtBoxDestroy(&b);
+}
+
 int main(void) {
   CS_RUN(test_identity_fibre_basis_is_the_fe_fibre_model);
   CS_RUN(test_mixed_fibre_tangent_matches_finite_differences);
   CS_RUN(test_snapshots_come_back_with_a_fibre_basis);
+  CS_RUN(test_mixed_fibre_ecsw_rows_and_weighted_model);
   return cs_testSummary();
 }

@@ -81,7 +81,7 @@ static inline void denseSolve(int n, double* A, double* b) {
 /* the block clamped at z = 0, its open face x = BX (tag 2) pressurised as "chamber 0", and a
  * basis of nb static responses of the linearised model at rest (free dofs: the FE's tangent
  * from the rom with the identity basis), Gram-Schmidt orthonormalised */
-static inline void blockCreate(Block* b, int nz) {
+static inline void blockCreateFibres(Block* b, int nz, int fibres) {
   csError err = {0};
   int n3[3] = {1, 1, nz};
   b->me = csf_meshCreateBox(n3, scaleMap, NULL, 0.0, &err);
@@ -95,6 +95,11 @@ static inline void blockCreate(Block* b, int nz) {
     if (fabs(b->me->x[3 * i + 2]) < 1e-9) {
       b->fem->fixed[3 * i] = b->fem->fixed[3 * i + 1] = b->fem->fixed[3 * i + 2] = 1;
     }
+  }
+  if (fibres) { /* a helix-like polyline through the block (the leg's fibres' E and radius) */
+    const double pts[12] = {0.3, 0.2, 0.1 * BZ, 1.7, 0.4, 0.4 * BZ, 1.6, 1.3, 0.7 * BZ,
+                            0.4, 1.2, 0.95 * BZ};
+    CS_ASSERT(csf_modelAddFibre(b->fem, 4, pts, 31067.0, 0.0889, &err) == CS_OK);
   }
   CS_ASSERT(csf_modelFinalize(b->fem, &err) == CS_OK);
   const int ndof = b->fem->ndof;
@@ -194,6 +199,11 @@ static inline void blockCreate(Block* b, int nz) {
   free(I), free(f), free(face_p), free(rp), free(A), free(u), free(cols);
   csf_romDataDestroy(fd);
   csf_romDestroy(full);
+}
+
+/* the block without fibres */
+static inline void blockCreate(Block* b, int nz) {
+  blockCreateFibres(b, nz, 0);
 }
 
 static inline void blockDestroy(Block* b) {

@@ -64,7 +64,10 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom ecsw-matrix --out x.h5", "needs --basis FILE and --out FILE");
   expectRefused("rom ecsw-matrix --basis x.h5 --out x.h5 --stride 0", "--stride '0'");
   expectRefused("rom ecsw-matrix --basis x.h5 --out x.h5 --stride 2.5", "--stride 2.5: not a whole");
+  expectRefused("rom ecsw-matrix --basis x.h5 --out x.h5 --only faces", "--only 'faces'");
   expectRefused("rom check --snapshots .", "needs --snapshots DIR and --basis FILE");
+  expectRefused("rom check --snapshots . --basis x.h5 --leg-file y.h5", "(or --leg-file FILE");
+  expectRefused("rom check --snapshots . --leg-file romcli_missing.h5", "romcli_missing.h5");
   expectRefused("rom check --snapshots . --basis romcli_missing.h5", "romcli_missing.h5");
   expectRefused("rom ecsw-matrix --basis romcli_missing.h5 --out x.h5", "romcli_missing.h5");
   expectRefused("rom modes --out x.h5", "needs --basis FILE and --out FILE");
