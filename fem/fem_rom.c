@@ -303,8 +303,10 @@ csStatus csf_romSetWeights(csfRom* r, csfRomSet set, int nel, const int* idx, co
                          count[set], w[e]);
     }
   }
-  memcpy(r->el[set], idx, (size_t)nel * sizeof(int));
-  memcpy(r->w[set], w, (size_t)nel * sizeof(double));
+  if (nel > 0) { /* an empty set may come with NULL arrays (memcpy's arguments must not be NULL) */
+    memcpy(r->el[set], idx, (size_t)nel * sizeof(int));
+    memcpy(r->w[set], w, (size_t)nel * sizeof(double));
+  }
   r->nel[set] = nel;
   if (set == CSF_ROM_SET_FIBRE && fibreOperators(r) != 0) {
     return cs_errorSet(err, CS_ERR_MEMORY, "fem_rom: out of memory (the fibres' chord operators, "
