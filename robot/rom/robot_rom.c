@@ -471,15 +471,25 @@ static void centrifugal(const double w[3], double c[6]) {
 }
 
 
+/* the 12 chamber pressures at t (MPa): linear between the macro step's ends, held outside */
+static void pressuresAt(const csrRomData* d, double t, double p[12]) {
+  double al = d->pt1 > d->pt0 ? (t - d->pt0) / (d->pt1 - d->pt0) : 1.0;
+  al = al < 0 ? 0 : (al > 1 ? 1 : al);
+  for (int i = 0; i < 12; i++) {
+    p[i] = (1 - al) * d->p0[i] + al * d->p1[i];
+  }
+}
+
+
 /* the loads of the reduced FE at t: chamber pressures on their faces, the dead load */
 static void loadAt(const csrRomModel* m, csrRomData* d, double t, csfRomLoad* ld) {
   memset(ld, 0, sizeof *ld);
-  double al = d->pt1 > d->pt0 ? (t - d->pt0) / (d->pt1 - d->pt0) : 1.0;
-  al = al < 0 ? 0 : (al > 1 ? 1 : al);
+  double p[12];
+  pressuresAt(d, t, p);
   int any = 0;
   for (int f = 0; f < m->nface; f++) {
     const int c = m->face_ch[f];
-    d->face_p[f] = c < 0 ? 0.0 : (1 - al) * d->p0[c] + al * d->p1[c];
+    d->face_p[f] = c < 0 ? 0.0 : p[c];
     any |= d->face_p[f] != 0;
   }
   ld->face_p = any ? d->face_p : NULL;
@@ -654,12 +664,8 @@ static int jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* user, 
   const double* Y = N_VGetArrayPointer(y);
   double w[3], al[3], c[6];
   d->jacs++;
-  /* the pressures now (loadAt's interpolation) */
-  double pc[12], pal = d->pt1 > d->pt0 ? ((double)t - d->pt0) / (d->pt1 - d->pt0) : 1.0;
-  pal = pal < 0 ? 0 : (pal > 1 ? 1 : pal);
-  for (int i = 0; i < 12; i++) {
-    pc[i] = (1 - pal) * d->p0[i] + pal * d->p1[i];
-  }
+  double pc[12];
+  pressuresAt(d, (double)t, pc);
   int reuse = d->lag_valid && m->par.tangent_lag > 0;
   if (reuse) {
     double moved = 0, dp = 0;
