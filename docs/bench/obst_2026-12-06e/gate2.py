@@ -4,7 +4,8 @@
 usage (from the source root, after the build): /usr/bin/python3 gate2.py RUN [T_END [PTOL]]
 RUN: a run of issue 33's robustness set (nominal, ramp0.5, tau2x, ...). Writes RUN_gate2.txt
 here (Table 3's nodes as table3.py prints them, the waits, the end) and runs/RUN_gate2.npz
-(RUN_gate2_pPTOL.* for a PTOL other than the default).
+(RUN_gate2_pPTOL.* for a PTOL other than the default). GATE_EVERY=1: a gate waits for every
+chamber of the eight legs (RUN_gate2_every.*).
 
 As docs/bench/obstacle_2026-12-06d/gate.py with GATE_SENSOR=pressure (every lift of a pair in
 the wave waits for the last other pair that lifted, the table's clock held meanwhile, at most
@@ -41,7 +42,7 @@ def main():
     t_end = float(sys.argv[2]) if len(sys.argv) > 2 else 36.0
     ptol = float(sys.argv[3]) if len(sys.argv) > 3 else 0.005
     tab = Table('gaits/obstacle.csv')
-    G = Gates('gaits/obstacle.gait')
+    G = Gates('gaits/obstacle.gait', every=os.environ.get('GATE_EVERY') == '1')
     design = Design(tab)
     tab.reset()
     opts = dict(RUNS[run])
@@ -106,8 +107,8 @@ def main():
                 worst, where = e, '%d s' % tn
     d = np.hypot(r[-1, 1] - 646, r[-1, 3] - 270)
     nw = [w for w in waits if w[2] > 0]
-    out = ['gate2 %s (t_end %g s, PTOL %g MPa, MAXWAIT %g s): run to %.2f s, table time %.2f s,'
-           ' held %.2f s over %d gates' % (run, t_end, ptol, G.maxwait, t[-1],
+    out = ['gate2%s %s (t_end %g s, PTOL %g MPa, MAXWAIT %g s): run to %.2f s, table time %.2f s,'
+           ' held %.2f s over %d gates' % (' every chamber' if G.every else '', run, t_end, ptol, G.maxwait, t[-1],
                                            t[-1] - tab.hold, tab.hold, len(nw)),
            '  ' + ' '.join(row),
            '  worst node from 4 s %.1f mm (%s); end (%.1f, %.1f, %.1f) %.1f mm off; tilt max %.1f'
@@ -115,7 +116,7 @@ def main():
            '  waits (table time, legs waited for, s, down): ' +
            '; '.join('%.2f %s %.3f%s' % (a, b, c, '' if dn else ' timeout')
                      for a, b, c, dn in nw)]
-    tag = '' if ptol == 0.005 else '_p%g' % ptol  # the default PTOL untagged
+    tag = ('' if ptol == 0.005 else '_p%g' % ptol) + ('_every' if G.every else '')  # default untagged
     open(os.path.join(HERE, '%s_gate2%s.txt' % (run, tag)), 'w').write('\n'.join(out) + '\n')
     os.makedirs('runs', exist_ok=True)
     np.savez_compressed('runs/%s_gate2%s.npz' % (run, tag), rec=r, feet=np.array(feet),

@@ -11,6 +11,8 @@ own actuation time (its @ramp, 0.05 s) and the nominal lag (0.02 s), dp/dt = (p_
 The design gate: a pair is down when every chamber of it is at least as near its valve's
 command as the design has it at that table time, within PTOL (the pressure sensor's accuracy):
 |v - p| <= |v - p_design(tau)| + PTOL. It waits only when the valves are slower than designed.
+Gates(every=True): the same test over every chamber of the eight legs (the stance legs' strokes
+too), GATE_EVERY=1 in gate2.py and pneu.py.
 """
 import numpy as np
 
@@ -66,7 +68,8 @@ class Table:
 class Gates:
     maxwait = 0.6  # s: one walk slot (Tp)
 
-    def __init__(self, gait):
+    def __init__(self, gait, every=False):
+        self.every = every  # True: a gate waits for every chamber (all eight legs), not the pair's
         lifts = []
         for line in open(gait):
             p = line.split()
@@ -82,7 +85,7 @@ class Gates:
 
     def down(self, gi, p, valve, design, tau, ptol):
         pd = design.at(tau)
-        for c in self.g[gi][1]:
+        for c in (LEGS if self.every else self.g[gi][1]):
             s = slice(12 * LEGS.index(c), 12 * LEGS.index(c) + 12)
             if np.any(np.abs(valve[s] - p[s]) > np.abs(valve[s] - pd[s]) + ptol):
                 return False
