@@ -30,7 +30,9 @@ from gatelib import R0, Design, Gates, Table  # noqa: E402
 RUNS = {'nominal': {}, 'ramp0.1': {'ramp': 0.1}, 'ramp0.5': {'ramp': 0.5},
         'mu0.6': {'friction': 0.6}, 'mu1.0': {'friction': 1.0},
         'm25g': {'support_mass_kg': 0.025}, 'm75g': {'support_mass_kg': 0.075},
-        'tau0.5x': {'tau': 0.01}, 'tau2x': {'tau': 0.04}, 'dt_half': {'dt': 0.0005}}
+        'tau0.5x': {'tau': 0.01}, 'tau2x': {'tau': 0.04}, 'dt_half': {'dt': 0.0005},
+        # a diagnosis, not a set run: does ramp 0.5's slide on the plateau stop with more grip?
+        'ramp0.5_mu1.0': {'ramp': 0.5, 'friction': 1.0}}
 T3 = [0, 1, 2, 3, 4, 5, 7, 11, 12, 14, 24, 29, 32]
 X3 = [0, 0, 0, 0, 26, 26, 52, 130, 170, 230, 492, 646, 646]
 H3 = [0, 50, 50, 13, 22, 48, 20, 50, 40, 40, 13, 0, 0]
