@@ -5,7 +5,8 @@ usage (from the source root, after the build): /usr/bin/python3 gate2.py RUN [T_
 RUN: a run of issue 33's robustness set (nominal, ramp0.5, tau2x, ...). Writes RUN_gate2.txt
 here (Table 3's nodes as table3.py prints them, the waits, the end) and runs/RUN_gate2.npz
 (RUN_gate2_pPTOL.* for a PTOL other than the default). GATE_EVERY=1: a gate waits for every
-chamber of the eight legs (RUN_gate2_every.*).
+chamber of the eight legs (RUN_gate2_every.*). GATE_GAIT=NAME: NAME.csv with the gates of
+NAME.gait (RUN_gate2_BASENAME.*).
 
 As docs/bench/obstacle_2026-12-06d/gate.py with GATE_SENSOR=pressure (every lift of a pair in
 the wave waits for the last other pair that lifted, the table's clock held meanwhile, at most
@@ -43,12 +44,15 @@ def main():
     run = sys.argv[1]
     t_end = float(sys.argv[2]) if len(sys.argv) > 2 else 36.0
     ptol = float(sys.argv[3]) if len(sys.argv) > 3 else 0.005
-    tab = Table('gaits/obstacle.csv')
-    G = Gates('gaits/obstacle.gait', every=os.environ.get('GATE_EVERY') == '1')
+    gait = os.environ.get('GATE_GAIT', 'gaits/obstacle')  # NAME: NAME.gait and NAME.csv
+    tab = Table(gait + '.csv')
+    G = Gates(gait + '.gait', every=os.environ.get('GATE_EVERY') == '1')
     design = Design(tab)
     tab.reset()
     opts = dict(RUNS[run])
     R = opts.pop('ramp', R0)  # applied by the controller in the run's time (gatelib.Table)
+    if gait != 'gaits/obstacle':  # a gait of one's own defaults to earth: the scene's conditions
+        opts.update(gait=gait + '.csv', conditions='paper')
     sim = crawlsim.Sim(scene='obstacle', data_dir='.', **opts)
     H = sim.macro_step
     lib = np.empty(96)
@@ -118,7 +122,8 @@ def main():
            '  waits (table time, legs waited for, s, down): ' +
            '; '.join('%.2f %s %.3f%s' % (a, b, c, '' if dn else ' timeout')
                      for a, b, c, dn in nw)]
-    tag = ('' if ptol == 0.005 else '_p%g' % ptol) + ('_every' if G.every else '')  # default untagged
+    tag = ('' if ptol == 0.005 else '_p%g' % ptol) + ('_every' if G.every else '') + (
+        '' if gait == 'gaits/obstacle' else '_' + os.path.basename(gait))  # default untagged
     open(os.path.join(HERE, '%s_gate2%s.txt' % (run, tag)), 'w').write('\n'.join(out) + '\n')
     os.makedirs('runs', exist_ok=True)
     np.savez_compressed('runs/%s_gate2%s.npz' % (run, tag), rec=r, feet=np.array(feet),
