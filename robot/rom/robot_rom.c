@@ -1096,29 +1096,21 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
     return -1;
   }
   const int n = m->n;
-  /* the hip's path (robot_rom.h "Base motion"): C1 across macro steps, from where the last
-   * step left the hip (its position, frame and twist) to b1; b0, the support's actual state,
-   * differs from that by the coupling's correction of its prediction, which the path thus
-   * spreads over the step instead of jumping by it at the step's start (a kink of the sole's
-   * position and speed that the integrator's history cannot cross in contact: docs/notes/
-   * rom.md "C1 hip motion"). From b0 when the leg's time or hip does not continue (create,
-   * reset, a teleport). */
-  const csrBaseState own = d->base;
-  const int cont = fabs(t - d->t) <= 1e-12 * (1 + fabs(t)) && !baseJumped(&own, b0);
-  setBase(&d->bm, t, H, cont ? &own : b0, b1);
-  /* the momenta the wrench is balanced against: the state's with the hip at b0, as if the leg
-   * had jumped with the support's correction. The Jacobi schemes hand the support the legs'
-   * inertial reaction to that correction through the interface gains (sim_coupling.c, the
-   * stabilised scheme's -A (q' - q'_pred)); the ledger leaves it to them as before, so the
-   * support is not charged twice for it */
+  setBase(&d->bm, t, H, b0, b1);
   double P0[3], L0[3];
-  d->base = *b0;
-  csr_romMomentum(m, d, P0, L0);
+  {
+    const csrBaseState last = d->base;
+    d->base = *b0;
+    csr_romMomentum(m, d, P0, L0);
+    d->base = last; /* compared with b0 below */
+  }
   const int nz = m->contact ? m->nz : 0, oi = 2 * n + 3 + nz;
   memcpy(d->backup, d->y, 2 * (size_t)n * sizeof(double));
   memcpy(d->backup + 2 * n, d->y + 2 * n + 3, (size_t)nz * sizeof(double));
   d->cb_status = 0;
-  int restart = d->need_reinit || !cont;
+  int restart = d->need_reinit || fabs(t - d->t) > 1e-12 * (1 + fabs(t)) ||
+                baseJumped(&d->base, b0);
+  d->base = *b0;
   double I0[3], F0[3] = {0, 0, 0};
   for (;;) {
     if (restart && restartAt(m, d, t, H) != 0) {
@@ -1140,7 +1132,6 @@ int csr_romAdvance(const csrRomModel* m, csrRomData* d, double t, double H,
     }
     memcpy(d->y, d->backup, 2 * (size_t)n * sizeof(double));
     memcpy(d->y + 2 * n + 3, d->backup + 2 * n, (size_t)nz * sizeof(double));
-    d->base = own; /* unchanged: a retry takes the same path */
     d->need_reinit = 1;
     const int fatal = d->cb_status < 0 || flag == CV_ILL_INPUT || flag == CV_MEM_FAIL ||
                       flag == CV_MEM_NULL;

@@ -36,11 +36,7 @@
  * ends; the frame R(t) = R0 exp(φ(t)) with φ the cubic Hermite of the rotation vector from
  * φ(0) = 0, φ'(0) = R0ᵀw0 to φ(H) = log(R0ᵀR1), φ'(H) = R0ᵀw1, and ω ≈ φ', α ≈ φ'' (exact for
  * a rotation about a fixed axis; the error is O(|φ| |φ'|) otherwise, |φ| the rotation within
- * one macro step). The start (x, v, R0, w0) is where the last step left the hip, not the b0 the
- * coupling gives (they differ by its correction of the last prediction): the path is C1 across
- * macro steps and reaches b1, the correction spread over the step (csr_romAdvance). The wrench
- * is balanced against the momenta with the hip at b0, as if the leg had jumped with the
- * correction: its inertial reaction to it is the interface gains' (sim_coupling.c).
+ * one macro step).
  * Units: mm, s, t, N, MPa. Shapes: row-major; q (n). */
 #ifndef CS_ROBOT_ROM_H
 #define CS_ROBOT_ROM_H
@@ -171,9 +167,7 @@ void csr_romActuate(csrRomData* d, double t0, const double p0[12], double t1,
  * nodal force); NULL: none. Copied. */
 void csr_romSetDeadLoad(const csrRomModel* m, csrRomData* d, const double* fr);
 
-/* Advance from t to t + H with the hip moving to b1 from where the last advance left it, b0
- * the support's actual start (see the base motion above; from b0 itself after create or reset,
- * when t is not where the last advance ended, or when the hip jumped); *w
+/* Advance from t to t + H with the hip moving from b0 to b1 (see the base motion above); *w
  * (may be NULL) gets the base wrench averaged over the step. CVODE carries its history (order,
  * step size, Jacobian) from one advance to the next, as the rod's does; it restarts from the
  * state after create, reset, set and a failed step, and when t is not where the last advance

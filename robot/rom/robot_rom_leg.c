@@ -223,6 +223,13 @@ static int sharedCreateRom(const csrLegSpec* spec, void** shared, csError* err) 
    * 12 of 77 Jacobians took a tangent, the same steps, a third less CPU (docs/notes/rom.md
    * "The rom leg's contact steps") */
   par.tangent_lag = ROM_TANGENT_LAG;
+  double set[CSR_LEG_MAX_SETTINGS];
+  csr_legSettingsRead(&csr_leg_rom, spec->settings, set);
+  if (set[0] > 0) {
+    par.rtol *= set[0];
+    par.atol_u *= set[0];
+    par.atol_wrench *= set[0];
+  }
   if (!spec->weightless) {
     memcpy(par.gravity, spec->gravity, sizeof par.gravity);
   }
@@ -779,11 +786,19 @@ static void contactForceRom(const csrLeg* leg, double f[3]) {
   csu_add3(f, ld.f0, ld.f1);
 }
 
+/* the level's own settings (robot_leg.h csrLegSetting) */
+static const csrLegSetting kRomSettings[] = {
+    /* every CVODE tolerance of the legs (rtol, atol_u, atol_wrench: csr_romDefaultParams) times
+     * this; 0 or 1: those. The rod's knob of the same name and meaning (`--rod-tol`): the rom's
+     * contact steps' cost falls with it (docs/notes/rom.md "C1 hip motion") */
+    {"rod_tol", "times the shipped CVODE tolerances", 1, 0, 1000, 0},
+};
+
 const csrLegType csr_leg_rom = {
     .name = "rom",
     .in_world = 0,
-    .settings = NULL,
-    .nsettings = 0,
+    .settings = kRomSettings,
+    .nsettings = (int)(sizeof kRomSettings / sizeof kRomSettings[0]),
     .needs_file = 1,
     .coupling_stabilised = 1,
     .create = createRom,
