@@ -465,12 +465,94 @@ static void test_romGainsInContactAreTheHipStiffness(void) {
   remove(kPath);
 }
 
+/* The level's setting rod_tol scales its legs' CVODE tolerances (robot_rom_leg.c kRomSettings,
+ * `--rod-tol`): the level on the block, hanging under gravity from a hip shaken sideways
+ * (1 mm at 50 Hz), 30 steps of 1 ms at the shipped tolerances and at 100 times them; the loose
+ * leg takes fewer CVODE steps and ends near the tight one (a setting
+ * that were not read would take the same steps). Out of its range it is refused in one line. */
+static void test_romLevelToleranceSetting(void) {
+  Block b;
+  blockCreate(&b, 4);
+  csError err = {0};
+  int sole[64], ns = 0;
+  for (int i = 0; i < b.me->nnode && ns < 64; i++) {
+    if (fabs(b.me->x[3 * i + 2] - BZ) < 1e-9) {
+      sole[ns++] = i;
+    }
+  }
+  int* ch = chamberFaces(&b);
+  CS_ASSERT(csf_romChamberTensors(b.rom, 12, ch, &err) == CS_OK);
+  csrActuator act;
+  CS_ASSERT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
+  act.rho = RHO;
+  CS_ASSERT(csr_romLegFileWrite(kPath, b.rom, ns, sole, &act, 1.0, NULL, NULL, &err) == CS_OK);
+  const csrLegType* T = csr_legTypeFind("rom", NULL);
+  CS_ASSERT(T != NULL);
+  csrLegSettings ls;
+  csr_legSettingsDefault(T, &ls);
+  CS_EXPECT(csr_legSettingSet(T, &ls, "rod_tol", 2000, &err) == CS_ERR_RANGE);
+  printf("  refused: %s\n", err.msg);
+  long steps[2];
+  double y[2], dmax = 0;
+  for (int k = 0; k < 2; k++) {
+    csr_legSettingsDefault(T, &ls);
+    CS_ASSERT(csr_legSettingSet(T, &ls, "rod_tol", k ? 100 : 1, &err) == CS_OK);
+    csrLegParams lp = csr_defaultLegParams(&act);
+    csrLegSpec spec;
+    memset(&spec, 0, sizeof spec);
+    spec.act = &act;
+    spec.params = &lp;
+    spec.settings = &ls;
+    spec.leg_file = kPath;
+    spec.h = 1e-3;
+    spec.gravity[1] = -9810.0;
+    const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0}; /* hanging */
+    memcpy(spec.frame, F, sizeof F);
+    void* sh = NULL;
+    CS_ASSERT(T->sharedCreate(&spec, &sh, &err) == 0);
+    spec.shared = sh;
+    csrLeg* leg = T->create(&spec, &err);
+    CS_ASSERT(leg != NULL);
+    csrBaseState b0, b1;
+    memset(&b0, 0, sizeof b0);
+    memcpy(b0.R, F, sizeof F);
+    const double H = 1e-3, om = 2 * M_PI * 50;
+    double t = 0;
+    csrWrench w;
+    for (int s = 0; s < 30; s++) {
+      b1 = b0;
+      b1.x[0] = sin(om * (t + H));
+      b1.v[0] = om * cos(om * (t + H));
+      CS_ASSERT(T->advance(leg, t, H, &b0, &b1, &w, &err) == 0);
+      b0 = b1;
+      t += H;
+    }
+    csrRomStats st;
+    csr_romLegStats(leg, &st);
+    steps[k] = st.steps;
+    y[k] = w.f[0];
+    dmax = fmax(dmax, fabs(w.f[0]));
+    T->destroy(leg);
+    T->sharedDestroy(sh);
+  }
+  printf("  rod_tol 1: %ld steps, wrench x %.9g N; rod_tol 100: %ld steps, %.9g N\n", steps[0],
+         y[0], steps[1], y[1]);
+  CS_EXPECT(steps[1] < steps[0]);
+  /* the loose run's rtol is 1e-4: its wrench within 1e-3 of the tight one's (the block's
+   * 3e-4 N lie below the loose atol_wrench of 1e-2 N, so the states' rtol is what holds it) */
+  CS_EXPECT(fabs(y[0] - y[1]) <= 1e-3 * dmax);
+  free(ch);
+  blockDestroy(&b);
+  remove(kPath);
+}
+
 int main(void) {
   CS_RUN(test_romLegFileRoundTripIsBitExact);
   CS_RUN(test_romLegFileCarriesTheFibreBasis);
   CS_RUN(test_romLegFileBadFilesAreRefused);
   CS_RUN(test_romLevelOnTheBlock);
   CS_RUN(test_romGainsInContactAreTheHipStiffness);
+  CS_RUN(test_romLevelToleranceSetting);
   remove(kPath);
   return cs_testSummary();
 }
