@@ -251,6 +251,25 @@ static void test_romLegFileBadFilesAreRefused(void) {
   remove(kPath);
 }
 
+/* the block's leg file at kPath (its twelve chambers' forms, the tip face as the sole, the
+ * robot's leg actuator at the block's density) for the level's tests; act gets the actuator */
+static void writeBlockLegFile(Block* b, csrActuator* act) {
+  csError err = {0};
+  int* ch = chamberFaces(b);
+  CS_ASSERT(csf_romChamberTensors(b->rom, 12, ch, &err) == CS_OK);
+  int sole[64], ns = 0;
+  for (int i = 0; i < b->me->nnode && ns < 64; i++) {
+    if (fabs(b->me->x[3 * i + 2] - BZ) < 1e-9) {
+      sole[ns++] = i;
+    }
+  }
+  CS_ASSERT(csr_actuatorPreset(act, "leg", &err) == CS_OK);
+  act->rho = RHO;
+  CS_ASSERT(csr_romLegFileWrite(kPath, b->rom, ns, sole, act, 1.0, NULL, NULL, &err) == CS_OK);
+  free(ch);
+}
+
+
 /* The level `rom` (robot_leg.h's table over the file) on the block: its mass and first moment
  * are the block's closed forms, its centreline runs from the clamped face's centre to the
  * sole's, the state round-trips bit for bit, and its interface gains over a long step h tend to
@@ -262,18 +281,8 @@ static void test_romLevelOnTheBlock(void) {
   Block b;
   blockCreate(&b, 4);
   csError err = {0};
-  int* ch = chamberFaces(&b);
-  CS_ASSERT(csf_romChamberTensors(b.rom, 12, ch, &err) == CS_OK);
-  int sole[64], ns = 0;
-  for (int i = 0; i < b.me->nnode && ns < 64; i++) {
-    if (fabs(b.me->x[3 * i + 2] - BZ) < 1e-9) {
-      sole[ns++] = i;
-    }
-  }
   csrActuator act;
-  CS_ASSERT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
-  act.rho = RHO;
-  CS_ASSERT(csr_romLegFileWrite(kPath, b.rom, ns, sole, &act, 1.0, NULL, NULL, &err) == CS_OK);
+  writeBlockLegFile(&b, &act);
   const csrLegType* T = csr_legTypeFind("rom", NULL);
   CS_ASSERT(T != NULL && T->needs_file);
   csrLegParams lp = csr_defaultLegParams(&act);
@@ -366,7 +375,6 @@ static void test_romLevelOnTheBlock(void) {
   free(x0), free(x1);
   T->destroy(leg);
   T->sharedDestroy(sh);
-  free(ch);
   blockDestroy(&b);
   remove(kPath);
 }
@@ -386,18 +394,8 @@ static void test_romGainsInContactAreTheHipStiffness(void) {
   Block b;
   blockCreate(&b, 4);
   csError err = {0};
-  int* ch = chamberFaces(&b);
-  CS_ASSERT(csf_romChamberTensors(b.rom, 12, ch, &err) == CS_OK);
-  int sole[64], ns = 0;
-  for (int i = 0; i < b.me->nnode && ns < 64; i++) {
-    if (fabs(b.me->x[3 * i + 2] - BZ) < 1e-9) {
-      sole[ns++] = i;
-    }
-  }
   csrActuator act;
-  CS_ASSERT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
-  act.rho = RHO;
-  CS_ASSERT(csr_romLegFileWrite(kPath, b.rom, ns, sole, &act, 1.0, NULL, NULL, &err) == CS_OK);
+  writeBlockLegFile(&b, &act);
   const csrLegType* T = csr_legTypeFind("rom", NULL);
   CS_ASSERT(T != NULL);
   cstTerrain tr;
@@ -460,7 +458,6 @@ static void test_romGainsInContactAreTheHipStiffness(void) {
   CS_EXPECT(fabs(free_yy) < 1e-6 * k_meas);
   T->destroy(leg);
   T->sharedDestroy(sh);
-  free(ch);
   blockDestroy(&b);
   remove(kPath);
 }
@@ -474,18 +471,8 @@ static void test_romLevelToleranceSetting(void) {
   Block b;
   blockCreate(&b, 4);
   csError err = {0};
-  int sole[64], ns = 0;
-  for (int i = 0; i < b.me->nnode && ns < 64; i++) {
-    if (fabs(b.me->x[3 * i + 2] - BZ) < 1e-9) {
-      sole[ns++] = i;
-    }
-  }
-  int* ch = chamberFaces(&b);
-  CS_ASSERT(csf_romChamberTensors(b.rom, 12, ch, &err) == CS_OK);
   csrActuator act;
-  CS_ASSERT(csr_actuatorPreset(&act, "leg", &err) == CS_OK);
-  act.rho = RHO;
-  CS_ASSERT(csr_romLegFileWrite(kPath, b.rom, ns, sole, &act, 1.0, NULL, NULL, &err) == CS_OK);
+  writeBlockLegFile(&b, &act);
   const csrLegType* T = csr_legTypeFind("rom", NULL);
   CS_ASSERT(T != NULL);
   csrLegSettings ls;
@@ -541,7 +528,6 @@ static void test_romLevelToleranceSetting(void) {
   /* the loose run's rtol is 1e-4: its wrench within 1e-3 of the tight one's (the block's
    * 3e-4 N lie below the loose atol_wrench of 1e-2 N, so the states' rtol is what holds it) */
   CS_EXPECT(fabs(y[0] - y[1]) <= 1e-3 * dmax);
-  free(ch);
   blockDestroy(&b);
   remove(kPath);
 }
