@@ -96,7 +96,7 @@ static const csxOpt kRunOpts[] = {
      "multiplies the normal stiffness of every contact law (ODE's 100 N/mm of the support, the "
      "legs' soft foundation modulus), 0 < K <= 1e6"},
     {"--rod-tol", "K", "1",
-     "multiplies every CVODE tolerance of rod legs, 0 < K <= 1000; recorded as "
+     "multiplies every CVODE tolerance of rod and rom legs, 0 < K <= 1000; recorded as "
      "rod_tolerance_scale"},
     {"--step-order", "1|2", "the level's (strain: 1)",
      "strain legs: the tree step's formula, 1 backward Euler, 2 BDF2 (support and legs)"},

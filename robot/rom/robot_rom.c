@@ -52,11 +52,10 @@ struct csrRomData_ {
    * impulse; scratch for the sole's load and its differences */
   int ny;             /* 2n + 3, + nz + 3 with contact */
   double* Fc;         /* (n) */
-  double* Fc1;        /* (n) */
   double* zd;         /* (nz) */
-  double* zd1;        /* (nz) */
-  double* Yp;         /* (ny) a perturbed state */
-  double* hfd;        /* (2n + nz) the difference steps of q, q', z */
+  double* Gs;         /* ((6 + nz) x (2n + nz)) the sole's derivatives (csr_romSoleJacobian) */
+  double* sw;         /* its work (csr_romSoleWorkSize) */
+  double* As;         /* (n x 6) [Ūᵀ Rᵀ, Wᵀ Rᵀ] */
   double* y;          /* pointer into yv */
   SUNContext sun;
   N_Vector yv, atol;
@@ -609,43 +608,54 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
 }
 
 
-/* the sole's part of the Jacobian, by one-sided differences of its (cheap) load over q, q' and
- * z: the rows of q'' (through M_r⁻¹) and of z' */
+/* the sole's part of the Jacobian (robot_rom.h csr_romSoleJacobian: the law's derivatives in
+ * the foot's coordinates, chained analytically through its pose in q, q'): the rows of q''
+ * get M_r⁻¹ [Ūᵀ Rᵀ, Wᵀ Rᵀ] G_(f0, m), a rank-6 product; the rows of z' get G_z' */
 static int soleJacobian(const csrRomModel* m, csrRomData* d, double t, const double* Y,
                         SUNMatrix J) {
-  const int n = m->n, nz = m->nz, oz = 2 * n + 3;
-  double R[9], xh[3], vh[3], ah[3], w[3], al[3];
+  const int n = m->n, nz = m->nz, oz = 2 * n + 3, nc = 2 * n + nz;
+  double R[9], xh[3], vh[3], ah[3], w[3], al[3], L[6];
   baseAt(&d->bm, t, R, vh, ah, w, al);
   baseX(&d->bm, t, xh);
-  d->sole += 1 + 2 * n + nz;
-  int rc = csr_romSoleLoad(m, R, xh, vh, w, Y, Y + n, Y + oz, d->Fc, d->zd, NULL, NULL, NULL);
+  d->sole += 1 + 2 * (12 + nz);
+  const int rc = csr_romSoleJacobian(m, R, xh, vh, w, Y, Y + n, Y + oz, L, d->zd, d->Gs,
+                                     d->sw);
   if (rc != 0) {
     return rc;
   }
-  memcpy(d->Yp, Y, (size_t)d->ny * sizeof(double));
-  for (int c = 0; c < 2 * n + nz; c++) {
-    const int col = c < 2 * n ? c : oz + (c - 2 * n);
-    const double h = d->hfd[c];
-    d->Yp[col] = Y[col] + h;
-    rc = csr_romSoleLoad(m, R, xh, vh, w, d->Yp, d->Yp + n, d->Yp + oz, d->Fc1, d->zd1, NULL,
-                         NULL, NULL);
-    d->Yp[col] = Y[col];
-    if (rc != 0) {
-      return rc;
+  /* B = M_r⁻¹ A, A = [Ūᵀ Rᵀ, Wᵀ Rᵀ] (n x 6) */
+  for (int l = 0; l < n; l++) {
+    for (int r = 0; r < 3; r++) {
+      double a = 0, b = 0;
+      for (int i = 0; i < 3; i++) {
+        a += m->Us[(size_t)i * n + l] * R[3 * r + i];
+        b += m->Ws[(size_t)i * n + l] * R[3 * r + i];
+      }
+      d->As[6 * l + r] = a;
+      d->As[6 * l + 3 + r] = b;
     }
+  }
+  for (int k = 0; k < n; k++) {
+    const double* Mk = m->Minv + (size_t)k * n;
+    double b[6] = {0, 0, 0, 0, 0, 0};
     for (int l = 0; l < n; l++) {
-      d->Fc1[l] = (d->Fc1[l] - d->Fc[l]) / h;
+      for (int r = 0; r < 6; r++) {
+        b[r] += Mk[l] * d->As[6 * l + r];
+      }
     }
-    for (int k = 0; k < n; k++) {
-      const double* Mk = m->Minv + (size_t)k * n;
+    for (int c = 0; c < nc; c++) {
+      const int col = c < 2 * n ? c : oz + (c - 2 * n);
       double a = 0;
-      for (int l = 0; l < n; l++) {
-        a += Mk[l] * d->Fc1[l];
+      for (int r = 0; r < 6; r++) {
+        a += b[r] * d->Gs[(size_t)r * nc + c];
       }
       SM_ELEMENT_D(J, n + k, col) += a;
     }
-    for (int i = 0; i < nz; i++) {
-      SM_ELEMENT_D(J, oz + i, col) = (d->zd1[i] - d->zd[i]) / h;
+  }
+  for (int i = 0; i < nz; i++) {
+    for (int c = 0; c < nc; c++) {
+      const int col = c < 2 * n ? c : oz + (c - 2 * n);
+      SM_ELEMENT_D(J, oz + i, col) = d->Gs[(size_t)(6 + i) * nc + c];
     }
   }
   return 0;
@@ -848,7 +858,7 @@ void csr_romDataDestroy(csrRomData* d) {
   }
   csf_romDataDestroy(d->fd);
   free(d->fdead), free(d->face_p), free(d->F), free(d->G), free(d->backup);
-  free(d->Fc), free(d->Fc1), free(d->zd), free(d->zd1), free(d->Yp), free(d->hfd);
+  free(d->Fc), free(d->zd), free(d->Gs), free(d->sw), free(d->As);
   free(d->Klag), free(d->qlag), free(d->vmax);
   free(d);
 }
@@ -876,16 +886,15 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
   d->ny = 2 * n + 3 + (m->contact ? nz + 3 : 0);
   d->backup = calloc(2 * (size_t)n + nz, sizeof(double));
   d->Fc = calloc((size_t)n, sizeof(double));
-  d->Fc1 = calloc((size_t)n, sizeof(double));
   d->zd = calloc((size_t)nz + 1, sizeof(double));
-  d->zd1 = calloc((size_t)nz + 1, sizeof(double));
-  d->Yp = calloc((size_t)d->ny, sizeof(double));
-  d->hfd = calloc(2 * (size_t)n + nz, sizeof(double));
+  d->Gs = m->contact ? calloc((size_t)(6 + nz) * (2 * (size_t)n + nz), sizeof(double)) : NULL;
+  d->sw = m->contact ? calloc((size_t)csr_romSoleWorkSize(m), sizeof(double)) : NULL;
+  d->As = calloc(6 * (size_t)n, sizeof(double));
   d->Klag = m->par.tangent_lag > 0 ? calloc((size_t)n * n, sizeof(double)) : NULL;
   d->qlag = calloc((size_t)n, sizeof(double));
   d->vmax = calloc((size_t)n, sizeof(double));
-  if (!d->fd || !d->fdead || !d->face_p || !d->F || !d->G || !d->backup || !d->Fc || !d->Fc1 ||
-      !d->zd || !d->zd1 || !d->Yp || !d->hfd || (m->par.tangent_lag > 0 && !d->Klag) ||
+  if (!d->fd || !d->fdead || !d->face_p || !d->F || !d->G || !d->backup || !d->Fc || !d->zd ||
+      (m->contact && (!d->Gs || !d->sw)) || !d->As || (m->par.tangent_lag > 0 && !d->Klag) ||
       !d->qlag || !d->vmax) {
     csr_romDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory (n = %d)", n);
@@ -917,11 +926,6 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
     d->vmax[k] = vmax;
     at[k] = m->par.atol_u / (vmax > 0 ? vmax : 1.0);
     at[n + k] = 1e3 * at[k]; /* q' over a millisecond */
-    /* the sole's difference steps: 1e-7 mm of nodal displacement, 1e-5 mm/s of its rate
-     * (below the contact law's smoothing lengths d_onset 1e-3 mm and v_plastic 1e-3 mm/s,
-     * above round-off on poses of tens of mm) */
-    d->hfd[k] = 1e-7 / (vmax > 0 ? vmax : 1.0);
-    d->hfd[n + k] = 1e-5 / (vmax > 0 ? vmax : 1.0);
   }
   for (int k = 2 * n; k < d->ny; k++) {
     at[k] = 1.0; /* the impulses: set per advance */
@@ -929,7 +933,6 @@ csrRomData* csr_romDataCreate(const csrRomModel* m, csError* err) {
   for (int i = 0; i < nz; i++) {
     /* the bristle (mm; the torsional one in rad over a 1 mm arm): as a displacement */
     at[2 * n + 3 + i] = m->par.atol_u;
-    d->hfd[2 * n + i] = 1e-8;
   }
   d->cvode = CVodeCreate(CV_BDF, d->sun);
   if (!d->cvode || CVodeInit(d->cvode, rhs, 0.0, d->yv) != CV_SUCCESS ||

@@ -133,6 +133,21 @@ int csr_romSoleLoad(const csrRomModel* m, const double R[9], const double xh[3],
                     const double* z, double* Fc, double* zdot, cscShapeLoad* load, double x0[3],
                     cscSlotInfo* slot);
 
+/* The sole's load at one state as csr_romSoleLoad gives it, L = (f0, m) (world, the couple about
+ * the foot's centre) and zdot (nz), with its derivatives G ((6 + nz) x (2n + nz), row-major):
+ * rows f0, m, z', columns q, q', z. The law's part by central differences in the foot's twelve
+ * coordinates (centre, world rotation vector of its frame, their rates) and in z (2 (12 + nz)
+ * law calls); the pose's dependence on q, q' analytic (x0 = x_h + R (X̄ + Ū q), the frame
+ * R exp(W q) Rs0 through the left Jacobian of SO(3), v0 = v_h + R (ω × x̄ + Ū q'),
+ * ω_f = R (ω + W q')). The reduced force's derivatives are [Ūᵀ Rᵀ, Wᵀ Rᵀ] times G's first six
+ * rows (the integration's Jacobian, robot_rom.c). work: csr_romSoleWorkSize(m) doubles.
+ * Returns csc_softCompute's code (> 0 recoverable). */
+int csr_romSoleWorkSize(const csrRomModel* m);
+int csr_romSoleJacobian(const csrRomModel* m, const double R[9], const double xh[3],
+                        const double vh[3], const double w[3], const double* q,
+                        const double* qd, const double* z, double L[6], double* zdot,
+                        double* G, double* work);
+
 /* The data of one leg: the state y = [q (n), q' (n)], its time, the hip state the last step
  * ended at, the pressures of the step, CVODE and scratch. */
 typedef struct csrRomData_ csrRomData;
@@ -189,7 +204,7 @@ void csr_romStats(const csrRomData* d, long* steps, long* rhs, long* jacs, long*
 /* The integration's counters summed over the data's life (CVODE's own summed across its
  * restarts), to see where a step's cost goes: rhs counts the reduced evaluations without the
  * tangent (0.0142 s each on the real leg's b10 file), tangents those with it (0.128 s), sole the
- * sole's contact-law calls (2n + nz + 1 per Jacobian by differences). */
+ * sole's contact-law calls (2 (12 + nz) + 1 per Jacobian: csr_romSoleJacobian). */
 typedef struct csrRomStats_ {
   long steps;       /* CVODE's accepted internal steps */
   long rhs;         /* right-hand sides (reduced evaluations without the tangent) */

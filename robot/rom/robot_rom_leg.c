@@ -49,6 +49,10 @@ struct csrLeg_ {
   csrBaseState b_reset;
   double* x;              /* (state size) scratch */
   double* G, *Y;          /* (n x 6) gains' scratch */
+  double* G0;             /* (n x 6) G before the contact's part */
+  /* the last gains' flexible share Gᵀ S'⁻¹ G' (36), the hip's twist they were taken at (6: v,
+   * ω, world) and whether they are fresh (1): the momentum carry of advanceRom */
+  double* cz;
   double* Sc;             /* (n x n) gains' scratch: S with the sole's contact, factored */
   double* Fz;             /* (nz) gains' scratch: the history advanced one step */
   double* Fc, *zd;        /* (n), (nz) contact scratch */
@@ -223,6 +227,13 @@ static int sharedCreateRom(const csrLegSpec* spec, void** shared, csError* err) 
    * 12 of 77 Jacobians took a tangent, the same steps, a third less CPU (docs/notes/rom.md
    * "The rom leg's contact steps") */
   par.tangent_lag = ROM_TANGENT_LAG;
+  double set[CSR_LEG_MAX_SETTINGS];
+  csr_legSettingsRead(&csr_leg_rom, spec->settings, set);
+  if (set[0] > 0) {
+    par.rtol *= set[0];
+    par.atol_u *= set[0];
+    par.atol_wrench *= set[0];
+  }
   if (!spec->weightless) {
     memcpy(par.gravity, spec->gravity, sizeof par.gravity);
   }
@@ -290,6 +301,7 @@ static void destroyRom(csrLeg* leg) {
   }
   csr_romDataDestroy(leg->d);
   free(leg->x), free(leg->G), free(leg->Y), free(leg->Fc), free(leg->zd), free(leg->slot);
+  free(leg->G0), free(leg->cz);
   free(leg->Sc), free(leg->Fz);
   free(leg->pts);
   free(leg);
@@ -313,6 +325,8 @@ static csrLeg* createRom(const csrLegSpec* spec, csError* err) {
   leg->x = malloc((size_t)csr_romStateSize(sh->m) * sizeof(double));
   leg->G = malloc((size_t)n * 6 * sizeof(double));
   leg->Y = malloc((size_t)n * 6 * sizeof(double));
+  leg->G0 = malloc((size_t)n * 6 * sizeof(double));
+  leg->cz = calloc(43, sizeof(double));
   leg->Sc = malloc((size_t)n * n * sizeof(double));
   leg->Fz = malloc((size_t)nz * sizeof(double));
   leg->Fc = malloc((size_t)n * sizeof(double));
@@ -320,7 +334,7 @@ static csrLeg* createRom(const csrLegSpec* spec, csError* err) {
   leg->slot = calloc((size_t)nslot, sizeof *leg->slot);
   leg->pts = malloc((size_t)sh->npt * 3 * sizeof(double));
   if (!leg->d || !leg->x || !leg->G || !leg->Y || !leg->Fc || !leg->zd || !leg->slot ||
-      !leg->pts || !leg->Sc || !leg->Fz) {
+      !leg->pts || !leg->Sc || !leg->Fz || !leg->G0 || !leg->cz) {
     if (leg->d) cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
     destroyRom(leg);
     return NULL;
@@ -339,10 +353,14 @@ static int stateSizeRom(const csrLeg* leg) { return sharedSize(leg); }
 static void getStateRom(const csrLeg* leg, double* x) { csr_romGetState(leg->sh->m, leg->d, x); }
 
 static int setStateRom(csrLeg* leg, const double* x) {
+  leg->cz[42] = 0; /* no gains of this state's */
   return csr_romSetState(leg->sh->m, leg->d, x);
 }
 
-static void resetRom(csrLeg* leg) { csr_romReset(leg->sh->m, leg->d, 0.0, &leg->b_reset); }
+static void resetRom(csrLeg* leg) {
+  leg->cz[42] = 0;
+  csr_romReset(leg->sh->m, leg->d, 0.0, &leg->b_reset);
+}
 
 static int actuateRom(csrLeg* leg, double t0, const double p0[12], double t1,
                       const double p1[12]) {
@@ -350,9 +368,47 @@ static int actuateRom(csrLeg* leg, double t0, const double p0[12], double t1,
   return 0;
 }
 
+/* The Jacobi schemes (sim_coupling.c) start a step at the support's actual state b0, which differs
+ * from where the last step left the hip by ΔV in twist; the leg jumps with it rigidly (its state
+ * in the hip frame unchanged), its momenta by M6 ΔV, which its wrench never hands the support
+ * (robot_rom.h: balanced against the momenta at b0). The support was charged instead, in the
+ * last step, the gains' Z ΔV (interfaceGainsRom), which is the leg's momentum change less its
+ * flexible share Gᵀ S'⁻¹ G' ΔV (the modes that do not follow the hip within one step). That share
+ * is momentum created at every step (measured: the robot falling freely at 1.075 g at H = 1 ms,
+ * 1.56 g at 0.1 ms, docs/notes/rom.md "C1 hip motion"); the wrench carries it back to the
+ * support in this step: its force rows only (carried in the moment too, the support's rotation
+ * grew 2.4 times a step in flight: an explicit feedback through the hips' lever arms), of the
+ * flexible share only (the contact's part of Z is an impulse from the ground, not a mismatch of
+ * momenta); 0 when no gains were taken since the last advance (Gauss-Seidel's b0 is the last b1:
+ * ΔV = 0 there too). Measured on the real leg: the free fall at 1.005 g. */
 static int advanceRom(csrLeg* leg, double t, double H, const csrBaseState* b0,
                       const csrBaseState* b1, csrWrench* w, csError* err) {
-  return csr_romAdvance(leg->sh->m, leg->d, t, H, b0, b1, w, err);
+  double carry[3] = {0, 0, 0};
+  const int fresh = leg->cz[42] != 0;
+  if (fresh) {
+    double dV[6];
+    for (int i = 0; i < 3; i++) {
+      dV[i] = b0->v[i] - leg->cz[36 + i];
+      dV[3 + i] = b0->w[i] - leg->cz[39 + i];
+    }
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 6; j++) {
+        carry[i] += leg->cz[6 * i + j] * dV[j];
+      }
+    }
+  }
+  leg->cz[42] = 0;
+  const int rc = csr_romAdvance(leg->sh->m, leg->d, t, H, b0, b1, w, err);
+  if (rc != 0) {
+    leg->cz[42] = fresh; /* the state is unchanged: a retry of the step carries it */
+    return rc;
+  }
+  if (w) {
+    for (int i = 0; i < 3; i++) {
+      w->f[i] -= carry[i] / H;
+    }
+  }
+  return 0;
 }
 
 void csr_romLegStats(const csrLeg* leg, csrRomStats* s) { csr_romGetStats(leg->d, s); }
@@ -495,6 +551,7 @@ static void interfaceGainsRom(const csrLeg* leg, double K[36], double C[36]) {
       G[6 * k + 3 + j] = ge;
     }
   }
+  memcpy(leg->G0, G, (size_t)n * 6 * sizeof(double));
   /* the sole's contact, if it touches: S', G' and the rigid part h J_sᵀ A_c J_s */
   double Ac[9], p[3], Js[18], AJ[18], P[18], Zc[36];
   memset(Zc, 0, sizeof Zc);
@@ -657,6 +714,19 @@ static void interfaceGainsRom(const csrLeg* leg, double K[36], double C[36]) {
     K[i] = 0.0;
     C[i] = 0.5 * (Z[i] + Z[6 * (i % 6) + i / 6]) / h;
   }
+  /* the flexible share G0ᵀ S'⁻¹ G' and the twist it is for: advanceRom's carry */
+  for (int i = 0; c && i < 6; i++) {
+    for (int j = 0; j < 6; j++) {
+      double a = 0;
+      for (int k = 0; k < n; k++) {
+        a += leg->G0[6 * k + i] * Y[6 * k + j];
+      }
+      leg->cz[6 * i + j] = a;
+    }
+  }
+  memcpy(leg->cz + 36, b + 12, 3 * sizeof(double));
+  memcpy(leg->cz + 39, b + 15, 3 * sizeof(double));
+  leg->cz[42] = c != NULL;
 }
 
 /* the sole's load at the current state (0 out of contact or without a terrain) */
@@ -779,11 +849,19 @@ static void contactForceRom(const csrLeg* leg, double f[3]) {
   csu_add3(f, ld.f0, ld.f1);
 }
 
+/* the level's own settings (robot_leg.h csrLegSetting) */
+static const csrLegSetting kRomSettings[] = {
+    /* every CVODE tolerance of the legs (rtol, atol_u, atol_wrench: csr_romDefaultParams) times
+     * this; 0 or 1: those. The rod's knob of the same name and meaning (`--rod-tol`): the rom's
+     * contact steps' cost falls with it (docs/notes/rom.md "C1 hip motion") */
+    {"rod_tol", "times the shipped CVODE tolerances", 1, 0, 1000, 0},
+};
+
 const csrLegType csr_leg_rom = {
     .name = "rom",
     .in_world = 0,
-    .settings = NULL,
-    .nsettings = 0,
+    .settings = kRomSettings,
+    .nsettings = (int)(sizeof kRomSettings / sizeof kRomSettings[0]),
     .needs_file = 1,
     .coupling_stabilised = 1,
     .create = createRom,

@@ -9,7 +9,8 @@
  * default 15: the short leg; 50 for the robot's own leg), the provisional calibration from
  * $CS_SOURCE_DIR. Time starts at -settle (the driver's), the steps are
  * cs_step's macro steps from the built robot (0.5 mm above the ground). CS_BENCH_CARRY=0: the
- * Gauss-Seidel scheme without its impulse carry (csOptions.coupling_carry). */
+ * Gauss-Seidel scheme without its impulse carry (csOptions.coupling_carry). CRAWLSIM_ROM_TOL:
+ * the legs' CVODE tolerances times this (the level's setting rod_tol, `--rod-tol`). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
   if (argc > 3) def.coupling = argv[3];
   if (argc > 4) def.dt = atof(argv[4]);
   if (argc > 5) def.macro_steps = atof(argv[5]);
+  if (getenv("CRAWLSIM_ROM_TOL")) def.rod_tol = atof(getenv("CRAWLSIM_ROM_TOL"));
   const long nstep = atol(argv[2]);
   dInitODE2(0);
   dSetMessageHandler(quiet);

@@ -328,11 +328,127 @@ static void lagged_tangent_follows_the_fresh_one_with_fewer_tangents(void) {
 }
 
 
+/* the sole's derivatives of csr_romSoleJacobian (the law's in the foot's coordinates, chained
+ * through the sole's pose in q, q') against central differences of csr_romSoleLoad itself in
+ * every q, q' and z: pressed and sticking, then dragged and sliding, with the hip turning at
+ * 20 rad/s and the sole tilted by 0.02 rad (so that the pose's ω × Ū and exp's left Jacobian
+ * terms count). Each block (q, q', z) within 1e-4 of its largest entry */
+static void sole_jacobian_matches_differences_of_the_sole_load(void) {
+  Rig r;
+  rigCreate(&r);
+  press(&r);
+  const int n = r.m->n, nz = r.m->nz, nc = 2 * n + nz;
+  double* G = malloc((size_t)(6 + nz) * nc * sizeof(double));
+  double* work = malloc((size_t)csr_romSoleWorkSize(r.m) * sizeof(double));
+  double* Fp = malloc((size_t)n * sizeof(double));
+  double* Fm = malloc((size_t)n * sizeof(double));
+  double* y = malloc((size_t)nc * sizeof(double));
+  double* vmax = calloc((size_t)n, sizeof(double));
+  for (int k = 0; k < n; k++) {
+    for (int i = 0; i < r.b.rom->ndof; i++) {
+      vmax[k] = fmax(vmax[k], fabs(r.b.rom->V[(size_t)i * n + k]));
+    }
+  }
+  for (int state = 0; state < 2; state++) {
+    if (state == 1) { /* drag: the bristle at the Coulomb limit */
+      const double v = 5.0, t0 = r.t;
+      while (r.t < t0 + 0.06 - 0.5 * kH) {
+        const csrBaseState b1 = hipAt(v * (r.t + kH - t0), v, BZ - kPress, 0);
+        step(&r, &b1, NULL);
+      }
+    }
+    memcpy(y, csr_romQ(r.d), (size_t)n * sizeof(double));
+    memcpy(y + n, csr_romQdot(r.d), (size_t)n * sizeof(double));
+    memcpy(y + 2 * n, csr_romZ(r.d), (size_t)nz * sizeof(double));
+    /* tilt the sole by 0.02 rad about the hip's x (least squares on the W rows: the q of
+     * smallest norm with W q = θ) */
+    {
+      const double th[3] = {0.02, 0, 0};
+      double WWt[9] = {0}, Wi[9], c[3];
+      for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+          for (int k = 0; k < n; k++) {
+            WWt[3 * i + j] += r.m->Ws[(size_t)i * n + k] * r.m->Ws[(size_t)j * n + k];
+          }
+        }
+      }
+      const double det = WWt[0] * (WWt[4] * WWt[8] - WWt[5] * WWt[7]) -
+                         WWt[1] * (WWt[3] * WWt[8] - WWt[5] * WWt[6]) +
+                         WWt[2] * (WWt[3] * WWt[7] - WWt[4] * WWt[6]);
+      CS_ASSERT(fabs(det) > 0);
+      Wi[0] = (WWt[4] * WWt[8] - WWt[5] * WWt[7]) / det;
+      Wi[1] = (WWt[2] * WWt[7] - WWt[1] * WWt[8]) / det;
+      Wi[2] = (WWt[1] * WWt[5] - WWt[2] * WWt[4]) / det;
+      Wi[3] = (WWt[5] * WWt[6] - WWt[3] * WWt[8]) / det;
+      Wi[4] = (WWt[0] * WWt[8] - WWt[2] * WWt[6]) / det;
+      Wi[5] = (WWt[2] * WWt[3] - WWt[0] * WWt[5]) / det;
+      Wi[6] = (WWt[3] * WWt[7] - WWt[4] * WWt[6]) / det;
+      Wi[7] = (WWt[1] * WWt[6] - WWt[0] * WWt[7]) / det;
+      Wi[8] = (WWt[0] * WWt[4] - WWt[1] * WWt[3]) / det;
+      csu_mulMatVec3(c, Wi, th);
+      for (int k = 0; k < n; k++) {
+        for (int i = 0; i < 3; i++) {
+          y[k] += r.m->Ws[(size_t)i * n + k] * c[i];
+        }
+      }
+    }
+    const double w[3] = {20.0, -10.0, 5.0}; /* rad/s, hip frame */
+    const double* R = r.base.R;
+    double L[6], zd[8], zp[8], zm[8];
+    CS_ASSERT(nz <= 8);
+    CS_ASSERT(csr_romSoleJacobian(r.m, R, r.base.x, r.base.v, w, y, y + n, y + 2 * n, L, zd, G,
+                                  work) == 0);
+    CS_EXPECT(fabs(L[1]) > 0); /* the sole is loaded */
+    /* A = [Ūᵀ Rᵀ, Wᵀ Rᵀ]: the reduced force's derivatives from G's first six rows */
+    double err[3] = {0, 0, 0}, big[3] = {0, 0, 0};
+    for (int c = 0; c < nc; c++) {
+      const int blk = c < n ? 0 : (c < 2 * n ? 1 : 2);
+      const double h = c < 2 * n ? 1e-6 / vmax[c % n] : 1e-8;
+      const double y0 = y[c];
+      y[c] = y0 + h;
+      CS_ASSERT(csr_romSoleLoad(r.m, R, r.base.x, r.base.v, w, y, y + n, y + 2 * n, Fp, zp,
+                                NULL, NULL, NULL) == 0);
+      y[c] = y0 - h;
+      CS_ASSERT(csr_romSoleLoad(r.m, R, r.base.x, r.base.v, w, y, y + n, y + 2 * n, Fm, zm,
+                                NULL, NULL, NULL) == 0);
+      y[c] = y0;
+      for (int k = 0; k < n; k++) {
+        double a = 0;
+        for (int i = 0; i < 3; i++) {
+          for (int j = 0; j < 3; j++) {
+            a += r.m->Us[(size_t)i * n + k] * R[3 * j + i] * G[(size_t)j * nc + c] +
+                 r.m->Ws[(size_t)i * n + k] * R[3 * j + i] * G[(size_t)(3 + j) * nc + c];
+          }
+        }
+        const double fd = (Fp[k] - Fm[k]) / (2 * h);
+        err[blk] = fmax(err[blk], fabs(a - fd));
+        big[blk] = fmax(big[blk], fabs(fd));
+      }
+      for (int i = 0; i < nz; i++) {
+        const double fd = (zp[i] - zm[i]) / (2 * h);
+        err[blk] = fmax(err[blk], fabs(G[(size_t)(6 + i) * nc + c] - fd));
+        big[blk] = fmax(big[blk], fabs(fd));
+      }
+    }
+    printf("  %s: N %.4g N; against differences: q %.2e of %.3g, q' %.2e of %.3g, z %.2e of "
+           "%.3g\n", state ? "sliding" : "sticking", L[1], err[0], big[0], err[1], big[1],
+           err[2], big[2]);
+    for (int b = 0; b < 3; b++) {
+      CS_EXPECT(big[b] > 0);
+      CS_EXPECT(err[b] <= 1e-4 * big[b]);
+    }
+  }
+  free(G), free(work), free(Fp), free(Fm), free(y), free(vmax);
+  rigDestroy(&r);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(stance_sole_holds_below_the_coulomb_limit);
   CS_RUN(dragged_sole_slides_at_the_coulomb_force);
   CS_RUN(restored_sliding_state_steps_bit_for_bit);
   CS_RUN(lagged_tangent_follows_the_fresh_one_with_fewer_tangents);
+  CS_RUN(sole_jacobian_matches_differences_of_the_sole_load);
   return cs_testSummary();
 }

@@ -124,7 +124,7 @@ static void test_badOptions(void) {
                 "off the speed/accuracy front (docs/studies/speed_accuracy.md); use rod (the "
                 "default) or strain");
   expectFailure("--legs strain --rod-tol 2",
-                "crawlsim run: --rod-tol is for rod legs, not strain (their setting rod_tol)");
+                "crawlsim run: --rod-tol is for rod, rom legs, not strain (their setting rod_tol)");
   expectFailure("--legs rod --step-order 2",
                 "crawlsim run: --step-order is for strain legs, not rod (their setting "
                 "step_order)");
