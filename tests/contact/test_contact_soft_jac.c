@@ -176,6 +176,44 @@ static double checkState(const char* name, const cscSoftModel* m, const cscShape
 }
 
 
+/* the friction's own derivatives on a level ground: rows 0 and 2 of K and C (the forces along
+ * x and z, the tangent plane: friction, and the normal force's share only through the sole's
+ * small tilt) against central differences, relative to those rows' largest entry; the
+ * normal law's far larger entries do not mask them as they do in checkState's measure */
+static void checkTangentRows(const char* name, const cscSoftModel* m, const cscShapeState* st,
+                             const double* z) {
+  double L[6], K[36], C[36];
+  CS_EXPECT(csc_softShapeJacobian(m, 0, st, z, L, K, C) == 0);
+  double kmax = 0, cmax = 0, ek = 0, ec = 0;
+  const int rows[2] = {0, 2};
+  for (int c = 0; c < 12; c++) {
+    const double del = c < 3 ? kDx : (c < 6 ? kDphi : kDv);
+    cscShapeState sp = *st, sm = *st;
+    perturb(&sp, c, del);
+    perturb(&sm, c, -del);
+    double Lp[6], Lm[6];
+    loadL(m, &sp, z, Lp);
+    loadL(m, &sm, z, Lm);
+    for (int i = 0; i < 2; i++) {
+      const int r = rows[i];
+      const double D = (Lp[r] - Lm[r]) / (2 * del), A = c < 6 ? K[6 * r + c] : C[6 * r + c - 6];
+      if (c < 6) {
+        kmax = fmax(kmax, fabs(D));
+        ek = fmax(ek, fabs(A - D));
+      } else {
+        cmax = fmax(cmax, fabs(D));
+        ec = fmax(ec, fabs(A - D));
+      }
+    }
+  }
+  printf("%-22s tangential rows: |K| %.3e err %.2e (rel %.1e), |C| %.3e err %.2e (rel %.1e)\n",
+         name, kmax, ek, ek / kmax, cmax, ec, ec / cmax);
+  CS_EXPECT(kmax > 0 && cmax > 0);
+  CS_EXPECT(ek <= 1e-6 * kmax);
+  CS_EXPECT(ec <= 1e-6 * cmax);
+}
+
+
 /* a level foot (e1 = +x, e2 = +z, e3 = -y) turned by rotation vector tilt, its sole centre at
  * x0 */
 static cscShapeState footPose(const double x0[3], const double tilt[3], const double v0[3],
@@ -311,6 +349,70 @@ static void test_soft_jacobian_matches_differences_over_an_edge(void) {
 }
 
 
+/* The step-mode friction's cap (contact_soft_internal.h csc_softFrictionStep): the damped
+ * bristle's force is return-mapped, so no slot's friction passes mu N at any slip rate; a slot
+ * sliding at 0.5 m/s (tau_t w = 60 stick ranges) is at mu N whatever its anchor; and the
+ * derivatives hold where the damping decides the regime: at 8 mm/s tau_t w is one stick
+ * range, so anchors at u 0.4 / 1.0 / 1.5 land in stick, on the parabola and saturated by their
+ * direction against the slip; at 0.5 m/s all are saturated (only the transverse stiffness mu N
+ * / |g| is left). The law before the cap (the rate added after the saturation) read up to
+ * 63 mu N on these states. */
+static void test_soft_step_friction_capped_at_mu_N(void) {
+  cstTerrain t = levelGround(1e3);
+  cscShape sh;
+  cscSoftModel* m = footModel(&t, &sh);
+  if (!m) {
+    return;
+  }
+  const cscSoftParams* p = csc_softParams(m);
+  double z[36], up[3] = {0, 1, 0};
+  const double speeds[5] = {0.0, 2.0, 8.0, 40.0, 500.0};
+  const double dirs[3][3] = {{1, 0, 0}, {-0.6, 0, 0.8}, {0, 0, -1}};
+  double worst = 0;
+  for (int i = 0; i < 5; i++) {
+    for (int j = 0; j < 3; j++) {
+      const double x0[3] = {1.0, -1.37e-3, 2.0}, tilt[3] = {0.83e-4, 0, 0.61e-4};
+      const double w[3] = {0.011, 0.023, -0.0047};
+      double v0[3];
+      csu_scale3(v0, dirs[j], speeds[i]);
+      v0[1] = -0.23;
+      cscShapeState st = footPose(x0, tilt, v0, w);
+      anchors(m, &sh, &st, up, z);
+      cscSlotInfo slot[9];
+      cscShapeLoad ld;
+      double zd[36];
+      CS_EXPECT(csc_softComputeShape(m, 0, &st, z, &ld, zd, slot, NULL) == 0);
+      for (int k = 0; k < 9; k++) {
+        if (!(slot[k].depth > 0) || z[4 * k + 3] < 0) {
+          continue;
+        }
+        CS_EXPECT(slot[k].N > 0);
+        const double r = csu_norm3(slot[k].ft) / (p->mu * slot[k].N);
+        worst = fmax(worst, r);
+        CS_EXPECT(r <= 1 + 1e-12);
+        if (speeds[i] >= 500) {
+          CS_EXPECT_NEAR(r, 1.0, 0, 1e-12);
+        }
+      }
+    }
+  }
+  printf("largest |F_t| / (mu N) over the slip rates 0..500 mm/s: %.15f\n", worst);
+  /* the derivatives where the damping decides the regime */
+  const double x0[3] = {1.0, -1.37e-3, 2.0}, tilt[3] = {0.83e-4, 0, 0.61e-4};
+  const double w[3] = {0.011, 0.023, -0.0047};
+  const double vmid[3] = {8.0, -0.23, 1.3}, vfast[3] = {-470.0, -0.23, 160.0};
+  cscShapeState st = footPose(x0, tilt, vmid, w);
+  anchors(m, &sh, &st, up, z);
+  checkState("level, 8 mm/s", m, &st, z);
+  checkTangentRows("level, 8 mm/s", m, &st, z);
+  st = footPose(x0, tilt, vfast, w);
+  anchors(m, &sh, &st, up, z);
+  checkState("level, 0.5 m/s", m, &st, z);
+  checkTangentRows("level, 0.5 m/s", m, &st, z);
+  csc_softDestroy(m);
+}
+
+
 static void test_soft_jacobian_declines_what_it_does_not_cover(void) {
   cstTerrain t = levelGround(1e3);
   cscSoftModel* m = capsuleFootModel(&t, CSC_HISTORY_STEP);
@@ -409,6 +511,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_soft_jacobian_matches_differences_level_ground);
   CS_RUN(test_soft_jacobian_matches_differences_tilted_ground);
   CS_RUN(test_soft_jacobian_matches_differences_over_an_edge);
+  CS_RUN(test_soft_step_friction_capped_at_mu_N);
   CS_RUN(test_soft_jacobian_declines_what_it_does_not_cover);
   CS_RUN(test_soft_update_load_is_update_then_compute);
   return cs_testSummary();
