@@ -120,6 +120,24 @@ static void anchors(const cscSoftModel* m, const cscShape* sh, const cscShapeSta
 }
 
 
+/* D (6 x 12, row-major): the load's central differences along the 12 coordinates of perturb */
+static void centralDiffs(const cscSoftModel* m, const cscShapeState* st, const double* z,
+                         double D[72]) {
+  for (int c = 0; c < 12; c++) {
+    const double del = c < 3 ? kDx : (c < 6 ? kDphi : kDv);
+    cscShapeState sp = *st, sm = *st;
+    perturb(&sp, c, del);
+    perturb(&sm, c, -del);
+    double Lp[6], Lm[6];
+    loadL(m, &sp, z, Lp);
+    loadL(m, &sm, z, Lm);
+    for (int r = 0; r < 6; r++) {
+      D[12 * r + c] = (Lp[r] - Lm[r]) / (2 * del);
+    }
+  }
+}
+
+
 /* K, C against central differences and L against the law at one state; returns the worst
  * error relative to the matrices' largest entry */
 static double checkState(const char* name, const cscSoftModel* m, const cscShapeState* st,
@@ -139,18 +157,7 @@ static double checkState(const char* name, const cscSoftModel* m, const cscShape
   /* round-off of the same sums grouped differently */
   CS_EXPECT(el <= 1e-12 * lmax);
   double D[72];
-  for (int c = 0; c < 12; c++) {
-    const double del = c < 3 ? kDx : (c < 6 ? kDphi : kDv);
-    cscShapeState sp = *st, sm = *st;
-    perturb(&sp, c, del);
-    perturb(&sm, c, -del);
-    double Lp[6], Lm[6];
-    loadL(m, &sp, z, Lp);
-    loadL(m, &sm, z, Lm);
-    for (int r = 0; r < 6; r++) {
-      D[12 * r + c] = (Lp[r] - Lm[r]) / (2 * del);
-    }
-  }
+  centralDiffs(m, st, z, D);
   for (int r = 0; r < 6; r++) {
     for (int c = 0; c < 6; c++) {
       kmax = fmax(kmax, fabs(D[12 * r + c]));
@@ -184,25 +191,19 @@ static void checkTangentRows(const char* name, const cscSoftModel* m, const cscS
                              const double* z) {
   double L[6], K[36], C[36];
   CS_EXPECT(csc_softShapeJacobian(m, 0, st, z, L, K, C) == 0);
-  double kmax = 0, cmax = 0, ek = 0, ec = 0;
+  double kmax = 0, cmax = 0, ek = 0, ec = 0, D[72];
   const int rows[2] = {0, 2};
+  centralDiffs(m, st, z, D);
   for (int c = 0; c < 12; c++) {
-    const double del = c < 3 ? kDx : (c < 6 ? kDphi : kDv);
-    cscShapeState sp = *st, sm = *st;
-    perturb(&sp, c, del);
-    perturb(&sm, c, -del);
-    double Lp[6], Lm[6];
-    loadL(m, &sp, z, Lp);
-    loadL(m, &sm, z, Lm);
     for (int i = 0; i < 2; i++) {
       const int r = rows[i];
-      const double D = (Lp[r] - Lm[r]) / (2 * del), A = c < 6 ? K[6 * r + c] : C[6 * r + c - 6];
+      const double Dr = D[12 * r + c], A = c < 6 ? K[6 * r + c] : C[6 * r + c - 6];
       if (c < 6) {
-        kmax = fmax(kmax, fabs(D));
-        ek = fmax(ek, fabs(A - D));
+        kmax = fmax(kmax, fabs(Dr));
+        ek = fmax(ek, fabs(A - Dr));
       } else {
-        cmax = fmax(cmax, fabs(D));
-        ec = fmax(ec, fabs(A - D));
+        cmax = fmax(cmax, fabs(Dr));
+        ec = fmax(ec, fabs(A - Dr));
       }
     }
   }
