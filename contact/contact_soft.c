@@ -292,7 +292,8 @@ static void slotStep(const cscSoftParams* p, const cscShape* sh, const cscShapeS
     return;
   }
   /* csc_softUpdate: free a lifted slot, anchor a new one where it is, pull an anchor to at most
-   * u = 2 - u_elastic behind (where the saturation is already 1: the force is unchanged) */
+   * u = 2 - u_elastic behind (where the saturation is already 1: the force is unchanged while
+   * the slip runs along the deflection, whose damped part tau_t w then only adds to it) */
   if (!touching) {
     csu_set3(zw, 0, 0, 0);
     zw[3] = CSC_SOFT_FREE;

@@ -42,9 +42,11 @@
  *     u = 1 (and beyond, so u = 1 attracts): sliding holds the force at mu N. Smooth (C1) in
  *     the state, so BDF with error control integrates it.
  *   * CSC_HISTORY_STEP: z is an anchor point fixed within a step (Cundall & Strack 1979) and
- *     moved by csc_softUpdate() at the end of each accepted step; within a step the force
- *     saturates smoothly at mu N (continuous and C1), the update keeps it continuous. A slot
- *     that touches down mid-step has no friction until the next update.
+ *     moved by csc_softUpdate() at the end of each accepted step; within a step the damped
+ *     force -(N / delta_t)(z_t + tau_t w) is return-mapped onto |F_t| <= mu N as a whole,
+ *     smoothly (continuous and C1; contact_soft_internal.h csc_softFrictionStep), so no slip
+ *     rate takes it past mu N; the update keeps it continuous. A slot that touches down
+ *     mid-step has no friction until the next update.
  *   Measured on a 40 g foot block under 0.8 N in CVODE BDF (tests/contact/test_contact_soft.c,
  *   table in its header): both hold at 0.9 mu N (creep <= 1.2e-5 um/s) and slide at 1.1 and
  *   2 mu N at mu N to 1e-5 (ODE's contacts: 0.483 mu N at 2 mu N); integrated needs 770-1800
@@ -156,7 +158,8 @@ typedef struct cscSlotInfo_ {
   double point[3];  /* mm: load centroid on the shape's surface */
   double ft[3];     /* N: friction force */
   double torsion;   /* N mm: torsional friction couple about the normal (foot patch) */
-  double ratio;     /* -: |z_t| / (mu delta_t), 1 at the Coulomb limit (0 if mu = 0) */
+  double ratio;     /* -: |z_t| / (mu delta_t), 1 at the Coulomb limit (0 if mu = 0); step
+                       mode: of the damped deflection, |z_t + tau_t w| / (mu delta_t) */
   int sliding;      /* at the Coulomb limit and slipping outwards */
 } cscSlotInfo;
 

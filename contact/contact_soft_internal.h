@@ -55,7 +55,8 @@ typedef struct cscSoftGeom_ {
 typedef struct cscSoftFriction_ {
   double ft[3];  /* N: tangential force */
   double T;      /* N mm: torsional couple about the normal (foot patch) */
-  double ratio;  /* -: friction ratio u of the translational bristle */
+  double ratio;  /* -: friction ratio of the translational bristle (integrated: u = |z_t| /
+                    (mu delta_t); step: s = |z_r + tau_t w| / (mu delta_t)) */
   int sliding;
 } cscSoftFriction;
 
@@ -116,7 +117,31 @@ void csc_softFrictionIntegrated(const cscSoftParams* p, const cscSoftAcc* acc,
 void csc_softFrictionTorsion(const cscSoftParams* p, const cscSoftAcc* acc,
                              const cscSoftGeom* g, int touching, double wn, double Jel,
                              double R1el, double phi, double* phid, cscSoftFriction* f);
-/* step-mode friction of an anchored slot at material point xm moving at vm, anchor a */
+/* Step-mode friction of an anchored slot at material point xm moving at vm, anchor a: fills
+ * f->ft (N), f->ratio = s below and f->sliding = s > 1.
+ *
+ * The slot's bristle is a Kelvin-Voigt element (stiffness N / delta_t, dashpot tau_t N /
+ * delta_t) in series with a Coulomb slider (the anchor a). Within a step the anchor is fixed,
+ * so the bristle's tangential deflection is z_r = (xm - a)_t and its rate the slip rate
+ * w = (vm)_t: the stuck bristle's trial force is F_tr = -(N / delta_t) g, with the damped
+ * deflection g = z_r + tau_t w. Were the slider to move by da over a step h (backward Euler:
+ * at the rate da / h), the force would be -(N / delta_t) (g - (1 + tau_t / h) da); Coulomb's
+ * |F| <= mu N with the slip against the force (maximum dissipation) then gives the radial
+ * return F = F_tr if |F_tr| <= mu N, else mu N F_tr / |F_tr|, whatever h, since the slip only
+ * shortens g along its own direction (the return map of elastoplasticity: Simo & Hughes,
+ * Computational Inelasticity, Springer 1998, ch. 1 and 3, the closest-point projection of the
+ * trial state onto the admissible set, radial for a disc; for Coulomb friction with a
+ * tangential penalty: Wriggers, Computational Contact Mechanics, 2nd ed., Springer 2006). The
+ * law smooths that projection with the saturation m it always used (contact_soft_law.c
+ * stepSaturation: m(s) = s up to u_elastic, 1 from 2 - u_elastic, a parabola between; C1, so an
+ * implicit step's Newton passes converge):
+ *   F_t = -(N / delta_t) mu delta_t m(s) g / |g|,   s = |g| / (mu delta_t),
+ * so |F_t| <= mu N whatever the slip rate; -(N / delta_t)(z_r + tau_t w) in elastic stick;
+ * mu N against g in a slide. (The law was once F_t = -(N / delta_t)(e + tau_t ė)
+ * with e = mu delta_t m(u) û, u = |z_r| / (mu delta_t): the saturation of z_r alone, its rate
+ * added after it. That is this law's expansion to first order in tau_t w about z_r, and it
+ * passes mu N wherever tau_t ė is not small: a foot sliding at 0.5 m/s over an anchor in the
+ * parabola has tau_t w = 60 stick ranges.) */
 void csc_softFrictionStep(const cscSoftParams* p, const cscSoftGeom* g, const double xm[3],
                           const double vm[3], const double a[3], cscSoftFriction* f);
 

@@ -345,36 +345,26 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
   dvec xm, vm, zr, wt;
   footPoint(xmv, st->x0, &xm);
   footVelocity(&xm, x0, v0, w, &vm);
-  /* csc_softFrictionStep */
+  /* csc_softFrictionStep: the damped deflection g = z_r + tau_t w, s = |g| / (mu delta_t);
+   * ft = -(N / delta_t) g in elastic stick, -(N / delta_t) mu delta_t m(s) g / |g| past it */
   for (int j = 0; j < 3; j++) zr.c[j] = jSub(xm.c[j], jConst(zk[j]));
   vAxpy(&zr, &zr, &gn, jScl(vDot(&zr, &gn), -1));
   vAxpy(&wt, &vm, &gn, jScl(vDot(&vm, &gn), -1));
+  dvec gd;
+  vAxpy(&gd, &zr, &wt, jConst(p->tau_t));
   const double zs = p->mu * p->delta_t;
-  dual nz = jSqrt(vDot(&zr, &zr));
-  dvec e, ed;
-  if (nz.v > 0) {
-    dual u = jScl(nz, 1 / zs), mv, dm;
-    jStepSaturation(u, p->u_elastic, &mv, &dm);
-    dvec uh;
-    vScale(&uh, &zr, jDiv(jConst(1), nz));
-    dual wr = vDot(&uh, &wt);
-    vScale(&e, &uh, jScl(mv, zs));
-    /* e' = m' (û·w) û + (m / u) (w - (û·w) û) */
-    dual mu_ = jDiv(mv, u);
-    dvec tr;
-    vAxpy(&tr, &wt, &uh, jScl(wr, -1));
-    vScale(&ed, &uh, jMul(dm, wr));
-    vAxpy(&ed, &ed, &tr, mu_);
-  } else {
-    vZero(&e);
-    ed = wt;
+  dual ng = jSqrt(vDot(&gd, &gd));
+  dual sr = ng; /* s by the law's division (its branch test), the slopes alike */
+  sr.v = ng.v / zs;
+  for (int k = 0; k < ND; k++) sr.d[k] = ng.d[k] / zs;
+  dual fac = jScl(N, -1 / p->delta_t);
+  if (sr.v > p->u_elastic) {
+    dual mv, dm;
+    jStepSaturation(sr, p->u_elastic, &mv, &dm);
+    fac = jMul(fac, jDiv(jScl(mv, zs), ng));
   }
-  /* ft = -(N / delta_t) (e + tau_t e'), applied at xm */
-  dual s = jScl(N, -1 / p->delta_t);
   dvec ft, rm, mr;
-  for (int j = 0; j < 3; j++) {
-    ft.c[j] = jMul(s, jAdd(e.c[j], jScl(ed.c[j], p->tau_t)));
-  }
+  vScale(&ft, &gd, fac);
   vAdd(f0, f0, &ft);
   vSub(&rm, &xm, x0);
   vCross(&mr, &rm, &ft);

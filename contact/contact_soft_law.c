@@ -538,24 +538,25 @@ void csc_softFrictionTorsion(const cscSoftParams* p, const cscSoftAcc* acc,
 void csc_softFrictionStep(const cscSoftParams* p, const cscSoftGeom* g, const double xm[3],
                           const double vm[3], const double a[3], cscSoftFriction* f) {
   const double* n = g->n;
-  double zr[3], wt[3], e[3], ed[3];
+  double zr[3], wt[3], gd[3];
   csu_sub3(zr, xm, a);
   csu_addScl3(zr, zr, n, -csu_dot3(zr, n));
   csu_addScl3(wt, vm, n, -csu_dot3(vm, n));
-  double zs = p->mu * p->delta_t, nz = csu_norm3(zr), u = nz / zs;
-  if (nz > 0) {
-    double dm, mval = stepSaturation(u, p->u_elastic, &dm), uh[3];
-    csu_scale3(uh, zr, 1.0 / nz);
-    double wr = csu_dot3(uh, wt);
-    /* e = mu delta_t m(u) u_hat; e' = m' (u_hat . w) u_hat + (m / u) (w - (u_hat . w) u_hat) */
-    csu_scale3(e, uh, zs * mval);
-    for (int k = 0; k < 3; k++) ed[k] = dm * wr * uh[k] + (mval / u) * (wt[k] - wr * uh[k]);
+  /* the damped deflection gd = z_r + tau_t w: the stuck bristle's force is -(N / delta_t) gd;
+   * its return map onto |F_t| <= mu N is the radial one with the C1 saturation m
+   * (contact_soft_internal.h: F_t = -mu N m(s) gd / |gd|, s = |gd| / (mu delta_t)) */
+  csu_addScl3(gd, zr, wt, p->tau_t);
+  const double zs = p->mu * p->delta_t, ng = csu_norm3(gd), s = ng / zs;
+  const double k = g->N / p->delta_t;
+  if (s <= p->u_elastic) {
+    /* elastic stick: m(s) = s, the Kelvin-Voigt bristle itself */
+    for (int j = 0; j < 3; j++) f->ft[j] = -k * gd[j];
   } else {
-    csu_set3(e, 0, 0, 0);
-    csu_copy3(ed, wt);
+    double dm, mval = stepSaturation(s, p->u_elastic, &dm);
+    (void)dm;
+    csu_scale3(f->ft, gd, -k * zs * mval / ng);
   }
-  for (int k = 0; k < 3; k++) f->ft[k] = -(g->N / p->delta_t) * (e[k] + p->tau_t * ed[k]);
   f->T = 0;
-  f->ratio = u;
-  f->sliding = u > 1;
+  f->ratio = s;
+  f->sliding = s > 1;
 }

@@ -251,6 +251,19 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
     st = cs_h5AttrDouble(f, "/", "strain_keep_matrix", csr_legSettingGet(lt, ls, "keep_matrix", 0),
                          err);
   }
+  if (st == CS_OK && csr_legSettingFind(lt, "joints")) {
+    /* the strain level's basis beside links_per_segment: the joints' order (-1 rigid), the
+     * shears as unknowns (1) or Kirchhoff (0), the Magnus sub-intervals per flexible piece */
+    st = cs_h5AttrDouble(f, "/", "strain_joint_order", csr_legSettingGet(lt, ls, "joints", 0),
+                         err);
+    if (st == CS_OK) {
+      st = cs_h5AttrDouble(f, "/", "strain_shear", csr_legSettingGet(lt, ls, "shear", 1), err);
+    }
+    if (st == CS_OK) {
+      st = cs_h5AttrDouble(f, "/", "strain_sub_intervals", csr_legSettingGet(lt, ls, "sub", 4),
+                           err);
+    }
+  }
   if (st == CS_OK && m->robot.leg_file[0]) {
     /* the level's own file (rom: the reduced leg of `crawlsim rom leg-file`) */
     st = cs_h5AttrString(f, "/", "leg_file", m->robot.leg_file, err);

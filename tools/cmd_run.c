@@ -50,7 +50,7 @@ static const csxOpt kRunOpts[] = {
      "the leg level; auto picks the scene's cheapest measured configuration within --tol; "
      "strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled tree, its "
      "step --dt (default 1 ms, the level's own) and --links bending modes per segment (default "
-     "3); rom: the reduced FE leg of --rom-file (docs/notes/rom.md), contact at its sole only; prb "
+     "2); rom: the reduced FE leg of --rom-file (docs/notes/rom.md), contact at its sole only; prb "
      "was retired (refused naming rod or strain)"},
     {"--rom-file", "LEG.h5", NULL,
      "with --legs rom: the reduced leg's file (crawlsim rom leg-file), built for the legs' "
@@ -82,7 +82,7 @@ static const csxOpt kRunOpts[] = {
     {"--tau", "S", "0.02", "pneumatic lag time constant in s (0: none)"},
     {"--gravity", "M/S2", "9.81", "gravitational acceleration in m/s^2"},
     {"--support-mass", "KG", "0.05", "mass of the support (body) in kg"},
-    {"--links", "N", "the scene's for rod legs (8 on flat-road, 4 on obstacle), strain 3, else 4",
+    {"--links", "N", "the scene's for rod legs (8 on flat-road, 4 on obstacle), strain 2, else 4",
      "elements (rod) or bending modes (strain) per leg segment, 1..64"},
     {"--iterations", "N", "240", "ODE QuickStep iterations per step, 1..10000"},
     {"--macro-steps", "N", "1", "ODE steps per exchange with co-simulated legs (H = N dt)"},

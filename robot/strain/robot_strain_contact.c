@@ -306,17 +306,20 @@ static void worldRows(const csrStrainModel* m, const csrStrainData* d, int p, in
 
 
 /* The friction's secant from the anchors (Kačanov's iteration for a saturating law) on the
- * foot's slots in a Newton iterate: a slot past the saturation (u >= 2 - u_elastic, where the
- * law's m(u) = 1 and m'(u) = 0) has no stiffness along its slip, so a Newton pass from there
- * does not know where the stick is and the passes cycle between slip either way. Along the
- * slip direction û its stiffness becomes the secant to the anchor, N m(u) / (u delta_t) =
- * mu N / |s| (the transverse one already is): linearised there, the force vanishes at the
- * anchor, so the next pass lands between slip and stick. Only the iteration matrix changes:
+ * foot's slots in a Newton iterate: a slot past the saturation (s >= 2 - u_elastic, s = |g| /
+ * (mu delta_t) of the damped deflection g = z_r + tau_t w, contact_soft_internal.h
+ * csc_softFrictionStep, where m(s) = 1 and m'(s) = 0) has no stiffness along its slip, so a
+ * Newton pass from there does not know where the stick is and the passes cycle between slip
+ * either way. Along ĝ its stiffness becomes the secant to g = 0, N m(s) / (s delta_t) =
+ * mu N / |g| (the transverse one already is), against g's change in the step: h + tau_t per
+ * unit of the end's slip rate (g = z_r + h ẏ1 + tau_t ẏ1 along the surface). Linearised
+ * there, the force vanishes where the damped deflection does, so the next pass lands between
+ * slip and stick. Only the iteration matrix changes:
  * converged, the step is the law's. Where a foot slides on, the secant converges linearly
  * where the tangent would quadratically; limiting it to a step's first 3 iterates was tried
  * and over the 9 s flat road at 5 ms halved more steps and took more passes in all (numbers in
- * docs/notes/strain_leg.md). ΔA = -h Σ k_i [I; r_i^] û ûᵀ [I, -r_i^] on the foot's
- * (v, ω) (r_i from the sole centre to the slot's point). */
+ * docs/notes/strain_leg.md). ΔA = -(h + tau_t) Σ k_i [I; r_i^] û ûᵀ [I, -r_i^] on the
+ * foot's (v, ω) (r_i from the sole centre to the slot's point, û = ĝ, opposite the force). */
 /* (csrStrainParams.friction_tangent 1: no secant, the law's consistent tangent, which K_y's
  * differences already are: in stick the anchor spring N/delta_t, in slip the cone's
  * projection derivative (I - û ûᵀ) mu N / |s| with the normal coupling mu û ∂N/∂y; measured
@@ -344,7 +347,7 @@ static void anchorSecant(const csrStrainModel* m, double h, const cscShapeState*
     double col[6] = {uh[0], uh[1], uh[2], c[0], c[1], c[2]};
     for (int a = 0; a < 6; a++) {
       for (int b = 0; b < 6; b++) {
-        A[6 * a + b] -= h * k * col[a] * row[b];
+        A[6 * a + b] -= (h + p->tau_t) * k * col[a] * row[b];
       }
     }
   }
@@ -372,7 +375,7 @@ static int countTouch(const csrStrainModel* m, csrStrainData* d, int s, const do
 
 
 /* the contact's state signature of shape s's slots: bit 0 touching, bit 1 past the friction's
- * saturation (u >= 2 - u_elastic: the Newton iterates take the anchors' secant there) */
+ * saturation (s >= 2 - u_elastic: the Newton iterates take the anchors' secant there) */
 static unsigned char slotSig(const cscSoftParams* p, const cscSlotInfo* si) {
   unsigned char c = si->depth > 0;
   if (c && p->mu > 0 && si->ratio >= 2 - p->u_elastic) {
@@ -785,9 +788,9 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
 
 
 /* Slot trust region (csrStrainParams.slot_trust). The step-mode friction of a slot is
- * F = -(N/delta_t)(mu delta_t m(u) û + tau_t e'), u = |z_t| / (mu delta_t) its offset from the
- * anchor over the stick range: linear to u_elastic, flat (m = 1, m' = 0) from 2 - u_elastic, a
- * parabola between. The law's tangent (friction_tangent 1) has no stiffness along the slip of a
+ * F = -(N/delta_t) mu delta_t m(s) ĝ, s = |g| / (mu delta_t) its damped offset g = z_t +
+ * tau_t w from the anchor over the stick range (contact_soft_internal.h): linear to
+ * u_elastic, flat (m = 1, m' = 0) from 2 - u_elastic, a parabola between. The law's tangent (friction_tangent 1) has no stiffness along the slip of a
  * saturated slot, so where a foot's slots saturate, a pass's linear model lets the foot slide
  * freely: measured, passes predicted a slot to move 15-16 stick ranges and the next one back
  * (u 1.0 -> 15.6 -> 0.3, at a step of 0.3 ms), and the flat road at 5 ms stopped at 0.93 s

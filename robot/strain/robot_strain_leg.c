@@ -54,7 +54,17 @@ enum { STRAIN_STEP_ORDER = 1 };
  * than it saved per pass (docs/notes/strain_leg.md, "Fast step") */
 enum { STRAIN_STEP_REFRESH = 1 };
 /* the level's settings (kStrainSettings, at the end) */
-enum { STRAIN_LINKS, STRAIN_ORDER, STRAIN_ACTIVE, STRAIN_FRICTION, STRAIN_TRUST, STRAIN_KEEP };
+enum {
+  STRAIN_LINKS,
+  STRAIN_ORDER,
+  STRAIN_ACTIVE,
+  STRAIN_FRICTION,
+  STRAIN_TRUST,
+  STRAIN_KEEP,
+  STRAIN_JOINTS,
+  STRAIN_SHEAR,
+  STRAIN_SUB
+};
 
 /* the contact at the current state for contactForce and contactDepth (header) */
 typedef struct {
@@ -128,6 +138,11 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->rp.contact_radius = lp->contact_radius;
   leg->sp = csr_strainDefaultParams();
   leg->sp.bend_order = links - 1;
+  /* the rest of the basis (robot_strain.h csrStrainParams; the settings' ranges are the
+   * model's own, which csr_strainModelCreate checks again) */
+  leg->sp.joint_order = (int)set[STRAIN_JOINTS];
+  leg->sp.shear = (int)set[STRAIN_SHEAR];
+  leg->sp.nsub = (int)set[STRAIN_SUB];
   leg->sp.step_order = step_order ? step_order : STRAIN_STEP_ORDER;
   leg->sp.step_refresh = STRAIN_STEP_REFRESH;
   leg->sp.active_set = set[STRAIN_ACTIVE] != 0;
@@ -500,8 +515,14 @@ static double contactDepthStrain(const csrLeg* leg) {
 
 /* the level's own settings (robot_leg.h csrLegSetting), in the order of STRAIN_* */
 static const csrLegSetting kStrainSettings[] = {
-    /* 3: the default basis, bend_order 2 + 1 (robot_strain.c csr_strainDefaultParams) */
-    [STRAIN_LINKS] = {"links", "bending modes per segment", 3, 1, CSR_STRAIN_MAX_ORDER + 1, 1},
+    /* 2: bend_order 1, one mode less than the model's default (robot_strain.c
+     * csr_strainDefaultParams): on both scenes within the issue's bounds of the nodal rod at 16
+     * elements and 0.25 ms (flat road 9 s 2.16 mm of 3, obstacle 4 s 1.82 mm of 2; 3 modes:
+     * 2.69, 1.99), first bending frequency +0.43 %, 0.87x the instructions of 3 modes
+     * (docs/notes/strain_leg.md "Friction cap and a lean basis"); 1 mode is cheaper still but
+     * its constant curvature misses the 1 % on the frequency (Rayleigh on a uniform cantilever:
+     * +27 %) */
+    [STRAIN_LINKS] = {"links", "bending modes per segment", 2, 1, CSR_STRAIN_MAX_ORDER + 1, 1},
     /* the tree step's formula: 1 backward Euler, 2 BDF2 */
     [STRAIN_ORDER] = {"step_order", "1 backward Euler, 2 BDF2", STRAIN_STEP_ORDER, 1, 2, 1},
     /* the Newton passes' active set for the stance feet (robot_strain.h active_set) */
@@ -520,6 +541,14 @@ static const csrLegSetting kStrainSettings[] = {
                      "0 a new iteration matrix every step, > 0 each leg's factor kept across "
                      "steps until a mode moves this far (rad or strain over its piece)",
                      0, 0, 1, 0},
+    /* the solid joints LS12, LS23: constant curvature (robot_strain.c csr_strainDefaultParams:
+     * their bending under the leg's loads is not negligible) or rigid */
+    [STRAIN_JOINTS] = {"joints", "the joints' bending modes less one (-1 rigid, 0 constant "
+                       "curvature)", 0, -1, CSR_STRAIN_MAX_ORDER, 1},
+    /* the shears σ1, σ2 as unknowns (1) or zero (0, Kirchhoff) */
+    [STRAIN_SHEAR] = {"shear", "1 the shears are unknowns, 0 Kirchhoff (no shear)", 1, 0, 1, 1},
+    /* Magnus sub-intervals per flexible piece (the kinematics' and the capsules' resolution) */
+    [STRAIN_SUB] = {"sub", "Magnus sub-intervals per flexible piece", 4, 1, 16, 1},
 };
 
 const csrLegType csr_leg_strain = {

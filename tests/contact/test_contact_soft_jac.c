@@ -120,6 +120,24 @@ static void anchors(const cscSoftModel* m, const cscShape* sh, const cscShapeSta
 }
 
 
+/* D (6 x 12, row-major): the load's central differences along the 12 coordinates of perturb */
+static void centralDiffs(const cscSoftModel* m, const cscShapeState* st, const double* z,
+                         double D[72]) {
+  for (int c = 0; c < 12; c++) {
+    const double del = c < 3 ? kDx : (c < 6 ? kDphi : kDv);
+    cscShapeState sp = *st, sm = *st;
+    perturb(&sp, c, del);
+    perturb(&sm, c, -del);
+    double Lp[6], Lm[6];
+    loadL(m, &sp, z, Lp);
+    loadL(m, &sm, z, Lm);
+    for (int r = 0; r < 6; r++) {
+      D[12 * r + c] = (Lp[r] - Lm[r]) / (2 * del);
+    }
+  }
+}
+
+
 /* K, C against central differences and L against the law at one state; returns the worst
  * error relative to the matrices' largest entry */
 static double checkState(const char* name, const cscSoftModel* m, const cscShapeState* st,
@@ -139,18 +157,7 @@ static double checkState(const char* name, const cscSoftModel* m, const cscShape
   /* round-off of the same sums grouped differently */
   CS_EXPECT(el <= 1e-12 * lmax);
   double D[72];
-  for (int c = 0; c < 12; c++) {
-    const double del = c < 3 ? kDx : (c < 6 ? kDphi : kDv);
-    cscShapeState sp = *st, sm = *st;
-    perturb(&sp, c, del);
-    perturb(&sm, c, -del);
-    double Lp[6], Lm[6];
-    loadL(m, &sp, z, Lp);
-    loadL(m, &sm, z, Lm);
-    for (int r = 0; r < 6; r++) {
-      D[12 * r + c] = (Lp[r] - Lm[r]) / (2 * del);
-    }
-  }
+  centralDiffs(m, st, z, D);
   for (int r = 0; r < 6; r++) {
     for (int c = 0; c < 6; c++) {
       kmax = fmax(kmax, fabs(D[12 * r + c]));
@@ -173,6 +180,38 @@ static double checkState(const char* name, const cscSoftModel* m, const cscShape
   CS_EXPECT(ek <= 1e-6 * kmax);
   CS_EXPECT(ec <= 1e-6 * cmax);
   return fmax(ek / kmax, ec / cmax);
+}
+
+
+/* the friction's own derivatives on a level ground: rows 0 and 2 of K and C (the forces along
+ * x and z, the tangent plane: friction, and the normal force's share only through the sole's
+ * small tilt) against central differences, relative to those rows' largest entry; the
+ * normal law's far larger entries do not mask them as they do in checkState's measure */
+static void checkTangentRows(const char* name, const cscSoftModel* m, const cscShapeState* st,
+                             const double* z) {
+  double L[6], K[36], C[36];
+  CS_EXPECT(csc_softShapeJacobian(m, 0, st, z, L, K, C) == 0);
+  double kmax = 0, cmax = 0, ek = 0, ec = 0, D[72];
+  const int rows[2] = {0, 2};
+  centralDiffs(m, st, z, D);
+  for (int c = 0; c < 12; c++) {
+    for (int i = 0; i < 2; i++) {
+      const int r = rows[i];
+      const double Dr = D[12 * r + c], A = c < 6 ? K[6 * r + c] : C[6 * r + c - 6];
+      if (c < 6) {
+        kmax = fmax(kmax, fabs(Dr));
+        ek = fmax(ek, fabs(A - Dr));
+      } else {
+        cmax = fmax(cmax, fabs(Dr));
+        ec = fmax(ec, fabs(A - Dr));
+      }
+    }
+  }
+  printf("%-22s tangential rows: |K| %.3e err %.2e (rel %.1e), |C| %.3e err %.2e (rel %.1e)\n",
+         name, kmax, ek, ek / kmax, cmax, ec, ec / cmax);
+  CS_EXPECT(kmax > 0 && cmax > 0);
+  CS_EXPECT(ek <= 1e-6 * kmax);
+  CS_EXPECT(ec <= 1e-6 * cmax);
 }
 
 
@@ -311,6 +350,70 @@ static void test_soft_jacobian_matches_differences_over_an_edge(void) {
 }
 
 
+/* The step-mode friction's cap (contact_soft_internal.h csc_softFrictionStep): the damped
+ * bristle's force is return-mapped, so no slot's friction passes mu N at any slip rate; a slot
+ * sliding at 0.5 m/s (tau_t w = 60 stick ranges) is at mu N whatever its anchor; and the
+ * derivatives hold where the damping decides the regime: at 8 mm/s tau_t w is one stick
+ * range, so anchors at u 0.4 / 1.0 / 1.5 land in stick, on the parabola and saturated by their
+ * direction against the slip; at 0.5 m/s all are saturated (only the transverse stiffness mu N
+ * / |g| is left). The law before the cap (the rate added after the saturation) read up to
+ * 63 mu N on these states. */
+static void test_soft_step_friction_capped_at_mu_N(void) {
+  cstTerrain t = levelGround(1e3);
+  cscShape sh;
+  cscSoftModel* m = footModel(&t, &sh);
+  if (!m) {
+    return;
+  }
+  const cscSoftParams* p = csc_softParams(m);
+  double z[36], up[3] = {0, 1, 0};
+  const double speeds[5] = {0.0, 2.0, 8.0, 40.0, 500.0};
+  const double dirs[3][3] = {{1, 0, 0}, {-0.6, 0, 0.8}, {0, 0, -1}};
+  double worst = 0;
+  for (int i = 0; i < 5; i++) {
+    for (int j = 0; j < 3; j++) {
+      const double x0[3] = {1.0, -1.37e-3, 2.0}, tilt[3] = {0.83e-4, 0, 0.61e-4};
+      const double w[3] = {0.011, 0.023, -0.0047};
+      double v0[3];
+      csu_scale3(v0, dirs[j], speeds[i]);
+      v0[1] = -0.23;
+      cscShapeState st = footPose(x0, tilt, v0, w);
+      anchors(m, &sh, &st, up, z);
+      cscSlotInfo slot[9];
+      cscShapeLoad ld;
+      double zd[36];
+      CS_EXPECT(csc_softComputeShape(m, 0, &st, z, &ld, zd, slot, NULL) == 0);
+      for (int k = 0; k < 9; k++) {
+        if (!(slot[k].depth > 0) || z[4 * k + 3] < 0) {
+          continue;
+        }
+        CS_EXPECT(slot[k].N > 0);
+        const double r = csu_norm3(slot[k].ft) / (p->mu * slot[k].N);
+        worst = fmax(worst, r);
+        CS_EXPECT(r <= 1 + 1e-12);
+        if (speeds[i] >= 500) {
+          CS_EXPECT_NEAR(r, 1.0, 0, 1e-12);
+        }
+      }
+    }
+  }
+  printf("largest |F_t| / (mu N) over the slip rates 0..500 mm/s: %.15f\n", worst);
+  /* the derivatives where the damping decides the regime */
+  const double x0[3] = {1.0, -1.37e-3, 2.0}, tilt[3] = {0.83e-4, 0, 0.61e-4};
+  const double w[3] = {0.011, 0.023, -0.0047};
+  const double vmid[3] = {8.0, -0.23, 1.3}, vfast[3] = {-470.0, -0.23, 160.0};
+  cscShapeState st = footPose(x0, tilt, vmid, w);
+  anchors(m, &sh, &st, up, z);
+  checkState("level, 8 mm/s", m, &st, z);
+  checkTangentRows("level, 8 mm/s", m, &st, z);
+  st = footPose(x0, tilt, vfast, w);
+  anchors(m, &sh, &st, up, z);
+  checkState("level, 0.5 m/s", m, &st, z);
+  checkTangentRows("level, 0.5 m/s", m, &st, z);
+  csc_softDestroy(m);
+}
+
+
 static void test_soft_jacobian_declines_what_it_does_not_cover(void) {
   cstTerrain t = levelGround(1e3);
   cscSoftModel* m = capsuleFootModel(&t, CSC_HISTORY_STEP);
@@ -409,6 +512,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_soft_jacobian_matches_differences_level_ground);
   CS_RUN(test_soft_jacobian_matches_differences_tilted_ground);
   CS_RUN(test_soft_jacobian_matches_differences_over_an_edge);
+  CS_RUN(test_soft_step_friction_capped_at_mu_N);
   CS_RUN(test_soft_jacobian_declines_what_it_does_not_cover);
   CS_RUN(test_soft_update_load_is_update_then_compute);
   return cs_testSummary();

@@ -3,14 +3,17 @@
  * after the other in ONE process, so their ratio is measured under the same load (not a test:
  * prints numbers; docs/notes/strain_leg.md "In the driver").
  *
- *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC[:TRUST[:KEEP]]]]]]]]]...
+ *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC[:TRUST[:KEEP[:JOINTS[:SHEAR[:SUB]]]]]]]]]]]]...
  *
  * (ORDER 0, TREE_TOL 0: the defaults; ACTIVE the strain level's setting active_set, 1 the
  * contact ghosts in the Newton passes, 0 the law alone; FRIC its setting friction_tangent, 0
  * the anchors' secant in the iterates, 1 the law's tangent; TRUST its setting slot_trust, 1 the
  * passes' slot trust region, 0 the full move; KEEP its setting keep_matrix, 0 a new iteration
  * matrix every step, > 0 the legs' factors kept across steps until a mode moves that far; -1
- * or absent: the default; with keep_matrix the legs' factorisations per step are printed)
+ * or absent: the default; with keep_matrix the legs' factorisations per step are printed;
+ * JOINTS, SHEAR, SUB the strain level's basis settings joints (-1 rigid, 0 constant
+ * curvature; -2 or absent: the default), shear (1 or 0 Kirchhoff) and sub (Magnus
+ * sub-intervals per flexible piece), -1 or absent: the defaults)
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -186,7 +189,7 @@ static void printStages(const csuTimer* tm, double cpu_s, long nstep) {
 
 static int bench(const char* src, const char* arg, double t_end) {
   char level[32] = "", terr[600], gait[600], cal[600];
-  int links = 0, order = 0, active = -1, fric = -1, trust = -1;
+  int links = 0, order = 0, active = -1, fric = -1, trust = -1, joints = -2, shear = -1, sub = -1;
   double dt = 0, tol = 0, kmat = -1;
   /* LEVEL[:LINKS[:DT[:ORDER]]] (ORDER: the tree step's formula, 1 backward Euler, 2 BDF2; 0 or
    * absent: the level's default; TREE_TOL: the tree step's Newton tolerance, mm) */
@@ -208,6 +211,12 @@ static int bench(const char* src, const char* arg, double t_end) {
     trust = c7 ? atoi(c7 + 1) : -1;
     const char* c8 = c7 ? strchr(c7 + 1, ':') : NULL;
     kmat = c8 ? atof(c8 + 1) : -1;
+    const char* c9 = c8 ? strchr(c8 + 1, ':') : NULL;
+    joints = c9 ? atoi(c9 + 1) : -2;
+    const char* c10 = c9 ? strchr(c9 + 1, ':') : NULL;
+    shear = c10 ? atoi(c10 + 1) : -1;
+    const char* c11 = c10 ? strchr(c10 + 1, ':') : NULL;
+    sub = c11 ? atoi(c11 + 1) : -1;
   }
   const csrLegType* type = csr_legTypeFind(level, NULL);
   if (!type) {
@@ -273,6 +282,18 @@ static int bench(const char* src, const char* arg, double t_end) {
     cs_modelDestroy(&m);
     return 1;
   }
+  /* the strain level's basis beyond links (JOINTS -2, SHEAR and SUB -1 or absent: the defaults) */
+  const char* bname[3] = {"joints", "shear", "sub"};
+  const int bval[3] = {joints, shear, sub}, bunset[3] = {-2, -1, -1};
+  for (int i = 0; i < 3; i++) {
+    if (bval[i] != bunset[i] &&
+        csr_legSettingSet(type, &m.robot.leg_settings, bname[i], bval[i], NULL) != CS_OK) {
+      fprintf(stderr, "bench_strain_driver: %s %d is not a value of legs %s\n", bname[i],
+              bval[i], type->name);
+      cs_modelDestroy(&m);
+      return 1;
+    }
+  }
   if (tol > 0) {
     m.opt.tree_tol = tol;
   }
@@ -314,10 +335,17 @@ static int bench(const char* src, const char* arg, double t_end) {
     if (kmat > 0) {
       snprintf(ks, sizeof ks, "_keep%g", kmat);
     }
-    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s%s%s.h5", keep, scene->name, level,
+    char bs[48] = "";
+    if (joints != -2 || shear >= 0 || sub >= 0) {
+      snprintf(bs, sizeof bs, "_j%d_s%d_n%d",
+               (int)csr_legSettingGet(type, &m.robot.leg_settings, "joints", 0),
+               (int)csr_legSettingGet(type, &m.robot.leg_settings, "shear", 1),
+               (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 4));
+    }
+    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s%s%s%s.h5", keep, scene->name, level,
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order,
              active == 0 ? "_noactive" : "",
-             fric == 1 ? "_tangent" : "", trust == 1 ? "_trust" : "", ks);
+             fric == 1 ? "_tangent" : "", trust == 1 ? "_trust" : "", ks, bs);
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }
@@ -363,6 +391,11 @@ static int bench(const char* src, const char* arg, double t_end) {
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "friction_tangent", 0),
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "slot_trust", 0));
     if (gLegTime.inner == &csr_leg_strain) {
+      printf("  basis: links %d, joints %d, shear %d, sub %d\n",
+             (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0),
+             (int)csr_legSettingGet(type, &m.robot.leg_settings, "joints", 0),
+             (int)csr_legSettingGet(type, &m.robot.leg_settings, "shear", 1),
+             (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 4));
       long lsteps = 0, lfac = 0, lkept = 0;
       for (int k = 0; k < gLegTime.nlegs; k++) {
         long a, b, c;

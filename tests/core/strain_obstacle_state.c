@@ -1,5 +1,5 @@
 /* strain_obstacle_state.c: a scene on strain legs (its defaults, as `crawlsim run --scene
- * SCENE --legs strain [--gait GAIT --conditions COND]`) run to T seconds, its whole state
+ * SCENE --legs strain --links 3 [--gait GAIT --conditions COND]`) run to T seconds, its whole state
  * (cs_simStateGet) written as text: the count, then one value a line in C's exact hexadecimal
  * form (%a), so a test can restore it bit for bit. Built, not registered:
  *
@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   csRunDef def = cs_defaultRunDef();
   def.scene = argc == 6 ? argv[3] : "obstacle";
   def.legs = "strain";
+  def.links = 3; /* the basis the state files were made with (3 bending modes per segment,
+                   the level's default then) */
   def.data_dir = getenv("CS_SOURCE_DIR");
   if (argc == 6) {
     def.gait = argv[4];

@@ -485,6 +485,47 @@ static void test_strain_rejected_step_is_retried_in_halves(void) {
 }
 
 
+/* The level's basis settings (joints, shear, sub: robot_strain_leg.c) reach the legs: rigid
+ * joints, Kirchhoff segments and 2 sub-intervals per segment take each leg from 42 unknowns, 13
+ * capsules to 24 and 7 (robot_strain.h: a segment's bending 2 x 3 modes and twist and stretch,
+ * 4 with the shears; a joint's constant curvature 2 and its 4 axial; the capsules one per
+ * sub-interval but the foot's, 4 history doubles each, the constant pieces one), so each leg's
+ * state (4 n + the contact's history + 16 + the hip's 18: csr_strainStateSize, BDF2's history
+ * holding a second q, η) shrinks by 4 x 18 + 6 x 4 = 96 doubles; the lean legs then step through
+ * the driver; a value outside a setting's range is refused. */
+static void test_strain_basis_settings_change_the_legs(void) {
+  const csrLegType* type = &csr_leg_strain;
+  csModel m, ml;
+  int ok = loadModel(&m, type);
+  ok = loadModel(&ml, type) && ok;
+  CS_EXPECT(ok);
+  if (!ok) {
+    return;
+  }
+  csError err;
+  cs_errorClear(&err);
+  CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "joints", -1, &err) == CS_OK);
+  CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "shear", 0, &err) == CS_OK);
+  CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "sub", 2, &err) == CS_OK);
+  CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "joints", -2, &err) != CS_OK);
+  CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "sub", 0, &err) != CS_OK);
+  CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "shear", 2, &err) != CS_OK);
+  csData* d = makeData(&m);
+  csData* dl = makeData(&ml);
+  if (d && dl) {
+    const int n = cs_stateSize(&m, d), nl = cs_stateSize(&ml, dl);
+    printf("  state: %d doubles by default, %d with rigid joints, no shear, 2 sub-intervals\n", n,
+           nl);
+    CS_EXPECT(n - nl == CSR_NLEG * 96);
+    CS_EXPECT(stepN(&ml, dl, 50));
+  }
+  cs_dataDestroy(d);
+  cs_dataDestroy(dl);
+  cs_modelDestroy(&m);
+  cs_modelDestroy(&ml);
+}
+
+
 int main(int argc, char** argv) {
   const char* src = getenv("CS_SOURCE_DIR");
   snprintf(g_src, sizeof g_src, "%s", src ? src : ".");
@@ -496,6 +537,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_strain_frictionless_centre_of_mass_stays);
   CS_RUN(test_strain_bdf2_keeps_momentum_and_restores);
   CS_RUN(test_strain_kept_matrix_keeps_momentum);
+  CS_RUN(test_strain_basis_settings_change_the_legs);
   dCloseODE();
   return cs_testSummary();
 }

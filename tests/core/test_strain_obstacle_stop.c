@@ -36,6 +36,8 @@ static void test_obstacle_strain_steps_across_26_846(void) {
   def.gait = gait;
   def.conditions = "paper"; /* a gait of one's own defaults to earth */
   def.legs = "strain";
+  def.links = 3; /* the basis the state files were made with (3 bending modes per segment,
+                   the level's default then) */
   def.data_dir = src;
   RestoredRun r = restoredRun(&def, path, 26.8, 26.9,
                               "strain_obstacle_state 26.8 FILE obstacle GAIT paper built with "

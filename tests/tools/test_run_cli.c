@@ -419,7 +419,14 @@ static void test_strainRun(void) {
     CS_EXPECT(H5LTget_attribute_double(f, "/", "step_s", &step) >= 0 && step == 1e-3);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_s", &leg_step) >= 0 &&
               leg_step == 1e-3);
-    CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 3);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 2);
+    /* the level's default basis (robot_strain_leg.c: 2 bending modes per segment,
+     * constant-curvature joints, shears as unknowns, 4 sub-intervals per flexible piece) */
+    double joints = -9, shear = -9, sub = -9;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_joint_order", &joints) >= 0 &&
+              joints == 0);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_shear", &shear) >= 0 && shear == 1);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_sub_intervals", &sub) >= 0 && sub == 4);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_tree_calls", &tree_calls) >= 0 &&
               tree_calls == 20);
     double order = 0;
