@@ -10,7 +10,8 @@
 #   0.15 MPa held out of the enrichment) or +vibf (the same, and the modes' fibre strain
 #   increments at their levels added to the fibre basis: rom_basis.py --fibre-vib). Every basis: romlock's training (15 rays and their
 #   quarter turns, 96 POD modes, 16 pressure modes split at the connectors (48), supremizers).
-# Environment: LEVELS (the reduced levels, a prefix of the FE file's; default "0 0.075 0.15"),
+# (rom check writes its mesh files into DIR/snap.)
+# Environment: LEVELS (the reduced levels, some of the FE file's five; default "0 0.15"),
 #   FD (the tangent's finite-difference directions per level, default 4), CHECK (rays for `rom
 #   check` on each basis, default none).
 # Resumable: a finished step's file is kept. One heavy job at a time, nice 5.
@@ -40,7 +41,8 @@ if [ ! -f "$D/modes_fe.h5" ]; then
   mv "$D/modes_fe.h5.tmp" "$D/modes_fe.h5"
 fi
 LEV=()
-for p in ${LEVELS:-0 0.075 0.15}; do LEV+=(--pressure "$p"); done
+for p in ${LEVELS:-0 0.15}; do LEV+=(--pressure "$p"); done
+L=$(echo ${LEVELS:-0 0.15} | tr ' ' '_') # the levels name the reduced files
 for c in $CFGS; do
   f=${c%%+*}
   A=(--turns --n 96 --m 16 --p-split 19,42 --mixed)
@@ -63,20 +65,20 @@ for c in $CFGS; do
       > "$B/basis.log" 2>&1
     mv "$B/basis.h5.tmp" "$B/basis.h5"
   fi
-  if [ ! -f "$B/modes_rom.h5" ]; then
+  if [ ! -f "$B/modes_rom_$L.h5" ]; then
     echo "== $c: rom modes --rom-only ${LEV[*]} ($(date -u +%T), load $(cut -d' ' -f1-3 /proc/loadavg))"
     /usr/bin/time -f '== rom modes: %e s wall, %U s user' nice -n 5 "$CS" rom modes --rom-only \
-      --fd-check "${FD:-4}" --basis "$B/basis.h5" --out "$B/modes_rom.h5.tmp" --work "$B" \
-      "${LEV[@]}" "${EX[@]}" > "$B/modes_rom.log" 2>&1
-    mv "$B/modes_rom.h5.tmp" "$B/modes_rom.h5"
+      --fd-check "${FD:-4}" --basis "$B/basis.h5" --out "$B/modes_rom_$L.h5.tmp" --work "$B" \
+      "${LEV[@]}" "${EX[@]}" > "$B/modes_rom_$L.log" 2>&1
+    mv "$B/modes_rom_$L.h5.tmp" "$B/modes_rom_$L.h5"
   fi
-  nice -n 5 $PY "$TOOLS/rom_modes.py" "$B/modes_rom.h5" "$D/snap" "$B/basis.h5" \
-    --fe "$D/modes_fe.h5" > "$B/modes.log" 2>&1
-  echo "== $c: $(tail -1 "$B/modes.log")"
+  nice -n 5 $PY "$TOOLS/rom_modes.py" "$B/modes_rom_$L.h5" "$D/snap" "$B/basis.h5" \
+    --fe "$D/modes_fe.h5" > "$B/modes_$L.log" 2>&1
+  echo "== $c: $(tail -1 "$B/modes_$L.log")"
   for r in ${CHECK:-}; do
     [ -f "$B/check_$r.log" ] && continue
     /usr/bin/time -f '== rom check: %e s wall, %U s user' nice -n 5 "$CS" rom check \
-      --snapshots "$D/snap" --basis "$B/basis.h5" --ray "$r" --work "$B" "${EX[@]}" \
+      --snapshots "$D/snap" --basis "$B/basis.h5" --ray "$r" "${EX[@]}" \
       > "$B/check_$r.log.tmp" 2>&1
     mv "$B/check_$r.log.tmp" "$B/check_$r.log"
     echo "== $c: check $r: $(grep 'crawlsim rom: ray' "$B/check_$r.log")"
