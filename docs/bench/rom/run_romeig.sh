@@ -8,12 +8,18 @@
 #   CONFIG: base | f120 | f32s (no fibre basis; 120 global fibre modes; 32 split per segment),
 #   each optionally followed by +vib (the FE's 8 lowest vibration modes at 0, 0.075 and 0.3 MPa:
 #   0.15 MPa held out of the enrichment) or +vibf (the same, and the modes' fibre strain
-#   increments at their levels added to the fibre basis: rom_basis.py --fibre-vib). Every basis: romlock's training (15 rays and their
-#   quarter turns, 96 POD modes, 16 pressure modes split at the connectors (48), supremizers).
+#   increments at their levels added to the fibre basis: rom_basis.py --fibre-vib). Every
+#   basis: romlock's training (15 rays and their quarter turns, 96 POD modes, 16 pressure modes
+#   split at the connectors (48), supremizers).
 # (rom check writes its mesh files into DIR/snap.)
 # Environment: LEVELS (the reduced levels, some of the FE file's five; default "0 0.15"),
 #   FD (the tangent's finite-difference directions per level, default 4), CHECK (rays for `rom
 #   check` on each basis, default none).
+# Cost in session romeig (2026-12-06, load 6-15 on two cores, CPU s): the FE step 117; a basis
+# about 2 min of wall time; `rom modes --rom-only` at 0 and 0.15 MPa 61-107; `rom check --ray
+# T_H4` 103. The session ran `"f120+vib f120 f120+vibf base+vib"`, then CHECK=T_H4 on f120+vibf,
+# f32s+vibf, and LEVELS="0.075 0.3 0.4" on f120+vibf (DIR/f120 and DIR/base held romlock's
+# b96_f120.h5 and b96_base.h5, which these options remake).
 # Resumable: a finished step's file is kept. One heavy job at a time, nice 5.
 set -euo pipefail
 SRC=${1:?SHORT}; LEG=${2:?LEG.h5}; D=${3:?DIR}; CFGS=${4:?CONFIGS}
@@ -66,7 +72,8 @@ for c in $CFGS; do
     mv "$B/basis.h5.tmp" "$B/basis.h5"
   fi
   if [ ! -f "$B/modes_rom_$L.h5" ]; then
-    echo "== $c: rom modes --rom-only ${LEV[*]} ($(date -u +%T), load $(cut -d' ' -f1-3 /proc/loadavg))"
+    echo "== $c: rom modes --rom-only ${LEV[*]} ($(date -u +%T)," \
+      "load $(cut -d' ' -f1-3 /proc/loadavg))"
     /usr/bin/time -f '== rom modes: %e s wall, %U s user' nice -n 5 "$CS" rom modes --rom-only \
       --fd-check "${FD:-4}" --basis "$B/basis.h5" --out "$B/modes_rom_$L.h5.tmp" --work "$B" \
       "${LEV[@]}" "${EX[@]}" > "$B/modes_rom_$L.log" 2>&1
