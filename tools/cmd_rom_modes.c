@@ -11,6 +11,11 @@
  * needed here: tools/rom_modes.py assembles the FE's consistent mass from the snapshots' mesh
  * file (as tools/rom_basis.py does) and solves K phi = omega^2 M phi for both, the reduced one
  * with V^T M V. Units: K in N/mm, M in t, omega^2 in 1/s^2.
+ * With --fd-check K the reduced tangent is checked at each level's equilibrium against central
+ * differences of the reduced residual along K random unit directions v of q (|K v - (r(q + h v)
+ * - r(q - h v)) / 2h| / |K v|, h = 1e-6 max(|q|, 0.01); |q| ~ 0.004 |u|_mm, V being
+ * M-orthonormal with M in t): the tangent of the model as configured (a fibre basis, a pressure
+ * basis, weights), at the state the eigenproblem uses; attribute fd_rel_err of /p<k>.
  * Output (format "crawlsim-rom-modes 1"): per level k, group /p<k> with attributes p_MPa,
  * fe_wall_s, rom_wall_s, fe_newton and datasets K_rom [n,n], q [n], u_fe [ndof], K_fe_val [nnz],
  * K_fe_row_ptr [ndof+1], K_fe_col [nnz]; root attributes n, m, ndof, nlevel, ray, basis. */
@@ -40,6 +45,9 @@ static const csxOpt kModesOpts[] = {
     {"--rom-only", NULL, "off",
      "the reduced model's tangents alone (no FE solve: tools/rom_modes.py --fe takes the FE's "
      "from an earlier file of the same mesh and levels)"},
+    {"--fd-check", "K", "0: none",
+     "check the reduced tangent at each level against central differences of the reduced "
+     "residual along K random directions (0 .. 64)"},
     {"--work", "DIR", ".", "where gmsh's files of the basis' mesh are written"},
     ROM_OPT_ACTUATOR,
     ROM_OPT_SET,
@@ -78,9 +86,74 @@ static csStatus writeIntsAsDoubles(csH5File* f, const char* path, size_t n, cons
   return st;
 }
 
+/* The largest relative error over nfd random unit directions v of K v against central
+ * differences of r (the reduced model at its current q with its load ld; d->K is K and stays).
+ * -1 out of memory or when an evaluation fails. */
+static double fdCheck(csfRomActuator* ra, const csfRomLoad* ld, int nfd) {
+  csfRomData* d = ra->d;
+  const int n = ra->rom->n;
+  double* buf = malloc((size_t)n * 5 * sizeof(double));
+  if (!buf) {
+    return -1;
+  }
+  double* q0 = buf, *v = buf + n, *rp = buf + 2 * (size_t)n, *kv = buf + 3 * (size_t)n;
+  double* r0 = buf + 4 * (size_t)n;
+  memcpy(q0, d->q, (size_t)n * sizeof(double));
+  memcpy(r0, d->r, (size_t)n * sizeof(double));
+  double qn = 0;
+  for (int i = 0; i < n; i++) {
+    qn += q0[i] * q0[i];
+  }
+  const double h = 1e-6 * fmax(sqrt(qn), 0.01);
+  unsigned long long s = 0x9E3779B97F4A7C15ull; /* a fixed LCG: the same directions every run */
+  double worst = 0;
+  const int sync = d->sync;
+  d->sync = 1;
+  for (int k = 0; k < nfd && worst >= 0; k++) {
+    double vn = 0;
+    for (int i = 0; i < n; i++) {
+      s = s * 6364136223846793005ull + 1442695040888963407ull;
+      v[i] = (double)(s >> 11) / 9007199254740992.0 - 0.5;
+      vn += v[i] * v[i];
+    }
+    double kn = 0;
+    for (int i = 0; i < n; i++) {
+      v[i] /= sqrt(vn);
+    }
+    for (int i = 0; i < n; i++) {
+      double a = 0;
+      for (int j = 0; j < n; j++) {
+        a += d->K[(size_t)i * n + j] * v[j];
+      }
+      kv[i] = a;
+      kn += a * a;
+    }
+    for (int i = 0; i < n; i++) {
+      d->q[i] = q0[i] + h * v[i];
+    }
+    int ev = csf_romEvaluate(ra->rom, d, ld, 0);
+    memcpy(rp, d->r, (size_t)n * sizeof(double));
+    for (int i = 0; i < n; i++) {
+      d->q[i] = q0[i] - h * v[i];
+    }
+    ev = ev ? ev : csf_romEvaluate(ra->rom, d, ld, 0);
+    double e = 0;
+    for (int i = 0; i < n; i++) {
+      const double fd = (rp[i] - d->r[i]) / (2 * h);
+      e += (kv[i] - fd) * (kv[i] - fd);
+    }
+    worst = ev ? -1 : fmax(worst, sqrt(e / fmax(kn, 1e-300)));
+  }
+  memcpy(d->q, q0, (size_t)n * sizeof(double));
+  memcpy(d->r, r0, (size_t)n * sizeof(double));
+  d->sync = sync;
+  free(buf);
+  return worst;
+}
+
 /* one pressure level: the reduced and the FE tangents into group /p<k> of f */
 static csStatus modesLevel(csfRomActuator* ra, const csfRomRay* pattern, double pmax, int k,
-                           int rom_only, csH5File* f, csError* err) {
+                           int rom_only, int nfd, csH5File* f, csError* err) {
   const int n = ra->rom->n;
   const csfModel* m = ra->fe.model;
   double scale = 0;
@@ -120,6 +193,16 @@ static csStatus modesLevel(csfRomActuator* ra, const csfRomRay* pattern, double 
                        "physical", pmax);
   }
   const double rom_wall = csu_wallSeconds() - t0;
+  /* the check evaluates r only: K (written below) is the equilibrium's */
+  const double fd_err = nfd > 0 ? fdCheck(ra, &ld, nfd) : 0.0;
+  if (fd_err < 0) {
+    return cs_errorSet(err, CS_ERR_DIVERGED, "rom modes: --fd-check at %g MPa: an evaluation "
+                       "failed (out of memory or an element inverted)", pmax);
+  }
+  if (nfd > 0) {
+    printf("crawlsim rom: modes: %g MPa: |K v - central differences of r| / |K v| = %.2e "
+           "(worst of %d directions)\n", pmax, fd_err, nfd);
+  }
   const size_t dnn[2] = {(size_t)n, (size_t)n}, dn = (size_t)n;
   char g[32], path[64];
   snprintf(g, sizeof g, "/p%d", k);
@@ -130,6 +213,7 @@ static csStatus modesLevel(csfRomActuator* ra, const csfRomRay* pattern, double 
     if (st == CS_OK) st = cs_h5WriteDoubles(f, path, 1, &dn, ra->d->q, err);
     if (st == CS_OK) st = cs_h5AttrDouble(f, g, "p_MPa", pmax, err);
     if (st == CS_OK) st = cs_h5AttrDouble(f, g, "rom_wall_s", rom_wall, err);
+    if (st == CS_OK && nfd > 0) st = cs_h5AttrDouble(f, g, "fd_rel_err", fd_err, err);
     if (st == CS_OK) {
       printf("crawlsim rom: modes: %g MPa: reduced statics and tangent %.2f s\n", pmax, rom_wall);
     }
@@ -195,6 +279,7 @@ static csStatus modesLevel(csfRomActuator* ra, const csfRomRay* pattern, double 
   if (st == CS_OK) st = cs_h5AttrDouble(f, g, "p_MPa", pmax, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, g, "rom_wall_s", rom_wall, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, g, "fe_wall_s", fe_wall, err);
+  if (st == CS_OK && nfd > 0) st = cs_h5AttrDouble(f, g, "fd_rel_err", fd_err, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, g, "fe_newton", (double)info.newton, err);
   if (st == CS_OK) {
     printf("crawlsim rom: modes: %g MPa: reduced statics and tangent %.2f s; FE %.0f s (%ld "
@@ -211,6 +296,7 @@ int csx_cmdRomModes(int argc, char** argv) {
   const char* rayname = "O12";
   const char* sets[CSX_ROM_MAX_SETS];
   int nset = 0, np = 0, rom_only = 0;
+  double nfd = 0;
   double plev[MODES_MAX_LEVELS];
   csxOptIter it;
   csx_optBegin(&it);
@@ -234,6 +320,12 @@ int csx_cmdRomModes(int argc, char** argv) {
       work = v;
     } else if (csx_optIs(it.opt, "--rom-only")) {
       rom_only = 1;
+    } else if (csx_optIs(it.opt, "--fd-check")) {
+      bad = csx_romParseNumber("--fd-check", v, 0, 64, &nfd);
+      if (!bad && nfd != floor(nfd)) {
+        fprintf(stderr, "crawlsim rom: --fd-check '%s' must be a whole number\n", v);
+        bad = 1;
+      }
     } else if (csx_optIs(it.opt, "--ray")) {
       rayname = v;
     } else if (csx_optIs(it.opt, "--actuator")) {
@@ -280,7 +372,7 @@ int csx_cmdRomModes(int argc, char** argv) {
   csH5File* f = cs_h5Create(out, &err);
   csStatus st = f ? CS_OK : err.status;
   for (int k = 0; k < np && st == CS_OK; k++) {
-    st = modesLevel(&ra, pattern, plev[k], k, rom_only, f, &err);
+    st = modesLevel(&ra, pattern, plev[k], k, rom_only, (int)nfd, f, &err);
   }
   if (f) {
     if (st == CS_OK) st = cs_h5AttrString(f, "/", "format", "crawlsim-rom-modes 1", &err);

@@ -333,13 +333,40 @@ def fibre_basis(a, X, Ut, x, fib):
     return Q
 
 
-def enrich_vibration(V, path, k, fixed, M, levels=(0.0,)):
+def fibre_vib_enrich(Q, raw, x, fib):
+    """Qf with the fibre strain increments of the vibration modes at their loaded states (the
+    linearised Green strains dE_f = d_f . (D_f phi) / L0^2, d_f the chord at the FE's equilibrium
+    u of the mode's level) W-orthonormalised against Qf and each other (twice): the mixed fibre
+    field's projection then keeps the fibres' stiffness along the enrichment's modes instead of
+    relaxing what span(Qf) does not hold."""
+    node, coef, L0, W = fib[0], fib[1], fib[2], fib[3] * fib[2]
+    kept = 0
+    for u, phi in raw:
+        d = np.einsum("fa,fai->fi", coef, (x + u.reshape(-1, 3))[node])
+        dd = np.einsum("fa,fai->fi", coef, phi.reshape(-1, 3)[node])
+        t = (d * dd).sum(1) / L0 ** 2
+        n0 = np.sqrt(t @ (W * t))
+        for _ in range(2):
+            t = t - Q @ (Q.T @ (W * t))
+        n1 = np.sqrt(max(t @ (W * t), 0.0))
+        if n0 == 0 or n1 <= 1e-8 * n0:
+            continue
+        Q = np.concatenate([Q, (t / n1)[:, None]], axis=1)
+        kept += 1
+    print(f"rom_basis: fibres: {kept} strain increments of the {len(raw)} vibration modes added "
+          f"(--fibre-vib): mf = {Q.shape[1]}")
+    return Q
+
+
+def enrich_vibration(V, path, k, fixed, M, levels=(0.0,), raw=None):
     """V with the FE's k lowest vibration modes at each pressure level of `levels` (MPa; K phi =
     omega^2 M phi over the free dofs, K the FE's tangent at that level's equilibrium in a
     `crawlsim rom modes` file), M-orthonormalised against V and each other (twice): the
     small-amplitude shapes a basis of load snapshots lacks (the tip-loaded cantilever's bending,
     torsion), as nonlinear reduced models of structures add vibration modes to static snapshots;
-    at loaded levels, the modes of the ballooned, prestressed leg (its load stiffness)."""
+    at loaded levels, the modes of the ballooned, prestressed leg (its load stiffness). With a
+    list `raw`, each added mode's (FE equilibrium u at its level, the FE's mode) is appended to
+    it (for --fibre-vib)."""
     import scipy.sparse.linalg as spla
     free = np.flatnonzero(~fixed)
     nd = V.shape[0]
@@ -370,6 +397,10 @@ def enrich_vibration(V, path, k, fixed, M, levels=(0.0,)):
                     continue
                 Q = np.concatenate([Q, (s / n1)[:, None]], axis=1)
                 kept += 1
+                if raw is not None:
+                    phi = np.zeros(nd)
+                    phi[free] = Phi[:, j]
+                    raw.append((g["u_fe"][...], phi))
             f_hz = np.sqrt(np.maximum(np.sort(lam), 0)) / (2 * np.pi)
             print(f"rom_basis: vibration enrichment: {kept} of the FE's {k} lowest modes at "
                   f"{lev:g} MPa ({', '.join(f'{x:.1f}' for x in f_hz)} Hz) added: n = "
@@ -447,11 +478,16 @@ def main():
     ap.add_argument("--fibres", default=None,
                     help="--fibre-modes: a `crawlsim rom leg-file` of the same mesh (its fibre "
                     "elements)")
+    ap.add_argument("--fibre-vib", action="store_true",
+                    help="--fibre-modes with --vib: add to Qf the fibre strain increments of the "
+                    "added vibration modes at their levels' FE equilibria")
     ap.add_argument("--no-supremizers", action="store_true",
                     help="--mixed: no supremizer enrichment (to measure what it does)")
     a = ap.parse_args()
     if a.fibre_modes > 0 and not a.fibres:
         sys.exit("rom_basis: --fibre-modes needs --fibres LEG.h5 (the fibre elements)")
+    if a.fibre_vib and not (a.vib and a.fibre_modes > 0):
+        sys.exit("rom_basis: --fibre-vib needs --vib and --fibre-modes")
     out = a.out or os.path.join(a.snapdir, "basis.h5")
     x, tet, fixed, rho, attrs = read_mesh(a.snapdir)
     l_soft = float(attrs["fe_mesh_size_mm"])
@@ -530,7 +566,8 @@ def main():
     V[fixed] = 0.0
     n_pod, P, m_pick = n_pick, None, 0
     if a.vib:
-        V = enrich_vibration(V, a.vib, a.nvib, fixed, M, a.vib_level or [0.0])
+        raw = [] if a.fibre_vib else None
+        V = enrich_vibration(V, a.vib, a.nvib, fixed, M, a.vib_level or [0.0], raw)
         n_pick = V.shape[1]
     if a.mixed:
         V, P, m_pick = mixed_bases(a, V, X, Ut, x, tet, fixed, M)
@@ -539,7 +576,10 @@ def main():
     if a.fibre_modes > 0:
         # the FE states' only: with --turns the turned states are near-equilibria whose fibre
         # strains are no FE's (the helices' start does not turn onto itself)
-        Qf = fibre_basis(a, X[:, :ns_fe], Ut, x, read_fibres(a.fibres, x))
+        fib = read_fibres(a.fibres, x)
+        Qf = fibre_basis(a, X[:, :ns_fe], Ut, x, fib)
+        if a.fibre_vib:
+            Qf = fibre_vib_enrich(Qf, raw, x, fib)
     Mr = V.T @ (M @ V)
     er, em = proj_err(V, X)
     print(f"rom_basis: n = {n_pick} (tol {a.tol:g}): training projection error max {er.max():.3e} "

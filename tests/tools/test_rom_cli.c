@@ -74,6 +74,10 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom modes --basis x.h5 --out x.h5 --pressure 0.9", "--pressure '0.9'");
   expectRefused("rom modes --basis x.h5 --out x.h5 --ray NOPE", "--ray 'NOPE': no such ray");
   expectRefused("rom modes --basis romcli_missing.h5 --out x.h5", "romcli_missing.h5");
+  expectRefused("rom modes --basis x.h5 --out x.h5 --fd-check 2.5",
+                "--fd-check '2.5' must be a whole");
+  expectRefused("rom modes --basis x.h5 --out x.h5 --fd-check 65",
+                "--fd-check '65' must be a number");
   expectRefused("rom leg-file --basis x.h5", "leg-file needs --basis and --out");
   expectRefused("rom leg-file --basis x.h5 --out x.h5 stray", "unexpected argument 'stray'");
   expectRefused("rom leg-file --wieghts w.h5", "did you mean --weights?");

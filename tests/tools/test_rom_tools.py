@@ -193,5 +193,23 @@ expect(Qs.shape[1] == 12 and np.abs(Qs.T @ (W[:, None] * Qs) - np.eye(12)).max()
        and mixed_zone < 1e-12 and np.abs(res).max() < 1e-10 * np.abs(E).max(),
        f"split fibre strain modes: 12 of 2 x 6, W-orthonormal, each in one zone "
        f"({mixed_zone:.1e}), the training fields reproduced ({np.abs(res).max():.1e})")
+
+# (7) --fibre-vib: the fibre strain increments of vibration modes at a loaded state join Qf,
+# W-orthonormal; an increment is the derivative of the fibres' Green strains along the mode
+# (central differences), and a mode parallel to one already added adds nothing
+phi = rng.normal(size=xf.size)
+u0 = U[:, 1]
+Qv = rom_basis.fibre_vib_enrich(Qf, [(u0, phi), (u0, 2.0 * phi)], xf, fib)
+h = 1e-6
+dE = (rom_basis.fibre_strains((u0 + h * phi)[:, None], xf, fib)[:, 0]
+      - rom_basis.fibre_strains((u0 - h * phi)[:, None], xf, fib)[:, 0]) / (2 * h)
+res = dE - Qv @ (Qv.T @ (W * dE))
+resf = dE - Qf @ (Qf.T @ (W * dE))
+expect(Qv.shape[1] == 7 and np.abs(Qv.T @ (W[:, None] * Qv) - np.eye(7)).max() < 1e-10
+       and np.abs(res).max() < 1e-8 * np.abs(dE).max()
+       and np.abs(resf).max() > 1e-3 * np.abs(dE).max(),
+       f"--fibre-vib: one increment added of two parallel modes, W-orthonormal, the strains' "
+       f"derivative along the mode in the span ({np.abs(res).max() / np.abs(dE).max():.1e}; "
+       f"outside Qf alone: {np.abs(resf).max() / np.abs(dE).max():.1e})")
 print(f"{failed} failed")
 sys.exit(1 if failed else 0)
