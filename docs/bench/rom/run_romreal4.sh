@@ -11,6 +11,15 @@
 #                connectors (x3 = S1 + LS12/2 = 54 mm, S1 + LS12 + S2 + LS23/2 = 112 mm),
 #                supremizers, every fibre strain mode of the training (strains and stresses
 #                of the FE states)                                           -> OUT/b<N>_f.h5
+#   basis-CFG    (branch romfib) the same span's variants, CFG one of
+#                  fs<K>        K fibre modes of the training split per segment at the
+#                               connectors (3 K modes; romlock's f32s), M pressure modes as basis
+#                  fs<K>m<MM>   the same with MM pressure modes split per segment (3 MM)
+#                  fs<K>g<MM>   the same with MM global pressure modes (no split)
+#                                                                            -> OUT/b<N>_CFG.h5
+#   legfile-CFG  the every-element leg file of OUT/b<N>_CFG.h5 (rom leg-file: the set-up of
+#                gmsh and the chamber forms paid once)                       -> OUT/leg_CFG.h5
+#   checkleg-CFG-RAY  rom check of RAY on that leg file (set-up seconds)    -> OUT/checkleg_<CFG>_<RAY>.log
 #   base         the same file without its fibre basis (Qf, mf): the same span with the FE's
 #                fibres, for the locking's share                             -> OUT/b<N>_base.h5
 #   project      the held-out states' best projection onto the span (tools/rom_project.py)
@@ -49,6 +58,33 @@ for stage in "$@"; do
         "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$M" \
           --p-split 54,112 --mixed --fibre-modes 100000 --fibres "$OUT/legf/leg.h5" \
           --out "$OUT/b${N}_f.h5" > "$OUT/b${N}_f_basis.log" 2>&1 ;;
+    basis-*)
+      cfg=${stage#basis-}
+      [[ $cfg =~ ^fs([0-9]+)(([mg])([0-9]+))?$ ]] ||
+        { echo "run_romreal4.sh: stage $stage: CFG is fs<K>, fs<K>m<MM> or fs<K>g<MM>" >&2; exit 2; }
+      k=${BASH_REMATCH[1]}
+      pk=${BASH_REMATCH[3]:-m}
+      pm=${BASH_REMATCH[4]:-$M}
+      psplit=(--p-split 54,112)
+      [ "$pk" = g ] && psplit=()
+      [ -s "$OUT/b${N}_${cfg}.h5" ] ||
+        "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$pm" \
+          "${psplit[@]}" --mixed --fibre-modes "$k" --f-split 54,112 --fibres "$OUT/legf/leg.h5" \
+          --out "$OUT/b${N}_${cfg}.h5" > "$OUT/b${N}_${cfg}_basis.log" 2>&1 ;;
+    legfile-*)
+      cfg=${stage#legfile-}
+      [ -s "$OUT/leg_${cfg}.h5" ] ||
+        (mkdir -p "$OUT/legwork" && "${T[@]}" nice -n "$NICE" "$CS" rom leg-file \
+          --basis "$OUT/b${N}_${cfg}.h5" --out "$OUT/leg_${cfg}.h5" --work "$OUT/legwork" \
+          --actuator leg > "$OUT/leg_${cfg}.log" 2>&1) ;;
+    checkleg-*)
+      cfg=${stage#checkleg-}
+      ray=${cfg##*-}
+      cfg=${cfg%-*}
+      log=$OUT/checkleg_${cfg}_${ray}.log
+      grep -qs 'rays checked' "$log" ||
+        (cd "$OUT" && "${T[@]}" nice -n "$NICE" stdbuf -oL "$CS" rom check --snapshots "$SNAP" \
+          --leg-file "$OUT/leg_${cfg}.h5" --ray "$ray" --actuator leg > "$log" 2>&1) ;;
     base)
       [ -s "$OUT/b${N}_base.h5" ] ||
         $PY - "$OUT/b${N}_f.h5" "$OUT/b${N}_base.h5" <<'PYEOF'
