@@ -17,6 +17,9 @@
 #                  fs<K>m<MM>   the same with MM pressure modes split per segment (3 MM)
 #                  fs<K>g<MM>   the same with MM global pressure modes (no split)
 #                                                                            -> OUT/b<N>_CFG.h5
+#   trunc-f<K>   the `basis` stage's file with its first K fibre modes only (global, the K
+#                largest of the training's W-weighted POD: what --fibre-modes K writes, in seconds;
+#                V and P bit for bit)                                        -> OUT/b<N>_f<K>.h5
 #   legfile-CFG  the every-element leg file of OUT/b<N>_CFG.h5 (rom leg-file: the set-up of
 #                gmsh and the chamber forms paid once)                       -> OUT/leg_CFG.h5
 #   checkleg-CFG-RAY  rom check of RAY on that leg file (set-up seconds)    -> OUT/checkleg_<CFG>_<RAY>.log
@@ -71,6 +74,29 @@ for stage in "$@"; do
         "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$pm" \
           "${psplit[@]}" --mixed --fibre-modes "$k" --f-split 54,112 --fibres "$OUT/legf/leg.h5" \
           --out "$OUT/b${N}_${cfg}.h5" > "$OUT/b${N}_${cfg}_basis.log" 2>&1 ;;
+    trunc-f*)
+      k=${stage#trunc-f}
+      [ -s "$OUT/b${N}_f${k}.h5" ] ||
+        $PY - "$OUT/b${N}_f.h5" "$OUT/b${N}_f${k}.h5" "$k" <<'PYEOF'
+import os
+import sys
+import h5py
+# Qf's columns are the POD's in decreasing order (rom_basis.py fibre_basis): the first K are
+# the basis of --fibre-modes K; everything else copied bit for bit
+k = int(sys.argv[3])
+with h5py.File(sys.argv[1], "r") as src, h5py.File(sys.argv[2] + ".tmp", "w") as dst:
+    if not 0 < k <= src["Qf"].shape[1]:
+        sys.exit(f"run_romreal4.sh: trunc-f{k}: {sys.argv[1]} has {src['Qf'].shape[1]} fibre modes")
+    for key, v in src.attrs.items():
+        dst.attrs[key] = v
+    dst.attrs["mf"] = k
+    for key in src:
+        if key != "Qf":
+            src.copy(key, dst)
+    dst.create_dataset("Qf", data=src["Qf"][:, :k])
+os.replace(sys.argv[2] + ".tmp", sys.argv[2])
+PYEOF
+      ;;
     legfile-*)
       cfg=${stage#legfile-}
       [ -s "$OUT/leg_${cfg}.h5" ] ||
