@@ -11,6 +11,18 @@
 #                connectors (x3 = S1 + LS12/2 = 54 mm, S1 + LS12 + S2 + LS23/2 = 112 mm),
 #                supremizers, every fibre strain mode of the training (strains and stresses
 #                of the FE states)                                           -> OUT/b<N>_f.h5
+#   basis-CFG    (branch romfib) the same span's variants, CFG one of
+#                  fs<K>        K fibre modes of the training split per segment at the
+#                               connectors (3 K modes; romlock's f32s), M pressure modes as basis
+#                  fs<K>m<MM>   the same with MM pressure modes split per segment (3 MM)
+#                  fs<K>g<MM>   the same with MM global pressure modes (no split)
+#                                                                            -> OUT/b<N>_CFG.h5
+#   trunc-f<K>   the `basis` stage's file with its first K fibre modes only (global, the K
+#                largest of the training's W-weighted POD: what --fibre-modes K writes, in seconds;
+#                V and P bit for bit)                                        -> OUT/b<N>_f<K>.h5
+#   legfile-CFG  the every-element leg file of OUT/b<N>_CFG.h5 (rom leg-file: the set-up of
+#                gmsh and the chamber forms paid once)                       -> OUT/leg_CFG.h5
+#   checkleg-CFG-RAY  rom check of RAY on that leg file (set-up seconds)    -> OUT/checkleg_<CFG>_<RAY>.log
 #   base         the same file without its fibre basis (Qf, mf): the same span with the FE's
 #                fibres, for the locking's share                             -> OUT/b<N>_base.h5
 #   project      the held-out states' best projection onto the span (tools/rom_project.py)
@@ -49,6 +61,56 @@ for stage in "$@"; do
         "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$M" \
           --p-split 54,112 --mixed --fibre-modes 100000 --fibres "$OUT/legf/leg.h5" \
           --out "$OUT/b${N}_f.h5" > "$OUT/b${N}_f_basis.log" 2>&1 ;;
+    basis-*)
+      cfg=${stage#basis-}
+      [[ $cfg =~ ^fs([0-9]+)(([mg])([0-9]+))?$ ]] ||
+        { echo "run_romreal4.sh: stage $stage: CFG is fs<K>, fs<K>m<MM> or fs<K>g<MM>" >&2; exit 2; }
+      k=${BASH_REMATCH[1]}
+      pk=${BASH_REMATCH[3]:-m}
+      pm=${BASH_REMATCH[4]:-$M}
+      psplit=(--p-split 54,112)
+      [ "$pk" = g ] && psplit=()
+      [ -s "$OUT/b${N}_${cfg}.h5" ] ||
+        "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$pm" \
+          "${psplit[@]}" --mixed --fibre-modes "$k" --f-split 54,112 --fibres "$OUT/legf/leg.h5" \
+          --out "$OUT/b${N}_${cfg}.h5" > "$OUT/b${N}_${cfg}_basis.log" 2>&1 ;;
+    trunc-f*)
+      k=${stage#trunc-f}
+      [ -s "$OUT/b${N}_f${k}.h5" ] ||
+        $PY - "$OUT/b${N}_f.h5" "$OUT/b${N}_f${k}.h5" "$k" <<'PYEOF'
+import os
+import sys
+import h5py
+# Qf's columns are the POD's in decreasing order (rom_basis.py fibre_basis): the first K are
+# the basis of --fibre-modes K; everything else copied bit for bit
+k = int(sys.argv[3])
+with h5py.File(sys.argv[1], "r") as src, h5py.File(sys.argv[2] + ".tmp", "w") as dst:
+    if not 0 < k <= src["Qf"].shape[1]:
+        sys.exit(f"run_romreal4.sh: trunc-f{k}: {sys.argv[1]} has {src['Qf'].shape[1]} fibre modes")
+    for key, v in src.attrs.items():
+        dst.attrs[key] = v
+    dst.attrs["mf"] = k
+    for key in src:
+        if key != "Qf":
+            src.copy(key, dst)
+    dst.create_dataset("Qf", data=src["Qf"][:, :k])
+os.replace(sys.argv[2] + ".tmp", sys.argv[2])
+PYEOF
+      ;;
+    legfile-*)
+      cfg=${stage#legfile-}
+      [ -s "$OUT/leg_${cfg}.h5" ] ||
+        (mkdir -p "$OUT/legwork" && "${T[@]}" nice -n "$NICE" "$CS" rom leg-file \
+          --basis "$OUT/b${N}_${cfg}.h5" --out "$OUT/leg_${cfg}.h5" --work "$OUT/legwork" \
+          --actuator leg > "$OUT/leg_${cfg}.log" 2>&1) ;;
+    checkleg-*)
+      cfg=${stage#checkleg-}
+      ray=${cfg##*-}
+      cfg=${cfg%-*}
+      log=$OUT/checkleg_${cfg}_${ray}.log
+      grep -qs 'rays checked' "$log" ||
+        (cd "$OUT" && "${T[@]}" nice -n "$NICE" stdbuf -oL "$CS" rom check --snapshots "$SNAP" \
+          --leg-file "$OUT/leg_${cfg}.h5" --ray "$ray" --actuator leg > "$log" 2>&1) ;;
     base)
       [ -s "$OUT/b${N}_base.h5" ] ||
         $PY - "$OUT/b${N}_f.h5" "$OUT/b${N}_base.h5" <<'PYEOF'
