@@ -3,7 +3,7 @@
 
 usage: /usr/bin/python3 tools/gait_search.py [--dir DIR] [--evals N] [--robust]
            [--x0 S,H,U,TL[,E[,O]]] [--free S,E] [--step 0.6,2] [--ramps 0.5,0.1]
-           [--crawlsim build/tools/crawlsim] [--mpirun N]
+           [--crawlsim build/tools/crawlsim] [--mpirun N] [--links N]
            [--write-gait P.gait --params S,H,U,TL[,E[,O]]]
 
 A design is the shipped flat-road gait's structure (gaits/flat_road.gait: a level-sole stance
@@ -85,6 +85,7 @@ except ImportError as e:  # Debian: python3-h5py python3-numpy python3-scipy
 
 
 TABLE_RAMP = [None]  # --table-ramp: the actuation time the design states (`ramp R`), or None
+LINKS = [None]       # --links: rod elements per segment of every run, or None (the scene's default)
 
 
 def gait_text(S, H, U, TL, E=None, O=None):
@@ -229,6 +230,8 @@ move 9.3    0.2    ABCDEFGH straight
 
 def key(x):
     v = list(x) + ([] if TABLE_RAMP[0] is None else [TABLE_RAMP[0]])
+    if LINKS[0] is not None:  # a design run at other elements is another case (the same
+        v += [1000.0 + LINKS[0]]  # key as before without --links)
     return hashlib.sha1(",".join(f"{w:.4f}" for w in v).encode()).hexdigest()[:10]
 
 
@@ -266,16 +269,17 @@ class Search:
         case without a gait table solves its description DIR/CASE.gait first (gait-design)."""
         path = os.path.join(self.dir, name + ".study")
         lines = [f"study {name}", ""]
+        lk = "" if LINKS[0] is None else f" --links {LINKS[0]}"
         for c, gait, words in cases:
             if gait is None:
                 gd = os.path.join(self.dir, f"{c.split('__')[0]}.gait")
                 lines.append(f"case {c} gait-design {gd} --stretch --calibration @data/{CAL} "
                              f"--cal-rule {RULE} --p-max {P_MAX}")
                 lines.append(f"then run --scene flat-road --conditions paper "
-                             f"--gait @case/gait.csv {words}".rstrip())
+                             f"--gait @case/gait.csv{lk} {words}".rstrip())
             else:
-                lines.append(f"case {c} run --scene flat-road --conditions paper --gait {gait} "
-                             f"{words}".rstrip())
+                lines.append(f"case {c} run --scene flat-road --conditions paper --gait {gait}"
+                             f"{lk} {words}".rstrip())
         text = "\n".join(lines) + "\n"
         if not os.path.exists(path) or open(path).read() != text:
             open(path, "w").write(text)
@@ -425,6 +429,9 @@ def main():
     ap.add_argument("--table-ramp", type=float, default=None, help="the actuation time (s) "
                     "the designs state (`ramp R`: their table's `# @ramp`, so the nominal runs "
                     "with it); six parameters only (default: none, the table states its sample)")
+    ap.add_argument("--links", type=int, default=None, help="rod elements per leg segment of "
+                    "every run (a convergence check, or a search at another discretisation; "
+                    "default: the scene's)")
     ap.add_argument("--write-gait", default=None)
     ap.add_argument("--params", default=None)
     a = ap.parse_args()
@@ -432,6 +439,10 @@ def main():
         if not (math.isfinite(a.table_ramp) and 0.001 <= a.table_ramp <= 1.0):
             fail(f"--table-ramp {a.table_ramp}: an actuation time in 0.001..1 s")
         TABLE_RAMP[0] = a.table_ramp
+    if a.links is not None:
+        if not 1 <= a.links <= 64:
+            fail(f"--links {a.links}: elements per segment in 1..64")
+        LINKS[0] = a.links
     if a.write_gait:
         try:
             p = [float(v) for v in (a.params or a.x0).split(",")]
