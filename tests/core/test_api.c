@@ -172,8 +172,10 @@ static void replayCompare(double tau, int n) {
 
 
 static void test_controller_replays_gait(void) {
-  replayCompare(0.02, 120); /* the shipped lag: the command inside the integrator */
-  replayCompare(0.0, 120);  /* no lag: the command at each step's end */
+  /* 250 steps: the shipped gait states a 0.3 s actuation time, so its chambers pass 0.01 MPa
+     only after ~0.13 s */
+  replayCompare(0.02, 250); /* the shipped lag: the command inside the integrator */
+  replayCompare(0.0, 250);  /* no lag: the command at each step's end */
 }
 
 
