@@ -65,14 +65,6 @@ void csr_strainMassMomentAt_(const csrStrainModel* m, const csrStrainData* d, do
 }
 
 
-/* y[j] += a x[j] for j < len (distinct arrays: vectorised without an overlap test) */
-static inline void axpy(double* restrict y, const double* restrict x, double a, int len) {
-  for (int j = 0; j < len; j++) {
-    y[j] += a * x[j];
-  }
-}
-
-
 /* acc[j] = Σ_r g[r] B[r][j] for j < len (B 6 rows of leading dimension ld), each entry summed
  * over r from 0 as a six-term dot product would be (the same bits), a loop over j the
  * compiler vectorises (acc and B distinct) */
@@ -90,6 +82,43 @@ static void rowCombine6(double* restrict acc, const double* restrict B, int ld,
     t += g4 * b4[j];
     t += g5 * b5[j];
     acc[j] = t;
+  }
+}
+
+
+/* y[j] += Σ_r g[r] B[r][j] for j < len over the six rows r of B (leading dimension ld), the
+ * terms added to y[j] one at a time in r's order: the same bits as six axpy passes over y in
+ * r's order (no contraction into fused multiply-adds: the build does not ask for them), with y
+ * loaded and stored once instead of six times (vectorised: y and B distinct) */
+static void rowAccum6(double* restrict y, const double* restrict B, int ld, const double g[6],
+                      int len) {
+  const double g0 = g[0], g1 = g[1], g2 = g[2], g3 = g[3], g4 = g[4], g5 = g[5];
+  const double *b0 = B, *b1 = B + ld, *b2 = B + 2 * ld, *b3 = B + 3 * ld, *b4 = B + 4 * ld,
+               *b5 = B + 5 * ld;
+  for (int j = 0; j < len; j++) {
+    double t = y[j];
+    t += g0 * b0[j];
+    t += g1 * b1[j];
+    t += g2 * b2[j];
+    t += g3 * b3[j];
+    t += g4 * b4[j];
+    t += g5 * b5[j];
+    y[j] = t;
+  }
+}
+
+
+/* rowAccum6 over three rows */
+static void rowAccum3(double* restrict y, const double* restrict B, int ld, const double g[3],
+                      int len) {
+  const double g0 = g[0], g1 = g[1], g2 = g[2];
+  const double *b0 = B, *b1 = B + ld, *b2 = B + 2 * ld;
+  for (int j = 0; j < len; j++) {
+    double t = y[j];
+    t += g0 * b0[j];
+    t += g1 * b1[j];
+    t += g2 * b2[j];
+    y[j] = t;
   }
 }
 
@@ -134,23 +163,30 @@ void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const dou
       csu_sub3(dx, xk + 3 * p, xs);
       csu_mulMatTVec3(xr, Rs, dx);
       csr_strainAdInv_(Rr, xr, A);
-      const double* J = Jk + (size_t)p * 6 * n;
-      for (int r = 0; r < 6; r++) {
-        const double* Ar = A + 6 * r;
-        const double* Lr = J + r * n + c0;
-        for (int a = 0; a < 6; a++) {
-          const double ma = Mp[r] * Ar[a];
-          if (ma == 0) {
-            continue;
-          }
-          for (int b = 0; b < 6; b++) {
-            I[6 * a + b] += ma * Ar[b];
-          }
-          axpy(F + nd * a, Lr, ma, nd);
+      /* I += Aᵀ M_p A, F += Aᵀ M_p L_p, the piece's own block += L_pᵀ M_p L_p, each entry's
+       * terms (M_p[r] A[r][a]) A[r][b], ... added in r's order (A's rows r < 3 are zero in
+       * the columns a >= 3, Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ]). A zero coefficient adds ±0 to a sum
+       * that started at +0 (memset) and so is never -0: the same bits as skipping it */
+      const double* L = Jk + (size_t)p * 6 * n + c0;
+      for (int a = 0; a < 6; a++) {
+        double g[6];
+        for (int r = 0; r < 6; r++) {
+          g[r] = Mp[r] * A[6 * r + a];
         }
-        for (int i = 0; i < nd; i++) {
-          axpy(W + (size_t)(c0 + i) * n + c0, Lr, Mp[r] * Lr[i], i + 1);
+        if (a < 3) {
+          rowAccum6(I + 6 * a, A, 6, g, 6);
+          rowAccum6(F + nd * a, L, n, g, nd);
+        } else {
+          rowAccum3(I + 6 * a, A + 18, 6, g + 3, 6);
+          rowAccum3(F + nd * a, L + 3 * n, n, g + 3, nd);
         }
+      }
+      for (int i = 0; i < nd; i++) {
+        double g[6];
+        for (int r = 0; r < 6; r++) {
+          g[r] = Mp[r] * L[r * n + i];
+        }
+        rowAccum6(W + (size_t)(c0 + i) * n + c0, L, n, g, i + 1);
       }
     }
     /* G_s = [A_s, J_s[:, 0..c0)] (6 x nu) */
