@@ -216,23 +216,43 @@ void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s
   /* Gauss points of [s, s + h] */
   const double g = sqrt(3.0) / 6;
   double sa = s + (0.5 - g) * h, sb = s + (0.5 + g) * h;
-  double xa[6], xb[6], ada[36], adb[36];
+  double xa[6], xb[6], Wa[9], Va[9];
   csr_strainAt_(m, q, k, sa, xa);
   csr_strainAt_(m, q, k, sb, xb);
-  csr_strainAd_(xa, ada);
-  csr_strainAd_(xb, adb);
-  /* Ω = h/2 (ξa + ξb) + √3 h²/12 ad(ξa) ξb (robot_strain.h) */
+  hat3(xa, Wa);
+  hat3(xa + 3, Va);
+  /* Ω = h/2 (ξa + ξb) + √3 h²/12 ad(ξa) ξb (robot_strain.h), ad(ξa) = [ω^ 0; v^ ω^] row by
+   * row over its nonzero entries in column order from a +0 sum: the bits of the full six-term
+   * row (a term with a zero entry adds ±0 to a sum that is never -0) */
   const double c2 = sqrt(3.0) * h * h / 12;
-  for (int r = 0; r < 6; r++) {
-    double comm = 0;
-    for (int c = 0; c < 6; c++) {
-      comm += ada[6 * r + c] * xb[c];
+  for (int r = 0; r < 3; r++) {
+    const double* w = Wa + 3 * r;
+    const double* v = Va + 3 * r;
+    double ca = 0, cb = 0;
+    for (int c = 0; c < 3; c++) {
+      if (c != r) {
+        ca += w[c] * xb[c];
+      }
     }
-    Om[r] = 0.5 * h * (xa[r] + xb[r]) + c2 * comm;
+    for (int c = 0; c < 3; c++) {
+      if (c != r) {
+        cb += v[c] * xb[c];
+      }
+    }
+    for (int c = 0; c < 3; c++) {
+      if (c != r) {
+        cb += w[c] * xb[3 + c];
+      }
+    }
+    Om[r] = 0.5 * h * (xa[r] + xb[r]) + c2 * ca;
+    Om[3 + r] = 0.5 * h * (xa[3 + r] + xb[3 + r]) + c2 * cb;
   }
   if (!dOm) {
     return;
   }
+  double ada[36], adb[36];
+  csr_strainAd_(xa, ada);
+  csr_strainAd_(xb, adb);
   /* ∂Ω/∂q_j = h/2 (φa + φb) e_c + √3 h²/12 (φb ad(ξa) e_c - φa ad(ξb) e_c) */
   double Pa[CSR_STRAIN_MAX_ORDER + 1], Pb[CSR_STRAIN_MAX_ORDER + 1];
   double S = m->piece[k].length;
