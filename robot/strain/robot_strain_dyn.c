@@ -231,16 +231,27 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
         F[3 + r] += fb[r];
       }
     }
-    /* r_b += Aᵀ F, r_l += Jᵀ F (J's columns from pcol on are zero) */
+    /* r_b += Aᵀ F, r_l += Jᵀ F (J's columns from pcol on are zero): each entry's six terms
+     * added in r's order, as six passes over r_l would (the same bits), r_l read and written
+     * once */
     const int nc = m->pcol[p];
     for (int r = 0; r < 6; r++) {
-      const double* Jr = J + r * n;
       for (int c = 0; c < 6; c++) {
         rb[c] += A[6 * r + c] * F[r];
       }
-      for (int j = 0; j < nc; j++) {
-        d->rMl[j] += Jr[j] * F[r];
-      }
+    }
+    double* restrict rl = d->rMl;
+    const double* restrict J0 = J;
+    const double F0 = F[0], F1 = F[1], F2 = F[2], F3 = F[3], F4 = F[4], F5 = F[5];
+    for (int j = 0; j < nc; j++) {
+      double t = rl[j];
+      t += J0[j] * F0;
+      t += J0[n + j] * F1;
+      t += J0[2 * n + j] * F2;
+      t += J0[3 * n + j] * F3;
+      t += J0[4 * n + j] * F4;
+      t += J0[5 * n + j] * F5;
+      rl[j] = t;
     }
   }
   const double tau = m->rpar.damping_time;

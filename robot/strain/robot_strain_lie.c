@@ -346,11 +346,9 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
   const int n = m->n, ncol = m->dof0[k] + m->ndof[k];
   adExpColumns(Re, pe, d->J + (size_t)from * 6 * n, d->J + (size_t)to * 6 * n, n, ncol);
   double* Jt = d->J + (size_t)to * 6 * n;
-  for (int r = 0; r < 6; r++) {
-    for (int c = ncol; c < n; c++) {
-      Jt[r * n + c] = 0;
-    }
-  }
+  /* Jt's columns from ncol on are zero: d->J and d->J0 (which swaps or copies with it) are
+   * allocated zeroed (csr_strainDataCreate) and only this step and tangentColumns write a
+   * point's Jacobian, both below its ncol, the same ncol at every call (the point's piece) */
   if (dOm) {
     double T[36];
     csr_strainTangent_(Om, T);
