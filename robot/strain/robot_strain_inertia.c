@@ -213,17 +213,24 @@ void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const dou
       const double g[6] = {Gsv[i], Gsv[nu + i], Gsv[2 * nu + i], Gsv[3 * nu + i],
                            Gsv[4 * nu + i], Gsv[5 * nu + i]};
       rowCombine6(acc, T, nu, g, i + 1);
-      for (int j = 0; j <= i; j++) {
-        const double t = acc[j];
-        if (i < 6) {
+      /* each entry of the row added to its block once (no branch per entry) */
+      if (i < 6) {
+        for (int j = 0; j <= i; j++) {
+          const double t = acc[j];
           d->WMbb[6 * i + j] += t;
           if (j != i) {
             d->WMbb[6 * j + i] += t;
           }
-        } else if (j < 6) {
-          d->WMlb[6 * (i - 6) + j] += t;
-        } else {
-          W[(size_t)(i - 6) * n + (j - 6)] += t;
+        }
+      } else {
+        double* restrict lb = d->WMlb + 6 * (i - 6);
+        for (int j = 0; j < 6; j++) {
+          lb[j] += acc[j];
+        }
+        double* restrict wr = W + (size_t)(i - 6) * n;
+        const double* restrict ar = acc + 6;
+        for (int j = 0; j <= i - 6; j++) {
+          wr[j] += ar[j];
         }
       }
     }
@@ -232,12 +239,13 @@ void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const dou
       const double g[6] = {Gsv[i], Gsv[nu + i], Gsv[2 * nu + i], Gsv[3 * nu + i],
                            Gsv[4 * nu + i], Gsv[5 * nu + i]};
       rowCombine6(acc, F, nd, g, nd);
-      for (int j = 0; j < nd; j++) {
-        const double t = acc[j];
-        if (i < 6) {
-          d->WMlb[6 * (c0 + j) + i] += t;
-        } else {
-          W[(size_t)(c0 + j) * n + (i - 6)] += t;
+      if (i < 6) {
+        for (int j = 0; j < nd; j++) {
+          d->WMlb[6 * (c0 + j) + i] += acc[j];
+        }
+      } else {
+        for (int j = 0; j < nd; j++) {
+          W[(size_t)(c0 + j) * n + (i - 6)] += acc[j];
         }
       }
     }
