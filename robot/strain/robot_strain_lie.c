@@ -76,20 +76,41 @@ void csr_strainAdInv_(const double R[9], const double x[3], double A[36]) {
 }
 
 
-void csr_strainExp_(const double Om[6], double R[9], double x[3]) {
+/* θ = |ω| of a step Ω and sin θ, cos θ where the exponential's or the tangent's closed form
+ * uses them: one step's exponential and tangent share the one libm call (the same values as
+ * each calling sin and cos itself) */
+typedef struct {
+  double th2, th, sn, cs;
+} csrTrig;
+
+/* the exponential's closed form from this θ on (its series below) */
+#define CSR_STRAIN_EXP_THETA 1e-4
+
+static void trigOf(const double Om[6], csrTrig* t) {
+  t->th2 = csu_dot3(Om, Om);
+  t->th = sqrt(t->th2);
+  t->sn = t->cs = 0;
+  if (t->th >= CSR_STRAIN_EXP_THETA || t->th >= CSR_STRAIN_SERIES_THETA) {
+    t->sn = sin(t->th);
+    t->cs = cos(t->th);
+  }
+}
+
+
+static void expWith(const double Om[6], const csrTrig* tg, double R[9], double x[3]) {
   const double* w = Om;
   const double* v = Om + 3;
-  double th2 = csu_dot3(w, w), th = sqrt(th2);
+  const double th2 = tg->th2, th = tg->th;
   /* R = I + a ω^ + b ω^², x = (I + b ω^ + c ω^²) v (Rodrigues; left Jacobian of SO(3)) */
   double a, b, c;
-  if (th < 1e-4) {
+  if (th < CSR_STRAIN_EXP_THETA) {
     a = 1 - th2 / 6;
     b = 0.5 - th2 / 24;
     c = 1.0 / 6 - th2 / 120;
   } else {
-    a = sin(th) / th;
-    b = (1 - cos(th)) / th2;
-    c = (th - sin(th)) / (th2 * th);
+    a = tg->sn / th;
+    b = (1 - tg->cs) / th2;
+    c = (th - tg->sn) / (th2 * th);
   }
   double W[9], W2[9];
   hat3(w, W);
@@ -103,6 +124,13 @@ void csr_strainExp_(const double Om[6], double R[9], double x[3]) {
   for (int i = 0; i < 3; i++) {
     x[i] = v[i] + b * Wv[i] + c * W2v[i];
   }
+}
+
+
+void csr_strainExp_(const double Om[6], double R[9], double x[3]) {
+  csrTrig tg;
+  trigOf(Om, &tg);
+  expWith(Om, &tg, R, x);
 }
 
 
@@ -120,7 +148,8 @@ static void mul3(double C[9], const double A[9], const double B[9]) {
  * reduces every higher power). θ >= SERIES_THETA: Selig's closed form; below, the series
  * Σ_j (-1)^j ad^j / (j + 1)! folded down by ad^j = -2 θ² ad^(j-2) - θ⁴ ad^(j-4) (j >= 5), its
  * terms falling as θ^(j-1) / (j + 1)! (header: 12 terms reach round-off) */
-static void tangentCoefficients(double th, double c[5]) {
+static void tangentCoefficients(const csrTrig* tg, double c[5]) {
+  const double th = tg->th;
   if (th < CSR_STRAIN_SERIES_THETA) {
     double s[CSR_STRAIN_SERIES_TERMS + 1], f = 1, t2 = th * th, t4 = t2 * t2;
     for (int j = 0; j <= CSR_STRAIN_SERIES_TERMS; j++) {
@@ -136,7 +165,7 @@ static void tangentCoefficients(double th, double c[5]) {
   }
   /* dexp(-Ω) = I + c1 ad + c2 ad² + c3 ad³ + c4 ad⁴ (Selig; the odd coefficients of dexp(Ω)
    * change sign with ad) */
-  double sn = sin(th), cs = cos(th), t2 = th * th, t3 = t2 * th, t4 = t3 * th, t5 = t4 * th;
+  double sn = tg->sn, cs = tg->cs, t2 = th * th, t3 = t2 * th, t4 = t3 * th, t5 = t4 * th;
   c[0] = 1;
   c[1] = -(4 - 4 * cs - th * sn) / (2 * t2);
   c[2] = (4 * th - 5 * sn + th * cs) / (2 * t3);
@@ -145,11 +174,20 @@ static void tangentCoefficients(double th, double c[5]) {
 }
 
 
+static void tangentWith(const double Om[6], const csrTrig* tg, double T[36]);
+
 void csr_strainTangent_(const double Om[6], double T[36]) {
+  csrTrig tg;
+  trigOf(Om, &tg);
+  tangentWith(Om, &tg, T);
+}
+
+
+static void tangentWith(const double Om[6], const csrTrig* tg, double T[36]) {
   /* ad^j = [A_j 0; B_j A_j] with A_1 = ω^, B_1 = v^: A_{j+1} = A_j ω^, B_{j+1} = B_j ω^ + A_j v^
    * (3 x 3 blocks: the 6 x 6 products' zero block skipped) */
   double c[5], W[9], Vh[9], A[9], B[9], An[9], Bn[9], t[9];
-  tangentCoefficients(csu_norm3(Om), c);
+  tangentCoefficients(tg, c);
   hat3(Om, W);
   hat3(Om + 3, Vh);
   double TA[9] = {c[0], 0, 0, 0, c[0], 0, 0, 0, c[0]}, TB[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -336,7 +374,9 @@ static void tangentColumns(const double T[36], const double* restrict dOm, int n
 static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int to, int k,
                       const double Om[6], const double* dOm, int want_J) {
   double Re[9], pe[3], tmp[3];
-  csr_strainExp_(Om, Re, pe);
+  csrTrig tg;
+  trigOf(Om, &tg);
+  expWith(Om, &tg, Re, pe);
   csu_mulMat3(d->R + 9 * to, d->R + 9 * from, Re);
   csu_mulMatVec3(tmp, d->R + 9 * from, pe);
   csu_add3(d->x + 3 * to, d->x + 3 * from, tmp);
@@ -351,7 +391,7 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
    * point's Jacobian, both below its ncol, the same ncol at every call (the point's piece) */
   if (dOm) {
     double T[36];
-    csr_strainTangent_(Om, T);
+    tangentWith(Om, &tg, T);
     tangentColumns(T, dOm, m->ndof[k], Jt + m->dof0[k], n);
   }
 }
@@ -475,9 +515,10 @@ static void adApply(const double Om[6], const double in[6], double out[6]) {
 }
 
 
-void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6]) {
+static void tangentApplyWith(const double Om[6], const csrTrig* tg, const double v[6],
+                             double out[6]) {
   double c[5], P[6], Q[6];
-  tangentCoefficients(csu_norm3(Om), c);
+  tangentCoefficients(tg, c);
   memcpy(out, v, 6 * sizeof(double));
   memcpy(P, v, sizeof P);
   for (int j = 1; j <= 4; j++) {
@@ -487,6 +528,13 @@ void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6
       out[i] += c[j] * P[i];
     }
   }
+}
+
+
+void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6]) {
+  csrTrig tg;
+  trigOf(Om, &tg);
+  tangentApplyWith(Om, &tg, v, out);
 }
 
 
@@ -530,12 +578,14 @@ static void magnusRate(const csrStrainModel* m, const double* q, const double* e
 static void twistStep(const double Om[6], const double Omd[6], const double Vf[6],
                       double Vt[6]) {
   double Re[9], pe[3], pxa[3], u[3], tw[6];
-  csr_strainExp_(Om, Re, pe);
+  csrTrig tg;
+  trigOf(Om, &tg);
+  expWith(Om, &tg, Re, pe);
   csu_cross3(pxa, pe, Vf);
   csu_sub3(u, Vf + 3, pxa);
   csu_mulMatTVec3(Vt, Re, Vf);
   csu_mulMatTVec3(Vt + 3, Re, u);
-  csr_strainTangentApply_(Om, Omd, tw);
+  tangentApplyWith(Om, &tg, Omd, tw);
   for (int r = 0; r < 6; r++) {
     Vt[r] += tw[r];
   }
