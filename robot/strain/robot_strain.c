@@ -102,6 +102,7 @@ void csr_strainModelDestroy(csrStrainModel* m) {
   free(m->dscale);
   free(m->Ms);
   free(m->pcol);
+  free(m->gleg);
   free(m);
 }
 
@@ -239,6 +240,11 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
         }
       }
     }
+  }
+  if (csr_strainLegendreTable_(m) != 0) {
+    csr_strainModelDestroy(m);
+    cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
+    return NULL;
   }
   if (spec->terrain && csr_strainContactCreate_(m, spec, err) != 0) {
     csr_strainModelDestroy(m);

@@ -60,6 +60,11 @@ struct csrStrainModel_ {
   int pt0[CSR_ROD_MAX_PIECES + 1];   /* its first quadrature point; pt0[npiece] = np - 1 */
   int* pcol;                         /* (np) the unknowns that move point p: its Jacobian's
                                         columns >= pcol[p] are zero */
+  double* gleg;                      /* Legendre values P_0..P_pmax at the two Gauss points of
+                                        every Zanna step of the kinematics (piece k,
+                                        sub-interval i, the half step to the midpoint and the
+                                        whole one): csr_strainLegendreAt_ */
+  int gleg0[CSR_ROD_MAX_PIECES];     /* piece k's first sub-interval in gleg */
   int n;                             /* unknowns */
   int np;                            /* quadrature points: the ends and midpoints of every
                                         sub-interval (Simpson), shared at piece ends */
@@ -197,6 +202,13 @@ struct csrStrainData_ {
 
 /* ad(ξ) (6 x 6) */
 void csr_strainAd_(const double xi[6], double ad[36]);
+/* the Legendre values at the Gauss points a, b (ab 0, 1) of piece k's sub-interval i, its half
+ * step (whole 0: to the midpoint) or whole one (1), as csr_strainMagnus_ evaluates them for
+ * s = i h, step whole ? h : h / 2 with h the piece's length over its sub-intervals (the same
+ * bits: tabulated by csr_strainLegendreTable_) */
+const double* csr_strainLegendreAt_(const csrStrainModel* m, int k, int i, int whole, int ab);
+/* fills m->gleg (allocated by it); 0 ok, else out of memory */
+int csr_strainLegendreTable_(csrStrainModel* m);
 /* Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (6 x 6) of the pose g = (R, x) */
 void csr_strainAdInv_(const double R[9], const double x[3], double A[36]);
 /* exp(Ω^) = (R, x) */

@@ -20,6 +20,7 @@
  * O(6 nd + 36) per step instead of O(6 n) per point twice (the Jacobians, then Jᵀ F). test_strain_model checks both branches against a
  * 60-term series. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core_math.h"
@@ -237,10 +238,9 @@ static double shape(const csrStrainModel* m, int j, const double* P) {
 }
 
 
-void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]) {
-  double P[CSR_STRAIN_MAX_ORDER + 1];
-  double S = m->piece[k].length;
-  csr_strainLegendre_(m->pmax, 2 * s / S - 1, P);
+/* ξ of piece k where the Legendre values are P */
+static void strainAtP(const csrStrainModel* m, const double* q, int k, const double* P,
+                      double xi[6]) {
   memset(xi, 0, 6 * sizeof(double));
   xi[5] = 1;
   for (int j = m->dof0[k]; j < m->dof0[k] + m->ndof[k]; j++) {
@@ -249,14 +249,76 @@ void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, do
 }
 
 
+void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]) {
+  double P[CSR_STRAIN_MAX_ORDER + 1];
+  double S = m->piece[k].length;
+  csr_strainLegendre_(m->pmax, 2 * s / S - 1, P);
+  strainAtP(m, q, k, P, xi);
+}
+
+
+/* the Gauss points of the Zanna step [s, s + h] (csr_strainMagnus_, magnusRate) */
+static void gaussPoints(double s, double h, double* sa, double* sb) {
+  const double g = sqrt(3.0) / 6;
+  *sa = s + (0.5 - g) * h;
+  *sb = s + (0.5 + g) * h;
+}
+
+
+int csr_strainLegendreTable_(csrStrainModel* m) {
+  const int w = m->pmax + 1;
+  int nsub = 0;
+  for (int k = 0; k < m->npiece; k++) {
+    m->gleg0[k] = nsub;
+    nsub += m->nsub[k];
+  }
+  m->gleg = calloc((size_t)nsub * 4 * w, sizeof(double));
+  if (!m->gleg) {
+    return 1;
+  }
+  for (int k = 0; k < m->npiece; k++) {
+    /* the kinematics' own expressions (csr_strainKinematics_, csr_strainTwists_) */
+    const double h = m->piece[k].length / m->nsub[k], S = m->piece[k].length;
+    for (int i = 0; i < m->nsub[k]; i++) {
+      for (int whole = 0; whole < 2; whole++) {
+        double sa, sb;
+        gaussPoints(i * h, whole ? h : 0.5 * h, &sa, &sb);
+        double* P = m->gleg + ((size_t)(m->gleg0[k] + i) * 4 + 2 * whole) * w;
+        csr_strainLegendre_(m->pmax, 2 * sa / S - 1, P);
+        csr_strainLegendre_(m->pmax, 2 * sb / S - 1, P + w);
+      }
+    }
+  }
+  return 0;
+}
+
+
+const double* csr_strainLegendreAt_(const csrStrainModel* m, int k, int i, int whole, int ab) {
+  const int w = m->pmax + 1;
+  return m->gleg + ((size_t)(m->gleg0[k] + i) * 4 + 2 * whole + ab) * w;
+}
+
+
+/* csr_strainMagnus_ with the Legendre values at the step's Gauss points given */
+static void magnusP(const csrStrainModel* m, const double* q, int k, double h, const double* Pa,
+                    const double* Pb, double Om[6], double* dOm);
+
 void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s, double h,
                        double Om[6], double* dOm) {
-  /* Gauss points of [s, s + h] */
-  const double g = sqrt(3.0) / 6;
-  double sa = s + (0.5 - g) * h, sb = s + (0.5 + g) * h;
+  double sa, sb, Pa[CSR_STRAIN_MAX_ORDER + 1], Pb[CSR_STRAIN_MAX_ORDER + 1];
+  const double S = m->piece[k].length;
+  gaussPoints(s, h, &sa, &sb);
+  csr_strainLegendre_(m->pmax, 2 * sa / S - 1, Pa);
+  csr_strainLegendre_(m->pmax, 2 * sb / S - 1, Pb);
+  magnusP(m, q, k, h, Pa, Pb, Om, dOm);
+}
+
+
+static void magnusP(const csrStrainModel* m, const double* q, int k, double h, const double* Pa,
+                    const double* Pb, double Om[6], double* dOm) {
   double xa[6], xb[6], Wa[9], Va[9];
-  csr_strainAt_(m, q, k, sa, xa);
-  csr_strainAt_(m, q, k, sb, xb);
+  strainAtP(m, q, k, Pa, xa);
+  strainAtP(m, q, k, Pb, xb);
   hat3(xa, Wa);
   hat3(xa + 3, Va);
   /* Ω = h/2 (ξa + ξb) + √3 h²/12 ad(ξa) ξb (robot_strain.h), ad(ξa) = [ω^ 0; v^ ω^] row by
@@ -292,10 +354,6 @@ void csr_strainMagnus_(const csrStrainModel* m, const double* q, int k, double s
   csr_strainAd_(xa, ada);
   csr_strainAd_(xb, adb);
   /* ∂Ω/∂q_j = h/2 (φa + φb) e_c + √3 h²/12 (φb ad(ξa) e_c - φa ad(ξb) e_c) */
-  double Pa[CSR_STRAIN_MAX_ORDER + 1], Pb[CSR_STRAIN_MAX_ORDER + 1];
-  double S = m->piece[k].length;
-  csr_strainLegendre_(m->pmax, 2 * sa / S - 1, Pa);
-  csr_strainLegendre_(m->pmax, 2 * sb / S - 1, Pb);
   int nd = m->ndof[k];
   for (int jj = 0; jj < nd; jj++) {
     int j = m->dof0[k] + jj, c = m->dcomp[j];
@@ -421,9 +479,11 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
         continue;
       }
       double Om[6];
-      csr_strainMagnus_(m, d->q, k, i * h, 0.5 * h, Om, mid_J ? dOm : NULL);
+      magnusP(m, d->q, k, 0.5 * h, csr_strainLegendreAt_(m, k, i, 0, 0),
+              csr_strainLegendreAt_(m, k, i, 0, 1), Om, mid_J ? dOm : NULL);
       stepPoint(m, d, p, p + 1, k, Om, mid_J ? dOm : NULL, mid_J);
-      csr_strainMagnus_(m, d->q, k, i * h, h, Om, want_J ? dOm : NULL);
+      magnusP(m, d->q, k, h, csr_strainLegendreAt_(m, k, i, 1, 0),
+              csr_strainLegendreAt_(m, k, i, 1, 1), Om, want_J ? dOm : NULL);
       stepPoint(m, d, p, p + 2, k, Om, want_J ? dOm : NULL, want_J);
     }
   }
@@ -550,12 +610,9 @@ static void strainRateAt(const csrStrainModel* m, const double* eta, int k, cons
 
 /* Ω of one Zanna step (as csr_strainMagnus_) and its rate Ω̇ = (∂Ω/∂q) η */
 static void magnusRate(const csrStrainModel* m, const double* q, const double* eta, int k,
-                       double s, double h, double Om[6], double Omd[6]) {
-  const double g = sqrt(3.0) / 6, S = m->piece[k].length;
-  double sa = s + (0.5 - g) * h, sb = s + (0.5 + g) * h;
-  double Pa[CSR_STRAIN_MAX_ORDER + 1], Pb[CSR_STRAIN_MAX_ORDER + 1];
-  csr_strainLegendre_(m->pmax, 2 * sa / S - 1, Pa);
-  csr_strainLegendre_(m->pmax, 2 * sb / S - 1, Pb);
+                       int i, int whole, double h, double Om[6], double Omd[6]) {
+  const double* Pa = csr_strainLegendreAt_(m, k, i, whole, 0);
+  const double* Pb = csr_strainLegendreAt_(m, k, i, whole, 1);
   double xa[6], xb[6], xad[6], xbd[6], t1[6], t2[6], t3[6];
   strainRateAt(m, q, k, Pa, xa);
   strainRateAt(m, q, k, Pb, xb);
@@ -606,9 +663,9 @@ void csr_strainTwists_(const csrStrainModel* m, const double* q, const double* e
         twistStep(Of, Omd, V + 6 * p, V + 6 * (p + 2));
         continue;
       }
-      magnusRate(m, q, eta, k, i * h, 0.5 * h, Om, Omd);
+      magnusRate(m, q, eta, k, i, 0, 0.5 * h, Om, Omd);
       twistStep(Om, Omd, V + 6 * p, V + 6 * (p + 1));
-      magnusRate(m, q, eta, k, i * h, h, Om, Omd);
+      magnusRate(m, q, eta, k, i, 1, h, Om, Omd);
       twistStep(Om, Omd, V + 6 * p, V + 6 * (p + 2));
     }
   }
