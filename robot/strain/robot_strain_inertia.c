@@ -200,13 +200,7 @@ void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const dou
     }
     /* T = I G_s; the before-block += G_sᵀ T (base rows into WMbb / WMlb) */
     for (int r = 0; r < 6; r++) {
-      for (int c = 0; c < nu; c++) {
-        double t = 0;
-        for (int e = 0; e < 6; e++) {
-          t += I[6 * r + e] * Gsv[e * nu + c];
-        }
-        T[r * nu + c] = t;
-      }
+      rowCombine6(T + r * nu, Gsv, nu, I + 6 * r, nu); /* Σ_e in e's order, as before */
     }
     double* acc = Gsv + 6 * nu; /* a row of G_sᵀ T or G_sᵀ F (scratch, nu) */
     for (int i = 0; i < nu; i++) {
