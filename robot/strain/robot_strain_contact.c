@@ -287,26 +287,6 @@ void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, d
 }
 
 
-/* out[k] = Σ_c g[c] B[c][k] for k < len (B 6 rows of leading dimension ld), each entry summed
- * over c from 0 as a six-term dot product (the same bits), vectorised over k */
-static void rowCombine6c(double* restrict out, const double* restrict B, int ld,
-                         const double g[6], int len) {
-  const double g0 = g[0], g1 = g[1], g2 = g[2], g3 = g[3], g4 = g[4], g5 = g[5];
-  const double *b0 = B, *b1 = B + ld, *b2 = B + 2 * ld, *b3 = B + 3 * ld, *b4 = B + 4 * ld,
-               *b5 = B + 5 * ld;
-  for (int k = 0; k < len; k++) {
-    double t = 0;
-    t += g0 * b0[k];
-    t += g1 * b1[k];
-    t += g2 * b2[k];
-    t += g3 * b3[k];
-    t += g4 * b4[k];
-    t += g5 * b5[k];
-    out[k] = t;
-  }
-}
-
-
 /* rows of S: world velocity (rows 0..2) of point p's translation (rot = 0) or rotation (1) */
 static void worldRows(const csrStrainModel* m, const csrStrainData* d, int p, int rot,
                       const double* G, double* S3) {
@@ -697,13 +677,13 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
      * time, vectorised over k); a zero entry is skipped as before (W keeps its bits) */
     double* AS = Ga;
     for (int r = 0; r < 6; r++) {
-      rowCombine6c(AS + r * nu, S, nu, A + 6 * r, nu);
+      csr_strainRows6_(AS + r * nu, S, nu, A + 6 * r, nu, 0);
     }
     double* row = Gb; /* nu scratch */
     for (int i = 0; i < nu; i++) {
       const double g[6] = {S[i], S[nu + i], S[2 * nu + i], S[3 * nu + i], S[4 * nu + i],
                            S[5 * nu + i]};
-      rowCombine6c(row, AS, nu, g, nu);
+      csr_strainRows6_(row, AS, nu, g, nu, 0);
       double* wb = i < 6 ? Wbb + 6 * i : d->Wlb + 6 * (i - 6);
       double* wl = i < 6 ? d->Wbl + n * i : d->Wll + (size_t)(i - 6) * n;
       for (int k = 0; k < 6; k++) {

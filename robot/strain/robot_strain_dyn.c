@@ -240,19 +240,7 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
         rb[c] += A[6 * r + c] * F[r];
       }
     }
-    double* restrict rl = d->rMl;
-    const double* restrict J0 = J;
-    const double F0 = F[0], F1 = F[1], F2 = F[2], F3 = F[3], F4 = F[4], F5 = F[5];
-    for (int j = 0; j < nc; j++) {
-      double t = rl[j];
-      t += J0[j] * F0;
-      t += J0[n + j] * F1;
-      t += J0[2 * n + j] * F2;
-      t += J0[3 * n + j] * F3;
-      t += J0[4 * n + j] * F4;
-      t += J0[5 * n + j] * F5;
-      rl[j] = t;
-    }
+    csr_strainRows6_(d->rMl, J, n, F, nc, 1);
   }
   const double tau = m->rpar.damping_time;
   if (at_iterate) {

@@ -65,50 +65,7 @@ void csr_strainMassMomentAt_(const csrStrainModel* m, const csrStrainData* d, do
 }
 
 
-/* acc[j] = Σ_r g[r] B[r][j] for j < len (B 6 rows of leading dimension ld), each entry summed
- * over r from 0 as a six-term dot product would be (the same bits), a loop over j the
- * compiler vectorises (acc and B distinct) */
-static void rowCombine6(double* restrict acc, const double* restrict B, int ld,
-                        const double g[6], int len) {
-  const double g0 = g[0], g1 = g[1], g2 = g[2], g3 = g[3], g4 = g[4], g5 = g[5];
-  const double *b0 = B, *b1 = B + ld, *b2 = B + 2 * ld, *b3 = B + 3 * ld, *b4 = B + 4 * ld,
-               *b5 = B + 5 * ld;
-  for (int j = 0; j < len; j++) {
-    double t = 0;
-    t += g0 * b0[j];
-    t += g1 * b1[j];
-    t += g2 * b2[j];
-    t += g3 * b3[j];
-    t += g4 * b4[j];
-    t += g5 * b5[j];
-    acc[j] = t;
-  }
-}
-
-
-/* y[j] += Σ_r g[r] B[r][j] for j < len over the six rows r of B (leading dimension ld), the
- * terms added to y[j] one at a time in r's order: the same bits as six axpy passes over y in
- * r's order (no contraction into fused multiply-adds: the build does not ask for them), with y
- * loaded and stored once instead of six times (vectorised: y and B distinct) */
-static void rowAccum6(double* restrict y, const double* restrict B, int ld, const double g[6],
-                      int len) {
-  const double g0 = g[0], g1 = g[1], g2 = g[2], g3 = g[3], g4 = g[4], g5 = g[5];
-  const double *b0 = B, *b1 = B + ld, *b2 = B + 2 * ld, *b3 = B + 3 * ld, *b4 = B + 4 * ld,
-               *b5 = B + 5 * ld;
-  for (int j = 0; j < len; j++) {
-    double t = y[j];
-    t += g0 * b0[j];
-    t += g1 * b1[j];
-    t += g2 * b2[j];
-    t += g3 * b3[j];
-    t += g4 * b4[j];
-    t += g5 * b5[j];
-    y[j] = t;
-  }
-}
-
-
-/* rowAccum6 over three rows */
+/* csr_strainRows6_ (add 1) over three rows */
 static void rowAccum3(double* restrict y, const double* restrict B, int ld, const double g[3],
                       int len) {
   const double g0 = g[0], g1 = g[1], g2 = g[2];
@@ -174,8 +131,8 @@ void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const dou
           g[r] = Mp[r] * A[6 * r + a];
         }
         if (a < 3) {
-          rowAccum6(I + 6 * a, A, 6, g, 6);
-          rowAccum6(F + nd * a, L, n, g, nd);
+          csr_strainRows6_(I + 6 * a, A, 6, g, 6, 1);
+          csr_strainRows6_(F + nd * a, L, n, g, nd, 1);
         } else {
           rowAccum3(I + 6 * a, A + 18, 6, g + 3, 6);
           rowAccum3(F + nd * a, L + 3 * n, n, g + 3, nd);
@@ -186,7 +143,7 @@ void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const dou
         for (int r = 0; r < 6; r++) {
           g[r] = Mp[r] * L[r * n + i];
         }
-        rowAccum6(W + (size_t)(c0 + i) * n + c0, L, n, g, i + 1);
+        csr_strainRows6_(W + (size_t)(c0 + i) * n + c0, L, n, g, i + 1, 1);
       }
     }
     /* G_s = [A_s, J_s[:, 0..c0)] (6 x nu) */
@@ -200,13 +157,13 @@ void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const dou
     }
     /* T = I G_s; the before-block += G_sᵀ T (base rows into WMbb / WMlb) */
     for (int r = 0; r < 6; r++) {
-      rowCombine6(T + r * nu, Gsv, nu, I + 6 * r, nu); /* Σ_e in e's order, as before */
+      csr_strainRows6_(T + r * nu, Gsv, nu, I + 6 * r, nu, 0); /* Σ_e in e's order, as before */
     }
     double* acc = Gsv + 6 * nu; /* a row of G_sᵀ T or G_sᵀ F (scratch, nu) */
     for (int i = 0; i < nu; i++) {
       const double g[6] = {Gsv[i], Gsv[nu + i], Gsv[2 * nu + i], Gsv[3 * nu + i],
                            Gsv[4 * nu + i], Gsv[5 * nu + i]};
-      rowCombine6(acc, T, nu, g, i + 1);
+      csr_strainRows6_(acc, T, nu, g, i + 1, 0);
       /* each entry of the row added to its block once (no branch per entry) */
       if (i < 6) {
         for (int j = 0; j <= i; j++) {
@@ -232,7 +189,7 @@ void csr_strainInertiaFrom_(const csrStrainModel* m, csrStrainData* d, const dou
     for (int i = 0; i < nu; i++) {
       const double g[6] = {Gsv[i], Gsv[nu + i], Gsv[2 * nu + i], Gsv[3 * nu + i],
                            Gsv[4 * nu + i], Gsv[5 * nu + i]};
-      rowCombine6(acc, F, nd, g, nd);
+      csr_strainRows6_(acc, F, nd, g, nd, 0);
       if (i < 6) {
         for (int j = 0; j < nd; j++) {
           d->WMlb[6 * (c0 + j) + i] += acc[j];

@@ -202,6 +202,27 @@ struct csrStrainData_ {
 
 /* ad(ξ) (6 x 6) */
 void csr_strainAd_(const double xi[6], double ad[36]);
+/* y[j] = Σ_r g[r] B[r][j] (add 0) or y[j] += Σ_r g[r] B[r][j] (add 1) for j < len, r over the
+ * six rows of B (leading dimension ld): each entry's terms added one at a time in r's order to
+ * +0 or to y[j] (the bits of a six-term dot product, or of six axpy passes over y in r's order:
+ * no contraction into fused multiply-adds, which the build does not ask for), vectorised over j
+ * (y and B distinct). The inertia's, the contact's and the velocity products' row products */
+static inline void csr_strainRows6_(double* restrict y, const double* restrict B, int ld,
+                                    const double g[6], int len, int add) {
+  const double g0 = g[0], g1 = g[1], g2 = g[2], g3 = g[3], g4 = g[4], g5 = g[5];
+  const double *b0 = B, *b1 = B + ld, *b2 = B + 2 * ld, *b3 = B + 3 * ld, *b4 = B + 4 * ld,
+               *b5 = B + 5 * ld;
+  for (int j = 0; j < len; j++) {
+    double t = add ? y[j] : 0;
+    t += g0 * b0[j];
+    t += g1 * b1[j];
+    t += g2 * b2[j];
+    t += g3 * b3[j];
+    t += g4 * b4[j];
+    t += g5 * b5[j];
+    y[j] = t;
+  }
+}
 /* the Legendre values at the Gauss points a, b (ab 0, 1) of piece k's sub-interval i, its half
  * step (whole 0: to the midpoint) or whole one (1), as csr_strainMagnus_ evaluates them for
  * s = i h, step whole ? h : h / 2 with h the piece's length over its sub-intervals (the same
