@@ -57,7 +57,8 @@ static const OptSpec kRunOpts[] = {
     {"--iterations", OPT_NUM},    {"--quiet", OPT_FLAG},         {"--set", OPT_SET},
     {"--cal-rule", OPT_WORD},     {"--rod-tol", OPT_NUM},        {"--out", OPT_OWNED},
     {"--help", OPT_OWNED},        {"--cal-drop", OPT_WORD},      {"--scene-file", OPT_PATH},
-    {"--slope-deg", OPT_NUM},     {"--foothold", OPT_PATH},      {NULL, OPT_FLAG}};
+    {"--slope-deg", OPT_NUM},     {"--foothold", OPT_PATH},
+    {"--gate", OPT_PATH},         {NULL, OPT_FLAG}};
 
 static const OptSpec kCalibrateOpts[] = {
     {"--case", OPT_WORD},       {"--actuator", OPT_ACT}, {"--set", OPT_SET},
