@@ -14,7 +14,8 @@
  * rejected_steps, gain_projections (sim_coupling.c implicitPart), with footholds foothold_file
  * and foothold_choices ("T LEGS OFFSET; ..."), control (open loop, a caller's source, or the
  * landing gate's closed loop) with a gate gate_file, gate_held_s, gate_released, gate_waited
- * and gate_waits ("T LEGS WAIT; ..." s, sim_gate.c), and per timer (sim_model.h
+ * and gate_waits ("T LEGS WAIT; ..." s for the gates that waited, sim_gate.c) and the dataset
+ * /gate/waits [n, 2] (each gate's table time and wait), and per timer (sim_model.h
  * CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
  * simulated second (core_h5.c: each flush writes the whole file image and renames it into
@@ -424,14 +425,31 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
     double held;
     int rel, waited;
     cs_gateHeld(m, d, &held, &rel, &waited);
-    for (int k = 0; k < rel && len < sizeof gw; k++) {
+    for (int k = 0; k < rel; k++) {
       const double w = cs_gateReleasedWait(d, k);
+      if (w > 0 && len + 40 >= sizeof gw) {
+        snprintf(gw + len, sizeof gw - len, "; ... (all: /gate/waits)");
+        break;
+      }
       if (w > 0) {
         char legs[9];
         csg_gateLegs(m->gate->gate[k].legs, legs);
-        len += (size_t)snprintf(gw + len, sizeof gw - len, "%s%g %s %.4f", len ? "; " : "",
+        len += (size_t)snprintf(gw + len, sizeof gw - len, "%s%g %s %.3f", len ? "; " : "",
                                 m->gate->gate[k].t, legs, w);
       }
+    }
+    /* every gate: its table time and released wait (NaN: not released), s */
+    double tw[2 * CSG_GATE_MAX];
+    for (int k = 0; k < m->gate->n; k++) {
+      tw[2 * k] = m->gate->gate[k].t;
+      tw[2 * k + 1] = k < rel ? cs_gateReleasedWait(d, k) : NAN;
+    }
+    const size_t wdims[2] = {(size_t)m->gate->n, 2};
+    if (cs_h5WriteDoubles(f, "/gate/waits", 2, wdims, tw, NULL) == CS_OK) {
+      cs_h5AttrString(f, "/gate/waits", "units", "s", NULL);
+      cs_h5AttrString(f, "/gate/waits", "description",
+                      "each gate of the landing gate: its table time and the wait it held the "
+                      "table's clock for (NaN: not released by the run's end)", NULL);
     }
     cs_h5AttrString(f, "/", "control", "closed loop: landing gate (gaits_gate.h)", NULL);
     cs_h5AttrString(f, "/", "gate_file", m->gate->source, NULL);
