@@ -78,7 +78,9 @@ void cs_gateDecide(const csModel* m, csData* d) {
   int gi = g0, holding = 0;
   double w = d->gate_wait;
   const double tau = d->t - d->gate_hold; /* the table's clock */
-  if (d->t >= 0 && gi < s->n && tau >= s->gate[gi].t - GATE_TIME_TOL) {
+  /* a caller's pressure source (cs_simSetController, a held command) drives the chambers
+   * instead of the table: the gate neither tests nor holds meanwhile */
+  if (!m->pressure_source && d->t >= 0 && gi < s->n && tau >= s->gate[gi].t - GATE_TIME_TOL) {
     /* the valves' command: the last row issued (the table's clock is at tau) */
     double v[CSG_NLABEL];
     csgScheduleOptions o = m->sched;
