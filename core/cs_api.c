@@ -329,9 +329,9 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
         double held;
         int rel, waited;
         cs_gateHeld(m, d, &held, &rel, &waited);
-        logLine(def, "gate %s: held %.3f s in total; %d of the %d gates released (of %d) waited "
-                "(the table's clock at %.3f s)", plan.gate, held, waited, rel, m->gate->n,
-                cs_time(d) - held);
+        logLine(def, "gate %s: closed loop, held %.3f s in total; %d of %d gates released, %d "
+                "of them waited; the table's clock at %.3f s", plan.gate, held, rel, m->gate->n,
+                waited, cs_time(d) - held);
       }
     }
   } else {
