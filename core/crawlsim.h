@@ -55,6 +55,11 @@ typedef struct csRunDef {
   const char* foothold;      /* the gait's companion .foothold file (landings chosen from the
                                 measured support, gaits_foothold.h); NULL: the scene's (none
                                 today; never with a user's gait); "none": none */
+  const char* gate;          /* the gait's companion .gate file (the landing gate: lifts held
+                                until the last pair is down, read from the chamber pressures,
+                                gaits_gate.h; the run is closed-loop); NULL: the scene's
+                                (gaits/obstacle.gate for the obstacle's own gait, none
+                                otherwise); "none": none (the table on time, open loop) */
   const char* conditions;    /* "earth" | "paper"; NULL: the scene's with its own files, earth
                                 with a user's terrain or gait */
   const char* legs;          /* leg level "rod" | "strain" | "rom" | "auto"; NULL: the scene's */

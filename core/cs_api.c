@@ -167,6 +167,14 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
     logLine(def, "footholds %s: %d landings chosen from the measured support (%d terrain edges)",
             plan->foothold, m->foothold->n, m->fh_nedge);
   }
+  if (m->gate) {
+    logLine(def, "gate %s: closed loop (a sensing controller): %d lifts wait until the pair "
+            "before is down, read from the chamber pressures against the design's (ramp %g s, "
+            "lag %g s, within %g MPa, at most %g s a gate; gaits_gate.h)", plan->gate,
+            m->gate->n, m->gate->ramp, m->gate->lag, m->gate->ptol, m->gate->maxwait);
+  } else if (m->gait) {
+    logLine(def, "gate none: open loop (the table on time)");
+  }
   double load, pcr;
   cs_modelStanceCheck(m, cs_robotMass(d), &load, &pcr);
   logLine(def, "stance check: %.2f N per leg on half the legs vs sway-buckling load %.2f N per "
@@ -317,6 +325,14 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
       double wall = 0;
       st = def->out ? cs_runWrite(m, d, def->out, &wall, &e) : runNoFile(m, d, &wall, &e);
       resultEnd(d, st, &e, wall, res);
+      if (m->gate) {
+        double held;
+        int rel, waited;
+        cs_gateHeld(m, d, &held, &rel, &waited);
+        logLine(def, "gate %s: closed loop, held %.3f s in total; %d of %d gates released, %d "
+                "of them waited; the table's clock at %.3f s", plan.gate, held, rel, m->gate->n,
+                waited, cs_time(d) - held);
+      }
     }
   } else {
     res->status = st;

@@ -628,6 +628,20 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
     if (st != CS_OK) return st;
     snprintf(plan->foothold, sizeof plan->foothold, "%s", def->foothold);
   }
+  /* the landing gate: the option's file, else the scene's for its own gait (sim_scene.h) */
+  const char* gate = def->gate;
+  char gate_path[512];
+  if (!gate && !gait && !def->no_gait && sc && sc->gate) {
+    gate = cs_runDataPath(def, sc->gate, gate_path, sizeof gate_path);
+  }
+  if (gate && strcmp(gate, "none") != 0) {
+    if (def->no_gait) {
+      return cs_errorSet(err, CS_ERR_ARG, "--gate %s needs a gait table (no_gait is set)", gate);
+    }
+    st = cs_modelLoadGate(m, gate, err);
+    if (st != CS_OK) return st;
+    snprintf(plan->gate, sizeof plan->gate, "%s", gate);
+  }
   if (!isnan(def->slope_deg)) m->terrain.slope_deg = def->slope_deg;
   if (m->gait) {
     csgGaitSummary gs;

@@ -20,6 +20,7 @@ typedef struct csRunPlan_ {
   csConditionsSource cond_src;    /* where the conditions came from */
   char terrain[512], gait[512];   /* the files read ("" gait: none) */
   char foothold[512];             /* the gait's .foothold file read ("": none) */
+  char gate[512];                 /* the gait's .gate file read ("": none, open loop) */
   char calibration[512];
 } csRunPlan;
 

@@ -189,6 +189,8 @@ void cs_modelDestroy(csModel* m) {
     m->gait = NULL;
     csg_footholdDestroy(m->foothold);
     m->foothold = NULL;
+    csg_gateDestroy(m->gate);
+    m->gate = NULL;
     csr_calibrationClose(m->calibration);
     m->calibration = NULL;
   }
@@ -265,6 +267,7 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
   for (int k = 0; k < CSG_FOOTHOLD_MAX; k++) {
     d->fh_choice[k] = -1; /* not decided */
   }
+  d->gate_issued = INFINITY; /* the gate (sim_gate.c): nothing held, every row issued */
   /* QuickStep shuffles its constraint rows with ODE's one process-wide generator; each data
    * keeps its own seed, starting at 0, and puts it in for its steps only (cs_step), so a run's
    * result is independent of what else ran in the same process (the determinism test).

@@ -69,7 +69,10 @@ csStatus cs_modelLoadFoothold(csModel* m, const char* path, csError* err) {
 
 void cs_footholdApply(const csModel* m, csData* d, double t, double* p_cmd) {
   const csgFootholdSet* s = m->foothold;
-  for (int k = 0; k < s->n && t >= s->fh[k].t; k++) {
+  /* T, W0, W1 are table times: with a landing gate, the run's time less its hold (the
+   * candidates' rows are held as the table's, sim_gate.c) */
+  const double tt = cs_gateTableTime(m, d, t);
+  for (int k = 0; k < s->n && tt >= s->fh[k].t; k++) {
     const csgFoothold* f = &s->fh[k];
     if (d->fh_choice[k] < 0) {
       double land[CSG_FOOTHOLD_MAX_CAND], lo[CSG_FOOTHOLD_MAX_CAND], hi[CSG_FOOTHOLD_MAX_CAND];
@@ -84,11 +87,11 @@ void cs_footholdApply(const csModel* m, csData* d, double t, double* p_cmd) {
                                        m->fh_edge, m->fh_nedge, f->margin);
       d->fh_choice[k] = c >= 0 ? c : f->nominal; /* -1 only for a non-finite support x */
     }
-    if (t < f->w0 || t >= f->w1) {
+    if (tt < f->w0 || tt >= f->w1) {
       continue;
     }
     double pc[CSG_NLABEL];
-    csg_scheduleEval(f->cand[(int)d->fh_choice[k]].table, &m->sched, t, pc);
+    cs_gateEval(m, d, f->cand[(int)d->fh_choice[k]].table, t, pc);
     for (int leg = 0; leg < CSG_NLEG; leg++) {
       if (f->legs & (1u << leg)) {
         memcpy(p_cmd + 12 * leg, pc + 12 * leg, 12 * sizeof(double));

@@ -109,6 +109,17 @@ struct csData_ {
   N_Vector y;
   double fh_choice[CSG_FOOTHOLD_MAX]; /* the footholds' latched candidates (-1: not yet
                                        decided), in the state after the coupling's block */
+  /* the landing gate (sim_gate.c), in the state after the footholds' latches: the next gate
+   * not released, the hold so far (s), the current gate's wait so far (s), each released
+   * gate's wait (s) */
+  double gate_i, gate_hold, gate_wait;
+  double gate_rel[CSG_GATE_MAX];
+  /* its decision at the current step's start (cs_gateDecide; not state: a function of it):
+   * the gates below gate_next are released, gate_holding 1 when gate gate_next holds; the
+   * offsets of the rows (gate_off[s]: rows after gate s - 1) and the last issued table time */
+  int gate_next, gate_holding;
+  double gate_off[CSG_GATE_MAX + 1];
+  double gate_issued;
   long pn_count[2]; /* CVODE's internal steps and right-hand sides on the pressures so far
                        (cs_pneumaticCounts), across its restarts */
 };
@@ -138,6 +149,18 @@ int cs_schedule(const csModel* m, csData* d, double t, double* p_cmd);
  * has reached, then writes each open window's chosen candidate into its legs' columns of
  * p_cmd (the table's command at t) */
 void cs_footholdApply(const csModel* m, csData* d, double t, double* p_cmd);
+
+/* the landing gate (sim_gate.c). Decide: from d's state at the step's start (t, the chamber
+ * pressures, the gate's part), which gates release and whether one holds, into d's decision
+ * fields (a pure function of the state: a retried or restored step decides again the same).
+ * Commit: after an accepted step of length h, the decision into the state (released waits,
+ * the next gate) and, while holding, h onto the hold and the wait. Eval: the table g's
+ * command at t under the decision (csg_scheduleEval itself while nothing has been held).
+ * Table time: t less the hold (the footholds' clock). */
+void cs_gateDecide(const csModel* m, csData* d);
+void cs_gateCommit(const csModel* m, csData* d, double h);
+void cs_gateEval(const csModel* m, const csData* d, const csgGait* g, double t, double* p_cmd);
+double cs_gateTableTime(const csModel* m, const csData* d, double t);
 
 /* ---- sim_coupling.c: the support interface of co-simulated legs ---- */
 

@@ -42,6 +42,7 @@
 #include "core_status.h"
 #include "gaits_csv.h"
 #include "gaits_foothold.h"
+#include "gaits_gate.h"
 #include "gaits_schedule.h"
 #include "robot_calibration.h"
 #include "robot_robot.h"
@@ -156,6 +157,11 @@ typedef struct csModel_ {
   csgFootholdSet* foothold;   /* owned */
   int fh_nedge;
   double fh_edge[2 * CST_MAX_BOXES]; /* mm, terrain x: the edges of the raised boxes */
+  /* The landing gate (gaits_gate.h; `--gate`): NULL, none (the table plays on time, open
+   * loop). With one the run is closed-loop: each gate is decided at a step's start from the
+   * measured chamber pressures and the state (gate index, hold, wait, released holds: part of
+   * cs_stateGet), the table's clock held while it waits; the player is sim_gate.c. */
+  csgGateSet* gate;           /* owned; its design pressures filled at load */
 } csModel;
 
 /* Fill a model with the defaults of every part (no files read, no map yet): rod legs (the
@@ -209,10 +215,22 @@ void cs_modelStanceCheck(const csModel* m, double mass_total, double* load_per_l
  * turned or inclined (the footholds measure along the terrain's x) or without a gait. */
 csStatus cs_modelLoadFoothold(csModel* m, const char* path, csError* err);
 
-/* Free what the model owns (gait, calibration, footholds). NULL-safe. */
+/* After cs_modelLoad with a gait and the schedule options final: read the gait's companion
+ * .gate file (gaits_gate.h) into m->gate and integrate the design's chamber pressures at each
+ * gate's time (the table on time through the file's ramp and lag, with the run's ramp shape
+ * and pressure scale; sim_gate.c). Refused (CS_ERR_ARG) without a gait. */
+csStatus cs_modelLoadGate(csModel* m, const char* path, csError* err);
+
+/* Free what the model owns (gait, calibration, footholds, gate). NULL-safe. */
 void cs_modelDestroy(csModel* m);
 
 typedef struct csData_ csData; /* opaque: ODE world, robot, CVODE memory, state, timers */
+
+/* The gate's record of a data (zeros without a gate): the hold so far (s, the table's clock
+ * behind the run's), the gates released and how many of them waited. */
+void cs_gateHeld(const csModel* m, const csData* d, double* hold_s, int* released, int* waited);
+/* Released gate k's wait (s; 0 for a gate not released). */
+double cs_gateReleasedWait(const csData* d, int k);
 
 /* Build the world for a model: terrain geoms, the robot standing on the terrain at the
  * terrain's start, the pneumatic integrator, the coupling rows. Returns NULL with err. */

@@ -12,7 +12,10 @@
  * macro_step_s, leg_step_s, leg_step_order (tree coupling), contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
  * rejected_steps, gain_projections (sim_coupling.c implicitPart), with footholds foothold_file
- * and foothold_choices ("T LEGS OFFSET; ..."), and per timer (sim_model.h
+ * and foothold_choices ("T LEGS OFFSET; ..."), control (open loop, a caller's source, or the
+ * landing gate's closed loop) with a gate gate_file, gate_held_s, gate_released, gate_waited
+ * and gate_waits ("T LEGS WAIT; ..." s for the gates that waited, sim_gate.c) and the dataset
+ * /gate/waits [n, 2] (each gate's table time and wait), and per timer (sim_model.h
  * CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
  * simulated second (core_h5.c: each flush writes the whole file image and renames it into
@@ -413,6 +416,50 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
     }
     cs_h5AttrString(f, "/", "foothold_file", m->foothold->source, NULL);
     cs_h5AttrString(f, "/", "foothold_choices", fh, NULL);
+  }
+  if (m->gate) {
+    /* closed loop: the gate's file, its total hold and each wait ("T LEGS WAIT" per gate that
+     * waited, s) */
+    char gw[CS_H5_STATUS_SIZE] = "";
+    size_t len = 0;
+    double held;
+    int rel, waited;
+    cs_gateHeld(m, d, &held, &rel, &waited);
+    for (int k = 0; k < rel; k++) {
+      const double w = cs_gateReleasedWait(d, k);
+      if (w > 0 && len + 40 >= sizeof gw) {
+        snprintf(gw + len, sizeof gw - len, "; ... (all: /gate/waits)");
+        break;
+      }
+      if (w > 0) {
+        char legs[9];
+        csg_gateLegs(m->gate->gate[k].legs, legs);
+        len += (size_t)snprintf(gw + len, sizeof gw - len, "%s%g %s %.3f", len ? "; " : "",
+                                m->gate->gate[k].t, legs, w);
+      }
+    }
+    /* every gate: its table time and released wait (NaN: not released), s */
+    double tw[2 * CSG_GATE_MAX];
+    for (int k = 0; k < m->gate->n; k++) {
+      tw[2 * k] = m->gate->gate[k].t;
+      tw[2 * k + 1] = k < rel ? cs_gateReleasedWait(d, k) : NAN;
+    }
+    const size_t wdims[2] = {(size_t)m->gate->n, 2};
+    if (cs_h5WriteDoubles(f, "/gate/waits", 2, wdims, tw, NULL) == CS_OK) {
+      cs_h5AttrString(f, "/gate/waits", "units", "s", NULL);
+      cs_h5AttrString(f, "/gate/waits", "description",
+                      "each gate of the landing gate: its table time and the wait it held the "
+                      "table's clock for (NaN: not released by the run's end)", NULL);
+    }
+    cs_h5AttrString(f, "/", "control", "closed loop: landing gate (gaits_gate.h)", NULL);
+    cs_h5AttrString(f, "/", "gate_file", m->gate->source, NULL);
+    cs_h5AttrDouble(f, "/", "gate_held_s", held, NULL);
+    cs_h5AttrDouble(f, "/", "gate_released", rel, NULL);
+    cs_h5AttrDouble(f, "/", "gate_waited", waited, NULL);
+    cs_h5AttrString(f, "/", "gate_waits", gw, NULL);
+  } else {
+    cs_h5AttrString(f, "/", "control", m->pressure_source ? "a caller's pressure source"
+                                                          : "open loop: the table on time", NULL);
   }
   for (int k = 0; k < CS_NTIMER; k++) {
     char name[64];

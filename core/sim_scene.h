@@ -60,6 +60,8 @@ typedef struct csScene_ {
                               count converged on the default calibration (docs/notes/
                               rod_legs.md, "Elements on the mission's table") */
   const char* what;        /* one line: what the scene is */
+  const char* gate;        /* the landing gate of its own gait (gaits_gate.h; NULL: none, the
+                              table plays open loop) */
 } csScene;
 
 /* The built-in scene called `name`, or NULL. */

@@ -1,6 +1,6 @@
 /* sim_schedule.c: the scheduled chamber pressures p_cmd(t) (docs/design.md "Data flow"): the
  * model's pressure source (a controller, crawlsim.h) if it has one, else the gait table's
- * schedule. Its own unit because the life cycle (sim_driver.c), the state (sim_state.c, which
+ * schedule (held by the landing gate, sim_gate.c, with its footholds, sim_foothold.c). Its own unit because the life cycle (sim_driver.c), the state (sim_state.c, which
  * re-reads p_cmd after a restore) and the stages (sim_step.c) all ask it, and none of them
  * should ask another for it. */
 #include <string.h>
@@ -20,7 +20,8 @@ int cs_schedule(const csModel* m, csData* d, double t, double* p_cmd) {
     memset(p_cmd, 0, CSR_NCHAMBER_TOTAL * sizeof(double));
     return 0;
   }
-  csg_scheduleEval(m->gait, &m->sched, t, p_cmd);
+  /* the table, its rows held by the landing gate's waits if it has waited (sim_gate.c) */
+  cs_gateEval(m, d, m->gait, t, p_cmd);
   if (m->foothold) {
     cs_footholdApply(m, d, t, p_cmd);
   }

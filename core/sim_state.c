@@ -4,7 +4,9 @@
  * robot (csr_robotStateGet: support body, then legs A..H); with co-simulated legs, then the
  * coupling's block (CS_COSIM_STATE: what the Gauss-Seidel scheme carries from one macro step
  * to the next, sim_coupling.c); with footholds (--foothold), one value per foothold: its
- * latched candidate, -1 while undecided (sim_foothold.c). Restoring is bit-exact for every
+ * latched candidate, -1 while undecided (sim_foothold.c); with a landing gate (--gate), 3 + n
+ * values: the next gate, the hold (s), the current wait (s) and the n gates' released waits
+ * (s; sim_gate.c). Restoring is bit-exact for every
  * part: the bodies through robot_odebody.h, the seed as the integer it is (ODE keeps it below
  * 2^32, exact in a double), the pressures by copy, and CVODE restarted from them. */
 #include <cvode/cvode.h>
@@ -22,11 +24,13 @@ enum { HEAD = 2 + CSR_NCHAMBER_TOTAL }; /* t, seed, pressures */
 
 /* the footholds' latches: one per foothold of the model */
 static int footholdCount(const csModel* m) { return m->foothold ? m->foothold->n : 0; }
+/* the gate's part: next gate, hold, wait, one released wait per gate */
+static int gateCount(const csModel* m) { return m->gate ? 3 + m->gate->n : 0; }
 
 
 int cs_stateSize(const csModel* m, const csData* d) {
   return HEAD + csr_robotStateSize(d->robot) + (d->cosim.active ? CS_COSIM_STATE : 0) +
-         footholdCount(m);
+         footholdCount(m) + gateCount(m);
 }
 
 
@@ -38,9 +42,16 @@ void cs_stateGet(const csModel* m, const csData* d, double* x) {
   if (d->cosim.active) {
     cs_couplingStateGet(d, x + HEAD + csr_robotStateSize(d->robot));
   }
-  const int nfh = footholdCount(m);
+  const int nfh = footholdCount(m), ng = gateCount(m);
   if (nfh > 0) {
-    memcpy(x + cs_stateSize(m, d) - nfh, d->fh_choice, sizeof(double) * (size_t)nfh);
+    memcpy(x + cs_stateSize(m, d) - ng - nfh, d->fh_choice, sizeof(double) * (size_t)nfh);
+  }
+  if (ng > 0) {
+    double* xg = x + cs_stateSize(m, d) - ng;
+    xg[0] = d->gate_i;
+    xg[1] = d->gate_hold;
+    xg[2] = d->gate_wait;
+    memcpy(xg + 3, d->gate_rel, sizeof(double) * (size_t)(ng - 3));
   }
 }
 
@@ -60,8 +71,21 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   if (d->cosim.active && cs_couplingStateCheck(xc) != 0) {
     return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the coupling's part is not finite");
   }
-  const int nfh = footholdCount(m);
-  const double* xf = x + cs_stateSize(m, d) - nfh;
+  const int nfh = footholdCount(m), ng = gateCount(m);
+  const double* xf = x + cs_stateSize(m, d) - ng - nfh;
+  const double* xg = x + cs_stateSize(m, d) - ng;
+  if (ng > 0) {
+    int ok = xg[0] >= 0 && xg[0] <= m->gate->n && xg[0] == floor(xg[0]) && isfinite(xg[1]) &&
+             xg[1] >= 0 && isfinite(xg[2]) && xg[2] >= 0;
+    for (int k = 3; k < ng; k++) {
+      ok = ok && isfinite(xg[k]) && xg[k] >= 0;
+    }
+    if (!ok) {
+      return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the gate's part (next gate %g of %d, "
+                         "hold %g s, wait %g s, released waits) is not a gate state", xg[0],
+                         m->gate->n, xg[1], xg[2]);
+    }
+  }
   for (int k = 0; k < nfh; k++) {
     if (!(xf[k] == -1 || (xf[k] >= 0 && xf[k] < m->foothold->fh[k].ncand &&
                           xf[k] == floor(xf[k])))) {
@@ -79,9 +103,16 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   if (nfh > 0) {
     memcpy(d->fh_choice, xf, sizeof(double) * (size_t)nfh);
   }
+  if (ng > 0) {
+    d->gate_i = xg[0];
+    d->gate_hold = xg[1];
+    d->gate_wait = xg[2];
+    memcpy(d->gate_rel, xg + 3, sizeof(double) * (size_t)(ng - 3));
+  }
   d->t = x[0];
   d->rng_seed = (unsigned long)x[1];
   memcpy(d->p, x + 2, sizeof d->p);
+  cs_gateDecide(m, d); /* the decision the restored state makes (sim_gate.c) */
   cs_schedule(m, d, d->t, d->p_cmd);
   /* the pneumatic integrator restarts from the restored pressures (its step-size history is
    * not state, sim_model.h) */

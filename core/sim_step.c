@@ -288,6 +288,8 @@ static csStatus stepTry(const csModel* m, csData* d, double t1, double H, int de
   w = csu_timerAdd(&d->timer[CS_TIMER_SAVE], w);
   /* this data's place in ODE's random sequence (sim_internal.h rng_seed) */
   dRandSetSeed(d->rng_seed);
+  /* the landing gate decides from the state at the step's start (sim_gate.c) */
+  cs_gateDecide(m, d);
   /* the stages in order; each is timed whether it succeeds or not */
   csStatus st = stageSchedule(m, d, t1, err);
   w = csu_timerAdd(&d->timer[CS_TIMER_SCHEDULE], w);
@@ -314,6 +316,7 @@ static csStatus stepTry(const csModel* m, csData* d, double t1, double H, int de
     w = csu_timerAdd(&d->timer[CS_TIMER_CHECK], w);
   }
   if (st == CS_OK) {
+    cs_gateCommit(m, d, H);
     d->t = t1;
     d->rng_seed = dRandGetSeed();
     return CS_OK;

@@ -239,6 +239,121 @@ csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, doubl
 }
 
 
+/* held rows (csg_scheduleEvalHeld): row k's offset and shifted start */
+typedef struct {
+  const csgGait* g;
+  int nbreak;
+  const double* breaks;
+  const double* off;
+} heldRows;
+
+static double heldStart(const heldRows* h, int k) {
+  const double tk = h->g->time[k];
+  int lo = 0, hi = h->nbreak; /* s: the number of breaks below tk */
+  while (lo < hi) {
+    int mid = lo + (hi - lo) / 2;
+    if (h->breaks[mid] < tk - CSG_RAMP_ROUNDING) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  return tk + h->off[lo];
+}
+
+/* rampFits, rowRamp and rowRunning on the shifted times */
+static double heldRamp(const heldRows* h, double ramp, int k) {
+  if (k + 1 < h->g->nrow) {
+    double gap = heldStart(h, k + 1) - heldStart(h, k);
+    if (fabs(gap - ramp) <= CSG_RAMP_ROUNDING) {
+      return gap;
+    }
+  }
+  return ramp;
+}
+
+static int heldRunning(const heldRows* h, double ramp, int k, int row, double t) {
+  if (k < row && k + 1 < h->g->nrow &&
+      heldStart(h, k + 1) - heldStart(h, k) >= ramp - CSG_RAMP_ROUNDING) {
+    return 0;
+  }
+  return t < heldStart(h, k) + heldRamp(h, ramp, k);
+}
+
+
+csStatus csg_scheduleEvalHeld(const csgGait* g, const csgScheduleOptions* opt, double t,
+                              int nbreak, const double* breaks, const double* off,
+                              double t_issued, double p_out[CSG_NLABEL]) {
+  csgScheduleOptions def = defaultsFor(g);
+  const csgScheduleOptions* o = opt ? opt : &def;
+  if (!p_out || !g || g->nrow < 1 || !optionsOk(o) || !isfinite(t) || nbreak < 0 || !off ||
+      (nbreak > 0 && !breaks) || isnan(t_issued)) {
+    return CS_ERR_ARG;
+  }
+  const heldRows h = {g, nbreak, breaks, off};
+  /* the issued rows: t_i <= t_issued */
+  int nis = findRow(g, t_issued) + 1;
+  /* the last issued row that has started (shifted starts do not decrease) */
+  int row = -1, lo = 0, hi = nis - 1;
+  while (lo <= hi) {
+    int mid = lo + (hi - lo) / 2;
+    if (heldStart(&h, mid) <= t) {
+      row = mid;
+      lo = mid + 1;
+    } else {
+      hi = mid - 1;
+    }
+  }
+  int j = row + 1;
+  if (row >= 0 && o->ramp > 0.0) {
+    const double reach = o->ramp + CSG_RAMP_ROUNDING;
+    for (int k = row; k >= 0 && t < heldStart(&h, k) + reach; k--) {
+      if (heldRunning(&h, o->ramp, k, row, t)) {
+        j = k;
+      }
+    }
+  }
+  const double K = o->pressure_scale;
+  const double* base = rowPressure(g, j - 1);
+  if (j > row) {
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      p_out[l] = base ? K * base[l] : 0.0;
+    }
+    return CS_OK;
+  }
+  /* the changes j..row running: their sum over the plateau of row j - 1 (one running: the
+   * blend, so both plateaus are exact, as csg_scheduleEval) */
+  if (j == row) {
+    const double r = heldRamp(&h, o->ramp, row);
+    const double u = heldRunning(&h, o->ramp, row, row, t) ? (t - heldStart(&h, row)) / r : 1.0;
+    const double sv = shapeValue(o->shape, u);
+    const double* cur = rowPressure(g, row);
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      double a = base ? base[l] : 0.0;
+      p_out[l] = K * ((1.0 - sv) * a + sv * cur[l]);
+    }
+    return CS_OK;
+  }
+  for (int l = 0; l < CSG_NLABEL; l++) {
+    p_out[l] = base ? base[l] : 0.0;
+  }
+  for (int k = j; k <= row; k++) {
+    const double r = heldRamp(&h, o->ramp, k);
+    const double u = heldRunning(&h, o->ramp, k, row, t) ? (t - heldStart(&h, k)) / r : 1.0;
+    const double sv = shapeValue(o->shape, u);
+    const double* prev = rowPressure(g, k - 1);
+    const double* cur = rowPressure(g, k);
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      p_out[l] += (cur[l] - (prev ? prev[l] : 0.0)) * sv;
+    }
+  }
+  for (int l = 0; l < CSG_NLABEL; l++) {
+    p_out[l] *= K;
+  }
+  return CS_OK;
+}
+
+
 csStatus csg_scheduleEvalRate(const csgGait* g, const csgScheduleOptions* opt, double t,
                               double dpdt_out[CSG_NLABEL]) {
   csgScheduleOptions def = defaultsFor(g);

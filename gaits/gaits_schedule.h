@@ -85,6 +85,22 @@ csStatus csg_scheduleCheckOptions(const csgScheduleOptions* opt, csError* err);
 csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, double t,
                           double p_out[CSG_NLABEL]);
 
+/* p(t) with held rows (the landing gate, gaits_gate.h, core/sim_gate.c): the sum above with
+ * row i's change starting at t_i + off_i instead of t_i,
+ *   p(t) = K sum_{i: t_i <= t_issued, t_i + off_i <= t} (P_i - P_{i-1}) S((t - t_i - off_i) / r_i)
+ * so a gate that held the table's clock for a while delays every row issued after it by that
+ * while, and the changes already issued arrive as they would have (the chambers fill on).
+ * off_i = off[s], s the number of breaks[] (table times, ascending) below t_i (a row at a
+ * break's time belongs before it); off has nbreak + 1 values, not decreasing. Rows with
+ * t_i > t_issued are not issued yet (a gate holds them; +inf: every row). Ramp lengths and
+ * fits as above, on the shifted times. With every off 0 and t_issued +inf this is
+ * csg_scheduleEval's value up to rounding (a caller that needs that run bit for bit calls
+ * csg_scheduleEval). No allocation. Returns CS_OK, or CS_ERR_ARG as csg_scheduleEval (also
+ * for nbreak < 0 or NULL off). */
+csStatus csg_scheduleEvalHeld(const csgGait* g, const csgScheduleOptions* opt, double t,
+                              int nbreak, const double* breaks, const double* off,
+                              double t_issued, double p_out[CSG_NLABEL]);
+
 /* dp/dt (MPa/s) of all chambers at time t (s), shape (96), same conventions as
  * csg_scheduleEval. At a jump (ramp = 0, or a linear ramp's ends) it returns the one-sided
  * rate from the right. */

@@ -44,6 +44,10 @@ static const csxOpt kRunOpts[] = {
     {"--foothold", "FILE|none", "none",
      "the gait's companion .foothold file: the landings it lists are chosen during the run "
      "from where the support stands (docs/reference/formats.md \"Foothold files\")"},
+    {"--gate", "FILE|none", "the scene's own gait's (gaits/obstacle.gate; none on the flat road)",
+     "the gait's companion .gate file: each lift waits until the pair before it is down, read "
+     "from the chamber pressures against the design's (a sensing controller: the run is "
+     "closed-loop); none plays the table on time (docs/reference/formats.md \"Gate files\")"},
     {"--terrain", "FILE", "the scene's (terrains/flat_road.terrain, terrains/obstacle.terrain)",
      "the terrain file; a terrain of your own makes the default conditions earth"},
     {"--legs", "auto|rod|strain|rom", "rod",
@@ -132,6 +136,7 @@ static const struct {
     {"--scene-file", offsetof(csRunDef, scene_file), 0},
     {"--gait", offsetof(csRunDef, gait), 0},
     {"--foothold", offsetof(csRunDef, foothold), 0},
+    {"--gate", offsetof(csRunDef, gate), 0},
     {"--terrain", offsetof(csRunDef, terrain), 0},
     {"--legs", offsetof(csRunDef, legs), 0},
     {"--rom-file", offsetof(csRunDef, rom_file), 0},

@@ -143,8 +143,57 @@ ap.add_argument('--foothold-reuse', action='store_true',
 ap.add_argument('--design-cache', default=None, metavar='DIR',
                 help='with --foothold-out: keep each designed candidate table in DIR and reuse it '
                 'for the same statements (a rerun with other footholds designs only what is new)')
+ap.add_argument('--gate-out', default=None, metavar='FILE',
+                help='write the landing gate of the description (-o\'s, or --gate-from\'s) to FILE: '
+                'every lift of a pair in the wave waits for the last other pair that lifted '
+                '(gaits/gaits_gate.h; `crawlsim run --gate FILE`)')
+ap.add_argument('--gate-from', default=None, metavar='GAIT',
+                help='with --gate-out: take the lifts from the description GAIT (any table\'s '
+                '.gait) and write nothing else')
+ap.add_argument('--gate-ramp', type=float, default=0.05,
+                help='the gate\'s design actuation time, s: the table\'s @ramp (its rows\' spacing)')
+ap.add_argument('--gate-lag', type=float, default=0.02,
+                help='the gate\'s design pneumatic lag, s (crawlsim run\'s default --tau)')
+ap.add_argument('--gate-ptol', type=float, default=0.005,
+                help='the gate\'s tolerance, MPa (a pressure sensor\'s accuracy: about 1 %% of the '
+                'table\'s 0.4 MPa range)')
+ap.add_argument('--gate-maxwait', type=float, default=None,
+                help='the longest wait of a gate, s (default --Tp: one walk slot)')
 a = ap.parse_args()
 DC = a.D if a.Dclimb is None else a.Dclimb
+
+
+def gate_text(lines, source):
+    """the landing gate of a description (gaits/gaits_gate.h): its wave lifts (a `move` of a
+    pair to an AM pose or to U0), each after the first waiting for the last other pair that
+    lifted (the rule of docs/bench/obst_2026-12-06e/gatelib.py Gates)"""
+    lifts = []
+    for line in lines:
+        p = line.split()
+        if len(p) >= 5 and p[0] == 'move' and len(p[3]) == 2 and (
+                p[4].startswith('AM') or p[4] == 'U0'):
+            lifts.append((float(p[1]), p[3]))
+    lifts.sort()
+    out = ['# the landing gate of %s (gaits/gaits_gate.h), written by\n#   %s\n'
+           '# each lift of a pair in the wave waits until the pair that lifted before it is down\n'
+           % (source, ' '.join(['tools/obstacle_gait.py'] + sys.argv[1:])),
+           'design ramp %g lag %g ptol %g maxwait %g\n'
+           % (a.gate_ramp, a.gate_lag, a.gate_ptol, a.Tp if a.gate_maxwait is None else a.gate_maxwait)]
+    for i in range(1, len(lifts)):
+        prev = [q for _, q in lifts[:i] if q != lifts[i][1]]
+        if prev:
+            out.append('gate %.4f %s  # lift of %s\n' % (lifts[i][0], prev[-1], lifts[i][1]))
+    if len(out) == 2:
+        sys.exit('obstacle_gait.py: %s has no wave lifts to gate' % source)
+    return ''.join(out)
+
+
+if a.gate_from:
+    if not a.gate_out:
+        sys.exit('obstacle_gait.py: --gate-from needs --gate-out FILE')
+    with open(a.gate_out, 'w') as f:
+        f.write(gate_text(open(a.gate_from).read().splitlines(), a.gate_from))
+    sys.exit(0)
 
 
 def fh_spec(text, opt, nparts):
@@ -764,6 +813,9 @@ if a.out == '-':
 else:
     with open(a.out, 'w') as f:
         f.write(text)
+if a.gate_out:
+    with open(a.gate_out, 'w') as f:
+        f.write(gate_text(text.splitlines(), a.out if a.out != '-' else 'the description'))
 
 missing = set(FH) - {(f['legs'], f['cycle']) for f in FHINFO}
 if missing:

@@ -21,6 +21,7 @@ typedef enum {
   OPT_WORD,  /* any word (the command checks it) */
   OPT_PATH,  /* a file that must exist (unless it is under @case/: an earlier step makes it) */
   OPT_CALIB, /* a path, or the word `analytic` (bend's rod calibration) */
+  OPT_FILE_NONE, /* a path, or the word `none` (run's --foothold, --gate) */
   OPT_SET,   /* NAME=VALUE of an actuator parameter */
   OPT_ACT,   /* an actuator preset */
   OPT_OWNED  /* given by the study runner: refused in a study file */
@@ -57,7 +58,8 @@ static const OptSpec kRunOpts[] = {
     {"--iterations", OPT_NUM},    {"--quiet", OPT_FLAG},         {"--set", OPT_SET},
     {"--cal-rule", OPT_WORD},     {"--rod-tol", OPT_NUM},        {"--out", OPT_OWNED},
     {"--help", OPT_OWNED},        {"--cal-drop", OPT_WORD},      {"--scene-file", OPT_PATH},
-    {"--slope-deg", OPT_NUM},     {"--foothold", OPT_PATH},      {NULL, OPT_FLAG}};
+    {"--slope-deg", OPT_NUM},     {"--foothold", OPT_FILE_NONE},
+    {"--gate", OPT_FILE_NONE},    {NULL, OPT_FLAG}};
 
 static const OptSpec kCalibrateOpts[] = {
     {"--case", OPT_WORD},       {"--actuator", OPT_ACT}, {"--set", OPT_SET},
@@ -95,6 +97,12 @@ typedef struct {
 static int validName(const char* w);
 /* the option spec of `word` for command c, or NULL */
 static const OptSpec* findOpt(csxStudyCmd c, const char* word);
+/* whether option o's value v names a file (checked to exist): a path option's, a calibration
+ * but `analytic`, a file-or-none but `none` */
+static int namesFile(const OptSpec* o, const char* v) {
+  return o->kind == OPT_PATH || (o->kind == OPT_CALIB && strcmp(v, "analytic")) ||
+         (o->kind == OPT_FILE_NONE && strcmp(v, "none"));
+}
 /* check the words of a step (options, values, the actuator they describe) */
 static csStatus checkStep(Reader* r, csxStudyCmd c, char** w, int n, csError* err);
 /* the step's words: the command's defaults, then `own`; copies owned by the step */
@@ -187,7 +195,7 @@ int csx_studyWordIsPath(const csxStudyStep* st, int i) {
   /* an option's value: the word before it names an option that takes a file */
   if (i > 0) {
     const OptSpec* o = findOpt(st->cmd, st->word[i - 1]);
-    if (o && (o->kind == OPT_PATH || (o->kind == OPT_CALIB && strcmp(st->word[i], "analytic")))) {
+    if (o && namesFile(o, st->word[i])) {
       return 1;
     }
     if (o && o->kind != OPT_FLAG) {
@@ -261,8 +269,7 @@ static csStatus checkStep(Reader* r, csxStudyCmd c, char** w, int n, csError* er
     } else if (o->kind == OPT_ACT) {
       preset = v;
       act_given = 1;
-    } else if ((o->kind == OPT_PATH || (o->kind == OPT_CALIB && strcmp(v, "analytic"))) &&
-               strncmp(v, "@case/", 6)) {
+    } else if (namesFile(o, v) && strncmp(v, "@case/", 6)) {
       char p[CSX_STUDY_PATH_SIZE];
       FILE* f = NULL;
       if (csx_studyResolvePath(r->s, NULL, v, p, sizeof p) == 0) {

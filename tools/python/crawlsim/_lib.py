@@ -57,6 +57,7 @@ RUNDEF_FIELDS = [
     ("gait", ctypes.c_char_p, "str"),
     ("no_gait", ctypes.c_int, "int"),
     ("foothold", ctypes.c_char_p, "str"),
+    ("gate", ctypes.c_char_p, "str"),
     ("conditions", ctypes.c_char_p, "str"),
     ("legs", ctypes.c_char_p, "str"),
     ("rom_file", ctypes.c_char_p, "str"),

@@ -1,0 +1,162 @@
+/* gaits_gate.c: the companion .gate file's reader and one gate's test (gaits_gate.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_text.h"
+#include "gaits_gate.h"
+
+#define MAX_LINE 1024
+#define MAX_WORDS 12
+
+
+void csg_gateDestroy(csgGateSet* s) { free(s); }
+
+
+int csg_gateDown(const csgGate* g, const double* p, const double* v, double ptol) {
+  for (int leg = 0; leg < CSG_NLEG; leg++) {
+    if (!(g->legs & (1u << leg))) continue;
+    for (int c = 12 * leg; c < 12 * leg + 12; c++) {
+      if (fabs(v[c] - p[c]) > fabs(v[c] - g->p_design[c]) + ptol) return 0;
+    }
+  }
+  return 1;
+}
+
+
+void csg_gateLegs(unsigned legs, char* out) {
+  int n = 0;
+  for (int l = 0; l < CSG_NLEG; l++) {
+    if (legs & (1u << l)) out[n++] = (char)('A' + l);
+  }
+  out[n] = '\0';
+}
+
+
+static int number(const char* s, double* v) {
+  char* end;
+  *v = strtod(s, &end);
+  return end != s && !*end && isfinite(*v);
+}
+
+
+/* `design ramp R lag TAU ptol P maxwait W` */
+static csStatus statementDesign(csgGateSet* s, char** w, int nw, int* seen, const char* path,
+                                int line, csError* err) {
+  if (*seen) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: a second 'design' line", path, line);
+  }
+  if (s->n > 0) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'design' must come before the gates", path,
+                       line);
+  }
+  if (nw != 9 || strcmp(w[1], "ramp") || strcmp(w[3], "lag") || strcmp(w[5], "ptol") ||
+      strcmp(w[7], "maxwait")) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'design' needs ramp R lag TAU ptol P maxwait W",
+                       path, line);
+  }
+  double v[4];
+  for (int i = 0; i < 4; i++) {
+    if (!number(w[2 + 2 * i], &v[i])) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: '%.40s' is not a finite number", path, line,
+                         w[2 + 2 * i]);
+    }
+  }
+  if (!(v[0] >= 0 && v[1] > 0 && v[2] >= 0 && v[3] > 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: needs ramp >= 0, lag > 0, ptol >= 0 and "
+                       "maxwait > 0 (%g s, %g s, %g MPa, %g s)", path, line, v[0], v[1], v[2],
+                       v[3]);
+  }
+  s->ramp = v[0];
+  s->lag = v[1];
+  s->ptol = v[2];
+  s->maxwait = v[3];
+  *seen = 1;
+  return CS_OK;
+}
+
+
+/* `gate T LEGS` */
+static csStatus statementGate(csgGateSet* s, char** w, int nw, int seen, const char* path,
+                              int line, csError* err) {
+  if (!seen) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'gate' before the 'design' line", path, line);
+  }
+  if (nw != 3) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'gate' needs T LEGS", path, line);
+  }
+  if (s->n >= CSG_GATE_MAX) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: more than %d gates", path, line, CSG_GATE_MAX);
+  }
+  csgGate* g = &s->gate[s->n];
+  memset(g, 0, sizeof *g);
+  g->line = line;
+  if (!number(w[1], &g->t)) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: '%.40s' is not a finite number", path, line,
+                       w[1]);
+  }
+  if (!(g->t >= 0) || (s->n > 0 && g->t < s->gate[s->n - 1].t)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: gate times must be >= 0 and not decreasing "
+                       "(%g s)", path, line, g->t);
+  }
+  for (const char* c = w[2]; *c; c++) {
+    if (*c < 'A' || *c > 'H' || (g->legs & (1u << (*c - 'A')))) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: leg set '%.20s': '%c' is not a leg A..H or "
+                         "is named twice", path, line, w[2], *c);
+    }
+    g->legs |= 1u << (*c - 'A');
+  }
+  s->time[s->n] = g->t;
+  s->n++;
+  return CS_OK;
+}
+
+
+csgGateSet* csg_gateRead(const char* path, csError* err) {
+  if (!path) {
+    cs_errorSet(err, CS_ERR_ARG, "csg_gateRead: NULL path");
+    return NULL;
+  }
+  csgGateSet* s = calloc(1, sizeof *s);
+  csuLineReader* r = calloc(1, sizeof *r);
+  csStatus st = s && r ? csu_lineOpen(r, path, MAX_LINE, "gate file", err)
+                       : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+  if (s) {
+    snprintf(s->source, sizeof s->source, "%s", path);
+  }
+  int got = 0, line = 0, seen = 0;
+  while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
+    line = (int)r->lineno;
+    char* w[MAX_WORDS];
+    int nw = csu_statementWords(r->line, w, MAX_WORDS);
+    if (nw == 0) {
+      continue;
+    }
+    if (nw > MAX_WORDS) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: more than %d words", path, line, MAX_WORDS);
+    } else if (!strcmp(w[0], "design")) {
+      st = statementDesign(s, w, nw, &seen, path, line, err);
+    } else if (!strcmp(w[0], "gate")) {
+      st = statementGate(s, w, nw, seen, path, line, err);
+    } else {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (design, gate)", path,
+                       line, w[0]);
+    }
+  }
+  if (st == CS_OK && got < 0) {
+    st = (csStatus)got;
+  }
+  if (st == CS_OK && s->n == 0) {
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: no gate", path, line > 0 ? line : 1);
+  }
+  if (r) {
+    csu_lineClose(r);
+    free(r);
+  }
+  if (st != CS_OK) {
+    csg_gateDestroy(s);
+    return NULL;
+  }
+  return s;
+}

@@ -1,0 +1,79 @@
+/* gaits_gate.h: the landing gate, a gait's lifts held until the last pair down is down
+ * (issue 33; the design and its runs: docs/studies/obstacle.md, "2026-12-06, fifth session"
+ * and "sixth session").
+ *
+ * Owns: csgGateSet (the model of a companion `.gate` file, constant during a run), its reader,
+ * and the test of one gate (csg_gateDown, a pure function of the measured and the designed
+ * pressures). The player, which holds the table's clock while a gate waits and plays the held
+ * rows (gaits_schedule.h csg_scheduleEvalHeld), is core's (core/sim_gate.c): it reads the
+ * chamber pressures, so the run is closed-loop (a sensing controller).
+ *
+ * The rule. A gate at table time T waits for LEGS (the pair that lifted last before the pair
+ * lifting at T). It is down when every chamber c of LEGS is at least as near its valve's
+ * command v_c as the design has it at T, within PTOL:
+ *     |v_c - p_c| <= |v_c - p_design,c(T)| + PTOL
+ * p_design is the table played on time through the design's actuation time (the `ramp`) and
+ * pneumatic lag (the `lag`, dp/dt = (p_cmd - p) / lag, sim_model.h), integrated once at load;
+ * PTOL is a pressure sensor's accuracy. So the gate waits only when the valves are slower than
+ * the design assumed; a run whose valves are as designed never waits and is the open-loop run.
+ * A gate releases after `maxwait` at most (one slot of the walk).
+ *
+ * Units: s, MPa.
+ *
+ * File format (NAME.gate beside NAME.csv, written by tools/obstacle_gait.py --gate-out;
+ * '#' starts a comment, blank lines are skipped; docs/reference/formats.md "Gate files"):
+ *   design ramp R lag TAU ptol P maxwait W
+ *       once, before any gate: the design's actuation time R (s, >= 0), pneumatic lag TAU
+ *       (s, > 0), the tolerance P (MPa, >= 0) and the longest wait W (s, > 0)
+ *   gate T LEGS
+ *       a gate at table time T (s, >= 0, not decreasing from one gate to the next) waiting for
+ *       LEGS (letters A..H, each once)
+ * Errors: "<file>:<line>: <cause>" (CS_ERR_PARSE malformed, CS_ERR_RANGE values, CS_ERR_IO a
+ * file that cannot be read). */
+#ifndef CS_GAITS_GATE_H
+#define CS_GAITS_GATE_H
+
+#include "core_status.h"
+#include "gaits_labels.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define CSG_GATE_MAX 128 /* gates per file */
+
+typedef struct csgGate_ {
+  double t;     /* s: table time of the lift it holds */
+  unsigned legs; /* bit k: leg k (A..H) waited for */
+  int line;     /* of its `gate` statement */
+  double p_design[CSG_NLABEL]; /* MPa: the design's chamber pressures at t (filled by the
+                                  player at load, core/sim_gate.c; 0 from the reader) */
+} csgGate;
+
+typedef struct csgGateSet_ {
+  double ramp;    /* s: the design's actuation time */
+  double lag;     /* s: the design's pneumatic lag */
+  double ptol;    /* MPa */
+  double maxwait; /* s */
+  int n;
+  csgGate gate[CSG_GATE_MAX]; /* in the file's order (T not decreasing) */
+  double time[CSG_GATE_MAX];  /* s: the gates' t, contiguous (csg_scheduleEvalHeld's breaks) */
+  char source[512];
+} csgGateSet;
+
+/* Read a .gate file. Returns a new set (free with csg_gateDestroy) or NULL with err. */
+csgGateSet* csg_gateRead(const char* path, csError* err);
+/* NULL-safe. */
+void csg_gateDestroy(csgGateSet* s);
+
+/* The rule above for one gate (pure): p the measured pressures (96), v the valves' commands
+ * (96), g's legs and design pressures, ptol. 1 down, 0 not. */
+int csg_gateDown(const csgGate* g, const double* p, const double* v, double ptol);
+
+/* LEGS as letters into out (>= 9 chars). */
+void csg_gateLegs(unsigned legs, char* out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* CS_GAITS_GATE_H */

@@ -1,0 +1,245 @@
+/* test_gate.c: the landing gate's player (core/sim_gate.c, `--gate`, the obstacle scene's
+ * default gaits/obstacle.gate) on the obstacle scene with cheap rod legs (2 elements per
+ * segment: the gate reads the chamber pressures only, which follow their command whatever the
+ * legs do, so the waits do not depend on the legs' discretisation):
+ *  - the nominal (valves as designed) never waits: its first 2.8 s, past the first gate at
+ *    2.6 s, are the `--gate none` run bit for bit (every state value but the gate's appended
+ *    part, each step), the gate released with no hold;
+ *  - the pneumatic lag x2 (0.04 s) waits, and its first waits equal the prototype's model
+ *    (docs/bench/obst_2026-12-06e/pneu.py, the pneumatics alone, in Python) as committed in
+ *    tests/core/data/gate_tau2x_waits.txt (2.60 s A, E; 3.40 s D, H; 4.20 s C, G), within one
+ *    1 ms step;
+ *  - a restore repeats a wait: from a state before the first wait and from one inside it, two
+ *    restores run to the same state bit for bit, with the same wait as the run that saved them;
+ *    a gate part that is not a gate state is refused;
+ *  - a malformed .gate file fails cs_simCreate with a message naming the file and line; a
+ *    user's gait gets no gate by default. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "crawlsim.h"
+#include "cs_test.h"
+
+#define NGATE 35 /* gates in gaits/obstacle.gate */
+#define STEP 1e-3
+
+
+static csRunDef cheapDef(void) {
+  csRunDef d = cs_defaultRunDef();
+  d.scene = "obstacle";
+  d.links = 2;
+  return d;
+}
+
+
+static csSim* make(const char* gate, double tau) {
+  csRunDef d = cheapDef();
+  d.gate = gate;
+  if (tau > 0) d.tau = tau;
+  csError err;
+  cs_errorClear(&err);
+  csSim* s = cs_simCreate(&d, &err);
+  if (!s) fprintf(stderr, "  cs_simCreate: %s\n", err.msg);
+  return s;
+}
+
+
+static void runTo(csSim* s, double t) {
+  csError err;
+  csStatus st = cs_simRunUntil(s, t, &err);
+  CS_EXPECT(st == CS_OK);
+  if (st != CS_OK) fprintf(stderr, "  %s\n", err.msg);
+}
+
+
+/* the nominal never waits: the open-loop run bit for bit through the first gate */
+static void test_nominalNoWaitBitForBit(void) {
+  csSim* a = make("none", 0);
+  csSim* b = make(NULL, 0); /* the scene's default: gaits/obstacle.gate */
+  CS_EXPECT(a && b);
+  if (!a || !b) {
+    cs_simDestroy(a);
+    cs_simDestroy(b);
+    return;
+  }
+  const int na = cs_simStateSize(a), nb = cs_simStateSize(b);
+  CS_EXPECT(nb == na + 3 + NGATE); /* next gate, hold, wait, the released waits */
+  double* xa = malloc(sizeof(double) * (size_t)nb);
+  double* xb = malloc(sizeof(double) * (size_t)nb);
+  csError err;
+  int same = 1, n = 0;
+  while (same && cs_simTime(b) < 2.8 - 1e-9) {
+    CS_EXPECT(cs_simStep(a, &err) == CS_OK);
+    CS_EXPECT(cs_simStep(b, &err) == CS_OK);
+    cs_simStateGet(a, xa);
+    cs_simStateGet(b, xb);
+    same = !memcmp(xa, xb, sizeof(double) * (size_t)na);
+    n++;
+  }
+  CS_EXPECT(same);
+  /* the gate at 2.6 s was reached and released, nothing held */
+  CS_EXPECT(xb[na] == 1 && xb[na + 1] == 0 && xb[na + 2] == 0 && xb[na + 3] == 0);
+  printf("nominal: %d steps identical to --gate none; gates released %g, hold %g s\n", n,
+         xb[na], xb[na + 1]);
+  free(xa);
+  free(xb);
+  cs_simDestroy(a);
+  cs_simDestroy(b);
+}
+
+
+/* the committed waits of the prototype's model: T, legs, wait; returns how many */
+static int readWaits(double* t, char legs[][9], double* w, int max) {
+  const char* src = getenv("CS_SOURCE_DIR");
+  char path[1024], line[256];
+  snprintf(path, sizeof path, "%s/tests/core/data/gate_tau2x_waits.txt", src ? src : "../../..");
+  FILE* f = fopen(path, "r");
+  CS_EXPECT(f != NULL);
+  int n = 0;
+  while (f && n < max && fgets(line, sizeof line, f)) {
+    if (line[0] == '#') continue;
+    if (sscanf(line, "%lf %8s %lf", &t[n], legs[n], &w[n]) == 3) n++;
+  }
+  if (f) fclose(f);
+  return n;
+}
+
+
+/* the gate's part of a state of size n */
+static const double* gatePart(const double* x, int n) { return x + n - 3 - NGATE; }
+
+
+/* lag x2: the waits equal the model's; restores repeat a wait */
+static void test_lagWaitsAsModelAndRestores(void) {
+  double tm[8], wm[8];
+  char lm[8][9];
+  const int nm = readWaits(tm, lm, wm, 8);
+  CS_EXPECT(nm == 3);
+  csSim* s = make(NULL, 0.04);
+  CS_EXPECT(s != NULL);
+  if (!s || nm < 1) {
+    cs_simDestroy(s);
+    return;
+  }
+  const int n = cs_simStateSize(s);
+  double* x0 = malloc(sizeof(double) * (size_t)n);
+  double* x1 = malloc(sizeof(double) * (size_t)n);
+  double* x2 = malloc(sizeof(double) * (size_t)n);
+  double* y1 = malloc(sizeof(double) * (size_t)n);
+  double* y2 = malloc(sizeof(double) * (size_t)n);
+  csError err;
+  runTo(s, 2.59);
+  cs_simStateGet(s, x0); /* before the first gate */
+  runTo(s, tm[0] + 0.5 * wm[0]);
+  cs_simStateGet(s, x1); /* inside its wait */
+  CS_EXPECT(gatePart(x1, n)[0] == 0 && gatePart(x1, n)[2] > 0);
+  runTo(s, 2.7);
+  cs_simStateGet(s, x2); /* released */
+  const double w0 = gatePart(x2, n)[3];
+  CS_EXPECT(gatePart(x2, n)[0] == 1 && w0 > 0);
+  /* two restores of each state: the same run to 2.7 s bit for bit, the same wait */
+  const double* from[2] = {x0, x1};
+  for (int k = 0; k < 2; k++) {
+    CS_EXPECT(cs_simStateSet(s, from[k], &err) == CS_OK);
+    runTo(s, 2.7);
+    cs_simStateGet(s, y1);
+    CS_EXPECT(cs_simStateSet(s, from[k], &err) == CS_OK);
+    runTo(s, 2.7);
+    cs_simStateGet(s, y2);
+    CS_EXPECT(!memcmp(y1, y2, sizeof(double) * (size_t)n));
+    CS_EXPECT(gatePart(y1, n)[0] == 1 && gatePart(y1, n)[3] == w0);
+    printf("restore from %s: wait %.4f s again (the run that saved it: %.4f s)\n",
+           k ? "inside the wait" : "before the gate", gatePart(y1, n)[3], w0);
+  }
+  /* a gate part that is not a gate state */
+  memcpy(y1, x2, sizeof(double) * (size_t)n);
+  y1[n - 3 - NGATE] = 0.5;
+  CS_EXPECT(cs_simStateSet(s, y1, &err) == CS_ERR_ARG && strstr(err.msg, "gate"));
+  y1[n - 3 - NGATE] = 1;
+  y1[n - 2 - NGATE] = -1;
+  CS_EXPECT(cs_simStateSet(s, y1, &err) == CS_ERR_ARG);
+  /* on to the third gate: each wait as the model's, within one step */
+  CS_EXPECT(cs_simStateSet(s, x2, &err) == CS_OK);
+  runTo(s, 4.3);
+  cs_simStateGet(s, y1);
+  const double* g = gatePart(y1, n);
+  CS_EXPECT(g[0] == nm);
+  double sum = 0;
+  for (int k = 0; k < nm; k++) {
+    printf("gate %d at %.2f s waiting for %s: %.4f s; the model %.4f s\n", k + 1, tm[k], lm[k],
+           g[3 + k], wm[k]);
+    CS_EXPECT(wm[k] > 0.01); /* the model waits: the comparison is not trivial */
+    CS_EXPECT_NEAR(g[3 + k], wm[k], 1.01 * STEP, 0);
+    sum += g[3 + k];
+  }
+  CS_EXPECT_NEAR(g[1], sum, 1e-12, 0);
+  free(x0);
+  free(x1);
+  free(x2);
+  free(y1);
+  free(y2);
+  cs_simDestroy(s);
+}
+
+
+/* malformed files: file and line; --gate none and a user's gait: no gate */
+static void test_badGateFileNamesLine(void) {
+  static const struct {
+    const char* text;
+    const char* where;
+  } kBad[] = {
+      {"# a gate\ndesign ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\nfence 2.6 AE\n", ":3:"},
+      {"gate 2.6 AE\n", ":1:"},
+      {"design ramp 0.05 lag 0 ptol 0.005 maxwait 0.6\ngate 2.6 AE\n", ":1:"},
+      {"design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\ngate 2.6 AX\n", ":2:"},
+      {"design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\ngate 2.6 AE\n\ngate 2.0 DH\n", ":4:"},
+      {"design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\ngate nan AE\n", ":2:"},
+      {"design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\n# none\n", ":2:"},
+      {"design ramp 0.05 lag 0.02 ptol 0.005\ngate 2.6 AE\n", ":1:"},
+  };
+  for (size_t k = 0; k < sizeof kBad / sizeof kBad[0]; k++) {
+    char path[64];
+    snprintf(path, sizeof path, "bad%zu.gate", k);
+    cs_testWriteText(path, kBad[k].text);
+    csRunDef d = cheapDef();
+    d.gate = path;
+    csError err;
+    cs_errorClear(&err);
+    csSim* s = cs_simCreate(&d, &err);
+    char want[96];
+    snprintf(want, sizeof want, "%s%s", path, kBad[k].where);
+    CS_EXPECT(s == NULL && strstr(err.msg, want) != NULL);
+    printf("%s: %s\n", path, err.msg);
+    cs_simDestroy(s);
+  }
+  /* none, and a user's gait (the scene's own table named as a file): no gate part */
+  csSim* a = make("none", 0);
+  csSim* b = make(NULL, 0);
+  const char* src = getenv("CS_SOURCE_DIR");
+  char gait[1024];
+  snprintf(gait, sizeof gait, "%s/gaits/obstacle.csv", src ? src : "../../..");
+  csRunDef d = cheapDef();
+  d.gait = gait;
+  d.conditions = "paper";
+  csError err;
+  csSim* c = cs_simCreate(&d, &err);
+  CS_EXPECT(a && b && c);
+  if (a && b && c) {
+    CS_EXPECT(cs_simStateSize(b) == cs_simStateSize(a) + 3 + NGATE);
+    CS_EXPECT(cs_simStateSize(c) == cs_simStateSize(a));
+  }
+  cs_simDestroy(a);
+  cs_simDestroy(b);
+  cs_simDestroy(c);
+}
+
+
+int main(int argc, char** argv) {
+  cs_testInit(argc, argv);
+  CS_RUN(test_badGateFileNamesLine);
+  CS_RUN(test_nominalNoWaitBitForBit);
+  CS_RUN(test_lagWaitsAsModelAndRestores);
+  return cs_testSummary();
+}

@@ -1,0 +1,113 @@
+/* test_gaits_gate.c: the landing gate's file and rule (gaits_gate.h) and the schedule with
+ * held rows (gaits_schedule.h csg_scheduleEvalHeld):
+ *  - the shipped gaits/obstacle.gate reads: its design line and 35 gates, the first at 2.6 s
+ *    waiting for A, E;
+ *  - csg_gateDown: a pair as near its command as the design (within PTOL) is down, one
+ *    chamber further behind is not, other legs do not count;
+ *  - held rows: with no offset the held schedule is csg_scheduleEval's (to rounding); an
+ *    offset o after a break delays every later row by o (p_held(t + o) = p(t) once the rows
+ *    before the break have arrived), and rows past t_issued are not played. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cs_test.h"
+#include "gaits_csv.h"
+#include "gaits_gate.h"
+#include "gaits_schedule.h"
+
+
+static const char* src(const char* rel, char* buf, size_t n) {
+  const char* s = getenv("CS_SOURCE_DIR");
+  snprintf(buf, n, "%s/%s", s ? s : "../../..", rel);
+  return buf;
+}
+
+
+static void test_shippedGateReads(void) {
+  char path[1024];
+  csError err;
+  csgGateSet* s = csg_gateRead(src("gaits/obstacle.gate", path, sizeof path), &err);
+  CS_EXPECT(s != NULL);
+  if (!s) {
+    fprintf(stderr, "  %s\n", err.msg);
+    return;
+  }
+  char legs[9];
+  csg_gateLegs(s->gate[0].legs, legs);
+  CS_EXPECT(s->n == 35 && s->ramp == 0.05 && s->lag == 0.02 && s->ptol == 0.005 &&
+            s->maxwait == 0.6);
+  CS_EXPECT(s->gate[0].t == 2.6 && !strcmp(legs, "AE") && s->time[0] == 2.6);
+  for (int k = 1; k < s->n; k++) CS_EXPECT(s->time[k] >= s->time[k - 1]);
+  printf("gaits/obstacle.gate: %d gates, the first at %g s waiting for %s\n", s->n, s->gate[0].t,
+         legs);
+  csg_gateDestroy(s);
+}
+
+
+static void test_downRule(void) {
+  csgGate g;
+  memset(&g, 0, sizeof g);
+  g.legs = 1u << 3; /* D */
+  double p[CSG_NLABEL] = {0}, v[CSG_NLABEL] = {0};
+  for (int c = 36; c < 48; c++) {
+    v[c] = 0.2;            /* the command */
+    g.p_design[c] = 0.19;  /* the design is 0.01 behind */
+    p[c] = 0.186;          /* 0.014 behind: within 0.005 of the design's 0.01 */
+  }
+  CS_EXPECT(csg_gateDown(&g, p, v, 0.005) == 1);
+  p[40] = 0.184; /* 0.016 behind: 0.006 more than the design */
+  CS_EXPECT(csg_gateDown(&g, p, v, 0.005) == 0);
+  CS_EXPECT(csg_gateDown(&g, p, v, 0.007) == 1);
+  p[40] = 0.186;
+  p[0] = 0; v[0] = 0.3; /* leg A far behind: not waited for */
+  CS_EXPECT(csg_gateDown(&g, p, v, 0.005) == 1);
+}
+
+
+static void test_heldRowsDelay(void) {
+  char path[1024];
+  csError err;
+  csgGait* g = csg_gaitRead(src("gaits/obstacle.csv", path, sizeof path), NULL, &err);
+  CS_EXPECT(g != NULL);
+  if (!g) return;
+  csgScheduleOptions o = csg_defaultScheduleOptions();
+  o.ramp = 0.05;
+  const double brk[1] = {2.6};
+  const double zero[2] = {0, 0}, off[2] = {0, 0.037};
+  double a[CSG_NLABEL], b[CSG_NLABEL];
+  double worst = 0, worst_shift = 0;
+  int moved = 0;
+  for (double t = 0; t < 6; t += 0.00731) {
+    csg_scheduleEval(g, &o, t, a);
+    CS_EXPECT(csg_scheduleEvalHeld(g, &o, t, 1, brk, zero, INFINITY, b) == CS_OK);
+    for (int l = 0; l < CSG_NLABEL; l++) worst = fmax(worst, fabs(a[l] - b[l]));
+    if (t > 2.6 + 0.05) { /* the rows before the break have arrived */
+      csg_scheduleEvalHeld(g, &o, t + off[1], 1, brk, off, INFINITY, b);
+      for (int l = 0; l < CSG_NLABEL; l++) worst_shift = fmax(worst_shift, fabs(a[l] - b[l]));
+      csg_scheduleEval(g, &o, t + off[1], b);
+      for (int l = 0; l < CSG_NLABEL; l++) moved |= fabs(a[l] - b[l]) > 1e-3;
+    }
+  }
+  printf("held rows: no offset %.3g MPa from the schedule; offset 0.037 s: %.3g MPa from the "
+         "schedule 0.037 s earlier\n", worst, worst_shift);
+  CS_EXPECT(worst < 1e-12 && worst_shift < 1e-12 && moved);
+  /* rows past t_issued are not played: held at 2.6 s, the row at 2.65 never starts */
+  csg_scheduleEval(g, &o, 2.6 + 0.05, a);
+  csg_scheduleEvalHeld(g, &o, 3.0, 1, brk, off, 2.6 + 1e-12, b);
+  double d = 0;
+  for (int l = 0; l < CSG_NLABEL; l++) d = fmax(d, fabs(a[l] - b[l]));
+  CS_EXPECT(d < 1e-12);
+  CS_EXPECT(csg_scheduleEvalHeld(g, &o, 1.0, 1, NULL, off, INFINITY, b) == CS_ERR_ARG);
+  csg_gaitDestroy(g);
+}
+
+
+int main(int argc, char** argv) {
+  cs_testInit(argc, argv);
+  CS_RUN(test_shippedGateReads);
+  CS_RUN(test_downRule);
+  CS_RUN(test_heldRowsDelay);
+  return cs_testSummary();
+}
