@@ -33,7 +33,11 @@ done
   $B o_l2_05ms_o2 obstacle 4 strain:2:0.0005:2 &&
   $B o_l2_025ms obstacle 4 strain:2:0.00025 &&
   $B o_l2_075ms obstacle 4 strain:2:0.00075 &&
-  $B o_l2_0375ms obstacle 4 strain:2:0.000375 )
+  $B o_l2_0375ms obstacle 4 strain:2:0.000375 &&
+  $B o_l2_045ms obstacle 4 strain:2:0.00045 &&
+  $B o_l2_055ms obstacle 4 strain:2:0.00055 &&
+  $B o_l2_1ms_ptol obstacle 4 strain:2:0.001 CS_BENCH_PTOL=0.1 &&
+  $B o_l2_05ms_ptol obstacle 4 strain:2:0.0005 CS_BENCH_PTOL=0.1 )
 $C o_rod24_025ms --scene obstacle --legs rod --links 24 --dt 0.00025 --t-end 4
 $C o_rod32_025ms --scene obstacle --legs rod --links 32 --dt 0.00025 --t-end 4
 # the paper's table under paper: the rod at 16 (0.25 ms) and 32 (0.5 ms), strain at 0.5, 0.9, 1, 1.1 ms
