@@ -29,6 +29,8 @@ done
   $B f_rod16_jl2_05ms flat-road 9 rod:16:0.0005:0:0:-1:-1:-1:-1:2 )
 # the obstacle's first 4 s: the step (backward Euler and BDF2), the rod at 24 and 32 elements
 ( cd build/tests/core && export CS_SOURCE_DIR="$W" &&
+  $B o_l2_1ms obstacle 4 strain:2:0.001 &&
+  $B o_l2_05ms obstacle 4 strain:2:0.0005 &&
   $B o_l2_1ms_o2 obstacle 4 strain:2:0.001:2 &&
   $B o_l2_05ms_o2 obstacle 4 strain:2:0.0005:2 &&
   $B o_l2_025ms obstacle 4 strain:2:0.00025 &&
