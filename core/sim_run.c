@@ -248,6 +248,11 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
     const double tol = csr_legSettingGet(lt, ls, "rod_tol", 1.0);
     st = cs_h5AttrDouble(f, "/", "rod_tolerance_scale", tol > 0 ? tol : 1.0, err);
   }
+  if (st == CS_OK && csr_legSettingFind(lt, "joint_links")) {
+    /* the rod's elements per solid joint (1 by default; `links` refines the segments only) */
+    st = cs_h5AttrDouble(f, "/", "rod_joint_elements", csr_legSettingGet(lt, ls, "joint_links", 1),
+                         err);
+  }
   if (st == CS_OK && csr_legSettingFind(lt, "keep_matrix")) {
     /* the strain level's iteration matrix across steps (0: a new one every step; > 0 kept
      * until a mode moves this far, rad) */

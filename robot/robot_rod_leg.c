@@ -39,7 +39,7 @@
 #include "robot_rod.h"
 
 /* the level's settings (kRodSettings, at the end) */
-enum { ROD_LINKS, ROD_TOL, ROD_CAL_DROP };
+enum { ROD_LINKS, ROD_TOL, ROD_CAL_DROP, ROD_JOINT_LINKS };
 
 struct csrLeg_ {
   csrActuator act;
@@ -262,6 +262,7 @@ static csrLeg* createRod(const csrLegSpec* spec, csError* err) {
   par.damping_time = lp->damping_time;
   par.contact_radius = lp->contact_radius;
   par.cal_drop = (unsigned)set[ROD_CAL_DROP];
+  par.elements_per_joint = (int)set[ROD_JOINT_LINKS];
   /* the bristles deflect by at most mu delta_t (8 µm by default): their error to 1e-5 mm */
   par.atol_hist = 1e-5;
   /* 0: the shipped tolerances (x 1 keeps their bits) */
@@ -494,6 +495,11 @@ static const csrLegSetting kRodSettings[] = {
     /* parts of the calibration left out, CSR_CAL_DROP_* bits (`--cal-drop`) */
     [ROD_CAL_DROP] = {"cal_drop", "CSR_CAL_DROP_* bits", 0, 0,
                       CSR_CAL_DROP_STRETCH | CSR_CAL_DROP_STIFFNESS, 1},
+    /* elements per solid joint LS12, LS23 (csrRodParams elements_per_joint). `links` refines
+     * the segments only, so a reference converged in `links` keeps each 6-10 mm joint one
+     * straight element with its bending at its two end nodes; this refines the joints too
+     * (docs/notes/strain_leg.md "The flat gait of the fifth session") */
+    [ROD_JOINT_LINKS] = {"joint_links", "elements per solid joint LS12, LS23", 1, 1, 64, 1},
 };
 
 const csrLegType csr_leg_rod = {

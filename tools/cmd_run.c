@@ -53,7 +53,7 @@ static const csxOpt kRunOpts[] = {
     {"--legs", "auto|rod|strain|rom", "rod",
      "the leg level; auto picks the scene's cheapest measured configuration within --tol; "
      "strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled tree, its "
-     "step --dt (default 1 ms, the level's own) and --links bending modes per segment (default "
+     "step --dt (default 0.5 ms, the level's own) and --links bending modes per segment (default "
      "2); rom: the reduced FE leg of --rom-file (docs/notes/rom.md), contact at its sole only; prb "
      "was retired (refused naming rod or strain)"},
     {"--rom-file", "LEG.h5", NULL,
@@ -78,7 +78,7 @@ static const csxOpt kRunOpts[] = {
      "when --terrain or --gait is given",
      "earth: gravity on every body; paper: the legs keep mass and inertia but feel no gravity "
      "(the paper's assumption)"},
-    {"--dt", "S", "1e-3 (strain: the level's own step, 1e-3)", "ODE time step in s (at most 0.01)"},
+    {"--dt", "S", "1e-3 (strain: the level's own step, 5e-4)", "ODE time step in s (at most 0.01)"},
     {"--output-dt", "S", "0.01", "sampling interval of the output in s (>= --dt)"},
     {"--ramp", "S", "the gait's '# @ramp', else 0.2",
      "pressure ramp in s: each gait row's change takes S to arrive (overlapping when the rows "

@@ -573,11 +573,13 @@ const csrLegType csr_leg_strain = {
     .massMoment = massMomentStrain,
     .contactDepth = contactDepthStrain,
     .contactForce = contactForceStrain,
-    /* 1 ms: the largest step whose track is within 1 mm of the half-step run on both scenes
-     * (issue 32's rule; docs/notes/strain_leg.md "In the driver", Newton passes): the flat
-     * road's 9 s alone would allow 2.5 ms (0.95 mm from 1.25 ms; 5 ms 1.53 mm from 2.5 ms), but
-     * the obstacle's first 4 s at 2 ms are 2.3 mm from 1 ms, at 1 ms 0.23 mm from 0.5 ms */
-    .step = 1e-3,
+    /* 0.5 ms: the largest step whose track is within 1 mm of the half-step run on both scenes
+     * (issue 32's rule), on the scenes' current tables and gaits: the obstacle's first 4 s
+     * (k3 table) at 1 ms are 1.69 mm from 0.5 ms (0.75 ms: 0.79 from 0.5 ms), at 0.5 ms
+     * 0.52 mm from 0.25 ms; the flat road's 9 s at 1 ms are 0.21 mm from 0.5 ms
+     * (docs/notes/strain_leg.md "The flat gait of the fifth session"). On the obstacle's
+     * earlier 9-mode table 1 ms was 0.23 mm from 0.5 ms. */
+    .step = 5e-4,
     .step_order = STRAIN_STEP_ORDER,
     .prepare = prepareStrain,
     .finish = finishStrain,

@@ -13,7 +13,8 @@
  * or absent: the default; with keep_matrix the legs' factorisations per step are printed;
  * JOINTS, SHEAR, SUB the strain level's basis settings joints (-1 rigid, 0 constant
  * curvature; -2 or absent: the default), shear (1 or 0 Kirchhoff) and sub (Magnus
- * sub-intervals per flexible piece), -1 or absent: the defaults)
+ * sub-intervals per flexible piece), -1 or absent: the defaults; for rod legs JOINTS >= 1 is
+ * their setting joint_links, the elements per solid joint, default 1)
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -283,7 +284,9 @@ static int bench(const char* src, const char* arg, double t_end) {
     return 1;
   }
   /* the strain level's basis beyond links (JOINTS -2, SHEAR and SUB -1 or absent: the defaults) */
-  const char* bname[3] = {"joints", "shear", "sub"};
+  /* (rod legs: JOINTS >= 1 is their setting joint_links, the elements per solid joint) */
+  const int rodj = csr_legSettingFind(type, "joint_links") != NULL;
+  const char* bname[3] = {rodj ? "joint_links" : "joints", "shear", "sub"};
   const int bval[3] = {joints, shear, sub}, bunset[3] = {-2, -1, -1};
   for (int i = 0; i < 3; i++) {
     if (bval[i] != bunset[i] &&
@@ -336,7 +339,10 @@ static int bench(const char* src, const char* arg, double t_end) {
       snprintf(ks, sizeof ks, "_keep%g", kmat);
     }
     char bs[48] = "";
-    if (joints != -2 || shear >= 0 || sub >= 0) {
+    if (rodj && joints != -2) {
+      snprintf(bs, sizeof bs, "_jl%d", (int)csr_legSettingGet(type, &m.robot.leg_settings,
+                                                             "joint_links", 1));
+    } else if (joints != -2 || shear >= 0 || sub >= 0) {
       snprintf(bs, sizeof bs, "_j%d_s%d_n%d",
                (int)csr_legSettingGet(type, &m.robot.leg_settings, "joints", 0),
                (int)csr_legSettingGet(type, &m.robot.leg_settings, "shear", 1),

@@ -35,6 +35,7 @@ static void test_earth_strain_steps_across_the_road_edge(void) {
   def.legs = "strain";
   def.links = 3; /* the basis the state files were made with (3 bending modes per segment,
                    the level's default then) */
+  def.dt = 1e-3; /* the step the state files were made with (the level's default then) */
   def.gait = gait;
   def.conditions = "earth";
   def.data_dir = src;

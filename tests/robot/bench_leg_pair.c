@@ -274,6 +274,13 @@ int main(int argc, char** argv) {
       fprintf(stderr, "bench_leg_pair: level %s not created\n", names[i]);
       return 1;
     }
+    /* the leg's mass and its first moment about the hip at creation (the levels' inertia) */
+    double mx[3];
+    rig[i].T->massMoment(rig[i].leg, mx);
+    const double ml = rig[i].T->mass(rig[i].leg);
+    printf("%s: mass %.6g g, centre of mass from the hip %.4f %.4f %.4f mm\n", names[i],
+           ml * 1e6, mx[0] / ml - rig[i].hip0[0], mx[1] / ml - rig[i].hip0[1],
+           mx[2] / ml - rig[i].hip0[2]);
   }
   const double t_on = (swing || push) ? 0 : 1e9, t_off = (swing || push) ? 1 : 1e9;
   double foot0[MAX_LEVELS] = {NAN, NAN, NAN, NAN};
