@@ -32,6 +32,23 @@ ap.add_argument('--Dz', type=float, default=70.4,
                 'slots is zend / (Dz / 4)')
 ap.add_argument('--over', type=float, default=10.0,
                 help='landing overshoot ahead of the planned foot, mm (measured)')
+ap.add_argument('--over-step', type=float, default=None,
+                help='rule 16: landing overshoot of a landing on the step (the vented stance), mm '
+                '(measured: the nominal\'s step landings fell 3 mm short of their offset on average '
+                'where the road\'s fall --over beyond it; docs/studies/obstacle.md, sixth session); '
+                'default --over (rule 16 off)')
+ap.add_argument('--Dcross', type=float, default=None,
+                help='rule 16b: support advance per cycle from the climb\'s end (planned x past --xclimb) '
+                'to --xcross, mm; places the hips for the landings of these slots, and the later '
+                'landings keep the lag it adds (default --D, rule 16 off)')
+ap.add_argument('--reach', type=float, default=None,
+                help='rule 16: a landing on the step that falls within 25 mm of the up edge '
+                '(rule 6\'s margin, where it lands by --over-step), takes the shortest longer offset, '
+                'in 5 mm steps up to REACH mm ahead of the hip, that keeps the margin (REACH if none '
+                'does); default off')
+ap.add_argument('--reach-road', action='store_true',
+                help='rule 16 also for the landings on the road within 25 mm before the riser '
+                '(default: only those on the step)')
 ap.add_argument('--Tp', type=float, default=0.6,
                 help='the walk\'s slot: the time one pair takes to step, s (the cycle is 4 slots)')
 ap.add_argument('--Tclimb', type=float, default=0.8,
@@ -110,6 +127,10 @@ ap.add_argument('--scatter', default='-44,16',
                 '(measured: the support stood -44..+33 mm from its plan at the rear pair\'s '
                 'climb across the set, docs/studies/obstacle.md "n0"; D and H landed 11, 16 mm '
                 'long with a 25 g, 75 g support, Robustness)')
+ap.add_argument('--clear-down', action='store_true',
+                help='rule 12 also for the first pair landing near the down edge (more than 25 mm '
+                'past the up edge; the pair that steps down first): its scatter band keeps --clear from '
+                'the down edge (default: only the road landings before the riser)')
 ap.add_argument('--rmin', type=float, default=0.0,
                 help='rule 12: the shortest landing offset ahead of the hip (below 5 the stance '
                 'ends more than 35 mm behind the hip, past rule 4), mm')
@@ -293,6 +314,22 @@ RULE11 = """
 #     stroke; docs/bench/obstacle_pace_2026-12-06)."""
 
 
+RULE16 = ''
+if a.over_step is not None or a.reach is not None:
+    RULE16 += ('\n# 16. Where a foot lands on the step (measured): %g mm beyond its offset (the road\'s %g)%s.'
+               % (a.over if a.over_step is None else a.over_step, a.over,
+                  '' if a.reach is None else
+                  ';\n#     a landing on the step within 25 mm of the up edge takes the shortest longer '
+                  'offset,\n#     up to %g mm, that keeps 25 mm (the first B, F landings of the '
+                  'earlier table hung on\n#     the edge\'s corner, unloaded)' % a.reach))
+    if a.reach_road:
+        RULE16 += '\n#     Also the road landings within 25 mm before the riser.'
+if a.Dcross is not None:
+    RULE16 += ('\n# 16b. From the climb\'s end to support x = %g mm the hips advance %g mm per cycle '
+               '(measured),\n#     then %g again with the lag kept.' % (a.xcross, a.Dcross, a.D))
+if a.clear_down:
+    RULE16 += ('\n# 12b. The first pair landing near the down edge: rule 12\'s band keeps %g mm from '
+               'that edge.' % a.clear)
 TURNH = ('still %g mm up, all legs then come down to a %g mm stretch' % (a.rise, a.rise_z)
            if a.rise_low is None or abs(a.rise_low - a.rise) < 1e-6 else
            'at the walk\'s %g mm stretch' % a.rise_low)
@@ -334,7 +371,7 @@ HEADER = """\
 #     then the wave starts with the pairs behind it still under their hips: each stance foot
 #     moves at the wave's rate from wherever it stands, so the first cycle is a ramp, not a
 #     jolt.
-{rule9}{rule10}{rule11}{rule12}{rule13}{rule14}
+{rule9}{rule10}{rule11}{rule12}{rule13}{rule14}{rule16}
 """.format(args='#   D %g, xdrift %g, Dz %g, over %g mm; xclimb %g, rise %g, rise-z %g mm;\n'
            '#   Tclimb %g, Tp %g, Tpz %g, Tstart %g, Tturn %g, t-place %g s'
            % (a.D, a.xdrift, a.Dz, a.over, a.xclimb, a.rise, a.rise_z, a.Tclimb, a.Tp, a.Tpz,
@@ -365,6 +402,7 @@ HEADER = """\
            '\n# 14. The crossing: the walk\'s slot is %g s while the support is planned between x = %g\n'
            '#     and %g mm (the front hips then past the down edge), to win back time on the plateau.'
            % (a.Tcross, a.xclimb, a.xcross),
+           rule16=RULE16,
            rule12='' if a.clear <= 0 else
            '\n# 12. A landing on the road before the riser whose band, its planned x plus '
            '%g..%g mm\n#     (where such landings fell against the plan, measured), comes within '
@@ -471,10 +509,27 @@ def comment(s):
     moves.append((None, s))
 
 
-def band_clear(x):
+def band_clear(x, edges=EDGES):
     """rule 12: distance of the band [x + short, x + long] from the nearest edge (0 across one)"""
     lo, hi = x + SCAT[0], x + SCAT[1]
-    return min(0.0 if lo <= e <= hi else min(abs(lo - e), abs(hi - e)) for e in EDGES)
+    return min(0.0 if lo <= e <= hi else min(abs(lo - e), abs(hi - e)) for e in edges)
+
+
+DOWN = [None]     # --clear-down: the first pair whose landing rule 12 moved off the down edge
+
+
+def pair_of(l):
+    """l's pair in the wave"""
+    return next(p for p in PAIRS if l in p)
+
+
+def lx(hipx, r):
+    """where a landing of offset r ahead of a hip at hipx falls: --over beyond its plan; with
+    rule 16 a landing on the step (rule 6's step length) --over-step beyond it"""
+    x = hipx + r + a.over
+    if a.over_step is not None and EDGES[0] < x < EDGES[1] + BAND:
+        return hipx + r + a.over_step
+    return x
 
 
 def plan(l, hipx, force=None):
@@ -482,7 +537,7 @@ def plan(l, hipx, force=None):
     force: the offset (--force), the kind then follows from its landing as rule 6 says"""
     best, bestm = None, -1.0
     for r in (PREF if force is None else ()):
-        m = min(abs(hipx + r + a.over - e) for e in EDGES)
+        m = min(abs(lx(hipx, r) - e) for e in EDGES)
         if m >= MARGIN:
             best, bestm = r, m
             break
@@ -490,21 +545,46 @@ def plan(l, hipx, force=None):
             best, bestm = r, m
     if force is not None:
         best = force
-        bestm = min(abs(hipx + best + a.over - e) for e in EDGES)
-    elif a.clear > 0 and hipx + best + a.over < EDGES[0] and \
-            band_clear(hipx + best + a.over) < a.clear:
+        bestm = min(abs(lx(hipx, best) - e) for e in EDGES)
+    elif a.reach is not None and abs(lx(hipx, best) - EDGES[0]) < MARGIN and \
+            (a.reach_road or lx(hipx, best) > EDGES[0]):
+        # rule 16: a climbing foot that would stand within MARGIN of the up edge (the nominal's
+        # first B, F and C, G landings hung on its corner, unloaded, and slid off it when the
+        # pair behind lifted under a 0.5 s actuation time) reaches further onto the step
+        r16 = next((r for r in range(int(best) + 5, int(a.reach) + 1, 5)
+                    if lx(hipx, r) >= EDGES[0] + MARGIN), a.reach)
+        comment('#  %s: rule 16: landing %.0f is %.0f mm from the up edge; offset %g lands %.0f'
+                % (l, lx(hipx, best), lx(hipx, best) - EDGES[0], r16, lx(hipx, r16)))
+        best = r16
+        bestm = min(abs(lx(hipx, best) - e) for e in EDGES)
+    elif a.clear > 0 and a.clear_down and lx(hipx, best) > EDGES[0] + MARGIN and \
+            band_clear(lx(hipx, best), EDGES[1:]) < a.clear and DOWN[0] in (None, pair_of(l)):
+        # rule 12 at the down edge (--clear-down): a landing past the riser whose band comes
+        # within --clear of the down edge (A landed on its corner with the support 37-42 mm
+        # behind the plan: 25 g open loop, and the 0.5 s actuation time under the gate, on
+        # the table of rule 16) takes the offset whose band keeps furthest from that edge
+        cands = list(PREF) + [r for r in (-15, -10, -5, 0, 40, 45, 50) if a.rmin <= r <= a.rmax]
+        r12 = max(cands, key=lambda r: (band_clear(lx(hipx, r), EDGES[1:]), -abs(r - best)))
+        comment('#  %s: rule 12: landing %.0f keeps %.0f mm of its band from the down edge; '
+                'offset %g keeps %.0f' % (l, lx(hipx, best), band_clear(lx(hipx, best), EDGES[1:]),
+                                          r12, band_clear(lx(hipx, r12), EDGES[1:])))
+        best = r12
+        bestm = min(abs(lx(hipx, best) - e) for e in EDGES)
+        DOWN[0] = pair_of(l)
+    elif a.clear > 0 and lx(hipx, best) < EDGES[0] and \
+            band_clear(lx(hipx, best)) < a.clear:
         # rule 12: a landing on the road before the riser (the failures of the 25 g and 75 g
         # runs) whose scatter band comes within --clear of an edge: take, among rule 6's
         # offsets and the shorter and longer ones in --rmin..--rmax, the one whose band keeps
         # furthest away
         cands = list(PREF) + [r for r in (-15, -10, -5, 0, 40, 45, 50) if a.rmin <= r <= a.rmax]
-        r12 = max(cands, key=lambda r: (band_clear(hipx + r + a.over), -abs(r - best)))
+        r12 = max(cands, key=lambda r: (band_clear(lx(hipx, r)), -abs(r - best)))
         comment('#  %s: rule 12: landing %.0f keeps %.0f mm of its band from an edge; offset %g '
-                'keeps %.0f' % (l, hipx + best + a.over, band_clear(hipx + best + a.over), r12,
-                                band_clear(hipx + r12 + a.over)))
+                'keeps %.0f' % (l, lx(hipx, best), band_clear(lx(hipx, best)), r12,
+                                band_clear(lx(hipx, r12))))
         best = r12
-        bestm = min(abs(hipx + best + a.over - e) for e in EDGES)
-    landx = hipx + best + a.over
+        bestm = min(abs(lx(hipx, best) - e) for e in EDGES)
+    landx = lx(hipx, best)
     # rule 6: on the step the vented length; on the road the road's, also next to a riser (a
     # rear foot hanging over the road with the step's length left the centre of mass behind
     # the standing feet while the pair ahead stepped: the support tipped backwards off the
@@ -556,7 +636,14 @@ for s in range(NS):
     XP.append(XP[-1] + a.D / 4)
     # rule 13: the climb's landings placed by the climb's measured advance; past the climb the
     # plan's own x again (the later rows as rule 6 has them)
-    XL.append(XL[-1] + DC / 4 if climbing else XP[-1])
+    if climbing:
+        XL.append(XL[-1] + DC / 4)
+    elif a.Dcross is not None:
+        # rule 16: past the climb the landings follow the crossing's own advance to --xcross,
+        # then --D again from where that leaves them (the support keeps the lag it took)
+        XL.append(XL[-1] + (a.Dcross if XP[-2] < a.xcross else a.D) / 4)
+    else:
+        XL.append(XP[-1])
     gap = 0.0
     if a.settle > 0 and SETTLE is None and s % 4 == 0 and \
             START + OFF['D'] + XL[-1] + max(RS) + a.over >= EDGES[0] - MARGIN:
@@ -633,7 +720,7 @@ for s in range(NS):
             offs = sorted(set(offs) | {float(r)})
             FHINFO.append(dict(t=T0[s], legs=pair, cycle=s // 4, xplan=XP[s], margin=margin, r=r,
                                dur=DUR[s], dx=XP[s + 1] - XP[s],
-                               offsets=offs, lands=[START + OFF[l] + XL[s + 1] + o + a.over
+                               offsets=offs, lands=[lx(START + OFF[l] + XL[s + 1], o)
                                                     for o in offs]))
             comment('foothold %.4f %s %s margin %g' % (T0[s], pair, ','.join('%g' % o for o in offs),
                                                       margin))
