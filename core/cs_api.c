@@ -292,6 +292,17 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
     st = cs_errorSet(&e, CS_ERR_ARG, "a run without a gait (no_gait) needs --t-end > 0");
   }
   if (st == CS_OK && def->out) st = checkWritable(def->out, &e);
+  /* a resumable run: what it is, for its checkpoints (the leg file is read by its contents) */
+  char* identity = NULL;
+  if (st == CS_OK && (def->checkpoint || def->resume)) {
+    identity = malloc(CS_CHECKPOINT_IDENTITY);
+    if (!identity) {
+      st = cs_errorSet(&e, CS_ERR_MEMORY, "out of memory for the run's identity");
+    } else if (cs_runDefIdentity(def, m, &plan, identity, CS_CHECKPOINT_IDENTITY) != 0) {
+      st = cs_errorSet(&e, CS_ERR_ARG, "the run definition is too long for a checkpoint "
+                       "(more than %d bytes)", CS_CHECKPOINT_IDENTITY);
+    }
+  }
   if (st == CS_OK) {
     resultPlan(m, res);
     d = cs_dataCreate(m, &e);
@@ -299,7 +310,9 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
   }
   if (st == CS_OK) {
     logPlan(def, m, d, &plan);
-    st = cs_settle(m, d, &e);
+    /* a resumed run continues from its checkpoint's state, loaded by cs_runWriteCheckpointed:
+     * it does not settle again */
+    st = def->resume ? CS_OK : cs_settle(m, d, &e);
     if (st != CS_OK && def->out) {
       /* the output file says so too (the contract: what was written stays readable) */
       csError ferr;
@@ -315,13 +328,25 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
       snprintf(res->message, sizeof res->message, "%s", e.msg);
     } else {
       double wall = 0;
-      st = def->out ? cs_runWrite(m, d, def->out, &wall, &e) : runNoFile(m, d, &wall, &e);
+      if (identity) {
+        const csCheckpointInfo ck = {identity,
+                                     isnan(def->checkpoint_every) && !def->resume
+                                         ? CS_CHECKPOINT_EVERY_S
+                                         : def->checkpoint_every,
+                                     0, 0};
+        st = cs_runWriteCheckpointed(m, d, def->out, &ck,
+                                     def->checkpoint ? def->checkpoint : def->resume,
+                                     def->resume, &wall, &e);
+      } else {
+        st = def->out ? cs_runWrite(m, d, def->out, &wall, &e) : runNoFile(m, d, &wall, &e);
+      }
       resultEnd(d, st, &e, wall, res);
     }
   } else {
     res->status = st;
     snprintf(res->message, sizeof res->message, "%s", e.msg);
   }
+  free(identity);
   cs_dataDestroy(d);
   cs_modelDestroy(m);
   free(m);
