@@ -310,10 +310,28 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
   }
   if (st == CS_OK) {
     logPlan(def, m, d, &plan);
-    /* a resumed run continues from its checkpoint's state, loaded by cs_runWriteCheckpointed:
-     * it does not settle again */
-    st = def->resume ? CS_OK : cs_settle(m, d, &e);
-    if (st != CS_OK && def->out) {
+    int settling = 0; /* the failure, if any, came while settling */
+    double wall = 0;
+    if (identity) {
+      /* a resumable run settles with its checkpoints too; a resumed one continues from its
+       * checkpoint (cs_runWriteCheckpointed loads it) and does not settle again */
+      const csCheckpointInfo ck = {identity,
+                                   isnan(def->checkpoint_every) && !def->resume
+                                       ? CS_CHECKPOINT_EVERY_S
+                                       : def->checkpoint_every,
+                                   0, 0};
+      st = cs_runWriteCheckpointed(m, d, def->out, &ck,
+                                   def->checkpoint ? def->checkpoint : def->resume, def->resume,
+                                   &settling, &wall, &e);
+    } else {
+      settling = 1;
+      st = cs_settle(m, d, &e);
+      if (st == CS_OK) {
+        settling = 0;
+        st = def->out ? cs_runWrite(m, d, def->out, &wall, &e) : runNoFile(m, d, &wall, &e);
+      }
+    }
+    if (st != CS_OK && settling && def->out) {
       /* the output file says so too (the contract: what was written stays readable) */
       csError ferr;
       cs_errorClear(&ferr);
@@ -323,23 +341,10 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
         cs_errorSet(&e, e.status, "%.300s (output file not written: %.150s)", cause, ferr.msg);
       }
     }
-    if (st != CS_OK) {
+    if (st != CS_OK && settling) {
       res->status = st;
       snprintf(res->message, sizeof res->message, "%s", e.msg);
     } else {
-      double wall = 0;
-      if (identity) {
-        const csCheckpointInfo ck = {identity,
-                                     isnan(def->checkpoint_every) && !def->resume
-                                         ? CS_CHECKPOINT_EVERY_S
-                                         : def->checkpoint_every,
-                                     0, 0};
-        st = cs_runWriteCheckpointed(m, d, def->out, &ck,
-                                     def->checkpoint ? def->checkpoint : def->resume,
-                                     def->resume, &wall, &e);
-      } else {
-        st = def->out ? cs_runWrite(m, d, def->out, &wall, &e) : runNoFile(m, d, &wall, &e);
-      }
       resultEnd(d, st, &e, wall, res);
     }
   } else {

@@ -237,8 +237,9 @@ csStatus cs_checkpointLoad(const csModel* m, csData* d, const char* path,
                       cs_h5ReaderAttrDouble(r, "wall_time_s", &wall, &e) != CS_OK)) {
     st = cs_errorSet(err, CS_ERR_PARSE, "--resume %.300s: %.300s", path, e.msg);
   }
-  if (st == CS_OK && !(samples >= 1 && samples == floor(samples) && steps >= 0 && rej >= 0 &&
-                       proj >= 0 && xs[0] >= 0)) {
+  /* a checkpoint of the settling (t < 0) has no output rows yet, one of the run at least t = 0's */
+  if (st == CS_OK && !(samples >= (xs[0] < 0 ? 0 : 1) && samples == floor(samples) &&
+                       (xs[0] >= 0 || samples == 0) && steps >= 0 && rej >= 0 && proj >= 0)) {
     st = cs_errorSet(err, CS_ERR_PARSE, "--resume %.300s: samples %g, steps %g or t = %g s is "
                      "not a run's", path, samples, steps, xs[0]);
   }

@@ -224,6 +224,11 @@ void cs_dataDestroy(csData* d);
 /* Settle the robot under gravity with all chambers vented for opt.settle seconds (time runs
  * from -settle to 0), then record the support's reference position and zero the timers. */
 csStatus cs_settle(const csModel* m, csData* d, csError* err);
+/* cs_settle in parts (a checkpointed run's, sim_run.c): its macro steps, and what it does
+ * after them (the time snapped to 0, the pneumatic integrator restarted there, the support's
+ * origin taken, the timers cleared) */
+long cs_settleSteps(const csModel* m);
+void cs_settleFinish(const csModel* m, csData* d);
 
 /* Advance by one macro step H (the stages above). On failure returns the status with err
  * naming the time and the cause, and the state is as before the call. */
@@ -380,17 +385,21 @@ csStatus cs_checkpointSave(const csModel* m, const csData* d, const csCheckpoint
 csStatus cs_checkpointLoad(const csModel* m, csData* d, const char* path,
                            csCheckpointInfo* info, double* x, csError* err);
 
-/* The run and its output as cs_runWrite, checkpointed: ck->path (NULL: none) gets the state
+/* The run and its output as cs_runWrite, checkpointed: ck_path (NULL: none) gets the state
  * every ck->every s of simulated time (the output flushed first: the file on disk then holds
  * every row the checkpoint counts), at the end and when cancelled; at each periodic checkpoint
  * the data is set to the state it saved (cs_stateSet), so its integrators restart there as a
  * resumed run's do and a run cut at a checkpoint and resumed equals the uncut run bit for bit.
- * resume (NULL: a new run from t = 0) is a checkpoint to continue from (loaded here: d as
- * created, not settled): the output's rows up to it are read from out_path and written again
- * into the new file (the old one kept as out_path.prev until the first flush). */
+ * settling NULL: d is settled (cs_settle), as cs_runWrite's; else d is as created and settles
+ * here, checkpointed as the run (*settling 1 when it returns from a failure while settling).
+ * resume (NULL: a new run) is a checkpoint to continue from (d as created, not settled): of
+ * the settling (t < 0) it settles the rest first; of the run, the output's rows up to it are
+ * read from out_path and written again into the new file (the old one kept as out_path.prev
+ * until the new one's first flush). */
 csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_path,
                                  const csCheckpointInfo* ck, const char* ck_path,
-                                 const char* resume, double* wall_s, csError* err);
+                                 const char* resume, int* settling, double* wall_s,
+                                 csError* err);
 
 /* A run that failed before t = 0 (while settling, `cause`) still leaves its output file: the
  * header (every attribute cs_runWrite writes first), the contract's series with no samples, the

@@ -368,13 +368,45 @@ static csStatus copyRows(const csModel* m, csH5File* f, const Series* s, const c
 
 csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* wall_s,
                      csError* err) {
-  return cs_runWriteCheckpointed(m, d, out_path, NULL, NULL, NULL, wall_s, err);
+  return cs_runWriteCheckpointed(m, d, out_path, NULL, NULL, NULL, NULL, wall_s, err);
+}
+
+
+/* the settling of a checkpointed run (cs_settle's steps) from its step i0 (0: from the start;
+ * a checkpoint's), with a checkpoint (no output rows yet) every ck_every steps; cancelled: a
+ * checkpoint where it stopped and CS_ERR_INTERRUPTED */
+static csStatus settleCheckpointed(const csModel* m, csData* d, long i0, long ck_every,
+                                   csCheckpointInfo* ck, const char* ck_path, double* xck,
+                                   csError* err) {
+  const long n = cs_settleSteps(m);
+  ck->nsample = 0;
+  ck->wall_s = 0;
+  for (long i = i0 + 1; i <= n; i++) {
+    if (m->opt.cancel && *m->opt.cancel) {
+      csStatus st = ck_path ? cs_checkpointSave(m, d, ck, ck_path, xck, err) : CS_OK;
+      return st != CS_OK ? st
+                         : cs_errorSet(err, CS_ERR_INTERRUPTED, "interrupted while settling at t "
+                                       "= %.6g s", cs_time(d));
+    }
+    csStatus st = cs_step(m, d, err);
+    if (st == CS_OK && ck_every && i % ck_every == 0 && i < n) {
+      /* as the run's checkpoints: the integrators restart from the state saved */
+      st = cs_checkpointSave(m, d, ck, ck_path, xck, err);
+      if (st == CS_OK) st = cs_stateSet(m, d, xck, err);
+    }
+    if (st != CS_OK) {
+      return st;
+    }
+  }
+  cs_settleFinish(m, d);
+  return CS_OK;
 }
 
 
 csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_path,
                                  const csCheckpointInfo* ck_in, const char* ck_path,
-                                 const char* resume, double* wall_s, csError* err) {
+                                 const char* resume, int* settling, double* wall_s,
+                                 csError* err) {
   double t_end = cs_modelEndTime(m);
   if (m->opt.centerline_points > MAX_CENTERLINE) {
     return cs_errorSet(err, CS_ERR_RANGE, "at most %d centreline points", MAX_CENTERLINE);
@@ -394,14 +426,39 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
   }
   char prev[1100] = "";
   long i0 = 0; /* steps since t = 0 before this loop (a resumed run's) */
+  long ck_every = 0; /* steps between periodic checkpoints (0: none) */
   if (resume) {
     csStatus lst = cs_checkpointLoad(m, d, resume, &ck, xck, err);
-    if (lst == CS_OK) {
-      i0 = lround(cs_time(d) / H);
-      if (i0 >= lround(t_end / H)) {
-        lst = cs_errorSet(err, CS_ERR_ARG, "--resume %.300s: its run is at t = %g s, at or past "
-                          "--t-end %g s (nothing to continue)", resume, cs_time(d), t_end);
+    if (lst != CS_OK) {
+      free(xck);
+      return lst;
+    }
+    if (ck_path) {
+      ck_every = lround(ck.every / H) < 1 ? 1 : lround(ck.every / H);
+    }
+    if (cs_time(d) < 0) {
+      /* a checkpoint of the settling: settle the rest, then the run starts its output */
+      if (settling) {
+        *settling = 1;
       }
+      lst = settleCheckpointed(m, d, cs_settleSteps(m) - lround(-cs_time(d) / H), ck_every, &ck,
+                               ck_path, xck, err);
+      if (lst != CS_OK) {
+        free(xck);
+        return lst;
+      }
+      if (settling) {
+        *settling = 0;
+      }
+      resume = NULL;
+    }
+  }
+  if (resume) {
+    csStatus lst = CS_OK;
+    i0 = lround(cs_time(d) / H);
+    if (i0 >= lround(t_end / H)) {
+      lst = cs_errorSet(err, CS_ERR_ARG, "--resume %.300s: its run is at t = %g s, at or past "
+                        "--t-end %g s (nothing to continue)", resume, cs_time(d), t_end);
     }
     if (lst == CS_OK && snprintf(prev, sizeof prev, "%s.prev", out_path) < (int)sizeof prev &&
         rename(out_path, prev) != 0) {
@@ -413,12 +470,18 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
       return lst;
     }
   }
-  long ck_every = 0; /* steps between periodic checkpoints (0: none) */
   if (ck_path) {
-    ck_every = lround(ck.every / H);
-    if (ck_every < 1) {
-      ck_every = 1;
+    ck_every = lround(ck.every / H) < 1 ? 1 : lround(ck.every / H);
+  }
+  if (settling && !resume && cs_time(d) < 0) {
+    /* d as created: it settles here, checkpointed too */
+    *settling = 1;
+    csStatus lst = settleCheckpointed(m, d, 0, ck_every, &ck, ck_path, xck, err);
+    if (lst != CS_OK) {
+      free(xck);
+      return lst;
     }
+    *settling = 0;
   }
   csH5File* f = cs_h5Create(out_path, err);
   if (!f) {

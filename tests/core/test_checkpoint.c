@@ -3,7 +3,8 @@
  *  - a run cut at a checkpoint (its --t-end) and resumed to the end writes an output whose
  *    every dataset equals the uncut run's bit for bit, on rod legs (Gauss-Seidel, CVODE per
  *    leg) and on strain legs (the tree coupling), and the same step count; the comparison is
- *    not trivial (the rows after the cut differ from the cut's);
+ *    not trivial (the rows after the cut differ from the cut's); one stopped before settling
+ *    (a checkpoint at t < 0) settles when resumed and equals the uncut run too;
  *  - a resume with another definition (friction, the checkpoint interval) is refused naming
  *    the file and the field, and leaves the output as it was;
  *  - a truncated checkpoint, one with a changed byte in its state and a file that is no
@@ -153,6 +154,38 @@ static void resumedEqualsUncut(const char* legs) {
 
 
 static void test_rod_resumed_equals_uncut(void) { resumedEqualsUncut("rod"); }
+
+
+/* a run stopped (its cancel flag) before its first settling step leaves a checkpoint of the
+ * settling (t < 0, no output rows); resumed, it settles and runs as the uncut run, bit for bit
+ * (the uncut run of resumedEqualsUncut("rod"), run again here) */
+static void test_settling_resumed_equals_uncut(void) {
+  csError err;
+  csRunResult ra, rb, rc;
+  csRunDef a = baseDef("rod");
+  a.t_end = 0.15;
+  a.out = "ckpt_settle_uncut.h5";
+  a.checkpoint = "ckpt_settle_uncut.ck";
+  CS_EXPECT(runDef(&a, &ra, &err) == CS_OK);
+  csRunDef b = baseDef("rod");
+  b.t_end = 0.15;
+  b.out = "ckpt_settle_cut.h5";
+  b.checkpoint = "ckpt_settle_cut.ck";
+  static volatile sig_atomic_t stop = 1;
+  b.cancel = &stop;
+  CS_EXPECT(cs_run(&b, &rb, &err) == CS_ERR_INTERRUPTED && strstr(err.msg, "settling"));
+  printf("  stopped: %s\n", err.msg);
+  csRunDef c = baseDef("rod");
+  c.t_end = 0.15;
+  c.out = "ckpt_settle_cut.h5";
+  c.resume = "ckpt_settle_cut.ck";
+  CS_EXPECT(runDef(&c, &rc, &err) == CS_OK);
+  long rows = 0;
+  CS_EXPECT(sameDatasets(a.out, c.out, &rows));
+  CS_EXPECT(rows == 16 && rc.steps == ra.steps);
+  printf("  settling resumed: %ld rows, %ld steps, support y %.9f mm as the uncut run's %.9f\n",
+         rows, rc.steps, rc.position[1], ra.position[1]);
+}
 static void test_strain_resumed_equals_uncut(void) { resumedEqualsUncut("strain"); }
 
 
@@ -300,6 +333,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_rod_resumed_equals_uncut);
   CS_RUN(test_strain_resumed_equals_uncut);
+  CS_RUN(test_settling_resumed_equals_uncut);
   CS_RUN(test_other_definition_is_refused);
   CS_RUN(test_corrupt_checkpoint_is_refused);
   return cs_testSummary();
