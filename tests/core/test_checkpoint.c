@@ -8,7 +8,9 @@
  *  - a resume with another definition (friction, the checkpoint interval) is refused naming
  *    the file and the field, and leaves the output as it was;
  *  - a truncated checkpoint, one with a changed byte in its state and a file that is no
- *    checkpoint are refused naming the file and the cause.
+ *    checkpoint are refused naming the file and the cause;
+ *  - the restart a checkpoint makes (the state got and set) and the steps after it allocate
+ *    nothing (the project's own code's malloc, calloc, realloc counted through the linker).
  * Runs of 0.3 s after the 0.3 s settling, at the cheapest rod (2 elements per segment,
  * --rod-tol 20) and strain legs' defaults: a few seconds. */
 #include <math.h>
@@ -19,6 +21,30 @@
 #include "core_h5read.h"
 #include "crawlsim.h"
 #include "cs_test.h"
+
+/* every malloc, calloc and realloc of the project's own code linked into this test (the
+ * static libraries; the linker's --wrap, tests/core/CMakeLists.txt) is counted: what a
+ * checkpoint adds to the step loop must allocate nothing */
+static long g_allocs;
+void* __real_malloc(size_t n);
+void* __real_calloc(size_t k, size_t n);
+void* __real_realloc(void* p, size_t n);
+void* __wrap_malloc(size_t n);
+void* __wrap_calloc(size_t k, size_t n);
+void* __wrap_realloc(void* p, size_t n);
+void* __wrap_malloc(size_t n) {
+  g_allocs++;
+  return __real_malloc(n);
+}
+void* __wrap_calloc(size_t k, size_t n) {
+  g_allocs++;
+  return __real_calloc(k, n);
+}
+void* __wrap_realloc(void* p, size_t n) {
+  g_allocs++;
+  return __real_realloc(p, n);
+}
+
 
 static csRunDef baseDef(const char* legs) {
   csRunDef d = cs_defaultRunDef();
@@ -329,6 +355,43 @@ static void test_corrupt_checkpoint_is_refused(void) {
 }
 
 
+/* the state saved and set again (what a periodic checkpoint does to the run besides writing
+ * its file) and the steps after it allocate nothing, on rod and strain legs; the count is
+ * alive (creating a simulation allocates) */
+static void test_restart_and_steps_allocate_nothing(void) {
+  const char* levels[] = {"rod", "strain"};
+  for (int k = 0; k < 2; k++) {
+    csRunDef d = baseDef(levels[k]);
+    d.checkpoint_every = NAN;
+    csError err;
+    const long a0 = g_allocs;
+    csSim* s = cs_simCreate(&d, &err);
+    CS_EXPECT(s != NULL);
+    if (!s) {
+      continue;
+    }
+    const long created = g_allocs - a0;
+    const int n = cs_simStateSize(s);
+    double* x = malloc(sizeof(double) * (size_t)n);
+    CS_EXPECT(x && cs_simRunUntil(s, 0.05, &err) == CS_OK);
+    const long a1 = g_allocs;
+    for (int i = 0; x && i < 5; i++) {
+      cs_simStateGet(s, x);
+      CS_EXPECT(cs_simStateSet(s, x, &err) == CS_OK);
+      for (int j = 0; j < 20; j++) {
+        CS_EXPECT(cs_simStep(s, &err) == CS_OK);
+      }
+    }
+    const long in_loop = g_allocs - a1;
+    printf("  %s legs: %ld allocations creating the simulation, %ld in 5 restarts and 100 steps "
+           "(t = %.3f s)\n", levels[k], created, in_loop, cs_simTime(s));
+    CS_EXPECT(created > 0 && in_loop == 0);
+    free(x);
+    cs_simDestroy(s);
+  }
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_rod_resumed_equals_uncut);
@@ -336,5 +399,6 @@ int main(int argc, char** argv) {
   CS_RUN(test_settling_resumed_equals_uncut);
   CS_RUN(test_other_definition_is_refused);
   CS_RUN(test_corrupt_checkpoint_is_refused);
+  CS_RUN(test_restart_and_steps_allocate_nothing);
   return cs_testSummary();
 }
