@@ -460,10 +460,16 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
       lst = cs_errorSet(err, CS_ERR_ARG, "--resume %.300s: its run is at t = %g s, at or past "
                         "--t-end %g s (nothing to continue)", resume, cs_time(d), t_end);
     }
+    /* OUT.prev left by a resume that stopped before its new file's first flush is the whole
+     * one (OUT then holds at most an empty image): the rows come from it */
+    FILE* pf = NULL;
     if (lst == CS_OK && snprintf(prev, sizeof prev, "%s.prev", out_path) < (int)sizeof prev &&
-        rename(out_path, prev) != 0) {
+        !(pf = fopen(prev, "rb")) && rename(out_path, prev) != 0) {
       lst = cs_errorSet(err, CS_ERR_IO, "--out %.300s: cannot move the output to resume aside "
                         "to %.300s", out_path, prev);
+    }
+    if (pf) {
+      fclose(pf);
     }
     if (lst != CS_OK) {
       free(xck);

@@ -273,7 +273,10 @@ static void test_other_definition_is_refused(void) {
   c.links = 3;
   expectResumeRefused(c, ck, "links");
   CS_EXPECT(timeRows(out) == rows); /* the output as it was */
-  /* and the same definition resumes (the refusals were the differences') */
+  /* and the same definition resumes (the refusals were the differences'), also after a
+   * resume that died before its first flush (the rows in OUT.prev, OUT an empty file) */
+  CS_EXPECT(rename(out, "ckpt_other.h5.prev") == 0);
+  cs_testWriteText(out, "");
   c = baseDef("rod");
   c.out = out;
   c.resume = ck;
@@ -282,6 +285,11 @@ static void test_other_definition_is_refused(void) {
   csRunResult r;
   CS_EXPECT(runDef(&c, &r, &err) == CS_OK);
   CS_EXPECT(timeRows(out) == 16);
+  FILE* prev = fopen("ckpt_other.h5.prev", "rb");
+  CS_EXPECT(prev == NULL); /* removed once the new file was on disk */
+  if (prev) {
+    fclose(prev);
+  }
 }
 
 
