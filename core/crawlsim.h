@@ -98,6 +98,17 @@ typedef struct csRunDef {
                                 level's, 1) */
   const char* out;           /* cs_run's HDF5 file (and FILE.xdmf beside it); NULL: none.
                                 cs_simCreate ignores it */
+  const char* checkpoint;    /* cs_run: NULL, or a file that gets the run's state every
+                                checkpoint_every s, at the end and when cancelled, written
+                                atomically (needs out; docs/notes/cli_output.md "Resumable
+                                runs"); cs_simCreate ignores it */
+  double checkpoint_every;   /* s of simulated time between checkpoints, > 0 (NaN: 1, or the
+                                resumed checkpoint's). The integrators restart at each one, so
+                                it is part of the run (a resume with another is refused) */
+  const char* resume;        /* cs_run: NULL, or a checkpoint to continue from instead of
+                                settling: the same definition (t_end may differ), appending to
+                                the same out; checkpoint NULL then means this file again.
+                                cs_simCreate ignores it */
   void (*progress)(void* user, double t, const double x[3], double wall_s); /* NULL, or
                                 called by cs_run once per simulated second with the time (s),
                                 the support's displacement from t = 0 x[3] (mm, world) and the

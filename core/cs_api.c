@@ -300,6 +300,17 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
     st = cs_errorSet(&e, CS_ERR_ARG, "a run without a gait (no_gait) needs --t-end > 0");
   }
   if (st == CS_OK && def->out) st = checkWritable(def->out, &e);
+  /* a resumable run: what it is, for its checkpoints (the leg file is read by its contents) */
+  char* identity = NULL;
+  if (st == CS_OK && (def->checkpoint || def->resume)) {
+    identity = malloc(CS_CHECKPOINT_IDENTITY);
+    if (!identity) {
+      st = cs_errorSet(&e, CS_ERR_MEMORY, "out of memory for the run's identity");
+    } else if (cs_runDefIdentity(def, m, &plan, identity, CS_CHECKPOINT_IDENTITY) != 0) {
+      st = cs_errorSet(&e, CS_ERR_ARG, "the run definition is too long for a checkpoint "
+                       "(more than %d bytes)", CS_CHECKPOINT_IDENTITY);
+    }
+  }
   if (st == CS_OK) {
     resultPlan(m, res);
     d = cs_dataCreate(m, &e);
@@ -307,8 +318,28 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
   }
   if (st == CS_OK) {
     logPlan(def, m, d, &plan);
-    st = cs_settle(m, d, &e);
-    if (st != CS_OK && def->out) {
+    int settling = 0; /* the failure, if any, came while settling */
+    double wall = 0;
+    if (identity) {
+      /* a resumable run settles with its checkpoints too; a resumed one continues from its
+       * checkpoint (cs_runWriteCheckpointed loads it) and does not settle again */
+      const csCheckpointInfo ck = {identity,
+                                   isnan(def->checkpoint_every) && !def->resume
+                                       ? CS_CHECKPOINT_EVERY_S
+                                       : def->checkpoint_every,
+                                   0, 0};
+      st = cs_runWriteCheckpointed(m, d, def->out, &ck,
+                                   def->checkpoint ? def->checkpoint : def->resume, def->resume,
+                                   &settling, &wall, &e);
+    } else {
+      settling = 1;
+      st = cs_settle(m, d, &e);
+      if (st == CS_OK) {
+        settling = 0;
+        st = def->out ? cs_runWrite(m, d, def->out, &wall, &e) : runNoFile(m, d, &wall, &e);
+      }
+    }
+    if (st != CS_OK && settling && def->out) {
       /* the output file says so too (the contract: what was written stays readable) */
       csError ferr;
       cs_errorClear(&ferr);
@@ -318,12 +349,10 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
         cs_errorSet(&e, e.status, "%.300s (output file not written: %.150s)", cause, ferr.msg);
       }
     }
-    if (st != CS_OK) {
+    if (st != CS_OK && settling) {
       res->status = st;
       snprintf(res->message, sizeof res->message, "%s", e.msg);
     } else {
-      double wall = 0;
-      st = def->out ? cs_runWrite(m, d, def->out, &wall, &e) : runNoFile(m, d, &wall, &e);
       resultEnd(d, st, &e, wall, res);
       if (m->gate) {
         double held;
@@ -338,6 +367,7 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
     res->status = st;
     snprintf(res->message, sizeof res->message, "%s", e.msg);
   }
+  free(identity);
   cs_dataDestroy(d);
   cs_modelDestroy(m);
   free(m);

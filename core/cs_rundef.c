@@ -7,6 +7,7 @@
 #include "cs_rundef.h"
 
 #include <dlfcn.h>
+#include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,6 +43,7 @@ csRunDef cs_defaultRunDef(void) {
   d.dt = d.output_dt = d.ramp = d.tau = d.gravity = d.support_mass_kg = NAN;
   d.slope_deg = d.links = d.iterations = d.macro_steps = NAN;
   d.contact_scale = d.rod_tol = d.step_order = NAN;
+  d.checkpoint_every = NAN;
   return d;
 }
 
@@ -225,7 +227,8 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
               {"--support-mass", def->support_mass_kg}, {"--slope-deg", def->slope_deg},
               {"--links", def->links}, {"--iterations", def->iterations},
               {"--macro-steps", def->macro_steps}, {"--contact-scale", def->contact_scale},
-              {"--rod-tol", def->rod_tol}, {"--step-order", def->step_order}};
+              {"--rod-tol", def->rod_tol}, {"--step-order", def->step_order},
+              {"--checkpoint-every", def->checkpoint_every}};
   for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
     if (isinf(nums[k].v)) {
       return cs_errorSet(err, CS_ERR_RANGE, "%s %g is not a finite number", nums[k].flag,
@@ -322,6 +325,22 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
   if (!(def->no_gait == 0 || def->no_gait == 1)) {
     return cs_errorSet(err, CS_ERR_RANGE, "no_gait is 0 or 1");
   }
+  /* resumable runs (cs_api.c, sim_run.c) */
+  if (!isnan(def->checkpoint_every) && !(def->checkpoint_every > 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--checkpoint-every %g must be > 0 s",
+                       def->checkpoint_every);
+  }
+  if (!isnan(def->checkpoint_every) && !def->checkpoint && !def->resume) {
+    return cs_errorSet(err, CS_ERR_ARG, "--checkpoint-every needs --checkpoint FILE");
+  }
+  if ((def->checkpoint || def->resume) && !def->out) {
+    return cs_errorSet(err, CS_ERR_ARG, "--%s needs an output file (--out)",
+                       def->resume ? "resume" : "checkpoint");
+  }
+  if ((def->checkpoint && !def->checkpoint[0]) || (def->resume && !def->resume[0])) {
+    return cs_errorSet(err, CS_ERR_ARG, "--%s needs a file name",
+                       def->resume && !def->resume[0] ? "resume" : "checkpoint");
+  }
   return CS_OK;
 }
 
@@ -332,6 +351,101 @@ csStatus cs_runDefValidate(const csRunDef* def, csError* err) {
   }
   /* a scene file may name the scene: its defaults are checked again once it is read */
   return checkDef(def, def->scene ? def->scene : "flat-road", err);
+}
+
+
+/* one line "name value" of the identity into out at *len (the value's file contents hashed
+ * when `file`): -1 once out is full */
+static int identityLine(char* out, size_t size, size_t* len, const char* name, const char* v,
+                        int file) {
+  char val[1100];
+  uint64_t h;
+  if (!v) {
+    snprintf(val, sizeof val, "default");
+  } else if (file && cs_hashFile(v, &h) == 0) {
+    /* the file's contents, not its path: the same file by another path is the same run */
+    snprintf(val, sizeof val, "file %016" PRIx64, h);
+  } else {
+    snprintf(val, sizeof val, "%.1060s", v);
+  }
+  const int n = snprintf(out + *len, size - *len, "%s %s\n", name, val);
+  if (n < 0 || (size_t)n >= size - *len) {
+    return -1;
+  }
+  *len += (size_t)n;
+  return 0;
+}
+
+
+static int identityNum(char* out, size_t size, size_t* len, const char* name, double v) {
+  char val[40];
+  if (isnan(v)) {
+    snprintf(val, sizeof val, "default");
+  } else {
+    snprintf(val, sizeof val, "%.17g", v);
+  }
+  return identityLine(out, size, len, name, val, 0);
+}
+
+
+int cs_runDefIdentity(const csRunDef* def, const csModel* m, const csRunPlan* plan, char* out,
+                      size_t size) {
+  size_t len = 0;
+  out[0] = '\0';
+  int rc = 0;
+  /* the definition's words and numbers as given (NaN, NULL: "default") */
+  const struct {
+    const char* name;
+    const char* v;
+  } words[] = {{"scene", def->scene},           {"foothold", def->foothold},
+               {"conditions", def->conditions}, {"legs", def->legs},
+               {"cal_rule", def->cal_rule},     {"cal_drop", def->cal_drop},
+               {"coupling", def->coupling}};
+  for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
+    rc |= identityLine(out, size, &len, words[k].name, words[k].v, 0);
+  }
+  const struct {
+    const char* name;
+    double v;
+  } nums[] = {{"no_gait", def->no_gait},
+              {"legs_tol_mm", def->legs_tol_mm},
+              {"friction", def->friction},
+              {"pressure_scale", def->pressure_scale},
+              {"dt", def->dt},
+              {"output_dt", def->output_dt},
+              {"ramp", def->ramp},
+              {"tau", def->tau},
+              {"gravity", def->gravity},
+              {"support_mass_kg", def->support_mass_kg},
+              {"slope_deg", def->slope_deg},
+              {"links", def->links},
+              {"iterations", def->iterations},
+              {"macro_steps", def->macro_steps},
+              {"contact_scale", def->contact_scale},
+              {"rod_tol", def->rod_tol},
+              {"step_order", def->step_order}};
+  for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
+    rc |= identityNum(out, size, &len, nums[k].name, nums[k].v);
+  }
+  for (int k = 0; k < def->n_actuator_set; k++) {
+    rc |= identityLine(out, size, &len, "set", def->actuator_set[k], 0);
+  }
+  /* the files the run read, by their contents (whoever named them: the definition, a scene
+   * file or the scene's defaults) */
+  rc |= identityLine(out, size, &len, "scene_file", def->scene_file, 1);
+  rc |= identityLine(out, size, &len, "terrain_file", plan->terrain[0] ? plan->terrain : NULL,
+                     1);
+  rc |= identityLine(out, size, &len, "gait_file", plan->gait[0] ? plan->gait : NULL, 1);
+  rc |= identityLine(out, size, &len, "foothold_file", plan->foothold[0] ? plan->foothold : NULL,
+                     1);
+  rc |= identityLine(out, size, &len, "calibration_file",
+                     plan->calibration[0] ? plan->calibration : NULL, 1);
+  rc |= identityLine(out, size, &len, "leg_file", m->robot.leg_file[0] ? m->robot.leg_file : NULL,
+                     1);
+  /* and what they resolved to */
+  rc |= identityLine(out, size, &len, "leg_level", cs_modelLegLevel(m), 0);
+  rc |= identityLine(out, size, &len, "legs_auto_choice", m->legs_auto_choice, 0);
+  return rc ? -1 : 0;
 }
 
 

@@ -38,6 +38,16 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
  * that the configuration was not measured, or why the table could not be read). */
 int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t size);
 
+/* What the run is, for a checkpoint (resumable runs, sim_checkpoint.c): every field of def
+ * that changes the run, as lines "name value" (numbers to the last bit, NaN and NULL
+ * "default"), the files it read by the FNV-1a hash of their contents (the same file by another
+ * path is the same run; an edited file is another), and the leg level they resolved to. Not
+ * in it: t_end (a resumed run may go further), out, checkpoint, resume and the callbacks.
+ * Returns 0, or -1 when out (CS_CHECKPOINT_IDENTITY) is too small. A new field of csRunDef that
+ * changes the run belongs here. */
+int cs_runDefIdentity(const csRunDef* def, const csModel* m, const csRunPlan* plan, char* out,
+                      size_t size);
+
 /* A shipped file's path: rel under def->data_dir, $CRAWLSIM_DATA_DIR, share/crawlsim beside
  * the installed library (found with dladdr), the source tree the library was built from (if it
  * holds the data), else the configured prefix's share/crawlsim. */

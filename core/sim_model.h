@@ -36,6 +36,8 @@
 
 #include <ode/ode.h>
 #include <signal.h>
+#include <stddef.h>
+#include <stdint.h>
 
 #include "contact_ode.h"
 #include "core_clock.h"
@@ -240,6 +242,11 @@ void cs_dataDestroy(csData* d);
 /* Settle the robot under gravity with all chambers vented for opt.settle seconds (time runs
  * from -settle to 0), then record the support's reference position and zero the timers. */
 csStatus cs_settle(const csModel* m, csData* d, csError* err);
+/* cs_settle in parts (a checkpointed run's, sim_run.c): its macro steps, and what it does
+ * after them (the time snapped to 0, the pneumatic integrator restarted there, the support's
+ * origin taken, the timers cleared) */
+long cs_settleSteps(const csModel* m);
+void cs_settleFinish(const csModel* m, csData* d);
 
 /* Advance by one macro step H (the stages above). On failure returns the status with err
  * naming the time and the cause, and the state is as before the call. */
@@ -361,6 +368,56 @@ double cs_robotMass(const csData* d);
  * CS_ERR_INTERRUPTED. `wall_s` gets the wall time of the loop. */
 csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* wall_s,
                      csError* err);
+
+/* ---- resumable runs (sim_checkpoint.c, sim_run.c; docs/notes/cli_output.md) ------------- */
+
+/* the largest run identity (bytes, NUL included) */
+#define CS_CHECKPOINT_IDENTITY 8192
+/* the default interval of checkpoints (s of simulated time): a second of the flat road costs a
+ * restart of the integrators and a write of the output's image, small against its steps */
+#define CS_CHECKPOINT_EVERY_S 1.0
+
+/* what a checkpoint carries beside the data's state */
+typedef struct csCheckpointInfo_ {
+  const char* identity; /* the run definition as lines "name value" (cs_runDefIdentity) */
+  double every;         /* s of simulated time between checkpoints (NaN on load: the file's) */
+  long nsample;         /* the output's rows at this state */
+  double wall_s;        /* wall time of the stepping loops so far (s) */
+} csCheckpointInfo;
+
+/* FNV-1a 64 of n bytes continuing from h (0: a new hash) */
+uint64_t cs_hashBytes(uint64_t h, const void* p, size_t n);
+/* FNV-1a 64 of a file's contents into *h: 0, or -1 when it cannot be read */
+int cs_hashFile(const char* path, uint64_t* h);
+
+/* Write d's state (through x, cs_stateSize doubles, the caller's) with the info to `path`
+ * atomically (written to path.tmp, renamed). Allocates only in HDF5's file image. */
+csStatus cs_checkpointSave(const csModel* m, const csData* d, const csCheckpointInfo* info,
+                           const char* path, double* x, csError* err);
+
+/* Read the checkpoint at `path` into d (the state, the support's origin, the step counters,
+ * the timers) and info (nsample, wall_s; every when NaN), x (cs_stateSize) getting the state;
+ * refused (d unchanged, one line naming the file and the cause) when the file is not a whole
+ * checkpoint (unreadable, truncated, a corrupt state), another program version's, or of
+ * another run (info->identity or info->every differ, another state size). */
+csStatus cs_checkpointLoad(const csModel* m, csData* d, const char* path,
+                           csCheckpointInfo* info, double* x, csError* err);
+
+/* The run and its output as cs_runWrite, checkpointed: ck_path (NULL: none) gets the state
+ * every ck->every s of simulated time (the output flushed first: the file on disk then holds
+ * every row the checkpoint counts), at the end and when cancelled; at each periodic checkpoint
+ * the data is set to the state it saved (cs_stateSet), so its integrators restart there as a
+ * resumed run's do and a run cut at a checkpoint and resumed equals the uncut run bit for bit.
+ * settling NULL: d is settled (cs_settle), as cs_runWrite's; else d is as created and settles
+ * here, checkpointed as the run (*settling 1 when it returns from a failure while settling).
+ * resume (NULL: a new run) is a checkpoint to continue from (d as created, not settled): of
+ * the settling (t < 0) it settles the rest first; of the run, the output's rows up to it are
+ * read from out_path and written again into the new file (the old one kept as out_path.prev
+ * until the new one's first flush). */
+csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_path,
+                                 const csCheckpointInfo* ck, const char* ck_path,
+                                 const char* resume, int* settling, double* wall_s,
+                                 csError* err);
 
 /* A run that failed before t = 0 (while settling, `cause`) still leaves its output file: the
  * header (every attribute cs_runWrite writes first), the contract's series with no samples, the

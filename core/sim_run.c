@@ -30,10 +30,12 @@
  * fast (at 100x real time a 9 s run takes 0.09 s: one image at the end instead of nine). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core_clock.h"
 #include "core_h5.h"
+#include "core_h5read.h"
 #include "core_xdmf.h"
 #include "sim_internal.h"
 #include "terrains_ccd.h"
@@ -311,20 +313,198 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
 }
 
 
+/* the series of a run file, in the order of Series' members, with their paths (the legs'
+ * centrelines after these) */
+static const char* const kSeriesPath[] = {
+    "/time", "/support/position", "/support/orientation", "/pressure", NULL, NULL, NULL, NULL,
+    NULL, NULL, NULL, NULL, "/support/corners", "/contact/force", "/contact/max_depth",
+    "/contact/leg_max_depth", "/contact/foot_force", "/contact/stance"};
+enum { NSERIES = (int)(sizeof(Series) / sizeof(int)) };
+_Static_assert(sizeof kSeriesPath / sizeof kSeriesPath[0] == NSERIES,
+               "a path for every series of Series");
+
+
+/* a resumed run's output: the first nsample rows of every series of the old file `old` into
+ * the new file f (its header written: s), checked to be the rows the checkpoint counts */
+static csStatus copyRows(const csModel* m, csH5File* f, const Series* s, const char* old,
+                         const char* out_path, long nsample, double t_ck, csError* err) {
+  csError e;
+  cs_errorClear(&e);
+  csH5Reader* r = cs_h5ReaderOpen(old, &e);
+  if (!r) {
+    return cs_errorSet(err, CS_ERR_IO, "--out %.300s: cannot read the run's output to resume "
+                       "it (%.300s)", out_path, e.msg);
+  }
+  const int* idx = (const int*)s;
+  csStatus st = CS_OK;
+  for (int k = 0; k < NSERIES && st == CS_OK; k++) {
+    char path[64];
+    if (kSeriesPath[k]) {
+      snprintf(path, sizeof path, "%s", kSeriesPath[k]);
+    } else {
+      /* Series' legs[] sit between pres and corners: members 4..11 */
+      snprintf(path, sizeof path, "/legs/%c/centerline", 'A' + (k - 4));
+    }
+    size_t dims[4] = {0, 1, 1, 1};
+    int rank = 0;
+    double* v = cs_h5ReaderDoubles(r, path, 0, NULL, dims, &rank, &e);
+    if (!v) {
+      st = cs_errorSet(err, CS_ERR_IO, "--out %.300s: not this run's output (%.300s)", out_path,
+                       e.msg);
+      break;
+    }
+    const size_t width = dims[1] * (rank > 2 ? dims[2] : 1) * (rank > 3 ? dims[3] : 1);
+    if (dims[0] < (size_t)nsample) {
+      st = cs_errorSet(err, CS_ERR_IO, "--out %.300s: %s has %zu rows, the checkpoint counts "
+                       "%ld (not this run's output, or it was cut before the checkpoint)",
+                       out_path, path, dims[0], nsample);
+    } else if (k == 0 && !(v[nsample - 1] <= t_ck && v[nsample - 1] > t_ck - m->opt.output_dt -
+                                                        cs_modelMacroStep(m))) {
+      st = cs_errorSet(err, CS_ERR_IO, "--out %.300s: its sample %ld is at t = %g s, the "
+                       "checkpoint is at t = %g s (not this run's output)", out_path, nsample,
+                       v[nsample - 1], t_ck);
+    }
+    for (long i = 0; i < nsample && st == CS_OK; i++) {
+      st = cs_h5SeriesAppend(f, idx[k], v + (size_t)i * width, err);
+    }
+    free(v);
+  }
+  cs_h5ReaderClose(r);
+  return st;
+}
+
+
 csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* wall_s,
                      csError* err) {
+  return cs_runWriteCheckpointed(m, d, out_path, NULL, NULL, NULL, NULL, wall_s, err);
+}
+
+
+/* the settling of a checkpointed run (cs_settle's steps) from its step i0 (0: from the start;
+ * a checkpoint's), with a checkpoint (no output rows yet) every ck_every steps; cancelled: a
+ * checkpoint where it stopped and CS_ERR_INTERRUPTED */
+static csStatus settleCheckpointed(const csModel* m, csData* d, long i0, long ck_every,
+                                   csCheckpointInfo* ck, const char* ck_path, double* xck,
+                                   csError* err) {
+  const long n = cs_settleSteps(m);
+  ck->nsample = 0;
+  ck->wall_s = 0;
+  for (long i = i0 + 1; i <= n; i++) {
+    if (m->opt.cancel && *m->opt.cancel) {
+      csStatus st = ck_path ? cs_checkpointSave(m, d, ck, ck_path, xck, err) : CS_OK;
+      return st != CS_OK ? st
+                         : cs_errorSet(err, CS_ERR_INTERRUPTED, "interrupted while settling at t "
+                                       "= %.6g s", cs_time(d));
+    }
+    csStatus st = cs_step(m, d, err);
+    if (st == CS_OK && ck_every && i % ck_every == 0 && i < n) {
+      /* as the run's checkpoints: the integrators restart from the state saved */
+      st = cs_checkpointSave(m, d, ck, ck_path, xck, err);
+      if (st == CS_OK) st = cs_stateSet(m, d, xck, err);
+    }
+    if (st != CS_OK) {
+      return st;
+    }
+  }
+  cs_settleFinish(m, d);
+  return CS_OK;
+}
+
+
+csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_path,
+                                 const csCheckpointInfo* ck_in, const char* ck_path,
+                                 const char* resume, int* settling, double* wall_s,
+                                 csError* err) {
   double t_end = cs_modelEndTime(m);
   if (m->opt.centerline_points > MAX_CENTERLINE) {
     return cs_errorSet(err, CS_ERR_RANGE, "at most %d centreline points", MAX_CENTERLINE);
   }
+  double H = cs_modelMacroStep(m);
+  csCheckpointInfo ck = {"", NAN, 0, 0};
+  if (ck_in) {
+    ck = *ck_in;
+  }
+  /* the state buffer of the checkpoints: allocated once, before the loop */
+  double* xck = NULL;
+  if (ck_path || resume) {
+    xck = malloc(sizeof(double) * (size_t)cs_stateSize(m, d));
+    if (!xck) {
+      return cs_errorSet(err, CS_ERR_MEMORY, "out of memory for the checkpoint's state");
+    }
+  }
+  char prev[1100] = "";
+  long i0 = 0; /* steps since t = 0 before this loop (a resumed run's) */
+  long ck_every = 0; /* steps between periodic checkpoints (0: none) */
+  if (resume) {
+    csStatus lst = cs_checkpointLoad(m, d, resume, &ck, xck, err);
+    if (lst != CS_OK) {
+      free(xck);
+      return lst;
+    }
+    if (ck_path) {
+      ck_every = lround(ck.every / H) < 1 ? 1 : lround(ck.every / H);
+    }
+    if (cs_time(d) < 0) {
+      /* a checkpoint of the settling: settle the rest, then the run starts its output */
+      if (settling) {
+        *settling = 1;
+      }
+      lst = settleCheckpointed(m, d, cs_settleSteps(m) - lround(-cs_time(d) / H), ck_every, &ck,
+                               ck_path, xck, err);
+      if (lst != CS_OK) {
+        free(xck);
+        return lst;
+      }
+      if (settling) {
+        *settling = 0;
+      }
+      resume = NULL;
+    }
+  }
+  if (resume) {
+    csStatus lst = CS_OK;
+    i0 = lround(cs_time(d) / H);
+    if (i0 >= lround(t_end / H)) {
+      lst = cs_errorSet(err, CS_ERR_ARG, "--resume %.300s: its run is at t = %g s, at or past "
+                        "--t-end %g s (nothing to continue)", resume, cs_time(d), t_end);
+    }
+    /* OUT.prev left by a resume that stopped before its new file's first flush is the whole
+     * one (OUT then holds at most an empty image): the rows come from it */
+    FILE* pf = NULL;
+    if (lst == CS_OK && snprintf(prev, sizeof prev, "%s.prev", out_path) < (int)sizeof prev &&
+        !(pf = fopen(prev, "rb")) && rename(out_path, prev) != 0) {
+      lst = cs_errorSet(err, CS_ERR_IO, "--out %.300s: cannot move the output to resume aside "
+                        "to %.300s", out_path, prev);
+    }
+    if (pf) {
+      fclose(pf);
+    }
+    if (lst != CS_OK) {
+      free(xck);
+      return lst;
+    }
+  }
+  if (ck_path) {
+    ck_every = lround(ck.every / H) < 1 ? 1 : lround(ck.every / H);
+  }
+  if (settling && !resume && cs_time(d) < 0) {
+    /* d as created: it settles here, checkpointed too */
+    *settling = 1;
+    csStatus lst = settleCheckpointed(m, d, 0, ck_every, &ck, ck_path, xck, err);
+    if (lst != CS_OK) {
+      free(xck);
+      return lst;
+    }
+    *settling = 0;
+  }
   csH5File* f = cs_h5Create(out_path, err);
   if (!f) {
+    free(xck);
     return err ? err->status : CS_ERR_IO;
   }
   Series s;
   double buf[3 * MAX_CENTERLINE];
   csStatus st = writeHeader(m, f, &s, err);
-  double H = cs_modelMacroStep(m);
   long out_every = lround(m->opt.output_dt / H);
   if (out_every < 1) {
     out_every = 1;
@@ -335,17 +515,28 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
     per_second = 1;
   }
   double w0 = csu_wallSeconds();
+  const double wall_before = ck.wall_s; /* a resumed run's earlier pieces' wall time (s) */
   long nsample = 0;        /* samples appended */
   double flush_wall = 0;   /* wall time spent in flushes (s) */
   double flush_last = w0;  /* wall time of the last flush (the run's start before the first) */
-  if (st == CS_OK) {
+  if (st == CS_OK && resume) {
+    st = copyRows(m, f, &s, prev, out_path, ck.nsample, cs_time(d), err);
+    nsample = ck.nsample;
+    if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "samples", (double)nsample, err);
+    if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "flushed_t_s", cs_time(d), err);
+    if (st == CS_OK) st = cs_h5Flush(f, err);
+    if (st == CS_OK) {
+      remove(prev); /* the rows are in the new file on disk now */
+    }
+  } else if (st == CS_OK) {
     double wo = csu_wallSeconds();
     st = writeSample(m, d, f, &s, buf, err);
     nsample += st == CS_OK;
     csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
   }
   int cancelled = 0;
-  for (long i = 1; i <= nsteps && st == CS_OK; i++) {
+  long i_ck = resume ? i0 : -1; /* the step of the last checkpoint written or read */
+  for (long i = i0 + 1; i <= nsteps && st == CS_OK; i++) {
     if (m->opt.cancel && *m->opt.cancel) {
       /* the caller asked to stop (a signal): between steps, so the state is a whole step */
       cancelled = 1;
@@ -358,6 +549,22 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
       double wo = csu_wallSeconds();
       st = writeSample(m, d, f, &s, buf, err);
       nsample += st == CS_OK;
+      csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
+    }
+    if (st == CS_OK && ck_every && i % ck_every == 0) {
+      /* the output on disk first, so that it holds every row the checkpoint counts */
+      double wo = csu_wallSeconds();
+      st = cs_h5AttrDouble(f, "/", "samples", (double)nsample, err);
+      if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "flushed_t_s", cs_time(d), err);
+      if (st == CS_OK) st = cs_h5Flush(f, err);
+      flush_last = csu_wallSeconds();
+      flush_wall += flush_last - wo;
+      ck.nsample = nsample;
+      ck.wall_s = wall_before + flush_last - w0;
+      if (st == CS_OK) st = cs_checkpointSave(m, d, &ck, ck_path, xck, err);
+      /* the integrators restart from the saved state, as a resumed run's do */
+      if (st == CS_OK) st = cs_stateSet(m, d, xck, err);
+      i_ck = i;
       csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
     }
     if (i % per_second == 0) {
@@ -380,7 +587,25 @@ csStatus cs_runWrite(const csModel* m, csData* d, const char* out_path, double* 
       }
     }
   }
-  double wall = csu_wallSeconds() - w0;
+  double wall = wall_before + csu_wallSeconds() - w0; /* this loop's and its earlier pieces' */
+  if (ck_path && (st == CS_OK || cancelled) && i_ck != lround(cs_time(d) / H)) {
+    /* at the end or where a signal stopped it (a whole step): a run continued from here
+     * restarts its integrators here, where the uncut run did not (docs/notes/cli_output.md) */
+    ck.nsample = nsample;
+    ck.wall_s = wall;
+    csError ce;
+    csStatus cst = cs_h5AttrDouble(f, "/", "samples", (double)nsample, &ce);
+    if (cst == CS_OK) cst = cs_h5AttrDouble(f, "/", "flushed_t_s", cs_time(d), &ce);
+    if (cst == CS_OK) cst = cs_h5Flush(f, &ce);
+    if (cst == CS_OK) cst = cs_checkpointSave(m, d, &ck, ck_path, xck, &ce);
+    if (cst != CS_OK && st == CS_OK) {
+      st = cst;
+      if (err) {
+        *err = ce;
+      }
+    }
+  }
+  free(xck);
   if (wall_s) {
     *wall_s = wall;
   }

@@ -358,13 +358,23 @@ csStatus cs_step(const csModel* m, csData* d, csError* err) {
 
 
 csStatus cs_settle(const csModel* m, csData* d, csError* err) {
-  long n = lround(m->opt.settle / cs_modelMacroStep(m));
+  long n = cs_settleSteps(m);
   for (long i = 0; i < n; i++) {
     csStatus st = cs_step(m, d, err);
     if (st != CS_OK) {
       return st;
     }
   }
+  cs_settleFinish(m, d);
+  return CS_OK;
+}
+
+
+long cs_settleSteps(const csModel* m) { return lround(m->opt.settle / cs_modelMacroStep(m)); }
+
+
+void cs_settleFinish(const csModel* m, csData* d) {
+  (void)m;
   /* snap time to exactly 0 so output times are multiples of the step */
   d->t = 0;
   if (d->cvode) {
@@ -374,5 +384,4 @@ csStatus cs_settle(const csModel* m, csData* d, csError* err) {
   csu_set3(d->x0, x[0], x[1], x[2]);
   /* the timers measure the run, not the settling */
   memset(d->timer, 0, sizeof d->timer);
-  return CS_OK;
 }

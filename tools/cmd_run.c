@@ -6,7 +6,8 @@
  *   --coupling staggered|stabilised|gs|tree, --set NAME=VALUE (the legs' actuator, repeatable), --quiet,
  *   --contact-scale K, --rod-tol K (rod legs' CVODE tolerances x K), --step-order 1|2 (strain
  *   legs' tree step: backward Euler or BDF2), --cal-rule prism|rbf|rbf-pair
- *   (the FE mode table's rule),
+ *   (the FE mode table's rule), --checkpoint FILE, --checkpoint-every S, --resume FILE
+ *   (resumable runs: docs/notes/cli_output.md),
  *   --tol MM and --levels FILE (with --legs auto: the cheapest measured configuration of the
  *   scene whose track error is within MM, from the table robot/levels.csv, robot_levels.h).
  * Options take "--name VALUE" or "--name=VALUE". Each option fills the field of the run
@@ -65,6 +66,15 @@ static const csxOpt kRunOpts[] = {
     {"--t-end", "S", "0 = the gait's length",
      "simulated time in s; 0 runs until the last row's change has finished"},
     {"--out", "FILE.h5", "run.h5", "the run file; FILE.xdmf is written beside it"},
+    {"--checkpoint", "FILE", NULL,
+     "write the run's state to FILE every --checkpoint-every s, at the end and on SIGINT/SIGTERM "
+     "(atomically), so --resume FILE can continue it (docs/notes/cli_output.md)"},
+    {"--checkpoint-every", "S", "1 (resumed: the checkpoint's)",
+     "simulated seconds between checkpoints; the integrators restart at each, so it is part of "
+     "the run"},
+    {"--resume", "FILE", NULL,
+     "continue the run of checkpoint FILE (the same options; --t-end may be later) instead of "
+     "settling, appending to its --out; checkpoints go on into FILE unless --checkpoint says"},
     {"--calibration", "FILE", "the scene's (robot/calibration_fe_leg_modes_sym.h5)",
      "the legs' pressure -> shape calibration table"},
     {"--cal-rule", "prism|rbf|rbf-pair", "the scene's (rbf-pair); the table's own (prism) with "
@@ -141,6 +151,9 @@ static const struct {
     {"--legs", offsetof(csRunDef, legs), 0},
     {"--rom-file", offsetof(csRunDef, rom_file), 0},
     {"--out", offsetof(csRunDef, out), 0},
+    {"--checkpoint", offsetof(csRunDef, checkpoint), 0},
+    {"--resume", offsetof(csRunDef, resume), 0},
+    {"--checkpoint-every", offsetof(csRunDef, checkpoint_every), 1},
     {"--calibration", offsetof(csRunDef, calibration), 0},
     {"--cal-rule", offsetof(csRunDef, cal_rule), 0},
     {"--cal-drop", offsetof(csRunDef, cal_drop), 0},

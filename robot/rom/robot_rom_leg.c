@@ -348,13 +348,34 @@ static csrLeg* createRom(const csrLegSpec* spec, csError* err) {
 
 static int sharedSize(const csrLeg* leg) { return csr_romStateSize(leg->sh->m); }
 
-static int stateSizeRom(const csrLeg* leg) { return sharedSize(leg); }
+/* the leg's state: the reduced model's (robot_rom.h), then the momentum carry's 43 values
+ * (cz: the last gains' flexible share, the twist they were taken at, fresh 0/1), which the next
+ * advance hands the support: state, so that a restored state (a checkpoint, a rolled-back
+ * step) continues with the carry the uninterrupted run has, bit for bit */
+enum { ROM_CARRY_STATE = 43 };
 
-static void getStateRom(const csrLeg* leg, double* x) { csr_romGetState(leg->sh->m, leg->d, x); }
+static int stateSizeRom(const csrLeg* leg) { return sharedSize(leg) + ROM_CARRY_STATE; }
+
+static void getStateRom(const csrLeg* leg, double* x) {
+  csr_romGetState(leg->sh->m, leg->d, x);
+  memcpy(x + sharedSize(leg), leg->cz, ROM_CARRY_STATE * sizeof(double));
+}
 
 static int setStateRom(csrLeg* leg, const double* x) {
-  leg->cz[42] = 0; /* no gains of this state's */
-  return csr_romSetState(leg->sh->m, leg->d, x);
+  const double* cz = x + sharedSize(leg);
+  for (int i = 0; i < ROM_CARRY_STATE; i++) {
+    if (!isfinite(cz[i])) {
+      return -1;
+    }
+  }
+  if (!(cz[42] == 0 || cz[42] == 1)) {
+    return -1;
+  }
+  const int rc = csr_romSetState(leg->sh->m, leg->d, x);
+  if (rc == 0) {
+    memcpy(leg->cz, cz, ROM_CARRY_STATE * sizeof(double));
+  }
+  return rc;
 }
 
 static void resetRom(csrLeg* leg) {

@@ -1,0 +1,412 @@
+/* test_checkpoint.c: resumable runs (csRunDef.checkpoint / resume, `crawlsim run --checkpoint
+ * FILE --resume FILE`; core/sim_checkpoint.c, sim_run.c):
+ *  - a run cut at a checkpoint (its --t-end) and resumed to the end writes an output whose
+ *    every dataset equals the uncut run's bit for bit, on rod legs (Gauss-Seidel, CVODE per
+ *    leg) and on strain legs (the tree coupling), and the same step count; the comparison is
+ *    not trivial (the rows after the cut differ from the cut's); one stopped before settling
+ *    (a checkpoint at t < 0) settles when resumed and equals the uncut run too;
+ *  - a resume with another definition (friction, the checkpoint interval) is refused naming
+ *    the file and the field, and leaves the output as it was;
+ *  - a truncated checkpoint, one with a changed byte in its state and a file that is no
+ *    checkpoint are refused naming the file and the cause;
+ *  - the restart a checkpoint makes (the state got and set) and the steps after it allocate
+ *    nothing (the project's own code's malloc, calloc, realloc counted through the linker).
+ * Runs of 0.3 s after the 0.3 s settling, at the cheapest rod (2 elements per segment,
+ * --rod-tol 20) and strain legs' defaults: a few seconds. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_h5read.h"
+#include "crawlsim.h"
+#include "cs_test.h"
+
+/* every malloc, calloc and realloc of the project's own code linked into this test (the
+ * static libraries; the linker's --wrap, tests/core/CMakeLists.txt) is counted: what a
+ * checkpoint adds to the step loop must allocate nothing */
+static long g_allocs;
+void* __real_malloc(size_t n);
+void* __real_calloc(size_t k, size_t n);
+void* __real_realloc(void* p, size_t n);
+void* __wrap_malloc(size_t n);
+void* __wrap_calloc(size_t k, size_t n);
+void* __wrap_realloc(void* p, size_t n);
+void* __wrap_malloc(size_t n) {
+  g_allocs++;
+  return __real_malloc(n);
+}
+void* __wrap_calloc(size_t k, size_t n) {
+  g_allocs++;
+  return __real_calloc(k, n);
+}
+void* __wrap_realloc(void* p, size_t n) {
+  g_allocs++;
+  return __real_realloc(p, n);
+}
+
+
+static csRunDef baseDef(const char* legs) {
+  csRunDef d = cs_defaultRunDef();
+  d.legs = legs;
+  if (!strcmp(legs, "rod")) {
+    d.links = 2;
+    d.rod_tol = 20;
+  }
+  d.checkpoint_every = 0.1;
+  return d;
+}
+
+
+static csStatus runDef(const csRunDef* d, csRunResult* r, csError* err) {
+  cs_errorClear(err);
+  csStatus st = cs_run(d, r, err);
+  if (st != CS_OK) {
+    fprintf(stderr, "  run: %s\n", err->msg);
+  }
+  return st;
+}
+
+
+/* the run file's datasets (the output contract), compared bit for bit; rows of /time in *rows */
+static int sameDatasets(const char* a, const char* b, long* rows) {
+  static const char* const kPaths[] = {
+      "/time", "/support/position", "/support/orientation", "/pressure", "/support/corners",
+      "/contact/force", "/contact/max_depth", "/contact/leg_max_depth", "/contact/foot_force",
+      "/contact/stance", "/terrain/corners", "/legs/A/centerline", "/legs/B/centerline",
+      "/legs/C/centerline", "/legs/D/centerline", "/legs/E/centerline", "/legs/F/centerline",
+      "/legs/G/centerline", "/legs/H/centerline"};
+  csError err;
+  csH5Reader* ra = cs_h5ReaderOpen(a, &err);
+  csH5Reader* rb = cs_h5ReaderOpen(b, &err);
+  int same = ra && rb;
+  for (size_t k = 0; same && k < sizeof kPaths / sizeof kPaths[0]; k++) {
+    size_t da[4] = {0}, db[4] = {0};
+    int na = 0, nb = 0;
+    double* va = cs_h5ReaderDoubles(ra, kPaths[k], 0, NULL, da, &na, &err);
+    double* vb = cs_h5ReaderDoubles(rb, kPaths[k], 0, NULL, db, &nb, &err);
+    size_t n = 1;
+    for (int i = 0; i < na; i++) {
+      n *= da[i];
+    }
+    const int ok = va && vb && na == nb && !memcmp(da, db, sizeof da) &&
+                   !memcmp(va, vb, n * sizeof(double));
+    if (!ok) {
+      fprintf(stderr, "  %s differs between %s and %s\n", kPaths[k], a, b);
+    }
+    if (k == 0 && rows) {
+      *rows = (long)da[0];
+    }
+    same = ok;
+    free(va);
+    free(vb);
+  }
+  cs_h5ReaderClose(ra);
+  cs_h5ReaderClose(rb);
+  return same;
+}
+
+
+/* the last w doubles of a dataset's row into v (a centreline's: its foot) */
+static int readRow(const char* path, const char* name, long row, int w, double* v) {
+  csError err;
+  csH5Reader* r = cs_h5ReaderOpen(path, &err);
+  size_t dims[4] = {0, 1, 1, 1};
+  int rank = 0;
+  double* all = r ? cs_h5ReaderDoubles(r, name, 0, NULL, dims, &rank, &err) : NULL;
+  const size_t width = dims[1] * (rank > 2 ? dims[2] : 1) * (rank > 3 ? dims[3] : 1);
+  const int ok = all && (size_t)row < dims[0] && width >= (size_t)w;
+  if (ok) {
+    memcpy(v, all + (size_t)(row + 1) * width - w, sizeof(double) * (size_t)w);
+  }
+  free(all);
+  cs_h5ReaderClose(r);
+  return ok;
+}
+
+
+/* the uncut run of 0.3 s against the same run cut at 0.2 s and resumed to 0.3 s */
+static void resumedEqualsUncut(const char* legs) {
+  char a_out[64], a_ck[64], b_out[64], b_ck[64];
+  snprintf(a_out, sizeof a_out, "ckpt_%s_uncut.h5", legs);
+  snprintf(a_ck, sizeof a_ck, "ckpt_%s_uncut.ck", legs);
+  snprintf(b_out, sizeof b_out, "ckpt_%s_cut.h5", legs);
+  snprintf(b_ck, sizeof b_ck, "ckpt_%s_cut.ck", legs);
+  csError err;
+  csRunResult ra, rb, rc;
+  csRunDef a = baseDef(legs);
+  a.t_end = 0.3;
+  a.out = a_out;
+  a.checkpoint = a_ck;
+  CS_EXPECT(runDef(&a, &ra, &err) == CS_OK);
+  csRunDef b = baseDef(legs);
+  b.t_end = 0.2;
+  b.out = b_out;
+  b.checkpoint = b_ck;
+  CS_EXPECT(runDef(&b, &rb, &err) == CS_OK);
+  CS_EXPECT(rb.t_end < ra.t_end - 0.05);
+  csRunDef c = baseDef(legs);
+  c.t_end = 0.3;
+  c.out = b_out;
+  c.resume = b_ck; /* the checkpoints go on into it */
+  CS_EXPECT(runDef(&c, &rc, &err) == CS_OK);
+  long rows = 0;
+  const int same = sameDatasets(a_out, b_out, &rows);
+  CS_EXPECT(same);
+  CS_EXPECT(rows == 31); /* t = 0, 0.01, ..., 0.3 */
+  CS_EXPECT(rc.steps == ra.steps && rc.t_end == ra.t_end);
+  CS_EXPECT(memcmp(rc.position, ra.position, sizeof ra.position) == 0);
+  /* not trivial: the legs and the pressures moved after the cut */
+  double p20[96], p30[96], c20[3], c30[3];
+  CS_EXPECT(readRow(b_out, "/pressure", 20, 96, p20) && readRow(b_out, "/pressure", 30, 96, p30));
+  CS_EXPECT(memcmp(p20, p30, sizeof p20) != 0);
+  CS_EXPECT(readRow(b_out, "/legs/A/centerline", 20, 3, c20) &&
+            readRow(b_out, "/legs/A/centerline", 30, 3, c30));
+  double dp = 0;
+  for (int i = 0; i < 96; i++) {
+    dp = fmax(dp, fabs(p30[i] - p20[i]));
+  }
+  const double dfoot =
+      sqrt(pow(c30[0] - c20[0], 2) + pow(c30[1] - c20[1], 2) + pow(c30[2] - c20[2], 2));
+  CS_EXPECT(dp > 0.01 && dfoot > 0.1); /* MPa, mm: the gait's first ramp is under way */
+  printf("  %s legs: %ld rows %s; steps %ld; support x %.6f mm at 0.3 s; the pressures moved "
+         "by up to %.4f MPa and the foot of leg A by %.3f mm after the cut\n", legs, rows,
+         same ? "equal bit for bit" : "DIFFER", rc.steps, rc.position[0], dp, dfoot);
+  /* the checkpoint file got the end's state: a later resume refuses to run past nothing */
+  c.t_end = 0.3;
+  CS_EXPECT(cs_run(&c, &rc, &err) == CS_ERR_ARG && strstr(err.msg, b_ck) &&
+            strstr(err.msg, "nothing to continue"));
+}
+
+
+static void test_rod_resumed_equals_uncut(void) { resumedEqualsUncut("rod"); }
+
+
+/* a run stopped (its cancel flag) before its first settling step leaves a checkpoint of the
+ * settling (t < 0, no output rows); resumed, it settles and runs as the uncut run, bit for bit
+ * (the uncut run of resumedEqualsUncut("rod"), run again here) */
+static void test_settling_resumed_equals_uncut(void) {
+  csError err;
+  csRunResult ra, rb, rc;
+  csRunDef a = baseDef("rod");
+  a.t_end = 0.15;
+  a.out = "ckpt_settle_uncut.h5";
+  a.checkpoint = "ckpt_settle_uncut.ck";
+  CS_EXPECT(runDef(&a, &ra, &err) == CS_OK);
+  csRunDef b = baseDef("rod");
+  b.t_end = 0.15;
+  b.out = "ckpt_settle_cut.h5";
+  b.checkpoint = "ckpt_settle_cut.ck";
+  static volatile sig_atomic_t stop = 1;
+  b.cancel = &stop;
+  CS_EXPECT(cs_run(&b, &rb, &err) == CS_ERR_INTERRUPTED && strstr(err.msg, "settling"));
+  printf("  stopped: %s\n", err.msg);
+  csRunDef c = baseDef("rod");
+  c.t_end = 0.15;
+  c.out = "ckpt_settle_cut.h5";
+  c.resume = "ckpt_settle_cut.ck";
+  CS_EXPECT(runDef(&c, &rc, &err) == CS_OK);
+  long rows = 0;
+  CS_EXPECT(sameDatasets(a.out, c.out, &rows));
+  CS_EXPECT(rows == 16 && rc.steps == ra.steps);
+  printf("  settling resumed: %ld rows, %ld steps, support y %.9f mm as the uncut run's %.9f\n",
+         rows, rc.steps, rc.position[1], ra.position[1]);
+}
+static void test_strain_resumed_equals_uncut(void) { resumedEqualsUncut("strain"); }
+
+
+/* a cut run of rod legs to resume wrongly: its output and checkpoint */
+static int cutRun(const char* out, const char* ck) {
+  csRunDef b = baseDef("rod");
+  b.t_end = 0.1;
+  b.out = out;
+  b.checkpoint = ck;
+  csError err;
+  csRunResult r;
+  return runDef(&b, &r, &err) == CS_OK;
+}
+
+
+static long timeRows(const char* out) {
+  csError err;
+  csH5Reader* r = cs_h5ReaderOpen(out, &err);
+  size_t dims[4] = {0};
+  double* t = r ? cs_h5ReaderDoubles(r, "/time", 1, NULL, dims, NULL, &err) : NULL;
+  free(t);
+  cs_h5ReaderClose(r);
+  return t ? (long)dims[0] : -1;
+}
+
+
+static void expectResumeRefused(csRunDef c, const char* ck, const char* what) {
+  csError err;
+  csRunResult r;
+  cs_errorClear(&err);
+  c.resume = ck;
+  c.t_end = 0.2;
+  csStatus st = cs_run(&c, &r, &err);
+  CS_EXPECT(st != CS_OK && strstr(err.msg, ck) && strstr(err.msg, what));
+  if (st == CS_OK || !strstr(err.msg, what) || !strstr(err.msg, ck)) {
+    fprintf(stderr, "  expected '%s' naming %s in: %s\n", what, ck, err.msg);
+  } else {
+    printf("  refused: %s\n", err.msg);
+  }
+}
+
+
+static void test_other_definition_is_refused(void) {
+  const char* out = "ckpt_other.h5";
+  const char* ck = "ckpt_other.ck";
+  CS_EXPECT(cutRun(out, ck));
+  const long rows = timeRows(out);
+  CS_EXPECT(rows == 11);
+  csRunDef c = baseDef("rod");
+  c.out = out;
+  c.friction = 0.5;
+  expectResumeRefused(c, ck, "friction");
+  c = baseDef("rod");
+  c.out = out;
+  c.checkpoint_every = 0.05;
+  expectResumeRefused(c, ck, "checkpoint-every");
+  c = baseDef("rod");
+  c.out = out;
+  c.links = 3;
+  expectResumeRefused(c, ck, "links");
+  CS_EXPECT(timeRows(out) == rows); /* the output as it was */
+  /* and the same definition resumes (the refusals were the differences'), also after a
+   * resume that died before its first flush (the rows in OUT.prev, OUT an empty file) */
+  CS_EXPECT(rename(out, "ckpt_other.h5.prev") == 0);
+  cs_testWriteText(out, "");
+  c = baseDef("rod");
+  c.out = out;
+  c.resume = ck;
+  c.t_end = 0.15;
+  csError err;
+  csRunResult r;
+  CS_EXPECT(runDef(&c, &r, &err) == CS_OK);
+  CS_EXPECT(timeRows(out) == 16);
+  FILE* prev = fopen("ckpt_other.h5.prev", "rb");
+  CS_EXPECT(prev == NULL); /* removed once the new file was on disk */
+  if (prev) {
+    fclose(prev);
+  }
+}
+
+
+static long fileSize(const char* path, unsigned char** bytes) {
+  FILE* f = fopen(path, "rb");
+  if (!f) {
+    return -1;
+  }
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  *bytes = malloc((size_t)n);
+  if (!*bytes || fread(*bytes, 1, (size_t)n, f) != (size_t)n) {
+    n = -1;
+  }
+  fclose(f);
+  return n;
+}
+
+
+static void writeBytes(const char* path, const unsigned char* b, long n) {
+  FILE* f = fopen(path, "wb");
+  CS_EXPECT(f != NULL);
+  if (f) {
+    CS_EXPECT(fwrite(b, 1, (size_t)n, f) == (size_t)n);
+    fclose(f);
+  }
+}
+
+
+static void test_corrupt_checkpoint_is_refused(void) {
+  const char* out = "ckpt_corrupt.h5";
+  const char* ck = "ckpt_corrupt.ck";
+  CS_EXPECT(cutRun(out, ck));
+  unsigned char* b = NULL;
+  long n = fileSize(ck, &b);
+  CS_EXPECT(n > 1000);
+  csRunDef c = baseDef("rod");
+  c.out = out;
+  /* truncated: half of it */
+  writeBytes("ckpt_truncated.ck", b, n / 2);
+  expectResumeRefused(c, "ckpt_truncated.ck", "not a readable checkpoint");
+  /* a changed byte in the state: find the state's values in the file by the support's
+   * orientation quaternion's bytes (4 doubles, unique in the file) */
+  csError err;
+  csH5Reader* r = cs_h5ReaderOpen(ck, &err);
+  size_t dims[4] = {0};
+  double* x = r ? cs_h5ReaderDoubles(r, "/state", 1, NULL, dims, NULL, &err) : NULL;
+  cs_h5ReaderClose(r);
+  CS_EXPECT(x && dims[0] > 120);
+  long at = -1;
+  for (long i = 0; x && i + 32 <= n && at < 0; i++) {
+    /* the robot's part starts after t, seed and the 96 pressures: the support's position,
+     * then its quaternion */
+    if (!memcmp(b + i, x + 98 + 3, 32)) {
+      at = i;
+    }
+  }
+  CS_EXPECT(at > 0);
+  if (at > 0) {
+    b[at] ^= 1; /* the last bit of the quaternion's w */
+    writeBytes("ckpt_flipped.ck", b, n);
+    expectResumeRefused(c, "ckpt_flipped.ck", "checksum");
+  }
+  /* no checkpoint at all */
+  cs_testWriteText("ckpt_text.ck", "not a checkpoint\n");
+  expectResumeRefused(c, "ckpt_text.ck", "not a readable checkpoint");
+  expectResumeRefused(c, "ckpt_missing.ck", "not a readable checkpoint");
+  free(x);
+  free(b);
+}
+
+
+/* the state saved and set again (what a periodic checkpoint does to the run besides writing
+ * its file) and the steps after it allocate nothing, on rod and strain legs; the count is
+ * alive (creating a simulation allocates) */
+static void test_restart_and_steps_allocate_nothing(void) {
+  const char* levels[] = {"rod", "strain"};
+  for (int k = 0; k < 2; k++) {
+    csRunDef d = baseDef(levels[k]);
+    d.checkpoint_every = NAN;
+    csError err;
+    const long a0 = g_allocs;
+    csSim* s = cs_simCreate(&d, &err);
+    CS_EXPECT(s != NULL);
+    if (!s) {
+      continue;
+    }
+    const long created = g_allocs - a0;
+    const int n = cs_simStateSize(s);
+    double* x = malloc(sizeof(double) * (size_t)n);
+    CS_EXPECT(x && cs_simRunUntil(s, 0.05, &err) == CS_OK);
+    const long a1 = g_allocs;
+    for (int i = 0; x && i < 5; i++) {
+      cs_simStateGet(s, x);
+      CS_EXPECT(cs_simStateSet(s, x, &err) == CS_OK);
+      for (int j = 0; j < 20; j++) {
+        CS_EXPECT(cs_simStep(s, &err) == CS_OK);
+      }
+    }
+    const long in_loop = g_allocs - a1;
+    printf("  %s legs: %ld allocations creating the simulation, %ld in 5 restarts and 100 steps "
+           "(t = %.3f s)\n", levels[k], created, in_loop, cs_simTime(s));
+    CS_EXPECT(created > 0 && in_loop == 0);
+    free(x);
+    cs_simDestroy(s);
+  }
+}
+
+
+int main(int argc, char** argv) {
+  cs_testInit(argc, argv);
+  CS_RUN(test_rod_resumed_equals_uncut);
+  CS_RUN(test_strain_resumed_equals_uncut);
+  CS_RUN(test_settling_resumed_equals_uncut);
+  CS_RUN(test_other_definition_is_refused);
+  CS_RUN(test_corrupt_checkpoint_is_refused);
+  CS_RUN(test_restart_and_steps_allocate_nothing);
+  return cs_testSummary();
+}
