@@ -398,7 +398,8 @@ int cs_runDefIdentity(const csRunDef* def, const csModel* m, const csRunPlan* pl
     const char* name;
     const char* v;
   } words[] = {{"scene", def->scene},           {"foothold", def->foothold},
-               {"conditions", def->conditions}, {"legs", def->legs},
+               {"gate", def->gate},             {"conditions", def->conditions},
+               {"legs", def->legs},
                {"cal_rule", def->cal_rule},     {"cal_drop", def->cal_drop},
                {"coupling", def->coupling}};
   for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
@@ -438,6 +439,7 @@ int cs_runDefIdentity(const csRunDef* def, const csModel* m, const csRunPlan* pl
   rc |= identityLine(out, size, &len, "gait_file", plan->gait[0] ? plan->gait : NULL, 1);
   rc |= identityLine(out, size, &len, "foothold_file", plan->foothold[0] ? plan->foothold : NULL,
                      1);
+  rc |= identityLine(out, size, &len, "gate_file", plan->gate[0] ? plan->gate : NULL, 1);
   rc |= identityLine(out, size, &len, "calibration_file",
                      plan->calibration[0] ? plan->calibration : NULL, 1);
   rc |= identityLine(out, size, &len, "leg_file", m->robot.leg_file[0] ? m->robot.leg_file : NULL,

@@ -5,8 +5,8 @@
  *    leg) and on strain legs (the tree coupling), and the same step count; the comparison is
  *    not trivial (the rows after the cut differ from the cut's); one stopped before settling
  *    (a checkpoint at t < 0) settles when resumed and equals the uncut run too;
- *  - a resume with another definition (friction, the checkpoint interval) is refused naming
- *    the file and the field, and leaves the output as it was;
+ *  - a resume with another definition (friction, the checkpoint interval, links, the gate) is
+ *    refused naming the file and the field, and leaves the output as it was;
  *  - a truncated checkpoint, one with a changed byte in its state and a file that is no
  *    checkpoint are refused naming the file and the cause;
  *  - the restart a checkpoint makes (the state got and set) and the steps after it allocate
@@ -272,6 +272,10 @@ static void test_other_definition_is_refused(void) {
   c.out = out;
   c.links = 3;
   expectResumeRefused(c, ck, "links");
+  c = baseDef("rod");
+  c.out = out;
+  c.gate = "none"; /* the definition's gate word, as the foothold's (cs_runDefIdentity) */
+  expectResumeRefused(c, ck, "gate");
   CS_EXPECT(timeRows(out) == rows); /* the output as it was */
   /* and the same definition resumes (the refusals were the differences'), also after a
    * resume that died before its first flush (the rows in OUT.prev, OUT an empty file) */
