@@ -23,6 +23,9 @@ elements) also the fibre strain basis of the mixed fibre field (fem/fem_rom.h cs
 POD, weighted by W_f = EA_f L0_f, of the training states' fibre Green strains E_f and of their
 stresses S(E_f) (the tension-only law is not linear: S* = S(E) at a training state needs both
 in the span), written as Qf [nfib, mf] with attribute mf.
+With --v-rays A,B,... the displacement POD takes the states of those training rays only (the
+span V of a smaller training); the pressure and fibre bases and the errors printed stay those of
+every training ray, so one training's V can be paired with another's P and Qf.
 Units: mm, t (tonnes), N.
 """
 import argparse
@@ -439,6 +442,19 @@ def read_rays(snapdir):
     return rays
 
 
+def ray_columns(train, names, reps):
+    """The snapshot columns of the training rays named in names: a bool mask over the training
+    matrix X (the rays' states in file order, repeated reps times for the quarter turns, as
+    turn_snapshots lays them out). A name that is no training ray is refused (SystemExit)."""
+    known = [r["name"] for r in train]
+    unknown = [v for v in names if v not in known]
+    if unknown:
+        sys.exit(f"rom_basis: --v-rays: {','.join(unknown)}: not a training ray (training: "
+                 f"{','.join(known)})")
+    sel = np.concatenate([np.full(r["u"].shape[0], r["name"] in names) for r in train])
+    return np.tile(sel, reps)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("snapdir")
@@ -481,6 +497,11 @@ def main():
     ap.add_argument("--fibre-vib", action="store_true",
                     help="--fibre-modes with --vib: add to Qf the fibre strain increments of the "
                     "added vibration modes at their levels' FE equilibria")
+    ap.add_argument("--v-rays", type=lambda v: [c for c in v.split(",") if c], default=None,
+                    help="the displacement POD of these training rays only (comma-separated "
+                    "names); the pressure and fibre bases, the supremizers' pressures, the "
+                    "projection errors and q_snap of every training ray: separates the span "
+                    "V from the training's other bases")
     ap.add_argument("--no-supremizers", action="store_true",
                     help="--mixed: no supremizer enrichment (to measure what it does)")
     a = ap.parse_args()
@@ -513,7 +534,14 @@ def main():
         X[fixed] = 0.0
     ns = X.shape[1]
     MX = M @ X
-    C = X.T @ MX
+    # the POD's snapshots: every training state, or those of --v-rays (Xv a copy of X's columns)
+    Xv, MXv = X, MX
+    if a.v_rays:
+        cols = ray_columns(train, a.v_rays, ns // ns_fe)
+        Xv, MXv = X[:, cols], MX[:, cols]
+        print(f"rom_basis: --v-rays: the displacement POD of {len(a.v_rays)} of {len(train)} "
+              f"training rays ({Xv.shape[1]} of {ns} snapshots)")
+    C = Xv.T @ MXv
     lam, Phi = np.linalg.eigh(C)
     order = np.argsort(lam)[::-1]
     lam, Phi = np.clip(lam[order], 0, None), Phi[:, order]
@@ -521,13 +549,13 @@ def main():
     print(f"rom_basis: {len(train)} training rays, {ns_fe} FE snapshots"
           f"{f' ({ns} with the quarter turns)' if a.turns else ''}; {len(test)} held-out rays")
     print("rom_basis: singular values sigma_i / sigma_1 (M-norm):")
-    for i in range(0, ns, 8):
+    for i in range(0, Xv.shape[1], 8):
         print("  " + " ".join(f"{s / sigma[0]:.2e}" for s in sigma[i:i + 8]))
     # largest projection error over the training snapshots for each size
     keep = lam > lam[0] * 1e-24
     nmax = int(keep.sum())
-    Vall = X @ Phi[:, :nmax] / sigma[:nmax]
-    unorm = np.sqrt(np.einsum("ij,ij->j", X, MX))
+    Vall = Xv @ Phi[:, :nmax] / sigma[:nmax]
+    del Xv, MXv
 
     def proj_err(V, U):
         MU = M @ U
@@ -602,6 +630,8 @@ def main():
         f.attrs["snapshots"] = os.path.abspath(a.snapdir)
         f.attrs["train_rays"] = ",".join(r["name"] for r in train)
         f.attrs["test_rays"] = ",".join(r["name"] for r in test)
+        if a.v_rays:
+            f.attrs["v_rays"] = ",".join(a.v_rays)
         f.attrs["units"] = ("V: mm per unit reduced coordinate (M-orthonormal, M in t); "
                             "sigma: t^0.5 mm")
         f["V"] = V

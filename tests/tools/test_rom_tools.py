@@ -12,7 +12,9 @@ records at a larger tolerance are those of a run stopped there; (4) tools/rom_pr
 M-orthogonal projection reproduces a state in the basis' span (error at round-off, on a
 non-orthonormal basis) and leaves a state M-orthogonal to it whole (relative error 1, the tip
 error its mean tip displacement); (5) rom_basis.py's segment-split pressure modes are
-volume-orthonormal, vanish outside their zone and reproduce each zone's share of a mode.
+volume-orthonormal, vanish outside their zone and reproduce each zone's share of a mode;
+(8) --v-rays picks the named rays' columns of the training matrix, turned copies included, and
+refuses a name that is no training ray.
 """
 import os
 import sys
@@ -211,5 +213,20 @@ expect(Qv.shape[1] == 7 and np.abs(Qv.T @ (W[:, None] * Qv) - np.eye(7)).max() <
        f"--fibre-vib: one increment added of two parallel modes, W-orthonormal, the strains' "
        f"derivative along the mode in the span ({np.abs(res).max() / np.abs(dE).max():.1e}; "
        f"outside Qf alone: {np.abs(resf).max() / np.abs(dE).max():.1e})")
+# (8) --v-rays: the columns of the named rays in X's layout (rays in file order, the block of
+# FE states repeated once per quarter turn)
+train = [dict(name="A", u=np.zeros((4, 3))), dict(name="B", u=np.zeros((2, 3))),
+         dict(name="C", u=np.zeros((3, 3)))]
+cols = rom_basis.ray_columns(train, ["C", "A"], 2)
+want = np.array([1, 1, 1, 1, 0, 0, 1, 1, 1] * 2, dtype=bool)
+expect(cols.shape == want.shape and (cols == want).all(),
+       "--v-rays: the named rays' states in each turned block, the others left out")
+try:
+    rom_basis.ray_columns(train, ["A", "T_H4"], 1)
+    refused = ""
+except SystemExit as e:
+    refused = str(e)
+expect("T_H4" in refused and "not a training ray" in refused and "\n" not in refused,
+       f"--v-rays: a name that is no training ray refused in one line ({refused[:60]})")
 print(f"{failed} failed")
 sys.exit(1 if failed else 0)

@@ -17,6 +17,11 @@
 #                  fs<K>m<MM>   the same with MM pressure modes split per segment (3 MM)
 #                  fs<K>g<MM>   the same with MM global pressure modes (no split)
 #                                                                            -> OUT/b<N>_CFG.h5
+#   basis-v13f<K>  (sixth session) V the POD of the thirteen rays of the b13 basis only (N modes,
+#                their quarter turns), M pressure modes split and the K largest fibre modes of
+#                every training ray (--v-rays): the 13 rays' span with the 25 rays' P and Qf
+#                (P and Qf those of `basis` + `trunc-f<K>`; the supremizers follow P)
+#                                                                            -> OUT/b<N>_v13f<K>.h5
 #   trunc-f<K>   the `basis` stage's file with its first K fibre modes only (global, the K
 #                largest of the training's W-weighted POD: what --fibre-modes K writes, in seconds;
 #                V and P bit for bit)                                        -> OUT/b<N>_f<K>.h5
@@ -61,6 +66,14 @@ for stage in "$@"; do
         "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$M" \
           --p-split 54,112 --mixed --fibre-modes 100000 --fibres "$OUT/legf/leg.h5" \
           --out "$OUT/b${N}_f.h5" > "$OUT/b${N}_f_basis.log" 2>&1 ;;
+    basis-v13f*)
+      k=${stage#basis-v13f}
+      [[ $k =~ ^[0-9]+$ ]] || { echo "run_romreal4.sh: stage $stage: K is a number" >&2; exit 2; }
+      [ -s "$OUT/b${N}_v13f${k}.h5" ] ||
+        "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$M" \
+          --p-split 54,112 --mixed --fibre-modes "$k" --fibres "$OUT/legf/leg.h5" \
+          --v-rays O12,S,O1,R1,Z,II1only,R2,O13,Fx,Gx,O1O234r05,O12O3r05,O124 \
+          --out "$OUT/b${N}_v13f${k}.h5" > "$OUT/b${N}_v13f${k}_basis.log" 2>&1 ;;
     basis-*)
       cfg=${stage#basis-}
       [[ $cfg =~ ^fs([0-9]+)(([mg])([0-9]+))?$ ]] ||
