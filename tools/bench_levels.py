@@ -109,8 +109,9 @@ def run_track(a, scene, level, links, macro, dt, k=1.0, order=0):
             cmd += ["--macro-steps", str(macro)]
         if order:
             cmd += ["--step-order", str(order)]
-        if dt != 1e-3:
-            cmd += ["--dt", f"{dt:g}"]
+        # always given: a level's own default step is not the configuration's (the strain
+        # level's is 0.5 ms since the sixth session, so "1e-3" left out ran at 0.5 ms)
+        cmd += ["--dt", f"{dt:g}"]
         if k != 1:
             cmd += ["--rod-tol", f"{k:g}"]
         if scene == "obstacle":
