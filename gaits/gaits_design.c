@@ -389,180 +389,178 @@ static csStatus statementFoothold(csgDesign* d, char** w, int nw, const char* pa
 }
 
 
+/* the reader's state between statements (csu_statementFileRead): the open stride and the
+ * lines of the statements allowed once (0: not yet) */
+typedef struct {
+  csgDesign* d;
+  Stride sd;
+  int name_line, sample_line, ramp_line, end_line;
+} designReader;
+
+static csStatus designStatement(void* ctx, char** w, int nw, const char* path, int line,
+                                csError* err) {
+  designReader* c = ctx;
+  csgDesign* d = c->d;
+  csStatus st = CS_OK;
+  const char* key = w[0];
+  double v[3];
+  if (strcmp(key, "phase") != 0) {
+    c->sd.active = 0; /* any other statement closes the stride (a new one opens its own) */
+  }
+  if (!strcmp(key, "name")) {
+    if (nw != 2 || strlen(w[1]) >= sizeof d->name || c->name_line) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'name' needs one word of at most %d "
+                       "characters, once", path, line, (int)sizeof d->name - 1);
+    } else {
+      snprintf(d->name, sizeof d->name, "%s", w[1]);
+      c->name_line = line;
+    }
+  } else if (!strcmp(key, "sample")) {
+    if (nw != 2 || c->sample_line) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'sample' needs one number (s), once", path,
+                       line);
+    } else if ((st = needNumbers(w, nw, 1, 1, v, path, line, err)) == CS_OK &&
+               !(v[0] >= MIN_SAMPLE_S && v[0] <= MAX_SAMPLE_S)) {
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: sample %g s is outside %g..%g s", path, line,
+                       v[0], MIN_SAMPLE_S, MAX_SAMPLE_S);
+    } else {
+      d->sample = v[0];
+      c->sample_line = line;
+    }
+  } else if (!strcmp(key, "ramp")) {
+    /* the actuation time the design assumes, stated by the table (gaits_csv.h `@ramp`) */
+    if (nw != 2 || c->ramp_line) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'ramp' needs one number (s), once", path,
+                       line);
+    } else if ((st = needNumbers(w, nw, 1, 1, v, path, line, err)) == CS_OK &&
+               !(v[0] >= MIN_SAMPLE_S && v[0] <= MAX_SAMPLE_S)) {
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: ramp %g s is outside %g..%g s", path, line,
+                       v[0], MIN_SAMPLE_S, MAX_SAMPLE_S);
+    } else {
+      d->ramp = v[0];
+      c->ramp_line = line;
+    }
+  } else if (!strcmp(key, "pose")) {
+    st = statementPose(d, w, nw, path, line, err);
+  } else if (!strcmp(key, "move")) {
+    int linear = takeLinear(w, &nw);
+    unsigned legs = 0;
+    int p = nw == 5 ? posePeek(d, w[4]) : -1;
+    if (nw != 5) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'move' needs T0 DURATION LEGS POSE "
+                       "[linear|ease-in|ease-out], got %d values", path, line, nw - 1);
+    } else if ((st = needNumbers(w, nw, 1, 2, v, path, line, err)) != CS_OK) {
+    } else if (!(v[1] >= 0 && v[1] <= MAX_DURATION_S)) {
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: duration %g s is outside 0..%g s", path, line,
+                       v[1], MAX_DURATION_S);
+    } else if ((st = parseLegs(w[3], &legs, path, line, err)) != CS_OK) {
+    } else if (p < 0) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown pose '%.30s' (define it with 'pose' "
+                       "first)", path, line, w[4]);
+    } else if ((st = addMove(d, v[0], v[1], legs, p, line, path, err)) == CS_OK) {
+      d->move[d->nmove - 1].linear = linear;
+    }
+  } else if (!strcmp(key, "stride")) {
+    memset(&c->sd, 0, sizeof c->sd);
+    if (nw != 6) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'stride' needs N PERIOD T0 LEGS1 LEGS2, got "
+                       "%d values", path, line, nw - 1);
+    } else if ((st = needNumbers(w, nw, 1, 3, v, path, line, err)) != CS_OK) {
+    } else if (!(v[0] >= 1 && v[0] <= MAX_STRIDES && v[0] == floor(v[0])) ||
+               !(v[1] > 0 && v[1] <= MAX_DURATION_S) || !(v[2] >= 0 && v[2] <= MAX_TIME_S)) {
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: stride needs N in 1..%d, PERIOD in (0, %g] s "
+                       "and T0 in 0..%g s", path, line, MAX_STRIDES, MAX_DURATION_S, MAX_TIME_S);
+    } else if ((st = parseLegs(w[4], &c->sd.legs[0], path, line, err)) != CS_OK ||
+               (st = parseLegs(w[5], &c->sd.legs[1], path, line, err)) != CS_OK) {
+    } else if (c->sd.legs[0] & c->sd.legs[1]) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: the two leg sets of a stride share legs", path,
+                       line);
+    } else {
+      c->sd.active = 1;
+      c->sd.n = (int)v[0];
+      c->sd.period = v[1];
+      c->sd.t0 = v[2];
+      c->sd.line = line;
+      if (d->nstride++ == 0) {
+        d->stride_t0 = c->sd.t0;
+        d->stride_period = c->sd.period;
+        d->stride_n = c->sd.n;
+      }
+    }
+  } else if (!strcmp(key, "phase")) {
+    int linear = takeLinear(w, &nw);
+    int role = -1, p = -1, plast = -1;
+    if (!c->sd.active) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'phase' outside a stride (a 'stride' line "
+                       "and its phases must follow each other)", path, line);
+    } else if (nw != 5 && !(nw == 7 && !strcmp(w[5], "last"))) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'phase' needs START DURATION ROLE POSE "
+                       "[last POSE2] [linear|ease-in|ease-out]", path, line);
+    } else if ((st = needNumbers(w, nw, 1, 2, v, path, line, err)) != CS_OK) {
+    } else if (!(v[0] >= 0 && v[0] < c->sd.period && v[1] >= 0 && v[1] <= MAX_DURATION_S)) {
+      /* a phase may outlast its stride (a stance push that overlaps the next one); the
+       * overlap check keeps each leg's moves apart */
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: phase start %g s must lie in the stride's "
+                       "period [0, %g) s and its duration %g s in 0..%g s", path, line, v[0],
+                       c->sd.period, v[1], MAX_DURATION_S);
+    } else if ((role = !strcmp(w[3], "swing") ? 0 : !strcmp(w[3], "stand") ? 1 : -1) < 0) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: role '%.20s' is not swing or stand", path,
+                       line, w[3]);
+    } else if ((p = posePeek(d, w[4])) < 0 || (nw == 7 && (plast = posePeek(d, w[6])) < 0)) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown pose '%.30s'", path, line,
+                       p < 0 ? w[4] : w[6]);
+    } else {
+      for (int k = 0; k < c->sd.n && st == CS_OK; k++) {
+        /* swing = the legs with their feet forward at the stride's start */
+        unsigned legs = c->sd.legs[(k + role) % 2];
+        int pose = (k == c->sd.n - 1 && plast >= 0) ? plast : p;
+        st = addMove(d, c->sd.t0 + k * c->sd.period + v[0], v[1], legs, pose, line, path, err);
+        if (st == CS_OK) {
+          d->move[d->nmove - 1].linear = linear;
+        }
+      }
+    }
+  } else if (!strcmp(key, "mirror")) {
+    if (nw != 2 || d->mirror) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'mirror' needs one leg set (e.g. CDEF), once",
+                       path, line);
+    } else {
+      st = parseLegs(w[1], &d->mirror, path, line, err);
+    }
+  } else if (!strcmp(key, "foothold")) {
+    st = statementFoothold(d, w, nw, path, line, err);
+  } else if (!strcmp(key, "end")) {
+    if (nw != 2 || c->end_line) {
+      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'end' needs one time (s), once", path, line);
+    } else if ((st = needNumbers(w, nw, 1, 1, v, path, line, err)) == CS_OK &&
+               !(v[0] > 0 && v[0] <= MAX_TIME_S)) {
+      st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: end %g s is outside (0, %g] s", path, line,
+                       v[0], MAX_TIME_S);
+    } else {
+      d->end = v[0];
+      c->end_line = line;
+    }
+  } else {
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.30s' (expected name, "
+                     "sample, ramp, pose, move, stride, phase, mirror, foothold, end)", path, line,
+                     key);
+  }
+  return st;
+}
+
+
 csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
   memset(d, 0, sizeof *d);
   snprintf(d->source, sizeof d->source, "%s", path);
   d->sample = 0.05;
   d->npose = 1;
   snprintf(d->pose[0].name, sizeof d->pose[0].name, "straight");
-  csuLineReader* r = malloc(sizeof *r);
-  csStatus st = r ? csu_lineOpen(r, path, MAX_LINE, "gait design", err)
-                  : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
-  Stride sd;
-  memset(&sd, 0, sizeof sd);
-  int got = 0, line = 0, name_line = 0, sample_line = 0, ramp_line = 0, end_line = 0;
-  while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
-    line = (int)r->lineno;
-    char* w[MAX_WORDS];
-    int nw = csu_statementWords(r->line, w, MAX_WORDS);
-    if (nw == 0) {
-      continue;
-    }
-    if (nw > MAX_WORDS) {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: more than %d words", path, line, MAX_WORDS);
-      break;
-    }
-    const char* key = w[0];
-    double v[3];
-    if (strcmp(key, "phase") != 0) {
-      sd.active = 0; /* any other statement closes the stride (a new one opens its own) */
-    }
-    if (!strcmp(key, "name")) {
-      if (nw != 2 || strlen(w[1]) >= sizeof d->name || name_line) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'name' needs one word of at most %d "
-                         "characters, once", path, line, (int)sizeof d->name - 1);
-      } else {
-        snprintf(d->name, sizeof d->name, "%s", w[1]);
-        name_line = line;
-      }
-    } else if (!strcmp(key, "sample")) {
-      if (nw != 2 || sample_line) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'sample' needs one number (s), once", path,
-                         line);
-      } else if ((st = needNumbers(w, nw, 1, 1, v, path, line, err)) == CS_OK &&
-                 !(v[0] >= MIN_SAMPLE_S && v[0] <= MAX_SAMPLE_S)) {
-        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: sample %g s is outside %g..%g s", path, line,
-                         v[0], MIN_SAMPLE_S, MAX_SAMPLE_S);
-      } else {
-        d->sample = v[0];
-        sample_line = line;
-      }
-    } else if (!strcmp(key, "ramp")) {
-      /* the actuation time the design assumes, stated by the table (gaits_csv.h `@ramp`) */
-      if (nw != 2 || ramp_line) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'ramp' needs one number (s), once", path,
-                         line);
-      } else if ((st = needNumbers(w, nw, 1, 1, v, path, line, err)) == CS_OK &&
-                 !(v[0] >= MIN_SAMPLE_S && v[0] <= MAX_SAMPLE_S)) {
-        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: ramp %g s is outside %g..%g s", path, line,
-                         v[0], MIN_SAMPLE_S, MAX_SAMPLE_S);
-      } else {
-        d->ramp = v[0];
-        ramp_line = line;
-      }
-    } else if (!strcmp(key, "pose")) {
-      st = statementPose(d, w, nw, path, line, err);
-    } else if (!strcmp(key, "move")) {
-      int linear = takeLinear(w, &nw);
-      unsigned legs = 0;
-      int p = nw == 5 ? posePeek(d, w[4]) : -1;
-      if (nw != 5) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'move' needs T0 DURATION LEGS POSE "
-                         "[linear|ease-in|ease-out], got %d values", path, line, nw - 1);
-      } else if ((st = needNumbers(w, nw, 1, 2, v, path, line, err)) != CS_OK) {
-      } else if (!(v[1] >= 0 && v[1] <= MAX_DURATION_S)) {
-        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: duration %g s is outside 0..%g s", path, line,
-                         v[1], MAX_DURATION_S);
-      } else if ((st = parseLegs(w[3], &legs, path, line, err)) != CS_OK) {
-      } else if (p < 0) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown pose '%.30s' (define it with 'pose' "
-                         "first)", path, line, w[4]);
-      } else if ((st = addMove(d, v[0], v[1], legs, p, line, path, err)) == CS_OK) {
-        d->move[d->nmove - 1].linear = linear;
-      }
-    } else if (!strcmp(key, "stride")) {
-      memset(&sd, 0, sizeof sd);
-      if (nw != 6) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'stride' needs N PERIOD T0 LEGS1 LEGS2, got "
-                         "%d values", path, line, nw - 1);
-      } else if ((st = needNumbers(w, nw, 1, 3, v, path, line, err)) != CS_OK) {
-      } else if (!(v[0] >= 1 && v[0] <= MAX_STRIDES && v[0] == floor(v[0])) ||
-                 !(v[1] > 0 && v[1] <= MAX_DURATION_S) || !(v[2] >= 0 && v[2] <= MAX_TIME_S)) {
-        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: stride needs N in 1..%d, PERIOD in (0, %g] s "
-                         "and T0 in 0..%g s", path, line, MAX_STRIDES, MAX_DURATION_S, MAX_TIME_S);
-      } else if ((st = parseLegs(w[4], &sd.legs[0], path, line, err)) != CS_OK ||
-                 (st = parseLegs(w[5], &sd.legs[1], path, line, err)) != CS_OK) {
-      } else if (sd.legs[0] & sd.legs[1]) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: the two leg sets of a stride share legs", path,
-                         line);
-      } else {
-        sd.active = 1;
-        sd.n = (int)v[0];
-        sd.period = v[1];
-        sd.t0 = v[2];
-        sd.line = line;
-        if (d->nstride++ == 0) {
-          d->stride_t0 = sd.t0;
-          d->stride_period = sd.period;
-          d->stride_n = sd.n;
-        }
-      }
-    } else if (!strcmp(key, "phase")) {
-      int linear = takeLinear(w, &nw);
-      int role = -1, p = -1, plast = -1;
-      if (!sd.active) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'phase' outside a stride (a 'stride' line "
-                         "and its phases must follow each other)", path, line);
-      } else if (nw != 5 && !(nw == 7 && !strcmp(w[5], "last"))) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'phase' needs START DURATION ROLE POSE "
-                         "[last POSE2] [linear|ease-in|ease-out]", path, line);
-      } else if ((st = needNumbers(w, nw, 1, 2, v, path, line, err)) != CS_OK) {
-      } else if (!(v[0] >= 0 && v[0] < sd.period && v[1] >= 0 && v[1] <= MAX_DURATION_S)) {
-        /* a phase may outlast its stride (a stance push that overlaps the next one); the
-         * overlap check keeps each leg's moves apart */
-        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: phase start %g s must lie in the stride's "
-                         "period [0, %g) s and its duration %g s in 0..%g s", path, line, v[0],
-                         sd.period, v[1], MAX_DURATION_S);
-      } else if ((role = !strcmp(w[3], "swing") ? 0 : !strcmp(w[3], "stand") ? 1 : -1) < 0) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: role '%.20s' is not swing or stand", path,
-                         line, w[3]);
-      } else if ((p = posePeek(d, w[4])) < 0 || (nw == 7 && (plast = posePeek(d, w[6])) < 0)) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown pose '%.30s'", path, line,
-                         p < 0 ? w[4] : w[6]);
-      } else {
-        for (int k = 0; k < sd.n && st == CS_OK; k++) {
-          /* swing = the legs with their feet forward at the stride's start */
-          unsigned legs = sd.legs[(k + role) % 2];
-          int pose = (k == sd.n - 1 && plast >= 0) ? plast : p;
-          st = addMove(d, sd.t0 + k * sd.period + v[0], v[1], legs, pose, line, path, err);
-          if (st == CS_OK) {
-            d->move[d->nmove - 1].linear = linear;
-          }
-        }
-      }
-    } else if (!strcmp(key, "mirror")) {
-      if (nw != 2 || d->mirror) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'mirror' needs one leg set (e.g. CDEF), once",
-                         path, line);
-      } else {
-        st = parseLegs(w[1], &d->mirror, path, line, err);
-      }
-    } else if (!strcmp(key, "foothold")) {
-      st = statementFoothold(d, w, nw, path, line, err);
-    } else if (!strcmp(key, "end")) {
-      if (nw != 2 || end_line) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'end' needs one time (s), once", path, line);
-      } else if ((st = needNumbers(w, nw, 1, 1, v, path, line, err)) == CS_OK &&
-                 !(v[0] > 0 && v[0] <= MAX_TIME_S)) {
-        st = cs_errorSet(err, CS_ERR_RANGE, "%s:%d: end %g s is outside (0, %g] s", path, line,
-                         v[0], MAX_TIME_S);
-      } else {
-        d->end = v[0];
-        end_line = line;
-      }
-    } else {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.30s' (expected name, "
-                       "sample, ramp, pose, move, stride, phase, mirror, foothold, end)", path, line,
-                       key);
-    }
-  }
-  if (st == CS_OK && got < 0) {
-    st = (csStatus)got;
-  }
-  if (r) {
-    csu_lineClose(r);
-    free(r);
-  }
+  designReader c;
+  memset(&c, 0, sizeof c);
+  c.d = d;
+  int line = 0;
+  csStatus st = csu_statementFileRead(path, MAX_LINE, "gait design", MAX_WORDS, designStatement,
+                                      &c, &line, err);
   if (st != CS_OK) {
     return st;
   }
@@ -585,9 +583,9 @@ csStatus csg_designRead(csgDesign* d, const char* path, csError* err) {
   for (int i = 0; i < d->nmove; i++) {
     t_last = fmax(t_last, d->move[i].t0 + d->move[i].duration);
   }
-  if (end_line && d->end < t_last - 1e-9) {
+  if (c.end_line && d->end < t_last - 1e-9) {
     return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: end %g s is before the last move ends (%g s)",
-                       path, end_line, d->end, t_last);
+                       path, c.end_line, d->end, t_last);
   }
   if (!d->name[0]) {
     snprintf(d->name, sizeof d->name, "unnamed");

@@ -210,55 +210,52 @@ static csStatus statementCandidate(csgFootholdSet* s, char** w, int nw, const ch
 }
 
 
+/* the reader's state between statements (csu_statementFileRead) */
+typedef struct {
+  csgFootholdSet* s;
+  const csgReadOptions* opt;
+} footholdReader;
+
+static csStatus footholdStatement(void* ctx, char** w, int nw, const char* path, int line,
+                                  csError* err) {
+  footholdReader* f = ctx;
+  csgFootholdSet* s = f->s;
+  if (!strcmp(w[0], "foothold")) {
+    if (s->n > 0 && s->fh[s->n - 1].nominal < 0) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: the foothold of line %d has no nominal "
+                         "candidate", path, line, s->fh[s->n - 1].line);
+    }
+    return statementFoothold(s, w, nw, path, line, err);
+  }
+  if (!strcmp(w[0], "candidate")) {
+    return statementCandidate(s, w, nw, path, line, f->opt, err);
+  }
+  return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (foothold, "
+                     "candidate)", path, line, w[0]);
+}
+
+
 csgFootholdSet* csg_footholdRead(const char* path, const csgReadOptions* opt, csError* err) {
   if (!path) {
     cs_errorSet(err, CS_ERR_ARG, "csg_footholdRead: NULL path");
     return NULL;
   }
   csgFootholdSet* s = calloc(1, sizeof *s);
-  csuLineReader* r = calloc(1, sizeof *r);
-  csStatus st = s && r ? csu_lineOpen(r, path, MAX_LINE, "foothold file", err)
-                       : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
-  if (s) {
-    snprintf(s->source, sizeof s->source, "%s", path);
+  if (!s) {
+    cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+    return NULL;
   }
-  int got = 0, line = 0;
-  while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
-    line = (int)r->lineno;
-    char* w[MAX_WORDS];
-    int nw = csu_statementWords(r->line, w, MAX_WORDS);
-    if (nw == 0) {
-      continue;
-    }
-    if (nw > MAX_WORDS) {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: more than %d words", path, line, MAX_WORDS);
-    } else if (!strcmp(w[0], "foothold")) {
-      if (s->n > 0 && s->fh[s->n - 1].nominal < 0) {
-        st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: the foothold of line %d has no nominal "
-                         "candidate", path, line, s->fh[s->n - 1].line);
-      } else {
-        st = statementFoothold(s, w, nw, path, line, err);
-      }
-    } else if (!strcmp(w[0], "candidate")) {
-      st = statementCandidate(s, w, nw, path, line, opt, err);
-    } else {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (foothold, "
-                       "candidate)", path, line, w[0]);
-    }
-  }
-  if (st == CS_OK && got < 0) {
-    st = (csStatus)got;
-  }
+  snprintf(s->source, sizeof s->source, "%s", path);
+  footholdReader f = {s, opt};
+  int line = 0;
+  csStatus st = csu_statementFileRead(path, MAX_LINE, "foothold file", MAX_WORDS,
+                                      footholdStatement, &f, &line, err);
   if (st == CS_OK && s->n == 0) {
     st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: no foothold", path, line > 0 ? line : 1);
   }
   if (st == CS_OK && s->fh[s->n - 1].nominal < 0) {
     st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: the foothold of line %d has no nominal candidate",
                      path, line, s->fh[s->n - 1].line);
-  }
-  if (r) {
-    csu_lineClose(r);
-    free(r);
   }
   if (st != CS_OK) {
     csg_footholdDestroy(s);

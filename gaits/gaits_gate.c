@@ -113,46 +113,43 @@ static csStatus statementGate(csgGateSet* s, char** w, int nw, int seen, const c
 }
 
 
+/* the reader's state between statements (csu_statementFileRead) */
+typedef struct {
+  csgGateSet* s;
+  int seen; /* the design line's number, 0 before it */
+} gateReader;
+
+static csStatus gateStatement(void* ctx, char** w, int nw, const char* path, int line,
+                              csError* err) {
+  gateReader* g = ctx;
+  if (!strcmp(w[0], "design")) {
+    return statementDesign(g->s, w, nw, &g->seen, path, line, err);
+  }
+  if (!strcmp(w[0], "gate")) {
+    return statementGate(g->s, w, nw, g->seen, path, line, err);
+  }
+  return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (design, gate)", path,
+                     line, w[0]);
+}
+
+
 csgGateSet* csg_gateRead(const char* path, csError* err) {
   if (!path) {
     cs_errorSet(err, CS_ERR_ARG, "csg_gateRead: NULL path");
     return NULL;
   }
   csgGateSet* s = calloc(1, sizeof *s);
-  csuLineReader* r = calloc(1, sizeof *r);
-  csStatus st = s && r ? csu_lineOpen(r, path, MAX_LINE, "gate file", err)
-                       : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
-  if (s) {
-    snprintf(s->source, sizeof s->source, "%s", path);
+  if (!s) {
+    cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+    return NULL;
   }
-  int got = 0, line = 0, seen = 0;
-  while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
-    line = (int)r->lineno;
-    char* w[MAX_WORDS];
-    int nw = csu_statementWords(r->line, w, MAX_WORDS);
-    if (nw == 0) {
-      continue;
-    }
-    if (nw > MAX_WORDS) {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: more than %d words", path, line, MAX_WORDS);
-    } else if (!strcmp(w[0], "design")) {
-      st = statementDesign(s, w, nw, &seen, path, line, err);
-    } else if (!strcmp(w[0], "gate")) {
-      st = statementGate(s, w, nw, seen, path, line, err);
-    } else {
-      st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (design, gate)", path,
-                       line, w[0]);
-    }
-  }
-  if (st == CS_OK && got < 0) {
-    st = (csStatus)got;
-  }
+  snprintf(s->source, sizeof s->source, "%s", path);
+  gateReader g = {s, 0};
+  int line = 0;
+  csStatus st = csu_statementFileRead(path, MAX_LINE, "gate file", MAX_WORDS, gateStatement, &g,
+                                      &line, err);
   if (st == CS_OK && s->n == 0) {
     st = cs_errorSet(err, CS_ERR_PARSE, "%s:%d: no gate", path, line > 0 ? line : 1);
-  }
-  if (r) {
-    csu_lineClose(r);
-    free(r);
   }
   if (st != CS_OK) {
     csg_gateDestroy(s);

@@ -191,6 +191,65 @@ static const double* rowPressure(const csgGait* g, int k) {
 }
 
 
+/* u_k of row k (k <= row) at t: the ramp fraction, 1 once finished; ctx is the caller's view
+ * of the rows' start times (the table's, or csg_scheduleEvalHeld's shifted ones) */
+typedef double (*rowFractionFn)(const void* ctx, int k, int row, double t);
+
+/* The schedule at t from the rows j..row whose changes run (j = row + 1: none): the plateau of
+ * row j - 1 (vented for j = 0) plus (P_k - P_{k-1}) S(u_k), k = j..row, all scaled by the
+ * options' pressure scale. One running change is written as a blend so both plateaus come out
+ * exact (s = 0 -> P_{j-1}, s = 1 -> P_row); several (a ramp longer than the row spacing) are
+ * superposed. Shared by csg_scheduleEval and csg_scheduleEvalHeld, which differ only in the
+ * rows' start times. */
+static void superpose(const csgGait* g, const csgScheduleOptions* o, int j, int row, double t,
+                      rowFractionFn fraction, const void* ctx, double p_out[CSG_NLABEL]) {
+  const double K = o->pressure_scale;
+  const double* base = rowPressure(g, j - 1); /* the last finished row's plateau */
+  if (j > row) {
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      p_out[l] = base ? K * base[l] : 0.0;
+    }
+    return;
+  }
+  if (j == row) {
+    const double s = shapeValue(o->shape, fraction(ctx, row, row, t));
+    const double* cur = rowPressure(g, row);
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      double a = base ? base[l] : 0.0;
+      p_out[l] = K * ((1.0 - s) * a + s * cur[l]);
+    }
+    return;
+  }
+  for (int l = 0; l < CSG_NLABEL; l++) {
+    p_out[l] = base ? base[l] : 0.0;
+  }
+  for (int k = j; k <= row; k++) {
+    const double s = shapeValue(o->shape, fraction(ctx, k, row, t));
+    const double* prev = rowPressure(g, k - 1);
+    const double* cur = rowPressure(g, k);
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      p_out[l] += (cur[l] - (prev ? prev[l] : 0.0)) * s;
+    }
+  }
+  for (int l = 0; l < CSG_NLABEL; l++) {
+    p_out[l] *= K;
+  }
+}
+
+
+/* the table's own start times (csg_scheduleEval) */
+typedef struct {
+  const csgGait* g;
+  double ramp;
+} tableRows;
+
+static double tableFraction(const void* ctx, int k, int row, double t) {
+  const tableRows* v = ctx;
+  double inv_r;
+  return rowFraction(v->g, v->ramp, k, row, t, &inv_r);
+}
+
+
 csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, double t,
                           double p_out[CSG_NLABEL]) {
   csgScheduleOptions def = defaultsFor(g);
@@ -199,42 +258,8 @@ csStatus csg_scheduleEval(const csgGait* g, const csgScheduleOptions* opt, doubl
   if (!p_out || !locate(g, o, t, &sp)) {
     return CS_ERR_ARG;
   }
-  double k = o->pressure_scale;
-  const double* base = rowPressure(g, sp.j - 1); /* the last finished row's plateau */
-  if (sp.j > sp.row) {
-    /* nothing running: the plateau (vented before the first row) */
-    for (int l = 0; l < CSG_NLABEL; l++) {
-      p_out[l] = base ? k * base[l] : 0.0;
-    }
-    return CS_OK;
-  }
-  double inv_r;
-  if (sp.j == sp.row) {
-    /* one change running, the case of every ramp that fits its row spacing: written as a
-     * blend so both plateaus come out exact (s = 0 -> a, s = 1 -> cur) */
-    double s = shapeValue(o->shape, rowFraction(g, o->ramp, sp.row, sp.row, t, &inv_r));
-    const double* cur = rowPressure(g, sp.row);
-    for (int l = 0; l < CSG_NLABEL; l++) {
-      double a = base ? base[l] : 0.0;
-      p_out[l] = k * ((1.0 - s) * a + s * cur[l]);
-    }
-    return CS_OK;
-  }
-  /* several changes running (a ramp longer than the row spacing): their superposition */
-  for (int l = 0; l < CSG_NLABEL; l++) {
-    p_out[l] = base ? base[l] : 0.0;
-  }
-  for (int r = sp.j; r <= sp.row; r++) {
-    double s = shapeValue(o->shape, rowFraction(g, o->ramp, r, sp.row, t, &inv_r));
-    const double* prev = rowPressure(g, r - 1);
-    const double* cur = rowPressure(g, r);
-    for (int l = 0; l < CSG_NLABEL; l++) {
-      p_out[l] += (cur[l] - (prev ? prev[l] : 0.0)) * s;
-    }
-  }
-  for (int l = 0; l < CSG_NLABEL; l++) {
-    p_out[l] *= k;
-  }
+  const tableRows v = {g, o->ramp};
+  superpose(g, o, sp.j, sp.row, t, tableFraction, &v, p_out);
   return CS_OK;
 }
 
@@ -245,6 +270,7 @@ typedef struct {
   int nbreak;
   const double* breaks;
   const double* off;
+  double ramp; /* the options' ramp (s) */
 } heldRows;
 
 static double heldStart(const heldRows* h, int k) {
@@ -281,6 +307,13 @@ static int heldRunning(const heldRows* h, double ramp, int k, int row, double t)
 }
 
 
+static double heldFraction(const void* ctx, int k, int row, double t) {
+  const heldRows* h = ctx;
+  const double r = heldRamp(h, h->ramp, k);
+  return heldRunning(h, h->ramp, k, row, t) ? (t - heldStart(h, k)) / r : 1.0;
+}
+
+
 csStatus csg_scheduleEvalHeld(const csgGait* g, const csgScheduleOptions* opt, double t,
                               int nbreak, const double* breaks, const double* off,
                               double t_issued, double p_out[CSG_NLABEL]) {
@@ -290,7 +323,7 @@ csStatus csg_scheduleEvalHeld(const csgGait* g, const csgScheduleOptions* opt, d
       (nbreak > 0 && !breaks) || isnan(t_issued)) {
     return CS_ERR_ARG;
   }
-  const heldRows h = {g, nbreak, breaks, off};
+  const heldRows h = {g, nbreak, breaks, off, o->ramp};
   /* the issued rows: t_i <= t_issued */
   int nis = findRow(g, t_issued) + 1;
   /* the last issued row that has started (shifted starts do not decrease) */
@@ -313,43 +346,7 @@ csStatus csg_scheduleEvalHeld(const csgGait* g, const csgScheduleOptions* opt, d
       }
     }
   }
-  const double K = o->pressure_scale;
-  const double* base = rowPressure(g, j - 1);
-  if (j > row) {
-    for (int l = 0; l < CSG_NLABEL; l++) {
-      p_out[l] = base ? K * base[l] : 0.0;
-    }
-    return CS_OK;
-  }
-  /* the changes j..row running: their sum over the plateau of row j - 1 (one running: the
-   * blend, so both plateaus are exact, as csg_scheduleEval) */
-  if (j == row) {
-    const double r = heldRamp(&h, o->ramp, row);
-    const double u = heldRunning(&h, o->ramp, row, row, t) ? (t - heldStart(&h, row)) / r : 1.0;
-    const double sv = shapeValue(o->shape, u);
-    const double* cur = rowPressure(g, row);
-    for (int l = 0; l < CSG_NLABEL; l++) {
-      double a = base ? base[l] : 0.0;
-      p_out[l] = K * ((1.0 - sv) * a + sv * cur[l]);
-    }
-    return CS_OK;
-  }
-  for (int l = 0; l < CSG_NLABEL; l++) {
-    p_out[l] = base ? base[l] : 0.0;
-  }
-  for (int k = j; k <= row; k++) {
-    const double r = heldRamp(&h, o->ramp, k);
-    const double u = heldRunning(&h, o->ramp, k, row, t) ? (t - heldStart(&h, k)) / r : 1.0;
-    const double sv = shapeValue(o->shape, u);
-    const double* prev = rowPressure(g, k - 1);
-    const double* cur = rowPressure(g, k);
-    for (int l = 0; l < CSG_NLABEL; l++) {
-      p_out[l] += (cur[l] - (prev ? prev[l] : 0.0)) * sv;
-    }
-  }
-  for (int l = 0; l < CSG_NLABEL; l++) {
-    p_out[l] *= K;
-  }
+  superpose(g, o, j, row, t, heldFraction, &h, p_out);
   return CS_OK;
 }
 

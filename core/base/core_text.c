@@ -159,6 +159,43 @@ int csu_statementWords(char* line, char** word, int max) {
   return csu_splitWords(line, word, max);
 }
 
+csStatus csu_statementFileRead(const char* path, size_t max_line, const char* what, int max_words,
+                               csuStatementFn fn, void* ctx, int* last_line, csError* err) {
+  if (last_line) {
+    *last_line = 0;
+  }
+  if (!path || !what || !fn || max_words < 1 || max_words > CSU_STATEMENT_MAX_WORDS) {
+    return cs_errorSet(err, CS_ERR_ARG, "csu_statementFileRead: bad arguments");
+  }
+  csuLineReader* r = malloc(sizeof *r); /* an 8 KiB chunk: not on the stack */
+  csStatus st = r ? csu_lineOpen(r, path, max_line, what, err)
+                  : cs_errorSet(err, CS_ERR_MEMORY, "%s: out of memory", path);
+  int got = 0;
+  while (st == CS_OK && (got = csu_lineNext(r, err)) > 0) {
+    const int line = (int)r->lineno;
+    if (last_line) {
+      *last_line = line;
+    }
+    char* w[CSU_STATEMENT_MAX_WORDS];
+    int nw = csu_statementWords(r->line, w, max_words);
+    if (nw == 0) {
+      continue;
+    }
+    st = nw > max_words ? cs_errorSet(err, CS_ERR_PARSE, "%s:%d: more than %d words", path, line,
+                                      max_words)
+                        : fn(ctx, w, nw, path, line, err);
+  }
+  if (st == CS_OK && got < 0) {
+    st = (csStatus)got;
+  }
+  if (r) {
+    csu_lineClose(r);
+    free(r);
+  }
+  return st;
+}
+
+
 csStatus csu_chamberListParse(const char* text, int nmax, const char* label, unsigned* mask,
                               csError* err) {
   const char* lab = label ? label : "chamber list";

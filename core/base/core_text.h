@@ -4,7 +4,8 @@
  * before anything grows, LF or CRLF endings, a UTF-8 byte-order mark ignored, NUL bytes and
  * stray carriage returns refused at their line and byte), csu_splitWords (whitespace words in
  * place), and the chamber-list parser ("1,2" -> bit mask) of `--chambers` and calibration
- * files. Used by gaits_csv.c, terrains_terrain.c, robot_calibration.c and tools/cmd_bend.c.
+ * files, and the statement-file driver (csu_statementFileRead) of the gate, foothold and gait
+ * design readers. Used by gaits/, terrains_terrain.c, robot_calibration.c and tools/cmd_bend.c.
  * Also the one closing check of every text file written with stdio (csu_writeClose).
  *
  * Why not fgets: it cannot tell an embedded NUL from the end of a line, and an overlong line
@@ -66,6 +67,24 @@ int csu_splitWords(char* line, char** word, int max);
 /* The words of a statement line: drops a '#' comment (to the line's end) in place, then
  * csu_splitWords. 0 for a blank or comment-only line. */
 int csu_statementWords(char* line, char** word, int max);
+
+/* the most words a statement file's statement may hold (csu_statementFileRead's max_words) */
+#define CSU_STATEMENT_MAX_WORDS 64
+
+/* One statement of a statement file: its words (word[0] the keyword, nword <= the reader's
+ * max_words), the file and the 1-based line for messages. Returns CS_OK to go on, or a status
+ * with err filled to stop the read. */
+typedef csStatus (*csuStatementFn)(void* ctx, char** word, int nword, const char* path,
+                                   int line, csError* err);
+
+/* Read a statement file (one statement per line, '#' comments, blank lines skipped: the gate,
+ * foothold and gait design files): opens `path` (lines of at most max_line bytes, `what` names
+ * the kind of file in messages), calls fn for every statement in order and stops at the first
+ * status other than CS_OK. A statement of more than max_words words (1..CSU_STATEMENT_MAX_WORDS)
+ * is refused as "<file>:<line>: more than N words". *last_line (may be NULL) gets the number of
+ * the last line read (0 for an empty file), for the caller's end-of-file checks. */
+csStatus csu_statementFileRead(const char* path, size_t max_line, const char* what, int max_words,
+                               csuStatementFn fn, void* ctx, int* last_line, csError* err);
 
 /* Trim spaces and tabs at both ends of s in place; returns the first kept byte (inside s). */
 char* csu_trimBlanks(char* s);

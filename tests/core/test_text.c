@@ -1,7 +1,8 @@
 /* test_text.c: the shared text readers (core_text.h): the line reader on good and bad files
  * (empty, LF/CRLF, no newline at the end, a byte-order mark, NUL bytes, stray CRs, lines at and
  * past the limit, a directory), word splitting, and the chamber-list parser on every kind of
- * bad list ("", "0", "5", "1,,2", "1,", " 1", "+1", "2,2", huge numbers). */
+ * bad list ("", "0", "5", "1,,2", "1,", " 1", "+1", "2,2", huge numbers), and the statement-file
+ * driver (csu_statementFileRead). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -196,11 +197,77 @@ static void test_chamber_lists(void) {
 }
 
 
+/* csu_statementFileRead's callback for the tests: records each statement's keyword and word
+ * count; a statement "stop" ends the read with CS_ERR_PARSE naming its line */
+typedef struct {
+  char seen[128];
+  int nstatement;
+} statementLog;
+
+static csStatus logStatement(void* ctx, char** word, int nword, const char* path, int line,
+                             csError* err) {
+  statementLog* g = ctx;
+  if (!strcmp(word[0], "stop")) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: stop", path, line);
+  }
+  size_t n = strlen(g->seen);
+  snprintf(g->seen + n, sizeof g->seen - n, "%s%s:%d", n ? "|" : "", word[0], nword);
+  g->nstatement++;
+  return CS_OK;
+}
+
+
+/* the statement-file driver: comments and blank lines skipped, statements in order with their
+ * word counts, the last line reported, too many words refused at their line, the callback's
+ * status stops the read at once, a missing file and bad arguments refused */
+static void test_statement_files(void) {
+  csError err;
+  statementLog g;
+  int last = -1;
+  const char ok[] = "# head\n\na 1 2 # tail\n  b\n\n";
+  writeBytes("text_st.txt", ok, sizeof ok - 1);
+  memset(&g, 0, sizeof g);
+  CS_EXPECT(csu_statementFileRead("text_st.txt", 64, "test file", 4, logStatement, &g, &last,
+                                  &err) == CS_OK);
+  CS_EXPECT(!strcmp(g.seen, "a:3|b:1") && g.nstatement == 2);
+  CS_EXPECT(last == 5);
+  const char many[] = "a 1\nb 1 2 3 4\nc\n";
+  writeBytes("text_st_many.txt", many, sizeof many - 1);
+  memset(&g, 0, sizeof g);
+  CS_EXPECT(csu_statementFileRead("text_st_many.txt", 64, "test file", 4, logStatement, &g, &last,
+                                  &err) == CS_ERR_PARSE);
+  CS_EXPECT(strstr(err.msg, "text_st_many.txt:2: more than 4 words") != NULL);
+  CS_EXPECT(!strcmp(g.seen, "a:2") && last == 2);
+  const char stop[] = "a\nstop\nc\n";
+  writeBytes("text_st_stop.txt", stop, sizeof stop - 1);
+  memset(&g, 0, sizeof g);
+  CS_EXPECT(csu_statementFileRead("text_st_stop.txt", 64, "test file", 4, logStatement, &g, NULL,
+                                  &err) == CS_ERR_PARSE);
+  CS_EXPECT(strstr(err.msg, "text_st_stop.txt:2: stop") != NULL && g.nstatement == 1);
+  /* a line past the limit is the line reader's error, at its line */
+  const char longl[] = "a\nbbbbbbbbbbbbbbbbbbbb\n";
+  writeBytes("text_st_long.txt", longl, sizeof longl - 1);
+  CS_EXPECT(csu_statementFileRead("text_st_long.txt", 8, "test file", 4, logStatement, &g, &last,
+                                  &err) == CS_ERR_RANGE);
+  CS_EXPECT(strstr(err.msg, "text_st_long.txt:2:") != NULL);
+  CS_EXPECT(csu_statementFileRead("text_st_none.txt", 64, "test file", 4, logStatement, &g, &last,
+                                  &err) == CS_ERR_IO && last == 0);
+  CS_EXPECT(strstr(err.msg, "cannot open test file") != NULL);
+  CS_EXPECT(csu_statementFileRead("text_st.txt", 64, "test file", 0, logStatement, &g, &last,
+                                  &err) == CS_ERR_ARG);
+  CS_EXPECT(csu_statementFileRead("text_st.txt", 64, "test file", CSU_STATEMENT_MAX_WORDS + 1,
+                                  logStatement, &g, &last, &err) == CS_ERR_ARG);
+  CS_EXPECT(csu_statementFileRead("text_st.txt", 64, "test file", 4, NULL, &g, &last, &err) ==
+            CS_ERR_ARG);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_lines_good_files);
   CS_RUN(test_lines_bad_files);
   CS_RUN(test_words);
   CS_RUN(test_chamber_lists);
+  CS_RUN(test_statement_files);
   return cs_testSummary();
 }
