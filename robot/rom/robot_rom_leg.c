@@ -50,9 +50,6 @@ struct csrLeg_ {
   double* x;              /* (state size) scratch */
   double* G, *Y;          /* (n x 6) gains' scratch */
   double* G0;             /* (n x 6) G before the contact's part */
-  /* the last gains' flexible share Gᵀ S'⁻¹ G' (36), the hip's twist they were taken at (6: v,
-   * ω, world) and whether they are fresh (1): the momentum carry of advanceRom */
-  double* cz;
   double* Sc;             /* (n x n) gains' scratch: S with the sole's contact, factored */
   double* Fz;             /* (nz) gains' scratch: the history advanced one step */
   double* Fc, *zd;        /* (n), (nz) contact scratch */
@@ -301,7 +298,7 @@ static void destroyRom(csrLeg* leg) {
   }
   csr_romDataDestroy(leg->d);
   free(leg->x), free(leg->G), free(leg->Y), free(leg->Fc), free(leg->zd), free(leg->slot);
-  free(leg->G0), free(leg->cz);
+  free(leg->G0);
   free(leg->Sc), free(leg->Fz);
   free(leg->pts);
   free(leg);
@@ -326,7 +323,6 @@ static csrLeg* createRom(const csrLegSpec* spec, csError* err) {
   leg->G = malloc((size_t)n * 6 * sizeof(double));
   leg->Y = malloc((size_t)n * 6 * sizeof(double));
   leg->G0 = malloc((size_t)n * 6 * sizeof(double));
-  leg->cz = calloc(43, sizeof(double));
   leg->Sc = malloc((size_t)n * n * sizeof(double));
   leg->Fz = malloc((size_t)nz * sizeof(double));
   leg->Fc = malloc((size_t)n * sizeof(double));
@@ -334,7 +330,7 @@ static csrLeg* createRom(const csrLegSpec* spec, csError* err) {
   leg->slot = calloc((size_t)nslot, sizeof *leg->slot);
   leg->pts = malloc((size_t)sh->npt * 3 * sizeof(double));
   if (!leg->d || !leg->x || !leg->G || !leg->Y || !leg->Fc || !leg->zd || !leg->slot ||
-      !leg->pts || !leg->Sc || !leg->Fz || !leg->G0 || !leg->cz) {
+      !leg->pts || !leg->Sc || !leg->Fz || !leg->G0) {
     if (leg->d) cs_errorSet(err, CS_ERR_MEMORY, "rom leg: out of memory");
     destroyRom(leg);
     return NULL;
@@ -346,42 +342,15 @@ static csrLeg* createRom(const csrLegSpec* spec, csError* err) {
   return leg;
 }
 
-static int sharedSize(const csrLeg* leg) { return csr_romStateSize(leg->sh->m); }
+static int stateSizeRom(const csrLeg* leg) { return csr_romStateSize(leg->sh->m); }
 
-/* the leg's state: the reduced model's (robot_rom.h), then the momentum carry's 43 values
- * (cz: the last gains' flexible share, the twist they were taken at, fresh 0/1), which the next
- * advance hands the support: state, so that a restored state (a checkpoint, a rolled-back
- * step) continues with the carry the uninterrupted run has, bit for bit */
-enum { ROM_CARRY_STATE = 43 };
-
-static int stateSizeRom(const csrLeg* leg) { return sharedSize(leg) + ROM_CARRY_STATE; }
-
-static void getStateRom(const csrLeg* leg, double* x) {
-  csr_romGetState(leg->sh->m, leg->d, x);
-  memcpy(x + sharedSize(leg), leg->cz, ROM_CARRY_STATE * sizeof(double));
-}
+static void getStateRom(const csrLeg* leg, double* x) { csr_romGetState(leg->sh->m, leg->d, x); }
 
 static int setStateRom(csrLeg* leg, const double* x) {
-  const double* cz = x + sharedSize(leg);
-  for (int i = 0; i < ROM_CARRY_STATE; i++) {
-    if (!isfinite(cz[i])) {
-      return -1;
-    }
-  }
-  if (!(cz[42] == 0 || cz[42] == 1)) {
-    return -1;
-  }
-  const int rc = csr_romSetState(leg->sh->m, leg->d, x);
-  if (rc == 0) {
-    memcpy(leg->cz, cz, ROM_CARRY_STATE * sizeof(double));
-  }
-  return rc;
+  return csr_romSetState(leg->sh->m, leg->d, x);
 }
 
-static void resetRom(csrLeg* leg) {
-  leg->cz[42] = 0;
-  csr_romReset(leg->sh->m, leg->d, 0.0, &leg->b_reset);
-}
+static void resetRom(csrLeg* leg) { csr_romReset(leg->sh->m, leg->d, 0.0, &leg->b_reset); }
 
 static int actuateRom(csrLeg* leg, double t0, const double p0[12], double t1,
                       const double p1[12]) {
@@ -392,44 +361,12 @@ static int actuateRom(csrLeg* leg, double t0, const double p0[12], double t1,
 /* The Jacobi schemes (sim_coupling.c) start a step at the support's actual state b0, which differs
  * from where the last step left the hip by ΔV in twist; the leg jumps with it rigidly (its state
  * in the hip frame unchanged), its momenta by M6 ΔV, which its wrench never hands the support
- * (robot_rom.h: balanced against the momenta at b0). The support was charged instead, in the
- * last step, the gains' Z ΔV (interfaceGainsRom), which is the leg's momentum change less its
- * flexible share Gᵀ S'⁻¹ G' ΔV (the modes that do not follow the hip within one step). That share
- * is momentum created at every step (measured: the robot falling freely at 1.075 g at H = 1 ms,
- * 1.56 g at 0.1 ms, docs/notes/rom.md "C1 hip motion"); the wrench carries it back to the
- * support in this step: its force rows only (carried in the moment too, the support's rotation
- * grew 2.4 times a step in flight: an explicit feedback through the hips' lever arms), of the
- * flexible share only (the contact's part of Z is an impulse from the ground, not a mismatch of
- * momenta); 0 when no gains were taken since the last advance (Gauss-Seidel's b0 is the last b1:
- * ΔV = 0 there too). Measured on the real leg: the free fall at 1.005 g. */
+ * (robot_rom.h: balanced against the momenta at b0). The gains charge the support that rigid
+ * jump in the step that made it (interfaceGainsRom), so nothing is carried from one advance to
+ * the next. */
 static int advanceRom(csrLeg* leg, double t, double H, const csrBaseState* b0,
                       const csrBaseState* b1, csrWrench* w, csError* err) {
-  double carry[3] = {0, 0, 0};
-  const int fresh = leg->cz[42] != 0;
-  if (fresh) {
-    double dV[6];
-    for (int i = 0; i < 3; i++) {
-      dV[i] = b0->v[i] - leg->cz[36 + i];
-      dV[3 + i] = b0->w[i] - leg->cz[39 + i];
-    }
-    for (int i = 0; i < 3; i++) {
-      for (int j = 0; j < 6; j++) {
-        carry[i] += leg->cz[6 * i + j] * dV[j];
-      }
-    }
-  }
-  leg->cz[42] = 0;
-  const int rc = csr_romAdvance(leg->sh->m, leg->d, t, H, b0, b1, w, err);
-  if (rc != 0) {
-    leg->cz[42] = fresh; /* the state is unchanged: a retry of the step carries it */
-    return rc;
-  }
-  if (w) {
-    for (int i = 0; i < 3; i++) {
-      w->f[i] -= carry[i] / H;
-    }
-  }
-  return 0;
+  return csr_romAdvance(leg->sh->m, leg->d, t, H, b0, b1, w, err);
 }
 
 void csr_romLegStats(const csrLeg* leg, csrRomStats* s) { csr_romGetStats(leg->d, s); }
@@ -537,8 +474,9 @@ static int soleStepMatrix(const csrLeg* leg, const double* b, double Ac[9], doub
  * inertia of the deformed leg about the hip; the same G carries q' into the momenta) less the
  * contact's impulse h J_sᵀ Δf, is -Z ΔV with
  *   Z = M6 + h J_sᵀ A_c J_s - G'ᵀ S'⁻¹ G'   (symmetric, positive semi-definite):
- * C = Z / h, K = 0. Out of contact (A_c = 0) Z is the inertia alone, M6 - Gᵀ S⁻¹ G (a free leg
- * has no stiffness at its hip). Without the contact in them, a leg standing on its sole
+ * C = (Z + G0ᵀ S'⁻¹ G') / h (the flexible share added back: below), K = 0. Out of contact
+ * (A_c = 0) Z is the inertia alone, M6 - Gᵀ S⁻¹ G (a free leg has no stiffness at its hip), and
+ * C = M6 / h. Without the contact in them, a leg standing on its sole
  * hands the support an explicit stiffness that the light support's step cannot carry
  * (docs/notes/rom.md "Settling on rom legs"). Not in them: the sole's rotation (the
  * contact's couple on its tilt). */
@@ -722,32 +660,34 @@ static void interfaceGainsRom(const csrLeg* leg, double K[36], double C[36]) {
       Z[6 * (3 + i) + 3 + j] = Iw[3 * i + j];
     }
   }
-  for (int i = 0; c && i < 6; i++) {
-    for (int j = 0; j < 6; j++) {
-      double a = 0;
-      for (int k = 0; k < n; k++) {
-        a += G[6 * k + i] * Y[6 * k + j];
-      }
-      Z[6 * i + j] += Zc[6 * i + j] - a;
-    }
+  /* What the leg does with ΔV is not what Z assumes: the Jacobi schemes never hand it the
+   * response Δq' = -S'⁻¹ G' ΔV, it jumps rigidly with its hip at the next step's start (its
+   * momenta by M6 ΔV; advanceRom). So the support is charged that jump: Z's flexible share
+   * G0ᵀ S'⁻¹ G' (G0 without the contact's part, which is an impulse from the ground) is added
+   * back, C h = Z + G0ᵀ S'⁻¹ G' = M6 + h J_sᵀ A_c J_s - (G' - G0)ᵀ S'⁻¹ G', unsymmetrised in
+   * contact (the impulse, row for row), M6 out of contact (G' = G0): exact. Left out (Z alone),
+   * that share is momentum created at every step (the robot fell at 1.075 g at H = 1 ms);
+   * handed back explicitly a step late (the carry of branch romrun) it is an added-mass
+   * feedback of ratio -share / (support + Z) per step, which the light support's yaw
+   * (0.27 t mm², against 2.0 t mm² of the eight 34.8 g legs at their hips) amplified 1.3 times
+   * a step, alternating, until the flat road's settling failed (docs/notes/rom.md "The rom
+   * legs' settling under paper") */
+  for (int i = 0; c && i < 36; i++) {
+    Z[i] += Zc[i];
   }
   for (int i = 0; i < 36; i++) {
     K[i] = 0.0;
     C[i] = 0.5 * (Z[i] + Z[6 * (i % 6) + i / 6]) / h;
   }
-  /* the flexible share G0ᵀ S'⁻¹ G' and the twist it is for: advanceRom's carry */
-  for (int i = 0; c && i < 6; i++) {
+  for (int i = 0; c && Sf != sh->Sl && i < 6; i++) {
     for (int j = 0; j < 6; j++) {
       double a = 0;
       for (int k = 0; k < n; k++) {
-        a += leg->G0[6 * k + i] * Y[6 * k + j];
+        a += (G[6 * k + i] - leg->G0[6 * k + i]) * Y[6 * k + j];
       }
-      leg->cz[6 * i + j] = a;
+      C[6 * i + j] -= a / h;
     }
   }
-  memcpy(leg->cz + 36, b + 12, 3 * sizeof(double));
-  memcpy(leg->cz + 39, b + 15, 3 * sizeof(double));
-  leg->cz[42] = c != NULL;
 }
 
 /* the sole's load at the current state (0 out of contact or without a terrain) */

@@ -10,7 +10,13 @@
  * $CS_SOURCE_DIR. Time starts at -settle (the driver's), the steps are
  * cs_step's macro steps from the built robot (0.5 mm above the ground). CS_BENCH_CARRY=0: the
  * Gauss-Seidel scheme without its impulse carry (csOptions.coupling_carry). CRAWLSIM_ROM_TOL:
- * the legs' CVODE tolerances times this (the level's setting rod_tol, `--rod-tol`). */
+ * the legs' CVODE tolerances times this (the level's setting rod_tol, `--rod-tol`).
+ * CS_BENCH_SCENE=flat-road: that scene with its own gait, calibration, actuator and conditions
+ * (`paper`) instead, as `crawlsim run --scene flat-road --legs rom` settles it.
+ * CS_BENCH_COND=paper|earth: the conditions. CS_BENCH_LEGS=1: after each step a line per leg
+ * (its hip wrench f, m, the foot's force, the sole's friction history z, world), and the
+ * support's v and ω vectors in the step's line (docs/notes/rom.md "The rom legs' settling under
+ * paper"). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,12 +51,19 @@ int main(int argc, char** argv) {
   csRunDef def = cs_defaultRunDef();
   def.legs = "rom";
   def.rom_file = argv[1];
-  def.actuator_set = sets;
-  def.n_actuator_set = 3;
-  def.calibration = cal;
-  def.no_gait = 1;
-  def.t_end = 1;
-  def.conditions = "earth";
+  const char* scene = getenv("CS_BENCH_SCENE");
+  if (scene) {
+    def.scene = scene;
+  } else {
+    def.actuator_set = sets;
+    def.n_actuator_set = 3;
+    def.calibration = cal;
+    def.no_gait = 1;
+    def.t_end = 1;
+    def.conditions = "earth";
+  }
+  if (getenv("CS_BENCH_COND")) def.conditions = getenv("CS_BENCH_COND");
+  const int per_leg = getenv("CS_BENCH_LEGS") ? atoi(getenv("CS_BENCH_LEGS")) : 0;
   if (argc > 3) def.coupling = argv[3];
   if (argc > 4) def.dt = atof(argv[4]);
   if (argc > 5) def.macro_steps = atof(argv[5]);
@@ -124,6 +137,28 @@ int main(int argc, char** argv) {
            i, cs_time(d), p[1], v[1], sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), fy, wy,
            cs_legContactDepth(m, d), cpu, cnt[0], cnt[1], cnt[2], cnt[9], cnt[3], cnt[4], cnt[5],
            cnt[6], cnt[7], cnt[8], st == CS_OK ? "" : " FAILED: ", st == CS_OK ? "" : err.msg);
+    if (per_leg) {
+      printf("  v %.4g %.4g %.4g mm/s w %.5g %.5g %.5g rad/s\n", v[0], v[1], v[2], w[0], w[1],
+             w[2]);
+      const csrLegType* lt = &csr_leg_rom;
+      for (int k = 0; k < 8; k++) {
+        double f[3];
+        csrWrench wr;
+        const csrLeg* leg = cs_leg(d, k);
+        cs_footForce(m, d, k, f);
+        cs_legWrench(d, k, &wr);
+        /* the sole's history: the leg state's last 4 doubles (robot_rom.h csr_romGetState;
+         * the patch foot's z, phi) */
+        const int ns = lt->stateSize(leg);
+        double* x = malloc((size_t)ns * sizeof(double));
+        lt->getState(leg, x);
+        const double* z = x + ns - 4;
+        printf("  leg %c f %.4g %.4g %.4g m %.4g %.4g %.4g foot %.4g %.4g %.4g z %.3g %.3g %.3g "
+               "%.3g\n", 'A' + k, wr.f[0], wr.f[1], wr.f[2], wr.m[0], wr.m[1], wr.m[2], f[0],
+               f[1], f[2], z[0], z[1], z[2], z[3]);
+        free(x);
+      }
+    }
     fflush(stdout);
     if (st != CS_OK) {
       break;

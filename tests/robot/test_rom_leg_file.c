@@ -466,8 +466,9 @@ static void test_romGainsInContactAreTheHipStiffness(void) {
  * ODE step h and settings ls (NULL: the defaults); *sh gets the shared part */
 static const double kHanging[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
 
-static csrLeg* hangingLeg(const csrLegType* T, const csrActuator* act, const csrLegParams* lp,
-                          const csrLegSettings* ls, double h, void** sh) {
+/* the level on the block hanging from a hip at the origin, gravity g (mm/s², world) */
+static csrLeg* hangingLegG(const csrLegType* T, const csrActuator* act, const csrLegParams* lp,
+                           const csrLegSettings* ls, double h, const double g[3], void** sh) {
   csError err = {0};
   csrLegSpec spec;
   memset(&spec, 0, sizeof spec);
@@ -476,7 +477,7 @@ static csrLeg* hangingLeg(const csrLegType* T, const csrActuator* act, const csr
   spec.settings = ls;
   spec.leg_file = kPath;
   spec.h = h;
-  spec.gravity[1] = -9810.0;
+  memcpy(spec.gravity, g, sizeof spec.gravity);
   memcpy(spec.frame, kHanging, sizeof kHanging);
   *sh = NULL;
   CS_ASSERT(T->sharedCreate(&spec, sh, &err) == 0);
@@ -484,6 +485,12 @@ static csrLeg* hangingLeg(const csrLegType* T, const csrActuator* act, const csr
   csrLeg* leg = T->create(&spec, &err);
   CS_ASSERT(leg != NULL);
   return leg;
+}
+
+static csrLeg* hangingLeg(const csrLegType* T, const csrActuator* act, const csrLegParams* lp,
+                          const csrLegSettings* ls, double h, void** sh) {
+  const double g[3] = {0, -9810.0, 0};
+  return hangingLegG(T, act, lp, ls, h, g, sh);
 }
 
 
@@ -544,16 +551,13 @@ static void test_romLevelToleranceSetting(void) {
   remove(kPath);
 }
 
-/* The Jacobi coupling keeps momentum on rom legs (robot_rom_leg.c advanceRom's carry): the level
- * on the block hanging from a point-mass support (translation only, M = 4 legs' mass), both
- * falling freely under gravity, coupled as the stabilised scheme does (sim_coupling.c: the leg
- * advances along the constant-velocity prediction, the support's backward-Euler step solved
- * with the gains' translational block A, the force w - A (V1 - V) applied). Nothing holds them:
- * the support must fall at g, as the centre of mass does; without the carry the gains' flexible
- * share (momentum the legs' rigid jumps create at every step) made it fall faster (the real
- * leg's robot at 1.075 g; here 0.56 % fast). Over the last 20 of 40 steps of 20 µs: within
- * 0.2 % of g. */
-static void test_romJacobiCouplingFallsAtG(void) {
+/* The Jacobi coupling on rom legs, as the stabilised scheme does it (one advance along the
+ * predicted motion, the gains' translational block A, the force w - A (V1 - V) applied), of a
+ * point-mass support of mass ratio x the leg's under gravity g (mm/s², world, the leg's too):
+ * nsteps steps of H. Returns the support's acceleration along g over the second half (mm/s²,
+ * signed along g's direction) and in *jerk the largest change of the support's velocity
+ * change from one step to the next over that half (mm/s). */
+static double jacobiFall(double ratio, const double g[3], double H, int nsteps, double* jerk) {
   Block b;
   blockCreate(&b, 4);
   csError err = {0};
@@ -562,14 +566,12 @@ static void test_romJacobiCouplingFallsAtG(void) {
   const csrLegType* T = csr_legTypeFind("rom", NULL);
   CS_ASSERT(T != NULL);
   csrLegParams lp = csr_defaultLegParams(&act);
-  /* h short against the block's 134 Hz, so that its modes do not follow the hip within a step
-   * (a large flexible share, as the real leg's at 1 ms) */
-  const double H = 2e-5, g = -9810.0;
   void* sh;
-  csrLeg* leg = hangingLeg(T, &act, &lp, NULL, H, &sh);
-  const double M = 4 * T->mass(leg);
-  double X[3] = {0, 0, 0}, V[3] = {0, 0, 0}, v_mid = 0, t_mid = 0, t = 0;
-  for (int s = 0; s < 40; s++) {
+  csrLeg* leg = hangingLegG(T, &act, &lp, NULL, H, g, &sh);
+  const double M = ratio * T->mass(leg), gn = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  double X[3] = {0, 0, 0}, V[3] = {0, 0, 0}, v_mid = 0, t_mid = 0, t = 0, dv_last = NAN;
+  *jerk = 0;
+  for (int s = 0; s < nsteps; s++) {
     csrBaseState b0, b1;
     memset(&b0, 0, sizeof b0);
     memcpy(b0.R, kHanging, sizeof kHanging);
@@ -586,7 +588,7 @@ static void test_romJacobiCouplingFallsAtG(void) {
     /* (M + H A) V1 = M V + H (M g + w + A V), A the gains' translational block */
     double A[9], rhs[3];
     for (int i = 0; i < 3; i++) {
-      rhs[i] = M * V[i] + H * (M * (i == 1 ? g : 0.0) + w.f[i]);
+      rhs[i] = M * V[i] + H * (M * g[i] + w.f[i]);
       for (int j = 0; j < 3; j++) {
         A[3 * i + j] = (i == j ? M : 0.0) + H * C[6 * i + j];
         rhs[i] += H * C[6 * i + j] * V[j];
@@ -605,24 +607,66 @@ static void test_romJacobiCouplingFallsAtG(void) {
       V1[c] = (Ac[0] * (Ac[4] * Ac[8] - Ac[5] * Ac[7]) - Ac[1] * (Ac[3] * Ac[8] - Ac[5] * Ac[6]) +
                Ac[2] * (Ac[3] * Ac[7] - Ac[4] * Ac[6])) / det;
     }
+    double dv = 0;
     for (int i = 0; i < 3; i++) {
+      dv += (V1[i] - V[i]) * g[i] / gn;
       X[i] += H * V1[i];
       V[i] = V1[i];
     }
     t += H;
-    if (s == 19) {
-      v_mid = V[1];
+    if (s >= nsteps / 2 && isfinite(dv_last)) {
+      *jerk = fmax(*jerk, fabs(dv - dv_last));
+    }
+    dv_last = dv;
+    if (s == nsteps / 2 - 1) {
+      v_mid = (V[0] * g[0] + V[1] * g[1] + V[2] * g[2]) / gn;
       t_mid = t;
     }
   }
-  const double acc = (V[1] - v_mid) / (t - t_mid);
-  printf("  the support falls at %.6g mm/s^2 against g %.6g (%.3f %%)\n", acc, g,
-         100 * (acc / g - 1));
-  CS_EXPECT(fabs(acc / g - 1) < 2e-3);
   T->destroy(leg);
   T->sharedDestroy(sh);
   blockDestroy(&b);
   remove(kPath);
+  return ((V[0] * g[0] + V[1] * g[1] + V[2] * g[2]) / gn - v_mid) / (t - t_mid);
+}
+
+/* The Jacobi coupling keeps momentum on rom legs (robot_rom_leg.c interfaceGainsRom: the gains
+ * charge the support the leg's rigid jump): the level on the block under a point-mass support
+ * of four legs' mass, coupled as the stabilised scheme does at H = h = 20 µs. Nothing holds
+ * them: the support must fall at g, as the centre of mass does; with Z alone (the flexible share
+ * left out: momentum the legs' rigid jumps create at every step) it fell faster (the real leg's
+ * robot at 1.075 g; here 0.56 % fast). Over the last 20 of 40 steps: within 0.2 % of g. */
+static void test_romJacobiCouplingFallsAtG(void) {
+  /* h short against the block's 134 Hz, so that its modes do not follow the hip within a step
+   * (a flexible share, as the real leg's at 1 ms) */
+  const double g[3] = {0, -9810.0, 0};
+  double jerk;
+  const double acc = -jacobiFall(4.0, g, 2e-5, 40, &jerk);
+  printf("  the support falls at %.6g mm/s^2 against g %.6g (%.3f %%)\n", acc, g[1],
+         100 * (acc / g[1] - 1));
+  CS_EXPECT(fabs(acc / g[1] - 1) < 2e-3);
+}
+
+/* The same coupling with a support much lighter than the leg, falling across the leg (its
+ * bending: the largest flexible share) as the flat road's support turns about the vertical
+ * (its yaw inertia 0.27 t mm², the eight legs' 2.0 t mm² at their hips): the coupling stays
+ * stable and momentum exact. Handed back explicitly a step late (branch romrun's carry), the
+ * flexible share s was an added-mass feedback of ratio -s / (M + Z) per step: the support's
+ * velocity change alternated and grew (docs/notes/rom.md "The rom legs' settling under
+ * paper"; at this H the block's share made that ratio exceed 1: it diverged within 60 steps).
+ * 400 steps of 2 µs (the start, where the support alone lags the leg's fall, has settled by the
+ * second half); criteria over the second half: the acceleration within 0.2 % of g, and the
+ * velocity change from one step to the next within 1e-3 of g H (an alternating mode shows
+ * there). */
+static void test_romJacobiCouplingStableOnALightSupport(void) {
+  const double g[3] = {9810.0, 0, 0}, H = 2e-6;
+  double jerk;
+  const double acc = jacobiFall(0.05, g, H, 400, &jerk);
+  printf("  support at 0.05 of the leg's mass, falling across it: %.6g mm/s^2 against g %.6g "
+         "(%.3f %%); velocity change varies by %.3g of g H\n", acc, g[0], 100 * (acc / g[0] - 1),
+         jerk / (g[0] * H));
+  CS_EXPECT(fabs(acc / g[0] - 1) < 2e-3);
+  CS_EXPECT(jerk < 1e-3 * g[0] * H);
 }
 
 int main(void) {
@@ -633,6 +677,7 @@ int main(void) {
   CS_RUN(test_romGainsInContactAreTheHipStiffness);
   CS_RUN(test_romLevelToleranceSetting);
   CS_RUN(test_romJacobiCouplingFallsAtG);
+  CS_RUN(test_romJacobiCouplingStableOnALightSupport);
   remove(kPath);
   return cs_testSummary();
 }
