@@ -82,6 +82,8 @@ csrStrainParams csr_strainDefaultParams(void) {
    * strain_leg.md, "A kept iteration matrix") */
   p.keep_matrix = 0;
   p.keep_strain = 0.05;
+  /* the pressures as given until a resolution is chosen by measurement */
+  p.cal_quantum = 0;
   return p;
 }
 
@@ -132,7 +134,8 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       (par.active_set != 0 && par.active_set != 1) ||
       (par.friction_tangent != 0 && par.friction_tangent != 1) ||
       (par.keep_matrix != 0 && par.keep_matrix != 1) ||
-      (par.keep_matrix && par.step_order != 1) || isnan(par.keep_strain)) {
+      (par.keep_matrix && par.step_order != 1) || isnan(par.keep_strain) ||
+      !(par.cal_quantum >= 0) || !isfinite(par.cal_quantum)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
                 "static_max_iter >= 1, step_order 1 or 2, step_refresh, active_set and "
@@ -360,20 +363,39 @@ void csr_strainDataDestroy(csrStrainData* d) {
 
 /* rest strains (b) and stiffness (Kd) of every piece at pressures p; 0 or the calibration's
  * code with msg filled */
-static int actuationInto(const csrStrainModel* m, const double p[12], double* Kd, double* b,
-                         char* msg, size_t msg_size);
+static int actuationInto(const csrStrainModel* m, csrStrainData* d, const double p[12],
+                         double* Kd, double* b, char* msg, size_t msg_size);
 
 
-static int actuationInto(const csrStrainModel* m, const double p[12], double* Kd, double* b,
-                         char* msg, size_t msg_size) {
+/* Kd, b at the pressures p (MPa) through the calibration path, each segment's pressures first
+ * rounded to the model's cal_quantum (0: as given). A segment whose rounded pressures are bit
+ * for bit those of d's last evaluation (d->cal) reuses it: the calibration's RBF field is the
+ * step's largest fixed cost when it runs every step for every leg (docs/notes/strain_leg.md
+ * "Cost per pass, sixth session": 0.30e9 instructions per simulated s at 1 ms). */
+static int actuationInto(const csrStrainModel* m, csrStrainData* d, const double p[12],
+                         double* Kd, double* b, char* msg, size_t msg_size) {
   csrRodSegmentActuation act[CSR_NSEG];
   int have[CSR_NSEG] = {0, 0, 0};
+  const double dq = m->par.cal_quantum;
   for (int k = 0; k < m->npiece; k++) {
     int s = m->piece[k].segment;
     if (s >= 0 && !have[s]) {
-      int rc = csr_rodActuationEval_(m->rod, s, p + 4 * s, &act[s], msg, msg_size);
-      if (rc != 0) {
-        return rc;
+      double ps[4];
+      for (int c = 0; c < 4; c++) {
+        ps[c] = dq > 0 ? dq * nearbyint(p[4 * s + c] / dq) : p[4 * s + c];
+      }
+      if (d->cal.valid[s] && memcmp(ps, d->cal.p[s], sizeof ps) == 0) {
+        act[s] = d->cal.act[s];
+      } else {
+        d->cal.valid[s] = 0;
+        int rc = csr_rodActuationEval_(m->rod, s, ps, &act[s], msg, msg_size);
+        d->ncal++;
+        if (rc != 0) {
+          return rc;
+        }
+        memcpy(d->cal.p[s], ps, sizeof ps);
+        d->cal.act[s] = act[s];
+        d->cal.valid[s] = 1;
       }
       have[s] = 1;
     }
@@ -525,7 +547,7 @@ void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
   d->grav = 0;
   /* the vented pressures' rest strains: a calibration may give a vented segment a stretch */
   char msg[8];
-  if (actuationInto(m, d->p, d->Kd, d->b, msg, sizeof msg) != 0) {
+  if (actuationInto(m, d, d->p, d->Kd, d->b, msg, sizeof msg) != 0) {
     /* a calibration that refuses zero pressures leaves the section's stiffness, no strain */
     for (int k = 0; k < m->npiece; k++) {
       const csrRodSection* S = &m->piece[k].section;
@@ -565,7 +587,7 @@ int csr_strainActuate(const csrStrainModel* m, csrStrainData* d, const double p[
     return 0;
   }
   char msg[256] = "";
-  int rc = actuationInto(m, p, d->K1, d->b1, msg, sizeof msg);
+  int rc = actuationInto(m, d, p, d->K1, d->b1, msg, sizeof msg);
   if (rc != 0) {
     cs_errorSet(err, rc == CSR_MAP_OUT_OF_RANGE ? CS_ERR_RANGE : CS_ERR_SOLVER, "strain: %s",
                 msg);
@@ -767,7 +789,7 @@ csStatus csr_strainStatic(const csrStrainModel* m, csrStrainData* d, const csrRo
   const int n = m->n;
   /* the target's rest strains and stiffness (K1, b1); the start's (K0, b0) */
   char msg[256] = "";
-  int rc = actuationInto(m, load->p, d->K1, d->b1, msg, sizeof msg);
+  int rc = actuationInto(m, d, load->p, d->K1, d->b1, msg, sizeof msg);
   if (rc != 0) {
     return cs_errorSet(err, rc == CSR_MAP_OUT_OF_RANGE ? CS_ERR_RANGE : CS_ERR_SOLVER,
                        "strain static: %s", msg);

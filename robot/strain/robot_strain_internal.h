@@ -89,11 +89,22 @@ struct csrStrainModel_ {
   double L, mass;
 };
 
+/* The calibration's last evaluation per segment (robot_strain.c actuationInto): its rounded
+ * pressures and what the calibration returned there. A cache, not state: the calibration is a
+ * function of the rounded pressures alone, so the same bits give the same result. */
+typedef struct csrStrainCalMemo_ {
+  int valid[CSR_NSEG];
+  double p[CSR_NSEG][4];
+  csrRodSegmentActuation act[CSR_NSEG];
+} csrStrainCalMemo;
+
 struct csrStrainData_ {
   double* q;      /* (n) generalised coordinates */
   double* Kd;     /* (n) diagonal of K at the current actuation */
   double* b;      /* (n) ∫ΦᵀC(ξ0 - ξ*) at the current actuation */
   double p[CSR_NSEG * CSR_NCHAMBER]; /* pressures of the current actuation (MPa) */
+  csrStrainCalMemo cal; /* the calibration's last evaluation per segment (a cache) */
+  long ncal;            /* segment evaluations of the calibration since creation (a count) */
   double tip_f[3], tip_m[3];         /* the last static load's tip force and moment */
   int grav;                          /* and whether its weight acted */
   double* eta;    /* (n) generalised velocities q̇ */

@@ -20,6 +20,8 @@
  *    along e1 (the FE's loaded case, docs/bench/rod_vs_fe_sym_2026-12-04) on the 23-mode
  *    symmetric-mesh table under rbf-pair and on the shipped table: within 1 mm of the nodal rod
  *    at 16 elements per segment; prints the error by bending order and sub-intervals.
+ *  - leg_tip_load_against_sub_intervals: the same load at the level's links 2 for 1 to 16 Magnus
+ *    sub-intervals per piece: within 1 mm of the nodal rod at each, converging as they double.
  *  - hanging_leg_weight: the bent leg under its weight (conditions `earth`) against the nodal
  *    rod at 16 elements per segment.
  *  - failed_static_changes_nothing: a calibration refusing the pressure leaves q as it was. */
@@ -455,6 +457,59 @@ static void leg_tip_load_vs_nodal(void) {
 }
 
 
+/* The quadrature's resolution (nsub: Magnus sub-intervals per flexible piece) at the level's
+ * basis (links 2, bend order 1), on the flat road's table: the loaded leg's tip against the nodal
+ * rod at 16 elements per segment within the issue's 1 mm at every nsub from 1, and the tip's
+ * distance from the same leg at 16 sub-intervals (the kinematics' own error) shrinking as nsub
+ * doubles */
+static void leg_tip_load_against_sub_intervals(void) {
+  LegCal c;
+  if (!openCal(&c, "calibration_fe_leg_modes_sym.h5", "rbf-pair")) {
+    return;
+  }
+  const double pmax = fmin(0.4, c.map.p_max);
+  csrRodModel* rm = nodalLeg(&c, 16, NULL);
+  csError err;
+  csrRodData* rd = rm ? csr_rodDataCreate(rm, &err) : NULL;
+  CS_EXPECT(rd != NULL);
+  const int subs[5] = {16, 1, 2, 4, 8};
+  double tips[5][9][3], prev = INFINITY;
+  for (int i = 0; rd && i < 5; i++) {
+    csrStrainParams sp = csr_strainDefaultParams();
+    sp.bend_order = 1;
+    sp.nsub = subs[i];
+    csrStrainModel* sm = strainLeg(&c, &sp, NULL);
+    csrStrainData* sd = sm ? csr_strainDataCreate(sm, &err) : NULL;
+    CS_EXPECT(sd != NULL);
+    double worst = 0, self = 0;
+    for (int j = 0; sd && j <= 8; j++) {
+      csrRodStaticLoad ld;
+      memset(&ld, 0, sizeof ld);
+      for (int s = 0; s < 3; s++) {
+        ld.p[4 * s] = ld.p[4 * s + 1] = pmax * j / 8;
+      }
+      ld.tip_force[0] = 0.05;
+      double tn[3];
+      CS_EXPECT(strainTip(sm, sd, &ld, tips[i][j]) && nodalTip(rm, rd, &ld, tn));
+      worst = fmax(worst, dist3(tips[i][j], tn));
+      self = fmax(self, dist3(tips[i][j], tips[0][j]));
+    }
+    printf("  links 2, %2d sub-intervals: worst %.4f mm from the nodal rod at 16 elements, "
+           "%.3e mm from 16 sub-intervals\n", subs[i], worst, self);
+    CS_EXPECT(worst < 1.0); /* the 1 mm */
+    if (i > 0) {
+      CS_EXPECT(self < prev); /* converging in nsub */
+      prev = self;
+    }
+    csr_strainDataDestroy(sd);
+    csr_strainModelDestroy(sm);
+  }
+  csr_rodDataDestroy(rd);
+  csr_rodModelDestroy(rm);
+  csr_calibrationClose(c.cal);
+}
+
+
 static void hanging_leg_weight(void) {
   LegCal c;
   if (!openCal(&c, "calibration_fe_leg.h5", NULL)) {
@@ -555,6 +610,7 @@ int main(int argc, char** argv) {
   CS_RUN(tip_load_large_vs_nodal);
   CS_RUN(leg_unloaded_on_calibrated_arcs);
   CS_RUN(leg_tip_load_vs_nodal);
+  CS_RUN(leg_tip_load_against_sub_intervals);
   CS_RUN(hanging_leg_weight);
   CS_RUN(failed_static_changes_nothing);
   return cs_testSummary();
