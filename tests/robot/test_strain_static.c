@@ -20,6 +20,9 @@
  *    along e1 (the FE's loaded case, docs/bench/rod_vs_fe_sym_2026-12-04) on the 23-mode
  *    symmetric-mesh table under rbf-pair and on the shipped table: within 1 mm of the nodal rod
  *    at 16 elements per segment; prints the error by bending order and sub-intervals.
+ *  - calibration_is_a_function_of_the_pressures: the actuation after a sequence of pressures
+ *    equals the one made at the last pressures directly (bit for bit), exactly and at a
+ *    pressure resolution (cal_quantum); a segment whose pressures held is not evaluated again.
  *  - leg_tip_load_against_sub_intervals: the same load at the level's links 2 for 1 to 16 Magnus
  *    sub-intervals per piece: within 1 mm of the nodal rod at each, converging as they double.
  *  - hanging_leg_weight: the bent leg under its weight (conditions `earth`) against the nodal
@@ -34,6 +37,7 @@
 #include "robot_calibration_model.h"
 #include "robot_rod.h"
 #include "robot_strain.h"
+#include "robot_strain_internal.h"
 
 static csrRodPiece uniformPiece(double L, double G) {
   csrRodPiece p;
@@ -510,6 +514,89 @@ static void leg_tip_load_against_sub_intervals(void) {
 }
 
 
+/* d's stiffness and rest-strain terms (Kd, b) bit for bit equal to e's */
+static int sameActuation(const csrStrainModel* m, const csrStrainData* d, const csrStrainData* e) {
+  const size_t sz = (size_t)csr_strainDofs(m) * sizeof(double);
+  return memcmp(d->Kd, e->Kd, sz) == 0 && memcmp(d->b, e->b, sz) == 0;
+}
+
+
+/* The calibration's per-segment memo and its pressure resolution (cal_quantum): the actuation
+ * is a function of the pressures alone (a leg actuated through a sequence of pressures and one
+ * actuated at the last of them directly agree bit for bit, so a restored state needs nothing
+ * more), a segment whose pressures held is not evaluated again, and with a resolution the
+ * pressures within one quantum of the same multiple give the same actuation */
+static void calibration_is_a_function_of_the_pressures(void) {
+  LegCal c;
+  if (!openCal(&c, "calibration_fe_leg_modes_sym.h5", "rbf-pair")) {
+    return;
+  }
+  const double quanta[2] = {0, 0.01};
+  for (int qi = 0; qi < 2; qi++) {
+    csrStrainParams sp = csr_strainDefaultParams();
+    sp.bend_order = 1;
+    sp.cal_quantum = quanta[qi];
+    csrStrainModel* m = strainLeg(&c, &sp, NULL);
+    csError err;
+    csrStrainData* a = m ? csr_strainDataCreate(m, &err) : NULL;
+    csrStrainData* b = m ? csr_strainDataCreate(m, &err) : NULL;
+    CS_EXPECT(a && b);
+    if (!a || !b) {
+      csr_strainDataDestroy(a);
+      csr_strainDataDestroy(b);
+      csr_strainModelDestroy(m);
+      break;
+    }
+    double p1[12] = {0}, p2[12] = {0};
+    for (int s = 0; s < 3; s++) {
+      p1[4 * s] = p1[4 * s + 1] = 0.1 + 0.1 * s;
+    }
+    memcpy(p2, p1, sizeof p2);
+    p2[0] = p2[1] = 0.2516; /* segment 0 alone moves */
+    CS_EXPECT(csr_strainActuate(m, a, p1, &err) == 0);
+    const long n1 = a->ncal;
+    CS_EXPECT(csr_strainActuate(m, a, p2, &err) == 0);
+    const long evals = a->ncal - n1;
+    CS_EXPECT(csr_strainActuate(m, b, p2, &err) == 0);
+    printf("  cal_quantum %g MPa: one segment moved, %ld segment evaluation(s); through the "
+           "sequence and direct: %s\n", quanta[qi], evals,
+           sameActuation(m, a, b) ? "bit-identical" : "DIFFER");
+    CS_EXPECT(evals == 1);
+    CS_EXPECT(sameActuation(m, a, b));
+    if (quanta[qi] > 0) {
+      /* within the same quantum (0.2516 and 0.2539 both round to 0.25): nothing evaluated,
+       * the same actuation; against the exact calibration at 0.2539: a difference */
+      double p3[12];
+      memcpy(p3, p2, sizeof p3);
+      p3[0] = p3[1] = 0.2539;
+      const long n2 = a->ncal;
+      CS_EXPECT(csr_strainActuate(m, a, p3, &err) == 0);
+      CS_EXPECT(a->ncal == n2);
+      CS_EXPECT(sameActuation(m, a, b));
+      csrStrainParams se = sp;
+      se.cal_quantum = 0;
+      csrStrainModel* me = strainLeg(&c, &se, NULL);
+      csrStrainData* e = me ? csr_strainDataCreate(me, &err) : NULL;
+      CS_EXPECT(e && csr_strainActuate(me, e, p3, &err) == 0);
+      double db = 0, bmax = 0;
+      for (int j = 0; e && j < csr_strainDofs(m); j++) {
+        db = fmax(db, fabs(a->b[j] - e->b[j]));
+        bmax = fmax(bmax, fabs(e->b[j]));
+      }
+      printf("  at 0.2539 MPa (rounded to 0.25) the rest terms b differ from the exact "
+             "calibration's by %.3e of the largest\n", db / bmax);
+      CS_EXPECT(e && !sameActuation(m, a, e));
+      csr_strainDataDestroy(e);
+      csr_strainModelDestroy(me);
+    }
+    csr_strainDataDestroy(a);
+    csr_strainDataDestroy(b);
+    csr_strainModelDestroy(m);
+  }
+  csr_calibrationClose(c.cal);
+}
+
+
 static void hanging_leg_weight(void) {
   LegCal c;
   if (!openCal(&c, "calibration_fe_leg.h5", NULL)) {
@@ -611,6 +698,7 @@ int main(int argc, char** argv) {
   CS_RUN(leg_unloaded_on_calibrated_arcs);
   CS_RUN(leg_tip_load_vs_nodal);
   CS_RUN(leg_tip_load_against_sub_intervals);
+  CS_RUN(calibration_is_a_function_of_the_pressures);
   CS_RUN(hanging_leg_weight);
   CS_RUN(failed_static_changes_nothing);
   return cs_testSummary();
