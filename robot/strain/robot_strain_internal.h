@@ -89,13 +89,22 @@ struct csrStrainModel_ {
   double L, mass;
 };
 
-/* The calibration's last evaluation per segment (robot_strain.c actuationInto): its rounded
- * pressures and what the calibration returned there. A cache, not state: the calibration is a
- * function of the rounded pressures alone, so the same bits give the same result. */
+/* the lattice vertices of the interpolated calibration kept per segment (a cache) */
+#define CSR_STRAIN_CAL_VERTS 32
+
+/* The calibration's evaluations kept per segment (robot_strain.c actuationInto): the last exact
+ * one (its pressures and what the calibration returned there) and, with a pressure lattice
+ * (cal_quantum > 0), the last lattice vertices evaluated (their integer coordinates p / δ). A
+ * cache, not state: the calibration is a function of the pressures alone (exact, or
+ * interpolated on the lattice), so the same bits give the same result with or without it. */
 typedef struct csrStrainCalMemo_ {
   int valid[CSR_NSEG];
   double p[CSR_NSEG][4];
   csrRodSegmentActuation act[CSR_NSEG];
+  int nv[CSR_NSEG];                          /* vertices held (<= CSR_STRAIN_CAL_VERTS) */
+  int vnext[CSR_NSEG];                       /* the next slot to replace (round robin) */
+  long vkey[CSR_NSEG][CSR_STRAIN_CAL_VERTS][4];
+  csrRodSegmentActuation vact[CSR_NSEG][CSR_STRAIN_CAL_VERTS];
 } csrStrainCalMemo;
 
 struct csrStrainData_ {
