@@ -445,6 +445,10 @@ static int segmentLattice(const csrStrainModel* m, csrStrainData* d, int s, cons
   int ord[4] = {0, 1, 2, 3};
   for (int j = 0; j < 4; j++) {
     const double t = ps[j] / dq, a = floor(t);
+    if (!(fabs(t) < 1e15)) {
+      /* not finite, or past a lattice index: the calibration itself says what it is */
+      return segmentExact(m, d, s, ps, out, msg, msg_size);
+    }
     key[j] = (long)a;
     f[j] = t - a;
   }
