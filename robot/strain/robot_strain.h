@@ -111,7 +111,7 @@ typedef struct csrStrainParams_ {
                           continuous in the pressures, exact for a linear field, a function of
                           the pressures alone (a restored state needs nothing more); a vertex
                           outside the calibration's range falls back to the exact evaluation
-                          (robot_strain.c actuationInto; docs/notes/strain_leg.md "The cost of
+                          (robot_strain_cal.c; docs/notes/strain_leg.md "The cost of
                           one leg step"). 0: the calibration at the pressures as given (exact) */
   double keep_strain;  /* keep_matrix: a step refactors when a mode moved more than this since
                           the factorisation (rad or strain over its piece, the measure of

@@ -92,7 +92,7 @@ struct csrStrainModel_ {
 /* the lattice vertices of the interpolated calibration kept per segment (a cache) */
 #define CSR_STRAIN_CAL_VERTS 32
 
-/* The calibration's evaluations kept per segment (robot_strain.c actuationInto): the last exact
+/* The calibration's evaluations kept per segment (robot_strain_cal.c): the last exact
  * one (its pressures and what the calibration returned there) and, with a pressure lattice
  * (cal_quantum > 0), the last lattice vertices evaluated (their integer coordinates p / δ). A
  * cache, not state: the calibration is a function of the pressures alone (exact, or
@@ -217,6 +217,13 @@ struct csrStrainData_ {
   int pred;       /* 1: sst holds the predicted poses (backward Euler's prepare) */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
 };
+
+/* ---- calibration (robot_strain_cal.c) ---- */
+/* rest strains (b) and stiffness (Kd) of every piece at pressures p (MPa, 12), exactly
+ * (cal_quantum 0) or on the pressure lattice, through d's memo (d->cal); 0 or the calibration's
+ * code with msg filled */
+int csr_strainActuation_(const csrStrainModel* m, csrStrainData* d, const double p[12],
+                         double* Kd, double* b, char* msg, size_t msg_size);
 
 /* ---- SE(3) helpers (robot_strain_lie.c) ---------------------------------------------------- */
 
