@@ -273,6 +273,11 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
       st = cs_h5AttrDouble(f, "/", "strain_sub_intervals", csr_legSettingGet(lt, ls, "sub", 4),
                            err);
     }
+    if (st == CS_OK && csr_legSettingFind(lt, "cal_quantum")) {
+      /* the calibration's pressure resolution (MPa; 0: the pressures as given) */
+      st = cs_h5AttrDouble(f, "/", "strain_cal_quantum",
+                           csr_legSettingGet(lt, ls, "cal_quantum", 0), err);
+    }
   }
   if (st == CS_OK && m->robot.leg_file[0]) {
     /* the level's own file (rom: the reduced leg of `crawlsim rom leg-file`) */

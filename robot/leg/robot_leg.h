@@ -79,7 +79,7 @@ typedef struct csrLegSetting_ {
   int integer;        /* 1: only whole numbers */
 } csrLegSetting;
 
-#define CSR_LEG_MAX_SETTINGS 9
+#define CSR_LEG_MAX_SETTINGS 10
 
 /* The values of one level's settings, in the order of its table (csrLegType.settings). A block
  * for another level than the one reading it (or none) reads as that level's defaults, so that a

@@ -82,6 +82,8 @@ csrStrainParams csr_strainDefaultParams(void) {
    * strain_leg.md, "A kept iteration matrix") */
   p.keep_matrix = 0;
   p.keep_strain = 0.05;
+  /* the pressures as given until a resolution is chosen by measurement */
+  p.cal_quantum = 0;
   return p;
 }
 
@@ -132,7 +134,8 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       (par.active_set != 0 && par.active_set != 1) ||
       (par.friction_tangent != 0 && par.friction_tangent != 1) ||
       (par.keep_matrix != 0 && par.keep_matrix != 1) ||
-      (par.keep_matrix && par.step_order != 1) || isnan(par.keep_strain)) {
+      (par.keep_matrix && par.step_order != 1) || isnan(par.keep_strain) ||
+      !(par.cal_quantum >= 0) || !isfinite(par.cal_quantum)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
                 "static_max_iter >= 1, step_order 1 or 2, step_refresh, active_set and "
@@ -358,50 +361,6 @@ void csr_strainDataDestroy(csrStrainData* d) {
 }
 
 
-/* rest strains (b) and stiffness (Kd) of every piece at pressures p; 0 or the calibration's
- * code with msg filled */
-static int actuationInto(const csrStrainModel* m, const double p[12], double* Kd, double* b,
-                         char* msg, size_t msg_size);
-
-
-static int actuationInto(const csrStrainModel* m, const double p[12], double* Kd, double* b,
-                         char* msg, size_t msg_size) {
-  csrRodSegmentActuation act[CSR_NSEG];
-  int have[CSR_NSEG] = {0, 0, 0};
-  for (int k = 0; k < m->npiece; k++) {
-    int s = m->piece[k].segment;
-    if (s >= 0 && !have[s]) {
-      int rc = csr_rodActuationEval_(m->rod, s, p + 4 * s, &act[s], msg, msg_size);
-      if (rc != 0) {
-        return rc;
-      }
-      have[s] = 1;
-    }
-  }
-  for (int k = 0; k < m->npiece; k++) {
-    const csrRodPiece* pc = &m->piece[k];
-    const csrRodSection* S = &pc->section;
-    double dxi[6] = {0, 0, 0, 0, 0, 0};
-    if (pc->segment >= 0) {
-      const csrRodSegmentActuation* a = &act[pc->segment];
-      memcpy(dxi, a->u0, sizeof a->u0);
-      memcpy(dxi + 3, a->sigma0, sizeof a->sigma0);
-      if (a->has_section) {
-        S = &a->section;
-      }
-    }
-    const double C[6] = {S->EI[0], S->EI[1], S->GJ, S->GA[0], S->GA[1], S->EA};
-    for (int j = m->dof0[k]; j < m->dof0[k] + m->ndof[k]; j++) {
-      int c = m->dcomp[j], o = m->dorder[j];
-      /* ∫_0^S P_o² dX = S / (2o + 1); ∫ P_o dX = S δ_o0 */
-      Kd[j] = C[c] * pc->length / (2 * o + 1);
-      b[j] = o == 0 ? C[c] * pc->length * dxi[c] : 0.0;
-    }
-  }
-  return 0;
-}
-
-
 csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   if (!m) {
     cs_errorSet(err, CS_ERR_ARG, "strain: NULL model");
@@ -525,7 +484,7 @@ void csr_strainReset(const csrStrainModel* m, csrStrainData* d) {
   d->grav = 0;
   /* the vented pressures' rest strains: a calibration may give a vented segment a stretch */
   char msg[8];
-  if (actuationInto(m, d->p, d->Kd, d->b, msg, sizeof msg) != 0) {
+  if (csr_strainActuation_(m, d, d->p, d->Kd, d->b, msg, sizeof msg) != 0) {
     /* a calibration that refuses zero pressures leaves the section's stiffness, no strain */
     for (int k = 0; k < m->npiece; k++) {
       const csrRodSection* S = &m->piece[k].section;
@@ -565,7 +524,7 @@ int csr_strainActuate(const csrStrainModel* m, csrStrainData* d, const double p[
     return 0;
   }
   char msg[256] = "";
-  int rc = actuationInto(m, p, d->K1, d->b1, msg, sizeof msg);
+  int rc = csr_strainActuation_(m, d, p, d->K1, d->b1, msg, sizeof msg);
   if (rc != 0) {
     cs_errorSet(err, rc == CSR_MAP_OUT_OF_RANGE ? CS_ERR_RANGE : CS_ERR_SOLVER, "strain: %s",
                 msg);
@@ -767,7 +726,7 @@ csStatus csr_strainStatic(const csrStrainModel* m, csrStrainData* d, const csrRo
   const int n = m->n;
   /* the target's rest strains and stiffness (K1, b1); the start's (K0, b0) */
   char msg[256] = "";
-  int rc = actuationInto(m, load->p, d->K1, d->b1, msg, sizeof msg);
+  int rc = csr_strainActuation_(m, d, load->p, d->K1, d->b1, msg, sizeof msg);
   if (rc != 0) {
     return cs_errorSet(err, rc == CSR_MAP_OUT_OF_RANGE ? CS_ERR_RANGE : CS_ERR_SOLVER,
                        "strain static: %s", msg);

@@ -103,6 +103,16 @@ typedef struct csrStrainParams_ {
                           cache, not state: a restored run refactors where the uninterrupted
                           one kept, so its steps agree to the passes' tolerance, not bit for
                           bit */
+  double cal_quantum;  /* the calibration's pressure lattice (MPa): > 0 maps each segment's four
+                          chamber pressures to rest strains and sections by linear
+                          interpolation on the simplex (Kuhn's triangulation) of the lattice of
+                          this spacing that holds them, from the calibration at its five
+                          vertices (kept per segment and reused while the pressures stay near):
+                          continuous in the pressures, exact for a linear field, a function of
+                          the pressures alone (a restored state needs nothing more); a vertex
+                          outside the calibration's range falls back to the exact evaluation
+                          (robot_strain_cal.c; docs/notes/strain_leg.md "The cost of
+                          one leg step"). 0: the calibration at the pressures as given (exact) */
   double keep_strain;  /* keep_matrix: a step refactors when a mode moved more than this since
                           the factorisation (rad or strain over its piece, the measure of
                           csr_strainUpdate's change without h); < 0: every step (the

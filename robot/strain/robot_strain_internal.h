@@ -89,11 +89,31 @@ struct csrStrainModel_ {
   double L, mass;
 };
 
+/* the lattice vertices of the interpolated calibration kept per segment (a cache) */
+#define CSR_STRAIN_CAL_VERTS 32
+
+/* The calibration's evaluations kept per segment (robot_strain_cal.c): the last exact
+ * one (its pressures and what the calibration returned there) and, with a pressure lattice
+ * (cal_quantum > 0), the last lattice vertices evaluated (their integer coordinates p / δ). A
+ * cache, not state: the calibration is a function of the pressures alone (exact, or
+ * interpolated on the lattice), so the same bits give the same result with or without it. */
+typedef struct csrStrainCalMemo_ {
+  int valid[CSR_NSEG];
+  double p[CSR_NSEG][4];
+  csrRodSegmentActuation act[CSR_NSEG];
+  int nv[CSR_NSEG];                          /* vertices held (<= CSR_STRAIN_CAL_VERTS) */
+  int vnext[CSR_NSEG];                       /* the next slot to replace (round robin) */
+  long vkey[CSR_NSEG][CSR_STRAIN_CAL_VERTS][4];
+  csrRodSegmentActuation vact[CSR_NSEG][CSR_STRAIN_CAL_VERTS];
+} csrStrainCalMemo;
+
 struct csrStrainData_ {
   double* q;      /* (n) generalised coordinates */
   double* Kd;     /* (n) diagonal of K at the current actuation */
   double* b;      /* (n) ∫ΦᵀC(ξ0 - ξ*) at the current actuation */
   double p[CSR_NSEG * CSR_NCHAMBER]; /* pressures of the current actuation (MPa) */
+  csrStrainCalMemo cal; /* the calibration's last evaluation per segment (a cache) */
+  long ncal;            /* segment evaluations of the calibration since creation (a count) */
   double tip_f[3], tip_m[3];         /* the last static load's tip force and moment */
   int grav;                          /* and whether its weight acted */
   double* eta;    /* (n) generalised velocities q̇ */
@@ -197,6 +217,13 @@ struct csrStrainData_ {
   int pred;       /* 1: sst holds the predicted poses (backward Euler's prepare) */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
 };
+
+/* ---- calibration (robot_strain_cal.c) ---- */
+/* rest strains (b) and stiffness (Kd) of every piece at pressures p (MPa, 12), exactly
+ * (cal_quantum 0) or on the pressure lattice, through d's memo (d->cal); 0 or the calibration's
+ * code with msg filled */
+int csr_strainActuation_(const csrStrainModel* m, csrStrainData* d, const double p[12],
+                         double* Kd, double* b, char* msg, size_t msg_size);
 
 /* ---- SE(3) helpers (robot_strain_lie.c) ---------------------------------------------------- */
 

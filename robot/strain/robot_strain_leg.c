@@ -63,7 +63,8 @@ enum {
   STRAIN_KEEP,
   STRAIN_JOINTS,
   STRAIN_SHEAR,
-  STRAIN_SUB
+  STRAIN_SUB,
+  STRAIN_CALQ
 };
 
 /* the contact at the current state for contactForce and contactDepth (header) */
@@ -143,6 +144,7 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   leg->sp.joint_order = (int)set[STRAIN_JOINTS];
   leg->sp.shear = (int)set[STRAIN_SHEAR];
   leg->sp.nsub = (int)set[STRAIN_SUB];
+  leg->sp.cal_quantum = set[STRAIN_CALQ];
   leg->sp.step_order = step_order ? step_order : STRAIN_STEP_ORDER;
   leg->sp.step_refresh = STRAIN_STEP_REFRESH;
   leg->sp.active_set = set[STRAIN_ACTIVE] != 0;
@@ -549,6 +551,12 @@ static const csrLegSetting kStrainSettings[] = {
     [STRAIN_SHEAR] = {"shear", "1 the shears are unknowns, 0 Kirchhoff (no shear)", 1, 0, 1, 1},
     /* Magnus sub-intervals per flexible piece (the kinematics' and the capsules' resolution) */
     [STRAIN_SUB] = {"sub", "Magnus sub-intervals per flexible piece", 4, 1, 16, 1},
+    /* the calibration's pressure resolution (robot_strain.h cal_quantum): 0 the pressures as
+     * given */
+    [STRAIN_CALQ] = {"cal_quantum",
+                     "the calibration's pressure resolution in MPa (0: exact; the pressures "
+                     "rounded to its multiples, a segment's calibration reused while they hold)",
+                     0, 0, 0.1, 0},
 };
 
 const csrLegType csr_leg_strain = {

@@ -3,7 +3,7 @@
  * after the other in ONE process, so their ratio is measured under the same load (not a test:
  * prints numbers; docs/notes/strain_leg.md "In the driver").
  *
- *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC[:TRUST[:KEEP[:JOINTS[:SHEAR[:SUB]]]]]]]]]]]]...
+ *   bench_strain_driver [t_end_s] [LEVEL[:LINKS[:DT_S[:ORDER[:TREE_TOL_MM[:ACTIVE[:FRIC[:TRUST[:KEEP[:JOINTS[:SHEAR[:SUB[:CALQ]]]]]]]]]]]]]...
  *
  * (ORDER 0, TREE_TOL 0: the defaults; ACTIVE the strain level's setting active_set, 1 the
  * contact ghosts in the Newton passes, 0 the law alone; FRIC its setting friction_tangent, 0
@@ -14,7 +14,8 @@
  * JOINTS, SHEAR, SUB the strain level's basis settings joints (-1 rigid, 0 constant
  * curvature; -2 or absent: the default), shear (1 or 0 Kirchhoff) and sub (Magnus
  * sub-intervals per flexible piece), -1 or absent: the defaults; for rod legs JOINTS >= 1 is
- * their setting joint_links, the elements per solid joint, default 1)
+ * their setting joint_links, the elements per solid joint, default 1; CALQ the strain level's
+ * cal_quantum, the calibration's pressure resolution in MPa, -1 or absent: the default)
  *
  * Default: 9 s of `strain` (its defaults: 3 bending modes per segment, tree coupling at its
  * 0.5 ms), `strain:3:0.001` and `rod:8` (the scene's default: 8 elements per segment,
@@ -191,7 +192,7 @@ static void printStages(const csuTimer* tm, double cpu_s, long nstep) {
 static int bench(const char* src, const char* arg, double t_end) {
   char level[32] = "", terr[600], gait[600], cal[600];
   int links = 0, order = 0, active = -1, fric = -1, trust = -1, joints = -2, shear = -1, sub = -1;
-  double dt = 0, tol = 0, kmat = -1;
+  double dt = 0, tol = 0, kmat = -1, calq = -1;
   /* LEVEL[:LINKS[:DT[:ORDER]]] (ORDER: the tree step's formula, 1 backward Euler, 2 BDF2; 0 or
    * absent: the level's default; TREE_TOL: the tree step's Newton tolerance, mm) */
   const char* c1 = strchr(arg, ':');
@@ -218,6 +219,8 @@ static int bench(const char* src, const char* arg, double t_end) {
     shear = c10 ? atoi(c10 + 1) : -1;
     const char* c11 = c10 ? strchr(c10 + 1, ':') : NULL;
     sub = c11 ? atoi(c11 + 1) : -1;
+    const char* c12 = c11 ? strchr(c11 + 1, ':') : NULL;
+    calq = c12 ? atof(c12 + 1) : -1;
   }
   const csrLegType* type = csr_legTypeFind(level, NULL);
   if (!type) {
@@ -297,6 +300,13 @@ static int bench(const char* src, const char* arg, double t_end) {
       return 1;
     }
   }
+  if (calq >= 0 &&
+      csr_legSettingSet(type, &m.robot.leg_settings, "cal_quantum", calq, NULL) != CS_OK) {
+    fprintf(stderr, "bench_strain_driver: cal_quantum %g is not a value of legs %s\n", calq,
+            type->name);
+    cs_modelDestroy(&m);
+    return 1;
+  }
   if (tol > 0) {
     m.opt.tree_tol = tol;
   }
@@ -348,10 +358,14 @@ static int bench(const char* src, const char* arg, double t_end) {
                (int)csr_legSettingGet(type, &m.robot.leg_settings, "shear", 1),
                (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 4));
     }
-    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s%s%s%s.h5", keep, scene->name, level,
+    char qs[32] = "";
+    if (calq >= 0) {
+      snprintf(qs, sizeof qs, "_calq%g", calq);
+    }
+    snprintf(out, sizeof out, "%s/%s_%s_%d_%g_%d%s%s%s%s%s%s.h5", keep, scene->name, level,
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h, order,
              active == 0 ? "_noactive" : "",
-             fric == 1 ? "_tangent" : "", trust == 1 ? "_trust" : "", ks, bs);
+             fric == 1 ? "_tangent" : "", trust == 1 ? "_trust" : "", ks, bs, qs);
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }
@@ -397,11 +411,12 @@ static int bench(const char* src, const char* arg, double t_end) {
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "friction_tangent", 0),
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "slot_trust", 0));
     if (gLegTime.inner == &csr_leg_strain) {
-      printf("  basis: links %d, joints %d, shear %d, sub %d\n",
+      printf("  basis: links %d, joints %d, shear %d, sub %d; cal_quantum %g MPa\n",
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0),
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "joints", 0),
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "shear", 1),
-             (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 4));
+             (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 4),
+             csr_legSettingGet(type, &m.robot.leg_settings, "cal_quantum", 0));
       long lsteps = 0, lfac = 0, lkept = 0;
       for (int k = 0; k < gLegTime.nlegs; k++) {
         long a, b, c;

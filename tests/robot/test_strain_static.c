@@ -20,6 +20,13 @@
  *    along e1 (the FE's loaded case, docs/bench/rod_vs_fe_sym_2026-12-04) on the 23-mode
  *    symmetric-mesh table under rbf-pair and on the shipped table: within 1 mm of the nodal rod
  *    at 16 elements per segment; prints the error by bending order and sub-intervals.
+ *  - calibration_is_a_function_of_the_pressures: the actuation after a sequence of pressures
+ *    equals the one made at the last pressures directly (bit for bit), exactly and on a
+ *    pressure lattice (cal_quantum); a segment whose pressures held is not evaluated again, a
+ *    move within a lattice simplex evaluates nothing, and the lattice's interpolation is closer
+ *    to the exact calibration than its nearest node.
+ *  - leg_tip_load_against_sub_intervals: the same load at the level's links 2 for 1 to 16 Magnus
+ *    sub-intervals per piece: within 1 mm of the nodal rod at each, converging as they double.
  *  - hanging_leg_weight: the bent leg under its weight (conditions `earth`) against the nodal
  *    rod at 16 elements per segment.
  *  - failed_static_changes_nothing: a calibration refusing the pressure leaves q as it was. */
@@ -32,6 +39,7 @@
 #include "robot_calibration_model.h"
 #include "robot_rod.h"
 #include "robot_strain.h"
+#include "robot_strain_internal.h"
 
 static csrRodPiece uniformPiece(double L, double G) {
   csrRodPiece p;
@@ -455,6 +463,165 @@ static void leg_tip_load_vs_nodal(void) {
 }
 
 
+/* The quadrature's resolution (nsub: Magnus sub-intervals per flexible piece) at the level's
+ * basis (links 2, bend order 1), on the flat road's table: the loaded leg's tip against the nodal
+ * rod at 16 elements per segment within the issue's 1 mm at every nsub from 1, and the tip's
+ * distance from the same leg at 16 sub-intervals (the kinematics' own error) shrinking as nsub
+ * doubles */
+static void leg_tip_load_against_sub_intervals(void) {
+  LegCal c;
+  if (!openCal(&c, "calibration_fe_leg_modes_sym.h5", "rbf-pair")) {
+    return;
+  }
+  const double pmax = fmin(0.4, c.map.p_max);
+  csrRodModel* rm = nodalLeg(&c, 16, NULL);
+  csError err;
+  csrRodData* rd = rm ? csr_rodDataCreate(rm, &err) : NULL;
+  CS_EXPECT(rd != NULL);
+  const int subs[5] = {16, 1, 2, 4, 8};
+  double tips[5][9][3], prev = INFINITY;
+  for (int i = 0; rd && i < 5; i++) {
+    csrStrainParams sp = csr_strainDefaultParams();
+    sp.bend_order = 1;
+    sp.nsub = subs[i];
+    csrStrainModel* sm = strainLeg(&c, &sp, NULL);
+    csrStrainData* sd = sm ? csr_strainDataCreate(sm, &err) : NULL;
+    CS_EXPECT(sd != NULL);
+    double worst = 0, self = 0;
+    for (int j = 0; sd && j <= 8; j++) {
+      csrRodStaticLoad ld;
+      memset(&ld, 0, sizeof ld);
+      for (int s = 0; s < 3; s++) {
+        ld.p[4 * s] = ld.p[4 * s + 1] = pmax * j / 8;
+      }
+      ld.tip_force[0] = 0.05;
+      double tn[3];
+      CS_EXPECT(strainTip(sm, sd, &ld, tips[i][j]) && nodalTip(rm, rd, &ld, tn));
+      worst = fmax(worst, dist3(tips[i][j], tn));
+      self = fmax(self, dist3(tips[i][j], tips[0][j]));
+    }
+    printf("  links 2, %2d sub-intervals: worst %.4f mm from the nodal rod at 16 elements, "
+           "%.3e mm from 16 sub-intervals\n", subs[i], worst, self);
+    CS_EXPECT(worst < 1.0); /* the 1 mm */
+    if (i > 0) {
+      CS_EXPECT(self < prev); /* converging in nsub */
+      prev = self;
+    }
+    csr_strainDataDestroy(sd);
+    csr_strainModelDestroy(sm);
+  }
+  csr_rodDataDestroy(rd);
+  csr_rodModelDestroy(rm);
+  csr_calibrationClose(c.cal);
+}
+
+
+/* d's stiffness and rest-strain terms (Kd, b) bit for bit equal to e's */
+static int sameActuation(const csrStrainModel* m, const csrStrainData* d, const csrStrainData* e) {
+  const size_t sz = (size_t)csr_strainDofs(m) * sizeof(double);
+  return memcmp(d->Kd, e->Kd, sz) == 0 && memcmp(d->b, e->b, sz) == 0;
+}
+
+
+/* largest |Δb| between d and e over the largest |b| of e */
+static double restTermsGap(const csrStrainModel* m, const csrStrainData* d, const csrStrainData* e) {
+  double db = 0, bmax = 0;
+  for (int j = 0; j < csr_strainDofs(m); j++) {
+    db = fmax(db, fabs(d->b[j] - e->b[j]));
+    bmax = fmax(bmax, fabs(e->b[j]));
+  }
+  return db / bmax;
+}
+
+
+/* The calibration's memo and its pressure lattice (cal_quantum): the actuation is a function of
+ * the pressures alone (a leg actuated through a sequence of pressures and one actuated at the
+ * last of them directly agree bit for bit, so a restored state needs nothing more); exactly, a
+ * segment whose pressures held is not evaluated again; on the lattice, pressures inside the same
+ * simplex evaluate nothing new, and the interpolation is closer to the exact calibration than
+ * the nearest lattice node is */
+static void calibration_is_a_function_of_the_pressures(void) {
+  LegCal c;
+  if (!openCal(&c, "calibration_fe_leg_modes_sym.h5", "rbf-pair")) {
+    return;
+  }
+  const double quanta[2] = {0, 0.01};
+  csError err;
+  csrStrainModel* me = NULL;
+  csrStrainData* e = NULL; /* the exact calibration */
+  for (int qi = 0; qi < 2; qi++) {
+    csrStrainParams sp = csr_strainDefaultParams();
+    sp.bend_order = 1;
+    sp.cal_quantum = quanta[qi];
+    csrStrainModel* m = strainLeg(&c, &sp, NULL);
+    csrStrainData* a = m ? csr_strainDataCreate(m, &err) : NULL;
+    csrStrainData* b = m ? csr_strainDataCreate(m, &err) : NULL;
+    CS_EXPECT(a && b);
+    if (!a || !b) {
+      csr_strainDataDestroy(a);
+      csr_strainDataDestroy(b);
+      csr_strainModelDestroy(m);
+      break;
+    }
+    double p1[12] = {0}, p2[12] = {0};
+    for (int s = 0; s < 3; s++) {
+      p1[4 * s] = p1[4 * s + 1] = 0.1 + 0.1 * s;
+    }
+    memcpy(p2, p1, sizeof p2);
+    p2[0] = 0.2516; /* segment 0 alone moves */
+    p2[1] = 0.2531;
+    CS_EXPECT(csr_strainActuate(m, a, p1, &err) == 0);
+    const long n1 = a->ncal;
+    CS_EXPECT(csr_strainActuate(m, a, p2, &err) == 0);
+    const long evals = a->ncal - n1;
+    CS_EXPECT(csr_strainActuate(m, b, p2, &err) == 0);
+    printf("  cal_quantum %g MPa: segment 0 moved, %ld evaluation(s); through the sequence and "
+           "direct: %s\n", quanta[qi], evals, sameActuation(m, a, b) ? "bit-identical" : "DIFFER");
+    CS_EXPECT(sameActuation(m, a, b));
+    if (quanta[qi] == 0) {
+      CS_EXPECT(evals == 1);
+      me = m;
+      e = a;
+      m = NULL;
+      a = NULL;
+    } else {
+      /* at most the simplex's five vertices, all of segment 0 */
+      CS_EXPECT(evals >= 1 && evals <= 5);
+      /* a move inside the same simplex (the fractions' order kept): nothing evaluated */
+      double p3[12];
+      memcpy(p3, p2, sizeof p3);
+      p3[0] = 0.2512;
+      p3[1] = 0.2537;
+      const long n2 = a->ncal;
+      CS_EXPECT(csr_strainActuate(m, a, p3, &err) == 0);
+      CS_EXPECT(a->ncal == n2);
+      /* against the exact calibration at p3 and at the nearest node (0.25, 0.25) */
+      double node[12];
+      memcpy(node, p3, sizeof node);
+      node[0] = node[1] = 0.25;
+      csrStrainData* en = me ? csr_strainDataCreate(me, &err) : NULL;
+      CS_EXPECT(e && en && csr_strainActuate(me, e, p3, &err) == 0 &&
+                csr_strainActuate(me, en, node, &err) == 0);
+      if (e && en) {
+        const double gi = restTermsGap(m, a, e), gn = restTermsGap(m, en, e);
+        printf("  at (%.4f, %.4f) MPa the rest terms b differ from the exact calibration's by "
+               "%.3e of the largest (interpolated), %.3e (the nearest node)\n", p3[0], p3[1],
+               gi, gn);
+        CS_EXPECT(gi > 0);
+        CS_EXPECT(gi < gn);
+      }
+      csr_strainDataDestroy(en);
+    }
+    csr_strainDataDestroy(a);
+    csr_strainDataDestroy(b);
+    csr_strainModelDestroy(m);
+  }
+  csr_strainDataDestroy(e);
+  csr_strainModelDestroy(me);
+  csr_calibrationClose(c.cal);
+}
+
+
 static void hanging_leg_weight(void) {
   LegCal c;
   if (!openCal(&c, "calibration_fe_leg.h5", NULL)) {
@@ -555,6 +722,8 @@ int main(int argc, char** argv) {
   CS_RUN(tip_load_large_vs_nodal);
   CS_RUN(leg_unloaded_on_calibrated_arcs);
   CS_RUN(leg_tip_load_vs_nodal);
+  CS_RUN(leg_tip_load_against_sub_intervals);
+  CS_RUN(calibration_is_a_function_of_the_pressures);
   CS_RUN(hanging_leg_weight);
   CS_RUN(failed_static_changes_nothing);
   return cs_testSummary();

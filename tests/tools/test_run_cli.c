@@ -428,6 +428,9 @@ static void test_strainRun(void) {
               joints == 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_shear", &shear) >= 0 && shear == 1);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_sub_intervals", &sub) >= 0 && sub == 4);
+    /* the calibration exact by default (robot_strain.h cal_quantum 0: no pressure lattice) */
+    double calq = -9;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_cal_quantum", &calq) >= 0 && calq == 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_tree_calls", &tree_calls) >= 0 &&
               tree_calls == 40);
     double order = 0;
