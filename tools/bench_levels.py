@@ -390,6 +390,22 @@ def write_csv(path, rows, columns):
                         if k in columns})
 
 
+# issue 32's targets drawn on the track charts: the error bound against the converged
+# reference (the flat road 3 mm, the obstacle's first 4 s 2 mm) and 100x real time
+TRACK_BOUND_MM = {"flat-road": 3.0, "obstacle": 2.0}
+TARGET_RT = 100.0
+
+
+def pareto_front(points):
+    """the points no other point beats in both cost and error (lower-left), sorted by cost"""
+    front, best = [], float("inf")
+    for x, e, lab in sorted(points):
+        if e < best:
+            front.append((x, e, lab))
+            best = e
+    return front
+
+
 def pareto_png(path, rows, machine):
     import matplotlib
     matplotlib.use("Agg")
@@ -397,30 +413,64 @@ def pareto_png(path, rows, machine):
     tasks = list(dict.fromkeys(r["task"] for r in rows))
     ncol = min(3, len(tasks))
     nrow = (len(tasks) + ncol - 1) // ncol
-    fig, axes = plt.subplots(nrow, ncol, figsize=(5.6 * ncol, 4.4 * nrow), squeeze=False)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(6.2 * ncol, 4.8 * nrow), squeeze=False)
     for ax in axes.flat[len(tasks):]:
         ax.axis("off")
     colours = {"prb": "tab:blue", "rod": "tab:orange", "strain": "tab:purple", "analytic": "tab:green",
                "fe": "tab:red"}
     for ax, task in zip(axes.flat, tasks):
+        track = "bend" not in task
+        pts, seen = [], set()
         for r in (r for r in rows if r["task"] == task and r["status"] == "ok"):
-            e = max(r["error_mm"], 1e-3)
             # the l_soft 4 mm FE references record their wall time only (shared machine)
             x = r["cpu_s"] if math.isfinite(r["cpu_s"]) else r["wall_s"]
-            mk = "*" if r["reference"] == "yes" else ("s" if r["reference"] else "o")
-            ax.loglog(x, e, mk, color=colours.get(r["model"], "k"), ms=9 if mk == "*"
-                      else 6)
+            sim_s = float(r.get("sim_s") or "nan") if track else float("nan")
+            if track and math.isfinite(sim_s) and sim_s > 0:
+                x /= sim_s  # CPU s per simulated s: the real-time factor's inverse
             label = f"{r['model']} {r['setting']}".replace("links ", "n").replace(
                 "elements ", "").replace("calibration analytic", "analytic map").replace(
-                " (reference, wall time from the file)", " ref").strip()
-            ax.annotate(label,
-                        (x, e), fontsize=6.5, xytext=(3, 3),
-                        textcoords="offset points")
+                " (reference, wall time from the file)", " ref").replace(
+                "macro 1 x ", "").replace(", rod tol", " tol").strip()
+            if r["reference"] == "yes":
+                # the reference has no error against itself: a vertical line at its cost
+                ax.axvline(x, color=colours.get(r["model"], "k"), ls=":", lw=1)
+                ax.annotate("reference: " + label, (x, 0.02), xycoords=("data", "axes fraction"),
+                            fontsize=6.5, rotation=90, ha="right", va="bottom")
+                continue
+            e = max(r["error_mm"], 1e-3)
+            mk = "s" if r["reference"] else "o"
+            ax.loglog(x, e, mk, color=colours.get(r["model"], "k"), ms=6,
+                      label=r["model"] if r["model"] not in seen else None)
+            seen.add(r["model"])
+            pts.append((x, e, label))
+        front = pareto_front(pts)
+        if front:
+            ax.loglog([p[0] for p in front], [p[1] for p in front], "-", color="0.5", lw=0.8,
+                      zorder=0, label="front")
+        for x, e, lab in front:  # label the front only: the rest is in levels_bench.csv
+            ax.annotate(lab, (x, e), fontsize=6.5, xytext=(4, 3), textcoords="offset points")
+        if track:
+            if task in TRACK_BOUND_MM:
+                ax.axhline(TRACK_BOUND_MM[task], color="tab:green", ls="--", lw=0.8)
+                ax.annotate(f"bound {TRACK_BOUND_MM[task]:g} mm", (0.01, TRACK_BOUND_MM[task]),
+                            xycoords=("axes fraction", "data"), fontsize=6.5, va="bottom",
+                            color="tab:green")
+            ax.axvline(1.0 / TARGET_RT, color="tab:red", ls="--", lw=0.8)
+            ax.annotate(f"{TARGET_RT:g}x real time", (1.0 / TARGET_RT, 0.98),
+                        xycoords=("data", "axes fraction"), fontsize=6.5, rotation=90,
+                        ha="left", va="top", color="tab:red")
+            ax.axvline(1.0, color="0.4", ls="--", lw=0.6)
+            ax.annotate("real time", (1.0, 0.98), xycoords=("data", "axes fraction"),
+                        fontsize=6.5, rotation=90, ha="left", va="top", color="0.4")
+            lo = min([p[0] for p in pts] + [1.0 / TARGET_RT])
+            hi = max([p[0] for p in pts] + [1.0])
+            ax.set_xlim(lo / 2, hi * 6)
         ax.set_title(task, fontsize=9)
-        ax.set_xlabel("CPU s (whole process; FE reference: its recorded wall s)" if "bend" in
-                      task else "CPU s (whole process)")
-        ax.set_ylabel("error (mm)" + ("; reference at 1e-3" if "bend" not in task else ""))
+        ax.set_xlabel("CPU s (whole process; FE reference: its recorded wall s)" if not track
+                      else "CPU s per simulated s (whole process)")
+        ax.set_ylabel("error (mm)")
         ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, loc="best")
     fig.suptitle(f"speed against accuracy of the leg levels ({machine})", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
