@@ -100,7 +100,7 @@ typedef struct csRunDef {
                                 (each dt crossed in steps a local error estimate chooses, dt
                                 then the longest; backward Euler only); NULL: fixed */
   double step_tol;           /* strain_step adaptive: the local error allowed per step, mm (and
-                                mm per 10 ms on velocities) (NaN: 0.01) */
+                                mm per 10 ms on velocities) (NaN: 5e-4) */
   const char* out;           /* cs_run's HDF5 file (and FILE.xdmf beside it); NULL: none.
                                 cs_simCreate ignores it */
   const char* checkpoint;    /* cs_run: NULL, or a file that gets the run's state every

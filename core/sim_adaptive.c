@@ -22,7 +22,8 @@
  * - The next step is h (0.9 / sqrt(E)) (the I controller of an order-1 estimate: E ~ h²),
  *   bounded to [1/5, 2] h and to [H / 2^CS_ADA_MIN_OCT, H]; the macro step's remainder is
  *   cut into equal steps no longer than the proposal, so every macro step ends on its own
- *   time exactly (the output is sampled at its times, as with a fixed step).
+ *   time exactly (the output is sampled at its times, as with a fixed step). A step the
+ *   stages had to halve proposes at most half its length.
  * - Where no history exists (the run's first step, a restored state without one) the step is
  *   accepted untested at H / 2^CS_ADA_START_OCT.
  *
@@ -62,7 +63,8 @@ void cs_adaptiveStateGet(const csData* d, double* x) {
 
 int cs_adaptiveStateCheck(const csModel* m, const double* x) {
   const double H = cs_modelMacroStep(m);
-  if (!(x[0] >= 0 && x[0] <= H && x[1] >= 0 && x[1] <= H)) {
+  /* a step is at most the macro step, t1 - t to round-off */
+  if (!(x[0] >= 0 && x[0] <= 2 * H && x[1] >= 0 && x[1] <= 2 * H)) {
     return -1;
   }
   for (int i = 0; i < CS_ADA_NY; i++) {
@@ -81,8 +83,9 @@ void cs_adaptiveStateSet(csData* d, const double* x) {
 }
 
 
-/* the watched state y[CS_ADA_NY] now and whether each entry is a velocity (isv) */
-static void watched(const csModel* m, const csData* d, double* y, int* isv) {
+/* the watched state y[CS_ADA_NY] now and each entry's tolerance (mm or mm/s) */
+static void watched(const csModel* m, const csData* d, double* y, double* tol) {
+  const double tx = m->opt.step_tol, tv = m->opt.step_tol / CS_ADA_TV;
   const dReal* x = dBodyGetPosition(d->robot->support);
   const dReal* v = dBodyGetLinearVel(d->robot->support);
   const dReal* w = dBodyGetAngularVel(d->robot->support);
@@ -90,37 +93,32 @@ static void watched(const csModel* m, const csData* d, double* y, int* isv) {
     y[i] = x[i];
     y[3 + i] = v[i];
     y[6 + i] = CS_ADA_LEVER * w[i];
-    isv[i] = 0;
-    isv[3 + i] = isv[6 + i] = 1;
+    tol[i] = tx;
+    tol[3 + i] = tol[6 + i] = tv;
   }
   for (int k = 0; k < CSR_NLEG; k++) {
     double c[6]; /* hip and foot */
     m->robot.leg_type->centerline(d->robot->legs[k], 2, c);
     for (int i = 0; i < 3; i++) {
       y[9 + 3 * k + i] = c[3 + i];
-      isv[9 + 3 * k + i] = 0;
+      tol[9 + 3 * k + i] = tx;
     }
   }
 }
 
 
-/* the step's error in the weighted RMS norm (1: at the tolerance) for the change dy of a step
- * of h after the last accepted one (h_prev > 0) */
-static double errorNorm(const csModel* m, const csData* d, const double* dy, const int* isv,
-                        double h) {
-  const double r = h / d->ada.h_prev;
+double cs_adaptiveErrorNorm(int n, const double* dy, const double* dy_prev, const double* tol,
+                            double r) {
   double s = 0;
-  for (int i = 0; i < CS_ADA_NY; i++) {
-    const double tol = isv[i] ? m->opt.step_tol / CS_ADA_TV : m->opt.step_tol;
-    const double e = 0.5 * (dy[i] - r * d->ada.dy_prev[i]) / tol;
+  for (int i = 0; i < n; i++) {
+    const double e = 0.5 * (dy[i] - r * dy_prev[i]) / tol[i];
     s += e * e;
   }
-  return sqrt(s / CS_ADA_NY);
+  return sqrt(s / n);
 }
 
 
-/* the factor on h for an error E (bounded growth and shrinking) */
-static double stepFactor(double E) {
+double cs_adaptiveFactor(double E) {
   if (!(E > 0)) {
     return 2.0;
   }
@@ -143,8 +141,7 @@ csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err) {
   csAdaptive* a = &d->ada;
   const double H = cs_modelMacroStep(m);
   const double h_min = H / (1 << CS_ADA_MIN_OCT);
-  double y0[CS_ADA_NY], y1[CS_ADA_NY], dy[CS_ADA_NY];
-  int isv[CS_ADA_NY];
+  double y0[CS_ADA_NY], y1[CS_ADA_NY], dy[CS_ADA_NY], tol[CS_ADA_NY];
   while (d->t < t1) {
     if (!(a->h_prop > 0)) {
       a->h_prop = H / (1 << CS_ADA_START_OCT);
@@ -155,29 +152,37 @@ csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err) {
     const double n = ceil(rest / a->h_prop * (1 - 1e-9));
     const double h = n <= 1 ? rest : rest / n;
     const double te = n <= 1 ? t1 : d->t + h;
-    watched(m, d, y0, isv);
+    watched(m, d, y0, tol);
+    const long nrej0 = d->nreject;
     csStatus st = cs_stepTry(m, d, te, h, 0, err);
     if (st != CS_OK) {
       return st; /* the state is the try's start (cs_stepTry) */
     }
-    watched(m, d, y1, isv);
+    watched(m, d, y1, tol);
     for (int i = 0; i < CS_ADA_NY; i++) {
       dy[i] = y1[i] - y0[i];
     }
     const int tested = a->h_prev > 0;
-    const double E = tested ? errorNorm(m, d, dy, isv, h) : 0;
+    const double E =
+        tested ? cs_adaptiveErrorNorm(CS_ADA_NY, dy, a->dy_prev, tol, h / a->h_prev) : 0;
     if (tested && E > 1 && h > h_min * (1 + 1e-9)) {
       /* rejected: back to the step's start (saved by cs_stepTry in slot 0), shorter */
       dJointGroupEmpty(d->contacts);
       cs_stateSet(m, d, d->save, NULL);
       a->rejected++;
-      a->h_prop = fmax(h_min, h * stepFactor(E));
+      a->h_prop = fmax(h_min, h * cs_adaptiveFactor(E));
       continue;
     }
     d->t = te;
     memcpy(a->dy_prev, dy, sizeof dy);
     a->h_prev = h;
-    a->h_prop = tested ? fmin(H, fmax(h_min, h * stepFactor(E))) : h;
+    a->h_prop = tested ? fmin(H, fmax(h_min, h * cs_adaptiveFactor(E))) : h;
+    if (d->nreject > nrej0) {
+      /* the stages halved this step (Newton, a sunk foot): the next one no longer than a half,
+       * as CVODE shrinks after a convergence failure (its pieces' passes cost more than the
+       * error test saves) */
+      a->h_prop = fmax(h_min, fmin(a->h_prop, 0.5 * h));
+    }
     recordStep(d, h, H);
   }
   return CS_OK;

@@ -54,7 +54,7 @@ csOptions cs_defaultOptions(void) {
   /* the tree step's length: fixed (H) unless asked (docs/notes/strain_leg.md "An
    * error-controlled macro step"); the tolerance is the adaptive step's measured choice there */
   o.step_adaptive = 0;
-  o.step_tol = 0.01;
+  o.step_tol = 5e-4;
   o.t_end = 0;
   o.output_dt = 0.01;
   /* long enough for the 100 Hz leg modes to die out under 5 ms material damping */

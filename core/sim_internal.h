@@ -163,6 +163,13 @@ void cs_adaptiveStateGet(const csData* d, double* x);
 int cs_adaptiveStateCheck(const csModel* m, const double* x);
 void cs_adaptiveStateSet(csData* d, const double* x);
 csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err);
+/* the controller's parts (unit-tested on a closed form, tests/core/test_strain_adaptive.c):
+ * the weighted RMS of the trapezoid-minus-backward-Euler estimate (dy[i] - r dy_prev[i]) / 2
+ * over tol[i] for the step's change dy after a step of change dy_prev, r = h / h_prev; and
+ * the factor on h for that error E (0.9 / sqrt(E), within [0.2, 2]) */
+double cs_adaptiveErrorNorm(int n, const double* dy, const double* dy_prev, const double* tol,
+                            double r);
+double cs_adaptiveFactor(double E);
 /* one try of [d->t, t1] of length H with its halvings (sim_step.c) */
 csStatus cs_stepTry(const csModel* m, csData* d, double t1, double H, int depth, csError* err);
 

@@ -117,7 +117,7 @@ static const csxOpt kRunOpts[] = {
     {"--strain-step", "fixed|adaptive", "fixed",
      "strain legs: fixed (every step --dt) or adaptive (each --dt, default then 5e-3, crossed in "
      "steps chosen by a local error estimate; backward Euler)"},
-    {"--step-tol", "MM", "0.01",
+    {"--step-tol", "MM", "5e-4",
      "with --strain-step adaptive: the local error allowed per step in mm (velocities: mm per "
      "10 ms)"},
     {"--tol", "MM", NULL,
