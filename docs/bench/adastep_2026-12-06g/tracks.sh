@@ -5,7 +5,7 @@ H=docs/bench/adastep_2026-12-06g
 R=/work/rom_data/adastep
 W=$R/work
 S=/work/rom_data/strainacc
-P="/usr/bin/python3 $H/cmp.py"
+P="/usr/bin/python3 docs/bench/strainacc_2026-12-06f/cmp.py"
 FF="$W/track-flat-road-strain-l2-m1-dt0.0005-o1.h5 $R/ada_flat_t0.0003.h5 $W/track-flat-road-strain-l2-m1-dt0.005-o1-a0.0005.h5 $W/track-flat-road-strain-l2-m1-dt0.005-o1-a0.001.h5 $R/ada_flat_t0.01.h5"
 OO="$W/track-obstacle-strain-l2-m1-dt0.0005-o1-t4.h5 $R/ada_obst_t0.0003.h5 $W/track-obstacle-strain-l2-m1-dt0.005-o1-a0.0005-t4.h5 $W/track-obstacle-strain-l2-m1-dt0.005-o1-a0.001-t4.h5 $R/ada_obst_t0.003.h5 $R/ada_obst_t0.01.h5"
 echo "# flat road 9.5 s: max |(dx, dz)| at whole seconds against the rod at 32 elements and 0.25 ms (levels_ref)"
