@@ -142,6 +142,10 @@ csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err) {
   const double H = cs_modelMacroStep(m);
   const double h_min = H / (1 << CS_ADA_MIN_OCT);
   double y0[CS_ADA_NY], y1[CS_ADA_NY], dy[CS_ADA_NY], tol[CS_ADA_NY];
+  /* the macro step's start (the slot after the halvings' slots, sim_driver.c): a step that
+   * fails for good restores it, so a failed cs_step changes nothing (sim_model.h) */
+  double* x0 = d->save + (size_t)(CS_MAX_SPLIT + 1) * (size_t)d->nstate;
+  cs_stateGet(m, d, x0);
   while (d->t < t1) {
     if (!(a->h_prop > 0)) {
       a->h_prop = H / (1 << CS_ADA_START_OCT);
@@ -156,7 +160,9 @@ csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err) {
     const long nrej0 = d->nreject;
     csStatus st = cs_stepTry(m, d, te, h, 0, err);
     if (st != CS_OK) {
-      return st; /* the state is the try's start (cs_stepTry) */
+      dJointGroupEmpty(d->contacts);
+      cs_stateSet(m, d, x0, NULL);
+      return st;
     }
     watched(m, d, y1, tol);
     for (int i = 0; i < CS_ADA_NY; i++) {

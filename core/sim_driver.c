@@ -333,7 +333,7 @@ csData* cs_dataCreate(const csModel* m, csError* err) {
   }
   /* the state buffer of step rollback: allocated once (no allocation in the step loop) */
   d->nstate = cs_stateSize(m, d);
-  d->save = malloc((size_t)(CS_MAX_SPLIT + 1) * (size_t)d->nstate * sizeof(double));
+  d->save = malloc((size_t)(CS_MAX_SPLIT + 2) * (size_t)d->nstate * sizeof(double));
   d->fb = calloc(CS_MAX_FEEDBACK, sizeof *d->fb);
   if (!d->save || !d->fb) {
     cs_errorSet(err, CS_ERR_MEMORY, "out of memory");

@@ -113,9 +113,10 @@ struct csData_ {
   double leg_contact_force[CSR_NLEG][3]; /* N, world: its part on each in-world leg */
   csuTimer timer[CS_NTIMER];
   int nstate;                       /* cs_stateSize */
-  double* save;                     /* (CS_MAX_SPLIT + 1) x nstate: the state before the
+  double* save;                     /* (CS_MAX_SPLIT + 2) x nstate: the state before the
                                        current step, then before each of its halves when a
-                                       tree-coupled step is retried smaller (sim_step.c) */
+                                       tree-coupled step is retried smaller (sim_step.c), and
+                                       the adaptive step's macro step start (sim_adaptive.c) */
   csCosim cosim;
   /* CVODE */
   SUNContext sun;

@@ -13,7 +13,8 @@
  *    a run continued from a restored state (cs_stateGet / cs_stateSet, with the controller's
  *    memory) equals the uninterrupted one bit for bit;
  *  - a step the legs reject at every size fails with CS_ERR_REJECTED and leaves the state as
- *    it was (the rollback), as with a fixed step.
+ *    it was at the macro step's start (the rollback), as with a fixed step, also when it
+ *    fails after an accepted step within the macro step.
  * The checkpoint/resume of an adaptive run is test_checkpoint's. ~0.3 s settling and 0.3 s of
  * gait per data at 5 ms macro steps: a few seconds in release. */
 #include <math.h>
@@ -114,11 +115,13 @@ static void test_adaptive_estimate_and_order_on_an_oscillator(void) {
 
 /* ---- through the driver ----------------------------------------------------------------- */
 
-/* the rejecting double: prepare refuses every step when g_reject_all */
+/* the rejecting double: with g_reject_all, prepare refuses every step after g_allow more calls
+ * (each try prepares the eight legs once) */
 static int g_reject_all;
+static long g_allow;
 static int prepareRejecting(csrLeg* leg, double h, const csrBaseState* b0, double Z[36],
                             double rho[6]) {
-  if (g_reject_all) {
+  if (g_reject_all && g_allow-- <= 0) {
     return 1;
   }
   return csr_leg_strain.prepare(leg, h, b0, Z, rho);
@@ -267,18 +270,26 @@ static void test_adaptive_rejected_everywhere_changes_nothing(void) {
     return;
   }
   CS_EXPECT(stepN(&m, d, 10));
-  cs_stateGet(&m, d, x);
-  g_reject_all = 1;
-  csError err;
-  cs_errorClear(&err);
-  const csStatus st = cs_step(&m, d, &err);
-  g_reject_all = 0;
-  cs_stateGet(&m, d, x + n);
-  const int unchanged = memcmp(x, x + n, (size_t)n * sizeof(double)) == 0;
-  printf("  rejected everywhere: status %d (%s), state %s\n", (int)st, err.msg,
-         unchanged ? "unchanged" : "CHANGED");
-  CS_EXPECT(st == CS_ERR_REJECTED);
-  CS_EXPECT(unchanged);
+  /* from the macro step's start (allow 0) and from its second step on (allow 8: the first of
+   * four steps, the proposal set to H / 4, is accepted) */
+  for (int k = 0; k < 2; k++) {
+    d->ada.h_prop = 0.25 * cs_modelMacroStep(&m);
+    cs_stateGet(&m, d, x);
+    g_reject_all = 1;
+    g_allow = 8 * k;
+    csError err;
+    cs_errorClear(&err);
+    const long acc0 = d->ada.accepted;
+    const csStatus st = cs_step(&m, d, &err);
+    g_reject_all = 0;
+    cs_stateGet(&m, d, x + n);
+    const int unchanged = memcmp(x, x + n, (size_t)n * sizeof(double)) == 0;
+    printf("  rejected everywhere after %ld accepted steps: status %d (%s), state %s\n",
+           d->ada.accepted - acc0, (int)st, err.msg, unchanged ? "unchanged" : "CHANGED");
+    CS_EXPECT(st == CS_ERR_REJECTED);
+    CS_EXPECT(d->ada.accepted - acc0 == k);
+    CS_EXPECT(unchanged);
+  }
   free(x);
   cs_dataDestroy(d);
   cs_modelDestroy(&m);
