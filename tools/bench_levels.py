@@ -27,7 +27,7 @@ discards the cache.
 Usage: /usr/bin/python3 tools/bench_levels.py [--crawlsim build/tools/crawlsim]
          [--tasks track,bend] [--scenes flat-road,obstacle] [--obstacle-t-end 4]
          [--rod-configs 2x1,4x1,8x1,...,4x1t20,...] [--ref-links 16]
-         [--strain-configs 3@1e-3o1,3@5e-3o2]
+         [--strain-configs 3@1e-3o1,3@5e-3o2,2@5e-3o1a5e-4]
          [--ref-dt 2.5e-4] [--fe-meshes 6,5] [--tip-meshes 5,6]
          [--work DIR] [--out-dir docs] [--table robot/levels.csv]
        /usr/bin/python3 tools/bench_levels.py --plot-only   (redraw the chart from the CSV)
@@ -537,7 +537,8 @@ def main():
                     "separated")
     ap.add_argument("--strain-configs", default="3@1e-3o1,3@5e-3o2",
                     help="strain bending modes per segment [@ tree step s] [o step order: 1 BE, "
-                    "2 BDF2], comma separated")
+                    "2 BDF2] [a TOL: the adaptive step at --step-tol TOL mm, the tree step its "
+                    "longest; not a row of --table], comma separated")
     # the reference the issues name (32, 33): the nodal rod converged in its elements and step,
     # 16 elements per segment at 0.25 ms; the same rod at twice its step (16x1@5e-4 in
     # --rod-configs) measures how far the reference itself may be from converged
