@@ -96,6 +96,11 @@ typedef struct csRunDef {
   double rod_tol;            /* multiplies rod legs' CVODE tolerances, (0, 1000] (NaN: 1) */
   double step_order;         /* strain legs' tree step: 1 backward Euler, 2 BDF2 (NaN: the
                                 level's, 1) */
+  const char* strain_step;   /* strain legs' tree step: "fixed" (every step dt) | "adaptive"
+                                (each dt crossed in steps a local error estimate chooses, dt
+                                then the longest; backward Euler only); NULL: fixed */
+  double step_tol;           /* strain_step adaptive: the local error allowed per step, mm (and
+                                mm per 10 ms on velocities) (NaN: 5e-4) */
   const char* out;           /* cs_run's HDF5 file (and FILE.xdmf beside it); NULL: none.
                                 cs_simCreate ignores it */
   const char* checkpoint;    /* cs_run: NULL, or a file that gets the run's state every

@@ -29,6 +29,10 @@
 #define MAX_STEPS 1e9
 /* the longest step the driver accepts (sim_driver.c validateOptions) */
 #define MAX_DT_S 0.01
+/* --strain-step adaptive without --dt: the longest step and cs_step's grid (s); the fixed
+ * step's measured ceiling of accuracy on the flat road (docs/notes/strain_leg.md "An
+ * error-controlled macro step") */
+#define CS_ADAPTIVE_MAX_STEP_S 0.005
 /* --set assignments of one run */
 #define MAX_SET 32
 
@@ -42,7 +46,7 @@ csRunDef cs_defaultRunDef(void) {
   d.t_end = 0;
   d.dt = d.output_dt = d.ramp = d.tau = d.gravity = d.support_mass_kg = NAN;
   d.slope_deg = d.links = d.iterations = d.macro_steps = NAN;
-  d.contact_scale = d.rod_tol = d.step_order = NAN;
+  d.contact_scale = d.rod_tol = d.step_order = d.step_tol = NAN;
   d.checkpoint_every = NAN;
   return d;
 }
@@ -228,6 +232,7 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
               {"--links", def->links}, {"--iterations", def->iterations},
               {"--macro-steps", def->macro_steps}, {"--contact-scale", def->contact_scale},
               {"--rod-tol", def->rod_tol}, {"--step-order", def->step_order},
+              {"--step-tol", def->step_tol},
               {"--checkpoint-every", def->checkpoint_every}};
   for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
     if (isinf(nums[k].v)) {
@@ -299,6 +304,35 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
    * the macro step alone and the track is no longer an integration of anything */
   if (!isnan(def->step_order) && def->step_order != 1 && def->step_order != 2) {
     return cs_errorSet(err, CS_ERR_RANGE, "--step-order %g must be 1 or 2", def->step_order);
+  }
+  const char* ss = def->strain_step;
+  if (ss && strcmp(ss, "fixed") && strcmp(ss, "adaptive")) {
+    return cs_errorSet(err, CS_ERR_ARG, "unknown --strain-step '%.60s' (expected fixed or "
+                       "adaptive)", ss);
+  }
+  const int adaptive = ss && !strcmp(ss, "adaptive");
+  if (!isnan(def->step_tol) && !adaptive) {
+    return cs_errorSet(err, CS_ERR_ARG, "--step-tol goes with --strain-step adaptive");
+  }
+  if (!isnan(def->step_tol) && !(def->step_tol > 0 && def->step_tol <= 100)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--step-tol %g mm must be > 0 and <= 100",
+                       def->step_tol);
+  }
+  if (adaptive && type && !type->prepare) {
+    return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive needs a tree-stepped leg level "
+                       "(--legs strain, not %s)", type->name);
+  }
+  if (adaptive && !type) {
+    return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive goes with --legs strain (not "
+                       "auto: its table's rows are fixed steps)");
+  }
+  if (adaptive && def->coupling && strcmp(def->coupling, "tree")) {
+    return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive needs --coupling tree (the "
+                       "strain level's own)");
+  }
+  if (adaptive && !isnan(def->step_order) && def->step_order != 1) {
+    return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive estimates backward Euler's "
+                       "error: --step-order 1 only");
   }
   if (!isnan(def->rod_tol) && !(def->rod_tol > 0 && def->rod_tol <= 1000)) {
     return cs_errorSet(err, CS_ERR_RANGE, "--rod-tol %g must be > 0 and <= 1000", def->rod_tol);
@@ -401,7 +435,8 @@ int cs_runDefIdentity(const csRunDef* def, const csModel* m, const csRunPlan* pl
                {"gate", def->gate},             {"conditions", def->conditions},
                {"legs", def->legs},
                {"cal_rule", def->cal_rule},     {"cal_drop", def->cal_drop},
-               {"coupling", def->coupling}};
+               {"coupling", def->coupling},
+               {"strain_step", def->strain_step}};
   for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
     rc |= identityLine(out, size, &len, words[k].name, words[k].v, 0);
   }
@@ -424,7 +459,8 @@ int cs_runDefIdentity(const csRunDef* def, const csModel* m, const csRunPlan* pl
               {"macro_steps", def->macro_steps},
               {"contact_scale", def->contact_scale},
               {"rod_tol", def->rod_tol},
-              {"step_order", def->step_order}};
+              {"step_order", def->step_order},
+              {"step_tol", def->step_tol}};
   for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
     rc |= identityNum(out, size, &len, nums[k].name, nums[k].v);
   }
@@ -708,6 +744,13 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   if (!isnan(def->tau)) m->opt.pneumatic_tau = def->tau;
   if (!isnan(def->iterations)) m->opt.solver_iterations = (int)def->iterations;
   if (!isnan(macro)) m->opt.macro_steps = (int)macro;
+  if (def->strain_step && !strcmp(def->strain_step, "adaptive")) {
+    m->opt.step_adaptive = 1;
+    if (!isnan(def->step_tol)) m->opt.step_tol = def->step_tol;
+    /* the longest step, and the grid of cs_step: 5 ms unless dt says (the level's fixed step
+     * is the shortest its error needs; the adaptive step finds its own) */
+    if (isnan(dt)) m->opt.h = CS_ADAPTIVE_MAX_STEP_S;
+  }
   if (def->coupling) {
     const char* cp = def->coupling;
     m->opt.coupling = !strcmp(cp, "stabilised") ? CS_COUPLING_STABILISED

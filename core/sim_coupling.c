@@ -856,7 +856,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
    * passes go on to twice the budget before the try is halved again or the run stops (the
    * earth collapse on strain legs at 0.853 s: a damped pass contracting at 0.5 a pass reached
    * 4.9e-6 mm at the 24th; docs/notes/strain_leg.md "The earth collapse") */
-  const int pass_limit = h < 1.5 * cs_modelMacroStep(m) / (1 << CS_SPLIT_MORE_PASSES)
+  const int pass_limit = h < 1.5 * d->h_try / (1 << CS_SPLIT_MORE_PASSES)
                              ? 2 * m->opt.tree_iterations : m->opt.tree_iterations;
   if (bdf && newton) {
     /* BDF2's first iterate where the support's twist is unchanged: the legs back-substitute
@@ -959,7 +959,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
      * of the step down to 1/16: the obstacle on strain legs stopped at 26.846 s; docs/notes/
      * strain_leg.md "The obstacle's stop"). Applied to every step it rejected more steps of
      * the flat road (11 against 2 at 5 ms), so steps at the macro step are as before */
-    const int keep_damping = it > m->opt.tree_iterations / 2 && h <= 0.75 * cs_modelMacroStep(m);
+    const int keep_damping = it > m->opt.tree_iterations / 2 && h <= 0.75 * d->h_try;
     if (it > 1 && chg > 0.9 * chg_last) {
       alpha = fmax(0.125, 0.5 * alpha);
     } else if (!keep_damping) {

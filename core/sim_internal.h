@@ -69,6 +69,20 @@ typedef struct csCosim_ {
 /* contact joints whose force is measured per ODE step (each ~100 bytes) */
 #define CS_MAX_FEEDBACK 4096
 
+/* The adaptive macro step (sim_adaptive.c): the watched state is the support's centre (3,
+ * mm), its velocity (3, mm/s), its angular velocity times CS_ADA_LEVER (3, mm/s) and every
+ * foot's position (3 per leg, mm); its state part is the next step h_prop (s), the last
+ * accepted step h_prev (s; 0: no history) and that step's change of the watched state */
+enum { CS_ADA_NY = 9 + 3 * CSR_NLEG, CS_ADA_STATE = 2 + CS_ADA_NY, CS_ADA_NBIN = 256 };
+typedef struct csAdaptive_ {
+  double h_prop, h_prev;
+  double dy_prev[CS_ADA_NY];
+  /* not state: counts and the accepted steps' lengths (bins of 1/16 octave below H) */
+  long accepted, rejected;
+  double h_min, h_max;
+  long bins[CS_ADA_NBIN];
+} csAdaptive;
+
 struct csData_ {
   const csModel* m;                 /* for the pneumatic right-hand side */
   dWorldID world;
@@ -99,9 +113,10 @@ struct csData_ {
   double leg_contact_force[CSR_NLEG][3]; /* N, world: its part on each in-world leg */
   csuTimer timer[CS_NTIMER];
   int nstate;                       /* cs_stateSize */
-  double* save;                     /* (CS_MAX_SPLIT + 1) x nstate: the state before the
+  double* save;                     /* (CS_MAX_SPLIT + 2) x nstate: the state before the
                                        current step, then before each of its halves when a
-                                       tree-coupled step is retried smaller (sim_step.c) */
+                                       tree-coupled step is retried smaller (sim_step.c), and
+                                       the adaptive step's macro step start (sim_adaptive.c) */
   csCosim cosim;
   /* CVODE */
   SUNContext sun;
@@ -120,6 +135,10 @@ struct csData_ {
   int gate_next, gate_holding;
   double gate_off[CSG_GATE_MAX + 1];
   double gate_issued;
+  csAdaptive ada;  /* the adaptive step (opt.step_adaptive; sim_adaptive.c) */
+  /* the step the current try started as before its halvings (s): H with a fixed step, the
+   * adaptive step's length with step_adaptive (the tree's rules for a retried step) */
+  double h_try;
   long pn_count[2]; /* CVODE's internal steps and right-hand sides on the pressures so far
                        (cs_pneumaticCounts), across its restarts */
 };
@@ -137,6 +156,23 @@ struct csData_ {
  * twice the Newton passes (core/sim_coupling.c cs_couplingApplyTree), so every step that
  * converged with 4 halvings at most is tried with the same passes as then */
 #define CS_SPLIT_MORE_PASSES 4
+
+/* the adaptive step (sim_adaptive.c): its part of the state (0 with a fixed step), its
+ * get/set/check, and one macro step [d->t, t1] crossed in error-controlled steps */
+int cs_adaptiveStateSize(const csModel* m);
+void cs_adaptiveStateGet(const csData* d, double* x);
+int cs_adaptiveStateCheck(const csModel* m, const double* x);
+void cs_adaptiveStateSet(csData* d, const double* x);
+csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err);
+/* the controller's parts (unit-tested on a closed form, tests/core/test_strain_adaptive.c):
+ * the weighted RMS of the trapezoid-minus-backward-Euler estimate (dy[i] - r dy_prev[i]) / 2
+ * over tol[i] for the step's change dy after a step of change dy_prev, r = h / h_prev; and
+ * the factor on h for that error E (0.9 / sqrt(E), within [0.2, 2]) */
+double cs_adaptiveErrorNorm(int n, const double* dy, const double* dy_prev, const double* tol,
+                            double r);
+double cs_adaptiveFactor(double E);
+/* one try of [d->t, t1] of length H with its halvings (sim_step.c) */
+csStatus cs_stepTry(const csModel* m, csData* d, double t1, double H, int depth, csError* err);
 
 /* scheduled pressures at time t (zero before t = 0), 96 MPa: the model's pressure source if
  * it has one, else the gait table with its footholds' chosen candidates (sim_schedule.c,

@@ -98,6 +98,12 @@ typedef struct csOptions_ {
                              linearised pass; more: until tree_tol, else the step is rejected and
                              retried in halves); the level must implement update/iterate */
   double tree_tol;        /* tree coupling: a pass converges when nothing moves by more (mm) */
+  int step_adaptive;      /* tree coupling: 0 every step is H (fixed); 1 each macro step H is
+                             crossed in steps chosen by a local error estimate (sim_adaptive.c:
+                             H is then the longest step and the output's grid) */
+  double step_tol;        /* step_adaptive 1: the local error allowed per step, a weighted RMS
+                             over the watched positions (mm) and velocities (tol / 0.01 s,
+                             mm/s) (sim_adaptive.c) */
   double t_end;           /* end time (s); <= 0: the gait's last row time + ramp */
   double output_dt;       /* output sampling interval (s), a multiple of H after rounding */
   double settle;          /* s of unactuated settling under gravity before t = 0 */
@@ -296,6 +302,14 @@ const csuTimer* cs_timers(const csData* d);
 
 /* ---- read-outs (valid until the next cs_step) ---------------------------------------------- */
 double cs_time(const csData* d);
+/* The adaptive step's counts since cs_dataCreate (sim_adaptive.c; zeros with a fixed step):
+ * accepted steps, steps rejected by the error test, and the accepted steps' smallest, median
+ * (from a histogram in 1/16 octaves) and largest length (s). Not state. */
+typedef struct csAdaptiveStats_ {
+  long accepted, rejected;
+  double h_min, h_median, h_max;
+} csAdaptiveStats;
+void cs_adaptiveStats(const csData* d, csAdaptiveStats* s);
 /* steps taken and steps rejected (failed and restored) since cs_dataCreate */
 long cs_stepCount(const csData* d);
 long cs_rejectCount(const csData* d);

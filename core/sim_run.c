@@ -9,7 +9,9 @@
  * /terrain/corners [nbox*8,3] mm; every dataset with the attributes units and description
  * (kDatasetUnits); root attributes stance_force_threshold_N, scene,
  * conditions, leg_model, gait_file, units, version, terrain, friction, pressure_scale, step_s,
- * macro_step_s, leg_step_s, leg_step_order (tree coupling), contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
+ * macro_step_s, leg_step_s, leg_step_order (tree coupling), leg_step_adaptive and
+ * leg_step_tol_mm (the adaptive step; at the end adaptive_steps, adaptive_rejected_steps,
+ * adaptive_h_min_s, adaptive_h_median_s, adaptive_h_max_s), contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
  * rejected_steps, gain_projections (sim_coupling.c implicitPart), with footholds foothold_file
  * and foothold_choices ("T LEGS OFFSET; ..."), control (open loop, a caller's source, or the
@@ -305,6 +307,11 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
     const int lvl = lt->step_order ? lt->step_order : 1;
     const int order = (int)csr_legSettingGet(lt, ls, "step_order", lvl);
     st = cs_h5AttrDouble(f, "/", "leg_step_order", order, err);
+  }
+  if (st == CS_OK && m->opt.step_adaptive) {
+    /* the adaptive tree step (sim_adaptive.c): leg_step_s is then its longest step */
+    st = cs_h5AttrDouble(f, "/", "leg_step_adaptive", 1, err);
+    if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "leg_step_tol_mm", m->opt.step_tol, err);
   }
   if (st == CS_OK && m->legs_auto_choice[0]) {
     st = cs_h5AttrString(f, "/", "legs_auto_choice", m->legs_auto_choice, err);
@@ -629,6 +636,15 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
   cs_h5AttrDouble(f, "/", "steps", (double)cs_stepCount(d), NULL);
   cs_h5AttrDouble(f, "/", "rejected_steps", (double)cs_rejectCount(d), NULL);
   cs_h5AttrDouble(f, "/", "gain_projections", (double)cs_gainProjectionCount(d), NULL);
+  if (m->opt.step_adaptive) {
+    csAdaptiveStats as;
+    cs_adaptiveStats(d, &as);
+    cs_h5AttrDouble(f, "/", "adaptive_steps", (double)as.accepted, NULL);
+    cs_h5AttrDouble(f, "/", "adaptive_rejected_steps", (double)as.rejected, NULL);
+    cs_h5AttrDouble(f, "/", "adaptive_h_min_s", as.h_min, NULL);
+    cs_h5AttrDouble(f, "/", "adaptive_h_median_s", as.h_median, NULL);
+    cs_h5AttrDouble(f, "/", "adaptive_h_max_s", as.h_max, NULL);
+  }
   if (m->foothold) {
     /* what each foothold chose: "T LEGS OFFSET" per foothold ("-" while undecided) */
     char fh[CS_H5_STATUS_SIZE] = "";

@@ -3,7 +3,8 @@
  * Layout: [0] t (s); [1] the data's ODE random seed (sim_internal.h); [2 .. 97] the 96 chamber pressures (MPa); then the
  * robot (csr_robotStateGet: support body, then legs A..H); with co-simulated legs, then the
  * coupling's block (CS_COSIM_STATE: what the Gauss-Seidel scheme carries from one macro step
- * to the next, sim_coupling.c); with footholds (--foothold), one value per foothold: its
+ * to the next, sim_coupling.c); with the adaptive step (opt.step_adaptive), its controller's
+ * memory (CS_ADA_STATE: the next step, the last step and its change, sim_adaptive.c); with footholds (--foothold), one value per foothold: its
  * latched candidate, -1 while undecided (sim_foothold.c); with a landing gate (--gate), 3 + n
  * values: the next gate, the hold (s), the current wait (s) and the n gates' released waits
  * (s; sim_gate.c). Restoring is bit-exact for every
@@ -28,9 +29,14 @@ static int footholdCount(const csModel* m) { return m->foothold ? m->foothold->n
 static int gateCount(const csModel* m) { return m->gate ? 3 + m->gate->n : 0; }
 
 
+/* where the adaptive step's part starts: after the robot and the coupling's block */
+static int adaStart(const csData* d) {
+  return HEAD + csr_robotStateSize(d->robot) + (d->cosim.active ? CS_COSIM_STATE : 0);
+}
+
+
 int cs_stateSize(const csModel* m, const csData* d) {
-  return HEAD + csr_robotStateSize(d->robot) + (d->cosim.active ? CS_COSIM_STATE : 0) +
-         footholdCount(m) + gateCount(m);
+  return adaStart(d) + cs_adaptiveStateSize(m) + footholdCount(m) + gateCount(m);
 }
 
 
@@ -41,6 +47,9 @@ void cs_stateGet(const csModel* m, const csData* d, double* x) {
   csr_robotStateGet(d->robot, x + HEAD);
   if (d->cosim.active) {
     cs_couplingStateGet(d, x + HEAD + csr_robotStateSize(d->robot));
+  }
+  if (cs_adaptiveStateSize(m) > 0) {
+    cs_adaptiveStateGet(d, x + adaStart(d));
   }
   const int nfh = footholdCount(m), ng = gateCount(m);
   if (nfh > 0) {
@@ -71,6 +80,11 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   if (d->cosim.active && cs_couplingStateCheck(xc) != 0) {
     return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the coupling's part is not finite");
   }
+  if (cs_adaptiveStateSize(m) > 0 && cs_adaptiveStateCheck(m, x + adaStart(d)) != 0) {
+    return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the adaptive step's part (next step %g s, "
+                       "last step %g s) is not a state of this run", x[adaStart(d)],
+                       x[adaStart(d) + 1]);
+  }
   const int nfh = footholdCount(m), ng = gateCount(m);
   const double* xf = x + cs_stateSize(m, d) - ng - nfh;
   const double* xg = x + cs_stateSize(m, d) - ng;
@@ -99,6 +113,9 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   }
   if (d->cosim.active) {
     cs_couplingStateSet(d, xc);
+  }
+  if (cs_adaptiveStateSize(m) > 0) {
+    cs_adaptiveStateSet(d, x + adaStart(d));
   }
   if (nfh > 0) {
     memcpy(d->fh_choice, xf, sizeof(double) * (size_t)nfh);

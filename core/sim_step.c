@@ -12,7 +12,8 @@
  * that did not converge, a foot sunk past its bound: CS_ERR_REJECTED) is restored and tried
  * again as two halves, each again halved when it is rejected, down to CS_MAX_SPLIT halvings;
  * each depth saves into its own slot of d->save, so a half that fails for good restores the
- * whole step (stepTry). The other couplings exchange at a fixed macro step and return the
+ * whole step (cs_stepTry). With opt.step_adaptive the macro step is crossed in steps of the
+ * error controller's length (sim_adaptive.c), each one such try. The other couplings exchange at a fixed macro step and return the
  * rejection to the caller, as before.
  *
  * Order of the arithmetic. With in-world legs and one ODE step per macro step the stages do
@@ -280,9 +281,12 @@ static csStatus stageCheck(const csModel* m, const csData* d, double t1, csError
  * success d->t = t1, else the state is restored from `save` (nreject counts it). A rejected
  * tree-coupled step is then retried as two halves, each saved into the next slot of d->save,
  * down to CS_MAX_SPLIT halvings; when a half fails for good, the whole step is restored. */
-static csStatus stepTry(const csModel* m, csData* d, double t1, double H, int depth,
-                        csError* err) {
+csStatus cs_stepTry(const csModel* m, csData* d, double t1, double H, int depth,
+                   csError* err) {
   double w = csu_wallSeconds();
+  if (depth == 0) {
+    d->h_try = H; /* the tree's rules for the halvings of this try (sim_coupling.c) */
+  }
   double* save = d->save + (size_t)depth * (size_t)d->nstate;
   cs_stateGet(m, d, save);
   w = csu_timerAdd(&d->timer[CS_TIMER_SAVE], w);
@@ -332,9 +336,9 @@ static csStatus stepTry(const csModel* m, csData* d, double t1, double H, int de
   }
   /* smaller: two halves (each retried smaller in turn) */
   const double tm = d->t + 0.5 * H;
-  st = stepTry(m, d, tm, 0.5 * H, depth + 1, err);
+  st = cs_stepTry(m, d, tm, 0.5 * H, depth + 1, err);
   if (st == CS_OK) {
-    st = stepTry(m, d, t1, 0.5 * H, depth + 1, err);
+    st = cs_stepTry(m, d, t1, 0.5 * H, depth + 1, err);
   }
   if (st != CS_OK) {
     dJointGroupEmpty(d->contacts);
@@ -347,7 +351,8 @@ static csStatus stepTry(const csModel* m, csData* d, double t1, double H, int de
 csStatus cs_step(const csModel* m, csData* d, csError* err) {
   double w0 = csu_wallSeconds();
   const double H = cs_modelMacroStep(m), t1 = d->t + H;
-  csStatus st = stepTry(m, d, t1, H, 0, err);
+  csStatus st = m->opt.step_adaptive && treeStep(m, d) ? cs_adaptiveStep(m, d, t1, err)
+                                                       : cs_stepTry(m, d, t1, H, 0, err);
   if (st == CS_OK) {
     d->t = t1; /* exactly, however many halves it took */
     d->nstep++;

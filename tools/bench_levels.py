@@ -27,7 +27,7 @@ discards the cache.
 Usage: /usr/bin/python3 tools/bench_levels.py [--crawlsim build/tools/crawlsim]
          [--tasks track,bend] [--scenes flat-road,obstacle] [--obstacle-t-end 4]
          [--rod-configs 2x1,4x1,8x1,...,4x1t20,...] [--ref-links 16]
-         [--strain-configs 3@1e-3o1,3@5e-3o2]
+         [--strain-configs 3@1e-3o1,3@5e-3o2,2@5e-3o1a5e-4]
          [--ref-dt 2.5e-4] [--fe-meshes 6,5] [--tip-meshes 5,6]
          [--work DIR] [--out-dir docs] [--table robot/levels.csv]
        /usr/bin/python3 tools/bench_levels.py --plot-only   (redraw the chart from the CSV)
@@ -92,13 +92,15 @@ def cached(work, key, compute):
 
 
 # ---------------------------------------------------------------------------------- tracks
-def track_config_name(level, links, macro, dt, k=1.0, order=0):
+def track_config_name(level, links, macro, dt, k=1.0, order=0, tol=0.0):
     return f"{level}-l{links}-m{macro}-dt{dt:g}" + (f"-k{k:g}" if k != 1 else "") + \
-        (f"-o{order}" if order else "")
+        (f"-o{order}" if order else "") + (f"-a{tol:g}" if tol else "")
 
 
-def run_track(a, scene, level, links, macro, dt, k=1.0, order=0):
-    key = f"track-{scene}-" + track_config_name(level, links, macro, dt, k, order) + \
+def run_track(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0):
+    """tol > 0: the strain level's adaptive step (--strain-step adaptive --step-tol tol, dt
+    its longest step)"""
+    key = f"track-{scene}-" + track_config_name(level, links, macro, dt, k, order, tol) + \
         (f"-t{a.obstacle_t_end:g}" if scene == "obstacle" else "")
     out = os.path.join(a.work, key + ".h5")
 
@@ -112,17 +114,34 @@ def run_track(a, scene, level, links, macro, dt, k=1.0, order=0):
         # always given: a level's own default step is not the configuration's (the strain
         # level's is 0.5 ms since the sixth session, so "1e-3" left out ran at 0.5 ms)
         cmd += ["--dt", f"{dt:g}"]
+        if tol:
+            cmd += ["--strain-step", "adaptive", "--step-tol", f"{tol:g}"]
         if k != 1:
             cmd += ["--rod-tol", f"{k:g}"]
         if scene == "obstacle":
             cmd += ["--t-end", f"{a.obstacle_t_end:g}"]
         load = os.getloadavg()[0]
         rc, wall, cpu, last = run_timed(cmd, a.timeout)
-        return {"task": scene, "scene": scene, "level": level, "links": links, "macro": macro,
-                "dt": dt, "cmd": " ".join(cmd[1:]), "rc": rc, "wall_s": wall, "cpu_s": cpu,
-                "load": load, "last": last, "h5": out}
+        res = {"task": scene, "scene": scene, "level": level, "links": links, "macro": macro,
+               "dt": dt, "cmd": " ".join(cmd[1:]), "rc": rc, "wall_s": wall, "cpu_s": cpu,
+               "load": load, "last": last, "h5": out}
+        res.update(step_counts(out))
+        return res
 
     return cached(a.work, key, compute)
+
+
+def step_counts(path):
+    """the run file's step counts: steps and rejected_steps, and with the adaptive step its
+    accepted and error-rejected steps and their lengths (s); {} without the file"""
+    import h5py
+    names = ["steps", "rejected_steps", "adaptive_steps", "adaptive_rejected_steps",
+             "adaptive_h_min_s", "adaptive_h_median_s", "adaptive_h_max_s"]
+    try:
+        with h5py.File(path, "r") as f:
+            return {n: float(f.attrs[n]) for n in names if n in f.attrs}
+    except OSError:
+        return {}
 
 
 def read_track(path):
@@ -153,6 +172,17 @@ def sim_seconds(res):
     return float(t[-1])
 
 
+def adaptive_setting(res, tol):
+    """the adaptive step's words for the bench CSV: tolerance, steps, rejections, lengths"""
+    g = res.get
+    return (f", adaptive tol {tol:g} mm: {g('adaptive_steps', float('nan')):.0f} steps, "
+            f"{g('adaptive_rejected_steps', float('nan')):.0f} rejected by the error, "
+            f"{g('rejected_steps', float('nan')):.0f} by the stages, h min/median/max "
+            f"{g('adaptive_h_min_s', float('nan')) * 1e3:.3g}/"
+            f"{g('adaptive_h_median_s', float('nan')) * 1e3:.3g}/"
+            f"{g('adaptive_h_max_s', float('nan')) * 1e3:.3g} ms")
+
+
 def tracks(a, rows, table):
     # "NxM", "NxM@DT", "NxMtK", "NxM@DTtK": N elements per segment, M macro steps, ODE step DT
     # (default 1 ms), the rod's CVODE tolerances x K (--rod-tol, default 1)
@@ -162,31 +192,36 @@ def tracks(a, rows, table):
         nm, _, dt = c.partition("@")
         n, m = (int(v) for v in nm.split("x"))
         rod_configs.append((n, m, float(dt) if dt else 1e-3, float(k) if k else 1.0))
-    # "N@DToK": N bending modes per segment, tree step DT, step formula K (1 BE, 2 BDF2)
+    # "N@DToK[aTOL]": N bending modes per segment, tree step DT, step formula K (1 BE, 2
+    # BDF2); with aTOL the adaptive step (--strain-step adaptive --step-tol TOL mm, DT its
+    # longest step): not a row of the auto table (whose rows are fixed steps)
     strain_configs = []
     for c in (c for c in a.strain_configs.split(",") if c):
+        c, _, tol = c.partition("a")
         c, _, o = c.partition("o")
         n, _, dt = c.partition("@")
-        strain_configs.append((int(n), 1, float(dt) if dt else 1e-3, 1.0, int(o) if o else 0))
+        strain_configs.append((int(n), 1, float(dt) if dt else 1e-3, 1.0, int(o) if o else 0,
+                               float(tol) if tol else 0.0))
     for scene in a.scenes.split(","):
         ref = run_track(a, scene, "rod", a.ref_links, 1, a.ref_dt)
         if ref["rc"] != 0:
             fail(f"the {scene} reference run failed: {ref['last']}")
         t_ref = sim_seconds(ref)
-        configs = [("rod", n, m, dt, k, 0) for n, m, dt, k in rod_configs]
+        configs = [("rod", n, m, dt, k, 0, 0.0) for n, m, dt, k in rod_configs]
         configs += [("strain",) + c for c in strain_configs]
-        points = [(ref, "rod", a.ref_links, 1, a.ref_dt, 1.0, 0, True)]
-        for level, links, macro, dt, k, order in configs:
-            res = run_track(a, scene, level, links, macro, dt, k, order)
-            points.append((res, level, links, macro, dt, k, order, False))
-            print(f"  {scene} {level} links {links} macro {macro} rod tol {k:g}: rc {res['rc']}, "
+        points = [(ref, "rod", a.ref_links, 1, a.ref_dt, 1.0, 0, True, 0.0)]
+        for level, links, macro, dt, k, order, tol in configs:
+            res = run_track(a, scene, level, links, macro, dt, k, order, tol)
+            points.append((res, level, links, macro, dt, k, order, False, tol))
+            print(f"  {scene} {level} links {links} macro {macro} rod tol {k:g}"
+                  + (f" adaptive {tol:g} mm" if tol else "") + f": rc {res['rc']}, "
                   f"{res['cpu_s']:.1f} s CPU, {res['wall_s']:.1f} s wall", file=sys.stderr)
         # the reference's own error: the same rod at half its step (not a choice for auto)
         check = None
         if a.ref_check_dt:
             check = run_track(a, scene, "rod", a.ref_links, 1, a.ref_check_dt)
-        for res, level, links, macro, dt, k, order, is_ref in points + \
-                ([(check, "rod", a.ref_links, 1, a.ref_check_dt, 1.0, 0, False)] if check
+        for res, level, links, macro, dt, k, order, is_ref, tol in points + \
+                ([(check, "rod", a.ref_links, 1, a.ref_check_dt, 1.0, 0, False, 0.0)] if check
                  else []):
             ok = res["rc"] == 0
             is_check = check is not None and res is check
@@ -195,14 +230,15 @@ def tracks(a, rows, table):
             setting = f"links {links}" + (f", macro {macro} x {dt * 1e3:g} ms" if level == "rod"
                                          else f", dt {dt * 1e3:g} ms") + \
                 (f", rod tol {k:g}" if k != 1 else "") + \
-                ({1: ", BE", 2: ", BDF2"}.get(order, "") if level == "strain" else "")
+                ({1: ", BE", 2: ", BDF2"}.get(order, "") if level == "strain" else "") + \
+                (adaptive_setting(res, tol) if tol else "")
             rows.append({"task": scene, "model": level, "setting": setting,
                          "error_mm": err, "wall_s": res["wall_s"], "cpu_s": res["cpu_s"],
                          "sim_s": t_sim, "load": res["load"], "status": "ok" if ok else
                          res["last"], "reference": "yes" if is_ref else
                          ("check of the reference" if is_check else ""),
                          "command": res["cmd"]})
-            if ok and not is_ref and not is_check:
+            if ok and not is_ref and not is_check and not tol:
                 table.append({"scene": scene, "level": level, "links": links,
                               "macro_steps": macro, "dt_s": f"{dt:g}", "rod_tol": f"{k:g}",
                               "step_order": order,
@@ -501,7 +537,8 @@ def main():
                     "separated")
     ap.add_argument("--strain-configs", default="3@1e-3o1,3@5e-3o2",
                     help="strain bending modes per segment [@ tree step s] [o step order: 1 BE, "
-                    "2 BDF2], comma separated")
+                    "2 BDF2] [a TOL: the adaptive step at --step-tol TOL mm, the tree step its "
+                    "longest; not a row of --table], comma separated")
     # the reference the issues name (32, 33): the nodal rod converged in its elements and step,
     # 16 elements per segment at 0.25 ms; the same rod at twice its step (16x1@5e-4 in
     # --rod-configs) measures how far the reference itself may be from converged

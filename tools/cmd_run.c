@@ -114,6 +114,12 @@ static const csxOpt kRunOpts[] = {
      "rod_tolerance_scale"},
     {"--step-order", "1|2", "the level's (strain: 1)",
      "strain legs: the tree step's formula, 1 backward Euler, 2 BDF2 (support and legs)"},
+    {"--strain-step", "fixed|adaptive", "fixed",
+     "strain legs: fixed (every step --dt) or adaptive (each --dt, default then 5e-3, crossed in "
+     "steps chosen by a local error estimate; backward Euler)"},
+    {"--step-tol", "MM", "5e-4",
+     "with --strain-step adaptive: the local error allowed per step in mm (velocities: mm per "
+     "10 ms)"},
     {"--tol", "MM", NULL,
      "with --legs auto: the track error allowed against the rod reference, in mm"},
     {"--levels", "FILE", "robot/levels.csv",
@@ -176,6 +182,8 @@ static const struct {
     {"--contact-scale", offsetof(csRunDef, contact_scale), 1},
     {"--rod-tol", offsetof(csRunDef, rod_tol), 1},
     {"--step-order", offsetof(csRunDef, step_order), 1},
+    {"--strain-step", offsetof(csRunDef, strain_step), 0},
+    {"--step-tol", offsetof(csRunDef, step_tol), 1},
     {"--iterations", offsetof(csRunDef, iterations), 1},
 };
 

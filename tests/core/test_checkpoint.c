@@ -2,7 +2,8 @@
  * FILE --resume FILE`; core/sim_checkpoint.c, sim_run.c):
  *  - a run cut at a checkpoint (its --t-end) and resumed to the end writes an output whose
  *    every dataset equals the uncut run's bit for bit, on rod legs (Gauss-Seidel, CVODE per
- *    leg) and on strain legs (the tree coupling), and the same step count; the comparison is
+ *    leg) and on strain legs (the tree coupling, its fixed and its adaptive step), and the same
+ *    step count; the comparison is
  *    not trivial (the rows after the cut differ from the cut's); one stopped before settling
  *    (a checkpoint at t < 0) settles when resumed and equals the uncut run too;
  *  - a resume with another definition (friction, the checkpoint interval, links, the gate) is
@@ -126,26 +127,31 @@ static int readRow(const char* path, const char* name, long row, int w, double* 
 
 
 /* the uncut run of 0.3 s against the same run cut at 0.2 s and resumed to 0.3 s */
-static void resumedEqualsUncut(const char* legs) {
+/* step: NULL, or the strain level's --strain-step */
+static void resumedEqualsUncutStep(const char* legs, const char* step) {
   char a_out[64], a_ck[64], b_out[64], b_ck[64];
-  snprintf(a_out, sizeof a_out, "ckpt_%s_uncut.h5", legs);
-  snprintf(a_ck, sizeof a_ck, "ckpt_%s_uncut.ck", legs);
-  snprintf(b_out, sizeof b_out, "ckpt_%s_cut.h5", legs);
-  snprintf(b_ck, sizeof b_ck, "ckpt_%s_cut.ck", legs);
+  const char* tag = step ? step : "";
+  snprintf(a_out, sizeof a_out, "ckpt_%s%s_uncut.h5", legs, tag);
+  snprintf(a_ck, sizeof a_ck, "ckpt_%s%s_uncut.ck", legs, tag);
+  snprintf(b_out, sizeof b_out, "ckpt_%s%s_cut.h5", legs, tag);
+  snprintf(b_ck, sizeof b_ck, "ckpt_%s%s_cut.ck", legs, tag);
   csError err;
   csRunResult ra, rb, rc;
   csRunDef a = baseDef(legs);
+  a.strain_step = step;
   a.t_end = 0.3;
   a.out = a_out;
   a.checkpoint = a_ck;
   CS_EXPECT(runDef(&a, &ra, &err) == CS_OK);
   csRunDef b = baseDef(legs);
+  b.strain_step = step;
   b.t_end = 0.2;
   b.out = b_out;
   b.checkpoint = b_ck;
   CS_EXPECT(runDef(&b, &rb, &err) == CS_OK);
   CS_EXPECT(rb.t_end < ra.t_end - 0.05);
   csRunDef c = baseDef(legs);
+  c.strain_step = step;
   c.t_end = 0.3;
   c.out = b_out;
   c.resume = b_ck; /* the checkpoints go on into it */
@@ -169,14 +175,18 @@ static void resumedEqualsUncut(const char* legs) {
   const double dfoot =
       sqrt(pow(c30[0] - c20[0], 2) + pow(c30[1] - c20[1], 2) + pow(c30[2] - c20[2], 2));
   CS_EXPECT(dp > 0.01 && dfoot > 0.1); /* MPa, mm: the gait's first ramp is under way */
-  printf("  %s legs: %ld rows %s; steps %ld; support x %.6f mm at 0.3 s; the pressures moved "
-         "by up to %.4f MPa and the foot of leg A by %.3f mm after the cut\n", legs, rows,
+  printf("  %s legs%s%s: %ld rows %s; steps %ld; support x %.6f mm at 0.3 s; the pressures moved "
+         "by up to %.4f MPa and the foot of leg A by %.3f mm after the cut\n", legs,
+         step ? ", step " : "", tag, rows,
          same ? "equal bit for bit" : "DIFFER", rc.steps, rc.position[0], dp, dfoot);
   /* the checkpoint file got the end's state: a later resume refuses to run past nothing */
   c.t_end = 0.3;
   CS_EXPECT(cs_run(&c, &rc, &err) == CS_ERR_ARG && strstr(err.msg, b_ck) &&
             strstr(err.msg, "nothing to continue"));
 }
+
+
+static void resumedEqualsUncut(const char* legs) { resumedEqualsUncutStep(legs, NULL); }
 
 
 static void test_rod_resumed_equals_uncut(void) { resumedEqualsUncut("rod"); }
@@ -213,6 +223,10 @@ static void test_settling_resumed_equals_uncut(void) {
          rows, rc.steps, rc.position[1], ra.position[1]);
 }
 static void test_strain_resumed_equals_uncut(void) { resumedEqualsUncut("strain"); }
+/* the adaptive step (its controller's memory is state: sim_adaptive.c) */
+static void test_strain_adaptive_resumed_equals_uncut(void) {
+  resumedEqualsUncutStep("strain", "adaptive");
+}
 
 
 /* a cut run of rod legs to resume wrongly: its output and checkpoint */
@@ -408,6 +422,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_rod_resumed_equals_uncut);
   CS_RUN(test_strain_resumed_equals_uncut);
+  CS_RUN(test_strain_adaptive_resumed_equals_uncut);
   CS_RUN(test_settling_resumed_equals_uncut);
   CS_RUN(test_other_definition_is_refused);
   CS_RUN(test_corrupt_checkpoint_is_refused);

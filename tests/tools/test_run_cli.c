@@ -399,7 +399,8 @@ static void test_gaitCheckAgreesWithRun(void) {
 
 /* `--legs strain`: the tree coupling at the level's own step and bending modes, recorded in the
  * file (leg_model, coupling, step_s, leg_step_s, leg_step_order, links_per_segment, the tree
- * timer), and --step-order 2 as run; the
+ * timer), --step-order 2 as run, --strain-step adaptive recorded (its tolerance and counts) and
+ * its words refused; the
  * coupling refused for other levels and with more than one ODE step per macro step */
 static void test_strainRun(void) {
   csCliResult r;
@@ -453,6 +454,37 @@ static void test_strainRun(void) {
   }
   remove("runcli_strain2.h5");
   remove("runcli_strain2.xdmf");
+  /* --strain-step adaptive: its longest step 5 ms (the macro step, the file's step_s), its
+   * tolerance and counts in the file; its words refused in one line each */
+  cs_cliRun(exe_path,
+            "run --t-end 0.02 --quiet --legs strain --strain-step adaptive --step-tol 0.002 "
+            "--out runcli_strain3.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0);
+  f = H5Fopen("runcli_strain3.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double ada = 0, tol = 0, step = 0, nacc = 0, hmax = 0;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_adaptive", &ada) >= 0 && ada == 1);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_tol_mm", &tol) >= 0 && tol == 0.002);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "step_s", &step) >= 0 && step == 5e-3);
+    /* settling and run: 64 macro steps of 5 ms, each one or more accepted steps */
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "adaptive_steps", &nacc) >= 0 && nacc >= 64);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "adaptive_h_max_s", &hmax) >= 0 &&
+              hmax > 0 && hmax <= 5e-3 * (1 + 1e-9));
+    H5Fclose(f);
+  }
+  remove("runcli_strain3.h5");
+  remove("runcli_strain3.xdmf");
+  expectFailure("--legs strain --strain-step sometimes",
+                "crawlsim run: unknown --strain-step 'sometimes' (expected fixed or adaptive)");
+  expectFailure("--legs strain --step-tol 0.01",
+                "crawlsim run: --step-tol goes with --strain-step adaptive");
+  expectFailure("--legs strain --strain-step adaptive --step-tol 0",
+                "crawlsim run: --step-tol 0 mm must be > 0 and <= 100");
+  expectFailure("--legs rod --strain-step adaptive",
+                "crawlsim run: --strain-step adaptive needs a tree-stepped leg level");
+  expectFailure("--legs strain --strain-step adaptive --step-order 2",
+                "crawlsim run: --strain-step adaptive estimates backward Euler's error");
   expectFailure("--legs strain --step-order 3", "crawlsim run: --step-order 3 must be 1 or 2");
   expectFailure("--legs rod --coupling tree", "crawlsim run: --coupling tree needs a tree-stepped");
   expectFailure("--legs strain --macro-steps 2", "crawlsim run: the tree coupling needs");

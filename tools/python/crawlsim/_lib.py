@@ -85,6 +85,8 @@ RUNDEF_FIELDS = [
     ("contact_scale", ctypes.c_double, "num"),
     ("rod_tol", ctypes.c_double, "num"),
     ("step_order", ctypes.c_double, "num"),
+    ("strain_step", ctypes.c_char_p, "str"),
+    ("step_tol", ctypes.c_double, "num"),
     ("out", ctypes.c_char_p, "str"),
     ("checkpoint", ctypes.c_char_p, "str"),
     ("checkpoint_every", ctypes.c_double, "num"),
