@@ -22,6 +22,8 @@
 #                every training ray (--v-rays): the 13 rays' span with the 25 rays' P and Qf
 #                (P and Qf those of `basis` + `trunc-f<K>`; the supremizers follow P)
 #                                                                            -> OUT/b<N>_v13f<K>.h5
+#   basis-v13f<K>m<MM>  (seventh session) the same with MM pressure modes split per segment
+#                (3 MM) instead of M                                         -> OUT/b<N>_v13f<K>m<MM>.h5
 #   trunc-f<K>   the `basis` stage's file with its first K fibre modes only (global, the K
 #                largest of the training's W-weighted POD: what --fibre-modes K writes, in seconds;
 #                V and P bit for bit)                                        -> OUT/b<N>_f<K>.h5
@@ -67,13 +69,16 @@ for stage in "$@"; do
           --p-split 54,112 --mixed --fibre-modes 100000 --fibres "$OUT/legf/leg.h5" \
           --out "$OUT/b${N}_f.h5" > "$OUT/b${N}_f_basis.log" 2>&1 ;;
     basis-v13f*)
-      k=${stage#basis-v13f}
-      [[ $k =~ ^[0-9]+$ ]] || { echo "run_romreal4.sh: stage $stage: K is a number" >&2; exit 2; }
-      [ -s "$OUT/b${N}_v13f${k}.h5" ] ||
-        "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$M" \
+      cfg=${stage#basis-}
+      [[ $cfg =~ ^v13f([0-9]+)(m([0-9]+))?$ ]] ||
+        { echo "run_romreal4.sh: stage $stage: CFG is v13f<K> or v13f<K>m<MM>" >&2; exit 2; }
+      k=${BASH_REMATCH[1]}
+      pm=${BASH_REMATCH[3]:-$M}
+      [ -s "$OUT/b${N}_${cfg}.h5" ] ||
+        "${T[@]}" nice -n "$NICE" $PY tools/rom_basis.py "$SNAP" --turns --n "$N" --m "$pm" \
           --p-split 54,112 --mixed --fibre-modes "$k" --fibres "$OUT/legf/leg.h5" \
           --v-rays O12,S,O1,R1,Z,II1only,R2,O13,Fx,Gx,O1O234r05,O12O3r05,O124 \
-          --out "$OUT/b${N}_v13f${k}.h5" > "$OUT/b${N}_v13f${k}_basis.log" 2>&1 ;;
+          --out "$OUT/b${N}_${cfg}.h5" > "$OUT/b${N}_${cfg}_basis.log" 2>&1 ;;
     basis-*)
       cfg=${stage#basis-}
       [[ $cfg =~ ^fs([0-9]+)(([mg])([0-9]+))?$ ]] ||
