@@ -4,6 +4,7 @@
 usage: /usr/bin/python3 tools/obstacle_search.py [--dir DIR] [--base "OPTIONS"]
            [--free settle,Tclimb,Tcross,Dcross] [--x0 V,..] [--sweep N] [--evals N] [--seed S]
            [--screen ramp0.5,m25g] [--full K] [--crawlsim build/tools/crawlsim] [--mpirun N]
+           [--report-only] [--write-gait FILE]
 
 A design is tools/obstacle_gait.py's output with the fixed options --base (the rules switched on,
 e.g. "--over-step -3 --reach 55 --clear-down": the sixth session's rule 16 and 12b) and the
@@ -35,7 +36,9 @@ sweep's best design (--evals designs at most, read back ones included; simplex s
 deterministic, so a rerun replays them from results.csv. --full K: the rest of issue 33's
 robustness set (friction 0.6/1.0, support 75 g, pneumatic lag x0.5/x2, ramp 0.1 s, the step
 halved) for the K best designs: DIR/full.csv, one row per run, and each design's count of runs
-within 40 mm of the end point.
+within 40 mm of the end point. --report-only runs nothing: it replays the search from the
+finished cases as far as they go and writes full.csv with the runs not finished as missing (a
+search cut by a deadline reports what stands; the same command without it goes on).
 """
 import argparse
 import hashlib
@@ -200,7 +203,8 @@ class Search:
                 lines.append(f"then {run} --gait @case/gait.csv")
             else:
                 lines.append(f"case {c} {run} --gait {table}")
-        run_study(self.dir, name, lines, self.a.crawlsim, self.a.mpirun)
+        if not self.a.report_only:
+            run_study(self.dir, name, lines, self.a.crawlsim, self.a.mpirun)
         return {c: track(os.path.join(self.dir, "cases", c + ".h5")) for c, _, _, _ in cases}
 
     def snap(self, v):
@@ -223,6 +227,8 @@ class Search:
             self.local.add(key)
         if key in self.seen:
             return self.seen[key]
+        if self.a.report_only:
+            raise Budget    # a design not yet evaluated: nothing is run
         c = f"d{key}"
         gait = os.path.join(self.dir, c + ".gait")
         open(gait, "w").write(text)
@@ -327,6 +333,9 @@ def main():
     ap.add_argument("--full", type=int, default=0, help="the rest of the set for the K best")
     ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
     ap.add_argument("--mpirun", type=int, default=1)
+    ap.add_argument("--report-only", action="store_true",
+                    help="run nothing: replay the search from the finished cases as far as they "
+                    "go and write --full's table with the runs not finished as missing")
     ap.add_argument("--write-gait", default=None, metavar="FILE",
                     help="write the description of the design --x0 (with --base) to FILE, print "
                     "its obstacle_gait.py command and key, and run nothing")
@@ -367,9 +376,12 @@ def main():
     if a.sweep > 1:
         u = qmc.LatinHypercube(d=len(a.free), seed=a.seed).random(a.sweep - 1)
         pts += list(qmc.scale(u, lo, hi))
-    scores = [s.evaluate(p) for p in pts]
-    best = s.snap(pts[int(np.argmin(scores))])
-    if a.evals > 0:
+    try:
+        scores = [s.evaluate(p) for p in pts]
+    except Budget:      # --report-only before the sweep's end
+        scores = []
+    best = s.snap(pts[int(np.argmin(scores))]) if scores else None
+    if a.evals > 0 and best is not None:
         s.local = set()
         step = 0.2 * (hi - lo)
         simplex = [best] + [[best[j] + (step[j] if j == i else 0) * (1 if best[j] + step[j] <= hi[j]
@@ -381,6 +393,8 @@ def main():
                               "xatol": 0.5, "fatol": 1.0})
         except Budget:
             pass
+    if not s.seen:
+        fail(f"{a.dir}: no design evaluated yet")
     key = min(s.seen, key=s.seen.get)
     x = [x for k, x in s.order if k == key]
     print(f"{PROG}: best d{key}: J {s.seen[key]:.1f}"

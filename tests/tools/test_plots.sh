@@ -265,6 +265,8 @@ expect_fail1 "obstacle_search bad --free" "obstacle_search.py: --free 'foo': nam
   "$PY" "$OS" --free foo --write-gait "$TMP/bad.gait"
 expect_fail1 "obstacle_search --x0 outside the box" "within its box" \
   "$PY" "$OS" --free settle --x0 5 --write-gait "$TMP/bad.gait"
+expect_fail1 "obstacle_search --report-only runs nothing" "no design evaluated yet" \
+  "$PY" "$OS" --dir "$TMP/os_empty" --report-only --crawlsim "$EXE"
 
 # tools/earth_gait.py: the shipped earth gait is the script's description of the values its
 # header names; bad input is one line and exit 1. tools/earth_track.py: a missing run file is
