@@ -251,6 +251,21 @@ def run_study(folder, name, lines, crawlsim, mpirun):
     subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
+def read_case(case_file, names):
+    """A study case file's status, its run's datasets NAMES (paths under /run; a missing one
+    None) and the run's attributes: None when the case has not finished, (status, None, {})
+    when it has no run (its status, "failed" if none). Shared with tools/obstacle_search.py."""
+    if not os.path.exists(case_file):
+        return None
+    with h5py.File(case_file, "r") as f:
+        st = f.attrs.get("status", b"")
+        st = st.decode() if isinstance(st, bytes) else str(st)
+        if "run" not in f or "time" not in f["run"]:
+            return st or "failed", None, {}
+        g = f["run"]
+        return st, {n: g[n][:] if n in g else None for n in names}, dict(g.attrs)
+
+
 # the robustness set (issue 33): one run option each
 ROBUST = [
     ("ramp0.1", "--ramp 0.1"), ("ramp0.5", "--ramp 0.5"),
@@ -304,16 +319,13 @@ class Search:
     @staticmethod
     def track(case_file):
         """x at the whole seconds 0..9, max |z|, max tilt (deg), status; None if no result."""
-        if not os.path.exists(case_file):
+        case = read_case(case_file, ("time", "support/position", "support/orientation"))
+        if case is None:
             return None
-        with h5py.File(case_file, "r") as f:
-            st = f.attrs.get("status", b"")
-            st = st.decode() if isinstance(st, bytes) else str(st)
-            if "run" not in f or "time" not in f["run"]:
-                return {"status": st or "failed"}
-            t = f["run/time"][:]
-            x = f["run/support/position"][:]
-            q = f["run/support/orientation"][:]
+        st, d, _ = case
+        if d is None:
+            return {"status": st}
+        t, x, q = d["time"], d["support/position"], d["support/orientation"]
         xs = [float(np.interp(k, t, x[:, 0])) if t[-1] >= k - 1e-9 else float("nan")
               for k in range(10)]
         zmax = float(np.max(np.abs(x[:, 2]))) if len(t) else float("nan")

@@ -59,12 +59,11 @@ def fail(msg):
 
 
 try:
-    import h5py
     import numpy as np
     from scipy.optimize import minimize
     from scipy.stats import qmc
     # the study runner's plumbing and the mission's table, the robustness set's run options
-    from gait_search import CAL, P_MAX, ROBUST, RULE, run_study
+    from gait_search import CAL, P_MAX, ROBUST, RULE, read_case, run_study
     # Table 3 (the paper's obstacle track: support x, height, lateral z at its time nodes)
     from plot_track import TABLE3_H, TABLE3_T, TABLE3_X, TABLE3_Z
 except ImportError as e:  # Debian: python3-h5py python3-numpy python3-scipy python3-matplotlib
@@ -100,19 +99,16 @@ class Budget(Exception):
 
 def track(case_file):
     """A run's Table 3 record from its study case file, or None (no result)."""
-    if not os.path.exists(case_file):
+    case = read_case(case_file, ("time", "support/position", "support/orientation",
+                                 "contact/leg_max_depth"))
+    if case is None:
         return None
-    with h5py.File(case_file, "r") as f:
-        st = f.attrs.get("status", b"")
-        st = st.decode() if isinstance(st, bytes) else str(st)
-        if "run" not in f or "time" not in f["run"]:
-            return {"status": st or "failed", "fell": True}
-        g = f["run"]
-        t = g["time"][:]
-        pos = g["support/position"][:]
-        q = g["support/orientation"][:]
-        depth = g["contact/leg_max_depth"][:] if "contact/leg_max_depth" in g else None
-        held = g.attrs.get("gate_held_s", float("nan"))
+    st, d, at = case
+    if d is None:
+        return {"status": st, "fell": True}
+    t, pos, q = d["time"], d["support/position"], d["support/orientation"]
+    depth = d["contact/leg_max_depth"]
+    held = at.get("gate_held_s", float("nan"))
     tilt = np.degrees(np.arccos(np.clip(1 - 2 * (q[:, 1] ** 2 + q[:, 3] ** 2), -1, 1)))
     worst, where, nodes = 0.0, 0.0, []
     for tn, X, H, Z in zip(TABLE3_T, TABLE3_X, TABLE3_H, TABLE3_Z):
@@ -145,7 +141,7 @@ def verdict(r):
     if r is None:
         return "-"
     if r["fell"]:
-        return "falls" + (f" ({r['t_fall']:.1f} s)" if r.get("t_fall") else "")
+        return "falls"
     return f"{r['off']:.1f}"
 
 
@@ -155,7 +151,7 @@ class Search:
         self.dir = os.path.abspath(a.dir)
         os.makedirs(self.dir, exist_ok=True)
         self.results = os.path.join(self.dir, "results.csv")
-        self.seen = {}        # key -> (score, params)
+        self.seen = {}        # key -> J
         self.order = []
         self.local = None     # the local search's designs (a set) once it has started
         if os.path.exists(self.results):
