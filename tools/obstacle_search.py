@@ -26,7 +26,7 @@ Objective (mm; never per run or per time node; lower is better):
         ramp 0.5 s and a 25 g support) of: 0 within 40 mm of the end point (x 646, z 270 mm),
         (distance - 40) capped at 100 beyond it, 100 for a run that tips over (tilt > 30 deg) or
         stops early.
-A nominal that falls scores 1000 and its screening runs are not run (they count as falls). The
+A nominal that falls scores 1000 and its screening runs are not run (they count as falls: 1200). The
 screening runs end at 36 s (the gate's holds make the table longer), ramp 0.5 at 47 s, as the
 gate's set records (docs/bench/gate_2026-12-06f/gate_set.sh).
 
