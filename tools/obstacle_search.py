@@ -26,14 +26,14 @@ Objective (mm; never per run or per time node; lower is better):
         ramp 0.5 s and a 25 g support) of: 0 within 40 mm of the end point (x 646, z 270 mm),
         (distance - 40) capped at 100 beyond it, 100 for a run that tips over (tilt > 30 deg) or
         stops early.
-A nominal that falls scores 1000 and its screening runs are not run (they count as falls: 1200). The
-screening runs end at 36 s (the gate's holds make the table longer), ramp 0.5 at 47 s, as the
-gate's set records (docs/bench/gate_2026-12-06f/gate_set.sh).
+A nominal that falls scores 1000 and its screening runs are not run (they count as falls:
+1200). The screening runs end at 36 s (the gate's holds make the table longer), ramp 0.5 at
+47 s, as the gate's set records (docs/bench/gate_2026-12-06f/gate_set.sh).
 
 Optimiser: a designed sweep (the start --x0 and N-1 points of a Latin hypercube over the free
 parameters' box, seeded: scipy.stats.qmc), then scipy.optimize's bounded Nelder-Mead from the
-sweep's best design (--evals designs at most, read back ones included; simplex steps a fifth of each box). Both are
-deterministic, so a rerun replays them from results.csv. --full K: the rest of issue 33's
+sweep's best design (--evals designs at most, read back ones included; simplex steps a fifth
+of each box). Both are deterministic, so a rerun replays them from results.csv. --full K: the rest of issue 33's
 robustness set (friction 0.6/1.0, support 75 g, pneumatic lag x0.5/x2, ramp 0.1 s, the step
 halved) for the K best designs: DIR/full.csv, one row per run, and each design's count of runs
 within 40 mm of the end point. --report-only runs nothing: it replays the search from the
@@ -256,7 +256,8 @@ class Search:
                 f.write(f"# {PROG}: base '{self.a.base}'; objective J (mm), the nominal's "
                         "worst node from 4 s and end, the screening runs' end offsets (mm; "
                         "nan: fell or not run)\n")
-                f.write("key,params,J,table_end_s,nom_worst_mm,nom_worst_t_s,nom_end_off_mm,nom_tilt_deg,"
+                f.write("key,params,J,table_end_s,nom_worst_mm,nom_worst_t_s,nom_end_off_mm,"
+                        "nom_tilt_deg,"
                         "nom_depth_mm,nom_x7,nom_h7,nom_x11,nom_x14,nom_x24,nom_z29,nom_z32,"
                         + ",".join(f"{n}_off_mm" for n in self.a.screen) + "\n")
             nd = (nom or {}).get("nodes") or [None] * len(TABLE3_T)
