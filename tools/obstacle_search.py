@@ -36,9 +36,10 @@ sweep's best design (--evals designs at most, read back ones included; simplex s
 of each box). Both are deterministic, so a rerun replays them from results.csv. --full K: the
 rest of issue 33's robustness set (friction 0.6/1.0, support 75 g, pneumatic lag x0.5/x2, ramp
 0.1 s, the step halved) for the K best designs: DIR/full.csv, one row per run, and each
-design's count of runs within 40 mm of the end point. --report-only runs nothing: it replays the search from the
-finished cases as far as they go and writes full.csv with the runs not finished as missing (a
-search cut by a deadline reports what stands; the same command without it goes on).
+design's count of runs within 40 mm of the end point. --report-only runs nothing: it replays
+the search from the finished cases as far as they go and writes full.csv with the runs not
+finished as missing (a search cut by a deadline reports what stands; the same command without
+it goes on).
 """
 import argparse
 import hashlib
