@@ -235,6 +235,37 @@ def key(x):
     return hashlib.sha1(",".join(f"{w:.4f}" for w in v).encode()).hexdigest()[:10]
 
 
+def run_study(folder, name, lines, crawlsim, mpirun):
+    """Write the study file FOLDER/NAME.study from its lines (rewritten only when they change)
+    and run it resumably (`crawlsim study --resume`, under `mpirun -n N` when mpirun > 1: one
+    case per rank), its case files in FOLDER/cases; the cases already finished are not rerun.
+    Shared with tools/obstacle_search.py."""
+    path = os.path.join(folder, name + ".study")
+    text = "\n".join(lines) + "\n"
+    if not os.path.exists(path) or open(path).read() != text:
+        open(path, "w").write(text)
+    cmd = [crawlsim, "study", path, "--resume", "--out",
+           os.path.join(folder, name + ".h5"), "--dir", os.path.join(folder, "cases")]
+    if mpirun > 1:
+        cmd = ["mpirun", "-n", str(mpirun), "--bind-to", "none"] + cmd
+    subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def read_case(case_file, names):
+    """A study case file's status, its run's datasets NAMES (paths under /run; a missing one
+    None) and the run's attributes: None when the case has not finished, (status, None, {})
+    when it has no run (its status, "failed" if none). Shared with tools/obstacle_search.py."""
+    if not os.path.exists(case_file):
+        return None
+    with h5py.File(case_file, "r") as f:
+        st = f.attrs.get("status", b"")
+        st = st.decode() if isinstance(st, bytes) else str(st)
+        if "run" not in f or "time" not in f["run"]:
+            return st or "failed", None, {}
+        g = f["run"]
+        return st, {n: g[n][:] if n in g else None for n in names}, dict(g.attrs)
+
+
 # the robustness set (issue 33): one run option each
 ROBUST = [
     ("ramp0.1", "--ramp 0.1"), ("ramp0.5", "--ramp 0.5"),
@@ -267,7 +298,6 @@ class Search:
     def study(self, name, cases):
         """Write and run a study of cases [(case, gait_csv_or_None, run_words)]; resumable. A
         case without a gait table solves its description DIR/CASE.gait first (gait-design)."""
-        path = os.path.join(self.dir, name + ".study")
         lines = [f"study {name}", ""]
         lk = "" if LINKS[0] is None else f" --links {LINKS[0]}"
         for c, gait, words in cases:
@@ -280,14 +310,7 @@ class Search:
             else:
                 lines.append(f"case {c} run --scene flat-road --conditions paper --gait {gait}"
                              f"{lk} {words}".rstrip())
-        text = "\n".join(lines) + "\n"
-        if not os.path.exists(path) or open(path).read() != text:
-            open(path, "w").write(text)
-        cmd = [self.a.crawlsim, "study", path, "--resume", "--out",
-               os.path.join(self.dir, name + ".h5"), "--dir", os.path.join(self.dir, "cases")]
-        if self.a.mpirun > 1:
-            cmd = ["mpirun", "-n", str(self.a.mpirun), "--bind-to", "none"] + cmd
-        subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        run_study(self.dir, name, lines, self.a.crawlsim, self.a.mpirun)
         out = {}
         for c, _, _ in cases:
             out[c] = self.track(os.path.join(self.dir, "cases", c + ".h5"))
@@ -296,16 +319,13 @@ class Search:
     @staticmethod
     def track(case_file):
         """x at the whole seconds 0..9, max |z|, max tilt (deg), status; None if no result."""
-        if not os.path.exists(case_file):
+        case = read_case(case_file, ("time", "support/position", "support/orientation"))
+        if case is None:
             return None
-        with h5py.File(case_file, "r") as f:
-            st = f.attrs.get("status", b"")
-            st = st.decode() if isinstance(st, bytes) else str(st)
-            if "run" not in f or "time" not in f["run"]:
-                return {"status": st or "failed"}
-            t = f["run/time"][:]
-            x = f["run/support/position"][:]
-            q = f["run/support/orientation"][:]
+        st, d, _ = case
+        if d is None:
+            return {"status": st}
+        t, x, q = d["time"], d["support/position"], d["support/orientation"]
         xs = [float(np.interp(k, t, x[:, 0])) if t[-1] >= k - 1e-9 else float("nan")
               for k in range(10)]
         zmax = float(np.max(np.abs(x[:, 2]))) if len(t) else float("nan")

@@ -239,6 +239,35 @@ expect_fail1 "gait_search bad --params" "gait_search.py: --params '1,2': expecte
 expect_fail1 "gait_search --params outside the box" "outside the search's box" \
   "$PY" "$SEARCH" --write-gait "$TMP/bad.gait" --params 100,3,11,0.2
 
+# tools/obstacle_search.py: its start (the free parameters at their listed defaults) is
+# obstacle_gait.py's design with --base alone (the same statements), a design off the defaults
+# is another table, and bad input is one line and exit 1
+OS="$ROOT/tools/obstacle_search.py"
+OG="$ROOT/tools/obstacle_gait.py"
+stmts() { grep -v '^#' "$1"; }
+if "$PY" "$OS" --write-gait "$TMP/os0.gait" >"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --over-step -3 --reach 55 --clear-down -o "$TMP/og0.gait" >>"$TMP/out.txt" 2>&1 &&
+   cmp -s <(stmts "$TMP/os0.gait") <(stmts "$TMP/og0.gait"); then
+  ok "obstacle_search's start is obstacle_gait.py with --base alone"
+else
+  bad "obstacle_search's start is obstacle_gait.py with --base alone" "$TMP/out.txt"
+fi
+if "$PY" "$OS" --write-gait "$TMP/os1.gait" --free settle,Tclimb --x0 0.9,0.9 >"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --over-step -3 --reach 55 --clear-down --settle 0.9 --Tclimb 0.9 \
+     -o "$TMP/og1.gait" >>"$TMP/out.txt" 2>&1 &&
+   cmp -s <(stmts "$TMP/os1.gait") <(stmts "$TMP/og1.gait") &&
+   ! cmp -s <(stmts "$TMP/os1.gait") <(stmts "$TMP/os0.gait"); then
+  ok "obstacle_search --x0 sets its free parameters' options (another table)"
+else
+  bad "obstacle_search --x0 sets its free parameters' options (another table)" "$TMP/out.txt"
+fi
+expect_fail1 "obstacle_search bad --free" "obstacle_search.py: --free 'foo': names among" \
+  "$PY" "$OS" --free foo --write-gait "$TMP/bad.gait"
+expect_fail1 "obstacle_search --x0 outside the box" "within its box" \
+  "$PY" "$OS" --free settle --x0 5 --write-gait "$TMP/bad.gait"
+expect_fail1 "obstacle_search --report-only runs nothing" "no design evaluated yet" \
+  "$PY" "$OS" --dir "$TMP/os_empty" --report-only --crawlsim "$EXE"
+
 # tools/earth_gait.py: the shipped earth gait is the script's description of the values its
 # header names; bad input is one line and exit 1. tools/earth_track.py: a missing run file is
 # one line and exit 1
