@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "cs_test.h"
+#include "strain_flat_fixture.h"
 #include "sim_internal.h" /* the controller's parts and counts */
 #include "sim_model.h"
 
@@ -130,46 +131,10 @@ static int prepareRejecting(csrLeg* leg, double h, const csrBaseState* b0, doubl
 
 /* the flat road as the scene sets it up, on strain legs of `type`, adaptive at 5 ms */
 static int loadModel(csModel* m, const csrLegType* type, double tol) {
-  char terr[600], gait[600], cal[600];
-  snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", g_src);
-  snprintf(gait, sizeof gait, "%s/gaits/flat_road_rod.csv", g_src);
-  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg_modes_sym.h5", g_src);
-  cs_modelInit(m);
-  cs_modelSetConditions(m, CS_CONDITIONS_PAPER);
-  cs_modelSetLegLevel(m, type);
-  m->opt.h = 5e-3;
-  m->opt.step_adaptive = 1;
-  m->opt.step_tol = tol;
-  CS_EXPECT(csr_legSettingSet(type, &m->robot.leg_settings, "links", 2, NULL) == CS_OK);
-  csrCalRule rule;
-  if (csr_calRuleParse("rbf-pair", &rule)) {
-    m->cal_rule = (int)rule;
-  }
-  csError err;
-  cs_errorClear(&err);
-  if (cs_modelLoad(m, "flat-road", terr, gait, cal, &err) != CS_OK) {
-    fprintf(stderr, "load: %s\n", err.msg);
-    return 0;
-  }
-  return 1;
+  return csTestLoadFlatStrain(m, g_src, type, 5e-3, 2, 1, tol);
 }
 
 
-static csData* makeData(const csModel* m) {
-  csError err;
-  cs_errorClear(&err);
-  csData* d = cs_dataCreate(m, &err);
-  CS_EXPECT(d != NULL);
-  if (!d) {
-    printf("  create: %s\n", err.msg);
-    return NULL;
-  }
-  if (cs_settle(m, d, &err) != CS_OK) {
-    printf("  settle: %s\n", err.msg);
-    CS_EXPECT(0);
-  }
-  return d;
-}
 
 
 /* n macro steps; each must end at t + H exactly (the output's grid) */
@@ -208,8 +173,8 @@ static int sameState(const csModel* m, const csData* a, const csData* b) {
 static void test_adaptive_repeats_restores_and_keeps_the_grid(void) {
   csModel m;
   CS_EXPECT(loadModel(&m, &csr_leg_strain, 0.01));
-  csData* a = makeData(&m);
-  csData* b = makeData(&m);
+  csData* a = csTestSettledData(&m);
+  csData* b = csTestSettledData(&m);
   const int n = a ? cs_stateSize(&m, a) : 0;
   double* x = n ? malloc(3 * (size_t)n * sizeof(double)) : NULL;
   if (!a || !b || !x) {
@@ -259,7 +224,7 @@ static void test_adaptive_rejected_everywhere_changes_nothing(void) {
   csModel m;
   CS_EXPECT(loadModel(&m, &rej, 0.01));
   g_reject_all = 0;
-  csData* d = makeData(&m);
+  csData* d = csTestSettledData(&m);
   const int n = d ? cs_stateSize(&m, d) : 0;
   double* x = n ? malloc(2 * (size_t)n * sizeof(double)) : NULL;
   if (!d || !x) {

@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "cs_test.h"
+#include "strain_flat_fixture.h"
 #include "sim_internal.h" /* CS_MAX_SPLIT, CS_SPLIT_MORE_PASSES: the retry rules tested */
 #include "sim_model.h"
 
@@ -50,46 +51,13 @@ static int prepareRejecting(csrLeg* leg, double h, const csrBaseState* b0, doubl
 }
 
 
-/* the flat road as the scene sets it up (tools/cmd_run.c), on strain legs of `type` */
+/* the flat road as the scene sets it up, on strain legs of `type` (3 modes; 1 ms, the level's
+ * step set here for the tests' own) */
 static int loadModel(csModel* m, const csrLegType* type) {
-  char terr[600], gait[600], cal[600];
-  snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", g_src);
-  snprintf(gait, sizeof gait, "%s/gaits/flat_road_rod.csv", g_src);
-  snprintf(cal, sizeof cal, "%s/robot/calibration_fe_leg_modes_sym.h5", g_src);
-  cs_modelInit(m);
-  cs_modelSetConditions(m, CS_CONDITIONS_PAPER);
-  cs_modelSetLegLevel(m, type);
-  m->opt.h = 1e-3; /* the level's step (csr_leg_strain.step), set here for the tests' own */
-  CS_EXPECT(csr_legSettingSet(type, &m->robot.leg_settings, "links", 3, NULL) == CS_OK);
-  csrCalRule rule;
-  if (csr_calRuleParse("rbf-pair", &rule)) {
-    m->cal_rule = (int)rule;
-  }
-  csError err;
-  cs_errorClear(&err);
-  if (cs_modelLoad(m, "flat-road", terr, gait, cal, &err) != CS_OK) {
-    fprintf(stderr, "load: %s\n", err.msg);
-    return 0;
-  }
-  return 1;
+  return csTestLoadFlatStrain(m, g_src, type, 1e-3, 3, 0, 0.0);
 }
 
 
-static csData* makeData(const csModel* m) {
-  csError err;
-  cs_errorClear(&err);
-  csData* d = cs_dataCreate(m, &err);
-  CS_EXPECT(d != NULL);
-  if (!d) {
-    printf("  create: %s\n", err.msg);
-    return NULL;
-  }
-  if (cs_settle(m, d, &err) != CS_OK) {
-    printf("  settle: %s\n", err.msg);
-    CS_EXPECT(0);
-  }
-  return d;
-}
 
 
 static int stepN(const csModel* m, csData* d, int n) {
@@ -132,7 +100,7 @@ static void test_strain_runs_through_the_driver_and_legs_carry_the_support(void)
               m0.opt.coupling == CS_COUPLING_TREE);
     cs_modelDestroy(&m0);
   }
-  csData* d = makeData(&m);
+  csData* d = csTestSettledData(&m);
   if (!d) {
     cs_modelDestroy(&m);
     return;
@@ -196,8 +164,8 @@ static void restoreCase(double tau) {
   csModel m;
   CS_EXPECT(loadModel(&m, &csr_leg_strain));
   m.opt.pneumatic_tau = tau;
-  csData* a = makeData(&m);
-  csData* b = makeData(&m);
+  csData* a = csTestSettledData(&m);
+  csData* b = csTestSettledData(&m);
   const int n = a ? cs_stateSize(&m, a) : 0;
   double* x0 = n ? malloc(3 * (size_t)n * sizeof(double)) : NULL;
   if (!a || !b || !x0) {
@@ -268,7 +236,7 @@ static double frictionlessDriftOrder(double h, int passes, int order, double* mo
     CS_EXPECT(csr_legSettingSet(m.robot.leg_type, &m.robot.leg_settings, "step_order", order,
                                 NULL) == CS_OK);
   }
-  csData* d = makeData(&m);
+  csData* d = csTestSettledData(&m);
   if (!d) {
     cs_modelDestroy(&m);
     return NAN;
@@ -361,8 +329,8 @@ static void test_strain_bdf2_keeps_momentum_and_restores(void) {
             CS_OK);
   m.opt.h = 2e-3;
   m.opt.pneumatic_tau = 0;
-  csData* a = makeData(&m);
-  csData* b = makeData(&m);
+  csData* a = csTestSettledData(&m);
+  csData* b = csTestSettledData(&m);
   if (a && b) {
     const int n = cs_stateSize(&m, a);
     double* x = malloc((size_t)n * sizeof(double));
@@ -393,8 +361,8 @@ static void test_strain_rejected_step_is_retried_in_halves(void) {
   CS_EXPECT(loadModel(&m, &rejecting) && loadModel(&m_ref, &csr_leg_strain));
   g_h_full = m.opt.h;
   g_reject_from = INFINITY;
-  csData* d = makeData(&m);
-  csData* ref = makeData(&m_ref);
+  csData* d = csTestSettledData(&m);
+  csData* ref = csTestSettledData(&m_ref);
   if (!d || !ref) {
     cs_dataDestroy(d);
     cs_dataDestroy(ref);
@@ -510,8 +478,8 @@ static void test_strain_basis_settings_change_the_legs(void) {
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "joints", -2, &err) != CS_OK);
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "sub", 0, &err) != CS_OK);
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "shear", 2, &err) != CS_OK);
-  csData* d = makeData(&m);
-  csData* dl = makeData(&ml);
+  csData* d = csTestSettledData(&m);
+  csData* dl = csTestSettledData(&ml);
   if (d && dl) {
     const int n = cs_stateSize(&m, d), nl = cs_stateSize(&ml, dl);
     printf("  state: %d doubles by default, %d with rigid joints, no shear, 2 sub-intervals\n", n,
