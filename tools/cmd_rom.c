@@ -38,6 +38,8 @@ static const char kUsage[] =
     "  leg-file     one file with the reduced leg of a basis, for `crawlsim run --legs rom`\n"
     "  modes        the tangents of the FE and of the reduced model at a pressure (for\n"
     "               tools/rom_modes.py: the first eigenfrequencies)\n"
+    "  sway         the foot's guided (sway) stiffness of the rod, the reduced model and the FE\n"
+    "               under an axial load: the Earth stance's sway-buckling load\n"
     "Run 'crawlsim rom <subcommand> --help' for its options.\n";
 
 static const csxOpt kSnapOpts[] = {
@@ -168,8 +170,8 @@ int csx_romParseNumber(const char* flag, const char* v, double lo, double hi, do
 
 
 /* the actuator (preset, then every --set) into *act; 1 after one error line */
-static int actuatorFromArgs(const char* name, const char* const* sets, int nset, int validate,
-                            csrActuator* act) {
+int csx_romActuator(const char* name, const char* const* sets, int nset, int validate,
+                    csrActuator* act) {
   csError err;
   cs_errorClear(&err);
   csStatus st = csr_actuatorPreset(act, name, &err);
@@ -193,7 +195,7 @@ static int actuatorFromArgs(const char* name, const char* const* sets, int nset,
 int csx_romOpen(const char* actname, const char* const* sets, int nset, const char* basis,
                    const char* weights, const char* work, const char* stem_name,
                    csrActuator* act, csfRomActuator* ra) {
-  if (actuatorFromArgs(actname, sets, nset, 0, act)) {
+  if (csx_romActuator(actname, sets, nset, 0, act)) {
     return 1;
   }
   csError err;
@@ -285,7 +287,7 @@ static int cmdSnapshots(int argc, char** argv) {
   csError err;
   cs_errorClear(&err);
   csrActuator act;
-  if (actuatorFromArgs(actname, sets, nset, 1, &act)) {
+  if (csx_romActuator(actname, sets, nset, 1, &act)) {
     return 1;
   }
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
@@ -501,7 +503,7 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
  * by those of `weights` (may be NULL); 1 after one error line */
 static int openLegFile(const char* actname, const char* const* sets, int nset, const char* path,
                        const char* weights, csrActuator* act, csfRomActuator* ra) {
-  if (actuatorFromArgs(actname, sets, nset, 0, act)) {
+  if (csx_romActuator(actname, sets, nset, 0, act)) {
     return 1;
   }
   csError err;
@@ -860,8 +862,11 @@ int csx_cmdRom(int argc, char** argv) {
   if (!strcmp(argv[1], "leg-file")) {
     return csx_cmdRomLegFile(argc - 1, argv + 1);
   }
+  if (!strcmp(argv[1], "sway")) {
+    return csx_cmdRomSway(argc - 1, argv + 1);
+  }
   fprintf(stderr, "crawlsim rom: unknown stage '%.64s' (expected snapshots, check, ecsw-matrix, "
-          "modes or leg-file; "
+          "modes, leg-file or sway; "
           "see crawlsim rom --help)\n", argv[1]);
   return 1;
 }

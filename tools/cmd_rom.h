@@ -18,6 +18,11 @@ enum { CSX_ROM_MAX_SETS = 32 };
    "change one actuator parameter after the preset (repeatable, at most 32; the names of "      \
    "crawlsim bend --set)"}
 
+/* the preset `name` with the --set values applied (validated when `validate`); 1 after one
+ * error line */
+int csx_romActuator(const char* name, const char* const* sets, int nset, int validate,
+                    csrActuator* act);
+
 /* one more repeatable value (--set, --ray) into list[*n]; 1 after one error line when full */
 int csx_romPushValue(const char* what, const char* v, const char** list, int* n, int max);
 
@@ -39,5 +44,8 @@ int csx_cmdRomLegFile(int argc, char** argv);
 
 /* `crawlsim rom modes` (cmd_rom_modes.c) */
 int csx_cmdRomModes(int argc, char** argv);
+
+/* `crawlsim rom sway` (cmd_rom_sway.c) */
+int csx_cmdRomSway(int argc, char** argv);
 
 #endif /* CS_TOOLS_CMD_ROM_H */

@@ -359,6 +359,17 @@ csStatus csr_rodBendPoint(const csrRodModel* m, csrRodData* d, const double p[12
                           const double tip_force_base[3], double angle_deg[CSR_NSEG],
                           double tip[3], csError* err);
 
+/* The foot's compliance under an axial load (the sway-buckling procedure,
+ * robot/actuator/robot_sway.h): from the current state (the straight, unloaded leg or the
+ * equilibrium of a smaller such load) the dead load -P d3 on the foot (d3 the foot's axis
+ * before the call, N), then central differences of the static solves under +-dH d1 (N) and
+ * +-dM d2 (N mm) added: C[0] = d delta / dH (mm/N), C[1] the mean of d delta / dM and
+ * d theta / dH (1/N; equal by reciprocity), C[2] = d theta / dM (1/(N mm)), delta the foot
+ * node's displacement along d1, theta its frame's d3 turned towards d1 (rad). The state ends
+ * in equilibrium with -P d3. y: scratch of csr_rodStateSize doubles. Statics' errors pass. */
+csStatus csr_rodSwayCompliance(const csrRodModel* m, csrRodData* d, double P, double dH,
+                               double dM, double* y, double C[3], csError* err);
+
 #ifdef __cplusplus
 }
 #endif
