@@ -13,7 +13,9 @@
  * mesh and FE model (made whole: its sparse pattern and solver), its tangent factored by LDL^T
  * (the negative pivots count the buckling modes passed).
  * Output: a table on stdout and, with --out, a CSV (model, P_N, c11_mm_per_N, c12_per_N,
- * c22_per_Nmm, k_cantilever_N_per_mm, k_sway_N_per_mm, neg_pivots, newton, cpu_s). */
+ * c22_per_Nmm, k_cantilever_N_per_mm, k_sway_N_per_mm, neg_pivots, newton, cpu_s, and the tip
+ * face's mean displacement tip_x_mm, tip_y_mm, tip_z_mm of the rom's and the FE's states: a
+ * lateral part is that model's own imperfection). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,6 +41,10 @@ static const csxOpt kSwayOpts[] = {
      "most 32, ascending)"},
     {"--fe-load", "P", "none",
      "an axial load in N, 0 .. 10, for the full FE (repeatable, at most 32, ascending)"},
+    {"--rod-elements", "N", "the rod's default (4)",
+     "the rod's elements per segment, 1 .. 64 (its foot is the last element's frame: held flat, "
+     "the column flexes over L - l_N / 2)"},
+    {"--skip-rom", NULL, "off", "the reduced model not run (the rod and --fe-load only)"},
     {"--out", "FILE.csv", "none", "the rows as CSV"},
     ROM_OPT_ACTUATOR,
     ROM_OPT_SET,
@@ -64,15 +70,32 @@ typedef struct SwayRows_ {
   double P[SWAY_MAX_LOADS], kc[SWAY_MAX_LOADS], ks[SWAY_MAX_LOADS];
 } SwayRows;
 
+/* the tip face's mean displacement (mm) of a solved state u: the straight column's is axial;
+ * a lateral part is the model's own imperfection (a basis or mesh not quite symmetric) */
+static void tipMean(const csfActuatorFE* fe, const double* u, double t[3]) {
+  double w = 0;
+  t[0] = t[1] = t[2] = 0;
+  for (int a = 0; a < fe->mesh->nnode; a++) {
+    const double wa = fe->tip_unit[3 * a];
+    w += wa;
+    for (int i = 0; i < 3; i++) {
+      t[i] += wa * u[3 * a + i];
+    }
+  }
+  for (int i = 0; i < 3; i++) {
+    t[i] /= w > 0 ? w : 1.0;
+  }
+}
+
 static void swayRow(SwayRows* rows, const char* model, double P, const double C[3], int neg,
-                    int newton, double cpu) {
+                    int newton, double cpu, const double tip[3]) {
   const double kc = 1.0 / C[0], ks = csr_swayGuided(C[0], C[1], C[2]);
-  printf("%-5s %7.3f %12.5g %12.5g %12.5g %12.5g %12.5g %4d %6d %8.1f\n", model, P, C[0], C[1],
-         C[2], kc, ks, neg, newton, cpu);
+  printf("%-5s %7.3f %12.5g %12.5g %12.5g %12.5g %12.5g %4d %6d %8.1f %9.3g %9.3g %9.4g\n",
+         model, P, C[0], C[1], C[2], kc, ks, neg, newton, cpu, tip[0], tip[1], tip[2]);
   fflush(stdout);
   if (rows->csv) {
-    fprintf(rows->csv, "%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d,%.3f\n", model, P, C[0], C[1],
-            C[2], kc, ks, neg, newton, cpu);
+    fprintf(rows->csv, "%s,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d,%.3f,%.6g,%.6g,%.6g\n", model, P,
+            C[0], C[1], C[2], kc, ks, neg, newton, cpu, tip[0], tip[1], tip[2]);
     fflush(rows->csv);
   }
   rows->P[rows->n] = P, rows->kc[rows->n] = kc, rows->ks[rows->n] = ks;
@@ -104,11 +127,14 @@ static int parseLoads(const char* flag, const char* v, double* list, int* n) {
 }
 
 /* the rod of the actuator (default parameters, no actuation: p = 0) at every load */
-static csStatus swayRod(const csrActuator* act, const double* loads, int nl, SwayRows* rows,
-                        csError* err) {
+static csStatus swayRod(const csrActuator* act, int nel, const double* loads, int nl,
+                        SwayRows* rows, csError* err) {
+  csrRodParams par = csr_rodDefaultParams(act);
+  par.elements_per_segment = nel > 0 ? nel : par.elements_per_segment;
   csrRodSpec sp;
   memset(&sp, 0, sizeof sp);
   sp.act = act;
+  sp.params = &par;
   sp.frame[0] = sp.frame[4] = sp.frame[8] = 1.0;
   csrRodModel* m = csr_rodModelCreate(&sp, err);
   csrRodData* d = m ? csr_rodDataCreate(m, err) : NULL;
@@ -123,7 +149,8 @@ static csStatus swayRod(const csrActuator* act, const double* loads, int nl, Swa
      * and large against the static tolerance */
     st = csr_rodSwayCompliance(m, d, loads[k], 1e-4, 1e-4 * L, y, C, err);
     if (st == CS_OK) {
-      swayRow(rows, "rod", loads[k], C, -1, 0, cpuNow() - c0);
+      const double none[3] = {NAN, NAN, NAN};
+      swayRow(rows, "rod", loads[k], C, -1, 0, cpuNow() - c0, none);
     }
   }
   free(y);
@@ -154,12 +181,14 @@ static csStatus openLegFile(const char* path, const csrActuator* act, csfRomActu
   return csf_romActuatorFromModel(act, &spec, me, m, rom, path, ra, err);
 }
 
-static csStatus swayModels(const csrActuator* act, const char* leg, const double* loads, int nl,
-                           const double* fel, int nfe, FILE* csv, csError* err) {
-  printf("%-5s %7s %12s %12s %12s %12s %12s %4s %6s %8s\n", "model", "P (N)", "c11 (mm/N)",
-         "c12 (1/N)", "c22", "k_cant", "k_sway", "neg", "newton", "cpu (s)");
+static csStatus swayModels(const csrActuator* act, int rod_nel, const char* leg,
+                           const double* loads, int nl, int skip_rom, const double* fel,
+                           int nfe, FILE* csv, csError* err) {
+  printf("%-5s %7s %12s %12s %12s %12s %12s %4s %6s %8s %9s %9s %9s\n", "model", "P (N)",
+         "c11 (mm/N)", "c12 (1/N)", "c22", "k_cant", "k_sway", "neg", "newton", "cpu (s)",
+         "tip x", "tip y", "tip z");
   SwayRows rows = {csv, 0, {0}, {0}, {0}};
-  csStatus st = swayRod(act, loads, nl, &rows, err);
+  csStatus st = swayRod(act, rod_nel, loads, nl, &rows, err);
   if (st != CS_OK) {
     return st;
   }
@@ -180,16 +209,18 @@ static csStatus swayModels(const csrActuator* act, const char* leg, const double
     st = csf_swayFunctionals(&ra.fe, c, c + ndof, axis, err);
   }
   rows.n = 0;
-  for (int k = 0; k < nl && st == CS_OK && !*csx_signalFlag(); k++) {
+  for (int k = 0; k < nl && !skip_rom && st == CS_OK && !*csx_signalFlag(); k++) {
     double C[3];
     const double c0 = cpuNow();
     const long it0 = ra.n_newton;
     st = csf_romSwayCompliance(&ra, c, c + ndof, axis, loads[k], C, err);
     if (st == CS_OK) {
-      swayRow(&rows, "rom", loads[k], C, -1, (int)(ra.n_newton - it0), cpuNow() - c0);
+      double t[3];
+      tipMean(&ra.fe, ra.u, t);
+      swayRow(&rows, "rom", loads[k], C, -1, (int)(ra.n_newton - it0), cpuNow() - c0, t);
     }
   }
-  if (st == CS_OK && nl > 0) {
+  if (st == CS_OK && nl > 0 && !skip_rom) {
     swaySummary("rom", &rows);
   }
   if (st == CS_OK && nfe > 0) {
@@ -211,7 +242,9 @@ static csStatus swayModels(const csrActuator* act, const char* leg, const double
       st = csf_feSwayCompliance(&ra.fe, d, &no, c, c + ndof, axis, Pfrom, fel[k], C, &neg,
                                 &newton, err);
       if (st == CS_OK) {
-        swayRow(&rows, "fe", fel[k], C, neg, newton, cpuNow() - c0);
+        double t[3];
+        tipMean(&ra.fe, d->u, t);
+        swayRow(&rows, "fe", fel[k], C, neg, newton, cpuNow() - c0, t);
         Pfrom = fel[k];
       }
     }
@@ -230,6 +263,8 @@ int csx_cmdRomSway(int argc, char** argv) {
   const char* leg = NULL, *out = NULL, *actname = "leg";
   const char* sets[CSX_ROM_MAX_SETS];
   int nset = 0, nl = 0, nfe = 0;
+  double rod_nel = 0;
+  int skip_rom = 0;
   double loads[SWAY_MAX_LOADS], fel[SWAY_MAX_LOADS];
   csxOptIter it;
   csx_optBegin(&it);
@@ -251,6 +286,14 @@ int csx_cmdRomSway(int argc, char** argv) {
       bad = parseLoads("--load", v, loads, &nl);
     } else if (csx_optIs(it.opt, "--fe-load")) {
       bad = parseLoads("--fe-load", v, fel, &nfe);
+    } else if (csx_optIs(it.opt, "--skip-rom")) {
+      skip_rom = 1;
+    } else if (csx_optIs(it.opt, "--rod-elements")) {
+      bad = csx_romParseNumber("--rod-elements", v, 1, 64, &rod_nel);
+      if (!bad && rod_nel != floor(rod_nel)) {
+        fprintf(stderr, "crawlsim rom: sway: --rod-elements '%s' must be a whole number\n", v);
+        bad = 1;
+      }
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--set")) {
@@ -284,14 +327,14 @@ int csx_cmdRomSway(int argc, char** argv) {
       return 1;
     }
     fprintf(csv, "model,P_N,c11_mm_per_N,c12_per_N,c22_per_Nmm,k_cantilever_N_per_mm,"
-            "k_sway_N_per_mm,neg_pivots,newton,cpu_s\n");
+            "k_sway_N_per_mm,neg_pivots,newton,cpu_s,tip_x_mm,tip_y_mm,tip_z_mm\n");
   }
   if (st == CS_OK) {
     const double EI = 8.0 * act.C10 * csr_legSectionI(&act), L = csr_actuatorLength(&act);
     printf("crawlsim rom: sway: closed forms (E'I = 8 C10 I = %.4g N mm^2, L = %.4g mm): "
            "sway-buckling pi^2 E'I / L^2 = %.4g N, cantilever %.4g N\n", EI, L,
            csr_swayEuler(EI, L), csr_cantileverEuler(EI, L));
-    st = swayModels(&act, leg, loads, nl, fel, nfe, csv, &err);
+    st = swayModels(&act, (int)rod_nel, leg, loads, nl, skip_rom, fel, nfe, csv, &err);
   }
   if (csv && fclose(csv) != 0 && st == CS_OK) {
     st = cs_errorSet(&err, CS_ERR_IO, "%s: write failed", out);
