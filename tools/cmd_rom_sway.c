@@ -11,7 +11,8 @@
  * sign change of each, interpolated, is that model's buckling load (or extrapolated from the
  * last two loads, said so). The FE runs at the loads of --fe-load only, on the leg file's own
  * mesh and FE model (made whole: its sparse pattern and solver), its tangent factored by LDL^T
- * (the negative pivots count the buckling modes passed).
+ * (the negative pivots count the buckling modes passed); with --fe-mesh-size on a mesh of its own
+ * (gmsh), instead, to measure the FE's discretisation.
  * Output: a table on stdout and, with --out, a CSV (model, P_N, c11_mm_per_N, c12_per_N,
  * c22_per_Nmm, k_cantilever_N_per_mm, k_sway_N_per_mm, neg_pivots, newton, cpu_s, and the tip
  * face's mean displacement tip_x_mm, tip_y_mm, tip_z_mm of the rom's and the FE's states: a
@@ -44,6 +45,9 @@ static const csxOpt kSwayOpts[] = {
     {"--rod-elements", "N", "the rod's default (4)",
      "the rod's elements per segment, 1 .. 64 (its foot is the last element's frame: held flat, "
      "the column flexes over L - l_N / 2)"},
+    {"--fe-mesh-size", "MM", "none: the leg file's mesh and FE model",
+     "the FE of --fe-load meshed afresh by gmsh at this l_soft (symmetric mesh), 1 .. 20"},
+    {"--work", "DIR", ".", "where gmsh's files of --fe-mesh-size are written"},
     {"--skip-rom", NULL, "off", "the reduced model not run (the rod and --fe-load only)"},
     {"--out", "FILE.csv", "none", "the rows as CSV"},
     ROM_OPT_ACTUATOR,
@@ -181,9 +185,80 @@ static csStatus openLegFile(const char* path, const csrActuator* act, csfRomActu
   return csf_romActuatorFromModel(act, &spec, me, m, rom, path, ra, err);
 }
 
+/* the full FE of fe (a finalised model) at the loads fel, ascending, from its reference state */
+static csStatus swayFE(csfActuatorFE* fe, const double* c_lat, const double* c_rot,
+                       const double axis[3], const double* fel, int nfe, SwayRows* rows,
+                       csError* err) {
+  csfModel* m = fe->model;
+  m->solver.max_threads = 1;
+  csfData* d = csf_dataCreate(m, err);
+  if (!d) {
+    return err->status ? err->status : CS_ERR_MEMORY;
+  }
+  csfNewtonOptions no = csf_newtonDefault();
+  no.threads = 1;
+  no.max_iter = 40; /* as fem_bend.c's sweep: the slender leg crosses flat energy valleys */
+  rows->n = 0;
+  double Pfrom = 0.0;
+  csStatus st = CS_OK;
+  for (int k = 0; k < nfe && st == CS_OK && !*csx_signalFlag(); k++) {
+    double C[3];
+    int neg = -1, newton = 0;
+    const double c0 = cpuNow();
+    st = csf_feSwayCompliance(fe, d, &no, c_lat, c_rot, axis, Pfrom, fel[k], C, &neg, &newton,
+                              err);
+    if (st == CS_OK) {
+      double t[3];
+      tipMean(fe, d->u, t);
+      swayRow(rows, "fe", fel[k], C, neg, newton, cpuNow() - c0, t);
+      Pfrom = fel[k];
+    }
+  }
+  if (st == CS_OK) {
+    swaySummary("fe", rows);
+  }
+  csf_dataDestroy(d);
+  return st;
+}
+
+/* the full FE meshed afresh (gmsh; the symmetric mesh of l_soft, every chamber tagged as the
+ * snapshots' model) at the loads fel: a mesh other than the leg file's */
+static csStatus swayFEMesh(const csrActuator* act, double l_soft, const char* stem,
+                           const double* fel, int nfe, SwayRows* rows, csError* err) {
+  csfActuatorSpec spec = csf_actuatorSpecDefault();
+  for (int s = 0; s < CSR_NSEG; s++) {
+    for (int j = 0; j < CSR_NCHAMBER; j++) {
+      spec.ratio[s][j] = 1.0;
+    }
+  }
+  spec.mesh_size = l_soft;
+  spec.mesh_symmetric = 1;
+  spec.work_stem = stem;
+  csfActuatorFE fe;
+  memset(&fe, 0, sizeof fe);
+  csStatus st = csf_actuatorFECreate(act, &spec, &fe, err);
+  const int ndof = st == CS_OK ? fe.model->ndof : 0;
+  double* c = st == CS_OK ? malloc(2 * (size_t)ndof * sizeof(double)) : NULL;
+  if (st == CS_OK && !c) {
+    st = cs_errorSet(err, CS_ERR_MEMORY, "rom sway: out of memory (%d values)", 2 * ndof);
+  }
+  double axis[3];
+  if (st == CS_OK) {
+    printf("crawlsim rom: sway: FE mesh l_soft %g mm: %d Tet10, %d dofs, %d fibre elements\n",
+           l_soft, fe.mesh->ntet, ndof, fe.model->nfib);
+    st = csf_swayFunctionals(&fe, c, c + ndof, axis, err);
+  }
+  if (st == CS_OK) {
+    st = swayFE(&fe, c, c + ndof, axis, fel, nfe, rows, err);
+  }
+  free(c);
+  csf_actuatorFEDestroy(&fe);
+  return st;
+}
+
 static csStatus swayModels(const csrActuator* act, int rod_nel, const char* leg,
                            const double* loads, int nl, int skip_rom, const double* fel,
-                           int nfe, FILE* csv, csError* err) {
+                           int nfe, double fe_mesh, const char* stem, FILE* csv, csError* err) {
   printf("%-5s %7s %12s %12s %12s %12s %12s %4s %6s %8s %9s %9s %9s\n", "model", "P (N)",
          "c11 (mm/N)", "c12 (1/N)", "c22", "k_cant", "k_sway", "neg", "newton", "cpu (s)",
          "tip x", "tip y", "tip z");
@@ -193,8 +268,11 @@ static csStatus swayModels(const csrActuator* act, int rod_nel, const char* leg,
     return st;
   }
   swaySummary("rod", &rows);
-  if (!leg) {
-    return CS_OK;
+  if (nfe > 0 && !isnan(fe_mesh)) {
+    st = swayFEMesh(act, fe_mesh, stem, fel, nfe, &rows, err);
+  }
+  if (!leg || st != CS_OK) {
+    return st;
   }
   csfRomActuator ra;
   memset(&ra, 0, sizeof ra);
@@ -223,35 +301,12 @@ static csStatus swayModels(const csrActuator* act, int rod_nel, const char* leg,
   if (st == CS_OK && nl > 0 && !skip_rom) {
     swaySummary("rom", &rows);
   }
-  if (st == CS_OK && nfe > 0) {
+  if (st == CS_OK && nfe > 0 && isnan(fe_mesh)) {
     /* the leg file's model made whole for the FE's solvers: the same mesh, fibres and clamp */
-    csfModel* m = ra.fe.model;
-    st = csf_modelFinalize(m, err);
-    m->solver.max_threads = 1;
-    csfData* d = st == CS_OK ? csf_dataCreate(m, err) : NULL;
-    st = st == CS_OK && !d ? err->status : st;
-    csfNewtonOptions no = csf_newtonDefault();
-    no.threads = 1;
-    no.max_iter = 40; /* as fem_bend.c's sweep: the slender leg crosses flat energy valleys */
-    rows.n = 0;
-    double Pfrom = 0.0;
-    for (int k = 0; k < nfe && st == CS_OK && !*csx_signalFlag(); k++) {
-      double C[3];
-      int neg = -1, newton = 0;
-      const double c0 = cpuNow();
-      st = csf_feSwayCompliance(&ra.fe, d, &no, c, c + ndof, axis, Pfrom, fel[k], C, &neg,
-                                &newton, err);
-      if (st == CS_OK) {
-        double t[3];
-        tipMean(&ra.fe, d->u, t);
-        swayRow(&rows, "fe", fel[k], C, neg, newton, cpuNow() - c0, t);
-        Pfrom = fel[k];
-      }
-    }
+    st = csf_modelFinalize(ra.fe.model, err);
     if (st == CS_OK) {
-      swaySummary("fe", &rows);
+      st = swayFE(&ra.fe, c, c + ndof, axis, fel, nfe, &rows, err);
     }
-    csf_dataDestroy(d);
   }
   free(c);
   csf_romActuatorDestroy(&ra);
@@ -263,7 +318,8 @@ int csx_cmdRomSway(int argc, char** argv) {
   const char* leg = NULL, *out = NULL, *actname = "leg";
   const char* sets[CSX_ROM_MAX_SETS];
   int nset = 0, nl = 0, nfe = 0;
-  double rod_nel = 0;
+  double rod_nel = 0, fe_mesh = NAN;
+  const char* work = ".";
   int skip_rom = 0;
   double loads[SWAY_MAX_LOADS], fel[SWAY_MAX_LOADS];
   csxOptIter it;
@@ -286,6 +342,10 @@ int csx_cmdRomSway(int argc, char** argv) {
       bad = parseLoads("--load", v, loads, &nl);
     } else if (csx_optIs(it.opt, "--fe-load")) {
       bad = parseLoads("--fe-load", v, fel, &nfe);
+    } else if (csx_optIs(it.opt, "--fe-mesh-size")) {
+      bad = csx_romParseNumber("--fe-mesh-size", v, 1, 20, &fe_mesh);
+    } else if (csx_optIs(it.opt, "--work")) {
+      work = v;
     } else if (csx_optIs(it.opt, "--skip-rom")) {
       skip_rom = 1;
     } else if (csx_optIs(it.opt, "--rod-elements")) {
@@ -308,8 +368,9 @@ int csx_cmdRomSway(int argc, char** argv) {
       loads[nl++] = 0.2 * k;
     }
   }
-  if (nfe > 0 && !leg) {
-    fprintf(stderr, "crawlsim rom: sway: --fe-load needs --leg-file (its FE model)\n");
+  if (nfe > 0 && !leg && isnan(fe_mesh)) {
+    fprintf(stderr, "crawlsim rom: sway: --fe-load needs --leg-file (its FE model) or "
+            "--fe-mesh-size\n");
     return 1;
   }
   csrActuator act;
@@ -334,7 +395,10 @@ int csx_cmdRomSway(int argc, char** argv) {
     printf("crawlsim rom: sway: closed forms (E'I = 8 C10 I = %.4g N mm^2, L = %.4g mm): "
            "sway-buckling pi^2 E'I / L^2 = %.4g N, cantilever %.4g N\n", EI, L,
            csr_swayEuler(EI, L), csr_cantileverEuler(EI, L));
-    st = swayModels(&act, (int)rod_nel, leg, loads, nl, skip_rom, fel, nfe, csv, &err);
+    char stem[620];
+    snprintf(stem, sizeof stem, "%.500s/sway_mesh", work);
+    st = swayModels(&act, (int)rod_nel, leg, loads, nl, skip_rom, fel, nfe, fe_mesh, stem, csv,
+                    &err);
   }
   if (csv && fclose(csv) != 0 && st == CS_OK) {
     st = cs_errorSet(&err, CS_ERR_IO, "%s: write failed", out);

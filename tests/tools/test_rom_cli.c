@@ -83,6 +83,13 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom leg-file --wieghts w.h5", "did you mean --weights?");
   expectRefused("rom leg-file --basis romcli_missing.h5 --out romcli_leg.h5", "romcli_missing.h5");
   expectRefused("rom modes --presure 0.1", "did you mean --pressure?");
+  expectRefused("rom sway --load 11", "--load '11'");
+  expectRefused("rom sway --load 0.4 --load 0.2", "--load 0.2: the loads must ascend");
+  expectRefused("rom sway --fe-load 0.8", "--fe-load needs --leg-file");
+  expectRefused("rom sway --rod-elements 2.5", "--rod-elements '2.5' must be a whole number");
+  expectRefused("rom sway --fe-mesh-size 0.5 --fe-load 0.8", "--fe-mesh-size '0.5'");
+  expectRefused("rom sway --leg-file romcli_missing.h5 --load 0", "romcli_missing.h5");
+  expectRefused("rom sway --lod 0.8", "did you mean --load?");
   expectRefused("bend --model rom --p-max 0.1 --out romcli.h5", "--rom-basis");
   expectRefused("bend --model rom --rom-basis romcli_missing.h5 --out romcli.h5",
                 "romcli_missing.h5");
