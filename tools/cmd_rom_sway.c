@@ -47,6 +47,8 @@ static const csxOpt kSwayOpts[] = {
      "the column flexes over L - l_N / 2)"},
     {"--fe-mesh-size", "MM", "none: the leg file's mesh and FE model",
      "the FE of --fe-load meshed afresh by gmsh at this l_soft (symmetric mesh), 1 .. 20"},
+    {"--fe-fibres", "0|1", "1",
+     "with --fe-mesh-size: 0 leaves the fibres out (what they add to the section's stiffness)"},
     {"--work", "DIR", ".", "where gmsh's files of --fe-mesh-size are written"},
     {"--skip-rom", NULL, "off", "the reduced model not run (the rod and --fe-load only)"},
     {"--out", "FILE.csv", "none", "the rows as CSV"},
@@ -223,9 +225,10 @@ static csStatus swayFE(csfActuatorFE* fe, const double* c_lat, const double* c_r
 
 /* the full FE meshed afresh (gmsh; the symmetric mesh of l_soft, every chamber tagged as the
  * snapshots' model) at the loads fel: a mesh other than the leg file's */
-static csStatus swayFEMesh(const csrActuator* act, double l_soft, const char* stem,
+static csStatus swayFEMesh(const csrActuator* act, double l_soft, int fibres, const char* stem,
                            const double* fel, int nfe, SwayRows* rows, csError* err) {
   csfActuatorSpec spec = csf_actuatorSpecDefault();
+  spec.fibres = fibres;
   for (int s = 0; s < CSR_NSEG; s++) {
     for (int j = 0; j < CSR_NCHAMBER; j++) {
       spec.ratio[s][j] = 1.0;
@@ -244,8 +247,8 @@ static csStatus swayFEMesh(const csrActuator* act, double l_soft, const char* st
   }
   double axis[3];
   if (st == CS_OK) {
-    printf("crawlsim rom: sway: FE mesh l_soft %g mm: %d Tet10, %d dofs, %d fibre elements\n",
-           l_soft, fe.mesh->ntet, ndof, fe.model->nfib);
+    printf("crawlsim rom: sway: FE mesh l_soft %g mm: %d Tet10, %d dofs, %d fibre elements%s\n",
+           l_soft, fe.mesh->ntet, ndof, fe.model->nfib, fibres ? "" : " (fibres off)");
     st = csf_swayFunctionals(&fe, c, c + ndof, axis, err);
   }
   if (st == CS_OK) {
@@ -258,7 +261,8 @@ static csStatus swayFEMesh(const csrActuator* act, double l_soft, const char* st
 
 static csStatus swayModels(const csrActuator* act, int rod_nel, const char* leg,
                            const double* loads, int nl, int skip_rom, const double* fel,
-                           int nfe, double fe_mesh, const char* stem, FILE* csv, csError* err) {
+                           int nfe, double fe_mesh, int fe_fibres, const char* stem, FILE* csv,
+                           csError* err) {
   printf("%-5s %7s %12s %12s %12s %12s %12s %4s %6s %8s %9s %9s %9s\n", "model", "P (N)",
          "c11 (mm/N)", "c12 (1/N)", "c22", "k_cant", "k_sway", "neg", "newton", "cpu (s)",
          "tip x", "tip y", "tip z");
@@ -269,7 +273,7 @@ static csStatus swayModels(const csrActuator* act, int rod_nel, const char* leg,
   }
   swaySummary("rod", &rows);
   if (nfe > 0 && !isnan(fe_mesh)) {
-    st = swayFEMesh(act, fe_mesh, stem, fel, nfe, &rows, err);
+    st = swayFEMesh(act, fe_mesh, fe_fibres, stem, fel, nfe, &rows, err);
   }
   if (!leg || st != CS_OK) {
     return st;
@@ -318,7 +322,7 @@ int csx_cmdRomSway(int argc, char** argv) {
   const char* leg = NULL, *out = NULL, *actname = "leg";
   const char* sets[CSX_ROM_MAX_SETS];
   int nset = 0, nl = 0, nfe = 0;
-  double rod_nel = 0, fe_mesh = NAN;
+  double rod_nel = 0, fe_mesh = NAN, fe_fibres = 1;
   const char* work = ".";
   int skip_rom = 0;
   double loads[SWAY_MAX_LOADS], fel[SWAY_MAX_LOADS];
@@ -344,6 +348,12 @@ int csx_cmdRomSway(int argc, char** argv) {
       bad = parseLoads("--fe-load", v, fel, &nfe);
     } else if (csx_optIs(it.opt, "--fe-mesh-size")) {
       bad = csx_romParseNumber("--fe-mesh-size", v, 1, 20, &fe_mesh);
+    } else if (csx_optIs(it.opt, "--fe-fibres")) {
+      bad = csx_romParseNumber("--fe-fibres", v, 0, 1, &fe_fibres);
+      if (!bad && fe_fibres != floor(fe_fibres)) {
+        fprintf(stderr, "crawlsim rom: sway: --fe-fibres '%s' must be 0 or 1\n", v);
+        bad = 1;
+      }
     } else if (csx_optIs(it.opt, "--work")) {
       work = v;
     } else if (csx_optIs(it.opt, "--skip-rom")) {
@@ -397,8 +407,8 @@ int csx_cmdRomSway(int argc, char** argv) {
            csr_swayEuler(EI, L), csr_cantileverEuler(EI, L));
     char stem[620];
     snprintf(stem, sizeof stem, "%.500s/sway_mesh", work);
-    st = swayModels(&act, (int)rod_nel, leg, loads, nl, skip_rom, fel, nfe, fe_mesh, stem, csv,
-                    &err);
+    st = swayModels(&act, (int)rod_nel, leg, loads, nl, skip_rom, fel, nfe, fe_mesh,
+                    (int)fe_fibres, stem, csv, &err);
   }
   if (csv && fclose(csv) != 0 && st == CS_OK) {
     st = cs_errorSet(&err, CS_ERR_IO, "%s: write failed", out);
