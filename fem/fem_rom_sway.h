@@ -16,8 +16,8 @@
  * work-conjugate of its measure, so the compliance C_ij = c_i . K^-1 c_j is symmetric with a
  * symmetric tangent. M is the linear axial traction over the face (a pure moment in N mm); the
  * face may warp, so theta = 0 holds the face's mean plane, not every node: a sole free to
- * warp, which is softer than a rigid foot (the difference is the sole's share, small on a
- * slender leg). The axial load is the dead force -P s e3 (N) on the face (uniform traction).
+ * warp, softer than a rigid foot (by how much is not measured). The axial load is the dead
+ * force -P s e3 (N) on the face (uniform traction).
  * Units: mm, N, N mm. */
 #ifndef CS_FEM_ROM_SWAY_H
 #define CS_FEM_ROM_SWAY_H
