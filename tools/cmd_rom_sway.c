@@ -132,6 +132,18 @@ static int parseLoads(const char* flag, const char* v, double* list, int* n) {
   return 0;
 }
 
+/* a whole number in [lo, hi] from option `flag`'s value; 1 after one error line */
+static int parseWhole(const char* flag, const char* v, double lo, double hi, double* out) {
+  if (csx_romParseNumber(flag, v, lo, hi, out)) {
+    return 1;
+  }
+  if (*out != floor(*out)) {
+    fprintf(stderr, "crawlsim rom: sway: %s '%s' must be a whole number\n", flag, v);
+    return 1;
+  }
+  return 0;
+}
+
 /* the rod of the actuator (default parameters, no actuation: p = 0) at every load */
 static csStatus swayRod(const csrActuator* act, int nel, const double* loads, int nl,
                         SwayRows* rows, csError* err) {
@@ -349,21 +361,13 @@ int csx_cmdRomSway(int argc, char** argv) {
     } else if (csx_optIs(it.opt, "--fe-mesh-size")) {
       bad = csx_romParseNumber("--fe-mesh-size", v, 1, 20, &fe_mesh);
     } else if (csx_optIs(it.opt, "--fe-fibres")) {
-      bad = csx_romParseNumber("--fe-fibres", v, 0, 1, &fe_fibres);
-      if (!bad && fe_fibres != floor(fe_fibres)) {
-        fprintf(stderr, "crawlsim rom: sway: --fe-fibres '%s' must be 0 or 1\n", v);
-        bad = 1;
-      }
+      bad = parseWhole("--fe-fibres", v, 0, 1, &fe_fibres);
     } else if (csx_optIs(it.opt, "--work")) {
       work = v;
     } else if (csx_optIs(it.opt, "--skip-rom")) {
       skip_rom = 1;
     } else if (csx_optIs(it.opt, "--rod-elements")) {
-      bad = csx_romParseNumber("--rod-elements", v, 1, 64, &rod_nel);
-      if (!bad && rod_nel != floor(rod_nel)) {
-        fprintf(stderr, "crawlsim rom: sway: --rod-elements '%s' must be a whole number\n", v);
-        bad = 1;
-      }
+      bad = parseWhole("--rod-elements", v, 1, 64, &rod_nel);
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--set")) {

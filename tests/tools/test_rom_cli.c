@@ -87,6 +87,7 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom sway --load 0.4 --load 0.2", "--load 0.2: the loads must ascend");
   expectRefused("rom sway --fe-load 0.8", "--fe-load needs --leg-file");
   expectRefused("rom sway --rod-elements 2.5", "--rod-elements '2.5' must be a whole number");
+  expectRefused("rom sway --fe-fibres 0.5 --fe-mesh-size 8", "--fe-fibres '0.5' must be a whole");
   expectRefused("rom sway --fe-mesh-size 0.5 --fe-load 0.8", "--fe-mesh-size '0.5'");
   expectRefused("rom sway --leg-file romcli_missing.h5 --load 0", "romcli_missing.h5");
   expectRefused("rom sway --lod 0.8", "did you mean --load?");
