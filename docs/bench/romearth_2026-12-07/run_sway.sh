@@ -27,8 +27,8 @@ nice -n 5 "$C" rom sway --leg-file "$LEG" --load 0 --load 0.2 --load 0.4 \
 # the reduced model straight from 0 to the stance's 0.8 N
 nice -n 5 "$C" rom sway --leg-file "$LEG" --load 0.8 --out "$OUT/sway_rom08.csv" \
   > "$OUT/sway_rom08.log" 2>&1
-# the FE's discretisation: the leg meshed afresh at l_soft 8 (the leg file's mesh again), 6 and 4
-for l in 8 6 4; do
+# the FE's discretisation: the leg meshed afresh at l_soft 8 (the leg file's mesh again), 6, 4, 3
+for l in 8 6 4 3; do
   nice -n 5 "$C" rom sway --fe-mesh-size $l --work "$OUT" --load 0.8 --fe-load 0.8 \
     --fe-load 1.1 --fe-load 1.2 --out "$OUT/sway_fe_l$l.csv" > "$OUT/sway_fe_l$l.log" 2>&1
 done
