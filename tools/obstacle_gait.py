@@ -37,6 +37,19 @@ ap.add_argument('--over-step', type=float, default=None,
                 '(measured: the nominal\'s step landings fell 3 mm short of their offset on average '
                 'where the road\'s fall --over beyond it; docs/studies/obstacle.md, sixth session); '
                 'default --over (rule 16 off)')
+ap.add_argument('--up-short', type=float, default=-1.0,
+                help='rule 17: how far a wave landing onto the step from the road (the leg\'s stance on '
+                'the road, its landing planned on the step) falls short of rule 6\'s plan, mm '
+                '(measured on k3\'s nominal, the same on rod and strain legs: B 233.4 for 264 planned, '
+                'C 224-228 for 258; docs/notes/obstacle.md "Rule 17"); default (negative) off; 30 is the '
+                'measured value')
+ap.add_argument('--up-band', default='-10,5',
+                help='rule 17: the corner\'s band about the up edge, mm short and past it: a landing '
+                'expected there (plan less --up-short) takes the shortest longer offset, in 5 mm steps '
+                'up to --up-reach, expected past the band (the foot block caught the corner at 233.4 '
+                'and hung clear of it at 224-228)')
+ap.add_argument('--up-reach', type=float, default=55.0,
+                help='rule 17: the longest offset ahead of the hip, mm (rule 16\'s 55)')
 ap.add_argument('--Dcross', type=float, default=None,
                 help='rule 16b: support advance per cycle from the climb\'s end (planned x past --xclimb) '
                 'to --xcross, mm; places the hips for the landings of these slots, and the later '
@@ -250,6 +263,12 @@ except ValueError:
     SCAT = ()
 if len(SCAT) != 2 or SCAT[0] > 0 or SCAT[1] < 0:
     sys.exit('obstacle_gait.py: --scatter takes two numbers, short (<= 0) and long (>= 0)')
+try:
+    UPB = tuple(float(v) for v in a.up_band.split(','))
+except ValueError:
+    UPB = ()
+if len(UPB) != 2 or UPB[0] > 0 or UPB[1] < 0:
+    sys.exit('obstacle_gait.py: --up-band takes two numbers, short (<= 0) and past (>= 0)')
 
 SH, SHZ = 40.0, a.SHZ         # stance stroke of one stance (3 slots): along x, along z (mm)
 RS = (5, 15, 25, 35)          # landing offsets ahead of the hip (mm); stance ends at r - SH
@@ -327,6 +346,11 @@ if a.over_step is not None or a.reach is not None:
 if a.Dcross is not None:
     RULE16 += ('\n# 16b. From the climb\'s end to support x = %g mm the hips advance %g mm per cycle '
                '(measured),\n#     then %g again with the lag kept.' % (a.xcross, a.Dcross, a.D))
+if a.up_short >= 0:
+    RULE16 += ('\n# 17. A wave landing onto the step from the road lands %g mm behind its plan (measured:\n'
+               '#     the support moves on while the foot comes down); one expected within %g..+%g mm of\n'
+               '#     the up edge (the foot block on its corner) takes the shortest longer offset, in 5 mm\n'
+               '#     steps up to %g mm, expected past that band.' % (a.up_short, UPB[0], UPB[1], a.up_reach))
 if a.clear_down:
     RULE16 += ('\n# 12b. The first pair landing near the down edge: rule 12\'s band keeps %g mm from '
                'that edge.' % a.clear)
@@ -532,9 +556,10 @@ def lx(hipx, r):
     return x
 
 
-def plan(l, hipx, force=None):
+def plan(l, hipx, force=None, climb=False):
     """landing offset r and stance kind (G road / S step length) for a foot of hip x (terrain);
-    force: the offset (--force), the kind then follows from its landing as rule 6 says"""
+    force: the offset (--force), the kind then follows from its landing as rule 6 says; climb:
+    a wave landing of a leg standing on the road (rule 17)"""
     best, bestm = None, -1.0
     for r in (PREF if force is None else ()):
         m = min(abs(lx(hipx, r) - e) for e in EDGES)
@@ -583,6 +608,21 @@ def plan(l, hipx, force=None):
                 'keeps %.0f' % (l, lx(hipx, best), band_clear(lx(hipx, best)), r12,
                                 band_clear(lx(hipx, r12))))
         best = r12
+        bestm = min(abs(lx(hipx, best) - e) for e in EDGES)
+    if force is None and climb and a.up_short >= 0 and \
+            EDGES[0] < lx(hipx, best) < EDGES[1] and \
+            EDGES[0] + UPB[0] < lx(hipx, best) - a.up_short < EDGES[0] + UPB[1]:
+        # rule 17: a wave landing onto the step from the road falls --up-short behind its plan
+        # (the support moves on while the foot comes down): expected on the edge's corner, it
+        # takes the shortest longer offset expected past the corner's band (k3's B, F landed on
+        # the corner at 233.4 mm and held on rod legs and adaptive strain, slid off it at 232.0
+        # on fixed 0.5 ms strain: a margin of ~1.5 mm, less than the levels differ by)
+        e0 = lx(hipx, best) - a.up_short
+        r17 = next((r for r in range(int(best) + 5, int(a.up_reach) + 1, 5)
+                    if lx(hipx, r) - a.up_short >= EDGES[0] + UPB[1]), a.up_reach)
+        comment('#  %s: rule 17: landing %.0f expected at %.0f, on the corner; offset %g expected at %.0f'
+                % (l, lx(hipx, best), e0, r17, lx(hipx, r17) - a.up_short))
+        best = r17
         bestm = min(abs(lx(hipx, best) - e) for e in EDGES)
     landx = lx(hipx, best)
     # rule 6: on the step the vented length; on the road the road's, also next to a riser (a
@@ -711,7 +751,7 @@ for s in range(NS):
         stance(l, b, r0, s0, s)
         lift[l] = need('A', off)
         key = (pair, s // 4)
-        r, b2 = plan(l, START + OFF[l] + XL[s + 1], FORCE.get(key))
+        r, b2 = plan(l, START + OFF[l] + XL[s + 1], FORCE.get(key), climb=b == 'G')
         if key in FH and l == pair[0]:
             # rule 15: a foothold: the plan's offset is the nominal candidate; each candidate's
             # landing with the hips where the plan puts them (the player shifts it by how far

@@ -268,6 +268,23 @@ expect_fail1 "obstacle_search --x0 outside the box" "within its box" \
 expect_fail1 "obstacle_search --report-only runs nothing" "no design evaluated yet" \
   "$PY" "$OS" --dir "$TMP/os_empty" --report-only --crawlsim "$EXE"
 
+# tools/obstacle_gait.py rule 17 (--up-short): off by default (the shipped description, byte for
+# byte); on, it moves the second pair's first landing onto the step (expected on the edge's
+# corner) to the offset that clears it, the same statements as forcing that offset, and only
+# that step; a bad --up-band is one line and exit 1
+if "$PY" "$OG" -o "$TMP/k3.gait" >"$TMP/out.txt" 2>&1 && cmp -s "$TMP/k3.gait" "$ROOT/gaits/obstacle.gait" &&
+   "$PY" "$OG" --up-short 30 -o "$TMP/r17.gait" >>"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --force BF:0:50 -o "$TMP/bf50.gait" >>"$TMP/out.txt" 2>&1 &&
+   cmp -s <(stmts "$TMP/r17.gait") <(stmts "$TMP/bf50.gait") &&
+   ! cmp -s <(stmts "$TMP/r17.gait") <(stmts "$TMP/k3.gait") &&
+   [ "$(grep -c 'rule 17: landing' "$TMP/r17.gait")" -eq 2 ]; then
+  ok "obstacle_gait rule 17 off by default; --up-short 30 moves B, F's climbing landing to offset 50"
+else
+  bad "obstacle_gait rule 17 off by default; --up-short 30 moves B, F's climbing landing to offset 50" "$TMP/out.txt"
+fi
+expect_fail1 "obstacle_gait bad --up-band" "obstacle_gait.py: --up-band takes two numbers" \
+  "$PY" "$OG" --up-short 30 --up-band 5,5 -o "$TMP/bad.gait"
+
 # tools/earth_gait.py: the shipped earth gait is the script's description of the values its
 # header names; bad input is one line and exit 1. tools/earth_track.py: a missing run file is
 # one line and exit 1
