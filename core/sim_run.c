@@ -39,6 +39,7 @@
 #include "core_h5.h"
 #include "core_h5read.h"
 #include "core_xdmf.h"
+#include "robot_strain.h"
 #include "sim_internal.h"
 #include "terrains_ccd.h"
 
@@ -272,7 +273,10 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
       st = cs_h5AttrDouble(f, "/", "strain_shear", csr_legSettingGet(lt, ls, "shear", 1), err);
     }
     if (st == CS_OK) {
-      st = cs_h5AttrDouble(f, "/", "strain_sub_intervals", csr_legSettingGet(lt, ls, "sub", 4),
+      /* the count the setting stands for (0: by the basis) */
+      st = cs_h5AttrDouble(f, "/", "strain_sub_intervals",
+                           csr_strainSubIntervals((int)csr_legSettingGet(lt, ls, "links", 2),
+                                                  (int)csr_legSettingGet(lt, ls, "sub", 0)),
                            err);
     }
     if (st == CS_OK && csr_legSettingFind(lt, "cal_quantum")) {

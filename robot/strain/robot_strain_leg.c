@@ -107,6 +107,11 @@ static void destroyStrain(csrLeg* leg) {
 }
 
 
+int csr_strainSubIntervals(int links, int sub) {
+  return sub > 0 ? sub : links <= 2 ? 2 : 4;
+}
+
+
 static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
   if (!spec || !spec->act || !spec->params) {
     cs_errorSet(err, CS_ERR_ARG, "strain leg: NULL spec, actuator or parameters");
@@ -143,7 +148,7 @@ static csrLeg* createStrain(const csrLegSpec* spec, csError* err) {
    * model's own, which csr_strainModelCreate checks again) */
   leg->sp.joint_order = (int)set[STRAIN_JOINTS];
   leg->sp.shear = (int)set[STRAIN_SHEAR];
-  leg->sp.nsub = (int)set[STRAIN_SUB];
+  leg->sp.nsub = csr_strainSubIntervals(links, (int)set[STRAIN_SUB]);
   leg->sp.cal_quantum = set[STRAIN_CALQ];
   leg->sp.step_order = step_order ? step_order : STRAIN_STEP_ORDER;
   leg->sp.step_refresh = STRAIN_STEP_REFRESH;
@@ -549,8 +554,10 @@ static const csrLegSetting kStrainSettings[] = {
                        "curvature)", 0, -1, CSR_STRAIN_MAX_ORDER, 1},
     /* the shears σ1, σ2 as unknowns (1) or zero (0, Kirchhoff) */
     [STRAIN_SHEAR] = {"shear", "1 the shears are unknowns, 0 Kirchhoff (no shear)", 1, 0, 1, 1},
-    /* Magnus sub-intervals per flexible piece (the kinematics' and the capsules' resolution) */
-    [STRAIN_SUB] = {"sub", "Magnus sub-intervals per flexible piece", 4, 1, 16, 1},
+    /* Magnus sub-intervals per flexible piece (the kinematics' and the capsules' resolution);
+     * 0: by the basis (csr_strainSubIntervals: 2 at links <= 2, 4 above) */
+    [STRAIN_SUB] = {"sub", "Magnus sub-intervals per flexible piece (0: 2 at links <= 2, 4 above)",
+                    0, 0, 16, 1},
     /* the calibration's pressure resolution (robot_strain.h cal_quantum): 0 the pressures as
      * given */
     [STRAIN_CALQ] = {"cal_quantum",

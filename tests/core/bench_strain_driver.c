@@ -47,6 +47,18 @@
 #include "robot_strain.h"
 #include "sim_model.h"
 
+/* under valgrind --tool=callgrind --instr-atstart=no the instrumentation starts at the
+ * measured window (CS_BENCH_FROM): the settling and the steps before it run uninstrumented */
+#if defined(__has_include)
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#endif
+#endif
+#ifndef CALLGRIND_START_INSTRUMENTATION
+#define CALLGRIND_START_INSTRUMENTATION
+#define CALLGRIND_DUMP_STATS_AT(label) ((void)(label))
+#endif
+
 static double cpu(void) { return (double)clock() / CLOCKS_PER_SEC; }
 
 
@@ -189,6 +201,54 @@ static void printStages(const csuTimer* tm, double cpu_s, long nstep) {
 }
 
 
+/* the counts at a measured window's start (CS_BENCH_FROM, CS_BENCH_WINDOWS) */
+typedef struct Window_ {
+  double t0;
+  long pass, step, rej, lsteps;
+  csAdaptiveStats ada;
+} Window;
+
+
+static long legSteps(void) {
+  long n = 0;
+  for (int k = 0; k < gLegTime.nlegs && gLegTime.inner == &csr_leg_strain; k++) {
+    long a, b, c;
+    csr_legStrainCounts(gLegTime.legs[k], &a, &b, &c);
+    n += a;
+  }
+  return n;
+}
+
+
+static void windowStart(const csModel* m, const csData* d, Window* w) {
+  (void)m;
+  w->t0 = cs_time(d);
+  w->pass = cs_treePassCount(d);
+  w->step = cs_stepCount(d);
+  w->rej = cs_rejectCount(d);
+  w->lsteps = legSteps();
+  cs_adaptiveStats(d, &w->ada);
+}
+
+
+/* the window's counts: the leg steps prepared (tries, rejected ones included), the tree's
+ * Newton passes per leg step, the legs' calls (gLegTime, reset at the window's start) */
+static void windowPrint(const csModel* m, const csData* d, const Window* w) {
+  csAdaptiveStats ada;
+  cs_adaptiveStats(d, &ada);
+  const long ls = legSteps() - w->lsteps, npass = cs_treePassCount(d) - w->pass;
+  const double tries = (double)ls / CSR_NLEG;
+  printf("  window [%g, %g] s: %ld macro steps (%ld rejected), %ld leg steps prepared (%.0f tries "
+         "of the tree step), %ld tree passes (%.3f per try), leg calls: prepare %ld, iterate %ld, "
+         "finish %ld, actuate %ld; adaptive %d: %ld accepted, %ld rejected by the error\n",
+         w->t0, cs_time(d), cs_stepCount(d) - w->step, cs_rejectCount(d) - w->rej, ls, tries,
+         npass, tries > 0 ? (double)npass / tries : 0.0, gLegTime.t[LT_PREPARE].count,
+         gLegTime.t[LT_ITERATE].count, gLegTime.t[LT_FINISH].count,
+         gLegTime.t[LT_ACTUATE].count, m->opt.step_adaptive, ada.accepted - w->ada.accepted,
+         ada.rejected - w->ada.rejected);
+}
+
+
 static int bench(const char* src, const char* arg, double t_end) {
   char level[32] = "", terr[600], gait[600], cal[600];
   int links = 0, order = 0, active = -1, fric = -1, trust = -1, joints = -2, shear = -1, sub = -1;
@@ -310,6 +370,15 @@ static int bench(const char* src, const char* arg, double t_end) {
   if (tol > 0) {
     m.opt.tree_tol = tol;
   }
+  /* CS_BENCH_ADAPTIVE=TOL: the adaptive tree step at step_tol TOL mm (`--strain-step adaptive
+   * --step-tol TOL`), its longest step DT or 5 ms (as cs_rundef.c's default) */
+  if (getenv("CS_BENCH_ADAPTIVE") && atof(getenv("CS_BENCH_ADAPTIVE")) > 0) {
+    m.opt.step_adaptive = 1;
+    m.opt.step_tol = atof(getenv("CS_BENCH_ADAPTIVE"));
+    if (!(dt > 0)) {
+      m.opt.h = 0.005;
+    }
+  }
   /* CS_BENCH_PASSES=N: the tree step's Newton passes before a step is rejected (tree_iterations) */
   if (getenv("CS_BENCH_PASSES") && atoi(getenv("CS_BENCH_PASSES")) > 0) {
     m.opt.tree_iterations = atoi(getenv("CS_BENCH_PASSES"));
@@ -356,7 +425,8 @@ static int bench(const char* src, const char* arg, double t_end) {
       snprintf(bs, sizeof bs, "_j%d_s%d_n%d",
                (int)csr_legSettingGet(type, &m.robot.leg_settings, "joints", 0),
                (int)csr_legSettingGet(type, &m.robot.leg_settings, "shear", 1),
-               (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 4));
+               csr_strainSubIntervals((int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 2),
+                                      (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 0)));
     }
     char qs[32] = "";
     if (calq >= 0) {
@@ -369,6 +439,49 @@ static int bench(const char* src, const char* arg, double t_end) {
   } else {
     snprintf(out, sizeof out, "bench_strain_driver_%s.h5", level);
   }
+  /* CS_BENCH_FROM=T0: the steps to T0 (s) first, outside the measured run: the run is then
+   * [T0, T0 + t_end] (its file's times start at 0), the counts below are the window's */
+  const double t_from = getenv("CS_BENCH_FROM") ? atof(getenv("CS_BENCH_FROM")) : 0;
+  for (long i = 0, n0 = lround(t_from / cs_modelMacroStep(&m)); i < n0; i++) {
+    if (cs_step(&m, d, &err) != CS_OK) {
+      fprintf(stderr, "bench_strain_driver: before the window: %s\n", err.msg);
+      cs_dataDestroy(d);
+      cs_modelDestroy(&m);
+      return 1;
+    }
+  }
+  /* CS_BENCH_WINDOWS=N: N consecutive runs of t_end each (a file each), every one's counts
+   * printed and, under callgrind, its profile dumped apart (CALLGRIND_DUMP_STATS_AT): the
+   * instructions of [0, T], [T, 2T], ... in one process; the lines after the last are the last
+   * window's (the stage split and the per-step figures, the whole run's timers) */
+  const int nwin = getenv("CS_BENCH_WINDOWS") && atoi(getenv("CS_BENCH_WINDOWS")) > 1
+                       ? atoi(getenv("CS_BENCH_WINDOWS"))
+                       : 1;
+  for (int w = 0; w + 1 < nwin; w++) {
+    Window win;
+    windowStart(&m, d, &win);
+    CALLGRIND_START_INSTRUMENTATION;
+    memset(gLegTime.t, 0, sizeof gLegTime.t);
+    double wall_w = 0;
+    const csStatus sw = cs_runWrite(&m, d, out, &wall_w, &err);
+    windowPrint(&m, d, &win);
+    char label[64];
+    snprintf(label, sizeof label, "window %g-%g s", win.t0, cs_time(d));
+    CALLGRIND_DUMP_STATS_AT(label);
+    if (!keep) {
+      remove(out);
+    }
+    if (sw != CS_OK) {
+      fprintf(stderr, "bench_strain_driver: window %d: %s\n", w, err.msg);
+      cs_dataDestroy(d);
+      cs_modelDestroy(&m);
+      return 1;
+    }
+  }
+  const double t_win = cs_time(d); /* the last window's start */
+  Window win;
+  windowStart(&m, d, &win);
+  CALLGRIND_START_INSTRUMENTATION;
   memset(gLegTime.t, 0, sizeof gLegTime.t); /* the run's, not the settling's */
   const double c0 = cpu();
   double wall = 0;
@@ -381,7 +494,7 @@ static int bench(const char* src, const char* arg, double t_end) {
     remove(out);
   }
   /* steps and rejections of the run (the data's counts include the settling) */
-  const long nstep = cs_stepCount(d) - lround(m.opt.settle / cs_modelMacroStep(&m));
+  const long nstep = cs_stepCount(d) - lround((m.opt.settle + t_win) / cs_modelMacroStep(&m));
   double x[3];
   cs_supportDisplacement(d, x);
   const csuTimer* tm = cs_timers(d);
@@ -390,7 +503,7 @@ static int bench(const char* src, const char* arg, double t_end) {
                          tm[CS_TIMER_TREE].wall;
   const double rest = step - tm[CS_TIMER_LEGS].wall - tm[CS_TIMER_SUPPORT].wall -
                       tm[CS_TIMER_PNEUMATICS].wall;
-  const double t_run = cs_time(d);
+  const double t_run = cs_time(d) - t_win; /* the run's simulated time */
   printf("%s: %s, %d per segment, h %g ms (order %d, tol %g mm), coupling %s: %.2f s simulated%s, CPU %.2f s -> real-time "
          "factor %.3f (wall %.2f s: %.3f), %ld steps, %ld rejected (with the settling); x(end) %.2f mm\n", scene->name, level,
          (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0), m.opt.h * 1e3,
@@ -415,7 +528,8 @@ static int bench(const char* src, const char* arg, double t_end) {
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 0),
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "joints", 0),
              (int)csr_legSettingGet(type, &m.robot.leg_settings, "shear", 1),
-             (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 4),
+             csr_strainSubIntervals((int)csr_legSettingGet(type, &m.robot.leg_settings, "links", 2),
+                                    (int)csr_legSettingGet(type, &m.robot.leg_settings, "sub", 0)),
              csr_legSettingGet(type, &m.robot.leg_settings, "cal_quantum", 0));
       long lsteps = 0, lfac = 0, lkept = 0;
       for (int k = 0; k < gLegTime.nlegs; k++) {
@@ -442,6 +556,7 @@ static int bench(const char* src, const char* arg, double t_end) {
   printf("  after the run: the file's last image and the XDMF beside it %.3f s wall (%.1f %% of "
          "the run's wall time; at 100x real time the run would take %.3f s)\n", w_end,
          100 * w_end / (wall > 0 ? wall : 1), t_run / 100);
+  windowPrint(&m, d, &win);
   long pn[2];
   cs_pneumaticCounts(d, pn);
   const long nstep_all = cs_stepCount(d) + cs_rejectCount(d);

@@ -26,6 +26,7 @@
 
 #include "cs_test.h"
 #include "strain_flat_fixture.h"
+#include "robot_strain.h"
 #include "sim_internal.h" /* CS_MAX_SPLIT, CS_SPLIT_MORE_PASSES: the retry rules tested */
 #include "sim_model.h"
 
@@ -476,7 +477,7 @@ static void test_strain_basis_settings_change_the_legs(void) {
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "shear", 0, &err) == CS_OK);
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "sub", 2, &err) == CS_OK);
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "joints", -2, &err) != CS_OK);
-  CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "sub", 0, &err) != CS_OK);
+  CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "sub", -1, &err) != CS_OK);
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "shear", 2, &err) != CS_OK);
   csData* d = csTestSettledData(&m);
   csData* dl = csTestSettledData(&ml);
@@ -494,6 +495,47 @@ static void test_strain_basis_settings_change_the_legs(void) {
 }
 
 
+/* The setting sub's default (0) stands for 2 sub-intervals per flexible piece at 2 bending modes
+ * per segment and 4 at 3 (csr_strainSubIntervals): each leg's state is the one the explicit
+ * count gives, and 2 against 4 differ by the capsules' history (one capsule per sub-interval, 4
+ * history doubles each; the joints' constant curvature takes one sub-interval whatever sub is,
+ * robot_strain.c, so only the 3 segments count: 8 legs x 3 x 2 capsules x 4 = 192 doubles) */
+static void test_strain_default_sub_intervals_follow_the_basis(void) {
+  const csrLegType* type = &csr_leg_strain;
+  int size[2][3] = {{0}}; /* [links 2, 3][default, 2, 4] */
+  const int sub[3] = {-1, 2, 4};
+  for (int l = 0; l < 2; l++) {
+    for (int k = 0; k < 3; k++) {
+      csModel m;
+      if (!csTestLoadFlatStrain(&m, g_src, type, 1e-3, 2 + l, 0, 0.0)) {
+        CS_EXPECT(0);
+        continue;
+      }
+      csError err;
+      if (sub[k] > 0) {
+        CS_EXPECT(csr_legSettingSet(type, &m.robot.leg_settings, "sub", sub[k], &err) == CS_OK);
+      }
+      csData* d = cs_dataCreate(&m, &err);
+      CS_EXPECT(d != NULL);
+      if (d) {
+        size[l][k] = cs_stateSize(&m, d);
+      }
+      cs_dataDestroy(d);
+      cs_modelDestroy(&m);
+    }
+  }
+  printf("  state (doubles): links 2 default %d, sub 2 %d, sub 4 %d; links 3 default %d, sub 2 "
+         "%d, sub 4 %d\n", size[0][0], size[0][1], size[0][2], size[1][0], size[1][1],
+         size[1][2]);
+  CS_EXPECT(size[0][0] == size[0][1] && size[0][0] > 0);
+  CS_EXPECT(size[1][0] == size[1][2] && size[1][0] > 0);
+  CS_EXPECT(size[0][2] - size[0][1] == CSR_NLEG * 3 * 2 * 4);
+  CS_EXPECT(size[1][2] - size[1][1] == CSR_NLEG * 3 * 2 * 4);
+  CS_EXPECT(csr_strainSubIntervals(2, 0) == 2 && csr_strainSubIntervals(3, 0) == 4 &&
+            csr_strainSubIntervals(2, 3) == 3);
+}
+
+
 int main(int argc, char** argv) {
   const char* src = getenv("CS_SOURCE_DIR");
   snprintf(g_src, sizeof g_src, "%s", src ? src : ".");
@@ -506,6 +548,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_strain_bdf2_keeps_momentum_and_restores);
   CS_RUN(test_strain_kept_matrix_keeps_momentum);
   CS_RUN(test_strain_basis_settings_change_the_legs);
+  CS_RUN(test_strain_default_sub_intervals_follow_the_basis);
   dCloseODE();
   return cs_testSummary();
 }

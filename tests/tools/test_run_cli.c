@@ -423,12 +423,13 @@ static void test_strainRun(void) {
               leg_step == 5e-4);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 2);
     /* the level's default basis (robot_strain_leg.c: 2 bending modes per segment,
-     * constant-curvature joints, shears as unknowns, 4 sub-intervals per flexible piece) */
+     * constant-curvature joints, shears as unknowns, sub-intervals by the basis:
+     * csr_strainSubIntervals, 2 per flexible piece at 2 modes) */
     double joints = -9, shear = -9, sub = -9;
     CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_joint_order", &joints) >= 0 &&
               joints == 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_shear", &shear) >= 0 && shear == 1);
-    CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_sub_intervals", &sub) >= 0 && sub == 4);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_sub_intervals", &sub) >= 0 && sub == 2);
     /* the calibration exact by default (robot_strain.h cal_quantum 0: no pressure lattice) */
     double calq = -9;
     CS_EXPECT(H5LTget_attribute_double(f, "/", "strain_cal_quantum", &calq) >= 0 && calq == 0);
