@@ -6,17 +6,20 @@
 /* The paper's two scenes (Sec. 5.1 and 5.2): their tables were computed without self-weight,
  * so they default to `paper` (docs/reference.md "Scene conditions"). */
 static const csScene kScenes[] = {
-    /* both scenes run the mission's surrogate by default: rod legs on the 23-mode FE table of
-     * the symmetric mesh under `rbf-pair`, the calibration that meets every held-out FE case
-     * (docs/notes/calibration.md), with the rod's elements per segment converged on it */
+    /* both scenes run the mission's surrogate by default on the 23-mode FE table of the
+     * symmetric mesh under `rbf-pair`, the calibration that meets every held-out FE case
+     * (docs/notes/calibration.md): the flat road (and the slope) on the strain-coordinate level,
+     * the obstacle on the rod; rod_links is the rod's elements per segment converged on that
+     * table, used when --legs rod is asked */
     /* the flat road's gait was designed on that model and its parameters searched by
-     * simulating it (gaits/flat_road_rod.gait, tools/gait_search.py); gaits/flat_road.csv, the
-     * design of the pair-mode table and the retired prb legs, stays shipped */
+     * simulating the strain level (gaits/flat_road_rod.gait, tools/gait_search.py --legs
+     * strain; docs/notes/gait_search.md); gaits/flat_road.csv, the design of the pair-mode
+     * table and the retired prb legs, stays shipped */
     /* under `earth` the four S-bent stance legs of that gait fold (tilt past 10 deg at 1.23 s);
      * a wave on six straighter stance legs walks (tools/earth_gait.py, docs/studies/earth_gait.md) */
     {"flat-road", "terrains/flat_road.terrain", "gaits/flat_road_rod.csv",
      "gaits/flat_road_earth.csv", CS_CONDITIONS_PAPER,
-     CS_MISSION_CALIBRATION, CS_MISSION_CAL_RULE, "rod", 8,
+     CS_MISSION_CALIBRATION, CS_MISSION_CAL_RULE, "strain", 8,
      "paper Sec. 5.1: 600 x 300 mm flat road, 8 strides of 39 mm in 9 s (Table 2)", NULL},
     /* the obstacle's gait (a wave: six legs stand while a pair steps) was designed on the same
      * model at the rod's 4 elements per segment (tools/obstacle_gait.py, docs/studies/obstacle.md) */
@@ -29,7 +32,7 @@ static const csScene kScenes[] = {
     /* the flat road's designed gait on an inclined road (terrains/slope.terrain): how steep a
      * slope it climbs (docs/studies/slope.md); the flat road's model and conditions */
     {"slope", "terrains/slope.terrain", "gaits/flat_road_rod.csv", NULL, CS_CONDITIONS_PAPER,
-     CS_MISSION_CALIBRATION, CS_MISSION_CAL_RULE, "rod", 8,
+     CS_MISSION_CALIBRATION, CS_MISSION_CAL_RULE, "strain", 8,
      "the flat road inclined by 10 deg (+x uphill; a scene file's `slope A` sets another)", NULL},
 };
 enum { NSCENE = sizeof kScenes / sizeof kScenes[0] };

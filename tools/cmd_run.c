@@ -51,7 +51,7 @@ static const csxOpt kRunOpts[] = {
      "closed-loop); none plays the table on time (docs/reference/formats.md \"Gate files\")"},
     {"--terrain", "FILE", "the scene's (terrains/flat_road.terrain, terrains/obstacle.terrain)",
      "the terrain file; a terrain of your own makes the default conditions earth"},
-    {"--legs", "auto|rod|strain|rom", "rod",
+    {"--legs", "auto|rod|strain|rom", "the scene's: strain (flat-road, slope), rod (obstacle)",
      "the leg level; auto picks the scene's cheapest measured configuration within --tol; "
      "strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled tree, its "
      "step --dt (default 0.5 ms, the level's own) and --links bending modes per segment (default "

@@ -4,6 +4,7 @@
 usage: /usr/bin/python3 tools/gait_search.py [--dir DIR] [--evals N] [--robust]
            [--x0 S,H,U,TL[,E[,O]]] [--free S,E] [--step 0.6,2] [--ramps 0.5,0.1]
            [--crawlsim build/tools/crawlsim] [--mpirun N] [--links N]
+           [--legs rod|strain] [--strain-step fixed|adaptive] [--step-tol MM] [--dt S]
            [--write-gait P.gait --params S,H,U,TL[,E[,O]]]
 
 A design is the shipped flat-road gait's structure (gaits/flat_road.gait: a level-sole stance
@@ -44,6 +45,15 @@ and a failed run; with --ramps R1,R2.. also the design's table run with each act
 issue's 10 % then weighs as the nominal's 5 %: a score <= 0.05 meets both). --robust adds, for the best design, the robustness set (ramps 0.1/0.5 s,
 friction 0.6/1.0, support 25/75 g, pneumatic lag x0.5/x2, the step halved) and friction 0,
 and prints each run's x(9 s) against the nominal one.
+
+The model: the scene's default legs, or --legs rod|strain with --links N (rod elements or strain
+bending modes per segment), --dt S, and for strain legs --strain-step fixed|adaptive and
+--step-tol MM (crawlsim run's options of those names). They are passed to every run, change the
+design's case key (so each model's runs are cases of their own, and a folder may hold several),
+and each row of results.csv names its model in the column `model`; robust.csv's header line too.
+The robustness set's "step halved" halves the model's step: --dt (rod: 1 ms -> 0.5 ms; strain
+fixed: 0.5 ms -> 0.25 ms, or the given --dt halved) or, with --strain-step adaptive, --step-tol
+(the local error allowed per step, which sets the steps the run takes).
 
 Results: DIR/results.csv (one row per evaluated design, in evaluation order) and, with
 --robust, DIR/robust.csv.
@@ -86,6 +96,42 @@ except ImportError as e:  # Debian: python3-h5py python3-numpy python3-scipy
 
 TABLE_RAMP = [None]  # --table-ramp: the actuation time the design states (`ramp R`), or None
 LINKS = [None]       # --links: rod elements per segment of every run, or None (the scene's default)
+# --legs, --strain-step, --step-tol, --dt: the model's run options (None: the scene's / level's)
+MODEL = {"legs": None, "strain_step": None, "step_tol": None, "dt": None}
+STRAIN_DT = 5e-4     # s, the strain level's own fixed step (crawlsim run --help, --dt)
+ROD_DT = 1e-3        # s, the run's default step for rod legs
+
+
+def model_words():
+    """The run options that name the model (besides --links), as passed to every run."""
+    w = []
+    if MODEL["legs"] is not None:
+        w += ["--legs", MODEL["legs"]]
+    if MODEL["strain_step"] is not None:
+        w += ["--strain-step", MODEL["strain_step"]]
+    if MODEL["step_tol"] is not None:
+        w += ["--step-tol", f"{MODEL['step_tol']:g}"]
+    if MODEL["dt"] is not None:
+        w += ["--dt", f"{MODEL['dt']:g}"]
+    return w
+
+
+def model_name():
+    """The model in words without commas (results.csv's `model` column)."""
+    w = ([f"legs {MODEL['legs'] or 'scene'}"] + ([f"links {LINKS[0]}"] if LINKS[0] else [])
+         + [f"{k.replace('_', '-')} {MODEL[k]:g}" if isinstance(MODEL[k], float)
+            else f"{k.replace('_', '-')} {MODEL[k]}" for k in ("strain_step", "step_tol", "dt")
+            if MODEL[k] is not None])
+    return " ".join(w)
+
+
+def step_halved():
+    """The robustness set's "step halved" for the model: the adaptive strain step's tolerance
+    halved, else the fixed step halved (see the module's doc)."""
+    if MODEL["strain_step"] == "adaptive":
+        return f"--step-tol {0.5 * (MODEL['step_tol'] or 5e-4):g}"
+    dt = MODEL["dt"] or (STRAIN_DT if MODEL["legs"] == "strain" else ROD_DT)
+    return f"--dt {0.5 * dt:g}"
 
 
 def gait_text(S, H, U, TL, E=None, O=None):
@@ -232,7 +278,10 @@ def key(x):
     v = list(x) + ([] if TABLE_RAMP[0] is None else [TABLE_RAMP[0]])
     if LINKS[0] is not None:  # a design run at other elements is another case (the same
         v += [1000.0 + LINKS[0]]  # key as before without --links)
-    return hashlib.sha1(",".join(f"{w:.4f}" for w in v).encode()).hexdigest()[:10]
+    text = ",".join(f"{w:.4f}" for w in v)
+    if model_words():         # another model: other cases (the same key as before without)
+        text += "," + " ".join(model_words())
+    return hashlib.sha1(text.encode()).hexdigest()[:10]
 
 
 def run_study(folder, name, lines, crawlsim, mpirun):
@@ -266,14 +315,18 @@ def read_case(case_file, names):
         return st, {n: g[n][:] if n in g else None for n in names}, dict(g.attrs)
 
 
-# the robustness set (issue 33): one run option each
+# the robustness set (issue 33): one run option each; "step" is the model's (step_halved())
 ROBUST = [
     ("ramp0.1", "--ramp 0.1"), ("ramp0.5", "--ramp 0.5"),
     ("mu0.6", "--friction 0.6"), ("mu1.0", "--friction 1.0"),
     ("m25g", "--support-mass 0.025"), ("m75g", "--support-mass 0.075"),
     ("tau0.5x", "--tau 0.01"), ("tau2x", "--tau 0.04"),
-    ("dt_half", "--dt 0.0005"), ("mu0", "--friction 0"),
+    ("dt_half", "step"), ("mu0", "--friction 0"),
 ]
+
+
+def robust_set():
+    return [(n, step_halved() if w == "step" else w) for n, w in ROBUST]
 
 
 class Search:
@@ -284,6 +337,7 @@ class Search:
         self.results = os.path.join(self.dir, "results.csv")
         self.seen = {}
         self.n = a.n_params
+        self.model_col = True  # a table written before the column keeps its columns
         if os.path.exists(self.results):
             col = 5
             for line in open(self.results):
@@ -292,6 +346,7 @@ class Search:
                 w = line.strip().split(",")
                 if w[0] == "key":
                     col = w.index("score")
+                    self.model_col = "model" in w
                     continue
                 self.seen[w[0]] = float(w[col])
 
@@ -299,8 +354,17 @@ class Search:
         """Write and run a study of cases [(case, gait_csv_or_None, run_words)]; resumable. A
         case without a gait table solves its description DIR/CASE.gait first (gait-design)."""
         lines = [f"study {name}", ""]
-        lk = "" if LINKS[0] is None else f" --links {LINKS[0]}"
         for c, gait, words in cases:
+            # the model's options; a case's own --dt or --step-tol (the step halved) replaces
+            # the model's
+            own = words.split()
+            mw = model_words()
+            for opt in ("--dt", "--step-tol"):
+                if opt in own and opt in mw:
+                    i = mw.index(opt)
+                    del mw[i:i + 2]
+            lk = ("" if LINKS[0] is None else f" --links {LINKS[0]}") + "".join(
+                " " + w for w in mw)
             if gait is None:
                 gd = os.path.join(self.dir, f"{c.split('__')[0]}.gait")
                 lines.append(f"case {c} gait-design {gd} --stretch --calibration @data/{CAL} "
@@ -381,13 +445,14 @@ class Search:
                 f.write("key,S_mm,H_mm,U_mm,TL_s," + ("E_mm," if self.n >= 5 else "")
                         + ("O_s," if self.n == 6 else "")
                         + "score,x2,x3,x4,x5,x6,x7,x8,x9,zmax_mm,tilt_deg"
-                        + "".join(f",x9_ramp{r:g}" for r in self.a.ramps) + "\n")
+                        + "".join(f",x9_ramp{r:g}" for r in self.a.ramps) + ",model\n")
             xs = r["x"] if r and "x" in r else [float("nan")] * 10
             f.write(f"{k}," + "".join(f"{xi:.4f}," for xi in x) + f"{s:.6f},"
                     + ",".join(f"{xs[j]:.2f}" for j in T_NODES)
                     + f",{(r or {}).get('z', float('nan')):.2f},"
                     f"{(r or {}).get('tilt', float('nan')):.2f}"
-                    + "".join(f",{v:.2f}" for v in x9r) + "\n")
+                    + "".join(f",{v:.2f}" for v in x9r)
+                    + (f",{model_name()}" if self.model_col else "") + "\n")
         self.seen[k] = s
         print(f"{PROG}: {k} S {x[0]:.2f} H {x[1]:.2f} U {x[2]:.2f} TL {x[3]:.3f}"
               + (f" E {x[4]:.2f}" if self.n >= 5 else "")
@@ -407,16 +472,16 @@ class Search:
         if not os.path.exists(table):
             fail(f"{table}: the design's table was not written (see {self.dir}/cases/{c}/)")
         res.update(self.study(f"robust_{k}",
-                              [(f"{c}__{n}", table, w) for n, w in ROBUST]))
+                              [(f"{c}__{n}", table, w) for n, w in robust_set()]))
         nom = res[c]
         x9 = nom["x"][9] if nom and "x" in nom else float("nan")
         path = os.path.join(self.dir, "robust.csv")
         with open(path, "w") as f:
             f.write(f"# design {k}: " + " ".join(f"{n} {xi:.4f}" for n, xi in zip(NAMES, x))
-                    + "\n")
+                    + f"; model: {model_name()}\n")
             f.write("case,options,x9_mm,vs_nominal_pct,vs_table2_pct,worst_pct,worst_t_s,"
                     + ",".join(f"x{j}" for j in range(1, 10)) + ",zmax_mm,tilt_deg,status\n")
-            for cname, w in [(c, "")] + [(f"{c}__{n}", w) for n, w in ROBUST]:
+            for cname, w in [(c, "")] + [(f"{c}__{n}", w) for n, w in robust_set()]:
                 r = res[cname]
                 xs = r["x"] if r and "x" in r else [float("nan")] * 10
                 xi = xs[9]
@@ -452,6 +517,14 @@ def main():
     ap.add_argument("--links", type=int, default=None, help="rod elements per leg segment of "
                     "every run (a convergence check, or a search at another discretisation; "
                     "default: the scene's)")
+    ap.add_argument("--legs", choices=("rod", "strain"), default=None, help="the leg level "
+                    "of every run (default: the scene's)")
+    ap.add_argument("--strain-step", choices=("fixed", "adaptive"), default=None,
+                    help="strain legs: crawlsim run's --strain-step (default: the level's)")
+    ap.add_argument("--step-tol", type=float, default=None, help="with --strain-step "
+                    "adaptive: the local error allowed per step, mm (default: the level's)")
+    ap.add_argument("--dt", type=float, default=None, help="the run's step, s (default: the "
+                    "level's)")
     ap.add_argument("--write-gait", default=None)
     ap.add_argument("--params", default=None)
     a = ap.parse_args()
@@ -463,6 +536,15 @@ def main():
         if not 1 <= a.links <= 64:
             fail(f"--links {a.links}: elements per segment in 1..64")
         LINKS[0] = a.links
+    if (a.strain_step is not None or a.step_tol is not None) and a.legs != "strain":
+        fail("--strain-step, --step-tol: strain legs only (give --legs strain)")
+    if a.step_tol is not None and a.strain_step != "adaptive":
+        fail("--step-tol: with --strain-step adaptive only")
+    if a.step_tol is not None and not (math.isfinite(a.step_tol) and 0 < a.step_tol <= 100):
+        fail(f"--step-tol {a.step_tol}: a local error in (0, 100] mm")
+    if a.dt is not None and not (math.isfinite(a.dt) and 0 < a.dt <= 0.01):
+        fail(f"--dt {a.dt}: a step in (0, 0.01] s")
+    MODEL.update(legs=a.legs, strain_step=a.strain_step, step_tol=a.step_tol, dt=a.dt)
     if a.write_gait:
         try:
             p = [float(v) for v in (a.params or a.x0).split(",")]

@@ -59,7 +59,8 @@ static const OptSpec kRunOpts[] = {
     {"--cal-rule", OPT_WORD},     {"--rod-tol", OPT_NUM},        {"--out", OPT_OWNED},
     {"--help", OPT_OWNED},        {"--cal-drop", OPT_WORD},      {"--scene-file", OPT_PATH},
     {"--slope-deg", OPT_NUM},     {"--foothold", OPT_FILE_NONE},
-    {"--gate", OPT_FILE_NONE},    {NULL, OPT_FLAG}};
+    {"--gate", OPT_FILE_NONE},    {"--strain-step", OPT_WORD},   {"--step-tol", OPT_NUM},
+    {"--step-order", OPT_NUM},    {NULL, OPT_FLAG}};
 
 static const OptSpec kCalibrateOpts[] = {
     {"--case", OPT_WORD},       {"--actuator", OPT_ACT}, {"--set", OPT_SET},

@@ -8,8 +8,8 @@
  * support SH / (3 T) per second from the wave's start, read from the description's header);
  * (2) the control: the searched two-group gait (gaits/flat_road_rod.csv) on the same model and
  * conditions tips past 10 deg within 1.6 s (its four S-bent stance legs fold;
- * docs/studies/earth_gait.md), so (1) is the gait's doing, not the model's. Rod legs at the
- * scene's 8 elements, about 5 s simulated (15-40 s on the shared machine); labelled slow. */
+ * docs/studies/earth_gait.md), so (1) is the gait's doing, not the model's. On the
+ * scene's default legs (strain since 2026-12-07), about 5 s simulated; labelled slow. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

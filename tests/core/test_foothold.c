@@ -32,6 +32,7 @@
 
 static csRunDef cheapDef(void) {
   csRunDef d = cs_defaultRunDef();
+  d.legs = "rod"; /* the cheapest rod (the flat road's default legs are strain) */
   d.links = 2;
   d.rod_tol = 20;
   /* the rows' spacing: footholds need a ramp that fits the candidates' rows, and the scene's

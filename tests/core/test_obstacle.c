@@ -2,7 +2,8 @@
  *
  * Proves: (1) the shipped terrains/obstacle.terrain is the L-shaped road of the README (three
  * boxes; the step's top 40 mm above the road; the start on the road, 90 mm before the step);
- * (2) both scenes default to rod legs on the mission's calibration (the 23-mode symmetric-mesh
+ * (2) the obstacle defaults to rod legs, the flat road (since 2026-12-07) and the slope to
+ * strain legs, on the mission's calibration (the 23-mode symmetric-mesh
  * FE table under rbf-pair, which both gaits were designed on and the checks below name
  * explicitly); (3) the shipped gait's stances keep the support
  * level: a road leg's stance foot is the step's height below a step leg's (the design's own
@@ -64,18 +65,21 @@ static void test_obstacleTerrainIsTheLShapedStepRoad(void) {
 }
 
 
-/* both scenes default to rod legs on the mission's calibration: the 23-mode symmetric-mesh
- * table under rbf-pair (both gaits were designed there) */
-static void test_scenesRunRodLegsOnAnFeModeTable(void) {
+/* the obstacle defaults to rod legs, the flat road and the slope to strain legs (the flat gait
+ * was searched on them, docs/notes/gait_search.md), all on the mission's calibration: the
+ * 23-mode symmetric-mesh table under rbf-pair (both gaits were designed there) */
+static void test_scenesRunTheirLevelsOnAnFeModeTable(void) {
   const csScene* fr = cs_sceneFind("flat-road");
   const csScene* ob = cs_sceneFind("obstacle");
+  const csScene* sl = cs_sceneFind("slope");
   CS_EXPECT(fr && ob);
   if (fr && ob) {
     CS_EXPECT(!strcmp(fr->calibration, "robot/calibration_fe_leg_modes_sym.h5"));
     CS_EXPECT(fr->cal_rule && !strcmp(fr->cal_rule, "rbf-pair"));
     CS_EXPECT(!strcmp(ob->calibration, "robot/calibration_fe_leg_modes_sym.h5"));
     CS_EXPECT(ob->cal_rule && !strcmp(ob->cal_rule, "rbf-pair"));
-    CS_EXPECT(fr->legs && !strcmp(fr->legs, "rod") && ob->legs && !strcmp(ob->legs, "rod"));
+    CS_EXPECT(fr->legs && !strcmp(fr->legs, "strain") && ob->legs && !strcmp(ob->legs, "rod"));
+    CS_EXPECT(sl && sl->legs && !strcmp(sl->legs, fr->legs));
     CS_EXPECT(fr->rod_links >= 1 && ob->rod_links >= 1);
   }
   CS_EXPECT(cs_sceneCount() == 3 && cs_sceneFind("obstacle") && cs_sceneFind("flat-road"));
@@ -268,7 +272,7 @@ int main(int argc, char** argv) {
   const char* src = getenv("CS_SOURCE_DIR");
   snprintf(g_src, sizeof g_src, "%s", src ? src : ".");
   CS_RUN(test_obstacleTerrainIsTheLShapedStepRoad);
-  CS_RUN(test_scenesRunRodLegsOnAnFeModeTable);
+  CS_RUN(test_scenesRunTheirLevelsOnAnFeModeTable);
   CS_RUN(test_obstacleStancesKeepTheSupportLevel);
   CS_RUN(test_obstacleFirstCycleStepsOntoTheStep);
   dCloseODE();

@@ -82,7 +82,7 @@ def test_callbacks_get_the_lines_and_nothing_is_printed(capfd):
     lines, calls = [], []
     r = crawlsim.run(t_end=1.0, log=lines.append,
                      progress=lambda t, x, wall: calls.append((t, x, wall)),
-                     links=2, rod_tol=20)  # the cheapest rod of the speed/accuracy chart
+                     legs="rod", links=2, rod_tol=20)  # the cheapest rod of the chart
     out, err = capfd.readouterr()  # file descriptors 1 and 2, C's writes included
     assert r.ok
     assert out == "" and err == ""

@@ -28,9 +28,9 @@ def test_step_advances_by_the_macro_step(sim):
 
 def test_state_round_trip_repeats_steps_bit_for_bit():
     """Steps after set_state repeat bit for bit (core/sim_model.h: the integrators restart from
-    the state), on the scene's default legs (rod legs, whose integrators restart from the
+    the state), on rod legs at the scene's own elements (their integrators restart from the
     state; tests/core/test_state.c checks the same in C)."""
-    with crawlsim.Sim(scene="flat-road") as sim:
+    with crawlsim.Sim(scene="flat-road", legs="rod") as sim:
         sim.step(20)
         x = sim.get_state()
         sim.step(30)

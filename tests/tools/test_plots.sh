@@ -238,6 +238,10 @@ expect_fail1 "gait_search bad --params" "gait_search.py: --params '1,2': expecte
   "$PY" "$SEARCH" --write-gait "$TMP/bad.gait" --params 1,2
 expect_fail1 "gait_search --params outside the box" "outside the search's box" \
   "$PY" "$SEARCH" --write-gait "$TMP/bad.gait" --params 100,3,11,0.2
+expect_fail1 "gait_search --step-tol without strain legs" "strain legs only" \
+  "$PY" "$SEARCH" --strain-step adaptive --step-tol 5e-4 --evals 0
+expect_fail1 "gait_search --step-tol with a fixed strain step" "with --strain-step adaptive only" \
+  "$PY" "$SEARCH" --legs strain --step-tol 5e-4 --evals 0
 
 # tools/obstacle_search.py: its start (the free parameters at their listed defaults) is
 # obstacle_gait.py's design with --base alone (the same statements), a design off the defaults

@@ -63,7 +63,7 @@ static void test_badOptions(void) {
   expectFailure("--friction nan", "crawlsim run: --friction 'nan' is not a finite number");
   expectFailure("--friction -0.5", "crawlsim run: --friction -0.5 must be >= 0");
   expectFailure("--t-end -1", "crawlsim run: --t-end -1 s must be >= 0");
-  expectFailure("--t-end 1e300", "crawlsim run: a run to t = 1e+300 s at --dt 0.001 s takes");
+  expectFailure("--t-end 1e300", "crawlsim run: a run to t = 1e+300 s at --dt 0.0005 s takes");
   expectFailure("--pressure-scale -1", "crawlsim run: --pressure-scale -1 must be >= 0");
   /* the shipped gait peaks near 0.3 MPa: x 100 is far above the 1 MPa limit */
   expectFailure("--pressure-scale 100", "crawlsim run: --pressure-scale 100 takes ");
@@ -83,7 +83,7 @@ static void test_badOptions(void) {
   expectFailure("--conditions", "crawlsim run: option --conditions needs a value");
   /* the rom level reads its leg file (robot/rom/robot_rom_file.h): refused in one line */
   expectFailure("--legs rom", "crawlsim run: --legs rom needs --rom-file LEG.h5");
-  expectFailure("--rom-file x.h5", "crawlsim run: --rom-file goes with --legs rom (not rod)");
+  expectFailure("--rom-file x.h5", "crawlsim run: --rom-file goes with --legs rom (not strain)");
   expectFailure("--legs rom --rom-file runcli_missing.h5",
                 "crawlsim run: runcli_missing.h5: cannot open as an HDF5 file");
   CS_EXPECT(cs_cliWriteText("runcli_notleg.h5", "not hdf5\n") == 1);
@@ -94,7 +94,7 @@ static void test_badOptions(void) {
   expectFailure("--support-mass 0", "crawlsim run: --support-mass 0 kg must be > 0");
   expectFailure("--macro-steps 0", "crawlsim run: --macro-steps 0 must be an integer in 1..");
   expectFailure("--macro-steps 2.5", "crawlsim run: --macro-steps 2.5 must be an integer in");
-  expectFailure("--macro-steps 20 --output-dt 0.01",
+  expectFailure("--legs rod --macro-steps 20 --output-dt 0.01",
                 "crawlsim run: --output-dt 0.01 s must be >= the macro step 0.02 s");
   expectFailure("--coupling tight", "crawlsim run: unknown coupling 'tight'");
   expectFailure("--links 0", "crawlsim run: --links 0 must be an integer in 1..64");
@@ -108,8 +108,9 @@ static void test_badOptions(void) {
   expectFailure("--gravity -9.81", "crawlsim run: --gravity -9.81 m/s^2 must be >= 0");
   expectFailure("--tau -1", "crawlsim run: --tau -1 s must be >= 0");
   expectFailure("--ramp -1", "crawlsim run: --ramp -1 s must be >= 0");
-  expectFailure("--rod-tol 0", "crawlsim run: --rod-tol 0 must be > 0 and <= 1000");
-  expectFailure("--rod-tol 1e4", "crawlsim run: --rod-tol 10000 must be > 0 and <= 1000");
+  expectFailure("--legs rod --rod-tol 0", "crawlsim run: --rod-tol 0 must be > 0 and <= 1000");
+  expectFailure("--legs rod --rod-tol 1e4",
+                "crawlsim run: --rod-tol 10000 must be > 0 and <= 1000");
   expectFailure("--cal-rule hats",
                 "crawlsim run: unknown --cal-rule 'hats' (expected prism, rbf or rbf-pair)");
   expectFailure("--legs rod --cal-drop stretch,ei",
@@ -230,13 +231,19 @@ static void test_bannerStatesTrackError(void) {
   csCliResult r;
   cs_cliRun(exe_path, "run --t-end 0.01 --out runcli_banner.h5", "runcli", &r);
   CS_EXPECT(r.status == 0);
-  const char* line = strstr(r.err, "crawlsim run: legs rod, 8 elements per segment: track error ");
+  const char* line =
+      strstr(r.err, "crawlsim run: legs strain, 2 bending modes per segment: track error ");
   CS_EXPECT(line != NULL);
   double mm = -1;
-  CS_EXPECT(line && sscanf(line, "crawlsim run: legs rod, 8 elements per segment: track error %lf "
-                                 "mm", &mm) == 1 && mm >= 0);
+  CS_EXPECT(line && sscanf(line, "crawlsim run: legs strain, 2 bending modes per segment: track "
+                                 "error %lf mm", &mm) == 1 && mm >= 0);
   CS_EXPECT(line && strstr(line, "robot/levels.csv (line ") != NULL);
-  cs_cliRun(exe_path, "run --t-end 0.01 --links 3 --out runcli_banner.h5", "runcli", &r);
+  /* the rod asked for: the scene's converged elements (8 on the flat road) */
+  cs_cliRun(exe_path, "run --t-end 0.01 --legs rod --out runcli_banner.h5", "runcli", &r);
+  CS_EXPECT(r.status == 0 && strstr(r.err, "crawlsim run: legs rod, 8 elements per segment: "
+                                           "track error ") != NULL);
+  cs_cliRun(exe_path, "run --t-end 0.01 --legs rod --links 3 --out runcli_banner.h5", "runcli",
+            &r);
   CS_EXPECT(r.status == 0 && strstr(r.err, "legs rod, 3 elements per segment: track error of "
                                            "this configuration not measured") != NULL);
   remove("runcli_banner.h5");
@@ -259,28 +266,28 @@ static void test_goodRun(void) {
     fprintf(stderr, "  status %d\n  stdout: %s\n  stderr: %s\n", r.status, r.out, r.err);
   }
   /* the file names the level that ran (the one place it is stored: the robot's leg type),
-   * the default model (rod legs at the scene's 8 elements per segment on the 23-mode
-   * symmetric-mesh table under rbf-pair) and keeps the stage timers: 50 steps of 1 ms (the
-   * Gauss-Seidel rod legs are called twice a step: prediction and advance) */
+   * the default model (strain legs at 2 bending modes per segment on the 23-mode
+   * symmetric-mesh table under rbf-pair) and keeps the stage timers: 100 steps of the strain
+   * level's 0.5 ms (the tree coupling calls the legs at least once a step) */
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   hid_t f = H5Fopen("runcli_ok.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
   CS_EXPECT(f >= 0);
   if (f >= 0) {
     char level[32] = "";
     CS_EXPECT(H5LTget_attribute_string(f, "/", "leg_model", level) >= 0);
-    CS_EXPECT(!strcmp(level, "rod"));
+    CS_EXPECT(!strcmp(level, "strain"));
     char cal[1024] = "", rule[32] = "";
     double links = 0;
     CS_EXPECT(H5LTget_attribute_string(f, "/", "calibration", cal) >= 0 &&
               strstr(cal, "robot/calibration_fe_leg_modes_sym.h5") != NULL);
     CS_EXPECT(H5LTget_attribute_string(f, "/", "calibration_rule", rule) >= 0 &&
               !strcmp(rule, "rbf-pair"));
-    CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 8);
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 2);
     double calls = 0, wall = -1, steps = 0;
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_legs_calls", &calls) >= 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "timer_support_s", &wall) >= 0);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "steps", &steps) >= 0);
-    CS_EXPECT(calls >= 50 && wall >= 0 && steps >= 50);
+    CS_EXPECT(calls >= 100 && wall >= 0 && steps >= 100);
     /* the paper's scene under its own default conditions, recorded */
     char cond[32] = "";
     double weightless = -1;
@@ -289,7 +296,7 @@ static void test_goodRun(void) {
               weightless == 1);
     H5Fclose(f);
   }
-  CS_EXPECT(strstr(r.out, "verdict (paper, rod legs): stands") != NULL);
+  CS_EXPECT(strstr(r.out, "verdict (paper, strain legs): stands") != NULL);
   CS_EXPECT(cs_cliFileExists("runcli_ok.xdmf"));
   remove("runcli_ok.h5");
   remove("runcli_ok.xdmf");
@@ -312,7 +319,7 @@ static void test_goodRun(void) {
   remove("runcli_earth.h5");
   remove("runcli_earth.xdmf");
   /* a macro step of 20 ODE steps: the output interval follows it (0.02 s > 0.01 s) */
-  cs_cliRun(exe_path, "run --t-end 0.04 --quiet --macro-steps 20 --coupling stabilised "
+  cs_cliRun(exe_path, "run --t-end 0.04 --quiet --legs rod --macro-steps 20 --coupling stabilised "
             "--out runcli_macro.h5", "runcli", &r);
   CS_EXPECT(r.status == 0 && strstr(r.out, "final t = 0.040 s") == r.out);
   f = H5Fopen("runcli_macro.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -379,12 +386,14 @@ static void test_gaitCheckAgreesWithRun(void) {
   CS_EXPECT(r.status == 1 && cs_cliOneLine(r.err) &&
             strstr(r.err, "crawlsim gait check: runcli_hi.csv: row at t = 0 s: chamber A_II1_O1 "
                           "at 0.45 MPa is above the calibrated range (up to 0.4 MPa)") == r.err);
-  cs_cliRun(exe_path, "run --links 2 --rod-tol 20 --t-end 0.5 --quiet --gait runcli_hi.csv --out "
+  cs_cliRun(exe_path, "run --legs rod --links 2 --rod-tol 20 --t-end 0.5 --quiet --gait "
+            "runcli_hi.csv --out "
             "runcli_hi.h5", "runcli", &r);
   CS_EXPECT(r.status == 1 && strstr(r.err, "is above the calibrated range (up to 0.4 MPa)"));
   cs_cliRun(exe_path, "gait check runcli_lo.csv", "runcli", &r);
   CS_EXPECT(r.status == 0 && strstr(r.out, "within the calibrated range (up to 0.4 MPa)"));
-  cs_cliRun(exe_path, "run --links 2 --rod-tol 20 --t-end 0.5 --quiet --gait runcli_lo.csv --out "
+  cs_cliRun(exe_path, "run --legs rod --links 2 --rod-tol 20 --t-end 0.5 --quiet --gait "
+            "runcli_lo.csv --out "
             "runcli_lo.h5", "runcli", &r);
   CS_EXPECT(r.status == 0);
   cs_cliRun(exe_path, "gait check runcli_lo.csv --pressure-scale 1.2", "runcli", &r);

@@ -117,6 +117,11 @@ static void refuses_bad_study_files(void) {
       {"case a bend --set q=1\n", 1, "--set q=1"},
       {"# r1 too large for the wall\ncase a bend --set r1=5\n", 2, "is not valid"},
       {"case a run --gait nosuch.csv\n", 1, "no such file"},
+      /* the strain level's step options are run options a study may give (a value is checked
+       * as a number, so the option is known: tools/gait_search.py --legs strain passes them) */
+      {"case a run --legs strain --strain-step adaptive --step-tol nan\n", 1,
+       "'nan' is not a finite number"},
+      {"case a run --legs strain --step-order x\n", 1, "'x' is not a finite number"},
       {"case a bend stray\n", 1, "unexpected word 'stray'"},
       {"case a bend\nthen bend\n", 2, "one step per command"},
       {"defaults fly --x\n", 1, "unknown command 'fly'"},
