@@ -549,8 +549,12 @@ static const csrLegSetting kStrainSettings[] = {
                        "curvature)", 0, -1, CSR_STRAIN_MAX_ORDER, 1},
     /* the shears σ1, σ2 as unknowns (1) or zero (0, Kirchhoff) */
     [STRAIN_SHEAR] = {"shear", "1 the shears are unknowns, 0 Kirchhoff (no shear)", 1, 0, 1, 1},
-    /* Magnus sub-intervals per flexible piece (the kinematics' and the capsules' resolution) */
-    [STRAIN_SUB] = {"sub", "Magnus sub-intervals per flexible piece", 4, 1, 16, 1},
+    /* Magnus sub-intervals per flexible piece (the kinematics' and the capsules' resolution):
+     * 2 for the level's 2 bending modes (order 4 in the sub-intervals; against 4: the first
+     * bending frequency 0.06 % of the issue's 1 %, the tracks < 0.02 mm, 24 % fewer
+     * instructions: docs/notes/strain_leg.md "The cost of one leg step" and "The strain
+     * level's default step"); csr_strainDefaultParams' 4 is the model's own, for its tests */
+    [STRAIN_SUB] = {"sub", "Magnus sub-intervals per flexible piece", 2, 1, 16, 1},
     /* the calibration's pressure resolution (robot_strain.h cal_quantum): 0 the pressures as
      * given */
     [STRAIN_CALQ] = {"cal_quantum",
