@@ -103,7 +103,7 @@ typedef struct csRunDef {
                                 it names), step_order is 2 or --legs auto picks (its rows are
                                 fixed steps); fixed otherwise */
   double step_tol;           /* strain_step adaptive: the local error allowed per step, mm (and
-                                mm per 10 ms on velocities) (NaN: 5e-4) */
+                                mm per 10 ms on velocities) (NaN: 2.5e-4) */
   double strain_sub;         /* strain legs: Magnus sub-intervals per flexible piece (the
                                 points of the kinematics, inertia and contact), integer 1..16
                                 (NaN: the level's, 2) */

@@ -120,7 +120,7 @@ static const csxOpt kRunOpts[] = {
      "adaptive, unless --dt, --step-order 2 or --legs auto (their steps are fixed)",
      "strain legs: fixed (every step --dt, default then 5e-4) or adaptive (each --dt, default "
      "then 5e-3, crossed in steps chosen by a local error estimate; backward Euler)"},
-    {"--step-tol", "MM", "5e-4",
+    {"--step-tol", "MM", "2.5e-4",
      "with the adaptive step: the local error allowed per step in mm (velocities: mm per 10 ms)"},
     {"--strain-sub", "N", "2",
      "strain legs: Magnus sub-intervals per flexible piece (the points of their kinematics, "

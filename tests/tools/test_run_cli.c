@@ -421,13 +421,13 @@ static void test_strainRun(void) {
     double step = 0, leg_step = 0, links = 0, ada = 0, tol = 0;
     /* the adaptive step by default: its longest step and cs_step's grid 5 ms (cs_rundef.c
      * CS_ADAPTIVE_MAX_STEP_S), its tolerance sim_driver.c's default (cs_defaultOptions
-     * step_tol, 5e-4 mm) */
+     * step_tol, 2.5e-4 mm) */
     CS_EXPECT(H5LTget_attribute_double(f, "/", "step_s", &step) >= 0 && step == 5e-3);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_s", &leg_step) >= 0 &&
               leg_step == 5e-3);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_adaptive", &ada) >= 0 && ada == 1);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_tol_mm", &tol) >= 0 &&
-              tol == 5e-4);
+              tol == 2.5e-4);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "links_per_segment", &links) >= 0 && links == 2);
     /* the level's default basis (robot_strain_leg.c: 2 bending modes per segment,
      * constant-curvature joints, shears as unknowns, 2 sub-intervals per flexible piece) */
