@@ -1,5 +1,5 @@
 #!/bin/sh
-# queue.sh: the order the study's runs were made in (runs.sh and runs2.sh list them by kind;
+# queue.sh: the order the study's runs were made in after runs.sh's first five (killed there;
 # the machine's load made the order matter): each skipped when done (crun.sh). From the
 # worktree; WAIT=PID first waits for a run in progress.
 H=$(dirname "$0")

@@ -1,6 +1,6 @@
 #!/bin/sh
-# runs.sh: the tolerance study's runs, one after the other (nice 5, resumable: crun.sh skips a
-# run whose log ends "rc 0"); from the worktree. HDF5 files in /work/rom_data/strdef (not
+# runs.sh: the tolerance study's first runs, one after the other (nice 5, resumable: crun.sh skips a
+# run whose log has its verdict); from the worktree; stopped after its first five runs (queue.sh). HDF5 files in /work/rom_data/strdef (not
 # committed: this regenerates them; each 5-60 CPU s, the rod reference ~4-5 CPU min).
 # Scene defaults: the obstacle under `paper` with gaits/obstacle.csv and its gate, to 8 s
 # (past the 7.47 s where the fixed 0.5 ms falls); the flat road under `paper`, its gait's 9.5 s.

@@ -11,20 +11,21 @@ echo "# obstacle 0-8 s against the rod at 32 elements and 0.25 ms (obst_rod32, t
 $P $R/obst_rod32.h5 $OB
 echo "# the rod reference 0-8 s against levels_ref's 0-4 s (the same command to 4 s)"
 $P /work/rom_data/levels_ref/track-obstacle-rod-l32-m1-dt0.00025-t4.h5 $R/obst_rod32.h5
+# halves SC: each tolerance of scene SC (obst, flat) against its half
+halves() {
+  for pr in 1e-3:5e-4 5e-4:2.5e-4 2.5e-4:1.25e-4 2e-4:1e-4; do
+    a=${pr%%:*}; b=${pr##*:}
+    [ -f $R/$1_a$a.h5 ] && [ -f $R/$1_a$b.h5 ] && $P $R/$1_a$b.h5 $R/$1_a$a.h5
+  done
+}
 echo "# obstacle: each tolerance against its half (1e-3/5e-4, 5e-4/2.5e-4, 2.5e-4/1.25e-4, 2e-4/1e-4)"
-for pr in 1e-3:5e-4 5e-4:2.5e-4 2.5e-4:1.25e-4 2e-4:1e-4; do
-  a=${pr%%:*}; b=${pr##*:}
-  [ -f $R/obst_a$a.h5 ] && [ -f $R/obst_a$b.h5 ] && $P $R/obst_a$b.h5 $R/obst_a$a.h5
-done
+halves obst
 echo "# obstacle: the fixed 0.5 ms against 0.25 ms"
 ex $R/obst_f0.25ms.h5 > /dev/null && $P $R/obst_f0.25ms.h5 $(ex $R/obst_f0.5ms.h5)
 echo "# flat road 9.5 s against the rod at 32 elements and 0.25 ms (levels_ref)"
 $P /work/rom_data/levels_ref/track-flat-road-rod-l32-m1-dt0.00025.h5 $FL
 echo "# flat road: each tolerance against its half"
-for pr in 1e-3:5e-4 5e-4:2.5e-4 2.5e-4:1.25e-4 2e-4:1e-4; do
-  a=${pr%%:*}; b=${pr##*:}
-  [ -f $R/flat_a$a.h5 ] && [ -f $R/flat_a$b.h5 ] && $P $R/flat_a$b.h5 $R/flat_a$a.h5
-done
+halves flat
 echo "# noise floor, the longest step ±10 % (1/220 s, 1/180 s; output every 0.05 s) against 5 ms"
 for sc in obst flat; do for t in 5e-4 2.5e-4; do
   $P $R/${sc}_a$t.h5 $(ex $R/${sc}_a${t}_H220.h5 $R/${sc}_a${t}_H180.h5)
