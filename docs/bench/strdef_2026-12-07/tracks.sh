@@ -53,3 +53,12 @@ echo "# B's landing at the step's edge (support x, tilt, B's foot x, height, nor
 /usr/bin/python3 docs/bench/strainpick_2026-12-06g/landing.py $R/obst_rod32.h5 $OB $(ex $R/obst_a2.5e-4_sub2.h5 $R/obst_a5e-4_sub2.h5) | grep -E "h5|5.30|5.40|5.60"
 echo "# counts and CPU (steps = macro steps with the 0.3 s settling)"
 /usr/bin/python3 $H/steps.py $R/obst_*.h5 $R/flat_*.h5
+echo "# the defaults as a user runs them (crawlsim_def: no step flag): the obstacle's climb against the sub-2 run at 2.5e-4 to 8 s"
+[ -f $R/def_obst.h5 ] && /usr/bin/python3 $H/maxdiff.py $R/obst_a2.5e-4_sub2.h5 $R/def_obst.h5
+echo "# the paper's table (paper, 9 s) at the defaults against branch strainacc's rods at 16 elements (0.25 ms) and 32 (0.5 ms)"
+for ref in /work/rom_data/strainacc/p_rod16_025ms.h5 /work/rom_data/strainacc/p_rod32_05ms.h5; do
+  [ -f $R/def_paper.h5 ] && $P $ref $R/def_paper.h5
+done
+/usr/bin/python3 $H/steps.py $(ex $R/def_earth.h5 $R/def_obst.h5 $R/def_paper.h5)
+echo "# the whole climb at the defaults against Table 3 (score.py of docs/bench/gate_2026-12-06f/)"
+[ -f $R/def_obst.h5 ] && /usr/bin/python3 docs/bench/gate_2026-12-06f/score.py $R/def_obst.h5
