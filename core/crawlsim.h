@@ -98,9 +98,15 @@ typedef struct csRunDef {
                                 level's, 1) */
   const char* strain_step;   /* strain legs' tree step: "fixed" (every step dt) | "adaptive"
                                 (each dt crossed in steps a local error estimate chooses, dt
-                                then the longest; backward Euler only); NULL: fixed */
+                                then the longest; backward Euler only); NULL: adaptive for a
+                                tree-stepped level (strain) unless dt is given (the fixed step
+                                it names), step_order is 2 or --legs auto picks (its rows are
+                                fixed steps); fixed otherwise */
   double step_tol;           /* strain_step adaptive: the local error allowed per step, mm (and
-                                mm per 10 ms on velocities) (NaN: 5e-4) */
+                                mm per 10 ms on velocities) (NaN: 2.5e-4) */
+  double strain_sub;         /* strain legs: Magnus sub-intervals per flexible piece (the
+                                points of the kinematics, inertia and contact), integer 1..16
+                                (NaN: the level's, 2) */
   const char* out;           /* cs_run's HDF5 file (and FILE.xdmf beside it); NULL: none.
                                 cs_simCreate ignores it */
   const char* checkpoint;    /* cs_run: NULL, or a file that gets the run's state every

@@ -20,6 +20,7 @@
 #include "crawlsim.h"
 #include "cs_rundef.h"
 #include "gaits_labels.h"
+#include "robot_strain.h"
 #include "sim_model.h"
 
 #ifndef CS_VERSION_STRING
@@ -154,6 +155,25 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
   logLine(def, "legs %s, %d %s: %s", cs_modelLegLevel(m),
         (int)csr_legSettingGet(lt, &m->robot.leg_settings, "links", 0),
         links ? links->what : "links per segment", track);
+  if (!lt->in_world && m->opt.coupling == CS_COUPLING_TREE) {
+    /* what the tree step is (cs_rundef.c stepAdaptive: adaptive unless a step is named) */
+    char sub[64] = "";
+    if (csr_legSettingFind(lt, "sub")) {
+      /* the count the setting stands for (0: by the basis, csr_strainSubIntervals) */
+      const csrLegSettings* ls = &m->robot.leg_settings;
+      snprintf(sub, sizeof sub, "; %d Magnus sub-intervals per flexible piece",
+               csr_strainSubIntervals((int)csr_legSettingGet(lt, ls, "links", 2),
+                                      (int)csr_legSettingGet(lt, ls, "sub", 0)));
+    }
+    if (m->opt.step_adaptive) {
+      logLine(def, "tree step: adaptive, backward Euler, local error %g mm per step, longest "
+              "step %g s (sim_adaptive.c)%s", m->opt.step_tol, m->opt.h, sub);
+    } else {
+      logLine(def, "tree step: fixed %g s, order %d%s", m->opt.h,
+              (int)csr_legSettingGet(lt, &m->robot.leg_settings, "step_order",
+                                     lt->step_order ? lt->step_order : 1), sub);
+    }
+  }
   const unsigned drop = (unsigned)csr_legSettingGet(lt, &m->robot.leg_settings, "cal_drop", 0);
   if (drop) {
     char what[32];

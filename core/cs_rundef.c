@@ -46,7 +46,7 @@ csRunDef cs_defaultRunDef(void) {
   d.t_end = 0;
   d.dt = d.output_dt = d.ramp = d.tau = d.gravity = d.support_mass_kg = NAN;
   d.slope_deg = d.links = d.iterations = d.macro_steps = NAN;
-  d.contact_scale = d.rod_tol = d.step_order = d.step_tol = NAN;
+  d.contact_scale = d.rod_tol = d.step_order = d.step_tol = d.strain_sub = NAN;
   d.checkpoint_every = NAN;
   return d;
 }
@@ -127,6 +127,24 @@ static csStatus levelTakes(const csrLegType* T, const char* flag, const char* na
 
 /* Every check of the definition that needs no file, with the scene that gives the defaults
  * (the definition's, or a scene file's) */
+/* does the run take the adaptive tree step (sim_adaptive.c)? For a tree-stepped level (strain)
+ * it is the default: its tolerance bounds the error where the motion turns fast, a fixed step
+ * spends the worst moment's length everywhere (docs/notes/strain_leg.md "The strain level's
+ * default step"). Fixed where the definition says so, names the step (dt: the fixed step it
+ * asks for; --legs auto's rows are fixed steps and set dt), or asks for what the estimate does
+ * not cover (step order 2, another coupling). dt and order: the definition's or auto's row. */
+static int stepAdaptive(const csRunDef* def, const csrLegType* type, double dt, double order) {
+  if (!type || !type->prepare) {
+    return 0;
+  }
+  if (def->strain_step) {
+    return !strcmp(def->strain_step, "adaptive");
+  }
+  return isnan(dt) && (isnan(order) || order == 1) &&
+         (!def->coupling || !strcmp(def->coupling, "tree"));
+}
+
+
 static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* err) {
   const csScene* sc = cs_sceneFind(scene_name);
   if (!sc) {
@@ -204,7 +222,8 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
   } own[] = {{"--links", "links", !isnan(def->links)},
              {"--rod-tol", "rod_tol", !isnan(def->rod_tol)},
              {"--cal-drop", "cal_drop", drop != 0},
-             {"--step-order", "step_order", !isnan(def->step_order)}};
+             {"--step-order", "step_order", !isnan(def->step_order)},
+             {"--strain-sub", "sub", !isnan(def->strain_sub)}};
   for (size_t k = 0; type && k < sizeof own / sizeof own[0]; k++) {
     if (own[k].given && levelTakes(type, own[k].flag, own[k].name, err) != CS_OK) {
       return err ? err->status : CS_ERR_ARG;
@@ -232,7 +251,7 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
               {"--links", def->links}, {"--iterations", def->iterations},
               {"--macro-steps", def->macro_steps}, {"--contact-scale", def->contact_scale},
               {"--rod-tol", def->rod_tol}, {"--step-order", def->step_order},
-              {"--step-tol", def->step_tol},
+              {"--step-tol", def->step_tol}, {"--strain-sub", def->strain_sub},
               {"--checkpoint-every", def->checkpoint_every}};
   for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
     if (isinf(nums[k].v)) {
@@ -256,8 +275,10 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
     return cs_errorSet(err, CS_ERR_RANGE, "--dt %g s must be > 0 and <= %g s", def->dt,
                        MAX_DT_S);
   }
-  /* a tree-stepped level's step is its own unless dt says (csrLegType.step) */
+  /* a tree-stepped level's step is its own unless dt says (csrLegType.step); the adaptive
+   * step's grid is its longest step */
   double h = !isnan(def->dt) ? def->dt
+             : stepAdaptive(def, type, def->dt, def->step_order) ? CS_ADAPTIVE_MAX_STEP_S
              : type && type->prepare && type->step > 0 ? type->step
                                                        : cs_defaultOptions().h;
   if (!isnan(def->output_dt) && !(def->output_dt >= h)) {
@@ -311,8 +332,9 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
                        "adaptive)", ss);
   }
   const int adaptive = ss && !strcmp(ss, "adaptive");
-  if (!isnan(def->step_tol) && !adaptive) {
-    return cs_errorSet(err, CS_ERR_ARG, "--step-tol goes with --strain-step adaptive");
+  if (!isnan(def->step_tol) && !stepAdaptive(def, type, def->dt, def->step_order)) {
+    return cs_errorSet(err, CS_ERR_ARG, "--step-tol goes with the adaptive strain step (--legs "
+                       "strain without --dt, or --strain-step adaptive)");
   }
   if (!isnan(def->step_tol) && !(def->step_tol > 0 && def->step_tol <= 100)) {
     return cs_errorSet(err, CS_ERR_RANGE, "--step-tol %g mm must be > 0 and <= 100",
@@ -333,6 +355,10 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
   if (adaptive && !isnan(def->step_order) && def->step_order != 1) {
     return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive estimates backward Euler's "
                        "error: --step-order 1 only");
+  }
+  if (!isnan(def->strain_sub) && def->strain_sub != floor(def->strain_sub)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--strain-sub %g must be a whole number",
+                       def->strain_sub);
   }
   if (!isnan(def->rod_tol) && !(def->rod_tol > 0 && def->rod_tol <= 1000)) {
     return cs_errorSet(err, CS_ERR_RANGE, "--rod-tol %g must be > 0 and <= 1000", def->rod_tol);
@@ -460,7 +486,8 @@ int cs_runDefIdentity(const csRunDef* def, const csModel* m, const csRunPlan* pl
               {"contact_scale", def->contact_scale},
               {"rod_tol", def->rod_tol},
               {"step_order", def->step_order},
-              {"step_tol", def->step_tol}};
+              {"step_tol", def->step_tol},
+              {"strain_sub", def->strain_sub}};
   for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
     rc |= identityNum(out, size, &len, nums[k].name, nums[k].v);
   }
@@ -506,7 +533,9 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
   const double rod_tol = csr_legSettingGet(lt, ls, "rod_tol", 1);
   const int order = (int)csr_legSettingGet(lt, ls, "step_order", 0);
   int found = 0;
-  for (int i = 0; i < table->nrow && !found; i++) {
+  /* the table's rows are fixed steps (robot_levels.h): the adaptive step, whose dt is only its
+   * longest, is none of them */
+  for (int i = 0; i < table->nrow && !found && !m->opt.step_adaptive; i++) {
     const csrLevelRow* r = &table->row[i];
     /* a row's step order 0 is the level's default formula, which is what an unset one runs */
     const int row_order = r->step_order > 0 ? r->step_order : order;
@@ -518,7 +547,11 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
       found = 1;
     }
   }
-  if (!found) {
+  if (!found && m->opt.step_adaptive) {
+    snprintf(out, size, "the adaptive step's track error is not in %s, whose rows are fixed "
+             "steps (docs/notes/strain_leg.md \"The strain level's default step\" measures "
+             "it)", levels);
+  } else if (!found) {
     snprintf(out, size, "track error of this configuration not measured (%s has no row for it)",
              levels);
   }
@@ -723,6 +756,9 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   if (st == CS_OK && !isnan(rodtol) && csr_legSettingFind(leg_type, "rod_tol")) {
     st = csr_legSettingSet(leg_type, ls, "rod_tol", rodtol, err);
   }
+  if (st == CS_OK && !isnan(def->strain_sub)) {
+    st = csr_legSettingSet(leg_type, ls, "sub", def->strain_sub, err);
+  }
   if (st != CS_OK) {
     free(sf);
     return st;
@@ -744,7 +780,7 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   if (!isnan(def->tau)) m->opt.pneumatic_tau = def->tau;
   if (!isnan(def->iterations)) m->opt.solver_iterations = (int)def->iterations;
   if (!isnan(macro)) m->opt.macro_steps = (int)macro;
-  if (def->strain_step && !strcmp(def->strain_step, "adaptive")) {
+  if (stepAdaptive(def, leg_type, dt, order)) {
     m->opt.step_adaptive = 1;
     if (!isnan(def->step_tol)) m->opt.step_tol = def->step_tol;
     /* the longest step, and the grid of cs_step: 5 ms unless dt says (the level's fixed step

@@ -312,10 +312,13 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
     const int order = (int)csr_legSettingGet(lt, ls, "step_order", lvl);
     st = cs_h5AttrDouble(f, "/", "leg_step_order", order, err);
   }
-  if (st == CS_OK && m->opt.step_adaptive) {
-    /* the adaptive tree step (sim_adaptive.c): leg_step_s is then its longest step */
-    st = cs_h5AttrDouble(f, "/", "leg_step_adaptive", 1, err);
-    if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "leg_step_tol_mm", m->opt.step_tol, err);
+  if (st == CS_OK && !m->robot.leg_type->in_world && m->opt.coupling == CS_COUPLING_TREE) {
+    /* the tree step: fixed (0) or adaptive (1, sim_adaptive.c: leg_step_s is then its longest
+     * step, and its tolerance is recorded) */
+    st = cs_h5AttrDouble(f, "/", "leg_step_adaptive", m->opt.step_adaptive, err);
+    if (st == CS_OK && m->opt.step_adaptive) {
+      st = cs_h5AttrDouble(f, "/", "leg_step_tol_mm", m->opt.step_tol, err);
+    }
   }
   if (st == CS_OK && m->legs_auto_choice[0]) {
     st = cs_h5AttrString(f, "/", "legs_auto_choice", m->legs_auto_choice, err);

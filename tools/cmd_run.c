@@ -54,8 +54,8 @@ static const csxOpt kRunOpts[] = {
     {"--legs", "auto|rod|strain|rom", "the scene's: strain (flat-road, slope), rod (obstacle)",
      "the leg level; auto picks the scene's cheapest measured configuration within --tol; "
      "strain: the strain-coordinate Cosserat rod (docs/notes/strain_leg.md), coupled tree, its "
-     "step --dt (default 0.5 ms, the level's own) and --links bending modes per segment (default "
-     "2); rom: the reduced FE leg of --rom-file (docs/notes/rom.md), contact at its sole only; prb "
+     "step adaptive (--strain-step; a fixed --dt when given) and --links bending modes per "
+     "segment (default 2); rom: the reduced FE leg of --rom-file (docs/notes/rom.md), contact at its sole only; prb "
      "was retired (refused naming rod or strain)"},
     {"--rom-file", "LEG.h5", NULL,
      "with --legs rom: the reduced leg's file (crawlsim rom leg-file), built for the legs' "
@@ -88,7 +88,9 @@ static const csxOpt kRunOpts[] = {
      "when --terrain or --gait is given",
      "earth: gravity on every body; paper: the legs keep mass and inertia but feel no gravity "
      "(the paper's assumption)"},
-    {"--dt", "S", "1e-3 (strain: the level's own step, 5e-4)", "ODE time step in s (at most 0.01)"},
+    {"--dt", "S", "1e-3 (strain: the adaptive step's longest, 5e-3)",
+     "ODE time step in s (at most 0.01); with strain legs and no --strain-step it fixes their "
+     "step (0.5 ms is the level's fixed step)"},
     {"--output-dt", "S", "0.01", "sampling interval of the output in s (>= --dt)"},
     {"--ramp", "S", "the gait's '# @ramp', else 0.2",
      "pressure ramp in s: each gait row's change takes S to arrive (overlapping when the rows "
@@ -114,12 +116,16 @@ static const csxOpt kRunOpts[] = {
      "rod_tolerance_scale"},
     {"--step-order", "1|2", "the level's (strain: 1)",
      "strain legs: the tree step's formula, 1 backward Euler, 2 BDF2 (support and legs)"},
-    {"--strain-step", "fixed|adaptive", "fixed",
-     "strain legs: fixed (every step --dt) or adaptive (each --dt, default then 5e-3, crossed in "
-     "steps chosen by a local error estimate; backward Euler)"},
-    {"--step-tol", "MM", "5e-4",
-     "with --strain-step adaptive: the local error allowed per step in mm (velocities: mm per "
-     "10 ms)"},
+    {"--strain-step", "fixed|adaptive",
+     "adaptive, unless --dt, --step-order 2 or --legs auto (their steps are fixed)",
+     "strain legs: fixed (every step --dt, default then 5e-4) or adaptive (each --dt, default "
+     "then 5e-3, crossed in steps chosen by a local error estimate; backward Euler)"},
+    {"--step-tol", "MM", "2.5e-4",
+     "with the adaptive step: the local error allowed per step in mm (velocities: mm per 10 ms)"},
+    {"--strain-sub", "N", "0",
+     "strain legs: Magnus sub-intervals per flexible piece (the points of their kinematics, "
+     "inertia and contact: 2 N + 1 per segment), 1..16; 0 by the basis: 2 at --links <= 2, "
+     "4 above"},
     {"--tol", "MM", NULL,
      "with --legs auto: the track error allowed against the rod reference, in mm"},
     {"--levels", "FILE", "robot/levels.csv",
@@ -184,6 +190,7 @@ static const struct {
     {"--step-order", offsetof(csRunDef, step_order), 1},
     {"--strain-step", offsetof(csRunDef, strain_step), 0},
     {"--step-tol", offsetof(csRunDef, step_tol), 1},
+    {"--strain-sub", offsetof(csRunDef, strain_sub), 1},
     {"--iterations", offsetof(csRunDef, iterations), 1},
 };
 

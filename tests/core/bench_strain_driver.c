@@ -35,7 +35,8 @@
  * table and rule, under `paper`). The
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
  * so compare the shares of runs made together. CS_BENCH_PTOL=K scales the pneumatic
- * tolerances by K, CS_BENCH_PASSES=N sets the tree step's passes before a rejection. The data files come from $CS_SOURCE_DIR
+ * tolerances by K, CS_BENCH_PASSES=N sets the tree step's passes before a rejection,
+ * CS_BENCH_ADA=TOL runs the adaptive tree step at TOL mm (DT its longest step). The data files come from $CS_SOURCE_DIR
  * (default ../../..); with CS_BENCH_KEEP=DIR each run's file stays in DIR. */
 #include <math.h>
 #include <stdarg.h>
@@ -312,6 +313,12 @@ static int bench(const char* src, const char* arg, double t_end) {
   }
   if (dt > 0) {
     m.opt.h = dt;
+  }
+  /* CS_BENCH_ADA=TOL: the adaptive tree step (sim_adaptive.c) at the local error TOL mm, DT
+   * its longest step (`crawlsim run --strain-step adaptive --step-tol TOL --dt DT`) */
+  if (getenv("CS_BENCH_ADA") && atof(getenv("CS_BENCH_ADA")) > 0) {
+    m.opt.step_adaptive = 1;
+    m.opt.step_tol = atof(getenv("CS_BENCH_ADA"));
   }
   if (order > 0 && csr_legSettingSet(type, &m.robot.leg_settings, "step_order", order, NULL) != CS_OK) {
     fprintf(stderr, "bench_strain_driver: order %d is not a value of legs %s\n", order, type->name);

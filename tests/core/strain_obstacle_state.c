@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   def.links = 3; /* the basis the state files were made with (3 bending modes per segment,
                    the level's default then) */
   def.dt = 1e-3; /* the step the state files were made with (the level's default then) */
+  def.strain_sub = 4; /* the sub-intervals the state files were made with (4 capsules per
+                        segment in their contact history; the level's default then) */
   def.data_dir = getenv("CS_SOURCE_DIR");
   if (argc == 6) {
     def.gait = argv[4];

@@ -455,7 +455,8 @@ static void test_strain_rejected_step_is_retried_in_halves(void) {
 
 
 /* The level's basis settings (joints, shear, sub: robot_strain_leg.c) reach the legs: rigid
- * joints, Kirchhoff segments and 2 sub-intervals per segment take each leg from 42 unknowns, 13
+ * joints, Kirchhoff segments and 2 sub-intervals per segment take a leg of the default joints
+ * and shears at 4 sub-intervals (set here: the level's default is 2) from 42 unknowns, 13
  * capsules to 24 and 7 (robot_strain.h: a segment's bending 2 x 3 modes and twist and stretch,
  * 4 with the shears; a joint's constant curvature 2 and its 4 axial; the capsules one per
  * sub-interval but the foot's, 4 history doubles each, the constant pieces one), so each leg's
@@ -473,6 +474,7 @@ static void test_strain_basis_settings_change_the_legs(void) {
   }
   csError err;
   cs_errorClear(&err);
+  CS_EXPECT(csr_legSettingSet(type, &m.robot.leg_settings, "sub", 4, &err) == CS_OK);
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "joints", -1, &err) == CS_OK);
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "shear", 0, &err) == CS_OK);
   CS_EXPECT(csr_legSettingSet(type, &ml.robot.leg_settings, "sub", 2, &err) == CS_OK);
@@ -483,8 +485,8 @@ static void test_strain_basis_settings_change_the_legs(void) {
   csData* dl = csTestSettledData(&ml);
   if (d && dl) {
     const int n = cs_stateSize(&m, d), nl = cs_stateSize(&ml, dl);
-    printf("  state: %d doubles by default, %d with rigid joints, no shear, 2 sub-intervals\n", n,
-           nl);
+    printf("  state: %d doubles at 4 sub-intervals, %d with rigid joints, no shear, 2 "
+           "sub-intervals\n", n, nl);
     CS_EXPECT(n - nl == CSR_NLEG * 96);
     CS_EXPECT(stepN(&ml, dl, 50));
   }

@@ -36,6 +36,8 @@ static void test_earth_strain_steps_across_the_road_edge(void) {
   def.links = 3; /* the basis the state files were made with (3 bending modes per segment,
                    the level's default then) */
   def.dt = 1e-3; /* the step the state files were made with (the level's default then) */
+  def.strain_sub = 4; /* the sub-intervals the state files were made with (4 capsules per
+                        segment in their contact history; the level's default then) */
   def.gait = gait;
   def.conditions = "earth";
   def.data_dir = src;

@@ -39,6 +39,8 @@ static void test_obstacle_strain_steps_across_26_846(void) {
   def.links = 3; /* the basis the state files were made with (3 bending modes per segment,
                    the level's default then) */
   def.dt = 1e-3; /* the step the state files were made with (the level's default then) */
+  def.strain_sub = 4; /* the sub-intervals the state files were made with (4 capsules per
+                        segment in their contact history; the level's default then) */
   def.data_dir = src;
   RestoredRun r = restoredRun(&def, path, 26.8, 26.9,
                               "strain_obstacle_state 26.8 FILE obstacle GAIT paper built with "

@@ -78,6 +78,9 @@ static void setLine(csRunDef* d, char* name, char* v) {
       {"macro-steps", offsetof(csRunDef, macro_steps)},
       {"contact-scale", offsetof(csRunDef, contact_scale)},
       {"rod-tol", offsetof(csRunDef, rod_tol)},
+      {"step-order", offsetof(csRunDef, step_order)},
+      {"step-tol", offsetof(csRunDef, step_tol)},
+      {"strain-sub", offsetof(csRunDef, strain_sub)},
       {"tol", offsetof(csRunDef, legs_tol_mm)},
   };
   for (size_t k = 0; k < sizeof kNum / sizeof kNum[0]; k++) {
@@ -91,6 +94,7 @@ static void setLine(csRunDef* d, char* name, char* v) {
   else if (!strcmp(name, "legs")) d->legs = v;
   else if (!strcmp(name, "conditions")) d->conditions = v;
   else if (!strcmp(name, "coupling")) d->coupling = v;
+  else if (!strcmp(name, "strain-step")) d->strain_step = v;
   else if (!strcmp(name, "cal-rule")) d->cal_rule = v;
   else if (!strcmp(name, "cal-drop")) d->cal_drop = v;
   else if (!strcmp(name, "no-gait")) d->no_gait = atoi(v);

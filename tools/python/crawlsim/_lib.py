@@ -87,6 +87,7 @@ RUNDEF_FIELDS = [
     ("step_order", ctypes.c_double, "num"),
     ("strain_step", ctypes.c_char_p, "str"),
     ("step_tol", ctypes.c_double, "num"),
+    ("strain_sub", ctypes.c_double, "num"),
     ("out", ctypes.c_char_p, "str"),
     ("checkpoint", ctypes.c_char_p, "str"),
     ("checkpoint_every", ctypes.c_double, "num"),
