@@ -46,7 +46,9 @@
 #   check-CFG-RAY   rom check of RAY on OUT/b<N>_CFG.h5 (CFG f or base), every element kept
 #                                                                            -> OUT/check_<CFG>_<RAY>.log
 # Each stage is skipped when its output is complete (resumable per ray: a check is one ray, as
-# every reduced Newton iteration with every element costs about a minute of wall time under load).
+# every reduced Newton iteration with every element costs about a minute of wall time under load);
+# since 2026-12-07 a check resumes within its ray too, after its last state (rom check
+# --checkpoint: OUT/ckpt_leg_CFG or OUT/ckpt_b<N>_CFG; delete it to check afresh).
 # Environment: CS the crawlsim binary, N (96), M (16), NICE (5).
 set -euo pipefail
 OUT=$(readlink -f "$1")
@@ -135,7 +137,8 @@ PYEOF
       log=$OUT/checkleg_${cfg}_${ray}.log
       grep -qs 'rays checked' "$log" ||
         (cd "$OUT" && "${T[@]}" nice -n "$NICE" stdbuf -oL "$CS" rom check --snapshots "$SNAP" \
-          --leg-file "$OUT/leg_${cfg}.h5" --ray "$ray" --actuator leg > "$log" 2>&1) ;;
+          --leg-file "$OUT/leg_${cfg}.h5" --ray "$ray" --actuator leg \
+          --checkpoint "$OUT/ckpt_leg_${cfg}" > "$log" 2>&1) ;;
     rays-rs)
       rs=(RS1 RS2 RS3 RS4 RS5 RS6)
       mkdir -p "$OUT/snap_rs"
@@ -186,7 +189,8 @@ PYEOF
       log=$OUT/check_${cfg}_${ray}.log
       grep -qs 'rays checked' "$log" ||
         (cd "$OUT" && "${T[@]}" nice -n "$NICE" stdbuf -oL "$CS" rom check --snapshots "$SNAP" \
-          --basis "$OUT/b${N}_${cfg}.h5" --ray "$ray" --actuator leg > "$log" 2>&1) ;;
+          --basis "$OUT/b${N}_${cfg}.h5" --ray "$ray" --actuator leg \
+          --checkpoint "$OUT/ckpt_b${N}_${cfg}" > "$log" 2>&1) ;;
     *) echo "run_romreal4.sh: unknown stage $stage" >&2; exit 2 ;;
   esac
 done
