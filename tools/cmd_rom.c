@@ -83,6 +83,10 @@ static const csxOpt kCheckOpts[] = {
     {"--states", "DIR", "none",
      "write the reduced model's displacements u = V q of each ray to DIR/RAY.h5 (/u, /t: the "
      "snapshot files' layout, for tools that compare them with the FE's)"},
+    {"--checkpoint", "DIR", "none",
+     "after every state write the ray's progress to DIR/RAY.K.ckpt (K states; DIR is created): "
+     "a check run again with the same DIR and model resumes each ray after its last state, and "
+     "prints a finished one from it (not with --states)"},
     ROM_OPT_ACTUATOR,
     ROM_OPT_SET,
 };
@@ -423,19 +427,52 @@ static int writeStates(const char* dir, const csfRomSnapFile* sf, int m, size_t 
   return 0;
 }
 
-static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSnapFile* sf,
-                     double L, double* states, CheckErr* ce) {
+/* the checkpoint's measurements from ce (ck->lines stays) and back */
+static void ckptFromErr(const CheckErr* ce, int k, csxRomCkpt* ck) {
+  ck->k = k, ck->ok = ce->ok;
+  ck->bend_deg = ce->bend_deg, ck->bend_rel = ce->bend_rel, ck->tip_mm = ce->tip_mm;
+  ck->vol_rel = ce->vol_rel, ck->wall = ce->wall, ck->cpu = ce->cpu, ck->newton = ce->newton;
+}
+
+/* one ray along its states; with ckdir (rom check --checkpoint) resumed after the ray's last
+ * checkpoint there and a checkpoint written after every state (ck->lines the caller's buffer).
+ * 1 after one error line (a checkpoint unreadable or unwritable), else 0 (a failed solve is
+ * ce->failed) */
+static int checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSnapFile* sf,
+                    double L, double* states, const char* ckdir, const char* basis,
+                    csxRomCkpt* ck, CheckErr* ce) {
   memset(ce, 0, sizeof *ce);
   csf_romDataReset(ra->rom, ra->d);
   memset(ra->p, 0, sizeof ra->p);
   memset(ra->gravity, 0, sizeof ra->gravity);
   memset(ra->tip_force, 0, sizeof ra->tip_force);
   memset(ra->q_conv, 0, (size_t)ra->rom->n * sizeof(double));
-  const double t0 = csu_wallSeconds();
-  const clock_t c0 = clock();
-  const long it0 = ra->n_newton;
+  ra->nhist = 0;
   ce->ok = 1;
-  for (int k = 0; k < sf->m; k++) {
+  int k0 = 0;
+  size_t used = 0;
+  if (ckdir) {
+    ck->lines[0] = '\0';
+    const int got = csx_romCkptRead(ckdir, sf->ray.name, basis, sf->m, ra, ck);
+    if (got < 0) {
+      return 1;
+    }
+    if (got > 0) {
+      k0 = ck->k;
+      ce->ok = ck->ok;
+      ce->bend_deg = ck->bend_deg, ce->bend_rel = ck->bend_rel, ce->tip_mm = ck->tip_mm;
+      ce->vol_rel = ck->vol_rel, ce->wall = ck->wall, ce->cpu = ck->cpu;
+      ce->newton = ck->newton;
+      used = strlen(ck->lines);
+      fputs(ck->lines, stdout);
+    }
+  }
+  /* this run's share is added to what a checkpoint brought */
+  const double t0 = csu_wallSeconds() - ce->wall;
+  const double cpu0 = ce->cpu;
+  const clock_t c0 = clock();
+  const long it0 = ra->n_newton - ce->newton;
+  for (int k = k0; k < sf->m; k++) {
     const double t = sf->t[k];
     double p[CSR_NSEG][CSR_NCHAMBER], g[3], F[3];
     for (int s = 0; s < CSR_NSEG; s++) {
@@ -488,15 +525,40 @@ static void checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSna
     /* the worst chamber's signed error, and its volume change's: a chamber that inflates
      * sixfold misses its volume by a sixth of the error of its volume change */
     const double v0 = ra->rom->nch > qw ? ra->rom->ch_V0[qw] : NAN;
-    printf("  %-10s t %.3f: bend error %6.3f %6.3f %6.3f deg (%5.2f %5.2f %5.2f %%), tip %7.3f "
-           "mm, volumes %5.2f %% (worst II%d Omega%d: %+.2f %%, V/V0 %.2f, its change %+.1f "
-           "%%)\n", sf->ray.name, t, eb[0], eb[1], eb[2], 100 * rb[0], 100 * rb[1], 100 * rb[2],
-           et, 100 * vmax, qw / 4 + 1, qw % 4 + 1, 100 * (vol[qw] / sf->vol[k][qw] - 1.0),
-           sf->vol[k][qw] / v0, 100 * (vol[qw] - sf->vol[k][qw]) / (sf->vol[k][qw] - v0));
+    char line[400];
+    snprintf(line, sizeof line, "  %-10s t %.3f: bend error %6.3f %6.3f %6.3f deg (%5.2f %5.2f "
+             "%5.2f %%), tip %7.3f mm, volumes %5.2f %% (worst II%d Omega%d: %+.2f %%, V/V0 "
+             "%.2f, its change %+.1f %%)\n", sf->ray.name, t, eb[0], eb[1], eb[2], 100 * rb[0],
+             100 * rb[1], 100 * rb[2], et, 100 * vmax, qw / 4 + 1, qw % 4 + 1,
+             100 * (vol[qw] / sf->vol[k][qw] - 1.0), sf->vol[k][qw] / v0,
+             100 * (vol[qw] - sf->vol[k][qw]) / (sf->vol[k][qw] - v0));
+    fputs(line, stdout);
+    if (ckdir) {
+      /* the next state starts from what the file holds: no kept tangent, no BFGS pairs */
+      ra->d->lu_valid = 0;
+      ra->d->bf_k = 0;
+      const size_t len = strlen(line);
+      if (used + len + 1 > ck->lines_cap) {
+        fprintf(stderr, "crawlsim rom: check: ray %s has more state lines than %zu bytes\n",
+                sf->ray.name, ck->lines_cap);
+        return 1;
+      }
+      memcpy(ck->lines + used, line, len + 1);
+      used += len;
+      ce->wall = csu_wallSeconds() - t0;
+      ce->cpu = cpu0 + (double)(clock() - c0) / CLOCKS_PER_SEC;
+      ce->newton = ra->n_newton - it0;
+      ckptFromErr(ce, k + 1, ck);
+      fflush(stdout);
+      if (csx_romCkptWrite(ckdir, sf->ray.name, basis, ra, ck)) {
+        return 1;
+      }
+    }
   }
   ce->wall = csu_wallSeconds() - t0;
-  ce->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
+  ce->cpu = cpu0 + (double)(clock() - c0) / CLOCKS_PER_SEC;
   ce->newton = ra->n_newton - it0;
+  return 0;
 }
 
 /* the reduced actuator from a leg file (as bend --model rom --rom-file), its weights replaced
@@ -541,7 +603,7 @@ static int openLegFile(const char* actname, const char* const* sets, int nset, c
 
 static int cmdCheck(int argc, char** argv) {
   const char* dir = NULL, *basis = NULL, *weights = NULL, *actname = "leg", *sdir = NULL;
-  const char* legf = NULL;
+  const char* legf = NULL, *ckdir = NULL;
   const char* sets[CSX_ROM_MAX_SETS];
   const char* pick[CSF_ROM_MAX_RAYS];
   int nset = 0, npick = 0, all = 0;
@@ -569,6 +631,8 @@ static int cmdCheck(int argc, char** argv) {
       weights = v;
     } else if (csx_optIs(it.opt, "--states")) {
       sdir = v;
+    } else if (csx_optIs(it.opt, "--checkpoint")) {
+      ckdir = v;
     } else if (csx_optIs(it.opt, "--actuator")) {
       actname = v;
     } else if (csx_optIs(it.opt, "--ray")) {
@@ -585,6 +649,17 @@ static int cmdCheck(int argc, char** argv) {
             "FILE instead of --basis)\n");
     return 1;
   }
+  /* a resumed ray has not kept its earlier states' displacements */
+  if (ckdir && sdir) {
+    fprintf(stderr, "crawlsim rom: check: --checkpoint and --states together: a resumed ray has "
+            "no displacements of its earlier states\n");
+    return 1;
+  }
+  if (ckdir && mkdir(ckdir, 0777) != 0 && errno != EEXIST) {
+    fprintf(stderr, "crawlsim rom: %s: cannot create the checkpoint directory: %s\n", ckdir,
+            strerror(errno));
+    return 1;
+  }
   csrActuator act;
   csfRomActuator ra;
   const double t0 = csu_wallSeconds();
@@ -593,6 +668,9 @@ static int cmdCheck(int argc, char** argv) {
     return 1;
   }
   basis = legf ? legf : basis;
+  /* what a checkpoint must have been written for: the same file and weights */
+  char model_id[1100];
+  snprintf(model_id, sizeof model_id, "%.540s (weights %.540s)", basis, weights ? weights : "none");
   const double L = act.S[0] + act.S[1] + act.S[2] + act.LS[0] + act.LS[1];
   printf("crawlsim rom: check: basis %s (n = %d, m = %d pressure modes, mf = %d fibre strain "
          "modes), weights %s: %d of %d Tet10, %d of %d fibre elements, %d of %d faces (set-up "
@@ -625,7 +703,23 @@ static int cmdCheck(int argc, char** argv) {
       csf_romActuatorDestroy(&ra);
       return 1;
     }
-    checkRay(&ra, &act, &sf, L, states, &ce);
+    /* the state lines a checkpoint carries: at most 400 bytes each (checkRay's line) */
+    csxRomCkpt ck = {0};
+    ck.lines_cap = 400 * (size_t)sf.m + 1;
+    ck.lines = ckdir ? malloc(ck.lines_cap) : NULL;
+    if (ckdir && !ck.lines) {
+      fprintf(stderr, "crawlsim rom: out of memory (the state lines of ray %s)\n", sf.ray.name);
+      free(states);
+      csf_romActuatorDestroy(&ra);
+      return 1;
+    }
+    if (checkRay(&ra, &act, &sf, L, states, ckdir, model_id, &ck, &ce)) {
+      free(ck.lines);
+      free(states);
+      csf_romActuatorDestroy(&ra);
+      return 1;
+    }
+    free(ck.lines);
     if (states && !ce.failed && writeStates(sdir, &sf, sf.m, nd, states)) {
       free(states);
       csf_romActuatorDestroy(&ra);

@@ -39,6 +39,29 @@ int csx_romOpen(const char* actname, const char* const* sets, int nset, const ch
                 const char* weights, const char* work, const char* stem_name, csrActuator* act,
                 csfRomActuator* ra);
 
+/* a ray's progress in `crawlsim rom check --checkpoint DIR` (cmd_rom_ckpt.c): k states solved,
+ * the worst errors so far (deg, fraction, mm, fraction), the reduced solves' wall and CPU
+ * seconds and Newton iterations, the printed state lines (lines, lines_cap bytes: the caller's) */
+typedef struct csxRomCkpt_ {
+  int k, ok;
+  double bend_deg, bend_rel, tip_mm, vol_rel, wall, cpu;
+  long newton;
+  char* lines;
+  size_t lines_cap;
+} csxRomCkpt;
+
+/* write DIR/RAY.K.ckpt (K = c->k) from the reduced actuator's last solved state; 1 after one
+ * error line */
+int csx_romCkptWrite(const char* dir, const char* ray, const char* basis,
+                     const csfRomActuator* ra, const csxRomCkpt* c);
+
+/* the ray's checkpoint of the most states (at most m) in DIR into ra (its state after
+ * csf_romDataReset: q, the predictor's history, the solved load, the element states) and c:
+ * 1 when one was read, 0 when there is none, -1 after one error line (another basis or ray,
+ * other sizes, a damaged file: file and line named) */
+int csx_romCkptRead(const char* dir, const char* ray, const char* basis, int m,
+                    csfRomActuator* ra, csxRomCkpt* c);
+
 /* `crawlsim rom leg-file` (cmd_rom_legfile.c) */
 int csx_cmdRomLegFile(int argc, char** argv);
 

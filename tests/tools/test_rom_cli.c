@@ -4,7 +4,8 @@
  * Proves: the ray list holds training and held-out rays; every bad stage, option or file exits
  * 1 with one line on stderr naming the cause (and the file where there is one), and no crash;
  * the subcommands parse from their option tables (--name=VALUE, the nearest option named, a
- * missing value, an operand refused; the rest in tests/tools/test_cli_help.py).
+ * missing value, an operand refused; the rest in tests/tools/test_cli_help.py); rom check's
+ * --checkpoint refused with --states and where its directory cannot be made.
  * Needs POSIX for tests/cs_cli.h. */
 #define _POSIX_C_SOURCE 200809L
 
@@ -69,6 +70,11 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom check --snapshots . --basis x.h5 --leg-file y.h5", "(or --leg-file FILE");
   expectRefused("rom check --snapshots . --leg-file romcli_missing.h5", "romcli_missing.h5");
   expectRefused("rom check --snapshots . --basis romcli_missing.h5", "romcli_missing.h5");
+  /* the check's checkpoints (session romacc, 2026-12-07): refused before any model is read */
+  expectRefused("rom check --snapshots . --basis x.h5 --checkpoint ck --states st",
+                "--checkpoint and --states together");
+  expectRefused("rom check --snapshots . --basis x.h5 --checkpoint romcli_missing/ck",
+                "romcli_missing/ck: cannot create the checkpoint directory");
   expectRefused("rom ecsw-matrix --basis romcli_missing.h5 --out x.h5", "romcli_missing.h5");
   expectRefused("rom modes --out x.h5", "needs --basis FILE and --out FILE");
   expectRefused("rom modes --basis x.h5 --out x.h5 --pressure 0.9", "--pressure '0.9'");

@@ -30,6 +30,13 @@
 #   legfile-CFG  the every-element leg file of OUT/b<N>_CFG.h5 (rom leg-file: the set-up of
 #                gmsh and the chamber forms paid once)                       -> OUT/leg_CFG.h5
 #   checkleg-CFG-RAY  rom check of RAY on that leg file (set-up seconds)    -> OUT/checkleg_<CFG>_<RAY>.log
+#   rays-rs      (session romacc, 2026-12-07) the sparse random training rays RS1-RS6 (per segment
+#                a level, chambers vented at random: the family of T_S2's and T_R's vented
+#                chambers between loaded ones) on the real leg, one FE process on one thread,
+#                resumable ray by ray, into OUT/snap_rs (its own mesh.h5: OUT/snap may hold hard
+#                links to other folders' files, and the production rewrites mesh.h5); then hard
+#                linked into OUT/snap once both mesh.h5 hold the same mesh (every later `basis`
+#                stage trains on them)                                    -> OUT/snap/RS<k>.h5
 #   base         the same file without its fibre basis (Qf, mf): the same span with the FE's
 #                fibres, for the locking's share                             -> OUT/b<N>_base.h5
 #   project      the held-out states' best projection onto the span (tools/rom_project.py)
@@ -39,7 +46,9 @@
 #   check-CFG-RAY   rom check of RAY on OUT/b<N>_CFG.h5 (CFG f or base), every element kept
 #                                                                            -> OUT/check_<CFG>_<RAY>.log
 # Each stage is skipped when its output is complete (resumable per ray: a check is one ray, as
-# every reduced Newton iteration with every element costs about a minute of wall time under load).
+# every reduced Newton iteration with every element costs about a minute of wall time under load);
+# since 2026-12-07 a check resumes within its ray too, after its last state (rom check
+# --checkpoint: OUT/ckpt_leg_CFG or OUT/ckpt_b<N>_CFG; delete it to check afresh).
 # Environment: CS the crawlsim binary, N (96), M (16), NICE (5).
 set -euo pipefail
 OUT=$(readlink -f "$1")
@@ -128,7 +137,25 @@ PYEOF
       log=$OUT/checkleg_${cfg}_${ray}.log
       grep -qs 'rays checked' "$log" ||
         (cd "$OUT" && "${T[@]}" nice -n "$NICE" stdbuf -oL "$CS" rom check --snapshots "$SNAP" \
-          --leg-file "$OUT/leg_${cfg}.h5" --ray "$ray" --actuator leg > "$log" 2>&1) ;;
+          --leg-file "$OUT/leg_${cfg}.h5" --ray "$ray" --actuator leg \
+          --checkpoint "$OUT/ckpt_leg_${cfg}" > "$log" 2>&1) ;;
+    rays-rs)
+      rs=(RS1 RS2 RS3 RS4 RS5 RS6)
+      mkdir -p "$OUT/snap_rs"
+      "${T[@]}" nice -n "$NICE" "$CS" rom snapshots --out "$OUT/snap_rs" --mesh-size 8 \
+        --threads 1 --actuator leg "${rs[@]/#/--ray=}" >> "$OUT/snap_rs/production.log" 2>&1
+      $PY - "$SNAP/mesh.h5" "$OUT/snap_rs/mesh.h5" <<'PYEOF'
+import sys
+import h5py
+import numpy as np
+# the rays are displacements on the mesh's dofs: the same nodes, elements, faces and clamp, or
+# they cannot join the training (the files' bytes differ by HDF5's object times)
+with h5py.File(sys.argv[1], "r") as a, h5py.File(sys.argv[2], "r") as b:
+    for key in ("x", "tet", "face", "face_tag", "fixed", "tip_unit"):
+        if a[key].shape != b[key].shape or not np.array_equal(a[key][...], b[key][...]):
+            sys.exit(f"run_romreal4.sh: rays-rs: {sys.argv[2]}: /{key} is not that of {sys.argv[1]}")
+PYEOF
+      for r in "${rs[@]}"; do ln -f "$OUT/snap_rs/$r.h5" "$SNAP/$r.h5"; done ;;
     base)
       [ -s "$OUT/b${N}_base.h5" ] ||
         $PY - "$OUT/b${N}_f.h5" "$OUT/b${N}_base.h5" <<'PYEOF'
@@ -162,7 +189,8 @@ PYEOF
       log=$OUT/check_${cfg}_${ray}.log
       grep -qs 'rays checked' "$log" ||
         (cd "$OUT" && "${T[@]}" nice -n "$NICE" stdbuf -oL "$CS" rom check --snapshots "$SNAP" \
-          --basis "$OUT/b${N}_${cfg}.h5" --ray "$ray" --actuator leg > "$log" 2>&1) ;;
+          --basis "$OUT/b${N}_${cfg}.h5" --ray "$ray" --actuator leg \
+          --checkpoint "$OUT/ckpt_b${N}_${cfg}" > "$log" 2>&1) ;;
     *) echo "run_romreal4.sh: unknown stage $stage" >&2; exit 2 ;;
   esac
 done
