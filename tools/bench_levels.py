@@ -431,6 +431,8 @@ def pareto_png(path, rows, machine):
                 "elements ", "").replace("calibration analytic", "analytic map").replace(
                 " (reference, wall time from the file)", " ref").replace(
                 "macro 1 x ", "").replace(", rod tol", " tol").strip()
+            # an adaptive point's setting carries its step statistics after ":" (kept in the csv)
+            label = label.split(":")[0].replace("dt 5 ms, BE, adaptive tol ", "adaptive ")
             if r["reference"] == "yes":
                 # the reference has no error against itself: a vertical line at its cost
                 ax.axvline(x, color=colours.get(r["model"], "k"), ls=":", lw=1)
