@@ -52,8 +52,9 @@ bending modes per segment), --dt S, and for strain legs --strain-step fixed|adap
 design's case key (so each model's runs are cases of their own, and a folder may hold several),
 and each row of results.csv names its model in the column `model`; robust.csv's header line too.
 The robustness set's "step halved" halves the model's step: --dt (rod: 1 ms -> 0.5 ms; strain
-fixed: 0.5 ms -> 0.25 ms, or the given --dt halved) or, with --strain-step adaptive, --step-tol
-(the local error allowed per step, which sets the steps the run takes).
+with --strain-step fixed: 0.5 ms -> 0.25 ms, or the given --dt halved) or, on strain legs
+stepping adaptively (their default, the flat road's default legs since 2026-12-07), --step-tol
+(the local error allowed per step, which sets the steps the run takes: 2.5e-4 -> 1.25e-4 mm).
 
 Results: DIR/results.csv (one row per evaluated design, in evaluation order) and, with
 --robust, DIR/robust.csv.
@@ -99,7 +100,9 @@ LINKS = [None]       # --links: rod elements per segment of every run, or None (
 # --legs, --strain-step, --step-tol, --dt: the model's run options (None: the scene's / level's)
 MODEL = {"legs": None, "strain_step": None, "step_tol": None, "dt": None}
 STRAIN_DT = 5e-4     # s, the strain level's own fixed step (crawlsim run --help, --dt)
+STRAIN_TOL = 2.5e-4  # mm, the strain level's default adaptive tolerance (crawlsim run --help)
 ROD_DT = 1e-3        # s, the run's default step for rod legs
+SCENE_LEGS = "strain"  # the flat road's default legs (core/sim_scene.c; crawlsim run --help)
 
 
 def model_words():
@@ -127,10 +130,13 @@ def model_name():
 
 def step_halved():
     """The robustness set's "step halved" for the model: the adaptive strain step's tolerance
-    halved, else the fixed step halved (see the module's doc)."""
-    if MODEL["strain_step"] == "adaptive":
-        return f"--step-tol {0.5 * (MODEL['step_tol'] or 5e-4):g}"
-    dt = MODEL["dt"] or (STRAIN_DT if MODEL["legs"] == "strain" else ROD_DT)
+    halved, else the fixed step halved (see the module's doc). Strain legs step adaptively
+    unless the step is named (--strain-step fixed or --dt: crawlsim run's rule), the scene's
+    default legs included."""
+    legs = MODEL["legs"] or SCENE_LEGS
+    if legs == "strain" and MODEL["strain_step"] != "fixed" and MODEL["dt"] is None:
+        return f"--step-tol {0.5 * (MODEL['step_tol'] or STRAIN_TOL):g}"
+    dt = MODEL["dt"] or (STRAIN_DT if legs == "strain" else ROD_DT)
     return f"--dt {0.5 * dt:g}"
 
 
