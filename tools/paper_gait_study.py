@@ -41,7 +41,7 @@ ORDER = ["nominal", "ramp0.1", "ramp0.5", "mu0.6", "mu1.0", "m25g", "m75g", "tau
 WHAT = {"nominal": "the paper's table, nominal", "ramp0.1": "ramp 0.1 s", "ramp0.5": "ramp 0.5 s",
         "mu0.6": "friction 0.6", "mu1.0": "friction 1.0", "m25g": "support 25 g",
         "m75g": "support 75 g", "tau0.5x": "pneumatic lag x0.5 (10 ms)",
-        "tau2x": "pneumatic lag x2 (40 ms)", "dt_half": "step halved (0.5 ms)",
+        "tau2x": "pneumatic lag x2 (40 ms)", "dt_half": "step halved (tolerance 1.25e-4 mm)",
         "mu0": "friction 0 (no progress expected)",
         "designed": "the designed gait (gaits/flat_road_rod.csv), nominal"}
 
@@ -126,7 +126,7 @@ def plot(rows, tracks, out):
     a1.set_ylabel("support x (mm)")
     a1.grid(True, alpha=0.3)
     a1.legend(fontsize=7)
-    a1.set_title("flat road, rod legs (8 per segment), 23-mode table (rbf-pair), paper;\n"
+    a1.set_title("flat road, the scene's default legs, 23-mode table (rbf-pair), paper;\n"
                  "thin: the paper's table under the robustness set", fontsize=8)
     names = [r["case"] for r in rows]
     x9 = [float(r["x9_mm"]) for r in rows]
