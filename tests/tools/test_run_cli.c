@@ -531,6 +531,11 @@ static void test_strainRun(void) {
                 "crawlsim run: --step-tol goes with the adaptive strain step");
   expectFailure("--legs rod --strain-sub 2",
                 "crawlsim run: --strain-sub is for strain legs, not rod");
+  /* a count is whole and in the level's range (0: by the basis) */
+  expectFailure("--legs strain --strain-sub 1.5",
+                "crawlsim run: --strain-sub 1.5 must be a whole number");
+  expectFailure("--legs strain --strain-sub 17",
+                "crawlsim run: legs strain: sub 17 must be a whole number in 0..16");
   expectFailure("--legs strain --strain-sub 2.5",
                 "crawlsim run: --strain-sub 2.5 must be a whole number");
   expectFailure("--legs strain --strain-sub 17", "crawlsim run: legs strain: sub 17");
