@@ -1,6 +1,6 @@
 /* fem_rom_sway.h: the foot's compliance of the FE leg and of its reduced model under an axial
  * load (issue 34, the FE-informed verdict on the Earth stance; the procedure is
- * robot/actuator/robot_sway.h's: condensed to the guided stiffness, its zero is the
+ * actuator/robot_sway.h's: condensed to the guided stiffness, its zero is the
  * sway-buckling load).
  *
  * The foot is the tip face. Its lateral displacement delta and its rotation theta are linear

@@ -29,7 +29,7 @@ import os
 import re
 import sys
 
-TOP = ("core", "fem", "contact", "robot", "gaits", "terrains", "tools")
+TOP = ("base", "actuator", "core", "fem", "contact", "robot", "gaits", "terrains", "tools")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 BLOCK = re.compile(r"^```layers\s*$")
 

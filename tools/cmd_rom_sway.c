@@ -1,6 +1,6 @@
 /* cmd_rom_sway.c: `crawlsim rom sway`: the sway-buckling load of the leg in the Earth stance's
  * pose by the rod, the reduced model of a leg file and the full FE (issue 34; the procedure is
- * robot/actuator/robot_sway.h's, the compliances robot_rod.h csr_rodSwayCompliance and
+ * actuator/robot_sway.h's, the compliances robot_rod.h csr_rodSwayCompliance and
  * fem/fem_rom_sway.h).
  *
  * The pose the stance check assumes (core/sim_model.h cs_modelStanceCheck): the straight,

@@ -216,7 +216,7 @@ if [ "$MODE" = long ] && [ "$COVERAGE" != 0 ]; then
     done
     llvm-profdata-14 merge -o "$COV/profiles/all.profdata" "$COV"/profiles/*.profraw
     readers=()
-    for f in gaits/gaits_csv.c gaits/gaits_design.c terrains/terrains_terrain.c core/base/core_text.c \
+    for f in gaits/gaits_csv.c gaits/gaits_design.c terrains/terrains_terrain.c base/core_text.c \
              robot/calibration/robot_calibration.c robot/calibration/robot_calibration_table.c \
              robot/calibration/robot_calibration_build.c tools/study_file.c robot/robot_levels.c; do
       [ -f "$f" ] && readers+=("$ROOT/$f")

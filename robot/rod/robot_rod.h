@@ -360,7 +360,7 @@ csStatus csr_rodBendPoint(const csrRodModel* m, csrRodData* d, const double p[12
                           double tip[3], csError* err);
 
 /* The foot's compliance under an axial load (the sway-buckling procedure,
- * robot/actuator/robot_sway.h): from the current state (the straight, unloaded leg or the
+ * actuator/robot_sway.h): from the current state (the straight, unloaded leg or the
  * equilibrium of a smaller such load) the dead load -P d3 on the foot (d3 the foot's axis
  * before the call, N), then central differences of the static solves under +-dH d1 (N) and
  * +-dM d2 (N mm) added: C[0] = d delta / dH (mm/N), C[1] the mean of d delta / dM and

@@ -1,5 +1,5 @@
 /* robot_rod_sway.c: the rod's tip compliance under an axial load (robot_rod.h
- * csr_rodSwayCompliance; the sway-buckling procedure of robot/actuator/robot_sway.h). */
+ * csr_rodSwayCompliance; the sway-buckling procedure of actuator/robot_sway.h). */
 #include <math.h>
 #include <string.h>
 

@@ -1,4 +1,4 @@
-/* test_rod_nvector.c: the CVODE vector kernels of the rod and the pressures (core/sun/core_nvector.c) give the same bits as
+/* test_rod_nvector.c: the CVODE vector kernels of the rod and the pressures (base/sun/core_nvector.c) give the same bits as
  * SUNDIALS' own serial ones, so replacing them changes no result.
  *
  * Cases:

@@ -1,4 +1,4 @@
-/* test_rod_sway.c: the sway-buckling procedure (robot/actuator/robot_sway.h, the rod's
+/* test_rod_sway.c: the sway-buckling procedure (actuator/robot_sway.h, the rod's
  * compliance robot_rod.h csr_rodSwayCompliance; `crawlsim rom sway` applies the same to the
  * reduced model and the FE) against the closed forms of a straight uniform column.
  *

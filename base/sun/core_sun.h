@@ -5,7 +5,7 @@
  * per-solver error handler).
  *
  * It owns no state: the caller owns the context and the CVODE memory. It is a leaf room of its
- * own (docs/design.md "Rooms": core/sun) because core/base stays free of SUNDIALS. */
+ * own (docs/design.md "Rooms": base/sun) because base/ stays free of SUNDIALS. */
 #ifndef CORE_SUN_H
 #define CORE_SUN_H
 
