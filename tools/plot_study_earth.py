@@ -154,8 +154,16 @@ def main():
     text = "\n".join(lines) + "\n"
     sys.stdout.write(text)
     if args.md:
-        with open(args.md, "w") as fh:
-            fh.write(text)
+        # the table is regenerated; sections written below it by hand (from the first "## "
+        # heading on) are kept, so a rerun of the study does not drop them
+        kept = ""
+        if os.path.exists(args.md):
+            with open(args.md, encoding="utf-8") as fh:
+                old = fh.read()
+            at = old.find("\n## ")
+            kept = old[at:] if at >= 0 else ""
+        with open(args.md, "w", encoding="utf-8") as fh:
+            fh.write(text + kept)
 
     fig, ax = plt.subplots(1, 2, figsize=(13, 5.2))
     cmap = plt.get_cmap("tab20")

@@ -70,6 +70,13 @@ check "earth PNG written" test -s "$work/earth.png"
 check "earth table: ref stance check" grep -q "^| ref | - | 328 | 0.80 | 1.01 | 80 % |" <<<"$out"
 check "earth table: rtv615 design words" \
   grep -q "^| rtv615 | C10=0.1631, C20=0.0160, support 25 g | 303 | 0.74 | 1.49 | 50 % |" <<<"$out"
+# --md regenerates the table and keeps the sections written below it by hand
+printf '| old table |\n\n## A section by hand\n\ntext kept\n' > "$work/earth.md"
+"$py" "$src/tools/plot_study_earth.py" "$work/earth.h5" -o "$work/earth2.png" --md "$work/earth.md" \
+  >/dev/null 2>&1
+check "earth --md: the table regenerated" grep -q "^| ref | - | 328 |" "$work/earth.md"
+check "earth --md: the old table dropped" test "$(grep -c '^| old table |' "$work/earth.md")" -eq 0
+check "earth --md: the hand section kept" grep -q "^text kept$" "$work/earth.md"
 
 # not a study file: one line, exit 1
 "$py" "$src/tools/plot_study_sec4.py" "$work/sec4_cases/baseline/bend.h5" -o "$work/x.png" \
