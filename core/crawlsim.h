@@ -256,32 +256,35 @@ CS_API void cs_simStateGet(const csSim* s, double* x);
 /* CS_ERR_ARG (nothing changes) if x is not a state of this simulation; clears a failure */
 CS_API csStatus cs_simStateSet(csSim* s, const double* x, csError* err);
 
-/* ---- one actuator bent (what `crawlsim bend --model analytic|rod` computes) ---------------
+/* ---- one actuator bent (what `crawlsim bend --model analytic|rod|strain` computes) --------
  * The listed chambers of all three segments of one actuator at equal pressure p = 0, p_step,
- * ... up to p_max (p_max itself always the last row), by the analytic model (paper Eqs. 1-11)
- * or the Cosserat rod with the calibration and rule `bend --model rod` takes (the rod is
- * solved statically at each row, continued from the last, gravity off). The FE models (fe,
+ * ... up to p_max (p_max itself always the last row), by the analytic model (paper Eqs. 1-11),
+ * the Cosserat rod or the strain-coordinate leg (the leg of `crawlsim run --legs strain`) with
+ * the calibration and rule `bend --model rod` takes (both solved statically at each row,
+ * continued from the last, gravity off). The FE models (fe,
  * rom) are only in `crawlsim bend`: libcrawlsim does not link the FE (fem/). Start from
  * cs_defaultBendDef(); strings NULL and numbers NaN mean the default; messages name the `bend`
  * option a field mirrors (`p_max` is --p-max). Units: mm, MPa, deg, N. */
 typedef struct csBendDef {
-  const char* model;         /* "analytic" (default) | "rod" */
+  const char* model;         /* "analytic" (default) | "rod" | "strain" */
   const char* actuator;      /* preset "fig1" | "baseline" | "leg"; NULL: baseline (analytic),
-                                leg (rod: its default calibration's) */
+                                leg (rod, strain: the default calibration's) */
   const char* const* actuator_set; /* n_actuator_set "NAME=VALUE" strings (`bend --set`),
                                 applied in order after the preset */
   int n_actuator_set;        /* 0..64 */
   const char* chambers;      /* inflated chambers (1..4), e.g. "1,2" (NULL: "1,2") */
   double p_max;              /* MPa, > 0 (NaN: 0.4) */
   double p_step;             /* MPa, > 0 (NaN: 0.05) */
-  double tip_load[3];        /* rod: a dead tip force, N, base frame (0, 0, 0) */
-  const char* calibration;   /* rod: an FE table or "analytic"; NULL: the mission's table */
-  const char* cal_rule;      /* rod: "prism" | "rbf" | "rbf-pair"; NULL: rbf-pair on the
-                                default table, a given table's own */
-  const char* cal_drop;      /* rod: "stretch", "stiffness", "stretch,stiffness"; NULL or
+  double tip_load[3];        /* rod, strain: a dead tip force, N, base frame (0, 0, 0) */
+  const char* calibration;   /* rod, strain: an FE table or "analytic"; NULL: the mission's */
+  const char* cal_rule;      /* rod, strain: "prism" | "rbf" | "rbf-pair"; NULL: rbf-pair on
+                                the default table, a given table's own */
+  const char* cal_drop;      /* rod, strain: "stretch", "stiffness", "stretch,stiffness"; NULL or
                                 "none": nothing left out */
   double mesh_size;          /* rod: element length in mm (NaN: 4 per segment) */
   const char* data_dir;      /* where the shipped robot/ tables are, as csRunDef.data_dir */
+  double links;              /* strain: bending modes per segment, integer 1..7 (NaN: the strain
+                                level's default, as `crawlsim run --legs strain`) */
 } csBendDef;
 
 /* Every field at its default (strings NULL, numbers NaN, tip_load 0). */

@@ -1,5 +1,5 @@
 /* cs_bend.c: one actuator's pressure -> bend by the mesh-free models (cs_bend.h, the solver
- * `crawlsim bend --model analytic|rod` and cs_bend share) and the public cs_bend of crawlsim.h
+ * `crawlsim bend --model analytic|rod|strain` and cs_bend share) and the public cs_bend of crawlsim.h
  * (its definition, defaults and validation, and the sweep into the caller's arrays). */
 #include "cs_bend.h"
 
@@ -11,11 +11,16 @@
 #include "crawlsim.h"
 #include "cs_rundef.h"
 #include "robot_analytic.h"
+#include "robot_leg.h"
 
 static const double kDefaultPMax = 0.4;  /* MPa, the paper's multi-segment sweep (Sec. 3.3) */
 static const double kDefaultPStep = 0.05; /* MPa, the paper's increment */
 static const double kSweepEps = 1e-9;    /* relative slack when p-max is a multiple of step */
 enum { MAX_SETS = 64 };
+/* steps of rest arc length per segment over which the strain leg's bend is summed: the sum of
+ * the steps' relative rotation vectors is exact for plane bending whatever the count (each
+ * step's rotation is far below π); out of plane it converges as the rod's over its elements */
+enum { STRAIN_ANGLE_STEPS = 64 };
 
 
 /* the analytic model as the rod's calibration: bend θ towards φ, stretch λ0 */
@@ -33,8 +38,9 @@ static int analyticBendMap(const void* ctx, int seg, const double p[4], double b
 }
 
 
-/* the rod's calibration, model and data (what `bend --model rod` has always built) */
-static csStatus rodOpen(csBendSolver* s, csError* err) {
+/* the rod's and the strain leg's calibration (what `bend --model rod` has always built): the
+ * map, a mode table's strains and probed stiffness, the sweep's ceiling */
+static csStatus calibrationOpen(csBendSolver* s, csError* err) {
   csBendSpec* sp = &s->spec;
   s->map_act = sp->act;
   if (sp->calibration && !strcmp(sp->calibration, "analytic")) {
@@ -83,6 +89,17 @@ static csStatus rodOpen(csBendSolver* s, csError* err) {
     }
     s->p_ceiling = s->map.p_max / rmax;
   }
+  return CS_OK;
+}
+
+
+/* the nodal rod's model and data on the calibration */
+static csStatus rodOpen(csBendSolver* s, csError* err) {
+  csBendSpec* sp = &s->spec;
+  csStatus st = calibrationOpen(s, err);
+  if (st != CS_OK) {
+    return st;
+  }
   /* elements: --mesh-size is the element length in the segments (and joints) */
   csrRodParams par = csr_rodDefaultParams(&sp->act);
   par.cal_drop = sp->cal_drop;
@@ -116,12 +133,130 @@ static csStatus rodOpen(csBendSolver* s, csError* err) {
 }
 
 
+/* the strain level's default of one of its settings (robot_strain_leg.c), by name, so that a
+ * bend runs the leg `crawlsim run --legs strain` runs */
+static double strainSetting(const char* name) {
+  for (int k = 0; k < csr_leg_strain.nsettings; k++) {
+    if (!strcmp(csr_leg_strain.settings[k].name, name)) {
+      return csr_leg_strain.settings[k].value;
+    }
+  }
+  return NAN;
+}
+
+
+/* the strain-coordinate leg on the calibration: the basis of the strain level's defaults
+ * (bending modes, joints, shear, Magnus sub-intervals), the rod's material and sections,
+ * clamped at the base frame, weightless and without terrain, as the rod */
+static csStatus strainOpen(csBendSolver* s, csError* err) {
+  csBendSpec* sp = &s->spec;
+  csStatus st = calibrationOpen(s, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  int links = sp->links > 0 ? sp->links : (int)strainSetting("links");
+  if (links < 1 || links > CSR_STRAIN_MAX_ORDER + 1) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--links %d: the strain leg takes 1..%d bending "
+                       "modes per segment", links, CSR_STRAIN_MAX_ORDER + 1);
+  }
+  csrRodParams rp = csr_rodDefaultParams(&sp->act);
+  rp.cal_drop = sp->cal_drop;
+  csrStrainParams par = csr_strainDefaultParams();
+  par.bend_order = links - 1;
+  par.joint_order = (int)strainSetting("joints");
+  par.shear = (int)strainSetting("shear");
+  par.nsub = csr_strainSubIntervals(links, (int)strainSetting("sub"));
+  csrStrainSpec ss;
+  memset(&ss, 0, sizeof ss);
+  ss.act = &sp->act;
+  ss.rod_params = &rp;
+  ss.params = &par;
+  ss.map = &s->map;
+  ss.calib = s->has_rodcal ? &s->rodcal : NULL;
+  csu_eye3(ss.frame); /* the base frame: the tip is in it */
+  ss.weightless = 1;  /* gravity off, as for the other models */
+  s->sm = csr_strainModelCreate(&ss, err);
+  s->sd = s->sm ? csr_strainDataCreate(s->sm, err) : NULL;
+  if (!s->sd) {
+    return err->status != CS_OK ? err->status : CS_ERR_MEMORY;
+  }
+  /* the segments' spans of rest arc length: the rod's pieces, which the strain leg takes */
+  csrRodPiece pieces[CSR_ROD_MAX_PIECES];
+  int np = csr_rodLegPieces(&sp->act, &rp, pieces);
+  double X = 0;
+  for (int k = 0; k < np; k++) {
+    int seg = pieces[k].segment;
+    if (seg >= 0 && seg < CSR_NSEG) {
+      s->seg_X[seg][0] = X;
+      s->seg_X[seg][1] = X + pieces[k].length;
+    }
+    X += pieces[k].length;
+  }
+  s->links = links;
+  s->n_dofs = csr_strainDofs(s->sm);
+  return CS_OK;
+}
+
+
+/* the rotation vector of R (row-major), |it| < π */
+static void rotationVector(const double R[9], double v[3]) {
+  double w[3] = {0.5 * (R[7] - R[5]), 0.5 * (R[2] - R[6]), 0.5 * (R[3] - R[1])};
+  double sn = csu_norm3(w), cs = 0.5 * (R[0] + R[4] + R[8] - 1);
+  double th = atan2(sn, cs);
+  double f = sn > 1e-300 ? th / sn : 1.0;
+  for (int k = 0; k < 3; k++) {
+    v[k] = f * w[k];
+  }
+}
+
+
+/* the strain leg's static equilibrium at the pressures P (segment-major) and the tip load:
+ * the segments' angles and the tip in the base frame */
+static csStatus strainPoint(csBendSolver* s, const double P[12], double angle_deg[CSR_NSEG],
+                            double tip[3], csError* err) {
+  csrRodStaticLoad ld;
+  memset(&ld, 0, sizeof ld);
+  memcpy(ld.p, P, sizeof ld.p);
+  memcpy(ld.tip_force, s->spec.tip_load, sizeof ld.tip_force); /* base frame = world here */
+  csStatus st = csr_strainStatic(s->sm, s->sd, &ld, NULL, err);
+  if (st != CS_OK) {
+    return st;
+  }
+  for (int seg = 0; seg < CSR_NSEG; seg++) {
+    double X0 = s->seg_X[seg][0], X1 = s->seg_X[seg][1];
+    double x[3], Ra[9], Rb[9], tot[3] = {0, 0, 0};
+    csr_strainPose(s->sm, s->sd, X0, x, Ra);
+    for (int i = 1; i <= STRAIN_ANGLE_STEPS; i++) {
+      csr_strainPose(s->sm, s->sd, X0 + (X1 - X0) * i / STRAIN_ANGLE_STEPS, x, Rb);
+      double Rrel[9], v[3];
+      /* Rrel = Raᵀ Rb: the step's rotation in the frame at its start */
+      for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++) {
+          Rrel[3 * r + c] = Ra[r] * Rb[c] + Ra[3 + r] * Rb[3 + c] + Ra[6 + r] * Rb[6 + c];
+        }
+      }
+      rotationVector(Rrel, v);
+      csu_add3(tot, tot, v);
+      memcpy(Ra, Rb, sizeof Ra);
+    }
+    angle_deg[seg] = csu_norm3(tot) / CS_DEG;
+  }
+  double x0[3], xL[3], R[9];
+  csr_strainPose(s->sm, s->sd, 0, x0, R);
+  csr_strainPose(s->sm, s->sd, csr_strainLength(s->sm), xL, R);
+  csu_sub3(tip, xL, x0);
+  return CS_OK;
+}
+
+
 csStatus cs_bendSolverOpen(csBendSolver* s, const csBendSpec* spec, csError* err) {
   memset(s, 0, sizeof *s);
   s->spec = *spec;
   s->mesh_size = NAN; /* mesh-free until the rod says otherwise */
   s->p_ceiling = NAN;
-  return spec->kind == CS_BEND_ROD ? rodOpen(s, err) : CS_OK;
+  return spec->kind == CS_BEND_ROD      ? rodOpen(s, err)
+         : spec->kind == CS_BEND_STRAIN ? strainOpen(s, err)
+                                        : CS_OK;
 }
 
 
@@ -135,6 +270,9 @@ csStatus cs_bendSolverPoint(csBendSolver* s, double p, double angle_deg[CSR_NSEG
   }
   if (s->spec.kind == CS_BEND_ROD) {
     return csr_rodBendPoint(s->m, s->d, P, s->spec.tip_load, angle_deg, tip, err);
+  }
+  if (s->spec.kind == CS_BEND_STRAIN) {
+    return strainPoint(s, P, angle_deg, tip, err);
   }
   /* the analytic model (robot_analytic.h): three segment equilibria and the FK */
   csrSegmentStrain st[CSR_NSEG];
@@ -155,6 +293,10 @@ void cs_bendSolverClose(csBendSolver* s) {
   }
   csr_rodDataDestroy(s->d);
   csr_rodModelDestroy(s->m);
+  csr_strainDataDestroy(s->sd);
+  csr_strainModelDestroy(s->sm);
+  s->sd = NULL;
+  s->sm = NULL;
   csr_calibrationClose(s->cal);
   s->d = NULL;
   s->m = NULL;
@@ -196,7 +338,7 @@ double cs_bendSweepPressure(double p_max, double p_step, size_t i) {
 csBendDef cs_defaultBendDef(void) {
   csBendDef d;
   memset(&d, 0, sizeof d);
-  d.p_max = d.p_step = d.mesh_size = NAN;
+  d.p_max = d.p_step = d.mesh_size = d.links = NAN;
   return d;
 }
 
@@ -213,11 +355,14 @@ static csStatus bendSpec(const csBendDef* def, csBendSpec* sp, double* p_step, c
     sp->kind = CS_BEND_ANALYTIC;
   } else if (!strcmp(model, "rod")) {
     sp->kind = CS_BEND_ROD;
+  } else if (!strcmp(model, "strain")) {
+    sp->kind = CS_BEND_STRAIN;
   } else {
-    return cs_errorSet(err, CS_ERR_ARG, "unknown --model '%.60s' (the library has analytic and "
-                       "rod; fe and rom are in `crawlsim bend`)", model);
+    return cs_errorSet(err, CS_ERR_ARG, "unknown --model '%.60s' (the library has analytic, rod "
+                       "and strain; fe and rom are in `crawlsim bend`)", model);
   }
-  int rod = sp->kind == CS_BEND_ROD;
+  /* rod and strain legs: a calibration, a tip load; the actuator is the default table's */
+  int rod = sp->kind == CS_BEND_ROD || sp->kind == CS_BEND_STRAIN;
   const char* actuator = def->actuator ? def->actuator : rod ? CS_MISSION_ACTUATOR : "baseline";
   csStatus st = csr_actuatorPreset(&sp->act, actuator, err);
   if (st != CS_OK) {
@@ -290,15 +435,34 @@ static csStatus bendSpec(const csBendDef* def, csBendSpec* sp, double* p_step, c
     return cs_errorSet(err, CS_ERR_RANGE, "--mesh-size %g must be > 0 mm", sp->mesh_size);
   }
   int tip = sp->tip_load[0] != 0 || sp->tip_load[1] != 0 || sp->tip_load[2] != 0;
+  int links = !isnan(def->links);
   if (!rod && (tip || def->calibration || def->cal_rule || sp->cal_drop ||
-               !isnan(sp->mesh_size))) {
-    return cs_errorSet(err, CS_ERR_ARG, "%s is for --model rod (the analytic model has none)",
-                       tip                ? "--tip-load"
+               !isnan(sp->mesh_size) || links)) {
+    const char* flag = tip                ? "--tip-load"
                        : def->calibration ? "--calibration"
                        : def->cal_rule    ? "--cal-rule"
                        : sp->cal_drop     ? "--cal-drop"
-                                          : "--mesh-size");
+                       : links            ? "--links"
+                                          : "--mesh-size";
+    return cs_errorSet(err, CS_ERR_ARG, "%s is for --model %s (the analytic model has none)",
+                       flag, !strcmp(flag, "--links")       ? "strain"
+                             : !strcmp(flag, "--mesh-size") ? "rod"
+                                                            : "rod or strain");
   }
+  if (sp->kind == CS_BEND_STRAIN && !isnan(sp->mesh_size)) {
+    return cs_errorSet(err, CS_ERR_ARG, "--mesh-size is for --model rod (the strain leg's "
+                       "resolution is --links, its bending modes per segment)");
+  }
+  if (sp->kind == CS_BEND_ROD && links) {
+    return cs_errorSet(err, CS_ERR_ARG, "--links is for --model strain (the rod's elements are "
+                       "--mesh-size)");
+  }
+  if (links && !(def->links >= 1 && def->links <= CSR_STRAIN_MAX_ORDER + 1 &&
+                 def->links == floor(def->links))) {
+    return cs_errorSet(err, CS_ERR_RANGE, "--links %g: the strain leg takes a whole number "
+                       "1..%d of bending modes per segment", def->links, CSR_STRAIN_MAX_ORDER + 1);
+  }
+  sp->links = links ? (int)def->links : 0;
   return CS_OK;
 }
 
@@ -340,7 +504,7 @@ csStatus cs_bend(const csBendDef* def, int capacity, double* pressure, double* a
                        capacity, rows);
   }
   char path[1024];
-  if (sp.kind == CS_BEND_ROD && !sp.calibration) {
+  if ((sp.kind == CS_BEND_ROD || sp.kind == CS_BEND_STRAIN) && !sp.calibration) {
     csRunDef rd = cs_defaultRunDef();
     rd.data_dir = def->data_dir;
     sp.default_path = cs_runDataPath(&rd, CS_MISSION_CALIBRATION, path, sizeof path);
@@ -354,7 +518,9 @@ csStatus cs_bend(const csBendDef* def, int capacity, double* pressure, double* a
       char cause[sizeof err->msg];
       memcpy(cause, err->msg, sizeof cause);
       cs_errorSet(err, st, "%s model failed at p = %.6g MPa (row %zu of %zu; the rows before "
-                  "it are kept): %.300s", sp.kind == CS_BEND_ROD ? "rod" : "analytic", p, i,
+                  "it are kept): %.300s", sp.kind == CS_BEND_ROD      ? "rod"
+                                          : sp.kind == CS_BEND_STRAIN ? "strain"
+                                                                      : "analytic", p, i,
                   rows, cause);
       break;
     }

@@ -1,15 +1,17 @@
 /* cmd_bend.c: `crawlsim bend`, the pressure -> bending characterisation of one actuator
  * (docs/design.md command-line and output contracts; paper Figs. 3, 6-9).
  *
- *   crawlsim bend [--model analytic|fe|rod|rom] [--actuator fig1|baseline|leg]
+ *   crawlsim bend [--model analytic|fe|rod|rom|strain] [--actuator fig1|baseline|leg]
  *                 [--set NAME=VALUE]... [--chambers 1,2] [--p-max MPA] [--p-step MPA]
  *                 [--until-angle DEG] [--mesh-size MM] [--fibre-size MM] [--fibre-split 0|1]
  *                 [--fibre-law linear|tension-only] [--out FILE.h5]
  *                 [--pressures R1,R2,R3,R4] [--tip-load FX,FY,FZ] [--calibration FILE|analytic]
  *
  * --pressures gives unequal chamber pressures: chamber j of every segment is at R_j p (the
- * ratios replace --chambers; analytic, rod and fe). --tip-load is a dead force (N) on the tip
- * face in the base frame e1, e2, e3 (rod; fe: a uniform traction on the tip face). The rod (robot_rod.h) is solved statically at every row,
+ * ratios replace --chambers; analytic, rod, strain and fe). --tip-load is a dead force (N) on the
+ * tip face in the base frame e1, e2, e3 (rod, strain; fe: a uniform traction on the tip face).
+ * The strain leg (robot_strain.h, the leg `crawlsim run --legs strain` runs) takes the rod's
+ * calibration options and --links (its bending modes per segment). The rod (robot_rod.h) is solved statically at every row,
  * continued from the previous one, gravity off like the other models; its actuation comes from
  * --calibration: an FE table (default: the mission's table, tools/cs_paths.h, under its rule,
  * refused for another actuator) or `analytic` (the analytic model's own bends, so that the
@@ -54,9 +56,10 @@ enum { MAX_SETS = 64 };
 
 /* the options of `crawlsim bend`, for parsing and --help (cs_opts.h) */
 static const csxOpt kBendOpts[] = {
-    {"--model", "analytic|fe|rod|rom", "analytic",
-     "the actuator model (rom: the reduced FE of docs/notes/rom.md, needs --rom-basis)"},
-    {"--actuator", "fig1|baseline|leg", "baseline (rod: leg, its calibration's)",
+    {"--model", "analytic|fe|rod|rom|strain", "analytic",
+     "the actuator model (rom: the reduced FE of docs/notes/rom.md, needs --rom-basis; strain: "
+     "the strain-coordinate leg of run --legs strain)"},
+    {"--actuator", "fig1|baseline|leg", "baseline (rod, strain, rom: leg, the calibration's)",
      "the actuator preset"},
     {"--set", "NAME=VALUE", NULL,
      "a parameter of the actuator, repeatable; NAME is S1 S2 S3 n1 n2 n3 LS12 LS23 a b c r1 r2 "
@@ -68,17 +71,21 @@ static const csxOpt kBendOpts[] = {
      "report the pressure at which the total bending angle reaches DEG degrees (searched up to "
      "max(p-max, 2 MPa))"},
     {"--pressures", "R1,R2,R3,R4", NULL,
-     "chamber j at R_j x p (unequal pressures; analytic, rod, fe)"},
-    {"--tip-load", "FX,FY,FZ", "0,0,0", "a tip force in N, base frame (rod, fe)"},
-    {"--calibration", "FILE|analytic", "robot/calibration_fe_leg_modes_sym.h5 (rod)",
-     "the rod's pressure -> bend map and, from an FE mode table, its probed EI, EA"},
+     "chamber j at R_j x p (unequal pressures; analytic, rod, strain, fe)"},
+    {"--tip-load", "FX,FY,FZ", "0,0,0", "a tip force in N, base frame (rod, strain, fe, rom)"},
+    {"--calibration", "FILE|analytic", "robot/calibration_fe_leg_modes_sym.h5 (rod, strain)",
+     "the rod's or strain leg's pressure -> bend map and, from an FE mode table, its probed EI, "
+     "EA"},
     {"--cal-rule", "prism|rbf|rbf-pair", "rbf-pair on the default table, the table's own "
      "(prism) on a table given by --calibration",
-     "that FE mode table's model rule (rod)"},
+     "that FE mode table's model rule (rod, strain)"},
     {"--cal-drop", "stretch[,stiffness]", "none",
-     "the rod leaves that part of the calibration out (the axial stretch; a mode table's probed "
-     "EI, EA); recorded as calibration_dropped"},
-    {"--mesh-size", "MM", "the FE's default l_soft", "fe: the soft elements' size in mm"},
+     "the rod or strain leg leaves that part of the calibration out (the axial stretch; a mode "
+     "table's probed EI, EA); recorded as calibration_dropped"},
+    {"--links", "N", "the strain level's (2)",
+     "strain: bending modes per segment (1..7), as run --links on strain legs"},
+    {"--mesh-size", "MM", "the FE's default l_soft",
+     "fe: the soft elements' size in mm; rod: its element length"},
     {"--fibre-size", "MM", "l_soft / 8", "fe: the fibre element length in mm"},
     {"--fibre-split", "0|1", "1",
      "fe: 1 splits fibre elements at the tets' faces; 0 ties each to the tets holding its two "
@@ -113,13 +120,13 @@ static const csxOptTable kBendTable = {
     "to p-max in steps of p-step and write the bending angles and tip positions to FILE.h5.",
     kBendOpts, CSX_NOPT(kBendOpts), NULL};
 
-static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "rom"};
+static const char* const kModelNames[BEND_NMODEL] = {"analytic", "fe", "rod", "rom", "strain"};
 
 /* Evaluate the model at pressure p (MPa): per-segment angles (deg), tip in the base frame (mm). */
 typedef csStatus (*BendPointFn)(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
                                 csError* err);
 
-/* the mesh-free models (analytic, rod) at p: the library's solver (core/cs_bend.h) */
+/* the mesh-free models (analytic, rod, strain) at p: the library's solver (core/cs_bend.h) */
 static csStatus solverPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], double tip[3],
                             csError* err);
 /* open the solver of run (run->solver): CS_OK or a status with err */
@@ -161,7 +168,10 @@ static csStatus solverPoint(BendRun* run, double p, double angle_deg[CSR_NSEG], 
 static csStatus solverOpen(BendRun* run, csBendSolver* solver, csError* err) {
   csBendSpec sp;
   memset(&sp, 0, sizeof sp);
-  sp.kind = run->model == BEND_ROD ? CS_BEND_ROD : CS_BEND_ANALYTIC;
+  sp.kind = run->model == BEND_ROD      ? CS_BEND_ROD
+            : run->model == BEND_STRAIN ? CS_BEND_STRAIN
+                                        : CS_BEND_ANALYTIC;
+  sp.links = run->links;
   sp.act = run->act;
   memcpy(sp.ratio, run->ratio, sizeof sp.ratio);
   memcpy(sp.tip_load, run->tip_load, sizeof sp.tip_load);
@@ -188,6 +198,7 @@ static BendPointFn bendModelEvaluator(BendModel m) {
   switch (m) {
     case BEND_ANALYTIC:
     case BEND_ROD:
+    case BEND_STRAIN:
       return solverPoint;
     case BEND_FE:  /* a whole sweep, not point-wise: feSweep() below */
     case BEND_ROM: /* reduced FE */
@@ -330,8 +341,8 @@ static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOpt
         return 1;
       }
       if (m == BEND_NMODEL) {
-        cs_errorSet(err, CS_ERR_ARG, "unknown model '%s' (expected analytic, fe, rod or rom)",
-                    value);
+        cs_errorSet(err, CS_ERR_ARG, "unknown model '%s' (expected analytic, fe, rod, rom or "
+                    "strain)", value);
         return 1;
       }
       run->model = (BendModel)m;
@@ -353,6 +364,15 @@ static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOpt
       bad = parsePositive(name, value, "degrees", &run->until_angle, err);
     } else if (!strcmp(name, "--mesh-size")) {
       bad = parsePositive(name, value, "mm", &run->mesh_size, err);
+    } else if (!strcmp(name, "--links")) {
+      double v;
+      bad = parsePositive(name, value, "bending modes per segment", &v, err);
+      if (!bad && !(v == floor(v) && v <= CSR_STRAIN_MAX_ORDER + 1)) {
+        cs_errorSet(err, CS_ERR_ARG, "--links %s: a whole number 1..%d of bending modes per "
+                    "segment", value, CSR_STRAIN_MAX_ORDER + 1);
+        return 1;
+      }
+      run->links = bad ? 0 : (int)v;
     } else if (!strcmp(name, "--fibre-size")) {
       bad = parsePositive(name, value, "mm", &run->fibre_size, err);
     } else if (!strcmp(name, "--fibre-split")) {
@@ -434,8 +454,9 @@ static int parseArgs(int argc, char** argv, BendRun* run, csxOptIter* it, csxOpt
   /* the actuator: preset, then every --set in order, then a consistency check; the rod's
    * default is its default calibration's actuator, so that `bend --model rod` runs as is */
   if (!actuator) {
-    actuator = run->model == BEND_ROD || run->model == BEND_ROM ? CS_MISSION_ACTUATOR
-                                                                : "baseline";
+    actuator = run->model == BEND_ROD || run->model == BEND_ROM || run->model == BEND_STRAIN
+                   ? CS_MISSION_ACTUATOR
+                   : "baseline";
   }
   if (csr_actuatorPreset(&run->act, actuator, err) != CS_OK) {
     return 1;
@@ -492,16 +513,28 @@ static int checkModelOptions(const BendRun* run, csError* err) {
                 "--rom-basis and --rom-weights");
     return 1;
   }
+  int legish = run->model == BEND_ROD || run->model == BEND_STRAIN; /* the calibrated legs */
   int tip = run->tip_load[0] != 0 || run->tip_load[1] != 0 || run->tip_load[2] != 0;
-  if ((tip && run->model != BEND_ROD && run->model != BEND_FE && run->model != BEND_ROM) ||
-      ((run->calibration || run->cal_rule >= 0 || run->cal_drop) && run->model != BEND_ROD)) {
+  if ((tip && !legish && run->model != BEND_FE && run->model != BEND_ROM) ||
+      ((run->calibration || run->cal_rule >= 0 || run->cal_drop) && !legish)) {
     cs_errorSet(err, CS_ERR_ARG, "%s is for --model %s (the %s model has no %s)",
                 tip                  ? "--tip-load"
                 : run->calibration   ? "--calibration"
                 : run->cal_rule >= 0 ? "--cal-rule"
                                      : "--cal-drop",
-                tip ? "rod, fe or rom" : "rod",
+                tip ? "rod, strain, fe or rom" : "rod or strain",
                 kModelNames[run->model], tip ? "tip load" : "calibration");
+    return 1;
+  }
+  if (run->links > 0 && run->model != BEND_STRAIN) {
+    cs_errorSet(err, CS_ERR_ARG, "--links is for --model strain (the %s model has no bending "
+                "modes%s)", kModelNames[run->model],
+                run->model == BEND_ROD ? "; its element length is --mesh-size" : "");
+    return 1;
+  }
+  if (!isnan(run->mesh_size) && run->model == BEND_STRAIN) {
+    cs_errorSet(err, CS_ERR_ARG, "--mesh-size is not for --model strain (its resolution is "
+                "--links, the bending modes per segment)");
     return 1;
   }
   return 0;
@@ -676,7 +709,13 @@ csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err) {
                         run->p_limit, run->p_resume, 0, 0, 0, NAN, -1, NAN, 0};
     st = csr_bendCurveWriteH5(f, &run->act, &bc, &meta, err);
   }
-  if (st == CS_OK && run->model == BEND_ROD) {
+  if (st == CS_OK && run->model == BEND_STRAIN) {
+    st = cs_h5AttrDouble(f, "/", "strain_links", solver.links, err);
+    if (st == CS_OK) {
+      st = cs_h5AttrDouble(f, "/", "strain_dofs", solver.n_dofs, err);
+    }
+  }
+  if (st == CS_OK && (run->model == BEND_ROD || run->model == BEND_STRAIN)) {
     char drop[32];
     csr_calDropFormat(run->cal_drop, drop, sizeof drop);
     st = cs_h5AttrString(f, "/", "calibration_dropped", drop, err);
@@ -708,6 +747,14 @@ csStatus csx_bendExecute(BendRun* run, csxBendResult* res, csError* err) {
     fprintf(run->table, "rod: %d elements (%.4g mm in the segments), calibration %s, rule %s, "
             "section stiffness %s, tip load (%g, %g, %g) N in the base frame, gravity off\n",
             (int)run->n_elements_soft, run->mesh_size,
+            solver.map.name ? solver.map.name : "?", cs_bendSolverRuleName(&solver),
+            cs_bendSolverProbedStiffness(&solver) ? "probed (FE)" : "default (8 C10 I)",
+            run->tip_load[0], run->tip_load[1], run->tip_load[2]);
+  }
+  if (run->model == BEND_STRAIN) {
+    fprintf(run->table, "strain leg: %d bending modes per segment (%d unknowns), calibration "
+            "%s, rule %s, section stiffness %s, tip load (%g, %g, %g) N in the base frame, "
+            "gravity off\n", solver.links, solver.n_dofs,
             solver.map.name ? solver.map.name : "?", cs_bendSolverRuleName(&solver),
             cs_bendSolverProbedStiffness(&solver) ? "probed (FE)" : "default (8 C10 I)",
             run->tip_load[0], run->tip_load[1], run->tip_load[2]);

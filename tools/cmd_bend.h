@@ -12,7 +12,7 @@
 #include "robot_actuator.h"
 #include "robot_bend_io.h"
 
-typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_ROM, BEND_NMODEL } BendModel;
+typedef enum { BEND_ANALYTIC, BEND_FE, BEND_ROD, BEND_ROM, BEND_STRAIN, BEND_NMODEL } BendModel;
 
 /* one bend run: parsed options and what the model reports about itself */
 typedef struct {
@@ -33,10 +33,12 @@ typedef struct {
   double ratio[CSR_NCHAMBER]; /* chamber j at ratio[j] x p (1/0 from --chambers) */
   int unequal;                /* --pressures gave ratios other than 0/1 */
   double tip_load[3];         /* N, base frame (--tip-load) */
-  const char* calibration;    /* --calibration (rod), NULL = default */
-  int cal_rule;               /* --cal-rule (rod): csrCalRule of an FE mode table, -1 = default */
-  unsigned cal_drop;          /* --cal-drop (rod): CSR_CAL_DROP_* parts left out, 0 = none */
-  csBendSolver* solver;       /* analytic, rod: the library's solver during a sweep
+  const char* calibration;    /* --calibration (rod, strain), NULL = default */
+  int cal_rule;               /* --cal-rule (rod, strain): csrCalRule of an FE mode table, -1 =
+                                 default */
+  unsigned cal_drop;          /* --cal-drop (rod, strain): CSR_CAL_DROP_* parts left out, 0 = none */
+  int links;                  /* --links (strain): bending modes per segment, 0 = the level's */
+  csBendSolver* solver;       /* analytic, rod, strain: the library's solver during a sweep
                                  (core/cs_bend.h) */
   double p_ceiling;           /* MPa: --until-angle searches up to max(p-max, this); NAN: 2 MPa */
   double fibre_size;          /* fe: l_fibre, mm (NAN: the model's default, l_soft / 8) */

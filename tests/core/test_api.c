@@ -371,6 +371,12 @@ static void test_bend(void) {
   CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_ARG && strstr(err.msg, "--set"));
   d = cs_defaultBendDef(); d.calibration = "analytic";
   CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_ARG && strstr(err.msg, "--calibration"));
+  d = cs_defaultBendDef(); d.model = "strain"; d.links = 2.5;
+  CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_RANGE && strstr(err.msg, "--links"));
+  d = cs_defaultBendDef(); d.model = "rod"; d.links = 2;
+  CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_ARG && strstr(err.msg, "--links"));
+  d = cs_defaultBendDef(); d.model = "strain"; d.mesh_size = 2;
+  CS_EXPECT(cs_bendDefValidate(&d, &err) == CS_ERR_ARG && strstr(err.msg, "--mesh-size"));
   d = cs_defaultBendDef(); d.model = "rod"; d.calibration = "/nonexistent/cal.h5"; d.p_max = 0.3;
   CS_EXPECT(cs_bend(&d, 8, p, &ang[0][0], &tip[0][0], &n, &err) != CS_OK && n == 0 &&
             strstr(err.msg, "nonexistent"));

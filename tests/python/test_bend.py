@@ -62,6 +62,17 @@ def test_rod_bend_on_the_mission_table_equals_the_command(tmp_path):
     same_rows(b, ref)
 
 
+def test_strain_bend_equals_the_commands_rows(tmp_path):
+    """The strain leg (the flat road's leg) with a tip load and a richer basis: the library's
+    sweep and the command's file hold the same rows."""
+    ref = cli_bend(tmp_path, "--model", "strain", "--links", "3", "--p-max", "0.2",
+                   "--p-step", "0.1", "--tip-load", "0.02,0,0")
+    b = crawlsim.bend(model="strain", links=3, p_max=0.2, p_step=0.1, tip_load=(0.02, 0, 0),
+                      data_dir=os.environ["CS_SOURCE_DIR"])
+    same_rows(b, ref)
+    assert b.actuator == "leg" and b.angle_total[-1] > 0
+
+
 @pytest.mark.parametrize("kw,words", [
     (dict(model="fe"), "fe"), (dict(actuator="wing"), "wing"), (dict(chambers="5"), "chambers"),
     (dict(p_max=-0.1), "p-max"), (dict(p_step=0.0), "p-step"),
@@ -69,7 +80,9 @@ def test_rod_bend_on_the_mission_table_equals_the_command(tmp_path):
     (dict(set=["nonsense"]), "nonsense"), (dict(tip_load=(0, 1, 0)), "tip-load"),
     (dict(model="rod", cal_rule="glue"), "glue"), (dict(model="rod", cal_drop="all"), "all"),
     (dict(model="rod", p_max=0.5), "calibration's range"),
-    (dict(model="rod", calibration="/nonexistent.h5"), "nonexistent")])
+    (dict(model="rod", calibration="/nonexistent.h5"), "nonexistent"),
+    (dict(model="strain", links=9), "links"), (dict(model="rod", links=2), "links"),
+    (dict(model="strain", mesh_size=2), "mesh-size")])
 def test_bad_input_raises_with_the_message(kw, words):
     with pytest.raises(crawlsim.Error, match=words) as e:
         crawlsim.bend(**kw)

@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cs_bendfile.h"
 #include "cs_cli.h"
 #include "cs_test.h"
 #include "robot_analytic.h"
@@ -48,24 +49,9 @@ static void run(const char* args, csCliResult* r) {
 }
 
 
-/* rows of a bend file: pressure (m), angles (m x 3), tip (m x 3); returns m (0 on failure) */
+/* rows of a bend file (cs_bendfile.h) */
 static int readBend(const char* path, double* p, double* ang, double* tip) {
-  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) {
-    return 0;
-  }
-  hsize_t dims[2] = {0, 0};
-  H5T_class_t cls;
-  size_t ts;
-  int m = 0;
-  if (H5LTget_dataset_info(f, "/pressure", dims, &cls, &ts) >= 0 && dims[0] <= MAXROW &&
-      H5LTread_dataset_double(f, "/pressure", p) >= 0 &&
-      H5LTread_dataset_double(f, "/angle_deg", ang) >= 0 &&
-      H5LTread_dataset_double(f, "/tip_position", tip) >= 0) {
-    m = (int)dims[0];
-  }
-  H5Fclose(f);
-  return m;
+  return cs_bendFileRead(path, MAXROW, p, ang, tip);
 }
 
 

@@ -137,7 +137,8 @@ class csRunResult(ctypes.Structure):
 
 
 class csBendDef(ctypes.Structure):
-    """core/crawlsim.h csBendDef (one actuator bent by the analytic model or the rod)."""
+    """core/crawlsim.h csBendDef (one actuator bent by the analytic model, the rod or the
+    strain leg)."""
     _fields_ = [
         ("model", ctypes.c_char_p),
         ("actuator", ctypes.c_char_p),
@@ -152,6 +153,7 @@ class csBendDef(ctypes.Structure):
         ("cal_drop", ctypes.c_char_p),
         ("mesh_size", ctypes.c_double),
         ("data_dir", ctypes.c_char_p),
+        ("links", ctypes.c_double),
     ]
 
 

@@ -1,4 +1,4 @@
-"""crawlsim.bend: one actuator bent, as `crawlsim bend --model analytic|rod` does it
+"""crawlsim.bend: one actuator bent, as `crawlsim bend --model analytic|rod|strain` does it
 (core/crawlsim.h cs_bend; the FE models stay in the command: libcrawlsim does not link the FE).
 
 Owns `bend(...)` and `BendResult`: the definition is built field by field from keyword
@@ -51,15 +51,16 @@ def _text(name, v):
 
 def bend(model="analytic", actuator=None, chambers=None, p_max=None, p_step=None, set=None,
          tip_load=None, calibration=None, cal_rule=None, cal_drop=None, mesh_size=None,
-         data_dir=None):
+         data_dir=None, links=None):
     """Inflate the listed chambers of all three segments of one actuator at equal pressure
     p = 0, p_step, ... up to p_max (p_max always the last row) and return a BendResult.
 
-    model "analytic" | "rod"; actuator "fig1" | "baseline" | "leg" (None: baseline, the rod's
-    leg); chambers "1,2" or [1, 2]; p_max, p_step in MPa (None: 0.4, 0.05); set a list of
-    "NAME=VALUE" strings or a dict (`bend --set`); rod only: tip_load (3 numbers, N),
-    calibration (a table or "analytic"; None: the mission's table), cal_rule, cal_drop,
-    mesh_size (mm). Bad input raises crawlsim.Error with the library's message."""
+    model "analytic" | "rod" | "strain" (the leg of `run --legs strain`); actuator "fig1" |
+    "baseline" | "leg" (None: baseline, the rod's and strain leg's leg); chambers "1,2" or
+    [1, 2]; p_max, p_step in MPa (None: 0.4, 0.05); set a list of "NAME=VALUE" strings or a
+    dict (`bend --set`); rod and strain only: tip_load (3 numbers, N), calibration (a table or
+    "analytic"; None: the mission's table), cal_rule, cal_drop; rod only: mesh_size (mm);
+    strain only: links (bending modes per segment). Bad input raises crawlsim.Error with the library's message."""
     L = _lib.lib()
     c = L.cs_defaultBendDef()
     args = dict(model=model, actuator=actuator, chambers=chambers, calibration=calibration,
@@ -69,7 +70,8 @@ def bend(model="analytic", actuator=None, chambers=None, p_max=None, p_step=None
         b = _text(name, args[name])
         keep.append(b)
         setattr(c, name, b)
-    for name, v in (("p_max", p_max), ("p_step", p_step), ("mesh_size", mesh_size)):
+    for name, v in (("p_max", p_max), ("p_step", p_step), ("mesh_size", mesh_size),
+                    ("links", links)):
         if v is None:
             continue
         if isinstance(v, bool) or not isinstance(v, (int, float)) and not hasattr(v, "__float__"):
@@ -102,8 +104,8 @@ def bend(model="analytic", actuator=None, chambers=None, p_max=None, p_step=None
     _lib.check(st, err)
     del keep
     return BendResult(pressure[:n.value], angle[:n.value], tip[:n.value], model,
-                      actuator if actuator is not None else ("leg" if model == "rod" else
-                                                             "baseline"))
+                      actuator if actuator is not None else ("leg" if model in ("rod", "strain")
+                                                             else "baseline"))
 
 
 __all__ = ["bend", "BendResult"]
