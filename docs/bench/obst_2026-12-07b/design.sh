@@ -1,12 +1,4 @@
 #!/bin/sh
-# usage: design.sh NAME [obstacle_gait.py OPTIONS...]  writes $D/NAME.gait, its landing gate
-# $D/NAME.gate and its table $D/NAME.csv, designed as gaits/obstacle.csv is (the mission's table
-# under rbf-pair, --stretch, p-max 0.4; tools/obstacle_gait.py's header). D default
-# /work/rom_data/obst. k3 = no options (the shipped files, byte for byte).
-cd "$(dirname "$0")/../../.."
-D=${D:-/work/rom_data/obst}
-n=$1; shift
-mkdir -p "$D"
-/usr/bin/python3 tools/obstacle_gait.py "$@" -o "$D/$n.gait" --gate-out "$D/$n.gate" || exit 1
-build/tools/crawlsim gait design "$D/$n.gait" --stretch --out "$D/$n.csv" \
-  --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair --p-max 0.4 > /dev/null
+# usage: design.sh NAME [obstacle_gait.py OPTIONS...]  writes $D/NAME.gait, .gate and .csv as
+# docs/bench/obststrain_2026-12-07/design.sh does, into D (default /work/rom_data/obst).
+D=${D:-/work/rom_data/obst} exec "$(dirname "$0")/../obststrain_2026-12-07/design.sh" "$@"
