@@ -50,6 +50,15 @@ ap.add_argument('--up-band', default='-10,5',
                 'and hung clear of it at 224-228)')
 ap.add_argument('--up-reach', type=float, default=55.0,
                 help='rule 17: the longest offset ahead of the hip, mm (rule 16\'s 55)')
+ap.add_argument('--push', type=int, default=0,
+                help='rule 18: slots in which no pair steps and every stance foot moves on, before the '
+                'rear pair\'s step toward the up edge (rule 13\'s slot): the support advances D/4 a slot '
+                'over the plateau\'s first feet before the rear pair leaves the road (default 0: off)')
+ap.add_argument('--down-lead', type=float, default=0.0,
+                help='rule 19: how far the front pair\'s first step from the plateau down to the road '
+                'carries the support past the plan, mm (measured with rule 18: 55-64 on rod and strain '
+                'legs); the later landings are planned with the hips that far ahead and the wave ends '
+                'where that passes --x2 (default 0: off)')
 ap.add_argument('--Dcross', type=float, default=None,
                 help='rule 16b: support advance per cycle from the climb\'s end (planned x past --xclimb) '
                 'to --xcross, mm; places the hips for the landings of these slots, and the later '
@@ -255,6 +264,8 @@ for text in a.force:
 FHINFO = []       # per foothold: dict(t, legs, xplan, margin, plan r, offsets, lands)
 if a.foothold_out and (not FH or a.out == '-'):
     sys.exit('obstacle_gait.py: --foothold-out needs --foothold and -o FILE')
+if a.push < 0 or a.down_lead < 0:
+    sys.exit('obstacle_gait.py: --push takes a number of slots >= 0, --down-lead a distance >= 0 (mm)')
 if DC <= 0 or a.settle < 0:
     sys.exit('obstacle_gait.py: --Dclimb takes a positive advance (mm), --settle a time >= 0 (s)')
 try:
@@ -351,6 +362,16 @@ if a.up_short >= 0:
                '#     the support moves on while the foot comes down); one expected within %g..+%g mm of\n'
                '#     the up edge (the foot block on its corner) takes the shortest longer offset, in 5 mm\n'
                '#     steps up to %g mm, expected past that band.' % (a.up_short, UPB[0], UPB[1], a.up_reach))
+if a.push > 0:
+    RULE16 += ('\n# 18. Before the rear pair\'s step toward the up edge (rule 13\'s slot) %d slot(s) in which no\n'
+               '#     pair steps and every stance foot moves on: the support advances D/4 a slot past the\n'
+               '#     plateau\'s first feet before the rear pair leaves the road (with C, G landed past the\n'
+               '#     corner the support tipped back over them when D, H lifted: docs/notes/obstacle.md)'
+               % a.push)
+if a.down_lead > 0:
+    RULE16 += ('\n# 19. The front pair\'s first step from the plateau down to the road carries the support %g mm\n'
+               '#     past the plan (measured); the later landings are planned with the hips that far ahead,\n'
+               '#     and the wave ends where the support so planned passes x2.' % a.down_lead)
 if a.clear_down:
     RULE16 += ('\n# 12b. The first pair landing near the down edge: rule 12\'s band keeps %g mm from '
                'that edge.' % a.clear)
@@ -663,12 +684,17 @@ t += a.Tstart
 tw = t
 NS = int(round((a.xturn + a.xdrift) / (a.D / 4))) if a.walk_slots is None else a.walk_slots
 if a.x2 is not None and a.x2 > 0:
-    NS = next(k for k in range(1000) if k * a.D / 4 > a.x2)
+    # rule 19: the support then stands --down-lead ahead of the slots' plan: the wave ends where
+    # that passes x2
+    NS = next(k for k in range(1000) if k * a.D / 4 + a.down_lead > a.x2)
 # slot start times: the climb's slots until the support is planned past xclimb (rule 8)
 T0, XP = [tw], [0.0]          # slot starts, planned support x there
 DUR = []                      # slot lengths (a slot ends at T0[s] + DUR[s])
 XL = [0.0]                    # planned support x for the landings (rule 13: --Dclimb)
 SETTLE = None                 # rule 13: the slot before which all eight stand --settle s
+WAVE = []                     # per slot: the index of the wave's step (its pair PAIRS[k % 4]) or
+k = 0                         # None, a push slot (rule 18)
+npush = 0
 for s in range(NS):
     tp = a.Tclimb if XP[-1] < a.xclimb else a.Tp if XP[-1] >= a.xcross or not a.Tcross \
         else a.Tcross
@@ -684,8 +710,14 @@ for s in range(NS):
         XL.append(XL[-1] + (a.Dcross if XP[-2] < a.xcross else a.D) / 4)
     else:
         XL.append(XP[-1])
+    # rule 18: before the rear pair's step toward the up edge (rule 13's slot) --push slots in
+    # which no pair steps and every stance foot moves on (the support advances D/4 a slot)
+    push = npush < a.push and k % 4 == 0 and \
+        START + OFF['D'] + XL[-1] + max(RS) + a.over >= EDGES[0] - MARGIN
+    WAVE.append(None if push else k)
+    npush, k = (npush + 1, k) if push else (npush, k + 1)
     gap = 0.0
-    if a.settle > 0 and SETTLE is None and s % 4 == 0 and \
+    if a.settle > 0 and SETTLE is None and not push and WAVE[s] % 4 == 0 and \
             START + OFF['D'] + XL[-1] + max(RS) + a.over >= EDGES[0] - MARGIN:
         SETTLE, gap = s, a.settle
     T0[-1] += gap
@@ -693,6 +725,7 @@ for s in range(NS):
     T0.append(T0[-1] + tp)
 
 
+LEAD = [0.0]      # rule 19: how far the support stands ahead of the plan (mm), once the front pair steps down
 LOW = [None]      # rule 10: the slot boundary from which the walk comes down (None: not yet)
 
 
@@ -733,7 +766,12 @@ for l in OFF:
     pending[l] = 0
 for s in range(NS):
     t0 = T0[s]
-    pair = PAIRS[s % 4]
+    if WAVE[s] is None:
+        comment('# rule 18: %.2f..%.2f s no pair steps, every stance foot moves on (support planned '
+                'at x + %.0f mm)' % (t0, t0 + DUR[s], XP[s]))
+        continue
+    k = WAVE[s]
+    pair = PAIRS[k % 4]
     if a.rise_low is not None and LOW[0] is None and (
             s == a.low_slot if a.low_slot is not None else
             all(state[l][0] == 'G' for l in OFF) and XP[s] > EDGES[1] - START):
@@ -741,8 +779,8 @@ for s in range(NS):
         LOW[0] = s
         comment('# from %.2f s every foot stands on the road: the walk comes down from %g to '
                 '%g mm over %d slots' % (t0, a.rise, a.rise_low, a.nlow))
-    if s % 4 == 0:
-        comment('# cycle %d from %.2f s: support planned at x + %.0f mm' % (s // 4, t0, XP[s]))
+    if k % 4 == 0:
+        comment('# cycle %d from %.2f s: support planned at x + %.0f mm' % (k // 4, t0, XP[s]))
     lift, air, lnd = {}, {}, {}
     for l in pair:
         s0 = pending.pop(l)
@@ -750,15 +788,15 @@ for s in range(NS):
         off = r0 - STEP * (s - s0)
         stance(l, b, r0, s0, s)
         lift[l] = need('A', off)
-        key = (pair, s // 4)
-        r, b2 = plan(l, START + OFF[l] + XL[s + 1], FORCE.get(key), climb=b == 'G')
+        key = (pair, k // 4)
+        r, b2 = plan(l, START + OFF[l] + XL[s + 1] + LEAD[0], FORCE.get(key), climb=b == 'G')
         if key in FH and l == pair[0]:
             # rule 15: a foothold: the plan's offset is the nominal candidate; each candidate's
             # landing with the hips where the plan puts them (the player shifts it by how far
             # the measured support stands from XP[s] at the lift)
             offs, margin = FH[key]
             offs = sorted(set(offs) | {float(r)})
-            FHINFO.append(dict(t=T0[s], legs=pair, cycle=s // 4, xplan=XP[s], margin=margin, r=r,
+            FHINFO.append(dict(t=T0[s], legs=pair, cycle=k // 4, xplan=XP[s], margin=margin, r=r,
                                dur=DUR[s], dx=XP[s + 1] - XP[s],
                                offsets=offs, lands=[lx(START + OFF[l] + XL[s + 1], o)
                                                     for o in offs]))
@@ -768,6 +806,11 @@ for s in range(NS):
         lnd[l] = need(skind(b2, s + 1), r)
         state[l] = [b2, float(r)]
         pending[l] = s + 1
+    if a.down_lead > 0 and not LEAD[0] and pair == PAIRS[3] and b == 'S' and b2 == 'G':
+        # rule 19: the front pair's first step from the plateau down to the road carries the
+        # support on past the plan; the later landings are planned with the hips that far ahead
+        LEAD[0] = a.down_lead
+        comment('# rule 19: from this step down the support stands %g mm ahead of the plan' % a.down_lead)
     if s == SETTLE:
         comment('# rule 13: all eight stand %.2f..%.2f s' % (t0 - a.settle, t0))
     step(t0, DUR[s], pair, lift, air, lnd)

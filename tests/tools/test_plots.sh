@@ -289,6 +289,44 @@ fi
 expect_fail1 "obstacle_gait bad --up-band" "obstacle_gait.py: --up-band takes two numbers" \
   "$PY" "$OG" --up-short 30 --up-band 5,5 -o "$TMP/bad.gait"
 
+# tools/obstacle_gait.py rule 18 (--push): off by default (--push 0 writes the shipped description
+# byte for byte); --push 1 writes one slot, before the rear pair's step toward the up edge, in
+# which no pair lifts (only linear stance moves start in it) and the wave has fewer lifts; a
+# negative --push is one line and exit 1
+lifts() { awk '$1=="move" && length($4)==2 && ($5 ~ /^AM/ || $5=="U0")' "$1"; }
+if "$PY" "$OG" --push 0 -o "$TMP/p0.gait" >"$TMP/out.txt" 2>&1 && cmp -s "$TMP/p0.gait" "$ROOT/gaits/obstacle.gait" &&
+   "$PY" "$OG" --push 1 -o "$TMP/p1.gait" >>"$TMP/out.txt" 2>&1 &&
+   [ "$(grep -c '^# rule 18: ' "$TMP/p1.gait")" -eq 1 ] &&
+   win=$(sed -n 's/^# rule 18: \([0-9.]*\)\.\.\([0-9.]*\) s .*/\1 \2/p' "$TMP/p1.gait") &&
+   [ -n "$win" ] &&
+   [ "$(awk -v w="$win" 'BEGIN{split(w,b," ")} $1=="move" && $2+0>=b[1]+0 && $2+0<b[2]+0 && $NF!="linear"' \
+        "$TMP/p1.gait" | wc -l)" -eq 0 ] &&
+   [ "$(awk -v w="$win" 'BEGIN{split(w,b," ")} $1=="move" && $2+0>=b[1]+0 && $2+0<b[2]+0' \
+        "$TMP/p1.gait" | wc -l)" -gt 0 ] &&
+   [ "$(lifts "$TMP/p1.gait" | wc -l)" -lt "$(lifts "$TMP/p0.gait" | wc -l)" ]; then
+  ok "obstacle_gait rule 18 off by default; --push 1 holds one slot in which no pair lifts"
+else
+  bad "obstacle_gait rule 18 off by default; --push 1 holds one slot in which no pair lifts" "$TMP/out.txt"
+fi
+expect_fail1 "obstacle_gait negative --push" "obstacle_gait.py: --push takes a number of slots" \
+  "$PY" "$OG" --push -1 -o "$TMP/bad.gait"
+# rule 19 (--down-lead): from the front pair's first step down to the road the landings are
+# planned with the hips that far ahead: one such step, later landings further ahead, a shorter wave
+if "$PY" "$OG" --push 1 -o "$TMP/p1.gait" >"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --push 1 --down-lead 60 -o "$TMP/l60.gait" >>"$TMP/out.txt" 2>&1 &&
+   [ "$(grep -c '^# rule 19: ' "$TMP/l60.gait")" -eq 1 ] && [ "$(grep -c '^# rule 19: ' "$TMP/p1.gait")" -eq 0 ] &&
+   [ "$(lifts "$TMP/l60.gait" | wc -l)" -lt "$(lifts "$TMP/p1.gait" | wc -l)" ] &&
+   sed -n '/^# cycle 0 /,/^# rule 19: /p' "$TMP/l60.gait" | grep -v '^# rule 19: ' >"$TMP/l60.head" &&
+   cmp -s "$TMP/l60.head" <(sed -n '/^# cycle 0 /,$p' "$TMP/p1.gait" | head -n "$(wc -l <"$TMP/l60.head")") &&
+   diff <(sed -n '/^# the walk/,$p' "$TMP/p1.gait") <(sed -n '/^# the walk/,$p' "$TMP/l60.gait") |
+     grep -q 'foot to'; then
+  ok "obstacle_gait rule 19 off by default; --down-lead 60 moves the landings after the step down"
+else
+  bad "obstacle_gait rule 19 off by default; --down-lead 60 moves the landings after the step down" "$TMP/out.txt"
+fi
+expect_fail1 "obstacle_gait negative --down-lead" "obstacle_gait.py: --push takes" \
+  "$PY" "$OG" --down-lead -5 -o "$TMP/bad.gait"
+
 # tools/earth_gait.py: the shipped earth gait is the script's description of the values its
 # header names; bad input is one line and exit 1. tools/earth_track.py: a missing run file is
 # one line and exit 1
