@@ -35,25 +35,26 @@
 #define MAXD CSR_STRAIN_MAX_PIECE_DOF
 
 
-/* C = Aᵀ B A (6 x 6; B symmetric or not) */
+/* C = Aᵀ B A (6 x 6) for B symmetric and A = Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (its block A[0..2][3..5]
+ * zero, skipped): the upper triangle, mirrored (C symmetric) */
 static void congruence6(const double A[36], const double B[36], double C[36]) {
   double BA[36];
   for (int r = 0; r < 6; r++) {
     for (int c = 0; c < 6; c++) {
       double t = 0;
-      for (int e = 0; e < 6; e++) {
+      for (int e = c < 3 ? 0 : 3; e < 6; e++) {
         t += B[6 * r + e] * A[6 * e + c];
       }
       BA[6 * r + c] = t;
     }
   }
   for (int a = 0; a < 6; a++) {
-    for (int c = 0; c < 6; c++) {
+    for (int c = a; c < 6; c++) {
       double t = 0;
-      for (int r = 0; r < 6; r++) {
+      for (int r = a < 3 ? 0 : 3; r < 6; r++) {
         t += A[6 * r + a] * BA[6 * r + c];
       }
-      C[6 * a + c] = t;
+      C[6 * a + c] = C[6 * c + a] = t;
     }
   }
 }
@@ -96,10 +97,11 @@ static void pieceSums(const csrStrainModel* m, const csrStrainData* d, int k, do
         MA[6 * r + a] = Mp[r] * A[6 * r + a];
       }
     }
+    /* I += Aᵀ M_p A: its upper triangle (mirrored below), A's zero block skipped */
     for (int a = 0; a < 6; a++) {
-      for (int b = 0; b < 6; b++) {
+      for (int b = a; b < 6; b++) {
         double t = 0;
-        for (int r = 0; r < 6; r++) {
+        for (int r = a < 3 ? 0 : 3; r < 6; r++) {
           t += A[6 * r + a] * MA[6 * r + b];
         }
         I[6 * a + b] += t;
@@ -124,6 +126,11 @@ static void pieceSums(const csrStrainModel* m, const csrStrainData* d, int k, do
       D[nd * i + j] = D[nd * j + i];
     }
   }
+  for (int a = 0; a < 6; a++) {
+    for (int b = 0; b < a; b++) {
+      I[6 * a + b] = I[6 * b + a];
+    }
+  }
 }
 
 
@@ -144,9 +151,11 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
   memset(wh, 0, sizeof wh);
   memset(Ic, 0, sizeof Ic);
   double F[6 * MAXD], D[MAXD * MAXD], ZL[6 * MAXD], IL[6 * MAXD], Zsn[6 * MAXD];
+  double Ak[CSR_ROD_MAX_PIECES][36]; /* each piece's Ad(g_se⁻¹), for the forward pass */
   for (int k = m->npiece - 1; k >= 0; k--) {
     const int s = m->pt0[k], e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
-    double I[36], A[36], Zs[36], Ics[36];
+    double I[36], Zs[36], Ics[36];
+    double* A = Ak[k];
     pieceSums(m, d, k, I, F, D, A);
     congruence6(A, Zh, Zs);
     congruence6(A, Ic, Ics);
@@ -250,9 +259,9 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
     T[7 * c] = 1;
   }
   for (int k = 0; k < m->npiece; k++) {
-    const int s = m->pt0[k], e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
-    double A[36], Te[36], te[6];
-    relAd(d, s, e, A);
+    const int e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
+    const double* A = Ak[k];
+    double Te[36], te[6];
     for (int r = 0; r < 6; r++) {
       csr_strainRows6_(Te + 6 * r, T, 6, A + 6 * r, 6, 0);
       double u = 0;

@@ -469,6 +469,25 @@ static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, con
 }
 
 
+/* the step's start kinematics (at q0, with J at every point) into d->R0, x0, J0, the current
+ * kinematics (d->R, x, J, kin_valid) kept */
+static void startKinematics(const csrStrainModel* m, csrStrainData* d) {
+  const int n = m->n, valid = d->kin_valid;
+  double* t;
+  t = d->R, d->R = d->R0, d->R0 = t;
+  t = d->x, d->x = d->x0, d->x0 = t;
+  t = d->J, d->J = d->J0, d->J0 = t;
+  memcpy(d->q_save, d->q, (size_t)n * sizeof(double));
+  memcpy(d->q, d->q0, (size_t)n * sizeof(double));
+  csr_strainKinematics_(m, d, 1);
+  memcpy(d->q, d->q_save, (size_t)n * sizeof(double));
+  t = d->R, d->R = d->R0, d->R0 = t;
+  t = d->x, d->x = d->x0, d->x0 = t;
+  t = d->J, d->J = d->J0, d->J0 = t;
+  d->kin_valid = valid;
+}
+
+
 /* 1: a backward-Euler step's start is condensed by the articulated recursion when its leg
  * touches nothing (robot_strain.h artic; the dense factor stays where keep_matrix keeps it) */
 static int articStep(const csrStrainModel* m) {
@@ -518,8 +537,8 @@ static int factorAndCondense(const csrStrainModel* m, csrStrainData* d, double h
 
 /* A backward-Euler step's start (articStep): the contact linearised first (into zeroed
  * blocks); a leg that touches nothing is condensed by the recursion (robot_strain_artic.c,
- * no n x n matrix), one that touches by the dense factor of W_M plus the contact's part. The
- * start's kinematics are kept (d->R0, x0, J0) for an iterate that must refactor. */
+ * no n x n matrix), one that touches by the dense factor of W_M plus the contact's part (an
+ * iterate that must refactor forms W_M then: condense). */
 static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
                          double rho[6]) {
   const int n = m->n;
@@ -562,9 +581,6 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, do
   }
   d->chol = 0;
   d->nfactor++;
-  memcpy(d->R0, d->R, (size_t)9 * m->np * sizeof(double));
-  memcpy(d->x0, d->x, (size_t)3 * m->np * sizeof(double));
-  memcpy(d->J0, d->J, (size_t)6 * m->np * n * sizeof(double));
   memcpy(d->Zp, Z, sizeof d->Zp);
   memcpy(d->rhop, rho, sizeof d->rhop);
   d->w_step = 1;
@@ -620,8 +636,13 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   if (!d->wm_step) {
     /* a step that kept an earlier factor (keep_matrix), or whose start was condensed by the
      * recursion (artic), refactors: W_M at the start's kinematics, as the dense prepare would
-     * have assembled it */
+     * have assembled it. keep_matrix keeps them (d->R0, x0, J0); after the recursion they are
+     * formed again at q0 into those arrays (a function of q alone: the same bits), the
+     * iterate's kinematics left in place */
     const double tau = m->rpar.damping_time;
+    if (!m->par.keep_matrix) {
+      startKinematics(m, d);
+    }
     csr_strainInertiaFrom_(m, d, d->R0, d->x0, d->J0);
     for (int j = 0; j < n; j++) {
       d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
