@@ -38,22 +38,28 @@
 /* C = Aᵀ B A (6 x 6) for B symmetric and A = Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (its block A[0..2][3..5]
  * zero, skipped): the upper triangle, mirrored (C symmetric) */
 static void congruence6(const double A[36], const double B[36], double C[36]) {
+  /* constant trip counts (the compiler unrolls them) */
   double BA[36];
   for (int r = 0; r < 6; r++) {
-    for (int c = 0; c < 6; c++) {
-      double t = 0;
-      for (int e = c < 3 ? 0 : 3; e < 6; e++) {
-        t += B[6 * r + e] * A[6 * e + c];
-      }
-      BA[6 * r + c] = t;
+    const double* b = B + 6 * r;
+    for (int c = 0; c < 3; c++) {
+      BA[6 * r + c] = b[0] * A[c] + b[1] * A[6 + c] + b[2] * A[12 + c] + b[3] * A[18 + c] +
+                      b[4] * A[24 + c] + b[5] * A[30 + c];
+    }
+    for (int c = 3; c < 6; c++) {
+      BA[6 * r + c] = b[3] * A[18 + c] + b[4] * A[24 + c] + b[5] * A[30 + c];
     }
   }
-  for (int a = 0; a < 6; a++) {
+  for (int a = 0; a < 3; a++) {
     for (int c = a; c < 6; c++) {
-      double t = 0;
-      for (int r = a < 3 ? 0 : 3; r < 6; r++) {
-        t += A[6 * r + a] * BA[6 * r + c];
-      }
+      const double t = A[a] * BA[c] + A[6 + a] * BA[6 + c] + A[12 + a] * BA[12 + c] +
+                       A[18 + a] * BA[18 + c] + A[24 + a] * BA[24 + c] + A[30 + a] * BA[30 + c];
+      C[6 * a + c] = C[6 * c + a] = t;
+    }
+  }
+  for (int a = 3; a < 6; a++) {
+    for (int c = a; c < 6; c++) {
+      const double t = A[18 + a] * BA[18 + c] + A[24 + a] * BA[24 + c] + A[30 + a] * BA[30 + c];
       C[6 * a + c] = C[6 * c + a] = t;
     }
   }
@@ -98,13 +104,15 @@ static void pieceSums(const csrStrainModel* m, const csrStrainData* d, int k, do
       }
     }
     /* I += Aᵀ M_p A: its upper triangle (mirrored below), A's zero block skipped */
-    for (int a = 0; a < 6; a++) {
+    for (int a = 0; a < 3; a++) {
       for (int b = a; b < 6; b++) {
-        double t = 0;
-        for (int r = a < 3 ? 0 : 3; r < 6; r++) {
-          t += A[6 * r + a] * MA[6 * r + b];
-        }
-        I[6 * a + b] += t;
+        I[6 * a + b] += A[a] * MA[b] + A[6 + a] * MA[6 + b] + A[12 + a] * MA[12 + b] +
+                        A[18 + a] * MA[18 + b] + A[24 + a] * MA[24 + b] + A[30 + a] * MA[30 + b];
+      }
+    }
+    for (int a = 3; a < 6; a++) {
+      for (int b = a; b < 6; b++) {
+        I[6 * a + b] += A[18 + a] * MA[18 + b] + A[24 + a] * MA[24 + b] + A[30 + a] * MA[30 + b];
       }
     }
     if (nd == 0) {
