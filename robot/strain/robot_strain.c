@@ -82,6 +82,9 @@ csrStrainParams csr_strainDefaultParams(void) {
    * strain_leg.md, "A kept iteration matrix") */
   p.keep_matrix = 0;
   p.keep_strain = 0.05;
+  /* the recursion's condensation of a leg without contact (docs/notes/strain_leg.md, "The
+   * articulated condensation") */
+  p.artic = 1;
   /* the pressures as given until a resolution is chosen by measurement */
   p.cal_quantum = 0;
   return p;
@@ -133,13 +136,13 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       (par.step_refresh != 0 && par.step_refresh != 1) ||
       (par.active_set != 0 && par.active_set != 1) ||
       (par.friction_tangent != 0 && par.friction_tangent != 1) ||
-      (par.keep_matrix != 0 && par.keep_matrix != 1) ||
+      (par.keep_matrix != 0 && par.keep_matrix != 1) || (par.artic != 0 && par.artic != 1) ||
       (par.keep_matrix && par.step_order != 1) || isnan(par.keep_strain) ||
       !(par.cal_quantum >= 0) || !isfinite(par.cal_quantum)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
                 "static_max_iter >= 1, step_order 1 or 2, step_refresh, active_set and "
-                "friction_tangent 0 or 1, keep_matrix 0 or 1 (1 with step_order 1 only), "
+                "friction_tangent 0 or 1, keep_matrix 0 or 1 (1 with step_order 1 only), artic 0 or 1, "
                 "keep_strain not NaN", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
                 CSR_STRAIN_MAX_SUB);
     return NULL;

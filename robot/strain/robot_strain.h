@@ -117,6 +117,11 @@ typedef struct csrStrainParams_ {
                           the factorisation (rad or strain over its piece, the measure of
                           csr_strainUpdate's change without h); < 0: every step (the
                           matrix-free residual with a fresh factor) */
+  int artic;           /* 1: a backward-Euler step's first pass of a leg that touches nothing
+                          condenses onto the base by the articulated recursion over the pieces
+                          (robot_strain_artic.c: no n x n inertia, no dense factor); 0: the
+                          dense assembly and factor. The same step to round-off; with
+                          keep_matrix (which keeps the dense factor) the dense path */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */

@@ -469,6 +469,125 @@ static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, con
 }
 
 
+/* the step's start kinematics (at q0, with J at every point) into d->R0, x0, J0, the current
+ * kinematics (d->R, x, J, kin_valid) kept */
+static void startKinematics(const csrStrainModel* m, csrStrainData* d) {
+  const int n = m->n, valid = d->kin_valid;
+  double* t;
+  t = d->R, d->R = d->R0, d->R0 = t;
+  t = d->x, d->x = d->x0, d->x0 = t;
+  t = d->J, d->J = d->J0, d->J0 = t;
+  memcpy(d->q_save, d->q, (size_t)n * sizeof(double));
+  memcpy(d->q, d->q0, (size_t)n * sizeof(double));
+  csr_strainKinematics_(m, d, 1);
+  memcpy(d->q, d->q_save, (size_t)n * sizeof(double));
+  t = d->R, d->R = d->R0, d->R0 = t;
+  t = d->x, d->x = d->x0, d->x0 = t;
+  t = d->J, d->J = d->J0, d->J0 = t;
+  d->kin_valid = valid;
+}
+
+
+/* 1: a backward-Euler step's start is condensed by the articulated recursion when its leg
+ * touches nothing (robot_strain.h artic; the dense factor stays where keep_matrix keeps it) */
+static int articStep(const csrStrainModel* m) {
+  return m->par.artic && m->par.step_order == 1 && !m->par.keep_matrix;
+}
+
+
+/* The dense W_ll, W_lb, W_bl, W_bb, r_l, r_b of the step's start: W_M (assembled here, at the
+ * start's kinematics, if the prepare left it out) plus the contact's part, which
+ * condenseStart linearised into zeroed blocks (cW*: d->Wll, d->Wlb, d->Wbl, Wbb, rb, d->rl
+ * hold the contact's alone). Added entry by entry: the bits of adding the contact into W_M
+ * directly while one shape touches (its terms enter each entry once). */
+static void denseStart(const csrStrainModel* m, csrStrainData* d, double h, double Wbb[36],
+                       double rb[6]) {
+  const int n = m->n;
+  if (!d->wm_step) {
+    const double tau = m->rpar.damping_time;
+    csr_strainInertiaFrom_(m, d, d->R, d->x, d->J);
+    for (int j = 0; j < n; j++) {
+      d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+    }
+    d->wm_step = 1;
+  }
+  for (size_t i = 0; i < (size_t)n * n; i++) {
+    d->Wll[i] = d->WMll[i] + d->Wll[i];
+  }
+  for (int j = 0; j < n; j++) {
+    for (int c = 0; c < 6; c++) {
+      d->Wlb[6 * j + c] = d->WMlb[6 * j + c] + d->Wlb[6 * j + c];
+      d->Wbl[n * c + j] = d->WMlb[6 * j + c] + d->Wbl[n * c + j];
+    }
+    d->rl[j] = d->rMl[j] + d->rl[j];
+  }
+  for (int i = 0; i < 36; i++) {
+    Wbb[i] = d->WMbb[i] + Wbb[i];
+  }
+  for (int c = 0; c < 6; c++) {
+    rb[c] = d->rMb[c] + rb[c];
+  }
+}
+
+
+static int factorAndCondense(const csrStrainModel* m, csrStrainData* d, double h,
+                             const double* du, double Wbb[36], double rb[6], double Z[36],
+                             double rho[6]);
+
+
+/* A backward-Euler step's start (articStep): the contact linearised first (into zeroed
+ * blocks); a leg that touches nothing is condensed by the recursion (robot_strain_artic.c,
+ * no n x n matrix), one that touches by the dense factor of W_M plus the contact's part (an
+ * iterate that must refactor forms W_M then: condense). */
+static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+                         double rho[6]) {
+  const int n = m->n;
+  double Wbb[36], rb[6];
+  memset(Wbb, 0, sizeof Wbb);
+  memset(rb, 0, sizeof rb);
+  memset(d->Wll, 0, (size_t)n * n * sizeof(double));
+  memset(d->Wlb, 0, (size_t)n * 6 * sizeof(double));
+  memset(d->Wbl, 0, (size_t)n * 6 * sizeof(double));
+  memset(d->rl, 0, (size_t)n * sizeof(double));
+  d->ntouch = 0;
+  if (m->soft) {
+    int rc = csr_strainContactAssemble_(m, d, h, NULL, Wbb, rb, d->Gs);
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+  }
+  if (d->ntouch > 0 || d->wm_step) {
+    denseStart(m, d, h, Wbb, rb);
+    return factorAndCondense(m, d, h, NULL, Wbb, rb, Z, rho);
+  }
+  if (csr_strainCondenseArtic_(m, d, h, Z, rho)) {
+    /* a piece's block not positive definite: the dense path decides (its LU) */
+    denseStart(m, d, h, Wbb, rb);
+    return factorAndCondense(m, d, h, NULL, Wbb, rb, Z, rho);
+  }
+  d->lu_plain = 1;
+  d->kf = 0;
+  memcpy(d->Wlb, d->WMlb, (size_t)n * 6 * sizeof(double));
+  for (int j = 0; j < n; j++) {
+    for (int c = 0; c < 6; c++) {
+      d->Wbl[n * c + j] = d->WMlb[6 * j + c];
+    }
+  }
+  memcpy(d->rl, d->rMl, (size_t)n * sizeof(double));
+  for (int j = 0; j < n; j++) {
+    if (!isfinite(d->rl[j])) {
+      return 1;
+    }
+  }
+  d->chol = 0;
+  d->nfactor++;
+  memcpy(d->Zp, Z, sizeof d->Zp);
+  memcpy(d->rhop, rho, sizeof d->rhop);
+  d->w_step = 1;
+  return 0;
+}
+
+
 /* W = W_M + the contact's linearisation at the current kinematics and point twists (du NULL:
  * the step's start, predicted; else the iterate Δu = du), factored and condensed: Z, ρ.
  * An iterate keeps the last iteration matrix (condenseKept) while every contact slot is in the
@@ -511,10 +630,19 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   }
   d->nreuse = 0;
   d->fresh = 0;
-  if (m->par.keep_matrix && !d->wm_step) {
-    /* a step that kept an earlier factor refactors: W_M at the start's kinematics, as its
-     * prepare would have assembled it */
+  if (!du && articStep(m)) {
+    return condenseStart(m, d, h, Z, rho);
+  }
+  if (!d->wm_step) {
+    /* a step that kept an earlier factor (keep_matrix), or whose start was condensed by the
+     * recursion (artic), refactors: W_M at the start's kinematics, as the dense prepare would
+     * have assembled it. keep_matrix keeps them (d->R0, x0, J0); after the recursion they are
+     * formed again at q0 into those arrays (a function of q alone: the same bits), the
+     * iterate's kinematics left in place */
     const double tau = m->rpar.damping_time;
+    if (!m->par.keep_matrix) {
+      startKinematics(m, d);
+    }
     csr_strainInertiaFrom_(m, d, d->R0, d->x0, d->J0);
     for (int j = 0; j < n; j++) {
       d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
@@ -538,6 +666,16 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
       return rc > 0 ? rc : 1;
     }
   }
+  return factorAndCondense(m, d, h, du, Wbb, rb, Z, rho);
+}
+
+
+/* condense's dense part: W's blocks (d->Wll, d->Wlb, d->Wbl, Wbb) and h r (d->rl, rb) with the
+ * contact's linearisation in them, factored and condensed onto the base: Z, ρ */
+static int factorAndCondense(const csrStrainModel* m, csrStrainData* d, double h,
+                             const double* du, double Wbb[36], double rb[6], double Z[36],
+                             double rho[6]) {
+  const int n = m->n;
   d->lu_plain = d->ntouch == 0;
   if (du) {
     momentumRows(m, d, h, du, Wbb, rb);
@@ -549,7 +687,7 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   }
   if (!d->lu_plain || m->par.keep_matrix) {
     memcpy(d->Wu, d->Wll, (size_t)n * n * sizeof(double));
-    memcpy(d->Wbbp, Wbb, sizeof Wbb);
+    memcpy(d->Wbbp, Wbb, 36 * sizeof(double));
   }
   d->kf = 0;
   /* W_ll without contact is W_M's, symmetric positive definite (mass plus stiffness): its
@@ -826,7 +964,7 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     d->he = h;
     d->nstep++;
     int keep = m->par.keep_matrix && d->kf && d->kf_h == h && keptStrains(m, d);
-    rc = assemble(m, d, h, 0, !keep);
+    rc = assemble(m, d, h, 0, !keep && !articStep(m));
     if (rc == 0 && m->par.keep_matrix) {
       /* the start's kinematics for the residual's M(q0) Δu at later passes (the iterates
        * overwrite d->R, d->x, d->J) and for a refactorisation at an iterate: a kept step

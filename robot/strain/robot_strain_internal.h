@@ -301,6 +301,14 @@ void csr_strainProject_(const csrStrainModel* m, const double* q, const double* 
 /* G_p = [Ad(g_p⁻¹), J_p] of point p (6 x (6 + n), row-major) at the current kinematics */
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
 
+/* ---- the articulated condensation (robot_strain_artic.c) ---- */
+/* Z, ρ, d->X, d->y of the step's W without contact (W_M, step h) by the recursion over the
+ * pieces, at the current kinematics (with J at every point), from d->rMl, d->rMb, d->Kd;
+ * d->WMbb, d->WMlb filled from the composite inertias (d->WMll not: the dense path forms it
+ * when it needs it). 0 ok, 1 a piece's block not positive definite or ρ not finite */
+int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+                             double rho[6]);
+
 /* ---- inertia (robot_strain_inertia.c; the step in robot_strain_dyn.c) ---- */
 /* V = G_p (V_b, η) at point p of the current kinematics (d->R, d->x, d->J), body frame */
 void csr_strainPointTwist_(const csrStrainModel* m, const csrStrainData* d, int p, const double Vb[6],

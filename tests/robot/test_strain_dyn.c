@@ -15,6 +15,11 @@
  *  - repeat_and_restore_bit_identical: the same steps twice, and from a saved state and base,
  *    give the same bits.
  *  - bad_step_refused: h <= 0 is refused and changes nothing.
+ *  - articulated_condensation_is_the_dense_one: a leg on a free base swung by its chambers (no
+ *    contact), at every step the same state prepared by the recursion over the pieces (artic
+ *    1, robot_strain_artic.c) and by the dense factor (artic 0): the base's Z and ρ, and the
+ *    leg's state after the same base move ΔV (its rates η = y - X ΔV), agree to round-off
+ *    (1e-9 of their size); at 2 and at 3 bending modes, 2 and 4 sub-intervals.
  *  - step_order_observed: the leg, base held, swung by a smooth pressure pulse for 0.3 s and
  *    stepped with Newton passes to convergence at h = 4, 2, 1, 0.5 ms: the order observed from
  *    the tip's successive differences is 1 for backward Euler (step_order 1, linearised at the
@@ -573,6 +578,114 @@ static void bad_step_refused(void) {
 }
 
 
+/* the largest |a - b| over the largest |a| of n values */
+static double relDiff(const double* a, const double* b, int n) {
+  double dmax = 0, amax = 0;
+  for (int i = 0; i < n; i++) {
+    dmax = fmax(dmax, fabs(a[i] - b[i]));
+    amax = fmax(amax, fabs(a[i]));
+  }
+  return amax > 0 ? dmax / amax : dmax;
+}
+
+
+static void articulated_condensation_is_the_dense_one(void) {
+  LegCal c;
+  if (!openCal(&c)) {
+    return;
+  }
+  const int bends[2] = {1, 2}, subs[2] = {2, 4};
+  for (int cfg = 0; cfg < 2; cfg++) {
+    csrStrainParams sa = csr_strainDefaultParams(), sd;
+    sa.bend_order = bends[cfg];
+    sa.nsub = subs[cfg];
+    sa.artic = 1;
+    sd = sa;
+    sd.artic = 0;
+    csrStrainModel* ma = legModelParams(&c, &sa);
+    csrStrainModel* md = legModelParams(&c, &sd);
+    csError err;
+    csrStrainData* da = ma ? csr_strainDataCreate(ma, &err) : NULL;
+    csrStrainData* dd = md ? csr_strainDataCreate(md, &err) : NULL;
+    if (da && dd) {
+      const int ns = csr_strainStateSize(ma);
+      double* ya = calloc((size_t)ns, sizeof(double));
+      double* yd = calloc((size_t)ns, sizeof(double));
+      FreeBase B;
+      memset(&B, 0, sizeof B);
+      B.mb = 5e-5;
+      B.Ic[0] = B.Ic[1] = B.Ic[2] = 100e-5;
+      const double F[9] = {1, 0, 0, 0, 0, -1, 0, 1, 0};
+      memcpy(B.R, F, sizeof F);
+      double wz = 0, wr = 0, wy = 0, zmax = 0;
+      const double h = 5e-3;
+      for (int i = 0; i < 80 && ya && yd; i++) {
+        double p[12];
+        swing(0.02 * (i + 1), p);
+        CS_EXPECT(csr_strainActuate(ma, da, p, &err) == 0);
+        CS_EXPECT(csr_strainActuate(md, dd, p, &err) == 0);
+        csr_strainGetState(ma, da, ya);
+        CS_EXPECT(csr_strainSetState(md, dd, ya) == 0);
+        csrBaseState b;
+        baseState(&B, &b);
+        csr_strainSetBase(ma, da, &b);
+        csr_strainSetBase(md, dd, &b);
+        double Za[36], ra[6], Zd[36], rd[6];
+        CS_EXPECT(csr_strainPrepare(ma, da, h, Za, ra) == 0);
+        CS_EXPECT(csr_strainPrepare(md, dd, h, Zd, rd) == 0);
+        wz = fmax(wz, relDiff(Zd, Za, 36));
+        wr = fmax(wr, relDiff(rd, ra, 6));
+        for (int k = 0; k < 36; k++) {
+          zmax = fmax(zmax, fabs(Zd[k]));
+        }
+        /* the base's move of the coupled step, the same for both */
+        double W[36], r[6];
+        baseOwn(&B, W, r);
+        for (int k = 0; k < 36; k++) {
+          W[k] += Zd[k];
+        }
+        for (int a = 0; a < 6; a++) {
+          r[a] = h * r[a] + rd[a];
+        }
+        CS_EXPECT(csu_solve6(W, r) == 0);
+        for (int a = 0; a < 6; a++) {
+          B.V[a] += r[a];
+        }
+        double Om[6], Re[9], pe[3], Rn[9], t[3];
+        for (int a = 0; a < 6; a++) {
+          Om[a] = h * B.V[a];
+        }
+        csr_strainExp_(Om, Re, pe);
+        csu_mulMat3(Rn, B.R, Re);
+        csu_mulMatVec3(t, B.R, pe);
+        csu_add3(B.x, B.x, t);
+        memcpy(B.R, Rn, sizeof Rn);
+        baseState(&B, &b);
+        CS_EXPECT(csr_strainFinish(ma, da, r, &b) == 0);
+        CS_EXPECT(csr_strainFinish(md, dd, r, &b) == 0);
+        csr_strainGetState(ma, da, ya);
+        csr_strainGetState(md, dd, yd);
+        /* q and η (the contact history and the rest are not the condensation's) */
+        wy = fmax(wy, relDiff(yd, ya, 2 * ma->n));
+      }
+      printf("  bend order %d, sub %d (n %d): Z %.2e, rho %.2e, the leg's q and rates %.2e "
+             "(relative; |Z| up to %.3g)\n", bends[cfg], subs[cfg], ma->n, wz, wr, wy, zmax);
+      CS_EXPECT(zmax > 0);
+      CS_EXPECT(wz < 1e-9);
+      CS_EXPECT(wr < 1e-9);
+      CS_EXPECT(wy < 1e-9);
+      free(ya);
+      free(yd);
+    }
+    csr_strainDataDestroy(da);
+    csr_strainDataDestroy(dd);
+    csr_strainModelDestroy(ma);
+    csr_strainModelDestroy(md);
+  }
+  csr_calibrationClose(c.cal);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(bending_frequency_stepped);
@@ -580,6 +693,7 @@ int main(int argc, char** argv) {
   CS_RUN(free_floating_momentum);
   CS_RUN(repeat_and_restore_bit_identical);
   CS_RUN(bad_step_refused);
+  CS_RUN(articulated_condensation_is_the_dense_one);
   CS_RUN(step_order_observed);
   return cs_testSummary();
 }

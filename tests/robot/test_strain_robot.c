@@ -21,8 +21,10 @@
  *    the anchors' secant (csrStrainParams.friction_tangent): the same converged steps.
  *  - slot_trust_same_step: the same with the tangent and the passes' slot trust region
  *    (csrStrainParams.slot_trust): the globalisation changes the path, not the step.
+ *  - artic_same_step: the swing legs' step start by the articulated recursion (artic 1, the
+ *    default) is the dense path's step (artic 0) to round-off, in the same passes.
  *  - kept_fresh_factor_same_step: the kept matrix's bookkeeping (csrStrainParams.keep_matrix)
- *    with a fresh factor every step is today's step bit for bit, in the same passes.
+ *    with a fresh factor every step is the dense path's step bit for bit, in the same passes.
  *  - kept_matrix_across_steps: the factor kept across steps (keep_matrix 1) runs 0.4 s from
  *    standing to the default's support position within the passes' tolerance, with fewer
  *    factorisations. */
@@ -348,17 +350,69 @@ static StrainRobot* keptRobot(double mu, double ks) {
 }
 
 
+/* the harness robot on the dense path (artic 0: every leg's step start by the assembled
+ * inertia and its factor) */
+static StrainRobot* denseRobot(double mu) {
+  StrainRobot* b = calloc(1, sizeof *b);
+  csError err;
+  cs_errorClear(&err);
+  csrStrainParams sp = csr_strainDefaultParams();
+  sp.bend_order = 2;
+  sp.artic = 0;
+  if (!b || strainRobotCreateParams(b, mu, &sp, &err) != 0) {
+    fprintf(stderr, "  %s\n", err.msg);
+    free(b);
+    return NULL;
+  }
+  return b;
+}
+
+
+/* The swing legs' step start condensed by the articulated recursion (artic 1, the default)
+ * is the dense path's step to round-off: from the same state, 60 steps of 5 ms from standing
+ * (touch-down, the first strides) converge in the same passes to states within 1e-9 */
+static void artic_same_step(void) {
+  csgGait* g = NULL;
+  StrainRobot* a = denseRobot(0.8);
+  StrainRobot* b = robotOn(0.8, &g);
+  if (!a || !b) {
+    CS_EXPECT(0);
+    return;
+  }
+  const SameSteps o = sameSteps(a, b, g, 0, 60, 5e-3);
+  printf("  60 steps of 5 ms from standing: %ld converged in one piece both ways (%ld only "
+         "dense, %ld only artic); passes %ld against %ld; largest difference: support "
+         "position %.2e mm, any state entry %.2e (relative to 1 + |entry|)\n", o.both,
+         o.only_ref, o.only_alt, o.p_ref, o.p_alt, o.dx, o.dmax);
+  CS_EXPECT(o.both >= 55);
+  CS_EXPECT(o.only_ref == 0 && o.only_alt == 0);
+  CS_EXPECT(o.p_ref == o.p_alt);
+  CS_EXPECT(o.dx < 1e-9);
+  CS_EXPECT(o.dmax < 1e-9);
+  strainRobotDestroy(a);
+  strainRobotDestroy(b);
+  free(a);
+  free(b);
+  csg_gaitDestroy(g);
+}
+
+
 /* The kept matrix's bookkeeping (csrStrainParams.keep_matrix) with a fresh factor every step
- * (keep_strain < 0) is today's step bit for bit: from the same state (sameSteps: every step
- * restarts from the reference's), 60 steps of 5 ms from standing (touch-down, the gait's
+ * (keep_strain < 0) is the dense path's step (artic 0) bit for bit: from the same state
+ * (sameSteps: every step restarts from the reference's), 60 steps of 5 ms from standing (touch-down, the gait's
  * first strides) converge in the same passes to the same states. (The residual's matrix-free
  * inertia product enters only a step that kept an earlier factor and did not assemble W_M:
  * test_strain_model inertia_product_matches_assembled checks it against W_M to round-off,
  * kept_matrix_across_steps below the steps it makes.) */
 static void kept_fresh_factor_same_step(void) {
   csgGait* g = NULL;
-  StrainRobot* a = robotOn(0.8, &g);
+  StrainRobot* r = robotOn(0.8, &g); /* the gait */
+  StrainRobot* a = denseRobot(0.8);
   StrainRobot* b = keptRobot(0.8, -1.0);
+  if (r) {
+    strainRobotDestroy(r);
+    free(r);
+  }
   if (!a || !b) {
     CS_EXPECT(0);
     return;
@@ -443,6 +497,7 @@ int main(int argc, char** argv) {
   CS_RUN(active_set_same_step);
   CS_RUN(friction_tangent_same_step);
   CS_RUN(slot_trust_same_step);
+  CS_RUN(artic_same_step);
   CS_RUN(kept_fresh_factor_same_step);
   CS_RUN(kept_matrix_across_steps);
   return cs_testSummary();

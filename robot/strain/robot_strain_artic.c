@@ -1,0 +1,315 @@
+/* robot_strain_artic.c: the condensation of a leg without contact onto its base by the
+ * articulated recursion over its pieces (robot_strain_internal.h csr_strainCondenseArtic_).
+ *
+ * The step's matrix without contact (robot_strain_dyn.c, Step) is
+ *   W = Σ_p G_pᵀ M_p G_p + (h τ_d + h²) [0 0; 0 K],   G_p = [Ad(g_p⁻¹), J_p],
+ * and the dense path assembles its n x n leg block, factors it and solves six columns for
+ * Z = W_bb - W_bl W_ll⁻¹ W_lb. The leg is a chain of pieces, and a point p of piece k (start
+ * point s, end point e) moves with the unknowns before the piece as s does and with its own
+ * (nd of them) through L_p = J_p[:, own]:
+ *   V_p = Ad(g_sp⁻¹) V_s + L_p η_k,   and every point past e as e does.
+ * So W is block-structured along the chain, and eliminating the pieces' unknowns from the tip
+ * to the hip (Featherstone's articulated-body inertia, here with the strains' stiffness and
+ * damping on each piece's diagonal block) needs, per piece, 6 x 6 transports and one nd x nd
+ * factor. With Ẑ, ŵ the articulated impedance and wrench of everything past e (e's body frame)
+ * and A = Ad(g_se⁻¹):
+ *   Z_ss = I_k + Aᵀ Ẑ A,   Z_sη = F_k + Aᵀ Ẑ L_e,   Z_ηη = D_k + L_eᵀ Ẑ L_e + (h τ_d + h²) K_k,
+ *   r_k = h r_l[own] - L_eᵀ ŵ,   η_k = Z_ηη⁻¹ (r_k - Z_sηᵀ V_s),
+ *   Ẑ_s = Z_ss - Z_sη Z_ηη⁻¹ Z_sηᵀ,   ŵ_s = Aᵀ ŵ + Z_sη Z_ηη⁻¹ r_k,
+ * with I_k = Σ_p Aᵀ_sp M_p A_sp, F_k = Σ_p Aᵀ_sp M_p L_p, D_k = Σ_p L_pᵀ M_p L_p over the
+ * piece's points (the dense path's composite quantities, robot_strain_inertia.c). At the hip
+ * (point 0, Ad = I): Z = diag(M_0) + Ẑ_0, ρ = h r_b - ŵ_0. The back-substitution for the
+ * rates, η = y - X ΔV, runs forward: V_s = T ΔV + t (T = I, t = 0 at the hip), X_k = Y_k T,
+ * y_k = Z_ηη⁻¹ r_k - Y_k t with Y_k = Z_ηη⁻¹ Z_sηᵀ, then V_e = A V_s + L_e η_k.
+ * The same Z, ρ, X, y as the dense factor's to round-off (W_ll is symmetric positive definite
+ * here: every Z_ηη is a principal Schur complement of it, so positive definite too), for
+ * O(Σ_k (nd_k³ + 36 nd_k + nd_k² np_k)) instead of the dense assembly's O(n²) per piece and
+ * the factor's n³/6. The base's blocks W_bb, W_lb (the momentum rows and the plain iterates
+ * use them) come from the composite inertias Ic of the same sweep: W_lb[own] = (F_k + Aᵀ Ic_e
+ * L_e)ᵀ Ad(g_s⁻¹), W_bb = diag(M_0) + Ic_0. */
+#include <math.h>
+#include <string.h>
+
+#include "robot_strain_internal.h"
+
+#define MAXD CSR_STRAIN_MAX_PIECE_DOF
+
+
+/* C = Aᵀ B A (6 x 6) for B symmetric and A = Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (its block A[0..2][3..5]
+ * zero, skipped): the upper triangle, mirrored (C symmetric) */
+static void congruence6(const double A[36], const double B[36], double C[36]) {
+  /* constant trip counts (the compiler unrolls them) */
+  double BA[36];
+  for (int r = 0; r < 6; r++) {
+    const double* b = B + 6 * r;
+    for (int c = 0; c < 3; c++) {
+      BA[6 * r + c] = b[0] * A[c] + b[1] * A[6 + c] + b[2] * A[12 + c] + b[3] * A[18 + c] +
+                      b[4] * A[24 + c] + b[5] * A[30 + c];
+    }
+    for (int c = 3; c < 6; c++) {
+      BA[6 * r + c] = b[3] * A[18 + c] + b[4] * A[24 + c] + b[5] * A[30 + c];
+    }
+  }
+  for (int a = 0; a < 3; a++) {
+    for (int c = a; c < 6; c++) {
+      const double t = A[a] * BA[c] + A[6 + a] * BA[6 + c] + A[12 + a] * BA[12 + c] +
+                       A[18 + a] * BA[18 + c] + A[24 + a] * BA[24 + c] + A[30 + a] * BA[30 + c];
+      C[6 * a + c] = C[6 * c + a] = t;
+    }
+  }
+  for (int a = 3; a < 6; a++) {
+    for (int c = a; c < 6; c++) {
+      const double t = A[18 + a] * BA[18 + c] + A[24 + a] * BA[24 + c] + A[30 + a] * BA[30 + c];
+      C[6 * a + c] = C[6 * c + a] = t;
+    }
+  }
+}
+
+
+/* Ad(g_sp⁻¹) of point p relative to point s (the poses relative to the hip) */
+static void relAd(const csrStrainData* d, int s, int p, double A[36]) {
+  const double* Rs = d->R + 9 * s;
+  const double* xs = d->x + 3 * s;
+  const double* Rp = d->R + 9 * p;
+  const double* xp = d->x + 3 * p;
+  double Rr[9], dx[3], xr[3];
+  for (int i = 0; i < 3; i++) {
+    for (int j = 0; j < 3; j++) {
+      Rr[3 * i + j] = Rs[i] * Rp[j] + Rs[3 + i] * Rp[3 + j] + Rs[6 + i] * Rp[6 + j];
+    }
+    dx[i] = xp[i] - xs[i];
+  }
+  for (int i = 0; i < 3; i++) {
+    xr[i] = Rs[i] * dx[0] + Rs[3 + i] * dx[1] + Rs[6 + i] * dx[2];
+  }
+  csr_strainAdInv_(Rr, xr, A);
+}
+
+
+/* the piece's own sums over its points s < p <= e: I (6 x 6), F (6 x nd), D (nd x nd, upper
+ * triangle and mirrored); A left as Ad(g_se⁻¹) */
+static void pieceSums(const csrStrainModel* m, const csrStrainData* d, int k, double I[36],
+                      double* F, double* D, double A[36]) {
+  const int n = m->n, s = m->pt0[k], e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
+  memset(I, 0, 36 * sizeof(double));
+  memset(F, 0, (size_t)6 * nd * sizeof(double));
+  memset(D, 0, (size_t)nd * nd * sizeof(double));
+  for (int p = s + 1; p <= e; p++) {
+    const double* Mp = m->Ms + 6 * p;
+    relAd(d, s, p, A);
+    double MA[36];
+    for (int r = 0; r < 6; r++) {
+      for (int a = 0; a < 6; a++) {
+        MA[6 * r + a] = Mp[r] * A[6 * r + a];
+      }
+    }
+    /* I += Aᵀ M_p A: its upper triangle (mirrored below), A's zero block skipped */
+    for (int a = 0; a < 3; a++) {
+      for (int b = a; b < 6; b++) {
+        I[6 * a + b] += A[a] * MA[b] + A[6 + a] * MA[6 + b] + A[12 + a] * MA[12 + b] +
+                        A[18 + a] * MA[18 + b] + A[24 + a] * MA[24 + b] + A[30 + a] * MA[30 + b];
+      }
+    }
+    for (int a = 3; a < 6; a++) {
+      for (int b = a; b < 6; b++) {
+        I[6 * a + b] += A[18 + a] * MA[18 + b] + A[24 + a] * MA[24 + b] + A[30 + a] * MA[30 + b];
+      }
+    }
+    if (nd == 0) {
+      continue;
+    }
+    const double* L = d->J + (size_t)p * 6 * n + c0;
+    for (int a = 0; a < 6; a++) {
+      const double g[6] = {MA[a], MA[6 + a], MA[12 + a], MA[18 + a], MA[24 + a], MA[30 + a]};
+      csr_strainRows6_(F + nd * a, L, n, g, nd, 1);
+    }
+    for (int i = 0; i < nd; i++) {
+      const double g[6] = {Mp[0] * L[i], Mp[1] * L[n + i], Mp[2] * L[2 * n + i],
+                           Mp[3] * L[3 * n + i], Mp[4] * L[4 * n + i], Mp[5] * L[5 * n + i]};
+      csr_strainRows6_(D + nd * i + i, L + i, n, g, nd - i, 1);
+    }
+  }
+  for (int i = 0; i < nd; i++) {
+    for (int j = 0; j < i; j++) {
+      D[nd * i + j] = D[nd * j + i];
+    }
+  }
+  for (int a = 0; a < 6; a++) {
+    for (int b = 0; b < a; b++) {
+      I[6 * a + b] = I[6 * b + a];
+    }
+  }
+}
+
+
+/* out (6 x nd) = B (6 x 6) L (6 rows of leading dimension ld, nd columns) */
+static void mul6L(const double B[36], const double* L, int ld, int nd, double* out) {
+  for (int r = 0; r < 6; r++) {
+    csr_strainRows6_(out + nd * r, L, ld, B + 6 * r, nd, 0);
+  }
+}
+
+
+int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+                             double rho[6]) {
+  const int n = m->n;
+  const double cK = h * m->rpar.damping_time + h * h;
+  double Zh[36], wh[6], Ic[36];
+  memset(Zh, 0, sizeof Zh);
+  memset(wh, 0, sizeof wh);
+  memset(Ic, 0, sizeof Ic);
+  double F[6 * MAXD], D[MAXD * MAXD], ZL[6 * MAXD], IL[6 * MAXD], Zsn[6 * MAXD];
+  double Ak[CSR_ROD_MAX_PIECES][36]; /* each piece's Ad(g_se⁻¹), for the forward pass */
+  for (int k = m->npiece - 1; k >= 0; k--) {
+    const int s = m->pt0[k], e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
+    double I[36], Zs[36], Ics[36];
+    double* A = Ak[k];
+    pieceSums(m, d, k, I, F, D, A);
+    congruence6(A, Zh, Zs);
+    congruence6(A, Ic, Ics);
+    for (int i = 0; i < 36; i++) {
+      Zs[i] += I[i];
+      Ics[i] += I[i];
+    }
+    double w[6];
+    for (int a = 0; a < 6; a++) {
+      double t = 0;
+      for (int r = 0; r < 6; r++) {
+        t += A[6 * r + a] * wh[r];
+      }
+      w[a] = t;
+    }
+    if (nd > 0) {
+      const double* Le = d->J + (size_t)e * 6 * n + c0;
+      mul6L(Zh, Le, n, nd, ZL);
+      mul6L(Ic, Le, n, nd, IL);
+      /* Z_sη = F + Aᵀ Ẑ L_e, and the composite's F + Aᵀ Ic L_e (into IL's place after use) */
+      for (int a = 0; a < 6; a++) {
+        const double g[6] = {A[a], A[6 + a], A[12 + a], A[18 + a], A[24 + a], A[30 + a]};
+        csr_strainRows6_(Zsn + nd * a, ZL, nd, g, nd, 0);
+        for (int j = 0; j < nd; j++) {
+          Zsn[nd * a + j] += F[nd * a + j];
+        }
+      }
+      double Fc[6 * MAXD];
+      for (int a = 0; a < 6; a++) {
+        const double g[6] = {A[a], A[6 + a], A[12 + a], A[18 + a], A[24 + a], A[30 + a]};
+        csr_strainRows6_(Fc + nd * a, IL, nd, g, nd, 0);
+        for (int j = 0; j < nd; j++) {
+          Fc[nd * a + j] += F[nd * a + j];
+        }
+      }
+      /* Z_ηη = D + L_eᵀ Ẑ L_e + (h τ_d + h²) K, and r_k */
+      double* y = d->y + c0;
+      for (int i = 0; i < nd; i++) {
+        const double g[6] = {Le[i], Le[n + i], Le[2 * n + i], Le[3 * n + i], Le[4 * n + i],
+                             Le[5 * n + i]};
+        csr_strainRows6_(D + nd * i, ZL, nd, g, nd, 1);
+        D[nd * i + i] += cK * d->Kd[c0 + i];
+        double t = h * d->rMl[c0 + i];
+        for (int r = 0; r < 6; r++) {
+          t -= g[r] * wh[r];
+        }
+        y[i] = t;
+      }
+      if (csr_strainCholFactor_(D, nd)) {
+        return 1;
+      }
+      /* Y = Z_ηη⁻¹ Z_sηᵀ into X's rows of the piece (nd x 6), Z_ηη⁻¹ r_k into y's */
+      double* Y = d->X + (size_t)6 * c0;
+      for (int j = 0; j < nd; j++) {
+        for (int a = 0; a < 6; a++) {
+          Y[6 * j + a] = Zsn[nd * a + j];
+        }
+      }
+      csr_strainCholSolve6_(D, nd, Y);
+      csr_strainCholSolve_(D, nd, y);
+      for (int a = 0; a < 6; a++) {
+        for (int b = 0; b < 6; b++) {
+          double t = 0;
+          for (int j = 0; j < nd; j++) {
+            t += Zsn[nd * a + j] * Y[6 * j + b];
+          }
+          Zs[6 * a + b] -= t;
+        }
+        double t = 0;
+        for (int j = 0; j < nd; j++) {
+          t += Zsn[nd * a + j] * y[j];
+        }
+        w[a] += t;
+      }
+      /* W_lb's rows of the piece: Fcᵀ Ad(g_s⁻¹) */
+      double As[36];
+      csr_strainAdInv_(d->R + 9 * s, d->x + 3 * s, As);
+      for (int j = 0; j < nd; j++) {
+        const double g[6] = {Fc[j], Fc[nd + j], Fc[2 * nd + j], Fc[3 * nd + j], Fc[4 * nd + j],
+                             Fc[5 * nd + j]};
+        csr_strainRows6_(d->WMlb + 6 * (c0 + j), As, 6, g, 6, 0);
+      }
+    }
+    memcpy(Zh, Zs, sizeof Zh);
+    memcpy(Ic, Ics, sizeof Ic);
+    memcpy(wh, w, sizeof wh);
+  }
+  /* the hip point moves with the base */
+  memcpy(Z, Zh, sizeof Zh);
+  memcpy(d->WMbb, Ic, sizeof Ic);
+  for (int c = 0; c < 6; c++) {
+    Z[7 * c] += m->Ms[c];
+    d->WMbb[7 * c] += m->Ms[c];
+    rho[c] = h * d->rMb[c] - wh[c];
+  }
+  /* forward: η_k = y_k - X_k ΔV from V_s = T ΔV + t */
+  double T[36], t[6];
+  memset(T, 0, sizeof T);
+  memset(t, 0, sizeof t);
+  for (int c = 0; c < 6; c++) {
+    T[7 * c] = 1;
+  }
+  for (int k = 0; k < m->npiece; k++) {
+    const int e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
+    const double* A = Ak[k];
+    double Te[36], te[6];
+    for (int r = 0; r < 6; r++) {
+      csr_strainRows6_(Te + 6 * r, T, 6, A + 6 * r, 6, 0);
+      double u = 0;
+      for (int c = 0; c < 6; c++) {
+        u += A[6 * r + c] * t[c];
+      }
+      te[r] = u;
+    }
+    if (nd > 0) {
+      const double* Le = d->J + (size_t)e * 6 * n + c0;
+      double* X = d->X + (size_t)6 * c0;
+      double* y = d->y + c0;
+      for (int j = 0; j < nd; j++) {
+        const double Yj[6] = {X[6 * j], X[6 * j + 1], X[6 * j + 2], X[6 * j + 3], X[6 * j + 4],
+                              X[6 * j + 5]};
+        double u = y[j];
+        for (int a = 0; a < 6; a++) {
+          u -= Yj[a] * t[a];
+        }
+        y[j] = u;
+        csr_strainRows6_(X + 6 * j, T, 6, Yj, 6, 0);
+      }
+      /* T_e = A T - L_e X_k, t_e = A t + L_e y_k */
+      for (int r = 0; r < 6; r++) {
+        const double* Lr = Le + (size_t)r * n;
+        for (int j = 0; j < nd; j++) {
+          for (int c = 0; c < 6; c++) {
+            Te[6 * r + c] -= Lr[j] * X[6 * j + c];
+          }
+          te[r] += Lr[j] * y[j];
+        }
+      }
+    }
+    memcpy(T, Te, sizeof T);
+    memcpy(t, te, sizeof t);
+  }
+  for (int a = 0; a < 6; a++) {
+    if (!isfinite(rho[a])) {
+      return 1;
+    }
+  }
+  return 0;
+}
