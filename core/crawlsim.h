@@ -100,8 +100,9 @@ typedef struct csRunDef {
                                 (each dt crossed in steps a local error estimate chooses, dt
                                 then the longest; backward Euler only); NULL: adaptive for a
                                 tree-stepped level (strain) unless dt is given (the fixed step
-                                it names), step_order is 2 or --legs auto picks (its rows are
-                                fixed steps); fixed otherwise */
+                                it names) or step_order is 2; fixed otherwise; legs "auto": the
+                                picked row's (a row with a step tolerance is the adaptive step),
+                                and "fixed" | "adaptive" picks among the rows of that kind */
   double step_tol;           /* strain_step adaptive: the local error allowed per step, mm (and
                                 mm per 10 ms on velocities) (NaN: 2.5e-4) */
   double strain_sub;         /* strain legs: Magnus sub-intervals per flexible piece (the

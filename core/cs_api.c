@@ -150,11 +150,9 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
         m->robot.map.name);
   const csrLegType* lt = m->robot.leg_type;
   const csrLegSetting* links = csr_legSettingFind(lt, "links");
-  char track[768];
-  cs_runDefTrackError(def, m, track, sizeof track);
   logLine(def, "legs %s, %d %s: %s", cs_modelLegLevel(m),
         (int)csr_legSettingGet(lt, &m->robot.leg_settings, "links", 0),
-        links ? links->what : "links per segment", track);
+        links ? links->what : "links per segment", m->track_error);
   if (!lt->in_world && m->opt.coupling == CS_COUPLING_TREE) {
     /* what the tree step is (cs_rundef.c stepAdaptive: adaptive unless a step is named) */
     char sub[64] = "";

@@ -131,8 +131,8 @@ static csStatus levelTakes(const csrLegType* T, const char* flag, const char* na
  * it is the default: its tolerance bounds the error where the motion turns fast, a fixed step
  * spends the worst moment's length everywhere (docs/notes/strain_leg.md "The strain level's
  * default step"). Fixed where the definition says so, names the step (dt: the fixed step it
- * asks for; --legs auto's rows are fixed steps and set dt), or asks for what the estimate does
- * not cover (step order 2, another coupling). dt and order: the definition's or auto's row. */
+ * asks for), or asks for what the estimate does not cover (step order 2, another coupling).
+ * dt and order: the definition's. (--legs auto: its row says, robot_levels.h step_tol_mm.) */
 static int stepAdaptive(const csRunDef* def, const csrLegType* type, double dt, double order) {
   if (!type || !type->prepare) {
     return 0;
@@ -163,10 +163,10 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
                          "against the reference, see robot/levels.csv)");
     }
     if (!isnan(def->links) || !isnan(def->macro_steps) || !isnan(def->dt) ||
-        !isnan(def->rod_tol) || !isnan(def->step_order)) {
+        !isnan(def->rod_tol) || !isnan(def->step_order) || !isnan(def->step_tol)) {
       return cs_errorSet(err, CS_ERR_ARG, "--legs auto sets --links, --macro-steps, --dt, "
-                         "--rod-tol and --step-order from its table: give them with --legs rod "
-                         "or strain instead");
+                         "--rod-tol, --step-order and --step-tol from its table: give them with "
+                         "--legs rod or strain instead");
     }
     if (!(def->legs_tol_mm >= 0)) {
       return cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be >= 0", def->legs_tol_mm);
@@ -344,10 +344,8 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
     return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive needs a tree-stepped leg level "
                        "(--legs strain, not %s)", type->name);
   }
-  if (adaptive && !type) {
-    return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive goes with --legs strain (not "
-                       "auto: its table's rows are fixed steps)");
-  }
+  /* beside --legs auto, --strain-step picks among the table's rows of that step kind
+   * (pickAuto; robot_levels.h step_tol_mm) */
   if (adaptive && def->coupling && strcmp(def->coupling, "tree")) {
     return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive needs --coupling tree (the "
                        "strain level's own)");
@@ -514,7 +512,8 @@ int cs_runDefIdentity(const csRunDef* def, const csModel* m, const csRunPlan* pl
 }
 
 
-int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t size) {
+int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t size,
+                        double* error_mm) {
   char levels_buf[512];
   const char* levels = def->levels ? def->levels
                                    : cs_runDataPath(def, "robot/levels.csv", levels_buf,
@@ -522,6 +521,9 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
   csrLevelTable* table = malloc(sizeof *table); /* ~40 KB: not on the stack */
   csError e;
   cs_errorClear(&e);
+  if (error_mm) {
+    *error_mm = NAN;
+  }
   if (!table || csr_levelTableRead(levels, table, &e) != CS_OK) {
     snprintf(out, size, "track error not known (%s)", table ? e.msg : "out of memory");
     free(table);
@@ -533,24 +535,27 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
   const double rod_tol = csr_legSettingGet(lt, ls, "rod_tol", 1);
   const int order = (int)csr_legSettingGet(lt, ls, "step_order", 0);
   int found = 0;
-  /* the table's rows are fixed steps (robot_levels.h): the adaptive step, whose dt is only its
-   * longest, is none of them */
-  for (int i = 0; i < table->nrow && !found && !m->opt.step_adaptive; i++) {
+  /* a fixed step matches a row without a step tolerance; the adaptive step (dt its longest) a
+   * row at its own tolerance (robot_levels.h step_tol_mm) */
+  const double step_tol = m->opt.step_adaptive ? m->opt.step_tol : 0;
+  for (int i = 0; i < table->nrow && !found; i++) {
     const csrLevelRow* r = &table->row[i];
     /* a row's step order 0 is the level's default formula, which is what an unset one runs */
     const int row_order = r->step_order > 0 ? r->step_order : order;
     if (!strcmp(r->scene, m->scene) && !strcmp(r->level, cs_modelLegLevel(m)) &&
         r->links == links && r->macro_steps == m->opt.macro_steps && r->dt_s == m->opt.h &&
-        r->rod_tol == rod_tol && row_order == order) {
+        r->rod_tol == rod_tol && row_order == order && r->step_tol_mm == step_tol) {
       snprintf(out, size, "track error %.3g mm against the reference of %s (line %d; measured "
                "on the scene's own gait and conditions)", r->error_mm, levels, r->line);
+      if (error_mm) {
+        *error_mm = r->error_mm;
+      }
       found = 1;
     }
   }
   if (!found && m->opt.step_adaptive) {
-    snprintf(out, size, "the adaptive step's track error is not in %s, whose rows are fixed "
-             "steps (docs/notes/strain_leg.md \"The strain level's default step\" measures "
-             "it)", levels);
+    snprintf(out, size, "track error of the adaptive step at %g mm per step (longest %g s) not "
+             "measured (%s has no row for it)", m->opt.step_tol, m->opt.h, levels);
   } else if (!found) {
     snprintf(out, size, "track error of this configuration not measured (%s has no row for it)",
              levels);
@@ -564,7 +569,8 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
  * configuration in m and the choice's explanation */
 static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files, csModel* m,
                          double* links, double* macro, double* dt, double* rodtol,
-                         double* order, const csrLegType** leg_type, csError* err) {
+                         double* order, double* steptol, const csrLegType** leg_type,
+                         csError* err) {
   char levels_buf[512];
   const char* levels = def->levels ? def->levels
                                    : cs_runDataPath(def, "robot/levels.csv", levels_buf,
@@ -574,7 +580,11 @@ static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files,
     return cs_errorSet(err, CS_ERR_MEMORY, "out of memory for the level table");
   }
   csStatus st = csr_levelTableRead(levels, table, err);
-  int k = st == CS_OK ? csr_levelTablePick(table, scene, def->legs_tol_mm, err) : -1;
+  /* --strain-step beside auto: the rows of that step kind only */
+  const csrStepKind kind = !def->strain_step                       ? CSR_STEP_ANY
+                           : !strcmp(def->strain_step, "adaptive") ? CSR_STEP_ADAPTIVE
+                                                                   : CSR_STEP_FIXED;
+  int k = st == CS_OK ? csr_levelTablePickStep(table, scene, def->legs_tol_mm, kind, err) : -1;
   if (k < 0) {
     free(table);
     return err ? err->status : CS_ERR_ARG;
@@ -592,8 +602,10 @@ static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files,
   if (row->step_order > 0) {
     *order = row->step_order;
   }
+  /* a row with a step tolerance is the adaptive step, dt its longest (robot_levels.h) */
+  *steptol = row->step_tol_mm > 0 ? row->step_tol_mm : NAN;
   m->legs_auto_tol_mm = tol;
-  char tolnote[64] = "";
+  char tolnote[128] = "";
   if (row->rod_tol != 1) {
     snprintf(tolnote, sizeof tolnote, ", rod tol %g", row->rod_tol);
   }
@@ -601,16 +613,22 @@ static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files,
     snprintf(tolnote + strlen(tolnote), sizeof tolnote - strlen(tolnote), ", step order %d",
              row->step_order);
   }
+  if (row->step_tol_mm > 0) {
+    snprintf(tolnote + strlen(tolnote), sizeof tolnote - strlen(tolnote), ", adaptive step at "
+             "%g mm per step (dt its longest)", row->step_tol_mm);
+  }
   snprintf(m->legs_auto_choice, sizeof m->legs_auto_choice,
            "%s, links %d, macro steps %d, dt %g s%s: the cheapest of %d configurations measured "
            "on %.31s within --tol %g mm (error %.3g mm against the reference, %.3g CPU s per "
-           "simulated s); the most accurate (%s, links %d, macro steps %d, dt %g s: %.3g mm) "
-           "costs %.3g, the costliest (%s, links %d, macro steps %d, dt %g s: %.3g mm) %.3g "
+           "simulated s); the most accurate (%s, links %d, macro steps %d, dt %g s%s: %.3g mm) "
+           "costs %.3g, the costliest (%s, links %d, macro steps %d, dt %g s%s: %.3g mm) %.3g "
            "CPU s per simulated s, %.2fx; %.200s line %d, measured on %.63s%s",
            row->level, row->links, row->macro_steps, row->dt_s, tolnote,
            csr_levelTableCount(table, scene), scene, tol, row->error_mm, row->cpu_s_per_s,
-           fin->level, fin->links, fin->macro_steps, fin->dt_s, fin->error_mm, fin->cpu_s_per_s,
-           top->level, top->links, top->macro_steps, top->dt_s, top->error_mm,
+           fin->level, fin->links, fin->macro_steps, fin->dt_s,
+           fin->step_tol_mm > 0 ? ", adaptive" : "", fin->error_mm, fin->cpu_s_per_s,
+           top->level, top->links, top->macro_steps, top->dt_s,
+           top->step_tol_mm > 0 ? ", adaptive" : "", top->error_mm,
            top->cpu_s_per_s, top->cpu_s_per_s / row->cpu_s_per_s, levels, row->line,
            row->machine,
            user_files || def->conditions
@@ -682,10 +700,11 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   /* the leg level: the table of registered levels is robot_robot.c's (one line per level) */
   const csrLegType* leg_type = legTypeNamed(legs);
   double links = def->links, macro = def->macro_steps, dt = def->dt, rodtol = def->rod_tol;
-  double order = def->step_order;
-  if (st == CS_OK && !strcmp(legs, "auto")) {
-    st = pickAuto(def, scene, user_files, m, &links, &macro, &dt, &rodtol, &order, &leg_type,
-                  err);
+  double order = def->step_order, steptol = NAN;
+  const int is_auto = !strcmp(legs, "auto");
+  if (st == CS_OK && is_auto) {
+    st = pickAuto(def, scene, user_files, m, &links, &macro, &dt, &rodtol, &order, &steptol,
+                  &leg_type, err);
     if (st == CS_OK && def->coupling && !strcmp(def->coupling, "tree") && !leg_type->prepare) {
       st = cs_errorSet(err, CS_ERR_ARG, "--coupling tree needs a tree-stepped leg level (--legs "
                        "auto picked %s)", leg_type->name);
@@ -780,9 +799,11 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
   if (!isnan(def->tau)) m->opt.pneumatic_tau = def->tau;
   if (!isnan(def->iterations)) m->opt.solver_iterations = (int)def->iterations;
   if (!isnan(macro)) m->opt.macro_steps = (int)macro;
-  if (stepAdaptive(def, leg_type, dt, order)) {
+  /* --legs auto: its row says (a tolerance: the adaptive step; none: the fixed dt) */
+  if (is_auto ? !isnan(steptol) : stepAdaptive(def, leg_type, dt, order)) {
     m->opt.step_adaptive = 1;
     if (!isnan(def->step_tol)) m->opt.step_tol = def->step_tol;
+    if (!isnan(steptol)) m->opt.step_tol = steptol;
     /* the longest step, and the grid of cs_step: 5 ms unless dt says (the level's fixed step
      * is the shortest its error needs; the adaptive step finds its own) */
     if (isnan(dt)) m->opt.h = CS_ADAPTIVE_MAX_STEP_S;
@@ -851,5 +872,7 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
     return cs_errorSet(err, CS_ERR_RANGE, "a run to t = %g s at --dt %g s takes more than %g "
                        "steps", cs_modelEndTime(m), m->opt.h, MAX_STEPS);
   }
+  /* the configuration's measured error, for the banner and the run file (issue 33 item 1) */
+  cs_runDefTrackError(def, m, m->track_error, sizeof m->track_error, &m->track_error_mm);
   return CS_OK;
 }

@@ -33,10 +33,14 @@ csStatus cs_runDefBuild(const csRunDef* def, csModel* m, csRunPlan* plan, csErro
 
 /* The measured track error of the configuration m runs (issue 33 item 1: the default's
  * discretisation error beside every track): the row of the level table (def->levels, else the
- * shipped robot/levels.csv) with m's scene, level, links, macro steps, step, rod tolerance and
- * step order, as one sentence in out. Returns 1 when a row matched, 0 otherwise (out then says
- * that the configuration was not measured, or why the table could not be read). */
-int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t size);
+ * shipped robot/levels.csv) with m's scene, level, links, macro steps, step, rod tolerance,
+ * step order and step kind (fixed, or adaptive at m's tolerance with m's step its longest), as
+ * one sentence in out, and its error in *error_mm (NaN when none; error_mm may be NULL).
+ * Returns 1 when a row matched, 0 otherwise (out then says that the configuration was not
+ * measured, or why the table could not be read). cs_runDefBuild stores both in m
+ * (csModel.track_error, track_error_mm) for the banner and the run file. */
+int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t size,
+                        double* error_mm);
 
 /* What the run is, for a checkpoint (resumable runs, sim_checkpoint.c): every field of def
  * that changes the run, as lines "name value" (numbers to the last bit, NaN and NULL

@@ -92,6 +92,7 @@ void cs_modelInit(csModel* m) {
   /* rod legs are co-simulated: their coupling (Gauss-Seidel) comes with the level */
   cs_modelSetLegLevel(m, m->robot.leg_type);
   m->legs_auto_tol_mm = NAN;
+  m->track_error_mm = NAN;
   m->cal_rule = -1;
 }
 

@@ -154,6 +154,10 @@ typedef struct csModel_ {
   char legs_auto_choice[1024]; /* `--legs auto`: what was picked and why (the output's
                                  legs_auto_choice attribute); "" when the level was named */
   double legs_auto_tol_mm;    /* `--legs auto`: the tolerance asked for (mm); NaN otherwise */
+  char track_error[768];      /* the measured track error of this configuration, one sentence
+                                 (cs_runDefTrackError: the banner and the run file's
+                                 track_error attribute); "" when not built from a definition */
+  double track_error_mm;      /* that error (mm), NaN when the level table has no row for it */
   /* What commands the chambers instead of the gait table (crawlsim.h's pressure command and
    * controller, cs_api.c): NULL, the table. The model's choice of source is fixed during a
    * step; what the source returns is the caller's input (MuJoCo's mjcb_control). */

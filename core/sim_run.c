@@ -12,6 +12,8 @@
  * macro_step_s, leg_step_s, leg_step_order (tree coupling), leg_step_adaptive and
  * leg_step_tol_mm (the adaptive step; at the end adaptive_steps, adaptive_rejected_steps,
  * adaptive_h_min_s, adaptive_h_median_s, adaptive_h_max_s), contact_kp_N_per_mm, contact_stiffness_scale, links_per_segment, legs_auto_choice and legs_auto_tol_mm (`--legs auto` only),
+ * track_error (the configuration's measured track error as the banner says it, from the level
+ * table robot/levels.csv; runs built from a definition) and track_error_mm (when it has a row),
  * coupling, support_mass_kg, and at the end wall_time_s, real_time_factor, status, steps,
  * rejected_steps, gain_projections (sim_coupling.c implicitPart), with footholds foothold_file
  * and foothold_choices ("T LEGS OFFSET; ..."), control (open loop, a caller's source, or the
@@ -323,6 +325,13 @@ static csStatus writeHeader(const csModel* m, csH5File* f, Series* s, csError* e
   if (st == CS_OK && m->legs_auto_choice[0]) {
     st = cs_h5AttrString(f, "/", "legs_auto_choice", m->legs_auto_choice, err);
     if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "legs_auto_tol_mm", m->legs_auto_tol_mm, err);
+  }
+  if (st == CS_OK && m->track_error[0]) {
+    /* the configuration's measured track error, as the banner says it (cs_runDefTrackError) */
+    st = cs_h5AttrString(f, "/", "track_error", m->track_error, err);
+    if (st == CS_OK && !isnan(m->track_error_mm)) {
+      st = cs_h5AttrDouble(f, "/", "track_error_mm", m->track_error_mm, err);
+    }
   }
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "legs_weightless", m->opt.legs_weightless, err);
   if (st == CS_OK) st = cs_h5AttrDouble(f, "/", "pneumatic_tau_s", m->opt.pneumatic_tau, err);

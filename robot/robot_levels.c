@@ -16,23 +16,36 @@
 
 enum {
   MAX_LINE = 1023, /* bytes per line, line ending excluded */
-  NCOL = 11,       /* columns of the format (3) */
-  NCOL2 = 10,      /* of format 2 (no step_order) */
-  NCOL1 = 9        /* of format 1 (no rod_tol either) */
+  NCOL = 12,       /* columns of the format (4) */
+  NFORMAT = 4
 };
 
-static const char kHeader[] =
-    "scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,cpu_s_per_s,wall_s_per_s,"
-    "machine";
-/* format 2 (tables written before 2026-12-06): every row at step_order 0 */
-static const char kHeader2[] =
-    "scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine";
-/* format 1 (tables written before 2026-12-03): every row at rod_tol 1 and step_order 0 */
-static const char kHeader1[] =
-    "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine";
+/* the columns of format 4, in order; older formats hold a subset (kFormat) */
 static const char* const kColumn[NCOL] = {"scene", "level", "links", "macro_steps", "dt_s",
-                                          "rod_tol", "step_order", "error_mm", "cpu_s_per_s",
-                                          "wall_s_per_s", "machine"};
+                                          "rod_tol", "step_order", "step_tol_mm", "error_mm",
+                                          "cpu_s_per_s", "wall_s_per_s", "machine"};
+enum { COL_ROD_TOL = 5, COL_STEP_ORDER = 6, COL_STEP_TOL = 7 };
+
+/* the formats read: the header line, its column count, and which of format 4's columns it
+ * lacks (a missing one reads as its default: rod_tol 1, step_order 0, step_tol_mm 0) */
+static const struct {
+  const char* header;
+  int ncol;
+  unsigned missing; /* bit c: column c of kColumn is absent */
+} kFormat[NFORMAT] = {
+    {"scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,cpu_s_per_s,"
+     "wall_s_per_s,machine",
+     12, 0},
+    /* format 3 (tables written before 2026-12-07 ninth session): every row a fixed step */
+    {"scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,cpu_s_per_s,wall_s_per_s,"
+     "machine",
+     11, 1u << COL_STEP_TOL},
+    /* format 2 (before 2026-12-06): every row at step_order 0 too */
+    {"scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine", 10,
+     1u << COL_STEP_ORDER | 1u << COL_STEP_TOL},
+    /* format 1 (before 2026-12-03): every row at rod_tol 1 too */
+    {"scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine", 9,
+     1u << COL_ROD_TOL | 1u << COL_STEP_ORDER | 1u << COL_STEP_TOL}};
 /* the ranges of the flags the row's settings stand for (tools/cmd_run.c) */
 #define MAX_LINKS 64
 #define MAX_MACRO 100000
@@ -43,6 +56,8 @@ static const char* const kColumn[NCOL] = {"scene", "level", "links", "macro_step
 #define MAX_ROD_TOL 1000
 /* `crawlsim run --step-order`'s range (0: the level's default formula) */
 #define MAX_STEP_ORDER 2
+/* `crawlsim run --step-tol`'s range (mm; 0 here: a fixed step) */
+#define MAX_STEP_TOL 100
 
 /* split `line` in place at commas into at most NCOL fields; returns the field count (which
  * may exceed NCOL: the extra ones are counted, not stored) */
@@ -129,15 +144,16 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
                        field[1], field[1]);
   }
   strcpy(r->level, field[1]);
-  /* links, macro_steps, dt_s, rod_tol, step_order, error_mm, cpu_s_per_s, wall_s_per_s:
-   * ranges (lo open?), integers */
-  double v[8];
-  static const double kLo[8] = {1, 1, 0, 0, 0, 0, 0, 0};
-  static const int kOpen[8] = {0, 0, 1, 1, 0, 0, 1, 1};
-  static const double kHi[8] = {MAX_LINKS, MAX_MACRO, MAX_DT_S, MAX_ROD_TOL, MAX_STEP_ORDER,
-                                MAX_VALUE, MAX_VALUE, MAX_VALUE};
-  static const int kInt[8] = {1, 1, 0, 0, 1, 0, 0, 0};
-  for (int c = 2; c < 10; c++) {
+  /* links, macro_steps, dt_s, rod_tol, step_order, step_tol_mm, error_mm, cpu_s_per_s,
+   * wall_s_per_s: ranges (lo open?), integers */
+  enum { NNUM = 9 };
+  double v[NNUM];
+  static const double kLo[NNUM] = {1, 1, 0, 0, 0, 0, 0, 0, 0};
+  static const int kOpen[NNUM] = {0, 0, 1, 1, 0, 0, 0, 1, 1};
+  static const double kHi[NNUM] = {MAX_LINKS, MAX_MACRO, MAX_DT_S, MAX_ROD_TOL, MAX_STEP_ORDER,
+                                   MAX_STEP_TOL, MAX_VALUE, MAX_VALUE, MAX_VALUE};
+  static const int kInt[NNUM] = {1, 1, 0, 0, 1, 0, 0, 0, 0};
+  for (int c = 2; c < 2 + NNUM; c++) {
     csStatus st = parseField(field[c], c, kLo[c - 2], kOpen[c - 2], kHi[c - 2], kInt[c - 2],
                              path, line, &v[c - 2], err);
     if (st != CS_OK) {
@@ -149,10 +165,23 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
   r->dt_s = v[2];
   r->rod_tol = v[3];
   r->step_order = (int)v[4];
-  r->error_mm = v[5];
-  r->cpu_s_per_s = v[6];
-  r->wall_s_per_s = v[7];
-  snprintf(r->machine, sizeof r->machine, "%s", field[10]);
+  r->step_tol_mm = v[5];
+  r->error_mm = v[6];
+  r->cpu_s_per_s = v[7];
+  r->wall_s_per_s = v[8];
+  /* the adaptive step is the tree step's (core/sim_adaptive.c), and it estimates backward
+   * Euler's error: a row the run would refuse is refused here, at its line */
+  if (r->step_tol_mm > 0 && !csr_legTypeFind(r->level, NULL)->prepare) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: step_tol_mm %g on level '%s': the adaptive "
+                       "step is a tree-stepped level's (strain); 0 for a fixed step", path,
+                       line, r->step_tol_mm, r->level);
+  }
+  if (r->step_tol_mm > 0 && r->step_order > 1) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: step_tol_mm %g with step_order %d: the "
+                       "adaptive step estimates backward Euler's error (step_order 0 or 1)",
+                       path, line, r->step_tol_mm, r->step_order);
+  }
+  snprintf(r->machine, sizeof r->machine, "%s", field[11]);
   return CS_OK;
 }
 
@@ -165,44 +194,35 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
   if (st != CS_OK) {
     return st;
   }
-  int have_header = 0, ncol = NCOL, rc;
+  int have_header = 0, fmt = 0, rc;
   while ((rc = csu_lineNext(&r, err)) == 1) {
     char* line = csu_trimBlanks(r.line);
     if (!line[0] || line[0] == '#') {
       continue;
     }
     if (!have_header) {
-      if (strcmp(line, kHeader) != 0 && strcmp(line, kHeader2) != 0 &&
-          strcmp(line, kHeader1) != 0) {
+      for (fmt = 0; fmt < NFORMAT && strcmp(line, kFormat[fmt].header) != 0; fmt++) {
+      }
+      if (fmt == NFORMAT) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: the header must be '%s' (got '%.60s')",
-                         path, r.lineno, kHeader, line);
+                         path, r.lineno, kFormat[0].header, line);
         break;
       }
-      ncol = !strcmp(line, kHeader) ? NCOL : !strcmp(line, kHeader2) ? NCOL2 : NCOL1;
       have_header = 1;
       continue;
     }
     char* raw[NCOL];
     int n = splitFields(line, raw);
-    if (n != ncol) {
+    if (n != kFormat[fmt].ncol) {
       st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: %d field%s, expected %d (%s)", path,
-                       r.lineno, n, n == 1 ? "" : "s", ncol,
-                       ncol == NCOL ? kHeader : ncol == NCOL2 ? kHeader2 : kHeader1);
+                       r.lineno, n, n == 1 ? "" : "s", kFormat[fmt].ncol, kFormat[fmt].header);
       break;
     }
-    /* formats 1 and 2: rod_tol 1 and step_order 0 in their places */
+    /* an older format's missing columns at their defaults, in their places */
     static char kOne[] = "1", kZero[] = "0";
     char* field[NCOL];
-    for (int c = 0; c < NCOL; c++) {
-      if (ncol == NCOL || c < 5) {
-        field[c] = raw[c];
-      } else if (c == 5) {
-        field[c] = ncol == NCOL2 ? raw[5] : kOne;
-      } else if (c == 6) {
-        field[c] = kZero;
-      } else {
-        field[c] = raw[c - (NCOL - ncol)];
-      }
+    for (int c = 0, j = 0; c < NCOL; c++) {
+      field[c] = !(kFormat[fmt].missing >> c & 1u) ? raw[j++] : c == COL_ROD_TOL ? kOne : kZero;
     }
     if (t->nrow == CSR_LEVELS_MAX_ROWS) {
       st = cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: more than %d rows", path, r.lineno,
@@ -219,11 +239,13 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
       const csrLevelRow* o = &t->row[i];
       if (!strcmp(o->scene, row->scene) && !strcmp(o->level, row->level) &&
           o->links == row->links && o->macro_steps == row->macro_steps && o->dt_s == row->dt_s &&
-          o->rod_tol == row->rod_tol && o->step_order == row->step_order) {
+          o->rod_tol == row->rod_tol && o->step_order == row->step_order &&
+          o->step_tol_mm == row->step_tol_mm) {
         st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: repeats the configuration of line %d "
                          "(%s, %s, links %d, macro steps %d, dt %g s, rod tol %g, step order "
-                         "%d)", path, r.lineno, o->line, row->scene, row->level, row->links,
-                         row->macro_steps, row->dt_s, row->rod_tol, row->step_order);
+                         "%d, step tol %g mm)", path, r.lineno, o->line, row->scene, row->level,
+                         row->links, row->macro_steps, row->dt_s, row->rod_tol,
+                         row->step_order, row->step_tol_mm);
         break;
       }
     }
@@ -237,9 +259,9 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
   }
   if (st == CS_OK && !have_header && r.lineno == 0) {
     /* an empty file has no line to name (found by fuzz_levels) */
-    st = cs_errorSet(err, CS_ERR_PARSE, "%s: empty file: no header line '%s'", path, kHeader);
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s: empty file: no header line '%s'", path, kFormat[0].header);
   } else if (st == CS_OK && !have_header) {
-    st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: no header line '%s'", path, r.lineno, kHeader);
+    st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: no header line '%s'", path, r.lineno, kFormat[0].header);
   } else if (st == CS_OK && t->nrow == 0) {
     st = cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: no rows after the header", path, r.lineno);
   }
@@ -288,15 +310,36 @@ int csr_levelTableCostliest(const csrLevelTable* t, const char* scene) {
 }
 
 
+/* is row r of the step kind asked? */
+static int ofKind(const csrLevelRow* r, csrStepKind kind) {
+  return kind == CSR_STEP_ANY || (kind == CSR_STEP_ADAPTIVE) == (r->step_tol_mm > 0);
+}
+
+
 int csr_levelTablePick(const csrLevelTable* t, const char* scene, double tol_mm, csError* err) {
+  return csr_levelTablePickStep(t, scene, tol_mm, CSR_STEP_ANY, err);
+}
+
+
+int csr_levelTablePickStep(const csrLevelTable* t, const char* scene, double tol_mm,
+                           csrStepKind kind, csError* err) {
   if (!(tol_mm >= 0) || !isfinite(tol_mm)) {
     cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be finite and >= 0", tol_mm);
     return -1;
   }
-  int best = -1;
+  int best = -1, fin = -1, n = 0;
   for (int i = 0; i < t->nrow; i++) {
     const csrLevelRow* r = &t->row[i];
-    if (strcmp(r->scene, scene) || !(r->error_mm <= tol_mm)) {
+    if (strcmp(r->scene, scene) || !ofKind(r, kind)) {
+      continue;
+    }
+    n++;
+    /* the most accurate of the kind, for the message when none is within tol */
+    if (fin < 0 || r->error_mm < t->row[fin].error_mm ||
+        (r->error_mm == t->row[fin].error_mm && r->cpu_s_per_s < t->row[fin].cpu_s_per_s)) {
+      fin = i;
+    }
+    if (!(r->error_mm <= tol_mm)) {
       continue;
     }
     if (best < 0 || r->cpu_s_per_s < t->row[best].cpu_s_per_s ||
@@ -307,15 +350,27 @@ int csr_levelTablePick(const csrLevelTable* t, const char* scene, double tol_mm,
   if (best >= 0) {
     return best;
   }
-  int fin = csr_levelTableFinest(t, scene);
-  if (fin < 0) {
+  const char* what = kind == CSR_STEP_FIXED ? " with a fixed step (--strain-step fixed)"
+                     : kind == CSR_STEP_ADAPTIVE
+                         ? " with the adaptive step (--strain-step adaptive; a row with "
+                           "step_tol_mm > 0)"
+                         : "";
+  if (n == 0 && csr_levelTableCount(t, scene) > 0) {
+    cs_errorSet(err, CS_ERR_ARG, "%s: no row for scene '%.31s'%s (rerun tools/bench_levels.py "
+                "with such configurations)", t->path, scene, what);
+  } else if (n == 0) {
     cs_errorSet(err, CS_ERR_ARG, "%s: no row for scene '%.31s' (the table measures another "
                 "scene; rerun tools/bench_levels.py with --scenes)", t->path, scene);
   } else {
     const csrLevelRow* r = &t->row[fin];
-    cs_errorSet(err, CS_ERR_RANGE, "%s: no level meets --tol %g mm on %s: the best achievable "
-                "is %.3g mm (%s, links %d, macro steps %d, dt %g s, line %d)", t->path, tol_mm,
-                scene, r->error_mm, r->level, r->links, r->macro_steps, r->dt_s, r->line);
+    char steptol[48] = "";
+    if (r->step_tol_mm > 0) {
+      snprintf(steptol, sizeof steptol, ", adaptive step at %g mm", r->step_tol_mm);
+    }
+    cs_errorSet(err, CS_ERR_RANGE, "%s: no level meets --tol %g mm on %s%s: the best "
+                "achievable is %.3g mm (%s, links %d, macro steps %d, dt %g s%s, line %d)",
+                t->path, tol_mm, scene, what, r->error_mm, r->level, r->links, r->macro_steps,
+                r->dt_s, steptol, r->line);
   }
   return -1;
 }

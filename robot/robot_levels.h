@@ -5,10 +5,11 @@
  *
  * File format (text, LF or CRLF, '#' comment lines and blank lines skipped): one header line,
  * exactly
- *   scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,cpu_s_per_s,wall_s_per_s,
- *   machine
- * (format 3; format 2, without step_order, and format 1, without rod_tol either, are still read,
- * every row at step_order 0 and rod_tol 1)
+ *   scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,cpu_s_per_s,
+ *   wall_s_per_s,machine
+ * (format 4; format 3, without step_tol_mm, format 2, without step_order either, and format 1,
+ * without rod_tol either, are still read, every row a fixed step at step_order 0 and rod_tol 1
+ * where the column is missing)
  * then one row per measured configuration:
  *   scene        a scene name (a word, at most 31 bytes: flat-road, obstacle, ...)
  *   level        a registered leg level (csr_legTypeFind: rod, strain; a retired one, prb, is
@@ -16,19 +17,26 @@
  *   links        elements (rod) or bending modes (strain) per segment, integer
  *                1..64 (`--links`)
  *   macro_steps  ODE steps per exchange, integer 1..100000 (`--macro-steps`)
- *   dt_s         ODE step (s), 0 < dt <= 0.01 (`--dt`)
+ *   dt_s         ODE step (s), 0 < dt <= 0.01 (`--dt`); with step_tol_mm > 0 the adaptive
+ *                step's longest
  *   rod_tol      the rod legs' CVODE tolerances' factor, 0 < K <= 1000 (`--rod-tol`; strain: 1)
  *   step_order   the tree step's formula, integer 0..2 (`--step-order`: 1 backward Euler, 2 BDF2;
  *                0 the level's default; rod: 0)
+ *   step_tol_mm  0: a fixed step of dt_s; > 0 (<= 100): the adaptive tree step at this local
+ *                error per step (mm; `--strain-step adaptive --step-tol`), only on a
+ *                tree-stepped level (strain) at step_order 0 or 1 (the estimate is backward
+ *                Euler's: core/sim_adaptive.c)
  *   error_mm     the scene's track error against the benchmark's reference (mm), finite, >= 0
  *   cpu_s_per_s  CPU seconds of the whole process per simulated second, finite, > 0
  *   wall_s_per_s wall seconds per simulated second on the benchmark's machine, finite, > 0
  *   machine      free text without commas (where it was measured)
- * A repeated (scene, level, links, macro_steps, dt_s, rod_tol, step_order) is refused. Every refusal is one line
+ * A repeated (scene, level, links, macro_steps, dt_s, rod_tol, step_order, step_tol_mm) is
+ * refused. Every refusal is one line
  * "<file>:<line>: <cause>" in err (CS_ERR_PARSE or CS_ERR_RANGE; CS_ERR_IO when unreadable).
  *
- * The pick: among the scene's rows with error_mm <= tol, the smallest cpu_s_per_s (a tie: the
- * smaller error, then the earlier row). Cost is CPU time, less sensitive than wall time to the
+ * The pick: among the scene's rows with error_mm <= tol (and of the step kind asked, if one
+ * is: csr_levelTablePickStep), the smallest cpu_s_per_s (a tie: the smaller error, then the
+ * earlier row). Cost is CPU time, less sensitive than wall time to the
  * load of a shared machine. */
 #ifndef CS_ROBOT_LEVELS_H
 #define CS_ROBOT_LEVELS_H
@@ -51,6 +59,7 @@ typedef struct csrLevelRow_ {
   double dt_s;          /* s: ODE step */
   double rod_tol;       /* the rod's CVODE tolerance factor (`--rod-tol`) */
   int step_order;       /* the tree step's formula (`--step-order`; 0: the level's default) */
+  double step_tol_mm;   /* mm: the adaptive step's local error per step; 0: a fixed step */
   double error_mm;      /* mm: track error against the reference */
   double cpu_s_per_s;   /* CPU s per simulated s */
   double wall_s_per_s;  /* wall s per simulated s */
@@ -72,6 +81,14 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err);
  * has no row for the scene (CS_ERR_ARG), or no row meets the tolerance (CS_ERR_RANGE, naming
  * the best achievable error and its configuration). */
 int csr_levelTablePick(const csrLevelTable* t, const char* scene, double tol_mm, csError* err);
+
+/* which rows a pick may take: any, fixed steps only (step_tol_mm 0), adaptive only (> 0) */
+typedef enum { CSR_STEP_ANY = 0, CSR_STEP_FIXED = 1, CSR_STEP_ADAPTIVE = 2 } csrStepKind;
+
+/* csr_levelTablePick among the rows of one step kind (`--strain-step fixed|adaptive` beside
+ * `--legs auto`); with no row of the scene of that kind: -1, CS_ERR_ARG naming the kind */
+int csr_levelTablePickStep(const csrLevelTable* t, const char* scene, double tol_mm,
+                           csrStepKind kind, csError* err);
 
 /* The scene's most accurate row (smallest error; a tie: the cheaper), or -1 if it has none. */
 int csr_levelTableFinest(const csrLevelTable* t, const char* scene);

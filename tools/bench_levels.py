@@ -50,10 +50,10 @@ PROG = "bench_levels.py"
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 # the `--legs auto` table's header (robot/robot_levels.h reads exactly these columns)
+# (format 4: step_tol_mm, 0 a fixed step, > 0 the adaptive step at that tolerance, dt_s its
+# longest)
 TABLE_COLUMNS = ["scene", "level", "links", "macro_steps", "dt_s", "rod_tol", "step_order",
-                 "error_mm",
-                 "cpu_s_per_s",
-                 "wall_s_per_s", "machine"]
+                 "step_tol_mm", "error_mm", "cpu_s_per_s", "wall_s_per_s", "machine"]
 
 
 def fail(msg):
@@ -194,7 +194,7 @@ def tracks(a, rows, table):
         rod_configs.append((n, m, float(dt) if dt else 1e-3, float(k) if k else 1.0))
     # "N@DToK[aTOL]": N bending modes per segment, tree step DT, step formula K (1 BE, 2
     # BDF2); with aTOL the adaptive step (--strain-step adaptive --step-tol TOL mm, DT its
-    # longest step): not a row of the auto table (whose rows are fixed steps)
+    # longest step): a row of the auto table with step_tol_mm TOL
     strain_configs = []
     for c in (c for c in a.strain_configs.split(",") if c):
         c, _, tol = c.partition("a")
@@ -238,10 +238,10 @@ def tracks(a, rows, table):
                          res["last"], "reference": "yes" if is_ref else
                          ("check of the reference" if is_check else ""),
                          "command": res["cmd"]})
-            if ok and not is_ref and not is_check and not tol:
+            if ok and not is_ref and not is_check:
                 table.append({"scene": scene, "level": level, "links": links,
                               "macro_steps": macro, "dt_s": f"{dt:g}", "rod_tol": f"{k:g}",
-                              "step_order": order,
+                              "step_order": order, "step_tol_mm": f"{tol:g}",
                               "error_mm": f"{err:.2f}",
                               "cpu_s_per_s": f"{res['cpu_s'] / t_ref:.3f}",
                               "wall_s_per_s": f"{res['wall_s'] / t_ref:.3f}",
@@ -540,7 +540,7 @@ def main():
     ap.add_argument("--strain-configs", default="3@1e-3o1,3@5e-3o2",
                     help="strain bending modes per segment [@ tree step s] [o step order: 1 BE, "
                     "2 BDF2] [a TOL: the adaptive step at --step-tol TOL mm, the tree step its "
-                    "longest; not a row of --table], comma separated")
+                    "longest; a row of --table with step_tol_mm TOL], comma separated")
     # the reference the issues name (32, 33): the nodal rod converged in its elements and step,
     # 16 elements per segment at 0.25 ms; the same rod at twice its step (16x1@5e-4 in
     # --rod-configs) measures how far the reference itself may be from converged
@@ -595,10 +595,11 @@ def main():
     pareto_png(os.path.join(a.out_dir, "levels_pareto.png"), rows, a.machine)
     if table:
         with open(a.table, "w", newline="") as f:
-            f.write("# crawlsim leg levels 3: written by tools/bench_levels.py; error_mm = max "
+            f.write("# crawlsim leg levels 4: written by tools/bench_levels.py; error_mm = max "
                     "over whole seconds of |support (dx, dz)| against a rod reference "
                     f"(links {a.ref_links}, dt {a.ref_dt:g} s); cpu_s_per_s = CPU seconds of "
-                    "the whole process per simulated second\n")
+                    "the whole process per simulated second; step_tol_mm 0: a fixed step, > 0: "
+                    "the adaptive step at that tolerance, dt_s its longest\n")
             w = csv.DictWriter(f, fieldnames=TABLE_COLUMNS, lineterminator="\n")
             w.writeheader()
             for r in table:

@@ -117,9 +117,10 @@ static const csxOpt kRunOpts[] = {
     {"--step-order", "1|2", "the level's (strain: 1)",
      "strain legs: the tree step's formula, 1 backward Euler, 2 BDF2 (support and legs)"},
     {"--strain-step", "fixed|adaptive",
-     "adaptive, unless --dt, --step-order 2 or --legs auto (their steps are fixed)",
+     "adaptive, unless --dt or --step-order 2 (their steps are fixed); --legs auto: its row's",
      "strain legs: fixed (every step --dt, default then 5e-4) or adaptive (each --dt, default "
-     "then 5e-3, crossed in steps chosen by a local error estimate; backward Euler)"},
+     "then 5e-3, crossed in steps chosen by a local error estimate; backward Euler); beside "
+     "--legs auto: pick among the table's rows of that kind"},
     {"--step-tol", "MM", "2.5e-4",
      "with the adaptive step: the local error allowed per step in mm (velocities: mm per 10 ms)"},
     {"--strain-sub", "N", "0",

@@ -9,8 +9,9 @@
  *    restored state (cs_stateGet / cs_stateSet, the driver's rollback);
  *  - frictionless, the centre of mass stays (1e-4 mm in 1 s at 2 and 1 ms, the Newton passes'
  *    discrete momentum form through the support's ODE step), with BDF2 (--step-order 2) too,
- *    whose restored runs are bit-identical, and with the legs' iteration matrix kept across
- *    steps (keep_matrix) at 2 and 5 ms;
+ *    whose restored runs are bit-identical, with the legs' iteration matrix kept across
+ *    steps (keep_matrix) at 2 and 5 ms, and on the level's default adaptive step (0.01 mm in
+ *    9 s, per second);
  *  - a step the legs reject (prepare > 0, what the kernel returns when its step does not
  *    converge) is restored and retried in halves through the rollback: the time still advances
  *    by exactly one step, each rejection is counted, the legs see steps of h/2, and the track
@@ -221,6 +222,8 @@ static void test_strain_repeats_and_restores_bit_identically(void) {
 /* the horizontal drift of the centre of mass over 1 s of the gait with frictionless feet at
  * step h, and how far the support moved meanwhile (mm) */
 static double gKeepMatrix = 0; /* the level's setting keep_matrix for the drift runs */
+/* > 0: the drift runs take the adaptive step at this tolerance (mm), h its longest step */
+static double gStepTol = 0;
 
 
 static double frictionlessDriftOrder(double h, int passes, int order, double* moved) {
@@ -236,6 +239,10 @@ static double frictionlessDriftOrder(double h, int passes, int order, double* mo
   if (order > 0) { /* 0: the level's default */
     CS_EXPECT(csr_legSettingSet(m.robot.leg_type, &m.robot.leg_settings, "step_order", order,
                                 NULL) == CS_OK);
+  }
+  if (gStepTol > 0) {
+    m.opt.step_adaptive = 1;
+    m.opt.step_tol = gStepTol;
   }
   csData* d = csTestSettledData(&m);
   if (!d) {
@@ -310,6 +317,25 @@ static void test_strain_kept_matrix_keeps_momentum(void) {
          moved1, moved2, moved5, d1, d2, d5);
   CS_EXPECT(moved1 > 5 && moved2 > 5 && moved5 > 5);
   CS_EXPECT(d1 < 0.01 / 9 && d2 < 0.01 / 9 && d5 < 0.01 / 9);
+}
+
+
+/* The strain level's default step (the adaptive step at 2.5e-4 mm, its longest 5 ms: cs_rundef.c
+ * stepAdaptive) keeps the momentum form too: every step the controller takes inside a macro step
+ * is a tree step like a fixed one, and a rejected one is rolled back whole. Frictionless, 1 s of
+ * the gait, the centre of mass within the issue's rate (0.01 mm in 9 s, per second); the fixed
+ * steps' bound of 1e-4 mm in 1 s (above) is not asked here: the controller's steps reach 5 ms,
+ * where the passes' tolerance leaves more per step (docs/notes/issue32_status.md has the
+ * measured drift). */
+static void test_strain_adaptive_step_keeps_momentum(void) {
+  double moved;
+  gStepTol = 2.5e-4;
+  const double d = frictionlessDrift(5e-3, 16, &moved);
+  gStepTol = 0;
+  printf("  the adaptive step (2.5e-4 mm, longest 5 ms), frictionless, 1 s of the gait: the "
+         "support moved up to %.2f mm, the centre of mass %.3e mm horizontally\n", moved, d);
+  CS_EXPECT(moved > 5);
+  CS_EXPECT(d < 0.01 / 9);
 }
 
 
@@ -547,6 +573,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_strain_repeats_and_restores_bit_identically);
   CS_RUN(test_strain_rejected_step_is_retried_in_halves);
   CS_RUN(test_strain_frictionless_centre_of_mass_stays);
+  CS_RUN(test_strain_adaptive_step_keeps_momentum);
   CS_RUN(test_strain_bdf2_keeps_momentum_and_restores);
   CS_RUN(test_strain_kept_matrix_keeps_momentum);
   CS_RUN(test_strain_basis_settings_change_the_legs);

@@ -4,11 +4,12 @@
  * Per input: read it and check the error contract (fuzz_common.h); a table the reader accepts
  * must hold what the header promises (1..CSR_LEVELS_MAX_ROWS rows; each a non-empty scene word
  * and a registered level, NUL-terminated; links 1..64, macro steps 1..100000, 0 < dt <= 0.01,
- * 0 < rod_tol <= 1000, step_order 0..2, finite error >= 0, finite costs > 0, a line number
- * within the input; no configuration
- * twice), and the pick must keep its promise for the first row's scene at three tolerances
- * (below, at and above the row's error): a picked row is of that scene, within the tolerance,
- * and no row of the scene within it is cheaper; a refusal names the file. */
+ * 0 < rod_tol <= 1000, step_order 0..2, 0 <= step_tol_mm <= 100 and > 0 only on a tree-stepped
+ * level at step_order 0 or 1, finite error >= 0, finite costs > 0, a line number within the
+ * input; no configuration twice), and the pick must keep its promise for the first row's
+ * scene at three tolerances (below, at and above the row's error) and each step kind (any,
+ * fixed, adaptive): a picked row is of that scene and kind, within the tolerance, and no row
+ * of the scene and kind within it is cheaper; a refusal names the file. */
 #include <math.h>
 #include <string.h>
 
@@ -31,7 +32,8 @@ static void checkRow(const csrLevelRow* r, size_t size) {
   }
   if (r->links < 1 || r->links > 64 || r->macro_steps < 1 || r->macro_steps > 100000 ||
       !(r->dt_s > 0 && r->dt_s <= 0.01) || !(r->rod_tol > 0 && r->rod_tol <= 1000) ||
-      r->step_order < 0 || r->step_order > 2 ||
+      r->step_order < 0 || r->step_order > 2 || !(r->step_tol_mm >= 0 && r->step_tol_mm <= 100) ||
+      (r->step_tol_mm > 0 && (!csr_legTypeFind(r->level, NULL)->prepare || r->step_order > 1)) ||
       !(r->error_mm >= 0) || !isfinite(r->error_mm) ||
       !(r->cpu_s_per_s > 0) || !isfinite(r->cpu_s_per_s) || !(r->wall_s_per_s > 0) ||
       !isfinite(r->wall_s_per_s)) {
@@ -43,29 +45,37 @@ static void checkRow(const csrLevelRow* r, size_t size) {
 }
 
 
-static void checkPick(const char* path, double tol) {
+/* is row r of kind k (robot_levels.h csrStepKind)? */
+static int ofKind(const csrLevelRow* r, csrStepKind k) {
+  return k == CSR_STEP_ANY || (k == CSR_STEP_ADAPTIVE) == (r->step_tol_mm > 0);
+}
+
+
+static void checkPick(const char* path, double tol, csrStepKind kind) {
   const char* scene = g_t.row[0].scene;
   csError err;
   cs_errorClear(&err);
-  int k = csr_levelTablePick(&g_t, scene, tol, &err);
+  int k = csr_levelTablePickStep(&g_t, scene, tol, kind, &err);
   if (k < 0) {
     if (!err.msg[0] || strstr(err.msg, path) != err.msg) {
       csz_fail("pick refused without naming the file: '%s'", err.msg);
     }
     for (int i = 0; i < g_t.nrow; i++) {
-      if (!strcmp(g_t.row[i].scene, scene) && g_t.row[i].error_mm <= tol) {
+      if (!strcmp(g_t.row[i].scene, scene) && ofKind(&g_t.row[i], kind) &&
+          g_t.row[i].error_mm <= tol) {
         csz_fail("pick refused --tol %g though line %d meets it", tol, g_t.row[i].line);
       }
     }
     return;
   }
   const csrLevelRow* p = &g_t.row[k];
-  if (strcmp(p->scene, scene) || !(p->error_mm <= tol)) {
-    csz_fail("picked line %d is of another scene or beyond --tol %g", p->line, tol);
+  if (strcmp(p->scene, scene) || !ofKind(p, kind) || !(p->error_mm <= tol)) {
+    csz_fail("picked line %d is of another scene or step kind or beyond --tol %g", p->line, tol);
   }
   for (int i = 0; i < g_t.nrow; i++) {
     const csrLevelRow* r = &g_t.row[i];
-    if (!strcmp(r->scene, scene) && r->error_mm <= tol && r->cpu_s_per_s < p->cpu_s_per_s) {
+    if (!strcmp(r->scene, scene) && ofKind(r, kind) && r->error_mm <= tol &&
+        r->cpu_s_per_s < p->cpu_s_per_s) {
       csz_fail("picked line %d but line %d is cheaper within --tol %g", p->line, r->line, tol);
     }
   }
@@ -92,14 +102,16 @@ csStatus csz_harnessRun(const uint8_t* data, size_t size, csError* err) {
       const csrLevelRow* b = &g_t.row[j];
       if (!strcmp(a->scene, b->scene) && !strcmp(a->level, b->level) && a->links == b->links &&
           a->macro_steps == b->macro_steps && a->dt_s == b->dt_s && a->rod_tol == b->rod_tol &&
-          a->step_order == b->step_order) {
+          a->step_order == b->step_order && a->step_tol_mm == b->step_tol_mm) {
         csz_fail("accepted table repeats a configuration (lines %d, %d)", b->line, a->line);
       }
     }
   }
   double e = g_t.row[0].error_mm;
-  checkPick(path, 0.5 * e);
-  checkPick(path, e);
-  checkPick(path, 2 * e + 1);
+  for (int kind = CSR_STEP_ANY; kind <= CSR_STEP_ADAPTIVE; kind++) {
+    checkPick(path, 0.5 * e, (csrStepKind)kind);
+    checkPick(path, e, (csrStepKind)kind);
+    checkPick(path, 2 * e + 1, (csrStepKind)kind);
+  }
   return st;
 }

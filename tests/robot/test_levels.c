@@ -10,13 +10,17 @@
 #include "cs_test.h"
 #include "robot_levels.h"
 
-/* format 1 (no rod_tol column: every row at 1), format 2 and format 3 (step_order) */
+/* format 1 (no rod_tol column: every row at 1), format 2, format 3 (step_order) and format 4
+ * (step_tol_mm) */
 #define HEADER "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
 #define HEADER2 \
   "scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
 #define HEADER3                                                                             \
   "scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,cpu_s_per_s,wall_s_per_s," \
   "machine\n"
+#define HEADER4                                                                             \
+  "scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,cpu_s_per_s,"   \
+  "wall_s_per_s,machine\n"
 #define PATH "test_levels.csv"
 
 static csrLevelTable g_t; /* large: not on the stack */
@@ -206,6 +210,76 @@ static void test_levels_format3_step_order(void) {
 }
 
 
+/* format 4: the step_tol_mm column (0 a fixed step, > 0 the adaptive step at that tolerance, dt
+ * its longest) is read, range-checked, part of a configuration (the fixed 5 ms and the adaptive
+ * step up to 5 ms are two), allowed only where the run would take it (a tree-stepped level,
+ * backward Euler), and the pick can be held to one kind (--strain-step beside --legs auto);
+ * format 3 rows read as fixed steps */
+static void test_levels_format4_step_tol(void) {
+  csError err;
+  static const char kGood3[] = HEADER3 "flat-road,strain,2,1,0.005,1,1,4,0.5,0.6,m\n";
+  CS_EXPECT(readText(kGood3, &err) == CS_OK && g_t.row[0].step_tol_mm == 0);
+  CS_EXPECT(readText(kGood, &err) == CS_OK && g_t.row[0].step_tol_mm == 0);
+  static const char kGood4[] =
+      HEADER4
+      "flat-road,strain,2,1,0.005,1,1,0,4,0.25,0.3,m\n"
+      "flat-road,strain,2,1,0.005,1,1,0.00025,2,0.9,1.0,m\n"
+      "flat-road,strain,2,1,0.005,1,0,0.0005,3,0.6,0.7,m\n"
+      "flat-road,rod,8,1,0.001,1,0,0,3.5,2.0,2.1,m\n";
+  CS_EXPECT(readText(kGood4, &err) == CS_OK);
+  CS_EXPECT(g_t.nrow == 4 && g_t.row[0].step_tol_mm == 0 && g_t.row[1].step_tol_mm == 0.00025 &&
+            g_t.row[2].step_tol_mm == 0.0005 && g_t.row[1].error_mm == 2 &&
+            g_t.row[1].cpu_s_per_s == 0.9 && g_t.row[1].wall_s_per_s == 1.0 &&
+            !strcmp(g_t.row[3].machine, "m"));
+  /* any kind: within 4 mm the fixed 5 ms (the cheapest), within 3 the looser adaptive row,
+   * within 2 the tighter one */
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 4, &err) == 0);
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 3, &err) == 2);
+  CS_EXPECT(csr_levelTablePick(&g_t, "flat-road", 2, &err) == 1);
+  /* one kind: within 4 mm the adaptive rows only take the cheaper adaptive one; fixed steps
+   * within 3.5 the rod */
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "flat-road", 4, CSR_STEP_ADAPTIVE, &err) == 2);
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "flat-road", 3.5, CSR_STEP_FIXED, &err) == 3);
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "flat-road", 3.5, CSR_STEP_ANY, &err) == 2);
+  /* none of the kind within: the best of that kind is named */
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "flat-road", 1, CSR_STEP_ADAPTIVE, &err) == -1);
+  CS_EXPECT(strstr(err.msg, "with the adaptive step") != NULL &&
+            strstr(err.msg, "best achievable is 2 mm") != NULL &&
+            strstr(err.msg, "adaptive step at 0.00025 mm, line 3") != NULL);
+  if (!strstr(err.msg, "adaptive step at 0.00025 mm, line 3")) {
+    printf("  got: %s\n", err.msg);
+  }
+  /* a scene without rows of the kind: said so */
+  static const char kFixed[] = HEADER4 "obstacle,strain,2,1,0.005,1,1,0,4,0.25,0.3,m\n";
+  CS_EXPECT(readText(kFixed, &err) == CS_OK);
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "obstacle", 100, CSR_STEP_ADAPTIVE, &err) == -1);
+  CS_EXPECT(err.status == CS_ERR_ARG && strstr(err.msg, "no row for scene 'obstacle' with the "
+                                               "adaptive step") != NULL);
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "obstacle", 100, CSR_STEP_FIXED, &err) == 0);
+  /* bad values and rows the run would refuse: one line each */
+  expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,1,-1e-4,4,0.25,0.3,m\n", 2,
+                "step_tol_mm -0.0001 is outside [0, 100]");
+  expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,1,101,4,0.25,0.3,m\n", 2,
+                "step_tol_mm 101 is outside");
+  expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,1,nan,4,0.25,0.3,m\n", 2,
+                "step_tol_mm 'nan' is not a finite number");
+  expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,1,tight,4,0.25,0.3,m\n", 2,
+                "step_tol_mm 'tight' is not a number");
+  expectRefused(HEADER4 "flat-road,rod,8,1,0.001,1,0,2.5e-4,3,2,2,m\n", 2,
+                "step_tol_mm 0.00025 on level 'rod': the adaptive step is a tree-stepped");
+  expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,2,2.5e-4,3,2,2,m\n", 2,
+                "step_tol_mm 0.00025 with step_order 2");
+  expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,1,2.5e-4,4,0.25,0.3,m\n"
+                        "flat-road,strain,2,1,0.005,1,1,0.00025,5,0.3,0.4,m\n", 3,
+                "step tol 0.00025 mm");
+  /* a format 4 header on format 3 rows: counted, not shifted */
+  expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,1,4,0.25,0.3,m\n", 2,
+                "11 fields, expected 12");
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_levels_good_table_reads);
@@ -214,6 +288,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_levels_bad_lines_refused);
   CS_RUN(test_levels_format2_rod_tol);
   CS_RUN(test_levels_format3_step_order);
+  CS_RUN(test_levels_format4_step_tol);
   remove(PATH);
   return cs_testSummary();
 }

@@ -4,8 +4,13 @@
  *    a tight one (its smallest): a property of the measured data, so this fails if the table
  *    stops showing a trade-off;
  *  - the configuration recorded in the output (leg_model, links_per_segment, step_s,
- *    macro_step_s, rod_tolerance_scale, leg_step_order) is the one the banner and legs_auto_choice name, and the one the table
- *    says is cheapest within the tolerance (computed here, independently of the picker);
+ *    macro_step_s, rod_tolerance_scale, leg_step_order, leg_step_adaptive, leg_step_tol_mm) is
+ *    the one the banner and legs_auto_choice name, and the one the table says is cheapest
+ *    within the tolerance (computed here, independently of the picker); the run file's
+ *    track_error_mm is that row's error;
+ *  - `--strain-step adaptive` / `fixed` beside it picks the cheapest row of that step kind (an
+ *    adaptive row runs the adaptive step at its tolerance, dt its longest step), and a table
+ *    without rows of the kind is one error;
  *  - a tolerance below the best error is one error line naming the best achievable error;
  *  - the table holds at least two configurations of every registered level per scene, and the
  *    benchmark's full table docs/levels_bench.csv has rows of every task and level.
@@ -30,12 +35,14 @@ static char g_table[1024];
 static csrLevelTable g_t;
 
 
-/* the scene's cheapest row within tol (ties: smaller error), computed from the rows */
-static int cheapestWithin(const char* scene, double tol) {
+/* the scene's cheapest row within tol (ties: smaller error) of a step kind (0 any, 1 fixed, 2
+ * adaptive), computed from the rows */
+static int cheapestKindWithin(const char* scene, double tol, int kind) {
   int best = -1;
   for (int i = 0; i < g_t.nrow; i++) {
     const csrLevelRow* r = &g_t.row[i];
-    if (strcmp(r->scene, scene) || r->error_mm > tol) {
+    if (strcmp(r->scene, scene) || r->error_mm > tol ||
+        (kind && (kind == 2) != (r->step_tol_mm > 0))) {
       continue;
     }
     if (best < 0 || r->cpu_s_per_s < g_t.row[best].cpu_s_per_s ||
@@ -47,18 +54,24 @@ static int cheapestWithin(const char* scene, double tol) {
 }
 
 
-/* run the scene with --legs auto --tol tol; check that row k ran and was recorded */
-static void expectRuns(const char* scene, double tol, int k) {
+static int cheapestWithin(const char* scene, double tol) {
+  return cheapestKindWithin(scene, tol, 0);
+}
+
+
+/* run the scene with --legs auto --tol tol (and `extra`); check that row k ran and was
+ * recorded */
+static void expectRunsWith(const char* scene, double tol, const char* extra, int k) {
   const csrLevelRow* r = &g_t.row[k];
   char args[2048], out[64];
   snprintf(out, sizeof out, "levelscli_%s.h5", scene);
-  snprintf(args, sizeof args, "run --scene %s --legs auto --tol %.17g --t-end 0.02 --out %s",
-           scene, tol, out);
+  snprintf(args, sizeof args, "run --scene %s --legs auto --tol %.17g --t-end 0.02 %s --out %s",
+           scene, tol, extra, out);
   csCliResult res;
   cs_cliRun(exe_path, args, "levelscli", &res);
   CS_EXPECT(res.status == 0);
   char want[256];
-  char tolnote[64] = "";
+  char tolnote[128] = "";
   if (r->rod_tol != 1) {
     snprintf(tolnote, sizeof tolnote, ", rod tol %g", r->rod_tol);
   }
@@ -66,13 +79,18 @@ static void expectRuns(const char* scene, double tol, int k) {
     snprintf(tolnote + strlen(tolnote), sizeof tolnote - strlen(tolnote), ", step order %d",
              r->step_order);
   }
+  if (r->step_tol_mm > 0) {
+    snprintf(tolnote + strlen(tolnote), sizeof tolnote - strlen(tolnote), ", adaptive step at "
+             "%g mm per step (dt its longest)", r->step_tol_mm);
+  }
   snprintf(want, sizeof want, "--legs auto picked %s, links %d, macro steps %d, dt %g s%s:",
            r->level, r->links, r->macro_steps, r->dt_s, tolnote);
   CS_EXPECT(strstr(res.err, want) != NULL);
   snprintf(want, sizeof want, "legs %s,", r->level); /* the first banner line */
   CS_EXPECT(strstr(res.err, want) != NULL);
-  printf("  %s, --tol %g mm: %s links %d macro %d (%.3g mm, %.3g CPU s/s)\n", scene, tol,
-         r->level, r->links, r->macro_steps, r->error_mm, r->cpu_s_per_s);
+  printf("  %s, --tol %g mm%s%s: %s links %d macro %d step tol %g mm (%.3g mm, %.3g CPU s/s)\n",
+         scene, tol, extra[0] ? " " : "", extra, r->level, r->links, r->macro_steps,
+         r->step_tol_mm, r->error_mm, r->cpu_s_per_s);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   hid_t f = H5Fopen(out, H5F_ACC_RDONLY, H5P_DEFAULT);
   CS_EXPECT(f >= 0);
@@ -96,6 +114,19 @@ static void expectRuns(const char* scene, double tol, int k) {
       CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_order", &o) >= 0 &&
                 o == r->step_order);
     }
+    if (strcmp(r->level, "rod")) {
+      /* a tree-stepped level: the row's step kind and tolerance are the run's */
+      double adaptive = -1, stol = -1;
+      CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_adaptive", &adaptive) >= 0 &&
+                adaptive == (r->step_tol_mm > 0));
+      if (r->step_tol_mm > 0) {
+        CS_EXPECT(H5LTget_attribute_double(f, "/", "leg_step_tol_mm", &stol) >= 0 &&
+                  stol == r->step_tol_mm);
+      }
+    }
+    /* the row's error is the run's recorded track error */
+    double te = -1;
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "track_error_mm", &te) >= 0 && te == r->error_mm);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "macro_step_s", &H) >= 0);
     CS_EXPECT_NEAR(H, r->dt_s * r->macro_steps, 1e-15, 1e-12);
     CS_EXPECT(H5LTget_attribute_double(f, "/", "legs_auto_tol_mm", &t) >= 0 && t == tol);
@@ -113,6 +144,11 @@ static void expectRuns(const char* scene, double tol, int k) {
   remove(out);
   snprintf(out, sizeof out, "levelscli_%s.xdmf", scene);
   remove(out);
+}
+
+
+static void expectRuns(const char* scene, double tol, int k) {
+  expectRunsWith(scene, tol, "", k);
 }
 
 
@@ -182,6 +218,44 @@ static void test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes(vo
 }
 
 
+/* --strain-step beside --legs auto: the cheapest row of that step kind within the tolerance
+ * (the shipped table holds both kinds on both scenes: the adaptive step is the strain level's
+ * default); a loose tolerance would pick a fixed step where the adaptive one is asked */
+static void test_levels_strain_step_picks_its_kind(void) {
+  csError err;
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTableRead(g_table, &g_t, &err) == CS_OK);
+  const char* scenes[2] = {"flat-road", "obstacle"};
+  for (int s = 0; g_t.nrow > 0 && s < 2; s++) {
+    double hi = -INFINITY;
+    for (int i = 0; i < g_t.nrow; i++) {
+      if (!strcmp(g_t.row[i].scene, scenes[s])) {
+        hi = fmax(hi, g_t.row[i].error_mm);
+      }
+    }
+    const int any = cheapestKindWithin(scenes[s], hi, 0);
+    const int fixed = cheapestKindWithin(scenes[s], hi, 1);
+    const int adaptive = cheapestKindWithin(scenes[s], hi, 2);
+    CS_EXPECT(any >= 0 && fixed >= 0 && adaptive >= 0);
+    if (fixed < 0 || adaptive < 0) {
+      continue;
+    }
+    CS_EXPECT(g_t.row[adaptive].step_tol_mm > 0 && g_t.row[fixed].step_tol_mm == 0);
+    expectRunsWith(scenes[s], hi, "--strain-step adaptive", adaptive);
+    expectRunsWith(scenes[s], hi, "--strain-step fixed", fixed);
+  }
+  /* a table without adaptive rows: --strain-step adaptive beside auto is one error */
+  CS_EXPECT(cs_cliWriteText("levelscli_fixed.csv",
+                            "scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,"
+                            "cpu_s_per_s,wall_s_per_s,machine\n"
+                            "flat-road,strain,2,1,0.005,1,1,2,0.3,0.3,m\n"));
+  expectError("--legs auto --tol 10 --levels levelscli_fixed.csv --strain-step adaptive",
+              "no row for scene 'flat-road' with the adaptive step");
+  remove("levelscli_fixed.csv");
+  expectError("--legs auto --tol 10 --step-tol 5e-4", "--legs auto sets --links");
+}
+
+
 /* the benchmark's full table (docs/levels_bench.csv) has every task and every level in it */
 static void test_levels_benchmark_has_every_task_and_level(void) {
   char path[1100];
@@ -229,6 +303,7 @@ int main(int argc, char** argv) {
   snprintf(g_table, sizeof g_table, "%s/robot/levels.csv", src ? src : ".");
   cs_testInit(argc - 1, argv + 1);
   CS_RUN(test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes);
+  CS_RUN(test_levels_strain_step_picks_its_kind);
   CS_RUN(test_levels_benchmark_has_every_task_and_level);
   CS_RUN(test_levels_bad_table_and_options_refused);
   return cs_testSummary();

@@ -7,6 +7,7 @@
 
 #include <hdf5.h>
 #include <hdf5_hl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -227,15 +228,46 @@ static void test_badCalibration(void) {
 
 /* issue 33 item 1: the banner states the default discretisation's measured track error, read
  * from the shipped level table's row of the configuration that runs, or that it was not
- * measured (the banner is on stderr) */
+ * measured (the banner is on stderr), and the run file records the same (track_error,
+ * track_error_mm) */
 static void test_bannerStatesTrackError(void) {
   csCliResult r;
-  /* the default steps adaptively: the table's rows are fixed steps, and the banner says so
-   * rather than quote a fixed step's row */
+  /* the default steps adaptively (2.5e-4 mm): a row of the table (step_tol_mm), quoted in the
+   * banner and the run file */
+  remove("runcli_banner.h5");
   cs_cliRun(exe_path, "run --t-end 0.01 --out runcli_banner.h5", "runcli", &r);
+  const char* line0 =
+      strstr(r.err, "crawlsim run: legs strain, 2 bending modes per segment: track error ");
+  CS_EXPECT(r.status == 0 && line0 != NULL);
+  double mm0 = -1;
+  CS_EXPECT(line0 && sscanf(line0, "crawlsim run: legs strain, 2 bending modes per segment: "
+                                   "track error %lf mm", &mm0) == 1 && mm0 >= 0);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t f = H5Fopen("runcli_banner.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    double te = -1;
+    char what[800] = "";
+    CS_EXPECT(H5LTget_attribute_double(f, "/", "track_error_mm", &te) >= 0);
+    /* the banner prints 3 significant digits of the same row's value */
+    CS_EXPECT(fabs(te - mm0) <= 0.0051 * fmax(1, te));
+    CS_EXPECT(H5LTget_attribute_string(f, "/", "track_error", what) >= 0 &&
+              strstr(line0, what) != NULL && what[0]);
+    H5Fclose(f);
+  }
+  /* the adaptive step at a tolerance the table has no row for: not measured, and no number in
+   * the file */
+  cs_cliRun(exe_path, "run --t-end 0.01 --step-tol 1e-3 --out runcli_banner.h5", "runcli", &r);
   CS_EXPECT(r.status == 0 &&
-            strstr(r.err, "crawlsim run: legs strain, 2 bending modes per segment: the adaptive "
-                          "step's track error is not in ") != NULL);
+            strstr(r.err, "crawlsim run: legs strain, 2 bending modes per segment: track error "
+                          "of the adaptive step at 0.001 mm per step (longest 0.005 s) not "
+                          "measured") != NULL);
+  f = H5Fopen("runcli_banner.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  CS_EXPECT(f >= 0);
+  if (f >= 0) {
+    CS_EXPECT(H5Aexists(f, "track_error") > 0 && H5Aexists(f, "track_error_mm") == 0);
+    H5Fclose(f);
+  }
   /* a fixed step is a row of the table */
   cs_cliRun(exe_path, "run --t-end 0.01 --strain-step fixed --out runcli_banner.h5", "runcli", &r);
   CS_EXPECT(r.status == 0);
