@@ -17,7 +17,8 @@
 #   fit-SET TOL... rom_ecsw.py on one set (tet or fibre), one pass to the smallest TOL, a
 #                  weights file per TOL (the fibre fit without G's entries: --no-projection,
 #                  as session romfibre; FIBPROJ=1 keeps them)      -> OUT/ecsw_CFG/w<SET>_tol<TOL>.h5
-#   leg-T<TT>-F<FT>  the Tet10 weights of TT with the fibres' of FT (romsweep_combine_weights.py),
+#   leg-T<TT>-F<FT>  the Tet10 weights of TT with the fibres' of FT (romsweep_combine_weights.py;
+#                  FT "all": every fibre kept at weight 1),
 #                  written into a leg file from the every-element one (rom leg-file --leg-file:
 #                  seconds, no gmsh)                               -> OUT/ecsw_CFG/leg_t<TT>_f<FT>.h5
 #   check-T<TT>-F<FT>-RAY  rom check of RAY on that leg file, resumable after every state
@@ -85,20 +86,23 @@ while [ $# -gt 0 ]; do
         [ ${#tv[@]} -eq 1 ] && mv "$E/w${set_}.h5" "$E/w${set_}_tol$small.h5"
       fi ;;
     leg-*)
-      [[ $stage =~ ^leg-T([0-9.e-]+)-F([0-9.e-]+)$ ]] ||
+      [[ $stage =~ ^leg-T([0-9.e-]+)-F([0-9.e-]+|all)$ ]] ||
         { echo "run_romecsw.sh: stage $stage: leg-T<TT>-F<FT>" >&2; exit 2; }
       tt=${BASH_REMATCH[1]} ft=${BASH_REMATCH[2]}
       leg=$E/leg_t${tt}_f${ft}.h5
       [ -s "$leg" ] || {
-        $PY "$HERE/romsweep_combine_weights.py" "$E/wtet_tol$tt.h5" "$E/wfibre_tol$ft.h5" \
-          "$E/w_t${tt}_f${ft}.h5"
-        "${T[@]}" nice -n "$NICE" "$CS" rom leg-file --leg-file "$LEGALL" \
-          --weights "$E/w_t${tt}_f${ft}.h5" --out "$leg.tmp" --actuator leg \
-          > "$E/leg_t${tt}_f${ft}.log" 2>&1
+        w=$E/w_t${tt}_f${ft}.h5
+        if [ "$ft" = all ]; then
+          w=$E/wtet_tol$tt.h5 # a weights file without a fibre set keeps every fibre at 1
+        else
+          $PY "$HERE/romsweep_combine_weights.py" "$E/wtet_tol$tt.h5" "$E/wfibre_tol$ft.h5" "$w"
+        fi
+        "${T[@]}" nice -n "$NICE" "$CS" rom leg-file --leg-file "$LEGALL" --weights "$w" \
+          --out "$leg.tmp" --actuator leg > "$E/leg_t${tt}_f${ft}.log" 2>&1
         mv "$leg.tmp" "$leg"
       } ;;
     check-*)
-      [[ $stage =~ ^check-T([0-9.e-]+)-F([0-9.e-]+)-(.+)$ ]] ||
+      [[ $stage =~ ^check-T([0-9.e-]+)-F([0-9.e-]+|all)-(.+)$ ]] ||
         { echo "run_romecsw.sh: stage $stage: check-T<TT>-F<FT>-RAY" >&2; exit 2; }
       tt=${BASH_REMATCH[1]} ft=${BASH_REMATCH[2]} ray=${BASH_REMATCH[3]}
       log=$E/check_t${tt}_f${ft}_${ray}.log
