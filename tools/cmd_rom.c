@@ -15,6 +15,9 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include <hdf5.h>
+#include <hdf5_hl.h>
+
 #include "cmd_fe_threads.h"
 #include "core_math.h"
 #include "core_clock.h"
@@ -103,6 +106,9 @@ static const csxOptTable kCheckTable = {
 static const csxOpt kEcswOpts[] = {
     {"--basis", "BASIS.h5", NULL,
      "the reduced basis of tools/rom_basis.py, with its training snapshots (required)"},
+    {"--leg-file", "LEG.h5", "none: the model built from --basis (gmsh, the chamber forms)",
+     "the model from this every-element leg file of the same basis (crawlsim rom leg-file "
+     "--basis BASIS.h5): no gmsh, no chamber forms; the training snapshots still from --basis"},
     {"--out", "A.h5", NULL, "the matrices' file (required)"},
     {"--work", "DIR", ".", "where gmsh's files of the basis' mesh are written"},
     {"--stride", "K", "1",
@@ -563,8 +569,9 @@ static int checkRay(csfRomActuator* ra, const csrActuator* act, const csfRomSnap
 
 /* the reduced actuator from a leg file (as bend --model rom --rom-file), its weights replaced
  * by those of `weights` (may be NULL); 1 after one error line */
-static int openLegFile(const char* actname, const char* const* sets, int nset, const char* path,
-                       const char* weights, csrActuator* act, csfRomActuator* ra) {
+int csx_romOpenLegFile(const char* actname, const char* const* sets, int nset, const char* path,
+                       const char* weights, csrActuator* act, csfRomActuator* ra,
+                       double* l_soft) {
   if (csx_romActuator(actname, sets, nset, 0, act)) {
     return 1;
   }
@@ -584,6 +591,9 @@ static int openLegFile(const char* actname, const char* const* sets, int nset, c
     }
     spec.mesh_size = lf.l_soft;
     spec.mesh_symmetric = 1;
+    if (l_soft) {
+      *l_soft = lf.l_soft;
+    }
     csfMesh* me = lf.mesh;
     csfModel* m = lf.model;
     csfRom* rom = lf.rom;
@@ -663,7 +673,7 @@ static int cmdCheck(int argc, char** argv) {
   csrActuator act;
   csfRomActuator ra;
   const double t0 = csu_wallSeconds();
-  if (legf ? openLegFile(actname, sets, nset, legf, weights, &act, &ra)
+  if (legf ? csx_romOpenLegFile(actname, sets, nset, legf, weights, &act, &ra, NULL)
            : csx_romOpen(actname, sets, nset, basis, weights, dir, "check_mesh", &act, &ra)) {
     return 1;
   }
@@ -779,9 +789,85 @@ static int writeOuterRows(csH5File* f, const char* name, int cols_i, int m, cons
   return rc;
 }
 
+/* a leg file stands in for --basis's model only when it is that basis' model with every
+ * element at weight 1 (each column is one element's force at the unreduced state): the sizes
+ * and the bases V, P, Qf bit for bit, every Tet10 and fibre kept; 1 after one error line */
+static int ecswLegFileMatches(const char* legf, const char* basis, const csfRomActuator* ra) {
+  const csfRom* r = ra->rom;
+  const int nt = ra->fe.mesh->ntet, nf = ra->fe.model->nfib;
+  if (r->nel[CSF_ROM_SET_TET] != nt || r->nel[CSF_ROM_SET_FIBRE] != nf) {
+    fprintf(stderr, "crawlsim rom: ecsw-matrix: %s keeps %d of %d Tet10 and %d of %d fibre "
+            "elements: the matrices need its every-element model (rom leg-file without "
+            "--weights)\n", legf, r->nel[CSF_ROM_SET_TET], nt, r->nel[CSF_ROM_SET_FIBRE], nf);
+    return 1;
+  }
+  for (int e = 0; e < nt; e++) {
+    if (r->w[CSF_ROM_SET_TET][e] != 1.0) {
+      fprintf(stderr, "crawlsim rom: ecsw-matrix: %s: Tet10 %d has weight %.17g, not 1\n", legf,
+              e, r->w[CSF_ROM_SET_TET][e]);
+      return 1;
+    }
+  }
+  for (int e = 0; e < nf; e++) {
+    if (r->w[CSF_ROM_SET_FIBRE][e] != 1.0) {
+      fprintf(stderr, "crawlsim rom: ecsw-matrix: %s: fibre element %d has weight %.17g, not 1\n",
+              legf, e, r->w[CSF_ROM_SET_FIBRE][e]);
+      return 1;
+    }
+  }
+  const size_t nd = (size_t)ra->fe.model->ndof;
+  const struct {
+    const char* name;
+    const double* x;
+    size_t cnt;
+  } mat[3] = {{"V", r->V, nd * (size_t)r->n},
+              {"P", r->P, (size_t)nt * (size_t)r->m},
+              {"Qf", r->Qf, (size_t)nf * (size_t)r->mf}};
+  int rc = 0;
+  H5E_BEGIN_TRY {
+    const hid_t f = H5Fopen(basis, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0) {
+      fprintf(stderr, "crawlsim rom: ecsw-matrix: %s: cannot open the basis file\n", basis);
+      rc = 1;
+    }
+    for (int k = 0; k < 3 && rc == 0; k++) {
+      if (mat[k].cnt == 0) {
+        continue;
+      }
+      hsize_t dims[2] = {0, 0};
+      H5T_class_t cls;
+      size_t sz;
+      double* x = NULL;
+      if (H5LTfind_dataset(f, mat[k].name) <= 0 ||
+          H5LTget_dataset_info(f, mat[k].name, dims, &cls, &sz) < 0 ||
+          (size_t)dims[0] * (size_t)dims[1] != mat[k].cnt) {
+        fprintf(stderr, "crawlsim rom: ecsw-matrix: %s is not the model of %s: no /%s of its "
+                "size there\n", legf, basis, mat[k].name);
+        rc = 1;
+      } else if (!(x = malloc(mat[k].cnt * sizeof(double)))) {
+        fprintf(stderr, "crawlsim rom: out of memory (/%s of %s)\n", mat[k].name, basis);
+        rc = 1;
+      } else if (H5LTread_dataset_double(f, mat[k].name, x) < 0) {
+        fprintf(stderr, "crawlsim rom: ecsw-matrix: %s: /%s unreadable\n", basis, mat[k].name);
+        rc = 1;
+      } else if (memcmp(x, mat[k].x, mat[k].cnt * sizeof(double)) != 0) {
+        fprintf(stderr, "crawlsim rom: ecsw-matrix: %s is not the model of %s: its /%s differs\n",
+                legf, basis, mat[k].name);
+        rc = 1;
+      }
+      free(x);
+    }
+    if (f >= 0) {
+      H5Fclose(f);
+    }
+  }
+  H5E_END_TRY;
+  return rc;
+}
+
 /* the element force matrices of the ECSW fit (tools/rom_ecsw.py) */
 static int cmdEcswMatrix(int argc, char** argv) {
-  const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg";
+  const char* basis = NULL, *out = NULL, *work = ".", *actname = "leg", *legf = NULL;
   const char* sets[CSX_ROM_MAX_SETS];
   int nset = 0, stride = 1, only = -1;
   csxOptIter it;
@@ -797,6 +883,8 @@ static int cmdEcswMatrix(int argc, char** argv) {
     const char* v = it.value;
     if (csx_optIs(it.opt, "--basis")) {
       basis = v;
+    } else if (csx_optIs(it.opt, "--leg-file")) {
+      legf = v;
     } else if (csx_optIs(it.opt, "--out")) {
       out = v;
     } else if (csx_optIs(it.opt, "--work")) {
@@ -832,7 +920,12 @@ static int cmdEcswMatrix(int argc, char** argv) {
   cs_errorClear(&err);
   csrActuator act;
   csfRomActuator ra;
-  if (csx_romOpen(actname, sets, nset, basis, NULL, work, "ecsw_mesh", &act, &ra)) {
+  if (legf ? csx_romOpenLegFile(actname, sets, nset, legf, NULL, &act, &ra, NULL)
+           : csx_romOpen(actname, sets, nset, basis, NULL, work, "ecsw_mesh", &act, &ra)) {
+    return 1;
+  }
+  if (legf && ecswLegFileMatches(legf, basis, &ra)) {
+    csf_romActuatorDestroy(&ra);
     return 1;
   }
   const int n = ra.rom->n;

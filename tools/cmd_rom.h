@@ -39,6 +39,13 @@ int csx_romOpen(const char* actname, const char* const* sets, int nset, const ch
                 const char* weights, const char* work, const char* stem_name, csrActuator* act,
                 csfRomActuator* ra);
 
+/* the reduced actuator of a leg file (crawlsim rom leg-file; robot/rom/robot_rom_file.h): no
+ * gmsh, no chamber forms to compute; `weights` (may be NULL) replace the sets the weights file
+ * holds; *l_soft (may be NULL) the mesh size it was built on; 1 after one error line */
+int csx_romOpenLegFile(const char* actname, const char* const* sets, int nset, const char* path,
+                       const char* weights, csrActuator* act, csfRomActuator* ra,
+                       double* l_soft);
+
 /* a ray's progress in `crawlsim rom check --checkpoint DIR` (cmd_rom_ckpt.c): k states solved,
  * the worst errors so far (deg, fraction, mm, fraction), the reduced solves' wall and CPU
  * seconds and Newton iterations, the printed state lines (lines, lines_cap bytes: the caller's) */

@@ -17,7 +17,12 @@
 #include "robot_rom_file.h"
 
 static const csxOpt kLegOpts[] = {
-    {"--basis", "BASIS.h5", NULL, "the reduced basis of tools/rom_basis.py (required)"},
+    {"--basis", "BASIS.h5", NULL,
+     "the reduced basis of tools/rom_basis.py (required unless --leg-file)"},
+    {"--leg-file", "SRC.h5", "none",
+     "another leg file instead of --basis (its every-element model, say): its model read back "
+     "without gmsh and the chamber forms' n + 1 passes, --weights then replacing its sets' "
+     "weights; the hyper-reduced leg files of one basis from one set-up"},
     {"--weights", "W.h5", "none (every element at weight 1)",
      "the ECSW element weights of tools/rom_ecsw.py for that basis"},
     {"--out", "LEG.h5", NULL, "the leg file (required)"},
@@ -37,6 +42,7 @@ static const csxOptTable kLegTable = {
 
 int csx_cmdRomLegFile(int argc, char** argv) {
   const char* basis = NULL, *weights = NULL, *out = NULL, *work = ".", *actname = "leg";
+  const char* src = NULL;
   const char* sets[CSX_ROM_MAX_SETS];
   int nset = 0;
   csxOptIter it;
@@ -52,6 +58,8 @@ int csx_cmdRomLegFile(int argc, char** argv) {
     const char* v = it.value;
     if (csx_optIs(it.opt, "--basis")) {
       basis = v;
+    } else if (csx_optIs(it.opt, "--leg-file")) {
+      src = v;
     } else if (csx_optIs(it.opt, "--weights")) {
       weights = v;
     } else if (csx_optIs(it.opt, "--out")) {
@@ -65,15 +73,26 @@ int csx_cmdRomLegFile(int argc, char** argv) {
       return 1;
     }
   }
-  if (!basis || !out) {
-    fprintf(stderr, "crawlsim rom: leg-file needs --basis and --out (see crawlsim rom leg-file "
-            "--help)\n");
+  if ((!basis && !src) || !out) {
+    fprintf(stderr, "crawlsim rom: leg-file needs --basis and --out, or --leg-file and --out (see "
+            "crawlsim rom leg-file --help)\n");
+    return 1;
+  }
+  if (basis && src) {
+    fprintf(stderr, "crawlsim rom: leg-file: --basis and --leg-file together: the model comes "
+            "from one of them\n");
+    return 1;
+  }
+  if (src && !strcmp(src, out)) {
+    fprintf(stderr, "crawlsim rom: leg-file: --out %s is the --leg-file it is read from\n", out);
     return 1;
   }
   const double w0 = csu_wallSeconds();
   csrActuator act;
   csfRomActuator ra;
-  if (csx_romOpen(actname, sets, nset, basis, weights, work, "legfile_mesh", &act, &ra)) {
+  double l_soft = NAN;
+  if (src ? csx_romOpenLegFile(actname, sets, nset, src, weights, &act, &ra, &l_soft)
+          : csx_romOpen(actname, sets, nset, basis, weights, work, "legfile_mesh", &act, &ra)) {
     return 1;
   }
   const double w1 = csu_wallSeconds();
@@ -89,8 +108,9 @@ int csx_cmdRomLegFile(int argc, char** argv) {
     }
   }
   const csStatus st =
-      sole ? csr_romLegFileWrite(out, ra.rom, ns, sole, &act, csf_romBasisMeshSize(basis, &err),
-                                 basis, weights, &err)
+      sole ? csr_romLegFileWrite(out, ra.rom, ns, sole, &act,
+                                 src ? l_soft : csf_romBasisMeshSize(basis, &err),
+                                 src ? src : basis, weights, &err)
            : cs_errorSet(&err, CS_ERR_MEMORY, "out of memory");
   free(sole);
   if (st != CS_OK) {

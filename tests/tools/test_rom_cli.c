@@ -88,6 +88,15 @@ static void test_bad_input_is_one_line_and_exit_1(void) {
   expectRefused("rom leg-file --basis x.h5 --out x.h5 stray", "unexpected argument 'stray'");
   expectRefused("rom leg-file --wieghts w.h5", "did you mean --weights?");
   expectRefused("rom leg-file --basis romcli_missing.h5 --out romcli_leg.h5", "romcli_missing.h5");
+  /* a leg file from another one (session romecsw, 2026-12-07): refused before any model is read */
+  expectRefused("rom leg-file --leg-file x.h5", "leg-file needs --basis and --out");
+  expectRefused("rom leg-file --basis x.h5 --leg-file y.h5 --out z.h5",
+                "--basis and --leg-file together");
+  expectRefused("rom leg-file --leg-file x.h5 --out x.h5", "--out x.h5 is the --leg-file");
+  expectRefused("rom leg-file --leg-file romcli_missing.h5 --out romcli_leg.h5",
+                "romcli_missing.h5");
+  expectRefused("rom ecsw-matrix --basis x.h5 --leg-file romcli_missing.h5 --out x.h5",
+                "romcli_missing.h5");
   expectRefused("rom modes --presure 0.1", "did you mean --pressure?");
   expectRefused("rom sway --load 11", "--load '11'");
   expectRefused("rom sway --load 0.4 --load 0.2", "--load 0.2: the loads must ascend");
