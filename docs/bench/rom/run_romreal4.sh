@@ -37,6 +37,9 @@
 #                links to other folders' files, and the production rewrites mesh.h5); then hard
 #                linked into OUT/snap once both mesh.h5 hold the same mesh (every later `basis`
 #                stage trains on them)                                    -> OUT/snap/RS<k>.h5
+#   link-rs      (session romrs, 2026-12-07) the same mesh check and links for the RS rays
+#                finished so far (a production stopped between rays: the basis on part of
+#                the family; rays-rs resumes the rest)                    -> OUT/snap/RS<k>.h5
 #   base         the same file without its fibre basis (Qf, mf): the same span with the FE's
 #                fibres, for the locking's share                             -> OUT/b<N>_base.h5
 #   project      the held-out states' best projection onto the span (tools/rom_project.py)
@@ -144,6 +147,9 @@ PYEOF
       mkdir -p "$OUT/snap_rs"
       "${T[@]}" nice -n "$NICE" "$CS" rom snapshots --out "$OUT/snap_rs" --mesh-size 8 \
         --threads 1 --actuator leg "${rs[@]/#/--ray=}" >> "$OUT/snap_rs/production.log" 2>&1
+      ;&
+    link-rs)
+      rs=(RS1 RS2 RS3 RS4 RS5 RS6)
       $PY - "$SNAP/mesh.h5" "$OUT/snap_rs/mesh.h5" <<'PYEOF'
 import sys
 import h5py
@@ -155,7 +161,10 @@ with h5py.File(sys.argv[1], "r") as a, h5py.File(sys.argv[2], "r") as b:
         if a[key].shape != b[key].shape or not np.array_equal(a[key][...], b[key][...]):
             sys.exit(f"run_romreal4.sh: rays-rs: {sys.argv[2]}: /{key} is not that of {sys.argv[1]}")
 PYEOF
-      for r in "${rs[@]}"; do ln -f "$OUT/snap_rs/$r.h5" "$SNAP/$r.h5"; done ;;
+      # a ray's file appears when the ray is finished (cmd_rom.c renames it from its part file)
+      for r in "${rs[@]}"; do
+        [ ! -s "$OUT/snap_rs/$r.h5" ] || ln -f "$OUT/snap_rs/$r.h5" "$SNAP/$r.h5"
+      done ;;
     base)
       [ -s "$OUT/b${N}_base.h5" ] ||
         $PY - "$OUT/b${N}_f.h5" "$OUT/b${N}_base.h5" <<'PYEOF'
