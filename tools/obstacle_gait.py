@@ -112,7 +112,7 @@ ap.add_argument('--zoverlap', type=float, default=0.0,
                 '--Tpz plus it (its stroke longer at the same foot speed, --SHZ per --Tpz), a swing '
                 '--Tpz less it (the first swing, after the two-group walk, half of it less); default 0 '
                 '(off): the landing group touched down 0.04 s after the standing group lifted and '
-                'the support bounced off the road, 0.1 s aloft with a 50 g support, 0.2 s with 25 g '
+                'the support bounced off the road, aloft 0.08 s of each slot with a 50 g support, 0.24 s with 25 g '
                 '(docs/notes/obstacle.md "Rule 18")')
 ap.add_argument('--zgroups', type=int, default=2, choices=(2, 4),
                 help='the lateral crawl: 4, the wave of the diagonal pairs AH, DE, BG, CF (six '
@@ -362,9 +362,10 @@ if a.up_short >= 0:
 if a.zoverlap > 0:
     RULE16 += ('\n# 18. The lateral crawl\'s hand-over: both groups stand %g s, half of it either side of the\n'
                '#     slot\'s boundary (the landing group set down after the standing group lifted and the\n'
-               '#     support bounced off the road, aloft 0.1 s with a 50 g support and 0.2 s with 25 g:\n'
+               '#     support bounced off the road, aloft 0.08 s a slot with a 50 g support, 0.24 s with 25 g:\n'
                '#     the stroke went by in the air); a stance lasts %g s (%.1f mm, the same foot speed),\n'
-               '#     a swing %g s.' % (a.zoverlap, a.Tpz + a.zoverlap,
+               '#     a swing %g s. At the end the group that stood last steps under its hips first.'
+               % (a.zoverlap, a.Tpz + a.zoverlap,
                                        SHZ * (a.Tpz + a.zoverlap) / a.Tpz, a.Tpz - a.zoverlap))
 if a.clear_down:
     RULE16 += ('\n# 12b. The first pair landing near the down edge: rule 12\'s band keeps %g mm from '
@@ -935,7 +936,11 @@ else:
         emit(since[sw[0]], t - since[sw[0]], {l: need('L15', zs[l]) for l in sw}, linear=True)
     comment('# the feet back under the hips, group by group, then every chamber vented\n'
             '# (the paper\'s "release all pressure")')
-    for g in GZ:
+    # rule 18: the group that stood in the last slot (its feet at -RZO) steps first, the other
+    # (just landed) standing: after 8 slots ACFH first (just landed) threw the support 61 mm
+    # along +z, after 7 the group that stood last first moved it 6 mm (strain legs, 50 g)
+    order = GZ if O <= 0 else (GZ[(g0 + NZS - 1) % 2], GZ[(g0 + NZS) % 2])
+    for g in order:
         step(t, a.Tturn, g, {l: need('V', zs[l]) for l in g}, {l: 'straight' for l in g},
              {l: 'R15' for l in g}, FRACT)
         t += a.Tturn
