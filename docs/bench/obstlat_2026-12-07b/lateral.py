@@ -33,6 +33,7 @@ NX = int(round((TZ - TX) / TPZ)) if TX is not None else 0
 # rule 11: g0 = xslots % 2, xslots = NX - 1)
 G = ("ACFH", "BDEG")
 g0 = (NX - 1) % 2 if NX else 0
+R18 = "At the end the group that stood last steps under its hips first" in text
 
 
 def idx(t, s):
@@ -64,8 +65,9 @@ for p in a.runs:
             j = k + NX
             st = G[1] if j == 0 else G[(j - 1) % 2]
             kind = "x"
-        elif k == NZ:     # the release's first slot: ACFH step under the hips
-            st, kind = G[1], "rel"
+        elif k == NZ:     # the release's first slot: ACFH step under the hips (rule 18: the
+            # group that stood in the last slot steps first, the other stands)
+            st, kind = (G[(g0 + NZ) % 2] if R18 else G[1]), "rel"
         else:
             st, kind = G[(g0 + k) % 2], "z"
         sw = G[0] if st == G[1] else G[1]
