@@ -115,6 +115,14 @@ ap.add_argument('--frac', default='0.25,0.4,0.1,0.25',
 ap.add_argument('--fract', default='0.15,0.5,0.15,0.2',
                 help='a step of the turn and of the release: lift, swing, hold, land (fractions '
                 'of --Tturn)')
+ap.add_argument('--zoverlap', type=float, default=0.0,
+                help='rule 20: with --zgroups 2, both groups stand this long (s) at each hand-over of '
+                'the lateral crawl, half of it either side of the slot\'s boundary: a stance lasts '
+                '--Tpz plus it (its stroke longer at the same foot speed, --SHZ per --Tpz), a swing '
+                '--Tpz less it (the first swing, after the two-group walk, half of it less); default 0 '
+                '(off): the landing group touched down 0.04 s after the standing group lifted and '
+                'the support bounced off the road, aloft 0.08 s of each slot with a 50 g support, 0.24 s with 25 g '
+                '(docs/notes/obstacle.md "Rule 20")')
 ap.add_argument('--zgroups', type=int, default=2, choices=(2, 4),
                 help='the lateral crawl: 4, the wave of the diagonal pairs AH, DE, BG, CF (six '
                 'legs stand, --SHZ over three slots); 2, two groups of four, ACFH and BDEG, as '
@@ -372,6 +380,14 @@ if a.down_lead > 0:
     RULE16 += ('\n# 19. The front pair\'s first step from the plateau down to the road carries the support %g mm\n'
                '#     past the plan (measured); the later landings are planned with the hips that far ahead,\n'
                '#     and the wave ends where the support so planned passes x2.' % a.down_lead)
+if a.zoverlap > 0:
+    RULE16 += ('\n# 20. The lateral crawl\'s hand-over: both groups stand %g s, half of it either side of the\n'
+               '#     slot\'s boundary (the landing group set down after the standing group lifted and the\n'
+               '#     support bounced off the road, aloft 0.08 s a slot with a 50 g support, 0.24 s with 25 g:\n'
+               '#     the stroke went by in the air); a stance lasts %g s (%.1f mm, the same foot speed),\n'
+               '#     a swing %g s. At the end the group that stood last steps under its hips first.'
+               % (a.zoverlap, a.Tpz + a.zoverlap,
+                                       SHZ * (a.Tpz + a.zoverlap) / a.Tpz, a.Tpz - a.zoverlap))
 if a.clear_down:
     RULE16 += ('\n# 12b. The first pair landing near the down edge: rule 12\'s band keeps %g mm from '
                'that edge.' % a.clear)
@@ -927,24 +943,47 @@ else:
     tz = t
     NZS = int(round(a.zend / (a.Dz / 2)))
     comment('# the lateral crawl: %d slots of %g s from %.2f s, groups ACFH / BDEG' % (NZS, a.Tpz, tz))
+    # rule 20 (--zoverlap O): every stance foot moves at SHZ / Tpz relative to its hip; a group
+    # lands at +RZO O/2 before a slot's boundary and lifts O/2 after the next one (at -RZO), so
+    # both groups stand O at each hand-over; O = 0 is rule 11's crawl, move for move
+    O = a.zoverlap
+    if O < 0 or O >= a.Tpz:
+        sys.exit('obstacle_gait.py: --zoverlap takes a time in 0..--Tpz (s)')
+    VZ = SHZ / a.Tpz
+    RZO = RZ + VZ * O / 2
     zs = {l: RZ for l in GZ[g0]}
+    since = {l: tz for l in GZ[g0]}   # when the stance of each standing foot began (at zs)
     first = True
     for s in range(NZS):
         t0 = tz + s * a.Tpz
         st, sw = GZ[(g0 + s) % 2], GZ[(g0 + s + 1) % 2]
-        emit(t0, a.Tpz, {l: need('L15', -RZ) for l in st}, linear=True)
+        te = t0 + a.Tpz + (O / 2 if s < NZS - 1 else 0.0)
         for l in st:
-            zs[l] = -RZ
+            zs[l] -= VZ * (te - since[l])
+        emit(since[st[0]], te - since[st[0]], {l: need('L15', zs[l]) for l in st}, linear=True)
+        for l in st:
+            since[l] = te
+        tl = t0 if first else t0 + O / 2
         lift = {l: need('A', state[l][1]) if first else need('V', zs[l]) for l in sw}
-        step(t0, a.Tpz, sw, lift, {l: need('V', RZ) for l in sw},
-             {l: need('L15', RZ) for l in sw}, FRACZ)
+        step(tl, t0 + a.Tpz - O / 2 - tl, sw, lift, {l: need('V', RZO) for l in sw},
+             {l: need('L15', RZO) for l in sw}, FRACZ)
         for l in sw:
-            zs[l] = RZ
+            zs[l], since[l] = RZO, t0 + a.Tpz - O / 2
         first = False
     t = tz + NZS * a.Tpz
+    if O > 0:
+        # the last swing's group stands the last O / 2 of the crawl, stroking
+        sw = GZ[(g0 + NZS) % 2]
+        for l in sw:
+            zs[l] -= VZ * (t - since[l])
+        emit(since[sw[0]], t - since[sw[0]], {l: need('L15', zs[l]) for l in sw}, linear=True)
     comment('# the feet back under the hips, group by group, then every chamber vented\n'
             '# (the paper\'s "release all pressure")')
-    for g in GZ:
+    # rule 20: the group that stood in the last slot (its feet at -RZO) steps first, the other
+    # (just landed) standing: after 8 slots ACFH first (just landed) threw the support 61 mm
+    # along +z, after 7 the group that stood last first moved it 6 mm (strain legs, 50 g)
+    order = GZ if O <= 0 else (GZ[(g0 + NZS - 1) % 2], GZ[(g0 + NZS) % 2])
+    for g in order:
         step(t, a.Tturn, g, {l: need('V', zs[l]) for l in g}, {l: 'straight' for l in g},
              {l: 'R15' for l in g}, FRACT)
         t += a.Tturn

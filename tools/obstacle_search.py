@@ -5,6 +5,7 @@ usage: /usr/bin/python3 tools/obstacle_search.py [--dir DIR] [--base "OPTIONS"]
            [--free settle,Tclimb,Tcross,Dcross] [--x0 V,..] [--sweep N] [--evals N] [--seed S]
            [--screen ramp0.5,m25g] [--full K] [--crawlsim build/tools/crawlsim] [--mpirun N]
            [--report-only] [--write-gait FILE]
+           [--legs rod|strain] [--links N] [--strain-step fixed|adaptive] [--step-tol MM] [--dt S]
 
 A design is tools/obstacle_gait.py's output with the fixed options --base (the rules switched on,
 e.g. "--over-step -3 --reach 55 --clear-down": the sixth session's rule 16 and 12b) and the
@@ -64,7 +65,9 @@ try:
     from scipy.optimize import minimize
     from scipy.stats import qmc
     # the study runner's plumbing and the mission's table, the robustness set's run options
-    from gait_search import CAL, P_MAX, ROBUST, RULE, read_case, run_study
+    import gait_search
+    from gait_search import CAL, LINKS, MODEL, P_MAX, RULE, model_name, model_words, read_case, \
+        robust_set, run_study
     # Table 3 (the paper's obstacle track: support x, height, lateral z at its time nodes)
     from plot_track import TABLE3_H, TABLE3_T, TABLE3_X, TABLE3_Z
 except ImportError as e:  # Debian: python3-h5py python3-numpy python3-scipy python3-matplotlib
@@ -91,7 +94,26 @@ END = (646.0, 270.0)      # Table 3's end point (x, z), mm
 SET_TOL = 40.0            # the set's allowance from the end point, mm
 FALL = 100.0              # penalty of a set run that falls (mm)
 NOMINAL_FALLS = 1000.0
-SET = [(n, w) for n, w in ROBUST if n != "mu0"]   # issue 33's robustness set of nine
+SCENE_LEGS = "rod"   # the obstacle's default legs (core/sim_scene.c; crawlsim run --help)
+gait_search.SCENE_LEGS = SCENE_LEGS   # the step halved of the scene's own legs (step_halved())
+
+
+def robust_nine():
+    """issue 33's robustness set of nine, the step halved the model's (gait_search.step_halved:
+    before 2026-12-07 this passed the set's placeholder word `step` to the run)"""
+    return [(n, w) for n, w in robust_set() if n != "mu0"]
+
+
+def model_run_words(words):
+    """the model's run options for a case whose own options are WORDS: --links and the model's
+    words, a case's own --dt or --step-tol (the step halved) replacing the model's"""
+    own = words.split()
+    mw = model_words()
+    for opt in ("--dt", "--step-tol"):
+        if opt in own and opt in mw:
+            i = mw.index(opt)
+            del mw[i:i + 2]
+    return ([] if LINKS[0] is None else ["--links", str(LINKS[0])]) + mw
 
 
 class Budget(Exception):
@@ -155,10 +177,14 @@ class Search:
         self.seen = {}        # key -> J
         self.order = []
         self.local = None     # the local search's designs (a set) once it has started
+        self.model_col = True  # a table written before the column keeps its columns
         if os.path.exists(self.results):
             for line in open(self.results):
                 w = line.rstrip("\n").split(",")
-                if line.startswith("#") or w[0] == "key":
+                if line.startswith("#"):
+                    continue
+                if w[0] == "key":
+                    self.model_col = "model" in w
                     continue
                 self.seen[w[0]] = float(w[2])
 
@@ -181,7 +207,11 @@ class Search:
             fail(f"{' '.join(cmd[1:])}: {p.stderr.strip()}")
         stmts = "\n".join(ln for ln in p.stdout.splitlines()
                           if ln.strip() and not ln.lstrip().startswith("#"))
-        key = hashlib.sha1((stmts + "\n" + " ".join(a.screen)).encode()).hexdigest()[:10]
+        text = stmts + "\n" + " ".join(a.screen)
+        model = model_run_words("")
+        if model:   # another model: other cases (the key as before without the options)
+            text += "\n" + " ".join(model)
+        key = hashlib.sha1(text.encode()).hexdigest()[:10]
         return key, p.stdout, cmd
 
     def study(self, name, cases):
@@ -191,8 +221,8 @@ class Search:
         for c, table, words, t_end in cases:
             k = c.split("__")[0]
             gate = os.path.join(self.dir, k + ".gate")
-            run = (f"run --scene obstacle --conditions paper --gate {gate} --t-end {t_end:g}"
-                   f" {words}").rstrip()
+            run = " ".join([f"run --scene obstacle --conditions paper --gate {gate} --t-end {t_end:g}"]
+                           + model_run_words(words) + [words]).rstrip()
             if table is None:
                 lines.append(f"case {c} gait-design {os.path.join(self.dir, k + '.gait')} "
                              f"--stretch --calibration @data/{CAL} --cal-rule {RULE} "
@@ -238,7 +268,7 @@ class Search:
         table = os.path.join(self.dir, "cases", c, "gait.csv")
         scr = {}
         if nom is not None and not nom["fell"] and os.path.exists(table):
-            opts = dict(SET)
+            opts = dict(robust_nine())
             scr = self.study(f"screen_{key}", [
                 (f"{c}__{n}", table, opts[n], T_RAMP05 if n == "ramp0.5" else T_SET)
                 for n in self.a.screen])
@@ -260,7 +290,7 @@ class Search:
                 f.write("key,params,J,table_end_s,nom_worst_mm,nom_worst_t_s,nom_end_off_mm,"
                         "nom_tilt_deg,"
                         "nom_depth_mm,nom_x7,nom_h7,nom_x11,nom_x14,nom_x24,nom_z29,nom_z32,"
-                        + ",".join(f"{n}_off_mm" for n in self.a.screen) + "\n")
+                        + ",".join(f"{n}_off_mm" for n in self.a.screen) + ",model\n")
             nd = (nom or {}).get("nodes") or [None] * len(TABLE3_T)
             at = {tn: nd[i] for i, tn in enumerate(TABLE3_T)}
             gv = lambda tn, j: f"{at[tn][j]:.1f}" if at.get(tn) else "nan"  # noqa: E731
@@ -272,7 +302,8 @@ class Search:
                     + ",".join([gv(7, 0), gv(7, 1), gv(11, 0), gv(14, 0), gv(24, 0), gv(29, 2),
                                 gv(32, 2)]) + ","
                     + ",".join(f"{r['off']:.1f}" if r and not r["fell"] else "nan"
-                               for r in (scr.get(f"{c}__{n}") for n in self.a.screen)) + "\n")
+                               for r in (scr.get(f"{c}__{n}") for n in self.a.screen))
+                    + (f",{model_name()}" if self.model_col else "") + "\n")
         self.seen[key] = s
         print(f"{PROG}: d{key} " + " ".join(f"{n} {xi:g}" for n, xi in zip(self.a.free, x))
               + f": J {s:.1f} (nominal " + (f"worst {nom['worst']:.1f} mm at {nom['worst_t']:g} s,"
@@ -292,11 +323,11 @@ class Search:
                 continue
             res = self.study(f"full_{key}", [
                 (f"{c}__{n}", table, w, T_RAMP05 if n == "ramp0.5" else T_SET)
-                for n, w in SET])
+                for n, w in robust_nine()])
             res[c] = track(os.path.join(self.dir, "cases", c + ".h5"))
-            n40 = sum(1 for n, _ in SET if res[f"{c}__{n}"] and not res[f"{c}__{n}"]["fell"]
+            n40 = sum(1 for n, _ in robust_nine() if res[f"{c}__{n}"] and not res[f"{c}__{n}"]["fell"]
                       and res[f"{c}__{n}"]["off"] <= SET_TOL)
-            for n, w in [("nominal", "")] + SET:
+            for n, w in [("nominal", "")] + robust_nine():
                 r = res[c if n == "nominal" else f"{c}__{n}"]
                 rows.append((key, s, n, w, r, n40))
         path = os.path.join(self.dir, "full.csv")
@@ -336,7 +367,18 @@ def main():
                     "go and write --full's table with the runs not finished as missing")
     ap.add_argument("--write-gait", default=None, metavar="FILE",
                     help="write the description of the design --x0 (with --base) to FILE, print "
-                    "its obstacle_gait.py command and key, and run nothing")
+                    "its key, its obstacle_gait.py command, the model's run options and the "
+                    "set's step halved, and run nothing")
+    ap.add_argument("--legs", choices=("rod", "strain"), default=None, help="the leg level "
+                    "of every run (default: the scene's)")
+    ap.add_argument("--links", type=int, default=None, help="rod elements or strain bending "
+                    "modes per leg segment of every run (default: the level's)")
+    ap.add_argument("--strain-step", choices=("fixed", "adaptive"), default=None,
+                    help="strain legs: crawlsim run's --strain-step (default: the level's)")
+    ap.add_argument("--step-tol", type=float, default=None, help="with --strain-step "
+                    "adaptive: the local error allowed per step, mm (default: the level's)")
+    ap.add_argument("--dt", type=float, default=None, help="the run's step, s (default: the "
+                    "level's)")
     a = ap.parse_args()
     a.free = a.free.split(",")
     if not a.free or any(n not in PARAMS for n in a.free) or len(set(a.free)) != len(a.free):
@@ -344,7 +386,20 @@ def main():
     for n in a.free:
         if PARAMS[n][0] in a.base.split():
             fail(f"--free {n}: {PARAMS[n][0]} is also in --base")
-    names = dict(SET)
+    if a.links is not None:
+        if not 1 <= a.links <= 64:
+            fail(f"--links {a.links}: elements per segment in 1..64")
+        LINKS[0] = a.links
+    if (a.strain_step is not None or a.step_tol is not None) and a.legs != "strain":
+        fail("--strain-step, --step-tol: strain legs only (give --legs strain)")
+    if a.step_tol is not None and a.strain_step != "adaptive":
+        fail("--step-tol: with --strain-step adaptive only")
+    if a.step_tol is not None and not (math.isfinite(a.step_tol) and 0 < a.step_tol <= 100):
+        fail(f"--step-tol {a.step_tol}: a local error in (0, 100] mm")
+    if a.dt is not None and not (math.isfinite(a.dt) and 0 < a.dt <= 0.01):
+        fail(f"--dt {a.dt}: a step in (0, 0.01] s")
+    MODEL.update(legs=a.legs, strain_step=a.strain_step, step_tol=a.step_tol, dt=a.dt)
+    names = dict(robust_nine())
     a.screen = [n for n in a.screen.split(",") if n]
     if any(n not in names for n in a.screen):
         fail(f"--screen: runs among {','.join(names)}")
@@ -363,7 +418,9 @@ def main():
         key, text, cmd = Search.design(a, x0)
         open(a.write_gait, "w").write(text)
         print(f"d{key}: /usr/bin/python3 tools/obstacle_gait.py "
-              + " ".join(cmd[2:]) + f" -o {a.write_gait}")
+              + " ".join(cmd[2:]) + f" -o {a.write_gait}"
+              + (f"; runs: {' '.join(model_run_words(''))}" if model_run_words("") else "")
+              + f"; the set's step halved: {dict(robust_nine())['dt_half']}")
         return
     if not os.access(a.crawlsim, os.X_OK):
         fail(f"{a.crawlsim}: not an executable (build first, or give --crawlsim)")

@@ -271,6 +271,27 @@ expect_fail1 "obstacle_search --x0 outside the box" "within its box" \
   "$PY" "$OS" --free settle --x0 5 --write-gait "$TMP/bad.gait"
 expect_fail1 "obstacle_search --report-only runs nothing" "no design evaluated yet" \
   "$PY" "$OS" --dir "$TMP/os_empty" --report-only --crawlsim "$EXE"
+# the model (--legs, --links, the step flags) is in the case key as gait_search.py has it: the
+# same statements, another key per model; the set's step halved is the model's (the tolerance
+# halved on adaptive strain legs, the step on rod legs), never the set's placeholder word
+oskey() { "$PY" "$OS" --write-gait "$TMP/$1.gait" "${@:2}" >"$TMP/$1.txt" 2>&1 && cut -d: -f1 "$TMP/$1.txt"; }
+k0=$(oskey osm0); k1=$(oskey osm1 --legs strain)
+k2=$(oskey osm2 --legs strain --strain-step adaptive --step-tol 5e-4); k3=$(oskey osm3 --legs rod --links 8)
+if [ -n "$k0" ] && [ -n "$k1" ] && [ -n "$k2" ] && [ -n "$k3" ] &&
+   [ "$k0" != "$k1" ] && [ "$k1" != "$k2" ] && [ "$k0" != "$k3" ] &&
+   cmp -s "$TMP/osm0.gait" "$TMP/osm1.gait" && cmp -s "$TMP/osm0.gait" "$TMP/osm2.gait" &&
+   ! grep -q "runs:" "$TMP/osm0.txt" && grep -q "step halved: --dt 0.0005$" "$TMP/osm0.txt" &&
+   grep -q "runs: --legs strain; .*step halved: --step-tol 0.000125$" "$TMP/osm1.txt" &&
+   grep -q "step halved: --step-tol 0.00025$" "$TMP/osm2.txt" && grep -q "runs: --links 8 --legs rod;" "$TMP/osm3.txt"; then
+  ok "obstacle_search: the model in the case key ($k0 $k1 $k2 $k3), the same statements, the model's step halved"
+else
+  bad "obstacle_search: the model in the case key ($k0 $k1 $k2 $k3), the same statements, the model's step halved" \
+    <(cat "$TMP"/osm[0-3].txt)
+fi
+expect_fail1 "obstacle_search --step-tol without strain legs" "strain legs only" \
+  "$PY" "$OS" --strain-step adaptive --step-tol 5e-4 --write-gait "$TMP/bad.gait"
+expect_fail1 "obstacle_search --step-tol with a fixed strain step" "with --strain-step adaptive only" \
+  "$PY" "$OS" --legs strain --step-tol 5e-4 --write-gait "$TMP/bad.gait"
 
 # tools/obstacle_gait.py rule 17 (--up-short): off by default (the shipped description, byte for
 # byte); on, it moves the second pair's first landing onto the step (expected on the edge's
@@ -326,6 +347,32 @@ else
 fi
 expect_fail1 "obstacle_gait negative --down-lead" "obstacle_gait.py: --push takes" \
   "$PY" "$OG" --down-lead -5 -o "$TMP/bad.gait"
+# tools/obstacle_gait.py rule 20 (--zoverlap): off by default (above: the shipped description byte
+# for byte); on, the description before the lateral crawl is unchanged and at every hand-over of
+# the crawl after its first the landing group is down (its set-down's end) O before the standing
+# group lifts, every stance foot moving at --SHZ per --Tpz; a bad value is one line and exit 1
+if "$PY" "$OG" --up-short 30 --zoverlap 0.1 -o "$TMP/r20.gait" >"$TMP/out.txt" 2>&1 &&
+   cmp -s <(sed '/^# the lateral crawl:/,$d' "$TMP/r17.gait" | grep -v '^#' | grep -v '^pose') \
+          <(sed '/^# the lateral crawl:/,$d' "$TMP/r20.gait" | grep -v '^#' | grep -v '^pose') &&
+   "$PY" - "$TMP/r20.gait" >>"$TMP/out.txt" 2>&1 <<'PYEOF'
+import re, sys
+text = open(sys.argv[1]).read()
+crawl = text[text.index('# the lateral crawl:'):text.index('# the feet back under the hips')]
+moves = [(float(m[0]), float(m[1]), m[2], m[3], bool(m[4])) for m in
+         re.findall(r'move (\S+) (\S+) (\S+) (\S+)( linear)?', crawl)]
+lands = sorted(t + d for t, d, legs, pose, lin in moves if pose.startswith('L15P') and not lin)
+lifts = sorted(t for t, d, legs, pose, lin in moves if pose.startswith('VLM'))
+gaps = [round(lf - ld, 4) for ld, lf in zip(lands, lifts)]
+assert len(lifts) == 7 and all(g == 0.1 for g in gaps), gaps   # 8 slots: 7 hand-overs
+print('hand-overs', gaps)
+PYEOF
+then
+  ok "obstacle_gait rule 20: --zoverlap 0.1 changes only the lateral crawl, both groups down 0.1 s at each hand-over"
+else
+  bad "obstacle_gait rule 20: --zoverlap 0.1 changes only the lateral crawl, both groups down 0.1 s at each hand-over" "$TMP/out.txt"
+fi
+expect_fail1 "obstacle_gait bad --zoverlap" "obstacle_gait.py: --zoverlap takes a time in 0..--Tpz" \
+  "$PY" "$OG" --zoverlap 0.6 -o "$TMP/bad.gait"
 
 # tools/earth_gait.py: the shipped earth gait is the script's description of the values its
 # header names; bad input is one line and exit 1. tools/earth_track.py: a missing run file is
