@@ -534,46 +534,28 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         csu_add3(nrm, nrm, slot[i].normal);
       }
     }
-    /* the rest of the step's motion the linearisation carries: y0 + h S u0 - y_p */
+    /* the rest of the step's motion the linearisation carries (y0 + h S u0 - y_p) is formed
+     * below for a shape that touches: no other reads it. The start's poses are kept for it
+     * (the predicted slide moves st), the slide's velocities too */
     int foot = s == m->nshape - 1;
-    double rest[6];
-    for (int c = 0; c < 3; c++) {
-      rest[c] = h * st.v0[c];
-      rest[3 + c] = h * (foot ? st.w[c] : st.v1[c]);
-    }
-    if (!du && d->pred) {
-      /* the shape's predicted end pose (robot_strain_dyn.c predictShapes): its motion over
-       * the step at the start's velocities to second order, y(q0 + h η0) - y0 in place of
-       * h S u0 */
-      const cscShapeState* sp = d->sst + s;
-      csu_sub3(rest, sp->x0, st.x0);
-      if (foot) {
-        double Rt[9], dR[9];
-        csu_transpose3(Rt, st.R);
-        csu_mulMat3(dR, sp->R, Rt);
-        csu_mat3ToRotVec(rest + 3, dR);
-      } else {
-        csu_sub3(rest + 3, sp->x1, st.x1);
-      }
-    }
+    double x0s[3], x1s[3], Rs[9], vt0[3], vt1[3], phi[3];
+    memcpy(x0s, st.x0, sizeof x0s);
+    memcpy(x1s, st.x1, sizeof x1s);
+    memcpy(Rs, st.R, sizeof Rs);
+    int slid = 0;
     if (!du && csu_normalize3(nrm) > 0) {
       /* the predicted end of the step: the shape slid on along the surface at its start
        * velocity (and turned about the normal); its normal motion is left to the step, whose
        * contact stiffness at y0 is what holds it (predicting it too overshoots the stiff
        * normal law: measured, a pressed foot bounced to 15 N) */
-      double vt[3];
-      csu_addScl3(vt, st.v0, nrm, -csu_dot3(st.v0, nrm));
-      csu_addScl3(st.x0, st.x0, vt, h);
-      csu_addScl3(rest, rest, vt, -h);
-      csu_addScl3(vt, st.v1, nrm, -csu_dot3(st.v1, nrm));
-      csu_addScl3(st.x1, st.x1, vt, h);
-      if (!foot) {
-        csu_addScl3(rest + 3, rest + 3, vt, -h);
-      }
+      slid = 1;
+      csu_addScl3(vt0, st.v0, nrm, -csu_dot3(st.v0, nrm));
+      csu_addScl3(st.x0, st.x0, vt0, h);
+      csu_addScl3(vt1, st.v1, nrm, -csu_dot3(st.v1, nrm));
+      csu_addScl3(st.x1, st.x1, vt1, h);
       if (foot) {
-        double phi[3], dR[9], Rn[9];
+        double dR[9], Rn[9];
         csu_scale3(phi, nrm, h * csu_dot3(st.w, nrm));
-        csu_addScl3(rest + 3, rest + 3, phi, -1.0);
         csu_rotVecToMat3(dR, phi);
         csu_mulMat3(Rn, dR, st.R);
         memcpy(st.R, Rn, sizeof Rn);
@@ -603,6 +585,41 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     if (ghost) {
       g->on = 1;
       d->nghost++;
+    }
+    /* the start's blocks, left uncleared while no shape touched (condenseStart) */
+    csr_strainClearStart_(m, d);
+    /* the rest of the motion, h S u0 at the start's velocities (each term as the slide's
+     * below in the same order as before this was deferred: the same bits) */
+    double rest[6];
+    for (int c = 0; c < 3; c++) {
+      rest[c] = h * st.v0[c];
+      rest[3 + c] = h * (foot ? st.w[c] : st.v1[c]);
+    }
+    if (!du && d->pred) {
+      /* the shape's predicted end pose (robot_strain_dyn.c csr_strainPredictShapes_, formed
+       * at the first shape that touches): its motion over the step at the start's velocities
+       * to second order, y(q0 + h η0) - y0 in place of h S u0 */
+      if (d->pred == 2) {
+        csr_strainPredictShapes_(m, d, h);
+      }
+      const cscShapeState* sp = d->sst + s;
+      csu_sub3(rest, sp->x0, x0s);
+      if (foot) {
+        double Rt[9], dR[9];
+        csu_transpose3(Rt, Rs);
+        csu_mulMat3(dR, sp->R, Rt);
+        csu_mat3ToRotVec(rest + 3, dR);
+      } else {
+        csu_sub3(rest + 3, sp->x1, x1s);
+      }
+    }
+    if (slid) {
+      csu_addScl3(rest, rest, vt0, -h);
+      if (!foot) {
+        csu_addScl3(rest + 3, rest + 3, vt1, -h);
+      } else {
+        csu_addScl3(rest + 3, rest + 3, phi, -1.0);
+      }
     }
     int a = m->shape_a[s], b = m->shape_b[s];
     csr_strainPointG_(m, d, a, Ga);

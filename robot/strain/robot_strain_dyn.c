@@ -535,6 +535,19 @@ static int factorAndCondense(const csrStrainModel* m, csrStrainData* d, double h
                              double rho[6]);
 
 
+void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d) {
+  if (!d->wl_pending) {
+    return;
+  }
+  const int n = m->n;
+  memset(d->Wll, 0, (size_t)n * n * sizeof(double));
+  memset(d->Wlb, 0, (size_t)n * 6 * sizeof(double));
+  memset(d->Wbl, 0, (size_t)n * 6 * sizeof(double));
+  memset(d->rl, 0, (size_t)n * sizeof(double));
+  d->wl_pending = 0;
+}
+
+
 /* A backward-Euler step's start (articStep): the contact linearised first (into zeroed
  * blocks); a leg that touches nothing is condensed by the recursion (robot_strain_artic.c,
  * no n x n matrix), one that touches by the dense factor of W_M plus the contact's part (an
@@ -545,26 +558,26 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, do
   double Wbb[36], rb[6];
   memset(Wbb, 0, sizeof Wbb);
   memset(rb, 0, sizeof rb);
-  memset(d->Wll, 0, (size_t)n * n * sizeof(double));
-  memset(d->Wlb, 0, (size_t)n * 6 * sizeof(double));
-  memset(d->Wbl, 0, (size_t)n * 6 * sizeof(double));
-  memset(d->rl, 0, (size_t)n * sizeof(double));
+  /* d->Wll, Wlb, Wbl, rl are zeroed where they are first written or read (wl_pending): at
+   * the first shape that touches (csr_strainContactAssemble_), else before the dense path
+   * here; the recursion reads none of them (a swing leg's start skips the n x n clear) */
+  d->wl_pending = 1;
   d->ntouch = 0;
   if (m->soft) {
     int rc = csr_strainContactAssemble_(m, d, h, NULL, Wbb, rb, d->Gs);
     if (rc != 0) {
+      d->wl_pending = 0; /* the blocks are not read: the next condense writes them whole */
       return rc > 0 ? rc : 1;
     }
   }
-  if (d->ntouch > 0 || d->wm_step) {
+  if (d->ntouch > 0 || d->wm_step || csr_strainCondenseArtic_(m, d, h, Z, rho)) {
+    /* the dense path (a touching leg, W_M formed, or a piece's block not positive definite:
+     * its LU decides): W_M added to the contact's blocks, zero if no shape touched */
+    csr_strainClearStart_(m, d);
     denseStart(m, d, h, Wbb, rb);
     return factorAndCondense(m, d, h, NULL, Wbb, rb, Z, rho);
   }
-  if (csr_strainCondenseArtic_(m, d, h, Z, rho)) {
-    /* a piece's block not positive definite: the dense path decides (its LU) */
-    denseStart(m, d, h, Wbb, rb);
-    return factorAndCondense(m, d, h, NULL, Wbb, rb, Z, rho);
-  }
+  d->wl_pending = 0;
   d->lu_plain = 1;
   d->kf = 0;
   memcpy(d->Wlb, d->WMlb, (size_t)n * 6 * sizeof(double));
@@ -781,7 +794,7 @@ static void predictBase(const csrStrainData* d, double h, double* Rb, double* xb
  * strains: a stance leg that bends by δ = h |η| L over a step moves its foot by ~δ²/L more
  * than that, micrometres at 5 ms, against a foot resting 0.6 µm deep (docs/notes/
  * strain_leg.md, "Active set"); these poses give the linear model that offset. */
-static void predictShapes(const csrStrainModel* m, csrStrainData* d, double h) {
+void csr_strainPredictShapes_(const csrStrainModel* m, csrStrainData* d, double h) {
   const int n = m->n;
   const int valid = d->kin_valid;
   for (int j = 0; j < n; j++) {
@@ -790,7 +803,8 @@ static void predictShapes(const csrStrainModel* m, csrStrainData* d, double h) {
   }
   memcpy(d->Rs_save, d->R, (size_t)9 * m->np * sizeof(double));
   memcpy(d->xs_save, d->x, (size_t)3 * m->np * sizeof(double));
-  csr_strainKinematics_(m, d, 0);
+  /* the shapes end at chain points: their poses alone (the midpoints' are restored below) */
+  csr_strainKinematics_(m, d, 3);
   double Rb[9], xb[3];
   memcpy(Rb, d->Rb, sizeof Rb);
   memcpy(xb, d->xb, sizeof xb);
@@ -1007,7 +1021,10 @@ int csr_strainPrepare(const csrStrainModel* m, csrStrainData* d, double h, doubl
     }
     if (rc == 0 && !keep) {
       if (m->soft && m->par.active_set) {
-        predictShapes(m, d, h);
+        /* the predicted poses are read only by a shape that touches at the start: formed
+         * there, at the first (csr_strainContactAssemble_); a swing leg's start skips the
+         * kinematics at q0 + h η0 (docs/notes/strain_leg.md, branch speed11) */
+        d->pred = 2;
       }
       rc = condense(m, d, h, NULL, Z, rho);
       d->pred = 0;

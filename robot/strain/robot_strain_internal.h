@@ -213,8 +213,11 @@ struct csrStrainData_ {
   double* memo_z;          /* (nhist) the history each shape's memo was evaluated with */
   cscSlotInfo* memo_slot;  /* (the contact's slots) their report at the memo */
   cscShapeState* sst; /* (nshape) scratch; in a prepare with pred set, every shape's pose at
-                          the predicted end of the step (robot_strain_dyn.c predictShapes) */
-  int pred;       /* 1: sst holds the predicted poses (backward Euler's prepare) */
+                          the predicted end of the step (csr_strainPredictShapes_) */
+  int pred;       /* 1: sst holds the predicted poses (backward Euler's prepare); 2: they
+                     are wanted, formed at the first shape that touches */
+  int wl_pending; /* 1: a step's start left Wll, Wlb, Wbl, rl uncleared (condenseStart): the
+                     first shape that touches zeroes them first */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
 };
 
@@ -327,6 +330,13 @@ void csr_strainInertiaApply_(const csrStrainModel* m, const double* R, const dou
  * d->WMlb (n x 6) and d->WMbb, by composite inertias per piece */
 void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d);
 
+/* the shapes' poses at the predicted end of a backward-Euler step, q0 + h η0 and the hip at
+ * g_b exp(h V_b), into d->sst (pred 1); the state and its kinematics unchanged
+ * (robot_strain_dyn.c) */
+void csr_strainPredictShapes_(const csrStrainModel* m, csrStrainData* d, double h);
+/* d->Wll, Wlb, Wbl, rl zeroed if a step's start left them pending (wl_pending), else nothing */
+void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d);
+
 /* ---- contact (robot_strain_contact.c) ---- */
 int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err);
 /* the contact's force, its linearisation over a step of h added to W (the four blocks, W_ll
@@ -371,7 +381,9 @@ void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double x
  * Jacobians: kin_valid 2). want_J 2: the Jacobians at the chain points alone (the sub-
  * intervals' ends, even p: the contact's shapes are there), not at the midpoints (odd p,
  * leaves of the recursion, needed by the inertia and the step's forces only), kin_valid 1:
- * for a Newton iterate's contact (docs/notes/strain_leg.md, "Kernel, round 3") */
+ * for a Newton iterate's contact (docs/notes/strain_leg.md, "Kernel, round 3"). want_J 3:
+ * the poses at the chain points alone, no Jacobians, the midpoints' poses left as they were,
+ * kin_valid 0 (the predicted shapes' poses: csr_strainPredictShapes_) */
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J);
 
 #endif /* CS_ROBOT_STRAIN_INTERNAL_H */

@@ -457,7 +457,12 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
 
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J) {
   /* want_J 2: the Jacobians at the chain points alone (the midpoints are leaves: nothing
-   * downstream of them needs theirs), poses everywhere */
+   * downstream of them needs theirs), poses everywhere; 3: the poses at the chain points
+   * alone (the contact's shapes end there), no Jacobians, the midpoints' left as they were */
+  const int chain_only = want_J == 3;
+  if (chain_only) {
+    want_J = 0;
+  }
   const int mid_J = want_J == 1;
   d->kin_gen++; /* csr_strainPointTwists_'s memo */
   /* the clamp: poses are relative to the base (hip) frame */
@@ -474,20 +479,24 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
       int p = m->pt0[k] + 2 * i;
       if (m->rigid[k]) {
         const double Oh[6] = {0, 0, 0, 0, 0, 0.5 * h}, Of[6] = {0, 0, 0, 0, 0, h};
-        stepPoint(m, d, p, p + 1, k, Oh, NULL, mid_J);
+        if (!chain_only) {
+          stepPoint(m, d, p, p + 1, k, Oh, NULL, mid_J);
+        }
         stepPoint(m, d, p, p + 2, k, Of, NULL, want_J);
         continue;
       }
       double Om[6];
-      magnusP(m, d->q, k, 0.5 * h, csr_strainLegendreAt_(m, k, i, 0, 0),
-              csr_strainLegendreAt_(m, k, i, 0, 1), Om, mid_J ? dOm : NULL);
-      stepPoint(m, d, p, p + 1, k, Om, mid_J ? dOm : NULL, mid_J);
+      if (!chain_only) {
+        magnusP(m, d->q, k, 0.5 * h, csr_strainLegendreAt_(m, k, i, 0, 0),
+                csr_strainLegendreAt_(m, k, i, 0, 1), Om, mid_J ? dOm : NULL);
+        stepPoint(m, d, p, p + 1, k, Om, mid_J ? dOm : NULL, mid_J);
+      }
       magnusP(m, d->q, k, h, csr_strainLegendreAt_(m, k, i, 1, 0),
               csr_strainLegendreAt_(m, k, i, 1, 1), Om, want_J ? dOm : NULL);
       stepPoint(m, d, p, p + 2, k, Om, want_J ? dOm : NULL, want_J);
     }
   }
-  d->kin_valid = want_J == 1 ? 2 : 1;
+  d->kin_valid = chain_only ? 0 : (want_J == 1 ? 2 : 1);
 }
 
 
