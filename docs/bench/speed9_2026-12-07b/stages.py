@@ -6,7 +6,9 @@ second by stage (inclusive counts, callgrind_annotate --inclusive=yes; the "acro
 parts of the legs' stages above them), the tree tries and passes, and the instructions per leg
 pass (the legs' first passes and iterates over the calls that make them). Stages as
 ../strainspeed_2026-12-06f/stages.py, with the calibration's RBF field apart (and, branch
-speed9, the articulated condensation)."""
+speed9, the articulated condensation). Source annotation off (--auto=no, branch speed11): with
+the profile's sources present its call lines entered the by-name sums (the inertia and the
+recursion rows read half)."""
 import re, subprocess, sys
 
 ROWS = [
@@ -40,7 +42,7 @@ WIN = re.compile(r"window \[([\d.e+-]+), ([\d.e+-]+)\] s: (\d+) macro steps \((\
 
 
 def load(path):
-    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", path],
+    out = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", "--auto=no", path],
                          capture_output=True, text=True).stdout
     inc = {}
     for line in out.splitlines():
