@@ -27,7 +27,11 @@
  *    with a fresh factor every step is the dense path's step bit for bit, in the same passes.
  *  - kept_matrix_across_steps: the factor kept across steps (keep_matrix 1) runs 0.4 s from
  *    standing to the default's support position within the passes' tolerance, with fewer
- *    factorisations. */
+ *    factorisations.
+ *  - predicted_shapes_keep_the_state: the shapes' predicted poses, formed inside the start's
+ *    contact linearisation at its first touching shape (csr_strainPredictShapes_), leave the
+ *    leg's state and kinematics as they were, and their poses at the chain points alone are
+ *    those of the whole kinematics at q0 + h η0, bit for bit. */
 #include "cs_test.h"
 #include "strain_test_robot.h"
 
@@ -490,6 +494,98 @@ static void kept_matrix_across_steps(void) {
 }
 
 
+/* After 0.1 s of 5 ms steps from standing (touch-down: legs in and out of contact), every
+ * leg's committed state: csr_strainPredictShapes_ leaves q, the poses, the Jacobians, the
+ * hip and kin_valid bit for bit as they were (it runs between two shapes of the start's
+ * contact linearisation, which reads them on), and its shape poses equal those from the whole
+ * poses kinematics at q0 + h η0 with the hip at g_b exp(h V_b), bit for bit (the chain points'
+ * steps are the same operations; a wrong point, a missed restore or a midpoint the shapes
+ * need would differ by O(1)) */
+static void predicted_shapes_keep_the_state(void) {
+  csgGait* g = NULL;
+  StrainRobot* r = robotOn(0.8, &g);
+  if (!r) {
+    CS_EXPECT(0);
+    return;
+  }
+  const double h = 5e-3;
+  double* save = calloc((size_t)strainRobotStateSize(r), sizeof(double));
+  for (int i = 0; i < 20; i++) {
+    CS_EXPECT(strainRobotAdvance(r, g, i * h, (i + 1) * h, 16, 1e-9, 4, save, NULL, NULL, NULL,
+                                 NULL, NULL) == 0);
+  }
+  int same_state = 1, same_poses = 1, nshapes = 0;
+  for (int k = 0; k < CSR_NLEG; k++) {
+    const csrStrainModel* m = r->m[k];
+    csrStrainData* d = r->d[k];
+    const int n = m->n, np = m->np;
+    if (d->kin_valid < 2) {
+      csr_strainKinematics_(m, d, 1);
+    }
+    const size_t sq = (size_t)n * sizeof(double), sR = (size_t)9 * np * sizeof(double),
+                 sx = (size_t)3 * np * sizeof(double), sJ = (size_t)6 * np * n * sizeof(double);
+    double *q = malloc(sq), *R = malloc(sR), *x = malloc(sx), *J = malloc(sJ);
+    double Rb[9], xb[3];
+    memcpy(q, d->q, sq);
+    memcpy(R, d->R, sR);
+    memcpy(x, d->x, sx);
+    memcpy(J, d->J, sJ);
+    memcpy(Rb, d->Rb, sizeof Rb);
+    memcpy(xb, d->xb, sizeof xb);
+    const int valid = d->kin_valid;
+    csr_strainPredictShapes_(m, d, h);
+    same_state &= memcmp(q, d->q, sq) == 0 && memcmp(R, d->R, sR) == 0 &&
+                  memcmp(x, d->x, sx) == 0 && memcmp(J, d->J, sJ) == 0 &&
+                  memcmp(Rb, d->Rb, sizeof Rb) == 0 && memcmp(xb, d->xb, sizeof xb) == 0 &&
+                  d->kin_valid == valid && d->pred == 1;
+    /* the reference: every point's pose at q0 + h η0, the hip moved on by h V_b */
+    double Om[6], Re[9], pe[3], t[3];
+    for (int c = 0; c < 6; c++) {
+      Om[c] = h * d->Vb[c];
+    }
+    csr_strainExp_(Om, Re, pe);
+    csu_mulMat3(d->Rb, Rb, Re);
+    csu_mulMatVec3(t, Rb, pe);
+    csu_add3(d->xb, xb, t);
+    for (int j = 0; j < n; j++) {
+      d->q[j] = q[j] + h * d->eta[j];
+    }
+    csr_strainKinematics_(m, d, 0);
+    for (int s = 0; s < m->nshape; s++) {
+      double Ra[9], xa[3], Rt[9], x1[3];
+      csr_strainWorld_(d, d->R + 9 * m->shape_a[s], d->x + 3 * m->shape_a[s], Ra, xa);
+      csr_strainWorld_(d, d->R + 9 * m->shape_b[s], d->x + 3 * m->shape_b[s], Rt, x1);
+      const cscShapeState* st = d->sst + s;
+      same_poses &= memcmp(Ra, st->R, sizeof Ra) == 0 && memcmp(xa, st->x0, sizeof xa) == 0 &&
+                    memcmp(x1, st->x1, sizeof x1) == 0;
+      nshapes++;
+    }
+    /* the committed state back */
+    memcpy(d->q, q, sq);
+    memcpy(d->R, R, sR);
+    memcpy(d->x, x, sx);
+    memcpy(d->Rb, Rb, sizeof Rb);
+    memcpy(d->xb, xb, sizeof xb);
+    d->kin_valid = valid;
+    d->pred = 0;
+    free(q);
+    free(R);
+    free(x);
+    free(J);
+  }
+  printf("  8 legs after 0.1 s from standing: state and kinematics kept %s, %d shapes' "
+         "predicted poses %s the whole kinematics'\n", same_state ? "bit for bit" : "NOT",
+         nshapes, same_poses ? "bit for bit" : "NOT");
+  CS_EXPECT(nshapes > 0);
+  CS_EXPECT(same_state);
+  CS_EXPECT(same_poses);
+  free(save);
+  strainRobotDestroy(r);
+  free(r);
+  csg_gaitDestroy(g);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(frictionless_centre_of_mass);
@@ -500,5 +596,6 @@ int main(int argc, char** argv) {
   CS_RUN(artic_same_step);
   CS_RUN(kept_fresh_factor_same_step);
   CS_RUN(kept_matrix_across_steps);
+  CS_RUN(predicted_shapes_keep_the_state);
   return cs_testSummary();
 }
