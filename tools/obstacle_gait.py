@@ -37,12 +37,13 @@ ap.add_argument('--over-step', type=float, default=None,
                 '(measured: the nominal\'s step landings fell 3 mm short of their offset on average '
                 'where the road\'s fall --over beyond it; docs/studies/obstacle.md, sixth session); '
                 'default --over (rule 16 off)')
-ap.add_argument('--up-short', type=float, default=-1.0,
+ap.add_argument('--up-short', type=float, default=30.0,
                 help='rule 17: how far a wave landing onto the step from the road (the leg\'s stance on '
                 'the road, its landing planned on the step) falls short of rule 6\'s plan, mm '
                 '(measured on k3\'s nominal, the same on rod and strain legs: B 233.4 for 264 planned, '
-                'C 224-228 for 258; docs/notes/obstacle.md "Rule 17"); default (negative) off; 30 is the '
-                'measured value')
+                'C 224-228 for 258; docs/notes/obstacle.md "Rule 17"); default 30, the measured value '
+                '(on since 2026-12-07, branch obst10: the shipped table bf50); negative: off (k3, the '
+                'table shipped until then)')
 ap.add_argument('--up-band', default='-10,5',
                 help='rule 17: the corner\'s band about the up edge, mm short and past it: a landing '
                 'expected there (plan less --up-short) takes the shortest longer offset, in 5 mm steps '
