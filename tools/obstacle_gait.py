@@ -216,15 +216,21 @@ DC = a.D if a.Dclimb is None else a.Dclimb
 
 
 def gate_text(lines, source):
-    """the landing gate of a description (gaits/gaits_gate.h): its wave lifts (a `move` of a
-    pair to an AM pose or to U0), each after the first waiting for the last other pair that
-    lifted (the rule of docs/bench/obst_2026-12-06e/gatelib.py Gates)"""
-    lifts = []
-    for line in lines:
+    """the landing gate of a description (gaits/gaits_gate.h): its wave lifts (the first `move`
+    of a pair into a step: to a swing pose A* or U0 from a stance; the foot's stance offset
+    names the lift pose, AM behind the hip, AP ahead of it, as rule 17's B, F lift at 7.4 s),
+    each after the first waiting for the last other pair that lifted (the rule of
+    docs/bench/obst_2026-12-06e/gatelib.py Gates)"""
+    lifts, swinging = [], {}
+    for line in sorted((ln for ln in lines if ln.startswith('move ')),
+                       key=lambda ln: float(ln.split()[1])):
         p = line.split()
-        if len(p) >= 5 and p[0] == 'move' and len(p[3]) == 2 and (
-                p[4].startswith('AM') or p[4] == 'U0'):
+        if len(p) < 5 or len(p[3]) != 2:
+            continue
+        air = p[4].startswith('AM') or p[4].startswith('AP') or p[4] == 'U0'
+        if air and not swinging.get(p[3]):
             lifts.append((float(p[1]), p[3]))
+        swinging[p[3]] = air
     lifts.sort()
     out = ['# the landing gate of %s (gaits/gaits_gate.h), written by\n#   %s\n'
            '# each lift of a pair in the wave waits until the pair that lifted before it is down\n'

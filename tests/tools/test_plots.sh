@@ -312,6 +312,22 @@ fi
 expect_fail1 "obstacle_gait bad --up-band" "obstacle_gait.py: --up-band takes two numbers" \
   "$PY" "$OG" --up-short 30 --up-band 5,5 -o "$TMP/bad.gait"
 
+# tools/obstacle_gait.py --gate-from: the shipped gate is the shipped description's (the same
+# statements); a lift is a pair's first move into a step, to AM or AP by its stance offset (rule
+# 17's B, F lift to AP10 at 7.4 s) or U0, never its move over (k3's D, H climb at 9.4 s: AM15,
+# then over to U0 at 9.6 s)
+if "$PY" "$OG" --gate-from "$ROOT/gaits/obstacle.gait" --gate-out "$TMP/g.gate" >"$TMP/out.txt" 2>&1 &&
+   cmp -s <(stmts "$TMP/g.gate") <(stmts "$ROOT/gaits/obstacle.gate") &&
+   grep -q '^move 7.4000 [0-9.]* BF AP10$' "$ROOT/gaits/obstacle.gait" &&
+   grep -q '^gate 7.4000 CG  # lift of BF' "$TMP/g.gate" &&
+   "$PY" "$OG" --up-short -1 -o "$TMP/k3g.gait" --gate-out "$TMP/k3g.gate" >>"$TMP/out.txt" 2>&1 &&
+   grep -q '^move 9.6000 [0-9.]* DH U0$' "$TMP/k3g.gait" && grep -q '^gate 9.4000 AE' "$TMP/k3g.gate" &&
+   ! grep -q '^gate 9.6000' "$TMP/k3g.gate"; then
+  ok "obstacle_gait --gate-from: the shipped gate; a lift to AP gated, a move over to U0 not"
+else
+  bad "obstacle_gait --gate-from: the shipped gate; a lift to AP gated, a move over to U0 not" "$TMP/out.txt"
+fi
+
 # tools/obstacle_gait.py rule 18 (--push): off by default (--push 0 writes the shipped description
 # byte for byte); --push 1 writes one slot, before the rear pair's step toward the up edge, in
 # which no pair lifts (only linear stance moves start in it) and the wave has fewer lifts; a
