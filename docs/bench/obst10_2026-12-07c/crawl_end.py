@@ -13,14 +13,14 @@ that phase, so the rows at the jump's two ends are the same pose), the support's
 when stopping ends nearer the end point than one more cycle of the measured pace. CARRY is the
 release's own advance along z (measured on the nominal, --carry). Nothing moves the support but
 the legs; the decision reads the measured state only, as the landing gate does. With the
-controller on, the gate neither tests nor holds (crawlsim.h): every gate is released by 24 s,
-before the first decision, and the scene's runs of these cases held none (score.py).
+controller on, the gate neither tests nor holds (crawlsim.h): every gate is released by 24 s of
+table time, before the first decision; the hold so far (the state's gate part) is read at each
+decision and kept in the controller's clock (table time = run time - hold + the skip).
 
 usage: crawl_end.py GAIT.csv GATE.gate [--support-mass KG] [--t-end S] [--carry MM]
        [--zend MM] [--fixed N] [--set FIELD=VALUE]...   (--fixed N: end after N slots whatever
-       is measured, a check; --set friction=0.6, tau=0.01, step_tol=1.25e-4: the set's runs whose
-       gate never holds; under a held gate the table's clock lags the run's by the hold, which
-       this prototype does not read, so ramp 0.1 s and lag x2 are not run with it)
+       is measured, a check; --set friction=0.6, tau=0.04, ramp=0.1, step_tol=1.25e-4: the
+       set's runs)
 Prints Table 3's nodes, the end's distance from (646, 270), tilt, the decision and CPU s."""
 import argparse
 import re
@@ -66,26 +66,41 @@ def play(s, t, p):
 
 track, tilt, zb, decided = {}, 0.0, {}, None
 cands = [j for j in range(1, NMAX) if (NMAX - 1 - j) % 2 == 0]
-marks = sorted(set([round(0.05 * i, 10) for i in range(1, int(a.t_end / 0.05) + 1)] +
-                   [round(TZ + (j + 1) * TPZ, 10) for j in range(NMAX)]))
-for tm in marks:
+# the gate's hold (s): the table's clock is the run's less it; the state's gate part is its last
+# 3 + n values, the hold the second (core/sim_state.c)
+NG = sum(1 for ln in open(a.gate) if ln.startswith('gate '))
+
+
+def hold_now():
+    return float(sim.get_state()[-(3 + NG) + 1])
+
+
+bounds = [TZ + (j + 1) * TPZ for j in range(NMAX)]   # table times of the slots' ends
+grid = [round(0.05 * i, 10) for i in range(1, int(round(a.t_end / 0.05)) + 1)]
+j, gi, HOLD = 0, 0, 0.0
+while gi < len(grid):
+    HOLD = hold_now() if decided is None else HOLD
+    tb = bounds[j] + HOLD if decided is None and j < NMAX else float('inf')
+    tm = min(grid[gi], tb)
     sim.run_until(tm)
     pos, q = sim.support_pose()
-    tilt = max(tilt, np.degrees(np.arccos(np.clip(1 - 2 * (q[1] ** 2 + q[3] ** 2), -1, 1))))
-    for tn in T:
-        if abs(tm - tn) < 1e-9:
-            track[tn] = pos.copy()
-    for j in range(NMAX):
-        if decided is None and abs(tm - (TZ + (j + 1) * TPZ)) < 1e-9:
-            zb[j] = pos[2]
-            if j in cands and j >= 2:
-                adv = zb[j] - zb[j - 2]
-                stop = (j + 1 == a.fixed) if a.fixed else pos[2] + a.carry >= a.zend - adv / 2
-                if stop or j == NMAX - 1:
-                    decided = (j + 1, tm, pos[2], adv)
-                    if j < NMAX - 1:
-                        offset[0] = (NMAX - 1 - j) * TPZ
-                        sim.set_controller(play)
+    if abs(tm - grid[gi]) < 1e-9:
+        gi += 1
+        tilt = max(tilt, np.degrees(np.arccos(np.clip(1 - 2 * (q[1] ** 2 + q[3] ** 2), -1, 1))))
+        for tn in T:
+            if abs(tm - tn) < 1e-9:
+                track[tn] = pos.copy()
+    if abs(tm - tb) < 1e-9:
+        zb[j] = pos[2]
+        if j in cands and j >= 2:
+            adv = zb[j] - zb[j - 2]
+            stop = (j + 1 == a.fixed) if a.fixed else pos[2] + a.carry >= a.zend - adv / 2
+            if stop or j == NMAX - 1:
+                decided = (j + 1, tm, pos[2], adv)
+                if j < NMAX - 1:
+                    offset[0] = (NMAX - 1 - j) * TPZ - HOLD
+                    sim.set_controller(play)
+        j += 1
 end = sim.support_pose()[0]
 worst, where = 0.0, ''
 row = []
@@ -103,8 +118,8 @@ print('%s%s%s: %d lateral slots written from %.2f s (%.2f s each)'
          ''.join(' ' + v for v in a.set), NMAX, TZ, TPZ))
 print('  ' + ' '.join(row))
 if decided:
-    print('  crawl ended after %d slots at %.2f s: z %.1f mm, last cycle %.1f mm (carry %g)'
-          % (decided + (a.carry,)))
+    print('  crawl ended after %d slots at %.2f s: z %.1f mm, last cycle %.1f mm (carry %g; the '
+          'gate held %.3f s before)' % (decided + (a.carry, HOLD)))
 print('  worst node from 4 s %.1f mm (%s); end (%.1f, %.1f, %.1f) %.1f mm off; tilt max %.1f deg;'
       ' %.1f CPU s' % (worst, where, end[0], end[1], end[2], np.hypot(end[0] - 646, end[2] - 270),
                        tilt, resource.getrusage(resource.RUSAGE_SELF).ru_utime))

@@ -2,8 +2,8 @@
 # usage: crawl_end.sh CASE...  crawl_end.py on the table z12 (tools/obstacle_gait.py --Dz 45: the
 # shipped bf50 with 12 lateral slots, written into $D by docs/bench/obst_2026-12-07b/design.sh
 # z12 --Dz 45), one run after the other, nice 5, resumable (ce_CASE.txt here skips the case).
-# CASE: nominal m25g m75g (the support's mass 50 / 25 / 75 g), mu0.6 mu1.0 tau0.5x dt_half (the
-# set's runs whose gate never holds: crawl_end.py's text); fixed8 (nominal, the crawl ended
+# CASE: nominal m25g m75g (the support's mass 50 / 25 / 75 g), mu0.6 mu1.0 tau0.5x tau2x ramp0.1
+# dt_half (the set's other runs); fixed8 (nominal, the crawl ended
 # after 8 slots whatever is measured: the shipped table's crawl through the controller, a check
 # of the jump against nominal.txt).
 cd "$(dirname "$0")/../../.."
@@ -19,6 +19,8 @@ for n in "$@"; do
     mu0.6) a="--set friction=0.6" ;;
     mu1.0) a="--set friction=1.0" ;;
     tau0.5x) a="--set tau=0.01" ;;
+    tau2x) a="--set tau=0.04" ;;
+    ramp0.1) a="--set ramp=0.1" ;;
     dt_half) a="--set step_tol=1.25e-4" ;;
     *) echo "crawl_end.sh: unknown case $n" >&2; exit 2 ;;
   esac
