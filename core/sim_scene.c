@@ -6,11 +6,10 @@
 /* The paper's two scenes (Sec. 5.1 and 5.2): their tables were computed without self-weight,
  * so they default to `paper` (docs/reference.md "Scene conditions"). */
 static const csScene kScenes[] = {
-    /* both scenes run the mission's surrogate by default on the 23-mode FE table of the
-     * symmetric mesh under `rbf-pair`, the calibration that meets every held-out FE case
-     * (docs/notes/calibration.md): the flat road (and the slope) on the strain-coordinate level,
-     * the obstacle on the rod; rod_links is the rod's elements per segment converged on that
-     * table, used when --legs rod is asked */
+    /* every scene runs the mission's surrogate by default, the strain-coordinate level at its
+     * adaptive step, on the 23-mode FE table of the symmetric mesh under `rbf-pair`, the
+     * calibration that meets every held-out FE case (docs/notes/calibration.md); rod_links is
+     * the rod's elements per segment used when --legs rod is asked */
     /* the flat road's gait was designed on that model and its parameters searched by
      * simulating the strain level (gaits/flat_road_rod.gait, tools/gait_search.py --legs
      * strain; docs/notes/gait_search.md); gaits/flat_road.csv, the design of the pair-mode
@@ -22,9 +21,12 @@ static const csScene kScenes[] = {
      CS_MISSION_CALIBRATION, CS_MISSION_CAL_RULE, "strain", 8,
      "paper Sec. 5.1: 600 x 300 mm flat road, 8 strides of 39 mm in 9 s (Table 2)", NULL},
     /* the obstacle's gait (a wave: six legs stand while a pair steps) was designed on the same
-     * model at the rod's 4 elements per segment (tools/obstacle_gait.py, docs/studies/obstacle.md) */
+     * table (tools/obstacle_gait.py, docs/studies/obstacle.md); its rule 17 (the second pair's
+     * first landing past the up edge's corner) was measured on the strain level, on which the
+     * table meets Table 3 (docs/notes/obstacle.md "branch obst10"). The rod at 4 elements
+     * (--legs rod) falls on it in the climb: C, G's landing on the corner */
     {"obstacle", "terrains/obstacle.terrain", "gaits/obstacle.csv", NULL, CS_CONDITIONS_PAPER,
-     CS_MISSION_CALIBRATION, CS_MISSION_CAL_RULE, "rod", 4,
+     CS_MISSION_CALIBRATION, CS_MISSION_CAL_RULE, "strain", 4,
      "paper Sec. 5.2: L-shaped road with a 40 mm step up and down, then a turn (Table 3)",
      /* the landing gate: waits only when the valves are slower than the design's (the set's
       * ramp 0.1 s and lag x2), docs/studies/obstacle.md "sixth session" */

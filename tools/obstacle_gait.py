@@ -37,12 +37,13 @@ ap.add_argument('--over-step', type=float, default=None,
                 '(measured: the nominal\'s step landings fell 3 mm short of their offset on average '
                 'where the road\'s fall --over beyond it; docs/studies/obstacle.md, sixth session); '
                 'default --over (rule 16 off)')
-ap.add_argument('--up-short', type=float, default=-1.0,
+ap.add_argument('--up-short', type=float, default=30.0,
                 help='rule 17: how far a wave landing onto the step from the road (the leg\'s stance on '
                 'the road, its landing planned on the step) falls short of rule 6\'s plan, mm '
                 '(measured on k3\'s nominal, the same on rod and strain legs: B 233.4 for 264 planned, '
-                'C 224-228 for 258; docs/notes/obstacle.md "Rule 17"); default (negative) off; 30 is the '
-                'measured value')
+                'C 224-228 for 258; docs/notes/obstacle.md "Rule 17"); default 30, the measured value '
+                '(on since 2026-12-07, branch obst10: the shipped table bf50); negative: off (k3, the '
+                'table shipped until then)')
 ap.add_argument('--up-band', default='-10,5',
                 help='rule 17: the corner\'s band about the up edge, mm short and past it: a landing '
                 'expected there (plan less --up-short) takes the shortest longer offset, in 5 mm steps '
@@ -215,15 +216,21 @@ DC = a.D if a.Dclimb is None else a.Dclimb
 
 
 def gate_text(lines, source):
-    """the landing gate of a description (gaits/gaits_gate.h): its wave lifts (a `move` of a
-    pair to an AM pose or to U0), each after the first waiting for the last other pair that
-    lifted (the rule of docs/bench/obst_2026-12-06e/gatelib.py Gates)"""
-    lifts = []
-    for line in lines:
+    """the landing gate of a description (gaits/gaits_gate.h): its wave lifts (the first `move`
+    of a pair into a step: to a swing pose A* or U0 from a stance; the foot's stance offset
+    names the lift pose, AM behind the hip, AP ahead of it, as rule 17's B, F lift at 7.4 s),
+    each after the first waiting for the last other pair that lifted (the rule of
+    docs/bench/obst_2026-12-06e/gatelib.py Gates)"""
+    lifts, swinging = [], {}
+    for line in sorted((ln for ln in lines if ln.startswith('move ')),
+                       key=lambda ln: float(ln.split()[1])):
         p = line.split()
-        if len(p) >= 5 and p[0] == 'move' and len(p[3]) == 2 and (
-                p[4].startswith('AM') or p[4] == 'U0'):
+        if len(p) < 5 or len(p[3]) != 2:
+            continue
+        air = p[4].startswith('AM') or p[4].startswith('AP') or p[4] == 'U0'
+        if air and not swinging.get(p[3]):
             lifts.append((float(p[1]), p[3]))
+        swinging[p[3]] = air
     lifts.sort()
     out = ['# the landing gate of %s (gaits/gaits_gate.h), written by\n#   %s\n'
            '# each lift of a pair in the wave waits until the pair that lifted before it is down\n'

@@ -13,7 +13,9 @@ free parameters --free, each one of the script's options within a box (PARAMS be
 others keep the script's defaults). Each design is written as DIR/dKEY.gait, its landing gate
 as DIR/dKEY.gate (`obstacle_gait.py --gate-from`, as gaits/obstacle.gate is made), designed by
 `crawlsim gait design --stretch` on the mission's table (as gaits/obstacle.csv) and run on the
-scene's default model (rod legs, `paper`, under its gate: the scene's default). KEY is a hash of
+scene's default model (`paper`, under its gate; the legs: strain at the adaptive step since
+2026-12-07, branch obst10, the rod at 4 elements before: a folder searched before then resumes
+its rod runs only with --legs rod, which keys its cases anew). KEY is a hash of
 the description's statements (comments left out), so two parameter vectors that give the same
 table are one evaluation. Every simulation is a case of a study file run by
 `crawlsim study --resume` (tools/gait_search.py's run_study; `--mpirun N` spreads a stage's
@@ -347,9 +349,10 @@ class Search:
 def main():
     ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0])
     ap.add_argument("--dir", default="obstacle_search")
-    ap.add_argument("--base", default="--over-step -3 --reach 55 --clear-down",
+    ap.add_argument("--base", default="--up-short -1 --over-step -3 --reach 55 --clear-down",
                     help="obstacle_gait.py's fixed options of every design (default: rule 16 "
-                    "and 12b, the sixth session's r55d)")
+                    "and 12b, the sixth session's r55d; rule 17, the script's default since "
+                    "2026-12-07, off as it was for that design)")
     ap.add_argument("--free", default="settle,Tclimb,Tcross,Dcross",
                     help="the free parameters, among " + ",".join(PARAMS))
     ap.add_argument("--x0", default=None, help="their start (default: the script's defaults)")

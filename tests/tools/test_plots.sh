@@ -250,14 +250,14 @@ OS="$ROOT/tools/obstacle_search.py"
 OG="$ROOT/tools/obstacle_gait.py"
 stmts() { grep -v '^#' "$1"; }
 if "$PY" "$OS" --write-gait "$TMP/os0.gait" >"$TMP/out.txt" 2>&1 &&
-   "$PY" "$OG" --over-step -3 --reach 55 --clear-down -o "$TMP/og0.gait" >>"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --up-short -1 --over-step -3 --reach 55 --clear-down -o "$TMP/og0.gait" >>"$TMP/out.txt" 2>&1 &&
    cmp -s <(stmts "$TMP/os0.gait") <(stmts "$TMP/og0.gait"); then
   ok "obstacle_search's start is obstacle_gait.py with --base alone"
 else
   bad "obstacle_search's start is obstacle_gait.py with --base alone" "$TMP/out.txt"
 fi
 if "$PY" "$OS" --write-gait "$TMP/os1.gait" --free settle,Tclimb --x0 0.9,0.9 >"$TMP/out.txt" 2>&1 &&
-   "$PY" "$OG" --over-step -3 --reach 55 --clear-down --settle 0.9 --Tclimb 0.9 \
+   "$PY" "$OG" --up-short -1 --over-step -3 --reach 55 --clear-down --settle 0.9 --Tclimb 0.9 \
      -o "$TMP/og1.gait" >>"$TMP/out.txt" 2>&1 &&
    cmp -s <(stmts "$TMP/os1.gait") <(stmts "$TMP/og1.gait") &&
    ! cmp -s <(stmts "$TMP/os1.gait") <(stmts "$TMP/os0.gait"); then
@@ -293,22 +293,40 @@ expect_fail1 "obstacle_search --step-tol without strain legs" "strain legs only"
 expect_fail1 "obstacle_search --step-tol with a fixed strain step" "with --strain-step adaptive only" \
   "$PY" "$OS" --legs strain --step-tol 5e-4 --write-gait "$TMP/bad.gait"
 
-# tools/obstacle_gait.py rule 17 (--up-short): off by default (the shipped description, byte for
-# byte); on, it moves the second pair's first landing onto the step (expected on the edge's
-# corner) to the offset that clears it, the same statements as forcing that offset, and only
-# that step; a bad --up-band is one line and exit 1
-if "$PY" "$OG" -o "$TMP/k3.gait" >"$TMP/out.txt" 2>&1 && cmp -s "$TMP/k3.gait" "$ROOT/gaits/obstacle.gait" &&
-   "$PY" "$OG" --up-short 30 -o "$TMP/r17.gait" >>"$TMP/out.txt" 2>&1 &&
-   "$PY" "$OG" --force BF:0:50 -o "$TMP/bf50.gait" >>"$TMP/out.txt" 2>&1 &&
+# tools/obstacle_gait.py rule 17 (--up-short): on by default at the measured 30 mm (the shipped
+# description bf50, byte for byte); it moves the second pair's first landing onto the step
+# (expected on the edge's corner) to the offset that clears it, the same statements as forcing
+# that offset with the rule off, and only that step; off (--up-short -1) it writes k3, another
+# table; a bad --up-band is one line and exit 1
+if "$PY" "$OG" -o "$TMP/r17.gait" >"$TMP/out.txt" 2>&1 && cmp -s "$TMP/r17.gait" "$ROOT/gaits/obstacle.gait" &&
+   "$PY" "$OG" --up-short -1 -o "$TMP/k3.gait" >>"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --up-short -1 --force BF:0:50 -o "$TMP/bf50.gait" >>"$TMP/out.txt" 2>&1 &&
    cmp -s <(stmts "$TMP/r17.gait") <(stmts "$TMP/bf50.gait") &&
    ! cmp -s <(stmts "$TMP/r17.gait") <(stmts "$TMP/k3.gait") &&
-   [ "$(grep -c 'rule 17: landing' "$TMP/r17.gait")" -eq 2 ]; then
-  ok "obstacle_gait rule 17 off by default; --up-short 30 moves B, F's climbing landing to offset 50"
+   [ "$(grep -c 'rule 17: landing' "$TMP/r17.gait")" -eq 2 ] &&
+   [ "$(grep -c 'rule 17: landing' "$TMP/k3.gait")" -eq 0 ]; then
+  ok "obstacle_gait rule 17 on by default (the shipped bf50): B, F's climbing landing at offset 50; off writes k3"
 else
-  bad "obstacle_gait rule 17 off by default; --up-short 30 moves B, F's climbing landing to offset 50" "$TMP/out.txt"
+  bad "obstacle_gait rule 17 on by default (the shipped bf50): B, F's climbing landing at offset 50; off writes k3" "$TMP/out.txt"
 fi
 expect_fail1 "obstacle_gait bad --up-band" "obstacle_gait.py: --up-band takes two numbers" \
   "$PY" "$OG" --up-short 30 --up-band 5,5 -o "$TMP/bad.gait"
+
+# tools/obstacle_gait.py --gate-from: the shipped gate is the shipped description's (the same
+# statements); a lift is a pair's first move into a step, to AM or AP by its stance offset (rule
+# 17's B, F lift to AP10 at 7.4 s) or U0, never its move over (k3's D, H climb at 9.4 s: AM15,
+# then over to U0 at 9.6 s)
+if "$PY" "$OG" --gate-from "$ROOT/gaits/obstacle.gait" --gate-out "$TMP/g.gate" >"$TMP/out.txt" 2>&1 &&
+   cmp -s <(stmts "$TMP/g.gate") <(stmts "$ROOT/gaits/obstacle.gate") &&
+   grep -q '^move 7.4000 [0-9.]* BF AP10$' "$ROOT/gaits/obstacle.gait" &&
+   grep -q '^gate 7.4000 CG  # lift of BF' "$TMP/g.gate" &&
+   "$PY" "$OG" --up-short -1 -o "$TMP/k3g.gait" --gate-out "$TMP/k3g.gate" >>"$TMP/out.txt" 2>&1 &&
+   grep -q '^move 9.6000 [0-9.]* DH U0$' "$TMP/k3g.gait" && grep -q '^gate 9.4000 AE' "$TMP/k3g.gate" &&
+   ! grep -q '^gate 9.6000' "$TMP/k3g.gate"; then
+  ok "obstacle_gait --gate-from: the shipped gate; a lift to AP gated, a move over to U0 not"
+else
+  bad "obstacle_gait --gate-from: the shipped gate; a lift to AP gated, a move over to U0 not" "$TMP/out.txt"
+fi
 
 # tools/obstacle_gait.py rule 18 (--push): off by default (--push 0 writes the shipped description
 # byte for byte); --push 1 writes one slot, before the rear pair's step toward the up edge, in
