@@ -262,6 +262,47 @@ int csf_romRays(csfRomRay* rays, int cap) {
       }
     }
   }
+  /* squeezed-chamber rays SQ1-SQ6 (session rom10), appended after RS1-RS6 so that no earlier
+   * ray changes: a deterministic family of what the random draws reached too seldom on the real
+   * leg (docs/notes/rom.md, "The real leg's sparse random rays"): per segment a dominant chamber
+   * k at the segment's level, the diagonally opposite chamber k+2 vented and squeezed as the
+   * segment bends away from it, and the two flanks k+1, k+3 (each the neighbour of both) lightly
+   * or unequally loaded; or a vented chamber between two loaded flanks. Patterns are ratios of
+   * the level on a quarter grid, indexed from k around Ω1 -> Ω2 -> Ω3 -> Ω4 (cyclic; Ω1 and Ω3
+   * diagonal, robot_actuator.h):
+   *   A  (1, 3/4, 0, 1/4)  unequal flanks: the light flank between the vented and the full one
+   *   A' (1, 1/4, 0, 3/4)  its mirror (the fibres' helix makes mirrors differ)
+   *   B  (1, 1/4, 0, 1/4)  equal light flanks: the vented chamber squeezed between them
+   *   C  (1, 1/4, 1, 0)    a vented chamber between two full ones, the fourth light
+   * Adjacent segments' k differ (S- and Z-shapes; the basis' quarter turns add the leg's global
+   * rotations, not these relative ones); SQ1-SQ3 a Latin square of A, A', B at 0.4 MPa, SQ4-SQ6
+   * one of A, B, C with one segment at half the level. */
+  enum { PAT_A, PAT_A2, PAT_B, PAT_C };
+  static const double kSqPat[4][4] = {
+      {1, 0.75, 0, 0.25}, {1, 0.25, 0, 0.75}, {1, 0.25, 0, 0.25}, {1, 0.25, 1, 0}};
+  static const struct {
+    const char* name;
+    int pat[CSR_NSEG], k[CSR_NSEG]; /* k: the dominant chamber, 0-based (0 = Ω1) */
+    double level[CSR_NSEG];        /* MPa */
+  } kSq[] = {
+      {"SQ1", {PAT_A, PAT_A2, PAT_B}, {0, 2, 1}, {P_RAY, P_RAY, P_RAY}},
+      {"SQ2", {PAT_A2, PAT_B, PAT_A}, {1, 3, 0}, {P_RAY, P_RAY, P_RAY}},
+      {"SQ3", {PAT_B, PAT_A, PAT_A2}, {2, 3, 1}, {P_RAY, P_RAY, P_RAY}},
+      {"SQ4", {PAT_C, PAT_A, PAT_B}, {0, 1, 3}, {P_RAY, 0.5 * P_RAY, P_RAY}},
+      {"SQ5", {PAT_A, PAT_B, PAT_C}, {3, 1, 2}, {P_RAY, P_RAY, 0.5 * P_RAY}},
+      {"SQ6", {PAT_B, PAT_C, PAT_A}, {1, 2, 0}, {0.5 * P_RAY, P_RAY, P_RAY}},
+  };
+  for (size_t r = 0; r < sizeof kSq / sizeof kSq[0]; r++) {
+    if (!(y = addRay(rays, &n, cap, kSq[r].name, CSF_ROM_TRAIN, "squeezed chambers: per segment "
+                     "a dominant chamber, the opposite vented, the flanks light or unequal"))) {
+      return n;
+    }
+    for (int s = 0; s < CSR_NSEG; s++) {
+      for (int i = 0; i < CSR_NCHAMBER; i++) {
+        y->p[s][(kSq[r].k[s] + i) % CSR_NCHAMBER] = kSq[r].level[s] * kSqPat[kSq[r].pat[s]][i];
+      }
+    }
+  }
   return n;
 }
 

@@ -59,7 +59,8 @@ typedef struct csfRomRay_ {
 } csfRomRay;
 
 /* The built-in ray list (training rays first, then the held-out ones, then the sparse random
- * training rays RS1-RS6 appended later so that no earlier ray's draw changed) written to `rays`
+ * training rays RS1-RS6 and the squeezed-chamber training rays SQ1-SQ6, appended later so that
+ * no earlier ray's draw changed) written to `rays`
  * (capacity cap >= CSF_ROM_MAX_RAYS); returns the count. The random rays are drawn from a
  * fixed seed (fem_rom_snap.c), so the list is the same on every machine. */
 int csf_romRays(csfRomRay* rays, int cap);

@@ -71,6 +71,17 @@ def chamber_volumes(x, face, cid, u):
     return np.bincount(cid, weights=v, minlength=12)
 
 
+def chamber_faces(snapdir):
+    """The chambers' quadratic faces of SNAPDIR/mesh.h5 (nface, 6) and each one's chamber
+    4 s + j (segment s, chamber j, 0-based) from its tag."""
+    with h5py.File(os.path.join(snapdir, "mesh.h5"), "r") as f:
+        face = f["face"][...].astype(np.int64)
+        tag = f["face_tag"][...].astype(np.int64)
+    seg, ch = tag // 10 - 11, tag % 10 - 1
+    inch = (seg >= 0) & (seg < 3) & (ch >= 0) & (ch < 4) & (tag >= 111)
+    return face[inch], (4 * seg + ch)[inch]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("snapdir")
@@ -80,12 +91,7 @@ def main():
     ap.add_argument("--rom-states", default=None)
     a = ap.parse_args()
     x, tet, fixed, rho, _ = read_mesh(a.snapdir)
-    with h5py.File(os.path.join(a.snapdir, "mesh.h5"), "r") as f:
-        face = f["face"][...].astype(np.int64)
-        tag = f["face_tag"][...].astype(np.int64)
-    seg, ch = tag // 10 - 11, tag % 10 - 1
-    inch = (seg >= 0) & (seg < 3) & (ch >= 0) & (ch < 4) & (tag >= 111)
-    face, cid = face[inch], (4 * seg + ch)[inch]
+    face, cid = chamber_faces(a.snapdir)
     with h5py.File(a.basis, "r") as f:
         V = f["V"][...]
         P = f["P"][...] if "P" in f else None

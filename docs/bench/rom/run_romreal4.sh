@@ -40,6 +40,10 @@
 #   link-rs      (session romrs, 2026-12-07) the same mesh check and links for the RS rays
 #                finished so far (a production stopped between rays: the basis on part of
 #                the family; rays-rs resumes the rest)                    -> OUT/snap/RS<k>.h5
+#   rays-sq, link-sq  (session rom10, 2026-12-07) the same for the squeezed-chamber rays SQ1-SQ6
+#                (per segment a dominant chamber, the opposite vented, the flanks light or
+#                unequal: fem_rom_snap.c), into OUT/snap_sq; SQ="SQ1 SQ2 ..." picks and orders
+#                them (default all six)                                   -> OUT/snap/SQ<k>.h5
 #   base         the same file without its fibre basis (Qf, mf): the same span with the FE's
 #                fibres, for the locking's share                             -> OUT/b<N>_base.h5
 #   project      the held-out states' best projection onto the span (tools/rom_project.py)
@@ -142,15 +146,17 @@ PYEOF
         (cd "$OUT" && "${T[@]}" nice -n "$NICE" stdbuf -oL "$CS" rom check --snapshots "$SNAP" \
           --leg-file "$OUT/leg_${cfg}.h5" --ray "$ray" --actuator leg \
           --checkpoint "$OUT/ckpt_leg_${cfg}" > "$log" 2>&1) ;;
-    rays-rs)
-      rs=(RS1 RS2 RS3 RS4 RS5 RS6)
-      mkdir -p "$OUT/snap_rs"
-      "${T[@]}" nice -n "$NICE" "$CS" rom snapshots --out "$OUT/snap_rs" --mesh-size 8 \
-        --threads 1 --actuator leg "${rs[@]/#/--ray=}" >> "$OUT/snap_rs/production.log" 2>&1
+    rays-rs|rays-sq)
+      fam=${stage#rays-}
+      if [ "$fam" = rs ]; then rs=(RS1 RS2 RS3 RS4 RS5 RS6); else read -ra rs <<< "${SQ:-SQ1 SQ2 SQ3 SQ4 SQ5 SQ6}"; fi
+      mkdir -p "$OUT/snap_$fam"
+      "${T[@]}" nice -n "$NICE" "$CS" rom snapshots --out "$OUT/snap_$fam" --mesh-size 8 \
+        --threads 1 --actuator leg "${rs[@]/#/--ray=}" >> "$OUT/snap_$fam/production.log" 2>&1
       ;&
-    link-rs)
-      rs=(RS1 RS2 RS3 RS4 RS5 RS6)
-      $PY - "$SNAP/mesh.h5" "$OUT/snap_rs/mesh.h5" <<'PYEOF'
+    link-rs|link-sq)
+      fam=${stage#*-}
+      if [ "$fam" = rs ]; then rs=(RS1 RS2 RS3 RS4 RS5 RS6); else rs=(SQ1 SQ2 SQ3 SQ4 SQ5 SQ6); fi
+      $PY - "$SNAP/mesh.h5" "$OUT/snap_$fam/mesh.h5" <<'PYEOF'
 import sys
 import h5py
 import numpy as np
@@ -159,11 +165,11 @@ import numpy as np
 with h5py.File(sys.argv[1], "r") as a, h5py.File(sys.argv[2], "r") as b:
     for key in ("x", "tet", "face", "face_tag", "fixed", "tip_unit"):
         if a[key].shape != b[key].shape or not np.array_equal(a[key][...], b[key][...]):
-            sys.exit(f"run_romreal4.sh: rays-rs: {sys.argv[2]}: /{key} is not that of {sys.argv[1]}")
+            sys.exit(f"run_romreal4.sh: rays: {sys.argv[2]}: /{key} is not that of {sys.argv[1]}")
 PYEOF
       # a ray's file appears when the ray is finished (cmd_rom.c renames it from its part file)
       for r in "${rs[@]}"; do
-        [ ! -s "$OUT/snap_rs/$r.h5" ] || ln -f "$OUT/snap_rs/$r.h5" "$SNAP/$r.h5"
+        [ ! -s "$OUT/snap_$fam/$r.h5" ] || ln -f "$OUT/snap_$fam/$r.h5" "$SNAP/$r.h5"
       done ;;
     base)
       [ -s "$OUT/b${N}_base.h5" ] ||
