@@ -190,6 +190,13 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
             "before is down, read from the chamber pressures against the design's (ramp %g s, "
             "lag %g s, within %g MPa, at most %g s a gate; gaits_gate.h)", plan->gate,
             m->gate->n, m->gate->ramp, m->gate->lag, m->gate->ptol, m->gate->maxwait);
+    if (m->gate->crawl_n > 0) {
+      logLine(def, "gate %s: the lateral crawl (%d slots of %g s from %g s) ends on the measured "
+              "support z: at a boundary of the release's phase when z + %g mm >= %g mm less half "
+              "the last two slots' advance (gaits_gate.h `crawl`)", plan->gate,
+              m->gate->crawl_n, m->gate->crawl_tpz, m->gate->crawl_t0, m->gate->crawl_carry,
+              m->gate->crawl_zend);
+    }
   } else if (m->gait) {
     logLine(def, "gate none: open loop (the table on time)");
   }

@@ -69,6 +69,36 @@ csStatus cs_modelLoadGate(csModel* m, const char* path, csError* err) {
 }
 
 
+/* the crawl's decision at the step's start (gaits_gate.h `crawl`): every decision boundary the
+ * table's clock has passed reads the support's measured z now (the state's); the first that
+ * says stop sets the skip, and no boundary is read after it. Nothing here moves the support:
+ * the skip only changes which table row the valves are given. */
+static void crawlDecide(const csModel* m, csData* d, double tau) {
+  const csgGateSet* s = m->gate;
+  double i = d->crawl_i, z = d->crawl_z, skip = d->crawl_skip;
+  if (s->crawl_n > 0 && !m->pressure_source && skip == 0) {
+    double pos[3];
+    cs_supportDisplacement(d, pos);
+    for (;;) {
+      const int j = (s->crawl_n - 1) % 2 + 2 * (int)i;
+      if (j > s->crawl_n - 1 || tau < s->crawl_t0 + (j + 1) * s->crawl_tpz - GATE_TIME_TOL) {
+        break;
+      }
+      const int left = csg_gateCrawlSkip(s, j, pos[2], z);
+      i += 1;
+      z = pos[2];
+      if (left > 0) {
+        skip = left * s->crawl_tpz;
+        break;
+      }
+    }
+  }
+  d->crawl_i_next = i;
+  d->crawl_z_next = z;
+  d->crawl_skip_next = skip;
+}
+
+
 void cs_gateDecide(const csModel* m, csData* d) {
   const csgGateSet* s = m->gate;
   if (!s) {
@@ -77,7 +107,10 @@ void cs_gateDecide(const csModel* m, csData* d) {
   const int g0 = (int)d->gate_i;
   int gi = g0, holding = 0;
   double w = d->gate_wait;
-  const double tau = d->t - d->gate_hold; /* the table's clock */
+  /* the table's clock: every gate comes before the crawl (gaits_gate.c), so a skip decided
+   * here never jumps over one */
+  crawlDecide(m, d, d->t - d->gate_hold + d->crawl_skip);
+  const double tau = d->t - d->gate_hold + d->crawl_skip_next;
   /* a caller's pressure source (cs_simSetController, a held command) drives the chambers
    * instead of the table: the gate neither tests nor holds meanwhile */
   if (!m->pressure_source && d->t >= 0 && gi < s->n && tau >= s->gate[gi].t - GATE_TIME_TOL) {
@@ -121,6 +154,9 @@ void cs_gateCommit(const csModel* m, csData* d, double h) {
     d->gate_wait = 0;
   }
   d->gate_i = d->gate_next;
+  d->crawl_i = d->crawl_i_next;
+  d->crawl_z = d->crawl_z_next;
+  d->crawl_skip = d->crawl_skip_next;
   if (d->gate_holding) {
     d->gate_hold += h;
     d->gate_wait += h;
@@ -129,6 +165,9 @@ void cs_gateCommit(const csModel* m, csData* d, double h) {
 
 
 void cs_gateEval(const csModel* m, const csData* d, const csgGait* g, double t, double* p_cmd) {
+  if (m->gate) {
+    t += d->crawl_skip_next; /* the crawl's skip (the decision this step plays) */
+  }
   if (!m->gate || (d->gate_hold == 0 && !d->gate_holding)) {
     csg_scheduleEval(g, &m->sched, t, p_cmd);
     return;
@@ -139,7 +178,7 @@ void cs_gateEval(const csModel* m, const csData* d, const csgGait* g, double t, 
 
 
 double cs_gateTableTime(const csModel* m, const csData* d, double t) {
-  return m->gate ? t - d->gate_hold : t;
+  return m->gate ? t - d->gate_hold + d->crawl_skip_next : t;
 }
 
 

@@ -135,6 +135,12 @@ struct csData_ {
   int gate_next, gate_holding;
   double gate_off[CSG_GATE_MAX + 1];
   double gate_issued;
+  /* the gate file's crawl (sim_gate.c), in the state after the gate's part when the file has
+   * one: the decision boundaries passed (the i-th is slot j = (N - 1) % 2 + 2 i's end), the
+   * support's z at the last of them (mm) and the table clock's skip (s); and the decision at
+   * the current step's start (not state: a function of it, written by cs_gateCommit) */
+  double crawl_i, crawl_z, crawl_skip;
+  double crawl_i_next, crawl_z_next, crawl_skip_next;
   csAdaptive ada;  /* the adaptive step (opt.step_adaptive; sim_adaptive.c) */
   /* the step the current try started as before its halvings (s): H with a fixed step, the
    * adaptive step's length with step_adaptive (the tree's rules for a retried step) */

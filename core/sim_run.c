@@ -19,7 +19,8 @@
  * and foothold_choices ("T LEGS OFFSET; ..."), control (open loop, a caller's source, or the
  * landing gate's closed loop) with a gate gate_file, gate_held_s, gate_released, gate_waited
  * and gate_waits ("T LEGS WAIT; ..." s for the gates that waited, sim_gate.c) and the dataset
- * /gate/waits [n, 2] (each gate's table time and wait), and per timer (sim_model.h
+ * /gate/waits [n, 2] (each gate's table time and wait), with a gate's crawl statement crawl_skip_s,
+ * crawl_boundaries_read and crawl_z_mm (its decision, sim_gate.c), and per timer (sim_model.h
  * CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
  * simulated second (core_h5.c: each flush writes the whole file image and renames it into
@@ -724,6 +725,11 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
     cs_h5AttrDouble(f, "/", "gate_released", rel, NULL);
     cs_h5AttrDouble(f, "/", "gate_waited", waited, NULL);
     cs_h5AttrString(f, "/", "gate_waits", gw, NULL);
+    if (m->gate->crawl_n > 0) { /* the crawl's decision (gaits_gate.h `crawl`, sim_gate.c) */
+      cs_h5AttrDouble(f, "/", "crawl_skip_s", d->crawl_skip, NULL);
+      cs_h5AttrDouble(f, "/", "crawl_boundaries_read", d->crawl_i, NULL);
+      cs_h5AttrDouble(f, "/", "crawl_z_mm", d->crawl_z, NULL);
+    }
   } else {
     cs_h5AttrString(f, "/", "control", m->pressure_source ? "a caller's pressure source"
                                                           : "open loop: the table on time", NULL);

@@ -7,7 +7,8 @@
  * memory (CS_ADA_STATE: the next step, the last step and its change, sim_adaptive.c); with footholds (--foothold), one value per foothold: its
  * latched candidate, -1 while undecided (sim_foothold.c); with a landing gate (--gate), 3 + n
  * values: the next gate, the hold (s), the current wait (s) and the n gates' released waits
- * (s; sim_gate.c). Restoring is bit-exact for every
+ * (s; sim_gate.c), and with the gate file's crawl 3 more: its decision boundaries passed, the
+ * support's z at the last (mm) and the table's skip (s). Restoring is bit-exact for every
  * part: the bodies through robot_odebody.h, the seed as the integer it is (ODE keeps it below
  * 2^32, exact in a double), the pressures by copy, and CVODE restarted from them. */
 #include <cvode/cvode.h>
@@ -25,8 +26,11 @@ enum { HEAD = 2 + CSR_NCHAMBER_TOTAL }; /* t, seed, pressures */
 
 /* the footholds' latches: one per foothold of the model */
 static int footholdCount(const csModel* m) { return m->foothold ? m->foothold->n : 0; }
-/* the gate's part: next gate, hold, wait, one released wait per gate */
-static int gateCount(const csModel* m) { return m->gate ? 3 + m->gate->n : 0; }
+/* the gate's part: next gate, hold, wait, one released wait per gate; with a crawl statement
+ * then the crawl's boundaries passed, z at the last (mm) and skip (s) */
+#define CRAWL_PART 3
+static int crawlCount(const csModel* m) { return m->gate && m->gate->crawl_n ? CRAWL_PART : 0; }
+static int gateCount(const csModel* m) { return m->gate ? 3 + m->gate->n + crawlCount(m) : 0; }
 
 
 /* where the adaptive step's part starts: after the robot and the coupling's block */
@@ -60,7 +64,12 @@ void cs_stateGet(const csModel* m, const csData* d, double* x) {
     xg[0] = d->gate_i;
     xg[1] = d->gate_hold;
     xg[2] = d->gate_wait;
-    memcpy(xg + 3, d->gate_rel, sizeof(double) * (size_t)(ng - 3));
+    memcpy(xg + 3, d->gate_rel, sizeof(double) * (size_t)m->gate->n);
+    if (crawlCount(m)) {
+      xg[3 + m->gate->n] = d->crawl_i;
+      xg[4 + m->gate->n] = d->crawl_z;
+      xg[5 + m->gate->n] = d->crawl_skip;
+    }
   }
 }
 
@@ -91,8 +100,13 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
   if (ng > 0) {
     int ok = xg[0] >= 0 && xg[0] <= m->gate->n && xg[0] == floor(xg[0]) && isfinite(xg[1]) &&
              xg[1] >= 0 && isfinite(xg[2]) && xg[2] >= 0;
-    for (int k = 3; k < ng; k++) {
+    for (int k = 3; k < 3 + m->gate->n; k++) {
       ok = ok && isfinite(xg[k]) && xg[k] >= 0;
+    }
+    if (crawlCount(m)) {
+      const double* xc2 = xg + 3 + m->gate->n;
+      ok = ok && xc2[0] >= 0 && xc2[0] <= m->gate->crawl_n && xc2[0] == floor(xc2[0]) &&
+           isfinite(xc2[1]) && isfinite(xc2[2]) && xc2[2] >= 0;
     }
     if (!ok) {
       return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the gate's part (next gate %g of %d, "
@@ -124,7 +138,12 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
     d->gate_i = xg[0];
     d->gate_hold = xg[1];
     d->gate_wait = xg[2];
-    memcpy(d->gate_rel, xg + 3, sizeof(double) * (size_t)(ng - 3));
+    memcpy(d->gate_rel, xg + 3, sizeof(double) * (size_t)m->gate->n);
+    if (crawlCount(m)) {
+      d->crawl_i = xg[3 + m->gate->n];
+      d->crawl_z = xg[4 + m->gate->n];
+      d->crawl_skip = xg[5 + m->gate->n];
+    }
   }
   d->t = x[0];
   d->rng_seed = (unsigned long)x[1];

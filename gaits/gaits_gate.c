@@ -34,6 +34,15 @@ void csg_gateLegs(unsigned legs, char* out) {
 }
 
 
+int csg_gateCrawlSkip(const csgGateSet* s, int j, double z, double zprev) {
+  const int left = s->crawl_n - 1 - j;
+  if (s->crawl_n < 3 || j < 2 || left <= 0 || left % 2) {
+    return 0;
+  }
+  return z + s->crawl_carry >= s->crawl_zend - (z - zprev) / 2 ? left : 0;
+}
+
+
 static int number(const char* s, double* v) {
   char* end;
   *v = strtod(s, &end);
@@ -113,6 +122,39 @@ static csStatus statementGate(csgGateSet* s, char** w, int nw, int seen, const c
 }
 
 
+/* `crawl T0 TPZ N ZEND CARRY` */
+#define CRAWL_MAX_SLOTS 1000 /* far beyond any table's crawl (the obstacle's: 8-16) */
+static csStatus statementCrawl(csgGateSet* s, char** w, int nw, const char* path, int line,
+                               csError* err) {
+  if (s->crawl_n) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: a second 'crawl' line", path, line);
+  }
+  if (nw != 6) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'crawl' needs T0 TPZ N ZEND CARRY", path, line);
+  }
+  double v[5];
+  for (int i = 0; i < 5; i++) {
+    if (!number(w[1 + i], &v[i])) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: '%.40s' is not a finite number", path, line,
+                         w[1 + i]);
+    }
+  }
+  const double tlast = s->n > 0 ? s->gate[s->n - 1].t : 0;
+  if (!(v[0] >= tlast && v[1] > 0 && v[2] >= 3 && v[2] <= CRAWL_MAX_SLOTS &&
+        v[2] == floor(v[2]) && v[4] >= 0)) {
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: needs T0 >= the last gate (%g s), TPZ > 0, N "
+                       "a whole number 3..%d and CARRY >= 0 (%g s, %g s, %g, %g mm)", path, line,
+                       tlast, CRAWL_MAX_SLOTS, v[0], v[1], v[2], v[4]);
+  }
+  s->crawl_t0 = v[0];
+  s->crawl_tpz = v[1];
+  s->crawl_n = (int)v[2];
+  s->crawl_zend = v[3];
+  s->crawl_carry = v[4];
+  return CS_OK;
+}
+
+
 /* the reader's state between statements (csu_statementFileRead) */
 typedef struct {
   csgGateSet* s;
@@ -125,11 +167,17 @@ static csStatus gateStatement(void* ctx, char** w, int nw, const char* path, int
   if (!strcmp(w[0], "design")) {
     return statementDesign(g->s, w, nw, &g->seen, path, line, err);
   }
+  if (!strcmp(w[0], "crawl")) {
+    return statementCrawl(g->s, w, nw, path, line, err);
+  }
   if (!strcmp(w[0], "gate")) {
+    if (g->s->crawl_n) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'gate' after the 'crawl' line", path, line);
+    }
     return statementGate(g->s, w, nw, g->seen, path, line, err);
   }
-  return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (design, gate)", path,
-                     line, w[0]);
+  return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (design, gate, crawl)",
+                     path, line, w[0]);
 }
 
 

@@ -28,6 +28,17 @@
  *   gate T LEGS
  *       a gate at table time T (s, >= 0, not decreasing from one gate to the next) waiting for
  *       LEGS (letters A..H, each once)
+ *   crawl T0 TPZ N ZEND CARRY
+ *       at most once, after the gates (T0 >= every gate's T): the table's lateral crawl ends on
+ *       the measured support (issue 33, docs/notes/obstacle.md "crawl10"). The table has N
+ *       (>= 3) lateral slots of TPZ s (> 0) from table time T0 (s); the crawl is periodic in
+ *       two slots, so at the end of slot j (0-based) with N - 1 - j even the table can jump
+ *       to its release (N - 1 - j slots on, the same pose). At each such boundary with j >= 2
+ *       the player (core/sim_gate.c) reads the support's measured z (mm) and its advance a over
+ *       the last two slots, and ends the crawl there when z + CARRY >= ZEND - a / 2 (stopping
+ *       lands nearer ZEND than one more cycle at the measured pace; CARRY (mm, >= 0) the
+ *       release's own advance along z, ZEND (mm) the end point's z). Ending skips the table's
+ *       clock on by (N - 1 - j) TPZ.
  * Errors: "<file>:<line>: <cause>" (CS_ERR_PARSE malformed, CS_ERR_RANGE values, CS_ERR_IO a
  * file that cannot be read). */
 #ifndef CS_GAITS_GATE_H
@@ -58,6 +69,12 @@ typedef struct csgGateSet_ {
   int n;
   csgGate gate[CSG_GATE_MAX]; /* in the file's order (T not decreasing) */
   double time[CSG_GATE_MAX];  /* s: the gates' t, contiguous (csg_scheduleEvalHeld's breaks) */
+  /* the `crawl` statement (crawl_n 0: none) */
+  int crawl_n;        /* lateral slots written */
+  double crawl_t0;    /* s: table time of the first slot's start */
+  double crawl_tpz;   /* s: one slot */
+  double crawl_zend;  /* mm: the end point's z */
+  double crawl_carry; /* mm: the release's own advance along z */
   char source[512];
 } csgGateSet;
 
@@ -69,6 +86,11 @@ void csg_gateDestroy(csgGateSet* s);
 /* The rule above for one gate (pure): p the measured pressures (96), v the valves' commands
  * (96), g's legs and design pressures, ptol. 1 down, 0 not. */
 int csg_gateDown(const csgGate* g, const double* p, const double* v, double ptol);
+
+/* The crawl's rule at one boundary (pure): z the support's measured z (mm) at the end of slot
+ * j, zprev at the end of slot j - 2. Returns the slots to skip (N - 1 - j) when the crawl ends
+ * there, 0 when it goes on (or j is not a decision boundary). */
+int csg_gateCrawlSkip(const csgGateSet* s, int j, double z, double zprev);
 
 /* LEGS as letters into out (>= 9 chars). */
 void csg_gateLegs(unsigned legs, char* out);

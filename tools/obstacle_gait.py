@@ -211,7 +211,20 @@ ap.add_argument('--gate-ptol', type=float, default=0.005,
                 'table\'s 0.4 MPa range)')
 ap.add_argument('--gate-maxwait', type=float, default=None,
                 help='the longest wait of a gate, s (default --Tp: one walk slot)')
+ap.add_argument('--crawl-max', type=int, default=None, metavar='N',
+                help='the lateral crawl ended on the measured support (issue 33, '
+                'docs/notes/obstacle.md "crawl10"): write N lateral slots (instead of zend / '
+                '(Dz / 2)) and, with --gate-out, the gate\'s `crawl` statement, so the player '
+                'ends the crawl at the first boundary of the release\'s phase where the measured '
+                'support z is near enough zend (gaits/gaits_gate.h); off by default')
+ap.add_argument('--crawl-carry', type=float, default=23.0,
+                help='with --crawl-max: the release\'s own advance along z, mm (the 50 g nominal\'s '
+                'measured 23 mm: docs/bench/obst10_2026-12-07c/nominal.txt, `rel8`)')
 a = ap.parse_args()
+if a.crawl_max is not None and (a.crawl_max < 3 or a.zgroups != 2 or a.gate_from):
+    sys.exit('obstacle_gait.py: --crawl-max takes N >= 3, with the two-group crawl '
+             '(--zgroups 2) and a table written here (not --gate-from)')
+CRAWL = None  # (first slot's table time s, slot s, slots) once the crawl is written
 DC = a.D if a.Dclimb is None else a.Dclimb
 
 
@@ -243,6 +256,10 @@ def gate_text(lines, source):
             out.append('gate %.4f %s  # lift of %s\n' % (lifts[i][0], prev[-1], lifts[i][1]))
     if len(out) == 2:
         sys.exit('obstacle_gait.py: %s has no wave lifts to gate' % source)
+    if a.crawl_max is not None and CRAWL:
+        out.append('# the lateral crawl ends on the measured support: first slot, slot, slots '
+                   'written, end z (mm), the release\'s carry (mm)\n'
+                   'crawl %.4f %g %d %g %g\n' % (CRAWL + (a.zend, a.crawl_carry)))
     return ''.join(out)
 
 
@@ -948,7 +965,8 @@ else:
         t += a.Tpz
         g0 = 0
     tz = t
-    NZS = int(round(a.zend / (a.Dz / 2)))
+    NZS = int(round(a.zend / (a.Dz / 2))) if a.crawl_max is None else a.crawl_max
+    CRAWL = (tz, a.Tpz, NZS)
     comment('# the lateral crawl: %d slots of %g s from %.2f s, groups ACFH / BDEG' % (NZS, a.Tpz, tz))
     # rule 20 (--zoverlap O): every stance foot moves at SHZ / Tpz relative to its hip; a group
     # lands at +RZO O/2 before a slot's boundary and lifts O/2 after the next one (at -RZO), so

@@ -4,7 +4,8 @@
  *    every dataset equals the uncut run's bit for bit, on rod legs (Gauss-Seidel, CVODE per
  *    leg) and on strain legs (the tree coupling, its fixed and its adaptive step), and the same
  *    step count; the comparison is
- *    not trivial (the rows after the cut differ from the cut's); one stopped before settling
+ *    not trivial (the rows after the cut differ from the cut's); with a gate file whose crawl
+ *    ends at the cut (its decision after the resume) too; one stopped before settling
  *    (a checkpoint at t < 0) settles when resumed and equals the uncut run too;
  *  - a resume with another definition (friction, the checkpoint interval, links, the gate) is
  *    refused naming the file and the field, and leaves the output as it was;
@@ -126,11 +127,22 @@ static int readRow(const char* path, const char* name, long row, int w, double* 
 }
 
 
+/* a numeric root attribute (NaN when absent) */
+static double readAttr(const char* path, const char* name) {
+  csError err;
+  csH5Reader* r = cs_h5ReaderOpen(path, &err);
+  double v = NAN;
+  if (!r || cs_h5ReaderAttrDouble(r, name, &v, &err) != CS_OK) v = NAN;
+  cs_h5ReaderClose(r);
+  return v;
+}
+
+
 /* the uncut run of 0.3 s against the same run cut at 0.2 s and resumed to 0.3 s */
 /* step: NULL, or the strain level's --strain-step */
-static void resumedEqualsUncutStep(const char* legs, const char* step) {
+static void resumedEqualsUncutGate(const char* legs, const char* step, const char* gate) {
   char a_out[64], a_ck[64], b_out[64], b_ck[64];
-  const char* tag = step ? step : "";
+  const char* tag = step ? step : gate ? "gate" : "";
   snprintf(a_out, sizeof a_out, "ckpt_%s%s_uncut.h5", legs, tag);
   snprintf(a_ck, sizeof a_ck, "ckpt_%s%s_uncut.ck", legs, tag);
   snprintf(b_out, sizeof b_out, "ckpt_%s%s_cut.h5", legs, tag);
@@ -139,12 +151,14 @@ static void resumedEqualsUncutStep(const char* legs, const char* step) {
   csRunResult ra, rb, rc;
   csRunDef a = baseDef(legs);
   a.strain_step = step;
+  a.gate = gate;
   a.t_end = 0.3;
   a.out = a_out;
   a.checkpoint = a_ck;
   CS_EXPECT(runDef(&a, &ra, &err) == CS_OK);
   csRunDef b = baseDef(legs);
   b.strain_step = step;
+  b.gate = gate;
   b.t_end = 0.2;
   b.out = b_out;
   b.checkpoint = b_ck;
@@ -152,6 +166,7 @@ static void resumedEqualsUncutStep(const char* legs, const char* step) {
   CS_EXPECT(rb.t_end < ra.t_end - 0.05);
   csRunDef c = baseDef(legs);
   c.strain_step = step;
+  c.gate = gate;
   c.t_end = 0.3;
   c.out = b_out;
   c.resume = b_ck; /* the checkpoints go on into it */
@@ -177,8 +192,11 @@ static void resumedEqualsUncutStep(const char* legs, const char* step) {
   CS_EXPECT(dp > 0.01 && dfoot > 0.1); /* MPa, mm: the gait's first ramp is under way */
   printf("  %s legs%s%s: %ld rows %s; steps %ld; support x %.6f mm at 0.3 s; the pressures moved "
          "by up to %.4f MPa and the foot of leg A by %.3f mm after the cut\n", legs,
-         step ? ", step " : "", tag, rows,
+         step ? ", step " : gate ? ", " : "", tag, rows,
          same ? "equal bit for bit" : "DIFFER", rc.steps, rc.position[0], dp, dfoot);
+  if (gate) { /* the crawl decided at the cut, after the resume: 2 slots on (the file's) */
+    CS_EXPECT(readAttr(b_out, "crawl_skip_s") == 0.1 && readAttr(a_out, "crawl_skip_s") == 0.1);
+  }
   /* the checkpoint file got the end's state: a later resume refuses to run past nothing */
   c.t_end = 0.3;
   CS_EXPECT(cs_run(&c, &rc, &err) == CS_ERR_ARG && strstr(err.msg, b_ck) &&
@@ -186,6 +204,9 @@ static void resumedEqualsUncutStep(const char* legs, const char* step) {
 }
 
 
+static void resumedEqualsUncutStep(const char* legs, const char* step) {
+  resumedEqualsUncutGate(legs, step, NULL);
+}
 static void resumedEqualsUncut(const char* legs) { resumedEqualsUncutStep(legs, NULL); }
 
 
@@ -221,6 +242,14 @@ static void test_settling_resumed_equals_uncut(void) {
   CS_EXPECT(rows == 16 && rc.steps == ra.steps);
   printf("  settling resumed: %ld rows, %ld steps, support y %.9f mm as the uncut run's %.9f\n",
          rows, rc.steps, rc.position[1], ra.position[1]);
+}
+/* a landing gate with a lateral crawl (gaits_gate.h `crawl`) that ends at its first decision,
+ * at 0.2 s, the cut: the resumed run decides as the uncut one and equals it bit for bit (the
+ * crawl's part of the state in the checkpoint) */
+static void test_gate_crawl_resumed_equals_uncut(void) {
+  cs_testWriteText("ckpt_crawl.gate", "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\n"
+                   "gate 0.05 AE\ncrawl 0.05 0.05 5 -1e6 0\n");
+  resumedEqualsUncutGate("rod", NULL, "ckpt_crawl.gate");
 }
 static void test_strain_resumed_equals_uncut(void) { resumedEqualsUncut("strain"); }
 /* the adaptive step (its controller's memory is state: sim_adaptive.c) */
@@ -422,6 +451,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_rod_resumed_equals_uncut);
   CS_RUN(test_strain_resumed_equals_uncut);
+  CS_RUN(test_gate_crawl_resumed_equals_uncut);
   CS_RUN(test_strain_adaptive_resumed_equals_uncut);
   CS_RUN(test_settling_resumed_equals_uncut);
   CS_RUN(test_other_definition_is_refused);

@@ -12,6 +12,12 @@
  *  - a restore repeats a wait: from a state before the first wait and from one inside it, two
  *    restores run to the same state bit for bit, with the same wait as the run that saved them;
  *    a gate part that is not a gate state is refused;
+ *  - the crawl statement (a synthetic crawl of 5 slots of 0.1 s from 1.5 s, decided at 1.8 s
+ *    after slot 2): with an end point no support reaches it goes on through every boundary
+ *    and never skips; with one every support has passed it ends at the first decision and
+ *    skips 2 slots, and the two runs are the same up to the decision and differ after it (the
+ *    valves play the table 0.2 s on); two restores from before the decision run to the same
+ *    state bit for bit and make the uncut run's decision; a crawl part that is not a state is refused;
  *  - a malformed .gate file fails cs_simCreate with a message naming the file and line; a
  *    user's gait gets no gate by default. */
 #include <math.h>
@@ -185,6 +191,79 @@ static void test_lagWaitsAsModelAndRestores(void) {
 }
 
 
+/* the crawl's decision in a run, and across a restore */
+#define CRAWL_GATE(zend) \
+  "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\ngate 0.2 AE\ncrawl 1.5 0.1 5 " zend " 0\n"
+
+static void test_crawlDecidesAndRestores(void) {
+  cs_testWriteText("crawl_never.gate", CRAWL_GATE("1e6"));
+  cs_testWriteText("crawl_stop.gate", CRAWL_GATE("-1e6"));
+  csSim* go = make("crawl_never.gate", 0);
+  csSim* st = make("crawl_stop.gate", 0);
+  CS_EXPECT(go && st);
+  if (!go || !st) {
+    cs_simDestroy(go);
+    cs_simDestroy(st);
+    return;
+  }
+  const int n = cs_simStateSize(st);
+  CS_EXPECT(n == cs_simStateSize(go));
+  double* buf = malloc(sizeof(double) * 6 * (size_t)n); /* six states */
+  CS_EXPECT(buf != NULL);
+  if (!buf) return;
+  double *a = buf, *b = buf + n, *x = buf + 2 * n, *u = buf + 3 * n, *y = buf + 4 * n;
+  double* y0 = buf + 5 * n;
+  csError err;
+  /* before the decision (1.8 s) the two runs are one */
+  runTo(go, 1.75);
+  runTo(st, 1.75);
+  cs_simStateGet(go, a);
+  cs_simStateGet(st, x);
+  CS_EXPECT(!memcmp(a, x, sizeof(double) * (size_t)n));
+  CS_EXPECT(x[n - 3] == 1 && x[n - 1] == 0); /* the boundary after slot 0 read, no skip */
+  runTo(go, 2.1);
+  runTo(st, 1.9);
+  cs_simStateGet(go, a);
+  cs_simStateGet(st, u);
+  /* never: all three boundaries (slots 0, 2, 4) read, no skip; stop: two read, 2 slots on */
+  CS_EXPECT(a[n - 3] == 3 && a[n - 1] == 0);
+  CS_EXPECT(u[n - 3] == 2 && u[n - 1] == 2 * 0.1 && isfinite(u[n - 2]));
+  printf("crawl never ends: %g boundaries, skip %g s; ends at once: %g boundaries, skip %g s "
+         "(support z %.4f mm at the decision)\n", a[n - 3], a[n - 1], u[n - 3], u[n - 1],
+         u[n - 2]);
+  /* the skip plays: at 1.9 s the chambers differ from the run that did not skip */
+  runTo(go, 1.9);
+  cs_simStateGet(go, b);
+  double dp = 0;
+  for (int i = 2; i < 2 + 96; i++) dp = fmax(dp, fabs(b[i] - u[i]));
+  printf("chamber pressures 0.1 s after the skip: %.4g MPa from the unskipped run\n", dp);
+  CS_EXPECT(dp > 1e-3);
+  /* a restore from before the decision, twice: the same state at 1.9 s bit for bit, and the
+   * uncut run's decision (a restore restarts the pneumatics' integrator, core/sim_state.c, so
+   * the bodies match the uncut run's to its tolerance, not bit for bit; the checkpoint's
+   * resume, which the uncut run matches, is test_checkpoint's) */
+  for (int k = 0; k < 2; k++) {
+    CS_EXPECT(cs_simStateSet(st, x, &err) == CS_OK);
+    runTo(st, 1.9);
+    cs_simStateGet(st, k ? y : y0);
+  }
+  CS_EXPECT(!memcmp(y, y0, sizeof(double) * (size_t)n));
+  CS_EXPECT(y[n - 3] == u[n - 3] && y[n - 1] == u[n - 1]);
+  printf("restored twice: bit for bit; decision z %.6f mm (the uncut run's %.6f mm)\n", y[n - 2],
+         u[n - 2]);
+  /* a crawl part that is not a state */
+  memcpy(y, u, sizeof(double) * (size_t)n);
+  y[n - 3] = 0.5;
+  CS_EXPECT(cs_simStateSet(st, y, &err) == CS_ERR_ARG && strstr(err.msg, "gate"));
+  y[n - 3] = 2;
+  y[n - 1] = -0.1;
+  CS_EXPECT(cs_simStateSet(st, y, &err) == CS_ERR_ARG);
+  free(buf);
+  cs_simDestroy(go);
+  cs_simDestroy(st);
+}
+
+
 /* malformed files: file and line; --gate none and a user's gait: no gate */
 static void test_badGateFileNamesLine(void) {
   static const struct {
@@ -240,6 +319,7 @@ static void test_badGateFileNamesLine(void) {
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_badGateFileNamesLine);
+  CS_RUN(test_crawlDecidesAndRestores);
   CS_RUN(test_nominalNoWaitBitForBit);
   CS_RUN(test_lagWaitsAsModelAndRestores);
   return cs_testSummary();

@@ -6,7 +6,12 @@
  *    chamber further behind is not, other legs do not count;
  *  - held rows: with no offset the held schedule is csg_scheduleEval's (to rounding); an
  *    offset o after a break delays every later row by o (p_held(t + o) = p(t) once the rows
- *    before the break have arrived), and rows past t_issued are not played. */
+ *    before the break have arrived), and rows past t_issued are not played;
+ *  - the `crawl` statement reads its five numbers; bad ones (count, range, a gate after it or
+ *    before it in time, a second one) fail naming file:line; the shipped gate has none;
+ *  - csg_gateCrawlSkip, the crawl's rule on synthetic support positions: it ends the crawl
+ *    (skips N - 1 - j slots) exactly when z + CARRY >= ZEND - (z - zprev) / 2, at boundaries of
+ *    the release's phase with j >= 2 only. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -104,10 +109,80 @@ static void test_heldRowsDelay(void) {
 }
 
 
+#define DESIGN "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\n"
+
+static void test_crawlStatement(void) {
+  csError err;
+  cs_testWriteText("crawl_ok.gate", DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 12 270 23 # z12\n");
+  csgGateSet* s = csg_gateRead("crawl_ok.gate", &err);
+  CS_EXPECT(s != NULL);
+  if (s) {
+    CS_EXPECT(s->n == 1 && s->crawl_n == 12 && s->crawl_t0 == 27.39 && s->crawl_tpz == 0.55 &&
+              s->crawl_zend == 270 && s->crawl_carry == 23);
+  }
+  csg_gateDestroy(s);
+  static const struct {
+    const char* text;
+    const char* where;
+  } kBad[] = {
+      {DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 12 270\n", ":3:"},          /* four numbers */
+      {DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 12.5 270 23\n", ":3:"},     /* N not whole */
+      {DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 2 270 23\n", ":3:"},        /* N < 3 */
+      {DESIGN "gate 2.6 AE\ncrawl 27.39 0 12 270 23\n", ":3:"},          /* TPZ 0 */
+      {DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 12 270 -1\n", ":3:"},       /* CARRY < 0 */
+      {DESIGN "gate 2.6 AE\ncrawl 2.0 0.55 12 270 23\n", ":3:"},         /* before the gate */
+      {DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 12 inf 23\n", ":3:"},       /* not finite */
+      {DESIGN "crawl 27.39 0.55 12 270 23\ngate 2.6 AE\n", ":3:"},       /* a gate after it */
+      {DESIGN "gate 2.6 AE\ncrawl 27 0.5 8 270 23\ncrawl 27 0.5 8 270 23\n", ":4:"},
+  };
+  for (size_t k = 0; k < sizeof kBad / sizeof kBad[0]; k++) {
+    char path[64], want[96];
+    snprintf(path, sizeof path, "crawl_bad%zu.gate", k);
+    cs_testWriteText(path, kBad[k].text);
+    cs_errorClear(&err);
+    s = csg_gateRead(path, &err);
+    snprintf(want, sizeof want, "%s%s", path, kBad[k].where);
+    CS_EXPECT(s == NULL && strstr(err.msg, want) != NULL);
+    printf("%s\n", err.msg);
+    csg_gateDestroy(s);
+  }
+  char path[1024];
+  s = csg_gateRead(src("gaits/obstacle.gate", path, sizeof path), &err);
+  CS_EXPECT(s != NULL && s->crawl_n == 0); /* off unless the file asks */
+  csg_gateDestroy(s);
+}
+
+
+static void test_crawlRule(void) {
+  csgGateSet s;
+  memset(&s, 0, sizeof s);
+  s.crawl_n = 12;
+  s.crawl_tpz = 0.55;
+  s.crawl_zend = 270;
+  s.crawl_carry = 23;
+  /* slot j = 9 (2 left): a = 50, stop when z + 23 >= 270 - (z - zprev) / 2 = 245 + ..., i.e.
+   * at z = 220 + 50: 270 - 25 = 245 <= 293: stop; at z = 196 (zprev 146): 219 < 245: go on */
+  CS_EXPECT(csg_gateCrawlSkip(&s, 9, 270, 220) == 2);
+  CS_EXPECT(csg_gateCrawlSkip(&s, 9, 196, 146) == 0);
+  /* the edge: z + carry == zend - a / 2 stops (222 + 23 = 245 = 270 - 50 / 2, all exact in
+   * binary), 0.5 mm less does not (244.5 < 270 - 49.5 / 2 = 245.25) */
+  CS_EXPECT(csg_gateCrawlSkip(&s, 7, 222, 172) == 4);
+  CS_EXPECT(csg_gateCrawlSkip(&s, 7, 221.5, 172) == 0);
+  /* not a decision boundary: the other phase (an odd number of slots left), j < 2, the last */
+  CS_EXPECT(csg_gateCrawlSkip(&s, 8, 1000, 0) == 0);
+  CS_EXPECT(csg_gateCrawlSkip(&s, 1, 1000, 0) == 0);
+  CS_EXPECT(csg_gateCrawlSkip(&s, 11, 1000, 0) == 0);
+  s.crawl_n = 0; /* no statement: never */
+  CS_EXPECT(csg_gateCrawlSkip(&s, 9, 1000, 0) == 0);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_shippedGateReads);
   CS_RUN(test_downRule);
+  CS_RUN(test_crawlStatement);
+  CS_RUN(test_crawlRule);
   CS_RUN(test_heldRowsDelay);
   return cs_testSummary();
 }

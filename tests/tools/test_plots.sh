@@ -328,6 +328,22 @@ else
   bad "obstacle_gait --gate-from: the shipped gate; a lift to AP gated, a move over to U0 not" "$TMP/out.txt"
 fi
 
+# tools/obstacle_gait.py --crawl-max (issue 33, the crawl ended on the measured support): off by
+# default (the shipped gate above has no crawl statement); --crawl-max 12 writes 12 lateral
+# slots from the crawl's start the description names and the gate's `crawl` statement there,
+# the gates before it the shipped ones; N < 3 is refused
+if "$PY" "$OG" --crawl-max 12 -o "$TMP/c12.gait" --gate-out "$TMP/c12.gate" >"$TMP/out.txt" 2>&1 &&
+   ! grep -q '^crawl' "$ROOT/gaits/obstacle.gate" &&
+   T0=$(sed -n 's/^# the lateral crawl: 12 slots of 0.55 s from \([0-9.]*\) s.*/\1/p' "$TMP/c12.gait") &&
+   [ -n "$T0" ] && grep -q "^crawl $T0""00 0.55 12 270 23\$" "$TMP/c12.gate" &&
+   cmp -s <(stmts "$TMP/c12.gate" | grep -v '^crawl') <(stmts "$ROOT/gaits/obstacle.gate"); then
+  ok "obstacle_gait --crawl-max: off by default; 12 slots and the gate's crawl statement"
+else
+  bad "obstacle_gait --crawl-max: off by default; 12 slots and the gate's crawl statement" "$TMP/out.txt"
+fi
+expect_fail1 "obstacle_gait bad --crawl-max" "obstacle_gait.py: --crawl-max takes N >= 3" \
+  "$PY" "$OG" --crawl-max 2 -o "$TMP/bad.gait"
+
 # tools/obstacle_gait.py rule 18 (--push): off by default (--push 0 writes the shipped description
 # byte for byte); --push 1 writes one slot, before the rear pair's step toward the up edge, in
 # which no pair lifts (only linear stance moves start in it) and the wave has fewer lifts; a
