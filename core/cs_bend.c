@@ -136,12 +136,8 @@ static csStatus rodOpen(csBendSolver* s, csError* err) {
 /* the strain level's default of one of its settings (robot_strain_leg.c), by name, so that a
  * bend runs the leg `crawlsim run --legs strain` runs */
 static double strainSetting(const char* name) {
-  for (int k = 0; k < csr_leg_strain.nsettings; k++) {
-    if (!strcmp(csr_leg_strain.settings[k].name, name)) {
-      return csr_leg_strain.settings[k].value;
-    }
-  }
-  return NAN;
+  const csrLegSetting* k = csr_legSettingFind(&csr_leg_strain, name);
+  return k ? k->value : NAN;
 }
 
 
@@ -198,18 +194,6 @@ static csStatus strainOpen(csBendSolver* s, csError* err) {
 }
 
 
-/* the rotation vector of R (row-major), |it| < π */
-static void rotationVector(const double R[9], double v[3]) {
-  double w[3] = {0.5 * (R[7] - R[5]), 0.5 * (R[2] - R[6]), 0.5 * (R[3] - R[1])};
-  double sn = csu_norm3(w), cs = 0.5 * (R[0] + R[4] + R[8] - 1);
-  double th = atan2(sn, cs);
-  double f = sn > 1e-300 ? th / sn : 1.0;
-  for (int k = 0; k < 3; k++) {
-    v[k] = f * w[k];
-  }
-}
-
-
 /* the strain leg's static equilibrium at the pressures P (segment-major) and the tip load:
  * the segments' angles and the tip in the base frame */
 static csStatus strainPoint(csBendSolver* s, const double P[12], double angle_deg[CSR_NSEG],
@@ -228,14 +212,11 @@ static csStatus strainPoint(csBendSolver* s, const double P[12], double angle_de
     csr_strainPose(s->sm, s->sd, X0, x, Ra);
     for (int i = 1; i <= STRAIN_ANGLE_STEPS; i++) {
       csr_strainPose(s->sm, s->sd, X0 + (X1 - X0) * i / STRAIN_ANGLE_STEPS, x, Rb);
-      double Rrel[9], v[3];
+      double RaT[9], Rrel[9], v[3];
       /* Rrel = Raᵀ Rb: the step's rotation in the frame at its start */
-      for (int r = 0; r < 3; r++) {
-        for (int c = 0; c < 3; c++) {
-          Rrel[3 * r + c] = Ra[r] * Rb[c] + Ra[3 + r] * Rb[3 + c] + Ra[6 + r] * Rb[6 + c];
-        }
-      }
-      rotationVector(Rrel, v);
+      csu_transpose3(RaT, Ra);
+      csu_mulMat3(Rrel, RaT, Rb);
+      csu_mat3ToRotVec(v, Rrel);
       csu_add3(tot, tot, v);
       memcpy(Ra, Rb, sizeof Ra);
     }
