@@ -211,16 +211,21 @@ ap.add_argument('--gate-ptol', type=float, default=0.005,
                 'table\'s 0.4 MPa range)')
 ap.add_argument('--gate-maxwait', type=float, default=None,
                 help='the longest wait of a gate, s (default --Tp: one walk slot)')
-ap.add_argument('--crawl-max', type=int, default=None, metavar='N',
+ap.add_argument('--crawl-max', type=int, default=12, metavar='N',
                 help='the lateral crawl ended on the measured support (issue 33, '
                 'docs/notes/obstacle.md "crawl10"): write N lateral slots (instead of zend / '
                 '(Dz / 2)) and, with --gate-out, the gate\'s `crawl` statement, so the player '
                 'ends the crawl at the first boundary of the release\'s phase where the measured '
-                'support z is near enough zend (gaits/gaits_gate.h); off by default')
+                'support z is near enough zend (gaits/gaits_gate.h); default 12 (the shipped '
+                'files, issue 33, docs/notes/obstacle.md "ship11"); 0: off, zend / (Dz / 2) '
+                'slots and no statement (the files shipped before ship11)')
 ap.add_argument('--crawl-carry', type=float, default=23.0,
                 help='with --crawl-max: the release\'s own advance along z, mm (the 50 g nominal\'s '
                 'measured 23 mm: docs/bench/obst10_2026-12-07c/nominal.txt, `rel8`)')
 a = ap.parse_args()
+CRAWL_GIVEN = any(x == '--crawl-max' or x.startswith('--crawl-max=') for x in sys.argv[1:])
+if a.crawl_max == 0 or (a.gate_from and not CRAWL_GIVEN) or (a.zgroups != 2 and not CRAWL_GIVEN):
+    a.crawl_max = None  # off: the default's crawl needs a table written here, two groups
 if a.crawl_max is not None and (a.crawl_max < 3 or a.zgroups != 2 or a.gate_from):
     sys.exit('obstacle_gait.py: --crawl-max takes N >= 3, with the two-group crawl '
              '(--zgroups 2) and a table written here (not --gate-from)')
