@@ -7,7 +7,7 @@ foot lands, from the hips' expected positions (the measured support advance per 
 the edges of terrains/obstacle.terrain, and writes the moves; `crawlsim gait design` then turns
 the description into gaits/obstacle.csv with pressures from the calibrated leg model:
 
-  /usr/bin/python3 tools/obstacle_gait.py -o gaits/obstacle.gait
+  /usr/bin/python3 tools/obstacle_gait.py -o gaits/obstacle.gait --gate-out gaits/obstacle.gate
   crawlsim gait design gaits/obstacle.gait --stretch --out gaits/obstacle.csv \\
       --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair --p-max 0.4
 
@@ -15,7 +15,10 @@ Options set the measured constants and the design's few parameters (defaults: th
 shipped file was made with). The defaults became rule 14's open-loop table k3 on 2026-12-06
 (fourth session: --Tp 0.6 --xslots 4 --x2 500 --settle 0.4 --clear 10 --scatter=-44,16 --rmin 0
 --Tcross 0.52); options written before then in docs/ are relative to the earlier defaults
---Tp 0.55 --xslots 3 --x2 540 --settle 0 --clear 0 --scatter=-10,16 --rmin 5 --Tcross 0."""
+--Tp 0.55 --xslots 3 --x2 540 --settle 0 --clear 0 --scatter=-10,16 --rmin 5 --Tcross 0.
+Since branch ship11 (2026-12-07, eleventh session) --crawl-max 12 is the default: the lateral
+crawl has 12 slots and the gate (--gate-out) ends it on the measured support (its `crawl`
+statement); --crawl-max 0 writes the 8-slot table shipped before."""
 import argparse
 import sys
 
