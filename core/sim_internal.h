@@ -198,11 +198,11 @@ void cs_footholdApply(const csModel* m, csData* d, double t, double* p_cmd);
  * Commit: after an accepted step of length h, the decision into the state (released waits,
  * the next gate) and, while holding, h onto the hold and the wait. Eval: the table g's
  * command at t under the decision (csg_scheduleEval itself while nothing has been held).
- * Table time: t less the hold (the footholds' clock). */
+ * Table time (cs_gateTableTime, sim_model.h): t less the hold plus the skip. */
 void cs_gateDecide(const csModel* m, csData* d);
 void cs_gateCommit(const csModel* m, csData* d, double h);
 void cs_gateEval(const csModel* m, const csData* d, const csgGait* g, double t, double* p_cmd);
-double cs_gateTableTime(const csModel* m, const csData* d, double t);
+/* cs_gateTableTime: sim_model.h */
 
 /* ---- sim_coupling.c: the support interface of co-simulated legs (staggered, stabilised,
  * Gauss-Seidel) ---- */
