@@ -18,7 +18,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "cmd_rom.h"
+#include "cmd_rom_common.h"
 
 static const char kFormat[] = "crawlsim-rom-check-checkpoint 1";
 

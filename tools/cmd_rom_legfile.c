@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cmd_rom.h"
+#include "cmd_rom_common.h"
 #include "core_clock.h"
 #include "cs_opts.h"
 #include "fem_rom_act.h"

@@ -24,7 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cmd_rom.h"
+#include "cmd_rom_common.h"
 #include "core_clock.h"
 #include "core_h5.h"
 #include "cs_signal.h"

@@ -23,7 +23,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "cmd_rom.h"
+#include "cmd_rom_common.h"
 #include "cs_signal.h"
 #include "fem_assembly.h"
 #include "fem_rom_sway.h"

@@ -43,7 +43,8 @@ COMMANDS = {
     "run": "cmd_run.c", "bend": "cmd_bend.c", "gait check": "cmd_gait.c",
     "gait design": "cmd_gaitdesign.c", "gait flat-road": "cmd_gaitdesign.c",
     "calibrate": "cmd_calibrate.c", "study": "cmd_study.c", "export": "cmd_export.c",
-    "rom snapshots": "cmd_rom.c", "rom check": "cmd_rom.c", "rom ecsw-matrix": "cmd_rom.c",
+    "rom snapshots": "cmd_rom_snapshots.c", "rom check": "cmd_rom_check.c",
+    "rom ecsw-matrix": "cmd_rom_ecsw.c",
 }
 
 

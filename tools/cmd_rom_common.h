@@ -1,7 +1,10 @@
-/* cmd_rom.h: what the subcommands of `crawlsim rom` share (cmd_rom.c: snapshots, check,
- * ecsw-matrix; cmd_rom_modes.c: modes). Private to tools/: nothing below includes it. */
-#ifndef CS_TOOLS_CMD_ROM_H
-#define CS_TOOLS_CMD_ROM_H
+/* cmd_rom_common.h: what the subcommands of `crawlsim rom` share (cmd_rom_common.c: the shared
+ * helpers; cmd_rom_ckpt.c: check's checkpoints) and their entry points, which the subcommand
+ * table (cmd_rom.c) calls: cmd_rom_snapshots.c: snapshots; cmd_rom_check.c: check;
+ * cmd_rom_ecsw.c: ecsw-matrix; cmd_rom_legfile.c: leg-file; cmd_rom_modes.c: modes;
+ * cmd_rom_sway.c: sway. Private to tools/: nothing below includes it. */
+#ifndef CS_TOOLS_CMD_ROM_COMMON_H
+#define CS_TOOLS_CMD_ROM_COMMON_H
 
 #include "cs_opts.h"
 #include "fem_rom_act.h"
@@ -25,6 +28,10 @@ int csx_romActuator(const char* name, const char* const* sets, int nset, int val
 
 /* one more repeatable value (--set, --ray) into list[*n]; 1 after one error line when full */
 int csx_romPushValue(const char* what, const char* v, const char** list, int* n, int max);
+
+/* is `name` one of the built-in rays (fem_rom_snap.h csf_romRays)? 1, or 0 after one error
+ * line */
+int csx_romKnownRay(const char* name);
 
 /* an operand where a subcommand takes none: one error line, returns 1 */
 int csx_romUnexpected(const csxOptTable* t, const char* a);
@@ -69,6 +76,15 @@ int csx_romCkptWrite(const char* dir, const char* ray, const char* basis,
 int csx_romCkptRead(const char* dir, const char* ray, const char* basis, int m,
                     csfRomActuator* ra, csxRomCkpt* c);
 
+/* `crawlsim rom snapshots` (cmd_rom_snapshots.c) */
+int csx_cmdRomSnapshots(int argc, char** argv);
+
+/* `crawlsim rom check` (cmd_rom_check.c) */
+int csx_cmdRomCheck(int argc, char** argv);
+
+/* `crawlsim rom ecsw-matrix` (cmd_rom_ecsw.c) */
+int csx_cmdRomEcswMatrix(int argc, char** argv);
+
 /* `crawlsim rom leg-file` (cmd_rom_legfile.c) */
 int csx_cmdRomLegFile(int argc, char** argv);
 
@@ -78,4 +94,4 @@ int csx_cmdRomModes(int argc, char** argv);
 /* `crawlsim rom sway` (cmd_rom_sway.c) */
 int csx_cmdRomSway(int argc, char** argv);
 
-#endif /* CS_TOOLS_CMD_ROM_H */
+#endif /* CS_TOOLS_CMD_ROM_COMMON_H */
