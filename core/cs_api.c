@@ -199,7 +199,8 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
     if (m->gate->crawl_n > 0) {
       logLine(def, "gate %s: the lateral crawl (%d slots of %g s from %g s) ends on the measured "
               "support z: at a boundary of the release's phase when z + %g mm >= %g mm less half "
-              "the last two slots' advance (gaits_gate.h `crawl`)", plan->gate,
+              "the last two slots' advance (gaits_gate.h `crawl`); without --t-end the run ends "
+              "when the table's clock reaches its end (t_end at the latest)", plan->gate,
               m->gate->crawl_n, m->gate->crawl_tpz, m->gate->crawl_t0, m->gate->crawl_carry,
               m->gate->crawl_zend);
     }
@@ -299,6 +300,9 @@ static csStatus runNoFile(const csModel* m, csData* d, double* wall, csError* er
       break;
     }
     st = cs_step(m, d, err);
+    if (st == CS_OK && cs_runOverAt(m, d, i)) {
+      break; /* the gait is over on the table's clock (cs_runWrite's end too) */
+    }
   }
   *wall = csu_wallSeconds() - w0;
   return st;
@@ -391,7 +395,7 @@ csStatus cs_run(const csRunDef* def, csRunResult* res, csError* err) {
         cs_gateHeld(m, d, &held, &rel, &waited);
         logLine(def, "gate %s: closed loop, held %.3f s in total; %d of %d gates released, %d "
                 "of them waited; the table's clock at %.3f s", plan.gate, held, rel, m->gate->n,
-                waited, cs_time(d) - held);
+                waited, cs_gateTableTime(m, d, cs_time(d)));
       }
     }
   } else {

@@ -159,7 +159,7 @@ struct csData_ {
 #define CS_MAX_SPLIT 8
 
 /* from this halving on (1/16 of the step, the last one before CS_MAX_SPLIT was 8) a try gets
- * twice the Newton passes (core/sim_coupling.c cs_couplingApplyTree), so every step that
+ * twice the Newton passes (core/sim_tree.c cs_couplingApplyTree), so every step that
  * converged with 4 halvings at most is tried with the same passes as then */
 #define CS_SPLIT_MORE_PASSES 4
 
@@ -198,13 +198,14 @@ void cs_footholdApply(const csModel* m, csData* d, double t, double* p_cmd);
  * Commit: after an accepted step of length h, the decision into the state (released waits,
  * the next gate) and, while holding, h onto the hold and the wait. Eval: the table g's
  * command at t under the decision (csg_scheduleEval itself while nothing has been held).
- * Table time: t less the hold (the footholds' clock). */
+ * Table time (cs_gateTableTime, sim_model.h): t less the hold plus the skip. */
 void cs_gateDecide(const csModel* m, csData* d);
 void cs_gateCommit(const csModel* m, csData* d, double h);
 void cs_gateEval(const csModel* m, const csData* d, const csgGait* g, double t, double* p_cmd);
-double cs_gateTableTime(const csModel* m, const csData* d, double t);
+/* cs_gateTableTime: sim_model.h */
 
-/* ---- sim_coupling.c: the support interface of co-simulated legs ---- */
+/* ---- sim_coupling.c: the support interface of co-simulated legs (staggered, stabilised,
+ * Gauss-Seidel) ---- */
 
 /* Set up the coupling of co-simulated legs (nothing to create today: the stabilised scheme
  * solves its implicit part in cs_couplingApply). */
@@ -238,7 +239,28 @@ void cs_couplingBegin(const csModel* m, csData* d);
  * carry for the next macro step. 0, > 0 recoverable, < 0 fatal (err). */
 int cs_couplingAdvanceGS(const csModel* m, csData* d, double H, csError* err);
 
-/* ---- the tree coupling (CS_COUPLING_TREE, tree-stepped levels) ----
+/* The stabilised schemes' pieces the tree scheme (sim_tree.c) shares:
+ * the support's backward-Euler step with the legs' force linearised, F = W0 - Kc dq - A (q' -
+ * q'_pred) (sim_coupling.c's header), solved for its end twist qd1 (may be NULL); F gets the
+ * legs' force along it (N, N mm at the centre, world). 0, or 1 when M + h A is singular
+ * (F = W0 then). */
+int cs_couplingSupportSolve(const csData* d, double h, double mass, const double Iw[9],
+                            const double qd[6], const double W0[6], const double Kdq[6],
+                            const double A[36], const double qd_pred[6], double F[6],
+                            double qd1[6]);
+/* the support's mass and its inertia about its centre in the world frame at rotation R (ODE's
+ * units: the model's kg and mm) */
+void cs_couplingSupportInertia(const csData* d, const double R[9], double* mass,
+                               double Iw[9]);
+/* a leg's wrench (and gains K, C if K is not NULL) finite: 0; else 1 and err names the leg
+ * (the step is rejected: a smaller one may keep the leg in its valid range) */
+int cs_couplingCheckFinite(const csData* d, int k, const csrWrench* w, const double* K,
+                           const double* C, csError* err);
+/* M += Tᵀ G T for the hip-to-centre map T = [[I, -[r]x], [0, I]] (G at the hip, 6 x 6, row
+ * major; r = hip - centre, mm) */
+void cs_couplingAddAtCentre(double M[36], const double G[36], const double r[3]);
+
+/* ---- sim_tree.c: the tree coupling (CS_COUPLING_TREE, tree-stepped levels) ----
  * Before the support stage: every leg condenses its step of h onto its hip (prepare) at the
  * support's state now; their impulses ρ/h go into cosim.w, their impedances Σ Tᵀ Z T / h at
  * the support's centre into cosim.A. 0, > 0 recoverable, < 0 fatal (err names the leg). */

@@ -207,7 +207,9 @@ void cs_modelSetLegLevel(csModel* m, const csrLegType* type);
 /* Name of the leg level that runs (m->robot.leg_type->name): what the output records. */
 const char* cs_modelLegLevel(const csModel* m);
 
-/* End time of a run: opt.t_end if > 0, else the gait's last row plus one ramp (s). */
+/* End time of a run: opt.t_end if > 0, else the gait's last row plus one ramp (s). With a gate
+ * whose file has a crawl statement this is the longest the run can last (no skip): it may end
+ * sooner, cs_runOverAt. */
 double cs_modelEndTime(const csModel* m);
 
 /* Macro step H = macro_steps * h (s). */
@@ -243,6 +245,16 @@ typedef struct csData_ csData; /* opaque: ODE world, robot, CVODE memory, state,
 void cs_gateHeld(const csModel* m, const csData* d, double* hold_s, int* released, int* waited);
 /* Released gate k's wait (s; 0 for a gate not released). */
 double cs_gateReleasedWait(const csData* d, int k);
+/* The table's clock at the run's time t (s): t less the gate's hold plus the crawl's skip (t
+ * itself without a gate; the footholds', the rows' and the gates' clock). */
+double cs_gateTableTime(const csModel* m, const csData* d, double t);
+
+/* The run's end decided in the step loop (1: stop after macro step i, 0: go on). Only a run
+ * without opt.t_end on a gate with a crawl statement (gaits_gate.h `crawl`) ends before
+ * cs_modelEndTime: at the first output row (i a multiple of output_dt / H) where the table's
+ * own clock, t - hold + skip (the state's), has reached cs_modelEndTime, the table's end: the
+ * gait is over. A function of the state, so a resumed run ends where the uncut one does. */
+int cs_runOverAt(const csModel* m, const csData* d, long i);
 
 /* Build the world for a model: terrain geoms, the robot standing on the terrain at the
  * terrain's start, the pneumatic integrator, the coupling rows. Returns NULL with err. */

@@ -493,7 +493,7 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
   if (resume) {
     csStatus lst = CS_OK;
     i0 = lround(cs_time(d) / H);
-    if (i0 >= lround(t_end / H)) {
+    if (i0 >= lround(t_end / H) || cs_runOverAt(m, d, i0)) {
       lst = cs_errorSet(err, CS_ERR_ARG, "--resume %.300s: its run is at t = %g s, at or past "
                         "--t-end %g s (nothing to continue)", resume, cs_time(d), t_end);
     }
@@ -564,6 +564,7 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
     csu_timerAdd(&d->timer[CS_TIMER_OUTPUT], wo);
   }
   int cancelled = 0;
+  int over = 0; /* ended by cs_runOverAt before nsteps */
   long i_ck = resume ? i0 : -1; /* the step of the last checkpoint written or read */
   for (long i = i0 + 1; i <= nsteps && st == CS_OK; i++) {
     if (m->opt.cancel && *m->opt.cancel) {
@@ -614,6 +615,10 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
         double w = csu_wallSeconds() - w0;
         m->opt.progress(m->opt.progress_user, cs_time(d), x, w);
       }
+    }
+    if (st == CS_OK && cs_runOverAt(m, d, i)) {
+      over = 1; /* the gait is over on the table's clock (a crawl's skip): the rows stop here */
+      break;
     }
   }
   double wall = wall_before + csu_wallSeconds() - w0; /* this loop's and its earlier pieces' */
@@ -729,6 +734,19 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
       cs_h5AttrDouble(f, "/", "crawl_skip_s", d->crawl_skip, NULL);
       cs_h5AttrDouble(f, "/", "crawl_boundaries_read", d->crawl_i, NULL);
       cs_h5AttrDouble(f, "/", "crawl_z_mm", d->crawl_z, NULL);
+      /* why the rows stop where they do (cs_runOverAt) */
+      char why[CS_H5_STATUS_SIZE];
+      if (m->opt.t_end > 0) {
+        snprintf(why, sizeof why, "--t-end %g s", m->opt.t_end);
+      } else if (st != CS_OK || cancelled) {
+        snprintf(why, sizeof why, "stopped at t = %g s (status)", cs_time(d));
+      } else if (over) {
+        snprintf(why, sizeof why, "the gait is over: the table's clock (t - gate hold + crawl "
+                 "skip) reached the table's end, %g s, at t = %g s", t_end, cs_time(d));
+      } else {
+        snprintf(why, sizeof why, "the table's end, %g s, on the run's clock", t_end);
+      }
+      cs_h5AttrString(f, "/", "end_reason", why, NULL);
     }
   } else {
     cs_h5AttrString(f, "/", "control", m->pressure_source ? "a caller's pressure source"

@@ -47,6 +47,17 @@ static inline int cs_testNear_(double a, double b, double abs_tol, double rel_to
     }                                                                                          \
   } while (0)
 
+/* the largest |a - b| over the largest |a| of n values (|a - b| where every a is 0): two
+ * computations of the same numbers compared relative to their size */
+static inline double cs_relDiff(const double* a, const double* b, int n) {
+  double dmax = 0, amax = 0;
+  for (int i = 0; i < n; i++) {
+    dmax = fmax(dmax, fabs(a[i] - b[i]));
+    amax = fmax(amax, fabs(a[i]));
+  }
+  return amax > 0 ? dmax / amax : dmax;
+}
+
 /* run one case unless a name filter (argv[1]) excludes it */
 #define CS_RUN(fn)                                                              \
   do {                                                                          \

@@ -7,7 +7,7 @@ foot lands, from the hips' expected positions (the measured support advance per 
 the edges of terrains/obstacle.terrain, and writes the moves; `crawlsim gait design` then turns
 the description into gaits/obstacle.csv with pressures from the calibrated leg model:
 
-  /usr/bin/python3 tools/obstacle_gait.py -o gaits/obstacle.gait
+  /usr/bin/python3 tools/obstacle_gait.py -o gaits/obstacle.gait --gate-out gaits/obstacle.gate
   crawlsim gait design gaits/obstacle.gait --stretch --out gaits/obstacle.csv \\
       --calibration robot/calibration_fe_leg_modes_sym.h5 --cal-rule rbf-pair --p-max 0.4
 
@@ -15,7 +15,10 @@ Options set the measured constants and the design's few parameters (defaults: th
 shipped file was made with). The defaults became rule 14's open-loop table k3 on 2026-12-06
 (fourth session: --Tp 0.6 --xslots 4 --x2 500 --settle 0.4 --clear 10 --scatter=-44,16 --rmin 0
 --Tcross 0.52); options written before then in docs/ are relative to the earlier defaults
---Tp 0.55 --xslots 3 --x2 540 --settle 0 --clear 0 --scatter=-10,16 --rmin 5 --Tcross 0."""
+--Tp 0.55 --xslots 3 --x2 540 --settle 0 --clear 0 --scatter=-10,16 --rmin 5 --Tcross 0.
+Since branch ship11 (2026-12-07, eleventh session) --crawl-max 12 is the default: the lateral
+crawl has 12 slots and the gate (--gate-out) ends it on the measured support (its `crawl`
+statement); --crawl-max 0 writes the 8-slot table shipped before."""
 import argparse
 import sys
 
@@ -225,16 +228,21 @@ ap.add_argument('--gate-x', default=None, metavar='MM:T0:T1',
                 help='with --gate-out: each gate at table times T0..T1 s (lifts, and set-downs of '
                 '--gate-land) also waits until the measured support stands at most MM behind the '
                 'plan\'s x at its time (`gate T LEGS x XMIN`, gaits/gaits_gate.h); off by default')
-ap.add_argument('--crawl-max', type=int, default=None, metavar='N',
+ap.add_argument('--crawl-max', type=int, default=12, metavar='N',
                 help='the lateral crawl ended on the measured support (issue 33, '
                 'docs/notes/obstacle.md "crawl10"): write N lateral slots (instead of zend / '
                 '(Dz / 2)) and, with --gate-out, the gate\'s `crawl` statement, so the player '
                 'ends the crawl at the first boundary of the release\'s phase where the measured '
-                'support z is near enough zend (gaits/gaits_gate.h); off by default')
+                'support z is near enough zend (gaits/gaits_gate.h); default 12 (the shipped '
+                'files, issue 33, docs/notes/obstacle.md "ship11"); 0: off, zend / (Dz / 2) '
+                'slots and no statement (the files shipped before ship11)')
 ap.add_argument('--crawl-carry', type=float, default=23.0,
                 help='with --crawl-max: the release\'s own advance along z, mm (the 50 g nominal\'s '
                 'measured 23 mm: docs/bench/obst10_2026-12-07c/nominal.txt, `rel8`)')
 a = ap.parse_args()
+CRAWL_GIVEN = any(x == '--crawl-max' or x.startswith('--crawl-max=') for x in sys.argv[1:])
+if a.crawl_max == 0 or (a.gate_from and not CRAWL_GIVEN) or (a.zgroups != 2 and not CRAWL_GIVEN):
+    a.crawl_max = None  # off: the default's crawl needs a table written here, two groups
 if a.crawl_max is not None and (a.crawl_max < 3 or a.zgroups != 2 or a.gate_from):
     sys.exit('obstacle_gait.py: --crawl-max takes N >= 3, with the two-group crawl '
              '(--zgroups 2) and a table written here (not --gate-from)')

@@ -172,7 +172,7 @@ typedef struct csrLegType_ {
   /* 1: a co-simulated level that is coupled `stabilised` unless the run names a scheme (rom:
    * its interface gains carry the sole's contact stiffness, which Gauss-Seidel's carry hands
    * the support a step late; docs/notes/rom.md "Settling on rom legs"); 0: Gauss-Seidel, or
-   * tree for a tree-stepped level (core/sim_coupling.c) */
+   * tree for a tree-stepped level (core/sim_tree.c) */
   int coupling_stabilised;
 
   /* Build the leg hanging straight from spec->hip along spec->frame's e3, at rest, vented.
@@ -251,7 +251,7 @@ typedef struct csrLegType_ {
 
   /* ---- tree-stepped levels (issue 32; the strain leg, robot_strain_leg.c) ------------------
    * A tree-stepped level steps with the support in ONE linearly implicit step of the driver's
-   * h, solved as the tree it is (core/sim_coupling.c, coupling `tree`): every leg condenses its
+   * h, solved as the tree it is (core/sim_tree.c, coupling `tree`): every leg condenses its
    * step onto its hip (prepare), the support solves its 6 x 6 with the legs' condensed
    * impedances, every leg back-substitutes the hip's motion (finish). prepare and finish are
    * NULL for the levels that advance on their own (rod); a tree-stepped level still
@@ -299,7 +299,7 @@ typedef struct csrLegType_ {
   /* The multistep formula the leg's next step of h takes (NULL: backward Euler): the step is
    * y1 = c[0] y0 + c[1] y_-1 + c[2] h f(y1) on positions and velocities (y_-1 the last step's
    * start), and prepare's Z, ρ are impulses over c[2] h (the force at the step's end times
-   * c[2] h). The support takes the same formula (core/sim_coupling.c); c depends on the leg's
+   * c[2] h). The support takes the same formula (core/sim_tree.c); c depends on the leg's
    * state (its last step), the same for every leg of a run. */
   void (*stepCoeffs)(const csrLeg* leg, double h, double c[3]);
 } csrLegType;

@@ -82,9 +82,10 @@ csrStrainParams csr_strainDefaultParams(void) {
    * strain_leg.md, "A kept iteration matrix") */
   p.keep_matrix = 0;
   p.keep_strain = 0.05;
-  /* the recursion's condensation of a leg without contact (docs/notes/strain_leg.md, "The
-   * articulated condensation") */
-  p.artic = 1;
+  /* every leg's step start condensed by the articulated recursion: without contact
+   * (docs/notes/strain_leg.md, "The articulated condensation") and with it (2: section "The
+   * stance legs' articulated condensation", 10 % fewer instructions, the same passes) */
+  p.artic = 2;
   /* the pressures as given until a resolution is chosen by measurement */
   p.cal_quantum = 0;
   return p;
@@ -136,13 +137,13 @@ csrStrainModel* csr_strainModelCreatePieces(const csrRodPiece* pieces, const int
       (par.step_refresh != 0 && par.step_refresh != 1) ||
       (par.active_set != 0 && par.active_set != 1) ||
       (par.friction_tangent != 0 && par.friction_tangent != 1) ||
-      (par.keep_matrix != 0 && par.keep_matrix != 1) || (par.artic != 0 && par.artic != 1) ||
+      (par.keep_matrix != 0 && par.keep_matrix != 1) || (par.artic < 0 || par.artic > 2) ||
       (par.keep_matrix && par.step_order != 1) || isnan(par.keep_strain) ||
       !(par.cal_quantum >= 0) || !isfinite(par.cal_quantum)) {
     cs_errorSet(err, CS_ERR_RANGE, "strain: parameters: need bend_order and axial_order 0..%d, "
                 "joint_order and piece orders -1..%d, nsub 1..%d, shear 0 or 1, static_tol > 0, "
                 "static_max_iter >= 1, step_order 1 or 2, step_refresh, active_set and "
-                "friction_tangent 0 or 1, keep_matrix 0 or 1 (1 with step_order 1 only), artic 0 or 1, "
+                "friction_tangent 0 or 1, keep_matrix 0 or 1 (1 with step_order 1 only), artic 0, 1 or 2, "
                 "keep_strain not NaN", CSR_STRAIN_MAX_ORDER, CSR_STRAIN_MAX_ORDER,
                 CSR_STRAIN_MAX_SUB);
     return NULL;
@@ -348,6 +349,15 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->memo);
   free(d->memo_z);
   free(d->memo_slot);
+  free(d->ct);
+  free(d->cS);
+  free(d->cA);
+  free(d->artLU);
+  free(d->artPiv);
+  free(d->artZsn);
+  free(d->artY);
+  free(d->artL);
+  free(d->artA);
   free(d->fl);
   free(d->R0);
   free(d->x0);
@@ -436,12 +446,23 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->memo = calloc((size_t)m->nshape + 1, sizeof(csrStrainLoadMemo));
   d->memo_z = calloc((size_t)m->nhist + 1, sizeof(double));
   d->memo_slot = calloc((size_t)nslot_all, sizeof(cscSlotInfo));
+  d->ct = calloc((size_t)m->nshape + 1, sizeof(int));
+  d->cS = calloc(((size_t)m->nshape + 1) * 6 * (n + 6), sizeof(double));
+  d->cA = calloc(((size_t)m->nshape + 1) * 36, sizeof(double));
+  d->artLU = calloc(n * CSR_STRAIN_MAX_PIECE_DOF + 1, sizeof(double));
+  d->artPiv = calloc(n + 1, sizeof(int));
+  d->artZsn = calloc(n * 6 + 1, sizeof(double));
+  d->artY = calloc(n * 6 + 1, sizeof(double));
+  d->artL = calloc(n * 6 + 1, sizeof(double));
+  d->artA = calloc((size_t)m->npiece * 36 + 1, sizeof(double));
   if (!d->Wu || !d->fl || !d->csig || !d->ghost || !d->memo || !d->memo_z || !d->memo_slot ||
       !d->q || !d->eta || !d->vp_eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
       !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Ab ||
       !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du || !d->Rs_save || !d->xs_save ||
-      !d->qm1 || !d->etam1 || !d->R0 || !d->x0 || !d->J0 || !d->qf || !d->Mu) {
+      !d->qm1 || !d->etam1 || !d->R0 || !d->x0 || !d->J0 || !d->qf || !d->Mu || !d->ct ||
+      !d->cS || !d->cA || !d->artLU || !d->artPiv || !d->artZsn || !d->artY || !d->artL ||
+      !d->artA) {
     csr_strainDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;

@@ -120,8 +120,10 @@ typedef struct csrStrainParams_ {
   int artic;           /* 1: a backward-Euler step's first pass of a leg that touches nothing
                           condenses onto the base by the articulated recursion over the pieces
                           (robot_strain_artic.c: no n x n inertia, no dense factor); 0: the
-                          dense assembly and factor. The same step to round-off; with
-                          keep_matrix (which keeps the dense factor) the dense path */
+                          dense assembly and factor; 2: a leg that touches too (the
+                          contact's unsymmetric blocks in the recursion, its kept iterates
+                          solved through the pieces' factors). The same step to round-off;
+                          with keep_matrix (which keeps the dense factor) the dense path */
 } csrStrainParams;
 
 /* Defaults (reasons in robot_strain.c). */

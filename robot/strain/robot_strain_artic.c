@@ -26,7 +26,22 @@
  * O(Σ_k (nd_k³ + 36 nd_k + nd_k² np_k)) instead of the dense assembly's O(n²) per piece and
  * the factor's n³/6. The base's blocks W_bb, W_lb (the momentum rows and the plain iterates
  * use them) come from the composite inertias Ic of the same sweep: W_lb[own] = (F_k + Aᵀ Ic_e
- * L_e)ᵀ Ad(g_s⁻¹), W_bb = diag(M_0) + Ic_0. */
+ * L_e)ᵀ Ad(g_s⁻¹), W_bb = diag(M_0) + Ic_0.
+ *
+ * With contact (artic 2) each touching shape adds -h Sᵀ A S (robot_strain_contact.c: S the
+ * world rates of the shape's ends, 6 x (6 + n); A = h K_y + C_y, unsymmetric where the
+ * friction's linearisation is). A shape's ends lie in one piece k (a capsule spans one of its
+ * sub-intervals, the foot is the tip), so S = B [V_s; η_k] with B = [S_b Ad(g_s), S[:, own]]
+ * (S's columns before the piece are B_s's transport of point s's: G_p = Ad(g_sp⁻¹) G_s there),
+ * and the shape's part enters the piece's own blocks alone: I_k, F_k, D_k gain -h Bᵀ A B's
+ * blocks, and F_k splits into Z_sη's F_k and Z_ηs's F'_k (transposes of each other without
+ * contact). The elimination is then the same with Ẑ unsymmetric:
+ *   Z_ηs = F'_k + L_eᵀ Ẑ A,   Y_k = Z_ηη⁻¹ Z_ηs (LU),   Ẑ_s = Z_ss - Z_sη Y_k,
+ *   η_k = Z_ηη⁻¹ r_k - Y_k V_s,
+ * the same Z, ρ, X, y as the dense LU of W_ll to round-off (block elimination in the chain's
+ * order from the tip; each Z_ηη is a Schur complement of W_ll's trailing blocks). The pieces'
+ * factors are kept (d->art*) for the kept iterates: their W_ll⁻¹ v is one sweep from the tip
+ * (r_k, ŵ) and one from the hip (y). */
 #include <math.h>
 #include <string.h>
 
@@ -35,9 +50,9 @@
 #define MAXD CSR_STRAIN_MAX_PIECE_DOF
 
 
-/* C = Aᵀ B A (6 x 6) for B symmetric and A = Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (its block A[0..2][3..5]
- * zero, skipped): the upper triangle, mirrored (C symmetric) */
-static void congruence6(const double A[36], const double B[36], double C[36]) {
+/* C = Aᵀ B A (6 x 6) for A = Ad(g⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (its block A[0..2][3..5] zero,
+ * skipped); sym 1: B symmetric, the upper triangle mirrored (C symmetric), 0: B general */
+static void congruence6(const double A[36], const double B[36], double C[36], int sym) {
   /* constant trip counts (the compiler unrolls them) */
   double BA[36];
   for (int r = 0; r < 6; r++) {
@@ -51,16 +66,22 @@ static void congruence6(const double A[36], const double B[36], double C[36]) {
     }
   }
   for (int a = 0; a < 3; a++) {
-    for (int c = a; c < 6; c++) {
+    for (int c = sym ? a : 0; c < 6; c++) {
       const double t = A[a] * BA[c] + A[6 + a] * BA[6 + c] + A[12 + a] * BA[12 + c] +
                        A[18 + a] * BA[18 + c] + A[24 + a] * BA[24 + c] + A[30 + a] * BA[30 + c];
-      C[6 * a + c] = C[6 * c + a] = t;
+      C[6 * a + c] = t;
+      if (sym) {
+        C[6 * c + a] = t;
+      }
     }
   }
   for (int a = 3; a < 6; a++) {
-    for (int c = a; c < 6; c++) {
+    for (int c = sym ? a : 0; c < 6; c++) {
       const double t = A[18 + a] * BA[18 + c] + A[24 + a] * BA[24 + c] + A[30 + a] * BA[30 + c];
-      C[6 * a + c] = C[6 * c + a] = t;
+      C[6 * a + c] = t;
+      if (sym) {
+        C[6 * c + a] = t;
+      }
     }
   }
 }
@@ -150,26 +171,142 @@ static void mul6L(const double B[36], const double* L, int ld, int nd, double* o
 }
 
 
-int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
+/* the piece that holds shape s's ends (its points in [pt0[k], pt0[k + 1]]), -1 if none */
+static int shapePiece(const csrStrainModel* m, int s) {
+  const int a = m->shape_a[s], b = m->shape_b[s];
+  const int lo = a < b ? a : b, hi = a < b ? b : a;
+  for (int k = 0; k < m->npiece; k++) {
+    if (hi <= m->pt0[k + 1]) {
+      return lo >= m->pt0[k] ? k : -1;
+    }
+  }
+  return -1;
+}
+
+
+/* the touching shapes of piece k (d->ct[c] in piece k): -h Bᵀ A B added to the piece's blocks
+ * I (6 x 6), F (6 x nd: Z_sη's), Fp (nd x 6: Z_ηs's), D (nd x nd), B = [S_b Ad(g_s), S[:, own]] */
+static void pieceContact(const csrStrainModel* m, const csrStrainData* d, double h, int k,
+                         double I[36], double* F, double* Fp, double* D) {
+  const int n = m->n, nu = 6 + n, s = m->pt0[k], c0 = m->dof0[k], nd = m->ndof[k];
+  const int w = 6 + nd;
+  double Ads[36];
+  int have = 0;
+  for (int c = 0; c < d->nct; c++) {
+    if (shapePiece(m, d->ct[c]) != k) {
+      continue;
+    }
+    if (!have) {
+      /* Ad(g_s) = Ad((g_s⁻¹)⁻¹), g_s⁻¹ = (Rᵀ, -Rᵀ x) */
+      const double* R = d->R + 9 * s;
+      const double* x = d->x + 3 * s;
+      double Rt[9], xi[3];
+      for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+          Rt[3 * i + j] = R[3 * j + i];
+        }
+        xi[i] = -(R[i] * x[0] + R[3 + i] * x[1] + R[6 + i] * x[2]);
+      }
+      csr_strainAdInv_(Rt, xi, Ads);
+      have = 1;
+    }
+    const double* S = d->cS + (size_t)c * 6 * nu;
+    const double* A = d->cA + 36 * c;
+    double B[6 * (6 + MAXD)], AB[6 * (6 + MAXD)];
+    for (int r = 0; r < 6; r++) {
+      const double* Sr = S + (size_t)r * nu;
+      csr_strainRows6_(B + w * r, Ads, 6, Sr, 6, 0);
+      memcpy(B + w * r + 6, Sr + 6 + c0, (size_t)nd * sizeof(double));
+    }
+    for (int r = 0; r < 6; r++) {
+      csr_strainRows6_(AB + w * r, B, w, A + 6 * r, w, 0);
+    }
+    for (int i = 0; i < w; i++) {
+      const double g[6] = {B[i], B[w + i], B[2 * w + i], B[3 * w + i], B[4 * w + i],
+                           B[5 * w + i]};
+      double row[6 + MAXD];
+      csr_strainRows6_(row, AB, w, g, w, 0);
+      double* r6 = i < 6 ? I + 6 * i : Fp + 6 * (i - 6);
+      double* rd = i < 6 ? F + nd * i : D + nd * (i - 6);
+      for (int j = 0; j < 6; j++) {
+        r6[j] += row[j] * -h;
+      }
+      for (int j = 0; j < nd; j++) {
+        rd[j] += row[6 + j] * -h;
+      }
+    }
+  }
+}
+
+
+/* y = Aᵀ x and y = A x (6 x 6, 6): each entry's six terms in order */
+static void mulT6(const double A[36], const double x[6], double y[6]) {
+  for (int a = 0; a < 6; a++) {
+    double t = 0;
+    for (int r = 0; r < 6; r++) {
+      t += A[6 * r + a] * x[r];
+    }
+    y[a] = t;
+  }
+}
+
+
+static void mul6(const double A[36], const double x[6], double y[6]) {
+  for (int r = 0; r < 6; r++) {
+    double u = 0;
+    for (int c = 0; c < 6; c++) {
+      u += A[6 * r + c] * x[c];
+    }
+    y[r] = u;
+  }
+}
+
+
+int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h,
+                             const double* rl, const double rb[6], double Z[36],
                              double rho[6]) {
   const int n = m->n;
   const double cK = h * m->rpar.damping_time + h * h;
+  /* with contact: every piece's blocks unsymmetric, its factor an LU, kept for the iterates */
+  const int unsym = d->nct > 0;
+  for (int c = 0; c < d->nct; c++) {
+    if (shapePiece(m, d->ct[c]) < 0) {
+      return 1;
+    }
+  }
   double Zh[36], wh[6], Ic[36];
   memset(Zh, 0, sizeof Zh);
   memset(wh, 0, sizeof wh);
   memset(Ic, 0, sizeof Ic);
   double F[6 * MAXD], D[MAXD * MAXD], ZL[6 * MAXD], IL[6 * MAXD], Zsn[6 * MAXD];
+  double Fs[6 * MAXD], Fp[MAXD * 6]; /* with contact: Z_sη's own part, Z_ηs's */
   double Ak[CSR_ROD_MAX_PIECES][36]; /* each piece's Ad(g_se⁻¹), for the forward pass */
   for (int k = m->npiece - 1; k >= 0; k--) {
     const int s = m->pt0[k], e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
     double I[36], Zs[36], Ics[36];
     double* A = Ak[k];
     pieceSums(m, d, k, I, F, D, A);
-    congruence6(A, Zh, Zs);
-    congruence6(A, Ic, Ics);
+    congruence6(A, Ic, Ics, 1);
+    for (int i = 0; i < 36; i++) {
+      Ics[i] += I[i];
+    }
+    if (unsym) {
+      /* the composite (W_M's: W_bb, W_lb) keeps the inertia's F; the step's blocks gain the
+       * contact's */
+      memcpy(Fs, F, (size_t)6 * nd * sizeof(double));
+      for (int i = 0; i < nd; i++) {
+        for (int a = 0; a < 6; a++) {
+          Fp[6 * i + a] = F[nd * a + i];
+        }
+      }
+      pieceContact(m, d, h, k, I, Fs, Fp, D);
+      congruence6(A, Zh, Zs, 0);
+      memcpy(d->artA + 36 * k, A, 36 * sizeof(double));
+    } else {
+      congruence6(A, Zh, Zs, 1);
+    }
     for (int i = 0; i < 36; i++) {
       Zs[i] += I[i];
-      Ics[i] += I[i];
     }
     double w[6];
     for (int a = 0; a < 6; a++) {
@@ -181,6 +318,7 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
     }
     if (nd > 0) {
       const double* Le = d->J + (size_t)e * 6 * n + c0;
+      const double* Fz = unsym ? Fs : F;
       mul6L(Zh, Le, n, nd, ZL);
       mul6L(Ic, Le, n, nd, IL);
       /* Z_sη = F + Aᵀ Ẑ L_e, and the composite's F + Aᵀ Ic L_e (into IL's place after use) */
@@ -188,7 +326,7 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
         const double g[6] = {A[a], A[6 + a], A[12 + a], A[18 + a], A[24 + a], A[30 + a]};
         csr_strainRows6_(Zsn + nd * a, ZL, nd, g, nd, 0);
         for (int j = 0; j < nd; j++) {
-          Zsn[nd * a + j] += F[nd * a + j];
+          Zsn[nd * a + j] += Fz[nd * a + j];
         }
       }
       double Fc[6 * MAXD];
@@ -206,24 +344,51 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
                              Le[5 * n + i]};
         csr_strainRows6_(D + nd * i, ZL, nd, g, nd, 1);
         D[nd * i + i] += cK * d->Kd[c0 + i];
-        double t = h * d->rMl[c0 + i];
+        double t = h * rl[c0 + i];
         for (int r = 0; r < 6; r++) {
           t -= g[r] * wh[r];
         }
         y[i] = t;
-      }
-      if (csr_strainCholFactor_(D, nd)) {
-        return 1;
-      }
-      /* Y = Z_ηη⁻¹ Z_sηᵀ into X's rows of the piece (nd x 6), Z_ηη⁻¹ r_k into y's */
-      double* Y = d->X + (size_t)6 * c0;
-      for (int j = 0; j < nd; j++) {
-        for (int a = 0; a < 6; a++) {
-          Y[6 * j + a] = Zsn[nd * a + j];
+        if (unsym) {
+          /* Z_ηs = F' + L_eᵀ Ẑ A: the row (L_eᵀ Ẑ)_i, then through A */
+          double lz[6], za[6];
+          csr_strainRows6_(lz, Zh, 6, g, 6, 0);
+          csr_strainRows6_(za, A, 6, lz, 6, 0);
+          for (int a = 0; a < 6; a++) {
+            Fp[6 * i + a] += za[a];
+          }
         }
       }
-      csr_strainCholSolve6_(D, nd, Y);
-      csr_strainCholSolve_(D, nd, y);
+      double* Y = d->X + (size_t)6 * c0;
+      if (unsym) {
+        /* Y = Z_ηη⁻¹ Z_ηs and Z_ηη⁻¹ r_k by the LU; the factor, Z_sη, Y and L_e kept */
+        int* piv = d->artPiv + c0;
+        if (csr_strainLuFactor_(D, nd, piv)) {
+          return 1;
+        }
+        memcpy(d->artLU + (size_t)MAXD * c0, D, (size_t)nd * nd * sizeof(double));
+        memcpy(Y, Fp, (size_t)nd * 6 * sizeof(double));
+        csr_strainLuSolveMulti_(D, nd, piv, Y, 6);
+        csr_strainLuSolve_(D, nd, piv, y);
+        memcpy(d->artY + (size_t)6 * c0, Y, (size_t)nd * 6 * sizeof(double));
+        memcpy(d->artZsn + (size_t)6 * c0, Zsn, (size_t)6 * nd * sizeof(double));
+        for (int r = 0; r < 6; r++) {
+          memcpy(d->artL + (size_t)6 * c0 + (size_t)nd * r, Le + (size_t)r * n,
+                 (size_t)nd * sizeof(double));
+        }
+      } else {
+        if (csr_strainCholFactor_(D, nd)) {
+          return 1;
+        }
+        /* Y = Z_ηη⁻¹ Z_sηᵀ into X's rows of the piece (nd x 6), Z_ηη⁻¹ r_k into y's */
+        for (int j = 0; j < nd; j++) {
+          for (int a = 0; a < 6; a++) {
+            Y[6 * j + a] = Zsn[nd * a + j];
+          }
+        }
+        csr_strainCholSolve6_(D, nd, Y);
+        csr_strainCholSolve_(D, nd, y);
+      }
       for (int a = 0; a < 6; a++) {
         for (int b = 0; b < 6; b++) {
           double t = 0;
@@ -257,7 +422,7 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
   for (int c = 0; c < 6; c++) {
     Z[7 * c] += m->Ms[c];
     d->WMbb[7 * c] += m->Ms[c];
-    rho[c] = h * d->rMb[c] - wh[c];
+    rho[c] = h * rb[c] - wh[c];
   }
   /* forward: η_k = y_k - X_k ΔV from V_s = T ΔV + t */
   double T[36], t[6];
@@ -312,4 +477,64 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
     }
   }
   return 0;
+}
+
+
+void csr_strainArticSolve_(const csrStrainModel* m, csrStrainData* d, double* y, double w[6]) {
+  /* from the tip: r_k = v_k - L_eᵀ ŵ, Z_ηη⁻¹ r_k into y's rows, ŵ_s = Aᵀ ŵ + Z_sη Z_ηη⁻¹ r_k */
+  double wh[6] = {0, 0, 0, 0, 0, 0};
+  for (int k = m->npiece - 1; k >= 0; k--) {
+    const int c0 = m->dof0[k], nd = m->ndof[k];
+    const double* A = d->artA + 36 * k;
+    double ws[6];
+    mulT6(A, wh, ws);
+    if (nd > 0) {
+      const double* L = d->artL + (size_t)6 * c0;
+      const double* Zsn = d->artZsn + (size_t)6 * c0;
+      double* v = y + c0;
+      for (int i = 0; i < nd; i++) {
+        double t = v[i];
+        for (int r = 0; r < 6; r++) {
+          t -= L[nd * r + i] * wh[r];
+        }
+        v[i] = t;
+      }
+      csr_strainLuSolve_(d->artLU + (size_t)MAXD * c0, nd, d->artPiv + c0, v);
+      for (int a = 0; a < 6; a++) {
+        double t = 0;
+        for (int j = 0; j < nd; j++) {
+          t += Zsn[nd * a + j] * v[j];
+        }
+        ws[a] += t;
+      }
+    }
+    memcpy(wh, ws, sizeof wh);
+  }
+  memcpy(w, wh, sizeof wh);
+  /* from the hip at ΔV = 0: y_k = Z_ηη⁻¹ r_k - Y_k t, t_e = A t + L_e y_k */
+  double t[6] = {0, 0, 0, 0, 0, 0};
+  for (int k = 0; k < m->npiece; k++) {
+    const int c0 = m->dof0[k], nd = m->ndof[k];
+    const double* A = d->artA + 36 * k;
+    double te[6];
+    mul6(A, t, te);
+    if (nd > 0) {
+      const double* L = d->artL + (size_t)6 * c0;
+      const double* Y = d->artY + (size_t)6 * c0;
+      double* v = y + c0;
+      for (int j = 0; j < nd; j++) {
+        double u = v[j];
+        for (int a = 0; a < 6; a++) {
+          u -= Y[6 * j + a] * t[a];
+        }
+        v[j] = u;
+      }
+      for (int r = 0; r < 6; r++) {
+        for (int j = 0; j < nd; j++) {
+          te[r] += L[nd * r + j] * v[j];
+        }
+      }
+    }
+    memcpy(t, te, sizeof t);
+  }
 }

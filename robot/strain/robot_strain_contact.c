@@ -689,33 +689,48 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         d->rl[k - 6] += t;
       }
     }
-    /* W -= h Sᵀ A S: AS = A S (6 x nu, in Ga's rows: G is not read again for this shape),
-     * then row i of Sᵀ AS, each entry Σ_r S[r][i] AS[r][k] summed in r's order (a row at a
-     * time, vectorised over k); a zero entry is skipped as before (W keeps its bits) */
-    double* AS = Ga;
-    for (int r = 0; r < 6; r++) {
-      csr_strainRows6_(AS + r * nu, S, nu, A + 6 * r, nu, 0);
+    if (d->wc_sparse && !du) {
+      /* the recursion's start (artic 2): this shape's S and A kept, W_ll's block left out */
+      memcpy(d->cS + (size_t)d->nct * 6 * nu, S, (size_t)6 * nu * sizeof(double));
+      memcpy(d->cA + 36 * d->nct, A, sizeof A);
+      d->ct[d->nct++] = s;
     }
-    double* row = Gb; /* nu scratch */
-    for (int i = 0; i < nu; i++) {
-      const double g[6] = {S[i], S[nu + i], S[2 * nu + i], S[3 * nu + i], S[4 * nu + i],
-                           S[5 * nu + i]};
-      csr_strainRows6_(row, AS, nu, g, nu, 0);
-      double* wb = i < 6 ? Wbb + 6 * i : d->Wlb + 6 * (i - 6);
-      double* wl = i < 6 ? d->Wbl + n * i : d->Wll + (size_t)(i - 6) * n;
-      for (int k = 0; k < 6; k++) {
-        if (row[k] != 0) {
-          wb[k] += row[k] * -h;
-        }
+    csr_strainShapeW_(m, d, h, S, A, Ga, Gb, Wbb, d->wc_sparse && !du ? 1 : 0);
+  }
+  return 0;
+}
+
+
+void csr_strainShapeW_(const csrStrainModel* m, csrStrainData* d, double h, const double* S,
+                       const double A[36], double* AS, double* row, double* Wbb, int part) {
+  const int n = m->n, nu = 6 + n;
+  /* W -= h Sᵀ A S: AS = A S (6 x nu), then row i of Sᵀ AS, each entry Σ_r S[r][i] AS[r][k]
+   * summed in r's order (a row at a time, vectorised over k); a zero entry is skipped as
+   * before (W keeps its bits). part 1 leaves W_ll's block out (its rows' first 6 columns
+   * alone), part 2 adds W_ll's block alone: each entry gets the same operations either way */
+  for (int r = 0; r < 6; r++) {
+    csr_strainRows6_(AS + r * nu, S, nu, A + 6 * r, nu, 0);
+  }
+  for (int i = part == 2 ? 6 : 0; i < nu; i++) {
+    const double g[6] = {S[i], S[nu + i], S[2 * nu + i], S[3 * nu + i], S[4 * nu + i],
+                         S[5 * nu + i]};
+    csr_strainRows6_(row, AS, nu, g, part == 1 && i >= 6 ? 6 : nu, 0);
+    double* wb = i < 6 ? Wbb + 6 * i : d->Wlb + 6 * (i - 6);
+    double* wl = i < 6 ? d->Wbl + n * i : d->Wll + (size_t)(i - 6) * n;
+    for (int k = 0; k < 6 && part != 2; k++) {
+      if (row[k] != 0) {
+        wb[k] += row[k] * -h;
       }
-      for (int k = 6; k < nu; k++) {
-        if (row[k] != 0) {
-          wl[k - 6] += row[k] * -h;
-        }
+    }
+    if (part == 1 && i >= 6) {
+      continue;
+    }
+    for (int k = 6; k < nu; k++) {
+      if (row[k] != 0) {
+        wl[k - 6] += row[k] * -h;
       }
     }
   }
-  return 0;
 }
 
 

@@ -369,6 +369,60 @@ static int condensePlain(const csrStrainModel* m, csrStrainData* d, double h, co
 }
 
 
+/* condenseKept on the recursion's factor (art_f: a touching leg's start with artic 2): W_f -
+ * W_M is the contact's -h Sᵀ A S of the start's touching shapes (d->cS, cA), so the
+ * right-hand side W_f Δu_it - R = h (r_M + f) - h Sᵀ A S Δu_it needs no n x n matrix; W_ll⁻¹
+ * by the pieces' factors (csr_strainArticSolve_), whose W_bl W_ll⁻¹ gives ρ */
+static int condenseKeptArtic(const csrStrainModel* m, csrStrainData* d, double h,
+                             const double* du, const double fb[6], double Z[36], double rho[6]) {
+  const int n = m->n, nu = 6 + n;
+  double* wc = d->Mu; /* (6 + n) scratch: (W_f - W_M) Δu_it */
+  memset(wc, 0, (size_t)nu * sizeof(double));
+  for (int c = 0; c < d->nct; c++) {
+    const double* S = d->cS + (size_t)c * 6 * nu;
+    const double* A = d->cA + 36 * c;
+    double Sdu[6], g[6];
+    for (int r = 0; r < 6; r++) {
+      double t = 0;
+      for (int k = 0; k < nu; k++) {
+        t += S[r * nu + k] * du[k];
+      }
+      Sdu[r] = t;
+    }
+    for (int r = 0; r < 6; r++) {
+      double t = 0;
+      for (int k = 0; k < 6; k++) {
+        t += A[6 * r + k] * Sdu[k];
+      }
+      g[r] = -h * t;
+    }
+    csr_strainRows6_(wc, S, nu, g, nu, 1);
+  }
+  double rb[6];
+  for (int j = 0; j < n; j++) {
+    d->y[j] = h * (d->rMl[j] + d->fl[j]) + wc[6 + j];
+    if (!isfinite(d->y[j])) {
+      return 1;
+    }
+  }
+  for (int a = 0; a < 6; a++) {
+    rb[a] = (h * (d->rMb[a] + fb[a]) + wc[a]) / h;
+  }
+  momentumRows(m, d, h, du, d->Wbbp, rb);
+  double w[6];
+  csr_strainArticSolve_(m, d, d->y, w);
+  for (int a = 0; a < 6; a++) {
+    rho[a] = h * rb[a] - w[a];
+    if (!isfinite(rho[a])) {
+      return 1;
+    }
+  }
+  memcpy(Z, d->Zp, sizeof d->Zp);
+  memcpy(d->rhop, rho, sizeof d->rhop);
+  return 0;
+}
+
+
 /* A Newton iterate that keeps the step's last iteration matrix W_f (factored in d->Wll, its
  * blocks d->Wu, d->Wlb, d->Wbl, d->Wbbp; Z = d->Zp): the chord step W_f δ = -R(Δu_it), so in
  * the whole step's Δu the right-hand side is W_f Δu_it - R = h r + (W_f - W_M) Δu_it, with
@@ -378,6 +432,9 @@ static int condensePlain(const csrStrainModel* m, csrStrainData* d, double h, co
 static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
                         const double fb[6], double Z[36], double rho[6]) {
   const int n = m->n;
+  if (d->art_f) {
+    return condenseKeptArtic(m, d, h, du, fb, Z, rho);
+  }
   const double* dV = du;
   const double* de = du + 6;
   double rb[6];
@@ -540,7 +597,9 @@ void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d) {
     return;
   }
   const int n = m->n;
-  memset(d->Wll, 0, (size_t)n * n * sizeof(double));
+  if (!d->wc_sparse) {
+    memset(d->Wll, 0, (size_t)n * n * sizeof(double));
+  }
   memset(d->Wlb, 0, (size_t)n * 6 * sizeof(double));
   memset(d->Wbl, 0, (size_t)n * 6 * sizeof(double));
   memset(d->rl, 0, (size_t)n * sizeof(double));
@@ -548,10 +607,77 @@ void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d) {
 }
 
 
+/* the recursion's start done (no Cholesky factor of W_ll: its pieces' are the recursion's):
+ * counted, Z and ρ kept for the step's iterates */
+static int keepFactored(csrStrainData* d, const double Z[36], const double rho[6]) {
+  d->chol = 0;
+  d->nfactor++;
+  memcpy(d->Zp, Z, sizeof d->Zp);
+  memcpy(d->rhop, rho, sizeof d->rhop);
+  d->w_step = 1;
+  return 0;
+}
+
+
+/* A touching leg's start by the recursion (artic 2): the contact's blocks without W_ll's
+ * (Wbb, d->Wlb, d->Wbl, rb, d->rl: the contact's alone) and its shapes' S, A (d->cS, cA);
+ * W_M's and the contact's parts condensed piece by piece, W_f's base blocks (the momentum
+ * rows and the kept iterates read them) as denseStart adds them. A recursion that fails
+ * (a shape across pieces, a singular piece block) takes the dense path with W_ll's contact
+ * block formed from the kept shapes (the same entries as the assembly's). */
+static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, double Wbb[36],
+                          double rb[6], double Z[36], double rho[6]) {
+  const int n = m->n, nu = 6 + n;
+  double rbt[6];
+  for (int c = 0; c < 6; c++) {
+    rbt[c] = d->rMb[c] + rb[c];
+  }
+  for (int j = 0; j < n; j++) {
+    d->fl[j] = d->rMl[j] + d->rl[j]; /* fl: scratch until the iterates' loads */
+  }
+  if (csr_strainCondenseArtic_(m, d, h, d->fl, rbt, Z, rho) != 0) {
+    memset(d->Wll, 0, (size_t)n * n * sizeof(double));
+    for (int c = 0; c < d->nct; c++) {
+      csr_strainShapeW_(m, d, h, d->cS + (size_t)c * 6 * nu, d->cA + 36 * c, d->Gs,
+                        d->Gs + 6 * nu, Wbb, 2);
+    }
+    denseStart(m, d, h, Wbb, rb);
+    return factorAndCondense(m, d, h, NULL, Wbb, rb, Z, rho);
+  }
+  memcpy(d->rl, d->fl, (size_t)n * sizeof(double));
+  for (int j = 0; j < n; j++) {
+    for (int c = 0; c < 6; c++) {
+      d->Wlb[6 * j + c] = d->WMlb[6 * j + c] + d->Wlb[6 * j + c];
+      d->Wbl[n * c + j] = d->WMlb[6 * j + c] + d->Wbl[n * c + j];
+    }
+    if (!isfinite(d->rl[j])) {
+      return 1;
+    }
+  }
+  for (int i = 0; i < 36; i++) {
+    d->Wbbp[i] = d->WMbb[i] + Wbb[i];
+  }
+  d->lu_plain = 0;
+  d->kf = 0;
+  d->art_f = 1;
+  /* the start's kinematics kept for an iterate that refactors (it forms W_M from them): the
+   * arrays swapped, not copied; the iterates form their own (kin_valid 0) */
+  double* t;
+  t = d->R, d->R = d->R0, d->R0 = t;
+  t = d->x, d->x = d->x0, d->x0 = t;
+  t = d->J, d->J = d->J0, d->J0 = t;
+  d->kin_valid = 0;
+  d->kin_gen++;
+  d->k0 = 1;
+  return keepFactored(d, Z, rho);
+}
+
+
 /* A backward-Euler step's start (articStep): the contact linearised first (into zeroed
  * blocks); a leg that touches nothing is condensed by the recursion (robot_strain_artic.c,
- * no n x n matrix), one that touches by the dense factor of W_M plus the contact's part (an
- * iterate that must refactor forms W_M then: condense). */
+ * no n x n matrix), one that touches by the dense factor of W_M plus the contact's part, or
+ * with artic 2 by the recursion with the contact's blocks (condenseStance; an iterate that
+ * must refactor forms W_M then: condense). */
 static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
                          double rho[6]) {
   const int n = m->n;
@@ -563,14 +689,24 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, do
    * here; the recursion reads none of them (a swing leg's start skips the n x n clear) */
   d->wl_pending = 1;
   d->ntouch = 0;
+  d->nct = 0;
+  d->art_f = 0;
+  d->k0 = 0;
+  const int stance = m->par.artic == 2 && !d->wm_step;
+  d->wc_sparse = stance;
   if (m->soft) {
     int rc = csr_strainContactAssemble_(m, d, h, NULL, Wbb, rb, d->Gs);
     if (rc != 0) {
       d->wl_pending = 0; /* the blocks are not read: the next condense writes them whole */
+      d->wc_sparse = 0;
       return rc > 0 ? rc : 1;
     }
   }
-  if (d->ntouch > 0 || d->wm_step || csr_strainCondenseArtic_(m, d, h, Z, rho)) {
+  d->wc_sparse = 0;
+  if (d->ntouch > 0 && stance) {
+    return condenseStance(m, d, h, Wbb, rb, Z, rho);
+  }
+  if (d->ntouch > 0 || d->wm_step || csr_strainCondenseArtic_(m, d, h, d->rMl, d->rMb, Z, rho)) {
     /* the dense path (a touching leg, W_M formed, or a piece's block not positive definite:
      * its LU decides): W_M added to the contact's blocks, zero if no shape touched */
     csr_strainClearStart_(m, d);
@@ -592,12 +728,7 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, do
       return 1;
     }
   }
-  d->chol = 0;
-  d->nfactor++;
-  memcpy(d->Zp, Z, sizeof d->Zp);
-  memcpy(d->rhop, rho, sizeof d->rhop);
-  d->w_step = 1;
-  return 0;
+  return keepFactored(d, Z, rho);
 }
 
 
@@ -649,11 +780,12 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   if (!d->wm_step) {
     /* a step that kept an earlier factor (keep_matrix), or whose start was condensed by the
      * recursion (artic), refactors: W_M at the start's kinematics, as the dense prepare would
-     * have assembled it. keep_matrix keeps them (d->R0, x0, J0); after the recursion they are
+     * have assembled it. keep_matrix keeps them (d->R0, x0, J0), and so does a touching
+     * leg's recursion (condenseStance swapped them there: k0); after a swing leg's they are
      * formed again at q0 into those arrays (a function of q alone: the same bits), the
      * iterate's kinematics left in place */
     const double tau = m->rpar.damping_time;
-    if (!m->par.keep_matrix) {
+    if (!m->par.keep_matrix && !d->k0) {
       startKinematics(m, d);
     }
     csr_strainInertiaFrom_(m, d, d->R0, d->x0, d->J0);
@@ -690,6 +822,7 @@ static int factorAndCondense(const csrStrainModel* m, csrStrainData* d, double h
                              double rho[6]) {
   const int n = m->n;
   d->lu_plain = d->ntouch == 0;
+  d->art_f = 0;
   if (du) {
     momentumRows(m, d, h, du, Wbb, rb);
   }

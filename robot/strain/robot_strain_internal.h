@@ -219,6 +219,23 @@ struct csrStrainData_ {
   int wl_pending; /* 1: a step's start left Wll, Wlb, Wbl, rl uncleared (condenseStart): the
                      first shape that touches zeroes them first */
   double* Gs;     /* (22 x (6 + n)) scratch of the contact's linearisation and u0 */
+  /* the stance legs' start by the articulated recursion (artic 2; robot_strain_artic.c) */
+  int wc_sparse;  /* 1: the contact's start assembly leaves W_ll's block out and keeps each
+                     touching shape's S and A (cS, cA) for the recursion */
+  int nct;        /* touching shapes kept there */
+  int* ct;        /* (nshape) their indices */
+  double* cS;     /* (nshape x 6 x (6 + n)) their S (world rates of the shape's ends) */
+  double* cA;     /* (nshape x 36) their A = h K_y + C_y: W -= h Sᵀ A S */
+  int art_f;      /* 1: the iteration matrix is factored piece by piece by the recursion (the
+                     kept iterates solve through artLU ...; d->Wll, Wu are not formed) */
+  double* artLU;  /* (n x MAX_PIECE_DOF) piece k's Z_ηη LU-factored, at MAX_PIECE_DOF dof0[k] */
+  int* artPiv;    /* (n) its pivots, at dof0[k] */
+  double* artZsn; /* (6 n) piece k's Z_sη (6 x nd, at 6 dof0[k]) */
+  double* artY;   /* (n x 6) Z_ηη⁻¹ Z_ηs (rows of the piece's unknowns) */
+  double* artL;   /* (6 n) L_e = J_e[:, own] (6 x nd, at 6 dof0[k]) at the factor's poses */
+  double* artA;   /* (npiece x 36) each piece's Ad(g_se⁻¹) */
+  int k0;         /* 1: d->R0, x0, J0 hold this step's start kinematics (a recursion's start
+                     with contact swapped them there; an iterate that refactors reads them) */
 };
 
 /* ---- calibration (robot_strain_cal.c) ---- */
@@ -305,12 +322,18 @@ void csr_strainProject_(const csrStrainModel* m, const double* q, const double* 
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
 
 /* ---- the articulated condensation (robot_strain_artic.c) ---- */
-/* Z, ρ, d->X, d->y of the step's W without contact (W_M, step h) by the recursion over the
- * pieces, at the current kinematics (with J at every point), from d->rMl, d->rMb, d->Kd;
- * d->WMbb, d->WMlb filled from the composite inertias (d->WMll not: the dense path forms it
- * when it needs it). 0 ok, 1 a piece's block not positive definite or ρ not finite */
-int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
-                             double rho[6]);
+/* Z, ρ, d->X, d->y of the step's W (step h) by the recursion over the pieces, at the current
+ * kinematics (with J at every point), from the forces rl (n), rb (6) (h r's r) and d->Kd:
+ * W_M's alone when d->nct is 0, else with the d->nct touching shapes' -h Sᵀ A S (d->cS, cA;
+ * unsymmetric: LU of each piece's block, the factors kept in d->art* for the kept iterates).
+ * d->WMbb, d->WMlb filled from the composite inertias of W_M (d->WMll not: the dense path
+ * forms it when it needs it). 0 ok, 1 a piece's block not positive definite (no contact) or
+ * singular, a shape across two pieces, or ρ not finite */
+int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h,
+                             const double* rl, const double rb[6], double Z[36], double rho[6]);
+/* the kept iterates' solve through the recursion's factors (d->art*, art_f): y (n) holds the
+ * leg's right-hand side in, W_ll⁻¹ of it out; w (6) = W_bl W_ll⁻¹ of it */
+void csr_strainArticSolve_(const csrStrainModel* m, csrStrainData* d, double* y, double w[6]);
 
 /* ---- inertia (robot_strain_inertia.c; the step in robot_strain_dyn.c) ---- */
 /* V = G_p (V_b, η) at point p of the current kinematics (d->R, d->x, d->J), body frame */
@@ -334,8 +357,14 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d);
  * g_b exp(h V_b), into d->sst (pred 1); the state and its kinematics unchanged
  * (robot_strain_dyn.c) */
 void csr_strainPredictShapes_(const csrStrainModel* m, csrStrainData* d, double h);
-/* d->Wll, Wlb, Wbl, rl zeroed if a step's start left them pending (wl_pending), else nothing */
+/* d->Wll, Wlb, Wbl, rl zeroed if a step's start left them pending (wl_pending), else nothing
+ * (d->Wll not while wc_sparse: the recursion's start does not form it) */
 void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d);
+/* one touching shape's W -= h Sᵀ A S into Wbb, d->Wlb, d->Wbl, d->Wll (S 6 x (6 + n), AS and
+ * row scratch of 6 (6 + n) and 6 + n): part 0 every block, 1 all but W_ll's, 2 W_ll's alone
+ * (the same operations on each entry as part 0) */
+void csr_strainShapeW_(const csrStrainModel* m, csrStrainData* d, double h, const double* S,
+                       const double A[36], double* AS, double* row, double* Wbb, int part);
 
 /* ---- contact (robot_strain_contact.c) ---- */
 int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err);

@@ -1,6 +1,6 @@
 /* robot_strain_leg.c: the strain-coordinate Cosserat rod behind the leg interface
  * (csr_leg_strain, robot_leg.h): a tree-stepped level, condensed into the support's implicit
- * step by the driver (core/sim_coupling.c, coupling `tree`).
+ * step by the driver (core/sim_tree.c, coupling `tree`).
  *
  * What the table maps to (robot_strain.h):
  *  - create: the strain model of the actuator with the nodal rod's material and calibration

@@ -7,6 +7,9 @@
  *    not trivial (the rows after the cut differ from the cut's); with a gate file whose crawl
  *    ends at the cut (its decision after the resume) too; one stopped before settling
  *    (a checkpoint at t < 0) settles when resumed and equals the uncut run too;
+ *  - with a crawl statement and no --t-end the run ends when the table's clock reaches the
+ *    table's end (the crawl's skip sooner), with or without an output file, and a run cut and
+ *    resumed ends there too, bit for bit; an explicit --t-end wins;
  *  - a resume with another definition (friction, the checkpoint interval, links, the gate) is
  *    refused naming the file and the field, and leaves the output as it was;
  *  - a truncated checkpoint, one with a changed byte in its state and a file that is no
@@ -251,6 +254,93 @@ static void test_gate_crawl_resumed_equals_uncut(void) {
                    "gate 0.05 AE\ncrawl 0.05 0.05 5 -1e6 0\n");
   resumedEqualsUncutGate("rod", NULL, "ckpt_crawl.gate");
 }
+
+
+/* a root string attribute ("" when absent) */
+static void readAttrString(const char* path, const char* name, char* buf, size_t size) {
+  csError err;
+  csH5Reader* r = cs_h5ReaderOpen(path, &err);
+  if (!r || cs_h5ReaderAttrString(r, name, buf, size, &err) != CS_OK) buf[0] = '\0';
+  cs_h5ReaderClose(r);
+}
+
+
+/* the run's end with a crawl statement and no --t-end (cs_runOverAt): the gait is over when the
+ * table's clock t - hold + skip reaches the table's end, so the run ends the crawl's skip sooner
+ * than the same table with a crawl that never ends (its end on the run's clock), at an output
+ * row, and says why; the run without an output file (cs_run's other loop: the Python API's
+ * `crawlsim.run` without out) ends at the same step; a run cut at 0.2 s (its --t-end) and
+ * resumed without one ends there too, bit for bit */
+static void test_gate_crawl_ends_the_run_when_the_table_is_over(void) {
+  /* a table of one chamber's slow rise to 0.5 s (cheap: the rods barely move) */
+  cs_testWriteText("ckpt_end.csv", "time,A_II1_O1\n0,0\n0.5,0.05\n");
+  cs_testWriteText("ckpt_end_skip.gate", "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\n"
+                   "gate 0.05 AE\ncrawl 0.05 0.05 5 -1e6 0\n");
+  cs_testWriteText("ckpt_end_full.gate", "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\n"
+                   "gate 0.05 AE\ncrawl 0.05 0.05 5 1e6 0\n");
+  csError err;
+  csRunResult rf, ra, rn, rb, rc;
+  csRunDef f = baseDef("rod");
+  f.gait = "ckpt_end.csv";
+  f.gate = "ckpt_end_full.gate";
+  f.out = "ckpt_end_full.h5";
+  f.checkpoint_every = NAN; /* none (a checkpoint needs a file) */
+  CS_EXPECT(runDef(&f, &rf, &err) == CS_OK);
+  csRunDef a = f;
+  a.gate = "ckpt_end_skip.gate";
+  a.out = "ckpt_end_uncut.h5";
+  a.checkpoint = "ckpt_end_uncut.ck";
+  a.checkpoint_every = 0.1;
+  CS_EXPECT(runDef(&a, &ra, &err) == CS_OK);
+  const double skip = readAttr(a.out, "crawl_skip_s"), held = readAttr(a.out, "gate_held_s");
+  const double held_f = readAttr(f.out, "gate_held_s");
+  CS_EXPECT(readAttr(f.out, "crawl_skip_s") == 0 && skip > 0);
+  /* the full table ends on the run's clock (no hold then: a hold is cut off by it); the
+   * skipped one when its table's clock, t - hold + skip, reaches the same end (to the output
+   * row, 0.01 s) */
+  const double tab_end = rf.t_end; /* cs_modelEndTime: the table's last row plus one ramp */
+  CS_EXPECT(fabs(ra.t_end - held + skip - tab_end) < 0.01 + 1e-9 && ra.t_end < rf.t_end - 0.05);
+  char why[256];
+  readAttrString(a.out, "end_reason", why, sizeof why);
+  CS_EXPECT(strstr(why, "the gait is over") != NULL);
+  printf("  the table ends at %g s (held %g s); with the crawl's skip of %g s (held %g s) the "
+         "run ends at %g s: %s\n", tab_end, held_f, skip, held, ra.t_end, why);
+  readAttrString(f.out, "end_reason", why, sizeof why);
+  CS_EXPECT(strstr(why, "the table's end") != NULL);
+  long rows = 0, rows_f = 0;
+  CS_EXPECT(sameDatasets(a.out, a.out, &rows) && sameDatasets(f.out, f.out, &rows_f));
+  CS_EXPECT(rows == lround(ra.t_end / 0.01) + 1 && rows < rows_f);
+  /* no output file: the same end */
+  csRunDef n = a;
+  n.out = NULL;
+  n.checkpoint = NULL;
+  n.checkpoint_every = NAN; /* none (a checkpoint needs a file) */
+  CS_EXPECT(runDef(&n, &rn, &err) == CS_OK);
+  CS_EXPECT(rn.t_end == ra.t_end && rn.steps == ra.steps);
+  /* cut at 0.2 s, resumed with no --t-end: the uncut run's end, bit for bit */
+  csRunDef b = a;
+  b.out = "ckpt_end_cut.h5";
+  b.checkpoint = "ckpt_end_cut.ck";
+  b.t_end = 0.2;
+  CS_EXPECT(runDef(&b, &rb, &err) == CS_OK);
+  csRunDef c = b;
+  c.t_end = 0;
+  c.resume = b.checkpoint;
+  CS_EXPECT(runDef(&c, &rc, &err) == CS_OK);
+  CS_EXPECT(sameDatasets(a.out, b.out, &rows));
+  CS_EXPECT(rc.t_end == ra.t_end && rc.steps == ra.steps &&
+            memcmp(rc.position, ra.position, sizeof ra.position) == 0);
+  /* an explicit --t-end still wins over the gait's end */
+  csRunDef e = a;
+  e.out = "ckpt_end_tend.h5";
+  e.checkpoint = NULL;
+  e.checkpoint_every = NAN; /* none (a checkpoint needs a file) */
+  e.t_end = rf.t_end;
+  CS_EXPECT(runDef(&e, &rb, &err) == CS_OK);
+  CS_EXPECT(fabs(rb.t_end - rf.t_end) < 1e-9);
+  readAttrString(e.out, "end_reason", why, sizeof why);
+  CS_EXPECT(strstr(why, "--t-end") != NULL);
+}
 static void test_strain_resumed_equals_uncut(void) { resumedEqualsUncut("strain"); }
 /* the adaptive step (its controller's memory is state: sim_adaptive.c) */
 static void test_strain_adaptive_resumed_equals_uncut(void) {
@@ -452,6 +542,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_rod_resumed_equals_uncut);
   CS_RUN(test_strain_resumed_equals_uncut);
   CS_RUN(test_gate_crawl_resumed_equals_uncut);
+  CS_RUN(test_gate_crawl_ends_the_run_when_the_table_is_over);
   CS_RUN(test_strain_adaptive_resumed_equals_uncut);
   CS_RUN(test_settling_resumed_equals_uncut);
   CS_RUN(test_other_definition_is_refused);

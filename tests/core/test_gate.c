@@ -34,6 +34,7 @@
 #include "cs_test.h"
 
 #define NGATE 34 /* gates in gaits/obstacle.gate */
+#define NCRAWL 3 /* its crawl statement's part of the state (boundaries read, z, skip; ship11) */
 #define STEP 1e-3
 
 
@@ -77,7 +78,8 @@ static void test_nominalNoWaitBitForBit(void) {
     return;
   }
   const int na = cs_simStateSize(a), nb = cs_simStateSize(b);
-  CS_EXPECT(nb == na + 3 + NGATE); /* next gate, hold, wait, the released waits */
+  CS_EXPECT(nb == na + 3 + NGATE + NCRAWL); /* next gate, hold, wait, the released waits, the
+                                               crawl's decision */
   double* xa = malloc(sizeof(double) * (size_t)nb);
   double* xb = malloc(sizeof(double) * (size_t)nb);
   csError err;
@@ -120,7 +122,7 @@ static int readWaits(double* t, char legs[][9], double* w, int max) {
 
 
 /* the gate's part of a state of size n */
-static const double* gatePart(const double* x, int n) { return x + n - 3 - NGATE; }
+static const double* gatePart(const double* x, int n) { return x + n - 3 - NGATE - NCRAWL; }
 
 
 /* lag x2: the waits equal the model's; restores repeat a wait */
@@ -167,10 +169,10 @@ static void test_lagWaitsAsModelAndRestores(void) {
   }
   /* a gate part that is not a gate state */
   memcpy(y1, x2, sizeof(double) * (size_t)n);
-  y1[n - 3 - NGATE] = 0.5;
+  y1[n - 3 - NGATE - NCRAWL] = 0.5;
   CS_EXPECT(cs_simStateSet(s, y1, &err) == CS_ERR_ARG && strstr(err.msg, "gate"));
-  y1[n - 3 - NGATE] = 1;
-  y1[n - 2 - NGATE] = -1;
+  y1[n - 3 - NGATE - NCRAWL] = 1;
+  y1[n - 2 - NGATE - NCRAWL] = -1;
   CS_EXPECT(cs_simStateSet(s, y1, &err) == CS_ERR_ARG);
   /* on to the third gate: each wait as the model's, within one step */
   CS_EXPECT(cs_simStateSet(s, x2, &err) == CS_OK);
@@ -404,7 +406,7 @@ static void test_badGateFileNamesLine(void) {
   csSim* c = cs_simCreate(&d, &err);
   CS_EXPECT(a && b && c);
   if (a && b && c) {
-    CS_EXPECT(cs_simStateSize(b) == cs_simStateSize(a) + 3 + NGATE);
+    CS_EXPECT(cs_simStateSize(b) == cs_simStateSize(a) + 3 + NGATE + NCRAWL);
     CS_EXPECT(cs_simStateSize(c) == cs_simStateSize(a));
   }
   cs_simDestroy(a);

@@ -1,5 +1,5 @@
 /* test_strain_driver.c: the strain leg level through the driver (`--legs strain`, the tree
- * coupling, sim_coupling.c), on the flat-road scene's own terrain, gait, calibration and rule
+ * coupling, sim_tree.c), on the flat-road scene's own terrain, gait, calibration and rule
  * (paper conditions):
  *  - it runs end to end through cs_step, and the legs carry the support: after settling the
  *    eight legs' base wrenches hold its weight (their vertical sum against m_s g, the support

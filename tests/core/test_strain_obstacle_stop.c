@@ -6,7 +6,7 @@
  * foot's nonsmooth contact held the tree step's damped Newton passes in a cycle of period four
  * (moves 2.0, 2.4, 0.94, 0.54, 2.0 ... e-4 mm) at every halving of the step down to 1/16, and
  * the whole climb stopped there (docs/notes/strain_leg.md "The obstacle's stop"); the retried
- * step's damping now stays once half the passes are spent (core/sim_coupling.c). Checked: every
+ * step's damping now stays once half the passes are spent (core/sim_tree.c). Checked: every
  * step succeeds, the time reaches 26.9 s, the support moves on (the crossing is the run's, not
  * a stand-still: > 1 mm in x over the 0.1 s, the robot crawls at ~60 mm/s here) and the feet's
  * forces stay finite. With the damping's old rule this test fails at 26.846 s with the

@@ -8,7 +8,8 @@
  *    offset o after a break delays every later row by o (p_held(t + o) = p(t) once the rows
  *    before the break have arrived), and rows past t_issued are not played;
  *  - the `crawl` statement reads its five numbers; bad ones (count, range, a gate after it or
- *    before it in time, a second one) fail naming file:line; the shipped gate has none;
+ *    before it in time, a second one) fail naming file:line; the shipped gate has one (12
+ *    slots, ship11);
  *  - csg_gateCrawlSkip, the crawl's rule on synthetic support positions: it ends the crawl
  *    (skips N - 1 - j slots) exactly when z + CARRY >= ZEND - (z - zprev) / 2, at boundaries of
  *    the release's phase with j >= 2 only;
@@ -151,7 +152,10 @@ static void test_crawlStatement(void) {
   }
   char path[1024];
   s = csg_gateRead(src("gaits/obstacle.gate", path, sizeof path), &err);
-  CS_EXPECT(s != NULL && s->crawl_n == 0); /* off unless the file asks */
+  /* the shipped gate asks for it since ship11 (tools/obstacle_gait.py's default --crawl-max 12,
+   * the statement's line in the file: 12 slots of 0.55 s from 27.39 s, to z 270 mm, carry 23) */
+  CS_EXPECT(s != NULL && s->crawl_n == 12 && fabs(s->crawl_t0 - 27.39) < 1e-12 &&
+            fabs(s->crawl_tpz - 0.55) < 1e-12 && s->crawl_zend == 270 && s->crawl_carry == 23);
   csg_gateDestroy(s);
 }
 

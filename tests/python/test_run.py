@@ -98,3 +98,29 @@ def test_callbacks_get_the_lines_and_nothing_is_printed(capfd):
 def test_progress_must_be_callable():
     with pytest.raises(crawlsim.Error, match="progress"):
         crawlsim.RunDef(progress=3)
+
+
+def test_run_ends_when_the_crawl_table_is_over(tmp_path):
+    """a gate with a crawl statement and no t_end: the run ends when the table's clock
+    (t - hold + skip) reaches the table's end (cs_runOverAt, as `crawlsim run`): a crawl that
+    skips 0.1 s ends the run 0.1 s before the same table with a crawl that never ends, and the
+    file says why"""
+    gait = tmp_path / "g.csv"
+    gait.write_text("time,A_II1_O1\n0,0\n0.5,0.05\n")
+    head = "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\ngate 0.05 AE\n"
+    ends = {}
+    for name, zend in (("skip", "-1e6"), ("full", "1e6")):
+        gate = tmp_path / (name + ".gate")
+        gate.write_text(head + "crawl 0.05 0.05 5 %s 0\n" % zend)
+        r = crawlsim.run(gait=str(gait), gate=str(gate), **FAST)
+        skip = float(r.tracks.attrs["crawl_skip_s"])
+        held = float(r.tracks.attrs["gate_held_s"])
+        reason = r.tracks.attrs["end_reason"]
+        reason = reason.decode() if isinstance(reason, bytes) else reason
+        ends[name] = (r.t_end, skip, held, reason)
+        assert r.tracks.t[-1] == pytest.approx(r.t_end, abs=1e-9)
+    t_full, skip_full, _, why_full = ends["full"]
+    t_skip, skip, held, why = ends["skip"]
+    assert skip_full == 0 and skip > 0 and "the table's end" in why_full
+    assert "the gait is over" in why and t_skip < t_full - 0.05
+    assert abs(t_skip - held + skip - t_full) <= 0.01 + 1e-9  # to the output row

@@ -347,7 +347,7 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
         }
       }
     }
-    /* the legs' globalisation (slot_trust; core/sim_coupling.c the same): the whole move
+    /* the legs' globalisation (slot_trust; core/sim_tree.c the same): the whole move
      * damped by the least fraction a leg allows */
     double amove = alpha;
     for (int k = 0; it > 0 && k < CSR_NLEG; k++) {
@@ -372,7 +372,7 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
       chg = fmax(chg, c);
     }
     it++;
-    /* converged as the driver's tree step (core/sim_coupling.c): this move, or what is left
+    /* converged as the driver's tree step (core/sim_tree.c): this move, or what is left
      * of the moves after it when an undamped pass contracts at a rate < 1 (chg rate /
      * (1 - rate)), is below tol */
     const double rate = chg / chg_last;
@@ -382,7 +382,7 @@ static inline int strainRobotStepIter(StrainRobot* r, double h, const double p96
     int conv = chg <= tol || (full && rate > 0 && rate < 1 && chg * rate / (1 - rate) <= tol);
     if (maxit > 1 && it > 1 && conv) {
       /* a leg that held a contact shape by its ghost drops it and the passes go on, undamped
-       * (csr_strainRelease; core/sim_coupling.c the same) */
+       * (csr_strainRelease; core/sim_tree.c the same) */
       int released = 0;
       for (int k = 0; k < CSR_NLEG; k++) {
         released += csr_strainRelease(r->m[k], r->d[k]);

@@ -578,17 +578,6 @@ static void bad_step_refused(void) {
 }
 
 
-/* the largest |a - b| over the largest |a| of n values */
-static double relDiff(const double* a, const double* b, int n) {
-  double dmax = 0, amax = 0;
-  for (int i = 0; i < n; i++) {
-    dmax = fmax(dmax, fabs(a[i] - b[i]));
-    amax = fmax(amax, fabs(a[i]));
-  }
-  return amax > 0 ? dmax / amax : dmax;
-}
-
-
 static void articulated_condensation_is_the_dense_one(void) {
   LegCal c;
   if (!openCal(&c)) {
@@ -633,8 +622,8 @@ static void articulated_condensation_is_the_dense_one(void) {
         double Za[36], ra[6], Zd[36], rd[6];
         CS_EXPECT(csr_strainPrepare(ma, da, h, Za, ra) == 0);
         CS_EXPECT(csr_strainPrepare(md, dd, h, Zd, rd) == 0);
-        wz = fmax(wz, relDiff(Zd, Za, 36));
-        wr = fmax(wr, relDiff(rd, ra, 6));
+        wz = fmax(wz, cs_relDiff(Zd, Za, 36));
+        wr = fmax(wr, cs_relDiff(rd, ra, 6));
         for (int k = 0; k < 36; k++) {
           zmax = fmax(zmax, fabs(Zd[k]));
         }
@@ -666,7 +655,7 @@ static void articulated_condensation_is_the_dense_one(void) {
         csr_strainGetState(ma, da, ya);
         csr_strainGetState(md, dd, yd);
         /* q and η (the contact history and the rest are not the condensation's) */
-        wy = fmax(wy, relDiff(yd, ya, 2 * ma->n));
+        wy = fmax(wy, cs_relDiff(yd, ya, 2 * ma->n));
       }
       printf("  bend order %d, sub %d (n %d): Z %.2e, rho %.2e, the leg's q and rates %.2e "
              "(relative; |Z| up to %.3g)\n", bends[cfg], subs[cfg], ma->n, wz, wr, wy, zmax);

@@ -55,7 +55,7 @@ static double footX(Rig* r) {
 
 
 /* one step of h to the base b1 (pose and velocity at the step's end); 0 ok. gKept: Newton's
- * passes with the base prescribed, as the driver's tree step (core/sim_coupling.c with its
+ * passes with the base prescribed, as the driver's tree step (core/sim_tree.c with its
  * defaults): back-substitute, stop when no mode moved more than 1e-6 (mm, the tree's measure)
  * and no contact ghost is released, else linearise at the iterate again; a move that did not
  * shrink below 0.9 of the last halves the next (down to 1/8) */

@@ -312,12 +312,13 @@ fi
 expect_fail1 "obstacle_gait bad --up-band" "obstacle_gait.py: --up-band takes two numbers" \
   "$PY" "$OG" --up-short 30 --up-band 5,5 -o "$TMP/bad.gait"
 
-# tools/obstacle_gait.py --gate-from: the shipped gate is the shipped description's (the same
-# statements); a lift is a pair's first move into a step, to AM or AP by its stance offset (rule
-# 17's B, F lift to AP10 at 7.4 s) or U0, never its move over (k3's D, H climb at 9.4 s: AM15,
+# tools/obstacle_gait.py --gate-from: the shipped gate's gates are the shipped description's (the
+# same statements; --gate-from writes no crawl statement, the shipped gate has one); a lift is a
+# pair's first move into a step, to AM or AP by its stance offset (rule 17's B, F lift to AP10 at 7.4 s) or U0, never its move over (k3's D, H climb at 9.4 s: AM15,
 # then over to U0 at 9.6 s)
 if "$PY" "$OG" --gate-from "$ROOT/gaits/obstacle.gait" --gate-out "$TMP/g.gate" >"$TMP/out.txt" 2>&1 &&
-   cmp -s <(stmts "$TMP/g.gate") <(stmts "$ROOT/gaits/obstacle.gate") &&
+   ! grep -q '^crawl' "$TMP/g.gate" &&
+   cmp -s <(stmts "$TMP/g.gate") <(stmts "$ROOT/gaits/obstacle.gate" | grep -v '^crawl') &&
    grep -q '^move 7.4000 [0-9.]* BF AP10$' "$ROOT/gaits/obstacle.gait" &&
    grep -q '^gate 7.4000 CG  # lift of BF' "$TMP/g.gate" &&
    "$PY" "$OG" --up-short -1 -o "$TMP/k3g.gait" --gate-out "$TMP/k3g.gate" >>"$TMP/out.txt" 2>&1 &&
@@ -328,18 +329,24 @@ else
   bad "obstacle_gait --gate-from: the shipped gate; a lift to AP gated, a move over to U0 not" "$TMP/out.txt"
 fi
 
-# tools/obstacle_gait.py --crawl-max (issue 33, the crawl ended on the measured support): off by
-# default (the shipped gate above has no crawl statement); --crawl-max 12 writes 12 lateral
-# slots from the crawl's start the description names and the gate's `crawl` statement there,
-# the gates before it the shipped ones; N < 3 is refused
-if "$PY" "$OG" --crawl-max 12 -o "$TMP/c12.gait" --gate-out "$TMP/c12.gate" >"$TMP/out.txt" 2>&1 &&
-   ! grep -q '^crawl' "$ROOT/gaits/obstacle.gate" &&
+# tools/obstacle_gait.py --crawl-max (issue 33, the crawl ended on the measured support): 12 by
+# default since ship11 (the shipped description and gate, byte for byte, the gate's `crawl`
+# statement at the crawl's start the description names: 12 lateral slots); --crawl-max 0 writes
+# the table shipped before (8 slots = zend / (Dz / 2), no statement, the same gates); N < 3 is
+# refused
+if "$PY" "$OG" -o "$TMP/c12.gait" --gate-out "$TMP/c12.gate" >"$TMP/out.txt" 2>&1 &&
+   cmp -s "$TMP/c12.gait" "$ROOT/gaits/obstacle.gait" &&
+   cmp -s <(stmts "$TMP/c12.gate") <(stmts "$ROOT/gaits/obstacle.gate") &&
    T0=$(sed -n 's/^# the lateral crawl: 12 slots of 0.55 s from \([0-9.]*\) s.*/\1/p' "$TMP/c12.gait") &&
    [ -n "$T0" ] && grep -q "^crawl $T0""00 0.55 12 270 23\$" "$TMP/c12.gate" &&
-   cmp -s <(stmts "$TMP/c12.gate" | grep -v '^crawl') <(stmts "$ROOT/gaits/obstacle.gate"); then
-  ok "obstacle_gait --crawl-max: off by default; 12 slots and the gate's crawl statement"
+   "$PY" "$OG" --crawl-max 0 -o "$TMP/c0.gait" --gate-out "$TMP/c0.gate" >>"$TMP/out.txt" 2>&1 &&
+   grep -q '^# the lateral crawl: 8 slots of 0.55 s from' "$TMP/c0.gait" &&
+   ! grep -q '^crawl' "$TMP/c0.gate" &&
+   cmp -s <(stmts "$TMP/c0.gate") <(stmts "$ROOT/gaits/obstacle.gate" | grep -v '^crawl') &&
+   ! cmp -s <(stmts "$TMP/c0.gait") <(stmts "$ROOT/gaits/obstacle.gait"); then
+  ok "obstacle_gait --crawl-max: 12 by default (the shipped files); 0 writes 8 slots and no crawl statement"
 else
-  bad "obstacle_gait --crawl-max: off by default; 12 slots and the gate's crawl statement" "$TMP/out.txt"
+  bad "obstacle_gait --crawl-max: 12 by default (the shipped files); 0 writes 8 slots and no crawl statement" "$TMP/out.txt"
 fi
 expect_fail1 "obstacle_gait bad --crawl-max" "obstacle_gait.py: --crawl-max takes N >= 3" \
   "$PY" "$OG" --crawl-max 2 -o "$TMP/bad.gait"
@@ -419,7 +426,8 @@ moves = [(float(m[0]), float(m[1]), m[2], m[3], bool(m[4])) for m in
 lands = sorted(t + d for t, d, legs, pose, lin in moves if pose.startswith('L15P') and not lin)
 lifts = sorted(t for t, d, legs, pose, lin in moves if pose.startswith('VLM'))
 gaps = [round(lf - ld, 4) for ld, lf in zip(lands, lifts)]
-assert len(lifts) == 7 and all(g == 0.1 for g in gaps), gaps   # 8 slots: 7 hand-overs
+nslots = int(re.search(r'# the lateral crawl: (\d+) slots', crawl).group(1))  # 12 since ship11
+assert nslots >= 3 and len(lifts) == nslots - 1 and all(g == 0.1 for g in gaps), gaps  # N - 1 hand-overs
 print('hand-overs', gaps)
 PYEOF
 then

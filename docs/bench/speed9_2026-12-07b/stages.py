@@ -6,7 +6,8 @@ second by stage (inclusive counts, callgrind_annotate --inclusive=yes; the "acro
 parts of the legs' stages above them), the tree tries and passes, and the instructions per leg
 pass (the legs' first passes and iterates over the calls that make them). Stages as
 ../strainspeed_2026-12-06f/stages.py, with the calibration's RBF field apart (and, branch
-speed9, the articulated condensation). Source annotation off (--auto=no, branch speed11): with
+speed9, the articulated condensation; branch speed12, its kept iterates' solve, the contact's
+dense blocks and the inertia's assembly by name). Source annotation off (--auto=no, branch speed11): with
 the profile's sources present its call lines entered the by-name sums (the inertia and the
 recursion rows read half)."""
 import re, subprocess, sys
@@ -33,6 +34,8 @@ ROWS = [
      ["csc_softComputeShape", "csc_softShapeJacobian", "csc_softUpdateShapeLoad"]),
     ("across: the articulated condensation (csr_strainCondenseArtic_)",
      ["csr_strainCondenseArtic_"]),
+    ("across: the recursion's kept solve (csr_strainArticSolve_)", ["csr_strainArticSolve_"]),
+    ("across: the contact's W blocks (csr_strainShapeW_)", ["csr_strainShapeW_"]),
     ("across: memcpy + memset", ["__memcpy_avx_unaligned_erms", "__memset_avx2_unaligned_erms"]),
 ]
 WIN = re.compile(r"window \[([\d.e+-]+), ([\d.e+-]+)\] s: (\d+) macro steps \((\d+) rejected\), "
