@@ -190,6 +190,12 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
             "before is down, read from the chamber pressures against the design's (ramp %g s, "
             "lag %g s, within %g MPa, at most %g s a gate; gaits_gate.h)", plan->gate,
             m->gate->n, m->gate->ramp, m->gate->lag, m->gate->ptol, m->gate->maxwait);
+    int nx = 0;
+    for (int k = 0; k < m->gate->n; k++) nx += isfinite(m->gate->gate[k].xmin);
+    if (nx > 0) {
+      logLine(def, "gate %s: %d of them also wait until the measured support stands at their x "
+              "(gaits_gate.h `x XMIN`)", plan->gate, nx);
+    }
     if (m->gate->crawl_n > 0) {
       logLine(def, "gate %s: the lateral crawl (%d slots of %g s from %g s) ends on the measured "
               "support z: at a boundary of the release's phase when z + %g mm >= %g mm less half "

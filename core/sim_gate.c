@@ -115,12 +115,14 @@ void cs_gateDecide(const csModel* m, csData* d) {
    * instead of the table: the gate neither tests nor holds meanwhile */
   if (!m->pressure_source && d->t >= 0 && gi < s->n && tau >= s->gate[gi].t - GATE_TIME_TOL) {
     /* the valves' command: the last row issued (the table's clock is at tau) */
-    double v[CSG_NLABEL];
+    double v[CSG_NLABEL], pos[3];
     csgScheduleOptions o = m->sched;
     o.ramp = 0; /* the rows themselves */
     csg_scheduleEval(m->gait, &o, tau + 1e-12, v);
+    cs_supportDisplacement(d, pos); /* mm: the measured support, for a gate's `x XMIN` */
     while (gi < s->n && tau >= s->gate[gi].t - GATE_TIME_TOL) {
-      if (w >= s->maxwait - GATE_TIME_TOL || csg_gateDown(&s->gate[gi], d->p, v, s->ptol)) {
+      if (w >= s->maxwait - GATE_TIME_TOL ||
+          csg_gateReady(&s->gate[gi], d->p, v, s->ptol, pos[0])) {
         gi++;
         w = 0;
       } else {

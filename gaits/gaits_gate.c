@@ -25,6 +25,11 @@ int csg_gateDown(const csgGate* g, const double* p, const double* v, double ptol
 }
 
 
+int csg_gateReady(const csgGate* g, const double* p, const double* v, double ptol, double x) {
+  return csg_gateDown(g, p, v, ptol) && x >= g->xmin;
+}
+
+
 void csg_gateLegs(unsigned legs, char* out) {
   int n = 0;
   for (int l = 0; l < CSG_NLEG; l++) {
@@ -86,14 +91,14 @@ static csStatus statementDesign(csgGateSet* s, char** w, int nw, int* seen, cons
 }
 
 
-/* `gate T LEGS` */
+/* `gate T LEGS [x XMIN]` */
 static csStatus statementGate(csgGateSet* s, char** w, int nw, int seen, const char* path,
                               int line, csError* err) {
   if (!seen) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'gate' before the 'design' line", path, line);
   }
-  if (nw != 3) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'gate' needs T LEGS", path, line);
+  if (nw != 3 && !(nw == 5 && !strcmp(w[3], "x"))) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'gate' needs T LEGS [x XMIN]", path, line);
   }
   if (s->n >= CSG_GATE_MAX) {
     return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: more than %d gates", path, line, CSG_GATE_MAX);
@@ -101,6 +106,11 @@ static csStatus statementGate(csgGateSet* s, char** w, int nw, int seen, const c
   csgGate* g = &s->gate[s->n];
   memset(g, 0, sizeof *g);
   g->line = line;
+  g->xmin = -INFINITY;
+  if (nw == 5 && !number(w[4], &g->xmin)) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: x '%.40s' is not a finite number (mm)", path,
+                       line, w[4]);
+  }
   if (!number(w[1], &g->t)) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: '%.40s' is not a finite number", path, line,
                        w[1]);

@@ -25,9 +25,13 @@
  *   design ramp R lag TAU ptol P maxwait W
  *       once, before any gate: the design's actuation time R (s, >= 0), pneumatic lag TAU
  *       (s, > 0), the tolerance P (MPa, >= 0) and the longest wait W (s, > 0)
- *   gate T LEGS
+ *   gate T LEGS [x XMIN]
  *       a gate at table time T (s, >= 0, not decreasing from one gate to the next) waiting for
- *       LEGS (letters A..H, each once)
+ *       LEGS (letters A..H, each once); with `x XMIN` it also waits until the support's
+ *       measured displacement along x (mm, the state's) is at least XMIN: a condition on
+ *       where the support stands, not on the clock (issue 33, docs/notes/obstacle.md "ramp11":
+ *       a landing planned from the hips needs the support near the plan). The same maxwait
+ *       releases it.
  *   crawl T0 TPZ N ZEND CARRY
  *       at most once, after the gates (T0 >= every gate's T): the table's lateral crawl ends on
  *       the measured support (issue 33, docs/notes/obstacle.md "crawl10"). The table has N
@@ -57,6 +61,7 @@ typedef struct csgGate_ {
   double t;     /* s: table time of the lift it holds */
   unsigned legs; /* bit k: leg k (A..H) waited for */
   int line;     /* of its `gate` statement */
+  double xmin;  /* mm: the support's x it also waits for (`x XMIN`; -INFINITY: none) */
   double p_design[CSG_NLABEL]; /* MPa: the design's chamber pressures at t (filled by the
                                   player at load, core/sim_gate.c; 0 from the reader) */
 } csgGate;
@@ -86,6 +91,10 @@ void csg_gateDestroy(csgGateSet* s);
 /* The rule above for one gate (pure): p the measured pressures (96), v the valves' commands
  * (96), g's legs and design pressures, ptol. 1 down, 0 not. */
 int csg_gateDown(const csgGate* g, const double* p, const double* v, double ptol);
+
+/* The gate's whole test (pure): csg_gateDown and the support's measured x (mm) >= g->xmin.
+ * 1 ready to release, 0 not. */
+int csg_gateReady(const csgGate* g, const double* p, const double* v, double ptol, double x);
 
 /* The crawl's rule at one boundary (pure): z the support's measured z (mm) at the end of slot
  * j, zprev at the end of slot j - 2. Returns the slots to skip (N - 1 - j) when the crawl ends

@@ -214,6 +214,20 @@ ap.add_argument('--gate-ptol', type=float, default=0.005,
                 'table\'s 0.4 MPa range)')
 ap.add_argument('--gate-maxwait', type=float, default=None,
                 help='the longest wait of a gate, s (default --Tp: one walk slot)')
+ap.add_argument('--gate-land', default=None, metavar='T0:T1',
+                help='with --gate-out: also gate each wave set-down of a pair (its first move from a '
+                'swing pose A* or U0 to a stance pose) lifting at table times T0..T1 s on the pair '
+                'itself: the foot is lowered only once its chambers are as near the swing pose as '
+                'designed (issue 33, docs/notes/obstacle.md "ramp11"); off by default')
+ap.add_argument('--gate-swing', default=None, metavar='T0:T1',
+                help='with --gate-out: also gate each swing of a pair lifting at table times '
+                'T0..T1 s (its move from the lift pose on to the next swing pose) on the pair '
+                'itself: the foot swings forward only once it is lifted as designed (issue 33, '
+                'docs/notes/obstacle.md "ramp11"); off by default')
+ap.add_argument('--gate-x', default=None, metavar='MM:T0:T1',
+                help='with --gate-out: each gate at table times T0..T1 s (lifts, and set-downs of '
+                '--gate-land) also waits until the measured support stands at most MM behind the '
+                'plan\'s x at its time (`gate T LEGS x XMIN`, gaits/gaits_gate.h); off by default')
 ap.add_argument('--crawl-max', type=int, default=12, metavar='N',
                 help='the lateral crawl ended on the measured support (issue 33, '
                 'docs/notes/obstacle.md "crawl10"): write N lateral slots (instead of zend / '
@@ -233,6 +247,21 @@ if a.crawl_max is not None and (a.crawl_max < 3 or a.zgroups != 2 or a.gate_from
     sys.exit('obstacle_gait.py: --crawl-max takes N >= 3, with the two-group crawl '
              '(--zgroups 2) and a table written here (not --gate-from)')
 CRAWL = None  # (first slot's table time s, slot s, slots) once the crawl is written
+try:
+    LAND = tuple(float(v) for v in a.gate_land.split(':')) if a.gate_land else None
+    assert LAND is None or len(LAND) == 2
+except (ValueError, AssertionError):
+    sys.exit('obstacle_gait.py: --gate-land takes T0:T1 (s)')
+try:
+    SWING = tuple(float(v) for v in a.gate_swing.split(':')) if a.gate_swing else None
+    assert SWING is None or len(SWING) == 2
+except (ValueError, AssertionError):
+    sys.exit('obstacle_gait.py: --gate-swing takes T0:T1 (s)')
+try:
+    GX = tuple(float(v) for v in a.gate_x.split(':')) if a.gate_x else None
+    assert GX is None or (len(GX) == 3 and not a.gate_from)
+except (ValueError, AssertionError):
+    sys.exit('obstacle_gait.py: --gate-x takes MM:T0:T1 (mm, s), with a table written here')
 DC = a.D if a.Dclimb is None else a.Dclimb
 
 
@@ -242,7 +271,7 @@ def gate_text(lines, source):
     names the lift pose, AM behind the hip, AP ahead of it, as rule 17's B, F lift at 7.4 s),
     each after the first waiting for the last other pair that lifted (the rule of
     docs/bench/obst_2026-12-06e/gatelib.py Gates)"""
-    lifts, swinging = [], {}
+    lifts, swinging, lands, lifted = [], {}, [], {}
     for line in sorted((ln for ln in lines if ln.startswith('move ')),
                        key=lambda ln: float(ln.split()[1])):
         p = line.split()
@@ -251,6 +280,14 @@ def gate_text(lines, source):
         air = p[4].startswith('AM') or p[4].startswith('AP') or p[4] == 'U0'
         if air and not swinging.get(p[3]):
             lifts.append((float(p[1]), p[3]))
+            lifted[p[3]] = float(p[1])
+        if not air and swinging.get(p[3]) and LAND and LAND[0] <= lifted[p[3]] <= LAND[1]:
+            # --gate-land: the set-down waits for the pair itself (its swing pose arrived)
+            lands.append((float(p[1]), p[3], 'set-down'))
+        if air and swinging.get(p[3]) and lifted[p[3]] < float(p[1]) and SWING and \
+                SWING[0] <= lifted[p[3]] <= SWING[1]:
+            # --gate-swing: the move on from the lift pose waits for the pair itself (lifted)
+            lands.append((float(p[1]), p[3], 'swing'))
         swinging[p[3]] = air
     lifts.sort()
     out = ['# the landing gate of %s (gaits/gaits_gate.h), written by\n#   %s\n'
@@ -258,10 +295,20 @@ def gate_text(lines, source):
            % (source, ' '.join(['tools/obstacle_gait.py'] + sys.argv[1:])),
            'design ramp %g lag %g ptol %g maxwait %g\n'
            % (a.gate_ramp, a.gate_lag, a.gate_ptol, a.Tp if a.gate_maxwait is None else a.gate_maxwait)]
+    def xmin(t):
+        # --gate-x: the plan's support x at t (XP at the slots' starts, linear between: rule 3)
+        if not GX or not GX[1] <= t <= GX[2]:
+            return ''
+        return ' x %.3f' % (next(XP[i] + (t - T0[i]) / (T0[i + 1] - T0[i]) * (XP[i + 1] - XP[i])
+                                 for i in range(len(T0) - 1) if T0[i] <= t < T0[i + 1]) - GX[0])
+    gates = []
     for i in range(1, len(lifts)):
         prev = [q for _, q in lifts[:i] if q != lifts[i][1]]
         if prev:
-            out.append('gate %.4f %s  # lift of %s\n' % (lifts[i][0], prev[-1], lifts[i][1]))
+            gates.append((lifts[i][0], 0, 'gate %.4f %s%s  # lift of %s\n'
+                          % (lifts[i][0], prev[-1], xmin(lifts[i][0]), lifts[i][1])))
+    gates += [(t, 1, 'gate %.4f %s%s  # %s of %s\n' % (t, q, xmin(t), k, q)) for t, q, k in lands]
+    out += [g for _, _, g in sorted(gates)]
     if len(out) == 2:
         sys.exit('obstacle_gait.py: %s has no wave lifts to gate' % source)
     if a.crawl_max is not None and CRAWL:

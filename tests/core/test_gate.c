@@ -18,6 +18,11 @@
  *    skips 2 slots, and the two runs are the same up to the decision and differ after it (the
  *    valves play the table 0.2 s on); two restores from before the decision run to the same
  *    state bit for bit and make the uncut run's decision; a crawl part that is not a state is refused;
+ *  - a gate's `x XMIN` (ramp11): with an XMIN every support has passed the run is the same
+ *    gate's without it bit for bit; with one no support reaches it holds the file's maxwait;
+ *    with XMIN 0.5 mm past where the support stands when the gate is reached it holds, and
+ *    at every step's start it holds exactly while the measured support x is short of XMIN
+ *    (until maxwait); two restores from inside that wait run to the same state bit for bit;
  *  - a malformed .gate file fails cs_simCreate with a message naming the file and line; a
  *    user's gait gets no gate by default. */
 #include <math.h>
@@ -266,6 +271,97 @@ static void test_crawlDecidesAndRestores(void) {
 }
 
 
+/* a gate's `x XMIN`: one gate at 4.2 s (C, G's lift in the walk), maxwait 0.3 s */
+#define XGATE(x) "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.3\ngate 4.2 CG" x "\n"
+#define XT 4.2
+#define XWAIT 0.3
+
+static void test_supportXHolds(void) {
+  char text[256];
+  cs_testWriteText("x_plain.gate", XGATE(""));
+  cs_testWriteText("x_free.gate", XGATE(" x -1e6"));
+  cs_testWriteText("x_never.gate", XGATE(" x 1e6"));
+  csSim* plain = make("x_plain.gate", 0);
+  csSim* fr = make("x_free.gate", 0);
+  csSim* nv = make("x_never.gate", 0);
+  CS_EXPECT(plain && fr && nv);
+  if (!plain || !fr || !nv) {
+    cs_simDestroy(plain);
+    cs_simDestroy(fr);
+    cs_simDestroy(nv);
+    return;
+  }
+  const int n = cs_simStateSize(fr);
+  double* buf = malloc(sizeof(double) * 5 * (size_t)n);
+  CS_EXPECT(buf != NULL);
+  if (!buf) return;
+  double *a = buf, *b = buf + n, *w = buf + 2 * n, *y0 = buf + 3 * n, *y1 = buf + 4 * n;
+  csError err;
+  /* where the support stands when the gate is reached (the plain run's, read now) */
+  runTo(plain, XT);
+  double pos[3], q[4];
+  cs_simSupportPose(plain, pos, q);
+  const double xmin = pos[0] + 0.5;
+  snprintf(text, sizeof text, XGATE(" x %.17g"), xmin);
+  cs_testWriteText("x_mid.gate", text);
+  csSim* mid = make("x_mid.gate", 0);
+  CS_EXPECT(mid != NULL);
+  /* an XMIN every support has passed: the plain gate's run bit for bit */
+  runTo(plain, XT + 0.4);
+  runTo(fr, XT + 0.4);
+  cs_simStateGet(plain, a);
+  cs_simStateGet(fr, b);
+  CS_EXPECT(!memcmp(a, b, sizeof(double) * (size_t)n));
+  CS_EXPECT(b[n - 4] == 1 && b[n - 3] == 0); /* released, no hold (valves as designed) */
+  /* one no support reaches: the file's maxwait, within one step */
+  runTo(nv, XT + 0.4);
+  cs_simStateGet(nv, w);
+  CS_EXPECT(w[n - 4] == 1);
+  CS_EXPECT_NEAR(w[n - 1], XWAIT, 1.01 * STEP, 0);
+  printf("x -1e6: the plain gate's run bit for bit; x 1e6: held %.4f s (maxwait %g s)\n",
+         w[n - 1], XWAIT);
+  /* XMIN just past the support: held while x < XMIN at a step's start, released at the first
+   * step that starts with x >= XMIN or at maxwait */
+  int held = 0, bad = 0, saved = 0;
+  double x_rel = 0;
+  runTo(mid, XT - 0.01);
+  while (mid && cs_simTime(mid) < XT + 0.4) {
+    cs_simStateGet(mid, a);
+    cs_simSupportPose(mid, pos, q);
+    CS_EXPECT(cs_simStep(mid, &err) == CS_OK);
+    cs_simStateGet(mid, b);
+    if (a[n - 4] == 0 && b[n - 4] == 0 && b[n - 2] > 0) { /* held this step */
+      held++;
+      bad += pos[0] >= xmin;
+      if (!saved && held == 3) {
+        memcpy(y0, a, sizeof(double) * (size_t)n); /* a state inside the wait */
+        saved = 1;
+      }
+    } else if (a[n - 4] == 0 && b[n - 4] == 1) { /* released this step */
+      bad += pos[0] < xmin && a[n - 2] < XWAIT - 1e-9;
+      x_rel = pos[0];
+    }
+  }
+  CS_EXPECT(held > 0 && bad == 0 && saved);
+  printf("x %.4f mm (0.5 past the support at the gate): held %d steps, %s at x %.4f mm\n", xmin,
+         held, b[n - 1] < XWAIT - 1e-9 ? "released by x" : "released by maxwait", x_rel);
+  /* two restores from inside the wait: the same state bit for bit, the same wait */
+  if (saved) {
+    for (int k = 0; k < 2; k++) {
+      CS_EXPECT(cs_simStateSet(mid, y0, &err) == CS_OK);
+      runTo(mid, XT + 0.4);
+      cs_simStateGet(mid, k ? y1 : w);
+    }
+    CS_EXPECT(!memcmp(w, y1, sizeof(double) * (size_t)n) && w[n - 1] == b[n - 1]);
+  }
+  free(buf);
+  cs_simDestroy(plain);
+  cs_simDestroy(fr);
+  cs_simDestroy(nv);
+  cs_simDestroy(mid);
+}
+
+
 /* malformed files: file and line; --gate none and a user's gait: no gate */
 static void test_badGateFileNamesLine(void) {
   static const struct {
@@ -280,6 +376,7 @@ static void test_badGateFileNamesLine(void) {
       {"design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\ngate nan AE\n", ":2:"},
       {"design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\n# none\n", ":2:"},
       {"design ramp 0.05 lag 0.02 ptol 0.005\ngate 2.6 AE\n", ":1:"},
+      {"design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\ngate 2.6 AE x inf\n", ":2:"},
   };
   for (size_t k = 0; k < sizeof kBad / sizeof kBad[0]; k++) {
     char path[64];
@@ -322,6 +419,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_badGateFileNamesLine);
   CS_RUN(test_crawlDecidesAndRestores);
+  CS_RUN(test_supportXHolds);
   CS_RUN(test_nominalNoWaitBitForBit);
   CS_RUN(test_lagWaitsAsModelAndRestores);
   return cs_testSummary();

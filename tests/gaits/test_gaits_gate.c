@@ -12,7 +12,10 @@
  *    slots, ship11);
  *  - csg_gateCrawlSkip, the crawl's rule on synthetic support positions: it ends the crawl
  *    (skips N - 1 - j slots) exactly when z + CARRY >= ZEND - (z - zprev) / 2, at boundaries of
- *    the release's phase with j >= 2 only. */
+ *    the release's phase with j >= 2 only;
+ *  - a gate's `x XMIN` (issue 33, ramp11): it reads, a gate without it has none (-inf), bad
+ *    ones fail naming file:line; csg_gateReady on synthetic pressures and support positions:
+ *    ready only when the pair is down and the support stands at XMIN or past it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -181,12 +184,63 @@ static void test_crawlRule(void) {
 }
 
 
+static void test_supportX(void) {
+  csError err;
+  cs_testWriteText("x_ok.gate", DESIGN "gate 2.6 AE\ngate 3.4 DH x 12.5  # a set-down\n");
+  csgGateSet* s = csg_gateRead("x_ok.gate", &err);
+  CS_EXPECT(s != NULL);
+  if (s) {
+    CS_EXPECT(s->n == 2 && isinf(s->gate[0].xmin) && s->gate[0].xmin < 0 &&
+              s->gate[1].xmin == 12.5 && s->gate[1].t == 3.4);
+  }
+  csg_gateDestroy(s);
+  static const char* kBad[] = {
+      DESIGN "gate 2.6 AE x\n",        /* no number */
+      DESIGN "gate 2.6 AE x twelve\n", /* not a number */
+      DESIGN "gate 2.6 AE x nan\n",    /* not finite */
+      DESIGN "gate 2.6 AE y 12\n",     /* not `x` */
+      DESIGN "gate 2.6 AE x 12 13\n",  /* one word too many */
+  };
+  for (size_t k = 0; k < sizeof kBad / sizeof kBad[0]; k++) {
+    char path[64], want[96];
+    snprintf(path, sizeof path, "x_bad%zu.gate", k);
+    cs_testWriteText(path, kBad[k]);
+    cs_errorClear(&err);
+    s = csg_gateRead(path, &err);
+    snprintf(want, sizeof want, "%s:2:", path);
+    CS_EXPECT(s == NULL && strstr(err.msg, want) != NULL);
+    printf("%s\n", err.msg);
+    csg_gateDestroy(s);
+  }
+  /* the rule: leg A (chambers 0..11) commanded 0.2 MPa, designed at 0.19 */
+  csgGate g;
+  memset(&g, 0, sizeof g);
+  g.legs = 1u;
+  g.xmin = 100;
+  double p[CSG_NLABEL] = {0}, v[CSG_NLABEL] = {0};
+  for (int c = 0; c < 12; c++) {
+    v[c] = 0.2;
+    g.p_design[c] = 0.19;
+    p[c] = 0.195;
+  }
+  CS_EXPECT(csg_gateReady(&g, p, v, 0.005, 100) == 1);  /* down, at XMIN */
+  CS_EXPECT(csg_gateReady(&g, p, v, 0.005, 99.5) == 0); /* down, 0.5 mm short */
+  p[3] = 0.18;                                          /* one chamber behind the design */
+  CS_EXPECT(csg_gateReady(&g, p, v, 0.005, 150) == 0);
+  g.xmin = -INFINITY; /* no `x`: the pressures alone */
+  CS_EXPECT(csg_gateReady(&g, p, v, 0.005, -1e9) == 0);
+  p[3] = 0.195;
+  CS_EXPECT(csg_gateReady(&g, p, v, 0.005, -1e9) == 1);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_shippedGateReads);
   CS_RUN(test_downRule);
   CS_RUN(test_crawlStatement);
   CS_RUN(test_crawlRule);
+  CS_RUN(test_supportX);
   CS_RUN(test_heldRowsDelay);
   return cs_testSummary();
 }

@@ -351,6 +351,28 @@ fi
 expect_fail1 "obstacle_gait bad --crawl-max" "obstacle_gait.py: --crawl-max takes N >= 3" \
   "$PY" "$OG" --crawl-max 2 -o "$TMP/bad.gait"
 
+# tools/obstacle_gait.py --gate-land / --gate-x (issue 33, ramp11; off by default: the shipped
+# gate above has neither): the description is the same; --gate-land 13.3:13.4 adds one gate, the
+# set-down of the pair lifting in that window (A, E's step down), on the pair itself; --gate-x
+# 25:13.7:13.8 gives it `x XMIN`, the plan's support x there less 25 mm, between the plan's x at
+# the cycles around it (cycle 3's less 25 and cycle 4's less 25)
+if "$PY" "$OG" -o "$TMP/gp.gait" --gate-out "$TMP/gp.gate" >"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --gate-land 13.3:13.4 --gate-x 25:13.7:13.8 -o "$TMP/gl.gait" \
+     --gate-out "$TMP/gl.gate" >>"$TMP/out.txt" 2>&1 &&
+   ! grep -q 'set-down\| x ' "$ROOT/gaits/obstacle.gate" && cmp -s "$TMP/gp.gait" "$TMP/gl.gait" &&
+   [ "$(diff <(stmts "$TMP/gp.gate") <(stmts "$TMP/gl.gate") | grep -c '^[<>]')" = 1 ] &&
+   L=$(diff <(stmts "$TMP/gp.gate") <(stmts "$TMP/gl.gate") | sed -n 's/^> //p') &&
+   X=$(echo "$L" | sed -n 's/^gate 13.7100 AE x \([0-9.]*\)  # set-down of AE$/\1/p') &&
+   X3=$(sed -n 's/^# cycle 3 from [0-9.]* s: support planned at x + \([0-9]*\) mm$/\1/p' "$TMP/gl.gait") &&
+   X4=$(sed -n 's/^# cycle 4 from [0-9.]* s: support planned at x + \([0-9]*\) mm$/\1/p' "$TMP/gl.gait") &&
+   awk -v x="$X" -v a="$X3" -v b="$X4" 'BEGIN { exit !(x > a - 25 && x < b - 25) }'; then
+  ok "obstacle_gait --gate-land/--gate-x: off by default; A, E's set-down gated at x $X (plan $X3..$X4 less 25)"
+else
+  bad "obstacle_gait --gate-land/--gate-x: off by default; one set-down gate with x" "$TMP/out.txt"
+fi
+expect_fail1 "obstacle_gait bad --gate-x" "obstacle_gait.py: --gate-x takes MM:T0:T1" \
+  "$PY" "$OG" --gate-x 25:13 -o "$TMP/bad.gait"
+
 # tools/obstacle_gait.py rule 18 (--push): off by default (--push 0 writes the shipped description
 # byte for byte); --push 1 writes one slot, before the rear pair's step toward the up edge, in
 # which no pair lifts (only linear stance moves start in it) and the wave has fewer lifts; a
