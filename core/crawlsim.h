@@ -77,9 +77,8 @@ typedef struct csRunDef {
   int n_actuator_set;        /* 0..32 */
   double friction;           /* Coulomb coefficient of every contact (NaN: 0.8) */
   double pressure_scale;     /* multiplies every gait pressure (1) */
-  double t_end;              /* s; 0: the gait's last row plus one ramp (with a gate's crawl
-                                statement: when the table's clock reaches it, sim_model.h
-                                cs_runOverAt) */
+  double t_end;              /* s; 0: the gait's last row plus one ramp (with a gate: when
+                                the table's clock reaches it, sim_model.h cs_runOverAt) */
   double dt;                 /* ODE step, s, (0, 0.01] (NaN: 1e-3, strain: its own) */
   double output_dt;          /* output sampling interval, s (NaN: 0.01) */
   double ramp;               /* pressure ramp: each gait row's change takes it, s (NaN: the

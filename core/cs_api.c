@@ -136,7 +136,11 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
   }
   logLine(def, "scene %s, gait %s, legs %s, friction %.3g, t_end %.3g s, robot mass %.1f g",
         m->scene, m->gait ? plan->gait : "none (commands)", cs_modelLegLevel(m), m->contact.mu,
-        cs_modelEndTime(m), cs_robotMass(d) * 1e6);
+        cs_modelTableEnd(m), cs_robotMass(d) * 1e6);
+  if (cs_modelEndTime(m) > cs_modelTableEnd(m)) {
+    logLine(def, "the run ends when the table's clock reaches t_end (the gate holds it): %.4g s "
+            "at the latest", cs_modelEndTime(m));
+  }
   logLine(def, "conditions %s (%s): %s", cs_conditionsName(m->conditions),
         cs_conditionsSourceName(plan->cond_src), cs_conditionsWhat(m->conditions));
   if (m->gait) {

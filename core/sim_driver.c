@@ -146,7 +146,7 @@ csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
 }
 
 
-double cs_modelEndTime(const csModel* m) {
+double cs_modelTableEnd(const csModel* m) {
   if (m->opt.t_end > 0 || !m->gait || m->gait->nrow == 0) {
     return m->opt.t_end;
   }
@@ -160,6 +160,17 @@ double cs_modelEndTime(const csModel* m) {
     return t_last;
   }
   return t_last + m->sched.ramp;
+}
+
+
+double cs_modelEndTime(const csModel* m) {
+  const double T = cs_modelTableEnd(m);
+  if (m->opt.t_end > 0 || !m->gait || !m->gate) {
+    return T;
+  }
+  /* a gate holds the table's clock, each of its n gates for maxwait at most (gaits_gate.h): the
+   * longest the run can last; cs_runOverAt ends it when the table is over */
+  return T + m->gate->n * m->gate->maxwait;
 }
 
 

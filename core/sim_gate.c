@@ -185,13 +185,13 @@ double cs_gateTableTime(const csModel* m, const csData* d, double t) {
 
 
 int cs_runOverAt(const csModel* m, const csData* d, long i) {
-  if (m->opt.t_end > 0 || !m->gate || m->gate->crawl_n <= 0 || !m->gait) {
-    return 0; /* --t-end wins; without a crawl the loop's step count is the end */
+  if (m->opt.t_end > 0 || !m->gate || !m->gait) {
+    return 0; /* --t-end wins; without a gate the loop's step count is the end */
   }
   const double H = cs_modelMacroStep(m);
   const long out_every = lround(m->opt.output_dt / H) < 1 ? 1 : lround(m->opt.output_dt / H);
   /* half a macro step: the loop's own lround(t_end / H) rounding of the same end */
-  return i % out_every == 0 && d->t - d->gate_hold + d->crawl_skip >= cs_modelEndTime(m) - 0.5 * H;
+  return i % out_every == 0 && d->t - d->gate_hold + d->crawl_skip >= cs_modelTableEnd(m) - 0.5 * H;
 }
 
 

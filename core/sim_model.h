@@ -207,9 +207,12 @@ void cs_modelSetLegLevel(csModel* m, const csrLegType* type);
 /* Name of the leg level that runs (m->robot.leg_type->name): what the output records. */
 const char* cs_modelLegLevel(const csModel* m);
 
-/* End time of a run: opt.t_end if > 0, else the gait's last row plus one ramp (s). With a gate
- * whose file has a crawl statement this is the longest the run can last (no skip): it may end
- * sooner, cs_runOverAt. */
+/* The table's end: opt.t_end if > 0, else the gait's last row plus one ramp (s), on the table's
+ * own clock (cs_gateTableTime). */
+double cs_modelTableEnd(const csModel* m);
+/* End time of a run (s), the longest it can last: opt.t_end if > 0; else the table's end, plus,
+ * with a gate, every gate's longest hold (n maxwait: the gate holds the table's clock). A gated
+ * run without opt.t_end ends sooner, when the table is over (cs_runOverAt). */
 double cs_modelEndTime(const csModel* m);
 
 /* Macro step H = macro_steps * h (s). */
@@ -249,11 +252,11 @@ double cs_gateReleasedWait(const csData* d, int k);
  * itself without a gate; the footholds', the rows' and the gates' clock). */
 double cs_gateTableTime(const csModel* m, const csData* d, double t);
 
-/* The run's end decided in the step loop (1: stop after macro step i, 0: go on). Only a run
- * without opt.t_end on a gate with a crawl statement (gaits_gate.h `crawl`) ends before
- * cs_modelEndTime: at the first output row (i a multiple of output_dt / H) where the table's
- * own clock, t - hold + skip (the state's), has reached cs_modelEndTime, the table's end: the
- * gait is over. A function of the state, so a resumed run ends where the uncut one does. */
+/* The run's end decided in the step loop (1: stop after macro step i, 0: go on). Only a gated
+ * run without opt.t_end ends before cs_modelEndTime: at the first output row (i a multiple of
+ * output_dt / H) where the table's own clock, t - hold + skip (the state's; the skip of a crawl
+ * statement, gaits_gate.h `crawl`), has reached cs_modelTableEnd: the gait is over. A function of
+ * the state, so a resumed run ends where the uncut one does. */
 int cs_runOverAt(const csModel* m, const csData* d, long i);
 
 /* Build the world for a model: terrain geoms, the robot standing on the terrain at the

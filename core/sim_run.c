@@ -734,20 +734,23 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
       cs_h5AttrDouble(f, "/", "crawl_skip_s", d->crawl_skip, NULL);
       cs_h5AttrDouble(f, "/", "crawl_boundaries_read", d->crawl_i, NULL);
       cs_h5AttrDouble(f, "/", "crawl_z_mm", d->crawl_z, NULL);
-      /* why the rows stop where they do (cs_runOverAt) */
-      char why[CS_H5_STATUS_SIZE];
-      if (m->opt.t_end > 0) {
-        snprintf(why, sizeof why, "--t-end %g s", m->opt.t_end);
-      } else if (st != CS_OK || cancelled) {
-        snprintf(why, sizeof why, "stopped at t = %g s (status)", cs_time(d));
-      } else if (over) {
-        snprintf(why, sizeof why, "the gait is over: the table's clock (t - gate hold + crawl "
-                 "skip) reached the table's end, %g s, at t = %g s", t_end, cs_time(d));
-      } else {
-        snprintf(why, sizeof why, "the table's end, %g s, on the run's clock", t_end);
-      }
-      cs_h5AttrString(f, "/", "end_reason", why, NULL);
     }
+    /* why the rows stop where they do (cs_runOverAt) */
+    char why[CS_H5_STATUS_SIZE];
+    if (m->opt.t_end > 0) {
+      snprintf(why, sizeof why, "--t-end %g s", m->opt.t_end);
+    } else if (st != CS_OK || cancelled) {
+      snprintf(why, sizeof why, "stopped at t = %g s (status)", cs_time(d));
+    } else if (over) {
+      snprintf(why, sizeof why, "the gait is over: the table's clock (t - gate hold + crawl "
+               "skip) reached the table's end, %g s, at t = %g s", cs_modelTableEnd(m),
+               cs_time(d));
+    } else {
+      snprintf(why, sizeof why, "the longest the gate's holds allow, %g s, on the run's clock "
+               "(the table's clock at %g s of %g)", t_end, cs_gateTableTime(m, d, cs_time(d)),
+               cs_modelTableEnd(m));
+    }
+    cs_h5AttrString(f, "/", "end_reason", why, NULL);
   } else {
     cs_h5AttrString(f, "/", "control", m->pressure_source ? "a caller's pressure source"
                                                           : "open loop: the table on time", NULL);

@@ -64,8 +64,8 @@ static const csxOpt kRunOpts[] = {
     {"--pressure-scale", "K", "1",
      "multiplies every pressure of the gait (refused if it pushes a gait above 1 MPa)"},
     {"--t-end", "S", "0 = the gait's length",
-     "simulated time in s; 0 runs until the last row's change has finished (with a gate's "
-     "crawl statement: on the table's clock, so a skipped crawl ends the run sooner)"},
+     "simulated time in s; 0 runs until the last row's change has finished (with a gate: on "
+     "the table's clock, which the gate holds and a crawl statement skips)"},
     {"--out", "FILE.h5", "run.h5", "the run file; FILE.xdmf is written beside it"},
     {"--checkpoint", "FILE", NULL,
      "write the run's state to FILE every --checkpoint-every s, at the end and on SIGINT/SIGTERM "

@@ -271,7 +271,7 @@ static void readAttrString(const char* path, const char* name, char* buf, size_t
  * row, and says why; the run without an output file (cs_run's other loop: the Python API's
  * `crawlsim.run` without out) ends at the same step; a run cut at 0.2 s (its --t-end) and
  * resumed without one ends there too, bit for bit */
-static void test_gate_crawl_ends_the_run_when_the_table_is_over(void) {
+static void test_gate_ends_the_run_when_the_table_is_over(void) {
   /* a table of one chamber's slow rise to 0.5 s (cheap: the rods barely move) */
   cs_testWriteText("ckpt_end.csv", "time,A_II1_O1\n0,0\n0.5,0.05\n");
   cs_testWriteText("ckpt_end_skip.gate", "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\n"
@@ -295,10 +295,10 @@ static void test_gate_crawl_ends_the_run_when_the_table_is_over(void) {
   const double skip = readAttr(a.out, "crawl_skip_s"), held = readAttr(a.out, "gate_held_s");
   const double held_f = readAttr(f.out, "gate_held_s");
   CS_EXPECT(readAttr(f.out, "crawl_skip_s") == 0 && skip > 0);
-  /* the full table ends on the run's clock (no hold then: a hold is cut off by it); the
+  /* the full table ends on its own clock (t - hold; it never holds here); the
    * skipped one when its table's clock, t - hold + skip, reaches the same end (to the output
    * row, 0.01 s) */
-  const double tab_end = rf.t_end; /* cs_modelEndTime: the table's last row plus one ramp */
+  const double tab_end = rf.t_end; /* cs_modelTableEnd: the table's last row plus one ramp */
   CS_EXPECT(fabs(ra.t_end - held + skip - tab_end) < 0.01 + 1e-9 && ra.t_end < rf.t_end - 0.05);
   char why[256];
   readAttrString(a.out, "end_reason", why, sizeof why);
@@ -340,6 +340,23 @@ static void test_gate_crawl_ends_the_run_when_the_table_is_over(void) {
   CS_EXPECT(fabs(rb.t_end - rf.t_end) < 1e-9);
   readAttrString(e.out, "end_reason", why, sizeof why);
   CS_EXPECT(strstr(why, "--t-end") != NULL);
+  /* a gate that holds the table's clock (its x condition never met: it waits its maxwait)
+   * without a crawl: the run goes on past the table's end on the run's clock, to where the
+   * table's clock, t - hold, reaches it (to the output row) */
+  cs_testWriteText("ckpt_end_hold.gate", "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.3\n"
+                   "gate 0.05 AE x 1e6\n");
+  csRunDef g = f;
+  g.gate = "ckpt_end_hold.gate";
+  g.out = "ckpt_end_hold.h5";
+  csRunResult rg;
+  CS_EXPECT(runDef(&g, &rg, &err) == CS_OK);
+  const double held_g = readAttr(g.out, "gate_held_s");
+  readAttrString(g.out, "end_reason", why, sizeof why);
+  printf("  a gate held %g s: the run ends at %g s (the table's end %g s): %s\n", held_g,
+         rg.t_end, tab_end, why);
+  CS_EXPECT(held_g > 0.2 && rg.t_end > tab_end + 0.2);
+  CS_EXPECT(fabs(rg.t_end - held_g - tab_end) < 0.01 + 1e-9);
+  CS_EXPECT(strstr(why, "the gait is over") != NULL);
 }
 static void test_strain_resumed_equals_uncut(void) { resumedEqualsUncut("strain"); }
 /* the adaptive step (its controller's memory is state: sim_adaptive.c) */
@@ -542,7 +559,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_rod_resumed_equals_uncut);
   CS_RUN(test_strain_resumed_equals_uncut);
   CS_RUN(test_gate_crawl_resumed_equals_uncut);
-  CS_RUN(test_gate_crawl_ends_the_run_when_the_table_is_over);
+  CS_RUN(test_gate_ends_the_run_when_the_table_is_over);
   CS_RUN(test_strain_adaptive_resumed_equals_uncut);
   CS_RUN(test_settling_resumed_equals_uncut);
   CS_RUN(test_other_definition_is_refused);
