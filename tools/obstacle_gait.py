@@ -177,9 +177,11 @@ ap.add_argument('--foothold', action='append', default=[], metavar='LEGS:CYCLE:O
                 'hip, comma-separated; the plan\'s own offset is added) from the measured support, '
                 'keeping MARGIN mm (default 10) from the edges (a `foothold` line in the description; '
                 'gaits/gaits_foothold.h)')
-ap.add_argument('--force', action='append', default=[], metavar='LEGS:CYCLE:OFFSET',
+ap.add_argument('--force', action='append', default=None, metavar='LEGS:CYCLE:OFFSET',
                 help='the step of LEGS in walk cycle CYCLE lands OFFSET mm ahead of the hip whatever '
-                'rules 6 and 12 say (--foothold-out writes each candidate with it)')
+                'rules 6 and 12 say (--foothold-out writes each candidate with it); default BF:4:35 '
+                '(the shipped table since branch ramp11: B, F\'s step down lands clear of the '
+                'corner under slow valves); `--force none` forces nothing')
 ap.add_argument('--foothold-out', default=None, metavar='NAME',
                 help='with --foothold: design -o\'s description into NAME.csv and every candidate '
                 'into NAME.foothold.d/, and write the companion NAME.foothold (needs -o FILE; '
@@ -214,16 +216,18 @@ ap.add_argument('--gate-ptol', type=float, default=0.005,
                 'table\'s 0.4 MPa range)')
 ap.add_argument('--gate-maxwait', type=float, default=None,
                 help='the longest wait of a gate, s (default --Tp: one walk slot)')
-ap.add_argument('--gate-land', default=None, metavar='T0:T1',
+ap.add_argument('--gate-land', default='13.3:19', metavar='T0:T1',
                 help='with --gate-out: also gate each wave set-down of a pair (its first move from a '
                 'swing pose A* or U0 to a stance pose) lifting at table times T0..T1 s on the pair '
                 'itself: the foot is lowered only once its chambers are as near the swing pose as '
-                'designed (issue 33, docs/notes/obstacle.md "ramp11"); off by default')
-ap.add_argument('--gate-swing', default=None, metavar='T0:T1',
+                'designed (issue 33, docs/notes/obstacle.md "ramp11"); default 13.3:19 (the shipped '
+                'table since ramp11), `none` off')
+ap.add_argument('--gate-swing', default='5:24.1', metavar='T0:T1',
                 help='with --gate-out: also gate each swing of a pair lifting at table times '
                 'T0..T1 s (its move from the lift pose on to the next swing pose) on the pair '
                 'itself: the foot swings forward only once it is lifted as designed (issue 33, '
-                'docs/notes/obstacle.md "ramp11"); off by default')
+                'docs/notes/obstacle.md "ramp11"); default 5:24.1 (the shipped table since '
+                'ramp11), `none` off')
 ap.add_argument('--gate-x', default=None, metavar='MM:T0:T1',
                 help='with --gate-out: each gate at table times T0..T1 s (lifts, and set-downs of '
                 '--gate-land) also waits until the measured support stands at most MM behind the '
@@ -247,6 +251,13 @@ if a.crawl_max is not None and (a.crawl_max < 3 or a.zgroups != 2 or a.gate_from
     sys.exit('obstacle_gait.py: --crawl-max takes N >= 3, with the two-group crawl '
              '(--zgroups 2) and a table written here (not --gate-from)')
 CRAWL = None  # (first slot's table time s, slot s, slots) once the crawl is written
+if a.force is None:
+    a.force = ['BF:4:35']  # the shipped table's (ramp11)
+a.force = [f for f in a.force if f != 'none']
+if a.gate_land == 'none':
+    a.gate_land = None
+if a.gate_swing == 'none':
+    a.gate_swing = None
 try:
     LAND = tuple(float(v) for v in a.gate_land.split(':')) if a.gate_land else None
     assert LAND is None or len(LAND) == 2

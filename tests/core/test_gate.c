@@ -33,7 +33,7 @@
 #include "crawlsim.h"
 #include "cs_test.h"
 
-#define NGATE 34 /* gates in gaits/obstacle.gate */
+#define NGATE 75 /* gates in gaits/obstacle.gate */
 #define NCRAWL 3 /* its crawl statement's part of the state (boundaries read, z, skip; ship11) */
 #define STEP 1e-3
 

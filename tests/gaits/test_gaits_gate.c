@@ -1,6 +1,6 @@
 /* test_gaits_gate.c: the landing gate's file and rule (gaits_gate.h) and the schedule with
  * held rows (gaits_schedule.h csg_scheduleEvalHeld):
- *  - the shipped gaits/obstacle.gate reads: its design line and 34 gates, the first at 2.6 s
+ *  - the shipped gaits/obstacle.gate reads: its design line and 75 gates, the first at 2.6 s
  *    waiting for A, E;
  *  - csg_gateDown: a pair as near its command as the design (within PTOL) is down, one
  *    chamber further behind is not, other legs do not count;
@@ -45,7 +45,7 @@ static void test_shippedGateReads(void) {
   }
   char legs[9];
   csg_gateLegs(s->gate[0].legs, legs);
-  CS_EXPECT(s->n == 34 && s->ramp == 0.05 && s->lag == 0.02 && s->ptol == 0.005 &&
+  CS_EXPECT(s->n == 75 && s->ramp == 0.05 && s->lag == 0.02 && s->ptol == 0.005 &&
             s->maxwait == 0.6);
   CS_EXPECT(s->gate[0].t == 2.6 && !strcmp(legs, "AE") && s->time[0] == 2.6);
   for (int k = 1; k < s->n; k++) CS_EXPECT(s->time[k] >= s->time[k - 1]);

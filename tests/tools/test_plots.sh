@@ -300,7 +300,7 @@ expect_fail1 "obstacle_search --step-tol with a fixed strain step" "with --strai
 # table; a bad --up-band is one line and exit 1
 if "$PY" "$OG" -o "$TMP/r17.gait" >"$TMP/out.txt" 2>&1 && cmp -s "$TMP/r17.gait" "$ROOT/gaits/obstacle.gait" &&
    "$PY" "$OG" --up-short -1 -o "$TMP/k3.gait" >>"$TMP/out.txt" 2>&1 &&
-   "$PY" "$OG" --up-short -1 --force BF:0:50 -o "$TMP/bf50.gait" >>"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --up-short -1 --force BF:0:50 --force BF:4:35 -o "$TMP/bf50.gait" >>"$TMP/out.txt" 2>&1 &&
    cmp -s <(stmts "$TMP/r17.gait") <(stmts "$TMP/bf50.gait") &&
    ! cmp -s <(stmts "$TMP/r17.gait") <(stmts "$TMP/k3.gait") &&
    [ "$(grep -c 'rule 17: landing' "$TMP/r17.gait")" -eq 2 ] &&
@@ -321,7 +321,8 @@ if "$PY" "$OG" --gate-from "$ROOT/gaits/obstacle.gait" --gate-out "$TMP/g.gate" 
    cmp -s <(stmts "$TMP/g.gate") <(stmts "$ROOT/gaits/obstacle.gate" | grep -v '^crawl') &&
    grep -q '^move 7.4000 [0-9.]* BF AP10$' "$ROOT/gaits/obstacle.gait" &&
    grep -q '^gate 7.4000 CG  # lift of BF' "$TMP/g.gate" &&
-   "$PY" "$OG" --up-short -1 -o "$TMP/k3g.gait" --gate-out "$TMP/k3g.gate" >>"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --up-short -1 --gate-swing none --gate-land none -o "$TMP/k3g.gait" \
+     --gate-out "$TMP/k3g.gate" >>"$TMP/out.txt" 2>&1 &&
    grep -q '^move 9.6000 [0-9.]* DH U0$' "$TMP/k3g.gait" && grep -q '^gate 9.4000 AE' "$TMP/k3g.gate" &&
    ! grep -q '^gate 9.6000' "$TMP/k3g.gate"; then
   ok "obstacle_gait --gate-from: the shipped gate; a lift to AP gated, a move over to U0 not"
@@ -351,24 +352,27 @@ fi
 expect_fail1 "obstacle_gait bad --crawl-max" "obstacle_gait.py: --crawl-max takes N >= 3" \
   "$PY" "$OG" --crawl-max 2 -o "$TMP/bad.gait"
 
-# tools/obstacle_gait.py --gate-land / --gate-x (issue 33, ramp11; off by default: the shipped
-# gate above has neither): the description is the same; --gate-land 13.3:13.4 adds one gate, the
+# tools/obstacle_gait.py --gate-land / --gate-x (issue 33, ramp11; the shipped gate has the
+# set-down gates of --gate-land's default and no x): the description is the same; with the
+# swing and set-down gates off, --gate-land 13.3:13.4 adds one gate, the
 # set-down of the pair lifting in that window (A, E's step down), on the pair itself; --gate-x
 # 25:13.7:13.8 gives it `x XMIN`, the plan's support x there less 25 mm, between the plan's x at
 # the cycles around it (cycle 3's less 25 and cycle 4's less 25)
-if "$PY" "$OG" -o "$TMP/gp.gait" --gate-out "$TMP/gp.gate" >"$TMP/out.txt" 2>&1 &&
-   "$PY" "$OG" --gate-land 13.3:13.4 --gate-x 25:13.7:13.8 -o "$TMP/gl.gait" \
+if "$PY" "$OG" --gate-land none --gate-swing none -o "$TMP/gp.gait" --gate-out "$TMP/gp.gate" \
+     >"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" --gate-land 13.3:13.4 --gate-swing none --gate-x 25:13.7:13.8 -o "$TMP/gl.gait" \
      --gate-out "$TMP/gl.gate" >>"$TMP/out.txt" 2>&1 &&
-   ! grep -q 'set-down\| x ' "$ROOT/gaits/obstacle.gate" && cmp -s "$TMP/gp.gait" "$TMP/gl.gait" &&
+   grep -q 'set-down' "$ROOT/gaits/obstacle.gate" && ! grep -q ' x ' "$ROOT/gaits/obstacle.gate" &&
+   cmp -s "$TMP/gp.gait" "$TMP/gl.gait" &&
    [ "$(diff <(stmts "$TMP/gp.gate") <(stmts "$TMP/gl.gate") | grep -c '^[<>]')" = 1 ] &&
    L=$(diff <(stmts "$TMP/gp.gate") <(stmts "$TMP/gl.gate") | sed -n 's/^> //p') &&
    X=$(echo "$L" | sed -n 's/^gate 13.7100 AE x \([0-9.]*\)  # set-down of AE$/\1/p') &&
    X3=$(sed -n 's/^# cycle 3 from [0-9.]* s: support planned at x + \([0-9]*\) mm$/\1/p' "$TMP/gl.gait") &&
    X4=$(sed -n 's/^# cycle 4 from [0-9.]* s: support planned at x + \([0-9]*\) mm$/\1/p' "$TMP/gl.gait") &&
    awk -v x="$X" -v a="$X3" -v b="$X4" 'BEGIN { exit !(x > a - 25 && x < b - 25) }'; then
-  ok "obstacle_gait --gate-land/--gate-x: off by default; A, E's set-down gated at x $X (plan $X3..$X4 less 25)"
+  ok "obstacle_gait --gate-land/--gate-x: the shipped gate's set-downs, no x; A, E's set-down gated at x $X (plan $X3..$X4 less 25)"
 else
-  bad "obstacle_gait --gate-land/--gate-x: off by default; one set-down gate with x" "$TMP/out.txt"
+  bad "obstacle_gait --gate-land/--gate-x: the shipped gate's set-downs, no x; one set-down gate with x" "$TMP/out.txt"
 fi
 expect_fail1 "obstacle_gait bad --gate-x" "obstacle_gait.py: --gate-x takes MM:T0:T1" \
   "$PY" "$OG" --gate-x 25:13 -o "$TMP/bad.gait"
