@@ -146,9 +146,16 @@ def main():
     ap.add_argument("--mf", type=int, default=-1,
                     help="the first MF fibre modes of the basis' Qf only (0: no fibre basis, the "
                     "FE's fibres fibre by fibre, as `run_romreal4.sh base`)")
+    ap.add_argument("--qf", default=None,
+                    help="the fibre basis of this file's /Qf instead of the basis' (with --mf: "
+                    "its first MF columns)")
     a = ap.parse_args()
     m = Energy(a.snapdir, a.basis, a.legfile, enrich=a.enrich, k=a.k)
-    if a.mf == 0:
+    if a.qf:
+        with h5py.File(a.qf, "r") as fh:
+            m.Qf = fh["Qf"][:, :a.mf] if a.mf > 0 else fh["Qf"][...]
+        m.Gf = (m.Qf * m.W[:, None]).T @ m.Qf
+    elif a.mf == 0:
         m.Qf = None
     elif a.mf > 0:
         m.Qf = m.Qf[:, :a.mf]
