@@ -125,10 +125,9 @@ class Model:
         self.Ve = self.wq.sum(axis=1)
         A = (self.P * (self.Ve / self.kappa)[:, None]).T @ self.P
         self.Ainv_half = np.linalg.inv(np.linalg.cholesky(A))  # L^-1: b^T A^-1 b = |L^-1 b|^2
+        self.W = self.fib[3] * self.fib[2]  # W_f = EA L0 (N mm)
         if self.Qf is not None:
-            W = self.fib[3] * self.fib[2]
-            self.W = W
-            self.Gf = (self.Qf * W[:, None]).T @ self.Qf
+            self.Gf = (self.Qf * self.W[:, None]).T @ self.Qf
         xc = self.x[self.fixed.reshape(-1, 3).any(axis=1)].mean(axis=0)
         ax = np.argmax(np.abs(self.x - xc).max(axis=0))
         far = np.abs(self.x[:, ax] - xc[ax])
