@@ -111,6 +111,12 @@ const char* cs_modelLegLevel(const csModel* m) {
 double cs_modelMacroStep(const csModel* m) { return m->opt.macro_steps * m->opt.h; }
 
 
+long cs_modelOutputEvery(const csModel* m) {
+  const long n = lround(m->opt.output_dt / cs_modelMacroStep(m));
+  return n < 1 ? 1 : n;
+}
+
+
 csStatus cs_modelLoad(csModel* m, const char* scene, const char* terrain_path,
                       const char* gait_path, const char* calibration_path, csError* err) {
   snprintf(m->scene, sizeof m->scene, "%s", scene);

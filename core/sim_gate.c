@@ -188,10 +188,10 @@ int cs_runOverAt(const csModel* m, const csData* d, long i) {
   if (m->opt.t_end > 0 || !m->gate || !m->gait) {
     return 0; /* --t-end wins; without a gate the loop's step count is the end */
   }
-  const double H = cs_modelMacroStep(m);
-  const long out_every = lround(m->opt.output_dt / H) < 1 ? 1 : lround(m->opt.output_dt / H);
-  /* half a macro step: the loop's own lround(t_end / H) rounding of the same end */
-  return i % out_every == 0 && d->t - d->gate_hold + d->crawl_skip >= cs_modelTableEnd(m) - 0.5 * H;
+  /* the committed skip (crawl_skip_next is the coming step's, stale after a restore); half a
+   * macro step: the loop's own lround(t_end / H) rounding of the same end */
+  const double tau = d->t - d->gate_hold + d->crawl_skip;
+  return i % cs_modelOutputEvery(m) == 0 && tau >= cs_modelTableEnd(m) - 0.5 * cs_modelMacroStep(m);
 }
 
 

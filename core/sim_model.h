@@ -217,6 +217,9 @@ double cs_modelEndTime(const csModel* m);
 
 /* Macro step H = macro_steps * h (s). */
 double cs_modelMacroStep(const csModel* m);
+/* Macro steps per output row (>= 1): output_dt / H rounded; the run file's rows and a gated
+ * run's end (cs_runOverAt) fall on its multiples. */
+long cs_modelOutputEvery(const csModel* m);
 
 /* Sway-buckling check of the stance (DESIGN "model no more than a scene needs", a designer's
  * first question): P_cr = π² E I / L² is the critical axial load of one leg clamped at the hip

@@ -534,10 +534,7 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
   Series s;
   double buf[3 * MAX_CENTERLINE];
   csStatus st = writeHeader(m, f, &s, err);
-  long out_every = lround(m->opt.output_dt / H);
-  if (out_every < 1) {
-    out_every = 1;
-  }
+  const long out_every = cs_modelOutputEvery(m);
   long nsteps = lround(t_end / H);
   long per_second = lround(1.0 / H);
   if (per_second < 1) {
