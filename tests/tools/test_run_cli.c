@@ -575,8 +575,6 @@ static void test_strainRun(void) {
                 "crawlsim run: --step-tol 0 mm must be > 0 and <= 100");
   expectFailure("--legs rod --strain-step adaptive",
                 "crawlsim run: --strain-step adaptive needs a tree-stepped leg level");
-  expectFailure("--legs strain --strain-step adaptive --step-order 2",
-                "crawlsim run: --strain-step adaptive estimates backward Euler's error");
   expectFailure("--legs strain --step-order 3", "crawlsim run: --step-order 3 must be 1 or 2");
   expectFailure("--legs rod --coupling tree", "crawlsim run: --coupling tree needs a tree-stepped");
   expectFailure("--legs strain --macro-steps 2", "crawlsim run: the tree coupling needs");
