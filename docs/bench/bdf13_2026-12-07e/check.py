@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""check.py ORDER:TOL:HALF ...: the rules of issues 32 and 33 that the tree step touches, for the
+"""check.py ORDER:TOL:HALF ...: (ORDER 1 or 2, or a sweep.sh PREFIX such as lin) the rules of issues 32 and 33 that the tree step touches, for the
 adaptive step of formula ORDER at local error TOL (mm) against its run at HALF (the tolerance
 halved), from sweep.sh's run files (no runs): the flat road's designed gait within 3 mm of the
 rod at 32 elements (0.25 ms) at every whole second, the paper's table within 3 mm of the rod at
@@ -34,8 +34,9 @@ def attrs(tag):
 def main(specs):
     for spec in specs:
         order, tol, half = spec.split(":")
-        t = lambda n: f"o{order}_{tol}_{n}"  # noqa: E731
-        h = lambda n: f"o{order}_{half}_{n}"  # noqa: E731
+        x = f"o{order}" if order.isdigit() else order
+        t = lambda n: f"{x}_{tol}_{n}"  # noqa: E731
+        h = lambda n: f"{x}_{half}_{n}"  # noqa: E731
         ok_all = True
 
         def rule(name, value, ok):
