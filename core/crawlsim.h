@@ -99,7 +99,7 @@ typedef struct csRunDef {
                                 level's, 1) */
   const char* strain_step;   /* strain legs' tree step: "fixed" (every step dt) | "adaptive"
                                 (each dt crossed in steps a local error estimate chooses, dt
-                                then the longest; backward Euler only); NULL: adaptive for a
+                                then the longest; either step_order); NULL: adaptive for a
                                 tree-stepped level (strain) unless dt is given (the fixed step
                                 it names) or step_order is 2; fixed otherwise; legs "auto": the
                                 picked row's (a row with a step tolerance is the adaptive step),

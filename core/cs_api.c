@@ -168,8 +168,11 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
                                       (int)csr_legSettingGet(lt, ls, "sub", 0)));
     }
     if (m->opt.step_adaptive) {
-      logLine(def, "tree step: adaptive, backward Euler, local error %g mm per step, longest "
-              "step %g s (sim_adaptive.c)%s", m->opt.step_tol, m->opt.h, sub);
+      const int order = (int)csr_legSettingGet(lt, &m->robot.leg_settings, "step_order",
+                                               lt->step_order ? lt->step_order : 1);
+      logLine(def, "tree step: adaptive, %s, local error %g mm per step, longest step %g s "
+              "(sim_adaptive.c)%s", order == 2 ? "BDF2" : "backward Euler", m->opt.step_tol,
+              m->opt.h, sub);
     } else {
       logLine(def, "tree step: fixed %g s, order %d%s", m->opt.h,
               (int)csr_legSettingGet(lt, &m->robot.leg_settings, "step_order",

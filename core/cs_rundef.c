@@ -350,10 +350,6 @@ static csStatus checkDef(const csRunDef* def, const char* scene_name, csError* e
     return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive needs --coupling tree (the "
                        "strain level's own)");
   }
-  if (adaptive && !isnan(def->step_order) && def->step_order != 1) {
-    return cs_errorSet(err, CS_ERR_ARG, "--strain-step adaptive estimates backward Euler's "
-                       "error: --step-order 1 only");
-  }
   if (!isnan(def->strain_sub) && def->strain_sub != floor(def->strain_sub)) {
     return cs_errorSet(err, CS_ERR_RANGE, "--strain-sub %g must be a whole number",
                        def->strain_sub);

@@ -27,10 +27,29 @@
  * - Where no history exists (the run's first step, a restored state without one) the step is
  *   accepted untested at H / 2^CS_ADA_START_OCT.
  *
- * The controller's memory (h_prop, h_prev, Δy_{n-1}) is part of the state (sim_state.c), so a
- * rejected step, a restore and a resumed checkpoint continue exactly as the uninterrupted run.
- * The pneumatics (CVODE) are integrated across each step with its end as the stop time, as
- * across a fixed one. */
+ * BDF2 (the level's step_order 2: the legs' and the support's variable-step formula,
+ * csr_strainBdf2Coeffs, ratio w = h / h_legs <= 2) is second order: its local error is
+ * L h³ y''' with L = -(1 + w)² / (6 w (1 + 2 w)) (-2/9 at w = 1; the formula's residual on a
+ * cubic), and backward Euler's estimate above would be first order's. Its estimate is the
+ * one of Hairer-Wanner III.5 / CVODE's BDF (Milne's device): the step's end y_{n+1} minus the
+ * quadratic P through y_{n-2}, y_{n-1}, y_n extrapolated by h is
+ *   y_{n+1} - P = y''' (h (h + h1) (h + h1 + h2) / 6 - L h³) + O(h⁴)
+ * (the predictor's error minus the formula's), so the local error is
+ *   e = L h³ / (h (h + h1) (h + h1 + h2) / 6 - L h³) (y_{n+1} - P),
+ * at a constant step -(2/11) times the third difference Δy_n - 2 Δy_{n-1} + Δy_{n-2}. The
+ * next step is then h (0.9 / E^(1/3)) (E ~ h³), within the same bounds. A BDF2 step without
+ * the third point (the run's second step) is tested with backward Euler's estimate (an upper
+ * bound of its error at small h, so only ever too short; the first step is H / 64 then, as its
+ * error is backward Euler's), and a step the formula takes as
+ * backward Euler (the first, or after the stages' halvings left a ratio w > 2: the legs'
+ * coefficients say, csrLegType.stepCoeffs) with backward Euler's estimate and controller.
+ * The three points need not be the legs' own steps (a halved try's pieces are not watched):
+ * the predictor interpolates any three; only L takes the legs' last step.
+ *
+ * The controller's memory (h_prop, h_prev, Δy_{n-1}; BDF2 also h_prev2, Δy_{n-2}) is part of
+ * the state (sim_state.c), so a rejected step, a restore and a resumed checkpoint continue
+ * exactly as the uninterrupted run. The pneumatics (CVODE) are integrated across each step
+ * with its end as the stop time, as across a fixed one. */
 #include <math.h>
 #include <string.h>
 
@@ -45,32 +64,66 @@
 /* the shortest step: H / 2^6 (78 µs at 5 ms); a step there is accepted whatever its error
  * (the stages' own halvings go further, sim_step.c) */
 #define CS_ADA_MIN_OCT 6
-/* the first step: H / 2^3 */
+/* the first step: H / 2^3; under BDF2 H / 2^6 (CS_ADA_MIN_OCT): the first step is backward
+ * Euler's and untested, and its error ~ h² y'' / 2 must not stand above a second-order run's
+ * own (on test_strain_adaptive's oscillator at 1e-5 mm it was a fifth of the global error at
+ * H / 8); the controller doubles it within six steps */
 #define CS_ADA_START_OCT 3
 /* the step-size histogram: CS_ADA_NBIN bins of 1/16 octave below H */
 #define CS_ADA_BIN_PER_OCT 16.0
 
 
-int cs_adaptiveStateSize(const csModel* m) { return m->opt.step_adaptive ? CS_ADA_STATE : 0; }
+/* the tree step's formula: 1 backward Euler, 2 BDF2 (the level's setting step_order, as the
+ * run file records it, sim_run.c) */
+static int stepOrder(const csModel* m) {
+  const csrLegType* lt = m->robot.leg_type;
+  return (int)csr_legSettingGet(lt, &m->robot.leg_settings, "step_order",
+                                lt->step_order ? lt->step_order : 1);
+}
+
+
+int cs_adaptiveStateSize(const csModel* m) {
+  if (!m->opt.step_adaptive) {
+    return 0;
+  }
+  return stepOrder(m) == 2 ? CS_ADA_STATE2 : CS_ADA_STATE;
+}
 
 
 void cs_adaptiveStateGet(const csData* d, double* x) {
   x[0] = d->ada.h_prop;
   x[1] = d->ada.h_prev;
   memcpy(x + 2, d->ada.dy_prev, sizeof d->ada.dy_prev);
+  if (cs_adaptiveStateSize(d->m) == CS_ADA_STATE2) {
+    x[CS_ADA_STATE] = d->ada.h_prev2;
+    memcpy(x + CS_ADA_STATE + 1, d->ada.dy_prev2, sizeof d->ada.dy_prev2);
+  }
+}
+
+
+/* a step's length h (at most the macro step H, t1 - t to round-off) and the watched state's
+ * change dy that it made are valid */
+static int historyValid(double H, double h, const double* dy) {
+  if (!(h >= 0 && h <= 2 * H)) {
+    return 0;
+  }
+  for (int i = 0; i < CS_ADA_NY; i++) {
+    if (!isfinite(dy[i])) {
+      return 0;
+    }
+  }
+  return 1;
 }
 
 
 int cs_adaptiveStateCheck(const csModel* m, const double* x) {
   const double H = cs_modelMacroStep(m);
-  /* a step is at most the macro step, t1 - t to round-off */
-  if (!(x[0] >= 0 && x[0] <= 2 * H && x[1] >= 0 && x[1] <= 2 * H)) {
+  if (!(x[0] >= 0 && x[0] <= 2 * H) || !historyValid(H, x[1], x + 2)) {
     return -1;
   }
-  for (int i = 0; i < CS_ADA_NY; i++) {
-    if (!isfinite(x[2 + i])) {
-      return -1;
-    }
+  if (cs_adaptiveStateSize(m) == CS_ADA_STATE2 &&
+      !historyValid(H, x[CS_ADA_STATE], x + CS_ADA_STATE + 1)) {
+    return -1;
   }
   return 0;
 }
@@ -80,6 +133,12 @@ void cs_adaptiveStateSet(csData* d, const double* x) {
   d->ada.h_prop = x[0];
   d->ada.h_prev = x[1];
   memcpy(d->ada.dy_prev, x + 2, sizeof d->ada.dy_prev);
+  if (cs_adaptiveStateSize(d->m) == CS_ADA_STATE2) {
+    d->ada.h_prev2 = x[CS_ADA_STATE];
+    memcpy(d->ada.dy_prev2, x + CS_ADA_STATE + 1, sizeof d->ada.dy_prev2);
+  } else {
+    d->ada.h_prev2 = 0;
+  }
 }
 
 
@@ -118,12 +177,36 @@ double cs_adaptiveErrorNorm(int n, const double* dy, const double* dy_prev, cons
 }
 
 
-double cs_adaptiveFactor(double E) {
+/* the I controller of an estimate of order `order` (E ~ h^(order + 1)) */
+static double factorOf(double E, int order) {
   if (!(E > 0)) {
     return 2.0;
   }
-  return fmin(2.0, fmax(0.2, 0.9 / sqrt(E)));
+  return fmin(2.0, fmax(0.2, 0.9 / (order == 2 ? cbrt(E) : sqrt(E))));
 }
+
+
+double cs_adaptiveFactor(double E) { return factorOf(E, 1); }
+
+
+double cs_adaptiveErrorNorm2(int n, const double* dy, const double* dy1, const double* dy2,
+                             const double* tol, double h, double h1, double h2, double w) {
+  /* |L| h³, BDF2's error constant at ratio w (the header's derivation), and the predictor's
+   * error h (h + h1) (h + h1 + h2) / 6 per unit y''' */
+  const double Lh3 = (1 + w) * (1 + w) / (6 * w * (1 + 2 * w)) * h * h * h;
+  const double K = Lh3 / (h * (h + h1) * (h + h1 + h2) / 6 + Lh3);
+  /* P - y_n in Newton's form: h [y_n, y_n-1] + h (h + h1) [y_n, y_n-1, y_n-2] */
+  const double a = h / h1, b = h * (h + h1) / (h1 + h2);
+  double s = 0;
+  for (int i = 0; i < n; i++) {
+    const double e = K * (dy[i] - a * dy1[i] - b * (dy1[i] / h1 - dy2[i] / h2)) / tol[i];
+    s += e * e;
+  }
+  return sqrt(s / n);
+}
+
+
+double cs_adaptiveFactor2(double E) { return factorOf(E, 2); }
 
 
 static void recordStep(csData* d, double h, double H) {
@@ -148,7 +231,7 @@ csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err) {
   cs_stateGet(m, d, x0);
   while (d->t < t1) {
     if (!(a->h_prop > 0)) {
-      a->h_prop = H / (1 << CS_ADA_START_OCT);
+      a->h_prop = H / (1 << (stepOrder(m) == 2 ? CS_ADA_MIN_OCT : CS_ADA_START_OCT));
     }
     /* the rest of the macro step in equal steps no longer than the proposal (the 1e-9 keeps
      * a remainder that is the proposal to round-off one step) */
@@ -157,6 +240,12 @@ csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err) {
     const double h = n <= 1 ? rest : rest / n;
     const double te = n <= 1 ? t1 : d->t + h;
     watched(m, d, y0, tol);
+    /* the formula this step takes (BDF2 when the legs' last step is within a ratio of 2) */
+    double c[3] = {1, 0, 1};
+    if (m->robot.leg_type->stepCoeffs) {
+      m->robot.leg_type->stepCoeffs(d->robot->legs[0], h, c);
+    }
+    const int bdf = c[1] != 0;
     const long nrej0 = d->nreject;
     csStatus st = cs_stepTry(m, d, te, h, 0, err);
     if (st != CS_OK) {
@@ -169,20 +258,29 @@ csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err) {
       dy[i] = y1[i] - y0[i];
     }
     const int tested = a->h_prev > 0;
+    /* second order's estimate where the formula was BDF2 and three points exist */
+    const int second = bdf && tested && a->h_prev2 > 0;
+    /* the formula's ratio from its coefficient c2 = (1 + w) / (1 + 2 w) */
     const double E =
-        tested ? cs_adaptiveErrorNorm(CS_ADA_NY, dy, a->dy_prev, tol, h / a->h_prev) : 0;
+        second ? cs_adaptiveErrorNorm2(CS_ADA_NY, dy, a->dy_prev, a->dy_prev2, tol, h,
+                                       a->h_prev, a->h_prev2, (1 - c[2]) / (2 * c[2] - 1))
+        : tested ? cs_adaptiveErrorNorm(CS_ADA_NY, dy, a->dy_prev, tol, h / a->h_prev)
+                 : 0;
+    const double f = second ? cs_adaptiveFactor2(E) : cs_adaptiveFactor(E);
     if (tested && E > 1 && h > h_min * (1 + 1e-9)) {
       /* rejected: back to the step's start (saved by cs_stepTry in slot 0), shorter */
       dJointGroupEmpty(d->contacts);
       cs_stateSet(m, d, d->save, NULL);
       a->rejected++;
-      a->h_prop = fmax(h_min, h * cs_adaptiveFactor(E));
+      a->h_prop = fmax(h_min, h * f);
       continue;
     }
     d->t = te;
+    memcpy(a->dy_prev2, a->dy_prev, sizeof a->dy_prev2);
+    a->h_prev2 = a->h_prev;
     memcpy(a->dy_prev, dy, sizeof dy);
     a->h_prev = h;
-    a->h_prop = tested ? fmin(H, fmax(h_min, h * cs_adaptiveFactor(E))) : h;
+    a->h_prop = tested ? fmin(H, fmax(h_min, h * f)) : h;
     if (d->nreject > nrej0) {
       /* the stages halved this step (Newton, a sunk foot): the next one no longer than a half,
        * as CVODE shrinks after a convergence failure (its pieces' passes cost more than the

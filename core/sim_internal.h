@@ -72,11 +72,18 @@ typedef struct csCosim_ {
 /* The adaptive macro step (sim_adaptive.c): the watched state is the support's centre (3,
  * mm), its velocity (3, mm/s), its angular velocity times CS_ADA_LEVER (3, mm/s) and every
  * foot's position (3 per leg, mm); its state part is the next step h_prop (s), the last
- * accepted step h_prev (s; 0: no history) and that step's change of the watched state */
-enum { CS_ADA_NY = 9 + 3 * CSR_NLEG, CS_ADA_STATE = 2 + CS_ADA_NY, CS_ADA_NBIN = 256 };
+ * accepted step h_prev (s; 0: no history) and that step's change of the watched state; under
+ * BDF2 (step_order 2) also the step before it, h_prev2 (s; 0: none), and its change
+ * (CS_ADA_STATE2: the predictor's third point) */
+enum {
+  CS_ADA_NY = 9 + 3 * CSR_NLEG,
+  CS_ADA_STATE = 2 + CS_ADA_NY,
+  CS_ADA_STATE2 = CS_ADA_STATE + 1 + CS_ADA_NY,
+  CS_ADA_NBIN = 256
+};
 typedef struct csAdaptive_ {
-  double h_prop, h_prev;
-  double dy_prev[CS_ADA_NY];
+  double h_prop, h_prev, h_prev2;
+  double dy_prev[CS_ADA_NY], dy_prev2[CS_ADA_NY];
   /* not state: counts and the accepted steps' lengths (bins of 1/16 octave below H) */
   long accepted, rejected;
   double h_min, h_max;
@@ -177,6 +184,14 @@ csStatus cs_adaptiveStep(const csModel* m, csData* d, double t1, csError* err);
 double cs_adaptiveErrorNorm(int n, const double* dy, const double* dy_prev, const double* tol,
                             double r);
 double cs_adaptiveFactor(double E);
+/* BDF2's (step_order 2): the weighted RMS over tol[i] of its local error estimated from the
+ * step's change dy (length h) and the two before it, dy1 (h1) and dy2 (h2): the difference of
+ * the step's end to the quadratic predictor through the last three points, scaled to BDF2's
+ * error constant for the formula's ratio w = h / (the legs' last step) (sim_adaptive.c); and
+ * the factor on h for that error (0.9 E^(-1/3), within [0.2, 2]) */
+double cs_adaptiveErrorNorm2(int n, const double* dy, const double* dy1, const double* dy2,
+                             const double* tol, double h, double h1, double h2, double w);
+double cs_adaptiveFactor2(double E);
 /* one try of [d->t, t1] of length H with its halvings (sim_step.c) */
 csStatus cs_stepTry(const csModel* m, csData* d, double t1, double H, int depth, csError* err);
 

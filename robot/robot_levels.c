@@ -169,17 +169,12 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
   r->error_mm = v[6];
   r->cpu_s_per_s = v[7];
   r->wall_s_per_s = v[8];
-  /* the adaptive step is the tree step's (core/sim_adaptive.c), and it estimates backward
-   * Euler's error: a row the run would refuse is refused here, at its line */
+  /* the adaptive step is the tree step's (core/sim_adaptive.c; either formula): a row the run
+   * would refuse is refused here, at its line */
   if (r->step_tol_mm > 0 && !csr_legTypeFind(r->level, NULL)->prepare) {
     return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: step_tol_mm %g on level '%s': the adaptive "
                        "step is a tree-stepped level's (strain); 0 for a fixed step", path,
                        line, r->step_tol_mm, r->level);
-  }
-  if (r->step_tol_mm > 0 && r->step_order > 1) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%ld: step_tol_mm %g with step_order %d: the "
-                       "adaptive step estimates backward Euler's error (step_order 0 or 1)",
-                       path, line, r->step_tol_mm, r->step_order);
   }
   snprintf(r->machine, sizeof r->machine, "%s", field[11]);
   return CS_OK;

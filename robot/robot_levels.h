@@ -24,8 +24,8 @@
  *                0 the level's default; rod: 0)
  *   step_tol_mm  0: a fixed step of dt_s; > 0 (<= 100): the adaptive tree step at this local
  *                error per step (mm; `--strain-step adaptive --step-tol`), only on a
- *                tree-stepped level (strain) at step_order 0 or 1 (the estimate is backward
- *                Euler's: core/sim_adaptive.c)
+ *                tree-stepped level (strain), either formula (core/sim_adaptive.c estimates
+ *                backward Euler's or BDF2's error)
  *   error_mm     the scene's track error against the benchmark's reference (mm), finite, >= 0
  *   cpu_s_per_s  CPU seconds of the whole process per simulated second, finite, > 0
  *   wall_s_per_s wall seconds per simulated second on the benchmark's machine, finite, > 0

@@ -120,8 +120,8 @@ static const csxOpt kRunOpts[] = {
     {"--strain-step", "fixed|adaptive",
      "adaptive, unless --dt or --step-order 2 (their steps are fixed); --legs auto: its row's",
      "strain legs: fixed (every step --dt, default then 5e-4) or adaptive (each --dt, default "
-     "then 5e-3, crossed in steps chosen by a local error estimate; backward Euler); beside "
-     "--legs auto: pick among the table's rows of that kind"},
+     "then 5e-3, crossed in steps chosen by a local error estimate of --step-order's formula); "
+     "beside --legs auto: pick among the table's rows of that kind"},
     {"--step-tol", "MM", "2.5e-4",
      "with the adaptive step: the local error allowed per step in mm (velocities: mm per 10 ms)"},
     {"--strain-sub", "N", "0",

@@ -50,9 +50,12 @@ enum { DRAWN_CAPSULES = 15 };
 enum { STRAIN_STEP_ORDER = 1 };
 /* BDF2's iterates: 1 Newton on the whole residual; 0 the linearly implicit step (the inertia,
  * velocity products and weight assembled once, at the step's first iterate, refreshed where
- * the iteration stalls), not the default: through the driver it took more passes per step
- * than it saved per pass (docs/notes/strain_leg.md, "Fast step") */
-enum { STRAIN_STEP_REFRESH = 1 };
+ * the iteration stalls). 0 since branch bdf13 (docs/notes/strain_leg.md "bdf13"): the
+ * robot-level defect that kept 1 ("Fast step": 24.7 mm off the rod at a fixed 5 ms) no longer
+ * stands on today's level (0.16 mm from the whole-residual BDF2 at a fixed 5 ms on the flat
+ * road), and each try costs 0.73x the instructions (the adaptive BDF2 at 1e-3 mm: 3.17e9
+ * against 4.37e9 per simulated s for the same steps) */
+enum { STRAIN_STEP_REFRESH = 0 };
 /* the level's settings (kStrainSettings, at the end) */
 enum {
   STRAIN_LINKS,

@@ -11,9 +11,11 @@
 #include "sim_model.h"
 
 /* The flat road on legs of `type` with `links` bending modes at macro step h (s); adaptive > 0
- * turns the adaptive step on at tolerance step_tol (mm). src is the source tree. 1 on success. */
-static int csTestLoadFlatStrain(csModel* m, const char* src, const csrLegType* type, double h,
-                                int links, int adaptive, double step_tol) {
+ * turns the adaptive step on at tolerance step_tol (mm); step_order 1 or 2 the tree step's
+ * formula (0: the level's). src is the source tree. 1 on success. */
+static int csTestLoadFlatStrainOrder(csModel* m, const char* src, const csrLegType* type,
+                                     double h, int links, int adaptive, double step_tol,
+                                     int step_order) {
   char terr[600], gait[600], cal[600];
   snprintf(terr, sizeof terr, "%s/terrains/flat_road.terrain", src);
   snprintf(gait, sizeof gait, "%s/gaits/flat_road_rod.csv", src);
@@ -27,6 +29,10 @@ static int csTestLoadFlatStrain(csModel* m, const char* src, const csrLegType* t
     m->opt.step_tol = step_tol;
   }
   CS_EXPECT(csr_legSettingSet(type, &m->robot.leg_settings, "links", links, NULL) == CS_OK);
+  if (step_order) {
+    CS_EXPECT(csr_legSettingSet(type, &m->robot.leg_settings, "step_order", step_order, NULL) ==
+              CS_OK);
+  }
   csrCalRule rule;
   if (csr_calRuleParse("rbf-pair", &rule)) {
     m->cal_rule = (int)rule;
@@ -38,6 +44,11 @@ static int csTestLoadFlatStrain(csModel* m, const char* src, const csrLegType* t
     return 0;
   }
   return 1;
+}
+
+static inline int csTestLoadFlatStrain(csModel* m, const char* src, const csrLegType* type,
+                                       double h, int links, int adaptive, double step_tol) {
+  return csTestLoadFlatStrainOrder(m, src, type, h, links, adaptive, step_tol, 0);
 }
 
 /* a data of m, settled (cs_settle); NULL if it cannot be made */

@@ -2,7 +2,8 @@
  * FILE --resume FILE`; core/sim_checkpoint.c, sim_run.c):
  *  - a run cut at a checkpoint (its --t-end) and resumed to the end writes an output whose
  *    every dataset equals the uncut run's bit for bit, on rod legs (Gauss-Seidel, CVODE per
- *    leg) and on strain legs (the tree coupling, its fixed and its adaptive step), and the same
+ *    leg) and on strain legs (the tree coupling, its fixed and its adaptive step, the latter
+ *    with backward Euler and BDF2), and the same
  *    step count; the comparison is
  *    not trivial (the rows after the cut differ from the cut's); with a gate file whose crawl
  *    ends at the cut (its decision after the resume) too; one stopped before settling
@@ -143,9 +144,11 @@ static double readAttr(const char* path, const char* name) {
 
 /* the uncut run of 0.3 s against the same run cut at 0.2 s and resumed to 0.3 s */
 /* step: NULL, or the strain level's --strain-step */
-static void resumedEqualsUncutGate(const char* legs, const char* step, const char* gate) {
+/* ... with the tree step's formula `order` (1 or 2; NaN the level's) */
+static void resumedEqualsUncutOrder(const char* legs, const char* step, const char* gate,
+                                    double order) {
   char a_out[64], a_ck[64], b_out[64], b_ck[64];
-  const char* tag = step ? step : gate ? "gate" : "";
+  const char* tag = step ? (order == 2 ? "adaptive_bdf2" : step) : gate ? "gate" : "";
   snprintf(a_out, sizeof a_out, "ckpt_%s%s_uncut.h5", legs, tag);
   snprintf(a_ck, sizeof a_ck, "ckpt_%s%s_uncut.ck", legs, tag);
   snprintf(b_out, sizeof b_out, "ckpt_%s%s_cut.h5", legs, tag);
@@ -154,6 +157,7 @@ static void resumedEqualsUncutGate(const char* legs, const char* step, const cha
   csRunResult ra, rb, rc;
   csRunDef a = baseDef(legs);
   a.strain_step = step;
+  a.step_order = order;
   a.gate = gate;
   a.t_end = 0.3;
   a.out = a_out;
@@ -161,6 +165,7 @@ static void resumedEqualsUncutGate(const char* legs, const char* step, const cha
   CS_EXPECT(runDef(&a, &ra, &err) == CS_OK);
   csRunDef b = baseDef(legs);
   b.strain_step = step;
+  b.step_order = order;
   b.gate = gate;
   b.t_end = 0.2;
   b.out = b_out;
@@ -169,6 +174,7 @@ static void resumedEqualsUncutGate(const char* legs, const char* step, const cha
   CS_EXPECT(rb.t_end < ra.t_end - 0.05);
   csRunDef c = baseDef(legs);
   c.strain_step = step;
+  c.step_order = order;
   c.gate = gate;
   c.t_end = 0.3;
   c.out = b_out;
@@ -207,6 +213,9 @@ static void resumedEqualsUncutGate(const char* legs, const char* step, const cha
 }
 
 
+static void resumedEqualsUncutGate(const char* legs, const char* step, const char* gate) {
+  resumedEqualsUncutOrder(legs, step, gate, NAN);
+}
 static void resumedEqualsUncutStep(const char* legs, const char* step) {
   resumedEqualsUncutGate(legs, step, NULL);
 }
@@ -362,6 +371,11 @@ static void test_strain_resumed_equals_uncut(void) { resumedEqualsUncut("strain"
 /* the adaptive step (its controller's memory is state: sim_adaptive.c) */
 static void test_strain_adaptive_resumed_equals_uncut(void) {
   resumedEqualsUncutStep("strain", "adaptive");
+}
+/* ... under BDF2 (the controller's memory holds two steps, the legs' and the support's BDF2
+ * history is theirs: sim_adaptive.c CS_ADA_STATE2) */
+static void test_strain_adaptive_bdf2_resumed_equals_uncut(void) {
+  resumedEqualsUncutOrder("strain", "adaptive", NULL, 2);
 }
 
 
@@ -561,6 +575,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_gate_crawl_resumed_equals_uncut);
   CS_RUN(test_gate_ends_the_run_when_the_table_is_over);
   CS_RUN(test_strain_adaptive_resumed_equals_uncut);
+  CS_RUN(test_strain_adaptive_bdf2_resumed_equals_uncut);
   CS_RUN(test_settling_resumed_equals_uncut);
   CS_RUN(test_other_definition_is_refused);
   CS_RUN(test_corrupt_checkpoint_is_refused);

@@ -7,6 +7,12 @@
  *    and over 1 s the error against cos(ω t) falls with the tolerance at its order (local
  *    error ~ tol per step, steps ~ tol^-1/2, so the global error ~ tol^1/2: the measured
  *    slope within 0.35-0.65 per decade) while the steps grow as tol^-1/2;
+ *  - the same for BDF2 (step_order 2; cs_adaptiveErrorNorm2, cs_adaptiveFactor2) with the
+ *    variable-step formula the legs take (csr_strainBdf2Coeffs): the estimate of one step
+ *    from exact history within 10 % of the true local error at small steps, at a constant step
+ *    and at step ratios 1.5 and 0.6 (the error constant's ratio dependence), and the global
+ *    error's slope ~ 2/3 per decade (local ~ tol, steps ~ tol^-1/3: within 0.5-0.85) with the
+ *    steps' slope ~ 1/3 (within 0.2-0.45);
  *  - through the driver on the flat road (strain legs, tree coupling): every macro step ends
  *    on its own time exactly (the output's grid), the run takes fewer steps than its shortest
  *    step would, rejects some by the error and two datas stepped alike are bit-identical, and
@@ -24,6 +30,7 @@
 
 #include "cs_test.h"
 #include "strain_flat_fixture.h"
+#include "robot_strain.h"  /* csr_strainBdf2Coeffs: the legs' variable-step BDF2 */
 #include "sim_internal.h" /* the controller's parts and counts */
 #include "sim_model.h"
 
@@ -41,36 +48,83 @@ static void beStep(double w, double h, const double y0[2], double y1[2]) {
 }
 
 
+/* one variable-step BDF2 step of the same oscillator (the legs' formula, csr_strainBdf2Coeffs
+ * with coefficients c: x1 = c0 x0 + c1 x_-1 + he v1, v1 = c0 v0 + c1 v_-1 - he w² x1, he =
+ * c2 h) from y0 after ym (the state one step before) */
+static void bdfStep(double w, const double c[3], double h, const double ym[2],
+                    const double y0[2], double y1[2]) {
+  const double he = c[2] * h;
+  const double X = c[0] * y0[0] + c[1] * ym[0], V = c[0] * y0[1] + c[1] * ym[1];
+  y1[1] = (V - he * w * w * X) / (1 + he * he * w * w);
+  y1[0] = X + he * y1[1];
+}
+
+
 /* the controller's run over [0, T] on x(0) = 1 mm, v(0) = 0 (the driver's loop, sim_adaptive.c
- * cs_adaptiveStep, with h_max the macro step): returns |x(T) - cos(w T)| (mm); *steps the
- * accepted steps */
-static double oscillatorRun(double w, double T, double H, double tol, long* steps) {
+ * cs_adaptiveStep, with h_max the macro step), backward Euler (order 1) or BDF2 (order 2; its
+ * first step backward Euler, its second tested by backward Euler's estimate, as the driver's):
+ * returns the error in the phase plane |(x - cos(w T), (v + w sin(w T)) / w)|
+ * (mm); *steps the accepted steps */
+static double oscillatorRun(int order, double w, double T, double H, double tol, long* steps) {
   const double tv = 0.01; /* velocities' tolerance: tol per 10 ms, as the driver's */
   const double tols[2] = {tol, tol / tv};
-  double y[2] = {1, 0}, dy_prev[2] = {0, 0}, t = 0, h_prop = H / 8, h_prev = 0;
+  double y[2] = {1, 0}, ym[2] = {1, 0}, dy_prev[2] = {0, 0}, dy_prev2[2] = {0, 0};
+  double t = 0, h_prop = order == 2 ? H / 64 : H / 8, h_prev = 0, h_prev2 = 0;
   const double h_min = H / 64;
   *steps = 0;
   while (t < T * (1 - 1e-12)) {
     const double t1 = fmin(T, (floor(t / H + 1e-9) + 1) * H);
     const double rest = t1 - t, n = ceil(rest / h_prop * (1 - 1e-9));
     const double h = n <= 1 ? rest : rest / n;
-    double y1[2], dy[2];
-    beStep(w, h, y, y1);
+    double y1[2], dy[2], c[3];
+    csr_strainBdf2Coeffs(h, order == 2 ? h_prev : 0, c);
+    bdfStep(w, c, h, ym, y, y1);
     dy[0] = y1[0] - y[0];
     dy[1] = y1[1] - y[1];
-    const double E = h_prev > 0 ? cs_adaptiveErrorNorm(2, dy, dy_prev, tols, h / h_prev) : 0;
+    const int second = c[1] != 0 && h_prev2 > 0;
+    const double E = second ? cs_adaptiveErrorNorm2(2, dy, dy_prev, dy_prev2, tols, h, h_prev,
+                                                    h_prev2, (1 - c[2]) / (2 * c[2] - 1))
+                     : h_prev > 0 ? cs_adaptiveErrorNorm(2, dy, dy_prev, tols, h / h_prev)
+                                  : 0;
+    const double f = second ? cs_adaptiveFactor2(E) : cs_adaptiveFactor(E);
     if (h_prev > 0 && E > 1 && h > h_min * (1 + 1e-9)) {
-      h_prop = fmax(h_min, h * cs_adaptiveFactor(E));
+      h_prop = fmax(h_min, h * f);
       continue;
     }
+    ym[0] = y[0], ym[1] = y[1];
     y[0] = y1[0], y[1] = y1[1];
+    dy_prev2[0] = dy_prev[0], dy_prev2[1] = dy_prev[1];
     dy_prev[0] = dy[0], dy_prev[1] = dy[1];
     t = n <= 1 ? t1 : t + h;
-    h_prop = h_prev > 0 ? fmin(H, fmax(h_min, h * cs_adaptiveFactor(E))) : h;
+    h_prop = h_prev > 0 ? fmin(H, fmax(h_min, h * f)) : h;
+    h_prev2 = h_prev;
     h_prev = h;
     (*steps)++;
   }
-  return fabs(y[0] - cos(w * T));
+  /* the error in the phase plane (mm): |x(1 s) - cos| alone sees the amplitude's error only,
+   * since w T is a whole number of half turns, and BDF2's amplitude error is a higher order
+   * (its damping per step ~ (w h)⁴) than its phase error */
+  return hypot(y[0] - cos(w * T), (y[1] + w * sin(w * T)) / w);
+}
+
+
+/* the global error and the steps against the tolerance over three decades: their slopes per
+ * decade within [lo_e, hi_e] and [lo_n, hi_n] */
+static void expectSlopes(int order, double w, const double tol[3], double lo_e, double hi_e,
+                         double lo_n, double hi_n) {
+  double e[3];
+  long n[3];
+  for (int k = 0; k < 3; k++) {
+    e[k] = oscillatorRun(order, w, 1.0, 5e-3, tol[k], &n[k]);
+    printf("  order %d, tol %g mm: error at 1 s %.4g mm in %ld steps\n", order, tol[k], e[k],
+           n[k]);
+  }
+  for (int k = 0; k < 2; k++) {
+    const double se = log10(e[k] / e[k + 1]), sn = log10((double)n[k + 1] / n[k]);
+    printf("  per decade of tol: error slope %.3f, steps slope %.3f\n", se, sn);
+    CS_EXPECT(se > lo_e && se < hi_e);
+    CS_EXPECT(sn > lo_n && sn < hi_n);
+  }
 }
 
 
@@ -98,19 +152,44 @@ static void test_adaptive_estimate_and_order_on_an_oscillator(void) {
     }
   }
   /* the global error and the steps against the tolerance: three decades */
-  double e[3];
-  long n[3];
   const double tol[3] = {1e-3, 1e-4, 1e-5};
-  for (int k = 0; k < 3; k++) {
-    e[k] = oscillatorRun(w, 1.0, 5e-3, tol[k], &n[k]);
-    printf("  tol %g mm: |x(1 s) - cos| %.4g mm in %ld steps\n", tol[k], e[k], n[k]);
+  expectSlopes(1, w, tol, 0.35, 0.65, 0.35, 0.65);
+}
+
+
+static void test_adaptive_bdf2_estimate_and_order_on_an_oscillator(void) {
+  const double w = 2 * 3.14159265358979 * 5; /* 5 Hz, 1 mm */
+  /* one BDF2 step from exact history (x at t0 - h1 - h2, t0 - h1, t0) against its true local
+   * error, at three ratios h / h1 (h1 = h2) */
+  const double ratio[3] = {1.0, 1.5, 0.6};
+  for (int r = 0; r < 3; r++) {
+    for (double h = 1e-3; h >= 1.24e-4; h *= 0.5) {
+      const double t0 = 0.0123, h1 = h / ratio[r], h2 = h1;
+      double ex[4][2]; /* exact at t0 - h1 - h2, t0 - h1, t0, t0 + h */
+      const double ts[4] = {t0 - h1 - h2, t0 - h1, t0, t0 + h};
+      for (int i = 0; i < 4; i++) {
+        ex[i][0] = cos(w * ts[i]);
+        ex[i][1] = -w * sin(w * ts[i]);
+      }
+      double c[3], y1[2];
+      csr_strainBdf2Coeffs(h, h1, c);
+      bdfStep(w, c, h, ex[1], ex[2], y1);
+      const double dy[1] = {y1[0] - ex[2][0]}, dy1[1] = {ex[2][0] - ex[1][0]};
+      const double dy2[1] = {ex[1][0] - ex[0][0]}, one[1] = {1};
+      const double est = cs_adaptiveErrorNorm2(1, dy, dy1, dy2, one, h, h1, h2,
+                                               (1 - c[2]) / (2 * c[2] - 1));
+      const double truth = fabs(y1[0] - ex[3][0]);
+      printf("  ratio %.1f, h %.3g ms: estimate %.4g mm, true local error %.4g mm (ratio %.3f)"
+             "\n", ratio[r], h * 1e3, est, truth, est / truth);
+      if (h < 2.6e-4) {
+        CS_EXPECT(fabs(est / truth - 1) < 0.1);
+      }
+    }
   }
-  for (int k = 0; k < 2; k++) {
-    const double se = log10(e[k] / e[k + 1]), sn = log10((double)n[k + 1] / n[k]);
-    printf("  per decade of tol: error slope %.3f, steps slope %.3f\n", se, sn);
-    CS_EXPECT(se > 0.35 && se < 0.65);
-    CS_EXPECT(sn > 0.35 && sn < 0.65);
-  }
+  /* the global error and the steps against the tolerance: three decades (2/3 and 1/3), a
+   * decade tighter than backward Euler's (at 1e-3 mm BDF2's steps are the macro step's 5 ms) */
+  const double tol[3] = {1e-4, 1e-5, 1e-6};
+  expectSlopes(2, w, tol, 0.5, 0.85, 0.2, 0.45);
 }
 
 
@@ -129,9 +208,10 @@ static int prepareRejecting(csrLeg* leg, double h, const csrBaseState* b0, doubl
 }
 
 
-/* the flat road as the scene sets it up, on strain legs of `type`, adaptive at 5 ms */
-static int loadModel(csModel* m, const csrLegType* type, double tol) {
-  return csTestLoadFlatStrain(m, g_src, type, 5e-3, 2, 1, tol);
+/* the flat road as the scene sets it up, on strain legs of `type`, adaptive at 5 ms, the tree
+ * step's formula `order` (0: the level's) */
+static int loadModel(csModel* m, const csrLegType* type, double tol, int order) {
+  return csTestLoadFlatStrainOrder(m, g_src, type, 5e-3, 2, 1, tol, order);
 }
 
 
@@ -170,9 +250,9 @@ static int sameState(const csModel* m, const csData* a, const csData* b) {
 }
 
 
-static void test_adaptive_repeats_restores_and_keeps_the_grid(void) {
+static void repeatsRestoresGrid(int order) {
   csModel m;
-  CS_EXPECT(loadModel(&m, &csr_leg_strain, 0.01));
+  CS_EXPECT(loadModel(&m, &csr_leg_strain, 0.01, order));
   csData* a = csTestSettledData(&m);
   csData* b = csTestSettledData(&m);
   const int n = a ? cs_stateSize(&m, a) : 0;
@@ -203,8 +283,9 @@ static void test_adaptive_repeats_restores_and_keeps_the_grid(void) {
   cs_adaptiveStats(a, &s);
   /* the steps the run took against the 5 ms grid's and the shortest step's count */
   const long grid = cs_stepCount(a), at_min = lround(cs_stepCount(a) * 5e-3 / s.h_min);
-  printf("  %ld macro steps of 5 ms: %ld accepted steps (%ld rejected by the error), h "
-         "%.3g / %.3g / %.3g ms; two datas %s, restored %s\n", grid, s.accepted, s.rejected,
+  printf("  order %d: %ld macro steps of 5 ms: %ld accepted steps (%ld rejected by the error), "
+         "h %.3g / %.3g / %.3g ms; two datas %s, restored %s\n", order, grid, s.accepted,
+         s.rejected,
          s.h_min * 1e3, s.h_median * 1e3, s.h_max * 1e3, same ? "bit-identical" : "DIFFER",
          restored ? "bit-identical" : "DIFFERS");
   CS_EXPECT(s.accepted >= grid);
@@ -218,11 +299,20 @@ static void test_adaptive_repeats_restores_and_keeps_the_grid(void) {
 }
 
 
+static void test_adaptive_repeats_restores_and_keeps_the_grid(void) { repeatsRestoresGrid(1); }
+
+
+/* the same under BDF2 (its controller memory holds two steps: CS_ADA_STATE2) */
+static void test_adaptive_bdf2_repeats_restores_and_keeps_the_grid(void) {
+  repeatsRestoresGrid(2);
+}
+
+
 static void test_adaptive_rejected_everywhere_changes_nothing(void) {
   csrLegType rej = csr_leg_strain;
   rej.prepare = prepareRejecting;
   csModel m;
-  CS_EXPECT(loadModel(&m, &rej, 0.01));
+  CS_EXPECT(loadModel(&m, &rej, 0.01, 0));
   g_reject_all = 0;
   csData* d = csTestSettledData(&m);
   const int n = d ? cs_stateSize(&m, d) : 0;
@@ -267,7 +357,9 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   dInitODE2(0);
   CS_RUN(test_adaptive_estimate_and_order_on_an_oscillator);
+  CS_RUN(test_adaptive_bdf2_estimate_and_order_on_an_oscillator);
   CS_RUN(test_adaptive_repeats_restores_and_keeps_the_grid);
+  CS_RUN(test_adaptive_bdf2_repeats_restores_and_keeps_the_grid);
   CS_RUN(test_adaptive_rejected_everywhere_changes_nothing);
   dCloseODE();
   return cs_testSummary();

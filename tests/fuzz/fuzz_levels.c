@@ -5,7 +5,7 @@
  * must hold what the header promises (1..CSR_LEVELS_MAX_ROWS rows; each a non-empty scene word
  * and a registered level, NUL-terminated; links 1..64, macro steps 1..100000, 0 < dt <= 0.01,
  * 0 < rod_tol <= 1000, step_order 0..2, 0 <= step_tol_mm <= 100 and > 0 only on a tree-stepped
- * level at step_order 0 or 1, finite error >= 0, finite costs > 0, a line number within the
+ * level, finite error >= 0, finite costs > 0, a line number within the
  * input; no configuration twice), and the pick must keep its promise for the first row's
  * scene at three tolerances (below, at and above the row's error) and each step kind (any,
  * fixed, adaptive): a picked row is of that scene and kind, within the tolerance, and no row
@@ -33,7 +33,7 @@ static void checkRow(const csrLevelRow* r, size_t size) {
   if (r->links < 1 || r->links > 64 || r->macro_steps < 1 || r->macro_steps > 100000 ||
       !(r->dt_s > 0 && r->dt_s <= 0.01) || !(r->rod_tol > 0 && r->rod_tol <= 1000) ||
       r->step_order < 0 || r->step_order > 2 || !(r->step_tol_mm >= 0 && r->step_tol_mm <= 100) ||
-      (r->step_tol_mm > 0 && (!csr_legTypeFind(r->level, NULL)->prepare || r->step_order > 1)) ||
+      (r->step_tol_mm > 0 && !csr_legTypeFind(r->level, NULL)->prepare) ||
       !(r->error_mm >= 0) || !isfinite(r->error_mm) ||
       !(r->cpu_s_per_s > 0) || !isfinite(r->cpu_s_per_s) || !(r->wall_s_per_s > 0) ||
       !isfinite(r->wall_s_per_s)) {

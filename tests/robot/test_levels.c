@@ -269,8 +269,8 @@ static void test_levels_format4_step_tol(void) {
                 "step_tol_mm 'tight' is not a number");
   expectRefused(HEADER4 "flat-road,rod,8,1,0.001,1,0,2.5e-4,3,2,2,m\n", 2,
                 "step_tol_mm 0.00025 on level 'rod': the adaptive step is a tree-stepped");
-  expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,2,2.5e-4,3,2,2,m\n", 2,
-                "step_tol_mm 0.00025 with step_order 2");
+  /* the adaptive step estimates either formula's error (core/sim_adaptive.c): a BDF2 row reads */
+  CS_EXPECT(readText(HEADER4 "flat-road,strain,2,1,0.005,1,2,2.5e-4,3,2,2,m\n", &err) == CS_OK);
   expectRefused(HEADER4 "flat-road,strain,2,1,0.005,1,1,2.5e-4,4,0.25,0.3,m\n"
                         "flat-road,strain,2,1,0.005,1,1,0.00025,5,0.3,0.4,m\n", 3,
                 "step tol 0.00025 mm");
