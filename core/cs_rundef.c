@@ -538,6 +538,12 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
   /* a fixed step matches a row without a step tolerance; the adaptive step (dt its longest) a
    * row at its own tolerance (robot_levels.h step_tol_mm) */
   const double step_tol = m->opt.step_adaptive ? m->opt.step_tol : 0;
+  /* the rows are measured on the scene's own terrain and gait under `paper` (the table's
+   * header): a run on other files or conditions quotes the row as the configuration's error
+   * there, not as its own, and records no number (a user's gait, or `earth`, which also swaps
+   * the flat road's gait, can sit anywhere relative to the reference) */
+  const int elsewhere = def->terrain || def->gait || def->no_gait || def->scene_file ||
+                        m->conditions != CS_CONDITIONS_PAPER;
   for (int i = 0; i < table->nrow && !found; i++) {
     const csrLevelRow* r = &table->row[i];
     /* a row's step order 0 is the level's default formula, which is what an unset one runs */
@@ -545,10 +551,19 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
     if (!strcmp(r->scene, m->scene) && !strcmp(r->level, cs_modelLegLevel(m)) &&
         r->links == links && r->macro_steps == m->opt.macro_steps && r->dt_s == m->opt.h &&
         r->rod_tol == rod_tol && row_order == order && r->step_tol_mm == step_tol) {
-      snprintf(out, size, "track error %.3g mm against the reference of %s (line %d; measured "
-               "on the scene's own gait and conditions)", r->error_mm, levels, r->line);
-      if (error_mm) {
-        *error_mm = r->error_mm;
+      if (elsewhere) {
+        snprintf(out, size, "track error %.3g mm against the reference of %s (line %d), measured "
+                 "on the scene's own terrain and gait under paper; this run's %s, so its own "
+                 "error is not measured", r->error_mm, levels, r->line,
+                 def->terrain || def->gait || def->no_gait || def->scene_file
+                     ? "terrain or gait differ"
+                     : "conditions differ");
+      } else {
+        snprintf(out, size, "track error %.3g mm against the reference of %s (line %d; measured "
+                 "on the scene's own gait and conditions)", r->error_mm, levels, r->line);
+        if (error_mm) {
+          *error_mm = r->error_mm;
+        }
       }
       found = 1;
     }

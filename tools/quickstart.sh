@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: install what is missing, build crawlsim, then the paper's flat road on the
-# scene's defaults (rod legs on the FE calibration, the gait designed on that model,
-# gaits/flat_road_rod.csv; the banner of each run says what ran)
+# scene's defaults (strain legs on the FE calibration, the adaptive tree step, the designed gait
+# gaits/flat_road_rod.csv, named for the model it was first designed on: gaits/README.md; the
+# banner of each run says what ran)
 #  1. under `paper` conditions (the paper's assumption: the legs' self-weight ignored), plotted
 #     against Table 2: out/flat_road_paper.{h5,png}
 #  2. under `earth` conditions (gravity on every body): the verdict, out/flat_road_earth.*

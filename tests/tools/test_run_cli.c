@@ -268,6 +268,31 @@ static void test_bannerStatesTrackError(void) {
     CS_EXPECT(H5Aexists(f, "track_error") > 0 && H5Aexists(f, "track_error_mm") == 0);
     H5Fclose(f);
   }
+  /* the rows are measured under paper on the scene's own files: under earth (the flat road's
+   * Earth gait) or on a user's gait the banner quotes the row as the scene's, says this run's
+   * error is not measured, and the run file records no number */
+  const char* why[2] = {"this run's conditions differ, so its own error is not measured",
+                        "this run's terrain or gait differ, so its own error is not measured"};
+  for (int k = 0; k < 2; k++) {
+    char cmd[1024];
+    if (k == 0) {
+      snprintf(cmd, sizeof cmd, "run --t-end 0.01 --conditions earth --out runcli_banner.h5");
+    } else {
+      snprintf(cmd, sizeof cmd, "run --t-end 0.01 --gait %s/gaits/flat_road_paper.csv "
+               "--conditions paper --out runcli_banner.h5",
+               getenv("CS_SOURCE_DIR") ? getenv("CS_SOURCE_DIR") : ".");
+    }
+    cs_cliRun(exe_path, cmd, "runcli", &r);
+    const char* l = strstr(r.err, "crawlsim run: legs strain, 2 bending modes per segment: "
+                                  "track error ");
+    CS_EXPECT(r.status == 0 && l != NULL && strstr(l, why[k]) != NULL);
+    f = H5Fopen("runcli_banner.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    CS_EXPECT(f >= 0);
+    if (f >= 0) {
+      CS_EXPECT(H5Aexists(f, "track_error") > 0 && H5Aexists(f, "track_error_mm") == 0);
+      H5Fclose(f);
+    }
+  }
   /* a fixed step is a row of the table */
   cs_cliRun(exe_path, "run --t-end 0.01 --strain-step fixed --out runcli_banner.h5", "runcli", &r);
   CS_EXPECT(r.status == 0);
