@@ -347,7 +347,7 @@ def gate_text(lines, source):
         sys.exit('obstacle_gait.py: %s has no wave lifts to gate' % source)
     if a.walk_extra and WALK:
         out.append('# the walk ends on the measured support: first slot, slot, slots written '
-                   'before the turn, end x (mm), the turn\'s and the crawl\'s carry (mm)\n'
+                   'before the turn, XEND and CARRY along the walk (mm)\n'
                    'walk %.4f %g %d %g %g\n' % (WALK + (a.walk_xend, a.walk_carry)))
     if a.crawl_max is not None and CRAWL:
         out.append('# the lateral crawl ends on the measured support: first slot, slot, slots '
