@@ -211,6 +211,13 @@ static void logPlan(const csRunDef* def, const csModel* m, const csData* d,
               m->gate->crawl_n, m->gate->crawl_tpz, m->gate->crawl_t0, m->gate->crawl_carry,
               m->gate->crawl_zend);
     }
+    if (m->gate->walk_n > 0) {
+      logLine(def, "gate %s: the walk (%d slots of %g s from %g s, then its end) ends on the "
+              "measured support x: at a boundary of its end's phase when x + %g mm >= %g mm less "
+              "half the last two slots' advance (gaits_gate.h `walk`)", plan->gate,
+              m->gate->walk_n, m->gate->walk_tp, m->gate->walk_t0, m->gate->walk_carry,
+              m->gate->walk_xend);
+    }
   } else if (m->gait) {
     logLine(def, "gate none: open loop (the table on time)");
   }

@@ -69,33 +69,38 @@ csStatus cs_modelLoadGate(csModel* m, const char* path, csError* err) {
 }
 
 
-/* the crawl's decision at the step's start (gaits_gate.h `crawl`): every decision boundary the
- * table's clock has passed reads the support's measured z now (the state's); the first that
- * says stop sets the skip, and no boundary is read after it. Nothing here moves the support:
- * the skip only changes which table row the valves are given. */
-static void crawlDecide(const csModel* m, csData* d, double tau) {
+/* the crawl's decision at the step's start (gaits_gate.h `crawl`), and the walk's (`walk`, the
+ * same rule on x): every decision boundary the table's clock tau has passed reads the
+ * support's measured position now (the state's); the first that says stop sets the skip, and
+ * no boundary is read after it. i, v, skip the committed boundaries read, coordinate at the
+ * last, skip; out the step's. Nothing here moves the support: the skip only changes which
+ * table row the valves are given. */
+static void endDecide(const csModel* m, const csData* d, int walk, double tau, double i, double v,
+                      double skip, double* out) {
   const csgGateSet* s = m->gate;
-  double i = d->crawl_i, z = d->crawl_z, skip = d->crawl_skip;
-  if (s->crawl_n > 0 && !m->pressure_source && skip == 0) {
+  const int n = walk ? s->walk_n : s->crawl_n;
+  const double t0 = walk ? s->walk_t0 : s->crawl_t0, tp = walk ? s->walk_tp : s->crawl_tpz;
+  if (n > 0 && !m->pressure_source && skip == 0) {
     double pos[3];
     cs_supportDisplacement(d, pos);
+    const double now = walk ? pos[0] : pos[2];
     for (;;) {
-      const int j = (s->crawl_n - 1) % 2 + 2 * (int)i;
-      if (j > s->crawl_n - 1 || tau < s->crawl_t0 + (j + 1) * s->crawl_tpz - GATE_TIME_TOL) {
+      const int j = (n - 1) % 2 + 2 * (int)i;
+      if (j > n - 1 || tau < t0 + (j + 1) * tp - GATE_TIME_TOL) {
         break;
       }
-      const int left = csg_gateCrawlSkip(s, j, pos[2], z);
+      const int left = walk ? csg_gateWalkSkip(s, j, now, v) : csg_gateCrawlSkip(s, j, now, v);
       i += 1;
-      z = pos[2];
+      v = now;
       if (left > 0) {
-        skip = left * s->crawl_tpz;
+        skip = left * tp;
         break;
       }
     }
   }
-  d->crawl_i_next = i;
-  d->crawl_z_next = z;
-  d->crawl_skip_next = skip;
+  out[0] = i;
+  out[1] = v;
+  out[2] = skip;
 }
 
 
@@ -107,10 +112,21 @@ void cs_gateDecide(const csModel* m, csData* d) {
   const int g0 = (int)d->gate_i;
   int gi = g0, holding = 0;
   double w = d->gate_wait;
-  /* the table's clock: every gate comes before the crawl (gaits_gate.c), so a skip decided
-   * here never jumps over one */
-  crawlDecide(m, d, d->t - d->gate_hold + d->crawl_skip);
-  const double tau = d->t - d->gate_hold + d->crawl_skip_next;
+  /* the table's clock: every gate comes before the walk and the crawl, the walk before the
+   * crawl's first slot (gaits_gate.c), so a skip decided here never jumps over a gate, and the
+   * crawl reads the clock the walk's decision leaves */
+  double out[3];
+  endDecide(m, d, 1, d->t - d->gate_hold + d->walk_skip + d->crawl_skip, d->walk_i, d->walk_x,
+            d->walk_skip, out);
+  d->walk_i_next = out[0];
+  d->walk_x_next = out[1];
+  d->walk_skip_next = out[2];
+  endDecide(m, d, 0, d->t - d->gate_hold + d->walk_skip_next + d->crawl_skip, d->crawl_i,
+            d->crawl_z, d->crawl_skip, out);
+  d->crawl_i_next = out[0];
+  d->crawl_z_next = out[1];
+  d->crawl_skip_next = out[2];
+  const double tau = d->t - d->gate_hold + d->walk_skip_next + d->crawl_skip_next;
   /* a caller's pressure source (cs_simSetController, a held command) drives the chambers
    * instead of the table: the gate neither tests nor holds meanwhile */
   if (!m->pressure_source && d->t >= 0 && gi < s->n && tau >= s->gate[gi].t - GATE_TIME_TOL) {
@@ -159,6 +175,9 @@ void cs_gateCommit(const csModel* m, csData* d, double h) {
   d->crawl_i = d->crawl_i_next;
   d->crawl_z = d->crawl_z_next;
   d->crawl_skip = d->crawl_skip_next;
+  d->walk_i = d->walk_i_next;
+  d->walk_x = d->walk_x_next;
+  d->walk_skip = d->walk_skip_next;
   if (d->gate_holding) {
     d->gate_hold += h;
     d->gate_wait += h;
@@ -168,7 +187,7 @@ void cs_gateCommit(const csModel* m, csData* d, double h) {
 
 void cs_gateEval(const csModel* m, const csData* d, const csgGait* g, double t, double* p_cmd) {
   if (m->gate) {
-    t += d->crawl_skip_next; /* the crawl's skip (the decision this step plays) */
+    t += d->walk_skip_next + d->crawl_skip_next; /* the skips (the decisions this step plays) */
   }
   if (!m->gate || (d->gate_hold == 0 && !d->gate_holding)) {
     csg_scheduleEval(g, &m->sched, t, p_cmd);
@@ -180,7 +199,7 @@ void cs_gateEval(const csModel* m, const csData* d, const csgGait* g, double t, 
 
 
 double cs_gateTableTime(const csModel* m, const csData* d, double t) {
-  return m->gate ? t - d->gate_hold + d->crawl_skip_next : t;
+  return m->gate ? t - d->gate_hold + d->walk_skip_next + d->crawl_skip_next : t;
 }
 
 
@@ -188,9 +207,9 @@ int cs_runOverAt(const csModel* m, const csData* d, long i) {
   if (m->opt.t_end > 0 || !m->gate || !m->gait) {
     return 0; /* --t-end wins; without a gate the loop's step count is the end */
   }
-  /* the committed skip (crawl_skip_next is the coming step's, stale after a restore); half a
+  /* the committed skips (the _next ones are the coming step's, stale after a restore); half a
    * macro step: the loop's own lround(t_end / H) rounding of the same end */
-  const double tau = d->t - d->gate_hold + d->crawl_skip;
+  const double tau = d->t - d->gate_hold + d->walk_skip + d->crawl_skip;
   return i % cs_modelOutputEvery(m) == 0 && tau >= cs_modelTableEnd(m) - 0.5 * cs_modelMacroStep(m);
 }
 

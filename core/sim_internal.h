@@ -148,6 +148,10 @@ struct csData_ {
    * the current step's start (not state: a function of it, written by cs_gateCommit) */
   double crawl_i, crawl_z, crawl_skip;
   double crawl_i_next, crawl_z_next, crawl_skip_next;
+  /* the gate file's walk (`walk`, sim_gate.c), the same three on x, in the state after the
+   * crawl's part; the table's clock is t - gate_hold + walk_skip + crawl_skip */
+  double walk_i, walk_x, walk_skip;
+  double walk_i_next, walk_x_next, walk_skip_next;
   csAdaptive ada;  /* the adaptive step (opt.step_adaptive; sim_adaptive.c) */
   /* the step the current try started as before its halvings (s): H with a fixed step, the
    * adaptive step's length with step_adaptive (the tree's rules for a retried step) */

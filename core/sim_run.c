@@ -20,7 +20,8 @@
  * landing gate's closed loop) with a gate gate_file, gate_held_s, gate_released, gate_waited
  * and gate_waits ("T LEGS WAIT; ..." s for the gates that waited, sim_gate.c) and the dataset
  * /gate/waits [n, 2] (each gate's table time and wait), with a gate's crawl statement crawl_skip_s,
- * crawl_boundaries_read and crawl_z_mm (its decision, sim_gate.c), and per timer (sim_model.h
+ * crawl_boundaries_read and crawl_z_mm (its decision, sim_gate.c), with its walk statement
+ * walk_skip_s, walk_boundaries_read and walk_x_mm, and per timer (sim_model.h
  * CS_TIMER_LIST) timer_<name>_s and
  * timer_<name>_calls. Samples are appended as the run goes and the file is flushed every
  * simulated second (core_h5.c: each flush writes the whole file image and renames it into
@@ -732,6 +733,11 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
       cs_h5AttrDouble(f, "/", "crawl_boundaries_read", d->crawl_i, NULL);
       cs_h5AttrDouble(f, "/", "crawl_z_mm", d->crawl_z, NULL);
     }
+    if (m->gate->walk_n > 0) { /* the walk's decision (gaits_gate.h `walk`, sim_gate.c) */
+      cs_h5AttrDouble(f, "/", "walk_skip_s", d->walk_skip, NULL);
+      cs_h5AttrDouble(f, "/", "walk_boundaries_read", d->walk_i, NULL);
+      cs_h5AttrDouble(f, "/", "walk_x_mm", d->walk_x, NULL);
+    }
     /* why the rows stop where they do (cs_runOverAt) */
     char why[CS_H5_STATUS_SIZE];
     if (m->opt.t_end > 0) {
@@ -739,9 +745,9 @@ csStatus cs_runWriteCheckpointed(const csModel* m, csData* d, const char* out_pa
     } else if (st != CS_OK || cancelled) {
       snprintf(why, sizeof why, "stopped at t = %g s (status)", cs_time(d));
     } else if (over) {
-      snprintf(why, sizeof why, "the gait is over: the table's clock (t - gate hold + crawl "
-               "skip) reached the table's end, %g s, at t = %g s", cs_modelTableEnd(m),
-               cs_time(d));
+      snprintf(why, sizeof why, "the gait is over: the table's clock (t - gate hold + walk "
+               "and crawl skips) reached the table's end, %g s, at t = %g s",
+               cs_modelTableEnd(m), cs_time(d));
     } else {
       snprintf(why, sizeof why, "the longest the gate's holds allow, %g s, on the run's clock "
                "(the table's clock at %g s of %g)", t_end, cs_gateTableTime(m, d, cs_time(d)),

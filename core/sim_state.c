@@ -27,10 +27,19 @@ enum { HEAD = 2 + CSR_NCHAMBER_TOTAL }; /* t, seed, pressures */
 /* the footholds' latches: one per foothold of the model */
 static int footholdCount(const csModel* m) { return m->foothold ? m->foothold->n : 0; }
 /* the gate's part: next gate, hold, wait, one released wait per gate; with a crawl statement
- * then the crawl's boundaries passed, z at the last (mm) and skip (s) */
+ * then the crawl's boundaries passed, z at the last (mm) and skip (s); with a walk statement
+ * then the walk's, on x */
 #define CRAWL_PART 3
 static int crawlCount(const csModel* m) { return m->gate && m->gate->crawl_n ? CRAWL_PART : 0; }
-static int gateCount(const csModel* m) { return m->gate ? 3 + m->gate->n + crawlCount(m) : 0; }
+static int walkCount(const csModel* m) { return m->gate && m->gate->walk_n ? CRAWL_PART : 0; }
+static int gateCount(const csModel* m) {
+  return m->gate ? 3 + m->gate->n + crawlCount(m) + walkCount(m) : 0;
+}
+/* a decision's three values (boundaries read, coordinate, skip) restorable for n slots */
+static int endPartOk(const double* x, int n) {
+  return x[0] >= 0 && x[0] <= n && x[0] == floor(x[0]) && isfinite(x[1]) && isfinite(x[2]) &&
+         x[2] >= 0;
+}
 
 
 /* where the adaptive step's part starts: after the robot and the coupling's block */
@@ -70,6 +79,12 @@ void cs_stateGet(const csModel* m, const csData* d, double* x) {
       xg[4 + m->gate->n] = d->crawl_z;
       xg[5 + m->gate->n] = d->crawl_skip;
     }
+    if (walkCount(m)) {
+      double* xw = xg + 3 + m->gate->n + crawlCount(m);
+      xw[0] = d->walk_i;
+      xw[1] = d->walk_x;
+      xw[2] = d->walk_skip;
+    }
   }
 }
 
@@ -104,9 +119,10 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
       ok = ok && isfinite(xg[k]) && xg[k] >= 0;
     }
     if (crawlCount(m)) {
-      const double* xc2 = xg + 3 + m->gate->n;
-      ok = ok && xc2[0] >= 0 && xc2[0] <= m->gate->crawl_n && xc2[0] == floor(xc2[0]) &&
-           isfinite(xc2[1]) && isfinite(xc2[2]) && xc2[2] >= 0;
+      ok = ok && endPartOk(xg + 3 + m->gate->n, m->gate->crawl_n);
+    }
+    if (walkCount(m)) {
+      ok = ok && endPartOk(xg + 3 + m->gate->n + crawlCount(m), m->gate->walk_n);
     }
     if (!ok) {
       return cs_errorSet(err, CS_ERR_ARG, "cs_stateSet: the gate's part (next gate %g of %d, "
@@ -143,6 +159,12 @@ csStatus cs_stateSet(const csModel* m, csData* d, const double* x, csError* err)
       d->crawl_i = xg[3 + m->gate->n];
       d->crawl_z = xg[4 + m->gate->n];
       d->crawl_skip = xg[5 + m->gate->n];
+    }
+    if (walkCount(m)) {
+      const double* xw = xg + 3 + m->gate->n + crawlCount(m);
+      d->walk_i = xw[0];
+      d->walk_x = xw[1];
+      d->walk_skip = xw[2];
     }
   }
   d->t = x[0];

@@ -39,12 +39,24 @@ void csg_gateLegs(unsigned legs, char* out) {
 }
 
 
-int csg_gateCrawlSkip(const csgGateSet* s, int j, double z, double zprev) {
-  const int left = s->crawl_n - 1 - j;
-  if (s->crawl_n < 3 || j < 2 || left <= 0 || left % 2) {
+/* the rule shared by `crawl` (on z) and `walk` (on x): n slots written, v the support's
+ * coordinate at the end of slot j, vprev at the end of slot j - 2 (gaits_gate.h) */
+static int endSkip(int n, double vend, double carry, int j, double v, double vprev) {
+  const int left = n - 1 - j;
+  if (n < 3 || j < 2 || left <= 0 || left % 2) {
     return 0;
   }
-  return z + s->crawl_carry >= s->crawl_zend - (z - zprev) / 2 ? left : 0;
+  return v + carry >= vend - (v - vprev) / 2 ? left : 0;
+}
+
+
+int csg_gateCrawlSkip(const csgGateSet* s, int j, double z, double zprev) {
+  return endSkip(s->crawl_n, s->crawl_zend, s->crawl_carry, j, z, zprev);
+}
+
+
+int csg_gateWalkSkip(const csgGateSet* s, int j, double x, double xprev) {
+  return endSkip(s->walk_n, s->walk_xend, s->walk_carry, j, x, xprev);
 }
 
 
@@ -132,15 +144,19 @@ static csStatus statementGate(csgGateSet* s, char** w, int nw, int seen, const c
 }
 
 
-/* `crawl T0 TPZ N ZEND CARRY` */
-#define CRAWL_MAX_SLOTS 1000 /* far beyond any table's crawl (the obstacle's: 8-16) */
-static csStatus statementCrawl(csgGateSet* s, char** w, int nw, const char* path, int line,
-                               csError* err) {
-  if (s->crawl_n) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: a second 'crawl' line", path, line);
+/* `crawl T0 TPZ N ZEND CARRY` and `walk T0 TP N XEND CARRY`: the same five numbers (an end
+ * read off the measured support, gaits_gate.h); after the gates, the walk before the crawl */
+#define CRAWL_MAX_SLOTS 1000 /* far beyond any table's crawl or walk (the obstacle's: 3-16) */
+static csStatus statementEnd(csgGateSet* s, int walk, char** w, int nw, const char* path,
+                             int line, csError* err) {
+  const char* kw = walk ? "walk" : "crawl";
+  if (walk ? s->walk_n || s->crawl_n : s->crawl_n) {
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: a second '%s' line%s", path, line, kw,
+                       walk && s->crawl_n ? " or one after the 'crawl' line" : "");
   }
   if (nw != 6) {
-    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'crawl' needs T0 TPZ N ZEND CARRY", path, line);
+    return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: '%s' needs T0 %s N %s CARRY", path, line, kw,
+                       walk ? "TP" : "TPZ", walk ? "XEND" : "ZEND");
   }
   double v[5];
   for (int i = 0; i < 5; i++) {
@@ -149,18 +165,22 @@ static csStatus statementCrawl(csgGateSet* s, char** w, int nw, const char* path
                          w[1 + i]);
     }
   }
-  const double tlast = s->n > 0 ? s->gate[s->n - 1].t : 0;
+  /* a skip never jumps over a gate, nor the walk's over the crawl's first slot */
+  const double tlast = s->walk_n && !walk ? s->walk_t0 + s->walk_n * s->walk_tp
+                       : s->n > 0 ? s->gate[s->n - 1].t : 0;
   if (!(v[0] >= tlast && v[1] > 0 && v[2] >= 3 && v[2] <= CRAWL_MAX_SLOTS &&
         v[2] == floor(v[2]) && v[4] >= 0)) {
-    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: needs T0 >= the last gate (%g s), TPZ > 0, N "
+    return cs_errorSet(err, CS_ERR_RANGE, "%s:%d: needs T0 >= the last gate%s (%g s), %s > 0, N "
                        "a whole number 3..%d and CARRY >= 0 (%g s, %g s, %g, %g mm)", path, line,
-                       tlast, CRAWL_MAX_SLOTS, v[0], v[1], v[2], v[4]);
+                       s->walk_n && !walk ? "'s and the walk's end" : "", tlast,
+                       walk ? "TP" : "TPZ", CRAWL_MAX_SLOTS, v[0], v[1], v[2], v[4]);
   }
-  s->crawl_t0 = v[0];
-  s->crawl_tpz = v[1];
-  s->crawl_n = (int)v[2];
-  s->crawl_zend = v[3];
-  s->crawl_carry = v[4];
+  double* f[4] = {&s->crawl_t0, &s->crawl_tpz, &s->crawl_zend, &s->crawl_carry};
+  double* fw[4] = {&s->walk_t0, &s->walk_tp, &s->walk_xend, &s->walk_carry};
+  for (int i = 0; i < 4; i++) {
+    *(walk ? fw : f)[i] = v[i < 2 ? i : i + 1];
+  }
+  *(walk ? &s->walk_n : &s->crawl_n) = (int)v[2];
   return CS_OK;
 }
 
@@ -177,17 +197,19 @@ static csStatus gateStatement(void* ctx, char** w, int nw, const char* path, int
   if (!strcmp(w[0], "design")) {
     return statementDesign(g->s, w, nw, &g->seen, path, line, err);
   }
-  if (!strcmp(w[0], "crawl")) {
-    return statementCrawl(g->s, w, nw, path, line, err);
+  if (!strcmp(w[0], "crawl") || !strcmp(w[0], "walk")) {
+    return statementEnd(g->s, w[0][0] == 'w', w, nw, path, line, err);
   }
   if (!strcmp(w[0], "gate")) {
-    if (g->s->crawl_n) {
-      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'gate' after the 'crawl' line", path, line);
+    if (g->s->crawl_n || g->s->walk_n) {
+      return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: 'gate' after the '%s' line", path, line,
+                         g->s->walk_n ? "walk" : "crawl");
     }
     return statementGate(g->s, w, nw, g->seen, path, line, err);
   }
-  return cs_errorSet(err, CS_ERR_PARSE, "%s:%d: unknown statement '%.40s' (design, gate, crawl)",
-                     path, line, w[0]);
+  return cs_errorSet(err, CS_ERR_PARSE,
+                     "%s:%d: unknown statement '%.40s' (design, gate, walk, crawl)", path, line,
+                     w[0]);
 }
 
 

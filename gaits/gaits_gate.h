@@ -43,6 +43,16 @@
  *       lands nearer ZEND than one more cycle at the measured pace; CARRY (mm, >= 0) the
  *       release's own advance along z, ZEND (mm) the end point's z). Ending skips the table's
  *       clock on by (N - 1 - j) TPZ.
+ *   walk T0 TP N XEND CARRY
+ *       at most once, after the gates and before the crawl (T0 >= every gate's T; the crawl's
+ *       T0 >= T0 + N TP): the walk's length read off the measured support, the crawl's rule on
+ *       x (issue 33, docs/notes/obstacle.md "obst13"). The table has N (>= 3) slots of TP s
+ *       from table time T0 of a walk periodic in two slots, then its end (the obstacle's turn
+ *       to the lateral crawl); at the end of slot j with N - 1 - j even and j >= 2 the player
+ *       reads the support's measured x (mm) and its advance a over the last two slots, and
+ *       ends the walk there when x + CARRY >= XEND - a / 2 (CARRY, mm >= 0: what the walk's
+ *       end and what follows add along x; XEND, mm: the end point's x). Ending skips the
+ *       table's clock on by (N - 1 - j) TP; a crawl's boundaries are read on the clock after it.
  * Errors: "<file>:<line>: <cause>" (CS_ERR_PARSE malformed, CS_ERR_RANGE values, CS_ERR_IO a
  * file that cannot be read). */
 #ifndef CS_GAITS_GATE_H
@@ -80,6 +90,12 @@ typedef struct csgGateSet_ {
   double crawl_tpz;   /* s: one slot */
   double crawl_zend;  /* mm: the end point's z */
   double crawl_carry; /* mm: the release's own advance along z */
+  /* the `walk` statement (walk_n 0: none) */
+  int walk_n;        /* walk slots written before its end */
+  double walk_t0;    /* s: table time of the first slot's start */
+  double walk_tp;    /* s: one slot */
+  double walk_xend;  /* mm: the end point's x */
+  double walk_carry; /* mm: the walk's end and what follows, along x */
   char source[512];
 } csgGateSet;
 
@@ -100,6 +116,11 @@ int csg_gateReady(const csgGate* g, const double* p, const double* v, double pto
  * j, zprev at the end of slot j - 2. Returns the slots to skip (N - 1 - j) when the crawl ends
  * there, 0 when it goes on (or j is not a decision boundary). */
 int csg_gateCrawlSkip(const csgGateSet* s, int j, double z, double zprev);
+
+/* The walk's rule at one boundary (pure; the crawl's on x, `walk`): x the support's measured x
+ * (mm) at the end of slot j, xprev at the end of slot j - 2. Returns the slots to skip
+ * (N - 1 - j) when the walk ends there, 0 when it goes on (or j is not a decision boundary). */
+int csg_gateWalkSkip(const csgGateSet* s, int j, double x, double xprev);
 
 /* LEGS as letters into out (>= 9 chars). */
 void csg_gateLegs(unsigned legs, char* out);

@@ -243,7 +243,30 @@ ap.add_argument('--crawl-max', type=int, default=12, metavar='N',
 ap.add_argument('--crawl-carry', type=float, default=23.0,
                 help='with --crawl-max: the release\'s own advance along z, mm (the 50 g nominal\'s '
                 'measured 23 mm: docs/bench/obst10_2026-12-07c/nominal.txt, `rel8`)')
+ap.add_argument('--walk-extra', type=int, default=1, metavar='K',
+                help='the walk in two groups ended on the measured support (rule 21, issue 33, '
+                'docs/notes/obstacle.md "obst13"): write K more cycles of two slots after '
+                '--xslots and, with --gate-out, the gate\'s `walk` statement, so the player ends '
+                'the walk at the first boundary of its end\'s phase where the measured support x '
+                'is near enough --walk-xend (gaits/gaits_gate.h); default 1 (the shipped files '
+                'since obst13; off with --gate-from or --zgroups 4 unless given); 0: off, the '
+                'files shipped before')
+ap.add_argument('--walk-xend', type=float, default=646.0,
+                help='with --walk-extra: the end point\'s x, mm (Table 3\'s end, paper Sec. 5.2)')
+ap.add_argument('--walk-carry', type=float, default=65.0,
+                help='with --walk-extra: what the walk\'s end (the turn) and the lateral crawl add '
+                'along x, mm (the 50 g nominal\'s measured 64.8: the shipped default\'s x from the '
+                'turn\'s start, 586.2 mm at 26.84 s, to its end, 651.0; docs/notes/obstacle.md '
+                '"obst13")')
 a = ap.parse_args()
+WALK_GIVEN = any(x == '--walk-extra' or x.startswith('--walk-extra=') for x in sys.argv[1:])
+if (a.gate_from or a.zgroups != 2) and not WALK_GIVEN:
+    a.walk_extra = 0  # off: the default's walk needs a table written here, two groups
+if a.walk_extra < 0 or (a.walk_extra and (a.zgroups != 2 or a.xslots < 2 or a.gate_from)):
+    sys.exit('obstacle_gait.py: --walk-extra takes K >= 0, with the walk in two groups '
+             '(--zgroups 2, --xslots >= 2) and a table written here (not --gate-from)')
+XSLOTS = a.xslots + 2 * a.walk_extra  # the walk's slots written (rule 21)
+WALK = None  # (first slot's table time s, slot s, slots before the turn) once written
 CRAWL_GIVEN = any(x == '--crawl-max' or x.startswith('--crawl-max=') for x in sys.argv[1:])
 if a.crawl_max == 0 or (a.gate_from and not CRAWL_GIVEN) or (a.zgroups != 2 and not CRAWL_GIVEN):
     a.crawl_max = None  # off: the default's crawl needs a table written here, two groups
@@ -322,6 +345,10 @@ def gate_text(lines, source):
     out += [g for _, _, g in sorted(gates)]
     if len(out) == 2:
         sys.exit('obstacle_gait.py: %s has no wave lifts to gate' % source)
+    if a.walk_extra and WALK:
+        out.append('# the walk ends on the measured support: first slot, slot, slots written '
+                   'before the turn, XEND and CARRY along the walk (mm)\n'
+                   'walk %.4f %g %d %g %g\n' % (WALK + (a.walk_xend, a.walk_carry)))
     if a.crawl_max is not None and CRAWL:
         out.append('# the lateral crawl ends on the measured support: first slot, slot, slots '
                    'written, end z (mm), the release\'s carry (mm)\n'
@@ -441,6 +468,14 @@ RULE11 = """
 #     and 33-41 mm along z at SHZ 22-32 (the legs' sway and the landing overshoot add to the
 #     stroke; docs/bench/obstacle_pace_2026-12-06)."""
 
+RULE21 = """
+# 21. The walk in two groups ends on the measured support (the gate's `walk` statement): the
+#     table has {K} more cycle(s) of it ({N} slots, the last the turn); at each slot boundary
+#     from which the table can jump to the turn (the walk is periodic in two slots) the
+#     player reads the support's x and its advance over the last two slots, and ends the walk
+#     there when stopping lands nearer the end point's x than one more cycle would, counting
+#     what the turn and the lateral crawl add (rule 7's crawl statement on x)."""
+
 
 RULE16 = ''
 if a.over_step is not None or a.reach is not None:
@@ -529,14 +564,18 @@ HEADER = """\
               a.Tstart, a.Tturn, a.t_place) +
            ('' if a.zgroups == 4 else
             ';\n#   zgroups 2, xslots %d, x2 %s, SX %g, SHZ %g mm, Tvent %g s'
-            % (a.xslots, a.x2, a.SX, a.SHZ, a.Tvent)) +
+            % (a.xslots, a.x2, a.SX, a.SHZ, a.Tvent) +
+            ('' if not a.walk_extra else
+             ';\n#   walk-extra %d, walk-xend %g, walk-carry %g mm'
+             % (a.walk_extra, a.walk_xend, a.walk_carry))) +
            ('' if abs(sum(FRAC) - 1) < 1e-9 and FRAC == (0.25, 0.4, 0.1, 0.25) else
             ';\n#   frac %s (wave step: lift, swing, hold, land; the rest: all legs stand)'
             % a.frac),
            rule7=RULE7[a.zgroups],
            rule9=RULE9[a.zgroups].format(turnh=TURNH, SHZ=SHZ, Tpz=a.Tpz),
            rule11='' if a.zgroups == 4 else
-           RULE11.format(HX=a.SX / 2, xslots=a.xslots, SX=a.SX, RZ=SHZ / 2, SHZ=SHZ, Tpz=a.Tpz),
+           RULE11.format(HX=a.SX / 2, xslots=a.xslots, SX=a.SX, RZ=SHZ / 2, SHZ=SHZ, Tpz=a.Tpz) +
+           ('' if not a.walk_extra else RULE21.format(K=a.walk_extra, N=XSLOTS)),
            rule10='' if a.rise_low is None else
            '\n# 10. Past the step the walk comes down: from the first slot in which every foot '
            'stands on\n#     the road, the road legs\' stretch falls linearly from %g to %g mm '
@@ -1008,9 +1047,10 @@ else:
         xs = {l: state[l][1] for l in OFF}
         for l in GZ[0]:
             xs[l] = HX
-        for k in range(a.xslots):
+        WALK = (t, a.Tpz, XSLOTS - 1)
+        for k in range(XSLOTS):
             st, sw = GZ[k % 2], GZ[(k + 1) % 2]
-            last = k == a.xslots - 1
+            last = k == XSLOTS - 1
             emit(t, a.Tpz, {l: need(gk, -HX) for l in st}, linear=True)
             step(t, a.Tpz, sw, {l: need('A', xs[l]) for l in sw},
                  {l: need('V', RZ) if last else need('A', HX) for l in sw},
@@ -1020,7 +1060,7 @@ else:
             for l in sw:
                 xs[l] = HX
             t += a.Tpz
-        g0 = a.xslots % 2          # the group that stands aside: it pushes first
+        g0 = XSLOTS % 2          # the group that stands aside: it pushes first
         for l in OFF:
             state[l] = ['G', xs[l]]
     else:

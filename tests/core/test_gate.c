@@ -18,6 +18,14 @@
  *    skips 2 slots, and the two runs are the same up to the decision and differ after it (the
  *    valves play the table 0.2 s on); two restores from before the decision run to the same
  *    state bit for bit and make the uncut run's decision; a crawl part that is not a state is refused;
+ *  - the walk statement (obst13; a synthetic walk of 5 slots of 0.1 s from 1.0 s, decided at
+ *    1.3 s after slot 2, before a crawl of 5 slots from 1.6 s): with an end no support
+ *    reaches it reads all three boundaries and never skips, and the crawl decides on the
+ *    table's clock (run 1.9 s); with one every support has passed it skips 2 slots at 1.3 s and
+ *    the crawl decides 0.2 s earlier on the run's clock (1.7 s); the runs are the same up to
+ *    the walk's decision and differ after it; two restores from before it run to the same
+ *    state bit for bit with the uncut run's decisions; a walk part that is not a state is
+ *    refused;
  *  - a gate's `x XMIN` (ramp11): with an XMIN every support has passed the run is the same
  *    gate's without it bit for bit; with one no support reaches it holds the file's maxwait;
  *    with XMIN 0.5 mm past where the support stands when the gate is reached it holds, and
@@ -34,7 +42,8 @@
 #include "cs_test.h"
 
 #define NGATE 75 /* gates in gaits/obstacle.gate */
-#define NCRAWL 3 /* its crawl statement's part of the state (boundaries read, z, skip; ship11) */
+#define NCRAWL 6 /* its crawl and walk statements' parts of the state (boundaries read, z or x,
+                  * skip: ship11, obst13) */
 #define STEP 1e-3
 
 
@@ -271,6 +280,80 @@ static void test_crawlDecidesAndRestores(void) {
 }
 
 
+/* the walk's decision, then the crawl's on the clock it leaves, in a run and across a restore;
+ * the state's last three values are the walk's (boundaries read, x, skip), the three before
+ * them the crawl's */
+#define WALK_GATE(xend) \
+  "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\ngate 0.2 AE\nwalk 1.0 0.1 5 " xend \
+  " 0\ncrawl 1.6 0.1 5 -1e6 0\n"
+
+static void test_walkDecidesThenCrawl(void) {
+  cs_testWriteText("walk_never.gate", WALK_GATE("1e6"));
+  cs_testWriteText("walk_stop.gate", WALK_GATE("-1e6"));
+  csSim* go = make("walk_never.gate", 0);
+  csSim* st = make("walk_stop.gate", 0);
+  CS_EXPECT(go && st);
+  const int n = go && st ? cs_simStateSize(st) : 0;
+  double* buf = n ? malloc(sizeof(double) * 5 * (size_t)n) : NULL;
+  CS_EXPECT(buf != NULL);
+  if (!buf) {
+    cs_simDestroy(go);
+    cs_simDestroy(st);
+    return;
+  }
+  double *a = buf, *x = buf + n, *u = buf + 2 * n, *y = buf + 3 * n, *y0 = buf + 4 * n;
+  csError err;
+  /* before the walk's decision (1.3 s) the two runs are one */
+  runTo(go, 1.25);
+  runTo(st, 1.25);
+  cs_simStateGet(go, a);
+  cs_simStateGet(st, x);
+  CS_EXPECT(cs_simStateSize(go) == n && !memcmp(a, x, sizeof(double) * (size_t)n));
+  CS_EXPECT(x[n - 3] == 1 && x[n - 1] == 0); /* the boundary after slot 0 read, no skip */
+  /* 1.68 s: the stopped walk plays the table 0.2 s on (A, E lift from 1.8 s: 1.88 s), the
+   * other not yet and has read all three boundaries (slots 0, 2, 4); the crawl's first
+   * boundary (table 1.7 s) is behind the stopped run's clock only... */
+  runTo(go, 1.68);
+  runTo(st, 1.68);
+  cs_simStateGet(go, a);
+  cs_simStateGet(st, u);
+  CS_EXPECT(a[n - 3] == 3 && a[n - 1] == 0 && u[n - 3] == 2 && u[n - 1] == 2 * 0.1);
+  CS_EXPECT(u[n - 6] == 1 && u[n - 4] == 0 && a[n - 6] == 0);
+  double dp = 0;
+  for (int i = 2; i < 2 + 96; i++) dp = fmax(dp, fabs(a[i] - u[i]));
+  printf("walk: never ends %g boundaries, skip %g s; ends at once %g boundaries, skip %g s "
+         "(x %.4f mm); chambers %.4g MPa apart at 1.68 s\n", a[n - 3], a[n - 1], u[n - 3],
+         u[n - 1], u[n - 2], dp);
+  CS_EXPECT(dp > 1e-3);
+  /* ...and it decides on the table's clock: at run 1.7 s after the walk's skip (table 1.9 s),
+   * at run 1.9 s without it; each skips its 2 slots */
+  runTo(st, 1.72);
+  cs_simStateGet(st, u);
+  CS_EXPECT(u[n - 6] == 2 && u[n - 4] == 2 * 0.1);
+  runTo(go, 1.88);
+  cs_simStateGet(go, a);
+  CS_EXPECT(a[n - 6] == 1 && a[n - 4] == 0);
+  runTo(go, 1.92);
+  cs_simStateGet(go, a);
+  CS_EXPECT(a[n - 6] == 2 && a[n - 4] == 2 * 0.1);
+  /* two restores from before the walk's decision: bit for bit, the uncut run's decisions */
+  for (int k = 0; k < 2; k++) {
+    CS_EXPECT(cs_simStateSet(st, x, &err) == CS_OK);
+    runTo(st, 1.72);
+    cs_simStateGet(st, k ? y : y0);
+  }
+  CS_EXPECT(!memcmp(y, y0, sizeof(double) * (size_t)n));
+  CS_EXPECT(y[n - 3] == u[n - 3] && y[n - 1] == u[n - 1] && y[n - 6] == u[n - 6] &&
+            y[n - 4] == u[n - 4]);
+  /* a walk part that is not a state */
+  y[n - 3] = 6; /* more boundaries than slots */
+  CS_EXPECT(cs_simStateSet(st, y, &err) == CS_ERR_ARG && strstr(err.msg, "gate"));
+  free(buf);
+  cs_simDestroy(go);
+  cs_simDestroy(st);
+}
+
+
 /* a gate's `x XMIN`: one gate at 4.2 s (C, G's lift in the walk), maxwait 0.3 s */
 #define XGATE(x) "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.3\ngate 4.2 CG" x "\n"
 #define XT 4.2
@@ -419,6 +502,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_badGateFileNamesLine);
   CS_RUN(test_crawlDecidesAndRestores);
+  CS_RUN(test_walkDecidesThenCrawl);
   CS_RUN(test_supportXHolds);
   CS_RUN(test_nominalNoWaitBitForBit);
   CS_RUN(test_lagWaitsAsModelAndRestores);

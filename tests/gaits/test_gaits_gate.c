@@ -13,6 +13,13 @@
  *  - csg_gateCrawlSkip, the crawl's rule on synthetic support positions: it ends the crawl
  *    (skips N - 1 - j slots) exactly when z + CARRY >= ZEND - (z - zprev) / 2, at boundaries of
  *    the release's phase with j >= 2 only;
+ *  - the `walk` statement (issue 33, obst13) reads its five numbers beside a crawl; bad ones
+ *    (count, range, before the last gate, a crawl starting inside the walk, a walk after the
+ *    crawl, a gate after it, a second one) fail naming file:line; the shipped gate has one
+ *    (5 slots before the turn, obst13);
+ *  - csg_gateWalkSkip, the same rule on x with the walk's numbers: it ends the walk exactly
+ *    when x + CARRY >= XEND - (x - xprev) / 2, at boundaries of its end's phase with j >= 2
+ *    only, and never without the statement (the crawl's numbers do not count);
  *  - a gate's `x XMIN` (issue 33, ramp11): it reads, a gate without it has none (-inf), bad
  *    ones fail naming file:line; csg_gateReady on synthetic pressures and support positions:
  *    ready only when the pair is down and the support stands at XMIN or past it. */
@@ -115,6 +122,28 @@ static void test_heldRowsDelay(void) {
 
 #define DESIGN "design ramp 0.05 lag 0.02 ptol 0.005 maxwait 0.6\n"
 
+/* a bad gate file: its text and where the error must point (":LINE:") */
+typedef struct {
+  const char* text;
+  const char* where;
+} badGate;
+
+/* each bad file fails to read, its message naming PREFIX_badK.gate:LINE */
+static void expectBad(const char* prefix, const badGate* bad, size_t n) {
+  for (size_t k = 0; k < n; k++) {
+    char path[64], want[96];
+    csError err;
+    snprintf(path, sizeof path, "%s_bad%zu.gate", prefix, k);
+    cs_testWriteText(path, bad[k].text);
+    cs_errorClear(&err);
+    csgGateSet* s = csg_gateRead(path, &err);
+    snprintf(want, sizeof want, "%s%s", path, bad[k].where);
+    CS_EXPECT(s == NULL && strstr(err.msg, want) != NULL);
+    printf("%s\n", err.msg);
+    csg_gateDestroy(s);
+  }
+}
+
 static void test_crawlStatement(void) {
   csError err;
   cs_testWriteText("crawl_ok.gate", DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 12 270 23 # z12\n");
@@ -125,10 +154,7 @@ static void test_crawlStatement(void) {
               s->crawl_zend == 270 && s->crawl_carry == 23);
   }
   csg_gateDestroy(s);
-  static const struct {
-    const char* text;
-    const char* where;
-  } kBad[] = {
+  static const badGate kBad[] = {
       {DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 12 270\n", ":3:"},          /* four numbers */
       {DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 12.5 270 23\n", ":3:"},     /* N not whole */
       {DESIGN "gate 2.6 AE\ncrawl 27.39 0.55 2 270 23\n", ":3:"},        /* N < 3 */
@@ -139,22 +165,13 @@ static void test_crawlStatement(void) {
       {DESIGN "crawl 27.39 0.55 12 270 23\ngate 2.6 AE\n", ":3:"},       /* a gate after it */
       {DESIGN "gate 2.6 AE\ncrawl 27 0.5 8 270 23\ncrawl 27 0.5 8 270 23\n", ":4:"},
   };
-  for (size_t k = 0; k < sizeof kBad / sizeof kBad[0]; k++) {
-    char path[64], want[96];
-    snprintf(path, sizeof path, "crawl_bad%zu.gate", k);
-    cs_testWriteText(path, kBad[k].text);
-    cs_errorClear(&err);
-    s = csg_gateRead(path, &err);
-    snprintf(want, sizeof want, "%s%s", path, kBad[k].where);
-    CS_EXPECT(s == NULL && strstr(err.msg, want) != NULL);
-    printf("%s\n", err.msg);
-    csg_gateDestroy(s);
-  }
+  expectBad("crawl", kBad, sizeof kBad / sizeof kBad[0]);
   char path[1024];
   s = csg_gateRead(src("gaits/obstacle.gate", path, sizeof path), &err);
   /* the shipped gate asks for it since ship11 (tools/obstacle_gait.py's default --crawl-max 12,
-   * the statement's line in the file: 12 slots of 0.55 s from 27.39 s, to z 270 mm, carry 23) */
-  CS_EXPECT(s != NULL && s->crawl_n == 12 && fabs(s->crawl_t0 - 27.39) < 1e-12 &&
+   * the statement's line in the file: 12 slots of 0.55 s from 28.49 s since obst13, whose walk
+   * statement comes before it, to z 270 mm, carry 23) */
+  CS_EXPECT(s != NULL && s->crawl_n == 12 && fabs(s->crawl_t0 - 28.49) < 1e-12 &&
             fabs(s->crawl_tpz - 0.55) < 1e-12 && s->crawl_zend == 270 && s->crawl_carry == 23);
   csg_gateDestroy(s);
 }
@@ -181,6 +198,73 @@ static void test_crawlRule(void) {
   CS_EXPECT(csg_gateCrawlSkip(&s, 11, 1000, 0) == 0);
   s.crawl_n = 0; /* no statement: never */
   CS_EXPECT(csg_gateCrawlSkip(&s, 9, 1000, 0) == 0);
+}
+
+
+static void test_walkStatement(void) {
+  csError err;
+  cs_testWriteText("walk_ok.gate", DESIGN "gate 2.6 AE\nwalk 25.19 0.55 5 646 65 # wx1\n"
+                   "crawl 28.49 0.55 12 270 23\n");
+  csgGateSet* s = csg_gateRead("walk_ok.gate", &err);
+  CS_EXPECT(s != NULL);
+  if (s) {
+    CS_EXPECT(s->n == 1 && s->walk_n == 5 && s->walk_t0 == 25.19 && s->walk_tp == 0.55 &&
+              s->walk_xend == 646 && s->walk_carry == 65 && s->crawl_n == 12 &&
+              s->crawl_t0 == 28.49);
+  }
+  csg_gateDestroy(s);
+  static const badGate kBad[] = {
+      {DESIGN "gate 2.6 AE\nwalk 25.19 0.55 5 646\n", ":3:"},       /* four numbers */
+      {DESIGN "gate 2.6 AE\nwalk 25.19 0.55 5.5 646 65\n", ":3:"},  /* N not whole */
+      {DESIGN "gate 2.6 AE\nwalk 25.19 0.55 2 646 65\n", ":3:"},    /* N < 3 */
+      {DESIGN "gate 2.6 AE\nwalk 25.19 0 5 646 65\n", ":3:"},       /* TP 0 */
+      {DESIGN "gate 2.6 AE\nwalk 25.19 0.55 5 646 -1\n", ":3:"},    /* CARRY < 0 */
+      {DESIGN "gate 2.6 AE\nwalk 2.0 0.55 5 646 65\n", ":3:"},      /* before the gate */
+      {DESIGN "gate 2.6 AE\nwalk 25.19 0.55 5 nan 65\n", ":3:"},    /* not finite */
+      {DESIGN "walk 25.19 0.55 5 646 65\ngate 2.6 AE\n", ":3:"},    /* a gate after it */
+      /* the crawl's first slot inside the walk (25.19 + 5 x 0.55 = 27.94 s) */
+      {DESIGN "gate 2.6 AE\nwalk 25.19 0.55 5 646 65\ncrawl 27.39 0.55 12 270 23\n", ":4:"},
+      {DESIGN "gate 2.6 AE\ncrawl 28.49 0.55 12 270 23\nwalk 25.19 0.55 5 646 65\n", ":4:"},
+      {DESIGN "gate 2.6 AE\nwalk 25 0.5 5 646 65\nwalk 25 0.5 5 646 65\n", ":4:"},
+  };
+  expectBad("walk", kBad, sizeof kBad / sizeof kBad[0]);
+  /* the shipped gate asks for it since obst13 (tools/obstacle_gait.py's default --walk-extra
+   * 1: 5 slots of 0.55 s from 25.19 s before the turn, to x 646 mm, carry 65) */
+  char path[1024];
+  s = csg_gateRead(src("gaits/obstacle.gate", path, sizeof path), &err);
+  CS_EXPECT(s != NULL && s->walk_n == 5 && fabs(s->walk_t0 - 25.19) < 1e-12 &&
+            fabs(s->walk_tp - 0.55) < 1e-12 && s->walk_xend == 646 && s->walk_carry == 65);
+  csg_gateDestroy(s);
+}
+
+
+static void test_walkRule(void) {
+  csgGateSet s;
+  memset(&s, 0, sizeof s);
+  s.walk_n = 5;
+  s.walk_tp = 0.55;
+  s.walk_xend = 646;
+  s.walk_carry = 65;
+  /* slot j = 2 (2 left): the shipped nominal's 586.2 mm after 516.8 (a = 69.4): 651.2 >=
+   * 646 - 34.7: end; the 0.5 s ramp's 547.4 after 494.4 (a = 53): 612.4 < 619.5: walk on
+   * (docs/notes/obstacle.md "obst13") */
+  CS_EXPECT(csg_gateWalkSkip(&s, 2, 586.2, 516.8) == 2);
+  CS_EXPECT(csg_gateWalkSkip(&s, 2, 547.4, 494.4) == 0);
+  /* the edge, exact in binary: 531 + 65 = 596 = 646 - 100 / 2 ends, 0.5 mm less does not
+   * (595.5 < 646 - 99.5 / 2 = 596.25) */
+  CS_EXPECT(csg_gateWalkSkip(&s, 2, 531, 431) == 2);
+  CS_EXPECT(csg_gateWalkSkip(&s, 2, 530.5, 431) == 0);
+  /* not a decision boundary: the other phase, j < 2, the last slot */
+  CS_EXPECT(csg_gateWalkSkip(&s, 3, 1000, 0) == 0);
+  CS_EXPECT(csg_gateWalkSkip(&s, 0, 1000, 0) == 0);
+  CS_EXPECT(csg_gateWalkSkip(&s, 4, 1000, 0) == 0);
+  /* a crawl's numbers are not the walk's: without the statement, never */
+  s.walk_n = 0;
+  s.crawl_n = 5;
+  s.crawl_zend = 646;
+  s.crawl_carry = 65;
+  CS_EXPECT(csg_gateWalkSkip(&s, 2, 1000, 0) == 0);
+  CS_EXPECT(csg_gateCrawlSkip(&s, 2, 1000, 0) == 2);
 }
 
 
@@ -240,6 +324,8 @@ int main(int argc, char** argv) {
   CS_RUN(test_downRule);
   CS_RUN(test_crawlStatement);
   CS_RUN(test_crawlRule);
+  CS_RUN(test_walkStatement);
+  CS_RUN(test_walkRule);
   CS_RUN(test_supportX);
   CS_RUN(test_heldRowsDelay);
   return cs_testSummary();

@@ -313,12 +313,13 @@ expect_fail1 "obstacle_gait bad --up-band" "obstacle_gait.py: --up-band takes tw
   "$PY" "$OG" --up-short 30 --up-band 5,5 -o "$TMP/bad.gait"
 
 # tools/obstacle_gait.py --gate-from: the shipped gate's gates are the shipped description's (the
-# same statements; --gate-from writes no crawl statement, the shipped gate has one); a lift is a
+# same statements; --gate-from writes no crawl or walk statement, the shipped gate has both); a lift is a
 # pair's first move into a step, to AM or AP by its stance offset (rule 17's B, F lift to AP10 at 7.4 s) or U0, never its move over (k3's D, H climb at 9.4 s: AM15,
 # then over to U0 at 9.6 s)
 if "$PY" "$OG" --gate-from "$ROOT/gaits/obstacle.gait" --gate-out "$TMP/g.gate" >"$TMP/out.txt" 2>&1 &&
    ! grep -q '^crawl' "$TMP/g.gate" &&
-   cmp -s <(stmts "$TMP/g.gate") <(stmts "$ROOT/gaits/obstacle.gate" | grep -v '^crawl') &&
+   ! grep -q '^walk' "$TMP/g.gate" &&
+   cmp -s <(stmts "$TMP/g.gate") <(stmts "$ROOT/gaits/obstacle.gate" | grep -v '^crawl\|^walk') &&
    grep -q '^move 7.4000 [0-9.]* BF AP10$' "$ROOT/gaits/obstacle.gait" &&
    grep -q '^gate 7.4000 CG  # lift of BF' "$TMP/g.gate" &&
    "$PY" "$OG" --up-short -1 --gate-swing none --gate-land none -o "$TMP/k3g.gait" \
@@ -351,6 +352,32 @@ else
 fi
 expect_fail1 "obstacle_gait bad --crawl-max" "obstacle_gait.py: --crawl-max takes N >= 3" \
   "$PY" "$OG" --crawl-max 2 -o "$TMP/bad.gait"
+
+# tools/obstacle_gait.py --walk-extra (issue 33, obst13, rule 21: the walk in two groups ended on
+# the measured support): 1 by default (the shipped description and gate: the `walk` statement
+# from the walk's first slot after the step ahead, the slots before the turn, 646 and 65 mm,
+# then the crawl a cycle later); --walk-extra 0 writes the table shipped before obst13 (4 slots,
+# no statement, the same gates, the crawl at the turn's end one cycle sooner); with it the
+# table's rows are the same to the decision's boundary; K < 0 is refused
+if "$PY" "$OG" --walk-extra 0 -o "$TMP/w0.gait" --gate-out "$TMP/w0.gate" >"$TMP/out.txt" 2>&1 &&
+   "$PY" "$OG" -o "$TMP/w1.gait" --gate-out "$TMP/w1.gate" >>"$TMP/out.txt" 2>&1 &&
+   cmp -s "$TMP/w1.gait" "$ROOT/gaits/obstacle.gait" &&
+   W0=$(sed -n 's/^# from \([0-9.]*\) s (support planned at x + [0-9]* mm): two groups.*/\1/p' "$TMP/w1.gait") &&
+   [ -n "$W0" ] && WT=$(awk -v t="$W0" 'BEGIN { printf "%.4f", t + 0.55 }') &&
+   grep -q "^walk $WT 0.55 5 646 65\$" "$TMP/w1.gate" && ! grep -q '^walk' "$TMP/w0.gate" &&
+   C0=$(sed -n 's/^crawl \([0-9.]*\) .*/\1/p' "$TMP/w0.gate") &&
+   C1=$(sed -n 's/^crawl \([0-9.]*\) .*/\1/p' "$TMP/w1.gate") &&
+   awk -v a="$C0" -v b="$C1" 'BEGIN { exit !(b - a > 1.0999 && b - a < 1.1001) }' &&
+   cmp -s <(stmts "$TMP/w0.gate" | grep -v '^crawl') <(stmts "$TMP/w1.gate" | grep -v '^crawl\|^walk') &&
+   cmp -s <(awk -v t="$WT" '$1 == "move" && $2 + 0 < t + 1.6499' "$TMP/w0.gait") \
+          <(awk -v t="$WT" '$1 == "move" && $2 + 0 < t + 1.6499' "$TMP/w1.gait") &&
+   ! cmp -s <(stmts "$TMP/w0.gait") <(stmts "$TMP/w1.gait"); then
+  ok "obstacle_gait --walk-extra: 1 by default (the shipped files, the walk statement); 0 writes the table before, no statement, the same gates"
+else
+  bad "obstacle_gait --walk-extra: 1 by default (the shipped files, the walk statement); 0 writes the table before, no statement, the same gates" "$TMP/out.txt"
+fi
+expect_fail1 "obstacle_gait bad --walk-extra" "obstacle_gait.py: --walk-extra takes K >= 0" \
+  "$PY" "$OG" --walk-extra -1 -o "$TMP/bad.gait"
 
 # tools/obstacle_gait.py --gate-land / --gate-x (issue 33, ramp11; the shipped gate has the
 # set-down gates of --gate-land's default and no x): the description is the same; with the
