@@ -449,6 +449,19 @@ static inline int strainRobotStep(StrainRobot* r, double h, const double p96[96]
 
 /* the robot's whole state: the support and every leg's state (a caller-owned buffer of
  * strainRobotStateSize doubles) */
+/* leg k of a and of b actuated at the pressures p96 and prepared for a step h (Za, ra; Zb,
+ * rb): the step's start both ways from the same state (the condensation tests) */
+static inline int strainRobotPrepareBoth(StrainRobot* a, StrainRobot* b, int k,
+                                         const double p96[96], double h, double Za[36],
+                                         double ra[6], double Zb[36], double rb[6]) {
+  const int rc = csr_strainActuate(a->m[k], a->d[k], p96 + 12 * k, NULL) != 0 ||
+                 csr_strainActuate(b->m[k], b->d[k], p96 + 12 * k, NULL) != 0 ||
+                 csr_strainPrepare(a->m[k], a->d[k], h, Za, ra) != 0 ||
+                 csr_strainPrepare(b->m[k], b->d[k], h, Zb, rb) != 0;
+  return rc;
+}
+
+
 static inline int strainRobotStateSize(const StrainRobot* r) {
   int n = 9 + 3 + 6 + 1 + 3 + 22;
   for (int k = 0; k < CSR_NLEG; k++) {

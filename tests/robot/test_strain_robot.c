@@ -487,10 +487,7 @@ static void stanceSame(int bend, int sub) {
       csrStrainData* db = b->d[k];
       const int n = m->n;
       double Za[36], ra[6], Zb[36], rb[6];
-      CS_EXPECT(csr_strainActuate(m, da, p96 + 12 * k, NULL) == 0);
-      CS_EXPECT(csr_strainActuate(b->m[k], db, p96 + 12 * k, NULL) == 0);
-      CS_EXPECT(csr_strainPrepare(m, da, h, Za, ra) == 0);
-      CS_EXPECT(csr_strainPrepare(b->m[k], db, h, Zb, rb) == 0);
+      CS_EXPECT(strainRobotPrepareBoth(a, b, k, p96, h, Za, ra, Zb, rb) == 0);
       if (db->ntouch == 0) {
         continue;
       }
