@@ -540,6 +540,14 @@ void csr_strainArticSolve_(const csrStrainModel* m, csrStrainData* d, double* y,
 }
 
 
+/* y += a x over n entries (y and x distinct rows): the multi-column sweeps' one operation */
+static inline void axpyN(double* restrict y, double a, const double* restrict x, int n) {
+  for (int c = 0; c < n; c++) {
+    y[c] += a * x[c];
+  }
+}
+
+
 /* o = A x (tr 0) or Aᵀ x (tr 1) on nc columns side by side (x, o: 6 x nc), each entry's six
  * terms in order from +0 (mul6's and mulT6's) */
 static void mulCols(const double A[36], int tr, const double* x, double* o, int nc) {
@@ -548,10 +556,7 @@ static void mulCols(const double A[36], int tr, const double* x, double* o, int 
     memset(orow, 0, (size_t)nc * sizeof(double));
     for (int a = 0; a < 6; a++) {
       const double ar = tr ? A[6 * a + r] : A[6 * r + a];
-      const double* xa = x + a * nc;
-      for (int c = 0; c < nc; c++) {
-        orow[c] += ar * xa[c];
-      }
+      axpyN(orow, ar, x + a * nc, nc);
     }
   }
 }
@@ -576,11 +581,7 @@ void csr_strainArticSolveMulti_(const csrStrainModel* m, csrStrainData* d, doubl
       for (int i = 0; i < nd; i++) {
         double* v = V + (size_t)i * nc;
         for (int r = 0; r < 6; r++) {
-          const double l = L[nd * r + i];
-          const double* w = wh + r * nc;
-          for (int c = 0; c < nc; c++) {
-            v[c] -= l * w[c];
-          }
+          axpyN(v, -L[nd * r + i], wh + r * nc, nc); /* v - l w, the same bits */
         }
       }
       csr_strainLuSolveMulti_(d->artLU + (size_t)MAXD * c0, nd, d->artPiv + c0, V, nc);
@@ -588,16 +589,9 @@ void csr_strainArticSolveMulti_(const csrStrainModel* m, csrStrainData* d, doubl
       for (int a = 0; a < 6; a++) {
         memset(t, 0, row);
         for (int j = 0; j < nd; j++) {
-          const double z = Zsn[nd * a + j];
-          const double* v = V + (size_t)j * nc;
-          for (int c = 0; c < nc; c++) {
-            t[c] += z * v[c];
-          }
+          axpyN(t, Zsn[nd * a + j], V + (size_t)j * nc, nc);
         }
-        double* o = ws + a * nc;
-        for (int c = 0; c < nc; c++) {
-          o[c] += t[c];
-        }
+        axpyN(ws + a * nc, 1.0, t, nc);
       }
     }
     memcpy(wh, ws, 6 * row);
@@ -617,21 +611,13 @@ void csr_strainArticSolveMulti_(const csrStrainModel* m, csrStrainData* d, doubl
       for (int j = 0; j < nd; j++) {
         double* v = V + (size_t)j * nc;
         for (int a = 0; a < 6; a++) {
-          const double yv = Y[6 * j + a];
-          const double* x = t + a * nc;
-          for (int c = 0; c < nc; c++) {
-            v[c] -= yv * x[c];
-          }
+          axpyN(v, -Y[6 * j + a], t + a * nc, nc);
         }
       }
       for (int r = 0; r < 6; r++) {
         double* o = te + r * nc;
         for (int j = 0; j < nd; j++) {
-          const double l = L[nd * r + j];
-          const double* v = V + (size_t)j * nc;
-          for (int c = 0; c < nc; c++) {
-            o[c] += l * v[c];
-          }
+          axpyN(o, L[nd * r + j], V + (size_t)j * nc, nc);
         }
       }
     }
