@@ -73,10 +73,7 @@ static RefactorDiff refactorSame(int bend, int sub, int perturb) {
   double* y0 = calloc((size_t)strainRobotStateSize(r), sizeof(double));
   for (int i = 0; i < 40 && y0; i++) {
     double p96[96];
-    csg_scheduleEval(g, NULL, (i + 1) * h, p96);
-    strainRobotSave(r, y0);
-    strainRobotRestore(a, y0);
-    strainRobotRestore(b, y0);
+    strainRobotSameStart(r, a, b, g, (i + 1) * h, y0, p96);
     for (int k = 0; k < CSR_NLEG; k++) {
       const csrStrainModel* m = a->m[k];
       csrStrainData* da = a->d[k];
