@@ -358,6 +358,12 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->artY);
   free(d->artL);
   free(d->artA);
+  free(d->wS);
+  free(d->wA);
+  free(d->wbQ);
+  free(d->wbK);
+  free(d->wbPiv);
+  free(d->wbX);
   free(d->fl);
   free(d->R0);
   free(d->x0);
@@ -455,6 +461,13 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->artY = calloc(n * 6 + 1, sizeof(double));
   d->artL = calloc(n * 6 + 1, sizeof(double));
   d->artA = calloc((size_t)m->npiece * 36 + 1, sizeof(double));
+  const size_t mw = (size_t)12 * m->nshape + 1; /* the Woodbury update's rank bound */
+  d->wS = calloc(((size_t)m->nshape + 1) * 6 * (n + 6), sizeof(double));
+  d->wA = calloc(((size_t)m->nshape + 1) * 36, sizeof(double));
+  d->wbQ = calloc(mw * n, sizeof(double));
+  d->wbK = calloc(mw * mw + 12 * mw, sizeof(double));
+  d->wbPiv = calloc(mw, sizeof(int));
+  d->wbX = calloc((size_t)n * 6 + 1, sizeof(double));
   if (!d->Wu || !d->fl || !d->csig || !d->ghost || !d->memo || !d->memo_z || !d->memo_slot ||
       !d->q || !d->eta || !d->vp_eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
@@ -462,7 +475,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
       !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du || !d->Rs_save || !d->xs_save ||
       !d->qm1 || !d->etam1 || !d->R0 || !d->x0 || !d->J0 || !d->qf || !d->Mu || !d->ct ||
       !d->cS || !d->cA || !d->artLU || !d->artPiv || !d->artZsn || !d->artY || !d->artL ||
-      !d->artA) {
+      !d->artA || !d->wS || !d->wA || !d->wbQ || !d->wbK || !d->wbPiv || !d->wbX) {
     csr_strainDataDestroy(d);
     cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
     return NULL;

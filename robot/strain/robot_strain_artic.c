@@ -538,3 +538,89 @@ void csr_strainArticSolve_(const csrStrainModel* m, csrStrainData* d, double* y,
     memcpy(t, te, sizeof t);
   }
 }
+
+
+/* y += a x over n entries (y and x distinct rows): the multi-column sweeps' one operation */
+static inline void axpyN(double* restrict y, double a, const double* restrict x, int n) {
+  for (int c = 0; c < n; c++) {
+    y[c] += a * x[c];
+  }
+}
+
+
+/* o = A x (tr 0) or Aᵀ x (tr 1) on nc columns side by side (x, o: 6 x nc), each entry's six
+ * terms in order from +0 (mul6's and mulT6's) */
+static void mulCols(const double A[36], int tr, const double* x, double* o, int nc) {
+  for (int r = 0; r < 6; r++) {
+    double* orow = o + r * nc;
+    memset(orow, 0, (size_t)nc * sizeof(double));
+    for (int a = 0; a < 6; a++) {
+      const double ar = tr ? A[6 * a + r] : A[6 * r + a];
+      axpyN(orow, ar, x + a * nc, nc);
+    }
+  }
+}
+
+
+void csr_strainArticSolveMulti_(const csrStrainModel* m, csrStrainData* d, double* B, int nc,
+                                double* work) {
+  /* csr_strainArticSolve_ on nc columns side by side (each column's operations in its order):
+   * wh, ws / te, t (6 x nc each) in work */
+  double* wh = work;
+  double* ws = work + 6 * nc;
+  const size_t row = (size_t)nc * sizeof(double);
+  memset(wh, 0, 6 * row);
+  for (int k = m->npiece - 1; k >= 0; k--) {
+    const int c0 = m->dof0[k], nd = m->ndof[k];
+    const double* A = d->artA + 36 * k;
+    mulCols(A, 1, wh, ws, nc);
+    if (nd > 0) {
+      const double* L = d->artL + (size_t)6 * c0;
+      const double* Zsn = d->artZsn + (size_t)6 * c0;
+      double* V = B + (size_t)c0 * nc;
+      for (int i = 0; i < nd; i++) {
+        double* v = V + (size_t)i * nc;
+        for (int r = 0; r < 6; r++) {
+          axpyN(v, -L[nd * r + i], wh + r * nc, nc); /* v - l w, the same bits */
+        }
+      }
+      csr_strainLuSolveMulti_(d->artLU + (size_t)MAXD * c0, nd, d->artPiv + c0, V, nc);
+      double* t = wh; /* wh is read no more on this piece: the sums' scratch */
+      for (int a = 0; a < 6; a++) {
+        memset(t, 0, row);
+        for (int j = 0; j < nd; j++) {
+          axpyN(t, Zsn[nd * a + j], V + (size_t)j * nc, nc);
+        }
+        axpyN(ws + a * nc, 1.0, t, nc);
+      }
+    }
+    memcpy(wh, ws, 6 * row);
+  }
+  /* from the hip at ΔV = 0 */
+  double* t = wh;
+  double* te = ws;
+  memset(t, 0, 6 * row);
+  for (int k = 0; k < m->npiece; k++) {
+    const int c0 = m->dof0[k], nd = m->ndof[k];
+    const double* A = d->artA + 36 * k;
+    mulCols(A, 0, t, te, nc);
+    if (nd > 0) {
+      const double* L = d->artL + (size_t)6 * c0;
+      const double* Y = d->artY + (size_t)6 * c0;
+      double* V = B + (size_t)c0 * nc;
+      for (int j = 0; j < nd; j++) {
+        double* v = V + (size_t)j * nc;
+        for (int a = 0; a < 6; a++) {
+          axpyN(v, -Y[6 * j + a], t + a * nc, nc);
+        }
+      }
+      for (int r = 0; r < 6; r++) {
+        double* o = te + r * nc;
+        for (int j = 0; j < nd; j++) {
+          axpyN(o, L[nd * r + j], V + (size_t)j * nc, nc);
+        }
+      }
+    }
+    memcpy(t, te, 6 * row);
+  }
+}

@@ -689,13 +689,19 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         d->rl[k - 6] += t;
       }
     }
-    if (d->wc_sparse && !du) {
+    if (d->wc_sparse == 1 && !du) {
       /* the recursion's start (artic 2): this shape's S and A kept, W_ll's block left out */
       memcpy(d->cS + (size_t)d->nct * 6 * nu, S, (size_t)6 * nu * sizeof(double));
       memcpy(d->cA + 36 * d->nct, A, sizeof A);
       d->ct[d->nct++] = s;
+    } else if (d->wc_sparse == 2 && du) {
+      /* an iterate's refactor on the recursion's start (robot_strain_woodbury.c): the same */
+      memcpy(d->wS + (size_t)d->nwt * 6 * nu, S, (size_t)6 * nu * sizeof(double));
+      memcpy(d->wA + 36 * d->nwt, A, sizeof A);
+      d->nwt++;
     }
-    csr_strainShapeW_(m, d, h, S, A, Ga, Gb, Wbb, d->wc_sparse && !du ? 1 : 0);
+    csr_strainShapeW_(m, d, h, S, A, Ga, Gb, Wbb,
+                      (d->wc_sparse == 1 && !du) || (d->wc_sparse == 2 && du) ? 1 : 0);
   }
   return 0;
 }

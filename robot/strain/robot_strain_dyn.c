@@ -376,11 +376,15 @@ static int condensePlain(const csrStrainModel* m, csrStrainData* d, double h, co
 static int condenseKeptArtic(const csrStrainModel* m, csrStrainData* d, double h,
                              const double* du, const double fb[6], double Z[36], double rho[6]) {
   const int n = m->n, nu = 6 + n;
+  /* on an iterate's Woodbury update of the start's factor (wb_f) W_f - W_M is the iterate's
+   * shapes' part (wS, wA), and W_ll⁻¹ the update's */
+  const int wb = d->wb_f;
+  const int nsh = wb ? d->nwt : d->nct;
   double* wc = d->Mu; /* (6 + n) scratch: (W_f - W_M) Δu_it */
   memset(wc, 0, (size_t)nu * sizeof(double));
-  for (int c = 0; c < d->nct; c++) {
-    const double* S = d->cS + (size_t)c * 6 * nu;
-    const double* A = d->cA + 36 * c;
+  for (int c = 0; c < nsh; c++) {
+    const double* S = (wb ? d->wS : d->cS) + (size_t)c * 6 * nu;
+    const double* A = (wb ? d->wA : d->cA) + 36 * c;
     double Sdu[6], g[6];
     for (int r = 0; r < 6; r++) {
       double t = 0;
@@ -410,7 +414,18 @@ static int condenseKeptArtic(const csrStrainModel* m, csrStrainData* d, double h
   }
   momentumRows(m, d, h, du, d->Wbbp, rb);
   double w[6];
-  csr_strainArticSolve_(m, d, d->y, w);
+  if (wb) {
+    csr_strainWoodburySolve_(m, d, h, d->y);
+    for (int a = 0; a < 6; a++) {
+      double t = 0;
+      for (int j = 0; j < n; j++) {
+        t += d->Wbl[n * a + j] * d->y[j];
+      }
+      w[a] = t;
+    }
+  } else {
+    csr_strainArticSolve_(m, d, d->y, w);
+  }
   for (int a = 0; a < 6; a++) {
     rho[a] = h * rb[a] - w[a];
     if (!isfinite(rho[a])) {
@@ -432,7 +447,7 @@ static int condenseKeptArtic(const csrStrainModel* m, csrStrainData* d, double h
 static int condenseKept(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
                         const double fb[6], double Z[36], double rho[6]) {
   const int n = m->n;
-  if (d->art_f) {
+  if (d->art_f || d->wb_f) {
     return condenseKeptArtic(m, d, h, du, fb, Z, rho);
   }
   const double* dV = du;
@@ -552,6 +567,20 @@ static int articStep(const csrStrainModel* m) {
 }
 
 
+/* W_M of the step (d->WM*, wm_step) at the kinematics R, x, J: the inertia and the strains'
+ * (h τ_d + h²) K on W_ll's diagonal */
+static void wmFrom(const csrStrainModel* m, csrStrainData* d, double h, const double* R,
+                   const double* x, const double* J) {
+  const int n = m->n;
+  const double tau = m->rpar.damping_time;
+  csr_strainInertiaFrom_(m, d, R, x, J);
+  for (int j = 0; j < n; j++) {
+    d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+  }
+  d->wm_step = 1;
+}
+
+
 /* The dense W_ll, W_lb, W_bl, W_bb, r_l, r_b of the step's start: W_M (assembled here, at the
  * start's kinematics, if the prepare left it out) plus the contact's part, which
  * condenseStart linearised into zeroed blocks (cW*: d->Wll, d->Wlb, d->Wbl, Wbb, rb, d->rl
@@ -561,12 +590,7 @@ static void denseStart(const csrStrainModel* m, csrStrainData* d, double h, doub
                        double rb[6]) {
   const int n = m->n;
   if (!d->wm_step) {
-    const double tau = m->rpar.damping_time;
-    csr_strainInertiaFrom_(m, d, d->R, d->x, d->J);
-    for (int j = 0; j < n; j++) {
-      d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
-    }
-    d->wm_step = 1;
+    wmFrom(m, d, h, d->R, d->x, d->J);
   }
   for (size_t i = 0; i < (size_t)n * n; i++) {
     d->Wll[i] = d->WMll[i] + d->Wll[i];
@@ -691,6 +715,7 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, do
   d->ntouch = 0;
   d->nct = 0;
   d->art_f = 0;
+  d->wb_f = 0;
   d->k0 = 0;
   const int stance = m->par.artic == 2 && !d->wm_step;
   d->wc_sparse = stance;
@@ -729,6 +754,78 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, do
     }
   }
   return keepFactored(d, Z, rho);
+}
+
+
+/* W_M's blocks but W_ll's and h r's into the iterate's (Wbb, rb, d->Wlb, d->Wbl, d->rl), for
+ * the contact's assembly to add its part to; no shape touching yet */
+static void wmBlocks(const csrStrainModel* m, csrStrainData* d, double Wbb[36], double rb[6]) {
+  const int n = m->n;
+  memcpy(Wbb, d->WMbb, 36 * sizeof(double));
+  memcpy(rb, d->rMb, 6 * sizeof(double));
+  memcpy(d->Wlb, d->WMlb, (size_t)n * 6 * sizeof(double));
+  memcpy(d->rl, d->rMl, (size_t)n * sizeof(double));
+  for (int j = 0; j < n; j++) {
+    for (int c = 0; c < 6; c++) {
+      d->Wbl[n * c + j] = d->Wlb[6 * j + c];
+    }
+  }
+  d->ntouch = 0;
+}
+
+
+/* An iterate that refactors after a stance start by the recursion (art_f) or after such a
+ * refactor (wb_f): W = W_M(q0) plus the iterate's contact by the Woodbury update of the
+ * start's pieces' factors (robot_strain_woodbury.c): no W_M, no n x n block or LU. The
+ * contact's assembly forms the iterate's S, A (wS, wA), W's base rows and columns and h r
+ * (wc_sparse 2); a singular update takes the dense path (W_M at the start's kinematics, k0,
+ * W_ll's contact block from the kept shapes, as condenseStance's fallback). */
+static int condenseUpdate(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                          double Z[36], double rho[6]) {
+  const int n = m->n, nu = 6 + n;
+  double Wbb[36], rb[6], rbm[6];
+  wmBlocks(m, d, Wbb, rb);
+  d->nwt = 0;
+  if (m->soft) {
+    /* W_bl gains the contact's own rows (not W_lb's transpose with friction) */
+    d->wc_sparse = 2;
+    const int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
+    d->wc_sparse = 0;
+    if (rc != 0) {
+      return rc > 0 ? rc : 1;
+    }
+  }
+  for (int j = 0; j < n; j++) {
+    if (!isfinite(d->rl[j])) {
+      return 1;
+    }
+  }
+  memcpy(rbm, rb, sizeof rbm);
+  momentumRows(m, d, h, du, Wbb, rbm);
+  if (csr_strainCondenseWoodbury_(m, d, h, Wbb, rbm, Z, rho) == 0) {
+    d->lu_plain = d->ntouch == 0;
+    d->art_f = 0;
+    d->wb_f = 1;
+    d->kf = 0;
+    d->chol = 0;
+    d->nfactor++;
+    memcpy(d->Wbbp, Wbb, sizeof d->Wbbp);
+    memcpy(d->Zp, Z, sizeof d->Zp);
+    memcpy(d->rhop, rho, sizeof d->rhop);
+    d->w_step = 1;
+    return 0;
+  }
+  /* the dense path: W_M at the start's kinematics, W_ll's contact block from the iterate's
+   * shapes (the assembly's own entries) */
+  if (!d->wm_step) {
+    wmFrom(m, d, h, d->R0, d->x0, d->J0);
+  }
+  memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
+  for (int c = 0; c < d->nwt; c++) {
+    csr_strainShapeW_(m, d, h, d->wS + (size_t)c * 6 * nu, d->wA + 36 * c, d->Gs,
+                      d->Gs + 6 * nu, Wbb, 2);
+  }
+  return factorAndCondense(m, d, h, du, Wbb, rb, Z, rho);
 }
 
 
@@ -777,6 +874,9 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   if (!du && articStep(m)) {
     return condenseStart(m, d, h, Z, rho);
   }
+  if (du && (d->art_f || d->wb_f) && m->par.step_order == 1) {
+    return condenseUpdate(m, d, h, du, Z, rho);
+  }
   if (!d->wm_step) {
     /* a step that kept an earlier factor (keep_matrix), or whose start was condensed by the
      * recursion (artic), refactors: W_M at the start's kinematics, as the dense prepare would
@@ -784,27 +884,13 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
      * leg's recursion (condenseStance swapped them there: k0); after a swing leg's they are
      * formed again at q0 into those arrays (a function of q alone: the same bits), the
      * iterate's kinematics left in place */
-    const double tau = m->rpar.damping_time;
     if (!m->par.keep_matrix && !d->k0) {
       startKinematics(m, d);
     }
-    csr_strainInertiaFrom_(m, d, d->R0, d->x0, d->J0);
-    for (int j = 0; j < n; j++) {
-      d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
-    }
-    d->wm_step = 1;
+    wmFrom(m, d, h, d->R0, d->x0, d->J0);
   }
-  memcpy(Wbb, d->WMbb, sizeof Wbb);
-  memcpy(rb, d->rMb, sizeof rb);
   memcpy(d->Wll, d->WMll, (size_t)n * n * sizeof(double));
-  memcpy(d->Wlb, d->WMlb, (size_t)n * 6 * sizeof(double));
-  memcpy(d->rl, d->rMl, (size_t)n * sizeof(double));
-  for (int j = 0; j < n; j++) {
-    for (int c = 0; c < 6; c++) {
-      d->Wbl[n * c + j] = d->Wlb[6 * j + c];
-    }
-  }
-  d->ntouch = 0;
+  wmBlocks(m, d, Wbb, rb);
   if (m->soft) {
     int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
     if (rc != 0) {
@@ -823,6 +909,7 @@ static int factorAndCondense(const csrStrainModel* m, csrStrainData* d, double h
   const int n = m->n;
   d->lu_plain = d->ntouch == 0;
   d->art_f = 0;
+  d->wb_f = 0;
   if (du) {
     momentumRows(m, d, h, du, Wbb, rb);
   }

@@ -236,6 +236,19 @@ struct csrStrainData_ {
   double* artA;   /* (npiece x 36) each piece's Ad(g_se⁻¹) */
   int k0;         /* 1: d->R0, x0, J0 hold this step's start kinematics (a recursion's start
                      with contact swapped them there; an iterate that refactors reads them) */
+  /* an iterate that refactors after such a start (robot_strain_woodbury.c): the start's
+   * pieces' factor updated by the start's and the iterate's touching shapes */
+  int wb_f;       /* 1: the iteration matrix is the Woodbury update of the start's recursion
+                     (d->art* with cS, cA) by the iterate's shapes (wS, wA); d->Wll not formed */
+  int nwt;        /* the iterate's touching shapes kept there */
+  double* wS;     /* (nshape x 6 x (6 + n)) their S, as cS */
+  double* wA;     /* (nshape x 36) their A, as cA */
+  double* wbQ;    /* (n x 12 nshape) R U_lᵀ: the start's W_ll⁻¹ on each row of the stacked S_l
+                     (column i the row i's) */
+  double* wbK;    /* (12 nshape)² the capacitance I + C U_l R U_lᵀ, LU-factored (wbPiv), then
+                     12 x 12 nshape of scratch */
+  int* wbPiv;
+  double* wbX;    /* (n x 6) the start's X = R W_lb (d->X is the update's) */
 };
 
 /* ---- calibration (robot_strain_cal.c) ---- */
@@ -334,6 +347,20 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
 /* the kept iterates' solve through the recursion's factors (d->art*, art_f): y (n) holds the
  * leg's right-hand side in, W_ll⁻¹ of it out; w (6) = W_bl W_ll⁻¹ of it */
 void csr_strainArticSolve_(const csrStrainModel* m, csrStrainData* d, double* y, double w[6]);
+/* the same on nc columns at once: B (n x nc, row-major) in, W_ll⁻¹ B out; work 12 nc */
+void csr_strainArticSolveMulti_(const csrStrainModel* m, csrStrainData* d, double* B, int nc,
+                                double* work);
+
+/* ---- an iterate's refactor on the start's recursion (robot_strain_woodbury.c) ---- */
+/* Z, ρ, d->X, d->y of W = W_f,start - the start's shapes' part (d->cS, cA: +h Sᵀ A S) + the
+ * iterate's (d->wS, wA: -h Sᵀ A S), from the start's pieces' factors (art_f or wb_f) by the
+ * Woodbury identity; Wbb, d->Wlb, d->Wbl, rb, d->rl the new W's and h r's other blocks.
+ * 0 ok (d->wb_f set), 1 the update's capacitance singular or a result not finite */
+int csr_strainCondenseWoodbury_(const csrStrainModel* m, csrStrainData* d, double h,
+                                const double Wbb[36], const double rb[6], double Z[36],
+                                double rho[6]);
+/* y (n) in, the update's W_ll⁻¹ y out (wb_f; h the step the update was formed at) */
+void csr_strainWoodburySolve_(const csrStrainModel* m, csrStrainData* d, double h, double* y);
 
 /* ---- inertia (robot_strain_inertia.c; the step in robot_strain_dyn.c) ---- */
 /* V = G_p (V_b, η) at point p of the current kinematics (d->R, d->x, d->J), body frame */

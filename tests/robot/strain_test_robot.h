@@ -499,6 +499,30 @@ static inline void strainRobotRestore(StrainRobot* r, const double* y) {
 }
 
 
+/* ref's state (into y0) given to a and b, and the gait's pressures at t (p96) */
+static inline void strainRobotSameStart(const StrainRobot* ref, StrainRobot* a, StrainRobot* b,
+                                        const csgGait* g, double t, double* y0,
+                                        double p96[96]) {
+  csg_scheduleEval(g, NULL, t, p96);
+  strainRobotSave(ref, y0);
+  strainRobotRestore(a, y0);
+  strainRobotRestore(b, y0);
+}
+
+
+/* leg k of a and of b actuated at the pressures p96 and prepared for a step h (Za, ra; Zb,
+ * rb): the step's start both ways from the same state (the condensation tests) */
+static inline int strainRobotPrepareBoth(StrainRobot* a, StrainRobot* b, int k,
+                                         const double p96[96], double h, double Za[36],
+                                         double ra[6], double Zb[36], double rb[6]) {
+  const int rc = csr_strainActuate(a->m[k], a->d[k], p96 + 12 * k, NULL) != 0 ||
+                 csr_strainActuate(b->m[k], b->d[k], p96 + 12 * k, NULL) != 0 ||
+                 csr_strainPrepare(a->m[k], a->d[k], h, Za, ra) != 0 ||
+                 csr_strainPrepare(b->m[k], b->d[k], h, Zb, rb) != 0;
+  return rc;
+}
+
+
 /* Advance from ta to tb with Newton steps (strainRobotStepIter, maxit passes to tol), the
  * gait g giving the pressures at each piece's end: a piece that fails is restored from save
  * (strainRobotStateSize doubles) and halved, at most max_halve times. 0 ok, 1 failed; the

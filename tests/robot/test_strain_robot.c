@@ -394,16 +394,6 @@ static StrainRobot* denseRobot(double mu) {
 }
 
 
-/* ref's state (into y0) given to a and b, and the gait's pressures at t (p96) */
-static void sameStart(const StrainRobot* ref, StrainRobot* a, StrainRobot* b, const csgGait* g,
-                      double t, double* y0, double p96[96]) {
-  csg_scheduleEval(g, NULL, t, p96);
-  strainRobotSave(ref, y0);
-  strainRobotRestore(a, y0);
-  strainRobotRestore(b, y0);
-}
-
-
 /* the shipped gait alone (robotOn's, its robot dropped) */
 static csgGait* gaitOnly(void) {
   csgGait* g = NULL;
@@ -480,17 +470,14 @@ static void stanceSame(int bend, int sub) {
   int nleg = 0, nkept = 0;
   for (int i = 0; i < 40; i++) {
     double p96[96];
-    sameStart(r, a, b, g, (i + 1) * h, y0, p96);
+    strainRobotSameStart(r, a, b, g, (i + 1) * h, y0, p96);
     for (int k = 0; k < CSR_NLEG; k++) {
       const csrStrainModel* m = a->m[k];
       csrStrainData* da = a->d[k];
       csrStrainData* db = b->d[k];
       const int n = m->n;
       double Za[36], ra[6], Zb[36], rb[6];
-      CS_EXPECT(csr_strainActuate(m, da, p96 + 12 * k, NULL) == 0);
-      CS_EXPECT(csr_strainActuate(b->m[k], db, p96 + 12 * k, NULL) == 0);
-      CS_EXPECT(csr_strainPrepare(m, da, h, Za, ra) == 0);
-      CS_EXPECT(csr_strainPrepare(b->m[k], db, h, Zb, rb) == 0);
+      CS_EXPECT(strainRobotPrepareBoth(a, b, k, p96, h, Za, ra, Zb, rb) == 0);
       if (db->ntouch == 0) {
         continue;
       }
@@ -569,7 +556,7 @@ static void stance_fallback_is_the_dense_start(void) {
   int nfall = 0, nart = 0, same = 1;
   for (int i = 0; i < 40; i++) {
     double p96[96];
-    sameStart(ref, a, c, g, (i + 1) * h, y0, p96);
+    strainRobotSameStart(ref, a, c, g, (i + 1) * h, y0, p96);
     for (int k = 0; k < CSR_NLEG; k++) {
       csrStrainData* da = a->d[k];
       csrStrainData* dc = c->d[k];
