@@ -1,0 +1,186 @@
+#!/usr/bin/python3
+"""Fibre-compatible wall shapes (issue 34, rom12): per training FE state u_k, the displacement d_k
+that returns the taut fibres' strains of its projection w_k = V q_k onto the basis to the FE's,
+of least elastic energy:
+
+    (K_k + D_k^T W D_k) d_k = -D_k^T W r_k,   r_f = E_f(w_k) - max(E_f(u_k), 0) on the fibres
+                                               taut at w_k (E_f(w_k) > 0), 0 elsewhere
+
+D_k = dE/du at w_k (a fibre's chord lies in one Tet10: its 10 nodes, 30 dofs), W = EA L0 (N mm;
+the tension-only law's psi'' = 1 per unit strain above its smoothing, so 1/2 D^T W D is the taut
+fibres' energy to second order: w = 1 is the fibres' own stiffness, no free weight), K_k the
+rubber's linear elastic stiffness in w_k's configuration (updated Lagrangian: dN/dx = dN/dX F^-1,
+weights w det F; deviatoric mu = 2 C10, the Yeoh law's initial shear modulus, and the FE's P0
+bulk kappa / v_e g_e g_e^T element by element; no initial-stress term). This is one Newton step
+of the linearised rubber + fibres against the fibres' strain mismatch: the rubber's cheapest
+response that relieves the stretch the truncated span puts in the fibres. The clamped dofs are
+held. Writes OUT.h5: /d (ndof, K) the raw shapes, /D (ndof, k) their POD in the M inner product
+after M-orthogonalising against V (decreasing order; rom11_iso_diag.py's --enrich reads /D), /sig
+the POD's singular values, /states the (ray, t) of each column.
+Usage: fibre_compat_modes.py SNAP BASIS.h5 LEG.h5 OUT.h5 [--t 1,0.75] [--turns]
+(resumable: the raw shapes are kept in OUT.h5.part and skipped on a rerun)."""
+import argparse
+import os
+import sys
+import time
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "tools"))
+sys.path.insert(0, os.path.join(HERE, "..", "rom"))
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
+import scipy.sparse as sp  # noqa: E402
+import scipy.sparse.linalg as spl  # noqa: E402
+from rom_basis import mass_matrix, read_mesh, read_rays, tet_reference, turn_maps  # noqa: E402
+
+
+def stiffness(x, tet, dNdX, wq, u, mu, kappa):
+    """K (ndof, ndof) csr: linear elasticity in u's configuration (deviatoric mu, P0 bulk)."""
+    ue = u.reshape(-1, 3)[tet]
+    F = np.einsum("eai,egaj->egij", ue, dNdX) + np.eye(3)
+    det = np.linalg.det(F)
+    dNdx = np.einsum("egaj,egji->egai", dNdX, np.linalg.inv(F))
+    w = wq * det
+    # mu [delta_ik dN_a . dN_b + dN_ak dN_bi - 2/3 dN_ai dN_bk] (the energy mu |dev eps|^2)
+    Ke = mu * (np.einsum("eg,egaj,egbj,ik->eaibk", w, dNdx, dNdx, np.eye(3))
+               + np.einsum("eg,egak,egbi->eaibk", w, dNdx, dNdx)
+               - (2.0 / 3.0) * np.einsum("eg,egai,egbk->eaibk", w, dNdx, dNdx))
+    g = np.einsum("eg,egai->eai", w, dNdx)  # d v_e / du
+    ve = w.sum(axis=1)
+    Ke += np.einsum("e,eai,ebk->eaibk", kappa / ve, g, g)
+    dof = (3 * tet[:, :, None] + np.arange(3)).reshape(tet.shape[0], 30)
+    ne = tet.shape[0]
+    rows = np.broadcast_to(dof[:, :, None], (ne, 30, 30)).ravel()
+    cols = np.broadcast_to(dof[:, None, :], (ne, 30, 30)).ravel()
+    return rows, cols, Ke.reshape(ne, 30, 30).ravel()
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    for name in ("snapdir", "basis", "legfile", "out"):
+        ap.add_argument(name)
+    ap.add_argument("--t", type=lambda v: [float(c) for c in v.split(",")], default=[1.0])
+    ap.add_argument("--turns", action="store_true", help="also every quarter-turned state")
+    ap.add_argument("--limit", type=int, default=0, help="stop after this many new shapes")
+    a = ap.parse_args()
+    x, tet, fixed, rho, _ = read_mesh(a.snapdir)
+    ndof = x.size
+    with h5py.File(a.basis, "r") as f:
+        V = f["V"][...]
+    with h5py.File(a.legfile, "r") as f:
+        node = f["fibre/node"][...].astype(np.int64)
+        coef = f["fibre/coef"][...]
+        L0, EA = f["fibre/L0"][...], f["fibre/EA"][...]
+        C10, kappa = float(f.attrs["C10"]), float(f.attrs["kappa"])
+    # each chord's two ends lie in one Tet10: the node list repeats its 10 nodes (checked)
+    assert (node[:, :10] == node[:, 10:]).all()
+    node, coef = node[:, :10], coef[:, :10] + coef[:, 10:]
+    W = EA * L0
+    Ms, _ = mass_matrix(x, tet, rho)
+    M = sp.kron(Ms, sp.identity(3), format="csr")
+    dNdX, wq = tet_reference(x, tet)
+    G = V.T @ (M @ V)
+    free = np.flatnonzero(~fixed)
+    fdof = (3 * node[:, :, None] + np.arange(3)).reshape(node.shape[0], 30)
+    nf = node.shape[0]
+    frows = np.broadcast_to(fdof[:, :, None], (nf, 30, 30)).ravel()
+    fcols = np.broadcast_to(fdof[:, None, :], (nf, 30, 30)).ravel()
+
+    states = []
+    for r in read_rays(a.snapdir):
+        if r["kind"] != "train":
+            continue
+        for k in range(r["u"].shape[0]):
+            if any(abs(r["t"][k] - t) < 1e-9 for t in a.t):
+                u = r["u"][k].copy()
+                u[fixed] = 0.0
+                states.append((f"{r['name']}@{r['t'][k]:g}", u))
+    if a.turns:
+        maps = turn_maps(x)
+        nn = x.shape[0]
+        for name, u in list(states):
+            for j, (Rk, perm) in enumerate(maps):
+                v = np.empty_like(u)
+                v.reshape(nn, 3)[perm] = u.reshape(nn, 3) @ Rk.T
+                v[fixed] = 0.0
+                states.append((f"{name}/turn{j + 1}", v))
+    part = a.out + ".part"
+    done = {}
+    if os.path.exists(part):
+        with h5py.File(part, "r") as f:
+            for key in f:
+                done[f[key].attrs["state"]] = f[key][...]
+    print(f"fibre_compat_modes: {len(states)} training states (t in {a.t}{', turned' if a.turns else ''}),"
+          f" {len(done)} done; n = {V.shape[1]}, ndof {ndof}, {nf} fibres, mu {2 * C10:g}, kappa {kappa:g} MPa")
+    sys.stdout.flush()
+    new = 0
+    for name, u in states:
+        if name in done:
+            continue
+        if a.limit and new >= a.limit:
+            break
+        t0 = time.process_time()
+        q = np.linalg.solve(G, V.T @ (M @ u))
+        w = V @ q
+        xw = (x + w.reshape(-1, 3))[node]
+        dw = np.einsum("fa,fai->fi", coef, xw)
+        Ew = 0.5 * ((dw ** 2).sum(1) / L0 ** 2 - 1.0)
+        du = np.einsum("fa,fai->fi", coef, (x + u.reshape(-1, 3))[node])
+        Eu = 0.5 * ((du ** 2).sum(1) / L0 ** 2 - 1.0)
+        taut = Ew > 0
+        r = np.where(taut, Ew - np.maximum(Eu, 0.0), 0.0)
+        # D_f = c_f (x) d_f / L0^2 on the chord's 30 dofs
+        Df = (coef[:, :, None] * (dw / L0[:, None] ** 2)[:, None, :]).reshape(nf, 30)
+        wt = W * taut
+        Kf = (wt[:, None, None] * Df[:, :, None] * Df[:, None, :]).ravel()
+        rk, ck, vk = stiffness(x, tet, dNdX, wq, w, 2 * C10, kappa)
+        A = sp.csr_matrix((np.concatenate([vk, Kf]), (np.concatenate([rk, frows]),
+                                                       np.concatenate([ck, fcols]))),
+                          shape=(ndof, ndof))
+        b = np.zeros(ndof)
+        np.add.at(b, fdof.ravel(), (-(wt * r)[:, None] * Df).ravel())
+        Af = A[free][:, free].tocsc()
+        lu = spl.splu(Af, permc_spec="COLAMD")
+        d = np.zeros(ndof)
+        d[free] = lu.solve(b[free])
+        dd = np.einsum("fa,fai->fi", coef, (x + (w + d).reshape(-1, 3))[node])
+        Ed = 0.5 * ((dd ** 2).sum(1) / L0 ** 2 - 1.0)
+        def fe(E):  # the taut fibres' full energy against the FE's strains (N mm)
+            return 0.5 * float((W * (np.maximum(E, 0) - np.maximum(Eu, 0)) ** 2).sum())
+        dm = np.sqrt(d @ (M @ d)) / np.sqrt(u @ (M @ u))
+        print(f"  {name:22s}: {taut.sum():5d} taut, largest strain {Ew.max():.3f} (FE {Eu.max():.3f});"
+              f" mismatch energy {fe(Ew):.4g} -> {fe(Ed):.4g} N mm (largest {Ed.max():.3f});"
+              f" |d|_M / |u|_M {dm:.2e}, max |d| {np.abs(d).max():.3f} mm; {time.process_time() - t0:.0f} s CPU")
+        sys.stdout.flush()
+        with h5py.File(part, "a") as f:
+            key = f"s{len(f)}"
+            f[key] = d
+            f[key].attrs["state"] = name
+        done[name] = d
+        new += 1
+    names = [s[0] for s in states if s[0] in done]
+    Dr = np.stack([done[s] for s in names], axis=1)
+    # M-orthogonal to V (twice), then the POD in the M inner product
+    Y = Dr.copy()
+    Gi = np.linalg.inv(G)
+    for _ in range(2):
+        Y -= V @ (Gi @ (V.T @ (M @ Y)))
+    C = Y.T @ (M @ Y)
+    lam, Phi = np.linalg.eigh(C)
+    o = np.argsort(lam)[::-1]
+    lam, Phi = np.clip(lam[o], 0, None), Phi[:, o]
+    k = int((lam > lam[0] * 1e-14).sum())
+    D = Y @ Phi[:, :k] / np.sqrt(lam[:k])
+    with h5py.File(a.out, "w") as f:
+        f["d"] = Dr
+        f["D"] = D
+        f["sig"] = np.sqrt(lam)
+        f["states"] = np.array(names, dtype="S")
+    print(f"fibre_compat_modes: {len(names)} shapes -> {k} POD modes; singular values "
+          + " ".join(f"{s:.3g}" for s in np.sqrt(lam[:min(k, 12)])) + " ...")
+
+
+if __name__ == "__main__":
+    main()
