@@ -44,9 +44,10 @@ def stiffness(x, tet, dNdX, wq, u, mu, kappa):
     dNdx = np.einsum("egaj,egji->egai", dNdX, np.linalg.inv(F))
     w = wq * det
     # mu [delta_ik dN_a . dN_b + dN_ak dN_bi - 2/3 dN_ai dN_bk] (the energy mu |dev eps|^2)
-    Ke = mu * (np.einsum("eg,egaj,egbj,ik->eaibk", w, dNdx, dNdx, np.eye(3))
-               + np.einsum("eg,egak,egbi->eaibk", w, dNdx, dNdx)
-               - (2.0 / 3.0) * np.einsum("eg,egai,egbk->eaibk", w, dNdx, dNdx))
+    wd = w[:, :, None, None] * dNdx
+    Ke = mu * (np.einsum("egaj,egbj,ik->eaibk", wd, dNdx, np.eye(3), optimize=True)
+               + np.einsum("egak,egbi->eaibk", wd, dNdx, optimize=True)
+               - (2.0 / 3.0) * np.einsum("egai,egbk->eaibk", wd, dNdx, optimize=True))
     g = np.einsum("eg,egai->eai", w, dNdx)  # d v_e / du
     ve = w.sum(axis=1)
     Ke += np.einsum("e,eai,ebk->eaibk", kappa / ve, g, g)
@@ -63,6 +64,15 @@ def main():
         ap.add_argument(name)
     ap.add_argument("--t", type=lambda v: [float(c) for c in v.split(",")], default=[1.0])
     ap.add_argument("--turns", action="store_true", help="also every quarter-turned state")
+    ap.add_argument("--operator", choices=("state", "ref"), default="state",
+                    help="state: K_k + D_k^T W D_k factored per state (as above); ref: one factor "
+                    "of the reference configuration's K_0 + D_0^T W D_0 (every fibre, W) for every "
+                    "state's right-hand side -D_k^T W r_k (the shapes then fix the mismatch only "
+                    "as far as the reference operator is the state's: printed per state)")
+    ap.add_argument("--only", default=None,
+                    help="comma-separated training rays: only their states")
+    ap.add_argument("--extra-part", action="append", default=[],
+                    help="another run's OUT.h5.part: its shapes count as done (parallel runs)")
     ap.add_argument("--limit", type=int, default=0, help="stop after this many new shapes")
     a = ap.parse_args()
     x, tet, fixed, rho, _ = read_mesh(a.snapdir)
@@ -90,7 +100,7 @@ def main():
 
     states = []
     for r in read_rays(a.snapdir):
-        if r["kind"] != "train":
+        if r["kind"] != "train" or (a.only and r["name"] not in a.only.split(",")):
             continue
         for k in range(r["u"].shape[0]):
             if any(abs(r["t"][k] - t) < 1e-9 for t in a.t):
@@ -106,12 +116,23 @@ def main():
                 v.reshape(nn, 3)[perm] = u.reshape(nn, 3) @ Rk.T
                 v[fixed] = 0.0
                 states.append((f"{name}/turn{j + 1}", v))
+    lu0 = None
+    if a.operator == "ref":
+        t0 = time.process_time()
+        d0 = np.einsum("fa,fai->fi", coef, x[node])
+        D0 = (coef[:, :, None] * (d0 / L0[:, None] ** 2)[:, None, :]).reshape(nf, 30)
+        rk, ck, vk = stiffness(x, tet, dNdX, wq, np.zeros(ndof), 2 * C10, kappa)
+        A0 = sp.csr_matrix((np.concatenate([vk, (W[:, None, None] * D0[:, :, None] * D0[:, None, :]).ravel()]),
+                            (np.concatenate([rk, frows]), np.concatenate([ck, fcols]))), shape=(ndof, ndof))
+        lu0 = spl.splu(A0[free][:, free].tocsc(), permc_spec="COLAMD")
+        print(f"fibre_compat_modes: the reference operator factored, {time.process_time() - t0:.0f} s CPU")
     part = a.out + ".part"
     done = {}
-    if os.path.exists(part):
-        with h5py.File(part, "r") as f:
-            for key in f:
-                done[f[key].attrs["state"]] = f[key][...]
+    for pth in [part] + a.extra_part:
+        if os.path.exists(pth):
+            with h5py.File(pth, "r") as f:
+                for key in f:
+                    done[f[key].attrs["state"]] = f[key][...]
     print(f"fibre_compat_modes: {len(states)} training states (t in {a.t}{', turned' if a.turns else ''}),"
           f" {len(done)} done; n = {V.shape[1]}, ndof {ndof}, {nf} fibres, mu {2 * C10:g}, kappa {kappa:g} MPa")
     sys.stdout.flush()
@@ -134,19 +155,22 @@ def main():
         # D_f = c_f (x) d_f / L0^2 on the chord's 30 dofs
         Df = (coef[:, :, None] * (dw / L0[:, None] ** 2)[:, None, :]).reshape(nf, 30)
         wt = W * taut
-        Kf = (wt[:, None, None] * Df[:, :, None] * Df[:, None, :]).ravel()
-        rk, ck, vk = stiffness(x, tet, dNdX, wq, w, 2 * C10, kappa)
-        A = sp.csr_matrix((np.concatenate([vk, Kf]), (np.concatenate([rk, frows]),
+        if lu0 is None:
+            Kf = (wt[:, None, None] * Df[:, :, None] * Df[:, None, :]).ravel()
+            rk, ck, vk = stiffness(x, tet, dNdX, wq, w, 2 * C10, kappa)
+            A = sp.csr_matrix((np.concatenate([vk, Kf]), (np.concatenate([rk, frows]),
                                                        np.concatenate([ck, fcols]))),
-                          shape=(ndof, ndof))
+                              shape=(ndof, ndof))
+            lu = spl.splu(A[free][:, free].tocsc(), permc_spec="COLAMD")
+        else:
+            lu = lu0
         b = np.zeros(ndof)
         np.add.at(b, fdof.ravel(), (-(wt * r)[:, None] * Df).ravel())
-        Af = A[free][:, free].tocsc()
-        lu = spl.splu(Af, permc_spec="COLAMD")
         d = np.zeros(ndof)
         d[free] = lu.solve(b[free])
         dd = np.einsum("fa,fai->fi", coef, (x + (w + d).reshape(-1, 3))[node])
         Ed = 0.5 * ((dd ** 2).sum(1) / L0 ** 2 - 1.0)
+
         def fe(E):  # the taut fibres' full energy against the FE's strains (N mm)
             return 0.5 * float((W * (np.maximum(E, 0) - np.maximum(Eu, 0)) ** 2).sum())
         dm = np.sqrt(d @ (M @ d)) / np.sqrt(u @ (M @ u))
