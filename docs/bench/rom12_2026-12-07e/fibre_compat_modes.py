@@ -73,6 +73,10 @@ def main():
                     help="comma-separated training rays: only their states")
     ap.add_argument("--extra-part", action="append", default=[],
                     help="another run's OUT.h5.part: its shapes count as done (parallel runs)")
+    ap.add_argument("--oracle", action="store_true",
+                    help="a diagnostic, never a basis: --only's rays may be held-out ones (the "
+                    "shape of a held-out state itself: does the construction fix that state when "
+                    "the state is its own?)")
     ap.add_argument("--limit", type=int, default=0, help="stop after this many new shapes")
     a = ap.parse_args()
     x, tet, fixed, rho, _ = read_mesh(a.snapdir)
@@ -100,7 +104,7 @@ def main():
 
     states = []
     for r in read_rays(a.snapdir):
-        if r["kind"] != "train" or (a.only and r["name"] not in a.only.split(",")):
+        if (r["kind"] != "train" and not a.oracle) or (a.only and r["name"] not in a.only.split(",")):
             continue
         for k in range(r["u"].shape[0]):
             if any(abs(r["t"][k] - t) < 1e-9 for t in a.t):
