@@ -14,24 +14,17 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "rom"))
 import numpy as np  # noqa: E402
 from rom11_energy import Energy  # noqa: E402
-from rom11_iso_diag import volume_grads  # noqa: E402
-from rom_basis import read_rays  # noqa: E402
+from rom11_iso_diag import states, volume_grads  # noqa: E402
 
 snap, basis, leg = sys.argv[1:4]
-cases = [(c.split(":")[0], float(c.split(":")[1])) for c in sys.argv[4].split(",")]
+cases = [c.split(":") for c in sys.argv[4].split(",")]
 mf = int(sys.argv[5]) if len(sys.argv) > 5 else 104
 m = Energy(snap, basis, leg)
 m.Qf = m.Qf[:, :mf]
 m.Gf = (m.Qf * m.W[:, None]).T @ m.Qf
 V = m.V
-rays = read_rays(snap)
 print(f"consistency: n = {V.shape[1]}, m = {m.P.shape[1]}, mf = {mf}")
-for ray, t in cases:
-    r = [q for q in rays if q["name"] == ray][0]
-    k = int(np.argmin(np.abs(r["t"] - t)))
-    u = r["u"][k].copy()
-    u[m.fixed] = 0.0
-    p = r["p"][k].ravel()
+for ray, t, u, p, _, _ in (s for c in cases for s in states(snap, [c[0]], [float(c[1])], m.fixed)):
     fd = m.dev(u)[1]
     ff_fe = m.fibres_e(u, mixed=False)[1]
     ff_mx = m.fibres_e(u, mixed=True)[1]
@@ -59,7 +52,7 @@ for ray, t in cases:
         rr = np.linalg.lstsq(Bm, -(V.T @ f0), rcond=None)[0]
         rb = np.linalg.norm(V.T @ f0 + Bm @ rr) / Vp
         out.append((rf, rb))
-    print(f"  {ray} t {r['t'][k]:.2f}: FE fibres: FE pressure {out[0][0]:.2e}, best of span(P) "
+    print(f"  {ray} t {t:.2f}: FE fibres: FE pressure {out[0][0]:.2e}, best of span(P) "
           f"{out[0][1]:.3f}; mixed fibres (mf {mf}): FE pressure {out[1][0]:.3f}, best of span(P) "
           f"{out[1][1]:.3f}")
     sys.stdout.flush()

@@ -33,6 +33,7 @@ import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 import scipy.sparse.linalg as spl  # noqa: E402
+from rom11_energy import Energy  # noqa: E402  (its chambers(): volumes and their gradients)
 from rom_basis import mass_matrix, read_mesh, read_rays, tet_reference, turn_maps  # noqa: E402
 
 
@@ -77,6 +78,12 @@ def main():
                     help="a diagnostic, never a basis: --only's rays may be held-out ones (the "
                     "shape of a held-out state itself: does the construction fix that state when "
                     "the state is its own?)")
+    ap.add_argument("--keep-volumes", action="store_true",
+                    help="the shape also returns the twelve chamber volumes of w_k to the FE "
+                    "state's (linearised: G_c d = V_c(u_k) - V_c(w_k), G_c the volumes' gradients "
+                    "at w_k; Lagrange multipliers by the Schur complement, 13 solves with the one "
+                    "factor): without it the rubber's response to the fibres moves the walls "
+                    "(T_R's own shape: a chamber -3.45 %), as no pressure holds them")
     ap.add_argument("--limit", type=int, default=0, help="stop after this many new shapes")
     a = ap.parse_args()
     x, tet, fixed, rho, _ = read_mesh(a.snapdir)
@@ -130,6 +137,7 @@ def main():
                             (np.concatenate([rk, frows]), np.concatenate([ck, fcols]))), shape=(ndof, ndof))
         lu0 = spl.splu(A0[free][:, free].tocsc(), permc_spec="COLAMD")
         print(f"fibre_compat_modes: the reference operator factored, {time.process_time() - t0:.0f} s CPU")
+    chambers = Energy(a.snapdir, a.basis, a.legfile) if a.keep_volumes else None
     part = a.out + ".part"
     done = {}
     for pth in [part] + a.extra_part:
@@ -172,6 +180,12 @@ def main():
         np.add.at(b, fdof.ravel(), (-(wt * r)[:, None] * Df).ravel())
         d = np.zeros(ndof)
         d[free] = lu.solve(b[free])
+        if a.keep_volumes:
+            vw, Gc = chambers.chambers(w)
+            vu = chambers.chambers(u)[0]
+            Z = lu.solve(np.ascontiguousarray(Gc[:, free].T))  # A^-1 G_c^T (nfree, 12)
+            lam = np.linalg.solve(Gc[:, free] @ Z, Gc[:, free] @ d[free] - (vu - vw))
+            d[free] -= Z @ lam
         dd = np.einsum("fa,fai->fi", coef, (x + (w + d).reshape(-1, 3))[node])
         Ed = 0.5 * ((dd ** 2).sum(1) / L0 ** 2 - 1.0)
 
