@@ -84,6 +84,10 @@ def main():
                     "at w_k; Lagrange multipliers by the Schur complement, 13 solves with the one "
                     "factor): without it the rubber's response to the fibres moves the walls "
                     "(T_R's own shape: a chamber -3.45 %), as no pressure holds them")
+    ap.add_argument("--iterate", type=int, default=1,
+                    help="Newton steps of the shape: each recomputes D, K and the mismatch at "
+                    "w_k + d (the fibres' constraint is curved on the shape's scale); 1: the "
+                    "linearised shape")
     ap.add_argument("--limit", type=int, default=0, help="stop after this many new shapes")
     a = ap.parse_args()
     x, tet, fixed, rho, _ = read_mesh(a.snapdir)
@@ -156,36 +160,49 @@ def main():
             break
         t0 = time.process_time()
         q = np.linalg.solve(G, V.T @ (M @ u))
-        w = V @ q
-        xw = (x + w.reshape(-1, 3))[node]
-        dw = np.einsum("fa,fai->fi", coef, xw)
-        Ew = 0.5 * ((dw ** 2).sum(1) / L0 ** 2 - 1.0)
-        du = np.einsum("fa,fai->fi", coef, (x + u.reshape(-1, 3))[node])
-        Eu = 0.5 * ((du ** 2).sum(1) / L0 ** 2 - 1.0)
-        taut = Ew > 0
-        r = np.where(taut, Ew - np.maximum(Eu, 0.0), 0.0)
-        # D_f = c_f (x) d_f / L0^2 on the chord's 30 dofs
-        Df = (coef[:, :, None] * (dw / L0[:, None] ** 2)[:, None, :]).reshape(nf, 30)
-        wt = W * taut
-        if lu0 is None:
-            Kf = (wt[:, None, None] * Df[:, :, None] * Df[:, None, :]).ravel()
-            rk, ck, vk = stiffness(x, tet, dNdX, wq, w, 2 * C10, kappa)
-            A = sp.csr_matrix((np.concatenate([vk, Kf]), (np.concatenate([rk, frows]),
-                                                       np.concatenate([ck, fcols]))),
-                              shape=(ndof, ndof))
-            lu = spl.splu(A[free][:, free].tocsc(), permc_spec="COLAMD")
-        else:
-            lu = lu0
-        b = np.zeros(ndof)
-        np.add.at(b, fdof.ravel(), (-(wt * r)[:, None] * Df).ravel())
-        d = np.zeros(ndof)
-        d[free] = lu.solve(b[free])
-        if a.keep_volumes:
-            vw, Gc = chambers.chambers(w)
-            vu = chambers.chambers(u)[0]
-            Z = lu.solve(np.ascontiguousarray(Gc[:, free].T))  # A^-1 G_c^T (nfree, 12)
-            lam = np.linalg.solve(Gc[:, free] @ Z, Gc[:, free] @ d[free] - (vu - vw))
-            d[free] -= Z @ lam
+        w0 = V @ q
+        dtot = np.zeros(ndof)
+        for it in range(a.iterate):
+            w = w0 + dtot
+            xw = (x + w.reshape(-1, 3))[node]
+            dw = np.einsum("fa,fai->fi", coef, xw)
+            Ew = 0.5 * ((dw ** 2).sum(1) / L0 ** 2 - 1.0)
+            du = np.einsum("fa,fai->fi", coef, (x + u.reshape(-1, 3))[node])
+            Eu = 0.5 * ((du ** 2).sum(1) / L0 ** 2 - 1.0)
+            taut = Ew > 0
+            r = np.where(taut, Ew - np.maximum(Eu, 0.0), 0.0)
+            # D_f = c_f (x) d_f / L0^2 on the chord's 30 dofs
+            Df = (coef[:, :, None] * (dw / L0[:, None] ** 2)[:, None, :]).reshape(nf, 30)
+            wt = W * taut
+            if lu0 is None:
+                Kf = (wt[:, None, None] * Df[:, :, None] * Df[:, None, :]).ravel()
+                rk, ck, vk = stiffness(x, tet, dNdX, wq, w, 2 * C10, kappa)
+                A = sp.csr_matrix((np.concatenate([vk, Kf]), (np.concatenate([rk, frows]),
+                                                           np.concatenate([ck, fcols]))),
+                                  shape=(ndof, ndof))
+                lu = spl.splu(A[free][:, free].tocsc(), permc_spec="COLAMD")
+            else:
+                lu = lu0
+            b = np.zeros(ndof)
+            np.add.at(b, fdof.ravel(), (-(wt * r)[:, None] * Df).ravel())
+            d = np.zeros(ndof)
+            d[free] = lu.solve(b[free])
+            if a.keep_volumes:
+                vw, Gc = chambers.chambers(w)
+                vu = chambers.chambers(u)[0]
+                Z = lu.solve(np.ascontiguousarray(Gc[:, free].T))  # A^-1 G_c^T (nfree, 12)
+                lam = np.linalg.solve(Gc[:, free] @ Z, Gc[:, free] @ d[free] - (vu - vw))
+                d[free] -= Z @ lam
+            dtot += d
+            if a.iterate > 1:
+                di = np.einsum("fa,fai->fi", coef, (x + (w0 + dtot).reshape(-1, 3))[node])
+                Ei = 0.5 * ((di ** 2).sum(1) / L0 ** 2 - 1.0)
+                mis = 0.5 * float((W * (np.maximum(Ei, 0) - np.maximum(Eu, 0)) ** 2).sum())
+                print(f"    step {it + 1}: mismatch {mis:.4g} N mm, largest strain {Ei.max():.3f}")
+                sys.stdout.flush()
+            if it == 0:
+                Ew0, taut0 = Ew, taut
+        d, w, Ew, taut = dtot, w0, Ew0, taut0
         dd = np.einsum("fa,fai->fi", coef, (x + (w + d).reshape(-1, 3))[node])
         Ed = 0.5 * ((dd ** 2).sum(1) / L0 ** 2 - 1.0)
 
