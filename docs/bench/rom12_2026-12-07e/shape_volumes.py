@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """What a fibre-compatible shape does to the chambers (rom12): for each state of a
 fibre_compat_modes.py output (its /d and /states), the worst chamber volume error against the FE
-state of the M-projection w = V q_M and of w + d, and the taut fibres' mismatch energy
+state of the M-projection w = V q_M and of w + d, their tip error and M-norm distance, and the taut fibres' mismatch energy
 1/2 sum W (max(E, 0) - max(E_FE, 0))^2 of each (N mm): does the shape return the fibres at the
 walls' cost (fibre_free_projection.py's M-norm objective does not see the walls)?
 Usage: shape_volumes.py SNAP BASIS.h5 LEG.h5 SHAPES.h5"""
@@ -40,7 +40,10 @@ for j, name in enumerate(names):
     for lab, s in (("V q_M", w), ("V q_M + d", w + d[:, j])):
         ev = chamber_volumes(m.x, m.face, m.cid, s) / vu - 1
         c = int(np.argmax(np.abs(ev)))
-        out.append(f"{lab}: worst volume {100 * ev[c]:+.2f} % (chamber {c // 4 + 1}.{c % 4 + 1}),"
+        R3 = (u - s).reshape(-1, 3)
+        tip = float(np.sqrt((R3[m.tip].mean(axis=0) ** 2).sum()))
+        mn = float(np.sqrt((u - s) @ (m.M @ (u - s))) / np.sqrt(u @ (m.M @ u)))
+        out.append(f"{lab}: tip {tip:.3f} mm, M-norm {100 * mn:.2f} %, worst volume {100 * ev[c]:+.2f} % (chamber {c // 4 + 1}.{c % 4 + 1}),"
                    f" fibre mismatch {mismatch(s, Eu):.4g} N mm")
     print(f"  {name:16s} " + "; ".join(out))
     sys.stdout.flush()
