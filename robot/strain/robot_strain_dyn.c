@@ -707,8 +707,8 @@ static int keepFactored(csrStrainData* d, const double Z[36], const double rho[6
  * rows and the kept iterates read them) as denseStart adds them. A recursion that fails
  * (a shape across pieces, a singular piece block) takes the dense path with W_ll's contact
  * block formed from the kept shapes (the same entries as the assembly's). */
-static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, double Wbb[36],
-                          double rb[6], double Z[36], double rho[6]) {
+static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                          double Wbb[36], double rb[6], double Z[36], double rho[6]) {
   const int n = m->n, nu = 6 + n;
   double rbt[6];
   for (int c = 0; c < 6; c++) {
@@ -724,7 +724,7 @@ static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, d
                         d->Gs + 6 * nu, Wbb, 2);
     }
     denseStart(m, d, h, Wbb, rb);
-    return factorAndCondense(m, d, h, NULL, Wbb, rb, Z, rho);
+    return factorAndCondense(m, d, h, du, Wbb, rb, Z, rho);
   }
   memcpy(d->rl, d->fl, (size_t)n * sizeof(double));
   for (int j = 0; j < n; j++) {
@@ -738,6 +738,21 @@ static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, d
   }
   for (int i = 0; i < 36; i++) {
     d->Wbbp[i] = d->WMbb[i] + Wbb[i];
+  }
+  if (du) {
+    /* BDF2's iterate: the momentum rows replace h r_b's rows 3-5 (factorAndCondense's); ρ is
+     * linear in r_b, ρ = h r_b - W_bl W_ll⁻¹ h r_l: the change h (r_b' - r_b) added. Z, ρ in
+     * the hip's coordinates at the iterate */
+    double rbm[6];
+    memcpy(rbm, rbt, sizeof rbm);
+    momentumRows(m, d, h, du, d->Wbbp, rbm);
+    for (int c = 3; c < 6; c++) {
+      rho[c] += h * (rbm[c] - rbt[c]);
+      if (!isfinite(rho[c])) {
+        return 1;
+      }
+    }
+    memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
   }
   d->lu_plain = 0;
   d->kf = 0;
@@ -773,7 +788,7 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, co
   d->art_f = 0;
   d->wb_f = 0;
   d->k0 = 0;
-  const int stance = !du && m->par.artic == 2 && !d->wm_step;
+  const int stance = m->par.artic == 2 && !d->wm_step;
   d->wc_sparse = stance;
   if (m->soft) {
     int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
@@ -785,7 +800,7 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, co
   }
   d->wc_sparse = 0;
   if (d->ntouch > 0 && stance) {
-    return condenseStance(m, d, h, Wbb, rb, Z, rho);
+    return condenseStance(m, d, h, du, Wbb, rb, Z, rho);
   }
   if (d->ntouch > 0 || d->wm_step || csr_strainCondenseArtic_(m, d, h, d->rMl, d->rMb, Z, rho)) {
     /* the dense path (a touching leg, W_M formed, or a piece's block not positive definite:
