@@ -4,10 +4,12 @@ whether every dataset is identical bit for bit (bytes: NaN fills compare equal).
 import h5py
 import numpy as np
 
+import sys
+NEW = sys.argv[1] if len(sys.argv) > 1 else "new"
 for t in ("o1", "o2"):
     for s in ("flat-road", "obstacle"):
         a = h5py.File(f"/tmp/bdf14/runs/base.{t}.{s}.h5", "r")
-        b = h5py.File(f"/tmp/bdf14/runs/new.{t}.{s}.h5", "r")
+        b = h5py.File(f"/tmp/bdf14/runs/{NEW}.{t}.{s}.h5", "r")
         names = []
         a.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
         same = all(np.asarray(a[n][()]).tobytes() == np.asarray(b[n][()]).tobytes() for n in names)
