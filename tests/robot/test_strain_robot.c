@@ -27,7 +27,8 @@
  *    the contact's unsymmetric blocks (artic 2) prepares the dense LU's Z, ρ, X and y to
  *    round-off on every leg that touches, from the same states through touch-down and the
  *    first strides, and so does its kept iterate's solve through the pieces' factors (at the
- *    default basis, n 36, and at 3 modes and 4 sub-intervals, n 42).
+ *    default basis, n 36, and at 3 modes and 4 sub-intervals, n 42); with BDF2 (step_order 2,
+ *    n 36) every pass's condensation at its iterate (the momentum rows in ρ) as well.
  *  - artic_stance_same_step: artic 2's steps (the default) are the dense path's (artic 0) to
  *    round-off, in the same passes.
  *  - stance_fallback_is_the_dense_start: where a touching shape spans two pieces (the foot
