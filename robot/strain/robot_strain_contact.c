@@ -689,8 +689,9 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         d->rl[k - 6] += t;
       }
     }
-    if (d->wc_sparse == 1 && !du) {
-      /* the recursion's start (artic 2): this shape's S and A kept, W_ll's block left out */
+    if (d->wc_sparse == 1) {
+      /* the recursion's start (artic 2; or BDF2's iterate assembled for it): this shape's S
+       * and A kept, W_ll's block left out */
       memcpy(d->cS + (size_t)d->nct * 6 * nu, S, (size_t)6 * nu * sizeof(double));
       memcpy(d->cA + 36 * d->nct, A, sizeof A);
       d->ct[d->nct++] = s;
@@ -701,7 +702,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
       d->nwt++;
     }
     csr_strainShapeW_(m, d, h, S, A, Ga, Gb, Wbb,
-                      (d->wc_sparse == 1 && !du) || (d->wc_sparse == 2 && du) ? 1 : 0);
+                      d->wc_sparse == 1 || (d->wc_sparse == 2 && du) ? 1 : 0);
   }
   return 0;
 }

@@ -193,6 +193,7 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
     csr_strainInertia_(m, d);
   }
   d->wm_step = inertia;
+  d->art_pass = at_iterate && !inertia;
   double* rb = d->rMb;
   memset(rb, 0, sizeof d->rMb);
   memset(d->rMl, 0, (size_t)n * sizeof(double));
@@ -247,7 +248,24 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
     /* BDF's history, M (ū - u0) / h with ū - u0 = (c0 - 1) u0 + c1 u_-1 (zero for backward
      * Euler), by the inertia alone (before K joins W_ll's diagonal) */
     const double c0 = d->bc[0], c1 = d->bc[1];
-    if (c0 != 1 || c1 != 0) {
+    if ((c0 != 1 || c1 != 0) && !inertia) {
+      /* the recursion's pass (articStep) forms no inertia matrix: M w matrix-free at the
+       * iterate's kinematics (J at every point: assembled above), the same sums to round-off */
+      double* w = d->Gs; /* 6 + n scratch; M w into d->Mu */
+      for (int c = 0; c < 6; c++) {
+        w[c] = ((c0 - 1) * d->Vb0[c] + c1 * d->Vbm1[c]) / h;
+      }
+      for (int j = 0; j < n; j++) {
+        w[6 + j] = ((c0 - 1) * d->eta0[j] + c1 * d->etam1[j]) / h;
+      }
+      csr_strainInertiaApply_(m, d->R, d->x, d->J, w, d->Mu);
+      for (int a = 0; a < 6; a++) {
+        rb[a] += d->Mu[a];
+      }
+      for (int j = 0; j < n; j++) {
+        d->rMl[j] += d->Mu[6 + j];
+      }
+    } else if (c0 != 1 || c1 != 0) {
       double* w = d->Gs; /* 6 + n scratch */
       for (int c = 0; c < 6; c++) {
         w[c] = ((c0 - 1) * d->Vb0[c] + c1 * d->Vbm1[c]) / h;
@@ -280,7 +298,9 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
     for (int j = 0; j < n; j++) {
       d->rMl[j] += d->b[j] - d->Kd[j] * (d->q[j] + tau * d->eta[j]) +
                    (tau + h) * d->Kd[j] * d->du[6 + j];
-      d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+      if (inertia) {
+        d->WMll[j * n + j] += (h * tau + h * h) * d->Kd[j];
+      }
       if (!isfinite(d->rMl[j])) {
         return 1;
       }
@@ -560,10 +580,11 @@ static void startKinematics(const csrStrainModel* m, csrStrainData* d) {
 }
 
 
-/* 1: a backward-Euler step's start is condensed by the articulated recursion when its leg
- * touches nothing (robot_strain.h artic; the dense factor stays where keep_matrix keeps it) */
+/* 1: a backward-Euler step's start, and each BDF2 pass that assembles at its iterate, is
+ * condensed by the articulated recursion when its leg touches nothing (robot_strain.h artic;
+ * the dense factor stays where keep_matrix keeps it) */
 static int articStep(const csrStrainModel* m) {
-  return m->par.artic && m->par.step_order == 1 && !m->par.keep_matrix;
+  return m->par.artic && !m->par.keep_matrix;
 }
 
 
@@ -631,6 +652,43 @@ void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d) {
 }
 
 
+/* the recursion's factor of a leg without contact (condenseStart: a step's start or BDF2's
+ * iterate): W's blocks W_M's (W_lb and W_bl from the recursion's W_lb), h r's r_M's; 1 if r_l
+ * is not finite */
+static int plainFactored(const csrStrainModel* m, csrStrainData* d) {
+  const int n = m->n;
+  d->wl_pending = 0;
+  d->lu_plain = 1;
+  d->kf = 0;
+  memcpy(d->Wlb, d->WMlb, (size_t)n * 6 * sizeof(double));
+  for (int j = 0; j < n; j++) {
+    for (int c = 0; c < 6; c++) {
+      d->Wbl[n * c + j] = d->WMlb[6 * j + c];
+    }
+  }
+  memcpy(d->rl, d->rMl, (size_t)n * sizeof(double));
+  for (int j = 0; j < n; j++) {
+    if (!isfinite(d->rl[j])) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+
+/* the current kinematics kept in d->R0, x0, J0 (k0) for a later pass that forms W_M there:
+ * the arrays swapped, not copied; the iterates form their own (kin_valid 0) */
+static void keepKinematics(csrStrainData* d) {
+  double* t;
+  t = d->R, d->R = d->R0, d->R0 = t;
+  t = d->x, d->x = d->x0, d->x0 = t;
+  t = d->J, d->J = d->J0, d->J0 = t;
+  d->kin_valid = 0;
+  d->kin_gen++;
+  d->k0 = 1;
+}
+
+
 /* the recursion's start done (no Cholesky factor of W_ll: its pieces' are the recursion's):
  * counted, Z and ρ kept for the step's iterates */
 static int keepFactored(csrStrainData* d, const double Z[36], const double rho[6]) {
@@ -649,8 +707,8 @@ static int keepFactored(csrStrainData* d, const double Z[36], const double rho[6
  * rows and the kept iterates read them) as denseStart adds them. A recursion that fails
  * (a shape across pieces, a singular piece block) takes the dense path with W_ll's contact
  * block formed from the kept shapes (the same entries as the assembly's). */
-static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, double Wbb[36],
-                          double rb[6], double Z[36], double rho[6]) {
+static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                          double Wbb[36], double rb[6], double Z[36], double rho[6]) {
   const int n = m->n, nu = 6 + n;
   double rbt[6];
   for (int c = 0; c < 6; c++) {
@@ -666,7 +724,7 @@ static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, d
                         d->Gs + 6 * nu, Wbb, 2);
     }
     denseStart(m, d, h, Wbb, rb);
-    return factorAndCondense(m, d, h, NULL, Wbb, rb, Z, rho);
+    return factorAndCondense(m, d, h, du, Wbb, rb, Z, rho);
   }
   memcpy(d->rl, d->fl, (size_t)n * sizeof(double));
   for (int j = 0; j < n; j++) {
@@ -681,30 +739,43 @@ static int condenseStance(const csrStrainModel* m, csrStrainData* d, double h, d
   for (int i = 0; i < 36; i++) {
     d->Wbbp[i] = d->WMbb[i] + Wbb[i];
   }
+  if (du) {
+    /* BDF2's iterate: the momentum rows replace h r_b's rows 3-5 (factorAndCondense's); ρ is
+     * linear in r_b, ρ = h r_b - W_bl W_ll⁻¹ h r_l: the change h (r_b' - r_b) added. Z, ρ in
+     * the hip's coordinates at the iterate */
+    double rbm[6];
+    memcpy(rbm, rbt, sizeof rbm);
+    momentumRows(m, d, h, du, d->Wbbp, rbm);
+    for (int c = 3; c < 6; c++) {
+      rho[c] += h * (rbm[c] - rbt[c]);
+      if (!isfinite(rho[c])) {
+        return 1;
+      }
+    }
+    memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
+  }
   d->lu_plain = 0;
   d->kf = 0;
   d->art_f = 1;
   /* the start's kinematics kept for an iterate that refactors (it forms W_M from them): the
    * arrays swapped, not copied; the iterates form their own (kin_valid 0) */
-  double* t;
-  t = d->R, d->R = d->R0, d->R0 = t;
-  t = d->x, d->x = d->x0, d->x0 = t;
-  t = d->J, d->J = d->J0, d->J0 = t;
-  d->kin_valid = 0;
-  d->kin_gen++;
-  d->k0 = 1;
+  keepKinematics(d);
   return keepFactored(d, Z, rho);
 }
 
 
-/* A backward-Euler step's start (articStep): the contact linearised first (into zeroed
- * blocks); a leg that touches nothing is condensed by the recursion (robot_strain_artic.c,
- * no n x n matrix), one that touches by the dense factor of W_M plus the contact's part, or
- * with artic 2 by the recursion with the contact's blocks (condenseStance; an iterate that
- * must refactor forms W_M then: condense). */
-static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, double Z[36],
-                         double rho[6]) {
-  const int n = m->n;
+/* A backward-Euler step's start (articStep, du NULL): the contact linearised first (into
+ * zeroed blocks); a leg that touches nothing is condensed by the recursion
+ * (robot_strain_artic.c, no n x n matrix), one that touches by the dense factor of W_M plus the
+ * contact's part, or with artic 2 by the recursion with the contact's blocks (condenseStance;
+ * an iterate that must refactor forms W_M then: condense).
+ * A BDF2 pass assembled at its iterate Δu_it = du without W_M (art_pass): W is M(q_it) +
+ * (h τ_d + h²) [0 0; 0 K] at the iterate's kinematics with h = c2 h_step, the form backward
+ * Euler's start has at q0, so the recursion condenses it the same way, r_M holding the
+ * history's M (ū - u0) / h (assemble); the contact linearised at the iterate; a leg that
+ * touches takes the dense path (W_M at the iterate's kinematics, the momentum rows). */
+static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                         double Z[36], double rho[6]) {
   double Wbb[36], rb[6];
   memset(Wbb, 0, sizeof Wbb);
   memset(rb, 0, sizeof rb);
@@ -720,7 +791,7 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, do
   const int stance = m->par.artic == 2 && !d->wm_step;
   d->wc_sparse = stance;
   if (m->soft) {
-    int rc = csr_strainContactAssemble_(m, d, h, NULL, Wbb, rb, d->Gs);
+    int rc = csr_strainContactAssemble_(m, d, h, du, Wbb, rb, d->Gs);
     if (rc != 0) {
       d->wl_pending = 0; /* the blocks are not read: the next condense writes them whole */
       d->wc_sparse = 0;
@@ -729,31 +800,29 @@ static int condenseStart(const csrStrainModel* m, csrStrainData* d, double h, do
   }
   d->wc_sparse = 0;
   if (d->ntouch > 0 && stance) {
-    return condenseStance(m, d, h, Wbb, rb, Z, rho);
+    return condenseStance(m, d, h, du, Wbb, rb, Z, rho);
   }
   if (d->ntouch > 0 || d->wm_step || csr_strainCondenseArtic_(m, d, h, d->rMl, d->rMb, Z, rho)) {
     /* the dense path (a touching leg, W_M formed, or a piece's block not positive definite:
      * its LU decides): W_M added to the contact's blocks, zero if no shape touched */
     csr_strainClearStart_(m, d);
     denseStart(m, d, h, Wbb, rb);
-    return factorAndCondense(m, d, h, NULL, Wbb, rb, Z, rho);
+    return factorAndCondense(m, d, h, du, Wbb, rb, Z, rho);
   }
-  d->wl_pending = 0;
-  d->lu_plain = 1;
-  d->kf = 0;
-  memcpy(d->Wlb, d->WMlb, (size_t)n * 6 * sizeof(double));
-  for (int j = 0; j < n; j++) {
-    for (int c = 0; c < 6; c++) {
-      d->Wbl[n * c + j] = d->WMlb[6 * j + c];
-    }
+  if (plainFactored(m, d) != 0) {
+    return 1;
   }
-  memcpy(d->rl, d->rMl, (size_t)n * sizeof(double));
-  for (int j = 0; j < n; j++) {
-    if (!isfinite(d->rl[j])) {
-      return 1;
-    }
+  keepFactored(d, Z, rho);
+  if (!du) {
+    return 0;
   }
-  return keepFactored(d, Z, rho);
+  /* BDF2's iterate: ρ with the iterate's momentum rows, ρ = h r_b - W_bl y as
+   * factorAndCondense's (the recursion's y = W_ll⁻¹ h r_l), Z, ρ in the hip's coordinates at
+   * the iterate; its kinematics kept for a later iterate that refactors (step_refresh 0) */
+  memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
+  const int rc = condensePlain(m, d, h, du, Z, rho);
+  keepKinematics(d);
+  return rc;
 }
 
 
@@ -871,8 +940,9 @@ static int condense(const csrStrainModel* m, csrStrainData* d, double h, const d
   }
   d->nreuse = 0;
   d->fresh = 0;
-  if (!du && articStep(m)) {
-    return condenseStart(m, d, h, Z, rho);
+  if ((!du && articStep(m)) || (du && d->art_pass)) {
+    d->art_pass = 0;
+    return condenseStart(m, d, h, du, Z, rho);
   }
   if (du && (d->art_f || d->wb_f) && m->par.step_order == 1) {
     return condenseUpdate(m, d, h, du, Z, rho);
@@ -1168,7 +1238,7 @@ static int prepareBdf(const csrStrainModel* m, csrStrainData* d, double h, doubl
   d->kin_valid = 0;
   csr_strainKinematics_(m, d, 1);
   d->lu_plain = 0;
-  int rc = assemble(m, d, d->he, 1, 1);
+  int rc = assemble(m, d, d->he, 1, !articStep(m));
   return rc != 0 ? rc : condense(m, d, d->he, d->du, Z, rho);
 }
 
@@ -1315,7 +1385,7 @@ static int iterateAt(const csrStrainModel* m, csrStrainData* d, double Z[36], do
     if (d->kin_valid < 2) {
       csr_strainKinematics_(m, d, 1);
     }
-    int rc = assemble(m, d, d->he, 1, 1);
+    int rc = assemble(m, d, d->he, 1, !articStep(m));
     return rc != 0 ? rc : condense(m, d, d->he, d->du, Z, rho);
   }
   /* the contact's loads and linearisation need the Jacobians and twists at the shapes' ends

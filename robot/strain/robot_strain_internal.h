@@ -185,6 +185,8 @@ struct csrStrainData_ {
                      step may keep */
   int chol;       /* 1: d->Wll holds a Cholesky factor (no contact in it), 0 an LU */
   int wm_step;    /* 1: d->WM* are this step's W_M (0: a kept step's prepare skipped them) */
+  int art_pass;   /* 1: this pass's BDF2 assembly at the iterate left W_M out for the
+                     recursion (articStep): condenseStart condenses it) */
   int w_lag;      /* 1: the factor is an earlier step's */
   long nfactor;   /* factorisations of W_ll since the data's creation (a count, not state) */
   long nstep;     /* prepared steps since then */

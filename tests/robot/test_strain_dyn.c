@@ -20,6 +20,9 @@
  *    1, robot_strain_artic.c) and by the dense factor (artic 0): the base's Z and ρ, and the
  *    leg's state after the same base move ΔV (its rates η = y - X ΔV), agree to round-off
  *    (1e-9 of their size); at 2 and at 3 bending modes, 2 and 4 sub-intervals.
+ *  - bdf2_articulated_condensation_is_the_dense_one: the same for BDF2 (step_order 2, its
+ *    passes assembled at the iterate; step_refresh 1 and 0), the base held: every Newton
+ *    pass's Z and ρ and the state after the step agree to 1e-9 of their size.
  *  - step_order_observed: the leg, base held, swung by a smooth pressure pulse for 0.3 s and
  *    stepped with Newton passes to convergence at h = 4, 2, 1, 0.5 ms: the order observed from
  *    the tip's successive differences is 1 for backward Euler (step_order 1, linearised at the
@@ -578,6 +581,57 @@ static void bad_step_refused(void) {
 }
 
 
+/* the same leg (the defaults but those given) by the recursion (index 0: artic 1) and by the
+ * dense factor (1: artic 0), with state buffers; 1 when all are made (pairClose frees what
+ * was) */
+typedef struct {
+  csrStrainModel* m[2];
+  csrStrainData* d[2];
+  double* y[2];
+} ArticPair;
+
+
+static int pairOpen(const LegCal* c, int bend_order, int nsub, int step_order, int refresh,
+                    ArticPair* P) {
+  memset(P, 0, sizeof *P);
+  int ok = 1;
+  for (int k = 0; k < 2; k++) {
+    csrStrainParams s = csr_strainDefaultParams();
+    s.bend_order = bend_order;
+    s.nsub = nsub;
+    s.step_order = step_order;
+    s.step_refresh = refresh;
+    s.artic = k == 0;
+    csError err;
+    P->m[k] = legModelParams(c, &s);
+    P->d[k] = P->m[k] ? csr_strainDataCreate(P->m[k], &err) : NULL;
+    P->y[k] = P->m[k] ? calloc((size_t)csr_strainStateSize(P->m[k]), sizeof(double)) : NULL;
+    ok = ok && P->d[k] && P->y[k];
+  }
+  return ok;
+}
+
+
+/* both actuated by pressures p, the dense one's state set to the recursion's */
+static void pairStart(ArticPair* P, const double p[12]) {
+  csError err;
+  for (int k = 0; k < 2; k++) {
+    CS_EXPECT(csr_strainActuate(P->m[k], P->d[k], p, &err) == 0);
+  }
+  csr_strainGetState(P->m[0], P->d[0], P->y[0]);
+  CS_EXPECT(csr_strainSetState(P->m[1], P->d[1], P->y[0]) == 0);
+}
+
+
+static void pairClose(ArticPair* P) {
+  for (int k = 0; k < 2; k++) {
+    free(P->y[k]);
+    csr_strainDataDestroy(P->d[k]);
+    csr_strainModelDestroy(P->m[k]);
+  }
+}
+
+
 static void articulated_condensation_is_the_dense_one(void) {
   LegCal c;
   if (!openCal(&c)) {
@@ -585,21 +639,11 @@ static void articulated_condensation_is_the_dense_one(void) {
   }
   const int bends[2] = {1, 2}, subs[2] = {2, 4};
   for (int cfg = 0; cfg < 2; cfg++) {
-    csrStrainParams sa = csr_strainDefaultParams(), sd;
-    sa.bend_order = bends[cfg];
-    sa.nsub = subs[cfg];
-    sa.artic = 1;
-    sd = sa;
-    sd.artic = 0;
-    csrStrainModel* ma = legModelParams(&c, &sa);
-    csrStrainModel* md = legModelParams(&c, &sd);
-    csError err;
-    csrStrainData* da = ma ? csr_strainDataCreate(ma, &err) : NULL;
-    csrStrainData* dd = md ? csr_strainDataCreate(md, &err) : NULL;
-    if (da && dd) {
-      const int ns = csr_strainStateSize(ma);
-      double* ya = calloc((size_t)ns, sizeof(double));
-      double* yd = calloc((size_t)ns, sizeof(double));
+    ArticPair P;
+    if (pairOpen(&c, bends[cfg], subs[cfg], 1, 1, &P)) {
+      csrStrainModel *ma = P.m[0], *md = P.m[1];
+      csrStrainData *da = P.d[0], *dd = P.d[1];
+      double *ya = P.y[0], *yd = P.y[1];
       FreeBase B;
       memset(&B, 0, sizeof B);
       B.mb = 5e-5;
@@ -608,13 +652,10 @@ static void articulated_condensation_is_the_dense_one(void) {
       memcpy(B.R, F, sizeof F);
       double wz = 0, wr = 0, wy = 0, zmax = 0;
       const double h = 5e-3;
-      for (int i = 0; i < 80 && ya && yd; i++) {
+      for (int i = 0; i < 80; i++) {
         double p[12];
         swing(0.02 * (i + 1), p);
-        CS_EXPECT(csr_strainActuate(ma, da, p, &err) == 0);
-        CS_EXPECT(csr_strainActuate(md, dd, p, &err) == 0);
-        csr_strainGetState(ma, da, ya);
-        CS_EXPECT(csr_strainSetState(md, dd, ya) == 0);
+        pairStart(&P, p);
         csrBaseState b;
         baseState(&B, &b);
         csr_strainSetBase(ma, da, &b);
@@ -663,13 +704,76 @@ static void articulated_condensation_is_the_dense_one(void) {
       CS_EXPECT(wz < 1e-9);
       CS_EXPECT(wr < 1e-9);
       CS_EXPECT(wy < 1e-9);
-      free(ya);
-      free(yd);
     }
-    csr_strainDataDestroy(da);
-    csr_strainDataDestroy(dd);
-    csr_strainModelDestroy(ma);
-    csr_strainModelDestroy(md);
+    pairClose(&P);
+  }
+  csr_calibrationClose(c.cal);
+}
+
+
+/* BDF2's passes by the recursion (artic 1) and the dense factor (artic 0) from the same state:
+ * the base held (its history too: ΔV = 0), the leg swung by its chambers, Newton's passes to
+ * convergence in lockstep; every pass's Z, ρ (the prepare's at the iterate, the iterates')
+ * and the state after the step compared. Bound 1e-9 relative as above (round-off of sums over
+ * the leg's points: the history's M (ū - u0) / h is the matrix-free product there, the
+ * assembled matrix's here). Z holds W_bl W_ll⁻¹ W_lb, so a wrong X shows in it. */
+static void bdf2_articulated_condensation_is_the_dense_one(void) {
+  LegCal c;
+  if (!openCal(&c)) {
+    return;
+  }
+  const int bends[2] = {1, 2}, subs[2] = {2, 4}, refresh[2] = {1, 0};
+  for (int cfg = 0; cfg < 2; cfg++) {
+    ArticPair P;
+    if (pairOpen(&c, bends[cfg], subs[cfg], 2, refresh[cfg], &P)) {
+      csrStrainModel *ma = P.m[0], *md = P.m[1];
+      csrStrainData *da = P.d[0], *dd = P.d[1];
+      double *ya = P.y[0], *yd = P.y[1];
+      const double zero[6] = {0, 0, 0, 0, 0, 0};
+      double wz = 0, wr = 0, wy = 0, zmax = 0;
+      int npass = 0;
+      const double h = 2e-3;
+      for (int i = 0; i < 60; i++) {
+        double p[12];
+        swing(0.01 * (i + 1), p);
+        pairStart(&P, p);
+        double Za[36], ra[6], Zd[36], rd[6];
+        int rca = csr_strainPrepare(ma, da, h, Za, ra);
+        int rcd = csr_strainPrepare(md, dd, h, Zd, rd);
+        CS_EXPECT(rca == 0 && rcd == 0);
+        for (int it = 0; rca == 0 && rcd == 0 && it < 30; it++) {
+          wz = fmax(wz, cs_relDiff(Zd, Za, 36));
+          wr = fmax(wr, cs_relDiff(rd, ra, 6));
+          for (int k = 0; k < 36; k++) {
+            zmax = fmax(zmax, fabs(Zd[k]));
+          }
+          npass++;
+          double ca = 0, cd = 0;
+          rca = csr_strainUpdate(ma, da, zero, NULL, &ca);
+          rcd = csr_strainUpdate(md, dd, zero, NULL, &cd);
+          if (it > 0 && cd <= 1e-12) {
+            break;
+          }
+          rca = rca ? rca : csr_strainIterate(ma, da, Za, ra);
+          rcd = rcd ? rcd : csr_strainIterate(md, dd, Zd, rd);
+        }
+        CS_EXPECT(rca == 0 && rcd == 0);
+        CS_EXPECT(csr_strainCommit(ma, da) == 0);
+        CS_EXPECT(csr_strainCommit(md, dd) == 0);
+        csr_strainGetState(ma, da, ya);
+        csr_strainGetState(md, dd, yd);
+        wy = fmax(wy, cs_relDiff(yd, ya, 2 * ma->n));
+      }
+      printf("  step_refresh %d, bend order %d, sub %d (n %d), %d passes: Z %.2e, rho %.2e, the "
+             "leg's q and rates %.2e (relative; |Z| up to %.3g)\n", refresh[cfg], bends[cfg],
+             subs[cfg], ma->n, npass, wz, wr, wy, zmax);
+      CS_EXPECT(npass > 60);
+      CS_EXPECT(zmax > 0);
+      CS_EXPECT(wz < 1e-9);
+      CS_EXPECT(wr < 1e-9);
+      CS_EXPECT(wy < 1e-9);
+    }
+    pairClose(&P);
   }
   csr_calibrationClose(c.cal);
 }
@@ -683,6 +787,7 @@ int main(int argc, char** argv) {
   CS_RUN(repeat_and_restore_bit_identical);
   CS_RUN(bad_step_refused);
   CS_RUN(articulated_condensation_is_the_dense_one);
+  CS_RUN(bdf2_articulated_condensation_is_the_dense_one);
   CS_RUN(step_order_observed);
   return cs_testSummary();
 }

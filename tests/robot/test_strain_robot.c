@@ -27,7 +27,8 @@
  *    the contact's unsymmetric blocks (artic 2) prepares the dense LU's Z, ρ, X and y to
  *    round-off on every leg that touches, from the same states through touch-down and the
  *    first strides, and so does its kept iterate's solve through the pieces' factors (at the
- *    default basis, n 36, and at 3 modes and 4 sub-intervals, n 42).
+ *    default basis, n 36, and at 3 modes and 4 sub-intervals, n 42); with BDF2 (step_order 2,
+ *    n 36) every pass's condensation at its iterate (the momentum rows in ρ) as well.
  *  - artic_stance_same_step: artic 2's steps (the default) are the dense path's (artic 0) to
  *    round-off, in the same passes.
  *  - stance_fallback_is_the_dense_start: where a touching shape spans two pieces (the foot
@@ -366,11 +367,20 @@ static StrainRobot* keptRobot(double mu, double ks) {
 
 /* the harness robot at artic a (0: every leg's step start by the assembled inertia and its
  * factor, the dense path; 2: every leg's by the recursion), bend_order bend, nsub sub */
+static StrainRobot* articRobotOrder(double mu, int a, int bend, int sub, int order);
+
+
 static StrainRobot* articRobotCfg(double mu, int a, int bend, int sub) {
+  return articRobotOrder(mu, a, bend, sub, 1);
+}
+
+
+static StrainRobot* articRobotOrder(double mu, int a, int bend, int sub, int order) {
   StrainRobot* b = calloc(1, sizeof *b);
   csError err;
   cs_errorClear(&err);
   csrStrainParams sp = csr_strainDefaultParams();
+  sp.step_order = order;
   sp.bend_order = bend;
   sp.nsub = sub;
   sp.artic = a;
@@ -454,11 +464,11 @@ static void artic_stance_same_step(void) {
  * matrix, ρ and y through the pieces' factors against the dense LU's solve. At two bases
  * (stance_condensation_is_the_dense_one). Bound 1e-9: round-off of sums over
  * ~40 unknowns with the contact's stiffness is ~1e-12, a wrong block, sign or transport O(1). */
-static void stanceSame(int bend, int sub) {
+static void stanceSame(int bend, int sub, int order) {
   csgGait* g = gaitOnly();
-  StrainRobot* r = articRobotCfg(0.8, 0, bend, sub); /* the reference's run */
-  StrainRobot* a = articRobotCfg(0.8, 2, bend, sub);
-  StrainRobot* b = articRobotCfg(0.8, 0, bend, sub);
+  StrainRobot* r = articRobotOrder(0.8, 0, bend, sub, order); /* the reference's run */
+  StrainRobot* a = articRobotOrder(0.8, 2, bend, sub, order);
+  StrainRobot* b = articRobotOrder(0.8, 0, bend, sub, order);
   if (!r || !a || !b || !g) {
     CS_EXPECT(0);
     return;
@@ -494,7 +504,8 @@ static void stanceSame(int bend, int sub) {
       double Zka[36], rka[6], Zkb[36], rkb[6];
       CS_EXPECT(csr_strainIterate(m, da, Zka, rka) == 0);
       CS_EXPECT(csr_strainIterate(b->m[k], db, Zkb, rkb) == 0);
-      if (da->art_f == 1 && db->nreuse == 1) {
+      /* BDF2 (step_refresh 1): every iterate condensed anew at its own state, both ways */
+      if ((da->art_f == 1 && db->nreuse == 1) || (order == 2 && da->art_f == 1)) {
         nkept++;
         kr = fmax(kr, cs_relDiff(rkb, rka, 6));
         ky = fmax(ky, cs_relDiff(db->y, da->y, n));
@@ -504,9 +515,9 @@ static void stanceSame(int bend, int sub) {
     CS_EXPECT(strainRobotAdvance(r, g, i * h, (i + 1) * h, 16, 1e-9, 4, y0, &st, NULL, NULL,
                                  NULL, NULL) == 0);
   }
-  printf("  bend_order %d, sub %d (n %d): 40 steps of 5 ms from standing, %d stance legs' starts: "
+  printf("  step_order %d, bend_order %d, sub %d (n %d): 40 steps of 5 ms from standing, %d stance legs' starts: "
          "Z %.2e, rho %.2e, X %.2e, y %.2e; %d kept iterates: rho %.2e, y %.2e (relative)\n",
-         bend, sub, a->m[0]->n, nleg, wz, wr, wx, wy, nkept, kr, ky);
+         order, bend, sub, a->m[0]->n, nleg, wz, wr, wx, wy, nkept, kr, ky);
   CS_EXPECT(nleg > 100);
   /* 66 of 176 measured: the others refactor (a slot changed its state) */
   CS_EXPECT(nkept > 30);
@@ -524,8 +535,9 @@ static void stanceSame(int bend, int sub) {
 
 
 static void stance_condensation_is_the_dense_one(void) {
-  stanceSame(1, 2); /* the default basis: 2 bending modes, 2 sub-intervals (n 36) */
-  stanceSame(2, 4); /* 3 modes, 4 sub-intervals (n 42), the harness's other tests' basis */
+  stanceSame(1, 2, 1); /* the default basis: 2 bending modes, 2 sub-intervals (n 36) */
+  stanceSame(2, 4, 1); /* 3 modes, 4 sub-intervals (n 42), the harness's other tests' basis */
+  stanceSame(1, 2, 2); /* BDF2: its passes at the iterate, the momentum rows in ρ */
 }
 
 
