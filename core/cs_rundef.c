@@ -538,8 +538,8 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
    * header): a run on other files or conditions quotes the row as the configuration's error
    * there, not as its own, and records no number (a user's gait, or `earth`, which also swaps
    * the flat road's gait, can sit anywhere relative to the reference) */
-  const int elsewhere = def->terrain || def->gait || def->no_gait || def->scene_file ||
-                        m->conditions != CS_CONDITIONS_PAPER;
+  const int other_files = def->terrain || def->gait || def->no_gait || def->scene_file;
+  const int elsewhere = other_files || m->conditions != CS_CONDITIONS_PAPER;
   for (int i = 0; i < table->nrow && !found; i++) {
     const csrLevelRow* r = &table->row[i];
     /* a row's step order 0 is the level's default formula, which is what an unset one runs */
@@ -551,9 +551,7 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
         snprintf(out, size, "track error %.3g mm against the reference of %s (line %d), measured "
                  "on the scene's own terrain and gait under paper; this run's %s, so its own "
                  "error is not measured", r->error_mm, levels, r->line,
-                 def->terrain || def->gait || def->no_gait || def->scene_file
-                     ? "terrain or gait differ"
-                     : "conditions differ");
+                 other_files ? "terrain or gait differ" : "conditions differ");
       } else {
         snprintf(out, size, "track error %.3g mm against the reference of %s (line %d; measured "
                  "on the scene's own gait and conditions)", r->error_mm, levels, r->line);
