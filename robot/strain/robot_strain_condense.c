@@ -539,7 +539,14 @@ static void wmBlocks(const csrStrainModel* m, csrStrainData* d, double Wbb[36], 
  * start's pieces' factors (robot_strain_woodbury.c): no W_M, no n x n block or LU. The
  * contact's assembly forms the iterate's S, A (wS, wA), W's base rows and columns and h r
  * (wc_sparse 2); a singular update takes the dense path (W_M at the start's kinematics, k0,
- * W_ll's contact block from the kept shapes, as condenseStance's fallback). */
+ * W_ll's contact block from the kept shapes, as condenseStance's fallback).
+ * The linearly implicit BDF2 (step_refresh 0) the same way: its W_M is the last assembled
+ * iterate's (the prepare's extrapolated one, or a refreshed iterate's), M(q_it) +
+ * (h τ_d + h²) [0 0; 0 K] with h = c2 h_step (the he condense is given), whose kinematics the
+ * recursion kept in d->R0, x0, J0 (keepKinematics) and whose pieces it factored with the
+ * contact's -h Sᵀ A S linearised there at the same h: W_f and W differ by the contact's parts
+ * alone, as backward Euler's (docs/notes/strain_leg.md, bdf15). Z, ρ then in the hip's
+ * coordinates at this iterate (d->Rbp), as factorAndCondense's. */
 static int condenseUpdate(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
                           double Z[36], double rho[6]) {
   const int n = m->n, nu = 6 + n;
@@ -572,6 +579,9 @@ static int condenseUpdate(const csrStrainModel* m, csrStrainData* d, double h, c
     memcpy(d->Wbbp, Wbb, sizeof d->Wbbp);
     memcpy(d->Zp, Z, sizeof d->Zp);
     memcpy(d->rhop, rho, sizeof d->rhop);
+    if (m->par.step_order == 2) {
+      memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
+    }
     d->w_step = 1;
     return 0;
   }
@@ -591,10 +601,10 @@ static int condenseUpdate(const csrStrainModel* m, csrStrainData* d, double h, c
 
 /* W = W_M + the contact's linearisation at the current kinematics and point twists (du NULL:
  * the step's start, predicted; else the iterate Δu = du), factored and condensed: Z, ρ.
- * An iterate keeps the last iteration matrix (csr_strainCondenseKept_) while every contact slot is in the
- * state (touching, past the friction's saturation) it was linearised in and the leg's moves
- * shrink: a new linearisation costs the contact's 12 law evaluations per touching shape, its
- * assembly and an LU of W_ll; a kept one, the law once per shape and one solve
+ * An iterate keeps the last iteration matrix (csr_strainCondenseKept_) while every contact
+ * slot is in the state (touching, past the friction's saturation) it was linearised in and the
+ * leg's moves shrink: a new linearisation costs the contact's 12 law evaluations per touching
+ * shape, its assembly and an LU of W_ll; a kept one, the law once per shape and one solve
  * (docs/notes/strain_leg.md, Cost). */
 int csr_strainCondense_(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
                         double Z[36], double rho[6]) {
@@ -635,7 +645,7 @@ int csr_strainCondense_(const csrStrainModel* m, csrStrainData* d, double h, con
     d->art_pass = 0;
     return condenseStart(m, d, h, du, Z, rho);
   }
-  if (du && (d->art_f || d->wb_f) && m->par.step_order == 1) {
+  if (du && (d->art_f || d->wb_f)) {
     return condenseUpdate(m, d, h, du, Z, rho);
   }
   if (!d->wm_step) {
