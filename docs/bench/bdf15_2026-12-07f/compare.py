@@ -18,6 +18,8 @@ for t, s in cases:
     dtrack = np.abs(a["support/position"][()] - b["support/position"][()]).max()
     dleg = max(np.abs(a[f"legs/{k}/centerline"][()] - b[f"legs/{k}/centerline"][()]).max()
                for k in "ABCDEFGH")
+    dff = np.nanmax(np.abs(a["contact/foot_force"][()] - b["contact/foot_force"][()]))
     print(f"{t} {s}: support track {dtrack:.3e} mm, leg centre lines {dleg:.3e} mm, "
+          f"foot forces {dff:.3e} N, "
           f"datasets bit for bit: {len(names) - len(diff)} of {len(names)}"
           + (f" (differ: {', '.join(diff[:6])}{' ...' if len(diff) > 6 else ''})" if diff else ""))
