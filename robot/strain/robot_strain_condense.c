@@ -263,7 +263,7 @@ int csr_strainCondenseKept_(const csrStrainModel* m, csrStrainData* d, double h,
 /* the step's start kinematics (at q0, with J at every point) into d->R0, x0, J0, the current
  * kinematics (d->R, x, J, kin_valid) kept */
 static void startKinematics(const csrStrainModel* m, csrStrainData* d) {
-  const int n = m->n, valid = d->kin_valid;
+  const int n = m->n, valid = d->kin_valid, chain = d->kin_chain;
   double* t;
   t = d->R, d->R = d->R0, d->R0 = t;
   t = d->x, d->x = d->x0, d->x0 = t;
@@ -276,6 +276,7 @@ static void startKinematics(const csrStrainModel* m, csrStrainData* d) {
   t = d->x, d->x = d->x0, d->x0 = t;
   t = d->J, d->J = d->J0, d->J0 = t;
   d->kin_valid = valid;
+  d->kin_chain = chain;
 }
 
 

@@ -463,7 +463,7 @@ static int prepareBdf(const csrStrainModel* m, csrStrainData* d, double h, doubl
   if (m->soft && m->par.active_set) {
     /* the contact's linear model about the start until the first iterate (robot_strain_contact.c
      * csr_strainGhostStart_) */
-    if (d->kin_valid < 2) {
+    if (!csr_strainChainJ_(d)) {
       csr_strainKinematics_(m, d, 2);
     }
     csr_strainPointTwistsChain_(m, d);
@@ -769,9 +769,13 @@ int csr_strainCommit(const csrStrainModel* m, csrStrainData* d) {
   }
   const double h = d->h;
   d->h = 0;
-  /* the kinematics at the step's end: the next step's start and the return-mapping need it */
+  /* the kinematics at the step's end: the next step's start and the return-mapping need it.
+   * BDF2's next prepare forms its own at the extrapolated iterate and reads at the start the
+   * poses (Σ m x) and the chain points' Jacobians (the contact's records) alone, as do the
+   * return-mapping and the output's contact read-out: the midpoints' Jacobians are left out
+   * (want_J 2; docs/notes/strain_leg.md, bdf15) */
   if (d->kin_valid < 2) {
-    csr_strainKinematics_(m, d, 1);
+    csr_strainKinematics_(m, d, m->par.step_order == 2 ? 2 : 1);
   }
   double X1[3];
   csr_strainMassMomentAt_(m, d, X1);

@@ -123,7 +123,9 @@ struct csrStrainData_ {
   double* R;      /* (np x 9) */
   double* x;      /* (np x 3) */
   double* J;      /* (np x 6 x n) body Jacobians */
-  int kin_valid;
+  int kin_valid;  /* 0 not valid, 1 the poses (and the chain points' J if kin_chain), 2 every J */
+  int kin_chain;  /* 1: the last kinematics with Jacobians formed them at the chain points at
+                     least (want_J 1 or 2; csr_strainChainJ_) */
   double* Rs_save; /* (np x 9) scratch: the poses kept over a kinematics elsewhere */
   double* xs_save; /* (np x 3) */
   long kin_gen;   /* counts csr_strainKinematics_'s calls: R, x, J change only there */
@@ -471,5 +473,10 @@ void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double x
  * the poses at the chain points alone, no Jacobians, the midpoints' poses left as they were,
  * kin_valid 0 (the predicted shapes' poses: csr_strainPredictShapes_) */
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J);
+/* 1 when the poses and the chain points' Jacobians are valid (kin_valid 2, or 1 from a
+ * want_J 2): what the contact's loads and the point twists at the chain points read */
+static inline int csr_strainChainJ_(const csrStrainData* d) {
+  return d->kin_valid == 2 || (d->kin_valid == 1 && d->kin_chain);
+}
 
 #endif /* CS_ROBOT_STRAIN_INTERNAL_H */

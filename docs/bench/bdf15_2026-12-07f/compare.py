@@ -1,4 +1,4 @@
-"""compare.py A B [long]: runs.sh's runs of A and B (/tmp/bdf15/runs): the support's track and
+"""compare.py A B [long|paper]: runs.sh's runs of A and B (/tmp/bdf15/runs): the support's track and
 every leg's centre line, the largest difference (mm) over the run, and whether every dataset is
 identical bit for bit (bytes: NaN fills compare equal). /usr/bin/python3 compare.py base new"""
 import sys
@@ -7,7 +7,9 @@ import h5py
 import numpy as np
 
 A, B = sys.argv[1], sys.argv[2]
-cases = [("long", "flat-road"), ("long", "obstacle")] if len(sys.argv) > 3 else \
+mode = sys.argv[3] if len(sys.argv) > 3 else ""
+cases = [("long", "flat-road"), ("long", "obstacle")] if mode == "long" else \
+    [("paper", "flat-road"), ("earth", "flat-road")] if mode == "paper" else \
     [(t, s) for t in ("o1", "o2") for s in ("flat-road", "obstacle")]
 for t, s in cases:
     a = h5py.File(f"/tmp/bdf15/runs/{A}.{t}.{s}.h5", "r")
