@@ -168,7 +168,7 @@ struct csrStrainData_ {
   double fcw[3];  /* the contact's force on the leg at the linearisation point, world (N) */
   int ntouch;     /* shapes the last contact assembly found touching */
   int lu_plain;   /* 1: d->Wll's factor, X and y are W_M's alone (no contact in them) */
-  /* the iteration matrix kept over a step's Newton iterates (robot_strain_dyn.c condense) */
+  /* the iteration matrix kept over a step's Newton iterates (robot_strain_condense.c) */
   double* Wu;     /* (n x n) W_ll as factored, unfactored (with the contact's part) */
   double Wbbp[36]; /* W_bb as condensed */
   unsigned char* csig; /* (the contact's slots) their state where W was linearised: bit 0

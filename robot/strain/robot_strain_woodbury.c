@@ -5,7 +5,7 @@
  *
  * An iterate refactors when a contact slot changed its state: its matrix is
  *   W = W_M(q0) - h Σ_{iterate's shapes} S_jᵀ A_j S_j
- * (W_M at the step's start, the contact linearised at the iterate: robot_strain_dyn.c condense),
+ * (W_M at the step's start, the contact linearised at the iterate: robot_strain_condense.c),
  * while the start's recursion factored, piece by piece,
  *   W_f = W_M(q0) - h Σ_{start's shapes} S_cᵀ A_c S_c
  * (the linearly implicit BDF2's: W_M at its last assembled iterate and h = c2 h_step in both,
