@@ -29,3 +29,6 @@ for s in flat-road obstacle; do
   one /tmp/bdf15/runs/$W.o2.$s --scene $s --legs strain --strain-step adaptive --step-order 2 --step-tol 5e-4 --t-end 2
   one /tmp/bdf15/runs/$W.o1.$s --scene $s --legs strain --t-end 2
 done
+# (extra, run by hand) BDF2 at fixed steps, flat road 2 s: main against the final
+#   crawlsim_WHO run --scene flat-road --legs strain --step-order 2 [--dt 0.005] --t-end 2
+#   -> /tmp/bdf15/runs/WHO.f2[_5ms].flat-road.h5; compared by compare_fixed.py
