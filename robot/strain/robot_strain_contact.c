@@ -965,10 +965,16 @@ int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[
    * the last step's commit: recomputing it for every output sample's foot force and depth was
    * ~4 % of a run at 5 ms (docs/notes/strain_leg.md, "Fast step"); the point twists also
    * depend on the base's twist, so they are taken anew */
-  if (d->kin_valid < 2) {
+  if (!csr_strainChainJ_(d)) {
     csr_strainKinematics_(m, d, 1);
   }
-  csr_strainPointTwists_(m, d);
+  /* the shapes end at chain points: after BDF2's commit (its Jacobians there alone) their
+   * twists alone, the same bits as csr_strainPointTwists_'s there */
+  if (d->kin_valid == 2) {
+    csr_strainPointTwists_(m, d);
+  } else {
+    csr_strainPointTwistsChain_(m, d);
+  }
   int rc = 0;
   for (int s = 0; s < m->nshape; s++) {
     cscShapeState st;

@@ -123,7 +123,9 @@ struct csrStrainData_ {
   double* R;      /* (np x 9) */
   double* x;      /* (np x 3) */
   double* J;      /* (np x 6 x n) body Jacobians */
-  int kin_valid;
+  int kin_valid;  /* 0 not valid, 1 the poses (and the chain points' J if kin_chain), 2 every J */
+  int kin_chain;  /* 1: the last kinematics with Jacobians formed them at the chain points at
+                     least (want_J 1 or 2; csr_strainChainJ_) */
   double* Rs_save; /* (np x 9) scratch: the poses kept over a kinematics elsewhere */
   double* xs_save; /* (np x 3) */
   long kin_gen;   /* counts csr_strainKinematics_'s calls: R, x, J change only there */
@@ -166,7 +168,7 @@ struct csrStrainData_ {
   double fcw[3];  /* the contact's force on the leg at the linearisation point, world (N) */
   int ntouch;     /* shapes the last contact assembly found touching */
   int lu_plain;   /* 1: d->Wll's factor, X and y are W_M's alone (no contact in them) */
-  /* the iteration matrix kept over a step's Newton iterates (robot_strain_dyn.c condense) */
+  /* the iteration matrix kept over a step's Newton iterates (robot_strain_condense.c) */
   double* Wu;     /* (n x n) W_ll as factored, unfactored (with the contact's part) */
   double Wbbp[36]; /* W_bb as condensed */
   unsigned char* csig; /* (the contact's slots) their state where W was linearised: bit 0
@@ -386,14 +388,42 @@ void csr_strainInertia_(const csrStrainModel* m, csrStrainData* d);
  * g_b exp(h V_b), into d->sst (pred 1); the state and its kinematics unchanged
  * (robot_strain_dyn.c) */
 void csr_strainPredictShapes_(const csrStrainModel* m, csrStrainData* d, double h);
-/* d->Wll, Wlb, Wbl, rl zeroed if a step's start left them pending (wl_pending), else nothing
- * (d->Wll not while wc_sparse: the recursion's start does not form it) */
-void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d);
 /* one touching shape's W -= h Sᵀ A S into Wbb, d->Wlb, d->Wbl, d->Wll (S 6 x (6 + n), AS and
  * row scratch of 6 (6 + n) and 6 + n): part 0 every block, 1 all but W_ll's, 2 W_ll's alone
  * (the same operations on each entry as part 0) */
 void csr_strainShapeW_(const csrStrainModel* m, csrStrainData* d, double h, const double* S,
                        const double A[36], double* AS, double* row, double* Wbb, int part);
+
+/* ---- the step condensed onto the base (robot_strain_condense.c; the step's assembly,
+ * prepare and iterates: robot_strain_dyn.c) ---- */
+/* 1: a backward-Euler step's start, and each BDF2 pass that assembles at its iterate, is
+ * condensed by the articulated recursion when its leg touches nothing (robot_strain.h artic;
+ * the dense factor stays where keep_matrix keeps it) */
+static inline int csr_strainArticStep_(const csrStrainModel* m) {
+  return m->par.artic && !m->par.keep_matrix;
+}
+/* BDF2 with its whole residual assembled at every iterate (step_refresh) */
+static inline int csr_strainBdfFull_(const csrStrainModel* m) {
+  return m->par.step_order == 2 && m->par.step_refresh;
+}
+/* W = W_M + the contact's linearisation at the current kinematics and point twists (du NULL:
+ * the step's start; else the iterate Δu = du, 6 + n), condensed onto the base: Z, ρ (and
+ * d->X, d->y), by the recursion, its Woodbury update, a kept factor or the dense LU; 0 ok,
+ * > 0 failed (not finite, a singular factor, a pose past a shape's radius) */
+int csr_strainCondense_(const csrStrainModel* m, csrStrainData* d, double h, const double* du,
+                        double Z[36], double rho[6]);
+/* an iterate without contact on a factor without it: Z the last pass's, ρ with the iterate's
+ * momentum rows (du its Δu); 0 ok, 1 ρ not finite */
+int csr_strainCondensePlain_(const csrStrainModel* m, csrStrainData* d, double h,
+                             const double* du, double Z[36], double rho[6]);
+/* a chord iterate on the kept factor (d->Wll or the recursion's pieces, their blocks d->Wu,
+ * Wlb, Wbl, Wbbp; Z = d->Zp) with the contact's load at the iterate fb (6), d->fl (n);
+ * 0 ok, 1 not finite */
+int csr_strainCondenseKept_(const csrStrainModel* m, csrStrainData* d, double h,
+                            const double* du, const double fb[6], double Z[36], double rho[6]);
+/* d->Wll, Wlb, Wbl, rl zeroed if a step's start left them pending (wl_pending), else nothing
+ * (d->Wll not while wc_sparse: the recursion's start does not form it) */
+void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d);
 
 /* ---- contact (robot_strain_contact.c) ---- */
 int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err);
@@ -443,5 +473,10 @@ void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double x
  * the poses at the chain points alone, no Jacobians, the midpoints' poses left as they were,
  * kin_valid 0 (the predicted shapes' poses: csr_strainPredictShapes_) */
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J);
+/* 1 when the poses and the chain points' Jacobians are valid (kin_valid 2, or 1 from a
+ * want_J 2): what the contact's loads and the point twists at the chain points read */
+static inline int csr_strainChainJ_(const csrStrainData* d) {
+  return d->kin_valid == 2 || (d->kin_valid == 1 && d->kin_chain);
+}
 
 #endif /* CS_ROBOT_STRAIN_INTERNAL_H */

@@ -497,6 +497,9 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
     }
   }
   d->kin_valid = chain_only ? 0 : (want_J == 1 ? 2 : 1);
+  if (!chain_only) {
+    d->kin_chain = want_J != 0; /* want_J 3 leaves J as it was */
+  }
 }
 
 

@@ -5,9 +5,11 @@
  *
  * An iterate refactors when a contact slot changed its state: its matrix is
  *   W = W_M(q0) - h Σ_{iterate's shapes} S_jᵀ A_j S_j
- * (W_M at the step's start, the contact linearised at the iterate: robot_strain_dyn.c condense),
+ * (W_M at the step's start, the contact linearised at the iterate: robot_strain_condense.c),
  * while the start's recursion factored, piece by piece,
- *   W_f = W_M(q0) - h Σ_{start's shapes} S_cᵀ A_c S_c.
+ *   W_f = W_M(q0) - h Σ_{start's shapes} S_cᵀ A_c S_c
+ * (the linearly implicit BDF2's: W_M at its last assembled iterate and h = c2 h_step in both,
+ * robot_strain_condense.c condenseUpdate).
  * So W = W_f + Uᵀ C U with U the stacked S rows of both sets (m = 6 (n_start + n_iterate) rows
  * of 6 + n) and C block diagonal: +h A_c for a start's shape (its part leaves), -h A_j for an
  * iterate's (its part enters). On the leg's block, with R = W_f,ll⁻¹ (the pieces' factors,
