@@ -51,6 +51,9 @@ csOptions cs_defaultOptions(void) {
    * 1 ms, 100x below the issue's 0.01 mm in 9 s (docs/notes/strain_leg.md, "Passes per step") */
   o.tree_iterations = 24;
   o.tree_tol = 1e-6;
+  /* every leg linearised at every pass until measured otherwise (docs/notes/strain_leg.md,
+   * "pass15") */
+  o.tree_skip = 0;
   /* the tree step's length: fixed (H) unless asked (a run definition asks for the strain
    * level: cs_rundef.c stepAdaptive); the tolerance is the largest whose track is within 1 mm
    * of the half tolerance's (issue 32's convergence rule; 5e-4 is 1.05 mm from 2.5e-4 on the
@@ -258,9 +261,10 @@ static csStatus validateOptions(const csOptions* o, csError* err) {
     return cs_errorSet(err, CS_ERR_RANGE, "coupling_carry %d must be 0 or 1", o->coupling_carry);
   }
   if (o->tree_iterations < 1 || o->tree_iterations > 1000 || !(o->tree_tol > 0) ||
-      !isfinite(o->tree_tol)) {
+      !isfinite(o->tree_tol) || !(o->tree_skip >= 0) || !isfinite(o->tree_skip)) {
     return cs_errorSet(err, CS_ERR_RANGE, "tree coupling: %d Newton passes must be 1..1000 and "
-                       "the tolerance %g mm > 0", o->tree_iterations, o->tree_tol);
+                       "the tolerance %g mm > 0 (tree_skip %g >= 0)", o->tree_iterations,
+                       o->tree_tol, o->tree_skip);
   }
   if ((o->step_adaptive != 0 && o->step_adaptive != 1) || !(o->step_tol > 0) ||
       !isfinite(o->step_tol)) {
@@ -483,6 +487,8 @@ long cs_treeReleaseCount(const csData* d) { return d->cosim.tree_released; }
 
 
 long cs_treeLimitCount(const csData* d) { return d->cosim.tree_limited; }
+long cs_treeSkipCount(const csData* d) { return d->cosim.tree_skipped; }
+long cs_treeCaughtCount(const csData* d) { return d->cosim.tree_caught; }
 long cs_gainProjectionCount(const csData* d) { return d->ngain_proj; }
 
 

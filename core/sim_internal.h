@@ -56,6 +56,17 @@ typedef struct csCosim_ {
   /* and the passes whose move a leg's globalisation shortened (csrLegType.stepLimit; a
    * counter, not state: cs_treeLimitCount) */
   long tree_limited;
+  /* and the leg linearisations the passes skipped (tree_skip; a counter, not state) */
+  long tree_skipped;
+  /* tree coupling, within a try (scratch, not state): each leg's last linearisation (Z, ρ as
+   * prepare/iterate return them, world at the hip, before sim_tree.c's correction to the
+   * iterate) */
+  double tk_Z[CSR_NLEG][36], tk_rho[CSR_NLEG][6];
+  /* 1: the leg kept an earlier linearisation at the try's converged pass (its finish checks
+   * that nothing touches at the step's end) */
+  int tk_kept[CSR_NLEG];
+  /* tries rejected because a kept leg touched at the step's end (a counter, not state) */
+  long tree_caught;
   /* tree coupling with the legs' multistep formula (csrLegType.stepCoeffs, BDF2): the support
    * at the last step's start (state) and this step's coefficients */
   double tb_P[3], tb_R[9], tb_v[3], tb_w[3];

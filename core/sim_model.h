@@ -98,6 +98,11 @@ typedef struct csOptions_ {
                              linearised pass; more: until tree_tol, else the step is rejected and
                              retried in halves); the level must implement update/iterate */
   double tree_tol;        /* tree coupling: a pass converges when nothing moves by more (mm) */
+  double tree_skip;       /* tree coupling: 0 every leg is linearised again at every Newton pass;
+                             s > 0 a leg without contact at its last linearisation (csrLegType.
+                             contactFree) is not, after the try's first iterate, while its linear
+                             model's predicted error (its measured error per mm moved times its
+                             move since) stays below s tree_tol (sim_tree.c "Legs not re-passed") */
   int step_adaptive;      /* tree coupling: 0 every step is H (fixed); 1 each macro step H is
                              crossed in steps chosen by a local error estimate (sim_adaptive.c:
                              H is then the longest step and the output's grid) */
@@ -343,6 +348,10 @@ long cs_treeReleaseCount(const csData* d);
 /* Newton passes of the tree step whose move a leg's globalisation shortened (robot_leg.h
  * stepLimit), settling and rejected tries included */
 long cs_treeLimitCount(const csData* d);
+/* tree coupling: the leg linearisations the passes skipped (tree_skip > 0; a count) */
+long cs_treeSkipCount(const csData* d);
+/* and the tries rejected because a leg kept that way touched at the step's end (a count) */
+long cs_treeCaughtCount(const csData* d);
 /* macro steps in which the co-simulated legs' interface gains were not passive and their
  * implicit part was projected (sim_coupling.c; 0 for legs in ODE) */
 long cs_gainProjectionCount(const csData* d);

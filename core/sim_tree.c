@@ -14,7 +14,27 @@
  * projected onto passive gains (sim_coupling.c implicitPart): the legs' Z comes from their own
  * Newton matrix and the solve is the tree's own. The legs then finish with their hips' exact
  * body-twist change from the support's actual end state (the solve linearised it about the
- * start frame; robot_strain_leg.c). */
+ * start frame; robot_strain_leg.c).
+ *
+ * Legs not re-passed (csOptions.tree_skip > 0, backward Euler). A Newton pass linearises every
+ * leg again at the iterate, yet a leg without contact barely changes its model there: on the
+ * flat road's 1-2 s (default step) the re-linearisation of a contact-free leg after a try's
+ * first iterate changed the next move by at most 3.5e-8 mm (tree_tol 1e-6), its model's error
+ * 5.6e-5 (median) to 3.6e-3 (largest) of the leg's move since its last linearisation
+ * (docs/notes/strain_leg.md "pass15"). So such a leg keeps its last linearisation (Z, ρ: its
+ * impulse ρ - Z ΔV is linear in the hip's twist change and exact for that linearisation, moved
+ * to the iterate by treeAtIterate as a fresh one is) and back-substitutes along it (its update),
+ * while its predicted error θ m stays below tree_skip tree_tol: m its move since that
+ * linearisation (its modes' or the support's, whichever is larger), θ measured at its last
+ * re-pass as the support's move the new linearisation changed (h |S⁻¹ Tᵀ δI|, δI the leg's
+ * impulse at the iterate by the new model less the old, S = M + Σ Tᵀ Z T the support's step
+ * matrix) per mm the leg had moved since the old. Every leg is linearised at the try's first
+ * iterate (prepare's model is the start's, not the step's end) and wherever it touches or holds
+ * a ghost (contactFree 0: a contact's slot can switch within a move). The converged test asks
+ * the same of every kept leg at the converged iterate: a kept leg's residual there is predicted
+ * below tree_skip tree_tol, as today's accepted step leaves every leg's residual below the
+ * chord's rate times the last move, so the step that ends is the same step within tree_tol;
+ * a kept leg past its bound is linearised at one more pass instead. */
 #include <math.h>
 #include <string.h>
 
@@ -76,6 +96,9 @@ int cs_couplingTreePrepare(const csModel* m, csData* d, double h, csError* err) 
                   rc > 0 ? "did not converge" : "failed", rc);
       return rc;
     }
+    memcpy(c->tk_Z[k], Z, sizeof c->tk_Z[k]);
+    memcpy(c->tk_rho[k], rho, sizeof c->tk_rho[k]);
+    c->tk_kept[k] = 0;
     if (treeGather(d, k, he, Z, rho, err) != 0) {
       return 1;
     }
@@ -163,6 +186,29 @@ static void treeAtIterate(const csCosim* c, int k, const double qd0[6], const do
 }
 
 
+/* Legs not re-passed (header): the support's move (mm) the change δI (world, at leg k's hip) of
+ * leg k's impulse at the iterate causes in the next solve, h |S⁻¹ Tᵀ δI|, S = M + Σ Tᵀ Z T */
+static double treeResponse(const csCosim* c, int k, const double S[36], double h,
+                           const double dI[6]) {
+  double r[3], rxf[3], b[6], A[36];
+  csu_sub3(r, c->b0[k].x, c->P0);
+  csu_cross3(rxf, r, dI);
+  for (int i = 0; i < 3; i++) {
+    b[i] = dI[i];
+    b[3 + i] = dI[3 + i] + rxf[i];
+  }
+  memcpy(A, S, sizeof A);
+  if (csu_solve6(A, b) != 0) {
+    return INFINITY;
+  }
+  double e = 0;
+  for (int i = 0; i < 6; i++) {
+    e = fmax(e, h * fabs(b[i]));
+  }
+  return e;
+}
+
+
 int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
   csCosim* c = &d->cosim;
   const csrLegType* type = m->robot.leg_type;
@@ -206,6 +252,17 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
    * 4.9e-6 mm at the 24th; docs/notes/strain_leg.md "The earth collapse") */
   const int pass_limit = h < 1.5 * d->h_try / (1 << CS_SPLIT_MORE_PASSES)
                              ? 2 * m->opt.tree_iterations : m->opt.tree_iterations;
+  /* legs not re-passed (header): θ a leg's measured model error per mm moved (INFINITY until
+   * its first iterate measures it), mv its move since its last linearisation (mm) */
+  const int skip_on = m->opt.tree_skip > 0 && newton && !bdf && type->contactFree;
+  const double skip_bound = m->opt.tree_skip * m->opt.tree_tol;
+  double th[CSR_NLEG], mv[CSR_NLEG];
+  int kept[CSR_NLEG]; /* 1: the leg kept an earlier pass's linearisation at this pass */
+  for (int k = 0; k < CSR_NLEG; k++) {
+    th[k] = INFINITY;
+    mv[k] = 0;
+    kept[k] = 0;
+  }
   if (bdf && newton) {
     /* BDF2's first iterate where the support's twist is unchanged: the legs back-substitute
      * their hips' end states for it (treeEndPose of q'0) and linearise there, so the first
@@ -277,6 +334,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
       chg = fmax(chg, h * fabs(qd1[i] - qit[i]));
       qa[i] = qit[i] + amove * (qd1[i] - qit[i]);
     }
+    const double chg_support = chg;
     if (amove < 1) {
       treeHipsAt(d, h, qa, b1a);
     }
@@ -291,6 +349,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
         return rc;
       }
       chg = fmax(chg, ck);
+      mv[k] += fmax(ck, chg_support);
     }
     memcpy(qit, qa, sizeof qit);
     const csrBaseState* bit = amove < 1 ? b1a : b1;
@@ -320,7 +379,11 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
       alpha = fmin(1.0, 2 * alpha);
     }
     chg_last = chg;
-    if (it > 1 && chg <= m->opt.tree_tol) {
+    int kept_hold = 1; /* every leg kept at this pass still within its bound (header) */
+    for (int k = 0; k < CSR_NLEG; k++) {
+      kept_hold &= !kept[k] || th[k] * mv[k] <= skip_bound;
+    }
+    if (it > 1 && chg <= m->opt.tree_tol && kept_hold) {
       /* converged; a leg that held a contact shape by its ghost (robot_leg.h release) drops
        * it and the passes go on from here, undamped, so the step that ends is the law's */
       int released = 0;
@@ -328,6 +391,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
         released += type->release(d->robot->legs[k]);
       }
       if (released == 0) {
+        memcpy(c->tk_kept, kept, sizeof c->tk_kept);
         break;
       }
       c->tree_released += released;
@@ -346,20 +410,70 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
                   "in %d Newton passes (last move %.3g mm)", d->t, h, it, chg);
       return 1;
     }
-    /* every leg linearises again at the iterate; the support's sums anew */
+    /* every leg linearises again at the iterate (but those whose linear model holds: header);
+     * the support's sums anew */
     mat6Zero(c->A);
+    double dI[CSR_NLEG][6], mv_old[CSR_NLEG];
+    int measured[CSR_NLEG];
     for (int k = 0; k < CSR_NLEG; k++) {
       double Z[36], rho[6];
-      int rc = type->iterate(d->robot->legs[k], Z, rho);
-      if (rc != 0) {
-        cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
-                    "Newton pass %d %s (code %d)", d->t, 'A' + k, it + 1,
-                    rc > 0 ? "left its valid range" : "failed", rc);
-        return rc;
+      measured[k] = 0;
+      if (skip_on && it >= 2 && th[k] * mv[k] <= skip_bound &&
+          type->contactFree(d->robot->legs[k])) {
+        memcpy(Z, c->tk_Z[k], sizeof Z);
+        memcpy(rho, c->tk_rho[k], sizeof rho);
+        kept[k] = 1;
+        c->tree_skipped++;
+      } else {
+        kept[k] = 0;
+        int rc = type->iterate(d->robot->legs[k], Z, rho);
+        if (rc != 0) {
+          cs_errorSet(err, rc > 0 ? CS_ERR_REJECTED : CS_ERR_SOLVER, "t = %.4f s: leg %c's "
+                      "Newton pass %d %s (code %d)", d->t, 'A' + k, it + 1,
+                      rc > 0 ? "left its valid range" : "failed", rc);
+          return rc;
+        }
+        if (skip_on) {
+          /* δI = (ρ - ρ_old) - (Z - Z_old) Δu_it: the impulse at the iterate (hip twist change
+           * Δu_it) by the new linearisation less the old one's */
+          double du[6];
+          for (int i = 0; i < 3; i++) {
+            du[i] = bit[k].v[i] - c->b0[k].v[i];
+            du[3 + i] = bit[k].w[i] - c->b0[k].w[i];
+          }
+          for (int i = 0; i < 6; i++) {
+            double s = rho[i] - c->tk_rho[k][i];
+            for (int j = 0; j < 6; j++) {
+              s -= (Z[6 * i + j] - c->tk_Z[k][6 * i + j]) * du[j];
+            }
+            dI[k][i] = s;
+          }
+          measured[k] = 1;
+          mv_old[k] = mv[k];
+          mv[k] = 0;
+          memcpy(c->tk_Z[k], Z, sizeof Z);
+          memcpy(c->tk_rho[k], rho, sizeof rho);
+        }
       }
       treeAtIterate(c, k, qd, qit, &bit[k], Z, rho);
       if (treeGather(d, k, he, Z, rho, err) != 0) {
         return 1;
+      }
+    }
+    if (skip_on) {
+      /* θ of every leg linearised at this pass: S = M + h A, the next solve's matrix */
+      double S[36];
+      for (int i = 0; i < 6; i++) {
+        for (int j = 0; j < 6; j++) {
+          const double Mij = i < 3 ? (i == j ? mass : 0) : (j >= 3 ? Iw[3 * (i - 3) + j - 3] : 0);
+          S[6 * i + j] = Mij + he * c->A[6 * i + j];
+        }
+      }
+      for (int k = 0; k < CSR_NLEG; k++) {
+        if (measured[k]) {
+          const double e = treeResponse(c, k, S, h, dI[k]);
+          th[k] = e == 0 ? 0 : mv_old[k] > 0 ? e / mv_old[k] : INFINITY;
+        }
       }
     }
   }
@@ -426,6 +540,14 @@ int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err) {
       return rc;
     }
     if (cs_couplingCheckFinite(d, k, &c->w[k], NULL, NULL, err) != 0) {
+      return 1;
+    }
+    if (c->tk_kept[k] && !type->contactFree(d->robot->legs[k])) {
+      /* a leg kept over the last passes on its contact-free linearisation touches at the
+       * step's end: its landing is not in the step (header, "Legs not re-passed") */
+      c->tree_caught++;
+      cs_errorSet(err, CS_ERR_REJECTED, "t = %.4f s: leg %c touches at the end of a step whose "
+                  "last passes kept its contact-free model", d->t, 'A' + k);
       return 1;
     }
   }

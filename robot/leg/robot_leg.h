@@ -296,6 +296,13 @@ typedef struct csrLegType_ {
    * leg's slot_trust: a foot slot moves at most two stick ranges); the caller damps
    * the whole tree's move by the least of its legs'. */
   double (*stepLimit)(csrLeg* leg, const csrBaseState* b1);
+  /* NULL: never. After prepare or iterate: 1 when the leg's last linearisation held no
+   * contact (no touching shape, none held by the active set), so its step's residual is its
+   * smooth inertial, elastic and damping one and the driver may keep its linear model over
+   * later passes instead of linearising it again; after finish: 1 when nothing touches at the
+   * step's end (a kept leg that does was not linearised with that contact: the driver rejects
+   * the step; core/sim_tree.c "Legs not re-passed") */
+  int (*contactFree)(const csrLeg* leg);
   /* The multistep formula the leg's next step of h takes (NULL: backward Euler): the step is
    * y1 = c[0] y0 + c[1] y_-1 + c[2] h f(y1) on positions and velocities (y_-1 the last step's
    * start), and prepare's Z, ρ are impulses over c[2] h (the force at the step's end times

@@ -308,6 +308,10 @@ void csr_strainStepCoeffs(const csrStrainModel* m, const csrStrainData* d, doubl
 /* Steps prepared, factorisations of W_ll and steps prepared on an earlier step's factor
  * (keep_matrix) since the data's creation (counts, not state). */
 void csr_strainCounts(const csrStrainData* d, long* steps, long* factors, long* kept);
+/* 1 when the leg's contact is empty (robot_leg.h contactFree): with a step prepared, at its last
+ * linearisation (prepare or an iterate: no shape touching, none held by the active set); after
+ * a step's commit, at the step's end (the law's load on every shape zero) */
+int csr_strainContactFree(const csrStrainModel* m, const csrStrainData* d);
 /* The same of a leg of the strain level (robot_leg.h csr_leg_strain). */
 void csr_legStrainCounts(const csrLeg* leg, long* steps, long* factors, long* kept);
 /* The Magnus sub-intervals per flexible piece that the level's setting `sub` stands for at

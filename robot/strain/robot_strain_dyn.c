@@ -1563,3 +1563,20 @@ void csr_strainCounts(const csrStrainData* d, long* steps, long* factors, long* 
   *factors = d->nfactor;
   *kept = d->nkept;
 }
+
+
+int csr_strainContactFree(const csrStrainModel* m, const csrStrainData* d) {
+  if (d->h > 0) {
+    return d->ntouch == 0 && d->nghost == 0;
+  }
+  /* after a commit: the law's loads at the step's end (csr_strainContactUpdate_'s memo) */
+  for (int s = 0; m->soft && s < m->nshape; s++) {
+    const cscShapeLoad* l = &d->memo[s].ld;
+    for (int i = 0; i < 3; i++) {
+      if (l->f0[i] != 0 || l->f1[i] != 0 || l->m[i] != 0) {
+        return 0;
+      }
+    }
+  }
+  return 1;
+}

@@ -368,6 +368,9 @@ static int updateStrain(csrLeg* leg, const csrBaseState* b1, double alpha,
 static int releaseStrain(csrLeg* leg) { return csr_strainRelease(leg->m, leg->d); }
 
 
+static int contactFreeStrain(const csrLeg* leg) { return csr_strainContactFree(leg->m, leg->d); }
+
+
 static double stepLimitStrain(csrLeg* leg, const csrBaseState* b1) {
   double V0[6], V1[6], dV[6];
   bodyTwist(&leg->b, V0);
@@ -605,6 +608,7 @@ const csrLegType csr_leg_strain = {
     .iterate = iterateStrain,
     .release = releaseStrain,
     .stepLimit = stepLimitStrain,
+    .contactFree = contactFreeStrain,
     .stepCoeffs = stepCoeffsStrain,
 };
 

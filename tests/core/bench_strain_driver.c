@@ -36,6 +36,7 @@
  * stages' shares are wall-time fractions: on a loaded machine a preempted stage looks dearer,
  * so compare the shares of runs made together. CS_BENCH_PTOL=K scales the pneumatic
  * tolerances by K, CS_BENCH_PASSES=N sets the tree step's passes before a rejection,
+ * CS_BENCH_SKIP=S the tree step's tree_skip (legs not re-passed),
  * CS_BENCH_ADA=TOL runs the adaptive tree step at TOL mm (DT its longest step). The data files come from $CS_SOURCE_DIR
  * (default ../../..); with CS_BENCH_KEEP=DIR each run's file stays in DIR. */
 #include <math.h>
@@ -387,6 +388,11 @@ static int bench(const char* src, const char* arg, double t_end) {
     }
   }
   /* CS_BENCH_PASSES=N: the tree step's Newton passes before a step is rejected (tree_iterations) */
+  /* CS_BENCH_SKIP=S: legs not re-passed while their predicted error is below S tree_tol
+   * (csOptions.tree_skip) */
+  if (getenv("CS_BENCH_SKIP") && atof(getenv("CS_BENCH_SKIP")) > 0) {
+    m.opt.tree_skip = atof(getenv("CS_BENCH_SKIP"));
+  }
   if (getenv("CS_BENCH_PASSES") && atoi(getenv("CS_BENCH_PASSES")) > 0) {
     m.opt.tree_iterations = atoi(getenv("CS_BENCH_PASSES"));
   }
@@ -523,10 +529,12 @@ static int bench(const char* src, const char* arg, double t_end) {
          cs_rejectCount(d), x[0]);
   if (m.opt.coupling == CS_COUPLING_TREE) {
     printf("  tree: %ld Newton passes (%.2f per step, with the settling and the rejected tries), "
-           "%ld contact ghosts released, %ld passes limited (active_set %d, friction_tangent "
-           "%d, slot_trust %d)\n",
+           "%ld contact ghosts released, %ld passes limited, %ld leg linearisations skipped, "
+           "%ld tries rejected for a kept leg's landing (tree_skip %g; active_set %d, "
+           "friction_tangent %d, slot_trust %d)\n",
            cs_treePassCount(d), (double)cs_treePassCount(d) / (double)cs_stepCount(d),
-           cs_treeReleaseCount(d), cs_treeLimitCount(d),
+           cs_treeReleaseCount(d), cs_treeLimitCount(d), cs_treeSkipCount(d),
+           cs_treeCaughtCount(d), m.opt.tree_skip,
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "active_set", 0),
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "friction_tangent", 0),
            (int)csr_legSettingGet(type, &m.robot.leg_settings, "slot_trust", 0));

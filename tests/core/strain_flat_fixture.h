@@ -6,6 +6,7 @@
 #define CS_TEST_STRAIN_FLAT_FIXTURE_H
 
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "cs_test.h"
 #include "sim_model.h"
@@ -66,6 +67,27 @@ static csData* csTestSettledData(const csModel* m) {
     CS_EXPECT(0);
   }
   return d;
+}
+
+/* n macro steps of m on d; 1 when every one succeeded (the failing one's error printed) */
+static inline int csTestStepN(const csModel* m, csData* d, int n) {
+  csError err;
+  for (int i = 0; i < n; i++) {
+    if (cs_step(m, d, &err) != CS_OK) {
+      printf("  step at t = %g s: %s\n", cs_time(d), err.msg);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+/* a test program's start: the source tree from CS_SOURCE_DIR (default ".") into src[n], the
+ * harness's arguments, ODE */
+static inline void csTestStrainInit(int argc, char** argv, char* src, size_t n) {
+  const char* s = getenv("CS_SOURCE_DIR");
+  snprintf(src, n, "%s", s ? s : ".");
+  cs_testInit(argc, argv);
+  dInitODE2(0);
 }
 
 #endif

@@ -62,16 +62,7 @@ static int loadModel(csModel* m, const csrLegType* type) {
 
 
 
-static int stepN(const csModel* m, csData* d, int n) {
-  csError err;
-  for (int i = 0; i < n; i++) {
-    if (cs_step(m, d, &err) != CS_OK) {
-      printf("  step at t = %g s: %s\n", cs_time(d), err.msg);
-      return 0;
-    }
-  }
-  return 1;
-}
+static int stepN(const csModel* m, csData* d, int n) { return csTestStepN(m, d, n); }
 
 
 static int sameState(const csModel* m, const csData* a, const csData* b) {
@@ -224,6 +215,7 @@ static void test_strain_repeats_and_restores_bit_identically(void) {
 static double gKeepMatrix = 0; /* the level's setting keep_matrix for the drift runs */
 /* > 0: the drift runs take the adaptive step at this tolerance (mm), h its longest step */
 static double gStepTol = 0;
+static double gTreeSkip = 0; /* csOptions.tree_skip for the drift runs */
 
 
 static double frictionlessDriftOrder(double h, int passes, int order, double* moved) {
@@ -244,6 +236,7 @@ static double frictionlessDriftOrder(double h, int passes, int order, double* mo
     m.opt.step_adaptive = 1;
     m.opt.step_tol = gStepTol;
   }
+  m.opt.tree_skip = gTreeSkip;
   csData* d = csTestSettledData(&m);
   if (!d) {
     cs_modelDestroy(&m);
@@ -334,6 +327,26 @@ static void test_strain_adaptive_step_keeps_momentum(void) {
   gStepTol = 0;
   printf("  the adaptive step (2.5e-4 mm, longest 5 ms), frictionless, 1 s of the gait: the "
          "support moved up to %.2f mm, the centre of mass %.3e mm horizontally\n", moved, d);
+  CS_EXPECT(moved > 5);
+  CS_EXPECT(d < 0.01 / 9);
+}
+
+
+/* Legs not re-passed (tree_skip 0.1, core/sim_tree.c): a kept leg's impulse is its last
+ * linearisation's, moved to the iterate as a fresh one's and back-substituted along it, so what
+ * the support takes is what the leg balances; its residual at the converged step is predicted
+ * below tree_skip tree_tol. Frictionless on the adaptive step, 1 s of the gait: the centre of
+ * mass within the issue's rate, as the default's (above; docs/notes/strain_leg.md "pass15" has
+ * both numbers). */
+static void test_strain_tree_skip_keeps_momentum(void) {
+  double moved;
+  gStepTol = 2.5e-4;
+  gTreeSkip = 0.1;
+  const double d = frictionlessDrift(5e-3, 16, &moved);
+  gTreeSkip = 0;
+  gStepTol = 0;
+  printf("  legs not re-passed (tree_skip 0.1), the adaptive step, frictionless, 1 s of the gait: "
+         "the support moved up to %.2f mm, the centre of mass %.3e mm horizontally\n", moved, d);
   CS_EXPECT(moved > 5);
   CS_EXPECT(d < 0.01 / 9);
 }
@@ -575,6 +588,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_strain_rejected_step_is_retried_in_halves);
   CS_RUN(test_strain_frictionless_centre_of_mass_stays);
   CS_RUN(test_strain_adaptive_step_keeps_momentum);
+  CS_RUN(test_strain_tree_skip_keeps_momentum);
   CS_RUN(test_strain_bdf2_keeps_momentum_and_restores);
   CS_RUN(test_strain_kept_matrix_keeps_momentum);
   CS_RUN(test_strain_basis_settings_change_the_legs);
