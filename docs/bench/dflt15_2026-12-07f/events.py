@@ -5,9 +5,10 @@
    3.5..10 s for the default (d_o_nominal), its half tolerance (d_o_half), BDF2 at 5e-4 and
    2.5e-4 (b_o_nominal, b_o_half), BDF2 at the longest step 2.5 and 1 ms (diag.sh) and the
    noise floor's grids 1/220 and 1/180 s (noise.sh).
-2. Backward Euler's limit as its tolerance goes to 0, extrapolated from 2.5e-4 and 1.25e-4
-   (Richardson, the global error taken ~ tol^(1/2): local error ~ h^2 held at tol by the
-   controller, so h ~ tol^(1/2) and the first-order global error ~ h), against BDF2's track.
+2. Backward Euler's tracks at 5e-4 ... 3.125e-5 mm (more.sh, more2.sh), the ratios of their
+   successive differences, and its limit as the tolerance goes to 0 extrapolated from the two
+   finest (Richardson, the global error taken ~ tol^(1/2): local error ~ h^2 held at tol by
+   the controller, so h ~ tol^(1/2) and the first-order global error ~ h), against BDF2's.
 3. Leg C's touchdowns after 8.6 s (time @ foot x, mm; the step's edge is at x = 240 mm; G, its
    mirror, lands with it) and the support's x at whole seconds 7..20 s, for every obstacle run.
 RUNS as check.py (default /tmp/dflt15/runs)."""
@@ -32,7 +33,9 @@ def x(tr, s):
 
 
 def main():
-    have = lambda t: os.path.exists(os.path.join(RUNS, t + ".h5"))  # noqa: E731
+    def have(t):  # finished: its log (logs/TAG.log) has its rc line
+        lg = os.path.join(os.path.dirname(os.path.abspath(__file__)), "logs", t + ".log")
+        return os.path.exists(lg) and "\nrc " in open(lg).read()
     rod = load("rod32_obst10")
     print("# 1. support x minus the rod at 32 elements (mm); the rod's x on its line")
     print("%-16s" % "t (s)" + "".join("%8.1f" % s for s in S))
@@ -42,17 +45,31 @@ def main():
     for t in (t for t in tags if have(t)):
         tr = load(t)
         print("%-16s" % t + "".join("%8.2f" % (x(tr, s) - x(rod, s)) for s in S))
-    print("\n# 2. backward Euler's tolerance limit (Richardson, error ~ tol^(1/2)) against BDF2")
-    d, dh, b = load("d_o_nominal"), load("d_o_half"), load("b_o_nominal")
+    print("\n# 2. backward Euler's tolerance sequence (more.sh, more2.sh) against BDF2: x (mm);")
+    print("#    ratio: successive differences (sqrt 2 = 1.41 for an error ~ tol^(1/2), 2 for ~ tol);")
+    print("#    limit: Richardson from the two finest, the error taken ~ tol^(1/2)")
+    seq = [("5e-4", "be_5e-4_o8"), ("2.5e-4", "d_o_nominal"), ("1.25e-4", "d_o_half"),
+           ("6.25e-5", "be_6.25e-5_o12" if have("be_6.25e-5_o12") else "be_6.25e-5_o8"),
+           ("3.125e-5", "be_3.125e-5_o12")]
+    seq = [(n, load(t)) for n, t in seq if have(t)]
+    S2 = S[:7]
+    print("%-16s" % "t (s)" + "".join("%8.1f" % s for s in S2))
+    for n, tr in seq:
+        print("%-16s" % ("BE " + n) + "".join("%8.2f" % x(tr, s) for s in S2))
+    b = load("b_o_nominal")
+    print("%-16s" % "BDF2 5e-4" + "".join("%8.2f" % x(b, s) for s in S2))
+    print("%-16s" % "rod32" + "".join("%8.2f" % x(rod, s) for s in S2))
+    for i in range(len(seq) - 2):
+        (n0, a0), (n1, a1), (n2, a2) = seq[i:i + 3]
+        print("%-16s" % ("ratio " + n1) + "".join(
+            "%8.2f" % ((x(a0, s) - x(a1, s)) / (x(a1, s) - x(a2, s))) for s in S2))
     k = 2 ** -0.5 / (1 - 2 ** -0.5)  # x_lim = x_h + k (x_h - x_2h)
-    print("%-16s" % "t (s)" + "".join("%8.1f" % s for s in S[:5]))
-    lim = [x(dh, s) + k * (x(dh, s) - x(d, s)) for s in S[:5]]
-    print("%-16s" % "BE limit x" + "".join("%8.2f" % v for v in lim))
-    print("%-16s" % "BDF2 5e-4 x" + "".join("%8.2f" % x(b, s) for s in S[:5]))
-    print("%-16s" % "BE 2.5e-4 x" + "".join("%8.2f" % x(d, s) for s in S[:5]))
+    (_, c), (_, f) = seq[-2:]
+    print("%-16s" % "BE limit" + "".join("%8.2f" % (x(f, s) + k * (x(f, s) - x(c, s)))
+                                          for s in S2))
     print("\n# 3. leg C's touchdowns after 8.6 s (t@foot x mm; the edge at 240) and x(7..20 s)")
-    runs = sorted(f[:-3] for f in os.listdir(RUNS) if f.endswith(".h5") and
-                  ("_o_" in f or f.startswith(("rod32_obst10", "bdt", "nd_", "nb_"))))
+    runs = sorted(f[:-3] for f in os.listdir(RUNS) if f.endswith(".h5") and have(f[:-3]) and
+                  ("_o_" in f or f.startswith(("rod32_", "bdt", "nd_", "nb_", "be_"))))
     for t in runs:
         tr = load(t)
         tt, st, c = tr[0], tr[2], tr[3]
