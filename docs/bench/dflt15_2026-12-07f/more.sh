@@ -6,14 +6,7 @@
 # 6.25e-5 mm, beside the batch's 2.5e-4 and 1.25e-4): the Richardson limit's assumption
 # (global error ~ tol^(1/2)). Logs logs/TAG.log, run files $D/TAG.h5; resumable.
 H=$(dirname "$0"); D=${D:-/tmp/dflt15/runs}; C=${CRAWLSIM:-/tmp/dflt15/crawlsim}
-one() {  # TAG ARGS
-  tag=$1; shift
-  if [ -f "$H/logs/$tag.log" ] && grep -q '^rc ' "$H/logs/$tag.log"; then return 0; fi
-  { uptime; echo "crawlsim run $* --out $D/$tag.h5"
-    /usr/bin/time -f "%U user %S sys %e wall" nice -n 5 "$C" run "$@" --out "$D/$tag.h5"
-    echo "rc $?"; uptime; } > "$H/logs/$tag.log" 2>&1
-  rm -f "$D/$tag.xdmf"
-}
+. "$H/one.sh"
 one rod32_climb --scene obstacle --legs rod --links 32 --macro-steps 1 --dt 0.00025 &
 { for tol in 5e-4 6.25e-5; do
     one be_${tol}_o8 --scene obstacle --strain-step adaptive --step-tol $tol --t-end 8

@@ -7,14 +7,7 @@
 # every PID given ends. Logs logs/TAG.log, run files $D/TAG.h5; resumable.
 for p in "$@"; do while kill -0 "$p" 2>/dev/null; do sleep 20; done; done
 H=$(dirname "$0"); D=${D:-/tmp/dflt15/runs}; C=${CRAWLSIM:-/tmp/dflt15/crawlsim}
-one() {  # TAG ARGS
-  tag=$1; shift
-  if [ -f "$H/logs/$tag.log" ] && grep -q '^rc ' "$H/logs/$tag.log"; then return 0; fi
-  { uptime; echo "crawlsim run $* --out $D/$tag.h5"
-    /usr/bin/time -f "%U user %S sys %e wall" nice -n 5 "$C" run "$@" --out "$D/$tag.h5"
-    echo "rc $?"; uptime; } > "$H/logs/$tag.log" 2>&1
-  rm -f "$D/$tag.xdmf"
-}
+. "$H/one.sh"
 for n in 220 180; do
   dt=$(/usr/bin/python3 -c "print(1 / $n)")
   one nd_$n --scene obstacle --strain-step adaptive --dt "$dt" --output-dt 0.01 --t-end 12 &
