@@ -180,9 +180,8 @@ void csr_strainPieceSums_(const csrStrainModel* m, const csrStrainData* d, int k
         gi[j] += t;
       }
     }
-    static const int next1[3] = {1, 2, 0}, next2[3] = {2, 0, 1};
     for (int i = 0; i < 3; i++) {
-      const int i1 = next1[i], i2 = next2[i];
+      const int i1 = i == 2 ? 0 : i + 1, i2 = i == 0 ? 2 : i - 1;
       const double a0 = RJ[3 * i], a1 = RJ[3 * i + 1], a2 = RJ[3 * i + 2];
       const double d1 = dx[i1], d2 = dx[i2];
       const double *u1 = u + nd * i2, *u2 = u + nd * i1;
@@ -473,18 +472,13 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
         csr_strainCholSolve6_(D, nd, Y);
         csr_strainCholSolve_(D, nd, y);
       }
-      /* Zs -= Z_sη Y: without contact Z_sη Z_ηη⁻¹ Z_sηᵀ is symmetric (and Zs exactly so, from
-       * congruence6's mirror and I's), its upper triangle formed and mirrored */
       for (int a = 0; a < 6; a++) {
-        for (int b = unsym ? 0 : a; b < 6; b++) {
+        for (int b = 0; b < 6; b++) {
           double t = 0;
           for (int j = 0; j < nd; j++) {
             t += Zsn[nd * a + j] * Y[6 * j + b];
           }
           Zs[6 * a + b] -= t;
-          if (!unsym) {
-            Zs[6 * b + a] = Zs[6 * a + b];
-          }
         }
         double t = 0;
         for (int j = 0; j < nd; j++) {
