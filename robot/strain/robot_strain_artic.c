@@ -473,12 +473,17 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
         csr_strainCholSolve_(D, nd, y);
       }
       for (int a = 0; a < 6; a++) {
-        for (int b = 0; b < 6; b++) {
-          double t = 0;
-          for (int j = 0; j < nd; j++) {
-            t += Zsn[nd * a + j] * Y[6 * j + b];
+        /* row a of Z_sη Y, its six entries side by side (each one's terms in j's order) */
+        double zy[6] = {0, 0, 0, 0, 0, 0};
+        for (int j = 0; j < nd; j++) {
+          const double z = Zsn[nd * a + j];
+          const double* Yj = Y + 6 * j;
+          for (int b = 0; b < 6; b++) {
+            zy[b] += z * Yj[b];
           }
-          Zs[6 * a + b] -= t;
+        }
+        for (int b = 0; b < 6; b++) {
+          Zs[6 * a + b] -= zy[b];
         }
         double t = 0;
         for (int j = 0; j < nd; j++) {
