@@ -120,7 +120,7 @@ static void relAd(const csrStrainData* d, int s, int p, double A[36]) {
  * G = Σ [R_p J_p L_ω + dx^ (m_p R_p L_v); m_p R_p L_v] (24 products a column instead of 36);
  * the piece then rotates them once into s's frame (R_sᵀ): I = [R_sᵀ (ΣRJRᵀ + tr(Sxx) I -
  * Sxx) R_s, c^; -c^, Σm I3] with c = R_sᵀ Σ m dx, F = diag(R_sᵀ, R_sᵀ) G. The same sums as the
- * Ad products to round-off (test_strain_dyn: piece_sums_are_the_ad_products). */
+ * Ad products to round-off (test_strain_model: piece_sums_are_the_ad_products). */
 void csr_strainPieceSums_(const csrStrainModel* m, const csrStrainData* d, int k, double I[36],
                           double* F, double* D, double A[36]) {
   const int n = m->n, s = m->pt0[k], e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
