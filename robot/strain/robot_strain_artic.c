@@ -108,41 +108,88 @@ static void relAd(const csrStrainData* d, int s, int p, double A[36]) {
 
 
 /* the piece's own sums over its points s < p <= e: I (6 x 6), F (6 x nd), D (nd x nd, upper
- * triangle and mirrored); A left as Ad(g_se⁻¹) */
-static void pieceSums(const csrStrainModel* m, const csrStrainData* d, int k, double I[36],
-                      double* F, double* D, double A[36]) {
+ * triangle and mirrored); A left as Ad(g_se⁻¹).
+ * M_p = diag(J_p, m_p I3) (J_p = diag(ρI1, ρI2, ρI3) and m_p = ρA times the Simpson weight,
+ * Ms; its three translational entries are the same bits by construction, robot_strain.c), and
+ * with A = Ad(g_sp⁻¹) = [Rᵀ 0; -Rᵀ x^ Rᵀ] (R = R_sᵀ R_p, x = R_sᵀ (x_p - x_s)) the products
+ * have the closed block forms (Featherstone's spatial inertia of a point mass and a rotor)
+ *   Aᵀ M_p A = [R J_p Rᵀ + m_p (|x|² I - x xᵀ), m_p x^; -m_p x^, m_p I3],
+ *   Aᵀ M_p L_p = [R J_p L_ω + x^ (m_p R L_v); m_p R L_v]   (L_p = [L_ω; L_v], 3 x nd each),
+ * so each point adds to sums taken in the hip frame (dx = x_p - x_s): Σm, Σ m dx, Σ m dx dxᵀ,
+ * Σ R_p J_p R_pᵀ (about 40 products instead of the Ad's 6 x 6 congruence), and to
+ * G = Σ [R_p J_p L_ω + dx^ (m_p R_p L_v); m_p R_p L_v] (24 products a column instead of 36);
+ * the piece then rotates them once into s's frame (R_sᵀ): I = [R_sᵀ (ΣRJRᵀ + tr(Sxx) I -
+ * Sxx) R_s, c^; -c^, Σm I3] with c = R_sᵀ Σ m dx, F = diag(R_sᵀ, R_sᵀ) G. The same sums as the
+ * Ad products to round-off (test_strain_model: piece_sums_are_the_ad_products). */
+void csr_strainPieceSums_(const csrStrainModel* m, const csrStrainData* d, int k, double I[36],
+                          double* F, double* D, double A[36]) {
   const int n = m->n, s = m->pt0[k], e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
-  memset(I, 0, 36 * sizeof(double));
-  memset(F, 0, (size_t)6 * nd * sizeof(double));
+  const double* Rs = d->R + 9 * s;
+  const double* xs = d->x + 3 * s;
+  /* hip-frame sums: Σm, Σ m dx, Σ m dx dxᵀ and Σ R J Rᵀ (upper triangles: 00 01 02 11 12 22) */
+  double sm = 0, sx[3] = {0, 0, 0}, sxx[6] = {0, 0, 0, 0, 0, 0}, sj[6] = {0, 0, 0, 0, 0, 0};
+  double G[6 * MAXD];
+  memset(G, 0, (size_t)6 * nd * sizeof(double));
   memset(D, 0, (size_t)nd * nd * sizeof(double));
   for (int p = s + 1; p <= e; p++) {
     const double* Mp = m->Ms + 6 * p;
-    relAd(d, s, p, A);
-    double MA[36];
-    for (int r = 0; r < 6; r++) {
-      for (int a = 0; a < 6; a++) {
-        MA[6 * r + a] = Mp[r] * A[6 * r + a];
+    const double* Rp = d->R + 9 * p;
+    const double* xp = d->x + 3 * p;
+    const double mp = Mp[3];
+    const double dx[3] = {xp[0] - xs[0], xp[1] - xs[1], xp[2] - xs[2]};
+    const double mx[3] = {mp * dx[0], mp * dx[1], mp * dx[2]};
+    sm += mp;
+    sx[0] += mx[0];
+    sx[1] += mx[1];
+    sx[2] += mx[2];
+    sxx[0] += mx[0] * dx[0];
+    sxx[1] += mx[0] * dx[1];
+    sxx[2] += mx[0] * dx[2];
+    sxx[3] += mx[1] * dx[1];
+    sxx[4] += mx[1] * dx[2];
+    sxx[5] += mx[2] * dx[2];
+    /* R_p J_p (row i: R_p[i][c] J_c) and m_p R_p */
+    double RJ[9], mR[9];
+    for (int i = 0; i < 3; i++) {
+      for (int c = 0; c < 3; c++) {
+        RJ[3 * i + c] = Rp[3 * i + c] * Mp[c];
+        mR[3 * i + c] = mp * Rp[3 * i + c];
       }
     }
-    /* I += Aᵀ M_p A: its upper triangle (mirrored below), A's zero block skipped */
-    for (int a = 0; a < 3; a++) {
-      for (int b = a; b < 6; b++) {
-        I[6 * a + b] += A[a] * MA[b] + A[6 + a] * MA[6 + b] + A[12 + a] * MA[12 + b] +
-                        A[18 + a] * MA[18 + b] + A[24 + a] * MA[24 + b] + A[30 + a] * MA[30 + b];
-      }
-    }
-    for (int a = 3; a < 6; a++) {
-      for (int b = a; b < 6; b++) {
-        I[6 * a + b] += A[18 + a] * MA[18 + b] + A[24 + a] * MA[24 + b] + A[30 + a] * MA[30 + b];
-      }
-    }
+    sj[0] += RJ[0] * Rp[0] + RJ[1] * Rp[1] + RJ[2] * Rp[2];
+    sj[1] += RJ[0] * Rp[3] + RJ[1] * Rp[4] + RJ[2] * Rp[5];
+    sj[2] += RJ[0] * Rp[6] + RJ[1] * Rp[7] + RJ[2] * Rp[8];
+    sj[3] += RJ[3] * Rp[3] + RJ[4] * Rp[4] + RJ[5] * Rp[5];
+    sj[4] += RJ[3] * Rp[6] + RJ[4] * Rp[7] + RJ[5] * Rp[8];
+    sj[5] += RJ[6] * Rp[6] + RJ[7] * Rp[7] + RJ[8] * Rp[8];
     if (nd == 0) {
       continue;
     }
     const double* L = d->J + (size_t)p * 6 * n + c0;
-    for (int a = 0; a < 6; a++) {
-      const double g[6] = {MA[a], MA[6 + a], MA[12 + a], MA[18 + a], MA[24 + a], MA[30 + a]};
-      csr_strainRows6_(F + nd * a, L, n, g, nd, 1);
+    /* u = m_p R_p L_v (3 x nd), G_v += u, G_ω += R_p J_p L_ω + dx × u */
+    double u[3 * MAXD];
+    for (int i = 0; i < 3; i++) {
+      const double* l3 = L + 3 * n;
+      const double *l4 = l3 + n, *l5 = l4 + n;
+      const double a0 = mR[3 * i], a1 = mR[3 * i + 1], a2 = mR[3 * i + 2];
+      double* ui = u + nd * i;
+      double* gi = G + nd * (3 + i);
+      for (int j = 0; j < nd; j++) {
+        const double t = a0 * l3[j] + a1 * l4[j] + a2 * l5[j];
+        ui[j] = t;
+        gi[j] += t;
+      }
+    }
+    for (int i = 0; i < 3; i++) {
+      const int i1 = i == 2 ? 0 : i + 1, i2 = i == 0 ? 2 : i - 1;
+      const double a0 = RJ[3 * i], a1 = RJ[3 * i + 1], a2 = RJ[3 * i + 2];
+      const double d1 = dx[i1], d2 = dx[i2];
+      const double *u1 = u + nd * i2, *u2 = u + nd * i1;
+      double* gi = G + nd * i;
+      for (int j = 0; j < nd; j++) {
+        /* (dx × u)_i = dx_{i+1} u_{i+2} - dx_{i+2} u_{i+1} */
+        gi[j] += a0 * L[j] + a1 * L[n + j] + a2 * L[2 * n + j] + (d1 * u1[j] - d2 * u2[j]);
+      }
     }
     for (int i = 0; i < nd; i++) {
       const double g[6] = {Mp[0] * L[i], Mp[1] * L[n + i], Mp[2] * L[2 * n + i],
@@ -155,11 +202,47 @@ static void pieceSums(const csrStrainModel* m, const csrStrainData* d, int k, do
       D[nd * i + j] = D[nd * j + i];
     }
   }
-  for (int a = 0; a < 6; a++) {
-    for (int b = 0; b < a; b++) {
-      I[6 * a + b] = I[6 * b + a];
+  /* into s's frame: c = R_sᵀ Σ m dx, I_ωω = R_sᵀ S R_s with S = ΣRJRᵀ + tr(Sxx) I - Sxx */
+  const double tr = sxx[0] + sxx[3] + sxx[5];
+  const double S[9] = {sj[0] + tr - sxx[0], sj[1] - sxx[1], sj[2] - sxx[2],
+                       sj[1] - sxx[1], sj[3] + tr - sxx[3], sj[4] - sxx[4],
+                       sj[2] - sxx[2], sj[4] - sxx[4], sj[5] + tr - sxx[5]};
+  double c[3], SR[9];
+  for (int i = 0; i < 3; i++) {
+    c[i] = Rs[i] * sx[0] + Rs[3 + i] * sx[1] + Rs[6 + i] * sx[2];
+    for (int j = 0; j < 3; j++) {
+      SR[3 * i + j] = S[3 * i] * Rs[j] + S[3 * i + 1] * Rs[3 + j] + S[3 * i + 2] * Rs[6 + j];
     }
   }
+  for (int a = 0; a < 3; a++) {
+    for (int b = a; b < 3; b++) {
+      const double t = Rs[a] * SR[b] + Rs[3 + a] * SR[3 + b] + Rs[6 + a] * SR[6 + b];
+      I[6 * a + b] = t;
+      I[6 * b + a] = t;
+    }
+  }
+  /* I_ωv = c^ (rows ω, columns v), I_vω = -c^, I_vv = Σm I3 */
+  const double ch[9] = {0, -c[2], c[1], c[2], 0, -c[0], -c[1], c[0], 0};
+  for (int a = 0; a < 3; a++) {
+    for (int b = 0; b < 3; b++) {
+      I[6 * a + 3 + b] = ch[3 * a + b];
+      I[6 * (3 + a) + b] = -ch[3 * a + b];
+      I[6 * (3 + a) + 3 + b] = a == b ? sm : 0;
+    }
+  }
+  /* F = diag(R_sᵀ, R_sᵀ) G */
+  for (int hb = 0; hb < 2; hb++) {
+    const double* g0 = G + nd * 3 * hb;
+    const double *g1 = g0 + nd, *g2 = g1 + nd;
+    for (int i = 0; i < 3; i++) {
+      const double r0 = Rs[i], r1 = Rs[3 + i], r2 = Rs[6 + i];
+      double* f = F + nd * (3 * hb + i);
+      for (int j = 0; j < nd; j++) {
+        f[j] = r0 * g0[j] + r1 * g1[j] + r2 * g2[j];
+      }
+    }
+  }
+  relAd(d, s, e, A);
 }
 
 
@@ -285,7 +368,7 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
     const int s = m->pt0[k], e = m->pt0[k + 1], c0 = m->dof0[k], nd = m->ndof[k];
     double I[36], Zs[36], Ics[36];
     double* A = Ak[k];
-    pieceSums(m, d, k, I, F, D, A);
+    csr_strainPieceSums_(m, d, k, I, F, D, A);
     congruence6(A, Ic, Ics, 1);
     for (int i = 0; i < 36; i++) {
       Ics[i] += I[i];
@@ -390,12 +473,17 @@ int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h
         csr_strainCholSolve_(D, nd, y);
       }
       for (int a = 0; a < 6; a++) {
-        for (int b = 0; b < 6; b++) {
-          double t = 0;
-          for (int j = 0; j < nd; j++) {
-            t += Zsn[nd * a + j] * Y[6 * j + b];
+        /* row a of Z_sη Y, its six entries side by side (each one's terms in j's order) */
+        double zy[6] = {0, 0, 0, 0, 0, 0};
+        for (int j = 0; j < nd; j++) {
+          const double z = Zsn[nd * a + j];
+          const double* Yj = Y + 6 * j;
+          for (int b = 0; b < 6; b++) {
+            zy[b] += z * Yj[b];
           }
-          Zs[6 * a + b] -= t;
+        }
+        for (int b = 0; b < 6; b++) {
+          Zs[6 * a + b] -= zy[b];
         }
         double t = 0;
         for (int j = 0; j < nd; j++) {

@@ -346,6 +346,13 @@ void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, d
  * d->WMbb, d->WMlb filled from the composite inertias of W_M (d->WMll not: the dense path
  * forms it when it needs it). 0 ok, 1 a piece's block not positive definite (no contact) or
  * singular, a shape across two pieces, or ρ not finite */
+/* piece k's own sums over its points s < p <= e (s, e its first and last), at the current
+ * kinematics (J at every point): I = Σ Aᵀ M_p A (6 x 6), F = Σ Aᵀ M_p L_p (6 x nd, L_p the
+ * Jacobian's columns of the piece's own unknowns), D = Σ L_pᵀ M_p L_p (nd x nd), with
+ * A = Ad(g_sp⁻¹) in s's body frame; A left as Ad(g_se⁻¹). By the block form of M_p
+ * (robot_strain_artic.c) */
+void csr_strainPieceSums_(const csrStrainModel* m, const csrStrainData* d, int k, double I[36],
+                          double* F, double* D, double A[36]);
 int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h,
                              const double* rl, const double rb[6], double Z[36], double rho[6]);
 /* the kept iterates' solve through the recursion's factors (d->art*, art_f): y (n) holds the

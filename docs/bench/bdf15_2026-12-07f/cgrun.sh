@@ -3,9 +3,9 @@
 # [1, 2] s (../speed_2026-12-07/cg.sh's settings: --instr-atstart=no, --toggle-collect=
 # cs_runWrite), BDF2 adaptive 5e-4 mm (`strain:2:0:2`) and backward Euler's default 2.5e-4
 # (`strain:2`), on the flat road and the obstacle (CS_BENCH_SCENE); profiles, logs, uptimes in
-# /tmp/bdf15/cg (resumable: a profile that exists is skipped), "TAG Ir" lines appended to
-# /tmp/bdf15/cg/ir_results.txt
-OUT=/tmp/bdf15/cg
+# /tmp/bdf15/cg ($BDF_SCRATCH/cg if set; resumable: a profile that exists is skipped), "TAG Ir"
+# lines appended to its ir_results.txt
+OUT=${BDF_SCRATCH:-/tmp/bdf15}/cg
 SRC=$(cd "$(dirname "$0")/../../.." && pwd)
 mkdir -p $OUT
 cd $OUT || exit 1
