@@ -339,13 +339,6 @@ void csr_strainProject_(const csrStrainModel* m, const double* q, const double* 
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G);
 
 /* ---- the articulated condensation (robot_strain_artic.c) ---- */
-/* Z, ρ, d->X, d->y of the step's W (step h) by the recursion over the pieces, at the current
- * kinematics (with J at every point), from the forces rl (n), rb (6) (h r's r) and d->Kd:
- * W_M's alone when d->nct is 0, else with the d->nct touching shapes' -h Sᵀ A S (d->cS, cA;
- * unsymmetric: LU of each piece's block, the factors kept in d->art* for the kept iterates).
- * d->WMbb, d->WMlb filled from the composite inertias of W_M (d->WMll not: the dense path
- * forms it when it needs it). 0 ok, 1 a piece's block not positive definite (no contact) or
- * singular, a shape across two pieces, or ρ not finite */
 /* piece k's own sums over its points s < p <= e (s, e its first and last), at the current
  * kinematics (J at every point): I = Σ Aᵀ M_p A (6 x 6), F = Σ Aᵀ M_p L_p (6 x nd, L_p the
  * Jacobian's columns of the piece's own unknowns), D = Σ L_pᵀ M_p L_p (nd x nd), with
@@ -353,6 +346,13 @@ void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, d
  * (robot_strain_artic.c) */
 void csr_strainPieceSums_(const csrStrainModel* m, const csrStrainData* d, int k, double I[36],
                           double* F, double* D, double A[36]);
+/* Z, ρ, d->X, d->y of the step's W (step h) by the recursion over the pieces, at the current
+ * kinematics (with J at every point), from the forces rl (n), rb (6) (h r's r) and d->Kd:
+ * W_M's alone when d->nct is 0, else with the d->nct touching shapes' -h Sᵀ A S (d->cS, cA;
+ * unsymmetric: LU of each piece's block, the factors kept in d->art* for the kept iterates).
+ * d->WMbb, d->WMlb filled from the composite inertias of W_M (d->WMll not: the dense path
+ * forms it when it needs it). 0 ok, 1 a piece's block not positive definite (no contact) or
+ * singular, a shape across two pieces, or ρ not finite */
 int csr_strainCondenseArtic_(const csrStrainModel* m, csrStrainData* d, double h,
                              const double* rl, const double rb[6], double Z[36], double rho[6]);
 /* the kept iterates' solve through the recursion's factors (d->art*, art_f): y (n) holds the
