@@ -19,7 +19,7 @@ case $l in
   r) a="--legs rod --links 32 --macro-steps 1 --dt 0.00025" ;;
   *) echo "one.sh: unknown level $l" >&2; exit 2 ;;
 esac
-if [ "$g" = shipped ]; then gg=; else gg="--gait $G/$g.csv --gate $G/$g.gate --conditions paper"; fi
+if [ "$g" = shipped ]; then gg=; else gg="--gait $G/$g.csv --gate $G/$g.gate --conditions paper"; [ -f $G/$g.foothold ] && gg="$gg --foothold $G/$g.foothold"; fi
 { uptime; echo "crawlsim run --scene obstacle $gg $a ${te:+--t-end $te} --out $R/$tag.h5"
   # shellcheck disable=SC2086
   /usr/bin/time -f "%U user %S sys %e wall" nice -n 5 $BIN run --scene obstacle $gg $a \

@@ -8,7 +8,8 @@ while [ ! -e "$J.stop" ]; do
   did=
   while read -r g l te; do
     [ -z "$g" ] && continue
-    if mkdir "$J.lock/${g}_$l${te:+_t$te}" 2>/dev/null; then ./one.sh "$g" "$l" $te; did=1; break; fi
+    case $te in [a-z]*) s=./set.sh ;; *) s=./one.sh ;; esac
+    if mkdir "$J.lock/${g}_$l${te:+_$te}" 2>/dev/null; then $s "$g" "$l" $te; did=1; break; fi
   done < "$J"
   [ -z "$did" ] && sleep 5
 done
