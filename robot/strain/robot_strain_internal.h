@@ -314,6 +314,12 @@ void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6
  * velocity: no poses or Jacobians kept) */
 void csr_strainTwists_(const csrStrainModel* m, const double* q, const double* eta,
                        const double Vb[6], double* V);
+/* the same twists V (np x 6) and their rates along q, A_p = (∂V_p/∂q) η at fixed η and V_b
+ * (np x 6): the velocity products Ġ_p u of the dynamics, by the recursion's directional
+ * derivative (one pass; exact to round-off, where central differences of csr_strainTwists_
+ * carry their O(ε²) truncation) */
+void csr_strainTwistRates_(const csrStrainModel* m, const double* q, const double* eta,
+                           const double Vb[6], double* V, double* A);
 /* strain ξ (6) of piece k at local arc length s */
 void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]);
 /* ---- dense factorisations (robot_strain_linalg.c) ---- */

@@ -40,29 +40,12 @@
 #include "robot_rod.h"
 #include "robot_strain.h"
 #include "robot_strain_internal.h"
-
-static csrRodPiece uniformPiece(double L, double G) {
-  csrRodPiece p;
-  memset(&p, 0, sizeof p);
-  const double A = 100, I = 1e4 / 12, E = 1.0, k = 10.0 * 1.5 / (12 + 5.5);
-  p.length = L;
-  p.nelem = 1;
-  p.segment = -1;
-  p.section.EA = E * A;
-  p.section.GA[0] = p.section.GA[1] = k * G * A;
-  p.section.EI[0] = p.section.EI[1] = E * I;
-  p.section.GJ = G * 0.1406 * 1e4;
-  p.rhoA = 1e-9 * A;
-  p.rhoI[0] = p.rhoI[1] = 1e-9 * I;
-  p.rhoI[2] = 2e-9 * I;
-  return p;
-}
-
+#include "strain_test_rods.h"
 
 /* tip pose of a uniform rod along +z (clamp at the origin) under ld; 1 on success */
 static int uniformTip(double L, double G, const csrStrainParams* sp, const csrRodStaticLoad* ld,
                       double x[3], double R[9], double xmid[3]) {
-  csrRodPiece pc = uniformPiece(L, G);
+  csrRodPiece pc = strainTestPiece(L, G);
   csrRodParams rp = csr_rodDefaultParams(NULL);
   csrStrainSpec spec;
   memset(&spec, 0, sizeof spec);
@@ -154,7 +137,7 @@ static void tip_load_linear(void) {
 /* tip of a uniform rod (shear G = E/3) under a tip force P along +x, nodal rod of n elements */
 static int nodalUniformTip(double L, int n, const csrRodStaticLoad* ld, double tip[3]) {
   csrRodParams par = csr_rodDefaultParams(NULL);
-  csrRodPiece p = uniformPiece(L, 1.0 / 3);
+  csrRodPiece p = strainTestPiece(L, 1.0 / 3);
   p.nelem = n;
   csrRodSpec sp;
   memset(&sp, 0, sizeof sp);
