@@ -149,22 +149,23 @@ static void saveStart(const csrStrainModel* m, csrStrainData* d) {
 static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_iterate,
                     int inertia) {
   const int n = m->n;
+  /* the kinematics relative to the base: the last Finish left it valid at this q (the
+   * return-mapping needed it) */
+  if (d->kin_valid < 2) {
+    csr_strainKinematics_(m, d, 1);
+  }
   /* the velocity-product accelerations Ġ_p u: the twist recursion's derivative along q in
-   * the direction η (csr_strainTwistRates_, one pass, exact to round-off; the twists it
-   * forms on the way are scratch: r below takes them from the Jacobians); zero at η = 0 */
+   * the direction η (csr_strainTwistRates_, one pass, exact to round-off, on the kinematics'
+   * step exponentials where they are this q's; the twists it forms on the way are scratch: r
+   * below takes them from the Jacobians); zero at η = 0 */
   int moving = 0;
   for (int j = 0; j < n && !moving; j++) {
     moving = d->eta[j] != 0;
   }
   if (moving) {
-    csr_strainTwistRates_(m, d->q, d->eta, d->Vb, d->Vs, d->Ab);
+    csr_strainTwistRates_(m, d->q, d->eta, d->Vb, csr_strainStepsAt_(m, d), d->Vs, d->Ab);
   } else {
     memset(d->Ab, 0, (size_t)6 * m->np * sizeof(double));
-  }
-  /* the kinematics relative to the base: the last Finish left it valid at this q (the
-   * return-mapping needed it) */
-  if (d->kin_valid < 2) {
-    csr_strainKinematics_(m, d, 1);
   }
   /* the inertia W_bb, W_lb, W_ll (a step keeping its factor skips it: the residual forms
    * M(q0) Δu matrix-free), then r point by point */

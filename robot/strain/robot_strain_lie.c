@@ -435,6 +435,13 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
   csrTrig tg;
   trigOf(Om, &tg);
   expWith(Om, &tg, Re, pe);
+  double* ks = d->ks + 16 * to; /* the velocity products' (csr_strainTwistRates_) */
+  memcpy(ks, Re, sizeof Re);
+  memcpy(ks + 9, pe, sizeof pe);
+  ks[12] = tg.th2;
+  ks[13] = tg.th;
+  ks[14] = tg.sn;
+  ks[15] = tg.cs;
   csu_mulMat3(d->R + 9 * to, d->R + 9 * from, Re);
   csu_mulMatVec3(tmp, d->R + 9 * from, pe);
   csu_add3(d->x + 3 * to, d->x + 3 * from, tmp);
@@ -465,6 +472,7 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
   }
   const int mid_J = want_J == 1;
   d->kin_gen++; /* csr_strainPointTwists_'s memo */
+  d->ks_ok = 0;
   /* the clamp: poses are relative to the base (hip) frame */
   csu_eye3(d->R);
   memset(d->x, 0, 3 * sizeof(double));
@@ -497,6 +505,10 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
     }
   }
   d->kin_valid = chain_only ? 0 : (want_J == 1 ? 2 : 1);
+  if (!chain_only) {
+    memcpy(d->ks_q, d->q, (size_t)m->n * sizeof(double));
+    d->ks_ok = 1;
+  }
   if (!chain_only) {
     d->kin_chain = want_J != 0; /* want_J 3 leaves J as it was */
   }
@@ -757,13 +769,26 @@ static void adExpInvApply(const double Re[9], const double pe[3], const double i
  * the power of ad(Ω) and summed by Horner with T(Ω) Ω̈ (4 products by ad(Ω), 3 by ad(Ω̇)):
  *   T Ω̈ + Σ_j c_j D(ad^j)[Ω̇] Ω̇ = Σ_i ad(Ω)^i (c_i Ω̈ + ad(Ω̇) G_i),
  *   G_0 = c2 P1 + c3 P2 + c4 P3, G_1 = c3 P1 + c4 P2, G_2 = c4 P1, G_3 = G_4 = 0.
- * Omd NULL: a rigid step (Ω̇ = Ω̈ = 0, ψ = ψ̇ = 0). */
+ * Omd NULL: a rigid step (Ω̇ = Ω̈ = 0, ψ = ψ̇ = 0). ks not NULL: the kinematics' exp(Ω) and θ,
+ * sin θ, cos θ of this step (d->ks, the same Ω to round-off: csr_strainMagnus_'s expressions),
+ * else formed here. */
 static void twistRateStep(const double Om[6], const double* Omd, const double* Omdd,
-                          const double Vf[6], const double Af[6], double Vt[6], double At[6]) {
-  double Re[9], pe[3];
+                          const double* ks, const double Vf[6], const double Af[6], double Vt[6],
+                          double At[6]) {
+  double Rs[9], ps[3];
+  const double *Re = Rs, *pe = ps;
   csrTrig tg;
-  trigOf(Om, &tg);
-  expWith(Om, &tg, Re, pe);
+  if (ks) {
+    Re = ks;
+    pe = ks + 9;
+    tg.th2 = ks[12];
+    tg.th = ks[13];
+    tg.sn = ks[14];
+    tg.cs = ks[15];
+  } else {
+    trigOf(Om, &tg);
+    expWith(Om, &tg, Rs, ps);
+  }
   adExpInvApply(Re, pe, Vf, Vt);
   adExpInvApply(Re, pe, Af, At);
   if (!Omd) {
@@ -811,8 +836,16 @@ static void twistRateStep(const double Om[6], const double* Omd, const double* O
 }
 
 
+const double* csr_strainStepsAt_(const csrStrainModel* m, const csrStrainData* d) {
+  if (!d->ks_ok || memcmp(d->ks_q, d->q, (size_t)m->n * sizeof(double)) != 0) {
+    return NULL;
+  }
+  return d->ks;
+}
+
+
 void csr_strainTwistRates_(const csrStrainModel* m, const double* q, const double* eta,
-                           const double Vb[6], double* V, double* A) {
+                           const double Vb[6], const double* ks, double* V, double* A) {
   memcpy(V, Vb, 6 * sizeof(double));
   memset(A, 0, 6 * sizeof(double));
   for (int k = 0; k < m->npiece; k++) {
@@ -823,14 +856,15 @@ void csr_strainTwistRates_(const csrStrainModel* m, const double* q, const doubl
       double* A0 = A + 6 * p;
       if (m->rigid[k]) {
         const double Oh[6] = {0, 0, 0, 0, 0, 0.5 * h}, Of[6] = {0, 0, 0, 0, 0, h};
-        twistRateStep(Oh, NULL, NULL, V0, A0, V0 + 6, A0 + 6);
-        twistRateStep(Of, NULL, NULL, V0, A0, V0 + 12, A0 + 12);
+        twistRateStep(Oh, NULL, NULL, ks ? ks + 16 * (p + 1) : NULL, V0, A0, V0 + 6, A0 + 6);
+        twistRateStep(Of, NULL, NULL, ks ? ks + 16 * (p + 2) : NULL, V0, A0, V0 + 12, A0 + 12);
         continue;
       }
       for (int whole = 0; whole < 2; whole++) {
         double Om[6], Omd[6], Omdd[6];
         magnusRate(m, q, eta, k, i, whole, whole ? h : 0.5 * h, Om, Omd, Omdd);
-        twistRateStep(Om, Omd, Omdd, V0, A0, V0 + 6 * (1 + whole), A0 + 6 * (1 + whole));
+        const int to = p + 1 + whole;
+        twistRateStep(Om, Omd, Omdd, ks ? ks + 16 * to : NULL, V0, A0, V + 6 * to, A + 6 * to);
       }
     }
   }
