@@ -1,7 +1,6 @@
-/* strain_test_rods.h: the uniform test rod of the strain leg's unit tests (test_strain_model,
- * test_strain_vprod): a 10 x 10 mm square section, E = 1 MPa, shear modulus G (MPa), density
- * 1e-9 t/mm³, and a model of such pieces at the default rod parameters, clamped in the
- * identity frame. */
+/* strain_test_rods.h: small strain-coordinate rods for the strain leg's unit tests (tests only):
+ * uniform square pieces of a soft material, a bent three-piece rod and the default leg's
+ * five-piece layout. */
 #ifndef CS_TESTS_STRAIN_TEST_RODS_H
 #define CS_TESTS_STRAIN_TEST_RODS_H
 
@@ -12,7 +11,8 @@
 #include "cs_test.h"
 #include "robot_strain_internal.h"
 
-static inline csrRodPiece strainTestPiece(double L, double G) {
+/* a uniform 10 x 10 mm square piece, E = 1 MPa, shear modulus G (MPa), density 1e-9 t/mm³ */
+static inline csrRodPiece uniformPieceG(double L, double G) {
   csrRodPiece p;
   memset(&p, 0, sizeof p);
   const double A = 100, I = 1e4 / 12, E = 1.0, k = 10.0 * 1.5 / (12 + 5.5);
@@ -30,9 +30,12 @@ static inline csrRodPiece strainTestPiece(double L, double G) {
 }
 
 
-/* NULL (and a failed expectation, the error printed) if the model is refused */
-static inline csrStrainModel* strainTestRod(const csrRodPiece* pc, const int* order, int np,
-                                            const csrStrainParams* sp) {
+/* the same with G = E/3 */
+static inline csrRodPiece uniformPiece(double L) { return uniformPieceG(L, 1.0 / 3); }
+
+
+static inline csrStrainModel* makeRod(const csrRodPiece* pc, const int* order, int np,
+                               const csrStrainParams* sp) {
   csrRodParams rp = csr_rodDefaultParams(NULL);
   csrStrainSpec spec;
   memset(&spec, 0, sizeof spec);
@@ -47,6 +50,28 @@ static inline csrStrainModel* strainTestRod(const csrRodPiece* pc, const int* or
   }
   CS_EXPECT(m != NULL);
   return m;
+}
+
+
+/* a three-piece rod (flexible, rigid, flexible) with linear axial modes, bent, twisted,
+ * stretched and sheared: q_j = (j % 7 - 3) x 0.007 (κ, τ modes) or 0.02 (σ modes) */
+static inline csrStrainModel* bentRod(void) {
+  csrRodPiece pc[3] = {uniformPiece(50), uniformPiece(8), uniformPiece(40)};
+  const int order[3] = {2, -1, 2}; /* the middle piece rigid */
+  csrStrainParams sp = csr_strainDefaultParams();
+  sp.axial_order = 1;
+  sp.nsub = 3;
+  return makeRod(pc, order, 3, &sp);
+}
+
+
+/* the default leg's layout: five pieces (bend order 2 in the segments, constant joints) */
+static inline csrStrainModel* legLayout(void) {
+  csrRodPiece pc[5] = {uniformPiece(50), uniformPiece(8), uniformPiece(50), uniformPiece(8),
+                       uniformPiece(50)};
+  const int order[5] = {2, 0, 2, 0, 2};
+  csrStrainParams sp = csr_strainDefaultParams();
+  return makeRod(pc, order, 5, &sp);
 }
 
 #endif

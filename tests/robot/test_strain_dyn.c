@@ -35,6 +35,7 @@
 #include "cs_test.h"
 #include "robot_calibration.h"
 #include "robot_strain_internal.h"
+#include "strain_test_rods.h"
 
 /* one step with the base held: 0 ok */
 static int stepHeld(const csrStrainModel* m, csrStrainData* d, double h) {
@@ -70,19 +71,8 @@ static int stepHeldNewton(const csrStrainModel* m, csrStrainData* d, double h, d
 
 
 static void bending_frequency_stepped(void) {
-  const double L = 400, A = 100, I = 1e4 / 12, E = 1.0, G = E / 3, k = 10.0 * 1.5 / 17.5;
-  csrRodPiece p;
-  memset(&p, 0, sizeof p);
-  p.length = L;
-  p.nelem = 1;
-  p.segment = -1;
-  p.section.EA = E * A;
-  p.section.GA[0] = p.section.GA[1] = k * G * A;
-  p.section.EI[0] = p.section.EI[1] = E * I;
-  p.section.GJ = G * 0.1406 * 1e4;
-  p.rhoA = 1e-9 * A;
-  p.rhoI[0] = p.rhoI[1] = 1e-9 * I;
-  p.rhoI[2] = 2e-9 * I;
+  const double L = 400, I = 1e4 / 12, E = 1.0; /* uniformPiece's section */
+  csrRodPiece p = uniformPiece(L);
   csrRodParams rp = csr_rodDefaultParams(NULL);
   rp.damping_time = 0;
   csrStrainSpec spec;

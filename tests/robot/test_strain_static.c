@@ -45,7 +45,7 @@
 /* tip pose of a uniform rod along +z (clamp at the origin) under ld; 1 on success */
 static int uniformTip(double L, double G, const csrStrainParams* sp, const csrRodStaticLoad* ld,
                       double x[3], double R[9], double xmid[3]) {
-  csrRodPiece pc = strainTestPiece(L, G);
+  csrRodPiece pc = uniformPieceG(L, G);
   csrRodParams rp = csr_rodDefaultParams(NULL);
   csrStrainSpec spec;
   memset(&spec, 0, sizeof spec);
@@ -137,7 +137,7 @@ static void tip_load_linear(void) {
 /* tip of a uniform rod (shear G = E/3) under a tip force P along +x, nodal rod of n elements */
 static int nodalUniformTip(double L, int n, const csrRodStaticLoad* ld, double tip[3]) {
   csrRodParams par = csr_rodDefaultParams(NULL);
-  csrRodPiece p = strainTestPiece(L, 1.0 / 3);
+  csrRodPiece p = uniformPieceG(L, 1.0 / 3);
   p.nelem = n;
   csrRodSpec sp;
   memset(&sp, 0, sizeof sp);

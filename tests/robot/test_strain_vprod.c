@@ -137,19 +137,7 @@ static void ratesCase(const csrStrainModel* m, double scale, double* e, double* 
 
 
 static void velocity_products_match_differences(void) {
-  const double G = 1.0 / 3;
-  csrRodPiece bent[3] = {strainTestPiece(50, G), strainTestPiece(8, G), strainTestPiece(40, G)};
-  const int bent_order[3] = {2, -1, 2}; /* the middle piece rigid */
-  csrStrainParams sp = csr_strainDefaultParams();
-  sp.axial_order = 1;
-  sp.nsub = 3;
-  csrStrainModel* rods[2];
-  rods[0] = strainTestRod(bent, bent_order, 3, &sp);
-  csrRodPiece leg[5] = {strainTestPiece(50, G), strainTestPiece(8, G), strainTestPiece(50, G),
-                        strainTestPiece(8, G), strainTestPiece(50, G)};
-  const int leg_order[5] = {2, 0, 2, 0, 2};
-  csrStrainParams lp = csr_strainDefaultParams();
-  rods[1] = strainTestRod(leg, leg_order, 5, &lp);
+  csrStrainModel* rods[2] = {bentRod(), legLayout()};
   const char* what[2] = {"bent three-piece rod", "leg layout"};
   const double scales[3] = {0.01, 0.1, 1.0};
   for (int r = 0; r < 2; r++) {
