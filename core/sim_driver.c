@@ -51,6 +51,7 @@ csOptions cs_defaultOptions(void) {
    * 1 ms, 100x below the issue's 0.01 mm in 9 s (docs/notes/strain_leg.md, "Passes per step") */
   o.tree_iterations = 24;
   o.tree_tol = 1e-6;
+  o.tree_carry = 0;
   /* the tree step's length: fixed (H) unless asked (a run definition asks for the strain
    * level: cs_rundef.c stepAdaptive); the tolerance is the largest whose track is within 1 mm
    * of the half tolerance's (issue 32's convergence rule; 5e-4 is 1.05 mm from 2.5e-4 on the
@@ -256,6 +257,9 @@ static csStatus validateOptions(const csOptions* o, csError* err) {
   }
   if (o->coupling_carry != 0 && o->coupling_carry != 1) {
     return cs_errorSet(err, CS_ERR_RANGE, "coupling_carry %d must be 0 or 1", o->coupling_carry);
+  }
+  if (o->tree_carry != 0 && o->tree_carry != 1) {
+    return cs_errorSet(err, CS_ERR_RANGE, "tree_carry %d must be 0 or 1", o->tree_carry);
   }
   if (o->tree_iterations < 1 || o->tree_iterations > 1000 || !(o->tree_tol > 0) ||
       !isfinite(o->tree_tol)) {

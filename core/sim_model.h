@@ -98,6 +98,11 @@ typedef struct csOptions_ {
                              linearised pass; more: until tree_tol, else the step is rejected and
                              retried in halves); the level must implement update/iterate */
   double tree_tol;        /* tree coupling: a pass converges when nothing moves by more (mm) */
+  int tree_carry;         /* tree coupling with tree_iterations 1 (a prototype, default 0): 1
+                             the legs' momentum residual of a step (their level's
+                             momentumResidual) is the support's in its next step, so one
+                             linearised pass conserves the discrete momentum (core/sim_tree.c;
+                             docs/notes/strain_leg.md "event17") */
   int step_adaptive;      /* tree coupling: 0 every step is H (fixed); 1 each macro step H is
                              crossed in steps chosen by a local error estimate (sim_adaptive.c:
                              H is then the longest step and the output's grid) */

@@ -90,6 +90,16 @@ static int treeBdf(const csCosim* c) {
 }
 
 
+/* The legs' momentum residual carried (csOptions.tree_carry): one linearised pass of backward
+ * Euler, a level that gives it. The carry is the coupling's `carry` (in the state, so a
+ * rejected or restored step takes the one before it; Gauss-Seidel's own use of it is another
+ * coupling's). Why: robot/strain/robot_strain_carry.c. */
+static int treeCarry(const csModel* m, const csCosim* c) {
+  return m->opt.tree_carry && m->opt.tree_iterations == 1 && !treeBdf(c) &&
+         m->robot.leg_type->momentumResidual;
+}
+
+
 /* The support's end pose for its end twist q' = (v; ω) (world). Backward Euler: the centre
  * moved by h v, the rotation by exp(h [ω]) (ODE's own update to O(h² ω²)). BDF2 (the legs'
  * coefficients c, he = c2 h): P1 = c0 P0 + c1 P_-1 + he v, R1 = exp(c1 ψ_-1 + he ω) R0 with
@@ -194,6 +204,7 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
   }
   memcpy(qit, qd, sizeof qit);
   const int newton = m->opt.tree_iterations > 1 && type->update && type->iterate;
+  const int carry = treeCarry(m, c);
   /* damping of the passes (as tests/robot/strain_test_robot.h): a pass whose full move did not
    * shrink below 0.9 of the last one's halves the next move (down to 1/8), a shrinking one
    * restores the full step; where a foot's stick/slip changes within the step the full
@@ -244,6 +255,11 @@ int cs_couplingApplyTree(const csModel* m, csData* d, double h, csError* err) {
         W0[i] += c->w[k].f[i];
         W0[3 + i] += c->w[k].m[i] + rxf[i];
       }
+    }
+    /* the legs' momentum residual of the last step (tree_carry; cs_couplingTreeFinish): the
+     * support takes it as an impulse over this step */
+    for (int i = 0; carry && i < 3; i++) {
+      W0[i] -= c->carry[i] / he;
     }
     /* Kc = 0 and the prediction the twist now: (M + Σ Tᵀ Z T) Δq' = h m g + Σ Tᵀ ρ, the tree's
      * own equation (robot_leg.h prepare), and F = (Σ Tᵀ ρ - Σ Tᵀ Z T Δq') / h. Its linear rows
@@ -428,6 +444,19 @@ int cs_couplingTreeFinish(const csModel* m, csData* d, csError* err) {
     if (cs_couplingCheckFinite(d, k, &c->w[k], NULL, NULL, err) != 0) {
       return 1;
     }
+  }
+  if (treeCarry(m, c)) {
+    double e[3] = {0, 0, 0};
+    for (int k = 0; k < CSR_NLEG; k++) {
+      double ek[3];
+      if (type->momentumResidual(d->robot->legs[k], ek) != 0) {
+        cs_errorSet(err, CS_ERR_SOLVER, "t = %.4f s: leg %c has no momentum residual for "
+                    "tree_carry", d->t, 'A' + k);
+        return -1;
+      }
+      csu_add3(e, e, ek);
+    }
+    memcpy(c->carry, e, sizeof e);
   }
   return 0;
 }

@@ -302,6 +302,13 @@ typedef struct csrLegType_ {
    * c[2] h). The support takes the same formula (core/sim_tree.c); c depends on the leg's
    * state (its last step), the same for every leg of a run. */
   void (*stepCoeffs)(const csrLeg* leg, double h, double c[3]);
+  /* After finish (NULL: the level has none): the leg's discrete linear momentum residual of
+   * the step it finished, by that step's linear model (t mm/s, world): the change of its
+   * Σ m x per step less h (weight + contact + tip force) and the hip's impulse, the contact
+   * force the step's linearisation at the step's end. A converged Newton step leaves it below
+   * its tolerance; after one linearised pass the support takes it in its next step
+   * (csOptions.tree_carry, core/sim_tree.c). 0, or < 0 when the leg cannot give it. */
+  int (*momentumResidual)(const csrLeg* leg, double eps[3]);
 } csrLegType;
 
 /* The Cosserat rod level (robot_rod*.c, robot_rod.h), registered in robot_robot.c. */

@@ -501,4 +501,9 @@ static inline int csr_strainChainJ_(const csrStrainData* d) {
   return d->kin_valid == 2 || (d->kin_valid == 1 && d->kin_chain);
 }
 
+/* The contact force on the leg (N, world) of the step's linearisation at the current state:
+ * the affine loads of the shapes its last linearisation found touching (their ghosts,
+ * robot_strain_contact.c), zero for the others. */
+void csr_strainContactLinForce_(const csrStrainModel* m, const csrStrainData* d, double f[3]);
+
 #endif /* CS_ROBOT_STRAIN_INTERNAL_H */

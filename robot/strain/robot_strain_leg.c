@@ -368,6 +368,11 @@ static int updateStrain(csrLeg* leg, const csrBaseState* b1, double alpha,
 static int releaseStrain(csrLeg* leg) { return csr_strainRelease(leg->m, leg->d); }
 
 
+static int momentumResidualStrain(const csrLeg* leg, double eps[3]) {
+  return csr_strainMomentumResidual(leg->m, leg->d, eps);
+}
+
+
 static double stepLimitStrain(csrLeg* leg, const csrBaseState* b1) {
   double V0[6], V1[6], dV[6];
   bodyTwist(&leg->b, V0);
@@ -606,6 +611,7 @@ const csrLegType csr_leg_strain = {
     .release = releaseStrain,
     .stepLimit = stepLimitStrain,
     .stepCoeffs = stepCoeffsStrain,
+    .momentumResidual = momentumResidualStrain,
 };
 
 

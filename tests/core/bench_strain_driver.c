@@ -390,6 +390,11 @@ static int bench(const char* src, const char* arg, double t_end) {
   if (getenv("CS_BENCH_PASSES") && atoi(getenv("CS_BENCH_PASSES")) > 0) {
     m.opt.tree_iterations = atoi(getenv("CS_BENCH_PASSES"));
   }
+  /* CS_BENCH_CARRY=1: with CS_BENCH_PASSES=1 the legs' momentum residual is carried
+   * (tree_carry, the event17 prototype) */
+  if (getenv("CS_BENCH_CARRY")) {
+    m.opt.tree_carry = atoi(getenv("CS_BENCH_CARRY"));
+  }
   /* CS_BENCH_PTOL=K multiplies the pneumatics' CVODE tolerances (the run-to-run noise floor's
    * "10x tighter pneumatic tolerance": K = 0.1) */
   if (getenv("CS_BENCH_PTOL") && atof(getenv("CS_BENCH_PTOL")) > 0) {
