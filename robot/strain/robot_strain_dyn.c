@@ -34,9 +34,6 @@
 #include "core_math.h"
 #include "robot_strain_internal.h"
 
-/* the velocity-product difference moves the fastest mode by this much (rad or strain) */
-#define CSR_STRAIN_BIAS_STEP 1e-6
-
 
 /* the BDF2 history's doubles after [q, η, anchors, D]: q and η (2n), the base twist (6), Σ m x
  * (3), D (3) of the last step's start, and its length (1) */
@@ -121,16 +118,6 @@ void csr_strainSetTipLoad(csrStrainData* d, const double force[3], const double 
 }
 
 
-/* the point twists at q + ε η into out (np x 6), by the twist recursion alone (no poses or
- * Jacobians: the kinematics stays valid) */
-static void twistsAt(const csrStrainModel* m, csrStrainData* d, double eps, double* out) {
-  for (int j = 0; j < m->n; j++) {
-    d->q_save[j] = d->q[j] + eps * d->eta[j];
-  }
-  csr_strainTwists_(m, d->q_save, d->eta, d->Vb, out);
-}
-
-
 /* the 6 x 6 Ad(g_p⁻¹) of point p */
 static void adInv(const csrStrainData* d, int p, double A[36]) {
   csr_strainAdInv_(d->R + 9 * p, d->x + 3 * p, A);
@@ -162,25 +149,23 @@ static void saveStart(const csrStrainModel* m, csrStrainData* d) {
 static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_iterate,
                     int inertia) {
   const int n = m->n;
-  /* the velocity-product accelerations Ġ_p u by central differences */
-  double emax = 0;
-  for (int j = 0; j < n; j++) {
-    emax = fmax(emax, fabs(d->eta[j]) * m->dscale[j]);
-  }
-  if (emax > 0) {
-    double eps = CSR_STRAIN_BIAS_STEP / emax;
-    twistsAt(m, d, eps, d->Ab);
-    twistsAt(m, d, -eps, d->Vs);
-    for (int i = 0; i < 6 * m->np; i++) {
-      d->Ab[i] = (d->Ab[i] - d->Vs[i]) / (2 * eps);
-    }
-  } else {
-    memset(d->Ab, 0, (size_t)6 * m->np * sizeof(double));
-  }
   /* the kinematics relative to the base: the last Finish left it valid at this q (the
    * return-mapping needed it) */
   if (d->kin_valid < 2) {
     csr_strainKinematics_(m, d, 1);
+  }
+  /* the velocity-product accelerations Ġ_p u: the twist recursion's derivative along q in
+   * the direction η (csr_strainTwistRates_, one pass, exact to round-off, on the kinematics'
+   * step exponentials where they are this q's; the twists it forms on the way are scratch: r
+   * below takes them from the Jacobians); zero at η = 0 */
+  int moving = 0;
+  for (int j = 0; j < n && !moving; j++) {
+    moving = d->eta[j] != 0;
+  }
+  if (moving) {
+    csr_strainTwistRates_(m, d->q, d->eta, d->Vb, csr_strainStepsAt_(m, d), d->Vs, d->Ab);
+  } else {
+    memset(d->Ab, 0, (size_t)6 * m->np * sizeof(double));
   }
   /* the inertia W_bb, W_lb, W_ll (a step keeping its factor skips it: the residual forms
    * M(q0) Δu matrix-free), then r point by point */

@@ -146,7 +146,13 @@ struct csrStrainData_ {
   long vp_gen;
   double vp_Vb[6];
   double* vp_eta; /* (n) */
-  double* Vs;     /* (np x 6) scratch: twists at q ± εη */
+  double* Vs;     /* (np x 6) scratch: the velocity products' twists */
+  /* the kinematics' steps (csr_strainKinematics_, every point but the chain-only poses of want_J
+   * 3): for each point p > 0 the step into it, exp(Ω) = (Re 9, pe 3) and θ², θ, sin θ, cos θ
+   * (16 a point), which the velocity products reuse where ks_q is their q (ks_ok 1) */
+  double* ks;
+  double* ks_q; /* (n) */
+  int ks_ok;
   double* Ab;     /* (np x 6) Ȧu at the points (the velocity-product accelerations) */
   double h;       /* the prepared step (s); 0: none prepared */
   double* Wbl;    /* (6 x n) W_bl (= W_lbᵀ without contact) */
@@ -314,6 +320,15 @@ void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6
  * velocity: no poses or Jacobians kept) */
 void csr_strainTwists_(const csrStrainModel* m, const double* q, const double* eta,
                        const double Vb[6], double* V);
+/* the same twists V (np x 6) and their rates along q, A_p = (∂V_p/∂q) η at fixed η and V_b
+ * (np x 6): the velocity products Ġ_p u of the dynamics, by the recursion's directional
+ * derivative (one pass; exact to round-off, where central differences of csr_strainTwists_
+ * carry their O(ε²) truncation); ks: the kinematics' steps at this q (csr_strainStepsAt_) or
+ * NULL (each step's exponential formed here) */
+void csr_strainTwistRates_(const csrStrainModel* m, const double* q, const double* eta,
+                           const double Vb[6], const double* ks, double* V, double* A);
+/* d->ks if it holds the steps at d->q (the kinematics formed them there), else NULL */
+const double* csr_strainStepsAt_(const csrStrainModel* m, const csrStrainData* d);
 /* strain ξ (6) of piece k at local arc length s */
 void csr_strainAt_(const csrStrainModel* m, const double* q, int k, double s, double xi[6]);
 /* ---- dense factorisations (robot_strain_linalg.c) ---- */

@@ -435,6 +435,13 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
   csrTrig tg;
   trigOf(Om, &tg);
   expWith(Om, &tg, Re, pe);
+  double* ks = d->ks + 16 * to; /* the velocity products' (csr_strainTwistRates_) */
+  memcpy(ks, Re, sizeof Re);
+  memcpy(ks + 9, pe, sizeof pe);
+  ks[12] = tg.th2;
+  ks[13] = tg.th;
+  ks[14] = tg.sn;
+  ks[15] = tg.cs;
   csu_mulMat3(d->R + 9 * to, d->R + 9 * from, Re);
   csu_mulMatVec3(tmp, d->R + 9 * from, pe);
   csu_add3(d->x + 3 * to, d->x + 3 * from, tmp);
@@ -465,6 +472,7 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
   }
   const int mid_J = want_J == 1;
   d->kin_gen++; /* csr_strainPointTwists_'s memo */
+  d->ks_ok = 0;
   /* the clamp: poses are relative to the base (hip) frame */
   csu_eye3(d->R);
   memset(d->x, 0, 3 * sizeof(double));
@@ -497,6 +505,10 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
     }
   }
   d->kin_valid = chain_only ? 0 : (want_J == 1 ? 2 : 1);
+  if (!chain_only) {
+    memcpy(d->ks_q, d->q, (size_t)m->n * sizeof(double));
+    d->ks_ok = 1;
+  }
   if (!chain_only) {
     d->kin_chain = want_J != 0; /* want_J 3 leaves J as it was */
   }
@@ -610,28 +622,37 @@ void csr_strainTangentApply_(const double Om[6], const double v[6], double out[6
 }
 
 
-/* strain rate ξ̇ = Φ η (6) of piece k at local arc length s */
-static void strainRateAt(const csrStrainModel* m, const double* eta, int k, const double* P,
-                         double xd[6]) {
-  memset(xd, 0, 6 * sizeof(double));
+/* ξ at the Gauss points a, b (Legendre values Pa, Pb) of piece k at q, and ξ̇ there at η:
+ * ξ = Σ_j Φ_j q_j (the constant stretch added by the caller) and ξ̇ = Σ_j Φ_j η_j, the four sums
+ * in one pass over the piece's unknowns */
+static void strainRates4(const csrStrainModel* m, const double* q, const double* eta, int k,
+                         const double* Pa, const double* Pb, double xa[6], double xb[6],
+                         double xad[6], double xbd[6]) {
+  memset(xa, 0, 6 * sizeof(double));
+  memset(xb, 0, 6 * sizeof(double));
+  memset(xad, 0, 6 * sizeof(double));
+  memset(xbd, 0, 6 * sizeof(double));
   for (int j = m->dof0[k]; j < m->dof0[k] + m->ndof[k]; j++) {
-    xd[m->dcomp[j]] += P[m->dorder[j]] * eta[j];
+    const int c = m->dcomp[j], o = m->dorder[j];
+    xa[c] += Pa[o] * q[j];
+    xb[c] += Pb[o] * q[j];
+    xad[c] += Pa[o] * eta[j];
+    xbd[c] += Pb[o] * eta[j];
   }
 }
 
 
-/* Ω of one Zanna step (as csr_strainMagnus_) and its rate Ω̇ = (∂Ω/∂q) η */
+/* Ω of one Zanna step (as csr_strainMagnus_) and its rate Ω̇ = (∂Ω/∂q) η; if Omdd is not
+ * NULL, Ω̈ = (∂Ω̇/∂q) η = 2 c ad(ξ̇_a) ξ̇_b (ξ_a, ξ_b are affine in q, ξ̇ = ∂ξ/∂q η) */
 static void magnusRate(const csrStrainModel* m, const double* q, const double* eta, int k,
-                       int i, int whole, double h, double Om[6], double Omd[6]) {
+                       int i, int whole, double h, double Om[6], double Omd[6],
+                       double* Omdd) {
   const double* Pa = csr_strainLegendreAt_(m, k, i, whole, 0);
   const double* Pb = csr_strainLegendreAt_(m, k, i, whole, 1);
   double xa[6], xb[6], xad[6], xbd[6], t1[6], t2[6], t3[6];
-  strainRateAt(m, q, k, Pa, xa);
-  strainRateAt(m, q, k, Pb, xb);
+  strainRates4(m, q, eta, k, Pa, Pb, xa, xb, xad, xbd);
   xa[5] += 1;
   xb[5] += 1;
-  strainRateAt(m, eta, k, Pa, xad);
-  strainRateAt(m, eta, k, Pb, xbd);
   const double c2 = sqrt(3.0) * h * h / 12;
   adApply(xa, xb, t1);
   adApply(xad, xb, t2);
@@ -639,6 +660,12 @@ static void magnusRate(const csrStrainModel* m, const double* q, const double* e
   for (int r = 0; r < 6; r++) {
     Om[r] = 0.5 * h * (xa[r] + xb[r]) + c2 * t1[r];
     Omd[r] = 0.5 * h * (xad[r] + xbd[r]) + c2 * (t2[r] + t3[r]);
+  }
+  if (Omdd) {
+    adApply(xad, xbd, t1);
+    for (int r = 0; r < 6; r++) {
+      Omdd[r] = 2 * c2 * t1[r];
+    }
   }
 }
 
@@ -675,10 +702,170 @@ void csr_strainTwists_(const csrStrainModel* m, const double* q, const double* e
         twistStep(Of, Omd, V + 6 * p, V + 6 * (p + 2));
         continue;
       }
-      magnusRate(m, q, eta, k, i, 0, 0.5 * h, Om, Omd);
+      magnusRate(m, q, eta, k, i, 0, 0.5 * h, Om, Omd, NULL);
       twistStep(Om, Omd, V + 6 * p, V + 6 * (p + 1));
-      magnusRate(m, q, eta, k, i, 1, h, Om, Omd);
+      magnusRate(m, q, eta, k, i, 1, h, Om, Omd, NULL);
       twistStep(Om, Omd, V + 6 * p, V + 6 * (p + 2));
+    }
+  }
+}
+
+
+/* tangentCoefficients' c_j (the same bits) and dc_j = ∂c_j/∂(θ²) (c_0 = 1: dc_0 = 0), the
+ * same two branches: the folded series differentiated term by term in t2 = θ² (t4 = t2²),
+ * Selig's closed forms c_j = ±N_j / (2 θ^(j+1)) by c_j' / (2 θ) with
+ * c_j' = ±(θ N_j' - (j + 1) N_j) / (2 θ^(j+2)) */
+static void tangentCoefficientRates(const csrTrig* tg, double c[5], double dc[5]) {
+  const double th = tg->th;
+  if (th < CSR_STRAIN_SERIES_THETA) {
+    double s[CSR_STRAIN_SERIES_TERMS + 1], ds[CSR_STRAIN_SERIES_TERMS + 1], f = 1;
+    const double t2 = th * th, t4 = t2 * t2;
+    for (int j = 0; j <= CSR_STRAIN_SERIES_TERMS; j++) {
+      s[j] = f;
+      ds[j] = 0;
+      f *= -1.0 / (j + 2);
+    }
+    for (int j = CSR_STRAIN_SERIES_TERMS; j >= 5; j--) {
+      ds[j - 2] -= 2 * s[j] + 2 * t2 * ds[j];
+      ds[j - 4] -= 2 * t2 * s[j] + t4 * ds[j];
+      s[j - 2] -= 2 * t2 * s[j];
+      s[j - 4] -= t4 * s[j];
+    }
+    memcpy(c, s, 5 * sizeof(double));
+    memcpy(dc, ds, 5 * sizeof(double));
+    return;
+  }
+  tangentCoefficients(tg, c);
+  const double sn = tg->sn, cs = tg->cs, t2 = th * th, t3 = t2 * th, t4 = t3 * th;
+  const double n1 = 4 - 4 * cs - th * sn, n1d = 3 * sn - th * cs;
+  const double n2 = 4 * th - 5 * sn + th * cs, n2d = 4 - 4 * cs - th * sn;
+  const double n3 = 2 - 2 * cs - th * sn, n3d = sn - th * cs;
+  const double n4 = 2 * th - 3 * sn + th * cs, n4d = 2 - 2 * cs - th * sn;
+  dc[0] = 0;
+  dc[1] = -(th * n1d - 2 * n1) / (4 * t4);
+  dc[2] = (th * n2d - 3 * n2) / (4 * t4 * th);
+  dc[3] = -(th * n3d - 4 * n3) / (4 * t4 * t2);
+  dc[4] = (th * n4d - 5 * n4) / (4 * t4 * t3);
+}
+
+
+/* out = Ad(exp(-Ω)) in, exp(Ω) = (Re, pe): (Reᵀ ω; Reᵀ (v - pe × ω)) (twistStep's own) */
+static void adExpInvApply(const double Re[9], const double pe[3], const double in[6],
+                          double out[6]) {
+  double pxa[3], u[3];
+  csu_cross3(pxa, pe, in);
+  csu_sub3(u, in + 3, pxa);
+  csu_mulMatTVec3(out, Re, in);
+  csu_mulMatTVec3(out + 3, Re, u);
+}
+
+
+/* One step of the twist recursion and of its rate along q (η and V_b fixed): V_to = Ad(e⁻Ω)
+ * V_from + ψ with ψ = T(Ω) Ω̇ (twistStep), and its directional derivative in q along η
+ *   A_to = Ad(e⁻Ω) A_from + ad(V_to) ψ + ψ̇,   ψ̇ = T(Ω) Ω̈ + DT(Ω)[Ω̇] Ω̇,
+ * (d/dε Ad(e^-Ω) = -ad(T(Ω) Ω̇) Ad(e^-Ω), and -ad(ψ) (V_to - ψ) = ad(V_to) ψ). With T(Ω) =
+ * Σ_j c_j(θ) ad(Ω)^j and P_j = ad(Ω)^j Ω̇: DT[Ω̇] Ω̇ = Σ_j dc_j δ(θ²) P_j + Σ_j c_j Σ_{i<j}
+ * ad(Ω)^i ad(Ω̇) P_{j-1-i}, δ(θ²) = 2 ω·ω̇, the i = j-1 terms zero (ad(Ω̇) Ω̇ = 0). Grouped by
+ * the power of ad(Ω) and summed by Horner with T(Ω) Ω̈ (4 products by ad(Ω), 3 by ad(Ω̇)):
+ *   T Ω̈ + Σ_j c_j D(ad^j)[Ω̇] Ω̇ = Σ_i ad(Ω)^i (c_i Ω̈ + ad(Ω̇) G_i),
+ *   G_0 = c2 P1 + c3 P2 + c4 P3, G_1 = c3 P1 + c4 P2, G_2 = c4 P1, G_3 = G_4 = 0.
+ * Omd NULL: a rigid step (Ω̇ = Ω̈ = 0, ψ = ψ̇ = 0). ks not NULL: the kinematics' exp(Ω) and θ,
+ * sin θ, cos θ of this step (d->ks, the same Ω to round-off: csr_strainMagnus_'s expressions),
+ * else formed here. */
+static void twistRateStep(const double Om[6], const double* Omd, const double* Omdd,
+                          const double* ks, const double Vf[6], const double Af[6], double Vt[6],
+                          double At[6]) {
+  double Rs[9], ps[3];
+  const double *Re = Rs, *pe = ps;
+  csrTrig tg;
+  if (ks) {
+    Re = ks;
+    pe = ks + 9;
+    tg.th2 = ks[12];
+    tg.th = ks[13];
+    tg.sn = ks[14];
+    tg.cs = ks[15];
+  } else {
+    trigOf(Om, &tg);
+    expWith(Om, &tg, Rs, ps);
+  }
+  adExpInvApply(Re, pe, Vf, Vt);
+  adExpInvApply(Re, pe, Af, At);
+  if (!Omd) {
+    return;
+  }
+  double c[5], dc[5], P[5][6], psi[6], z[6], g[6], t[6];
+  tangentCoefficientRates(&tg, c, dc);
+  /* ψ exactly as tangentApplyWith forms it (twistStep's bits) */
+  memcpy(P[0], Omd, sizeof P[0]);
+  memcpy(psi, Omd, sizeof psi);
+  for (int j = 1; j <= 4; j++) {
+    adApply(Om, P[j - 1], P[j]);
+    for (int i = 0; i < 6; i++) {
+      psi[i] += c[j] * P[j][i];
+    }
+  }
+  for (int i = 0; i < 6; i++) {
+    z[i] = c[4] * Omdd[i];
+  }
+  for (int p = 3; p >= 0; p--) {
+    adApply(Om, z, t);
+    for (int i = 0; i < 6; i++) {
+      z[i] = t[i] + c[p] * Omdd[i];
+    }
+    if (p <= 2) {
+      for (int i = 0; i < 6; i++) {
+        g[i] = c[p + 2] * P[1][i] + (p <= 1 ? c[p + 3] * P[2][i] : 0) +
+               (p == 0 ? c[4] * P[3][i] : 0);
+      }
+      adApply(Omd, g, t);
+      for (int i = 0; i < 6; i++) {
+        z[i] += t[i];
+      }
+    }
+  }
+  const double dth2 = 2 * csu_dot3(Om, Omd);
+  for (int i = 0; i < 6; i++) {
+    Vt[i] += psi[i];
+    z[i] += dth2 * (dc[1] * P[1][i] + dc[2] * P[2][i] + dc[3] * P[3][i] + dc[4] * P[4][i]);
+  }
+  adApply(Vt, psi, t);
+  for (int i = 0; i < 6; i++) {
+    At[i] += t[i] + z[i];
+  }
+}
+
+
+const double* csr_strainStepsAt_(const csrStrainModel* m, const csrStrainData* d) {
+  if (!d->ks_ok || memcmp(d->ks_q, d->q, (size_t)m->n * sizeof(double)) != 0) {
+    return NULL;
+  }
+  return d->ks;
+}
+
+
+void csr_strainTwistRates_(const csrStrainModel* m, const double* q, const double* eta,
+                           const double Vb[6], const double* ks, double* V, double* A) {
+  memcpy(V, Vb, 6 * sizeof(double));
+  memset(A, 0, 6 * sizeof(double));
+  for (int k = 0; k < m->npiece; k++) {
+    const double h = m->piece[k].length / m->nsub[k];
+    for (int i = 0; i < m->nsub[k]; i++) {
+      const int p = m->pt0[k] + 2 * i;
+      double* V0 = V + 6 * p;
+      double* A0 = A + 6 * p;
+      if (m->rigid[k]) {
+        const double Oh[6] = {0, 0, 0, 0, 0, 0.5 * h}, Of[6] = {0, 0, 0, 0, 0, h};
+        twistRateStep(Oh, NULL, NULL, ks ? ks + 16 * (p + 1) : NULL, V0, A0, V0 + 6, A0 + 6);
+        twistRateStep(Of, NULL, NULL, ks ? ks + 16 * (p + 2) : NULL, V0, A0, V0 + 12, A0 + 12);
+        continue;
+      }
+      for (int whole = 0; whole < 2; whole++) {
+        double Om[6], Omd[6], Omdd[6];
+        magnusRate(m, q, eta, k, i, whole, whole ? h : 0.5 * h, Om, Omd, Omdd);
+        const int to = p + 1 + whole;
+        twistRateStep(Om, Omd, Omdd, ks ? ks + 16 * to : NULL, V0, A0, V + 6 * to, A + 6 * to);
+      }
     }
   }
 }

@@ -14,7 +14,11 @@
  *    stance test beside it (test_strain_robot stance_condensation_is_the_dense_one) are
  *    ~1e-12 with the contact's stiffness; the update adds the capacitance's solve (its
  *    condition with one shape leaving and one entering measured below), a wrong block or sign
- *    is O(1). At the default basis (n 36) and at 3 modes, 4 sub-intervals (n 42).
+ *    is O(1). At the default basis (n 36) and at 3 modes, 4 sub-intervals (n 42). y's bound
+ *    is 1e-8: its largest difference over the 345 refactors is the tail of the round-off the
+ *    reference run's states carry (backward Euler, n 36: 9.5e-11 to 5.1e-10 with the velocity
+ *    products' old central-difference step 0.7e-6 to 2e-6, 1.2e-9 with the exact products,
+ *    bdf17 in docs/notes/strain_leg.md), while the perturbed block below moves it by 2.3e-5.
  *  - bdf2_refactor_is_the_dense_one: the same on the linearly implicit BDF2 the strain level
  *    runs (step_order 2, step_refresh 0): W_M is the prepare's extrapolated iterate's (or a
  *    refreshed iterate's), h = c2 h_step in the update's C as in the start's factor. The same
@@ -157,7 +161,7 @@ static void expectDense(int order) {
     const RefactorDiff o = refactorSame(cfg[c][0], cfg[c][1], order, 0);
     CS_EXPECT(o.nref > 50);
     CS_EXPECT(o.nkept > 50);
-    CS_EXPECT(o.z < 1e-9 && o.r < 1e-9 && o.x < 1e-9 && o.y < 1e-9);
+    CS_EXPECT(o.z < 1e-9 && o.r < 1e-9 && o.x < 1e-9 && o.y < 1e-8);
     CS_EXPECT(o.kr < 1e-9 && o.ky < 1e-9);
   }
 }
