@@ -15,6 +15,7 @@ import os
 import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+import corot  # noqa: E402,F401  (first: it sets the one-thread BLAS before numpy loads)
 import argparse  # noqa: E402
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402

@@ -29,6 +29,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import corot  # noqa: E402,F401  (first: it sets the one-thread BLAS before numpy loads)
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 from corot import Slabs, rod_frames, rod_strains  # noqa: E402
@@ -109,9 +110,15 @@ def main():
     ap.add_argument("--newton", type=int, default=3)
     ap.add_argument("--mf", type=int, default=0)
     ap.add_argument("--width", type=float, default=2.0)
+    ap.add_argument("--bulk", choices=("mixed", "fe"), default="mixed",
+                    help="the bulk energy: the mixed P0 bulk in span(P) (rom11_energy.py's) or the "
+                    "FE's own, element by element (kappa V_e theta_e^2 / 2)")
     ap.add_argument("--bfgs", action="store_true",
                     help="the differenced Hessian at the first step only, BFGS updates after (each "
                     "later step costs a gradient, not n forces)")
+    ap.add_argument("--resume", default=None,
+                    help="start from the last iterate of this --save file instead of the "
+                    "representation (a fresh Hessian)")
     ap.add_argument("--save", default=None, help="the iterates z (one row a step) to this .npy")
     a = ap.parse_args()
     t0 = time.process_time()
@@ -129,9 +136,11 @@ def main():
     if a.sup:
         # supremizers in the local frame: M-orthonormalised against the local modes
         Vl = m.orth(Vl, m.V[:, -a.sup:])
+    if a.bulk == "fe":
+        m.bulk_mixed = m.bulk_fe  # Energy.total charges bulk_mixed on the reduced states
     mf = Manifold(m, sl, Vs, Vl)
     print(f"corot_newton: {a.ray} t {a.t:g}: r = {mf.r} strain + {mf.k} local modes (n = "
-          f"{mf.n}), {sl.nsl} slabs; fibres {'FE (mf = 0)' if m.Qf is None else m.Qf.shape[1]}")
+          f"{mf.n}), {sl.nsl} slabs; bulk {a.bulk}; fibres {'FE (mf = 0)' if m.Qf is None else m.Qf.shape[1]}")
     (name, t, u, p, _, _), = list(states(a.snap, [a.ray], [a.t], m.fixed))
     nu = np.sqrt(u @ (m.M @ u))
     vfe = m.chambers(u)[0]
@@ -159,6 +168,11 @@ def main():
     parts, g, gp, w, J, f = mf.grad(z, p)
     line("representation", parts, g, gp, w)
     hist = [z.copy()]
+    if a.resume:
+        hist = list(np.load(a.resume))
+        z = hist[-1].copy()
+        parts, g, gp, w, J, f = mf.grad(z, p)
+        line(f"resumed ({len(hist) - 1})", parts, g, gp, w)
     B, sv, yv, sy = None, None, None, 0.0
     for it in range(a.newton):
         if it == 0 or not a.bfgs:

@@ -21,6 +21,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import corot  # noqa: E402,F401  (first: it sets the one-thread BLAS before numpy loads)
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 from corot import Slabs, mpod, show, train_states  # noqa: E402

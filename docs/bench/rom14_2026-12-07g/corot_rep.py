@@ -18,6 +18,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import corot  # noqa: E402,F401  (first: it sets the one-thread BLAS before numpy loads)
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 from corot import Slabs, mpod, rod_frames, rod_strains, show, train_states, turn_strains  # noqa: E402
