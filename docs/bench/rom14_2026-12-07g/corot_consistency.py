@@ -16,29 +16,17 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import corot  # noqa: E402,F401  (first: it sets the one-thread BLAS before numpy loads)
-import argparse  # noqa: E402
-import h5py  # noqa: E402
 import numpy as np  # noqa: E402
-from corot import Slabs, rod_strains  # noqa: E402
-from corot_newton import Manifold  # noqa: E402
-from rom11_energy import Energy  # noqa: E402
+from corot import rod_strains  # noqa: E402
+from corot_newton import load_manifold, manifold_args  # noqa: E402
 from rom11_iso_diag import states  # noqa: E402
 
-ap = argparse.ArgumentParser()
-for n in ("snap", "basis", "leg", "rod", "local", "cases"):
-    ap.add_argument(n)
-ap.add_argument("--r", type=int, default=12)
-ap.add_argument("--k", type=int, default=176)
+ap = manifold_args(["cases"])
 ap.add_argument("--mf", default="0,104")
 a = ap.parse_args()
-m = Energy(a.snap, a.basis, a.leg)
+m, mf = load_manifold(a)
 Qf0 = m.Qf
-sl = Slabs(m.x, 2.0)
-with h5py.File(a.rod, "r") as f:
-    Vs = f["Vs"][:, :a.r]
-with h5py.File(a.local, "r") as f:
-    Vl = f["Vl"][:, :a.k]
-mf = Manifold(m, sl, Vs, Vl)
+sl, Vs, Vl = mf.sl, mf.Vs, mf.Vl
 for case in a.cases.split(","):
     ray, t = case.split(":")
     (name, tt, u, p, _, _), = list(states(a.snap, [ray], [float(t)], m.fixed))

@@ -98,6 +98,27 @@ class Manifold:
         return parts, J.T @ f, J.T @ fp, w, J, f
 
 
+def manifold_args(extra):
+    """the arguments the manifold's scripts share (positional SNAP BASIS LEG ROD LOCAL, then
+    EXTRA), --r, --k"""
+    ap = argparse.ArgumentParser()
+    for name in ("snap", "basis", "leg", "rod", "local") + tuple(extra):
+        ap.add_argument(name)
+    ap.add_argument("--r", type=int, default=12)
+    ap.add_argument("--k", type=int, default=176)
+    return ap
+
+
+def load_manifold(a):
+    """rom11_energy.Energy of the basis and leg file, and the Manifold of a's ROD / LOCAL"""
+    m = Energy(a.snap, a.basis, a.leg)
+    with h5py.File(a.rod, "r") as f:
+        Vs = f["Vs"][:, :a.r]
+    with h5py.File(a.local, "r") as f:
+        Vl = f["Vl"][:, :a.k]
+    return m, Manifold(m, Slabs(m.x, 2.0), Vs, Vl)
+
+
 def main():
     ap = argparse.ArgumentParser()
     for n in ("snap", "basis", "leg", "rod", "local"):
