@@ -27,3 +27,9 @@ paper)
 earth)
   ENVS=(CR18_PASSES=1 CR18_CARRY=1); crun c18_earth $C --scene flat-road --legs strain --conditions earth --gait $P --t-end 1.5 ;;
 esac
+# old: the first form (the ghosts at the end) in the same build: scratch CR18_OLD=1 read in
+# robot_strain_carry.c (a scratch edit, not committed; scratch.patch)
+case $1 in
+old)
+  ENVS=(CR18_PASSES=1 CR18_CARRY=1 CR18_OLD=1); crun old_paper $C --scene flat-road --legs strain --gait $P --conditions paper --t-end 9 ;;
+esac
