@@ -345,8 +345,8 @@ static void test_strain_adaptive_step_keeps_momentum(void) {
  * discrete momentum is not their linear model's (Σ m x is not linear in the strains), and
  * without the carry the frictionless centre of mass drifts 1.9e-2 mm in 1 s, 17x the issue's
  * rate; with the legs' residual carried into the support's next step (tree_carry) 1.7e-4 mm
- * (docs/notes/strain_leg.md "event17", "carry18"; robot/strain/robot_strain_carry.c). Both are asserted:
- * the carry is what meets the bound. */
+ * (docs/notes/strain_leg.md "event17", "carry18"; robot/strain/robot_strain_carry.c). Both are
+ * asserted: the carry is what meets the bound. */
 static void test_strain_one_pass_carry_keeps_momentum(void) {
   double moved0, moved1;
   gStepTol = 2.5e-4;

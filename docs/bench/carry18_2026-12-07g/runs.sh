@@ -1,7 +1,8 @@
 #!/bin/bash
 # runs.sh: the branch's build with scratch.patch (CR18_PASSES / CR18_CARRY in cs_defaultOptions:
 # crawlsim has no switch for tree_carry). Files in R, logs in logs/.
-#   def2: the default, flat road 2 s, crawlsim, against main's crawlsim (bit for bit)
+#   def2: the default, flat road 2 s, crawlsim, against main 78c770c built in /tmp/carry18/main
+#         (git archive; /work/main/build is older than main) (bit for bit)
 #   bench: one pass + carry (the exact linear-model contact force), flat road 9.5 s and the
 #          obstacle's first 4 s (bench_strain_driver, as event17's branch.sh)
 #   paper: the paper's table 9 s, earth 1.5 s (crawlsim, as event17's carry.sh)
@@ -15,7 +16,7 @@ crun() { local tag=$1 bin=$2; shift 2
     echo "rc $?"; uptime; } > $L/$tag.log 2>&1; echo "$tag $(grep '^rc ' $L/$tag.log)"; }
 case $1 in
 def2)
-  ENVS=(X=0); crun def2_main /work/main/build/tools/crawlsim --scene flat-road --legs strain --t-end 2 &
+  ENVS=(X=0); crun def2_main /tmp/carry18/main/build/tools/crawlsim --scene flat-road --legs strain --t-end 2 &
   ENVS=(X=0); crun def2_branch $C --scene flat-road --legs strain --t-end 2; wait ;;
 bench)
   d=$R/c18; mkdir -p $d
@@ -32,4 +33,8 @@ esac
 case $1 in
 old)
   ENVS=(CR18_PASSES=1 CR18_CARRY=1 CR18_OLD=1); crun old_paper $C --scene flat-road --legs strain --gait $P --conditions paper --t-end 9 ;;
+esac
+case $1 in
+climb)
+  ENVS=(CR18_PASSES=1 CR18_CARRY=1); crun c18_obst $C --scene obstacle --legs strain ;;
 esac
