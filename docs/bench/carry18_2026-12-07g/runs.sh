@@ -38,3 +38,7 @@ case $1 in
 climb)
   ENVS=(CR18_PASSES=1 CR18_CARRY=1); crun c18_obst $C --scene obstacle --legs strain ;;
 esac
+case $1 in
+rod125)  # the reference at half the step: the rod at 32 elements, 0.125 ms, the paper's table
+  ENVS=(X=0); crun rod32_125_paper $C --scene flat-road --legs rod --links 32 --macro-steps 1 --dt 0.000125 --gait $P --conditions paper --t-end 9 ;;
+esac
