@@ -376,6 +376,7 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->WMlb);
   free(d->rMl);
   free(d->du);
+  free(d->fcA);
   free(d->qm1);
   free(d->etam1);
   free(d);
@@ -436,6 +437,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->WMlb = calloc(n * 6, sizeof(double));
   d->rMl = calloc(n, sizeof(double));
   d->du = calloc(n + 6, sizeof(double));
+  d->fcA = calloc(3 * (n + 6), sizeof(double));
   d->qm1 = calloc(n, sizeof(double));
   d->etam1 = calloc(n, sizeof(double));
   d->Wu = calloc(n * n, sizeof(double));
@@ -476,7 +478,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
       !d->q || !d->eta || !d->vp_eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
       !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->ks || !d->ks_q || !d->Ab ||
-      !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du || !d->Rs_save || !d->xs_save ||
+      !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du || !d->fcA || !d->Rs_save || !d->xs_save ||
       !d->qm1 || !d->etam1 || !d->R0 || !d->x0 || !d->J0 || !d->qf || !d->Mu || !d->ct ||
       !d->cS || !d->cA || !d->artLU || !d->artPiv || !d->artZsn || !d->artY || !d->artL ||
       !d->artA || !d->wS || !d->wA || !d->wbQ || !d->wbK || !d->wbPiv || !d->wbX) {

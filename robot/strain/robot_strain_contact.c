@@ -514,6 +514,12 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
   d->ntouch = 0;
   d->nghost = 0;
   const int active = activeNow(m, d);
+  if (!du) {
+    /* the start's linear model's contact force, for the one-pass carry (its end) */
+    memset(d->fcl, 0, sizeof d->fcl);
+    memset(d->fcA, 0, (size_t)3 * nu * sizeof(double));
+    d->fcl_ok = 1;
+  }
   for (int s = 0; s < m->nshape; s++) {
     csrStrainGhost* g = d->ghost + s;
     g->on = 0;
@@ -667,6 +673,12 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
       }
       Lr[r] = t;
     }
+    if (!du) {
+      csu_add3(d->fcl, d->fcl, Lr);
+      if (!foot) {
+        csu_add3(d->fcl, d->fcl, Lr + 3);
+      }
+    }
     /* the capsule's couple acts on its first end's rotation */
     double* Sc = G + 18 * nu;
     int use_couple = !foot && (couple[0] != 0 || couple[1] != 0 || couple[2] != 0);
@@ -703,6 +715,12 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     }
     csr_strainShapeW_(m, d, h, S, A, Ga, Gb, Wbb,
                       d->wc_sparse == 1 || (d->wc_sparse == 2 && du) ? 1 : 0);
+    /* Ga holds A S now: its force rows, the rest of the start's linear force (A S Δu) */
+    for (int r = 0; !du && r < (foot ? 3 : 6); r++) {
+      for (int k = 0; k < nu; k++) {
+        d->fcA[(r % 3) * nu + k] += Ga[r * nu + k];
+      }
+    }
   }
   return 0;
 }
@@ -744,6 +762,7 @@ void csr_strainShapeW_(const csrStrainModel* m, csrStrainData* d, double h, cons
 int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb[6], double* fl,
                             int* same) {
   *same = 1;
+  d->fcl_ok = 0;
   memset(d->fcw, 0, sizeof d->fcw);
   d->ntouch = 0;
   if (!m->soft) {

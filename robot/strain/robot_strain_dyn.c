@@ -133,6 +133,7 @@ static void saveStart(const csrStrainModel* m, csrStrainData* d) {
   memcpy(d->Vb0, d->Vb, sizeof d->Vb0);
   memcpy(d->Rbp, d->Rb, sizeof d->Rbp);
   memset(d->du, 0, (size_t)(6 + n) * sizeof(double));
+  d->fcl_ok = 0; /* the one-pass carry's record: only this step's start assembly sets it */
 }
 
 

@@ -236,6 +236,11 @@ struct csrStrainData_ {
   int* ct;        /* (nshape) their indices */
   double* cS;     /* (nshape x 6 x (6 + n)) their S (world rates of the shape's ends) */
   double* cA;     /* (nshape x 36) their A = h K_y + C_y: W -= h Sᵀ A S */
+  /* the contact's force in the start's linear model (csr_strainContactAssemble_ at the step's
+   * start, read by the one-pass carry, robot_strain_carry.c): world force = fcl + fcA Δu */
+  double fcl[3];  /* Σ the touching shapes' affine load at the start (N, world) */
+  double* fcA;    /* (3 x (6 + n)) Σ their force rows of A S */
+  int fcl_ok;     /* 1: fcl, fcA are the last prepare's (0: a kept matrix's loads or none) */
   int art_f;      /* 1: the iteration matrix is factored piece by piece by the recursion (the
                      kept iterates solve through artLU ...; d->Wll, Wu are not formed) */
   double* artLU;  /* (n x MAX_PIECE_DOF) piece k's Z_ηη LU-factored, at MAX_PIECE_DOF dof0[k] */
