@@ -310,7 +310,8 @@ void csr_strainStepCoeffs(const csrStrainModel* m, const csrStrainData* d, doubl
 void csr_strainCounts(const csrStrainData* d, long* steps, long* factors, long* kept);
 /* The discrete linear momentum residual of the last committed step by its linear model
  * (robot_leg.h momentumResidual; robot_strain_carry.c): 0, or -1 without a committed backward-
- * Euler step or, with contact, without the active set (its ghosts are the linear model). */
+ * Euler step, with contact without the active set, or with keep_matrix (a kept matrix's start
+ * records no linear model of its own). */
 int csr_strainMomentumResidual(const csrStrainModel* m, const csrStrainData* d, double eps[3]);
 /* The same of a leg of the strain level (robot_leg.h csr_leg_strain). */
 void csr_legStrainCounts(const csrLeg* leg, long* steps, long* factors, long* kept);

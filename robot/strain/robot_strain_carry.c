@@ -19,16 +19,12 @@
  * shape's load as L1 = L(y_p) + K_y (y_q - y_p) + A S Δu (A = h K_y + C_y, y_p the slid
  * prediction, y_q the shape's predicted end) and records Σ of its force rows, fcl + fcA Δu;
  * with the solved Δu (d->du, which the finish leaves) that is the impulse / h the leg's base
- * rows balanced, so R is the kinematic nonlinearity of Σ m x alone. The shapes' ghosts at the
- * end state (csr_strainContactLinForce_, the first form) instead gave
- * L1 + K_y (y1 - y_q - h S Δu) + C_y (ẏ1 - ẏ0 - S Δu): the end's kinematic error times the
- * stick anchors' stiffness N/delta_t, put into the carry; on the paper's table, whose feet
- * slide, it took the track 6.71 mm from the rod at 32 elements against 3.68 mm with the
- * model's force (docs/notes/strain_leg.md "carry18"). The ghosts stay the fallback where the
- * start's loads came from a kept matrix (keep_matrix: fcl_ok 0). The law evaluated at the end
- * (its nonlinearity and the friction's return mapping) instead put the contact's
- * linearisation error into the carry, lagged a step, and moved the obstacle's first 4 s 5x
- * further off the default (docs/notes/strain_leg.md "event17").
+ * rows balanced, so R is the kinematic nonlinearity of Σ m x alone. Any other force (the
+ * shapes' linearisation re-evaluated at the end state, or the law there) puts the contact's
+ * linearisation error times the stick anchors' stiffness into the carry, lagged a step: the
+ * paper's table, whose feet slide, then leaves the rod's track (docs/notes/strain_leg.md
+ * "event17", "carry18"). A kept matrix's start (keep_matrix) assembles no linear model of its
+ * own, so the level gives no residual there.
  *
  * Units: mm, s, N (t mm/s^2); the residual is an impulse (t mm/s, N s). */
 #include <string.h>
@@ -43,26 +39,22 @@ int csr_strainMomentumResidual(const csrStrainModel* m, const csrStrainData* d, 
   if (!(d->hprev > 0) || m->par.step_order != 1) {
     return -1;
   }
-  /* the contact's linear model is the active set's ghosts (robot_strain_contact.c) */
-  if (m->soft && !m->par.active_set) {
+  /* the contact's linear model is the active set's (robot_strain_contact.c), recorded by this
+   * step's own start assembly (not a kept matrix's) */
+  if (m->soft && (!m->par.active_set || m->par.keep_matrix || !d->fcl_ok)) {
     return -1;
   }
   const double h = d->hprev;
   /* the contact force the step's one linear model applied: its affine load at the start and
-   * A S Δu of the solved Δu (d->du, kept by the finish), recorded by the start's assembly;
-   * else (a kept matrix's start) the ghosts' affine loads at the end state */
-  double fc[3];
-  if (d->fcl_ok) {
-    const int nu = 6 + m->n;
-    for (int i = 0; i < 3; i++) {
-      double t = d->fcl[i];
-      for (int k = 0; k < nu; k++) {
-        t += d->fcA[i * nu + k] * d->du[k];
-      }
-      fc[i] = t;
+   * A S Δu of the solved Δu (d->du, kept by the finish), recorded by the start's assembly */
+  const int nu = 6 + m->n;
+  double fc[3] = {0, 0, 0};
+  for (int i = 0; m->soft && i < 3; i++) {
+    double t = d->fcl[i];
+    for (int k = 0; k < nu; k++) {
+      t += d->fcA[i * nu + k] * d->du[k];
     }
-  } else {
-    csr_strainContactLinForce_(m, d, fc);
+    fc[i] = t;
   }
   /* commit moved D on (robot_strain_dyn.c csr_strainCommit): d->Dm the step's (X1 - X0) / h,
    * d->Dm1 the one before; the hip's impulse on the leg is -h wbase.f (wbase the leg's force

@@ -1016,22 +1016,3 @@ int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[
   }
   return rc;
 }
-
-
-void csr_strainContactLinForce_(const csrStrainModel* m, const csrStrainData* d, double f[3]) {
-  memset(f, 0, 3 * sizeof(double));
-  for (int s = 0; m->soft && s < m->nshape; s++) {
-    const csrStrainGhost* g = d->ghost + s;
-    if (g->state != 1) {
-      continue;
-    }
-    cscShapeState st;
-    double L[6];
-    shapeState(m, d, s, &st);
-    ghostLoad(m, g, s, &st, L);
-    csu_add3(f, f, L);
-    if (s != m->nshape - 1) {
-      csu_add3(f, f, L + 3);
-    }
-  }
-}

@@ -240,7 +240,7 @@ struct csrStrainData_ {
    * start, read by the one-pass carry, robot_strain_carry.c): world force = fcl + fcA Δu */
   double fcl[3];  /* Σ the touching shapes' affine load at the start (N, world) */
   double* fcA;    /* (3 x (6 + n)) Σ their force rows of A S */
-  int fcl_ok;     /* 1: fcl, fcA are the last prepare's (0: a kept matrix's loads or none) */
+  int fcl_ok;     /* 1: fcl, fcA are this step's start's (0: a kept matrix's loads, or none) */
   int art_f;      /* 1: the iteration matrix is factored piece by piece by the recursion (the
                      kept iterates solve through artLU ...; d->Wll, Wu are not formed) */
   double* artLU;  /* (n x MAX_PIECE_DOF) piece k's Z_ηη LU-factored, at MAX_PIECE_DOF dof0[k] */
@@ -505,10 +505,5 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
 static inline int csr_strainChainJ_(const csrStrainData* d) {
   return d->kin_valid == 2 || (d->kin_valid == 1 && d->kin_chain);
 }
-
-/* The contact force on the leg (N, world) of the step's linearisation at the current state:
- * the affine loads of the shapes its last linearisation found touching (their ghosts,
- * robot_strain_contact.c), zero for the others. */
-void csr_strainContactLinForce_(const csrStrainModel* m, const csrStrainData* d, double f[3]);
 
 #endif /* CS_ROBOT_STRAIN_INTERNAL_H */
