@@ -554,7 +554,10 @@ int cs_runDefTrackError(const csRunDef* def, const csModel* m, char* out, size_t
                  other_files ? "terrain or gait differ" : "conditions differ");
       } else {
         snprintf(out, size, "track error %.3g mm against the reference of %s (line %d; measured "
-                 "on the scene's own gait and conditions)", r->error_mm, levels, r->line);
+                 "on the scene's own gait and conditions)%s", r->error_mm, levels, r->line,
+                 r->whole_run == 0 ? "; warning: in the table this configuration's whole run "
+                                     "of the scene fails (whole_run 0)"
+                                   : "");
         if (error_mm) {
           *error_mm = r->error_mm;
         }
@@ -643,6 +646,19 @@ static csStatus pickAuto(const csRunDef* def, const char* scene, int user_files,
            user_files || def->conditions
                ? " (measured with the scene's own terrain, gait and conditions, not this run's)"
                : "");
+  /* the whole run: what the table says of this row beyond its measured window, and what the
+   * pick passed over for failing it (robot_levels.h whole_run) */
+  const int passed = csr_levelTableFailing(table, scene, tol, kind, row->cpu_s_per_s);
+  size_t len = strlen(m->legs_auto_choice);
+  snprintf(m->legs_auto_choice + len, sizeof m->legs_auto_choice - len, "; its whole run %s",
+           row->whole_run > 0 ? "reaches the scene's goal in the table"
+                              : "is not judged in the table (whole_run -1)");
+  if (passed > 0) {
+    len = strlen(m->legs_auto_choice);
+    snprintf(m->legs_auto_choice + len, sizeof m->legs_auto_choice - len, "; %d cheaper "
+             "row%s within --tol passed over: %s whole run fails (whole_run 0)", passed,
+             passed == 1 ? "" : "s", passed == 1 ? "its" : "their");
+  }
   if (!*leg_type) {
     st = cs_errorSet(err, CS_ERR_ARG, "%s: level '%.30s' is not a registered leg level",
                      levels, row->level);

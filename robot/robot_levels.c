@@ -16,36 +16,42 @@
 
 enum {
   MAX_LINE = 1023, /* bytes per line, line ending excluded */
-  NCOL = 12,       /* columns of the format (4) */
-  NFORMAT = 4
+  NCOL = 13,       /* columns of the format (5) */
+  NFORMAT = 5
 };
 
-/* the columns of format 4, in order; older formats hold a subset (kFormat) */
+/* the columns of format 5, in order; older formats hold a subset (kFormat) */
 static const char* const kColumn[NCOL] = {"scene", "level", "links", "macro_steps", "dt_s",
                                           "rod_tol", "step_order", "step_tol_mm", "error_mm",
-                                          "cpu_s_per_s", "wall_s_per_s", "machine"};
-enum { COL_ROD_TOL = 5, COL_STEP_ORDER = 6, COL_STEP_TOL = 7 };
+                                          "whole_run", "cpu_s_per_s", "wall_s_per_s",
+                                          "machine"};
+enum { COL_ROD_TOL = 5, COL_STEP_ORDER = 6, COL_STEP_TOL = 7, COL_WHOLE = 9 };
 
-/* the formats read: the header line, its column count, and which of format 4's columns it
- * lacks (a missing one reads as its default: rod_tol 1, step_order 0, step_tol_mm 0) */
+/* the formats read: the header line, its column count, and which of format 5's columns it
+ * lacks (a missing one reads as its default: rod_tol 1, step_order 0, step_tol_mm 0,
+ * whole_run -1) */
 static const struct {
   const char* header;
   int ncol;
   unsigned missing; /* bit c: column c of kColumn is absent */
 } kFormat[NFORMAT] = {
+    {"scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,whole_run,"
+     "cpu_s_per_s,wall_s_per_s,machine",
+     13, 0},
+    /* format 4 (tables written before 2026-12-08, fifteenth session): whole runs not judged */
     {"scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,cpu_s_per_s,"
      "wall_s_per_s,machine",
-     12, 0},
+     12, 1u << COL_WHOLE},
     /* format 3 (tables written before 2026-12-07 ninth session): every row a fixed step */
     {"scene,level,links,macro_steps,dt_s,rod_tol,step_order,error_mm,cpu_s_per_s,wall_s_per_s,"
      "machine",
-     11, 1u << COL_STEP_TOL},
+     11, 1u << COL_STEP_TOL | 1u << COL_WHOLE},
     /* format 2 (before 2026-12-06): every row at step_order 0 too */
     {"scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine", 10,
-     1u << COL_STEP_ORDER | 1u << COL_STEP_TOL},
+     1u << COL_STEP_ORDER | 1u << COL_STEP_TOL | 1u << COL_WHOLE},
     /* format 1 (before 2026-12-03): every row at rod_tol 1 too */
     {"scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine", 9,
-     1u << COL_ROD_TOL | 1u << COL_STEP_ORDER | 1u << COL_STEP_TOL}};
+     1u << COL_ROD_TOL | 1u << COL_STEP_ORDER | 1u << COL_STEP_TOL | 1u << COL_WHOLE}};
 /* the ranges of the flags the row's settings stand for (tools/cmd_run.c) */
 #define MAX_LINKS 64
 #define MAX_MACRO 100000
@@ -144,15 +150,15 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
                        field[1], field[1]);
   }
   strcpy(r->level, field[1]);
-  /* links, macro_steps, dt_s, rod_tol, step_order, step_tol_mm, error_mm, cpu_s_per_s,
-   * wall_s_per_s: ranges (lo open?), integers */
-  enum { NNUM = 9 };
+  /* links, macro_steps, dt_s, rod_tol, step_order, step_tol_mm, error_mm, whole_run,
+   * cpu_s_per_s, wall_s_per_s: ranges (lo open?), integers */
+  enum { NNUM = 10 };
   double v[NNUM];
-  static const double kLo[NNUM] = {1, 1, 0, 0, 0, 0, 0, 0, 0};
-  static const int kOpen[NNUM] = {0, 0, 1, 1, 0, 0, 0, 1, 1};
+  static const double kLo[NNUM] = {1, 1, 0, 0, 0, 0, 0, -1, 0, 0};
+  static const int kOpen[NNUM] = {0, 0, 1, 1, 0, 0, 0, 0, 1, 1};
   static const double kHi[NNUM] = {MAX_LINKS, MAX_MACRO, MAX_DT_S, MAX_ROD_TOL, MAX_STEP_ORDER,
-                                   MAX_STEP_TOL, MAX_VALUE, MAX_VALUE, MAX_VALUE};
-  static const int kInt[NNUM] = {1, 1, 0, 0, 1, 0, 0, 0, 0};
+                                   MAX_STEP_TOL, MAX_VALUE, 1, MAX_VALUE, MAX_VALUE};
+  static const int kInt[NNUM] = {1, 1, 0, 0, 1, 0, 0, 1, 0, 0};
   for (int c = 2; c < 2 + NNUM; c++) {
     csStatus st = parseField(field[c], c, kLo[c - 2], kOpen[c - 2], kHi[c - 2], kInt[c - 2],
                              path, line, &v[c - 2], err);
@@ -167,8 +173,9 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
   r->step_order = (int)v[4];
   r->step_tol_mm = v[5];
   r->error_mm = v[6];
-  r->cpu_s_per_s = v[7];
-  r->wall_s_per_s = v[8];
+  r->whole_run = (int)v[7];
+  r->cpu_s_per_s = v[8];
+  r->wall_s_per_s = v[9];
   /* the adaptive step is the tree step's (core/sim_adaptive.c; either formula): a row the run
    * would refuse is refused here, at its line */
   if (r->step_tol_mm > 0 && !csr_legTypeFind(r->level, NULL)->prepare) {
@@ -176,7 +183,7 @@ static csStatus parseRow(char** field, const char* path, long line, csrLevelRow*
                        "step is a tree-stepped level's (strain); 0 for a fixed step", path,
                        line, r->step_tol_mm, r->level);
   }
-  snprintf(r->machine, sizeof r->machine, "%s", field[11]);
+  snprintf(r->machine, sizeof r->machine, "%s", field[12]);
   return CS_OK;
 }
 
@@ -214,10 +221,13 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err) {
       break;
     }
     /* an older format's missing columns at their defaults, in their places */
-    static char kOne[] = "1", kZero[] = "0";
+    static char kOne[] = "1", kZero[] = "0", kUnknown[] = "-1";
     char* field[NCOL];
     for (int c = 0, j = 0; c < NCOL; c++) {
-      field[c] = !(kFormat[fmt].missing >> c & 1u) ? raw[j++] : c == COL_ROD_TOL ? kOne : kZero;
+      field[c] = !(kFormat[fmt].missing >> c & 1u) ? raw[j++]
+                 : c == COL_ROD_TOL                ? kOne
+                 : c == COL_WHOLE                  ? kUnknown
+                                                   : kZero;
     }
     if (t->nrow == CSR_LEVELS_MAX_ROWS) {
       st = cs_errorSet(err, CS_ERR_RANGE, "%s:%ld: more than %d rows", path, r.lineno,
@@ -281,7 +291,7 @@ int csr_levelTableFinest(const csrLevelTable* t, const char* scene) {
   int best = -1;
   for (int i = 0; i < t->nrow; i++) {
     const csrLevelRow* r = &t->row[i];
-    if (strcmp(r->scene, scene)) {
+    if (strcmp(r->scene, scene) || r->whole_run == 0) {
       continue;
     }
     if (best < 0 || r->error_mm < t->row[best].error_mm ||
@@ -322,13 +332,24 @@ int csr_levelTablePickStep(const csrLevelTable* t, const char* scene, double tol
     cs_errorSet(err, CS_ERR_RANGE, "--tol %g mm must be finite and >= 0", tol_mm);
     return -1;
   }
-  int best = -1, fin = -1, n = 0;
+  int best = -1, fin = -1, n = 0, failed = -1, nfailed = 0;
   for (int i = 0; i < t->nrow; i++) {
     const csrLevelRow* r = &t->row[i];
     if (strcmp(r->scene, scene) || !ofKind(r, kind)) {
       continue;
     }
     n++;
+    /* a row whose whole run misses the scene's goal (falls later than its measured window,
+     * say) is never picked; within tol it is counted for the message */
+    if (r->whole_run == 0) {
+      if (r->error_mm <= tol_mm) {
+        nfailed++;
+        if (failed < 0 || r->cpu_s_per_s < t->row[failed].cpu_s_per_s) {
+          failed = i;
+        }
+      }
+      continue;
+    }
     /* the most accurate of the kind, for the message when none is within tol */
     if (fin < 0 || r->error_mm < t->row[fin].error_mm ||
         (r->error_mm == t->row[fin].error_mm && r->cpu_s_per_s < t->row[fin].cpu_s_per_s)) {
@@ -356,6 +377,17 @@ int csr_levelTablePickStep(const csrLevelTable* t, const char* scene, double tol
   } else if (n == 0) {
     cs_errorSet(err, CS_ERR_ARG, "%s: no row for scene '%.31s' (the table measures another "
                 "scene; rerun tools/bench_levels.py with --scenes)", t->path, scene);
+  } else if (nfailed > 0) {
+    const csrLevelRow* r = &t->row[failed];
+    cs_errorSet(err, CS_ERR_RANGE, "%s: no level meets --tol %g mm on %s%s with a whole run "
+                "that reaches the scene's goal: %d row%s within it fail%s (whole_run 0; "
+                "the cheapest %s, links %d, macro steps %d, dt %g s, line %d)", t->path, tol_mm,
+                scene, what, nfailed, nfailed == 1 ? "" : "s",
+                nfailed == 1 ? "s its own" : " theirs",
+                r->level, r->links, r->macro_steps, r->dt_s, r->line);
+  } else if (fin < 0) {
+    cs_errorSet(err, CS_ERR_RANGE, "%s: every row for scene '%.31s'%s fails the scene's whole "
+                "run (whole_run 0): no configuration to pick", t->path, scene, what);
   } else {
     const csrLevelRow* r = &t->row[fin];
     char steptol[48] = "";
@@ -368,4 +400,16 @@ int csr_levelTablePickStep(const csrLevelTable* t, const char* scene, double tol
                 r->dt_s, steptol, r->line);
   }
   return -1;
+}
+
+
+int csr_levelTableFailing(const csrLevelTable* t, const char* scene, double tol_mm,
+                          csrStepKind kind, double cpu_below) {
+  int n = 0;
+  for (int i = 0; i < t->nrow; i++) {
+    const csrLevelRow* r = &t->row[i];
+    n += !strcmp(r->scene, scene) && ofKind(r, kind) && r->error_mm <= tol_mm &&
+         r->whole_run == 0 && r->cpu_s_per_s < cpu_below;
+  }
+  return n;
 }

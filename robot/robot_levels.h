@@ -5,11 +5,12 @@
  *
  * File format (text, LF or CRLF, '#' comment lines and blank lines skipped): one header line,
  * exactly
- *   scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,cpu_s_per_s,
- *   wall_s_per_s,machine
- * (format 4; format 3, without step_tol_mm, format 2, without step_order either, and format 1,
- * without rod_tol either, are still read, every row a fixed step at step_order 0 and rod_tol 1
- * where the column is missing)
+ *   scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,whole_run,
+ *   cpu_s_per_s,wall_s_per_s,machine
+ * (format 5; format 4, without whole_run, format 3, without step_tol_mm either, format 2,
+ * without step_order either, and format 1, without rod_tol either, are still read, every row
+ * a fixed step at step_order 0 and rod_tol 1 with its whole run not judged where the column
+ * is missing)
  * then one row per measured configuration:
  *   scene        a scene name (a word, at most 31 bytes: flat-road, obstacle, ...)
  *   level        a registered leg level (csr_legTypeFind: rod, strain; a retired one, prb, is
@@ -27,6 +28,10 @@
  *                tree-stepped level (strain), either formula (core/sim_adaptive.c estimates
  *                backward Euler's or BDF2's error)
  *   error_mm     the scene's track error against the benchmark's reference (mm), finite, >= 0
+ *   whole_run    the scene's whole default run in this configuration (no --t-end: the track
+ *                may be measured on a shorter window, the obstacle's first 4 s): 1 it reaches
+ *                the scene's goal, 0 it does not (it falls, tips over, stops, or ends away from
+ *                the goal; tools/bench_levels.py says which goal), -1 not judged
  *   cpu_s_per_s  CPU seconds of the whole process per simulated second, finite, > 0
  *   wall_s_per_s wall seconds per simulated second on the benchmark's machine, finite, > 0
  *   machine      free text without commas (where it was measured)
@@ -34,9 +39,11 @@
  * refused. Every refusal is one line
  * "<file>:<line>: <cause>" in err (CS_ERR_PARSE or CS_ERR_RANGE; CS_ERR_IO when unreadable).
  *
- * The pick: among the scene's rows with error_mm <= tol (and of the step kind asked, if one
- * is: csr_levelTablePickStep), the smallest cpu_s_per_s (a tie: the smaller error, then the
- * earlier row). Cost is CPU time, less sensitive than wall time to the
+ * The pick: among the scene's rows with error_mm <= tol whose whole run does not fail
+ * (whole_run 1 or -1; and of the step kind asked, if one is: csr_levelTablePickStep), the
+ * smallest cpu_s_per_s (a tie: the smaller error, then the earlier row). A row accurate on its
+ * window whose whole run fails is never picked: a configuration within 1 mm over the
+ * obstacle's first 4 s can still fall off the step at 12 s. Cost is CPU time, less sensitive than wall time to the
  * load of a shared machine. */
 #ifndef CS_ROBOT_LEVELS_H
 #define CS_ROBOT_LEVELS_H
@@ -61,6 +68,7 @@ typedef struct csrLevelRow_ {
   int step_order;       /* the tree step's formula (`--step-order`; 0: the level's default) */
   double step_tol_mm;   /* mm: the adaptive step's local error per step; 0: a fixed step */
   double error_mm;      /* mm: track error against the reference */
+  int whole_run;        /* the whole run: 1 reaches the scene's goal, 0 fails, -1 not judged */
   double cpu_s_per_s;   /* CPU s per simulated s */
   double wall_s_per_s;  /* wall s per simulated s */
   char machine[64];
@@ -81,6 +89,7 @@ csStatus csr_levelTableRead(const char* path, csrLevelTable* t, csError* err);
  * has no row for the scene (CS_ERR_ARG), or no row meets the tolerance (CS_ERR_RANGE, naming
  * the best achievable error and its configuration). */
 int csr_levelTablePick(const csrLevelTable* t, const char* scene, double tol_mm, csError* err);
+/* (a scene whose every row within tol fails its whole run: -1, CS_ERR_RANGE naming them) */
 
 /* which rows a pick may take: any, fixed steps only (step_tol_mm 0), adaptive only (> 0) */
 typedef enum { CSR_STEP_ANY = 0, CSR_STEP_FIXED = 1, CSR_STEP_ADAPTIVE = 2 } csrStepKind;
@@ -90,7 +99,13 @@ typedef enum { CSR_STEP_ANY = 0, CSR_STEP_FIXED = 1, CSR_STEP_ADAPTIVE = 2 } csr
 int csr_levelTablePickStep(const csrLevelTable* t, const char* scene, double tol_mm,
                            csrStepKind kind, csError* err);
 
-/* The scene's most accurate row (smallest error; a tie: the cheaper), or -1 if it has none. */
+/* Rows of `scene` and `kind` within `tol_mm` whose whole run fails (whole_run 0) and that
+ * cost less than `cpu_below` CPU s per simulated s: what a pick passed over, for its note. */
+int csr_levelTableFailing(const csrLevelTable* t, const char* scene, double tol_mm,
+                          csrStepKind kind, double cpu_below);
+
+/* The scene's most accurate row whose whole run does not fail (smallest error; a tie: the
+ * cheaper), or -1 if it has none. */
 int csr_levelTableFinest(const csrLevelTable* t, const char* scene);
 
 /* The scene's costliest row (most CPU s per simulated s), or -1 if it has none. */

@@ -52,8 +52,17 @@ ROOT = os.path.dirname(HERE)
 # the `--legs auto` table's header (robot/robot_levels.h reads exactly these columns)
 # (format 4: step_tol_mm, 0 a fixed step, > 0 the adaptive step at that tolerance, dt_s its
 # longest)
+# (format 5: whole_run, the scene's whole default run judged against its goal: WHOLE_GOAL)
 TABLE_COLUMNS = ["scene", "level", "links", "macro_steps", "dt_s", "rod_tol", "step_order",
-                 "step_tol_mm", "error_mm", "cpu_s_per_s", "wall_s_per_s", "machine"]
+                 "step_tol_mm", "error_mm", "whole_run", "cpu_s_per_s", "wall_s_per_s",
+                 "machine"]
+# What a scene's whole run must reach for whole_run 1: the run ends without a stop (a fall, a
+# divergence: exit 0, status ok), upright (tilt below 30 deg, the verdict's "tips over"), and
+# having crawled (|dx| or |dz| >= 20 mm, the verdict's "crawls"); on the obstacle also at the
+# top: within 20 mm of Table 3's end point (x 646, z 270 mm; tools/obstacle_search.py END,
+# issue 32's bound on the whole climb). A track window shorter than the run (the obstacle's
+# first 4 s) cannot see a fall at 12 s: the column is why `--legs auto` never picks such a row.
+WHOLE_GOAL = {"obstacle": ((646.0, 270.0), 20.0)}
 
 
 def fail(msg):
@@ -101,7 +110,8 @@ def run_track(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0):
     """tol > 0: the strain level's adaptive step (--strain-step adaptive --step-tol tol, dt
     its longest step)"""
     key = f"track-{scene}-" + track_config_name(level, links, macro, dt, k, order, tol) + \
-        (f"-t{a.obstacle_t_end:g}" if scene == "obstacle" else "")
+        (f"-t{a.obstacle_t_end:g}" if scene == "obstacle" and a.obstacle_t_end > 0 else "") + \
+        ("-whole" if scene == "obstacle" and a.obstacle_t_end <= 0 else "")
     out = os.path.join(a.work, key + ".h5")
 
     def compute():
@@ -118,7 +128,7 @@ def run_track(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0):
             cmd += ["--strain-step", "adaptive", "--step-tol", f"{tol:g}"]
         if k != 1:
             cmd += ["--rod-tol", f"{k:g}"]
-        if scene == "obstacle":
+        if scene == "obstacle" and a.obstacle_t_end > 0:
             cmd += ["--t-end", f"{a.obstacle_t_end:g}"]
         load = os.getloadavg()[0]
         rc, wall, cpu, last = run_timed(cmd, a.timeout)
@@ -129,6 +139,47 @@ def run_track(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0):
         return res
 
     return cached(a.work, key, compute)
+
+
+def run_whole(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0):
+    """the scene's whole default run of a configuration (no --t-end); the flat road's track
+    run is already whole, the obstacle's is its first --obstacle-t-end s"""
+    if scene != "obstacle":
+        return run_track(a, scene, level, links, macro, dt, k, order, tol)
+    saved = a.obstacle_t_end
+    a.obstacle_t_end = 0
+    try:
+        return run_track(a, scene, level, links, macro, dt, k, order, tol)
+    finally:
+        a.obstacle_t_end = saved
+
+
+def whole_verdict(res, scene):
+    """(1 or 0, why): the whole run against the scene's goal (WHOLE_GOAL)"""
+    if res["rc"] != 0 or not os.path.exists(res["h5"]):
+        return 0, f"stopped: {res['last'][:120]}"
+    import h5py
+    with h5py.File(res["h5"], "r") as f:
+        p = f["/support/position"][:]
+        q = f["/support/orientation"][-1]
+        status = f.attrs.get("status", b"?")
+    status = status.decode() if isinstance(status, bytes) else str(status)
+    if status != "ok":
+        return 0, f"stopped: {status[:120]}"
+    # the same tilt as the verdict's (core/cs_api.c): the body's up axis against the world's
+    tilt = math.degrees(math.acos(min(1.0, 1 - 2 * (q[1] * q[1] + q[3] * q[3]))))
+    dx, dz = p[-1, 0] - p[0, 0], p[-1, 2] - p[0, 2]
+    if tilt > 30:
+        return 0, f"tips over ({tilt:.1f} deg)"
+    if abs(dx) < 20 and abs(dz) < 20:
+        return 0, f"stands (dx {dx:.1f}, dz {dz:.1f} mm)"
+    if scene in WHOLE_GOAL:
+        (gx, gz), within = WHOLE_GOAL[scene]
+        d = math.hypot(p[-1, 0] - gx, p[-1, 2] - gz)
+        if d > within:
+            return 0, f"ends {d:.1f} mm from the goal ({gx:g}, {gz:g}) mm"
+        return 1, f"ends {d:.1f} mm from the goal"
+    return 1, f"crawls (dx {dx:.1f}, dz {dz:.1f} mm)"
 
 
 def step_counts(path):
@@ -239,10 +290,16 @@ def tracks(a, rows, table):
                          ("check of the reference" if is_check else ""),
                          "command": res["cmd"]})
             if ok and not is_ref and not is_check:
+                whole = -1
+                if a.whole:
+                    whole, why = whole_verdict(run_whole(a, scene, level, links, macro, dt, k,
+                                                         order, tol), scene)
+                    print(f"  {scene} {level} links {links} {setting}: whole run {whole} "
+                          f"({why})", file=sys.stderr)
                 table.append({"scene": scene, "level": level, "links": links,
                               "macro_steps": macro, "dt_s": f"{dt:g}", "rod_tol": f"{k:g}",
                               "step_order": order, "step_tol_mm": f"{tol:g}",
-                              "error_mm": f"{err:.2f}",
+                              "error_mm": f"{err:.2f}", "whole_run": whole,
                               "cpu_s_per_s": f"{res['cpu_s'] / t_ref:.3f}",
                               "wall_s_per_s": f"{res['wall_s'] / t_ref:.3f}",
                               "machine": a.machine})
@@ -524,6 +581,42 @@ def machine_name():
     return f"{os.cpu_count()}-core {model}"
 
 
+def whole_fill(a):
+    """--whole-fill: the whole_run column of an existing table, from one whole run per row"""
+    with open(a.whole_fill) as f:
+        lines = f.read().splitlines()
+    out, header = [], None
+    for n, line in enumerate(lines, 1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            out.append(line)
+            continue
+        if header is None:
+            header = line.split(",")
+            for c in ("scene", "level", "links", "dt_s", "error_mm"):
+                if c not in header:
+                    fail(f"{a.whole_fill}:{n}: the header has no column {c}")
+            out.append(",".join(TABLE_COLUMNS))
+            continue
+        r = dict(zip(header, line.split(",")))
+        if len(r) != len(header):
+            fail(f"{a.whole_fill}:{n}: {len(line.split(','))} fields, expected {len(header)}")
+        r.setdefault("rod_tol", "1")
+        r.setdefault("step_order", "0")
+        r.setdefault("step_tol_mm", "0")
+        res = run_whole(a, r["scene"], r["level"], int(r["links"]), int(r["macro_steps"]),
+                        float(r["dt_s"]), float(r["rod_tol"]), int(r["step_order"]),
+                        float(r["step_tol_mm"]))
+        r["whole_run"], why = whole_verdict(res, r["scene"])
+        print(f"  {a.whole_fill}:{n}: {r['scene']} {r['level']} links {r['links']} dt "
+              f"{r['dt_s']} order {r['step_order']} tol {r['step_tol_mm']}: whole run "
+              f"{r['whole_run']} ({why})", file=sys.stderr)
+        out.append(",".join(str(r[c]) for c in TABLE_COLUMNS))
+    if header is None:
+        fail(f"{a.whole_fill}: no header line")
+    with open(a.whole_fill, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--crawlsim", default=os.path.join(ROOT, "build", "tools", "crawlsim"))
@@ -565,6 +658,13 @@ def main():
     ap.add_argument("--table", default=os.path.join(ROOT, "robot", "levels.csv"))
     ap.add_argument("--machine", default=machine_name(),
                     help="where it ran (default: the CPU count and model; say if it was shared)")
+    ap.add_argument("--no-whole", dest="whole", action="store_false",
+                    help="do not run each configuration's whole scene (the obstacle's ~34 s "
+                    "climb): whole_run -1 in the table")
+    ap.add_argument("--whole-fill", metavar="TABLE",
+                    help="only judge the whole runs of the rows of an existing table (any "
+                    "format) and write it back as format 5, every other column and comment "
+                    "kept (no track or bend runs)")
     ap.add_argument("--fresh", action="store_true")
     ap.add_argument("--plot-only", action="store_true",
                     help="redraw levels_pareto.png from --out-dir's levels_bench.csv (no runs)")
@@ -582,6 +682,9 @@ def main():
         for fn in os.listdir(a.work):
             if fn.endswith(".json"):
                 os.remove(os.path.join(a.work, fn))
+    if a.whole_fill:
+        whole_fill(a)
+        return
     rows, table = [], []
     tasks = a.tasks.split(",")
     if "track" in tasks:
@@ -595,11 +698,13 @@ def main():
     pareto_png(os.path.join(a.out_dir, "levels_pareto.png"), rows, a.machine)
     if table:
         with open(a.table, "w", newline="") as f:
-            f.write("# crawlsim leg levels 4: written by tools/bench_levels.py; error_mm = max "
+            f.write("# crawlsim leg levels 5: written by tools/bench_levels.py; error_mm = max "
                     "over whole seconds of |support (dx, dz)| against a rod reference "
                     f"(links {a.ref_links}, dt {a.ref_dt:g} s); cpu_s_per_s = CPU seconds of "
                     "the whole process per simulated second; step_tol_mm 0: a fixed step, > 0: "
-                    "the adaptive step at that tolerance, dt_s its longest\n")
+                    "the adaptive step at that tolerance, dt_s its longest; whole_run 1: "
+                    "the scene's whole default run reaches its goal, 0: it does not, -1: not "
+                    "judged (tools/bench_levels.py WHOLE_GOAL)\n")
             w = csv.DictWriter(f, fieldnames=TABLE_COLUMNS, lineterminator="\n")
             w.writeheader()
             for r in table:

@@ -5,11 +5,12 @@
  * must hold what the header promises (1..CSR_LEVELS_MAX_ROWS rows; each a non-empty scene word
  * and a registered level, NUL-terminated; links 1..64, macro steps 1..100000, 0 < dt <= 0.01,
  * 0 < rod_tol <= 1000, step_order 0..2, 0 <= step_tol_mm <= 100 and > 0 only on a tree-stepped
- * level, finite error >= 0, finite costs > 0, a line number within the
+ * level, finite error >= 0, whole_run -1, 0 or 1, finite costs > 0, a line number within the
  * input; no configuration twice), and the pick must keep its promise for the first row's
  * scene at three tolerances (below, at and above the row's error) and each step kind (any,
- * fixed, adaptive): a picked row is of that scene and kind, within the tolerance, and no row
- * of the scene and kind within it is cheaper; a refusal names the file. */
+ * fixed, adaptive): a picked row is of that scene and kind, within the tolerance, its whole
+ * run not failing (whole_run 0), and no such row of the scene and kind within it is cheaper; a
+ * refusal names the file. */
 #include <math.h>
 #include <string.h>
 
@@ -34,7 +35,7 @@ static void checkRow(const csrLevelRow* r, size_t size) {
       !(r->dt_s > 0 && r->dt_s <= 0.01) || !(r->rod_tol > 0 && r->rod_tol <= 1000) ||
       r->step_order < 0 || r->step_order > 2 || !(r->step_tol_mm >= 0 && r->step_tol_mm <= 100) ||
       (r->step_tol_mm > 0 && !csr_legTypeFind(r->level, NULL)->prepare) ||
-      !(r->error_mm >= 0) || !isfinite(r->error_mm) ||
+      !(r->error_mm >= 0) || !isfinite(r->error_mm) || r->whole_run < -1 || r->whole_run > 1 ||
       !(r->cpu_s_per_s > 0) || !isfinite(r->cpu_s_per_s) || !(r->wall_s_per_s > 0) ||
       !isfinite(r->wall_s_per_s)) {
     csz_fail("accepted row of line %d: a value out of range", r->line);
@@ -62,20 +63,22 @@ static void checkPick(const char* path, double tol, csrStepKind kind) {
     }
     for (int i = 0; i < g_t.nrow; i++) {
       if (!strcmp(g_t.row[i].scene, scene) && ofKind(&g_t.row[i], kind) &&
-          g_t.row[i].error_mm <= tol) {
+          g_t.row[i].error_mm <= tol && g_t.row[i].whole_run != 0) {
         csz_fail("pick refused --tol %g though line %d meets it", tol, g_t.row[i].line);
       }
     }
     return;
   }
   const csrLevelRow* p = &g_t.row[k];
-  if (strcmp(p->scene, scene) || !ofKind(p, kind) || !(p->error_mm <= tol)) {
-    csz_fail("picked line %d is of another scene or step kind or beyond --tol %g", p->line, tol);
+  if (strcmp(p->scene, scene) || !ofKind(p, kind) || !(p->error_mm <= tol) ||
+      p->whole_run == 0) {
+    csz_fail("picked line %d is of another scene or step kind, beyond --tol %g or failing its "
+             "whole run", p->line, tol);
   }
   for (int i = 0; i < g_t.nrow; i++) {
     const csrLevelRow* r = &g_t.row[i];
     if (!strcmp(r->scene, scene) && ofKind(r, kind) && r->error_mm <= tol &&
-        r->cpu_s_per_s < p->cpu_s_per_s) {
+        r->whole_run != 0 && r->cpu_s_per_s < p->cpu_s_per_s) {
       csz_fail("picked line %d but line %d is cheaper within --tol %g", p->line, r->line, tol);
     }
   }

@@ -10,8 +10,8 @@
 #include "cs_test.h"
 #include "robot_levels.h"
 
-/* format 1 (no rod_tol column: every row at 1), format 2, format 3 (step_order) and format 4
- * (step_tol_mm) */
+/* format 1 (no rod_tol column: every row at 1), format 2, format 3 (step_order), format 4
+ * (step_tol_mm) and format 5 (whole_run) */
 #define HEADER "scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
 #define HEADER2 \
   "scene,level,links,macro_steps,dt_s,rod_tol,error_mm,cpu_s_per_s,wall_s_per_s,machine\n"
@@ -21,6 +21,9 @@
 #define HEADER4                                                                             \
   "scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,cpu_s_per_s,"   \
   "wall_s_per_s,machine\n"
+#define HEADER5                                                                             \
+  "scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,error_mm,whole_run,"     \
+  "cpu_s_per_s,wall_s_per_s,machine\n"
 #define PATH "test_levels.csv"
 
 static csrLevelTable g_t; /* large: not on the stack */
@@ -280,6 +283,70 @@ static void test_levels_format4_step_tol(void) {
 }
 
 
+/* format 5: the whole_run column (1 the scene's whole run reaches its goal, 0 it does not, -1
+ * not judged) is read and range-checked; older formats read as -1; a row whose whole run fails
+ * is never picked however cheap and accurate on its window (the obstacle's first 4 s within
+ * 1 mm, then off the step at 12 s), the pick's note can count what it passed over, and a
+ * tolerance met only by failing rows names them */
+static void test_levels_format5_failing_whole_run_never_picked(void) {
+  csError err;
+  CS_EXPECT(readText(kGood, &err) == CS_OK && g_t.row[0].whole_run == -1);
+  static const char kGood4[] = HEADER4 "flat-road,strain,2,1,0.005,1,1,0,4,0.25,0.3,m\n";
+  CS_EXPECT(readText(kGood4, &err) == CS_OK && g_t.row[0].whole_run == -1);
+  static const char kGood5[] =
+      HEADER5
+      "obstacle,strain,2,1,0.005,1,2,0,0.8,0,0.27,0.3,m\n"
+      "obstacle,strain,2,1,0.005,1,1,0.00025,0.24,1,0.41,0.42,m\n"
+      "obstacle,rod,4,1,0.001,1,0,0,0.67,-1,0.77,0.78,m\n"
+      "obstacle,rod,2,1,0.001,1,0,0,1.37,1,0.35,0.5,m\n";
+  CS_EXPECT(readText(kGood5, &err) == CS_OK);
+  CS_EXPECT(g_t.nrow == 4 && g_t.row[0].whole_run == 0 && g_t.row[1].whole_run == 1 &&
+            g_t.row[2].whole_run == -1 && g_t.row[0].error_mm == 0.8 &&
+            g_t.row[0].cpu_s_per_s == 0.27 && g_t.row[3].wall_s_per_s == 0.5);
+  /* within 1 mm the cheapest row (0.27) fails its whole run: the adaptive row is picked, and
+   * one cheaper row was passed over */
+  CS_EXPECT(csr_levelTablePick(&g_t, "obstacle", 1, &err) == 1);
+  CS_EXPECT(csr_levelTableFailing(&g_t, "obstacle", 1, CSR_STEP_ANY, 0.41) == 1);
+  CS_EXPECT(csr_levelTableFailing(&g_t, "obstacle", 0.5, CSR_STEP_ANY, 0.41) == 0);
+  /* within 2 mm: the rod at 2 elements (0.35) is cheaper than the adaptive row, the failing
+   * row still skipped; a row not judged (-1) may be picked */
+  CS_EXPECT(csr_levelTablePick(&g_t, "obstacle", 2, &err) == 3);
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "obstacle", 2, CSR_STEP_FIXED, &err) == 3);
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "obstacle", 0.7, CSR_STEP_FIXED, &err) == 2);
+  /* only failing rows within the tolerance: refused, naming them */
+  CS_EXPECT(csr_levelTablePickStep(&g_t, "obstacle", 0.9, CSR_STEP_FIXED, &err) == 2);
+  static const char kFail5[] = HEADER5 "obstacle,strain,2,1,0.005,1,2,0,0.8,0,0.27,0.3,m\n"
+                                       "obstacle,rod,2,1,0.001,1,0,0,1.37,1,0.35,0.5,m\n";
+  CS_EXPECT(readText(kFail5, &err) == CS_OK);
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTablePick(&g_t, "obstacle", 1, &err) == -1);
+  CS_EXPECT(err.status == CS_ERR_RANGE &&
+            strstr(err.msg, "with a whole run that reaches the scene's goal") != NULL &&
+            strstr(err.msg, "1 row within it fails its own") != NULL &&
+            strstr(err.msg, "(whole_run 0; the cheapest strain, links 2") != NULL &&
+            strstr(err.msg, "line 2)") != NULL && strchr(err.msg, '\n') == NULL);
+  if (!strstr(err.msg, "line 2)")) {
+    printf("  got: %s\n", err.msg);
+  }
+  /* every row of the scene fails: said so (no best achievable among them) */
+  CS_EXPECT(readText(HEADER5 "obstacle,strain,2,1,0.005,1,2,0,0.8,0,0.27,0.3,m\n", &err) == CS_OK);
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTablePick(&g_t, "obstacle", 0.5, &err) == -1);
+  CS_EXPECT(err.status == CS_ERR_RANGE &&
+            strstr(err.msg, "every row for scene 'obstacle' fails the scene's whole run") != NULL);
+  /* bad values: one line each */
+  expectRefused(HEADER5 "obstacle,rod,2,1,0.001,1,0,0,1.37,2,0.48,0.5,m\n", 2,
+                "whole_run 2 is outside [-1, 1]");
+  expectRefused(HEADER5 "obstacle,rod,2,1,0.001,1,0,0,1.37,0.5,0.48,0.5,m\n", 2,
+                "whole_run 0.5 is not an integer");
+  expectRefused(HEADER5 "obstacle,rod,2,1,0.001,1,0,0,1.37,yes,0.48,0.5,m\n", 2,
+                "whole_run 'yes' is not a number");
+  /* a format 5 header on format 4 rows: counted, not shifted */
+  expectRefused(HEADER5 "obstacle,rod,2,1,0.001,1,0,0,1.37,0.48,0.5,m\n", 2,
+                "12 fields, expected 13");
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_levels_good_table_reads);
@@ -289,6 +356,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_levels_format2_rod_tol);
   CS_RUN(test_levels_format3_step_order);
   CS_RUN(test_levels_format4_step_tol);
+  CS_RUN(test_levels_format5_failing_whole_run_never_picked);
   remove(PATH);
   return cs_testSummary();
 }

@@ -12,6 +12,7 @@
  *    adaptive row runs the adaptive step at its tolerance, dt its longest step), and a table
  *    without rows of the kind is one error;
  *  - a tolerance below the best error is one error line naming the best achievable error;
+ *  - every row's whole run is judged, and a row whose whole run fails is never picked;
  *  - the table holds at least two configurations of every registered level per scene, and the
  *    benchmark's full table docs/levels_bench.csv has rows of every task and level.
  * And a bad or missing table, a missing --tol and a stray --tol are one-line errors before
@@ -41,7 +42,7 @@ static int cheapestKindWithin(const char* scene, double tol, int kind) {
   int best = -1;
   for (int i = 0; i < g_t.nrow; i++) {
     const csrLevelRow* r = &g_t.row[i];
-    if (strcmp(r->scene, scene) || r->error_mm > tol ||
+    if (strcmp(r->scene, scene) || r->error_mm > tol || r->whole_run == 0 ||
         (kind && (kind == 2) != (r->step_tol_mm > 0))) {
       continue;
     }
@@ -181,7 +182,7 @@ static void test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes(vo
   for (int s = 0; s < 2; s++) {
     double lo = INFINITY, hi = -INFINITY;
     for (int i = 0; i < g_t.nrow; i++) {
-      if (!strcmp(g_t.row[i].scene, scenes[s])) {
+      if (!strcmp(g_t.row[i].scene, scenes[s]) && g_t.row[i].whole_run != 0) {
         lo = fmin(lo, g_t.row[i].error_mm);
         hi = fmax(hi, g_t.row[i].error_mm);
       }
@@ -256,6 +257,52 @@ static void test_levels_strain_step_picks_its_kind(void) {
 }
 
 
+/* whole_run (format 5): the shipped table judges every row's whole run of its scene; a row
+ * accurate on its window whose whole run fails (the obstacle's fixed-step BDF2, within 1 mm
+ * over the first 4 s, falls off the step at 12 s) is never picked: at its own error the pick
+ * is the cheapest row that does not fail, and the banner and run file say what was passed over.
+ * A synthetic table where only failing rows meet the tolerance is one error naming them. */
+static void test_levels_failing_whole_run_never_picked(void) {
+  csError err;
+  cs_errorClear(&err);
+  CS_EXPECT(csr_levelTableRead(g_table, &g_t, &err) == CS_OK);
+  int judged = 0, passed = 0;
+  for (int i = 0; i < g_t.nrow; i++) {
+    judged += g_t.row[i].whole_run != -1;
+  }
+  CS_EXPECT(g_t.nrow > 0 && judged == g_t.nrow);
+  for (int i = 0; i < g_t.nrow; i++) {
+    const csrLevelRow* f = &g_t.row[i];
+    if (f->whole_run != 0) {
+      continue;
+    }
+    const int k = cheapestWithin(f->scene, f->error_mm);
+    if (k < 0 || !(f->cpu_s_per_s < g_t.row[k].cpu_s_per_s) || passed++) {
+      continue; /* one such run is enough: each takes a process */
+    }
+    char args[256];
+    snprintf(args, sizeof args, "run --scene %s --legs auto --tol %.17g --t-end 0.01 --out "
+             "levelscli_whole.h5", f->scene, f->error_mm);
+    csCliResult res;
+    cs_cliRun(exe_path, args, "levelscli", &res);
+    CS_EXPECT(res.status == 0 && strstr(res.err, "within --tol passed over") != NULL);
+    expectRuns(f->scene, f->error_mm, k);
+    remove("levelscli_whole.h5");
+    remove("levelscli_whole.xdmf");
+  }
+  printf("  %d of %d rows judged; %d failing row(s) cheaper than the pick at their own error "
+         "(the first run here)\n", judged, g_t.nrow, passed);
+  CS_EXPECT(cs_cliWriteText("levelscli_whole.csv",
+                            "scene,level,links,macro_steps,dt_s,rod_tol,step_order,step_tol_mm,"
+                            "error_mm,whole_run,cpu_s_per_s,wall_s_per_s,machine\n"
+                            "flat-road,strain,2,1,0.005,1,2,0,0.5,0,0.2,0.2,m\n"
+                            "flat-road,strain,2,1,0.002,1,1,0,2,1,0.3,0.3,m\n"));
+  expectError("--legs auto --tol 1 --levels levelscli_whole.csv",
+              "with a whole run that reaches the scene's goal: 1 row within it fails its own");
+  remove("levelscli_whole.csv");
+}
+
+
 /* the benchmark's full table (docs/levels_bench.csv) has every task and every level in it */
 static void test_levels_benchmark_has_every_task_and_level(void) {
   char path[1100];
@@ -304,6 +351,7 @@ int main(int argc, char** argv) {
   cs_testInit(argc - 1, argv + 1);
   CS_RUN(test_levels_shipped_table_loose_cheaper_than_tight_on_both_scenes);
   CS_RUN(test_levels_strain_step_picks_its_kind);
+  CS_RUN(test_levels_failing_whole_run_never_picked);
   CS_RUN(test_levels_benchmark_has_every_task_and_level);
   CS_RUN(test_levels_bad_table_and_options_refused);
   return cs_testSummary();
