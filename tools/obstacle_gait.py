@@ -1217,10 +1217,12 @@ if a.foothold_out:
         if skip:
             skip = False
             continue
-        if x in ('-o', '--out', '--foothold-out'):
+        # the candidates' own runs write no gate: the gate is the nominal description's
+        # (before margin18 each candidate's run overwrote it, the last candidate's winning)
+        if x in ('-o', '--out', '--foothold-out', '--gate-out'):
             skip = True
             continue
-        if x.startswith('--out=') or x.startswith('--foothold-out='):
+        if x.startswith(('--out=', '--foothold-out=', '--gate-out=')):
             continue
         argv.append(x)
     index = ['# %s.foothold: the landings of %s.csv chosen during the run from the measured '
