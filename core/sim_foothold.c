@@ -9,9 +9,13 @@
  * legs and the support move), so the choice is a function of that state: a retried step
  * restores the state, the undecided latch with it, and decides again from the same state. The
  * latches are part of the state (sim_state.c), so cs_stateSet restores them bit for bit.
- * Footholds are applied in order, so where a chained one (the same legs' next step, gaits_
- * foothold.h) overlaps the earlier one's window, the later's columns hold.
- * Nothing is allocated here (the candidates' commands go through one stack array). */
+ * The chosen candidate's command is the table with its legs' rows replaced over the window
+ * (gaits_foothold.h csg_footholdCompose), played through the same ramp and gate as the table:
+ * the table's schedule plus, on the legs, the schedules of the candidate's composite less its
+ * base. So any ramp works, a ramp longer than the rows included (the choice's changes arrive
+ * as smeared as the table's and run up to one ramp past the window); a chained foothold's rows
+ * hold from its W0 on (the composites are cut there), each foothold adding its own difference.
+ * Nothing is allocated here (the commands go through stack arrays). */
 #include <math.h>
 #include <string.h>
 
@@ -31,22 +35,11 @@ csStatus cs_modelLoadFoothold(csModel* m, const char* path, csError* err) {
   if (!s) {
     return err ? err->status : CS_ERR_PARSE;
   }
-  /* a candidate holds only the rows around its change, and the row before them must stand
-   * finished (gaits_schedule.h): so every change must end by the next row, the ramp fit the
-   * rows (a longer --ramp reaches back before the slice) */
-  for (int k = 0; k < s->n; k++) {
-    for (int i = 0; i < s->fh[k].ncand; i++) {
-      const csgGait* c = s->fh[k].cand[i].table;
-      for (int r = 0; r + 1 < c->nrow; r++) {
-        if (c->time[r + 1] - c->time[r] < m->sched.ramp - CSG_RAMP_ROUNDING) {
-          double gap = c->time[r + 1] - c->time[r], t = c->time[r];
-          csg_footholdDestroy(s); /* c is gone from here */
-          return cs_errorSet(err, CS_ERR_RANGE, "--foothold %s: the ramp %g s is longer than "
-                             "a candidate's rows (%.3g s at t = %g s): footholds need a ramp "
-                             "that fits the rows", path, m->sched.ramp, gap, t);
-        }
-      }
-    }
+  /* each candidate's command as the table with its rows (gaits_foothold.h): any ramp */
+  csStatus st = csg_footholdCompose(s, m->gait, err);
+  if (st != CS_OK) {
+    csg_footholdDestroy(s);
+    return st;
   }
   csg_footholdDestroy(m->foothold);
   m->foothold = s;
@@ -87,14 +80,22 @@ void cs_footholdApply(const csModel* m, csData* d, double t, double* p_cmd) {
                                        m->fh_edge, m->fh_nedge, f->margin);
       d->fh_choice[k] = c >= 0 ? c : f->nominal; /* -1 only for a non-finite support x */
     }
-    if (tt < f->w0 || tt >= f->w1) {
+    /* the chosen rows' difference from the table's, S(comp) - S(base) on the legs: exactly 0
+     * before W0 and from one ramp past the tail on (gaits_foothold.h), so skipped there; the
+     * sum is the table with the chosen rows, a mean of commands >= 0 that rounding could put
+     * a few 1e-17 MPa below 0 */
+    if (tt < f->w0 || tt >= f->tail + m->sched.ramp) {
       continue;
     }
-    double pc[CSG_NLABEL];
-    cs_gateEval(m, d, f->cand[(int)d->fh_choice[k]].table, t, pc);
+    const csgFootholdCand* c = &f->cand[(int)d->fh_choice[k]];
+    double pc[CSG_NLABEL], pb[CSG_NLABEL];
+    cs_gateEval(m, d, c->comp, t, pc);
+    cs_gateEval(m, d, c->base, t, pb);
     for (int leg = 0; leg < CSG_NLEG; leg++) {
       if (f->legs & (1u << leg)) {
-        memcpy(p_cmd + 12 * leg, pc + 12 * leg, 12 * sizeof(double));
+        for (int l = 12 * leg; l < 12 * leg + 12; l++) {
+          p_cmd[l] = fmax(0.0, p_cmd[l] + (pc[l] - pb[l]));
+        }
       }
     }
   }

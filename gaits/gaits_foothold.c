@@ -65,9 +65,128 @@ void csg_footholdDestroy(csgFootholdSet* s) {
   for (int k = 0; k < s->n; k++) {
     for (int i = 0; i < s->fh[k].ncand; i++) {
       csg_gaitDestroy(s->fh[k].cand[i].table);
+      csg_gaitDestroy(s->fh[k].cand[i].comp);
+      csg_gaitDestroy(s->fh[k].cand[i].base);
     }
   }
   free(s);
+}
+
+
+/* ---- the command a candidate stands for (csg_footholdCompose) ---- */
+
+/* the index of g's last row at or before t, -1 if none */
+static int lastRowAt(const csgGait* g, double t) {
+  int lo = 0, hi = g->nrow; /* the first row past t */
+  while (lo < hi) {
+    const int mid = lo + (hi - lo) / 2;
+    if (g->time[mid] <= t) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo - 1;
+}
+
+/* the step command of g's chamber l (0-based) at t: its last row at or before t, vented
+ * before its first */
+static double stepValue(const csgGait* g, int l, double t) {
+  const int r = lastRowAt(g, t);
+  return r < 0 ? 0.0 : g->pressure[(size_t)CSG_NLABEL * r + l];
+}
+
+static int cmpDouble(const void* a, const void* b) {
+  const double x = *(const double*)a, y = *(const double*)b;
+  return (x > y) - (x < y);
+}
+
+/* comp and base of foothold k's candidate c (the header's construction); cut[leg]: where the
+ * candidate's rows stop on that leg (W1, or a chained later foothold's W0) */
+static csStatus composeOne(csgFoothold* f, csgFootholdCand* c, const csgGait* nom,
+                           const double* cut, csError* err) {
+  const int ra = lastRowAt(nom, f->w0);          /* the nominal's last row at or before W0 */
+  int rb = lastRowAt(nom, f->w1) + 1;            /* its first row past W1 */
+  rb = rb < nom->nrow ? rb : nom->nrow - 1;
+  const int nn = rb - (ra < 0 ? 0 : ra) + 1;
+  const size_t cap = (size_t)(nn > 0 ? nn : 0) + (size_t)c->table->nrow + 2 + CSG_NLEG;
+  double* t = malloc(sizeof(double) * cap);
+  if (!t) {
+    return cs_errorSet(err, CS_ERR_MEMORY, "csg_footholdCompose: out of memory");
+  }
+  size_t n = 0;
+  for (int r = ra < 0 ? 0 : ra; r <= rb; r++) {
+    t[n++] = nom->time[r];
+  }
+  for (int r = 0; r < c->table->nrow; r++) {
+    if (c->table->time[r] >= f->w0 && c->table->time[r] < f->w1) {
+      t[n++] = c->table->time[r];
+    }
+  }
+  t[n++] = f->w0;
+  t[n++] = f->w1;
+  for (int leg = 0; leg < CSG_NLEG; leg++) {
+    if ((f->legs >> leg) & 1u && cut[leg] < f->w1) {
+      t[n++] = cut[leg];
+    }
+  }
+  qsort(t, n, sizeof(double), cmpDouble);
+  size_t m = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (m == 0 || t[i] > t[m - 1]) {
+      t[m++] = t[i];
+    }
+  }
+  csg_gaitDestroy(c->comp);
+  csg_gaitDestroy(c->base);
+  c->comp = csg_gaitCreate((int)m, err);
+  c->base = c->comp ? csg_gaitCreate((int)m, err) : NULL;
+  if (!c->base) {
+    free(t);
+    return err ? err->status : CS_ERR_MEMORY;
+  }
+  for (size_t i = 0; i < m; i++) {
+    c->comp->time[i] = c->base->time[i] = t[i];
+    for (int l = 0; l < CSG_NLABEL; l++) {
+      const int leg = l / 12;
+      const double pn = stepValue(nom, l, t[i]);
+      const int chosen = (f->legs >> leg) & 1u && t[i] >= f->w0 && t[i] < cut[leg];
+      c->base->pressure[(size_t)CSG_NLABEL * i + l] = pn;
+      c->comp->pressure[(size_t)CSG_NLABEL * i + l] = chosen ? stepValue(c->table, l, t[i]) : pn;
+    }
+  }
+  c->comp->ramp = c->base->ramp = nom->ramp;
+  f->tail = fmax(f->tail, t[m - 1]);
+  free(t);
+  return CS_OK;
+}
+
+
+csStatus csg_footholdCompose(csgFootholdSet* s, const csgGait* nominal, csError* err) {
+  if (!s || !nominal || nominal->nrow < 1) {
+    return cs_errorSet(err, CS_ERR_ARG, "csg_footholdCompose: NULL footholds or empty table");
+  }
+  for (int k = 0; k < s->n; k++) {
+    csgFoothold* f = &s->fh[k];
+    /* a chained later foothold's rows hold from its W0 on (the reader's rule) */
+    double cut[CSG_NLEG];
+    for (int leg = 0; leg < CSG_NLEG; leg++) {
+      cut[leg] = f->w1;
+      for (int j = k + 1; j < s->n; j++) {
+        if ((s->fh[j].legs >> leg) & 1u && s->fh[j].w0 > f->w0 && s->fh[j].w0 < cut[leg]) {
+          cut[leg] = s->fh[j].w0;
+        }
+      }
+    }
+    f->tail = -INFINITY;
+    for (int i = 0; i < f->ncand; i++) {
+      csStatus st = composeOne(f, &f->cand[i], nominal, cut, err);
+      if (st != CS_OK) {
+        return st;
+      }
+    }
+  }
+  return CS_OK;
 }
 
 

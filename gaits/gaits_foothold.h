@@ -27,9 +27,19 @@
  *       path relative to the .foothold file's folder) whose LEGS columns hold over the window; `nominal` marks the candidate the nominal
  *       table (NAME.csv) holds: exactly one per foothold
  * Footholds sharing a leg may overlap in their windows only as a chain: the later one starts
- * and ends later (W0 and W1 both greater) and its columns hold from its W0 on (the next step
+ * and ends later (W0 and W1 both greater) and its rows hold from its W0 on (the next step
  * of the same legs, decided while the earlier's rows still run); a candidate table covers its
  * window (first row <= W0, last row >= W1).
+ *
+ * What a chosen candidate commands, at any ramp (csg_footholdCompose): the gait table with the
+ * foothold's legs' rows replaced over the window, i.e. the step command that is the
+ * candidate's (its last row at or before t) for W0 <= t < W1 and the nominal table's outside
+ * (a chained later foothold's from its W0 on); the valves then ramp to it as to any table
+ * (gaits_schedule.h). So where the ramp outlasts a row (0.5 s against the designer's 0.05 s
+ * rows) the choice arrives smeared and late as the table's own rows do, its changes reach up to
+ * one ramp past W1, and the rows before W0 stay the nominal's: nothing about the ramp is
+ * refused. (Until margin18, 2026-12-07, the player played the candidate's rows alone over the
+ * window, which is that command only where the ramp fits the rows, and refused longer ramps.)
  * Errors: "<file>:<line>: <cause>" (CS_ERR_PARSE malformed, CS_ERR_RANGE values, CS_ERR_IO a
  * file that cannot be read, a candidate table's own reader message). */
 #ifndef CS_GAITS_FOOTHOLD_H
@@ -63,6 +73,9 @@ typedef struct csgFootholdCand_ {
   double land;        /* mm, terrain x: its landing with the support on plan */
   double lo, hi;      /* mm, terrain x: the landings its stance length suits */
   csgGait* table;     /* owned: its rows; the foothold's legs' columns are used */
+  csgGait* comp;      /* owned, csg_footholdCompose (NULL before): the command it stands for
+                         over the foothold's span (see csg_footholdCompose) */
+  csgGait* base;      /* owned: the nominal table's command at comp's row times */
 } csgFootholdCand;
 
 typedef struct csgFoothold_ {
@@ -74,6 +87,9 @@ typedef struct csgFoothold_ {
   double w0, w1;      /* s: the window of the candidates' columns */
   int ncand;
   int nominal;        /* index of the candidate the nominal table holds */
+  double tail;        /* s, csg_footholdCompose: the last row of its candidates' comp/base (the
+                         nominal's first row past W1); their schedules agree from one ramp
+                         after it, and before W0 */
   csgFootholdCand cand[CSG_FOOTHOLD_MAX_CAND];
   int line;           /* of its `foothold` statement */
 } csgFoothold;
@@ -89,6 +105,21 @@ typedef struct csgFootholdSet_ {
 csgFootholdSet* csg_footholdRead(const char* path, const csgReadOptions* opt, csError* err);
 /* NULL-safe. */
 void csg_footholdDestroy(csgFootholdSet* s);
+
+/* Make every candidate's comp and base against the nominal table (after csg_footholdRead; the
+ * run's player calls it at load). comp holds, at the union of the nominal's row times from its
+ * last row at or before W0 to its first row past W1 (or its last), the candidate's rows in
+ * [W0, W1) and W0, W1 themselves: the command above (on the foothold's legs' columns the
+ * candidate's step value for W0 <= tau < W1, cut at a chained later foothold's W0 on a shared
+ * leg, the nominal's otherwise; 0 before the nominal's first row); base the nominal's step
+ * value at the same times. The schedule is linear in the rows and a row's ramp depends only on
+ * the row times (gaits_schedule.h), so on the legs' columns
+ *   S(nominal)(t) + S(comp)(t) - S(base)(t) = S(the nominal with the chosen rows)(t)
+ * for every ramp, shape and gate's hold, up to rounding: comp and base start from vented alike
+ * and share every row time, so that start cancels; the difference is exactly 0 before W0
+ * (equal rows) and from tail + ramp on (both at their equal last row). Rebuilds what a
+ * previous call made. Returns CS_OK, CS_ERR_ARG (NULL s or nominal), CS_ERR_MEMORY. */
+csStatus csg_footholdCompose(csgFootholdSet* s, const csgGait* nominal, csError* err);
 
 #ifdef __cplusplus
 }

@@ -1217,10 +1217,12 @@ if a.foothold_out:
         if skip:
             skip = False
             continue
-        if x in ('-o', '--out', '--foothold-out'):
+        # the candidates' own runs write no gate: the gate is the nominal description's
+        # (before margin18 each candidate's run overwrote it, the last candidate's winning)
+        if x in ('-o', '--out', '--foothold-out', '--gate-out'):
             skip = True
             continue
-        if x.startswith('--out=') or x.startswith('--foothold-out='):
+        if x.startswith(('--out=', '--foothold-out=', '--gate-out=')):
             continue
         argv.append(x)
     index = ['# %s.foothold: the landings of %s.csv chosen during the run from the measured '
@@ -1262,7 +1264,11 @@ if a.foothold_out:
             var = os.path.join(folder, 'var.gait')
             spec = '%s:%d:%g' % (f['legs'], f['cycle'], o)
             low = [] if LOW[0] is None else ['--low-slot', str(LOW[0])]
-            subprocess.run([sys.executable, sys.argv[0]] + argv + low + ['--force', spec, '-o', var],
+            # the forces in effect (the default BF:4:35 too: a run given --force has no
+            # default, so before margin18 a candidate of a table without --force lost it)
+            forced = [x for f0 in a.force for x in ('--force', f0)]
+            subprocess.run([sys.executable, sys.argv[0]] + argv + low + forced +
+                           ['--force', spec, '-o', var],
                            check=True)
             design(var, os.path.join(folder, 'var.csv'), a.design_cache)
             h2, rows = read_csv(os.path.join(folder, 'var.csv'))

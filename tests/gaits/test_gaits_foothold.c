@@ -5,10 +5,13 @@
  * (the build tree). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cs_test.h"
 #include "gaits_foothold.h"
+#include "gaits_labels.h"
+#include "gaits_schedule.h"
 
 
 /* a hip 30 mm ahead of the plan takes the landing the plan's hip would, with the offset 30 mm
@@ -169,6 +172,187 @@ static void test_readBad(void) {
 }
 
 
+/* ---- the command a candidate stands for, at any ramp (csg_footholdCompose) ---- */
+
+#define NL CSG_NLABEL
+/* a nominal table of rows every 0.05 s over 0..2 s whose pressures change at every row (leg
+ * k's chamber c: a triangle wave of its own phase, 0..0.3 MPa) */
+static csgGait* nominalTable(void) {
+  csgGait* g = csg_gaitCreate(41, NULL);
+  for (int i = 0; g && i < g->nrow; i++) {
+    g->time[i] = 0.05 * i;
+    for (int l = 0; l < NL; l++) {
+      const double u = fmod(0.37 * i + 0.11 * l, 2.0);
+      g->pressure[NL * i + l] = 0.15 * (u < 1 ? u : 2 - u) * 2;
+    }
+  }
+  return g;
+}
+
+/* a candidate of legs `legs` over rows t0..t1 (s, 0.05 s apart): the nominal's rows with the
+ * legs' columns scaled by `scale` and every other column 0.4 MPa (which the player must not
+ * use) */
+static csgGait* candidateTable(const csgGait* nom, unsigned legs, double t0, double t1,
+                               double scale) {
+  const int i0 = (int)lround(t0 / 0.05), n = (int)lround((t1 - t0) / 0.05) + 1;
+  csgGait* g = csg_gaitCreate(n, NULL);
+  for (int i = 0; g && i < n; i++) {
+    g->time[i] = nom->time[i0 + i];
+    for (int l = 0; l < NL; l++) {
+      g->pressure[NL * i + l] = (legs >> (l / 12)) & 1u ? scale * nom->pressure[NL * (i0 + i) + l]
+                                                       : 0.4;
+    }
+  }
+  return g;
+}
+
+/* a set of footholds on nom: foothold k of legs legs[k], window w[k][0..1], its one candidate
+ * (nominal: the index stands for itself here) scale[k] of the nominal over rows
+ * w0 - 0.05 .. w1 + 0.1 (as tools/obstacle_gait.py cuts them) */
+static csgFootholdSet* footholds(const csgGait* nom, int n, const unsigned* legs,
+                                 const double (*w)[2], const double* scale) {
+  csgFootholdSet* s = calloc(1, sizeof *s);
+  s->n = n;
+  for (int k = 0; k < n; k++) {
+    csgFoothold* f = &s->fh[k];
+    f->t = w[k][0];
+    f->legs = legs[k];
+    f->w0 = w[k][0];
+    f->w1 = w[k][1];
+    f->ncand = 1;
+    f->nominal = 0;
+    f->cand[0].table = candidateTable(nom, legs[k], w[k][0] - 0.05, w[k][1] + 0.1, scale[k]);
+  }
+  return s;
+}
+
+/* the command by hand: nom's rows with foothold k's legs' columns from its candidate over the
+ * rows of its window, a later foothold's from its W0 on (the chain's rule) */
+static csgGait* handComposite(const csgGait* nom, const csgFootholdSet* s) {
+  csgGait* g = csg_gaitCreate(nom->nrow, NULL);
+  memcpy(g->time, nom->time, sizeof(double) * (size_t)nom->nrow);
+  memcpy(g->pressure, nom->pressure, sizeof(double) * NL * (size_t)nom->nrow);
+  for (int k = 0; k < s->n; k++) {
+    const csgFoothold* f = &s->fh[k];
+    const csgGait* c = f->cand[0].table;
+    for (int i = 0; i < nom->nrow; i++) {
+      if (nom->time[i] < f->w0 - 1e-12 || nom->time[i] >= f->w1 - 1e-12) continue;
+      const int j = (int)lround((nom->time[i] - c->time[0]) / 0.05);
+      for (int l = 0; l < NL; l++) {
+        if ((f->legs >> (l / 12)) & 1u) g->pressure[NL * i + l] = c->pressure[NL * j + l];
+      }
+    }
+  }
+  return g;
+}
+
+/* the player's arithmetic (core/sim_foothold.c) on the plain schedule: the nominal's p plus,
+ * on each foothold's legs, its composite's less its base's */
+static void played(const csgGait* nom, const csgFootholdSet* s, const csgScheduleOptions* o,
+                   double t, double p[NL]) {
+  csg_scheduleEval(nom, o, t, p);
+  for (int k = 0; k < s->n; k++) {
+    const csgFoothold* f = &s->fh[k];
+    if (t < f->w0 || t >= f->tail + o->ramp) continue;
+    double pc[NL], pb[NL];
+    csg_scheduleEval(f->cand[0].comp, o, t, pc);
+    csg_scheduleEval(f->cand[0].base, o, t, pb);
+    for (int l = 0; l < NL; l++) {
+      if ((f->legs >> (l / 12)) & 1u) p[l] = fmax(0.0, p[l] + (pc[l] - pb[l]));
+    }
+  }
+}
+
+/* the largest difference (MPa) of the played schedule's legs' columns from the hand
+ * composite's over 0..3 s every 1 ms */
+static double compareOver(const csgGait* nom, const csgFootholdSet* s, const csgGait* hand,
+                          double ramp, unsigned legs) {
+  csgScheduleOptions o = csg_defaultScheduleOptions();
+  o.ramp = ramp;
+  double worst = 0;
+  for (int i = 0; i <= 3000; i++) {
+    const double t = 1e-3 * i;
+    double p[NL], q[NL];
+    played(nom, s, &o, t, p);
+    csg_scheduleEval(hand, &o, t, q);
+    for (int l = 0; l < NL; l++) {
+      if ((legs >> (l / 12)) & 1u) {
+        worst = fmax(worst, fabs(p[l] - q[l]));
+      }
+    }
+  }
+  return worst;
+}
+
+/* One foothold (legs D, H; window 1.0..1.5 s; the candidate half the nominal's pressures) and
+ * a chain (H's next step 1.3..1.8 s, a quarter): at ramps 0 (steps), 0.05 (the rows' spacing),
+ * 0.2 and 0.5 s (ten rows: the case the player refused until margin18) the played command is
+ * the hand-made table's schedule. Tolerance: the schedule sums at most 11 changes of <= 0.3
+ * MPa, so rounding stays below 11 x 0.3 x 2.2e-16 ~ 1e-15 MPa; 1e-13 leaves room, while a
+ * slice started from vented (the player's error before) is off by up to 0.3 MPa. */
+static void test_composeAnyRamp(void) {
+  csgGait* nom = nominalTable();
+  const unsigned dh = (1u << 3) | (1u << 7), h = 1u << 7;
+  const unsigned legs2[2] = {dh, h};
+  const double w2[2][2] = {{1.0, 1.5}, {1.3, 1.8}};
+  const double scale2[2] = {0.5, 0.25};
+  const double ramps[4] = {0, 0.05, 0.2, 0.5};
+  for (int n = 1; n <= 2; n++) {
+    csgFootholdSet* s = footholds(nom, n, legs2, w2, scale2);
+    csError err;
+    cs_errorClear(&err);
+    CS_EXPECT(csg_footholdCompose(s, nom, &err) == CS_OK);
+    csgGait* hand = handComposite(nom, s);
+    for (int r = 0; r < 4; r++) {
+      const double worst = compareOver(nom, s, hand, ramps[r], dh);
+      printf("%d foothold(s), ramp %.2f s: largest difference from the hand-made table %.2g "
+             "MPa\n", n, ramps[r], worst);
+      CS_EXPECT(worst < 1e-13);
+    }
+    /* the composite's difference is 0 before W0 and one ramp after its last row, so the player
+     * may skip it there */
+    CS_EXPECT(s->fh[0].tail >= s->fh[0].w1 && s->fh[0].tail < s->fh[0].w1 + 0.1 + 1e-12);
+    csg_gaitDestroy(hand);
+    csg_footholdDestroy(s);
+  }
+  csg_gaitDestroy(nom);
+}
+
+
+/* a candidate whose rows are not the nominal's (0.025 s later): with ramp 0 the played
+ * command is the candidate's step value inside the window, the nominal's outside (the
+ * definition, independent of how the composite is built) */
+static void test_composeOffsetRows(void) {
+  csgGait* nom = nominalTable();
+  const unsigned dh = (1u << 3) | (1u << 7);
+  const double w[1][2] = {{1.0, 1.5}};
+  const double scale[1] = {0.5};
+  csgFootholdSet* s = footholds(nom, 1, &dh, w, scale);
+  csgGait* c = s->fh[0].cand[0].table;
+  for (int i = 0; i < c->nrow; i++) c->time[i] += 0.025; /* 0.975 .. 1.625 */
+  CS_EXPECT(csg_footholdCompose(s, nom, NULL) == CS_OK);
+  csgScheduleOptions o = csg_defaultScheduleOptions();
+  o.ramp = 0;
+  int ok = 1;
+  for (int i = 0; i <= 300; i++) {
+    const double t = 0.01 * i + 0.0005;
+    double p[NL];
+    played(nom, s, &o, t, p);
+    const int inside = t >= 1.0 && t < 1.5;
+    const csgGait* g = inside ? c : nom;
+    int row = -1;
+    while (row + 1 < g->nrow && g->time[row + 1] <= t) row++;
+    for (int l = 3 * 12; l < 4 * 12; l++) {
+      const double want = row < 0 ? 0 : g->pressure[NL * row + l];
+      if (fabs(p[l] - want) > 1e-15) ok = 0;
+    }
+  }
+  CS_EXPECT(ok);
+  csg_footholdDestroy(s);
+  csg_gaitDestroy(nom);
+}
+
+
 int main(int argc, char** argv) {
   cs_testInit(argc, argv);
   CS_RUN(test_hipAheadKeepsThePlannedLanding);
@@ -177,5 +361,7 @@ int main(int argc, char** argv) {
   CS_RUN(test_readGood);
   CS_RUN(test_readChain);
   CS_RUN(test_readBad);
+  CS_RUN(test_composeAnyRamp);
+  CS_RUN(test_composeOffsetRows);
   return cs_testSummary();
 }

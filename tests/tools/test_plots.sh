@@ -331,6 +331,22 @@ else
   bad "obstacle_gait --gate-from: the shipped gate; a lift to AP gated, a move over to U0 not" "$TMP/out.txt"
 fi
 
+# tools/obstacle_gait.py --foothold-out (rule 15): each candidate is designed with the forces in
+# effect, the default BF:4:35 included (before margin18 a candidate of the default description
+# lost it, changed other legs and stopped the tool), and writes no gate (before, each candidate's
+# own run overwrote --gate-out): the gate is the nominal description's, the shipped one
+if (cd "$ROOT" && "$PY" "$OG" --foothold BF:1:35 -o "$TMP/fh.gait" --gate-out "$TMP/fh.gate" \
+      --foothold-out "$TMP/fh" --crawlsim "$EXE") >"$TMP/out.txt" 2>&1 &&
+   grep -q "^# the landing gate of $TMP/fh.gait " "$TMP/fh.gate" &&
+   cmp -s <(stmts "$TMP/fh.gate") <(stmts "$ROOT/gaits/obstacle.gate") &&
+   cmp -s <(stmts "$TMP/fh.csv") <(stmts "$ROOT/gaits/obstacle.csv") &&
+   grep -q '^foothold 7.4000 BF xplan ' "$TMP/fh.foothold" &&
+   grep -q '^candidate 35 land [0-9.]* fits [-0-9e.+]* [-0-9e.+]* fh.foothold.d/f1_BF_35.csv$' "$TMP/fh.foothold"; then
+  ok "obstacle_gait --foothold-out: candidates keep the default force, the gate is the nominal's"
+else
+  bad "obstacle_gait --foothold-out: candidates keep the default force, the gate is the nominal's" "$TMP/out.txt"
+fi
+
 # tools/obstacle_gait.py --crawl-max (issue 33, the crawl ended on the measured support): 12 by
 # default since ship11 (the shipped description and gate, byte for byte, the gate's `crawl`
 # statement at the crawl's start the description names: 12 lateral slots); --crawl-max 0 writes
