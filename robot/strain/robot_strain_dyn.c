@@ -157,8 +157,12 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
   }
   /* the velocity-product accelerations Ġ_p u: the twist recursion's derivative along q in
    * the direction η (csr_strainTwistRates_, one pass, exact to round-off, on the kinematics'
-   * step exponentials where they are this q's; the twists it forms on the way are scratch: r
-   * below takes them from the Jacobians); zero at η = 0 */
+   * step exponentials where they are this q's); zero at η = 0. The twists it forms on the way
+   * are the points' V_p = G_p u to round-off (the recursion V_to = Ad(e^-Ω) V_from + T(Ω) Ω̇
+   * against the Jacobians' sum Ad(g_p⁻¹) V_b + J_p η): r below takes the midpoints' (the
+   * chain points' again from their Jacobians: the contact's law is memoised on the shapes'
+   * bits, and a twist of other bits missed it, +34 M on the flat road; docs/notes/
+   * strain_leg.md, legpass19) */
   int moving = 0;
   for (int j = 0; j < n && !moving; j++) {
     moving = d->eta[j] != 0;
@@ -184,7 +188,13 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
     const double* Ms = m->Ms + 6 * p;
     const double* J = d->J + (size_t)p * 6 * n;
     double* V = d->Vp + 6 * p;
-    csr_strainPointTwist_(m, d, p, d->Vb, d->eta, V);
+    if (moving && (p & 1)) {
+      /* a midpoint's twist from the rate recursion; the chain points' from their Jacobians
+       * below, the bits the contact's shapes were evaluated at (the law's memo, loadOf) */
+      memcpy(V, d->Vs + 6 * p, 6 * sizeof(double));
+    } else {
+      csr_strainPointTwist_(m, d, p, d->Vb, d->eta, V);
+    }
     d->vp_gen = -1; /* written here, not by csr_strainPointTwists_: its memo is off */
     double A[36];
     adInv(d, p, A);
