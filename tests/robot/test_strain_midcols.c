@@ -24,15 +24,7 @@
 static StrainRobot* robotAt(int a) {
   csrStrainParams sp = csr_strainDefaultParams();
   sp.artic = a;
-  csError err;
-  cs_errorClear(&err);
-  StrainRobot* r = calloc(1, sizeof *r);
-  if (r && strainRobotCreateParams(r, 0.8, &sp, &err) == 0) {
-    return r;
-  }
-  fprintf(stderr, "  %s\n", err.msg);
-  free(r);
-  return NULL;
+  return strainRobotNew(&sp);
 }
 
 
