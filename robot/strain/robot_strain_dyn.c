@@ -172,8 +172,7 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
    * are the points' V_p = G_p u to round-off (the recursion V_to = Ad(e^-Ω) V_from + T(Ω) Ω̇
    * against the Jacobians' sum Ad(g_p⁻¹) V_b + J_p η): r below takes the midpoints' (the
    * chain points' again from their Jacobians: the contact's law is memoised on the shapes'
-   * bits, and a twist of other bits missed it, +34 M on the flat road; docs/notes/
-   * strain_leg.md, legpass19) */
+   * bits, and a twist of other bits misses the memo; docs/notes/strain_leg.md, legpass19) */
   int moving = 0;
   for (int j = 0; j < n && !moving; j++) {
     moving = d->eta[j] != 0;
