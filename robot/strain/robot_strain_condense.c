@@ -263,7 +263,7 @@ int csr_strainCondenseKept_(const csrStrainModel* m, csrStrainData* d, double h,
 /* the step's start kinematics (at q0, with J at every point) into d->R0, x0, J0, the current
  * kinematics (d->R, x, J, kin_valid) kept */
 static void startKinematics(const csrStrainModel* m, csrStrainData* d) {
-  const int n = m->n, valid = d->kin_valid, chain = d->kin_chain;
+  const int n = m->n, valid = d->kin_valid, chain = d->kin_chain, midown = d->kin_midown;
   double* t;
   t = d->R, d->R = d->R0, d->R0 = t;
   t = d->x, d->x = d->x0, d->x0 = t;
@@ -277,6 +277,7 @@ static void startKinematics(const csrStrainModel* m, csrStrainData* d) {
   t = d->J, d->J = d->J0, d->J0 = t;
   d->kin_valid = valid;
   d->kin_chain = chain;
+  d->kin_midown = midown;
 }
 
 
@@ -369,7 +370,9 @@ static int plainFactored(const csrStrainModel* m, csrStrainData* d) {
 
 
 /* the current kinematics kept in d->R0, x0, J0 (k0) for a later pass that forms W_M there:
- * the arrays swapped, not copied; the iterates form their own (kin_valid 0) */
+ * the arrays swapped, not copied; the iterates form their own (kin_valid 0). W_M's composite
+ * inertias (csr_strainInertiaFrom_) read the chain points' Jacobians and the midpoints' own
+ * columns alone, which backward Euler's start on want_J 4 has too */
 static void keepKinematics(csrStrainData* d) {
   double* t;
   t = d->R, d->R = d->R0, d->R0 = t;

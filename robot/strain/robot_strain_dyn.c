@@ -151,14 +151,28 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
                     int inertia) {
   const int n = m->n;
   /* the kinematics relative to the base: the last Finish left it valid at this q (the
-   * return-mapping needed it) */
-  if (d->kin_valid < 2) {
+   * return-mapping needed it). Backward Euler's start by the recursion reads a midpoint's
+   * Jacobian through its own piece's columns alone (the recursion's L_p; its step force's
+   * J_pᵀ F_p on the earlier columns is J_cᵀ Ad(e^-Ω)ᵀ F_p through the chain point c before it,
+   * J_p = Ad(e^-Ω) J_c there): the commit's want_J 4 left out the rest (~1/3 of the Jacobians'
+   * columns). Whichever kinematics this q has (want_J 4, or 1 from a read-out: their columns
+   * the same bits) the start takes this path, so a restored state steps as the kept one */
+  const int mid_own = !at_iterate && !inertia && csr_strainArticStep_(m);
+  if (mid_own) {
+    if (!(d->kin_valid == 2 || (d->kin_valid == 1 && d->kin_midown)) ||
+        !csr_strainStepsAt_(m, d)) {
+      csr_strainKinematics_(m, d, 4);
+    }
+  } else if (d->kin_valid < 2) {
     csr_strainKinematics_(m, d, 1);
   }
   /* the velocity-product accelerations Ġ_p u: the twist recursion's derivative along q in
    * the direction η (csr_strainTwistRates_, one pass, exact to round-off, on the kinematics'
-   * step exponentials where they are this q's; the twists it forms on the way are scratch: r
-   * below takes them from the Jacobians); zero at η = 0 */
+   * step exponentials where they are this q's); zero at η = 0. The twists it forms on the way
+   * are the points' V_p = G_p u to round-off (the recursion V_to = Ad(e^-Ω) V_from + T(Ω) Ω̇
+   * against the Jacobians' sum Ad(g_p⁻¹) V_b + J_p η): r below takes the midpoints' (the
+   * chain points' again from their Jacobians: the contact's law is memoised on the shapes'
+   * bits, and a twist of other bits misses the memo; docs/notes/strain_leg.md, legpass19) */
   int moving = 0;
   for (int j = 0; j < n && !moving; j++) {
     moving = d->eta[j] != 0;
@@ -180,11 +194,28 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
   memset(d->rMl, 0, (size_t)n * sizeof(double));
   double gh[3];
   csu_mulMatTVec3(gh, d->Rb, m->gravity);
+  int pk = 0; /* the piece of point p (pt0[pk] < p <= pt0[pk + 1]) */
   for (int p = 0; p < m->np; p++) {
     const double* Ms = m->Ms + 6 * p;
     const double* J = d->J + (size_t)p * 6 * n;
     double* V = d->Vp + 6 * p;
-    csr_strainPointTwist_(m, d, p, d->Vb, d->eta, V);
+    while (p > m->pt0[pk + 1]) {
+      pk++;
+    }
+    if (moving && (p & 1)) {
+      /* a midpoint's twist from the rate recursion; the chain points' from their Jacobians
+       * below, the bits the contact's shapes were evaluated at (the law's memo, loadOf) */
+      memcpy(V, d->Vs + 6 * p, 6 * sizeof(double));
+    } else if (mid_own && (p & 1)) {
+      /* at rest V_p = Ad(g_p⁻¹) V_b = (Rᵀ ω; Rᵀ (v + ω × x)), J_p η = 0 */
+      double wx[3], t[3];
+      csu_cross3(wx, d->Vb, d->x + 3 * p);
+      csu_add3(t, d->Vb + 3, wx);
+      csu_mulMatTVec3(V, d->R + 9 * p, d->Vb);
+      csu_mulMatTVec3(V + 3, d->R + 9 * p, t);
+    } else {
+      csr_strainPointTwist_(m, d, p, d->Vb, d->eta, V);
+    }
     d->vp_gen = -1; /* written here, not by csr_strainPointTwists_: its memo is off */
     double A[36];
     adInv(d, p, A);
@@ -222,7 +253,17 @@ static int assemble(const csrStrainModel* m, csrStrainData* d, double h, int at_
         rb[c] += A[6 * r + c] * F[r];
       }
     }
-    csr_strainRows6_(d->rMl, J, n, F, nc, 1);
+    if (mid_own && (p & 1)) {
+      /* a midpoint: its own columns, then the earlier ones through the chain point p - 1 */
+      const int c0 = m->dof0[pk];
+      const double* ks = d->ks + 16 * p;
+      double Fc[6];
+      csr_strainRows6_(d->rMl + c0, J + c0, n, F, nc - c0, 1);
+      csr_strainAdExpTApply_(ks, ks + 9, F, Fc);
+      csr_strainRows6_(d->rMl, J - (size_t)6 * n, n, Fc, c0, 1);
+    } else {
+      csr_strainRows6_(d->rMl, J, n, F, nc, 1);
+    }
   }
   const double tau = m->rpar.damping_time;
   if (at_iterate) {
@@ -761,7 +802,9 @@ int csr_strainCommit(const csrStrainModel* m, csrStrainData* d) {
    * return-mapping and the output's contact read-out: the midpoints' Jacobians are left out
    * (want_J 2; docs/notes/strain_leg.md, bdf15) */
   if (d->kin_valid < 2) {
-    csr_strainKinematics_(m, d, m->par.step_order == 2 ? 2 : 1);
+    /* backward Euler's next start by the recursion reads the midpoints' own columns alone
+     * (assemble): want_J 4 */
+    csr_strainKinematics_(m, d, m->par.step_order == 2 ? 2 : csr_strainArticStep_(m) ? 4 : 1);
   }
   double X1[3];
   csr_strainMassMomentAt_(m, d, X1);

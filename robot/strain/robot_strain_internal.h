@@ -125,7 +125,10 @@ struct csrStrainData_ {
   double* J;      /* (np x 6 x n) body Jacobians */
   int kin_valid;  /* 0 not valid, 1 the poses (and the chain points' J if kin_chain), 2 every J */
   int kin_chain;  /* 1: the last kinematics with Jacobians formed them at the chain points at
-                     least (want_J 1 or 2; csr_strainChainJ_) */
+                     least (want_J 1, 2 or 4; csr_strainChainJ_) */
+  int kin_midown; /* 1 (with kin_valid 1): the last kinematics (want_J 4) also formed the
+                     midpoints' own piece's columns L_p = J_p[:, dof0[k]..] (their earlier
+                     columns are stale): what backward Euler's start by the recursion reads */
   double* Rs_save; /* (np x 9) scratch: the poses kept over a kinematics elsewhere */
   double* xs_save; /* (np x 3) */
   long kin_gen;   /* counts csr_strainKinematics_'s calls: R, x, J change only there */
@@ -500,6 +503,15 @@ void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double x
  * the poses at the chain points alone, no Jacobians, the midpoints' poses left as they were,
  * kin_valid 0 (the predicted shapes' poses: csr_strainPredictShapes_) */
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J);
+/* Ad(exp(-Ω))ᵀ W of one step, exp(Ω) = (Re, pe) (csr_strainStepsAt_'s first 12 numbers of the
+ * step's end point): a wrench W (μ; φ) at the step's end point taken to its start,
+ * (Re μ + pe × Re φ; Re φ) */
+void csr_strainAdExpTApply_(const double Re[9], const double pe[3], const double W[6],
+                            double out[6]);
+/* want_J 4 (kin_valid 1, kin_midown 1): as 2, and the midpoints' own piece's columns (not the
+ * columns of the pieces before: a midpoint is a leaf, and backward Euler's start by the
+ * recursion reads its L_p alone, its step force through the chain point before it; the
+ * columns formed are want_J 1's bits) */
 /* 1 when the poses and the chain points' Jacobians are valid (kin_valid 2, or 1 from a
  * want_J 2): what the contact's loads and the point twists at the chain points read */
 static inline int csr_strainChainJ_(const csrStrainData* d) {

@@ -430,7 +430,7 @@ static void tangentColumns(const double T[36], const double* restrict dOm, int n
 /* pose and Jacobian at point `to` from point `from` through the step Ω (dOm over piece k's
  * unknowns, NULL for a rigid step) */
 static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int to, int k,
-                      const double Om[6], const double* dOm, int want_J) {
+                      const double Om[6], const double* dOm, int want_J, int col0) {
   double Re[9], pe[3], tmp[3];
   csrTrig tg;
   trigOf(Om, &tg);
@@ -448,8 +448,11 @@ static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int t
   if (!want_J) {
     return;
   }
+  /* the columns from col0 on (0: all; a midpoint of want_J 4: its own piece's): each
+   * column's arithmetic is its own, so the same bits as a whole pass gives them */
   const int n = m->n, ncol = m->dof0[k] + m->ndof[k];
-  adExpColumns(Re, pe, d->J + (size_t)from * 6 * n, d->J + (size_t)to * 6 * n, n, ncol);
+  adExpColumns(Re, pe, d->J + (size_t)from * 6 * n + col0, d->J + (size_t)to * 6 * n + col0, n,
+               ncol - col0);
   double* Jt = d->J + (size_t)to * 6 * n;
   /* Jt's columns from ncol on are zero: d->J and d->J0 (which swaps or copies with it) are
    * allocated zeroed (csr_strainDataCreate) and only this step and tangentColumns write a
@@ -470,7 +473,12 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
   if (chain_only) {
     want_J = 0;
   }
-  const int mid_J = want_J == 1;
+  /* want_J 4: the midpoints' own columns alone (mid_col0 their piece's first) */
+  const int mid_own = want_J == 4;
+  if (mid_own) {
+    want_J = 2;
+  }
+  const int mid_J = want_J == 1 || mid_own;
   d->kin_gen++; /* csr_strainPointTwists_'s memo */
   d->ks_ok = 0;
   /* the clamp: poses are relative to the base (hip) frame */
@@ -488,20 +496,20 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
       if (m->rigid[k]) {
         const double Oh[6] = {0, 0, 0, 0, 0, 0.5 * h}, Of[6] = {0, 0, 0, 0, 0, h};
         if (!chain_only) {
-          stepPoint(m, d, p, p + 1, k, Oh, NULL, mid_J);
+          stepPoint(m, d, p, p + 1, k, Oh, NULL, mid_J, mid_own ? m->dof0[k] : 0);
         }
-        stepPoint(m, d, p, p + 2, k, Of, NULL, want_J);
+        stepPoint(m, d, p, p + 2, k, Of, NULL, want_J, 0);
         continue;
       }
       double Om[6];
       if (!chain_only) {
         magnusP(m, d->q, k, 0.5 * h, csr_strainLegendreAt_(m, k, i, 0, 0),
                 csr_strainLegendreAt_(m, k, i, 0, 1), Om, mid_J ? dOm : NULL);
-        stepPoint(m, d, p, p + 1, k, Om, mid_J ? dOm : NULL, mid_J);
+        stepPoint(m, d, p, p + 1, k, Om, mid_J ? dOm : NULL, mid_J, mid_own ? m->dof0[k] : 0);
       }
       magnusP(m, d->q, k, h, csr_strainLegendreAt_(m, k, i, 1, 0),
               csr_strainLegendreAt_(m, k, i, 1, 1), Om, want_J ? dOm : NULL);
-      stepPoint(m, d, p, p + 2, k, Om, want_J ? dOm : NULL, want_J);
+      stepPoint(m, d, p, p + 2, k, Om, want_J ? dOm : NULL, want_J, 0);
     }
   }
   d->kin_valid = chain_only ? 0 : (want_J == 1 ? 2 : 1);
@@ -511,6 +519,7 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
   }
   if (!chain_only) {
     d->kin_chain = want_J != 0; /* want_J 3 leaves J as it was */
+    d->kin_midown = mid_own;
   }
 }
 
@@ -526,6 +535,12 @@ static void adExpTApply(const double Re[9], const double pe[3], const double W[6
   csu_cross3(t, pe, rf);
   csu_add3(out, out, t);
   memcpy(out + 3, rf, sizeof rf);
+}
+
+
+void csr_strainAdExpTApply_(const double Re[9], const double pe[3], const double W[6],
+                            double out[6]) {
+  adExpTApply(Re, pe, W, out);
 }
 
 

@@ -148,6 +148,21 @@ static inline int strainRobotCreateParams(StrainRobot* r, double mu, const csrSt
 }
 
 
+/* a new robot (strainRobotCreateParams, friction 0.8) with the parameters sp; NULL (the
+ * cause on stderr) if it cannot be made */
+static inline StrainRobot* strainRobotNew(const csrStrainParams* sp) {
+  csError err;
+  cs_errorClear(&err);
+  StrainRobot* r = calloc(1, sizeof *r);
+  if (r && strainRobotCreateParams(r, 0.8, sp, &err) == 0) {
+    return r;
+  }
+  fprintf(stderr, "  %s\n", err.msg);
+  free(r);
+  return NULL;
+}
+
+
 /* the same with the legs' default active set (csrStrainParams.active_set 1) */
 static inline int strainRobotCreateOrder(StrainRobot* r, double mu, int order, int step_order,
                                          csError* err) {

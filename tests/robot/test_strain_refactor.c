@@ -47,15 +47,7 @@ static StrainRobot* robotAt(int a, int bend, int sub, int order) {
   sp.artic = a;
   sp.step_order = order;
   sp.step_refresh = 0;
-  csError err;
-  cs_errorClear(&err);
-  StrainRobot* r = calloc(1, sizeof *r);
-  if (r && strainRobotCreateParams(r, 0.8, &sp, &err) == 0) {
-    return r;
-  }
-  fprintf(stderr, "  %s\n", err.msg);
-  free(r);
-  return NULL;
+  return strainRobotNew(&sp);
 }
 
 
