@@ -1,6 +1,7 @@
 /* robot_strain_contact.c: the strain leg's contact with the terrain inside its linearly
  * implicit step (robot_strain.h): contact_soft.h's law on the leg's shapes, its force and its
- * linearisation.
+ * linearisation, assembled into the step (the shapes themselves, their law through the memo
+ * and their tangent: robot_strain_shape.c).
  *
  * Shapes: a capsule on the chord of every Magnus sub-interval (its two end points) but the
  * last one of the leg, which is the foot's: the sole, a square of half side a at the tip in the
@@ -51,229 +52,6 @@
 
 #include "core_math.h"
 #include "robot_strain_internal.h"
-
-/* difference steps of the linearisation: positions (mm) well inside the law's 1 µm onset,
- * rotations (rad) likewise at the sole's 7.5 mm lever, velocities (mm/s) */
-#define CSR_STRAIN_CFD_X 1e-7
-#define CSR_STRAIN_CFD_PHI 1e-8
-#define CSR_STRAIN_CFD_V 1e-6
-
-
-int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err) {
-  cscSoftParams sp = spec->soft ? *spec->soft : csc_softDefaultParams();
-  sp.history = CSC_HISTORY_STEP;
-  int ncap = 0;
-  for (int k = 0; k < m->npiece; k++) {
-    ncap += m->nsub[k];
-  }
-  ncap -= 1; /* the last sub-interval is the foot's */
-  m->nshape = ncap + 1;
-  m->shape_a = calloc((size_t)m->nshape, sizeof(int));
-  m->shape_b = calloc((size_t)m->nshape, sizeof(int));
-  cscShape* shapes = calloc((size_t)m->nshape, sizeof(cscShape));
-  if (!m->shape_a || !m->shape_b || !shapes) {
-    free(shapes);
-    return cs_errorSet(err, CS_ERR_MEMORY, "strain: out of memory");
-  }
-  int s = 0;
-  for (int k = 0; k < m->npiece; k++) {
-    for (int i = 0; i < m->nsub[k] && s < ncap; i++, s++) {
-      m->shape_a[s] = m->pt0[k] + 2 * i;
-      m->shape_b[s] = m->pt0[k] + 2 * i + 2;
-      shapes[s] = csc_softCapsule(m->rpar.contact_radius);
-    }
-  }
-  m->shape_a[ncap] = m->shape_b[ncap] = m->np - 1;
-  /* the sole: the actuator's square section, or (pieces without an actuator) the capsules'
-   * radius as half side */
-  shapes[ncap] = csc_softFoot(spec->act ? spec->act->a : m->rpar.contact_radius);
-  m->soft = csc_softCreate(&sp, spec->terrain, m->nshape, shapes, err);
-  free(shapes);
-  if (!m->soft) {
-    return CS_ERR_RANGE;
-  }
-  m->nhist = csc_softNState(m->soft);
-  for (int i = 0; i < m->nshape; i++) {
-    int off, cnt;
-    csc_softShapeState(m->soft, i, &off, &cnt);
-    if (cnt > CSR_STRAIN_MAX_SHAPE_HIST) {
-      return cs_errorSet(err, CS_ERR_RANGE, "strain: contact shape %d keeps %d history doubles "
-                         "(at most %d)", i, cnt, CSR_STRAIN_MAX_SHAPE_HIST);
-    }
-  }
-  return 0;
-}
-
-
-/* shape s's pose and velocity in the world from the current kinematics and point twists */
-static void shapeState(const csrStrainModel* m, const csrStrainData* d, int s,
-                       cscShapeState* st) {
-  int a = m->shape_a[s], b = m->shape_b[s];
-  double Ra[9], Rb[9], xb[3];
-  memset(st, 0, sizeof *st);
-  csr_strainWorld_(d, d->R + 9 * a, d->x + 3 * a, Ra, st->x0);
-  csr_strainWorld_(d, d->R + 9 * b, d->x + 3 * b, Rb, xb);
-  memcpy(st->x1, xb, sizeof xb);
-  memcpy(st->R, Ra, sizeof Ra);
-  csu_mulMatVec3(st->v0, Ra, d->Vp + 6 * a + 3);
-  csu_mulMatVec3(st->v1, Rb, d->Vp + 6 * b + 3);
-  csu_mulMatVec3(st->w, Ra, d->Vp + 6 * a);
-}
-
-
-/* the load vector L (6) of shape s: foot (force, couple), capsule (f0, f1); couple out */
-static void loadVector(const csrStrainModel* m, int s, const cscShapeLoad* ld, double L[6],
-                       double couple[3]) {
-  int foot = s == m->nshape - 1;
-  memcpy(L, ld->f0, 3 * sizeof(double));
-  memcpy(L + 3, foot ? ld->m : ld->f1, 3 * sizeof(double));
-  if (couple) {
-    if (foot) {
-      memset(couple, 0, 3 * sizeof(double));
-    } else {
-      memcpy(couple, ld->m, 3 * sizeof(double));
-    }
-  }
-}
-
-
-/* the law at shape s's state st, not remembered (the linearisation's differences, a
- * query at other rates) */
-static int lawLoad(const csrStrainModel* m, const csrStrainData* d, int s,
-                   const cscShapeState* st, double L[6], double couple[3], cscSlotInfo* slot) {
-  int off, cnt;
-  csc_softShapeState(m->soft, s, &off, &cnt);
-  cscShapeLoad ld;
-  double zdot[CSR_STRAIN_MAX_SHAPE_HIST];
-  (void)cnt;
-  int rc = csc_softComputeShape(m->soft, s, st, d->z + off, &ld, zdot, slot, NULL);
-  loadVector(m, s, &ld, L, couple);
-  return rc;
-}
-
-
-/* 1 when shape s's memo was evaluated at st with the history d->z holds now */
-static int memoHolds(const csrStrainModel* m, const csrStrainData* d, int s,
-                     const cscShapeState* st) {
-  const csrStrainLoadMemo* mo = d->memo + s;
-  if (!mo->valid || memcmp(&mo->st, st, sizeof *st) != 0) {
-    return 0;
-  }
-  int off, cnt;
-  csc_softShapeState(m->soft, s, &off, &cnt);
-  return memcmp(d->memo_z + off, d->z + off, (size_t)cnt * sizeof(double)) == 0;
-}
-
-
-/* shape s's memo set to the state st and the history now (its load, report and slots already
- * written) */
-static void memoKeep(const csrStrainModel* m, csrStrainData* d, int s, const cscShapeState* st,
-                     int rc) {
-  csrStrainLoadMemo* mo = d->memo + s;
-  int off, cnt;
-  csc_softShapeState(m->soft, s, &off, &cnt);
-  memcpy(d->memo_z + off, d->z + off, (size_t)cnt * sizeof(double));
-  mo->st = *st;
-  mo->rc = rc;
-  mo->valid = 1;
-}
-
-
-/* The law at shape s's state st (L, couple as loadVector; slot: its slots' report or NULL;
- * rep: added to, or NULL), through the shape's memo (csrStrainLoadMemo): the same bits as
- * the law evaluated anew */
-static int loadOf(const csrStrainModel* m, csrStrainData* d, int s, const cscShapeState* st,
-                  double L[6], double couple[3], cscSlotInfo* slot, cscSoftReport* rep) {
-  csrStrainLoadMemo* mo = d->memo + s;
-  int first, nslot;
-  csc_softShapeSlots(m->soft, s, &first, &nslot);
-  if (!memoHolds(m, d, s, st)) {
-    int off, cnt;
-    csc_softShapeState(m->soft, s, &off, &cnt);
-    double zdot[CSR_STRAIN_MAX_SHAPE_HIST];
-    (void)cnt;
-    memset(&mo->rep, 0, sizeof mo->rep);
-    int rc = csc_softComputeShape(m->soft, s, st, d->z + off, &mo->ld, zdot,
-                                  d->memo_slot + first, &mo->rep);
-    memoKeep(m, d, s, st, rc);
-  }
-  loadVector(m, s, &mo->ld, L, couple);
-  if (slot) {
-    memcpy(slot, d->memo_slot + first, (size_t)nslot * sizeof *slot);
-  }
-  if (rep) {
-    /* as csc_softComputeShape adds a shape to a report: counts summed, maxima (>= 0) */
-    rep->ncontact += mo->rep.ncontact;
-    rep->nsliding += mo->rep.nsliding;
-    rep->ndeep += mo->rep.ndeep;
-    rep->max_depth = fmax(rep->max_depth, mo->rep.max_depth);
-    rep->max_ratio = fmax(rep->max_ratio, mo->rep.max_ratio);
-  }
-  return mo->rc;
-}
-
-
-/* y ± δ along coordinate c (0..5 pose, 6..11 rate) of shape s's state */
-static void perturb(const csrStrainModel* m, int s, cscShapeState* st, int c, double del) {
-  int foot = s == m->nshape - 1;
-  if (c < 3) {
-    st->x0[c] += del;
-  } else if (c < 6) {
-    if (foot) {
-      double phi[3] = {0, 0, 0}, dR[9], Rn[9];
-      phi[c - 3] = del;
-      csu_rotVecToMat3(dR, phi);
-      csu_mulMat3(Rn, dR, st->R);
-      memcpy(st->R, Rn, sizeof Rn);
-    } else {
-      st->x1[c - 3] += del;
-    }
-  } else if (c < 9) {
-    st->v0[c - 6] += del;
-  } else if (foot) {
-    st->w[c - 9] += del;
-  } else {
-    st->v1[c - 9] += del;
-  }
-}
-
-
-/* K_y, C_y (6 x 6 each, row-major: the load's derivatives along the shape's 6 pose and 6 rate
- * coordinates of perturb) of shape s at state st, where the law's load is L0. The foot's come
- * from the law's own derivatives (contact_soft_jac.c, within 1e-8 of central differences in
- * test_contact_soft_jac): one evaluation in place of 12 and exact where differences err by
- * delta / w; the shapes and terrains it does not cover (capsules, a heightfield, friction per
- * surface) by forward differences from L0, half the evaluations of central ones: their error is
- * delta / w relative where the law bends over a width w (its 1e-3 mm onset: 1e-4), which slows
- * the Newton passes negligibly (test_strain_friction holds creep and Coulomb). The differences
- * bypass the memo (lawLoad): a perturbed state is never asked again. */
-static void shapeTangent(const csrStrainModel* m, csrStrainData* d, int s,
-                         const cscShapeState* st, const double L0[6], double Ky[36],
-                         double Cy[36]) {
-  const int foot = s == m->nshape - 1;
-  if (foot) {
-    int off, cnt;
-    csc_softShapeState(m->soft, s, &off, &cnt);
-    double Lj[6];
-    if (csc_softShapeJacobian(m->soft, s, st, d->z + off, Lj, Ky, Cy) == 0) {
-      return;
-    }
-  }
-  for (int c = 0; c < 12; c++) {
-    double del = c < 3 ? CSR_STRAIN_CFD_X
-                       : (c < 6 ? (foot ? CSR_STRAIN_CFD_PHI : CSR_STRAIN_CFD_X)
-                                : CSR_STRAIN_CFD_V);
-    cscShapeState sp = *st;
-    perturb(m, s, &sp, c, del);
-    double Lp[6];
-    lawLoad(m, d, s, &sp, Lp, NULL, NULL);
-    double* D = c < 6 ? Ky : Cy;
-    for (int r = 0; r < 6; r++) {
-      D[6 * r + c % 6] = (Lp[r] - L0[r]) / del;
-    }
-  }
-}
-
 
 void csr_strainPointG_(const csrStrainModel* m, const csrStrainData* d, int p, double* G) {
   const int n = m->n, nu = 6 + n;
@@ -466,16 +244,16 @@ int csr_strainGhostStart_(const csrStrainModel* m, csrStrainData* d) {
   for (int s = 0; s < m->nshape; s++) {
     csrStrainGhost* g = d->ghost + s;
     cscShapeState st;
-    shapeState(m, d, s, &st);
+    csr_strainShapeState_(m, d, s, &st);
     double L0[6], couple[3];
-    int rc = loadOf(m, d, s, &st, L0, couple, NULL, NULL);
+    int rc = csr_strainShapeLoad_(m, d, s, &st, L0, couple, NULL, NULL);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
     if (loadZero(L0, couple)) {
       continue;
     }
-    shapeTangent(m, d, s, &st, L0, g->K, g->C);
+    csr_strainShapeTangent_(m, d, s, &st, L0, g->K, g->C);
     g->y = st;
     memcpy(g->L, L0, sizeof g->L);
     g->state = 1;
@@ -524,14 +302,14 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     csrStrainGhost* g = d->ghost + s;
     g->on = 0;
     cscShapeState st;
-    shapeState(m, d, s, &st);
+    csr_strainShapeState_(m, d, s, &st);
     /* the contact normal (mean over the shape's touching slots) */
     int first, nslot;
     csc_softShapeSlots(m->soft, s, &first, &nslot);
     cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
     double L0[6], couple[3], nrm[3] = {0, 0, 0};
-    int rc = loadOf(m, d, s, &st, L0, couple, nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL,
-                    NULL);
+    int rc = csr_strainShapeLoad_(m, d, s, &st, L0, couple,
+                                  nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL, NULL);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
@@ -566,8 +344,8 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
         csu_mulMat3(Rn, dR, st.R);
         memcpy(st.R, Rn, sizeof Rn);
       }
-      rc = loadOf(m, d, s, &st, L0, couple,
-                  nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL, NULL);
+      rc = csr_strainShapeLoad_(m, d, s, &st, L0, couple,
+                                nslot <= CSR_STRAIN_MAX_SHAPE_HIST ? slot : NULL, NULL);
     }
     if (rc != 0) {
       return rc > 0 ? rc : 1;
@@ -635,7 +413,7 @@ int csr_strainContactAssemble_(const csrStrainModel* m, csrStrainData* d, double
     /* K_y, C_y at this very state (shapeTangent); a ghost keeps its own */
     double Ky[36], Cy[36];
     if (!ghost) {
-      shapeTangent(m, d, s, &st, L0, Ky, Cy);
+      csr_strainShapeTangent_(m, d, s, &st, L0, Ky, Cy);
     }
     if (ghost) {
       memcpy(Ky, g->K, sizeof Ky);
@@ -775,13 +553,13 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
     csrStrainGhost* g = d->ghost + s;
     g->on = 0;
     cscShapeState st;
-    shapeState(m, d, s, &st);
+    csr_strainShapeState_(m, d, s, &st);
     int first, nslot;
     csc_softShapeSlots(m->soft, s, &first, &nslot);
     cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
     int has_slot = nslot <= CSR_STRAIN_MAX_SHAPE_HIST;
     double L[6], couple[3];
-    int rc = loadOf(m, d, s, &st, L, couple, has_slot ? slot : NULL, NULL);
+    int rc = csr_strainShapeLoad_(m, d, s, &st, L, couple, has_slot ? slot : NULL, NULL);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
@@ -874,10 +652,10 @@ double csr_strainContactLimit_(const csrStrainModel* m, csrStrainData* d, double
     return 1.0;
   }
   cscShapeState st;
-  shapeState(m, d, s, &st);
+  csr_strainShapeState_(m, d, s, &st);
   cscSlotInfo slot[CSR_STRAIN_MAX_SHAPE_HIST];
   double L[6], couple[3];
-  if (loadOf(m, d, s, &st, L, couple, slot, NULL) != 0 || loadZero(L, couple)) {
+  if (csr_strainShapeLoad_(m, d, s, &st, L, couple, slot, NULL) != 0 || loadZero(L, couple)) {
     return 1.0;
   }
   /* the foot's world twist change for the move: rows of S (translation, rotation) */
@@ -931,7 +709,7 @@ int csr_strainContactNone_(const csrStrainModel* m, const csrStrainData* d) {
     csr_strainWorld_(d, d->R + 9 * b, d->x + 3 * b, Rb, xb);
     memcpy(st.x1, xb, sizeof xb);
     double L[6], couple[3];
-    if (lawLoad(m, d, s, &st, L, couple, NULL) != 0) {
+    if (csr_strainShapeLaw_(m, d, s, &st, L, couple, NULL) != 0) {
       return 0;
     }
     for (int i = 0; i < 6; i++) {
@@ -950,7 +728,7 @@ int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d) {
   }
   for (int s = 0; s < m->nshape; s++) {
     cscShapeState st;
-    shapeState(m, d, s, &st);
+    csr_strainShapeState_(m, d, s, &st);
     int off, cnt, first, nslot;
     csc_softShapeState(m->soft, s, &off, &cnt);
     csc_softShapeSlots(m->soft, s, &first, &nslot);
@@ -961,7 +739,7 @@ int csr_strainContactUpdate_(const csrStrainModel* m, csrStrainData* d) {
     memset(&mo->rep, 0, sizeof mo->rep);
     int rc = csc_softUpdateShapeLoad(m->soft, s, &st, d->z + off, &mo->ld,
                                      d->memo_slot + first, &mo->rep);
-    memoKeep(m, d, s, &st, rc);
+    csr_strainShapeMemoKeep_(m, d, s, &st, rc);
     if (rc != 0) {
       return rc > 0 ? rc : 1;
     }
@@ -997,9 +775,9 @@ int csr_strainContactWrench(const csrStrainModel* m, csrStrainData* d, double f[
   int rc = 0;
   for (int s = 0; s < m->nshape; s++) {
     cscShapeState st;
-    shapeState(m, d, s, &st);
+    csr_strainShapeState_(m, d, s, &st);
     double L[6], couple[3];
-    int r = loadOf(m, d, s, &st, L, couple, NULL, rep);
+    int r = csr_strainShapeLoad_(m, d, s, &st, L, couple, NULL, rep);
     const cscShapeLoad ld = d->memo[s].ld;
     rc = rc ? rc : r;
     /* forces at x0 and x1 and the couple, moments about the hip */

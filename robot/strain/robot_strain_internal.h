@@ -32,10 +32,10 @@ typedef struct csrStrainGhost_ {
   unsigned char on;    /* 1: held by its ghost load at the last evaluation */
 } csrStrainGhost;
 
-/* One contact shape's last evaluation of the law (robot_strain_contact.c loadOf): the law is a
- * function of the shape's state and its history block alone, so an evaluation at the same bits
- * (the output's read-out after a commit, the next prepare at the committed state, an iterate
- * that linearises afresh after reading its loads) returns these. A cache, not state: keyed by
+/* One contact shape's last evaluation of the law (robot_strain_shape.c csr_strainShapeLoad_):
+ * the law is a function of the shape's state and its history block alone, so an evaluation at
+ * the same bits (the output's read-out after a commit, the next prepare at the committed
+ * state, an iterate that linearises afresh after reading its loads) returns these. A cache, not state: keyed by
  * the bits of st and of the history (csrStrainData.memo_z), it cannot change a result. */
 typedef struct csrStrainLoadMemo_ {
   int valid;          /* 1: st, ld, rep and the slots are an evaluation's */
@@ -455,8 +455,32 @@ int csr_strainCondenseKept_(const csrStrainModel* m, csrStrainData* d, double h,
  * (d->Wll not while wc_sparse: the recursion's start does not form it) */
 void csr_strainClearStart_(const csrStrainModel* m, csrStrainData* d);
 
-/* ---- contact (robot_strain_contact.c) ---- */
+/* ---- contact shapes (robot_strain_shape.c) ---- */
+/* the shapes (a capsule per Magnus sub-interval, the foot's sole last) and their law */
 int csr_strainContactCreate_(csrStrainModel* m, const csrStrainSpec* spec, csError* err);
+/* shape s's pose and velocity in the world from the current kinematics and point twists */
+void csr_strainShapeState_(const csrStrainModel* m, const csrStrainData* d, int s,
+                           cscShapeState* st);
+/* the law at shape s's state st, not remembered (L: foot (force, couple), capsule (f0, f1);
+ * couple, slot out or NULL) */
+int csr_strainShapeLaw_(const csrStrainModel* m, const csrStrainData* d, int s,
+                        const cscShapeState* st, double L[6], double couple[3],
+                        cscSlotInfo* slot);
+/* shape s's memo set to the state st and the history now (its load, report and slots already
+ * written) */
+void csr_strainShapeMemoKeep_(const csrStrainModel* m, csrStrainData* d, int s,
+                              const cscShapeState* st, int rc);
+/* the law at shape s's state st through the shape's memo (the same bits as anew); slot: its
+ * slots' report or NULL; rep: added to, or NULL */
+int csr_strainShapeLoad_(const csrStrainModel* m, csrStrainData* d, int s,
+                         const cscShapeState* st, double L[6], double couple[3],
+                         cscSlotInfo* slot, cscSoftReport* rep);
+/* K_y, C_y (6 x 6 each, row-major) of shape s at state st, where the law's load is L0 */
+void csr_strainShapeTangent_(const csrStrainModel* m, csrStrainData* d, int s,
+                             const cscShapeState* st, const double L0[6], double Ky[36],
+                             double Cy[36]);
+
+/* ---- contact in the step (robot_strain_contact.c) ---- */
 /* the contact's force, its linearisation over a step of h added to W (the four blocks, W_ll
  * full) and h r (r_b, r_l: forces, added), at the current kinematics (with J) and point
  * twists d->Vp; 0 or > 0 (a pose sinks past a shape's radius or is not finite) */
