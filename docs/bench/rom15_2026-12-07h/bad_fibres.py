@@ -3,7 +3,7 @@
 rom14 Next 3).
 
     bad_fibres.py SNAP BASIS.h5 LEG.h5 ROD.h5 LOCAL.h5 [--r 12 --k 176] [--cases T_R:1,T_H4:1]
-        [--train 8] [--emin 0.1]
+        [--train 8] [--emin 0.1] [--npy ITERATES.npy]
 
 For each named held-out FE state and the last load factor of the first TRAIN training rays: the state's
 representation on the manifold (corot_rep.py's: chain strains on R modes, local shape on K
@@ -11,7 +11,8 @@ modes), its fibres' Green strains against the FE state's, and the fibres with E 
 FE's largest at T_R t = 1 is 0.058): their number, the fibre energy they carry, where they sit
 (the host nodes' mean position: z, the angle about the axis, the radius; the slab index of
 corot.Slabs), and the same for the elements' P0 bulk energy kappa V_e theta_e^2 / 2 (the 10
-worst elements' z, angle, radius, share of the total). Units mm, N mm, degrees.
+worst elements' z, angle, radius, share of the total). With --npy the same for the last iterate
+of a Newton run instead of the representation. Units mm, N mm, degrees.
 """
 import os
 import sys
@@ -79,6 +80,9 @@ def main():
     ap.add_argument("--cases", default="T_R:1,T_H4:1")
     ap.add_argument("--train", type=int, default=8)
     ap.add_argument("--emin", type=float, default=0.1)
+    ap.add_argument("--npy", default=None,
+                    help="instead of the representation: the last iterate of this corot_newton.py "
+                    "--save file (the first case's run)")
     a = ap.parse_args()
     m, mf = load_manifold(a)
     node = m.fib[0]
@@ -87,6 +91,11 @@ def main():
     for case in a.cases.split(","):
         ray, t = case.split(":")
         (name, tt, u, p, _, _), = list(states(a.snap, [ray], [float(t)], m.fixed))
+        if a.npy:
+            Z = np.load(a.npy)
+            report(m, mf, f"{name} t {tt:g}, iterate {len(Z) - 1} of {os.path.basename(a.npy)}",
+                   u, mf.u(Z[-1]), a.emin, fpos, epos)
+            return
         report(m, mf, f"{name} t {tt:g}", u, represent(m, mf, u), a.emin, fpos, epos)
     # every fourth training state: each ray's last load factor (t = 1), the first TRAIN rays
     for i, u in enumerate(train_states(a.snap, m.fixed)):

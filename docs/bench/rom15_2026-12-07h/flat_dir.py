@@ -7,7 +7,7 @@
 NPY: corot_newton.py's saved iterates. d = u(z_last) - u(z_near): the step from the iterate
 NEAR the FE state (rom14: iterate 6, tip 0.14 mm) to where the Newton settled (tip 2.47 mm).
 Along d, from the FE state u: the FE's own potential (P0 bulk element by element, every fibre)
-and the reduced model's (the mixed bulk in span(P), the FE's fibres), at s = -1 .. 1; each's
+and the reduced model's (the mixed bulk in span(P), the FE's fibres: mf = 0), at s = -1 .. 1; each's
 slope at u, f(u) . d (the FE's vanishes to its Newton tolerance; the reduced model's is its
 inconsistency along d) and curvature d^T K d (central differences of the slope, s = +-0.05);
 the predicted shift of the minimum along d, -slope / curvature (in units of d: 1 = the 2.3 mm
@@ -37,6 +37,7 @@ def main():
     ap.add_argument("--pk", type=int, default=0)
     a = ap.parse_args()
     m, mf = load_manifold(a)
+    m.Qf = None  # the FE's fibres, fibre by fibre (corot_newton.py --mf 0, rom14's screens)
     if a.penrich and a.pk:
         with h5py.File(a.penrich, "r") as f:
             m.P = np.concatenate([m.P, f["D"][:, :a.pk]], axis=1)
@@ -66,9 +67,11 @@ def main():
         curv = float((m.total(u + h * d, p, fe=fe)[1] - m.total(u - h * d, p, fe=fe)[1]) @ d
                      / (2 * h))
         vals = " ".join(f"{s:+.2f}: {pi(s) - pi(0.0):+9.3f}" for s in (-1, -0.5, -0.25, 0.25, 0.5, 1))
+        dp = [x1 - x0 for x1, x0 in zip(m.total(u + d, p, fe=fe)[0], m.total(u, p, fe=fe)[0])]
         print(f"  {lab:16s} along d from u: Pi(u + s d) - Pi(u) {vals} N mm; slope "
               f"{slope:+.4f} N mm, curvature {curv:.4f} N mm, minimum at s = "
-              f"{-slope / curv:+.3f}")
+              f"{-slope / curv:+.3f}; at s = 1 by part: dev {dp[0]:+.3f}, bulk {dp[1]:+.3f}, "
+              f"fibres {dp[2]:+.3f}, -work {dp[3]:+.3f}")
         sys.stdout.flush()
 
 
