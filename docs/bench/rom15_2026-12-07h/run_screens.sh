@@ -3,8 +3,9 @@
 # a case whose log already holds its last step is skipped (rerun to resume the list).
 #   sh docs/bench/rom15_2026-12-07h/run_screens.sh CASE...   CASE = RAY:T:PK:SUP[:STEPS]
 # PK the pressure enrichment modes (pressure_enrich.py's; 0: the basis' P alone), SUP 1 = their
-# supremizers as local modes; env K the local modes (176), TAG a suffix of the log names. Logs
-# newton_pk<PK>[s][TAG]_<RAY>_t<T>.log beside this script.
+# supremizers as local modes, SUP 2 = theirs and the basis' 48 of P (rom10's, V's last 48);
+# env K the local modes (176), TAG a suffix of the log names. Logs
+# newton_pk<PK>[s|ss][TAG]_<RAY>_t<T>.log beside this script.
 S=/work/rom_data/rom11/snap B=/work/rom_data/rom11/b176_f104.h5 L=/work/rom_data/rom11/legf/leg.h5
 O=/work/rom_data/rom14 R=/work/rom_data/rom15 D=$(dirname "$0")
 E=${PENRICH:-$R/penrich_r12k176.h5} K=${K:-176}
@@ -13,6 +14,8 @@ for c in "$@"; do
   sup=$(echo "$c" | cut -d: -f4); n=$(echo "$c" | cut -d: -f5); n=${n:-12}
   tag=pk$pk; extra=""
   if [ "$sup" = 1 ]; then tag=${tag}s; extra="--psup --sup $pk"; fi
+  # SUP 2: also the basis' own 48 supremizers of P (V's columns before the added ones)
+  if [ "$sup" = 2 ]; then tag=${tag}ss; extra="--psup --sup $((pk + 48))"; fi
   [ -n "$TAG" ] && tag=$tag$TAG
   log=$D/newton_${tag}_${ray}_t$t.log
   if grep -q "Newton $n " "$log" 2>/dev/null; then continue; fi
