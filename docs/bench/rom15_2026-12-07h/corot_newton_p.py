@@ -4,7 +4,8 @@
     corot_newton_p.py [--penrich E.h5 --pk K] [--psup] [--script newton] <that script's arguments>
 
 --script names the rom14 script run with the enriched Energy: newton (corot_newton.py, the
-default), consistency (corot_consistency.py), iterates (corot_iterates.py).
+default), consistency (corot_consistency.py), iterates (corot_iterates.py); --lsup K gives the
+latter two corot_newton.py's --sup K (V's last K columns as local modes).
 
 The reduced potential's mixed bulk b^T A^-1 b / 2, b = P^T (v_e - V_e), A = P^T diag(V_e /
 kappa) P (rom11_energy.Energy.bulk_mixed) with P replaced by [P, D_K]: the first K dilatation
@@ -53,11 +54,21 @@ def main():
     ap.add_argument("--pk", type=int, default=0)
     ap.add_argument("--psup", action="store_true")
     ap.add_argument("--script", choices=("newton", "consistency", "iterates"), default="newton")
+    ap.add_argument("--lsup", type=int, default=0,
+                    help="consistency / iterates: V's last LSUP columns join the local modes "
+                    "(corot_newton.py's --sup, which those scripts lack)")
     a, rest = ap.parse_known_args()
     script = os.path.join(ROM14, f"corot_{a.script}.py")
     sys.argv = [script] + rest
     # the rom14 scripts build their Energy through corot_newton's name (load_manifold, main)
     corot_newton.Energy = enriched_energy(a.penrich, a.pk, a.psup)
+    if a.lsup:
+        load = corot_newton.load_manifold
+
+        def load_sup(args):
+            m, mf = load(args)
+            return m, corot_newton.Manifold(m, mf.sl, mf.Vs, m.orth(mf.Vl, m.V[:, -a.lsup:]))
+        corot_newton.load_manifold = load_sup
     if a.script == "newton":
         corot_newton.main()
     else:
