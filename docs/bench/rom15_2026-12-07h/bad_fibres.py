@@ -27,12 +27,18 @@ from rom11_iso_diag import states, volume_grads  # noqa: E402
 from romlock_span_energy import psi  # noqa: E402
 
 
-def represent(m, mf, u):
+def represent_z(m, mf, u):
+    """corot_rep.py's representation of the state u on the manifold mf: its chain strains on
+    the strain modes, its local shape in those frames M-projected on the local modes"""
     s = rod_strains(*mf.sl.fit(u), mf.sl.c0).ravel()
     z = np.concatenate([mf.Vs.T @ s, np.zeros(mf.k)])
     ul = mf.sl.local(u, mf.fld(z[:mf.r]))
     z[mf.r:] = np.linalg.lstsq(mf.Vl.T @ (m.M @ mf.Vl), mf.Vl.T @ (m.M @ ul), rcond=None)[0]
-    return mf.u(z)
+    return z
+
+
+def represent(m, mf, u):
+    return mf.u(represent_z(m, mf, u))
 
 
 def where(xyz):

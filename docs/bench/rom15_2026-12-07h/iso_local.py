@@ -16,7 +16,6 @@ the held-out states' representations (corot_rep.py's) on the corrected modes, th
 bulk, fibres, M-norm, tip and worst chamber (corot.show), beside the uncorrected modes'.
 Units mm, N mm.
 """
-import argparse
 import os
 import sys
 
@@ -26,28 +25,17 @@ import corot  # noqa: E402,F401  (first: it sets the one-thread BLAS before nump
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
-from corot import rod_strains, show, train_states  # noqa: E402
-from corot_newton import Manifold, load_manifold  # noqa: E402
+from corot import show, train_states  # noqa: E402
+from bad_fibres import represent_z as represent  # noqa: E402
+from corot_newton import Manifold, load_manifold, manifold_args  # noqa: E402
 from pressure_enrich import element_turns  # noqa: E402
 from rom11_iso_diag import states  # noqa: E402
 from rom_basis import dilatations, turn_maps  # noqa: E402
 from scipy.sparse.linalg import splu  # noqa: E402
 
 
-def represent(m, mf, u):
-    s = rod_strains(*mf.sl.fit(u), mf.sl.c0).ravel()
-    z = np.concatenate([mf.Vs.T @ s, np.zeros(mf.k)])
-    ul = mf.sl.local(u, mf.fld(z[:mf.r]))
-    z[mf.r:] = np.linalg.lstsq(mf.Vl.T @ (m.M @ mf.Vl), mf.Vl.T @ (m.M @ ul), rcond=None)[0]
-    return z
-
-
 def main():
-    ap = argparse.ArgumentParser()
-    for n in ("snap", "basis", "leg", "rod", "local"):
-        ap.add_argument(n)
-    ap.add_argument("--r", type=int, default=12)
-    ap.add_argument("--k", type=int, default=176)
+    ap = manifold_args([])
     ap.add_argument("--pairs", type=int, default=150)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--nsel", default="100,400")

@@ -22,7 +22,6 @@ to P; /sig their singular values; /Ds (ndof, kmax): their supremizers (rom_basis
 the reduced Stokes supremizer on the reference mesh), to join the local modes. Units: theta
 dimensionless, V_e mm^3.
 """
-import argparse
 import os
 import sys
 
@@ -31,8 +30,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import corot  # noqa: E402,F401  (first: it sets the one-thread BLAS before numpy loads)
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
-from corot import rod_strains, train_states  # noqa: E402
-from corot_newton import load_manifold  # noqa: E402
+from bad_fibres import represent_z  # noqa: E402
+from corot import train_states  # noqa: E402
+from corot_newton import load_manifold, manifold_args  # noqa: E402
 from rom_basis import dilatations, read_rays, supremizers, turn_maps  # noqa: E402
 
 
@@ -47,11 +47,7 @@ def element_turns(x, tet, maps):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    for n in ("snap", "basis", "leg", "rod", "local", "out"):
-        ap.add_argument(n)
-    ap.add_argument("--r", type=int, default=12)
-    ap.add_argument("--k", type=int, default=176)
+    ap = manifold_args(["out"])
     ap.add_argument("--pairs", type=int, default=400)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--kmax", type=int, default=192)
@@ -60,14 +56,7 @@ def main():
     vol = m.Ve
     dNdX, wq = m.dNdX, m.wq
     tloads = [float(t) for r in read_rays(a.snap) if r["kind"] == "train" for t in r["t"]]
-    Z = []
-    for u in train_states(a.snap, m.fixed):
-        s = rod_strains(*mf.sl.fit(u), mf.sl.c0).ravel()
-        z = np.concatenate([mf.Vs.T @ s, np.zeros(mf.k)])
-        ul = mf.sl.local(u, mf.fld(z[:mf.r]))
-        z[mf.r:] = np.linalg.lstsq(mf.Vl.T @ (m.M @ mf.Vl), mf.Vl.T @ (m.M @ ul), rcond=None)[0]
-        Z.append(z)
-    Z = np.array(Z)
+    Z = np.array([represent_z(m, mf, u) for u in train_states(a.snap, m.fixed)])
     tl = np.array(tloads)
     assert len(tl) == len(Z)
     rng = np.random.default_rng(a.seed)
