@@ -41,6 +41,11 @@ def main():
     ap.add_argument("--nsel", default="100,400")
     ap.add_argument("--cases", default="T_R:1,T_H4:1")
     ap.add_argument("--out", default=None)
+    ap.add_argument("--septa", action="store_true",
+                    help="C = the elements in the septa by geometry (centroid within 24 deg of a "
+                    "multiple of 90 deg, radius within the chambers' 3.66-7.66 mm, z within the "
+                    "chambers' span), the correction solved on C's nodes only (the nodes shared "
+                    "with other elements held): a local correction; --nsel then unused")
     a = ap.parse_args()
     m, mf = load_manifold(a)
     rng = np.random.default_rng(a.seed)
@@ -76,11 +81,35 @@ def main():
     for name, t, u, p, _, _ in cases:
         print(f"{name} t {t:g}, the uncorrected local modes (k = {mf.k}):")
         show(m, "representation", u, mf.u(represent(m, mf, u)), p)
-    for nsel in [int(v) for v in a.nsel.split(",")]:
-        C = set(order[:nsel].tolist())
-        for pe in perms:  # closed under the quarter turns
-            C |= set(pe[list(C)].tolist())
-        C = np.array(sorted(C))
+    if a.septa:
+        cen = m.x[m.tet[:, :4]].mean(axis=1)
+        ang = np.degrees(np.arctan2(cen[:, 1], cen[:, 0]))
+        dist90 = np.abs((ang + 45.0) % 90.0 - 45.0)
+        rad = np.hypot(cen[:, 0], cen[:, 1])
+        inz = np.zeros(len(cen), bool)
+        for c in range(12):
+            zc = m.x[m.face[m.cid == c]].reshape(-1, 3)[:, 2]
+            inz |= (cen[:, 2] >= zc.min()) & (cen[:, 2] <= zc.max())
+        sel = (dist90 < 24.0) & (rad > 3.66) & (rad < 7.66) & inz
+        Cs = np.flatnonzero(sel)
+        inside = np.zeros(nn, bool)
+        inside[np.unique(m.tet[Cs])] = True
+        outside = np.zeros(nn, bool)
+        outside[np.unique(m.tet[~sel])] = True
+        interior = inside & ~outside
+        freel = np.flatnonzero(np.repeat(interior, 3) & ~m.fixed)
+        lu = splu(Xh[freel][:, freel].tocsc())
+        free = freel
+        print(f"septa: {len(Cs)} elements, {interior.sum()} interior nodes", flush=True)
+    sets = [("septa", None)] if a.septa else [(v, int(v)) for v in a.nsel.split(",")]
+    for lab, nsel in sets:
+        if nsel is None:
+            C = Cs
+        else:
+            C = set(order[:nsel].tolist())
+            for pe in perms:  # closed under the quarter turns
+                C |= set(pe[list(C)].tolist())
+            C = np.array(sorted(C))
         # B (|C|, ndof): the linear dilatation of the elements in C
         r_ = np.repeat(np.arange(len(C)), 30)
         c_ = (3 * m.tet[C][:, :, None] + np.arange(3)).reshape(len(C), 30).ravel()
@@ -91,7 +120,7 @@ def main():
         for j in range(len(C)):
             S[free, j] = lu.solve(BT[:, j].toarray().ravel()[free])
         BS = B @ S
-        Vl = mf.Vl - S @ np.linalg.solve(BS, B @ mf.Vl)
+        Vl = mf.Vl - S @ np.linalg.lstsq(BS, B @ mf.Vl, rcond=1e-10)[0]
         Vl[m.fixed] = 0.0
         G = Vl.T @ (m.M @ Vl)
         w, Q = np.linalg.eigh(G)
@@ -99,13 +128,13 @@ def main():
         Vl = Vl @ (Q[:, keep] / np.sqrt(w[keep]))
         mi = Manifold(m, mf.sl, mf.Vs, Vl)
         cen = m.x[m.tet[C, :4]].mean(axis=1)
-        print(f"nsel {nsel}: {len(C)} elements (turn-closed; mean radius "
+        print(f"{lab}: {len(C)} elements (turn-closed; mean radius "
               f"{np.hypot(cen[:, 0], cen[:, 1]).mean():.2f} mm, z {cen[:, 2].min():.0f} .. "
               f"{cen[:, 2].max():.0f} mm), {Vl.shape[1]} corrected local modes", flush=True)
         for name, t, u, p, _, _ in cases:
             show(m, f"{name} t {t:g} representation", u, mi.u(represent(m, mi, u)), p)
         if a.out:
-            with h5py.File(f"{a.out[:-3]}_c{nsel}.h5", "w") as f:
+            with h5py.File(f"{a.out[:-3]}_{lab}.h5", "w") as f:
                 f["Vl"], f["C"] = Vl, C
 
 
