@@ -98,37 +98,75 @@ static inline dual jSqrt(dual a) {
 }
 
 
-static inline dual vDot(const dvec* a, const dvec* b) {
-  return jAdd(jAdd(jMul(a->c[0], b->c[0]), jMul(a->c[1], b->c[1])), jMul(a->c[2], b->c[2]));
+/* The vector operations below write their result through pointers, element by element, with
+ * the very expressions (and order) of the scalar operations above (jMul's a' b + a b', the
+ * sums' grouping): the same bits as composing jMul/jAdd, without the 104-byte temporaries
+ * that composing them by value copied (the closed form's cost was mostly those copies:
+ * sole20 in docs/notes/strain_leg.md). */
+
+/* *r = a·b, grouped as (a0 b0 + a1 b1) + a2 b2 */
+static inline void vDot(dual* r, const dvec* a, const dvec* b) {
+  const dual *a0 = &a->c[0], *a1 = &a->c[1], *a2 = &a->c[2];
+  const dual *b0 = &b->c[0], *b1 = &b->c[1], *b2 = &b->c[2];
+  double d[ND];
+  for (int k = 0; k < ND; k++) {
+    d[k] = ((a0->d[k] * b0->v + a0->v * b0->d[k]) + (a1->d[k] * b1->v + a1->v * b1->d[k])) +
+           (a2->d[k] * b2->v + a2->v * b2->d[k]);
+  }
+  r->v = (a0->v * b0->v + a1->v * b1->v) + a2->v * b2->v;
+  memcpy(r->d, d, sizeof d);
 }
 
 
 static inline void vAdd(dvec* r, const dvec* a, const dvec* b) {
-  for (int j = 0; j < 3; j++) r->c[j] = jAdd(a->c[j], b->c[j]);
+  for (int j = 0; j < 3; j++) {
+    r->c[j].v = a->c[j].v + b->c[j].v;
+    for (int k = 0; k < ND; k++) r->c[j].d[k] = a->c[j].d[k] + b->c[j].d[k];
+  }
 }
 
 
 static inline void vSub(dvec* r, const dvec* a, const dvec* b) {
-  for (int j = 0; j < 3; j++) r->c[j] = jSub(a->c[j], b->c[j]);
+  for (int j = 0; j < 3; j++) {
+    r->c[j].v = a->c[j].v - b->c[j].v;
+    for (int k = 0; k < ND; k++) r->c[j].d[k] = a->c[j].d[k] - b->c[j].d[k];
+  }
 }
 
 
-/* r = a + b s (s a dual scalar) */
-static inline void vAxpy(dvec* r, const dvec* a, const dvec* b, dual s) {
-  for (int j = 0; j < 3; j++) r->c[j] = jAdd(a->c[j], jMul(b->c[j], s));
+/* r = a + b s (s a dual scalar; r may be a, not b) */
+static inline void vAxpy(dvec* r, const dvec* a, const dvec* b, const dual* s) {
+  for (int j = 0; j < 3; j++) {
+    const dual* bj = &b->c[j];
+    for (int k = 0; k < ND; k++) {
+      r->c[j].d[k] = a->c[j].d[k] + (bj->d[k] * s->v + bj->v * s->d[k]);
+    }
+    r->c[j].v = a->c[j].v + bj->v * s->v;
+  }
 }
 
 
-static inline void vScale(dvec* r, const dvec* a, dual s) {
-  for (int j = 0; j < 3; j++) r->c[j] = jMul(a->c[j], s);
+/* r = a s (r may be a) */
+static inline void vScale(dvec* r, const dvec* a, const dual* s) {
+  for (int j = 0; j < 3; j++) {
+    const double av = a->c[j].v;
+    for (int k = 0; k < ND; k++) r->c[j].d[k] = a->c[j].d[k] * s->v + av * s->d[k];
+    r->c[j].v = av * s->v;
+  }
 }
 
 
-static inline void vCross(dvec* r, const dvec* a, const dvec* b) {
+/* r = a × b (r may be a or b): component j = a_i1 b_i2 - a_i2 b_i1, (i1, i2) = (j+1, j+2) */
+static void vCross(dvec* r, const dvec* a, const dvec* b) {
   dvec t;
-  t.c[0] = jSub(jMul(a->c[1], b->c[2]), jMul(a->c[2], b->c[1]));
-  t.c[1] = jSub(jMul(a->c[2], b->c[0]), jMul(a->c[0], b->c[2]));
-  t.c[2] = jSub(jMul(a->c[0], b->c[1]), jMul(a->c[1], b->c[0]));
+  for (int j = 0; j < 3; j++) {
+    const int i1 = (j + 1) % 3, i2 = (j + 2) % 3;
+    const dual *p = &a->c[i1], *q = &b->c[i2], *u = &a->c[i2], *w = &b->c[i1];
+    for (int k = 0; k < ND; k++) {
+      t.c[j].d[k] = (p->d[k] * q->v + p->v * q->d[k]) - (u->d[k] * w->v + u->v * w->d[k]);
+    }
+    t.c[j].v = p->v * q->v - u->v * w->v;
+  }
   *r = t;
 }
 
@@ -310,29 +348,34 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
       have_vc = 1;
     }
     /* F = el <1 - c_hc n·v>, f = n F through the sphere's centre */
-    dual hc = jSmoothPos(jSub(jConst(1), jScl(vDot(&n, &vc), p->c_hc)), JAC_HC_CLIP);
+    dual nv;
+    vDot(&nv, &n, &vc);
+    dual hc = jSmoothPos(jSub(jConst(1), jScl(nv, p->c_hc)), JAC_HC_CLIP);
     dual F = jMul(el, hc);
     dvec f, mr;
-    vScale(&f, &n, F);
+    vScale(&f, &n, &F);
     vAdd(f0, f0, &f);
     vCross(&mr, &r, &f);
     vAdd(mo, mo, &mr);
     vAdd(&Fn, &Fn, &f);
-    vAxpy(&Fel, &Fel, &n, el);
+    vAxpy(&Fel, &Fel, &n, &el);
     W = jAdd(W, el);
   }
   /* csc_softSlotFinish: the slot's normal and load */
   if (!(W.v > 0)) {
     return deep;
   }
-  dual nn = jSqrt(vDot(&Fel, &Fel));
+  dual nn;
+  vDot(&nn, &Fel, &Fel);
+  nn = jSqrt(nn);
   if (!(nn.v > 0)) {
     return deep;
   }
   dvec gn;
   dual inv = jDiv(jConst(1), nn);
-  vScale(&gn, &Fel, inv);
-  dual N = vDot(&Fn, &gn);
+  vScale(&gn, &Fel, &inv);
+  dual N;
+  vDot(&N, &Fn, &gn);
   if (!(N.v > 0)) {
     N = jConst(0);
   }
@@ -348,12 +391,20 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
   /* csc_softFrictionStep: the damped deflection g = z_r + tau_t w, s = |g| / (mu delta_t);
    * ft = -(N / delta_t) g in elastic stick, -(N / delta_t) mu delta_t m(s) g / |g| past it */
   for (int j = 0; j < 3; j++) zr.c[j] = jSub(xm.c[j], jConst(zk[j]));
-  vAxpy(&zr, &zr, &gn, jScl(vDot(&zr, &gn), -1));
-  vAxpy(&wt, &vm, &gn, jScl(vDot(&vm, &gn), -1));
+  dual pr;
+  vDot(&pr, &zr, &gn);
+  pr = jScl(pr, -1);
+  vAxpy(&zr, &zr, &gn, &pr);
+  vDot(&pr, &vm, &gn);
+  pr = jScl(pr, -1);
+  vAxpy(&wt, &vm, &gn, &pr);
   dvec gd;
-  vAxpy(&gd, &zr, &wt, jConst(p->tau_t));
+  const dual tau = jConst(p->tau_t);
+  vAxpy(&gd, &zr, &wt, &tau);
   const double zs = p->mu * p->delta_t;
-  dual ng = jSqrt(vDot(&gd, &gd));
+  dual ng;
+  vDot(&ng, &gd, &gd);
+  ng = jSqrt(ng);
   dual sr = ng; /* s by the law's division (its branch test), the slopes alike */
   sr.v = ng.v / zs;
   for (int k = 0; k < ND; k++) sr.d[k] = ng.d[k] / zs;
@@ -364,7 +415,7 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
     fac = jMul(fac, jDiv(jScl(mv, zs), ng));
   }
   dvec ft, rm, mr;
-  vScale(&ft, &gd, fac);
+  vScale(&ft, &gd, &fac);
   vAdd(f0, f0, &ft);
   vSub(&rm, &xm, x0);
   vCross(&mr, &rm, &ft);
