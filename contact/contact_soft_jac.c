@@ -25,6 +25,9 @@
 #define JAC_HC_CLIP 0.5
 
 enum { ND = 12 }; /* directions: x0 (0..2), φ (3..5), v0 (6..8), ω (9..11) */
+/* a pose-only quantity (sole point, distance, normal, elastic force, the slot's normal, the
+ * anchor's deflection) has no derivative along v0, ω: its directions 0..NP-1 alone */
+enum { NP = 6 };
 
 typedef struct {
   double v;
@@ -101,15 +104,16 @@ static inline dual jSqrt(dual a) {
 /* The vector operations below write their result through pointers, element by element, with
  * the very expressions (and order) of the scalar operations above (jMul's a' b + a b', the
  * sums' grouping): the same bits as composing jMul/jAdd, without the 104-byte temporaries
- * that composing them by value copied (the closed form's cost was mostly those copies:
- * sole20 in docs/notes/strain_leg.md). */
+ * that composing them by value copied. Those taking n form directions 0..n-1 and set the
+ * rest to 0: n = NP where every operand is a pose-only quantity (their directions NP.. are 0,
+ * so are the result's), ND otherwise (sole20 in docs/notes/strain_leg.md). */
 
 /* *r = a·b, grouped as (a0 b0 + a1 b1) + a2 b2 */
-static inline void vDot(dual* r, const dvec* a, const dvec* b) {
+static inline void vDot(dual* r, const dvec* a, const dvec* b, int n) {
   const dual *a0 = &a->c[0], *a1 = &a->c[1], *a2 = &a->c[2];
   const dual *b0 = &b->c[0], *b1 = &b->c[1], *b2 = &b->c[2];
-  double d[ND];
-  for (int k = 0; k < ND; k++) {
+  double d[ND] = {0};
+  for (int k = 0; k < n; k++) {
     d[k] = ((a0->d[k] * b0->v + a0->v * b0->d[k]) + (a1->d[k] * b1->v + a1->v * b1->d[k])) +
            (a2->d[k] * b2->v + a2->v * b2->d[k]);
   }
@@ -126,48 +130,54 @@ static inline void vAdd(dvec* r, const dvec* a, const dvec* b) {
 }
 
 
-static inline void vSub(dvec* r, const dvec* a, const dvec* b) {
+static inline void vSub(dvec* r, const dvec* a, const dvec* b, int n) {
   for (int j = 0; j < 3; j++) {
     r->c[j].v = a->c[j].v - b->c[j].v;
-    for (int k = 0; k < ND; k++) r->c[j].d[k] = a->c[j].d[k] - b->c[j].d[k];
+    for (int k = 0; k < n; k++) r->c[j].d[k] = a->c[j].d[k] - b->c[j].d[k];
+    for (int k = n; k < ND; k++) r->c[j].d[k] = 0;
   }
 }
 
 
 /* r = a + b s (s a dual scalar; r may be a, not b) */
-static inline void vAxpy(dvec* r, const dvec* a, const dvec* b, const dual* s) {
+static inline void vAxpy(dvec* r, const dvec* a, const dvec* b, const dual* s, int n) {
   for (int j = 0; j < 3; j++) {
     const dual* bj = &b->c[j];
-    for (int k = 0; k < ND; k++) {
+    for (int k = 0; k < n; k++) {
       r->c[j].d[k] = a->c[j].d[k] + (bj->d[k] * s->v + bj->v * s->d[k]);
     }
+    for (int k = n; k < ND; k++) r->c[j].d[k] = 0;
     r->c[j].v = a->c[j].v + bj->v * s->v;
   }
 }
 
 
 /* r = a s (r may be a) */
-static inline void vScale(dvec* r, const dvec* a, const dual* s) {
+static inline void vScale(dvec* r, const dvec* a, const dual* s, int n) {
   for (int j = 0; j < 3; j++) {
     const double av = a->c[j].v;
-    for (int k = 0; k < ND; k++) r->c[j].d[k] = a->c[j].d[k] * s->v + av * s->d[k];
+    for (int k = 0; k < n; k++) r->c[j].d[k] = a->c[j].d[k] * s->v + av * s->d[k];
+    for (int k = n; k < ND; k++) r->c[j].d[k] = 0;
     r->c[j].v = av * s->v;
   }
 }
 
 
-/* r = a × b (r may be a or b): component j = a_i1 b_i2 - a_i2 b_i1, (i1, i2) = (j+1, j+2) */
-static void vCross(dvec* r, const dvec* a, const dvec* b) {
-  dvec t;
-  for (int j = 0; j < 3; j++) {
-    const int i1 = (j + 1) % 3, i2 = (j + 2) % 3;
-    const dual *p = &a->c[i1], *q = &b->c[i2], *u = &a->c[i2], *w = &b->c[i1];
-    for (int k = 0; k < ND; k++) {
-      t.c[j].d[k] = (p->d[k] * q->v + p->v * q->d[k]) - (u->d[k] * w->v + u->v * w->d[k]);
-    }
-    t.c[j].v = p->v * q->v - u->v * w->v;
+/* one component of a cross product: r = p q - u w (jMul's expressions, then jSub's) */
+static inline void crossComp(dual* r, const dual* p, const dual* q, const dual* u,
+                             const dual* w) {
+  for (int k = 0; k < ND; k++) {
+    r->d[k] = (p->d[k] * q->v + p->v * q->d[k]) - (u->d[k] * w->v + u->v * w->d[k]);
   }
-  *r = t;
+  r->v = p->v * q->v - u->v * w->v;
+}
+
+
+/* r = a × b, written in place (r must be neither a nor b: no temporary to copy) */
+static void vCross(dvec* r, const dvec* a, const dvec* b) {
+  crossComp(&r->c[0], &a->c[1], &b->c[2], &a->c[2], &b->c[1]);
+  crossComp(&r->c[1], &a->c[2], &b->c[0], &a->c[0], &b->c[2]);
+  crossComp(&r->c[2], &a->c[0], &b->c[1], &a->c[1], &b->c[0]);
 }
 
 
@@ -232,7 +242,7 @@ static void footPoint(const double p[3], const double x0[3], dvec* out) {
 static void footVelocity(const dvec* p, const dvec* x0, const dvec* v0, const dvec* w,
                          dvec* v) {
   dvec r, wr;
-  vSub(&r, p, x0);
+  vSub(&r, p, x0, NP);
   vCross(&wr, w, &r);
   vAdd(v, v0, &wr);
 }
@@ -246,7 +256,7 @@ static dual boxDistance(const cstBox* b, const dvec* c, dvec* n) {
   double x[3] = {c->c[0].v, c->c[1].v, c->c[2].v}, cp[3], nv[3];
   const double sd = cst_boxSignedDistance(b, x, cp, nv);
   dual s = jConst(sd);
-  for (int k = 0; k < ND; k++) {
+  for (int k = 0; k < NP; k++) { /* c is pose-only */
     s.d[k] = nv[0] * c->c[0].d[k] + nv[1] * c->c[1].d[k] + nv[2] * c->c[2].d[k];
   }
   double Jn[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -292,7 +302,7 @@ static dual boxDistance(const cstBox* b, const dvec* c, dvec* n) {
   }
   for (int i = 0; i < 3; i++) {
     n->c[i] = jConst(nv[i]);
-    for (int k = 0; k < ND; k++) {
+    for (int k = 0; k < NP; k++) {
       n->c[i].d[k] = Jn[3 * i] * c->c[0].d[k] + Jn[3 * i + 1] * c->c[1].d[k] +
                      Jn[3 * i + 2] * c->c[2].d[k];
     }
@@ -313,7 +323,7 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
   csc_softSolePoint(sh, st, k / sh->nside, k % sh->nside, cv, &A);
   dvec c, vc, r;
   footPoint(cv, st->x0, &c);
-  vSub(&r, &c, x0);
+  vSub(&r, &c, x0, NP);
   int have_vc = 0; /* the sphere's velocity, formed where a box presses it */
   double lo[3], hi[3];
   for (int j = 0; j < 3; j++) {
@@ -349,16 +359,16 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
     }
     /* F = el <1 - c_hc n·v>, f = n F through the sphere's centre */
     dual nv;
-    vDot(&nv, &n, &vc);
+    vDot(&nv, &n, &vc, ND);
     dual hc = jSmoothPos(jSub(jConst(1), jScl(nv, p->c_hc)), JAC_HC_CLIP);
     dual F = jMul(el, hc);
     dvec f, mr;
-    vScale(&f, &n, &F);
+    vScale(&f, &n, &F, ND);
     vAdd(f0, f0, &f);
     vCross(&mr, &r, &f);
     vAdd(mo, mo, &mr);
     vAdd(&Fn, &Fn, &f);
-    vAxpy(&Fel, &Fel, &n, &el);
+    vAxpy(&Fel, &Fel, &n, &el, NP);
     W = jAdd(W, el);
   }
   /* csc_softSlotFinish: the slot's normal and load */
@@ -366,16 +376,16 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
     return deep;
   }
   dual nn;
-  vDot(&nn, &Fel, &Fel);
+  vDot(&nn, &Fel, &Fel, NP);
   nn = jSqrt(nn);
   if (!(nn.v > 0)) {
     return deep;
   }
   dvec gn;
   dual inv = jDiv(jConst(1), nn);
-  vScale(&gn, &Fel, &inv);
+  vScale(&gn, &Fel, &inv, NP);
   dual N;
-  vDot(&N, &Fn, &gn);
+  vDot(&N, &Fn, &gn, ND);
   if (!(N.v > 0)) {
     N = jConst(0);
   }
@@ -392,18 +402,18 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
    * ft = -(N / delta_t) g in elastic stick, -(N / delta_t) mu delta_t m(s) g / |g| past it */
   for (int j = 0; j < 3; j++) zr.c[j] = jSub(xm.c[j], jConst(zk[j]));
   dual pr;
-  vDot(&pr, &zr, &gn);
+  vDot(&pr, &zr, &gn, NP);
   pr = jScl(pr, -1);
-  vAxpy(&zr, &zr, &gn, &pr);
-  vDot(&pr, &vm, &gn);
+  vAxpy(&zr, &zr, &gn, &pr, NP);
+  vDot(&pr, &vm, &gn, ND);
   pr = jScl(pr, -1);
-  vAxpy(&wt, &vm, &gn, &pr);
+  vAxpy(&wt, &vm, &gn, &pr, ND);
   dvec gd;
   const dual tau = jConst(p->tau_t);
-  vAxpy(&gd, &zr, &wt, &tau);
+  vAxpy(&gd, &zr, &wt, &tau, ND);
   const double zs = p->mu * p->delta_t;
   dual ng;
-  vDot(&ng, &gd, &gd);
+  vDot(&ng, &gd, &gd, ND);
   ng = jSqrt(ng);
   dual sr = ng; /* s by the law's division (its branch test), the slopes alike */
   sr.v = ng.v / zs;
@@ -415,9 +425,9 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
     fac = jMul(fac, jDiv(jScl(mv, zs), ng));
   }
   dvec ft, rm, mr;
-  vScale(&ft, &gd, &fac);
+  vScale(&ft, &gd, &fac, ND);
   vAdd(f0, f0, &ft);
-  vSub(&rm, &xm, x0);
+  vSub(&rm, &xm, x0, NP);
   vCross(&mr, &rm, &ft);
   vAdd(mo, mo, &mr);
   return deep;
