@@ -163,21 +163,22 @@ static inline void vScale(dvec* r, const dvec* a, const dual* s, int n) {
 }
 
 
-/* one component of a cross product: r = p q - u w (jMul's expressions, then jSub's) */
-static inline void crossComp(dual* r, const dual* p, const dual* q, const dual* u,
-                             const dual* w) {
+/* one component of acc + a × b: r = acc + (p q - u w) (jMul's expressions, jSub's, then
+ * jAdd's: the same bits as forming the cross product and adding it) */
+static inline void crossAddComp(dual* r, const dual* acc, const dual* p, const dual* q,
+                                const dual* u, const dual* w) {
   for (int k = 0; k < ND; k++) {
-    r->d[k] = (p->d[k] * q->v + p->v * q->d[k]) - (u->d[k] * w->v + u->v * w->d[k]);
+    r->d[k] = acc->d[k] + ((p->d[k] * q->v + p->v * q->d[k]) - (u->d[k] * w->v + u->v * w->d[k]));
   }
-  r->v = p->v * q->v - u->v * w->v;
+  r->v = acc->v + (p->v * q->v - u->v * w->v);
 }
 
 
-/* r = a × b, written in place (r must be neither a nor b: no temporary to copy) */
-static void vCross(dvec* r, const dvec* a, const dvec* b) {
-  crossComp(&r->c[0], &a->c[1], &b->c[2], &a->c[2], &b->c[1]);
-  crossComp(&r->c[1], &a->c[2], &b->c[0], &a->c[0], &b->c[2]);
-  crossComp(&r->c[2], &a->c[0], &b->c[1], &a->c[1], &b->c[0]);
+/* r = acc + a × b, in place (r may be acc, neither a nor b) */
+static void vCrossAdd(dvec* r, const dvec* acc, const dvec* a, const dvec* b) {
+  crossAddComp(&r->c[0], &acc->c[0], &a->c[1], &b->c[2], &a->c[2], &b->c[1]);
+  crossAddComp(&r->c[1], &acc->c[1], &a->c[2], &b->c[0], &a->c[0], &b->c[2]);
+  crossAddComp(&r->c[2], &acc->c[2], &a->c[0], &b->c[1], &a->c[1], &b->c[0]);
 }
 
 
@@ -241,10 +242,9 @@ static void footPoint(const double p[3], const double x0[3], dvec* out) {
 /* velocity of a foot point p (dual, its offset from x0 r = p - x0): v0 + ω × r */
 static void footVelocity(const dvec* p, const dvec* x0, const dvec* v0, const dvec* w,
                          dvec* v) {
-  dvec r, wr;
+  dvec r;
   vSub(&r, p, x0, NP);
-  vCross(&wr, w, &r);
-  vAdd(v, v0, &wr);
+  vCrossAdd(v, v0, w, &r);
 }
 
 
@@ -362,11 +362,10 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
     vDot(&nv, &n, &vc, ND);
     dual hc = jSmoothPos(jSub(jConst(1), jScl(nv, p->c_hc)), JAC_HC_CLIP);
     dual F = jMul(el, hc);
-    dvec f, mr;
+    dvec f;
     vScale(&f, &n, &F, ND);
     vAdd(f0, f0, &f);
-    vCross(&mr, &r, &f);
-    vAdd(mo, mo, &mr);
+    vCrossAdd(mo, mo, &r, &f);
     vAdd(&Fn, &Fn, &f);
     vAxpy(&Fel, &Fel, &n, &el, NP);
     W = jAdd(W, el);
@@ -424,12 +423,11 @@ static int solePoint(const cscSoftModel* m, const cscShape* sh, const cscShapeSt
     jStepSaturation(sr, p->u_elastic, &mv, &dm);
     fac = jMul(fac, jDiv(jScl(mv, zs), ng));
   }
-  dvec ft, rm, mr;
+  dvec ft, rm;
   vScale(&ft, &gd, &fac, ND);
   vAdd(f0, f0, &ft);
   vSub(&rm, &xm, x0, NP);
-  vCross(&mr, &rm, &ft);
-  vAdd(mo, mo, &mr);
+  vCrossAdd(mo, mo, &rm, &ft);
   return deep;
 }
 
