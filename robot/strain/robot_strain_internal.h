@@ -150,6 +150,8 @@ struct csrStrainData_ {
   double vp_Vb[6];
   double* vp_eta; /* (n) */
   double* Vs;     /* (np x 6) scratch: the velocity products' twists */
+  double* Fc;     /* (np x 6) scratch: a kept iterate's contact wrenches at the chain points
+                     (csr_strainContactLoads_ without the chain Jacobians) */
   /* the kinematics' steps (csr_strainKinematics_, every point but the chain-only poses of want_J
    * 3): for each point p > 0 the step into it, exp(Ω) = (Re 9, pe 3) and θ², θ, sin θ, cos θ
    * (16 a point), which the velocity products reuse where ks_q is their q (ks_ok 1) */
@@ -532,6 +534,19 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
  * (Re μ + pe × Re φ; Re φ) */
 void csr_strainAdExpTApply_(const double Re[9], const double pe[3], const double W[6],
                             double out[6]);
+/* The chain points' twists V_p = G_p (V_b, η) (d->Vp at even p) at d->q, d->eta, d->Vb by the
+ * twist recursion over the chain steps alone, on the kinematics' steps d->ks (which must be at
+ * d->q: csr_strainStepsAt_): no Jacobians; J_p η's value to round-off (a kept iterate's
+ * contact: docs/notes/strain_leg.md, kept20) */
+void csr_strainChainTwistsNoJ_(const csrStrainModel* m, csrStrainData* d);
+/* Q (n, added to) += Σ_p J_pᵀ F_p over the chain points p <= plast, F (np x 6) body wrenches
+ * (m; f) read at the even points, by the adjoint of the chain's Jacobian recursion on the
+ * kinematics' steps d->ks (at d->q): no Jacobians; J_pᵀ F_p's value to round-off */
+void csr_strainChainProjectNoJ_(const csrStrainModel* m, const csrStrainData* d, const double* F,
+                                int plast, double* Q);
+/* csr_strainCondense_'s code for an iterate without the chain points' Jacobians that cannot
+ * keep its matrix: the caller forms them (want_J 2, the point twists) and condenses again */
+#define CSR_STRAIN_NEED_J (-2)
 /* want_J 4 (kin_valid 1, kin_midown 1): as 2, and the midpoints' own piece's columns (not the
  * columns of the pieces before: a midpoint is a leaf, and backward Euler's start by the
  * recursion reads its L_p alone, its step force through the chain point before it; the

@@ -544,6 +544,28 @@ void csr_strainAdExpTApply_(const double Re[9], const double pe[3], const double
 }
 
 
+/* a flexible step's share on its piece's nd unknowns of a wrench W at its end point:
+ * Qk += (∂Ω/∂q)ᵀ T(Ω)ᵀ W (the own columns T ∂Ω/∂q of the step's Jacobian, transposed) */
+static void ownShare(const double T[36], const double* dOm, int nd, const double W[6],
+                     double* Qk) {
+  double u[6];
+  for (int i = 0; i < 6; i++) {
+    double t = 0;
+    for (int r = 0; r < 6; r++) {
+      t += T[6 * r + i] * W[r];
+    }
+    u[i] = t;
+  }
+  for (int jj = 0; jj < nd; jj++) {
+    double t = 0;
+    for (int i = 0; i < 6; i++) {
+      t += dOm[nd * i + jj] * u[i];
+    }
+    Qk[jj] += t;
+  }
+}
+
+
 /* one step's share of the adjoint recursion (csr_strainProject_): the wrench W_to at the step's
  * end point adds Ad(exp(-Ω))ᵀ W_to to its start's (acc) and (∂Ω/∂q)ᵀ T(Ω)ᵀ W_to to piece k's
  * generalised forces (a flexible piece) */
@@ -562,23 +584,9 @@ static void projectStep(const csrStrainModel* m, const double* q, int k, double 
   if (m->rigid[k]) {
     return;
   }
-  double T[36], u[6];
+  double T[36];
   csr_strainTangent_(Om, T);
-  for (int i = 0; i < 6; i++) {
-    double t = 0;
-    for (int r = 0; r < 6; r++) {
-      t += T[6 * r + i] * W_to[r];
-    }
-    u[i] = t;
-  }
-  const int nd = m->ndof[k], c0 = m->dof0[k];
-  for (int jj = 0; jj < nd; jj++) {
-    double t = 0;
-    for (int i = 0; i < 6; i++) {
-      t += dOm[nd * i + jj] * u[i];
-    }
-    Q[c0 + jj] += t;
-  }
+  ownShare(T, dOm, m->ndof[k], W_to, Q + m->dof0[k]);
 }
 
 
@@ -881,6 +889,78 @@ void csr_strainTwistRates_(const csrStrainModel* m, const double* q, const doubl
         const int to = p + 1 + whole;
         twistRateStep(Om, Omd, Omdd, ks ? ks + 16 * to : NULL, V0, A0, V + 6 * to, A + 6 * to);
       }
+    }
+  }
+}
+
+
+/* the trig of a kinematics step kept in d->ks (stepPoint's layout) */
+static void trigFromSteps(const double* ks, csrTrig* tg) {
+  tg->th2 = ks[12];
+  tg->th = ks[13];
+  tg->sn = ks[14];
+  tg->cs = ks[15];
+}
+
+
+void csr_strainChainTwistsNoJ_(const csrStrainModel* m, csrStrainData* d) {
+  double* V = d->Vp;
+  d->vp_gen = -1; /* not csr_strainPointTwists_'s memo */
+  memcpy(V, d->Vb, 6 * sizeof(double));
+  for (int k = 0; k < m->npiece; k++) {
+    const double h = m->piece[k].length / m->nsub[k];
+    for (int i = 0; i < m->nsub[k]; i++) {
+      const int p = m->pt0[k] + 2 * i, to = p + 2;
+      const double* ks = d->ks + 16 * to;
+      /* V_to = Ad(exp(-Ω)) V_p + T(Ω) Ω̇ (twistStep), exp(Ω) and θ the kinematics' own */
+      adExpInvApply(ks, ks + 9, V + 6 * p, V + 6 * to);
+      if (m->rigid[k]) {
+        continue; /* Ω̇ = 0 */
+      }
+      double Om[6], Omd[6], tw[6];
+      csrTrig tg;
+      magnusRate(m, d->q, d->eta, k, i, 1, h, Om, Omd, NULL);
+      trigFromSteps(ks, &tg);
+      tangentApplyWith(Om, &tg, Omd, tw);
+      for (int r = 0; r < 6; r++) {
+        V[6 * to + r] += tw[r];
+      }
+    }
+  }
+}
+
+
+void csr_strainChainProjectNoJ_(const csrStrainModel* m, const csrStrainData* d, const double* F,
+                                int plast, double* Q) {
+  /* W: the wrenches at the chain points from the current one to plast, at the current one */
+  double W[6] = {0, 0, 0, 0, 0, 0};
+  double dOm[6 * CSR_STRAIN_MAX_PIECE_DOF];
+  for (int k = m->npiece - 1; k >= 0; k--) {
+    const double h = m->piece[k].length / m->nsub[k];
+    for (int i = m->nsub[k] - 1; i >= 0; i--) {
+      const int p = m->pt0[k] + 2 * i, to = p + 2;
+      if (to > plast) {
+        continue;
+      }
+      for (int r = 0; r < 6; r++) {
+        W[r] += F[6 * to + r];
+      }
+      const double* ks = d->ks + 16 * to;
+      if (!m->rigid[k]) {
+        /* J_to's own columns are T(Ω) ∂Ω/∂q (stepPoint): their share (∂Ω/∂q)ᵀ T(Ω)ᵀ W, Ω
+         * and θ as the kinematics formed them (magnusP on the same arguments) */
+        double Om[6], T[36];
+        csrTrig tg;
+        magnusP(m, d->q, k, h, csr_strainLegendreAt_(m, k, i, 1, 0),
+                csr_strainLegendreAt_(m, k, i, 1, 1), Om, dOm);
+        trigFromSteps(ks, &tg);
+        tangentWith(Om, &tg, T);
+        ownShare(T, dOm, m->ndof[k], W, Q + m->dof0[k]);
+      }
+      /* the earlier columns J_to = Ad(exp(-Ω)) J_p: W moves to p */
+      double back[6];
+      adExpTApply(ks, ks + 9, W, back);
+      memcpy(W, back, sizeof W);
     }
   }
 }
