@@ -555,8 +555,8 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
   const int noJ = !csr_strainChainJ_(d);
   int plast = 0;
   if (noJ) {
-    if (!csr_strainStepsAt_(m, d)) {
-      return -1; /* the kinematics' steps are not at q: nothing to sweep on */
+    if (!d->kst_ok || !csr_strainStepsAt_(m, d)) {
+      return -1; /* the kinematics' steps are not at q (want_J 5): nothing to sweep on */
     }
     memset(d->Fc, 0, (size_t)m->np * 6 * sizeof(double));
   }

@@ -675,14 +675,14 @@ static int iterateAt(const csrStrainModel* m, csrStrainData* d, double Z[36], do
   /* backward Euler's iterate that may keep its matrix (csr_strainCondense_'s test, less the
    * slots' states the loads decide): the loads need the poses, the chain points' twists and
    * Sᵀ L, not the chain points' Jacobians (the twists by their recursion, Sᵀ L by the adjoint
-   * sweep, on the kinematics' steps), which only a new linearisation reads: formed when the
-   * condensation asks for them (5 329 of the flat road's 6 302 touching iterates keep;
-   * docs/notes/strain_leg.md, kept20) */
+   * sweep, on the kinematics' steps: want_J 5 keeps T(Ω), ∂Ω/∂q), which only a new
+   * linearisation reads: formed when the condensation asks for them (5 329 of the flat
+   * road's 6 302 touching iterates keep; docs/notes/strain_leg.md, kept20) */
   if (m->par.step_order == 1 && !d->fresh && (!d->lu_plain || d->w_lag) &&
       (d->nreuse == 0 || d->chg_last <= 0.25 * d->chg_prev || d->lu_plain) &&
       !csr_strainChainJ_(d)) {
-    if (d->kin_valid < 1 || !csr_strainStepsAt_(m, d)) {
-      csr_strainKinematics_(m, d, 0);
+    if (!d->kst_ok || !csr_strainStepsAt_(m, d)) {
+      csr_strainKinematics_(m, d, 5);
     }
     csr_strainChainTwistsNoJ_(m, d);
     const int rc = csr_strainCondense_(m, d, d->he, d->du, Z, rho);

@@ -427,6 +427,15 @@ static void tangentColumns(const double T[36], const double* restrict dOm, int n
 }
 
 
+/* the trig of a kinematics step kept in d->ks (stepPoint's layout) */
+static void trigFromSteps(const double* ks, csrTrig* tg) {
+  tg->th2 = ks[12];
+  tg->th = ks[13];
+  tg->sn = ks[14];
+  tg->cs = ks[15];
+}
+
+
 /* pose and Jacobian at point `to` from point `from` through the step Ω (dOm over piece k's
  * unknowns, NULL for a rigid step) */
 static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int to, int k,
@@ -479,8 +488,15 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
     want_J = 2;
   }
   const int mid_J = want_J == 1 || mid_own;
+  /* want_J 5: the poses (as 0) and, at each flexible chain step, T(Ω) and ∂Ω/∂q into d->kst
+   * (a kept iterate's twists and Sᵀ L: csr_strainChainTwistsNoJ_, csr_strainChainProjectNoJ_) */
+  const int steps_T = want_J == 5;
+  if (steps_T) {
+    want_J = 0;
+  }
   d->kin_gen++; /* csr_strainPointTwists_'s memo */
   d->ks_ok = 0;
+  d->kst_ok = 0;
   /* the clamp: poses are relative to the base (hip) frame */
   csu_eye3(d->R);
   memset(d->x, 0, 3 * sizeof(double));
@@ -507,11 +523,19 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
                 csr_strainLegendreAt_(m, k, i, 0, 1), Om, mid_J ? dOm : NULL);
         stepPoint(m, d, p, p + 1, k, Om, mid_J ? dOm : NULL, mid_J, mid_own ? m->dof0[k] : 0);
       }
+      double* kst = d->kst + (size_t)(p + 2) * CSR_STRAIN_KST;
       magnusP(m, d->q, k, h, csr_strainLegendreAt_(m, k, i, 1, 0),
-              csr_strainLegendreAt_(m, k, i, 1, 1), Om, want_J ? dOm : NULL);
+              csr_strainLegendreAt_(m, k, i, 1, 1), Om,
+              want_J ? dOm : (steps_T ? kst + 36 : NULL));
       stepPoint(m, d, p, p + 2, k, Om, want_J ? dOm : NULL, want_J, 0);
+      if (steps_T) {
+        csrTrig tg;
+        trigFromSteps(d->ks + 16 * (p + 2), &tg);
+        tangentWith(Om, &tg, kst);
+      }
     }
   }
+  d->kst_ok = steps_T;
   d->kin_valid = chain_only ? 0 : (want_J == 1 ? 2 : 1);
   if (!chain_only) {
     memcpy(d->ks_q, d->q, (size_t)m->n * sizeof(double));
@@ -894,21 +918,11 @@ void csr_strainTwistRates_(const csrStrainModel* m, const double* q, const doubl
 }
 
 
-/* the trig of a kinematics step kept in d->ks (stepPoint's layout) */
-static void trigFromSteps(const double* ks, csrTrig* tg) {
-  tg->th2 = ks[12];
-  tg->th = ks[13];
-  tg->sn = ks[14];
-  tg->cs = ks[15];
-}
-
-
 void csr_strainChainTwistsNoJ_(const csrStrainModel* m, csrStrainData* d) {
   double* V = d->Vp;
   d->vp_gen = -1; /* not csr_strainPointTwists_'s memo */
   memcpy(V, d->Vb, 6 * sizeof(double));
   for (int k = 0; k < m->npiece; k++) {
-    const double h = m->piece[k].length / m->nsub[k];
     for (int i = 0; i < m->nsub[k]; i++) {
       const int p = m->pt0[k] + 2 * i, to = p + 2;
       const double* ks = d->ks + 16 * to;
@@ -917,13 +931,25 @@ void csr_strainChainTwistsNoJ_(const csrStrainModel* m, csrStrainData* d) {
       if (m->rigid[k]) {
         continue; /* Ω̇ = 0 */
       }
-      double Om[6], Omd[6], tw[6];
-      csrTrig tg;
-      magnusRate(m, d->q, d->eta, k, i, 1, h, Om, Omd, NULL);
-      trigFromSteps(ks, &tg);
-      tangentApplyWith(Om, &tg, Omd, tw);
+      /* Ω̇ = (∂Ω/∂q) η on the piece's unknowns, T(Ω) Ω̇: the kinematics' own (want_J 5) */
+      const double* T = d->kst + (size_t)to * CSR_STRAIN_KST;
+      const double* dOm = T + 36;
+      const double* et = d->eta + m->dof0[k];
+      const int nd = m->ndof[k];
+      double Omd[6];
+      for (int c = 0; c < 6; c++) {
+        double t = 0;
+        for (int jj = 0; jj < nd; jj++) {
+          t += dOm[nd * c + jj] * et[jj];
+        }
+        Omd[c] = t;
+      }
       for (int r = 0; r < 6; r++) {
-        V[6 * to + r] += tw[r];
+        double t = 0;
+        for (int c = 0; c < 6; c++) {
+          t += T[6 * r + c] * Omd[c];
+        }
+        V[6 * to + r] += t;
       }
     }
   }
@@ -934,9 +960,7 @@ void csr_strainChainProjectNoJ_(const csrStrainModel* m, const csrStrainData* d,
                                 int plast, double* Q) {
   /* W: the wrenches at the chain points from the current one to plast, at the current one */
   double W[6] = {0, 0, 0, 0, 0, 0};
-  double dOm[6 * CSR_STRAIN_MAX_PIECE_DOF];
   for (int k = m->npiece - 1; k >= 0; k--) {
-    const double h = m->piece[k].length / m->nsub[k];
     for (int i = m->nsub[k] - 1; i >= 0; i--) {
       const int p = m->pt0[k] + 2 * i, to = p + 2;
       if (to > plast) {
@@ -947,15 +971,10 @@ void csr_strainChainProjectNoJ_(const csrStrainModel* m, const csrStrainData* d,
       }
       const double* ks = d->ks + 16 * to;
       if (!m->rigid[k]) {
-        /* J_to's own columns are T(Ω) ∂Ω/∂q (stepPoint): their share (∂Ω/∂q)ᵀ T(Ω)ᵀ W, Ω
-         * and θ as the kinematics formed them (magnusP on the same arguments) */
-        double Om[6], T[36];
-        csrTrig tg;
-        magnusP(m, d->q, k, h, csr_strainLegendreAt_(m, k, i, 1, 0),
-                csr_strainLegendreAt_(m, k, i, 1, 1), Om, dOm);
-        trigFromSteps(ks, &tg);
-        tangentWith(Om, &tg, T);
-        ownShare(T, dOm, m->ndof[k], W, Q + m->dof0[k]);
+        /* J_to's own columns are T(Ω) ∂Ω/∂q (stepPoint): their share (∂Ω/∂q)ᵀ T(Ω)ᵀ W, T
+         * and ∂Ω/∂q the kinematics' (want_J 5) */
+        const double* T = d->kst + (size_t)to * CSR_STRAIN_KST;
+        ownShare(T, T + 36, m->ndof[k], W, Q + m->dof0[k]);
       }
       /* the earlier columns J_to = Ad(exp(-Ω)) J_p: W moves to p */
       double back[6];
