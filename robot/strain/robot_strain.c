@@ -340,6 +340,8 @@ void csr_strainDataDestroy(csrStrainData* d) {
   free(d->rl);
   free(d->Vp);
   free(d->Vs);
+  free(d->Fc);
+  free(d->kst);
   free(d->ks);
   free(d->ks_q);
   free(d->Ab);
@@ -426,6 +428,8 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   d->rl = calloc(n, sizeof(double));
   d->Vp = calloc(np * 6, sizeof(double));
   d->Vs = calloc(np * 6, sizeof(double));
+  d->Fc = calloc(np * 6, sizeof(double));
+  d->kst = calloc((size_t)np * CSR_STRAIN_KST, sizeof(double));
   d->ks = calloc(np * 16, sizeof(double));
   d->ks_q = calloc(n, sizeof(double));
   d->Ab = calloc(np * 6, sizeof(double));
@@ -477,7 +481,7 @@ csrStrainData* csr_strainDataCreate(const csrStrainModel* m, csError* err) {
   if (!d->Wu || !d->fl || !d->csig || !d->ghost || !d->memo || !d->memo_z || !d->memo_slot ||
       !d->q || !d->eta || !d->vp_eta || !d->Kd || !d->b || !d->R || !d->x || !d->J || !d->Q || !d->Qp || !d->Qm ||
       !d->A || !d->dq || !d->q_save || !d->q_start || !d->K1 || !d->b1 || !d->K0 || !d->b0 || !d->piv ||
-      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->ks || !d->ks_q || !d->Ab ||
+      !d->Wll || !d->X || !d->Wlb || !d->Wbl || !d->z || !d->sst || !d->Gs || !d->y || !d->rl || !d->Vp || !d->Vs || !d->Fc || !d->kst || !d->ks || !d->ks_q || !d->Ab ||
       !d->q0 || !d->eta0 || !d->WMll || !d->WMlb || !d->rMl || !d->du || !d->fcA || !d->Rs_save || !d->xs_save ||
       !d->qm1 || !d->etam1 || !d->R0 || !d->x0 || !d->J0 || !d->qf || !d->Mu || !d->ct ||
       !d->cS || !d->cA || !d->artLU || !d->artPiv || !d->artZsn || !d->artY || !d->artL ||

@@ -642,6 +642,11 @@ int csr_strainCondense_(const csrStrainModel* m, csrStrainData* d, double h, con
       d->nreuse++;
       return csr_strainCondenseKept_(m, d, h, du, fb, Z, rho);
     }
+    if (!csr_strainChainJ_(d)) {
+      /* the loads were formed without the chain points' Jacobians (iterateAt's try at a
+       * kept matrix); the new linearisation reads them */
+      return CSR_STRAIN_NEED_J;
+    }
   }
   d->nreuse = 0;
   d->fresh = 0;

@@ -549,6 +549,17 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
   const int n = m->n;
   const cscSoftParams* sp = csc_softParams(m->soft);
   d->nghost = 0;
+  /* without the chain points' Jacobians (a kept iterate's kinematics, want_J 0: the twists
+   * by csr_strainChainTwistsNoJ_), Sᵀ L's J_pᵀ F_p by one adjoint sweep over the chain from
+   * the farthest touching end: the wrenches gathered in d->Fc */
+  const int noJ = !csr_strainChainJ_(d);
+  int plast = 0;
+  if (noJ) {
+    if (!d->kst_ok || !csr_strainStepsAt_(m, d)) {
+      return -1; /* the kinematics' steps are not at q (want_J 5): nothing to sweep on */
+    }
+    memset(d->Fc, 0, (size_t)m->np * 6 * sizeof(double));
+  }
   for (int s = 0; s < m->nshape; s++) {
     csrStrainGhost* g = d->ghost + s;
     g->on = 0;
@@ -599,7 +610,7 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
       double A[36];
       csr_strainAdInv_(d->R + 9 * p, d->x + 3 * p, A);
       const double* J = d->J + (size_t)p * 6 * n;
-      const int nc = m->pcol[p];
+      const int nc = noJ ? 0 : m->pcol[p];
       for (int r = 0; r < 6; r++) {
         if (F[r] == 0) {
           continue;
@@ -611,7 +622,16 @@ int csr_strainContactLoads_(const csrStrainModel* m, csrStrainData* d, double fb
           fl[j] += J[r * n + j] * F[r];
         }
       }
+      if (noJ) {
+        for (int r = 0; r < 6; r++) {
+          d->Fc[6 * p + r] += F[r];
+        }
+        plast = p > plast ? p : plast;
+      }
     }
+  }
+  if (noJ && plast > 0) {
+    csr_strainChainProjectNoJ_(m, d, d->Fc, plast, fl);
   }
   return 0;
 }

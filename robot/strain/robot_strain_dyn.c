@@ -672,6 +672,24 @@ static int iterateAt(const csrStrainModel* m, csrStrainData* d, double Z[36], do
     int rc = assemble(m, d, d->he, 1, !csr_strainArticStep_(m));
     return rc != 0 ? rc : csr_strainCondense_(m, d, d->he, d->du, Z, rho);
   }
+  /* backward Euler's iterate that may keep its matrix (csr_strainCondense_'s test, less the
+   * slots' states the loads decide): the loads need the poses, the chain points' twists and
+   * Sᵀ L, not the chain points' Jacobians (the twists by their recursion, Sᵀ L by the adjoint
+   * sweep, on the kinematics' steps: want_J 5 keeps T(Ω), ∂Ω/∂q), which only a new
+   * linearisation reads: formed when the condensation asks for them (5 329 of the flat
+   * road's 6 302 touching iterates keep; docs/notes/strain_leg.md, kept20) */
+  if (m->par.step_order == 1 && !d->fresh && (!d->lu_plain || d->w_lag) &&
+      (d->nreuse == 0 || d->chg_last <= 0.25 * d->chg_prev || d->lu_plain) &&
+      !csr_strainChainJ_(d)) {
+    if (!d->kst_ok || !csr_strainStepsAt_(m, d)) {
+      csr_strainKinematics_(m, d, 5);
+    }
+    csr_strainChainTwistsNoJ_(m, d);
+    const int rc = csr_strainCondense_(m, d, d->he, d->du, Z, rho);
+    if (rc != CSR_STRAIN_NEED_J) {
+      return rc;
+    }
+  }
   /* the contact's loads and linearisation need the Jacobians and twists at the shapes' ends
    * alone, the chain points: the midpoints' Jacobians (half of the recursion's columns) are
    * skipped, the same numbers at the chain points */
@@ -703,6 +721,11 @@ double csr_strainStepLimit(const csrStrainModel* m, csrStrainData* d, const doub
       d->lu_plain || d->kin_valid < 1) {
     return 1.0; /* an iterate's condense formed the Jacobians at the chain points at least
                    (want_J 2, kin_valid 1; the foot's point is one) or everywhere (kin_valid 2) */
+  }
+  if (!csr_strainChainJ_(d)) {
+    /* a kept iterate's loads went without the chain points' Jacobians: the trust region's
+     * foot rows read them (the poses at the same q: the same bits) */
+    csr_strainKinematics_(m, d, 2);
   }
   /* the full move from the last iterate: the base's ΔV and the rates' y - X ΔV (as
    * csr_strainUpdateDamped) less the iterate's */

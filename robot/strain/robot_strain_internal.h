@@ -150,6 +150,11 @@ struct csrStrainData_ {
   double vp_Vb[6];
   double* vp_eta; /* (n) */
   double* Vs;     /* (np x 6) scratch: the velocity products' twists */
+  double* kst;    /* (np x CSR_STRAIN_KST) at each flexible chain step's end point: T(Ω)
+                     (6 x 6) and ∂Ω/∂q (6 x nd), kept by the kinematics' want_J 5 */
+  int kst_ok;     /* 1: kst holds the last kinematics' steps (want_J 5, at ks_q) */
+  double* Fc;     /* (np x 6) scratch: a kept iterate's contact wrenches at the chain points
+                     (csr_strainContactLoads_ without the chain Jacobians) */
   /* the kinematics' steps (csr_strainKinematics_, every point but the chain-only poses of want_J
    * 3): for each point p > 0 the step into it, exp(Ω) = (Re 9, pe 3) and θ², θ, sin θ, cos θ
    * (16 a point), which the velocity products reuse where ks_q is their q (ks_ok 1) */
@@ -525,13 +530,30 @@ void csr_strainWorld_(const csrStrainData* d, const double Rr[9], const double x
  * leaves of the recursion, needed by the inertia and the step's forces only), kin_valid 1:
  * for a Newton iterate's contact (docs/notes/strain_leg.md, "Kernel, round 3"). want_J 3:
  * the poses at the chain points alone, no Jacobians, the midpoints' poses left as they were,
- * kin_valid 0 (the predicted shapes' poses: csr_strainPredictShapes_) */
+ * kin_valid 0 (the predicted shapes' poses: csr_strainPredictShapes_). want_J 5: the poses
+ * (kin_valid 1, no Jacobians) and each flexible chain step's T(Ω) and ∂Ω/∂q into d->kst
+ * (kst_ok): a kept iterate's twists and Sᵀ L without Jacobians */
 void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J);
 /* Ad(exp(-Ω))ᵀ W of one step, exp(Ω) = (Re, pe) (csr_strainStepsAt_'s first 12 numbers of the
  * step's end point): a wrench W (μ; φ) at the step's end point taken to its start,
  * (Re μ + pe × Re φ; Re φ) */
 void csr_strainAdExpTApply_(const double Re[9], const double pe[3], const double W[6],
                             double out[6]);
+/* The chain points' twists V_p = G_p (V_b, η) (d->Vp at even p) at d->q, d->eta, d->Vb by the
+ * twist recursion over the chain steps alone, on the kinematics' steps d->ks (which must be at
+ * d->q: csr_strainStepsAt_): no Jacobians; J_p η's value to round-off (a kept iterate's
+ * contact: docs/notes/strain_leg.md, kept20) */
+void csr_strainChainTwistsNoJ_(const csrStrainModel* m, csrStrainData* d);
+/* Q (n, added to) += Σ_p J_pᵀ F_p over the chain points p <= plast, F (np x 6) body wrenches
+ * (m; f) read at the even points, by the adjoint of the chain's Jacobian recursion on the
+ * kinematics' steps d->ks, d->kst (at d->q: want_J 5): no Jacobians; J_pᵀ F_p's value to round-off */
+void csr_strainChainProjectNoJ_(const csrStrainModel* m, const csrStrainData* d, const double* F,
+                                int plast, double* Q);
+/* csr_strainCondense_'s code for an iterate without the chain points' Jacobians that cannot
+ * keep its matrix: the caller forms them (want_J 2, the point twists) and condenses again */
+#define CSR_STRAIN_NEED_J (-2)
+/* doubles a chain step keeps in d->kst: T(Ω) and ∂Ω/∂q */
+#define CSR_STRAIN_KST (36 + 6 * CSR_STRAIN_MAX_PIECE_DOF)
 /* want_J 4 (kin_valid 1, kin_midown 1): as 2, and the midpoints' own piece's columns (not the
  * columns of the pieces before: a midpoint is a leaf, and backward Euler's start by the
  * recursion reads its L_p alone, its step force through the chain point before it; the

@@ -427,6 +427,15 @@ static void tangentColumns(const double T[36], const double* restrict dOm, int n
 }
 
 
+/* the trig of a kinematics step kept in d->ks (stepPoint's layout) */
+static void trigFromSteps(const double* ks, csrTrig* tg) {
+  tg->th2 = ks[12];
+  tg->th = ks[13];
+  tg->sn = ks[14];
+  tg->cs = ks[15];
+}
+
+
 /* pose and Jacobian at point `to` from point `from` through the step Ω (dOm over piece k's
  * unknowns, NULL for a rigid step) */
 static void stepPoint(const csrStrainModel* m, csrStrainData* d, int from, int to, int k,
@@ -479,8 +488,15 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
     want_J = 2;
   }
   const int mid_J = want_J == 1 || mid_own;
+  /* want_J 5: the poses (as 0) and, at each flexible chain step, T(Ω) and ∂Ω/∂q into d->kst
+   * (a kept iterate's twists and Sᵀ L: csr_strainChainTwistsNoJ_, csr_strainChainProjectNoJ_) */
+  const int steps_T = want_J == 5;
+  if (steps_T) {
+    want_J = 0;
+  }
   d->kin_gen++; /* csr_strainPointTwists_'s memo */
   d->ks_ok = 0;
+  d->kst_ok = 0;
   /* the clamp: poses are relative to the base (hip) frame */
   csu_eye3(d->R);
   memset(d->x, 0, 3 * sizeof(double));
@@ -507,11 +523,19 @@ void csr_strainKinematics_(const csrStrainModel* m, csrStrainData* d, int want_J
                 csr_strainLegendreAt_(m, k, i, 0, 1), Om, mid_J ? dOm : NULL);
         stepPoint(m, d, p, p + 1, k, Om, mid_J ? dOm : NULL, mid_J, mid_own ? m->dof0[k] : 0);
       }
+      double* kst = d->kst + (size_t)(p + 2) * CSR_STRAIN_KST;
       magnusP(m, d->q, k, h, csr_strainLegendreAt_(m, k, i, 1, 0),
-              csr_strainLegendreAt_(m, k, i, 1, 1), Om, want_J ? dOm : NULL);
+              csr_strainLegendreAt_(m, k, i, 1, 1), Om,
+              want_J ? dOm : (steps_T ? kst + 36 : NULL));
       stepPoint(m, d, p, p + 2, k, Om, want_J ? dOm : NULL, want_J, 0);
+      if (steps_T) {
+        csrTrig tg;
+        trigFromSteps(d->ks + 16 * (p + 2), &tg);
+        tangentWith(Om, &tg, kst);
+      }
     }
   }
+  d->kst_ok = steps_T;
   d->kin_valid = chain_only ? 0 : (want_J == 1 ? 2 : 1);
   if (!chain_only) {
     memcpy(d->ks_q, d->q, (size_t)m->n * sizeof(double));
@@ -544,6 +568,28 @@ void csr_strainAdExpTApply_(const double Re[9], const double pe[3], const double
 }
 
 
+/* a flexible step's share on its piece's nd unknowns of a wrench W at its end point:
+ * Qk += (∂Ω/∂q)ᵀ T(Ω)ᵀ W (the own columns T ∂Ω/∂q of the step's Jacobian, transposed) */
+static void ownShare(const double T[36], const double* dOm, int nd, const double W[6],
+                     double* Qk) {
+  double u[6];
+  for (int i = 0; i < 6; i++) {
+    double t = 0;
+    for (int r = 0; r < 6; r++) {
+      t += T[6 * r + i] * W[r];
+    }
+    u[i] = t;
+  }
+  for (int jj = 0; jj < nd; jj++) {
+    double t = 0;
+    for (int i = 0; i < 6; i++) {
+      t += dOm[nd * i + jj] * u[i];
+    }
+    Qk[jj] += t;
+  }
+}
+
+
 /* one step's share of the adjoint recursion (csr_strainProject_): the wrench W_to at the step's
  * end point adds Ad(exp(-Ω))ᵀ W_to to its start's (acc) and (∂Ω/∂q)ᵀ T(Ω)ᵀ W_to to piece k's
  * generalised forces (a flexible piece) */
@@ -562,23 +608,9 @@ static void projectStep(const csrStrainModel* m, const double* q, int k, double 
   if (m->rigid[k]) {
     return;
   }
-  double T[36], u[6];
+  double T[36];
   csr_strainTangent_(Om, T);
-  for (int i = 0; i < 6; i++) {
-    double t = 0;
-    for (int r = 0; r < 6; r++) {
-      t += T[6 * r + i] * W_to[r];
-    }
-    u[i] = t;
-  }
-  const int nd = m->ndof[k], c0 = m->dof0[k];
-  for (int jj = 0; jj < nd; jj++) {
-    double t = 0;
-    for (int i = 0; i < 6; i++) {
-      t += dOm[nd * i + jj] * u[i];
-    }
-    Q[c0 + jj] += t;
-  }
+  ownShare(T, dOm, m->ndof[k], W_to, Q + m->dof0[k]);
 }
 
 
@@ -881,6 +913,73 @@ void csr_strainTwistRates_(const csrStrainModel* m, const double* q, const doubl
         const int to = p + 1 + whole;
         twistRateStep(Om, Omd, Omdd, ks ? ks + 16 * to : NULL, V0, A0, V + 6 * to, A + 6 * to);
       }
+    }
+  }
+}
+
+
+void csr_strainChainTwistsNoJ_(const csrStrainModel* m, csrStrainData* d) {
+  double* V = d->Vp;
+  d->vp_gen = -1; /* not csr_strainPointTwists_'s memo */
+  memcpy(V, d->Vb, 6 * sizeof(double));
+  for (int k = 0; k < m->npiece; k++) {
+    for (int i = 0; i < m->nsub[k]; i++) {
+      const int p = m->pt0[k] + 2 * i, to = p + 2;
+      const double* ks = d->ks + 16 * to;
+      /* V_to = Ad(exp(-Ω)) V_p + T(Ω) Ω̇ (twistStep), exp(Ω) and θ the kinematics' own */
+      adExpInvApply(ks, ks + 9, V + 6 * p, V + 6 * to);
+      if (m->rigid[k]) {
+        continue; /* Ω̇ = 0 */
+      }
+      /* Ω̇ = (∂Ω/∂q) η on the piece's unknowns, T(Ω) Ω̇: the kinematics' own (want_J 5) */
+      const double* T = d->kst + (size_t)to * CSR_STRAIN_KST;
+      const double* dOm = T + 36;
+      const double* et = d->eta + m->dof0[k];
+      const int nd = m->ndof[k];
+      double Omd[6];
+      for (int c = 0; c < 6; c++) {
+        double t = 0;
+        for (int jj = 0; jj < nd; jj++) {
+          t += dOm[nd * c + jj] * et[jj];
+        }
+        Omd[c] = t;
+      }
+      for (int r = 0; r < 6; r++) {
+        double t = 0;
+        for (int c = 0; c < 6; c++) {
+          t += T[6 * r + c] * Omd[c];
+        }
+        V[6 * to + r] += t;
+      }
+    }
+  }
+}
+
+
+void csr_strainChainProjectNoJ_(const csrStrainModel* m, const csrStrainData* d, const double* F,
+                                int plast, double* Q) {
+  /* W: the wrenches at the chain points from the current one to plast, at the current one */
+  double W[6] = {0, 0, 0, 0, 0, 0};
+  for (int k = m->npiece - 1; k >= 0; k--) {
+    for (int i = m->nsub[k] - 1; i >= 0; i--) {
+      const int p = m->pt0[k] + 2 * i, to = p + 2;
+      if (to > plast) {
+        continue;
+      }
+      for (int r = 0; r < 6; r++) {
+        W[r] += F[6 * to + r];
+      }
+      const double* ks = d->ks + 16 * to;
+      if (!m->rigid[k]) {
+        /* J_to's own columns are T(Ω) ∂Ω/∂q (stepPoint): their share (∂Ω/∂q)ᵀ T(Ω)ᵀ W, T
+         * and ∂Ω/∂q the kinematics' (want_J 5) */
+        const double* T = d->kst + (size_t)to * CSR_STRAIN_KST;
+        ownShare(T, T + 36, m->ndof[k], W, Q + m->dof0[k]);
+      }
+      /* the earlier columns J_to = Ad(exp(-Ω)) J_p: W moves to p */
+      double back[6];
+      adExpTApply(ks, ks + 9, W, back);
+      memcpy(W, back, sizeof W);
     }
   }
 }

@@ -54,6 +54,17 @@ typedef struct {
 } StrainRobot;
 
 
+/* 1 when the n numbers of a are all finite (a read of a NaN-poisoned entry shows here) */
+static inline int strainFinite(const double* a, int n) {
+  for (int i = 0; i < n; i++) {
+    if (!isfinite(a[i])) {
+      return 0;
+    }
+  }
+  return 1;
+}
+
+
 static inline void strainRobotHip(const StrainRobot* r, int k, csrBaseState* b) {
   double t[3], Vh[6];
   csu_mulMat3(b->R, r->R, r->F);
