@@ -35,26 +35,9 @@ import scipy.sparse as sp  # noqa: E402
 from scipy.sparse.linalg import splu, spsolve  # noqa: E402
 from corot import show  # noqa: E402
 from bad_fibres import represent_z  # noqa: E402
+from iso_local import septa_select  # noqa: E402
 from corot_newton import load_manifold, manifold_args  # noqa: E402
 from rom11_iso_diag import states, volume_grads  # noqa: E402
-
-
-def septa_nodes(m, band, rmin=3.66, rmax=7.66):
-    """iso_local.py --septa's selection: the septum elements and their interior nodes"""
-    cen = m.x[m.tet[:, :4]].mean(axis=1)
-    ang = np.degrees(np.arctan2(cen[:, 1], cen[:, 0]))
-    dist90 = np.abs((ang + 45.0) % 90.0 - 45.0)
-    rad = np.hypot(cen[:, 0], cen[:, 1])
-    inz = np.zeros(len(cen), bool)
-    for c in range(12):
-        zc = m.x[m.face[m.cid == c]].reshape(-1, 3)[:, 2]
-        inz |= (cen[:, 2] >= zc.min()) & (cen[:, 2] <= zc.max())
-    sel = (dist90 < band) & (rad > rmin) & (rad < rmax) & inz
-    inside = np.zeros(m.nn, bool)
-    inside[np.unique(m.tet[sel])] = True
-    outside = np.zeros(m.nn, bool)
-    outside[np.unique(m.tet[~sel])] = True
-    return sel, inside & ~outside
 
 
 def local_model(m, fnode):
@@ -140,7 +123,6 @@ def relax(m, s, w0, p, fi, col, A, newton, h=1e-6, log=None):
         # until the full step lowers the FE's Pi, lowered after a full step
         e0 = sum(fe_parts(m, w, p)[0])
         Id = sp.identity(dofs.size, format="csc")
-        alpha = 1.0
         while True:
             dx = -splu((H + mu * Id).tocsc()).solve(g) if mu > 0 else -spsolve(H, g)
             wt = w.copy()
@@ -151,7 +133,7 @@ def relax(m, s, w0, p, fi, col, A, newton, h=1e-6, log=None):
                 break
             mu = max(4.0 * mu, 1.0)
             if mu > 1e8:
-                wt, e1, alpha = w, e0, 0.0
+                wt, e1 = w, e0
                 break
         w = wt
         gn = np.linalg.norm(s.total(w, p, fe=True)[1][dofs])
@@ -198,7 +180,7 @@ def main():
     warnings.filterwarnings("ignore", category=RuntimeWarning)
     m, mf = load_manifold(a)
     m.Qf = None
-    sel, fnode = septa_nodes(m, a.band, a.rmin, a.rmax)
+    sel, fnode = septa_select(m, a.band, a.rmin, a.rmax)
     s = local_model(m, fnode)
     fi, col, A = colouring(m, fnode)
     print(f"septa (band {a.band:g} deg, radius {a.rmin:g}-{a.rmax:g} mm): {sel.sum()} elements, {fnode.sum()} interior nodes; local "
