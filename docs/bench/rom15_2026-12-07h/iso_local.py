@@ -34,6 +34,26 @@ from rom_basis import dilatations, turn_maps  # noqa: E402
 from scipy.sparse.linalg import splu  # noqa: E402
 
 
+def septa_select(m, band=24.0, rmin=3.66, rmax=7.66):
+    """the septum elements by geometry (centroid within BAND deg of a multiple of 90 deg, radius
+    within RMIN-RMAX mm: the chambers' 3.66-7.66, z within a chamber's span) and the nodes touched
+    only by them (bool over elements, bool over nodes); rom16's septa_relax.py uses it too"""
+    cen = m.x[m.tet[:, :4]].mean(axis=1)
+    ang = np.degrees(np.arctan2(cen[:, 1], cen[:, 0]))
+    dist90 = np.abs((ang + 45.0) % 90.0 - 45.0)
+    rad = np.hypot(cen[:, 0], cen[:, 1])
+    inz = np.zeros(len(cen), bool)
+    for c in range(12):
+        zc = m.x[m.face[m.cid == c]].reshape(-1, 3)[:, 2]
+        inz |= (cen[:, 2] >= zc.min()) & (cen[:, 2] <= zc.max())
+    sel = (dist90 < band) & (rad > rmin) & (rad < rmax) & inz
+    inside = np.zeros(m.x.shape[0], bool)
+    inside[np.unique(m.tet[sel])] = True
+    outside = np.zeros(m.x.shape[0], bool)
+    outside[np.unique(m.tet[~sel])] = True
+    return sel, inside & ~outside
+
+
 def main():
     ap = manifold_args([])
     ap.add_argument("--pairs", type=int, default=150)
@@ -82,21 +102,8 @@ def main():
         print(f"{name} t {t:g}, the uncorrected local modes (k = {mf.k}):")
         show(m, "representation", u, mf.u(represent(m, mf, u)), p)
     if a.septa:
-        cen = m.x[m.tet[:, :4]].mean(axis=1)
-        ang = np.degrees(np.arctan2(cen[:, 1], cen[:, 0]))
-        dist90 = np.abs((ang + 45.0) % 90.0 - 45.0)
-        rad = np.hypot(cen[:, 0], cen[:, 1])
-        inz = np.zeros(len(cen), bool)
-        for c in range(12):
-            zc = m.x[m.face[m.cid == c]].reshape(-1, 3)[:, 2]
-            inz |= (cen[:, 2] >= zc.min()) & (cen[:, 2] <= zc.max())
-        sel = (dist90 < 24.0) & (rad > 3.66) & (rad < 7.66) & inz
+        sel, interior = septa_select(m)
         Cs = np.flatnonzero(sel)
-        inside = np.zeros(nn, bool)
-        inside[np.unique(m.tet[Cs])] = True
-        outside = np.zeros(nn, bool)
-        outside[np.unique(m.tet[~sel])] = True
-        interior = inside & ~outside
         freel = np.flatnonzero(np.repeat(interior, 3) & ~m.fixed)
         lu = splu(Xh[freel][:, freel].tocsc())
         free = freel
