@@ -39,6 +39,7 @@ import json
 import math
 import os
 import platform
+import re
 import resource
 import subprocess
 import sys
@@ -56,9 +57,9 @@ ROOT = os.path.dirname(HERE)
 TABLE_COLUMNS = ["scene", "level", "links", "macro_steps", "dt_s", "rod_tol", "step_order",
                  "step_tol_mm", "error_mm", "whole_run", "cpu_s_per_s", "wall_s_per_s",
                  "machine"]
-# What a scene's whole run must reach for whole_run 1: the run ends without a stop (a fall, a
-# divergence: exit 0, status ok), upright (tilt below 30 deg, the verdict's "tips over"), and
-# having crawled (|dx| or |dz| >= 20 mm, the verdict's "crawls"); on the obstacle also at the
+# What a scene's whole run must reach for whole_run 1: the run's own verdict (core/cs_api.c,
+# its verdict line) "crawls": it ends without a stop (a fall, a divergence), upright, having
+# moved (|x| or |z| >= 20 mm); on the obstacle also at the
 # top: within 20 mm of Table 3's end point (x 646, z 270 mm; tools/obstacle_search.py END,
 # issue 32's bound on the whole climb). A track window shorter than the run (the obstacle's
 # first 4 s) cannot see a fall at 12 s: the column is why `--legs auto` never picks such a row.
@@ -71,29 +72,33 @@ def fail(msg):
 
 
 def run_timed(cmd, timeout):
-    """Run cmd; return (returncode, wall s, child CPU s (user + sys), last stderr line)."""
+    """Run cmd; return (returncode, wall s, child CPU s (user + sys), last stderr line, stdout)."""
     env = dict(os.environ, OMP_WAIT_POLICY="PASSIVE", OMP_NUM_THREADS="1")
     r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.monotonic()
     try:
         p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
                            timeout=timeout, text=True)
-        rc, err = p.returncode, p.stderr
+        rc, err, out = p.returncode, p.stderr, p.stdout
     except subprocess.TimeoutExpired as e:
         rc, err = -999, f"timeout after {timeout} s " + (e.stderr or b"").decode()[-200:]
+        out = ""
     wall = time.monotonic() - t0
     r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
     lines = [ln for ln in err.strip().splitlines() if ln.strip()]
-    return rc, wall, cpu, (lines[-1] if lines else "")
+    return rc, wall, cpu, (lines[-1] if lines else ""), out
 
 
-def cached(work, key, compute):
-    """The point's result from work/key.json, or compute() stored there."""
+def cached(work, key, compute, need=()):
+    """The point's result from work/key.json (if it holds every key of need), or compute()
+    stored there."""
     path = os.path.join(work, key + ".json")
     if os.path.exists(path):
         with open(path) as f:
-            return json.load(f)
+            res = json.load(f)
+        if all(k in res for k in need):
+            return res
     res = compute()
     with open(path, "w") as f:
         json.dump(res, f, indent=1)
@@ -106,12 +111,14 @@ def track_config_name(level, links, macro, dt, k=1.0, order=0, tol=0.0):
         (f"-o{order}" if order else "") + (f"-a{tol:g}" if tol else "")
 
 
-def run_track(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0):
+def run_track(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0, whole=False,
+              need=()):
     """tol > 0: the strain level's adaptive step (--strain-step adaptive --step-tol tol, dt
-    its longest step)"""
+    its longest step); whole: the scene's whole default run (the obstacle's track is otherwise
+    its first --obstacle-t-end s); need: keys a cached result must hold (else it runs again)"""
+    t_end = a.obstacle_t_end if scene == "obstacle" and not whole else 0
     key = f"track-{scene}-" + track_config_name(level, links, macro, dt, k, order, tol) + \
-        (f"-t{a.obstacle_t_end:g}" if scene == "obstacle" and a.obstacle_t_end > 0 else "") + \
-        ("-whole" if scene == "obstacle" and a.obstacle_t_end <= 0 else "")
+        (f"-t{t_end:g}" if t_end > 0 else "-whole" if scene == "obstacle" else "")
     out = os.path.join(a.work, key + ".h5")
 
     def compute():
@@ -128,58 +135,44 @@ def run_track(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0):
             cmd += ["--strain-step", "adaptive", "--step-tol", f"{tol:g}"]
         if k != 1:
             cmd += ["--rod-tol", f"{k:g}"]
-        if scene == "obstacle" and a.obstacle_t_end > 0:
-            cmd += ["--t-end", f"{a.obstacle_t_end:g}"]
+        if t_end > 0:
+            cmd += ["--t-end", f"{t_end:g}"]
         load = os.getloadavg()[0]
-        rc, wall, cpu, last = run_timed(cmd, a.timeout)
+        rc, wall, cpu, last, stdout = run_timed(cmd, a.timeout)
+        # the run's own verdict word (core/cs_api.c: falls, stops, tips over, crawls, stands),
+        # from its verdict line on stdout
+        m = re.search(r"^verdict \([^)]*\): (falls|stops|tips over|crawls|stands)", stdout,
+                      re.M)
         res = {"task": scene, "scene": scene, "level": level, "links": links, "macro": macro,
                "dt": dt, "cmd": " ".join(cmd[1:]), "rc": rc, "wall_s": wall, "cpu_s": cpu,
-               "load": load, "last": last, "h5": out}
+               "load": load, "last": last, "h5": out, "verdict": m.group(1) if m else "none"}
         res.update(step_counts(out))
         return res
 
-    return cached(a.work, key, compute)
+    return cached(a.work, key, compute, need)
 
 
 def run_whole(a, scene, level, links, macro, dt, k=1.0, order=0, tol=0.0):
-    """the scene's whole default run of a configuration (no --t-end); the flat road's track
-    run is already whole, the obstacle's is its first --obstacle-t-end s"""
-    if scene != "obstacle":
-        return run_track(a, scene, level, links, macro, dt, k, order, tol)
-    saved = a.obstacle_t_end
-    a.obstacle_t_end = 0
-    try:
-        return run_track(a, scene, level, links, macro, dt, k, order, tol)
-    finally:
-        a.obstacle_t_end = saved
+    """the scene's whole default run of a configuration (no --t-end), with its verdict"""
+    return run_track(a, scene, level, links, macro, dt, k, order, tol, whole=True,
+                     need=("verdict",))
 
 
 def whole_verdict(res, scene):
-    """(1 or 0, why): the whole run against the scene's goal (WHOLE_GOAL)"""
-    if res["rc"] != 0 or not os.path.exists(res["h5"]):
-        return 0, f"stopped: {res['last'][:120]}"
-    import h5py
-    with h5py.File(res["h5"], "r") as f:
-        p = f["/support/position"][:]
-        q = f["/support/orientation"][-1]
-        status = f.attrs.get("status", b"?")
-    status = status.decode() if isinstance(status, bytes) else str(status)
-    if status != "ok":
-        return 0, f"stopped: {status[:120]}"
-    # the same tilt as the verdict's (core/cs_api.c): the body's up axis against the world's
-    tilt = math.degrees(math.acos(min(1.0, 1 - 2 * (q[1] * q[1] + q[3] * q[3]))))
-    dx, dz = p[-1, 0] - p[0, 0], p[-1, 2] - p[0, 2]
-    if tilt > 30:
-        return 0, f"tips over ({tilt:.1f} deg)"
-    if abs(dx) < 20 and abs(dz) < 20:
-        return 0, f"stands (dx {dx:.1f}, dz {dz:.1f} mm)"
+    """(1 or 0, why): the whole run against the scene's goal (WHOLE_GOAL): the run's own
+    verdict "crawls", and on the obstacle the end near Table 3's end point"""
+    if res["rc"] != 0 or res["verdict"] != "crawls":
+        return 0, f"{res['verdict']}: {res['last'][:120]}"
     if scene in WHOLE_GOAL:
+        import h5py
+        with h5py.File(res["h5"], "r") as f:
+            p = f["/support/position"][:]
         (gx, gz), within = WHOLE_GOAL[scene]
         d = math.hypot(p[-1, 0] - gx, p[-1, 2] - gz)
         if d > within:
             return 0, f"ends {d:.1f} mm from the goal ({gx:g}, {gz:g}) mm"
         return 1, f"ends {d:.1f} mm from the goal"
-    return 1, f"crawls (dx {dx:.1f}, dz {dz:.1f} mm)"
+    return 1, "crawls"
 
 
 def step_counts(path):
@@ -351,7 +344,7 @@ def run_bend(a, name, ratios, model, p_max, p_step, mesh=None, tip=None, calib=N
         if calib:
             cmd += ["--calibration", calib]
         load = os.getloadavg()[0]
-        rc, wall, cpu, last = run_timed(cmd, a.fe_timeout if model == "fe" else a.timeout)
+        rc, wall, cpu, last, _ = run_timed(cmd, a.fe_timeout if model == "fe" else a.timeout)
         return {"rc": rc, "wall_s": wall, "cpu_s": cpu, "load": load, "last": last, "h5": out,
                 "cmd": " ".join(cmd[1:])}
 
