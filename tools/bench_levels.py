@@ -590,9 +590,10 @@ def whole_fill(a):
                     fail(f"{a.whole_fill}:{n}: the header has no column {c}")
             out.append(",".join(TABLE_COLUMNS))
             continue
-        r = dict(zip(header, line.split(",")))
-        if len(r) != len(header):
-            fail(f"{a.whole_fill}:{n}: {len(line.split(','))} fields, expected {len(header)}")
+        fields = line.split(",")
+        if len(fields) != len(header):
+            fail(f"{a.whole_fill}:{n}: {len(fields)} fields, expected {len(header)}")
+        r = dict(zip(header, fields))
         r.setdefault("rod_tol", "1")
         r.setdefault("step_order", "0")
         r.setdefault("step_tol_mm", "0")

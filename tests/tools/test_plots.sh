@@ -218,6 +218,16 @@ printf 'task,model,setting,error_mm,cpu_s,wall_s,status,reference\nflat-road,rod
   >"$TMP/lvnan/levels_bench.csv"
 expect_fail1 "bench_levels --plot-only not a number" "levels_bench.csv:2: error_mm, cpu_s or wall_s" \
   "$PY" "$LEVELS" --plot-only --out-dir "$TMP/lvnan" --table "$TMP/lv/none.csv"
+# bench_levels.py --whole-fill: a table it cannot read is one line naming file and line, before
+# any run (and the file is left as it was)
+printf '# c\nscene,level,links,dt_s\nflat-road,rod,8,0.001\n' >"$TMP/lv/nocol.csv"
+expect_fail1 "bench_levels --whole-fill header without error_mm" "nocol.csv:2: the header has no column error_mm" \
+  "$PY" "$LEVELS" --crawlsim "$EXE" --work "$TMP/lv/W" --whole-fill "$TMP/lv/nocol.csv"
+printf 'scene,level,links,macro_steps,dt_s,error_mm,cpu_s_per_s,wall_s_per_s,machine\nflat-road,rod,8,1,0.001,3.3,1.2,1.2,m,extra\n' \
+  >"$TMP/lv/extra.csv"
+expect_fail1 "bench_levels --whole-fill row with an extra field" "extra.csv:2: 10 fields, expected 9" \
+  "$PY" "$LEVELS" --crawlsim "$EXE" --work "$TMP/lv/W" --whole-fill "$TMP/lv/extra.csv"
+if grep -q extra "$TMP/lv/extra.csv"; then ok "bench_levels --whole-fill left the bad table as it was"; else bad "bench_levels --whole-fill rewrote a table it refused" "$TMP/lv/extra.csv"; fi
 expect_fail1 "bench_levels --plot-only no CSV" "levels_bench.csv: cannot read" \
   "$PY" "$LEVELS" --plot-only --out-dir "$TMP/nope" --table "$TMP/lv/none.csv"
 
